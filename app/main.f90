@@ -1,0 +1,224 @@
+!> superjoin: command-line driver. Reads a deck, solves every step, writes the
+!> listing (and CSV results on request). The only place that stops.
+program superjoin_main
+  use, intrinsic :: iso_fortran_env, only: error_unit, output_unit
+  use superjoin_kinds, only: wp
+  use superjoin_error, only: error_t, EXIT_OK, EXIT_USAGE, EXIT_IO
+  use superjoin_model_types, only: model_t, FORM_TRANSFORM, FORM_PENALTY
+  use superjoin_deck_reader, only: read_deck
+  use superjoin_analysis, only: solve_model
+  use superjoin_analysis_results, only: results_t, run_options_t, PH_READ, PH_WRITE
+  use superjoin_output_listing, only: write_listing
+  use superjoin_output_csv, only: write_csv
+  use superjoin_config, only: SUPERJOIN_VERSION, DEMO_DECK_SOURCE, DEMO_DECK_INSTALLED
+  use superjoin_utils_clock, only: stopwatch_t, report_phase
+  implicit none (type, external)
+
+  type(run_options_t) :: opts
+  type(model_t) :: model
+  type(results_t) :: res
+  type(error_t), allocatable :: error
+  character(:), allocatable :: deck, listing, csv_dir
+  logical :: check_only
+  type(stopwatch_t) :: clock
+  real(wp) :: t_read
+  integer :: i
+
+  call parse_command_line(opts, deck, listing, csv_dir, check_only)
+
+  call clock%start()
+  call read_deck(deck, model, error)
+  call fail_on(error, deck)
+  t_read = clock%seconds()
+  call report_phase(opts%quiet, 'read', t_read, deck)
+  if (check_only) then
+     if (.not. opts%quiet) write (error_unit, '(a)') 'superjoin: '//deck//': deck is valid'
+     stop EXIT_OK, quiet=.true.
+  end if
+
+  call solve_model(model, opts, res, error)
+  call fail_on(error, deck)
+  res%phase_seconds(PH_READ) = t_read
+  do i = 1, size(res%warnings)
+     if (.not. opts%quiet) write (error_unit, '(a)') deck//': warning: '//res%warnings(i)%s
+  end do
+
+  call clock%start()
+  call write_listing(listing, model, res, error)
+  call fail_on(error, deck)
+  if (allocated(csv_dir)) then
+     call write_csv(csv_dir, model, res, error)
+     call fail_on(error, deck)
+  end if
+  res%phase_seconds(PH_WRITE) = clock%seconds()
+  call report_phase(opts%quiet, 'write', res%phase_seconds(PH_WRITE), listing)
+  stop EXIT_OK, quiet=.true.
+
+contains
+
+  !> Print the error's lines on stderr and stop with its exit status.
+  subroutine fail_on(error, deck)
+    type(error_t), allocatable, intent(in) :: error
+    character(*), intent(in) :: deck
+    integer :: start, nl
+    character(:), allocatable :: line
+    if (.not. allocated(error)) return
+    start = 1
+    do
+       nl = index(error%message(start:), new_line('a'))
+       if (nl == 0) then
+          line = error%message(start:)
+       else
+          line = error%message(start:start + nl - 2)
+       end if
+       if (index(line, 'error:') == 1) line = deck//': '//line
+       write (error_unit, '(a)') line
+       if (nl == 0) exit
+       start = start + nl
+    end do
+    stop error%code, quiet=.true.
+  end subroutine fail_on
+
+  subroutine usage_error(message)
+    character(*), intent(in) :: message
+    write (error_unit, '(a)') 'superjoin: '//message
+    write (error_unit, '(a)') 'usage: superjoin [options] [DECK]   (superjoin --help for more)'
+    stop EXIT_USAGE, quiet=.true.
+  end subroutine usage_error
+
+  subroutine print_help()
+    write (output_unit, '(a)') &
+         'superjoin '//SUPERJOIN_VERSION//': linear statics of substructures joined by contact elements', &
+         '', &
+         'usage: superjoin [options] [DECK]      (no DECK: solves the bundled demo deck)', &
+         '', &
+         '  -o FILE            listing path (default: DECK with extension .lst)', &
+         '  --csv DIR          full-precision CSV results in DIR (created if needed)', &
+         '  --solver NAME      auto | cholmod | umfpack | lapack   (default auto)', &
+         '  --formulation F    transform | penalty   (overrides *CONTROLS)', &
+         '  --check            read and validate the deck only', &
+         '  --export-matrix F  also write the assembled stiffness matrix (Matrix Market)', &
+         '  -q, --quiet        no progress on stderr', &
+         '  -v, --verbose      more detail on stderr', &
+         '  --help             this text', &
+         '  --version          version', &
+         '', &
+         'exit status: 0 solved; 1 deck error; 2 usage error; 3 structure cannot be solved', &
+         '             (mechanism, singular); 4 input/output or resource failure'
+  end subroutine print_help
+
+  !> Options and file names from the command line (usage errors stop with 2).
+  subroutine parse_command_line(opts, deck, listing, csv_dir, check_only)
+    type(run_options_t), intent(out) :: opts
+    character(:), allocatable, intent(out) :: deck, listing, csv_dir
+    logical, intent(out) :: check_only
+    integer :: i, n
+    character(:), allocatable :: arg, val
+    logical :: exists
+
+    check_only = .false.
+    opts%solver = 'auto'
+    n = command_argument_count()
+    i = 0
+    do while (i < n)
+       i = i + 1
+       arg = get_arg(i)
+       select case (arg)
+       case ('-h', '--help')
+          call print_help()
+          stop EXIT_OK, quiet=.true.
+       case ('--version')
+          write (output_unit, '(a)') 'superjoin '//SUPERJOIN_VERSION
+          stop EXIT_OK, quiet=.true.
+       case ('-q', '--quiet')
+          opts%quiet = .true.
+       case ('-v', '--verbose')
+          opts%verbose = .true.
+       case ('--check')
+          check_only = .true.
+       case ('-o', '--csv', '--solver', '--formulation', '--export-matrix')
+          if (i == n) call usage_error('option '//arg//' needs a value')
+          i = i + 1
+          val = get_arg(i)
+          select case (arg)
+          case ('-o')
+             listing = val
+          case ('--csv')
+             csv_dir = val
+          case ('--solver')
+             select case (lower(val))
+             case ('auto', 'cholmod', 'umfpack', 'lapack')
+                opts%solver = lower(val)
+             case default
+                call usage_error('unknown solver '''//val//''' (auto, cholmod, umfpack, lapack)')
+             end select
+          case ('--formulation')
+             select case (lower(val))
+             case ('transform')
+                opts%formulation = FORM_TRANSFORM
+             case ('penalty')
+                opts%formulation = FORM_PENALTY
+             case default
+                call usage_error('unknown formulation '''//val//''' (transform, penalty)')
+             end select
+          case ('--export-matrix')
+             opts%export_matrix = val
+          end select
+       case default
+          if (len(arg) > 1) then
+             if (arg(1:1) == '-') call usage_error('unknown option '//arg)
+          end if
+          if (allocated(deck)) call usage_error('more than one deck given')
+          deck = arg
+       end select
+    end do
+    if (.not. allocated(deck)) then
+       inquire (file=DEMO_DECK_SOURCE, exist=exists)
+       if (exists) then
+          deck = DEMO_DECK_SOURCE
+       else
+          deck = DEMO_DECK_INSTALLED
+       end if
+       if (.not. allocated(listing)) listing = 'demo.lst'
+    end if
+    inquire (file=deck, exist=exists)
+    if (.not. exists) then
+       write (error_unit, '(a)') deck//': error: cannot open deck'
+       stop EXIT_IO, quiet=.true.
+    end if
+    if (.not. allocated(listing)) listing = default_listing(deck)
+  end subroutine parse_command_line
+
+  function get_arg(i) result(arg)
+    integer, intent(in) :: i
+    character(:), allocatable :: arg
+    integer :: length
+    call get_command_argument(i, length=length)
+    allocate (character(len=length) :: arg)
+    if (length > 0) call get_command_argument(i, arg)
+  end function get_arg
+
+  !> DECK with its extension replaced by .lst.
+  function default_listing(path) result(lst)
+    character(*), intent(in) :: path
+    character(:), allocatable :: lst
+    integer :: dot, slash
+    dot = index(path, '.', back=.true.)
+    slash = index(path, '/', back=.true.)
+    if (dot > slash + 1) then
+       lst = path(1:dot - 1)//'.lst'
+    else
+       lst = path//'.lst'
+    end if
+  end function default_listing
+
+  pure function lower(s) result(t)
+    character(*), intent(in) :: s
+    character(len(s)) :: t
+    integer :: k
+    t = s
+    do k = 1, len(s)
+       if (s(k:k) >= 'A' .and. s(k:k) <= 'Z') t(k:k) = achar(iachar(s(k:k)) + 32)
+    end do
+  end function lower
+end program superjoin_main

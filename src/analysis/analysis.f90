@@ -1,0 +1,462 @@
+!> The solution pipeline: DOFs → forest → Δu transform → assembly → AUTOSPC →
+!> factorization (once for all steps) → solve → health checks → recovery.
+module superjoin_analysis
+  use, intrinsic :: iso_fortran_env, only: error_unit
+  use superjoin_kinds, only: wp, i8
+  use superjoin_error, only: error_t, fatal_error, add_error_line, EXIT_SINGULAR
+  use superjoin_model_types, only: model_t, string_t, FORM_TRANSFORM, FORM_PENALTY, RIGID_LARGE, &
+       LINK_FINITE, LINK_RIGID, node_label
+  use superjoin_assembly_dofs, only: dof_table_t, build_dof_table, UNIT_LINK, UNIT_SUPPORT, GROUND, block_dof
+  use superjoin_assembly_forest, only: forest_t, build_forest
+  use superjoin_assembly_transform, only: transform_t, build_transform, COL_PHYS, COL_DELTA, ROLE_TREE, &
+       ROLE_PLAIN, CONS_REDUNDANT, CONS_ELIMINATED
+  use superjoin_assembly_assemble, only: assemble_stiffness, assemble_loads, max_element_diagonal
+  use superjoin_solvers, only: linear_solver_t, sparse_sym_t, new_solver, condition_estimate
+  use superjoin_output_matrix_market, only: write_matrix_market
+  use superjoin_analysis_results, only: results_t, run_options_t, PH_ASSEMBLE, PH_ORDER, PH_FACTOR, PH_SOLVE
+  use superjoin_analysis_recover, only: recover_results
+  use superjoin_utils_clock, only: stopwatch_t, report_phase
+  use superjoin_utils_strings, only: itoa
+  implicit none (type, external)
+  private
+
+  !> Iterative refinement starts when the relative residual exceeds this.
+  real(wp), parameter, public :: REFINE_THRESHOLD = 1.0e-12_wp
+  !> At most this many refinement steps.
+  integer, parameter, public :: MAX_REFINE = 3
+  !> MAXRATIO above this is flagged as a loss of accuracy (digits lost ≈ log10).
+  real(wp), parameter, public :: MAXRATIO_WARN = 1.0e7_wp
+
+  public :: solve_model
+
+contains
+
+  !> Solve every step of a validated model.
+  subroutine solve_model(model, opts, res, error)
+    type(model_t), intent(in) :: model
+    type(run_options_t), intent(in) :: opts
+    type(results_t), intent(out) :: res
+    type(error_t), allocatable, intent(out) :: error
+    type(dof_table_t) :: table
+    type(forest_t) :: forest
+    type(transform_t) :: tr
+    type(sparse_sym_t) :: k
+    real(wp), allocatable :: f_u0(:), f_phys(:, :), f_red(:, :), q(:, :)
+    logical, allocatable :: spc(:)
+    class(linear_solver_t), allocatable :: solver
+    type(stopwatch_t) :: clock
+    type(string_t), allocatable :: notes(:)
+    integer :: form
+    character(len=64) :: buf
+
+    allocate (notes(0), res%warnings(0))
+    call clock%start()
+    form = model%controls%formulation
+    if (opts%formulation /= 0) form = opts%formulation
+    res%formulation = merge('TRANSFORM', 'PENALTY  ', form == FORM_TRANSFORM)
+    res%formulation = trim(res%formulation)
+
+    call build_dof_table(model, table, error)
+    if (allocated(error)) return
+    if (size(table%ignored_links) > 0) call note(notes, itoa(size(table%ignored_links))// &
+         ' contact element(s) name DOFs that neither node carries; those DOFs are not connected')
+    call apply_large(model, table, form, notes, error)
+    if (allocated(error)) return
+    call build_forest(table, form == FORM_TRANSFORM, forest)
+    call build_transform(model, table, forest, tr, error)
+    if (allocated(error)) return
+    call describe_transform(model, table, tr, form, res, notes)
+
+    call assemble_stiffness(model, table, tr, k, f_u0, error)
+    if (allocated(error)) return
+    call assemble_loads(model, table, f_phys, error)
+    if (allocated(error)) return
+    call reduce_loads(tr, f_phys, f_u0, f_red)
+    call autospc(model, table, tr, k, f_red, spc, notes, error)
+    if (allocated(error)) return
+    res%nphys = table%np
+    res%ncol = tr%ncol
+    res%neq = tr%ncol - count(spc, kind=i8)
+    res%ndelta = count(tr%col_kind(1:tr%ncol) == COL_DELTA, kind=i8)
+    res%matrix_nnz = k%nnz()
+    res%phase_seconds(PH_ASSEMBLE) = clock%seconds()
+    write (buf, '(a,i0,a,i0)') 'equations ', res%neq, ', nonzeros ', res%matrix_nnz
+    call report_phase(opts%quiet, 'assemble', res%phase_seconds(PH_ASSEMBLE), trim(buf))
+
+    if (allocated(opts%export_matrix)) then
+       call write_matrix_market(opts%export_matrix, k, error)
+       if (allocated(error)) return
+    end if
+
+    if (tr%ncol > 0) then
+       call factor_and_solve(model, table, tr, k, f_red, opts, solver, q, res, error)
+       if (allocated(error)) return
+    else
+       allocate (q(0, size(model%steps)))
+       res%solver_name = 'none (no unknowns)'
+       res%ordering = 'none'
+    end if
+
+    call clock%start()
+    call recover_results(model, table, forest, tr, q, f_phys, res, error)
+    if (allocated(error)) return
+    if (tr%ncol > 0) call health(k, q, f_red, spc, solver, model, table, tr, res, opts)
+    res%phase_seconds(PH_SOLVE) = res%phase_seconds(PH_SOLVE) + clock%seconds()
+    if (allocated(solver)) call solver%release()
+    res%notes = notes
+  end subroutine solve_model
+
+  !> RIGID contacts become g = LARGE × (largest element diagonal) under
+  !> RIGID=LARGE, and under PENALTY (which has no exact elimination).
+  subroutine apply_large(model, table, form, notes, error)
+    type(model_t), intent(in) :: model
+    type(dof_table_t), intent(inout) :: table
+    integer, intent(in) :: form
+    type(string_t), allocatable, intent(inout) :: notes(:)
+    type(error_t), allocatable, intent(out) :: error
+    real(wp) :: dmax, glarge
+    integer :: iu
+    logical :: any_rigid
+    character(len=32) :: buf
+
+    if (model%controls%rigid /= RIGID_LARGE .and. form /= FORM_PENALTY) return
+    any_rigid = .false.
+    do iu = 1, table%nunit
+       if (table%units(iu)%kind == UNIT_LINK) any_rigid = any_rigid .or. &
+            any(table%units(iu)%state(1:table%units(iu)%n) == LINK_RIGID)
+    end do
+    if (.not. any_rigid) return
+    call max_element_diagonal(model, table, dmax, error)
+    if (allocated(error)) return
+    if (dmax <= 0.0_wp) dmax = 1.0_wp
+    glarge = model%controls%large*dmax
+    do iu = 1, table%nunit
+       associate (u => table%units(iu))
+         if (u%kind /= UNIT_LINK) cycle
+         where (u%state(1:u%n) == LINK_RIGID)
+            u%g(1:u%n) = glarge
+            u%state(1:u%n) = LINK_FINITE
+         end where
+       end associate
+    end do
+    write (buf, '(es10.3)') glarge
+    call note(notes, 'RIGID contacts use g = LARGE x largest element diagonal = '//trim(adjustl(buf)))
+  end subroutine apply_large
+
+  !> Notes on what was transformed and what was assembled plainly.
+  subroutine describe_transform(model, table, tr, form, res, notes)
+    type(model_t), intent(in) :: model
+    type(dof_table_t), intent(in) :: table
+    type(transform_t), intent(in) :: tr
+    integer, intent(in) :: form
+    type(results_t), intent(inout) :: res
+    type(string_t), allocatable, intent(inout) :: notes(:)
+    integer :: iu, i
+    res%n_tree = 0
+    res%n_plain = 0
+    res%n_support_units = 0
+    do iu = 1, table%nunit
+       associate (u => table%units(iu))
+         if (u%kind == UNIT_SUPPORT) then
+            res%n_support_units = res%n_support_units + 1
+            if (tr%role(iu) == ROLE_PLAIN) call note(notes, 'support at '//vertex_label(model, table, u%vb)// &
+                 ' '//block_name(u%block)//' closes a loop through the ground: assembled plainly')
+         else if (tr%role(iu) == ROLE_TREE) then
+            res%n_tree = res%n_tree + 1
+         else
+            res%n_plain = res%n_plain + 1
+            if (form == FORM_TRANSFORM) call note(notes, 'contact '//model%contacts(model%links(u%source)%contact)%name// &
+                 ' '//vertex_label(model, table, u%va)//' - '//vertex_label(model, table, u%vb)//' '// &
+                 block_name(u%block)//': closes a loop, assembled plainly')
+         end if
+       end associate
+       do i = 1, tr%ncons
+          if (tr%cons(i)%unit /= iu) cycle
+          associate (cs => tr%cons(i), u => table%units(iu))
+            if (cs%status == CONS_REDUNDANT) then
+               call note(notes, '  RIGID '//local_name(u%block, u%lcomp(cs%k))//' of that unit is redundant '// &
+                    '(already implied by the tree); its force is carried by the tree')
+            else if (cs%status == CONS_ELIMINATED) then
+               call note(notes, '  RIGID '//local_name(u%block, u%lcomp(cs%k))//' of that unit is enforced exactly '// &
+                    'by eliminating one unknown')
+            end if
+          end associate
+       end do
+    end do
+  end subroutine describe_transform
+
+  !> f_red = Tᵀ f_phys + f_u0 for every step.
+  subroutine reduce_loads(tr, f_phys, f_u0, f_red)
+    type(transform_t), intent(in) :: tr
+    real(wp), intent(in) :: f_phys(:, :), f_u0(:)
+    real(wp), allocatable, intent(out) :: f_red(:, :)
+    integer(i8) :: p, j
+    integer :: is
+    allocate (f_red(tr%ncol, size(f_phys, 2)))
+    do is = 1, size(f_phys, 2)
+       f_red(:, is) = f_u0
+    end do
+    do p = 1, size(f_phys, 1, kind=i8)
+       if (all(f_phys(p, :) == 0.0_wp)) cycle
+       do j = tr%map_start(p), tr%map_start(p) + tr%map_len(p) - 1
+          f_red(tr%pool_col(j), :) = f_red(tr%pool_col(j), :) + tr%pool_coef(j)*f_phys(p, :)
+       end do
+    end do
+  end subroutine reduce_loads
+
+  !> Unknowns with no stiffness at all: dropped (diagonal 1, load 0) when
+  !> unloaded, reported; a loaded one is an error (exit 3).
+  subroutine autospc(model, table, tr, k, f_red, spc, notes, error)
+    type(model_t), intent(in) :: model
+    type(dof_table_t), intent(in) :: table
+    type(transform_t), intent(in) :: tr
+    type(sparse_sym_t), intent(inout) :: k
+    real(wp), intent(inout) :: f_red(:, :)
+    logical, allocatable, intent(out) :: spc(:)
+    type(string_t), allocatable, intent(inout) :: notes(:)
+    type(error_t), allocatable, intent(out) :: error
+    logical, allocatable :: nz(:)
+    integer(i8) :: j, pos
+    allocate (nz(tr%ncol), source=.false.)
+    allocate (spc(tr%ncol), source=.false.)
+    do j = 1, k%n
+       do pos = k%colptr(j), k%colptr(j + 1) - 1
+          if (k%val(pos) /= 0.0_wp) then
+             nz(j) = .true.
+             nz(k%rowind(pos)) = .true.
+          end if
+       end do
+    end do
+    do j = 1, tr%ncol
+       if (nz(j)) cycle
+       if (any(f_red(j, :) /= 0.0_wp)) then
+          call add_error_line(error, EXIT_SINGULAR, 'error: load on a DOF without stiffness: '// &
+               column_label(model, table, tr, j))
+          cycle
+       end if
+       spc(j) = .true.
+       k%val(k%colptr(j + 1) - 1) = 1.0_wp
+       call note(notes, 'AUTOSPC: '//column_label(model, table, tr, j)//' has no stiffness and no load: dropped')
+    end do
+  end subroutine autospc
+
+  !> Analyze, factorize (mapping a breakdown to its location) and solve all steps.
+  subroutine factor_and_solve(model, table, tr, k, f_red, opts, solver, q, res, error)
+    type(model_t), intent(in) :: model
+    type(dof_table_t), intent(in) :: table
+    type(transform_t), intent(in) :: tr
+    type(sparse_sym_t), intent(in) :: k
+    real(wp), intent(in) :: f_red(:, :)
+    type(run_options_t), intent(in) :: opts
+    class(linear_solver_t), allocatable, intent(out) :: solver
+    real(wp), allocatable, intent(out) :: q(:, :)
+    type(results_t), intent(inout) :: res
+    type(error_t), allocatable, intent(out) :: error
+    type(stopwatch_t) :: clock
+    character(:), allocatable :: solver_name
+    integer(i8) :: jf
+    character(len=80) :: buf
+
+    solver_name = 'auto'
+    if (allocated(opts%solver)) solver_name = opts%solver
+    call clock%start()
+    call new_solver(solver_name, k%n, solver, error)
+    if (allocated(error)) return
+    call solver%analyze(k, error)
+    if (allocated(error)) return
+    res%phase_seconds(PH_ORDER) = clock%seconds()
+    call report_phase(opts%quiet, 'order', res%phase_seconds(PH_ORDER), solver%info%ordering)
+
+    call clock%start()
+    call solver%factorize(k, error)
+    if (allocated(error)) then
+       if (error%code == EXIT_SINGULAR) then
+          jf = solver%info%failed_column
+          deallocate (error)
+          if (jf >= 1 .and. jf <= tr%ncol) then
+             call fatal_error(error, EXIT_SINGULAR, 'error: the structure cannot be solved: '// &
+                  'mechanism or singular stiffness at '//column_label(model, table, tr, jf))
+          else
+             call fatal_error(error, EXIT_SINGULAR, 'error: the structure cannot be solved: '// &
+                  'stiffness matrix is singular or not positive definite')
+          end if
+       end if
+       return
+    end if
+    res%phase_seconds(PH_FACTOR) = clock%seconds()
+    res%solver_name = solver%info%name
+    res%ordering = solver%info%ordering
+    res%factor_nnz = solver%info%factor_nnz
+    res%factor_mbytes = solver%info%factor_mbytes
+    write (buf, '(a,i0)') 'factor nonzeros ', res%factor_nnz
+    call report_phase(opts%quiet, 'factor', res%phase_seconds(PH_FACTOR), solver%info%name//', '//trim(buf))
+
+    call clock%start()
+    allocate (q(k%n, size(f_red, 2)))
+    call solver%solve(f_red, q, error)
+    if (allocated(error)) return
+    res%phase_seconds(PH_SOLVE) = clock%seconds()
+    call report_phase(opts%quiet, 'solve', res%phase_seconds(PH_SOLVE))
+  end subroutine factor_and_solve
+
+  !> Residual, EPSILON, iterative refinement, MAXRATIO and condition estimate.
+  subroutine health(k, q, f_red, spc, solver, model, table, tr, res, opts)
+    type(sparse_sym_t), intent(in) :: k
+    real(wp), intent(inout) :: q(:, :)
+    real(wp), intent(in) :: f_red(:, :)
+    logical, intent(in) :: spc(:)
+    class(linear_solver_t), intent(inout) :: solver
+    type(model_t), intent(in) :: model
+    type(dof_table_t), intent(in) :: table
+    type(transform_t), intent(in) :: tr
+    type(results_t), intent(inout) :: res
+    type(run_options_t), intent(in) :: opts
+    real(wp), allocatable :: r(:, :), dq(:, :), d(:), kd(:)
+    type(error_t), allocatable :: error
+    integer :: is, it, nstep
+    integer(i8) :: j, jmax
+    real(wp) :: ratio, fnorm, cond
+    character(len=32) :: buf
+
+    nstep = size(q, 2)
+    allocate (r(k%n, nstep), dq(k%n, nstep))
+    call k%matvec(q, r)
+    r = r - f_red
+    do is = 1, nstep
+       fnorm = norm2(f_red(:, is))
+       res%steps(is)%residual0 = safe_div(norm2(r(:, is)), fnorm)
+       res%steps(is)%residual = res%steps(is)%residual0
+       res%steps(is)%epsilon = safe_div(dot_product(q(:, is), r(:, is)), dot_product(q(:, is), f_red(:, is)))
+    end do
+    ! Iterative refinement with the existing factor.
+    do it = 1, MAX_REFINE
+       if (all(res%steps(:)%residual <= REFINE_THRESHOLD)) exit
+       call solver%solve(r, dq, error)
+       if (allocated(error)) exit
+       q = q - dq
+       call k%matvec(q, r)
+       r = r - f_red
+       do is = 1, nstep
+          res%steps(is)%refinements = it
+          res%steps(is)%residual = safe_div(norm2(r(:, is)), norm2(f_red(:, is)))
+          res%steps(is)%epsilon = safe_div(dot_product(q(:, is), r(:, is)), dot_product(q(:, is), f_red(:, is)))
+       end do
+    end do
+
+    ! MAXRATIO = max K_jj / D_jj.
+    allocate (d(k%n), kd(k%n))
+    call solver%pivots(d)
+    call k%diagonal(kd)
+    res%maxratio = 0.0_wp
+    jmax = 0
+    do j = 1, k%n
+       if (spc(j) .or. d(j) == 0.0_wp) cycle
+       ratio = abs(kd(j)/d(j))
+       if (ratio > res%maxratio) then
+          res%maxratio = ratio
+          jmax = j
+       end if
+    end do
+    res%maxratio_at = 'n/a'
+    if (jmax > 0) res%maxratio_at = column_label(model, table, tr, jmax)
+    if (res%maxratio > MAXRATIO_WARN) then
+       write (buf, '(es9.2)') res%maxratio
+       call warn(res, 'MAXRATIO '//trim(adjustl(buf))//' at '//res%maxratio_at// &
+            ': about '//itoa(nint(log10(res%maxratio)))//' digits may be lost')
+    end if
+    call condition_estimate(k, solver, cond)
+    res%cond_est = cond
+    if (.not. opts%quiet .and. opts%verbose) then
+       write (error_unit, '(a,es10.3)') 'superjoin: condition estimate ', cond
+    end if
+  end subroutine health
+
+  pure function safe_div(a, b) result(c)
+    real(wp), intent(in) :: a, b
+    real(wp) :: c
+    if (b == 0.0_wp) then
+       c = 0.0_wp
+       if (a /= 0.0_wp) c = huge(1.0_wp)
+    else
+       c = a/b
+    end if
+  end function safe_div
+
+  !> Human name of a reduced unknown: substructure, node and DOF, or the
+  !> contact/support and the component of its Δ.
+  function column_label(model, table, tr, j) result(label)
+    type(model_t), intent(in) :: model
+    type(dof_table_t), intent(in) :: table
+    type(transform_t), intent(in) :: tr
+    integer(i8), intent(in) :: j
+    character(:), allocatable :: label
+    integer(i8) :: p
+    integer :: iu, k
+    select case (tr%col_kind(j))
+    case (COL_PHYS)
+       p = tr%col_ref(j)
+       label = 'substructure '//model%subs(table%p_sub(p))%name//' node '// &
+            itoa(int(model%subs(table%p_sub(p))%node_id(table%p_node(p))))//' DOF '//itoa(table%p_dof(p))
+    case (COL_DELTA)
+       iu = int(tr%col_ref(j))
+       k = tr%col_k(j)
+       associate (u => table%units(iu))
+         if (u%kind == UNIT_LINK) then
+            label = 'contact '//model%contacts(model%links(u%source)%contact)%name//' ('// &
+                 vertex_label(model, table, u%va)//' - '//vertex_label(model, table, u%vb)//') relative DOF '// &
+                 itoa(block_dof(u%block, u%lcomp(k)))
+         else
+            label = 'elastic support at '//vertex_label(model, table, u%vb)//' DOF '// &
+                 itoa(block_dof(u%block, u%comp(k)))
+         end if
+       end associate
+    case default
+       label = 'unknown '//itoa(int(j))
+    end select
+  end function column_label
+
+  !> "SUB.id" of a vertex (ground: "ground").
+  function vertex_label(model, table, v) result(label)
+    type(model_t), intent(in) :: model
+    type(dof_table_t), intent(in) :: table
+    integer(i8), intent(in) :: v
+    character(:), allocatable :: label
+    integer :: isub
+    if (v == GROUND) then
+       label = 'ground'
+       return
+    end if
+    do isub = 1, size(model%subs)
+       if (v <= table%vertex_offset(isub + 1)) exit
+    end do
+    label = node_label(model, isub, int(v - table%vertex_offset(isub), kind(model%subs(1)%nnode)))
+  end function vertex_label
+
+  pure function block_name(b) result(s)
+    integer, intent(in) :: b
+    character(:), allocatable :: s
+    if (b == 1) then
+       s = 'translations'
+    else
+       s = 'rotations'
+    end if
+  end function block_name
+
+  pure function local_name(b, c) result(s)
+    integer, intent(in) :: b, c
+    character(:), allocatable :: s
+    s = 'DOF '//itoa(block_dof(b, c))
+  end function local_name
+
+  subroutine note(notes, text)
+    type(string_t), allocatable, intent(inout) :: notes(:)
+    character(*), intent(in) :: text
+    notes = [notes, string_t(text)]
+  end subroutine note
+
+  subroutine warn(res, text)
+    type(results_t), intent(inout) :: res
+    character(*), intent(in) :: text
+    res%warnings = [res%warnings, string_t(text)]
+  end subroutine warn
+end module superjoin_analysis

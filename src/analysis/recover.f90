@@ -1,0 +1,426 @@
+!> Recovery of physical results from the reduced solution: displacements,
+!> element end forces, contact Δ and F, support reactions, equilibrium.
+!>
+!> Rigid components carry the forces that balance r = K_phys u - f (elements
+!> and finite contacts as elements, minus loads). A rigid tree unit pushes on
+!> its child with the sum of r over the child's subtree; a rigid component that
+!> closed a loop gets its force from the equation of the column it eliminated.
+module superjoin_analysis_recover
+  use superjoin_kinds, only: wp, ip, i8
+  use superjoin_error, only: error_t, add_error_line, EXIT_DECK
+  use superjoin_model_types, only: model_t, ELEMENT_NODE_COUNT, LINK_NONE, LINK_FINITE, LINK_RIGID, &
+       NDOF_NODE, loc_text
+  use superjoin_elements, only: element_stiffness, element_end_forces, beam_distributed_load
+  use superjoin_assembly_dofs, only: dof_table_t, NBLOCK, GROUND, UNIT_LINK, UNIT_SUPPORT, block_dof
+  use superjoin_assembly_forest, only: forest_t
+  use superjoin_assembly_transform, only: transform_t, ROLE_TREE, CONS_ELIMINATED
+  use superjoin_assembly_assemble, only: element_pdofs
+  use superjoin_analysis_results, only: results_t, reaction_t
+  implicit none (type, external)
+  private
+
+  integer, parameter :: MAX_ELEM_DOFS = 24
+
+  public :: recover_results
+
+contains
+
+  !> Fill res%u, res%elem_force and res%steps(:) from the reduced solution q.
+  subroutine recover_results(model, table, forest, tr, q, f_phys, res, error)
+    type(model_t), intent(in) :: model
+    type(dof_table_t), intent(in) :: table
+    type(forest_t), intent(in) :: forest
+    type(transform_t), intent(in) :: tr
+    real(wp), intent(in) :: q(:, :)          !! (ncol, nstep)
+    real(wp), intent(in) :: f_phys(:, :)     !! (np, nstep)
+    type(results_t), intent(inout) :: res
+    type(error_t), allocatable, intent(out) :: error
+    real(wp), allocatable :: u(:, :), r(:, :), delta(:, :, :), rclose(:, :), acc(:, :)
+    real(wp), allocatable :: rigid_force(:, :, :)  ! (3, nunit, nstep): rigid force on child / λ, local
+    integer :: nstep, is
+
+    nstep = size(q, 2)
+    call physical_displacements(table, tr, q, u)
+    call store_displacements(table, u, res)
+    allocate (r(table%np, nstep))
+    r = -f_phys
+    call element_results(model, table, u, r, res, error)
+    if (allocated(error)) return
+    call unit_deltas(table, tr, q, u, delta)
+    call add_spring_forces(table, delta, r)
+
+    allocate (rigid_force(3, table%nunit, nstep), source=0.0_wp)
+    allocate (rclose(table%np, nstep), source=0.0_wp)
+    call closer_forces(table, tr, r, rigid_force, rclose)
+    allocate (acc(3, 0:table%nvertex))
+    do is = 1, nstep
+       call tree_forces(table, forest, r(:, is) - rclose(:, is), acc, rigid_force(:, :, is))
+    end do
+    call link_and_support_results(model, table, delta, rigid_force, f_phys, res)
+  end subroutine recover_results
+
+  !> u = T q + u0 over the physical DOFs.
+  subroutine physical_displacements(table, tr, q, u)
+    type(dof_table_t), intent(in) :: table
+    type(transform_t), intent(in) :: tr
+    real(wp), intent(in) :: q(:, :)
+    real(wp), allocatable, intent(out) :: u(:, :)
+    integer(i8) :: p, j
+    allocate (u(table%np, size(q, 2)))
+    do p = 1, table%np
+       u(p, :) = tr%u0(p)
+       do j = tr%map_start(p), tr%map_start(p) + tr%map_len(p) - 1
+          u(p, :) = u(p, :) + tr%pool_coef(j)*q(tr%pool_col(j), :)
+       end do
+    end do
+  end subroutine physical_displacements
+
+  subroutine store_displacements(table, u, res)
+    type(dof_table_t), intent(in) :: table
+    real(wp), intent(in) :: u(:, :)
+    type(results_t), intent(inout) :: res
+    integer(i8) :: v, p
+    integer :: d
+    allocate (res%u(NDOF_NODE*table%nvertex, size(u, 2)), source=0.0_wp)
+    allocate (res%has_dof(NDOF_NODE, table%nvertex))
+    res%has_dof = table%pdof(:, 1:table%nvertex) > 0
+    res%vertex_offset = table%vertex_offset
+    do v = 1, table%nvertex
+       do d = 1, NDOF_NODE
+          p = table%pdof(d, v)
+          if (p > 0) res%u(NDOF_NODE*(v - 1) + d, :) = u(p, :)
+       end do
+    end do
+  end subroutine store_displacements
+
+  !> Element end forces of every step and r += K_e u_e.
+  subroutine element_results(model, table, u, r, res, error)
+    type(model_t), intent(in) :: model
+    type(dof_table_t), intent(in) :: table
+    real(wp), intent(in) :: u(:, :)
+    real(wp), intent(inout) :: r(:, :)
+    type(results_t), intent(inout) :: res
+    type(error_t), allocatable, intent(inout) :: error
+    real(wp), allocatable :: ke(:, :), ql(:, :, :), fe(:)
+    real(wp) :: qloc(3), f(6, 2), w(3)
+    integer(i8) :: pd(MAX_ELEM_DOFS), ie, ntot
+    integer :: isub, n, is, nstep, i, nn
+    integer(ip) :: e
+    type(error_t), allocatable :: inner
+
+    nstep = size(u, 2)
+    allocate (res%elem_offset(size(model%subs) + 1))
+    res%elem_offset(1) = 0
+    do isub = 1, size(model%subs)
+       res%elem_offset(isub + 1) = res%elem_offset(isub) + model%subs(isub)%nelem
+    end do
+    ntot = res%elem_offset(size(model%subs) + 1)
+    allocate (res%elem_force(6, 2, ntot, nstep), source=0.0_wp)
+
+    ! Distributed loads in element axes, per element and step.
+    allocate (ql(3, ntot, nstep), source=0.0_wp)
+    do is = 1, nstep
+       if (.not. allocated(model%steps(is)%dloads)) cycle
+       do i = 1, size(model%steps(is)%dloads)
+          associate (dl => model%steps(is)%dloads(i), s => model%subs(model%steps(is)%dloads(i)%sub))
+            w = 0.0_wp
+            if (dl%kind >= 1 .and. dl%kind <= 3) w(dl%kind) = dl%value
+            nn = ELEMENT_NODE_COUNT(s%elem_type(dl%elem))
+            call beam_distributed_load(s%elem_type(dl%elem), s%x(:, s%elem_nodes(1:nn, dl%elem)), &
+                 s%sections(s%elem_section(dl%elem)), w, fe, qloc, inner)
+            if (allocated(inner)) deallocate (inner)
+            ie = res%elem_offset(dl%sub) + dl%elem
+            ql(:, ie, is) = ql(:, ie, is) + qloc
+          end associate
+       end do
+    end do
+
+    do isub = 1, size(model%subs)
+       associate (s => model%subs(isub))
+         do e = 1, s%nelem
+            nn = ELEMENT_NODE_COUNT(s%elem_type(e))
+            associate (sec => s%sections(s%elem_section(e)))
+              call element_stiffness(s%elem_type(e), s%x(:, s%elem_nodes(1:nn, e)), sec, &
+                   model%materials(sec%material), ke, inner)
+              if (allocated(inner)) then
+                 call add_error_line(error, EXIT_DECK, inner%message)
+                 return
+              end if
+              call element_pdofs(model, table, isub, e, pd, n)
+              ie = res%elem_offset(isub) + e
+              do is = 1, nstep
+                 r(pd(1:n), is) = r(pd(1:n), is) + matmul(ke, u(pd(1:n), is))
+                 call element_end_forces(s%elem_type(e), s%x(:, s%elem_nodes(1:nn, e)), sec, &
+                      model%materials(sec%material), u(pd(1:n), is), ql(:, ie, is), f, inner)
+                 if (allocated(inner)) then
+                    call add_error_line(error, EXIT_DECK, inner%message)
+                    return
+                 end if
+                 res%elem_force(:, :, ie, is) = f
+              end do
+            end associate
+         end do
+       end associate
+    end do
+  end subroutine element_results
+
+  !> δ of every unit component (local axes): a column of its own, the rigid
+  !> value, the expression that replaced an eliminated column, or, for a unit
+  !> assembled plainly, qs (u_b - u_a).
+  subroutine unit_deltas(table, tr, q, u, delta)
+    type(dof_table_t), intent(in) :: table
+    type(transform_t), intent(in) :: tr
+    real(wp), intent(in) :: q(:, :), u(:, :)
+    real(wp), allocatable, intent(out) :: delta(:, :, :)
+    integer :: iu, k, c, i
+    integer(i8) :: pa, pb
+    real(wp), allocatable :: ua(:), ub(:)
+
+    allocate (delta(3, table%nunit, size(q, 2)), source=0.0_wp)
+    allocate (ua(size(q, 2)), ub(size(q, 2)))
+    do iu = 1, table%nunit
+       associate (un => table%units(iu))
+         if (tr%role(iu) == ROLE_TREE) then
+            do k = 1, un%n
+               if (tr%dcol(k, iu) > 0) then
+                  delta(k, iu, :) = q(tr%dcol(k, iu), :)
+               else if (un%state(k) == LINK_RIGID) then
+                  delta(k, iu, :) = un%value(k)
+               end if
+            end do
+         else
+            do k = 1, un%n
+               do c = 1, un%n
+                  ua = 0.0_wp
+                  if (un%va /= GROUND) then
+                     pa = table%pdof(block_dof(un%block, un%comp(c)), un%va)
+                     ua = u(pa, :)
+                  end if
+                  pb = table%pdof(block_dof(un%block, un%comp(c)), un%vb)
+                  ub = u(pb, :)
+                  delta(k, iu, :) = delta(k, iu, :) + un%qs(k, c)*(ub - ua)
+               end do
+            end do
+         end if
+       end associate
+    end do
+    ! δ columns eliminated by a loop constraint: evaluate their expression.
+    do i = 1, tr%nform
+       associate (fs => tr%forms(i))
+         if (fs%unit == 0) cycle
+         delta(fs%k, fs%unit, :) = fs%const
+         do c = 1, size(fs%col)
+            delta(fs%k, fs%unit, :) = delta(fs%k, fs%unit, :) + fs%coef(c)*q(fs%col(c), :)
+         end do
+       end associate
+    end do
+  end subroutine unit_deltas
+
+  !> r += internal forces of the finite contact components: qsᵀ g δ on side b,
+  !> the opposite on side a.
+  subroutine add_spring_forces(table, delta, r)
+    type(dof_table_t), intent(in) :: table
+    real(wp), intent(in) :: delta(:, :, :)
+    real(wp), intent(inout) :: r(:, :)
+    integer :: iu, k, c
+    integer(i8) :: pa, pb
+    do iu = 1, table%nunit
+       associate (un => table%units(iu))
+         do k = 1, un%n
+            if (un%state(k) /= LINK_FINITE) cycle
+            do c = 1, un%n
+               pb = table%pdof(block_dof(un%block, un%comp(c)), un%vb)
+               r(pb, :) = r(pb, :) + un%qs(k, c)*un%g(k)*delta(k, iu, :)
+               if (un%va /= GROUND) then
+                  pa = table%pdof(block_dof(un%block, un%comp(c)), un%va)
+                  r(pa, :) = r(pa, :) - un%qs(k, c)*un%g(k)*delta(k, iu, :)
+               end if
+            end do
+         end do
+       end associate
+    end do
+  end subroutine add_spring_forces
+
+  !> Force of each eliminated loop constraint, λ = -(Σ T(p,j*) r_p) / a_j*,
+  !> stored as the force on the master (local) and as nodal forces rclose.
+  subroutine closer_forces(table, tr, r, rigid_force, rclose)
+    type(dof_table_t), intent(in) :: table
+    type(transform_t), intent(in) :: tr
+    real(wp), intent(in) :: r(:, :)
+    real(wp), intent(inout) :: rigid_force(:, :, :), rclose(:, :)
+    integer :: i, c, is
+    integer(i8) :: pa, pb
+    real(wp) :: lambda, e
+    do i = 1, tr%ncons
+       associate (cs => tr%cons(i))
+         if (cs%status /= CONS_ELIMINATED) cycle
+         associate (un => table%units(cs%unit))
+           do is = 1, size(r, 2)
+              e = sum(cs%fp_c*r(cs%fp_p, is))
+              lambda = -e/cs%pivot
+              ! Force on the master; for a support, the reaction on the node.
+              if (un%kind == UNIT_SUPPORT) then
+                 rigid_force(cs%k, cs%unit, is) = -lambda
+              else
+                 rigid_force(cs%k, cs%unit, is) = lambda
+              end if
+              do c = 1, un%n
+                 pb = table%pdof(block_dof(un%block, un%comp(c)), un%vb)
+                 rclose(pb, is) = rclose(pb, is) - lambda*un%qs(cs%k, c)
+                 if (un%va /= GROUND) then
+                    pa = table%pdof(block_dof(un%block, un%comp(c)), un%va)
+                    rclose(pa, is) = rclose(pa, is) + lambda*un%qs(cs%k, c)
+                 end if
+              end do
+           end do
+         end associate
+       end associate
+    end do
+  end subroutine closer_forces
+
+  !> Subtree sums: the force each rigid tree unit exerts on its child, then
+  !> turned into the force on the master (or the reaction) in local axes.
+  subroutine tree_forces(table, forest, rt, acc, rigid_force)
+    type(dof_table_t), intent(in) :: table
+    type(forest_t), intent(in) :: forest
+    real(wp), intent(in) :: rt(:)
+    real(wp), intent(inout) :: acc(:, 0:)
+    real(wp), intent(inout) :: rigid_force(:, :)
+    integer :: b, c, k, pu
+    integer(i8) :: io, v, w, p
+    real(wp) :: fk
+
+    do b = 1, NBLOCK
+       acc = 0.0_wp
+       do v = 1, table%nvertex
+          do c = 1, 3
+             p = table%pdof(block_dof(b, c), v)
+             if (p > 0) acc(c, v) = rt(p)
+          end do
+       end do
+       do io = forest%norder(b), 1, -1
+          v = forest%order(b, io)
+          pu = forest%parent_unit(b, v)
+          associate (un => table%units(pu))
+            if (forest%child_is_a(pu)) then
+               w = un%vb
+            else
+               w = un%va
+            end if
+            acc(:, w) = acc(:, w) + acc(:, v)
+            do k = 1, un%n
+               if (un%state(k) /= LINK_RIGID) cycle
+               fk = 0.0_wp
+               do c = 1, un%n
+                  fk = fk + un%qs(k, c)*acc(un%comp(c), v)
+               end do
+               ! fk: local force on the child. Store the force on side a
+               ! (master, or for supports the reaction on the node).
+               if (un%kind == UNIT_SUPPORT) then
+                  rigid_force(k, pu) = fk
+               else if (forest%child_is_a(pu)) then
+                  rigid_force(k, pu) = fk
+               else
+                  rigid_force(k, pu) = -fk
+               end if
+            end do
+          end associate
+       end do
+    end do
+  end subroutine tree_forces
+
+  !> Contact Δ and F per link (local axes), reactions, resultants.
+  subroutine link_and_support_results(model, table, delta, rigid_force, f_phys, res)
+    type(model_t), intent(in) :: model
+    type(dof_table_t), intent(in) :: table
+    real(wp), intent(in) :: delta(:, :, :), rigid_force(:, :, :), f_phys(:, :)
+    type(results_t), intent(inout) :: res
+    integer :: nstep, is, iu, k, ld, nr, isub
+    real(wp) :: force
+    type(reaction_t), allocatable :: reac(:)
+    integer(i8) :: p
+
+    nstep = size(delta, 3)
+    allocate (res%steps(nstep))
+    allocate (res%link_used(NDOF_NODE, size(model%links)), source=.false.)
+    do iu = 1, table%nunit
+       associate (un => table%units(iu))
+         if (un%kind /= UNIT_LINK) cycle
+         do k = 1, un%n
+            if (un%state(k) /= LINK_NONE) res%link_used(block_dof(un%block, un%lcomp(k)), un%source) = .true.
+         end do
+       end associate
+    end do
+    do is = 1, nstep
+       allocate (res%steps(is)%link_delta(NDOF_NODE, size(model%links)), source=0.0_wp)
+       allocate (res%steps(is)%link_force(NDOF_NODE, size(model%links)), source=0.0_wp)
+       allocate (reac(3*table%nunit + 1))
+       nr = 0
+       do iu = 1, table%nunit
+          associate (un => table%units(iu))
+            do k = 1, un%n
+               select case (un%state(k))
+               case (LINK_FINITE)
+                  force = un%g(k)*delta(k, iu, is)
+               case (LINK_RIGID)
+                  force = rigid_force(k, iu, is)
+               case default
+                  force = 0.0_wp
+               end select
+               if (un%kind == UNIT_LINK) then
+                  ld = block_dof(un%block, un%lcomp(k))
+                  res%steps(is)%link_delta(ld, un%source) = delta(k, iu, is)
+                  res%steps(is)%link_force(ld, un%source) = force
+               else if (un%state(k) /= LINK_NONE) then
+                  ! Reaction: the force the support exerts on the structure.
+                  if (un%state(k) == LINK_FINITE) force = -force
+                  nr = nr + 1
+                  reac(nr)%sub = model%supports(un%src(k))%sub
+                  reac(nr)%node = model%supports(un%src(k))%node
+                  reac(nr)%dof = block_dof(un%block, un%comp(k))
+                  reac(nr)%force = force
+               end if
+            end do
+          end associate
+       end do
+       ! Support units are built in (substructure, node, DOF) order.
+       res%steps(is)%reactions = reac(1:nr)
+       deallocate (reac)
+
+       ! Resultants about the origin.
+       res%steps(is)%applied = 0.0_wp
+       do p = 1, table%np
+          if (f_phys(p, is) == 0.0_wp) cycle
+          isub = table%p_sub(p)
+          call add_resultant(res%steps(is)%applied, model%subs(isub)%x(:, table%p_node(p)), &
+               table%p_dof(p), f_phys(p, is))
+       end do
+       res%steps(is)%reaction = 0.0_wp
+       do k = 1, size(res%steps(is)%reactions)
+          associate (rc => res%steps(is)%reactions(k))
+            call add_resultant(res%steps(is)%reaction, model%subs(rc%sub)%x(:, rc%node), rc%dof, rc%force)
+          end associate
+       end do
+    end do
+  end subroutine link_and_support_results
+
+  !> Add a force (dof 1-3) or moment (dof 4-6) at x to a resultant about the origin.
+  pure subroutine add_resultant(total, x, dof, value)
+    real(wp), intent(inout) :: total(6)
+    real(wp), intent(in) :: x(3)
+    integer, intent(in) :: dof
+    real(wp), intent(in) :: value
+    real(wp) :: f(3)
+    if (dof <= 3) then
+       f = 0.0_wp
+       f(dof) = value
+       total(dof) = total(dof) + value
+       total(4) = total(4) + x(2)*f(3) - x(3)*f(2)
+       total(5) = total(5) + x(3)*f(1) - x(1)*f(3)
+       total(6) = total(6) + x(1)*f(2) - x(2)*f(1)
+    else
+       total(dof) = total(dof) + value
+    end if
+  end subroutine add_resultant
+
+end module superjoin_analysis_recover

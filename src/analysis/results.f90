@@ -1,0 +1,73 @@
+!> What a solved deck produces: counts, notes, per-step results and health.
+module superjoin_analysis_results
+  use superjoin_kinds, only: wp, i8
+  use superjoin_model_types, only: string_t
+  implicit none (type, external)
+  private
+
+  integer, parameter, public :: NPHASE = 6
+  character(len=8), parameter, public :: PHASE_NAMES(NPHASE) = &
+       ['read    ', 'assemble', 'order   ', 'factor  ', 'solve   ', 'write   ']
+  integer, parameter, public :: PH_READ = 1, PH_ASSEMBLE = 2, PH_ORDER = 3, PH_FACTOR = 4, &
+                                PH_SOLVE = 5, PH_WRITE = 6
+
+  !> Options of one run (from the command line).
+  type, public :: run_options_t
+     character(:), allocatable :: solver        !! auto | cholmod | umfpack | lapack
+     integer :: formulation = 0                 !! 0: as in the deck, else FORM_*
+     character(:), allocatable :: export_matrix !! Matrix Market path, or unallocated
+     logical :: quiet = .false.
+     logical :: verbose = .false.
+  end type run_options_t
+
+  !> One support reaction.
+  type, public :: reaction_t
+     integer :: sub = 0
+     integer :: node = 0
+     integer :: dof = 0
+     real(wp) :: force = 0.0_wp
+  end type reaction_t
+
+  !> Results of one step.
+  type, public :: step_results_t
+     type(reaction_t), allocatable :: reactions(:)
+     real(wp), allocatable :: link_delta(:, :)   !! (6, nlink) local axes
+     real(wp), allocatable :: link_force(:, :)   !! (6, nlink) on the master, local axes
+     real(wp) :: applied(6) = 0.0_wp             !! resultant of loads (forces, moments about origin)
+     real(wp) :: reaction(6) = 0.0_wp            !! resultant of reactions
+     real(wp) :: residual = 0.0_wp               !! ‖K q - f‖ / ‖f‖
+     real(wp) :: epsilon = 0.0_wp                !! qᵀ(K q - f) / (qᵀ f)
+     real(wp) :: residual0 = 0.0_wp              !! before iterative refinement
+     integer :: refinements = 0
+  end type step_results_t
+
+  !> Everything the listing and the CSV files need.
+  type, public :: results_t
+     integer(i8) :: nphys = 0          !! active physical DOFs
+     integer(i8) :: ncol = 0           !! reduced unknowns
+     integer(i8) :: neq = 0            !! equations solved (reduced unknowns less AUTOSPC)
+     integer(i8) :: ndelta = 0         !! δ unknowns
+     integer(i8) :: matrix_nnz = 0     !! upper triangle with diagonal
+     integer(i8) :: factor_nnz = 0
+     integer :: n_tree = 0             !! contact units transformed
+     integer :: n_plain = 0            !! contact units assembled plainly
+     integer :: n_support_units = 0
+     character(:), allocatable :: solver_name
+     character(:), allocatable :: ordering
+     character(:), allocatable :: formulation
+     type(string_t), allocatable :: notes(:)      !! decisions and warnings for the listing
+     type(string_t), allocatable :: warnings(:)   !! also printed on stderr
+     real(wp), allocatable :: u(:, :)             !! (6*nvertex, nstep) displacements per vertex, global axes
+     logical, allocatable :: has_dof(:, :)        !! (6, nvertex)
+     real(wp), allocatable :: elem_force(:, :, :, :)  !! (6, 2, nelem_total, nstep)
+     integer(i8), allocatable :: elem_offset(:)   !! (nsub+1) element numbering over substructures
+     integer(i8), allocatable :: vertex_offset(:) !! (nsub+1)
+     type(step_results_t), allocatable :: steps(:)
+     logical, allocatable :: link_used(:, :)      !! (6, nlink) contact DOFs that connect something
+     real(wp) :: maxratio = 0.0_wp
+     character(:), allocatable :: maxratio_at
+     real(wp) :: cond_est = 0.0_wp
+     real(wp) :: phase_seconds(NPHASE) = 0.0_wp
+     real(wp) :: factor_mbytes = 0.0_wp
+  end type results_t
+end module superjoin_analysis_results

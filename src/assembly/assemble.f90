@@ -1,0 +1,538 @@
+!> Assembly of the reduced stiffness K_red = Tᵀ K_phys T + diag(g on δ) and of
+!> the reduced loads, without forming T: every element and plain contact is
+!> scattered through the maps of its physical DOFs.
+module superjoin_assembly_assemble
+  use superjoin_kinds, only: wp, ip, i8
+  use superjoin_error, only: error_t, add_error_line, EXIT_DECK, EXIT_SINGULAR
+  use superjoin_model_types, only: model_t, ELEMENT_NODE_COUNT, LINK_FINITE, loc_text
+  use superjoin_elements, only: element_node_dofs, element_stiffness, beam_distributed_load
+  use superjoin_assembly_dofs, only: dof_table_t, GROUND, block_dof
+  use superjoin_assembly_transform, only: transform_t, ROLE_PLAIN
+  use superjoin_solvers_sparse, only: sparse_sym_t
+  use superjoin_utils_sorting, only: sort_i8, sort_unique_i8
+  use superjoin_utils_strings, only: itoa
+  implicit none (type, external)
+  private
+
+  !> Largest number of physical DOFs one item (element or contact) touches.
+  integer, parameter :: MAX_ITEM_DOFS = 24
+
+  public :: assemble_stiffness, assemble_loads, element_pdofs, unit_pdofs, unit_plain_stiffness, &
+       max_element_diagonal
+
+contains
+
+  !> Physical DOFs of element e of substructure isub, in element ordering.
+  subroutine element_pdofs(model, table, isub, e, pd, n)
+    type(model_t), intent(in) :: model
+    type(dof_table_t), intent(in) :: table
+    integer, intent(in) :: isub
+    integer(ip), intent(in) :: e
+    integer(i8), intent(out) :: pd(:)
+    integer, intent(out) :: n
+    integer, allocatable :: dofs(:)
+    integer :: a, k
+    integer(i8) :: v
+    associate (s => model%subs(isub))
+      dofs = element_node_dofs(s%elem_type(e))
+      n = 0
+      do a = 1, ELEMENT_NODE_COUNT(s%elem_type(e))
+         v = table%vertex_offset(isub) + s%elem_nodes(a, e)
+         do k = 1, size(dofs)
+            n = n + 1
+            pd(n) = table%pdof(dofs(k), v)
+         end do
+      end do
+    end associate
+  end subroutine element_pdofs
+
+  !> Physical DOFs of a plain unit: side a components (unless ground), then side b.
+  subroutine unit_pdofs(table, iu, pd, n)
+    type(dof_table_t), intent(in) :: table
+    integer, intent(in) :: iu
+    integer(i8), intent(out) :: pd(:)
+    integer, intent(out) :: n
+    integer :: c
+    associate (u => table%units(iu))
+      n = 0
+      if (u%va /= GROUND) then
+         do c = 1, u%n
+            n = n + 1
+            pd(n) = table%pdof(block_dof(u%block, u%comp(c)), u%va)
+         end do
+      end if
+      do c = 1, u%n
+         n = n + 1
+         pd(n) = table%pdof(block_dof(u%block, u%comp(c)), u%vb)
+      end do
+    end associate
+  end subroutine unit_pdofs
+
+  !> Plain stiffness of a unit's finite components over unit_pdofs ordering:
+  !> S = qsᵀ G qs, [S -S; -S S] (or S alone against the ground).
+  subroutine unit_plain_stiffness(table, iu, ke, n)
+    type(dof_table_t), intent(in) :: table
+    integer, intent(in) :: iu
+    real(wp), intent(out) :: ke(:, :)
+    integer, intent(out) :: n
+    real(wp) :: s(3, 3)
+    integer :: i, j, k, m
+    associate (u => table%units(iu))
+      m = u%n
+      s = 0.0_wp
+      do k = 1, m
+         if (u%state(k) /= LINK_FINITE) cycle
+         do j = 1, m
+            do i = 1, m
+               s(i, j) = s(i, j) + u%qs(k, i)*u%g(k)*u%qs(k, j)
+            end do
+         end do
+      end do
+      if (u%va == GROUND) then
+         n = m
+         ke(1:m, 1:m) = s(1:m, 1:m)
+      else
+         n = 2*m
+         ke(1:m, 1:m) = s(1:m, 1:m)
+         ke(1:m, m + 1:n) = -s(1:m, 1:m)
+         ke(m + 1:n, 1:m) = -s(1:m, 1:m)
+         ke(m + 1:n, m + 1:n) = s(1:m, 1:m)
+      end if
+    end associate
+  end subroutine unit_plain_stiffness
+
+  !> Largest diagonal entry of the physical stiffness of the elements alone
+  !> (the scale for RIGID=LARGE).
+  subroutine max_element_diagonal(model, table, dmax, error)
+    type(model_t), intent(in) :: model
+    type(dof_table_t), intent(in) :: table
+    real(wp), intent(out) :: dmax
+    type(error_t), allocatable, intent(out) :: error
+    real(wp), allocatable :: diag(:), ke(:, :)
+    integer(i8) :: pd(MAX_ITEM_DOFS)
+    integer :: isub, n, a
+    integer(ip) :: e
+    allocate (diag(table%np), source=0.0_wp)
+    do isub = 1, size(model%subs)
+       associate (s => model%subs(isub))
+         do e = 1, s%nelem
+            call element_matrix(model, isub, e, ke, error)
+            if (allocated(error)) return
+            call element_pdofs(model, table, isub, e, pd, n)
+            do a = 1, n
+               diag(pd(a)) = diag(pd(a)) + ke(a, a)
+            end do
+         end do
+       end associate
+    end do
+    dmax = 0.0_wp
+    if (table%np > 0) dmax = maxval(diag)
+  end subroutine max_element_diagonal
+
+  !> Element stiffness in global axes, with the deck location on errors.
+  subroutine element_matrix(model, isub, e, ke, error)
+    type(model_t), intent(in) :: model
+    integer, intent(in) :: isub
+    integer(ip), intent(in) :: e
+    real(wp), allocatable, intent(out) :: ke(:, :)
+    type(error_t), allocatable, intent(out) :: error
+    type(error_t), allocatable :: inner
+    integer :: nn
+    associate (s => model%subs(isub))
+      nn = ELEMENT_NODE_COUNT(s%elem_type(e))
+      call element_stiffness(s%elem_type(e), s%x(:, s%elem_nodes(1:nn, e)), &
+           s%sections(s%elem_section(e)), model%materials(s%sections(s%elem_section(e))%material), &
+           ke, inner)
+      if (allocated(inner)) call add_error_line(error, EXIT_DECK, element_where(model, isub, e)// &
+           ': error: element '//itoa(int(s%elem_id(e)))//': '//inner%message)
+    end associate
+  end subroutine element_matrix
+
+  function element_where(model, isub, e) result(text)
+    type(model_t), intent(in) :: model
+    integer, intent(in) :: isub
+    integer(ip), intent(in) :: e
+    character(:), allocatable :: text
+    if (allocated(model%subs(isub)%elem_loc)) then
+       text = loc_text(model, model%subs(isub)%elem_loc(e))
+    else
+       text = loc_text(model, model%subs(isub)%loc)
+    end if
+  end function element_where
+
+  !> Reduced columns of a list of physical DOFs (sorted, unique) into cols(1:nc).
+  subroutine item_columns(tr, pd, n, cols, nc)
+    type(transform_t), intent(in) :: tr
+    integer(i8), intent(in) :: pd(:)
+    integer, intent(in) :: n
+    integer(i8), allocatable, intent(inout) :: cols(:)
+    integer, intent(out) :: nc
+    integer :: a, m
+    integer(i8) :: j
+    m = 0
+    do a = 1, n
+       m = m + tr%map_len(pd(a))
+    end do
+    if (size(cols) < m) then
+       deallocate (cols)
+       allocate (cols(2*m))
+    end if
+    m = 0
+    do a = 1, n
+       do j = tr%map_start(pd(a)), tr%map_start(pd(a)) + tr%map_len(pd(a)) - 1
+          m = m + 1
+          cols(m) = tr%pool_col(j)
+       end do
+    end do
+    call sort_unique_i8(cols(1:m), nc)
+  end subroutine item_columns
+
+  !> Assemble K_red (pattern and values) and the reduced load of the
+  !> prescribed values, f_u0 = -Tᵀ K_phys u0.
+  subroutine assemble_stiffness(model, table, tr, k, f_u0, error)
+    type(model_t), intent(in) :: model
+    type(dof_table_t), intent(in) :: table
+    type(transform_t), intent(in) :: tr
+    type(sparse_sym_t), intent(out) :: k
+    real(wp), allocatable, intent(out) :: f_u0(:)
+    type(error_t), allocatable, intent(out) :: error
+    integer(i8), allocatable :: item_ptr(:), item_col(:), col_ptr(:), col_item(:), cols(:)
+    integer(i8) :: pd(MAX_ITEM_DOFS), nitem, it, j, s_total, pos
+    integer :: isub, n, nc, iu, i
+    integer(ip) :: e
+    real(wp), allocatable :: ke(:, :)
+
+    ! Items: elements of every substructure, then plain units, then form springs.
+    nitem = tr%nform
+    do isub = 1, size(model%subs)
+       nitem = nitem + model%subs(isub)%nelem
+    end do
+    nitem = nitem + count(tr%role == ROLE_PLAIN)
+    allocate (item_ptr(nitem + 1), cols(64))
+    item_ptr(1) = 1
+
+    ! Pass 1: column lists of all items.
+    allocate (item_col(max(16_i8, 12*nitem)))
+    it = 0
+    do isub = 1, size(model%subs)
+       do e = 1, model%subs(isub)%nelem
+          call element_pdofs(model, table, isub, e, pd, n)
+          call item_columns(tr, pd, n, cols, nc)
+          call append_item(cols(1:nc))
+       end do
+    end do
+    do iu = 1, table%nunit
+       if (tr%role(iu) /= ROLE_PLAIN) cycle
+       call unit_pdofs(table, iu, pd, n)
+       call item_columns(tr, pd, n, cols, nc)
+       call append_item(cols(1:nc))
+    end do
+    do i = 1, tr%nform
+       call append_item(tr%forms(i)%col)
+    end do
+    s_total = item_ptr(nitem + 1) - 1
+
+    ! Transpose: items of each column.
+    allocate (col_ptr(tr%ncol + 1), source=0_i8)
+    do pos = 1, s_total
+       col_ptr(item_col(pos) + 1) = col_ptr(item_col(pos) + 1) + 1
+    end do
+    col_ptr(1) = 1
+    do j = 1, tr%ncol
+       col_ptr(j + 1) = col_ptr(j + 1) + col_ptr(j)
+    end do
+    allocate (col_item(max(s_total, 1_i8)))
+    block
+      integer(i8), allocatable :: fill(:)
+      fill = col_ptr(1:tr%ncol)
+      do it = 1, nitem
+         do pos = item_ptr(it), item_ptr(it + 1) - 1
+            j = item_col(pos)
+            col_item(fill(j)) = it
+            fill(j) = fill(j) + 1
+         end do
+      end do
+    end block
+
+    call symbolic(tr%ncol, item_ptr, item_col, col_ptr, col_item, k)
+    deallocate (col_ptr, col_item)
+
+    ! Pass 2: values.
+    allocate (f_u0(tr%ncol), source=0.0_wp)
+    it = 0
+    do isub = 1, size(model%subs)
+       do e = 1, model%subs(isub)%nelem
+          it = it + 1
+          call element_matrix(model, isub, e, ke, error)
+          if (allocated(error)) return
+          call element_pdofs(model, table, isub, e, pd, n)
+          call scatter(tr, pd(1:n), ke, item_col(item_ptr(it):item_ptr(it + 1) - 1), k, f_u0)
+       end do
+    end do
+    if (.not. allocated(ke)) allocate (ke(6, 6))
+    if (size(ke, 1) < 6) then
+       deallocate (ke)
+       allocate (ke(6, 6))
+    end if
+    do iu = 1, table%nunit
+       if (tr%role(iu) /= ROLE_PLAIN) cycle
+       it = it + 1
+       call unit_pdofs(table, iu, pd, n)
+       call unit_plain_stiffness(table, iu, ke, n)
+       call scatter(tr, pd(1:n), ke(1:n, 1:n), item_col(item_ptr(it):item_ptr(it + 1) - 1), k, f_u0)
+    end do
+    do i = 1, tr%nform
+       it = it + 1
+       call scatter_form(tr%forms(i)%col, tr%forms(i)%coef, tr%forms(i)%g, tr%forms(i)%const, k, f_u0)
+    end do
+    ! δ springs: g on the diagonal of their own column, nowhere else.
+    do j = 1, tr%ncol
+       if (tr%col_g(j) /= 0.0_wp) k%val(k%colptr(j + 1) - 1) = k%val(k%colptr(j + 1) - 1) + tr%col_g(j)
+    end do
+
+  contains
+
+    subroutine append_item(c)
+      integer(i8), intent(in) :: c(:)
+      integer(i8), allocatable :: tmp(:)
+      integer(i8) :: need
+      it = it + 1
+      need = item_ptr(it) + size(c) - 1
+      if (need > size(item_col, kind=i8)) then
+         allocate (tmp(max(2*size(item_col, kind=i8), need)))
+         tmp(1:item_ptr(it) - 1) = item_col(1:item_ptr(it) - 1)
+         call move_alloc(tmp, item_col)
+      end if
+      item_col(item_ptr(it):need) = c
+      item_ptr(it + 1) = need + 1
+    end subroutine append_item
+  end subroutine assemble_stiffness
+
+  !> Pattern of the upper triangle: column j holds every column i <= j that
+  !> shares an item with it, and always j itself.
+  subroutine symbolic(ncol, item_ptr, item_col, col_ptr, col_item, k)
+    integer(i8), intent(in) :: ncol
+    integer(i8), intent(in) :: item_ptr(:), item_col(:), col_ptr(:), col_item(:)
+    type(sparse_sym_t), intent(out) :: k
+    integer(i8), allocatable :: mark(:), rows(:), tmp(:)
+    integer(i8) :: j, it, pos, q, i, nr, cap, nnz
+
+    k%n = ncol
+    allocate (k%colptr(ncol + 1), mark(ncol), source=0_i8)
+    allocate (rows(64))
+    cap = max(16_i8, 4*size(item_col, kind=i8))
+    allocate (k%rowind(cap))
+    nnz = 0
+    k%colptr(1) = 1
+    do j = 1, ncol
+       nr = 0
+       do q = col_ptr(j), col_ptr(j + 1) - 1
+          it = col_item(q)
+          do pos = item_ptr(it), item_ptr(it + 1) - 1
+             i = item_col(pos)
+             if (i > j) exit          ! item columns are sorted
+             if (mark(i) == j) cycle
+             mark(i) = j
+             nr = nr + 1
+             if (nr > size(rows, kind=i8)) then
+                allocate (tmp(2*size(rows, kind=i8)))
+                tmp(1:nr - 1) = rows(1:nr - 1)
+                call move_alloc(tmp, rows)
+             end if
+             rows(nr) = i
+          end do
+       end do
+       if (mark(j) /= j) then
+          nr = nr + 1
+          if (nr > size(rows, kind=i8)) then
+             allocate (tmp(2*size(rows, kind=i8)))
+             tmp(1:nr - 1) = rows(1:nr - 1)
+             call move_alloc(tmp, rows)
+          end if
+          rows(nr) = j
+       end if
+       call sort_i8(rows(1:nr))
+       if (nnz + nr > cap) then
+          cap = max(2*cap, nnz + nr)
+          allocate (tmp(cap))
+          tmp(1:nnz) = k%rowind(1:nnz)
+          call move_alloc(tmp, k%rowind)
+       end if
+       k%rowind(nnz + 1:nnz + nr) = rows(1:nr)
+       nnz = nnz + nr
+       k%colptr(j + 1) = nnz + 1
+    end do
+    k%rowind = k%rowind(1:nnz)
+    allocate (k%val(nnz), source=0.0_wp)
+  end subroutine symbolic
+
+  !> Position of row i in column j of k.
+  pure function find_entry(k, i, j) result(pos)
+    type(sparse_sym_t), intent(in) :: k
+    integer(i8), intent(in) :: i, j
+    integer(i8) :: pos, lo, hi
+    lo = k%colptr(j)
+    hi = k%colptr(j + 1) - 1
+    do while (lo <= hi)
+       pos = lo + (hi - lo)/2
+       if (k%rowind(pos) == i) return
+       if (k%rowind(pos) < i) then
+          lo = pos + 1
+       else
+          hi = pos - 1
+       end if
+    end do
+    pos = 0
+  end function find_entry
+
+  !> Add Mᵀ ke M to k over the item's columns, and -Mᵀ ke u0 to f_u0.
+  subroutine scatter(tr, pd, ke, cols, k, f_u0)
+    type(transform_t), intent(in) :: tr
+    integer(i8), intent(in) :: pd(:)
+    real(wp), intent(in) :: ke(:, :)
+    integer(i8), intent(in) :: cols(:)
+    type(sparse_sym_t), intent(inout) :: k
+    real(wp), intent(inout) :: f_u0(:)
+    real(wp), allocatable :: m(:, :), kr(:, :), u0e(:), fe(:)
+    integer :: n, nc, a, b
+    integer(i8) :: j, pos
+    logical :: simple
+
+    n = size(pd)
+    nc = size(cols)
+    simple = nc == n
+    if (simple) then
+       do a = 1, n
+          if (tr%map_len(pd(a)) /= 1) then
+             simple = .false.
+             exit
+          end if
+          if (tr%pool_coef(tr%map_start(pd(a))) /= 1.0_wp .or. tr%u0(pd(a)) /= 0.0_wp) then
+             simple = .false.
+             exit
+          end if
+       end do
+    end if
+    if (simple) then
+       ! Every DOF is its own column: scatter directly.
+       do b = 1, n
+          do a = 1, n
+             if (tr%pool_col(tr%map_start(pd(a))) > tr%pool_col(tr%map_start(pd(b)))) cycle
+             pos = find_entry(k, tr%pool_col(tr%map_start(pd(a))), tr%pool_col(tr%map_start(pd(b))))
+             k%val(pos) = k%val(pos) + ke(a, b)
+          end do
+       end do
+       return
+    end if
+    allocate (m(n, nc), source=0.0_wp)
+    allocate (u0e(n))
+    do a = 1, n
+       u0e(a) = tr%u0(pd(a))
+       do j = tr%map_start(pd(a)), tr%map_start(pd(a)) + tr%map_len(pd(a)) - 1
+          b = locate(cols, tr%pool_col(j))
+          m(a, b) = m(a, b) + tr%pool_coef(j)
+       end do
+    end do
+    kr = matmul(transpose(m), matmul(ke, m))
+    do b = 1, nc
+       do a = 1, b
+          pos = find_entry(k, cols(a), cols(b))
+          k%val(pos) = k%val(pos) + kr(a, b)
+       end do
+    end do
+    if (any(u0e /= 0.0_wp)) then
+       fe = matmul(transpose(m), matmul(ke, u0e))
+       do a = 1, nc
+          f_u0(cols(a)) = f_u0(cols(a)) - fe(a)
+       end do
+    end if
+  end subroutine scatter
+
+  !> Add g a aᵀ to k and -g a c to f_u0 for a spring on aᵀq + c.
+  subroutine scatter_form(col, coef, g, c, k, f_u0)
+    integer(i8), intent(in) :: col(:)
+    real(wp), intent(in) :: coef(:), g, c
+    type(sparse_sym_t), intent(inout) :: k
+    real(wp), intent(inout) :: f_u0(:)
+    integer :: a, b
+    integer(i8) :: pos
+    do b = 1, size(col)
+       do a = 1, size(col)
+          if (col(a) > col(b)) cycle
+          pos = find_entry(k, col(a), col(b))
+          k%val(pos) = k%val(pos) + g*coef(a)*coef(b)
+       end do
+       f_u0(col(b)) = f_u0(col(b)) - g*coef(b)*c
+    end do
+  end subroutine scatter_form
+
+  pure function locate(cols, j) result(b)
+    integer(i8), intent(in) :: cols(:), j
+    integer :: b, lo, hi
+    lo = 1
+    hi = size(cols)
+    b = 0
+    do while (lo <= hi)
+       b = lo + (hi - lo)/2
+       if (cols(b) == j) return
+       if (cols(b) < j) then
+          lo = b + 1
+       else
+          hi = b - 1
+       end if
+    end do
+    b = 0
+  end function locate
+
+  !> Physical loads of every step, f_phys(np, nstep), and the local distributed
+  !> load of each loaded beam (for element forces): see dload_local.
+  subroutine assemble_loads(model, table, f_phys, error)
+    type(model_t), intent(in) :: model
+    type(dof_table_t), intent(in) :: table
+    real(wp), allocatable, intent(out) :: f_phys(:, :)
+    type(error_t), allocatable, intent(out) :: error
+    integer :: is, i, n, a, nn
+    integer(i8) :: p, pd(MAX_ITEM_DOFS)
+    real(wp), allocatable :: fe(:)
+    real(wp) :: w(3), ql(3)
+    type(error_t), allocatable :: inner
+
+    allocate (f_phys(table%np, size(model%steps)), source=0.0_wp)
+    do is = 1, size(model%steps)
+       associate (st => model%steps(is))
+         do i = 1, size(st%cloads)
+            associate (cl => st%cloads(i))
+              p = table%pdof(cl%dof, table%vertex_offset(cl%sub) + cl%node)
+              if (p == 0) then
+                 call add_error_line(error, EXIT_SINGULAR, loc_text(model, cl%loc)// &
+                      ': error: load on DOF '//itoa(cl%dof)//' of a node that has no such DOF '// &
+                      '(no element, contact or support gives it)')
+                 cycle
+              end if
+              f_phys(p, is) = f_phys(p, is) + cl%value
+            end associate
+         end do
+         if (allocated(st%dloads)) then
+            do i = 1, size(st%dloads)
+               associate (dl => st%dloads(i), s => model%subs(st%dloads(i)%sub))
+                 w = 0.0_wp
+                 if (dl%kind >= 1 .and. dl%kind <= 3) w(dl%kind) = dl%value
+                 nn = ELEMENT_NODE_COUNT(s%elem_type(dl%elem))
+                 call beam_distributed_load(s%elem_type(dl%elem), s%x(:, s%elem_nodes(1:nn, dl%elem)), &
+                      s%sections(s%elem_section(dl%elem)), w, fe, ql, inner)
+                 if (allocated(inner)) then
+                    call add_error_line(error, EXIT_DECK, loc_text(model, dl%loc)//': error: '//inner%message)
+                    deallocate (inner)
+                    cycle
+                 end if
+                 call element_pdofs(model, table, dl%sub, dl%elem, pd, n)
+                 do a = 1, n
+                    f_phys(pd(a), is) = f_phys(pd(a), is) + fe(a)
+                 end do
+               end associate
+            end do
+         end if
+       end associate
+    end do
+  end subroutine assemble_loads
+end module superjoin_assembly_assemble

@@ -1,0 +1,374 @@
+!> Active DOFs, physical DOF numbering and contact units.
+!>
+!> A contact unit is one contact element (or the supports of one node) restricted
+!> to one DOF block (translations 1-3 or rotations 4-6):
+!>     delta = qs (u_b(C) - u_a(C)),   delta_k with stiffness g_k, RIGID or free,
+!> where C are the global components it acts on and the rows of qs are the local
+!> components. Side a is the master node (or the ground), side b the slave node.
+module superjoin_assembly_dofs
+  use superjoin_kinds, only: wp, ip, i8
+  use superjoin_error, only: error_t, add_error_line, EXIT_DECK
+  use superjoin_model_types, only: model_t, NDOF_NODE, LINK_NONE, LINK_FINITE, LINK_RIGID, &
+       ELEMENT_NODE_COUNT, loc_text, node_label
+  use superjoin_elements, only: element_node_dofs
+  use superjoin_utils_sorting, only: stable_argsort
+  use superjoin_utils_strings, only: itoa
+  implicit none (type, external)
+  private
+
+  integer, parameter, public :: NBLOCK = 2          !! translations, rotations
+  integer, parameter, public :: BLOCK_SIZE = 3
+  integer, parameter, public :: UNIT_LINK = 1, UNIT_SUPPORT = 2
+  integer, parameter, public :: GROUND = 0          !! the ground vertex
+  !> Orientation entries below this are treated as exact zeros when deciding
+  !> which global components an oriented contact couples.
+  real(wp), parameter :: ORIENT_ZERO = 1.0e-12_wp
+
+  !> One contact element (or the supports of one node) on one DOF block.
+  type, public :: unit_t
+     integer :: block = 0                  !! 1: DOFs 1-3, 2: DOFs 4-6
+     integer :: kind = 0                   !! UNIT_LINK or UNIT_SUPPORT
+     integer :: source = 0                 !! link index (UNIT_LINK) or support index of its first DOF
+     integer(i8) :: va = GROUND            !! vertex of side a (master; GROUND for supports)
+     integer(i8) :: vb = 0                 !! vertex of side b (slave / supported node)
+     integer :: n = 0                      !! number of components
+     integer :: comp(BLOCK_SIZE) = 0       !! global components in the block (1..3)
+     integer :: lcomp(BLOCK_SIZE) = 0      !! local components (1..3) of the rows of qs
+     real(wp) :: qs(BLOCK_SIZE, BLOCK_SIZE) = 0.0_wp  !! (n, n) used
+     integer :: state(BLOCK_SIZE) = LINK_NONE
+     real(wp) :: g(BLOCK_SIZE) = 0.0_wp
+     real(wp) :: value(BLOCK_SIZE) = 0.0_wp  !! prescribed delta of rigid components
+     integer :: src(BLOCK_SIZE) = 0          !! support index per component (supports only)
+  end type unit_t
+
+  !> Physical DOFs: every active (node, dof) pair, numbered node by node.
+  type, public :: dof_table_t
+     integer(i8) :: nvertex = 0                !! nodes over all substructures
+     integer(i8), allocatable :: vertex_offset(:)   !! (nsub+1): vertex = offset(sub) + node
+     integer(i8) :: np = 0                     !! physical DOFs
+     integer(i8), allocatable :: pdof(:, :)    !! (NDOF_NODE, nvertex): physical index or 0
+     integer, allocatable :: p_sub(:)          !! (np) substructure of each physical DOF
+     integer(ip), allocatable :: p_node(:)     !! (np) local node
+     integer, allocatable :: p_dof(:)          !! (np) DOF number 1..6
+     type(unit_t), allocatable :: units(:)
+     integer :: nunit = 0
+     integer, allocatable :: ignored_links(:)  !! links with named DOFs that no node carries
+  end type dof_table_t
+
+  public :: build_dof_table, vertex_of, block_dof
+
+contains
+
+  !> Vertex index of (substructure, local node).
+  pure function vertex_of(table, isub, inode) result(v)
+    type(dof_table_t), intent(in) :: table
+    integer, intent(in) :: isub
+    integer(ip), intent(in) :: inode
+    integer(i8) :: v
+    v = table%vertex_offset(isub) + inode
+  end function vertex_of
+
+  !> DOF number (1..6) of component c of block b.
+  elemental function block_dof(b, c) result(d)
+    integer, intent(in) :: b, c
+    integer :: d
+    d = (b - 1)*BLOCK_SIZE + c
+  end function block_dof
+
+  !> Activate DOFs, build contact units and number the physical DOFs.
+  subroutine build_dof_table(model, table, error)
+    type(model_t), intent(in) :: model
+    type(dof_table_t), intent(out) :: table
+    type(error_t), allocatable, intent(out) :: error
+    logical, allocatable :: has(:, :)        ! DOFs given by elements and supports
+    integer :: isub
+    integer(i8) :: v, p
+    integer :: d
+
+    allocate (table%vertex_offset(size(model%subs) + 1))
+    table%vertex_offset(1) = 0
+    do isub = 1, size(model%subs)
+       table%vertex_offset(isub + 1) = table%vertex_offset(isub) + model%subs(isub)%nnode
+    end do
+    table%nvertex = table%vertex_offset(size(model%subs) + 1)
+
+    allocate (has(NDOF_NODE, table%nvertex), source=.false.)
+    call activate_elements(model, table, has)
+    call activate_supports(model, table, has)
+
+    call build_link_units(model, table, has)
+    call build_support_units(model, table, error)
+    if (allocated(error)) return
+
+    ! Unit components are active on both of their nodes.
+    call activate_units(table, has)
+
+    allocate (table%pdof(NDOF_NODE, table%nvertex), source=0_i8)
+    table%np = count(has, kind=i8)
+    allocate (table%p_sub(table%np), table%p_node(table%np), table%p_dof(table%np))
+    p = 0
+    do isub = 1, size(model%subs)
+       do v = table%vertex_offset(isub) + 1, table%vertex_offset(isub + 1)
+          do d = 1, NDOF_NODE
+             if (.not. has(d, v)) cycle
+             p = p + 1
+             table%pdof(d, v) = p
+             table%p_sub(p) = isub
+             table%p_node(p) = int(v - table%vertex_offset(isub), ip)
+             table%p_dof(p) = d
+          end do
+       end do
+    end do
+  end subroutine build_dof_table
+
+  subroutine activate_elements(model, table, has)
+    type(model_t), intent(in) :: model
+    type(dof_table_t), intent(in) :: table
+    logical, intent(inout) :: has(:, :)
+    integer :: isub, k
+    integer(ip) :: e
+    integer(i8) :: v
+    integer, allocatable :: dofs(:)
+    do isub = 1, size(model%subs)
+       associate (s => model%subs(isub))
+         do e = 1, s%nelem
+            dofs = element_node_dofs(s%elem_type(e))
+            do k = 1, ELEMENT_NODE_COUNT(s%elem_type(e))
+               v = table%vertex_offset(isub) + s%elem_nodes(k, e)
+               has(dofs, v) = .true.
+            end do
+         end do
+       end associate
+    end do
+  end subroutine activate_elements
+
+  subroutine activate_supports(model, table, has)
+    type(model_t), intent(in) :: model
+    type(dof_table_t), intent(in) :: table
+    logical, intent(inout) :: has(:, :)
+    integer :: i
+    do i = 1, size(model%supports)
+       associate (sp => model%supports(i))
+         has(sp%dof, table%vertex_offset(sp%sub) + sp%node) = .true.
+       end associate
+    end do
+  end subroutine activate_supports
+
+  subroutine activate_units(table, has)
+    type(dof_table_t), intent(in) :: table
+    logical, intent(inout) :: has(:, :)
+    integer :: i, c
+    do i = 1, table%nunit
+       associate (u => table%units(i))
+         do c = 1, u%n
+            if (u%va /= GROUND) has(block_dof(u%block, u%comp(c)), u%va) = .true.
+            has(block_dof(u%block, u%comp(c)), u%vb) = .true.
+         end do
+       end associate
+    end do
+  end subroutine activate_units
+
+  !> One unit per link and block with any connected DOF that a node carries.
+  subroutine build_link_units(model, table, has)
+    type(model_t), intent(in) :: model
+    type(dof_table_t), intent(inout) :: table
+    logical, intent(in) :: has(:, :)
+    integer :: il, b
+    integer(i8) :: va, vb
+    type(unit_t) :: u
+    logical :: ignored
+    real(wp) :: q(3, 3)
+    integer, allocatable :: ign(:)
+    integer :: nign
+
+    allocate (table%units(max(16, 2*size(model%links) + size(model%supports))))
+    allocate (ign(size(model%links)))
+    nign = 0
+    do il = 1, size(model%links)
+       associate (lk => model%links(il), ct => model%contacts(model%links(il)%contact))
+         va = table%vertex_offset(ct%master_sub) + lk%master_node
+         vb = table%vertex_offset(ct%slave_sub) + lk%slave_node
+         if (ct%orientation > 0) then
+            q = model%orientations(ct%orientation)%q
+         else
+            q = 0.0_wp
+            q(1, 1) = 1.0_wp; q(2, 2) = 1.0_wp; q(3, 3) = 1.0_wp
+         end if
+         ignored = .false.
+         do b = 1, NBLOCK
+            call link_unit(lk%state((b - 1)*3 + 1:b*3), lk%g((b - 1)*3 + 1:b*3), q, &
+                 has((b - 1)*3 + 1:b*3, va) .or. has((b - 1)*3 + 1:b*3, vb), u, ignored)
+            if (u%n == 0) cycle
+            u%block = b
+            u%kind = UNIT_LINK
+            u%source = il
+            u%va = va
+            u%vb = vb
+            call push_unit(table, u)
+         end do
+         if (ignored) then
+            nign = nign + 1
+            ign(nign) = il
+         end if
+       end associate
+    end do
+    table%ignored_links = ign(1:nign)
+  end subroutine build_link_units
+
+  !> Components of one link on one block. `present(c)` tells whether either node
+  !> carries global component c from an element or a support.
+  subroutine link_unit(state, g, q, present, u, ignored)
+    integer, intent(in) :: state(3)
+    real(wp), intent(in) :: g(3), q(3, 3)
+    logical, intent(in) :: present(3)
+    type(unit_t), intent(out) :: u
+    logical, intent(inout) :: ignored
+    logical :: named(3), inc(3), rowin(3)
+    integer :: k, c, nk, nc
+    integer :: ks(3), cs(3)
+    real(wp) :: scale
+
+    named = state /= LINK_NONE
+    u%n = 0
+    if (.not. any(named)) return
+    ! Global components coupled by the named local components.
+    inc = .false.
+    do k = 1, 3
+       if (.not. named(k)) cycle
+       scale = maxval(abs(q(k, :)))
+       do c = 1, 3
+          if (abs(q(k, c)) > ORIENT_ZERO*scale) inc(c) = .true.
+       end do
+    end do
+    ! A component that neither node carries is not connected.
+    if (any(inc .and. .not. present)) ignored = .true.
+    inc = inc .and. present
+    if (.not. any(inc)) return
+    ! Local components whose axis lies within the included global components.
+    do k = 1, 3
+       rowin(k) = all(abs(q(k, :)) <= ORIENT_ZERO*maxval(abs(q(k, :))) .or. inc)
+    end do
+    if (count(rowin) /= count(inc)) then
+       ! Oblique frame: the unit acts on the whole block.
+       inc = .true.
+       rowin = .true.
+    end if
+    nc = 0
+    do c = 1, 3
+       if (inc(c)) then
+          nc = nc + 1
+          cs(nc) = c
+       end if
+    end do
+    nk = 0
+    do k = 1, 3
+       if (rowin(k)) then
+          nk = nk + 1
+          ks(nk) = k
+       end if
+    end do
+    u%n = nc
+    u%comp(1:nc) = cs(1:nc)
+    u%lcomp(1:nk) = ks(1:nk)
+    do k = 1, nk
+       do c = 1, nc
+          u%qs(k, c) = q(ks(k), cs(c))
+       end do
+       u%state(k) = state(ks(k))
+       u%g(k) = g(ks(k))
+       if (u%state(k) == LINK_FINITE .and. u%g(k) == 0.0_wp) u%state(k) = LINK_NONE
+    end do
+  end subroutine link_unit
+
+  !> Merge the supports per node and DOF (finite g add up, RIGID wins, two
+  !> RIGID values must agree) into one unit per node and block.
+  subroutine build_support_units(model, table, error)
+    type(model_t), intent(in) :: model
+    type(dof_table_t), intent(inout) :: table
+    type(error_t), allocatable, intent(inout) :: error
+    integer(i8), allocatable :: key(:)
+    integer, allocatable :: order(:)
+    integer :: i, j, n, c, b
+    integer(i8) :: v, vprev
+    integer :: bprev
+    type(unit_t) :: u
+    real(wp), parameter :: VALUE_TOL = 1.0e-12_wp
+
+    n = size(model%supports)
+    if (n == 0) return
+    allocate (key(n), order(n))
+    do i = 1, n
+       associate (sp => model%supports(i))
+         v = table%vertex_offset(sp%sub) + sp%node
+         key(i) = v*NDOF_NODE + (sp%dof - 1)
+       end associate
+       order(i) = i
+    end do
+    call stable_argsort(real(key, wp), order)
+
+    vprev = -1
+    bprev = 0
+    u%n = 0
+    do j = 1, n
+       i = order(j)
+       associate (sp => model%supports(i))
+         v = table%vertex_offset(sp%sub) + sp%node
+         b = (sp%dof - 1)/3 + 1
+         c = sp%dof - (b - 1)*3
+         if (v /= vprev .or. b /= bprev) then
+            if (u%n > 0) call push_unit(table, u)
+            u = unit_t()
+            u%block = b
+            u%kind = UNIT_SUPPORT
+            u%source = i
+            u%va = GROUND
+            u%vb = v
+            vprev = v
+            bprev = b
+         end if
+         if (u%n == 0 .or. u%comp(max(u%n, 1)) /= c) then
+            u%n = u%n + 1
+            u%comp(u%n) = c
+            u%lcomp(u%n) = c
+            u%qs(u%n, u%n) = 1.0_wp
+            u%src(u%n) = i
+         end if
+         select case (sp%state)
+         case (LINK_RIGID)
+            if (u%state(u%n) == LINK_RIGID) then
+               if (abs(u%value(u%n) - sp%value) > VALUE_TOL*max(abs(sp%value), abs(u%value(u%n)))) then
+                  call add_error_line(error, EXIT_DECK, loc_text(model, sp%loc)//': error: node '// &
+                       node_label(model, sp%sub, sp%node)//' DOF '//itoa(sp%dof)// &
+                       ' has two rigid supports with different prescribed values (other at '// &
+                       loc_text(model, model%supports(u%src(u%n))%loc)//')')
+               end if
+            else
+               u%state(u%n) = LINK_RIGID
+               u%value(u%n) = sp%value
+               u%g(u%n) = 0.0_wp
+               u%src(u%n) = i
+            end if
+         case (LINK_FINITE)
+            if (u%state(u%n) /= LINK_RIGID .and. sp%g > 0.0_wp) then
+               u%state(u%n) = LINK_FINITE
+               u%g(u%n) = u%g(u%n) + sp%g
+            end if
+         end select
+       end associate
+    end do
+    if (u%n > 0) call push_unit(table, u)
+  end subroutine build_support_units
+
+  subroutine push_unit(table, u)
+    type(dof_table_t), intent(inout) :: table
+    type(unit_t), intent(in) :: u
+    type(unit_t), allocatable :: tmp(:)
+    if (table%nunit == size(table%units)) then
+       allocate (tmp(2*size(table%units)))
+       tmp(1:table%nunit) = table%units(1:table%nunit)
+       call move_alloc(tmp, table%units)
+    end if
+    table%nunit = table%nunit + 1
+    table%units(table%nunit) = u
+  end subroutine push_unit
+end module superjoin_assembly_dofs

@@ -1,0 +1,171 @@
+!> Maximum spanning forest of the contact units, per DOF block.
+!>
+!> Vertices are the nodes of all substructures plus the ground (vertex 0). The
+!> stiffest units (RIGID first, then by largest g) form the forest; a tree that
+!> contains the ground is rooted there. Each tree unit is transformed with its
+!> child as the dependent side; the other units close loops.
+module superjoin_assembly_forest
+  use superjoin_kinds, only: wp, i8
+  use superjoin_model_types, only: LINK_FINITE, LINK_RIGID
+  use superjoin_assembly_dofs, only: dof_table_t, unit_t, NBLOCK, GROUND, UNIT_LINK
+  use superjoin_utils_sorting, only: stable_argsort
+  implicit none (type, external)
+  private
+
+  !> The forest: which units are tree edges, and in which direction.
+  type, public :: forest_t
+     logical, allocatable :: tree(:)            !! (nunit) unit is a tree edge
+     logical, allocatable :: child_is_a(:)      !! (nunit) the child is side a (master)
+     integer, allocatable :: parent_unit(:, :)  !! (NBLOCK, 0:nvertex) tree unit above a vertex, 0 for roots
+     integer(i8), allocatable :: order(:, :)    !! (NBLOCK, nvertex) vertices with a parent, parents first
+     integer(i8) :: norder(NBLOCK) = 0
+  end type forest_t
+
+  public :: build_forest, unit_weight
+
+contains
+
+  !> Weight of a unit: RIGID is stiffest, then the largest finite g.
+  pure function unit_weight(u) result(w)
+    type(unit_t), intent(in) :: u
+    real(wp) :: w
+    integer :: k
+    w = 0.0_wp
+    do k = 1, u%n
+       if (u%state(k) == LINK_RIGID) then
+          w = huge(1.0_wp)
+       else if (u%state(k) == LINK_FINITE) then
+          w = max(w, u%g(k))
+       end if
+    end do
+  end function unit_weight
+
+  !> Build the forest. With `links_in_tree` false (PENALTY), only supports are
+  !> transformed and every contact is assembled in plain form.
+  subroutine build_forest(table, links_in_tree, forest)
+    type(dof_table_t), intent(in) :: table
+    logical, intent(in) :: links_in_tree
+    type(forest_t), intent(out) :: forest
+    integer(i8), allocatable :: uf(:)
+    integer, allocatable :: cand(:)
+    real(wp), allocatable :: w(:)
+    integer :: b, i, nc, iu
+    integer(i8) :: ra, rb
+
+    allocate (forest%tree(table%nunit), source=.false.)
+    allocate (forest%child_is_a(table%nunit), source=.false.)
+    allocate (forest%parent_unit(NBLOCK, 0:table%nvertex), source=0)
+    allocate (forest%order(NBLOCK, table%nvertex))
+    allocate (uf(0:table%nvertex), cand(table%nunit), w(table%nunit))
+
+    do b = 1, NBLOCK
+       nc = 0
+       do i = 1, table%nunit
+          if (table%units(i)%block /= b) cycle
+          if (table%units(i)%kind == UNIT_LINK .and. .not. links_in_tree) cycle
+          nc = nc + 1
+          cand(nc) = i
+          w(i) = unit_weight(table%units(i))
+       end do
+       call stable_argsort(-w, cand(1:nc))
+       do i = 0, int(table%nvertex)
+          uf(i) = i
+       end do
+       do i = 1, nc
+          iu = cand(i)
+          ra = find(uf, table%units(iu)%va)
+          rb = find(uf, table%units(iu)%vb)
+          if (ra == rb) cycle
+          ! Union towards the smaller root so that the ground (0) stays a root.
+          if (ra < rb) then
+             uf(rb) = ra
+          else
+             uf(ra) = rb
+          end if
+          forest%tree(iu) = .true.
+       end do
+       call orient_block(table, b, forest)
+    end do
+  end subroutine build_forest
+
+  !> Root every tree (at the ground if it has it, else at its lowest vertex) and
+  !> record parents and a parents-first order.
+  subroutine orient_block(table, b, forest)
+    type(dof_table_t), intent(in) :: table
+    integer, intent(in) :: b
+    type(forest_t), intent(inout) :: forest
+    integer(i8), allocatable :: adj_ptr(:), queue(:)
+    integer, allocatable :: adj_unit(:)
+    logical, allocatable :: seen(:)
+    integer(i8) :: v, w, head, tail, start
+    integer :: i, k
+
+    allocate (adj_ptr(0:table%nvertex + 1), source=0_i8)
+    do i = 1, table%nunit
+       if (.not. forest%tree(i) .or. table%units(i)%block /= b) cycle
+       adj_ptr(table%units(i)%va + 1) = adj_ptr(table%units(i)%va + 1) + 1
+       adj_ptr(table%units(i)%vb + 1) = adj_ptr(table%units(i)%vb + 1) + 1
+    end do
+    do v = 1, table%nvertex + 1
+       adj_ptr(v) = adj_ptr(v) + adj_ptr(v - 1)
+    end do
+    allocate (adj_unit(max(adj_ptr(table%nvertex + 1), 1_i8)))
+    block
+      integer(i8), allocatable :: fill(:)
+      allocate (fill(0:table%nvertex))
+      fill = adj_ptr(0:table%nvertex)
+      do i = 1, table%nunit
+         if (.not. forest%tree(i) .or. table%units(i)%block /= b) cycle
+         fill(table%units(i)%va) = fill(table%units(i)%va) + 1
+         adj_unit(fill(table%units(i)%va)) = i
+         fill(table%units(i)%vb) = fill(table%units(i)%vb) + 1
+         adj_unit(fill(table%units(i)%vb)) = i
+      end do
+    end block
+
+    allocate (seen(0:table%nvertex), source=.false.)
+    allocate (queue(table%nvertex + 1))
+    forest%norder(b) = 0
+    do start = GROUND, table%nvertex
+       if (seen(start)) cycle
+       if (adj_ptr(start + 1) == adj_ptr(start)) cycle
+       seen(start) = .true.
+       head = 1
+       tail = 1
+       queue(1) = start
+       do while (head <= tail)
+          v = queue(head)
+          head = head + 1
+          do k = int(adj_ptr(v)) + 1, int(adj_ptr(v + 1))
+             i = adj_unit(k)
+             if (table%units(i)%va == v) then
+                w = table%units(i)%vb
+             else
+                w = table%units(i)%va
+             end if
+             if (seen(w)) cycle
+             seen(w) = .true.
+             forest%parent_unit(b, w) = i
+             forest%child_is_a(i) = (w == table%units(i)%va)
+             tail = tail + 1
+             queue(tail) = w
+             forest%norder(b) = forest%norder(b) + 1
+             forest%order(b, forest%norder(b)) = w
+          end do
+       end do
+    end do
+  end subroutine orient_block
+
+  !> Root of v's set, halving the path on the way.
+  function find(uf, v) result(r)
+    integer(i8), intent(inout) :: uf(0:)
+    integer(i8), intent(in) :: v
+    integer(i8) :: r
+    r = v
+    do while (uf(r) /= r)
+       uf(r) = uf(uf(r))
+       r = uf(r)
+    end do
+  end function find
+
+end module superjoin_assembly_forest

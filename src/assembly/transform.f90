@@ -1,0 +1,581 @@
+!> The Δu transform: reduced unknowns q and the affine map u = T q + u0.
+!>
+!> Every physical DOF keeps a short list of (column, coefficient) pairs. An
+!> ordinary DOF is its own column. The child of a tree unit is its parent plus
+!> the unit's relative displacements: u_b(C) = u_a(C) + qsᵀ δ, where each finite
+!> or free component of δ is a column of its own (its g sits on that column's
+!> diagonal and nowhere else) and a RIGID component is exactly its prescribed
+!> value (0 for contacts). A RIGID component of a unit that closes a loop is a
+!> linear constraint on q: redundant when it holds identically, otherwise one
+!> column is eliminated exactly by substitution.
+module superjoin_assembly_transform
+  use superjoin_kinds, only: wp, i8
+  use superjoin_error, only: error_t, add_error_line, EXIT_DECK
+  use superjoin_model_types, only: model_t, LINK_NONE, LINK_FINITE, LINK_RIGID, loc_text
+  use superjoin_assembly_dofs, only: dof_table_t, unit_t, NBLOCK, GROUND, UNIT_LINK, &
+       UNIT_SUPPORT, block_dof
+  use superjoin_assembly_forest, only: forest_t
+  use superjoin_utils_strings, only: rtoa
+  implicit none (type, external)
+  private
+
+  !> Column kinds.
+  integer, parameter, public :: COL_PHYS = 1, COL_DELTA = 2, COL_DEAD = 3
+  !> Unit roles.
+  integer, parameter, public :: ROLE_TREE = 1, ROLE_PLAIN = 2
+  !> Constraint outcomes for RIGID components that close a loop.
+  integer, parameter, public :: CONS_REDUNDANT = 1, CONS_ELIMINATED = 2
+  !> Coefficients of a loop constraint below this (relative) are round-off.
+  real(wp), parameter :: CONS_ZERO = 1.0e-12_wp
+  !> A pivot for elimination must be at least this fraction of the largest coefficient.
+  real(wp), parameter :: PIVOT_FRACTION = 0.5_wp
+
+  !> A spring on a linear form of the unknowns: energy ½ g (aᵀq + c)².
+  type, public :: form_spring_t
+     integer(i8), allocatable :: col(:)
+     real(wp), allocatable :: coef(:)
+     real(wp) :: const = 0.0_wp
+     real(wp) :: g = 0.0_wp
+     integer :: unit = 0                   !! unit and component whose δ it is
+     integer :: k = 0
+  end type form_spring_t
+
+  !> A RIGID component of a loop-closing unit.
+  type, public :: constraint_t
+     integer :: unit = 0
+     integer :: k = 0                      !! row of the unit's qs
+     integer :: status = 0                 !! CONS_REDUNDANT or CONS_ELIMINATED
+     integer(i8) :: col = 0                !! eliminated column (before compaction)
+     integer :: col_unit = 0               !! what the eliminated column was (unit, comp) or 0
+     integer :: col_k = 0
+     real(wp) :: pivot = 0.0_wp            !! its coefficient in the constraint
+     real(wp) :: g = 0.0_wp                !! spring that sat on the eliminated column
+     integer :: form = 0                   !! form spring that replaced it (0: none)
+     integer(i8), allocatable :: fp_p(:)   !! footprint of the eliminated column: physical DOFs
+     real(wp), allocatable :: fp_c(:)      !! and their coefficients
+  end type constraint_t
+
+  !> The reduced system's unknowns and the map from them to physical DOFs.
+  type, public :: transform_t
+     integer(i8) :: ncol = 0
+     integer, allocatable :: col_kind(:)   !! COL_PHYS or COL_DELTA
+     integer(i8), allocatable :: col_ref(:)  !! physical DOF (COL_PHYS) or unit (COL_DELTA)
+     integer, allocatable :: col_k(:)      !! row of the unit's qs (COL_DELTA)
+     real(wp), allocatable :: col_g(:)     !! spring on the diagonal (COL_DELTA)
+     integer(i8), allocatable :: map_start(:)  !! (np) first pool entry
+     integer, allocatable :: map_len(:)        !! (np)
+     integer(i8), allocatable :: pool_col(:)
+     real(wp), allocatable :: pool_coef(:)
+     integer(i8) :: pool_n = 0
+     real(wp), allocatable :: u0(:)        !! (np) prescribed part of each DOF
+     integer, allocatable :: role(:)       !! (nunit) ROLE_TREE or ROLE_PLAIN
+     integer(i8), allocatable :: dcol(:, :)  !! (3, nunit) δ column of each component, 0 if none
+     type(form_spring_t), allocatable :: forms(:)
+     integer :: nform = 0
+     type(constraint_t), allocatable :: cons(:)
+     integer :: ncons = 0
+     logical :: has_u0 = .false.
+  end type transform_t
+
+  public :: build_transform
+
+contains
+
+  !> Build columns, maps and loop constraints from the DOF table and the forest.
+  subroutine build_transform(model, table, forest, tr, error)
+    type(model_t), intent(in) :: model
+    type(dof_table_t), intent(in) :: table
+    type(forest_t), intent(in) :: forest
+    type(transform_t), intent(out) :: tr
+    type(error_t), allocatable, intent(out) :: error
+
+    allocate (tr%role(table%nunit))
+    where (forest%tree)
+       tr%role = ROLE_TREE
+    elsewhere
+       tr%role = ROLE_PLAIN
+    end where
+    call number_columns(table, forest, tr)
+    call build_maps(table, forest, tr)
+    call close_loops(model, table, tr, error)
+    if (allocated(error)) return
+    call compact_columns(tr)
+    tr%has_u0 = any(tr%u0 /= 0.0_wp)
+  end subroutine build_transform
+
+  !> Columns node by node: first the δ of the unit above the node, then the
+  !> node's own DOFs that no tree unit makes dependent.
+  subroutine number_columns(table, forest, tr)
+    type(dof_table_t), intent(in) :: table
+    type(forest_t), intent(in) :: forest
+    type(transform_t), intent(inout) :: tr
+    integer(i8) :: v, p, cap
+    integer :: b, c, k, pu
+    logical :: dep
+
+    cap = table%np + 3*table%nunit
+    allocate (tr%col_kind(cap), tr%col_ref(cap), tr%col_k(cap), tr%col_g(cap))
+    allocate (tr%dcol(3, table%nunit), source=0_i8)
+    tr%ncol = 0
+    do v = 1, table%nvertex
+       do b = 1, NBLOCK
+          pu = forest%parent_unit(b, v)
+          if (pu > 0) then
+             associate (u => table%units(pu))
+               do k = 1, u%n
+                  if (u%state(k) == LINK_RIGID) cycle
+                  tr%ncol = tr%ncol + 1
+                  tr%col_kind(tr%ncol) = COL_DELTA
+                  tr%col_ref(tr%ncol) = pu
+                  tr%col_k(tr%ncol) = k
+                  tr%col_g(tr%ncol) = merge(u%g(k), 0.0_wp, u%state(k) == LINK_FINITE)
+                  tr%dcol(k, pu) = tr%ncol
+               end do
+             end associate
+          end if
+          do c = 1, 3
+             p = table%pdof(block_dof(b, c), v)
+             if (p == 0) cycle
+             dep = .false.
+             if (pu > 0) dep = any(table%units(pu)%comp(1:table%units(pu)%n) == c)
+             if (dep) cycle
+             tr%ncol = tr%ncol + 1
+             tr%col_kind(tr%ncol) = COL_PHYS
+             tr%col_ref(tr%ncol) = p
+             tr%col_k(tr%ncol) = 0
+             tr%col_g(tr%ncol) = 0.0_wp
+          end do
+       end do
+    end do
+  end subroutine number_columns
+
+  subroutine build_maps(table, forest, tr)
+    type(dof_table_t), intent(in) :: table
+    type(forest_t), intent(in) :: forest
+    type(transform_t), intent(inout) :: tr
+    integer(i8) :: j, p, v, w, pw, io
+    integer :: b, c, k, pu
+    real(wp) :: sgn, coef
+
+    allocate (tr%map_start(table%np), source=0_i8)
+    allocate (tr%map_len(table%np), source=0)
+    allocate (tr%u0(table%np), source=0.0_wp)
+    allocate (tr%pool_col(table%np + 4*table%nunit + 16), tr%pool_coef(table%np + 4*table%nunit + 16))
+    tr%pool_n = 0
+    do j = 1, tr%ncol
+       if (tr%col_kind(j) /= COL_PHYS) cycle
+       p = tr%col_ref(j)
+       call pool_push(tr, j, 1.0_wp)
+       tr%map_start(p) = tr%pool_n
+       tr%map_len(p) = 1
+    end do
+    do b = 1, NBLOCK
+       do io = 1, forest%norder(b)
+          v = forest%order(b, io)
+          pu = forest%parent_unit(b, v)
+          associate (u => table%units(pu))
+            if (forest%child_is_a(pu)) then
+               w = u%vb
+               sgn = -1.0_wp
+            else
+               w = u%va
+               sgn = 1.0_wp
+            end if
+            do c = 1, u%n
+               p = table%pdof(block_dof(b, u%comp(c)), v)
+               tr%map_start(p) = tr%pool_n + 1
+               tr%map_len(p) = 0
+               if (w /= GROUND) then
+                  pw = table%pdof(block_dof(b, u%comp(c)), w)
+                  do j = tr%map_start(pw), tr%map_start(pw) + tr%map_len(pw) - 1
+                     call pool_push(tr, tr%pool_col(j), tr%pool_coef(j))
+                  end do
+                  tr%map_len(p) = tr%map_len(pw)
+                  tr%u0(p) = tr%u0(pw)
+               end if
+               do k = 1, u%n
+                  coef = sgn*u%qs(k, c)
+                  if (coef == 0.0_wp) cycle
+                  if (tr%dcol(k, pu) > 0) then
+                     call pool_push(tr, tr%dcol(k, pu), coef)
+                     tr%map_len(p) = tr%map_len(p) + 1
+                  else if (u%state(k) == LINK_RIGID) then
+                     tr%u0(p) = tr%u0(p) + coef*u%value(k)
+                  end if
+               end do
+            end do
+          end associate
+       end do
+    end do
+  end subroutine build_maps
+
+  subroutine pool_push(tr, col, coef)
+    type(transform_t), intent(inout) :: tr
+    integer(i8), intent(in) :: col
+    real(wp), intent(in) :: coef
+    integer(i8), allocatable :: ic(:)
+    real(wp), allocatable :: rc(:)
+    if (tr%pool_n == size(tr%pool_col, kind=i8)) then
+       allocate (ic(2*tr%pool_n), rc(2*tr%pool_n))
+       ic(1:tr%pool_n) = tr%pool_col(1:tr%pool_n)
+       rc(1:tr%pool_n) = tr%pool_coef(1:tr%pool_n)
+       call move_alloc(ic, tr%pool_col)
+       call move_alloc(rc, tr%pool_coef)
+    end if
+    tr%pool_n = tr%pool_n + 1
+    tr%pool_col(tr%pool_n) = col
+    tr%pool_coef(tr%pool_n) = coef
+  end subroutine pool_push
+
+  !> Linear form of δ_k of unit u in the unknowns: aᵀq + const.
+  subroutine unit_form(table, tr, u, k, col, coef, const)
+    type(dof_table_t), intent(in) :: table
+    type(transform_t), intent(in) :: tr
+    type(unit_t), intent(in) :: u
+    integer, intent(in) :: k
+    integer(i8), allocatable, intent(out) :: col(:)
+    real(wp), allocatable, intent(out) :: coef(:)
+    real(wp), intent(out) :: const
+    integer(i8) :: p, j, n
+    integer :: c, side
+    real(wp) :: s
+
+    n = 0
+    do c = 1, u%n
+       do side = 1, 2
+          if (side == 1 .and. u%va == GROUND) cycle
+          if (side == 1) then
+             p = table%pdof(block_dof(u%block, u%comp(c)), u%va)
+          else
+             p = table%pdof(block_dof(u%block, u%comp(c)), u%vb)
+          end if
+          n = n + tr%map_len(p)
+       end do
+    end do
+    allocate (col(n), coef(n))
+    n = 0
+    const = -u%value(k)
+    do c = 1, u%n
+       do side = 1, 2
+          if (side == 1 .and. u%va == GROUND) cycle
+          if (side == 1) then
+             p = table%pdof(block_dof(u%block, u%comp(c)), u%va)
+             s = -u%qs(k, c)
+          else
+             p = table%pdof(block_dof(u%block, u%comp(c)), u%vb)
+             s = u%qs(k, c)
+          end if
+          const = const + s*tr%u0(p)
+          do j = tr%map_start(p), tr%map_start(p) + tr%map_len(p) - 1
+             n = n + 1
+             col(n) = tr%pool_col(j)
+             coef(n) = s*tr%pool_coef(j)
+          end do
+       end do
+    end do
+    call merge_terms(col, coef)
+  end subroutine unit_form
+
+  !> Sort terms by column, add repeats, drop exact zeros.
+  subroutine merge_terms(col, coef)
+    integer(i8), allocatable, intent(inout) :: col(:)
+    real(wp), allocatable, intent(inout) :: coef(:)
+    integer :: i, j, n
+    integer(i8) :: tc
+    real(wp) :: tv
+    do i = 2, size(col)
+       tc = col(i)
+       tv = coef(i)
+       j = i - 1
+       do while (j >= 1)
+          if (col(j) <= tc) exit
+          col(j + 1) = col(j)
+          coef(j + 1) = coef(j)
+          j = j - 1
+       end do
+       col(j + 1) = tc
+       coef(j + 1) = tv
+    end do
+    n = 0
+    do i = 1, size(col)
+       if (n > 0) then
+          if (col(n) == col(i)) then
+             coef(n) = coef(n) + coef(i)
+             cycle
+          end if
+       end if
+       n = n + 1
+       col(n) = col(i)
+       coef(n) = coef(i)
+    end do
+    j = 0
+    do i = 1, n
+       if (coef(i) == 0.0_wp) cycle
+       j = j + 1
+       col(j) = col(i)
+       coef(j) = coef(i)
+    end do
+    col = col(1:j)
+    coef = coef(1:j)
+  end subroutine merge_terms
+
+  !> Rigid components of loop-closing units: redundant or eliminated.
+  subroutine close_loops(model, table, tr, error)
+    type(model_t), intent(in) :: model
+    type(dof_table_t), intent(in) :: table
+    type(transform_t), intent(inout) :: tr
+    type(error_t), allocatable, intent(inout) :: error
+    integer :: iu, k, best
+    integer(i8), allocatable :: col(:)
+    real(wp), allocatable :: coef(:)
+    real(wp) :: const, amax, scale
+    type(constraint_t) :: cs
+
+    allocate (tr%cons(4), tr%forms(4))
+    do iu = 1, table%nunit
+       if (tr%role(iu) /= ROLE_PLAIN) cycle
+       do k = 1, table%units(iu)%n
+          if (table%units(iu)%state(k) /= LINK_RIGID) cycle
+          call unit_form(table, tr, table%units(iu), k, col, coef, const)
+          scale = maxval(abs(table%units(iu)%qs(k, 1:table%units(iu)%n)))
+          amax = 0.0_wp
+          if (size(coef) > 0) amax = maxval(abs(coef))
+          cs = constraint_t()
+          cs%unit = iu
+          cs%k = k
+          if (amax <= CONS_ZERO*scale) then
+             if (abs(const) > CONS_ZERO*max(maxval(abs(tr%u0)), abs(table%units(iu)%value(k)), tiny(1.0_wp)) &
+                 .and. abs(const) > 0.0_wp) then
+                call add_error_line(error, EXIT_DECK, unit_where(model, table%units(iu))// &
+                     ': error: RIGID loop with conflicting prescribed values (mismatch '// &
+                     rtoa(const)//')')
+                cycle
+             end if
+             cs%status = CONS_REDUNDANT
+          else
+             best = choose_pivot(tr, col, coef, amax)
+             call eliminate(tr, col, coef, const, best, cs)
+             cs%status = CONS_ELIMINATED
+          end if
+          call push_constraint(tr, cs)
+       end do
+    end do
+  end subroutine close_loops
+
+  !> Pivot among the terms whose coefficient is large enough: a δ column
+  !> first (the softest spring), then any column; ties by lowest column.
+  pure function choose_pivot(tr, col, coef, amax) result(best)
+    type(transform_t), intent(in) :: tr
+    integer(i8), intent(in) :: col(:)
+    real(wp), intent(in) :: coef(:), amax
+    integer :: best, i
+    best = 0
+    do i = 1, size(col)
+       if (abs(coef(i)) < PIVOT_FRACTION*amax) cycle
+       if (best == 0) then
+          best = i
+       else if (better(i, best)) then
+          best = i
+       end if
+    end do
+  contains
+    pure logical function better(i, j)
+      integer, intent(in) :: i, j
+      logical :: di, dj
+      di = tr%col_kind(col(i)) == COL_DELTA
+      dj = tr%col_kind(col(j)) == COL_DELTA
+      if (di .neqv. dj) then
+         better = di
+      else
+         better = tr%col_g(col(i)) < tr%col_g(col(j))
+      end if
+    end function better
+  end function choose_pivot
+
+  !> Eliminate column col(best) using aᵀq + const = 0 in every map and form.
+  subroutine eliminate(tr, col, coef, const, best, cs)
+    type(transform_t), intent(inout) :: tr
+    integer(i8), intent(in) :: col(:)
+    real(wp), intent(in) :: coef(:), const
+    integer, intent(in) :: best
+    type(constraint_t), intent(inout) :: cs
+    integer(i8) :: jstar, p, j, nfp
+    real(wp) :: piv, c
+    integer(i8), allocatable :: ncol(:)
+    real(wp), allocatable :: ncoef(:)
+    integer :: i
+    type(form_spring_t) :: fs
+
+    jstar = col(best)
+    piv = coef(best)
+    cs%col = jstar
+    cs%pivot = piv
+    cs%g = tr%col_g(jstar)
+    if (tr%col_kind(jstar) == COL_DELTA) then
+       cs%col_unit = int(tr%col_ref(jstar))
+       cs%col_k = tr%col_k(jstar)
+    end if
+    ! Footprint of the column before it goes.
+    nfp = 0
+    do p = 1, size(tr%map_len, kind=i8)
+       do j = tr%map_start(p), tr%map_start(p) + tr%map_len(p) - 1
+          if (tr%pool_col(j) == jstar) nfp = nfp + 1
+       end do
+    end do
+    allocate (cs%fp_p(nfp), cs%fp_c(nfp))
+    nfp = 0
+    do p = 1, size(tr%map_len, kind=i8)
+       do j = tr%map_start(p), tr%map_start(p) + tr%map_len(p) - 1
+          if (tr%pool_col(j) /= jstar) cycle
+          nfp = nfp + 1
+          cs%fp_p(nfp) = p
+          cs%fp_c(nfp) = tr%pool_coef(j)
+       end do
+    end do
+    ! Substitute q_j* = -(Σ_{j≠j*} a_j q_j + const) / a_j* into the maps.
+    do i = 1, int(nfp)
+       p = cs%fp_p(i)
+       c = cs%fp_c(i)
+       call substitute(tr%pool_col(tr%map_start(p):tr%map_start(p) + tr%map_len(p) - 1), &
+            tr%pool_coef(tr%map_start(p):tr%map_start(p) + tr%map_len(p) - 1), &
+            jstar, col, coef, piv, ncol, ncoef)
+       tr%u0(p) = tr%u0(p) - c*const/piv
+       tr%map_start(p) = tr%pool_n + 1
+       tr%map_len(p) = size(ncol)
+       do j = 1, size(ncol, kind=i8)
+          call pool_push(tr, ncol(j), ncoef(j))
+       end do
+    end do
+    ! Substitute into existing form springs.
+    do i = 1, tr%nform
+       c = 0.0_wp
+       do j = 1, size(tr%forms(i)%col, kind=i8)
+          if (tr%forms(i)%col(j) == jstar) c = tr%forms(i)%coef(j)
+       end do
+       if (c == 0.0_wp) cycle
+       call substitute(tr%forms(i)%col, tr%forms(i)%coef, jstar, col, coef, piv, ncol, ncoef)
+       tr%forms(i)%col = ncol
+       tr%forms(i)%coef = ncoef
+       tr%forms(i)%const = tr%forms(i)%const - c*const/piv
+    end do
+    ! A spring that sat on the eliminated δ now acts on its expression.
+    if (tr%col_g(jstar) > 0.0_wp) then
+       fs%g = tr%col_g(jstar)
+       fs%unit = cs%col_unit
+       fs%k = cs%col_k
+       fs%col = pack(col, col /= jstar)
+       fs%coef = -pack(coef, col /= jstar)/piv
+       fs%const = -const/piv
+       call push_form(tr, fs)
+       cs%form = tr%nform
+    end if
+    tr%col_kind(jstar) = COL_DEAD
+  end subroutine eliminate
+
+  !> Terms (mcol, mcoef) with column jstar replaced by -(Σ a_j q_j)/a_j*.
+  subroutine substitute(mcol, mcoef, jstar, col, coef, piv, ncol, ncoef)
+    integer(i8), intent(in) :: mcol(:)
+    real(wp), intent(in) :: mcoef(:)
+    integer(i8), intent(in) :: jstar
+    integer(i8), intent(in) :: col(:)
+    real(wp), intent(in) :: coef(:), piv
+    integer(i8), allocatable, intent(out) :: ncol(:)
+    real(wp), allocatable, intent(out) :: ncoef(:)
+    real(wp) :: c
+    integer :: i, n
+    c = 0.0_wp
+    do i = 1, size(mcol)
+       if (mcol(i) == jstar) c = c + mcoef(i)
+    end do
+    allocate (ncol(size(mcol) + size(col)), ncoef(size(mcol) + size(col)))
+    n = 0
+    do i = 1, size(mcol)
+       if (mcol(i) == jstar) cycle
+       n = n + 1
+       ncol(n) = mcol(i)
+       ncoef(n) = mcoef(i)
+    end do
+    do i = 1, size(col)
+       if (col(i) == jstar) cycle
+       n = n + 1
+       ncol(n) = col(i)
+       ncoef(n) = -c*coef(i)/piv
+    end do
+    ncol = ncol(1:n)
+    ncoef = ncoef(1:n)
+    call merge_terms(ncol, ncoef)
+  end subroutine substitute
+
+  !> Drop eliminated columns and renumber maps, δ columns and forms.
+  subroutine compact_columns(tr)
+    type(transform_t), intent(inout) :: tr
+    integer(i8), allocatable :: newc(:)
+    integer(i8) :: j, n
+    integer :: i, k
+    allocate (newc(tr%ncol))
+    n = 0
+    do j = 1, tr%ncol
+       if (tr%col_kind(j) == COL_DEAD) then
+          newc(j) = 0
+       else
+          n = n + 1
+          newc(j) = n
+          tr%col_kind(n) = tr%col_kind(j)
+          tr%col_ref(n) = tr%col_ref(j)
+          tr%col_k(n) = tr%col_k(j)
+          tr%col_g(n) = tr%col_g(j)
+       end if
+    end do
+    if (n == tr%ncol) return
+    tr%ncol = n
+    do j = 1, tr%pool_n
+       tr%pool_col(j) = newc(tr%pool_col(j))
+    end do
+    do i = 1, size(tr%dcol, 2)
+       do k = 1, 3
+          if (tr%dcol(k, i) > 0) tr%dcol(k, i) = newc(tr%dcol(k, i))
+       end do
+    end do
+    do i = 1, tr%nform
+       tr%forms(i)%col = newc(tr%forms(i)%col)
+    end do
+  end subroutine compact_columns
+
+  subroutine push_constraint(tr, cs)
+    type(transform_t), intent(inout) :: tr
+    type(constraint_t), intent(in) :: cs
+    type(constraint_t), allocatable :: tmp(:)
+    if (tr%ncons == size(tr%cons)) then
+       allocate (tmp(2*size(tr%cons)))
+       tmp(1:tr%ncons) = tr%cons(1:tr%ncons)
+       call move_alloc(tmp, tr%cons)
+    end if
+    tr%ncons = tr%ncons + 1
+    tr%cons(tr%ncons) = cs
+  end subroutine push_constraint
+
+  subroutine push_form(tr, fs)
+    type(transform_t), intent(inout) :: tr
+    type(form_spring_t), intent(in) :: fs
+    type(form_spring_t), allocatable :: tmp(:)
+    if (tr%nform == size(tr%forms)) then
+       allocate (tmp(2*size(tr%forms)))
+       tmp(1:tr%nform) = tr%forms(1:tr%nform)
+       call move_alloc(tmp, tr%forms)
+    end if
+    tr%nform = tr%nform + 1
+    tr%forms(tr%nform) = fs
+  end subroutine push_form
+
+  !> file:line of the card that defined a unit.
+  function unit_where(model, u) result(text)
+    type(model_t), intent(in) :: model
+    type(unit_t), intent(in) :: u
+    character(:), allocatable :: text
+    if (u%kind == UNIT_LINK) then
+       text = loc_text(model, model%links(u%source)%loc)
+    else
+       text = loc_text(model, model%supports(u%source)%loc)
+    end if
+  end function unit_where
+end module superjoin_assembly_transform

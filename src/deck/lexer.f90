@@ -1,0 +1,673 @@
+!> Lexical layer of the deck reader: loading files, splitting lines into keyword
+!> lines (keyword and parameters) or data fields, and safe conversion of tokens
+!> to reals, ids and names. Nothing here reports errors itself: every routine
+!> returns a status that the parser turns into a `file:line: error:` message.
+module superjoin_deck_lexer
+  use, intrinsic :: ieee_exceptions, only: ieee_status_type, ieee_get_status, ieee_set_status
+  use superjoin_kinds, only: wp, ip, i8
+  implicit none (type, external)
+  private
+
+  !> Status of a token conversion.
+  integer, parameter, public :: TOK_OK = 0        !! converted
+  integer, parameter, public :: TOK_INVALID = 1   !! not a number / id of the right form
+  integer, parameter, public :: TOK_RANGE = 2     !! well formed but out of range (0, >= 2**31, overflow)
+  integer, parameter, public :: TOK_NONFINITE = 3 !! NaN or Inf written as a word
+
+  !> Largest id: ids are positive integers below 2**31.
+  integer(i8), parameter :: MAX_ID = 2147483647_i8
+  integer, parameter :: MAX_ID_DIGITS = 10
+
+  !> Characters.
+  character, parameter :: TAB = achar(9), LF = achar(10), CR = achar(13), BLANK = ' '
+
+  !> Decimal range of real(wp): beyond these exponents a value overflows or is zero.
+  integer, parameter :: MAX_DEC_EXP = 308          !! leading digit of huge() is at 10**308
+  integer, parameter :: MIN_DEC_EXP = -345         !! below every subnormal: reads as zero
+  integer, parameter :: MAX_EXP_DIGITS = 7         !! exponent digits kept before clamping
+  real(wp), parameter :: HUGE_LEAD = 1.7976931348623_wp  !! leading digits of huge(1.0_wp)
+  !> Exact fast path (Clinger): mantissa below 2**53 times an exact power of ten.
+  integer(i8), parameter :: EXACT_MANTISSA = 9007199254740992_i8
+  integer, parameter :: MAX_EXACT_POW10 = 22
+  integer, parameter :: MAX_MANTISSA_DIGITS = 18
+  real(wp), parameter :: POW10(0:MAX_EXACT_POW10) = [1.0e0_wp, 1.0e1_wp, 1.0e2_wp, 1.0e3_wp, &
+       1.0e4_wp, 1.0e5_wp, 1.0e6_wp, 1.0e7_wp, 1.0e8_wp, 1.0e9_wp, 1.0e10_wp, 1.0e11_wp, &
+       1.0e12_wp, 1.0e13_wp, 1.0e14_wp, 1.0e15_wp, 1.0e16_wp, 1.0e17_wp, 1.0e18_wp, &
+       1.0e19_wp, 1.0e20_wp, 1.0e21_wp, 1.0e22_wp]
+
+  !> Chunk size of the formatted fallback reader (a read buffer, not a line limit).
+  integer, parameter :: READ_CHUNK = 65536
+  integer, parameter :: INITIAL_FIELDS = 16
+
+  !> One parameter of a keyword line: `NAME[=VALUE]`.
+  type, public :: param_t
+     character(:), allocatable :: name     !! upper case, inner blanks collapsed
+     character(:), allocatable :: value    !! as written, blanks trimmed, quotes removed
+     logical :: has_value = .false.
+  end type param_t
+
+  !> A keyword line `*KEYWORD, PARAM=VALUE, FLAG`.
+  type, public :: keyword_line_t
+     character(:), allocatable :: keyword  !! upper case, inner blanks collapsed, without '*'
+     integer :: nparam = 0
+     type(param_t), allocatable :: params(:)
+  end type keyword_line_t
+
+  !> Comma separated fields of a data line, as positions in the line
+  !> (blanks trimmed; an empty field has last < first).
+  type, public :: fields_t
+     integer :: n = 0
+     integer, allocatable :: first(:), last(:)
+  end type fields_t
+
+  public :: load_file, next_line, first_nonblank, to_upper, collapse_blanks
+  public :: parse_keyword_line, split_fields, drop_trailing_empty
+  public :: parse_real, parse_id, is_name, is_digits, looks_numeric, itoa
+  public :: path_dirname, path_join, path_normalize
+
+  interface itoa
+     module procedure itoa_i4, itoa_i8
+  end interface itoa
+
+contains
+
+  ! ------------------------------------------------------------------ files and lines
+
+  !> Read a whole file into `text` (any size, any line length). `ok` is false
+  !> when the file cannot be opened or read.
+  subroutine load_file(path, text, ok)
+    character(*), intent(in) :: path
+    character(:), allocatable, intent(out) :: text
+    logical, intent(out) :: ok
+    integer :: unit, ios, stat
+    integer(i8) :: nbytes
+    logical :: exists
+
+    ok = .false.
+    inquire (file=path, exist=exists)
+    if (.not. exists) return
+    open (newunit=unit, file=path, access='stream', form='unformatted', action='read', &
+         status='old', iostat=ios)
+    if (ios /= 0) return
+    inquire (unit=unit, size=nbytes)
+    if (nbytes < 0) then
+       close (unit)
+       call load_formatted(path, text, ok)
+       return
+    end if
+    allocate (character(len=nbytes) :: text, stat=stat)
+    if (stat /= 0) then
+       close (unit)
+       return
+    end if
+    ios = 0
+    if (nbytes > 0) read (unit, iostat=ios) text
+    close (unit)
+    ok = (ios == 0)
+  end subroutine load_file
+
+  !> Fallback for files whose size is unknown: formatted non-advancing reads
+  !> into a growing buffer, one LF appended per record.
+  subroutine load_formatted(path, text, ok)
+    character(*), intent(in) :: path
+    character(:), allocatable, intent(out) :: text
+    logical, intent(out) :: ok
+    character(len=READ_CHUNK) :: chunk
+    character(:), allocatable :: buf
+    integer(i8) :: n
+    integer :: unit, ios, got
+    ok = .false.
+    open (newunit=unit, file=path, action='read', status='old', iostat=ios)
+    if (ios /= 0) return
+    allocate (character(len=READ_CHUNK) :: buf)
+    n = 0
+    do
+       read (unit, '(a)', advance='no', iostat=ios, size=got) chunk
+       if (is_iostat_end(ios)) exit
+       if (ios /= 0 .and. .not. is_iostat_eor(ios)) then
+          close (unit)
+          return
+       end if
+       call append(chunk(1:got))
+       if (is_iostat_eor(ios)) call append(LF)
+    end do
+    close (unit)
+    text = buf(1:n)
+    ok = .true.
+  contains
+    subroutine append(s)
+      character(*), intent(in) :: s
+      character(:), allocatable :: tmp
+      if (n + len(s) > len(buf, kind=i8)) then
+         allocate (character(len=max(2*len(buf, kind=i8), n + len(s))) :: tmp)
+         tmp(1:n) = buf(1:n)
+         call move_alloc(tmp, buf)
+      end if
+      buf(n + 1:n + len(s)) = s
+      n = n + len(s)
+    end subroutine append
+  end subroutine load_formatted
+
+  !> Find the line starting at `pos` in `text`: it spans `first:last` (CR and
+  !> LF excluded; LF, CR LF and a lone CR all end a line) and `pos` moves to the
+  !> next line. `found` is false at the end of the text.
+  pure subroutine next_line(text, pos, first, last, found)
+    character(*), intent(in) :: text
+    integer(i8), intent(inout) :: pos
+    integer(i8), intent(out) :: first, last
+    logical, intent(out) :: found
+    integer(i8) :: k, n
+    n = len(text, kind=i8)
+    found = pos <= n
+    first = pos
+    last = pos - 1
+    if (.not. found) return
+    k = scan(text(pos:), LF//CR, kind=i8)
+    if (k == 0) then
+       last = n
+       pos = n + 1
+    else
+       last = pos + k - 2
+       pos = pos + k
+       if (text(pos - 1:pos - 1) == CR .and. pos <= n) then
+          if (text(pos:pos) == LF) pos = pos + 1
+       end if
+    end if
+  end subroutine next_line
+
+  !> Position of the first character that is not a blank or tab (0 if none).
+  pure integer function first_nonblank(s) result(k)
+    character(*), intent(in) :: s
+    do k = 1, len(s)
+       if (s(k:k) /= BLANK .and. s(k:k) /= TAB) return
+    end do
+    k = 0
+  end function first_nonblank
+
+  ! ------------------------------------------------------------------ text helpers
+
+  !> Upper-case copy of s (ASCII letters only).
+  pure function to_upper(s) result(t)
+    character(*), intent(in) :: s
+    character(len(s)) :: t
+    integer :: k
+    t = s
+    do k = 1, len(s)
+       if (s(k:k) >= 'a' .and. s(k:k) <= 'z') t(k:k) = achar(iachar(s(k:k)) - 32)
+    end do
+  end function to_upper
+
+  !> s with tabs made blanks, leading/trailing blanks removed and inner runs
+  !> of blanks collapsed to one.
+  pure function collapse_blanks(s) result(t)
+    character(*), intent(in) :: s
+    character(:), allocatable :: t
+    character(len(s)) :: buf
+    integer :: k, n
+    logical :: pending
+    n = 0
+    pending = .false.
+    do k = 1, len(s)
+       if (s(k:k) == BLANK .or. s(k:k) == TAB) then
+          pending = n > 0
+       else
+          if (pending) then
+             n = n + 1
+             buf(n:n) = BLANK
+             pending = .false.
+          end if
+          n = n + 1
+          buf(n:n) = s(k:k)
+       end if
+    end do
+    t = buf(1:n)
+  end function collapse_blanks
+
+  !> Decimal text of an integer.
+  pure function itoa_i4(i) result(s)
+    integer, intent(in) :: i
+    character(:), allocatable :: s
+    character(len=24) :: buf
+    write (buf, '(i0)') i
+    s = trim(buf)
+  end function itoa_i4
+
+  pure function itoa_i8(i) result(s)
+    integer(i8), intent(in) :: i
+    character(:), allocatable :: s
+    character(len=24) :: buf
+    write (buf, '(i0)') i
+    s = trim(buf)
+  end function itoa_i8
+
+  ! ------------------------------------------------------------------ keyword lines
+
+  !> Split a keyword line (its first character is '*') into the keyword and its
+  !> parameters. On a malformed line `msg` is allocated with the reason.
+  pure subroutine parse_keyword_line(line, kw, msg)
+    character(*), intent(in) :: line
+    type(keyword_line_t), intent(out) :: kw
+    character(:), allocatable, intent(out) :: msg
+    type(fields_t) :: f
+    type(param_t), allocatable :: tmp(:)
+    character(:), allocatable :: seg, name, value
+    integer :: i, j, eq, nv
+
+    call split_fields(line(2:), f)
+    kw%keyword = to_upper(collapse_blanks(line(1 + f%first(1):1 + f%last(1))))
+    if (len(kw%keyword) == 0) then
+       msg = 'empty keyword after ''*'''
+       return
+    end if
+    allocate (kw%params(f%n - 1))
+    kw%nparam = 0
+    do i = 2, f%n
+       seg = line(1 + f%first(i):1 + f%last(i))
+       if (len(seg) == 0) cycle
+       eq = index(seg, '=')
+       param: block
+         type(param_t) :: p
+         if (eq == 0) then
+            name = to_upper(collapse_blanks(seg))
+            p%has_value = .false.
+            p%value = ''
+         else
+            name = to_upper(collapse_blanks(seg(1:eq - 1)))
+            value = collapse_blanks(seg(eq + 1:))
+            nv = len(value)
+            if (nv >= 2) then
+               if (value(1:1) == '"' .and. value(nv:nv) == '"') value = value(2:nv - 1)
+            end if
+            if (len(value) == 0) then
+               msg = 'parameter '//name//'= has no value'
+               return
+            end if
+            p%has_value = .true.
+            p%value = value
+         end if
+         if (len(name) == 0) then
+            msg = 'empty parameter name in '''//seg//''''
+            return
+         end if
+         do j = 1, kw%nparam
+            if (kw%params(j)%name == name) then
+               msg = 'parameter '//name//' given twice'
+               return
+            end if
+         end do
+         p%name = name
+         kw%nparam = kw%nparam + 1
+         kw%params(kw%nparam) = p
+       end block param
+    end do
+    if (kw%nparam < size(kw%params)) then
+       tmp = kw%params(1:kw%nparam)
+       call move_alloc(tmp, kw%params)
+    end if
+  end subroutine parse_keyword_line
+
+  ! ------------------------------------------------------------------ data fields
+
+  !> Split a line at commas into fields (positions, blanks trimmed). Reuses the
+  !> arrays of `f`, growing them as needed. An empty line gives one empty field.
+  pure subroutine split_fields(line, f)
+    character(*), intent(in) :: line
+    type(fields_t), intent(inout) :: f
+    integer :: start, c, e, a, b
+    if (.not. allocated(f%first)) allocate (f%first(INITIAL_FIELDS), f%last(INITIAL_FIELDS))
+    f%n = 0
+    start = 1
+    do
+       c = index(line(start:), ',')
+       if (c == 0) then
+          e = len(line)
+       else
+          e = start + c - 2
+       end if
+       a = start
+       b = e
+       do while (a <= b)
+          if (line(a:a) /= BLANK .and. line(a:a) /= TAB) exit
+          a = a + 1
+       end do
+       do while (b >= a)
+          if (line(b:b) /= BLANK .and. line(b:b) /= TAB) exit
+          b = b - 1
+       end do
+       if (f%n == size(f%first)) call grow
+       f%n = f%n + 1
+       f%first(f%n) = a
+       f%last(f%n) = b
+       if (c == 0) exit
+       start = start + c
+    end do
+  contains
+    pure subroutine grow
+      integer, allocatable :: t1(:), t2(:)
+      allocate (t1(2*size(f%first)), t2(2*size(f%first)))
+      t1(1:f%n) = f%first(1:f%n)
+      t2(1:f%n) = f%last(1:f%n)
+      call move_alloc(t1, f%first)
+      call move_alloc(t2, f%last)
+    end subroutine grow
+  end subroutine split_fields
+
+  !> Forget empty fields at the end of the line (a trailing comma).
+  pure subroutine drop_trailing_empty(f)
+    type(fields_t), intent(inout) :: f
+    do while (f%n > 0)
+       if (f%last(f%n) >= f%first(f%n)) exit
+       f%n = f%n - 1
+    end do
+  end subroutine drop_trailing_empty
+
+  ! ------------------------------------------------------------------ tokens
+
+  !> True when s is a name: one or more letters, digits, '_' or '-'.
+  pure logical function is_name(s)
+    character(*), intent(in) :: s
+    integer :: k
+    is_name = len(s) > 0
+    do k = 1, len(s)
+       select case (s(k:k))
+       case ('A':'Z', 'a':'z', '0':'9', '_', '-')
+       case default
+          is_name = .false.
+          return
+       end select
+    end do
+  end function is_name
+
+  !> True when s is one or more decimal digits.
+  pure logical function is_digits(s)
+    character(*), intent(in) :: s
+    integer :: k
+    is_digits = len(s) > 0
+    do k = 1, len(s)
+       if (s(k:k) < '0' .or. s(k:k) > '9') then
+          is_digits = .false.
+          return
+       end if
+    end do
+  end function is_digits
+
+  !> True when s is made only of digits, signs and dots (so it was meant as a
+  !> number, not a name).
+  pure logical function looks_numeric(s)
+    character(*), intent(in) :: s
+    integer :: k
+    looks_numeric = len(s) > 0
+    do k = 1, len(s)
+       select case (s(k:k))
+       case ('0':'9', '+', '-', '.')
+       case default
+          looks_numeric = .false.
+          return
+       end select
+    end do
+  end function looks_numeric
+
+  !> Convert an id: digits only, value in 1 .. 2**31-1.
+  pure subroutine parse_id(s, id, stat)
+    character(*), intent(in) :: s
+    integer(ip), intent(out) :: id
+    integer, intent(out) :: stat
+    integer :: k, first
+    integer(i8) :: v
+    id = 0
+    if (.not. is_digits(s)) then
+       stat = TOK_INVALID
+       return
+    end if
+    first = len(s) + 1
+    do k = 1, len(s)
+       if (s(k:k) /= '0') then
+          first = k
+          exit
+       end if
+    end do
+    if (first > len(s) .or. len(s) - first + 1 > MAX_ID_DIGITS) then
+       stat = TOK_RANGE
+       return
+    end if
+    v = 0
+    do k = first, len(s)
+       v = 10*v + (iachar(s(k:k)) - iachar('0'))
+    end do
+    if (v > MAX_ID) then
+       stat = TOK_RANGE
+       return
+    end if
+    id = int(v, ip)
+    stat = TOK_OK
+  end subroutine parse_id
+
+  !> Convert a real written in Fortran or C form: [sign] digits [. digits]
+  !> [(e|E|d|D) [sign] digits], at least one mantissa digit. The characters are
+  !> checked here first; values that overflow real(wp) are TOK_RANGE; words such
+  !> as NaN and Inf are TOK_NONFINITE. No Fortran I/O error can escape.
+  subroutine parse_real(s, x, stat)
+    character(*), intent(in) :: s
+    real(wp), intent(out) :: x
+    integer, intent(out) :: stat
+    integer :: i, n, nmant, sig, scale, expo, expsign, ios, lead_exp
+    integer(i8) :: m
+    logical :: negative, after_dot, truncated, started
+    character :: c
+    real(wp) :: lead
+    type(ieee_status_type) :: fp_status
+
+    x = 0.0_wp
+    stat = TOK_INVALID
+    n = len(s)
+    if (n == 0) return
+    i = 1
+    negative = .false.
+    if (s(1:1) == '+' .or. s(1:1) == '-') then
+       negative = s(1:1) == '-'
+       i = 2
+    end if
+    if (is_nonfinite_word(to_upper(s(i:)))) then
+       stat = TOK_NONFINITE
+       return
+    end if
+    ! mantissa
+    m = 0
+    nmant = 0
+    sig = 0
+    scale = 0
+    after_dot = .false.
+    truncated = .false.
+    started = .false.
+    do while (i <= n)
+       c = s(i:i)
+       if (c == '.') then
+          if (after_dot) return
+          after_dot = .true.
+       else if (c >= '0' .and. c <= '9') then
+          nmant = nmant + 1
+          if (c /= '0') started = .true.
+          if (started) then
+             if (sig < MAX_MANTISSA_DIGITS) then
+                m = 10*m + (iachar(c) - iachar('0'))
+                sig = sig + 1
+                if (after_dot) scale = scale - 1
+             else
+                if (.not. after_dot) scale = scale + 1
+                if (c /= '0') truncated = .true.
+             end if
+          else if (after_dot) then
+             scale = scale - 1
+          end if
+       else
+          exit
+       end if
+       i = i + 1
+    end do
+    if (nmant == 0) return
+    ! exponent
+    expo = 0
+    if (i <= n) then
+       c = s(i:i)
+       if (c /= 'e' .and. c /= 'E' .and. c /= 'd' .and. c /= 'D') return
+       i = i + 1
+       expsign = 1
+       if (i <= n) then
+          if (s(i:i) == '+' .or. s(i:i) == '-') then
+             if (s(i:i) == '-') expsign = -1
+             i = i + 1
+          end if
+       end if
+       if (i > n) return
+       if (.not. is_digits(s(i:n))) return
+       do while (i <= n)
+          if (expo < 10**(MAX_EXP_DIGITS - 1)) expo = 10*expo + (iachar(s(i:i)) - iachar('0'))
+          i = i + 1
+       end do
+       expo = expsign*expo
+    end if
+
+    stat = TOK_OK
+    if (m == 0) then
+       x = 0.0_wp
+       if (negative) x = -x
+       return
+    end if
+    ! decimal exponent of the leading digit
+    lead_exp = sig - 1 + scale + expo
+    if (lead_exp > MAX_DEC_EXP) then
+       stat = TOK_RANGE
+       return
+    end if
+    if (lead_exp == MAX_DEC_EXP) then
+       lead = real(m, wp)/10.0_wp**(sig - 1)
+       if (lead >= HUGE_LEAD) then
+          stat = TOK_RANGE
+          return
+       end if
+    end if
+    if (lead_exp < MIN_DEC_EXP) then
+       x = 0.0_wp
+       if (negative) x = -x
+       return
+    end if
+    if (.not. truncated .and. m <= EXACT_MANTISSA .and. abs(scale + expo) <= MAX_EXACT_POW10) then
+       if (scale + expo >= 0) then
+          x = real(m, wp)*POW10(scale + expo)
+       else
+          x = real(m, wp)/POW10(-(scale + expo))
+       end if
+       if (negative) x = -x
+       return
+    end if
+    ! the library conversion may raise underflow/inexact flags: keep the caller's flags
+    call ieee_get_status(fp_status)
+    read (s, *, iostat=ios) x
+    call ieee_set_status(fp_status)
+    if (ios /= 0) then
+       stat = TOK_INVALID
+    else if (x /= x .or. abs(x) > huge(x)) then
+       stat = TOK_RANGE
+    end if
+  end subroutine parse_real
+
+  pure logical function is_nonfinite_word(u)
+    character(*), intent(in) :: u
+    select case (u)
+    case ('NAN', 'INF', 'INFINITY', 'NAN()', '+INF', '-INF')
+       is_nonfinite_word = .true.
+    case default
+       is_nonfinite_word = len(u) >= 4 .and. index(u, 'NAN(') == 1
+    end select
+  end function is_nonfinite_word
+
+  ! ------------------------------------------------------------------ paths
+
+  !> Directory part of a path ('' when there is none).
+  pure function path_dirname(path) result(dir)
+    character(*), intent(in) :: path
+    character(:), allocatable :: dir
+    integer :: k
+    k = index(path, '/', back=.true.)
+    if (k == 0) then
+       dir = ''
+    else if (k == 1) then
+       dir = '/'
+    else
+       dir = path(1:k - 1)
+    end if
+  end function path_dirname
+
+  !> `rel` relative to directory `dir` (absolute `rel` is kept).
+  pure function path_join(dir, rel) result(path)
+    character(*), intent(in) :: dir, rel
+    character(:), allocatable :: path
+    if (len(rel) > 0) then
+       if (rel(1:1) == '/') then
+          path = rel
+          return
+       end if
+    end if
+    if (len(dir) == 0) then
+       path = rel
+    else if (dir(len(dir):len(dir)) == '/') then
+       path = dir//rel
+    else
+       path = dir//'/'//rel
+    end if
+  end function path_join
+
+  !> Path with '.' components, repeated slashes and 'dir/..' pairs removed.
+  pure function path_normalize(path) result(norm)
+    character(*), intent(in) :: path
+    character(:), allocatable :: norm
+    integer, allocatable :: cs(:), ce(:)
+    integer :: n, start, k, e
+    logical :: absolute
+    absolute = .false.
+    if (len(path) > 0) absolute = path(1:1) == '/'
+    allocate (cs(len(path) + 1), ce(len(path) + 1))
+    n = 0
+    start = 1
+    do while (start <= len(path))
+       k = index(path(start:), '/')
+       if (k == 0) then
+          e = len(path)
+       else
+          e = start + k - 2
+       end if
+       if (e >= start) then
+          if (path(start:e) == '.') then
+             continue
+          else if (path(start:e) == '..') then
+             if (n > 0) then
+                if (path(cs(n):ce(n)) /= '..') then
+                   n = n - 1
+                else
+                   n = n + 1
+                   cs(n) = start
+                   ce(n) = e
+                end if
+             else if (.not. absolute) then
+                n = n + 1
+                cs(n) = start
+                ce(n) = e
+             end if
+          else
+             n = n + 1
+             cs(n) = start
+             ce(n) = e
+          end if
+       end if
+       if (k == 0) exit
+       start = start + k
+    end do
+    norm = ''
+    if (absolute) norm = '/'
+    do k = 1, n
+       if (k > 1) norm = norm//'/'
+       norm = norm//path(cs(k):ce(k))
+    end do
+    if (len(norm) == 0) norm = '.'
+  end function path_normalize
+end module superjoin_deck_lexer

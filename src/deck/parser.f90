@@ -1,0 +1,1385 @@
+!> Card-level parser of the deck reader: walks the lines of a deck (and of the
+!> files it includes), recognizes keyword and data lines and records what they
+!> define in the reader state, by user ids and names. References are resolved
+!> later, by superjoin_deck_validate.
+module superjoin_deck_parser
+  use superjoin_kinds, only: wp, ip, i8
+  use superjoin_model_types, only: source_loc_t, string_t, ELEMENT_TYPE_NAMES, ELEMENT_NODE_COUNT, &
+       NUM_ELEMENT_TYPES, MAX_ELEMENT_NODES, NDOF_NODE, SEC_SOLID, SEC_BEAM, SEC_SHELL, &
+       LINK_NONE, LINK_FINITE, LINK_RIGID, DLOAD_PX, DLOAD_PY, DLOAD_PZ, DLOAD_P, &
+       FORM_TRANSFORM, FORM_PENALTY, RIGID_ELIMINATE, RIGID_LARGE
+  use superjoin_deck_lexer, only: keyword_line_t, load_file, next_line, first_nonblank, to_upper, &
+       parse_keyword_line, split_fields, drop_trailing_empty, parse_real, parse_id, is_name, &
+       is_digits, looks_numeric, itoa, path_dirname, path_join, path_normalize, &
+       TOK_OK, TOK_RANGE, TOK_NONFINITE
+  use superjoin_deck_state, only: deck_state_t, sec_b_t, contact_b_t, cline_b_t, support_b_t, &
+       load_b_t, ref_t, report, report_loc, new_sub, find_sub, find_set, new_set, add_chunk, &
+       push_pool, add_node, add_element, add_heading, add_material, add_orientation, &
+       add_section, add_contact, add_cline, add_support, add_step, add_load, &
+       MAX_INCLUDE_DEPTH, CH_IDS, CH_GEN, CH_RANGE, CH_REF
+  implicit none (type, external)
+  private
+
+  public :: parse_source, finish_parse, register_file
+
+  !> What the current card does with data lines.
+  integer, parameter :: CARD_NONE = 0, CARD_SKIP = 1, CARD_NODATA = 2, CARD_HEADING = 3, &
+       CARD_NODE = 4, CARD_ELEMENT = 5, CARD_NSET = 6, CARD_ELSET = 7, CARD_SECTION = 8, &
+       CARD_ELASTIC = 9, CARD_ORIENTATION = 10, CARD_CONTACT = 11, CARD_SUPPORT = 12, &
+       CARD_BOUNDARY = 13, CARD_CLOAD = 14, CARD_DLOAD = 15
+
+  !> Name of the implicit substructure.
+  character(*), parameter :: MAIN_NAME = 'MAIN'
+  !> UTF-8 byte order mark, skipped at the start of a file.
+  character(*), parameter :: BOM = char(239)//char(187)//char(191)
+  !> Poisson's ratio bounds (open interval).
+  real(wp), parameter :: NU_MIN = -1.0_wp, NU_MAX = 0.5_wp
+  !> Relative size below which orientation vectors count as zero or parallel.
+  real(wp), parameter :: PARALLEL_TOL = 1.0e-10_wp
+  integer, parameter :: NAME_LEN = 16
+  integer, parameter :: BEAM_2D_VALUES = 2, BEAM_3D_VALUES = 4
+  integer, parameter :: ORIENT_VALUES = 6
+
+  !> Abaqus *BOUNDARY shorthands and the DOFs they fix.
+  integer, parameter :: NUM_BC_TYPES = 8
+  character(len=8), parameter :: BC_TYPE_NAMES(NUM_BC_TYPES) = ['ENCASTRE', 'PINNED  ', &
+       'XSYMM   ', 'YSYMM   ', 'ZSYMM   ', 'XASYMM  ', 'YASYMM  ', 'ZASYMM  ']
+  logical, parameter :: BC_TYPE_DOFS(NDOF_NODE, NUM_BC_TYPES) = reshape([ &
+       .true., .true., .true., .true., .true., .true., &
+       .true., .true., .true., .false., .false., .false., &
+       .true., .false., .false., .false., .true., .true., &
+       .false., .true., .false., .true., .false., .true., &
+       .false., .false., .true., .true., .true., .false., &
+       .false., .true., .true., .true., .false., .false., &
+       .true., .false., .true., .false., .true., .false., &
+       .true., .true., .false., .false., .false., .true.], [NDOF_NODE, NUM_BC_TYPES])
+
+contains
+
+  ! ================================================================== driving
+
+  !> Index of file `path` in the state's file list (added if new); `norm` is
+  !> the normalized path used to detect include cycles.
+  subroutine register_file(st, path, norm, k)
+    type(deck_state_t), intent(inout) :: st
+    character(*), intent(in) :: path, norm
+    integer, intent(out) :: k
+    type(string_t), allocatable :: t1(:), t2(:)
+    integer, parameter :: INITIAL_FILES = 4
+    do k = 1, st%nfile
+       if (st%norm_files(k)%s == norm) return
+    end do
+    if (.not. allocated(st%files)) allocate (st%files(INITIAL_FILES), st%norm_files(INITIAL_FILES))
+    if (st%nfile == size(st%files)) then
+       allocate (t1(2*st%nfile), t2(2*st%nfile))
+       t1(1:st%nfile) = st%files(1:st%nfile)
+       t2(1:st%nfile) = st%norm_files(1:st%nfile)
+       call move_alloc(t1, st%files)
+       call move_alloc(t2, st%norm_files)
+    end if
+    st%nfile = st%nfile + 1
+    k = st%nfile
+    st%files(k)%s = path
+    st%norm_files(k)%s = norm
+  end subroutine register_file
+
+  !> Parse the lines of `text`, which is file number `file` (recursive through *INCLUDE).
+  recursive subroutine parse_source(st, text, file)
+    type(deck_state_t), intent(inout) :: st
+    character(*), intent(in) :: text
+    integer, intent(in) :: file
+    integer(i8) :: pos, first, last
+    integer :: line
+    logical :: found
+    pos = 1
+    if (len(text) >= len(BOM)) then
+       if (text(1:len(BOM)) == BOM) pos = len(BOM) + 1
+    end if
+    line = 0
+    do
+       call next_line(text, pos, first, last, found)
+       if (.not. found) exit
+       line = line + 1
+       call process_line(st, text(first:last), file, line)
+       if (st%aborted) exit
+    end do
+  end subroutine parse_source
+
+  !> One line: comment, blank, keyword or data.
+  recursive subroutine process_line(st, line, file, lineno)
+    type(deck_state_t), intent(inout) :: st
+    character(*), intent(in) :: line
+    integer, intent(in) :: file, lineno
+    integer :: p
+    type(source_loc_t) :: loc
+    p = first_nonblank(line)
+    if (p == 0) return
+    if (len(line) >= p + 1) then
+       if (line(p:p + 1) == '**') return
+    end if
+    loc%file = file
+    loc%line = lineno
+    if (line(p:p) == '*') then
+       call keyword_line(st, line(p:), loc)
+    else
+       call data_line(st, line, loc)
+    end if
+  end subroutine process_line
+
+  !> End of the input: close the last card and check that blocks were closed.
+  subroutine finish_parse(st)
+    type(deck_state_t), intent(inout) :: st
+    integer :: k
+    type(source_loc_t) :: loc
+    call end_card(st)
+    if (st%cur_sub > 0) call report_loc(st, st%subs(st%cur_sub)%loc, &
+         '*SUBSTRUCTURE '//st%subs(st%cur_sub)%name//' has no *END SUBSTRUCTURE')
+    if (st%cur_step > 0) call report_loc(st, st%steps(st%cur_step)%loc, &
+         '*STEP '//st%steps(st%cur_step)%name//' has no *END STEP')
+    st%cur_sub = 0
+    st%cur_step = 0
+    if (st%nstep == 0) then
+       loc%file = 1
+       loc%line = 0
+       call add_step(st, '1', loc, k)
+    end if
+  end subroutine finish_parse
+
+  ! ================================================================== keyword lines
+
+  recursive subroutine keyword_line(st, line, loc)
+    type(deck_state_t), intent(inout) :: st
+    character(*), intent(in) :: line
+    type(source_loc_t), intent(in) :: loc
+    type(keyword_line_t) :: kw
+    character(:), allocatable :: msg
+    integer :: prev_mat
+
+    call parse_keyword_line(line, kw, msg)
+    if (allocated(msg)) then
+       call end_card(st)
+       call report_loc(st, loc, msg)
+       call set_card(st, CARD_SKIP, '*', loc)
+       return
+    end if
+    if (kw%keyword == 'INCLUDE') then
+       call do_include(st, kw, loc)
+       return
+    end if
+    call end_card(st)
+    prev_mat = st%cur_mat
+    st%cur_mat = 0
+    call set_card(st, CARD_NODATA, '*'//kw%keyword, loc)
+
+    select case (kw%keyword)
+    case ('HEADING')
+       if (.not. outside_step(st, kw, loc)) return
+       call check_params(st, kw, loc, [character(NAME_LEN) ::], [character(NAME_LEN) ::])
+       st%card = CARD_HEADING
+    case ('MATERIAL')
+       call kw_material(st, kw, loc)
+    case ('ELASTIC')
+       call kw_elastic(st, kw, loc, prev_mat)
+    case ('SUBSTRUCTURE')
+       call kw_substructure(st, kw, loc)
+    case ('END SUBSTRUCTURE')
+       call check_params(st, kw, loc, [character(NAME_LEN) ::], [character(NAME_LEN) ::])
+       if (st%cur_sub == 0) then
+          call report_loc(st, loc, '*END SUBSTRUCTURE without *SUBSTRUCTURE')
+       else
+          st%cur_sub = 0
+       end if
+    case ('NODE')
+       call kw_node(st, kw, loc)
+    case ('ELEMENT')
+       call kw_element(st, kw, loc)
+    case ('NSET')
+       call kw_set(st, kw, loc, .false.)
+    case ('ELSET')
+       call kw_set(st, kw, loc, .true.)
+    case ('SOLID SECTION')
+       call kw_section(st, kw, loc, SEC_SOLID)
+    case ('BEAM SECTION')
+       call kw_section(st, kw, loc, SEC_BEAM)
+    case ('SHELL SECTION')
+       call kw_section(st, kw, loc, SEC_SHELL)
+    case ('ORIENTATION')
+       call kw_orientation(st, kw, loc)
+    case ('CONTACT')
+       call kw_contact(st, kw, loc)
+    case ('SUPPORT')
+       if (.not. outside_step(st, kw, loc)) return
+       call check_params(st, kw, loc, [character(NAME_LEN) ::], [character(NAME_LEN) ::])
+       st%card = CARD_SUPPORT
+       st%card_home = st%cur_sub
+    case ('BOUNDARY')
+       if (.not. outside_step(st, kw, loc)) return
+       call check_params(st, kw, loc, [character(NAME_LEN) ::], [character(NAME_LEN) ::])
+       st%card = CARD_BOUNDARY
+       st%card_home = st%cur_sub
+    case ('STEP')
+       call kw_step(st, kw, loc)
+    case ('END STEP')
+       call check_params(st, kw, loc, [character(NAME_LEN) ::], [character(NAME_LEN) ::])
+       if (st%cur_step == 0) then
+          call report_loc(st, loc, '*END STEP without *STEP')
+       else
+          st%cur_step = 0
+       end if
+    case ('CLOAD')
+       call kw_load(st, kw, loc, CARD_CLOAD)
+    case ('DLOAD')
+       call kw_load(st, kw, loc, CARD_DLOAD)
+    case ('CONTROLS')
+       call kw_controls(st, kw, loc)
+    case default
+       call report_loc(st, loc, 'unknown keyword *'//kw%keyword)
+       st%card = CARD_SKIP
+    end select
+  end subroutine keyword_line
+
+  !> Make `card` the current card.
+  subroutine set_card(st, card, name, loc)
+    type(deck_state_t), intent(inout) :: st
+    integer, intent(in) :: card
+    character(*), intent(in) :: name
+    type(source_loc_t), intent(in) :: loc
+    st%card = card
+    st%card_name = name
+    st%card_loc = loc
+    st%card_ndata = 0
+    st%card_sub = 0
+    st%card_set = 0
+    st%card_chunk = 0
+    st%card_etype = 0
+    st%card_item = 0
+    st%card_home = 0
+    st%card_generate = .false.
+  end subroutine set_card
+
+  !> Checks when a card ends (next keyword or end of input): data it needed.
+  subroutine end_card(st)
+    type(deck_state_t), intent(inout) :: st
+    select case (st%card)
+    case (CARD_ELASTIC, CARD_ORIENTATION)
+       if (st%card_ndata == 0) call report_loc(st, st%card_loc, st%card_name//' needs a data line')
+    case (CARD_SECTION)
+       if (st%card_ndata == 0) then
+          call report_loc(st, st%card_loc, st%card_name//' needs a data line')
+          st%sections(st%card_item)%data_ok = .false.
+       end if
+    end select
+    st%card = CARD_NONE
+  end subroutine end_card
+
+  !> Report `*KW is not allowed inside *STEP` and skip the card when a step is open.
+  logical function outside_step(st, kw, loc) result(ok)
+    type(deck_state_t), intent(inout) :: st
+    type(keyword_line_t), intent(in) :: kw
+    type(source_loc_t), intent(in) :: loc
+    ok = st%cur_step == 0
+    if (.not. ok) then
+       call report_loc(st, loc, '*'//kw%keyword//' is not allowed inside *STEP')
+       st%card = CARD_SKIP
+    end if
+  end function outside_step
+
+  !> Report parameters that are not in `valued` (NAME=VALUE) or `flags` (NAME).
+  subroutine check_params(st, kw, loc, valued, flags)
+    type(deck_state_t), intent(inout) :: st
+    type(keyword_line_t), intent(in) :: kw
+    type(source_loc_t), intent(in) :: loc
+    character(*), intent(in) :: valued(:), flags(:)
+    integer :: i
+    do i = 1, kw%nparam
+       associate (p => kw%params(i))
+         if (any(valued == p%name)) then
+            if (.not. p%has_value) call report_loc(st, loc, 'parameter '//p%name//' of *'// &
+                 kw%keyword//' needs a value ('//p%name//'=...)')
+         else if (any(flags == p%name)) then
+            if (p%has_value) call report_loc(st, loc, 'parameter '//p%name//' of *'// &
+                 kw%keyword//' takes no value')
+         else
+            call report_loc(st, loc, 'unknown parameter '//p%name//' on *'//kw%keyword)
+         end if
+       end associate
+    end do
+  end subroutine check_params
+
+  !> Index of parameter `name` (0 if absent).
+  pure integer function param_index(kw, name) result(k)
+    type(keyword_line_t), intent(in) :: kw
+    character(*), intent(in) :: name
+    do k = 1, kw%nparam
+       if (kw%params(k)%name == name) return
+    end do
+    k = 0
+  end function param_index
+
+  !> Value of parameter `name` (with a value); `found` false if absent. When
+  !> `required`, its absence is reported.
+  subroutine get_param(st, kw, loc, name, required, value, found)
+    type(deck_state_t), intent(inout) :: st
+    type(keyword_line_t), intent(in) :: kw
+    type(source_loc_t), intent(in) :: loc
+    character(*), intent(in) :: name
+    logical, intent(in) :: required
+    character(:), allocatable, intent(out) :: value
+    logical, intent(out) :: found
+    integer :: k
+    k = param_index(kw, name)
+    found = .false.
+    if (k > 0) found = kw%params(k)%has_value
+    if (found) then
+       value = kw%params(k)%value
+    else
+       value = ''
+       if (required .and. k == 0) call report_loc(st, loc, '*'//kw%keyword//' needs parameter '//name//'=')
+    end if
+  end subroutine get_param
+
+  !> A name-valued parameter, checked and upper-cased.
+  subroutine get_name_param(st, kw, loc, name, required, value, found)
+    type(deck_state_t), intent(inout) :: st
+    type(keyword_line_t), intent(in) :: kw
+    type(source_loc_t), intent(in) :: loc
+    character(*), intent(in) :: name
+    logical, intent(in) :: required
+    character(:), allocatable, intent(out) :: value
+    logical, intent(out) :: found
+    call get_param(st, kw, loc, name, required, value, found)
+    if (.not. found) return
+    if (.not. is_name(value)) then
+       call report_loc(st, loc, 'invalid name '''//value//''' for '//name//'= (letters, digits, _ and - only)')
+       found = .false.
+       return
+    end if
+    value = to_upper(value)
+  end subroutine get_name_param
+
+  !> Substructure that model cards outside/inside a block write to (MAIN is
+  !> created on first use).
+  integer function target_sub(st, loc) result(k)
+    type(deck_state_t), intent(inout) :: st
+    type(source_loc_t), intent(in) :: loc
+    if (st%cur_sub > 0) then
+       k = st%cur_sub
+       return
+    end if
+    k = find_sub(st, MAIN_NAME)
+    if (k == 0) call new_sub(st, MAIN_NAME, loc, k)
+  end function target_sub
+
+  ! ------------------------------------------------------------------ *INCLUDE
+
+  recursive subroutine do_include(st, kw, loc)
+    type(deck_state_t), intent(inout) :: st
+    type(keyword_line_t), intent(in) :: kw
+    type(source_loc_t), intent(in) :: loc
+    character(:), allocatable :: rel, path, chain, text
+    logical :: found, ok
+    integer :: k, j, idx
+    call check_params(st, kw, loc, [character(NAME_LEN) :: 'INPUT'], [character(NAME_LEN) ::])
+    call get_param(st, kw, loc, 'INPUT', .true., rel, found)
+    if (.not. found) return
+    path = path_normalize(path_join(path_dirname(st%files(loc%file)%s), rel))
+    do k = 0, st%depth
+       if (st%norm_files(st%stack(k))%s == path) then
+          chain = ''
+          do j = k, st%depth
+             chain = chain//st%files(st%stack(j))%s//' -> '
+          end do
+          call report_loc(st, loc, 'include cycle: '//chain//path)
+          return
+       end if
+    end do
+    if (st%depth >= MAX_INCLUDE_DEPTH) then
+       call report_loc(st, loc, 'includes nested deeper than '//itoa(MAX_INCLUDE_DEPTH)//' levels')
+       return
+    end if
+    call load_file(path, text, ok)
+    if (.not. ok) then
+       call report_loc(st, loc, 'cannot open include file '''//path//'''')
+       return
+    end if
+    call register_file(st, path, path, idx)
+    st%depth = st%depth + 1
+    st%stack(st%depth) = idx
+    call parse_source(st, text, idx)
+    st%depth = st%depth - 1
+  end subroutine do_include
+
+  ! ------------------------------------------------------------------ model cards
+
+  subroutine kw_material(st, kw, loc)
+    type(deck_state_t), intent(inout) :: st
+    type(keyword_line_t), intent(in) :: kw
+    type(source_loc_t), intent(in) :: loc
+    character(:), allocatable :: name
+    logical :: found
+    integer :: k
+    if (.not. outside_step(st, kw, loc)) return
+    call check_params(st, kw, loc, [character(NAME_LEN) :: 'NAME'], [character(NAME_LEN) ::])
+    call get_name_param(st, kw, loc, 'NAME', .true., name, found)
+    if (.not. found) then
+       st%card = CARD_SKIP
+       return
+    end if
+    do k = 1, st%nmat
+       if (st%materials(k)%name == name) then
+          call report_loc(st, loc, 'duplicate material name '//name//' (first defined at '// &
+               loc_string(st, st%materials(k)%loc)//')')
+          exit
+       end if
+    end do
+    call add_material(st, name, loc, k)
+    st%cur_mat = k
+  end subroutine kw_material
+
+  subroutine kw_elastic(st, kw, loc, mat)
+    type(deck_state_t), intent(inout) :: st
+    type(keyword_line_t), intent(in) :: kw
+    type(source_loc_t), intent(in) :: loc
+    integer, intent(in) :: mat
+    character(:), allocatable :: typ
+    logical :: found
+    if (.not. outside_step(st, kw, loc)) return
+    call check_params(st, kw, loc, [character(NAME_LEN) :: 'TYPE'], [character(NAME_LEN) ::])
+    call get_param(st, kw, loc, 'TYPE', .false., typ, found)
+    if (found) then
+       if (to_upper(typ) /= 'ISOTROPIC') then
+          call report_loc(st, loc, 'only TYPE=ISOTROPIC is supported on *ELASTIC')
+          st%card = CARD_SKIP
+          return
+       end if
+    end if
+    if (mat == 0) then
+       call report_loc(st, loc, '*ELASTIC must follow a *MATERIAL card')
+       st%card = CARD_SKIP
+       return
+    end if
+    if (st%materials(mat)%has_elastic) then
+       call report_loc(st, loc, 'material '//st%materials(mat)%name//' has more than one *ELASTIC')
+       st%card = CARD_SKIP
+       return
+    end if
+    st%materials(mat)%has_elastic = .true.
+    st%cur_mat = mat
+    st%card = CARD_ELASTIC
+    st%card_item = mat
+  end subroutine kw_elastic
+
+  subroutine kw_substructure(st, kw, loc)
+    type(deck_state_t), intent(inout) :: st
+    type(keyword_line_t), intent(in) :: kw
+    type(source_loc_t), intent(in) :: loc
+    character(:), allocatable :: name
+    logical :: found
+    integer :: k
+    if (.not. outside_step(st, kw, loc)) return
+    call check_params(st, kw, loc, [character(NAME_LEN) :: 'NAME'], [character(NAME_LEN) ::])
+    if (st%cur_sub > 0) then
+       call report_loc(st, loc, '*SUBSTRUCTURE inside *SUBSTRUCTURE '//st%subs(st%cur_sub)%name// &
+            ' (missing *END SUBSTRUCTURE?)')
+       st%cur_sub = 0
+    end if
+    call get_name_param(st, kw, loc, 'NAME', .true., name, found)
+    if (.not. found) name = '?'
+    k = find_sub(st, name)
+    if (k > 0 .and. found) call report_loc(st, loc, 'duplicate substructure name '//name// &
+         ' (first defined at '//loc_string(st, st%subs(k)%loc)//')')
+    call new_sub(st, name, loc, k)
+    st%cur_sub = k
+  end subroutine kw_substructure
+
+  subroutine kw_node(st, kw, loc)
+    type(deck_state_t), intent(inout) :: st
+    type(keyword_line_t), intent(in) :: kw
+    type(source_loc_t), intent(in) :: loc
+    character(:), allocatable :: nset
+    logical :: found
+    integer :: isub, iset
+    if (.not. outside_step(st, kw, loc)) return
+    call check_params(st, kw, loc, [character(NAME_LEN) :: 'NSET'], [character(NAME_LEN) ::])
+    isub = target_sub(st, loc)
+    st%card = CARD_NODE
+    st%card_sub = isub
+    call get_name_param(st, kw, loc, 'NSET', .false., nset, found)
+    if (found) then
+       associate (sub => st%subs(isub))
+         iset = find_set(sub, nset, .false.)
+         if (iset == 0) call new_set(sub, nset, .false., loc, iset)
+         call add_chunk(sub, iset, .false., CH_RANGE, loc, st%card_chunk)
+         sub%chunks(st%card_chunk)%start = sub%nnode + 1
+       end associate
+    end if
+  end subroutine kw_node
+
+  subroutine kw_element(st, kw, loc)
+    type(deck_state_t), intent(inout) :: st
+    type(keyword_line_t), intent(in) :: kw
+    type(source_loc_t), intent(in) :: loc
+    character(:), allocatable :: typ, elset
+    logical :: found
+    integer :: isub, iset, k
+    if (.not. outside_step(st, kw, loc)) return
+    call check_params(st, kw, loc, [character(NAME_LEN) :: 'TYPE', 'ELSET'], [character(NAME_LEN) ::])
+    call get_param(st, kw, loc, 'TYPE', .true., typ, found)
+    st%card = CARD_SKIP
+    if (.not. found) return
+    typ = to_upper(typ)
+    st%card_etype = 0
+    do k = 1, NUM_ELEMENT_TYPES
+       if (trim(ELEMENT_TYPE_NAMES(k)) == typ) st%card_etype = k
+    end do
+    if (st%card_etype == 0) then
+       call report_loc(st, loc, 'unsupported element type '//typ// &
+            ' (T2D2, T3D2, B23, B33, CPS3, CPS4, S3, S4)')
+       return
+    end if
+    isub = target_sub(st, loc)
+    st%card = CARD_ELEMENT
+    st%card_sub = isub
+    st%nelem_cards = st%nelem_cards + 1
+    st%card_item = st%nelem_cards
+    call get_name_param(st, kw, loc, 'ELSET', .false., elset, found)
+    if (found) then
+       associate (sub => st%subs(isub))
+         iset = find_set(sub, elset, .true.)
+         if (iset == 0) call new_set(sub, elset, .true., loc, iset)
+         call add_chunk(sub, iset, .true., CH_RANGE, loc, st%card_chunk)
+         sub%chunks(st%card_chunk)%start = sub%nelem + 1
+       end associate
+    end if
+  end subroutine kw_element
+
+  subroutine kw_set(st, kw, loc, elem)
+    type(deck_state_t), intent(inout) :: st
+    type(keyword_line_t), intent(in) :: kw
+    type(source_loc_t), intent(in) :: loc
+    logical, intent(in) :: elem
+    character(:), allocatable :: name, pname
+    logical :: found
+    integer :: isub, iset
+    if (.not. outside_step(st, kw, loc)) return
+    pname = merge('ELSET', 'NSET ', elem)
+    pname = trim(pname)
+    call check_params(st, kw, loc, [character(NAME_LEN) :: pname], &
+         [character(NAME_LEN) :: 'GENERATE', 'UNSORTED'])
+    call get_name_param(st, kw, loc, pname, .true., name, found)
+    st%card = CARD_SKIP
+    if (.not. found) return
+    isub = target_sub(st, loc)
+    iset = find_set(st%subs(isub), name, elem)
+    if (iset == 0) call new_set(st%subs(isub), name, elem, loc, iset)
+    st%card = merge(CARD_ELSET, CARD_NSET, elem)
+    st%card_sub = isub
+    st%card_set = iset
+    st%card_generate = param_index(kw, 'GENERATE') > 0
+  end subroutine kw_set
+
+  subroutine kw_section(st, kw, loc, kind)
+    type(deck_state_t), intent(inout) :: st
+    type(keyword_line_t), intent(in) :: kw
+    type(source_loc_t), intent(in) :: loc
+    integer, intent(in) :: kind
+    character(:), allocatable :: elset, material, value
+    logical :: found_e, found_m, found
+    type(sec_b_t) :: sec
+    if (.not. outside_step(st, kw, loc)) return
+    if (kind == SEC_BEAM) then
+       call check_params(st, kw, loc, [character(NAME_LEN) :: 'ELSET', 'MATERIAL', 'SECTION', &
+            'POISSON', 'TEMPERATURE'], [character(NAME_LEN) :: 'LUMPED', 'ROTARY INERTIA'])
+       call get_param(st, kw, loc, 'SECTION', .false., value, found)
+       if (found) then
+          if (to_upper(value) /= 'GENERAL') call report_loc(st, loc, &
+               'only SECTION=GENERAL (A, I data) is supported on *BEAM SECTION')
+       end if
+    else
+       call check_params(st, kw, loc, [character(NAME_LEN) :: 'ELSET', 'MATERIAL'], [character(NAME_LEN) ::])
+    end if
+    call get_param(st, kw, loc, 'ELSET', .true., elset, found_e)
+    call get_name_param(st, kw, loc, 'MATERIAL', .true., material, found_m)
+    st%card = CARD_SKIP
+    if (.not. (found_e .and. found_m)) return
+    if (.not. parse_ref(st, elset, .true., st%cur_sub, loc, sec%elset)) return
+    if (.not. sec%elset%is_set) then
+       call report_loc(st, loc, 'ELSET='//elset//' must name an element set')
+       return
+    end if
+    sec%kind = kind
+    sec%material = material
+    sec%loc = loc
+    call add_section(st, sec, st%card_item)
+    st%card = CARD_SECTION
+  end subroutine kw_section
+
+  subroutine kw_orientation(st, kw, loc)
+    type(deck_state_t), intent(inout) :: st
+    type(keyword_line_t), intent(in) :: kw
+    type(source_loc_t), intent(in) :: loc
+    character(:), allocatable :: name
+    logical :: found
+    integer :: k
+    if (.not. outside_step(st, kw, loc)) return
+    call check_params(st, kw, loc, [character(NAME_LEN) :: 'NAME'], [character(NAME_LEN) ::])
+    call get_name_param(st, kw, loc, 'NAME', .true., name, found)
+    st%card = CARD_SKIP
+    if (.not. found) return
+    do k = 1, st%norient
+       if (st%orientations(k)%name == name) then
+          call report_loc(st, loc, 'duplicate orientation name '//name//' (first defined at '// &
+               loc_string(st, st%orientations(k)%loc)//')')
+          return
+       end if
+    end do
+    call add_orientation(st, name, loc, st%card_item)
+    st%card = CARD_ORIENTATION
+  end subroutine kw_orientation
+
+  subroutine kw_contact(st, kw, loc)
+    type(deck_state_t), intent(inout) :: st
+    type(keyword_line_t), intent(in) :: kw
+    type(source_loc_t), intent(in) :: loc
+    type(contact_b_t) :: c
+    logical :: f1, f2, f3, f4
+    integer :: k
+    if (.not. outside_step(st, kw, loc)) return
+    call check_params(st, kw, loc, [character(NAME_LEN) :: 'NAME', 'MASTER', 'SLAVE', 'ORIENTATION'], &
+         [character(NAME_LEN) ::])
+    call get_name_param(st, kw, loc, 'NAME', .true., c%name, f1)
+    call get_name_param(st, kw, loc, 'MASTER', .true., c%master, f2)
+    call get_name_param(st, kw, loc, 'SLAVE', .true., c%slave, f3)
+    call get_name_param(st, kw, loc, 'ORIENTATION', .false., c%orientation, f4)
+    st%card = CARD_SKIP
+    if (.not. (f1 .and. f2 .and. f3)) return
+    do k = 1, st%ncontact
+       if (st%contacts(k)%name == c%name) then
+          call report_loc(st, loc, 'duplicate contact name '//c%name//' (first defined at '// &
+               loc_string(st, st%contacts(k)%loc)//')')
+          return
+       end if
+    end do
+    c%loc = loc
+    call add_contact(st, c, st%card_item)
+    st%card = CARD_CONTACT
+  end subroutine kw_contact
+
+  subroutine kw_step(st, kw, loc)
+    type(deck_state_t), intent(inout) :: st
+    type(keyword_line_t), intent(in) :: kw
+    type(source_loc_t), intent(in) :: loc
+    character(:), allocatable :: name
+    logical :: found
+    integer :: k
+    call check_params(st, kw, loc, [character(NAME_LEN) :: 'NAME'], [character(NAME_LEN) ::])
+    if (st%cur_sub > 0) then
+       call report_loc(st, loc, '*STEP inside *SUBSTRUCTURE '//st%subs(st%cur_sub)%name// &
+            ' (missing *END SUBSTRUCTURE?)')
+       st%cur_sub = 0
+    end if
+    if (st%cur_step > 0) then
+       call report_loc(st, loc, '*STEP inside *STEP '//st%steps(st%cur_step)%name//' (missing *END STEP?)')
+       st%cur_step = 0
+    end if
+    st%nstep_cards = st%nstep_cards + 1
+    if (st%loose_step > 0 .and. .not. st%mix_reported) then
+       call report_loc(st, loc, '*STEP cannot be mixed with loads outside *STEP (first at '// &
+            loc_string(st, st%loose_loc)//')')
+       st%mix_reported = .true.
+    end if
+    call get_name_param(st, kw, loc, 'NAME', .false., name, found)
+    if (.not. found) name = itoa(st%nstep + 1)
+    call add_step(st, name, loc, k)
+    st%cur_step = k
+  end subroutine kw_step
+
+  subroutine kw_load(st, kw, loc, card)
+    type(deck_state_t), intent(inout) :: st
+    type(keyword_line_t), intent(in) :: kw
+    type(source_loc_t), intent(in) :: loc
+    integer, intent(in) :: card
+    call check_params(st, kw, loc, [character(NAME_LEN) ::], [character(NAME_LEN) ::])
+    st%card = CARD_SKIP
+    if (st%cur_step > 0) then
+       st%card_item = st%cur_step
+    else
+       if (st%nstep_cards > 0) then
+          if (.not. st%mix_reported) call report_loc(st, loc, '*'//kw%keyword// &
+               ' outside *STEP cannot be mixed with *STEP cards')
+          st%mix_reported = .true.
+          return
+       end if
+       if (st%loose_step == 0) then
+          call add_step(st, '1', loc, st%loose_step)
+          st%loose_loc = loc
+       end if
+       st%card_item = st%loose_step
+    end if
+    st%card = card
+    st%card_home = st%cur_sub
+  end subroutine kw_load
+
+  subroutine kw_controls(st, kw, loc)
+    type(deck_state_t), intent(inout) :: st
+    type(keyword_line_t), intent(in) :: kw
+    type(source_loc_t), intent(in) :: loc
+    character(:), allocatable :: value
+    logical :: found
+    real(wp) :: x
+    integer :: stat
+    call check_params(st, kw, loc, [character(NAME_LEN) :: 'FORMULATION', 'RIGID', 'LARGE'], &
+         [character(NAME_LEN) ::])
+    call get_param(st, kw, loc, 'FORMULATION', .false., value, found)
+    if (found) then
+       select case (to_upper(value))
+       case ('TRANSFORM')
+          st%controls%formulation = FORM_TRANSFORM
+       case ('PENALTY')
+          st%controls%formulation = FORM_PENALTY
+       case default
+          call report_loc(st, loc, 'FORMULATION must be TRANSFORM or PENALTY, not '//value)
+       end select
+    end if
+    call get_param(st, kw, loc, 'RIGID', .false., value, found)
+    if (found) then
+       select case (to_upper(value))
+       case ('ELIMINATE')
+          st%controls%rigid = RIGID_ELIMINATE
+       case ('LARGE')
+          st%controls%rigid = RIGID_LARGE
+       case default
+          call report_loc(st, loc, 'RIGID must be ELIMINATE or LARGE, not '//value)
+       end select
+    end if
+    call get_param(st, kw, loc, 'LARGE', .false., value, found)
+    if (found) then
+       call parse_real(value, x, stat)
+       if (stat /= TOK_OK) then
+          call report_loc(st, loc, real_message(value, stat))
+       else if (.not. (x > 1.0_wp)) then
+          call report_loc(st, loc, 'LARGE must be greater than 1, not '//value)
+       else
+          st%controls%large = x
+       end if
+    end if
+  end subroutine kw_controls
+
+  ! ================================================================== data lines
+
+  subroutine data_line(st, line, loc)
+    type(deck_state_t), intent(inout) :: st
+    character(*), intent(in) :: line
+    type(source_loc_t), intent(in) :: loc
+
+    select case (st%card)
+    case (CARD_SKIP)
+       return
+    case (CARD_NONE)
+       call report_loc(st, loc, 'data line without a keyword line before it')
+       st%card = CARD_SKIP
+       return
+    case (CARD_NODATA)
+       call report_loc(st, loc, st%card_name//' takes no data lines')
+       st%card = CARD_SKIP
+       return
+    case (CARD_HEADING)
+       call add_heading(st, line)
+       return
+    end select
+
+    st%card_ndata = st%card_ndata + 1
+    call split_fields(line, st%f)
+    call drop_trailing_empty(st%f)
+    select case (st%card)
+    case (CARD_NODE)
+       call data_node(st, line, loc)
+    case (CARD_ELEMENT)
+       call data_element(st, line, loc)
+    case (CARD_NSET, CARD_ELSET)
+       call data_set(st, line, loc, st%card == CARD_ELSET)
+    case (CARD_SECTION)
+       call data_section(st, line, loc)
+    case (CARD_ELASTIC)
+       call data_elastic(st, line, loc)
+    case (CARD_ORIENTATION)
+       call data_orientation(st, line, loc)
+    case (CARD_CONTACT)
+       call data_contact(st, line, loc)
+    case (CARD_SUPPORT)
+       call data_support(st, line, loc)
+    case (CARD_BOUNDARY)
+       call data_boundary(st, line, loc)
+    case (CARD_CLOAD, CARD_DLOAD)
+       call data_load(st, line, loc)
+    end select
+  end subroutine data_line
+
+  !> True when the line has nmin..nmax fields; otherwise reported.
+  logical function field_count(st, loc, nmin, nmax, expected) result(ok)
+    type(deck_state_t), intent(inout) :: st
+    type(source_loc_t), intent(in) :: loc
+    integer, intent(in) :: nmin, nmax
+    character(*), intent(in) :: expected
+    ok = st%f%n >= nmin .and. st%f%n <= nmax
+    if (.not. ok) call report_loc(st, loc, 'wrong number of fields on '//st%card_name// &
+         ' data line: expected '//expected//', got '//itoa(st%f%n)//' fields')
+  end function field_count
+
+  !> Field i of the current data line.
+  pure function fld(st, line, i) result(s)
+    type(deck_state_t), intent(in) :: st
+    character(*), intent(in) :: line
+    integer, intent(in) :: i
+    character(:), allocatable :: s
+    s = line(st%f%first(i):st%f%last(i))
+  end function fld
+
+  !> Real in field i (reported when invalid).
+  logical function get_real(st, line, loc, i, x) result(ok)
+    type(deck_state_t), intent(inout) :: st
+    character(*), intent(in) :: line
+    type(source_loc_t), intent(in) :: loc
+    integer, intent(in) :: i
+    real(wp), intent(out) :: x
+    integer :: stat
+    call parse_real(line(st%f%first(i):st%f%last(i)), x, stat)
+    ok = stat == TOK_OK
+    if (.not. ok) call report_loc(st, loc, real_message(fld(st, line, i), stat))
+  end function get_real
+
+  !> Message for a real that could not be converted.
+  function real_message(tok, stat) result(msg)
+    character(*), intent(in) :: tok
+    integer, intent(in) :: stat
+    character(:), allocatable :: msg
+    select case (stat)
+    case (TOK_RANGE)
+       msg = 'real out of range '''//tok//''''
+    case (TOK_NONFINITE)
+       msg = 'invalid real '''//tok//''' (NaN and Inf are not allowed)'
+    case default
+       if (len(tok) == 0) then
+          msg = 'invalid real: empty field'
+       else
+          msg = 'invalid real '''//tok//''''
+       end if
+    end select
+  end function real_message
+
+  !> Id in field i (reported when invalid); `what` names it in messages.
+  logical function get_id(st, line, loc, i, what, id) result(ok)
+    type(deck_state_t), intent(inout) :: st
+    character(*), intent(in) :: line
+    type(source_loc_t), intent(in) :: loc
+    integer, intent(in) :: i
+    character(*), intent(in) :: what
+    integer(ip), intent(out) :: id
+    integer :: stat
+    call parse_id(line(st%f%first(i):st%f%last(i)), id, stat)
+    ok = stat == TOK_OK
+    if (.not. ok) call report_loc(st, loc, id_message(what, fld(st, line, i)))
+  end function get_id
+
+  pure function id_message(what, tok) result(msg)
+    character(*), intent(in) :: what, tok
+    character(:), allocatable :: msg
+    msg = 'invalid '//what//' '''//tok//''' (ids are positive integers below 2**31)'
+  end function id_message
+
+  !> DOF number 1..6 in field i.
+  logical function get_dof(st, line, loc, i, dof) result(ok)
+    type(deck_state_t), intent(inout) :: st
+    character(*), intent(in) :: line
+    type(source_loc_t), intent(in) :: loc
+    integer, intent(in) :: i
+    integer, intent(out) :: dof
+    integer(ip) :: v
+    integer :: stat
+    call parse_id(line(st%f%first(i):st%f%last(i)), v, stat)
+    ok = stat == TOK_OK
+    if (ok) ok = v <= NDOF_NODE
+    dof = 0
+    if (ok) then
+       dof = int(v)
+    else
+       call report_loc(st, loc, 'invalid DOF '''//fld(st, line, i)//''' (1 to 6)')
+    end if
+  end function get_dof
+
+  !> DOF range first..last in fields i, i+1.
+  logical function get_dof_range(st, line, loc, i, first, last) result(ok)
+    type(deck_state_t), intent(inout) :: st
+    character(*), intent(in) :: line
+    type(source_loc_t), intent(in) :: loc
+    integer, intent(in) :: i
+    integer, intent(out) :: first, last
+    ok = get_dof(st, line, loc, i, first)
+    if (.not. ok) return
+    ok = get_dof(st, line, loc, i + 1, last)
+    if (.not. ok) return
+    ok = first <= last
+    if (.not. ok) call report_loc(st, loc, 'first DOF '//itoa(first)//' is after last DOF '//itoa(last))
+  end function get_dof_range
+
+  !> Stiffness in field i: RIGID or a real >= 0.
+  logical function get_stiffness(st, line, loc, i, state, g) result(ok)
+    type(deck_state_t), intent(inout) :: st
+    character(*), intent(in) :: line
+    type(source_loc_t), intent(in) :: loc
+    integer, intent(in) :: i
+    integer, intent(out) :: state
+    real(wp), intent(out) :: g
+    g = 0.0_wp
+    if (to_upper(fld(st, line, i)) == 'RIGID') then
+       state = LINK_RIGID
+       ok = .true.
+       return
+    end if
+    state = LINK_NONE
+    ok = get_real(st, line, loc, i, g)
+    if (.not. ok) return
+    if (g < 0.0_wp) then
+       call report_loc(st, loc, 'stiffness must be >= 0 or RIGID, not '//fld(st, line, i))
+       ok = .false.
+    else if (g > 0.0_wp) then
+       state = LINK_FINITE
+    end if
+  end function get_stiffness
+
+  !> Parse a node or element reference (`id`, `set`, `SUB.id`, `SUB.set`).
+  !> `home` is the substructure of plain references (0: MAIN).
+  logical function parse_ref(st, tok, elem, home, loc, ref) result(ok)
+    type(deck_state_t), intent(inout) :: st
+    character(*), intent(in) :: tok
+    logical, intent(in) :: elem
+    integer, intent(in) :: home
+    type(source_loc_t), intent(in) :: loc
+    type(ref_t), intent(out) :: ref
+    character(:), allocatable :: what, rest
+    integer :: dot, stat
+    what = merge('element', 'node   ', elem)
+    what = trim(what)
+    ref%home = home
+    ok = .false.
+    if (len(tok) == 0) then
+       call report_loc(st, loc, 'missing '//what//' reference')
+       return
+    end if
+    if (looks_numeric(tok)) then
+       call parse_id(tok, ref%id, stat)
+       if (stat /= TOK_OK) then
+          call report_loc(st, loc, id_message(what//' id', tok))
+          return
+       end if
+       ok = .true.
+       return
+    end if
+    dot = index(tok, '.')
+    if (dot > 0) then
+       rest = tok(dot + 1:)
+       if (.not. is_name(tok(1:dot - 1))) then
+          call report_loc(st, loc, 'invalid substructure name in '''//tok//'''')
+          return
+       end if
+       ref%scope = to_upper(tok(1:dot - 1))
+    else
+       rest = tok
+    end if
+    if (is_digits(rest)) then
+       call parse_id(rest, ref%id, stat)
+       if (stat /= TOK_OK) then
+          call report_loc(st, loc, id_message(what//' id', tok))
+          return
+       end if
+    else if (is_name(rest)) then
+       ref%is_set = .true.
+       ref%set = to_upper(rest)
+    else
+       call report_loc(st, loc, 'invalid '//what//' reference '''//tok//''' ('//what// &
+            ' id, set name, SUB.id or SUB.set)')
+       return
+    end if
+    ok = .true.
+  end function parse_ref
+
+  subroutine data_node(st, line, loc)
+    type(deck_state_t), intent(inout) :: st
+    character(*), intent(in) :: line
+    type(source_loc_t), intent(in) :: loc
+    integer(ip) :: id
+    real(wp) :: x(3)
+    integer :: i
+    if (.not. field_count(st, loc, 3, 4, 'id, x, y[, z]')) return
+    if (.not. get_id(st, line, loc, 1, 'node id', id)) return
+    x = 0.0_wp
+    do i = 2, st%f%n
+       if (.not. get_real(st, line, loc, i, x(i - 1))) return
+    end do
+    associate (sub => st%subs(st%card_sub))
+      call add_node(sub, id, x, loc)
+      if (st%card_chunk > 0) sub%chunks(st%card_chunk)%count = sub%chunks(st%card_chunk)%count + 1
+    end associate
+  end subroutine data_node
+
+  subroutine data_element(st, line, loc)
+    type(deck_state_t), intent(inout) :: st
+    character(*), intent(in) :: line
+    type(source_loc_t), intent(in) :: loc
+    integer(ip) :: id, nid(MAX_ELEMENT_NODES)
+    integer :: i, nn
+    nn = ELEMENT_NODE_COUNT(st%card_etype)
+    if (.not. field_count(st, loc, nn + 1, nn + 1, 'id and '//itoa(nn)//' nodes for type '// &
+         trim(ELEMENT_TYPE_NAMES(st%card_etype)))) return
+    if (.not. get_id(st, line, loc, 1, 'element id', id)) return
+    nid = 0
+    do i = 1, nn
+       if (.not. get_id(st, line, loc, i + 1, 'node id', nid(i))) return
+    end do
+    associate (sub => st%subs(st%card_sub))
+      call add_element(sub, id, st%card_etype, nid, loc, st%card_item)
+      if (st%card_chunk > 0) sub%chunks(st%card_chunk)%count = sub%chunks(st%card_chunk)%count + 1
+    end associate
+  end subroutine data_element
+
+  subroutine data_set(st, line, loc, elem)
+    type(deck_state_t), intent(inout) :: st
+    character(*), intent(in) :: line
+    type(source_loc_t), intent(in) :: loc
+    logical, intent(in) :: elem
+    character(:), allocatable :: what, tok
+    integer(ip) :: id, gen(3)
+    integer :: i, ck, k
+    what = merge('element id', 'node id   ', elem)
+    what = trim(what)
+    associate (sub => st%subs(st%card_sub))
+      if (st%card_generate) then
+         if (.not. field_count(st, loc, 2, 3, 'first, last[, increment]')) return
+         gen(3) = 1
+         do i = 1, st%f%n
+            if (.not. get_id(st, line, loc, i, what, gen(i))) return
+         end do
+         if (gen(1) > gen(2)) then
+            call report_loc(st, loc, 'GENERATE range '//itoa(gen(1))//' to '//itoa(gen(2))// &
+                 ': first is after last')
+            return
+         end if
+         call add_chunk(sub, st%card_set, elem, CH_GEN, loc, k)
+         sub%chunks(k)%gen = gen
+         return
+      end if
+      ck = 0
+      do i = 1, st%f%n
+         tok = fld(st, line, i)
+         if (len(tok) == 0) cycle
+         if (looks_numeric(tok)) then
+            if (.not. get_id(st, line, loc, i, what, id)) cycle
+            if (ck == 0) then
+               call add_chunk(sub, st%card_set, elem, CH_IDS, loc, ck)
+               sub%chunks(ck)%start = sub%npool + 1
+            end if
+            call push_pool(sub, id)
+            sub%chunks(ck)%count = sub%chunks(ck)%count + 1
+         else if (is_name(tok)) then
+            call add_chunk(sub, st%card_set, elem, CH_REF, loc, k)
+            sub%chunks(k)%ref = to_upper(tok)
+            ck = 0
+         else
+            call report_loc(st, loc, 'invalid entry '''//tok//''' in '//st%card_name// &
+                 ' (expected '//what//' or set name)')
+         end if
+      end do
+    end associate
+  end subroutine data_set
+
+  subroutine data_section(st, line, loc)
+    type(deck_state_t), intent(inout) :: st
+    character(*), intent(in) :: line
+    type(source_loc_t), intent(in) :: loc
+    integer :: i
+    real(wp) :: v(4)
+    associate (sec => st%sections(st%card_item))
+      if (st%card_ndata == 1) sec%data_loc = loc
+      if (sec%kind /= SEC_BEAM .and. st%card_ndata > 1 .or. st%card_ndata > 2) then
+         call report_loc(st, loc, 'too many data lines for '//st%card_name)
+         sec%data_ok = .false.
+         return
+      end if
+      if (sec%kind /= SEC_BEAM) then
+         if (.not. field_count(st, loc, 1, 1, 'one value (area or thickness)')) then
+            sec%data_ok = .false.
+            return
+         end if
+         if (.not. get_real(st, line, loc, 1, v(1))) then
+            sec%data_ok = .false.
+            return
+         end if
+         if (.not. (v(1) > 0.0_wp)) then
+            if (sec%kind == SEC_SHELL) then
+               call report_loc(st, loc, 'shell thickness must be positive, not '//fld(st, line, 1))
+            else
+               call report_loc(st, loc, 'section area or thickness must be positive, not '//fld(st, line, 1))
+            end if
+            sec%data_ok = .false.
+            return
+         end if
+         sec%nval = 1
+         sec%val(1) = v(1)
+      else if (st%card_ndata == 1) then
+         if (.not. field_count(st, loc, BEAM_2D_VALUES, BEAM_3D_VALUES, 'A, I (2D) or A, Iy, Iz, J (3D)')) then
+            sec%data_ok = .false.
+            return
+         end if
+         if (st%f%n /= BEAM_2D_VALUES .and. st%f%n /= BEAM_3D_VALUES) then
+            call report_loc(st, loc, 'wrong number of fields on *BEAM SECTION data line: expected '// &
+                 'A, I (2D) or A, Iy, Iz, J (3D), got '//itoa(st%f%n)//' fields')
+            sec%data_ok = .false.
+            return
+         end if
+         do i = 1, st%f%n
+            if (.not. get_real(st, line, loc, i, v(i))) then
+               sec%data_ok = .false.
+               return
+            end if
+            if (.not. (v(i) > 0.0_wp)) then
+               call report_loc(st, loc, 'beam section constants (A, I, J) must be positive, not '// &
+                    fld(st, line, i))
+               sec%data_ok = .false.
+               return
+            end if
+         end do
+         sec%nval = st%f%n
+         sec%val(1:st%f%n) = v(1:st%f%n)
+      else
+         if (sec%nval /= BEAM_3D_VALUES) then
+            call report_loc(st, loc, 'the orientation vector line is only for 3D beam sections (A, Iy, Iz, J)')
+            sec%data_ok = .false.
+            return
+         end if
+         if (.not. field_count(st, loc, 3, 3, 'vx, vy, vz')) then
+            sec%data_ok = .false.
+            return
+         end if
+         do i = 1, 3
+            if (.not. get_real(st, line, loc, i, v(i))) then
+               sec%data_ok = .false.
+               return
+            end if
+         end do
+         if (norm2(v(1:3)) == 0.0_wp) then
+            call report_loc(st, loc, 'beam orientation vector is zero')
+            sec%data_ok = .false.
+            return
+         end if
+         sec%v = v(1:3)
+         sec%has_v = .true.
+      end if
+    end associate
+  end subroutine data_section
+
+  subroutine data_elastic(st, line, loc)
+    type(deck_state_t), intent(inout) :: st
+    character(*), intent(in) :: line
+    type(source_loc_t), intent(in) :: loc
+    real(wp) :: e, nu
+    if (st%card_ndata > 1) then
+       call report_loc(st, loc, 'too many data lines for *ELASTIC')
+       return
+    end if
+    if (.not. field_count(st, loc, 2, 2, 'E, nu')) return
+    if (.not. get_real(st, line, loc, 1, e)) return
+    if (.not. get_real(st, line, loc, 2, nu)) return
+    if (.not. (e > 0.0_wp)) then
+       call report_loc(st, loc, 'Young''s modulus E must be positive, not '//fld(st, line, 1))
+       return
+    end if
+    if (.not. (nu > NU_MIN .and. nu < NU_MAX)) then
+       call report_loc(st, loc, 'Poisson''s ratio must be between -1 and 0.5 (exclusive), not '//fld(st, line, 2))
+       return
+    end if
+    st%materials(st%card_item)%e = e
+    st%materials(st%card_item)%nu = nu
+  end subroutine data_elastic
+
+  subroutine data_orientation(st, line, loc)
+    type(deck_state_t), intent(inout) :: st
+    character(*), intent(in) :: line
+    type(source_loc_t), intent(in) :: loc
+    real(wp) :: v(ORIENT_VALUES), a(3), b(3), e1(3), e2(3), e3(3), na, nb, n2
+    integer :: i
+    if (st%card_ndata > 1) then
+       call report_loc(st, loc, 'too many data lines for *ORIENTATION')
+       return
+    end if
+    if (.not. field_count(st, loc, ORIENT_VALUES, ORIENT_VALUES, 'ax, ay, az, bx, by, bz')) return
+    do i = 1, ORIENT_VALUES
+       if (.not. get_real(st, line, loc, i, v(i))) return
+    end do
+    a = v(1:3)
+    b = v(4:6)
+    na = norm2(a)
+    nb = norm2(b)
+    if (na == 0.0_wp) then
+       call report_loc(st, loc, 'orientation vector a is zero')
+       return
+    end if
+    if (nb == 0.0_wp) then
+       call report_loc(st, loc, 'orientation vector b is zero')
+       return
+    end if
+    e1 = a/na
+    e2 = b - dot_product(b, e1)*e1
+    n2 = norm2(e2)
+    if (n2 <= PARALLEL_TOL*nb) then
+       call report_loc(st, loc, 'orientation vectors a and b are parallel')
+       return
+    end if
+    e2 = e2/n2
+    e3 = [e1(2)*e2(3) - e1(3)*e2(2), e1(3)*e2(1) - e1(1)*e2(3), e1(1)*e2(2) - e1(2)*e2(1)]
+    st%orientations(st%card_item)%q(1, :) = e1
+    st%orientations(st%card_item)%q(2, :) = e2
+    st%orientations(st%card_item)%q(3, :) = e3
+  end subroutine data_orientation
+
+  subroutine data_contact(st, line, loc)
+    type(deck_state_t), intent(inout) :: st
+    character(*), intent(in) :: line
+    type(source_loc_t), intent(in) :: loc
+    type(cline_b_t) :: c
+    character(:), allocatable :: master, slave
+    if (.not. field_count(st, loc, 5, 5, 'master, slave, first dof, last dof, g')) return
+    master = st%contacts(st%card_item)%master
+    slave = st%contacts(st%card_item)%slave
+    if (.not. contact_ref(master, 'master', 1, c%master)) return
+    if (.not. contact_ref(slave, 'slave', 2, c%slave)) return
+    if (.not. get_dof_range(st, line, loc, 3, c%first, c%last)) return
+    if (.not. get_stiffness(st, line, loc, 5, c%state, c%g)) return
+    c%contact = st%card_item
+    c%loc = loc
+    call add_cline(st, c)
+  contains
+    logical function contact_ref(subname, role, i, ref) result(ok)
+      character(*), intent(in) :: subname, role
+      integer, intent(in) :: i
+      type(ref_t), intent(out) :: ref
+      ok = parse_ref(st, fld(st, line, i), .false., 0, loc, ref)
+      if (.not. ok) return
+      if (allocated(ref%scope)) then
+         if (ref%scope /= subname) then
+            call report_loc(st, loc, 'node '''//fld(st, line, i)//''' is not in the '//role// &
+                 ' substructure '//subname)
+            ok = .false.
+         end if
+      end if
+    end function contact_ref
+  end subroutine data_contact
+
+  subroutine data_support(st, line, loc)
+    type(deck_state_t), intent(inout) :: st
+    character(*), intent(in) :: line
+    type(source_loc_t), intent(in) :: loc
+    type(support_b_t) :: s
+    integer :: first, last
+    if (.not. field_count(st, loc, 3, 4, 'node or nset, first dof, last dof[, g]')) return
+    if (.not. parse_ref(st, fld(st, line, 1), .false., st%card_home, loc, s%ref)) return
+    if (.not. get_dof_range(st, line, loc, 2, first, last)) return
+    s%state = LINK_RIGID
+    if (st%f%n == 4) then
+       if (.not. get_stiffness(st, line, loc, 4, s%state, s%g)) return
+       if (s%state == LINK_NONE) return
+    end if
+    s%dofs(first:last) = .true.
+    s%loc = loc
+    call add_support(st, s)
+  end subroutine data_support
+
+  subroutine data_boundary(st, line, loc)
+    type(deck_state_t), intent(inout) :: st
+    character(*), intent(in) :: line
+    type(source_loc_t), intent(in) :: loc
+    type(support_b_t) :: s
+    character(:), allocatable :: tok
+    integer :: first, last, k
+    if (.not. field_count(st, loc, 2, 4, 'node or nset, first dof[, last dof[, value]]')) return
+    if (.not. parse_ref(st, fld(st, line, 1), .false., st%card_home, loc, s%ref)) return
+    s%state = LINK_RIGID
+    s%loc = loc
+    tok = to_upper(fld(st, line, 2))
+    if (.not. looks_numeric(tok) .and. len(tok) > 0) then
+       do k = 1, NUM_BC_TYPES
+          if (trim(BC_TYPE_NAMES(k)) == tok) then
+             if (st%f%n /= 2) then
+                call report_loc(st, loc, '*BOUNDARY type '//tok//' takes no further fields')
+                return
+             end if
+             s%dofs = BC_TYPE_DOFS(:, k)
+             call add_support(st, s)
+             return
+          end if
+       end do
+       call report_loc(st, loc, 'invalid DOF '''//fld(st, line, 2)//''' (1 to 6 or a *BOUNDARY type such as ENCASTRE)')
+       return
+    end if
+    if (.not. get_dof(st, line, loc, 2, first)) return
+    last = first
+    if (st%f%n >= 3) then
+       if (st%f%last(3) >= st%f%first(3)) then
+          if (.not. get_dof(st, line, loc, 3, last)) return
+       end if
+    end if
+    if (first > last) then
+       call report_loc(st, loc, 'first DOF '//itoa(first)//' is after last DOF '//itoa(last))
+       return
+    end if
+    if (st%f%n == 4) then
+       if (.not. get_real(st, line, loc, 4, s%value)) return
+    end if
+    s%dofs(first:last) = .true.
+    call add_support(st, s)
+  end subroutine data_boundary
+
+  subroutine data_load(st, line, loc)
+    type(deck_state_t), intent(inout) :: st
+    character(*), intent(in) :: line
+    type(source_loc_t), intent(in) :: loc
+    type(load_b_t) :: ld
+    logical :: dload
+    character(:), allocatable :: typ
+    dload = st%card == CARD_DLOAD
+    if (dload) then
+       if (.not. field_count(st, loc, 3, 3, 'element or elset, load type, value')) return
+    else
+       if (.not. field_count(st, loc, 3, 3, 'node or nset, dof, value')) return
+    end if
+    if (.not. parse_ref(st, fld(st, line, 1), dload, st%card_home, loc, ld%ref)) return
+    if (dload) then
+       typ = to_upper(fld(st, line, 2))
+       select case (typ)
+       case ('PX')
+          ld%kind = DLOAD_PX
+       case ('PY')
+          ld%kind = DLOAD_PY
+       case ('PZ')
+          ld%kind = DLOAD_PZ
+       case ('P')
+          ld%kind = DLOAD_P
+       case default
+          call report_loc(st, loc, 'unknown *DLOAD type '''//fld(st, line, 2)//''' (PX, PY, PZ or P)')
+          return
+       end select
+    else
+       if (.not. get_dof(st, line, loc, 2, ld%dof)) return
+    end if
+    if (.not. get_real(st, line, loc, 3, ld%value)) return
+    ld%loc = loc
+    call add_load(st%steps(st%card_item), ld, dload)
+  end subroutine data_load
+
+  !> "file:line" of a location.
+  function loc_string(st, loc) result(s)
+    type(deck_state_t), intent(in) :: st
+    type(source_loc_t), intent(in) :: loc
+    character(:), allocatable :: s
+    s = st%files(loc%file)%s//':'//itoa(loc%line)
+  end function loc_string
+end module superjoin_deck_parser

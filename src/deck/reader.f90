@@ -1,0 +1,52 @@
+!> Deck reader facade: read, parse and validate a superjoin deck (see
+!> doc/deck.md and the deck contract) into a model_t. Every problem found is
+!> reported as one `path:line: error: message` line of the returned error
+!> (exit status EXIT_DECK), up to a cap; library code never stops.
+module superjoin_deck_reader
+  use superjoin_error, only: error_t, fatal_error, EXIT_IO
+  use superjoin_model_types, only: model_t
+  use superjoin_deck_lexer, only: load_file, path_normalize
+  use superjoin_deck_state, only: deck_state_t
+  use superjoin_deck_parser, only: parse_source, finish_parse, register_file
+  use superjoin_deck_validate, only: build_model
+  implicit none (type, external)
+  private
+
+  public :: read_deck, read_deck_string
+
+contains
+
+  !> Read, parse and validate a deck file into a model; all deck errors
+  !> collected in error (code EXIT_DECK; EXIT_IO when the file cannot be read).
+  subroutine read_deck(path, model, error)
+    character(*), intent(in) :: path
+    type(model_t), intent(out) :: model
+    type(error_t), allocatable, intent(out) :: error
+    character(:), allocatable :: text
+    logical :: ok
+    call load_file(path, text, ok)
+    if (.not. ok) then
+       call fatal_error(error, EXIT_IO, path//': error: cannot open deck file')
+       return
+    end if
+    call read_deck_string(text, path, model, error)
+  end subroutine read_deck
+
+  !> Same as read_deck but from text in memory (lines separated by LF, CR LF or
+  !> CR); `name` is the file name used in messages and for resolving *INCLUDE
+  !> relative paths (relative to the directory of name).
+  subroutine read_deck_string(text, name, model, error)
+    character(*), intent(in) :: text, name
+    type(model_t), intent(out) :: model
+    type(error_t), allocatable, intent(out) :: error
+    type(deck_state_t) :: st
+    integer :: file
+    call register_file(st, name, path_normalize(name), file)
+    st%depth = 0
+    st%stack(0) = file
+    call parse_source(st, text, file)
+    if (.not. st%aborted) call finish_parse(st)
+    if (.not. st%aborted) call build_model(st, model)
+    if (allocated(st%error)) call move_alloc(st%error, error)
+  end subroutine read_deck_string
+end module superjoin_deck_reader

@@ -1,0 +1,578 @@
+!> Working state of the deck reader: what the parser has collected so far
+!> (still by user ids and names), the card being read, and the error list
+!> (capped). The validation pass turns this state into a model_t.
+module superjoin_deck_state
+  use superjoin_kinds, only: wp, ip
+  use superjoin_error, only: error_t, add_error_line, EXIT_DECK
+  use superjoin_model_types, only: string_t, source_loc_t, material_t, orientation_t, &
+       controls_t, MAX_ELEMENT_NODES, NDOF_NODE, LINK_NONE
+  use superjoin_deck_lexer, only: itoa, fields_t
+  implicit none (type, external)
+  private
+
+  integer, parameter, public :: MAX_ERRORS = 50          !! messages before '... too many errors'
+  integer, parameter, public :: MAX_INCLUDE_DEPTH = 16   !! nested *INCLUDE levels
+  integer, parameter :: INITIAL_CAPACITY = 16
+
+  !> Kinds of set chunks (one data line or one card's worth of set members).
+  integer, parameter, public :: CH_IDS = 1    !! explicit ids: pool(start:start+count-1)
+  integer, parameter, public :: CH_GEN = 2    !! GENERATE first, last, inc
+  integer, parameter, public :: CH_RANGE = 3  !! local indices start..start+count-1 (*NODE, NSET= / *ELEMENT, ELSET=)
+  integer, parameter, public :: CH_REF = 4    !! all members of another set of the same kind
+
+  !> Part of the definition of a node or element set, in order of definition.
+  type, public :: chunk_t
+     integer :: set = 0                    !! index into nsets or elsets
+     logical :: elem = .false.             !! an element set chunk
+     integer :: kind = 0                   !! CH_*
+     integer :: start = 0
+     integer :: count = 0
+     integer(ip) :: gen(3) = 0             !! first, last, increment
+     character(:), allocatable :: ref      !! referenced set name (CH_REF)
+     type(source_loc_t) :: loc
+  end type chunk_t
+
+  !> A named set of a substructure (its members are in chunks).
+  type, public :: set_b_t
+     character(:), allocatable :: name
+     type(source_loc_t) :: loc
+  end type set_b_t
+
+  !> A substructure as read: user ids, coordinates, element connectivity by user ids.
+  type, public :: sub_b_t
+     character(:), allocatable :: name
+     type(source_loc_t) :: loc
+     integer(ip) :: nnode = 0
+     integer(ip), allocatable :: node_id(:)
+     real(wp), allocatable :: x(:, :)
+     type(source_loc_t), allocatable :: node_loc(:)
+     integer(ip) :: nelem = 0
+     integer(ip), allocatable :: elem_id(:)
+     integer, allocatable :: elem_type(:)
+     integer(ip), allocatable :: elem_nid(:, :)    !! user node ids
+     type(source_loc_t), allocatable :: elem_loc(:)
+     integer, allocatable :: elem_card(:)          !! which *ELEMENT card (global counter)
+     integer :: nnset = 0, nelset = 0
+     type(set_b_t), allocatable :: nsets(:), elsets(:)
+     integer :: nchunk = 0
+     type(chunk_t), allocatable :: chunks(:)
+     integer :: npool = 0
+     integer(ip), allocatable :: pool(:)
+  end type sub_b_t
+
+  !> A node/element reference as written: `id`, `set`, `SUB.id` or `SUB.set`.
+  type, public :: ref_t
+     character(:), allocatable :: scope    !! substructure name when written with a dot
+     integer :: home = 0                   !! substructure of a plain reference (0: MAIN by name)
+     logical :: is_set = .false.
+     integer(ip) :: id = 0
+     character(:), allocatable :: set
+  end type ref_t
+
+  !> A section card.
+  type, public :: sec_b_t
+     integer :: kind = 0
+     type(ref_t) :: elset                  !! is_set, set = elset name
+     character(:), allocatable :: material
+     integer :: nval = 0
+     real(wp) :: val(4) = 0.0_wp
+     logical :: has_v = .false.
+     real(wp) :: v(3) = [0.0_wp, 0.0_wp, 1.0_wp]
+     integer :: ndata = 0
+     logical :: data_ok = .true.
+     type(source_loc_t) :: loc, data_loc
+  end type sec_b_t
+
+  !> A *CONTACT card.
+  type, public :: contact_b_t
+     character(:), allocatable :: name, master, slave, orientation
+     type(source_loc_t) :: loc
+  end type contact_b_t
+
+  !> One data line of a *CONTACT card.
+  type, public :: cline_b_t
+     integer :: contact = 0
+     type(ref_t) :: master, slave
+     integer :: first = 0, last = 0
+     integer :: state = LINK_NONE
+     real(wp) :: g = 0.0_wp
+     type(source_loc_t) :: loc
+  end type cline_b_t
+
+  !> One data line of *SUPPORT or *BOUNDARY.
+  type, public :: support_b_t
+     type(ref_t) :: ref
+     logical :: dofs(NDOF_NODE) = .false.
+     integer :: state = 0
+     real(wp) :: g = 0.0_wp
+     real(wp) :: value = 0.0_wp
+     type(source_loc_t) :: loc
+  end type support_b_t
+
+  !> One data line of *CLOAD (node) or *DLOAD (element).
+  type, public :: load_b_t
+     type(ref_t) :: ref
+     integer :: dof = 0                    !! *CLOAD
+     integer :: kind = 0                   !! *DLOAD
+     real(wp) :: value = 0.0_wp
+     type(source_loc_t) :: loc
+  end type load_b_t
+
+  !> A step as read.
+  type, public :: step_b_t
+     character(:), allocatable :: name
+     type(source_loc_t) :: loc
+     integer :: ncload = 0, ndload = 0
+     type(load_b_t), allocatable :: cloads(:), dloads(:)
+  end type step_b_t
+
+  !> Everything the reader has collected, and the card being read.
+  type, public :: deck_state_t
+     type(error_t), allocatable :: error
+     integer :: nerr = 0
+     logical :: aborted = .false.
+     ! files
+     integer :: nfile = 0
+     type(string_t), allocatable :: files(:)
+     type(string_t), allocatable :: norm_files(:)   !! normalized, for cycle detection
+     integer :: depth = 0
+     integer :: stack(0:MAX_INCLUDE_DEPTH) = 0      !! open files, outermost first
+     ! model data
+     integer :: nheading = 0
+     type(string_t), allocatable :: heading(:)
+     integer :: nmat = 0
+     type(material_t), allocatable :: materials(:)
+     integer :: nsub = 0
+     type(sub_b_t), allocatable :: subs(:)
+     integer :: norient = 0
+     type(orientation_t), allocatable :: orientations(:)
+     integer :: nsec = 0
+     type(sec_b_t), allocatable :: sections(:)
+     integer :: ncontact = 0
+     type(contact_b_t), allocatable :: contacts(:)
+     integer :: ncline = 0
+     type(cline_b_t), allocatable :: clines(:)
+     integer :: nsupport = 0
+     type(support_b_t), allocatable :: supports(:)
+     integer :: nstep = 0
+     type(step_b_t), allocatable :: steps(:)
+     type(controls_t) :: controls
+     integer :: nelem_cards = 0
+     ! block and card state
+     integer :: cur_sub = 0                !! open *SUBSTRUCTURE block
+     integer :: cur_step = 0               !! open *STEP block
+     integer :: cur_mat = 0                !! material that *ELASTIC applies to
+     integer :: loose_step = 0             !! step collecting loads outside *STEP
+     type(source_loc_t) :: loose_loc
+     logical :: mix_reported = .false.
+     integer :: nstep_cards = 0
+     integer :: card = 0                   !! CARD_* of the parser
+     character(:), allocatable :: card_name
+     type(source_loc_t) :: card_loc
+     integer :: card_ndata = 0
+     integer :: card_sub = 0
+     integer :: card_set = 0
+     integer :: card_chunk = 0
+     integer :: card_etype = 0
+     integer :: card_item = 0              !! section, contact, material or orientation index
+     integer :: card_home = 0
+     logical :: card_generate = .false.
+     type(fields_t) :: f                   !! fields of the current data line (reused)
+  end type deck_state_t
+
+  public :: report, report_loc, new_sub, find_sub, find_set, new_set, add_chunk, push_pool
+  public :: add_node, add_element, add_heading, add_material, add_orientation, add_section
+  public :: add_contact, add_cline, add_support, add_step, add_load, file_of
+
+contains
+
+  ! ------------------------------------------------------------------ errors
+
+  !> Add `path:line: error: message` (at most MAX_ERRORS messages; after that
+  !> one '... too many errors' line and the reader stops).
+  subroutine report(st, file, line, message)
+    type(deck_state_t), intent(inout) :: st
+    integer, intent(in) :: file, line
+    character(*), intent(in) :: message
+    if (st%aborted) return
+    st%nerr = st%nerr + 1
+    if (st%nerr > MAX_ERRORS) then
+       call add_error_line(st%error, EXIT_DECK, '... too many errors')
+       st%aborted = .true.
+       return
+    end if
+    call add_error_line(st%error, EXIT_DECK, file_of(st, file)//':'//itoa(line)//': error: '//message)
+  end subroutine report
+
+  !> report() at a source location.
+  subroutine report_loc(st, loc, message)
+    type(deck_state_t), intent(inout) :: st
+    type(source_loc_t), intent(in) :: loc
+    character(*), intent(in) :: message
+    call report(st, loc%file, loc%line, message)
+  end subroutine report_loc
+
+  !> Path of file index `file` as used in messages.
+  function file_of(st, file) result(path)
+    type(deck_state_t), intent(in) :: st
+    integer, intent(in) :: file
+    character(:), allocatable :: path
+    if (file >= 1 .and. file <= st%nfile) then
+       path = st%files(file)%s
+    else
+       path = '<input>'
+    end if
+  end function file_of
+
+  ! ------------------------------------------------------------------ substructures and sets
+
+  !> Index of the substructure named `name` (0 if none; the last one if repeated).
+  integer function find_sub(st, name) result(k)
+    type(deck_state_t), intent(in) :: st
+    character(*), intent(in) :: name
+    do k = st%nsub, 1, -1
+       if (st%subs(k)%name == name) return
+    end do
+    k = 0
+  end function find_sub
+
+  !> Append a new, empty substructure.
+  subroutine new_sub(st, name, loc, k)
+    type(deck_state_t), intent(inout) :: st
+    character(*), intent(in) :: name
+    type(source_loc_t), intent(in) :: loc
+    integer, intent(out) :: k
+    type(sub_b_t), allocatable :: tmp(:)
+    if (.not. allocated(st%subs)) allocate (st%subs(INITIAL_CAPACITY))
+    if (st%nsub == size(st%subs)) then
+       allocate (tmp(2*st%nsub))
+       tmp(1:st%nsub) = st%subs(1:st%nsub)
+       call move_alloc(tmp, st%subs)
+    end if
+    st%nsub = st%nsub + 1
+    k = st%nsub
+    st%subs(k)%name = name
+    st%subs(k)%loc = loc
+    allocate (st%subs(k)%node_id(INITIAL_CAPACITY), st%subs(k)%x(3, INITIAL_CAPACITY), &
+         st%subs(k)%node_loc(INITIAL_CAPACITY))
+    allocate (st%subs(k)%elem_id(INITIAL_CAPACITY), st%subs(k)%elem_type(INITIAL_CAPACITY), &
+         st%subs(k)%elem_nid(MAX_ELEMENT_NODES, INITIAL_CAPACITY), &
+         st%subs(k)%elem_loc(INITIAL_CAPACITY), st%subs(k)%elem_card(INITIAL_CAPACITY))
+    allocate (st%subs(k)%nsets(INITIAL_CAPACITY), st%subs(k)%elsets(INITIAL_CAPACITY))
+    allocate (st%subs(k)%chunks(INITIAL_CAPACITY), st%subs(k)%pool(INITIAL_CAPACITY))
+  end subroutine new_sub
+
+  !> Index of the node set (elem = .false.) or element set named `name` in a substructure (0 if none).
+  integer function find_set(sub, name, elem) result(k)
+    type(sub_b_t), intent(in) :: sub
+    character(*), intent(in) :: name
+    logical, intent(in) :: elem
+    if (elem) then
+       do k = 1, sub%nelset
+          if (sub%elsets(k)%name == name) return
+       end do
+    else
+       do k = 1, sub%nnset
+          if (sub%nsets(k)%name == name) return
+       end do
+    end if
+    k = 0
+  end function find_set
+
+  !> Append a new, empty set to a substructure.
+  subroutine new_set(sub, name, elem, loc, k)
+    type(sub_b_t), intent(inout) :: sub
+    character(*), intent(in) :: name
+    logical, intent(in) :: elem
+    type(source_loc_t), intent(in) :: loc
+    integer, intent(out) :: k
+    type(set_b_t), allocatable :: tmp(:)
+    if (elem) then
+       if (sub%nelset == size(sub%elsets)) then
+          allocate (tmp(2*sub%nelset))
+          tmp(1:sub%nelset) = sub%elsets(1:sub%nelset)
+          call move_alloc(tmp, sub%elsets)
+       end if
+       sub%nelset = sub%nelset + 1
+       k = sub%nelset
+       sub%elsets(k)%name = name
+       sub%elsets(k)%loc = loc
+    else
+       if (sub%nnset == size(sub%nsets)) then
+          allocate (tmp(2*sub%nnset))
+          tmp(1:sub%nnset) = sub%nsets(1:sub%nnset)
+          call move_alloc(tmp, sub%nsets)
+       end if
+       sub%nnset = sub%nnset + 1
+       k = sub%nnset
+       sub%nsets(k)%name = name
+       sub%nsets(k)%loc = loc
+    end if
+  end subroutine new_set
+
+  !> Append a chunk to a substructure; `k` is its index.
+  subroutine add_chunk(sub, set, elem, kind, loc, k)
+    type(sub_b_t), intent(inout) :: sub
+    integer, intent(in) :: set, kind
+    logical, intent(in) :: elem
+    type(source_loc_t), intent(in) :: loc
+    integer, intent(out) :: k
+    type(chunk_t), allocatable :: tmp(:)
+    if (sub%nchunk == size(sub%chunks)) then
+       allocate (tmp(2*sub%nchunk))
+       tmp(1:sub%nchunk) = sub%chunks(1:sub%nchunk)
+       call move_alloc(tmp, sub%chunks)
+    end if
+    sub%nchunk = sub%nchunk + 1
+    k = sub%nchunk
+    sub%chunks(k)%set = set
+    sub%chunks(k)%elem = elem
+    sub%chunks(k)%kind = kind
+    sub%chunks(k)%loc = loc
+    sub%chunks(k)%start = 0
+    sub%chunks(k)%count = 0
+  end subroutine add_chunk
+
+  !> Append an id to the pool of explicit set members.
+  subroutine push_pool(sub, id)
+    type(sub_b_t), intent(inout) :: sub
+    integer(ip), intent(in) :: id
+    integer(ip), allocatable :: tmp(:)
+    if (sub%npool == size(sub%pool)) then
+       allocate (tmp(2*size(sub%pool)))
+       tmp(1:sub%npool) = sub%pool(1:sub%npool)
+       call move_alloc(tmp, sub%pool)
+    end if
+    sub%npool = sub%npool + 1
+    sub%pool(sub%npool) = id
+  end subroutine push_pool
+
+  !> Append a node.
+  subroutine add_node(sub, id, x, loc)
+    type(sub_b_t), intent(inout) :: sub
+    integer(ip), intent(in) :: id
+    real(wp), intent(in) :: x(3)
+    type(source_loc_t), intent(in) :: loc
+    integer(ip) :: n
+    n = sub%nnode
+    if (n == size(sub%node_id)) then
+       block
+         integer(ip), allocatable :: ti(:)
+         real(wp), allocatable :: tx(:, :)
+         type(source_loc_t), allocatable :: tl(:)
+         allocate (ti(2*n), tx(3, 2*n), tl(2*n))
+         ti(1:n) = sub%node_id(1:n)
+         tx(:, 1:n) = sub%x(:, 1:n)
+         tl(1:n) = sub%node_loc(1:n)
+         call move_alloc(ti, sub%node_id)
+         call move_alloc(tx, sub%x)
+         call move_alloc(tl, sub%node_loc)
+       end block
+    end if
+    n = n + 1
+    sub%nnode = n
+    sub%node_id(n) = id
+    sub%x(:, n) = x
+    sub%node_loc(n) = loc
+  end subroutine add_node
+
+  !> Append an element (nodes by user id).
+  subroutine add_element(sub, id, etype, nid, loc, card)
+    type(sub_b_t), intent(inout) :: sub
+    integer(ip), intent(in) :: id
+    integer, intent(in) :: etype, card
+    integer(ip), intent(in) :: nid(MAX_ELEMENT_NODES)
+    type(source_loc_t), intent(in) :: loc
+    integer(ip) :: n
+    n = sub%nelem
+    if (n == size(sub%elem_id)) then
+       block
+         integer(ip), allocatable :: ti(:), tn(:, :)
+         integer, allocatable :: tt(:), tc(:)
+         type(source_loc_t), allocatable :: tl(:)
+         allocate (ti(2*n), tn(MAX_ELEMENT_NODES, 2*n), tt(2*n), tc(2*n), tl(2*n))
+         ti(1:n) = sub%elem_id(1:n)
+         tn(:, 1:n) = sub%elem_nid(:, 1:n)
+         tt(1:n) = sub%elem_type(1:n)
+         tc(1:n) = sub%elem_card(1:n)
+         tl(1:n) = sub%elem_loc(1:n)
+         call move_alloc(ti, sub%elem_id)
+         call move_alloc(tn, sub%elem_nid)
+         call move_alloc(tt, sub%elem_type)
+         call move_alloc(tc, sub%elem_card)
+         call move_alloc(tl, sub%elem_loc)
+       end block
+    end if
+    n = n + 1
+    sub%nelem = n
+    sub%elem_id(n) = id
+    sub%elem_type(n) = etype
+    sub%elem_nid(:, n) = nid
+    sub%elem_loc(n) = loc
+    sub%elem_card(n) = card
+  end subroutine add_element
+
+  ! ------------------------------------------------------------------ model-level lists
+
+  !> Append a heading line.
+  subroutine add_heading(st, text)
+    type(deck_state_t), intent(inout) :: st
+    character(*), intent(in) :: text
+    type(string_t), allocatable :: tmp(:)
+    if (.not. allocated(st%heading)) allocate (st%heading(INITIAL_CAPACITY))
+    if (st%nheading == size(st%heading)) then
+       allocate (tmp(2*st%nheading))
+       tmp(1:st%nheading) = st%heading(1:st%nheading)
+       call move_alloc(tmp, st%heading)
+    end if
+    st%nheading = st%nheading + 1
+    st%heading(st%nheading)%s = text
+  end subroutine add_heading
+
+  !> Append a material; `k` is its index.
+  subroutine add_material(st, name, loc, k)
+    type(deck_state_t), intent(inout) :: st
+    character(*), intent(in) :: name
+    type(source_loc_t), intent(in) :: loc
+    integer, intent(out) :: k
+    type(material_t), allocatable :: tmp(:)
+    if (.not. allocated(st%materials)) allocate (st%materials(INITIAL_CAPACITY))
+    if (st%nmat == size(st%materials)) then
+       allocate (tmp(2*st%nmat))
+       tmp(1:st%nmat) = st%materials(1:st%nmat)
+       call move_alloc(tmp, st%materials)
+    end if
+    st%nmat = st%nmat + 1
+    k = st%nmat
+    st%materials(k)%name = name
+    st%materials(k)%loc = loc
+  end subroutine add_material
+
+  !> Append an orientation; `k` is its index.
+  subroutine add_orientation(st, name, loc, k)
+    type(deck_state_t), intent(inout) :: st
+    character(*), intent(in) :: name
+    type(source_loc_t), intent(in) :: loc
+    integer, intent(out) :: k
+    type(orientation_t), allocatable :: tmp(:)
+    if (.not. allocated(st%orientations)) allocate (st%orientations(INITIAL_CAPACITY))
+    if (st%norient == size(st%orientations)) then
+       allocate (tmp(2*st%norient))
+       tmp(1:st%norient) = st%orientations(1:st%norient)
+       call move_alloc(tmp, st%orientations)
+    end if
+    st%norient = st%norient + 1
+    k = st%norient
+    st%orientations(k)%name = name
+    st%orientations(k)%loc = loc
+  end subroutine add_orientation
+
+  !> Append a section; `k` is its index.
+  subroutine add_section(st, sec, k)
+    type(deck_state_t), intent(inout) :: st
+    type(sec_b_t), intent(in) :: sec
+    integer, intent(out) :: k
+    type(sec_b_t), allocatable :: tmp(:)
+    if (.not. allocated(st%sections)) allocate (st%sections(INITIAL_CAPACITY))
+    if (st%nsec == size(st%sections)) then
+       allocate (tmp(2*st%nsec))
+       tmp(1:st%nsec) = st%sections(1:st%nsec)
+       call move_alloc(tmp, st%sections)
+    end if
+    st%nsec = st%nsec + 1
+    k = st%nsec
+    st%sections(k) = sec
+  end subroutine add_section
+
+  !> Append a contact card; `k` is its index.
+  subroutine add_contact(st, c, k)
+    type(deck_state_t), intent(inout) :: st
+    type(contact_b_t), intent(in) :: c
+    integer, intent(out) :: k
+    type(contact_b_t), allocatable :: tmp(:)
+    if (.not. allocated(st%contacts)) allocate (st%contacts(INITIAL_CAPACITY))
+    if (st%ncontact == size(st%contacts)) then
+       allocate (tmp(2*st%ncontact))
+       tmp(1:st%ncontact) = st%contacts(1:st%ncontact)
+       call move_alloc(tmp, st%contacts)
+    end if
+    st%ncontact = st%ncontact + 1
+    k = st%ncontact
+    st%contacts(k) = c
+  end subroutine add_contact
+
+  !> Append a contact data line.
+  subroutine add_cline(st, c)
+    type(deck_state_t), intent(inout) :: st
+    type(cline_b_t), intent(in) :: c
+    type(cline_b_t), allocatable :: tmp(:)
+    if (.not. allocated(st%clines)) allocate (st%clines(INITIAL_CAPACITY))
+    if (st%ncline == size(st%clines)) then
+       allocate (tmp(2*st%ncline))
+       tmp(1:st%ncline) = st%clines(1:st%ncline)
+       call move_alloc(tmp, st%clines)
+    end if
+    st%ncline = st%ncline + 1
+    st%clines(st%ncline) = c
+  end subroutine add_cline
+
+  !> Append a support data line.
+  subroutine add_support(st, s)
+    type(deck_state_t), intent(inout) :: st
+    type(support_b_t), intent(in) :: s
+    type(support_b_t), allocatable :: tmp(:)
+    if (.not. allocated(st%supports)) allocate (st%supports(INITIAL_CAPACITY))
+    if (st%nsupport == size(st%supports)) then
+       allocate (tmp(2*st%nsupport))
+       tmp(1:st%nsupport) = st%supports(1:st%nsupport)
+       call move_alloc(tmp, st%supports)
+    end if
+    st%nsupport = st%nsupport + 1
+    st%supports(st%nsupport) = s
+  end subroutine add_support
+
+  !> Append a step; `k` is its index.
+  subroutine add_step(st, name, loc, k)
+    type(deck_state_t), intent(inout) :: st
+    character(*), intent(in) :: name
+    type(source_loc_t), intent(in) :: loc
+    integer, intent(out) :: k
+    type(step_b_t), allocatable :: tmp(:)
+    if (.not. allocated(st%steps)) allocate (st%steps(INITIAL_CAPACITY))
+    if (st%nstep == size(st%steps)) then
+       allocate (tmp(2*st%nstep))
+       tmp(1:st%nstep) = st%steps(1:st%nstep)
+       call move_alloc(tmp, st%steps)
+    end if
+    st%nstep = st%nstep + 1
+    k = st%nstep
+    st%steps(k)%name = name
+    st%steps(k)%loc = loc
+    allocate (st%steps(k)%cloads(INITIAL_CAPACITY), st%steps(k)%dloads(INITIAL_CAPACITY))
+  end subroutine add_step
+
+  !> Append a concentrated (dload = .false.) or distributed load to a step.
+  subroutine add_load(step, load, dload)
+    type(step_b_t), intent(inout) :: step
+    type(load_b_t), intent(in) :: load
+    logical, intent(in) :: dload
+    type(load_b_t), allocatable :: tmp(:)
+    if (dload) then
+       if (step%ndload == size(step%dloads)) then
+          allocate (tmp(2*step%ndload))
+          tmp(1:step%ndload) = step%dloads(1:step%ndload)
+          call move_alloc(tmp, step%dloads)
+       end if
+       step%ndload = step%ndload + 1
+       step%dloads(step%ndload) = load
+    else
+       if (step%ncload == size(step%cloads)) then
+          allocate (tmp(2*step%ncload))
+          tmp(1:step%ncload) = step%cloads(1:step%ncload)
+          call move_alloc(tmp, step%cloads)
+       end if
+       step%ncload = step%ncload + 1
+       step%cloads(step%ncload) = load
+    end if
+  end subroutine add_load
+end module superjoin_deck_state

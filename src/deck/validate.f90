@@ -1,0 +1,1133 @@
+!> Validation pass of the deck reader: resolves the names and user ids that the
+!> parser collected into indices, checks the model (duplicates, undefined
+!> nodes, sets, sections, contacts, supports, loads) and fills model_t.
+module superjoin_deck_validate
+  use superjoin_kinds, only: wp, ip, i8
+  use superjoin_model_types, only: model_t, substructure_t, index_set_t, section_t, contact_t, &
+       link_t, support_t, cload_t, dload_t, source_loc_t, find_node, find_elem, &
+       ELEMENT_TYPE_NAMES, ELEMENT_NODE_COUNT, NDOF_NODE, SEC_SOLID, SEC_BEAM, SEC_SHELL, &
+       LINK_NONE, LINK_FINITE, LINK_RIGID, ET_T2D2, ET_T3D2, ET_B23, ET_B33, ET_CPS3, ET_CPS4, &
+       ET_S3, ET_S4, DLOAD_PX, DLOAD_PY, DLOAD_PZ, DLOAD_P, DLOAD_NAMES
+  use superjoin_deck_lexer, only: itoa
+  use superjoin_deck_state, only: deck_state_t, sub_b_t, ref_t, load_b_t, report, report_loc, find_set, &
+       CH_IDS, CH_GEN, CH_RANGE, CH_REF
+  implicit none (type, external)
+  private
+
+  public :: build_model
+
+  character(*), parameter :: MAIN_NAME = 'MAIN'
+  integer, parameter :: INITIAL_CAPACITY = 16
+  integer, parameter :: INITIAL_HASH = 64
+  !> Multipliers of the link hash (products stay below 2**63).
+  integer(i8), parameter :: HASH_MUL1 = 2654435761_i8, HASH_MUL2 = 40503_i8
+  integer(i8), parameter :: PAIR_SHIFT = 2147483648_i8   !! 2**31: key = master*2**31 + slave
+  integer(i8), parameter :: EMPTY_KEY = -1_i8
+
+  !> Open-addressing map from a (master, slave) pair key to a link index.
+  type :: pair_map_t
+     integer :: n = 0
+     integer(i8), allocatable :: keys(:)
+     integer, allocatable :: vals(:)
+  end type pair_map_t
+
+  !> Growing list of links / supports while they are generated.
+  type :: link_list_t
+     integer :: n = 0
+     type(link_t), allocatable :: a(:)
+  end type link_list_t
+
+contains
+
+  !> Resolve everything collected in `st` and fill `model`. Errors go to st%error.
+  subroutine build_model(st, model)
+    type(deck_state_t), intent(inout) :: st
+    type(model_t), intent(out) :: model
+    integer :: k
+
+    model%files = st%files(1:st%nfile)
+    if (st%nheading > 0) then
+       model%heading = st%heading(1:st%nheading)
+    else
+       allocate (model%heading(0))
+    end if
+    model%controls = st%controls
+
+    ! materials
+    if (st%nmat > 0) then
+       model%materials = st%materials(1:st%nmat)
+    else
+       allocate (model%materials(0))
+    end if
+    do k = 1, st%nmat
+       if (.not. st%materials(k)%has_elastic) call report_loc(st, st%materials(k)%loc, &
+            'material '//st%materials(k)%name//' has no *ELASTIC')
+    end do
+
+    ! orientations
+    if (st%norient > 0) then
+       model%orientations = st%orientations(1:st%norient)
+    else
+       allocate (model%orientations(0))
+    end if
+
+    ! substructures
+    allocate (model%subs(st%nsub))
+    if (st%nsub == 0) call report(st, 1, 1, 'the deck defines no nodes')
+    do k = 1, st%nsub
+       call build_sub(st, st%subs(k), model%subs(k))
+       if (st%aborted) return
+    end do
+    call build_sections(st, model)
+    if (st%aborted) return
+    call check_unassigned(st, model)
+    call build_contacts(st, model)
+    if (st%aborted) return
+    call build_supports(st, model)
+    if (st%aborted) return
+    call build_steps(st, model)
+  end subroutine build_model
+
+  ! ================================================================== substructures
+
+  subroutine build_sub(st, b, m)
+    type(deck_state_t), intent(inout) :: st
+    type(sub_b_t), intent(inout) :: b
+    type(substructure_t), intent(out) :: m
+    integer(ip) :: n, i, j, k, e
+    integer :: a
+
+    m%name = b%name
+    m%loc = b%loc
+    n = b%nnode
+    m%nnode = n
+    m%node_id = b%node_id(1:n)
+    m%x = b%x(:, 1:n)
+    allocate (m%node_order(n))
+    call argsort_ids(m%node_id, m%node_order)
+    if (n == 0) call report_loc(st, b%loc, 'substructure '//b%name//' has no nodes')
+    do i = 2, n
+       if (m%node_id(m%node_order(i)) == m%node_id(m%node_order(i - 1))) then
+          call report_loc(st, b%node_loc(m%node_order(i)), 'duplicate node id '// &
+               itoa(m%node_id(m%node_order(i)))//' in substructure '//b%name//' (also defined at '// &
+               where(st, b%node_loc(m%node_order(i - 1)))//')')
+          if (st%aborted) return
+       end if
+    end do
+
+    n = b%nelem
+    m%nelem = n
+    m%elem_id = b%elem_id(1:n)
+    m%elem_type = b%elem_type(1:n)
+    m%elem_loc = b%elem_loc(1:n)
+    allocate (m%elem_order(n), m%elem_nodes(size(b%elem_nid, 1), n), m%elem_section(n))
+    m%elem_section = 0
+    m%elem_nodes = 0
+    call argsort_ids(m%elem_id, m%elem_order)
+    do i = 2, n
+       if (m%elem_id(m%elem_order(i)) == m%elem_id(m%elem_order(i - 1))) then
+          call report_loc(st, b%elem_loc(m%elem_order(i)), 'duplicate element id '// &
+               itoa(m%elem_id(m%elem_order(i)))//' in substructure '//b%name//' (also defined at '// &
+               where(st, b%elem_loc(m%elem_order(i - 1)))//')')
+          if (st%aborted) return
+       end if
+    end do
+    do e = 1, n
+       do a = 1, ELEMENT_NODE_COUNT(m%elem_type(e))
+          k = find_node(m, b%elem_nid(a, e))
+          if (k == 0) then
+             call report_loc(st, b%elem_loc(e), 'element '//itoa(m%elem_id(e))// &
+                  ' refers to undefined node '//itoa(b%elem_nid(a, e))//' of substructure '//b%name)
+             if (st%aborted) return
+          end if
+          m%elem_nodes(a, e) = k
+       end do
+       do a = 2, ELEMENT_NODE_COUNT(m%elem_type(e))
+          do j = 1, a - 1
+             if (b%elem_nid(a, e) == b%elem_nid(j, e)) then
+                call report_loc(st, b%elem_loc(e), 'element '//itoa(m%elem_id(e))//' uses node '// &
+                     itoa(b%elem_nid(a, e))//' twice')
+             end if
+          end do
+       end do
+    end do
+
+    call resolve_sets(st, b, m, .false.)
+    if (st%aborted) return
+    call resolve_sets(st, b, m, .true.)
+    allocate (m%sections(0))
+    ! the builder's copies are no longer needed
+    deallocate (b%node_id, b%x, b%elem_id, b%elem_type, b%elem_nid, b%pool)
+  end subroutine build_sub
+
+  !> Resolve the node sets (elem false) or element sets of one substructure:
+  !> members in order of definition, repeats dropped, set references followed.
+  subroutine resolve_sets(st, b, m, elem)
+    type(deck_state_t), intent(inout) :: st
+    type(sub_b_t), intent(in) :: b
+    type(substructure_t), intent(inout) :: m
+    logical, intent(in) :: elem
+    integer, allocatable :: head(:), list(:), state(:), stack_set(:), stack_pos(:), mark(:)
+    type(index_set_t), allocatable :: sets(:)
+    integer :: nset, c, s, t, r, sp, stamp, nitem, n
+    integer(ip), allocatable :: items(:)
+    logical :: pushed
+    integer, parameter :: TODO = 0, BUSY = 1, DONE = 2
+    character(:), allocatable :: kind_name
+
+    kind_name = merge('element set', 'node set   ', elem)
+    kind_name = trim(kind_name)
+    if (elem) then
+       nset = b%nelset
+       nitem = m%nelem
+    else
+       nset = b%nnset
+       nitem = m%nnode
+    end if
+    allocate (sets(nset), head(nset + 1), list(b%nchunk), state(nset), stack_set(nset), &
+         stack_pos(nset), mark(nitem))
+    head = 0
+    do c = 1, b%nchunk
+       if (b%chunks(c)%elem .eqv. elem) head(b%chunks(c)%set + 1) = head(b%chunks(c)%set + 1) + 1
+    end do
+    head(1) = 1
+    do s = 1, nset
+       head(s + 1) = head(s + 1) + head(s)
+    end do
+    stack_pos(1:nset) = head(1:nset)
+    do c = 1, b%nchunk
+       if (b%chunks(c)%elem .eqv. elem) then
+          s = b%chunks(c)%set
+          list(stack_pos(s)) = c
+          stack_pos(s) = stack_pos(s) + 1
+       end if
+    end do
+    do s = 1, nset
+       if (elem) then
+          sets(s)%name = b%elsets(s)%name
+       else
+          sets(s)%name = b%nsets(s)%name
+       end if
+    end do
+    state = TODO
+    mark = 0
+    stamp = 0
+
+    do s = 1, nset
+       if (state(s) /= TODO) cycle
+       sp = 1
+       stack_set(1) = s
+       stack_pos(1) = head(s)
+       state(s) = BUSY
+       do while (sp > 0)
+          t = stack_set(sp)
+          pushed = .false.
+          do while (stack_pos(sp) < head(t + 1))
+             c = list(stack_pos(sp))
+             stack_pos(sp) = stack_pos(sp) + 1
+             if (b%chunks(c)%kind /= CH_REF) cycle
+             r = find_set(b, b%chunks(c)%ref, elem)
+             if (r == 0) then
+                call report_loc(st, b%chunks(c)%loc, kind_name//' '//sets(t)%name//' refers to unknown '// &
+                     kind_name//' '//b%chunks(c)%ref//' of substructure '//b%name)
+             else if (state(r) == BUSY) then
+                call report_loc(st, b%chunks(c)%loc, kind_name//' '//sets(t)%name//' refers to '// &
+                     kind_name//' '//sets(r)%name//', which refers back to it (cycle)')
+             else if (state(r) == TODO) then
+                sp = sp + 1
+                stack_set(sp) = r
+                stack_pos(sp) = head(r)
+                state(r) = BUSY
+                pushed = .true.
+                exit
+             end if
+          end do
+          if (pushed) cycle
+          call build_items(t)
+          state(t) = DONE
+          sp = sp - 1
+       end do
+    end do
+    if (elem) then
+       call move_alloc(sets, m%elsets)
+    else
+       call move_alloc(sets, m%nsets)
+    end if
+
+  contains
+
+    subroutine build_items(t)
+      integer, intent(in) :: t
+      integer :: p, c, r, nbad, k, ngen
+      integer(ip) :: id, bad_id, i
+      if (.not. allocated(items)) allocate (items(INITIAL_CAPACITY))
+      n = 0
+      stamp = stamp + 1
+      do p = head(t), head(t + 1) - 1
+         c = list(p)
+         associate (ch => b%chunks(c))
+           select case (ch%kind)
+           case (CH_IDS)
+              nbad = 0
+              bad_id = 0
+              do k = ch%start, ch%start + ch%count - 1
+                 id = b%pool(k)
+                 if (elem) then
+                    i = find_elem(m, id)
+                 else
+                    i = find_node(m, id)
+                 end if
+                 if (i == 0) then
+                    nbad = nbad + 1
+                    if (nbad == 1) bad_id = id
+                 else
+                    call add(i)
+                 end if
+              end do
+              if (nbad > 0) call report_loc(st, ch%loc, kind_name//' '//sets(t)%name// &
+                   ': undefined '//trim(merge('element', 'node   ', elem))//' '//itoa(bad_id)// &
+                   more_text(nbad - 1))
+           case (CH_GEN)
+              ngen = 0
+              call walk_range(ch%gen, ngen)
+              if (ngen == 0) call report_loc(st, ch%loc, kind_name//' '//sets(t)%name// &
+                   ': GENERATE '//itoa(ch%gen(1))//', '//itoa(ch%gen(2))//', '//itoa(ch%gen(3))// &
+                   ' matches no defined id')
+           case (CH_RANGE)
+              do k = ch%start, ch%start + ch%count - 1
+                 call add(int(k, ip))
+              end do
+           case (CH_REF)
+              r = find_set(b, ch%ref, elem)
+              if (r > 0) then
+                 if (state(r) == DONE) then
+                    do k = 1, size(sets(r)%items)
+                       call add(sets(r)%items(k))
+                    end do
+                 end if
+              end if
+           end select
+         end associate
+      end do
+      sets(t)%items = items(1:n)
+    end subroutine build_items
+
+    subroutine add(i)
+      integer(ip), intent(in) :: i
+      integer(ip), allocatable :: tmp(:)
+      if (mark(i) == stamp) return
+      mark(i) = stamp
+      if (n == size(items)) then
+         allocate (tmp(2*n))
+         tmp(1:n) = items(1:n)
+         call move_alloc(tmp, items)
+      end if
+      n = n + 1
+      items(n) = i
+    end subroutine add
+
+    !> Members with ids first, first+inc, ... <= last that exist (walks the
+    !> sorted ids, so sparse huge ranges cost nothing).
+    subroutine walk_range(gen, count)
+      integer(ip), intent(in) :: gen(3)
+      integer, intent(inout) :: count
+      integer(ip) :: lo, hi, mid, nn, idv
+      if (elem) then
+         nn = m%nelem
+      else
+         nn = m%nnode
+      end if
+      lo = 1
+      hi = nn + 1
+      do while (lo < hi)
+         mid = lo + (hi - lo)/2
+         if (sorted_id(mid) < gen(1)) then
+            lo = mid + 1
+         else
+            hi = mid
+         end if
+      end do
+      do while (lo <= nn)
+         idv = sorted_id(lo)
+         if (idv > gen(2)) exit
+         if (mod(int(idv, i8) - gen(1), int(gen(3), i8)) == 0) then
+            count = count + 1
+            if (elem) then
+               call add(m%elem_order(lo))
+            else
+               call add(m%node_order(lo))
+            end if
+         end if
+         lo = lo + 1
+      end do
+    end subroutine walk_range
+
+    integer(ip) function sorted_id(k)
+      integer(ip), intent(in) :: k
+      if (elem) then
+         sorted_id = m%elem_id(m%elem_order(k))
+      else
+         sorted_id = m%node_id(m%node_order(k))
+      end if
+    end function sorted_id
+  end subroutine resolve_sets
+
+  ! ================================================================== sections
+
+  subroutine build_sections(st, model)
+    type(deck_state_t), intent(inout) :: st
+    type(model_t), intent(inout) :: model
+    integer, allocatable :: sub_of(:), count(:)
+    integer :: g, isub, k
+
+    allocate (sub_of(st%nsec), count(size(model%subs)))
+    count = 0
+    do g = 1, st%nsec
+       sub_of(g) = resolve_sub(st, model, st%sections(g)%elset, st%sections(g)%loc, 'element set')
+       if (sub_of(g) > 0) count(sub_of(g)) = count(sub_of(g)) + 1
+    end do
+    do isub = 1, size(model%subs)
+       deallocate (model%subs(isub)%sections)
+       allocate (model%subs(isub)%sections(count(isub)))
+    end do
+    count = 0
+    do g = 1, st%nsec
+       isub = sub_of(g)
+       if (isub == 0) cycle
+       count(isub) = count(isub) + 1
+       k = count(isub)
+       call build_section(st, model, isub, k, g)
+       if (st%aborted) return
+    end do
+  end subroutine build_sections
+
+  subroutine build_section(st, model, isub, k, g)
+    type(deck_state_t), intent(inout) :: st
+    type(model_t), intent(inout) :: model
+    integer, intent(in) :: isub, k, g
+    integer :: imat, iset, ntruss, ncps, nb23, nb33, nshell, nbad, nover, other
+    integer(ip) :: e, i, first_bad, first_over
+    character(:), allocatable :: card
+
+    associate (sb => st%sections(g), sec => model%subs(isub)%sections(k), sub => model%subs(isub))
+      select case (sb%kind)
+      case (SEC_SOLID)
+         card = '*SOLID SECTION'
+      case (SEC_BEAM)
+         card = '*BEAM SECTION'
+      case default
+         card = '*SHELL SECTION'
+      end select
+      sec%kind = sb%kind
+      sec%loc = sb%loc
+      imat = 0
+      do i = 1, size(model%materials)
+         if (model%materials(i)%name == sb%material) imat = int(i)
+      end do
+      if (imat == 0) call report_loc(st, sb%loc, 'unknown material '//sb%material)
+      sec%material = imat
+      iset = 0
+      do i = 1, size(sub%elsets)
+         if (sub%elsets(i)%name == sb%elset%set) iset = int(i)
+      end do
+      sec%elset = iset
+      if (iset == 0) then
+         call report_loc(st, sb%loc, 'unknown element set '//sb%elset%set//' in substructure '//sub%name)
+         return
+      end if
+
+      ntruss = 0; ncps = 0; nb23 = 0; nb33 = 0; nshell = 0; nbad = 0; nover = 0
+      first_bad = 0; first_over = 0; other = 0
+      do i = 1, size(sub%elsets(iset)%items)
+         e = sub%elsets(iset)%items(i)
+         select case (sub%elem_type(e))
+         case (ET_T2D2, ET_T3D2)
+            ntruss = ntruss + 1
+            if (sb%kind /= SEC_SOLID) call bad(e)
+         case (ET_CPS3, ET_CPS4)
+            ncps = ncps + 1
+            if (sb%kind /= SEC_SOLID) call bad(e)
+         case (ET_B23)
+            nb23 = nb23 + 1
+            if (sb%kind /= SEC_BEAM) call bad(e)
+         case (ET_B33)
+            nb33 = nb33 + 1
+            if (sb%kind /= SEC_BEAM) call bad(e)
+         case (ET_S3, ET_S4)
+            nshell = nshell + 1
+            if (sb%kind /= SEC_SHELL) call bad(e)
+         end select
+         if (sub%elem_section(e) == 0) then
+            sub%elem_section(e) = k
+         else if (sub%elem_section(e) /= k) then
+            nover = nover + 1
+            if (nover == 1) then
+               first_over = e
+               other = sub%elem_section(e)
+            end if
+         end if
+      end do
+      if (nbad > 0) call report_loc(st, sb%loc, card//' on element set '//sb%elset%set//': element '// &
+           itoa(sub%elem_id(first_bad))//' is of type '//trim(ELEMENT_TYPE_NAMES(sub%elem_type(first_bad)))// &
+           ', which needs '//needed_card(sub%elem_type(first_bad))//more_text(nbad - 1))
+      if (nover > 0) call report_loc(st, sb%loc, 'element '//itoa(sub%elem_id(first_over))// &
+           ' of element set '//sb%elset%set//' already has a section (at '// &
+           where(st, sub%sections(other)%loc)//'); an element may have only one section'//more_text(nover - 1))
+
+      if (sb%kind == SEC_BEAM .and. nb23 > 0 .and. nb33 > 0) then
+         call report_loc(st, sb%loc, '*BEAM SECTION on element set '//sb%elset%set// &
+              ' mixes B23 and B33 elements')
+         return
+      end if
+      if (.not. sb%data_ok) return
+      select case (sb%kind)
+      case (SEC_SOLID)
+         if (ntruss > 0 .or. ncps == 0) sec%area = sb%val(1)
+         if (ncps > 0 .or. ntruss == 0) sec%thickness = sb%val(1)
+      case (SEC_SHELL)
+         sec%thickness = sb%val(1)
+      case (SEC_BEAM)
+         if (nb23 > 0 .and. sb%nval /= 2) then
+            call report_loc(st, sb%data_loc, '*BEAM SECTION of 2D beams (B23) needs A, I')
+            return
+         end if
+         if (nb33 > 0 .and. sb%nval /= 4) then
+            call report_loc(st, sb%data_loc, '*BEAM SECTION of 3D beams (B33) needs A, Iy, Iz, J')
+            return
+         end if
+         sec%area = sb%val(1)
+         if (sb%nval == 2) then
+            sec%iz = sb%val(2)
+         else
+            sec%iy = sb%val(2)
+            sec%iz = sb%val(3)
+            sec%j = sb%val(4)
+         end if
+         sec%has_v = sb%has_v
+         if (sb%has_v) sec%v = sb%v
+      end select
+    end associate
+  contains
+    subroutine bad(e)
+      integer(ip), intent(in) :: e
+      nbad = nbad + 1
+      if (nbad == 1) first_bad = e
+    end subroutine bad
+  end subroutine build_section
+
+  pure function needed_card(etype) result(card)
+    integer, intent(in) :: etype
+    character(:), allocatable :: card
+    select case (etype)
+    case (ET_B23, ET_B33)
+       card = '*BEAM SECTION'
+    case (ET_S3, ET_S4)
+       card = '*SHELL SECTION'
+    case default
+       card = '*SOLID SECTION'
+    end select
+  end function needed_card
+
+  !> Elements without a section: one message per *ELEMENT card.
+  subroutine check_unassigned(st, model)
+    type(deck_state_t), intent(inout) :: st
+    type(model_t), intent(in) :: model
+    integer, allocatable :: count(:), first_sub(:)
+    integer(ip), allocatable :: first_elem(:)
+    integer :: isub, c
+    integer(ip) :: e
+    allocate (count(st%nelem_cards), first_sub(st%nelem_cards), first_elem(st%nelem_cards))
+    count = 0
+    do isub = 1, size(model%subs)
+       associate (sub => model%subs(isub))
+         do e = 1, sub%nelem
+            if (sub%elem_section(e) /= 0) cycle
+            c = st%subs(isub)%elem_card(e)
+            count(c) = count(c) + 1
+            if (count(c) == 1) then
+               first_sub(c) = isub
+               first_elem(c) = e
+            end if
+         end do
+       end associate
+    end do
+    do c = 1, st%nelem_cards
+       if (count(c) == 0) cycle
+       associate (sub => model%subs(first_sub(c)))
+         call report_loc(st, sub%elem_loc(first_elem(c)), 'element '//itoa(sub%elem_id(first_elem(c)))// &
+              ' ('//trim(ELEMENT_TYPE_NAMES(sub%elem_type(first_elem(c))))//') has no section: no '// &
+              needed_card(sub%elem_type(first_elem(c)))//' covers it'//more_text(count(c) - 1, &
+              ' of this *ELEMENT card'))
+       end associate
+    end do
+  end subroutine check_unassigned
+
+  ! ================================================================== references
+
+  !> Substructure a reference points to (0 and reported when there is none).
+  integer function resolve_sub(st, model, ref, loc, what) result(isub)
+    type(deck_state_t), intent(inout) :: st
+    type(model_t), intent(in) :: model
+    type(ref_t), intent(in) :: ref
+    type(source_loc_t), intent(in) :: loc
+    character(*), intent(in) :: what
+    if (allocated(ref%scope)) then
+       isub = sub_index(model, ref%scope)
+       if (isub == 0) call report_loc(st, loc, 'unknown substructure '//ref%scope//' in '// &
+            ref_text(ref))
+    else if (ref%home > 0) then
+       isub = ref%home
+    else
+       isub = sub_index(model, MAIN_NAME)
+       if (isub == 0) call report_loc(st, loc, what//' '//ref_text(ref)// &
+            ' is not in a substructure: outside *SUBSTRUCTURE blocks write SUB.id or SUB.set '// &
+            '(no nodes were defined outside the blocks, so there is no substructure MAIN)')
+    end if
+  end function resolve_sub
+
+  !> Index of the substructure named `name` (0 if none).
+  pure integer function sub_index(model, name) result(k)
+    type(model_t), intent(in) :: model
+    character(*), intent(in) :: name
+    do k = size(model%subs), 1, -1
+       if (model%subs(k)%name == name) return
+    end do
+    k = 0
+  end function sub_index
+
+  !> A reference as the user wrote it (upper case).
+  pure function ref_text(ref) result(s)
+    type(ref_t), intent(in) :: ref
+    character(:), allocatable :: s
+    if (ref%is_set) then
+       s = ref%set
+    else
+       s = itoa(ref%id)
+    end if
+    if (allocated(ref%scope)) s = ref%scope//'.'//s
+  end function ref_text
+
+  !> Local node (elem false) or element indices a reference names in substructure isub.
+  subroutine resolve_items(st, model, isub, ref, elem, loc, items, ok)
+    type(deck_state_t), intent(inout) :: st
+    type(model_t), intent(in) :: model
+    integer, intent(in) :: isub
+    type(ref_t), intent(in) :: ref
+    logical, intent(in) :: elem
+    type(source_loc_t), intent(in) :: loc
+    integer(ip), allocatable, intent(out) :: items(:)
+    logical, intent(out) :: ok
+    integer :: k
+    integer(ip) :: i
+    character(:), allocatable :: what
+    what = merge('element', 'node   ', elem)
+    what = trim(what)
+    ok = .false.
+    associate (sub => model%subs(isub))
+      if (ref%is_set) then
+         k = 0
+         if (elem) then
+            do i = 1, size(sub%elsets)
+               if (sub%elsets(i)%name == ref%set) k = int(i)
+            end do
+            if (k > 0) items = sub%elsets(k)%items
+         else
+            do i = 1, size(sub%nsets)
+               if (sub%nsets(i)%name == ref%set) k = int(i)
+            end do
+            if (k > 0) items = sub%nsets(k)%items
+         end if
+         if (k == 0) then
+            call report_loc(st, loc, 'unknown '//what//' set '//ref%set//' in substructure '//sub%name)
+            return
+         end if
+      else
+         if (elem) then
+            i = find_elem(sub, ref%id)
+         else
+            i = find_node(sub, ref%id)
+         end if
+         if (i == 0) then
+            call report_loc(st, loc, 'undefined '//what//' '//itoa(ref%id)//' in substructure '//sub%name)
+            return
+         end if
+         items = [i]
+      end if
+    end associate
+    ok = .true.
+  end subroutine resolve_items
+
+  ! ================================================================== contacts
+
+  subroutine build_contacts(st, model)
+    type(deck_state_t), intent(inout) :: st
+    type(model_t), intent(inout) :: model
+    type(link_list_t) :: links
+    type(pair_map_t) :: map
+    integer(ip), allocatable :: ms(:), ss(:)
+    integer :: k, l, cur, il, nself
+    integer(ip) :: p, np, mnode, snode
+    logical :: ok1, ok2, added
+    logical, allocatable :: usable(:)
+
+    allocate (model%contacts(st%ncontact), usable(st%ncontact))
+    do k = 1, st%ncontact
+       associate (cb => st%contacts(k), c => model%contacts(k))
+         c%name = cb%name
+         c%loc = cb%loc
+         c%master_sub = sub_index(model, cb%master)
+         c%slave_sub = sub_index(model, cb%slave)
+         if (c%master_sub == 0) call report_loc(st, cb%loc, 'unknown substructure '//cb%master//' in MASTER=')
+         if (c%slave_sub == 0) call report_loc(st, cb%loc, 'unknown substructure '//cb%slave//' in SLAVE=')
+         c%orientation = 0
+         if (allocated(cb%orientation)) then
+            if (len(cb%orientation) > 0) then
+               do l = 1, size(model%orientations)
+                  if (model%orientations(l)%name == cb%orientation) c%orientation = l
+               end do
+               if (c%orientation == 0) call report_loc(st, cb%loc, 'unknown orientation '//cb%orientation)
+            end if
+         end if
+         usable(k) = c%master_sub > 0 .and. c%slave_sub > 0
+       end associate
+    end do
+
+    allocate (links%a(INITIAL_CAPACITY))
+    cur = 0
+    do l = 1, st%ncline
+       if (st%aborted) return
+       associate (cl => st%clines(l))
+         if (.not. usable(cl%contact)) cycle
+         if (cl%contact /= cur) then
+            cur = cl%contact
+            call map_reset(map)
+         end if
+         associate (c => model%contacts(cur))
+           call resolve_items(st, model, c%master_sub, cl%master, .false., cl%loc, ms, ok1)
+           call resolve_items(st, model, c%slave_sub, cl%slave, .false., cl%loc, ss, ok2)
+           if (.not. (ok1 .and. ok2)) cycle
+           if (size(ms) /= size(ss)) then
+              if (.not. cl%master%is_set .or. .not. cl%slave%is_set) then
+                 call report_loc(st, cl%loc, 'node '//ref_text(pick_node(cl%master, cl%slave))// &
+                      ' is paired with node set '//pick_set_name(cl%master, cl%slave)//' of '// &
+                      itoa(max(size(ms), size(ss)))//' nodes (a single node pairs only with a one-node set)')
+              else
+                 call report_loc(st, cl%loc, 'node sets '//cl%master%set//' ('//itoa(size(ms))// &
+                      ' nodes) and '//cl%slave%set//' ('//itoa(size(ss))//' nodes) differ in size')
+              end if
+              cycle
+           end if
+           np = size(ms, kind=ip)
+           nself = 0
+           do p = 1, np
+              mnode = ms(p)
+              snode = ss(p)
+              if (c%master_sub == c%slave_sub .and. mnode == snode) then
+                 nself = nself + 1
+                 if (nself == 1) call report_loc(st, cl%loc, 'node '//itoa(model%subs(c%master_sub)%node_id(mnode))// &
+                      ' of substructure '//model%subs(c%master_sub)%name//' is in contact with itself')
+                 cycle
+              end if
+              call map_get_or_add(map, int(mnode, i8)*PAIR_SHIFT + snode, links%n + 1, il, added)
+              if (added) then
+                 call push_link(links)
+                 links%a(il)%contact = cur
+                 links%a(il)%master_node = mnode
+                 links%a(il)%slave_node = snode
+                 links%a(il)%loc = cl%loc
+              end if
+              call merge_dofs(links%a(il), cl%first, cl%last, cl%state, cl%g)
+           end do
+         end associate
+       end associate
+    end do
+    model%links = links%a(1:links%n)
+  end subroutine build_contacts
+
+  pure function pick_node(a, b) result(r)
+    type(ref_t), intent(in) :: a, b
+    type(ref_t) :: r
+    if (.not. a%is_set) then
+       r = a
+    else
+       r = b
+    end if
+  end function pick_node
+
+  pure function pick_set_name(a, b) result(s)
+    type(ref_t), intent(in) :: a, b
+    character(:), allocatable :: s
+    if (a%is_set) then
+       s = a%set
+    else
+       s = b%set
+    end if
+  end function pick_set_name
+
+  !> Add one contact line's DOFs to a link: finite g add up, RIGID wins, 0 adds nothing.
+  pure subroutine merge_dofs(link, first, last, state, g)
+    type(link_t), intent(inout) :: link
+    integer, intent(in) :: first, last, state
+    real(wp), intent(in) :: g
+    integer :: d
+    do d = first, last
+       select case (state)
+       case (LINK_RIGID)
+          link%state(d) = LINK_RIGID
+          link%g(d) = 0.0_wp
+       case (LINK_FINITE)
+          if (link%state(d) /= LINK_RIGID) then
+             link%state(d) = LINK_FINITE
+             link%g(d) = link%g(d) + g
+          end if
+       end select
+    end do
+  end subroutine merge_dofs
+
+  subroutine push_link(list)
+    type(link_list_t), intent(inout) :: list
+    type(link_t), allocatable :: tmp(:)
+    if (list%n == size(list%a)) then
+       allocate (tmp(2*list%n))
+       tmp(1:list%n) = list%a(1:list%n)
+       call move_alloc(tmp, list%a)
+    end if
+    list%n = list%n + 1
+    list%a(list%n) = link_t()
+  end subroutine push_link
+
+  ! ------------------------------------------------------------------ pair map
+
+  subroutine map_reset(map)
+    type(pair_map_t), intent(inout) :: map
+    if (allocated(map%keys)) deallocate (map%keys, map%vals)
+    allocate (map%keys(0:INITIAL_HASH - 1), map%vals(0:INITIAL_HASH - 1))
+    map%keys = EMPTY_KEY
+    map%n = 0
+  end subroutine map_reset
+
+  pure integer function slot_of(key, mask) result(h)
+    integer(i8), intent(in) :: key
+    integer, intent(in) :: mask
+    integer(i8) :: m, s, x
+    m = key/PAIR_SHIFT
+    s = mod(key, PAIR_SHIFT)
+    x = ieor(m*HASH_MUL1, s*HASH_MUL2 + ishft(m, 7))
+    x = ieor(x, ishft(x, -29))
+    h = int(iand(x, int(mask, i8)))
+  end function slot_of
+
+  !> Value stored for `key`; when absent, `newval` is stored and `added` is true.
+  subroutine map_get_or_add(map, key, newval, val, added)
+    type(pair_map_t), intent(inout) :: map
+    integer(i8), intent(in) :: key
+    integer, intent(in) :: newval
+    integer, intent(out) :: val
+    logical, intent(out) :: added
+    integer :: h, mask
+    if (2*(map%n + 1) > size(map%keys)) call grow
+    mask = size(map%keys) - 1
+    h = slot_of(key, mask)
+    do
+       if (map%keys(h) == key) then
+          val = map%vals(h)
+          added = .false.
+          return
+       end if
+       if (map%keys(h) == EMPTY_KEY) exit
+       h = iand(h + 1, mask)
+    end do
+    map%keys(h) = key
+    map%vals(h) = newval
+    map%n = map%n + 1
+    val = newval
+    added = .true.
+  contains
+    subroutine grow
+      integer(i8), allocatable :: ok(:)
+      integer, allocatable :: ov(:)
+      integer :: i, nmask, j
+      call move_alloc(map%keys, ok)
+      call move_alloc(map%vals, ov)
+      allocate (map%keys(0:2*size(ok) - 1), map%vals(0:2*size(ok) - 1))
+      map%keys = EMPTY_KEY
+      nmask = size(map%keys) - 1
+      do i = 0, size(ok) - 1
+         if (ok(i) == EMPTY_KEY) cycle
+         j = slot_of(ok(i), nmask)
+         do while (map%keys(j) /= EMPTY_KEY)
+            j = iand(j + 1, nmask)
+         end do
+         map%keys(j) = ok(i)
+         map%vals(j) = ov(i)
+      end do
+    end subroutine grow
+  end subroutine map_get_or_add
+
+  ! ================================================================== supports and loads
+
+  subroutine build_supports(st, model)
+    type(deck_state_t), intent(inout) :: st
+    type(model_t), intent(inout) :: model
+    type(support_t), allocatable :: list(:), tmp(:)
+    integer(ip), allocatable :: nodes(:)
+    integer :: k, n, isub, d
+    integer(ip) :: i
+    logical :: ok
+    allocate (list(INITIAL_CAPACITY))
+    n = 0
+    do k = 1, st%nsupport
+       if (st%aborted) return
+       associate (sb => st%supports(k))
+         isub = resolve_sub(st, model, sb%ref, sb%loc, 'node')
+         if (isub == 0) cycle
+         call resolve_items(st, model, isub, sb%ref, .false., sb%loc, nodes, ok)
+         if (.not. ok) cycle
+         do i = 1, size(nodes, kind=ip)
+            do d = 1, NDOF_NODE
+               if (.not. sb%dofs(d)) cycle
+               if (n == size(list)) then
+                  allocate (tmp(2*n))
+                  tmp(1:n) = list(1:n)
+                  call move_alloc(tmp, list)
+               end if
+               n = n + 1
+               list(n)%sub = isub
+               list(n)%node = nodes(i)
+               list(n)%dof = d
+               list(n)%state = sb%state
+               list(n)%g = sb%g
+               list(n)%value = sb%value
+               list(n)%loc = sb%loc
+            end do
+         end do
+       end associate
+    end do
+    model%supports = list(1:n)
+  end subroutine build_supports
+
+  subroutine build_steps(st, model)
+    type(deck_state_t), intent(inout) :: st
+    type(model_t), intent(inout) :: model
+    integer :: s, j
+    type(cload_t), allocatable :: cl(:)
+    type(dload_t), allocatable :: dl(:)
+    allocate (model%steps(st%nstep))
+    do s = 1, st%nstep
+       model%steps(s)%name = st%steps(s)%name
+       model%steps(s)%loc = st%steps(s)%loc
+       do j = 1, s - 1
+          if (st%steps(j)%name == st%steps(s)%name) then
+             call report_loc(st, st%steps(s)%loc, 'duplicate step name '//st%steps(s)%name// &
+                  ' (first at '//where(st, st%steps(j)%loc)//')')
+             exit
+          end if
+       end do
+       call build_cloads(st, model, st%steps(s)%cloads(1:st%steps(s)%ncload), cl)
+       call move_alloc(cl, model%steps(s)%cloads)
+       if (st%aborted) return
+       call build_dloads(st, model, st%steps(s)%dloads(1:st%steps(s)%ndload), dl)
+       call move_alloc(dl, model%steps(s)%dloads)
+       if (st%aborted) return
+    end do
+  end subroutine build_steps
+
+  subroutine build_cloads(st, model, loads, out)
+    type(deck_state_t), intent(inout) :: st
+    type(model_t), intent(in) :: model
+    type(load_b_t), intent(in) :: loads(:)
+    type(cload_t), allocatable, intent(out) :: out(:)
+    type(cload_t), allocatable :: tmp(:)
+    integer(ip), allocatable :: nodes(:)
+    integer :: k, n, isub
+    integer(ip) :: i
+    logical :: ok
+    allocate (out(INITIAL_CAPACITY))
+    n = 0
+    do k = 1, size(loads)
+       isub = resolve_sub(st, model, loads(k)%ref, loads(k)%loc, 'node')
+       if (isub == 0) cycle
+       call resolve_items(st, model, isub, loads(k)%ref, .false., loads(k)%loc, nodes, ok)
+       if (.not. ok) cycle
+       do i = 1, size(nodes, kind=ip)
+          if (n == size(out)) then
+             allocate (tmp(2*n))
+             tmp(1:n) = out(1:n)
+             call move_alloc(tmp, out)
+          end if
+          n = n + 1
+          out(n)%sub = isub
+          out(n)%node = nodes(i)
+          out(n)%dof = loads(k)%dof
+          out(n)%value = loads(k)%value
+          out(n)%loc = loads(k)%loc
+       end do
+    end do
+    tmp = out(1:n)
+    call move_alloc(tmp, out)
+  end subroutine build_cloads
+
+  subroutine build_dloads(st, model, loads, out)
+    type(deck_state_t), intent(inout) :: st
+    type(model_t), intent(in) :: model
+    type(load_b_t), intent(in) :: loads(:)
+    type(dload_t), allocatable, intent(out) :: out(:)
+    type(dload_t), allocatable :: tmp(:)
+    integer(ip), allocatable :: elems(:)
+    integer :: k, n, isub, nbad, et
+    integer(ip) :: i, first_bad
+    logical :: ok
+    allocate (out(INITIAL_CAPACITY))
+    n = 0
+    do k = 1, size(loads)
+       isub = resolve_sub(st, model, loads(k)%ref, loads(k)%loc, 'element')
+       if (isub == 0) cycle
+       call resolve_items(st, model, isub, loads(k)%ref, .true., loads(k)%loc, elems, ok)
+       if (.not. ok) cycle
+       nbad = 0
+       first_bad = 0
+       do i = 1, size(elems, kind=ip)
+          et = model%subs(isub)%elem_type(elems(i))
+          if (.not. dload_fits(loads(k)%kind, et)) then
+             nbad = nbad + 1
+             if (nbad == 1) first_bad = elems(i)
+             cycle
+          end if
+          if (n == size(out)) then
+             allocate (tmp(2*n))
+             tmp(1:n) = out(1:n)
+             call move_alloc(tmp, out)
+          end if
+          n = n + 1
+          out(n)%sub = isub
+          out(n)%elem = elems(i)
+          out(n)%kind = loads(k)%kind
+          out(n)%value = loads(k)%value
+          out(n)%loc = loads(k)%loc
+       end do
+       if (nbad > 0) then
+          associate (sub => model%subs(isub))
+            call report_loc(st, loads(k)%loc, '*DLOAD '//trim(DLOAD_NAMES(loads(k)%kind))// &
+                 ' does not apply to element '//itoa(sub%elem_id(first_bad))//' of type '// &
+                 trim(ELEMENT_TYPE_NAMES(sub%elem_type(first_bad)))//' ('// &
+                 dload_targets(loads(k)%kind)//')'//more_text(nbad - 1))
+          end associate
+       end if
+    end do
+    tmp = out(1:n)
+    call move_alloc(tmp, out)
+  end subroutine build_dloads
+
+  !> Whether a distributed load kind applies to an element type.
+  pure logical function dload_fits(kind, etype)
+    integer, intent(in) :: kind, etype
+    select case (kind)
+    case (DLOAD_PX, DLOAD_PY)
+       dload_fits = etype == ET_B23 .or. etype == ET_B33
+    case (DLOAD_PZ)
+       dload_fits = etype == ET_B33
+    case (DLOAD_P)
+       dload_fits = etype == ET_S3 .or. etype == ET_S4
+    case default
+       dload_fits = .false.
+    end select
+  end function dload_fits
+
+  pure function dload_targets(kind) result(s)
+    integer, intent(in) :: kind
+    character(:), allocatable :: s
+    select case (kind)
+    case (DLOAD_PX, DLOAD_PY)
+       s = 'PX and PY apply to beams B23 and B33'
+    case (DLOAD_PZ)
+       s = 'PZ applies to 3D beams B33'
+    case default
+       s = 'P applies to shells S3 and S4'
+    end select
+  end function dload_targets
+
+  ! ================================================================== helpers
+
+  !> ' (and N more)' text for counts of repeated problems.
+  pure function more_text(n, suffix) result(s)
+    integer, intent(in) :: n
+    character(*), intent(in), optional :: suffix
+    character(:), allocatable :: s
+    if (n <= 0) then
+       s = ''
+    else
+       s = ' (and '//itoa(n)//' more'
+       if (present(suffix)) s = s//suffix
+       s = s//')'
+    end if
+  end function more_text
+
+  !> "file:line" of a location.
+  function where(st, loc) result(s)
+    type(deck_state_t), intent(in) :: st
+    type(source_loc_t), intent(in) :: loc
+    character(:), allocatable :: s
+    if (loc%file >= 1 .and. loc%file <= st%nfile) then
+       s = st%files(loc%file)%s//':'//itoa(loc%line)
+    else
+       s = '<input>:'//itoa(loc%line)
+    end if
+  end function where
+
+  !> order = permutation sorting ids ascending (stable merge sort; O(n) when already sorted).
+  subroutine argsort_ids(ids, order)
+    integer(ip), intent(in) :: ids(:)
+    integer(ip), intent(out) :: order(:)
+    integer(ip), allocatable :: tmp(:)
+    integer(ip) :: n, width, lo, mid, hi, i, j, k
+    logical :: sorted
+    n = size(ids, kind=ip)
+    do i = 1, n
+       order(i) = i
+    end do
+    sorted = .true.
+    do i = 2, n
+       if (ids(i) < ids(i - 1)) then
+          sorted = .false.
+          exit
+       end if
+    end do
+    if (sorted) return
+    allocate (tmp(n))
+    width = 1
+    do while (width < n)
+       lo = 1
+       do while (lo <= n)
+          mid = min(lo + width - 1, n)
+          hi = min(lo + 2*width - 1, n)
+          i = lo
+          j = mid + 1
+          k = lo
+          do while (i <= mid .and. j <= hi)
+             if (ids(order(j)) < ids(order(i))) then
+                tmp(k) = order(j)
+                j = j + 1
+             else
+                tmp(k) = order(i)
+                i = i + 1
+             end if
+             k = k + 1
+          end do
+          do while (i <= mid)
+             tmp(k) = order(i)
+             i = i + 1
+             k = k + 1
+          end do
+          do while (j <= hi)
+             tmp(k) = order(j)
+             j = j + 1
+             k = k + 1
+          end do
+          lo = hi + 1
+       end do
+       order = tmp
+       if (width > n/2) exit
+       width = 2*width
+    end do
+  end subroutine argsort_ids
+end module superjoin_deck_validate

@@ -1,0 +1,242 @@
+!> Two-node Euler-Bernoulli beams with axial stiffness: B23 (XY plane, DOFs
+!> 1,2,6 per node, bending about Z with I in sec%iz) and B33 (DOFs 1..6 per node,
+!> St. Venant torsion GJ/L with G = E/(2(1+nu))). Bending with displacement
+!> along local y uses Iz, along local z uses Iy. Cubic Hermite bending, linear
+!> axial and twist fields: nodal results are exact for end loads and, with the
+!> consistent loads of beam_load_local, for uniform distributed loads.
+!>
+!> Local DOFs per node: B23 (u, v, θz); B33 (u, v, w, θx, θy, θz), node-major.
+module superjoin_elements_beam
+  use superjoin_kinds, only: wp
+  use superjoin_error, only: error_t, fatal_error, EXIT_DECK
+  use superjoin_model_types, only: section_t, material_t, ET_B23, ET_B33
+  use superjoin_elements_frame, only: beam_frame, require_positive
+  implicit none (type, external)
+  private
+
+  integer, parameter :: NNODE = 2
+  integer, parameter :: ND_B23 = 3, ND_B33 = 6
+
+  !> Properties of one beam element, gathered and checked once.
+  type :: beam_props_t
+     real(wp) :: r(3, 3) = 0.0_wp   !! rows: local axes
+     real(wp) :: length = 0.0_wp
+     real(wp) :: ea = 0.0_wp, eiy = 0.0_wp, eiz = 0.0_wp, gj = 0.0_wp
+  end type beam_props_t
+
+  public :: beam_stiffness, beam_end_forces, beam_load
+
+contains
+
+  !> DOFs per node of a beam type.
+  pure integer function beam_ndof(etype)
+    integer, intent(in) :: etype
+    if (etype == ET_B23) then
+       beam_ndof = ND_B23
+    else
+       beam_ndof = ND_B33
+    end if
+  end function beam_ndof
+
+  !> Frame and rigidities of a beam, with the data checks.
+  pure subroutine beam_setup(etype, x, sec, mat, p, error)
+    integer, intent(in) :: etype
+    real(wp), intent(in) :: x(:, :)
+    type(section_t), intent(in) :: sec
+    type(material_t), intent(in) :: mat
+    type(beam_props_t), intent(out) :: p
+    type(error_t), allocatable, intent(out) :: error
+    real(wp) :: g
+
+    call beam_frame(etype, x, sec, p%r, p%length, error)
+    if (allocated(error)) return
+    call require_positive(sec%area, 'cross-section area A', error)
+    if (etype == ET_B23) then
+       call require_positive(sec%iz, 'moment of inertia I', error)
+    else
+       call require_positive(sec%iy, 'moment of inertia Iy', error)
+       call require_positive(sec%iz, 'moment of inertia Iz', error)
+       call require_positive(sec%j, 'torsion constant J', error)
+    end if
+    call require_positive(mat%e, 'Young''s modulus E', error)
+    if (allocated(error)) return
+    p%ea = mat%e*sec%area
+    p%eiz = mat%e*sec%iz
+    if (etype == ET_B33) then
+       if (.not. (mat%nu > -1.0_wp)) then
+          call fatal_error(error, EXIT_DECK, 'Poisson''s ratio nu must be greater than -1 for a beam')
+          return
+       end if
+       g = mat%e/(2*(1 + mat%nu))
+       p%eiy = mat%e*sec%iy
+       p%gj = g*sec%j
+    end if
+  end subroutine beam_setup
+
+  !> Local stiffness (node-major local DOFs) of a beam.
+  pure function local_stiffness(etype, p) result(k)
+    integer, intent(in) :: etype
+    type(beam_props_t), intent(in) :: p
+    real(wp), allocatable :: k(:, :)
+    real(wp) :: l, a, bz(4, 4), by(4, 4)
+    integer :: iv(4), iw(4)
+
+    l = p%length
+    bz = hermite_block(p%eiz, l)
+    if (etype == ET_B23) then
+       allocate (k(2*ND_B23, 2*ND_B23), source=0.0_wp)
+       a = p%ea/l
+       k(1, 1) = a; k(4, 4) = a; k(1, 4) = -a; k(4, 1) = -a
+       iv = [2, 3, 5, 6]                ! v1, θz1, v2, θz2
+       k(iv, iv) = bz
+       return
+    end if
+
+    allocate (k(2*ND_B33, 2*ND_B33), source=0.0_wp)
+    a = p%ea/l
+    k(1, 1) = a; k(7, 7) = a; k(1, 7) = -a; k(7, 1) = -a
+    a = p%gj/l
+    k(4, 4) = a; k(10, 10) = a; k(4, 10) = -a; k(10, 4) = -a
+    ! Bending in the x-y plane: v and θz = dv/dx, rigidity EIz.
+    iv = [2, 6, 8, 12]
+    k(iv, iv) = bz
+    ! Bending in the x-z plane: w and θy = -dw/dx, rigidity EIy; the block in
+    ! (w1, -θy1, w2, -θy2) is the same Hermite block.
+    by = hermite_block(p%eiy, l)
+    by(:, [2, 4]) = -by(:, [2, 4])
+    by([2, 4], :) = -by([2, 4], :)
+    iw = [3, 5, 9, 11]
+    k(iw, iw) = by
+  end function local_stiffness
+
+  !> Euler-Bernoulli bending stiffness in (v1, θ1, v2, θ2) with θ = dv/dx.
+  pure function hermite_block(ei, l) result(b)
+    real(wp), intent(in) :: ei, l
+    real(wp) :: b(4, 4)
+    real(wp) :: c1, c2, c3
+    c3 = 12*ei/l**3
+    c2 = 6*ei/l**2
+    c1 = 2*ei/l
+    b(:, 1) = [c3, c2, -c3, c2]
+    b(:, 2) = [c2, 2*c1, -c2, c1]
+    b(:, 3) = [-c3, -c2, c3, -c2]
+    b(:, 4) = [c2, c1, -c2, 2*c1]
+  end function hermite_block
+
+  !> Transformation u_local = t u_global (node-major DOFs) of a beam.
+  pure function transformation(etype, r) result(t)
+    integer, intent(in) :: etype
+    real(wp), intent(in) :: r(3, 3)
+    real(wp), allocatable :: t(:, :)
+    integer :: nb, b
+    if (etype == ET_B23) then
+       ! Per node (ux, uy, rz) -> (u, v, θz); the 2D frame has r(3,:) = Z,
+       ! so the block is r itself.
+       allocate (t(2*ND_B23, 2*ND_B23), source=0.0_wp)
+       t(1:3, 1:3) = r
+       t(4:6, 4:6) = r
+    else
+       allocate (t(2*ND_B33, 2*ND_B33), source=0.0_wp)
+       nb = 2*ND_B33/3
+       do b = 0, nb - 1
+          t(3*b + 1:3*b + 3, 3*b + 1:3*b + 3) = r
+       end do
+    end if
+  end function transformation
+
+  !> Consistent nodal loads (local axes, node-major local DOFs) of a uniform
+  !> load per unit length q (local axes), with the fixed-end moments.
+  pure function beam_load_local(etype, length, q) result(fq)
+    integer, intent(in) :: etype
+    real(wp), intent(in) :: length, q(3)
+    real(wp), allocatable :: fq(:)
+    real(wp) :: h, m
+    h = length/2
+    m = length**2/12
+    if (etype == ET_B23) then
+       fq = [q(1)*h, q(2)*h, q(2)*m, q(1)*h, q(2)*h, -q(2)*m]
+    else
+       fq = [q(1)*h, q(2)*h, q(3)*h, 0.0_wp, -q(3)*m, q(2)*m, &
+             q(1)*h, q(2)*h, q(3)*h, 0.0_wp, q(3)*m, -q(2)*m]
+    end if
+  end function beam_load_local
+
+  !> Global stiffness of a B23/B33 beam, node-major (exactly symmetric).
+  pure subroutine beam_stiffness(etype, x, sec, mat, ke, error)
+    integer, intent(in) :: etype
+    real(wp), intent(in) :: x(:, :)
+    type(section_t), intent(in) :: sec
+    type(material_t), intent(in) :: mat
+    real(wp), allocatable, intent(out) :: ke(:, :)
+    type(error_t), allocatable, intent(out) :: error
+    type(beam_props_t) :: p
+    real(wp), allocatable :: t(:, :)
+
+    call beam_setup(etype, x, sec, mat, p, error)
+    if (allocated(error)) return
+    t = transformation(etype, p%r)
+    ke = matmul(transpose(t), matmul(local_stiffness(etype, p), t))
+    ke = 0.5_wp*(ke + transpose(ke))
+  end subroutine beam_stiffness
+
+  !> End forces of a beam in local axes: f = k_local u_local - f_eq_local,
+  !> f(1:6, end) = n, vy, vz, t, my, mz (B23: n, vy, mz; the rest 0).
+  pure subroutine beam_end_forces(etype, x, sec, mat, ue, q_local, f, error)
+    integer, intent(in) :: etype
+    real(wp), intent(in) :: x(:, :)
+    type(section_t), intent(in) :: sec
+    type(material_t), intent(in) :: mat
+    real(wp), intent(in) :: ue(:)
+    real(wp), intent(in) :: q_local(3)
+    real(wp), intent(out) :: f(6, 2)
+    type(error_t), allocatable, intent(out) :: error
+    type(beam_props_t) :: p
+    real(wp), allocatable :: fl(:)
+    real(wp) :: ql(3)
+    integer :: nd
+
+    f = 0.0_wp
+    nd = beam_ndof(etype)
+    if (size(ue) /= NNODE*nd) then
+       call fatal_error(error, EXIT_DECK, 'wrong number of element DOF values')
+       return
+    end if
+    call beam_setup(etype, x, sec, mat, p, error)
+    if (allocated(error)) return
+    ql = q_local
+    if (etype == ET_B23) ql(3) = 0.0_wp
+    fl = matmul(local_stiffness(etype, p), matmul(transformation(etype, p%r), ue)) &
+         - beam_load_local(etype, p%length, ql)
+    if (etype == ET_B23) then
+       f([1, 2, 6], 1) = fl(1:3)
+       f([1, 2, 6], 2) = fl(4:6)
+    else
+       f(:, 1) = fl(1:6)
+       f(:, 2) = fl(7:12)
+    end if
+  end subroutine beam_end_forces
+
+  !> Consistent nodal loads (global axes, node-major) of a uniform load per
+  !> unit length w (global axes) on a beam, and the load in local axes.
+  !> B23 rejects a load along global Z.
+  pure subroutine beam_load(etype, x, sec, w, fe, q_local, error)
+    integer, intent(in) :: etype
+    real(wp), intent(in) :: x(:, :)
+    type(section_t), intent(in) :: sec
+    real(wp), intent(in) :: w(3)
+    real(wp), allocatable, intent(out) :: fe(:)
+    real(wp), intent(out) :: q_local(3)
+    type(error_t), allocatable, intent(out) :: error
+    real(wp) :: r(3, 3), length
+
+    q_local = 0.0_wp
+    call beam_frame(etype, x, sec, r, length, error)
+    if (allocated(error)) return
+    if (etype == ET_B23 .and. w(3) /= 0.0_wp) then
+       call fatal_error(error, EXIT_DECK, 'load along global Z on a 2D element')
+       return
+    end if
+    q_local = matmul(r, w)
+    fe = matmul(transpose(transformation(etype, r)), beam_load_local(etype, length, q_local))
+  end subroutine beam_load
+end module superjoin_elements_beam

@@ -1,0 +1,141 @@
+!> Element library facade: DOFs per node, stiffness in global axes, end forces
+!> and distributed loads of every element type (ET_* in superjoin_model_types).
+!>
+!> Ordering of element vectors and matrices: node-major; the DOFs of one node
+!> in the order of element_node_dofs. Errors come back as error_t (code
+!> EXIT_DECK) with a message without file:line; the caller prefixes it.
+module superjoin_elements
+  use superjoin_kinds, only: wp
+  use superjoin_error, only: error_t, fatal_error, EXIT_DECK
+  use superjoin_model_types, only: section_t, material_t, ET_T2D2, ET_T3D2, ET_B23, ET_B33, &
+       ET_CPS3, ET_CPS4, ET_S3, ET_S4, NUM_ELEMENT_TYPES, ELEMENT_TYPE_NAMES
+  use superjoin_elements_frame, only: beam_frame
+  use superjoin_elements_truss, only: truss_stiffness, truss_end_forces, truss_distributed_load
+  use superjoin_elements_beam, only: beam_stiffness, beam_end_forces, beam_load
+  implicit none (type, external)
+  private
+
+  public :: element_node_dofs, element_stiffness, element_end_forces, beam_distributed_load
+  !> beam_frame(etype, x, sec, r, length, error): local frame of a truss or beam
+  !> (rows of r = local x, y, z axes); see superjoin_elements_frame.
+  public :: beam_frame
+
+contains
+
+  !> DOF numbers (1..6: ux, uy, uz, rx, ry, rz) carried by each node of an
+  !> element type: T2D2 [1,2]; T3D2 [1,2,3]; B23 [1,2,6]; B33 [1..6];
+  !> CPS3/CPS4 [1,2]; S3/S4 [1..6]; an unknown type gives an empty array.
+  pure function element_node_dofs(etype) result(dofs)
+    integer, intent(in) :: etype
+    integer, allocatable :: dofs(:)
+    integer :: i
+    select case (etype)
+    case (ET_T2D2, ET_CPS3, ET_CPS4)
+       dofs = [1, 2]
+    case (ET_T3D2)
+       dofs = [1, 2, 3]
+    case (ET_B23)
+       dofs = [1, 2, 6]
+    case (ET_B33, ET_S3, ET_S4)
+       dofs = [(i, i=1, 6)]
+    case default
+       allocate (dofs(0))
+    end select
+  end function element_node_dofs
+
+  !> Element stiffness in global axes, node-major ordering (node 1 DOFs in
+  !> element_node_dofs order, then node 2 ...). x(3, nnode) are the node
+  !> coordinates. Errors: zero-length element, orientation vector parallel to
+  !> beam axis, nonpositive A, I, J or E, 2D element out of the XY plane, and
+  !> "element type X is not implemented yet" for CPS3, CPS4, S3, S4.
+  pure subroutine element_stiffness(etype, x, sec, mat, ke, error)
+    integer, intent(in) :: etype
+    real(wp), intent(in) :: x(:, :)
+    type(section_t), intent(in) :: sec
+    type(material_t), intent(in) :: mat
+    real(wp), allocatable, intent(out) :: ke(:, :)
+    type(error_t), allocatable, intent(out) :: error
+    select case (etype)
+    case (ET_T2D2, ET_T3D2)
+       call truss_stiffness(etype, x, sec, mat, ke, error)
+    case (ET_B23, ET_B33)
+       call beam_stiffness(etype, x, sec, mat, ke, error)
+    case default
+       call unsupported(etype, error)
+    end select
+  end subroutine element_stiffness
+
+  !> Forces and moments the nodes exert on the element, in its local axes,
+  !> per end: f(1:6, end) = n, vy, vz, t, my, mz, computed as
+  !> f_local = k_local u_local - f_eq_local (f_eq: consistent nodal loads of the
+  !> distributed load q_local, given per unit length in local axes). A bar in
+  !> tension has n < 0 at end 1 and n > 0 at end 2. ue holds the element DOF
+  !> values in global axes, same ordering as element_stiffness. Components a
+  !> type lacks are 0 (trusses: only n; B23: n, vy, mz). Plane and shell
+  !> elements have no end forces: f = 0 and no error.
+  pure subroutine element_end_forces(etype, x, sec, mat, ue, q_local, f, error)
+    integer, intent(in) :: etype
+    real(wp), intent(in) :: x(:, :)
+    type(section_t), intent(in) :: sec
+    type(material_t), intent(in) :: mat
+    real(wp), intent(in) :: ue(:)
+    real(wp), intent(in) :: q_local(3)
+    real(wp), intent(out) :: f(6, 2)
+    type(error_t), allocatable, intent(out) :: error
+    f = 0.0_wp
+    select case (etype)
+    case (ET_T2D2, ET_T3D2)
+       call truss_end_forces(etype, x, sec, mat, ue, q_local, f, error)
+    case (ET_B23, ET_B33)
+       call beam_end_forces(etype, x, sec, mat, ue, q_local, f, error)
+    case (ET_CPS3, ET_CPS4, ET_S3, ET_S4)
+       continue
+    case default
+       call unsupported(etype, error)
+    end select
+  end subroutine element_end_forces
+
+  !> Consistent nodal load vector fe (global axes, same ordering as
+  !> element_stiffness) of a uniform load per unit length wglobal(3) given in
+  !> global axes, with the fixed-end moments for beams (trusses: wL/2 on the
+  !> translations of each node); q_local returns the load in the element's
+  !> local axes, for element_end_forces. A load along global Z on T2D2/B23 is
+  !> an error; other element types return an error as well.
+  pure subroutine beam_distributed_load(etype, x, sec, wglobal, fe, q_local, error)
+    integer, intent(in) :: etype
+    real(wp), intent(in) :: x(:, :)
+    type(section_t), intent(in) :: sec
+    real(wp), intent(in) :: wglobal(3)
+    real(wp), allocatable, intent(out) :: fe(:)
+    real(wp), intent(out) :: q_local(3)
+    type(error_t), allocatable, intent(out) :: error
+    q_local = 0.0_wp
+    select case (etype)
+    case (ET_T2D2, ET_T3D2)
+       call truss_distributed_load(etype, x, sec, wglobal, fe, q_local, error)
+    case (ET_B23, ET_B33)
+       call beam_load(etype, x, sec, wglobal, fe, q_local, error)
+    case default
+       if (etype >= 1 .and. etype <= NUM_ELEMENT_TYPES) then
+          call fatal_error(error, EXIT_DECK, 'load per unit length on element type '// &
+               trim(ELEMENT_TYPE_NAMES(etype))//' (only trusses and beams take PX, PY, PZ)')
+       else
+          call unsupported(etype, error)
+       end if
+    end select
+  end subroutine beam_distributed_load
+
+  !> Error for an element type without an implementation.
+  pure subroutine unsupported(etype, error)
+    integer, intent(in) :: etype
+    type(error_t), allocatable, intent(out) :: error
+    character(len=12) :: buf
+    if (etype >= 1 .and. etype <= NUM_ELEMENT_TYPES) then
+       call fatal_error(error, EXIT_DECK, 'element type '//trim(ELEMENT_TYPE_NAMES(etype))// &
+            ' is not implemented yet')
+    else
+       write (buf, '(i0)') etype
+       call fatal_error(error, EXIT_DECK, 'unknown element type '//trim(buf))
+    end if
+  end subroutine unsupported
+end module superjoin_elements

@@ -1,0 +1,254 @@
+!> The structural model read from a deck: substructures, materials, sections,
+!> sets, contact elements, supports, load steps and controls.
+!>
+!> Everything is resolved to indices by the deck reader: a node is named by its
+!> substructure index and its local index inside that substructure (1..nnode, in
+!> order of definition); user ids are kept for output only.
+module superjoin_model_types
+  use superjoin_kinds, only: wp, ip
+  implicit none (type, external)
+  private
+
+  !> Element types.
+  integer, parameter, public :: ET_T2D2 = 1, ET_T3D2 = 2, ET_B23 = 3, ET_B33 = 4, &
+                                ET_CPS3 = 5, ET_CPS4 = 6, ET_S3 = 7, ET_S4 = 8
+  integer, parameter, public :: NUM_ELEMENT_TYPES = 8
+  character(len=4), parameter, public :: ELEMENT_TYPE_NAMES(NUM_ELEMENT_TYPES) = &
+       ['T2D2', 'T3D2', 'B23 ', 'B33 ', 'CPS3', 'CPS4', 'S3  ', 'S4  ']
+  integer, parameter, public :: ELEMENT_NODE_COUNT(NUM_ELEMENT_TYPES) = [2, 2, 2, 2, 3, 4, 3, 4]
+  integer, parameter, public :: MAX_ELEMENT_NODES = 4
+
+  !> DOFs per node (Abaqus numbering 1 ux, 2 uy, 3 uz, 4 rx, 5 ry, 6 rz).
+  integer, parameter, public :: NDOF_NODE = 6
+
+  !> Section kinds.
+  integer, parameter, public :: SEC_SOLID = 1, SEC_BEAM = 2, SEC_SHELL = 3
+
+  !> State of one DOF of a contact element or support.
+  integer, parameter, public :: LINK_NONE = 0, LINK_FINITE = 1, LINK_RIGID = 2
+
+  !> Distributed load kinds.
+  integer, parameter, public :: DLOAD_PX = 1, DLOAD_PY = 2, DLOAD_PZ = 3, DLOAD_P = 4
+  character(len=2), parameter, public :: DLOAD_NAMES(4) = ['PX', 'PY', 'PZ', 'P ']
+
+  !> Formulation and rigid-link controls.
+  integer, parameter, public :: FORM_TRANSFORM = 1, FORM_PENALTY = 2
+  integer, parameter, public :: RIGID_ELIMINATE = 1, RIGID_LARGE = 2
+  real(wp), parameter, public :: DEFAULT_LARGE = 1.0e12_wp
+
+  !> A character string of any length (for arrays of strings).
+  type, public :: string_t
+     character(:), allocatable :: s
+  end type string_t
+
+  !> Where something was written: file index (into model%files) and line.
+  type, public :: source_loc_t
+     integer :: file = 0
+     integer :: line = 0
+  end type source_loc_t
+
+  !> Isotropic linear elastic material.
+  type, public :: material_t
+     character(:), allocatable :: name     !! upper case
+     real(wp) :: e = 0.0_wp
+     real(wp) :: nu = 0.0_wp
+     logical :: has_elastic = .false.
+     type(source_loc_t) :: loc
+  end type material_t
+
+  !> A section card assigned to an element set.
+  type, public :: section_t
+     integer :: kind = 0                   !! SEC_SOLID, SEC_BEAM or SEC_SHELL
+     integer :: material = 0               !! index into model%materials
+     integer :: elset = 0                  !! index into the substructure's elsets
+     real(wp) :: area = 0.0_wp             !! trusses and beams
+     real(wp) :: iy = 0.0_wp               !! 3D beams (2D beams: I stored in iz)
+     real(wp) :: iz = 0.0_wp
+     real(wp) :: j = 0.0_wp                !! torsion constant
+     real(wp) :: thickness = 0.0_wp        !! plane and shell elements
+     real(wp) :: v(3) = [0.0_wp, 0.0_wp, 1.0_wp]  !! beam orientation vector
+     logical :: has_v = .false.            !! v given on the card
+     type(source_loc_t) :: loc
+  end type section_t
+
+  !> A named node or element set: local indices in order of definition.
+  type, public :: index_set_t
+     character(:), allocatable :: name     !! upper case
+     integer(ip), allocatable :: items(:)
+  end type index_set_t
+
+  !> One substructure: an ordinary finite element model with its own numbering.
+  type, public :: substructure_t
+     character(:), allocatable :: name     !! upper case; MAIN for the implicit one
+     integer(ip) :: nnode = 0
+     integer(ip), allocatable :: node_id(:)         !! user id of local node i
+     real(wp), allocatable :: x(:, :)               !! (3, nnode) coordinates
+     integer(ip) :: nelem = 0
+     integer(ip), allocatable :: elem_id(:)         !! user id of local element e
+     integer, allocatable :: elem_type(:)           !! ET_* per element
+     integer(ip), allocatable :: elem_nodes(:, :)   !! (MAX_ELEMENT_NODES, nelem) local node indices
+     integer, allocatable :: elem_section(:)        !! index into sections (0: none)
+     type(source_loc_t), allocatable :: elem_loc(:) !! where each element was defined
+     type(index_set_t), allocatable :: nsets(:)
+     type(index_set_t), allocatable :: elsets(:)
+     type(section_t), allocatable :: sections(:)
+     integer(ip), allocatable :: node_order(:)      !! local indices sorted by user id
+     integer(ip), allocatable :: elem_order(:)      !! local indices sorted by user id
+     type(source_loc_t) :: loc
+  end type substructure_t
+
+  !> A frame for oriented contacts: rows of q are the local axes.
+  type, public :: orientation_t
+     character(:), allocatable :: name
+     real(wp) :: q(3, 3) = 0.0_wp
+     type(source_loc_t) :: loc
+  end type orientation_t
+
+  !> One *CONTACT card.
+  type, public :: contact_t
+     character(:), allocatable :: name     !! upper case
+     integer :: master_sub = 0             !! substructure indices
+     integer :: slave_sub = 0
+     integer :: orientation = 0            !! index into model%orientations, 0 = global axes
+     type(source_loc_t) :: loc
+  end type contact_t
+
+  !> One contact element: a node pair of a *CONTACT card with all its DOFs merged
+  !> (several lines for the same pair add up: finite g add, RIGID wins).
+  !> DOFs are in the contact frame when the card has an orientation.
+  type, public :: link_t
+     integer :: contact = 0                !! index into model%contacts
+     integer(ip) :: master_node = 0        !! local node index in contact%master_sub
+     integer(ip) :: slave_node = 0         !! local node index in contact%slave_sub
+     integer :: state(NDOF_NODE) = LINK_NONE
+     real(wp) :: g(NDOF_NODE) = 0.0_wp
+     type(source_loc_t) :: loc             !! first line that defined it
+  end type link_t
+
+  !> One supported DOF of one node (a contact element to the ground).
+  type, public :: support_t
+     integer :: sub = 0
+     integer(ip) :: node = 0
+     integer :: dof = 0
+     integer :: state = LINK_RIGID         !! LINK_RIGID or LINK_FINITE
+     real(wp) :: g = 0.0_wp                !! stiffness when finite
+     real(wp) :: value = 0.0_wp            !! prescribed displacement when rigid
+     type(source_loc_t) :: loc
+  end type support_t
+
+  !> A concentrated load on one DOF of one node.
+  type, public :: cload_t
+     integer :: sub = 0
+     integer(ip) :: node = 0
+     integer :: dof = 0
+     real(wp) :: value = 0.0_wp
+     type(source_loc_t) :: loc
+  end type cload_t
+
+  !> A distributed load on one element.
+  type, public :: dload_t
+     integer :: sub = 0
+     integer(ip) :: elem = 0
+     integer :: kind = 0                   !! DLOAD_*
+     real(wp) :: value = 0.0_wp
+     type(source_loc_t) :: loc
+  end type dload_t
+
+  !> A load case.
+  type, public :: step_t
+     character(:), allocatable :: name     !! as written (upper-cased)
+     type(cload_t), allocatable :: cloads(:)
+     type(dload_t), allocatable :: dloads(:)
+     type(source_loc_t) :: loc
+  end type step_t
+
+  !> Analysis controls from *CONTROLS.
+  type, public :: controls_t
+     integer :: formulation = FORM_TRANSFORM
+     integer :: rigid = RIGID_ELIMINATE
+     real(wp) :: large = DEFAULT_LARGE
+  end type controls_t
+
+  !> The whole model.
+  type, public :: model_t
+     type(string_t), allocatable :: files(:)        !! deck and included files, as given
+     type(string_t), allocatable :: heading(:)
+     type(material_t), allocatable :: materials(:)
+     type(substructure_t), allocatable :: subs(:)
+     type(orientation_t), allocatable :: orientations(:)
+     type(contact_t), allocatable :: contacts(:)
+     type(link_t), allocatable :: links(:)
+     type(support_t), allocatable :: supports(:)
+     type(step_t), allocatable :: steps(:)
+     type(controls_t) :: controls
+  end type model_t
+
+  public :: find_node, find_elem, node_label, loc_text
+
+contains
+
+  !> Local index of the node with user id `id` in `sub`, or 0.
+  pure function find_node(sub, id) result(k)
+    type(substructure_t), intent(in) :: sub
+    integer(ip), intent(in) :: id
+    integer(ip) :: k
+    k = search_sorted(sub%node_id, sub%node_order, id)
+  end function find_node
+
+  !> Local index of the element with user id `id` in `sub`, or 0.
+  pure function find_elem(sub, id) result(k)
+    type(substructure_t), intent(in) :: sub
+    integer(ip), intent(in) :: id
+    integer(ip) :: k
+    k = search_sorted(sub%elem_id, sub%elem_order, id)
+  end function find_elem
+
+  pure function search_sorted(ids, order, id) result(k)
+    integer(ip), intent(in) :: ids(:), order(:)
+    integer(ip), intent(in) :: id
+    integer(ip) :: k, lo, hi, mid
+    k = 0
+    lo = 1
+    hi = size(order, kind=ip)
+    do while (lo <= hi)
+       mid = lo + (hi - lo)/2
+       if (ids(order(mid)) == id) then
+          k = order(mid)
+          return
+       else if (ids(order(mid)) < id) then
+          lo = mid + 1
+       else
+          hi = mid - 1
+       end if
+    end do
+  end function search_sorted
+
+  !> "SUB.id" label of a node for messages (plain id in MAIN).
+  pure function node_label(model, isub, inode) result(label)
+    type(model_t), intent(in) :: model
+    integer, intent(in) :: isub
+    integer(ip), intent(in) :: inode
+    character(:), allocatable :: label
+    character(len=12) :: buf
+    write (buf, '(i0)') model%subs(isub)%node_id(inode)
+    if (model%subs(isub)%name == 'MAIN') then
+       label = trim(buf)
+    else
+       label = model%subs(isub)%name//'.'//trim(buf)
+    end if
+  end function node_label
+
+  !> "file:line" of a source location.
+  pure function loc_text(model, loc) result(text)
+    type(model_t), intent(in) :: model
+    type(source_loc_t), intent(in) :: loc
+    character(:), allocatable :: text
+    character(len=12) :: buf
+    write (buf, '(i0)') loc%line
+    if (loc%file >= 1 .and. loc%file <= size(model%files)) then
+       text = model%files(loc%file)%s//':'//trim(buf)
+    else
+       text = '<input>:'//trim(buf)
+    end if
+  end function loc_text
+end module superjoin_model_types

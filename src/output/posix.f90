@@ -1,0 +1,162 @@
+!> Tiny bindings to the C library: renaming and removing files, and fast,
+!> correctly rounded number scanning (strtod/strtoll) over a character buffer.
+module superjoin_output_posix
+  use, intrinsic :: iso_c_binding, only: c_int, c_char, c_null_char, c_ptr, c_loc, &
+       c_double, c_long_long, c_intptr_t, c_associated
+  use superjoin_kinds, only: wp, i8
+  use superjoin_error, only: error_t, fatal_error, EXIT_IO
+  implicit none (type, external)
+  private
+
+  public :: rename_file, remove_file, make_directory, scan_int, scan_real
+
+  integer(c_int), parameter :: DECIMAL = 10            !! base for strtoll
+  integer(c_int), parameter :: DIR_MODE = int(o'777', c_int)  !! mkdir mode (before umask)
+
+  interface
+     function c_rename(from, to) bind(c, name='rename') result(status)
+       import :: c_int, c_char
+       character(kind=c_char), intent(in) :: from(*), to(*)
+       integer(c_int) :: status
+     end function c_rename
+
+     function c_remove(path) bind(c, name='remove') result(status)
+       import :: c_int, c_char
+       character(kind=c_char), intent(in) :: path(*)
+       integer(c_int) :: status
+     end function c_remove
+
+     function c_mkdir(path, mode) bind(c, name='mkdir') result(status)
+       import :: c_int, c_char
+       character(kind=c_char), intent(in) :: path(*)
+       integer(c_int), value :: mode
+       integer(c_int) :: status
+     end function c_mkdir
+
+     function c_opendir(path) bind(c, name='opendir') result(dir)
+       import :: c_char, c_ptr
+       character(kind=c_char), intent(in) :: path(*)
+       type(c_ptr) :: dir
+     end function c_opendir
+
+     function c_closedir(dir) bind(c, name='closedir') result(status)
+       import :: c_ptr, c_int
+       type(c_ptr), value :: dir
+       integer(c_int) :: status
+     end function c_closedir
+
+     function c_strtod(str, endptr) bind(c, name='strtod') result(v)
+       import :: c_char, c_ptr, c_double
+       character(kind=c_char), intent(in) :: str(*)
+       type(c_ptr), intent(out) :: endptr
+       real(c_double) :: v
+     end function c_strtod
+
+     function c_strtoll(str, endptr, base) bind(c, name='strtoll') result(v)
+       import :: c_char, c_ptr, c_int, c_long_long
+       character(kind=c_char), intent(in) :: str(*)
+       type(c_ptr), intent(out) :: endptr
+       integer(c_int), value :: base
+       integer(c_long_long) :: v
+     end function c_strtoll
+  end interface
+
+contains
+
+  !> Rename (atomically on POSIX file systems) the file from to the path to,
+  !> replacing it. Failure: EXIT_IO naming both paths.
+  subroutine rename_file(from, to, error)
+    character(*), intent(in) :: from, to
+    type(error_t), allocatable, intent(out) :: error
+    if (c_rename(from//c_null_char, to//c_null_char) /= 0) &
+         call fatal_error(error, EXIT_IO, "cannot rename '"//from//"' to '"//to//"'")
+  end subroutine rename_file
+
+  !> Remove the file path; stat (optional) is 0 on success, non-zero otherwise.
+  subroutine remove_file(path, stat)
+    character(*), intent(in) :: path
+    integer, intent(out), optional :: stat
+    integer(c_int) :: status
+    status = c_remove(path//c_null_char)
+    if (present(stat)) stat = int(status)
+  end subroutine remove_file
+
+  !> Create the directory path and its missing parents (like mkdir -p); an
+  !> existing directory is fine. Failure: EXIT_IO naming the path.
+  subroutine make_directory(path, error)
+    character(*), intent(in) :: path
+    type(error_t), allocatable, intent(out) :: error
+    integer :: i
+    if (len_trim(path) == 0) return
+    if (is_directory(path)) return
+    do i = 2, len_trim(path)
+       if (path(i:i) == '/' .and. path(i - 1:i - 1) /= '/') then
+          if (.not. is_directory(path(1:i - 1))) then
+             if (c_mkdir(path(1:i - 1)//c_null_char, DIR_MODE) /= 0) then
+                if (.not. is_directory(path(1:i - 1))) then
+                   call fatal_error(error, EXIT_IO, "cannot create directory '"//path(1:i - 1)//"'")
+                   return
+                end if
+             end if
+          end if
+       end if
+    end do
+    if (c_mkdir(trim(path)//c_null_char, DIR_MODE) /= 0) then
+       if (.not. is_directory(trim(path))) &
+            call fatal_error(error, EXIT_IO, "cannot create directory '"//trim(path)//"'")
+    end if
+  end subroutine make_directory
+
+  !> Whether path names an existing directory that can be opened.
+  function is_directory(path) result(yes)
+    character(*), intent(in) :: path
+    logical :: yes
+    type(c_ptr) :: dir
+    integer(c_int) :: status
+    dir = c_opendir(path//c_null_char)
+    yes = c_associated(dir)
+    if (yes) status = c_closedir(dir)
+  end function is_directory
+
+  !> Read a decimal integer at buf(pos:) (leading white space skipped, as
+  !> strtoll); pos moves past it. ok is false when no digits were found.
+  !> buf must contain a NUL character after the text.
+  subroutine scan_int(buf, pos, value, ok)
+    character(len=1), intent(in), target, contiguous :: buf(:)
+    integer(i8), intent(inout) :: pos
+    integer(i8), intent(out) :: value
+    logical, intent(out) :: ok
+    type(c_ptr) :: endptr
+    integer(c_intptr_t) :: start, finish
+    value = 0
+    ok = .false.
+    if (pos < 1 .or. pos > size(buf, kind=i8)) return
+    value = int(c_strtoll(buf(pos:), endptr, DECIMAL), i8)
+    if (.not. c_associated(endptr)) return
+    start = transfer(c_loc(buf(pos)), start)
+    finish = transfer(endptr, finish)
+    ok = finish > start
+    pos = pos + int(finish - start, i8)
+  end subroutine scan_int
+
+  !> Read a real number at buf(pos:) (strtod: correctly rounded, accepts
+  !> 1.5, -2e-3, inf, nan, ...); pos moves past it. ok is false when no
+  !> number was found. buf must contain a NUL character after the text.
+  subroutine scan_real(buf, pos, value, ok)
+    character(len=1), intent(in), target, contiguous :: buf(:)
+    integer(i8), intent(inout) :: pos
+    real(wp), intent(out) :: value
+    logical, intent(out) :: ok
+    type(c_ptr) :: endptr
+    integer(c_intptr_t) :: start, finish
+    value = 0.0_wp
+    ok = .false.
+    if (pos < 1 .or. pos > size(buf, kind=i8)) return
+    value = real(c_strtod(buf(pos:), endptr), wp)
+    if (.not. c_associated(endptr)) return
+    start = transfer(c_loc(buf(pos)), start)
+    finish = transfer(endptr, finish)
+    ok = finish > start
+    pos = pos + int(finish - start, i8)
+  end subroutine scan_real
+end module superjoin_output_posix

@@ -1,0 +1,340 @@
+!> Sparse supernodal Cholesky (CHOLMOD) behind the linear_solver_t interface.
+!>
+!> CHOLMOD is driven through the C shim src/solvers/cholmod_shim.c, which
+!> owns the cholmod_common and the factor; this module only holds an opaque
+!> handle. The solver is not copyable (a copy would share the handle): use it
+!> in place, and call release() (or let it be finalized) when done.
+module superjoin_solvers_cholmod
+  use, intrinsic :: iso_c_binding, only: c_ptr, c_null_ptr, c_associated, c_int, &
+       c_int64_t, c_double, c_char, c_null_char
+  use superjoin_kinds, only: wp, i8
+  use superjoin_error, only: error_t, fatal_error, EXIT_SINGULAR, EXIT_IO
+  use superjoin_solvers_sparse, only: sparse_sym_t
+  use superjoin_solvers_solver, only: linear_solver_t
+  implicit none (type, external)
+  private
+
+  integer(c_int), parameter :: SJ_OK = 0           !! shim status: success
+  integer(c_int), parameter :: SJ_NOT_POSDEF = 1   !! shim status: not positive definite
+  integer(c_int), parameter :: CHOLMOD_OUT_OF_MEMORY = -2
+  integer(c_int), parameter :: CHOLMOD_TOO_LARGE = -3
+  integer, parameter :: NAME_LEN = 64              !! buffer for the ordering name
+  integer, parameter :: MESSAGE_LEN = 256          !! buffer for shim messages
+  real(wp), parameter :: MBYTE = 1048576.0_wp      !! bytes per MiB
+
+  !> CHOLMOD supernodal LL^T.
+  type, extends(linear_solver_t), public :: cholmod_solver_t
+     private
+     type(c_ptr) :: handle = c_null_ptr
+     integer(i8) :: n = -1          !! order of the analyzed matrix (-1: none)
+     logical :: factored = .false.
+     real(wp) :: fl = 0.0_wp        !! flop count of the factorization
+     real(wp) :: peak = 0.0_wp      !! CHOLMOD's peak memory, bytes
+     integer(i8) :: stored = 0      !! entries of L as stored (with amalgamation zeros)
+   contains
+     procedure :: analyze => cholmod_analyze
+     procedure :: factorize => cholmod_factorize
+     procedure :: solve => cholmod_solve
+     procedure :: pivots => cholmod_pivots
+     procedure :: release => cholmod_release
+     procedure :: flops => cholmod_flops
+     procedure :: peak_mbytes => cholmod_peak_mbytes
+     procedure :: stored_nnz => cholmod_stored_nnz
+     final :: cholmod_finalize
+  end type cholmod_solver_t
+
+  interface
+     function sj_cholmod_create() bind(c, name='sj_cholmod_create') result(h)
+       import :: c_ptr
+       type(c_ptr) :: h
+     end function sj_cholmod_create
+
+     subroutine sj_cholmod_free(h) bind(c, name='sj_cholmod_free')
+       import :: c_ptr
+       type(c_ptr), value :: h
+     end subroutine sj_cholmod_free
+
+     function sj_cholmod_analyze(h, n, colptr, rowind) bind(c, name='sj_cholmod_analyze') result(status)
+       import :: c_ptr, c_int, c_int64_t
+       type(c_ptr), value :: h
+       integer(c_int64_t), value :: n
+       integer(c_int64_t), intent(in) :: colptr(*), rowind(*)
+       integer(c_int) :: status
+     end function sj_cholmod_analyze
+
+     function sj_cholmod_factorize(h, n, colptr, rowind, val, failed) &
+          bind(c, name='sj_cholmod_factorize') result(status)
+       import :: c_ptr, c_int, c_int64_t, c_double
+       type(c_ptr), value :: h
+       integer(c_int64_t), value :: n
+       integer(c_int64_t), intent(in) :: colptr(*), rowind(*)
+       real(c_double), intent(in) :: val(*)
+       integer(c_int64_t), intent(out) :: failed
+       integer(c_int) :: status
+     end function sj_cholmod_factorize
+
+     function sj_cholmod_solve(h, nrhs, b, x) bind(c, name='sj_cholmod_solve') result(status)
+       import :: c_ptr, c_int, c_int64_t, c_double
+       type(c_ptr), value :: h
+       integer(c_int64_t), value :: nrhs
+       real(c_double), intent(in) :: b(*)
+       real(c_double), intent(out) :: x(*)
+       integer(c_int) :: status
+     end function sj_cholmod_solve
+
+     function sj_cholmod_pivots(h, d) bind(c, name='sj_cholmod_pivots') result(status)
+       import :: c_ptr, c_int, c_double
+       type(c_ptr), value :: h
+       real(c_double), intent(out) :: d(*)
+       integer(c_int) :: status
+     end function sj_cholmod_pivots
+
+     function sj_cholmod_info(h, factor_nnz, factor_bytes, flops, peak_bytes, lnz) &
+          bind(c, name='sj_cholmod_info') result(status)
+       import :: c_ptr, c_int, c_int64_t, c_double
+       type(c_ptr), value :: h
+       integer(c_int64_t), intent(out) :: factor_nnz
+       real(c_double), intent(out) :: factor_bytes, flops, peak_bytes, lnz
+       integer(c_int) :: status
+     end function sj_cholmod_info
+
+     function sj_cholmod_ordering(h, buf, len) bind(c, name='sj_cholmod_ordering') result(status)
+       import :: c_ptr, c_int, c_int64_t, c_char
+       type(c_ptr), value :: h
+       character(kind=c_char), intent(out) :: buf(*)
+       integer(c_int64_t), value :: len
+       integer(c_int) :: status
+     end function sj_cholmod_ordering
+
+     function sj_cholmod_message(h, buf, len) bind(c, name='sj_cholmod_message') result(status)
+       import :: c_ptr, c_int, c_int64_t, c_char
+       type(c_ptr), value :: h
+       character(kind=c_char), intent(out) :: buf(*)
+       integer(c_int64_t), value :: len
+       integer(c_int) :: status
+     end function sj_cholmod_message
+  end interface
+
+contains
+
+  !> Symbolic analysis: fill-reducing ordering (AMD or METIS, the best kept)
+  !> and supernodal structure of L from the pattern of a.
+  subroutine cholmod_analyze(self, a, error)
+    class(cholmod_solver_t), intent(inout) :: self
+    type(sparse_sym_t), intent(in) :: a
+    type(error_t), allocatable, intent(out) :: error
+    integer(c_int) :: status
+    integer(i8) :: one(1)
+
+    self%factored = .false.
+    self%n = -1
+    self%info%name = 'CHOLMOD supernodal LL^T'
+    self%info%ordering = 'none'
+    self%info%factor_nnz = 0
+    self%info%factor_mbytes = 0.0_wp
+    self%info%failed_column = 0
+    if (.not. c_associated(self%handle)) self%handle = sj_cholmod_create()
+    if (.not. c_associated(self%handle)) then
+       call fatal_error(error, EXIT_IO, 'CHOLMOD: cannot start (out of memory)')
+       return
+    end if
+    if (a%n < 0 .or. .not. allocated(a%colptr)) then
+       call fatal_error(error, EXIT_IO, 'CHOLMOD: invalid matrix')
+       return
+    end if
+    one = 1
+    if (a%nnz() > 0) then
+       status = sj_cholmod_analyze(self%handle, a%n, a%colptr, a%rowind)
+    else
+       status = sj_cholmod_analyze(self%handle, a%n, a%colptr, one)
+    end if
+    if (status /= SJ_OK) then
+       call status_error(self, status, 'analyze', error)
+       return
+    end if
+    self%n = a%n
+    call update_info(self)
+  end subroutine cholmod_analyze
+
+  !> Numeric factorization with the values of a (same pattern as analyzed).
+  !> Not positive definite: error%code = EXIT_SINGULAR, info%failed_column set.
+  subroutine cholmod_factorize(self, a, error)
+    class(cholmod_solver_t), intent(inout) :: self
+    type(sparse_sym_t), intent(in) :: a
+    type(error_t), allocatable, intent(out) :: error
+    integer(c_int) :: status
+    integer(c_int64_t) :: failed
+    integer(i8) :: one(1)
+    real(wp) :: zero(1)
+    character(len=24) :: buf
+
+    self%factored = .false.
+    self%info%failed_column = 0
+    if (.not. c_associated(self%handle) .or. self%n < 0) then
+       call fatal_error(error, EXIT_IO, 'CHOLMOD: factorize called before analyze')
+       return
+    end if
+    if (a%n /= self%n) then
+       call fatal_error(error, EXIT_IO, 'CHOLMOD: matrix order differs from the analyzed one')
+       return
+    end if
+    one = 1
+    zero = 0.0_wp
+    if (a%nnz() > 0) then
+       status = sj_cholmod_factorize(self%handle, a%n, a%colptr, a%rowind, a%val, failed)
+    else
+       status = sj_cholmod_factorize(self%handle, a%n, a%colptr, one, zero, failed)
+    end if
+    call update_info(self)
+    if (status == SJ_NOT_POSDEF) then
+       self%info%failed_column = failed
+       write (buf, '(i0)') failed
+       call fatal_error(error, EXIT_SINGULAR, 'matrix is not positive definite at column '//trim(buf))
+       return
+    end if
+    if (status /= SJ_OK) then
+       call status_error(self, status, 'factorize', error)
+       return
+    end if
+    self%factored = .true.
+  end subroutine cholmod_factorize
+
+  !> x = A^-1 b for every column of b (shape (n, nrhs)).
+  subroutine cholmod_solve(self, b, x, error)
+    class(cholmod_solver_t), intent(inout) :: self
+    real(wp), intent(in) :: b(:, :)
+    real(wp), intent(out) :: x(:, :)
+    type(error_t), allocatable, intent(out) :: error
+    integer(c_int) :: status
+
+    if (.not. self%factored) then
+       call fatal_error(error, EXIT_IO, 'CHOLMOD: solve called without a valid factorization')
+       return
+    end if
+    if (size(b, 1, i8) /= self%n .or. size(x, 1, i8) /= self%n .or. size(b, 2) /= size(x, 2)) then
+       call fatal_error(error, EXIT_IO, 'CHOLMOD: right-hand side and solution shapes do not match the matrix')
+       return
+    end if
+    if (self%n == 0 .or. size(b, 2) == 0) return
+    status = sj_cholmod_solve(self%handle, int(size(b, 2), c_int64_t), b, x)
+    if (status /= SJ_OK) call status_error(self, status, 'solve', error)
+  end subroutine cholmod_solve
+
+  !> d(j) = L_jj^2 of original column j (0 for columns a failed factorization
+  !> did not reach, including the failing one).
+  subroutine cholmod_pivots(self, d)
+    class(cholmod_solver_t), intent(inout) :: self
+    real(wp), intent(out) :: d(:)
+    integer(c_int) :: status
+    real(wp), allocatable :: tmp(:)
+
+    d = 0.0_wp
+    if (.not. c_associated(self%handle) .or. self%n <= 0) return
+    if (size(d, kind=i8) < self%n) return
+    allocate (tmp(self%n))
+    status = sj_cholmod_pivots(self%handle, tmp)
+    if (status == SJ_OK) d(1:self%n) = tmp
+  end subroutine cholmod_pivots
+
+  !> Free the factor, the pattern copy and CHOLMOD's workspace.
+  subroutine cholmod_release(self)
+    class(cholmod_solver_t), intent(inout) :: self
+    if (c_associated(self%handle)) call sj_cholmod_free(self%handle)
+    self%handle = c_null_ptr
+    self%n = -1
+    self%factored = .false.
+  end subroutine cholmod_release
+
+  !> Flop count of the LL^T factorization (CHOLMOD's estimate from the analysis).
+  pure function cholmod_flops(self) result(fl)
+    class(cholmod_solver_t), intent(in) :: self
+    real(wp) :: fl
+    fl = self%fl
+  end function cholmod_flops
+
+  !> CHOLMOD's peak memory use (MiB) since the solver was created.
+  pure function cholmod_peak_mbytes(self) result(mb)
+    class(cholmod_solver_t), intent(in) :: self
+    real(wp) :: mb
+    mb = self%peak/MBYTE
+  end function cholmod_peak_mbytes
+
+  !> Entries of L as stored by the supernodal factor, including the explicit
+  !> zeros of relaxed supernode amalgamation (info%factor_nnz is the
+  !> fundamental count nnz(L) of the ordering).
+  pure function cholmod_stored_nnz(self) result(nz)
+    class(cholmod_solver_t), intent(in) :: self
+    integer(i8) :: nz
+    nz = self%stored
+  end function cholmod_stored_nnz
+
+  !> Finalizer: free the C side if the caller forgot release().
+  subroutine cholmod_finalize(self)
+    type(cholmod_solver_t), intent(inout) :: self
+    if (c_associated(self%handle)) call sj_cholmod_free(self%handle)
+    self%handle = c_null_ptr
+  end subroutine cholmod_finalize
+
+  ! ---- helpers
+
+  !> Refresh info (ordering, factor size) and statistics from the shim.
+  subroutine update_info(self)
+    class(cholmod_solver_t), intent(inout) :: self
+    integer(c_int) :: status
+    integer(c_int64_t) :: fnnz
+    real(c_double) :: fbytes, fl, peak, lnz
+    character(kind=c_char) :: buf(NAME_LEN)
+
+    status = sj_cholmod_info(self%handle, fnnz, fbytes, fl, peak, lnz)
+    if (status == SJ_OK) then
+       self%info%factor_nnz = int(lnz, i8)
+       self%stored = fnnz
+       self%info%factor_mbytes = fbytes/MBYTE
+       self%fl = fl
+       self%peak = peak
+    end if
+    status = sj_cholmod_ordering(self%handle, buf, int(NAME_LEN, c_int64_t))
+    if (status == SJ_OK) self%info%ordering = from_c(buf)
+  end subroutine update_info
+
+  !> Error for a failed shim call: message from the shim, code by status.
+  subroutine status_error(self, status, phase, error)
+    class(cholmod_solver_t), intent(in) :: self
+    integer(c_int), intent(in) :: status
+    character(*), intent(in) :: phase
+    type(error_t), allocatable, intent(out) :: error
+    character(kind=c_char) :: buf(MESSAGE_LEN)
+    character(:), allocatable :: msg
+    character(len=12) :: code
+
+    msg = ''
+    if (sj_cholmod_message(self%handle, buf, int(MESSAGE_LEN, c_int64_t)) == SJ_OK) msg = from_c(buf)
+    if (status == CHOLMOD_OUT_OF_MEMORY) then
+       if (len(msg) == 0) msg = 'out of memory'
+    else if (status == CHOLMOD_TOO_LARGE) then
+       if (len(msg) == 0) msg = 'problem too large'
+    else if (len(msg) == 0) then
+       write (code, '(i0)') status
+       msg = 'status '//trim(code)
+    end if
+    call fatal_error(error, EXIT_IO, 'CHOLMOD '//phase//' failed: '//msg)
+  end subroutine status_error
+
+  !> Fortran string from a NUL-terminated C buffer.
+  pure function from_c(buf) result(s)
+    character(kind=c_char), intent(in) :: buf(:)
+    character(:), allocatable :: s
+    integer :: i, n
+    n = size(buf)
+    do i = 1, size(buf)
+       if (buf(i) == c_null_char) then
+          n = i - 1
+          exit
+       end if
+    end do
+    allocate (character(len=n) :: s)
+    do i = 1, n
+       s(i:i) = buf(i)
+    end do
+  end function from_c
+end module superjoin_solvers_cholmod

@@ -1,0 +1,452 @@
+/*
+ * cholmod_shim.c -- a thin C layer between superjoin (Fortran) and CHOLMOD.
+ *
+ * The cholmod_common struct is large and changes between SuiteSparse
+ * versions, so it never crosses the language boundary: Fortran only holds an
+ * opaque handle (void *) created by sj_cholmod_create and released by
+ * sj_cholmod_free.
+ *
+ * Matrices come from Fortran as the upper triangle of a symmetric matrix in
+ * 1-based compressed sparse column form with 64-bit indices (rows sorted,
+ * diagonal present).  sj_cholmod_analyze keeps ONE 0-based copy of the index
+ * arrays in the handle; the numerical values are never copied (the
+ * cholmod_sparse header points at the caller's array during factorize).
+ *
+ * Factorization: supernodal LL^T (Common->supernodal = CHOLMOD_SUPERNODAL,
+ * final_ll = TRUE), CHOLMOD's default ordering strategy (nmethods = 0: AMD,
+ * then METIS when AMD's fill is high; the best is kept).
+ *
+ * Every function returns a status: SJ_OK (0), SJ_NOT_POSDEF (1), or a
+ * negative code (CHOLMOD's own negative codes -2..-5, or SJ_E_* below).
+ * Nothing is printed and nothing aborts: CHOLMOD's print level is 0 and its
+ * error handler only records the message (sj_cholmod_message).
+ */
+#include <stddef.h>
+#include <stdint.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "cholmod.h"
+
+#define SJ_OK 0
+#define SJ_NOT_POSDEF 1
+#define SJ_E_HANDLE (-101)   /* null or unusable handle */
+#define SJ_E_ARGUMENT (-102) /* bad argument (size, index out of range) */
+#define SJ_E_PATTERN (-103)  /* factorize: pattern differs from analyze */
+#define SJ_E_STATE (-104)    /* wrong call order (no analysis, no factor) */
+#define SJ_E_NOMEM (-105)    /* malloc failed in the shim itself */
+
+#define SJ_MESSAGE_LEN 256
+
+_Static_assert(sizeof(SuiteSparse_long) == sizeof(int64_t),
+               "SuiteSparse_long must be 64-bit");
+
+typedef struct {
+    cholmod_common common;
+    cholmod_factor *L;          /* symbolic after analyze, numeric after factorize */
+    cholmod_sparse A;           /* header around Ap/Ai (owned) and the caller's values */
+    SuiteSparse_long n;
+    SuiteSparse_long nnz;
+    SuiteSparse_long *Ap;       /* 0-based copy, n+1 */
+    SuiteSparse_long *Ai;       /* 0-based copy, nnz */
+    int factored;               /* 1 when L holds a complete numeric factor */
+    SuiteSparse_long minor;     /* permuted column where factorization stopped (n: none) */
+    char message[SJ_MESSAGE_LEN];
+} sj_cholmod_t;
+
+/* CHOLMOD's error handler has no user pointer: record the last message per
+ * thread, and copy it into the handle after each CHOLMOD call. */
+static _Thread_local char sj_last_message[SJ_MESSAGE_LEN];
+
+static void sj_error_handler(int status, const char *file, int line,
+                             const char *message)
+{
+    (void)file;
+    (void)line;
+    if (message == NULL) message = "";
+    if (status < 0) {
+        strncpy(sj_last_message, message, SJ_MESSAGE_LEN - 1);
+        sj_last_message[SJ_MESSAGE_LEN - 1] = '\0';
+    } else if (sj_last_message[0] == '\0') {
+        /* a warning: keep it only when no error is recorded */
+        strncpy(sj_last_message, message, SJ_MESSAGE_LEN - 1);
+        sj_last_message[SJ_MESSAGE_LEN - 1] = '\0';
+    }
+}
+
+static void sj_set_message(sj_cholmod_t *h, const char *message)
+{
+    strncpy(h->message, message, SJ_MESSAGE_LEN - 1);
+    h->message[SJ_MESSAGE_LEN - 1] = '\0';
+}
+
+/* Start a CHOLMOD call: clear the recorded message. */
+static void sj_begin(sj_cholmod_t *h)
+{
+    sj_last_message[0] = '\0';
+    h->message[0] = '\0';
+}
+
+/* Finish a CHOLMOD call: map Common->status to a shim status. */
+static int sj_end(sj_cholmod_t *h, int ok)
+{
+    int status = h->common.status;
+    if (sj_last_message[0] != '\0') sj_set_message(h, sj_last_message);
+    if (status < CHOLMOD_OK) return status;
+    if (!ok) {
+        if (h->message[0] == '\0') sj_set_message(h, "CHOLMOD call failed");
+        return CHOLMOD_INVALID;
+    }
+    return status == CHOLMOD_NOT_POSDEF ? SJ_NOT_POSDEF : SJ_OK;
+}
+
+static void sj_drop_factor(sj_cholmod_t *h)
+{
+    if (h->L != NULL) cholmod_l_free_factor(&h->L, &h->common);
+    h->L = NULL;
+    h->factored = 0;
+    h->minor = h->n;
+}
+
+static void sj_drop_pattern(sj_cholmod_t *h)
+{
+    free(h->Ap);
+    free(h->Ai);
+    h->Ap = NULL;
+    h->Ai = NULL;
+    h->n = 0;
+    h->nnz = 0;
+}
+
+/* Create a handle; NULL if out of memory or CHOLMOD cannot start. */
+void *sj_cholmod_create(void)
+{
+    sj_cholmod_t *h = calloc(1, sizeof(sj_cholmod_t));
+    if (h == NULL) return NULL;
+    if (!cholmod_l_start(&h->common)) {
+        free(h);
+        return NULL;
+    }
+    h->common.print = 0;
+    h->common.error_handler = sj_error_handler;
+    h->common.supernodal = CHOLMOD_SUPERNODAL;
+    h->common.final_ll = 1;
+    h->common.final_asis = 0;      /* honour final_ll */
+    h->common.final_super = 1;     /* keep the supernodal layout */
+    h->common.final_pack = 1;
+    h->common.final_monotonic = 1;
+    h->common.nmethods = 0;        /* default strategy: AMD, METIS if AMD fills badly */
+    h->L = NULL;
+    h->minor = 0;
+    return h;
+}
+
+/* Release everything held by the handle (NULL is accepted). */
+void sj_cholmod_free(void *handle)
+{
+    sj_cholmod_t *h = handle;
+    if (h == NULL) return;
+    sj_drop_factor(h);
+    sj_drop_pattern(h);
+    cholmod_l_finish(&h->common);
+    free(h);
+}
+
+/* Symbolic analysis of the upper triangle given 1-based (colptr: n+1,
+ * rowind: colptr[n]-1).  Keeps a 0-based copy of the pattern. */
+int sj_cholmod_analyze(void *handle, int64_t n, const int64_t *colptr,
+                       const int64_t *rowind)
+{
+    sj_cholmod_t *h = handle;
+    SuiteSparse_long j, k, nnz;
+    int ok;
+    if (h == NULL) return SJ_E_HANDLE;
+    sj_begin(h);
+    sj_drop_factor(h);
+    sj_drop_pattern(h);
+    if (n < 0 || colptr == NULL || (n > 0 && rowind == NULL)) {
+        sj_set_message(h, "invalid matrix dimensions");
+        return SJ_E_ARGUMENT;
+    }
+    nnz = colptr[n] - 1;
+    if (colptr[0] != 1 || nnz < 0) {
+        sj_set_message(h, "invalid column pointers");
+        return SJ_E_ARGUMENT;
+    }
+    h->Ap = malloc((size_t)(n + 1) * sizeof(SuiteSparse_long));
+    h->Ai = malloc((size_t)(nnz > 0 ? nnz : 1) * sizeof(SuiteSparse_long));
+    if (h->Ap == NULL || h->Ai == NULL) {
+        sj_drop_pattern(h);
+        sj_set_message(h, "out of memory copying the matrix pattern");
+        return SJ_E_NOMEM;
+    }
+    for (j = 0; j <= n; j++) {
+        h->Ap[j] = colptr[j] - 1;
+        if (j > 0 && h->Ap[j] < h->Ap[j - 1]) {
+            sj_drop_pattern(h);
+            sj_set_message(h, "column pointers are not monotonic");
+            return SJ_E_ARGUMENT;
+        }
+    }
+    for (j = 0; j < n; j++) {
+        for (k = h->Ap[j]; k < h->Ap[j + 1]; k++) {
+            SuiteSparse_long i = rowind[k] - 1;
+            if (i < 0 || i > j) {
+                sj_drop_pattern(h);
+                sj_set_message(h, "row index outside the upper triangle");
+                return SJ_E_ARGUMENT;
+            }
+            h->Ai[k] = i;
+        }
+    }
+    h->n = n;
+    h->nnz = nnz;
+
+    memset(&h->A, 0, sizeof(cholmod_sparse));
+    h->A.nrow = (size_t)n;
+    h->A.ncol = (size_t)n;
+    h->A.nzmax = (size_t)nnz;
+    h->A.p = h->Ap;
+    h->A.i = h->Ai;
+    h->A.nz = NULL;
+    h->A.x = NULL;
+    h->A.z = NULL;
+    h->A.stype = 1;                 /* upper triangle stored */
+    h->A.itype = CHOLMOD_LONG;
+    h->A.xtype = CHOLMOD_PATTERN;   /* values not needed to analyze */
+    h->A.dtype = CHOLMOD_DOUBLE;
+    h->A.sorted = 1;
+    h->A.packed = 1;
+
+    h->L = cholmod_l_analyze(&h->A, &h->common);
+    ok = h->L != NULL;
+    {
+        int status = sj_end(h, ok);
+        if (status != SJ_OK) {
+            sj_drop_factor(h);
+            return status < 0 ? status : CHOLMOD_INVALID;
+        }
+    }
+    h->minor = n;
+    return SJ_OK;
+}
+
+/* Numeric factorization with the values val (same pattern as analyzed,
+ * passed again to be checked).  On SJ_NOT_POSDEF, *failed_column is the
+ * 1-based ORIGINAL column where the factorization broke down (else 0). */
+int sj_cholmod_factorize(void *handle, int64_t n, const int64_t *colptr,
+                         const int64_t *rowind, const double *val,
+                         int64_t *failed_column)
+{
+    sj_cholmod_t *h = handle;
+    SuiteSparse_long j, k;
+    int ok, status;
+    if (failed_column != NULL) *failed_column = 0;
+    if (h == NULL) return SJ_E_HANDLE;
+    sj_begin(h);
+    if (h->L == NULL || h->Ap == NULL) {
+        sj_set_message(h, "factorize called before analyze");
+        return SJ_E_STATE;
+    }
+    if (n != h->n || colptr == NULL || val == NULL ||
+        (h->nnz > 0 && rowind == NULL) || colptr[n] - 1 != h->nnz) {
+        sj_set_message(h, "matrix size differs from the analyzed one");
+        return SJ_E_PATTERN;
+    }
+    for (j = 0; j <= n; j++) {
+        if (colptr[j] - 1 != h->Ap[j]) {
+            sj_set_message(h, "matrix pattern differs from the analyzed one");
+            return SJ_E_PATTERN;
+        }
+    }
+    for (k = 0; k < h->nnz; k++) {
+        if (rowind[k] - 1 != h->Ai[k]) {
+            sj_set_message(h, "matrix pattern differs from the analyzed one");
+            return SJ_E_PATTERN;
+        }
+    }
+    h->factored = 0;
+    h->minor = n;
+    h->A.x = (void *)val;            /* CHOLMOD does not modify A */
+    h->A.xtype = CHOLMOD_REAL;
+    ok = cholmod_l_factorize(&h->A, h->L, &h->common);
+    h->A.x = NULL;
+    h->A.xtype = CHOLMOD_PATTERN;
+    status = sj_end(h, ok);
+    if (status == SJ_NOT_POSDEF || (status == SJ_OK && h->L->minor < h->L->n)) {
+        SuiteSparse_long minor = (SuiteSparse_long)h->L->minor;
+        const SuiteSparse_long *perm = h->L->Perm;
+        h->minor = minor;
+        if (failed_column != NULL && minor < n)
+            *failed_column = (perm != NULL ? perm[minor] : minor) + 1;
+        return SJ_NOT_POSDEF;
+    }
+    if (status != SJ_OK) return status;
+    h->factored = 1;
+    return SJ_OK;
+}
+
+/* x(n, nrhs) = A^-1 b(n, nrhs), column-major, leading dimension n. */
+int sj_cholmod_solve(void *handle, int64_t nrhs, const double *b, double *x)
+{
+    sj_cholmod_t *h = handle;
+    cholmod_dense B, *X;
+    SuiteSparse_long j;
+    int status;
+    if (h == NULL) return SJ_E_HANDLE;
+    sj_begin(h);
+    if (!h->factored || h->L == NULL) {
+        sj_set_message(h, "solve called without a valid factorization");
+        return SJ_E_STATE;
+    }
+    if (nrhs < 0 || (h->n > 0 && nrhs > 0 && (b == NULL || x == NULL))) {
+        sj_set_message(h, "invalid right-hand side");
+        return SJ_E_ARGUMENT;
+    }
+    if (h->n == 0 || nrhs == 0) return SJ_OK;
+    memset(&B, 0, sizeof(cholmod_dense));
+    B.nrow = (size_t)h->n;
+    B.ncol = (size_t)nrhs;
+    B.nzmax = (size_t)h->n * (size_t)nrhs;
+    B.d = (size_t)h->n;
+    B.x = (void *)b;                 /* read only */
+    B.z = NULL;
+    B.xtype = CHOLMOD_REAL;
+    B.dtype = CHOLMOD_DOUBLE;
+    X = cholmod_l_solve(CHOLMOD_A, h->L, &B, &h->common);
+    status = sj_end(h, X != NULL);
+    if (X == NULL) return status < 0 ? status : CHOLMOD_INVALID;
+    for (j = 0; j < nrhs; j++) {
+        memcpy(x + (size_t)j * (size_t)h->n, (const double *)X->x + (size_t)j * X->d,
+               (size_t)h->n * sizeof(double));
+    }
+    cholmod_l_free_dense(&X, &h->common);
+    return status < 0 ? status : SJ_OK;
+}
+
+/* d[original column] = pivot of that column: L_jj^2 (LL^T) or D_jj (LDL^T).
+ * Columns not reached by a failed factorization (including the failing one)
+ * get 0. */
+int sj_cholmod_pivots(void *handle, double *d)
+{
+    sj_cholmod_t *h = handle;
+    cholmod_factor *L;
+    const SuiteSparse_long *perm;
+    SuiteSparse_long j, n;
+    if (h == NULL) return SJ_E_HANDLE;
+    L = h->L;
+    n = h->n;
+    if (d == NULL) return SJ_E_ARGUMENT;
+    for (j = 0; j < n; j++) d[j] = 0.0;
+    if (L == NULL || L->xtype != CHOLMOD_REAL || L->x == NULL) return SJ_E_STATE;
+    perm = L->Perm;
+    if (L->is_super) {
+        const SuiteSparse_long *super = L->super, *pi = L->pi, *px = L->px;
+        const double *lx = L->x;
+        SuiteSparse_long s, nsuper = (SuiteSparse_long)L->nsuper;
+        for (s = 0; s < nsuper; s++) {
+            SuiteSparse_long k1 = super[s], k2 = super[s + 1];
+            SuiteSparse_long nsrow = pi[s + 1] - pi[s];
+            for (j = k1; j < k2 && j < h->minor; j++) {
+                double ljj = lx[px[s] + (j - k1) * nsrow + (j - k1)];
+                d[perm != NULL ? perm[j] : j] = ljj * ljj;
+            }
+        }
+    } else {
+        const SuiteSparse_long *lp = L->p;
+        const double *lx = L->x;
+        for (j = 0; j < n && j < h->minor; j++) {
+            double ljj = lx[lp[j]];  /* diagonal is first in each column */
+            d[perm != NULL ? perm[j] : j] = L->is_ll ? ljj * ljj : ljj;
+        }
+    }
+    return SJ_OK;
+}
+
+/* Statistics of the current analysis/factor:
+ *   factor_nnz   entries of L as stored (supernodal: including the zeros of
+ *                relaxed amalgamation),
+ *   factor_bytes memory held by L (values and integer structure),
+ *   flops        CHOLMOD's LL' flop count of the chosen ordering (Common->fl),
+ *   peak_bytes   CHOLMOD's peak memory use so far (Common->memory_usage),
+ *   lnz          fundamental nnz(L) (Common->lnz). */
+int sj_cholmod_info(void *handle, int64_t *factor_nnz, double *factor_bytes,
+                    double *flops, double *peak_bytes, double *lnz)
+{
+    sj_cholmod_t *h = handle;
+    cholmod_factor *L;
+    double entries = 0.0, bytes = 0.0;
+    if (h == NULL) return SJ_E_HANDLE;
+    L = h->L;
+    if (L != NULL) {
+        double n = (double)L->n;
+        bytes = 2.0 * n * sizeof(SuiteSparse_long);       /* Perm, ColCount */
+        if (L->is_super) {
+            const SuiteSparse_long *super = L->super, *pi = L->pi;
+            SuiteSparse_long s, nsuper = (SuiteSparse_long)L->nsuper;
+            for (s = 0; s < nsuper; s++) {
+                double nscol = (double)(super[s + 1] - super[s]);
+                double nsrow = (double)(pi[s + 1] - pi[s]);
+                entries += nscol * nsrow - nscol * (nscol - 1.0) / 2.0;
+            }
+            bytes += (double)L->xsize * sizeof(double)
+                   + (double)L->ssize * sizeof(SuiteSparse_long)
+                   + 3.0 * ((double)L->nsuper + 1.0) * sizeof(SuiteSparse_long);
+        } else {
+            const SuiteSparse_long *colcount = L->ColCount;
+            SuiteSparse_long j;
+            if (L->xtype != CHOLMOD_PATTERN && L->nz != NULL) {
+                const SuiteSparse_long *nz = L->nz;
+                for (j = 0; j < (SuiteSparse_long)L->n; j++) entries += (double)nz[j];
+            } else if (colcount != NULL) {
+                for (j = 0; j < (SuiteSparse_long)L->n; j++) entries += (double)colcount[j];
+            }
+            bytes += (double)L->nzmax * (sizeof(double) + sizeof(SuiteSparse_long))
+                   + 5.0 * n * sizeof(SuiteSparse_long);
+        }
+    }
+    if (factor_nnz != NULL) *factor_nnz = (int64_t)entries;
+    if (factor_bytes != NULL) *factor_bytes = bytes;
+    if (flops != NULL) *flops = h->common.fl;
+    if (peak_bytes != NULL) *peak_bytes = (double)h->common.memory_usage;
+    if (lnz != NULL) *lnz = h->common.lnz;
+    return SJ_OK;
+}
+
+/* Name of the fill-reducing ordering used by the analysis, NUL-terminated
+ * into buf (len bytes). */
+int sj_cholmod_ordering(void *handle, char *buf, int64_t len)
+{
+    sj_cholmod_t *h = handle;
+    const char *name = "none";
+    if (buf == NULL || len <= 0) return SJ_E_ARGUMENT;
+    buf[0] = '\0';
+    if (h == NULL) return SJ_E_HANDLE;
+    if (h->L != NULL) {
+        switch (h->L->ordering) {
+        case CHOLMOD_NATURAL: name = "natural"; break;
+        case CHOLMOD_GIVEN: name = "given"; break;
+        case CHOLMOD_AMD: name = "AMD"; break;
+        case CHOLMOD_METIS: name = "METIS"; break;
+        case CHOLMOD_NESDIS: name = "NESDIS"; break;
+        case CHOLMOD_COLAMD: name = "COLAMD"; break;
+        case CHOLMOD_POSTORDERED: name = "natural (postordered)"; break;
+        default: name = "unknown"; break;
+        }
+    }
+    strncpy(buf, name, (size_t)len - 1);
+    buf[len - 1] = '\0';
+    return SJ_OK;
+}
+
+/* Last message recorded on the handle (CHOLMOD's or the shim's), NUL-terminated. */
+int sj_cholmod_message(void *handle, char *buf, int64_t len)
+{
+    sj_cholmod_t *h = handle;
+    if (buf == NULL || len <= 0) return SJ_E_ARGUMENT;
+    buf[0] = '\0';
+    if (h == NULL) return SJ_E_HANDLE;
+    strncpy(buf, h->message, (size_t)len - 1);
+    buf[len - 1] = '\0';
+    return SJ_OK;
+}

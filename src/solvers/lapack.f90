@@ -1,0 +1,474 @@
+!> Dense or banded Cholesky (LAPACK) behind the linear_solver_t interface,
+!> for small systems.
+!>
+!> Storage rule (decided in analyze): the matrix is renumbered with reverse
+!> Cuthill-McKee; with half-bandwidth bw after that renumbering, banded
+!> storage (dpbtrf/dpbtrs, (bw+1) x n) is used when (bw+1)*n < n*n/4, i.e.
+!> when the band holds less than a quarter of the dense array; otherwise the
+!> dense upper triangle in the natural order (dpotrf/dpotrs, n x n).
+!> Dense storage is refused above DENSE_MAX_N unknowns, and banded storage
+!> above BAND_MAX_ENTRIES stored entries (memory), with EXIT_IO.
+module superjoin_solvers_lapack
+  use superjoin_kinds, only: wp, i8
+  use superjoin_error, only: error_t, fatal_error, EXIT_SINGULAR, EXIT_IO
+  use superjoin_solvers_sparse, only: sparse_sym_t
+  use superjoin_solvers_solver, only: linear_solver_t
+  implicit none (type, external)
+  private
+
+  integer(i8), parameter, public :: DENSE_MAX_N = 20000_i8           !! largest n for dense storage
+  integer(i8), parameter, public :: BAND_MAX_ENTRIES = 100000000_i8  !! largest (bw+1)*n for banded storage (800 MB)
+  integer(i8), parameter :: BAND_FRACTION = 4                        !! band used if (bw+1)*n < n*n/BAND_FRACTION
+  real(wp), parameter :: MBYTE = 1048576.0_wp                        !! bytes per MiB
+
+  !> LAPACK Cholesky, dense (natural order) or banded (RCM order).
+  type, extends(linear_solver_t), public :: lapack_solver_t
+     private
+     integer(i8) :: n = -1               !! order of the analyzed matrix (-1: none)
+     logical :: banded = .false.
+     integer :: kd = 0                   !! half-bandwidth (banded storage)
+     integer(i8), allocatable :: perm(:)   !! perm(new) = original index
+     integer(i8), allocatable :: iperm(:)  !! iperm(original) = new index
+     real(wp), allocatable :: f(:, :)      !! factor: (n, n) dense or (kd+1, n) band
+     logical :: factored = .false.
+     integer(i8) :: nfactored = 0        !! columns (new order) completed by the factorization
+   contains
+     procedure :: analyze => lapack_analyze
+     procedure :: factorize => lapack_factorize
+     procedure :: solve => lapack_solve
+     procedure :: pivots => lapack_pivots
+     procedure :: release => lapack_release
+     procedure :: bandwidth => lapack_bandwidth
+  end type lapack_solver_t
+
+  public :: rcm_ordering
+
+  interface
+     subroutine dpotrf(uplo, n, a, lda, info)
+       import :: wp
+       character(len=1), intent(in) :: uplo
+       integer, intent(in) :: n, lda
+       real(wp), intent(inout) :: a(lda, *)
+       integer, intent(out) :: info
+     end subroutine dpotrf
+
+     subroutine dpotrs(uplo, n, nrhs, a, lda, b, ldb, info)
+       import :: wp
+       character(len=1), intent(in) :: uplo
+       integer, intent(in) :: n, nrhs, lda, ldb
+       real(wp), intent(in) :: a(lda, *)
+       real(wp), intent(inout) :: b(ldb, *)
+       integer, intent(out) :: info
+     end subroutine dpotrs
+
+     subroutine dpbtrf(uplo, n, kd, ab, ldab, info)
+       import :: wp
+       character(len=1), intent(in) :: uplo
+       integer, intent(in) :: n, kd, ldab
+       real(wp), intent(inout) :: ab(ldab, *)
+       integer, intent(out) :: info
+     end subroutine dpbtrf
+
+     subroutine dpbtrs(uplo, n, kd, nrhs, ab, ldab, b, ldb, info)
+       import :: wp
+       character(len=1), intent(in) :: uplo
+       integer, intent(in) :: n, kd, nrhs, ldab, ldb
+       real(wp), intent(in) :: ab(ldab, *)
+       real(wp), intent(inout) :: b(ldb, *)
+       integer, intent(out) :: info
+     end subroutine dpbtrs
+  end interface
+
+contains
+
+  !> Choose the storage: RCM renumbering and its bandwidth; banded when the
+  !> band is small relative to n (see the module comment), dense otherwise.
+  subroutine lapack_analyze(self, a, error)
+    class(lapack_solver_t), intent(inout) :: self
+    type(sparse_sym_t), intent(in) :: a
+    type(error_t), allocatable, intent(out) :: error
+    integer(i8) :: n, bw, i
+    character(len=80) :: buf
+
+    call lapack_release(self)
+    self%info%failed_column = 0
+    self%info%factor_nnz = 0
+    self%info%factor_mbytes = 0.0_wp
+    n = a%n
+    if (n < 0 .or. .not. allocated(a%colptr)) then
+       call fatal_error(error, EXIT_IO, 'LAPACK: invalid matrix')
+       return
+    end if
+    if (n > huge(1)) then
+       call fatal_error(error, EXIT_IO, 'LAPACK: matrix too large for LAPACK (use cholmod)')
+       return
+    end if
+    allocate (self%perm(n), self%iperm(n))
+    call rcm_ordering(a, self%perm)
+    do i = 1, n
+       self%iperm(self%perm(i)) = i
+    end do
+    bw = band_of(a, self%iperm)
+    if ((bw + 1)*n < n*n/BAND_FRACTION) then
+       if ((bw + 1)*n > BAND_MAX_ENTRIES) then
+          write (buf, '(a,i0,a,i0,a)') ' (n = ', n, ', band = ', bw, ')'
+          call fatal_error(error, EXIT_IO, 'LAPACK: banded matrix too large'//trim(buf)//': use cholmod')
+          call lapack_release(self)
+          return
+       end if
+       self%banded = .true.
+       self%kd = int(bw)
+       write (buf, '(a,i0,a)') 'LAPACK dpbtrf (band ', bw, ')'
+       self%info%name = trim(buf)
+       self%info%ordering = 'RCM'
+       self%info%factor_nnz = (bw + 1)*n - bw*(bw + 1)/2
+       self%info%factor_mbytes = real(bw + 1, wp)*real(n, wp)*storage_size(1.0_wp)/8/MBYTE
+    else
+       if (n > DENSE_MAX_N) then
+          write (buf, '(a,i0,a,i0,a)') ' (n = ', n, ', band = ', bw, ')'
+          call fatal_error(error, EXIT_IO, 'LAPACK: matrix too large for dense storage'//trim(buf)//': use cholmod')
+          call lapack_release(self)
+          return
+       end if
+       self%banded = .false.
+       self%kd = int(max(n - 1, 0_i8))
+       do i = 1, n
+          self%perm(i) = i
+          self%iperm(i) = i
+       end do
+       self%info%name = 'LAPACK dpotrf'
+       self%info%ordering = 'natural'
+       self%info%factor_nnz = n*(n + 1)/2
+       self%info%factor_mbytes = real(n, wp)*real(n, wp)*storage_size(1.0_wp)/8/MBYTE
+    end if
+    self%n = n
+  end subroutine lapack_analyze
+
+  !> Cholesky factorization (dpotrf or dpbtrf) of a in the analyzed storage.
+  !> Not positive definite: EXIT_SINGULAR, info%failed_column = original column.
+  subroutine lapack_factorize(self, a, error)
+    class(lapack_solver_t), intent(inout) :: self
+    type(sparse_sym_t), intent(in) :: a
+    type(error_t), allocatable, intent(out) :: error
+    integer(i8) :: n, j, k, p, q, r, c
+    integer :: info, stat
+    character(len=24) :: buf
+
+    self%factored = .false.
+    self%nfactored = 0
+    self%info%failed_column = 0
+    n = self%n
+    if (n < 0) then
+       call fatal_error(error, EXIT_IO, 'LAPACK: factorize called before analyze')
+       return
+    end if
+    if (a%n /= n) then
+       call fatal_error(error, EXIT_IO, 'LAPACK: matrix order differs from the analyzed one')
+       return
+    end if
+    if (.not. allocated(self%f)) then
+       if (self%banded) then
+          allocate (self%f(self%kd + 1, n), stat=stat)
+       else
+          allocate (self%f(n, n), stat=stat)
+       end if
+       if (stat /= 0) then
+          call fatal_error(error, EXIT_IO, 'LAPACK: out of memory for the factor')
+          return
+       end if
+    end if
+    self%f = 0.0_wp
+    if (n == 0) then
+       self%factored = .true.
+       return
+    end if
+    do j = 1, n
+       do k = a%colptr(j), a%colptr(j + 1) - 1
+          p = self%iperm(a%rowind(k))
+          q = self%iperm(j)
+          r = min(p, q)
+          c = max(p, q)
+          if (self%banded) then
+             if (c - r > self%kd) then
+                call fatal_error(error, EXIT_IO, 'LAPACK: matrix pattern differs from the analyzed one')
+                return
+             end if
+             self%f(self%kd + 1 + r - c, c) = a%val(k)
+          else
+             self%f(r, c) = a%val(k)
+          end if
+       end do
+    end do
+    if (self%banded) then
+       call dpbtrf('U', int(n), self%kd, self%f, self%kd + 1, info)
+    else
+       call dpotrf('U', int(n), self%f, int(n), info)
+    end if
+    if (info > 0) then
+       self%nfactored = info - 1
+       self%info%failed_column = self%perm(info)
+       write (buf, '(i0)') self%info%failed_column
+       call fatal_error(error, EXIT_SINGULAR, 'matrix is not positive definite at column '//trim(buf))
+       return
+    else if (info < 0) then
+       write (buf, '(i0)') info
+       call fatal_error(error, EXIT_IO, 'LAPACK factorization failed: info '//trim(buf))
+       return
+    end if
+    self%nfactored = n
+    self%factored = .true.
+  end subroutine lapack_factorize
+
+  !> x = A^-1 b (dpotrs or dpbtrs on all right-hand sides at once).
+  subroutine lapack_solve(self, b, x, error)
+    class(lapack_solver_t), intent(inout) :: self
+    real(wp), intent(in) :: b(:, :)
+    real(wp), intent(out) :: x(:, :)
+    type(error_t), allocatable, intent(out) :: error
+    real(wp), allocatable :: y(:, :)
+    integer(i8) :: n, i
+    integer :: nrhs, info, stat
+    character(len=24) :: buf
+
+    if (.not. self%factored) then
+       call fatal_error(error, EXIT_IO, 'LAPACK: solve called without a valid factorization')
+       return
+    end if
+    n = self%n
+    if (size(b, 1, i8) /= n .or. size(x, 1, i8) /= n .or. size(b, 2) /= size(x, 2)) then
+       call fatal_error(error, EXIT_IO, 'LAPACK: right-hand side and solution shapes do not match the matrix')
+       return
+    end if
+    nrhs = size(b, 2)
+    if (n == 0 .or. nrhs == 0) return
+    allocate (y(n, nrhs), stat=stat)
+    if (stat /= 0) then
+       call fatal_error(error, EXIT_IO, 'LAPACK: out of memory in solve')
+       return
+    end if
+    do i = 1, n
+       y(i, :) = b(self%perm(i), :)
+    end do
+    if (self%banded) then
+       call dpbtrs('U', int(n), self%kd, nrhs, self%f, self%kd + 1, y, int(n), info)
+    else
+       call dpotrs('U', int(n), nrhs, self%f, int(n), y, int(n), info)
+    end if
+    if (info /= 0) then
+       write (buf, '(i0)') info
+       call fatal_error(error, EXIT_IO, 'LAPACK solve failed: info '//trim(buf))
+       return
+    end if
+    do i = 1, n
+       x(self%perm(i), :) = y(i, :)
+    end do
+  end subroutine lapack_solve
+
+  !> d(j) = L_jj^2 of original column j (0 for columns a failed factorization
+  !> did not reach, including the failing one).
+  subroutine lapack_pivots(self, d)
+    class(lapack_solver_t), intent(inout) :: self
+    real(wp), intent(out) :: d(:)
+    integer(i8) :: i
+    d = 0.0_wp
+    if (self%n <= 0 .or. .not. allocated(self%f)) return
+    if (size(d, kind=i8) < self%n) return
+    do i = 1, self%nfactored
+       if (self%banded) then
+          d(self%perm(i)) = self%f(self%kd + 1, i)**2
+       else
+          d(self%perm(i)) = self%f(i, i)**2
+       end if
+    end do
+  end subroutine lapack_pivots
+
+  !> Free the factor and the ordering.
+  subroutine lapack_release(self)
+    class(lapack_solver_t), intent(inout) :: self
+    if (allocated(self%f)) deallocate (self%f)
+    if (allocated(self%perm)) deallocate (self%perm)
+    if (allocated(self%iperm)) deallocate (self%iperm)
+    self%n = -1
+    self%banded = .false.
+    self%kd = 0
+    self%factored = .false.
+    self%nfactored = 0
+  end subroutine lapack_release
+
+  !> Half-bandwidth of the storage in use (n-1 for dense, -1 before analyze).
+  pure function lapack_bandwidth(self) result(bw)
+    class(lapack_solver_t), intent(in) :: self
+    integer :: bw
+    bw = -1
+    if (self%n >= 0) bw = self%kd
+  end function lapack_bandwidth
+
+  !> Half-bandwidth of a after renumbering with iperm (iperm(old) = new).
+  pure function band_of(a, iperm) result(bw)
+    type(sparse_sym_t), intent(in) :: a
+    integer(i8), intent(in) :: iperm(:)
+    integer(i8) :: bw, j, k
+    bw = 0
+    do j = 1, a%n
+       do k = a%colptr(j), a%colptr(j + 1) - 1
+          bw = max(bw, abs(iperm(a%rowind(k)) - iperm(j)))
+       end do
+    end do
+  end function band_of
+
+  !> Reverse Cuthill-McKee ordering of the graph of a: perm(new) = original.
+  !> Each connected component is started from a pseudo-peripheral node
+  !> (George-Liu: repeated breadth-first searches from a node of minimum
+  !> degree in the last level), neighbours are visited by increasing degree,
+  !> and the whole Cuthill-McKee sequence is reversed at the end.
+  subroutine rcm_ordering(a, perm)
+    type(sparse_sym_t), intent(in) :: a
+    integer(i8), intent(out) :: perm(:)
+    integer(i8), allocatable :: xadj(:), adj(:), deg(:), level(:), queue(:)
+    logical, allocatable :: done(:)
+    integer(i8) :: n, i, j, k, nnext, root, start, head, tail, v, w, m, t
+
+    n = a%n
+    if (n == 0) return
+    call adjacency(a, xadj, adj)
+    allocate (deg(n), level(n), queue(n), done(n))
+    do i = 1, n
+       deg(i) = xadj(i + 1) - xadj(i)
+    end do
+    done = .false.
+    level = -1
+    nnext = 0
+    do start = 1, n
+       if (done(start)) cycle
+       ! the component of start: its minimum-degree node is the first guess
+       root = pseudo_peripheral(start)
+       ! Cuthill-McKee breadth-first numbering from root
+       head = nnext + 1
+       tail = nnext + 1
+       perm(tail) = root
+       done(root) = .true.
+       do while (head <= tail)
+          v = perm(head)
+          head = head + 1
+          m = tail
+          do k = xadj(v), xadj(v + 1) - 1
+             w = adj(k)
+             if (done(w)) cycle
+             done(w) = .true.
+             tail = tail + 1
+             perm(tail) = w
+          end do
+          ! the nodes just added (m+1:tail) in increasing degree (insertion sort)
+          do i = m + 2, tail
+             t = perm(i)
+             j = i - 1
+             do while (j > m)
+                if (deg(perm(j)) <= deg(t)) exit
+                perm(j + 1) = perm(j)
+                j = j - 1
+             end do
+             perm(j + 1) = t
+          end do
+       end do
+       nnext = tail
+    end do
+    ! reverse
+    perm(1:n) = perm(n:1:-1)
+
+  contains
+
+    !> A pseudo-peripheral node of the component holding s.
+    function pseudo_peripheral(s) result(r)
+      integer(i8), intent(in) :: s
+      integer(i8) :: r, ecc, new_ecc, last_first, last_end, u, kk, best
+      integer :: iter
+      integer, parameter :: MAX_SWEEPS = 10
+      ! start from a node of minimum degree in the component
+      call bfs(s, ecc, last_first, last_end)
+      r = s
+      do kk = 1, last_end
+         if (deg(queue(kk)) < deg(r)) r = queue(kk)
+      end do
+      call bfs(r, ecc, last_first, last_end)
+      do iter = 1, MAX_SWEEPS
+         best = queue(last_first)
+         do kk = last_first, last_end
+            u = queue(kk)
+            if (deg(u) < deg(best)) best = u
+         end do
+         call bfs(best, new_ecc, last_first, last_end)
+         if (new_ecc <= ecc) exit
+         r = best
+         ecc = new_ecc
+      end do
+    end function pseudo_peripheral
+
+    !> Breadth-first search from s over the nodes not yet numbered; queue(1:last_end)
+    !> holds the component, queue(last_first:last_end) its last level; ecc the depth.
+    subroutine bfs(s, ecc, last_first, last_end)
+      integer(i8), intent(in) :: s
+      integer(i8), intent(out) :: ecc, last_first, last_end
+      integer(i8) :: h, tl, u, kk, x
+      level(s) = 0
+      queue(1) = s
+      h = 1
+      tl = 1
+      do while (h <= tl)
+         u = queue(h)
+         h = h + 1
+         do kk = xadj(u), xadj(u + 1) - 1
+            x = adj(kk)
+            if (done(x) .or. level(x) >= 0) cycle
+            tl = tl + 1
+            queue(tl) = x
+            level(x) = level(u) + 1
+         end do
+      end do
+      ecc = level(queue(tl))
+      last_end = tl
+      last_first = tl
+      do while (last_first > 1)
+         if (level(queue(last_first - 1)) /= ecc) exit
+         last_first = last_first - 1
+      end do
+      do kk = 1, tl
+         level(queue(kk)) = -1
+      end do
+    end subroutine bfs
+  end subroutine rcm_ordering
+
+  !> Symmetric adjacency (no self loops) of the upper-triangle pattern of a, CSR.
+  subroutine adjacency(a, xadj, adj)
+    type(sparse_sym_t), intent(in) :: a
+    integer(i8), allocatable, intent(out) :: xadj(:), adj(:)
+    integer(i8), allocatable :: nxt(:)
+    integer(i8) :: n, i, j, k
+    n = a%n
+    allocate (xadj(n + 1), nxt(n))
+    nxt = 0
+    do j = 1, n
+       do k = a%colptr(j), a%colptr(j + 1) - 1
+          i = a%rowind(k)
+          if (i == j) cycle
+          nxt(i) = nxt(i) + 1
+          nxt(j) = nxt(j) + 1
+       end do
+    end do
+    xadj(1) = 1
+    do i = 1, n
+       xadj(i + 1) = xadj(i) + nxt(i)
+    end do
+    allocate (adj(max(xadj(n + 1) - 1, 1_i8)))
+    nxt = xadj(1:n)
+    do j = 1, n
+       do k = a%colptr(j), a%colptr(j + 1) - 1
+          i = a%rowind(k)
+          if (i == j) cycle
+          adj(nxt(i)) = j
+          nxt(i) = nxt(i) + 1
+          adj(nxt(j)) = i
+          nxt(j) = nxt(j) + 1
+       end do
+    end do
+  end subroutine adjacency
+end module superjoin_solvers_lapack

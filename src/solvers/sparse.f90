@@ -1,0 +1,56 @@
+!> Symmetric sparse matrix in compressed sparse column form, upper triangle.
+module superjoin_solvers_sparse
+  use superjoin_kinds, only: wp, i8
+  implicit none (type, external)
+  private
+
+  !> Upper triangle (row <= column) of a symmetric matrix, 1-based CSC:
+  !> column j holds rows rowind(colptr(j):colptr(j+1)-1), sorted ascending,
+  !> the diagonal always present and last in its column.
+  type, public :: sparse_sym_t
+     integer(i8) :: n = 0
+     integer(i8), allocatable :: colptr(:)   !! (n+1)
+     integer(i8), allocatable :: rowind(:)   !! (nnz)
+     real(wp), allocatable :: val(:)         !! (nnz)
+  contains
+     procedure :: nnz => sparse_nnz
+     procedure :: diagonal => sparse_diagonal
+     procedure :: matvec => sparse_matvec
+  end type sparse_sym_t
+
+contains
+
+  !> Stored nonzeros (upper triangle with diagonal).
+  pure function sparse_nnz(a) result(nz)
+    class(sparse_sym_t), intent(in) :: a
+    integer(i8) :: nz
+    nz = 0
+    if (allocated(a%colptr)) nz = a%colptr(a%n + 1) - 1
+  end function sparse_nnz
+
+  !> Diagonal entries.
+  pure subroutine sparse_diagonal(a, d)
+    class(sparse_sym_t), intent(in) :: a
+    real(wp), intent(out) :: d(:)
+    integer(i8) :: j
+    do j = 1, a%n
+       d(j) = a%val(a%colptr(j + 1) - 1)
+    end do
+  end subroutine sparse_diagonal
+
+  !> y = A x for the full symmetric matrix (x, y of shape (n, nrhs)).
+  pure subroutine sparse_matvec(a, x, y)
+    class(sparse_sym_t), intent(in) :: a
+    real(wp), intent(in) :: x(:, :)
+    real(wp), intent(out) :: y(:, :)
+    integer(i8) :: j, k, i
+    y = 0.0_wp
+    do j = 1, a%n
+       do k = a%colptr(j), a%colptr(j + 1) - 1
+          i = a%rowind(k)
+          y(i, :) = y(i, :) + a%val(k)*x(j, :)
+          if (i /= j) y(j, :) = y(j, :) + a%val(k)*x(i, :)
+       end do
+    end do
+  end subroutine sparse_matvec
+end module superjoin_solvers_sparse

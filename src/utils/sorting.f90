@@ -1,0 +1,102 @@
+!> Sorting helpers.
+module superjoin_utils_sorting
+  use superjoin_kinds, only: wp, i8
+  implicit none (type, external)
+  private
+
+  public :: stable_argsort, sort_unique_i8, sort_i8
+
+contains
+
+  !> Reorder the indices `order` so that key(order) ascends; equal keys keep
+  !> their relative order (merge sort, deterministic).
+  subroutine stable_argsort(key, order)
+    real(wp), intent(in) :: key(:)
+    integer, intent(inout) :: order(:)
+    integer, allocatable :: tmp(:)
+    integer :: width, lo, mid, hi, i, j, k, n
+    n = size(order)
+    allocate (tmp(n))
+    width = 1
+    do while (width < n)
+       lo = 1
+       do while (lo <= n)
+          mid = min(lo + width - 1, n)
+          hi = min(lo + 2*width - 1, n)
+          i = lo; j = mid + 1; k = lo
+          do while (i <= mid .and. j <= hi)
+             if (key(order(j)) < key(order(i))) then
+                tmp(k) = order(j); j = j + 1
+             else
+                tmp(k) = order(i); i = i + 1
+             end if
+             k = k + 1
+          end do
+          tmp(k:k + mid - i) = order(i:mid)
+          k = k + mid - i + 1
+          tmp(k:k + hi - j) = order(j:hi)
+          lo = hi + 1
+       end do
+       order = tmp
+       width = 2*width
+    end do
+  end subroutine stable_argsort
+
+  !> Sort a short integer list in place (insertion sort) and drop repeats;
+  !> n returns the number of distinct entries, kept in a(1:n).
+  pure subroutine sort_unique_i8(a, n)
+    integer(i8), intent(inout) :: a(:)
+    integer, intent(out) :: n
+    integer :: i, j
+    integer(i8) :: t
+    do i = 2, size(a)
+       t = a(i)
+       j = i - 1
+       do while (j >= 1)
+          if (a(j) <= t) exit
+          a(j + 1) = a(j)
+          j = j - 1
+       end do
+       a(j + 1) = t
+    end do
+    n = 0
+    do i = 1, size(a)
+       if (n > 0) then
+          if (a(i) == a(n)) cycle
+       end if
+       n = n + 1
+       a(n) = a(i)
+    end do
+  end subroutine sort_unique_i8
+  !> Sort an integer array ascending (heap sort: no recursion, no extra memory).
+  pure subroutine sort_i8(a)
+    integer(i8), intent(inout) :: a(:)
+    integer :: n, i, last
+    integer(i8) :: t
+    n = size(a)
+    do i = n/2, 1, -1
+       call sift(a, i, n)
+    end do
+    do last = n, 2, -1
+       t = a(1); a(1) = a(last); a(last) = t
+       call sift(a, 1, last - 1)
+    end do
+  contains
+    pure subroutine sift(a, start, limit)
+      integer(i8), intent(inout) :: a(:)
+      integer, intent(in) :: start, limit
+      integer :: root, child
+      integer(i8) :: tmp
+      root = start
+      do while (2*root <= limit)
+         child = 2*root
+         if (child < limit) then
+            if (a(child) < a(child + 1)) child = child + 1
+         end if
+         if (a(root) >= a(child)) return
+         tmp = a(root); a(root) = a(child); a(child) = tmp
+         root = child
+      end do
+    end subroutine sift
+  end subroutine sort_i8
+end module superjoin_utils_sorting

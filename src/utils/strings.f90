@@ -1,0 +1,53 @@
+!> Small string conversions.
+module superjoin_utils_strings
+  use superjoin_kinds, only: wp, i8
+  implicit none (type, external)
+  private
+
+  !> Integer to text without blanks.
+  interface itoa
+     module procedure itoa_default, itoa_i8
+  end interface itoa
+
+  public :: itoa, rtoa, full_real
+
+contains
+
+  pure function itoa_default(i) result(s)
+    integer, intent(in) :: i
+    character(:), allocatable :: s
+    character(len=24) :: buf
+    write (buf, '(i0)') i
+    s = trim(buf)
+  end function itoa_default
+
+  pure function itoa_i8(i) result(s)
+    integer(i8), intent(in) :: i
+    character(:), allocatable :: s
+    character(len=24) :: buf
+    write (buf, '(i0)') i
+    s = trim(buf)
+  end function itoa_i8
+
+  !> Real to short text (4 significant digits, exponent form).
+  pure function rtoa(x) result(s)
+    real(wp), intent(in) :: x
+    character(:), allocatable :: s
+    character(len=32) :: buf
+    write (buf, '(es11.4)') x
+    s = trim(adjustl(buf))
+  end function rtoa
+
+  !> Real to text with 17 significant digits (round-trips exactly).
+  pure function full_real(x) result(s)
+    real(wp), intent(in) :: x
+    character(:), allocatable :: s
+    character(len=40) :: buf
+    if (x == 0.0_wp) then
+       s = '0'
+    else
+       write (buf, '(es24.16e3)') x
+       s = trim(adjustl(buf))
+    end if
+  end function full_real
+end module superjoin_utils_strings

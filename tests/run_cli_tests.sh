@@ -1,0 +1,53 @@
+#!/usr/bin/env bash
+# Command-line behaviour: options, exit statuses, no listing on failure.
+# usage: run_cli_tests.sh SUPERJOIN SOURCE_DIR WORK_DIR
+set -u
+bin=$1; src=$2; work=$3
+rm -rf "$work"; mkdir -p "$work"; cd "$work" || exit 1
+pass=0; fail=0
+expect() {  # expect STATUS DESCRIPTION -- command...
+  local want=$1 what=$2; shift 3
+  "$@" >out.txt 2>err.txt; local rc=$?
+  if [ "$rc" -eq "$want" ] && ! grep -qiE 'runtime error|backtrace|segmentation' err.txt; then pass=$((pass+1))
+  else fail=$((fail+1)); echo "FAIL: $what: status $rc (want $want)"; cat err.txt; fi
+}
+expect 0 "help" -- "$bin" --help
+grep -q -- '--formulation' out.txt || { fail=$((fail+1)); echo "FAIL: --help lacks options"; }
+expect 0 "version" -- "$bin" --version
+expect 2 "unknown option" -- "$bin" --frobnicate
+expect 2 "option without value" -- "$bin" -o
+expect 2 "unknown solver" -- "$bin" --solver magic "$src/decks/demo.deck"
+expect 2 "unknown formulation" -- "$bin" --formulation x "$src/decks/demo.deck"
+expect 2 "two decks" -- "$bin" a.deck b.deck
+expect 4 "missing deck" -- "$bin" no_such.deck
+expect 0 "check only" -- "$bin" -q --check "$src/decks/demo.deck" -o check.lst
+[ ! -e check.lst ] || { fail=$((fail+1)); echo "FAIL: --check wrote a listing"; }
+expect 0 "demo without deck" -- "$bin" -q
+[ -s demo.lst ] || { fail=$((fail+1)); echo "FAIL: no demo.lst"; }
+grep -q 'END OF LISTING' demo.lst || { fail=$((fail+1)); echo "FAIL: demo listing incomplete"; }
+for s in cholmod umfpack lapack; do
+  expect 0 "solver $s" -- "$bin" -q --solver $s "$src/decks/demo.deck" -o demo_$s.lst
+done
+expect 0 "penalty" -- "$bin" -q --formulation penalty "$src/decks/demo.deck" -o pen.lst
+expect 0 "export matrix" -- "$bin" -q --export-matrix k.mtx "$src/decks/demo.deck" -o mm.lst
+head -1 k.mtx | grep -q '%%MatrixMarket matrix coordinate real symmetric' || { fail=$((fail+1)); echo "FAIL: matrix market header"; }
+expect 0 "csv" -- "$bin" -q "$src/decks/demo.deck" -o c.lst --csv csvdir
+for f in displacements reactions contact_forces element_forces; do
+  [ -s csvdir/$f.csv ] || { fail=$((fail+1)); echo "FAIL: no $f.csv"; }
+done
+head -1 csvdir/displacements.csv | grep -qx 'step,substructure,node,u1,u2,u3,ur1,ur2,ur3' || { fail=$((fail+1)); echo "FAIL: csv header"; }
+# progress on stderr unless quiet
+"$bin" "$src/decks/demo.deck" -o p.lst 2>err.txt >/dev/null
+grep -q 'superjoin: factor' err.txt || { fail=$((fail+1)); echo "FAIL: no phase report on stderr"; }
+"$bin" -q "$src/decks/demo.deck" -o p.lst 2>err.txt >/dev/null
+[ ! -s err.txt ] || { fail=$((fail+1)); echo "FAIL: -q still printed"; cat err.txt; }
+# A failing run keeps the previous good listing and leaves no temporary file.
+cp "$src/decks/demo.deck" x.deck
+"$bin" -q x.deck -o x.lst
+printf '*NODE\n1, 0, 0\n*SUPPORT\n1, 6, 6\n*CLOAD\n1, 1, 5.0\n' > y.deck
+cp x.lst y.lst
+expect 3 "mechanism" -- "$bin" -q y.deck -o y.lst
+cmp -s x.lst y.lst || { fail=$((fail+1)); echo "FAIL: failed run touched the previous listing"; }
+ls *.tmp >/dev/null 2>&1 && { fail=$((fail+1)); echo "FAIL: temporary files left"; }
+echo "$pass passed, $fail failed"
+[ $fail -eq 0 ]

@@ -1,0 +1,31 @@
+#!/usr/bin/env bash
+# Solve one deck and diff its listing and CSV files against the committed references.
+# usage: run_deck_test.sh SUPERJOIN LSTDIFF DECK REFDIR OUTDIR
+# With UPDATE_REFS=1 the references are (re)written instead.
+set -u
+bin=$1; lstdiff=$2; deck=$3; refdir=$4; outdir=$5
+name=$(basename "$deck" .deck)
+mkdir -p "$outdir"
+out="$outdir/$name"
+rm -rf "$out.lst" "$out.csv" "$out.2.lst"
+cd "$(dirname "$deck")" || exit 1
+"$bin" -q "$(basename "$deck")" -o "$out.lst" --csv "$out.csv"
+rc=$?
+if [ $rc -ne 0 ]; then echo "FAIL: superjoin exited with $rc on $deck"; exit 1; fi
+# The same deck gives the same bytes.
+"$bin" -q "$(basename "$deck")" -o "$out.2.lst"
+if ! cmp -s "$out.lst" "$out.2.lst"; then echo "FAIL: listing differs between two runs"; exit 1; fi
+if [ "${UPDATE_REFS:-0}" = 1 ]; then
+  mkdir -p "$refdir/$name.csv"
+  cp "$out.lst" "$refdir/$name.lst"
+  cp "$out.csv"/*.csv "$refdir/$name.csv/"
+  echo "updated references of $name"; exit 0
+fi
+if [ ! -f "$refdir/$name.lst" ]; then echo "FAIL: no reference $refdir/$name.lst (run with UPDATE_REFS=1)"; exit 1; fi
+status=0
+"$lstdiff" "$refdir/$name.lst" "$out.lst" || { echo "FAIL: listing differs from reference"; status=1; }
+for f in "$refdir/$name.csv"/*.csv; do
+  "$lstdiff" --rtol 1e-9 --atol 1e-12 "$f" "$out.csv/$(basename "$f")" || { echo "FAIL: $(basename "$f") differs"; status=1; }
+done
+[ $status -eq 0 ] && echo "deck $name: listing and CSV match the references"
+exit $status

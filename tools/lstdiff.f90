@@ -1,0 +1,168 @@
+!> lstdiff: compare two listings token by token; numbers may differ by
+!> |a - b| <= atol + rtol * max(|a|, |b|). Exit 0 when equal, 1 otherwise.
+!> usage: lstdiff [--rtol R] [--atol A] REFERENCE OUTPUT
+program lstdiff
+  use, intrinsic :: iso_fortran_env, only: real64, error_unit
+  implicit none (type, external)
+  integer, parameter :: wp = real64
+  real(wp) :: rtol = 1.0e-6_wp, atol = 1.0e-9_wp
+  character(:), allocatable :: ref, out, a, b, arg, val
+  integer :: ua, ub, ia, ib, lineno, nbad, i, n
+  logical :: ea, eb
+  integer, parameter :: MAX_REPORTED = 20
+
+  n = command_argument_count()
+  i = 0
+  do while (i < n)
+     i = i + 1
+     arg = get_arg(i)
+     select case (arg)
+     case ('--rtol')
+        i = i + 1
+        val = get_arg(i)
+        read (val, *) rtol
+     case ('--atol')
+        i = i + 1
+        val = get_arg(i)
+        read (val, *) atol
+     case default
+        if (.not. allocated(ref)) then
+           ref = arg
+        else
+           out = arg
+        end if
+     end select
+  end do
+  if (.not. allocated(out)) then
+     write (error_unit, '(a)') 'usage: lstdiff [--rtol R] [--atol A] REFERENCE OUTPUT'
+     stop 2, quiet=.true.
+  end if
+  open (newunit=ua, file=ref, status='old', action='read', iostat=ia)
+  open (newunit=ub, file=out, status='old', action='read', iostat=ib)
+  if (ia /= 0 .or. ib /= 0) then
+     write (error_unit, '(a)') 'lstdiff: cannot open '//ref//' or '//out
+     stop 2, quiet=.true.
+  end if
+  lineno = 0
+  nbad = 0
+  do
+     call read_line(ua, a, ea)
+     call read_line(ub, b, eb)
+     lineno = lineno + 1
+     if (ea .and. eb) exit
+     if (ea .neqv. eb) then
+        write (error_unit, '(a,i0,a)') 'line ', lineno, ': files have different lengths'
+        nbad = nbad + 1
+        exit
+     end if
+     if (.not. same_line(a, b)) then
+        nbad = nbad + 1
+        if (nbad <= MAX_REPORTED) then
+           write (error_unit, '(a,i0)') 'line ', lineno
+           write (error_unit, '(a)') '< '//a
+           write (error_unit, '(a)') '> '//b
+        end if
+     end if
+  end do
+  if (nbad > 0) then
+     write (error_unit, '(i0,a)') nbad, ' line(s) differ'
+     stop 1, quiet=.true.
+  end if
+
+contains
+
+  function get_arg(i) result(s)
+    integer, intent(in) :: i
+    character(:), allocatable :: s
+    integer :: length
+    call get_command_argument(i, length=length)
+    allocate (character(len=length) :: s)
+    if (length > 0) call get_command_argument(i, s)
+  end function get_arg
+
+  subroutine read_line(u, line, eof)
+    integer, intent(in) :: u
+    character(:), allocatable, intent(out) :: line
+    logical, intent(out) :: eof
+    character(len=512) :: buf
+    integer :: ios, sz
+    line = ''
+    eof = .false.
+    do
+       read (u, '(a)', advance='no', iostat=ios, size=sz) buf
+       line = line//buf(1:sz)
+       if (is_iostat_eor(ios)) exit
+       if (is_iostat_end(ios)) then
+          eof = len(line) == 0
+          exit
+       end if
+       if (ios /= 0) then
+          eof = .true.
+          exit
+       end if
+    end do
+  end subroutine read_line
+
+  !> Lines match when their tokens match (numbers within tolerance).
+  logical function same_line(a, b)
+    character(*), intent(in) :: a, b
+    integer :: pa, pb
+    character(:), allocatable :: ta, tb
+    real(wp) :: xa, xb
+    logical :: na, nb
+    same_line = .true.
+    pa = 1
+    pb = 1
+    do
+       call next_token(a, pa, ta)
+       call next_token(b, pb, tb)
+       if (len(ta) == 0 .and. len(tb) == 0) return
+       if (ta == tb) cycle
+       call as_number(ta, xa, na)
+       call as_number(tb, xb, nb)
+       if (.not. (na .and. nb)) then
+          same_line = .false.
+          return
+       end if
+       if (abs(xa - xb) > atol + rtol*max(abs(xa), abs(xb))) then
+          same_line = .false.
+          return
+       end if
+    end do
+  end function same_line
+
+  subroutine next_token(s, p, tok)
+    character(*), intent(in) :: s
+    integer, intent(inout) :: p
+    character(:), allocatable, intent(out) :: tok
+    integer :: q
+    do while (p <= len(s))
+       if (s(p:p) /= ' ' .and. s(p:p) /= ',') exit
+       p = p + 1
+    end do
+    q = p
+    do while (q <= len(s))
+       if (s(q:q) == ' ' .or. s(q:q) == ',') exit
+       q = q + 1
+    end do
+    tok = s(p:q - 1)
+    p = q
+  end subroutine next_token
+
+  subroutine as_number(tok, x, ok)
+    character(*), intent(in) :: tok
+    real(wp), intent(out) :: x
+    logical, intent(out) :: ok
+    integer :: ios, k
+    ok = .false.
+    x = 0.0_wp
+    if (len(tok) == 0) return
+    if (verify(tok, '0123456789+-.eEdD') /= 0) return
+    do k = 1, len(tok)
+       if (index('0123456789', tok(k:k)) > 0) exit
+    end do
+    if (k > len(tok)) return
+    read (tok, *, iostat=ios) x
+    ok = ios == 0
+  end subroutine as_number
+end program lstdiff

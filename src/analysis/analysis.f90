@@ -26,6 +26,10 @@ module superjoin_analysis
   integer, parameter, public :: MAX_REFINE = 3
   !> MAXRATIO above this is flagged as a loss of accuracy (digits lost ≈ log10).
   real(wp), parameter, public :: MAXRATIO_WARN = 1.0e7_wp
+  !> MAXRATIO above this leaves fewer than two digits: numerically singular (exit 3).
+  real(wp), parameter, public :: MAXRATIO_FATAL = 1.0e14_wp
+  !> A relative residual still above this after refinement is reported as a warning.
+  real(wp), parameter, public :: RESIDUAL_WARN = 1.0e-6_wp
 
   public :: solve_model
 
@@ -74,6 +78,7 @@ contains
     call reduce_loads(tr, f_phys, f_u0, f_red)
     call autospc(model, table, tr, k, f_red, spc, notes, error)
     if (allocated(error)) return
+    call skip_unloaded_parts(model, table, tr, k, f_red, spc, notes)
     res%nphys = table%np
     res%ncol = tr%ncol
     res%neq = tr%ncol - count(spc, kind=i8)
@@ -100,7 +105,10 @@ contains
     call clock%start()
     call recover_results(model, table, forest, tr, q, f_phys, res, error)
     if (allocated(error)) return
-    if (tr%ncol > 0) call health(k, q, f_red, spc, solver, model, table, tr, res, opts)
+    if (tr%ncol > 0) then
+       call health(k, q, f_red, spc, solver, model, table, tr, res, opts, error)
+       if (allocated(error)) return
+    end if
     res%phase_seconds(PH_SOLVE) = res%phase_seconds(PH_SOLVE) + clock%seconds()
     if (allocated(solver)) call solver%release()
     res%notes = notes
@@ -240,6 +248,82 @@ contains
     end do
   end subroutine autospc
 
+  !> Groups of unknowns coupled to nothing else and loaded in no step have a
+  !> zero solution: they are taken out of the factorization (identity rows)
+  !> and reported, so an unloaded free part is not a mechanism.
+  subroutine skip_unloaded_parts(model, table, tr, k, f_red, spc, notes)
+    type(model_t), intent(in) :: model
+    type(dof_table_t), intent(in) :: table
+    type(transform_t), intent(in) :: tr
+    type(sparse_sym_t), intent(inout) :: k
+    real(wp), intent(in) :: f_red(:, :)
+    logical, intent(inout) :: spc(:)
+    type(string_t), allocatable, intent(inout) :: notes(:)
+    integer(i8), allocatable :: root(:)
+    logical, allocatable :: loaded(:), skip(:), named(:)
+    integer(i8) :: j, pos, a, b, nskip
+    integer :: isub
+    character(:), allocatable :: subs
+
+    if (k%n == 0) return
+    allocate (root(k%n))
+    do j = 1, k%n
+       root(j) = j
+    end do
+    do j = 1, k%n
+       do pos = k%colptr(j), k%colptr(j + 1) - 1
+          if (k%val(pos) == 0.0_wp) cycle
+          a = find(k%rowind(pos))
+          b = find(j)
+          if (a /= b) root(max(a, b)) = min(a, b)
+       end do
+    end do
+    allocate (loaded(k%n), source=.false.)
+    do j = 1, k%n
+       root(j) = find(j)
+       if (any(f_red(j, :) /= 0.0_wp)) loaded(root(j)) = .true.
+    end do
+    allocate (skip(k%n))
+    nskip = 0
+    do j = 1, k%n
+       skip(j) = .not. loaded(root(j)) .and. .not. spc(j)
+       if (skip(j)) nskip = nskip + 1
+    end do
+    if (nskip == 0) return
+    allocate (named(size(model%subs)), source=.false.)
+    do j = 1, k%n
+       if (.not. skip(j)) cycle
+       do pos = k%colptr(j), k%colptr(j + 1) - 1
+          k%val(pos) = 0.0_wp
+       end do
+       k%val(k%colptr(j + 1) - 1) = 1.0_wp
+       spc(j) = .true.
+       if (tr%col_kind(j) == COL_PHYS) named(table%p_sub(tr%col_ref(j))) = .true.
+    end do
+    ! Entries above the diagonal in other columns that belong to skipped rows.
+    do j = 1, k%n
+       do pos = k%colptr(j), k%colptr(j + 1) - 2
+          if (skip(k%rowind(pos))) k%val(pos) = 0.0_wp
+       end do
+    end do
+    subs = ''
+    do isub = 1, size(model%subs)
+       if (named(isub)) subs = subs//' '//model%subs(isub)%name
+    end do
+    call note(notes, itoa(int(nskip))//' unknowns (in substructures'//subs// &
+         ') are coupled to no load: zero displacement, not solved')
+  contains
+    function find(v) result(r)
+      integer(i8), intent(in) :: v
+      integer(i8) :: r
+      r = v
+      do while (root(r) /= r)
+         root(r) = root(root(r))
+         r = root(r)
+      end do
+    end function find
+  end subroutine skip_unloaded_parts
+
   !> Analyze, factorize (mapping a breakdown to its location) and solve all steps.
   subroutine factor_and_solve(model, table, tr, k, f_red, opts, solver, q, res, error)
     type(model_t), intent(in) :: model
@@ -300,7 +384,7 @@ contains
   end subroutine factor_and_solve
 
   !> Residual, EPSILON, iterative refinement, MAXRATIO and condition estimate.
-  subroutine health(k, q, f_red, spc, solver, model, table, tr, res, opts)
+  subroutine health(k, q, f_red, spc, solver, model, table, tr, res, opts, error)
     type(sparse_sym_t), intent(in) :: k
     real(wp), intent(inout) :: q(:, :)
     real(wp), intent(in) :: f_red(:, :)
@@ -311,8 +395,9 @@ contains
     type(transform_t), intent(in) :: tr
     type(results_t), intent(inout) :: res
     type(run_options_t), intent(in) :: opts
+    type(error_t), allocatable, intent(out) :: error
     real(wp), allocatable :: r(:, :), dq(:, :), d(:), kd(:)
-    type(error_t), allocatable :: error
+    type(error_t), allocatable :: inner
     integer :: is, it, nstep
     integer(i8) :: j, jmax
     real(wp) :: ratio, fnorm, cond
@@ -331,8 +416,8 @@ contains
     ! Iterative refinement with the existing factor.
     do it = 1, MAX_REFINE
        if (all(res%steps(:)%residual <= REFINE_THRESHOLD)) exit
-       call solver%solve(r, dq, error)
-       if (allocated(error)) exit
+       call solver%solve(r, dq, inner)
+       if (allocated(inner)) exit
        q = q - dq
        call k%matvec(q, r)
        r = r - f_red
@@ -359,6 +444,17 @@ contains
     end do
     res%maxratio_at = 'n/a'
     if (jmax > 0) res%maxratio_at = column_label(model, table, tr, jmax)
+    if (res%maxratio > MAXRATIO_FATAL) then
+       write (buf, '(es9.2)') res%maxratio
+       call fatal_error(error, EXIT_SINGULAR, 'error: the structure cannot be solved: stiffness is '// &
+            'numerically singular at '//res%maxratio_at//' (MAXRATIO '//trim(adjustl(buf))// &
+            '): a mechanism, or a stiffness contrast beyond double precision')
+       return
+    end if
+    if (maxval(res%steps(:)%residual) > RESIDUAL_WARN) then
+       write (buf, '(es9.2)') maxval(res%steps(:)%residual)
+       call warn(res, 'relative residual '//trim(adjustl(buf))//' after refinement: results are inaccurate')
+    end if
     if (res%maxratio > MAXRATIO_WARN) then
        write (buf, '(es9.2)') res%maxratio
        call warn(res, 'MAXRATIO '//trim(adjustl(buf))//' at '//res%maxratio_at// &

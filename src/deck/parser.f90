@@ -1010,6 +1010,7 @@ contains
     integer(ip) :: id
     real(wp) :: x(3)
     integer :: i
+    st%subs(st%card_sub)%node_lines = st%subs(st%card_sub)%node_lines + 1
     if (.not. field_count(st, loc, 3, 4, 'id, x, y[, z]')) return
     if (.not. get_id(st, line, loc, 1, 'node id', id)) return
     x = 0.0_wp

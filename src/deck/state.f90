@@ -43,6 +43,7 @@ module superjoin_deck_state
      character(:), allocatable :: name
      type(source_loc_t) :: loc
      integer(ip) :: nnode = 0
+     integer :: node_lines = 0                      !! *NODE data lines seen (valid or not)
      integer(ip), allocatable :: node_id(:)
      real(wp), allocatable :: x(:, :)
      type(source_loc_t), allocatable :: node_loc(:)

@@ -105,7 +105,7 @@ contains
     m%x = b%x(:, 1:n)
     allocate (m%node_order(n))
     call argsort_ids(m%node_id, m%node_order)
-    if (n == 0) call report_loc(st, b%loc, 'substructure '//b%name//' has no nodes')
+    if (b%node_lines == 0) call report_loc(st, b%loc, 'substructure '//b%name//' has no nodes')
     do i = 2, n
        if (m%node_id(m%node_order(i)) == m%node_id(m%node_order(i - 1))) then
           call report_loc(st, b%node_loc(m%node_order(i)), 'duplicate node id '// &

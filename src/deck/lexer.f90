@@ -63,7 +63,10 @@ module superjoin_deck_lexer
   public :: load_file, next_line, first_nonblank, to_upper, collapse_blanks
   public :: parse_keyword_line, split_fields, drop_trailing_empty
   public :: parse_real, parse_id, is_name, is_digits, looks_numeric, itoa
-  public :: path_dirname, path_join, path_normalize
+  public :: path_dirname, path_join, path_normalize, clip, plural
+
+  !> Longest piece of user text quoted in a message.
+  integer, parameter :: MAX_SHOWN = 60
 
   interface itoa
      module procedure itoa_i4, itoa_i8
@@ -222,6 +225,26 @@ contains
     end do
     t = buf(1:n)
   end function collapse_blanks
+
+  !> s for quoting in a message: cut to MAX_SHOWN characters ('...' appended).
+  pure function clip(s) result(t)
+    character(*), intent(in) :: s
+    character(:), allocatable :: t
+    if (len(s) > MAX_SHOWN) then
+       t = s(1:MAX_SHOWN)//'...'
+    else
+       t = s
+    end if
+  end function clip
+
+  !> "1 field", "3 fields": a count and a noun.
+  pure function plural(n, noun) result(s)
+    integer, intent(in) :: n
+    character(*), intent(in) :: noun
+    character(:), allocatable :: s
+    s = itoa(n)//' '//noun
+    if (n /= 1) s = s//'s'
+  end function plural
 
   !> Decimal text of an integer.
   pure function itoa_i4(i) result(s)

@@ -10,13 +10,13 @@ module superjoin_deck_parser
        FORM_TRANSFORM, FORM_PENALTY, RIGID_ELIMINATE, RIGID_LARGE
   use superjoin_deck_lexer, only: keyword_line_t, load_file, next_line, first_nonblank, to_upper, &
        parse_keyword_line, split_fields, drop_trailing_empty, parse_real, parse_id, is_name, &
-       is_digits, looks_numeric, itoa, path_dirname, path_join, path_normalize, &
+       is_digits, looks_numeric, itoa, clip, plural, path_dirname, path_join, path_normalize, &
        TOK_OK, TOK_RANGE, TOK_NONFINITE
   use superjoin_deck_state, only: deck_state_t, sec_b_t, contact_b_t, cline_b_t, support_b_t, &
        load_b_t, ref_t, report, report_loc, new_sub, find_sub, find_set, new_set, add_chunk, &
        push_pool, add_node, add_element, add_heading, add_material, add_orientation, &
        add_section, add_contact, add_cline, add_support, add_step, add_load, &
-       MAX_INCLUDE_DEPTH, CH_IDS, CH_GEN, CH_RANGE, CH_REF
+       MAX_INCLUDE_DEPTH, CH_IDS, CH_GEN, CH_RANGE, CH_REF, BEAM_2D_VALUES, BEAM_3D_VALUES
   implicit none (type, external)
   private
 
@@ -37,8 +37,13 @@ module superjoin_deck_parser
   !> Relative size below which orientation vectors count as zero or parallel.
   real(wp), parameter :: PARALLEL_TOL = 1.0e-10_wp
   integer, parameter :: NAME_LEN = 16
-  integer, parameter :: BEAM_2D_VALUES = 2, BEAM_3D_VALUES = 4
   integer, parameter :: ORIENT_VALUES = 6
+  !> Numbers of fields of data lines.
+  integer, parameter :: NODE_FIELDS_MIN = 3, NODE_FIELDS_MAX = 4
+  integer, parameter :: GEN_FIELDS_MIN = 2, GEN_FIELDS_MAX = 3
+  integer, parameter :: ELASTIC_FIELDS = 2, VECTOR_FIELDS = 3, CONTACT_FIELDS = 5, LOAD_FIELDS = 3
+  integer, parameter :: SUPPORT_FIELDS_MIN = 3, SUPPORT_FIELDS_MAX = 4
+  integer, parameter :: BOUNDARY_FIELDS_MIN = 2, BOUNDARY_FIELDS_MAX = 4
 
   !> Abaqus *BOUNDARY shorthands and the DOFs they fix.
   integer, parameter :: NUM_BC_TYPES = 8
@@ -233,7 +238,7 @@ contains
     case ('CONTROLS')
        call kw_controls(st, kw, loc)
     case default
-       call report_loc(st, loc, 'unknown keyword *'//kw%keyword)
+       call report_loc(st, loc, 'unknown keyword *'//clip(kw%keyword))
        st%card = CARD_SKIP
     end select
   end subroutine keyword_line
@@ -300,7 +305,7 @@ contains
             if (p%has_value) call report_loc(st, loc, 'parameter '//p%name//' of *'// &
                  kw%keyword//' takes no value')
          else
-            call report_loc(st, loc, 'unknown parameter '//p%name//' on *'//kw%keyword)
+            call report_loc(st, loc, 'unknown parameter '//clip(p%name)//' on *'//kw%keyword)
          end if
        end associate
     end do
@@ -350,7 +355,7 @@ contains
     call get_param(st, kw, loc, name, required, value, found)
     if (.not. found) return
     if (.not. is_name(value)) then
-       call report_loc(st, loc, 'invalid name '''//value//''' for '//name//'= (letters, digits, _ and - only)')
+       call report_loc(st, loc, 'invalid name '''//clip(value)//''' for '//name//'= (letters, digits, _ and - only)')
        found = .false.
        return
     end if
@@ -533,7 +538,7 @@ contains
        if (trim(ELEMENT_TYPE_NAMES(k)) == typ) st%card_etype = k
     end do
     if (st%card_etype == 0) then
-       call report_loc(st, loc, 'unsupported element type '//typ// &
+       call report_loc(st, loc, 'unsupported element type '//clip(typ)// &
             ' (T2D2, T3D2, B23, B33, CPS3, CPS4, S3, S4)')
        return
     end if
@@ -562,10 +567,15 @@ contains
     logical :: found
     integer :: isub, iset
     if (.not. outside_step(st, kw, loc)) return
-    pname = merge('ELSET', 'NSET ', elem)
-    pname = trim(pname)
-    call check_params(st, kw, loc, [character(NAME_LEN) :: pname], &
-         [character(NAME_LEN) :: 'GENERATE', 'UNSORTED'])
+    if (elem) then
+       pname = 'ELSET'
+       call check_params(st, kw, loc, [character(NAME_LEN) :: 'ELSET'], &
+            [character(NAME_LEN) :: 'GENERATE', 'UNSORTED'])
+    else
+       pname = 'NSET'
+       call check_params(st, kw, loc, [character(NAME_LEN) :: 'NSET'], &
+            [character(NAME_LEN) :: 'GENERATE', 'UNSORTED'])
+    end if
     call get_name_param(st, kw, loc, pname, .true., name, found)
     st%card = CARD_SKIP
     if (.not. found) return
@@ -604,7 +614,7 @@ contains
     if (.not. (found_e .and. found_m)) return
     if (.not. parse_ref(st, elset, .true., st%cur_sub, loc, sec%elset)) return
     if (.not. sec%elset%is_set) then
-       call report_loc(st, loc, 'ELSET='//elset//' must name an element set')
+       call report_loc(st, loc, 'ELSET='//clip(elset)//' must name an element set')
        return
     end if
     sec%kind = kind
@@ -738,7 +748,7 @@ contains
        case ('PENALTY')
           st%controls%formulation = FORM_PENALTY
        case default
-          call report_loc(st, loc, 'FORMULATION must be TRANSFORM or PENALTY, not '//value)
+          call report_loc(st, loc, 'FORMULATION must be TRANSFORM or PENALTY, not '//clip(value))
        end select
     end if
     call get_param(st, kw, loc, 'RIGID', .false., value, found)
@@ -749,7 +759,7 @@ contains
        case ('LARGE')
           st%controls%rigid = RIGID_LARGE
        case default
-          call report_loc(st, loc, 'RIGID must be ELIMINATE or LARGE, not '//value)
+          call report_loc(st, loc, 'RIGID must be ELIMINATE or LARGE, not '//clip(value))
        end select
     end if
     call get_param(st, kw, loc, 'LARGE', .false., value, found)
@@ -758,7 +768,7 @@ contains
        if (stat /= TOK_OK) then
           call report_loc(st, loc, real_message(value, stat))
        else if (.not. (x > 1.0_wp)) then
-          call report_loc(st, loc, 'LARGE must be greater than 1, not '//value)
+          call report_loc(st, loc, 'LARGE must be greater than 1, not '//clip(value))
        else
           st%controls%large = x
        end if
@@ -823,7 +833,7 @@ contains
     character(*), intent(in) :: expected
     ok = st%f%n >= nmin .and. st%f%n <= nmax
     if (.not. ok) call report_loc(st, loc, 'wrong number of fields on '//st%card_name// &
-         ' data line: expected '//expected//', got '//itoa(st%f%n)//' fields')
+         ' data line: expected '//expected//', got '//plural(st%f%n, 'field'))
   end function field_count
 
   !> Field i of the current data line.
@@ -855,14 +865,14 @@ contains
     character(:), allocatable :: msg
     select case (stat)
     case (TOK_RANGE)
-       msg = 'real out of range '''//tok//''''
+       msg = 'real out of range '''//clip(tok)//''''
     case (TOK_NONFINITE)
-       msg = 'invalid real '''//tok//''' (NaN and Inf are not allowed)'
+       msg = 'invalid real '''//clip(tok)//''' (NaN and Inf are not allowed)'
     case default
        if (len(tok) == 0) then
           msg = 'invalid real: empty field'
        else
-          msg = 'invalid real '''//tok//''''
+          msg = 'invalid real '''//clip(tok)//''''
        end if
     end select
   end function real_message
@@ -884,7 +894,7 @@ contains
   pure function id_message(what, tok) result(msg)
     character(*), intent(in) :: what, tok
     character(:), allocatable :: msg
-    msg = 'invalid '//what//' '''//tok//''' (ids are positive integers below 2**31)'
+    msg = 'invalid '//what//' '''//clip(tok)//''' (ids are positive integers below 2**31)'
   end function id_message
 
   !> DOF number 1..6 in field i.
@@ -903,7 +913,7 @@ contains
     if (ok) then
        dof = int(v)
     else
-       call report_loc(st, loc, 'invalid DOF '''//fld(st, line, i)//''' (1 to 6)')
+       call report_loc(st, loc, 'invalid DOF '''//clip(fld(st, line, i))//''' (1 to 6)')
     end if
   end function get_dof
 
@@ -940,7 +950,7 @@ contains
     ok = get_real(st, line, loc, i, g)
     if (.not. ok) return
     if (g < 0.0_wp) then
-       call report_loc(st, loc, 'stiffness must be >= 0 or RIGID, not '//fld(st, line, i))
+       call report_loc(st, loc, 'stiffness must be >= 0 or RIGID, not '//clip(fld(st, line, i)))
        ok = .false.
     else if (g > 0.0_wp) then
        state = LINK_FINITE
@@ -958,8 +968,7 @@ contains
     type(ref_t), intent(out) :: ref
     character(:), allocatable :: what, rest
     integer :: dot, stat
-    what = merge('element', 'node   ', elem)
-    what = trim(what)
+    what = pick(elem, 'element', 'node')
     ref%home = home
     ok = .false.
     if (len(tok) == 0) then
@@ -979,7 +988,7 @@ contains
     if (dot > 0) then
        rest = tok(dot + 1:)
        if (.not. is_name(tok(1:dot - 1))) then
-          call report_loc(st, loc, 'invalid substructure name in '''//tok//'''')
+          call report_loc(st, loc, 'invalid substructure name in '''//clip(tok)//'''')
           return
        end if
        ref%scope = to_upper(tok(1:dot - 1))
@@ -996,7 +1005,7 @@ contains
        ref%is_set = .true.
        ref%set = to_upper(rest)
     else
-       call report_loc(st, loc, 'invalid '//what//' reference '''//tok//''' ('//what// &
+       call report_loc(st, loc, 'invalid '//what//' reference '''//clip(tok)//''' ('//what// &
             ' id, set name, SUB.id or SUB.set)')
        return
     end if
@@ -1011,7 +1020,7 @@ contains
     real(wp) :: x(3)
     integer :: i
     st%subs(st%card_sub)%node_lines = st%subs(st%card_sub)%node_lines + 1
-    if (.not. field_count(st, loc, 3, 4, 'id, x, y[, z]')) return
+    if (.not. field_count(st, loc, NODE_FIELDS_MIN, NODE_FIELDS_MAX, 'id, x, y[, z]')) return
     if (.not. get_id(st, line, loc, 1, 'node id', id)) return
     x = 0.0_wp
     do i = 2, st%f%n
@@ -1051,11 +1060,10 @@ contains
     character(:), allocatable :: what, tok
     integer(ip) :: id, gen(3)
     integer :: i, ck, k
-    what = merge('element id', 'node id   ', elem)
-    what = trim(what)
+    what = pick(elem, 'element id', 'node id')
     associate (sub => st%subs(st%card_sub))
       if (st%card_generate) then
-         if (.not. field_count(st, loc, 2, 3, 'first, last[, increment]')) return
+         if (.not. field_count(st, loc, GEN_FIELDS_MIN, GEN_FIELDS_MAX, 'first, last[, increment]')) return
          gen(3) = 1
          do i = 1, st%f%n
             if (.not. get_id(st, line, loc, i, what, gen(i))) return
@@ -1086,7 +1094,7 @@ contains
             sub%chunks(k)%ref = to_upper(tok)
             ck = 0
          else
-            call report_loc(st, loc, 'invalid entry '''//tok//''' in '//st%card_name// &
+            call report_loc(st, loc, 'invalid entry '''//clip(tok)//''' in '//st%card_name// &
                  ' (expected '//what//' or set name)')
          end if
       end do
@@ -1104,6 +1112,7 @@ contains
       if (sec%kind /= SEC_BEAM .and. st%card_ndata > 1 .or. st%card_ndata > 2) then
          call report_loc(st, loc, 'too many data lines for '//st%card_name)
          sec%data_ok = .false.
+         st%card = CARD_SKIP
          return
       end if
       if (sec%kind /= SEC_BEAM) then
@@ -1133,7 +1142,7 @@ contains
          end if
          if (st%f%n /= BEAM_2D_VALUES .and. st%f%n /= BEAM_3D_VALUES) then
             call report_loc(st, loc, 'wrong number of fields on *BEAM SECTION data line: expected '// &
-                 'A, I (2D) or A, Iy, Iz, J (3D), got '//itoa(st%f%n)//' fields')
+                 'A, I (2D) or A, Iy, Iz, J (3D), got '//plural(st%f%n, 'field'))
             sec%data_ok = .false.
             return
          end if
@@ -1157,7 +1166,7 @@ contains
             sec%data_ok = .false.
             return
          end if
-         if (.not. field_count(st, loc, 3, 3, 'vx, vy, vz')) then
+         if (.not. field_count(st, loc, VECTOR_FIELDS, VECTOR_FIELDS, 'vx, vy, vz')) then
             sec%data_ok = .false.
             return
          end if
@@ -1185,9 +1194,10 @@ contains
     real(wp) :: e, nu
     if (st%card_ndata > 1) then
        call report_loc(st, loc, 'too many data lines for *ELASTIC')
+       st%card = CARD_SKIP
        return
     end if
-    if (.not. field_count(st, loc, 2, 2, 'E, nu')) return
+    if (.not. field_count(st, loc, ELASTIC_FIELDS, ELASTIC_FIELDS, 'E, nu')) return
     if (.not. get_real(st, line, loc, 1, e)) return
     if (.not. get_real(st, line, loc, 2, nu)) return
     if (.not. (e > 0.0_wp)) then
@@ -1210,6 +1220,7 @@ contains
     integer :: i
     if (st%card_ndata > 1) then
        call report_loc(st, loc, 'too many data lines for *ORIENTATION')
+       st%card = CARD_SKIP
        return
     end if
     if (.not. field_count(st, loc, ORIENT_VALUES, ORIENT_VALUES, 'ax, ay, az, bx, by, bz')) return
@@ -1248,7 +1259,7 @@ contains
     type(source_loc_t), intent(in) :: loc
     type(cline_b_t) :: c
     character(:), allocatable :: master, slave
-    if (.not. field_count(st, loc, 5, 5, 'master, slave, first dof, last dof, g')) return
+    if (.not. field_count(st, loc, CONTACT_FIELDS, CONTACT_FIELDS, 'master, slave, first dof, last dof, g')) return
     master = st%contacts(st%card_item)%master
     slave = st%contacts(st%card_item)%slave
     if (.not. contact_ref(master, 'master', 1, c%master)) return
@@ -1267,7 +1278,7 @@ contains
       if (.not. ok) return
       if (allocated(ref%scope)) then
          if (ref%scope /= subname) then
-            call report_loc(st, loc, 'node '''//fld(st, line, i)//''' is not in the '//role// &
+            call report_loc(st, loc, 'node '''//clip(fld(st, line, i))//''' is not in the '//role// &
                  ' substructure '//subname)
             ok = .false.
          end if
@@ -1281,11 +1292,11 @@ contains
     type(source_loc_t), intent(in) :: loc
     type(support_b_t) :: s
     integer :: first, last
-    if (.not. field_count(st, loc, 3, 4, 'node or nset, first dof, last dof[, g]')) return
+    if (.not. field_count(st, loc, SUPPORT_FIELDS_MIN, SUPPORT_FIELDS_MAX, 'node or nset, first dof, last dof[, g]')) return
     if (.not. parse_ref(st, fld(st, line, 1), .false., st%card_home, loc, s%ref)) return
     if (.not. get_dof_range(st, line, loc, 2, first, last)) return
     s%state = LINK_RIGID
-    if (st%f%n == 4) then
+    if (st%f%n == SUPPORT_FIELDS_MAX) then
        if (.not. get_stiffness(st, line, loc, 4, s%state, s%g)) return
        if (s%state == LINK_NONE) return
     end if
@@ -1301,7 +1312,7 @@ contains
     type(support_b_t) :: s
     character(:), allocatable :: tok
     integer :: first, last, k
-    if (.not. field_count(st, loc, 2, 4, 'node or nset, first dof[, last dof[, value]]')) return
+    if (.not. field_count(st, loc, BOUNDARY_FIELDS_MIN, BOUNDARY_FIELDS_MAX, 'node or nset, first dof[, last dof[, value]]')) return
     if (.not. parse_ref(st, fld(st, line, 1), .false., st%card_home, loc, s%ref)) return
     s%state = LINK_RIGID
     s%loc = loc
@@ -1309,7 +1320,7 @@ contains
     if (.not. looks_numeric(tok) .and. len(tok) > 0) then
        do k = 1, NUM_BC_TYPES
           if (trim(BC_TYPE_NAMES(k)) == tok) then
-             if (st%f%n /= 2) then
+             if (st%f%n /= BOUNDARY_FIELDS_MIN) then
                 call report_loc(st, loc, '*BOUNDARY type '//tok//' takes no further fields')
                 return
              end if
@@ -1318,7 +1329,7 @@ contains
              return
           end if
        end do
-       call report_loc(st, loc, 'invalid DOF '''//fld(st, line, 2)//''' (1 to 6 or a *BOUNDARY type such as ENCASTRE)')
+       call report_loc(st, loc, 'invalid DOF '''//clip(fld(st, line, 2))//''' (1 to 6 or a *BOUNDARY type such as ENCASTRE)')
        return
     end if
     if (.not. get_dof(st, line, loc, 2, first)) return
@@ -1332,7 +1343,7 @@ contains
        call report_loc(st, loc, 'first DOF '//itoa(first)//' is after last DOF '//itoa(last))
        return
     end if
-    if (st%f%n == 4) then
+    if (st%f%n == BOUNDARY_FIELDS_MAX) then
        if (.not. get_real(st, line, loc, 4, s%value)) return
     end if
     s%dofs(first:last) = .true.
@@ -1348,9 +1359,9 @@ contains
     character(:), allocatable :: typ
     dload = st%card == CARD_DLOAD
     if (dload) then
-       if (.not. field_count(st, loc, 3, 3, 'element or elset, load type, value')) return
+       if (.not. field_count(st, loc, LOAD_FIELDS, LOAD_FIELDS, 'element or elset, load type, value')) return
     else
-       if (.not. field_count(st, loc, 3, 3, 'node or nset, dof, value')) return
+       if (.not. field_count(st, loc, LOAD_FIELDS, LOAD_FIELDS, 'node or nset, dof, value')) return
     end if
     if (.not. parse_ref(st, fld(st, line, 1), dload, st%card_home, loc, ld%ref)) return
     if (dload) then
@@ -1365,7 +1376,7 @@ contains
        case ('P')
           ld%kind = DLOAD_P
        case default
-          call report_loc(st, loc, 'unknown *DLOAD type '''//fld(st, line, 2)//''' (PX, PY, PZ or P)')
+          call report_loc(st, loc, 'unknown *DLOAD type '''//clip(fld(st, line, 2))//''' (PX, PY, PZ or P)')
           return
        end select
     else
@@ -1375,6 +1386,18 @@ contains
     ld%loc = loc
     call add_load(st%steps(st%card_item), ld, dload)
   end subroutine data_load
+
+  !> `a` when `cond`, else `b` (strings of any lengths).
+  pure function pick(cond, a, b) result(s)
+    logical, intent(in) :: cond
+    character(*), intent(in) :: a, b
+    character(:), allocatable :: s
+    if (cond) then
+       s = a
+    else
+       s = b
+    end if
+  end function pick
 
   !> "file:line" of a location.
   function loc_string(st, loc) result(s)

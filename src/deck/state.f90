@@ -13,6 +13,8 @@ module superjoin_deck_state
   integer, parameter, public :: MAX_ERRORS = 50          !! messages before '... too many errors'
   integer, parameter, public :: MAX_INCLUDE_DEPTH = 16   !! nested *INCLUDE levels
   integer, parameter :: INITIAL_CAPACITY = 16
+  !> Numbers on the first data line of *BEAM SECTION: A, I (2D) or A, Iy, Iz, J (3D).
+  integer, parameter, public :: BEAM_2D_VALUES = 2, BEAM_3D_VALUES = 4
 
   !> Kinds of set chunks (one data line or one card's worth of set members).
   integer, parameter, public :: CH_IDS = 1    !! explicit ids: pool(start:start+count-1)

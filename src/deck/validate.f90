@@ -3,14 +3,14 @@
 !> nodes, sets, sections, contacts, supports, loads) and fills model_t.
 module superjoin_deck_validate
   use superjoin_kinds, only: wp, ip, i8
-  use superjoin_model_types, only: model_t, substructure_t, index_set_t, section_t, contact_t, &
+  use superjoin_model_types, only: model_t, substructure_t, index_set_t, &
        link_t, support_t, cload_t, dload_t, source_loc_t, find_node, find_elem, &
        ELEMENT_TYPE_NAMES, ELEMENT_NODE_COUNT, NDOF_NODE, SEC_SOLID, SEC_BEAM, SEC_SHELL, &
-       LINK_NONE, LINK_FINITE, LINK_RIGID, ET_T2D2, ET_T3D2, ET_B23, ET_B33, ET_CPS3, ET_CPS4, &
+       LINK_FINITE, LINK_RIGID, ET_T2D2, ET_T3D2, ET_B23, ET_B33, ET_CPS3, ET_CPS4, &
        ET_S3, ET_S4, DLOAD_PX, DLOAD_PY, DLOAD_PZ, DLOAD_P, DLOAD_NAMES
-  use superjoin_deck_lexer, only: itoa
+  use superjoin_deck_lexer, only: itoa, plural
   use superjoin_deck_state, only: deck_state_t, sub_b_t, ref_t, load_b_t, report, report_loc, find_set, &
-       CH_IDS, CH_GEN, CH_RANGE, CH_REF
+       CH_IDS, CH_GEN, CH_RANGE, CH_REF, BEAM_2D_VALUES, BEAM_3D_VALUES
   implicit none (type, external)
   private
 
@@ -175,8 +175,7 @@ contains
     integer, parameter :: TODO = 0, BUSY = 1, DONE = 2
     character(:), allocatable :: kind_name
 
-    kind_name = merge('element set', 'node set   ', elem)
-    kind_name = trim(kind_name)
+    kind_name = pick(elem, 'element set', 'node set')
     if (elem) then
        nset = b%nelset
        nitem = m%nelem
@@ -285,7 +284,7 @@ contains
                  end if
               end do
               if (nbad > 0) call report_loc(st, ch%loc, kind_name//' '//sets(t)%name// &
-                   ': undefined '//trim(merge('element', 'node   ', elem))//' '//itoa(bad_id)// &
+                   ': undefined '//pick(elem, 'element', 'node')//' '//itoa(bad_id)// &
                    more_text(nbad - 1))
            case (CH_GEN)
               ngen = 0
@@ -487,16 +486,16 @@ contains
       case (SEC_SHELL)
          sec%thickness = sb%val(1)
       case (SEC_BEAM)
-         if (nb23 > 0 .and. sb%nval /= 2) then
+         if (nb23 > 0 .and. sb%nval /= BEAM_2D_VALUES) then
             call report_loc(st, sb%data_loc, '*BEAM SECTION of 2D beams (B23) needs A, I')
             return
          end if
-         if (nb33 > 0 .and. sb%nval /= 4) then
+         if (nb33 > 0 .and. sb%nval /= BEAM_3D_VALUES) then
             call report_loc(st, sb%data_loc, '*BEAM SECTION of 3D beams (B33) needs A, Iy, Iz, J')
             return
          end if
          sec%area = sb%val(1)
-         if (sb%nval == 2) then
+         if (sb%nval == BEAM_2D_VALUES) then
             sec%iz = sb%val(2)
          else
             sec%iy = sb%val(2)
@@ -620,8 +619,7 @@ contains
     integer :: k
     integer(ip) :: i
     character(:), allocatable :: what
-    what = merge('element', 'node   ', elem)
-    what = trim(what)
+    what = pick(elem, 'element', 'node')
     ok = .false.
     associate (sub => model%subs(isub))
       if (ref%is_set) then
@@ -710,10 +708,10 @@ contains
               if (.not. cl%master%is_set .or. .not. cl%slave%is_set) then
                  call report_loc(st, cl%loc, 'node '//ref_text(pick_node(cl%master, cl%slave))// &
                       ' is paired with node set '//pick_set_name(cl%master, cl%slave)//' of '// &
-                      itoa(max(size(ms), size(ss)))//' nodes (a single node pairs only with a one-node set)')
+                      plural(max(size(ms), size(ss)), 'node')//' (a single node pairs only with a one-node set)')
               else
-                 call report_loc(st, cl%loc, 'node sets '//cl%master%set//' ('//itoa(size(ms))// &
-                      ' nodes) and '//cl%slave%set//' ('//itoa(size(ss))//' nodes) differ in size')
+                 call report_loc(st, cl%loc, 'node sets '//cl%master%set//' ('//plural(size(ms), 'node')// &
+                      ') and '//cl%slave%set//' ('//plural(size(ss), 'node')//') differ in size')
               end if
               cycle
            end if
@@ -1061,6 +1059,18 @@ contains
        s = s//')'
     end if
   end function more_text
+
+  !> `a` when `cond`, else `b` (strings of any lengths).
+  pure function pick(cond, a, b) result(s)
+    logical, intent(in) :: cond
+    character(*), intent(in) :: a, b
+    character(:), allocatable :: s
+    if (cond) then
+       s = a
+    else
+       s = b
+    end if
+  end function pick
 
   !> "file:line" of a location.
   function where(st, loc) result(s)

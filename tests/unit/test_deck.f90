@@ -4,12 +4,12 @@ program test_deck
   use superjoin_kinds, only: wp, ip
   use superjoin_error, only: error_t, EXIT_DECK, EXIT_IO
   use superjoin_model_types, only: model_t, find_node, find_elem, LINK_NONE, LINK_FINITE, LINK_RIGID, &
-       SEC_SOLID, SEC_BEAM, SEC_SHELL, ET_T2D2, ET_CPS4, ET_B23, ET_B33, ET_S4, DLOAD_PY, DLOAD_P, &
+       SEC_SOLID, SEC_BEAM, SEC_SHELL, ET_T2D2, DLOAD_PY, DLOAD_P, &
        FORM_PENALTY, RIGID_LARGE, FORM_TRANSFORM, RIGID_ELIMINATE
   use superjoin_deck_reader, only: read_deck, read_deck_string
   use superjoin_deck_lexer, only: parse_real, parse_id, is_name, TOK_OK, TOK_INVALID, TOK_RANGE, &
        TOK_NONFINITE
-  use superjoin_testing, only: check, check_close, check_rel, finish
+  use superjoin_testing, only: check, check_close, finish
   implicit none (type, external)
 
   character, parameter :: LF = achar(10), CR = achar(13)
@@ -252,20 +252,32 @@ contains
     integer :: i
     integer, parameter :: N = 20000
     character(len=12) :: buf
-    ! a 150 kB set line and a 4 MB heading line
-    nodes = '*NODE'//LF
-    set = ''
+    integer :: nn, ns
+    ! a 150 kB set line and a 4 MB heading line, built in buffers (no quadratic concatenation)
+    allocate (character(len=32*N) :: nodes, set)
+    nn = 0
+    ns = 0
+    call put(nodes, nn, '*NODE'//LF)
     do i = 1, N
        write (buf, '(i0)') i
-       nodes = nodes//trim(buf)//', '//trim(buf)//'.0, 0'//LF
-       set = set//trim(buf)//', '
+       call put(nodes, nn, trim(buf)//', '//trim(buf)//'.0, 0'//LF)
+       call put(set, ns, trim(buf)//', ')
     end do
-    text = '*HEADING'//LF//repeat('x', 4*1024*1024)//LF//nodes//'*NSET, NSET=ALL'//LF//set//LF
+    text = '*HEADING'//LF//repeat('x', 4*1024*1024)//LF//nodes(1:nn)//'*NSET, NSET=ALL'//LF//set(1:ns)//LF
     call read_ok(text, m, 'long lines')
     if (size(m%subs) /= 1) return
     call check(len(m%heading(1)%s) == 4*1024*1024, 'long heading line kept')
     call check(size(m%subs(1)%nsets(1)%items) == N, 'long set line: all ids')
   end subroutine test_long_line
+
+  !> Append s at position n of a preallocated buffer.
+  subroutine put(buffer, n, s)
+    character(*), intent(inout) :: buffer
+    integer, intent(inout) :: n
+    character(*), intent(in) :: s
+    buffer(n + 1:n + len(s)) = s
+    n = n + len(s)
+  end subroutine put
 
   ! ------------------------------------------------------------------ nodes and elements
 
@@ -516,7 +528,7 @@ contains
     call read_bad(parts//join([character(L) :: '*CONTACT, NAME=J, MASTER=I, SLAVE=II', 'EDGEI, 1, 1, 1, RIGID']), &
          'inline.deck:22: error: node 1 is paired with node set EDGEI of 3 nodes', 'node with a 3-node set')
     call read_bad(parts//join([character(L) :: '*CONTACT, NAME=K, MASTER=I, SLAVE=I', 'EDGEI, ONE, 1, 1, RIGID']), &
-         'node sets EDGEI (3 nodes) and ONE (1 nodes) differ in size', 'nset sizes differ')
+         'node sets EDGEI (3 nodes) and ONE (1 node) differ in size', 'nset sizes differ')
     call read_bad(parts//join([character(L) :: '*CONTACT, NAME=J, MASTER=I, SLAVE=I', '5, 5, 1, 1, RIGID']), &
          'inline.deck:22: error: node 5 of substructure I is in contact with itself', 'self contact')
     call read_bad(parts//join([character(L) :: '*CONTACT, NAME=J, MASTER=I, SLAVE=II', 'II.5, 1, 1, 1, RIGID']), &

@@ -20,6 +20,7 @@ program test_deck_include
   call test_depth()
   call test_crlf_file()
   call execute_command_line('rm -rf '//dir)
+  deallocate (dir)
   call finish()
 
 contains

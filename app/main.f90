@@ -1,6 +1,6 @@
-!> superjoin: command-line driver. Reads a deck, solves every step, writes the
-!> listing (and CSV results on request). The only place that stops.
 program superjoin_main
+  !! superjoin: command-line driver. Reads a deck, solves every step, writes the
+  !! listing (and CSV results on request). The only place that stops.
   use, intrinsic :: iso_fortran_env, only: error_unit, output_unit
   use superjoin_kinds, only: wp
   use superjoin_error, only: error_t, EXIT_OK, EXIT_USAGE, EXIT_IO
@@ -56,8 +56,8 @@ program superjoin_main
 
 contains
 
-  !> Print the error's lines on stderr and stop with its exit status.
   subroutine fail_on(error, deck)
+    !! Print the error's lines on stderr and stop with its exit status.
     type(error_t), allocatable, intent(in) :: error
     character(*), intent(in) :: deck
     integer :: start, nl
@@ -107,8 +107,8 @@ contains
          '             (mechanism, singular); 4 input/output or resource failure'
   end subroutine print_help
 
-  !> Options and file names from the command line (usage errors stop with 2).
   subroutine parse_command_line(opts, deck, listing, csv_dir, check_only)
+    !! Options and file names from the command line (usage errors stop with 2).
     type(run_options_t), intent(out) :: opts
     character(:), allocatable, intent(out) :: deck, listing, csv_dir
     logical, intent(out) :: check_only
@@ -198,8 +198,8 @@ contains
     if (length > 0) call get_command_argument(i, arg)
   end function get_arg
 
-  !> DECK with its extension replaced by .lst.
   function default_listing(path) result(lst)
+    !! DECK with its extension replaced by .lst.
     character(*), intent(in) :: path
     character(:), allocatable :: lst
     integer :: dot, slash

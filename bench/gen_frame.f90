@@ -3,7 +3,8 @@
 !>
 !> Build:  gfortran -O2 bench/gen_frame.f90 -o build/gen_frame
 !> Usage:  gen_frame NX NY NZ [DECK]        explicit grid (DECK default: stdout)
-!>         gen_frame --dofs N [DECK]        pick the shape for about N equations
+!>         gen_frame --dofs N [--shape tower|block|long] [DECK]
+!>                                          pick a grid of about N equations
 !>
 !> The model (units N, m):
 !>   - NX x NY column lines, NZ storeys of height 3.5 m, bays of 6 m in X and Y.
@@ -28,14 +29,15 @@
 !> (the 3 rotational Delta-u of every girder end stay as equations; its 3
 !> translations are eliminated). The program prints this on stderr.
 !>
-!> Shape: the cost of a sparse Cholesky factorization of a fat 3D grid grows
-!> like n^2 (fill ~ n^(4/3)), so --dofs builds a long low building, a
-!> warehouse-like block of DOFS_NY x DOFS_NZ bays cross-section whose length
-!> NX grows with N; its nested-dissection separators are cross-sections of
-!> constant size and the factorization stays cheap at 1e6 equations.
-!> Reference shapes (equations):
-!>   --dofs 1e3 -> 4 x 2 x 2    (  1 032)
-!>   --dofs 1e4 -> 20 x 5 x 4   (  9 936)  ... see the table printed by --help.
+!> Shapes for --dofs N (--shape, default tower; gen_frame --help lists the
+!> grids it picks for 1e3 .. 1e6). Sparse Cholesky of a fat 3D grid costs
+!> about n^2 flops (fill ~ n^(4/3)); slender shapes keep the separators small:
+!>   tower  square plan p x p, about 12 p storeys (slender: separators are
+!>          storey cross-sections of p^2 columns); 1e6 -> 12 x 12 x 154
+!>   block  square plan, as many storeys as bays per side; 1e6 -> 28 x 28 x 27
+!>   long   long low building, 5 x 4 bays cross-section; 1e6 -> 1127 x 5 x 4
+!> Measured on 2 cores (doc/performance.md): all three factor 1e6 equations
+!> in seconds (block: 12 s, 2.3 GB); tower is the benchmark's default.
 program gen_frame
   use, intrinsic :: iso_fortran_env, only: error_unit, output_unit, int64, real64
   implicit none
@@ -68,17 +70,20 @@ program gen_frame
   real(dp), parameter :: Q_GRAVITY = -20.0e3_dp !< line load on girders [N/m], global Z
   real(dp), parameter :: F_WIND = 20.0e3_dp     !< force per facade floor node [N], global X
 
-  ! --dofs mode: fixed cross-section of the long low building
-  integer, parameter :: DOFS_NY = 5, DOFS_NZ = 4
-  ! small targets cannot use the full cross-section
-  integer, parameter :: SMALL_NY = 2, SMALL_NZ = 2
+  ! --dofs mode (see shape_for). Equations per column line per storey are
+  ! about 6*COL_ELEMS + 2*6*BEAM_ELEMS = 48, hence the factors below.
+  real(dp), parameter :: TOWER_FACTOR = 576.0_dp  !< 48 * 12: storeys = 12 x plan side
+  real(dp), parameter :: BLOCK_FACTOR = 48.0_dp   !< storeys = plan side
+  integer, parameter :: LONG_NY = 5, LONG_NZ = 4  !< cross-section of the long building
+  integer, parameter :: SMALL_NY = 2, SMALL_NZ = 2 !< ... for targets too small for it
   integer, parameter :: MAX_NX = 100000000  !< search bound of --dofs
 
   integer :: nx, ny, nz, u
   integer(i8) :: neq, ndof
   character(len=:), allocatable :: out_path
   character(len=512) :: arg
-  integer :: nargs, ios
+  integer :: nargs, ios, iarg
+  character(len=:), allocatable :: shape
   real(dp) :: target
 
   nargs = command_argument_count()
@@ -86,24 +91,34 @@ program gen_frame
   call get_command_argument(1, arg)
   if (arg == '--help' .or. arg == '-h') call usage(0)
   if (arg == '--dofs') then
-     if (nargs < 2 .or. nargs > 3) call usage(2)
+     if (nargs < 2) call usage(2)
      call get_command_argument(2, arg)
      read (arg, *, iostat=ios) target
      if (ios /= 0 .or. target < 100.0_dp) call die('--dofs needs a number >= 100, got '//trim(arg))
-     call shape_for(target, nx, ny, nz)
-     if (nargs == 3) then
+     shape = 'tower'
+     iarg = 3
+     if (nargs >= 4) then
         call get_command_argument(3, arg)
-        out_path = trim(arg)
+        if (arg == '--shape') then
+           call get_command_argument(4, arg)
+           shape = trim(arg)
+           iarg = 5
+        end if
      end if
+     if (shape /= 'tower' .and. shape /= 'block' .and. shape /= 'long') &
+          call die('unknown shape '//shape//' (tower, block or long)')
+     if (nargs > iarg) call usage(2)
+     call shape_for(target, shape, nx, ny, nz)
   else
      if (nargs < 3 .or. nargs > 4) call usage(2)
      nx = int_arg(1)
      ny = int_arg(2)
      nz = int_arg(3)
-     if (nargs == 4) then
-        call get_command_argument(4, arg)
-        out_path = trim(arg)
-     end if
+     iarg = 4
+  end if
+  if (nargs == iarg) then
+     call get_command_argument(iarg, arg)
+     out_path = trim(arg)
   end if
   if (nx < 1 .or. ny < 1 .or. nz < 1) call die('NX, NY, NZ must be >= 1')
   if (nx * ny < 2) call die('need at least two column lines (NX*NY >= 2) to have girders')
@@ -139,32 +154,49 @@ contains
          6_i8 * BEAM_ELEMS * nz * girders_per_floor(nx, ny)
   end function equations
 
-  !> Shape of about `target` equations: a long low building of fixed
-  !> cross-section (DOFS_NY x DOFS_NZ, or SMALL_NY x SMALL_NZ for small targets)
-  !> whose length NX is the closest to the target.
-  subroutine shape_for(target, nx, ny, nz)
+  !> Shape of about `target` equations in one of the families:
+  !>   tower: square plan of p x p column lines, p = nint((target/576)^(1/3))
+  !>          (at least 2), so that the height is about 12 plan sides in
+  !>          storeys; the number of storeys is then fitted to the target.
+  !>   block: square plan, as many storeys as column lines per side (a cube of
+  !>          bays): the fattest 3D shape, largest separators.
+  !>   long:  long low building, cross-section LONG_NY x LONG_NZ (SMALL_NY x
+  !>          SMALL_NZ for small targets), the length NX fitted to the target.
+  subroutine shape_for(target, shape, nx, ny, nz)
     real(dp), intent(in) :: target
+    character(*), intent(in) :: shape
     integer, intent(out) :: nx, ny, nz
-    integer :: n
+    integer :: n, p
     real(dp) :: best, err
-    ny = DOFS_NY
-    nz = DOFS_NZ
-    if (real(equations(2, ny, nz), dp) > target) then
-       ny = SMALL_NY
-       nz = SMALL_NZ
-    end if
-    nx = 1
-    best = huge(1.0_dp)
-    do n = 1, MAX_NX
-       err = abs(real(equations(n, ny, nz), dp) - target)
-       if (err < best) then
-          best = err
-          nx = n
-       else if (real(equations(n, ny, nz), dp) > target) then
-          exit
+    select case (shape)
+    case ('tower', 'block')
+       if (shape == 'tower') then
+          p = max(2, nint((target / TOWER_FACTOR)**(1.0_dp / 3.0_dp)))
+       else
+          p = max(2, nint((target / BLOCK_FACTOR)**(1.0_dp / 3.0_dp)))
        end if
-    end do
-    nx = max(nx, 2)
+       nx = p
+       ny = p
+       nz = max(1, nint(target / real(equations(p, p, 1), dp)))
+    case default ! long
+       ny = LONG_NY
+       nz = LONG_NZ
+       if (real(equations(2, ny, nz), dp) > target) then
+          ny = SMALL_NY
+          nz = SMALL_NZ
+       end if
+       nx = 2
+       best = huge(1.0_dp)
+       do n = 2, MAX_NX
+          err = abs(real(equations(n, ny, nz), dp) - target)
+          if (err < best) then
+             best = err
+             nx = n
+          else
+             exit ! the error grows from here on
+          end if
+       end do
+    end select
   end subroutine shape_for
 
   !> Column node id: column line (i, j), level k = 0 .. nz*COL_ELEMS (0 = base).
@@ -405,25 +437,29 @@ contains
   subroutine die(msg)
     character(*), intent(in) :: msg
     write (error_unit, '(a)') 'gen_frame: '//msg
-    stop 2
+    stop 2, quiet=.true.
   end subroutine die
 
   subroutine usage(code)
     integer, intent(in) :: code
-    integer :: unit, p, nx, ny, nz
+    integer :: unit, p, q, nx, ny, nz
     real(dp), parameter :: sizes(4) = [1.0e3_dp, 1.0e4_dp, 1.0e5_dp, 1.0e6_dp]
+    character(len=5), parameter :: shapes(3) = ['tower', 'block', 'long ']
     unit = merge(output_unit, error_unit, code == 0)
     write (unit, '(a)') 'usage: gen_frame NX NY NZ [DECK]   NX x NY column lines, NZ storeys'
-    write (unit, '(a)') '       gen_frame --dofs N [DECK]   long low building of about N equations'
-    write (unit, '(a)') 'writes a superjoin deck (stdout without DECK); size on stderr.'
-    write (unit, '(a)') 'shapes chosen by --dofs:'
-    do p = 1, size(sizes)
-       call shape_for(sizes(p), nx, ny, nz)
-       write (unit, '(a,es8.1,a,3(i0,a),i0,a)') '  --dofs ', sizes(p), ' -> ', nx, ' ', ny, ' ', &
-            nz, '  (', equations(nx, ny, nz), ' equations)'
+    write (unit, '(a)') '       gen_frame --dofs N [--shape tower|block|long] [DECK]'
+    write (unit, '(a)') '                                   a grid of about N equations (default tower)'
+    write (unit, '(a)') 'writes a superjoin deck (stdout without DECK); its size goes to stderr.'
+    write (unit, '(a)') 'grids chosen by --dofs:'
+    do q = 1, size(shapes)
+       do p = 1, size(sizes)
+          call shape_for(sizes(p), trim(shapes(q)), nx, ny, nz)
+          write (unit, '(a,es8.1,a,3(i0,a),i0,a)') '  --dofs ', sizes(p), ' --shape '//shapes(q)//' -> ', &
+               nx, ' x ', ny, ' x ', nz, '  (', equations(nx, ny, nz), ' equations)'
+       end do
     end do
     if (code == 0) stop
-    stop 2
+    stop 2, quiet=.true.
   end subroutine usage
 
 end program gen_frame

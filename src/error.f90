@@ -1,5 +1,5 @@
-!> Error reporting: an allocatable error_t travels up through the last argument.
 module superjoin_error
+  !! Error reporting: an allocatable error_t travels up through the last argument.
   implicit none (type, external)
   private
 
@@ -9,8 +9,8 @@ module superjoin_error
   integer, parameter, public :: EXIT_SINGULAR = 3  !! structure cannot be solved
   integer, parameter, public :: EXIT_IO = 4        !! input/output or resource failure
 
-  !> An error: its exit status and one or more message lines (already formatted).
   type, public :: error_t
+    !! An error: its exit status and one or more message lines (already formatted).
      integer :: code = EXIT_DECK
      character(:), allocatable :: message
   end type error_t
@@ -19,8 +19,8 @@ module superjoin_error
 
 contains
 
-  !> Allocate error with an exit code and a message.
   pure subroutine fatal_error(error, code, message)
+    !! Allocate error with an exit code and a message.
     type(error_t), allocatable, intent(out) :: error
     integer, intent(in) :: code
     character(*), intent(in) :: message
@@ -29,8 +29,8 @@ contains
     error%message = message
   end subroutine fatal_error
 
-  !> Append one line to error (allocating it if needed), keeping the first code.
   pure subroutine add_error_line(error, code, message)
+    !! Append one line to error (allocating it if needed), keeping the first code.
     type(error_t), allocatable, intent(inout) :: error
     integer, intent(in) :: code
     character(*), intent(in) :: message

@@ -1,5 +1,5 @@
-!> Numeric kinds used throughout superjoin.
 module superjoin_kinds
+  !! Numeric kinds used throughout superjoin.
   use, intrinsic :: iso_fortran_env, only: real64, int32, int64
   implicit none (type, external)
   private

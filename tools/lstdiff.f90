@@ -1,7 +1,7 @@
-!> lstdiff: compare two listings token by token; numbers may differ by
-!> |a - b| <= atol + rtol * max(|a|, |b|). Exit 0 when equal, 1 otherwise.
-!> usage: lstdiff [--rtol R] [--atol A] REFERENCE OUTPUT
 program lstdiff
+  !! lstdiff: compare two listings token by token; numbers may differ by
+  !! |a - b| <= atol + rtol * max(|a|, |b|). Exit 0 when equal, 1 otherwise.
+  !! usage: lstdiff [--rtol R] [--atol A] REFERENCE OUTPUT
   use, intrinsic :: iso_fortran_env, only: real64, error_unit
   implicit none (type, external)
   integer, parameter :: wp = real64
@@ -103,8 +103,8 @@ contains
     end do
   end subroutine read_line
 
-  !> Lines match when their tokens match (numbers within tolerance).
   logical function same_line(a, b)
+    !! Lines match when their tokens match (numbers within tolerance).
     character(*), intent(in) :: a, b
     integer :: pa, pb
     character(:), allocatable :: ta, tb

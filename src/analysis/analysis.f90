@@ -1,6 +1,6 @@
-!> The solution pipeline: DOFs → forest → Δu transform → assembly → AUTOSPC →
-!> factorization (once for all steps) → solve → health checks → recovery.
 module superjoin_analysis
+  !! The solution pipeline: DOFs → forest → Δu transform → assembly → AUTOSPC →
+  !! factorization (once for all steps) → solve → health checks → recovery.
   use, intrinsic :: iso_fortran_env, only: error_unit
   use superjoin_kinds, only: wp, i8
   use superjoin_error, only: error_t, fatal_error, add_error_line, EXIT_SINGULAR
@@ -20,23 +20,23 @@ module superjoin_analysis
   implicit none (type, external)
   private
 
-  !> Iterative refinement starts when the relative residual exceeds this.
   real(wp), parameter, public :: REFINE_THRESHOLD = 1.0e-12_wp
-  !> At most this many refinement steps.
+    !! Iterative refinement starts when the relative residual exceeds this.
   integer, parameter, public :: MAX_REFINE = 3
-  !> MAXRATIO above this is flagged as a loss of accuracy (digits lost ≈ log10).
+    !! At most this many refinement steps.
   real(wp), parameter, public :: MAXRATIO_WARN = 1.0e7_wp
-  !> MAXRATIO above this leaves fewer than two digits: numerically singular (exit 3).
+    !! MAXRATIO above this is flagged as a loss of accuracy (digits lost ≈ log10).
   real(wp), parameter, public :: MAXRATIO_FATAL = 1.0e14_wp
-  !> A relative residual still above this after refinement is reported as a warning.
+    !! MAXRATIO above this leaves fewer than two digits: numerically singular (exit 3).
   real(wp), parameter, public :: RESIDUAL_WARN = 1.0e-6_wp
+    !! A relative residual still above this after refinement is reported as a warning.
 
   public :: solve_model
 
 contains
 
-  !> Solve every step of a validated model.
   subroutine solve_model(model, opts, res, error)
+    !! Solve every step of a validated model.
     type(model_t), intent(in) :: model
     type(run_options_t), intent(in) :: opts
     type(results_t), intent(out) :: res
@@ -114,9 +114,9 @@ contains
     res%notes = notes
   end subroutine solve_model
 
-  !> RIGID contacts become g = LARGE × (largest element diagonal) under
-  !> RIGID=LARGE, and under PENALTY (which has no exact elimination).
   subroutine apply_large(model, table, form, notes, error)
+    !! RIGID contacts become g = LARGE × (largest element diagonal) under
+    !! RIGID=LARGE, and under PENALTY (which has no exact elimination).
     type(model_t), intent(in) :: model
     type(dof_table_t), intent(inout) :: table
     integer, intent(in) :: form
@@ -151,8 +151,8 @@ contains
     call note(notes, 'RIGID contacts use g = LARGE x largest element diagonal = '//trim(adjustl(buf)))
   end subroutine apply_large
 
-  !> Notes on what was transformed and what was assembled plainly.
   subroutine describe_transform(model, table, tr, form, res, notes)
+    !! Notes on what was transformed and what was assembled plainly.
     type(model_t), intent(in) :: model
     type(dof_table_t), intent(in) :: table
     type(transform_t), intent(in) :: tr
@@ -193,8 +193,8 @@ contains
     end do
   end subroutine describe_transform
 
-  !> f_red = Tᵀ f_phys + f_u0 for every step.
   subroutine reduce_loads(tr, f_phys, f_u0, f_red)
+    !! f_red = Tᵀ f_phys + f_u0 for every step.
     type(transform_t), intent(in) :: tr
     real(wp), intent(in) :: f_phys(:, :), f_u0(:)
     real(wp), allocatable, intent(out) :: f_red(:, :)
@@ -212,9 +212,9 @@ contains
     end do
   end subroutine reduce_loads
 
-  !> Unknowns with no stiffness at all: dropped (diagonal 1, load 0) when
-  !> unloaded, reported; a loaded one is an error (exit 3).
   subroutine autospc(model, table, tr, k, f_red, spc, notes, error)
+    !! Unknowns with no stiffness at all: dropped (diagonal 1, load 0) when
+    !! unloaded, reported; a loaded one is an error (exit 3).
     type(model_t), intent(in) :: model
     type(dof_table_t), intent(in) :: table
     type(transform_t), intent(in) :: tr
@@ -248,10 +248,10 @@ contains
     end do
   end subroutine autospc
 
-  !> Groups of unknowns coupled to nothing else and loaded in no step have a
-  !> zero solution: they are taken out of the factorization (identity rows)
-  !> and reported, so an unloaded free part is not a mechanism.
   subroutine skip_unloaded_parts(model, table, tr, k, f_red, spc, notes)
+    !! Groups of unknowns coupled to nothing else and loaded in no step have a
+    !! zero solution: they are taken out of the factorization (identity rows)
+    !! and reported, so an unloaded free part is not a mechanism.
     type(model_t), intent(in) :: model
     type(dof_table_t), intent(in) :: table
     type(transform_t), intent(in) :: tr
@@ -324,8 +324,8 @@ contains
     end function find
   end subroutine skip_unloaded_parts
 
-  !> Analyze, factorize (mapping a breakdown to its location) and solve all steps.
   subroutine factor_and_solve(model, table, tr, k, f_red, opts, solver, q, res, error)
+    !! Analyze, factorize (mapping a breakdown to its location) and solve all steps.
     type(model_t), intent(in) :: model
     type(dof_table_t), intent(in) :: table
     type(transform_t), intent(in) :: tr
@@ -383,8 +383,8 @@ contains
     call report_phase(opts%quiet, 'solve', res%phase_seconds(PH_SOLVE))
   end subroutine factor_and_solve
 
-  !> Residual, EPSILON, iterative refinement, MAXRATIO and condition estimate.
   subroutine health(k, q, f_red, spc, solver, model, table, tr, res, opts, error)
+    !! Residual, EPSILON, iterative refinement, MAXRATIO and condition estimate.
     type(sparse_sym_t), intent(in) :: k
     real(wp), intent(inout) :: q(:, :)
     real(wp), intent(in) :: f_red(:, :)
@@ -478,9 +478,9 @@ contains
     end if
   end function safe_div
 
-  !> Human name of a reduced unknown: substructure, node and DOF, or the
-  !> contact/support and the component of its Δ.
   function column_label(model, table, tr, j) result(label)
+    !! Human name of a reduced unknown: substructure, node and DOF, or the
+    !! contact/support and the component of its Δ.
     type(model_t), intent(in) :: model
     type(dof_table_t), intent(in) :: table
     type(transform_t), intent(in) :: tr
@@ -511,8 +511,8 @@ contains
     end select
   end function column_label
 
-  !> "SUB.id" of a vertex (ground: "ground").
   function vertex_label(model, table, v) result(label)
+    !! "SUB.id" of a vertex (ground: "ground").
     type(model_t), intent(in) :: model
     type(dof_table_t), intent(in) :: table
     integer(i8), intent(in) :: v

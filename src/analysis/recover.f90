@@ -1,11 +1,11 @@
-!> Recovery of physical results from the reduced solution: displacements,
-!> element end forces, contact Δ and F, support reactions, equilibrium.
-!>
-!> Rigid components carry the forces that balance r = K_phys u - f (elements
-!> and finite contacts as elements, minus loads). A rigid tree unit pushes on
-!> its child with the sum of r over the child's subtree; a rigid component that
-!> closed a loop gets its force from the equation of the column it eliminated.
 module superjoin_analysis_recover
+  !! Recovery of physical results from the reduced solution: displacements,
+  !! element end forces, contact Δ and F, support reactions, equilibrium.
+  !!
+  !! Rigid components carry the forces that balance r = K_phys u - f (elements
+  !! and finite contacts as elements, minus loads). A rigid tree unit pushes on
+  !! its child with the sum of r over the child's subtree; a rigid component that
+  !! closed a loop gets its force from the equation of the column it eliminated.
   use superjoin_kinds, only: wp, ip, i8
   use superjoin_error, only: error_t, add_error_line, EXIT_DECK
   use superjoin_model_types, only: model_t, ELEMENT_NODE_COUNT, LINK_NONE, LINK_FINITE, LINK_RIGID, &
@@ -25,8 +25,8 @@ module superjoin_analysis_recover
 
 contains
 
-  !> Fill res%u, res%elem_force and res%steps(:) from the reduced solution q.
   subroutine recover_results(model, table, forest, tr, q, f_phys, res, error)
+    !! Fill res%u, res%elem_force and res%steps(:) from the reduced solution q.
     type(model_t), intent(in) :: model
     type(dof_table_t), intent(in) :: table
     type(forest_t), intent(in) :: forest
@@ -59,8 +59,8 @@ contains
     call link_and_support_results(model, table, delta, rigid_force, f_phys, res)
   end subroutine recover_results
 
-  !> u = T q + u0 over the physical DOFs.
   subroutine physical_displacements(table, tr, q, u)
+    !! u = T q + u0 over the physical DOFs.
     type(dof_table_t), intent(in) :: table
     type(transform_t), intent(in) :: tr
     real(wp), intent(in) :: q(:, :)
@@ -93,8 +93,8 @@ contains
     end do
   end subroutine store_displacements
 
-  !> Element end forces of every step and r += K_e u_e.
   subroutine element_results(model, table, u, r, res, error)
+    !! Element end forces of every step and r += K_e u_e.
     type(model_t), intent(in) :: model
     type(dof_table_t), intent(in) :: table
     real(wp), intent(in) :: u(:, :)
@@ -164,10 +164,10 @@ contains
     end do
   end subroutine element_results
 
-  !> δ of every unit component (local axes): a column of its own, the rigid
-  !> value, the expression that replaced an eliminated column, or, for a unit
-  !> assembled plainly, qs (u_b - u_a).
   subroutine unit_deltas(table, tr, q, u, delta)
+    !! δ of every unit component (local axes): a column of its own, the rigid
+    !! value, the expression that replaced an eliminated column, or, for a unit
+    !! assembled plainly, qs (u_b - u_a).
     type(dof_table_t), intent(in) :: table
     type(transform_t), intent(in) :: tr
     real(wp), intent(in) :: q(:, :), u(:, :)
@@ -216,9 +216,9 @@ contains
     end do
   end subroutine unit_deltas
 
-  !> r += internal forces of the finite contact components: qsᵀ g δ on side b,
-  !> the opposite on side a.
   subroutine add_spring_forces(table, delta, r)
+    !! r += internal forces of the finite contact components: qsᵀ g δ on side b,
+    !! the opposite on side a.
     type(dof_table_t), intent(in) :: table
     real(wp), intent(in) :: delta(:, :, :)
     real(wp), intent(inout) :: r(:, :)
@@ -241,9 +241,9 @@ contains
     end do
   end subroutine add_spring_forces
 
-  !> Force of each eliminated loop constraint, λ = -(Σ T(p,j*) r_p) / a_j*,
-  !> stored as the force on the master (local) and as nodal forces rclose.
   subroutine closer_forces(table, tr, r, rigid_force, rclose)
+    !! Force of each eliminated loop constraint, λ = -(Σ T(p,j*) r_p) / a_j*,
+    !! stored as the force on the master (local) and as nodal forces rclose.
     type(dof_table_t), intent(in) :: table
     type(transform_t), intent(in) :: tr
     real(wp), intent(in) :: r(:, :)
@@ -278,9 +278,9 @@ contains
     end do
   end subroutine closer_forces
 
-  !> Subtree sums: the force each rigid tree unit exerts on its child, then
-  !> turned into the force on the master (or the reaction) in local axes.
   subroutine tree_forces(table, forest, rt, acc, rigid_force)
+    !! Subtree sums: the force each rigid tree unit exerts on its child, then
+    !! turned into the force on the master (or the reaction) in local axes.
     type(dof_table_t), intent(in) :: table
     type(forest_t), intent(in) :: forest
     real(wp), intent(in) :: rt(:)
@@ -329,8 +329,8 @@ contains
     end do
   end subroutine tree_forces
 
-  !> Contact Δ and F per link (local axes), reactions, resultants.
   subroutine link_and_support_results(model, table, delta, rigid_force, f_phys, res)
+    !! Contact Δ and F per link (local axes), reactions, resultants.
     type(model_t), intent(in) :: model
     type(dof_table_t), intent(in) :: table
     real(wp), intent(in) :: delta(:, :, :), rigid_force(:, :, :), f_phys(:, :)
@@ -404,8 +404,8 @@ contains
     end do
   end subroutine link_and_support_results
 
-  !> Add a force (dof 1-3) or moment (dof 4-6) at x to a resultant about the origin.
   pure subroutine add_resultant(total, x, dof, value)
+    !! Add a force (dof 1-3) or moment (dof 4-6) at x to a resultant about the origin.
     real(wp), intent(inout) :: total(6)
     real(wp), intent(in) :: x(3)
     integer, intent(in) :: dof

@@ -1,5 +1,5 @@
-!> What a solved deck produces: counts, notes, per-step results and health.
 module superjoin_analysis_results
+  !! What a solved deck produces: counts, notes, per-step results and health.
   use superjoin_kinds, only: wp, i8
   use superjoin_model_types, only: string_t
   implicit none (type, external)
@@ -11,8 +11,8 @@ module superjoin_analysis_results
   integer, parameter, public :: PH_READ = 1, PH_ASSEMBLE = 2, PH_ORDER = 3, PH_FACTOR = 4, &
                                 PH_SOLVE = 5, PH_WRITE = 6
 
-  !> Options of one run (from the command line).
   type, public :: run_options_t
+    !! Options of one run (from the command line).
      character(:), allocatable :: solver        !! auto | cholmod | umfpack | lapack
      integer :: formulation = 0                 !! 0: as in the deck, else FORM_*
      character(:), allocatable :: export_matrix !! Matrix Market path, or unallocated
@@ -20,16 +20,16 @@ module superjoin_analysis_results
      logical :: verbose = .false.
   end type run_options_t
 
-  !> One support reaction.
   type, public :: reaction_t
+    !! One support reaction.
      integer :: sub = 0
      integer :: node = 0
      integer :: dof = 0
      real(wp) :: force = 0.0_wp
   end type reaction_t
 
-  !> Results of one step.
   type, public :: step_results_t
+    !! Results of one step.
      type(reaction_t), allocatable :: reactions(:)
      real(wp), allocatable :: link_delta(:, :)   !! (6, nlink) local axes
      real(wp), allocatable :: link_force(:, :)   !! (6, nlink) on the master, local axes
@@ -41,8 +41,8 @@ module superjoin_analysis_results
      integer :: refinements = 0
   end type step_results_t
 
-  !> Everything the listing and the CSV files need.
   type, public :: results_t
+    !! Everything the listing and the CSV files need.
      integer(i8) :: nphys = 0          !! active physical DOFs
      integer(i8) :: ncol = 0           !! reduced unknowns
      integer(i8) :: neq = 0            !! equations solved (reduced unknowns less AUTOSPC)

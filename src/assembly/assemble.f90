@@ -1,7 +1,7 @@
-!> Assembly of the reduced stiffness K_red = Tᵀ K_phys T + diag(g on δ) and of
-!> the reduced loads, without forming T: every element and plain contact is
-!> scattered through the maps of its physical DOFs.
 module superjoin_assembly_assemble
+  !! Assembly of the reduced stiffness K_red = Tᵀ K_phys T + diag(g on δ) and of
+  !! the reduced loads, without forming T: every element and plain contact is
+  !! scattered through the maps of its physical DOFs.
   use superjoin_kinds, only: wp, ip, i8
   use superjoin_error, only: error_t, add_error_line, EXIT_DECK, EXIT_SINGULAR
   use superjoin_model_types, only: model_t, ELEMENT_NODE_COUNT, LINK_FINITE, loc_text
@@ -14,16 +14,16 @@ module superjoin_assembly_assemble
   implicit none (type, external)
   private
 
-  !> Largest number of physical DOFs one item (element or contact) touches.
   integer, parameter :: MAX_ITEM_DOFS = 24
+    !! Largest number of physical DOFs one item (element or contact) touches.
 
   public :: assemble_stiffness, assemble_loads, element_pdofs, unit_pdofs, unit_plain_stiffness, &
        max_element_diagonal
 
 contains
 
-  !> Physical DOFs of element e of substructure isub, in element ordering.
   subroutine element_pdofs(model, table, isub, e, pd, n)
+    !! Physical DOFs of element e of substructure isub, in element ordering.
     type(model_t), intent(in) :: model
     type(dof_table_t), intent(in) :: table
     integer, intent(in) :: isub
@@ -46,8 +46,8 @@ contains
     end associate
   end subroutine element_pdofs
 
-  !> Physical DOFs of a plain unit: side a components (unless ground), then side b.
   subroutine unit_pdofs(table, iu, pd, n)
+    !! Physical DOFs of a plain unit: side a components (unless ground), then side b.
     type(dof_table_t), intent(in) :: table
     integer, intent(in) :: iu
     integer(i8), intent(out) :: pd(:)
@@ -68,9 +68,9 @@ contains
     end associate
   end subroutine unit_pdofs
 
-  !> Plain stiffness of a unit's finite components over unit_pdofs ordering:
-  !> S = qsᵀ G qs, [S -S; -S S] (or S alone against the ground).
   subroutine unit_plain_stiffness(table, iu, ke, n)
+    !! Plain stiffness of a unit's finite components over unit_pdofs ordering:
+    !! S = qsᵀ G qs, [S -S; -S S] (or S alone against the ground).
     type(dof_table_t), intent(in) :: table
     integer, intent(in) :: iu
     real(wp), intent(out) :: ke(:, :)
@@ -101,9 +101,9 @@ contains
     end associate
   end subroutine unit_plain_stiffness
 
-  !> Largest diagonal entry of the physical stiffness of the elements alone
-  !> (the scale for RIGID=LARGE).
   subroutine max_element_diagonal(model, table, dmax, error)
+    !! Largest diagonal entry of the physical stiffness of the elements alone
+    !! (the scale for RIGID=LARGE).
     type(model_t), intent(in) :: model
     type(dof_table_t), intent(in) :: table
     real(wp), intent(out) :: dmax
@@ -129,8 +129,8 @@ contains
     if (table%np > 0) dmax = maxval(diag)
   end subroutine max_element_diagonal
 
-  !> Element stiffness in global axes, with the deck location on errors.
   subroutine element_matrix(model, isub, e, ke, error)
+    !! Element stiffness in global axes, with the deck location on errors.
     type(model_t), intent(in) :: model
     integer, intent(in) :: isub
     integer(ip), intent(in) :: e
@@ -160,8 +160,8 @@ contains
     end if
   end function element_where
 
-  !> Reduced columns of a list of physical DOFs (sorted, unique) into cols(1:nc).
   subroutine item_columns(tr, pd, n, cols, nc)
+    !! Reduced columns of a list of physical DOFs (sorted, unique) into cols(1:nc).
     type(transform_t), intent(in) :: tr
     integer(i8), intent(in) :: pd(:)
     integer, intent(in) :: n
@@ -187,9 +187,9 @@ contains
     call sort_unique_i8(cols(1:m), nc)
   end subroutine item_columns
 
-  !> Assemble K_red (pattern and values) and the reduced load of the
-  !> prescribed values, f_u0 = -Tᵀ K_phys u0.
   subroutine assemble_stiffness(model, table, tr, k, f_u0, error)
+    !! Assemble K_red (pattern and values) and the reduced load of the
+    !! prescribed values, f_u0 = -Tᵀ K_phys u0.
     type(model_t), intent(in) :: model
     type(dof_table_t), intent(in) :: table
     type(transform_t), intent(in) :: tr
@@ -308,9 +308,9 @@ contains
     end subroutine append_item
   end subroutine assemble_stiffness
 
-  !> Pattern of the upper triangle: column j holds every column i <= j that
-  !> shares an item with it, and always j itself.
   subroutine symbolic(ncol, item_ptr, item_col, col_ptr, col_item, k)
+    !! Pattern of the upper triangle: column j holds every column i <= j that
+    !! shares an item with it, and always j itself.
     integer(i8), intent(in) :: ncol
     integer(i8), intent(in) :: item_ptr(:), item_col(:), col_ptr(:), col_item(:)
     type(sparse_sym_t), intent(out) :: k
@@ -366,8 +366,8 @@ contains
     allocate (k%val(nnz), source=0.0_wp)
   end subroutine symbolic
 
-  !> Position of row i in column j of k.
   pure function find_entry(k, i, j) result(pos)
+    !! Position of row i in column j of k.
     type(sparse_sym_t), intent(in) :: k
     integer(i8), intent(in) :: i, j
     integer(i8) :: pos, lo, hi
@@ -385,8 +385,8 @@ contains
     pos = 0
   end function find_entry
 
-  !> Add Mᵀ ke M to k over the item's columns, and -Mᵀ ke u0 to f_u0.
   subroutine scatter(tr, pd, ke, cols, k, f_u0)
+    !! Add Mᵀ ke M to k over the item's columns, and -Mᵀ ke u0 to f_u0.
     type(transform_t), intent(in) :: tr
     integer(i8), intent(in) :: pd(:)
     real(wp), intent(in) :: ke(:, :)
@@ -448,8 +448,8 @@ contains
     end if
   end subroutine scatter
 
-  !> Add g a aᵀ to k and -g a c to f_u0 for a spring on aᵀq + c.
   subroutine scatter_form(col, coef, g, c, k, f_u0)
+    !! Add g a aᵀ to k and -g a c to f_u0 for a spring on aᵀq + c.
     integer(i8), intent(in) :: col(:)
     real(wp), intent(in) :: coef(:), g, c
     type(sparse_sym_t), intent(inout) :: k
@@ -484,9 +484,9 @@ contains
     b = 0
   end function locate
 
-  !> Physical loads of every step, f_phys(np, nstep), and the local distributed
-  !> load of each loaded beam (for element forces): see dload_local.
   subroutine assemble_loads(model, table, f_phys, error)
+    !! Physical loads of every step, f_phys(np, nstep), and the local distributed
+    !! load of each loaded beam (for element forces): see dload_local.
     type(model_t), intent(in) :: model
     type(dof_table_t), intent(in) :: table
     real(wp), allocatable, intent(out) :: f_phys(:, :)

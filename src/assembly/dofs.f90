@@ -1,11 +1,11 @@
-!> Active DOFs, physical DOF numbering and contact units.
-!>
-!> A contact unit is one contact element (or the supports of one node) restricted
-!> to one DOF block (translations 1-3 or rotations 4-6):
-!>     delta = qs (u_b(C) - u_a(C)),   delta_k with stiffness g_k, RIGID or free,
-!> where C are the global components it acts on and the rows of qs are the local
-!> components. Side a is the master node (or the ground), side b the slave node.
 module superjoin_assembly_dofs
+  !! Active DOFs, physical DOF numbering and contact units.
+  !!
+  !! A contact unit is one contact element (or the supports of one node) restricted
+  !! to one DOF block (translations 1-3 or rotations 4-6):
+  !!     delta = qs (u_b(C) - u_a(C)),   delta_k with stiffness g_k, RIGID or free,
+  !! where C are the global components it acts on and the rows of qs are the local
+  !! components. Side a is the master node (or the ground), side b the slave node.
   use superjoin_kinds, only: wp, ip, i8
   use superjoin_error, only: error_t, add_error_line, EXIT_DECK
   use superjoin_model_types, only: model_t, NDOF_NODE, LINK_NONE, LINK_FINITE, LINK_RIGID, &
@@ -20,12 +20,12 @@ module superjoin_assembly_dofs
   integer, parameter, public :: BLOCK_SIZE = 3
   integer, parameter, public :: UNIT_LINK = 1, UNIT_SUPPORT = 2
   integer, parameter, public :: GROUND = 0          !! the ground vertex
-  !> Orientation entries below this are treated as exact zeros when deciding
-  !> which global components an oriented contact couples.
   real(wp), parameter :: ORIENT_ZERO = 1.0e-12_wp
+    !! Orientation entries below this are treated as exact zeros when deciding
+    !! which global components an oriented contact couples.
 
-  !> One contact element (or the supports of one node) on one DOF block.
   type, public :: unit_t
+    !! One contact element (or the supports of one node) on one DOF block.
      integer :: block = 0                  !! 1: DOFs 1-3, 2: DOFs 4-6
      integer :: kind = 0                   !! UNIT_LINK or UNIT_SUPPORT
      integer :: source = 0                 !! link index (UNIT_LINK) or support index of its first DOF
@@ -41,8 +41,8 @@ module superjoin_assembly_dofs
      integer :: src(BLOCK_SIZE) = 0          !! support index per component (supports only)
   end type unit_t
 
-  !> Physical DOFs: every active (node, dof) pair, numbered node by node.
   type, public :: dof_table_t
+    !! Physical DOFs: every active (node, dof) pair, numbered node by node.
      integer(i8) :: nvertex = 0                !! nodes over all substructures
      integer(i8), allocatable :: vertex_offset(:)   !! (nsub+1): vertex = offset(sub) + node
      integer(i8) :: np = 0                     !! physical DOFs
@@ -59,8 +59,8 @@ module superjoin_assembly_dofs
 
 contains
 
-  !> Vertex index of (substructure, local node).
   pure function vertex_of(table, isub, inode) result(v)
+    !! Vertex index of (substructure, local node).
     type(dof_table_t), intent(in) :: table
     integer, intent(in) :: isub
     integer(ip), intent(in) :: inode
@@ -68,15 +68,15 @@ contains
     v = table%vertex_offset(isub) + inode
   end function vertex_of
 
-  !> DOF number (1..6) of component c of block b.
   elemental function block_dof(b, c) result(d)
+    !! DOF number (1..6) of component c of block b.
     integer, intent(in) :: b, c
     integer :: d
     d = (b - 1)*BLOCK_SIZE + c
   end function block_dof
 
-  !> Activate DOFs, build contact units and number the physical DOFs.
   subroutine build_dof_table(model, table, error)
+    !! Activate DOFs, build contact units and number the physical DOFs.
     type(model_t), intent(in) :: model
     type(dof_table_t), intent(out) :: table
     type(error_t), allocatable, intent(out) :: error
@@ -168,8 +168,8 @@ contains
     end do
   end subroutine activate_units
 
-  !> One unit per link and block with any connected DOF that a node carries.
   subroutine build_link_units(model, table, has)
+    !! One unit per link and block with any connected DOF that a node carries.
     type(model_t), intent(in) :: model
     type(dof_table_t), intent(inout) :: table
     logical, intent(in) :: has(:, :)
@@ -215,9 +215,9 @@ contains
     table%ignored_links = ign(1:nign)
   end subroutine build_link_units
 
-  !> Components of one link on one block. `present(c)` tells whether either node
-  !> carries global component c from an element or a support.
   subroutine link_unit(state, g, q, present, u, ignored)
+    !! Components of one link on one block. `present(c)` tells whether either node
+    !! carries global component c from an element or a support.
     integer, intent(in) :: state(3)
     real(wp), intent(in) :: g(3), q(3, 3)
     logical, intent(in) :: present(3)
@@ -280,9 +280,9 @@ contains
     end do
   end subroutine link_unit
 
-  !> Merge the supports per node and DOF (finite g add up, RIGID wins, two
-  !> RIGID values must agree) into one unit per node and block.
   subroutine build_support_units(model, table, error)
+    !! Merge the supports per node and DOF (finite g add up, RIGID wins, two
+    !! RIGID values must agree) into one unit per node and block.
     type(model_t), intent(in) :: model
     type(dof_table_t), intent(inout) :: table
     type(error_t), allocatable, intent(inout) :: error

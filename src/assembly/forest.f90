@@ -1,10 +1,10 @@
-!> Maximum spanning forest of the contact units, per DOF block.
-!>
-!> Vertices are the nodes of all substructures plus the ground (vertex 0). The
-!> stiffest units (RIGID first, then by largest g) form the forest; a tree that
-!> contains the ground is rooted there. Each tree unit is transformed with its
-!> child as the dependent side; the other units close loops.
 module superjoin_assembly_forest
+  !! Maximum spanning forest of the contact units, per DOF block.
+  !!
+  !! Vertices are the nodes of all substructures plus the ground (vertex 0). The
+  !! stiffest units (RIGID first, then by largest g) form the forest; a tree that
+  !! contains the ground is rooted there. Each tree unit is transformed with its
+  !! child as the dependent side; the other units close loops.
   use superjoin_kinds, only: wp, i8
   use superjoin_model_types, only: LINK_FINITE, LINK_RIGID
   use superjoin_assembly_dofs, only: dof_table_t, unit_t, NBLOCK, GROUND, UNIT_LINK
@@ -12,8 +12,8 @@ module superjoin_assembly_forest
   implicit none (type, external)
   private
 
-  !> The forest: which units are tree edges, and in which direction.
   type, public :: forest_t
+    !! The forest: which units are tree edges, and in which direction.
      logical, allocatable :: tree(:)            !! (nunit) unit is a tree edge
      logical, allocatable :: child_is_a(:)      !! (nunit) the child is side a (master)
      integer, allocatable :: parent_unit(:, :)  !! (NBLOCK, 0:nvertex) tree unit above a vertex, 0 for roots
@@ -25,8 +25,8 @@ module superjoin_assembly_forest
 
 contains
 
-  !> Weight of a unit: RIGID is stiffest, then the largest finite g.
   pure function unit_weight(u) result(w)
+    !! Weight of a unit: RIGID is stiffest, then the largest finite g.
     type(unit_t), intent(in) :: u
     real(wp) :: w
     integer :: k
@@ -40,9 +40,9 @@ contains
     end do
   end function unit_weight
 
-  !> Build the forest. With `links_in_tree` false (PENALTY), only supports are
-  !> transformed and every contact is assembled in plain form.
   subroutine build_forest(table, links_in_tree, forest)
+    !! Build the forest. With `links_in_tree` false (PENALTY), only supports are
+    !! transformed and every contact is assembled in plain form.
     type(dof_table_t), intent(in) :: table
     logical, intent(in) :: links_in_tree
     type(forest_t), intent(out) :: forest
@@ -88,9 +88,9 @@ contains
     end do
   end subroutine build_forest
 
-  !> Root every tree (at the ground if it has it, else at its lowest vertex) and
-  !> record parents and a parents-first order.
   subroutine orient_block(table, b, forest)
+    !! Root every tree (at the ground if it has it, else at its lowest vertex) and
+    !! record parents and a parents-first order.
     type(dof_table_t), intent(in) :: table
     integer, intent(in) :: b
     type(forest_t), intent(inout) :: forest
@@ -156,8 +156,8 @@ contains
     end do
   end subroutine orient_block
 
-  !> Root of v's set, halving the path on the way.
   function find(uf, v) result(r)
+    !! Root of v's set, halving the path on the way.
     integer(i8), intent(inout) :: uf(0:)
     integer(i8), intent(in) :: v
     integer(i8) :: r

@@ -1,14 +1,14 @@
-!> The Δu transform: reduced unknowns q and the affine map u = T q + u0.
-!>
-!> Every physical DOF keeps a short list of (column, coefficient) pairs. An
-!> ordinary DOF is its own column. The child of a tree unit is its parent plus
-!> the unit's relative displacements: u_b(C) = u_a(C) + qsᵀ δ, where each finite
-!> or free component of δ is a column of its own (its g sits on that column's
-!> diagonal and nowhere else) and a RIGID component is exactly its prescribed
-!> value (0 for contacts). A RIGID component of a unit that closes a loop is a
-!> linear constraint on q: redundant when it holds identically, otherwise one
-!> column is eliminated exactly by substitution.
 module superjoin_assembly_transform
+  !! The Δu transform: reduced unknowns q and the affine map u = T q + u0.
+  !!
+  !! Every physical DOF keeps a short list of (column, coefficient) pairs. An
+  !! ordinary DOF is its own column. The child of a tree unit is its parent plus
+  !! the unit's relative displacements: u_b(C) = u_a(C) + qsᵀ δ, where each finite
+  !! or free component of δ is a column of its own (its g sits on that column's
+  !! diagonal and nowhere else) and a RIGID component is exactly its prescribed
+  !! value (0 for contacts). A RIGID component of a unit that closes a loop is a
+  !! linear constraint on q: redundant when it holds identically, otherwise one
+  !! column is eliminated exactly by substitution.
   use superjoin_kinds, only: wp, i8
   use superjoin_error, only: error_t, add_error_line, EXIT_DECK
   use superjoin_model_types, only: model_t, LINK_NONE, LINK_FINITE, LINK_RIGID, loc_text
@@ -19,19 +19,19 @@ module superjoin_assembly_transform
   implicit none (type, external)
   private
 
-  !> Column kinds.
   integer, parameter, public :: COL_PHYS = 1, COL_DELTA = 2, COL_DEAD = 3
-  !> Unit roles.
+    !! Column kinds.
   integer, parameter, public :: ROLE_TREE = 1, ROLE_PLAIN = 2
-  !> Constraint outcomes for RIGID components that close a loop.
+    !! Unit roles.
   integer, parameter, public :: CONS_REDUNDANT = 1, CONS_ELIMINATED = 2
-  !> Coefficients of a loop constraint below this (relative) are round-off.
+    !! Constraint outcomes for RIGID components that close a loop.
   real(wp), parameter :: CONS_ZERO = 1.0e-12_wp
-  !> A pivot for elimination must be at least this fraction of the largest coefficient.
+    !! Coefficients of a loop constraint below this (relative) are round-off.
   real(wp), parameter :: PIVOT_FRACTION = 0.5_wp
+    !! A pivot for elimination must be at least this fraction of the largest coefficient.
 
-  !> A spring on a linear form of the unknowns: energy ½ g (aᵀq + c)².
   type, public :: form_spring_t
+    !! A spring on a linear form of the unknowns: energy ½ g (aᵀq + c)².
      integer(i8), allocatable :: col(:)
      real(wp), allocatable :: coef(:)
      real(wp) :: const = 0.0_wp
@@ -40,8 +40,8 @@ module superjoin_assembly_transform
      integer :: k = 0
   end type form_spring_t
 
-  !> A RIGID component of a loop-closing unit.
   type, public :: constraint_t
+    !! A RIGID component of a loop-closing unit.
      integer :: unit = 0
      integer :: k = 0                      !! row of the unit's qs
      integer :: status = 0                 !! CONS_REDUNDANT or CONS_ELIMINATED
@@ -55,8 +55,8 @@ module superjoin_assembly_transform
      real(wp), allocatable :: fp_c(:)      !! and their coefficients
   end type constraint_t
 
-  !> The reduced system's unknowns and the map from them to physical DOFs.
   type, public :: transform_t
+    !! The reduced system's unknowns and the map from them to physical DOFs.
      integer(i8) :: ncol = 0
      integer, allocatable :: col_kind(:)   !! COL_PHYS or COL_DELTA
      integer(i8), allocatable :: col_ref(:)  !! physical DOF (COL_PHYS) or unit (COL_DELTA)
@@ -81,8 +81,8 @@ module superjoin_assembly_transform
 
 contains
 
-  !> Build columns, maps and loop constraints from the DOF table and the forest.
   subroutine build_transform(model, table, forest, tr, error)
+    !! Build columns, maps and loop constraints from the DOF table and the forest.
     type(model_t), intent(in) :: model
     type(dof_table_t), intent(in) :: table
     type(forest_t), intent(in) :: forest
@@ -103,9 +103,9 @@ contains
     tr%has_u0 = any(tr%u0 /= 0.0_wp)
   end subroutine build_transform
 
-  !> Columns node by node: first the δ of the unit above the node, then the
-  !> node's own DOFs that no tree unit makes dependent.
   subroutine number_columns(table, forest, tr)
+    !! Columns node by node: first the δ of the unit above the node, then the
+    !! node's own DOFs that no tree unit makes dependent.
     type(dof_table_t), intent(in) :: table
     type(forest_t), intent(in) :: forest
     type(transform_t), intent(inout) :: tr
@@ -227,8 +227,8 @@ contains
     tr%pool_coef(tr%pool_n) = coef
   end subroutine pool_push
 
-  !> Linear form of δ_k of unit u in the unknowns: aᵀq + const.
   subroutine unit_form(table, tr, u, k, col, coef, const)
+    !! Linear form of δ_k of unit u in the unknowns: aᵀq + const.
     type(dof_table_t), intent(in) :: table
     type(transform_t), intent(in) :: tr
     type(unit_t), intent(in) :: u
@@ -276,8 +276,8 @@ contains
     call merge_terms(col, coef)
   end subroutine unit_form
 
-  !> Sort terms by column, add repeats, drop exact zeros.
   subroutine merge_terms(col, coef)
+    !! Sort terms by column, add repeats, drop exact zeros.
     integer(i8), allocatable, intent(inout) :: col(:)
     real(wp), allocatable, intent(inout) :: coef(:)
     integer :: i, j, n
@@ -319,8 +319,8 @@ contains
     coef = coef(1:j)
   end subroutine merge_terms
 
-  !> Rigid components of loop-closing units: redundant or eliminated.
   subroutine close_loops(model, table, tr, error)
+    !! Rigid components of loop-closing units: redundant or eliminated.
     type(model_t), intent(in) :: model
     type(dof_table_t), intent(in) :: table
     type(transform_t), intent(inout) :: tr
@@ -362,9 +362,9 @@ contains
     end do
   end subroutine close_loops
 
-  !> Pivot among the terms whose coefficient is large enough: a δ column
-  !> first (the softest spring), then any column; ties by lowest column.
   pure function choose_pivot(tr, col, coef, amax) result(best)
+    !! Pivot among the terms whose coefficient is large enough: a δ column
+    !! first (the softest spring), then any column; ties by lowest column.
     type(transform_t), intent(in) :: tr
     integer(i8), intent(in) :: col(:)
     real(wp), intent(in) :: coef(:), amax
@@ -392,8 +392,8 @@ contains
     end function better
   end function choose_pivot
 
-  !> Eliminate column col(best) using aᵀq + const = 0 in every map and form.
   subroutine eliminate(tr, col, coef, const, best, cs)
+    !! Eliminate column col(best) using aᵀq + const = 0 in every map and form.
     type(transform_t), intent(inout) :: tr
     integer(i8), intent(in) :: col(:)
     real(wp), intent(in) :: coef(:), const
@@ -472,8 +472,8 @@ contains
     tr%col_kind(jstar) = COL_DEAD
   end subroutine eliminate
 
-  !> Terms (mcol, mcoef) with column jstar replaced by -(Σ a_j q_j)/a_j*.
   subroutine substitute(mcol, mcoef, jstar, col, coef, piv, ncol, ncoef)
+    !! Terms (mcol, mcoef) with column jstar replaced by -(Σ a_j q_j)/a_j*.
     integer(i8), intent(in) :: mcol(:)
     real(wp), intent(in) :: mcoef(:)
     integer(i8), intent(in) :: jstar
@@ -506,8 +506,8 @@ contains
     call merge_terms(ncol, ncoef)
   end subroutine substitute
 
-  !> Drop eliminated columns and renumber maps, δ columns and forms.
   subroutine compact_columns(tr)
+    !! Drop eliminated columns and renumber maps, δ columns and forms.
     type(transform_t), intent(inout) :: tr
     integer(i8), allocatable :: newc(:)
     integer(i8) :: j, n
@@ -567,8 +567,8 @@ contains
     tr%forms(tr%nform) = fs
   end subroutine push_form
 
-  !> file:line of the card that defined a unit.
   function unit_where(model, u) result(text)
+    !! file:line of the card that defined a unit.
     type(model_t), intent(in) :: model
     type(unit_t), intent(in) :: u
     character(:), allocatable :: text

@@ -1,33 +1,33 @@
-!> Lexical layer of the deck reader: loading files, splitting lines into keyword
-!> lines (keyword and parameters) or data fields, and safe conversion of tokens
-!> to reals, ids and names. Nothing here reports errors itself: every routine
-!> returns a status that the parser turns into a `file:line: error:` message.
 module superjoin_deck_lexer
+  !! Lexical layer of the deck reader: loading files, splitting lines into keyword
+  !! lines (keyword and parameters) or data fields, and safe conversion of tokens
+  !! to reals, ids and names. Nothing here reports errors itself: every routine
+  !! returns a status that the parser turns into a `file:line: error:` message.
   use, intrinsic :: ieee_exceptions, only: ieee_status_type, ieee_get_status, ieee_set_status
   use superjoin_kinds, only: wp, ip, i8
   implicit none (type, external)
   private
 
-  !> Status of a token conversion.
   integer, parameter, public :: TOK_OK = 0        !! converted
+    !! Status of a token conversion.
   integer, parameter, public :: TOK_INVALID = 1   !! not a number / id of the right form
   integer, parameter, public :: TOK_RANGE = 2     !! well formed but out of range (0, >= 2**31, overflow)
   integer, parameter, public :: TOK_NONFINITE = 3 !! NaN or Inf written as a word
 
-  !> Largest id: ids are positive integers below 2**31.
   integer(i8), parameter :: MAX_ID = 2147483647_i8
+    !! Largest id: ids are positive integers below 2**31.
   integer, parameter :: MAX_ID_DIGITS = 10
 
-  !> Characters.
   character, parameter :: TAB = achar(9), LF = achar(10), CR = achar(13), BLANK = ' '
+    !! Characters.
 
-  !> Decimal range of real(wp): beyond these exponents a value overflows or is zero.
   integer, parameter :: MAX_DEC_EXP = 308          !! leading digit of huge() is at 10**308
+    !! Decimal range of real(wp): beyond these exponents a value overflows or is zero.
   integer, parameter :: MIN_DEC_EXP = -345         !! below every subnormal: reads as zero
   integer, parameter :: MAX_EXP_DIGITS = 7         !! exponent digits kept before clamping
   real(wp), parameter :: HUGE_LEAD = 1.7976931348623_wp  !! leading digits of huge(1.0_wp)
-  !> Exact fast path (Clinger): mantissa below 2**53 times an exact power of ten.
   integer(i8), parameter :: EXACT_MANTISSA = 9007199254740992_i8
+    !! Exact fast path (Clinger): mantissa below 2**53 times an exact power of ten.
   integer, parameter :: MAX_EXACT_POW10 = 22
   integer, parameter :: MAX_MANTISSA_DIGITS = 18
   real(wp), parameter :: POW10(0:MAX_EXACT_POW10) = [1.0e0_wp, 1.0e1_wp, 1.0e2_wp, 1.0e3_wp, &
@@ -35,27 +35,27 @@ module superjoin_deck_lexer
        1.0e12_wp, 1.0e13_wp, 1.0e14_wp, 1.0e15_wp, 1.0e16_wp, 1.0e17_wp, 1.0e18_wp, &
        1.0e19_wp, 1.0e20_wp, 1.0e21_wp, 1.0e22_wp]
 
-  !> Chunk size of the formatted fallback reader (a read buffer, not a line limit).
   integer, parameter :: READ_CHUNK = 65536
+    !! Chunk size of the formatted fallback reader (a read buffer, not a line limit).
   integer, parameter :: INITIAL_FIELDS = 16
 
-  !> One parameter of a keyword line: `NAME[=VALUE]`.
   type, public :: param_t
+    !! One parameter of a keyword line: `NAME[=VALUE]`.
      character(:), allocatable :: name     !! upper case, inner blanks collapsed
      character(:), allocatable :: value    !! as written, blanks trimmed, quotes removed
      logical :: has_value = .false.
   end type param_t
 
-  !> A keyword line `*KEYWORD, PARAM=VALUE, FLAG`.
   type, public :: keyword_line_t
+    !! A keyword line `*KEYWORD, PARAM=VALUE, FLAG`.
      character(:), allocatable :: keyword  !! upper case, inner blanks collapsed, without '*'
      integer :: nparam = 0
      type(param_t), allocatable :: params(:)
   end type keyword_line_t
 
-  !> Comma separated fields of a data line, as positions in the line
-  !> (blanks trimmed; an empty field has last < first).
   type, public :: fields_t
+    !! Comma separated fields of a data line, as positions in the line
+    !! (blanks trimmed; an empty field has last < first).
      integer :: n = 0
      integer, allocatable :: first(:), last(:)
   end type fields_t
@@ -65,8 +65,8 @@ module superjoin_deck_lexer
   public :: parse_real, parse_id, is_name, is_digits, looks_numeric, itoa
   public :: path_dirname, path_join, path_normalize, clip, plural
 
-  !> Longest piece of user text quoted in a message.
   integer, parameter :: MAX_SHOWN = 60
+    !! Longest piece of user text quoted in a message.
 
   interface itoa
      module procedure itoa_i4, itoa_i8
@@ -76,9 +76,9 @@ contains
 
   ! ------------------------------------------------------------------ files and lines
 
-  !> Read a whole file into `text` (any size, any line length). `ok` is false
-  !> when the file cannot be opened or read.
   subroutine load_file(path, text, ok)
+    !! Read a whole file into `text` (any size, any line length). `ok` is false
+    !! when the file cannot be opened or read.
     character(*), intent(in) :: path
     character(:), allocatable, intent(out) :: text
     logical, intent(out) :: ok
@@ -109,9 +109,9 @@ contains
     ok = (ios == 0)
   end subroutine load_file
 
-  !> Fallback for files whose size is unknown: formatted non-advancing reads
-  !> into a growing buffer, one LF appended per record.
   subroutine load_formatted(path, text, ok)
+    !! Fallback for files whose size is unknown: formatted non-advancing reads
+    !! into a growing buffer, one LF appended per record.
     character(*), intent(in) :: path
     character(:), allocatable, intent(out) :: text
     logical, intent(out) :: ok
@@ -151,10 +151,10 @@ contains
     end subroutine append
   end subroutine load_formatted
 
-  !> Find the line starting at `pos` in `text`: it spans `first:last` (CR and
-  !> LF excluded; LF, CR LF and a lone CR all end a line) and `pos` moves to the
-  !> next line. `found` is false at the end of the text.
   pure subroutine next_line(text, pos, first, last, found)
+    !! Find the line starting at `pos` in `text`: it spans `first:last` (CR and
+    !! LF excluded; LF, CR LF and a lone CR all end a line) and `pos` moves to the
+    !! next line. `found` is false at the end of the text.
     character(*), intent(in) :: text
     integer(i8), intent(inout) :: pos
     integer(i8), intent(out) :: first, last
@@ -178,8 +178,8 @@ contains
     end if
   end subroutine next_line
 
-  !> Position of the first character that is not a blank or tab (0 if none).
   pure integer function first_nonblank(s) result(k)
+    !! Position of the first character that is not a blank or tab (0 if none).
     character(*), intent(in) :: s
     do k = 1, len(s)
        if (s(k:k) /= BLANK .and. s(k:k) /= TAB) return
@@ -189,8 +189,8 @@ contains
 
   ! ------------------------------------------------------------------ text helpers
 
-  !> Upper-case copy of s (ASCII letters only).
   pure function to_upper(s) result(t)
+    !! Upper-case copy of s (ASCII letters only).
     character(*), intent(in) :: s
     character(len(s)) :: t
     integer :: k
@@ -200,9 +200,9 @@ contains
     end do
   end function to_upper
 
-  !> s with tabs made blanks, leading/trailing blanks removed and inner runs
-  !> of blanks collapsed to one.
   pure function collapse_blanks(s) result(t)
+    !! s with tabs made blanks, leading/trailing blanks removed and inner runs
+    !! of blanks collapsed to one.
     character(*), intent(in) :: s
     character(:), allocatable :: t
     character(len(s)) :: buf
@@ -226,8 +226,8 @@ contains
     t = buf(1:n)
   end function collapse_blanks
 
-  !> s for quoting in a message: cut to MAX_SHOWN characters ('...' appended).
   pure function clip(s) result(t)
+    !! s for quoting in a message: cut to MAX_SHOWN characters ('...' appended).
     character(*), intent(in) :: s
     character(:), allocatable :: t
     if (len(s) > MAX_SHOWN) then
@@ -237,8 +237,8 @@ contains
     end if
   end function clip
 
-  !> "1 field", "3 fields": a count and a noun.
   pure function plural(n, noun) result(s)
+    !! "1 field", "3 fields": a count and a noun.
     integer, intent(in) :: n
     character(*), intent(in) :: noun
     character(:), allocatable :: s
@@ -246,8 +246,8 @@ contains
     if (n /= 1) s = s//'s'
   end function plural
 
-  !> Decimal text of an integer.
   pure function itoa_i4(i) result(s)
+    !! Decimal text of an integer.
     integer, intent(in) :: i
     character(:), allocatable :: s
     character(len=24) :: buf
@@ -265,9 +265,9 @@ contains
 
   ! ------------------------------------------------------------------ keyword lines
 
-  !> Split a keyword line (its first character is '*') into the keyword and its
-  !> parameters. On a malformed line `msg` is allocated with the reason.
   pure subroutine parse_keyword_line(line, kw, msg)
+    !! Split a keyword line (its first character is '*') into the keyword and its
+    !! parameters. On a malformed line `msg` is allocated with the reason.
     character(*), intent(in) :: line
     type(keyword_line_t), intent(out) :: kw
     character(:), allocatable, intent(out) :: msg
@@ -331,9 +331,9 @@ contains
 
   ! ------------------------------------------------------------------ data fields
 
-  !> Split a line at commas into fields (positions, blanks trimmed). Reuses the
-  !> arrays of `f`, growing them as needed. An empty line gives one empty field.
   pure subroutine split_fields(line, f)
+    !! Split a line at commas into fields (positions, blanks trimmed). Reuses the
+    !! arrays of `f`, growing them as needed. An empty line gives one empty field.
     character(*), intent(in) :: line
     type(fields_t), intent(inout) :: f
     integer :: start, c, e, a, b
@@ -375,8 +375,8 @@ contains
     end subroutine grow
   end subroutine split_fields
 
-  !> Forget empty fields at the end of the line (a trailing comma).
   pure subroutine drop_trailing_empty(f)
+    !! Forget empty fields at the end of the line (a trailing comma).
     type(fields_t), intent(inout) :: f
     do while (f%n > 0)
        if (f%last(f%n) >= f%first(f%n)) exit
@@ -386,8 +386,8 @@ contains
 
   ! ------------------------------------------------------------------ tokens
 
-  !> True when s is a name: one or more letters, digits, '_' or '-'.
   pure logical function is_name(s)
+    !! True when s is a name: one or more letters, digits, '_' or '-'.
     character(*), intent(in) :: s
     integer :: k
     is_name = len(s) > 0
@@ -401,8 +401,8 @@ contains
     end do
   end function is_name
 
-  !> True when s is one or more decimal digits.
   pure logical function is_digits(s)
+    !! True when s is one or more decimal digits.
     character(*), intent(in) :: s
     integer :: k
     is_digits = len(s) > 0
@@ -414,9 +414,9 @@ contains
     end do
   end function is_digits
 
-  !> True when s is made only of digits, signs and dots (so it was meant as a
-  !> number, not a name).
   pure logical function looks_numeric(s)
+    !! True when s is made only of digits, signs and dots (so it was meant as a
+    !! number, not a name).
     character(*), intent(in) :: s
     integer :: k
     looks_numeric = len(s) > 0
@@ -430,8 +430,8 @@ contains
     end do
   end function looks_numeric
 
-  !> Convert an id: digits only, value in 1 .. 2**31-1.
   pure subroutine parse_id(s, id, stat)
+    !! Convert an id: digits only, value in 1 .. 2**31-1.
     character(*), intent(in) :: s
     integer(ip), intent(out) :: id
     integer, intent(out) :: stat
@@ -465,11 +465,11 @@ contains
     stat = TOK_OK
   end subroutine parse_id
 
-  !> Convert a real written in Fortran or C form: [sign] digits [. digits]
-  !> [(e|E|d|D) [sign] digits], at least one mantissa digit. The characters are
-  !> checked here first; values that overflow real(wp) are TOK_RANGE; words such
-  !> as NaN and Inf are TOK_NONFINITE. No Fortran I/O error can escape.
   subroutine parse_real(s, x, stat)
+    !! Convert a real written in Fortran or C form: [sign] digits [. digits]
+    !! [(e|E|d|D) [sign] digits], at least one mantissa digit. The characters are
+    !! checked here first; values that overflow real(wp) are TOK_RANGE; words such
+    !! as NaN and Inf are TOK_NONFINITE. No Fortran I/O error can escape.
     character(*), intent(in) :: s
     real(wp), intent(out) :: x
     integer, intent(out) :: stat
@@ -606,8 +606,8 @@ contains
 
   ! ------------------------------------------------------------------ paths
 
-  !> Directory part of a path ('' when there is none).
   pure function path_dirname(path) result(dir)
+    !! Directory part of a path ('' when there is none).
     character(*), intent(in) :: path
     character(:), allocatable :: dir
     integer :: k
@@ -621,8 +621,8 @@ contains
     end if
   end function path_dirname
 
-  !> `rel` relative to directory `dir` (absolute `rel` is kept).
   pure function path_join(dir, rel) result(path)
+    !! `rel` relative to directory `dir` (absolute `rel` is kept).
     character(*), intent(in) :: dir, rel
     character(:), allocatable :: path
     if (len(rel) > 0) then
@@ -640,8 +640,8 @@ contains
     end if
   end function path_join
 
-  !> Path with '.' components, repeated slashes and 'dir/..' pairs removed.
   pure function path_normalize(path) result(norm)
+    !! Path with '.' components, repeated slashes and 'dir/..' pairs removed.
     character(*), intent(in) :: path
     character(:), allocatable :: norm
     integer, allocatable :: cs(:), ce(:)

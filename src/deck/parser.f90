@@ -1,8 +1,8 @@
-!> Card-level parser of the deck reader: walks the lines of a deck (and of the
-!> files it includes), recognizes keyword and data lines and records what they
-!> define in the reader state, by user ids and names. References are resolved
-!> later, by superjoin_deck_validate.
 module superjoin_deck_parser
+  !! Card-level parser of the deck reader: walks the lines of a deck (and of the
+  !! files it includes), recognizes keyword and data lines and records what they
+  !! define in the reader state, by user ids and names. References are resolved
+  !! later, by superjoin_deck_validate.
   use superjoin_kinds, only: wp, ip, i8
   use superjoin_model_types, only: source_loc_t, string_t, ELEMENT_TYPE_NAMES, ELEMENT_NODE_COUNT, &
        NUM_ELEMENT_TYPES, MAX_ELEMENT_NODES, NDOF_NODE, SEC_SOLID, SEC_BEAM, SEC_SHELL, &
@@ -22,31 +22,31 @@ module superjoin_deck_parser
 
   public :: parse_source, finish_parse, register_file
 
-  !> What the current card does with data lines.
   integer, parameter :: CARD_NONE = 0, CARD_SKIP = 1, CARD_NODATA = 2, CARD_HEADING = 3, &
        CARD_NODE = 4, CARD_ELEMENT = 5, CARD_NSET = 6, CARD_ELSET = 7, CARD_SECTION = 8, &
        CARD_ELASTIC = 9, CARD_ORIENTATION = 10, CARD_CONTACT = 11, CARD_SUPPORT = 12, &
        CARD_BOUNDARY = 13, CARD_CLOAD = 14, CARD_DLOAD = 15
+    !! What the current card does with data lines.
 
-  !> Name of the implicit substructure.
   character(*), parameter :: MAIN_NAME = 'MAIN'
-  !> UTF-8 byte order mark, skipped at the start of a file.
+    !! Name of the implicit substructure.
   character(*), parameter :: BOM = char(239)//char(187)//char(191)
-  !> Poisson's ratio bounds (open interval).
+    !! UTF-8 byte order mark, skipped at the start of a file.
   real(wp), parameter :: NU_MIN = -1.0_wp, NU_MAX = 0.5_wp
-  !> Relative size below which orientation vectors count as zero or parallel.
+    !! Poisson's ratio bounds (open interval).
   real(wp), parameter :: PARALLEL_TOL = 1.0e-10_wp
+    !! Relative size below which orientation vectors count as zero or parallel.
   integer, parameter :: NAME_LEN = 16
   integer, parameter :: ORIENT_VALUES = 6
-  !> Numbers of fields of data lines.
   integer, parameter :: NODE_FIELDS_MIN = 3, NODE_FIELDS_MAX = 4
+    !! Numbers of fields of data lines.
   integer, parameter :: GEN_FIELDS_MIN = 2, GEN_FIELDS_MAX = 3
   integer, parameter :: ELASTIC_FIELDS = 2, VECTOR_FIELDS = 3, CONTACT_FIELDS = 5, LOAD_FIELDS = 3
   integer, parameter :: SUPPORT_FIELDS_MIN = 3, SUPPORT_FIELDS_MAX = 4
   integer, parameter :: BOUNDARY_FIELDS_MIN = 2, BOUNDARY_FIELDS_MAX = 4
 
-  !> Abaqus *BOUNDARY shorthands and the DOFs they fix.
   integer, parameter :: NUM_BC_TYPES = 8
+    !! Abaqus *BOUNDARY shorthands and the DOFs they fix.
   character(len=8), parameter :: BC_TYPE_NAMES(NUM_BC_TYPES) = ['ENCASTRE', 'PINNED  ', &
        'XSYMM   ', 'YSYMM   ', 'ZSYMM   ', 'XASYMM  ', 'YASYMM  ', 'ZASYMM  ']
   logical, parameter :: BC_TYPE_DOFS(NDOF_NODE, NUM_BC_TYPES) = reshape([ &
@@ -63,9 +63,9 @@ contains
 
   ! ================================================================== driving
 
-  !> Index of file `path` in the state's file list (added if new); `norm` is
-  !> the normalized path used to detect include cycles.
   subroutine register_file(st, path, norm, k)
+    !! Index of file `path` in the state's file list (added if new); `norm` is
+    !! the normalized path used to detect include cycles.
     type(deck_state_t), intent(inout) :: st
     character(*), intent(in) :: path, norm
     integer, intent(out) :: k
@@ -88,8 +88,8 @@ contains
     st%norm_files(k)%s = norm
   end subroutine register_file
 
-  !> Parse the lines of `text`, which is file number `file` (recursive through *INCLUDE).
   recursive subroutine parse_source(st, text, file)
+    !! Parse the lines of `text`, which is file number `file` (recursive through *INCLUDE).
     type(deck_state_t), intent(inout) :: st
     character(*), intent(in) :: text
     integer, intent(in) :: file
@@ -110,8 +110,8 @@ contains
     end do
   end subroutine parse_source
 
-  !> One line: comment, blank, keyword or data.
   recursive subroutine process_line(st, line, file, lineno)
+    !! One line: comment, blank, keyword or data.
     type(deck_state_t), intent(inout) :: st
     character(*), intent(in) :: line
     integer, intent(in) :: file, lineno
@@ -131,8 +131,8 @@ contains
     end if
   end subroutine process_line
 
-  !> End of the input: close the last card and check that blocks were closed.
   subroutine finish_parse(st)
+    !! End of the input: close the last card and check that blocks were closed.
     type(deck_state_t), intent(inout) :: st
     integer :: k
     type(source_loc_t) :: loc
@@ -243,8 +243,8 @@ contains
     end select
   end subroutine keyword_line
 
-  !> Make `card` the current card.
   subroutine set_card(st, card, name, loc)
+    !! Make `card` the current card.
     type(deck_state_t), intent(inout) :: st
     integer, intent(in) :: card
     character(*), intent(in) :: name
@@ -262,8 +262,8 @@ contains
     st%card_generate = .false.
   end subroutine set_card
 
-  !> Checks when a card ends (next keyword or end of input): data it needed.
   subroutine end_card(st)
+    !! Checks when a card ends (next keyword or end of input): data it needed.
     type(deck_state_t), intent(inout) :: st
     select case (st%card)
     case (CARD_ELASTIC, CARD_ORIENTATION)
@@ -277,8 +277,8 @@ contains
     st%card = CARD_NONE
   end subroutine end_card
 
-  !> Report `*KW is not allowed inside *STEP` and skip the card when a step is open.
   logical function outside_step(st, kw, loc) result(ok)
+    !! Report `*KW is not allowed inside *STEP` and skip the card when a step is open.
     type(deck_state_t), intent(inout) :: st
     type(keyword_line_t), intent(in) :: kw
     type(source_loc_t), intent(in) :: loc
@@ -289,8 +289,8 @@ contains
     end if
   end function outside_step
 
-  !> Report parameters that are not in `valued` (NAME=VALUE) or `flags` (NAME).
   subroutine check_params(st, kw, loc, valued, flags)
+    !! Report parameters that are not in `valued` (NAME=VALUE) or `flags` (NAME).
     type(deck_state_t), intent(inout) :: st
     type(keyword_line_t), intent(in) :: kw
     type(source_loc_t), intent(in) :: loc
@@ -311,8 +311,8 @@ contains
     end do
   end subroutine check_params
 
-  !> Index of parameter `name` (0 if absent).
   pure integer function param_index(kw, name) result(k)
+    !! Index of parameter `name` (0 if absent).
     type(keyword_line_t), intent(in) :: kw
     character(*), intent(in) :: name
     do k = 1, kw%nparam
@@ -321,9 +321,9 @@ contains
     k = 0
   end function param_index
 
-  !> Value of parameter `name` (with a value); `found` false if absent. When
-  !> `required`, its absence is reported.
   subroutine get_param(st, kw, loc, name, required, value, found)
+    !! Value of parameter `name` (with a value); `found` false if absent. When
+    !! `required`, its absence is reported.
     type(deck_state_t), intent(inout) :: st
     type(keyword_line_t), intent(in) :: kw
     type(source_loc_t), intent(in) :: loc
@@ -343,8 +343,8 @@ contains
     end if
   end subroutine get_param
 
-  !> A name-valued parameter, checked and upper-cased.
   subroutine get_name_param(st, kw, loc, name, required, value, found)
+    !! A name-valued parameter, checked and upper-cased.
     type(deck_state_t), intent(inout) :: st
     type(keyword_line_t), intent(in) :: kw
     type(source_loc_t), intent(in) :: loc
@@ -362,9 +362,9 @@ contains
     value = to_upper(value)
   end subroutine get_name_param
 
-  !> Substructure that model cards outside/inside a block write to (MAIN is
-  !> created on first use).
   integer function target_sub(st, loc) result(k)
+    !! Substructure that model cards outside/inside a block write to (MAIN is
+    !! created on first use).
     type(deck_state_t), intent(inout) :: st
     type(source_loc_t), intent(in) :: loc
     if (st%cur_sub > 0) then
@@ -825,8 +825,8 @@ contains
     end select
   end subroutine data_line
 
-  !> True when the line has nmin..nmax fields; otherwise reported.
   logical function field_count(st, loc, nmin, nmax, expected) result(ok)
+    !! True when the line has nmin..nmax fields; otherwise reported.
     type(deck_state_t), intent(inout) :: st
     type(source_loc_t), intent(in) :: loc
     integer, intent(in) :: nmin, nmax
@@ -836,8 +836,8 @@ contains
          ' data line: expected '//expected//', got '//plural(st%f%n, 'field'))
   end function field_count
 
-  !> Field i of the current data line.
   pure function fld(st, line, i) result(s)
+    !! Field i of the current data line.
     type(deck_state_t), intent(in) :: st
     character(*), intent(in) :: line
     integer, intent(in) :: i
@@ -845,8 +845,8 @@ contains
     s = line(st%f%first(i):st%f%last(i))
   end function fld
 
-  !> Real in field i (reported when invalid).
   logical function get_real(st, line, loc, i, x) result(ok)
+    !! Real in field i (reported when invalid).
     type(deck_state_t), intent(inout) :: st
     character(*), intent(in) :: line
     type(source_loc_t), intent(in) :: loc
@@ -858,8 +858,8 @@ contains
     if (.not. ok) call report_loc(st, loc, real_message(fld(st, line, i), stat))
   end function get_real
 
-  !> Message for a real that could not be converted.
   function real_message(tok, stat) result(msg)
+    !! Message for a real that could not be converted.
     character(*), intent(in) :: tok
     integer, intent(in) :: stat
     character(:), allocatable :: msg
@@ -877,8 +877,8 @@ contains
     end select
   end function real_message
 
-  !> Id in field i (reported when invalid); `what` names it in messages.
   logical function get_id(st, line, loc, i, what, id) result(ok)
+    !! Id in field i (reported when invalid); `what` names it in messages.
     type(deck_state_t), intent(inout) :: st
     character(*), intent(in) :: line
     type(source_loc_t), intent(in) :: loc
@@ -897,8 +897,8 @@ contains
     msg = 'invalid '//what//' '''//clip(tok)//''' (ids are positive integers below 2**31)'
   end function id_message
 
-  !> DOF number 1..6 in field i.
   logical function get_dof(st, line, loc, i, dof) result(ok)
+    !! DOF number 1..6 in field i.
     type(deck_state_t), intent(inout) :: st
     character(*), intent(in) :: line
     type(source_loc_t), intent(in) :: loc
@@ -917,8 +917,8 @@ contains
     end if
   end function get_dof
 
-  !> DOF range first..last in fields i, i+1.
   logical function get_dof_range(st, line, loc, i, first, last) result(ok)
+    !! DOF range first..last in fields i, i+1.
     type(deck_state_t), intent(inout) :: st
     character(*), intent(in) :: line
     type(source_loc_t), intent(in) :: loc
@@ -932,8 +932,8 @@ contains
     if (.not. ok) call report_loc(st, loc, 'first DOF '//itoa(first)//' is after last DOF '//itoa(last))
   end function get_dof_range
 
-  !> Stiffness in field i: RIGID or a real >= 0.
   logical function get_stiffness(st, line, loc, i, state, g) result(ok)
+    !! Stiffness in field i: RIGID or a real >= 0.
     type(deck_state_t), intent(inout) :: st
     character(*), intent(in) :: line
     type(source_loc_t), intent(in) :: loc
@@ -957,9 +957,9 @@ contains
     end if
   end function get_stiffness
 
-  !> Parse a node or element reference (`id`, `set`, `SUB.id`, `SUB.set`).
-  !> `home` is the substructure of plain references (0: MAIN).
   logical function parse_ref(st, tok, elem, home, loc, ref) result(ok)
+    !! Parse a node or element reference (`id`, `set`, `SUB.id`, `SUB.set`).
+    !! `home` is the substructure of plain references (0: MAIN).
     type(deck_state_t), intent(inout) :: st
     character(*), intent(in) :: tok
     logical, intent(in) :: elem
@@ -1387,8 +1387,8 @@ contains
     call add_load(st%steps(st%card_item), ld, dload)
   end subroutine data_load
 
-  !> `a` when `cond`, else `b` (strings of any lengths).
   pure function pick(cond, a, b) result(s)
+    !! `a` when `cond`, else `b` (strings of any lengths).
     logical, intent(in) :: cond
     character(*), intent(in) :: a, b
     character(:), allocatable :: s
@@ -1399,8 +1399,8 @@ contains
     end if
   end function pick
 
-  !> "file:line" of a location.
   function loc_string(st, loc) result(s)
+    !! "file:line" of a location.
     type(deck_state_t), intent(in) :: st
     type(source_loc_t), intent(in) :: loc
     character(:), allocatable :: s

@@ -1,8 +1,8 @@
-!> Deck reader facade: read, parse and validate a superjoin deck (see
-!> doc/deck.md and the deck contract) into a model_t. Every problem found is
-!> reported as one `path:line: error: message` line of the returned error
-!> (exit status EXIT_DECK), up to a cap; library code never stops.
 module superjoin_deck_reader
+  !! Deck reader facade: read, parse and validate a superjoin deck (see
+  !! doc/deck.md and the deck contract) into a model_t. Every problem found is
+  !! reported as one `path:line: error: message` line of the returned error
+  !! (exit status EXIT_DECK), up to a cap; library code never stops.
   use superjoin_error, only: error_t, fatal_error, EXIT_IO
   use superjoin_model_types, only: model_t
   use superjoin_deck_lexer, only: load_file, path_normalize
@@ -16,9 +16,9 @@ module superjoin_deck_reader
 
 contains
 
-  !> Read, parse and validate a deck file into a model; all deck errors
-  !> collected in error (code EXIT_DECK; EXIT_IO when the file cannot be read).
   subroutine read_deck(path, model, error)
+    !! Read, parse and validate a deck file into a model; all deck errors
+    !! collected in error (code EXIT_DECK; EXIT_IO when the file cannot be read).
     character(*), intent(in) :: path
     type(model_t), intent(out) :: model
     type(error_t), allocatable, intent(out) :: error
@@ -32,10 +32,10 @@ contains
     call read_deck_string(text, path, model, error)
   end subroutine read_deck
 
-  !> Same as read_deck but from text in memory (lines separated by LF, CR LF or
-  !> CR); `name` is the file name used in messages and for resolving *INCLUDE
-  !> relative paths (relative to the directory of name).
   subroutine read_deck_string(text, name, model, error)
+    !! Same as read_deck but from text in memory (lines separated by LF, CR LF or
+    !! CR); `name` is the file name used in messages and for resolving *INCLUDE
+    !! relative paths (relative to the directory of name).
     character(*), intent(in) :: text, name
     type(model_t), intent(out) :: model
     type(error_t), allocatable, intent(out) :: error

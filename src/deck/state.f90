@@ -1,7 +1,7 @@
-!> Working state of the deck reader: what the parser has collected so far
-!> (still by user ids and names), the card being read, and the error list
-!> (capped). The validation pass turns this state into a model_t.
 module superjoin_deck_state
+  !! Working state of the deck reader: what the parser has collected so far
+  !! (still by user ids and names), the card being read, and the error list
+  !! (capped). The validation pass turns this state into a model_t.
   use superjoin_kinds, only: wp, ip
   use superjoin_error, only: error_t, add_error_line, EXIT_DECK
   use superjoin_model_types, only: string_t, source_loc_t, material_t, orientation_t, &
@@ -13,17 +13,17 @@ module superjoin_deck_state
   integer, parameter, public :: MAX_ERRORS = 50          !! messages before '... too many errors'
   integer, parameter, public :: MAX_INCLUDE_DEPTH = 16   !! nested *INCLUDE levels
   integer, parameter :: INITIAL_CAPACITY = 16
-  !> Numbers on the first data line of *BEAM SECTION: A, I (2D) or A, Iy, Iz, J (3D).
   integer, parameter, public :: BEAM_2D_VALUES = 2, BEAM_3D_VALUES = 4
+    !! Numbers on the first data line of *BEAM SECTION: A, I (2D) or A, Iy, Iz, J (3D).
 
-  !> Kinds of set chunks (one data line or one card's worth of set members).
   integer, parameter, public :: CH_IDS = 1    !! explicit ids: pool(start:start+count-1)
+    !! Kinds of set chunks (one data line or one card's worth of set members).
   integer, parameter, public :: CH_GEN = 2    !! GENERATE first, last, inc
   integer, parameter, public :: CH_RANGE = 3  !! local indices start..start+count-1 (*NODE, NSET= / *ELEMENT, ELSET=)
   integer, parameter, public :: CH_REF = 4    !! all members of another set of the same kind
 
-  !> Part of the definition of a node or element set, in order of definition.
   type, public :: chunk_t
+    !! Part of the definition of a node or element set, in order of definition.
      integer :: set = 0                    !! index into nsets or elsets
      logical :: elem = .false.             !! an element set chunk
      integer :: kind = 0                   !! CH_*
@@ -34,14 +34,14 @@ module superjoin_deck_state
      type(source_loc_t) :: loc
   end type chunk_t
 
-  !> A named set of a substructure (its members are in chunks).
   type, public :: set_b_t
+    !! A named set of a substructure (its members are in chunks).
      character(:), allocatable :: name
      type(source_loc_t) :: loc
   end type set_b_t
 
-  !> A substructure as read: user ids, coordinates, element connectivity by user ids.
   type, public :: sub_b_t
+    !! A substructure as read: user ids, coordinates, element connectivity by user ids.
      character(:), allocatable :: name
      type(source_loc_t) :: loc
      integer(ip) :: nnode = 0
@@ -63,8 +63,8 @@ module superjoin_deck_state
      integer(ip), allocatable :: pool(:)
   end type sub_b_t
 
-  !> A node/element reference as written: `id`, `set`, `SUB.id` or `SUB.set`.
   type, public :: ref_t
+    !! A node/element reference as written: `id`, `set`, `SUB.id` or `SUB.set`.
      character(:), allocatable :: scope    !! substructure name when written with a dot
      integer :: home = 0                   !! substructure of a plain reference (0: MAIN by name)
      logical :: is_set = .false.
@@ -72,8 +72,8 @@ module superjoin_deck_state
      character(:), allocatable :: set
   end type ref_t
 
-  !> A section card.
   type, public :: sec_b_t
+    !! A section card.
      integer :: kind = 0
      type(ref_t) :: elset                  !! is_set, set = elset name
      character(:), allocatable :: material
@@ -86,14 +86,14 @@ module superjoin_deck_state
      type(source_loc_t) :: loc, data_loc
   end type sec_b_t
 
-  !> A *CONTACT card.
   type, public :: contact_b_t
+    !! A *CONTACT card.
      character(:), allocatable :: name, master, slave, orientation
      type(source_loc_t) :: loc
   end type contact_b_t
 
-  !> One data line of a *CONTACT card.
   type, public :: cline_b_t
+    !! One data line of a *CONTACT card.
      integer :: contact = 0
      type(ref_t) :: master, slave
      integer :: first = 0, last = 0
@@ -102,8 +102,8 @@ module superjoin_deck_state
      type(source_loc_t) :: loc
   end type cline_b_t
 
-  !> One data line of *SUPPORT or *BOUNDARY.
   type, public :: support_b_t
+    !! One data line of *SUPPORT or *BOUNDARY.
      type(ref_t) :: ref
      logical :: dofs(NDOF_NODE) = .false.
      integer :: state = 0
@@ -112,8 +112,8 @@ module superjoin_deck_state
      type(source_loc_t) :: loc
   end type support_b_t
 
-  !> One data line of *CLOAD (node) or *DLOAD (element).
   type, public :: load_b_t
+    !! One data line of *CLOAD (node) or *DLOAD (element).
      type(ref_t) :: ref
      integer :: dof = 0                    !! *CLOAD
      integer :: kind = 0                   !! *DLOAD
@@ -121,16 +121,16 @@ module superjoin_deck_state
      type(source_loc_t) :: loc
   end type load_b_t
 
-  !> A step as read.
   type, public :: step_b_t
+    !! A step as read.
      character(:), allocatable :: name
      type(source_loc_t) :: loc
      integer :: ncload = 0, ndload = 0
      type(load_b_t), allocatable :: cloads(:), dloads(:)
   end type step_b_t
 
-  !> Everything the reader has collected, and the card being read.
   type, public :: deck_state_t
+    !! Everything the reader has collected, and the card being read.
      type(error_t), allocatable :: error
      integer :: nerr = 0
      logical :: aborted = .false.
@@ -191,9 +191,9 @@ contains
 
   ! ------------------------------------------------------------------ errors
 
-  !> Add `path:line: error: message` (at most MAX_ERRORS messages; after that
-  !> one '... too many errors' line and the reader stops).
   subroutine report(st, file, line, message)
+    !! Add `path:line: error: message` (at most MAX_ERRORS messages; after that
+    !! one '... too many errors' line and the reader stops).
     type(deck_state_t), intent(inout) :: st
     integer, intent(in) :: file, line
     character(*), intent(in) :: message
@@ -207,16 +207,16 @@ contains
     call add_error_line(st%error, EXIT_DECK, file_of(st, file)//':'//itoa(line)//': error: '//message)
   end subroutine report
 
-  !> report() at a source location.
   subroutine report_loc(st, loc, message)
+    !! report() at a source location.
     type(deck_state_t), intent(inout) :: st
     type(source_loc_t), intent(in) :: loc
     character(*), intent(in) :: message
     call report(st, loc%file, loc%line, message)
   end subroutine report_loc
 
-  !> Path of file index `file` as used in messages.
   function file_of(st, file) result(path)
+    !! Path of file index `file` as used in messages.
     type(deck_state_t), intent(in) :: st
     integer, intent(in) :: file
     character(:), allocatable :: path
@@ -229,8 +229,8 @@ contains
 
   ! ------------------------------------------------------------------ substructures and sets
 
-  !> Index of the substructure named `name` (0 if none; the last one if repeated).
   integer function find_sub(st, name) result(k)
+    !! Index of the substructure named `name` (0 if none; the last one if repeated).
     type(deck_state_t), intent(in) :: st
     character(*), intent(in) :: name
     do k = st%nsub, 1, -1
@@ -239,8 +239,8 @@ contains
     k = 0
   end function find_sub
 
-  !> Append a new, empty substructure.
   subroutine new_sub(st, name, loc, k)
+    !! Append a new, empty substructure.
     type(deck_state_t), intent(inout) :: st
     character(*), intent(in) :: name
     type(source_loc_t), intent(in) :: loc
@@ -265,8 +265,8 @@ contains
     allocate (st%subs(k)%chunks(INITIAL_CAPACITY), st%subs(k)%pool(INITIAL_CAPACITY))
   end subroutine new_sub
 
-  !> Index of the node set (elem = .false.) or element set named `name` in a substructure (0 if none).
   integer function find_set(sub, name, elem) result(k)
+    !! Index of the node set (elem = .false.) or element set named `name` in a substructure (0 if none).
     type(sub_b_t), intent(in) :: sub
     character(*), intent(in) :: name
     logical, intent(in) :: elem
@@ -282,8 +282,8 @@ contains
     k = 0
   end function find_set
 
-  !> Append a new, empty set to a substructure.
   subroutine new_set(sub, name, elem, loc, k)
+    !! Append a new, empty set to a substructure.
     type(sub_b_t), intent(inout) :: sub
     character(*), intent(in) :: name
     logical, intent(in) :: elem
@@ -313,8 +313,8 @@ contains
     end if
   end subroutine new_set
 
-  !> Append a chunk to a substructure; `k` is its index.
   subroutine add_chunk(sub, set, elem, kind, loc, k)
+    !! Append a chunk to a substructure; `k` is its index.
     type(sub_b_t), intent(inout) :: sub
     integer, intent(in) :: set, kind
     logical, intent(in) :: elem
@@ -336,8 +336,8 @@ contains
     sub%chunks(k)%count = 0
   end subroutine add_chunk
 
-  !> Append an id to the pool of explicit set members.
   subroutine push_pool(sub, id)
+    !! Append an id to the pool of explicit set members.
     type(sub_b_t), intent(inout) :: sub
     integer(ip), intent(in) :: id
     integer(ip), allocatable :: tmp(:)
@@ -350,8 +350,8 @@ contains
     sub%pool(sub%npool) = id
   end subroutine push_pool
 
-  !> Append a node.
   subroutine add_node(sub, id, x, loc)
+    !! Append a node.
     type(sub_b_t), intent(inout) :: sub
     integer(ip), intent(in) :: id
     real(wp), intent(in) :: x(3)
@@ -379,8 +379,8 @@ contains
     sub%node_loc(n) = loc
   end subroutine add_node
 
-  !> Append an element (nodes by user id).
   subroutine add_element(sub, id, etype, nid, loc, card)
+    !! Append an element (nodes by user id).
     type(sub_b_t), intent(inout) :: sub
     integer(ip), intent(in) :: id
     integer, intent(in) :: etype, card
@@ -417,8 +417,8 @@ contains
 
   ! ------------------------------------------------------------------ model-level lists
 
-  !> Append a heading line.
   subroutine add_heading(st, text)
+    !! Append a heading line.
     type(deck_state_t), intent(inout) :: st
     character(*), intent(in) :: text
     type(string_t), allocatable :: tmp(:)
@@ -432,8 +432,8 @@ contains
     st%heading(st%nheading)%s = text
   end subroutine add_heading
 
-  !> Append a material; `k` is its index.
   subroutine add_material(st, name, loc, k)
+    !! Append a material; `k` is its index.
     type(deck_state_t), intent(inout) :: st
     character(*), intent(in) :: name
     type(source_loc_t), intent(in) :: loc
@@ -451,8 +451,8 @@ contains
     st%materials(k)%loc = loc
   end subroutine add_material
 
-  !> Append an orientation; `k` is its index.
   subroutine add_orientation(st, name, loc, k)
+    !! Append an orientation; `k` is its index.
     type(deck_state_t), intent(inout) :: st
     character(*), intent(in) :: name
     type(source_loc_t), intent(in) :: loc
@@ -470,8 +470,8 @@ contains
     st%orientations(k)%loc = loc
   end subroutine add_orientation
 
-  !> Append a section; `k` is its index.
   subroutine add_section(st, sec, k)
+    !! Append a section; `k` is its index.
     type(deck_state_t), intent(inout) :: st
     type(sec_b_t), intent(in) :: sec
     integer, intent(out) :: k
@@ -487,8 +487,8 @@ contains
     st%sections(k) = sec
   end subroutine add_section
 
-  !> Append a contact card; `k` is its index.
   subroutine add_contact(st, c, k)
+    !! Append a contact card; `k` is its index.
     type(deck_state_t), intent(inout) :: st
     type(contact_b_t), intent(in) :: c
     integer, intent(out) :: k
@@ -504,8 +504,8 @@ contains
     st%contacts(k) = c
   end subroutine add_contact
 
-  !> Append a contact data line.
   subroutine add_cline(st, c)
+    !! Append a contact data line.
     type(deck_state_t), intent(inout) :: st
     type(cline_b_t), intent(in) :: c
     type(cline_b_t), allocatable :: tmp(:)
@@ -519,8 +519,8 @@ contains
     st%clines(st%ncline) = c
   end subroutine add_cline
 
-  !> Append a support data line.
   subroutine add_support(st, s)
+    !! Append a support data line.
     type(deck_state_t), intent(inout) :: st
     type(support_b_t), intent(in) :: s
     type(support_b_t), allocatable :: tmp(:)
@@ -534,8 +534,8 @@ contains
     st%supports(st%nsupport) = s
   end subroutine add_support
 
-  !> Append a step; `k` is its index.
   subroutine add_step(st, name, loc, k)
+    !! Append a step; `k` is its index.
     type(deck_state_t), intent(inout) :: st
     character(*), intent(in) :: name
     type(source_loc_t), intent(in) :: loc
@@ -554,8 +554,8 @@ contains
     allocate (st%steps(k)%cloads(INITIAL_CAPACITY), st%steps(k)%dloads(INITIAL_CAPACITY))
   end subroutine add_step
 
-  !> Append a concentrated (dload = .false.) or distributed load to a step.
   subroutine add_load(step, load, dload)
+    !! Append a concentrated (dload = .false.) or distributed load to a step.
     type(step_b_t), intent(inout) :: step
     type(load_b_t), intent(in) :: load
     logical, intent(in) :: dload

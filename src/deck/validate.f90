@@ -1,7 +1,7 @@
-!> Validation pass of the deck reader: resolves the names and user ids that the
-!> parser collected into indices, checks the model (duplicates, undefined
-!> nodes, sets, sections, contacts, supports, loads) and fills model_t.
 module superjoin_deck_validate
+  !! Validation pass of the deck reader: resolves the names and user ids that the
+  !! parser collected into indices, checks the model (duplicates, undefined
+  !! nodes, sets, sections, contacts, supports, loads) and fills model_t.
   use superjoin_kinds, only: wp, ip, i8
   use superjoin_model_types, only: model_t, substructure_t, index_set_t, &
        link_t, support_t, cload_t, dload_t, source_loc_t, find_node, find_elem, &
@@ -19,28 +19,28 @@ module superjoin_deck_validate
   character(*), parameter :: MAIN_NAME = 'MAIN'
   integer, parameter :: INITIAL_CAPACITY = 16
   integer, parameter :: INITIAL_HASH = 64
-  !> Multipliers of the link hash (products stay below 2**63).
   integer(i8), parameter :: HASH_MUL1 = 2654435761_i8, HASH_MUL2 = 40503_i8
+    !! Multipliers of the link hash (products stay below 2**63).
   integer(i8), parameter :: PAIR_SHIFT = 2147483648_i8   !! 2**31: key = master*2**31 + slave
   integer(i8), parameter :: EMPTY_KEY = -1_i8
 
-  !> Open-addressing map from a (master, slave) pair key to a link index.
   type :: pair_map_t
+    !! Open-addressing map from a (master, slave) pair key to a link index.
      integer :: n = 0
      integer(i8), allocatable :: keys(:)
      integer, allocatable :: vals(:)
   end type pair_map_t
 
-  !> Growing list of links / supports while they are generated.
   type :: link_list_t
+    !! Growing list of links / supports while they are generated.
      integer :: n = 0
      type(link_t), allocatable :: a(:)
   end type link_list_t
 
 contains
 
-  !> Resolve everything collected in `st` and fill `model`. Errors go to st%error.
   subroutine build_model(st, model)
+    !! Resolve everything collected in `st` and fill `model`. Errors go to st%error.
     type(deck_state_t), intent(inout) :: st
     type(model_t), intent(out) :: model
     integer :: k
@@ -160,9 +160,9 @@ contains
     deallocate (b%node_id, b%x, b%elem_id, b%elem_type, b%elem_nid, b%pool)
   end subroutine build_sub
 
-  !> Resolve the node sets (elem false) or element sets of one substructure:
-  !> members in order of definition, repeats dropped, set references followed.
   subroutine resolve_sets(st, b, m, elem)
+    !! Resolve the node sets (elem false) or element sets of one substructure:
+    !! members in order of definition, repeats dropped, set references followed.
     type(deck_state_t), intent(inout) :: st
     type(sub_b_t), intent(in) :: b
     type(substructure_t), intent(inout) :: m
@@ -325,9 +325,9 @@ contains
       items(n) = i
     end subroutine add
 
-    !> Members with ids first, first+inc, ... <= last that exist (walks the
-    !> sorted ids, so sparse huge ranges cost nothing).
     subroutine walk_range(gen, count)
+      !! Members with ids first, first+inc, ... <= last that exist (walks the
+      !! sorted ids, so sparse huge ranges cost nothing).
       integer(ip), intent(in) :: gen(3)
       integer, intent(inout) :: count
       integer(ip) :: lo, hi, mid, nn, idv
@@ -527,8 +527,8 @@ contains
     end select
   end function needed_card
 
-  !> Elements without a section: one message per *ELEMENT card.
   subroutine check_unassigned(st, model)
+    !! Elements without a section: one message per *ELEMENT card.
     type(deck_state_t), intent(inout) :: st
     type(model_t), intent(in) :: model
     integer, allocatable :: count(:), first_sub(:)
@@ -563,8 +563,8 @@ contains
 
   ! ================================================================== references
 
-  !> Substructure a reference points to (0 and reported when there is none).
   integer function resolve_sub(st, model, ref, loc, what) result(isub)
+    !! Substructure a reference points to (0 and reported when there is none).
     type(deck_state_t), intent(inout) :: st
     type(model_t), intent(in) :: model
     type(ref_t), intent(in) :: ref
@@ -584,8 +584,8 @@ contains
     end if
   end function resolve_sub
 
-  !> Index of the substructure named `name` (0 if none).
   pure integer function sub_index(model, name) result(k)
+    !! Index of the substructure named `name` (0 if none).
     type(model_t), intent(in) :: model
     character(*), intent(in) :: name
     do k = size(model%subs), 1, -1
@@ -594,8 +594,8 @@ contains
     k = 0
   end function sub_index
 
-  !> A reference as the user wrote it (upper case).
   pure function ref_text(ref) result(s)
+    !! A reference as the user wrote it (upper case).
     type(ref_t), intent(in) :: ref
     character(:), allocatable :: s
     if (ref%is_set) then
@@ -606,8 +606,8 @@ contains
     if (allocated(ref%scope)) s = ref%scope//'.'//s
   end function ref_text
 
-  !> Local node (elem false) or element indices a reference names in substructure isub.
   subroutine resolve_items(st, model, isub, ref, elem, loc, items, ok)
+    !! Local node (elem false) or element indices a reference names in substructure isub.
     type(deck_state_t), intent(inout) :: st
     type(model_t), intent(in) :: model
     integer, intent(in) :: isub
@@ -762,8 +762,8 @@ contains
     end if
   end function pick_set_name
 
-  !> Add one contact line's DOFs to a link: finite g add up, RIGID wins, 0 adds nothing.
   pure subroutine merge_dofs(link, first, last, state, g)
+    !! Add one contact line's DOFs to a link: finite g add up, RIGID wins, 0 adds nothing.
     type(link_t), intent(inout) :: link
     integer, intent(in) :: first, last, state
     real(wp), intent(in) :: g
@@ -815,8 +815,8 @@ contains
     h = int(iand(x, int(mask, i8)))
   end function slot_of
 
-  !> Value stored for `key`; when absent, `newval` is stored and `added` is true.
   subroutine map_get_or_add(map, key, newval, val, added)
+    !! Value stored for `key`; when absent, `newval` is stored and `added` is true.
     type(pair_map_t), intent(inout) :: map
     integer(i8), intent(in) :: key
     integer, intent(in) :: newval
@@ -1016,8 +1016,8 @@ contains
     call move_alloc(tmp, out)
   end subroutine build_dloads
 
-  !> Whether a distributed load kind applies to an element type.
   pure logical function dload_fits(kind, etype)
+    !! Whether a distributed load kind applies to an element type.
     integer, intent(in) :: kind, etype
     select case (kind)
     case (DLOAD_PX, DLOAD_PY)
@@ -1046,8 +1046,8 @@ contains
 
   ! ================================================================== helpers
 
-  !> ' (and N more)' text for counts of repeated problems.
   pure function more_text(n, suffix) result(s)
+    !! ' (and N more)' text for counts of repeated problems.
     integer, intent(in) :: n
     character(*), intent(in), optional :: suffix
     character(:), allocatable :: s
@@ -1060,8 +1060,8 @@ contains
     end if
   end function more_text
 
-  !> `a` when `cond`, else `b` (strings of any lengths).
   pure function pick(cond, a, b) result(s)
+    !! `a` when `cond`, else `b` (strings of any lengths).
     logical, intent(in) :: cond
     character(*), intent(in) :: a, b
     character(:), allocatable :: s
@@ -1072,8 +1072,8 @@ contains
     end if
   end function pick
 
-  !> "file:line" of a location.
   function where(st, loc) result(s)
+    !! "file:line" of a location.
     type(deck_state_t), intent(in) :: st
     type(source_loc_t), intent(in) :: loc
     character(:), allocatable :: s
@@ -1084,8 +1084,8 @@ contains
     end if
   end function where
 
-  !> order = permutation sorting ids ascending (stable merge sort; O(n) when already sorted).
   subroutine argsort_ids(ids, order)
+    !! order = permutation sorting ids ascending (stable merge sort; O(n) when already sorted).
     integer(ip), intent(in) :: ids(:)
     integer(ip), intent(out) :: order(:)
     integer(ip), allocatable :: tmp(:)

@@ -1,12 +1,12 @@
-!> Two-node Euler-Bernoulli beams with axial stiffness: B23 (XY plane, DOFs
-!> 1,2,6 per node, bending about Z with I in sec%iz) and B33 (DOFs 1..6 per node,
-!> St. Venant torsion GJ/L with G = E/(2(1+nu))). Bending with displacement
-!> along local y uses Iz, along local z uses Iy. Cubic Hermite bending, linear
-!> axial and twist fields: nodal results are exact for end loads and, with the
-!> consistent loads of beam_load_local, for uniform distributed loads.
-!>
-!> Local DOFs per node: B23 (u, v, θz); B33 (u, v, w, θx, θy, θz), node-major.
 module superjoin_elements_beam
+  !! Two-node Euler-Bernoulli beams with axial stiffness: B23 (XY plane, DOFs
+  !! 1,2,6 per node, bending about Z with I in sec%iz) and B33 (DOFs 1..6 per node,
+  !! St. Venant torsion GJ/L with G = E/(2(1+nu))). Bending with displacement
+  !! along local y uses Iz, along local z uses Iy. Cubic Hermite bending, linear
+  !! axial and twist fields: nodal results are exact for end loads and, with the
+  !! consistent loads of beam_load_local, for uniform distributed loads.
+  !!
+  !! Local DOFs per node: B23 (u, v, θz); B33 (u, v, w, θx, θy, θz), node-major.
   use superjoin_kinds, only: wp
   use superjoin_error, only: error_t, fatal_error, EXIT_DECK
   use superjoin_model_types, only: section_t, material_t, ET_B23, ET_B33
@@ -17,8 +17,8 @@ module superjoin_elements_beam
   integer, parameter :: NNODE = 2
   integer, parameter :: ND_B23 = 3, ND_B33 = 6
 
-  !> Properties of one beam element, gathered and checked once.
   type :: beam_props_t
+    !! Properties of one beam element, gathered and checked once.
      real(wp) :: r(3, 3) = 0.0_wp   !! rows: local axes
      real(wp) :: length = 0.0_wp
      real(wp) :: ea = 0.0_wp, eiy = 0.0_wp, eiz = 0.0_wp, gj = 0.0_wp
@@ -28,8 +28,8 @@ module superjoin_elements_beam
 
 contains
 
-  !> DOFs per node of a beam type.
   pure integer function beam_ndof(etype)
+    !! DOFs per node of a beam type.
     integer, intent(in) :: etype
     if (etype == ET_B23) then
        beam_ndof = ND_B23
@@ -38,8 +38,8 @@ contains
     end if
   end function beam_ndof
 
-  !> Frame and rigidities of a beam, with the data checks.
   pure subroutine beam_setup(etype, x, sec, mat, p, error)
+    !! Frame and rigidities of a beam, with the data checks.
     integer, intent(in) :: etype
     real(wp), intent(in) :: x(:, :)
     type(section_t), intent(in) :: sec
@@ -73,8 +73,8 @@ contains
     end if
   end subroutine beam_setup
 
-  !> Local stiffness (node-major local DOFs) of a beam.
   pure function local_stiffness(etype, p) result(k)
+    !! Local stiffness (node-major local DOFs) of a beam.
     integer, intent(in) :: etype
     type(beam_props_t), intent(in) :: p
     real(wp), allocatable :: k(:, :)
@@ -109,8 +109,8 @@ contains
     k(iw, iw) = by
   end function local_stiffness
 
-  !> Euler-Bernoulli bending stiffness in (v1, θ1, v2, θ2) with θ = dv/dx.
   pure function hermite_block(ei, l) result(b)
+    !! Euler-Bernoulli bending stiffness in (v1, θ1, v2, θ2) with θ = dv/dx.
     real(wp), intent(in) :: ei, l
     real(wp) :: b(4, 4)
     real(wp) :: c1, c2, c3
@@ -123,8 +123,8 @@ contains
     b(:, 4) = [c2, c1, -c2, 2*c1]
   end function hermite_block
 
-  !> Transformation u_local = t u_global (node-major DOFs) of a beam.
   pure function transformation(etype, r) result(t)
+    !! Transformation u_local = t u_global (node-major DOFs) of a beam.
     integer, intent(in) :: etype
     real(wp), intent(in) :: r(3, 3)
     real(wp), allocatable :: t(:, :)
@@ -144,9 +144,9 @@ contains
     end if
   end function transformation
 
-  !> Consistent nodal loads (local axes, node-major local DOFs) of a uniform
-  !> load per unit length q (local axes), with the fixed-end moments.
   pure function beam_load_local(etype, length, q) result(fq)
+    !! Consistent nodal loads (local axes, node-major local DOFs) of a uniform
+    !! load per unit length q (local axes), with the fixed-end moments.
     integer, intent(in) :: etype
     real(wp), intent(in) :: length, q(3)
     real(wp), allocatable :: fq(:)
@@ -161,8 +161,8 @@ contains
     end if
   end function beam_load_local
 
-  !> Global stiffness of a B23/B33 beam, node-major (exactly symmetric).
   pure subroutine beam_stiffness(etype, x, sec, mat, ke, error)
+    !! Global stiffness of a B23/B33 beam, node-major (exactly symmetric).
     integer, intent(in) :: etype
     real(wp), intent(in) :: x(:, :)
     type(section_t), intent(in) :: sec
@@ -179,9 +179,9 @@ contains
     ke = 0.5_wp*(ke + transpose(ke))
   end subroutine beam_stiffness
 
-  !> End forces of a beam in local axes: f = k_local u_local - f_eq_local,
-  !> f(1:6, end) = n, vy, vz, t, my, mz (B23: n, vy, mz; the rest 0).
   pure subroutine beam_end_forces(etype, x, sec, mat, ue, q_local, f, error)
+    !! End forces of a beam in local axes: f = k_local u_local - f_eq_local,
+    !! f(1:6, end) = n, vy, vz, t, my, mz (B23: n, vy, mz; the rest 0).
     integer, intent(in) :: etype
     real(wp), intent(in) :: x(:, :)
     type(section_t), intent(in) :: sec
@@ -216,10 +216,10 @@ contains
     end if
   end subroutine beam_end_forces
 
-  !> Consistent nodal loads (global axes, node-major) of a uniform load per
-  !> unit length w (global axes) on a beam, and the load in local axes.
-  !> B23 rejects a load along global Z.
   pure subroutine beam_load(etype, x, sec, w, fe, q_local, error)
+    !! Consistent nodal loads (global axes, node-major) of a uniform load per
+    !! unit length w (global axes) on a beam, and the load in local axes.
+    !! B23 rejects a load along global Z.
     integer, intent(in) :: etype
     real(wp), intent(in) :: x(:, :)
     type(section_t), intent(in) :: sec

@@ -1,10 +1,10 @@
-!> Element library facade: DOFs per node, stiffness in global axes, end forces
-!> and distributed loads of every element type (ET_* in superjoin_model_types).
-!>
-!> Ordering of element vectors and matrices: node-major; the DOFs of one node
-!> in the order of element_node_dofs. Errors come back as error_t (code
-!> EXIT_DECK) with a message without file:line; the caller prefixes it.
 module superjoin_elements
+  !! Element library facade: DOFs per node, stiffness in global axes, end forces
+  !! and distributed loads of every element type (ET_* in superjoin_model_types).
+  !!
+  !! Ordering of element vectors and matrices: node-major; the DOFs of one node
+  !! in the order of element_node_dofs. Errors come back as error_t (code
+  !! EXIT_DECK) with a message without file:line; the caller prefixes it.
   use superjoin_kinds, only: wp
   use superjoin_error, only: error_t, fatal_error, EXIT_DECK
   use superjoin_model_types, only: section_t, material_t, ET_T2D2, ET_T3D2, ET_B23, ET_B33, &
@@ -16,16 +16,16 @@ module superjoin_elements
   private
 
   public :: element_node_dofs, element_stiffness, element_end_forces, beam_distributed_load
-  !> beam_frame(etype, x, sec, r, length, error): local frame of a truss or beam
-  !> (rows of r = local x, y, z axes); see superjoin_elements_frame.
   public :: beam_frame
+    !! beam_frame(etype, x, sec, r, length, error): local frame of a truss or beam
+    !! (rows of r = local x, y, z axes); see superjoin_elements_frame.
 
 contains
 
-  !> DOF numbers (1..6: ux, uy, uz, rx, ry, rz) carried by each node of an
-  !> element type: T2D2 [1,2]; T3D2 [1,2,3]; B23 [1,2,6]; B33 [1..6];
-  !> CPS3/CPS4 [1,2]; S3/S4 [1..6]; an unknown type gives an empty array.
   pure function element_node_dofs(etype) result(dofs)
+    !! DOF numbers (1..6: ux, uy, uz, rx, ry, rz) carried by each node of an
+    !! element type: T2D2 [1,2]; T3D2 [1,2,3]; B23 [1,2,6]; B33 [1..6];
+    !! CPS3/CPS4 [1,2]; S3/S4 [1..6]; an unknown type gives an empty array.
     integer, intent(in) :: etype
     integer, allocatable :: dofs(:)
     integer :: i
@@ -43,12 +43,12 @@ contains
     end select
   end function element_node_dofs
 
-  !> Element stiffness in global axes, node-major ordering (node 1 DOFs in
-  !> element_node_dofs order, then node 2 ...). x(3, nnode) are the node
-  !> coordinates. Errors: zero-length element, orientation vector parallel to
-  !> beam axis, nonpositive A, I, J or E, 2D element out of the XY plane, and
-  !> "element type X is not implemented yet" for CPS3, CPS4, S3, S4.
   pure subroutine element_stiffness(etype, x, sec, mat, ke, error)
+    !! Element stiffness in global axes, node-major ordering (node 1 DOFs in
+    !! element_node_dofs order, then node 2 ...). x(3, nnode) are the node
+    !! coordinates. Errors: zero-length element, orientation vector parallel to
+    !! beam axis, nonpositive A, I, J or E, 2D element out of the XY plane, and
+    !! "element type X is not implemented yet" for CPS3, CPS4, S3, S4.
     integer, intent(in) :: etype
     real(wp), intent(in) :: x(:, :)
     type(section_t), intent(in) :: sec
@@ -65,15 +65,15 @@ contains
     end select
   end subroutine element_stiffness
 
-  !> Forces and moments the nodes exert on the element, in its local axes,
-  !> per end: f(1:6, end) = n, vy, vz, t, my, mz, computed as
-  !> f_local = k_local u_local - f_eq_local (f_eq: consistent nodal loads of the
-  !> distributed load q_local, given per unit length in local axes). A bar in
-  !> tension has n < 0 at end 1 and n > 0 at end 2. ue holds the element DOF
-  !> values in global axes, same ordering as element_stiffness. Components a
-  !> type lacks are 0 (trusses: only n; B23: n, vy, mz). Plane and shell
-  !> elements have no end forces: f = 0 and no error.
   pure subroutine element_end_forces(etype, x, sec, mat, ue, q_local, f, error)
+    !! Forces and moments the nodes exert on the element, in its local axes,
+    !! per end: f(1:6, end) = n, vy, vz, t, my, mz, computed as
+    !! f_local = k_local u_local - f_eq_local (f_eq: consistent nodal loads of the
+    !! distributed load q_local, given per unit length in local axes). A bar in
+    !! tension has n < 0 at end 1 and n > 0 at end 2. ue holds the element DOF
+    !! values in global axes, same ordering as element_stiffness. Components a
+    !! type lacks are 0 (trusses: only n; B23: n, vy, mz). Plane and shell
+    !! elements have no end forces: f = 0 and no error.
     integer, intent(in) :: etype
     real(wp), intent(in) :: x(:, :)
     type(section_t), intent(in) :: sec
@@ -95,13 +95,13 @@ contains
     end select
   end subroutine element_end_forces
 
-  !> Consistent nodal load vector fe (global axes, same ordering as
-  !> element_stiffness) of a uniform load per unit length wglobal(3) given in
-  !> global axes, with the fixed-end moments for beams (trusses: wL/2 on the
-  !> translations of each node); q_local returns the load in the element's
-  !> local axes, for element_end_forces. A load along global Z on T2D2/B23 is
-  !> an error; other element types return an error as well.
   pure subroutine beam_distributed_load(etype, x, sec, wglobal, fe, q_local, error)
+    !! Consistent nodal load vector fe (global axes, same ordering as
+    !! element_stiffness) of a uniform load per unit length wglobal(3) given in
+    !! global axes, with the fixed-end moments for beams (trusses: wL/2 on the
+    !! translations of each node); q_local returns the load in the element's
+    !! local axes, for element_end_forces. A load along global Z on T2D2/B23 is
+    !! an error; other element types return an error as well.
     integer, intent(in) :: etype
     real(wp), intent(in) :: x(:, :)
     type(section_t), intent(in) :: sec
@@ -125,8 +125,8 @@ contains
     end select
   end subroutine beam_distributed_load
 
-  !> Error for an element type without an implementation.
   pure subroutine unsupported(etype, error)
+    !! Error for an element type without an implementation.
     integer, intent(in) :: etype
     type(error_t), allocatable, intent(out) :: error
     character(len=12) :: buf

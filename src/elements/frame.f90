@@ -1,27 +1,27 @@
-!> Local frames of two-node line elements (trusses and beams) and the checks
-!> shared by the element families (positive section and material data).
-!>
-!> Rule (deck.md, section 2): local x runs from node 1 to node 2; local y lies in
-!> the plane of x and the orientation vector v (default global Z, global X when
-!> the element is parallel to Z); local z = x × y. 2D elements (T2D2, B23) lie
-!> in the XY plane: x in that plane, z = global Z, y = z × x.
 module superjoin_elements_frame
+  !! Local frames of two-node line elements (trusses and beams) and the checks
+  !! shared by the element families (positive section and material data).
+  !!
+  !! Rule (deck.md, section 2): local x runs from node 1 to node 2; local y lies in
+  !! the plane of x and the orientation vector v (default global Z, global X when
+  !! the element is parallel to Z); local z = x × y. 2D elements (T2D2, B23) lie
+  !! in the XY plane: x in that plane, z = global Z, y = z × x.
   use superjoin_kinds, only: wp
   use superjoin_error, only: error_t, fatal_error, EXIT_DECK
   use superjoin_model_types, only: section_t, ET_T2D2, ET_T3D2, ET_B23, ET_B33
   implicit none (type, external)
   private
 
-  !> An element is of zero length when L <= ZERO_LENGTH_TOL × (largest coordinate magnitude).
   real(wp), parameter, public :: ZERO_LENGTH_TOL = 1.0e-14_wp
-  !> A user orientation vector v is parallel to the axis when |x × v| <= PARALLEL_TOL |x| |v|.
+    !! An element is of zero length when L <= ZERO_LENGTH_TOL × (largest coordinate magnitude).
   real(wp), parameter, public :: PARALLEL_TOL = 1.0e-10_wp
-  !> The default v (global Z) is replaced by global X when |x × Z| <= DEFAULT_V_SWITCH_TOL |x|:
-  !> a column whose coordinates differ by round-off from a vertical line still gets y = X
-  !> instead of an axis set by the round-off.
+    !! A user orientation vector v is parallel to the axis when |x × v| <= PARALLEL_TOL |x| |v|.
   real(wp), parameter, public :: DEFAULT_V_SWITCH_TOL = 1.0e-6_wp
-  !> A 2D element lies in the XY plane when |z2 - z1| <= PLANE_TOL × L.
+    !! The default v (global Z) is replaced by global X when |x × Z| <= DEFAULT_V_SWITCH_TOL |x|:
+    !! a column whose coordinates differ by round-off from a vertical line still gets y = X
+    !! instead of an axis set by the round-off.
   real(wp), parameter, public :: PLANE_TOL = 1.0e-10_wp
+    !! A 2D element lies in the XY plane when |z2 - z1| <= PLANE_TOL × L.
 
   real(wp), parameter :: GLOBAL_X(3) = [1.0_wp, 0.0_wp, 0.0_wp]
   real(wp), parameter :: GLOBAL_Z(3) = [0.0_wp, 0.0_wp, 1.0_wp]
@@ -30,17 +30,17 @@ module superjoin_elements_frame
 
 contains
 
-  !> Local frame of a two-node truss or beam element.
-  !>
-  !> `x(3, 2)` are the node coordinates; on return the rows of `r` are the
-  !> local x, y, z axes in global components (so u_local = r u_global) and
-  !> `length` is the element length. T2D2 and B23 use the 2D rule (z = global Z;
-  !> their nodes must share the same z); T3D2 uses the default v rule (a truss
-  !> has no orientation, `sec%v` is ignored); B33 uses `sec%v` when
-  !> `sec%has_v`, else the default. Errors (code EXIT_DECK): zero-length
-  !> element, 2D element out of the XY plane, zero orientation vector,
-  !> orientation vector parallel to beam axis, element type without a line frame.
   pure subroutine beam_frame(etype, x, sec, r, length, error)
+    !! Local frame of a two-node truss or beam element.
+    !!
+    !! `x(3, 2)` are the node coordinates; on return the rows of `r` are the
+    !! local x, y, z axes in global components (so u_local = r u_global) and
+    !! `length` is the element length. T2D2 and B23 use the 2D rule (z = global Z;
+    !! their nodes must share the same z); T3D2 uses the default v rule (a truss
+    !! has no orientation, `sec%v` is ignored); B33 uses `sec%v` when
+    !! `sec%has_v`, else the default. Errors (code EXIT_DECK): zero-length
+    !! element, 2D element out of the XY plane, zero orientation vector,
+    !! orientation vector parallel to beam axis, element type without a line frame.
     integer, intent(in) :: etype
     real(wp), intent(in) :: x(:, :)
     type(section_t), intent(in) :: sec
@@ -114,16 +114,16 @@ contains
     r(3, :) = z
   end subroutine beam_frame
 
-  !> Vector product a × b.
   pure function cross(a, b) result(c)
+    !! Vector product a × b.
     real(wp), intent(in) :: a(3), b(3)
     real(wp) :: c(3)
     c = [a(2)*b(3) - a(3)*b(2), a(3)*b(1) - a(1)*b(3), a(1)*b(2) - a(2)*b(1)]
   end function cross
 
-  !> Set error (EXIT_DECK, "nonpositive <what> (<value>)") unless value > 0.
-  !> Does nothing when error is already allocated, so checks can be chained.
   pure subroutine require_positive(value, what, error)
+    !! Set error (EXIT_DECK, "nonpositive <what> (<value>)") unless value > 0.
+    !! Does nothing when error is already allocated, so checks can be chained.
     real(wp), intent(in) :: value
     character(*), intent(in) :: what
     type(error_t), allocatable, intent(inout) :: error
@@ -135,8 +135,8 @@ contains
     end if
   end subroutine require_positive
 
-  !> A real number as short text for messages.
   pure function real_text(value) result(text)
+    !! A real number as short text for messages.
     real(wp), intent(in) :: value
     character(:), allocatable :: text
     character(len=32) :: buf

@@ -1,6 +1,6 @@
-!> Two-node trusses T2D2 (XY plane, DOFs 1,2) and T3D2 (DOFs 1,2,3):
-!> axial stiffness EA/L only, linear displacement along the bar.
 module superjoin_elements_truss
+  !! Two-node trusses T2D2 (XY plane, DOFs 1,2) and T3D2 (DOFs 1,2,3):
+  !! axial stiffness EA/L only, linear displacement along the bar.
   use superjoin_kinds, only: wp
   use superjoin_error, only: error_t, fatal_error, EXIT_DECK
   use superjoin_model_types, only: section_t, material_t, ET_T2D2, ET_T3D2
@@ -14,8 +14,8 @@ module superjoin_elements_truss
 
 contains
 
-  !> Number of translational DOFs per node of a truss type (2 or 3).
   pure integer function truss_ndim(etype)
+    !! Number of translational DOFs per node of a truss type (2 or 3).
     integer, intent(in) :: etype
     if (etype == ET_T2D2) then
        truss_ndim = 2
@@ -24,8 +24,8 @@ contains
     end if
   end function truss_ndim
 
-  !> Bar direction, length and axial stiffness EA/L, with the data checks.
   pure subroutine truss_setup(etype, x, sec, mat, e, length, ea_l, error)
+    !! Bar direction, length and axial stiffness EA/L, with the data checks.
     integer, intent(in) :: etype
     real(wp), intent(in) :: x(:, :)
     type(section_t), intent(in) :: sec
@@ -44,9 +44,9 @@ contains
     ea_l = mat%e*sec%area/length
   end subroutine truss_setup
 
-  !> Global stiffness of a T2D2/T3D2 bar, node-major (ux, uy[, uz] per node):
-  !> EA/L [e eᵀ, -e eᵀ; -e eᵀ, e eᵀ] with e the unit bar direction.
   pure subroutine truss_stiffness(etype, x, sec, mat, ke, error)
+    !! Global stiffness of a T2D2/T3D2 bar, node-major (ux, uy[, uz] per node):
+    !! EA/L [e eᵀ, -e eᵀ; -e eᵀ, e eᵀ] with e the unit bar direction.
     integer, intent(in) :: etype
     real(wp), intent(in) :: x(:, :)
     type(section_t), intent(in) :: sec
@@ -73,10 +73,10 @@ contains
     ke(nd + 1:2*nd, 1:nd) = -b
   end subroutine truss_stiffness
 
-  !> End forces of a bar: f(1, end) = n, the axial force node `end` exerts on
-  !> the bar along local x (tension: n < 0 at end 1, n > 0 at end 2), minus
-  !> the consistent share qx L/2 of an axial distributed load; f(2:6, :) = 0.
   pure subroutine truss_end_forces(etype, x, sec, mat, ue, q_local, f, error)
+    !! End forces of a bar: f(1, end) = n, the axial force node `end` exerts on
+    !! the bar along local x (tension: n < 0 at end 1, n > 0 at end 2), minus
+    !! the consistent share qx L/2 of an axial distributed load; f(2:6, :) = 0.
     integer, intent(in) :: etype
     real(wp), intent(in) :: x(:, :)
     type(section_t), intent(in) :: sec
@@ -101,11 +101,11 @@ contains
     f(1, 2) = ea_l*elong - q_local(1)*length/2
   end subroutine truss_end_forces
 
-  !> Nodal loads of a uniform load per unit length `w` (global axes) on a bar:
-  !> w L/2 on the translations of each node (consistent for linear shape
-  !> functions). q_local = the load in the bar's local frame. T2D2 rejects a
-  !> load along global Z.
   pure subroutine truss_distributed_load(etype, x, sec, w, fe, q_local, error)
+    !! Nodal loads of a uniform load per unit length `w` (global axes) on a bar:
+    !! w L/2 on the translations of each node (consistent for linear shape
+    !! functions). q_local = the load in the bar's local frame. T2D2 rejects a
+    !! load along global Z.
     integer, intent(in) :: etype
     real(wp), intent(in) :: x(:, :)
     type(section_t), intent(in) :: sec

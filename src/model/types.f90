@@ -1,54 +1,54 @@
-!> The structural model read from a deck: substructures, materials, sections,
-!> sets, contact elements, supports, load steps and controls.
-!>
-!> Everything is resolved to indices by the deck reader: a node is named by its
-!> substructure index and its local index inside that substructure (1..nnode, in
-!> order of definition); user ids are kept for output only.
 module superjoin_model_types
+  !! The structural model read from a deck: substructures, materials, sections,
+  !! sets, contact elements, supports, load steps and controls.
+  !!
+  !! Everything is resolved to indices by the deck reader: a node is named by its
+  !! substructure index and its local index inside that substructure (1..nnode, in
+  !! order of definition); user ids are kept for output only.
   use superjoin_kinds, only: wp, ip
   implicit none (type, external)
   private
 
-  !> Element types.
   integer, parameter, public :: ET_T2D2 = 1, ET_T3D2 = 2, ET_B23 = 3, ET_B33 = 4, &
                                 ET_CPS3 = 5, ET_CPS4 = 6, ET_S3 = 7, ET_S4 = 8
+    !! Element types.
   integer, parameter, public :: NUM_ELEMENT_TYPES = 8
   character(len=4), parameter, public :: ELEMENT_TYPE_NAMES(NUM_ELEMENT_TYPES) = &
        ['T2D2', 'T3D2', 'B23 ', 'B33 ', 'CPS3', 'CPS4', 'S3  ', 'S4  ']
   integer, parameter, public :: ELEMENT_NODE_COUNT(NUM_ELEMENT_TYPES) = [2, 2, 2, 2, 3, 4, 3, 4]
   integer, parameter, public :: MAX_ELEMENT_NODES = 4
 
-  !> DOFs per node (Abaqus numbering 1 ux, 2 uy, 3 uz, 4 rx, 5 ry, 6 rz).
   integer, parameter, public :: NDOF_NODE = 6
+    !! DOFs per node (Abaqus numbering 1 ux, 2 uy, 3 uz, 4 rx, 5 ry, 6 rz).
 
-  !> Section kinds.
   integer, parameter, public :: SEC_SOLID = 1, SEC_BEAM = 2, SEC_SHELL = 3
+    !! Section kinds.
 
-  !> State of one DOF of a contact element or support.
   integer, parameter, public :: LINK_NONE = 0, LINK_FINITE = 1, LINK_RIGID = 2
+    !! State of one DOF of a contact element or support.
 
-  !> Distributed load kinds.
   integer, parameter, public :: DLOAD_PX = 1, DLOAD_PY = 2, DLOAD_PZ = 3, DLOAD_P = 4
+    !! Distributed load kinds.
   character(len=2), parameter, public :: DLOAD_NAMES(4) = ['PX', 'PY', 'PZ', 'P ']
 
-  !> Formulation and rigid-link controls.
   integer, parameter, public :: FORM_TRANSFORM = 1, FORM_PENALTY = 2
+    !! Formulation and rigid-link controls.
   integer, parameter, public :: RIGID_ELIMINATE = 1, RIGID_LARGE = 2
   real(wp), parameter, public :: DEFAULT_LARGE = 1.0e12_wp
 
-  !> A character string of any length (for arrays of strings).
   type, public :: string_t
+    !! A character string of any length (for arrays of strings).
      character(:), allocatable :: s
   end type string_t
 
-  !> Where something was written: file index (into model%files) and line.
   type, public :: source_loc_t
+    !! Where something was written: file index (into model%files) and line.
      integer :: file = 0
      integer :: line = 0
   end type source_loc_t
 
-  !> Isotropic linear elastic material.
   type, public :: material_t
+    !! Isotropic linear elastic material.
      character(:), allocatable :: name     !! upper case
      real(wp) :: e = 0.0_wp
      real(wp) :: nu = 0.0_wp
@@ -56,8 +56,8 @@ module superjoin_model_types
      type(source_loc_t) :: loc
   end type material_t
 
-  !> A section card assigned to an element set.
   type, public :: section_t
+    !! A section card assigned to an element set.
      integer :: kind = 0                   !! SEC_SOLID, SEC_BEAM or SEC_SHELL
      integer :: material = 0               !! index into model%materials
      integer :: elset = 0                  !! index into the substructure's elsets
@@ -71,14 +71,14 @@ module superjoin_model_types
      type(source_loc_t) :: loc
   end type section_t
 
-  !> A named node or element set: local indices in order of definition.
   type, public :: index_set_t
+    !! A named node or element set: local indices in order of definition.
      character(:), allocatable :: name     !! upper case
      integer(ip), allocatable :: items(:)
   end type index_set_t
 
-  !> One substructure: an ordinary finite element model with its own numbering.
   type, public :: substructure_t
+    !! One substructure: an ordinary finite element model with its own numbering.
      character(:), allocatable :: name     !! upper case; MAIN for the implicit one
      integer(ip) :: nnode = 0
      integer(ip), allocatable :: node_id(:)         !! user id of local node i
@@ -97,15 +97,15 @@ module superjoin_model_types
      type(source_loc_t) :: loc
   end type substructure_t
 
-  !> A frame for oriented contacts: rows of q are the local axes.
   type, public :: orientation_t
+    !! A frame for oriented contacts: rows of q are the local axes.
      character(:), allocatable :: name
      real(wp) :: q(3, 3) = 0.0_wp
      type(source_loc_t) :: loc
   end type orientation_t
 
-  !> One *CONTACT card.
   type, public :: contact_t
+    !! One *CONTACT card.
      character(:), allocatable :: name     !! upper case
      integer :: master_sub = 0             !! substructure indices
      integer :: slave_sub = 0
@@ -113,10 +113,10 @@ module superjoin_model_types
      type(source_loc_t) :: loc
   end type contact_t
 
-  !> One contact element: a node pair of a *CONTACT card with all its DOFs merged
-  !> (several lines for the same pair add up: finite g add, RIGID wins).
-  !> DOFs are in the contact frame when the card has an orientation.
   type, public :: link_t
+    !! One contact element: a node pair of a *CONTACT card with all its DOFs merged
+    !! (several lines for the same pair add up: finite g add, RIGID wins).
+    !! DOFs are in the contact frame when the card has an orientation.
      integer :: contact = 0                !! index into model%contacts
      integer(ip) :: master_node = 0        !! local node index in contact%master_sub
      integer(ip) :: slave_node = 0         !! local node index in contact%slave_sub
@@ -125,8 +125,8 @@ module superjoin_model_types
      type(source_loc_t) :: loc             !! first line that defined it
   end type link_t
 
-  !> One supported DOF of one node (a contact element to the ground).
   type, public :: support_t
+    !! One supported DOF of one node (a contact element to the ground).
      integer :: sub = 0
      integer(ip) :: node = 0
      integer :: dof = 0
@@ -136,8 +136,8 @@ module superjoin_model_types
      type(source_loc_t) :: loc
   end type support_t
 
-  !> A concentrated load on one DOF of one node.
   type, public :: cload_t
+    !! A concentrated load on one DOF of one node.
      integer :: sub = 0
      integer(ip) :: node = 0
      integer :: dof = 0
@@ -145,8 +145,8 @@ module superjoin_model_types
      type(source_loc_t) :: loc
   end type cload_t
 
-  !> A distributed load on one element.
   type, public :: dload_t
+    !! A distributed load on one element.
      integer :: sub = 0
      integer(ip) :: elem = 0
      integer :: kind = 0                   !! DLOAD_*
@@ -154,23 +154,23 @@ module superjoin_model_types
      type(source_loc_t) :: loc
   end type dload_t
 
-  !> A load case.
   type, public :: step_t
+    !! A load case.
      character(:), allocatable :: name     !! as written (upper-cased)
      type(cload_t), allocatable :: cloads(:)
      type(dload_t), allocatable :: dloads(:)
      type(source_loc_t) :: loc
   end type step_t
 
-  !> Analysis controls from *CONTROLS.
   type, public :: controls_t
+    !! Analysis controls from *CONTROLS.
      integer :: formulation = FORM_TRANSFORM
      integer :: rigid = RIGID_ELIMINATE
      real(wp) :: large = DEFAULT_LARGE
   end type controls_t
 
-  !> The whole model.
   type, public :: model_t
+    !! The whole model.
      type(string_t), allocatable :: files(:)        !! deck and included files, as given
      type(string_t), allocatable :: heading(:)
      type(material_t), allocatable :: materials(:)
@@ -187,16 +187,16 @@ module superjoin_model_types
 
 contains
 
-  !> Local index of the node with user id `id` in `sub`, or 0.
   pure function find_node(sub, id) result(k)
+    !! Local index of the node with user id `id` in `sub`, or 0.
     type(substructure_t), intent(in) :: sub
     integer(ip), intent(in) :: id
     integer(ip) :: k
     k = search_sorted(sub%node_id, sub%node_order, id)
   end function find_node
 
-  !> Local index of the element with user id `id` in `sub`, or 0.
   pure function find_elem(sub, id) result(k)
+    !! Local index of the element with user id `id` in `sub`, or 0.
     type(substructure_t), intent(in) :: sub
     integer(ip), intent(in) :: id
     integer(ip) :: k
@@ -223,8 +223,8 @@ contains
     end do
   end function search_sorted
 
-  !> "SUB.id" label of a node for messages (plain id in MAIN).
   pure function node_label(model, isub, inode) result(label)
+    !! "SUB.id" label of a node for messages (plain id in MAIN).
     type(model_t), intent(in) :: model
     integer, intent(in) :: isub
     integer(ip), intent(in) :: inode
@@ -238,8 +238,8 @@ contains
     end if
   end function node_label
 
-  !> "file:line" of a source location.
   pure function loc_text(model, loc) result(text)
+    !! "file:line" of a source location.
     type(model_t), intent(in) :: model
     type(source_loc_t), intent(in) :: loc
     character(:), allocatable :: text

@@ -1,6 +1,6 @@
-!> Full-precision CSV results (17 significant digits), one file per table,
-!> each written to a temporary name and renamed when complete.
 module superjoin_output_csv
+  !! Full-precision CSV results (17 significant digits), one file per table,
+  !! each written to a temporary name and renamed when complete.
   use superjoin_kinds, only: wp, i8, ip
   use superjoin_error, only: error_t, fatal_error, EXIT_IO
   use superjoin_model_types, only: model_t, NDOF_NODE, ELEMENT_TYPE_NAMES, ET_T2D2, ET_T3D2, &
@@ -15,9 +15,9 @@ module superjoin_output_csv
 
 contains
 
-  !> Write displacements.csv, reactions.csv, contact_forces.csv and
-  !> element_forces.csv into dir (created if needed).
   subroutine write_csv(dir, model, res, error)
+    !! Write displacements.csv, reactions.csv, contact_forces.csv and
+    !! element_forces.csv into dir (created if needed).
     character(*), intent(in) :: dir
     type(model_t), intent(in) :: model
     type(results_t), intent(in) :: res

@@ -1,6 +1,6 @@
-!> The fixed-format listing: the same bytes for the same deck on every run.
-!> Written to a temporary name and renamed only when complete.
 module superjoin_output_listing
+  !! The fixed-format listing: the same bytes for the same deck on every run.
+  !! Written to a temporary name and renamed only when complete.
   use superjoin_kinds, only: wp, i8, ip
   use superjoin_error, only: error_t, fatal_error, EXIT_IO
   use superjoin_model_types, only: model_t, NDOF_NODE, LINK_RIGID, ELEMENT_TYPE_NAMES, &
@@ -12,8 +12,8 @@ module superjoin_output_listing
   implicit none (type, external)
   private
 
-  !> Values below this fraction of the largest value of their table print as zero.
   real(wp), parameter, public :: CHOP_FRACTION = 1.0e-13_wp
+    !! Values below this fraction of the largest value of their table print as zero.
   character(*), parameter :: RULE = repeat('=', 100)
   character(*), parameter :: FMT_REAL = '(1x,es14.6e3)'
 
@@ -21,8 +21,8 @@ module superjoin_output_listing
 
 contains
 
-  !> Write the listing of a solved model to path (atomically).
   subroutine write_listing(path, model, res, error)
+    !! Write the listing of a solved model to path (atomically).
     character(*), intent(in) :: path
     type(model_t), intent(in) :: model
     type(results_t), intent(in) :: res
@@ -240,16 +240,16 @@ contains
     end associate
   end subroutine step_block
 
-  !> Round-off noise relative to the table's scale prints as zero.
   elemental function chop(x, scale) result(y)
+    !! Round-off noise relative to the table's scale prints as zero.
     real(wp), intent(in) :: x, scale
     real(wp) :: y
     y = x
     if (abs(x) <= CHOP_FRACTION*scale) y = 0.0_wp
   end function chop
 
-  !> Text left-justified in a field of width n (cut if longer).
   pure function field(text, n) result(f)
+    !! Text left-justified in a field of width n (cut if longer).
     character(*), intent(in) :: text
     integer, intent(in) :: n
     character(len=n) :: f

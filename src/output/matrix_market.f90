@@ -1,6 +1,6 @@
-!> Matrix Market files for symmetric sparse matrices ("coordinate real
-!> symmetric": the lower triangle, 1-based, one entry per line).
 module superjoin_output_matrix_market
+  !! Matrix Market files for symmetric sparse matrices ("coordinate real
+  !! symmetric": the lower triangle, 1-based, one entry per line).
   use superjoin_kinds, only: wp, i8
   use superjoin_error, only: error_t, fatal_error, EXIT_IO
   use superjoin_solvers_sparse, only: sparse_sym_t
@@ -18,12 +18,12 @@ module superjoin_output_matrix_market
 
 contains
 
-  !> Write the symmetric matrix a (upper-triangle storage) to path as a Matrix
-  !> Market "coordinate real symmetric" file: entries (row >= col) with 17
-  !> significant digits. The file is written to path//'.tmp' and renamed to
-  !> path on success, so path is never left half written. IO errors:
-  !> EXIT_IO with the path in the message.
   subroutine write_matrix_market(path, a, error)
+    !! Write the symmetric matrix a (upper-triangle storage) to path as a Matrix
+    !! Market "coordinate real symmetric" file: entries (row >= col) with 17
+    !! significant digits. The file is written to path//'.tmp' and renamed to
+    !! path on success, so path is never left half written. IO errors:
+    !! EXIT_IO with the path in the message.
     character(*), intent(in) :: path
     type(sparse_sym_t), intent(in) :: a
     type(error_t), allocatable, intent(out) :: error
@@ -69,12 +69,12 @@ contains
     end if
   end subroutine write_matrix_market
 
-  !> Read a Matrix Market "coordinate real|integer symmetric" file into a
-  !> (upper-triangle CSC, rows sorted, duplicates summed, missing diagonal
-  !> entries stored as zeros). Entries may be given in either triangle.
-  !> Errors (missing file, bad header, malformed or out-of-range entries):
-  !> EXIT_IO with the path in the message.
   subroutine read_matrix_market(path, a, error)
+    !! Read a Matrix Market "coordinate real|integer symmetric" file into a
+    !! (upper-triangle CSC, rows sorted, duplicates summed, missing diagonal
+    !! entries stored as zeros). Entries may be given in either triangle.
+    !! Errors (missing file, bad header, malformed or out-of-range entries):
+    !! EXIT_IO with the path in the message.
     character(*), intent(in) :: path
     type(sparse_sym_t), intent(out) :: a
     type(error_t), allocatable, intent(out) :: error
@@ -147,8 +147,8 @@ contains
 
   ! ---- helpers
 
-  !> The whole file as characters, followed by one NUL.
   subroutine slurp(path, buf, error)
+    !! The whole file as characters, followed by one NUL.
     character(*), intent(in) :: path
     character(len=1), allocatable, intent(out) :: buf(:)
     type(error_t), allocatable, intent(out) :: error
@@ -183,8 +183,8 @@ contains
     buf(fsize + 1) = achar(0)
   end subroutine slurp
 
-  !> The line starting at pos (without its end), and pos moved to the next line.
   pure subroutine next_line(buf, pos, line)
+    !! The line starting at pos (without its end), and pos moved to the next line.
     character(len=1), intent(in) :: buf(:)
     integer(i8), intent(inout) :: pos
     character(:), allocatable, intent(out) :: line
@@ -207,8 +207,8 @@ contains
     end do
   end subroutine next_line
 
-  !> Whether the line starting at pos holds only blanks.
   pure logical function is_blank_line(buf, pos)
+    !! Whether the line starting at pos holds only blanks.
     character(len=1), intent(in) :: buf(:)
     integer(i8), intent(in) :: pos
     integer(i8) :: i
@@ -222,8 +222,8 @@ contains
     end do
   end function is_blank_line
 
-  !> Banner: %%MatrixMarket matrix coordinate real|integer symmetric (any case).
   pure logical function header_ok(line)
+    !! Banner: %%MatrixMarket matrix coordinate real|integer symmetric (any case).
     character(*), intent(in) :: line
     character(len=len(line)) :: low
     character(len=32) :: words(5)
@@ -255,9 +255,9 @@ contains
          words(5) == 'symmetric'
   end function header_ok
 
-  !> Upper CSC from coordinate triplets with rows <= cols: two stable counting
-  !> sorts (by row, then by column), duplicates summed, missing diagonals added.
   subroutine assemble_upper(n, rows, cols, vals, a)
+    !! Upper CSC from coordinate triplets with rows <= cols: two stable counting
+    !! sorts (by row, then by column), duplicates summed, missing diagonals added.
     integer(i8), intent(in) :: n
     integer(i8), intent(in) :: rows(:), cols(:)
     real(wp), intent(in) :: vals(:)
@@ -338,8 +338,8 @@ contains
     end do
   end subroutine assemble_upper
 
-  !> ASCII lower case.
   pure function lower(s) result(t)
+    !! ASCII lower case.
     character(*), intent(in) :: s
     character(len(s)) :: t
     integer :: i, c

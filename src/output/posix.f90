@@ -1,6 +1,6 @@
-!> Tiny bindings to the C library: renaming and removing files, and fast,
-!> correctly rounded number scanning (strtod/strtoll) over a character buffer.
 module superjoin_output_posix
+  !! Tiny bindings to the C library: renaming and removing files, and fast,
+  !! correctly rounded number scanning (strtod/strtoll) over a character buffer.
   use, intrinsic :: iso_c_binding, only: c_int, c_char, c_null_char, c_ptr, c_loc, &
        c_double, c_long_long, c_intptr_t, c_associated
   use superjoin_kinds, only: wp, i8
@@ -63,17 +63,17 @@ module superjoin_output_posix
 
 contains
 
-  !> Rename (atomically on POSIX file systems) the file from to the path to,
-  !> replacing it. Failure: EXIT_IO naming both paths.
   subroutine rename_file(from, to, error)
+    !! Rename (atomically on POSIX file systems) the file from to the path to,
+    !! replacing it. Failure: EXIT_IO naming both paths.
     character(*), intent(in) :: from, to
     type(error_t), allocatable, intent(out) :: error
     if (c_rename(from//c_null_char, to//c_null_char) /= 0) &
          call fatal_error(error, EXIT_IO, "cannot rename '"//from//"' to '"//to//"'")
   end subroutine rename_file
 
-  !> Remove the file path; stat (optional) is 0 on success, non-zero otherwise.
   subroutine remove_file(path, stat)
+    !! Remove the file path; stat (optional) is 0 on success, non-zero otherwise.
     character(*), intent(in) :: path
     integer, intent(out), optional :: stat
     integer(c_int) :: status
@@ -81,9 +81,9 @@ contains
     if (present(stat)) stat = int(status)
   end subroutine remove_file
 
-  !> Create the directory path and its missing parents (like mkdir -p); an
-  !> existing directory is fine. Failure: EXIT_IO naming the path.
   subroutine make_directory(path, error)
+    !! Create the directory path and its missing parents (like mkdir -p); an
+    !! existing directory is fine. Failure: EXIT_IO naming the path.
     character(*), intent(in) :: path
     type(error_t), allocatable, intent(out) :: error
     integer :: i
@@ -107,8 +107,8 @@ contains
     end if
   end subroutine make_directory
 
-  !> Whether path names an existing directory that can be opened.
   function is_directory(path) result(yes)
+    !! Whether path names an existing directory that can be opened.
     character(*), intent(in) :: path
     logical :: yes
     type(c_ptr) :: dir
@@ -118,10 +118,10 @@ contains
     if (yes) status = c_closedir(dir)
   end function is_directory
 
-  !> Read a decimal integer at buf(pos:) (leading white space skipped, as
-  !> strtoll); pos moves past it. ok is false when no digits were found.
-  !> buf must contain a NUL character after the text.
   subroutine scan_int(buf, pos, value, ok)
+    !! Read a decimal integer at buf(pos:) (leading white space skipped, as
+    !! strtoll); pos moves past it. ok is false when no digits were found.
+    !! buf must contain a NUL character after the text.
     character(len=1), intent(in), target, contiguous :: buf(:)
     integer(i8), intent(inout) :: pos
     integer(i8), intent(out) :: value
@@ -139,10 +139,10 @@ contains
     pos = pos + int(finish - start, i8)
   end subroutine scan_int
 
-  !> Read a real number at buf(pos:) (strtod: correctly rounded, accepts
-  !> 1.5, -2e-3, inf, nan, ...); pos moves past it. ok is false when no
-  !> number was found. buf must contain a NUL character after the text.
   subroutine scan_real(buf, pos, value, ok)
+    !! Read a real number at buf(pos:) (strtod: correctly rounded, accepts
+    !! 1.5, -2e-3, inf, nan, ...); pos moves past it. ok is false when no
+    !! number was found. buf must contain a NUL character after the text.
     character(len=1), intent(in), target, contiguous :: buf(:)
     integer(i8), intent(inout) :: pos
     real(wp), intent(out) :: value

@@ -1,10 +1,10 @@
-!> Sparse supernodal Cholesky (CHOLMOD) behind the linear_solver_t interface.
-!>
-!> CHOLMOD is driven through the C shim src/solvers/cholmod_shim.c, which
-!> owns the cholmod_common and the factor; this module only holds an opaque
-!> handle. The solver is not copyable (a copy would share the handle): use it
-!> in place, and call release() (or let it be finalized) when done.
 module superjoin_solvers_cholmod
+  !! Sparse supernodal Cholesky (CHOLMOD) behind the linear_solver_t interface.
+  !!
+  !! CHOLMOD is driven through the C shim src/solvers/cholmod_shim.c, which
+  !! owns the cholmod_common and the factor; this module only holds an opaque
+  !! handle. The solver is not copyable (a copy would share the handle): use it
+  !! in place, and call release() (or let it be finalized) when done.
   use, intrinsic :: iso_c_binding, only: c_ptr, c_null_ptr, c_associated, c_int, &
        c_int64_t, c_double, c_char, c_null_char
   use superjoin_kinds, only: wp, i8
@@ -22,8 +22,8 @@ module superjoin_solvers_cholmod
   integer, parameter :: MESSAGE_LEN = 256          !! buffer for shim messages
   real(wp), parameter :: MBYTE = 1048576.0_wp      !! bytes per MiB
 
-  !> CHOLMOD supernodal LL^T.
   type, extends(linear_solver_t), public :: cholmod_solver_t
+    !! CHOLMOD supernodal LL^T.
      private
      type(c_ptr) :: handle = c_null_ptr
      integer(i8) :: n = -1          !! order of the analyzed matrix (-1: none)
@@ -117,9 +117,9 @@ module superjoin_solvers_cholmod
 
 contains
 
-  !> Symbolic analysis: fill-reducing ordering (AMD or METIS, the best kept)
-  !> and supernodal structure of L from the pattern of a.
   subroutine cholmod_analyze(self, a, error)
+    !! Symbolic analysis: fill-reducing ordering (AMD or METIS, the best kept)
+    !! and supernodal structure of L from the pattern of a.
     class(cholmod_solver_t), intent(inout) :: self
     type(sparse_sym_t), intent(in) :: a
     type(error_t), allocatable, intent(out) :: error
@@ -156,9 +156,9 @@ contains
     call update_info(self)
   end subroutine cholmod_analyze
 
-  !> Numeric factorization with the values of a (same pattern as analyzed).
-  !> Not positive definite: error%code = EXIT_SINGULAR, info%failed_column set.
   subroutine cholmod_factorize(self, a, error)
+    !! Numeric factorization with the values of a (same pattern as analyzed).
+    !! Not positive definite: error%code = EXIT_SINGULAR, info%failed_column set.
     class(cholmod_solver_t), intent(inout) :: self
     type(sparse_sym_t), intent(in) :: a
     type(error_t), allocatable, intent(out) :: error
@@ -199,8 +199,8 @@ contains
     self%factored = .true.
   end subroutine cholmod_factorize
 
-  !> x = A^-1 b for every column of b (shape (n, nrhs)).
   subroutine cholmod_solve(self, b, x, error)
+    !! x = A^-1 b for every column of b (shape (n, nrhs)).
     class(cholmod_solver_t), intent(inout) :: self
     real(wp), intent(in) :: b(:, :)
     real(wp), intent(out) :: x(:, :)
@@ -220,9 +220,9 @@ contains
     if (status /= SJ_OK) call status_error(self, status, 'solve', error)
   end subroutine cholmod_solve
 
-  !> d(j) = L_jj^2 of original column j (0 for columns a failed factorization
-  !> did not reach, including the failing one).
   subroutine cholmod_pivots(self, d)
+    !! d(j) = L_jj^2 of original column j (0 for columns a failed factorization
+    !! did not reach, including the failing one).
     class(cholmod_solver_t), intent(inout) :: self
     real(wp), intent(out) :: d(:)
     integer(c_int) :: status
@@ -236,8 +236,8 @@ contains
     if (status == SJ_OK) d(1:self%n) = tmp
   end subroutine cholmod_pivots
 
-  !> Free the factor, the pattern copy and CHOLMOD's workspace.
   subroutine cholmod_release(self)
+    !! Free the factor, the pattern copy and CHOLMOD's workspace.
     class(cholmod_solver_t), intent(inout) :: self
     if (c_associated(self%handle)) call sj_cholmod_free(self%handle)
     self%handle = c_null_ptr
@@ -245,31 +245,31 @@ contains
     self%factored = .false.
   end subroutine cholmod_release
 
-  !> Flop count of the LL^T factorization (CHOLMOD's estimate from the analysis).
   pure function cholmod_flops(self) result(fl)
+    !! Flop count of the LL^T factorization (CHOLMOD's estimate from the analysis).
     class(cholmod_solver_t), intent(in) :: self
     real(wp) :: fl
     fl = self%fl
   end function cholmod_flops
 
-  !> CHOLMOD's peak memory use (MiB) since the solver was created.
   pure function cholmod_peak_mbytes(self) result(mb)
+    !! CHOLMOD's peak memory use (MiB) since the solver was created.
     class(cholmod_solver_t), intent(in) :: self
     real(wp) :: mb
     mb = self%peak/MBYTE
   end function cholmod_peak_mbytes
 
-  !> Entries of L as stored by the supernodal factor, including the explicit
-  !> zeros of relaxed supernode amalgamation (info%factor_nnz is the
-  !> fundamental count nnz(L) of the ordering).
   pure function cholmod_stored_nnz(self) result(nz)
+    !! Entries of L as stored by the supernodal factor, including the explicit
+    !! zeros of relaxed supernode amalgamation (info%factor_nnz is the
+    !! fundamental count nnz(L) of the ordering).
     class(cholmod_solver_t), intent(in) :: self
     integer(i8) :: nz
     nz = self%stored
   end function cholmod_stored_nnz
 
-  !> Finalizer: free the C side if the caller forgot release().
   subroutine cholmod_finalize(self)
+    !! Finalizer: free the C side if the caller forgot release().
     type(cholmod_solver_t), intent(inout) :: self
     if (c_associated(self%handle)) call sj_cholmod_free(self%handle)
     self%handle = c_null_ptr
@@ -277,8 +277,8 @@ contains
 
   ! ---- helpers
 
-  !> Refresh info (ordering, factor size) and statistics from the shim.
   subroutine update_info(self)
+    !! Refresh info (ordering, factor size) and statistics from the shim.
     class(cholmod_solver_t), intent(inout) :: self
     integer(c_int) :: status
     integer(c_int64_t) :: fnnz
@@ -297,8 +297,8 @@ contains
     if (status == SJ_OK) self%info%ordering = from_c(buf)
   end subroutine update_info
 
-  !> Error for a failed shim call: message from the shim, code by status.
   subroutine status_error(self, status, phase, error)
+    !! Error for a failed shim call: message from the shim, code by status.
     class(cholmod_solver_t), intent(in) :: self
     integer(c_int), intent(in) :: status
     character(*), intent(in) :: phase
@@ -320,8 +320,8 @@ contains
     call fatal_error(error, EXIT_IO, 'CHOLMOD '//phase//' failed: '//msg)
   end subroutine status_error
 
-  !> Fortran string from a NUL-terminated C buffer.
   pure function from_c(buf) result(s)
+    !! Fortran string from a NUL-terminated C buffer.
     character(kind=c_char), intent(in) :: buf(:)
     character(:), allocatable :: s
     integer :: i, n

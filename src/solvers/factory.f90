@@ -1,7 +1,7 @@
-!> The solver facade: the abstract solver and the sparse matrix type, a
-!> factory choosing a backend by name, and a 1-norm condition estimate that
-!> reuses an existing factorization.
 module superjoin_solvers
+  !! The solver facade: the abstract solver and the sparse matrix type, a
+  !! factory choosing a backend by name, and a 1-norm condition estimate that
+  !! reuses an existing factorization.
   use superjoin_kinds, only: wp, i8
   use superjoin_error, only: error_t, fatal_error, EXIT_USAGE, EXIT_IO
   use superjoin_solvers_sparse, only: sparse_sym_t
@@ -21,11 +21,11 @@ module superjoin_solvers
 
 contains
 
-  !> Allocate the solver called name ('auto', 'cholmod', 'umfpack', 'lapack';
-  !> case and surrounding blanks ignored) for a matrix of order n. 'auto'
-  !> takes LAPACK for n <= AUTO_LAPACK_MAX and CHOLMOD otherwise.
-  !> Unknown name: error with code EXIT_USAGE.
   subroutine new_solver(name, n, solver, error)
+    !! Allocate the solver called name ('auto', 'cholmod', 'umfpack', 'lapack';
+    !! case and surrounding blanks ignored) for a matrix of order n. 'auto'
+    !! takes LAPACK for n <= AUTO_LAPACK_MAX and CHOLMOD otherwise.
+    !! Unknown name: error with code EXIT_USAGE.
     character(*), intent(in) :: name
     integer(i8), intent(in) :: n
     class(linear_solver_t), allocatable, intent(out) :: solver
@@ -52,8 +52,8 @@ contains
     end select
   end subroutine new_solver
 
-  !> 1-norm of the symmetric matrix whose upper triangle is a (max column sum).
   pure function norm1_sym(a) result(anorm)
+    !! 1-norm of the symmetric matrix whose upper triangle is a (max column sum).
     type(sparse_sym_t), intent(in) :: a
     real(wp) :: anorm
     real(wp), allocatable :: colsum(:)
@@ -72,15 +72,15 @@ contains
     anorm = maxval(colsum)
   end function norm1_sym
 
-  !> 1-norm condition number estimate cond1 = ||A||_1 ||A^-1||_1 of the
-  !> symmetric matrix a, with solver holding its factorization. ||A^-1||_1 is
-  !> estimated with Hager's method as refined by Higham (LAPACK's dlacon:
-  !> at most HAGER_MAX_ITER steps, two solves each, plus one solve with an
-  !> alternating-sign vector); A^-T = A^-1 since A is symmetric. The
-  !> estimate is a lower bound of the true value, usually within a small
-  !> factor. anorm1 and inv_norm1 (optional) return the two factors. If a
-  !> solve fails, cond1 = 0 (unknown) and error (optional) tells why.
   subroutine condition_estimate(a, solver, cond1, anorm1, inv_norm1, error)
+    !! 1-norm condition number estimate cond1 = ||A||_1 ||A^-1||_1 of the
+    !! symmetric matrix a, with solver holding its factorization. ||A^-1||_1 is
+    !! estimated with Hager's method as refined by Higham (LAPACK's dlacon:
+    !! at most HAGER_MAX_ITER steps, two solves each, plus one solve with an
+    !! alternating-sign vector); A^-T = A^-1 since A is symmetric. The
+    !! estimate is a lower bound of the true value, usually within a small
+    !! factor. anorm1 and inv_norm1 (optional) return the two factors. If a
+    !! solve fails, cond1 = 0 (unknown) and error (optional) tells why.
     type(sparse_sym_t), intent(in) :: a
     class(linear_solver_t), intent(inout) :: solver
     real(wp), intent(out) :: cond1
@@ -102,8 +102,8 @@ contains
     end if
   end subroutine condition_estimate
 
-  !> ||A||_1 and the Hager-Higham estimate of ||A^-1||_1.
   subroutine estimate(a, solver, anorm1, inv_norm1, error)
+    !! ||A||_1 and the Hager-Higham estimate of ||A^-1||_1.
     type(sparse_sym_t), intent(in) :: a
     class(linear_solver_t), intent(inout) :: solver
     real(wp), intent(out) :: anorm1, inv_norm1
@@ -159,8 +159,8 @@ contains
     inv_norm1 = max(est, alt)
   end subroutine estimate
 
-  !> Elementwise sign (+1 for zero).
   pure function sign_of(v) result(s)
+    !! Elementwise sign (+1 for zero).
     real(wp), intent(in) :: v(:)
     real(wp) :: s(size(v))
     where (v >= 0.0_wp)
@@ -170,8 +170,8 @@ contains
     end where
   end function sign_of
 
-  !> ASCII lower case.
   pure function lower(s) result(t)
+    !! ASCII lower case.
     character(*), intent(in) :: s
     character(len(s)) :: t
     integer :: i, c

@@ -1,14 +1,14 @@
-!> Dense or banded Cholesky (LAPACK) behind the linear_solver_t interface,
-!> for small systems.
-!>
-!> Storage rule (decided in analyze): the matrix is renumbered with reverse
-!> Cuthill-McKee; with half-bandwidth bw after that renumbering, banded
-!> storage (dpbtrf/dpbtrs, (bw+1) x n) is used when (bw+1)*n < n*n/4, i.e.
-!> when the band holds less than a quarter of the dense array; otherwise the
-!> dense upper triangle in the natural order (dpotrf/dpotrs, n x n).
-!> Dense storage is refused above DENSE_MAX_N unknowns, and banded storage
-!> above BAND_MAX_ENTRIES stored entries (memory), with EXIT_IO.
 module superjoin_solvers_lapack
+  !! Dense or banded Cholesky (LAPACK) behind the linear_solver_t interface,
+  !! for small systems.
+  !!
+  !! Storage rule (decided in analyze): the matrix is renumbered with reverse
+  !! Cuthill-McKee; with half-bandwidth bw after that renumbering, banded
+  !! storage (dpbtrf/dpbtrs, (bw+1) x n) is used when (bw+1)*n < n*n/4, i.e.
+  !! when the band holds less than a quarter of the dense array; otherwise the
+  !! dense upper triangle in the natural order (dpotrf/dpotrs, n x n).
+  !! Dense storage is refused above DENSE_MAX_N unknowns, and banded storage
+  !! above BAND_MAX_ENTRIES stored entries (memory), with EXIT_IO.
   use superjoin_kinds, only: wp, i8
   use superjoin_error, only: error_t, fatal_error, EXIT_SINGULAR, EXIT_IO
   use superjoin_solvers_sparse, only: sparse_sym_t
@@ -21,8 +21,8 @@ module superjoin_solvers_lapack
   integer(i8), parameter :: BAND_FRACTION = 4                        !! band used if (bw+1)*n < n*n/BAND_FRACTION
   real(wp), parameter :: MBYTE = 1048576.0_wp                        !! bytes per MiB
 
-  !> LAPACK Cholesky, dense (natural order) or banded (RCM order).
   type, extends(linear_solver_t), public :: lapack_solver_t
+    !! LAPACK Cholesky, dense (natural order) or banded (RCM order).
      private
      integer(i8) :: n = -1               !! order of the analyzed matrix (-1: none)
      logical :: banded = .false.
@@ -81,9 +81,9 @@ module superjoin_solvers_lapack
 
 contains
 
-  !> Choose the storage: RCM renumbering and its bandwidth; banded when the
-  !> band is small relative to n (see the module comment), dense otherwise.
   subroutine lapack_analyze(self, a, error)
+    !! Choose the storage: RCM renumbering and its bandwidth; banded when the
+    !! band is small relative to n (see the module comment), dense otherwise.
     class(lapack_solver_t), intent(inout) :: self
     type(sparse_sym_t), intent(in) :: a
     type(error_t), allocatable, intent(out) :: error
@@ -144,9 +144,9 @@ contains
     self%n = n
   end subroutine lapack_analyze
 
-  !> Cholesky factorization (dpotrf or dpbtrf) of a in the analyzed storage.
-  !> Not positive definite: EXIT_SINGULAR, info%failed_column = original column.
   subroutine lapack_factorize(self, a, error)
+    !! Cholesky factorization (dpotrf or dpbtrf) of a in the analyzed storage.
+    !! Not positive definite: EXIT_SINGULAR, info%failed_column = original column.
     class(lapack_solver_t), intent(inout) :: self
     type(sparse_sym_t), intent(in) :: a
     type(error_t), allocatable, intent(out) :: error
@@ -219,8 +219,8 @@ contains
     self%factored = .true.
   end subroutine lapack_factorize
 
-  !> x = A^-1 b (dpotrs or dpbtrs on all right-hand sides at once).
   subroutine lapack_solve(self, b, x, error)
+    !! x = A^-1 b (dpotrs or dpbtrs on all right-hand sides at once).
     class(lapack_solver_t), intent(inout) :: self
     real(wp), intent(in) :: b(:, :)
     real(wp), intent(out) :: x(:, :)
@@ -264,9 +264,9 @@ contains
     end do
   end subroutine lapack_solve
 
-  !> d(j) = L_jj^2 of original column j (0 for columns a failed factorization
-  !> did not reach, including the failing one).
   subroutine lapack_pivots(self, d)
+    !! d(j) = L_jj^2 of original column j (0 for columns a failed factorization
+    !! did not reach, including the failing one).
     class(lapack_solver_t), intent(inout) :: self
     real(wp), intent(out) :: d(:)
     integer(i8) :: i
@@ -282,8 +282,8 @@ contains
     end do
   end subroutine lapack_pivots
 
-  !> Free the factor and the ordering.
   subroutine lapack_release(self)
+    !! Free the factor and the ordering.
     class(lapack_solver_t), intent(inout) :: self
     if (allocated(self%f)) deallocate (self%f)
     if (allocated(self%perm)) deallocate (self%perm)
@@ -295,16 +295,16 @@ contains
     self%nfactored = 0
   end subroutine lapack_release
 
-  !> Half-bandwidth of the storage in use (n-1 for dense, -1 before analyze).
   pure function lapack_bandwidth(self) result(bw)
+    !! Half-bandwidth of the storage in use (n-1 for dense, -1 before analyze).
     class(lapack_solver_t), intent(in) :: self
     integer :: bw
     bw = -1
     if (self%n >= 0) bw = self%kd
   end function lapack_bandwidth
 
-  !> Half-bandwidth of a after renumbering with iperm (iperm(old) = new).
   pure function band_of(a, iperm) result(bw)
+    !! Half-bandwidth of a after renumbering with iperm (iperm(old) = new).
     type(sparse_sym_t), intent(in) :: a
     integer(i8), intent(in) :: iperm(:)
     integer(i8) :: bw, j, k
@@ -316,12 +316,12 @@ contains
     end do
   end function band_of
 
-  !> Reverse Cuthill-McKee ordering of the graph of a: perm(new) = original.
-  !> Each connected component is started from a pseudo-peripheral node
-  !> (George-Liu: repeated breadth-first searches from a node of minimum
-  !> degree in the last level), neighbours are visited by increasing degree,
-  !> and the whole Cuthill-McKee sequence is reversed at the end.
   subroutine rcm_ordering(a, perm)
+    !! Reverse Cuthill-McKee ordering of the graph of a: perm(new) = original.
+    !! Each connected component is started from a pseudo-peripheral node
+    !! (George-Liu: repeated breadth-first searches from a node of minimum
+    !! degree in the last level), neighbours are visited by increasing degree,
+    !! and the whole Cuthill-McKee sequence is reversed at the end.
     type(sparse_sym_t), intent(in) :: a
     integer(i8), intent(out) :: perm(:)
     integer(i8), allocatable :: xadj(:), adj(:), deg(:), level(:), queue(:)
@@ -377,8 +377,8 @@ contains
 
   contains
 
-    !> A pseudo-peripheral node of the component holding s.
     function pseudo_peripheral(s) result(r)
+      !! A pseudo-peripheral node of the component holding s.
       integer(i8), intent(in) :: s
       integer(i8) :: r, ecc, new_ecc, last_first, last_end, u, kk, best
       integer :: iter
@@ -403,9 +403,9 @@ contains
       end do
     end function pseudo_peripheral
 
-    !> Breadth-first search from s over the nodes not yet numbered; queue(1:last_end)
-    !> holds the component, queue(last_first:last_end) its last level; ecc the depth.
     subroutine bfs(s, ecc, last_first, last_end)
+      !! Breadth-first search from s over the nodes not yet numbered; queue(1:last_end)
+      !! holds the component, queue(last_first:last_end) its last level; ecc the depth.
       integer(i8), intent(in) :: s
       integer(i8), intent(out) :: ecc, last_first, last_end
       integer(i8) :: h, tl, u, kk, x
@@ -437,8 +437,8 @@ contains
     end subroutine bfs
   end subroutine rcm_ordering
 
-  !> Symmetric adjacency (no self loops) of the upper-triangle pattern of a, CSR.
   subroutine adjacency(a, xadj, adj)
+    !! Symmetric adjacency (no self loops) of the upper-triangle pattern of a, CSR.
     type(sparse_sym_t), intent(in) :: a
     integer(i8), allocatable, intent(out) :: xadj(:), adj(:)
     integer(i8), allocatable :: nxt(:)

@@ -1,13 +1,13 @@
-!> Symmetric sparse matrix in compressed sparse column form, upper triangle.
 module superjoin_solvers_sparse
+  !! Symmetric sparse matrix in compressed sparse column form, upper triangle.
   use superjoin_kinds, only: wp, i8
   implicit none (type, external)
   private
 
-  !> Upper triangle (row <= column) of a symmetric matrix, 1-based CSC:
-  !> column j holds rows rowind(colptr(j):colptr(j+1)-1), sorted ascending,
-  !> the diagonal always present and last in its column.
   type, public :: sparse_sym_t
+    !! Upper triangle (row <= column) of a symmetric matrix, 1-based CSC:
+    !! column j holds rows rowind(colptr(j):colptr(j+1)-1), sorted ascending,
+    !! the diagonal always present and last in its column.
      integer(i8) :: n = 0
      integer(i8), allocatable :: colptr(:)   !! (n+1)
      integer(i8), allocatable :: rowind(:)   !! (nnz)
@@ -20,16 +20,16 @@ module superjoin_solvers_sparse
 
 contains
 
-  !> Stored nonzeros (upper triangle with diagonal).
   pure function sparse_nnz(a) result(nz)
+    !! Stored nonzeros (upper triangle with diagonal).
     class(sparse_sym_t), intent(in) :: a
     integer(i8) :: nz
     nz = 0
     if (allocated(a%colptr)) nz = a%colptr(a%n + 1) - 1
   end function sparse_nnz
 
-  !> Diagonal entries.
   pure subroutine sparse_diagonal(a, d)
+    !! Diagonal entries.
     class(sparse_sym_t), intent(in) :: a
     real(wp), intent(out) :: d(:)
     integer(i8) :: j
@@ -38,8 +38,8 @@ contains
     end do
   end subroutine sparse_diagonal
 
-  !> y = A x for the full symmetric matrix (x, y of shape (n, nrhs)).
   pure subroutine sparse_matvec(a, x, y)
+    !! y = A x for the full symmetric matrix (x, y of shape (n, nrhs)).
     class(sparse_sym_t), intent(in) :: a
     real(wp), intent(in) :: x(:, :)
     real(wp), intent(out) :: y(:, :)

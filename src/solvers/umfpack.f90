@@ -1,11 +1,11 @@
-!> Sparse LU (UMFPACK) behind the linear_solver_t interface.
-!>
-!> The upper triangle is expanded to the full matrix in 0-based CSC (int64),
-!> kept for the whole life of the factor (UMFPACK's iterative refinement in
-!> the solve phase needs A). Factorization P R A Q = L U with the row scaling
-!> R of UMFPACK's defaults. The solver is not copyable (a copy would share
-!> the Symbolic/Numeric objects): use it in place and call release().
 module superjoin_solvers_umfpack
+  !! Sparse LU (UMFPACK) behind the linear_solver_t interface.
+  !!
+  !! The upper triangle is expanded to the full matrix in 0-based CSC (int64),
+  !! kept for the whole life of the factor (UMFPACK's iterative refinement in
+  !! the solve phase needs A). Factorization P R A Q = L U with the row scaling
+  !! R of UMFPACK's defaults. The solver is not copyable (a copy would share
+  !! the Symbolic/Numeric objects): use it in place and call release().
   use, intrinsic :: iso_c_binding, only: c_ptr, c_null_ptr, c_associated, c_long, &
        c_double, c_loc
   use superjoin_kinds, only: wp, i8
@@ -37,8 +37,8 @@ module superjoin_solvers_umfpack
   integer, parameter :: UMFPACK_ORDERING_USER = 6
   real(wp), parameter :: MBYTE = 1048576.0_wp             !! bytes per MiB
 
-  !> UMFPACK sparse LU.
   type, extends(linear_solver_t), public :: umfpack_solver_t
+    !! UMFPACK sparse LU.
      private
      integer(i8) :: n = -1                       !! order of the analyzed matrix (-1: none)
      integer(c_long), allocatable :: ap(:)       !! full CSC column pointers, 0-based (n+1)
@@ -122,9 +122,9 @@ module superjoin_solvers_umfpack
        integer(c_long) :: status
      end function umfpack_dl_get_lunz
 
-     !> All array arguments are pointers so that the unwanted parts (L, U) can be NULL.
      function umfpack_dl_get_numeric(lp, lj, lx, up, ui, ux, p, q, dx, do_recip, rs, numeric) &
           bind(c, name='umfpack_dl_get_numeric') result(status)
+       !! All array arguments are pointers so that the unwanted parts (L, U) can be NULL.
        import :: c_long, c_ptr
        type(c_ptr), value :: lp, lj, lx, up, ui, ux, p, q, dx, do_recip, rs
        type(c_ptr), value :: numeric
@@ -134,8 +134,8 @@ module superjoin_solvers_umfpack
 
 contains
 
-  !> Expand the pattern to the full matrix and run UMFPACK's symbolic analysis.
   subroutine umf_analyze(self, a, error)
+    !! Expand the pattern to the full matrix and run UMFPACK's symbolic analysis.
     class(umfpack_solver_t), intent(inout) :: self
     type(sparse_sym_t), intent(in) :: a
     type(error_t), allocatable, intent(out) :: error
@@ -171,10 +171,10 @@ contains
          nint(self%uinfo(UMFPACK_STRATEGY_USED)))
   end subroutine umf_analyze
 
-  !> Numeric LU with the values of a (same pattern as analyzed). A singular
-  !> matrix gives EXIT_SINGULAR with info%failed_column = the original column
-  !> of the first zero pivot of U (0 if none can be identified).
   subroutine umf_factorize(self, a, error)
+    !! Numeric LU with the values of a (same pattern as analyzed). A singular
+    !! matrix gives EXIT_SINGULAR with info%failed_column = the original column
+    !! of the first zero pivot of U (0 if none can be identified).
     class(umfpack_solver_t), intent(inout) :: self
     type(sparse_sym_t), intent(in) :: a
     type(error_t), allocatable, intent(out) :: error
@@ -226,8 +226,8 @@ contains
     self%factored = .true.
   end subroutine umf_factorize
 
-  !> x = A^-1 b column by column (UMFPACK_A, with UMFPACK's iterative refinement).
   subroutine umf_solve(self, b, x, error)
+    !! x = A^-1 b column by column (UMFPACK_A, with UMFPACK's iterative refinement).
     class(umfpack_solver_t), intent(inout) :: self
     real(wp), intent(in) :: b(:, :)
     real(wp), intent(out) :: x(:, :)
@@ -258,9 +258,9 @@ contains
     end do
   end subroutine umf_solve
 
-  !> d(j) = U_kk with the row scaling undone, for the original column j = Q(k):
-  !> the pivot of column j in the unscaled elimination (0 without a factor).
   subroutine umf_pivots(self, d)
+    !! d(j) = U_kk with the row scaling undone, for the original column j = Q(k):
+    !! the pivot of column j in the unscaled elimination (0 without a factor).
     class(umfpack_solver_t), intent(inout) :: self
     real(wp), intent(out) :: d(:)
     integer(c_long), allocatable, target :: p(:), q(:)
@@ -288,8 +288,8 @@ contains
     end do
   end subroutine umf_pivots
 
-  !> Free the Symbolic and Numeric objects and the expanded matrix.
   subroutine umf_release(self)
+    !! Free the Symbolic and Numeric objects and the expanded matrix.
     class(umfpack_solver_t), intent(inout) :: self
     if (c_associated(self%numeric)) call umfpack_dl_free_numeric(self%numeric)
     if (c_associated(self%symbolic)) call umfpack_dl_free_symbolic(self%symbolic)
@@ -302,15 +302,15 @@ contains
     self%factored = .false.
   end subroutine umf_release
 
-  !> Flop count of the last numeric factorization (UMFPACK Info).
   pure function umf_flops(self) result(fl)
+    !! Flop count of the last numeric factorization (UMFPACK Info).
     class(umfpack_solver_t), intent(in) :: self
     real(wp) :: fl
     fl = self%fl
   end function umf_flops
 
-  !> Finalizer: free UMFPACK's objects if the caller forgot release().
   subroutine umf_finalize(self)
+    !! Finalizer: free UMFPACK's objects if the caller forgot release().
     type(umfpack_solver_t), intent(inout) :: self
     if (c_associated(self%numeric)) call umfpack_dl_free_numeric(self%numeric)
     if (c_associated(self%symbolic)) call umfpack_dl_free_symbolic(self%symbolic)
@@ -320,8 +320,8 @@ contains
 
   ! ---- helpers
 
-  !> Original column (1-based) of the first exactly zero diagonal entry of U, or 0.
   function first_zero_pivot(self) result(col)
+    !! Original column (1-based) of the first exactly zero diagonal entry of U, or 0.
     class(umfpack_solver_t), intent(inout) :: self
     integer(i8) :: col
     integer(c_long), allocatable, target :: q(:)
@@ -342,10 +342,10 @@ contains
     end do
   end function first_zero_pivot
 
-  !> Full CSC (0-based) of the symmetric matrix whose upper triangle is a.
-  !> Column j: rows i < j from a's column j, the diagonal, then rows i > j
-  !> (entries (j, i) of a's columns i > j), all in increasing row order.
   subroutine expand_full(a, ap, ai, ax, error)
+    !! Full CSC (0-based) of the symmetric matrix whose upper triangle is a.
+    !! Column j: rows i < j from a's column j, the diagonal, then rows i > j
+    !! (entries (j, i) of a's columns i > j), all in increasing row order.
     type(sparse_sym_t), intent(in) :: a
     integer(c_long), allocatable, intent(out) :: ap(:), ai(:)
     real(c_double), allocatable, intent(out) :: ax(:)
@@ -386,9 +386,9 @@ contains
     call scatter(a, ap, cnt, ai, ax, same)
   end subroutine expand_full
 
-  !> Refill the values of the full CSC from a, checking that its pattern is
-  !> the one expanded by expand_full.
   subroutine refill_values(a, ap, ai, ax, error)
+    !! Refill the values of the full CSC from a, checking that its pattern is
+    !! the one expanded by expand_full.
     type(sparse_sym_t), intent(in) :: a
     integer(c_long), intent(in) :: ap(:)
     integer(c_long), intent(inout) :: ai(:)
@@ -421,10 +421,10 @@ contains
     if (.not. same) call fatal_error(error, EXIT_IO, 'UMFPACK: matrix pattern differs from the analyzed one')
   end subroutine refill_values
 
-  !> Place the entries of a into the full CSC given its column pointers ap;
-  !> nxt is workspace of size n; same tells whether the row indices already
-  !> in ai were those written.
   pure subroutine scatter(a, ap, nxt, ai, ax, same)
+    !! Place the entries of a into the full CSC given its column pointers ap;
+    !! nxt is workspace of size n; same tells whether the row indices already
+    !! in ai were those written.
     type(sparse_sym_t), intent(in) :: a
     integer(c_long), intent(in) :: ap(:)
     integer(i8), intent(out) :: nxt(:)
@@ -462,8 +462,8 @@ contains
     end do
   end subroutine scatter
 
-  !> Name of the ordering UMFPACK used.
   pure function ordering_name(ordering, strategy) result(name)
+    !! Name of the ordering UMFPACK used.
     integer, intent(in) :: ordering, strategy
     character(:), allocatable :: name
     select case (ordering)
@@ -490,8 +490,8 @@ contains
     end select
   end function ordering_name
 
-  !> Error for a failed UMFPACK call.
   subroutine umf_status_error(status, phase, error)
+    !! Error for a failed UMFPACK call.
     integer(c_long), intent(in) :: status
     character(*), intent(in) :: phase
     type(error_t), allocatable, intent(out) :: error

@@ -1,12 +1,12 @@
-!> Wall-clock timing of the run's phases, reported on stderr.
 module superjoin_utils_clock
+  !! Wall-clock timing of the run's phases, reported on stderr.
   use superjoin_kinds, only: wp, i8
   use, intrinsic :: iso_fortran_env, only: error_unit
   implicit none (type, external)
   private
 
-  !> A stopwatch.
   type, public :: stopwatch_t
+    !! A stopwatch.
      integer(i8) :: t0 = 0
   contains
      procedure :: start => stopwatch_start
@@ -17,14 +17,14 @@ module superjoin_utils_clock
 
 contains
 
-  !> Start (or restart) the stopwatch.
   subroutine stopwatch_start(self)
+    !! Start (or restart) the stopwatch.
     class(stopwatch_t), intent(inout) :: self
     call system_clock(self%t0)
   end subroutine stopwatch_start
 
-  !> Seconds since start.
   function stopwatch_seconds(self) result(s)
+    !! Seconds since start.
     class(stopwatch_t), intent(in) :: self
     real(wp) :: s
     integer(i8) :: t, rate
@@ -32,8 +32,8 @@ contains
     s = real(t - self%t0, wp)/real(rate, wp)
   end function stopwatch_seconds
 
-  !> Print "superjoin: <phase> <seconds> s [detail]" on stderr unless quiet.
   subroutine report_phase(quiet, phase, seconds, detail)
+    !! Print "superjoin: <phase> <seconds> s [detail]" on stderr unless quiet.
     logical, intent(in) :: quiet
     character(*), intent(in) :: phase
     real(wp), intent(in) :: seconds

@@ -1,5 +1,5 @@
-!> Sorting helpers.
 module superjoin_utils_sorting
+  !! Sorting helpers.
   use superjoin_kinds, only: wp, i8
   implicit none (type, external)
   private
@@ -8,9 +8,9 @@ module superjoin_utils_sorting
 
 contains
 
-  !> Reorder the indices `order` so that key(order) ascends; equal keys keep
-  !> their relative order (merge sort, deterministic).
   subroutine stable_argsort(key, order)
+    !! Reorder the indices `order` so that key(order) ascends; equal keys keep
+    !! their relative order (merge sort, deterministic).
     real(wp), intent(in) :: key(:)
     integer, intent(inout) :: order(:)
     integer, allocatable :: tmp(:)
@@ -42,9 +42,9 @@ contains
     end do
   end subroutine stable_argsort
 
-  !> Sort a short integer list in place (insertion sort) and drop repeats;
-  !> n returns the number of distinct entries, kept in a(1:n).
   pure subroutine sort_unique_i8(a, n)
+    !! Sort a short integer list in place (insertion sort) and drop repeats;
+    !! n returns the number of distinct entries, kept in a(1:n).
     integer(i8), intent(inout) :: a(:)
     integer, intent(out) :: n
     integer :: i, j
@@ -68,8 +68,8 @@ contains
        a(n) = a(i)
     end do
   end subroutine sort_unique_i8
-  !> Sort an integer array ascending (heap sort: no recursion, no extra memory).
   pure subroutine sort_i8(a)
+    !! Sort an integer array ascending (heap sort: no recursion, no extra memory).
     integer(i8), intent(inout) :: a(:)
     integer :: n, i, last
     integer(i8) :: t

@@ -1,11 +1,11 @@
-!> Small string conversions.
 module superjoin_utils_strings
+  !! Small string conversions.
   use superjoin_kinds, only: wp, i8
   implicit none (type, external)
   private
 
-  !> Integer to text without blanks.
   interface itoa
+    !! Integer to text without blanks.
      module procedure itoa_default, itoa_i8
   end interface itoa
 
@@ -29,8 +29,8 @@ contains
     s = trim(buf)
   end function itoa_i8
 
-  !> Real to short text (4 significant digits, exponent form).
   pure function rtoa(x) result(s)
+    !! Real to short text (4 significant digits, exponent form).
     real(wp), intent(in) :: x
     character(:), allocatable :: s
     character(len=32) :: buf
@@ -38,8 +38,8 @@ contains
     s = trim(adjustl(buf))
   end function rtoa
 
-  !> Real to text with 17 significant digits (round-trips exactly).
   pure function full_real(x) result(s)
+    !! Real to text with 17 significant digits (round-trips exactly).
     real(wp), intent(in) :: x
     character(:), allocatable :: s
     character(len=40) :: buf

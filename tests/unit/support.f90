@@ -1,5 +1,5 @@
-!> Helpers for tests that solve decks: look up results by names and ids.
 module verification_support
+  !! Helpers for tests that solve decks: look up results by names and ids.
   use superjoin_kinds, only: wp, ip
   use superjoin_error, only: error_t
   use superjoin_model_types, only: model_t, find_node
@@ -13,8 +13,8 @@ module verification_support
 
 contains
 
-  !> Read and solve a deck file; any error stops the test program.
   subroutine solve_file(path, model, res, solver, formulation)
+    !! Read and solve a deck file; any error stops the test program.
     character(*), intent(in) :: path
     type(model_t), intent(out) :: model
     type(results_t), intent(out) :: res
@@ -26,8 +26,8 @@ contains
     call solve(model, res, solver, formulation)
   end subroutine solve_file
 
-  !> Read and solve a deck given as text.
   subroutine solve_text(text, model, res, solver, formulation, error)
+    !! Read and solve a deck given as text.
     character(*), intent(in) :: text
     type(model_t), intent(out) :: model
     type(results_t), intent(out) :: res
@@ -83,8 +83,8 @@ contains
     error stop 1
   end function sub_index
 
-  !> Displacement DOF `dof` of node `id` of substructure `sub` in step `step`.
   function disp(model, res, sub, id, dof, step) result(u)
+    !! Displacement DOF `dof` of node `id` of substructure `sub` in step `step`.
     type(model_t), intent(in) :: model
     type(results_t), intent(in) :: res
     character(*), intent(in) :: sub
@@ -97,8 +97,8 @@ contains
     u = res%u(6*(res%vertex_offset(isub) + n - 1) + dof, step)
   end function disp
 
-  !> Support reaction (0 when the DOF has none).
   function reaction(model, res, sub, id, dof, step) result(f)
+    !! Support reaction (0 when the DOF has none).
     type(model_t), intent(in) :: model
     type(results_t), intent(in) :: res
     character(*), intent(in) :: sub
@@ -114,8 +114,8 @@ contains
     end do
   end function reaction
 
-  !> Force on the master of the first contact element of card `name`.
   function link_force(model, res, name, dof, step) result(f)
+    !! Force on the master of the first contact element of card `name`.
     type(model_t), intent(in) :: model
     type(results_t), intent(in) :: res
     character(*), intent(in) :: name
@@ -124,8 +124,8 @@ contains
     f = res%steps(step)%link_force(dof, first_link(model, name))
   end function link_force
 
-  !> Relative displacement of the first contact element of card `name`.
   function link_delta(model, res, name, dof, step) result(d)
+    !! Relative displacement of the first contact element of card `name`.
     type(model_t), intent(in) :: model
     type(results_t), intent(in) :: res
     character(*), intent(in) :: name
@@ -144,8 +144,8 @@ contains
     error stop 1
   end function first_link
 
-  !> max |applied + reactions| / max(|applied|, |reactions|) over the six directions.
   function equilibrium_error(res, step) result(e)
+    !! max |applied + reactions| / max(|applied|, |reactions|) over the six directions.
     type(results_t), intent(in) :: res
     integer, intent(in) :: step
     real(wp) :: e, scale

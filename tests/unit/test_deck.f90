@@ -1,6 +1,6 @@
-!> Unit tests of the deck reader: lexer, token conversion, cards, sets,
-!> sections, contacts, supports, steps and error reporting.
 program test_deck
+  !! Unit tests of the deck reader: lexer, token conversion, cards, sets,
+  !! sections, contacts, supports, steps and error reporting.
   use superjoin_kinds, only: wp, ip
   use superjoin_error, only: error_t, EXIT_DECK, EXIT_IO
   use superjoin_model_types, only: model_t, find_node, find_elem, LINK_NONE, LINK_FINITE, LINK_RIGID, &
@@ -36,8 +36,8 @@ contains
 
   ! ------------------------------------------------------------------ helpers
 
-  !> Lines joined with LF (trailing blanks of each line dropped).
   function join(lines) result(text)
+    !! Lines joined with LF (trailing blanks of each line dropped).
     character(*), intent(in) :: lines(:)
     character(:), allocatable :: text
     integer :: i
@@ -56,8 +56,8 @@ contains
     if (allocated(error)) write (*, '(a)') '  got: '//error%message
   end subroutine read_ok
 
-  !> Expect an error whose message contains `expect`.
   subroutine read_bad(text, expect, what)
+    !! Expect an error whose message contains `expect`.
     character(*), intent(in) :: text, expect, what
     type(model_t) :: model
     type(error_t), allocatable :: error
@@ -93,8 +93,8 @@ contains
     k = 0
   end function sub_of
 
-  !> User id of local node k of substructure isub.
   integer function uid(model, isub, k)
+    !! User id of local node k of substructure isub.
     type(model_t), intent(in) :: model
     integer, intent(in) :: isub
     integer(ip), intent(in) :: k
@@ -270,8 +270,8 @@ contains
     call check(size(m%subs(1)%nsets(1)%items) == N, 'long set line: all ids')
   end subroutine test_long_line
 
-  !> Append s at position n of a preallocated buffer.
   subroutine put(buffer, n, s)
+    !! Append s at position n of a preallocated buffer.
     character(*), intent(inout) :: buffer
     integer, intent(inout) :: n
     character(*), intent(in) :: s
@@ -635,6 +635,14 @@ contains
          '*STEP', '*DLOAD', 'pl, p, 1e3', '1, P, 2e3', '*END STEP']), m, 'pressure on shells')
     if (size(m%steps) == 1) call check(size(m%steps(1)%dloads) == 2 .and. m%steps(1)%dloads(1)%kind == DLOAD_P, &
          'shell pressure')
+
+    call read_ok(base//join([character(L) :: '*SUBSTRUCTURE, NAME=S', '*NODE', '5, 0, 0', '*CLOAD', '5, 1, 7', &
+         '*END SUBSTRUCTURE', '*CLOAD', 'S.5, 2, 8', '3, 2, 9']), m, 'loose loads inside a block')
+    if (size(m%steps) == 1) then
+       call check(size(m%steps(1)%cloads) == 3, 'loose loads inside a block: count')
+       if (size(m%steps(1)%cloads) == 3) call check(m%steps(1)%cloads(1)%sub == 2 .and. &
+            m%steps(1)%cloads(2)%sub == 2 .and. m%steps(1)%cloads(3)%sub == 1, 'plain ids inside a block')
+    end if
 
     call read_bad(base//join([character(L) :: '*CLOAD', '1, 2, 1', '*STEP', '*END STEP']), &
          'inline.deck:18: error: *STEP cannot be mixed with loads outside *STEP', 'loose loads then *STEP')

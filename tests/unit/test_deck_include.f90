@@ -1,7 +1,7 @@
-!> Unit tests of the deck reader on files: *INCLUDE (relative paths, data
-!> lines continued across files, nesting limit, cycles, missing files) and
-!> files with CR LF line ends. Files are written under a fresh directory in /tmp.
 program test_deck_include
+  !! Unit tests of the deck reader on files: *INCLUDE (relative paths, data
+  !! lines continued across files, nesting limit, cycles, missing files) and
+  !! files with CR LF line ends. Files are written under a fresh directory in /tmp.
   use superjoin_kinds, only: wp, ip
   use superjoin_error, only: error_t, EXIT_DECK
   use superjoin_model_types, only: model_t, find_node
@@ -38,8 +38,8 @@ contains
     call check(stat == 0, 'temporary directory created')
   end subroutine make_dir
 
-  !> Write text to a file byte for byte.
   subroutine write_file(path, text)
+    !! Write text to a file byte for byte.
     character(*), intent(in) :: path, text
     integer :: u
     open (newunit=u, file=path, access='stream', form='unformatted', status='replace', action='write')

@@ -1,5 +1,5 @@
-!> Unit tests of the truss and beam element library (superjoin_elements).
 program test_elements
+  !! Unit tests of the truss and beam element library (superjoin_elements).
   use superjoin_kinds, only: wp
   use superjoin_error, only: error_t, EXIT_DECK
   use superjoin_model_types, only: section_t, material_t, SEC_SOLID, SEC_BEAM, &
@@ -10,8 +10,8 @@ program test_elements
   implicit none (type, external)
 
   interface
-     !> LAPACK: eigenvalues (and vectors) of a real symmetric matrix.
      subroutine dsyev(jobz, uplo, n, a, lda, w, work, lwork, info)
+       !! LAPACK: eigenvalues (and vectors) of a real symmetric matrix.
        import :: wp
        character, intent(in) :: jobz, uplo
        integer, intent(in) :: n, lda, lwork
@@ -19,8 +19,8 @@ program test_elements
        real(wp), intent(out) :: w(*), work(*)
        integer, intent(out) :: info
      end subroutine dsyev
-     !> LAPACK: solve a general linear system.
      subroutine dgesv(n, nrhs, a, lda, ipiv, b, ldb, info)
+       !! LAPACK: solve a general linear system.
        import :: wp
        integer, intent(in) :: n, nrhs, lda, ldb
        real(wp), intent(inout) :: a(lda, *), b(ldb, *)
@@ -66,41 +66,41 @@ contains
 
   ! ---------------------------------------------------------------- helpers
 
-  !> Park-Miller generator: uniform number in (0, 1), reproducible everywhere.
   real(wp) function rnd()
+    !! Park-Miller generator: uniform number in (0, 1), reproducible everywhere.
     seed = int(mod(48271_8*int(seed, 8), 2147483647_8))
     rnd = real(seed, wp)/2147483647.0_wp
   end function rnd
 
-  !> Uniform number in (a, b).
   real(wp) function rnd_in(a, b)
+    !! Uniform number in (a, b).
     real(wp), intent(in) :: a, b
     rnd_in = a + (b - a)*rnd()
   end function rnd_in
 
-  !> Rotation about Z by angle a.
   pure function rot_z(a) result(q)
+    !! Rotation about Z by angle a.
     real(wp), intent(in) :: a
     real(wp) :: q(3, 3)
     q = reshape([cos(a), sin(a), 0.0_wp, -sin(a), cos(a), 0.0_wp, 0.0_wp, 0.0_wp, 1.0_wp], [3, 3])
   end function rot_z
 
-  !> Rotation about Y by angle a.
   pure function rot_y(a) result(q)
+    !! Rotation about Y by angle a.
     real(wp), intent(in) :: a
     real(wp) :: q(3, 3)
     q = reshape([cos(a), 0.0_wp, -sin(a), 0.0_wp, 1.0_wp, 0.0_wp, sin(a), 0.0_wp, cos(a)], [3, 3])
   end function rot_y
 
-  !> Rotation about X by angle a.
   pure function rot_x(a) result(q)
+    !! Rotation about X by angle a.
     real(wp), intent(in) :: a
     real(wp) :: q(3, 3)
     q = reshape([1.0_wp, 0.0_wp, 0.0_wp, 0.0_wp, cos(a), sin(a), 0.0_wp, -sin(a), cos(a)], [3, 3])
   end function rot_x
 
-  !> A random rotation (3D) or a random rotation about Z (2D).
   function random_rotation(two_d) result(q)
+    !! A random rotation (3D) or a random rotation about Z (2D).
     logical, intent(in) :: two_d
     real(wp) :: q(3, 3)
     q = rot_z(rnd_in(-PI, PI))
@@ -117,8 +117,8 @@ contains
     is_beam = etype == ET_B23 .or. etype == ET_B33
   end function is_beam
 
-  !> Section for an element type (beam data for beams, A for trusses).
   function make_section(etype) result(sec)
+    !! Section for an element type (beam data for beams, A for trusses).
     integer, intent(in) :: etype
     type(section_t) :: sec
     sec%area = AREA
@@ -134,9 +134,9 @@ contains
     end if
   end function make_section
 
-  !> A random element of length len whose local axes are the columns of q
-  !> (for B33 the orientation vector is set so that this holds; 2D: q about Z).
   subroutine oriented_element(etype, len, q, x, sec)
+    !! A random element of length len whose local axes are the columns of q
+    !! (for B33 the orientation vector is set so that this holds; 2D: q about Z).
     integer, intent(in) :: etype
     real(wp), intent(in) :: len, q(3, 3)
     real(wp), intent(out) :: x(3, 2)
@@ -151,8 +151,8 @@ contains
     end if
   end subroutine oriented_element
 
-  !> Block-diagonal matrix with nblk copies of the 3x3 block b.
   pure function block_diag(b, nblk) result(t)
+    !! Block-diagonal matrix with nblk copies of the 3x3 block b.
     real(wp), intent(in) :: b(3, 3)
     integer, intent(in) :: nblk
     real(wp) :: t(3*nblk, 3*nblk)
@@ -163,8 +163,8 @@ contains
     end do
   end function block_diag
 
-  !> Rotation acting on the element DOF vector of a type (global -> global).
   function dof_rotation(etype, q) result(t)
+    !! Rotation acting on the element DOF vector of a type (global -> global).
     integer, intent(in) :: etype
     real(wp), intent(in) :: q(3, 3)
     real(wp), allocatable :: t(:, :)
@@ -182,9 +182,9 @@ contains
     end select
   end function dof_rotation
 
-  !> Rigid-body displacement fields of an element (columns): translations and
-  !> rotations about the element midpoint.
   function rigid_modes(etype, x) result(u)
+    !! Rigid-body displacement fields of an element (columns): translations and
+    !! rotations about the element midpoint.
     integer, intent(in) :: etype
     real(wp), intent(in) :: x(3, 2)
     real(wp), allocatable :: u(:, :)
@@ -229,8 +229,8 @@ contains
     c = [a(2)*b(3) - a(3)*b(2), a(3)*b(1) - a(1)*b(3), a(1)*b(2) - a(2)*b(1)]
   end function cross3
 
-  !> Eigenvalues of a symmetric matrix (ascending).
   function eigenvalues(a) result(w)
+    !! Eigenvalues of a symmetric matrix (ascending).
     real(wp), intent(in) :: a(:, :)
     real(wp), allocatable :: w(:)
     real(wp), allocatable :: b(:, :), work(:)
@@ -242,8 +242,8 @@ contains
     call check(info == 0, 'dsyev info')
   end function eigenvalues
 
-  !> Solve a x = b for a small dense system.
   function solve(a, b) result(x)
+    !! Solve a x = b for a small dense system.
     real(wp), intent(in) :: a(:, :), b(:)
     real(wp), allocatable :: x(:)
     real(wp), allocatable :: m(:, :), y(:, :)
@@ -258,8 +258,8 @@ contains
     x = y(:, 1)
   end function solve
 
-  !> Stiffness that must succeed.
   function stiffness(etype, x, sec, what) result(ke)
+    !! Stiffness that must succeed.
     integer, intent(in) :: etype
     real(wp), intent(in) :: x(:, :)
     type(section_t), intent(in) :: sec
@@ -274,8 +274,8 @@ contains
     end if
   end function stiffness
 
-  !> Check that error is allocated with code EXIT_DECK and a message containing text.
   subroutine check_error(error, text, what)
+    !! Check that error is allocated with code EXIT_DECK and a message containing text.
     type(error_t), allocatable, intent(in) :: error
     character(*), intent(in) :: text, what
     call check(allocated(error), what//': error reported')
@@ -319,8 +319,8 @@ contains
     call check(size(d) == 0, 'dofs of an unknown type: none')
   end subroutine test_node_dofs
 
-  !> Symmetry, rigid-body modes, positive semi-definiteness and rank.
   subroutine test_matrix_properties()
+    !! Symmetry, rigid-body modes, positive semi-definiteness and rank.
     integer, parameter :: RANKS(4) = [1, 1, 3, 6]
     real(wp) :: x(3, 2), q(3, 3), kmax, umax
     real(wp), allocatable :: ke(:, :), u(:, :), w(:), ku(:)
@@ -361,8 +361,8 @@ contains
     end do
   end subroutine test_matrix_properties
 
-  !> The local frame rule of deck.md.
   subroutine test_frames()
+    !! The local frame rule of deck.md.
     real(wp) :: x(3, 2), r(3, 3), length, q(3, 3), s2
     type(section_t) :: sec
     type(error_t), allocatable :: error
@@ -466,8 +466,8 @@ contains
     det3 = dot_product(a(:, 1), cross3(a(:, 2), a(:, 3)))
   end function det3
 
-  !> Data errors.
   subroutine test_errors()
+    !! Data errors.
     real(wp) :: x(3, 2), r(3, 3), length, f(6, 2), ql(3)
     real(wp), allocatable :: ke(:, :), fe(:), ue(:)
     type(section_t) :: sec
@@ -605,9 +605,9 @@ contains
     call check_error(error, 'unknown element type 99', 'unknown type')
   end subroutine test_errors
 
-  !> A bar in tension has n < 0 at end 1 and n > 0 at end 2 (any orientation,
-  !> plus an arbitrary rigid translation).
   subroutine test_truss_sign()
+    !! A bar in tension has n < 0 at end 1 and n > 0 at end 2 (any orientation,
+    !! plus an arbitrary rigid translation).
     real(wp) :: x(3, 2), q(3, 3), len, delta, f(6, 2), t(3)
     real(wp), allocatable :: ue(:)
     type(section_t) :: sec
@@ -644,8 +644,8 @@ contains
     end do
   end subroutine test_truss_sign
 
-  !> End forces are the nodal forces k u rotated to local axes (no load).
   subroutine test_end_forces_are_nodal_forces()
+    !! End forces are the nodal forces k u rotated to local axes (no load).
     real(wp) :: x(3, 2), q(3, 3), f(6, 2), r(3, 3), length, fl(6, 2), fmax
     real(wp), allocatable :: ke(:, :), ue(:), ku(:)
     type(section_t) :: sec
@@ -700,9 +700,9 @@ contains
     end do
   end subroutine test_end_forces_are_nodal_forces
 
-  !> Tip displacements of one B33 cantilever (node 1 clamped) under tip loads in
-  !> local axes; exact for Hermite cubics. Returns local tip translations and rotations.
   subroutine cantilever_tip(etype, x, sec, q, load_local, tip, f)
+    !! Tip displacements of one B33 cantilever (node 1 clamped) under tip loads in
+    !! local axes; exact for Hermite cubics. Returns local tip translations and rotations.
     integer, intent(in) :: etype
     real(wp), intent(in) :: x(3, 2), q(3, 3), load_local(:)
     type(section_t), intent(in) :: sec
@@ -735,8 +735,8 @@ contains
     call check(.not. allocated(error), 'cantilever end forces: no error')
   end subroutine cantilever_tip
 
-  !> Compare a local tip vector against the exact values (relative to the largest).
   subroutine check_tip(tip, want, what)
+    !! Compare a local tip vector against the exact values (relative to the largest).
     real(wp), intent(in) :: tip(:), want(:)
     character(*), intent(in) :: what
     call check(maxval(abs(tip - want)) <= TOL_SOLVE*maxval(abs(want)), what)
@@ -848,9 +848,9 @@ contains
     end do
   end subroutine test_cantilever_b23
 
-  !> Rotating an element (with its orientation vector) and its load rotates
-  !> the stiffness, the nodal loads and the solution.
   subroutine test_rotation_invariance()
+    !! Rotating an element (with its orientation vector) and its load rotates
+    !! the stiffness, the nodal loads and the solution.
     real(wp) :: x(3, 2), xr(3, 2), q(3, 3), qb(3, 3), w(3), ql(3), qlr(3)
     real(wp), allocatable :: ke(:, :), ker(:, :), t(:, :), fe(:), fer(:), fg(:), u(:), ur(:)
     type(section_t) :: sec, secr
@@ -912,9 +912,9 @@ contains
     end do
   end subroutine random_vector
 
-  !> Fixed-fixed beam under a uniform load: end forces -f_eq, i.e. shears qL/2
-  !> and end moments ±qL^2/12 with the signs of the nodes acting on the beam.
   subroutine test_distributed_fixed_fixed()
+    !! Fixed-fixed beam under a uniform load: end forces -f_eq, i.e. shears qL/2
+    !! and end moments ±qL^2/12 with the signs of the nodes acting on the beam.
     real(wp) :: x(3, 2), q(3, 3), len, qq, ql(3), qin(3), f(6, 2), want(6, 2), fl(12)
     real(wp), allocatable :: fe(:), ue(:)
     type(section_t) :: sec
@@ -976,8 +976,8 @@ contains
     end do
   end subroutine test_distributed_fixed_fixed
 
-  !> Cantilever under a uniform load: nodal values are exact with consistent loads.
   subroutine test_distributed_cantilever()
+    !! Cantilever under a uniform load: nodal values are exact with consistent loads.
     real(wp) :: x(3, 2), q(3, 3), len, qq, ql(3), qin(3), f(6, 2), want(6, 2), tip(6)
     real(wp), allocatable :: fe(:), ue(:), ke(:, :)
     type(section_t) :: sec
@@ -1032,8 +1032,8 @@ contains
     end do
   end subroutine test_distributed_cantilever
 
-  !> Trusses: a uniform load gives wL/2 on each node; axial part in n.
   subroutine test_distributed_truss()
+    !! Trusses: a uniform load gives wL/2 on each node; axial part in n.
     real(wp) :: x(3, 2), q(3, 3), len, w(3), ql(3), f(6, 2), delta
     real(wp), allocatable :: fe(:), ue(:)
     type(section_t) :: sec

@@ -1,6 +1,6 @@
-!> Unit tests of the linear solvers (CHOLMOD, UMFPACK, LAPACK), the solver
-!> factory, the condition estimate and Matrix Market input/output.
 program test_solvers
+  !! Unit tests of the linear solvers (CHOLMOD, UMFPACK, LAPACK), the solver
+  !! factory, the condition estimate and Matrix Market input/output.
   use superjoin_kinds, only: wp, i8
   use superjoin_error, only: error_t, EXIT_SINGULAR, EXIT_USAGE, EXIT_IO
   use superjoin_solvers, only: linear_solver_t, sparse_sym_t, new_solver, condition_estimate, &
@@ -72,8 +72,8 @@ contains
     call test_misuse(name)
   end subroutine test_backend
 
-  !> Analyze, factorize, solve with nrhs known solutions; check the residual.
   subroutine solve_and_check(name, a, nrhs, what)
+    !! Analyze, factorize, solve with nrhs known solutions; check the residual.
     character(*), intent(in) :: name
     type(sparse_sym_t), intent(in) :: a
     integer, intent(in) :: nrhs
@@ -125,8 +125,8 @@ contains
     call s%release()
   end subroutine solve_and_check
 
-  !> n = 0 (every unknown constrained) goes through all phases.
   subroutine test_empty(name)
+    !! n = 0 (every unknown constrained) goes through all phases.
     character(*), intent(in) :: name
     class(linear_solver_t), allocatable :: s
     type(error_t), allocatable :: error
@@ -150,8 +150,8 @@ contains
     call s%release()
   end subroutine test_empty
 
-  !> One analysis, two factorizations with different values.
   subroutine test_refactorize(name)
+    !! One analysis, two factorizations with different values.
     character(*), intent(in) :: name
     class(linear_solver_t), allocatable :: s
     type(error_t), allocatable :: error
@@ -188,8 +188,8 @@ contains
     call s%release()
   end subroutine test_refactorize
 
-  !> Breakdowns with a known failing column.
   subroutine test_not_posdef(name)
+    !! Breakdowns with a known failing column.
     character(*), intent(in) :: name
     class(linear_solver_t), allocatable :: s
     type(error_t), allocatable :: error
@@ -297,8 +297,8 @@ contains
     call s%release()
   end subroutine test_not_posdef
 
-  !> Pivots: diagonal matrix, 2x2 matrix, and log det equal across backends.
   subroutine test_pivots(name)
+    !! Pivots: diagonal matrix, 2x2 matrix, and log det equal across backends.
     character(*), intent(in) :: name
     class(linear_solver_t), allocatable :: s
     type(error_t), allocatable :: error
@@ -355,8 +355,8 @@ contains
     call s%release()
   end subroutine test_pivots
 
-  !> Condition estimate within a factor 3 of the true 1-norm condition number.
   subroutine test_condition(name)
+    !! Condition estimate within a factor 3 of the true 1-norm condition number.
     character(*), intent(in) :: name
     type(sparse_sym_t) :: a
     integer :: icase
@@ -415,8 +415,8 @@ contains
     call s%release()
   end subroutine check_condition
 
-  !> Wrong call orders and shapes give errors, never crashes.
   subroutine test_misuse(name)
+    !! Wrong call orders and shapes give errors, never crashes.
     character(*), intent(in) :: name
     class(linear_solver_t), allocatable :: s
     type(error_t), allocatable :: error
@@ -646,8 +646,8 @@ contains
 
   ! ------------------------------------------------------------------ size
 
-  !> A 2D Laplacian of about 1e5 unknowns through CHOLMOD: ordering and time.
   subroutine test_large_cholmod()
+    !! A 2D Laplacian of about 1e5 unknowns through CHOLMOD: ordering and time.
     type(sparse_sym_t) :: a
     class(linear_solver_t), allocatable :: s
     type(error_t), allocatable :: error
@@ -689,8 +689,8 @@ contains
 
   ! ------------------------------------------------------------------ helpers
 
-  !> Factor a with backend name (asserting success).
   subroutine factor(name, a, s, error)
+    !! Factor a with backend name (asserting success).
     character(*), intent(in) :: name
     type(sparse_sym_t), intent(in) :: a
     class(linear_solver_t), allocatable, intent(out) :: s
@@ -703,8 +703,8 @@ contains
     call check(.not. allocated(error), name//': factor helper')
   end subroutine factor
 
-  !> 1D Laplacian (2 on the diagonal, -1 off) of order n.
   subroutine laplace1d(n, a)
+    !! 1D Laplacian (2 on the diagonal, -1 off) of order n.
     integer(i8), intent(in) :: n
     type(sparse_sym_t), intent(out) :: a
     integer(i8) :: j, k
@@ -725,8 +725,8 @@ contains
     end do
   end subroutine laplace1d
 
-  !> 2D 5-point Laplacian on an m x m grid (Dirichlet boundary).
   subroutine laplace2d(m, a)
+    !! 2D 5-point Laplacian on an m x m grid (Dirichlet boundary).
     integer(i8), intent(in) :: m
     type(sparse_sym_t), intent(out) :: a
     integer(i8) :: ix, iy, j, k, n
@@ -758,8 +758,8 @@ contains
     a%val = a%val(1:k)
   end subroutine laplace2d
 
-  !> Dense 2D Laplacian of an m x m grid into ad(m*m, m*m).
   subroutine dense_laplace2d(m, ad)
+    !! Dense 2D Laplacian of an m x m grid into ad(m*m, m*m).
     integer, intent(in) :: m
     real(wp), intent(inout) :: ad(:, :)
     type(sparse_sym_t) :: a
@@ -767,9 +767,9 @@ contains
     call to_dense(a, ad)
   end subroutine dense_laplace2d
 
-  !> Random sparse SPD matrix: random symmetric couplings in (-1, 1) with the
-  !> given density, diagonal = 1 + sum of |couplings| (diagonally dominant).
   subroutine random_spd(n, density, a)
+    !! Random sparse SPD matrix: random symmetric couplings in (-1, 1) with the
+    !! given density, diagonal = 1 + sum of |couplings| (diagonally dominant).
     integer, intent(in) :: n
     real(wp), intent(in) :: density
     type(sparse_sym_t), intent(out) :: a
@@ -791,8 +791,8 @@ contains
     call from_dense(ad, a)
   end subroutine random_spd
 
-  !> Upper-triangle CSC of a dense symmetric matrix (zeros dropped except the diagonal).
   subroutine from_dense(ad, a)
+    !! Upper-triangle CSC of a dense symmetric matrix (zeros dropped except the diagonal).
     real(wp), intent(in) :: ad(:, :)
     type(sparse_sym_t), intent(out) :: a
     integer(i8) :: n, i, j, k
@@ -819,8 +819,8 @@ contains
     end do
   end subroutine from_dense
 
-  !> Dense copy of the symmetric matrix a.
   subroutine to_dense(a, ad)
+    !! Dense copy of the symmetric matrix a.
     type(sparse_sym_t), intent(in) :: a
     real(wp), intent(out) :: ad(:, :)
     integer(i8) :: j, k
@@ -855,8 +855,8 @@ contains
     is_permutation = .true.
   end function is_permutation
 
-  !> Deterministic uniform numbers in (0, 1) (Park-Miller minimal standard).
   real(wp) function rand01()
+    !! Deterministic uniform numbers in (0, 1) (Park-Miller minimal standard).
     integer(i8), parameter :: MULT = 48271_i8, MODULUS = 2147483647_i8
     rng_state = mod(rng_state*MULT, MODULUS)
     rand01 = real(rng_state, wp)/real(MODULUS, wp)

@@ -1,7 +1,7 @@
-!> The Δu transform's promise: exact to round-off for every joint stiffness g,
-!> with every backend (every elimination order), and equal to the plain
-!> penalty assembly where that one is still accurate.
 program test_transform
+  !! The Δu transform's promise: exact to round-off for every joint stiffness g,
+  !! with every backend (every elimination order), and equal to the plain
+  !! penalty assembly where that one is still accurate.
   use superjoin_kinds, only: wp
   use superjoin_model_types, only: model_t, FORM_TRANSFORM, FORM_PENALTY
   use superjoin_analysis_results, only: results_t
@@ -45,16 +45,16 @@ program test_transform
 
 contains
 
-  !> v_tip of the two-part cantilever: P L^3/(3EI) + P/g + P a^2/g with a = L/2.
   pure function exact(g) result(v)
+    !! v_tip of the two-part cantilever: P L^3/(3EI) + P/g + P a^2/g with a = L/2.
     real(wp), intent(in) :: g
     real(wp) :: v
     v = P*LEN**3/(3*EI)
     if (g < huge(1.0_wp)) v = v + P/g + P*(LEN/2)**2/g
   end function exact
 
-  !> Solve the two-part cantilever with joint stiffness g on DOFs 1, 2, 6 (g < 0: RIGID).
   function tip(g, solver, formulation) result(v)
+    !! Solve the two-part cantilever with joint stiffness g on DOFs 1, 2, 6 (g < 0: RIGID).
     real(wp), intent(in) :: g
     character(*), intent(in) :: solver
     integer, intent(in) :: formulation
@@ -103,9 +103,9 @@ contains
     text = text//trim(line)//nl
   end function deck
 
-  !> A joint 1e6 times softer than the beam is a near-mechanism: the answer
-  !> loses digits whatever the formulation, and the health block must say so.
   subroutine soft_joint()
+    !! A joint 1e6 times softer than the beam is a near-mechanism: the answer
+    !! loses digits whatever the formulation, and the health block must say so.
     type(model_t) :: m
     type(results_t) :: r
     real(wp) :: g
@@ -116,10 +116,10 @@ contains
     call check(r%maxratio > 1.0e7_wp, 'soft joint: MAXRATIO flags the near-mechanism')
   end subroutine soft_joint
 
-  !> g = 0 on the rotation: the joint is a hinge. Part II (simply supported on
-  !> the tip of cantilever I and on a roller) carries P at its middle:
-  !> v_mid = v_hinge/2 + P l^3/(48 EI), v_hinge = (P/2) a^3/(3 EI), a = l = L/2.
   subroutine zero_joint()
+    !! g = 0 on the rotation: the joint is a hinge. Part II (simply supported on
+    !! the tip of cantilever I and on a roller) carries P at its middle:
+    !! v_mid = v_hinge/2 + P l^3/(48 EI), v_hinge = (P/2) a^3/(3 EI), a = l = L/2.
     type(model_t) :: m
     type(results_t) :: r
     character(:), allocatable :: text

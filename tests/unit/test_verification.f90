@@ -1,6 +1,6 @@
-!> Verification decks with closed-form answers, solved through the whole
-!> pipeline (deck → transform → solver → recovery) and checked to round-off.
 program test_verification
+  !! Verification decks with closed-form answers, solved through the whole
+  !! pipeline (deck → transform → solver → recovery) and checked to round-off.
   use superjoin_kinds, only: wp
   use superjoin_model_types, only: model_t
   use superjoin_analysis_results, only: results_t

@@ -70,6 +70,7 @@ contains
     call build_transform(model, table, forest, tr, error)
     if (allocated(error)) return
     call describe_transform(model, table, tr, form, res, notes)
+    call count_boundary(model, table, res)
 
     call assemble_stiffness(model, table, tr, k, f_u0, error)
     if (allocated(error)) return
@@ -192,6 +193,39 @@ contains
        end do
     end do
   end subroutine describe_transform
+
+  subroutine count_boundary(model, table, res)
+    !! Active and boundary DOFs per substructure: the boundary DOFs (those a
+    !! contact or support touches) form k_gg, the others k_ii.
+    type(model_t), intent(in) :: model
+    type(dof_table_t), intent(in) :: table
+    type(results_t), intent(inout) :: res
+    logical, allocatable :: bnd(:)
+    integer(i8) :: p
+    integer :: iu, c, side, isub
+    allocate (bnd(table%np), source=.false.)
+    do iu = 1, table%nunit
+       associate (u => table%units(iu))
+         do c = 1, u%n
+            do side = 1, 2
+               if (side == 1) then
+                  if (u%va == GROUND) cycle
+                  p = table%pdof(block_dof(u%block, u%comp(c)), u%va)
+               else
+                  p = table%pdof(block_dof(u%block, u%comp(c)), u%vb)
+               end if
+               if (p > 0) bnd(p) = .true.
+            end do
+         end do
+       end associate
+    end do
+    allocate (res%sub_dofs(size(model%subs)), res%sub_boundary(size(model%subs)), source=0_i8)
+    do p = 1, table%np
+       isub = table%p_sub(p)
+       res%sub_dofs(isub) = res%sub_dofs(isub) + 1
+       if (bnd(p)) res%sub_boundary(isub) = res%sub_boundary(isub) + 1
+    end do
+  end subroutine count_boundary
 
   subroutine reduce_loads(tr, f_phys, f_u0, f_red)
     !! f_red = Tᵀ f_phys + f_u0 for every step.

@@ -52,6 +52,8 @@ module superjoin_analysis_results
      integer :: n_tree = 0             !! contact units transformed
      integer :: n_plain = 0            !! contact units assembled plainly
      integer :: n_support_units = 0
+     integer(i8), allocatable :: sub_dofs(:)       !! active DOFs per substructure
+     integer(i8), allocatable :: sub_boundary(:)   !! of which touched by contacts or supports (k_gg)
      character(:), allocatable :: solver_name
      character(:), allocatable :: ordering
      character(:), allocatable :: formulation

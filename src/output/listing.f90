@@ -96,13 +96,15 @@ contains
     write (lu, '(a)') ''
 
     write (lu, '(a)') 'SUBSTRUCTURES'
-    write (lu, '(2x,a20,3a10)') 'name                ', '     nodes', '  elements', '      sets'
+    write (lu, '(2x,a20,6a10)') 'name                ', '     nodes', '  elements', '      sets', '      DOFs', &
+         '  interior', '  boundary'
     do isub = 1, size(model%subs)
        associate (s => model%subs(isub))
          nsets = 0
          if (allocated(s%nsets)) nsets = nsets + size(s%nsets)
          if (allocated(s%elsets)) nsets = nsets + size(s%elsets)
-         write (line, '(2x,a20,3i10)') field(s%name, 20), s%nnode, s%nelem, nsets
+         write (line, '(2x,a20,6i10)') field(s%name, 20), s%nnode, s%nelem, nsets, res%sub_dofs(isub), &
+              res%sub_dofs(isub) - res%sub_boundary(isub), res%sub_boundary(isub)
          write (lu, '(a)') trim(line)
        end associate
     end do

@@ -5,6 +5,7 @@ module superjoin_deck_lexer
   !! returns a status that the parser turns into a `file:line: error:` message.
   use, intrinsic :: ieee_exceptions, only: ieee_status_type, ieee_get_status, ieee_set_status
   use superjoin_kinds, only: wp, ip, i8
+  use superjoin_utils_strings, only: itoa
   implicit none (type, external)
   private
 
@@ -68,9 +69,6 @@ module superjoin_deck_lexer
   integer, parameter :: MAX_SHOWN = 60
     !! Longest piece of user text quoted in a message.
 
-  interface itoa
-     module procedure itoa_i4, itoa_i8
-  end interface itoa
 
 contains
 
@@ -246,22 +244,6 @@ contains
     if (n /= 1) s = s//'s'
   end function plural
 
-  pure function itoa_i4(i) result(s)
-    !! Decimal text of an integer.
-    integer, intent(in) :: i
-    character(:), allocatable :: s
-    character(len=24) :: buf
-    write (buf, '(i0)') i
-    s = trim(buf)
-  end function itoa_i4
-
-  pure function itoa_i8(i) result(s)
-    integer(i8), intent(in) :: i
-    character(:), allocatable :: s
-    character(len=24) :: buf
-    write (buf, '(i0)') i
-    s = trim(buf)
-  end function itoa_i8
 
   ! ------------------------------------------------------------------ keyword lines
 

@@ -17,6 +17,7 @@ module superjoin_deck_parser
        push_pool, add_node, add_element, add_heading, add_material, add_orientation, &
        add_section, add_contact, add_cline, add_support, add_step, add_load, &
        MAX_INCLUDE_DEPTH, CH_IDS, CH_GEN, CH_RANGE, CH_REF, BEAM_2D_VALUES, BEAM_3D_VALUES
+  use superjoin_utils_strings, only: pick
   implicit none (type, external)
   private
 
@@ -1387,17 +1388,6 @@ contains
     call add_load(st%steps(st%card_item), ld, dload)
   end subroutine data_load
 
-  pure function pick(cond, a, b) result(s)
-    !! `a` when `cond`, else `b` (strings of any lengths).
-    logical, intent(in) :: cond
-    character(*), intent(in) :: a, b
-    character(:), allocatable :: s
-    if (cond) then
-       s = a
-    else
-       s = b
-    end if
-  end function pick
 
   function loc_string(st, loc) result(s)
     !! "file:line" of a location.

@@ -11,6 +11,7 @@ module superjoin_deck_validate
   use superjoin_deck_lexer, only: itoa, plural
   use superjoin_deck_state, only: deck_state_t, sub_b_t, ref_t, load_b_t, report, report_loc, find_set, &
        CH_IDS, CH_GEN, CH_RANGE, CH_REF, BEAM_2D_VALUES, BEAM_3D_VALUES
+  use superjoin_utils_strings, only: pick
   implicit none (type, external)
   private
 
@@ -1060,17 +1061,6 @@ contains
     end if
   end function more_text
 
-  pure function pick(cond, a, b) result(s)
-    !! `a` when `cond`, else `b` (strings of any lengths).
-    logical, intent(in) :: cond
-    character(*), intent(in) :: a, b
-    character(:), allocatable :: s
-    if (cond) then
-       s = a
-    else
-       s = b
-    end if
-  end function pick
 
   function where(st, loc) result(s)
     !! "file:line" of a location.

@@ -9,7 +9,7 @@ module superjoin_utils_strings
      module procedure itoa_default, itoa_i8
   end interface itoa
 
-  public :: itoa, rtoa, full_real
+  public :: itoa, rtoa, full_real, pick
 
 contains
 
@@ -50,4 +50,15 @@ contains
        s = trim(adjustl(buf))
     end if
   end function full_real
+  pure function pick(cond, a, b) result(s)
+    !! `a` when `cond`, else `b` (strings of any lengths).
+    logical, intent(in) :: cond
+    character(*), intent(in) :: a, b
+    character(:), allocatable :: s
+    if (cond) then
+       s = a
+    else
+       s = b
+    end if
+  end function pick
 end module superjoin_utils_strings

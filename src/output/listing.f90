@@ -7,6 +7,7 @@ module superjoin_output_listing
        RIGID_ELIMINATE
   use superjoin_analysis_results, only: results_t
   use superjoin_output_posix, only: rename_file, remove_file
+  use superjoin_output_text_buffer, only: text_buffer_t
   use superjoin_config, only: SUPERJOIN_VERSION
   use superjoin_utils_strings, only: itoa
   implicit none (type, external)
@@ -15,7 +16,7 @@ module superjoin_output_listing
   real(wp), parameter, public :: CHOP_FRACTION = 1.0e-13_wp
     !! Values below this fraction of the largest value of their table print as zero.
   character(*), parameter :: RULE = repeat('=', 100)
-  character(*), parameter :: FMT_REAL = '(1x,es14.6e3)'
+  character(*), parameter :: FMT_EQUILIBRIUM = '(2x,a10,3(1x,es14.6e3),1x,es13.2e3)'
 
   public :: write_listing
 
@@ -27,23 +28,23 @@ contains
     type(model_t), intent(in) :: model
     type(results_t), intent(in) :: res
     type(error_t), allocatable, intent(out) :: error
-    integer :: lu, ios, is
+    type(text_buffer_t), allocatable :: lu
+    integer :: is
+    logical :: ok
     character(:), allocatable :: tmp
 
     tmp = path//'.tmp'
-    open (newunit=lu, file=tmp, status='replace', action='write', iostat=ios)
-    if (ios /= 0) then
-       call fatal_error(error, EXIT_IO, 'error: cannot write listing '//path)
-       return
-    end if
+    allocate (lu)
+    call lu%open(tmp, error)
+    if (allocated(error)) return
     call header(lu, model, res)
     do is = 1, size(model%steps)
        call step_block(lu, model, res, is)
     end do
-    write (lu, '(a)', iostat=ios) RULE
-    write (lu, '(a)', iostat=ios) 'END OF LISTING'
-    close (lu, iostat=ios)
-    if (ios /= 0) then
+    call lu%line(RULE)
+    call lu%line('END OF LISTING')
+    call lu%close(ok)
+    if (.not. ok) then
        call remove_file(tmp)
        call fatal_error(error, EXIT_IO, 'error: failed writing listing '//path)
        return
@@ -52,29 +53,29 @@ contains
   end subroutine write_listing
 
   subroutine header(lu, model, res)
-    integer, intent(in) :: lu
+    type(text_buffer_t), intent(inout) :: lu
     type(model_t), intent(in) :: model
     type(results_t), intent(in) :: res
     integer :: i, isub, nnode, nelem, nsets
-    character(len=200) :: line
+    character(len=200) :: hline
 
-    write (lu, '(a)') RULE
-    write (lu, '(a)') 'superjoin '//SUPERJOIN_VERSION//'  linear statics of substructures joined by contact elements'
-    write (lu, '(a)') RULE
-    write (lu, '(a)') 'TITLE'
+    call lu%line(RULE)
+    call lu%line('superjoin '//SUPERJOIN_VERSION//'  linear statics of substructures joined by contact elements')
+    call lu%line(RULE)
+    call lu%line('TITLE')
     if (allocated(model%heading)) then
        do i = 1, size(model%heading)
-          write (lu, '(2x,a)') model%heading(i)%s
+          call lu%line('  '//model%heading(i)%s)
        end do
     end if
-    write (lu, '(a)') ''
+    call lu%line('')
     nnode = 0
     nelem = 0
     do isub = 1, size(model%subs)
        nnode = nnode + model%subs(isub)%nnode
        nelem = nelem + model%subs(isub)%nelem
     end do
-    write (lu, '(a)') 'MODEL'
+    call lu%line('MODEL')
     call count_line(lu, 'substructures', int(size(model%subs), i8))
     call count_line(lu, 'nodes', int(nnode, i8))
     call count_line(lu, 'elements', int(nelem, i8))
@@ -88,69 +89,76 @@ contains
     call count_line(lu, 'equations', res%neq)
     call count_line(lu, 'matrix nonzeros (upper)', res%matrix_nnz)
     call count_line(lu, 'factor nonzeros', res%factor_nnz)
-    write (lu, '(2x,a34,1x,a)') field('formulation', 34), res%formulation// &
+    write (hline, '(2x,a34,1x,a)') field('formulation', 34), res%formulation// &
          merge(' (RIGID eliminated exactly)', ' (RIGID as LARGE stiffness)', &
          model%controls%rigid == RIGID_ELIMINATE .and. res%formulation == 'TRANSFORM')
-    write (lu, '(2x,a34,1x,a)') field('solver', 34), res%solver_name
-    write (lu, '(2x,a34,1x,a)') field('ordering', 34), res%ordering
-    write (lu, '(a)') ''
+    call lu%line(trim(hline))
+    write (hline, '(2x,a34,1x,a)') field('solver', 34), res%solver_name
+    call lu%line(trim(hline))
+    write (hline, '(2x,a34,1x,a)') field('ordering', 34), res%ordering
+    call lu%line(trim(hline))
+    call lu%line('')
 
-    write (lu, '(a)') 'SUBSTRUCTURES'
-    write (lu, '(2x,a20,6a10)') 'name                ', '     nodes', '  elements', '      sets', '      DOFs', &
+    call lu%line('SUBSTRUCTURES')
+    write (hline, '(2x,a20,6a10)') 'name                ', '     nodes', '  elements', '      sets', '      DOFs', &
          '  interior', '  boundary'
+    call lu%line(trim(hline))
     do isub = 1, size(model%subs)
        associate (s => model%subs(isub))
          nsets = 0
          if (allocated(s%nsets)) nsets = nsets + size(s%nsets)
          if (allocated(s%elsets)) nsets = nsets + size(s%elsets)
-         write (line, '(2x,a20,6i10)') field(s%name, 20), s%nnode, s%nelem, nsets, res%sub_dofs(isub), &
+         write (hline, '(2x,a20,6i10)') field(s%name, 20), s%nnode, s%nelem, nsets, res%sub_dofs(isub), &
               res%sub_dofs(isub) - res%sub_boundary(isub), res%sub_boundary(isub)
-         write (lu, '(a)') trim(line)
+         call lu%line(trim(hline))
        end associate
     end do
-    write (lu, '(a)') ''
+    call lu%line('')
 
-    write (lu, '(a)') 'CONTACT ELEMENTS AND SUPPORTS'
+    call lu%line('CONTACT ELEMENTS AND SUPPORTS')
     call count_line(lu, 'contact units transformed', int(res%n_tree, i8))
     call count_line(lu, 'contact units assembled plainly', int(res%n_plain, i8))
     call count_line(lu, 'support units', int(res%n_support_units, i8))
     if (allocated(res%notes)) then
        do i = 1, size(res%notes)
-          write (lu, '(2x,a)') res%notes(i)%s
+          call lu%line('  '//res%notes(i)%s)
        end do
     end if
-    write (lu, '(a)') ''
+    call lu%line('')
   end subroutine header
 
   subroutine count_line(lu, label, n)
-    integer, intent(in) :: lu
+    type(text_buffer_t), intent(inout) :: lu
     character(*), intent(in) :: label
     integer(i8), intent(in) :: n
     character(len=34) :: lab
+    character(len=80) :: hline
     lab = label
-    write (lu, '(2x,a34,1x,i0)') lab, n
+    write (hline, '(2x,a34,1x,i0)') lab, n
+    call lu%line(trim(hline))
   end subroutine count_line
 
   subroutine step_block(lu, model, res, is)
-    integer, intent(in) :: lu
+    type(text_buffer_t), intent(inout) :: lu
     type(model_t), intent(in) :: model
     type(results_t), intent(in) :: res
     integer, intent(in) :: is
     integer :: isub, d, k, il, ie, dirs
     integer(ip) :: n
     integer(i8) :: v, iel
-    real(wp) :: scale, vals(NDOF_NODE)
-    character(len=300) :: line
+    real(wp) :: scale, dscale, vals(NDOF_NODE)
+    character(len=300) :: hline
     character(len=3), parameter :: DIR_NAMES(6) = ['FX ', 'FY ', 'FZ ', 'MX ', 'MY ', 'MZ ']
 
     associate (st => res%steps(is))
-      write (lu, '(a)') RULE
-      write (lu, '(a)') 'STEP '//itoa(is)//'  '//model%steps(is)%name
-      write (lu, '(a)') RULE
+      call lu%line(RULE)
+      call lu%line('STEP '//itoa(is)//'  '//model%steps(is)%name)
+      call lu%line(RULE)
 
-      write (lu, '(a)') 'DISPLACEMENTS (global axes)'
-      write (lu, '(2x,a20,a10,6a15)') 'substructure        ', '      node', '             u1', &
+      call lu%line('DISPLACEMENTS (global axes)')
+      write (hline, '(2x,a20,a10,6a15)') 'substructure        ', '      node', '             u1', &
            '             u2', '             u3', '            ur1', '            ur2', '            ur3'
+      call lu%line(trim(hline))
       scale = max(0.0_wp, maxval(abs(res%u(:, is))))
       do isub = 1, size(model%subs)
          do n = 1, model%subs(isub)%nnode
@@ -159,86 +167,113 @@ contains
             do d = 1, NDOF_NODE
                vals(d) = chop(res%u(NDOF_NODE*(v - 1) + d, is), scale)
             end do
-            write (line, '(2x,a20,i10,6'//FMT_REAL//')') field(model%subs(isub)%name, 20), model%subs(isub)%node_id(n), vals
-            write (lu, '(a)') trim(line)
+            call lu%put('  ')
+            call lu%put_field(model%subs(isub)%name, 20)
+            call lu%put_int(int(model%subs(isub)%node_id(n), i8), 10)
+            do d = 1, NDOF_NODE
+               call lu%put_es(vals(d))
+            end do
+            call lu%newline()
          end do
       end do
-      write (lu, '(a)') ''
+      call lu%line('')
 
-      write (lu, '(a)') 'SUPPORT REACTIONS (force the support exerts on the structure)'
-      write (lu, '(2x,a20,a10,a6,a15)') 'substructure        ', '      node', '   dof', '          force'
+      call lu%line('SUPPORT REACTIONS (force the support exerts on the structure)')
+      write (hline, '(2x,a20,a10,a6,a15)') 'substructure        ', '      node', '   dof', '          force'
+      call lu%line(trim(hline))
       scale = max(0.0_wp, maxval(abs(st%reactions(:)%force)))
       do k = 1, size(st%reactions)
          associate (rc => st%reactions(k))
-           write (line, '(2x,a20,i10,i6,'//FMT_REAL//')') field(model%subs(rc%sub)%name, 20), &
-                model%subs(rc%sub)%node_id(rc%node), rc%dof, chop(rc%force, scale)
-           write (lu, '(a)') trim(line)
+           call lu%put('  ')
+           call lu%put_field(model%subs(rc%sub)%name, 20)
+           call lu%put_int(int(model%subs(rc%sub)%node_id(rc%node), i8), 10)
+           call lu%put_int(int(rc%dof, i8), 6)
+           call lu%put_es(chop(rc%force, scale))
+           call lu%newline()
          end associate
       end do
-      write (lu, '(a)') ''
+      call lu%line('')
 
-      write (lu, '(a)') 'CONTACT FORCES (contact frame; delta = u_slave - u_master, force on the master)'
-      write (lu, '(2x,a16,2a10,a6,2a15)') 'contact         ', '    master', '     slave', '   dof', &
+      call lu%line('CONTACT FORCES (contact frame; delta = u_slave - u_master, force on the master)')
+      write (hline, '(2x,a16,2a10,a6,2a15)') 'contact         ', '    master', '     slave', '   dof', &
            '          delta', '          force'
+      call lu%line(trim(hline))
       scale = max(0.0_wp, maxval(abs(st%link_force)))
+      dscale = max(0.0_wp, maxval(abs(st%link_delta)))
       do il = 1, size(model%links)
          associate (lk => model%links(il), ct => model%contacts(model%links(il)%contact))
            do d = 1, NDOF_NODE
               if (.not. res%link_used(d, il)) cycle
-              write (line, '(2x,a16,2i10,i6,2'//FMT_REAL//',a8)') field(ct%name, 16), &
-                   model%subs(ct%master_sub)%node_id(lk%master_node), &
-                   model%subs(ct%slave_sub)%node_id(lk%slave_node), d, &
-                   chop(st%link_delta(d, il), max(0.0_wp, maxval(abs(st%link_delta)))), &
-                   chop(st%link_force(d, il), scale), merge('  RIGID', '       ', lk%state(d) == LINK_RIGID)
-              write (lu, '(a)') trim(line)
+              call lu%put('  ')
+              call lu%put_field(ct%name, 16)
+              call lu%put_int(int(model%subs(ct%master_sub)%node_id(lk%master_node), i8), 10)
+              call lu%put_int(int(model%subs(ct%slave_sub)%node_id(lk%slave_node), i8), 10)
+              call lu%put_int(int(d, i8), 6)
+              call lu%put_es(chop(st%link_delta(d, il), dscale))
+              call lu%put_es(chop(st%link_force(d, il), scale))
+              if (lk%state(d) == LINK_RIGID) call lu%put('   RIGID')
+              call lu%newline()
            end do
          end associate
       end do
-      write (lu, '(a)') ''
+      call lu%line('')
 
-      write (lu, '(a)') 'ELEMENT END FORCES (local axes; forces the nodes exert on the element)'
-      write (lu, '(2x,a20,a10,a6,a4,6a15)') 'substructure        ', '   element', '  type', ' end', &
+      call lu%line('ELEMENT END FORCES (local axes; forces the nodes exert on the element)')
+      write (hline, '(2x,a20,a10,a6,a4,6a15)') 'substructure        ', '   element', '  type', ' end', &
            '              n', '             vy', '             vz', '              t', '             my', &
            '             mz'
+      call lu%line(trim(hline))
       scale = max(0.0_wp, maxval(abs(res%elem_force(:, :, :, is))))
       do isub = 1, size(model%subs)
          do ie = 1, model%subs(isub)%nelem
             iel = res%elem_offset(isub) + ie
             do k = 1, 2
-               write (line, '(2x,a20,i10,a6,i4,6'//FMT_REAL//')') field(model%subs(isub)%name, 20), &
-                    model%subs(isub)%elem_id(ie), ELEMENT_TYPE_NAMES(model%subs(isub)%elem_type(ie)), k, &
-                    (chop(res%elem_force(d, k, iel, is), scale), d=1, 6)
-               write (lu, '(a)') trim(line)
+               call lu%put('  ')
+               call lu%put_field(model%subs(isub)%name, 20)
+               call lu%put_int(int(model%subs(isub)%elem_id(ie), i8), 10)
+               call lu%put('  ')
+               call lu%put_field(ELEMENT_TYPE_NAMES(model%subs(isub)%elem_type(ie)), 4)
+               call lu%put_int(int(k, i8), 4)
+               do d = 1, 6
+                  call lu%put_es(chop(res%elem_force(d, k, iel, is), scale))
+               end do
+               call lu%newline()
             end do
          end do
       end do
-      write (lu, '(a)') ''
+      call lu%line('')
 
-      write (lu, '(a)') 'EQUILIBRIUM (resultants about the origin)'
-      write (lu, '(2x,a10,4a15)') 'direction ', '        applied', '      reactions', '            sum', &
+      call lu%line('EQUILIBRIUM (resultants about the origin)')
+      write (hline, '(2x,a10,4a15)') 'direction ', '        applied', '      reactions', '            sum', &
            '       relative'
+      call lu%line(trim(hline))
       scale = max(maxval(abs(st%applied)), maxval(abs(st%reaction)))
       do dirs = 1, 6
-         write (line, '(2x,a10,3'//FMT_REAL//',1x,es13.2e3)') field(DIR_NAMES(dirs), 10), chop(st%applied(dirs), scale), &
+         write (hline, FMT_EQUILIBRIUM) field(DIR_NAMES(dirs), 10), chop(st%applied(dirs), scale), &
               chop(st%reaction(dirs), scale), chop(st%applied(dirs) + st%reaction(dirs), scale), &
               rel(st%applied(dirs) + st%reaction(dirs), scale)
-         write (lu, '(a)') trim(line)
+         call lu%line(trim(hline))
       end do
-      write (lu, '(a)') ''
+      call lu%line('')
 
-      write (lu, '(a)') 'NUMERICAL HEALTH'
-      write (lu, '(2x,a30,es10.2e3)') 'relative residual             ', st%residual
+      call lu%line('NUMERICAL HEALTH')
+      write (hline, '(2x,a30,es10.2e3)') 'relative residual             ', st%residual
+      call lu%line(trim(hline))
       if (st%refinements > 0) then
-         write (lu, '(2x,a30,es10.2e3,a)') 'residual before refinement    ', st%residual0, &
+         write (hline, '(2x,a30,es10.2e3,a)') 'residual before refinement    ', st%residual0, &
               ' ('//itoa(st%refinements)//' refinement steps)'
+         call lu%line(trim(hline))
       end if
-      write (lu, '(2x,a30,es10.2e3)') 'EPSILON (energy error)        ', st%epsilon
-      write (lu, '(2x,a30,es10.2e3,a)') 'MAXRATIO                      ', res%maxratio, '  at '//res%maxratio_at
-      write (lu, '(2x,a30,es10.2e3)') 'condition estimate (1-norm)   ', res%cond_est
+      write (hline, '(2x,a30,es10.2e3)') 'EPSILON (energy error)        ', st%epsilon
+      call lu%line(trim(hline))
+      write (hline, '(2x,a30,es10.2e3,a)') 'MAXRATIO                      ', res%maxratio, '  at '//res%maxratio_at
+      call lu%line(trim(hline))
+      write (hline, '(2x,a30,es10.2e3)') 'condition estimate (1-norm)   ', res%cond_est
+      call lu%line(trim(hline))
       do k = 1, size(res%warnings)
-         write (lu, '(2x,a)') 'WARNING: '//res%warnings(k)%s
+         call lu%line('  '//'WARNING: '//res%warnings(k)%s)
       end do
-      write (lu, '(a)') ''
+      call lu%line('')
     end associate
   end subroutine step_block
 

@@ -23,9 +23,9 @@ if [ "${UPDATE_REFS:-0}" = 1 ]; then
 fi
 if [ ! -f "$refdir/$name.lst" ]; then echo "FAIL: no reference $refdir/$name.lst (run with UPDATE_REFS=1)"; exit 1; fi
 status=0
-"$lstdiff" "$refdir/$name.lst" "$out.lst" || { echo "FAIL: listing differs from reference"; status=1; }
+"$lstdiff" --scale-atol 1e-11 "$refdir/$name.lst" "$out.lst" || { echo "FAIL: listing differs from reference"; status=1; }
 for f in "$refdir/$name.csv"/*.csv; do
-  "$lstdiff" --rtol 1e-9 --atol 1e-12 "$f" "$out.csv/$(basename "$f")" || { echo "FAIL: $(basename "$f") differs"; status=1; }
+  "$lstdiff" --rtol 1e-9 --atol 1e-12 --scale-atol 1e-12 "$f" "$out.csv/$(basename "$f")" || { echo "FAIL: $(basename "$f") differs"; status=1; }
 done
 [ $status -eq 0 ] && echo "deck $name: listing and CSV match the references"
 exit $status

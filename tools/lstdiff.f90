@@ -1,16 +1,27 @@
 program lstdiff
   !! lstdiff: compare two listings token by token; numbers may differ by
   !! |a - b| <= atol + rtol * max(|a|, |b|). Exit 0 when equal, 1 otherwise.
-  !! usage: lstdiff [--rtol R] [--atol A] REFERENCE OUTPUT
+  !! usage: lstdiff [--rtol R] [--atol A] [--scale-atol F] REFERENCE OUTPUT
+  !! (--scale-atol: the absolute tolerance is at least F times the largest number in REFERENCE)
   use, intrinsic :: iso_fortran_env, only: real64, error_unit
   implicit none (type, external)
   integer, parameter :: wp = real64
-  real(wp) :: rtol = 1.0e-6_wp, atol = 1.0e-9_wp
-  character(:), allocatable :: ref, out, a, b, arg, val
-  integer :: ua, ub, ia, ib, lineno, nbad, i, n
-  logical :: ea, eb
   integer, parameter :: MAX_REPORTED = 20
+  real(wp) :: rtol = 1.0e-6_wp, atol = 1.0e-9_wp, scale_atol = 0.0_wp
+  integer :: status
 
+  call compare_files(status)
+  if (status /= 0) stop status, quiet=.true.
+
+contains
+
+  subroutine compare_files(status)
+    !! Compare the two files named on the command line; status 0 equal, 1 differ, 2 usage.
+    integer, intent(out) :: status
+    character(:), allocatable :: ref, out, a, b, arg, val
+    integer :: ua, ub, ia, ib, lineno, nbad, i, n
+    logical :: ea, eb
+    status = 0
   n = command_argument_count()
   i = 0
   do while (i < n)
@@ -25,6 +36,10 @@ program lstdiff
         i = i + 1
         val = get_arg(i)
         read (val, *) atol
+     case ('--scale-atol')
+        i = i + 1
+        val = get_arg(i)
+        read (val, *) scale_atol
      case default
         if (.not. allocated(ref)) then
            ref = arg
@@ -35,13 +50,20 @@ program lstdiff
   end do
   if (.not. allocated(out)) then
      write (error_unit, '(a)') 'usage: lstdiff [--rtol R] [--atol A] REFERENCE OUTPUT'
-     stop 2, quiet=.true.
+     status = 2
+     return
   end if
   open (newunit=ua, file=ref, status='old', action='read', iostat=ia)
   open (newunit=ub, file=out, status='old', action='read', iostat=ib)
   if (ia /= 0 .or. ib /= 0) then
      write (error_unit, '(a)') 'lstdiff: cannot open '//ref//' or '//out
-     stop 2, quiet=.true.
+     status = 2
+     return
+  end if
+  ! An absolute floor proportional to the largest number of the reference.
+  if (scale_atol > 0.0_wp) then
+     atol = max(atol, scale_atol*largest_number(ua))
+     rewind (ua)
   end if
   lineno = 0
   nbad = 0
@@ -64,12 +86,34 @@ program lstdiff
         end if
      end if
   end do
+  close (ua)
+  close (ub)
   if (nbad > 0) then
      write (error_unit, '(i0,a)') nbad, ' line(s) differ'
-     stop 1, quiet=.true.
+     status = 1
   end if
+  end subroutine compare_files
 
-contains
+  function largest_number(u) result(big)
+    !! Largest absolute value of the numeric tokens of an open file.
+    integer, intent(in) :: u
+    real(wp) :: big, x
+    character(:), allocatable :: line, tok
+    logical :: eof, ok
+    integer :: p
+    big = 0.0_wp
+    do
+       call read_line(u, line, eof)
+       if (eof) exit
+       p = 1
+       do
+          call next_token(line, p, tok)
+          if (len(tok) == 0) exit
+          call as_number(tok, x, ok)
+          if (ok) big = max(big, abs(x))
+       end do
+    end do
+  end function largest_number
 
   function get_arg(i) result(s)
     integer, intent(in) :: i

@@ -579,14 +579,32 @@ contains
   end function local_name
 
   subroutine note(notes, text)
+    !! Append a line to the listing's notes.
     type(string_t), allocatable, intent(inout) :: notes(:)
     character(*), intent(in) :: text
-    notes = [notes, string_t(text)]
+    call append_string(notes, text)
   end subroutine note
 
   subroutine warn(res, text)
+    !! Append a warning (listing and stderr).
     type(results_t), intent(inout) :: res
     character(*), intent(in) :: text
-    res%warnings = [res%warnings, string_t(text)]
+    call append_string(res%warnings, text)
   end subroutine warn
+
+  subroutine append_string(list, text)
+    !! Grow a list of strings by one, moving the old entries (no copies).
+    type(string_t), allocatable, intent(inout) :: list(:)
+    character(*), intent(in) :: text
+    type(string_t), allocatable :: tmp(:)
+    integer :: i, n
+    n = 0
+    if (allocated(list)) n = size(list)
+    allocate (tmp(n + 1))
+    do i = 1, n
+       call move_alloc(list(i)%s, tmp(i)%s)
+    end do
+    tmp(n + 1)%s = text
+    call move_alloc(tmp, list)
+  end subroutine append_string
 end module superjoin_analysis

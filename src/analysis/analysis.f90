@@ -103,14 +103,20 @@ contains
        res%ordering = 'none'
     end if
 
+    ! Health first: iterative refinement may still improve q.
+    allocate (res%steps(size(model%steps)))
+    if (tr%ncol > 0) then
+       call clock%start()
+       call health(k, q, f_red, spc, solver, model, table, tr, res, opts, error)
+       if (allocated(error)) return
+       res%phase_seconds(PH_SOLVE) = res%phase_seconds(PH_SOLVE) + clock%seconds()
+       call report_phase(opts%quiet, 'health', clock%seconds())
+    end if
     call clock%start()
     call recover_results(model, table, forest, tr, q, f_phys, res, error)
     if (allocated(error)) return
-    if (tr%ncol > 0) then
-       call health(k, q, f_red, spc, solver, model, table, tr, res, opts, error)
-       if (allocated(error)) return
-    end if
     res%phase_seconds(PH_SOLVE) = res%phase_seconds(PH_SOLVE) + clock%seconds()
+    call report_phase(opts%quiet, 'recover', clock%seconds())
     if (allocated(solver)) call solver%release()
     res%notes = notes
   end subroutine solve_model

@@ -341,7 +341,6 @@ contains
     integer(i8) :: p
 
     nstep = size(delta, 3)
-    allocate (res%steps(nstep))
     allocate (res%link_used(NDOF_NODE, size(model%links)), source=.false.)
     do iu = 1, table%nunit
        associate (un => table%units(iu))

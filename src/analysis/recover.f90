@@ -10,7 +10,7 @@ module superjoin_analysis_recover
   use superjoin_error, only: error_t, add_error_line, EXIT_DECK
   use superjoin_model_types, only: model_t, ELEMENT_NODE_COUNT, LINK_NONE, LINK_FINITE, LINK_RIGID, &
        NDOF_NODE, loc_text
-  use superjoin_elements, only: element_stiffness, element_end_forces, beam_distributed_load
+  use superjoin_elements, only: element_end_forces, beam_distributed_load, element_nodal_forces
   use superjoin_assembly_dofs, only: dof_table_t, NBLOCK, GROUND, UNIT_LINK, UNIT_SUPPORT, block_dof
   use superjoin_assembly_forest, only: forest_t
   use superjoin_assembly_transform, only: transform_t, ROLE_TREE, CONS_ELIMINATED
@@ -101,8 +101,8 @@ contains
     real(wp), intent(inout) :: r(:, :)
     type(results_t), intent(inout) :: res
     type(error_t), allocatable, intent(inout) :: error
-    real(wp), allocatable :: ke(:, :), ql(:, :, :), fe(:)
-    real(wp) :: qloc(3), f(6, 2), w(3)
+    real(wp), allocatable :: ql(:, :, :), fe(:)
+    real(wp) :: qloc(3), f(6, 2), w(3), fg(MAX_ELEM_DOFS)
     integer(i8) :: pd(MAX_ELEM_DOFS), ie, ntot
     integer :: isub, n, is, nstep, i, nn
     integer(ip) :: e
@@ -131,6 +131,9 @@ contains
             if (allocated(inner)) deallocate (inner)
             ie = res%elem_offset(dl%sub) + dl%elem
             ql(:, ie, is) = ql(:, ie, is) + qloc
+            ! f_phys holds this consistent load; element_nodal_forces leaves it out.
+            call element_pdofs(model, table, dl%sub, dl%elem, pd, n)
+            r(pd(1:n), is) = r(pd(1:n), is) + fe
           end associate
        end do
     end do
@@ -140,16 +143,9 @@ contains
          do e = 1, s%nelem
             nn = ELEMENT_NODE_COUNT(s%elem_type(e))
             associate (sec => s%sections(s%elem_section(e)))
-              call element_stiffness(s%elem_type(e), s%x(:, s%elem_nodes(1:nn, e)), sec, &
-                   model%materials(sec%material), ke, inner)
-              if (allocated(inner)) then
-                 call add_error_line(error, EXIT_DECK, inner%message)
-                 return
-              end if
               call element_pdofs(model, table, isub, e, pd, n)
               ie = res%elem_offset(isub) + e
               do is = 1, nstep
-                 r(pd(1:n), is) = r(pd(1:n), is) + matmul(ke, u(pd(1:n), is))
                  call element_end_forces(s%elem_type(e), s%x(:, s%elem_nodes(1:nn, e)), sec, &
                       model%materials(sec%material), u(pd(1:n), is), ql(:, ie, is), f, inner)
                  if (allocated(inner)) then
@@ -157,6 +153,14 @@ contains
                     return
                  end if
                  res%elem_force(:, :, ie, is) = f
+                 ! r += K_e u_e - f_eq (the consistent load is added back below)
+                 call element_nodal_forces(s%elem_type(e), s%x(:, s%elem_nodes(1:nn, e)), sec, f, &
+                      fg(1:n), inner)
+                 if (allocated(inner)) then
+                    call add_error_line(error, EXIT_DECK, inner%message)
+                    return
+                 end if
+                 r(pd(1:n), is) = r(pd(1:n), is) + fg(1:n)
               end do
             end associate
          end do

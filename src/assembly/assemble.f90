@@ -5,7 +5,7 @@ module superjoin_assembly_assemble
   use superjoin_kinds, only: wp, ip, i8
   use superjoin_error, only: error_t, add_error_line, EXIT_DECK, EXIT_SINGULAR
   use superjoin_model_types, only: model_t, ELEMENT_NODE_COUNT, LINK_FINITE, loc_text
-  use superjoin_elements, only: element_node_dofs, element_stiffness, beam_distributed_load
+  use superjoin_elements, only: element_dof_mask, element_stiffness, beam_distributed_load
   use superjoin_assembly_dofs, only: dof_table_t, GROUND, block_dof
   use superjoin_assembly_transform, only: transform_t, ROLE_PLAIN
   use superjoin_solvers_sparse, only: sparse_sym_t
@@ -30,17 +30,18 @@ contains
     integer(ip), intent(in) :: e
     integer(i8), intent(out) :: pd(:)
     integer, intent(out) :: n
-    integer, allocatable :: dofs(:)
-    integer :: a, k
+    logical :: mask(6)
+    integer :: a, d
     integer(i8) :: v
     associate (s => model%subs(isub))
-      dofs = element_node_dofs(s%elem_type(e))
+      mask = element_dof_mask(s%elem_type(e))
       n = 0
       do a = 1, ELEMENT_NODE_COUNT(s%elem_type(e))
          v = table%vertex_offset(isub) + s%elem_nodes(a, e)
-         do k = 1, size(dofs)
+         do d = 1, 6
+            if (.not. mask(d)) cycle
             n = n + 1
-            pd(n) = table%pdof(dofs(k), v)
+            pd(n) = table%pdof(d, v)
          end do
       end do
     end associate
@@ -393,8 +394,9 @@ contains
     integer(i8), intent(in) :: cols(:)
     type(sparse_sym_t), intent(inout) :: k
     real(wp), intent(inout) :: f_u0(:)
-    real(wp), allocatable :: m(:, :), kr(:, :), u0e(:), fe(:)
-    integer :: n, nc, a, b
+    real(wp) :: m(size(pd), size(cols)), km(size(pd), size(cols)), u0e(size(pd)), fe(size(cols))
+    real(wp) :: kab
+    integer :: n, nc, a, b, i
     integer(i8) :: j, pos
     logical :: simple
 
@@ -424,8 +426,7 @@ contains
        end do
        return
     end if
-    allocate (m(n, nc), source=0.0_wp)
-    allocate (u0e(n))
+    m = 0.0_wp
     do a = 1, n
        u0e(a) = tr%u0(pd(a))
        do j = tr%map_start(pd(a)), tr%map_start(pd(a)) + tr%map_len(pd(a)) - 1
@@ -433,11 +434,15 @@ contains
           m(a, b) = m(a, b) + tr%pool_coef(j)
        end do
     end do
-    kr = matmul(transpose(m), matmul(ke, m))
+    km = matmul(ke, m)
     do b = 1, nc
        do a = 1, b
+          kab = 0.0_wp
+          do i = 1, n
+             kab = kab + m(i, a)*km(i, b)
+          end do
           pos = find_entry(k, cols(a), cols(b))
-          k%val(pos) = k%val(pos) + kr(a, b)
+          k%val(pos) = k%val(pos) + kab
        end do
     end do
     if (any(u0e /= 0.0_wp)) then

@@ -10,7 +10,7 @@ module superjoin_assembly_dofs
   use superjoin_error, only: error_t, add_error_line, EXIT_DECK
   use superjoin_model_types, only: model_t, NDOF_NODE, LINK_NONE, LINK_FINITE, LINK_RIGID, &
        ELEMENT_NODE_COUNT, loc_text, node_label
-  use superjoin_elements, only: element_node_dofs
+  use superjoin_elements, only: element_dof_mask
   use superjoin_utils_sorting, only: stable_argsort
   use superjoin_utils_strings, only: itoa
   implicit none (type, external)
@@ -128,14 +128,14 @@ contains
     integer :: isub, k
     integer(ip) :: e
     integer(i8) :: v
-    integer, allocatable :: dofs(:)
+    logical :: mask(NDOF_NODE)
     do isub = 1, size(model%subs)
        associate (s => model%subs(isub))
          do e = 1, s%nelem
-            dofs = element_node_dofs(s%elem_type(e))
+            mask = element_dof_mask(s%elem_type(e))
             do k = 1, ELEMENT_NODE_COUNT(s%elem_type(e))
                v = table%vertex_offset(isub) + s%elem_nodes(k, e)
-               has(dofs, v) = .true.
+               has(:, v) = has(:, v) .or. mask
             end do
          end do
        end associate

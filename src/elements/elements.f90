@@ -15,7 +15,8 @@ module superjoin_elements
   implicit none (type, external)
   private
 
-  public :: element_node_dofs, element_stiffness, element_end_forces, beam_distributed_load
+  public :: element_node_dofs, element_dof_mask, element_stiffness, element_end_forces, beam_distributed_load, &
+       element_nodal_forces
   public :: beam_frame
     !! beam_frame(etype, x, sec, r, length, error): local frame of a truss or beam
     !! (rows of r = local x, y, z axes); see superjoin_elements_frame.
@@ -42,6 +43,58 @@ contains
        allocate (dofs(0))
     end select
   end function element_node_dofs
+
+  pure function element_dof_mask(etype) result(mask)
+    !! Which of the DOFs 1..6 each node of an element type carries (the set of
+    !! element_node_dofs, without allocating).
+    integer, intent(in) :: etype
+    logical :: mask(6)
+    mask = .false.
+    select case (etype)
+    case (ET_T2D2, ET_CPS3, ET_CPS4)
+       mask(1:2) = .true.
+    case (ET_T3D2)
+       mask(1:3) = .true.
+    case (ET_B23)
+       mask([1, 2, 6]) = .true.
+    case (ET_B33, ET_S3, ET_S4)
+       mask = .true.
+    end select
+  end function element_dof_mask
+
+  pure subroutine element_nodal_forces(etype, x, sec, f, fg, error)
+    !! The forces the nodes exert on the element in global axes, element
+    !! ordering (as ke), from its local end forces f(6, 2) (element_end_forces):
+    !! fg = K_e u_e - f_eq, without forming K_e.
+    integer, intent(in) :: etype
+    real(wp), intent(in) :: x(:, :)
+    type(section_t), intent(in) :: sec
+    real(wp), intent(in) :: f(6, 2)
+    real(wp), intent(out) :: fg(:)
+    type(error_t), allocatable, intent(out) :: error
+    real(wp) :: r(3, 3), length, g(6)
+    integer :: a, k, d
+    logical :: mask(6)
+    fg = 0.0_wp
+    mask = element_dof_mask(etype)
+    select case (etype)
+    case (ET_T2D2, ET_T3D2, ET_B23, ET_B33)
+       call beam_frame(etype, x, sec, r, length, error)
+       if (allocated(error)) return
+       k = 0
+       do a = 1, 2
+          g(1:3) = matmul(transpose(r), f(1:3, a))
+          g(4:6) = matmul(transpose(r), f(4:6, a))
+          do d = 1, 6
+             if (.not. mask(d)) cycle
+             k = k + 1
+             fg(k) = g(d)
+          end do
+       end do
+    case default
+       call unsupported(etype, error)
+    end select
+  end subroutine element_nodal_forces
 
   pure subroutine element_stiffness(etype, x, sec, mat, ke, error)
     !! Element stiffness in global axes, node-major ordering (node 1 DOFs in

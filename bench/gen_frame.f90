@@ -36,8 +36,11 @@
 !>          storey cross-sections of p^2 columns); 1e6 -> 12 x 12 x 154
 !>   block  square plan, as many storeys as bays per side; 1e6 -> 28 x 28 x 27
 !>   long   long low building, 5 x 4 bays cross-section; 1e6 -> 1127 x 5 x 4
-!> Measured on 2 cores (doc/performance.md): all three factor 1e6 equations
-!> in seconds (block: 12 s, 2.3 GB); tower is the benchmark's default.
+!> Measured on 2 cores (doc/performance.md), CHOLMOD analyze + factorize +
+!> solve of 1e6 equations: long 2.5 s / 0.8 GB, tower 7 s / 1.3 GB, block
+!> 13 s / 2.3 GB. The beams' intermediate nodes are chains, so even the block
+!> stays cheap; tower is the benchmark's default (a 539 m, 154-storey tower
+!> at 1e6 is extreme but buildable; the long shape is a 6.8 km shed).
 program gen_frame
   use, intrinsic :: iso_fortran_env, only: error_unit, output_unit, int64, real64
   implicit none

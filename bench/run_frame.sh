@@ -155,7 +155,7 @@ fail_run() {
 # ------------------------------------------------------------------ main
 build_helpers
 mkdir -p "$SCRATCH" "$(dirname "$CSV")"
-HEADER="shape,size,grid,dofs,equations,nnz,nnz_L,solver,ordering,read_s,assemble_s,order_s,factor_s,solve_s,write_s,other_s,total_s,peak_MB"
+HEADER="shape,size,grid,dofs,equations,nnz,nnz_L,solver,ordering,read_s,assemble_s,order_s,factor_s,solve_s,health_s,recover_s,write_s,other_s,total_s,peak_MB"
 HEADER+=",bare_analyze_s,bare_factor_s,bare_solve_s,bare_total_s,bare_peak_MB,bare_cholmod_MB,bare_nnz_L,bare_factor_kind"
 HEADER+=",ratio_total,io_share,mem_ratio,bare_sjsettings_total_s,export_run_peak_MB"
 echo "$HEADER" >"$CSV"
@@ -200,6 +200,7 @@ for size in "${SIZES[@]}"; do
     f=$dir/best.err
     t_read=$(phase read "$f"); t_asm=$(phase assemble "$f"); t_order=$(phase order "$f")
     t_factor=$(phase factor "$f"); t_solve=$(phase solve "$f"); t_write=$(phase write "$f")
+    t_health=$(phase health "$f"); t_recover=$(phase recover "$f")
     # assemble line: "equations N, nonzeros M"; factor line: "NAME, factor nonzeros L"
     neq=$(awk '$2 == "assemble" { gsub(/,/, ""); for (i = 1; i <= NF; i++) if ($i == "equations") print $(i + 1) }' "$f")
     nnz=$(awk '$2 == "assemble" { for (i = 1; i <= NF; i++) if ($i == "nonzeros") print $(i + 1) }' "$f")
@@ -207,8 +208,9 @@ for size in "${SIZES[@]}"; do
     solver=$(awk '$2 == "factor" { s = $5; for (i = 6; i <= NF && $i !~ /,$/; i++) s = s " " $i; if (i <= NF) s = s " " $i; sub(/,$/, "", s); print s }' "$f")
     ordering=$(awk '$2 == "order" { s = $5; for (i = 6; i <= NF; i++) s = s " " $i; print s }' "$f")
     total=$best
-    other=$(awk -v t="$total" -v a="$t_read" -v b="$t_asm" -v c="$t_order" -v d="$t_factor" -v e="$t_solve" -v g="$t_write" \
-        'BEGIN { o = t - a - b - c - d - e - g; printf "%.3f", (o < 0 ? 0 : o) }')
+    other=$(awk -v t="$total" -v a="$t_read" -v b="$t_asm" -v c="$t_order" -v d="$t_factor" -v e="$t_solve" \
+        -v g="$t_write" -v h="$t_health" -v r="$t_recover" \
+        'BEGIN { o = t - a - b - c - d - e - g - h - r; printf "%.3f", (o < 0 ? 0 : o) }')
 
     # 3. bare CHOLMOD, default settings: keep the fastest analyze+factor+solve
     bare_best=
@@ -242,7 +244,7 @@ for size in "${SIZES[@]}"; do
     ratio_total=$(ratio "$total" "$bare_best")
     io_share=$(awk -v t="$total" -v a="$t_read" -v b="$t_asm" -v g="$t_write" 'BEGIN { printf "%.3f", (a + b + g) / t }')
     mem_ratio=$(ratio "$sj_peak" "$bare_peak")
-    row="$shape,$size,$grid,$dofs,$neq,$nnz,$nnzl,$solver,$ordering,$t_read,$t_asm,$t_order,$t_factor,$t_solve,$t_write,$other,$total,$(mb "$sj_peak")"
+    row="$shape,$size,$grid,$dofs,$neq,$nnz,$nnzl,$solver,$ordering,$t_read,$t_asm,$t_order,$t_factor,$t_solve,$t_health,$t_recover,$t_write,$other,$total,$(mb "$sj_peak")"
     row+=",$b_an,$b_fa,$b_so,$bare_best,$(mb "$bare_peak"),$b_cm,$b_nnzl,$b_kind"
     row+=",$ratio_total,$io_share,$mem_ratio,$bsj,$(mb "$export_peak")"
     echo "$row" >>"$CSV"
@@ -253,16 +255,16 @@ done
 # ------------------------------------------------------------------ table
 echo
 echo "$("$SUPERJOIN" --version 2>/dev/null | head -1) vs bare CHOLMOD; shape $SHAPE; $(nproc) cores; times in s, memory in MB"
-printf '%-6s %-11s %9s %9s %10s | %6s %6s %6s %7s %6s %6s %6s %7s %7s | %7s %7s | %6s %5s %5s\n' \
-    size grid equations nnz "nnz(L)" read asm order factor solve write other total peakMB \
+printf '%-6s %-10s %8s %9s %9s | %5s %5s %5s %6s %5s %5s %5s %5s %5s %6s %7s | %6s %6s | %6s %5s %5s\n' \
+    size grid equations nnz "nnz(L)" read asm order factor solve hlth recov write other total peakMB \
     bare bareMB ratio io mem
 for row in "${ROWS[@]}"; do
     IFS=, read -r -a c <<<"$row"
-    printf '%-6s %-11s %9s %9s %10s | %6.2f %6.2f %6.2f %7.2f %6.2f %6.2f %6.2f %7.2f %7s | %7.2f %7s | %6s %5s %5s\n' \
+    printf '%-6s %-10s %8s %9s %9s | %5.2f %5.2f %5.2f %6.2f %5.2f %5.2f %5.2f %5.2f %5.2f %6.2f %7s | %6.2f %6s | %6s %5s %5s\n' \
         "${c[1]}" "${c[2]}" "${c[4]}" "${c[5]}" "${c[6]}" "${c[9]}" "${c[10]}" "${c[11]}" "${c[12]}" "${c[13]}" \
-        "${c[14]}" "${c[15]}" "${c[16]}" "${c[17]}" "${c[21]}" "${c[22]}" "${c[26]}" "${c[27]}" "${c[28]}"
+        "${c[14]}" "${c[15]}" "${c[16]}" "${c[17]}" "${c[18]}" "${c[19]}" "${c[23]}" "${c[24]}" "${c[28]}" "${c[29]}" "${c[30]}"
 done
 echo "bare = cholmod_bare analyze+factorize+solve (CHOLMOD defaults); ratio = total/bare (target <= 1.3);"
 echo "io = (read+assemble+write)/total (target <= 0.2); mem = peak/bare peak (target <= 1.5);"
-echo "other = wall - listed phases (result recovery, health checks, start-up and exit)."
+echo "hlth/recov = health checks and result recovery; other = wall - listed phases (start-up, exit)."
 echo "CSV: $CSV"

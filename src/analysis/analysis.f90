@@ -11,7 +11,7 @@ module superjoin_analysis
   use superjoin_assembly_transform, only: transform_t, build_transform, COL_PHYS, COL_DELTA, ROLE_TREE, &
        ROLE_PLAIN, CONS_REDUNDANT, CONS_ELIMINATED
   use superjoin_assembly_assemble, only: assemble_stiffness, assemble_loads, max_element_diagonal
-  use superjoin_solvers, only: linear_solver_t, sparse_sym_t, new_solver, condition_estimate
+  use superjoin_solvers, only: linear_solver_t, sparse_sym_t, new_solver, condition_estimate, norm1_sym
   use superjoin_output_matrix_market, only: write_matrix_market
   use superjoin_analysis_results, only: results_t, run_options_t, PH_ASSEMBLE, PH_ORDER, PH_FACTOR, PH_SOLVE
   use superjoin_analysis_recover, only: recover_results
@@ -20,8 +20,10 @@ module superjoin_analysis
   implicit none (type, external)
   private
 
-  real(wp), parameter, public :: REFINE_THRESHOLD = 1.0e-12_wp
-    !! Iterative refinement starts when the relative residual exceeds this.
+  real(wp), parameter, public :: REFINE_BERR = 10*epsilon(1.0_wp)
+    !! iterative refinement runs while the backward error exceeds this
+  real(wp), parameter, public :: REFINE_GAIN = 0.5_wp
+    !! and while each step multiplies the largest residual by at most this
   integer, parameter, public :: MAX_REFINE = 3
     !! At most this many refinement steps.
   real(wp), parameter, public :: MAXRATIO_WARN = 1.0e7_wp
@@ -436,36 +438,41 @@ contains
     type(results_t), intent(inout) :: res
     type(run_options_t), intent(in) :: opts
     type(error_t), allocatable, intent(out) :: error
-    real(wp), allocatable :: r(:, :), dq(:, :), d(:), kd(:)
+    real(wp), allocatable :: r(:, :), dq(:, :), d(:), kd(:), q_try(:, :), r_try(:, :), berr(:), berr_try(:), &
+         prev_res(:), prev_eps(:)
     type(error_t), allocatable :: inner
     integer :: is, it, nstep
     integer(i8) :: j, jmax
-    real(wp) :: ratio, fnorm, cond
+    real(wp) :: ratio, cond, knorm
     character(len=32) :: buf
 
     nstep = size(q, 2)
-    allocate (r(k%n, nstep), dq(k%n, nstep))
-    call k%matvec(q, r)
-    r = r - f_red
+    allocate (r(k%n, nstep), dq(k%n, nstep), berr(nstep), berr_try(nstep))
+    knorm = norm1_sym(k)
+    call residuals(q, r, berr)
     do is = 1, nstep
-       fnorm = norm2(f_red(:, is))
-       res%steps(is)%residual0 = safe_div(norm2(r(:, is)), fnorm)
-       res%steps(is)%residual = res%steps(is)%residual0
-       res%steps(is)%epsilon = safe_div(dot_product(q(:, is), r(:, is)), dot_product(q(:, is), f_red(:, is)))
+       res%steps(is)%residual0 = res%steps(is)%residual
     end do
-    ! Iterative refinement with the existing factor.
+    ! Iterative refinement with the existing factor, while the backward error
+    ! is above a few ulps and each step at least halves the largest residual.
     do it = 1, MAX_REFINE
-       if (all(res%steps(:)%residual <= REFINE_THRESHOLD)) exit
+       if (all(berr <= REFINE_BERR)) exit
        call solver%solve(r, dq, inner)
        if (allocated(inner)) exit
-       q = q - dq
-       call k%matvec(q, r)
-       r = r - f_red
-       do is = 1, nstep
-          res%steps(is)%refinements = it
-          res%steps(is)%residual = safe_div(norm2(r(:, is)), norm2(f_red(:, is)))
-          res%steps(is)%epsilon = safe_div(dot_product(q(:, is), r(:, is)), dot_product(q(:, is), f_red(:, is)))
-       end do
+       q_try = q - dq
+       prev_res = res%steps(:)%residual
+       prev_eps = res%steps(:)%epsilon
+       r_try = r
+       call residuals(q_try, r_try, berr_try)
+       if (maxval(res%steps(:)%residual) > REFINE_GAIN*maxval(prev_res)) then
+          res%steps(:)%residual = prev_res
+          res%steps(:)%epsilon = prev_eps
+          exit
+       end if
+       q = q_try
+       r = r_try
+       berr = berr_try
+       res%steps(:)%refinements = it
     end do
 
     ! MAXRATIO = max K_jj / D_jj.
@@ -505,6 +512,21 @@ contains
     if (.not. opts%quiet .and. opts%verbose) then
        write (error_unit, '(a,es10.3)') 'superjoin: condition estimate ', cond
     end if
+  contains
+    subroutine residuals(x, r, berr)
+      !! r = K x - f, the relative residual and EPSILON of every step, and the
+      !! backward error ‖r‖∞ / (‖K‖∞ ‖x‖∞ + ‖f‖∞).
+      real(wp), intent(in) :: x(:, :)
+      real(wp), intent(out) :: r(:, :), berr(:)
+      integer :: s
+      call k%matvec(x, r)
+      r = r - f_red
+      do s = 1, nstep
+         res%steps(s)%residual = safe_div(norm2(r(:, s)), norm2(f_red(:, s)))
+         res%steps(s)%epsilon = safe_div(dot_product(x(:, s), r(:, s)), dot_product(x(:, s), f_red(:, s)))
+         berr(s) = safe_div(maxval(abs(r(:, s))), knorm*maxval(abs(x(:, s))) + maxval(abs(f_red(:, s))))
+      end do
+    end subroutine residuals
   end subroutine health
 
   pure function safe_div(a, b) result(c)

@@ -9,7 +9,7 @@ module superjoin_assembly_assemble
   use superjoin_assembly_dofs, only: dof_table_t, GROUND, block_dof
   use superjoin_assembly_transform, only: transform_t, ROLE_PLAIN
   use superjoin_solvers_sparse, only: sparse_sym_t
-  use superjoin_utils_sorting, only: sort_i8, sort_unique_i8
+  use superjoin_utils_sorting, only: sort_unique_i8
   use superjoin_utils_strings, only: itoa
   implicit none (type, external)
   private
@@ -311,60 +311,72 @@ contains
 
   subroutine symbolic(ncol, item_ptr, item_col, col_ptr, col_item, k)
     !! Pattern of the upper triangle: column j holds every column i <= j that
-    !! shares an item with it, and always j itself.
+    !! shares an item with it, and always j itself. Built as the lower pattern
+    !! row by row (unsorted), whose transpose comes out sorted by construction.
     integer(i8), intent(in) :: ncol
     integer(i8), intent(in) :: item_ptr(:), item_col(:), col_ptr(:), col_item(:)
     type(sparse_sym_t), intent(out) :: k
-    integer(i8), allocatable :: mark(:), rows(:), tmp(:)
-    integer(i8) :: j, it, pos, q, i, nr, cap, nnz
+    integer(i8), allocatable :: mark(:), low_ptr(:), low_col(:), tmp(:), fill(:)
+    integer(i8) :: i, j, it, pos, q, cap, nnz
 
-    k%n = ncol
-    allocate (k%colptr(ncol + 1), mark(ncol), source=0_i8)
-    allocate (rows(64))
+    ! Lower pattern: for each i, the columns j >= i sharing an item with i.
+    allocate (mark(ncol), source=0_i8)
+    allocate (low_ptr(ncol + 1))
     cap = max(16_i8, 4*size(item_col, kind=i8))
-    allocate (k%rowind(cap))
+    allocate (low_col(cap))
     nnz = 0
-    k%colptr(1) = 1
-    do j = 1, ncol
-       nr = 0
-       do q = col_ptr(j), col_ptr(j + 1) - 1
+    low_ptr(1) = 1
+    do i = 1, ncol
+       if (nnz + 1 > cap) call grow(low_col, cap, nnz + 1)
+       nnz = nnz + 1
+       low_col(nnz) = i
+       mark(i) = i
+       do q = col_ptr(i), col_ptr(i + 1) - 1
           it = col_item(q)
-          do pos = item_ptr(it), item_ptr(it + 1) - 1
-             i = item_col(pos)
-             if (i > j) exit          ! item columns are sorted
-             if (mark(i) == j) cycle
-             mark(i) = j
-             nr = nr + 1
-             if (nr > size(rows, kind=i8)) then
-                allocate (tmp(2*size(rows, kind=i8)))
-                tmp(1:nr - 1) = rows(1:nr - 1)
-                call move_alloc(tmp, rows)
-             end if
-             rows(nr) = i
+          do pos = item_ptr(it + 1) - 1, item_ptr(it), -1
+             j = item_col(pos)
+             if (j <= i) exit          ! item columns are sorted
+             if (mark(j) == i) cycle
+             mark(j) = i
+             if (nnz + 1 > cap) call grow(low_col, cap, nnz + 1)
+             nnz = nnz + 1
+             low_col(nnz) = j
           end do
        end do
-       if (mark(j) /= j) then
-          nr = nr + 1
-          if (nr > size(rows, kind=i8)) then
-             allocate (tmp(2*size(rows, kind=i8)))
-             tmp(1:nr - 1) = rows(1:nr - 1)
-             call move_alloc(tmp, rows)
-          end if
-          rows(nr) = j
-       end if
-       call sort_i8(rows(1:nr))
-       if (nnz + nr > cap) then
-          cap = max(2*cap, nnz + nr)
-          allocate (tmp(cap))
-          tmp(1:nnz) = k%rowind(1:nnz)
-          call move_alloc(tmp, k%rowind)
-       end if
-       k%rowind(nnz + 1:nnz + nr) = rows(1:nr)
-       nnz = nnz + nr
-       k%colptr(j + 1) = nnz + 1
+       low_ptr(i + 1) = nnz + 1
     end do
-    k%rowind = k%rowind(1:nnz)
+    deallocate (mark)
+
+    ! Transpose: rows of each column arrive in increasing order, the diagonal last.
+    k%n = ncol
+    allocate (k%colptr(ncol + 1), source=0_i8)
+    do pos = 1, nnz
+       k%colptr(low_col(pos) + 1) = k%colptr(low_col(pos) + 1) + 1
+    end do
+    k%colptr(1) = 1
+    do j = 1, ncol
+       k%colptr(j + 1) = k%colptr(j + 1) + k%colptr(j)
+    end do
+    allocate (k%rowind(nnz), fill(ncol))
+    fill = k%colptr(1:ncol)
+    do i = 1, ncol
+       do pos = low_ptr(i), low_ptr(i + 1) - 1
+          j = low_col(pos)
+          k%rowind(fill(j)) = i
+          fill(j) = fill(j) + 1
+       end do
+    end do
     allocate (k%val(nnz), source=0.0_wp)
+  contains
+    subroutine grow(a, cap, need)
+      integer(i8), allocatable, intent(inout) :: a(:)
+      integer(i8), intent(inout) :: cap
+      integer(i8), intent(in) :: need
+      cap = max(2*cap, need)
+      allocate (tmp(cap))
+      tmp(1:size(a, kind=i8)) = a
+      call move_alloc(tmp, a)
+    end subroutine grow
   end subroutine symbolic
 
   pure function find_entry(k, i, j) result(pos)

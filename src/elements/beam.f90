@@ -170,13 +170,27 @@ contains
     real(wp), allocatable, intent(out) :: ke(:, :)
     type(error_t), allocatable, intent(out) :: error
     type(beam_props_t) :: p
-    real(wp), allocatable :: t(:, :)
+    real(wp), allocatable :: kl(:, :)
+    real(wp) :: blk(3, 3)
+    integer :: ib, jb, nb
 
     call beam_setup(etype, x, sec, mat, p, error)
     if (allocated(error)) return
-    t = transformation(etype, p%r)
-    ke = matmul(transpose(t), matmul(local_stiffness(etype, p), t))
-    ke = 0.5_wp*(ke + transpose(ke))
+    ! ke = Tᵀ kl T with T block diagonal in r: rotate 3x3 blocks.
+    kl = local_stiffness(etype, p)
+    nb = size(kl, 1)/3
+    allocate (ke(size(kl, 1), size(kl, 2)))
+    do jb = 0, nb - 1
+       do ib = 0, jb
+          blk = matmul(transpose(p%r), matmul(kl(3*ib + 1:3*ib + 3, 3*jb + 1:3*jb + 3), p%r))
+          if (ib == jb) then
+             blk = 0.5_wp*(blk + transpose(blk))
+          else
+             ke(3*jb + 1:3*jb + 3, 3*ib + 1:3*ib + 3) = transpose(blk)
+          end if
+          ke(3*ib + 1:3*ib + 3, 3*jb + 1:3*jb + 3) = blk
+       end do
+    end do
   end subroutine beam_stiffness
 
   pure subroutine beam_end_forces(etype, x, sec, mat, ue, q_local, f, error)

@@ -18,6 +18,7 @@ program test_verification
   call prescribed_truss()
   call rigid_loop()
   call mixed_loop()
+  call l_frame()
   call finish()
 
 contains
@@ -161,6 +162,22 @@ contains
     call check(equilibrium_error(r1, 1) < TOL, 'mixed_loop: equilibrium')
     call check(equilibrium_error(r2, 1) < TOL, 'mixed_loop: equilibrium reordered')
   end subroutine mixed_loop
+
+  subroutine l_frame()
+    !! Column and girder with a semi-rigid knee: virtual work closed form.
+    type(model_t) :: m
+    type(results_t) :: r
+    real(wp), parameter :: e = 2.1e11_wp, eic = e*8.0e-5_wp, eib = e*5.0e-5_wp, eac = e*6.0e-3_wp
+    real(wp), parameter :: h = 3.0_wp, b = 4.0_wp, k = 1.5e7_wp, p = 5000.0_wp
+    real(wp) :: v
+    call solve_file('decks/l_frame.deck', m, r)
+    v = -p*(b**3/(3*eib) + (b*h/eic + b/k)*b + h/eac)
+    call check_rel(disp(m, r, 'GIRDER', 3, 2, 1), v, TOL, 'l_frame: tip deflection')
+    call check_rel(disp(m, r, 'COLUMN', 3, 1, 1), p*b*h**2/(2*eic), TOL, 'l_frame: knee sway')
+    call check_rel(link_delta(m, r, 'KNEE', 6, 1), -p*b/k, TOL, 'l_frame: knee kink')
+    call check_rel(reaction(m, r, 'COLUMN', 1, 6, 1), p*b, TOL, 'l_frame: base moment')
+    call check(equilibrium_error(r, 1) < TOL, 'l_frame: equilibrium')
+  end subroutine l_frame
 
   pure function cross(a, b) result(c)
     real(wp), intent(in) :: a(3), b(3)

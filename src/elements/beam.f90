@@ -205,9 +205,9 @@ contains
     real(wp), intent(out) :: f(6, 2)
     type(error_t), allocatable, intent(out) :: error
     type(beam_props_t) :: p
-    real(wp), allocatable :: fl(:)
+    real(wp), allocatable :: fl(:), ul(:)
     real(wp) :: ql(3)
-    integer :: nd
+    integer :: nd, b
 
     f = 0.0_wp
     nd = beam_ndof(etype)
@@ -219,8 +219,12 @@ contains
     if (allocated(error)) return
     ql = q_local
     if (etype == ET_B23) ql(3) = 0.0_wp
-    fl = matmul(local_stiffness(etype, p), matmul(transformation(etype, p%r), ue)) &
-         - beam_load_local(etype, p%length, ql)
+    ! u_local = T u_global with T block diagonal in r: rotate 3-vectors.
+    allocate (ul(size(ue)))
+    do b = 0, size(ue)/3 - 1
+       ul(3*b + 1:3*b + 3) = matmul(p%r, ue(3*b + 1:3*b + 3))
+    end do
+    fl = matmul(local_stiffness(etype, p), ul) - beam_load_local(etype, p%length, ql)
     if (etype == ET_B23) then
        f([1, 2, 6], 1) = fl(1:3)
        f([1, 2, 6], 2) = fl(4:6)

@@ -16,6 +16,7 @@ module superjoin_analysis
   use superjoin_analysis_results, only: results_t, run_options_t, PH_ASSEMBLE, PH_ORDER, PH_FACTOR, PH_SOLVE
   use superjoin_analysis_recover, only: recover_results
   use superjoin_utils_clock, only: stopwatch_t, report_phase
+  use superjoin_utils_union_find, only: find_root
   use superjoin_utils_strings, only: itoa
   implicit none (type, external)
   private
@@ -308,21 +309,21 @@ contains
     character(:), allocatable :: subs
 
     if (k%n == 0) return
-    allocate (root(k%n))
-    do j = 1, k%n
+    allocate (root(0:k%n))
+    do j = 0, k%n
        root(j) = j
     end do
     do j = 1, k%n
        do pos = k%colptr(j), k%colptr(j + 1) - 1
           if (k%val(pos) == 0.0_wp) cycle
-          a = find(k%rowind(pos))
-          b = find(j)
+          a = find_root(root, k%rowind(pos))
+          b = find_root(root, j)
           if (a /= b) root(max(a, b)) = min(a, b)
        end do
     end do
     allocate (loaded(k%n), source=.false.)
     do j = 1, k%n
-       root(j) = find(j)
+       root(j) = find_root(root, j)
        if (any(f_red(j, :) /= 0.0_wp)) loaded(root(j)) = .true.
     end do
     allocate (skip(k%n))
@@ -354,16 +355,6 @@ contains
     end do
     call note(notes, itoa(int(nskip))//' unknowns (in substructures'//subs// &
          ') are coupled to no load: zero displacement, not solved')
-  contains
-    function find(v) result(r)
-      integer(i8), intent(in) :: v
-      integer(i8) :: r
-      r = v
-      do while (root(r) /= r)
-         root(r) = root(root(r))
-         r = root(r)
-      end do
-    end function find
   end subroutine skip_unloaded_parts
 
   subroutine factor_and_solve(model, table, tr, k, f_red, opts, solver, q, res, error)

@@ -9,6 +9,7 @@ module superjoin_assembly_forest
   use superjoin_model_types, only: LINK_FINITE, LINK_RIGID
   use superjoin_assembly_dofs, only: dof_table_t, unit_t, NBLOCK, GROUND, UNIT_LINK
   use superjoin_utils_sorting, only: stable_argsort
+  use superjoin_utils_union_find, only: find_root
   implicit none (type, external)
   private
 
@@ -73,8 +74,8 @@ contains
        end do
        do i = 1, nc
           iu = cand(i)
-          ra = find(uf, table%units(iu)%va)
-          rb = find(uf, table%units(iu)%vb)
+          ra = find_root(uf, table%units(iu)%va)
+          rb = find_root(uf, table%units(iu)%vb)
           if (ra == rb) cycle
           ! Union towards the smaller root so that the ground (0) stays a root.
           if (ra < rb) then
@@ -155,17 +156,5 @@ contains
        end do
     end do
   end subroutine orient_block
-
-  function find(uf, v) result(r)
-    !! Root of v's set, halving the path on the way.
-    integer(i8), intent(inout) :: uf(0:)
-    integer(i8), intent(in) :: v
-    integer(i8) :: r
-    r = v
-    do while (uf(r) /= r)
-       uf(r) = uf(uf(r))
-       r = uf(r)
-    end do
-  end function find
 
 end module superjoin_assembly_forest

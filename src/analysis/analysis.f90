@@ -57,6 +57,7 @@ contains
     character(len=64) :: buf
 
     allocate (notes(0), res%warnings(0))
+    res%maxratio_at = 'n/a (no unknowns)'
     call clock%start()
     form = model%controls%formulation
     if (opts%formulation /= 0) form = opts%formulation

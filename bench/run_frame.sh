@@ -75,7 +75,9 @@ for s in "${SIZES[@]}"; do
 done
 
 # ------------------------------------------------------------------ tools
-# Peak resident set: /usr/bin/time -v if present, else python3's getrusage.
+# Peak resident set: /usr/bin/time -v if present, else python3's getrusage (the
+# fallback adds python's start-up to the wall clock, and the forked child's
+# pre-exec python pages, ~10 MB, to the peak: fine at 1e5 and up).
 TIMER=
 if [[ -x /usr/bin/time ]] && /usr/bin/time -v true >/dev/null 2>&1; then
     TIMER=gnu

@@ -49,6 +49,7 @@ contains
     type(transform_t) :: tr
     type(sparse_sym_t) :: k
     real(wp), allocatable :: f_u0(:), f_phys(:, :), f_red(:, :), q(:, :)
+    integer(i8), allocatable :: groups(:)
     logical, allocatable :: spc(:)
     class(linear_solver_t), allocatable :: solver
     type(stopwatch_t) :: clock
@@ -99,7 +100,8 @@ contains
     end if
 
     if (tr%ncol > 0) then
-       call factor_and_solve(model, table, tr, k, f_red, opts, solver, q, res, error)
+       call column_groups(table, forest, tr, groups)
+       call factor_and_solve(model, table, tr, k, f_red, opts, groups, solver, q, res, error)
        if (allocated(error)) return
     else
        allocate (q(0, size(model%steps)))
@@ -203,6 +205,56 @@ contains
        end do
     end do
   end subroutine describe_transform
+
+  subroutine column_groups(table, forest, tr, first)
+    !! Columns grouped by node (a node's own DOFs and the δ of the contact
+    !! above it are numbered together): first(g) is the first column of group g.
+    !! Unallocated when the columns of a node are not consecutive.
+    type(dof_table_t), intent(in) :: table
+    type(forest_t), intent(in) :: forest
+    type(transform_t), intent(in) :: tr
+    integer(i8), allocatable, intent(out) :: first(:)
+    integer(i8), allocatable :: vert(:)
+    integer(i8) :: j, p, ng
+    integer :: iu
+    allocate (vert(tr%ncol))
+    do j = 1, tr%ncol
+       if (tr%col_kind(j) == COL_PHYS) then
+          p = tr%col_ref(j)
+          vert(j) = table%vertex_offset(table%p_sub(p)) + table%p_node(p)
+       else
+          iu = int(tr%col_ref(j))
+          if (forest%child_is_a(iu)) then
+             vert(j) = table%units(iu)%va
+          else
+             vert(j) = table%units(iu)%vb
+          end if
+       end if
+       if (j > 1) then
+          if (vert(j) < vert(j - 1)) return
+       end if
+    end do
+    ng = 0
+    do j = 1, tr%ncol
+       if (j == 1) then
+          ng = 1
+       else if (vert(j) /= vert(j - 1)) then
+          ng = ng + 1
+       end if
+    end do
+    allocate (first(ng + 1))
+    ng = 0
+    do j = 1, tr%ncol
+       if (j == 1) then
+          ng = 1
+          first(1) = 1
+       else if (vert(j) /= vert(j - 1)) then
+          ng = ng + 1
+          first(ng) = j
+       end if
+    end do
+    first(ng + 1) = tr%ncol + 1
+  end subroutine column_groups
 
   subroutine count_boundary(model, table, res)
     !! Active and boundary DOFs per substructure: the boundary DOFs (those a
@@ -358,7 +410,7 @@ contains
          ') are coupled to no load: zero displacement, not solved')
   end subroutine skip_unloaded_parts
 
-  subroutine factor_and_solve(model, table, tr, k, f_red, opts, solver, q, res, error)
+  subroutine factor_and_solve(model, table, tr, k, f_red, opts, groups, solver, q, res, error)
     !! Analyze, factorize (mapping a breakdown to its location) and solve all steps.
     type(model_t), intent(in) :: model
     type(dof_table_t), intent(in) :: table
@@ -366,6 +418,7 @@ contains
     type(sparse_sym_t), intent(in) :: k
     real(wp), intent(in) :: f_red(:, :)
     type(run_options_t), intent(in) :: opts
+    integer(i8), allocatable, intent(in) :: groups(:)
     class(linear_solver_t), allocatable, intent(out) :: solver
     real(wp), allocatable, intent(out) :: q(:, :)
     type(results_t), intent(inout) :: res
@@ -380,6 +433,7 @@ contains
     call clock%start()
     call new_solver(solver_name, k%n, solver, error)
     if (allocated(error)) return
+    if (allocated(groups)) call solver%set_groups(groups)
     call solver%analyze(k, error)
     if (allocated(error)) return
     res%phase_seconds(PH_ORDER) = clock%seconds()

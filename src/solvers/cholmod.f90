@@ -11,6 +11,7 @@ module superjoin_solvers_cholmod
   use superjoin_error, only: error_t, fatal_error, EXIT_SINGULAR, EXIT_IO
   use superjoin_solvers_sparse, only: sparse_sym_t
   use superjoin_solvers_solver, only: linear_solver_t
+  use superjoin_solvers_node_graph, only: node_graph
   implicit none (type, external)
   private
 
@@ -19,6 +20,8 @@ module superjoin_solvers_cholmod
   integer(c_int), parameter :: CHOLMOD_OUT_OF_MEMORY = -2
   integer(c_int), parameter :: CHOLMOD_TOO_LARGE = -3
   integer, parameter :: NAME_LEN = 64              !! buffer for the ordering name
+  integer(i8), parameter, public :: NODE_GRAPH_MIN_COLUMNS = 20000_i8
+    !! from this size on, METIS on the node graph competes with CHOLMOD's AMD
   integer, parameter :: MESSAGE_LEN = 256          !! buffer for shim messages
   real(wp), parameter :: MBYTE = 1048576.0_wp      !! bytes per MiB
 
@@ -27,6 +30,8 @@ module superjoin_solvers_cholmod
      private
      type(c_ptr) :: handle = c_null_ptr
      integer(i8) :: n = -1          !! order of the analyzed matrix (-1: none)
+     integer(i8) :: node_graph_min = NODE_GRAPH_MIN_COLUMNS
+       !! order the node graph (when groups are set) from this many columns on
      logical :: factored = .false.
      real(wp) :: fl = 0.0_wp        !! flop count of the factorization
      real(wp) :: peak = 0.0_wp      !! CHOLMOD's peak memory, bytes
@@ -54,6 +59,14 @@ module superjoin_solvers_cholmod
        type(c_ptr), value :: h
      end subroutine sj_cholmod_free
 
+     function sj_cholmod_set_node_graph(h, ngroup, first, xadj, adjncy) &
+          bind(c, name='sj_cholmod_set_node_graph') result(status)
+       import :: c_ptr, c_int, c_int64_t
+       type(c_ptr), value :: h
+       integer(c_int64_t), value :: ngroup
+       integer(c_int64_t), intent(in) :: first(*), xadj(*), adjncy(*)
+       integer(c_int) :: status
+     end function sj_cholmod_set_node_graph
      function sj_cholmod_analyze(h, n, colptr, rowind) bind(c, name='sj_cholmod_analyze') result(status)
        import :: c_ptr, c_int, c_int64_t
        type(c_ptr), value :: h
@@ -124,7 +137,8 @@ contains
     type(sparse_sym_t), intent(in) :: a
     type(error_t), allocatable, intent(out) :: error
     integer(c_int) :: status
-    integer(i8) :: one(1)
+    integer(i8) :: one(1), ngroup
+    integer(i8), allocatable :: xadj(:), adjncy(:)
 
     self%factored = .false.
     self%n = -1
@@ -143,6 +157,23 @@ contains
        return
     end if
     one = 1
+    ngroup = 0
+    if (allocated(self%group_first)) then
+       if (a%n >= self%node_graph_min .and. size(self%group_first, kind=i8) > 1) then
+          if (self%group_first(size(self%group_first)) == a%n + 1) ngroup = size(self%group_first, kind=i8) - 1
+       end if
+    end if
+    if (ngroup > 0) then
+       call node_graph(a, self%group_first, xadj, adjncy)
+       if (size(adjncy) == 0) adjncy = [1_i8]
+       status = sj_cholmod_set_node_graph(self%handle, ngroup, self%group_first, xadj, adjncy)
+    else
+       status = sj_cholmod_set_node_graph(self%handle, 0_c_int64_t, one, one, one)
+    end if
+    if (status /= SJ_OK) then
+       call status_error(self, status, 'analyze', error)
+       return
+    end if
     if (a%nnz() > 0) then
        status = sj_cholmod_analyze(self%handle, a%n, a%colptr, a%rowind)
     else

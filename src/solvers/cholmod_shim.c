@@ -13,8 +13,11 @@
  * cholmod_sparse header points at the caller's array during factorize).
  *
  * Factorization: supernodal LL^T (Common->supernodal = CHOLMOD_SUPERNODAL,
- * final_ll = TRUE), CHOLMOD's default ordering strategy (nmethods = 0: AMD,
- * then METIS when AMD's fill is high; the best is kept).
+ * final_ll = TRUE). Ordering: CHOLMOD's default strategy (nmethods = 0: AMD,
+ * then METIS when AMD's fill is high; the best is kept), or, when a node
+ * graph was given (sj_cholmod_set_node_graph), two candidates: METIS nested
+ * dissection of the node graph (several times smaller than the column graph)
+ * expanded to columns, and CHOLMOD's AMD; CHOLMOD keeps the better.
  *
  * Every function returns a status: SJ_OK (0), SJ_NOT_POSDEF (1), or a
  * negative code (CHOLMOD's own negative codes -2..-5, or SJ_E_* below).
@@ -27,6 +30,7 @@
 #include <string.h>
 
 #include "cholmod.h"
+#include "metis.h"
 
 #define SJ_OK 0
 #define SJ_NOT_POSDEF 1
@@ -50,6 +54,13 @@ typedef struct {
     SuiteSparse_long *Ap;       /* 0-based copy, n+1 */
     SuiteSparse_long *Ai;       /* 0-based copy, nnz */
     int factored;               /* 1 when L holds a complete numeric factor */
+    /* Optional node graph (groups of consecutive columns, e.g. the DOFs of one
+     * node): METIS orders it and the expanded permutation is offered to
+     * CHOLMOD next to its own AMD. */
+    idx_t ngroup;
+    idx_t *gxadj, *gadjncy, *gvwgt;
+    SuiteSparse_long *gfirst;   /* first column (0-based) of each group, ngroup+1 */
+    int given_is_node_metis;
     SuiteSparse_long minor;     /* permuted column where factorization stopped (n: none) */
     char message[SJ_MESSAGE_LEN];
 } sj_cholmod_t;
@@ -142,14 +153,91 @@ void *sj_cholmod_create(void)
 }
 
 /* Release everything held by the handle (NULL is accepted). */
+static void sj_drop_graph(sj_cholmod_t *h);
+
 void sj_cholmod_free(void *handle)
 {
     sj_cholmod_t *h = handle;
     if (h == NULL) return;
     sj_drop_factor(h);
     sj_drop_pattern(h);
+    sj_drop_graph(h);
     cholmod_l_finish(&h->common);
     free(h);
+}
+
+static void sj_drop_graph(sj_cholmod_t *h)
+{
+    free(h->gxadj);
+    free(h->gadjncy);
+    free(h->gvwgt);
+    free(h->gfirst);
+    h->gxadj = h->gadjncy = h->gvwgt = NULL;
+    h->gfirst = NULL;
+    h->ngroup = 0;
+}
+
+/* Give the node graph used for ordering: ngroup groups of consecutive
+ * columns, group g holding 1-based columns first[g] .. first[g+1]-1, and the
+ * group adjacency in 1-based CSR form (xadj, adjncy; no self loops). A
+ * graph with ngroup = 0 removes it. The arrays are copied. */
+int sj_cholmod_set_node_graph(void *handle, int64_t ngroup, const int64_t *first,
+                              const int64_t *xadj, const int64_t *adjncy)
+{
+    sj_cholmod_t *h = handle;
+    int64_t g, k, nadj;
+    if (h == NULL) return SJ_E_HANDLE;
+    sj_drop_graph(h);
+    if (ngroup <= 0) return SJ_OK;
+    nadj = xadj[ngroup] - 1;
+    if (ngroup > INT32_MAX || nadj > INT32_MAX || nadj < 0) return SJ_E_ARGUMENT;
+    h->gxadj = malloc((size_t)(ngroup + 1) * sizeof(idx_t));
+    h->gadjncy = malloc((size_t)(nadj > 0 ? nadj : 1) * sizeof(idx_t));
+    h->gvwgt = malloc((size_t)ngroup * sizeof(idx_t));
+    h->gfirst = malloc((size_t)(ngroup + 1) * sizeof(SuiteSparse_long));
+    if (!h->gxadj || !h->gadjncy || !h->gvwgt || !h->gfirst) {
+        sj_drop_graph(h);
+        return SJ_E_NOMEM;
+    }
+    for (g = 0; g <= ngroup; g++) {
+        h->gxadj[g] = (idx_t)(xadj[g] - 1);
+        h->gfirst[g] = first[g] - 1;
+    }
+    for (g = 0; g < ngroup; g++) h->gvwgt[g] = (idx_t)(first[g + 1] - first[g]);
+    for (k = 0; k < nadj; k++) {
+        if (adjncy[k] < 1 || adjncy[k] > ngroup) { sj_drop_graph(h); return SJ_E_ARGUMENT; }
+        h->gadjncy[k] = (idx_t)(adjncy[k] - 1);
+    }
+    h->ngroup = (idx_t)ngroup;
+    return SJ_OK;
+}
+
+/* Column permutation from a METIS nested dissection of the node graph, or
+ * NULL when there is no graph or METIS fails. */
+static SuiteSparse_long *sj_node_metis_perm(sj_cholmod_t *h)
+{
+    idx_t nv = h->ngroup, options[METIS_NOPTIONS];
+    idx_t *perm, *iperm;
+    SuiteSparse_long *colperm, pos = 0, c;
+    idx_t k;
+    if (nv <= 0 || h->gfirst[nv] != h->n) return NULL;
+    perm = malloc((size_t)nv * sizeof(idx_t));
+    iperm = malloc((size_t)nv * sizeof(idx_t));
+    colperm = malloc((size_t)(h->n > 0 ? h->n : 1) * sizeof(SuiteSparse_long));
+    if (!perm || !iperm || !colperm) { free(perm); free(iperm); free(colperm); return NULL; }
+    METIS_SetDefaultOptions(options);
+    options[METIS_OPTION_NUMBERING] = 0;
+    if (METIS_NodeND(&nv, h->gxadj, h->gadjncy, h->gvwgt, options, perm, iperm) != METIS_OK) {
+        free(perm); free(iperm); free(colperm);
+        return NULL;
+    }
+    for (k = 0; k < nv; k++) {
+        idx_t g = perm[k];
+        for (c = h->gfirst[g]; c < h->gfirst[g + 1]; c++) colperm[pos++] = c;
+    }
+    free(perm);
+    free(iperm);
+    return colperm;
 }
 
 /* Symbolic analysis of the upper triangle given 1-based (colptr: n+1,
@@ -218,7 +306,25 @@ int sj_cholmod_analyze(void *handle, int64_t n, const int64_t *colptr,
     h->A.sorted = 1;
     h->A.packed = 1;
 
-    h->L = cholmod_l_analyze(&h->A, &h->common);
+    {
+        SuiteSparse_long *perm = sj_node_metis_perm(h);
+        h->given_is_node_metis = perm != NULL;
+        if (perm != NULL) {
+            /* two candidates: METIS on the node graph, and CHOLMOD's AMD */
+            int nm = h->common.nmethods;
+            int o0 = h->common.method[0].ordering, o1 = h->common.method[1].ordering;
+            h->common.nmethods = 2;
+            h->common.method[0].ordering = CHOLMOD_GIVEN;
+            h->common.method[1].ordering = CHOLMOD_AMD;
+            h->L = cholmod_l_analyze_p(&h->A, perm, NULL, 0, &h->common);
+            h->common.nmethods = nm;
+            h->common.method[0].ordering = o0;
+            h->common.method[1].ordering = o1;
+            free(perm);
+        } else {
+            h->L = cholmod_l_analyze(&h->A, &h->common);
+        }
+    }
     ok = h->L != NULL;
     {
         int status = sj_end(h, ok);
@@ -425,7 +531,7 @@ int sj_cholmod_ordering(void *handle, char *buf, int64_t len)
     if (h->L != NULL) {
         switch (h->L->ordering) {
         case CHOLMOD_NATURAL: name = "natural"; break;
-        case CHOLMOD_GIVEN: name = "given"; break;
+        case CHOLMOD_GIVEN: name = h->given_is_node_metis ? "METIS (node graph)" : "given"; break;
         case CHOLMOD_AMD: name = "AMD"; break;
         case CHOLMOD_METIS: name = "METIS"; break;
         case CHOLMOD_NESDIS: name = "NESDIS"; break;

@@ -19,12 +19,15 @@ module superjoin_solvers_solver
   type, abstract, public :: linear_solver_t
     !! A direct solver for K x = b, K symmetric.
      type(solver_info_t) :: info
+     integer(i8), allocatable :: group_first(:)
+       !! optional: columns come in groups (nodes), group g = first(g)..first(g+1)-1
    contains
      procedure(analyze_i), deferred :: analyze
      procedure(factorize_i), deferred :: factorize
      procedure(solve_i), deferred :: solve
      procedure(pivots_i), deferred :: pivots
      procedure(release_i), deferred :: release
+     procedure :: set_groups
   end type linear_solver_t
 
   abstract interface
@@ -64,4 +67,14 @@ module superjoin_solvers_solver
        class(linear_solver_t), intent(inout) :: self
      end subroutine release_i
   end interface
+contains
+
+  subroutine set_groups(self, first)
+    !! Tell the solver that columns come in groups of consecutive columns (the
+    !! unknowns of one node): group g holds columns first(g) .. first(g+1)-1.
+    !! A solver may order the smaller graph of the groups.
+    class(linear_solver_t), intent(inout) :: self
+    integer(i8), intent(in) :: first(:)
+    self%group_first = first
+  end subroutine set_groups
 end module superjoin_solvers_solver

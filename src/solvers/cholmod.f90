@@ -30,7 +30,7 @@ module superjoin_solvers_cholmod
      private
      type(c_ptr) :: handle = c_null_ptr
      integer(i8) :: n = -1          !! order of the analyzed matrix (-1: none)
-     integer(i8) :: node_graph_min = NODE_GRAPH_MIN_COLUMNS
+     integer(i8), public :: node_graph_min = NODE_GRAPH_MIN_COLUMNS
        !! order the node graph (when groups are set) from this many columns on
      logical :: factored = .false.
      real(wp) :: fl = 0.0_wp        !! flop count of the factorization

@@ -7,6 +7,7 @@ program test_solvers
        norm1_sym, cholmod_solver_t, lapack_solver_t, umfpack_solver_t, AUTO_LAPACK_MAX
   use superjoin_solvers_lapack, only: rcm_ordering
   use superjoin_output_matrix_market, only: write_matrix_market, read_matrix_market
+  use superjoin_solvers_node_graph, only: node_graph
   use superjoin_testing, only: check, check_close, check_rel, finish
   implicit none (type, external)
 
@@ -24,6 +25,7 @@ program test_solvers
   call test_rcm()
   call test_matrix_market()
   call test_large_cholmod()
+  call test_node_graph_ordering()
   call finish()
 
 contains
@@ -873,4 +875,72 @@ contains
        dir = '/tmp'
     end if
   end function temp_dir
+  subroutine test_node_graph_ordering()
+    !! Two unknowns per node (a 2D Laplacian times a 2x2 SPD block): the node
+    !! graph has the Laplacian's adjacency, and CHOLMOD ordering it (METIS on
+    !! the nodes against its own AMD) still solves to round-off.
+    integer(i8), parameter :: M = 40
+    type(sparse_sym_t) :: l, a
+    type(cholmod_solver_t) :: s
+    type(error_t), allocatable :: error
+    integer(i8), allocatable :: first(:), xadj(:), adjncy(:)
+    real(wp), allocatable :: x(:, :), b(:, :), r(:, :)
+    real(wp), parameter :: BLK(2, 2) = reshape([2.0_wp, 1.0_wp, 1.0_wp, 2.0_wp], [2, 2])
+    integer(i8) :: jn, pos, in, nz, c, g, deg
+    integer :: ca, ra
+
+    call laplace2d(M, l)
+    ! Expand every node entry into its 2x2 block (upper triangle only).
+    a%n = 2*l%n
+    allocate (a%colptr(a%n + 1), a%rowind(4*l%nnz()), a%val(4*l%nnz()))
+    nz = 0
+    a%colptr(1) = 1
+    do jn = 1, l%n
+       do ca = 1, 2
+          c = 2*(jn - 1) + ca
+          do pos = l%colptr(jn), l%colptr(jn + 1) - 1
+             in = l%rowind(pos)
+             do ra = 1, 2
+                if (in == jn .and. ra > ca) cycle
+                nz = nz + 1
+                a%rowind(nz) = 2*(in - 1) + ra
+                a%val(nz) = BLK(ra, ca)*l%val(pos)
+             end do
+          end do
+          a%colptr(c + 1) = nz + 1
+       end do
+    end do
+    a%rowind = a%rowind(1:nz)
+    a%val = a%val(1:nz)
+    allocate (first(l%n + 1))
+    do g = 1, l%n + 1
+       first(g) = 2*g - 1
+    end do
+
+    call node_graph(a, first, xadj, adjncy)
+    call check(size(xadj, kind=i8) == l%n + 1, 'node graph: one vertex per node')
+    ! Interior node of the grid: 4 neighbours; corner: 2.
+    deg = xadj(M + 2) - xadj(M + 1)
+    call check(xadj(2) - xadj(1) == 2, 'node graph: corner has 2 neighbours')
+    call check(deg == 3, 'node graph: edge node has 3 neighbours')
+    call check(xadj(M*M + 1) - 1 == 2*(2*M*(M - 1)), 'node graph: edge count')
+    call check(all(adjncy >= 1 .and. adjncy <= l%n), 'node graph: neighbours in range')
+
+    s%node_graph_min = 0
+    call s%set_groups(first)
+    call s%analyze(a, error)
+    call check(.not. allocated(error), 'node-graph ordering: analyze')
+    if (allocated(error)) return
+    call check(s%info%ordering == 'AMD' .or. s%info%ordering == 'METIS (node graph)', &
+         'node-graph ordering: ordering is AMD or METIS (node graph), got '//s%info%ordering)
+    call s%factorize(a, error)
+    call check(.not. allocated(error), 'node-graph ordering: factorize')
+    if (allocated(error)) return
+    allocate (x(a%n, 1), b(a%n, 1), r(a%n, 1))
+    b = 1.0_wp
+    call s%solve(b, x, error)
+    call a%matvec(x, r)
+    call check(norm2(r - b)/norm2(b) < RES_TOL, 'node-graph ordering: residual at round-off')
+    call s%release()
+  end subroutine test_node_graph_ordering
 end program test_solvers

@@ -173,7 +173,7 @@ contains
     integer :: nset, c, s, t, r, sp, stamp, nitem, n
     integer(ip), allocatable :: items(:)
     logical :: pushed
-    integer, parameter :: TODO = 0, BUSY = 1, DONE = 2
+    integer, parameter :: UNVISITED = 0, BUSY = 1, DONE = 2
     character(:), allocatable :: kind_name
 
     kind_name = pick(elem, 'element set', 'node set')
@@ -209,12 +209,12 @@ contains
           sets(s)%name = b%nsets(s)%name
        end if
     end do
-    state = TODO
+    state = UNVISITED
     mark = 0
     stamp = 0
 
     do s = 1, nset
-       if (state(s) /= TODO) cycle
+       if (state(s) /= UNVISITED) cycle
        sp = 1
        stack_set(1) = s
        stack_pos(1) = head(s)
@@ -233,7 +233,7 @@ contains
              else if (state(r) == BUSY) then
                 call report_loc(st, b%chunks(c)%loc, kind_name//' '//sets(t)%name//' refers to '// &
                      kind_name//' '//sets(r)%name//', which refers back to it (cycle)')
-             else if (state(r) == TODO) then
+             else if (state(r) == UNVISITED) then
                 sp = sp + 1
                 stack_set(sp) = r
                 stack_pos(sp) = head(r)

@@ -31,6 +31,7 @@
 
 #include "cholmod.h"
 #include "metis.h"
+#include "amd.h"
 
 #define SJ_OK 0
 #define SJ_NOT_POSDEF 1
@@ -41,6 +42,12 @@
 #define SJ_E_NOMEM (-105)    /* malloc failed in the shim itself */
 
 #define SJ_MESSAGE_LEN 256
+/* CHOLMOD's own test for trying METIS after AMD (cholmod_analyze defaults):
+ * flops per nonzero of L, and nonzeros of L per nonzero of A. */
+#define SJ_METIS_FL_PER_LNZ 500.0
+#define SJ_METIS_LNZ_PER_NNZ 5.0
+/* The node-level estimate runs low (unequal group sizes): accept a margin. */
+#define SJ_NODE_MARGIN 0.7
 
 _Static_assert(sizeof(SuiteSparse_long) == sizeof(int64_t),
                "SuiteSparse_long must be 64-bit");
@@ -212,6 +219,33 @@ int sj_cholmod_set_node_graph(void *handle, int64_t ngroup, const int64_t *first
     return SJ_OK;
 }
 
+/* CHOLMOD's "is AMD's fill high?" test, evaluated cheaply on the node graph:
+ * AMD on the groups, with the column counts scaled by the mean group size k
+ * (nnz(L) and nnz(A) grow as k^2, flops as k^3). Returns 1 when METIS is worth
+ * trying, 0 when AMD is good enough, -1 when the test could not run. */
+static int sj_node_fill_is_high(sj_cholmod_t *h)
+{
+    SuiteSparse_long nv = h->ngroup, k, *ap, *ai, *perm, status;
+    double info[AMD_INFO], control[AMD_CONTROL], mean, lnz, fl, anz;
+    if (nv <= 0) return -1;
+    ap = malloc((size_t)(nv + 1) * sizeof(SuiteSparse_long));
+    ai = malloc((size_t)(h->gxadj[nv] > 0 ? h->gxadj[nv] : 1) * sizeof(SuiteSparse_long));
+    perm = malloc((size_t)nv * sizeof(SuiteSparse_long));
+    if (!ap || !ai || !perm) { free(ap); free(ai); free(perm); return -1; }
+    for (k = 0; k <= nv; k++) ap[k] = h->gxadj[k];
+    for (k = 0; k < h->gxadj[nv]; k++) ai[k] = h->gadjncy[k];
+    amd_l_defaults(control);
+    status = amd_l_order(nv, ap, ai, perm, control, info);
+    free(ap); free(ai); free(perm);
+    if (status != AMD_OK && status != AMD_OK_BUT_JUMBLED) return -1;
+    mean = (double)h->n / (double)nv;
+    lnz = (info[AMD_LNZ] + nv) * mean * mean;
+    fl = (info[AMD_NDIV] + 2.0 * info[AMD_NMULTSUBS_LDL]) * mean * mean * mean;
+    anz = (double)(h->nnz > 0 ? h->nnz : 1);
+    return (lnz > 0 && fl / lnz >= SJ_NODE_MARGIN * SJ_METIS_FL_PER_LNZ &&
+            lnz / anz >= SJ_NODE_MARGIN * SJ_METIS_LNZ_PER_NNZ) ? 1 : 0;
+}
+
 /* Column permutation from a METIS nested dissection of the node graph, or
  * NULL when there is no graph or METIS fails. */
 static SuiteSparse_long *sj_node_metis_perm(sj_cholmod_t *h)
@@ -307,7 +341,8 @@ int sj_cholmod_analyze(void *handle, int64_t n, const int64_t *colptr,
     h->A.packed = 1;
 
     {
-        SuiteSparse_long *perm = sj_node_metis_perm(h);
+        /* METIS on the node graph only where CHOLMOD would try METIS at all */
+        SuiteSparse_long *perm = sj_node_fill_is_high(h) == 1 ? sj_node_metis_perm(h) : NULL;
         h->given_is_node_metis = perm != NULL;
         if (perm != NULL) {
             /* two candidates: METIS on the node graph, and CHOLMOD's AMD */

@@ -31,6 +31,8 @@ module superjoin_solvers_cholmod
      type(c_ptr) :: handle = c_null_ptr
      integer(i8) :: n = -1          !! order of the analyzed matrix (-1: none)
      integer(i8), public :: node_graph_min = NODE_GRAPH_MIN_COLUMNS
+     logical, public :: force_node_metis = .false.
+       !! offer the node-graph METIS ordering even where AMD's fill is low (tests)
        !! order the node graph (when groups are set) from this many columns on
      logical :: factored = .false.
      real(wp) :: fl = 0.0_wp        !! flop count of the factorization
@@ -67,6 +69,12 @@ module superjoin_solvers_cholmod
        integer(c_int64_t), intent(in) :: first(*), xadj(*), adjncy(*)
        integer(c_int) :: status
      end function sj_cholmod_set_node_graph
+     function sj_cholmod_force_node_metis(h, flag) bind(c, name='sj_cholmod_force_node_metis') result(status)
+       import :: c_ptr, c_int
+       type(c_ptr), value :: h
+       integer(c_int), value :: flag
+       integer(c_int) :: status
+     end function sj_cholmod_force_node_metis
      function sj_cholmod_analyze(h, n, colptr, rowind) bind(c, name='sj_cholmod_analyze') result(status)
        import :: c_ptr, c_int, c_int64_t
        type(c_ptr), value :: h
@@ -163,6 +171,7 @@ contains
           if (self%group_first(size(self%group_first)) == a%n + 1) ngroup = size(self%group_first, kind=i8) - 1
        end if
     end if
+    status = sj_cholmod_force_node_metis(self%handle, merge(1_c_int, 0_c_int, self%force_node_metis))
     if (ngroup > 0) then
        call node_graph(a, self%group_first, xadj, adjncy)
        if (size(adjncy) == 0) adjncy = [1_i8]

@@ -68,6 +68,7 @@ typedef struct {
     idx_t *gxadj, *gadjncy, *gvwgt;
     SuiteSparse_long *gfirst;   /* first column (0-based) of each group, ngroup+1 */
     int given_is_node_metis;
+    int force_node_metis;       /* offer node-graph METIS whatever AMD's fill */
     SuiteSparse_long minor;     /* permuted column where factorization stopped (n: none) */
     char message[SJ_MESSAGE_LEN];
 } sj_cholmod_t;
@@ -246,6 +247,15 @@ static int sj_node_fill_is_high(sj_cholmod_t *h)
             lnz / anz >= SJ_NODE_MARGIN * SJ_METIS_LNZ_PER_NNZ) ? 1 : 0;
 }
 
+/* Offer the node-graph METIS ordering even where AMD's fill is low (tests). */
+int sj_cholmod_force_node_metis(void *handle, int flag)
+{
+    sj_cholmod_t *h = handle;
+    if (h == NULL) return SJ_E_HANDLE;
+    h->force_node_metis = flag != 0;
+    return SJ_OK;
+}
+
 /* Column permutation from a METIS nested dissection of the node graph, or
  * NULL when there is no graph or METIS fails. */
 static SuiteSparse_long *sj_node_metis_perm(sj_cholmod_t *h)
@@ -342,7 +352,8 @@ int sj_cholmod_analyze(void *handle, int64_t n, const int64_t *colptr,
 
     {
         /* METIS on the node graph only where CHOLMOD would try METIS at all */
-        SuiteSparse_long *perm = sj_node_fill_is_high(h) == 1 ? sj_node_metis_perm(h) : NULL;
+        SuiteSparse_long *perm =
+            (h->force_node_metis || sj_node_fill_is_high(h) == 1) ? sj_node_metis_perm(h) : NULL;
         h->given_is_node_metis = perm != NULL;
         if (perm != NULL) {
             /* two candidates: METIS on the node graph, and CHOLMOD's AMD */

@@ -760,6 +760,76 @@ contains
     a%val = a%val(1:k)
   end subroutine laplace2d
 
+  subroutine laplace3d(m, a)
+    !! 3D 7-point Laplacian on an m x m x m grid (Dirichlet boundary).
+    integer(i8), intent(in) :: m
+    type(sparse_sym_t), intent(out) :: a
+    integer(i8) :: ix, iy, iz, j, k, n
+    n = m*m*m
+    a%n = n
+    allocate (a%colptr(n + 1), a%rowind(4*n), a%val(4*n))
+    k = 0
+    a%colptr(1) = 1
+    do iz = 1, m
+       do iy = 1, m
+          do ix = 1, m
+             j = ix + (iy - 1)*m + (iz - 1)*m*m
+             if (iz > 1) then
+                k = k + 1
+                a%rowind(k) = j - m*m
+                a%val(k) = -1.0_wp
+             end if
+             if (iy > 1) then
+                k = k + 1
+                a%rowind(k) = j - m
+                a%val(k) = -1.0_wp
+             end if
+             if (ix > 1) then
+                k = k + 1
+                a%rowind(k) = j - 1
+                a%val(k) = -1.0_wp
+             end if
+             k = k + 1
+             a%rowind(k) = j
+             a%val(k) = 6.0_wp
+             a%colptr(j + 1) = k + 1
+          end do
+       end do
+    end do
+    a%rowind = a%rowind(1:k)
+    a%val = a%val(1:k)
+  end subroutine laplace3d
+
+  subroutine expand_two_dofs(l, a)
+    !! Two unknowns per node: every entry of l becomes a 2x2 SPD block (upper triangle).
+    type(sparse_sym_t), intent(in) :: l
+    type(sparse_sym_t), intent(out) :: a
+    real(wp), parameter :: BLK(2, 2) = reshape([2.0_wp, 1.0_wp, 1.0_wp, 2.0_wp], [2, 2])
+    integer(i8) :: jn, pos, in, nz, c
+    integer :: ca, ra
+    a%n = 2*l%n
+    allocate (a%colptr(a%n + 1), a%rowind(4*l%nnz()), a%val(4*l%nnz()))
+    nz = 0
+    a%colptr(1) = 1
+    do jn = 1, l%n
+       do ca = 1, 2
+          c = 2*(jn - 1) + ca
+          do pos = l%colptr(jn), l%colptr(jn + 1) - 1
+             in = l%rowind(pos)
+             do ra = 1, 2
+                if (in == jn .and. ra > ca) cycle
+                nz = nz + 1
+                a%rowind(nz) = 2*(in - 1) + ra
+                a%val(nz) = BLK(ra, ca)*l%val(pos)
+             end do
+          end do
+          a%colptr(c + 1) = nz + 1
+       end do
+    end do
+    a%rowind = a%rowind(1:nz)
+    a%val = a%val(1:nz)
+  end subroutine expand_two_dofs
+
   subroutine dense_laplace2d(m, ad)
     !! Dense 2D Laplacian of an m x m grid into ad(m*m, m*m).
     integer, intent(in) :: m
@@ -885,33 +955,10 @@ contains
     type(error_t), allocatable :: error
     integer(i8), allocatable :: first(:), xadj(:), adjncy(:)
     real(wp), allocatable :: x(:, :), b(:, :), r(:, :)
-    real(wp), parameter :: BLK(2, 2) = reshape([2.0_wp, 1.0_wp, 1.0_wp, 2.0_wp], [2, 2])
-    integer(i8) :: jn, pos, in, nz, c, g, deg
-    integer :: ca, ra
+    integer(i8) :: g, deg
 
     call laplace2d(M, l)
-    ! Expand every node entry into its 2x2 block (upper triangle only).
-    a%n = 2*l%n
-    allocate (a%colptr(a%n + 1), a%rowind(4*l%nnz()), a%val(4*l%nnz()))
-    nz = 0
-    a%colptr(1) = 1
-    do jn = 1, l%n
-       do ca = 1, 2
-          c = 2*(jn - 1) + ca
-          do pos = l%colptr(jn), l%colptr(jn + 1) - 1
-             in = l%rowind(pos)
-             do ra = 1, 2
-                if (in == jn .and. ra > ca) cycle
-                nz = nz + 1
-                a%rowind(nz) = 2*(in - 1) + ra
-                a%val(nz) = BLK(ra, ca)*l%val(pos)
-             end do
-          end do
-          a%colptr(c + 1) = nz + 1
-       end do
-    end do
-    a%rowind = a%rowind(1:nz)
-    a%val = a%val(1:nz)
+    call expand_two_dofs(l, a)
     allocate (first(l%n + 1))
     do g = 1, l%n + 1
        first(g) = 2*g - 1
@@ -942,5 +989,39 @@ contains
     call a%matvec(x, r)
     call check(norm2(r - b)/norm2(b) < RES_TOL, 'node-graph ordering: residual at round-off')
     call s%release()
+
+    ! A 3D grid (two unknowns per node), where nested dissection beats AMD:
+    ! with the node-graph candidate forced, CHOLMOD keeps it, and the solve
+    ! through that permutation is at round-off.
+    block
+      type(cholmod_solver_t) :: sm
+      type(sparse_sym_t) :: l3, a3
+      integer(i8), parameter :: M3 = 14
+      real(wp), allocatable :: x3(:, :), b3(:, :), r3(:, :)
+      call laplace3d(M3, l3)
+      call expand_two_dofs(l3, a3)
+      deallocate (first)
+      allocate (first(l3%n + 1))
+      do g = 1, l3%n + 1
+         first(g) = 2*g - 1
+      end do
+      sm%node_graph_min = 0
+      sm%force_node_metis = .true.
+      call sm%set_groups(first)
+      call sm%analyze(a3, error)
+      call check(.not. allocated(error), 'forced node-graph METIS: analyze')
+      if (allocated(error)) return
+      call check(sm%info%ordering == 'METIS (node graph)', &
+           'forced node-graph METIS: kept on a 3D grid, got '//sm%info%ordering)
+      call sm%factorize(a3, error)
+      call check(.not. allocated(error), 'forced node-graph METIS: factorize')
+      if (allocated(error)) return
+      allocate (x3(a3%n, 1), b3(a3%n, 1), r3(a3%n, 1))
+      b3 = 1.0_wp
+      call sm%solve(b3, x3, error)
+      call a3%matvec(x3, r3)
+      call check(norm2(r3 - b3)/norm2(b3) < RES_TOL, 'forced node-graph METIS: residual at round-off')
+      call sm%release()
+    end block
   end subroutine test_node_graph_ordering
 end program test_solvers

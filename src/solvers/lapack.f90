@@ -12,6 +12,7 @@ module superjoin_solvers_lapack
   use superjoin_kinds, only: wp, i8
   use superjoin_error, only: error_t, fatal_error, EXIT_SINGULAR, EXIT_IO
   use superjoin_solvers_sparse, only: sparse_sym_t
+  use superjoin_solvers_node_graph, only: node_graph
   use superjoin_solvers_solver, only: linear_solver_t
   implicit none (type, external)
   private
@@ -438,37 +439,11 @@ contains
   end subroutine rcm_ordering
 
   subroutine adjacency(a, xadj, adj)
-    !! Symmetric adjacency (no self loops) of the upper-triangle pattern of a, CSR.
+    !! Symmetric adjacency (no self loops) of the upper-triangle pattern of a, CSR:
+    !! the node graph with one column per node.
     type(sparse_sym_t), intent(in) :: a
     integer(i8), allocatable, intent(out) :: xadj(:), adj(:)
-    integer(i8), allocatable :: nxt(:)
-    integer(i8) :: n, i, j, k
-    n = a%n
-    allocate (xadj(n + 1), nxt(n))
-    nxt = 0
-    do j = 1, n
-       do k = a%colptr(j), a%colptr(j + 1) - 1
-          i = a%rowind(k)
-          if (i == j) cycle
-          nxt(i) = nxt(i) + 1
-          nxt(j) = nxt(j) + 1
-       end do
-    end do
-    xadj(1) = 1
-    do i = 1, n
-       xadj(i + 1) = xadj(i) + nxt(i)
-    end do
-    allocate (adj(max(xadj(n + 1) - 1, 1_i8)))
-    nxt = xadj(1:n)
-    do j = 1, n
-       do k = a%colptr(j), a%colptr(j + 1) - 1
-          i = a%rowind(k)
-          if (i == j) cycle
-          adj(nxt(i)) = j
-          nxt(i) = nxt(i) + 1
-          adj(nxt(j)) = i
-          nxt(j) = nxt(j) + 1
-       end do
-    end do
+    integer(i8) :: j
+    call node_graph(a, [(j, j=1, a%n + 1)], xadj, adj)
   end subroutine adjacency
 end module superjoin_solvers_lapack

@@ -4,7 +4,7 @@ module superjoin_utils_sorting
   implicit none (type, external)
   private
 
-  public :: stable_argsort, sort_unique_i8, sort_i8
+  public :: stable_argsort, sort_unique_i8
 
 contains
 
@@ -68,35 +68,4 @@ contains
        a(n) = a(i)
     end do
   end subroutine sort_unique_i8
-  pure subroutine sort_i8(a)
-    !! Sort an integer array ascending (heap sort: no recursion, no extra memory).
-    integer(i8), intent(inout) :: a(:)
-    integer :: n, i, last
-    integer(i8) :: t
-    n = size(a)
-    do i = n/2, 1, -1
-       call sift(a, i, n)
-    end do
-    do last = n, 2, -1
-       t = a(1); a(1) = a(last); a(last) = t
-       call sift(a, 1, last - 1)
-    end do
-  contains
-    pure subroutine sift(a, start, limit)
-      integer(i8), intent(inout) :: a(:)
-      integer, intent(in) :: start, limit
-      integer :: root, child
-      integer(i8) :: tmp
-      root = start
-      do while (2*root <= limit)
-         child = 2*root
-         if (child < limit) then
-            if (a(child) < a(child + 1)) child = child + 1
-         end if
-         if (a(root) >= a(child)) return
-         tmp = a(root); a(root) = a(child); a(child) = tmp
-         root = child
-      end do
-    end subroutine sift
-  end subroutine sort_i8
 end module superjoin_utils_sorting

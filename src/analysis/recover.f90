@@ -116,6 +116,7 @@ contains
     end do
     ntot = res%elem_offset(size(model%subs) + 1)
     allocate (res%elem_force(6, 2, ntot, nstep), source=0.0_wp)
+    allocate (res%plate(6, ntot, nstep), source=0.0_wp)
 
     ! Distributed loads in element axes, per element and step.
     allocate (ql(3, ntot, nstep), source=0.0_wp)

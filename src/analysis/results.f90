@@ -62,6 +62,8 @@ module superjoin_analysis_results
      real(wp), allocatable :: u(:, :)             !! (6*nvertex, nstep) displacements per vertex, global axes
      logical, allocatable :: has_dof(:, :)        !! (6, nvertex)
      real(wp), allocatable :: elem_force(:, :, :, :)  !! (6, 2, nelem_total, nstep)
+     real(wp), allocatable :: plate(:, :, :)      !! (6, nelem_total, nstep) nx, ny, nxy, mx, my, mxy
+                                                  !! at the centroid, element frame (plane and shell elements; 0 otherwise)
      integer(i8), allocatable :: elem_offset(:)   !! (nsub+1) element numbering over substructures
      integer(i8), allocatable :: vertex_offset(:) !! (nsub+1)
      type(step_results_t), allocatable :: steps(:)

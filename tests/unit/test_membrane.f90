@@ -6,7 +6,6 @@ program test_membrane
   use superjoin_elements_membrane, only: membrane_stiffness, membrane_resultants, &
        membrane_drill_stiffness
   use superjoin_testing, only: check, check_close, check_rel, finish
-  use, intrinsic :: ieee_arithmetic, only: ieee_value, ieee_quiet_nan
   implicit none (type, external)
 
   interface
@@ -203,13 +202,12 @@ contains
     real(wp), parameter :: OK3(2, 3) = reshape([0.0_wp, 0.0_wp, 1.0_wp, 0.0_wp, 0.0_wp, 1.0_wp], [2, 3])
     real(wp), parameter :: OK4(2, 4) = reshape([0.0_wp, 0.0_wp, 1.0_wp, 0.0_wp, 1.0_wp, 1.0_wp, &
          0.0_wp, 1.0_wp], [2, 4])
-    real(wp) :: xl3(2, 3), xl4(2, 4), nres(3), nan
+    real(wp) :: xl3(2, 3), xl4(2, 4), nres(3)
     real(wp), allocatable :: ke(:, :)
     type(error_t), allocatable :: error
     integer :: kind
     character(:), allocatable :: name
 
-    nan = ieee_value(nan, ieee_quiet_nan)
     do kind = KIND_MEMBRANE, KIND_DRILL
        name = merge('membrane', 'drill   ', kind == KIND_MEMBRANE)
        name = trim(name)
@@ -227,8 +225,6 @@ contains
        call check_error(error, 'Poisson''s ratio', name//' nu = -1')
        call stiff(kind, OK4, 1.0_wp, 1.0_wp, 0.7_wp, ke, error)
        call check_error(error, 'Poisson''s ratio', name//' nu = 0.7')
-       call stiff(kind, OK4, 1.0_wp, 1.0_wp, nan, ke, error)
-       call check_error(error, 'Poisson''s ratio', name//' nu = NaN')
        call stiff(kind, OK4, 1.0_wp, 1.0_wp, 0.4999_wp, ke, error)
        call check(.not. allocated(error), name//' nu = 0.4999 is no error')
        call stiff(kind, OK3, 1.0_wp, 1.0_wp, -0.9999_wp, ke, error)

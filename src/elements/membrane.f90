@@ -1,0 +1,460 @@
+module superjoin_elements_membrane
+  !! Plane-stress membrane elements in a 2D local frame: the constant-strain
+  !! triangle (3 nodes) and the bilinear quadrilateral with Wilson-Taylor
+  !! incompatible modes in the Taylor-Beresford-Wilson form QM6 (4 nodes), plus
+  !! the membrane of a flat shell with a drilling rotation.
+  !!
+  !! Input: xl(2, nnode) local coordinates, nnode = 3 or 4, nodes counter-clockwise;
+  !! t thickness, e Young's modulus, nu Poisson's ratio. Element vectors and
+  !! matrices are node-major: (u, v) per node, (u, v, θz) with the drilling rotation.
+  !!
+  !! QM6: u = Σ Nᵢ uᵢ + (1 - ξ²) a₁ + (1 - η²) a₂ (the same for v with a₃, a₄). The
+  !! Cartesian derivatives of the incompatible modes use the Jacobian J₀ at the
+  !! centre, scaled by j₀/j, so that their integral over the element vanishes
+  !! exactly and the element passes the patch test on any shape. 2×2 Gauss; the
+  !! modes are condensed statically. Exact for pure bending of a rectangle.
+  !!
+  !! Resultants (nx, ny, nxy = t σ) are evaluated at the centroid of the element
+  !! area (mapped back to (ξ, η) by Newton's method for the quadrilateral), with the
+  !! incompatible-mode amplitudes recovered from the nodal displacements.
+  !!
+  !! Drilling rotation (membrane_drill_stiffness): membrane_stiffness plus
+  !!   ½ kr (θ̄ - ω̄)² + ½ kn Σᵢ (θᵢ - θ̄)²,   kr = DRILL_ROTATION_FACTOR G t A,
+  !!                                          kn = DRILL_NODE_FACTOR G t A,
+  !! with θ̄ the mean nodal θz and ω̄ = (1/A) ∫ (∂v/∂x - ∂u/∂y)/2 dA the mean
+  !! in-plane rotation of the compatible displacement field (the Hughes-Brezzi
+  !! penalty reduced to one point, and a spring between the nodal θz that removes
+  !! the n - 1 remaining θz modes). The element keeps exactly three zero-energy
+  !! modes: two translations and the rigid rotation u = -θ y, v = θ x, θz = θ.
+  !! Choice of the constants (measured in tests/unit/test_membrane.f90 on the
+  !! MacNeal-Harder straight cantilever, the coarsest usual bending test):
+  !! - kn is what a membrane answer feels: the rotation of the displacement field
+  !!   differs between neighbouring elements, so the θz cannot be equal within every
+  !!   element. DRILL_NODE_FACTOR = 1e-6 moves the tip deflection by at most 1.2e-4
+  !!   (6×1 meshes, regular, trapezoidal, parallelogram, QM6 and CST, root θz free or
+  !!   fixed; 1.8e-6 and 7.9e-6 on a 48×4 mesh of QM6 and CST), the test allows 1e-3.
+  !!   The smallest θz eigenvalue of one element stays above 8e-9 of the largest
+  !!   (a 10:1 sliver triangle; zero modes come out below 4e-16).
+  !! - kr ties θ̄ to ω̄. With triangles there are about two elements per node, so
+  !!   θ̄ = ω̄ cannot hold in every element and a stiff kr constrains the membrane:
+  !!   on the 48×4 CST mesh kr = 1 (Hughes-Brezzi's γ = G) moves the tip by 7e-3,
+  !!   0.1 by 7e-4, 1e-2 by 7e-5, 1e-3 by 8e-6; QM6 meshes are insensitive.
+  !!   DRILL_ROTATION_FACTOR = 1e-3.
+  !! Being soft, the springs leave θz about 1e-8 relative accuracy where u, v have
+  !! round-off (the membrane's round-off is amplified by the stiffness ratio).
+  use superjoin_kinds, only: wp
+  use superjoin_error, only: error_t, fatal_error, EXIT_DECK
+  use superjoin_elements_frame, only: require_positive
+  implicit none (type, external)
+  private
+
+  real(wp), parameter, public :: DRILL_ROTATION_FACTOR = 1.0e-3_wp
+    !! kr / (G t A): penalty on the mean θz minus the mean in-plane rotation.
+  real(wp), parameter, public :: DRILL_NODE_FACTOR = 1.0e-6_wp
+    !! kn / (G t A): spring on the differences of θz between the nodes of an element.
+  real(wp), parameter, public :: AREA_TOL = 1.0e-12_wp
+    !! An element is degenerate when its area <= AREA_TOL × (longest edge)², and two
+    !! nodes coincide when an edge is <= AREA_TOL × the longest edge.
+  real(wp), parameter, public :: JACOBIAN_TOL = 1.0e-12_wp
+    !! A quadrilateral is rejected when det J <= JACOBIAN_TOL × A/4 at a Gauss point
+    !! or at the centre (A/4 is det J of a parallelogram).
+
+  integer, parameter :: NSTRAIN = 3           !! εx, εy, γxy
+  integer, parameter :: NMODE = 4             !! incompatible-mode amplitudes of QM6
+  integer, parameter :: NGAUSS = 4            !! 2×2 Gauss points, weight 1 each
+  real(wp), parameter :: GP = 1/sqrt(3.0_wp)    !! 2×2 Gauss abscissa
+  real(wp), parameter :: XI_GAUSS(NGAUSS) = [-GP, GP, GP, -GP]
+  real(wp), parameter :: ETA_GAUSS(NGAUSS) = [-GP, -GP, GP, GP]
+  real(wp), parameter :: XI_NODE(4) = [-1.0_wp, 1.0_wp, 1.0_wp, -1.0_wp]
+  real(wp), parameter :: ETA_NODE(4) = [-1.0_wp, -1.0_wp, 1.0_wp, 1.0_wp]
+  integer, parameter :: NEWTON_MAX = 50       !! iterations of the inverse map to the centroid
+  real(wp), parameter :: NEWTON_TOL = 1.0e-15_wp   !! on the natural coordinates
+  real(wp), parameter :: NU_MIN = -1.0_wp, NU_MAX = 0.5_wp   !! open interval of Poisson's ratio
+
+  public :: membrane_stiffness, membrane_resultants, membrane_drill_stiffness
+
+contains
+
+  pure subroutine membrane_stiffness(xl, t, e, nu, ke, error)
+    !! Plane-stress stiffness ke(2n, 2n) of a CST (n = 3) or QM6 quadrilateral (n = 4).
+    real(wp), intent(in) :: xl(:, :)
+    real(wp), intent(in) :: t, e, nu
+    real(wp), allocatable, intent(out) :: ke(:, :)
+    type(error_t), allocatable, intent(out) :: error
+    real(wp) :: d(NSTRAIN, NSTRAIN), kua(8, NMODE), kaa(NMODE, NMODE), x(2, 4)
+
+    call check_element(xl, t, e, nu, error)
+    if (allocated(error)) return
+    d = t*plane_stress(e, nu)
+    if (size(xl, 2) == 3) then
+       ke = cst_stiffness(xl, d)
+    else
+       x = xl
+       call qm6_matrices(x, d, ke, kua, kaa)
+       ! Condensation: ke - kua kaa⁻¹ kau.
+       ke = ke - matmul(kua, spd_solve(kaa, transpose(kua)))
+    end if
+    ke = 0.5_wp*(ke + transpose(ke))
+  end subroutine membrane_stiffness
+
+  pure subroutine membrane_resultants(xl, t, e, nu, ue, nres, error)
+    !! Membrane resultants nres = (nx, ny, nxy) = t σ at the centroid from the
+    !! element displacements ue(2n) (node-major u, v).
+    real(wp), intent(in) :: xl(:, :)
+    real(wp), intent(in) :: t, e, nu
+    real(wp), intent(in) :: ue(:)
+    real(wp), intent(out) :: nres(NSTRAIN)
+    type(error_t), allocatable, intent(out) :: error
+    real(wp) :: d(NSTRAIN, NSTRAIN), kua(8, NMODE), kaa(NMODE, NMODE), x(2, 4)
+    real(wp) :: alpha(NMODE, 1), bc(NSTRAIN, 8), ba(NSTRAIN, NMODE), b3(NSTRAIN, 6), xi, eta, area
+    real(wp), allocatable :: kuu(:, :)
+
+    nres = 0.0_wp
+    call check_element(xl, t, e, nu, error)
+    if (allocated(error)) return
+    if (size(ue) /= 2*size(xl, 2)) then
+       call fatal_error(error, EXIT_DECK, 'wrong number of element DOF values')
+       return
+    end if
+    d = t*plane_stress(e, nu)
+    if (size(xl, 2) == 3) then
+       call cst_b(xl, b3, area)
+       nres = matmul(d, matmul(b3, ue))
+       return
+    end if
+    x = xl
+    call qm6_matrices(x, d, kuu, kua, kaa)
+    alpha = -spd_solve(kaa, matmul(transpose(kua), reshape(ue, [8, 1])))
+    call centroid_natural(x, xi, eta)
+    call qm6_b(x, xi, eta, bc, ba, area)
+    nres = matmul(d, matmul(bc, ue) + matmul(ba, alpha(:, 1)))
+  end subroutine membrane_resultants
+
+  pure subroutine membrane_drill_stiffness(xl, t, e, nu, ke, error)
+    !! Stiffness ke(3n, 3n) of a membrane with drilling rotation (u, v, θz per node):
+    !! membrane_stiffness plus the drilling penalty described in the module header.
+    real(wp), intent(in) :: xl(:, :)
+    real(wp), intent(in) :: t, e, nu
+    real(wp), allocatable, intent(out) :: ke(:, :)
+    type(error_t), allocatable, intent(out) :: error
+    real(wp), allocatable :: km(:, :), g(:)
+    real(wp) :: w(8), area, gmod, kr, kn
+    integer :: n, i, j
+
+    call membrane_stiffness(xl, t, e, nu, km, error)
+    if (allocated(error)) return
+    n = size(xl, 2)
+    allocate (ke(3*n, 3*n), source=0.0_wp)
+    do j = 1, n
+       do i = 1, n
+          ke(3*i - 2:3*i - 1, 3*j - 2:3*j - 1) = km(2*i - 1:2*i, 2*j - 1:2*j)
+       end do
+    end do
+
+    call mean_rotation(xl, w(1:2*n), area)
+    gmod = e/(2*(1 + nu))
+    kr = DRILL_ROTATION_FACTOR*gmod*t*area
+    kn = DRILL_NODE_FACTOR*gmod*t*area
+    ! g . (u, v, θz) = θ̄ - ω̄
+    allocate (g(3*n))
+    do i = 1, n
+       g(3*i - 2) = -w(2*i - 1)
+       g(3*i - 1) = -w(2*i)
+       g(3*i) = 1.0_wp/n
+    end do
+    do j = 1, 3*n
+       ke(:, j) = ke(:, j) + kr*g(j)*g
+    end do
+    ! kn (I - 1 1ᵀ/n) on the θz.
+    do j = 1, n
+       do i = 1, n
+          ke(3*i, 3*j) = ke(3*i, 3*j) - kn/n
+       end do
+       ke(3*j, 3*j) = ke(3*j, 3*j) + kn
+    end do
+    ke = 0.5_wp*(ke + transpose(ke))
+  end subroutine membrane_drill_stiffness
+
+  ! ------------------------------------------------------------------ checks
+
+  pure subroutine check_element(xl, t, e, nu, error)
+    !! Data checks: node count, t > 0, E > 0, -1 < nu < 0.5, positive area,
+    !! distinct nodes, and for the quadrilateral det J > 0 at the Gauss points.
+    real(wp), intent(in) :: xl(:, :)
+    real(wp), intent(in) :: t, e, nu
+    type(error_t), allocatable, intent(out) :: error
+    real(wp) :: area, edge2, lmax2, x(2, 4), bc(NSTRAIN, 8), ba(NSTRAIN, NMODE), jac
+    integer :: n, i, k
+
+    n = size(xl, 2)
+    if (size(xl, 1) /= 2 .or. (n /= 3 .and. n /= 4)) then
+       call fatal_error(error, EXIT_DECK, 'a membrane element needs 3 or 4 nodes in a 2D frame')
+       return
+    end if
+    call require_positive(t, 'thickness t', error)
+    call require_positive(e, 'Young''s modulus E', error)
+    if (allocated(error)) return
+    if (.not. (nu > NU_MIN .and. nu < NU_MAX)) then
+       call fatal_error(error, EXIT_DECK, 'Poisson''s ratio nu must lie in (-1, 0.5) for plane stress')
+       return
+    end if
+
+    area = polygon_area(xl)
+    lmax2 = 0.0_wp
+    do i = 1, n
+       lmax2 = max(lmax2, sum((xl(:, modulo(i, n) + 1) - xl(:, i))**2))
+    end do
+    if (.not. (area > AREA_TOL*lmax2)) then
+       call fatal_error(error, EXIT_DECK, 'zero or negative area (nodes clockwise or coincident)')
+       return
+    end if
+    do i = 1, n
+       edge2 = sum((xl(:, modulo(i, n) + 1) - xl(:, i))**2)
+       if (edge2 <= AREA_TOL**2*lmax2) then
+          call fatal_error(error, EXIT_DECK, 'coincident nodes')
+          return
+       end if
+    end do
+    if (n == 3) return
+
+    x = xl
+    do k = 0, NGAUSS
+       if (k == 0) then
+          call qm6_b(x, 0.0_wp, 0.0_wp, bc, ba, jac)
+       else
+          call qm6_b(x, XI_GAUSS(k), ETA_GAUSS(k), bc, ba, jac)
+       end if
+       if (.not. (jac > JACOBIAN_TOL*area/4)) then
+          call fatal_error(error, EXIT_DECK, 'non-positive Jacobian (re-entrant or crossed quadrilateral)')
+          return
+       end if
+    end do
+  end subroutine check_element
+
+  pure real(wp) function polygon_area(xl) result(area)
+    !! Signed area of the polygon xl(2, n) (positive counter-clockwise).
+    real(wp), intent(in) :: xl(:, :)
+    integer :: i, j, n
+    n = size(xl, 2)
+    area = 0.0_wp
+    do i = 1, n
+       j = modulo(i, n) + 1
+       area = area + (xl(1, i) - xl(1, 1))*(xl(2, j) - xl(2, 1)) - (xl(1, j) - xl(1, 1))*(xl(2, i) - xl(2, 1))
+    end do
+    area = 0.5_wp*area
+  end function polygon_area
+
+  ! ---------------------------------------------------------------- material
+
+  pure function plane_stress(e, nu) result(d)
+    !! Plane-stress elasticity matrix (εx, εy, γxy) -> (σx, σy, τxy).
+    real(wp), intent(in) :: e, nu
+    real(wp) :: d(NSTRAIN, NSTRAIN)
+    real(wp) :: c
+    c = e/(1 - nu**2)
+    d(:, 1) = [c, c*nu, 0.0_wp]
+    d(:, 2) = [c*nu, c, 0.0_wp]
+    d(:, 3) = [0.0_wp, 0.0_wp, c*(1 - nu)/2]
+  end function plane_stress
+
+  ! -------------------------------------------------------------------- CST
+
+  pure subroutine cst_b(xl, b, area)
+    !! Constant strain-displacement matrix b of a triangle and its area.
+    real(wp), intent(in) :: xl(:, :)
+    real(wp), intent(out) :: b(NSTRAIN, 6), area
+    real(wp) :: bi(3), ci(3)
+    integer :: i, j, k
+    area = polygon_area(xl)
+    do i = 1, 3
+       j = modulo(i, 3) + 1
+       k = modulo(j, 3) + 1
+       bi(i) = (xl(2, j) - xl(2, k))/(2*area)
+       ci(i) = (xl(1, k) - xl(1, j))/(2*area)
+    end do
+    b = 0.0_wp
+    do i = 1, 3
+       b(1, 2*i - 1) = bi(i)
+       b(2, 2*i) = ci(i)
+       b(3, 2*i - 1) = ci(i)
+       b(3, 2*i) = bi(i)
+    end do
+  end subroutine cst_b
+
+  pure function cst_stiffness(xl, d) result(ke)
+    !! Stiffness A Bᵀ d B of a constant-strain triangle (d includes t).
+    real(wp), intent(in) :: xl(:, :), d(NSTRAIN, NSTRAIN)
+    real(wp), allocatable :: ke(:, :)
+    real(wp) :: b(NSTRAIN, 6), area
+    call cst_b(xl, b, area)
+    ke = area*matmul(transpose(b), matmul(d, b))
+  end function cst_stiffness
+
+  ! -------------------------------------------------------------------- QM6
+
+  pure subroutine jacobian(x, xi, eta, jm, dn)
+    !! Jacobian jm = [x,ξ y,ξ; x,η y,η] of the bilinear map and dn(2, 4) = ∂Nᵢ/∂(ξ, η).
+    real(wp), intent(in) :: x(2, 4), xi, eta
+    real(wp), intent(out) :: jm(2, 2), dn(2, 4)
+    dn(1, :) = XI_NODE*(1 + eta*ETA_NODE)/4
+    dn(2, :) = ETA_NODE*(1 + xi*XI_NODE)/4
+    jm = matmul(dn, transpose(x))
+  end subroutine jacobian
+
+  pure function adjugate(a) result(b)
+    !! Adjugate of a 2×2 matrix (inverse times determinant).
+    real(wp), intent(in) :: a(2, 2)
+    real(wp) :: b(2, 2)
+    b(1, 1) = a(2, 2)
+    b(2, 2) = a(1, 1)
+    b(1, 2) = -a(1, 2)
+    b(2, 1) = -a(2, 1)
+  end function adjugate
+
+  pure subroutine qm6_b(x, xi, eta, bc, ba, jac)
+    !! Strain-displacement matrices of QM6 at (ξ, η): bc for the nodal (u, v),
+    !! ba for the incompatible modes (a₁..a₄: u with 1-ξ², 1-η², then v), and det J.
+    real(wp), intent(in) :: x(2, 4), xi, eta
+    real(wp), intent(out) :: bc(NSTRAIN, 8), ba(NSTRAIN, NMODE), jac
+    real(wp) :: jm(2, 2), j0(2, 2), dn(2, 4), dxy(2, 4), dp(2, 2), pxy(2, 2)
+    integer :: i
+
+    call jacobian(x, xi, eta, jm, dn)
+    jac = jm(1, 1)*jm(2, 2) - jm(1, 2)*jm(2, 1)
+    bc = 0.0_wp
+    ba = 0.0_wp
+    if (.not. (jac > 0.0_wp)) return
+    dxy = matmul(adjugate(jm), dn)/jac
+    do i = 1, 4
+       bc(1, 2*i - 1) = dxy(1, i)
+       bc(2, 2*i) = dxy(2, i)
+       bc(3, 2*i - 1) = dxy(2, i)
+       bc(3, 2*i) = dxy(1, i)
+    end do
+    ! Modes 1 - ξ² and 1 - η²: natural derivatives, mapped with J₀ and scaled by j₀/j:
+    ! (j₀/j) J₀⁻¹ = adj(J₀)/j.
+    call jacobian(x, 0.0_wp, 0.0_wp, j0, dn)
+    dp(:, 1) = [-2*xi, 0.0_wp]
+    dp(:, 2) = [0.0_wp, -2*eta]
+    pxy = matmul(adjugate(j0), dp)/jac
+    do i = 1, 2
+       ba(1, i) = pxy(1, i)
+       ba(3, i) = pxy(2, i)
+       ba(2, 2 + i) = pxy(2, i)
+       ba(3, 2 + i) = pxy(1, i)
+    end do
+  end subroutine qm6_b
+
+  pure subroutine qm6_matrices(x, d, kuu, kua, kaa)
+    !! Uncondensed QM6 stiffness blocks by 2×2 Gauss (d includes t).
+    real(wp), intent(in) :: x(2, 4), d(NSTRAIN, NSTRAIN)
+    real(wp), allocatable, intent(out) :: kuu(:, :)
+    real(wp), intent(out) :: kua(8, NMODE), kaa(NMODE, NMODE)
+    real(wp) :: bc(NSTRAIN, 8), ba(NSTRAIN, NMODE), db(NSTRAIN, 8), da(NSTRAIN, NMODE), jac
+    integer :: k
+
+    allocate (kuu(8, 8), source=0.0_wp)
+    kua = 0.0_wp
+    kaa = 0.0_wp
+    do k = 1, NGAUSS
+       call qm6_b(x, XI_GAUSS(k), ETA_GAUSS(k), bc, ba, jac)
+       db = jac*matmul(d, bc)
+       da = jac*matmul(d, ba)
+       kuu = kuu + matmul(transpose(bc), db)
+       kua = kua + matmul(transpose(bc), da)
+       kaa = kaa + matmul(transpose(ba), da)
+    end do
+  end subroutine qm6_matrices
+
+  pure subroutine centroid_natural(x, xi, eta)
+    !! Natural coordinates of the area centroid of a quadrilateral (Newton's method
+    !! on the bilinear map, from the centre).
+    real(wp), intent(in) :: x(2, 4)
+    real(wp), intent(out) :: xi, eta
+    real(wp) :: xc(2), r(2), jm(2, 2), dn(2, 4), dxi(2), c, area
+    integer :: i, j, it
+
+    area = polygon_area(x)
+    xc = 0.0_wp
+    do i = 1, 4
+       j = modulo(i, 4) + 1
+       c = x(1, i)*x(2, j) - x(1, j)*x(2, i)
+       xc = xc + (x(:, i) + x(:, j))*c
+    end do
+    xc = xc/(6*area)
+    xi = 0.0_wp
+    eta = 0.0_wp
+    do it = 1, NEWTON_MAX
+       r = matmul(x, shape4(xi, eta)) - xc
+       call jacobian(x, xi, eta, jm, dn)
+       ! x(ξ) - xc = 0: Jᵀ dξ = -r.
+       dxi = -matmul(transpose(adjugate(jm)), r)/(jm(1, 1)*jm(2, 2) - jm(1, 2)*jm(2, 1))
+       xi = xi + dxi(1)
+       eta = eta + dxi(2)
+       if (maxval(abs(dxi)) <= NEWTON_TOL) exit
+    end do
+  end subroutine centroid_natural
+
+  pure function shape4(xi, eta) result(n)
+    !! Bilinear shape functions at (ξ, η).
+    real(wp), intent(in) :: xi, eta
+    real(wp) :: n(4)
+    n = (1 + xi*XI_NODE)*(1 + eta*ETA_NODE)/4
+  end function shape4
+
+  pure subroutine mean_rotation(xl, w, area)
+    !! Row w(2n) with w . (u, v) = ω̄ = (1/A) ∫ (∂v/∂x - ∂u/∂y)/2 dA for the
+    !! compatible field, and the area A.
+    real(wp), intent(in) :: xl(:, :)
+    real(wp), intent(out) :: w(:), area
+    real(wp) :: b3(NSTRAIN, 6), bc(NSTRAIN, 8), ba(NSTRAIN, NMODE), x(2, 4), jac
+    integer :: i, k
+
+    w = 0.0_wp
+    if (size(xl, 2) == 3) then
+       call cst_b(xl, b3, area)
+       do i = 1, 3
+          w(2*i - 1) = -b3(2, 2*i)/2      ! -∂Nᵢ/∂y / 2
+          w(2*i) = b3(1, 2*i - 1)/2       !  ∂Nᵢ/∂x / 2
+       end do
+       return
+    end if
+    x = xl
+    area = 0.0_wp
+    do k = 1, NGAUSS
+       call qm6_b(x, XI_GAUSS(k), ETA_GAUSS(k), bc, ba, jac)
+       area = area + jac
+       do i = 1, 4
+          w(2*i - 1) = w(2*i - 1) - jac*bc(2, 2*i)/2
+          w(2*i) = w(2*i) + jac*bc(1, 2*i - 1)/2
+       end do
+    end do
+    w = w/area
+  end subroutine mean_rotation
+
+  ! ---------------------------------------------------------------- algebra
+
+  pure function spd_solve(a, b) result(x)
+    !! Solve a x = b for a small symmetric positive definite a (Cholesky).
+    real(wp), intent(in) :: a(:, :), b(:, :)
+    real(wp) :: x(size(b, 1), size(b, 2))
+    real(wp) :: l(size(a, 1), size(a, 1))
+    integer :: n, i, j
+
+    n = size(a, 1)
+    l = 0.0_wp
+    do j = 1, n
+       l(j, j) = sqrt(a(j, j) - sum(l(j, 1:j - 1)**2))
+       do i = j + 1, n
+          l(i, j) = (a(i, j) - sum(l(i, 1:j - 1)*l(j, 1:j - 1)))/l(j, j)
+       end do
+    end do
+    x = b
+    do i = 1, n            ! L y = b
+       x(i, :) = (x(i, :) - matmul(l(i, 1:i - 1), x(1:i - 1, :)))/l(i, i)
+    end do
+    do i = n, 1, -1        ! Lᵀ x = y
+       x(i, :) = (x(i, :) - matmul(l(i + 1:n, i), x(i + 1:n, :)))/l(i, i)
+    end do
+  end function spd_solve
+end module superjoin_elements_membrane

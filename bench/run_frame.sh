@@ -37,7 +37,8 @@ usage: bench/run_frame.sh [-s SHAPE] [-r N] [-k] [-o CSV] [SIZE...]
   SIZE      number of equations (1e3, 25000, ...) for gen_frame --dofs, or an
             explicit grid NXxNYxNZ (e.g. 12x12x154); default: ${DEFAULT_SIZES[*]}
   -s SHAPE  tower | block | long: building shape for numeric sizes (default tower;
-            see gen_frame --help)
+            see gen_frame --help); stiffened: S4 plate with B33 stiffeners joined
+            by compliant contacts (bench/gen_stiffened.py)
   -r N      time the plain superjoin run and cholmod_bare N times, keep the
             fastest (default 1)
   -k        keep the decks, listings and K.mtx files in the scratch directory
@@ -66,7 +67,7 @@ while getopts ":s:r:ko:h" opt; do
     esac
 done
 shift $((OPTIND - 1))
-case $SHAPE in tower | block | long) ;; *) die "unknown shape '$SHAPE' (tower, block or long)" ;; esac
+case $SHAPE in tower | block | long | stiffened) ;; *) die "unknown shape '$SHAPE' (tower, block, long or stiffened)" ;; esac
 [[ $REPEAT =~ ^[1-9][0-9]*$ ]] || die "-r needs a positive integer, got '$REPEAT'"
 if (($# > 0)); then SIZES=("$@"); else SIZES=("${DEFAULT_SIZES[@]}"); fi
 for s in "${SIZES[@]}"; do
@@ -172,6 +173,8 @@ for size in "${SIZES[@]}"; do
     if [[ $size == *x*x* ]]; then
         IFS=x read -r nx ny nz <<<"$size"
         "$GEN" "$nx" "$ny" "$nz" "$deck" 2>"$dir/gen.err" || { cat "$dir/gen.err" >&2; exit 1; }
+    elif [[ $SHAPE == stiffened ]]; then
+        python3 "$ROOT/bench/gen_stiffened.py" --dofs "$size" "$deck" 2>"$dir/gen.err" || { cat "$dir/gen.err" >&2; exit 1; }
     else
         "$GEN" --dofs "$size" --shape "$SHAPE" "$deck" 2>"$dir/gen.err" || { cat "$dir/gen.err" >&2; exit 1; }
     fi

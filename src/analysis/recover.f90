@@ -9,8 +9,9 @@ module superjoin_analysis_recover
   use superjoin_kinds, only: wp, ip, i8
   use superjoin_error, only: error_t, add_error_line, EXIT_DECK
   use superjoin_model_types, only: model_t, ELEMENT_NODE_COUNT, LINK_NONE, LINK_FINITE, LINK_RIGID, &
-       NDOF_NODE, loc_text
-  use superjoin_elements, only: element_end_forces, beam_distributed_load, element_nodal_forces
+       NDOF_NODE, loc_text, section_t, material_t, DLOAD_P
+  use superjoin_elements, only: element_end_forces, element_distributed_load, element_nodal_forces, &
+       element_stiffness, is_plate_type, shell_resultants
   use superjoin_assembly_dofs, only: dof_table_t, NBLOCK, GROUND, UNIT_LINK, UNIT_SUPPORT, block_dof
   use superjoin_assembly_forest, only: forest_t
   use superjoin_assembly_transform, only: transform_t, ROLE_TREE, CONS_ELIMINATED
@@ -102,7 +103,8 @@ contains
     type(results_t), intent(inout) :: res
     type(error_t), allocatable, intent(inout) :: error
     real(wp), allocatable :: ql(:, :, :), fe(:)
-    real(wp) :: qloc(3), f(6, 2), w(3), fg(MAX_ELEM_DOFS)
+    real(wp) :: qloc(3), f(6, 2), fg(MAX_ELEM_DOFS)
+    real(wp), allocatable :: fg2(:, :)
     integer(i8) :: pd(MAX_ELEM_DOFS), ie, ntot
     integer :: isub, n, is, nstep, i, nn
     integer(ip) :: e
@@ -117,6 +119,7 @@ contains
     ntot = res%elem_offset(size(model%subs) + 1)
     allocate (res%elem_force(6, 2, ntot, nstep), source=0.0_wp)
     allocate (res%plate(6, ntot, nstep), source=0.0_wp)
+    allocate (fg2(MAX_ELEM_DOFS, nstep))
 
     ! Distributed loads in element axes, per element and step.
     allocate (ql(3, ntot, nstep), source=0.0_wp)
@@ -124,11 +127,9 @@ contains
        if (.not. allocated(model%steps(is)%dloads)) cycle
        do i = 1, size(model%steps(is)%dloads)
           associate (dl => model%steps(is)%dloads(i), s => model%subs(model%steps(is)%dloads(i)%sub))
-            w = 0.0_wp
-            if (dl%kind >= 1 .and. dl%kind <= 3) w(dl%kind) = dl%value
             nn = ELEMENT_NODE_COUNT(s%elem_type(dl%elem))
-            call beam_distributed_load(s%elem_type(dl%elem), s%x(:, s%elem_nodes(1:nn, dl%elem)), &
-                 s%sections(s%elem_section(dl%elem)), w, fe, qloc, inner)
+            call element_distributed_load(s%elem_type(dl%elem), s%x(:, s%elem_nodes(1:nn, dl%elem)), &
+                 s%sections(s%elem_section(dl%elem)), dl%kind, dl%value, fe, qloc, inner)
             if (allocated(inner)) deallocate (inner)
             ie = res%elem_offset(dl%sub) + dl%elem
             ql(:, ie, is) = ql(:, ie, is) + qloc
@@ -146,6 +147,17 @@ contains
             associate (sec => s%sections(s%elem_section(e)))
               call element_pdofs(model, table, isub, e, pd, n)
               ie = res%elem_offset(isub) + e
+              if (is_plate_type(s%elem_type(e))) then
+                 call plate_element_results(s%elem_type(e), s%x(:, s%elem_nodes(1:nn, e)), sec, &
+                      model%materials(sec%material), u(pd(1:n), :), ql(:, ie, :), &
+                      res%plate(:, ie, :), fg2(1:n, :), inner)
+                 if (allocated(inner)) then
+                    call add_error_line(error, EXIT_DECK, inner%message)
+                    return
+                 end if
+                 r(pd(1:n), :) = r(pd(1:n), :) + fg2(1:n, :)
+                 cycle
+              end if
               do is = 1, nstep
                  call element_end_forces(s%elem_type(e), s%x(:, s%elem_nodes(1:nn, e)), sec, &
                       model%materials(sec%material), u(pd(1:n), is), ql(:, ie, is), f, inner)
@@ -168,6 +180,34 @@ contains
        end associate
     end do
   end subroutine element_results
+
+  subroutine plate_element_results(etype, x, sec, mat, ue, ql, pres, fg, error)
+    !! Resultants pres(6, nstep) and the forces the nodes exert on a plane or
+    !! shell element, fg = K_e u_e - f_eq (global axes), for every step; ql(3, :)
+    !! holds the pressure along the local normal of each step.
+    integer, intent(in) :: etype
+    real(wp), intent(in) :: x(:, :)
+    type(section_t), intent(in) :: sec
+    type(material_t), intent(in) :: mat
+    real(wp), intent(in) :: ue(:, :), ql(:, :)
+    real(wp), intent(out) :: pres(:, :), fg(:, :)
+    type(error_t), allocatable, intent(out) :: error
+    real(wp), allocatable :: ke(:, :), fe(:)
+    real(wp) :: qloc(3)
+    integer :: is
+    call element_stiffness(etype, x, sec, mat, ke, error)
+    if (allocated(error)) return
+    fg = matmul(ke, ue)
+    do is = 1, size(ue, 2)
+       call shell_resultants(etype, x, sec, mat, ue(:, is), pres(:, is), error)
+       if (allocated(error)) return
+       if (ql(3, is) /= 0.0_wp) then
+          call element_distributed_load(etype, x, sec, DLOAD_P, -ql(3, is), fe, qloc, error)
+          if (allocated(error)) return
+          fg(:, is) = fg(:, is) - fe
+       end if
+    end do
+  end subroutine plate_element_results
 
   subroutine unit_deltas(table, tr, q, u, delta)
     !! δ of every unit component (local axes): a column of its own, the rigid

@@ -5,7 +5,7 @@ module superjoin_assembly_assemble
   use superjoin_kinds, only: wp, ip, i8
   use superjoin_error, only: error_t, add_error_line, EXIT_DECK, EXIT_SINGULAR
   use superjoin_model_types, only: model_t, ELEMENT_NODE_COUNT, LINK_FINITE, loc_text
-  use superjoin_elements, only: element_dof_mask, element_stiffness, beam_distributed_load
+  use superjoin_elements, only: element_dof_mask, element_stiffness, element_distributed_load
   use superjoin_assembly_dofs, only: dof_table_t, GROUND, block_dof
   use superjoin_assembly_transform, only: transform_t, ROLE_PLAIN
   use superjoin_solvers_sparse, only: sparse_sym_t
@@ -511,7 +511,7 @@ contains
     integer :: is, i, n, a, nn
     integer(i8) :: p, pd(MAX_ITEM_DOFS)
     real(wp), allocatable :: fe(:)
-    real(wp) :: w(3), ql(3)
+    real(wp) :: ql(3)
     type(error_t), allocatable :: inner
 
     allocate (f_phys(table%np, size(model%steps)), source=0.0_wp)
@@ -532,11 +532,9 @@ contains
          if (allocated(st%dloads)) then
             do i = 1, size(st%dloads)
                associate (dl => st%dloads(i), s => model%subs(st%dloads(i)%sub))
-                 w = 0.0_wp
-                 if (dl%kind >= 1 .and. dl%kind <= 3) w(dl%kind) = dl%value
                  nn = ELEMENT_NODE_COUNT(s%elem_type(dl%elem))
-                 call beam_distributed_load(s%elem_type(dl%elem), s%x(:, s%elem_nodes(1:nn, dl%elem)), &
-                      s%sections(s%elem_section(dl%elem)), w, fe, ql, inner)
+                 call element_distributed_load(s%elem_type(dl%elem), s%x(:, s%elem_nodes(1:nn, dl%elem)), &
+                      s%sections(s%elem_section(dl%elem)), dl%kind, dl%value, fe, ql, inner)
                  if (allocated(inner)) then
                     call add_error_line(error, EXIT_DECK, loc_text(model, dl%loc)//': error: '//inner%message)
                     deallocate (inner)

@@ -445,8 +445,15 @@ contains
             ntruss = ntruss + 1
             if (sb%kind /= SEC_SOLID) call bad(e)
          case (ET_CPS3, ET_CPS4)
-            ncps = ncps + 1
-            if (sb%kind /= SEC_SOLID) call bad(e)
+            if (sb%kind == SEC_SHELL) then
+               ! Extension: a shell section turns plane elements (as gmsh writes
+               ! every 2D mesh) into the shells with the same nodes.
+               nshell = nshell + 1
+               sub%elem_type(e) = merge(ET_S3, ET_S4, sub%elem_type(e) == ET_CPS3)
+            else
+               ncps = ncps + 1
+               if (sb%kind /= SEC_SOLID) call bad(e)
+            end if
          case (ET_B23)
             nb23 = nb23 + 1
             if (sb%kind /= SEC_BEAM) call bad(e)

@@ -8,15 +8,21 @@ module superjoin_elements
   use superjoin_kinds, only: wp
   use superjoin_error, only: error_t, fatal_error, EXIT_DECK
   use superjoin_model_types, only: section_t, material_t, ET_T2D2, ET_T3D2, ET_B23, ET_B33, &
-       ET_CPS3, ET_CPS4, ET_S3, ET_S4, NUM_ELEMENT_TYPES, ELEMENT_TYPE_NAMES
+       ET_CPS3, ET_CPS4, ET_S3, ET_S4, NUM_ELEMENT_TYPES, ELEMENT_TYPE_NAMES, &
+       DLOAD_PX, DLOAD_PY, DLOAD_PZ, DLOAD_P
   use superjoin_elements_frame, only: beam_frame
   use superjoin_elements_truss, only: truss_stiffness, truss_end_forces, truss_distributed_load
   use superjoin_elements_beam, only: beam_stiffness, beam_end_forces, beam_load
+  use superjoin_elements_shell, only: is_plate_type, shell_stiffness, shell_resultants, shell_pressure_load
   implicit none (type, external)
   private
 
   public :: element_node_dofs, element_dof_mask, element_stiffness, element_end_forces, beam_distributed_load, &
-       element_nodal_forces
+       element_nodal_forces, element_distributed_load
+  public :: is_plate_type, shell_resultants
+    !! is_plate_type(etype): CPS3, CPS4, S3, S4. shell_resultants(etype, x, sec,
+    !! mat, ue, res, error): nx, ny, nxy, mx, my, mxy at the centroid, element
+    !! frame; see superjoin_elements_shell.
   public :: beam_frame
     !! beam_frame(etype, x, sec, r, length, error): local frame of a truss or beam
     !! (rows of r = local x, y, z axes); see superjoin_elements_frame.
@@ -100,8 +106,8 @@ contains
     !! Element stiffness in global axes, node-major ordering (node 1 DOFs in
     !! element_node_dofs order, then node 2 ...). x(3, nnode) are the node
     !! coordinates. Errors: zero-length element, orientation vector parallel to
-    !! beam axis, nonpositive A, I, J or E, 2D element out of the XY plane, and
-    !! "element type X is not implemented yet" for CPS3, CPS4, S3, S4.
+    !! beam axis, nonpositive A, I, J, t or E, plane-stress element out of the
+    !! XY plane, zero area, distorted (non-convex) quadrilateral.
     integer, intent(in) :: etype
     real(wp), intent(in) :: x(:, :)
     type(section_t), intent(in) :: sec
@@ -113,6 +119,8 @@ contains
        call truss_stiffness(etype, x, sec, mat, ke, error)
     case (ET_B23, ET_B33)
        call beam_stiffness(etype, x, sec, mat, ke, error)
+    case (ET_CPS3, ET_CPS4, ET_S3, ET_S4)
+       call shell_stiffness(etype, x, sec, mat, ke, error)
     case default
        call unsupported(etype, error)
     end select
@@ -177,6 +185,34 @@ contains
        end if
     end select
   end subroutine beam_distributed_load
+
+  pure subroutine element_distributed_load(etype, x, sec, kind, value, fe, q_local, error)
+    !! Consistent nodal loads fe (global axes, element ordering) of a distributed
+    !! load of kind DLOAD_PX/PY/PZ (per unit length, global axes, trusses and
+    !! beams) or DLOAD_P (pressure on shells, positive against the normal), and
+    !! the load in element axes q_local (per unit length for beams; for shells
+    !! q_local(3) is the load per unit area along the local normal).
+    integer, intent(in) :: etype
+    real(wp), intent(in) :: x(:, :)
+    type(section_t), intent(in) :: sec
+    integer, intent(in) :: kind
+    real(wp), intent(in) :: value
+    real(wp), allocatable, intent(out) :: fe(:)
+    real(wp), intent(out) :: q_local(3)
+    type(error_t), allocatable, intent(out) :: error
+    real(wp) :: w(3)
+    q_local = 0.0_wp
+    select case (kind)
+    case (DLOAD_PX, DLOAD_PY, DLOAD_PZ)
+       w = 0.0_wp
+       w(kind) = value
+       call beam_distributed_load(etype, x, sec, w, fe, q_local, error)
+    case (DLOAD_P)
+       call shell_pressure_load(etype, x, value, fe, q_local(3), error)
+    case default
+       call fatal_error(error, EXIT_DECK, 'unknown distributed load kind')
+    end select
+  end subroutine element_distributed_load
 
   pure subroutine unsupported(etype, error)
     !! Error for an element type without an implementation.

@@ -6,6 +6,7 @@ module superjoin_output_csv
   use superjoin_model_types, only: model_t, NDOF_NODE, ELEMENT_TYPE_NAMES, ET_T2D2, ET_T3D2, &
        ET_B23, ET_B33
   use superjoin_analysis_results, only: results_t
+  use superjoin_elements, only: is_plate_type
   use superjoin_output_posix, only: rename_file, remove_file, make_directory
   use superjoin_utils_strings, only: itoa, full_real
   implicit none (type, external)
@@ -17,7 +18,8 @@ contains
 
   subroutine write_csv(dir, model, res, error)
     !! Write displacements.csv, reactions.csv, contact_forces.csv and
-    !! element_forces.csv into dir (created if needed).
+    !! element_forces.csv into dir (created if needed), and plate_results.csv
+    !! when the model has plane-stress or shell elements.
     character(*), intent(in) :: dir
     type(model_t), intent(in) :: model
     type(results_t), intent(in) :: res
@@ -31,7 +33,20 @@ contains
     call write_table(dir//'/contact_forces.csv', 3, model, res, error)
     if (allocated(error)) return
     call write_table(dir//'/element_forces.csv', 4, model, res, error)
+    if (allocated(error)) return
+    if (any_plates(model)) call write_table(dir//'/plate_results.csv', 5, model, res, error)
   end subroutine write_csv
+
+  pure logical function any_plates(model)
+    !! True when the model has plane-stress or shell elements.
+    type(model_t), intent(in) :: model
+    integer :: isub
+    any_plates = .false.
+    do isub = 1, size(model%subs)
+       if (model%subs(isub)%nelem == 0) cycle
+       if (any(is_plate_type(model%subs(isub)%elem_type(1:model%subs(isub)%nelem)))) any_plates = .true.
+    end do
+  end function any_plates
 
   subroutine write_table(path, which, model, res, error)
     character(*), intent(in) :: path
@@ -112,6 +127,22 @@ contains
                    end do
                    write (lu, '(a)', iostat=ios) line
                 end do
+             end do
+          end do
+       end do
+    case (5)
+       write (lu, '(a)', iostat=ios) 'step,substructure,element,nx,ny,nxy,mx,my,mxy'
+       do is = 1, size(model%steps)
+          do isub = 1, size(model%subs)
+             do e = 1, model%subs(isub)%nelem
+                if (.not. is_plate_type(model%subs(isub)%elem_type(e))) cycle
+                iel = res%elem_offset(isub) + e
+                line = model%steps(is)%name//','//model%subs(isub)%name//','// &
+                     itoa(int(model%subs(isub)%elem_id(e)))
+                do d = 1, 6
+                   line = line//','//full_real(res%plate(d, iel, is))
+                end do
+                write (lu, '(a)', iostat=ios) line
              end do
           end do
        end do

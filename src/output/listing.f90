@@ -4,7 +4,8 @@ module superjoin_output_listing
   use superjoin_kinds, only: wp, i8, ip
   use superjoin_error, only: error_t, fatal_error, EXIT_IO
   use superjoin_model_types, only: model_t, NDOF_NODE, LINK_RIGID, ELEMENT_TYPE_NAMES, &
-       RIGID_ELIMINATE
+       RIGID_ELIMINATE, ET_CPS3, ET_CPS4
+  use superjoin_elements, only: is_plate_type
   use superjoin_analysis_results, only: results_t
   use superjoin_output_posix, only: rename_file, remove_file
   use superjoin_output_text_buffer, only: text_buffer_t
@@ -149,6 +150,19 @@ contains
     real(wp) :: scale, dscale, vals(NDOF_NODE)
     character(len=300) :: hline
     character(len=3), parameter :: DIR_NAMES(6) = ['FX ', 'FY ', 'FZ ', 'MX ', 'MY ', 'MZ ']
+    logical :: has_bars, has_plates
+
+    has_bars = .false.
+    has_plates = .false.
+    do isub = 1, size(model%subs)
+       do ie = 1, model%subs(isub)%nelem
+          if (is_plate_type(model%subs(isub)%elem_type(ie))) then
+             has_plates = .true.
+          else
+             has_bars = .true.
+          end if
+       end do
+    end do
 
     associate (st => res%steps(is))
       call lu%line(RULE)
@@ -218,30 +232,34 @@ contains
       end do
       call lu%line('')
 
-      call lu%line('ELEMENT END FORCES (local axes; forces the nodes exert on the element)')
-      write (hline, '(2x,a20,a10,a6,a4,6a15)') 'substructure        ', '   element', '  type', ' end', &
-           '              n', '             vy', '             vz', '              t', '             my', &
-           '             mz'
-      call lu%line(trim(hline))
-      scale = max(0.0_wp, maxval(abs(res%elem_force(:, :, :, is))))
-      do isub = 1, size(model%subs)
-         do ie = 1, model%subs(isub)%nelem
-            iel = res%elem_offset(isub) + ie
-            do k = 1, 2
-               call lu%put('  ')
-               call lu%put_field(model%subs(isub)%name, 20)
-               call lu%put_int(int(model%subs(isub)%elem_id(ie), i8), 10)
-               call lu%put('  ')
-               call lu%put_field(ELEMENT_TYPE_NAMES(model%subs(isub)%elem_type(ie)), 4)
-               call lu%put_int(int(k, i8), 4)
-               do d = 1, 6
-                  call lu%put_es(chop(res%elem_force(d, k, iel, is), scale))
+      if (has_bars) then
+         call lu%line('ELEMENT END FORCES (local axes; forces the nodes exert on the element)')
+         write (hline, '(2x,a20,a10,a6,a4,6a15)') 'substructure        ', '   element', '  type', ' end', &
+              '              n', '             vy', '             vz', '              t', '             my', &
+              '             mz'
+         call lu%line(trim(hline))
+         scale = max(0.0_wp, maxval(abs(res%elem_force(:, :, :, is))))
+         do isub = 1, size(model%subs)
+            do ie = 1, model%subs(isub)%nelem
+               if (is_plate_type(model%subs(isub)%elem_type(ie))) cycle
+               iel = res%elem_offset(isub) + ie
+               do k = 1, 2
+                  call lu%put('  ')
+                  call lu%put_field(model%subs(isub)%name, 20)
+                  call lu%put_int(int(model%subs(isub)%elem_id(ie), i8), 10)
+                  call lu%put('  ')
+                  call lu%put_field(ELEMENT_TYPE_NAMES(model%subs(isub)%elem_type(ie)), 4)
+                  call lu%put_int(int(k, i8), 4)
+                  do d = 1, 6
+                     call lu%put_es(chop(res%elem_force(d, k, iel, is), scale))
+                  end do
+                  call lu%newline()
                end do
-               call lu%newline()
             end do
          end do
-      end do
-      call lu%line('')
+         call lu%line('')
+      end if
+      if (has_plates) call plate_block(lu, model, res, is)
 
       call lu%line('EQUILIBRIUM (resultants about the origin)')
       write (hline, '(2x,a10,4a15)') 'direction ', '        applied', '      reactions', '            sum', &
@@ -276,6 +294,83 @@ contains
       call lu%line('')
     end associate
   end subroutine step_block
+
+  subroutine plate_block(lu, model, res, is)
+    !! Resultants per unit length of the plane and shell elements at their
+    !! centroids, and the stresses at the top and bottom surfaces (plane stress:
+    !! mid-surface only), element frame.
+    type(text_buffer_t), intent(inout) :: lu
+    type(model_t), intent(in) :: model
+    type(results_t), intent(in) :: res
+    integer, intent(in) :: is
+    integer :: isub, ie, d, k, nsurf
+    integer(i8) :: iel
+    real(wp) :: scale(2), t, sig(4)
+    character(len=300) :: hline
+    character(len=6), parameter :: SURFACES(3) = ['top   ', 'bottom', 'mid   ']
+
+    call lu%line('PLATE AND SHELL RESULTANTS (element frame, per unit length, at the centroid)')
+    write (hline, '(2x,a20,a10,a6,6a15)') 'substructure        ', '   element', '  type', &
+         '             nx', '             ny', '            nxy', '             mx', '             my', &
+         '            mxy'
+    call lu%line(trim(hline))
+    scale(1) = max(0.0_wp, maxval(abs(res%plate(1:3, :, is))))
+    scale(2) = max(0.0_wp, maxval(abs(res%plate(4:6, :, is))))
+    do isub = 1, size(model%subs)
+       do ie = 1, model%subs(isub)%nelem
+          if (.not. is_plate_type(model%subs(isub)%elem_type(ie))) cycle
+          iel = res%elem_offset(isub) + ie
+          call element_prefix(lu, model, isub, ie)
+          do d = 1, 6
+             call lu%put_es(chop(res%plate(d, iel, is), scale((d + 2)/3)))
+          end do
+          call lu%newline()
+       end do
+    end do
+    call lu%line('')
+
+    call lu%line('PLATE AND SHELL STRESSES (element frame, at the centroid; top is +t/2 along the normal)')
+    write (hline, '(2x,a20,a10,a6,a8,4a15)') 'substructure        ', '   element', '  type', ' surface', &
+         '             sx', '             sy', '            sxy', '     von Mises'
+    call lu%line(trim(hline))
+    do isub = 1, size(model%subs)
+       do ie = 1, model%subs(isub)%nelem
+          if (.not. is_plate_type(model%subs(isub)%elem_type(ie))) cycle
+          iel = res%elem_offset(isub) + ie
+          t = model%subs(isub)%sections(model%subs(isub)%elem_section(ie))%thickness
+          nsurf = 2
+          if (model%subs(isub)%elem_type(ie) == ET_CPS3 .or. model%subs(isub)%elem_type(ie) == ET_CPS4) nsurf = 1
+          do k = 1, nsurf
+             sig(1:3) = res%plate(1:3, iel, is)/t
+             if (nsurf == 2) sig(1:3) = sig(1:3) + merge(1.0_wp, -1.0_wp, k == 1)*6.0_wp*res%plate(4:6, iel, is)/t**2
+             sig(4) = sqrt(max(0.0_wp, sig(1)**2 - sig(1)*sig(2) + sig(2)**2 + 3.0_wp*sig(3)**2))
+             call element_prefix(lu, model, isub, ie)
+             if (nsurf == 1) then
+                call lu%put_field('  '//SURFACES(3), 8)
+             else
+                call lu%put_field('  '//SURFACES(k), 8)
+             end if
+             do d = 1, 4
+                call lu%put_es(chop(sig(d), maxval(abs(sig))))
+             end do
+             call lu%newline()
+          end do
+       end do
+    end do
+    call lu%line('')
+  end subroutine plate_block
+
+  subroutine element_prefix(lu, model, isub, ie)
+    !! Substructure, element id and type columns of an element row.
+    type(text_buffer_t), intent(inout) :: lu
+    type(model_t), intent(in) :: model
+    integer, intent(in) :: isub, ie
+    call lu%put('  ')
+    call lu%put_field(model%subs(isub)%name, 20)
+    call lu%put_int(int(model%subs(isub)%elem_id(ie), i8), 10)
+    call lu%put('  ')
+    call lu%put_field(ELEMENT_TYPE_NAMES(model%subs(isub)%elem_type(ie)), 4)
+  end subroutine element_prefix
 
   elemental function chop(x, scale) result(y)
     !! Round-off noise relative to the table's scale prints as zero.

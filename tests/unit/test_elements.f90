@@ -2,7 +2,7 @@ program test_elements
   !! Unit tests of the truss and beam element library (superjoin_elements).
   use superjoin_kinds, only: wp
   use superjoin_error, only: error_t, EXIT_DECK
-  use superjoin_model_types, only: section_t, material_t, SEC_SOLID, SEC_BEAM, &
+  use superjoin_model_types, only: section_t, material_t, SEC_SOLID, SEC_BEAM, SEC_SHELL, &
        ET_T2D2, ET_T3D2, ET_B23, ET_B33, ET_CPS3, ET_CPS4, ET_S3, ET_S4
   use superjoin_elements, only: element_node_dofs, element_stiffness, element_end_forces, &
        beam_distributed_load, beam_frame
@@ -586,21 +586,22 @@ contains
     call beam_distributed_load(ET_T2D2, x, make_section(ET_T2D2), [0.0_wp, 0.0_wp, 1.0_wp], fe, ql, error)
     call check_error(error, 'global Z', 'T2D2 load along Z')
 
-    ! Plane and shell elements are not implemented yet.
+    ! Plane and shell elements: degenerate and misplaced elements are refused.
     sec%kind = SEC_SOLID
     sec%thickness = 1.0_wp
     call element_stiffness(ET_CPS3, reshape([0.0_wp, 0.0_wp, 0.0_wp, 1.0_wp, 0.0_wp, 0.0_wp, &
-         0.0_wp, 1.0_wp, 0.0_wp], [3, 3]), sec, mat, ke, error)
-    call check_error(error, 'element type CPS3 is not implemented yet', 'CPS3')
+         2.0_wp, 0.0_wp, 0.0_wp], [3, 3]), sec, mat, ke, error)
+    call check_error(error, 'zero area', 'CPS3 collinear')
     call element_stiffness(ET_CPS4, reshape([0.0_wp, 0.0_wp, 0.0_wp, 1.0_wp, 0.0_wp, 0.0_wp, &
-         1.0_wp, 1.0_wp, 0.0_wp, 0.0_wp, 1.0_wp, 0.0_wp], [3, 4]), sec, mat, ke, error)
-    call check_error(error, 'element type CPS4 is not implemented yet', 'CPS4')
-    call element_stiffness(ET_S3, reshape([0.0_wp, 0.0_wp, 0.0_wp, 1.0_wp, 0.0_wp, 0.0_wp, &
+         1.0_wp, 1.0_wp, 1.0_wp, 0.0_wp, 1.0_wp, 0.0_wp], [3, 4]), sec, mat, ke, error)
+    call check_error(error, 'XY plane', 'CPS4 out of plane')
+    sec%kind = SEC_SHELL
+    call element_stiffness(ET_S3, reshape([0.0_wp, 0.0_wp, 0.0_wp, 0.0_wp, 0.0_wp, 0.0_wp, &
          0.0_wp, 1.0_wp, 0.0_wp], [3, 3]), sec, mat, ke, error)
-    call check_error(error, 'element type S3 is not implemented yet', 'S3')
+    call check_error(error, 'zero area', 'S3 coincident nodes')
     call element_stiffness(ET_S4, reshape([0.0_wp, 0.0_wp, 0.0_wp, 1.0_wp, 0.0_wp, 0.0_wp, &
-         1.0_wp, 1.0_wp, 0.0_wp, 0.0_wp, 1.0_wp, 0.0_wp], [3, 4]), sec, mat, ke, error)
-    call check_error(error, 'element type S4 is not implemented yet', 'S4')
+         1.0_wp, 0.0_wp, 0.0_wp, 0.0_wp, 0.0_wp, 0.0_wp], [3, 4]), sec, mat, ke, error)
+    call check_error(error, 'zero area', 'S4 collapsed')
     call element_stiffness(99, x, sec, mat, ke, error)
     call check_error(error, 'unknown element type 99', 'unknown type')
   end subroutine test_errors

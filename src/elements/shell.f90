@@ -1,0 +1,262 @@
+module superjoin_elements_shell
+  !! Plane-stress elements CPS3/CPS4 (XY plane, DOFs 1, 2) and flat shells
+  !! S3/S4 (DOFs 1-6): the element frame, the membrane (superjoin_elements_membrane)
+  !! and plate bending (superjoin_elements_plate) parts put together, rotated
+  !! to global axes.
+  !!
+  !! Element frame (deck contract, section 8): local z is the normal by the
+  !! right-hand rule on the node order (S4: along the cross product of the
+  !! diagonals), local x runs from node 1 towards node 2 in the plane, y = z × x.
+  !! A warped S4 is projected onto its mean plane (through the centroid, normal
+  !! to the diagonals); the flat element acts on the projected points, which are
+  !! tied to the real nodes by rigid offsets h along the normal (rigid-link warp
+  !! correction: u_p = u + θ × (-h n)).
+  use superjoin_kinds, only: wp
+  use superjoin_error, only: error_t, fatal_error, EXIT_DECK
+  use superjoin_model_types, only: section_t, material_t, ET_CPS3, ET_CPS4, ET_S3, ET_S4, &
+       ELEMENT_NODE_COUNT
+  use superjoin_elements_membrane, only: membrane_stiffness, membrane_drill_stiffness, membrane_resultants
+  use superjoin_elements_plate, only: plate_stiffness, plate_moments, plate_pressure_load
+  implicit none (type, external)
+  private
+
+  public :: is_plate_type, shell_frame, shell_stiffness, shell_resultants, shell_pressure_load
+
+  integer, parameter :: MEMBRANE_DOFS(3) = [1, 2, 6]
+    !! Local shell DOFs (u, v, w, θx, θy, θz) of the membrane (u, v, θz).
+  integer, parameter :: PLATE_DOFS(3) = [3, 4, 5]
+    !! Local shell DOFs of plate bending (w, θx, θy).
+  real(wp), parameter :: PLANE_TOL = 1.0e-8_wp
+    !! Largest |z| spread of a plane-stress element relative to its size.
+
+contains
+
+  elemental logical function is_plate_type(etype)
+    !! True for the plane-stress and shell element types.
+    integer, intent(in) :: etype
+    is_plate_type = etype == ET_CPS3 .or. etype == ET_CPS4 .or. etype == ET_S3 .or. etype == ET_S4
+  end function is_plate_type
+
+  pure subroutine shell_frame(x, r, xl, h, error)
+    !! Element frame of a 3- or 4-node element with nodes x(3, n): rows of r
+    !! are the local x, y, z axes; xl(2, n) the local coordinates of the nodes
+    !! projected onto the mean plane, h(n) their offsets along z (0 unless warped).
+    real(wp), intent(in) :: x(:, :)
+    real(wp), intent(out) :: r(3, 3)
+    real(wp), intent(out) :: xl(2, size(x, 2)), h(size(x, 2))
+    type(error_t), allocatable, intent(out) :: error
+    real(wp) :: c(3), nrm(3), p(3, size(x, 2)), ex(3), size_e
+    integer :: n, i
+    n = size(x, 2)
+    r = 0.0_wp
+    xl = 0.0_wp
+    h = 0.0_wp
+    if (n == 4) then
+       nrm = cross(x(:, 3) - x(:, 1), x(:, 4) - x(:, 2))
+    else
+       nrm = cross(x(:, 2) - x(:, 1), x(:, 3) - x(:, 1))
+    end if
+    size_e = maxval(abs(x - spread(x(:, 1), 2, n)))
+    if (norm2(nrm) <= epsilon(1.0_wp)*size_e**2 .or. size_e <= 0.0_wp) then
+       call fatal_error(error, EXIT_DECK, 'zero area (collinear or coincident nodes)')
+       return
+    end if
+    nrm = nrm/norm2(nrm)
+    c = sum(x, dim=2)/real(n, wp)
+    do i = 1, n
+       h(i) = dot_product(x(:, i) - c, nrm)
+       p(:, i) = x(:, i) - h(i)*nrm
+    end do
+    if (n == 3) h = 0.0_wp
+    ex = p(:, 2) - p(:, 1)
+    if (norm2(ex) <= epsilon(1.0_wp)*size_e) then
+       call fatal_error(error, EXIT_DECK, 'nodes 1 and 2 coincide')
+       return
+    end if
+    r(1, :) = ex/norm2(ex)
+    r(3, :) = nrm
+    r(2, :) = cross(nrm, r(1, :))
+    do i = 1, n
+       xl(1, i) = dot_product(p(:, i) - c, r(1, :))
+       xl(2, i) = dot_product(p(:, i) - c, r(2, :))
+    end do
+  end subroutine shell_frame
+
+  pure subroutine shell_stiffness(etype, x, sec, mat, ke, error)
+    !! Stiffness in global axes, node-major: CPS3/CPS4 (ux, uy per node),
+    !! S3/S4 (ux, uy, uz, rx, ry, rz per node).
+    integer, intent(in) :: etype
+    real(wp), intent(in) :: x(:, :)
+    type(section_t), intent(in) :: sec
+    type(material_t), intent(in) :: mat
+    real(wp), allocatable, intent(out) :: ke(:, :)
+    type(error_t), allocatable, intent(out) :: error
+    real(wp), allocatable :: a(:, :), kf(:, :), km(:, :), kb(:, :)
+    real(wp) :: r(3, 3), xl(2, size(x, 2)), h(size(x, 2))
+    integer :: n
+
+    n = size(x, 2)
+    call setup(etype, x, r, xl, h, error)
+    if (allocated(error)) return
+    if (etype == ET_CPS3 .or. etype == ET_CPS4) then
+       call membrane_stiffness(xl, sec%thickness, mat%e, mat%nu, km, error)
+       if (allocated(error)) return
+       a = plane_map(r, n)
+       ke = matmul(transpose(a), matmul(km, a))
+       return
+    end if
+    call membrane_drill_stiffness(xl, sec%thickness, mat%e, mat%nu, km, error)
+    if (allocated(error)) return
+    call plate_stiffness(xl, sec%thickness, mat%e, mat%nu, kb, error)
+    if (allocated(error)) return
+    allocate (kf(6*n, 6*n), source=0.0_wp)
+    call scatter(km, MEMBRANE_DOFS, n, kf)
+    call scatter(kb, PLATE_DOFS, n, kf)
+    a = shell_map(r, h)
+    ke = matmul(transpose(a), matmul(kf, a))
+    ke = 0.5_wp*(ke + transpose(ke))
+  end subroutine shell_stiffness
+
+  pure subroutine shell_resultants(etype, x, sec, mat, ue, res, error)
+    !! Resultants per unit length at the centroid in the element frame,
+    !! res = nx, ny, nxy, mx, my, mxy (plane stress: moments 0), from the
+    !! element displacements ue in global axes (element_stiffness ordering).
+    integer, intent(in) :: etype
+    real(wp), intent(in) :: x(:, :)
+    type(section_t), intent(in) :: sec
+    type(material_t), intent(in) :: mat
+    real(wp), intent(in) :: ue(:)
+    real(wp), intent(out) :: res(6)
+    type(error_t), allocatable, intent(out) :: error
+    real(wp), allocatable :: d(:), um(:), ub(:)
+    real(wp) :: r(3, 3), xl(2, size(x, 2)), h(size(x, 2))
+    integer :: n, i
+
+    res = 0.0_wp
+    n = size(x, 2)
+    call setup(etype, x, r, xl, h, error)
+    if (allocated(error)) return
+    if (etype == ET_CPS3 .or. etype == ET_CPS4) then
+       d = matmul(plane_map(r, n), ue)
+       call membrane_resultants(xl, sec%thickness, mat%e, mat%nu, d, res(1:3), error)
+       return
+    end if
+    d = matmul(shell_map(r, h), ue)
+    allocate (um(2*n), ub(3*n))
+    do i = 1, n
+       um(2*i - 1:2*i) = d(6*(i - 1) + MEMBRANE_DOFS(1:2))
+       ub(3*i - 2:3*i) = d(6*(i - 1) + PLATE_DOFS)
+    end do
+    call membrane_resultants(xl, sec%thickness, mat%e, mat%nu, um, res(1:3), error)
+    if (allocated(error)) return
+    call plate_moments(xl, sec%thickness, mat%e, mat%nu, ub, res(4:6), error)
+  end subroutine shell_resultants
+
+  pure subroutine shell_pressure_load(etype, x, p, fe, p_local, error)
+    !! Nodal loads fe (global axes, element ordering) of a uniform pressure p on
+    !! a shell, positive against the element normal; p_local is the load per
+    !! unit area along local z (= -p). Translations only (see superjoin_elements_plate).
+    integer, intent(in) :: etype
+    real(wp), intent(in) :: x(:, :)
+    real(wp), intent(in) :: p
+    real(wp), allocatable, intent(out) :: fe(:)
+    real(wp), intent(out) :: p_local
+    type(error_t), allocatable, intent(out) :: error
+    real(wp), allocatable :: fb(:), ff(:)
+    real(wp) :: r(3, 3), xl(2, size(x, 2)), h(size(x, 2))
+    integer :: n, i
+
+    p_local = -p
+    n = size(x, 2)
+    if (etype /= ET_S3 .and. etype /= ET_S4) then
+       call fatal_error(error, EXIT_DECK, 'pressure P applies to shells (S3, S4) only')
+       return
+    end if
+    call setup(etype, x, r, xl, h, error)
+    if (allocated(error)) return
+    call plate_pressure_load(xl, p_local, fb)
+    allocate (ff(6*n), source=0.0_wp)
+    do i = 1, n
+       ff(6*(i - 1) + PLATE_DOFS) = fb(3*i - 2:3*i)
+    end do
+    fe = matmul(transpose(shell_map(r, h)), ff)
+  end subroutine shell_pressure_load
+
+  pure subroutine setup(etype, x, r, xl, h, error)
+    !! Element frame with the checks of the node count and, for plane stress,
+    !! of the XY plane.
+    integer, intent(in) :: etype
+    real(wp), intent(in) :: x(:, :)
+    real(wp), intent(out) :: r(3, 3), xl(:, :), h(:)
+    type(error_t), allocatable, intent(out) :: error
+    real(wp) :: size_e
+    if (size(x, 2) /= ELEMENT_NODE_COUNT(etype)) then
+       call fatal_error(error, EXIT_DECK, 'wrong number of nodes')
+       return
+    end if
+    if (etype == ET_CPS3 .or. etype == ET_CPS4) then
+       size_e = maxval(abs(x(1:2, :) - spread(x(1:2, 1), 2, size(x, 2))))
+       if (maxval(abs(x(3, :))) > PLANE_TOL*size_e) then
+          call fatal_error(error, EXIT_DECK, 'plane stress element out of the XY plane (z must be 0)')
+          return
+       end if
+    end if
+    call shell_frame(x, r, xl, h, error)
+  end subroutine setup
+
+  pure function plane_map(r, n) result(a)
+    !! Local (u, v) per node from global (ux, uy) per node of a plane element.
+    real(wp), intent(in) :: r(3, 3)
+    integer, intent(in) :: n
+    real(wp) :: a(2*n, 2*n)
+    integer :: i
+    a = 0.0_wp
+    do i = 1, n
+       a(2*i - 1:2*i, 2*i - 1:2*i) = r(1:2, 1:2)
+    end do
+  end function plane_map
+
+  pure function shell_map(r, h) result(a)
+    !! Flat-element local DOFs (u, v, w, θx, θy, θz at the projected points) from
+    !! global DOFs at the nodes: rotation to local axes and the rigid offsets.
+    real(wp), intent(in) :: r(3, 3), h(:)
+    real(wp) :: a(6*size(h), 6*size(h))
+    real(wp) :: off(3, 3)
+    integer :: i, k
+    a = 0.0_wp
+    do i = 1, size(h)
+       k = 6*(i - 1)
+       a(k + 1:k + 3, k + 1:k + 3) = r
+       a(k + 4:k + 6, k + 4:k + 6) = r
+       ! u_p = u + θ × (-h e_z): u_p += -h θy, v_p += h θx (local components)
+       off = 0.0_wp
+       off(1, 2) = -h(i)
+       off(2, 1) = h(i)
+       a(k + 1:k + 3, k + 4:k + 6) = matmul(off, r)
+    end do
+  end function shell_map
+
+  pure subroutine scatter(kp, dofs, n, kf)
+    !! Add a part matrix with 3 DOFs per node into the 6-DOF flat matrix.
+    real(wp), intent(in) :: kp(:, :)
+    integer, intent(in) :: dofs(3), n
+    real(wp), intent(inout) :: kf(:, :)
+    integer :: i, j, a, b
+    do i = 1, n
+       do a = 1, 3
+          do j = 1, n
+             do b = 1, 3
+                kf(6*(i - 1) + dofs(a), 6*(j - 1) + dofs(b)) = kf(6*(i - 1) + dofs(a), 6*(j - 1) + dofs(b)) + &
+                     kp(3*(i - 1) + a, 3*(j - 1) + b)
+             end do
+          end do
+       end do
+    end do
+  end subroutine scatter
+
+  pure function cross(a, b) result(c)
+    real(wp), intent(in) :: a(3), b(3)
+    real(wp) :: c(3)
+    c = [a(2)*b(3) - a(3)*b(2), a(3)*b(1) - a(1)*b(3), a(1)*b(2) - a(2)*b(1)]
+  end function cross
+end module superjoin_elements_shell

@@ -106,18 +106,21 @@ contains
     if (slash > 1) then
        dir = base(1:slash - 1)
        call make_directory(dir, error)
-       if (allocated(error)) return
+       if (allocated(error)) then
+          error%message = 'error: '//error%message
+          return
+       end if
     end if
     nstep = size(model%steps)
     call build_grid(model, res, grid)
     do is = 1, nstep
-       call write_piece(vtk_piece_path(path, is)//TMP_EXT, model, res, grid, is, error)
+       call write_piece(vtk_piece_path(path, is), model, res, grid, is, error)
        if (allocated(error)) then
           call remove_temporaries(is)
           return
        end if
     end do
-    call write_collection(base//PVD_EXT//TMP_EXT, base, model, error)
+    call write_collection(base//PVD_EXT, base, model, error)
     if (allocated(error)) then
        call remove_temporaries(nstep)
        return
@@ -125,12 +128,16 @@ contains
     do is = 1, nstep
        call rename_file(vtk_piece_path(path, is)//TMP_EXT, vtk_piece_path(path, is), error)
        if (allocated(error)) then
+          error%message = 'error: '//error%message
           call remove_temporaries(nstep)
           return
        end if
     end do
     call rename_file(base//PVD_EXT//TMP_EXT, base//PVD_EXT, error)
-    if (allocated(error)) call remove_file(base//PVD_EXT//TMP_EXT)
+    if (allocated(error)) then
+       error%message = 'error: '//error%message
+       call remove_file(base//PVD_EXT//TMP_EXT)
+    end if
 
   contains
 
@@ -177,17 +184,21 @@ contains
     grid%ncell = grid%nelem + size(model%links, kind=i8) + grid%nsupport
   end subroutine build_grid
 
-  subroutine write_collection(tmp, base, model, error)
-    !! The .pvd collection: one data set per step, timestep = step number.
-    character(*), intent(in) :: tmp, base
+  subroutine write_collection(final, base, model, error)
+    !! The .pvd collection (written to final.tmp): one data set per step,
+    !! timestep = step number.
+    character(*), intent(in) :: final, base
     type(model_t), intent(in) :: model
     type(error_t), allocatable, intent(out) :: error
     type(text_buffer_t), allocatable :: lu
     integer :: is, slash
     logical :: ok
     allocate (lu)
-    call lu%open(tmp, error)
-    if (allocated(error)) return
+    call lu%open(final//TMP_EXT, error)
+    if (allocated(error)) then
+       call fatal_error(error, EXIT_IO, 'error: cannot write '//final//' (as '//final//TMP_EXT//')')
+       return
+    end if
     slash = index(base, '/', back=.true.)
     call lu%line('<?xml version="1.0"?>')
     call lu%line('<VTKFile type="Collection" version="0.1" byte_order="LittleEndian">')
@@ -201,14 +212,14 @@ contains
     call lu%line('</VTKFile>')
     call lu%close(ok)
     if (.not. ok) then
-       call remove_file(tmp)
-       call fatal_error(error, EXIT_IO, 'error: failed writing '//tmp)
+       call remove_file(final//TMP_EXT)
+       call fatal_error(error, EXIT_IO, 'error: failed writing '//final//' (as '//final//TMP_EXT//')')
     end if
   end subroutine write_collection
 
-  subroutine write_piece(tmp, model, res, grid, is, error)
-    !! The .vtu file of step is.
-    character(*), intent(in) :: tmp
+  subroutine write_piece(final, model, res, grid, is, error)
+    !! The .vtu file of step is (written to final.tmp).
+    character(*), intent(in) :: final
     type(model_t), intent(in) :: model
     type(results_t), intent(in) :: res
     type(grid_t), intent(in) :: grid
@@ -218,8 +229,11 @@ contains
     logical :: ok
     integer :: isub, k
     allocate (lu)
-    call lu%open(tmp, error)
-    if (allocated(error)) return
+    call lu%open(final//TMP_EXT, error)
+    if (allocated(error)) then
+       call fatal_error(error, EXIT_IO, 'error: cannot write '//final//' (as '//final//TMP_EXT//')')
+       return
+    end if
 
     call lu%line('<?xml version="1.0"?>')
     call lu%line('<!-- superjoin '//SUPERJOIN_VERSION//': step '//itoa(is)//' '//xml_comment(model%steps(is)%name)//' -->')
@@ -245,8 +259,8 @@ contains
     call lu%line('</VTKFile>')
     call lu%close(ok)
     if (.not. ok) then
-       call remove_file(tmp)
-       call fatal_error(error, EXIT_IO, 'error: failed writing '//tmp)
+       call remove_file(final//TMP_EXT)
+       call fatal_error(error, EXIT_IO, 'error: failed writing '//final//' (as '//final//TMP_EXT//')')
     end if
   end subroutine write_piece
 

@@ -316,8 +316,9 @@ contains
     integer, intent(in) :: is
     integer :: isub, k, il
     integer(ip) :: e
-    integer(i8) :: c, v
-    real(wp) :: zero(NCOMP), reac(NCOMP)
+    integer(i8) :: c
+    real(wp) :: zero(NCOMP)
+    real(wp), allocatable :: reac(:, :)
     zero = 0.0_wp
 
     call lu%line('      <CellData Scalars="kind">')
@@ -408,19 +409,15 @@ contains
 
     call open_array(lu, 'Float64', 'reaction', NCOMP, DOF_NAMES)
     call zeros(lu, grid%nelem + size(model%links, kind=i8), NCOMP)
-    k = 1
+    allocate (reac(NCOMP, grid%nsupport), source=0.0_wp)
+    do k = 1, size(res%steps(is)%reactions)
+       associate (rc => res%steps(is)%reactions(k))
+         c = grid%vertex_support(res%vertex_offset(rc%sub) + rc%node)
+         if (c > 0) reac(rc%dof, c) = reac(rc%dof, c) + rc%force
+       end associate
+    end do
     do c = 1, grid%nsupport
-       reac = 0.0_wp
-       ! reactions are in (substructure, node, dof) order, as the support cells
-       do while (k <= size(res%steps(is)%reactions))
-          associate (rc => res%steps(is)%reactions(k))
-            v = res%vertex_offset(rc%sub) + rc%node
-            if (grid%vertex_support(v) /= c) exit
-            reac(rc%dof) = reac(rc%dof) + rc%force
-          end associate
-          k = k + 1
-       end do
-       call put_tuple(lu, reac)
+       call put_tuple(lu, reac(:, c))
     end do
     call close_array(lu)
     call lu%line('      </CellData>')

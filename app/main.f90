@@ -10,6 +10,7 @@ program superjoin_main
   use superjoin_analysis_results, only: results_t, run_options_t, PH_READ, PH_WRITE
   use superjoin_output_listing, only: write_listing
   use superjoin_output_csv, only: write_csv
+  use superjoin_output_vtk, only: write_vtk, vtk_path_problem
   use superjoin_config, only: SUPERJOIN_VERSION, DEMO_DECK_SOURCE, DEMO_DECK_INSTALLED
   use superjoin_utils_clock, only: stopwatch_t, report_phase
   implicit none (type, external)
@@ -18,13 +19,13 @@ program superjoin_main
   type(model_t) :: model
   type(results_t) :: res
   type(error_t), allocatable :: error
-  character(:), allocatable :: deck, listing, csv_dir
+  character(:), allocatable :: deck, listing, csv_dir, vtk_file
   logical :: check_only
   type(stopwatch_t) :: clock
   real(wp) :: t_read
   integer :: i
 
-  call parse_command_line(opts, deck, listing, csv_dir, check_only)
+  call parse_command_line(opts, deck, listing, csv_dir, check_only, vtk_file)
 
   call clock%start()
   call read_deck(deck, model, error)
@@ -48,6 +49,11 @@ program superjoin_main
   call fail_on(error, deck)
   if (allocated(csv_dir)) then
      call write_csv(csv_dir, model, res, error)
+     call fail_on(error, deck)
+  end if
+  if (.not. allocated(vtk_file) .and. allocated(model%vtk_path)) vtk_file = model%vtk_path
+  if (allocated(vtk_file)) then
+     call write_vtk(vtk_file, model, res, error)
      call fail_on(error, deck)
   end if
   res%phase_seconds(PH_WRITE) = clock%seconds()
@@ -98,6 +104,8 @@ contains
          '  --formulation F    transform | penalty   (overrides *CONTROLS)', &
          '  --check            read and validate the deck only', &
          '  --export-matrix F  also write the assembled stiffness matrix (Matrix Market)', &
+         '  --vtk FILE         VTK files for ParaView: FILE.pvd and FILE_<step>.vtu', &
+         '                     (overrides *OUTPUT, VTK= of the deck)', &
          '  -q, --quiet        no progress on stderr', &
          '  -v, --verbose      more detail on stderr', &
          '  --help             this text', &
@@ -107,10 +115,10 @@ contains
          '             (mechanism, singular); 4 input/output or resource failure'
   end subroutine print_help
 
-  subroutine parse_command_line(opts, deck, listing, csv_dir, check_only)
+  subroutine parse_command_line(opts, deck, listing, csv_dir, check_only, vtk_file)
     !! Options and file names from the command line (usage errors stop with 2).
     type(run_options_t), intent(out) :: opts
-    character(:), allocatable, intent(out) :: deck, listing, csv_dir
+    character(:), allocatable, intent(out) :: deck, listing, csv_dir, vtk_file
     logical, intent(out) :: check_only
     integer :: i, n
     character(:), allocatable :: arg, val
@@ -136,7 +144,7 @@ contains
           opts%verbose = .true.
        case ('--check')
           check_only = .true.
-       case ('-o', '--csv', '--solver', '--formulation', '--export-matrix')
+       case ('-o', '--csv', '--solver', '--formulation', '--export-matrix', '--vtk')
           if (i == n) call usage_error('option '//arg//' needs a value')
           i = i + 1
           val = get_arg(i)
@@ -163,6 +171,9 @@ contains
              end select
           case ('--export-matrix')
              opts%export_matrix = val
+          case ('--vtk')
+             if (len(vtk_path_problem(val)) > 0) call usage_error(vtk_path_problem(val))
+             vtk_file = val
           end select
        case default
           if (len(arg) > 1) then

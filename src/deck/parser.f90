@@ -18,6 +18,7 @@ module superjoin_deck_parser
        add_section, add_contact, add_cline, add_support, add_step, add_load, &
        MAX_INCLUDE_DEPTH, CH_IDS, CH_GEN, CH_RANGE, CH_REF, BEAM_2D_VALUES, BEAM_3D_VALUES
   use superjoin_utils_strings, only: pick
+  use superjoin_output_vtk, only: vtk_path_problem
   implicit none (type, external)
   private
 
@@ -238,6 +239,8 @@ contains
        call kw_load(st, kw, loc, CARD_DLOAD)
     case ('CONTROLS')
        call kw_controls(st, kw, loc)
+    case ('OUTPUT')
+       call kw_output(st, kw, loc)
     case default
        call report_loc(st, loc, 'unknown keyword *'//clip(kw%keyword))
        st%card = CARD_SKIP
@@ -775,6 +778,28 @@ contains
        end if
     end if
   end subroutine kw_controls
+
+  subroutine kw_output(st, kw, loc)
+    !! *OUTPUT, VTK=path[, FIELD]: VTK files of every step, path relative to the
+    !! directory of the file that holds the card. Allowed anywhere, once.
+    type(deck_state_t), intent(inout) :: st
+    type(keyword_line_t), intent(in) :: kw
+    type(source_loc_t), intent(in) :: loc
+    character(:), allocatable :: value, problem
+    logical :: found
+    call check_params(st, kw, loc, [character(NAME_LEN) :: 'VTK'], [character(NAME_LEN) :: 'FIELD'])
+    call get_param(st, kw, loc, 'VTK', .true., value, found)
+    if (.not. found) return
+    problem = vtk_path_problem(value)
+    if (len(problem) > 0) then
+       call report_loc(st, loc, problem)
+    else if (allocated(st%vtk_path)) then
+       call report_loc(st, loc, '*OUTPUT, VTK= given twice (first at '//loc_string(st, st%vtk_loc)//')')
+    else
+       st%vtk_path = path_join(path_dirname(st%files(loc%file)%s), value)
+       st%vtk_loc = loc
+    end if
+  end subroutine kw_output
 
   ! ================================================================== data lines
 

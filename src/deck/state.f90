@@ -160,6 +160,8 @@ module superjoin_deck_state
      integer :: nstep = 0
      type(step_b_t), allocatable :: steps(:)
      type(controls_t) :: controls
+     character(:), allocatable :: vtk_path          !! *OUTPUT, VTK= resolved against its file's directory
+     type(source_loc_t) :: vtk_loc
      integer :: nelem_cards = 0
      ! block and card state
      integer :: cur_sub = 0                !! open *SUBSTRUCTURE block

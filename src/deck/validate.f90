@@ -53,6 +53,7 @@ contains
        allocate (model%heading(0))
     end if
     model%controls = st%controls
+    if (allocated(st%vtk_path)) model%vtk_path = st%vtk_path
 
     ! materials
     if (st%nmat > 0) then

@@ -181,6 +181,7 @@ module superjoin_model_types
      type(support_t), allocatable :: supports(:)
      type(step_t), allocatable :: steps(:)
      type(controls_t) :: controls
+     character(:), allocatable :: vtk_path          !! *OUTPUT, VTK= joined to its deck file's directory, or unallocated
   end type model_t
 
   public :: find_node, find_elem, node_label, loc_text

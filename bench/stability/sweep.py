@@ -97,7 +97,7 @@ def run_one(binary, case_name, value, formulation, solver, work):
                         '--formulation', formulation], capture_output=True, text=True)
     row = dict(case=case_name, value=value, formulation=formulation, solver=solver, status=p.returncode,
                rel_error='', residual='', residual0='', refinements='', epsilon='', maxratio='', cond='',
-               warning='', message=' '.join(p.stderr.split())[:300])
+               warning='', message=' '.join(p.stderr.replace(work + os.sep, '').split())[:300])
     if p.returncode == 0:
         h = parse_listing(lst)
         row.update({k: h.get(k, '') for k in ('residual', 'residual0', 'refinements', 'epsilon', 'maxratio',

@@ -28,7 +28,10 @@ grep -q 'END OF LISTING' demo.lst || { fail=$((fail+1)); echo "FAIL: demo listin
 for s in cholmod umfpack lapack; do
   expect 0 "solver $s" -- "$bin" -q --solver $s "$src/decks/demo.deck" -o demo_$s.lst
 done
-expect 0 "penalty" -- "$bin" -q --formulation penalty "$src/decks/demo.deck" -o pen.lst
+# The demo's RIGID joints become g = 1e12 x the largest diagonal under PENALTY:
+# numerically singular (MAXRATIO past 1e13), refused with a hint on the formulation.
+expect 3 "penalty" -- "$bin" -q --formulation penalty "$src/decks/demo.deck" -o pen.lst
+grep -q 'under PENALTY' err.txt || { fail=$((fail+1)); echo "FAIL: penalty breakdown without the formulation hint"; }
 expect 0 "export matrix" -- "$bin" -q --export-matrix k.mtx "$src/decks/demo.deck" -o mm.lst
 head -1 k.mtx | grep -q '%%MatrixMarket matrix coordinate real symmetric' || { fail=$((fail+1)); echo "FAIL: matrix market header"; }
 expect 0 "csv" -- "$bin" -q "$src/decks/demo.deck" -o c.lst --csv csvdir

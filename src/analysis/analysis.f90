@@ -22,15 +22,20 @@ module superjoin_analysis
   private
 
   real(wp), parameter, public :: REFINE_BERR = 10*epsilon(1.0_wp)
-    !! iterative refinement runs while the backward error exceeds this
+    !! iterative refinement runs while the backward error exceeds this,
+  real(wp), parameter, public :: REFINE_RESIDUAL = 1.0e-9_wp
+    !! or while the relative residual or |EPSILON| of a step exceeds this
   real(wp), parameter, public :: REFINE_GAIN = 0.5_wp
     !! and while each step multiplies the largest residual by at most this
   integer, parameter, public :: MAX_REFINE = 3
     !! At most this many refinement steps.
-  real(wp), parameter, public :: MAXRATIO_WARN = 1.0e7_wp
-    !! MAXRATIO above this is flagged as a loss of accuracy (digits lost ≈ log10).
-  real(wp), parameter, public :: MAXRATIO_FATAL = 1.0e14_wp
-    !! MAXRATIO above this leaves fewer than two digits: numerically singular (exit 3).
+  real(wp), parameter, public :: MAXRATIO_WARN = 1.0e6_wp
+    !! MAXRATIO above this is flagged as a loss of accuracy (digits lost ≈ log10):
+    !! PENALTY's measured errors reach 10 MAXRATIO ε, so past 1e6 fewer than 8 digits are sure.
+  real(wp), parameter, public :: MAXRATIO_FATAL = 1.0e13_wp
+    !! MAXRATIO above this (a pivot within about 1/(45 ε) of total cancellation)
+    !! is numerically singular (exit 3): exact mechanisms factor with MAXRATIO
+    !! from about 5e13 up, and nothing meaningful is left of an answer above 1e13.
   real(wp), parameter, public :: RESIDUAL_WARN = 1.0e-6_wp
     !! A relative residual still above this after refinement is reported as a warning.
 
@@ -447,10 +452,10 @@ contains
           deallocate (error)
           if (jf >= 1 .and. jf <= tr%ncol) then
              call fatal_error(error, EXIT_SINGULAR, 'error: the structure cannot be solved: '// &
-                  'mechanism or singular stiffness at '//column_label(model, table, tr, jf))
+                  'mechanism or singular stiffness at '//column_label(model, table, tr, jf)//penalty_hint(res))
           else
              call fatal_error(error, EXIT_SINGULAR, 'error: the structure cannot be solved: '// &
-                  'stiffness matrix is singular or not positive definite')
+                  'stiffness matrix is singular or not positive definite'//penalty_hint(res))
           end if
        end if
        return
@@ -500,9 +505,12 @@ contains
        res%steps(is)%residual0 = res%steps(is)%residual
     end do
     ! Iterative refinement with the existing factor, while the backward error
-    ! is above a few ulps and each step at least halves the largest residual.
+    ! is above a few ulps or the residual or EPSILON above REFINE_RESIDUAL, and
+    ! each step at least halves the largest residual.
     do it = 1, MAX_REFINE
-       if (all(berr <= REFINE_BERR)) exit
+       if (all(berr <= REFINE_BERR .and. res%steps(:)%residual <= REFINE_RESIDUAL .and. &
+            abs(res%steps(:)%epsilon) <= REFINE_RESIDUAL)) exit
+       res%steps(:)%refine_tried = it
        call solver%solve(r, dq, inner)
        if (allocated(inner)) exit
        q_try = q - dq
@@ -541,7 +549,7 @@ contains
        write (buf, '(es9.2)') res%maxratio
        call fatal_error(error, EXIT_SINGULAR, 'error: the structure cannot be solved: stiffness is '// &
             'numerically singular at '//res%maxratio_at//' (MAXRATIO '//trim(adjustl(buf))// &
-            '): a mechanism, or a stiffness contrast beyond double precision')
+            '): a mechanism, or a stiffness contrast beyond double precision'//penalty_hint(res))
        return
     end if
     if (maxval(res%steps(:)%residual) > RESIDUAL_WARN) then
@@ -574,6 +582,15 @@ contains
       end do
     end subroutine residuals
   end subroutine health
+
+  function penalty_hint(res) result(s)
+    !! Under PENALTY a breakdown is usually the contact stiffness, not a mechanism.
+    type(results_t), intent(in) :: res
+    character(:), allocatable :: s
+    s = ''
+    if (res%formulation == 'PENALTY') s = ' (unless it is a mechanism: under PENALTY a contact stiffness '// &
+         'beyond about 1/epsilon times the structure''s breaks the factorization; TRANSFORM does not)'
+  end function penalty_hint
 
   pure function safe_div(a, b) result(c)
     real(wp), intent(in) :: a, b

@@ -38,7 +38,8 @@ module superjoin_analysis_results
      real(wp) :: residual = 0.0_wp               !! ‖K q - f‖ / ‖f‖
      real(wp) :: epsilon = 0.0_wp                !! qᵀ(K q - f) / (qᵀ f)
      real(wp) :: residual0 = 0.0_wp              !! before iterative refinement
-     integer :: refinements = 0
+     integer :: refinements = 0                  !! refinement steps kept
+     integer :: refine_tried = 0                 !! refinement steps tried
   end type step_results_t
 
   type, public :: results_t

@@ -11,7 +11,7 @@ module superjoin_assembly_transform
   !! column is eliminated exactly by substitution.
   use superjoin_kinds, only: wp, i8
   use superjoin_error, only: error_t, add_error_line, EXIT_DECK
-  use superjoin_model_types, only: model_t, LINK_NONE, LINK_FINITE, LINK_RIGID, loc_text
+  use superjoin_model_types, only: model_t, LINK_NONE, LINK_FINITE, LINK_RIGID, loc_text, node_label
   use superjoin_assembly_dofs, only: dof_table_t, unit_t, NBLOCK, GROUND, UNIT_LINK, &
        UNIT_SUPPORT, block_dof
   use superjoin_assembly_forest, only: forest_t
@@ -347,8 +347,8 @@ contains
              if (abs(const) > CONS_ZERO*max(maxval(abs(tr%u0)), abs(table%units(iu)%value(k)), tiny(1.0_wp)) &
                  .and. abs(const) > 0.0_wp) then
                 call add_error_line(error, EXIT_DECK, unit_where(model, table%units(iu))// &
-                     ': error: RIGID loop with conflicting prescribed values (mismatch '// &
-                     rtoa(const)//')')
+                     ': error: RIGID loop with conflicting prescribed values at '// &
+                     unit_nodes(model, table, table%units(iu), k)//' (mismatch '//rtoa(const)//')')
                 cycle
              end if
              cs%status = CONS_REDUNDANT
@@ -578,4 +578,27 @@ contains
        text = loc_text(model, model%supports(u%source)%loc)
     end if
   end function unit_where
+
+  function unit_nodes(model, table, u, k) result(text)
+    !! "SUB.id - SUB.id DOF d" (or "SUB.id DOF d" for a support) of component k of a unit.
+    type(model_t), intent(in) :: model
+    type(dof_table_t), intent(in) :: table
+    type(unit_t), intent(in) :: u
+    integer, intent(in) :: k
+    character(:), allocatable :: text
+    character(len=12) :: buf
+    write (buf, '(i0)') block_dof(u%block, u%lcomp(k))
+    text = vertex_name(u%vb)//' DOF '//trim(buf)
+    if (u%va /= GROUND) text = vertex_name(u%va)//' - '//text
+  contains
+    function vertex_name(v) result(name)
+      integer(i8), intent(in) :: v
+      character(:), allocatable :: name
+      integer :: isub
+      do isub = 1, size(model%subs)
+         if (v <= table%vertex_offset(isub + 1)) exit
+      end do
+      name = node_label(model, isub, int(v - table%vertex_offset(isub), kind(model%subs(1)%nnode)))
+    end function vertex_name
+  end function unit_nodes
 end module superjoin_assembly_transform

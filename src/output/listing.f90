@@ -277,9 +277,9 @@ contains
       call lu%line('NUMERICAL HEALTH')
       write (hline, '(2x,a30,es10.2e3)') 'relative residual             ', st%residual
       call lu%line(trim(hline))
-      if (st%refinements > 0) then
+      if (st%refine_tried > 0) then
          write (hline, '(2x,a30,es10.2e3,a)') 'residual before refinement    ', st%residual0, &
-              ' ('//itoa(st%refinements)//' refinement steps)'
+              ' ('//itoa(st%refinements)//' refinement steps kept of '//itoa(st%refine_tried)//' tried)'
          call lu%line(trim(hline))
       end if
       write (hline, '(2x,a30,es10.2e3)') 'EPSILON (energy error)        ', st%epsilon

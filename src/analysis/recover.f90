@@ -9,7 +9,7 @@ module superjoin_analysis_recover
   use superjoin_kinds, only: wp, ip, i8
   use superjoin_error, only: error_t, add_error_line, EXIT_DECK
   use superjoin_model_types, only: model_t, ELEMENT_NODE_COUNT, LINK_NONE, LINK_FINITE, LINK_RIGID, &
-       NDOF_NODE, loc_text, section_t, material_t, DLOAD_P
+       NDOF_NODE, loc_text, section_t, material_t
   use superjoin_elements, only: element_end_forces, element_distributed_load, element_nodal_forces, &
        element_stiffness, is_plate_type, shell_resultants
   use superjoin_assembly_dofs, only: dof_table_t, NBLOCK, GROUND, UNIT_LINK, UNIT_SUPPORT, block_dof
@@ -131,6 +131,8 @@ contains
             call element_distributed_load(s%elem_type(dl%elem), s%x(:, s%elem_nodes(1:nn, dl%elem)), &
                  s%sections(s%elem_section(dl%elem)), dl%kind, dl%value, fe, qloc, inner)
             if (allocated(inner)) deallocate (inner)
+            ! Plane and shell elements: r gets K_e u_e itself (plate_element_results).
+            if (is_plate_type(s%elem_type(dl%elem))) cycle
             ie = res%elem_offset(dl%sub) + dl%elem
             ql(:, ie, is) = ql(:, ie, is) + qloc
             ! f_phys holds this consistent load; element_nodal_forces leaves it out.
@@ -149,8 +151,7 @@ contains
               ie = res%elem_offset(isub) + e
               if (is_plate_type(s%elem_type(e))) then
                  call plate_element_results(s%elem_type(e), s%x(:, s%elem_nodes(1:nn, e)), sec, &
-                      model%materials(sec%material), u(pd(1:n), :), ql(:, ie, :), &
-                      res%plate(:, ie, :), fg2(1:n, :), inner)
+                      model%materials(sec%material), u(pd(1:n), :), res%plate(:, ie, :), fg2(1:n, :), inner)
                  if (allocated(inner)) then
                     call add_error_line(error, EXIT_DECK, inner%message)
                     return
@@ -181,19 +182,17 @@ contains
     end do
   end subroutine element_results
 
-  subroutine plate_element_results(etype, x, sec, mat, ue, ql, pres, fg, error)
-    !! Resultants pres(6, nstep) and the forces the nodes exert on a plane or
-    !! shell element, fg = K_e u_e - f_eq (global axes), for every step; ql(3, :)
-    !! holds the pressure along the local normal of each step.
+  subroutine plate_element_results(etype, x, sec, mat, ue, pres, fg, error)
+    !! Resultants pres(6, nstep) and fg = K_e u_e (global axes) of a plane or
+    !! shell element for every step (its distributed loads are left out of r).
     integer, intent(in) :: etype
     real(wp), intent(in) :: x(:, :)
     type(section_t), intent(in) :: sec
     type(material_t), intent(in) :: mat
-    real(wp), intent(in) :: ue(:, :), ql(:, :)
+    real(wp), intent(in) :: ue(:, :)
     real(wp), intent(out) :: pres(:, :), fg(:, :)
     type(error_t), allocatable, intent(out) :: error
-    real(wp), allocatable :: ke(:, :), fe(:)
-    real(wp) :: qloc(3)
+    real(wp), allocatable :: ke(:, :)
     integer :: is
     call element_stiffness(etype, x, sec, mat, ke, error)
     if (allocated(error)) return
@@ -201,11 +200,6 @@ contains
     do is = 1, size(ue, 2)
        call shell_resultants(etype, x, sec, mat, ue(:, is), pres(:, is), error)
        if (allocated(error)) return
-       if (ql(3, is) /= 0.0_wp) then
-          call element_distributed_load(etype, x, sec, DLOAD_P, -ql(3, is), fe, qloc, error)
-          if (allocated(error)) return
-          fg(:, is) = fg(:, is) - fe
-       end if
     end do
   end subroutine plate_element_results
 

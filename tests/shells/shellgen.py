@@ -402,3 +402,60 @@ def stiffened_panel(n, joint):
     text = text.replace("*CONTACT", "\n".join(rib_text) + "\n*CONTACT", 1)
     return Case(f"panel_{n}_{joint}", text, "PANEL", line[mid], 3, 0.0, "same panel, shared nodes",
                 count_dofs([plate, rib]))
+
+
+# MacNeal-Harder distorted patch: 0.24 x 0.12 rectangle, four interior nodes.
+PATCH_NODES = {1: (0.0, 0.0), 2: (0.24, 0.0), 3: (0.24, 0.12), 4: (0.0, 0.12),
+               5: (0.04, 0.02), 6: (0.18, 0.03), 7: (0.16, 0.08), 8: (0.08, 0.08)}
+PATCH_QUADS = [(1, 2, 6, 5), (2, 3, 7, 6), (3, 4, 8, 7), (4, 1, 5, 8), (5, 6, 7, 8)]
+PATCH_E, PATCH_NU, PATCH_T = 1.0e6, 0.25, 0.001
+
+
+def patch_rotation():
+    """A rotation taking the patch plane to an oblique plane in 3D (rows: images of x, y, z)."""
+    a, b, c = math.radians(30.0), math.radians(-40.0), math.radians(25.0)
+    rz = [[math.cos(a), -math.sin(a), 0.0], [math.sin(a), math.cos(a), 0.0], [0.0, 0.0, 1.0]]
+    ry = [[math.cos(b), 0.0, math.sin(b)], [0.0, 1.0, 0.0], [-math.sin(b), 0.0, math.cos(b)]]
+    rx = [[1.0, 0.0, 0.0], [0.0, math.cos(c), -math.sin(c)], [0.0, math.sin(c), math.cos(c)]]
+
+    def mul(p, q):
+        return [[sum(p[i][k] * q[k][j] for k in range(3)) for j in range(3)] for i in range(3)]
+    return mul(rx, mul(ry, rz))
+
+
+def patch_field(x, y):
+    """Exact local field (u, v, w, theta_x, theta_y, theta_z) of the combined patch test."""
+    u = 1e-3 * (x + y / 2)
+    v = 1e-3 * (y + x / 2)
+    w = 1e-3 * (x * x + x * y + y * y) / 2
+    return (u, v, w, 1e-3 * (x / 2 + y), -1e-3 * (x + y / 2), 0.0)
+
+
+def shell_patch(etype):
+    """The patch (5 S4, or 10 S3) in an oblique plane; boundary nodes prescribed
+    with the exact membrane + bending field, all six DOFs. Returns (deck, rot)."""
+    rot = patch_rotation()
+
+    def glob(v):
+        return [sum(rot[i][k] * v[k] for k in range(3)) for i in range(3)]
+    p = Part("PATCH")
+    for i, (x, y) in PATCH_NODES.items():
+        p.nodes[i] = tuple(glob((x, y, 0.0)))
+    e = 1
+    for q in PATCH_QUADS:
+        if etype == "S4":
+            p.elems.append((e, "S4", q))
+            e += 1
+        else:
+            p.elems.append((e, "S3", (q[0], q[1], q[2])))
+            p.elems.append((e + 1, "S3", (q[0], q[2], q[3])))
+            e += 2
+    bnd = []
+    for i in (1, 2, 3, 4):
+        f = patch_field(*PATCH_NODES[i])
+        ug, rg = glob(f[0:3]), glob(f[3:6])
+        for d in range(3):
+            bnd.append((f"PATCH.{i}", d + 1, d + 1, fmt(ug[d])))
+            bnd.append((f"PATCH.{i}", d + 4, d + 4, fmt(rg[d])))
+    deck = deck_text(f"shell patch {etype}", [p], PATCH_E, PATCH_NU, PATCH_T, bnd)
+    return deck, rot, p

@@ -132,6 +132,53 @@ def split_plate(exe, work, n, etype):
     check(worst / scale < 1e-10, f"split plate {etype} {n}: RIGID differs from one piece by {worst / scale:.1e}")
 
 
+def patch_tests(exe, work):
+    """Membrane + bending patch test of S4 and S3 in an oblique plane through the
+    whole program: interior displacements and every element's resultants exact."""
+    say("\n## Shell patch test (MacNeal-Harder patch, membrane + bending, oblique plane)\n")
+    say("| element | max interior DOF error / max DOF | max resultant error / max resultant |")
+    say("|---|---|---|")
+    e, nu, t = g.PATCH_E, g.PATCH_NU, g.PATCH_T
+    c = e * t / (1 - nu * nu)
+    n_ex = [c * (1e-3 + nu * 1e-3), c * (1e-3 + nu * 1e-3), e * t / (2 * (1 + nu)) * 1e-3]
+    d = e * t ** 3 / (12 * (1 - nu * nu))
+    m_ex = [-d * (1e-3 + nu * 1e-3), -d * (1e-3 + nu * 1e-3), -d * (1 - nu) * 0.5e-3]
+    for et in ("S4", "S3"):
+        deck, rot, part = g.shell_patch(et)
+        case = g.Case(f"patch_{et}", deck, "PATCH", 5, 1, 1.0, "exact")
+        disp, _ = solve(exe, work, case)
+        if disp is None:
+            continue
+        worst = scale = 0.0
+        for i in (5, 6, 7, 8):
+            f = g.patch_field(*g.PATCH_NODES[i])
+            ex = [sum(rot[r][k] * f[k] for k in range(3)) for r in range(3)] + \
+                 [sum(rot[r][k] * f[3 + k] for k in range(3)) for r in range(3)]
+            got = disp[("PATCH", i)]
+            worst = max(worst, max(abs(a - b) for a, b in zip(got, ex)))
+            scale = max(scale, max(abs(x) for x in ex))
+        res_worst = 0.0
+        with open(os.path.join(work, case.name + "_csv", "plate_results.csv")) as fcsv:
+            for row in csv.DictReader(fcsv):
+                nodes = [n for (eid, _, ns) in part.elems if eid == int(row["element"]) for n in ns]
+                (x1, y1), (x2, y2) = g.PATCH_NODES[nodes[0]], g.PATCH_NODES[nodes[1]]
+                ln = math.hypot(x2 - x1, y2 - y1)
+                cs, sn = (x2 - x1) / ln, (y2 - y1) / ln
+
+                def rotate(tens):
+                    sx, sy, sxy = tens
+                    return [sx * cs * cs + sy * sn * sn + 2 * sxy * sn * cs,
+                            sx * sn * sn + sy * cs * cs - 2 * sxy * sn * cs,
+                            (sy - sx) * sn * cs + sxy * (cs * cs - sn * sn)]
+                exn, exm = rotate(n_ex), rotate(m_ex)
+                got = [float(row[k]) for k in ("nx", "ny", "nxy", "mx", "my", "mxy")]
+                res_worst = max(res_worst, max(abs(a - b) for a, b in zip(got[:3], exn)) / max(map(abs, n_ex)),
+                                max(abs(a - b) for a, b in zip(got[3:], exm)) / max(map(abs, m_ex)))
+        say(f"| {et} | {worst / scale:.1e} | {res_worst:.1e} |")
+        check(worst / scale < 1e-9, f"patch {et}: interior displacements off by {worst / scale:.1e}")
+        check(res_worst < 1e-9, f"patch {et}: resultants off by {res_worst:.1e}")
+
+
 def main():
     ap = argparse.ArgumentParser()
     ap.add_argument("exe")
@@ -143,7 +190,9 @@ def main():
     exe = a.exe
     meshes = [2, 4, 8, 16, 32, 64]
 
-    say("## Square plates, centre deflection (a = 1, D = 1, nu = 0.3)")
+    patch_tests(exe, a.work)
+
+    say("\n## Square plates, centre deflection (a = 1, D = 1, nu = 0.3)")
     for et in ("S4", "S3"):
         convergence(exe, a.work, f"{et} simply supported, uniform pressure",
                     lambda n, et=et: g.square_plate(n, et, "SS", "UNIFORM"), meshes, 2e-3, 1.7, True)

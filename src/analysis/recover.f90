@@ -10,12 +10,12 @@ module superjoin_analysis_recover
   use superjoin_error, only: error_t, add_error_line, EXIT_DECK
   use superjoin_model_types, only: model_t, ELEMENT_NODE_COUNT, LINK_NONE, LINK_FINITE, LINK_RIGID, &
        NDOF_NODE, loc_text, section_t, material_t
-  use superjoin_elements, only: element_end_forces, element_distributed_load, element_nodal_forces, &
+  use superjoin_elements, only: element_end_forces, element_nodal_forces, &
        element_stiffness, is_plate_type, shell_resultants
   use superjoin_assembly_dofs, only: dof_table_t, NBLOCK, GROUND, UNIT_LINK, UNIT_SUPPORT, block_dof
   use superjoin_assembly_forest, only: forest_t
   use superjoin_assembly_transform, only: transform_t, ROLE_TREE, CONS_ELIMINATED
-  use superjoin_assembly_assemble, only: element_pdofs
+  use superjoin_assembly_assemble, only: element_pdofs, distributed_load
   use superjoin_analysis_results, only: results_t, reaction_t
   implicit none (type, external)
   private
@@ -127,9 +127,7 @@ contains
        if (.not. allocated(model%steps(is)%dloads)) cycle
        do i = 1, size(model%steps(is)%dloads)
           associate (dl => model%steps(is)%dloads(i), s => model%subs(model%steps(is)%dloads(i)%sub))
-            nn = ELEMENT_NODE_COUNT(s%elem_type(dl%elem))
-            call element_distributed_load(s%elem_type(dl%elem), s%x(:, s%elem_nodes(1:nn, dl%elem)), &
-                 s%sections(s%elem_section(dl%elem)), dl%kind, dl%value, fe, qloc, inner)
+            call distributed_load(model, dl, fe, qloc, inner)
             if (allocated(inner)) deallocate (inner)
             ! Plane and shell elements: r gets K_e u_e itself (plate_element_results).
             if (is_plate_type(s%elem_type(dl%elem))) cycle

@@ -4,8 +4,9 @@ module superjoin_assembly_assemble
   !! scattered through the maps of its physical DOFs.
   use superjoin_kinds, only: wp, ip, i8
   use superjoin_error, only: error_t, add_error_line, EXIT_DECK, EXIT_SINGULAR
-  use superjoin_model_types, only: model_t, ELEMENT_NODE_COUNT, LINK_FINITE, loc_text
-  use superjoin_elements, only: element_dof_mask, element_stiffness, element_distributed_load
+  use superjoin_model_types, only: model_t, dload_t, ELEMENT_NODE_COUNT, LINK_FINITE, DLOAD_GRAV, loc_text
+  use superjoin_elements, only: element_dof_mask, element_stiffness, element_distributed_load, &
+       element_gravity_load
   use superjoin_assembly_dofs, only: dof_table_t, GROUND, block_dof
   use superjoin_assembly_transform, only: transform_t, ROLE_PLAIN
   use superjoin_solvers_sparse, only: sparse_sym_t
@@ -17,7 +18,7 @@ module superjoin_assembly_assemble
   integer, parameter :: MAX_ITEM_DOFS = 24
     !! Largest number of physical DOFs one item (element or contact) touches.
 
-  public :: assemble_stiffness, assemble_loads, element_pdofs, unit_pdofs, unit_plain_stiffness, &
+  public :: assemble_stiffness, assemble_loads, distributed_load, element_pdofs, unit_pdofs, unit_plain_stiffness, &
        max_element_diagonal
 
 contains
@@ -501,6 +502,29 @@ contains
     b = 0
   end function locate
 
+  subroutine distributed_load(model, dl, fe, q_local, error)
+    !! Nodal loads (global axes, element ordering) and local load of one
+    !! distributed load: PX/PY/PZ, P or GRAV.
+    type(model_t), intent(in) :: model
+    type(dload_t), intent(in) :: dl
+    real(wp), allocatable, intent(out) :: fe(:)
+    real(wp), intent(out) :: q_local(3)
+    type(error_t), allocatable, intent(out) :: error
+    integer :: nn
+    associate (s => model%subs(dl%sub))
+      nn = ELEMENT_NODE_COUNT(s%elem_type(dl%elem))
+      associate (sec => s%sections(s%elem_section(dl%elem)))
+        if (dl%kind == DLOAD_GRAV) then
+           call element_gravity_load(s%elem_type(dl%elem), s%x(:, s%elem_nodes(1:nn, dl%elem)), sec, &
+                model%materials(sec%material), dl%value*dl%dir, fe, q_local, error)
+        else
+           call element_distributed_load(s%elem_type(dl%elem), s%x(:, s%elem_nodes(1:nn, dl%elem)), sec, &
+                dl%kind, dl%value, fe, q_local, error)
+        end if
+      end associate
+    end associate
+  end subroutine distributed_load
+
   subroutine assemble_loads(model, table, f_phys, error)
     !! Physical loads of every step, f_phys(np, nstep), and the local distributed
     !! load of each loaded beam (for element forces): see dload_local.
@@ -533,8 +557,7 @@ contains
             do i = 1, size(st%dloads)
                associate (dl => st%dloads(i), s => model%subs(st%dloads(i)%sub))
                  nn = ELEMENT_NODE_COUNT(s%elem_type(dl%elem))
-                 call element_distributed_load(s%elem_type(dl%elem), s%x(:, s%elem_nodes(1:nn, dl%elem)), &
-                      s%sections(s%elem_section(dl%elem)), dl%kind, dl%value, fe, ql, inner)
+                 call distributed_load(model, dl, fe, ql, inner)
                  if (allocated(inner)) then
                     call add_error_line(error, EXIT_DECK, loc_text(model, dl%loc)//': error: '//inner%message)
                     deallocate (inner)

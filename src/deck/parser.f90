@@ -6,7 +6,7 @@ module superjoin_deck_parser
   use superjoin_kinds, only: wp, ip, i8
   use superjoin_model_types, only: source_loc_t, string_t, ELEMENT_TYPE_NAMES, ELEMENT_NODE_COUNT, &
        NUM_ELEMENT_TYPES, MAX_ELEMENT_NODES, NDOF_NODE, SEC_SOLID, SEC_BEAM, SEC_SHELL, &
-       LINK_NONE, LINK_FINITE, LINK_RIGID, DLOAD_PX, DLOAD_PY, DLOAD_PZ, DLOAD_P, &
+       LINK_NONE, LINK_FINITE, LINK_RIGID, DLOAD_PX, DLOAD_PY, DLOAD_PZ, DLOAD_P, DLOAD_GRAV, &
        FORM_TRANSFORM, FORM_PENALTY, RIGID_ELIMINATE, RIGID_LARGE
   use superjoin_deck_lexer, only: keyword_line_t, load_file, next_line, first_nonblank, to_upper, &
        parse_keyword_line, split_fields, drop_trailing_empty, parse_real, parse_id, is_name, &
@@ -27,7 +27,7 @@ module superjoin_deck_parser
   integer, parameter :: CARD_NONE = 0, CARD_SKIP = 1, CARD_NODATA = 2, CARD_HEADING = 3, &
        CARD_NODE = 4, CARD_ELEMENT = 5, CARD_NSET = 6, CARD_ELSET = 7, CARD_SECTION = 8, &
        CARD_ELASTIC = 9, CARD_ORIENTATION = 10, CARD_CONTACT = 11, CARD_SUPPORT = 12, &
-       CARD_BOUNDARY = 13, CARD_CLOAD = 14, CARD_DLOAD = 15
+       CARD_BOUNDARY = 13, CARD_CLOAD = 14, CARD_DLOAD = 15, CARD_DENSITY = 16
     !! What the current card does with data lines.
 
   character(*), parameter :: MAIN_NAME = 'MAIN'
@@ -43,7 +43,8 @@ module superjoin_deck_parser
   integer, parameter :: NODE_FIELDS_MIN = 3, NODE_FIELDS_MAX = 4
     !! Numbers of fields of data lines.
   integer, parameter :: GEN_FIELDS_MIN = 2, GEN_FIELDS_MAX = 3
-  integer, parameter :: ELASTIC_FIELDS = 2, VECTOR_FIELDS = 3, CONTACT_FIELDS = 5, LOAD_FIELDS = 3
+  integer, parameter :: ELASTIC_FIELDS = 2, VECTOR_FIELDS = 3, CONTACT_FIELDS = 5, LOAD_FIELDS = 3, &
+       GRAV_FIELDS = 6
   integer, parameter :: SUPPORT_FIELDS_MIN = 3, SUPPORT_FIELDS_MAX = 4
   integer, parameter :: BOUNDARY_FIELDS_MIN = 2, BOUNDARY_FIELDS_MAX = 4
 
@@ -187,6 +188,8 @@ contains
        call kw_material(st, kw, loc)
     case ('ELASTIC')
        call kw_elastic(st, kw, loc, prev_mat)
+    case ('DENSITY')
+       call kw_density(st, kw, loc, prev_mat)
     case ('SUBSTRUCTURE')
        call kw_substructure(st, kw, loc)
     case ('END SUBSTRUCTURE')
@@ -270,7 +273,7 @@ contains
     !! Checks when a card ends (next keyword or end of input): data it needed.
     type(deck_state_t), intent(inout) :: st
     select case (st%card)
-    case (CARD_ELASTIC, CARD_ORIENTATION)
+    case (CARD_ELASTIC, CARD_ORIENTATION, CARD_DENSITY)
        if (st%card_ndata == 0) call report_loc(st, st%card_loc, st%card_name//' needs a data line')
     case (CARD_SECTION)
        if (st%card_ndata == 0) then
@@ -444,6 +447,30 @@ contains
     call add_material(st, name, loc, k)
     st%cur_mat = k
   end subroutine kw_material
+
+  subroutine kw_density(st, kw, loc, mat)
+    !! *DENSITY of the current material (for *DLOAD GRAV).
+    type(deck_state_t), intent(inout) :: st
+    type(keyword_line_t), intent(in) :: kw
+    type(source_loc_t), intent(in) :: loc
+    integer, intent(in) :: mat
+    if (.not. outside_step(st, kw, loc)) return
+    call check_params(st, kw, loc, [character(NAME_LEN) ::], [character(NAME_LEN) ::])
+    if (mat == 0) then
+       call report_loc(st, loc, '*DENSITY must follow a *MATERIAL card')
+       st%card = CARD_SKIP
+       return
+    end if
+    if (st%materials(mat)%has_density) then
+       call report_loc(st, loc, 'material '//st%materials(mat)%name//' has more than one *DENSITY')
+       st%card = CARD_SKIP
+       return
+    end if
+    st%materials(mat)%has_density = .true.
+    st%cur_mat = mat
+    st%card = CARD_DENSITY
+    st%card_item = mat
+  end subroutine kw_density
 
   subroutine kw_elastic(st, kw, loc, mat)
     type(deck_state_t), intent(inout) :: st
@@ -838,6 +865,8 @@ contains
        call data_section(st, line, loc)
     case (CARD_ELASTIC)
        call data_elastic(st, line, loc)
+    case (CARD_DENSITY)
+       call data_density(st, line, loc)
     case (CARD_ORIENTATION)
        call data_orientation(st, line, loc)
     case (CARD_CONTACT)
@@ -1238,6 +1267,26 @@ contains
     st%materials(st%card_item)%nu = nu
   end subroutine data_elastic
 
+  subroutine data_density(st, line, loc)
+    !! The density: one value, >= 0.
+    type(deck_state_t), intent(inout) :: st
+    character(*), intent(in) :: line
+    type(source_loc_t), intent(in) :: loc
+    real(wp) :: rho
+    if (st%card_ndata > 1) then
+       call report_loc(st, loc, 'too many data lines for *DENSITY')
+       st%card = CARD_SKIP
+       return
+    end if
+    if (.not. field_count(st, loc, 1, 1, 'density')) return
+    if (.not. get_real(st, line, loc, 1, rho)) return
+    if (.not. (rho >= 0.0_wp)) then
+       call report_loc(st, loc, 'density must not be negative, not '//fld(st, line, 1))
+       return
+    end if
+    st%materials(st%card_item)%density = rho
+  end subroutine data_density
+
   subroutine data_orientation(st, line, loc)
     type(deck_state_t), intent(inout) :: st
     character(*), intent(in) :: line
@@ -1383,15 +1432,40 @@ contains
     type(load_b_t) :: ld
     logical :: dload
     character(:), allocatable :: typ
+    real(wp) :: dnorm
+    integer :: k
     dload = st%card == CARD_DLOAD
     if (dload) then
+       if (st%f%n >= 2) typ = to_upper(fld(st, line, 2))
+       if (st%f%n >= 2 .and. typ == 'GRAV') then
+          if (.not. field_count(st, loc, GRAV_FIELDS, GRAV_FIELDS, &
+               'element or elset (empty: the whole model), GRAV, acceleration, dx, dy, dz')) return
+          ld%kind = DLOAD_GRAV
+          do k = 1, 3
+             if (.not. get_real(st, line, loc, 3 + k, ld%dir(k))) return
+          end do
+          dnorm = norm2(ld%dir)
+          if (.not. (dnorm > 0.0_wp)) then
+             call report_loc(st, loc, 'GRAV needs a nonzero direction dx, dy, dz')
+             return
+          end if
+          ld%dir = ld%dir/dnorm
+          if (.not. get_real(st, line, loc, 3, ld%value)) return
+          ld%loc = loc
+          if (len(fld(st, line, 1)) == 0) then
+             ld%whole_model = .true.
+          else
+             if (.not. parse_ref(st, fld(st, line, 1), dload, st%card_home, loc, ld%ref)) return
+          end if
+          call add_load(st%steps(st%card_item), ld, dload)
+          return
+       end if
        if (.not. field_count(st, loc, LOAD_FIELDS, LOAD_FIELDS, 'element or elset, load type, value')) return
     else
        if (.not. field_count(st, loc, LOAD_FIELDS, LOAD_FIELDS, 'node or nset, dof, value')) return
     end if
     if (.not. parse_ref(st, fld(st, line, 1), dload, st%card_home, loc, ld%ref)) return
     if (dload) then
-       typ = to_upper(fld(st, line, 2))
        select case (typ)
        case ('PX')
           ld%kind = DLOAD_PX
@@ -1402,7 +1476,7 @@ contains
        case ('P')
           ld%kind = DLOAD_P
        case default
-          call report_loc(st, loc, 'unknown *DLOAD type '''//clip(fld(st, line, 2))//''' (PX, PY, PZ or P)')
+          call report_loc(st, loc, 'unknown *DLOAD type '''//clip(fld(st, line, 2))//''' (PX, PY, PZ, P or GRAV)')
           return
        end select
     else

@@ -118,6 +118,8 @@ module superjoin_deck_state
      integer :: dof = 0                    !! *CLOAD
      integer :: kind = 0                   !! *DLOAD
      real(wp) :: value = 0.0_wp
+     real(wp) :: dir(3) = 0.0_wp           !! *DLOAD GRAV: unit direction
+     logical :: whole_model = .false.      !! *DLOAD GRAV with an empty first field
      type(source_loc_t) :: loc
   end type load_b_t
 

@@ -7,7 +7,7 @@ module superjoin_deck_validate
        link_t, support_t, cload_t, dload_t, source_loc_t, find_node, find_elem, &
        ELEMENT_TYPE_NAMES, ELEMENT_NODE_COUNT, NDOF_NODE, SEC_SOLID, SEC_BEAM, SEC_SHELL, &
        LINK_FINITE, LINK_RIGID, ET_T2D2, ET_T3D2, ET_B23, ET_B33, ET_CPS3, ET_CPS4, &
-       ET_S3, ET_S4, DLOAD_PX, DLOAD_PY, DLOAD_PZ, DLOAD_P, DLOAD_NAMES
+       ET_S3, ET_S4, DLOAD_PX, DLOAD_PY, DLOAD_PZ, DLOAD_P, DLOAD_GRAV, DLOAD_NAMES
   use superjoin_deck_lexer, only: itoa, plural
   use superjoin_deck_state, only: deck_state_t, sub_b_t, ref_t, load_b_t, report, report_loc, find_set, &
        CH_IDS, CH_GEN, CH_RANGE, CH_REF, BEAM_2D_VALUES, BEAM_3D_VALUES
@@ -987,18 +987,47 @@ contains
     allocate (out(INITIAL_CAPACITY))
     n = 0
     do k = 1, size(loads)
+       if (loads(k)%whole_model) then
+          ! GRAV with an empty element field: every element of every substructure
+          do isub = 1, size(model%subs)
+             elems = [(i, i=1, model%subs(isub)%nelem)]
+             call add_elements()
+          end do
+          cycle
+       end if
        isub = resolve_sub(st, model, loads(k)%ref, loads(k)%loc, 'element')
        if (isub == 0) cycle
        call resolve_items(st, model, isub, loads(k)%ref, .true., loads(k)%loc, elems, ok)
        if (.not. ok) cycle
+       call add_elements()
+    end do
+    tmp = out(1:n)
+    call move_alloc(tmp, out)
+  contains
+    subroutine add_elements()
+      !! The loads of line k on elems of substructure isub, with the checks.
+       integer :: nodens
+       integer(ip) :: first_nodens
        nbad = 0
        first_bad = 0
+       nodens = 0
+       first_nodens = 0
        do i = 1, size(elems, kind=ip)
           et = model%subs(isub)%elem_type(elems(i))
           if (.not. dload_fits(loads(k)%kind, et)) then
              nbad = nbad + 1
              if (nbad == 1) first_bad = elems(i)
              cycle
+          end if
+          if (loads(k)%kind == DLOAD_GRAV) then
+             associate (sub => model%subs(isub))
+               if (sub%elem_section(elems(i)) == 0) cycle
+               if (.not. model%materials(sub%sections(sub%elem_section(elems(i)))%material)%has_density) then
+                  nodens = nodens + 1
+                  if (nodens == 1) first_nodens = elems(i)
+                  cycle
+               end if
+             end associate
           end if
           if (n == size(out)) then
              allocate (tmp(2*n))
@@ -1010,8 +1039,17 @@ contains
           out(n)%elem = elems(i)
           out(n)%kind = loads(k)%kind
           out(n)%value = loads(k)%value
+          out(n)%dir = loads(k)%dir
           out(n)%loc = loads(k)%loc
        end do
+       if (nodens > 0) then
+          associate (sub => model%subs(isub))
+            call report_loc(st, loads(k)%loc, '*DLOAD GRAV on element '//itoa(sub%elem_id(first_nodens))// &
+                 ' of substructure '//sub%name//', whose material '// &
+                 model%materials(sub%sections(sub%elem_section(first_nodens))%material)%name// &
+                 ' has no *DENSITY'//more_text(nodens - 1))
+          end associate
+       end if
        if (nbad > 0) then
           associate (sub => model%subs(isub))
             call report_loc(st, loads(k)%loc, '*DLOAD '//trim(DLOAD_NAMES(loads(k)%kind))// &
@@ -1020,9 +1058,7 @@ contains
                  dload_targets(loads(k)%kind)//')'//more_text(nbad - 1))
           end associate
        end if
-    end do
-    tmp = out(1:n)
-    call move_alloc(tmp, out)
+    end subroutine add_elements
   end subroutine build_dloads
 
   pure logical function dload_fits(kind, etype)
@@ -1035,6 +1071,8 @@ contains
        dload_fits = etype == ET_B33
     case (DLOAD_P)
        dload_fits = etype == ET_S3 .or. etype == ET_S4
+    case (DLOAD_GRAV)
+       dload_fits = .true.
     case default
        dload_fits = .false.
     end select

@@ -13,12 +13,13 @@ module superjoin_elements
   use superjoin_elements_frame, only: beam_frame
   use superjoin_elements_truss, only: truss_stiffness, truss_end_forces, truss_distributed_load
   use superjoin_elements_beam, only: beam_stiffness, beam_end_forces, beam_load
-  use superjoin_elements_shell, only: is_plate_type, shell_stiffness, shell_resultants, shell_pressure_load
+  use superjoin_elements_shell, only: is_plate_type, shell_stiffness, shell_resultants, shell_pressure_load, &
+       shell_area_load
   implicit none (type, external)
   private
 
   public :: element_node_dofs, element_dof_mask, element_stiffness, element_end_forces, beam_distributed_load, &
-       element_nodal_forces, element_distributed_load
+       element_nodal_forces, element_distributed_load, element_gravity_load
   public :: is_plate_type, shell_resultants
     !! is_plate_type(etype): CPS3, CPS4, S3, S4. shell_resultants(etype, x, sec,
     !! mat, ue, res, error): nx, ny, nxy, mx, my, mxy at the centroid, element
@@ -213,6 +214,30 @@ contains
        call fatal_error(error, EXIT_DECK, 'unknown distributed load kind')
     end select
   end subroutine element_distributed_load
+
+  pure subroutine element_gravity_load(etype, x, sec, mat, accel, fe, q_local, error)
+    !! Consistent nodal loads fe (global axes, element ordering) of the self
+    !! weight under the acceleration vector accel (global axes): density × A per
+    !! unit length on trusses and beams (q_local as for beam_distributed_load),
+    !! density × t per unit area on plane and shell elements (q_local = 0).
+    integer, intent(in) :: etype
+    real(wp), intent(in) :: x(:, :)
+    type(section_t), intent(in) :: sec
+    type(material_t), intent(in) :: mat
+    real(wp), intent(in) :: accel(3)
+    real(wp), allocatable, intent(out) :: fe(:)
+    real(wp), intent(out) :: q_local(3)
+    type(error_t), allocatable, intent(out) :: error
+    q_local = 0.0_wp
+    select case (etype)
+    case (ET_T2D2, ET_T3D2, ET_B23, ET_B33)
+       call beam_distributed_load(etype, x, sec, mat%density*sec%area*accel, fe, q_local, error)
+    case (ET_CPS3, ET_CPS4, ET_S3, ET_S4)
+       call shell_area_load(etype, x, mat%density*sec%thickness*accel, fe, error)
+    case default
+       call unsupported(etype, error)
+    end select
+  end subroutine element_gravity_load
 
   pure subroutine unsupported(etype, error)
     !! Error for an element type without an implementation.

@@ -20,7 +20,7 @@ module superjoin_elements_shell
   implicit none (type, external)
   private
 
-  public :: is_plate_type, shell_frame, shell_stiffness, shell_resultants, shell_pressure_load
+  public :: is_plate_type, shell_frame, shell_stiffness, shell_resultants, shell_pressure_load, shell_area_load
 
   integer, parameter :: MEMBRANE_DOFS(3) = [1, 2, 6]
     !! Local shell DOFs (u, v, w, θx, θy, θz) of the membrane (u, v, θz).
@@ -181,6 +181,41 @@ contains
     end do
     fe = matmul(transpose(shell_map(r, h)), ff)
   end subroutine shell_pressure_load
+
+  pure subroutine shell_area_load(etype, x, w, fe, error)
+    !! Nodal loads fe (global axes, element ordering) of a uniform load w(3) per
+    !! unit area in global axes (self weight: density × thickness × acceleration):
+    !! each node gets w times the integral of its shape function, on its
+    !! translations. Plane-stress elements take only an in-plane (XY) load.
+    integer, intent(in) :: etype
+    real(wp), intent(in) :: x(:, :)
+    real(wp), intent(in) :: w(3)
+    real(wp), allocatable, intent(out) :: fe(:)
+    type(error_t), allocatable, intent(out) :: error
+    real(wp), allocatable :: fb(:)
+    real(wp) :: r(3, 3), xl(2, size(x, 2)), h(size(x, 2))
+    integer :: n, i
+    n = size(x, 2)
+    call setup(etype, x, r, xl, h, error)
+    if (allocated(error)) return
+    ! plate_pressure_load with p = 1 gives the integrals of the shape functions
+    call plate_pressure_load(xl, 1.0_wp, fb)
+    if (etype == ET_CPS3 .or. etype == ET_CPS4) then
+       if (w(3) /= 0.0_wp) then
+          call fatal_error(error, EXIT_DECK, 'load along Z on a plane-stress element (XY plane)')
+          return
+       end if
+       allocate (fe(2*n))
+       do i = 1, n
+          fe(2*i - 1:2*i) = fb(3*i - 2)*w(1:2)
+       end do
+    else
+       allocate (fe(6*n), source=0.0_wp)
+       do i = 1, n
+          fe(6*i - 5:6*i - 3) = fb(3*i - 2)*w
+       end do
+    end if
+  end subroutine shell_area_load
 
   pure subroutine setup(etype, x, r, xl, h, error)
     !! Element frame with the checks of the node count and, for plane stress,

@@ -27,9 +27,9 @@ module superjoin_model_types
   integer, parameter, public :: LINK_NONE = 0, LINK_FINITE = 1, LINK_RIGID = 2
     !! State of one DOF of a contact element or support.
 
-  integer, parameter, public :: DLOAD_PX = 1, DLOAD_PY = 2, DLOAD_PZ = 3, DLOAD_P = 4
+  integer, parameter, public :: DLOAD_PX = 1, DLOAD_PY = 2, DLOAD_PZ = 3, DLOAD_P = 4, DLOAD_GRAV = 5
     !! Distributed load kinds.
-  character(len=2), parameter, public :: DLOAD_NAMES(4) = ['PX', 'PY', 'PZ', 'P ']
+  character(len=4), parameter, public :: DLOAD_NAMES(5) = ['PX  ', 'PY  ', 'PZ  ', 'P   ', 'GRAV']
 
   integer, parameter, public :: FORM_TRANSFORM = 1, FORM_PENALTY = 2
     !! Formulation and rigid-link controls.
@@ -52,7 +52,9 @@ module superjoin_model_types
      character(:), allocatable :: name     !! upper case
      real(wp) :: e = 0.0_wp
      real(wp) :: nu = 0.0_wp
+     real(wp) :: density = 0.0_wp         !! mass per unit volume (*DENSITY)
      logical :: has_elastic = .false.
+     logical :: has_density = .false.
      type(source_loc_t) :: loc
   end type material_t
 
@@ -150,7 +152,8 @@ module superjoin_model_types
      integer :: sub = 0
      integer(ip) :: elem = 0
      integer :: kind = 0                   !! DLOAD_*
-     real(wp) :: value = 0.0_wp
+     real(wp) :: value = 0.0_wp            !! GRAV: the acceleration
+     real(wp) :: dir(3) = 0.0_wp           !! GRAV: unit direction, global axes
      type(source_loc_t) :: loc
   end type dload_t
 

@@ -247,7 +247,7 @@ def square_plate(n, etype, support, load, split=None):
     return Case(name, deck, centre[0], centre[1], 3, -ref, src, count_dofs(parts))
 
 
-def scordelis_lo(n, etype):
+def scordelis_lo(n, etype, gravity=False):
     """Scordelis-Lo roof (MacNeal-Harder 1985): R 25, L 50, 80 degree arc, t 0.25,
     E 4.32e8, nu 0, self weight 90 per unit area; quarter model n x n; vertical
     displacement at the midpoint of the free edge, reference 0.3024."""
@@ -267,8 +267,15 @@ def scordelis_lo(n, etype):
         for i in range(n + 1):
             w = (0.5 if i in (0, n) else 1.0) * (0.5 if j in (0, n) else 1.0)
             loads.append((f"ROOF.{nid(i, j)}", 3, fmt(-90.0 * dx * ds * w)))
-    deck = deck_text(f"scordelis_lo_{etype}_{n}", [p], 4.32e8, 0.0, t, bnd, loads)
-    return Case(f"scordelis_lo_{etype}_{n}", deck, "ROOF", nid(n, n), 3, -0.3024,
+    name = f"scordelis_lo_{etype}_{n}" + ("_grav" if gravity else "")
+    if gravity:
+        # self weight from *DENSITY and *DLOAD GRAV: 90 per unit area = density 360 x t 0.25 x 1
+        deck = deck_text(name, [p], 4.32e8, 0.0, t, bnd, (), [(", GRAV", "1.0", "0.0", "0.0", "-1.0")])
+        deck = deck.replace("*ELASTIC\n 432000000.0, 0.0\n", "*ELASTIC\n 432000000.0, 0.0\n*DENSITY\n 360.0\n")
+        deck = deck.replace(" , GRAV,", " , GRAV,")
+    else:
+        deck = deck_text(name, [p], 4.32e8, 0.0, t, bnd, loads)
+    return Case(name, deck, "ROOF", nid(n, n), 3, -0.3024,
                 "MacNeal-Harder 1985", count_dofs([p]))
 
 

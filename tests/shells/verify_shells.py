@@ -256,6 +256,7 @@ def main():
     for n in (4, 8, 16) + ((32,) if a.full else ()):
         cases.append((g.scordelis_lo(n, "S4"), 0.03 if n >= 16 else None))
         cases.append((g.scordelis_lo(n, "S3"), 0.05 if n >= 16 else None))
+    cases.append((g.scordelis_lo(16, "S4", gravity=True), 0.03))
     for n in (4, 8, 16) + ((32,) if a.full else ()):
         cases.append((g.pinched_hemisphere(n, "S4"), 0.03 if n >= 16 else None))
         cases.append((g.pinched_hemisphere(n, "S3"), 0.05 if n >= 16 else None))

@@ -36,6 +36,8 @@ module superjoin_analysis
     !! MAXRATIO above this (a pivot within about 1/(45 ε) of total cancellation)
     !! is numerically singular (exit 3): exact mechanisms factor with MAXRATIO
     !! from about 5e13 up, and nothing meaningful is left of an answer above 1e13.
+  real(wp), parameter :: RATIO_CAP = 1.0e300_wp
+    !! MAXRATIO reported when K_jj / D_jj would overflow.
   real(wp), parameter, public :: RESIDUAL_WARN = 1.0e-6_wp
     !! A relative residual still above this after refinement is reported as a warning.
 
@@ -504,6 +506,35 @@ contains
     do is = 1, nstep
        res%steps(is)%residual0 = res%steps(is)%residual
     end do
+    ! MAXRATIO = max K_jj / D_jj, first: a numerically singular matrix stops
+    ! here, before refinement solves with a factor that is not worth using.
+    allocate (d(k%n), kd(k%n))
+    call solver%pivots(d)
+    call k%diagonal(kd)
+    res%maxratio = 0.0_wp
+    jmax = 0
+    do j = 1, k%n
+       if (spc(j) .or. d(j) == 0.0_wp) cycle
+       ! kd/d guarded against overflow (PENALTY with an absurd g)
+       if (abs(d(j)) <= abs(kd(j))/RATIO_CAP) then
+          ratio = RATIO_CAP
+       else
+          ratio = abs(kd(j)/d(j))
+       end if
+       if (ratio > res%maxratio) then
+          res%maxratio = ratio
+          jmax = j
+       end if
+    end do
+    res%maxratio_at = 'n/a'
+    if (jmax > 0) res%maxratio_at = column_label(model, table, tr, jmax)
+    if (res%maxratio > MAXRATIO_FATAL) then
+       write (buf, '(es10.2e3)') res%maxratio
+       call fatal_error(error, EXIT_SINGULAR, 'error: the structure cannot be solved: stiffness is '// &
+            'numerically singular at '//res%maxratio_at//' (MAXRATIO '//trim(adjustl(buf))// &
+            '): a mechanism, or a stiffness contrast beyond double precision'//penalty_hint(res))
+       return
+    end if
     ! Iterative refinement with the existing factor, while the backward error
     ! is above a few ulps or the residual or EPSILON above REFINE_RESIDUAL, and
     ! each step at least halves the largest residual.
@@ -529,35 +560,12 @@ contains
        res%steps(:)%refinements = it
     end do
 
-    ! MAXRATIO = max K_jj / D_jj.
-    allocate (d(k%n), kd(k%n))
-    call solver%pivots(d)
-    call k%diagonal(kd)
-    res%maxratio = 0.0_wp
-    jmax = 0
-    do j = 1, k%n
-       if (spc(j) .or. d(j) == 0.0_wp) cycle
-       ratio = abs(kd(j)/d(j))
-       if (ratio > res%maxratio) then
-          res%maxratio = ratio
-          jmax = j
-       end if
-    end do
-    res%maxratio_at = 'n/a'
-    if (jmax > 0) res%maxratio_at = column_label(model, table, tr, jmax)
-    if (res%maxratio > MAXRATIO_FATAL) then
-       write (buf, '(es9.2)') res%maxratio
-       call fatal_error(error, EXIT_SINGULAR, 'error: the structure cannot be solved: stiffness is '// &
-            'numerically singular at '//res%maxratio_at//' (MAXRATIO '//trim(adjustl(buf))// &
-            '): a mechanism, or a stiffness contrast beyond double precision'//penalty_hint(res))
-       return
-    end if
     if (maxval(res%steps(:)%residual) > RESIDUAL_WARN) then
-       write (buf, '(es9.2)') maxval(res%steps(:)%residual)
+       write (buf, '(es10.2e3)') maxval(res%steps(:)%residual)
        call warn(res, 'relative residual '//trim(adjustl(buf))//' after refinement: results are inaccurate')
     end if
     if (res%maxratio > MAXRATIO_WARN) then
-       write (buf, '(es9.2)') res%maxratio
+       write (buf, '(es10.2e3)') res%maxratio
        call warn(res, 'MAXRATIO '//trim(adjustl(buf))//' at '//res%maxratio_at// &
             ': about '//itoa(nint(log10(res%maxratio)))//' digits may be lost')
     end if

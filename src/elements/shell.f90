@@ -73,9 +73,10 @@ contains
        call fatal_error(error, EXIT_DECK, 'nodes 1 and 2 coincide')
        return
     end if
-    r(1, :) = ex/norm2(ex)
+    ex = ex/norm2(ex)
+    r(1, :) = ex
     r(3, :) = nrm
-    r(2, :) = cross(nrm, r(1, :))
+    r(2, :) = cross(nrm, ex)
     do i = 1, n
        xl(1, i) = dot_product(p(:, i) - c, r(1, :))
        xl(2, i) = dot_product(p(:, i) - c, r(2, :))

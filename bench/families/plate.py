@@ -22,8 +22,8 @@ sys.path.insert(0, os.path.join(os.path.dirname(os.path.dirname(os.path.dirname(
 import shellgen  # noqa: E402
 
 NAME = 'plate'
-DESCRIPTION = ('simply supported square plate a/t = 100, uniform pressure, S4 / S3 (Kirchhoff) / '
-               'CalculiX S4 (expanded to C3D20R), centre deflection vs Navier')
+DESCRIPTION = ('SS plate a/t = 100, pressure: S4, S3 / CalculiX S4 (C3D20R), '
+               'centre deflection vs Navier')
 VARIANTS = ['S4', 'S3']
 CCX_EQ_PER_NODE = 14.3      # CalculiX's equations per shell node after the C3D20R expansion
 

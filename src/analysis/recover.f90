@@ -9,9 +9,9 @@ module superjoin_analysis_recover
   use superjoin_kinds, only: wp, ip, i8
   use superjoin_error, only: error_t, add_error_line, EXIT_DECK
   use superjoin_model_types, only: model_t, ELEMENT_NODE_COUNT, LINK_NONE, LINK_FINITE, LINK_RIGID, &
-       NDOF_NODE, loc_text, section_t, material_t
+       NDOF_NODE, loc_text
   use superjoin_elements, only: element_end_forces, element_nodal_forces, &
-       element_stiffness, is_plate_type, shell_resultants
+       is_plate_type, shell_forces
   use superjoin_assembly_dofs, only: dof_table_t, NBLOCK, GROUND, UNIT_LINK, UNIT_SUPPORT, block_dof
   use superjoin_assembly_forest, only: forest_t
   use superjoin_assembly_transform, only: transform_t, ROLE_TREE, CONS_ELIMINATED
@@ -148,7 +148,8 @@ contains
               call element_pdofs(model, table, isub, e, pd, n)
               ie = res%elem_offset(isub) + e
               if (is_plate_type(s%elem_type(e))) then
-                 call plate_element_results(s%elem_type(e), s%x(:, s%elem_nodes(1:nn, e)), sec, &
+                 ! r takes K_e u_e (the distributed loads of these elements are left out of r above)
+                 call shell_forces(s%elem_type(e), s%x(:, s%elem_nodes(1:nn, e)), sec, &
                       model%materials(sec%material), u(pd(1:n), :), res%plate(:, ie, :), fg2(1:n, :), inner)
                  if (allocated(inner)) then
                     call add_error_line(error, EXIT_DECK, inner%message)
@@ -180,26 +181,6 @@ contains
     end do
   end subroutine element_results
 
-  subroutine plate_element_results(etype, x, sec, mat, ue, pres, fg, error)
-    !! Resultants pres(6, nstep) and fg = K_e u_e (global axes) of a plane or
-    !! shell element for every step (its distributed loads are left out of r).
-    integer, intent(in) :: etype
-    real(wp), intent(in) :: x(:, :)
-    type(section_t), intent(in) :: sec
-    type(material_t), intent(in) :: mat
-    real(wp), intent(in) :: ue(:, :)
-    real(wp), intent(out) :: pres(:, :), fg(:, :)
-    type(error_t), allocatable, intent(out) :: error
-    real(wp), allocatable :: ke(:, :)
-    integer :: is
-    call element_stiffness(etype, x, sec, mat, ke, error)
-    if (allocated(error)) return
-    fg = matmul(ke, ue)
-    do is = 1, size(ue, 2)
-       call shell_resultants(etype, x, sec, mat, ue(:, is), pres(:, is), error)
-       if (allocated(error)) return
-    end do
-  end subroutine plate_element_results
 
   subroutine unit_deltas(table, tr, q, u, delta)
     !! δ of every unit component (local axes): a column of its own, the rigid

@@ -14,16 +14,18 @@ module superjoin_elements
   use superjoin_elements_truss, only: truss_stiffness, truss_end_forces, truss_distributed_load
   use superjoin_elements_beam, only: beam_stiffness, beam_end_forces, beam_load
   use superjoin_elements_shell, only: is_plate_type, shell_stiffness, shell_resultants, shell_pressure_load, &
-       shell_area_load
+       shell_area_load, shell_forces
   implicit none (type, external)
   private
 
   public :: element_node_dofs, element_dof_mask, element_stiffness, element_end_forces, beam_distributed_load, &
        element_nodal_forces, element_distributed_load, element_gravity_load
-  public :: is_plate_type, shell_resultants
+  public :: is_plate_type, shell_resultants, shell_forces
     !! is_plate_type(etype): CPS3, CPS4, S3, S4. shell_resultants(etype, x, sec,
     !! mat, ue, res, error): nx, ny, nxy, mx, my, mxy at the centroid, element
-    !! frame; see superjoin_elements_shell.
+    !! frame; shell_forces(etype, x, sec, mat, ue(:, nstep), res(6, nstep),
+    !! fg(:, nstep), error): resultants and K_e u_e of every step with one
+    !! element matrix; see superjoin_elements_shell.
   public :: beam_frame
     !! beam_frame(etype, x, sec, r, length, error): local frame of a truss or beam
     !! (rows of r = local x, y, z axes); see superjoin_elements_frame.

@@ -20,7 +20,8 @@ module superjoin_elements_shell
   implicit none (type, external)
   private
 
-  public :: is_plate_type, shell_frame, shell_stiffness, shell_resultants, shell_pressure_load, shell_area_load
+  public :: is_plate_type, shell_frame, shell_stiffness, shell_resultants, shell_forces, shell_pressure_load, &
+       shell_area_load
 
   integer, parameter :: MEMBRANE_DOFS(3) = [1, 2, 6]
     !! Local shell DOFs (u, v, w, θx, θy, θz) of the membrane (u, v, θz).
@@ -92,31 +93,42 @@ contains
     type(material_t), intent(in) :: mat
     real(wp), allocatable, intent(out) :: ke(:, :)
     type(error_t), allocatable, intent(out) :: error
-    real(wp), allocatable :: a(:, :), kf(:, :), km(:, :), kb(:, :)
+    real(wp), allocatable :: kf(:, :)
     real(wp) :: r(3, 3), xl(2, size(x, 2)), h(size(x, 2))
-    integer :: n
 
-    n = size(x, 2)
-    call setup(etype, x, r, xl, h, error)
+    call flat_stiffness(etype, x, sec, mat, kf, r, xl, h, error)
     if (allocated(error)) return
-    if (etype == ET_CPS3 .or. etype == ET_CPS4) then
-       call membrane_stiffness(xl, sec%thickness, mat%e, mat%nu, km, error)
-       if (allocated(error)) return
-       a = plane_map(r, n)
-       ke = matmul(transpose(a), matmul(km, a))
-       return
-    end if
-    call membrane_drill_stiffness(xl, sec%thickness, mat%e, mat%nu, km, error)
-    if (allocated(error)) return
-    call plate_stiffness(xl, sec%thickness, mat%e, mat%nu, kb, error)
-    if (allocated(error)) return
-    allocate (kf(6*n, 6*n), source=0.0_wp)
-    call scatter(km, MEMBRANE_DOFS, n, kf)
-    call scatter(kb, PLATE_DOFS, n, kf)
-    a = shell_map(r, h)
-    ke = matmul(transpose(a), matmul(kf, a))
-    ke = 0.5_wp*(ke + transpose(ke))
+    ke = to_global(kf, node_maps(etype, r, h))
   end subroutine shell_stiffness
+
+  pure subroutine shell_forces(etype, x, sec, mat, ue, res, fg, error)
+    !! For every step (columns of ue, element displacements in global axes):
+    !! the resultants res(6, step) as shell_resultants, and the forces the nodes
+    !! exert on the element fg(:, step) = K_e u_e (global axes), the element
+    !! matrix being formed once, in the element frame.
+    integer, intent(in) :: etype
+    real(wp), intent(in) :: x(:, :)
+    type(section_t), intent(in) :: sec
+    type(material_t), intent(in) :: mat
+    real(wp), intent(in) :: ue(:, :)
+    real(wp), intent(out) :: res(:, :), fg(:, :)
+    type(error_t), allocatable, intent(out) :: error
+    real(wp), allocatable :: kf(:, :), maps(:, :, :), d(:)
+    real(wp) :: r(3, 3), xl(2, size(x, 2)), h(size(x, 2))
+    integer :: is
+
+    res = 0.0_wp
+    fg = 0.0_wp
+    call flat_stiffness(etype, x, sec, mat, kf, r, xl, h, error)
+    if (allocated(error)) return
+    maps = node_maps(etype, r, h)
+    do is = 1, size(ue, 2)
+       d = to_local(maps, ue(:, is))
+       fg(:, is) = to_global_vector(maps, matmul(kf, d))
+       call local_resultants(etype, xl, sec, mat, d, res(:, is), error)
+       if (allocated(error)) return
+    end do
+  end subroutine shell_forces
 
   pure subroutine shell_resultants(etype, x, sec, mat, ue, res, error)
     !! Resultants per unit length at the centroid in the element frame,
@@ -129,29 +141,134 @@ contains
     real(wp), intent(in) :: ue(:)
     real(wp), intent(out) :: res(6)
     type(error_t), allocatable, intent(out) :: error
-    real(wp), allocatable :: d(:), um(:), ub(:)
     real(wp) :: r(3, 3), xl(2, size(x, 2)), h(size(x, 2))
-    integer :: n, i
 
     res = 0.0_wp
+    call setup(etype, x, r, xl, h, error)
+    if (allocated(error)) return
+    call local_resultants(etype, xl, sec, mat, to_local(node_maps(etype, r, h), ue), res, error)
+  end subroutine shell_resultants
+
+  pure subroutine flat_stiffness(etype, x, sec, mat, kf, r, xl, h, error)
+    !! The element matrix in the element frame (plane stress: u, v per node;
+    !! shells: u, v, w, θx, θy, θz per node at the projected points), with the
+    !! frame r, local coordinates xl and warp offsets h.
+    integer, intent(in) :: etype
+    real(wp), intent(in) :: x(:, :)
+    type(section_t), intent(in) :: sec
+    type(material_t), intent(in) :: mat
+    real(wp), allocatable, intent(out) :: kf(:, :)
+    real(wp), intent(out) :: r(3, 3), xl(:, :), h(:)
+    type(error_t), allocatable, intent(out) :: error
+    real(wp), allocatable :: km(:, :), kb(:, :)
+    integer :: n
+
     n = size(x, 2)
     call setup(etype, x, r, xl, h, error)
     if (allocated(error)) return
     if (etype == ET_CPS3 .or. etype == ET_CPS4) then
-       d = matmul(plane_map(r, n), ue)
+       call membrane_stiffness(xl, sec%thickness, mat%e, mat%nu, kf, error)
+       return
+    end if
+    call membrane_drill_stiffness(xl, sec%thickness, mat%e, mat%nu, km, error)
+    if (allocated(error)) return
+    call plate_stiffness(xl, sec%thickness, mat%e, mat%nu, kb, error)
+    if (allocated(error)) return
+    allocate (kf(6*n, 6*n), source=0.0_wp)
+    call scatter(km, MEMBRANE_DOFS, n, kf)
+    call scatter(kb, PLATE_DOFS, n, kf)
+  end subroutine flat_stiffness
+
+  pure subroutine local_resultants(etype, xl, sec, mat, d, res, error)
+    !! Resultants from the element-frame DOFs d (flat_stiffness ordering).
+    integer, intent(in) :: etype
+    real(wp), intent(in) :: xl(:, :)
+    type(section_t), intent(in) :: sec
+    type(material_t), intent(in) :: mat
+    real(wp), intent(in) :: d(:)
+    real(wp), intent(out) :: res(6)
+    type(error_t), allocatable, intent(out) :: error
+    real(wp) :: um(2*size(xl, 2)), ub(3*size(xl, 2))
+    integer :: i
+    res = 0.0_wp
+    if (etype == ET_CPS3 .or. etype == ET_CPS4) then
        call membrane_resultants(xl, sec%thickness, mat%e, mat%nu, d, res(1:3), error)
        return
     end if
-    d = matmul(shell_map(r, h), ue)
-    allocate (um(2*n), ub(3*n))
-    do i = 1, n
+    do i = 1, size(xl, 2)
        um(2*i - 1:2*i) = d(6*(i - 1) + MEMBRANE_DOFS(1:2))
        ub(3*i - 2:3*i) = d(6*(i - 1) + PLATE_DOFS)
     end do
     call membrane_resultants(xl, sec%thickness, mat%e, mat%nu, um, res(1:3), error)
     if (allocated(error)) return
     call plate_moments(xl, sec%thickness, mat%e, mat%nu, ub, res(4:6), error)
-  end subroutine shell_resultants
+  end subroutine local_resultants
+
+  pure function node_maps(etype, r, h) result(maps)
+    !! Per node, the matrix taking its global DOFs to its element-frame DOFs:
+    !! maps(:, :, node), 2 x 2 for plane stress, 6 x 6 for shells (rotation and
+    !! rigid warp offset: u_p = u + θ × (-h e_z), i.e. u_p -= h θy, v_p += h θx).
+    integer, intent(in) :: etype
+    real(wp), intent(in) :: r(3, 3), h(:)
+    real(wp), allocatable :: maps(:, :, :)
+    real(wp) :: off(3, 3)
+    integer :: i
+    if (etype == ET_CPS3 .or. etype == ET_CPS4) then
+       allocate (maps(2, 2, size(h)))
+       do i = 1, size(h)
+          maps(:, :, i) = r(1:2, 1:2)
+       end do
+       return
+    end if
+    allocate (maps(6, 6, size(h)), source=0.0_wp)
+    do i = 1, size(h)
+       maps(1:3, 1:3, i) = r
+       maps(4:6, 4:6, i) = r
+       off = 0.0_wp
+       off(1, 2) = -h(i)
+       off(2, 1) = h(i)
+       maps(1:3, 4:6, i) = matmul(off, r)
+    end do
+  end function node_maps
+
+  pure function to_global(kf, maps) result(ke)
+    !! K = Aᵀ Kf A with A block diagonal (maps), one node pair at a time.
+    real(wp), intent(in) :: kf(:, :), maps(:, :, :)
+    real(wp) :: ke(size(kf, 1), size(kf, 2))
+    integer :: m, i, j, ri, rj
+    m = size(maps, 1)
+    do j = 1, size(maps, 3)
+       rj = m*(j - 1)
+       do i = 1, size(maps, 3)
+          ri = m*(i - 1)
+          ke(ri + 1:ri + m, rj + 1:rj + m) = matmul(transpose(maps(:, :, i)), &
+               matmul(kf(ri + 1:ri + m, rj + 1:rj + m), maps(:, :, j)))
+       end do
+    end do
+    ke = 0.5_wp*(ke + transpose(ke))
+  end function to_global
+
+  pure function to_local(maps, u) result(d)
+    !! Element-frame DOFs d = A u.
+    real(wp), intent(in) :: maps(:, :, :), u(:)
+    real(wp) :: d(size(u))
+    integer :: m, i
+    m = size(maps, 1)
+    do i = 1, size(maps, 3)
+       d(m*(i - 1) + 1:m*i) = matmul(maps(:, :, i), u(m*(i - 1) + 1:m*i))
+    end do
+  end function to_local
+
+  pure function to_global_vector(maps, f) result(g)
+    !! Global forces g = Aᵀ f.
+    real(wp), intent(in) :: maps(:, :, :), f(:)
+    real(wp) :: g(size(f))
+    integer :: m, i
+    m = size(maps, 1)
+    do i = 1, size(maps, 3)
+       g(m*(i - 1) + 1:m*i) = matmul(transpose(maps(:, :, i)), f(m*(i - 1) + 1:m*i))
+    end do
+  end function to_global_vector
 
   pure subroutine shell_pressure_load(etype, x, p, fe, p_local, error)
     !! Nodal loads fe (global axes, element ordering) of a uniform pressure p on
@@ -180,7 +297,7 @@ contains
     do i = 1, n
        ff(6*(i - 1) + PLATE_DOFS) = fb(3*i - 2:3*i)
     end do
-    fe = matmul(transpose(shell_map(r, h)), ff)
+    fe = to_global_vector(node_maps(etype, r, h), ff)
   end subroutine shell_pressure_load
 
   pure subroutine shell_area_load(etype, x, w, fe, error)
@@ -239,38 +356,6 @@ contains
     end if
     call shell_frame(x, r, xl, h, error)
   end subroutine setup
-
-  pure function plane_map(r, n) result(a)
-    !! Local (u, v) per node from global (ux, uy) per node of a plane element.
-    real(wp), intent(in) :: r(3, 3)
-    integer, intent(in) :: n
-    real(wp) :: a(2*n, 2*n)
-    integer :: i
-    a = 0.0_wp
-    do i = 1, n
-       a(2*i - 1:2*i, 2*i - 1:2*i) = r(1:2, 1:2)
-    end do
-  end function plane_map
-
-  pure function shell_map(r, h) result(a)
-    !! Flat-element local DOFs (u, v, w, θx, θy, θz at the projected points) from
-    !! global DOFs at the nodes: rotation to local axes and the rigid offsets.
-    real(wp), intent(in) :: r(3, 3), h(:)
-    real(wp) :: a(6*size(h), 6*size(h))
-    real(wp) :: off(3, 3)
-    integer :: i, k
-    a = 0.0_wp
-    do i = 1, size(h)
-       k = 6*(i - 1)
-       a(k + 1:k + 3, k + 1:k + 3) = r
-       a(k + 4:k + 6, k + 4:k + 6) = r
-       ! u_p = u + θ × (-h e_z): u_p += -h θy, v_p += h θx (local components)
-       off = 0.0_wp
-       off(1, 2) = -h(i)
-       off(2, 1) = h(i)
-       a(k + 1:k + 3, k + 4:k + 6) = matmul(off, r)
-    end do
-  end function shell_map
 
   pure subroutine scatter(kp, dofs, n, kf)
     !! Add a part matrix with 3 DOFs per node into the 6-DOF flat matrix.

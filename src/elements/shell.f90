@@ -17,6 +17,7 @@ module superjoin_elements_shell
        ELEMENT_NODE_COUNT
   use superjoin_elements_membrane, only: membrane_stiffness, membrane_drill_stiffness, membrane_resultants
   use superjoin_elements_plate, only: plate_stiffness, plate_moments, plate_pressure_load
+  use superjoin_elements_frame, only: cross
   implicit none (type, external)
   private
 
@@ -374,10 +375,4 @@ contains
        end do
     end do
   end subroutine scatter
-
-  pure function cross(a, b) result(c)
-    real(wp), intent(in) :: a(3), b(3)
-    real(wp) :: c(3)
-    c = [a(2)*b(3) - a(3)*b(2), a(3)*b(1) - a(1)*b(3), a(1)*b(2) - a(2)*b(1)]
-  end function cross
 end module superjoin_elements_shell

@@ -244,11 +244,7 @@ contains
                if (is_plate_type(model%subs(isub)%elem_type(ie))) cycle
                iel = res%elem_offset(isub) + ie
                do k = 1, 2
-                  call lu%put('  ')
-                  call lu%put_field(model%subs(isub)%name, 20)
-                  call lu%put_int(int(model%subs(isub)%elem_id(ie), i8), 10)
-                  call lu%put('  ')
-                  call lu%put_field(ELEMENT_TYPE_NAMES(model%subs(isub)%elem_type(ie)), 4)
+                  call element_prefix(lu, model, isub, ie)
                   call lu%put_int(int(k, i8), 4)
                   do d = 1, 6
                      call lu%put_es(chop(res%elem_force(d, k, iel, is), scale))

@@ -7,26 +7,9 @@ program test_elements
   use superjoin_elements, only: element_node_dofs, element_stiffness, element_end_forces, &
        beam_distributed_load, beam_frame
   use superjoin_testing, only: check, check_close, check_rel, finish
+  use test_lapack, only: dsyev, dgesv
   implicit none (type, external)
 
-  interface
-     subroutine dsyev(jobz, uplo, n, a, lda, w, work, lwork, info)
-       !! LAPACK: eigenvalues (and vectors) of a real symmetric matrix.
-       import :: wp
-       character, intent(in) :: jobz, uplo
-       integer, intent(in) :: n, lda, lwork
-       real(wp), intent(inout) :: a(lda, *)
-       real(wp), intent(out) :: w(*), work(*)
-       integer, intent(out) :: info
-     end subroutine dsyev
-     subroutine dgesv(n, nrhs, a, lda, ipiv, b, ldb, info)
-       !! LAPACK: solve a general linear system.
-       import :: wp
-       integer, intent(in) :: n, nrhs, lda, ldb
-       real(wp), intent(inout) :: a(lda, *), b(ldb, *)
-       integer, intent(out) :: ipiv(*), info
-     end subroutine dgesv
-  end interface
 
   real(wp), parameter :: PI = acos(-1.0_wp)
   real(wp), parameter :: TOL = 1.0e-12_wp          !! round-off, relative

@@ -6,26 +6,9 @@ program test_membrane
   use superjoin_elements_membrane, only: membrane_stiffness, membrane_resultants, &
        membrane_drill_stiffness
   use superjoin_testing, only: check, check_close, check_rel, finish
+  use test_lapack, only: dsyev, dgesv
   implicit none (type, external)
 
-  interface
-     subroutine dsyev(jobz, uplo, n, a, lda, w, work, lwork, info)
-       !! LAPACK: eigenvalues (and vectors) of a real symmetric matrix.
-       import :: wp
-       character, intent(in) :: jobz, uplo
-       integer, intent(in) :: n, lda, lwork
-       real(wp), intent(inout) :: a(lda, *)
-       real(wp), intent(out) :: w(*), work(*)
-       integer, intent(out) :: info
-     end subroutine dsyev
-     subroutine dgesv(n, nrhs, a, lda, ipiv, b, ldb, info)
-       !! LAPACK: solve a general linear system.
-       import :: wp
-       integer, intent(in) :: n, nrhs, lda, ldb
-       real(wp), intent(inout) :: a(lda, *), b(ldb, *)
-       integer, intent(out) :: ipiv(*), info
-     end subroutine dgesv
-  end interface
 
   real(wp), parameter :: TOL_SYM = 1.0e-14_wp      !! symmetry of ke, relative to max |ke|
   real(wp), parameter :: TOL_EXACT = 1.0e-10_wp    !! discrete answer exact: patch tests, rigid modes

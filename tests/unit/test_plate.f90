@@ -8,42 +8,9 @@ program test_plate
   use superjoin_error, only: error_t, EXIT_DECK
   use superjoin_elements_plate, only: plate_stiffness, plate_moments, plate_pressure_load
   use superjoin_testing, only: check, check_close, check_rel, finish
+  use test_lapack, only: dsyev, dgesv, dposv, dpbsv
   implicit none (type, external)
 
-  interface
-     subroutine dsyev(jobz, uplo, n, a, lda, w, work, lwork, info)
-       !! LAPACK: eigenvalues (and vectors) of a real symmetric matrix.
-       import :: wp
-       character, intent(in) :: jobz, uplo
-       integer, intent(in) :: n, lda, lwork
-       real(wp), intent(inout) :: a(lda, *)
-       real(wp), intent(out) :: w(*), work(*)
-       integer, intent(out) :: info
-     end subroutine dsyev
-     subroutine dposv(uplo, n, nrhs, a, lda, b, ldb, info)
-       !! LAPACK: solve a symmetric positive definite system (Cholesky).
-       import :: wp
-       character, intent(in) :: uplo
-       integer, intent(in) :: n, nrhs, lda, ldb
-       real(wp), intent(inout) :: a(lda, *), b(ldb, *)
-       integer, intent(out) :: info
-     end subroutine dposv
-     subroutine dpbsv(uplo, n, kd, nrhs, ab, ldab, b, ldb, info)
-       !! LAPACK: solve a symmetric positive definite banded system (Cholesky).
-       import :: wp
-       character, intent(in) :: uplo
-       integer, intent(in) :: n, kd, nrhs, ldab, ldb
-       real(wp), intent(inout) :: ab(ldab, *), b(ldb, *)
-       integer, intent(out) :: info
-     end subroutine dpbsv
-     subroutine dgesv(n, nrhs, a, lda, ipiv, b, ldb, info)
-       !! LAPACK: solve a general linear system.
-       import :: wp
-       integer, intent(in) :: n, nrhs, lda, ldb
-       real(wp), intent(inout) :: a(lda, *), b(ldb, *)
-       integer, intent(out) :: ipiv(*), info
-     end subroutine dgesv
-  end interface
 
   real(wp), parameter :: PI = acos(-1.0_wp)
   real(wp), parameter :: TOL = 1.0e-12_wp          !! round-off on one element, relative

@@ -1,0 +1,43 @@
+module test_lapack
+  !! LAPACK interfaces shared by the unit tests (eigenvalues and dense or banded
+  !! solves of small test systems).
+  use superjoin_kinds, only: wp
+  implicit none (type, external)
+  private
+  public :: dsyev, dposv, dpbsv, dgesv
+
+  interface
+     subroutine dsyev(jobz, uplo, n, a, lda, w, work, lwork, info)
+       !! LAPACK: eigenvalues (and vectors) of a real symmetric matrix.
+       import :: wp
+       character, intent(in) :: jobz, uplo
+       integer, intent(in) :: n, lda, lwork
+       real(wp), intent(inout) :: a(lda, *)
+       real(wp), intent(out) :: w(*), work(*)
+       integer, intent(out) :: info
+     end subroutine dsyev
+     subroutine dposv(uplo, n, nrhs, a, lda, b, ldb, info)
+       !! LAPACK: solve a symmetric positive definite system (Cholesky).
+       import :: wp
+       character, intent(in) :: uplo
+       integer, intent(in) :: n, nrhs, lda, ldb
+       real(wp), intent(inout) :: a(lda, *), b(ldb, *)
+       integer, intent(out) :: info
+     end subroutine dposv
+     subroutine dpbsv(uplo, n, kd, nrhs, ab, ldab, b, ldb, info)
+       !! LAPACK: solve a symmetric positive definite banded system (Cholesky).
+       import :: wp
+       character, intent(in) :: uplo
+       integer, intent(in) :: n, kd, nrhs, ldab, ldb
+       real(wp), intent(inout) :: ab(ldab, *), b(ldb, *)
+       integer, intent(out) :: info
+     end subroutine dpbsv
+     subroutine dgesv(n, nrhs, a, lda, ipiv, b, ldb, info)
+       !! LAPACK: solve a general linear system.
+       import :: wp
+       integer, intent(in) :: n, nrhs, lda, ldb
+       real(wp), intent(inout) :: a(lda, *), b(ldb, *)
+       integer, intent(out) :: ipiv(*), info
+     end subroutine dgesv
+  end interface
+end module test_lapack

@@ -12,6 +12,7 @@ program superjoin_main
   use superjoin_output_csv, only: write_csv
   use superjoin_output_vtk, only: write_vtk, vtk_path_problem
   use superjoin_config, only: SUPERJOIN_VERSION, DEMO_DECK_SOURCE, DEMO_DECK_INSTALLED
+  use superjoin_utils_strings, only: to_lower
   use superjoin_utils_clock, only: stopwatch_t, report_phase
   implicit none (type, external)
 
@@ -154,14 +155,14 @@ contains
           case ('--csv')
              csv_dir = val
           case ('--solver')
-             select case (lower(val))
+             select case (to_lower(val))
              case ('auto', 'cholmod', 'umfpack', 'lapack')
-                opts%solver = lower(val)
+                opts%solver = to_lower(val)
              case default
                 call usage_error('unknown solver '''//val//''' (auto, cholmod, umfpack, lapack)')
              end select
           case ('--formulation')
-             select case (lower(val))
+             select case (to_lower(val))
              case ('transform')
                 opts%formulation = FORM_TRANSFORM
              case ('penalty')
@@ -223,13 +224,4 @@ contains
     end if
   end function default_listing
 
-  pure function lower(s) result(t)
-    character(*), intent(in) :: s
-    character(len(s)) :: t
-    integer :: k
-    t = s
-    do k = 1, len(s)
-       if (s(k:k) >= 'A' .and. s(k:k) <= 'Z') t(k:k) = achar(iachar(s(k:k)) + 32)
-    end do
-  end function lower
 end program superjoin_main

@@ -14,7 +14,7 @@ module superjoin_output_vtk
   use superjoin_output_posix, only: rename_file, remove_file, make_directory
   use superjoin_output_text_buffer, only: text_buffer_t
   use superjoin_config, only: SUPERJOIN_VERSION
-  use superjoin_utils_strings, only: itoa, full_real
+  use superjoin_utils_strings, only: itoa, full_real, to_lower
   implicit none (type, external)
   private
 
@@ -54,7 +54,7 @@ contains
     n = len(path)
     base = path
     if (n >= len(PVD_EXT)) then
-       if (lower(path(n - len(PVD_EXT) + 1:n)) == PVD_EXT) base = path(1:n - len(PVD_EXT))
+       if (to_lower(path(n - len(PVD_EXT) + 1:n)) == PVD_EXT) base = path(1:n - len(PVD_EXT))
     end if
   end function vtk_base
 
@@ -391,21 +391,8 @@ contains
     call zeros(lu, size(model%links, kind=i8) + grid%nsupport, NCOMP)
     call close_array(lu)
 
-    call open_array(lu, 'Float64', 'delta', NCOMP, DOF_NAMES)
-    call zeros(lu, grid%nelem, NCOMP)
-    do il = 1, size(model%links)
-       call put_tuple(lu, merge(res%steps(is)%link_delta(:, il), zero, res%link_used(:, il)))
-    end do
-    call zeros(lu, grid%nsupport, NCOMP)
-    call close_array(lu)
-
-    call open_array(lu, 'Float64', 'force', NCOMP, DOF_NAMES)
-    call zeros(lu, grid%nelem, NCOMP)
-    do il = 1, size(model%links)
-       call put_tuple(lu, merge(res%steps(is)%link_force(:, il), zero, res%link_used(:, il)))
-    end do
-    call zeros(lu, grid%nsupport, NCOMP)
-    call close_array(lu)
+    call contact_array('delta', res%steps(is)%link_delta)
+    call contact_array('force', res%steps(is)%link_force)
 
     call open_array(lu, 'Float64', 'reaction', NCOMP, DOF_NAMES)
     call zeros(lu, grid%nelem + size(model%links, kind=i8), NCOMP)
@@ -421,6 +408,20 @@ contains
     end do
     call close_array(lu)
     call lu%line('      </CellData>')
+  contains
+    subroutine contact_array(name, values)
+      !! A cell array that only the contact cells carry (values(6, nlink), the
+      !! components a contact does not connect written as 0).
+      character(*), intent(in) :: name
+      real(wp), intent(in) :: values(:, :)
+      call open_array(lu, 'Float64', name, NCOMP, DOF_NAMES)
+      call zeros(lu, grid%nelem, NCOMP)
+      do il = 1, size(model%links)
+         call put_tuple(lu, merge(values(:, il), zero, res%link_used(:, il)))
+      end do
+      call zeros(lu, grid%nsupport, NCOMP)
+      call close_array(lu)
+    end subroutine contact_array
   end subroutine cell_data
 
   subroutine points(lu, model)
@@ -608,13 +609,4 @@ contains
     end do
   end function xml_comment
 
-  pure function lower(s) result(t)
-    character(*), intent(in) :: s
-    character(len(s)) :: t
-    integer :: k
-    t = s
-    do k = 1, len(s)
-       if (s(k:k) >= 'A' .and. s(k:k) <= 'Z') t(k:k) = achar(iachar(s(k:k)) + 32)
-    end do
-  end function lower
 end module superjoin_output_vtk

@@ -9,7 +9,7 @@ module superjoin_utils_strings
      module procedure itoa_default, itoa_i8
   end interface itoa
 
-  public :: itoa, rtoa, full_real, pick
+  public :: itoa, rtoa, full_real, pick, to_lower
 
 contains
 
@@ -50,6 +50,17 @@ contains
        s = trim(adjustl(buf))
     end if
   end function full_real
+  pure function to_lower(s) result(t)
+    !! s with ASCII letters in lower case.
+    character(*), intent(in) :: s
+    character(len(s)) :: t
+    integer :: k
+    t = s
+    do k = 1, len(s)
+       if (s(k:k) >= 'A' .and. s(k:k) <= 'Z') t(k:k) = achar(iachar(s(k:k)) + 32)
+    end do
+  end function to_lower
+
   pure function pick(cond, a, b) result(s)
     !! `a` when `cond`, else `b` (strings of any lengths).
     logical, intent(in) :: cond

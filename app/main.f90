@@ -12,6 +12,7 @@ program superjoin_main
   use superjoin_output_csv, only: write_csv
   use superjoin_config, only: SUPERJOIN_VERSION, DEMO_DECK_SOURCE, DEMO_DECK_INSTALLED
   use superjoin_utils_clock, only: stopwatch_t, report_phase
+  use superjoin_utils_process, only: process_setup
   implicit none (type, external)
 
   type(run_options_t) :: opts
@@ -23,7 +24,10 @@ program superjoin_main
   type(stopwatch_t) :: clock
   real(wp) :: t_read
   integer :: i
+  logical :: ok
 
+  call process_setup(ok)
+  if (.not. ok) write (error_unit, '(a)') 'superjoin: warning: signal handlers not installed'
   call parse_command_line(opts, deck, listing, csv_dir, check_only)
 
   call clock%start()

@@ -18,6 +18,7 @@ module superjoin_analysis
   use superjoin_utils_clock, only: stopwatch_t, report_phase
   use superjoin_utils_union_find, only: find_root
   use superjoin_utils_strings, only: itoa
+  use superjoin_utils_memory, only: out_of_memory, BYTES_REAL
   implicit none (type, external)
   private
 
@@ -71,7 +72,8 @@ contains
          ' contact element(s) name DOFs that neither node carries; those DOFs are not connected')
     call apply_large(model, table, form, notes, error)
     if (allocated(error)) return
-    call build_forest(table, form == FORM_TRANSFORM, forest)
+    call build_forest(table, form == FORM_TRANSFORM, forest, error)
+    if (allocated(error)) return
     call build_transform(model, table, forest, tr, error)
     if (allocated(error)) return
     call describe_transform(model, table, tr, form, res, notes)
@@ -81,7 +83,8 @@ contains
     if (allocated(error)) return
     call assemble_loads(model, table, f_phys, error)
     if (allocated(error)) return
-    call reduce_loads(tr, f_phys, f_u0, f_red)
+    call reduce_loads(tr, f_phys, f_u0, f_red, error)
+    if (allocated(error)) return
     call autospc(model, table, tr, k, f_red, spc, notes, error)
     if (allocated(error)) return
     call skip_unloaded_parts(model, table, tr, k, f_red, spc, notes)
@@ -289,14 +292,19 @@ contains
     end do
   end subroutine count_boundary
 
-  subroutine reduce_loads(tr, f_phys, f_u0, f_red)
+  subroutine reduce_loads(tr, f_phys, f_u0, f_red, error)
     !! f_red = Tᵀ f_phys + f_u0 for every step.
     type(transform_t), intent(in) :: tr
     real(wp), intent(in) :: f_phys(:, :), f_u0(:)
     real(wp), allocatable, intent(out) :: f_red(:, :)
+    type(error_t), allocatable, intent(out) :: error
     integer(i8) :: p, j
-    integer :: is
-    allocate (f_red(tr%ncol, size(f_phys, 2)))
+    integer :: is, stat
+    allocate (f_red(tr%ncol, size(f_phys, 2)), stat=stat)
+    if (stat /= 0) then
+       call out_of_memory(error, 'the reduced loads', tr%ncol*size(f_phys, 2)*BYTES_REAL)
+       return
+    end if
     do is = 1, size(f_phys, 2)
        f_red(:, is) = f_u0
     end do
@@ -426,6 +434,7 @@ contains
     type(stopwatch_t) :: clock
     character(:), allocatable :: solver_name
     integer(i8) :: jf
+    integer :: stat
     character(len=80) :: buf
 
     solver_name = 'auto'
@@ -464,7 +473,11 @@ contains
     call report_phase(opts%quiet, 'factor', res%phase_seconds(PH_FACTOR), solver%info%name//', '//trim(buf))
 
     call clock%start()
-    allocate (q(k%n, size(f_red, 2)))
+    allocate (q(k%n, size(f_red, 2)), stat=stat)
+    if (stat /= 0) then
+       call out_of_memory(error, 'the solution', k%n*size(f_red, 2)*BYTES_REAL)
+       return
+    end if
     call solver%solve(f_red, q, error)
     if (allocated(error)) return
     res%phase_seconds(PH_SOLVE) = clock%seconds()
@@ -487,13 +500,18 @@ contains
     real(wp), allocatable :: r(:, :), dq(:, :), d(:), kd(:), q_try(:, :), r_try(:, :), berr(:), berr_try(:), &
          prev_res(:), prev_eps(:)
     type(error_t), allocatable :: inner
-    integer :: is, it, nstep
+    integer :: is, it, nstep, stat
     integer(i8) :: j, jmax
     real(wp) :: ratio, cond, knorm
     character(len=32) :: buf
 
     nstep = size(q, 2)
-    allocate (r(k%n, nstep), dq(k%n, nstep), berr(nstep), berr_try(nstep))
+    allocate (r(k%n, nstep), dq(k%n, nstep), q_try(k%n, nstep), r_try(k%n, nstep), berr(nstep), &
+         berr_try(nstep), d(k%n), kd(k%n), stat=stat)
+    if (stat /= 0) then
+       call out_of_memory(error, 'the residual checks', (4*nstep + 2)*k%n*BYTES_REAL)
+       return
+    end if
     knorm = norm1_sym(k)
     call residuals(q, r, berr)
     do is = 1, nstep
@@ -522,7 +540,6 @@ contains
     end do
 
     ! MAXRATIO = max K_jj / D_jj.
-    allocate (d(k%n), kd(k%n))
     call solver%pivots(d)
     call k%diagonal(kd)
     res%maxratio = 0.0_wp

@@ -9,15 +9,23 @@
  *    raised again with its default action, so the exit status still says
  *    which signal ended the run. unlink and raise are async-signal-safe.
  *  - OpenBLAS's work buffer is allocated now, by a 1 x 1 dpotrf: OpenBLAS
- *    retries a failed buffer allocation forever, so when memory runs out
- *    later the failure must land in code that reports it, not there.
+ *    retries a failed buffer allocation forever (it spins), so when memory
+ *    runs out later the failure must land in code that reports it. If even
+ *    that buffer cannot be allocated (probed with malloc first), the caller
+ *    is told, with the size, and BLAS is not touched.
  */
 #include <signal.h>
 #include <stdatomic.h>
+#include <stdint.h>
+#include <stdlib.h>
 #include <string.h>
 #include <unistd.h>
 
 #define SJ_TEMP_PATH_MAX 4096
+/* OpenBLAS's work buffer (BUFFER_SIZE, 128 MiB on x86-64) plus its
+ * alignment slack, rounded up. */
+#define SJ_BLAS_BUFFER_BYTES ((size_t)129 << 20)
+#define SJ_SETUP_HANDLERS (-1)
 
 extern void dpotrf_(const char *uplo, const int *n, double *a, const int *lda,
                     int *info, size_t uplo_len);
@@ -36,16 +44,18 @@ static void cleanup_handler(int sig)
     raise(sig);
 }
 
-/* Returns 0 when every handler was installed. */
-int sj_process_setup(void)
+/* Returns 0 when every handler was installed (SJ_SETUP_HANDLERS if not).
+ * *blas_bytes is 0 when BLAS is ready, else the bytes its buffer needs. */
+int sj_process_setup(int64_t *blas_bytes)
 {
     int status = 0;
     size_t k;
     struct sigaction sa;
     double one = 1.0;
     int n = 1, info = 0;
+    void *probe;
 
-    if (signal(SIGXFSZ, SIG_IGN) == SIG_ERR) status = -1;
+    if (signal(SIGXFSZ, SIG_IGN) == SIG_ERR) status = SJ_SETUP_HANDLERS;
     memset(&sa, 0, sizeof sa);
     sa.sa_handler = cleanup_handler;
     sigemptyset(&sa.sa_mask);
@@ -53,9 +63,16 @@ int sj_process_setup(void)
         struct sigaction old;
         /* keep a signal that was ignored when we started (nohup, &) ignored */
         if (sigaction(cleanup_signals[k], NULL, &old) == 0 && old.sa_handler == SIG_IGN) continue;
-        if (sigaction(cleanup_signals[k], &sa, NULL) != 0) status = -1;
+        if (sigaction(cleanup_signals[k], &sa, NULL) != 0) status = SJ_SETUP_HANDLERS;
     }
-    dpotrf_("U", &n, &one, &n, &info, 1);
+    probe = malloc(SJ_BLAS_BUFFER_BYTES);
+    if (probe == NULL) {
+        *blas_bytes = (int64_t)SJ_BLAS_BUFFER_BYTES;
+    } else {
+        free(probe);
+        *blas_bytes = 0;
+        dpotrf_("U", &n, &one, &n, &info, 1);
+    }
     return status;
 }
 

@@ -1,15 +1,17 @@
 module superjoin_utils_process
   !! Process set-up (signals, see process.c) and the registration of the
   !! temporary output file that SIGINT/SIGTERM/SIGHUP must not leave behind.
-  use, intrinsic :: iso_c_binding, only: c_int, c_char, c_long
+  use, intrinsic :: iso_c_binding, only: c_int, c_char, c_long, c_int64_t
+  use superjoin_kinds, only: i8
   implicit none (type, external)
   private
 
   public :: process_setup, temp_register, temp_unregister
 
   interface
-     function sj_process_setup() bind(c, name='sj_process_setup') result(status)
-       import :: c_int
+     function sj_process_setup(blas_bytes) bind(c, name='sj_process_setup') result(status)
+       import :: c_int, c_int64_t
+       integer(c_int64_t), intent(out) :: blas_bytes
        integer(c_int) :: status
      end function sj_process_setup
 
@@ -23,12 +25,16 @@ module superjoin_utils_process
 
 contains
 
-  subroutine process_setup(ok)
+  subroutine process_setup(ok, blas_bytes)
     !! Ignore SIGXFSZ (writes past ulimit -f fail with an I/O status), remove
     !! the registered temporary file on SIGINT/SIGTERM/SIGHUP, allocate the
-    !! BLAS work buffer. ok is false if a handler could not be installed.
+    !! BLAS work buffer. ok is false if a handler could not be installed;
+    !! blas_bytes > 0: the BLAS buffer (that many bytes) could not be allocated.
     logical, intent(out) :: ok
-    ok = sj_process_setup() == 0
+    integer(i8), intent(out) :: blas_bytes
+    integer(c_int64_t) :: nbytes
+    ok = sj_process_setup(nbytes) == 0
+    blas_bytes = int(nbytes, i8)
   end subroutine process_setup
 
   subroutine temp_register(path)

@@ -562,13 +562,19 @@ contains
   end subroutine add_cline
 
   subroutine add_support(st, s)
-    !! Append a support data line.
+    !! Append a support data line (out of memory: reported, reader stops).
     type(deck_state_t), intent(inout) :: st
     type(support_b_t), intent(in) :: s
     type(support_b_t), allocatable :: tmp(:)
+    integer :: stat
     if (.not. allocated(st%supports)) allocate (st%supports(INITIAL_CAPACITY))
     if (st%nsupport == size(st%supports)) then
-       allocate (tmp(2*st%nsupport))
+       allocate (tmp(2*st%nsupport), stat=stat)
+       if (stat /= 0) then
+          call report_oom(st, s%loc, 'the support lines ('//itoa(2*st%nsupport)//')', &
+               2*int(st%nsupport, i8)*storage_size(s)/8)
+          return
+       end if
        tmp(1:st%nsupport) = st%supports(1:st%nsupport)
        call move_alloc(tmp, st%supports)
     end if

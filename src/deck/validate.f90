@@ -882,7 +882,7 @@ contains
     type(model_t), intent(inout) :: model
     type(support_t), allocatable :: list(:), tmp(:)
     integer(ip), allocatable :: nodes(:)
-    integer :: k, n, isub, d
+    integer :: k, n, isub, d, stat
     integer(ip) :: i
     logical :: ok
     allocate (list(INITIAL_CAPACITY))
@@ -898,7 +898,12 @@ contains
             do d = 1, NDOF_NODE
                if (.not. sb%dofs(d)) cycle
                if (n == size(list)) then
-                  allocate (tmp(2*n))
+                  allocate (tmp(2*n), stat=stat)
+                  if (stat /= 0) then
+                     call report_oom(st, sb%loc, 'the supported DOFs ('//itoa(2*n)//')', &
+                          2*int(n, i8)*storage_size(list(1))/8)
+                     return
+                  end if
                   tmp(1:n) = list(1:n)
                   call move_alloc(tmp, list)
                end if

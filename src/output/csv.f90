@@ -127,13 +127,14 @@ contains
           end do
        end do
     end select
-    if (.not. failed) then
+    if (failed) then
+       close (lu, iostat=ios)
+    else
        close (lu, iostat=ios, iomsg=why)
        failed = ios /= 0
        if (.not. failed) call check_file_size(tmp, written, failed, why)
     end if
     if (failed) then
-       close (lu, iostat=ios)
        call remove_file(tmp)
        call temp_unregister()
        call fatal_error(error, EXIT_IO, 'error: failed writing '//path//': '//trim(why))

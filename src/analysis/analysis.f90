@@ -19,6 +19,9 @@ module superjoin_analysis
   use superjoin_utils_union_find, only: find_root
   use superjoin_utils_strings, only: itoa
   use superjoin_utils_memory, only: out_of_memory, BYTES_REAL
+  use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
+  use, intrinsic :: ieee_exceptions, only: ieee_flag_type, ieee_get_halting_mode, ieee_set_halting_mode, &
+       ieee_overflow, ieee_invalid, ieee_divide_by_zero
   implicit none (type, external)
   private
 
@@ -37,10 +40,74 @@ module superjoin_analysis
 
   public :: solve_model
 
+  type(ieee_flag_type), parameter :: HALT_FLAGS(3) = [ieee_overflow, ieee_invalid, ieee_divide_by_zero]
+    !! Exceptions whose halting is off while solving (results are checked instead).
+
 contains
 
   subroutine solve_model(model, opts, res, error)
-    !! Solve every step of a validated model.
+    !! Solve every step of a validated model. Results that overflow the
+    !! floating-point range end the run (EXIT_SINGULAR) instead of printing
+    !! Inf or NaN; floating-point halting (the Debug build's -ffpe-trap) is off
+    !! meanwhile, so the overflow is detected here rather than trapped.
+    type(model_t), intent(in) :: model
+    type(run_options_t), intent(in) :: opts
+    type(results_t), intent(out) :: res
+    type(error_t), allocatable, intent(out) :: error
+    logical :: halting(size(HALT_FLAGS))
+    integer :: i
+    do i = 1, size(HALT_FLAGS)
+       call ieee_get_halting_mode(HALT_FLAGS(i), halting(i))
+       call ieee_set_halting_mode(HALT_FLAGS(i), .false.)
+    end do
+    call solve_steps(model, opts, res, error)
+    do i = 1, size(HALT_FLAGS)
+       call ieee_set_halting_mode(HALT_FLAGS(i), halting(i))
+    end do
+    if (allocated(error)) return
+    call check_finite(res, error)
+  end subroutine solve_model
+
+  subroutine check_finite(res, error)
+    !! EXIT_SINGULAR error naming the first kind of result that is not finite.
+    type(results_t), intent(in) :: res
+    type(error_t), allocatable, intent(out) :: error
+    character(:), allocatable :: what
+    integer :: is
+    if (allocated(res%u)) then
+       if (.not. all(ieee_is_finite(res%u))) what = 'displacements'
+    end if
+    if (.not. allocated(what) .and. allocated(res%elem_force)) then
+       if (.not. all(ieee_is_finite(res%elem_force))) what = 'element forces'
+    end if
+    if (.not. allocated(what) .and. allocated(res%plate)) then
+       if (.not. all(ieee_is_finite(res%plate))) what = 'plate resultants'
+    end if
+    if (.not. allocated(what) .and. allocated(res%steps)) then
+       do is = 1, size(res%steps)
+          associate (st => res%steps(is))
+            if (allocated(st%reactions)) then
+               if (.not. all(ieee_is_finite(st%reactions(:)%force))) what = 'support reactions'
+            end if
+            if (allocated(st%link_force)) then
+               if (.not. (all(ieee_is_finite(st%link_force)) .and. all(ieee_is_finite(st%link_delta)))) &
+                    what = 'contact forces'
+            end if
+            if (.not. (all(ieee_is_finite(st%applied)) .and. all(ieee_is_finite(st%reaction)))) &
+                 what = 'equilibrium resultants'
+            if (.not. (ieee_is_finite(st%residual) .and. ieee_is_finite(st%epsilon))) what = 'residuals'
+          end associate
+          if (allocated(what)) exit
+       end do
+    end if
+    if (.not. allocated(what)) return
+    call fatal_error(error, EXIT_SINGULAR, 'error: the '//what//' overflow the floating-point range '// &
+         '(beyond 1.8E+308 or undefined): check the magnitudes and units of loads, stiffnesses, '// &
+         'contact g and coordinates')
+  end subroutine check_finite
+
+  subroutine solve_steps(model, opts, res, error)
+    !! The analysis proper (see solve_model).
     type(model_t), intent(in) :: model
     type(run_options_t), intent(in) :: opts
     type(results_t), intent(out) :: res
@@ -128,7 +195,7 @@ contains
     call report_phase(opts%quiet, 'recover', clock%seconds())
     if (allocated(solver)) call solver%release()
     res%notes = notes
-  end subroutine solve_model
+  end subroutine solve_steps
 
   subroutine apply_large(model, table, form, notes, error)
     !! RIGID contacts become g = LARGE × (largest element diagonal) under
@@ -571,6 +638,10 @@ contains
             ': about '//itoa(nint(log10(res%maxratio)))//' digits may be lost')
     end if
     call condition_estimate(k, solver, cond)
+    if (.not. ieee_is_finite(cond) .or. cond > huge(cond)) then
+       cond = huge(cond)
+       call warn(res, 'condition estimate overflows (above 1.8E+308): results are unreliable')
+    end if
     res%cond_est = cond
     if (.not. opts%quiet .and. opts%verbose) then
        write (error_unit, '(a,es10.3)') 'superjoin: condition estimate ', cond
@@ -586,11 +657,31 @@ contains
       r = r - f_red
       do s = 1, nstep
          res%steps(s)%residual = safe_div(norm2(r(:, s)), norm2(f_red(:, s)))
-         res%steps(s)%epsilon = safe_div(dot_product(x(:, s), r(:, s)), dot_product(x(:, s), f_red(:, s)))
+         res%steps(s)%epsilon = energy_error(x(:, s), r(:, s), f_red(:, s))
          berr(s) = safe_div(maxval(abs(r(:, s))), knorm*maxval(abs(x(:, s))) + maxval(abs(f_red(:, s))))
       end do
     end subroutine residuals
   end subroutine health
+
+  pure function energy_error(x, r, f) result(eps)
+    !! EPSILON = xᵀr / xᵀf, with x, r and f scaled by powers of two first so
+    !! that the dot products cannot overflow (the ratio does not change).
+    real(wp), intent(in) :: x(:), r(:), f(:)
+    real(wp) :: eps, sx, sf
+    sx = scale_of(x)
+    sf = max(scale_of(f), scale_of(r))
+    eps = safe_div(dot_product(x/sx, r/sf), dot_product(x/sx, f/sf))
+  end function energy_error
+
+  pure function scale_of(v) result(s)
+    !! A power of two near max|v| (1 for a zero or empty vector).
+    real(wp), intent(in) :: v(:)
+    real(wp) :: s, m
+    s = 1.0_wp
+    if (size(v) == 0) return
+    m = maxval(abs(v))
+    if (m > 0.0_wp .and. m <= huge(m)) s = set_exponent(1.0_wp, exponent(m))
+  end function scale_of
 
   pure function safe_div(a, b) result(c)
     real(wp), intent(in) :: a, b

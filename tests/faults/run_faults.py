@@ -110,11 +110,15 @@ def case_fsize(bin_, work, args):
 
 def case_diskfull(bin_, work, args):
     c = Checker()
+    # libgfortran keeps a unit whose final flush failed on CLOSE (its buffer is
+    # never freed): LeakSanitizer reports that library leak, so leak checking
+    # is off for the runs on /dev/full in the sanitizer build.
+    env = {"ASAN_OPTIONS": "detect_leaks=0"} if args.get("sanitized") else None
     small_and_big_decks(work)
     status, err = run(bin_, ["-q", "small.deck", "-o", "out.lst"], work)
     good = open(os.path.join(work, "out.lst"), "rb").read()
     os.symlink("/dev/full", os.path.join(work, "out.lst.tmp"))
-    status, err = run(bin_, ["-q", "small.deck", "-o", "out.lst"], work)
+    status, err = run(bin_, ["-q", "small.deck", "-o", "out.lst"], work, env=env)
     print("listing on a full disk: status %d: %s" % (status, err.strip()))
     c.check(status == 4, "listing: exit status %d, expected 4" % status)
     c.check("error: failed writing listing out.lst" in err, "listing: message does not name the listing")
@@ -124,7 +128,7 @@ def case_diskfull(bin_, work, args):
     csv = os.path.join(work, "csv")
     os.mkdir(csv)
     os.symlink("/dev/full", os.path.join(csv, "reactions.csv.tmp"))
-    status, err = run(bin_, ["-q", "small.deck", "-o", "out2.lst", "--csv", "csv"], work)
+    status, err = run(bin_, ["-q", "small.deck", "-o", "out2.lst", "--csv", "csv"], work, env=env)
     print("CSV on a full disk: status %d: %s" % (status, err.strip()))
     c.check(status == 4, "csv: exit status %d, expected 4" % status)
     c.check("error: failed writing csv/reactions.csv" in err, "csv: message does not name the file")

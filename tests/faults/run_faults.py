@@ -6,7 +6,8 @@ usage: run_faults.py SUPERJOIN CASE WORK_DIR [--gen-frame GEN_FRAME] [--sanitize
 CASE
   fsize     the listing grows past `ulimit -f` (RLIMIT_FSIZE, with SIGXFSZ at its
             default action, as in a shell): exit 4 naming the listing, no
-            temporary file left, the previous good listing untouched.
+            temporary file left, the previous good listing untouched. Same
+            for --export-matrix (no truncated matrix kept).
   diskfull  the listing's and then a CSV file's temporary name is a symbolic
             link to /dev/full (every write fails with ENOSPC): exit 4, no
             temporary file left, no CSV table of the failed name.
@@ -105,6 +106,13 @@ def case_fsize(bin_, work, args):
     c.check(not crashed(err), "crash output")
     c.check(not stray_temps(work), "temporary files left: %s" % stray_temps(work))
     c.check(open(os.path.join(work, "out.lst"), "rb").read() == good, "the previous listing changed")
+    status, err = run(bin_, ["-q", "big.deck", "-o", "out.lst", "--export-matrix", "k.mtx"], work,
+                      preexec=limited(resource.RLIMIT_FSIZE, FSIZE_LIMIT))
+    print("matrix export under ulimit -f %d bytes: status %d: %s" % (FSIZE_LIMIT, status, err.strip()))
+    c.check(status == 4, "export: exit status %d, expected 4" % status)
+    c.check("k.mtx.tmp" in err and "bytes reached the file" in err, "export: message does not say what failed")
+    c.check(not os.path.exists(os.path.join(work, "k.mtx")), "export: a truncated matrix was kept")
+    c.check(not stray_temps(work), "temporary files left: %s" % stray_temps(work))
     return c.failures
 
 

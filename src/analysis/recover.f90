@@ -59,8 +59,9 @@ contains
     rigid_force = 0.0_wp
     rclose = 0.0_wp
     call closer_forces(table, tr, r, rigid_force, rclose)
+    r = r - rclose     ! in place: no temporary of np values per step
     do is = 1, nstep
-       call tree_forces(table, forest, r(:, is) - rclose(:, is), acc, rigid_force(:, :, is))
+       call tree_forces(table, forest, r(:, is), acc, rigid_force(:, :, is))
     end do
     call link_and_support_results(model, table, delta, rigid_force, f_phys, res)
   end subroutine recover_results

@@ -107,7 +107,8 @@ contains
     if (allocated(error)) return
     call close_loops(model, table, tr, error)
     if (allocated(error)) return
-    call compact_columns(tr)
+    call compact_columns(tr, error)
+    if (allocated(error)) return
     tr%has_u0 = any(tr%u0 /= 0.0_wp)
   end subroutine build_transform
 
@@ -527,13 +528,18 @@ contains
     call merge_terms(ncol, ncoef)
   end subroutine substitute
 
-  subroutine compact_columns(tr)
+  subroutine compact_columns(tr, error)
     !! Drop eliminated columns and renumber maps, δ columns and forms.
     type(transform_t), intent(inout) :: tr
+    type(error_t), allocatable, intent(out) :: error
     integer(i8), allocatable :: newc(:)
     integer(i8) :: j, n
-    integer :: i, k
-    allocate (newc(tr%ncol))
+    integer :: i, k, stat
+    allocate (newc(tr%ncol), stat=stat)
+    if (stat /= 0) then
+       call out_of_memory(error, 'the column renumbering', tr%ncol*BYTES_I8)
+       return
+    end if
     n = 0
     do j = 1, tr%ncol
        if (tr%col_kind(j) == COL_DEAD) then

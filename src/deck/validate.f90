@@ -919,7 +919,14 @@ contains
          end do
        end associate
     end do
-    model%supports = list(1:n)
+    ! explicit allocation: an assignment's reallocation would not report failure
+    allocate (model%supports(n), stat=stat)
+    if (stat /= 0) then
+       call report_oom(st, st%supports(st%nsupport)%loc, 'the supported DOFs ('//itoa(n)//')', &
+            int(n, i8)*storage_size(list(1))/8)
+       return
+    end if
+    model%supports(1:n) = list(1:n)
   end subroutine build_supports
 
   subroutine build_steps(st, model)

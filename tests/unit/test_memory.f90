@@ -21,6 +21,7 @@ program test_memory
   if (allocated(error)) then
      call check(error%code == EXIT_IO, 'exit status 4')
      call check(error%message == 'error: out of memory: x needs 2048 bytes (0.0 MiB)', 'error message')
+     deallocate (error)
   end if
   call finish()
 end program test_memory

@@ -2,7 +2,7 @@ program superjoin_main
   !! superjoin: command-line driver. Reads a deck, solves every step, writes the
   !! listing (and CSV results on request). The only place that stops.
   use, intrinsic :: iso_fortran_env, only: error_unit, output_unit
-  use superjoin_kinds, only: wp
+  use superjoin_kinds, only: wp, i8
   use superjoin_error, only: error_t, EXIT_OK, EXIT_USAGE, EXIT_IO
   use superjoin_model_types, only: model_t, FORM_TRANSFORM, FORM_PENALTY
   use superjoin_deck_reader, only: read_deck
@@ -14,6 +14,8 @@ program superjoin_main
   use superjoin_config, only: SUPERJOIN_VERSION, DEMO_DECK_SOURCE, DEMO_DECK_INSTALLED
   use superjoin_utils_strings, only: to_lower
   use superjoin_utils_clock, only: stopwatch_t, report_phase
+  use superjoin_utils_process, only: process_setup
+  use superjoin_utils_memory, only: oom_message
   implicit none (type, external)
 
   type(run_options_t) :: opts
@@ -25,8 +27,16 @@ program superjoin_main
   type(stopwatch_t) :: clock
   real(wp) :: t_read
   integer :: i
+  integer(i8) :: blas_bytes
+  logical :: ok
 
   call parse_command_line(opts, deck, listing, csv_dir, check_only, vtk_file)
+  call process_setup(ok, blas_bytes)
+  if (.not. ok) write (error_unit, '(a)') 'superjoin: warning: signal handlers not installed'
+  if (blas_bytes > 0 .and. .not. check_only) then
+     write (error_unit, '(a)') deck//': '//oom_message('the BLAS work buffer', blas_bytes)
+     stop EXIT_IO, quiet=.true.
+  end if
 
   call clock%start()
   call read_deck(deck, model, error)

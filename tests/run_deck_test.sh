@@ -12,6 +12,10 @@ cd "$(dirname "$deck")" || exit 1
 "$bin" -q "$(basename "$deck")" -o "$out.lst" --csv "$out.csv"
 rc=$?
 if [ $rc -ne 0 ]; then echo "FAIL: superjoin exited with $rc on $deck"; exit 1; fi
+# No result may be NaN or Inf.
+if grep -qiwE 'nan|inf|infinity' "$out.lst" "$out.csv"/*.csv; then
+  echo "FAIL: NaN or Inf in the results"; grep -iwnE 'nan|inf|infinity' "$out.lst" "$out.csv"/*.csv | head -5; exit 1
+fi
 # The same deck gives the same bytes.
 "$bin" -q "$(basename "$deck")" -o "$out.2.lst"
 if ! cmp -s "$out.lst" "$out.2.lst"; then echo "FAIL: listing differs between two runs"; exit 1; fi

@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # Install the Debian packages superjoin needs, if any is missing.
 set -euo pipefail
-packages=(gfortran gcc cmake make liblapack-dev libopenblas-dev libsuitesparse-dev libmetis-dev python3 time calculix-ccx gnuplot-nox)
+packages=(gfortran gcc cmake make liblapack-dev libopenblas-dev libsuitesparse-dev libmetis-dev python3 time calculix-ccx gnuplot-nox valgrind)
 missing=()
 for p in "${packages[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")

@@ -18,6 +18,10 @@ module superjoin_analysis
   use superjoin_utils_clock, only: stopwatch_t, report_phase
   use superjoin_utils_union_find, only: find_root
   use superjoin_utils_strings, only: itoa
+  use superjoin_utils_memory, only: out_of_memory, BYTES_REAL
+  use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
+  use, intrinsic :: ieee_exceptions, only: ieee_flag_type, ieee_get_halting_mode, ieee_set_halting_mode, &
+       ieee_overflow, ieee_invalid, ieee_divide_by_zero
   implicit none (type, external)
   private
 
@@ -43,10 +47,74 @@ module superjoin_analysis
 
   public :: solve_model
 
+  type(ieee_flag_type), parameter :: HALT_FLAGS(3) = [ieee_overflow, ieee_invalid, ieee_divide_by_zero]
+    !! Exceptions whose halting is off while solving (results are checked instead).
+
 contains
 
   subroutine solve_model(model, opts, res, error)
-    !! Solve every step of a validated model.
+    !! Solve every step of a validated model. Results that overflow the
+    !! floating-point range end the run (EXIT_SINGULAR) instead of printing
+    !! Inf or NaN; floating-point halting (the Debug build's -ffpe-trap) is off
+    !! meanwhile, so the overflow is detected here rather than trapped.
+    type(model_t), intent(in) :: model
+    type(run_options_t), intent(in) :: opts
+    type(results_t), intent(out) :: res
+    type(error_t), allocatable, intent(out) :: error
+    logical :: halting(size(HALT_FLAGS))
+    integer :: i
+    do i = 1, size(HALT_FLAGS)
+       call ieee_get_halting_mode(HALT_FLAGS(i), halting(i))
+       call ieee_set_halting_mode(HALT_FLAGS(i), .false.)
+    end do
+    call solve_steps(model, opts, res, error)
+    do i = 1, size(HALT_FLAGS)
+       call ieee_set_halting_mode(HALT_FLAGS(i), halting(i))
+    end do
+    if (allocated(error)) return
+    call check_finite(res, error)
+  end subroutine solve_model
+
+  subroutine check_finite(res, error)
+    !! EXIT_SINGULAR error naming the first kind of result that is not finite.
+    type(results_t), intent(in) :: res
+    type(error_t), allocatable, intent(out) :: error
+    character(:), allocatable :: what
+    integer :: is
+    if (allocated(res%u)) then
+       if (.not. all(ieee_is_finite(res%u))) what = 'displacements'
+    end if
+    if (.not. allocated(what) .and. allocated(res%elem_force)) then
+       if (.not. all(ieee_is_finite(res%elem_force))) what = 'element forces'
+    end if
+    if (.not. allocated(what) .and. allocated(res%plate)) then
+       if (.not. all(ieee_is_finite(res%plate))) what = 'plate resultants'
+    end if
+    if (.not. allocated(what) .and. allocated(res%steps)) then
+       do is = 1, size(res%steps)
+          associate (st => res%steps(is))
+            if (allocated(st%reactions)) then
+               if (.not. all(ieee_is_finite(st%reactions(:)%force))) what = 'support reactions'
+            end if
+            if (allocated(st%link_force)) then
+               if (.not. (all(ieee_is_finite(st%link_force)) .and. all(ieee_is_finite(st%link_delta)))) &
+                    what = 'contact forces'
+            end if
+            if (.not. (all(ieee_is_finite(st%applied)) .and. all(ieee_is_finite(st%reaction)))) &
+                 what = 'equilibrium resultants'
+            if (.not. (ieee_is_finite(st%residual) .and. ieee_is_finite(st%epsilon))) what = 'residuals'
+          end associate
+          if (allocated(what)) exit
+       end do
+    end if
+    if (.not. allocated(what)) return
+    call fatal_error(error, EXIT_SINGULAR, 'error: the '//what//' overflow the floating-point range '// &
+         '(beyond 1.8E+308 or undefined): check the magnitudes and units of loads, stiffnesses, '// &
+         'contact g and coordinates')
+  end subroutine check_finite
+
+  subroutine solve_steps(model, opts, res, error)
+    !! The analysis proper (see solve_model).
     type(model_t), intent(in) :: model
     type(run_options_t), intent(in) :: opts
     type(results_t), intent(out) :: res
@@ -78,7 +146,8 @@ contains
          ' contact element(s) name DOFs that neither node carries; those DOFs are not connected')
     call apply_large(model, table, form, notes, error)
     if (allocated(error)) return
-    call build_forest(table, form == FORM_TRANSFORM, forest)
+    call build_forest(table, form == FORM_TRANSFORM, forest, error)
+    if (allocated(error)) return
     call build_transform(model, table, forest, tr, error)
     if (allocated(error)) return
     call describe_transform(model, table, tr, form, res, notes)
@@ -88,7 +157,8 @@ contains
     if (allocated(error)) return
     call assemble_loads(model, table, f_phys, error)
     if (allocated(error)) return
-    call reduce_loads(tr, f_phys, f_u0, f_red)
+    call reduce_loads(tr, f_phys, f_u0, f_red, error)
+    if (allocated(error)) return
     call autospc(model, table, tr, k, f_red, spc, notes, error)
     if (allocated(error)) return
     call skip_unloaded_parts(model, table, tr, k, f_red, spc, notes)
@@ -132,7 +202,7 @@ contains
     call report_phase(opts%quiet, 'recover', clock%seconds())
     if (allocated(solver)) call solver%release()
     res%notes = notes
-  end subroutine solve_model
+  end subroutine solve_steps
 
   subroutine apply_large(model, table, form, notes, error)
     !! RIGID contacts become g = LARGE × (largest element diagonal) under
@@ -296,14 +366,19 @@ contains
     end do
   end subroutine count_boundary
 
-  subroutine reduce_loads(tr, f_phys, f_u0, f_red)
+  subroutine reduce_loads(tr, f_phys, f_u0, f_red, error)
     !! f_red = Tᵀ f_phys + f_u0 for every step.
     type(transform_t), intent(in) :: tr
     real(wp), intent(in) :: f_phys(:, :), f_u0(:)
     real(wp), allocatable, intent(out) :: f_red(:, :)
+    type(error_t), allocatable, intent(out) :: error
     integer(i8) :: p, j
-    integer :: is
-    allocate (f_red(tr%ncol, size(f_phys, 2)))
+    integer :: is, stat
+    allocate (f_red(tr%ncol, size(f_phys, 2)), stat=stat)
+    if (stat /= 0) then
+       call out_of_memory(error, 'the reduced loads', tr%ncol*size(f_phys, 2)*BYTES_REAL)
+       return
+    end if
     do is = 1, size(f_phys, 2)
        f_red(:, is) = f_u0
     end do
@@ -433,6 +508,7 @@ contains
     type(stopwatch_t) :: clock
     character(:), allocatable :: solver_name
     integer(i8) :: jf
+    integer :: stat
     character(len=80) :: buf
 
     solver_name = 'auto'
@@ -471,7 +547,11 @@ contains
     call report_phase(opts%quiet, 'factor', res%phase_seconds(PH_FACTOR), solver%info%name//', '//trim(buf))
 
     call clock%start()
-    allocate (q(k%n, size(f_red, 2)))
+    allocate (q(k%n, size(f_red, 2)), stat=stat)
+    if (stat /= 0) then
+       call out_of_memory(error, 'the solution', k%n*size(f_red, 2)*BYTES_REAL)
+       return
+    end if
     call solver%solve(f_red, q, error)
     if (allocated(error)) return
     res%phase_seconds(PH_SOLVE) = clock%seconds()
@@ -494,13 +574,18 @@ contains
     real(wp), allocatable :: r(:, :), dq(:, :), d(:), kd(:), q_try(:, :), r_try(:, :), berr(:), berr_try(:), &
          prev_res(:), prev_eps(:)
     type(error_t), allocatable :: inner
-    integer :: is, it, nstep
+    integer :: is, it, nstep, stat
     integer(i8) :: j, jmax
     real(wp) :: ratio, cond, knorm
     character(len=32) :: buf
 
     nstep = size(q, 2)
-    allocate (r(k%n, nstep), dq(k%n, nstep), berr(nstep), berr_try(nstep))
+    allocate (r(k%n, nstep), dq(k%n, nstep), q_try(k%n, nstep), r_try(k%n, nstep), berr(nstep), &
+         berr_try(nstep), d(k%n), kd(k%n), stat=stat)
+    if (stat /= 0) then
+       call out_of_memory(error, 'the residual checks', (4*nstep + 2)*k%n*BYTES_REAL)
+       return
+    end if
     knorm = norm1_sym(k)
     call residuals(q, r, berr)
     do is = 1, nstep
@@ -508,7 +593,6 @@ contains
     end do
     ! MAXRATIO = max K_jj / D_jj, first: a numerically singular matrix stops
     ! here, before refinement solves with a factor that is not worth using.
-    allocate (d(k%n), kd(k%n))
     call solver%pivots(d)
     call k%diagonal(kd)
     res%maxratio = 0.0_wp
@@ -549,7 +633,9 @@ contains
        prev_eps = res%steps(:)%epsilon
        r_try = r
        call residuals(q_try, r_try, berr_try)
-       if (maxval(res%steps(:)%residual) > REFINE_GAIN*maxval(prev_res)) then
+       ! keep a step only if it is finite and gains (a NaN residual compares false)
+       if (.not. all(ieee_is_finite(q_try)) .or. &
+           .not. (maxval(res%steps(:)%residual) <= REFINE_GAIN*maxval(prev_res))) then
           res%steps(:)%residual = prev_res
           res%steps(:)%epsilon = prev_eps
           exit
@@ -570,6 +656,10 @@ contains
             ': about '//itoa(nint(log10(res%maxratio)))//' digits may be lost')
     end if
     call condition_estimate(k, solver, cond)
+    if (.not. ieee_is_finite(cond) .or. cond > huge(cond)) then
+       cond = huge(cond)
+       call warn(res, 'condition estimate overflows (above 1.8E+308): results are unreliable')
+    end if
     res%cond_est = cond
     if (.not. opts%quiet .and. opts%verbose) then
        write (error_unit, '(a,es10.3)') 'superjoin: condition estimate ', cond
@@ -585,7 +675,7 @@ contains
       r = r - f_red
       do s = 1, nstep
          res%steps(s)%residual = safe_div(norm2(r(:, s)), norm2(f_red(:, s)))
-         res%steps(s)%epsilon = safe_div(dot_product(x(:, s), r(:, s)), dot_product(x(:, s), f_red(:, s)))
+         res%steps(s)%epsilon = energy_error(x(:, s), r(:, s), f_red(:, s))
          berr(s) = safe_div(maxval(abs(r(:, s))), knorm*maxval(abs(x(:, s))) + maxval(abs(f_red(:, s))))
       end do
     end subroutine residuals
@@ -599,6 +689,26 @@ contains
     if (res%formulation == 'PENALTY') s = ' (unless it is a mechanism: under PENALTY a contact stiffness '// &
          'beyond about 1/epsilon times the structure''s breaks the factorization; TRANSFORM does not)'
   end function penalty_hint
+
+  pure function energy_error(x, r, f) result(eps)
+    !! EPSILON = xᵀr / xᵀf, with x, r and f scaled by powers of two first so
+    !! that the dot products cannot overflow (the ratio does not change).
+    real(wp), intent(in) :: x(:), r(:), f(:)
+    real(wp) :: eps, sx, sf
+    sx = scale_of(x)
+    sf = max(scale_of(f), scale_of(r))
+    eps = safe_div(dot_product(x/sx, r/sf), dot_product(x/sx, f/sf))
+  end function energy_error
+
+  pure function scale_of(v) result(s)
+    !! A power of two near max|v| (1 for a zero or empty vector).
+    real(wp), intent(in) :: v(:)
+    real(wp) :: s, m
+    s = 1.0_wp
+    if (size(v) == 0) return
+    m = maxval(abs(v))
+    if (m > 0.0_wp .and. m <= huge(m)) s = set_exponent(1.0_wp, exponent(m))
+  end function scale_of
 
   pure function safe_div(a, b) result(c)
     real(wp), intent(in) :: a, b

@@ -17,6 +17,7 @@ module superjoin_analysis_recover
   use superjoin_assembly_transform, only: transform_t, ROLE_TREE, CONS_ELIMINATED
   use superjoin_assembly_assemble, only: element_pdofs, distributed_load
   use superjoin_analysis_results, only: results_t, reaction_t
+  use superjoin_utils_memory, only: out_of_memory, BYTES_REAL
   implicit none (type, external)
   private
 
@@ -38,24 +39,30 @@ contains
     type(error_t), allocatable, intent(out) :: error
     real(wp), allocatable :: u(:, :), r(:, :), delta(:, :, :), rclose(:, :), acc(:, :)
     real(wp), allocatable :: rigid_force(:, :, :)  ! (3, nunit, nstep): rigid force on child / λ, local
-    integer :: nstep, is
+    integer :: nstep, is, stat
 
     nstep = size(q, 2)
     call physical_displacements(table, tr, q, u)
     call store_displacements(table, u, res)
-    allocate (r(table%np, nstep))
+    allocate (r(table%np, nstep), rclose(table%np, nstep), rigid_force(3, table%nunit, nstep), &
+         acc(3, 0:table%nvertex), stat=stat)
+    if (stat /= 0) then
+       call out_of_memory(error, 'the recovery of forces', (2*table%np*nstep + 3*table%nunit*nstep + &
+            3*(table%nvertex + 1))*BYTES_REAL)
+       return
+    end if
     r = -f_phys
     call element_results(model, table, u, r, res, error)
     if (allocated(error)) return
     call unit_deltas(table, tr, q, u, delta)
     call add_spring_forces(table, delta, r)
 
-    allocate (rigid_force(3, table%nunit, nstep), source=0.0_wp)
-    allocate (rclose(table%np, nstep), source=0.0_wp)
+    rigid_force = 0.0_wp
+    rclose = 0.0_wp
     call closer_forces(table, tr, r, rigid_force, rclose)
-    allocate (acc(3, 0:table%nvertex))
+    r = r - rclose     ! in place: no temporary of np values per step
     do is = 1, nstep
-       call tree_forces(table, forest, r(:, is) - rclose(:, is), acc, rigid_force(:, :, is))
+       call tree_forces(table, forest, r(:, is), acc, rigid_force(:, :, is))
     end do
     call link_and_support_results(model, table, delta, rigid_force, f_phys, res)
   end subroutine recover_results

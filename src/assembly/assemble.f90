@@ -12,6 +12,7 @@ module superjoin_assembly_assemble
   use superjoin_solvers_sparse, only: sparse_sym_t
   use superjoin_utils_sorting, only: sort_unique_i8
   use superjoin_utils_strings, only: itoa
+  use superjoin_utils_memory, only: out_of_memory, BYTES_REAL, BYTES_I8
   implicit none (type, external)
   private
 
@@ -114,7 +115,12 @@ contains
     integer(i8) :: pd(MAX_ITEM_DOFS)
     integer :: isub, n, a
     integer(ip) :: e
-    allocate (diag(table%np), source=0.0_wp)
+    integer :: stat
+    allocate (diag(table%np), source=0.0_wp, stat=stat)
+    if (stat /= 0) then
+       call out_of_memory(error, 'the element diagonal', table%np*BYTES_REAL)
+       return
+    end if
     do isub = 1, size(model%subs)
        associate (s => model%subs(isub))
          do e = 1, s%nelem
@@ -203,6 +209,7 @@ contains
     integer :: isub, n, nc, iu, i
     integer(ip) :: e
     real(wp), allocatable :: ke(:, :)
+    integer :: stat
 
     ! Items: elements of every substructure, then plain units, then form springs.
     nitem = tr%nform
@@ -210,17 +217,21 @@ contains
        nitem = nitem + model%subs(isub)%nelem
     end do
     nitem = nitem + count(tr%role == ROLE_PLAIN)
-    allocate (item_ptr(nitem + 1), cols(64))
+    allocate (item_ptr(nitem + 1), cols(64), item_col(max(16_i8, 12*nitem)), stat=stat)
+    if (stat /= 0) then
+       call out_of_memory(error, 'the column lists of the elements', (13*nitem + 1)*BYTES_I8)
+       return
+    end if
     item_ptr(1) = 1
 
     ! Pass 1: column lists of all items.
-    allocate (item_col(max(16_i8, 12*nitem)))
     it = 0
     do isub = 1, size(model%subs)
        do e = 1, model%subs(isub)%nelem
           call element_pdofs(model, table, isub, e, pd, n)
           call item_columns(tr, pd, n, cols, nc)
           call append_item(cols(1:nc))
+          if (allocated(error)) return
        end do
     end do
     do iu = 1, table%nunit
@@ -228,14 +239,21 @@ contains
        call unit_pdofs(table, iu, pd, n)
        call item_columns(tr, pd, n, cols, nc)
        call append_item(cols(1:nc))
+       if (allocated(error)) return
     end do
     do i = 1, tr%nform
        call append_item(tr%forms(i)%col)
+       if (allocated(error)) return
     end do
     s_total = item_ptr(nitem + 1) - 1
 
     ! Transpose: items of each column.
-    allocate (col_ptr(tr%ncol + 1), source=0_i8)
+    allocate (col_ptr(tr%ncol + 1), source=0_i8, stat=stat)
+    if (stat == 0) allocate (col_item(max(s_total, 1_i8)), stat=stat)
+    if (stat /= 0) then
+       call out_of_memory(error, 'the item lists of the columns', (tr%ncol + 1 + s_total)*BYTES_I8)
+       return
+    end if
     do pos = 1, s_total
        col_ptr(item_col(pos) + 1) = col_ptr(item_col(pos) + 1) + 1
     end do
@@ -243,7 +261,6 @@ contains
     do j = 1, tr%ncol
        col_ptr(j + 1) = col_ptr(j + 1) + col_ptr(j)
     end do
-    allocate (col_item(max(s_total, 1_i8)))
     block
       integer(i8), allocatable :: fill(:)
       fill = col_ptr(1:tr%ncol)
@@ -256,11 +273,16 @@ contains
       end do
     end block
 
-    call symbolic(tr%ncol, item_ptr, item_col, col_ptr, col_item, k)
+    call symbolic(tr%ncol, item_ptr, item_col, col_ptr, col_item, k, error)
+    if (allocated(error)) return
     deallocate (col_ptr, col_item)
 
     ! Pass 2: values.
-    allocate (f_u0(tr%ncol), source=0.0_wp)
+    allocate (f_u0(tr%ncol), source=0.0_wp, stat=stat)
+    if (stat /= 0) then
+       call out_of_memory(error, 'the reduced load', tr%ncol*BYTES_REAL)
+       return
+    end if
     it = 0
     do isub = 1, size(model%subs)
        do e = 1, model%subs(isub)%nelem
@@ -297,11 +319,16 @@ contains
     subroutine append_item(c)
       integer(i8), intent(in) :: c(:)
       integer(i8), allocatable :: tmp(:)
-      integer(i8) :: need
+      integer(i8) :: need, cap
       it = it + 1
       need = item_ptr(it) + size(c) - 1
       if (need > size(item_col, kind=i8)) then
-         allocate (tmp(max(2*size(item_col, kind=i8), need)))
+         cap = max(2*size(item_col, kind=i8), need)
+         allocate (tmp(cap), stat=stat)
+         if (stat /= 0) then
+            call out_of_memory(error, 'the column lists of the elements', cap*BYTES_I8)
+            return
+         end if
          tmp(1:item_ptr(it) - 1) = item_col(1:item_ptr(it) - 1)
          call move_alloc(tmp, item_col)
       end if
@@ -310,25 +337,31 @@ contains
     end subroutine append_item
   end subroutine assemble_stiffness
 
-  subroutine symbolic(ncol, item_ptr, item_col, col_ptr, col_item, k)
+  subroutine symbolic(ncol, item_ptr, item_col, col_ptr, col_item, k, error)
     !! Pattern of the upper triangle: column j holds every column i <= j that
     !! shares an item with it, and always j itself. Built as the lower pattern
     !! row by row (unsorted), whose transpose comes out sorted by construction.
     integer(i8), intent(in) :: ncol
     integer(i8), intent(in) :: item_ptr(:), item_col(:), col_ptr(:), col_item(:)
     type(sparse_sym_t), intent(out) :: k
+    type(error_t), allocatable, intent(out) :: error
     integer(i8), allocatable :: mark(:), low_ptr(:), low_col(:), tmp(:), fill(:)
     integer(i8) :: i, j, it, pos, q, cap, nnz
+    integer :: stat
 
     ! Lower pattern: for each i, the columns j >= i sharing an item with i.
-    allocate (mark(ncol), source=0_i8)
-    allocate (low_ptr(ncol + 1))
     cap = max(16_i8, 4*size(item_col, kind=i8))
-    allocate (low_col(cap))
+    allocate (mark(ncol), source=0_i8, stat=stat)
+    if (stat == 0) allocate (low_ptr(ncol + 1), low_col(cap), stat=stat)
+    if (stat /= 0) then
+       call out_of_memory(error, 'the matrix pattern', (2*ncol + 1 + cap)*BYTES_I8)
+       return
+    end if
     nnz = 0
     low_ptr(1) = 1
     do i = 1, ncol
        if (nnz + 1 > cap) call grow(low_col, cap, nnz + 1)
+       if (allocated(error)) return
        nnz = nnz + 1
        low_col(nnz) = i
        mark(i) = i
@@ -340,6 +373,7 @@ contains
              if (mark(j) == i) cycle
              mark(j) = i
              if (nnz + 1 > cap) call grow(low_col, cap, nnz + 1)
+             if (allocated(error)) return
              nnz = nnz + 1
              low_col(nnz) = j
           end do
@@ -350,7 +384,14 @@ contains
 
     ! Transpose: rows of each column arrive in increasing order, the diagonal last.
     k%n = ncol
-    allocate (k%colptr(ncol + 1), source=0_i8)
+    allocate (k%colptr(ncol + 1), source=0_i8, stat=stat)
+    if (stat == 0) allocate (k%rowind(nnz), fill(ncol), stat=stat)
+    if (stat == 0) allocate (k%val(nnz), source=0.0_wp, stat=stat)
+    if (stat /= 0) then
+       call out_of_memory(error, 'the stiffness matrix ('//itoa(nnz)//' nonzeros)', &
+            (2*ncol + 1 + nnz)*BYTES_I8 + nnz*BYTES_REAL)
+       return
+    end if
     do pos = 1, nnz
        k%colptr(low_col(pos) + 1) = k%colptr(low_col(pos) + 1) + 1
     end do
@@ -358,7 +399,6 @@ contains
     do j = 1, ncol
        k%colptr(j + 1) = k%colptr(j + 1) + k%colptr(j)
     end do
-    allocate (k%rowind(nnz), fill(ncol))
     fill = k%colptr(1:ncol)
     do i = 1, ncol
        do pos = low_ptr(i), low_ptr(i + 1) - 1
@@ -367,14 +407,17 @@ contains
           fill(j) = fill(j) + 1
        end do
     end do
-    allocate (k%val(nnz), source=0.0_wp)
   contains
     subroutine grow(a, cap, need)
       integer(i8), allocatable, intent(inout) :: a(:)
       integer(i8), intent(inout) :: cap
       integer(i8), intent(in) :: need
       cap = max(2*cap, need)
-      allocate (tmp(cap))
+      allocate (tmp(cap), stat=stat)
+      if (stat /= 0) then
+         call out_of_memory(error, 'the matrix pattern', cap*BYTES_I8)
+         return
+      end if
       tmp(1:size(a, kind=i8)) = a
       call move_alloc(tmp, a)
     end subroutine grow
@@ -538,7 +581,14 @@ contains
     real(wp) :: ql(3)
     type(error_t), allocatable :: inner
 
-    allocate (f_phys(table%np, size(model%steps)), source=0.0_wp)
+    integer :: stat
+
+    allocate (f_phys(table%np, size(model%steps)), source=0.0_wp, stat=stat)
+    if (stat /= 0) then
+       call out_of_memory(error, 'the loads of '//itoa(size(model%steps))//' steps', &
+            table%np*size(model%steps)*BYTES_REAL)
+       return
+    end if
     do is = 1, size(model%steps)
        associate (st => model%steps(is))
          do i = 1, size(st%cloads)

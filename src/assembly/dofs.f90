@@ -13,6 +13,7 @@ module superjoin_assembly_dofs
   use superjoin_elements, only: element_dof_mask
   use superjoin_utils_sorting, only: stable_argsort
   use superjoin_utils_strings, only: itoa
+  use superjoin_utils_memory, only: out_of_memory, BYTES_INT, BYTES_I8
   implicit none (type, external)
   private
 
@@ -83,7 +84,7 @@ contains
     logical, allocatable :: has(:, :)        ! DOFs given by elements and supports
     integer :: isub
     integer(i8) :: v, p
-    integer :: d
+    integer :: d, stat
 
     allocate (table%vertex_offset(size(model%subs) + 1))
     table%vertex_offset(1) = 0
@@ -92,7 +93,11 @@ contains
     end do
     table%nvertex = table%vertex_offset(size(model%subs) + 1)
 
-    allocate (has(NDOF_NODE, table%nvertex), source=.false.)
+    allocate (has(NDOF_NODE, table%nvertex), source=.false., stat=stat)
+    if (stat /= 0) then
+       call out_of_memory(error, 'the DOF table', NDOF_NODE*table%nvertex*BYTES_INT)
+       return
+    end if
     call activate_elements(model, table, has)
     call activate_supports(model, table, has)
 
@@ -103,9 +108,14 @@ contains
     ! Unit components are active on both of their nodes.
     call activate_units(table, has)
 
-    allocate (table%pdof(NDOF_NODE, table%nvertex), source=0_i8)
     table%np = count(has, kind=i8)
-    allocate (table%p_sub(table%np), table%p_node(table%np), table%p_dof(table%np))
+    allocate (table%pdof(NDOF_NODE, table%nvertex), source=0_i8, stat=stat)
+    if (stat == 0) allocate (table%p_sub(table%np), table%p_node(table%np), table%p_dof(table%np), stat=stat)
+    if (stat /= 0) then
+       call out_of_memory(error, 'the DOF numbering', NDOF_NODE*table%nvertex*BYTES_I8 + &
+            3*table%np*BYTES_INT)
+       return
+    end if
     p = 0
     do isub = 1, size(model%subs)
        do v = table%vertex_offset(isub) + 1, table%vertex_offset(isub + 1)

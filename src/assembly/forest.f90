@@ -10,6 +10,8 @@ module superjoin_assembly_forest
   use superjoin_assembly_dofs, only: dof_table_t, unit_t, NBLOCK, GROUND, UNIT_LINK
   use superjoin_utils_sorting, only: stable_argsort
   use superjoin_utils_union_find, only: find_root
+  use superjoin_error, only: error_t
+  use superjoin_utils_memory, only: out_of_memory, BYTES_INT, BYTES_I8, BYTES_REAL
   implicit none (type, external)
   private
 
@@ -41,23 +43,28 @@ contains
     end do
   end function unit_weight
 
-  subroutine build_forest(table, links_in_tree, forest)
+  subroutine build_forest(table, links_in_tree, forest, error)
     !! Build the forest. With `links_in_tree` false (PENALTY), only supports are
     !! transformed and every contact is assembled in plain form.
     type(dof_table_t), intent(in) :: table
     logical, intent(in) :: links_in_tree
     type(forest_t), intent(out) :: forest
+    type(error_t), allocatable, intent(out) :: error
     integer(i8), allocatable :: uf(:)
     integer, allocatable :: cand(:)
     real(wp), allocatable :: w(:)
-    integer :: b, i, nc, iu
+    integer :: b, i, nc, iu, stat
     integer(i8) :: ra, rb
 
-    allocate (forest%tree(table%nunit), source=.false.)
-    allocate (forest%child_is_a(table%nunit), source=.false.)
-    allocate (forest%parent_unit(NBLOCK, 0:table%nvertex), source=0)
-    allocate (forest%order(NBLOCK, table%nvertex))
-    allocate (uf(0:table%nvertex), cand(table%nunit), w(table%nunit))
+    allocate (forest%tree(table%nunit), forest%child_is_a(table%nunit), source=.false., stat=stat)
+    if (stat == 0) allocate (forest%parent_unit(NBLOCK, 0:table%nvertex), source=0, stat=stat)
+    if (stat == 0) allocate (forest%order(NBLOCK, table%nvertex), stat=stat)
+    if (stat == 0) allocate (uf(0:table%nvertex), cand(table%nunit), w(table%nunit), stat=stat)
+    if (stat /= 0) then
+       call out_of_memory(error, 'the spanning forest', NBLOCK*(2*table%nvertex + 1)*BYTES_I8 + &
+            (table%nvertex + 1)*BYTES_I8 + table%nunit*(3*BYTES_INT + BYTES_REAL))
+       return
+    end if
 
     do b = 1, NBLOCK
        nc = 0

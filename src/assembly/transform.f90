@@ -16,6 +16,7 @@ module superjoin_assembly_transform
        UNIT_SUPPORT, block_dof
   use superjoin_assembly_forest, only: forest_t
   use superjoin_utils_strings, only: rtoa
+  use superjoin_utils_memory, only: out_of_memory, BYTES_REAL, BYTES_INT, BYTES_I8
   implicit none (type, external)
   private
 
@@ -88,34 +89,48 @@ contains
     type(forest_t), intent(in) :: forest
     type(transform_t), intent(out) :: tr
     type(error_t), allocatable, intent(out) :: error
+    integer :: stat
 
-    allocate (tr%role(table%nunit))
+    allocate (tr%role(table%nunit), stat=stat)
+    if (stat /= 0) then
+       call out_of_memory(error, 'the contact unit roles', table%nunit*BYTES_INT)
+       return
+    end if
     where (forest%tree)
        tr%role = ROLE_TREE
     elsewhere
        tr%role = ROLE_PLAIN
     end where
-    call number_columns(table, forest, tr)
-    call build_maps(table, forest, tr)
+    call number_columns(table, forest, tr, error)
+    if (allocated(error)) return
+    call build_maps(table, forest, tr, error)
+    if (allocated(error)) return
     call close_loops(model, table, tr, error)
     if (allocated(error)) return
-    call compact_columns(tr)
+    call compact_columns(tr, error)
+    if (allocated(error)) return
     tr%has_u0 = any(tr%u0 /= 0.0_wp)
   end subroutine build_transform
 
-  subroutine number_columns(table, forest, tr)
+  subroutine number_columns(table, forest, tr, error)
     !! Columns node by node: first the δ of the unit above the node, then the
     !! node's own DOFs that no tree unit makes dependent.
     type(dof_table_t), intent(in) :: table
     type(forest_t), intent(in) :: forest
     type(transform_t), intent(inout) :: tr
+    type(error_t), allocatable, intent(out) :: error
     integer(i8) :: v, p, cap
-    integer :: b, c, k, pu
+    integer :: b, c, k, pu, stat
     logical :: dep
 
     cap = table%np + 3*table%nunit
-    allocate (tr%col_kind(cap), tr%col_ref(cap), tr%col_k(cap), tr%col_g(cap))
-    allocate (tr%dcol(3, table%nunit), source=0_i8)
+    allocate (tr%col_kind(cap), tr%col_ref(cap), tr%col_k(cap), tr%col_g(cap), stat=stat)
+    if (stat == 0) allocate (tr%dcol(3, table%nunit), source=0_i8, stat=stat)
+    if (stat /= 0) then
+       call out_of_memory(error, 'the column table', cap*(2*BYTES_INT + BYTES_I8 + BYTES_REAL) + &
+            3*table%nunit*BYTES_I8)
+       return
+    end if
     tr%ncol = 0
     do v = 1, table%nvertex
        do b = 1, NBLOCK
@@ -149,18 +164,25 @@ contains
     end do
   end subroutine number_columns
 
-  subroutine build_maps(table, forest, tr)
+  subroutine build_maps(table, forest, tr, error)
     type(dof_table_t), intent(in) :: table
     type(forest_t), intent(in) :: forest
     type(transform_t), intent(inout) :: tr
-    integer(i8) :: j, p, v, w, pw, io
-    integer :: b, c, k, pu
+    type(error_t), allocatable, intent(out) :: error
+    integer(i8) :: j, p, v, w, pw, io, cap
+    integer :: b, c, k, pu, stat
     real(wp) :: sgn, coef
 
-    allocate (tr%map_start(table%np), source=0_i8)
-    allocate (tr%map_len(table%np), source=0)
-    allocate (tr%u0(table%np), source=0.0_wp)
-    allocate (tr%pool_col(table%np + 4*table%nunit + 16), tr%pool_coef(table%np + 4*table%nunit + 16))
+    cap = table%np + 4*table%nunit + 16
+    allocate (tr%map_start(table%np), source=0_i8, stat=stat)
+    if (stat == 0) allocate (tr%map_len(table%np), source=0, stat=stat)
+    if (stat == 0) allocate (tr%u0(table%np), source=0.0_wp, stat=stat)
+    if (stat == 0) allocate (tr%pool_col(cap), tr%pool_coef(cap), stat=stat)
+    if (stat /= 0) then
+       call out_of_memory(error, 'the maps of the physical DOFs', table%np*(BYTES_I8 + BYTES_INT + BYTES_REAL) + &
+            cap*(BYTES_I8 + BYTES_REAL))
+       return
+    end if
     tr%pool_n = 0
     do j = 1, tr%ncol
        if (tr%col_kind(j) /= COL_PHYS) cycle
@@ -506,13 +528,18 @@ contains
     call merge_terms(ncol, ncoef)
   end subroutine substitute
 
-  subroutine compact_columns(tr)
+  subroutine compact_columns(tr, error)
     !! Drop eliminated columns and renumber maps, δ columns and forms.
     type(transform_t), intent(inout) :: tr
+    type(error_t), allocatable, intent(out) :: error
     integer(i8), allocatable :: newc(:)
     integer(i8) :: j, n
-    integer :: i, k
-    allocate (newc(tr%ncol))
+    integer :: i, k, stat
+    allocate (newc(tr%ncol), stat=stat)
+    if (stat /= 0) then
+       call out_of_memory(error, 'the column renumbering', tr%ncol*BYTES_I8)
+       return
+    end if
     n = 0
     do j = 1, tr%ncol
        if (tr%col_kind(j) == COL_DEAD) then

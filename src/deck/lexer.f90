@@ -74,17 +74,20 @@ contains
 
   ! ------------------------------------------------------------------ files and lines
 
-  subroutine load_file(path, text, ok)
+  subroutine load_file(path, text, ok, need)
     !! Read a whole file into `text` (any size, any line length). `ok` is false
-    !! when the file cannot be opened or read.
+    !! when the file cannot be opened or read; `need` > 0 when it could not be
+    !! held in memory (the bytes it needs).
     character(*), intent(in) :: path
     character(:), allocatable, intent(out) :: text
     logical, intent(out) :: ok
+    integer(i8), intent(out) :: need
     integer :: unit, ios, stat
     integer(i8) :: nbytes
     logical :: exists
 
     ok = .false.
+    need = 0
     inquire (file=path, exist=exists)
     if (.not. exists) return
     open (newunit=unit, file=path, access='stream', form='unformatted', action='read', &
@@ -99,6 +102,7 @@ contains
     allocate (character(len=nbytes) :: text, stat=stat)
     if (stat /= 0) then
        close (unit)
+       need = nbytes
        return
     end if
     ios = 0

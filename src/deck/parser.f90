@@ -13,7 +13,7 @@ module superjoin_deck_parser
        is_digits, looks_numeric, itoa, clip, plural, path_dirname, path_join, path_normalize, &
        TOK_OK, TOK_RANGE, TOK_NONFINITE
   use superjoin_deck_state, only: deck_state_t, sec_b_t, contact_b_t, cline_b_t, support_b_t, &
-       load_b_t, ref_t, report, report_loc, new_sub, find_sub, find_set, new_set, add_chunk, &
+       load_b_t, ref_t, report, report_loc, report_oom, new_sub, find_sub, find_set, new_set, add_chunk, &
        push_pool, add_node, add_element, add_heading, add_material, add_orientation, &
        add_section, add_contact, add_cline, add_support, add_step, add_load, &
        MAX_INCLUDE_DEPTH, CH_IDS, CH_GEN, CH_RANGE, CH_REF, BEAM_2D_VALUES, BEAM_3D_VALUES
@@ -34,6 +34,9 @@ module superjoin_deck_parser
     !! Name of the implicit substructure.
   character(*), parameter :: BOM = char(239)//char(187)//char(191)
     !! UTF-8 byte order mark, skipped at the start of a file.
+  integer(i8), parameter :: MAX_LINE_LENGTH = 1073741824_i8
+    !! Longest line accepted (2**30 characters): positions inside a line are
+    !! default integers, so a longer line is refused rather than mis-read.
   real(wp), parameter :: NU_MIN = -1.0_wp, NU_MAX = 0.5_wp
     !! Poisson's ratio bounds (open interval).
   real(wp), parameter :: PARALLEL_TOL = 1.0e-10_wp
@@ -107,7 +110,18 @@ contains
     do
        call next_line(text, pos, first, last, found)
        if (.not. found) exit
+       if (line == huge(line)) then
+          call report(st, file, line, 'more than '//itoa(huge(line))//' lines in one file')
+          st%aborted = .true.
+          exit
+       end if
        line = line + 1
+       if (last - first + 1 > MAX_LINE_LENGTH) then
+          call report(st, file, line, 'line of '//itoa(last - first + 1)//' characters (at most '// &
+               itoa(MAX_LINE_LENGTH)//')')
+          st%aborted = .true.
+          exit
+       end if
        call process_line(st, text(first:last), file, line)
        if (st%aborted) exit
     end do
@@ -391,6 +405,7 @@ contains
     character(:), allocatable :: rel, path, chain, text
     logical :: found, ok
     integer :: k, j, idx
+    integer(i8) :: need
     call check_params(st, kw, loc, [character(NAME_LEN) :: 'INPUT'], [character(NAME_LEN) ::])
     call get_param(st, kw, loc, 'INPUT', .true., rel, found)
     if (.not. found) return
@@ -409,7 +424,11 @@ contains
        call report_loc(st, loc, 'includes nested deeper than '//itoa(MAX_INCLUDE_DEPTH)//' levels')
        return
     end if
-    call load_file(path, text, ok)
+    call load_file(path, text, ok, need)
+    if (need > 0) then
+       call report_oom(st, loc, 'reading include file '''//path//'''', need)
+       return
+    end if
     if (.not. ok) then
        call report_loc(st, loc, 'cannot open include file '''//path//'''')
        return
@@ -1074,6 +1093,7 @@ contains
     integer(ip) :: id
     real(wp) :: x(3)
     integer :: i
+    integer(i8) :: failed_bytes
     st%subs(st%card_sub)%node_lines = st%subs(st%card_sub)%node_lines + 1
     if (.not. field_count(st, loc, NODE_FIELDS_MIN, NODE_FIELDS_MAX, 'id, x, y[, z]')) return
     if (.not. get_id(st, line, loc, 1, 'node id', id)) return
@@ -1082,7 +1102,11 @@ contains
        if (.not. get_real(st, line, loc, i, x(i - 1))) return
     end do
     associate (sub => st%subs(st%card_sub))
-      call add_node(sub, id, x, loc)
+      call add_node(sub, id, x, loc, failed_bytes)
+      if (failed_bytes > 0) then
+         call too_many(st, loc, 'nodes', sub%nnode, failed_bytes)
+         return
+      end if
       if (st%card_chunk > 0) sub%chunks(st%card_chunk)%count = sub%chunks(st%card_chunk)%count + 1
     end associate
   end subroutine data_node
@@ -1093,6 +1117,7 @@ contains
     type(source_loc_t), intent(in) :: loc
     integer(ip) :: id, nid(MAX_ELEMENT_NODES)
     integer :: i, nn
+    integer(i8) :: failed_bytes
     nn = ELEMENT_NODE_COUNT(st%card_etype)
     if (.not. field_count(st, loc, nn + 1, nn + 1, 'id and '//itoa(nn)//' nodes for type '// &
          trim(ELEMENT_TYPE_NAMES(st%card_etype)))) return
@@ -1102,10 +1127,31 @@ contains
        if (.not. get_id(st, line, loc, i + 1, 'node id', nid(i))) return
     end do
     associate (sub => st%subs(st%card_sub))
-      call add_element(sub, id, st%card_etype, nid, loc, st%card_item)
+      call add_element(sub, id, st%card_etype, nid, loc, st%card_item, failed_bytes)
+      if (failed_bytes > 0) then
+         call too_many(st, loc, 'elements', sub%nelem, failed_bytes)
+         return
+      end if
       if (st%card_chunk > 0) sub%chunks(st%card_chunk)%count = sub%chunks(st%card_chunk)%count + 1
     end associate
   end subroutine data_element
+
+  subroutine too_many(st, loc, what, count, failed_bytes)
+    !! A substructure cannot take one more node or element: more than
+    !! huge(count) of them (a deck error), or out of memory (EXIT_IO).
+    type(deck_state_t), intent(inout) :: st
+    type(source_loc_t), intent(in) :: loc
+    character(*), intent(in) :: what
+    integer(ip), intent(in) :: count
+    integer(i8), intent(in) :: failed_bytes
+    if (count == huge(count)) then
+       call report_loc(st, loc, 'more than '//itoa(huge(count))//' '//what//' in one substructure')
+       st%aborted = .true.
+    else
+       call report_oom(st, loc, 'the '//what//' of substructure '//st%subs(st%card_sub)%name// &
+            ' ('//itoa(2_i8*count)//')', failed_bytes)
+    end if
+  end subroutine too_many
 
   subroutine data_set(st, line, loc, elem)
     type(deck_state_t), intent(inout) :: st

@@ -4,6 +4,8 @@ module superjoin_deck_reader
   !! reported as one `path:line: error: message` line of the returned error
   !! (exit status EXIT_DECK), up to a cap; library code never stops.
   use superjoin_error, only: error_t, fatal_error, EXIT_IO
+  use superjoin_kinds, only: i8
+  use superjoin_utils_memory, only: oom_message
   use superjoin_model_types, only: model_t
   use superjoin_deck_lexer, only: load_file, path_normalize
   use superjoin_deck_state, only: deck_state_t
@@ -24,7 +26,12 @@ contains
     type(error_t), allocatable, intent(out) :: error
     character(:), allocatable :: text
     logical :: ok
-    call load_file(path, text, ok)
+    integer(i8) :: need
+    call load_file(path, text, ok, need)
+    if (need > 0) then
+       call fatal_error(error, EXIT_IO, path//': '//oom_message('reading the deck', need))
+       return
+    end if
     if (.not. ok) then
        call fatal_error(error, EXIT_IO, path//': error: cannot open deck file')
        return

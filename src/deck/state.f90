@@ -2,8 +2,9 @@ module superjoin_deck_state
   !! Working state of the deck reader: what the parser has collected so far
   !! (still by user ids and names), the card being read, and the error list
   !! (capped). The validation pass turns this state into a model_t.
-  use superjoin_kinds, only: wp, ip
-  use superjoin_error, only: error_t, add_error_line, EXIT_DECK
+  use superjoin_kinds, only: wp, ip, i8
+  use superjoin_error, only: error_t, add_error_line, EXIT_DECK, EXIT_IO
+  use superjoin_utils_memory, only: oom_message, BYTES_REAL, BYTES_INT
   use superjoin_model_types, only: string_t, source_loc_t, material_t, orientation_t, &
        controls_t, MAX_ELEMENT_NODES, NDOF_NODE, LINK_NONE
   use superjoin_deck_lexer, only: itoa, fields_t
@@ -187,7 +188,7 @@ module superjoin_deck_state
      type(fields_t) :: f                   !! fields of the current data line (reused)
   end type deck_state_t
 
-  public :: report, report_loc, new_sub, find_sub, find_set, new_set, add_chunk, push_pool
+  public :: report, report_loc, report_oom, new_sub, find_sub, find_set, new_set, add_chunk, push_pool
   public :: add_node, add_element, add_heading, add_material, add_orientation, add_section
   public :: add_contact, add_cline, add_support, add_step, add_load, file_of
 
@@ -210,6 +211,20 @@ contains
     end if
     call add_error_line(st%error, EXIT_DECK, file_of(st, file)//':'//itoa(line)//': error: '//message)
   end subroutine report
+
+  subroutine report_oom(st, loc, what, nbytes)
+    !! Out of memory while reading: `path:line: error: out of memory: ...`,
+    !! exit status EXIT_IO, and the reader stops.
+    type(deck_state_t), intent(inout) :: st
+    type(source_loc_t), intent(in) :: loc
+    character(*), intent(in) :: what
+    integer(i8), intent(in) :: nbytes
+    if (st%aborted) return
+    call add_error_line(st%error, EXIT_IO, file_of(st, loc%file)//':'//itoa(loc%line)//': '// &
+         oom_message(what, nbytes))
+    st%error%code = EXIT_IO
+    st%aborted = .true.
+  end subroutine report_oom
 
   subroutine report_loc(st, loc, message)
     !! report() at a source location.
@@ -354,20 +369,33 @@ contains
     sub%pool(sub%npool) = id
   end subroutine push_pool
 
-  subroutine add_node(sub, id, x, loc)
-    !! Append a node.
+  subroutine add_node(sub, id, x, loc, failed_bytes)
+    !! Append a node. failed_bytes > 0: the arrays could not grow (that many bytes).
     type(sub_b_t), intent(inout) :: sub
     integer(ip), intent(in) :: id
     real(wp), intent(in) :: x(3)
     type(source_loc_t), intent(in) :: loc
+    integer(i8), intent(out) :: failed_bytes
     integer(ip) :: n
+    integer :: stat
+    failed_bytes = 0
     n = sub%nnode
+    if (n == huge(n)) then
+       failed_bytes = huge(failed_bytes)
+       return
+    end if
     if (n == size(sub%node_id)) then
        block
          integer(ip), allocatable :: ti(:)
          real(wp), allocatable :: tx(:, :)
          type(source_loc_t), allocatable :: tl(:)
-         allocate (ti(2*n), tx(3, 2*n), tl(2*n))
+         integer(ip) :: cap
+         cap = int(min(2_i8*n, int(huge(n), i8)), ip)
+         allocate (ti(cap), tx(3, cap), tl(cap), stat=stat)
+         if (stat /= 0) then
+            failed_bytes = cap*(BYTES_INT + 3*BYTES_REAL + storage_size(loc)/8)
+            return
+         end if
          ti(1:n) = sub%node_id(1:n)
          tx(:, 1:n) = sub%x(:, 1:n)
          tl(1:n) = sub%node_loc(1:n)
@@ -383,21 +411,35 @@ contains
     sub%node_loc(n) = loc
   end subroutine add_node
 
-  subroutine add_element(sub, id, etype, nid, loc, card)
-    !! Append an element (nodes by user id).
+  subroutine add_element(sub, id, etype, nid, loc, card, failed_bytes)
+    !! Append an element (nodes by user id). failed_bytes > 0: the arrays
+    !! could not grow (that many bytes).
     type(sub_b_t), intent(inout) :: sub
     integer(ip), intent(in) :: id
     integer, intent(in) :: etype, card
     integer(ip), intent(in) :: nid(MAX_ELEMENT_NODES)
     type(source_loc_t), intent(in) :: loc
+    integer(i8), intent(out) :: failed_bytes
     integer(ip) :: n
+    integer :: stat
+    failed_bytes = 0
     n = sub%nelem
+    if (n == huge(n)) then
+       failed_bytes = huge(failed_bytes)
+       return
+    end if
     if (n == size(sub%elem_id)) then
        block
          integer(ip), allocatable :: ti(:), tn(:, :)
          integer, allocatable :: tt(:), tc(:)
          type(source_loc_t), allocatable :: tl(:)
-         allocate (ti(2*n), tn(MAX_ELEMENT_NODES, 2*n), tt(2*n), tc(2*n), tl(2*n))
+         integer(ip) :: cap
+         cap = int(min(2_i8*n, int(huge(n), i8)), ip)
+         allocate (ti(cap), tn(MAX_ELEMENT_NODES, cap), tt(cap), tc(cap), tl(cap), stat=stat)
+         if (stat /= 0) then
+            failed_bytes = cap*((3 + MAX_ELEMENT_NODES)*BYTES_INT + storage_size(loc)/8)
+            return
+         end if
          ti(1:n) = sub%elem_id(1:n)
          tn(:, 1:n) = sub%elem_nid(:, 1:n)
          tt(1:n) = sub%elem_type(1:n)
@@ -524,13 +566,19 @@ contains
   end subroutine add_cline
 
   subroutine add_support(st, s)
-    !! Append a support data line.
+    !! Append a support data line (out of memory: reported, reader stops).
     type(deck_state_t), intent(inout) :: st
     type(support_b_t), intent(in) :: s
     type(support_b_t), allocatable :: tmp(:)
+    integer :: stat
     if (.not. allocated(st%supports)) allocate (st%supports(INITIAL_CAPACITY))
     if (st%nsupport == size(st%supports)) then
-       allocate (tmp(2*st%nsupport))
+       allocate (tmp(2*st%nsupport), stat=stat)
+       if (stat /= 0) then
+          call report_oom(st, s%loc, 'the support lines ('//itoa(2*st%nsupport)//')', &
+               2*int(st%nsupport, i8)*storage_size(s)/8)
+          return
+       end if
        tmp(1:st%nsupport) = st%supports(1:st%nsupport)
        call move_alloc(tmp, st%supports)
     end if

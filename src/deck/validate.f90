@@ -9,7 +9,7 @@ module superjoin_deck_validate
        LINK_FINITE, LINK_RIGID, ET_T2D2, ET_T3D2, ET_B23, ET_B33, ET_CPS3, ET_CPS4, &
        ET_S3, ET_S4, DLOAD_PX, DLOAD_PY, DLOAD_PZ, DLOAD_P, DLOAD_GRAV, DLOAD_NAMES
   use superjoin_deck_lexer, only: itoa, plural
-  use superjoin_deck_state, only: deck_state_t, sub_b_t, ref_t, load_b_t, report, report_loc, find_set, &
+  use superjoin_deck_state, only: deck_state_t, sub_b_t, ref_t, load_b_t, report, report_loc, report_oom, find_set, &
        CH_IDS, CH_GEN, CH_RANGE, CH_REF, BEAM_2D_VALUES, BEAM_3D_VALUES
   use superjoin_utils_strings, only: pick
   implicit none (type, external)
@@ -676,6 +676,7 @@ contains
     integer(ip) :: p, np, mnode, snode
     logical :: ok1, ok2, added
     logical, allocatable :: usable(:)
+    integer(i8) :: failed_bytes
 
     allocate (model%contacts(st%ncontact), usable(st%ncontact))
     do k = 1, st%ncontact
@@ -737,7 +738,11 @@ contains
               end if
               call map_get_or_add(map, int(mnode, i8)*PAIR_SHIFT + snode, links%n + 1, il, added)
               if (added) then
-                 call push_link(links)
+                 call push_link(links, failed_bytes)
+                 if (failed_bytes > 0) then
+                    call report_oom(st, cl%loc, 'the contact elements ('//itoa(2*links%n)//')', failed_bytes)
+                    return
+                 end if
                  links%a(il)%contact = cur
                  links%a(il)%master_node = mnode
                  links%a(il)%slave_node = snode
@@ -791,11 +796,18 @@ contains
     end do
   end subroutine merge_dofs
 
-  subroutine push_link(list)
+  subroutine push_link(list, failed_bytes)
     type(link_list_t), intent(inout) :: list
+    integer(i8), intent(out) :: failed_bytes
     type(link_t), allocatable :: tmp(:)
+    integer :: stat
+    failed_bytes = 0
     if (list%n == size(list%a)) then
-       allocate (tmp(2*list%n))
+       allocate (tmp(2*list%n), stat=stat)
+       if (stat /= 0) then
+          failed_bytes = 2*int(list%n, i8)*storage_size(list%a(1))/8
+          return
+       end if
        tmp(1:list%n) = list%a(1:list%n)
        call move_alloc(tmp, list%a)
     end if
@@ -878,7 +890,7 @@ contains
     type(model_t), intent(inout) :: model
     type(support_t), allocatable :: list(:), tmp(:)
     integer(ip), allocatable :: nodes(:)
-    integer :: k, n, isub, d
+    integer :: k, n, isub, d, stat
     integer(ip) :: i
     logical :: ok
     allocate (list(INITIAL_CAPACITY))
@@ -894,7 +906,12 @@ contains
             do d = 1, NDOF_NODE
                if (.not. sb%dofs(d)) cycle
                if (n == size(list)) then
-                  allocate (tmp(2*n))
+                  allocate (tmp(2*n), stat=stat)
+                  if (stat /= 0) then
+                     call report_oom(st, sb%loc, 'the supported DOFs ('//itoa(2*n)//')', &
+                          2*int(n, i8)*storage_size(list(1))/8)
+                     return
+                  end if
                   tmp(1:n) = list(1:n)
                   call move_alloc(tmp, list)
                end if
@@ -910,7 +927,14 @@ contains
          end do
        end associate
     end do
-    model%supports = list(1:n)
+    ! explicit allocation: an assignment's reallocation would not report failure
+    allocate (model%supports(n), stat=stat)
+    if (stat /= 0) then
+       call report_oom(st, st%supports(st%nsupport)%loc, 'the supported DOFs ('//itoa(n)//')', &
+            int(n, i8)*storage_size(list(1))/8)
+       return
+    end if
+    model%supports(1:n) = list(1:n)
   end subroutine build_supports
 
   subroutine build_steps(st, model)

@@ -8,11 +8,15 @@ module superjoin_output_csv
   use superjoin_analysis_results, only: results_t
   use superjoin_elements, only: is_plate_type
   use superjoin_output_posix, only: rename_file, remove_file, make_directory
+  use superjoin_utils_process, only: temp_register, temp_unregister
+  use superjoin_output_text_buffer, only: check_file_size
   use superjoin_utils_strings, only: itoa, full_real
   implicit none (type, external)
   private
 
   public :: write_csv
+
+  integer, parameter :: IOMSG_LEN = 256   !! length of an I/O error message
 
 contains
 
@@ -58,16 +62,23 @@ contains
     integer(ip) :: n
     integer(i8) :: v, iel
     character(:), allocatable :: tmp, sname, line
+    character(len=IOMSG_LEN) :: why
+    logical :: failed
+    integer(i8) :: written
 
     tmp = path//'.tmp'
+    call temp_register(tmp)
     open (newunit=lu, file=tmp, status='replace', action='write', iostat=ios)
     if (ios /= 0) then
+       call temp_unregister()
        call fatal_error(error, EXIT_IO, 'error: cannot write '//path)
        return
     end if
+    failed = .false.
+    written = 0
     select case (which)
     case (1)
-       write (lu, '(a)', iostat=ios) 'step,substructure,node,u1,u2,u3,ur1,ur2,ur3'
+       call put('step,substructure,node,u1,u2,u3,ur1,ur2,ur3')
        do is = 1, size(model%steps)
           sname = model%steps(is)%name
           do isub = 1, size(model%subs)
@@ -78,37 +89,37 @@ contains
                 do d = 1, NDOF_NODE
                    line = line//','//full_real(res%u(NDOF_NODE*(v - 1) + d, is))
                 end do
-                write (lu, '(a)', iostat=ios) line
+                call put(line)
              end do
           end do
        end do
     case (2)
-       write (lu, '(a)', iostat=ios) 'step,substructure,node,dof,force'
+       call put('step,substructure,node,dof,force')
        do is = 1, size(model%steps)
           do k = 1, size(res%steps(is)%reactions)
              associate (rc => res%steps(is)%reactions(k))
-               write (lu, '(a)', iostat=ios) model%steps(is)%name//','//model%subs(rc%sub)%name//','// &
-                    itoa(int(model%subs(rc%sub)%node_id(rc%node)))//','//itoa(rc%dof)//','//full_real(rc%force)
+               call put(model%steps(is)%name//','//model%subs(rc%sub)%name//','// &
+                    itoa(int(model%subs(rc%sub)%node_id(rc%node)))//','//itoa(rc%dof)//','//full_real(rc%force))
              end associate
           end do
        end do
     case (3)
-       write (lu, '(a)', iostat=ios) 'step,contact,master_node,slave_node,dof,delta,force'
+       call put('step,contact,master_node,slave_node,dof,delta,force')
        do is = 1, size(model%steps)
           do il = 1, size(model%links)
              associate (lk => model%links(il), ct => model%contacts(model%links(il)%contact))
                do d = 1, NDOF_NODE
                   if (.not. res%link_used(d, il)) cycle
-                  write (lu, '(a)', iostat=ios) model%steps(is)%name//','//ct%name//','// &
+                  call put(model%steps(is)%name//','//ct%name//','// &
                        itoa(int(model%subs(ct%master_sub)%node_id(lk%master_node)))//','// &
                        itoa(int(model%subs(ct%slave_sub)%node_id(lk%slave_node)))//','//itoa(d)//','// &
-                       full_real(res%steps(is)%link_delta(d, il))//','//full_real(res%steps(is)%link_force(d, il))
+                       full_real(res%steps(is)%link_delta(d, il))//','//full_real(res%steps(is)%link_force(d, il)))
                end do
              end associate
           end do
        end do
     case (4)
-       write (lu, '(a)', iostat=ios) 'step,substructure,element,type,end,n,vy,vz,t,my,mz'
+       call put('step,substructure,element,type,end,n,vy,vz,t,my,mz')
        do is = 1, size(model%steps)
           do isub = 1, size(model%subs)
              do e = 1, model%subs(isub)%nelem
@@ -125,13 +136,13 @@ contains
                    do d = 1, 6
                       line = line//','//full_real(res%elem_force(d, k, iel, is))
                    end do
-                   write (lu, '(a)', iostat=ios) line
+                   call put(line)
                 end do
              end do
           end do
        end do
     case (5)
-       write (lu, '(a)', iostat=ios) 'step,substructure,element,nx,ny,nxy,mx,my,mxy'
+       call put('step,substructure,element,nx,ny,nxy,mx,my,mxy')
        do is = 1, size(model%steps)
           do isub = 1, size(model%subs)
              do e = 1, model%subs(isub)%nelem
@@ -142,18 +153,37 @@ contains
                 do d = 1, 6
                    line = line//','//full_real(res%plate(d, iel, is))
                 end do
-                write (lu, '(a)', iostat=ios) line
+                call put(line)
              end do
           end do
        end do
     end select
-    if (ios == 0) close (lu, iostat=ios)
-    if (ios /= 0) then
+    if (failed) then
        close (lu, iostat=ios)
+    else
+       close (lu, iostat=ios, iomsg=why)
+       failed = ios /= 0
+       if (.not. failed) call check_file_size(tmp, written, failed, why)
+    end if
+    if (failed) then
        call remove_file(tmp)
-       call fatal_error(error, EXIT_IO, 'error: failed writing '//path)
+       call temp_unregister()
+       call fatal_error(error, EXIT_IO, 'error: failed writing '//path//': '//trim(why))
        return
     end if
     call rename_file(tmp, path, error)
+    if (allocated(error)) call remove_file(tmp)
+    call temp_unregister()
+
+  contains
+
+    subroutine put(text)
+      !! One line; after the first failed write nothing more is written.
+      character(*), intent(in) :: text
+      if (failed) return
+      write (lu, '(a)', iostat=ios, iomsg=why) text
+      failed = ios /= 0
+      written = written + len(text) + 1
+    end subroutine put
   end subroutine write_table
 end module superjoin_output_csv

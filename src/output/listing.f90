@@ -8,6 +8,7 @@ module superjoin_output_listing
   use superjoin_elements, only: is_plate_type
   use superjoin_analysis_results, only: results_t
   use superjoin_output_posix, only: rename_file, remove_file
+  use superjoin_utils_process, only: temp_register, temp_unregister
   use superjoin_output_text_buffer, only: text_buffer_t
   use superjoin_config, only: SUPERJOIN_VERSION
   use superjoin_utils_strings, only: itoa
@@ -36,8 +37,12 @@ contains
 
     tmp = path//'.tmp'
     allocate (lu)
+    call temp_register(tmp)
     call lu%open(tmp, error)
-    if (allocated(error)) return
+    if (allocated(error)) then
+       call temp_unregister()
+       return
+    end if
     call header(lu, model, res)
     do is = 1, size(model%steps)
        call step_block(lu, model, res, is)
@@ -47,10 +52,13 @@ contains
     call lu%close(ok)
     if (.not. ok) then
        call remove_file(tmp)
-       call fatal_error(error, EXIT_IO, 'error: failed writing listing '//path)
+       call temp_unregister()
+       call fatal_error(error, EXIT_IO, 'error: failed writing listing '//path//': '//lu%reason())
        return
     end if
     call rename_file(tmp, path, error)
+    if (allocated(error)) call remove_file(tmp)
+    call temp_unregister()
   end subroutine write_listing
 
   subroutine header(lu, model, res)

@@ -5,6 +5,7 @@ module superjoin_output_matrix_market
   use superjoin_error, only: error_t, fatal_error, EXIT_IO
   use superjoin_solvers_sparse, only: sparse_sym_t
   use superjoin_output_posix, only: rename_file, remove_file, scan_int, scan_real
+  use superjoin_output_text_buffer, only: check_file_size
   implicit none (type, external)
   private
 
@@ -28,9 +29,10 @@ contains
     type(sparse_sym_t), intent(in) :: a
     type(error_t), allocatable, intent(out) :: error
     integer :: unit, ios
-    integer(i8) :: j, k
+    integer(i8) :: j, k, expected
     character(len=256) :: msg
     character(:), allocatable :: tmp
+    logical :: failed
 
     tmp = path//TMP_SUFFIX
     open (newunit=unit, file=tmp, status='replace', action='write', form='formatted', &
@@ -56,7 +58,13 @@ contains
        call fatal_error(error, EXIT_IO, "error writing '"//tmp//"': "//trim(msg))
        return
     end if
+    ! the I/O library may drop the error of its final flush: compare sizes
+    inquire (unit=unit, size=expected)
     close (unit, iostat=ios, iomsg=msg)
+    if (ios == 0) then
+       call check_file_size(tmp, expected, failed, msg)
+       if (failed) ios = -1
+    end if
     if (ios /= 0) then
        call remove_file(tmp)
        call fatal_error(error, EXIT_IO, "error closing '"//tmp//"': "//trim(msg))

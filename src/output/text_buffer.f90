@@ -15,12 +15,17 @@ module superjoin_output_text_buffer
   real(wp), parameter :: TEN = 10.0_wp
   integer, parameter :: MAX_POWER = 300
     !! largest power of ten applied in one step (subnormals need two)
+  integer, parameter :: IOMSG_LEN = 256
+    !! length of the kept I/O error message
 
   type, public :: text_buffer_t
     !! A text file being written.
      integer :: unit = -1
      integer :: pos = 0
      logical :: failed = .false.
+     character(len=IOMSG_LEN) :: why = ''   !! message of the first failed write
+     character(:), allocatable :: path
+     integer(i8) :: written = 0             !! bytes handed to the I/O library
      character(len=BUFFER_BYTES) :: buf
   contains
      procedure :: open => tb_open
@@ -31,9 +36,10 @@ module superjoin_output_text_buffer
      procedure :: line => tb_line
      procedure :: newline => tb_newline
      procedure :: close => tb_close
+     procedure :: reason => tb_reason
   end type text_buffer_t
 
-  public :: format_es
+  public :: format_es, check_file_size
 
 contains
 
@@ -48,6 +54,8 @@ contains
     if (ios /= 0) call fatal_error(error, EXIT_IO, 'error: cannot write '//path)
     self%pos = 0
     self%failed = .false.
+    self%path = path
+    self%written = 0
   end subroutine tb_open
 
   subroutine flush_block(self)
@@ -55,8 +63,9 @@ contains
     integer :: ios
     if (self%pos == 0) return
     if (.not. self%failed) then
-       write (self%unit, iostat=ios) self%buf(1:self%pos)
+       write (self%unit, iostat=ios, iomsg=self%why) self%buf(1:self%pos)
        if (ios /= 0) self%failed = .true.
+       self%written = self%written + self%pos
     end if
     self%pos = 0
   end subroutine flush_block
@@ -127,11 +136,43 @@ contains
     class(text_buffer_t), intent(inout) :: self
     logical, intent(out) :: ok
     integer :: ios
+    character(len=IOMSG_LEN) :: why
     call flush_block(self)
-    close (self%unit, iostat=ios)
-    ok = .not. self%failed .and. ios == 0
+    close (self%unit, iostat=ios, iomsg=why)
+    if (ios /= 0 .and. .not. self%failed) then
+       self%failed = .true.
+       self%why = why
+    end if
+    if (.not. self%failed) call check_file_size(self%path, self%written, self%failed, self%why)
+    ok = .not. self%failed
     self%unit = -1
   end subroutine tb_close
+
+  subroutine check_file_size(path, expected, failed, why)
+    !! The I/O library may drop the error of its last buffer flush (gfortran
+    !! does, on CLOSE): check that every byte written reached the file.
+    character(*), intent(in) :: path
+    integer(i8), intent(in) :: expected
+    logical, intent(out) :: failed
+    character(*), intent(inout) :: why
+    integer(i8) :: size
+    character(len=24) :: got, want
+    inquire (file=path, size=size)
+    failed = size /= expected
+    if (failed) then
+       write (got, '(i0)') max(size, 0_i8)
+       write (want, '(i0)') expected
+       why = 'only '//trim(got)//' of '//trim(want)//' bytes reached the file (disk full or file size limit?)'
+    end if
+  end subroutine check_file_size
+
+  function tb_reason(self) result(why)
+    !! Why writing failed (the I/O library's message).
+    class(text_buffer_t), intent(in) :: self
+    character(:), allocatable :: why
+    why = trim(self%why)
+    if (len(why) == 0) why = 'write failed'
+  end function tb_reason
 
   pure subroutine int_digits(value, digits, n)
     integer(i8), intent(in) :: value

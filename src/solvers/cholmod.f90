@@ -12,12 +12,14 @@ module superjoin_solvers_cholmod
   use superjoin_solvers_sparse, only: sparse_sym_t
   use superjoin_solvers_solver, only: linear_solver_t
   use superjoin_solvers_node_graph, only: node_graph
+  use superjoin_utils_memory, only: oom_message, bytes_text
   implicit none (type, external)
   private
 
   integer(c_int), parameter :: SJ_OK = 0           !! shim status: success
   integer(c_int), parameter :: SJ_NOT_POSDEF = 1   !! shim status: not positive definite
   integer(c_int), parameter :: CHOLMOD_OUT_OF_MEMORY = -2
+  integer(c_int), parameter :: SJ_E_NOMEM = -105     !! malloc failed in the shim itself
   integer(c_int), parameter :: CHOLMOD_TOO_LARGE = -3
   integer, parameter :: NAME_LEN = 64              !! buffer for the ordering name
   integer(i8), parameter, public :: NODE_GRAPH_MIN_COLUMNS = 20000_i8
@@ -126,6 +128,13 @@ module superjoin_solvers_cholmod
        integer(c_int64_t), value :: len
        integer(c_int) :: status
      end function sj_cholmod_ordering
+
+     function sj_cholmod_memory(h, failed_request, inuse) bind(c, name='sj_cholmod_memory') result(status)
+       import :: c_ptr, c_int, c_double
+       type(c_ptr), value :: h
+       real(c_double), intent(out) :: failed_request, inuse
+       integer(c_int) :: status
+     end function sj_cholmod_memory
 
      function sj_cholmod_message(h, buf, len) bind(c, name='sj_cholmod_message') result(status)
        import :: c_ptr, c_int, c_int64_t, c_char
@@ -349,8 +358,9 @@ contains
 
     msg = ''
     if (sj_cholmod_message(self%handle, buf, int(MESSAGE_LEN, c_int64_t)) == SJ_OK) msg = from_c(buf)
-    if (status == CHOLMOD_OUT_OF_MEMORY) then
-       if (len(msg) == 0) msg = 'out of memory'
+    if (status == CHOLMOD_OUT_OF_MEMORY .or. status == SJ_E_NOMEM) then
+       call memory_error(self, phase, error)
+       return
     else if (status == CHOLMOD_TOO_LARGE) then
        if (len(msg) == 0) msg = 'problem too large'
     else if (len(msg) == 0) then
@@ -359,6 +369,32 @@ contains
     end if
     call fatal_error(error, EXIT_IO, 'CHOLMOD '//phase//' failed: '//msg)
   end subroutine status_error
+
+  subroutine memory_error(self, phase, error)
+    !! EXIT_IO error for CHOLMOD out of memory: the request that failed, what
+    !! CHOLMOD already held, and (after the analysis) the size of the factor.
+    class(cholmod_solver_t), intent(in) :: self
+    character(*), intent(in) :: phase
+    type(error_t), allocatable, intent(out) :: error
+    real(c_double) :: request, inuse
+    integer(c_int) :: status
+    character(:), allocatable :: msg
+    status = sj_cholmod_memory(self%handle, request, inuse)
+    if (status /= SJ_OK) then
+       request = 0.0_wp
+       inuse = 0.0_wp
+    end if
+    if (request > 0.0_wp) then
+       msg = oom_message('CHOLMOD '//phase, int(request, i8) + int(inuse, i8))// &
+            ' (an allocation of '//bytes_text(int(request, i8))//' failed with '// &
+            bytes_text(int(inuse, i8))//' in use)'
+    else
+       msg = oom_message('CHOLMOD '//phase, int(inuse, i8))//' or more'
+    end if
+    if (phase == 'factorize' .and. self%info%factor_mbytes > 0.0_wp) &
+         msg = msg//'; the factor alone needs '//bytes_text(int(self%info%factor_mbytes*MBYTE, i8))
+    call fatal_error(error, EXIT_IO, msg)
+  end subroutine memory_error
 
   pure function from_c(buf) result(s)
     !! Fortran string from a NUL-terminated C buffer.

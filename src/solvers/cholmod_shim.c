@@ -49,6 +49,48 @@
 /* The node-level estimate runs low (unequal group sizes): accept a margin. */
 #define SJ_NODE_MARGIN 0.7
 
+/* Out of memory: SuiteSparse allocates through SuiteSparse_config's
+ * function pointers; sj_cholmod_create routes them through these wrappers,
+ * which remember the size of the last request that failed, so the error can
+ * say how many bytes CHOLMOD needed (Common->memory_inuse says how many it
+ * already held). */
+static _Atomic size_t sj_failed_request = 0;
+
+static void *sj_malloc(size_t size)
+{
+    void *p = malloc(size);
+    if (p == NULL && size > 0) sj_failed_request = size;
+    return p;
+}
+
+static void *sj_calloc(size_t count, size_t size)
+{
+    void *p = calloc(count, size);
+    if (p == NULL && count > 0 && size > 0)
+        sj_failed_request = (count > SIZE_MAX / size) ? SIZE_MAX : count * size;
+    return p;
+}
+
+static void *sj_realloc(void *old, size_t size)
+{
+    void *p = realloc(old, size);
+    if (p == NULL && size > 0) sj_failed_request = size;
+    return p;
+}
+
+static void sj_route_allocations(void)
+{
+#if SUITESPARSE_MAIN_VERSION >= 7
+    SuiteSparse_config_malloc_func_set(sj_malloc);
+    SuiteSparse_config_calloc_func_set(sj_calloc);
+    SuiteSparse_config_realloc_func_set(sj_realloc);
+#else
+    SuiteSparse_config.malloc_func = sj_malloc;
+    SuiteSparse_config.calloc_func = sj_calloc;
+    SuiteSparse_config.realloc_func = sj_realloc;
+#endif
+}
+
 _Static_assert(sizeof(SuiteSparse_long) == sizeof(int64_t),
                "SuiteSparse_long must be 64-bit");
 
@@ -99,9 +141,10 @@ static void sj_set_message(sj_cholmod_t *h, const char *message)
     h->message[SJ_MESSAGE_LEN - 1] = '\0';
 }
 
-/* Start a CHOLMOD call: clear the recorded message. */
+/* Start a CHOLMOD call: clear the recorded message and failed request. */
 static void sj_begin(sj_cholmod_t *h)
 {
+    sj_failed_request = 0;
     sj_last_message[0] = '\0';
     h->message[0] = '\0';
 }
@@ -140,7 +183,9 @@ static void sj_drop_pattern(sj_cholmod_t *h)
 /* Create a handle; NULL if out of memory or CHOLMOD cannot start. */
 void *sj_cholmod_create(void)
 {
-    sj_cholmod_t *h = calloc(1, sizeof(sj_cholmod_t));
+    sj_cholmod_t *h;
+    sj_route_allocations();
+    h = calloc(1, sizeof(sj_cholmod_t));
     if (h == NULL) return NULL;
     if (!cholmod_l_start(&h->common)) {
         free(h);
@@ -305,8 +350,8 @@ int sj_cholmod_analyze(void *handle, int64_t n, const int64_t *colptr,
         sj_set_message(h, "invalid column pointers");
         return SJ_E_ARGUMENT;
     }
-    h->Ap = malloc((size_t)(n + 1) * sizeof(SuiteSparse_long));
-    h->Ai = malloc((size_t)(nnz > 0 ? nnz : 1) * sizeof(SuiteSparse_long));
+    h->Ap = sj_malloc((size_t)(n + 1) * sizeof(SuiteSparse_long));
+    h->Ai = sj_malloc((size_t)(nnz > 0 ? nnz : 1) * sizeof(SuiteSparse_long));
     if (h->Ap == NULL || h->Ai == NULL) {
         sj_drop_pattern(h);
         sj_set_message(h, "out of memory copying the matrix pattern");
@@ -601,4 +646,14 @@ int sj_cholmod_message(void *handle, char *buf, int64_t len)
     strncpy(buf, h->message, (size_t)len - 1);
     buf[len - 1] = '\0';
     return SJ_OK;
+}
+
+/* After an out-of-memory status: the size of the allocation that failed
+ * (0 if unknown) and the bytes CHOLMOD held at that moment. */
+int sj_cholmod_memory(void *handle, double *failed_request, double *inuse)
+{
+    sj_cholmod_t *h = handle;
+    if (failed_request != NULL) *failed_request = (double)sj_failed_request;
+    if (inuse != NULL) *inuse = h != NULL ? (double)h->common.memory_inuse : 0.0;
+    return h != NULL ? SJ_OK : SJ_E_HANDLE;
 }

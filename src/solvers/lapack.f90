@@ -13,6 +13,8 @@ module superjoin_solvers_lapack
   use superjoin_error, only: error_t, fatal_error, EXIT_SINGULAR, EXIT_IO
   use superjoin_solvers_sparse, only: sparse_sym_t
   use superjoin_solvers_node_graph, only: node_graph
+  use superjoin_utils_memory, only: out_of_memory, BYTES_REAL
+  use superjoin_utils_strings, only: itoa
   use superjoin_solvers_solver, only: linear_solver_t
   implicit none (type, external)
   private
@@ -174,7 +176,13 @@ contains
           allocate (self%f(n, n), stat=stat)
        end if
        if (stat /= 0) then
-          call fatal_error(error, EXIT_IO, 'LAPACK: out of memory for the factor')
+          if (self%banded) then
+             call out_of_memory(error, 'the LAPACK band factor ('//itoa(self%kd + 1)//' x '//itoa(n)//')', &
+                  (self%kd + 1)*n*BYTES_REAL)
+          else
+             call out_of_memory(error, 'the LAPACK dense factor ('//itoa(n)//' x '//itoa(n)//')', &
+                  n*n*BYTES_REAL)
+          end if
           return
        end if
     end if
@@ -244,7 +252,7 @@ contains
     if (n == 0 .or. nrhs == 0) return
     allocate (y(n, nrhs), stat=stat)
     if (stat /= 0) then
-       call fatal_error(error, EXIT_IO, 'LAPACK: out of memory in solve')
+       call out_of_memory(error, 'the LAPACK solve', n*nrhs*BYTES_REAL)
        return
     end if
     do i = 1, n

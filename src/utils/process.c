@@ -1,0 +1,91 @@
+/* Process set-up for the superjoin executable (called once from the main
+ * program through bind(c)):
+ *
+ *  - SIGXFSZ is ignored, so a write beyond the file size limit (ulimit -f)
+ *    fails with EFBIG and an I/O status the program reports (exit 4) instead
+ *    of killing the process with a half-written temporary file.
+ *  - SIGINT, SIGTERM, SIGHUP: the handler removes the temporary output file
+ *    being written (registered with sj_temp_register), then the signal is
+ *    raised again with its default action, so the exit status still says
+ *    which signal ended the run. unlink and raise are async-signal-safe.
+ *  - OpenBLAS's work buffer is allocated now, by a 1 x 1 dpotrf: OpenBLAS
+ *    retries a failed buffer allocation forever (it spins), so when memory
+ *    runs out later the failure must land in code that reports it. If even
+ *    that buffer cannot be allocated (probed with malloc first), the caller
+ *    is told, with the size, and BLAS is not touched.
+ */
+#include <signal.h>
+#include <stdatomic.h>
+#include <stdint.h>
+#include <stdlib.h>
+#include <string.h>
+#include <unistd.h>
+
+#define SJ_TEMP_PATH_MAX 4096
+/* OpenBLAS's work buffer (BUFFER_SIZE, 128 MiB on x86-64) plus its
+ * alignment slack, rounded up. */
+#define SJ_BLAS_BUFFER_BYTES ((size_t)129 << 20)
+#define SJ_SETUP_HANDLERS (-1)
+
+extern void dpotrf_(const char *uplo, const int *n, double *a, const int *lda,
+                    int *info, size_t uplo_len);
+
+/* Path of the temporary output file being written ('' when none). The
+ * handler reads it; `temp_set` is cleared before the path changes. */
+static char temp_path[SJ_TEMP_PATH_MAX];
+static atomic_int temp_set = 0;
+
+static const int cleanup_signals[] = {SIGINT, SIGTERM, SIGHUP};
+
+static void cleanup_handler(int sig)
+{
+    if (atomic_load(&temp_set)) unlink(temp_path);
+    signal(sig, SIG_DFL);
+    raise(sig);
+}
+
+/* Returns 0 when every handler was installed (SJ_SETUP_HANDLERS if not).
+ * *blas_bytes is 0 when BLAS is ready, else the bytes its buffer needs. */
+int sj_process_setup(int64_t *blas_bytes)
+{
+    int status = 0;
+    size_t k;
+    struct sigaction sa;
+    double one = 1.0;
+    int n = 1, info = 0;
+    void *probe;
+
+    if (signal(SIGXFSZ, SIG_IGN) == SIG_ERR) status = SJ_SETUP_HANDLERS;
+    memset(&sa, 0, sizeof sa);
+    sa.sa_handler = cleanup_handler;
+    sigemptyset(&sa.sa_mask);
+    for (k = 0; k < sizeof cleanup_signals / sizeof cleanup_signals[0]; k++) {
+        struct sigaction old;
+        /* keep a signal that was ignored when we started (nohup, &) ignored */
+        if (sigaction(cleanup_signals[k], NULL, &old) == 0 && old.sa_handler == SIG_IGN) continue;
+        if (sigaction(cleanup_signals[k], &sa, NULL) != 0) status = SJ_SETUP_HANDLERS;
+    }
+    probe = malloc(SJ_BLAS_BUFFER_BYTES);
+    if (probe == NULL) {
+        *blas_bytes = (int64_t)SJ_BLAS_BUFFER_BYTES;
+    } else {
+        free(probe);
+        *blas_bytes = 0;
+        dpotrf_("U", &n, &one, &n, &info, 1);
+    }
+    return status;
+}
+
+/* Register path (len bytes, not NUL-terminated) as the temporary file to
+ * remove on SIGINT/SIGTERM/SIGHUP; len <= 0 unregisters. Returns -1 when
+ * the path is too long to register (it is then not removed on a signal). */
+int sj_temp_register(const char *path, long len)
+{
+    atomic_store(&temp_set, 0);
+    if (len <= 0) return 0;
+    if (len >= SJ_TEMP_PATH_MAX) return -1;
+    memcpy(temp_path, path, (size_t)len);
+    temp_path[len] = '\0';
+    atomic_store(&temp_set, 1);
+    return 0;
+}

@@ -9,14 +9,12 @@ module superjoin_output_csv
   use superjoin_elements, only: is_plate_type
   use superjoin_output_posix, only: rename_file, remove_file, make_directory
   use superjoin_utils_process, only: temp_register, temp_unregister
-  use superjoin_output_text_buffer, only: check_file_size
+  use superjoin_output_text_buffer, only: text_buffer_t
   use superjoin_utils_strings, only: itoa, full_real
   implicit none (type, external)
   private
 
   public :: write_csv
-
-  integer, parameter :: IOMSG_LEN = 256   !! length of an I/O error message
 
 contains
 
@@ -53,73 +51,69 @@ contains
   end function any_plates
 
   subroutine write_table(path, which, model, res, error)
+    !! One CSV table (which: 1 displacements, 2 reactions, 3 contact forces,
+    !! 4 element forces, 5 plate results), through the buffered writer.
     character(*), intent(in) :: path
     integer, intent(in) :: which
     type(model_t), intent(in) :: model
     type(results_t), intent(in) :: res
     type(error_t), allocatable, intent(out) :: error
-    integer :: lu, ios, is, isub, d, k, il, e
+    type(text_buffer_t), allocatable :: tb
+    integer :: is, isub, d, k, il, e
     integer(ip) :: n
     integer(i8) :: v, iel
-    character(:), allocatable :: tmp, sname, line
-    character(len=IOMSG_LEN) :: why
-    logical :: failed
-    integer(i8) :: written
+    character(:), allocatable :: tmp
+    logical :: ok
 
     tmp = path//'.tmp'
     call temp_register(tmp)
-    open (newunit=lu, file=tmp, status='replace', action='write', iostat=ios)
-    if (ios /= 0) then
+    allocate (tb)
+    call tb%open(tmp, error)
+    if (allocated(error)) then
        call temp_unregister()
-       call fatal_error(error, EXIT_IO, 'error: cannot write '//path)
        return
     end if
-    failed = .false.
-    written = 0
     select case (which)
     case (1)
-       call put('step,substructure,node,u1,u2,u3,ur1,ur2,ur3')
+       call tb%line('step,substructure,node,u1,u2,u3,ur1,ur2,ur3')
        do is = 1, size(model%steps)
-          sname = model%steps(is)%name
           do isub = 1, size(model%subs)
              do n = 1, model%subs(isub)%nnode
                 v = res%vertex_offset(isub) + n
                 if (.not. any(res%has_dof(:, v))) cycle
-                line = sname//','//model%subs(isub)%name//','//itoa(int(model%subs(isub)%node_id(n)))
-                do d = 1, NDOF_NODE
-                   line = line//','//full_real(res%u(NDOF_NODE*(v - 1) + d, is))
-                end do
-                call put(line)
+                call keys(model%steps(is)%name, model%subs(isub)%name, int(model%subs(isub)%node_id(n), i8))
+                call reals(res%u(NDOF_NODE*(v - 1) + 1:NDOF_NODE*v, is))
              end do
           end do
        end do
     case (2)
-       call put('step,substructure,node,dof,force')
+       call tb%line('step,substructure,node,dof,force')
        do is = 1, size(model%steps)
           do k = 1, size(res%steps(is)%reactions)
              associate (rc => res%steps(is)%reactions(k))
-               call put(model%steps(is)%name//','//model%subs(rc%sub)%name//','// &
-                    itoa(int(model%subs(rc%sub)%node_id(rc%node)))//','//itoa(rc%dof)//','//full_real(rc%force))
+               call keys(model%steps(is)%name, model%subs(rc%sub)%name, &
+                    int(model%subs(rc%sub)%node_id(rc%node), i8), int(rc%dof, i8))
+               call reals([rc%force])
              end associate
           end do
        end do
     case (3)
-       call put('step,contact,master_node,slave_node,dof,delta,force')
+       call tb%line('step,contact,master_node,slave_node,dof,delta,force')
        do is = 1, size(model%steps)
           do il = 1, size(model%links)
              associate (lk => model%links(il), ct => model%contacts(model%links(il)%contact))
                do d = 1, NDOF_NODE
                   if (.not. res%link_used(d, il)) cycle
-                  call put(model%steps(is)%name//','//ct%name//','// &
-                       itoa(int(model%subs(ct%master_sub)%node_id(lk%master_node)))//','// &
-                       itoa(int(model%subs(ct%slave_sub)%node_id(lk%slave_node)))//','//itoa(d)//','// &
-                       full_real(res%steps(is)%link_delta(d, il))//','//full_real(res%steps(is)%link_force(d, il)))
+                  call keys(model%steps(is)%name, ct%name, &
+                       int(model%subs(ct%master_sub)%node_id(lk%master_node), i8), &
+                       int(model%subs(ct%slave_sub)%node_id(lk%slave_node), i8), int(d, i8))
+                  call reals([res%steps(is)%link_delta(d, il), res%steps(is)%link_force(d, il)])
                end do
              end associate
           end do
        end do
     case (4)
-       call put('step,substructure,element,type,end,n,vy,vz,t,my,mz')
+       call tb%line('step,substructure,element,type,end,n,vy,vz,t,my,mz')
        do is = 1, size(model%steps)
           do isub = 1, size(model%subs)
              do e = 1, model%subs(isub)%nelem
@@ -130,45 +124,31 @@ contains
                 end select
                 iel = res%elem_offset(isub) + e
                 do k = 1, 2
-                   line = model%steps(is)%name//','//model%subs(isub)%name//','// &
-                        itoa(int(model%subs(isub)%elem_id(e)))//','// &
-                        trim(ELEMENT_TYPE_NAMES(model%subs(isub)%elem_type(e)))//','//itoa(k)
-                   do d = 1, 6
-                      line = line//','//full_real(res%elem_force(d, k, iel, is))
-                   end do
-                   call put(line)
+                   call keys(model%steps(is)%name, model%subs(isub)%name, int(model%subs(isub)%elem_id(e), i8))
+                   call tb%put(','//trim(ELEMENT_TYPE_NAMES(model%subs(isub)%elem_type(e)))//','//itoa(k))
+                   call reals(res%elem_force(:, k, iel, is))
                 end do
              end do
           end do
        end do
     case (5)
-       call put('step,substructure,element,nx,ny,nxy,mx,my,mxy')
+       call tb%line('step,substructure,element,nx,ny,nxy,mx,my,mxy')
        do is = 1, size(model%steps)
           do isub = 1, size(model%subs)
              do e = 1, model%subs(isub)%nelem
                 if (.not. is_plate_type(model%subs(isub)%elem_type(e))) cycle
                 iel = res%elem_offset(isub) + e
-                line = model%steps(is)%name//','//model%subs(isub)%name//','// &
-                     itoa(int(model%subs(isub)%elem_id(e)))
-                do d = 1, 6
-                   line = line//','//full_real(res%plate(d, iel, is))
-                end do
-                call put(line)
+                call keys(model%steps(is)%name, model%subs(isub)%name, int(model%subs(isub)%elem_id(e), i8))
+                call reals(res%plate(:, iel, is))
              end do
           end do
        end do
     end select
-    if (failed) then
-       close (lu, iostat=ios)
-    else
-       close (lu, iostat=ios, iomsg=why)
-       failed = ios /= 0
-       if (.not. failed) call check_file_size(tmp, written, failed, why)
-    end if
-    if (failed) then
+    call tb%close(ok)
+    if (.not. ok) then
        call remove_file(tmp)
        call temp_unregister()
-       call fatal_error(error, EXIT_IO, 'error: failed writing '//path//': '//trim(why))
+       call fatal_error(error, EXIT_IO, 'error: failed writing '//path//': '//trim(tb%why))
        return
     end if
     call rename_file(tmp, path, error)
@@ -177,13 +157,32 @@ contains
 
   contains
 
-    subroutine put(text)
-      !! One line; after the first failed write nothing more is written.
-      character(*), intent(in) :: text
-      if (failed) return
-      write (lu, '(a)', iostat=ios, iomsg=why) text
-      failed = ios /= 0
-      written = written + len(text) + 1
-    end subroutine put
+    subroutine keys(a, b, i1, i2, i3)
+      !! The leading columns of a row: two names and up to three integers.
+      character(*), intent(in) :: a, b
+      integer(i8), intent(in) :: i1
+      integer(i8), intent(in), optional :: i2, i3
+      call tb%put(a//','//b//',')
+      call tb%put_int(i1, 0)
+      if (present(i2)) then
+         call tb%put(',')
+         call tb%put_int(i2, 0)
+      end if
+      if (present(i3)) then
+         call tb%put(',')
+         call tb%put_int(i3, 0)
+      end if
+    end subroutine keys
+
+    subroutine reals(x)
+      !! ',' and each value with 17 significant digits, then the end of the row.
+      real(wp), intent(in) :: x(:)
+      integer :: j
+      do j = 1, size(x)
+         call tb%put(',')
+         call tb%put(full_real(x(j)))
+      end do
+      call tb%newline()
+    end subroutine reals
   end subroutine write_table
 end module superjoin_output_csv

@@ -1,6 +1,7 @@
 module superjoin_utils_strings
   !! Small string conversions.
   use superjoin_kinds, only: wp, i8
+  use superjoin_utils_real_format, only: format_e17
   implicit none (type, external)
   private
 
@@ -42,12 +43,10 @@ contains
     !! Real to text with 17 significant digits (round-trips exactly).
     real(wp), intent(in) :: x
     character(:), allocatable :: s
-    character(len=40) :: buf
     if (x == 0.0_wp) then
        s = '0'
     else
-       write (buf, '(es24.16e3)') x
-       s = trim(adjustl(buf))
+       s = format_e17(x)
     end if
   end function full_real
   pure function to_lower(s) result(t)

@@ -17,7 +17,7 @@ module superjoin_analysis_recover
   use superjoin_assembly_transform, only: transform_t, ROLE_TREE, CONS_ELIMINATED
   use superjoin_assembly_assemble, only: element_pdofs, distributed_load
   use superjoin_analysis_results, only: results_t, reaction_t
-  use superjoin_utils_memory, only: out_of_memory, BYTES_REAL
+  use superjoin_utils_memory, only: out_of_memory, BYTES_REAL, BYTES_INT
   implicit none (type, external)
   private
 
@@ -43,7 +43,8 @@ contains
 
     nstep = size(q, 2)
     call physical_displacements(table, tr, q, u)
-    call store_displacements(table, u, res)
+    call store_displacements(table, u, res, error)
+    if (allocated(error)) return
     allocate (r(table%np, nstep), rclose(table%np, nstep), rigid_force(3, table%nunit, nstep), &
          acc(3, 0:table%nvertex), stat=stat)
     if (stat /= 0) then
@@ -83,14 +84,21 @@ contains
     end do
   end subroutine physical_displacements
 
-  subroutine store_displacements(table, u, res)
+  subroutine store_displacements(table, u, res, error)
+    !! Displacements per vertex (global axes) and which DOFs each vertex has.
     type(dof_table_t), intent(in) :: table
     real(wp), intent(in) :: u(:, :)
     type(results_t), intent(inout) :: res
+    type(error_t), allocatable, intent(inout) :: error
     integer(i8) :: v, p
-    integer :: d
-    allocate (res%u(NDOF_NODE*table%nvertex, size(u, 2)), source=0.0_wp)
-    allocate (res%has_dof(NDOF_NODE, table%nvertex))
+    integer :: d, stat
+    allocate (res%u(NDOF_NODE*table%nvertex, size(u, 2)), res%has_dof(NDOF_NODE, table%nvertex), stat=stat)
+    if (stat /= 0) then
+       call out_of_memory(error, 'the displacement results', &
+            int(NDOF_NODE, i8)*table%nvertex*(size(u, 2)*BYTES_REAL + BYTES_INT))
+       return
+    end if
+    res%u = 0.0_wp
     res%has_dof = table%pdof(:, 1:table%nvertex) > 0
     res%vertex_offset = table%vertex_offset
     do v = 1, table%nvertex
@@ -113,7 +121,7 @@ contains
     real(wp) :: qloc(3), f(6, 2), fg(MAX_ELEM_DOFS)
     real(wp), allocatable :: fg2(:, :)
     integer(i8) :: pd(MAX_ELEM_DOFS), ie, ntot
-    integer :: isub, n, is, nstep, i, nn
+    integer :: isub, n, is, nstep, i, nn, stat
     integer(ip) :: e
     type(error_t), allocatable :: inner
 
@@ -124,12 +132,17 @@ contains
        res%elem_offset(isub + 1) = res%elem_offset(isub) + model%subs(isub)%nelem
     end do
     ntot = res%elem_offset(size(model%subs) + 1)
-    allocate (res%elem_force(6, 2, ntot, nstep), source=0.0_wp)
-    allocate (res%plate(6, ntot, nstep), source=0.0_wp)
-    allocate (fg2(MAX_ELEM_DOFS, nstep))
+    allocate (res%elem_force(6, 2, ntot, nstep), res%plate(6, ntot, nstep), ql(3, ntot, nstep), &
+         fg2(MAX_ELEM_DOFS, nstep), stat=stat)
+    if (stat /= 0) then
+       call out_of_memory(error, 'the element results', (21*ntot + MAX_ELEM_DOFS)*nstep*BYTES_REAL)
+       return
+    end if
+    res%elem_force = 0.0_wp
+    res%plate = 0.0_wp
 
     ! Distributed loads in element axes, per element and step.
-    allocate (ql(3, ntot, nstep), source=0.0_wp)
+    ql = 0.0_wp
     do is = 1, nstep
        if (.not. allocated(model%steps(is)%dloads)) cycle
        do i = 1, size(model%steps(is)%dloads)

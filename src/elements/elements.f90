@@ -136,7 +136,8 @@ contains
     !! distributed load q_local, given per unit length in local axes). A bar in
     !! tension has n < 0 at end 1 and n > 0 at end 2. ue holds the element DOF
     !! values in global axes, same ordering as element_stiffness. Components a
-    !! type lacks are 0 (trusses: only n; B23: n, vy, mz). Plane and shell
+    !! type lacks are 0 (trusses: n, and vy, vz under a load across the bar such
+    !! as self weight; B23: n, vy, mz). Plane and shell
     !! elements have no end forces: f = 0 and no error.
     integer, intent(in) :: etype
     real(wp), intent(in) :: x(:, :)

@@ -76,7 +76,9 @@ contains
   pure subroutine truss_end_forces(etype, x, sec, mat, ue, q_local, f, error)
     !! End forces of a bar: f(1, end) = n, the axial force node `end` exerts on
     !! the bar along local x (tension: n < 0 at end 1, n > 0 at end 2), minus
-    !! the consistent share qx L/2 of an axial distributed load; f(2:6, :) = 0.
+    !! the consistent share qx L/2 of an axial distributed load; a load across
+    !! the bar (self weight) goes to its nodes as f(2:3, end) = -q(2:3) L/2
+    !! (the nodes hold it up); f(4:6, :) = 0.
     integer, intent(in) :: etype
     real(wp), intent(in) :: x(:, :)
     type(section_t), intent(in) :: sec
@@ -99,6 +101,8 @@ contains
     elong = dot_product(e(1:nd), ue(nd + 1:2*nd) - ue(1:nd))
     f(1, 1) = -ea_l*elong - q_local(1)*length/2
     f(1, 2) = ea_l*elong - q_local(1)*length/2
+    f(2:3, 1) = -q_local(2:3)*length/2
+    f(2:3, 2) = -q_local(2:3)*length/2
   end subroutine truss_end_forces
 
   pure subroutine truss_distributed_load(etype, x, sec, w, fe, q_local, error)

@@ -2,7 +2,7 @@ module superjoin_analysis
   !! The solution pipeline: DOFs → forest → Δu transform → assembly → AUTOSPC →
   !! factorization (once for all steps) → solve → health checks → recovery.
   use, intrinsic :: iso_fortran_env, only: error_unit
-  use superjoin_kinds, only: wp, i8
+  use superjoin_kinds, only: wp, i8, ip
   use superjoin_error, only: error_t, fatal_error, add_error_line, EXIT_SINGULAR
   use superjoin_model_types, only: model_t, string_t, FORM_TRANSFORM, FORM_PENALTY, RIGID_LARGE, &
        LINK_FINITE, LINK_RIGID, node_label
@@ -72,15 +72,19 @@ contains
        call ieee_set_halting_mode(HALT_FLAGS(i), halting(i))
     end do
     if (allocated(error)) return
-    call check_finite(res, error)
+    call check_finite(model, res, error)
   end subroutine solve_model
 
-  subroutine check_finite(res, error)
-    !! EXIT_SINGULAR error naming the first kind of result that is not finite.
+  subroutine check_finite(model, res, error)
+    !! EXIT_SINGULAR error naming the first kind of result that is not finite
+    !! (including the surface stresses n/t ± 6 m/t² the listing derives).
+    type(model_t), intent(in) :: model
     type(results_t), intent(in) :: res
     type(error_t), allocatable, intent(out) :: error
     character(:), allocatable :: what
-    integer :: is
+    integer :: is, isub
+    integer(ip) :: e
+    real(wp) :: t
     if (allocated(res%u)) then
        if (.not. all(ieee_is_finite(res%u))) what = 'displacements'
     end if
@@ -89,6 +93,19 @@ contains
     end if
     if (.not. allocated(what) .and. allocated(res%plate)) then
        if (.not. all(ieee_is_finite(res%plate))) what = 'plate resultants'
+    end if
+    if (.not. allocated(what) .and. allocated(res%plate)) then
+       do isub = 1, size(model%subs)
+          do e = 1, model%subs(isub)%nelem
+             if (model%subs(isub)%elem_section(e) == 0) cycle
+             t = model%subs(isub)%sections(model%subs(isub)%elem_section(e))%thickness
+             if (t <= 0.0_wp) cycle
+             associate (p => res%plate(:, res%elem_offset(isub) + e, :))
+               if (any(too_big(p(1:3, :), t, 1)) .or. any(too_big(6.0_wp*p(4:6, :), t, 2))) &
+                    what = 'plate stresses'
+             end associate
+          end do
+       end do
     end if
     if (.not. allocated(what) .and. allocated(res%steps)) then
        do is = 1, size(res%steps)
@@ -709,6 +726,17 @@ contains
     m = maxval(abs(v))
     if (m > 0.0_wp .and. m <= huge(m)) s = set_exponent(1.0_wp, exponent(m))
   end function scale_of
+
+  elemental logical function too_big(a, t, power)
+    !! Whether |a| / t**power would come near the overflow threshold (tested on
+    !! logarithms, so that the test itself cannot overflow or divide by zero).
+    real(wp), intent(in) :: a, t
+    integer, intent(in) :: power
+    real(wp), parameter :: MARGIN = 1.0_wp   !! decades kept below huge()
+    too_big = .false.
+    if (a == 0.0_wp .or. t <= 0.0_wp) return
+    too_big = log10(abs(a)) - power*log10(t) > log10(huge(a)) - MARGIN
+  end function too_big
 
   pure function safe_div(a, b) result(c)
     real(wp), intent(in) :: a, b

@@ -1500,6 +1500,7 @@ contains
           ld%loc = loc
           if (len(fld(st, line, 1)) == 0) then
              ld%whole_model = .true.
+             ld%home = st%card_home
           else
              if (.not. parse_ref(st, fld(st, line, 1), dload, st%card_home, loc, ld%ref)) return
           end if

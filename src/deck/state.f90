@@ -121,6 +121,7 @@ module superjoin_deck_state
      real(wp) :: value = 0.0_wp
      real(wp) :: dir(3) = 0.0_wp           !! *DLOAD GRAV: unit direction
      logical :: whole_model = .false.      !! *DLOAD GRAV with an empty first field
+     integer :: home = 0                   !! its substructure block (0: the whole model)
      type(source_loc_t) :: loc
   end type load_b_t
 

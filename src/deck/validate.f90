@@ -1012,8 +1012,10 @@ contains
     n = 0
     do k = 1, size(loads)
        if (loads(k)%whole_model) then
-          ! GRAV with an empty element field: every element of every substructure
+          ! GRAV with an empty element field: every element of the model, or of
+          ! the substructure whose block the line stands in
           do isub = 1, size(model%subs)
+             if (loads(k)%home /= 0 .and. isub /= loads(k)%home) cycle
              elems = [(i, i=1, model%subs(isub)%nelem)]
              call add_elements()
           end do

@@ -36,7 +36,12 @@ contains
     if (allocated(error)) return
     call write_table(dir//'/element_forces.csv', 4, model, res, error)
     if (allocated(error)) return
-    if (any_plates(model)) call write_table(dir//'/plate_results.csv', 5, model, res, error)
+    if (any_plates(model)) then
+       call write_table(dir//'/plate_results.csv', 5, model, res, error)
+    else
+       ! a table of an earlier run into the same directory must not survive
+       call remove_file(dir//'/plate_results.csv')
+    end if
   end subroutine write_csv
 
   pure logical function any_plates(model)

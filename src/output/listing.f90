@@ -346,8 +346,9 @@ contains
           if (model%subs(isub)%elem_type(ie) == ET_CPS3 .or. model%subs(isub)%elem_type(ie) == ET_CPS4) nsurf = 1
           do k = 1, nsurf
              sig(1:3) = res%plate(1:3, iel, is)/t
-             if (nsurf == 2) sig(1:3) = sig(1:3) + merge(1.0_wp, -1.0_wp, k == 1)*6.0_wp*res%plate(4:6, iel, is)/t**2
-             sig(4) = sqrt(max(0.0_wp, sig(1)**2 - sig(1)*sig(2) + sig(2)**2 + 3.0_wp*sig(3)**2))
+             ! (m/t)/t: no t**2 to underflow
+             if (nsurf == 2) sig(1:3) = sig(1:3) + merge(1.0_wp, -1.0_wp, k == 1)*6.0_wp*(res%plate(4:6, iel, is)/t)/t
+             sig(4) = von_mises(sig(1:3))
              call element_prefix(lu, model, isub, ie)
              if (nsurf == 1) then
                 call lu%put_field('  '//SURFACES(3), 8)
@@ -363,6 +364,18 @@ contains
     end do
     call lu%line('')
   end subroutine plate_block
+
+  pure function von_mises(sig) result(vm)
+    !! Von Mises stress of a plane stress state (sx, sy, sxy), scaled so that
+    !! the squares cannot overflow.
+    real(wp), intent(in) :: sig(3)
+    real(wp) :: vm, sc, a(3)
+    sc = maxval(abs(sig))
+    vm = 0.0_wp
+    if (sc == 0.0_wp) return
+    a = sig/sc
+    vm = sc*sqrt(max(0.0_wp, a(1)**2 - a(1)*a(2) + a(2)**2 + 3.0_wp*a(3)**2))
+  end function von_mises
 
   subroutine element_prefix(lu, model, isub, ie)
     !! Substructure, element id and type columns of an element row.

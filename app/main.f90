@@ -14,7 +14,7 @@ program superjoin_main
   use superjoin_config, only: SUPERJOIN_VERSION, DEMO_DECK_SOURCE, DEMO_DECK_INSTALLED
   use superjoin_utils_strings, only: to_lower
   use superjoin_utils_clock, only: stopwatch_t, report_phase
-  use superjoin_utils_process, only: process_setup
+  use superjoin_utils_process, only: process_setup, quick_exit
   use superjoin_utils_memory, only: oom_message
   implicit none (type, external)
 
@@ -35,7 +35,7 @@ program superjoin_main
   if (.not. ok) write (error_unit, '(a)') 'superjoin: warning: signal handlers not installed'
   if (blas_bytes > 0 .and. .not. check_only) then
      write (error_unit, '(a)') deck//': '//oom_message('the BLAS work buffer', blas_bytes)
-     stop EXIT_IO, quiet=.true.
+     call quick_exit(EXIT_IO)
   end if
 
   call clock%start()

@@ -14,6 +14,7 @@
  *    that buffer cannot be allocated (probed with malloc first), the caller
  *    is told, with the size, and BLAS is not touched.
  */
+#include <stdio.h>
 #include <signal.h>
 #include <stdatomic.h>
 #include <stdint.h>
@@ -88,4 +89,13 @@ int sj_temp_register(const char *path, long len)
     temp_path[len] = '\0';
     atomic_store(&temp_set, 1);
     return 0;
+}
+
+/* End the process at once with `status`, skipping the atexit handlers: after
+ * a failed OpenBLAS buffer allocation its shutdown joins worker threads that
+ * spin forever retrying the allocation. The caller flushes its own output. */
+void sj_quick_exit(int status)
+{
+    fflush(NULL);
+    _exit(status);
 }

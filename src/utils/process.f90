@@ -6,7 +6,7 @@ module superjoin_utils_process
   implicit none (type, external)
   private
 
-  public :: process_setup, temp_register, temp_unregister
+  public :: process_setup, temp_register, temp_unregister, quick_exit
 
   interface
      function sj_process_setup(blas_bytes) bind(c, name='sj_process_setup') result(status)
@@ -21,9 +21,23 @@ module superjoin_utils_process
        integer(c_long), value :: len
        integer(c_int) :: status
      end function sj_temp_register
+     subroutine sj_quick_exit(status) bind(c, name='sj_quick_exit')
+       import :: c_int
+       integer(c_int), value :: status
+     end subroutine sj_quick_exit
   end interface
 
 contains
+
+  subroutine quick_exit(status)
+    !! Flush standard error and end the process with status at once, without
+    !! the libraries' exit handlers (OpenBLAS can hang in its own after a
+    !! failed buffer allocation).
+    use, intrinsic :: iso_fortran_env, only: error_unit
+    integer, intent(in) :: status
+    flush (error_unit)
+    call sj_quick_exit(int(status, c_int))
+  end subroutine quick_exit
 
   subroutine process_setup(ok, blas_bytes)
     !! Ignore SIGXFSZ (writes past ulimit -f fail with an I/O status), remove

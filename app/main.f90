@@ -11,6 +11,7 @@ program superjoin_main
   use superjoin_output_listing, only: write_listing
   use superjoin_output_csv, only: write_csv
   use superjoin_output_vtk, only: write_vtk, vtk_path_problem
+  use superjoin_output_posix, only: output_target
   use superjoin_config, only: SUPERJOIN_VERSION, DEMO_DECK_SOURCE, DEMO_DECK_INSTALLED
   use superjoin_utils_strings, only: to_lower
   use superjoin_utils_clock, only: stopwatch_t, report_phase
@@ -22,7 +23,7 @@ program superjoin_main
   type(model_t) :: model
   type(results_t) :: res
   type(error_t), allocatable :: error
-  character(:), allocatable :: deck, listing, csv_dir, vtk_file
+  character(:), allocatable :: deck, listing, csv_dir, vtk_file, target
   logical :: check_only
   type(stopwatch_t) :: clock
   real(wp) :: t_read
@@ -36,6 +37,17 @@ program superjoin_main
   if (blas_bytes > 0 .and. .not. check_only) then
      write (error_unit, '(a)') deck//': '//oom_message('the BLAS work buffer', blas_bytes)
      call quick_exit(EXIT_IO)
+  end if
+
+  ! Outputs are written as NAME.tmp and renamed over NAME: never over a
+  ! device or a FIFO (-o /dev/stdout), and through a symbolic link to its file.
+  call output_target(listing, target, error)
+  call fail_on(error, deck)
+  listing = target
+  if (allocated(opts%export_matrix)) then
+     call output_target(opts%export_matrix, target, error)
+     call fail_on(error, deck)
+     opts%export_matrix = target
   end if
 
   call clock%start()

@@ -52,5 +52,15 @@ cp x.lst y.lst
 expect 3 "mechanism" -- "$bin" -q y.deck -o y.lst
 cmp -s x.lst y.lst || { fail=$((fail+1)); echo "FAIL: failed run touched the previous listing"; }
 ls *.tmp >/dev/null 2>&1 && { fail=$((fail+1)); echo "FAIL: temporary files left"; }
+# Outputs are renamed over their names: never over a device or a FIFO, and a
+# symbolic link keeps pointing at its (rewritten) file.
+mkfifo fifo.lst 2>/dev/null || true
+expect 4 "fifo output" -- "$bin" -q "$src/decks/demo.deck" -o fifo.lst
+grep -q 'is not a regular file' err.txt || { fail=$((fail+1)); echo "FAIL: fifo output without a message"; }
+[ -p fifo.lst ] || { fail=$((fail+1)); echo "FAIL: the fifo was replaced"; }
+echo old > target.lst; ln -sf target.lst link.lst
+expect 0 "symlink output" -- "$bin" -q "$src/decks/demo.deck" -o link.lst
+[ -L link.lst ] || { fail=$((fail+1)); echo "FAIL: the symbolic link was replaced"; }
+grep -q 'END OF LISTING' target.lst || { fail=$((fail+1)); echo "FAIL: the link's file was not written"; }
 echo "$pass passed, $fail failed"
 [ $fail -eq 0 ]

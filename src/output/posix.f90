@@ -8,12 +8,32 @@ module superjoin_output_posix
   implicit none (type, external)
   private
 
-  public :: rename_file, remove_file, make_directory, scan_int, scan_real
+  public :: rename_file, remove_file, make_directory, scan_int, scan_real, output_target
+
+  integer, parameter, public :: PATH_ABSENT = 0, PATH_REGULAR = 1, PATH_LINK = 2, PATH_DIRECTORY = 3, &
+       PATH_OTHER = 4
+    !! What a path names (sj_path_kind in pathinfo.c).
+  integer, parameter :: REAL_PATH_CAP = 4096
+    !! longest resolved path
 
   integer(c_int), parameter :: DECIMAL = 10            !! base for strtoll
   integer(c_int), parameter :: DIR_MODE = int(o'777', c_int)  !! mkdir mode (before umask)
 
   interface
+     function sj_path_kind(path) bind(c, name='sj_path_kind') result(kind)
+       import :: c_int, c_char
+       character(kind=c_char), intent(in) :: path(*)
+       integer(c_int) :: kind
+     end function sj_path_kind
+
+     function sj_real_path(path, out, cap) bind(c, name='sj_real_path') result(n)
+       import :: c_int, c_char
+       character(kind=c_char), intent(in) :: path(*)
+       character(kind=c_char), intent(out) :: out(*)
+       integer(c_int), value :: cap
+       integer(c_int) :: n
+     end function sj_real_path
+
      function c_rename(from, to) bind(c, name='rename') result(status)
        import :: c_int, c_char
        character(kind=c_char), intent(in) :: from(*), to(*)
@@ -71,6 +91,40 @@ contains
     if (c_rename(from//c_null_char, to//c_null_char) /= 0) &
          call fatal_error(error, EXIT_IO, "cannot rename '"//from//"' to '"//to//"'")
   end subroutine rename_file
+
+  subroutine output_target(path, target, error)
+    !! The file an output named path must be written to, as NAME.tmp renamed
+    !! over NAME: path itself when it is absent or a regular file, the file a
+    !! symbolic link points to (the link stays), and an EXIT_IO error for a
+    !! directory, a device or a FIFO (a rename would replace it).
+    character(*), intent(in) :: path
+    character(:), allocatable, intent(out) :: target
+    type(error_t), allocatable, intent(out) :: error
+    character(kind=c_char) :: buf(REAL_PATH_CAP)
+    integer(c_int) :: n
+    integer :: i
+    target = path
+    select case (sj_path_kind(path//c_null_char))
+    case (PATH_ABSENT, PATH_REGULAR)
+       return
+    case (PATH_LINK)
+       n = sj_real_path(path//c_null_char, buf, REAL_PATH_CAP)
+       if (n > 0) then
+          deallocate (target)
+          allocate (character(len=n) :: target)
+          do i = 1, n
+             target(i:i) = buf(i)
+          end do
+          if (sj_path_kind(target//c_null_char) == PATH_REGULAR) return
+       end if
+       ! a dangling link or one to something that is not a regular file
+       call fatal_error(error, EXIT_IO, 'error: '//path//' is a link to something that is not a '// &
+            'regular file (results are written to a temporary file and renamed)')
+    case default
+       call fatal_error(error, EXIT_IO, 'error: '//path//' is not a regular file (results are written '// &
+            'to a temporary file and renamed, which would replace it)')
+    end select
+  end subroutine output_target
 
   subroutine remove_file(path, stat)
     !! Remove the file path; stat (optional) is 0 on success, non-zero otherwise.

@@ -1,0 +1,31 @@
+/* What a path names, without following a final symbolic link, and the real
+ * path of a link: the output writers write NAME.tmp and rename it over NAME,
+ * which must only ever replace a regular file. */
+#include <limits.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/stat.h>
+
+/* 0: nothing there, 1: regular file, 2: symbolic link, 3: directory,
+ * 4: anything else (device, FIFO, socket). */
+int sj_path_kind(const char *path)
+{
+    struct stat st;
+    if (lstat(path, &st) != 0) return 0;
+    if (S_ISREG(st.st_mode)) return 1;
+    if (S_ISLNK(st.st_mode)) return 2;
+    if (S_ISDIR(st.st_mode)) return 3;
+    return 4;
+}
+
+/* The canonical path of an existing path into out (size cap); its length,
+ * or -1 when it cannot be resolved or does not fit. */
+int sj_real_path(const char *path, char *out, int cap)
+{
+    char buf[PATH_MAX];
+    if (realpath(path, buf) == NULL) return -1;
+    int n = (int)strlen(buf);
+    if (n >= cap) return -1;
+    memcpy(out, buf, (size_t)n);
+    return n;
+}

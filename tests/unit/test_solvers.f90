@@ -731,74 +731,47 @@ contains
     !! 2D 5-point Laplacian on an m x m grid (Dirichlet boundary).
     integer(i8), intent(in) :: m
     type(sparse_sym_t), intent(out) :: a
-    integer(i8) :: ix, iy, j, k, n
-    n = m*m
-    a%n = n
-    allocate (a%colptr(n + 1), a%rowind(3*n), a%val(3*n))
-    k = 0
-    a%colptr(1) = 1
-    do iy = 1, m
-       do ix = 1, m
-          j = ix + (iy - 1)*m
-          if (iy > 1) then
-             k = k + 1
-             a%rowind(k) = j - m
-             a%val(k) = -1.0_wp
-          end if
-          if (ix > 1) then
-             k = k + 1
-             a%rowind(k) = j - 1
-             a%val(k) = -1.0_wp
-          end if
-          k = k + 1
-          a%rowind(k) = j
-          a%val(k) = 4.0_wp
-          a%colptr(j + 1) = k + 1
-       end do
-    end do
-    a%rowind = a%rowind(1:k)
-    a%val = a%val(1:k)
+    call grid_laplacian(m, 2, a)
   end subroutine laplace2d
 
   subroutine laplace3d(m, a)
     !! 3D 7-point Laplacian on an m x m x m grid (Dirichlet boundary).
     integer(i8), intent(in) :: m
     type(sparse_sym_t), intent(out) :: a
-    integer(i8) :: ix, iy, iz, j, k, n
-    n = m*m*m
+    call grid_laplacian(m, 3, a)
+  end subroutine laplace3d
+
+  subroutine grid_laplacian(m, ndim, a)
+    !! Laplacian on an m^ndim grid (ndim = 2 or 3; 2 ndim on the diagonal, -1
+    !! to each neighbour), upper triangle with rows sorted in every column.
+    integer(i8), intent(in) :: m
+    integer, intent(in) :: ndim
+    type(sparse_sym_t), intent(out) :: a
+    integer(i8) :: j, k, n, stride(3), pos(3)
+    integer :: d
+    n = m**ndim
+    stride = [1_i8, m, m*m]
     a%n = n
-    allocate (a%colptr(n + 1), a%rowind(4*n), a%val(4*n))
+    allocate (a%colptr(n + 1), a%rowind((ndim + 1)*n), a%val((ndim + 1)*n))
     k = 0
     a%colptr(1) = 1
-    do iz = 1, m
-       do iy = 1, m
-          do ix = 1, m
-             j = ix + (iy - 1)*m + (iz - 1)*m*m
-             if (iz > 1) then
-                k = k + 1
-                a%rowind(k) = j - m*m
-                a%val(k) = -1.0_wp
-             end if
-             if (iy > 1) then
-                k = k + 1
-                a%rowind(k) = j - m
-                a%val(k) = -1.0_wp
-             end if
-             if (ix > 1) then
-                k = k + 1
-                a%rowind(k) = j - 1
-                a%val(k) = -1.0_wp
-             end if
+    do j = 1, n
+       pos = mod((j - 1)/stride, m)
+       do d = ndim, 1, -1
+          if (pos(d) > 0) then
              k = k + 1
-             a%rowind(k) = j
-             a%val(k) = 6.0_wp
-             a%colptr(j + 1) = k + 1
-          end do
+             a%rowind(k) = j - stride(d)
+             a%val(k) = -1.0_wp
+          end if
        end do
+       k = k + 1
+       a%rowind(k) = j
+       a%val(k) = real(2*ndim, wp)
+       a%colptr(j + 1) = k + 1
     end do
     a%rowind = a%rowind(1:k)
     a%val = a%val(1:k)
-  end subroutine laplace3d
+  end subroutine grid_laplacian
 
   subroutine expand_two_dofs(l, a)
     !! Two unknowns per node: every entry of l becomes a 2x2 SPD block (upper triangle).

@@ -2,9 +2,10 @@ module test_lapack
   !! LAPACK interfaces shared by the unit tests (eigenvalues and dense or banded
   !! solves of small test systems).
   use superjoin_kinds, only: wp
+  use superjoin_testing, only: check
   implicit none (type, external)
   private
-  public :: dsyev, dposv, dpbsv, dgesv
+  public :: dsyev, dposv, dpbsv, dgesv, eigenvalues
 
   interface
      subroutine dsyev(jobz, uplo, n, a, lda, w, work, lwork, info)
@@ -40,4 +41,19 @@ module test_lapack
        integer, intent(out) :: ipiv(*), info
      end subroutine dgesv
   end interface
+
+contains
+
+  function eigenvalues(a) result(w)
+    !! Eigenvalues of a symmetric matrix (ascending).
+    real(wp), intent(in) :: a(:, :)
+    real(wp), allocatable :: w(:)
+    real(wp), allocatable :: b(:, :), work(:)
+    integer :: n, info
+    n = size(a, 1)
+    allocate (b, source=a)
+    allocate (w(n), work(max(1, 3*n*8)))
+    call dsyev('N', 'U', n, b, n, w, work, size(work), info)
+    call check(info == 0, 'dsyev info')
+  end function eigenvalues
 end module test_lapack

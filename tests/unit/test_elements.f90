@@ -7,7 +7,10 @@ program test_elements
   use superjoin_elements, only: element_node_dofs, element_stiffness, element_end_forces, &
        beam_distributed_load, beam_frame
   use superjoin_testing, only: check, check_close, check_rel, finish
-  use test_lapack, only: dsyev, dgesv
+  use test_lapack, only: dsyev, dgesv, eigenvalues
+  use superjoin_utils_strings, only: itoa
+  use test_random, only: set_seed, rnd, rnd_in
+  use superjoin_elements_frame, only: cross
   implicit none (type, external)
 
 
@@ -23,7 +26,6 @@ program test_elements
   real(wp), parameter :: EX(3) = [1.0_wp, 0.0_wp, 0.0_wp], EY(3) = [0.0_wp, 1.0_wp, 0.0_wp], &
        EZ(3) = [0.0_wp, 0.0_wp, 1.0_wp]
 
-  integer :: seed = 20240611
   type(material_t) :: mat
 
   mat%name = 'STEEL'
@@ -31,6 +33,7 @@ program test_elements
   mat%nu = NU
   mat%has_elastic = .true.
 
+  call set_seed(20240611)
   call test_node_dofs()
   call test_matrix_properties()
   call test_frames()
@@ -48,18 +51,6 @@ program test_elements
 contains
 
   ! ---------------------------------------------------------------- helpers
-
-  real(wp) function rnd()
-    !! Park-Miller generator: uniform number in (0, 1), reproducible everywhere.
-    seed = int(mod(48271_8*int(seed, 8), 2147483647_8))
-    rnd = real(seed, wp)/2147483647.0_wp
-  end function rnd
-
-  real(wp) function rnd_in(a, b)
-    !! Uniform number in (a, b).
-    real(wp), intent(in) :: a, b
-    rnd_in = a + (b - a)*rnd()
-  end function rnd_in
 
   pure function rot_z(a) result(q)
     !! Rotation about Z by angle a.
@@ -194,9 +185,9 @@ contains
           do k = 1, 3
              u(o + k, k) = 1.0_wp
           end do
-          u(o + 1:o + 3, 4) = cross3(EX, d)
-          u(o + 1:o + 3, 5) = cross3(EY, d)
-          u(o + 1:o + 3, 6) = cross3(EZ, d)
+          u(o + 1:o + 3, 4) = cross(EX, d)
+          u(o + 1:o + 3, 5) = cross(EY, d)
+          u(o + 1:o + 3, 6) = cross(EZ, d)
           if (nd == 6) then
              u(o + 4:o + 6, 4) = EX
              u(o + 4:o + 6, 5) = EY
@@ -205,25 +196,6 @@ contains
        end do
     end if
   end function rigid_modes
-
-  pure function cross3(a, b) result(c)
-    real(wp), intent(in) :: a(3), b(3)
-    real(wp) :: c(3)
-    c = [a(2)*b(3) - a(3)*b(2), a(3)*b(1) - a(1)*b(3), a(1)*b(2) - a(2)*b(1)]
-  end function cross3
-
-  function eigenvalues(a) result(w)
-    !! Eigenvalues of a symmetric matrix (ascending).
-    real(wp), intent(in) :: a(:, :)
-    real(wp), allocatable :: w(:)
-    real(wp), allocatable :: b(:, :), work(:)
-    integer :: n, info
-    n = size(a, 1)
-    allocate (b, source=a)
-    allocate (w(n), work(max(1, 3*n*8)))
-    call dsyev('N', 'U', n, b, n, w, work, size(work), info)
-    call check(info == 0, 'dsyev info')
-  end function eigenvalues
 
   function solve(a, b) result(x)
     !! Solve a x = b for a small dense system.
@@ -268,14 +240,6 @@ contains
     if (index(error%message, text) == 0) write (*, '(a)') '  message: '//error%message
     call check(index(error%message, 'error:') == 0, what//': message without an "error:" prefix')
   end subroutine check_error
-
-  function itoa(i) result(s)
-    integer, intent(in) :: i
-    character(:), allocatable :: s
-    character(len=12) :: buf
-    write (buf, '(i0)') i
-    s = trim(buf)
-  end function itoa
 
   ! ---------------------------------------------------------------- tests
 
@@ -446,7 +410,7 @@ contains
 
   real(wp) function det3(a)
     real(wp), intent(in) :: a(3, 3)
-    det3 = dot_product(a(:, 1), cross3(a(:, 2), a(:, 3)))
+    det3 = dot_product(a(:, 1), cross(a(:, 2), a(:, 3)))
   end function det3
 
   subroutine test_errors()

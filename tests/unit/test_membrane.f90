@@ -6,7 +6,8 @@ program test_membrane
   use superjoin_elements_membrane, only: membrane_stiffness, membrane_resultants, &
        membrane_drill_stiffness
   use superjoin_testing, only: check, check_close, check_rel, finish
-  use test_lapack, only: dsyev, dgesv
+  use test_lapack, only: dsyev, dgesv, eigenvalues
+  use superjoin_utils_strings, only: itoa
   implicit none (type, external)
 
 
@@ -49,27 +50,6 @@ program test_membrane
 contains
 
   ! ---------------------------------------------------------------- helpers
-
-  function itoa(i) result(s)
-    integer, intent(in) :: i
-    character(:), allocatable :: s
-    character(len=12) :: buf
-    write (buf, '(i0)') i
-    s = trim(buf)
-  end function itoa
-
-  function eigenvalues(a) result(w)
-    !! Eigenvalues of a symmetric matrix (ascending).
-    real(wp), intent(in) :: a(:, :)
-    real(wp), allocatable :: w(:)
-    real(wp), allocatable :: b(:, :), work(:)
-    integer :: n, info
-    n = size(a, 1)
-    allocate (b, source=a)
-    allocate (w(n), work(max(1, 3*n*8)))
-    call dsyev('N', 'U', n, b, n, w, work, size(work), info)
-    call check(info == 0, 'dsyev info')
-  end function eigenvalues
 
   function element_matrix(kind, xl, t, e, nu, what) result(ke)
     !! Stiffness of a membrane (kind KIND_MEMBRANE) or drilling membrane that must succeed.

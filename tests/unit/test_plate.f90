@@ -9,6 +9,7 @@ program test_plate
   use superjoin_elements_plate, only: plate_stiffness, plate_moments, plate_pressure_load
   use superjoin_testing, only: check, check_close, check_rel, finish
   use test_lapack, only: dsyev, dgesv, dposv, dpbsv
+  use test_random, only: set_seed, rnd, rnd_in
   implicit none (type, external)
 
 
@@ -36,8 +37,8 @@ program test_plate
   real(wp), parameter :: RAW_ORDER_MIN_POINT = 1.6_wp       !! point loads: h² log(a/h) gives about 1.8
   integer, parameter :: NAVIER_TERMS = 500                  !! odd terms per direction in the Navier check
 
-  integer :: seed = 19800101
 
+  call set_seed(19800101)
   call test_errors()
   call test_symmetry_and_rigid_modes()
   call test_rotation_invariance()
@@ -51,18 +52,6 @@ program test_plate
 contains
 
   ! ---------------------------------------------------------------- helpers
-
-  real(wp) function rnd()
-    !! Park-Miller generator: uniform number in (0, 1), reproducible everywhere.
-    seed = int(mod(48271_8*int(seed, 8), 2147483647_8))
-    rnd = real(seed, wp)/2147483647.0_wp
-  end function rnd
-
-  real(wp) function rnd_in(a, b)
-    !! Uniform number in (a, b).
-    real(wp), intent(in) :: a, b
-    rnd_in = a + (b - a)*rnd()
-  end function rnd_in
 
   subroutine distorted_element(n, xl)
     !! A randomly distorted, shifted and scaled triangle (n = 3) or convex quadrilateral (n = 4).

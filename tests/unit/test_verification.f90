@@ -6,6 +6,7 @@ program test_verification
   use superjoin_analysis_results, only: results_t
   use superjoin_testing, only: check, check_rel, check_close, finish
   use verification_support, only: disp, reaction, link_force, link_delta, solve_file, equilibrium_error
+  use superjoin_elements_frame, only: cross
   implicit none (type, external)
 
   real(wp), parameter :: TOL = 1.0e-10_wp
@@ -179,9 +180,4 @@ contains
     call check(equilibrium_error(r, 1) < TOL, 'l_frame: equilibrium')
   end subroutine l_frame
 
-  pure function cross(a, b) result(c)
-    real(wp), intent(in) :: a(3), b(3)
-    real(wp) :: c(3)
-    c = [a(2)*b(3) - a(3)*b(2), a(3)*b(1) - a(1)*b(3), a(1)*b(2) - a(2)*b(1)]
-  end function cross
 end program test_verification

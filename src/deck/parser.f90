@@ -475,21 +475,40 @@ contains
     integer, intent(in) :: mat
     if (.not. outside_step(st, kw, loc)) return
     call check_params(st, kw, loc, [character(NAME_LEN) ::], [character(NAME_LEN) ::])
-    if (mat == 0) then
-       call report_loc(st, loc, '*DENSITY must follow a *MATERIAL card')
-       st%card = CARD_SKIP
-       return
-    end if
-    if (st%materials(mat)%has_density) then
-       call report_loc(st, loc, 'material '//st%materials(mat)%name//' has more than one *DENSITY')
-       st%card = CARD_SKIP
-       return
-    end if
-    st%materials(mat)%has_density = .true.
-    st%cur_mat = mat
-    st%card = CARD_DENSITY
-    st%card_item = mat
+    call material_data_card(st, loc, mat, CARD_DENSITY)
   end subroutine kw_density
+
+  subroutine material_data_card(st, loc, mat, which)
+    !! Start a property card of a material (which: CARD_ELASTIC or CARD_DENSITY)
+    !! whose data lines go to material mat: there must be a current material
+    !! and no earlier card of the same kind, else the card is skipped.
+    type(deck_state_t), intent(inout) :: st
+    type(source_loc_t), intent(in) :: loc
+    integer, intent(in) :: mat, which
+    character(:), allocatable :: card
+    logical :: seen
+    card = merge('*ELASTIC', '*DENSITY', which == CARD_ELASTIC)
+    st%card = CARD_SKIP
+    if (mat == 0) then
+       call report_loc(st, loc, card//' must follow a *MATERIAL card')
+       return
+    end if
+    associate (m => st%materials(mat))
+      seen = merge(m%has_elastic, m%has_density, which == CARD_ELASTIC)
+      if (seen) then
+         call report_loc(st, loc, 'material '//m%name//' has more than one '//card)
+         return
+      end if
+      if (which == CARD_ELASTIC) then
+         m%has_elastic = .true.
+      else
+         m%has_density = .true.
+      end if
+    end associate
+    st%cur_mat = mat
+    st%card = which
+    st%card_item = mat
+  end subroutine material_data_card
 
   subroutine kw_elastic(st, kw, loc, mat)
     type(deck_state_t), intent(inout) :: st
@@ -508,20 +527,7 @@ contains
           return
        end if
     end if
-    if (mat == 0) then
-       call report_loc(st, loc, '*ELASTIC must follow a *MATERIAL card')
-       st%card = CARD_SKIP
-       return
-    end if
-    if (st%materials(mat)%has_elastic) then
-       call report_loc(st, loc, 'material '//st%materials(mat)%name//' has more than one *ELASTIC')
-       st%card = CARD_SKIP
-       return
-    end if
-    st%materials(mat)%has_elastic = .true.
-    st%cur_mat = mat
-    st%card = CARD_ELASTIC
-    st%card_item = mat
+    call material_data_card(st, loc, mat, CARD_ELASTIC)
   end subroutine kw_elastic
 
   subroutine kw_substructure(st, kw, loc)

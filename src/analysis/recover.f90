@@ -147,10 +147,10 @@ contains
        if (.not. allocated(model%steps(is)%dloads)) cycle
        do i = 1, size(model%steps(is)%dloads)
           associate (dl => model%steps(is)%dloads(i), s => model%subs(model%steps(is)%dloads(i)%sub))
+            ! Plane and shell elements: r gets K_e u_e itself (shell_forces below).
+            if (is_plate_type(s%elem_type(dl%elem))) cycle
             call distributed_load(model, dl, fe, qloc, inner)
             if (allocated(inner)) deallocate (inner)
-            ! Plane and shell elements: r gets K_e u_e itself (plate_element_results).
-            if (is_plate_type(s%elem_type(dl%elem))) cycle
             ie = res%elem_offset(dl%sub) + dl%elem
             ql(:, ie, is) = ql(:, ie, is) + qloc
             ! f_phys holds this consistent load; element_nodal_forces leaves it out.

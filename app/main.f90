@@ -4,7 +4,7 @@ program superjoin_main
   use, intrinsic :: iso_fortran_env, only: error_unit, output_unit
   use superjoin_kinds, only: wp, i8
   use superjoin_error, only: error_t, EXIT_OK, EXIT_USAGE, EXIT_IO
-  use superjoin_model_types, only: model_t, FORM_TRANSFORM, FORM_PENALTY
+  use superjoin_model_types, only: model_t, FORM_TRANSFORM, FORM_PENALTY, CONDENSE_YES, CONDENSE_NO, CONDENSE_AUTO
   use superjoin_deck_reader, only: read_deck
   use superjoin_analysis, only: solve_model
   use superjoin_analysis_results, only: results_t, run_options_t, PH_READ, PH_WRITE
@@ -125,6 +125,8 @@ contains
          '  --csv DIR          full-precision CSV results in DIR (created if needed)', &
          '  --solver NAME      auto | cholmod | umfpack | lapack   (default auto)', &
          '  --formulation F    transform | penalty   (overrides *CONTROLS)', &
+         '  --condense C       yes | no | auto: static condensation of every substructure', &
+         '                     (overrides CONDENSE= of *SUBSTRUCTURE)', &
          '  --check            read and validate the deck only', &
          '  --export-matrix F  also write the assembled stiffness matrix (Matrix Market)', &
          '  --vtk FILE         VTK files for ParaView: FILE.pvd and FILE_<step>.vtu', &
@@ -167,7 +169,7 @@ contains
           opts%verbose = .true.
        case ('--check')
           check_only = .true.
-       case ('-o', '--csv', '--solver', '--formulation', '--export-matrix', '--vtk')
+       case ('-o', '--csv', '--solver', '--formulation', '--export-matrix', '--vtk', '--condense')
           if (i == n) call usage_error('option '//arg//' needs a value')
           i = i + 1
           val = get_arg(i)
@@ -191,6 +193,17 @@ contains
                 opts%formulation = FORM_PENALTY
              case default
                 call usage_error('unknown formulation '''//val//''' (transform, penalty)')
+             end select
+          case ('--condense')
+             select case (to_lower(val))
+             case ('yes')
+                opts%condense = CONDENSE_YES
+             case ('no')
+                opts%condense = CONDENSE_NO
+             case ('auto')
+                opts%condense = CONDENSE_AUTO
+             case default
+                call usage_error('unknown condensation '''//val//''' (yes, no, auto)')
              end select
           case ('--export-matrix')
              opts%export_matrix = val

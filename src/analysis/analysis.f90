@@ -5,12 +5,16 @@ module superjoin_analysis
   use superjoin_kinds, only: wp, i8, ip
   use superjoin_error, only: error_t, fatal_error, add_error_line, EXIT_SINGULAR
   use superjoin_model_types, only: model_t, string_t, FORM_TRANSFORM, FORM_PENALTY, RIGID_LARGE, &
-       LINK_FINITE, LINK_RIGID, node_label
+       LINK_FINITE, LINK_RIGID, node_label, CONDENSE_YES
   use superjoin_assembly_dofs, only: dof_table_t, build_dof_table, UNIT_LINK, UNIT_SUPPORT, GROUND, block_dof
   use superjoin_assembly_forest, only: forest_t, build_forest
   use superjoin_assembly_transform, only: transform_t, build_transform, COL_PHYS, COL_DELTA, ROLE_TREE, &
        ROLE_PLAIN, CONS_REDUNDANT, CONS_ELIMINATED
-  use superjoin_assembly_assemble, only: assemble_stiffness, assemble_loads, max_element_diagonal
+  use superjoin_assembly_assemble, only: assemble_stiffness, assemble_loads, max_element_diagonal, &
+       assembly_plan_t, superelement_t
+  use superjoin_substructure_local_system, only: boundary_dofs, build_local_system, dof_label
+  use superjoin_substructure_condensed, only: condensed_t, condense, condense_loads, recover_interior, &
+       local_residual
   use superjoin_solvers, only: linear_solver_t, sparse_sym_t, new_solver, condition_estimate, norm1_sym
   use superjoin_output_matrix_market, only: write_matrix_market
   use superjoin_analysis_results, only: results_t, run_options_t, PH_ASSEMBLE, PH_ORDER, PH_FACTOR, PH_SOLVE
@@ -148,6 +152,12 @@ contains
     type(string_t), allocatable :: notes(:)
     integer :: form
     character(len=64) :: buf
+    logical, allocatable :: bnd(:), keep(:)
+    type(assembly_plan_t) :: plan
+    type(condensed_t), allocatable :: parts(:)
+    real(wp), allocatable :: f_eff(:, :), u(:, :)
+    integer(i8) :: p
+    integer :: i, stat
 
     allocate (notes(0), res%warnings(0))
     res%maxratio_at = 'n/a (no unknowns)'
@@ -165,16 +175,40 @@ contains
     if (allocated(error)) return
     call build_forest(table, form == FORM_TRANSFORM, forest, error)
     if (allocated(error)) return
-    call build_transform(model, table, forest, tr, error)
+    call boundary_dofs(table, bnd)
+    call count_boundary(model, table, bnd, res)
+    call choose_condensation(model, opts, res, notes)
+    allocate (keep(table%np))
+    do p = 1, table%np
+       keep(p) = bnd(p) .or. .not. res%sub_condensed(table%p_sub(p))
+    end do
+    call build_transform(model, table, forest, tr, error, keep)
     if (allocated(error)) return
     call describe_transform(model, table, tr, form, res, notes)
-    call count_boundary(model, table, res)
 
-    call assemble_stiffness(model, table, tr, k, f_u0, error)
-    if (allocated(error)) return
-    call assemble_loads(model, table, f_phys, error)
-    if (allocated(error)) return
-    call reduce_loads(tr, f_phys, f_u0, f_red, error)
+    if (res%n_condensed == 0) then
+       allocate (plan%skip_sub(size(model%subs)), source=.false.)
+       allocate (plan%supers(0))
+       call assemble_stiffness(model, table, tr, plan, k, f_u0, error)
+       if (allocated(error)) return
+       call assemble_loads(model, table, f_phys, error)
+       if (allocated(error)) return
+       call reduce_loads(tr, f_phys, f_u0, f_red, error)
+    else
+       call assemble_loads(model, table, f_phys, error)
+       if (allocated(error)) return
+       call condense_parts(model, table, bnd, opts, f_phys, res, notes, parts, f_eff, error)
+       if (allocated(error)) return
+       plan%skip_sub = res%sub_condensed
+       allocate (plan%supers(size(parts)))
+       do i = 1, size(parts)
+          plan%supers(i) = parts(i)%se
+       end do
+       call assemble_stiffness(model, table, tr, plan, k, f_u0, error)
+       if (allocated(error)) return
+       deallocate (plan%supers)
+       call reduce_loads(tr, f_eff, f_u0, f_red, error)
+    end if
     if (allocated(error)) return
     call autospc(model, table, tr, k, f_red, spc, notes, error)
     if (allocated(error)) return
@@ -213,7 +247,23 @@ contains
        call report_phase(opts%quiet, 'health', clock%seconds())
     end if
     call clock%start()
-    call recover_results(model, table, forest, tr, q, f_phys, res, error)
+    allocate (u(table%np, size(model%steps)), stat=stat)
+    if (stat /= 0) then
+       call out_of_memory(error, 'the displacements', table%np*size(model%steps)*BYTES_REAL)
+       return
+    end if
+    call tr%expand(q, u)
+    if (res%n_condensed > 0) then
+       call recover_parts(parts, f_phys, u, error)
+       if (allocated(error)) return
+       if (tr%ncol > 0) call full_health(tr, k, parts, q, u, f_red, f_eff, f_phys, res)
+       call parts_maxratio(model, table, parts, res, error)
+       if (allocated(error)) return
+       res%phase_seconds(PH_SOLVE) = res%phase_seconds(PH_SOLVE) + clock%seconds()
+       call report_phase(opts%quiet, 'recover interiors', clock%seconds())
+       call clock%start()
+    end if
+    call recover_results(model, table, forest, tr, q, u, f_phys, res, error)
     if (allocated(error)) return
     res%phase_seconds(PH_SOLVE) = res%phase_seconds(PH_SOLVE) + clock%seconds()
     call report_phase(opts%quiet, 'recover', clock%seconds())
@@ -350,31 +400,15 @@ contains
     first(ng + 1) = tr%ncol + 1
   end subroutine column_groups
 
-  subroutine count_boundary(model, table, res)
+  subroutine count_boundary(model, table, bnd, res)
     !! Active and boundary DOFs per substructure: the boundary DOFs (those a
-    !! contact or support touches) form k_gg, the others k_ii.
+    !! contact or support touches) form k_bb, the others k_ii.
     type(model_t), intent(in) :: model
     type(dof_table_t), intent(in) :: table
+    logical, intent(in) :: bnd(:)
     type(results_t), intent(inout) :: res
-    logical, allocatable :: bnd(:)
     integer(i8) :: p
-    integer :: iu, c, side, isub
-    allocate (bnd(table%np), source=.false.)
-    do iu = 1, table%nunit
-       associate (u => table%units(iu))
-         do c = 1, u%n
-            do side = 1, 2
-               if (side == 1) then
-                  if (u%va == GROUND) cycle
-                  p = table%pdof(block_dof(u%block, u%comp(c)), u%va)
-               else
-                  p = table%pdof(block_dof(u%block, u%comp(c)), u%vb)
-               end if
-               if (p > 0) bnd(p) = .true.
-            end do
-         end do
-       end associate
-    end do
+    integer :: isub
     allocate (res%sub_dofs(size(model%subs)), res%sub_boundary(size(model%subs)), source=0_i8)
     do p = 1, table%np
        isub = table%p_sub(p)
@@ -382,6 +416,205 @@ contains
        if (bnd(p)) res%sub_boundary(isub) = res%sub_boundary(isub) + 1
     end do
   end subroutine count_boundary
+
+  subroutine choose_condensation(model, opts, res, notes)
+    !! Which substructures are condensed. CONDENSE=YES (deck or --condense)
+    !! condenses a substructure that has both interior and boundary DOFs;
+    !! AUTO and NO keep it in the monolithic matrix (with a single
+    !! factorization of the whole model, one ordering of the whole sparse
+    !! matrix already exploits the cut: condensation pays only where a
+    !! condensation is reused, which AUTO does not detect yet).
+    type(model_t), intent(in) :: model
+    type(run_options_t), intent(in) :: opts
+    type(results_t), intent(inout) :: res
+    type(string_t), allocatable, intent(inout) :: notes(:)
+    integer :: isub, mode
+    allocate (res%sub_condensed(size(model%subs)), source=.false.)
+    res%n_condensed = 0
+    do isub = 1, size(model%subs)
+       mode = model%subs(isub)%condense
+       if (opts%condense >= 0) mode = opts%condense
+       if (mode /= CONDENSE_YES) cycle
+       if (res%sub_boundary(isub) == 0) then
+          call note(notes, 'substructure '//model%subs(isub)%name//' not condensed: no contact or support '// &
+               'touches it (a separate system)')
+       else if (res%sub_boundary(isub) == res%sub_dofs(isub)) then
+          call note(notes, 'substructure '//model%subs(isub)%name//' not condensed: every DOF is on its boundary')
+       else
+          res%sub_condensed(isub) = .true.
+          res%n_condensed = res%n_condensed + 1
+          call note(notes, 'substructure '//model%subs(isub)%name//' condensed (CONDENSE=YES): '// &
+               itoa(res%sub_dofs(isub) - res%sub_boundary(isub))//' interior DOFs eliminated, K* of order '// &
+               itoa(res%sub_boundary(isub))//' on its boundary')
+       end if
+    end do
+  end subroutine choose_condensation
+
+  subroutine condense_parts(model, table, bnd, opts, f_phys, res, notes, parts, f_eff, error)
+    !! Local systems and condensations of the condensed substructures, and the
+    !! loads the interface sees: f_phys with each condensed boundary replaced
+    !! by f* (the interior rows have no reduced unknown).
+    type(model_t), intent(in) :: model
+    type(dof_table_t), intent(in) :: table
+    logical, intent(in) :: bnd(:)
+    type(run_options_t), intent(in) :: opts
+    real(wp), intent(in) :: f_phys(:, :)
+    type(results_t), intent(inout) :: res
+    type(string_t), allocatable, intent(inout) :: notes(:)
+    type(condensed_t), allocatable, intent(out) :: parts(:)
+    real(wp), allocatable, intent(out) :: f_eff(:, :)
+    type(error_t), allocatable, intent(out) :: error
+    character(:), allocatable :: solver_name
+    real(wp), allocatable :: fstar(:, :)
+    integer :: isub, ip_, i
+    integer(i8) :: nb
+    real(wp) :: dmax
+    ! Every element's matrix first, in deck order, so that a bad element is
+    ! reported as a deck error before any condensation meets it.
+    call max_element_diagonal(model, table, dmax, error)
+    if (allocated(error)) return
+    solver_name = 'auto'
+    if (allocated(opts%solver)) solver_name = opts%solver
+    allocate (parts(res%n_condensed))
+    f_eff = f_phys
+    ip_ = 0
+    do isub = 1, size(model%subs)
+       if (.not. res%sub_condensed(isub)) cycle
+       ip_ = ip_ + 1
+       call build_local_system(model, table, isub, bnd, parts(ip_)%sys, error)
+       if (allocated(error)) return
+       call condense(model, table, solver_name, parts(ip_), error)
+       if (allocated(error)) return
+       do i = 1, size(parts(ip_)%spc)
+          associate (p => parts(ip_)%spc(i))
+            if (any(f_phys(p, :) /= 0.0_wp)) then
+               call add_error_line(error, EXIT_SINGULAR, 'error: load on a DOF without stiffness: '// &
+                    dof_label(model, table, p))
+            else
+               call note(notes, 'AUTOSPC: '//dof_label(model, table, p)//' has no stiffness and no load: dropped')
+            end if
+          end associate
+       end do
+       if (allocated(error)) return
+       nb = parts(ip_)%sys%nb
+       allocate (fstar(nb, size(f_phys, 2)))
+       call condense_loads(parts(ip_), f_phys(parts(ip_)%sys%pdof, :), fstar, error)
+       if (allocated(error)) return
+       f_eff(parts(ip_)%se%pdof, :) = fstar
+       deallocate (fstar)
+    end do
+  end subroutine condense_parts
+
+  subroutine recover_parts(parts, f_phys, u, error)
+    !! Interior displacements of every condensed substructure from its boundary.
+    type(condensed_t), intent(inout) :: parts(:)
+    real(wp), intent(in) :: f_phys(:, :)
+    real(wp), intent(inout) :: u(:, :)
+    type(error_t), allocatable, intent(out) :: error
+    real(wp), allocatable :: ul(:, :)
+    integer :: i
+    do i = 1, size(parts)
+       ul = u(parts(i)%sys%pdof, :)
+       call recover_interior(parts(i), f_phys(parts(i)%sys%pdof, :), ul, error)
+       if (allocated(error)) return
+       u(parts(i)%sys%pdof, :) = ul
+    end do
+  end subroutine recover_parts
+
+  subroutine full_health(tr, k, parts, q, u, f_red, f_eff, f_phys, res)
+    !! Residual and EPSILON of the whole reduced system, as if it had been
+    !! solved monolithically, from the recovered displacements and each
+    !! condensed substructure's own stiffness (so an error in a condensation
+    !! or a recovery shows). Unknowns: the interface columns q, then every
+    !! condensed interior u_i. Interface rows: K_if q − f_if plus, for each
+    !! part, Mᵀ[(k u − f)_b − (K* u_b − f*)]; interior rows: k_ii u_i + k_ib u_b − f_i.
+    !! The loads likewise, with the prescribed values' terms (−k u0).
+    type(transform_t), intent(in) :: tr
+    type(sparse_sym_t), intent(in) :: k
+    type(condensed_t), intent(in) :: parts(:)
+    real(wp), intent(in) :: q(:, :), u(:, :), f_red(:, :), f_eff(:, :), f_phys(:, :)
+    type(results_t), intent(inout) :: res
+    real(wp), allocatable :: r(:, :), f(:, :), rl(:, :), u0l(:, :), w(:, :), ks(:, :), ku0(:), &
+         rf(:, :), ffull(:, :), qfull(:, :)
+    integer :: i, is, nstep
+    integer(i8) :: ni, nb, l, ntot, at
+    character(len=32) :: buf
+    nstep = size(q, 2)
+    allocate (r(k%n, nstep))
+    call k%matvec(q, r)
+    r = r - f_red
+    f = f_red
+    ntot = k%n
+    do i = 1, size(parts)
+       ntot = ntot + parts(i)%sys%ni
+    end do
+    allocate (rf(ntot, nstep), ffull(ntot, nstep), qfull(ntot, nstep))
+    at = k%n
+    do i = 1, size(parts)
+       associate (sys => parts(i)%sys, kst => parts(i)%se%k)
+         ni = sys%ni
+         nb = sys%nb
+         allocate (rl(ni + nb, nstep), u0l(ni + nb, 1), w(ni + nb, 1))
+         call local_residual(parts(i), u(sys%pdof, :), f_phys(sys%pdof, :), rl)
+         u0l = 0.0_wp
+         u0l(ni + 1:, 1) = tr%u0(sys%pdof(ni + 1:))
+         call sys%k%matvec(u0l, w)
+         ks = matmul(kst, u(sys%pdof(ni + 1:), :))
+         ku0 = matmul(kst, u0l(ni + 1:, 1))
+         rf(at + 1:at + ni, :) = rl(1:ni, :)
+         do is = 1, nstep
+            ffull(at + 1:at + ni, is) = f_phys(sys%pdof(1:ni), is) - w(1:ni, 1)
+         end do
+         qfull(at + 1:at + ni, :) = u(sys%pdof(1:ni), :)
+         at = at + ni
+         do l = 1, nb
+            associate (pb => sys%pdof(ni + l))
+              call tr%reduce_add(pb, rl(ni + l, :) - (ks(l, :) - f_eff(pb, :)), r)
+              call tr%reduce_add(pb, (f_phys(pb, :) - w(ni + l, 1)) - (f_eff(pb, :) - ku0(l)), f)
+            end associate
+         end do
+         deallocate (rl, u0l, w)
+       end associate
+    end do
+    rf(1:k%n, :) = r
+    ffull(1:k%n, :) = f
+    qfull(1:k%n, :) = q
+    do is = 1, nstep
+       res%steps(is)%residual = safe_div(norm2(rf(:, is)), norm2(ffull(:, is)))
+       res%steps(is)%epsilon = energy_error(qfull(:, is), rf(:, is), ffull(:, is))
+    end do
+    if (maxval(res%steps(:)%residual) > RESIDUAL_WARN) then
+       write (buf, '(es10.2e3)') maxval(res%steps(:)%residual)
+       call warn(res, 'relative residual '//trim(adjustl(buf))//' of the whole system (condensed '// &
+            'substructures recovered): results are inaccurate')
+    end if
+  end subroutine full_health
+
+  subroutine parts_maxratio(model, table, parts, res, error)
+    !! MAXRATIO over the interior factors of the condensed substructures:
+    !! the largest of them and the interface's is reported, with its place.
+    type(model_t), intent(in) :: model
+    type(dof_table_t), intent(in) :: table
+    type(condensed_t), intent(in) :: parts(:)
+    type(results_t), intent(inout) :: res
+    type(error_t), allocatable, intent(out) :: error
+    character(len=32) :: buf
+    integer :: i
+    do i = 1, size(parts)
+       if (parts(i)%maxratio <= res%maxratio) cycle
+       res%maxratio = parts(i)%maxratio
+       res%maxratio_at = dof_label(model, table, parts(i)%maxratio_at)
+       write (buf, '(es10.2e3)') res%maxratio
+       if (res%maxratio > MAXRATIO_FATAL) then
+          call fatal_error(error, EXIT_SINGULAR, 'error: the structure cannot be solved: stiffness is '// &
+               'numerically singular at '//res%maxratio_at//' (MAXRATIO '//trim(adjustl(buf))// &
+               '): a mechanism, or a stiffness contrast beyond double precision')
+          return
+       end if
+       if (res%maxratio > MAXRATIO_WARN) call warn(res, 'MAXRATIO '//trim(adjustl(buf))//' at '// &
+            res%maxratio_at//': about '//itoa(nint(log10(res%maxratio)))//' digits may be lost')
+    end do
+  end subroutine parts_maxratio
 
   subroutine reduce_loads(tr, f_phys, f_u0, f_red, error)
     !! f_red = Tᵀ f_phys + f_u0 for every step.

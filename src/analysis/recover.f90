@@ -27,22 +27,23 @@ module superjoin_analysis_recover
 
 contains
 
-  subroutine recover_results(model, table, forest, tr, q, f_phys, res, error)
-    !! Fill res%u, res%elem_force and res%steps(:) from the reduced solution q.
+  subroutine recover_results(model, table, forest, tr, q, u, f_phys, res, error)
+    !! Fill res%u, res%elem_force and res%steps(:) from the reduced solution q
+    !! and the physical displacements u (T q + u0, with condensed interiors).
     type(model_t), intent(in) :: model
     type(dof_table_t), intent(in) :: table
     type(forest_t), intent(in) :: forest
     type(transform_t), intent(in) :: tr
     real(wp), intent(in) :: q(:, :)          !! (ncol, nstep)
+    real(wp), intent(in) :: u(:, :)          !! (np, nstep)
     real(wp), intent(in) :: f_phys(:, :)     !! (np, nstep)
     type(results_t), intent(inout) :: res
     type(error_t), allocatable, intent(out) :: error
-    real(wp), allocatable :: u(:, :), r(:, :), delta(:, :, :), rclose(:, :), acc(:, :)
+    real(wp), allocatable :: r(:, :), delta(:, :, :), rclose(:, :), acc(:, :)
     real(wp), allocatable :: rigid_force(:, :, :)  ! (3, nunit, nstep): rigid force on child / λ, local
     integer :: nstep, is, stat
 
     nstep = size(q, 2)
-    call physical_displacements(table, tr, q, u)
     call store_displacements(table, u, res, error)
     if (allocated(error)) return
     allocate (r(table%np, nstep), rclose(table%np, nstep), rigid_force(3, table%nunit, nstep), &
@@ -67,22 +68,6 @@ contains
     end do
     call link_and_support_results(model, table, delta, rigid_force, f_phys, res)
   end subroutine recover_results
-
-  subroutine physical_displacements(table, tr, q, u)
-    !! u = T q + u0 over the physical DOFs.
-    type(dof_table_t), intent(in) :: table
-    type(transform_t), intent(in) :: tr
-    real(wp), intent(in) :: q(:, :)
-    real(wp), allocatable, intent(out) :: u(:, :)
-    integer(i8) :: p, j
-    allocate (u(table%np, size(q, 2)))
-    do p = 1, table%np
-       u(p, :) = tr%u0(p)
-       do j = tr%map_start(p), tr%map_start(p) + tr%map_len(p) - 1
-          u(p, :) = u(p, :) + tr%pool_coef(j)*q(tr%pool_col(j), :)
-       end do
-    end do
-  end subroutine physical_displacements
 
   subroutine store_displacements(table, u, res, error)
     !! Displacements per vertex (global axes) and which DOFs each vertex has.

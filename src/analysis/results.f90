@@ -15,6 +15,7 @@ module superjoin_analysis_results
     !! Options of one run (from the command line).
      character(:), allocatable :: solver        !! auto | cholmod | umfpack | lapack
      integer :: formulation = 0                 !! 0: as in the deck, else FORM_*
+     integer :: condense = -1                   !! -1: as in the deck, else CONDENSE_* for every substructure
      character(:), allocatable :: export_matrix !! Matrix Market path, or unallocated
      logical :: quiet = .false.
      logical :: verbose = .false.
@@ -55,6 +56,8 @@ module superjoin_analysis_results
      integer :: n_support_units = 0
      integer(i8), allocatable :: sub_dofs(:)       !! active DOFs per substructure
      integer(i8), allocatable :: sub_boundary(:)   !! of which touched by contacts or supports (k_gg)
+     logical, allocatable :: sub_condensed(:)      !! interior condensed (static condensation)
+     integer :: n_condensed = 0                    !! condensations computed
      character(:), allocatable :: solver_name
      character(:), allocatable :: ordering
      character(:), allocatable :: formulation

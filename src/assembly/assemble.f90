@@ -10,6 +10,7 @@ module superjoin_assembly_assemble
   use superjoin_assembly_dofs, only: dof_table_t, GROUND, block_dof
   use superjoin_assembly_transform, only: transform_t, ROLE_PLAIN
   use superjoin_solvers_sparse, only: sparse_sym_t
+  use superjoin_solvers_pattern, only: build_pattern, find_entry, items_of_columns
   use superjoin_utils_sorting, only: sort_unique_i8
   use superjoin_utils_strings, only: itoa
   use superjoin_utils_memory, only: out_of_memory, BYTES_REAL, BYTES_I8
@@ -19,6 +20,20 @@ module superjoin_assembly_assemble
   integer, parameter :: MAX_ITEM_DOFS = 24
     !! Largest number of physical DOFs one item (element or contact) touches.
 
+  type, public :: superelement_t
+    !! A condensed substructure as the interface sees it: a dense symmetric
+    !! stiffness K* on physical (boundary) DOFs, in their physical numbering.
+     integer(i8), allocatable :: pdof(:)      !! (nb) physical DOFs
+     real(wp), allocatable :: k(:, :)         !! (nb, nb)
+  end type superelement_t
+
+  type, public :: assembly_plan_t
+    !! What goes into the reduced matrix besides contacts and springs.
+     logical, allocatable :: skip_sub(:)      !! (nsub) elements left out (condensed substructures)
+     type(superelement_t), allocatable :: supers(:)  !! their condensed stiffness instead
+  end type assembly_plan_t
+
+  public :: element_matrix
   public :: assemble_stiffness, assemble_loads, distributed_load, element_pdofs, unit_pdofs, unit_plain_stiffness, &
        max_element_diagonal
 
@@ -195,25 +210,29 @@ contains
     call sort_unique_i8(cols(1:m), nc)
   end subroutine item_columns
 
-  subroutine assemble_stiffness(model, table, tr, k, f_u0, error)
+  subroutine assemble_stiffness(model, table, tr, plan, k, f_u0, error)
     !! Assemble K_red (pattern and values) and the reduced load of the
-    !! prescribed values, f_u0 = -Tᵀ K_phys u0.
+    !! prescribed values, f_u0 = -Tᵀ K_phys u0: the elements of every
+    !! substructure the plan does not skip, the plan's superelements, plain
+    !! contact units, loop springs, and g on the diagonal of every δ.
     type(model_t), intent(in) :: model
     type(dof_table_t), intent(in) :: table
     type(transform_t), intent(in) :: tr
+    type(assembly_plan_t), intent(in) :: plan
     type(sparse_sym_t), intent(out) :: k
     real(wp), allocatable, intent(out) :: f_u0(:)
     type(error_t), allocatable, intent(out) :: error
     integer(i8), allocatable :: item_ptr(:), item_col(:), col_ptr(:), col_item(:), cols(:)
-    integer(i8) :: pd(MAX_ITEM_DOFS), nitem, it, j, s_total, pos
+    integer(i8) :: pd(MAX_ITEM_DOFS), nitem, it, j
     integer :: isub, n, nc, iu, i
     integer(ip) :: e
     real(wp), allocatable :: ke(:, :)
     integer :: stat
 
     ! Items: elements of every substructure, then plain units, then form springs.
-    nitem = tr%nform
+    nitem = tr%nform + size(plan%supers)
     do isub = 1, size(model%subs)
+       if (plan%skip_sub(isub)) cycle
        nitem = nitem + model%subs(isub)%nelem
     end do
     nitem = nitem + count(tr%role == ROLE_PLAIN)
@@ -227,12 +246,18 @@ contains
     ! Pass 1: column lists of all items.
     it = 0
     do isub = 1, size(model%subs)
+       if (plan%skip_sub(isub)) cycle
        do e = 1, model%subs(isub)%nelem
           call element_pdofs(model, table, isub, e, pd, n)
           call item_columns(tr, pd, n, cols, nc)
           call append_item(cols(1:nc))
           if (allocated(error)) return
        end do
+    end do
+    do i = 1, size(plan%supers)
+       call item_columns(tr, plan%supers(i)%pdof, size(plan%supers(i)%pdof), cols, nc)
+       call append_item(cols(1:nc))
+       if (allocated(error)) return
     end do
     do iu = 1, table%nunit
        if (tr%role(iu) /= ROLE_PLAIN) cycle
@@ -245,35 +270,12 @@ contains
        call append_item(tr%forms(i)%col)
        if (allocated(error)) return
     end do
-    s_total = item_ptr(nitem + 1) - 1
 
     ! Transpose: items of each column.
-    allocate (col_ptr(tr%ncol + 1), source=0_i8, stat=stat)
-    if (stat == 0) allocate (col_item(max(s_total, 1_i8)), stat=stat)
-    if (stat /= 0) then
-       call out_of_memory(error, 'the item lists of the columns', (tr%ncol + 1 + s_total)*BYTES_I8)
-       return
-    end if
-    do pos = 1, s_total
-       col_ptr(item_col(pos) + 1) = col_ptr(item_col(pos) + 1) + 1
-    end do
-    col_ptr(1) = 1
-    do j = 1, tr%ncol
-       col_ptr(j + 1) = col_ptr(j + 1) + col_ptr(j)
-    end do
-    block
-      integer(i8), allocatable :: fill(:)
-      fill = col_ptr(1:tr%ncol)
-      do it = 1, nitem
-         do pos = item_ptr(it), item_ptr(it + 1) - 1
-            j = item_col(pos)
-            col_item(fill(j)) = it
-            fill(j) = fill(j) + 1
-         end do
-      end do
-    end block
+    call items_of_columns(tr%ncol, item_ptr(1:nitem + 1), item_col, col_ptr, col_item, error)
+    if (allocated(error)) return
 
-    call symbolic(tr%ncol, item_ptr, item_col, col_ptr, col_item, k, error)
+    call build_pattern(tr%ncol, item_ptr, item_col, col_ptr, col_item, k, error)
     if (allocated(error)) return
     deallocate (col_ptr, col_item)
 
@@ -285,6 +287,7 @@ contains
     end if
     it = 0
     do isub = 1, size(model%subs)
+       if (plan%skip_sub(isub)) cycle
        do e = 1, model%subs(isub)%nelem
           it = it + 1
           call element_matrix(model, isub, e, ke, error)
@@ -292,6 +295,10 @@ contains
           call element_pdofs(model, table, isub, e, pd, n)
           call scatter(tr, pd(1:n), ke, item_col(item_ptr(it):item_ptr(it + 1) - 1), k, f_u0)
        end do
+    end do
+    do i = 1, size(plan%supers)
+       it = it + 1
+       call scatter_dense(tr, plan%supers(i)%pdof, plan%supers(i)%k, k, f_u0)
     end do
     if (.not. allocated(ke)) allocate (ke(6, 6))
     if (size(ke, 1) < 6) then
@@ -337,110 +344,6 @@ contains
     end subroutine append_item
   end subroutine assemble_stiffness
 
-  subroutine symbolic(ncol, item_ptr, item_col, col_ptr, col_item, k, error)
-    !! Pattern of the upper triangle: column j holds every column i <= j that
-    !! shares an item with it, and always j itself. Built as the lower pattern
-    !! row by row (unsorted), whose transpose comes out sorted by construction.
-    integer(i8), intent(in) :: ncol
-    integer(i8), intent(in) :: item_ptr(:), item_col(:), col_ptr(:), col_item(:)
-    type(sparse_sym_t), intent(out) :: k
-    type(error_t), allocatable, intent(out) :: error
-    integer(i8), allocatable :: mark(:), low_ptr(:), low_col(:), tmp(:), fill(:)
-    integer(i8) :: i, j, it, pos, q, cap, nnz
-    integer :: stat
-
-    ! Lower pattern: for each i, the columns j >= i sharing an item with i.
-    cap = max(16_i8, 4*size(item_col, kind=i8))
-    allocate (mark(ncol), source=0_i8, stat=stat)
-    if (stat == 0) allocate (low_ptr(ncol + 1), low_col(cap), stat=stat)
-    if (stat /= 0) then
-       call out_of_memory(error, 'the matrix pattern', (2*ncol + 1 + cap)*BYTES_I8)
-       return
-    end if
-    nnz = 0
-    low_ptr(1) = 1
-    do i = 1, ncol
-       if (nnz + 1 > cap) call grow(low_col, cap, nnz + 1)
-       if (allocated(error)) return
-       nnz = nnz + 1
-       low_col(nnz) = i
-       mark(i) = i
-       do q = col_ptr(i), col_ptr(i + 1) - 1
-          it = col_item(q)
-          do pos = item_ptr(it + 1) - 1, item_ptr(it), -1
-             j = item_col(pos)
-             if (j <= i) exit          ! item columns are sorted
-             if (mark(j) == i) cycle
-             mark(j) = i
-             if (nnz + 1 > cap) call grow(low_col, cap, nnz + 1)
-             if (allocated(error)) return
-             nnz = nnz + 1
-             low_col(nnz) = j
-          end do
-       end do
-       low_ptr(i + 1) = nnz + 1
-    end do
-    deallocate (mark)
-
-    ! Transpose: rows of each column arrive in increasing order, the diagonal last.
-    k%n = ncol
-    allocate (k%colptr(ncol + 1), source=0_i8, stat=stat)
-    if (stat == 0) allocate (k%rowind(nnz), fill(ncol), stat=stat)
-    if (stat == 0) allocate (k%val(nnz), source=0.0_wp, stat=stat)
-    if (stat /= 0) then
-       call out_of_memory(error, 'the stiffness matrix ('//itoa(nnz)//' nonzeros)', &
-            (2*ncol + 1 + nnz)*BYTES_I8 + nnz*BYTES_REAL)
-       return
-    end if
-    do pos = 1, nnz
-       k%colptr(low_col(pos) + 1) = k%colptr(low_col(pos) + 1) + 1
-    end do
-    k%colptr(1) = 1
-    do j = 1, ncol
-       k%colptr(j + 1) = k%colptr(j + 1) + k%colptr(j)
-    end do
-    fill = k%colptr(1:ncol)
-    do i = 1, ncol
-       do pos = low_ptr(i), low_ptr(i + 1) - 1
-          j = low_col(pos)
-          k%rowind(fill(j)) = i
-          fill(j) = fill(j) + 1
-       end do
-    end do
-  contains
-    subroutine grow(a, cap, need)
-      integer(i8), allocatable, intent(inout) :: a(:)
-      integer(i8), intent(inout) :: cap
-      integer(i8), intent(in) :: need
-      cap = max(2*cap, need)
-      allocate (tmp(cap), stat=stat)
-      if (stat /= 0) then
-         call out_of_memory(error, 'the matrix pattern', cap*BYTES_I8)
-         return
-      end if
-      tmp(1:size(a, kind=i8)) = a
-      call move_alloc(tmp, a)
-    end subroutine grow
-  end subroutine symbolic
-
-  pure function find_entry(k, i, j) result(pos)
-    !! Position of row i in column j of k.
-    type(sparse_sym_t), intent(in) :: k
-    integer(i8), intent(in) :: i, j
-    integer(i8) :: pos, lo, hi
-    lo = k%colptr(j)
-    hi = k%colptr(j + 1) - 1
-    do while (lo <= hi)
-       pos = lo + (hi - lo)/2
-       if (k%rowind(pos) == i) return
-       if (k%rowind(pos) < i) then
-          lo = pos + 1
-       else
-          hi = pos - 1
-       end if
-    end do
-    pos = 0
-  end function find_entry
 
   subroutine scatter(tr, pd, ke, cols, k, f_u0)
     !! Add Mᵀ ke M to k over the item's columns, and -Mᵀ ke u0 to f_u0.
@@ -508,6 +411,51 @@ contains
        end do
     end if
   end subroutine scatter
+
+  subroutine scatter_dense(tr, pd, ke, k, f_u0)
+    !! Add Mᵀ ke M to k and -Mᵀ ke u0 to f_u0 for a large dense item (a
+    !! superelement), entry by entry over the maps, with no dense M.
+    type(transform_t), intent(in) :: tr
+    integer(i8), intent(in) :: pd(:)
+    real(wp), intent(in) :: ke(:, :)
+    type(sparse_sym_t), intent(inout) :: k
+    real(wp), intent(inout) :: f_u0(:)
+    integer(i8), allocatable :: col(:, :)
+    real(wp), allocatable :: coef(:, :), u0e(:), t(:, :)
+    integer, allocatable :: nm(:)
+    integer :: n, a, b, ia, ib, mmax
+    integer(i8) :: pos
+    n = size(pd)
+    mmax = 1
+    do a = 1, n
+       mmax = max(mmax, tr%map_len(pd(a)))
+    end do
+    allocate (col(mmax, n), coef(mmax, n), nm(n), u0e(n))
+    do a = 1, n
+       call tr%columns_of(pd(a), col(:, a), coef(:, a), nm(a))
+       u0e(a) = tr%u0(pd(a))
+    end do
+    do b = 1, n
+       do ib = 1, nm(b)
+          do a = 1, n
+             if (ke(a, b) == 0.0_wp) cycle
+             do ia = 1, nm(a)
+                if (col(ia, a) > col(ib, b)) cycle
+                pos = find_entry(k, col(ia, a), col(ib, b))
+                k%val(pos) = k%val(pos) + coef(ia, a)*coef(ib, b)*ke(a, b)
+             end do
+          end do
+       end do
+    end do
+    if (any(u0e /= 0.0_wp)) then
+       t = matmul(ke, reshape(u0e, [n, 1]))
+       do a = 1, n
+          do ia = 1, nm(a)
+             f_u0(col(ia, a)) = f_u0(col(ia, a)) - coef(ia, a)*t(a, 1)
+          end do
+       end do
+    end if
+  end subroutine scatter_dense
 
   subroutine scatter_form(col, coef, g, c, k, f_u0)
     !! Add g a aᵀ to k and -g a c to f_u0 for a spring on aᵀq + c.

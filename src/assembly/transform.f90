@@ -76,19 +76,28 @@ module superjoin_assembly_transform
      type(constraint_t), allocatable :: cons(:)
      integer :: ncons = 0
      logical :: has_u0 = .false.
+   contains
+     procedure :: expand => transform_expand
+     procedure :: reduce => transform_reduce
+     procedure :: reduce_add => transform_reduce_add
+     procedure :: columns_of => transform_columns_of
   end type transform_t
 
   public :: build_transform
 
 contains
 
-  subroutine build_transform(model, table, forest, tr, error)
+  subroutine build_transform(model, table, forest, tr, error, keep)
     !! Build columns, maps and loop constraints from the DOF table and the forest.
+    !! With `keep`, a physical DOF that no contact touches and whose keep(p) is
+    !! false gets no column at all (the interior of a condensed substructure:
+    !! it is eliminated part by part, outside the reduced system).
     type(model_t), intent(in) :: model
     type(dof_table_t), intent(in) :: table
     type(forest_t), intent(in) :: forest
     type(transform_t), intent(out) :: tr
     type(error_t), allocatable, intent(out) :: error
+    logical, intent(in), optional :: keep(:)
     integer :: stat
 
     allocate (tr%role(table%nunit), stat=stat)
@@ -101,7 +110,7 @@ contains
     elsewhere
        tr%role = ROLE_PLAIN
     end where
-    call number_columns(table, forest, tr, error)
+    call number_columns(table, forest, tr, error, keep)
     if (allocated(error)) return
     call build_maps(table, forest, tr, error)
     if (allocated(error)) return
@@ -112,13 +121,14 @@ contains
     tr%has_u0 = any(tr%u0 /= 0.0_wp)
   end subroutine build_transform
 
-  subroutine number_columns(table, forest, tr, error)
+  subroutine number_columns(table, forest, tr, error, keep)
     !! Columns node by node: first the δ of the unit above the node, then the
-    !! node's own DOFs that no tree unit makes dependent.
+    !! node's own DOFs that no tree unit makes dependent (and that `keep` keeps).
     type(dof_table_t), intent(in) :: table
     type(forest_t), intent(in) :: forest
     type(transform_t), intent(inout) :: tr
     type(error_t), allocatable, intent(out) :: error
+    logical, intent(in), optional :: keep(:)
     integer(i8) :: v, p, cap
     integer :: b, c, k, pu, stat
     logical :: dep
@@ -154,6 +164,9 @@ contains
              dep = .false.
              if (pu > 0) dep = any(table%units(pu)%comp(1:table%units(pu)%n) == c)
              if (dep) cycle
+             if (present(keep)) then
+                if (.not. keep(p)) cycle
+             end if
              tr%ncol = tr%ncol + 1
              tr%col_kind(tr%ncol) = COL_PHYS
              tr%col_ref(tr%ncol) = p
@@ -628,4 +641,54 @@ contains
       name = node_label(model, isub, int(v - table%vertex_offset(isub), kind(model%subs(1)%nnode)))
     end function vertex_name
   end function unit_nodes
+  subroutine transform_expand(tr, q, u)
+    !! u = T q + u0 over the physical DOFs (DOFs without a column: u0 only).
+    class(transform_t), intent(in) :: tr
+    real(wp), intent(in) :: q(:, :)          !! (ncol, nrhs)
+    real(wp), intent(out) :: u(:, :)         !! (np, nrhs)
+    integer(i8) :: p, j
+    do p = 1, size(tr%map_len, kind=i8)
+       u(p, :) = tr%u0(p)
+       do j = tr%map_start(p), tr%map_start(p) + tr%map_len(p) - 1
+          u(p, :) = u(p, :) + tr%pool_coef(j)*q(tr%pool_col(j), :)
+       end do
+    end do
+  end subroutine transform_expand
+
+  subroutine transform_reduce(tr, f, fr)
+    !! fr = Tᵀ f (physical DOFs without a column contribute nothing).
+    class(transform_t), intent(in) :: tr
+    real(wp), intent(in) :: f(:, :)          !! (np, nrhs)
+    real(wp), intent(out) :: fr(:, :)        !! (ncol, nrhs)
+    integer(i8) :: p
+    fr = 0.0_wp
+    do p = 1, size(f, 1, kind=i8)
+       if (all(f(p, :) == 0.0_wp)) cycle
+       call tr%reduce_add(p, f(p, :), fr)
+    end do
+  end subroutine transform_reduce
+
+  subroutine transform_reduce_add(tr, p, fp, fr)
+    !! fr += Tᵀ e_p fpᵀ: the reduced image of a value on physical DOF p.
+    class(transform_t), intent(in) :: tr
+    integer(i8), intent(in) :: p
+    real(wp), intent(in) :: fp(:)            !! (nrhs)
+    real(wp), intent(inout) :: fr(:, :)      !! (ncol, nrhs)
+    integer(i8) :: j
+    do j = tr%map_start(p), tr%map_start(p) + tr%map_len(p) - 1
+       fr(tr%pool_col(j), :) = fr(tr%pool_col(j), :) + tr%pool_coef(j)*fp
+    end do
+  end subroutine transform_reduce_add
+
+  subroutine transform_columns_of(tr, p, col, coef, n)
+    !! The map of physical DOF p: u_p = Σ coef(k) q(col(k)) + u0(p), k = 1..n.
+    class(transform_t), intent(in) :: tr
+    integer(i8), intent(in) :: p
+    integer(i8), intent(out) :: col(:)
+    real(wp), intent(out) :: coef(:)
+    integer, intent(out) :: n
+    n = tr%map_len(p)
+    col(1:n) = tr%pool_col(tr%map_start(p):tr%map_start(p) + n - 1)
+    coef(1:n) = tr%pool_coef(tr%map_start(p):tr%map_start(p) + n - 1)
+  end subroutine transform_columns_of
 end module superjoin_assembly_transform

@@ -7,7 +7,7 @@ module superjoin_deck_parser
   use superjoin_model_types, only: source_loc_t, string_t, ELEMENT_TYPE_NAMES, ELEMENT_NODE_COUNT, &
        NUM_ELEMENT_TYPES, MAX_ELEMENT_NODES, NDOF_NODE, SEC_SOLID, SEC_BEAM, SEC_SHELL, &
        LINK_NONE, LINK_FINITE, LINK_RIGID, DLOAD_PX, DLOAD_PY, DLOAD_PZ, DLOAD_P, DLOAD_GRAV, &
-       FORM_TRANSFORM, FORM_PENALTY, RIGID_ELIMINATE, RIGID_LARGE
+       FORM_TRANSFORM, FORM_PENALTY, RIGID_ELIMINATE, RIGID_LARGE, CONDENSE_AUTO, CONDENSE_YES, CONDENSE_NO
   use superjoin_deck_lexer, only: keyword_line_t, load_file, next_line, first_nonblank, to_upper, &
        parse_keyword_line, split_fields, drop_trailing_empty, parse_real, parse_id, is_name, &
        is_digits, looks_numeric, itoa, clip, plural, path_dirname, path_join, path_normalize, &
@@ -534,11 +534,11 @@ contains
     type(deck_state_t), intent(inout) :: st
     type(keyword_line_t), intent(in) :: kw
     type(source_loc_t), intent(in) :: loc
-    character(:), allocatable :: name
+    character(:), allocatable :: name, value
     logical :: found
     integer :: k
     if (.not. outside_step(st, kw, loc)) return
-    call check_params(st, kw, loc, [character(NAME_LEN) :: 'NAME'], [character(NAME_LEN) ::])
+    call check_params(st, kw, loc, [character(NAME_LEN) :: 'NAME', 'CONDENSE'], [character(NAME_LEN) ::])
     if (st%cur_sub > 0) then
        call report_loc(st, loc, '*SUBSTRUCTURE inside *SUBSTRUCTURE '//st%subs(st%cur_sub)%name// &
             ' (missing *END SUBSTRUCTURE?)')
@@ -551,6 +551,19 @@ contains
          ' (first defined at '//loc_string(st, st%subs(k)%loc)//')')
     call new_sub(st, name, loc, k)
     st%cur_sub = k
+    call get_param(st, kw, loc, 'CONDENSE', .false., value, found)
+    if (found) then
+       select case (to_upper(value))
+       case ('AUTO')
+          st%subs(k)%condense = CONDENSE_AUTO
+       case ('YES')
+          st%subs(k)%condense = CONDENSE_YES
+       case ('NO')
+          st%subs(k)%condense = CONDENSE_NO
+       case default
+          call report_loc(st, loc, 'CONDENSE must be YES, NO or AUTO, not '//clip(value))
+       end select
+    end if
   end subroutine kw_substructure
 
   subroutine kw_node(st, kw, loc)

@@ -45,6 +45,7 @@ module superjoin_deck_state
     !! A substructure as read: user ids, coordinates, element connectivity by user ids.
      character(:), allocatable :: name
      type(source_loc_t) :: loc
+     integer :: condense = 0                        !! CONDENSE_* (model types)
      integer(ip) :: nnode = 0
      integer :: node_lines = 0                      !! *NODE data lines seen (valid or not)
      integer(ip), allocatable :: node_id(:)

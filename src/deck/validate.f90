@@ -100,6 +100,7 @@ contains
     integer :: a
 
     m%name = b%name
+    m%condense = b%condense
     m%loc = b%loc
     n = b%nnode
     m%nnode = n

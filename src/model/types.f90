@@ -36,6 +36,9 @@ module superjoin_model_types
   integer, parameter, public :: RIGID_ELIMINATE = 1, RIGID_LARGE = 2
   real(wp), parameter, public :: DEFAULT_LARGE = 1.0e12_wp
 
+  integer, parameter, public :: CONDENSE_AUTO = 0, CONDENSE_YES = 1, CONDENSE_NO = 2
+    !! Static condensation of a substructure's interior DOFs (*SUBSTRUCTURE, CONDENSE=).
+
   type, public :: string_t
     !! A character string of any length (for arrays of strings).
      character(:), allocatable :: s
@@ -96,6 +99,7 @@ module superjoin_model_types
      type(section_t), allocatable :: sections(:)
      integer(ip), allocatable :: node_order(:)      !! local indices sorted by user id
      integer(ip), allocatable :: elem_order(:)      !! local indices sorted by user id
+     integer :: condense = CONDENSE_AUTO            !! CONDENSE_* from *SUBSTRUCTURE
      type(source_loc_t) :: loc
   end type substructure_t
 

@@ -1,0 +1,167 @@
+module superjoin_substructure_local_system
+  !! One substructure on its own: its physical DOFs in a local numbering
+  !! (interior first, then boundary) and its stiffness assembled from its
+  !! elements alone, k = [k_ii k_ib; k_bi k_bb]. Boundary DOFs are those a
+  !! contact element or a support touches; no contact stiffness enters k.
+  use superjoin_kinds, only: wp, ip, i8
+  use superjoin_error, only: error_t
+  use superjoin_model_types, only: model_t
+  use superjoin_assembly_dofs, only: dof_table_t, GROUND, block_dof
+  use superjoin_assembly_assemble, only: element_pdofs, element_matrix
+  use superjoin_solvers_sparse, only: sparse_sym_t
+  use superjoin_solvers_pattern, only: build_pattern, find_entry, items_of_columns
+  use superjoin_utils_sorting, only: sort_unique_i8
+  use superjoin_utils_strings, only: itoa
+  use superjoin_utils_memory, only: out_of_memory, BYTES_I8
+  implicit none (type, external)
+  private
+
+  integer, parameter :: MAX_ELEMENT_DOFS = 24
+    !! Largest number of DOFs of one element.
+
+  type, public :: local_system_t
+    !! A substructure's DOFs and element stiffness in its own numbering.
+     integer :: isub = 0
+     integer(i8) :: ni = 0                   !! interior DOFs (local 1..ni)
+     integer(i8) :: nb = 0                   !! boundary DOFs (local ni+1..ni+nb)
+     integer(i8), allocatable :: pdof(:)     !! (ni+nb) physical DOF of each local DOF
+     type(sparse_sym_t) :: k                 !! element stiffness, local numbering
+   contains
+     procedure :: n => local_size
+  end type local_system_t
+
+  public :: boundary_dofs, build_local_system, dof_label
+
+contains
+
+  pure function local_size(sys) result(n)
+    !! Number of local DOFs.
+    class(local_system_t), intent(in) :: sys
+    integer(i8) :: n
+    n = sys%ni + sys%nb
+  end function local_size
+
+  subroutine boundary_dofs(table, bnd)
+    !! bnd(p): physical DOF p is touched by a contact element or a support.
+    type(dof_table_t), intent(in) :: table
+    logical, allocatable, intent(out) :: bnd(:)
+    integer(i8) :: p
+    integer :: iu, c
+    allocate (bnd(table%np), source=.false.)
+    do iu = 1, table%nunit
+       associate (u => table%units(iu))
+         do c = 1, u%n
+            if (u%va /= GROUND) then
+               p = table%pdof(block_dof(u%block, u%comp(c)), u%va)
+               if (p > 0) bnd(p) = .true.
+            end if
+            p = table%pdof(block_dof(u%block, u%comp(c)), u%vb)
+            if (p > 0) bnd(p) = .true.
+         end do
+       end associate
+    end do
+  end subroutine boundary_dofs
+
+  subroutine build_local_system(model, table, isub, bnd, sys, error)
+    !! Number substructure isub's DOFs (interior, then boundary, each in
+    !! physical order) and assemble its element stiffness.
+    type(model_t), intent(in) :: model
+    type(dof_table_t), intent(in) :: table
+    integer, intent(in) :: isub
+    logical, intent(in) :: bnd(:)
+    type(local_system_t), intent(out) :: sys
+    type(error_t), allocatable, intent(out) :: error
+    integer(i8), allocatable :: plist(:), local(:), item_ptr(:), item_col(:), col_ptr(:), col_item(:)
+    integer(i8) :: v, p, p_lo, n, l, pd(MAX_ELEMENT_DOFS), cols(MAX_ELEMENT_DOFS)
+    integer(i8) :: it, nitem
+    integer(ip) :: e
+    integer :: d, nd, a, b, nc, stat
+    real(wp), allocatable :: ke(:, :)
+    integer(i8) :: pos
+
+    sys%isub = isub
+    ! The substructure's physical DOFs are consecutive (numbered substructure by substructure).
+    n = 0
+    p_lo = 0
+    do v = table%vertex_offset(isub) + 1, table%vertex_offset(isub + 1)
+       do d = 1, size(table%pdof, 1)
+          p = table%pdof(d, v)
+          if (p == 0) cycle
+          if (n == 0) p_lo = p
+          n = n + 1
+       end do
+    end do
+    allocate (plist(n), local(n), stat=stat)
+    if (stat /= 0) then
+       call out_of_memory(error, 'the local numbering of substructure '//model%subs(isub)%name, 2*n*BYTES_I8)
+       return
+    end if
+    sys%ni = 0
+    do p = p_lo, p_lo + n - 1
+       if (.not. bnd(p)) sys%ni = sys%ni + 1
+    end do
+    sys%nb = n - sys%ni
+    l = 0
+    do p = p_lo, p_lo + n - 1
+       if (bnd(p)) cycle
+       l = l + 1
+       plist(l) = p
+       local(p - p_lo + 1) = l
+    end do
+    do p = p_lo, p_lo + n - 1
+       if (.not. bnd(p)) cycle
+       l = l + 1
+       plist(l) = p
+       local(p - p_lo + 1) = l
+    end do
+    call move_alloc(plist, sys%pdof)
+
+    ! Pattern from the elements' local columns.
+    associate (s => model%subs(isub))
+      nitem = s%nelem
+      allocate (item_ptr(nitem + 1), item_col(max(1_i8, MAX_ELEMENT_DOFS*nitem)), stat=stat)
+      if (stat /= 0) then
+         call out_of_memory(error, 'the element lists of substructure '//s%name, &
+              (MAX_ELEMENT_DOFS + 1)*nitem*BYTES_I8)
+         return
+      end if
+      item_ptr(1) = 1
+      do e = 1, s%nelem
+         call element_pdofs(model, table, isub, e, pd, nd)
+         cols(1:nd) = local(pd(1:nd) - p_lo + 1)
+         call sort_unique_i8(cols(1:nd), nc)
+         item_col(item_ptr(e):item_ptr(e) + nc - 1) = cols(1:nc)
+         item_ptr(e + 1) = item_ptr(e) + nc
+      end do
+      call items_of_columns(n, item_ptr, item_col, col_ptr, col_item, error)
+      if (allocated(error)) return
+      call build_pattern(n, item_ptr, item_col, col_ptr, col_item, sys%k, error)
+      if (allocated(error)) return
+      deallocate (item_ptr, item_col, col_ptr, col_item)
+
+      do it = 1, nitem
+         e = int(it, ip)
+         call element_matrix(model, isub, e, ke, error)
+         if (allocated(error)) return
+         call element_pdofs(model, table, isub, e, pd, nd)
+         do b = 1, nd
+            do a = 1, nd
+               if (local(pd(a) - p_lo + 1) > local(pd(b) - p_lo + 1)) cycle
+               pos = find_entry(sys%k, local(pd(a) - p_lo + 1), local(pd(b) - p_lo + 1))
+               sys%k%val(pos) = sys%k%val(pos) + ke(a, b)
+            end do
+         end do
+      end do
+    end associate
+  end subroutine build_local_system
+
+  function dof_label(model, table, p) result(label)
+    !! "substructure S node N DOF d" of physical DOF p.
+    type(model_t), intent(in) :: model
+    type(dof_table_t), intent(in) :: table
+    integer(i8), intent(in) :: p
+    character(:), allocatable :: label
+    label = 'substructure '//model%subs(table%p_sub(p))%name//' node '// &
+         itoa(int(model%subs(table%p_sub(p))%node_id(table%p_node(p))))//' DOF '//itoa(table%p_dof(p))
+  end function dof_label
+end module superjoin_substructure_local_system

@@ -36,6 +36,7 @@ import cases  # noqa: E402
 
 ROOT = os.path.abspath(os.path.join(os.path.dirname(__file__), '..', '..'))
 ACCURATE = 1.0e-8
+EXTRA_ARGS = []   # options for every run under test (--args), not for the references
 FIELDS = ['case', 'value', 'formulation', 'solver', 'status', 'rel_error', 'residual', 'residual0',
           'refinements', 'epsilon', 'maxratio', 'cond', 'verdict', 'warning', 'message']
 HEALTH = {
@@ -120,7 +121,7 @@ def run_one(binary, case_name, value, formulation, solver, work):
         f.write(deck_text)
     if os.path.exists(lst):
         os.remove(lst)
-    p = subprocess.run([binary, '-q', deck, '-o', lst, '--csv', csvdir, '--solver', solver,
+    p = subprocess.run([binary, '-q', deck, '-o', lst, '--csv', csvdir] + EXTRA_ARGS + ['--solver', solver,
                         '--formulation', formulation], capture_output=True, text=True)
     row = dict(case=case_name, value=value, formulation=formulation, solver=solver, status=p.returncode,
                rel_error='', residual='', residual0='', refinements='', epsilon='', maxratio='', cond='',
@@ -160,10 +161,12 @@ def main():
     ap.add_argument('--solvers', default='cholmod,umfpack,lapack')
     ap.add_argument('--formulations', default='transform,penalty')
     ap.add_argument('--bin', default=os.environ.get('SUPERJOIN', os.path.join(ROOT, 'build', 'superjoin')))
+    ap.add_argument('--args', default='', help='extra options for every run, e.g. "--condense yes"')
     ap.add_argument('--work', default=os.path.join(ROOT, 'build', 'stability'))
     ap.add_argument('--csv', help='output CSV (default: stdout only)')
     ap.add_argument('--quiet', action='store_true', help='no table on stdout')
     args = ap.parse_args()
+    EXTRA_ARGS.extend(args.args.split())
     values = args.values.split(',') if args.values else cases.CASES[args.case][1]
     os.makedirs(args.work, exist_ok=True)
     rows = []

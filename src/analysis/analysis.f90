@@ -8,7 +8,7 @@ module superjoin_analysis
        LINK_FINITE, LINK_RIGID, node_label, CONDENSE_YES
   use superjoin_assembly_dofs, only: dof_table_t, build_dof_table, UNIT_LINK, UNIT_SUPPORT, GROUND, block_dof
   use superjoin_assembly_forest, only: forest_t, build_forest
-  use superjoin_assembly_transform, only: transform_t, build_transform, COL_PHYS, COL_DELTA, ROLE_TREE, &
+  use superjoin_assembly_transform, only: transform_t, constraint_t, build_transform, COL_PHYS, COL_DELTA, ROLE_TREE, &
        ROLE_PLAIN, CONS_REDUNDANT, CONS_ELIMINATED
   use superjoin_assembly_assemble, only: assemble_stiffness, assemble_loads, max_element_diagonal, &
        assembly_plan_t, superelement_t
@@ -214,9 +214,9 @@ contains
     if (allocated(error)) return
     call skip_unloaded_parts(model, table, tr, k, f_red, spc, notes)
     res%nphys = table%np
-    res%ncol = tr%ncol
-    res%neq = tr%ncol - count(spc, kind=i8)
-    res%ndelta = count(tr%col_kind(1:tr%ncol) == COL_DELTA, kind=i8)
+    res%ncol = tr%ncol()
+    res%neq = tr%ncol() - count(spc, kind=i8)
+    res%ndelta = count_delta(tr)
     res%matrix_nnz = k%nnz()
     res%phase_seconds(PH_ASSEMBLE) = clock%seconds()
     write (buf, '(a,i0,a,i0)') 'equations ', res%neq, ', nonzeros ', res%matrix_nnz
@@ -227,7 +227,7 @@ contains
        if (allocated(error)) return
     end if
 
-    if (tr%ncol > 0) then
+    if (tr%ncol() > 0) then
        call column_groups(table, forest, tr, groups)
        call factor_and_solve(model, table, tr, k, f_red, opts, groups, solver, q, res, error)
        if (allocated(error)) return
@@ -239,7 +239,7 @@ contains
 
     ! Health first: iterative refinement may still improve q.
     allocate (res%steps(size(model%steps)))
-    if (tr%ncol > 0) then
+    if (tr%ncol() > 0) then
        call clock%start()
        call health(k, q, f_red, spc, solver, model, table, tr, res, opts, error)
        if (allocated(error)) return
@@ -256,7 +256,7 @@ contains
     if (res%n_condensed > 0) then
        call recover_parts(parts, f_phys, u, error)
        if (allocated(error)) return
-       if (tr%ncol > 0) call full_health(tr, k, parts, q, u, f_red, f_eff, f_phys, res)
+       if (tr%ncol() > 0) call full_health(tr, k, parts, q, u, f_red, f_eff, f_phys, res)
        call parts_maxratio(model, table, parts, res, error)
        if (allocated(error)) return
        res%phase_seconds(PH_SOLVE) = res%phase_seconds(PH_SOLVE) + clock%seconds()
@@ -317,6 +317,7 @@ contains
     type(results_t), intent(inout) :: res
     type(string_t), allocatable, intent(inout) :: notes(:)
     integer :: iu, i
+    type(constraint_t) :: cs
     res%n_tree = 0
     res%n_plain = 0
     res%n_support_units = 0
@@ -324,9 +325,9 @@ contains
        associate (u => table%units(iu))
          if (u%kind == UNIT_SUPPORT) then
             res%n_support_units = res%n_support_units + 1
-            if (tr%role(iu) == ROLE_PLAIN) call note(notes, 'support at '//vertex_label(model, table, u%vb)// &
+            if (tr%unit_role(iu) == ROLE_PLAIN) call note(notes, 'support at '//vertex_label(model, table, u%vb)// &
                  ' '//block_name(u%block)//' closes a loop through the ground: assembled plainly')
-         else if (tr%role(iu) == ROLE_TREE) then
+         else if (tr%unit_role(iu) == ROLE_TREE) then
             res%n_tree = res%n_tree + 1
          else
             res%n_plain = res%n_plain + 1
@@ -335,9 +336,10 @@ contains
                  block_name(u%block)//': closes a loop, assembled plainly')
          end if
        end associate
-       do i = 1, tr%ncons
-          if (tr%cons(i)%unit /= iu) cycle
-          associate (cs => tr%cons(i), u => table%units(iu))
+       do i = 1, tr%nconstraints()
+          cs = tr%constraint(i)
+          if (cs%unit /= iu) cycle
+          associate (u => table%units(iu))
             if (cs%status == CONS_REDUNDANT) then
                call note(notes, '  RIGID '//local_name(u%block, u%lcomp(cs%k))//' of that unit is redundant '// &
                     '(already implied by the tree); its force is carried by the tree')
@@ -361,13 +363,13 @@ contains
     integer(i8), allocatable :: vert(:)
     integer(i8) :: j, p, ng
     integer :: iu
-    allocate (vert(tr%ncol))
-    do j = 1, tr%ncol
-       if (tr%col_kind(j) == COL_PHYS) then
-          p = tr%col_ref(j)
+    allocate (vert(tr%ncol()))
+    do j = 1, tr%ncol()
+       if (tr%column_kind(j) == COL_PHYS) then
+          p = tr%column_ref(j)
           vert(j) = table%vertex_offset(table%p_sub(p)) + table%p_node(p)
        else
-          iu = int(tr%col_ref(j))
+          iu = int(tr%column_ref(j))
           if (forest%child_is_a(iu)) then
              vert(j) = table%units(iu)%va
           else
@@ -379,7 +381,7 @@ contains
        end if
     end do
     ng = 0
-    do j = 1, tr%ncol
+    do j = 1, tr%ncol()
        if (j == 1) then
           ng = 1
        else if (vert(j) /= vert(j - 1)) then
@@ -388,7 +390,7 @@ contains
     end do
     allocate (first(ng + 1))
     ng = 0
-    do j = 1, tr%ncol
+    do j = 1, tr%ncol()
        if (j == 1) then
           ng = 1
           first(1) = 1
@@ -397,7 +399,7 @@ contains
           first(ng) = j
        end if
     end do
-    first(ng + 1) = tr%ncol + 1
+    first(ng + 1) = tr%ncol() + 1
   end subroutine column_groups
 
   subroutine count_boundary(model, table, bnd, res)
@@ -557,7 +559,7 @@ contains
          allocate (rl(ni + nb, nstep), u0l(ni + nb, 1), w(ni + nb, 1))
          call local_residual(parts(i), u(sys%pdof, :), f_phys(sys%pdof, :), rl)
          u0l = 0.0_wp
-         u0l(ni + 1:, 1) = tr%u0(sys%pdof(ni + 1:))
+         u0l(ni + 1:, 1) = tr%prescribed(sys%pdof(ni + 1:))
          call sys%k%matvec(u0l, w)
          ks = matmul(kst, u(sys%pdof(ni + 1:), :))
          ku0 = matmul(kst, u0l(ni + 1:, 1))
@@ -622,23 +624,27 @@ contains
     real(wp), intent(in) :: f_phys(:, :), f_u0(:)
     real(wp), allocatable, intent(out) :: f_red(:, :)
     type(error_t), allocatable, intent(out) :: error
-    integer(i8) :: p, j
     integer :: is, stat
-    allocate (f_red(tr%ncol, size(f_phys, 2)), stat=stat)
+    allocate (f_red(tr%ncol(), size(f_phys, 2)), stat=stat)
     if (stat /= 0) then
-       call out_of_memory(error, 'the reduced loads', tr%ncol*size(f_phys, 2)*BYTES_REAL)
+       call out_of_memory(error, 'the reduced loads', tr%ncol()*size(f_phys, 2)*BYTES_REAL)
        return
     end if
+    call tr%reduce(f_phys, f_red)
     do is = 1, size(f_phys, 2)
-       f_red(:, is) = f_u0
-    end do
-    do p = 1, size(f_phys, 1, kind=i8)
-       if (all(f_phys(p, :) == 0.0_wp)) cycle
-       do j = tr%map_start(p), tr%map_start(p) + tr%map_len(p) - 1
-          f_red(tr%pool_col(j), :) = f_red(tr%pool_col(j), :) + tr%pool_coef(j)*f_phys(p, :)
-       end do
+       f_red(:, is) = f_red(:, is) + f_u0
     end do
   end subroutine reduce_loads
+
+  pure function count_delta(tr) result(n)
+    !! Number of δ unknowns.
+    type(transform_t), intent(in) :: tr
+    integer(i8) :: n, j
+    n = 0
+    do j = 1, tr%ncol()
+       if (tr%column_kind(j) == COL_DELTA) n = n + 1
+    end do
+  end function count_delta
 
   subroutine autospc(model, table, tr, k, f_red, spc, notes, error)
     !! Unknowns with no stiffness at all: dropped (diagonal 1, load 0) when
@@ -653,8 +659,8 @@ contains
     type(error_t), allocatable, intent(out) :: error
     logical, allocatable :: nz(:)
     integer(i8) :: j, pos
-    allocate (nz(tr%ncol), source=.false.)
-    allocate (spc(tr%ncol), source=.false.)
+    allocate (nz(tr%ncol()), source=.false.)
+    allocate (spc(tr%ncol()), source=.false.)
     do j = 1, k%n
        do pos = k%colptr(j), k%colptr(j + 1) - 1
           if (k%val(pos) /= 0.0_wp) then
@@ -663,7 +669,7 @@ contains
           end if
        end do
     end do
-    do j = 1, tr%ncol
+    do j = 1, tr%ncol()
        if (nz(j)) cycle
        if (any(f_red(j, :) /= 0.0_wp)) then
           call add_error_line(error, EXIT_SINGULAR, 'error: load on a DOF without stiffness: '// &
@@ -726,7 +732,7 @@ contains
        end do
        k%val(k%colptr(j + 1) - 1) = 1.0_wp
        spc(j) = .true.
-       if (tr%col_kind(j) == COL_PHYS) named(table%p_sub(tr%col_ref(j))) = .true.
+       if (tr%column_kind(j) == COL_PHYS) named(table%p_sub(tr%column_ref(j))) = .true.
     end do
     ! Entries above the diagonal in other columns that belong to skipped rows.
     do j = 1, k%n
@@ -778,7 +784,7 @@ contains
        if (error%code == EXIT_SINGULAR) then
           jf = solver%info%failed_column
           deallocate (error)
-          if (jf >= 1 .and. jf <= tr%ncol) then
+          if (jf >= 1 .and. jf <= tr%ncol()) then
              call fatal_error(error, EXIT_SINGULAR, 'error: the structure cannot be solved: '// &
                   'mechanism or singular stiffness at '//column_label(model, table, tr, jf)//penalty_hint(res))
           else
@@ -992,14 +998,14 @@ contains
     character(:), allocatable :: label
     integer(i8) :: p
     integer :: iu, k
-    select case (tr%col_kind(j))
+    select case (tr%column_kind(j))
     case (COL_PHYS)
-       p = tr%col_ref(j)
+       p = tr%column_ref(j)
        label = 'substructure '//model%subs(table%p_sub(p))%name//' node '// &
             itoa(int(model%subs(table%p_sub(p))%node_id(table%p_node(p))))//' DOF '//itoa(table%p_dof(p))
     case (COL_DELTA)
-       iu = int(tr%col_ref(j))
-       k = tr%col_k(j)
+       iu = int(tr%column_ref(j))
+       k = tr%column_comp(j)
        associate (u => table%units(iu))
          if (u%kind == UNIT_LINK) then
             label = 'contact '//model%contacts(model%links(u%source)%contact)%name//' ('// &

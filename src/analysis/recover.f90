@@ -14,7 +14,7 @@ module superjoin_analysis_recover
        is_plate_type, shell_forces
   use superjoin_assembly_dofs, only: dof_table_t, NBLOCK, GROUND, UNIT_LINK, UNIT_SUPPORT, block_dof
   use superjoin_assembly_forest, only: forest_t
-  use superjoin_assembly_transform, only: transform_t, ROLE_TREE, CONS_ELIMINATED
+  use superjoin_assembly_transform, only: transform_t, form_spring_t, constraint_t, ROLE_TREE, CONS_ELIMINATED
   use superjoin_assembly_assemble, only: element_pdofs, distributed_load
   use superjoin_analysis_results, only: results_t, reaction_t
   use superjoin_utils_memory, only: out_of_memory, BYTES_REAL, BYTES_INT
@@ -198,15 +198,16 @@ contains
     integer :: iu, k, c, i
     integer(i8) :: pa, pb
     real(wp), allocatable :: ua(:), ub(:)
+    type(form_spring_t) :: fs
 
     allocate (delta(3, table%nunit, size(q, 2)), source=0.0_wp)
     allocate (ua(size(q, 2)), ub(size(q, 2)))
     do iu = 1, table%nunit
        associate (un => table%units(iu))
-         if (tr%role(iu) == ROLE_TREE) then
+         if (tr%unit_role(iu) == ROLE_TREE) then
             do k = 1, un%n
-               if (tr%dcol(k, iu) > 0) then
-                  delta(k, iu, :) = q(tr%dcol(k, iu), :)
+               if (tr%delta_column(k, iu) > 0) then
+                  delta(k, iu, :) = q(tr%delta_column(k, iu), :)
                else if (un%state(k) == LINK_RIGID) then
                   delta(k, iu, :) = un%value(k)
                end if
@@ -228,14 +229,13 @@ contains
        end associate
     end do
     ! δ columns eliminated by a loop constraint: evaluate their expression.
-    do i = 1, tr%nform
-       associate (fs => tr%forms(i))
-         if (fs%unit == 0) cycle
-         delta(fs%k, fs%unit, :) = fs%const
-         do c = 1, size(fs%col)
-            delta(fs%k, fs%unit, :) = delta(fs%k, fs%unit, :) + fs%coef(c)*q(fs%col(c), :)
-         end do
-       end associate
+    do i = 1, tr%nforms()
+       fs = tr%form(i)
+       if (fs%unit == 0) cycle
+       delta(fs%k, fs%unit, :) = fs%const
+       do c = 1, size(fs%col)
+          delta(fs%k, fs%unit, :) = delta(fs%k, fs%unit, :) + fs%coef(c)*q(fs%col(c), :)
+       end do
     end do
   end subroutine unit_deltas
 
@@ -274,8 +274,9 @@ contains
     integer :: i, c, is
     integer(i8) :: pa, pb
     real(wp) :: lambda, e
-    do i = 1, tr%ncons
-       associate (cs => tr%cons(i))
+    type(constraint_t) :: cs
+    do i = 1, tr%nconstraints()
+       cs = tr%constraint(i)
          if (cs%status /= CONS_ELIMINATED) cycle
          associate (un => table%units(cs%unit))
            do is = 1, size(r, 2)
@@ -297,7 +298,6 @@ contains
               end do
            end do
          end associate
-       end associate
     end do
   end subroutine closer_forces
 

@@ -8,7 +8,7 @@ module superjoin_assembly_assemble
   use superjoin_elements, only: element_dof_mask, element_stiffness, element_distributed_load, &
        element_gravity_load
   use superjoin_assembly_dofs, only: dof_table_t, GROUND, block_dof
-  use superjoin_assembly_transform, only: transform_t, ROLE_PLAIN
+  use superjoin_assembly_transform, only: transform_t, form_spring_t, ROLE_PLAIN
   use superjoin_solvers_sparse, only: sparse_sym_t
   use superjoin_solvers_pattern, only: build_pattern, find_entry, items_of_columns
   use superjoin_utils_sorting, only: sort_unique_i8
@@ -183,33 +183,6 @@ contains
     end if
   end function element_where
 
-  subroutine item_columns(tr, pd, n, cols, nc)
-    !! Reduced columns of a list of physical DOFs (sorted, unique) into cols(1:nc).
-    type(transform_t), intent(in) :: tr
-    integer(i8), intent(in) :: pd(:)
-    integer, intent(in) :: n
-    integer(i8), allocatable, intent(inout) :: cols(:)
-    integer, intent(out) :: nc
-    integer :: a, m
-    integer(i8) :: j
-    m = 0
-    do a = 1, n
-       m = m + tr%map_len(pd(a))
-    end do
-    if (size(cols) < m) then
-       deallocate (cols)
-       allocate (cols(2*m))
-    end if
-    m = 0
-    do a = 1, n
-       do j = tr%map_start(pd(a)), tr%map_start(pd(a)) + tr%map_len(pd(a)) - 1
-          m = m + 1
-          cols(m) = tr%pool_col(j)
-       end do
-    end do
-    call sort_unique_i8(cols(1:m), nc)
-  end subroutine item_columns
-
   subroutine assemble_stiffness(model, table, tr, plan, k, f_u0, error)
     !! Assemble K_red (pattern and values) and the reduced load of the
     !! prescribed values, f_u0 = -Tᵀ K_phys u0: the elements of every
@@ -228,14 +201,16 @@ contains
     integer(ip) :: e
     real(wp), allocatable :: ke(:, :)
     integer :: stat
+    type(form_spring_t) :: fs
+    real(wp) :: g
 
     ! Items: elements of every substructure, then plain units, then form springs.
-    nitem = tr%nform + size(plan%supers)
+    nitem = tr%nforms() + size(plan%supers)
     do isub = 1, size(model%subs)
        if (plan%skip_sub(isub)) cycle
        nitem = nitem + model%subs(isub)%nelem
     end do
-    nitem = nitem + count(tr%role == ROLE_PLAIN)
+    nitem = nitem + tr%count_role(ROLE_PLAIN)
     allocate (item_ptr(nitem + 1), cols(64), item_col(max(16_i8, 12*nitem)), stat=stat)
     if (stat /= 0) then
        call out_of_memory(error, 'the column lists of the elements', (13*nitem + 1)*BYTES_I8)
@@ -249,40 +224,41 @@ contains
        if (plan%skip_sub(isub)) cycle
        do e = 1, model%subs(isub)%nelem
           call element_pdofs(model, table, isub, e, pd, n)
-          call item_columns(tr, pd, n, cols, nc)
+          call tr%element_columns(pd, n, cols, nc)
           call append_item(cols(1:nc))
           if (allocated(error)) return
        end do
     end do
     do i = 1, size(plan%supers)
-       call item_columns(tr, plan%supers(i)%pdof, size(plan%supers(i)%pdof), cols, nc)
+       call tr%element_columns(plan%supers(i)%pdof, size(plan%supers(i)%pdof), cols, nc)
        call append_item(cols(1:nc))
        if (allocated(error)) return
     end do
     do iu = 1, table%nunit
-       if (tr%role(iu) /= ROLE_PLAIN) cycle
+       if (tr%unit_role(iu) /= ROLE_PLAIN) cycle
        call unit_pdofs(table, iu, pd, n)
-       call item_columns(tr, pd, n, cols, nc)
+       call tr%element_columns(pd, n, cols, nc)
        call append_item(cols(1:nc))
        if (allocated(error)) return
     end do
-    do i = 1, tr%nform
-       call append_item(tr%forms(i)%col)
+    do i = 1, tr%nforms()
+       fs = tr%form(i)
+       call append_item(fs%col)
        if (allocated(error)) return
     end do
 
     ! Transpose: items of each column.
-    call items_of_columns(tr%ncol, item_ptr(1:nitem + 1), item_col, col_ptr, col_item, error)
+    call items_of_columns(tr%ncol(), item_ptr(1:nitem + 1), item_col, col_ptr, col_item, error)
     if (allocated(error)) return
 
-    call build_pattern(tr%ncol, item_ptr, item_col, col_ptr, col_item, k, error)
+    call build_pattern(tr%ncol(), item_ptr, item_col, col_ptr, col_item, k, error)
     if (allocated(error)) return
     deallocate (col_ptr, col_item)
 
     ! Pass 2: values.
-    allocate (f_u0(tr%ncol), source=0.0_wp, stat=stat)
+    allocate (f_u0(tr%ncol()), source=0.0_wp, stat=stat)
     if (stat /= 0) then
-       call out_of_memory(error, 'the reduced load', tr%ncol*BYTES_REAL)
+       call out_of_memory(error, 'the reduced load', tr%ncol()*BYTES_REAL)
        return
     end if
     it = 0
@@ -293,12 +269,12 @@ contains
           call element_matrix(model, isub, e, ke, error)
           if (allocated(error)) return
           call element_pdofs(model, table, isub, e, pd, n)
-          call scatter(tr, pd(1:n), ke, item_col(item_ptr(it):item_ptr(it + 1) - 1), k, f_u0)
+          call tr%scatter(pd(1:n), ke, item_col(item_ptr(it):item_ptr(it + 1) - 1), k, f_u0)
        end do
     end do
     do i = 1, size(plan%supers)
        it = it + 1
-       call scatter_dense(tr, plan%supers(i)%pdof, plan%supers(i)%k, k, f_u0)
+       call tr%scatter_dense(plan%supers(i)%pdof, plan%supers(i)%k, k, f_u0)
     end do
     if (.not. allocated(ke)) allocate (ke(6, 6))
     if (size(ke, 1) < 6) then
@@ -306,19 +282,21 @@ contains
        allocate (ke(6, 6))
     end if
     do iu = 1, table%nunit
-       if (tr%role(iu) /= ROLE_PLAIN) cycle
+       if (tr%unit_role(iu) /= ROLE_PLAIN) cycle
        it = it + 1
        call unit_pdofs(table, iu, pd, n)
        call unit_plain_stiffness(table, iu, ke, n)
-       call scatter(tr, pd(1:n), ke(1:n, 1:n), item_col(item_ptr(it):item_ptr(it + 1) - 1), k, f_u0)
+       call tr%scatter(pd(1:n), ke(1:n, 1:n), item_col(item_ptr(it):item_ptr(it + 1) - 1), k, f_u0)
     end do
-    do i = 1, tr%nform
+    do i = 1, tr%nforms()
        it = it + 1
-       call scatter_form(tr%forms(i)%col, tr%forms(i)%coef, tr%forms(i)%g, tr%forms(i)%const, k, f_u0)
+       fs = tr%form(i)
+       call scatter_form(fs%col, fs%coef, fs%g, fs%const, k, f_u0)
     end do
     ! δ springs: g on the diagonal of their own column, nowhere else.
-    do j = 1, tr%ncol
-       if (tr%col_g(j) /= 0.0_wp) k%val(k%colptr(j + 1) - 1) = k%val(k%colptr(j + 1) - 1) + tr%col_g(j)
+    do j = 1, tr%ncol()
+       g = tr%column_g(j)
+       if (g /= 0.0_wp) k%val(k%colptr(j + 1) - 1) = k%val(k%colptr(j + 1) - 1) + g
     end do
 
   contains
@@ -345,118 +323,6 @@ contains
   end subroutine assemble_stiffness
 
 
-  subroutine scatter(tr, pd, ke, cols, k, f_u0)
-    !! Add Mᵀ ke M to k over the item's columns, and -Mᵀ ke u0 to f_u0.
-    type(transform_t), intent(in) :: tr
-    integer(i8), intent(in) :: pd(:)
-    real(wp), intent(in) :: ke(:, :)
-    integer(i8), intent(in) :: cols(:)
-    type(sparse_sym_t), intent(inout) :: k
-    real(wp), intent(inout) :: f_u0(:)
-    real(wp) :: m(size(pd), size(cols)), km(size(pd), size(cols)), u0e(size(pd)), fe(size(cols))
-    real(wp) :: kab
-    integer :: n, nc, a, b, i
-    integer(i8) :: j, pos
-    logical :: simple
-
-    n = size(pd)
-    nc = size(cols)
-    simple = nc == n
-    if (simple) then
-       do a = 1, n
-          if (tr%map_len(pd(a)) /= 1) then
-             simple = .false.
-             exit
-          end if
-          if (tr%pool_coef(tr%map_start(pd(a))) /= 1.0_wp .or. tr%u0(pd(a)) /= 0.0_wp) then
-             simple = .false.
-             exit
-          end if
-       end do
-    end if
-    if (simple) then
-       ! Every DOF is its own column: scatter directly.
-       do b = 1, n
-          do a = 1, n
-             if (tr%pool_col(tr%map_start(pd(a))) > tr%pool_col(tr%map_start(pd(b)))) cycle
-             pos = find_entry(k, tr%pool_col(tr%map_start(pd(a))), tr%pool_col(tr%map_start(pd(b))))
-             k%val(pos) = k%val(pos) + ke(a, b)
-          end do
-       end do
-       return
-    end if
-    m = 0.0_wp
-    do a = 1, n
-       u0e(a) = tr%u0(pd(a))
-       do j = tr%map_start(pd(a)), tr%map_start(pd(a)) + tr%map_len(pd(a)) - 1
-          b = locate(cols, tr%pool_col(j))
-          m(a, b) = m(a, b) + tr%pool_coef(j)
-       end do
-    end do
-    km = matmul(ke, m)
-    do b = 1, nc
-       do a = 1, b
-          kab = 0.0_wp
-          do i = 1, n
-             kab = kab + m(i, a)*km(i, b)
-          end do
-          pos = find_entry(k, cols(a), cols(b))
-          k%val(pos) = k%val(pos) + kab
-       end do
-    end do
-    if (any(u0e /= 0.0_wp)) then
-       fe = matmul(transpose(m), matmul(ke, u0e))
-       do a = 1, nc
-          f_u0(cols(a)) = f_u0(cols(a)) - fe(a)
-       end do
-    end if
-  end subroutine scatter
-
-  subroutine scatter_dense(tr, pd, ke, k, f_u0)
-    !! Add Mᵀ ke M to k and -Mᵀ ke u0 to f_u0 for a large dense item (a
-    !! superelement), entry by entry over the maps, with no dense M.
-    type(transform_t), intent(in) :: tr
-    integer(i8), intent(in) :: pd(:)
-    real(wp), intent(in) :: ke(:, :)
-    type(sparse_sym_t), intent(inout) :: k
-    real(wp), intent(inout) :: f_u0(:)
-    integer(i8), allocatable :: col(:, :)
-    real(wp), allocatable :: coef(:, :), u0e(:), t(:, :)
-    integer, allocatable :: nm(:)
-    integer :: n, a, b, ia, ib, mmax
-    integer(i8) :: pos
-    n = size(pd)
-    mmax = 1
-    do a = 1, n
-       mmax = max(mmax, tr%map_len(pd(a)))
-    end do
-    allocate (col(mmax, n), coef(mmax, n), nm(n), u0e(n))
-    do a = 1, n
-       call tr%columns_of(pd(a), col(:, a), coef(:, a), nm(a))
-       u0e(a) = tr%u0(pd(a))
-    end do
-    do b = 1, n
-       do ib = 1, nm(b)
-          do a = 1, n
-             if (ke(a, b) == 0.0_wp) cycle
-             do ia = 1, nm(a)
-                if (col(ia, a) > col(ib, b)) cycle
-                pos = find_entry(k, col(ia, a), col(ib, b))
-                k%val(pos) = k%val(pos) + coef(ia, a)*coef(ib, b)*ke(a, b)
-             end do
-          end do
-       end do
-    end do
-    if (any(u0e /= 0.0_wp)) then
-       t = matmul(ke, reshape(u0e, [n, 1]))
-       do a = 1, n
-          do ia = 1, nm(a)
-             f_u0(col(ia, a)) = f_u0(col(ia, a)) - coef(ia, a)*t(a, 1)
-          end do
-       end do
-    end if
-  end subroutine scatter_dense
-
   subroutine scatter_form(col, coef, g, c, k, f_u0)
     !! Add g a aᵀ to k and -g a c to f_u0 for a spring on aᵀq + c.
     integer(i8), intent(in) :: col(:)
@@ -474,24 +340,6 @@ contains
        f_u0(col(b)) = f_u0(col(b)) - g*coef(b)*c
     end do
   end subroutine scatter_form
-
-  pure function locate(cols, j) result(b)
-    integer(i8), intent(in) :: cols(:), j
-    integer :: b, lo, hi
-    lo = 1
-    hi = size(cols)
-    b = 0
-    do while (lo <= hi)
-       b = lo + (hi - lo)/2
-       if (cols(b) == j) return
-       if (cols(b) < j) then
-          lo = b + 1
-       else
-          hi = b - 1
-       end if
-    end do
-    b = 0
-  end function locate
 
   subroutine distributed_load(model, dl, fe, q_local, error)
     !! Nodal loads (global axes, element ordering) and local load of one

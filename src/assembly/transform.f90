@@ -16,6 +16,9 @@ module superjoin_assembly_transform
        UNIT_SUPPORT, block_dof
   use superjoin_assembly_forest, only: forest_t
   use superjoin_utils_strings, only: rtoa
+  use superjoin_utils_sorting, only: sort_unique_i8
+  use superjoin_solvers_sparse, only: sparse_sym_t
+  use superjoin_solvers_pattern, only: find_entry
   use superjoin_utils_memory, only: out_of_memory, BYTES_REAL, BYTES_INT, BYTES_I8
   implicit none (type, external)
   private
@@ -58,7 +61,10 @@ module superjoin_assembly_transform
 
   type, public :: transform_t
     !! The reduced system's unknowns and the map from them to physical DOFs.
-     integer(i8) :: ncol = 0
+    !! Its data are private: use the operations (expand, reduce, scatter) and
+    !! the queries below.
+     private
+     integer(i8) :: ncol_ = 0
      integer, allocatable :: col_kind(:)   !! COL_PHYS or COL_DELTA
      integer(i8), allocatable :: col_ref(:)  !! physical DOF (COL_PHYS) or unit (COL_DELTA)
      integer, allocatable :: col_k(:)      !! row of the unit's qs (COL_DELTA)
@@ -75,12 +81,27 @@ module superjoin_assembly_transform
      integer :: nform = 0
      type(constraint_t), allocatable :: cons(:)
      integer :: ncons = 0
-     logical :: has_u0 = .false.
    contains
      procedure :: expand => transform_expand
      procedure :: reduce => transform_reduce
      procedure :: reduce_add => transform_reduce_add
      procedure :: columns_of => transform_columns_of
+     procedure :: element_columns => transform_element_columns
+     procedure :: scatter => transform_scatter
+     procedure :: scatter_dense => transform_scatter_dense
+     procedure :: ncol => transform_ncol
+     procedure :: column_kind => transform_column_kind
+     procedure :: column_ref => transform_column_ref
+     procedure :: column_comp => transform_column_comp
+     procedure :: column_g => transform_column_g
+     procedure :: unit_role => transform_unit_role
+     procedure :: count_role => transform_count_role
+     procedure :: delta_column => transform_delta_column
+     procedure :: prescribed => transform_prescribed
+     procedure :: nforms => transform_nforms
+     procedure :: form => transform_form
+     procedure :: nconstraints => transform_nconstraints
+     procedure :: constraint => transform_constraint
   end type transform_t
 
   public :: build_transform
@@ -118,7 +139,6 @@ contains
     if (allocated(error)) return
     call compact_columns(tr, error)
     if (allocated(error)) return
-    tr%has_u0 = any(tr%u0 /= 0.0_wp)
   end subroutine build_transform
 
   subroutine number_columns(table, forest, tr, error, keep)
@@ -141,7 +161,7 @@ contains
             3*table%nunit*BYTES_I8)
        return
     end if
-    tr%ncol = 0
+    tr%ncol_ = 0
     do v = 1, table%nvertex
        do b = 1, NBLOCK
           pu = forest%parent_unit(b, v)
@@ -149,12 +169,12 @@ contains
              associate (u => table%units(pu))
                do k = 1, u%n
                   if (u%state(k) == LINK_RIGID) cycle
-                  tr%ncol = tr%ncol + 1
-                  tr%col_kind(tr%ncol) = COL_DELTA
-                  tr%col_ref(tr%ncol) = pu
-                  tr%col_k(tr%ncol) = k
-                  tr%col_g(tr%ncol) = merge(u%g(k), 0.0_wp, u%state(k) == LINK_FINITE)
-                  tr%dcol(k, pu) = tr%ncol
+                  tr%ncol_ = tr%ncol_ + 1
+                  tr%col_kind(tr%ncol_) = COL_DELTA
+                  tr%col_ref(tr%ncol_) = pu
+                  tr%col_k(tr%ncol_) = k
+                  tr%col_g(tr%ncol_) = merge(u%g(k), 0.0_wp, u%state(k) == LINK_FINITE)
+                  tr%dcol(k, pu) = tr%ncol_
                end do
              end associate
           end if
@@ -167,11 +187,11 @@ contains
              if (present(keep)) then
                 if (.not. keep(p)) cycle
              end if
-             tr%ncol = tr%ncol + 1
-             tr%col_kind(tr%ncol) = COL_PHYS
-             tr%col_ref(tr%ncol) = p
-             tr%col_k(tr%ncol) = 0
-             tr%col_g(tr%ncol) = 0.0_wp
+             tr%ncol_ = tr%ncol_ + 1
+             tr%col_kind(tr%ncol_) = COL_PHYS
+             tr%col_ref(tr%ncol_) = p
+             tr%col_k(tr%ncol_) = 0
+             tr%col_g(tr%ncol_) = 0.0_wp
           end do
        end do
     end do
@@ -197,7 +217,7 @@ contains
        return
     end if
     tr%pool_n = 0
-    do j = 1, tr%ncol
+    do j = 1, tr%ncol_
        if (tr%col_kind(j) /= COL_PHYS) cycle
        p = tr%col_ref(j)
        call pool_push(tr, j, 1.0_wp)
@@ -548,13 +568,13 @@ contains
     integer(i8), allocatable :: newc(:)
     integer(i8) :: j, n
     integer :: i, k, stat
-    allocate (newc(tr%ncol), stat=stat)
+    allocate (newc(tr%ncol_), stat=stat)
     if (stat /= 0) then
-       call out_of_memory(error, 'the column renumbering', tr%ncol*BYTES_I8)
+       call out_of_memory(error, 'the column renumbering', tr%ncol_*BYTES_I8)
        return
     end if
     n = 0
-    do j = 1, tr%ncol
+    do j = 1, tr%ncol_
        if (tr%col_kind(j) == COL_DEAD) then
           newc(j) = 0
        else
@@ -566,8 +586,8 @@ contains
           tr%col_g(n) = tr%col_g(j)
        end if
     end do
-    if (n == tr%ncol) return
-    tr%ncol = n
+    if (n == tr%ncol_) return
+    tr%ncol_ = n
     do j = 1, tr%pool_n
        tr%pool_col(j) = newc(tr%pool_col(j))
     end do
@@ -691,4 +711,253 @@ contains
     col(1:n) = tr%pool_col(tr%map_start(p):tr%map_start(p) + n - 1)
     coef(1:n) = tr%pool_coef(tr%map_start(p):tr%map_start(p) + n - 1)
   end subroutine transform_columns_of
+  pure function transform_ncol(tr) result(n)
+    !! Number of reduced unknowns (columns).
+    class(transform_t), intent(in) :: tr
+    integer(i8) :: n
+    n = tr%ncol_
+  end function transform_ncol
+
+  pure integer function transform_column_kind(tr, j)
+    !! COL_PHYS or COL_DELTA.
+    class(transform_t), intent(in) :: tr
+    integer(i8), intent(in) :: j
+    transform_column_kind = tr%col_kind(j)
+  end function transform_column_kind
+
+  pure function transform_column_ref(tr, j) result(r)
+    !! Physical DOF of a COL_PHYS column, unit of a COL_DELTA column.
+    class(transform_t), intent(in) :: tr
+    integer(i8), intent(in) :: j
+    integer(i8) :: r
+    r = tr%col_ref(j)
+  end function transform_column_ref
+
+  pure integer function transform_column_comp(tr, j)
+    !! Component (row of the unit's qs) of a COL_DELTA column.
+    class(transform_t), intent(in) :: tr
+    integer(i8), intent(in) :: j
+    transform_column_comp = tr%col_k(j)
+  end function transform_column_comp
+
+  pure real(wp) function transform_column_g(tr, j)
+    !! Spring stiffness on the diagonal of column j (0 for none).
+    class(transform_t), intent(in) :: tr
+    integer(i8), intent(in) :: j
+    transform_column_g = tr%col_g(j)
+  end function transform_column_g
+
+  pure integer function transform_unit_role(tr, iu)
+    !! ROLE_TREE (transformed) or ROLE_PLAIN (assembled as an element).
+    class(transform_t), intent(in) :: tr
+    integer, intent(in) :: iu
+    transform_unit_role = tr%role(iu)
+  end function transform_unit_role
+
+  pure integer function transform_count_role(tr, role)
+    !! Number of units with the given role.
+    class(transform_t), intent(in) :: tr
+    integer, intent(in) :: role
+    transform_count_role = count(tr%role == role)
+  end function transform_count_role
+
+  pure function transform_delta_column(tr, k, iu) result(j)
+    !! Column of δ_k of tree unit iu, or 0 (rigid, or not a tree unit).
+    class(transform_t), intent(in) :: tr
+    integer, intent(in) :: k, iu
+    integer(i8) :: j
+    j = tr%dcol(k, iu)
+  end function transform_delta_column
+
+  elemental real(wp) function transform_prescribed(tr, p)
+    !! The prescribed part u0 of physical DOF p.
+    class(transform_t), intent(in) :: tr
+    integer(i8), intent(in) :: p
+    transform_prescribed = tr%u0(p)
+  end function transform_prescribed
+
+  pure integer function transform_nforms(tr)
+    !! Number of springs on linear forms (left by loop eliminations).
+    class(transform_t), intent(in) :: tr
+    transform_nforms = tr%nform
+  end function transform_nforms
+
+  function transform_form(tr, i) result(fs)
+    !! Form spring i.
+    class(transform_t), intent(in) :: tr
+    integer, intent(in) :: i
+    type(form_spring_t) :: fs
+    fs = tr%forms(i)
+  end function transform_form
+
+  pure integer function transform_nconstraints(tr)
+    !! Number of RIGID loop constraints (redundant or eliminated).
+    class(transform_t), intent(in) :: tr
+    transform_nconstraints = tr%ncons
+  end function transform_nconstraints
+
+  function transform_constraint(tr, i) result(cs)
+    !! Loop constraint i.
+    class(transform_t), intent(in) :: tr
+    integer, intent(in) :: i
+    type(constraint_t) :: cs
+    cs = tr%cons(i)
+  end function transform_constraint
+
+  subroutine transform_element_columns(tr, pd, n, cols, nc)
+    !! Reduced columns of a list of physical DOFs (sorted, unique) into cols(1:nc).
+    class(transform_t), intent(in) :: tr
+    integer(i8), intent(in) :: pd(:)
+    integer, intent(in) :: n
+    integer(i8), allocatable, intent(inout) :: cols(:)
+    integer, intent(out) :: nc
+    integer :: a, m
+    integer(i8) :: j
+    m = 0
+    do a = 1, n
+       m = m + tr%map_len(pd(a))
+    end do
+    if (size(cols) < m) then
+       deallocate (cols)
+       allocate (cols(2*m))
+    end if
+    m = 0
+    do a = 1, n
+       do j = tr%map_start(pd(a)), tr%map_start(pd(a)) + tr%map_len(pd(a)) - 1
+          m = m + 1
+          cols(m) = tr%pool_col(j)
+       end do
+    end do
+    call sort_unique_i8(cols(1:m), nc)
+  end subroutine transform_element_columns
+
+  subroutine transform_scatter(tr, pd, ke, cols, k, f_u0)
+    !! Add Mᵀ ke M to k over the item's columns, and -Mᵀ ke u0 to f_u0.
+    class(transform_t), intent(in) :: tr
+    integer(i8), intent(in) :: pd(:)
+    real(wp), intent(in) :: ke(:, :)
+    integer(i8), intent(in) :: cols(:)
+    type(sparse_sym_t), intent(inout) :: k
+    real(wp), intent(inout) :: f_u0(:)
+    real(wp) :: m(size(pd), size(cols)), km(size(pd), size(cols)), u0e(size(pd)), fe(size(cols))
+    real(wp) :: kab
+    integer :: n, nc, a, b, i
+    integer(i8) :: j, pos
+    logical :: simple
+
+    n = size(pd)
+    nc = size(cols)
+    simple = nc == n
+    if (simple) then
+       do a = 1, n
+          if (tr%map_len(pd(a)) /= 1) then
+             simple = .false.
+             exit
+          end if
+          if (tr%pool_coef(tr%map_start(pd(a))) /= 1.0_wp .or. tr%u0(pd(a)) /= 0.0_wp) then
+             simple = .false.
+             exit
+          end if
+       end do
+    end if
+    if (simple) then
+       ! Every DOF is its own column: scatter directly.
+       do b = 1, n
+          do a = 1, n
+             if (tr%pool_col(tr%map_start(pd(a))) > tr%pool_col(tr%map_start(pd(b)))) cycle
+             pos = find_entry(k, tr%pool_col(tr%map_start(pd(a))), tr%pool_col(tr%map_start(pd(b))))
+             k%val(pos) = k%val(pos) + ke(a, b)
+          end do
+       end do
+       return
+    end if
+    m = 0.0_wp
+    do a = 1, n
+       u0e(a) = tr%u0(pd(a))
+       do j = tr%map_start(pd(a)), tr%map_start(pd(a)) + tr%map_len(pd(a)) - 1
+          b = locate(cols, tr%pool_col(j))
+          m(a, b) = m(a, b) + tr%pool_coef(j)
+       end do
+    end do
+    km = matmul(ke, m)
+    do b = 1, nc
+       do a = 1, b
+          kab = 0.0_wp
+          do i = 1, n
+             kab = kab + m(i, a)*km(i, b)
+          end do
+          pos = find_entry(k, cols(a), cols(b))
+          k%val(pos) = k%val(pos) + kab
+       end do
+    end do
+    if (any(u0e /= 0.0_wp)) then
+       fe = matmul(transpose(m), matmul(ke, u0e))
+       do a = 1, nc
+          f_u0(cols(a)) = f_u0(cols(a)) - fe(a)
+       end do
+    end if
+  end subroutine transform_scatter
+
+  subroutine transform_scatter_dense(tr, pd, ke, k, f_u0)
+    !! Add Mᵀ ke M to k and -Mᵀ ke u0 to f_u0 for a large dense item (a
+    !! superelement), entry by entry over the maps, with no dense M.
+    class(transform_t), intent(in) :: tr
+    integer(i8), intent(in) :: pd(:)
+    real(wp), intent(in) :: ke(:, :)
+    type(sparse_sym_t), intent(inout) :: k
+    real(wp), intent(inout) :: f_u0(:)
+    integer(i8), allocatable :: col(:, :)
+    real(wp), allocatable :: coef(:, :), u0e(:), t(:, :)
+    integer, allocatable :: nm(:)
+    integer :: n, a, b, ia, ib, mmax
+    integer(i8) :: pos
+    n = size(pd)
+    mmax = 1
+    do a = 1, n
+       mmax = max(mmax, tr%map_len(pd(a)))
+    end do
+    allocate (col(mmax, n), coef(mmax, n), nm(n), u0e(n))
+    do a = 1, n
+       call tr%columns_of(pd(a), col(:, a), coef(:, a), nm(a))
+       u0e(a) = tr%u0(pd(a))
+    end do
+    do b = 1, n
+       do ib = 1, nm(b)
+          do a = 1, n
+             if (ke(a, b) == 0.0_wp) cycle
+             do ia = 1, nm(a)
+                if (col(ia, a) > col(ib, b)) cycle
+                pos = find_entry(k, col(ia, a), col(ib, b))
+                k%val(pos) = k%val(pos) + coef(ia, a)*coef(ib, b)*ke(a, b)
+             end do
+          end do
+       end do
+    end do
+    if (any(u0e /= 0.0_wp)) then
+       t = matmul(ke, reshape(u0e, [n, 1]))
+       do a = 1, n
+          do ia = 1, nm(a)
+             f_u0(col(ia, a)) = f_u0(col(ia, a)) - coef(ia, a)*t(a, 1)
+          end do
+       end do
+    end if
+  end subroutine transform_scatter_dense
+
+  pure function locate(cols, j) result(b)
+    integer(i8), intent(in) :: cols(:), j
+    integer :: b, lo, hi
+    lo = 1
+    hi = size(cols)
+    b = 0
+    do while (lo <= hi)
+       b = lo + (hi - lo)/2
+       if (cols(b) == j) return
+       if (cols(b) < j) then
+          lo = b + 1
+       else
+          hi = b - 1
+       end if
+    end do
+    b = 0
+  end function locate
 end module superjoin_assembly_transform

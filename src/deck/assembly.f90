@@ -8,7 +8,8 @@ submodule (superjoin_deck_validate) superjoin_deck_assembly
   !!   structure turned; then the parts leave model%subs;
   !! - PAIR=NEAREST on *CONTACT: each slave node takes the nearest master node;
   !! - *CHANGE CONTACT: per-step link overrides, SWEEP steps expanded.
-  use superjoin_model_types, only: section_t, link_override_t, step_t, node_label, MAX_ELEMENT_NODES
+  use superjoin_model_types, only: section_t, link_override_t, step_t, node_label, MAX_ELEMENT_NODES, &
+       orientation_t
   use superjoin_deck_state, only: SUBK_PART, SUBK_INSTANCE, instance_b_t, step_b_t
   use superjoin_elements_frame, only: DEFAULT_V_SWITCH_TOL, cross, real_text
   use superjoin_utils_sorting, only: stable_argsort
@@ -278,6 +279,277 @@ contains
     character(:), allocatable :: s
     s = '('//real_text(x(1))//', '//real_text(x(2))//', '//real_text(x(3))//')'
   end function point_text
+
+
+  ! ================================================================== *INTERFACE
+
+  module subroutine build_interfaces(st, model)
+    type(deck_state_t), intent(inout) :: st
+    type(model_t), intent(inout) :: model
+    integer :: k
+    do k = 1, st%ncontact
+       if (.not. st%contacts(k)%is_interface) cycle
+       call build_interface(st, model, k)
+       if (st%aborted) return
+    end do
+  end subroutine build_interfaces
+
+  subroutine build_interface(st, model, k)
+    !! Contact elements of *INTERFACE k: node pairs by position, stiffness KN
+    !! (normal) and KT (tangential) times the tributary length (edge joints) or
+    !! area (face joints) of the master node, in the joint's frame.
+    type(deck_state_t), intent(inout) :: st
+    type(model_t), intent(inout) :: model
+    integer, intent(in) :: k
+    integer(ip), allocatable :: ms(:), ss(:)
+    real(wp), allocatable :: trib(:)
+    logical, allocatable :: inset(:)
+    logical :: ok1, ok2, face, planar, first
+    real(wp) :: q(3, 3), n(3), t(3), w(3), d(3), ref(3), cen(3), mid(3), len_e, lo(3), hi(3)
+    integer(ip) :: e, a, b, p, i
+    integer :: nn, j, m
+    type(link_t), allocatable :: new(:)
+    character(:), allocatable :: what
+    real(wp), parameter :: FLAT_TOL = 1.0e-8_wp
+      !! Edges (faces) of one joint are parallel when |t_e × t_1| (|n_e × n_1|) <= this.
+    real(wp), parameter :: DEFAULT_TOL = 1.0e-6_wp
+      !! Default TOL: this times the size of the master node set.
+
+    associate (cb => st%contacts(k), c => model%contacts(k))
+      if (c%master_sub == 0 .or. c%slave_sub == 0) return
+      if (cb%iface_loc%line == 0) then
+         call report_loc(st, cb%loc, '*INTERFACE '//cb%name//' needs a data line: master node set, slave node set')
+         return
+      end if
+      call resolve_items(st, model, c%master_sub, cb%iface_master, .false., cb%iface_loc, ms, ok1)
+      call resolve_items(st, model, c%slave_sub, cb%iface_slave, .false., cb%iface_loc, ss, ok2)
+      if (.not. (ok1 .and. ok2)) return
+      associate (sub => model%subs(c%master_sub))
+        allocate (inset(sub%nnode), trib(sub%nnode))
+        inset = .false.
+        inset(ms) = .true.
+        trib = 0.0_wp
+        ! face joint: plane or shell elements with every node on the set
+        face = .false.
+        do e = 1, sub%nelem
+           select case (sub%elem_type(e))
+           case (ET_CPS3, ET_CPS4, ET_S3, ET_S4)
+              nn = ELEMENT_NODE_COUNT(sub%elem_type(e))
+              if (all(inset(sub%elem_nodes(1:nn, e)))) face = .true.
+           end select
+        end do
+        first = .true.
+        planar = .true.
+        if (face) then
+           do e = 1, sub%nelem
+              select case (sub%elem_type(e))
+              case (ET_CPS3, ET_CPS4, ET_S3, ET_S4)
+                 nn = ELEMENT_NODE_COUNT(sub%elem_type(e))
+                 if (.not. all(inset(sub%elem_nodes(1:nn, e)))) cycle
+                 call face_share(sub%x(:, sub%elem_nodes(1:nn, e)), trib, sub%elem_nodes(1:nn, e), d)
+                 if (first) then
+                    n = d
+                    first = .false.
+                 else if (norm2(cross(n, d)) > FLAT_TOL) then
+                    call report_loc(st, cb%loc, '*INTERFACE '//cb%name//': the faces on node set '// &
+                         ref_text(cb%iface_master)//' are not in one plane (element '//itoa(sub%elem_id(e))// &
+                         '); split the joint into flat *INTERFACE cards')
+                    return
+                 end if
+              end select
+           end do
+           what = 'area'
+        else
+           do e = 1, sub%nelem
+              nn = ELEMENT_NODE_COUNT(sub%elem_type(e))
+              select case (sub%elem_type(e))
+              case (ET_T2D2, ET_T3D2, ET_B23, ET_B33)
+                 m = 1
+              case default
+                 m = nn
+              end select
+              do j = 1, m
+                 a = sub%elem_nodes(j, e)
+                 b = sub%elem_nodes(mod(j, nn) + 1, e)
+                 if (.not. (inset(a) .and. inset(b))) cycle
+                 if (shared_edge(e, a, b)) cycle
+                 d = sub%x(:, b) - sub%x(:, a)
+                 len_e = norm2(d)
+                 if (len_e == 0.0_wp) cycle
+                 trib(a) = trib(a) + len_e/2
+                 trib(b) = trib(b) + len_e/2
+                 select case (sub%elem_type(e))
+                 case (ET_T2D2, ET_B23, ET_CPS3, ET_CPS4)
+                 case default
+                    planar = .false.
+                 end select
+                 if (first) then
+                    t = d/len_e
+                    first = .false.
+                    ! the normal points out of the master element
+                    cen = sum(sub%x(:, sub%elem_nodes(1:nn, e)), dim=2)/nn
+                    mid = (sub%x(:, a) + sub%x(:, b))/2
+                    ref = mid - cen
+                    if (nn == 2) ref = 0.0_wp
+                    select case (sub%elem_type(e))
+                    case (ET_S3, ET_S4)
+                       w = face_normal(sub%x(:, sub%elem_nodes(1:nn, e)))
+                    case default
+                       w = [0.0_wp, 0.0_wp, 1.0_wp]
+                    end select
+                 else if (norm2(cross(t, d/len_e)) > FLAT_TOL) then
+                    call report_loc(st, cb%loc, '*INTERFACE '//cb%name//': the edges on node set '// &
+                         ref_text(cb%iface_master)//' are not on one straight line (element '// &
+                         itoa(sub%elem_id(e))//'); split the joint into straight *INTERFACE cards')
+                    return
+                 end if
+              end do
+           end do
+           what = 'length'
+           if (.not. first) then
+              if (.not. planar .and. all(w == [0.0_wp, 0.0_wp, 1.0_wp]) .and. norm2(ref) == 0.0_wp) then
+                 call report_loc(st, cb%loc, '*INTERFACE '//cb%name//': a joint along 3D beams or trusses has '// &
+                      'no normal direction; use *CONTACT with an *ORIENTATION')
+                 return
+              end if
+              n = cross(w, t)
+              n = n/norm2(n)
+              if (dot_product(n, ref) < 0.0_wp) n = -n
+              ! tangential axis: w × n (in 2D the normal turned 90 degrees counterclockwise)
+              t = cross(w, n)
+              t = t/norm2(t)
+           end if
+        end if
+        if (first) then
+           call report_loc(st, cb%loc, '*INTERFACE '//cb%name//': no element edge or face of '// &
+                model%subs(c%master_sub)%name//' lies on node set '//ref_text(cb%iface_master))
+           return
+        end if
+        ! frame: 1 normal, 2 and 3 tangential
+        n = n/norm2(n)
+        if (face) then
+           d = [1.0_wp, 0.0_wp, 0.0_wp]
+           if (abs(n(1)) > 0.9_wp) d = [0.0_wp, 1.0_wp, 0.0_wp]
+           t = d - dot_product(d, n)*n
+           t = t/norm2(t)
+        end if
+        q(1, :) = n
+        q(2, :) = t
+        q(3, :) = cross(n, t)
+        ! pairing by position
+        if (cb%tol < 0.0_wp) then
+           lo = sub%x(:, ms(1))
+           hi = lo
+           do i = 1, size(ms, kind=ip)
+              lo = min(lo, sub%x(:, ms(i)))
+              hi = max(hi, sub%x(:, ms(i)))
+           end do
+           cb%tol = DEFAULT_TOL*norm2(hi - lo)
+        end if
+        call pair_nearest(st, model, k, cb%iface_loc, ms, ss, ok1)
+        if (.not. ok1) return
+        allocate (new(size(ms)))
+        do p = 1, size(ms, kind=ip)
+           if (trib(ms(p)) == 0.0_wp) then
+              call report_loc(st, cb%iface_loc, '*INTERFACE '//cb%name//': node '// &
+                   node_label(model, c%master_sub, ms(p))//' lies on no edge or face of the joint '// &
+                   '(no tributary '//what//')')
+              return
+           end if
+           new(p)%contact = k
+           new(p)%master_node = ms(p)
+           new(p)%slave_node = ss(p)
+           new(p)%loc = cb%iface_loc
+           call set_dof(new(p), 1, cb%kn*trib(ms(p)))
+           call set_dof(new(p), 2, cb%kt*trib(ms(p)))
+           if (.not. (planar .and. .not. face)) call set_dof(new(p), 3, cb%kt*trib(ms(p)))
+        end do
+      end associate
+      model%orientations = [model%orientations, orientation_t(name=cb%name, q=q, loc=cb%loc)]
+      c%orientation = size(model%orientations)
+      model%links = [model%links, new]
+    end associate
+  contains
+    logical function shared_edge(e, a, b)
+      !! The edge a-b was counted already on an earlier element.
+      integer(ip), intent(in) :: e, a, b
+      integer(ip) :: f
+      integer :: jj, nf, mm
+      shared_edge = .false.
+      associate (sub => model%subs(model%contacts(k)%master_sub))
+        do f = 1, e - 1
+           nf = ELEMENT_NODE_COUNT(sub%elem_type(f))
+           mm = merge(1, nf, nf == 2)
+           do jj = 1, mm
+              if ((sub%elem_nodes(jj, f) == a .and. sub%elem_nodes(mod(jj, nf) + 1, f) == b) .or. &
+                   (sub%elem_nodes(jj, f) == b .and. sub%elem_nodes(mod(jj, nf) + 1, f) == a)) then
+                 shared_edge = .true.
+                 return
+              end if
+           end do
+        end do
+      end associate
+    end function shared_edge
+    subroutine set_dof(l, dof, g)
+      type(link_t), intent(inout) :: l
+      integer, intent(in) :: dof
+      real(wp), intent(in) :: g
+      if (g > 0.0_wp) then
+         l%state(dof) = LINK_FINITE
+         l%g(dof) = g
+      end if
+    end subroutine set_dof
+  end subroutine build_interface
+
+  pure function face_normal(x) result(normal)
+    !! Unit normal of a 3- or 4-node face (right hand on the node order).
+    real(wp), intent(in) :: x(:, :)
+    real(wp) :: normal(3)
+    if (size(x, 2) == 3) then
+       normal = cross(x(:, 2) - x(:, 1), x(:, 3) - x(:, 1))
+    else
+       normal = cross(x(:, 3) - x(:, 1), x(:, 4) - x(:, 2))
+    end if
+    normal = normal/norm2(normal)
+  end function face_normal
+
+  subroutine face_share(x, trib, nodes, normal)
+    !! Adds the tributary area of each node of a 3- or 4-node face to trib(nodes)
+    !! (nodes 0: not added) and returns the unit normal (right hand on the node order).
+    !! Triangles: A/3 per node; quadrilaterals: the integral of the bilinear shape
+    !! function of the node (2x2 Gauss, exact).
+    real(wp), intent(in) :: x(:, :)
+    real(wp), intent(inout) :: trib(:)
+    integer(ip), intent(in) :: nodes(:)
+    real(wp), intent(out) :: normal(3)
+    real(wp), parameter :: GP = 1.0_wp/sqrt(3.0_wp)
+    real(wp), parameter :: XI(4) = [-1.0_wp, 1.0_wp, 1.0_wp, -1.0_wp], ETA(4) = [-1.0_wp, -1.0_wp, 1.0_wp, 1.0_wp]
+    real(wp) :: v(3), dxi(3), deta(3), da, nsh
+    integer :: i, g
+    if (size(nodes) == 3) then
+       v = cross(x(:, 2) - x(:, 1), x(:, 3) - x(:, 1))
+       normal = v/norm2(v)
+       do i = 1, 3
+          if (nodes(i) > 0) trib(nodes(i)) = trib(nodes(i)) + norm2(v)/6.0_wp
+       end do
+       return
+    end if
+    v = cross(x(:, 3) - x(:, 1), x(:, 4) - x(:, 2))
+    normal = v/norm2(v)
+    do g = 1, 4
+       dxi = 0.0_wp
+       deta = 0.0_wp
+       do i = 1, 4
+          dxi = dxi + XI(i)*(1.0_wp + ETA(i)*ETA(g)*GP)/4.0_wp*x(:, i)
+          deta = deta + ETA(i)*(1.0_wp + XI(i)*XI(g)*GP)/4.0_wp*x(:, i)
+       end do
+       da = norm2(cross(dxi, deta))
+       do i = 1, 4
+          nsh = (1.0_wp + XI(i)*XI(g)*GP)*(1.0_wp + ETA(i)*ETA(g)*GP)/4.0_wp
+          if (nodes(i) > 0) trib(nodes(i)) = trib(nodes(i)) + nsh*da
+       end do
+    end do
+  end subroutine face_share
 
   ! ================================================================== *CHANGE CONTACT
 

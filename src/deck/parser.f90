@@ -90,6 +90,18 @@ module superjoin_deck_parser
        type(source_loc_t), intent(in) :: loc
        type(contact_b_t), intent(inout) :: c
      end subroutine contact_pair_params
+     module subroutine kw_interface(st, kw, loc)
+       !! *INTERFACE, NAME=j, MASTER=s1, SLAVE=s2, KN=kn, KT=kt[, TOL=t].
+       type(deck_state_t), intent(inout) :: st
+       type(keyword_line_t), intent(in) :: kw
+       type(source_loc_t), intent(in) :: loc
+     end subroutine kw_interface
+     module subroutine data_interface(st, line, loc)
+       !! The data line of *INTERFACE: master nset, slave nset.
+       type(deck_state_t), intent(inout) :: st
+       character(*), intent(in) :: line
+       type(source_loc_t), intent(in) :: loc
+     end subroutine data_interface
      module subroutine kw_change_contact(st, kw, loc)
        !! *CHANGE CONTACT, NAME=j[, G=values] inside *STEP.
        type(deck_state_t), intent(inout) :: st
@@ -317,6 +329,8 @@ contains
        call kw_assembly(st, kw, loc)
     case ('CHANGE CONTACT')
        call kw_change_contact(st, kw, loc)
+    case ('INTERFACE')
+       call kw_interface(st, kw, loc)
     case default
        call report_loc(st, loc, 'unknown keyword *'//clip(kw%keyword))
        st%card = CARD_SKIP
@@ -966,6 +980,8 @@ contains
        call data_instance(st, line, loc)
     case (CARD_CHANGE_CONTACT)
        call data_change_contact(st, line, loc)
+    case (CARD_INTERFACE)
+       call data_interface(st, line, loc)
     end select
   end subroutine data_line
 

@@ -344,6 +344,87 @@ contains
     end if
   end subroutine contact_pair_params
 
+  ! ================================================================== *INTERFACE
+
+  module subroutine kw_interface(st, kw, loc)
+    type(deck_state_t), intent(inout) :: st
+    type(keyword_line_t), intent(in) :: kw
+    type(source_loc_t), intent(in) :: loc
+    type(contact_b_t) :: c
+    logical :: f1, f2, f3
+    integer :: k
+    if (.not. outside_step(st, kw, loc)) return
+    call check_params(st, kw, loc, [character(NAME_LEN) :: 'NAME', 'MASTER', 'SLAVE', 'KN', 'KT', 'TOL'], &
+         [character(NAME_LEN) ::])
+    st%card = CARD_SKIP
+    call get_name_param(st, kw, loc, 'NAME', .true., c%name, f1)
+    call get_name_param(st, kw, loc, 'MASTER', .true., c%master, f2)
+    call get_name_param(st, kw, loc, 'SLAVE', .true., c%slave, f3)
+    if (.not. (f1 .and. f2 .and. f3)) return
+    if (.not. stiffness_param('KN', c%kn)) return
+    if (.not. stiffness_param('KT', c%kt)) return
+    c%tol = -1.0_wp
+    if (param_index(kw, 'TOL') > 0) then
+       if (.not. real_param('TOL', c%tol)) return
+       if (.not. (c%tol >= 0.0_wp)) then
+          call report_loc(st, loc, 'TOL must not be negative')
+          return
+       end if
+    end if
+    do k = 1, st%ncontact
+       if (st%contacts(k)%name == c%name) then
+          call report_loc(st, loc, 'duplicate contact name '//c%name//' (first defined at '// &
+               loc_string(st, st%contacts(k)%loc)//')')
+          return
+       end if
+    end do
+    c%is_interface = .true.
+    c%nearest = .true.
+    c%loc = loc
+    call add_contact(st, c, st%card_item)
+    st%card = CARD_INTERFACE
+  contains
+    logical function real_param(name, x) result(ok)
+      character(*), intent(in) :: name
+      real(wp), intent(out) :: x
+      character(:), allocatable :: value
+      logical :: found
+      integer :: stat
+      x = 0.0_wp
+      call get_param(st, kw, loc, name, .true., value, found)
+      ok = found
+      if (.not. ok) return
+      call parse_real(value, x, stat)
+      ok = stat == TOK_OK
+      if (.not. ok) call report_loc(st, loc, name//'=: '//real_message(value, stat))
+    end function real_param
+    logical function stiffness_param(name, x) result(ok)
+      character(*), intent(in) :: name
+      real(wp), intent(out) :: x
+      ok = real_param(name, x)
+      if (.not. ok) return
+      ok = x >= 0.0_wp
+      if (.not. ok) call report_loc(st, loc, name//' must be >= 0 (stiffness per unit length or area)')
+    end function stiffness_param
+  end subroutine kw_interface
+
+  module subroutine data_interface(st, line, loc)
+    type(deck_state_t), intent(inout) :: st
+    character(*), intent(in) :: line
+    type(source_loc_t), intent(in) :: loc
+    associate (c => st%contacts(st%card_item))
+      if (st%card_ndata > 1) then
+         call report_loc(st, loc, 'too many data lines for *INTERFACE (one line: master nset, slave nset)')
+         st%card = CARD_SKIP
+         return
+      end if
+      if (.not. field_count(st, loc, 2, 2, 'master node set, slave node set')) return
+      if (.not. parse_ref(st, fld(st, line, 1), .false., 0, loc, c%iface_master)) return
+      if (.not. parse_ref(st, fld(st, line, 2), .false., 0, loc, c%iface_slave)) return
+      c%iface_loc = loc
+    end associate
+  end subroutine data_interface
+
   ! ================================================================== *CHANGE CONTACT
 
   module subroutine kw_change_contact(st, kw, loc)

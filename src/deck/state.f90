@@ -95,7 +95,11 @@ module superjoin_deck_state
      character(:), allocatable :: name, master, slave, orientation
      type(source_loc_t) :: loc
      logical :: nearest = .false.          !! PAIR=NEAREST: slave nodes take the nearest master node
-     real(wp) :: tol = 0.0_wp              !! TOL= of PAIR=NEAREST
+     real(wp) :: tol = 0.0_wp              !! TOL= of PAIR=NEAREST (*INTERFACE: < 0 until set)
+     logical :: is_interface = .false.     !! an *INTERFACE card (Goodman joint)
+     real(wp) :: kn = 0.0_wp, kt = 0.0_wp  !! *INTERFACE: stiffness per unit length or area
+     type(ref_t) :: iface_master, iface_slave   !! *INTERFACE: its data line (master nset, slave nset)
+     type(source_loc_t) :: iface_loc       !! *INTERFACE: the data line (line 0: none)
   end type contact_b_t
 
   type, public :: cline_b_t

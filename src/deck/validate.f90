@@ -16,7 +16,7 @@ module superjoin_deck_validate
   private
 
   public :: build_model
-  public :: resolve_items, where
+  public :: resolve_items, where, ref_text
     !! Public only because the submodule superjoin_deck_assembly calls them:
     !! gfortran 12 does not export private module procedures to submodules.
 
@@ -70,6 +70,11 @@ module superjoin_deck_validate
        character(*), intent(in) :: name
        character(:), allocatable :: s
      end function part_hint
+     module subroutine build_interfaces(st, model)
+       !! *INTERFACE: Goodman joints lumped to contact elements by tributary length or area.
+       type(deck_state_t), intent(inout) :: st
+       type(model_t), intent(inout) :: model
+     end subroutine build_interfaces
      module subroutine build_overrides(st, model)
        !! *CHANGE CONTACT: per-step link overrides; SWEEP steps expanded.
        type(deck_state_t), intent(inout) :: st
@@ -129,6 +134,8 @@ contains
     call place_instances(st, model)
     if (st%aborted) return
     call build_contacts(st, model)
+    if (st%aborted) return
+    call build_interfaces(st, model)
     if (st%aborted) return
     call build_supports(st, model)
     if (st%aborted) return

@@ -6,7 +6,7 @@ program superjoin_main
   use superjoin_error, only: error_t, EXIT_OK, EXIT_USAGE, EXIT_IO
   use superjoin_model_types, only: model_t, FORM_TRANSFORM, FORM_PENALTY, CONDENSE_YES, CONDENSE_NO, CONDENSE_AUTO
   use superjoin_deck_reader, only: read_deck
-  use superjoin_analysis, only: solve_model
+  use superjoin_analysis_joint_steps, only: solve_joint_steps
   use superjoin_analysis_results, only: results_t, run_options_t, PH_READ, PH_WRITE
   use superjoin_output_listing, only: write_listing
   use superjoin_output_csv, only: write_csv
@@ -60,7 +60,7 @@ program superjoin_main
      stop EXIT_OK, quiet=.true.
   end if
 
-  call solve_model(model, opts, res, error)
+  call solve_joint_steps(model, opts, res, error)
   call fail_on(error, deck)
   res%phase_seconds(PH_READ) = t_read
   do i = 1, size(res%warnings)

@@ -14,6 +14,7 @@ module superjoin_deck_parser
        TOK_OK, TOK_RANGE, TOK_NONFINITE
   use superjoin_deck_state, only: deck_state_t, sec_b_t, contact_b_t, cline_b_t, support_b_t, &
        load_b_t, ref_t, report, report_loc, report_oom, new_sub, find_sub, find_set, new_set, add_chunk, &
+       override_b_t, SUBK_PART, SUBK_INSTANCE, &
        push_pool, add_node, add_element, add_heading, add_material, add_orientation, &
        add_section, add_contact, add_cline, add_support, add_step, add_load, &
        MAX_INCLUDE_DEPTH, CH_IDS, CH_GEN, CH_RANGE, CH_REF, BEAM_2D_VALUES, BEAM_3D_VALUES
@@ -23,12 +24,18 @@ module superjoin_deck_parser
   private
 
   public :: parse_source, finish_parse, register_file
+  public :: outside_step, check_params, param_index, get_param, get_name_param, field_count, fld, get_real, &
+       real_message, get_dof_range, get_stiffness, parse_ref, loc_string
+    !! Card helpers, public only because the submodule superjoin_deck_parts calls
+    !! them: gfortran 12 does not export private module procedures to submodules.
 
   integer, parameter :: CARD_NONE = 0, CARD_SKIP = 1, CARD_NODATA = 2, CARD_HEADING = 3, &
        CARD_NODE = 4, CARD_ELEMENT = 5, CARD_NSET = 6, CARD_ELSET = 7, CARD_SECTION = 8, &
        CARD_ELASTIC = 9, CARD_ORIENTATION = 10, CARD_CONTACT = 11, CARD_SUPPORT = 12, &
        CARD_BOUNDARY = 13, CARD_CLOAD = 14, CARD_DLOAD = 15, CARD_DENSITY = 16
     !! What the current card does with data lines.
+  integer, parameter :: CARD_INSTANCE = 101, CARD_CHANGE_CONTACT = 102, CARD_INTERFACE = 103
+    !! Cards of parts, instances and joint studies (submodule superjoin_deck_parts).
 
   character(*), parameter :: MAIN_NAME = 'MAIN'
     !! Name of the implicit substructure.
@@ -50,6 +57,64 @@ module superjoin_deck_parser
        GRAV_FIELDS = 6
   integer, parameter :: SUPPORT_FIELDS_MIN = 3, SUPPORT_FIELDS_MAX = 4
   integer, parameter :: BOUNDARY_FIELDS_MIN = 2, BOUNDARY_FIELDS_MAX = 4
+
+  interface
+    !! Parts, assembly, instances and joint studies: submodule superjoin_deck_parts (parts.f90).
+     module subroutine kw_assembly(st, kw, loc)
+       !! *PART, *END PART, *ASSEMBLY, *END ASSEMBLY, *INSTANCE, *END INSTANCE.
+       type(deck_state_t), intent(inout) :: st
+       type(keyword_line_t), intent(in) :: kw
+       type(source_loc_t), intent(in) :: loc
+     end subroutine kw_assembly
+     module logical function assembly_allows(st, kw, loc) result(ok)
+       !! False (card skipped, reported) when a keyword may not stand where it stands
+       !! (a load inside *PART, a card inside *INSTANCE, ...).
+       type(deck_state_t), intent(inout) :: st
+       type(keyword_line_t), intent(in) :: kw
+       type(source_loc_t), intent(in) :: loc
+     end function assembly_allows
+     module subroutine data_instance(st, line, loc)
+       !! Data lines of *INSTANCE: translation, then rotation (Abaqus form).
+       type(deck_state_t), intent(inout) :: st
+       character(*), intent(in) :: line
+       type(source_loc_t), intent(in) :: loc
+     end subroutine data_instance
+     module subroutine finish_assembly(st)
+       !! End of input: report unclosed *PART, *INSTANCE and *ASSEMBLY blocks.
+       type(deck_state_t), intent(inout) :: st
+     end subroutine finish_assembly
+     module subroutine contact_pair_params(st, kw, loc, c)
+       !! PAIR= and TOL= of *CONTACT.
+       type(deck_state_t), intent(inout) :: st
+       type(keyword_line_t), intent(in) :: kw
+       type(source_loc_t), intent(in) :: loc
+       type(contact_b_t), intent(inout) :: c
+     end subroutine contact_pair_params
+     module subroutine kw_interface(st, kw, loc)
+       !! *INTERFACE, NAME=j, MASTER=s1, SLAVE=s2, KN=kn, KT=kt[, TOL=t].
+       type(deck_state_t), intent(inout) :: st
+       type(keyword_line_t), intent(in) :: kw
+       type(source_loc_t), intent(in) :: loc
+     end subroutine kw_interface
+     module subroutine data_interface(st, line, loc)
+       !! The data line of *INTERFACE: master nset, slave nset.
+       type(deck_state_t), intent(inout) :: st
+       character(*), intent(in) :: line
+       type(source_loc_t), intent(in) :: loc
+     end subroutine data_interface
+     module subroutine kw_change_contact(st, kw, loc)
+       !! *CHANGE CONTACT, NAME=j[, G=values] inside *STEP.
+       type(deck_state_t), intent(inout) :: st
+       type(keyword_line_t), intent(in) :: kw
+       type(source_loc_t), intent(in) :: loc
+     end subroutine kw_change_contact
+     module subroutine data_change_contact(st, line, loc)
+       !! A data line of *CHANGE CONTACT (the form of *CONTACT's).
+       type(deck_state_t), intent(inout) :: st
+       character(*), intent(in) :: line
+       type(source_loc_t), intent(in) :: loc
+     end subroutine data_change_contact
+  end interface
 
   integer, parameter :: NUM_BC_TYPES = 8
     !! Abaqus *BOUNDARY shorthands and the DOFs they fix.
@@ -154,6 +219,7 @@ contains
     integer :: k
     type(source_loc_t) :: loc
     call end_card(st)
+    call finish_assembly(st)
     if (st%cur_sub > 0) call report_loc(st, st%subs(st%cur_sub)%loc, &
          '*SUBSTRUCTURE '//st%subs(st%cur_sub)%name//' has no *END SUBSTRUCTURE')
     if (st%cur_step > 0) call report_loc(st, st%steps(st%cur_step)%loc, &
@@ -192,6 +258,7 @@ contains
     prev_mat = st%cur_mat
     st%cur_mat = 0
     call set_card(st, CARD_NODATA, '*'//kw%keyword, loc)
+    if (.not. assembly_allows(st, kw, loc)) return
 
     select case (kw%keyword)
     case ('HEADING')
@@ -258,6 +325,12 @@ contains
        call kw_controls(st, kw, loc)
     case ('OUTPUT')
        call kw_output(st, kw, loc)
+    case ('PART', 'END PART', 'ASSEMBLY', 'END ASSEMBLY', 'INSTANCE', 'END INSTANCE')
+       call kw_assembly(st, kw, loc)
+    case ('CHANGE CONTACT')
+       call kw_change_contact(st, kw, loc)
+    case ('INTERFACE')
+       call kw_interface(st, kw, loc)
     case default
        call report_loc(st, loc, 'unknown keyword *'//clip(kw%keyword))
        st%card = CARD_SKIP
@@ -724,8 +797,9 @@ contains
     logical :: f1, f2, f3, f4
     integer :: k
     if (.not. outside_step(st, kw, loc)) return
-    call check_params(st, kw, loc, [character(NAME_LEN) :: 'NAME', 'MASTER', 'SLAVE', 'ORIENTATION'], &
-         [character(NAME_LEN) ::])
+    call check_params(st, kw, loc, [character(NAME_LEN) :: 'NAME', 'MASTER', 'SLAVE', 'ORIENTATION', &
+         'PAIR', 'TOL'], [character(NAME_LEN) ::])
+    call contact_pair_params(st, kw, loc, c)
     call get_name_param(st, kw, loc, 'NAME', .true., c%name, f1)
     call get_name_param(st, kw, loc, 'MASTER', .true., c%master, f2)
     call get_name_param(st, kw, loc, 'SLAVE', .true., c%slave, f3)
@@ -915,6 +989,12 @@ contains
        call data_boundary(st, line, loc)
     case (CARD_CLOAD, CARD_DLOAD)
        call data_load(st, line, loc)
+    case (CARD_INSTANCE)
+       call data_instance(st, line, loc)
+    case (CARD_CHANGE_CONTACT)
+       call data_change_contact(st, line, loc)
+    case (CARD_INTERFACE)
+       call data_interface(st, line, loc)
     end select
   end subroutine data_line
 

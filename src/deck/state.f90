@@ -63,7 +63,10 @@ module superjoin_deck_state
      type(chunk_t), allocatable :: chunks(:)
      integer :: npool = 0
      integer(ip), allocatable :: pool(:)
+     integer :: kind = 0                            !! SUBK_PLAIN, SUBK_PART or SUBK_INSTANCE
+     integer :: inst = 0                            !! SUBK_INSTANCE: index into instances
   end type sub_b_t
+
 
   type, public :: ref_t
     !! A node/element reference as written: `id`, `set`, `SUB.id` or `SUB.set`.
@@ -92,6 +95,12 @@ module superjoin_deck_state
     !! A *CONTACT card.
      character(:), allocatable :: name, master, slave, orientation
      type(source_loc_t) :: loc
+     logical :: nearest = .false.          !! PAIR=NEAREST: slave nodes take the nearest master node
+     real(wp) :: tol = 0.0_wp              !! TOL= of PAIR=NEAREST (*INTERFACE: < 0 until set)
+     logical :: is_interface = .false.     !! an *INTERFACE card (Goodman joint)
+     real(wp) :: kn = 0.0_wp, kt = 0.0_wp  !! *INTERFACE: stiffness per unit length or area
+     type(ref_t) :: iface_master, iface_slave   !! *INTERFACE: its data line (master nset, slave nset)
+     type(source_loc_t) :: iface_loc       !! *INTERFACE: the data line (line 0: none)
   end type contact_b_t
 
   type, public :: cline_b_t
@@ -126,12 +135,43 @@ module superjoin_deck_state
      type(source_loc_t) :: loc
   end type load_b_t
 
+  integer, parameter, public :: SUBK_PLAIN = 0, SUBK_PART = 1, SUBK_INSTANCE = 2
+    !! Kinds of entries of deck_state_t%subs: a substructure, a *PART (a mesh that
+    !! is only placed through instances), an *INSTANCE (filled from its part).
+
+  type, public :: instance_b_t
+    !! An *INSTANCE card: the part it places and the placement x' = rot x + shift.
+     character(:), allocatable :: part      !! part name (upper case)
+     integer :: sub = 0                     !! its entry in subs
+     integer :: ndata = 0                   !! data lines read (translation, rotation)
+     logical :: ok = .true.                 !! data lines valid
+     real(wp) :: rot(3, 3) = reshape([1.0_wp, 0.0_wp, 0.0_wp, 0.0_wp, 1.0_wp, 0.0_wp, &
+          0.0_wp, 0.0_wp, 1.0_wp], [3, 3])
+     real(wp) :: shift(3) = 0.0_wp
+     type(source_loc_t) :: loc
+  end type instance_b_t
+
+  type, public :: override_b_t
+    !! One data line of *CHANGE CONTACT in a step: master, slave, first dof, last
+    !! dof and one stiffness (several in a SWEEP: one per expanded step).
+     integer :: contact = 0                 !! index into contacts (0: unknown, reported)
+     type(ref_t) :: master, slave
+     integer :: first = 0, last = 0
+     integer, allocatable :: states(:)      !! LINK_* per value
+     real(wp), allocatable :: gs(:)         !! g per value
+     type(source_loc_t) :: loc
+  end type override_b_t
+
   type, public :: step_b_t
     !! A step as read.
      character(:), allocatable :: name
      type(source_loc_t) :: loc
      integer :: ncload = 0, ndload = 0
      type(load_b_t), allocatable :: cloads(:), dloads(:)
+     integer :: noverride = 0
+     type(override_b_t), allocatable :: overrides(:)   !! *CHANGE CONTACT lines
+     integer :: nsweep = 0                             !! SWEEP: number of values (0: no sweep)
+     type(source_loc_t) :: sweep_loc
   end type step_b_t
 
   type, public :: deck_state_t
@@ -168,7 +208,12 @@ module superjoin_deck_state
      character(:), allocatable :: vtk_path          !! *OUTPUT, VTK= resolved against its file's directory
      type(source_loc_t) :: vtk_loc
      integer :: nelem_cards = 0
+     integer :: ninst = 0
+     type(instance_b_t), allocatable :: instances(:)
      ! block and card state
+     integer :: cur_inst = 0               !! open *INSTANCE block
+     logical :: in_assembly = .false.      !! inside *ASSEMBLY ... *END ASSEMBLY
+     type(source_loc_t) :: assembly_loc
      integer :: cur_sub = 0                !! open *SUBSTRUCTURE block
      integer :: cur_step = 0               !! open *STEP block
      integer :: cur_mat = 0                !! material that *ELASTIC applies to
@@ -255,6 +300,7 @@ contains
     type(deck_state_t), intent(in) :: st
     character(*), intent(in) :: name
     do k = st%nsub, 1, -1
+       if (st%subs(k)%kind == SUBK_PART) cycle
        if (st%subs(k)%name == name) return
     end do
     k = 0

@@ -10,12 +10,15 @@ module superjoin_deck_validate
        ET_S3, ET_S4, DLOAD_PX, DLOAD_PY, DLOAD_PZ, DLOAD_P, DLOAD_GRAV, DLOAD_NAMES
   use superjoin_deck_lexer, only: itoa, plural
   use superjoin_deck_state, only: deck_state_t, sub_b_t, ref_t, load_b_t, report, report_loc, report_oom, find_set, &
-       CH_IDS, CH_GEN, CH_RANGE, CH_REF, BEAM_2D_VALUES, BEAM_3D_VALUES
+       CH_IDS, CH_GEN, CH_RANGE, CH_REF, BEAM_2D_VALUES, BEAM_3D_VALUES, SUBK_INSTANCE
   use superjoin_utils_strings, only: pick
   implicit none (type, external)
   private
 
   public :: build_model
+  public :: resolve_items, where, ref_text
+    !! Public only because the submodule superjoin_deck_assembly calls them:
+    !! gfortran 12 does not export private module procedures to submodules.
 
   character(*), parameter :: MAIN_NAME = 'MAIN'
   integer, parameter :: INITIAL_CAPACITY = 16
@@ -37,6 +40,47 @@ module superjoin_deck_validate
      integer :: n = 0
      type(link_t), allocatable :: a(:)
   end type link_list_t
+
+  interface
+    !! Parts, instances, PAIR=NEAREST and *CHANGE CONTACT: submodule superjoin_deck_assembly (assembly.f90).
+     module subroutine empty_sub(b, m)
+       !! An *INSTANCE entry before its part is copied in: a substructure with no nodes.
+       type(sub_b_t), intent(in) :: b
+       type(substructure_t), intent(out) :: m
+     end subroutine empty_sub
+     module subroutine place_instances(st, model)
+       !! Copy every part into its instances (placed), then drop the parts from
+       !! model%subs (references by index are renumbered).
+       type(deck_state_t), intent(inout) :: st
+       type(model_t), intent(inout) :: model
+     end subroutine place_instances
+     module subroutine pair_nearest(st, model, icontact, loc, ms, ss, ok)
+       !! PAIR=NEAREST: ms becomes, for each slave node ss(j), its nearest master node.
+       type(deck_state_t), intent(inout) :: st
+       type(model_t), intent(in) :: model
+       integer, intent(in) :: icontact
+       type(source_loc_t), intent(in) :: loc
+       integer(ip), allocatable, intent(inout) :: ms(:)
+       integer(ip), intent(in) :: ss(:)
+       logical, intent(out) :: ok
+     end subroutine pair_nearest
+     module function part_hint(model, name) result(s)
+       !! ' (NAME is a part: name one of its instances)' when NAME is a part, else ''.
+       type(model_t), intent(in) :: model
+       character(*), intent(in) :: name
+       character(:), allocatable :: s
+     end function part_hint
+     module subroutine build_interfaces(st, model)
+       !! *INTERFACE: Goodman joints lumped to contact elements by tributary length or area.
+       type(deck_state_t), intent(inout) :: st
+       type(model_t), intent(inout) :: model
+     end subroutine build_interfaces
+     module subroutine build_overrides(st, model)
+       !! *CHANGE CONTACT: per-step link overrides; SWEEP steps expanded.
+       type(deck_state_t), intent(inout) :: st
+       type(model_t), intent(inout) :: model
+     end subroutine build_overrides
+  end interface
 
 contains
 
@@ -77,17 +121,27 @@ contains
     allocate (model%subs(st%nsub))
     if (st%nsub == 0) call report(st, 1, 1, 'the deck defines no nodes')
     do k = 1, st%nsub
+       if (st%subs(k)%kind == SUBK_INSTANCE) then
+          call empty_sub(st%subs(k), model%subs(k))
+          cycle
+       end if
        call build_sub(st, st%subs(k), model%subs(k))
        if (st%aborted) return
     end do
     call build_sections(st, model)
     if (st%aborted) return
     call check_unassigned(st, model)
+    call place_instances(st, model)
+    if (st%aborted) return
     call build_contacts(st, model)
+    if (st%aborted) return
+    call build_interfaces(st, model)
     if (st%aborted) return
     call build_supports(st, model)
     if (st%aborted) return
     call build_steps(st, model)
+    if (st%aborted) return
+    call build_overrides(st, model)
   end subroutine build_model
 
   ! ================================================================== substructures
@@ -583,7 +637,7 @@ contains
     if (allocated(ref%scope)) then
        isub = sub_index(model, ref%scope)
        if (isub == 0) call report_loc(st, loc, 'unknown substructure '//ref%scope//' in '// &
-            ref_text(ref))
+            ref_text(ref)//part_hint(model, ref%scope))
     else if (ref%home > 0) then
        isub = ref%home
     else
@@ -686,8 +740,10 @@ contains
          c%loc = cb%loc
          c%master_sub = sub_index(model, cb%master)
          c%slave_sub = sub_index(model, cb%slave)
-         if (c%master_sub == 0) call report_loc(st, cb%loc, 'unknown substructure '//cb%master//' in MASTER=')
-         if (c%slave_sub == 0) call report_loc(st, cb%loc, 'unknown substructure '//cb%slave//' in SLAVE=')
+         if (c%master_sub == 0) call report_loc(st, cb%loc, 'unknown substructure '//cb%master//' in MASTER='// &
+              part_hint(model, cb%master))
+         if (c%slave_sub == 0) call report_loc(st, cb%loc, 'unknown substructure '//cb%slave//' in SLAVE='// &
+              part_hint(model, cb%slave))
          c%orientation = 0
          if (allocated(cb%orientation)) then
             if (len(cb%orientation) > 0) then
@@ -715,6 +771,10 @@ contains
            call resolve_items(st, model, c%master_sub, cl%master, .false., cl%loc, ms, ok1)
            call resolve_items(st, model, c%slave_sub, cl%slave, .false., cl%loc, ss, ok2)
            if (.not. (ok1 .and. ok2)) cycle
+           if (st%contacts(cur)%nearest) then
+              call pair_nearest(st, model, cur, cl%loc, ms, ss, ok1)
+              if (.not. ok1) cycle
+           end if
            if (size(ms) /= size(ss)) then
               if (.not. cl%master%is_set .or. .not. cl%slave%is_set) then
                  call report_loc(st, cl%loc, 'node '//ref_text(pick_node(cl%master, cl%slave))// &

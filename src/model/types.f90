@@ -101,6 +101,10 @@ module superjoin_model_types
      integer(ip), allocatable :: elem_order(:)      !! local indices sorted by user id
      integer :: condense = CONDENSE_AUTO            !! CONDENSE_* from *SUBSTRUCTURE
      type(source_loc_t) :: loc
+     integer :: part = 0                            !! *INSTANCE: index into model%parts (0: plain substructure)
+     real(wp) :: rot(3, 3) = reshape([1.0_wp, 0.0_wp, 0.0_wp, 0.0_wp, 1.0_wp, 0.0_wp, &
+          0.0_wp, 0.0_wp, 1.0_wp], [3, 3])          !! *INSTANCE placement: x = rot x_part + shift
+     real(wp) :: shift(3) = 0.0_wp
   end type substructure_t
 
   type, public :: orientation_t
@@ -161,12 +165,21 @@ module superjoin_model_types
      type(source_loc_t) :: loc
   end type dload_t
 
+  type, public :: link_override_t
+    !! *CHANGE CONTACT in a step: new states of some DOFs of one link, for that step only.
+     integer :: link = 0                   !! index into model%links
+     logical :: dofs(NDOF_NODE) = .false.  !! DOFs that change
+     integer :: state(NDOF_NODE) = LINK_NONE
+     real(wp) :: g(NDOF_NODE) = 0.0_wp
+  end type link_override_t
+
   type, public :: step_t
     !! A load case.
      character(:), allocatable :: name     !! as written (upper-cased)
      type(cload_t), allocatable :: cloads(:)
      type(dload_t), allocatable :: dloads(:)
      type(source_loc_t) :: loc
+     type(link_override_t), allocatable :: link_overrides(:)  !! *CHANGE CONTACT (unallocated or empty: none)
   end type step_t
 
   type, public :: controls_t
@@ -189,6 +202,7 @@ module superjoin_model_types
      type(step_t), allocatable :: steps(:)
      type(controls_t) :: controls
      character(:), allocatable :: vtk_path          !! *OUTPUT, VTK= joined to its deck file's directory, or unallocated
+     type(string_t), allocatable :: parts(:)        !! *PART names; subs(i)%part indexes this list
   end type model_t
 
   public :: find_node, find_elem, node_label, loc_text

@@ -1,0 +1,216 @@
+module superjoin_analysis_joint_steps
+  !! Joint studies: steps whose contact stiffnesses differ (*CHANGE CONTACT).
+  !!
+  !! A wrapper around solve_model that does not touch the analysis itself: the
+  !! steps are grouped by their set of link overrides; each group is solved as a
+  !! model of its own (the model with the overrides applied to its links and only
+  !! that group's steps), one factorization per group; the per-group results are
+  !! merged into one results_t in the original step order. Without any
+  !! *CHANGE CONTACT this is exactly solve_model.
+  use superjoin_kinds, only: wp, i8
+  use superjoin_error, only: error_t
+  use superjoin_model_types, only: model_t, link_override_t, string_t
+  use superjoin_analysis, only: solve_model
+  use superjoin_analysis_results, only: results_t, run_options_t
+  use superjoin_utils_strings, only: itoa
+  implicit none (type, external)
+  private
+
+  public :: solve_joint_steps, has_joint_changes
+
+contains
+
+  pure logical function has_joint_changes(model)
+    !! Whether some step changes contact stiffnesses.
+    type(model_t), intent(in) :: model
+    integer :: s
+    has_joint_changes = .false.
+    if (.not. allocated(model%steps)) return
+    do s = 1, size(model%steps)
+       if (allocated(model%steps(s)%link_overrides)) then
+          if (size(model%steps(s)%link_overrides) > 0) has_joint_changes = .true.
+       end if
+    end do
+  end function has_joint_changes
+
+  subroutine solve_joint_steps(model, opts, res, error)
+    !! Solve every step of a validated model, steps with *CHANGE CONTACT with
+    !! their own contact stiffnesses (one factorization per distinct set).
+    type(model_t), intent(in) :: model
+    type(run_options_t), intent(in) :: opts
+    type(results_t), intent(out) :: res
+    type(error_t), allocatable, intent(out) :: error
+    integer, allocatable :: group(:), members(:)
+    integer :: ngroup, s, t, g, nstep
+    type(model_t) :: sub
+    type(results_t) :: r
+
+    if (.not. has_joint_changes(model)) then
+       call solve_model(model, opts, res, error)
+       return
+    end if
+    nstep = size(model%steps)
+    allocate (group(nstep))
+    ngroup = 0
+    do s = 1, nstep
+       group(s) = 0
+       do t = 1, s - 1
+          if (same_overrides(model%steps(s)%link_overrides, model%steps(t)%link_overrides)) then
+             group(s) = group(t)
+             exit
+          end if
+       end do
+       if (group(s) == 0) then
+          ngroup = ngroup + 1
+          group(s) = ngroup
+       end if
+    end do
+
+    do g = 1, ngroup
+       members = pack([(s, s=1, nstep)], group == g)
+       sub = model
+       sub%steps = model%steps(members)
+       do s = 1, size(sub%steps)
+          if (allocated(sub%steps(s)%link_overrides)) deallocate (sub%steps(s)%link_overrides)
+       end do
+       call apply_overrides(model%steps(members(1))%link_overrides, sub)
+       call solve_model(sub, opts, r, error)
+       if (allocated(error)) return
+       call merge_results(r, members, nstep, g == 1, res)
+       call note_group(model, members, res)
+    end do
+    res%notes = [res%notes, string_t('joint study (*CHANGE CONTACT): '//itoa(ngroup)// &
+         ' sets of contact stiffnesses, '//itoa(ngroup)//' factorizations; the counts above '// &
+         'and MAXRATIO are the largest over them')]
+  end subroutine solve_joint_steps
+
+  pure logical function same_overrides(a, b)
+    !! Two steps change the same links to the same states.
+    type(link_override_t), allocatable, intent(in) :: a(:), b(:)
+    integer :: na, nb, i
+    na = 0
+    nb = 0
+    if (allocated(a)) na = size(a)
+    if (allocated(b)) nb = size(b)
+    same_overrides = na == nb
+    if (.not. same_overrides) return
+    do i = 1, na
+       if (a(i)%link /= b(i)%link .or. any(a(i)%dofs .neqv. b(i)%dofs) .or. &
+            any(a(i)%state /= b(i)%state) .or. any(a(i)%g /= b(i)%g)) then
+          same_overrides = .false.
+          return
+       end if
+    end do
+  end function same_overrides
+
+  subroutine apply_overrides(list, sub)
+    !! The links of sub with the overrides of list.
+    type(link_override_t), allocatable, intent(in) :: list(:)
+    type(model_t), intent(inout) :: sub
+    integer :: i, d
+    if (.not. allocated(list)) return
+    do i = 1, size(list)
+       associate (l => sub%links(list(i)%link))
+         do d = 1, size(list(i)%dofs)
+            if (.not. list(i)%dofs(d)) cycle
+            l%state(d) = list(i)%state(d)
+            l%g(d) = list(i)%g(d)
+         end do
+       end associate
+    end do
+  end subroutine apply_overrides
+
+  subroutine merge_results(r, members, nstep, first, res)
+    !! Put the results r of the steps `members` into res (nstep steps in all).
+    type(results_t), intent(in) :: r
+    integer, intent(in) :: members(:), nstep
+    logical, intent(in) :: first
+    type(results_t), intent(inout) :: res
+    integer :: k, i
+    if (first) then
+       res = r
+       if (allocated(r%u)) then
+          deallocate (res%u)
+          allocate (res%u(size(r%u, 1), nstep))
+          res%u = 0.0_wp
+       end if
+       if (allocated(r%elem_force)) then
+          deallocate (res%elem_force)
+          allocate (res%elem_force(size(r%elem_force, 1), size(r%elem_force, 2), size(r%elem_force, 3), nstep))
+          res%elem_force = 0.0_wp
+       end if
+       if (allocated(r%plate)) then
+          deallocate (res%plate)
+          allocate (res%plate(size(r%plate, 1), size(r%plate, 2), nstep))
+          res%plate = 0.0_wp
+       end if
+       deallocate (res%steps)
+       allocate (res%steps(nstep))
+    else
+       res%nphys = max(res%nphys, r%nphys)
+       res%ncol = max(res%ncol, r%ncol)
+       res%neq = max(res%neq, r%neq)
+       res%ndelta = max(res%ndelta, r%ndelta)
+       res%matrix_nnz = max(res%matrix_nnz, r%matrix_nnz)
+       res%factor_nnz = max(res%factor_nnz, r%factor_nnz)
+       res%n_tree = max(res%n_tree, r%n_tree)
+       res%n_plain = max(res%n_plain, r%n_plain)
+       res%n_support_units = max(res%n_support_units, r%n_support_units)
+       res%sub_dofs = max(res%sub_dofs, r%sub_dofs)
+       res%sub_boundary = max(res%sub_boundary, r%sub_boundary)
+       res%has_dof = res%has_dof .or. r%has_dof
+       res%link_used = res%link_used .or. r%link_used
+       if (r%maxratio > res%maxratio) then
+          res%maxratio = r%maxratio
+          res%maxratio_at = r%maxratio_at
+       end if
+       res%cond_est = max(res%cond_est, r%cond_est)
+       res%phase_seconds = res%phase_seconds + r%phase_seconds
+       res%factor_mbytes = max(res%factor_mbytes, r%factor_mbytes)
+       do i = 1, size(r%notes)
+          if (.not. any_string(res%notes, r%notes(i)%s)) res%notes = [res%notes, r%notes(i)]
+       end do
+       do i = 1, size(r%warnings)
+          if (.not. any_string(res%warnings, r%warnings(i)%s)) res%warnings = [res%warnings, r%warnings(i)]
+       end do
+    end if
+    do k = 1, size(members)
+       if (allocated(r%u)) res%u(:, members(k)) = r%u(:, k)
+       if (allocated(r%elem_force)) res%elem_force(:, :, :, members(k)) = r%elem_force(:, :, :, k)
+       if (allocated(r%plate)) res%plate(:, :, members(k)) = r%plate(:, :, k)
+       res%steps(members(k)) = r%steps(k)
+    end do
+  end subroutine merge_results
+
+  pure logical function any_string(list, s)
+    type(string_t), allocatable, intent(in) :: list(:)
+    character(*), intent(in) :: s
+    integer :: i
+    any_string = .false.
+    if (.not. allocated(list)) return
+    do i = 1, size(list)
+       if (list(i)%s == s) any_string = .true.
+    end do
+  end function any_string
+
+  subroutine note_group(model, members, res)
+    !! A listing note naming the steps of one group and what they change.
+    type(model_t), intent(in) :: model
+    integer, intent(in) :: members(:)
+    type(results_t), intent(inout) :: res
+    character(:), allocatable :: text
+    integer :: k, n
+    n = 0
+    if (allocated(model%steps(members(1))%link_overrides)) n = size(model%steps(members(1))%link_overrides)
+    text = 'steps'
+    do k = 1, size(members)
+       text = text//' '//model%steps(members(k))%name
+    end do
+    if (n == 0) then
+       text = text//': contact stiffnesses as defined'
+    else
+       text = text//': *CHANGE CONTACT on '//itoa(n)//' contact element(s)'
+    end if
+    res%notes = [res%notes, string_t(text)]
+  end subroutine note_group
+end module superjoin_analysis_joint_steps

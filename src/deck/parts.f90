@@ -1,0 +1,529 @@
+submodule (superjoin_deck_parser) superjoin_deck_parts
+  !! Parser side of parts, assemblies and joint studies:
+  !!
+  !! - `*PART, NAME=p` ... `*END PART`: a mesh (nodes, elements, sets, sections)
+  !!   that is not part of the structure by itself;
+  !! - `*ASSEMBLY` ... `*END ASSEMBLY` with `*INSTANCE, NAME=i, PART=p` ...
+  !!   `*END INSTANCE`: places a copy of part p as substructure i. Optional data
+  !!   lines as Abaqus: a translation `tx, ty, tz`, then a rotation
+  !!   `ax, ay, az, bx, by, bz, angle` (degrees, right hand about the axis from
+  !!   point a to point b). The translation is applied first, then the rotation
+  !!   about the axis through a and b (assembly coordinates):
+  !!   x' = a + R (x + t - a);
+  !! - `PAIR=NEAREST, TOL=t` on `*CONTACT`;
+  !! - `*CHANGE CONTACT, NAME=j[, SWEEP]` inside `*STEP`.
+  !!
+  !! The placement itself (copying the part into its instances) is done by the
+  !! validation pass (superjoin_deck_assembly).
+  use superjoin_deck_state, only: instance_b_t
+  implicit none (type, external)
+
+  integer, parameter :: TRANSLATION_FIELDS = 3, ROTATION_FIELDS = 7
+  real(wp), parameter :: AXIS_TOL = 1.0e-12_wp
+    !! The rotation axis is degenerate when |b - a| <= AXIS_TOL max(|a|, |b|) (or 0).
+  real(wp), parameter :: RIGHT_ANGLE = 90.0_wp, HALF_TURN_DEG = 180.0_wp
+  integer, parameter :: QUARTER_TURNS = 4
+  integer, parameter :: CHANGE_FIELDS_MIN = 5
+    !! master, slave, first dof, last dof, g (a SWEEP adds more values of g).
+
+contains
+
+  ! ================================================================== structure checks
+
+  module logical function assembly_allows(st, kw, loc) result(ok)
+    type(deck_state_t), intent(inout) :: st
+    type(keyword_line_t), intent(in) :: kw
+    type(source_loc_t), intent(in) :: loc
+    ok = .true.
+    if (st%cur_inst < 0) then
+       ! the block of a refused *INSTANCE card: reported already
+       if (kw%keyword == 'END INSTANCE') return
+       st%cur_inst = 0
+    else if (st%cur_inst > 0) then
+       if (kw%keyword == 'END INSTANCE') return
+       call report_loc(st, loc, '*'//kw%keyword//' inside *INSTANCE '// &
+            st%subs(st%instances(st%cur_inst)%sub)%name//' (missing *END INSTANCE?)')
+       st%cur_inst = 0
+    end if
+    if (in_part(st)) then
+       select case (kw%keyword)
+       case ('SUBSTRUCTURE', 'END SUBSTRUCTURE', 'ASSEMBLY', 'END ASSEMBLY', 'INSTANCE', 'END INSTANCE', &
+            'CONTACT', 'INTERFACE', 'SUPPORT', 'BOUNDARY', 'STEP', 'END STEP', 'CLOAD', 'DLOAD', &
+            'CHANGE CONTACT', 'CONTROLS')
+          call report_loc(st, loc, '*'//kw%keyword//' is not allowed inside *PART '// &
+               st%subs(st%cur_sub)%name//' (a part holds nodes, elements, sets and sections; '// &
+               'close it with *END PART)')
+          st%card = CARD_SKIP
+          ok = .false.
+       end select
+       return
+    end if
+    if (st%in_assembly) then
+       select case (kw%keyword)
+       case ('STEP', 'PART')
+          call report_loc(st, loc, '*'//kw%keyword//' inside *ASSEMBLY (missing *END ASSEMBLY?)')
+          st%in_assembly = .false.
+       end select
+    end if
+  end function assembly_allows
+
+  logical function in_part(st)
+    !! A *PART block is open.
+    type(deck_state_t), intent(in) :: st
+    in_part = .false.
+    if (st%cur_sub > 0) in_part = st%subs(st%cur_sub)%kind == SUBK_PART
+  end function in_part
+
+  integer function find_part(st, name) result(k)
+    !! Index in st%subs of the part named `name` (0 if none).
+    type(deck_state_t), intent(in) :: st
+    character(*), intent(in) :: name
+    do k = 1, st%nsub
+       if (st%subs(k)%kind /= SUBK_PART) cycle
+       if (st%subs(k)%name == name) return
+    end do
+    k = 0
+  end function find_part
+
+  module subroutine finish_assembly(st)
+    type(deck_state_t), intent(inout) :: st
+    if (st%cur_inst > 0) call report_loc(st, st%instances(st%cur_inst)%loc, '*INSTANCE '// &
+         st%subs(st%instances(st%cur_inst)%sub)%name//' has no *END INSTANCE')
+    st%cur_inst = 0
+    if (in_part(st)) then
+       call report_loc(st, st%subs(st%cur_sub)%loc, '*PART '//st%subs(st%cur_sub)%name//' has no *END PART')
+       st%cur_sub = 0
+    end if
+    if (st%in_assembly) call report_loc(st, st%assembly_loc, '*ASSEMBLY has no *END ASSEMBLY')
+    st%in_assembly = .false.
+  end subroutine finish_assembly
+
+  ! ================================================================== *PART, *ASSEMBLY, *INSTANCE
+
+  module subroutine kw_assembly(st, kw, loc)
+    type(deck_state_t), intent(inout) :: st
+    type(keyword_line_t), intent(in) :: kw
+    type(source_loc_t), intent(in) :: loc
+    select case (kw%keyword)
+    case ('PART')
+       call kw_part(st, kw, loc)
+    case ('END PART')
+       call check_params(st, kw, loc, [character(NAME_LEN) ::], [character(NAME_LEN) ::])
+       if (.not. in_part(st)) then
+          call report_loc(st, loc, '*END PART without *PART')
+       else
+          st%cur_sub = 0
+       end if
+    case ('ASSEMBLY')
+       if (.not. outside_step(st, kw, loc)) return
+       call check_params(st, kw, loc, [character(NAME_LEN) :: 'NAME'], [character(NAME_LEN) ::])
+       if (st%cur_sub > 0) then
+          call report_loc(st, loc, '*ASSEMBLY inside *SUBSTRUCTURE '//st%subs(st%cur_sub)%name// &
+               ' (missing *END SUBSTRUCTURE?)')
+          st%cur_sub = 0
+       end if
+       if (st%in_assembly) then
+          call report_loc(st, loc, '*ASSEMBLY inside *ASSEMBLY (missing *END ASSEMBLY?)')
+       else if (st%assembly_loc%line > 0) then
+          call report_loc(st, loc, 'a deck has one *ASSEMBLY (first at '//loc_string(st, st%assembly_loc)//')')
+       end if
+       st%in_assembly = .true.
+       st%assembly_loc = loc
+    case ('END ASSEMBLY')
+       call check_params(st, kw, loc, [character(NAME_LEN) ::], [character(NAME_LEN) ::])
+       if (.not. st%in_assembly) then
+          call report_loc(st, loc, '*END ASSEMBLY without *ASSEMBLY')
+       else
+          if (st%cur_sub > 0) then
+             call report_loc(st, loc, '*END ASSEMBLY inside *SUBSTRUCTURE '//st%subs(st%cur_sub)%name// &
+                  ' (missing *END SUBSTRUCTURE?)')
+             st%cur_sub = 0
+          end if
+          st%in_assembly = .false.
+       end if
+    case ('INSTANCE')
+       call kw_instance(st, kw, loc)
+    case ('END INSTANCE')
+       call check_params(st, kw, loc, [character(NAME_LEN) ::], [character(NAME_LEN) ::])
+       if (st%cur_inst == 0) then
+          call report_loc(st, loc, '*END INSTANCE without *INSTANCE')
+       else
+          st%cur_inst = 0
+       end if
+    end select
+  end subroutine kw_assembly
+
+  subroutine kw_part(st, kw, loc)
+    type(deck_state_t), intent(inout) :: st
+    type(keyword_line_t), intent(in) :: kw
+    type(source_loc_t), intent(in) :: loc
+    character(:), allocatable :: name
+    logical :: found
+    integer :: k
+    if (.not. outside_step(st, kw, loc)) return
+    call check_params(st, kw, loc, [character(NAME_LEN) :: 'NAME'], [character(NAME_LEN) ::])
+    if (in_part(st)) then
+       call report_loc(st, loc, '*PART inside *PART '//st%subs(st%cur_sub)%name//' (missing *END PART?)')
+       st%cur_sub = 0
+    else if (st%cur_sub > 0) then
+       call report_loc(st, loc, '*PART inside *SUBSTRUCTURE '//st%subs(st%cur_sub)%name// &
+            ' (missing *END SUBSTRUCTURE?)')
+       st%cur_sub = 0
+    end if
+    call get_name_param(st, kw, loc, 'NAME', .true., name, found)
+    if (.not. found) name = '?'
+    k = find_part(st, name)
+    if (k > 0 .and. found) call report_loc(st, loc, 'duplicate part name '//name// &
+         ' (first defined at '//loc_string(st, st%subs(k)%loc)//')')
+    call new_sub(st, name, loc, k)
+    st%subs(k)%kind = SUBK_PART
+    st%cur_sub = k
+  end subroutine kw_part
+
+  subroutine kw_instance(st, kw, loc)
+    type(deck_state_t), intent(inout) :: st
+    type(keyword_line_t), intent(in) :: kw
+    type(source_loc_t), intent(in) :: loc
+    character(:), allocatable :: name, part
+    logical :: f1, f2
+    integer :: k, isub
+    type(instance_b_t), allocatable :: tmp(:)
+    integer, parameter :: INITIAL_INSTANCES = 8
+    if (.not. outside_step(st, kw, loc)) return
+    call check_params(st, kw, loc, [character(NAME_LEN) :: 'NAME', 'PART'], [character(NAME_LEN) ::])
+    st%card = CARD_SKIP
+    if (st%cur_sub > 0) then
+       call report_loc(st, loc, '*INSTANCE inside *SUBSTRUCTURE '//st%subs(st%cur_sub)%name// &
+            ' (missing *END SUBSTRUCTURE?)')
+       st%cur_sub = 0
+    end if
+    if (.not. st%in_assembly) call report_loc(st, loc, '*INSTANCE must stand inside *ASSEMBLY ... *END ASSEMBLY')
+    call get_name_param(st, kw, loc, 'NAME', .true., name, f1)
+    call get_name_param(st, kw, loc, 'PART', .true., part, f2)
+    st%cur_inst = -1
+    if (.not. (f1 .and. f2)) return
+    k = find_sub(st, name)
+    if (k > 0) then
+       call report_loc(st, loc, 'instance name '//name//' is already the name of a substructure or instance'// &
+            ' (defined at '//loc_string(st, st%subs(k)%loc)//')')
+       return
+    end if
+    if (.not. allocated(st%instances)) allocate (st%instances(INITIAL_INSTANCES))
+    if (st%ninst == size(st%instances)) then
+       allocate (tmp(2*st%ninst))
+       tmp(1:st%ninst) = st%instances(1:st%ninst)
+       call move_alloc(tmp, st%instances)
+    end if
+    call new_sub(st, name, loc, isub)
+    st%ninst = st%ninst + 1
+    st%subs(isub)%kind = SUBK_INSTANCE
+    st%subs(isub)%inst = st%ninst
+    associate (inst => st%instances(st%ninst))
+      inst = instance_b_t()
+      inst%part = part
+      inst%sub = isub
+      inst%loc = loc
+    end associate
+    st%cur_inst = st%ninst
+    st%card = CARD_INSTANCE
+    st%card_item = st%ninst
+  end subroutine kw_instance
+
+  module subroutine data_instance(st, line, loc)
+    type(deck_state_t), intent(inout) :: st
+    character(*), intent(in) :: line
+    type(source_loc_t), intent(in) :: loc
+    real(wp) :: v(ROTATION_FIELDS), a(3), b(3), n(3), nn, c, s, angle, q(3, 3)
+    integer :: i, turns
+    associate (inst => st%instances(st%card_item))
+      inst%ndata = inst%ndata + 1
+      if (inst%ndata > 2) then
+         call report_loc(st, loc, 'too many data lines for *INSTANCE (a translation, then a rotation)')
+         inst%ok = .false.
+         st%card = CARD_SKIP
+         return
+      end if
+      if (inst%ndata == 1) then
+         if (.not. field_count(st, loc, TRANSLATION_FIELDS, TRANSLATION_FIELDS, 'tx, ty, tz')) then
+            inst%ok = .false.
+            return
+         end if
+         do i = 1, TRANSLATION_FIELDS
+            if (.not. get_real(st, line, loc, i, v(i))) then
+               inst%ok = .false.
+               return
+            end if
+         end do
+         inst%shift = v(1:3)
+         return
+      end if
+      if (.not. field_count(st, loc, ROTATION_FIELDS, ROTATION_FIELDS, &
+           'ax, ay, az, bx, by, bz, angle (the axis from point a to point b, degrees)')) then
+         inst%ok = .false.
+         return
+      end if
+      do i = 1, ROTATION_FIELDS
+         if (.not. get_real(st, line, loc, i, v(i))) then
+            inst%ok = .false.
+            return
+         end if
+      end do
+      a = v(1:3)
+      b = v(4:6)
+      angle = v(7)
+      n = b - a
+      nn = norm2(n)
+      if (.not. (nn > AXIS_TOL*max(norm2(a), norm2(b)))) then
+         call report_loc(st, loc, 'degenerate rotation axis of *INSTANCE '//st%subs(inst%sub)%name// &
+              ': points a and b coincide')
+         inst%ok = .false.
+         return
+      end if
+      n = n/nn
+      ! quarter turns exactly (cos 90 degrees is not 0 in floating point)
+      if (mod(angle, RIGHT_ANGLE) == 0.0_wp .and. abs(angle) < huge(turns)*RIGHT_ANGLE) then
+         turns = modulo(nint(angle/RIGHT_ANGLE), QUARTER_TURNS)
+         c = real(merge(1, merge(-1, 0, turns == 2), turns == 0), wp)
+         s = real(merge(1, merge(-1, 0, turns == 3), turns == 1), wp)
+      else
+         c = cos(angle*acos(-1.0_wp)/HALF_TURN_DEG)
+         s = sin(angle*acos(-1.0_wp)/HALF_TURN_DEG)
+      end if
+      ! Rodrigues: R = c I + s [n]x + (1 - c) n nT
+      do i = 1, 3
+         q(:, i) = (1.0_wp - c)*n*n(i)
+         q(i, i) = q(i, i) + c
+      end do
+      q(1, 2) = q(1, 2) - s*n(3)
+      q(1, 3) = q(1, 3) + s*n(2)
+      q(2, 1) = q(2, 1) + s*n(3)
+      q(2, 3) = q(2, 3) - s*n(1)
+      q(3, 1) = q(3, 1) - s*n(2)
+      q(3, 2) = q(3, 2) + s*n(1)
+      inst%rot = q
+      ! x' = a + R (x + t - a) = R x + (a + R (t - a))
+      inst%shift = a + matmul(q, inst%shift - a)
+    end associate
+  end subroutine data_instance
+
+  ! ================================================================== *CONTACT, PAIR=NEAREST
+
+  module subroutine contact_pair_params(st, kw, loc, c)
+    type(deck_state_t), intent(inout) :: st
+    type(keyword_line_t), intent(in) :: kw
+    type(source_loc_t), intent(in) :: loc
+    type(contact_b_t), intent(inout) :: c
+    character(:), allocatable :: value
+    logical :: found, has_tol
+    integer :: stat
+    real(wp) :: x
+    call get_param(st, kw, loc, 'PAIR', .false., value, found)
+    if (found) then
+       select case (to_upper(value))
+       case ('NEAREST')
+          c%nearest = .true.
+       case ('ORDER')
+          c%nearest = .false.
+       case default
+          call report_loc(st, loc, 'PAIR must be NEAREST or ORDER, not '//clip(value))
+       end select
+    end if
+    call get_param(st, kw, loc, 'TOL', .false., value, has_tol)
+    if (has_tol) then
+       call parse_real(value, x, stat)
+       if (stat /= TOK_OK) then
+          call report_loc(st, loc, real_message(value, stat))
+       else if (.not. (x >= 0.0_wp)) then
+          call report_loc(st, loc, 'TOL must not be negative, not '//clip(value))
+       else
+          c%tol = x
+       end if
+       if (.not. c%nearest) call report_loc(st, loc, 'TOL= is for PAIR=NEAREST')
+    else if (c%nearest) then
+       call report_loc(st, loc, 'PAIR=NEAREST needs TOL= (the largest distance between paired nodes)')
+    end if
+  end subroutine contact_pair_params
+
+  ! ================================================================== *INTERFACE
+
+  module subroutine kw_interface(st, kw, loc)
+    type(deck_state_t), intent(inout) :: st
+    type(keyword_line_t), intent(in) :: kw
+    type(source_loc_t), intent(in) :: loc
+    type(contact_b_t) :: c
+    logical :: f1, f2, f3
+    integer :: k
+    if (.not. outside_step(st, kw, loc)) return
+    call check_params(st, kw, loc, [character(NAME_LEN) :: 'NAME', 'MASTER', 'SLAVE', 'KN', 'KT', 'TOL'], &
+         [character(NAME_LEN) ::])
+    st%card = CARD_SKIP
+    call get_name_param(st, kw, loc, 'NAME', .true., c%name, f1)
+    call get_name_param(st, kw, loc, 'MASTER', .true., c%master, f2)
+    call get_name_param(st, kw, loc, 'SLAVE', .true., c%slave, f3)
+    if (.not. (f1 .and. f2 .and. f3)) return
+    if (.not. stiffness_param('KN', c%kn)) return
+    if (.not. stiffness_param('KT', c%kt)) return
+    c%tol = -1.0_wp
+    if (param_index(kw, 'TOL') > 0) then
+       if (.not. real_param('TOL', c%tol)) return
+       if (.not. (c%tol >= 0.0_wp)) then
+          call report_loc(st, loc, 'TOL must not be negative')
+          return
+       end if
+    end if
+    do k = 1, st%ncontact
+       if (st%contacts(k)%name == c%name) then
+          call report_loc(st, loc, 'duplicate contact name '//c%name//' (first defined at '// &
+               loc_string(st, st%contacts(k)%loc)//')')
+          return
+       end if
+    end do
+    c%is_interface = .true.
+    c%nearest = .true.
+    c%loc = loc
+    call add_contact(st, c, st%card_item)
+    st%card = CARD_INTERFACE
+  contains
+    logical function real_param(name, x) result(ok)
+      character(*), intent(in) :: name
+      real(wp), intent(out) :: x
+      character(:), allocatable :: value
+      logical :: found
+      integer :: stat
+      x = 0.0_wp
+      call get_param(st, kw, loc, name, .true., value, found)
+      ok = found
+      if (.not. ok) return
+      call parse_real(value, x, stat)
+      ok = stat == TOK_OK
+      if (.not. ok) call report_loc(st, loc, name//'=: '//real_message(value, stat))
+    end function real_param
+    logical function stiffness_param(name, x) result(ok)
+      character(*), intent(in) :: name
+      real(wp), intent(out) :: x
+      ok = real_param(name, x)
+      if (.not. ok) return
+      ok = x >= 0.0_wp
+      if (.not. ok) call report_loc(st, loc, name//' must be >= 0 (stiffness per unit length or area)')
+    end function stiffness_param
+  end subroutine kw_interface
+
+  module subroutine data_interface(st, line, loc)
+    type(deck_state_t), intent(inout) :: st
+    character(*), intent(in) :: line
+    type(source_loc_t), intent(in) :: loc
+    associate (c => st%contacts(st%card_item))
+      if (st%card_ndata > 1) then
+         call report_loc(st, loc, 'too many data lines for *INTERFACE (one line: master nset, slave nset)')
+         st%card = CARD_SKIP
+         return
+      end if
+      if (.not. field_count(st, loc, 2, 2, 'master node set, slave node set')) return
+      if (.not. parse_ref(st, fld(st, line, 1), .false., 0, loc, c%iface_master)) return
+      if (.not. parse_ref(st, fld(st, line, 2), .false., 0, loc, c%iface_slave)) return
+      c%iface_loc = loc
+    end associate
+  end subroutine data_interface
+
+  ! ================================================================== *CHANGE CONTACT
+
+  module subroutine kw_change_contact(st, kw, loc)
+    type(deck_state_t), intent(inout) :: st
+    type(keyword_line_t), intent(in) :: kw
+    type(source_loc_t), intent(in) :: loc
+    character(:), allocatable :: name
+    logical :: found
+    integer :: k
+    call check_params(st, kw, loc, [character(NAME_LEN) :: 'NAME'], [character(NAME_LEN) :: 'SWEEP'])
+    st%card = CARD_SKIP
+    if (st%cur_step == 0) then
+       call report_loc(st, loc, '*CHANGE CONTACT must stand inside *STEP')
+       return
+    end if
+    call get_name_param(st, kw, loc, 'NAME', .true., name, found)
+    if (.not. found) return
+    st%card_item = 0
+    do k = 1, st%ncontact
+       if (st%contacts(k)%name == name) st%card_item = k
+    end do
+    if (st%card_item == 0) then
+       call report_loc(st, loc, '*CHANGE CONTACT of unknown contact '//name// &
+            ' (the *CONTACT card must come before the step)')
+       return
+    end if
+    st%card_generate = param_index(kw, 'SWEEP') > 0
+    st%card_home = st%cur_step
+    st%card = CARD_CHANGE_CONTACT
+  end subroutine kw_change_contact
+
+  module subroutine data_change_contact(st, line, loc)
+    type(deck_state_t), intent(inout) :: st
+    character(*), intent(in) :: line
+    type(source_loc_t), intent(in) :: loc
+    type(override_b_t) :: o
+    type(override_b_t), allocatable :: tmp(:)
+    integer :: nval, i
+    integer, parameter :: INITIAL_OVERRIDES = 4
+    if (st%card_generate) then
+       if (.not. field_count(st, loc, CHANGE_FIELDS_MIN, huge(1), &
+            'master, slave, first dof, last dof, g1, g2, ... (SWEEP)')) return
+    else
+       if (.not. field_count(st, loc, CHANGE_FIELDS_MIN, CHANGE_FIELDS_MIN, &
+            'master, slave, first dof, last dof, g (several values of g need SWEEP)')) return
+    end if
+    associate (c => st%contacts(st%card_item))
+      if (.not. parse_ref(st, fld(st, line, 1), .false., 0, loc, o%master)) return
+      if (.not. parse_ref(st, fld(st, line, 2), .false., 0, loc, o%slave)) return
+      if (.not. scoped(o%master, c%master, 'master')) return
+      if (.not. scoped(o%slave, c%slave, 'slave')) return
+    end associate
+    if (.not. get_dof_range(st, line, loc, 3, o%first, o%last)) return
+    nval = st%f%n - (CHANGE_FIELDS_MIN - 1)
+    allocate (o%states(nval), o%gs(nval))
+    do i = 1, nval
+       if (.not. get_stiffness(st, line, loc, CHANGE_FIELDS_MIN - 1 + i, o%states(i), o%gs(i))) return
+    end do
+    o%contact = st%card_item
+    o%loc = loc
+    associate (step => st%steps(st%card_home))
+      if (st%card_generate) then
+         if (step%nsweep == 0) then
+            step%nsweep = nval
+            step%sweep_loc = loc
+         else if (step%nsweep /= nval) then
+            call report_loc(st, loc, 'this SWEEP line has '//plural(nval, 'value')//', the step''s first has '// &
+                 itoa(step%nsweep)//' (at '//loc_string(st, step%sweep_loc)//')')
+            return
+         end if
+      end if
+      if (.not. allocated(step%overrides)) allocate (step%overrides(INITIAL_OVERRIDES))
+      if (step%noverride == size(step%overrides)) then
+         allocate (tmp(2*step%noverride))
+         tmp(1:step%noverride) = step%overrides(1:step%noverride)
+         call move_alloc(tmp, step%overrides)
+      end if
+      step%noverride = step%noverride + 1
+      step%overrides(step%noverride) = o
+    end associate
+  contains
+    logical function scoped(ref, subname, role) result(ok)
+      !! A scoped reference must name the contact's own substructure.
+      type(ref_t), intent(in) :: ref
+      character(*), intent(in) :: subname, role
+      ok = .true.
+      if (.not. allocated(ref%scope)) return
+      ok = ref%scope == subname
+      if (.not. ok) call report_loc(st, loc, 'node '''//ref%scope//'.'//ref_name(ref)//''' is not in the '// &
+           role//' substructure '//subname//' of contact '//st%contacts(st%card_item)%name)
+    end function scoped
+    function ref_name(ref) result(s)
+      type(ref_t), intent(in) :: ref
+      character(:), allocatable :: s
+      if (ref%is_set) then
+         s = ref%set
+      else
+         s = itoa(ref%id)
+      end if
+    end function ref_name
+  end subroutine data_change_contact
+end submodule superjoin_deck_parts

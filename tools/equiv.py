@@ -7,10 +7,12 @@ Each deck (default: every deck under tests/decks, decks/ and decks/plate_hole,
 and tests/extreme; --set verification or extreme for one group) is solved by both commands with --csv; every numeric field of
 every CSV file is compared with
 
-    |a - b| <= rtol * ((|a| + |b|)/2 + max|file|)
+    |a - b| <= rtol * ((|a| + |b|)/2 + max|file|) + atol
 
 (the second term: entries that are round-off next to the file's largest result;
-identifier columns such as node, element and dof are compared exactly).
+identifier columns such as node, element and dof are compared exactly; atol,
+default 1e-14, is a floor for files whose every value is round-off of an exact 0,
+as the deck tests' absolute tolerance 1e-12).
 Both runs must end with the same exit status. Uses: the proof that a
 restructuring changed no result (old binary against new), and the proof that the
 condensed path equals the monolithic one (same binary, --b "BIN --condense yes").
@@ -61,7 +63,7 @@ def as_float(s):
         return None
 
 
-def compare_file(fa, fb, rtol):
+def compare_file(fa, fb, rtol, atol):
     """Largest scaled difference of two CSV files, or an error string."""
     ha, ra = read_csv(fa)
     hb, rb = read_csv(fb)
@@ -84,9 +86,9 @@ def compare_file(fa, fb, rtol):
                 if x[c] != y[c]:
                     return None, f"row {i + 2} column {ha[c]}: {x[c]!r} against {y[c]!r}"
                 continue
-            scale = (abs(a) + abs(b)) / 2 + filemax
-            if scale == 0.0:
+            if abs(a - b) <= atol:
                 continue
+            scale = (abs(a) + abs(b)) / 2 + filemax
             worst = max(worst, abs(a - b) / scale)
     return worst, None
 
@@ -96,6 +98,7 @@ def main():
     ap.add_argument("--a", required=True, help="reference command (binary and options)")
     ap.add_argument("--b", required=True, help="command under test")
     ap.add_argument("--rtol", type=float, default=1e-12)
+    ap.add_argument("--atol", type=float, default=1e-14)
     ap.add_argument("--set", choices=sorted(DECK_SETS), default="all",
                     help="decks to run when none are named (default: all)")
     ap.add_argument("decks", nargs="*")
@@ -121,7 +124,7 @@ def main():
             if files != sorted(os.listdir(os.path.join(db, "csv"))):
                 msg = "different CSV files"
             for f in files if msg is None else []:
-                w, m = compare_file(os.path.join(da, "csv", f), os.path.join(db, "csv", f), args.rtol)
+                w, m = compare_file(os.path.join(da, "csv", f), os.path.join(db, "csv", f), args.rtol, args.atol)
                 if m:
                     msg = f"{f}: {m}"
                     break

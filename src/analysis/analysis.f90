@@ -744,8 +744,9 @@ contains
     do isub = 1, size(model%subs)
        if (named(isub)) subs = subs//' '//model%subs(isub)%name
     end do
-    call note(notes, itoa(int(nskip))//' unknowns (in substructures'//subs// &
-         ') are coupled to no load: zero displacement, not solved')
+    if (len(subs) == 0) subs = ' (contact and support unknowns)'
+    if (subs(1:2) /= ' (') subs = ' (in substructures'//subs//')'
+    call note(notes, itoa(int(nskip))//' unknowns'//subs//' are coupled to no load: zero displacement, not solved')
   end subroutine skip_unloaded_parts
 
   subroutine factor_and_solve(model, table, tr, k, f_red, opts, groups, solver, q, res, error)

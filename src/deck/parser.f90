@@ -295,7 +295,9 @@ contains
     case (CARD_ELASTIC, CARD_ORIENTATION, CARD_DENSITY, CARD_TSHEAR)
        if (st%card_ndata == 0) call report_loc(st, st%card_loc, st%card_name//' needs a data line')
     case (CARD_SECTION)
-       if (st%card_ndata == 0) then
+       ! *SOLID SECTION of plane elements may omit the thickness (1, as Abaqus);
+       ! the element types are known when the model is built (validate).
+       if (st%card_ndata == 0 .and. st%sections(st%card_item)%kind /= SEC_SOLID) then
           call report_loc(st, st%card_loc, st%card_name//' needs a data line')
           st%sections(st%card_item)%data_ok = .false.
        end if

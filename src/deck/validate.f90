@@ -7,7 +7,7 @@ module superjoin_deck_validate
        link_t, support_t, cload_t, dload_t, source_loc_t, find_node, find_elem, &
        ELEMENT_TYPE_NAMES, ELEMENT_NODE_COUNT, NDOF_NODE, SEC_SOLID, SEC_BEAM, SEC_SHELL, &
        LINK_FINITE, LINK_RIGID, ET_T2D2, ET_T3D2, ET_B23, ET_B33, ET_CPS3, ET_CPS4, &
-       ET_S3, ET_S4, ET_B21, ET_B31, DLOAD_PX, DLOAD_PY, DLOAD_PZ, DLOAD_P, DLOAD_GRAV, DLOAD_NAMES
+       ET_S3, ET_S4, ET_B21, ET_B31, ET_CPE3, ET_CPE4, DLOAD_PX, DLOAD_PY, DLOAD_PZ, DLOAD_P, DLOAD_GRAV, DLOAD_NAMES
   use superjoin_deck_lexer, only: itoa, plural
   use superjoin_deck_state, only: deck_state_t, sub_b_t, ref_t, load_b_t, report, report_loc, report_oom, find_set, &
        CH_IDS, CH_GEN, CH_RANGE, CH_REF, BEAM_2D_VALUES, BEAM_3D_VALUES
@@ -455,6 +455,9 @@ contains
                ncps = ncps + 1
                if (sb%kind /= SEC_SOLID) call bad(e)
             end if
+         case (ET_CPE3, ET_CPE4)
+            ncps = ncps + 1
+            if (sb%kind /= SEC_SOLID) call bad(e)
          case (ET_B23, ET_B21)
             nb23 = nb23 + 1
             if (sb%kind /= SEC_BEAM) call bad(e)
@@ -490,6 +493,16 @@ contains
       if (.not. sb%data_ok) return
       select case (sb%kind)
       case (SEC_SOLID)
+         if (sb%nval == 0) then
+            ! No data line: plane elements take the thickness 1 (Abaqus's
+            ! default); trusses need their area.
+            if (ntruss > 0 .or. ncps == 0) then
+               call report_loc(st, sb%loc, card//' needs a data line (the cross-section area of the trusses)')
+               return
+            end if
+            sec%thickness = 1.0_wp
+            return
+         end if
          if (ntruss > 0 .or. ncps == 0) sec%area = sb%val(1)
          if (ncps > 0 .or. ntruss == 0) sec%thickness = sb%val(1)
       case (SEC_SHELL)

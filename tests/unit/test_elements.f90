@@ -3,7 +3,7 @@ program test_elements
   use superjoin_kinds, only: wp
   use superjoin_error, only: error_t, EXIT_DECK
   use superjoin_model_types, only: section_t, material_t, SEC_SOLID, SEC_BEAM, SEC_SHELL, &
-       ET_T2D2, ET_T3D2, ET_B23, ET_B33, ET_CPS3, ET_CPS4, ET_S3, ET_S4, ET_B21, ET_B31
+       ET_T2D2, ET_T3D2, ET_B23, ET_B33, ET_CPS3, ET_CPS4, ET_S3, ET_S4, ET_B21, ET_B31, ET_CPE3, ET_CPE4
   use superjoin_elements, only: element_node_dofs, element_stiffness, element_end_forces, &
        beam_distributed_load, beam_frame
   use superjoin_testing, only: check, check_close, check_rel, finish
@@ -269,6 +269,14 @@ contains
     call check(size(d) == 6 .and. all(d == [1, 2, 3, 4, 5, 6]), 'dofs S3')
     d = element_node_dofs(ET_S4)
     call check(size(d) == 6 .and. all(d == [1, 2, 3, 4, 5, 6]), 'dofs S4')
+    d = element_node_dofs(ET_B21)
+    call check(size(d) == 3 .and. all(d == [1, 2, 6]), 'dofs B21')
+    d = element_node_dofs(ET_B31)
+    call check(size(d) == 6 .and. all(d == [1, 2, 3, 4, 5, 6]), 'dofs B31')
+    d = element_node_dofs(ET_CPE3)
+    call check(size(d) == 2 .and. all(d == [1, 2]), 'dofs CPE3')
+    d = element_node_dofs(ET_CPE4)
+    call check(size(d) == 2 .and. all(d == [1, 2]), 'dofs CPE4')
     d = element_node_dofs(0)
     call check(size(d) == 0, 'dofs of an unknown type: none')
   end subroutine test_node_dofs

@@ -19,6 +19,7 @@ module superjoin_deck_parser
        MAX_INCLUDE_DEPTH, CH_IDS, CH_GEN, CH_RANGE, CH_REF, BEAM_2D_VALUES, BEAM_3D_VALUES
   use superjoin_utils_strings, only: pick
   use superjoin_output_vtk, only: vtk_path_problem
+  use superjoin_elements_catalog, only: unsupported_type_message
   implicit none (type, external)
   private
 
@@ -601,8 +602,7 @@ contains
        if (trim(ELEMENT_TYPE_NAMES(k)) == typ) st%card_etype = k
     end do
     if (st%card_etype == 0) then
-       call report_loc(st, loc, 'unsupported element type '//clip(typ)// &
-            ' (T2D2, T3D2, B23, B33, CPS3, CPS4, S3, S4)')
+       call report_loc(st, loc, unsupported_type_message(clip(typ)))
        return
     end if
     isub = target_sub(st, loc)

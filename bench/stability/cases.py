@@ -58,20 +58,25 @@ def _line_elements(first_node, n):
 
 
 def _cantilever(g1, g2, g6, e1=2.0e11, e2=2.0e11, a=1.0e-2, inertia=1.0e-4, length=4.0, nel=8,
-                factor='', n_load=5000.0, p_load=-1000.0):
-    """Two-part B23 cantilever along X, joint at mid-length, tip load (N, P)."""
+                factor='', n_load=5000.0, p_load=-1000.0, etype='B23'):
+    """Two-part B23 (or B21: Timoshenko, shear stiffness G A) cantilever along X,
+    joint at mid-length, tip load (N, P)."""
     half = length / 2
     subst = dict(nel=nel, L=length, factor=factor, E1=repr(e1), E2=repr(e2), A=repr(a), I=repr(inertia),
+                 etype=etype,
                  nodes_I=_line_nodes(1, 0.0, half, nel), elements_I=_line_elements(1, nel),
                  nodes_II=_line_nodes(1, half, length, nel), elements_II=_line_elements(1, nel),
                  joint_I=nel + 1, tip=nel + 1, g1=g_text(g1), g2=g_text(g2), g6=g_text(g6),
                  N=repr(n_load), P=repr(p_load))
     try:
+        def shear(e):
+            k = e / (2 * 1.3) * a
+            return (k, k) if etype == 'B21' else None
         segs = [exact.beam_segment([half * i / nel, 0, 0], [half * (i + 1) / nel, 0, 0], e1, 0.3, a,
-                                   inertia, inertia, inertia) for i in range(nel)]
+                                   inertia, inertia, inertia, shear=shear(e1)) for i in range(nel)]
         segs.append(exact.joint_segment([half, 0, 0], [g1, g2, None], [None, None, g6]))
         segs += [exact.beam_segment([half + half * i / nel, 0, 0], [half + half * (i + 1) / nel, 0, 0], e2,
-                                    0.3, a, inertia, inertia, inertia) for i in range(nel)]
+                                    0.3, a, inertia, inertia, inertia, shear=shear(e2)) for i in range(nel)]
         ex = exact.chain_tip(segs, [length, 0, 0], [n_load, p_load, 0.0], [0.0, 0.0, 0.0])
     except ZeroDivisionError:
         ex = None
@@ -86,6 +91,15 @@ def cantilever(value):
     kt = 3 * e * i / length**3
     return _cantilever(scaled(value, kt), scaled(value, kt), scaled(value, e * i / length),
                        factor='joint g = %s x (3EI/L^3, 3EI/L^3, EI/L) on DOFs 1, 2, 6' % value)
+
+
+def timoshenko(value):
+    """Joint stiffness sweep on a deep two-part B21 (Timoshenko) cantilever (L/r = 12.6,
+    shear 5 % of the tip deflection): g = value x 3EI/L^3 on DOFs 1, 2 and value x EI/L on 6."""
+    e, i, length = 2.0e11, 1.0e-3, 4.0
+    kt = 3 * e * i / length**3
+    return _cantilever(scaled(value, kt), scaled(value, kt), scaled(value, e * i / length), inertia=i,
+                       etype='B21', factor='B21 joint g = %s x (3EI/L^3, 3EI/L^3, EI/L) on DOFs 1, 2, 6' % value)
 
 
 def contrast(value):
@@ -199,6 +213,7 @@ CASES = {
     'cantilever': (cantilever, G_VALUES),
     'frame3d': (frame3d, G_VALUES),
     'panel': (panel, G_VALUES),
+    'timoshenko': (timoshenko, G_VALUES),
     'contrast': (contrast, ['1e-12', '1e-9', '1e-6', '1e-3', '1', '1e3', '1e6', '1e9', '1e12']),
     'slender': (slender, ['10', '100', '1e3', '1e4', '1e5', '1e6']),
     'hinge': (hinge, ['1', '1e-3', '1e-6', '1e-8', '1e-10', '1e-12', '1e-14', '1e-16', '0']),

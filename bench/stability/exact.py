@@ -64,18 +64,20 @@ def frame_axes(a, b):
     return [e1, e2, cross(e1, e2)]
 
 
-def beam_segment(x1, x2, e, nu, a, iy, iz, j, v=None):
+def beam_segment(x1, x2, e, nu, a, iy, iz, j, v=None, shear=None):
     """Flexibility of a cantilever beam element (fixed at x1): returns a function
-    (F, M) at x2 -> (d, theta) of x2 relative to x1, global axes."""
+    (F, M) at x2 -> (d, theta) of x2 relative to x1, global axes. shear: the
+    transverse shear stiffnesses (Ky, Kz) of a Timoshenko beam (None: Euler-Bernoulli)."""
     axes = beam_axes(x1, x2, v)
     length = math.sqrt(dot(sub(x2, x1), sub(x2, x1)))
     g = e / (2.0 * (1.0 + nu))
+    cy, cz = (0.0, 0.0) if shear is None else (1.0 / shear[0], 1.0 / shear[1])
 
     def flex(f, m):
         fl, ml = to_local(axes, f), to_local(axes, m)
         d = [fl[0] * length / (e * a),
-             fl[1] * length**3 / (3 * e * iz) + ml[2] * length**2 / (2 * e * iz),
-             fl[2] * length**3 / (3 * e * iy) - ml[1] * length**2 / (2 * e * iy)]
+             fl[1] * length**3 / (3 * e * iz) + ml[2] * length**2 / (2 * e * iz) + fl[1] * length * cy,
+             fl[2] * length**3 / (3 * e * iy) - ml[1] * length**2 / (2 * e * iy) + fl[2] * length * cz]
         t = [ml[0] * length / (g * j),
              -fl[2] * length**2 / (2 * e * iy) + ml[1] * length / (e * iy),
              fl[1] * length**2 / (2 * e * iz) + ml[2] * length / (e * iz)]

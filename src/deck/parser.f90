@@ -20,6 +20,7 @@ module superjoin_deck_parser
        MAX_INCLUDE_DEPTH, CH_IDS, CH_GEN, CH_RANGE, CH_REF, BEAM_2D_VALUES, BEAM_3D_VALUES
   use superjoin_utils_strings, only: pick
   use superjoin_output_vtk, only: vtk_path_problem
+  use superjoin_elements_catalog, only: unsupported_type_message
   implicit none (type, external)
   private
 
@@ -32,7 +33,8 @@ module superjoin_deck_parser
   integer, parameter :: CARD_NONE = 0, CARD_SKIP = 1, CARD_NODATA = 2, CARD_HEADING = 3, &
        CARD_NODE = 4, CARD_ELEMENT = 5, CARD_NSET = 6, CARD_ELSET = 7, CARD_SECTION = 8, &
        CARD_ELASTIC = 9, CARD_ORIENTATION = 10, CARD_CONTACT = 11, CARD_SUPPORT = 12, &
-       CARD_BOUNDARY = 13, CARD_CLOAD = 14, CARD_DLOAD = 15, CARD_DENSITY = 16
+       CARD_BOUNDARY = 13, CARD_CLOAD = 14, CARD_DLOAD = 15, CARD_DENSITY = 16, &
+       CARD_TSHEAR = 17
     !! What the current card does with data lines.
   integer, parameter :: CARD_INSTANCE = 101, CARD_CHANGE_CONTACT = 102, CARD_INTERFACE = 103
     !! Cards of parts, instances and joint studies (submodule superjoin_deck_parts).
@@ -241,7 +243,7 @@ contains
     type(source_loc_t), intent(in) :: loc
     type(keyword_line_t) :: kw
     character(:), allocatable :: msg
-    integer :: prev_mat
+    integer :: prev_mat, prev_beam_sec
 
     call parse_keyword_line(line, kw, msg)
     if (allocated(msg)) then
@@ -257,6 +259,8 @@ contains
     call end_card(st)
     prev_mat = st%cur_mat
     st%cur_mat = 0
+    prev_beam_sec = st%cur_beam_sec
+    st%cur_beam_sec = 0
     call set_card(st, CARD_NODATA, '*'//kw%keyword, loc)
     if (.not. assembly_allows(st, kw, loc)) return
 
@@ -294,6 +298,8 @@ contains
        call kw_section(st, kw, loc, SEC_BEAM)
     case ('SHELL SECTION')
        call kw_section(st, kw, loc, SEC_SHELL)
+    case ('TRANSVERSE SHEAR STIFFNESS')
+       call kw_transverse_shear(st, kw, loc, prev_beam_sec)
     case ('ORIENTATION')
        call kw_orientation(st, kw, loc)
     case ('CONTACT')
@@ -360,10 +366,12 @@ contains
     !! Checks when a card ends (next keyword or end of input): data it needed.
     type(deck_state_t), intent(inout) :: st
     select case (st%card)
-    case (CARD_ELASTIC, CARD_ORIENTATION, CARD_DENSITY)
+    case (CARD_ELASTIC, CARD_ORIENTATION, CARD_DENSITY, CARD_TSHEAR)
        if (st%card_ndata == 0) call report_loc(st, st%card_loc, st%card_name//' needs a data line')
     case (CARD_SECTION)
-       if (st%card_ndata == 0) then
+       ! *SOLID SECTION of plane elements may omit the thickness (1, as Abaqus);
+       ! the element types are known when the model is built (validate).
+       if (st%card_ndata == 0 .and. st%sections(st%card_item)%kind /= SEC_SOLID) then
           call report_loc(st, st%card_loc, st%card_name//' needs a data line')
           st%sections(st%card_item)%data_ok = .false.
        end if
@@ -680,8 +688,7 @@ contains
        if (trim(ELEMENT_TYPE_NAMES(k)) == typ) st%card_etype = k
     end do
     if (st%card_etype == 0) then
-       call report_loc(st, loc, 'unsupported element type '//clip(typ)// &
-            ' (T2D2, T3D2, B23, B33, CPS3, CPS4, S3, S4)')
+       call report_loc(st, loc, unsupported_type_message(clip(typ)))
        return
     end if
     isub = target_sub(st, loc)
@@ -764,7 +771,63 @@ contains
     sec%loc = loc
     call add_section(st, sec, st%card_item)
     st%card = CARD_SECTION
+    if (kind == SEC_BEAM) st%cur_beam_sec = st%card_item
   end subroutine kw_section
+
+  subroutine kw_transverse_shear(st, kw, loc, isec)
+    !! *TRANSVERSE SHEAR STIFFNESS right after the *BEAM SECTION it applies to.
+    type(deck_state_t), intent(inout) :: st
+    type(keyword_line_t), intent(in) :: kw
+    type(source_loc_t), intent(in) :: loc
+    integer, intent(in) :: isec
+    st%card = CARD_SKIP
+    if (.not. outside_step(st, kw, loc)) return
+    call check_params(st, kw, loc, [character(NAME_LEN) ::], [character(NAME_LEN) ::])
+    if (isec == 0) then
+       call report_loc(st, loc, '*TRANSVERSE SHEAR STIFFNESS must follow the *BEAM SECTION it applies to '// &
+            '(shell sections have no transverse shear input)')
+       return
+    end if
+    if (st%sections(isec)%has_ks) then
+       call report_loc(st, loc, 'second *TRANSVERSE SHEAR STIFFNESS for the same *BEAM SECTION')
+       return
+    end if
+    st%sections(isec)%ks_loc = loc
+    st%card = CARD_TSHEAR
+    st%card_item = isec
+    st%cur_beam_sec = isec
+  end subroutine kw_transverse_shear
+
+  subroutine data_transverse_shear(st, line, loc)
+    !! K23 [, K13 [, slenderness compensation factor]]: shear stiffness in
+    !! force units (k G A); the third value is read and not used.
+    type(deck_state_t), intent(inout) :: st
+    character(*), intent(in) :: line
+    type(source_loc_t), intent(in) :: loc
+    integer, parameter :: MAX_FIELDS = 3
+    integer :: i
+    real(wp) :: v(MAX_FIELDS)
+    if (st%card_ndata > 1) then
+       call report_loc(st, loc, 'too many data lines for '//st%card_name)
+       st%card = CARD_SKIP
+       return
+    end if
+    if (.not. field_count(st, loc, 1, MAX_FIELDS, 'K23, K13 (and optionally the slenderness compensation factor)')) &
+         return
+    do i = 1, st%f%n
+       if (.not. get_real(st, line, loc, i, v(i))) return
+       if (i <= 2 .and. .not. (v(i) > 0.0_wp)) then
+          call report_loc(st, loc, 'transverse shear stiffness must be positive, not '//fld(st, line, i))
+          return
+       end if
+    end do
+    associate (sec => st%sections(st%card_item))
+      sec%nks = min(st%f%n, 2)
+      sec%ks(1:sec%nks) = v(1:sec%nks)
+      sec%has_ks = .true.
+      sec%ks_loc = loc
+    end associate
+  end subroutine data_transverse_shear
 
   subroutine kw_orientation(st, kw, loc)
     type(deck_state_t), intent(inout) :: st
@@ -979,6 +1042,8 @@ contains
        call data_elastic(st, line, loc)
     case (CARD_DENSITY)
        call data_density(st, line, loc)
+    case (CARD_TSHEAR)
+       call data_transverse_shear(st, line, loc)
     case (CARD_ORIENTATION)
        call data_orientation(st, line, loc)
     case (CARD_CONTACT)

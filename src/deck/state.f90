@@ -86,6 +86,10 @@ module superjoin_deck_state
      real(wp) :: val(4) = 0.0_wp
      logical :: has_v = .false.
      real(wp) :: v(3) = [0.0_wp, 0.0_wp, 1.0_wp]
+     logical :: has_ks = .false.           !! *TRANSVERSE SHEAR STIFFNESS given
+     integer :: nks = 0                    !! values given (K23 [, K13])
+     real(wp) :: ks(2) = 0.0_wp            !! K23, K13 as written
+     type(source_loc_t) :: ks_loc
      integer :: ndata = 0
      logical :: data_ok = .true.
      type(source_loc_t) :: loc, data_loc
@@ -217,6 +221,7 @@ module superjoin_deck_state
      integer :: cur_sub = 0                !! open *SUBSTRUCTURE block
      integer :: cur_step = 0               !! open *STEP block
      integer :: cur_mat = 0                !! material that *ELASTIC applies to
+     integer :: cur_beam_sec = 0           !! *BEAM SECTION that *TRANSVERSE SHEAR STIFFNESS applies to
      integer :: loose_step = 0             !! step collecting loads outside *STEP
      type(source_loc_t) :: loose_loc
      logical :: mix_reported = .false.

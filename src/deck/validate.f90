@@ -7,7 +7,7 @@ module superjoin_deck_validate
        link_t, support_t, cload_t, dload_t, source_loc_t, find_node, find_elem, &
        ELEMENT_TYPE_NAMES, ELEMENT_NODE_COUNT, NDOF_NODE, SEC_SOLID, SEC_BEAM, SEC_SHELL, &
        LINK_FINITE, LINK_RIGID, ET_T2D2, ET_T3D2, ET_B23, ET_B33, ET_CPS3, ET_CPS4, &
-       ET_S3, ET_S4, DLOAD_PX, DLOAD_PY, DLOAD_PZ, DLOAD_P, DLOAD_GRAV, DLOAD_NAMES
+       ET_S3, ET_S4, ET_B21, ET_B31, ET_CPE3, ET_CPE4, DLOAD_PX, DLOAD_PY, DLOAD_PZ, DLOAD_P, DLOAD_GRAV, DLOAD_NAMES
   use superjoin_deck_lexer, only: itoa, plural
   use superjoin_deck_state, only: deck_state_t, sub_b_t, ref_t, load_b_t, report, report_loc, report_oom, find_set, &
        CH_IDS, CH_GEN, CH_RANGE, CH_REF, BEAM_2D_VALUES, BEAM_3D_VALUES, SUBK_INSTANCE
@@ -510,10 +510,13 @@ contains
                ncps = ncps + 1
                if (sb%kind /= SEC_SOLID) call bad(e)
             end if
-         case (ET_B23)
+         case (ET_CPE3, ET_CPE4)
+            ncps = ncps + 1
+            if (sb%kind /= SEC_SOLID) call bad(e)
+         case (ET_B23, ET_B21)
             nb23 = nb23 + 1
             if (sb%kind /= SEC_BEAM) call bad(e)
-         case (ET_B33)
+         case (ET_B33, ET_B31)
             nb33 = nb33 + 1
             if (sb%kind /= SEC_BEAM) call bad(e)
          case (ET_S3, ET_S4)
@@ -545,6 +548,16 @@ contains
       if (.not. sb%data_ok) return
       select case (sb%kind)
       case (SEC_SOLID)
+         if (sb%nval == 0) then
+            ! No data line: plane elements take the thickness 1 (Abaqus's
+            ! default); trusses need their area.
+            if (ntruss > 0 .or. ncps == 0) then
+               call report_loc(st, sb%loc, card//' needs a data line (the cross-section area of the trusses)')
+               return
+            end if
+            sec%thickness = 1.0_wp
+            return
+         end if
          if (ntruss > 0 .or. ncps == 0) sec%area = sb%val(1)
          if (ncps > 0 .or. ntruss == 0) sec%thickness = sb%val(1)
       case (SEC_SHELL)
@@ -568,6 +581,19 @@ contains
          end if
          sec%has_v = sb%has_v
          if (sb%has_v) sec%v = sb%v
+         ! *TRANSVERSE SHEAR STIFFNESS K23, K13 (Abaqus cross-section axes 1, 2):
+         ! a planar beam deflects along axis 2 (local y), a 3D beam's local y, z
+         ! are axes 1, 2.
+         if (sb%has_ks) then
+            if (sb%nval == BEAM_2D_VALUES) then
+               sec%shear_k(1) = sb%ks(1)
+            else if (sb%nks < 2) then
+               call report_loc(st, sb%ks_loc, '*TRANSVERSE SHEAR STIFFNESS of 3D beams needs K23, K13')
+               return
+            else
+               sec%shear_k = sb%ks([2, 1])
+            end if
+         end if
       end select
     end associate
   contains
@@ -582,7 +608,7 @@ contains
     integer, intent(in) :: etype
     character(:), allocatable :: card
     select case (etype)
-    case (ET_B23, ET_B33)
+    case (ET_B23, ET_B33, ET_B21, ET_B31)
        card = '*BEAM SECTION'
     case (ET_S3, ET_S4)
        card = '*SHELL SECTION'
@@ -1153,9 +1179,9 @@ contains
     integer, intent(in) :: kind, etype
     select case (kind)
     case (DLOAD_PX, DLOAD_PY)
-       dload_fits = etype == ET_B23 .or. etype == ET_B33
+       dload_fits = etype == ET_B23 .or. etype == ET_B33 .or. etype == ET_B21 .or. etype == ET_B31
     case (DLOAD_PZ)
-       dload_fits = etype == ET_B33
+       dload_fits = etype == ET_B33 .or. etype == ET_B31
     case (DLOAD_P)
        dload_fits = etype == ET_S3 .or. etype == ET_S4
     case (DLOAD_GRAV)
@@ -1170,9 +1196,9 @@ contains
     character(:), allocatable :: s
     select case (kind)
     case (DLOAD_PX, DLOAD_PY)
-       s = 'PX and PY apply to beams B23 and B33'
+       s = 'PX and PY apply to beams B23, B33, B21 and B31'
     case (DLOAD_PZ)
-       s = 'PZ applies to 3D beams B33'
+       s = 'PZ applies to 3D beams B33 and B31'
     case default
        s = 'P applies to shells S3 and S4'
     end select

@@ -6,32 +6,54 @@ module superjoin_elements_beam
   !! axial and twist fields: nodal results are exact for end loads and, with the
   !! consistent loads of beam_load_local, for uniform distributed loads.
   !!
-  !! Local DOFs per node: B23 (u, v, θz); B33 (u, v, w, θx, θy, θz), node-major.
+  !! B21 and B31 are the Timoshenko counterparts of B23 and B33: the exact
+  !! stiffness of a prismatic member with transverse shear flexibility
+  !! (interdependent interpolation, phi = 12 EI/(K L²), K = sec%shear_k or
+  !! shear_factor G A per direction), exact for end loads and uniform loads,
+  !! free of shear locking, equal to B23/B33 as phi -> 0.
+  !!
+  !! Local DOFs per node: B23, B21 (u, v, θz); B33, B31 (u, v, w, θx, θy, θz),
+  !! node-major.
   use superjoin_kinds, only: wp
   use superjoin_error, only: error_t, fatal_error, EXIT_DECK
-  use superjoin_model_types, only: section_t, material_t, ET_B23, ET_B33
+  use superjoin_model_types, only: section_t, material_t, ET_B23, ET_B21, ET_B31
   use superjoin_elements_frame, only: beam_frame, require_positive
   implicit none (type, external)
   private
 
   integer, parameter :: NNODE = 2
   integer, parameter :: ND_B23 = 3, ND_B33 = 6
+  real(wp), parameter :: one = 1.0_wp
 
   type :: beam_props_t
     !! Properties of one beam element, gathered and checked once.
      real(wp) :: r(3, 3) = 0.0_wp   !! rows: local axes
      real(wp) :: length = 0.0_wp
      real(wp) :: ea = 0.0_wp, eiy = 0.0_wp, eiz = 0.0_wp, gj = 0.0_wp
+     real(wp) :: phiy = 0.0_wp      !! Timoshenko: 12 EIz/(Ky L²), bending in the x-y plane
+     real(wp) :: phiz = 0.0_wp      !! Timoshenko: 12 EIy/(Kz L²), bending in the x-z plane
   end type beam_props_t
 
   public :: beam_stiffness, beam_end_forces, beam_load
 
 contains
 
+  pure logical function is_2d(etype)
+    !! Whether a beam type is planar (B23, B21).
+    integer, intent(in) :: etype
+    is_2d = etype == ET_B23 .or. etype == ET_B21
+  end function is_2d
+
+  pure logical function is_timoshenko(etype)
+    !! Whether a beam type has transverse shear flexibility (B21, B31).
+    integer, intent(in) :: etype
+    is_timoshenko = etype == ET_B21 .or. etype == ET_B31
+  end function is_timoshenko
+
   pure integer function beam_ndof(etype)
     !! DOFs per node of a beam type.
     integer, intent(in) :: etype
-    if (etype == ET_B23) then
+    if (is_2d(etype)) then
        beam_ndof = ND_B23
     else
        beam_ndof = ND_B33
@@ -46,12 +68,12 @@ contains
     type(material_t), intent(in) :: mat
     type(beam_props_t), intent(out) :: p
     type(error_t), allocatable, intent(out) :: error
-    real(wp) :: g
+    real(wp) :: g, ks(2)
 
     call beam_frame(etype, x, sec, p%r, p%length, error)
     if (allocated(error)) return
     call require_positive(sec%area, 'cross-section area A', error)
-    if (etype == ET_B23) then
+    if (is_2d(etype)) then
        call require_positive(sec%iz, 'moment of inertia I', error)
     else
        call require_positive(sec%iy, 'moment of inertia Iy', error)
@@ -62,15 +84,23 @@ contains
     if (allocated(error)) return
     p%ea = mat%e*sec%area
     p%eiz = mat%e*sec%iz
-    if (etype == ET_B33) then
-       if (.not. (mat%nu > -1.0_wp)) then
-          call fatal_error(error, EXIT_DECK, 'Poisson''s ratio nu must be greater than -1 for a beam')
-          return
-       end if
-       g = mat%e/(2*(1 + mat%nu))
+    if (etype == ET_B23) return
+    if (.not. (mat%nu > -1.0_wp)) then
+       call fatal_error(error, EXIT_DECK, 'Poisson''s ratio nu must be greater than -1 for a beam')
+       return
+    end if
+    g = mat%e/(2*(1 + mat%nu))
+    if (.not. is_2d(etype)) then
        p%eiy = mat%e*sec%iy
        p%gj = g*sec%j
     end if
+    if (.not. is_timoshenko(etype)) return
+    ! Transverse shear stiffness K (force units) per direction: given, or k G A.
+    call require_positive(sec%shear_factor, 'shear factor k', error)
+    if (allocated(error)) return
+    ks = merge(sec%shear_k, sec%shear_factor*g*sec%area, sec%shear_k > 0.0_wp)
+    p%phiy = 12*p%eiz/(ks(1)*p%length**2)
+    if (.not. is_2d(etype)) p%phiz = 12*p%eiy/(ks(2)*p%length**2)
   end subroutine beam_setup
 
   pure function local_stiffness(etype, p) result(k)
@@ -82,8 +112,12 @@ contains
     integer :: iv(4), iw(4)
 
     l = p%length
-    bz = hermite_block(p%eiz, l)
-    if (etype == ET_B23) then
+    if (is_timoshenko(etype)) then
+       bz = timoshenko_block(p%eiz, l, p%phiy)
+    else
+       bz = hermite_block(p%eiz, l)
+    end if
+    if (is_2d(etype)) then
        allocate (k(2*ND_B23, 2*ND_B23), source=0.0_wp)
        a = p%ea/l
        k(1, 1) = a; k(4, 4) = a; k(1, 4) = -a; k(4, 1) = -a
@@ -102,7 +136,11 @@ contains
     k(iv, iv) = bz
     ! Bending in the x-z plane: w and θy = -dw/dx, rigidity EIy; the block in
     ! (w1, -θy1, w2, -θy2) is the same Hermite block.
-    by = hermite_block(p%eiy, l)
+    if (is_timoshenko(etype)) then
+       by = timoshenko_block(p%eiy, l, p%phiz)
+    else
+       by = hermite_block(p%eiy, l)
+    end if
     by(:, [2, 4]) = -by(:, [2, 4])
     by([2, 4], :) = -by([2, 4], :)
     iw = [3, 5, 9, 11]
@@ -123,13 +161,28 @@ contains
     b(:, 4) = [c2, c1, -c2, 2*c1]
   end function hermite_block
 
+  pure function timoshenko_block(ei, l, phi) result(b)
+    !! Bending stiffness of a prismatic Timoshenko member in (v1, θ1, v2, θ2),
+    !! θ the rotation of the section, phi = 12 EI/(K L²) (K: transverse shear
+    !! stiffness): the exact stiffness (interdependent interpolation), which
+    !! tends to hermite_block as phi -> 0 and does not lock as L/h grows.
+    real(wp), intent(in) :: ei, l, phi
+    real(wp) :: b(4, 4)
+    real(wp) :: c
+    c = ei/((1 + phi)*l**3)
+    b(:, 1) = c*[12*one, 6*l, -12*one, 6*l]
+    b(:, 2) = c*[6*l, (4 + phi)*l**2, -6*l, (2 - phi)*l**2]
+    b(:, 3) = c*[-12*one, -6*l, 12*one, -6*l]
+    b(:, 4) = c*[6*l, (2 - phi)*l**2, -6*l, (4 + phi)*l**2]
+  end function timoshenko_block
+
   pure function transformation(etype, r) result(t)
     !! Transformation u_local = t u_global (node-major DOFs) of a beam.
     integer, intent(in) :: etype
     real(wp), intent(in) :: r(3, 3)
     real(wp), allocatable :: t(:, :)
     integer :: nb, b
-    if (etype == ET_B23) then
+    if (is_2d(etype)) then
        ! Per node (ux, uy, rz) -> (u, v, θz); the 2D frame has r(3,:) = Z,
        ! so the block is r itself.
        allocate (t(2*ND_B23, 2*ND_B23), source=0.0_wp)
@@ -146,14 +199,18 @@ contains
 
   pure function beam_load_local(etype, length, q) result(fq)
     !! Consistent nodal loads (local axes, node-major local DOFs) of a uniform
-    !! load per unit length q (local axes), with the fixed-end moments.
+    !! load per unit length q (local axes), with the fixed-end moments. They
+    !! hold for the Timoshenko types as well: the fixed-end forces of a uniform
+    !! load do not depend on the shear flexibility (symmetric load, the end
+    !! moments are set by bending alone), and they are the consistent loads of
+    !! the interdependent interpolation.
     integer, intent(in) :: etype
     real(wp), intent(in) :: length, q(3)
     real(wp), allocatable :: fq(:)
     real(wp) :: h, m
     h = length/2
     m = length**2/12
-    if (etype == ET_B23) then
+    if (is_2d(etype)) then
        fq = [q(1)*h, q(2)*h, q(2)*m, q(1)*h, q(2)*h, -q(2)*m]
     else
        fq = [q(1)*h, q(2)*h, q(3)*h, 0.0_wp, -q(3)*m, q(2)*m, &
@@ -162,7 +219,7 @@ contains
   end function beam_load_local
 
   pure subroutine beam_stiffness(etype, x, sec, mat, ke, error)
-    !! Global stiffness of a B23/B33 beam, node-major (exactly symmetric).
+    !! Global stiffness of a B23/B33/B21/B31 beam, node-major (exactly symmetric).
     integer, intent(in) :: etype
     real(wp), intent(in) :: x(:, :)
     type(section_t), intent(in) :: sec
@@ -218,14 +275,14 @@ contains
     call beam_setup(etype, x, sec, mat, p, error)
     if (allocated(error)) return
     ql = q_local
-    if (etype == ET_B23) ql(3) = 0.0_wp
+    if (is_2d(etype)) ql(3) = 0.0_wp
     ! u_local = T u_global with T block diagonal in r: rotate 3-vectors.
     allocate (ul(size(ue)))
     do b = 0, size(ue)/3 - 1
        ul(3*b + 1:3*b + 3) = matmul(p%r, ue(3*b + 1:3*b + 3))
     end do
     fl = matmul(local_stiffness(etype, p), ul) - beam_load_local(etype, p%length, ql)
-    if (etype == ET_B23) then
+    if (is_2d(etype)) then
        f([1, 2, 6], 1) = fl(1:3)
        f([1, 2, 6], 2) = fl(4:6)
     else
@@ -237,7 +294,7 @@ contains
   pure subroutine beam_load(etype, x, sec, w, fe, q_local, error)
     !! Consistent nodal loads (global axes, node-major) of a uniform load per
     !! unit length w (global axes) on a beam, and the load in local axes.
-    !! B23 rejects a load along global Z.
+    !! B23 and B21 reject a load along global Z.
     integer, intent(in) :: etype
     real(wp), intent(in) :: x(:, :)
     type(section_t), intent(in) :: sec
@@ -250,7 +307,7 @@ contains
     q_local = 0.0_wp
     call beam_frame(etype, x, sec, r, length, error)
     if (allocated(error)) return
-    if (etype == ET_B23 .and. w(3) /= 0.0_wp) then
+    if (is_2d(etype) .and. w(3) /= 0.0_wp) then
        call fatal_error(error, EXIT_DECK, 'load along global Z on a 2D element')
        return
     end if

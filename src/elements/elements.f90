@@ -8,7 +8,7 @@ module superjoin_elements
   use superjoin_kinds, only: wp
   use superjoin_error, only: error_t, fatal_error, EXIT_DECK
   use superjoin_model_types, only: section_t, material_t, ET_T2D2, ET_T3D2, ET_B23, ET_B33, &
-       ET_CPS3, ET_CPS4, ET_S3, ET_S4, NUM_ELEMENT_TYPES, ELEMENT_TYPE_NAMES, &
+       ET_CPS3, ET_CPS4, ET_S3, ET_S4, ET_B21, ET_B31, ET_CPE3, ET_CPE4, NUM_ELEMENT_TYPES, ELEMENT_TYPE_NAMES, &
        DLOAD_PX, DLOAD_PY, DLOAD_PZ, DLOAD_P
   use superjoin_elements_frame, only: beam_frame
   use superjoin_elements_truss, only: truss_stiffness, truss_end_forces, truss_distributed_load
@@ -21,7 +21,7 @@ module superjoin_elements
   public :: element_node_dofs, element_dof_mask, element_stiffness, element_end_forces, beam_distributed_load, &
        element_nodal_forces, element_distributed_load, element_gravity_load
   public :: is_plate_type, shell_resultants, shell_forces
-    !! is_plate_type(etype): CPS3, CPS4, S3, S4. shell_resultants(etype, x, sec,
+    !! is_plate_type(etype): CPS3, CPS4, CPE3, CPE4, S3, S4. shell_resultants(etype, x, sec,
     !! mat, ue, res, error): nx, ny, nxy, mx, my, mxy at the centroid, element
     !! frame; shell_forces(etype, x, sec, mat, ue(:, nstep), res(6, nstep),
     !! fg(:, nstep), error): resultants and K_e u_e of every step with one
@@ -34,19 +34,19 @@ contains
 
   pure function element_node_dofs(etype) result(dofs)
     !! DOF numbers (1..6: ux, uy, uz, rx, ry, rz) carried by each node of an
-    !! element type: T2D2 [1,2]; T3D2 [1,2,3]; B23 [1,2,6]; B33 [1..6];
-    !! CPS3/CPS4 [1,2]; S3/S4 [1..6]; an unknown type gives an empty array.
+    !! element type: T2D2 [1,2]; T3D2 [1,2,3]; B23, B21 [1,2,6]; B33, B31 [1..6];
+    !! CPS3/CPS4/CPE3/CPE4 [1,2]; S3/S4 [1..6]; an unknown type gives an empty array.
     integer, intent(in) :: etype
     integer, allocatable :: dofs(:)
     integer :: i
     select case (etype)
-    case (ET_T2D2, ET_CPS3, ET_CPS4)
+    case (ET_T2D2, ET_CPS3, ET_CPS4, ET_CPE3, ET_CPE4)
        dofs = [1, 2]
     case (ET_T3D2)
        dofs = [1, 2, 3]
-    case (ET_B23)
+    case (ET_B23, ET_B21)
        dofs = [1, 2, 6]
-    case (ET_B33, ET_S3, ET_S4)
+    case (ET_B33, ET_B31, ET_S3, ET_S4)
        dofs = [(i, i=1, 6)]
     case default
        allocate (dofs(0))
@@ -60,13 +60,13 @@ contains
     logical :: mask(6)
     mask = .false.
     select case (etype)
-    case (ET_T2D2, ET_CPS3, ET_CPS4)
+    case (ET_T2D2, ET_CPS3, ET_CPS4, ET_CPE3, ET_CPE4)
        mask(1:2) = .true.
     case (ET_T3D2)
        mask(1:3) = .true.
-    case (ET_B23)
+    case (ET_B23, ET_B21)
        mask([1, 2, 6]) = .true.
-    case (ET_B33, ET_S3, ET_S4)
+    case (ET_B33, ET_B31, ET_S3, ET_S4)
        mask = .true.
     end select
   end function element_dof_mask
@@ -87,7 +87,7 @@ contains
     fg = 0.0_wp
     mask = element_dof_mask(etype)
     select case (etype)
-    case (ET_T2D2, ET_T3D2, ET_B23, ET_B33)
+    case (ET_T2D2, ET_T3D2, ET_B23, ET_B33, ET_B21, ET_B31)
        call beam_frame(etype, x, sec, r, length, error)
        if (allocated(error)) return
        k = 0
@@ -120,9 +120,9 @@ contains
     select case (etype)
     case (ET_T2D2, ET_T3D2)
        call truss_stiffness(etype, x, sec, mat, ke, error)
-    case (ET_B23, ET_B33)
+    case (ET_B23, ET_B33, ET_B21, ET_B31)
        call beam_stiffness(etype, x, sec, mat, ke, error)
-    case (ET_CPS3, ET_CPS4, ET_S3, ET_S4)
+    case (ET_CPS3, ET_CPS4, ET_S3, ET_S4, ET_CPE3, ET_CPE4)
        call shell_stiffness(etype, x, sec, mat, ke, error)
     case default
        call unsupported(etype, error)
@@ -137,7 +137,7 @@ contains
     !! tension has n < 0 at end 1 and n > 0 at end 2. ue holds the element DOF
     !! values in global axes, same ordering as element_stiffness. Components a
     !! type lacks are 0 (trusses: n, and vy, vz under a load across the bar such
-    !! as self weight; B23: n, vy, mz). Plane and shell
+    !! as self weight; B23, B21: n, vy, mz). Plane and shell
     !! elements have no end forces: f = 0 and no error.
     integer, intent(in) :: etype
     real(wp), intent(in) :: x(:, :)
@@ -151,9 +151,9 @@ contains
     select case (etype)
     case (ET_T2D2, ET_T3D2)
        call truss_end_forces(etype, x, sec, mat, ue, q_local, f, error)
-    case (ET_B23, ET_B33)
+    case (ET_B23, ET_B33, ET_B21, ET_B31)
        call beam_end_forces(etype, x, sec, mat, ue, q_local, f, error)
-    case (ET_CPS3, ET_CPS4, ET_S3, ET_S4)
+    case (ET_CPS3, ET_CPS4, ET_S3, ET_S4, ET_CPE3, ET_CPE4)
        continue
     case default
        call unsupported(etype, error)
@@ -178,7 +178,7 @@ contains
     select case (etype)
     case (ET_T2D2, ET_T3D2)
        call truss_distributed_load(etype, x, sec, wglobal, fe, q_local, error)
-    case (ET_B23, ET_B33)
+    case (ET_B23, ET_B33, ET_B21, ET_B31)
        call beam_load(etype, x, sec, wglobal, fe, q_local, error)
     case default
        if (etype >= 1 .and. etype <= NUM_ELEMENT_TYPES) then
@@ -233,9 +233,9 @@ contains
     type(error_t), allocatable, intent(out) :: error
     q_local = 0.0_wp
     select case (etype)
-    case (ET_T2D2, ET_T3D2, ET_B23, ET_B33)
+    case (ET_T2D2, ET_T3D2, ET_B23, ET_B33, ET_B21, ET_B31)
        call beam_distributed_load(etype, x, sec, mat%density*sec%area*accel, fe, q_local, error)
-    case (ET_CPS3, ET_CPS4, ET_S3, ET_S4)
+    case (ET_CPS3, ET_CPS4, ET_S3, ET_S4, ET_CPE3, ET_CPE4)
        call shell_area_load(etype, x, mat%density*sec%thickness*accel, fe, error)
     case default
        call unsupported(etype, error)

@@ -5,10 +5,11 @@ module superjoin_elements_frame
   !! Rule (deck.md, section 2): local x runs from node 1 to node 2; local y lies in
   !! the plane of x and the orientation vector v (default global Z, global X when
   !! the element is parallel to Z); local z = x × y. 2D elements (T2D2, B23) lie
-  !! in the XY plane: x in that plane, z = global Z, y = z × x.
+  !! in the XY plane: x in that plane, z = global Z, y = z × x. B21 and B31
+  !! (Timoshenko beams) follow the rules of B23 and B33.
   use superjoin_kinds, only: wp
   use superjoin_error, only: error_t, fatal_error, EXIT_DECK
-  use superjoin_model_types, only: section_t, ET_T2D2, ET_T3D2, ET_B23, ET_B33
+  use superjoin_model_types, only: section_t, ET_T2D2, ET_T3D2, ET_B23, ET_B33, ET_B21, ET_B31
   implicit none (type, external)
   private
 
@@ -35,9 +36,9 @@ contains
     !!
     !! `x(3, 2)` are the node coordinates; on return the rows of `r` are the
     !! local x, y, z axes in global components (so u_local = r u_global) and
-    !! `length` is the element length. T2D2 and B23 use the 2D rule (z = global Z;
+    !! `length` is the element length. T2D2, B23 and B21 use the 2D rule (z = global Z;
     !! their nodes must share the same z); T3D2 uses the default v rule (a truss
-    !! has no orientation, `sec%v` is ignored); B33 uses `sec%v` when
+    !! has no orientation, `sec%v` is ignored); B33 and B31 use `sec%v` when
     !! `sec%has_v`, else the default. Errors (code EXIT_DECK): zero-length
     !! element, 2D element out of the XY plane, zero orientation vector,
     !! orientation vector parallel to beam axis, element type without a line frame.
@@ -51,7 +52,8 @@ contains
 
     r = 0.0_wp
     length = 0.0_wp
-    if (etype /= ET_T2D2 .and. etype /= ET_T3D2 .and. etype /= ET_B23 .and. etype /= ET_B33) then
+    if (etype /= ET_T2D2 .and. etype /= ET_T3D2 .and. etype /= ET_B23 .and. etype /= ET_B33 .and. &
+        etype /= ET_B21 .and. etype /= ET_B31) then
        call fatal_error(error, EXIT_DECK, 'element type has no line-element frame')
        return
     end if
@@ -62,7 +64,7 @@ contains
     d = x(:, 2) - x(:, 1)
     scale = max(maxval(abs(x(:, 1))), maxval(abs(x(:, 2))))
 
-    if (etype == ET_T2D2 .or. etype == ET_B23) then
+    if (etype == ET_T2D2 .or. etype == ET_B23 .or. etype == ET_B21) then
        length = norm2(d(1:2))
        if (length <= ZERO_LENGTH_TOL*scale) then   ! also catches length = 0
           call fatal_error(error, EXIT_DECK, 'zero-length element')
@@ -85,7 +87,7 @@ contains
     end if
     ex = d/length
 
-    if (etype == ET_B33 .and. sec%has_v) then
+    if ((etype == ET_B33 .or. etype == ET_B31) .and. sec%has_v) then
        v = sec%v
        vn = norm2(v)
        if (vn == 0.0_wp) then

@@ -2,7 +2,8 @@ module superjoin_elements_membrane
   !! Plane-stress membrane elements in a 2D local frame: the constant-strain
   !! triangle (3 nodes) and the bilinear quadrilateral with Wilson-Taylor
   !! incompatible modes in the Taylor-Beresford-Wilson form QM6 (4 nodes), plus
-  !! the membrane of a flat shell with a drilling rotation.
+  !! the membrane of a flat shell with a drilling rotation; the same two
+  !! elements with the plane-strain elasticity matrix (CPE3, CPE4).
   !!
   !! Input: xl(2, nnode) local coordinates, nnode = 3 or 4, nodes counter-clockwise;
   !! t thickness, e Young's modulus, nu Poisson's ratio. Element vectors and
@@ -76,6 +77,7 @@ module superjoin_elements_membrane
   real(wp), parameter :: NU_MIN = -1.0_wp, NU_MAX = 0.5_wp   !! open interval of Poisson's ratio
 
   public :: membrane_stiffness, membrane_resultants, membrane_drill_stiffness
+  public :: plane_strain_stiffness, plane_strain_resultants
 
 contains
 
@@ -85,11 +87,30 @@ contains
     real(wp), intent(in) :: t, e, nu
     real(wp), allocatable, intent(out) :: ke(:, :)
     type(error_t), allocatable, intent(out) :: error
-    real(wp) :: d(NSTRAIN, NSTRAIN), kua(8, NMODE), kaa(NMODE, NMODE), x(2, 4)
-
-    call check_element(xl, t, e, nu, error)
+    call check_element(xl, t, e, nu, 'plane stress', error)
     if (allocated(error)) return
-    d = t*plane_stress(e, nu)
+    ke = stiffness_of(xl, t*plane_stress(e, nu))
+  end subroutine membrane_stiffness
+
+  pure subroutine plane_strain_stiffness(xl, t, e, nu, ke, error)
+    !! Plane-strain stiffness ke(2n, 2n) of a CST (n = 3) or QM6 quadrilateral
+    !! (n = 4) of thickness t: the same elements with the plane-strain
+    !! elasticity matrix (εz = 0).
+    real(wp), intent(in) :: xl(:, :)
+    real(wp), intent(in) :: t, e, nu
+    real(wp), allocatable, intent(out) :: ke(:, :)
+    type(error_t), allocatable, intent(out) :: error
+    call check_element(xl, t, e, nu, 'plane strain', error)
+    if (allocated(error)) return
+    ke = stiffness_of(xl, t*plane_strain(e, nu))
+  end subroutine plane_strain_stiffness
+
+  pure function stiffness_of(xl, d) result(ke)
+    !! Stiffness of a checked CST or QM6 element with the matrix d = t D.
+    real(wp), intent(in) :: xl(:, :)
+    real(wp), intent(in) :: d(NSTRAIN, NSTRAIN)
+    real(wp), allocatable :: ke(:, :)
+    real(wp) :: kua(8, NMODE), kaa(NMODE, NMODE), x(2, 4)
     if (size(xl, 2) == 3) then
        ke = cst_stiffness(xl, d)
     else
@@ -99,7 +120,7 @@ contains
        ke = ke - matmul(kua, spd_solve(kaa, transpose(kua)))
     end if
     ke = 0.5_wp*(ke + transpose(ke))
-  end subroutine membrane_stiffness
+  end function stiffness_of
 
   pure subroutine membrane_resultants(xl, t, e, nu, ue, nres, error)
     !! Membrane resultants nres = (nx, ny, nxy) = t σ at the centroid from the
@@ -109,18 +130,42 @@ contains
     real(wp), intent(in) :: ue(:)
     real(wp), intent(out) :: nres(NSTRAIN)
     type(error_t), allocatable, intent(out) :: error
-    real(wp) :: d(NSTRAIN, NSTRAIN), kua(8, NMODE), kaa(NMODE, NMODE), x(2, 4)
+    nres = 0.0_wp
+    call check_element(xl, t, e, nu, 'plane stress', error)
+    if (allocated(error)) return
+    call resultants_of(xl, t*plane_stress(e, nu), ue, nres, error)
+  end subroutine membrane_resultants
+
+  pure subroutine plane_strain_resultants(xl, t, e, nu, ue, nres, error)
+    !! In-plane resultants (nx, ny, nxy) = t σ at the centroid of a plane-strain
+    !! element (σz = ν (σx + σy) is not returned).
+    real(wp), intent(in) :: xl(:, :)
+    real(wp), intent(in) :: t, e, nu
+    real(wp), intent(in) :: ue(:)
+    real(wp), intent(out) :: nres(NSTRAIN)
+    type(error_t), allocatable, intent(out) :: error
+    nres = 0.0_wp
+    call check_element(xl, t, e, nu, 'plane strain', error)
+    if (allocated(error)) return
+    call resultants_of(xl, t*plane_strain(e, nu), ue, nres, error)
+  end subroutine plane_strain_resultants
+
+  pure subroutine resultants_of(xl, d, ue, nres, error)
+    !! Resultants d (B u) at the centroid of a checked element, d = t D.
+    real(wp), intent(in) :: xl(:, :)
+    real(wp), intent(in) :: d(NSTRAIN, NSTRAIN)
+    real(wp), intent(in) :: ue(:)
+    real(wp), intent(out) :: nres(NSTRAIN)
+    type(error_t), allocatable, intent(out) :: error
+    real(wp) :: kua(8, NMODE), kaa(NMODE, NMODE), x(2, 4)
     real(wp) :: alpha(NMODE, 1), bc(NSTRAIN, 8), ba(NSTRAIN, NMODE), b3(NSTRAIN, 6), xi, eta, area
     real(wp), allocatable :: kuu(:, :)
 
     nres = 0.0_wp
-    call check_element(xl, t, e, nu, error)
-    if (allocated(error)) return
     if (size(ue) /= 2*size(xl, 2)) then
        call fatal_error(error, EXIT_DECK, 'wrong number of element DOF values')
        return
     end if
-    d = t*plane_stress(e, nu)
     if (size(xl, 2) == 3) then
        call cst_b(xl, b3, area)
        nres = matmul(d, matmul(b3, ue))
@@ -132,7 +177,7 @@ contains
     call centroid_natural(x, xi, eta)
     call qm6_b(x, xi, eta, bc, ba, area)
     nres = matmul(d, matmul(bc, ue) + matmul(ba, alpha(:, 1)))
-  end subroutine membrane_resultants
+  end subroutine resultants_of
 
   pure subroutine membrane_drill_stiffness(xl, t, e, nu, ke, error)
     !! Stiffness ke(3n, 3n) of a membrane with drilling rotation (u, v, θz per node):
@@ -181,11 +226,13 @@ contains
 
   ! ------------------------------------------------------------------ checks
 
-  pure subroutine check_element(xl, t, e, nu, error)
+  pure subroutine check_element(xl, t, e, nu, state, error)
     !! Data checks: node count, t > 0, E > 0, -1 < nu < 0.5, positive area,
     !! distinct nodes, and for the quadrilateral det J > 0 at the Gauss points.
+    !! `state` ('plane stress' or 'plane strain') goes into the nu message.
     real(wp), intent(in) :: xl(:, :)
     real(wp), intent(in) :: t, e, nu
+    character(*), intent(in) :: state
     type(error_t), allocatable, intent(out) :: error
     real(wp) :: area, edge2, lmax2, x(2, 4), bc(NSTRAIN, 8), ba(NSTRAIN, NMODE), jac
     integer :: n, i, k
@@ -199,7 +246,7 @@ contains
     call require_positive(e, 'Young''s modulus E', error)
     if (allocated(error)) return
     if (.not. (nu > NU_MIN .and. nu < NU_MAX)) then
-       call fatal_error(error, EXIT_DECK, 'Poisson''s ratio nu must lie in (-1, 0.5) for plane stress')
+       call fatal_error(error, EXIT_DECK, 'Poisson''s ratio nu must lie in (-1, 0.5) for '//state)
        return
     end if
 
@@ -260,6 +307,17 @@ contains
     d(:, 2) = [c*nu, c, 0.0_wp]
     d(:, 3) = [0.0_wp, 0.0_wp, c*(1 - nu)/2]
   end function plane_stress
+
+  pure function plane_strain(e, nu) result(d)
+    !! Plane-strain elasticity matrix (εx, εy, γxy) -> (σx, σy, τxy), εz = 0.
+    real(wp), intent(in) :: e, nu
+    real(wp) :: d(NSTRAIN, NSTRAIN)
+    real(wp) :: c
+    c = e/((1 + nu)*(1 - 2*nu))
+    d(:, 1) = [c*(1 - nu), c*nu, 0.0_wp]
+    d(:, 2) = [c*nu, c*(1 - nu), 0.0_wp]
+    d(:, 3) = [0.0_wp, 0.0_wp, e/(2*(1 + nu))]
+  end function plane_strain
 
   ! -------------------------------------------------------------------- CST
 

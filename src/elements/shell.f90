@@ -1,5 +1,6 @@
 module superjoin_elements_shell
-  !! Plane-stress elements CPS3/CPS4 (XY plane, DOFs 1, 2) and flat shells
+  !! Plane-stress elements CPS3/CPS4 and plane-strain elements CPE3/CPE4 (XY
+  !! plane, DOFs 1, 2, the same elements with another elasticity matrix) and flat shells
   !! S3/S4 (DOFs 1-6): the element frame, the membrane (superjoin_elements_membrane)
   !! and plate bending (superjoin_elements_plate) parts put together, rotated
   !! to global axes.
@@ -14,14 +15,15 @@ module superjoin_elements_shell
   use superjoin_kinds, only: wp
   use superjoin_error, only: error_t, fatal_error, EXIT_DECK
   use superjoin_model_types, only: section_t, material_t, ET_CPS3, ET_CPS4, ET_S3, ET_S4, &
-       ELEMENT_NODE_COUNT
-  use superjoin_elements_membrane, only: membrane_stiffness, membrane_drill_stiffness, membrane_resultants
+       ET_CPE3, ET_CPE4, ELEMENT_NODE_COUNT
+  use superjoin_elements_membrane, only: membrane_stiffness, membrane_drill_stiffness, membrane_resultants, &
+       plane_strain_stiffness, plane_strain_resultants
   use superjoin_elements_plate, only: plate_stiffness, plate_moments, plate_pressure_load
   use superjoin_elements_frame, only: cross
   implicit none (type, external)
   private
 
-  public :: is_plate_type, shell_frame, shell_stiffness, shell_resultants, shell_forces, shell_pressure_load, &
+  public :: is_plate_type, is_plane_type, shell_frame, shell_stiffness, shell_resultants, shell_forces, shell_pressure_load, &
        shell_area_load
 
   integer, parameter :: MEMBRANE_DOFS(3) = [1, 2, 6]
@@ -34,10 +36,16 @@ module superjoin_elements_shell
 contains
 
   elemental logical function is_plate_type(etype)
-    !! True for the plane-stress and shell element types.
+    !! True for the plane (stress and strain) and shell element types.
     integer, intent(in) :: etype
-    is_plate_type = etype == ET_CPS3 .or. etype == ET_CPS4 .or. etype == ET_S3 .or. etype == ET_S4
+    is_plate_type = is_plane_type(etype) .or. etype == ET_S3 .or. etype == ET_S4
   end function is_plate_type
+
+  elemental logical function is_plane_type(etype)
+    !! True for the plane-stress (CPS3, CPS4) and plane-strain (CPE3, CPE4) types.
+    integer, intent(in) :: etype
+    is_plane_type = etype == ET_CPS3 .or. etype == ET_CPS4 .or. etype == ET_CPE3 .or. etype == ET_CPE4
+  end function is_plane_type
 
   pure subroutine shell_frame(x, r, xl, h, error)
     !! Element frame of a 3- or 4-node element with nodes x(3, n): rows of r
@@ -171,6 +179,10 @@ contains
        call membrane_stiffness(xl, sec%thickness, mat%e, mat%nu, kf, error)
        return
     end if
+    if (etype == ET_CPE3 .or. etype == ET_CPE4) then
+       call plane_strain_stiffness(xl, sec%thickness, mat%e, mat%nu, kf, error)
+       return
+    end if
     call membrane_drill_stiffness(xl, sec%thickness, mat%e, mat%nu, km, error)
     if (allocated(error)) return
     call plate_stiffness(xl, sec%thickness, mat%e, mat%nu, kb, error)
@@ -196,6 +208,10 @@ contains
        call membrane_resultants(xl, sec%thickness, mat%e, mat%nu, d, res(1:3), error)
        return
     end if
+    if (etype == ET_CPE3 .or. etype == ET_CPE4) then
+       call plane_strain_resultants(xl, sec%thickness, mat%e, mat%nu, d, res(1:3), error)
+       return
+    end if
     do i = 1, size(xl, 2)
        um(2*i - 1:2*i) = d(6*(i - 1) + MEMBRANE_DOFS(1:2))
        ub(3*i - 2:3*i) = d(6*(i - 1) + PLATE_DOFS)
@@ -214,7 +230,7 @@ contains
     real(wp), allocatable :: maps(:, :, :)
     real(wp) :: off(3, 3)
     integer :: i
-    if (etype == ET_CPS3 .or. etype == ET_CPS4) then
+    if (is_plane_type(etype)) then
        allocate (maps(2, 2, size(h)))
        do i = 1, size(h)
           maps(:, :, i) = r(1:2, 1:2)
@@ -319,9 +335,9 @@ contains
     if (allocated(error)) return
     ! plate_pressure_load with p = 1 gives the integrals of the shape functions
     call plate_pressure_load(xl, 1.0_wp, fb)
-    if (etype == ET_CPS3 .or. etype == ET_CPS4) then
+    if (is_plane_type(etype)) then
        if (w(3) /= 0.0_wp) then
-          call fatal_error(error, EXIT_DECK, 'load along Z on a plane-stress element (XY plane)')
+          call fatal_error(error, EXIT_DECK, 'load along Z on a plane element (XY plane)')
           return
        end if
        allocate (fe(2*n))
@@ -348,10 +364,10 @@ contains
        call fatal_error(error, EXIT_DECK, 'wrong number of nodes')
        return
     end if
-    if (etype == ET_CPS3 .or. etype == ET_CPS4) then
+    if (is_plane_type(etype)) then
        size_e = maxval(abs(x(1:2, :) - spread(x(1:2, 1), 2, size(x, 2))))
        if (maxval(abs(x(3, :))) > PLANE_TOL*size_e) then
-          call fatal_error(error, EXIT_DECK, 'plane stress element out of the XY plane (z must be 0)')
+          call fatal_error(error, EXIT_DECK, 'plane element out of the XY plane (z must be 0)')
           return
        end if
     end if

@@ -10,12 +10,15 @@ module superjoin_model_types
   private
 
   integer, parameter, public :: ET_T2D2 = 1, ET_T3D2 = 2, ET_B23 = 3, ET_B33 = 4, &
-                                ET_CPS3 = 5, ET_CPS4 = 6, ET_S3 = 7, ET_S4 = 8
-    !! Element types.
-  integer, parameter, public :: NUM_ELEMENT_TYPES = 8
+                                ET_CPS3 = 5, ET_CPS4 = 6, ET_S3 = 7, ET_S4 = 8, &
+                                ET_B21 = 9, ET_B31 = 10, ET_CPE3 = 11, ET_CPE4 = 12
+    !! Element types (B21, B31: two-node Timoshenko beams; CPE3, CPE4: plane strain).
+  integer, parameter, public :: NUM_ELEMENT_TYPES = 12
   character(len=4), parameter, public :: ELEMENT_TYPE_NAMES(NUM_ELEMENT_TYPES) = &
-       ['T2D2', 'T3D2', 'B23 ', 'B33 ', 'CPS3', 'CPS4', 'S3  ', 'S4  ']
-  integer, parameter, public :: ELEMENT_NODE_COUNT(NUM_ELEMENT_TYPES) = [2, 2, 2, 2, 3, 4, 3, 4]
+       ['T2D2', 'T3D2', 'B23 ', 'B33 ', 'CPS3', 'CPS4', 'S3  ', 'S4  ', &
+        'B21 ', 'B31 ', 'CPE3', 'CPE4']
+  integer, parameter, public :: ELEMENT_NODE_COUNT(NUM_ELEMENT_TYPES) = [2, 2, 2, 2, 3, 4, 3, 4, &
+       2, 2, 3, 4]
   integer, parameter, public :: MAX_ELEMENT_NODES = 4
 
   integer, parameter, public :: NDOF_NODE = 6
@@ -73,6 +76,10 @@ module superjoin_model_types
      real(wp) :: thickness = 0.0_wp        !! plane and shell elements
      real(wp) :: v(3) = [0.0_wp, 0.0_wp, 1.0_wp]  !! beam orientation vector
      logical :: has_v = .false.            !! v given on the card
+     real(wp) :: shear_k(2) = 0.0_wp       !! Timoshenko beams: transverse shear stiffness (force) for
+                                           !! deflection along local y, z (*TRANSVERSE SHEAR STIFFNESS);
+                                           !! 0 = shear_factor × G × A
+     real(wp) :: shear_factor = 1.0_wp     !! k of the default shear stiffness k G A
      type(source_loc_t) :: loc
   end type section_t
 

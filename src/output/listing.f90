@@ -4,7 +4,7 @@ module superjoin_output_listing
   use superjoin_kinds, only: wp, i8, ip
   use superjoin_error, only: error_t, fatal_error, EXIT_IO
   use superjoin_model_types, only: model_t, NDOF_NODE, LINK_RIGID, ELEMENT_TYPE_NAMES, &
-       RIGID_ELIMINATE, ET_CPS3, ET_CPS4
+       RIGID_ELIMINATE, ET_CPS3, ET_CPS4, ET_CPE3, ET_CPE4
   use superjoin_elements, only: is_plate_type
   use superjoin_analysis_results, only: results_t
   use superjoin_output_posix, only: rename_file, remove_file
@@ -309,6 +309,7 @@ contains
     integer, intent(in) :: is
     integer :: isub, ie, d, k, nsurf
     integer(i8) :: iel
+    logical :: plane_strain
     real(wp) :: scale(2), t, sig(4)
     character(len=300) :: hline
     character(len=6), parameter :: SURFACES(3) = ['top   ', 'bottom', 'mid   ']
@@ -344,11 +345,18 @@ contains
           t = model%subs(isub)%sections(model%subs(isub)%elem_section(ie))%thickness
           nsurf = 2
           if (model%subs(isub)%elem_type(ie) == ET_CPS3 .or. model%subs(isub)%elem_type(ie) == ET_CPS4) nsurf = 1
+          plane_strain = model%subs(isub)%elem_type(ie) == ET_CPE3 .or. model%subs(isub)%elem_type(ie) == ET_CPE4
+          if (plane_strain) nsurf = 1
           do k = 1, nsurf
              sig(1:3) = res%plate(1:3, iel, is)/t
              ! (m/t)/t: no t**2 to underflow
              if (nsurf == 2) sig(1:3) = sig(1:3) + merge(1.0_wp, -1.0_wp, k == 1)*6.0_wp*(res%plate(4:6, iel, is)/t)/t
              sig(4) = von_mises(sig(1:3))
+             if (plane_strain) then   ! with sz = nu (sx + sy)
+                associate (sec => model%subs(isub)%sections(model%subs(isub)%elem_section(ie)))
+                  sig(4) = von_mises_3(sig(1:3), model%materials(sec%material)%nu*(sig(1) + sig(2)))
+                end associate
+             end if
              call element_prefix(lu, model, isub, ie)
              if (nsurf == 1) then
                 call lu%put_field('  '//SURFACES(3), 8)
@@ -376,6 +384,19 @@ contains
     a = sig/sc
     vm = sc*sqrt(max(0.0_wp, a(1)**2 - a(1)*a(2) + a(2)**2 + 3.0_wp*a(3)**2))
   end function von_mises
+
+  pure function von_mises_3(sig, sz) result(vm)
+    !! Von Mises stress of (sx, sy, sxy) with a normal stress sz (plane strain),
+    !! scaled so that the squares cannot overflow.
+    real(wp), intent(in) :: sig(3), sz
+    real(wp) :: vm, sc, a(3), c
+    sc = max(maxval(abs(sig)), abs(sz))
+    vm = 0.0_wp
+    if (sc == 0.0_wp) return
+    a = sig/sc
+    c = sz/sc
+    vm = sc*sqrt(max(0.0_wp, ((a(1) - a(2))**2 + (a(2) - c)**2 + (c - a(1))**2)/2 + 3.0_wp*a(3)**2))
+  end function von_mises_3
 
   subroutine element_prefix(lu, model, isub, ie)
     !! Substructure, element id and type columns of an element row.

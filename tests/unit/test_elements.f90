@@ -3,7 +3,7 @@ program test_elements
   use superjoin_kinds, only: wp
   use superjoin_error, only: error_t, EXIT_DECK
   use superjoin_model_types, only: section_t, material_t, SEC_SOLID, SEC_BEAM, SEC_SHELL, &
-       ET_T2D2, ET_T3D2, ET_B23, ET_B33, ET_CPS3, ET_CPS4, ET_S3, ET_S4
+       ET_T2D2, ET_T3D2, ET_B23, ET_B33, ET_CPS3, ET_CPS4, ET_S3, ET_S4, ET_B21, ET_B31, ET_CPE3, ET_CPE4
   use superjoin_elements, only: element_node_dofs, element_stiffness, element_end_forces, &
        beam_distributed_load, beam_frame
   use superjoin_testing, only: check, check_close, check_rel, finish
@@ -21,8 +21,11 @@ program test_elements
   real(wp), parameter :: AREA = 3.0_wp, IY = 2.0_wp, IZ = 5.0_wp, TJ = 1.5_wp
   real(wp), parameter :: G_MOD = E_MOD/(2*(1 + NU))
   integer, parameter :: NORIENT = 6
-  integer, parameter :: LINE_TYPES(4) = [ET_T2D2, ET_T3D2, ET_B23, ET_B33]
-  character(len=4), parameter :: LINE_NAMES(4) = ['T2D2', 'T3D2', 'B23 ', 'B33 ']
+  integer, parameter :: LINE_TYPES(6) = [ET_T2D2, ET_T3D2, ET_B23, ET_B33, ET_B21, ET_B31]
+  character(len=4), parameter :: LINE_NAMES(6) = ['T2D2', 'T3D2', 'B23 ', 'B33 ', 'B21 ', 'B31 ']
+  real(wp), parameter :: KSY = 0.6_wp*G_MOD*AREA, KSZ = 0.9_wp*G_MOD*AREA
+    !! Transverse shear stiffness of the B31 test section along local y, z
+    !! (B21 uses the default G A).
   real(wp), parameter :: EX(3) = [1.0_wp, 0.0_wp, 0.0_wp], EY(3) = [0.0_wp, 1.0_wp, 0.0_wp], &
        EZ(3) = [0.0_wp, 0.0_wp, 1.0_wp]
 
@@ -46,6 +49,9 @@ program test_elements
   call test_distributed_fixed_fixed()
   call test_distributed_cantilever()
   call test_distributed_truss()
+  call test_timoshenko_cantilever()
+  call test_timoshenko_slender_limit()
+  call test_timoshenko_errors()
   call finish()
 
 contains
@@ -83,12 +89,12 @@ contains
 
   logical function is_2d(etype)
     integer, intent(in) :: etype
-    is_2d = etype == ET_T2D2 .or. etype == ET_B23
+    is_2d = etype == ET_T2D2 .or. etype == ET_B23 .or. etype == ET_B21
   end function is_2d
 
   logical function is_beam(etype)
     integer, intent(in) :: etype
-    is_beam = etype == ET_B23 .or. etype == ET_B33
+    is_beam = etype == ET_B23 .or. etype == ET_B33 .or. etype == ET_B21 .or. etype == ET_B31
   end function is_beam
 
   function make_section(etype) result(sec)
@@ -99,10 +105,11 @@ contains
     if (is_beam(etype)) then
        sec%kind = SEC_BEAM
        sec%iz = IZ
-       if (etype == ET_B33) then
+       if (etype == ET_B33 .or. etype == ET_B31) then
           sec%iy = IY
           sec%j = TJ
        end if
+       if (etype == ET_B31) sec%shear_k = [KSY, KSZ]
     else
        sec%kind = SEC_SOLID
     end if
@@ -119,7 +126,7 @@ contains
     x(:, 1) = [rnd_in(-10.0_wp, 10.0_wp), rnd_in(-10.0_wp, 10.0_wp), rnd_in(-10.0_wp, 10.0_wp)]
     if (is_2d(etype)) x(3, 1) = 0.0_wp
     x(:, 2) = x(:, 1) + len*q(:, 1)
-    if (etype == ET_B33) then
+    if (etype == ET_B33 .or. etype == ET_B31) then
        sec%has_v = .true.
        sec%v = 2.5_wp*q(:, 2) + rnd_in(-3.0_wp, 3.0_wp)*q(:, 1)
     end if
@@ -149,7 +156,7 @@ contains
        t(3:4, 3:4) = q(1:2, 1:2)
     case (ET_T3D2)
        t = block_diag(q, 2)
-    case (ET_B23)
+    case (ET_B23, ET_B21)
        t = block_diag(q, 2)      ! per node (ux, uy, rz); q is a rotation about Z
     case default
        t = block_diag(q, 4)
@@ -262,13 +269,21 @@ contains
     call check(size(d) == 6 .and. all(d == [1, 2, 3, 4, 5, 6]), 'dofs S3')
     d = element_node_dofs(ET_S4)
     call check(size(d) == 6 .and. all(d == [1, 2, 3, 4, 5, 6]), 'dofs S4')
+    d = element_node_dofs(ET_B21)
+    call check(size(d) == 3 .and. all(d == [1, 2, 6]), 'dofs B21')
+    d = element_node_dofs(ET_B31)
+    call check(size(d) == 6 .and. all(d == [1, 2, 3, 4, 5, 6]), 'dofs B31')
+    d = element_node_dofs(ET_CPE3)
+    call check(size(d) == 2 .and. all(d == [1, 2]), 'dofs CPE3')
+    d = element_node_dofs(ET_CPE4)
+    call check(size(d) == 2 .and. all(d == [1, 2]), 'dofs CPE4')
     d = element_node_dofs(0)
     call check(size(d) == 0, 'dofs of an unknown type: none')
   end subroutine test_node_dofs
 
   subroutine test_matrix_properties()
     !! Symmetry, rigid-body modes, positive semi-definiteness and rank.
-    integer, parameter :: RANKS(4) = [1, 1, 3, 6]
+    integer, parameter :: RANKS(6) = [1, 1, 3, 6, 3, 6]
     real(wp) :: x(3, 2), q(3, 3), kmax, umax
     real(wp), allocatable :: ke(:, :), u(:, :), w(:), ku(:)
     type(section_t) :: sec
@@ -621,7 +636,7 @@ contains
              case (2)
                 fl(1, k) = dot_product(r(1, 1:2), ku((k - 1)*nd + 1:(k - 1)*nd + 2))
              case (3)
-                if (etype == ET_B23) then
+                if (etype == ET_B23 .or. etype == ET_B21) then
                    fl([1, 2], k) = matmul(r(1:2, 1:2), ku((k - 1)*nd + 1:(k - 1)*nd + 2))
                    fl(6, k) = ku(k*nd)
                 else
@@ -979,6 +994,150 @@ contains
        deallocate (ue)
     end do
   end subroutine test_distributed_cantilever
+
+  subroutine test_timoshenko_cantilever()
+    !! B31 and B21 cantilevers (one element, random orientation): tip load
+    !! P L^3/(3EI) + P L/K along local y and z, rotation P L^2/(2EI), torsion,
+    !! and a uniform load q L^4/(8EI) + q L^2/(2K): the element is exact.
+    real(wp) :: x(3, 2), q(3, 3), len, p, tip(6), tip2(3), f(6, 2), want(6, 2), w, ql(3)
+    real(wp), allocatable :: ke(:, :), fe(:), u2(:)
+    type(section_t) :: sec
+    type(error_t), allocatable :: error
+    integer :: io
+    character(:), allocatable :: what
+
+    do io = 1, NORIENT
+       what = 'B31 cantilever '//itoa(io)
+       q = random_rotation(.false.)
+       len = rnd_in(0.3_wp, 4.0_wp)
+       p = rnd_in(10.0_wp, 100.0_wp)
+       call oriented_element(ET_B31, len, q, x, sec)
+       call cantilever_tip(ET_B31, x, sec, q, [0.0_wp, p, 0.0_wp, 0.0_wp, 0.0_wp, 0.0_wp], tip, f)
+       call check_tip(tip, [0.0_wp, p*len**3/(3*E_MOD*IZ) + p*len/KSY, 0.0_wp, 0.0_wp, 0.0_wp, &
+            p*len**2/(2*E_MOD*IZ)], what//': P along y: PL^3/(3EIz) + PL/Ky')
+       want = 0.0_wp
+       want(2, :) = [-p, p]
+       want(6, 1) = -p*len
+       call check_forces(f, want, what//': P along y: end forces')
+       call cantilever_tip(ET_B31, x, sec, q, [0.0_wp, 0.0_wp, p, 0.0_wp, 0.0_wp, 0.0_wp], tip, f)
+       call check_tip(tip, [0.0_wp, 0.0_wp, p*len**3/(3*E_MOD*IY) + p*len/KSZ, 0.0_wp, &
+            -p*len**2/(2*E_MOD*IY), 0.0_wp], what//': P along z: PL^3/(3EIy) + PL/Kz')
+       want = 0.0_wp
+       want(3, :) = [-p, p]
+       want(5, 1) = p*len
+       call check_forces(f, want, what//': P along z: end forces')
+       call cantilever_tip(ET_B31, x, sec, q, [0.0_wp, 0.0_wp, 0.0_wp, p, 0.0_wp, 0.0_wp], tip, f)
+       call check_tip(tip, [0.0_wp, 0.0_wp, 0.0_wp, p*len/(G_MOD*TJ), 0.0_wp, 0.0_wp], &
+            what//': torsion TL/(GJ)')
+       ! A pure end moment bends without shear: the Euler-Bernoulli values.
+       call cantilever_tip(ET_B31, x, sec, q, [0.0_wp, 0.0_wp, 0.0_wp, 0.0_wp, 0.0_wp, p], tip, f)
+       call check_tip(tip, [0.0_wp, p*len**2/(2*E_MOD*IZ), 0.0_wp, 0.0_wp, 0.0_wp, p*len/(E_MOD*IZ)], &
+            what//': moment about z: ML^2/(2EIz), ML/(EIz)')
+
+       ! Uniform load along local z, clamped at node 1.
+       w = rnd_in(10.0_wp, 100.0_wp)
+       call beam_distributed_load(ET_B31, x, sec, w*q(:, 3), fe, ql, error)
+       call check(.not. allocated(error), what//': load without error')
+       ke = stiffness(ET_B31, x, sec, what)
+       u2 = solve_tip(ke, fe(7:12), 6)
+       tip(1:3) = matmul(transpose(q), u2(1:3))
+       tip(4:6) = matmul(transpose(q), u2(4:6))
+       call check_rel(tip(3), w*len**4/(8*E_MOD*IY) + w*len**2/(2*KSZ), TOL_SOLVE, &
+            what//': uniform load along z: qL^4/(8EIy) + qL^2/(2Kz)')
+       call check_rel(tip(5), -w*len**3/(6*E_MOD*IY), TOL_SOLVE, what//': uniform load along z: rotation')
+    end do
+
+    do io = 1, NORIENT
+       what = 'B21 cantilever '//itoa(io)
+       q = random_rotation(.true.)
+       len = rnd_in(0.3_wp, 4.0_wp)
+       p = rnd_in(10.0_wp, 100.0_wp)
+       call oriented_element(ET_B21, len, q, x, sec)
+       call cantilever_tip(ET_B21, x, sec, q, [0.0_wp, p, 0.0_wp], tip2, f)
+       call check_tip(tip2, [0.0_wp, p*len**3/(3*E_MOD*IZ) + p*len/(G_MOD*AREA), p*len**2/(2*E_MOD*IZ)], &
+            what//': P along y: PL^3/(3EI) + PL/(GA), default K = G A')
+       sec%shear_factor = 5.0_wp/6
+       call cantilever_tip(ET_B21, x, sec, q, [0.0_wp, p, 0.0_wp], tip2, f)
+       call check_tip(tip2, [0.0_wp, p*len**3/(3*E_MOD*IZ) + p*len/(5*G_MOD*AREA/6), p*len**2/(2*E_MOD*IZ)], &
+            what//': P along y, k = 5/6: PL^3/(3EI) + PL/(kGA)')
+       sec%shear_k(1) = KSZ
+       call cantilever_tip(ET_B21, x, sec, q, [0.0_wp, p, 0.0_wp], tip2, f)
+       call check_tip(tip2, [0.0_wp, p*len**3/(3*E_MOD*IZ) + p*len/KSZ, p*len**2/(2*E_MOD*IZ)], &
+            what//': P along y, K given: PL^3/(3EI) + PL/K')
+       want = 0.0_wp
+       want(2, :) = [-p, p]
+       want(6, 1) = -p*len
+       call check_forces(f, want, what//': P along y: end forces')
+    end do
+  end subroutine test_timoshenko_cantilever
+
+  function solve_tip(ke, f, nd) result(u)
+    !! Displacements of node 2 of a two-node element clamped at node 1.
+    real(wp), intent(in) :: ke(:, :), f(:)
+    integer, intent(in) :: nd
+    real(wp), allocatable :: u(:)
+    u = solve(ke(nd + 1:, nd + 1:), f)
+  end function solve_tip
+
+  subroutine test_timoshenko_slender_limit()
+    !! A slender B31 (phi = 12EI/(K L^2) small) tends to B33: the tip
+    !! deflection ratio is exactly 1 + phi/4 and |k_T - k_EB| = O(phi) |k_EB|
+    !! (no shear locking: the element stays exact however slender).
+    real(wp) :: x(3, 2), q(3, 3), len, phi, tip_t(6), tip_b(6), f(6, 2)
+    real(wp), allocatable :: kt(:, :), kb(:, :)
+    type(section_t) :: sec
+    integer :: io, is
+    real(wp), parameter :: SLENDER(3) = [1.0e1_wp, 1.0e2_wp, 1.0e3_wp]
+    character(:), allocatable :: what
+
+    do io = 1, 2
+       do is = 1, size(SLENDER)
+          what = 'B31 slender limit '//itoa(io)//' L = '//itoa(nint(SLENDER(is)))//' sqrt(I/A)'
+          q = random_rotation(.false.)
+          len = SLENDER(is)*sqrt(IZ/AREA)
+          call oriented_element(ET_B31, len, q, x, sec)
+          sec%shear_k = 0.0_wp           ! default K = G A in both directions
+          phi = 12*E_MOD*IZ/(G_MOD*AREA*len**2)
+          call cantilever_tip(ET_B31, x, sec, q, [0.0_wp, 1.0_wp, 0.0_wp, 0.0_wp, 0.0_wp, 0.0_wp], tip_t, f)
+          call cantilever_tip(ET_B33, x, sec, q, [0.0_wp, 1.0_wp, 0.0_wp, 0.0_wp, 0.0_wp, 0.0_wp], tip_b, f)
+          ! (round-off grows with the condition number, ~ (L/r)^2)
+          call check_close(tip_t(2)/tip_b(2), 1 + phi/4, 1.0e-14_wp*SLENDER(is)**2, &
+               what//': v_T / v_EB = 1 + phi/4')
+          kt = stiffness(ET_B31, x, sec, what)
+          kb = stiffness(ET_B33, x, sec, what)
+          call check(maxval(abs(kt - kb)) <= 2*max(phi, 12*E_MOD*IY/(G_MOD*AREA*len**2))*maxval(abs(kb)), &
+               what//': |k_T - k_EB| <= 2 phi |k_EB|')
+          call check(maxval(abs(kt - kb)) > 0.0_wp, what//': k_T differs from k_EB')
+       end do
+    end do
+  end subroutine test_timoshenko_slender_limit
+
+  subroutine test_timoshenko_errors()
+    !! Shear data the Timoshenko beams refuse.
+    real(wp) :: x(3, 2)
+    real(wp), allocatable :: ke(:, :)
+    type(section_t) :: sec
+    type(material_t) :: bad
+    type(error_t), allocatable :: error
+    x(:, 1) = [0.0_wp, 0.0_wp, 0.0_wp]
+    x(:, 2) = [2.0_wp, 1.0_wp, 0.0_wp]
+    sec = make_section(ET_B21)
+    sec%shear_factor = 0.0_wp
+    call element_stiffness(ET_B21, x, sec, mat, ke, error)
+    call check_error(error, 'nonpositive shear factor k', 'B21 k = 0')
+    sec = make_section(ET_B31)
+    bad = mat
+    bad%nu = -1.0_wp
+    call element_stiffness(ET_B31, x, sec, bad, ke, error)
+    call check_error(error, 'Poisson''s ratio', 'B31 nu = -1')
+    call element_stiffness(ET_B21, x, make_section(ET_B21), bad, ke, error)
+    call check_error(error, 'Poisson''s ratio', 'B21 nu = -1')
+    ! B23 and B33 ignore the shear data.
+    sec = make_section(ET_B33)
+    sec%shear_factor = 0.0_wp
+    call element_stiffness(ET_B33, x, sec, mat, ke, error)
+    call check(.not. allocated(error), 'B33 ignores the shear factor')
+  end subroutine test_timoshenko_errors
 
   subroutine test_distributed_truss()
     !! Trusses: a uniform load gives wL/2 on each node; axial part in n.

@@ -4,7 +4,7 @@ program test_membrane
   use superjoin_kinds, only: wp
   use superjoin_error, only: error_t, EXIT_DECK
   use superjoin_elements_membrane, only: membrane_stiffness, membrane_resultants, &
-       membrane_drill_stiffness
+       membrane_drill_stiffness, plane_strain_stiffness, plane_strain_resultants
   use superjoin_testing, only: check, check_close, check_rel, finish
   use test_lapack, only: dsyev, dgesv, eigenvalues
   use superjoin_utils_strings, only: itoa
@@ -19,7 +19,7 @@ program test_membrane
     !! stiffness) hold it, so the round-off of the membrane equations reaches it
     !! amplified about 1e6 times (measured up to 8.5e-9 in the patch test)
 
-  integer, parameter :: KIND_MEMBRANE = 1, KIND_DRILL = 2
+  integer, parameter :: KIND_MEMBRANE = 1, KIND_DRILL = 2, KIND_STRAIN = 3
 
   ! MacNeal-Harder straight cantilever.
   real(wp), parameter :: MH_E = 1.0e7_wp, MH_NU = 0.3_wp, MH_T = 0.1_wp, MH_H = 0.2_wp, MH_L = 6.0_wp
@@ -45,6 +45,7 @@ program test_membrane
   call test_resultants_distorted()
   call test_pure_bending()
   call test_macneal()
+  call test_plane_strain()
   call finish()
 
 contains
@@ -153,12 +154,104 @@ contains
     type(error_t), allocatable, intent(out) :: error
     if (kind == KIND_MEMBRANE) then
        call membrane_stiffness(xl, t, e, nu, ke, error)
+    else if (kind == KIND_STRAIN) then
+       call plane_strain_stiffness(xl, t, e, nu, ke, error)
     else
        call membrane_drill_stiffness(xl, t, e, nu, ke, error)
     end if
   end subroutine stiff
 
   ! ---------------------------------------------------------------- tests
+
+  subroutine test_plane_strain()
+    !! CPE3/CPE4: the same elements with the plane-strain matrix. The patch test
+    !! (interior displacements and resultants t D ε exact, also close to
+    !! incompressibility), the identity plane strain (E, ν) = plane stress
+    !! (E/(1 - ν²), ν/(1 - ν)), and the ν range.
+    real(wp), parameter :: E = 1.0e6_wp, T = 0.001_wp, A = 1.0e-3_wp
+    real(wp), parameter :: NUS(2) = [0.25_wp, 0.499_wp]
+    real(wp) :: x(2, 8), exact(2, 8), nres(3), nu, c, nx, nxy, scale
+    real(wp), allocatable :: ke(:, :), ks(:, :), u(:), f(:), ue(:)
+    integer :: quads(4, 5), mesh, i, ie, inu, k
+    integer, allocatable :: conn(:, :)
+    logical, allocatable :: fixed(:)
+    type(error_t), allocatable :: error
+    character(:), allocatable :: what
+
+    call patch_mesh(x, quads)
+    allocate (conn(0, 0))   ! (quiets a spurious gfortran -Wuninitialized)
+    do i = 1, 8
+       exact(1, i) = A*(x(1, i) + x(2, i)/2)
+       exact(2, i) = A*(x(2, i) + x(1, i)/2)
+    end do
+    do inu = 1, size(NUS)
+       nu = NUS(inu)
+       c = E/((1 + nu)*(1 - 2*nu))
+       nx = T*c*((1 - nu)*A + nu*A)          ! εx = εy = A, ny = nx
+       nxy = T*E/(2*(1 + nu))*A
+       do mesh = 1, 2
+          if (mesh == 1) then
+             conn = quads
+             what = 'plane strain patch CPE4 nu = '//itoa(int(1000*nu))//'e-3'
+          else
+             conn = split_quads(quads)
+             what = 'plane strain patch CPE3 nu = '//itoa(int(1000*nu))//'e-3'
+          end if
+          allocate (u(16), source=0.0_wp)
+          allocate (f(16), source=0.0_wp)
+          allocate (fixed(16), source=.false.)
+          do i = 1, 4
+             fixed(2*i - 1:2*i) = .true.
+             u(2*i - 1:2*i) = exact(:, i)
+          end do
+          call solve_mesh(KIND_STRAIN, x, conn, T, E, nu, fixed, u, f)
+          scale = maxval(abs(exact))
+          do i = 5, 8
+             call check_close(u(2*i - 1), exact(1, i), TOL_EXACT*scale, what//': u at node '//itoa(i))
+             call check_close(u(2*i), exact(2, i), TOL_EXACT*scale, what//': v at node '//itoa(i))
+          end do
+          do ie = 1, size(conn, 2)
+             allocate (ue(2*size(conn, 1)))
+             do i = 1, size(conn, 1)
+                ue(2*i - 1:2*i) = u(2*conn(i, ie) - 1:2*conn(i, ie))
+             end do
+             call plane_strain_resultants(x(:, conn(:, ie)), T, E, nu, ue, nres, error)
+             call check(.not. allocated(error), what//': resultants without error')
+             call check_rel(nres(1), nx, TOL_EXACT*10, what//': nx of element '//itoa(ie))
+             call check_rel(nres(2), nx, TOL_EXACT*10, what//': ny of element '//itoa(ie))
+             call check_rel(nres(3), nxy, TOL_EXACT, what//': nxy of element '//itoa(ie))
+             deallocate (ue)
+          end do
+          deallocate (u, f, fixed)
+       end do
+    end do
+
+    ! Plane strain (E, nu) is plane stress with E' = E/(1 - nu^2), nu' = nu/(1 - nu).
+    nu = 0.25_wp
+    do k = 1, size(QUAD, 3)
+       ke = element_matrix(KIND_STRAIN, QUAD(:, :, k), T, E, nu, 'plane strain quad '//itoa(k))
+       ks = element_matrix(KIND_MEMBRANE, QUAD(:, :, k), T, E/(1 - nu**2), nu/(1 - nu), 'equivalent quad')
+       call check(maxval(abs(ke - ks)) <= 1.0e-13_wp*maxval(abs(ks)), &
+            'plane strain quad '//itoa(k)//' = plane stress with E/(1 - nu^2), nu/(1 - nu)')
+    end do
+    do k = 1, size(TRI, 3)
+       ke = element_matrix(KIND_STRAIN, TRI(:, :, k), T, E, nu, 'plane strain triangle '//itoa(k))
+       ks = element_matrix(KIND_MEMBRANE, TRI(:, :, k), T, E/(1 - nu**2), nu/(1 - nu), 'equivalent triangle')
+       call check(maxval(abs(ke - ks)) <= 1.0e-13_wp*maxval(abs(ks)), &
+            'plane strain triangle '//itoa(k)//' = plane stress with E/(1 - nu^2), nu/(1 - nu)')
+    end do
+    ! and differs from plane stress with the same constants
+    ke = element_matrix(KIND_STRAIN, QUAD(:, :, 1), T, E, nu, 'plane strain quad')
+    ks = element_matrix(KIND_MEMBRANE, QUAD(:, :, 1), T, E, nu, 'plane stress quad')
+    call check(maxval(abs(ke - ks)) > 0.05_wp*maxval(abs(ks)), 'plane strain differs from plane stress')
+
+    call plane_strain_stiffness(QUAD(:, :, 1), T, E, 0.5_wp, ke, error)
+    call check_error(error, 'for plane strain', 'plane strain nu = 0.5')
+    call plane_strain_stiffness(QUAD(:, :, 1), T, E, -1.0_wp, ke, error)
+    call check_error(error, 'for plane strain', 'plane strain nu = -1')
+    call plane_strain_resultants(TRI(:, :, 1), 0.0_wp, E, nu, [(0.0_wp, i=1, 6)], nres, error)
+    call check_error(error, 'nonpositive thickness', 'plane strain t = 0')
+  end subroutine test_plane_strain
 
   subroutine test_errors()
     !! Data errors of both stiffness routines and of the resultants.

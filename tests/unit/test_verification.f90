@@ -20,6 +20,7 @@ program test_verification
   call rigid_loop()
   call mixed_loop()
   call l_frame()
+  call timoshenko_frame()
   call finish()
 
 contains
@@ -179,5 +180,34 @@ contains
     call check_rel(reaction(m, r, 'COLUMN', 1, 6, 1), p*b, TOL, 'l_frame: base moment')
     call check(equilibrium_error(r, 1) < TOL, 'l_frame: equilibrium')
   end subroutine l_frame
+
+  subroutine timoshenko_frame()
+    !! 3D L-frame of B31 beams with a compliant knee: tip load along Y (girder
+    !! and column bend with shear, column twists), PZ on the girder, tip torque.
+    !! Column: v = X, so local y = X, z = Y; default K = G A. Girder: default
+    !! v, local y = Z, z = -Y; K13 = 2.5e9 (along y), K23 = 3.0e9 (along z).
+    type(model_t) :: m
+    type(results_t) :: r
+    real(wp), parameter :: e = 2.1e11_wp, g = e/(2*(1 + 0.3_wp)), h = 2.0_wp, b = 1.5_wp, k = 4.0e8_wp
+    real(wp), parameter :: ac = 0.05_wp, iyc = 4.0e-4_wp, izc = 6.0e-4_wp, jc = 5.0e-4_wp
+    real(wp), parameter :: iyg = 3.0e-4_wp, izg = 5.0e-4_wp, jg = 2.5e-4_wp, k13 = 2.5e9_wp, k23 = 3.0e9_wp
+    real(wp), parameter :: p = 2.0e4_wp, q = -3.0e4_wp, t = 1.0e4_wp
+    real(wp) :: v, mk
+    call solve_file('decks/timoshenko_frame.deck', m, r)
+    v = p*h**3/(3*e*iyc) + p*h/(g*ac) + p*b**3/(3*e*iyg) + p*b/k23 + (p*b*h/(g*jc) + p*b/k)*b
+    call check_rel(disp(m, r, 'GIRDER', 3, 2, 1), v, TOL, 'timoshenko_frame: tip Y')
+    call check_rel(disp(m, r, 'COLUMN', 3, 2, 1), p*h**3/(3*e*iyc) + p*h/(g*ac), TOL, 'timoshenko_frame: knee Y')
+    call check_rel(link_delta(m, r, 'KNEE', 6, 1), p*b/k, TOL, 'timoshenko_frame: knee kink about Z')
+    call check_rel(reaction(m, r, 'COLUMN', 1, 6, 1), -p*b, TOL, 'timoshenko_frame: base torque')
+    call check(equilibrium_error(r, 1) < TOL, 'timoshenko_frame: equilibrium, tip load')
+    mk = q*b**2/2
+    v = q*b**4/(8*e*izg) + q*b**2/(2*k13) + q*b*h/(e*ac) + mk*(h/(e*izc) + 1/k)*b
+    call check_rel(disp(m, r, 'GIRDER', 3, 3, 2), v, TOL, 'timoshenko_frame: tip Z under PZ')
+    call check_rel(disp(m, r, 'COLUMN', 3, 3, 2), q*b*h/(e*ac), TOL, 'timoshenko_frame: column shortening')
+    call check(equilibrium_error(r, 2) < TOL, 'timoshenko_frame: equilibrium, PZ')
+    call check_rel(disp(m, r, 'GIRDER', 3, 4, 3), t*b/(g*jg) + t/k + t*h/(e*iyc), TOL, &
+         'timoshenko_frame: tip twist')
+    call check(equilibrium_error(r, 3) < TOL, 'timoshenko_frame: equilibrium, torque')
+  end subroutine timoshenko_frame
 
 end program test_verification

@@ -1,0 +1,70 @@
+module superjoin_elements_catalog
+  !! Element type names that decks from Abaqus and CalculiX use and superjoin
+  !! does not implement, with the reason and the nearest supported type, for
+  !! the message that refuses them. A name is never mapped silently to another
+  !! formulation: CPS4R (one-point integration with hourglass control) is not
+  !! CPS4, S4R (thick shell) is not S4 (thin shell).
+  use superjoin_model_types, only: ELEMENT_TYPE_NAMES, NUM_ELEMENT_TYPES
+  implicit none (type, external)
+  private
+
+  type :: advice_t
+     character(len=8) :: name
+     character(len=160) :: text
+  end type advice_t
+
+  type(advice_t), parameter :: ADVICE(*) = [ &
+       advice_t('CPS4R', 'one-point integration with hourglass control is not implemented; ' // &
+                'nearest: CPS4 (incompatible modes, no hourglass modes)'), &
+       advice_t('CPE4R', 'one-point integration with hourglass control is not implemented; ' // &
+                'nearest: CPE4 (incompatible modes, no hourglass modes)'), &
+       advice_t('CPS4I', 'nearest: CPS4, which has incompatible modes (QM6)'), &
+       advice_t('CPE4I', 'nearest: CPE4, which has incompatible modes (QM6)'), &
+       advice_t('CPE4H', 'hybrid (pressure) elements are not implemented; nearest: CPE4'), &
+       advice_t('CPS6', 'second-order plane elements are not implemented yet; nearest: CPS3'), &
+       advice_t('CPE6', 'second-order plane elements are not implemented yet; nearest: CPE3'), &
+       advice_t('CPS8', 'second-order plane elements are not implemented yet; nearest: CPS4'), &
+       advice_t('CPS8R', 'second-order plane elements are not implemented yet; nearest: CPS4'), &
+       advice_t('CPE8', 'second-order plane elements are not implemented yet; nearest: CPE4'), &
+       advice_t('CPE8R', 'second-order plane elements are not implemented yet; nearest: CPE4'), &
+       advice_t('S4R', 'thick (shear-flexible) shells are not implemented yet; nearest: S4, ' // &
+                'a thin (Kirchhoff) shell without transverse shear deformation'), &
+       advice_t('S3R', 'thick (shear-flexible) shells are not implemented yet; nearest: S3, ' // &
+                'a thin (Kirchhoff) shell without transverse shear deformation'), &
+       advice_t('S8R', 'eight-node thick shells are not implemented yet; nearest: S4 (thin shell)'), &
+       advice_t('S4R5', 'nearest: S4 (thin shell)'), &
+       advice_t('STRI3', 'nearest: S3 (thin shell)'), &
+       advice_t('B32', 'three-node beams are not implemented yet; nearest: B31 (two-node Timoshenko beam)'), &
+       advice_t('B22', 'three-node beams are not implemented yet; nearest: B21 (two-node Timoshenko beam)'), &
+       advice_t('B31H', 'hybrid beams are not implemented; nearest: B31'), &
+       advice_t('B21H', 'hybrid beams are not implemented; nearest: B21'), &
+       advice_t('B31OS', 'open-section warping beams are not implemented; nearest: B31'), &
+       advice_t('T3D3', 'nearest: T3D2'), &
+       advice_t('T2D3', 'nearest: T2D2') &
+       ]
+
+  public :: unsupported_type_message
+
+contains
+
+  pure function unsupported_type_message(name) result(text)
+    !! The message for an element type name that is not implemented: the name,
+    !! the reason and nearest supported type when the name is known, and the
+    !! list of supported types. `name` is upper case.
+    character(*), intent(in) :: name
+    character(:), allocatable :: text
+    integer :: k
+    text = 'unsupported element type '//name
+    do k = 1, size(ADVICE)
+       if (trim(ADVICE(k)%name) == name) then
+          text = text//': '//trim(ADVICE(k)%text)
+          exit
+       end if
+    end do
+    text = text//' (supported: '//trim(ELEMENT_TYPE_NAMES(1))
+    do k = 2, NUM_ELEMENT_TYPES
+       text = text//', '//trim(ELEMENT_TYPE_NAMES(k))
+    end do
+    text = text//')'
+  end function unsupported_type_message
+end module superjoin_elements_catalog

@@ -5,16 +5,16 @@ module superjoin_analysis
   use superjoin_kinds, only: wp, i8, ip
   use superjoin_error, only: error_t, fatal_error, add_error_line, EXIT_SINGULAR
   use superjoin_model_types, only: model_t, string_t, FORM_TRANSFORM, FORM_PENALTY, RIGID_LARGE, &
-       LINK_FINITE, LINK_RIGID, node_label, CONDENSE_YES
+       LINK_FINITE, LINK_RIGID, node_label, CONDENSE_YES, CONDENSE_NO, CONDENSE_AUTO
   use superjoin_assembly_dofs, only: dof_table_t, build_dof_table, UNIT_LINK, UNIT_SUPPORT, GROUND, block_dof
   use superjoin_assembly_forest, only: forest_t, build_forest
   use superjoin_assembly_transform, only: transform_t, constraint_t, build_transform, COL_PHYS, COL_DELTA, ROLE_TREE, &
        ROLE_PLAIN, CONS_REDUNDANT, CONS_ELIMINATED
   use superjoin_assembly_assemble, only: assemble_stiffness, assemble_loads, max_element_diagonal, &
        assembly_plan_t, superelement_t
-  use superjoin_substructure_local_system, only: boundary_dofs, build_local_system, dof_label
-  use superjoin_substructure_condensed, only: condensed_t, condense, condense_loads, recover_interior, &
-       local_residual
+  use superjoin_substructure_local_system, only: boundary_dofs, dof_label
+  use superjoin_substructure_cache, only: release_cache, part_cache_t, part_view_t, acquire_view, view_condense_loads, &
+       view_recover, view_residual, view_stiffness_times, view_maxratio, view_spc
   use superjoin_solvers, only: linear_solver_t, sparse_sym_t, new_solver, condition_estimate, norm1_sym
   use superjoin_output_matrix_market, only: write_matrix_market
   use superjoin_analysis_results, only: results_t, run_options_t, PH_ASSEMBLE, PH_ORDER, PH_FACTOR, PH_SOLVE
@@ -46,10 +46,20 @@ module superjoin_analysis
     !! from about 5e13 up, and nothing meaningful is left of an answer above 1e13.
   real(wp), parameter :: RATIO_CAP = 1.0e300_wp
     !! MAXRATIO reported when K_jj / D_jj would overflow.
+  real(wp), parameter :: AUTO_KSTAR_BYTES = 2.0_wp*2.0_wp**30
+    !! CONDENSE=AUTO condenses no part whose dense K* would exceed this (2 GiB).
   real(wp), parameter, public :: RESIDUAL_WARN = 1.0e-6_wp
     !! A relative residual still above this after refinement is reported as a warning.
 
-  public :: solve_model
+  public :: solve_model, solve_group, release_cache
+
+  type, public :: solve_context_t
+    !! What outlives one solve: the condensations (reused by later solves of
+    !! the same structure with other contact stiffnesses), and whether the run
+    !! is a joint study (several sets of contact stiffnesses).
+     type(part_cache_t) :: cache
+     logical :: joint_study = .false.
+  end type solve_context_t
 
   type(ieee_flag_type), parameter :: HALT_FLAGS(3) = [ieee_overflow, ieee_invalid, ieee_divide_by_zero]
     !! Exceptions whose halting is off while solving (results are checked instead).
@@ -57,12 +67,26 @@ module superjoin_analysis
 contains
 
   subroutine solve_model(model, opts, res, error)
-    !! Solve every step of a validated model. Results that overflow the
+    !! Solve every step of a validated model with one stiffness (see solve_group).
+    type(model_t), intent(in) :: model
+    type(run_options_t), intent(in) :: opts
+    type(results_t), intent(out) :: res
+    type(error_t), allocatable, intent(out) :: error
+    type(solve_context_t) :: ctx
+    call solve_group(model, opts, ctx, res, error)
+    call release_cache(ctx%cache)
+  end subroutine solve_model
+
+  subroutine solve_group(model, opts, ctx, res, error)
+    !! Solve every step of a validated model whose steps share one stiffness,
+    !! reusing the condensations that ctx holds from earlier solves of the
+    !! same structure (a joint study). Results that overflow the
     !! floating-point range end the run (EXIT_SINGULAR) instead of printing
     !! Inf or NaN; floating-point halting (the Debug build's -ffpe-trap) is off
     !! meanwhile, so the overflow is detected here rather than trapped.
     type(model_t), intent(in) :: model
     type(run_options_t), intent(in) :: opts
+    type(solve_context_t), intent(inout) :: ctx
     type(results_t), intent(out) :: res
     type(error_t), allocatable, intent(out) :: error
     logical :: halting(size(HALT_FLAGS))
@@ -71,13 +95,13 @@ contains
        call ieee_get_halting_mode(HALT_FLAGS(i), halting(i))
        call ieee_set_halting_mode(HALT_FLAGS(i), .false.)
     end do
-    call solve_steps(model, opts, res, error)
+    call solve_steps(model, opts, ctx, res, error)
     do i = 1, size(HALT_FLAGS)
        call ieee_set_halting_mode(HALT_FLAGS(i), halting(i))
     end do
     if (allocated(error)) return
     call check_finite(model, res, error)
-  end subroutine solve_model
+  end subroutine solve_group
 
   subroutine check_finite(model, res, error)
     !! EXIT_SINGULAR error naming the first kind of result that is not finite
@@ -134,10 +158,11 @@ contains
          'contact g and coordinates')
   end subroutine check_finite
 
-  subroutine solve_steps(model, opts, res, error)
-    !! The analysis proper (see solve_model).
+  subroutine solve_steps(model, opts, ctx, res, error)
+    !! The analysis proper (see solve_group).
     type(model_t), intent(in) :: model
     type(run_options_t), intent(in) :: opts
+    type(solve_context_t), intent(inout) :: ctx
     type(results_t), intent(out) :: res
     type(error_t), allocatable, intent(out) :: error
     type(dof_table_t) :: table
@@ -154,7 +179,7 @@ contains
     character(len=64) :: buf
     logical, allocatable :: bnd(:), keep(:)
     type(assembly_plan_t) :: plan
-    type(condensed_t), allocatable :: parts(:)
+    type(part_view_t), allocatable :: parts(:)
     real(wp), allocatable :: f_eff(:, :), u(:, :)
     integer(i8) :: p
     integer :: i, stat
@@ -177,7 +202,7 @@ contains
     if (allocated(error)) return
     call boundary_dofs(table, bnd)
     call count_boundary(model, table, bnd, res)
-    call choose_condensation(model, opts, res, notes)
+    call choose_condensation(model, opts, ctx, res, notes)
     allocate (keep(table%np))
     do p = 1, table%np
        keep(p) = bnd(p) .or. .not. res%sub_condensed(table%p_sub(p))
@@ -197,7 +222,7 @@ contains
     else
        call assemble_loads(model, table, f_phys, error)
        if (allocated(error)) return
-       call condense_parts(model, table, bnd, opts, f_phys, res, notes, parts, f_eff, error)
+       call condense_parts(model, table, bnd, opts, f_phys, ctx%cache, res, notes, parts, f_eff, error)
        if (allocated(error)) return
        plan%skip_sub = res%sub_condensed
        allocate (plan%supers(size(parts)))
@@ -254,10 +279,10 @@ contains
     end if
     call tr%expand(q, u)
     if (res%n_condensed > 0) then
-       call recover_parts(parts, f_phys, u, error)
+       call recover_parts(ctx%cache, parts, f_phys, u, error)
        if (allocated(error)) return
-       if (tr%ncol() > 0) call full_health(tr, k, parts, q, u, f_red, f_eff, f_phys, res)
-       call parts_maxratio(model, table, parts, res, error)
+       if (tr%ncol() > 0) call full_health(ctx%cache, tr, k, parts, q, u, f_red, f_eff, f_phys, res)
+       call parts_maxratio(model, table, ctx%cache, parts, res, error)
        if (allocated(error)) return
        res%phase_seconds(PH_SOLVE) = res%phase_seconds(PH_SOLVE) + clock%seconds()
        call report_phase(opts%quiet, 'recover interiors', clock%seconds())
@@ -419,111 +444,150 @@ contains
     end do
   end subroutine count_boundary
 
-  subroutine choose_condensation(model, opts, res, notes)
+  subroutine choose_condensation(model, opts, ctx, res, notes)
     !! Which substructures are condensed. CONDENSE=YES (deck or --condense)
-    !! condenses a substructure that has both interior and boundary DOFs;
-    !! AUTO and NO keep it in the monolithic matrix (with a single
-    !! factorization of the whole model, one ordering of the whole sparse
-    !! matrix already exploits the cut: condensation pays only where a
-    !! condensation is reused, which AUTO does not detect yet).
+    !! condenses a substructure that has both interior and boundary DOFs.
+    !! AUTO condenses where a condensation is reused: an instance of a part
+    !! placed more than once (one condensation for all its instances), and
+    !! every substructure of a joint study (the parts are condensed once, each
+    !! further set of contact stiffnesses factors only the interface), provided
+    !! its K* (n_b² doubles) stays within AUTO_KSTAR_BYTES and its boundary is
+    !! smaller than its interior. Otherwise AUTO keeps the part in the one
+    !! sparse matrix: for a single factorization a fill-reducing ordering of
+    !! the whole model already exploits the cut. NO never condenses.
     type(model_t), intent(in) :: model
     type(run_options_t), intent(in) :: opts
+    type(solve_context_t), intent(in) :: ctx
     type(results_t), intent(inout) :: res
     type(string_t), allocatable, intent(inout) :: notes(:)
-    integer :: isub, mode
+    integer :: isub, mode, ninst
+    integer(i8) :: nb, ni
+    character(:), allocatable :: why
     allocate (res%sub_condensed(size(model%subs)), source=.false.)
     res%n_condensed = 0
     do isub = 1, size(model%subs)
        mode = model%subs(isub)%condense
        if (opts%condense >= 0) mode = opts%condense
-       if (mode /= CONDENSE_YES) cycle
-       if (res%sub_boundary(isub) == 0) then
+       nb = res%sub_boundary(isub)
+       ni = res%sub_dofs(isub) - nb
+       if (mode == CONDENSE_NO) cycle
+       if (mode == CONDENSE_AUTO) then
+          ninst = 0
+          if (model%subs(isub)%part > 0) ninst = count(model%subs(:)%part == model%subs(isub)%part)
+          if (ninst > 1) then
+             why = 'AUTO: one of '//itoa(ninst)//' instances of part '//model%parts(model%subs(isub)%part)%s
+          else if (ctx%joint_study) then
+             why = 'AUTO: joint study'
+          else
+             cycle
+          end if
+          if (nb == 0 .or. ni == 0) cycle
+          if (nb >= ni) then
+             call note(notes, 'substructure '//model%subs(isub)%name//' not condensed ('//why// &
+                  '): its boundary ('//itoa(nb)//' DOFs) is not smaller than its interior')
+             cycle
+          end if
+          if (real(nb, wp)**2*BYTES_REAL > AUTO_KSTAR_BYTES) then
+             call note(notes, 'substructure '//model%subs(isub)%name//' not condensed ('//why// &
+                  '): its K* would take '//itoa(nb*nb*BYTES_REAL/2**20)//' MiB')
+             cycle
+          end if
+       else
+          why = 'CONDENSE=YES'
+       end if
+       if (nb == 0) then
           call note(notes, 'substructure '//model%subs(isub)%name//' not condensed: no contact or support '// &
                'touches it (a separate system)')
-       else if (res%sub_boundary(isub) == res%sub_dofs(isub)) then
+       else if (ni == 0) then
           call note(notes, 'substructure '//model%subs(isub)%name//' not condensed: every DOF is on its boundary')
        else
           res%sub_condensed(isub) = .true.
           res%n_condensed = res%n_condensed + 1
-          call note(notes, 'substructure '//model%subs(isub)%name//' condensed (CONDENSE=YES): '// &
-               itoa(res%sub_dofs(isub) - res%sub_boundary(isub))//' interior DOFs eliminated, K* of order '// &
-               itoa(res%sub_boundary(isub))//' on its boundary')
+          call note(notes, 'substructure '//model%subs(isub)%name//' condensed ('//why//'): '// &
+               itoa(ni)//' interior DOFs eliminated, K* of order '//itoa(nb)//' on its boundary')
        end if
     end do
   end subroutine choose_condensation
 
-  subroutine condense_parts(model, table, bnd, opts, f_phys, res, notes, parts, f_eff, error)
-    !! Local systems and condensations of the condensed substructures, and the
-    !! loads the interface sees: f_phys with each condensed boundary replaced
-    !! by f* (the interior rows have no reduced unknown).
+  subroutine condense_parts(model, table, bnd, opts, f_phys, cache, res, notes, parts, f_eff, error)
+    !! The condensations of the condensed substructures (computed, or reused
+    !! from the cache: another instance of the same part, or an earlier solve
+    !! of a joint study), and the loads the interface sees: f_phys with each
+    !! condensed boundary replaced by f* (interior rows have no reduced unknown).
     type(model_t), intent(in) :: model
     type(dof_table_t), intent(in) :: table
     logical, intent(in) :: bnd(:)
     type(run_options_t), intent(in) :: opts
     real(wp), intent(in) :: f_phys(:, :)
+    type(part_cache_t), intent(inout) :: cache
     type(results_t), intent(inout) :: res
     type(string_t), allocatable, intent(inout) :: notes(:)
-    type(condensed_t), allocatable, intent(out) :: parts(:)
+    type(part_view_t), allocatable, intent(out) :: parts(:)
     real(wp), allocatable, intent(out) :: f_eff(:, :)
     type(error_t), allocatable, intent(out) :: error
     character(:), allocatable :: solver_name
     real(wp), allocatable :: fstar(:, :)
-    integer :: isub, ip_, i
-    integer(i8) :: nb
+    integer(i8), allocatable :: spc(:)
+    integer :: isub, ip_, i, computed0, reused0, nrot
     real(wp) :: dmax
     ! Every element's matrix first, in deck order, so that a bad element is
     ! reported as a deck error before any condensation meets it.
-    call max_element_diagonal(model, table, dmax, error)
-    if (allocated(error)) return
+    if (cache%n == 0) then
+       call max_element_diagonal(model, table, dmax, error)
+       if (allocated(error)) return
+    end if
     solver_name = 'auto'
     if (allocated(opts%solver)) solver_name = opts%solver
     allocate (parts(res%n_condensed))
     f_eff = f_phys
+    computed0 = cache%computed
+    reused0 = cache%reused
+    nrot = 0
     ip_ = 0
     do isub = 1, size(model%subs)
        if (.not. res%sub_condensed(isub)) cycle
        ip_ = ip_ + 1
-       call build_local_system(model, table, isub, bnd, parts(ip_)%sys, error)
+       call acquire_view(cache, model, table, isub, bnd, solver_name, parts(ip_), error)
        if (allocated(error)) return
-       call condense(model, table, solver_name, parts(ip_), error)
-       if (allocated(error)) return
-       do i = 1, size(parts(ip_)%spc)
-          associate (p => parts(ip_)%spc(i))
-            if (any(f_phys(p, :) /= 0.0_wp)) then
-               call add_error_line(error, EXIT_SINGULAR, 'error: load on a DOF without stiffness: '// &
-                    dof_label(model, table, p))
-            else
-               call note(notes, 'AUTOSPC: '//dof_label(model, table, p)//' has no stiffness and no load: dropped')
-            end if
-          end associate
+       if (parts(ip_)%rotated) nrot = nrot + 1
+       call view_spc(cache, parts(ip_), spc)
+       do i = 1, size(spc)
+          if (any(f_phys(spc(i), :) /= 0.0_wp)) then
+             call add_error_line(error, EXIT_SINGULAR, 'error: load on a DOF without stiffness: '// &
+                  dof_label(model, table, spc(i)))
+          else if (.not. parts(ip_)%reused) then
+             call note(notes, 'AUTOSPC: '//dof_label(model, table, spc(i))//' has no stiffness and no load: dropped')
+          end if
        end do
        if (allocated(error)) return
-       nb = parts(ip_)%sys%nb
-       allocate (fstar(nb, size(f_phys, 2)))
-       call condense_loads(parts(ip_), f_phys(parts(ip_)%sys%pdof, :), fstar, error)
+       allocate (fstar(parts(ip_)%nb, size(f_phys, 2)))
+       call view_condense_loads(cache, parts(ip_), f_phys(parts(ip_)%pdof, :), fstar, error)
        if (allocated(error)) return
        f_eff(parts(ip_)%se%pdof, :) = fstar
        deallocate (fstar)
     end do
+    call note(notes, 'condensations: '//itoa(cache%computed - computed0)//' computed, '// &
+         itoa(cache%reused - reused0)//' reused ('//itoa(nrot)//' turned by their instance''s placement)')
   end subroutine condense_parts
 
-  subroutine recover_parts(parts, f_phys, u, error)
+  subroutine recover_parts(cache, parts, f_phys, u, error)
     !! Interior displacements of every condensed substructure from its boundary.
-    type(condensed_t), intent(inout) :: parts(:)
+    type(part_cache_t), intent(inout) :: cache
+    type(part_view_t), intent(in) :: parts(:)
     real(wp), intent(in) :: f_phys(:, :)
     real(wp), intent(inout) :: u(:, :)
     type(error_t), allocatable, intent(out) :: error
     real(wp), allocatable :: ul(:, :)
     integer :: i
     do i = 1, size(parts)
-       ul = u(parts(i)%sys%pdof, :)
-       call recover_interior(parts(i), f_phys(parts(i)%sys%pdof, :), ul, error)
+       ul = u(parts(i)%pdof, :)
+       call view_recover(cache, parts(i), f_phys(parts(i)%pdof, :), ul, error)
        if (allocated(error)) return
-       u(parts(i)%sys%pdof, :) = ul
+       u(parts(i)%pdof, :) = ul
     end do
   end subroutine recover_parts
 
-  subroutine full_health(tr, k, parts, q, u, f_red, f_eff, f_phys, res)
+  subroutine full_health(cache, tr, k, parts, q, u, f_red, f_eff, f_phys, res)
     !! Residual and EPSILON of the whole reduced system, as if it had been
     !! solved monolithically, from the recovered displacements and each
     !! condensed substructure's own stiffness (so an error in a condensation
@@ -531,9 +595,10 @@ contains
     !! condensed interior u_i. Interface rows: K_if q − f_if plus, for each
     !! part, Mᵀ[(k u − f)_b − (K* u_b − f*)]; interior rows: k_ii u_i + k_ib u_b − f_i.
     !! The loads likewise, with the prescribed values' terms (−k u0).
+    type(part_cache_t), intent(in) :: cache
     type(transform_t), intent(in) :: tr
     type(sparse_sym_t), intent(in) :: k
-    type(condensed_t), intent(in) :: parts(:)
+    type(part_view_t), intent(in) :: parts(:)
     real(wp), intent(in) :: q(:, :), u(:, :), f_red(:, :), f_eff(:, :), f_phys(:, :)
     type(results_t), intent(inout) :: res
     real(wp), allocatable :: r(:, :), f(:, :), rl(:, :), u0l(:, :), w(:, :), ks(:, :), ku0(:), &
@@ -548,19 +613,19 @@ contains
     f = f_red
     ntot = k%n
     do i = 1, size(parts)
-       ntot = ntot + parts(i)%sys%ni
+       ntot = ntot + parts(i)%ni
     end do
     allocate (rf(ntot, nstep), ffull(ntot, nstep), qfull(ntot, nstep))
     at = k%n
     do i = 1, size(parts)
-       associate (sys => parts(i)%sys, kst => parts(i)%se%k)
+       associate (sys => parts(i), kst => parts(i)%se%k)
          ni = sys%ni
          nb = sys%nb
          allocate (rl(ni + nb, nstep), u0l(ni + nb, 1), w(ni + nb, 1))
-         call local_residual(parts(i), u(sys%pdof, :), f_phys(sys%pdof, :), rl)
+         call view_residual(cache, parts(i), u(sys%pdof, :), f_phys(sys%pdof, :), rl)
          u0l = 0.0_wp
          u0l(ni + 1:, 1) = tr%prescribed(sys%pdof(ni + 1:))
-         call sys%k%matvec(u0l, w)
+         call view_stiffness_times(cache, parts(i), u0l, w)
          ks = matmul(kst, u(sys%pdof(ni + 1:), :))
          ku0 = matmul(kst, u0l(ni + 1:, 1))
          rf(at + 1:at + ni, :) = rl(1:ni, :)
@@ -592,20 +657,24 @@ contains
     end if
   end subroutine full_health
 
-  subroutine parts_maxratio(model, table, parts, res, error)
+  subroutine parts_maxratio(model, table, cache, parts, res, error)
     !! MAXRATIO over the interior factors of the condensed substructures:
     !! the largest of them and the interface's is reported, with its place.
     type(model_t), intent(in) :: model
     type(dof_table_t), intent(in) :: table
-    type(condensed_t), intent(in) :: parts(:)
+    type(part_cache_t), intent(in) :: cache
+    type(part_view_t), intent(in) :: parts(:)
     type(results_t), intent(inout) :: res
     type(error_t), allocatable, intent(out) :: error
     character(len=32) :: buf
+    real(wp) :: ratio
+    integer(i8) :: p
     integer :: i
     do i = 1, size(parts)
-       if (parts(i)%maxratio <= res%maxratio) cycle
-       res%maxratio = parts(i)%maxratio
-       res%maxratio_at = dof_label(model, table, parts(i)%maxratio_at)
+       call view_maxratio(cache, parts(i), ratio, p)
+       if (ratio <= res%maxratio .or. p == 0) cycle
+       res%maxratio = ratio
+       res%maxratio_at = dof_label(model, table, p)
        write (buf, '(es10.2e3)') res%maxratio
        if (res%maxratio > MAXRATIO_FATAL) then
           call fatal_error(error, EXIT_SINGULAR, 'error: the structure cannot be solved: stiffness is '// &

@@ -10,7 +10,7 @@ module superjoin_analysis_joint_steps
   use superjoin_kinds, only: wp, i8
   use superjoin_error, only: error_t
   use superjoin_model_types, only: model_t, link_override_t, string_t
-  use superjoin_analysis, only: solve_model
+  use superjoin_analysis, only: solve_model, solve_group, solve_context_t, release_cache
   use superjoin_analysis_results, only: results_t, run_options_t
   use superjoin_utils_strings, only: itoa
   implicit none (type, external)
@@ -44,6 +44,7 @@ contains
     integer :: ngroup, s, t, g, nstep
     type(model_t) :: sub
     type(results_t) :: r
+    type(solve_context_t) :: ctx
 
     if (.not. has_joint_changes(model)) then
        call solve_model(model, opts, res, error)
@@ -66,6 +67,8 @@ contains
        end if
     end do
 
+    ! One context for all groups: the parts are condensed once and reused.
+    ctx%joint_study = ngroup > 1
     do g = 1, ngroup
        members = pack([(s, s=1, nstep)], group == g)
        sub = model
@@ -74,14 +77,19 @@ contains
           if (allocated(sub%steps(s)%link_overrides)) deallocate (sub%steps(s)%link_overrides)
        end do
        call apply_overrides(model%steps(members(1))%link_overrides, sub)
-       call solve_model(sub, opts, r, error)
-       if (allocated(error)) return
+       call solve_group(sub, opts, ctx, r, error)
+       if (allocated(error)) then
+          call release_cache(ctx%cache)
+          return
+       end if
        call merge_results(r, members, nstep, g == 1, res)
        call note_group(model, members, res)
     end do
+    call release_cache(ctx%cache)
     res%notes = [res%notes, string_t('joint study (*CHANGE CONTACT): '//itoa(ngroup)// &
-         ' sets of contact stiffnesses, '//itoa(ngroup)//' factorizations; the counts above '// &
-         'and MAXRATIO are the largest over them')]
+         ' sets of contact stiffnesses, '//itoa(ngroup)//' interface factorizations, '// &
+         itoa(ctx%cache%computed)//' condensations computed and reused '//itoa(ctx%cache%reused)// &
+         ' times; the counts above and MAXRATIO are the largest over them')]
   end subroutine solve_joint_steps
 
   pure logical function same_overrides(a, b)

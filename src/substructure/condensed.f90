@@ -29,7 +29,7 @@ module superjoin_substructure_condensed
      type(superelement_t) :: se                      !! K* on the physical boundary DOFs
      real(wp) :: maxratio = 0.0_wp                   !! max k_jj / D_jj over k_ii
      integer(i8), allocatable :: spc(:)              !! interior DOFs without stiffness (physical), dropped
-     integer(i8) :: maxratio_at = 0                  !! its physical DOF
+     integer(i8) :: maxratio_at = 0                  !! its local DOF (1..ni)
   end type condensed_t
 
   public :: condense, condense_loads, recover_interior, local_residual
@@ -107,7 +107,7 @@ contains
          if (d(j) == 0.0_wp) cycle
          if (abs(kd(j)/d(j)) > cond%maxratio) then
             cond%maxratio = abs(kd(j)/d(j))
-            cond%maxratio_at = cond%sys%pdof(j)
+            cond%maxratio_at = j
          end if
       end do
 

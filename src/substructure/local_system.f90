@@ -30,7 +30,7 @@ module superjoin_substructure_local_system
      procedure :: n => local_size
   end type local_system_t
 
-  public :: boundary_dofs, build_local_system, dof_label
+  public :: boundary_dofs, build_local_system, local_numbering, dof_label
 
 contains
 
@@ -62,24 +62,16 @@ contains
     end do
   end subroutine boundary_dofs
 
-  subroutine build_local_system(model, table, isub, bnd, sys, error)
-    !! Number substructure isub's DOFs (interior, then boundary, each in
-    !! physical order) and assemble its element stiffness.
-    type(model_t), intent(in) :: model
+  subroutine local_numbering(table, isub, bnd, pdof, ni)
+    !! Substructure isub's physical DOFs in local order: interior first, then
+    !! boundary, each in physical order; ni interior DOFs.
     type(dof_table_t), intent(in) :: table
     integer, intent(in) :: isub
     logical, intent(in) :: bnd(:)
-    type(local_system_t), intent(out) :: sys
-    type(error_t), allocatable, intent(out) :: error
-    integer(i8), allocatable :: plist(:), local(:), item_ptr(:), item_col(:), col_ptr(:), col_item(:)
-    integer(i8) :: v, p, p_lo, n, l, pd(MAX_ELEMENT_DOFS), cols(MAX_ELEMENT_DOFS)
-    integer(i8) :: it, nitem
-    integer(ip) :: e
-    integer :: d, nd, a, b, nc, stat
-    real(wp), allocatable :: ke(:, :)
-    integer(i8) :: pos
-
-    sys%isub = isub
+    integer(i8), allocatable, intent(out) :: pdof(:)
+    integer(i8), intent(out) :: ni
+    integer(i8) :: v, p, p_lo, n, l
+    integer :: d
     ! The substructure's physical DOFs are consecutive (numbered substructure by substructure).
     n = 0
     p_lo = 0
@@ -91,30 +83,52 @@ contains
           n = n + 1
        end do
     end do
-    allocate (plist(n), local(n), stat=stat)
-    if (stat /= 0) then
-       call out_of_memory(error, 'the local numbering of substructure '//model%subs(isub)%name, 2*n*BYTES_I8)
-       return
-    end if
-    sys%ni = 0
-    do p = p_lo, p_lo + n - 1
-       if (.not. bnd(p)) sys%ni = sys%ni + 1
-    end do
-    sys%nb = n - sys%ni
+    allocate (pdof(n))
+    ni = count(.not. bnd(p_lo:p_lo + n - 1), kind=i8)
     l = 0
     do p = p_lo, p_lo + n - 1
        if (bnd(p)) cycle
        l = l + 1
-       plist(l) = p
-       local(p - p_lo + 1) = l
+       pdof(l) = p
     end do
     do p = p_lo, p_lo + n - 1
        if (.not. bnd(p)) cycle
        l = l + 1
-       plist(l) = p
-       local(p - p_lo + 1) = l
+       pdof(l) = p
     end do
-    call move_alloc(plist, sys%pdof)
+  end subroutine local_numbering
+
+  subroutine build_local_system(model, table, isub, bnd, sys, error)
+    !! Number substructure isub's DOFs (see local_numbering) and assemble its
+    !! element stiffness.
+    type(model_t), intent(in) :: model
+    type(dof_table_t), intent(in) :: table
+    integer, intent(in) :: isub
+    logical, intent(in) :: bnd(:)
+    type(local_system_t), intent(out) :: sys
+    type(error_t), allocatable, intent(out) :: error
+    integer(i8), allocatable :: local(:), item_ptr(:), item_col(:), col_ptr(:), col_item(:)
+    integer(i8) :: p_lo, n, l, pd(MAX_ELEMENT_DOFS), cols(MAX_ELEMENT_DOFS)
+    integer(i8) :: it, nitem
+    integer(ip) :: e
+    integer :: nd, a, b, nc, stat
+    real(wp), allocatable :: ke(:, :)
+    integer(i8) :: pos
+
+    sys%isub = isub
+    call local_numbering(table, isub, bnd, sys%pdof, sys%ni)
+    n = size(sys%pdof, kind=i8)
+    sys%nb = n - sys%ni
+    p_lo = 1
+    if (n > 0) p_lo = minval(sys%pdof)
+    allocate (local(n), stat=stat)
+    if (stat /= 0) then
+       call out_of_memory(error, 'the local numbering of substructure '//model%subs(isub)%name, n*BYTES_I8)
+       return
+    end if
+    do l = 1, n
+       local(sys%pdof(l) - p_lo + 1) = l
+    end do
 
     ! Pattern from the elements' local columns.
     associate (s => model%subs(isub))

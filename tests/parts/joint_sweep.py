@@ -166,7 +166,7 @@ def main(argv):
               f"largest difference {worst:.1e} of the column's largest value")
     with open(lst) as f:
         text = f.read()
-    want = "joint study (*CHANGE CONTACT): 7 sets of contact stiffnesses, 7 factorizations"
+    want = "joint study (*CHANGE CONTACT): 7 sets of contact stiffnesses, 7 interface factorizations"
     if want not in text:
         print(f"FAIL: the listing does not say '{want}'")
         ok = False

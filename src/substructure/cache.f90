@@ -1,0 +1,375 @@
+module superjoin_substructure_cache
+  !! Condensations kept for reuse: by the instances of one part (turned by
+  !! their placements) and by the solves of a joint study (same substructure,
+  !! other contact stiffnesses).
+  !!
+  !! A condensation is computed for one substructure, in its own placement.
+  !! Another substructure may use it when it has the same local DOFs (same
+  !! local nodes and DOF numbers, interior and boundary alike) and either is the
+  !! same substructure or is an instance of the same part whose placement
+  !! differs by a rotation Q = R_s R_cᵀ that maps every node's active DOFs onto
+  !! themselves. With R̂ = diag(Q) per node and DOF block:
+  !!     k_s = R̂ k_c R̂ᵀ,  K*_s = R̂_b K*_c R̂_bᵀ,  f*_s = R̂_b f*_c(R̂ᵀ f_s),
+  !!     u_i,s = R̂_i u_i,c(R̂ᵀ f_s, R̂_bᵀ u_b,s).
+  use superjoin_kinds, only: wp, ip, i8
+  use superjoin_error, only: error_t
+  use superjoin_model_types, only: model_t
+  use superjoin_assembly_dofs, only: dof_table_t
+  use superjoin_assembly_assemble, only: superelement_t
+  use superjoin_substructure_local_system, only: local_system_t, build_local_system, local_numbering
+  use superjoin_substructure_condensed, only: condensed_t, condense, condense_loads, recover_interior, &
+       local_residual
+  implicit none (type, external)
+  private
+
+  real(wp), parameter :: ROT_ZERO = 1.0e-12_wp
+    !! Entries of Q below this couple no DOFs (for the active-DOF check).
+  integer, parameter :: BLOCK = 3
+    !! Components of a node's DOF block (translations, rotations).
+
+  type :: entry_t
+    !! One computed condensation and what it is valid for.
+     type(condensed_t) :: cond
+     integer :: part = 0                      !! model%subs(isub)%part (0: not an instance)
+     integer(ip), allocatable :: lnode(:)     !! local node of each local DOF
+     integer, allocatable :: ldof(:)          !! DOF number 1..6 of each local DOF
+     real(wp) :: rot(3, 3) = 0.0_wp           !! placement rotation of its substructure
+  end type entry_t
+
+  type :: entry_box_t
+    !! An entry behind an allocatable, so that growing the list moves entries
+    !! (their factors are C objects) instead of copying them.
+     type(entry_t), allocatable :: e
+  end type entry_box_t
+
+  type, public :: part_cache_t
+    !! Condensations computed so far in this run.
+     type(entry_box_t), allocatable :: entries(:)
+     integer :: n = 0
+     integer :: computed = 0                  !! condensations computed
+     integer :: reused = 0                    !! uses of an existing one
+  end type part_cache_t
+
+  type, public :: part_view_t
+    !! A condensed substructure in one solve: a cache entry, turned if need be.
+     integer :: isub = 0
+     integer :: entry = 0
+     logical :: rotated = .false.
+     logical :: reused = .false.
+     real(wp) :: q(3, 3) = 0.0_wp
+     integer(i8) :: ni = 0, nb = 0
+     integer(i8), allocatable :: pdof(:)      !! physical DOF of each local DOF (this substructure)
+     integer, allocatable :: grp(:, :)        !! (BLOCK, ngroup) local DOFs of each node block (0: absent)
+     type(superelement_t) :: se               !! K* of this substructure on its physical boundary DOFs
+  end type part_view_t
+
+  public :: release_cache, acquire_view, view_condense_loads, view_recover, view_residual, view_stiffness_times, &
+       view_maxratio, view_spc
+
+contains
+
+  subroutine acquire_view(cache, model, table, isub, bnd, solver_name, view, error)
+    !! The condensation of substructure isub: an existing one when one fits,
+    !! otherwise computed now and kept.
+    type(part_cache_t), intent(inout) :: cache
+    type(model_t), intent(in) :: model
+    type(dof_table_t), intent(in) :: table
+    integer, intent(in) :: isub
+    logical, intent(in) :: bnd(:)
+    character(*), intent(in) :: solver_name
+    type(part_view_t), intent(out) :: view
+    type(error_t), allocatable, intent(out) :: error
+    integer(ip), allocatable :: lnode(:)
+    integer, allocatable :: ldof(:)
+    integer(i8) :: ni
+    integer :: e
+    real(wp) :: q(3, 3)
+    type(entry_box_t), allocatable :: tmp(:)
+    integer :: i
+
+    view%isub = isub
+    call local_numbering(table, isub, bnd, view%pdof, ni)
+    view%ni = ni
+    view%nb = size(view%pdof, kind=i8) - ni
+    allocate (lnode(size(view%pdof)), ldof(size(view%pdof)))
+    lnode = table%p_node(view%pdof)
+    ldof = table%p_dof(view%pdof)
+    call node_groups(lnode, ldof, view%grp)
+
+    do e = 1, cache%n
+       associate (en => cache%entries(e)%e)
+         if (en%cond%sys%ni /= ni .or. size(en%ldof) /= size(ldof)) cycle
+         if (any(en%lnode /= lnode) .or. any(en%ldof /= ldof)) cycle
+         if (en%cond%sys%isub == isub) then
+            view%entry = e
+            exit
+         end if
+         if (en%part == 0 .or. en%part /= model%subs(isub)%part) cycle
+         q = matmul(model%subs(isub)%rot, transpose(en%rot))
+         if (.not. keeps_dofs(q, view%grp)) cycle
+         if (.not. all(abs(q - identity()) <= ROT_ZERO) .and. mixed_blocks(view%grp, ni)) cycle
+         view%entry = e
+         view%rotated = .not. all(abs(q - identity()) <= ROT_ZERO)
+         view%q = q
+         exit
+       end associate
+    end do
+
+    if (view%entry == 0) then
+       if (.not. allocated(cache%entries)) allocate (cache%entries(4))
+       if (cache%n == size(cache%entries)) then
+          allocate (tmp(2*cache%n))
+          do i = 1, cache%n
+             call move_alloc(cache%entries(i)%e, tmp(i)%e)
+          end do
+          call move_alloc(tmp, cache%entries)
+       end if
+       cache%n = cache%n + 1
+       allocate (cache%entries(cache%n)%e)
+       associate (en => cache%entries(cache%n)%e)
+         call build_local_system(model, table, isub, bnd, en%cond%sys, error)
+         if (allocated(error)) return
+         call condense(model, table, solver_name, en%cond, error)
+         if (allocated(error)) return
+         en%part = model%subs(isub)%part
+         en%lnode = lnode
+         en%ldof = ldof
+         en%rot = model%subs(isub)%rot
+       end associate
+       view%entry = cache%n
+       cache%computed = cache%computed + 1
+    else
+       view%reused = .true.
+       cache%reused = cache%reused + 1
+    end if
+
+    ! K* in this substructure's frame, on its physical boundary DOFs.
+    associate (kc => cache%entries(view%entry)%e%cond%se%k)
+      view%se%pdof = view%pdof(ni + 1:)
+      view%se%k = kc
+      if (view%rotated) then
+         call rotate_boundary_columns(view, view%se%k, .true.)
+         view%se%k = transpose(view%se%k)
+         call rotate_boundary_columns(view, view%se%k, .true.)
+      end if
+    end associate
+  end subroutine acquire_view
+
+  subroutine release_cache(cache)
+    !! Free every factor the cache holds.
+    type(part_cache_t), intent(inout) :: cache
+    integer :: i
+    do i = 1, cache%n
+       if (.not. allocated(cache%entries(i)%e)) cycle
+       if (allocated(cache%entries(i)%e%cond%solver)) call cache%entries(i)%e%cond%solver%release()
+    end do
+    if (allocated(cache%entries)) deallocate (cache%entries)
+    cache%n = 0
+  end subroutine release_cache
+
+  subroutine view_condense_loads(cache, view, f_local, fstar, error)
+    !! f* of this substructure from its local loads (this frame).
+    type(part_cache_t), intent(inout) :: cache
+    type(part_view_t), intent(in) :: view
+    real(wp), intent(in) :: f_local(:, :)
+    real(wp), intent(out) :: fstar(:, :)
+    type(error_t), allocatable, intent(out) :: error
+    real(wp), allocatable :: fc(:, :)
+    fc = f_local
+    if (view%rotated) call rotate_local(view, fc, .false.)
+    call condense_loads(cache%entries(view%entry)%e%cond, fc, fstar, error)
+    if (allocated(error)) return
+    if (view%rotated) call rotate_rows(view, fstar, view%ni, .true.)
+  end subroutine view_condense_loads
+
+  subroutine view_recover(cache, view, f_local, u_local, error)
+    !! Interior displacements from the boundary ones (local arrays, this frame).
+    type(part_cache_t), intent(inout) :: cache
+    type(part_view_t), intent(in) :: view
+    real(wp), intent(in) :: f_local(:, :)
+    real(wp), intent(inout) :: u_local(:, :)
+    type(error_t), allocatable, intent(out) :: error
+    real(wp), allocatable :: fc(:, :)
+    fc = f_local
+    if (view%rotated) then
+       call rotate_local(view, fc, .false.)
+       call rotate_local(view, u_local, .false.)
+    end if
+    call recover_interior(cache%entries(view%entry)%e%cond, fc, u_local, error)
+    if (view%rotated) call rotate_local(view, u_local, .true.)
+  end subroutine view_recover
+
+  subroutine view_residual(cache, view, u_local, f_local, r_local)
+    !! r = k u − f with the substructure's own element stiffness (this frame).
+    type(part_cache_t), intent(in) :: cache
+    type(part_view_t), intent(in) :: view
+    real(wp), intent(in) :: u_local(:, :), f_local(:, :)
+    real(wp), intent(out) :: r_local(:, :)
+    real(wp), allocatable :: uc(:, :), fc(:, :)
+    uc = u_local
+    fc = f_local
+    if (view%rotated) then
+       call rotate_local(view, uc, .false.)
+       call rotate_local(view, fc, .false.)
+    end if
+    call local_residual(cache%entries(view%entry)%e%cond, uc, fc, r_local)
+    if (view%rotated) call rotate_local(view, r_local, .true.)
+  end subroutine view_residual
+
+  subroutine view_stiffness_times(cache, view, x_local, y_local)
+    !! y = k x with the substructure's element stiffness (this frame).
+    type(part_cache_t), intent(in) :: cache
+    type(part_view_t), intent(in) :: view
+    real(wp), intent(in) :: x_local(:, :)
+    real(wp), intent(out) :: y_local(:, :)
+    real(wp), allocatable :: xc(:, :)
+    xc = x_local
+    if (view%rotated) call rotate_local(view, xc, .false.)
+    call cache%entries(view%entry)%e%cond%sys%k%matvec(xc, y_local)
+    if (view%rotated) call rotate_local(view, y_local, .true.)
+  end subroutine view_stiffness_times
+
+  subroutine view_maxratio(cache, view, ratio, p)
+    !! MAXRATIO of the interior factor and its physical DOF in this substructure.
+    type(part_cache_t), intent(in) :: cache
+    type(part_view_t), intent(in) :: view
+    real(wp), intent(out) :: ratio
+    integer(i8), intent(out) :: p
+    ratio = cache%entries(view%entry)%e%cond%maxratio
+    p = 0
+    if (cache%entries(view%entry)%e%cond%maxratio_at > 0) p = view%pdof(cache%entries(view%entry)%e%cond%maxratio_at)
+  end subroutine view_maxratio
+
+  subroutine view_spc(cache, view, p)
+    !! Physical DOFs of this substructure's interior that have no stiffness.
+    type(part_cache_t), intent(in) :: cache
+    type(part_view_t), intent(in) :: view
+    integer(i8), allocatable, intent(out) :: p(:)
+    integer(i8), allocatable :: l(:)
+    integer(i8) :: i
+    associate (c => cache%entries(view%entry)%e%cond)
+      allocate (l(size(c%spc)))
+      do i = 1, size(c%spc, kind=i8)
+         l(i) = findloc(c%sys%pdof, c%spc(i), dim=1, kind=i8)
+      end do
+    end associate
+    p = view%pdof(l)
+  end subroutine view_spc
+
+  pure function identity() result(q)
+    real(wp) :: q(3, 3)
+    q = 0.0_wp
+    q(1, 1) = 1.0_wp
+    q(2, 2) = 1.0_wp
+    q(3, 3) = 1.0_wp
+  end function identity
+
+  subroutine node_groups(lnode, ldof, grp)
+    !! The local DOFs of each (node, block): grp(c, g) is the local DOF of
+    !! component c of group g, 0 where the node lacks it.
+    integer(ip), intent(in) :: lnode(:)
+    integer, intent(in) :: ldof(:)
+    integer, allocatable, intent(out) :: grp(:, :)
+    integer(ip) :: nmax
+    integer :: l, b, g, ng
+    integer, allocatable :: gid(:, :)
+    nmax = 0
+    if (size(lnode) > 0) nmax = maxval(lnode)
+    allocate (gid(2, nmax), source=0)
+    ng = 0
+    do l = 1, size(lnode)
+       b = (ldof(l) - 1)/BLOCK + 1
+       if (gid(b, lnode(l)) == 0) then
+          ng = ng + 1
+          gid(b, lnode(l)) = ng
+       end if
+    end do
+    allocate (grp(BLOCK, ng), source=0)
+    do l = 1, size(lnode)
+       b = (ldof(l) - 1)/BLOCK + 1
+       g = gid(b, lnode(l))
+       grp(ldof(l) - (b - 1)*BLOCK, g) = l
+    end do
+  end subroutine node_groups
+
+  pure logical function mixed_blocks(grp, ni)
+    !! Whether some node block has interior and boundary DOFs at once (then a
+    !! turned K* cannot be formed from the boundary rows alone).
+    integer, intent(in) :: grp(:, :)
+    integer(i8), intent(in) :: ni
+    integer :: g
+    mixed_blocks = .false.
+    do g = 1, size(grp, 2)
+       if (any(grp(:, g) > 0 .and. grp(:, g) <= ni) .and. any(grp(:, g) > ni)) then
+          mixed_blocks = .true.
+          return
+       end if
+    end do
+  end function mixed_blocks
+
+  pure logical function keeps_dofs(q, grp)
+    !! Whether Q maps every node block's active components onto themselves.
+    real(wp), intent(in) :: q(3, 3)
+    integer, intent(in) :: grp(:, :)
+    integer :: g, a, b
+    keeps_dofs = .true.
+    do g = 1, size(grp, 2)
+       do a = 1, BLOCK
+          do b = 1, BLOCK
+             if ((grp(a, g) > 0) .eqv. (grp(b, g) > 0)) cycle
+             if (abs(q(a, b)) > ROT_ZERO) then
+                keeps_dofs = .false.
+                return
+             end if
+          end do
+       end do
+    end do
+  end function keeps_dofs
+
+  subroutine rotate_local(view, x, forward)
+    !! x ← R̂ x (forward) or R̂ᵀ x, rows in local numbering.
+    type(part_view_t), intent(in) :: view
+    real(wp), intent(inout) :: x(:, :)
+    logical, intent(in) :: forward
+    call rotate_rows(view, x, 0_i8, forward)
+  end subroutine rotate_local
+
+  subroutine rotate_rows(view, x, offset, forward)
+    !! Rotate the rows of x that hold local DOFs offset+1.. (the boundary rows
+    !! alone with offset = ni: row r of x is local DOF r + offset).
+    type(part_view_t), intent(in) :: view
+    real(wp), intent(inout) :: x(:, :)
+    integer(i8), intent(in) :: offset
+    logical, intent(in) :: forward
+    real(wp) :: q(3, 3), y(3, size(x, 2))
+    integer :: g, a, b
+    integer(i8) :: la, lb
+    q = view%q
+    if (.not. forward) q = transpose(q)
+    do g = 1, size(view%grp, 2)
+       if (any(view%grp(:, g) > 0 .and. view%grp(:, g) <= offset)) cycle
+       y = 0.0_wp
+       do a = 1, BLOCK
+          la = view%grp(a, g)
+          if (la == 0) cycle
+          do b = 1, BLOCK
+             lb = view%grp(b, g)
+             if (lb == 0) cycle
+             y(a, :) = y(a, :) + q(a, b)*x(lb - offset, :)
+          end do
+       end do
+       do a = 1, BLOCK
+          la = view%grp(a, g)
+          if (la > 0) x(la - offset, :) = y(a, :)
+       end do
+    end do
+  end subroutine rotate_rows
+
+  subroutine rotate_boundary_columns(view, k, forward)
+    !! k(:, :) rows are boundary DOFs: k ← R̂_b k (forward) or R̂_bᵀ k.
+    type(part_view_t), intent(in) :: view
+    real(wp), intent(inout) :: k(:, :)
+    logical, intent(in) :: forward
+    call rotate_rows(view, k, view%ni, forward)
+  end subroutine rotate_boundary_columns
+end module superjoin_substructure_cache

@@ -12,7 +12,7 @@ module superjoin_analysis
        ROLE_PLAIN, CONS_REDUNDANT, CONS_ELIMINATED
   use superjoin_assembly_assemble, only: assemble_stiffness, assemble_loads, max_element_diagonal, &
        assembly_plan_t, superelement_t
-  use superjoin_substructure_local_system, only: boundary_dofs, dof_label
+  use superjoin_substructure_local_system, only: boundary_dofs, part_boundary, dof_label
   use superjoin_substructure_cache, only: release_cache, part_cache_t, part_view_t, acquire_view, view_condense_loads, &
        view_recover, view_residual, view_stiffness_times, view_maxratio, view_spc
   use superjoin_solvers, only: linear_solver_t, sparse_sym_t, new_solver, condition_estimate, norm1_sym
@@ -177,7 +177,7 @@ contains
     type(string_t), allocatable :: notes(:)
     integer :: form
     character(len=64) :: buf
-    logical, allocatable :: bnd(:), keep(:)
+    logical, allocatable :: bnd(:), bnd_c(:), keep(:)
     type(assembly_plan_t) :: plan
     type(part_view_t), allocatable :: parts(:)
     real(wp), allocatable :: f_eff(:, :), u(:, :)
@@ -202,10 +202,12 @@ contains
     if (allocated(error)) return
     call boundary_dofs(table, bnd)
     call count_boundary(model, table, bnd, res)
-    call choose_condensation(model, opts, ctx, res, notes)
+    ! Condensation boundaries: the instances of a part share theirs.
+    call part_boundary(model, table, bnd, bnd_c)
+    call choose_condensation(model, table, opts, ctx, bnd_c, res, notes)
     allocate (keep(table%np))
     do p = 1, table%np
-       keep(p) = bnd(p) .or. .not. res%sub_condensed(table%p_sub(p))
+       keep(p) = bnd_c(p) .or. .not. res%sub_condensed(table%p_sub(p))
     end do
     call build_transform(model, table, forest, tr, error, keep)
     if (allocated(error)) return
@@ -222,7 +224,7 @@ contains
     else
        call assemble_loads(model, table, f_phys, error)
        if (allocated(error)) return
-       call condense_parts(model, table, bnd, opts, f_phys, ctx%cache, res, notes, parts, f_eff, error)
+       call condense_parts(model, table, bnd_c, opts, f_phys, ctx%cache, res, notes, parts, f_eff, error)
        if (allocated(error)) return
        plan%skip_sub = res%sub_condensed
        allocate (plan%supers(size(parts)))
@@ -444,7 +446,7 @@ contains
     end do
   end subroutine count_boundary
 
-  subroutine choose_condensation(model, opts, ctx, res, notes)
+  subroutine choose_condensation(model, table, opts, ctx, bnd, res, notes)
     !! Which substructures are condensed. CONDENSE=YES (deck or --condense)
     !! condenses a substructure that has both interior and boundary DOFs.
     !! AUTO condenses where a condensation is reused: an instance of a part
@@ -456,19 +458,26 @@ contains
     !! sparse matrix: for a single factorization a fill-reducing ordering of
     !! the whole model already exploits the cut. NO never condenses.
     type(model_t), intent(in) :: model
+    type(dof_table_t), intent(in) :: table
     type(run_options_t), intent(in) :: opts
     type(solve_context_t), intent(in) :: ctx
+    logical, intent(in) :: bnd(:)              !! condensation boundary
     type(results_t), intent(inout) :: res
     type(string_t), allocatable, intent(inout) :: notes(:)
     integer :: isub, mode, ninst
-    integer(i8) :: nb, ni
+    integer(i8) :: nb, ni, p
+    integer(i8), allocatable :: nbs(:)
     character(:), allocatable :: why
     allocate (res%sub_condensed(size(model%subs)), source=.false.)
+    allocate (nbs(size(model%subs)), source=0_i8)
+    do p = 1, table%np
+       if (bnd(p)) nbs(table%p_sub(p)) = nbs(table%p_sub(p)) + 1
+    end do
     res%n_condensed = 0
     do isub = 1, size(model%subs)
        mode = model%subs(isub)%condense
        if (opts%condense >= 0) mode = opts%condense
-       nb = res%sub_boundary(isub)
+       nb = nbs(isub)
        ni = res%sub_dofs(isub) - nb
        if (mode == CONDENSE_NO) cycle
        if (mode == CONDENSE_AUTO) then

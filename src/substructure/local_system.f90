@@ -30,7 +30,7 @@ module superjoin_substructure_local_system
      procedure :: n => local_size
   end type local_system_t
 
-  public :: boundary_dofs, build_local_system, local_numbering, dof_label
+  public :: boundary_dofs, part_boundary, build_local_system, local_numbering, dof_label
 
 contains
 
@@ -97,6 +97,42 @@ contains
        pdof(l) = p
     end do
   end subroutine local_numbering
+
+  subroutine part_boundary(model, table, bnd, bnd_part)
+    !! The boundary of every instance of a part is the union of its instances'
+    !! boundaries (by local node and DOF), so that one condensation serves them
+    !! all; other substructures keep their own. bnd_part(p) for every DOF.
+    type(model_t), intent(in) :: model
+    type(dof_table_t), intent(in) :: table
+    logical, intent(in) :: bnd(:)
+    logical, allocatable, intent(out) :: bnd_part(:)
+    type :: marks_t
+       logical, allocatable :: m(:, :)     ! (6, nnode)
+    end type marks_t
+    type(marks_t), allocatable :: marks(:)
+    integer(i8) :: p
+    integer :: isub, ipart
+    bnd_part = bnd
+    if (.not. allocated(model%parts)) return
+    if (size(model%parts) == 0) return
+    allocate (marks(size(model%parts)))
+    do isub = 1, size(model%subs)
+       ipart = model%subs(isub)%part
+       if (ipart == 0) cycle
+       if (.not. allocated(marks(ipart)%m)) allocate (marks(ipart)%m(size(table%pdof, 1), model%subs(isub)%nnode), &
+            source=.false.)
+    end do
+    do p = 1, table%np
+       ipart = model%subs(table%p_sub(p))%part
+       if (ipart == 0 .or. .not. bnd(p)) cycle
+       marks(ipart)%m(table%p_dof(p), table%p_node(p)) = .true.
+    end do
+    do p = 1, table%np
+       ipart = model%subs(table%p_sub(p))%part
+       if (ipart == 0) cycle
+       bnd_part(p) = marks(ipart)%m(table%p_dof(p), table%p_node(p))
+    end do
+  end subroutine part_boundary
 
   subroutine build_local_system(model, table, isub, bnd, sys, error)
     !! Number substructure isub's DOFs (see local_numbering) and assemble its

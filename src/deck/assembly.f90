@@ -561,6 +561,7 @@ contains
     integer :: s, n, i, nout, l, j
     logical :: any_change
     logical, allocatable :: expanded(:)
+    type(index_set_t), allocatable :: line_links(:)
 
     any_change = .false.
     do s = 1, st%nstep
@@ -609,18 +610,54 @@ contains
     call move_alloc(steps, model%steps)
   contains
     subroutine step_overrides(sb, ivalue, step)
-      !! The overrides of value ivalue of step sb's *CHANGE CONTACT lines.
+      !! The overrides of value ivalue of step sb's *CHANGE CONTACT lines (the
+      !! node pairs are resolved, and their errors reported, for the first value only).
       type(step_b_t), intent(in) :: sb
       integer, intent(in) :: ivalue
       type(step_t), intent(inout) :: step
       type(link_override_t), allocatable :: list(:)
-      integer(ip), allocatable :: ms(:), ss(:)
-      integer :: k, nl, il, v, d
+      integer :: k, nl, v, d, jj
       integer(ip) :: p
-      logical :: ok1, ok2
+      if (ivalue == 1) call resolve_override_links(sb)
       allocate (list(0))
       nl = 0
       do k = 1, sb%noverride
+         associate (o => sb%overrides(k))
+           if (.not. allocated(line_links(k)%items)) cycle
+           v = min(ivalue, size(o%gs))
+           do p = 1, size(line_links(k)%items, kind=ip)
+              ! one override per link and step; later lines change it further
+              jj = 0
+              do d = 1, nl
+                 if (list(d)%link == line_links(k)%items(p)) jj = d
+              end do
+              if (jj == 0) then
+                 list = [list, link_override_t(link=int(line_links(k)%items(p)))]
+                 nl = nl + 1
+                 jj = nl
+              end if
+              do d = o%first, o%last
+                 list(jj)%dofs(d) = .true.
+                 list(jj)%state(d) = o%states(v)
+                 list(jj)%g(d) = merge(o%gs(v), 0.0_wp, o%states(v) == LINK_FINITE)
+              end do
+           end do
+         end associate
+      end do
+      call move_alloc(list, step%link_overrides)
+    end subroutine step_overrides
+
+    subroutine resolve_override_links(sb)
+      !! line_links(k): the links that line k of the step's *CHANGE CONTACT names
+      !! (unallocated when the line is in error, reported).
+      type(step_b_t), intent(in) :: sb
+      integer(ip), allocatable :: ms(:), ss(:)
+      integer :: k, il
+      integer(ip) :: p
+      logical :: ok1, ok2
+      if (allocated(line_links)) deallocate (line_links)
+      allocate (line_links(sb%noverride))
+      lines: do k = 1, sb%noverride
          associate (o => sb%overrides(k))
            associate (c => model%contacts(o%contact))
              if (c%master_sub == 0 .or. c%slave_sub == 0) cycle
@@ -636,7 +673,7 @@ contains
                      ' against '//plural(size(ss), 'slave node')//' (they pair in order, as on *CONTACT)')
                 cycle
              end if
-             v = min(ivalue, size(o%gs))
+             allocate (line_links(k)%items(size(ms)))
              do p = 1, size(ms, kind=ip)
                 il = 0
                 do l = first_link(o%contact), last_link(o%contact)
@@ -649,28 +686,14 @@ contains
                    call report_loc(st, o%loc, '*CHANGE CONTACT '//c%name//': nodes '// &
                         node_label(model, c%master_sub, ms(p))//' and '//node_label(model, c%slave_sub, ss(p))// &
                         ' are not a pair of contact '//c%name)
-                   return
+                   deallocate (line_links(k)%items)
+                   cycle lines
                 end if
-                ! one override per link and step; later lines change it further
-                j = 0
-                do d = 1, nl
-                   if (list(d)%link == il) j = d
-                end do
-                if (j == 0) then
-                   list = [list, link_override_t(link=il)]
-                   nl = nl + 1
-                   j = nl
-                end if
-                do d = o%first, o%last
-                   list(j)%dofs(d) = .true.
-                   list(j)%state(d) = o%states(v)
-                   list(j)%g(d) = merge(o%gs(v), 0.0_wp, o%states(v) == LINK_FINITE)
-                end do
+                line_links(k)%items(p) = il
              end do
            end associate
          end associate
-      end do
-      call move_alloc(list, step%link_overrides)
-    end subroutine step_overrides
+      end do lines
+    end subroutine resolve_override_links
   end subroutine build_overrides
 end submodule superjoin_deck_assembly

@@ -13,6 +13,8 @@ submodule (superjoin_deck_validate) superjoin_deck_assembly
   use superjoin_deck_state, only: SUBK_PART, SUBK_INSTANCE, instance_b_t, step_b_t
   use superjoin_elements_frame, only: DEFAULT_V_SWITCH_TOL, cross, real_text
   use superjoin_utils_sorting, only: stable_argsort
+  use superjoin_utils_halting, only: halting_t, halting_off, halting_restore
+  use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
   implicit none (type, external)
 
   real(wp), parameter :: IDENTITY(3, 3) = reshape([1.0_wp, 0.0_wp, 0.0_wp, 0.0_wp, 1.0_wp, 0.0_wp, &
@@ -38,6 +40,16 @@ contains
   end subroutine empty_sub
 
   module subroutine place_instances(st, model)
+    type(deck_state_t), intent(inout) :: st
+    type(model_t), intent(inout) :: model
+    type(halting_t) :: saved
+    call halting_off(saved)
+    call place_all(st, model)
+    call halting_restore(saved)
+  end subroutine place_instances
+
+  subroutine place_all(st, model)
+    !! place_instances with floating-point halting off (overflow is reported).
     type(deck_state_t), intent(inout) :: st
     type(model_t), intent(inout) :: model
     integer, allocatable :: part_ord(:), new_index(:)
@@ -111,7 +123,7 @@ contains
       integer, intent(inout) :: home
       if (home > 0) home = new_index(home)
     end subroutine renumber
-  end subroutine place_instances
+  end subroutine place_all
 
   subroutine place_copy(st, part, inst, m)
     !! m = part placed by inst (m keeps its name and location).
@@ -135,6 +147,11 @@ contains
     do i = 1, m%nnode
        m%x(:, i) = matmul(inst%rot, part%x(:, i)) + inst%shift
     end do
+    if (.not. all(ieee_is_finite(m%x))) then
+       call report_loc(st, inst%loc, '*INSTANCE '//name//': placed coordinates overflow the floating-point range')
+       m%x = 0.0_wp
+       return
+    end if
     if (all(inst%rot == IDENTITY)) return
 
     if (abs(inst%rot(3, 3) - 1.0_wp) > PLANE_ROT_TOL) then
@@ -181,8 +198,9 @@ contains
       !! The default orientation of beam e of the part is global X (as superjoin_elements_frame).
       integer(ip), intent(in) :: e
       real(wp) :: d(3)
-      d = part%x(:, part%elem_nodes(2, e)) - part%x(:, part%elem_nodes(1, e))
       default_is_x = .false.
+      if (any(part%elem_nodes(1:2, e) == 0)) return   ! undefined node, reported
+      d = part%x(:, part%elem_nodes(2, e)) - part%x(:, part%elem_nodes(1, e))
       if (norm2(d) == 0.0_wp) return
       default_is_x = norm2(cross(d/norm2(d), GLOBAL_Z)) <= DEFAULT_V_SWITCH_TOL
     end function default_is_x
@@ -203,6 +221,21 @@ contains
   ! ================================================================== PAIR=NEAREST
 
   module subroutine pair_nearest(st, model, icontact, loc, ms, ss, ok)
+    type(deck_state_t), intent(inout) :: st
+    type(model_t), intent(in) :: model
+    integer, intent(in) :: icontact
+    type(source_loc_t), intent(in) :: loc
+    integer(ip), allocatable, intent(inout) :: ms(:)
+    integer(ip), intent(in) :: ss(:)
+    logical, intent(out) :: ok
+    type(halting_t) :: saved
+    call halting_off(saved)
+    call pair_by_distance(st, model, icontact, loc, ms, ss, ok)
+    call halting_restore(saved)
+  end subroutine pair_nearest
+
+  subroutine pair_by_distance(st, model, icontact, loc, ms, ss, ok)
+    !! pair_nearest with floating-point halting off (an overflowing distance pairs nothing).
     type(deck_state_t), intent(inout) :: st
     type(model_t), intent(in) :: model
     integer, intent(in) :: icontact
@@ -271,7 +304,7 @@ contains
     end associate
     call move_alloc(paired, ms)
     ok = .true.
-  end subroutine pair_nearest
+  end subroutine pair_by_distance
 
   pure function point_text(x) result(s)
     !! (x, y, z) for messages.
@@ -287,11 +320,18 @@ contains
     type(deck_state_t), intent(inout) :: st
     type(model_t), intent(inout) :: model
     integer :: k
+    type(halting_t) :: saved
+    call halting_off(saved)
+    call build_all_interfaces()
+    call halting_restore(saved)
+  contains
+    subroutine build_all_interfaces()
     do k = 1, st%ncontact
        if (.not. st%contacts(k)%is_interface) cycle
        call build_interface(st, model, k)
        if (st%aborted) return
     end do
+    end subroutine build_all_interfaces
   end subroutine build_interfaces
 
   subroutine build_interface(st, model, k)
@@ -332,9 +372,10 @@ contains
         ! face joint: plane or shell elements with every node on the set
         face = .false.
         do e = 1, sub%nelem
+           nn = ELEMENT_NODE_COUNT(sub%elem_type(e))
+           if (any(sub%elem_nodes(1:nn, e) == 0)) cycle   ! undefined node, reported
            select case (sub%elem_type(e))
            case (ET_CPS3, ET_CPS4, ET_S3, ET_S4)
-              nn = ELEMENT_NODE_COUNT(sub%elem_type(e))
               if (all(inset(sub%elem_nodes(1:nn, e)))) face = .true.
            end select
         end do
@@ -342,11 +383,13 @@ contains
         planar = .true.
         if (face) then
            do e = 1, sub%nelem
+              nn = ELEMENT_NODE_COUNT(sub%elem_type(e))
+              if (any(sub%elem_nodes(1:nn, e) == 0)) cycle
               select case (sub%elem_type(e))
               case (ET_CPS3, ET_CPS4, ET_S3, ET_S4)
-                 nn = ELEMENT_NODE_COUNT(sub%elem_type(e))
                  if (.not. all(inset(sub%elem_nodes(1:nn, e)))) cycle
                  call face_share(sub%x(:, sub%elem_nodes(1:nn, e)), trib, sub%elem_nodes(1:nn, e), d)
+                 if (norm2(d) == 0.0_wp) cycle   ! a degenerate face adds nothing
                  if (first) then
                     n = d
                     first = .false.
@@ -362,6 +405,7 @@ contains
         else
            do e = 1, sub%nelem
               nn = ELEMENT_NODE_COUNT(sub%elem_type(e))
+              if (any(sub%elem_nodes(1:nn, e) == 0)) cycle
               select case (sub%elem_type(e))
               case (ET_T2D2, ET_T3D2, ET_B23, ET_B33)
                  m = 1
@@ -413,6 +457,11 @@ contains
                  return
               end if
               n = cross(w, t)
+              if (norm2(n) == 0.0_wp) then
+                 call report_loc(st, cb%loc, '*INTERFACE '//cb%name//': the joint edges have no normal '// &
+                      '(degenerate elements)')
+                 return
+              end if
               n = n/norm2(n)
               if (dot_product(n, ref) < 0.0_wp) n = -n
               ! tangential axis: w × n (in 2D the normal turned 90 degrees counterclockwise)
@@ -420,12 +469,17 @@ contains
               t = t/norm2(t)
            end if
         end if
-        if (first) then
+        if (first .and. .not. face) then
            call report_loc(st, cb%loc, '*INTERFACE '//cb%name//': no element edge or face of '// &
                 model%subs(c%master_sub)%name//' lies on node set '//ref_text(cb%iface_master))
            return
         end if
         ! frame: 1 normal, 2 and 3 tangential
+        if (face .and. first) then
+           call report_loc(st, cb%loc, '*INTERFACE '//cb%name//': the faces on node set '// &
+                ref_text(cb%iface_master)//' have no area (degenerate elements)')
+           return
+        end if
         n = n/norm2(n)
         if (face) then
            d = [1.0_wp, 0.0_wp, 0.0_wp]
@@ -450,6 +504,11 @@ contains
         if (.not. ok1) return
         allocate (new(size(ms)))
         do p = 1, size(ms, kind=ip)
+           if (.not. (ieee_is_finite(cb%kn*trib(ms(p))) .and. ieee_is_finite(cb%kt*trib(ms(p))))) then
+              call report_loc(st, cb%loc, '*INTERFACE '//cb%name//': the joint stiffness overflows the '// &
+                   'floating-point range')
+              return
+           end if
            if (trib(ms(p)) == 0.0_wp) then
               call report_loc(st, cb%iface_loc, '*INTERFACE '//cb%name//': node '// &
                    node_label(model, c%master_sub, ms(p))//' lies on no edge or face of the joint '// &
@@ -510,7 +569,7 @@ contains
     else
        normal = cross(x(:, 3) - x(:, 1), x(:, 4) - x(:, 2))
     end if
-    normal = normal/norm2(normal)
+    if (norm2(normal) > 0.0_wp) normal = normal/norm2(normal)
   end function face_normal
 
   subroutine face_share(x, trib, nodes, normal)
@@ -526,8 +585,10 @@ contains
     real(wp), parameter :: XI(4) = [-1.0_wp, 1.0_wp, 1.0_wp, -1.0_wp], ETA(4) = [-1.0_wp, -1.0_wp, 1.0_wp, 1.0_wp]
     real(wp) :: v(3), dxi(3), deta(3), da, nsh
     integer :: i, g
+    normal = 0.0_wp
     if (size(nodes) == 3) then
        v = cross(x(:, 2) - x(:, 1), x(:, 3) - x(:, 1))
+       if (norm2(v) == 0.0_wp) return
        normal = v/norm2(v)
        do i = 1, 3
           if (nodes(i) > 0) trib(nodes(i)) = trib(nodes(i)) + norm2(v)/6.0_wp
@@ -535,6 +596,7 @@ contains
        return
     end if
     v = cross(x(:, 3) - x(:, 1), x(:, 4) - x(:, 2))
+    if (norm2(v) == 0.0_wp) return
     normal = v/norm2(v)
     do g = 1, 4
        dxi = 0.0_wp

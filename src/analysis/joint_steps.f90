@@ -79,9 +79,9 @@ contains
        call merge_results(r, members, nstep, g == 1, res)
        call note_group(model, members, res)
     end do
-    res%notes = [res%notes, string_t('joint study (*CHANGE CONTACT): '//itoa(ngroup)// &
+    call append(res%notes, 'joint study (*CHANGE CONTACT): '//itoa(ngroup)// &
          ' sets of contact stiffnesses, '//itoa(ngroup)//' factorizations; the counts above '// &
-         'and MAXRATIO are the largest over them')]
+         'and MAXRATIO are the largest over them')
   end subroutine solve_joint_steps
 
   pure logical function same_overrides(a, b)
@@ -168,10 +168,10 @@ contains
        res%phase_seconds = res%phase_seconds + r%phase_seconds
        res%factor_mbytes = max(res%factor_mbytes, r%factor_mbytes)
        do i = 1, size(r%notes)
-          if (.not. any_string(res%notes, r%notes(i)%s)) res%notes = [res%notes, r%notes(i)]
+          if (.not. any_string(res%notes, r%notes(i)%s)) call append(res%notes, r%notes(i)%s)
        end do
        do i = 1, size(r%warnings)
-          if (.not. any_string(res%warnings, r%warnings(i)%s)) res%warnings = [res%warnings, r%warnings(i)]
+          if (.not. any_string(res%warnings, r%warnings(i)%s)) call append(res%warnings, r%warnings(i)%s)
        end do
     end if
     do k = 1, size(members)
@@ -211,6 +211,21 @@ contains
     else
        text = text//': *CHANGE CONTACT on '//itoa(n)//' contact element(s)'
     end if
-    res%notes = [res%notes, string_t(text)]
+    call append(res%notes, text)
   end subroutine note_group
+
+  subroutine append(list, text)
+    !! Append a string (explicit growth: an array constructor of a type with
+    !! allocatable components leaks with gfortran 12).
+    type(string_t), allocatable, intent(inout) :: list(:)
+    character(*), intent(in) :: text
+    type(string_t), allocatable :: tmp(:)
+    integer :: n
+    n = 0
+    if (allocated(list)) n = size(list)
+    allocate (tmp(n + 1))
+    if (n > 0) tmp(1:n) = list
+    tmp(n + 1)%s = text
+    call move_alloc(tmp, list)
+  end subroutine append
 end module superjoin_analysis_joint_steps

@@ -524,7 +524,7 @@ contains
            if (.not. (planar .and. .not. face)) call set_dof(new(p), 3, cb%kt*trib(ms(p)))
         end do
       end associate
-      model%orientations = [model%orientations, orientation_t(name=cb%name, q=q, loc=cb%loc)]
+      call add_orientation_frame(model, cb%name, q, cb%loc)
       c%orientation = size(model%orientations)
       model%links = [model%links, new]
     end associate
@@ -559,6 +559,24 @@ contains
       end if
     end subroutine set_dof
   end subroutine build_interface
+
+  subroutine add_orientation_frame(model, name, q, loc)
+    !! Append an orientation to model%orientations (explicit growth: an array
+    !! constructor of a type with allocatable components leaks with gfortran 12).
+    type(model_t), intent(inout) :: model
+    character(*), intent(in) :: name
+    real(wp), intent(in) :: q(3, 3)
+    type(source_loc_t), intent(in) :: loc
+    type(orientation_t), allocatable :: tmp(:)
+    integer :: n
+    n = size(model%orientations)
+    allocate (tmp(n + 1))
+    tmp(1:n) = model%orientations
+    tmp(n + 1)%name = name
+    tmp(n + 1)%q = q
+    tmp(n + 1)%loc = loc
+    call move_alloc(tmp, model%orientations)
+  end subroutine add_orientation_frame
 
   pure function face_normal(x) result(normal)
     !! Unit normal of a 3- or 4-node face (right hand on the node order).

@@ -8,7 +8,7 @@ module superjoin_analysis_joint_steps
   !! merged into one results_t in the original step order. Without any
   !! *CHANGE CONTACT this is exactly solve_model.
   use superjoin_kinds, only: wp, i8
-  use superjoin_error, only: error_t
+  use superjoin_error, only: error_t, add_error_line
   use superjoin_model_types, only: model_t, link_override_t, string_t
   use superjoin_analysis, only: solve_model
   use superjoin_analysis_results, only: results_t, run_options_t
@@ -75,7 +75,11 @@ contains
        end do
        call apply_overrides(model%steps(members(1))%link_overrides, sub)
        call solve_model(sub, opts, r, error)
-       if (allocated(error)) return
+       if (allocated(error)) then
+          call add_error_line(error, error%code, '  (while solving '//step_list(model, members)// &
+               ' with their contact stiffnesses, *CHANGE CONTACT)')
+          return
+       end if
        call merge_results(r, members, nstep, g == 1, res)
        call note_group(model, members, res)
     end do
@@ -199,13 +203,10 @@ contains
     integer, intent(in) :: members(:)
     type(results_t), intent(inout) :: res
     character(:), allocatable :: text
-    integer :: k, n
+    integer :: n
     n = 0
     if (allocated(model%steps(members(1))%link_overrides)) n = size(model%steps(members(1))%link_overrides)
-    text = 'steps'
-    do k = 1, size(members)
-       text = text//' '//model%steps(members(k))%name
-    end do
+    text = step_list(model, members)
     if (n == 0) then
        text = text//': contact stiffnesses as defined'
     else
@@ -213,6 +214,18 @@ contains
     end if
     call append(res%notes, text)
   end subroutine note_group
+
+  function step_list(model, members) result(text)
+    !! 'steps A B C' for messages.
+    type(model_t), intent(in) :: model
+    integer, intent(in) :: members(:)
+    character(:), allocatable :: text
+    integer :: k
+    text = 'steps'
+    do k = 1, size(members)
+       text = text//' '//model%steps(members(k))%name
+    end do
+  end function step_list
 
   subroutine append(list, text)
     !! Append a string (explicit growth: an array constructor of a type with

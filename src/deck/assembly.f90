@@ -83,6 +83,7 @@ contains
          ! read, so that its nodes exist for the references (no second error)
          call place_copy(st, model%subs(p), inst, model%subs(k))
          model%subs(k)%part = part_ord(p)
+         call add_assembly_sets(st, st%subs(k), model%subs(k))
        end associate
        if (st%aborted) return
     end do
@@ -124,6 +125,103 @@ contains
       if (home > 0) home = new_index(home)
     end subroutine renumber
   end subroutine place_all
+
+  subroutine add_assembly_sets(st, b, m)
+    !! The sets that *NSET/*ELSET, INSTANCE= define on instance m (Abaqus
+    !! assembly-level sets), after the sets copied from its part.
+    type(deck_state_t), intent(inout) :: st
+    type(sub_b_t), intent(in) :: b
+    type(substructure_t), intent(inout) :: m
+    if (b%nnset > 0) call add_kind(.false.)
+    if (st%aborted) return
+    if (b%nelset > 0) call add_kind(.true.)
+  contains
+    subroutine add_kind(elem)
+      logical, intent(in) :: elem
+      type(index_set_t), allocatable :: keep(:), all(:)
+      integer :: i, j, n1, n2
+      if (elem) then
+         call move_alloc(m%elsets, keep)
+      else
+         call move_alloc(m%nsets, keep)
+      end if
+      call resolve_sets(st, b, m, elem)
+      if (elem) then
+         call move_alloc(m%elsets, all)
+      else
+         call move_alloc(m%nsets, all)
+      end if
+      n1 = size(keep)
+      n2 = size(all)
+      do j = 1, n2
+         do i = 1, n1
+            if (keep(i)%name == all(j)%name) then
+               if (elem) then
+                  call report_loc(st, b%elsets(j)%loc, 'element set '//all(j)%name//' of instance '//m%name// &
+                       ' is already a set of its part')
+               else
+                  call report_loc(st, b%nsets(j)%loc, 'node set '//all(j)%name//' of instance '//m%name// &
+                       ' is already a set of its part')
+               end if
+            end if
+         end do
+      end do
+      ! explicit growth (an array constructor of a type with allocatable components leaks with gfortran 12)
+      block
+        type(index_set_t), allocatable :: joined(:)
+        allocate (joined(n1 + n2))
+        do i = 1, n1
+           call move_alloc(keep(i)%name, joined(i)%name)
+           call move_alloc(keep(i)%items, joined(i)%items)
+        end do
+        do j = 1, n2
+           call move_alloc(all(j)%name, joined(n1 + j)%name)
+           call move_alloc(all(j)%items, joined(n1 + j)%items)
+        end do
+        if (elem) then
+           call move_alloc(joined, m%elsets)
+        else
+           call move_alloc(joined, m%nsets)
+        end if
+      end block
+    end subroutine add_kind
+  end subroutine add_assembly_sets
+
+  module integer function assembly_set_owner(model, name, elem, main) result(k)
+    type(model_t), intent(in) :: model
+    character(*), intent(in) :: name
+    logical, intent(in) :: elem
+    integer, intent(in) :: main
+    integer :: i, nfound
+    k = main
+    if (main > 0) then
+       if (has_set(main)) return
+    end if
+    nfound = 0
+    do i = 1, size(model%subs)
+       if (model%subs(i)%part == 0) cycle
+       if (has_set(i)) then
+          nfound = nfound + 1
+          if (nfound == 1) k = i
+       end if
+    end do
+    if (nfound /= 1) k = main
+  contains
+    logical function has_set(isub)
+      integer, intent(in) :: isub
+      integer :: j
+      has_set = .false.
+      if (elem) then
+         do j = 1, size(model%subs(isub)%elsets)
+            if (model%subs(isub)%elsets(j)%name == name) has_set = .true.
+         end do
+      else
+         do j = 1, size(model%subs(isub)%nsets)
+            if (model%subs(isub)%nsets(j)%name == name) has_set = .true.
+         end do
+      end if
+    end function has_set
+  end function assembly_set_owner
 
   subroutine place_copy(st, part, inst, m)
     !! m = part placed by inst (m keeps its name and location).

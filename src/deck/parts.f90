@@ -87,6 +87,27 @@ contains
     k = 0
   end function find_part
 
+  module integer function set_home(st, kw, loc) result(isub)
+    type(deck_state_t), intent(inout) :: st
+    type(keyword_line_t), intent(in) :: kw
+    type(source_loc_t), intent(in) :: loc
+    character(:), allocatable :: name
+    logical :: found
+    call get_name_param(st, kw, loc, 'INSTANCE', .false., name, found)
+    if (.not. found) then
+       isub = 0
+       if (param_index(kw, 'INSTANCE') > 0) return   ! invalid name, reported
+       isub = target_sub(st, loc)
+       return
+    end if
+    isub = find_sub(st, name)
+    if (isub > 0) then
+       if (st%subs(isub)%kind /= SUBK_INSTANCE) isub = 0
+    end if
+    if (isub == 0) call report_loc(st, loc, 'INSTANCE='//name//' of *'//kw%keyword// &
+         ' names no *INSTANCE defined before it')
+  end function set_home
+
   module subroutine finish_assembly(st)
     type(deck_state_t), intent(inout) :: st
     if (st%cur_inst > 0) call report_loc(st, st%instances(st%cur_inst)%loc, '*INSTANCE '// &

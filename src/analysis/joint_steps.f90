@@ -8,7 +8,7 @@ module superjoin_analysis_joint_steps
   !! merged into one results_t in the original step order. Without any
   !! *CHANGE CONTACT this is exactly solve_model.
   use superjoin_kinds, only: wp, i8
-  use superjoin_error, only: error_t
+  use superjoin_error, only: error_t, add_error_line
   use superjoin_model_types, only: model_t, link_override_t, string_t
   use superjoin_analysis, only: solve_model, solve_group, solve_context_t, release_cache
   use superjoin_analysis_results, only: results_t, run_options_t
@@ -80,16 +80,18 @@ contains
        call solve_group(sub, opts, ctx, r, error)
        if (allocated(error)) then
           call release_cache(ctx%cache)
+          call add_error_line(error, error%code, '  (while solving '//step_list(model, members)// &
+               ' with their contact stiffnesses, *CHANGE CONTACT)')
           return
        end if
        call merge_results(r, members, nstep, g == 1, res)
        call note_group(model, members, res)
     end do
     call release_cache(ctx%cache)
-    res%notes = [res%notes, string_t('joint study (*CHANGE CONTACT): '//itoa(ngroup)// &
+    call append(res%notes, 'joint study (*CHANGE CONTACT): '//itoa(ngroup)// &
          ' sets of contact stiffnesses, '//itoa(ngroup)//' interface factorizations, '// &
          itoa(ctx%cache%computed)//' condensations computed and reused '//itoa(ctx%cache%reused)// &
-         ' times; the counts above and MAXRATIO are the largest over them')]
+         ' times; the counts above and MAXRATIO are the largest over them')
   end subroutine solve_joint_steps
 
   pure logical function same_overrides(a, b)
@@ -176,10 +178,10 @@ contains
        res%phase_seconds = res%phase_seconds + r%phase_seconds
        res%factor_mbytes = max(res%factor_mbytes, r%factor_mbytes)
        do i = 1, size(r%notes)
-          if (.not. any_string(res%notes, r%notes(i)%s)) res%notes = [res%notes, r%notes(i)]
+          if (.not. any_string(res%notes, r%notes(i)%s)) call append(res%notes, r%notes(i)%s)
        end do
        do i = 1, size(r%warnings)
-          if (.not. any_string(res%warnings, r%warnings(i)%s)) res%warnings = [res%warnings, r%warnings(i)]
+          if (.not. any_string(res%warnings, r%warnings(i)%s)) call append(res%warnings, r%warnings(i)%s)
        end do
     end if
     do k = 1, size(members)
@@ -207,18 +209,42 @@ contains
     integer, intent(in) :: members(:)
     type(results_t), intent(inout) :: res
     character(:), allocatable :: text
-    integer :: k, n
+    integer :: n
     n = 0
     if (allocated(model%steps(members(1))%link_overrides)) n = size(model%steps(members(1))%link_overrides)
-    text = 'steps'
-    do k = 1, size(members)
-       text = text//' '//model%steps(members(k))%name
-    end do
+    text = step_list(model, members)
     if (n == 0) then
        text = text//': contact stiffnesses as defined'
     else
        text = text//': *CHANGE CONTACT on '//itoa(n)//' contact element(s)'
     end if
-    res%notes = [res%notes, string_t(text)]
+    call append(res%notes, text)
   end subroutine note_group
+
+  function step_list(model, members) result(text)
+    !! 'steps A B C' for messages.
+    type(model_t), intent(in) :: model
+    integer, intent(in) :: members(:)
+    character(:), allocatable :: text
+    integer :: k
+    text = 'steps'
+    do k = 1, size(members)
+       text = text//' '//model%steps(members(k))%name
+    end do
+  end function step_list
+
+  subroutine append(list, text)
+    !! Append a string (explicit growth: an array constructor of a type with
+    !! allocatable components leaks with gfortran 12).
+    type(string_t), allocatable, intent(inout) :: list(:)
+    character(*), intent(in) :: text
+    type(string_t), allocatable :: tmp(:)
+    integer :: n
+    n = 0
+    if (allocated(list)) n = size(list)
+    allocate (tmp(n + 1))
+    if (n > 0) tmp(1:n) = list
+    tmp(n + 1)%s = text
+    call move_alloc(tmp, list)
+  end subroutine append
 end module superjoin_analysis_joint_steps

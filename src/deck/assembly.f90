@@ -13,6 +13,8 @@ submodule (superjoin_deck_validate) superjoin_deck_assembly
   use superjoin_deck_state, only: SUBK_PART, SUBK_INSTANCE, instance_b_t, step_b_t
   use superjoin_elements_frame, only: DEFAULT_V_SWITCH_TOL, cross, real_text
   use superjoin_utils_sorting, only: stable_argsort
+  use superjoin_utils_halting, only: halting_t, halting_off, halting_restore
+  use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
   implicit none (type, external)
 
   real(wp), parameter :: IDENTITY(3, 3) = reshape([1.0_wp, 0.0_wp, 0.0_wp, 0.0_wp, 1.0_wp, 0.0_wp, &
@@ -38,6 +40,16 @@ contains
   end subroutine empty_sub
 
   module subroutine place_instances(st, model)
+    type(deck_state_t), intent(inout) :: st
+    type(model_t), intent(inout) :: model
+    type(halting_t) :: saved
+    call halting_off(saved)
+    call place_all(st, model)
+    call halting_restore(saved)
+  end subroutine place_instances
+
+  subroutine place_all(st, model)
+    !! place_instances with floating-point halting off (overflow is reported).
     type(deck_state_t), intent(inout) :: st
     type(model_t), intent(inout) :: model
     integer, allocatable :: part_ord(:), new_index(:)
@@ -71,6 +83,7 @@ contains
          ! read, so that its nodes exist for the references (no second error)
          call place_copy(st, model%subs(p), inst, model%subs(k))
          model%subs(k)%part = part_ord(p)
+         call add_assembly_sets(st, st%subs(k), model%subs(k))
        end associate
        if (st%aborted) return
     end do
@@ -111,7 +124,104 @@ contains
       integer, intent(inout) :: home
       if (home > 0) home = new_index(home)
     end subroutine renumber
-  end subroutine place_instances
+  end subroutine place_all
+
+  subroutine add_assembly_sets(st, b, m)
+    !! The sets that *NSET/*ELSET, INSTANCE= define on instance m (Abaqus
+    !! assembly-level sets), after the sets copied from its part.
+    type(deck_state_t), intent(inout) :: st
+    type(sub_b_t), intent(in) :: b
+    type(substructure_t), intent(inout) :: m
+    if (b%nnset > 0) call add_kind(.false.)
+    if (st%aborted) return
+    if (b%nelset > 0) call add_kind(.true.)
+  contains
+    subroutine add_kind(elem)
+      logical, intent(in) :: elem
+      type(index_set_t), allocatable :: keep(:), all(:)
+      integer :: i, j, n1, n2
+      if (elem) then
+         call move_alloc(m%elsets, keep)
+      else
+         call move_alloc(m%nsets, keep)
+      end if
+      call resolve_sets(st, b, m, elem)
+      if (elem) then
+         call move_alloc(m%elsets, all)
+      else
+         call move_alloc(m%nsets, all)
+      end if
+      n1 = size(keep)
+      n2 = size(all)
+      do j = 1, n2
+         do i = 1, n1
+            if (keep(i)%name == all(j)%name) then
+               if (elem) then
+                  call report_loc(st, b%elsets(j)%loc, 'element set '//all(j)%name//' of instance '//m%name// &
+                       ' is already a set of its part')
+               else
+                  call report_loc(st, b%nsets(j)%loc, 'node set '//all(j)%name//' of instance '//m%name// &
+                       ' is already a set of its part')
+               end if
+            end if
+         end do
+      end do
+      ! explicit growth (an array constructor of a type with allocatable components leaks with gfortran 12)
+      block
+        type(index_set_t), allocatable :: joined(:)
+        allocate (joined(n1 + n2))
+        do i = 1, n1
+           call move_alloc(keep(i)%name, joined(i)%name)
+           call move_alloc(keep(i)%items, joined(i)%items)
+        end do
+        do j = 1, n2
+           call move_alloc(all(j)%name, joined(n1 + j)%name)
+           call move_alloc(all(j)%items, joined(n1 + j)%items)
+        end do
+        if (elem) then
+           call move_alloc(joined, m%elsets)
+        else
+           call move_alloc(joined, m%nsets)
+        end if
+      end block
+    end subroutine add_kind
+  end subroutine add_assembly_sets
+
+  module integer function assembly_set_owner(model, name, elem, main) result(k)
+    type(model_t), intent(in) :: model
+    character(*), intent(in) :: name
+    logical, intent(in) :: elem
+    integer, intent(in) :: main
+    integer :: i, nfound
+    k = main
+    if (main > 0) then
+       if (has_set(main)) return
+    end if
+    nfound = 0
+    do i = 1, size(model%subs)
+       if (model%subs(i)%part == 0) cycle
+       if (has_set(i)) then
+          nfound = nfound + 1
+          if (nfound == 1) k = i
+       end if
+    end do
+    if (nfound /= 1) k = main
+  contains
+    logical function has_set(isub)
+      integer, intent(in) :: isub
+      integer :: j
+      has_set = .false.
+      if (elem) then
+         do j = 1, size(model%subs(isub)%elsets)
+            if (model%subs(isub)%elsets(j)%name == name) has_set = .true.
+         end do
+      else
+         do j = 1, size(model%subs(isub)%nsets)
+            if (model%subs(isub)%nsets(j)%name == name) has_set = .true.
+         end do
+      end if
+    end function has_set
+  end function assembly_set_owner
 
   subroutine place_copy(st, part, inst, m)
     !! m = part placed by inst (m keeps its name and location).
@@ -135,6 +245,11 @@ contains
     do i = 1, m%nnode
        m%x(:, i) = matmul(inst%rot, part%x(:, i)) + inst%shift
     end do
+    if (.not. all(ieee_is_finite(m%x))) then
+       call report_loc(st, inst%loc, '*INSTANCE '//name//': placed coordinates overflow the floating-point range')
+       m%x = 0.0_wp
+       return
+    end if
     if (all(inst%rot == IDENTITY)) return
 
     if (abs(inst%rot(3, 3) - 1.0_wp) > PLANE_ROT_TOL) then
@@ -181,8 +296,9 @@ contains
       !! The default orientation of beam e of the part is global X (as superjoin_elements_frame).
       integer(ip), intent(in) :: e
       real(wp) :: d(3)
-      d = part%x(:, part%elem_nodes(2, e)) - part%x(:, part%elem_nodes(1, e))
       default_is_x = .false.
+      if (any(part%elem_nodes(1:2, e) == 0)) return   ! undefined node, reported
+      d = part%x(:, part%elem_nodes(2, e)) - part%x(:, part%elem_nodes(1, e))
       if (norm2(d) == 0.0_wp) return
       default_is_x = norm2(cross(d/norm2(d), GLOBAL_Z)) <= DEFAULT_V_SWITCH_TOL
     end function default_is_x
@@ -203,6 +319,21 @@ contains
   ! ================================================================== PAIR=NEAREST
 
   module subroutine pair_nearest(st, model, icontact, loc, ms, ss, ok)
+    type(deck_state_t), intent(inout) :: st
+    type(model_t), intent(in) :: model
+    integer, intent(in) :: icontact
+    type(source_loc_t), intent(in) :: loc
+    integer(ip), allocatable, intent(inout) :: ms(:)
+    integer(ip), intent(in) :: ss(:)
+    logical, intent(out) :: ok
+    type(halting_t) :: saved
+    call halting_off(saved)
+    call pair_by_distance(st, model, icontact, loc, ms, ss, ok)
+    call halting_restore(saved)
+  end subroutine pair_nearest
+
+  subroutine pair_by_distance(st, model, icontact, loc, ms, ss, ok)
+    !! pair_nearest with floating-point halting off (an overflowing distance pairs nothing).
     type(deck_state_t), intent(inout) :: st
     type(model_t), intent(in) :: model
     integer, intent(in) :: icontact
@@ -271,7 +402,7 @@ contains
     end associate
     call move_alloc(paired, ms)
     ok = .true.
-  end subroutine pair_nearest
+  end subroutine pair_by_distance
 
   pure function point_text(x) result(s)
     !! (x, y, z) for messages.
@@ -287,11 +418,18 @@ contains
     type(deck_state_t), intent(inout) :: st
     type(model_t), intent(inout) :: model
     integer :: k
+    type(halting_t) :: saved
+    call halting_off(saved)
+    call build_all_interfaces()
+    call halting_restore(saved)
+  contains
+    subroutine build_all_interfaces()
     do k = 1, st%ncontact
        if (.not. st%contacts(k)%is_interface) cycle
        call build_interface(st, model, k)
        if (st%aborted) return
     end do
+    end subroutine build_all_interfaces
   end subroutine build_interfaces
 
   subroutine build_interface(st, model, k)
@@ -332,9 +470,10 @@ contains
         ! face joint: plane or shell elements with every node on the set
         face = .false.
         do e = 1, sub%nelem
+           nn = ELEMENT_NODE_COUNT(sub%elem_type(e))
+           if (any(sub%elem_nodes(1:nn, e) == 0)) cycle   ! undefined node, reported
            select case (sub%elem_type(e))
            case (ET_CPS3, ET_CPS4, ET_S3, ET_S4)
-              nn = ELEMENT_NODE_COUNT(sub%elem_type(e))
               if (all(inset(sub%elem_nodes(1:nn, e)))) face = .true.
            end select
         end do
@@ -342,11 +481,13 @@ contains
         planar = .true.
         if (face) then
            do e = 1, sub%nelem
+              nn = ELEMENT_NODE_COUNT(sub%elem_type(e))
+              if (any(sub%elem_nodes(1:nn, e) == 0)) cycle
               select case (sub%elem_type(e))
               case (ET_CPS3, ET_CPS4, ET_S3, ET_S4)
-                 nn = ELEMENT_NODE_COUNT(sub%elem_type(e))
                  if (.not. all(inset(sub%elem_nodes(1:nn, e)))) cycle
                  call face_share(sub%x(:, sub%elem_nodes(1:nn, e)), trib, sub%elem_nodes(1:nn, e), d)
+                 if (norm2(d) == 0.0_wp) cycle   ! a degenerate face adds nothing
                  if (first) then
                     n = d
                     first = .false.
@@ -362,6 +503,7 @@ contains
         else
            do e = 1, sub%nelem
               nn = ELEMENT_NODE_COUNT(sub%elem_type(e))
+              if (any(sub%elem_nodes(1:nn, e) == 0)) cycle
               select case (sub%elem_type(e))
               case (ET_T2D2, ET_T3D2, ET_B23, ET_B33)
                  m = 1
@@ -413,6 +555,11 @@ contains
                  return
               end if
               n = cross(w, t)
+              if (norm2(n) == 0.0_wp) then
+                 call report_loc(st, cb%loc, '*INTERFACE '//cb%name//': the joint edges have no normal '// &
+                      '(degenerate elements)')
+                 return
+              end if
               n = n/norm2(n)
               if (dot_product(n, ref) < 0.0_wp) n = -n
               ! tangential axis: w × n (in 2D the normal turned 90 degrees counterclockwise)
@@ -420,12 +567,17 @@ contains
               t = t/norm2(t)
            end if
         end if
-        if (first) then
+        if (first .and. .not. face) then
            call report_loc(st, cb%loc, '*INTERFACE '//cb%name//': no element edge or face of '// &
                 model%subs(c%master_sub)%name//' lies on node set '//ref_text(cb%iface_master))
            return
         end if
         ! frame: 1 normal, 2 and 3 tangential
+        if (face .and. first) then
+           call report_loc(st, cb%loc, '*INTERFACE '//cb%name//': the faces on node set '// &
+                ref_text(cb%iface_master)//' have no area (degenerate elements)')
+           return
+        end if
         n = n/norm2(n)
         if (face) then
            d = [1.0_wp, 0.0_wp, 0.0_wp]
@@ -450,6 +602,11 @@ contains
         if (.not. ok1) return
         allocate (new(size(ms)))
         do p = 1, size(ms, kind=ip)
+           if (.not. (ieee_is_finite(cb%kn*trib(ms(p))) .and. ieee_is_finite(cb%kt*trib(ms(p))))) then
+              call report_loc(st, cb%loc, '*INTERFACE '//cb%name//': the joint stiffness overflows the '// &
+                   'floating-point range')
+              return
+           end if
            if (trib(ms(p)) == 0.0_wp) then
               call report_loc(st, cb%iface_loc, '*INTERFACE '//cb%name//': node '// &
                    node_label(model, c%master_sub, ms(p))//' lies on no edge or face of the joint '// &
@@ -465,7 +622,7 @@ contains
            if (.not. (planar .and. .not. face)) call set_dof(new(p), 3, cb%kt*trib(ms(p)))
         end do
       end associate
-      model%orientations = [model%orientations, orientation_t(name=cb%name, q=q, loc=cb%loc)]
+      call add_orientation_frame(model, cb%name, q, cb%loc)
       c%orientation = size(model%orientations)
       model%links = [model%links, new]
     end associate
@@ -501,6 +658,24 @@ contains
     end subroutine set_dof
   end subroutine build_interface
 
+  subroutine add_orientation_frame(model, name, q, loc)
+    !! Append an orientation to model%orientations (explicit growth: an array
+    !! constructor of a type with allocatable components leaks with gfortran 12).
+    type(model_t), intent(inout) :: model
+    character(*), intent(in) :: name
+    real(wp), intent(in) :: q(3, 3)
+    type(source_loc_t), intent(in) :: loc
+    type(orientation_t), allocatable :: tmp(:)
+    integer :: n
+    n = size(model%orientations)
+    allocate (tmp(n + 1))
+    tmp(1:n) = model%orientations
+    tmp(n + 1)%name = name
+    tmp(n + 1)%q = q
+    tmp(n + 1)%loc = loc
+    call move_alloc(tmp, model%orientations)
+  end subroutine add_orientation_frame
+
   pure function face_normal(x) result(normal)
     !! Unit normal of a 3- or 4-node face (right hand on the node order).
     real(wp), intent(in) :: x(:, :)
@@ -510,7 +685,7 @@ contains
     else
        normal = cross(x(:, 3) - x(:, 1), x(:, 4) - x(:, 2))
     end if
-    normal = normal/norm2(normal)
+    if (norm2(normal) > 0.0_wp) normal = normal/norm2(normal)
   end function face_normal
 
   subroutine face_share(x, trib, nodes, normal)
@@ -526,8 +701,10 @@ contains
     real(wp), parameter :: XI(4) = [-1.0_wp, 1.0_wp, 1.0_wp, -1.0_wp], ETA(4) = [-1.0_wp, -1.0_wp, 1.0_wp, 1.0_wp]
     real(wp) :: v(3), dxi(3), deta(3), da, nsh
     integer :: i, g
+    normal = 0.0_wp
     if (size(nodes) == 3) then
        v = cross(x(:, 2) - x(:, 1), x(:, 3) - x(:, 1))
+       if (norm2(v) == 0.0_wp) return
        normal = v/norm2(v)
        do i = 1, 3
           if (nodes(i) > 0) trib(nodes(i)) = trib(nodes(i)) + norm2(v)/6.0_wp
@@ -535,6 +712,7 @@ contains
        return
     end if
     v = cross(x(:, 3) - x(:, 1), x(:, 4) - x(:, 2))
+    if (norm2(v) == 0.0_wp) return
     normal = v/norm2(v)
     do g = 1, 4
        dxi = 0.0_wp
@@ -561,6 +739,7 @@ contains
     integer :: s, n, i, nout, l, j
     logical :: any_change
     logical, allocatable :: expanded(:)
+    type(index_set_t), allocatable :: line_links(:)
 
     any_change = .false.
     do s = 1, st%nstep
@@ -609,18 +788,54 @@ contains
     call move_alloc(steps, model%steps)
   contains
     subroutine step_overrides(sb, ivalue, step)
-      !! The overrides of value ivalue of step sb's *CHANGE CONTACT lines.
+      !! The overrides of value ivalue of step sb's *CHANGE CONTACT lines (the
+      !! node pairs are resolved, and their errors reported, for the first value only).
       type(step_b_t), intent(in) :: sb
       integer, intent(in) :: ivalue
       type(step_t), intent(inout) :: step
       type(link_override_t), allocatable :: list(:)
-      integer(ip), allocatable :: ms(:), ss(:)
-      integer :: k, nl, il, v, d
+      integer :: k, nl, v, d, jj
       integer(ip) :: p
-      logical :: ok1, ok2
+      if (ivalue == 1) call resolve_override_links(sb)
       allocate (list(0))
       nl = 0
       do k = 1, sb%noverride
+         associate (o => sb%overrides(k))
+           if (.not. allocated(line_links(k)%items)) cycle
+           v = min(ivalue, size(o%gs))
+           do p = 1, size(line_links(k)%items, kind=ip)
+              ! one override per link and step; later lines change it further
+              jj = 0
+              do d = 1, nl
+                 if (list(d)%link == line_links(k)%items(p)) jj = d
+              end do
+              if (jj == 0) then
+                 list = [list, link_override_t(link=int(line_links(k)%items(p)))]
+                 nl = nl + 1
+                 jj = nl
+              end if
+              do d = o%first, o%last
+                 list(jj)%dofs(d) = .true.
+                 list(jj)%state(d) = o%states(v)
+                 list(jj)%g(d) = merge(o%gs(v), 0.0_wp, o%states(v) == LINK_FINITE)
+              end do
+           end do
+         end associate
+      end do
+      call move_alloc(list, step%link_overrides)
+    end subroutine step_overrides
+
+    subroutine resolve_override_links(sb)
+      !! line_links(k): the links that line k of the step's *CHANGE CONTACT names
+      !! (unallocated when the line is in error, reported).
+      type(step_b_t), intent(in) :: sb
+      integer(ip), allocatable :: ms(:), ss(:)
+      integer :: k, il
+      integer(ip) :: p
+      logical :: ok1, ok2
+      if (allocated(line_links)) deallocate (line_links)
+      allocate (line_links(sb%noverride))
+      lines: do k = 1, sb%noverride
          associate (o => sb%overrides(k))
            associate (c => model%contacts(o%contact))
              if (c%master_sub == 0 .or. c%slave_sub == 0) cycle
@@ -636,7 +851,7 @@ contains
                      ' against '//plural(size(ss), 'slave node')//' (they pair in order, as on *CONTACT)')
                 cycle
              end if
-             v = min(ivalue, size(o%gs))
+             allocate (line_links(k)%items(size(ms)))
              do p = 1, size(ms, kind=ip)
                 il = 0
                 do l = first_link(o%contact), last_link(o%contact)
@@ -649,28 +864,14 @@ contains
                    call report_loc(st, o%loc, '*CHANGE CONTACT '//c%name//': nodes '// &
                         node_label(model, c%master_sub, ms(p))//' and '//node_label(model, c%slave_sub, ss(p))// &
                         ' are not a pair of contact '//c%name)
-                   return
+                   deallocate (line_links(k)%items)
+                   cycle lines
                 end if
-                ! one override per link and step; later lines change it further
-                j = 0
-                do d = 1, nl
-                   if (list(d)%link == il) j = d
-                end do
-                if (j == 0) then
-                   list = [list, link_override_t(link=il)]
-                   nl = nl + 1
-                   j = nl
-                end if
-                do d = o%first, o%last
-                   list(j)%dofs(d) = .true.
-                   list(j)%state(d) = o%states(v)
-                   list(j)%g(d) = merge(o%gs(v), 0.0_wp, o%states(v) == LINK_FINITE)
-                end do
+                line_links(k)%items(p) = il
              end do
            end associate
          end associate
-      end do
-      call move_alloc(list, step%link_overrides)
-    end subroutine step_overrides
+      end do lines
+    end subroutine resolve_override_links
   end subroutine build_overrides
 end submodule superjoin_deck_assembly

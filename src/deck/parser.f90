@@ -26,7 +26,7 @@ module superjoin_deck_parser
 
   public :: parse_source, finish_parse, register_file
   public :: outside_step, check_params, param_index, get_param, get_name_param, field_count, fld, get_real, &
-       real_message, get_dof_range, get_stiffness, parse_ref, loc_string
+       real_message, get_dof_range, get_stiffness, parse_ref, loc_string, target_sub
     !! Card helpers, public only because the submodule superjoin_deck_parts calls
     !! them: gfortran 12 does not export private module procedures to submodules.
 
@@ -81,6 +81,13 @@ module superjoin_deck_parser
        character(*), intent(in) :: line
        type(source_loc_t), intent(in) :: loc
      end subroutine data_instance
+     module integer function set_home(st, kw, loc) result(isub)
+       !! Substructure a *NSET/*ELSET card writes to: the instance of INSTANCE=
+       !! (Abaqus assembly-level sets), else the open block or MAIN (0: reported).
+       type(deck_state_t), intent(inout) :: st
+       type(keyword_line_t), intent(in) :: kw
+       type(source_loc_t), intent(in) :: loc
+     end function set_home
      module subroutine finish_assembly(st)
        !! End of input: report unclosed *PART, *INSTANCE and *ASSEMBLY blocks.
        type(deck_state_t), intent(inout) :: st
@@ -718,17 +725,18 @@ contains
     if (.not. outside_step(st, kw, loc)) return
     if (elem) then
        pname = 'ELSET'
-       call check_params(st, kw, loc, [character(NAME_LEN) :: 'ELSET'], &
+       call check_params(st, kw, loc, [character(NAME_LEN) :: 'ELSET', 'INSTANCE'], &
             [character(NAME_LEN) :: 'GENERATE', 'UNSORTED'])
     else
        pname = 'NSET'
-       call check_params(st, kw, loc, [character(NAME_LEN) :: 'NSET'], &
+       call check_params(st, kw, loc, [character(NAME_LEN) :: 'NSET', 'INSTANCE'], &
             [character(NAME_LEN) :: 'GENERATE', 'UNSORTED'])
     end if
     call get_name_param(st, kw, loc, pname, .true., name, found)
     st%card = CARD_SKIP
     if (.not. found) return
-    isub = target_sub(st, loc)
+    isub = set_home(st, kw, loc)
+    if (isub == 0) return
     iset = find_set(st%subs(isub), name, elem)
     if (iset == 0) call new_set(st%subs(isub), name, elem, loc, iset)
     st%card = merge(CARD_ELSET, CARD_NSET, elem)

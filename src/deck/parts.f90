@@ -16,6 +16,8 @@ submodule (superjoin_deck_parser) superjoin_deck_parts
   !! The placement itself (copying the part into its instances) is done by the
   !! validation pass (superjoin_deck_assembly).
   use superjoin_deck_state, only: instance_b_t
+  use superjoin_utils_halting, only: halting_t, halting_off, halting_restore
+  use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
   implicit none (type, external)
 
   integer, parameter :: TRANSLATION_FIELDS = 3, ROTATION_FIELDS = 7
@@ -84,6 +86,27 @@ contains
     end do
     k = 0
   end function find_part
+
+  module integer function set_home(st, kw, loc) result(isub)
+    type(deck_state_t), intent(inout) :: st
+    type(keyword_line_t), intent(in) :: kw
+    type(source_loc_t), intent(in) :: loc
+    character(:), allocatable :: name
+    logical :: found
+    call get_name_param(st, kw, loc, 'INSTANCE', .false., name, found)
+    if (.not. found) then
+       isub = 0
+       if (param_index(kw, 'INSTANCE') > 0) return   ! invalid name, reported
+       isub = target_sub(st, loc)
+       return
+    end if
+    isub = find_sub(st, name)
+    if (isub > 0) then
+       if (st%subs(isub)%kind /= SUBK_INSTANCE) isub = 0
+    end if
+    if (isub == 0) call report_loc(st, loc, 'INSTANCE='//name//' of *'//kw%keyword// &
+         ' names no *INSTANCE defined before it')
+  end function set_home
 
   module subroutine finish_assembly(st)
     type(deck_state_t), intent(inout) :: st
@@ -233,6 +256,17 @@ contains
     type(deck_state_t), intent(inout) :: st
     character(*), intent(in) :: line
     type(source_loc_t), intent(in) :: loc
+    type(halting_t) :: saved
+    call halting_off(saved)
+    call instance_line(st, line, loc)
+    call halting_restore(saved)
+  end subroutine data_instance
+
+  subroutine instance_line(st, line, loc)
+    !! data_instance with floating-point halting off (out-of-range placements are reported).
+    type(deck_state_t), intent(inout) :: st
+    character(*), intent(in) :: line
+    type(source_loc_t), intent(in) :: loc
     real(wp) :: v(ROTATION_FIELDS), a(3), b(3), n(3), nn, c, s, angle, q(3, 3)
     integer :: i, turns
     associate (inst => st%instances(st%card_item))
@@ -273,6 +307,12 @@ contains
       angle = v(7)
       n = b - a
       nn = norm2(n)
+      if (.not. (ieee_is_finite(nn) .and. ieee_is_finite(norm2(a)) .and. ieee_is_finite(norm2(b)))) then
+         call report_loc(st, loc, 'rotation axis of *INSTANCE '//st%subs(inst%sub)%name// &
+              ' out of the floating-point range')
+         inst%ok = .false.
+         return
+      end if
       if (.not. (nn > AXIS_TOL*max(norm2(a), norm2(b)))) then
          call report_loc(st, loc, 'degenerate rotation axis of *INSTANCE '//st%subs(inst%sub)%name// &
               ': points a and b coincide')
@@ -303,8 +343,14 @@ contains
       inst%rot = q
       ! x' = a + R (x + t - a) = R x + (a + R (t - a))
       inst%shift = a + matmul(q, inst%shift - a)
+      if (.not. all(ieee_is_finite(inst%shift))) then
+         call report_loc(st, loc, 'placement of *INSTANCE '//st%subs(inst%sub)%name// &
+              ' out of the floating-point range')
+         inst%shift = 0.0_wp
+         inst%ok = .false.
+      end if
     end associate
-  end subroutine data_instance
+  end subroutine instance_line
 
   ! ================================================================== *CONTACT, PAIR=NEAREST
 

@@ -16,7 +16,7 @@ module superjoin_deck_validate
   private
 
   public :: build_model
-  public :: resolve_items, where, ref_text
+  public :: resolve_items, where, ref_text, resolve_sets
     !! Public only because the submodule superjoin_deck_assembly calls them:
     !! gfortran 12 does not export private module procedures to submodules.
 
@@ -70,6 +70,14 @@ module superjoin_deck_validate
        character(*), intent(in) :: name
        character(:), allocatable :: s
      end function part_hint
+     module integer function assembly_set_owner(model, name, elem, main) result(k)
+       !! Substructure of an unscoped set name: MAIN when MAIN has it, else the one
+       !! instance that has it (an assembly-level *NSET/*ELSET, INSTANCE=), else main.
+       type(model_t), intent(in) :: model
+       character(*), intent(in) :: name
+       logical, intent(in) :: elem
+       integer, intent(in) :: main
+     end function assembly_set_owner
      module subroutine build_interfaces(st, model)
        !! *INTERFACE: Goodman joints lumped to contact elements by tributary length or area.
        type(deck_state_t), intent(inout) :: st
@@ -668,6 +676,7 @@ contains
        isub = ref%home
     else
        isub = sub_index(model, MAIN_NAME)
+       if (ref%is_set) isub = assembly_set_owner(model, ref%set, what /= 'node', isub)
        if (isub == 0) call report_loc(st, loc, what//' '//ref_text(ref)// &
             ' is not in a substructure: outside *SUBSTRUCTURE blocks write SUB.id or SUB.set '// &
             '(no nodes were defined outside the blocks, so there is no substructure MAIN)')

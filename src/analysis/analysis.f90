@@ -467,7 +467,8 @@ contains
     integer :: isub, mode, ninst
     integer(i8) :: nb, ni, p
     integer(i8), allocatable :: nbs(:)
-    character(:), allocatable :: why
+    character(:), allocatable :: why, small
+    small = ''
     allocate (res%sub_condensed(size(model%subs)), source=.false.)
     allocate (nbs(size(model%subs)), source=0_i8)
     do p = 1, table%np
@@ -492,8 +493,7 @@ contains
           end if
           if (nb == 0 .or. ni == 0) cycle
           if (nb >= ni) then
-             call note(notes, 'substructure '//model%subs(isub)%name//' not condensed ('//why// &
-                  '): its boundary ('//itoa(nb)//' DOFs) is not smaller than its interior')
+             small = small//' '//model%subs(isub)%name
              cycle
           end if
           if (real(nb, wp)**2*BYTES_REAL > AUTO_KSTAR_BYTES) then
@@ -516,6 +516,8 @@ contains
                itoa(ni)//' interior DOFs eliminated, K* of order '//itoa(nb)//' on its boundary')
        end if
     end do
+    if (len(small) > 0) call note(notes, 'CONDENSE=AUTO: not condensed, the boundary being no smaller '// &
+         'than the interior:'//small)
   end subroutine choose_condensation
 
   subroutine condense_parts(model, table, bnd, opts, f_phys, cache, res, notes, parts, f_eff, error)

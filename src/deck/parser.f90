@@ -17,6 +17,10 @@ module superjoin_deck_parser
        push_pool, add_node, add_element, add_heading, add_material, add_orientation, &
        add_section, add_contact, add_cline, add_support, add_step, add_load, &
        MAX_INCLUDE_DEPTH, CH_IDS, CH_GEN, CH_RANGE, CH_REF, BEAM_2D_VALUES, BEAM_3D_VALUES
+  use superjoin_deck_state, only: request_b_t, add_request, add_request_var
+  use superjoin_deck_ccx_cards, only: refused_card_reason, request_kind, is_node_request, &
+       classify_variable, VAR_UNKNOWN, VAR_PRODUCED
+  use superjoin_model_types, only: TOTALS_NO, TOTALS_YES, TOTALS_ONLY
   use superjoin_utils_strings, only: pick
   use superjoin_output_vtk, only: vtk_path_problem
   implicit none (type, external)
@@ -29,6 +33,12 @@ module superjoin_deck_parser
        CARD_ELASTIC = 9, CARD_ORIENTATION = 10, CARD_CONTACT = 11, CARD_SUPPORT = 12, &
        CARD_BOUNDARY = 13, CARD_CLOAD = 14, CARD_DLOAD = 15, CARD_DENSITY = 16
     !! What the current card does with data lines.
+  integer, parameter :: CARD_STATIC = 101, CARD_REQUEST = 102
+    !! CalculiX/Abaqus analysis cards (numbered apart from the model cards).
+  integer, parameter :: PROC_STATIC = 1
+    !! Procedures of a step (st%step_procedure).
+  integer, parameter :: STATIC_FIELDS = 4
+    !! *STATIC data: initial increment, time period, minimum, maximum increment.
 
   character(*), parameter :: MAIN_NAME = 'MAIN'
     !! Name of the implicit substructure.
@@ -43,7 +53,7 @@ module superjoin_deck_parser
     !! Relative size below which orientation vectors count as zero or parallel.
   integer, parameter :: NAME_LEN = 16
   integer, parameter :: ORIENT_VALUES = 6
-  integer, parameter :: NODE_FIELDS_MIN = 3, NODE_FIELDS_MAX = 4
+  integer, parameter :: NODE_FIELDS_MIN = 1, NODE_FIELDS_MAX = 4
     !! Numbers of fields of data lines.
   integer, parameter :: GEN_FIELDS_MIN = 2, GEN_FIELDS_MAX = 3
   integer, parameter :: ELASTIC_FIELDS = 2, VECTOR_FIELDS = 3, CONTACT_FIELDS = 5, LOAD_FIELDS = 3, &
@@ -250,6 +260,10 @@ contains
        else
           st%cur_step = 0
        end if
+    case ('STATIC')
+       call kw_static(st, kw, loc)
+    case ('NODE PRINT', 'EL PRINT', 'NODE FILE', 'EL FILE', 'NODE OUTPUT', 'ELEMENT OUTPUT')
+       call kw_request(st, kw, loc)
     case ('CLOAD')
        call kw_load(st, kw, loc, CARD_CLOAD)
     case ('DLOAD')
@@ -259,7 +273,7 @@ contains
     case ('OUTPUT')
        call kw_output(st, kw, loc)
     case default
-       call report_loc(st, loc, 'unknown keyword *'//clip(kw%keyword))
+       if (.not. refused_card(st, kw, loc, prev_mat)) call report_loc(st, loc, 'unknown keyword *'//clip(kw%keyword))
        st%card = CARD_SKIP
     end select
   end subroutine keyword_line
@@ -521,9 +535,12 @@ contains
     call check_params(st, kw, loc, [character(NAME_LEN) :: 'TYPE'], [character(NAME_LEN) ::])
     call get_param(st, kw, loc, 'TYPE', .false., typ, found)
     if (found) then
-       if (to_upper(typ) /= 'ISOTROPIC') then
-          call report_loc(st, loc, 'only TYPE=ISOTROPIC is supported on *ELASTIC')
+       if (to_upper(typ) /= 'ISOTROPIC' .and. to_upper(typ) /= 'ISO') then
+          call report_loc(st, loc, '*ELASTIC, TYPE='//clip(typ)//' is not supported: superjoin''s materials '// &
+               'are isotropic (TYPE=ISO)')
           st%card = CARD_SKIP
+          st%cur_mat = mat                   ! the material's next cards still find it
+          if (mat > 0) st%materials(mat)%has_elastic = .true.   ! and it is not reported again as without *ELASTIC
           return
        end if
     end if
@@ -738,7 +755,7 @@ contains
     character(:), allocatable :: name
     logical :: found
     integer :: k
-    call check_params(st, kw, loc, [character(NAME_LEN) :: 'NAME'], [character(NAME_LEN) ::])
+    call step_params(st, kw, loc)
     if (st%cur_sub > 0) then
        call report_loc(st, loc, '*STEP inside *SUBSTRUCTURE '//st%subs(st%cur_sub)%name// &
             ' (missing *END SUBSTRUCTURE?)')
@@ -839,7 +856,9 @@ contains
     type(source_loc_t), intent(in) :: loc
     character(:), allocatable :: value, problem
     logical :: found
-    call check_params(st, kw, loc, [character(NAME_LEN) :: 'VTK'], [character(NAME_LEN) :: 'FIELD'])
+    call check_params(st, kw, loc, [character(NAME_LEN) :: 'VTK', 'FREQUENCY'], &
+         [character(NAME_LEN) :: 'FIELD', 'HISTORY'])
+    if (param_index(kw, 'VTK') == 0 .and. (param_index(kw, 'FIELD') > 0 .or. param_index(kw, 'HISTORY') > 0)) return
     call get_param(st, kw, loc, 'VTK', .true., value, found)
     if (.not. found) return
     problem = vtk_path_problem(value)
@@ -902,6 +921,10 @@ contains
        call data_boundary(st, line, loc)
     case (CARD_CLOAD, CARD_DLOAD)
        call data_load(st, line, loc)
+    case (CARD_STATIC)
+       call data_static(st, line, loc)
+    case (CARD_REQUEST)
+       call data_request(st, line, loc)
     end select
   end subroutine data_line
 
@@ -1101,10 +1124,11 @@ contains
     integer :: i
     integer(i8) :: failed_bytes
     st%subs(st%card_sub)%node_lines = st%subs(st%card_sub)%node_lines + 1
-    if (.not. field_count(st, loc, NODE_FIELDS_MIN, NODE_FIELDS_MAX, 'id, x, y[, z]')) return
+    if (.not. field_count(st, loc, NODE_FIELDS_MIN, NODE_FIELDS_MAX, 'id[, x[, y[, z]]]')) return
     if (.not. get_id(st, line, loc, 1, 'node id', id)) return
     x = 0.0_wp
     do i = 2, st%f%n
+       if (st%f%last(i) < st%f%first(i)) cycle    ! an omitted coordinate is 0, as in Abaqus
        if (.not. get_real(st, line, loc, i, x(i - 1))) return
     end do
     associate (sub => st%subs(st%card_sub))
@@ -1298,15 +1322,18 @@ contains
     type(deck_state_t), intent(inout) :: st
     character(*), intent(in) :: line
     type(source_loc_t), intent(in) :: loc
-    real(wp) :: e, nu
+    real(wp) :: e, nu, temp
     if (st%card_ndata > 1) then
        call report_loc(st, loc, 'too many data lines for *ELASTIC')
        st%card = CARD_SKIP
        return
     end if
-    if (.not. field_count(st, loc, ELASTIC_FIELDS, ELASTIC_FIELDS, 'E, nu')) return
+    if (.not. field_count(st, loc, ELASTIC_FIELDS, ELASTIC_FIELDS + 1, 'E, nu[, temperature]')) return
     if (.not. get_real(st, line, loc, 1, e)) return
     if (.not. get_real(st, line, loc, 2, nu)) return
+    if (st%f%n > ELASTIC_FIELDS) then      ! the temperature of a one-line table: any value
+       if (.not. get_real(st, line, loc, ELASTIC_FIELDS + 1, temp)) return
+    end if
     if (.not. (e > 0.0_wp)) then
        call report_loc(st, loc, 'Young''s modulus E must be positive, not '//fld(st, line, 1))
        return
@@ -1540,6 +1567,217 @@ contains
     call add_load(st%steps(st%card_item), ld, dload)
   end subroutine data_load
 
+
+  ! ================================================================== CalculiX/Abaqus analysis cards
+
+  logical function refused_card(st, kw, loc, prev_mat) result(refused)
+    !! A procedure, material behaviour or contact card that linear statics does
+    !! not have: one message, its data lines skipped, and the current material
+    !! kept so that the material's next cards still find it.
+    type(deck_state_t), intent(inout) :: st
+    type(keyword_line_t), intent(in) :: kw
+    type(source_loc_t), intent(in) :: loc
+    integer, intent(in) :: prev_mat
+    character(:), allocatable :: reason
+    reason = refused_card_reason(kw%keyword)
+    refused = len(reason) > 0
+    if (.not. refused) return
+    call report_loc(st, loc, 'superjoin does linear statics; *'//kw%keyword//' ('//reason// &
+         ') is not supported')
+    st%cur_mat = prev_mat
+    if (st%cur_step > 0) then
+       st%step_procedure = -1
+       st%step_procedure_loc = loc
+    end if
+  end function refused_card
+
+  subroutine step_params(st, kw, loc)
+    !! Parameters of *STEP: NAME=, NLGEOM=NO (NLGEOM and NLGEOM=YES refused),
+    !! PERTURBATION, INC=, INCF=, AMPLITUDE=RAMP|STEP; THERMAL NETWORK refused.
+    type(deck_state_t), intent(inout) :: st
+    type(keyword_line_t), intent(in) :: kw
+    type(source_loc_t), intent(in) :: loc
+    type(keyword_line_t) :: rest
+    integer :: k, stat
+    integer(ip) :: n
+    st%step_procedure = 0
+    rest%keyword = kw%keyword
+    rest%nparam = 0
+    allocate (rest%params(max(kw%nparam, 1)))
+    do k = 1, kw%nparam
+       associate (p => kw%params(k))
+         select case (p%name)
+         case ('NLGEOM')
+            if (.not. p%has_value) then
+               call report_loc(st, loc, 'superjoin does linear statics; *STEP, NLGEOM (geometric '// &
+                    'nonlinearity) is not supported (NLGEOM=NO is accepted)')
+            else if (to_upper(p%value) == 'YES') then
+               call report_loc(st, loc, 'superjoin does linear statics; *STEP, NLGEOM=YES (geometric '// &
+                    'nonlinearity) is not supported (NLGEOM=NO is accepted)')
+            else if (to_upper(p%value) /= 'NO') then
+               call report_loc(st, loc, 'NLGEOM must be YES or NO, not '//clip(p%value))
+            end if
+         case ('INC', 'INCF')
+            if (.not. p%has_value) then
+               call report_loc(st, loc, 'parameter '//p%name//' of *STEP needs a value ('//p%name//'=...)')
+            else
+               call parse_id(p%value, n, stat)
+               if (stat /= TOK_OK) call report_loc(st, loc, p%name//'= of *STEP must be a positive '// &
+                    'integer, not '//clip(p%value))
+            end if
+         case ('AMPLITUDE')
+            if (.not. p%has_value) then
+               call report_loc(st, loc, 'parameter AMPLITUDE of *STEP needs a value (AMPLITUDE=...)')
+            else if (to_upper(p%value) /= 'RAMP' .and. to_upper(p%value) /= 'STEP') then
+               call report_loc(st, loc, 'AMPLITUDE= of *STEP must be RAMP or STEP, not '//clip(p%value))
+            end if
+         case ('THERMAL NETWORK')
+            call report_loc(st, loc, 'superjoin does linear statics; *STEP, THERMAL NETWORK (heat '// &
+                 'transfer) is not supported')
+         case default
+            rest%nparam = rest%nparam + 1
+            rest%params(rest%nparam) = p
+         end select
+       end associate
+    end do
+    call check_params(st, rest, loc, [character(NAME_LEN) :: 'NAME'], [character(NAME_LEN) :: 'PERTURBATION'])
+  end subroutine step_params
+
+  subroutine kw_static(st, kw, loc)
+    !! *STATIC inside *STEP: linear statics, superjoin's only procedure. The
+    !! optional data line (increments and time period) is checked and ignored:
+    !! a linear static step has one increment.
+    type(deck_state_t), intent(inout) :: st
+    type(keyword_line_t), intent(in) :: kw
+    type(source_loc_t), intent(in) :: loc
+    st%card = CARD_SKIP
+    call check_params(st, kw, loc, [character(NAME_LEN) :: 'SOLVER', 'TOTAL TIME AT START'], &
+         [character(NAME_LEN) :: 'DIRECT', 'TIME RESET', 'EXPLICIT'])
+    if (param_index(kw, 'EXPLICIT') > 0) then
+       call report_loc(st, loc, 'superjoin does linear statics; *STATIC, EXPLICIT is not supported')
+       return
+    end if
+    if (st%cur_step == 0) then
+       call report_loc(st, loc, '*STATIC must stand inside *STEP')
+       return
+    end if
+    if (st%step_procedure /= 0) then
+       call report_loc(st, loc, 'a step has one procedure: *STATIC after the one at '// &
+            loc_string(st, st%step_procedure_loc))
+       return
+    end if
+    st%step_procedure = PROC_STATIC
+    st%step_procedure_loc = loc
+    st%card = CARD_STATIC
+  end subroutine kw_static
+
+  subroutine data_static(st, line, loc)
+    !! initial increment, time period, minimum increment, maximum increment:
+    !! each optional, a real > 0 when given.
+    type(deck_state_t), intent(inout) :: st
+    character(*), intent(in) :: line
+    type(source_loc_t), intent(in) :: loc
+    integer :: i
+    real(wp) :: x
+    if (st%card_ndata > 1) then
+       call report_loc(st, loc, 'too many data lines for *STATIC')
+       st%card = CARD_SKIP
+       return
+    end if
+    if (.not. field_count(st, loc, 0, STATIC_FIELDS, &
+         'initial increment, time period, minimum increment, maximum increment')) return
+    do i = 1, st%f%n
+       if (st%f%last(i) < st%f%first(i)) cycle
+       if (.not. get_real(st, line, loc, i, x)) return
+       if (.not. (x > 0.0_wp)) then
+          call report_loc(st, loc, '*STATIC increments and time period must be positive, not '//fld(st, line, i))
+          return
+       end if
+    end do
+  end subroutine data_static
+
+  subroutine kw_request(st, kw, loc)
+    !! *NODE PRINT, *EL PRINT, *NODE FILE, *EL FILE, *NODE OUTPUT, *ELEMENT OUTPUT:
+    !! NSET= or ELSET= (a set, resolved later), TOTALS=, FREQUENCY= and the
+    !! CalculiX flags; the variables follow as data lines.
+    type(deck_state_t), intent(inout) :: st
+    type(keyword_line_t), intent(in) :: kw
+    type(source_loc_t), intent(in) :: loc
+    type(request_b_t) :: r
+    character(:), allocatable :: value, pset
+    character(len=NAME_LEN) :: set_param
+    logical :: found, node
+    integer(ip) :: n
+    integer :: stat
+    st%card = CARD_SKIP
+    r%kind = request_kind(kw%keyword)
+    r%card = '*'//kw%keyword
+    node = is_node_request(r%kind)
+    pset = pick(node, 'NSET', 'ELSET')
+    set_param = pset
+    call check_params(st, kw, loc, [character(NAME_LEN) :: set_param, 'TOTALS', 'FREQUENCY', 'FREQUENCYF', &
+         'GLOBAL', 'OUTPUT', 'TIME POINTS', 'VARIABLE'], &
+         [character(NAME_LEN) :: 'SECTION FORCES', 'LAST ITERATIONS', 'CONTACT ELEMENTS'])
+    call get_param(st, kw, loc, 'TOTALS', .false., value, found)
+    r%totals = TOTALS_NO
+    if (found) then
+       select case (to_upper(value))
+       case ('YES')
+          r%totals = TOTALS_YES
+       case ('ONLY')
+          r%totals = TOTALS_ONLY
+       case ('NO')
+          r%totals = TOTALS_NO
+       case default
+          call report_loc(st, loc, 'TOTALS must be YES, ONLY or NO, not '//clip(value))
+       end select
+    end if
+    call get_param(st, kw, loc, 'FREQUENCY', .false., value, found)
+    if (found .and. value /= '0') then
+       call parse_id(value, n, stat)
+       if (stat /= TOK_OK) call report_loc(st, loc, 'FREQUENCY= must be an integer >= 0, not '//clip(value))
+    end if
+    call get_param(st, kw, loc, 'VARIABLE', .false., value, found)
+    if (found) then
+       if (to_upper(value) /= 'PRESELECT' .and. to_upper(value) /= 'ALL') call report_loc(st, loc, &
+            'VARIABLE= must be PRESELECT or ALL, not '//clip(value))
+    end if
+    call get_param(st, kw, loc, pset, .false., value, found)
+    if (found) then
+       if (.not. parse_ref(st, value, .not. node, st%cur_sub, loc, r%set)) return
+       if (.not. r%set%is_set) then
+          call report_loc(st, loc, pset//'='//clip(value)//' must name a '//pick(node, 'node', 'element')//' set')
+          return
+       end if
+       r%has_set = .true.
+    end if
+    r%step = st%cur_step
+    r%loc = loc
+    call add_request(st, r, st%card_item)
+    st%card = CARD_REQUEST
+  end subroutine kw_request
+
+  subroutine data_request(st, line, loc)
+    !! Variable names of an output request, several per line.
+    type(deck_state_t), intent(inout) :: st
+    character(*), intent(in) :: line
+    type(source_loc_t), intent(in) :: loc
+    character(:), allocatable :: name
+    integer :: i, what
+    associate (r => st%requests(st%card_item))
+      do i = 1, st%f%n
+         name = to_upper(fld(st, line, i))
+         if (len(name) == 0) cycle
+         what = classify_variable(r%kind, name)
+         if (what == VAR_UNKNOWN) then
+            call report_loc(st, loc, 'unknown output variable '''//clip(fld(st, line, i))//''' for '// &
+                 r%card//' (superjoin produces '//pick(is_node_request(r%kind), 'U, RF, CF', 'S, E, SF')//')')
+         else
+            call add_request_var(r, name, what == VAR_PRODUCED)
+         end if
+      end do
+    end associate
+  end subroutine data_request
 
   function loc_string(st, loc) result(s)
     !! "file:line" of a location.

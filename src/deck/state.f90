@@ -133,6 +133,19 @@ module superjoin_deck_state
      type(load_b_t), allocatable :: cloads(:), dloads(:)
   end type step_b_t
 
+  type, public :: request_b_t
+    !! An output request card as read (set still by name).
+     integer :: kind = 0                   !! REQ_* of the model
+     character(:), allocatable :: card     !! '*NODE PRINT', ... as written (upper case)
+     integer :: step = 0                   !! step index, 0 outside *STEP
+     logical :: has_set = .false.
+     type(ref_t) :: set                    !! NSET= / ELSET= as written
+     integer :: totals = 0
+     integer :: nvar = 0, nignored = 0
+     type(string_t), allocatable :: vars(:), ignored(:)
+     type(source_loc_t) :: loc
+  end type request_b_t
+
   type, public :: deck_state_t
     !! Everything the reader has collected, and the card being read.
      type(error_t), allocatable :: error
@@ -166,6 +179,10 @@ module superjoin_deck_state
      type(controls_t) :: controls
      character(:), allocatable :: vtk_path          !! *OUTPUT, VTK= resolved against its file's directory
      type(source_loc_t) :: vtk_loc
+     integer :: nreq = 0                            !! output request cards
+     type(request_b_t), allocatable :: requests(:)
+     integer :: step_procedure = 0                  !! procedure card of the open step (0: none yet)
+     type(source_loc_t) :: step_procedure_loc
      integer :: nelem_cards = 0
      ! block and card state
      integer :: cur_sub = 0                !! open *SUBSTRUCTURE block
@@ -192,6 +209,7 @@ module superjoin_deck_state
   public :: report, report_loc, report_oom, new_sub, find_sub, find_set, new_set, add_chunk, push_pool
   public :: add_node, add_element, add_heading, add_material, add_orientation, add_section
   public :: add_contact, add_cline, add_support, add_step, add_load, file_of
+  public :: add_request, add_request_var
 
 contains
 
@@ -631,4 +649,54 @@ contains
        step%cloads(step%ncload) = load
     end if
   end subroutine add_load
+
+  ! ------------------------------------------------------------------ output requests
+
+  subroutine add_request(st, r, k)
+    !! Append an output request card; `k` is its index.
+    type(deck_state_t), intent(inout) :: st
+    type(request_b_t), intent(in) :: r
+    integer, intent(out) :: k
+    type(request_b_t), allocatable :: tmp(:)
+    if (.not. allocated(st%requests)) allocate (st%requests(INITIAL_CAPACITY))
+    if (st%nreq == size(st%requests)) then
+       allocate (tmp(2*st%nreq))
+       tmp(1:st%nreq) = st%requests(1:st%nreq)
+       call move_alloc(tmp, st%requests)
+    end if
+    st%nreq = st%nreq + 1
+    k = st%nreq
+    st%requests(k) = r
+    allocate (st%requests(k)%vars(INITIAL_CAPACITY), st%requests(k)%ignored(INITIAL_CAPACITY))
+  end subroutine add_request
+
+  subroutine add_request_var(r, name, produced)
+    !! Add a variable to a request (kept once): to vars when superjoin produces
+    !! it, else to ignored.
+    type(request_b_t), intent(inout) :: r
+    character(*), intent(in) :: name
+    logical, intent(in) :: produced
+    if (produced) then
+       call push_name(r%vars, r%nvar)
+    else
+       call push_name(r%ignored, r%nignored)
+    end if
+  contains
+    subroutine push_name(list, n)
+      type(string_t), allocatable, intent(inout) :: list(:)
+      integer, intent(inout) :: n
+      type(string_t), allocatable :: tmp(:)
+      integer :: i
+      do i = 1, n
+         if (list(i)%s == name) return
+      end do
+      if (n == size(list)) then
+         allocate (tmp(2*n))
+         tmp(1:n) = list(1:n)
+         call move_alloc(tmp, list)
+      end if
+      n = n + 1
+      list(n)%s = name
+    end subroutine push_name
+  end subroutine add_request_var
 end module superjoin_deck_state

@@ -12,6 +12,7 @@ module superjoin_deck_validate
   use superjoin_deck_state, only: deck_state_t, sub_b_t, ref_t, load_b_t, report, report_loc, report_oom, find_set, &
        CH_IDS, CH_GEN, CH_RANGE, CH_REF, BEAM_2D_VALUES, BEAM_3D_VALUES
   use superjoin_utils_strings, only: pick
+  use superjoin_deck_requests, only: build_requests
   implicit none (type, external)
   private
 
@@ -88,6 +89,8 @@ contains
     call build_supports(st, model)
     if (st%aborted) return
     call build_steps(st, model)
+    if (st%aborted) return
+    call build_requests(st, model)
   end subroutine build_model
 
   ! ================================================================== substructures

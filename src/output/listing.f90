@@ -12,6 +12,7 @@ module superjoin_output_listing
   use superjoin_output_text_buffer, only: text_buffer_t
   use superjoin_config, only: SUPERJOIN_VERSION
   use superjoin_utils_strings, only: itoa
+  use superjoin_output_requests, only: write_print_requests
   implicit none (type, external)
   private
 
@@ -46,6 +47,7 @@ contains
     call header(lu, model, res)
     do is = 1, size(model%steps)
        call step_block(lu, model, res, is)
+       call write_print_requests(lu, model, res, is)
     end do
     call lu%line(RULE)
     call lu%line('END OF LISTING')

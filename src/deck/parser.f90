@@ -53,7 +53,8 @@ module superjoin_deck_parser
     !! Relative size below which orientation vectors count as zero or parallel.
   integer, parameter :: NAME_LEN = 16
   integer, parameter :: ORIENT_VALUES = 6
-  integer, parameter :: NODE_FIELDS_MIN = 1, NODE_FIELDS_MAX = 4
+  integer, parameter :: NODE_FIELDS_MIN = 1, NODE_FIELDS_MAX = 7, NODE_COORD_FIELDS = 4
+    !! id, x, y, z, then (Abaqus) the direction cosines of a shell normal, checked and ignored.
     !! Numbers of fields of data lines.
   integer, parameter :: GEN_FIELDS_MIN = 2, GEN_FIELDS_MAX = 3
   integer, parameter :: ELASTIC_FIELDS = 2, VECTOR_FIELDS = 3, CONTACT_FIELDS = 5, LOAD_FIELDS = 3, &
@@ -1120,16 +1121,20 @@ contains
     character(*), intent(in) :: line
     type(source_loc_t), intent(in) :: loc
     integer(ip) :: id
-    real(wp) :: x(3)
+    real(wp) :: x(3), normal
     integer :: i
     integer(i8) :: failed_bytes
     st%subs(st%card_sub)%node_lines = st%subs(st%card_sub)%node_lines + 1
-    if (.not. field_count(st, loc, NODE_FIELDS_MIN, NODE_FIELDS_MAX, 'id[, x[, y[, z]]]')) return
+    if (.not. field_count(st, loc, NODE_FIELDS_MIN, NODE_FIELDS_MAX, 'id[, x[, y[, z[, nx, ny, nz]]]]')) return
     if (.not. get_id(st, line, loc, 1, 'node id', id)) return
     x = 0.0_wp
     do i = 2, st%f%n
        if (st%f%last(i) < st%f%first(i)) cycle    ! an omitted coordinate is 0, as in Abaqus
-       if (.not. get_real(st, line, loc, i, x(i - 1))) return
+       if (i <= NODE_COORD_FIELDS) then
+          if (.not. get_real(st, line, loc, i, x(i - 1))) return
+       else
+          if (.not. get_real(st, line, loc, i, normal)) return
+       end if
     end do
     associate (sub => st%subs(st%card_sub))
       call add_node(sub, id, x, loc, failed_bytes)

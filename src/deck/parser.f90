@@ -21,6 +21,10 @@ module superjoin_deck_parser
   use superjoin_deck_ccx_cards, only: refused_card_reason, request_kind, is_node_request, &
        classify_variable, VAR_UNKNOWN, VAR_PRODUCED
   use superjoin_model_types, only: TOTALS_NO, TOTALS_YES, TOTALS_ONLY
+  use superjoin_deck_beam_sections, only: section_props_t, section_properties, shape_index, SHAPE_NONE, &
+       SHAPE_L, SHAPE_I, SHAPE_NAMES, SHAPE_DIMS_MIN, SHAPE_DIMS_MAX, SHAPE_DATA, MAX_SHAPE_DIMS
+  use superjoin_deck_state, only: SHAPE_GENERAL
+  use superjoin_elements_frame, only: real_text
   use superjoin_utils_strings, only: pick
   use superjoin_output_vtk, only: vtk_path_problem
   implicit none (type, external)
@@ -38,6 +42,8 @@ module superjoin_deck_parser
   integer, parameter :: PROC_STATIC = 1
     !! Procedures of a step (st%step_procedure).
   integer, parameter :: STATIC_FIELDS = 4
+  integer, parameter :: GENERAL_FIELDS = 5
+    !! *BEAM GENERAL SECTION, SECTION=GENERAL: A, I11, I12, I22, J.
     !! *STATIC data: initial increment, time period, minimum, maximum increment.
 
   character(*), parameter :: MAIN_NAME = 'MAIN'
@@ -234,7 +240,7 @@ contains
        call kw_set(st, kw, loc, .true.)
     case ('SOLID SECTION')
        call kw_section(st, kw, loc, SEC_SOLID)
-    case ('BEAM SECTION')
+    case ('BEAM SECTION', 'BEAM GENERAL SECTION')
        call kw_section(st, kw, loc, SEC_BEAM)
     case ('SHELL SECTION')
        call kw_section(st, kw, loc, SEC_SHELL)
@@ -667,18 +673,12 @@ contains
     type(keyword_line_t), intent(in) :: kw
     type(source_loc_t), intent(in) :: loc
     integer, intent(in) :: kind
-    character(:), allocatable :: elset, material, value
-    logical :: found_e, found_m, found
+    character(:), allocatable :: elset, material
+    logical :: found_e, found_m
     type(sec_b_t) :: sec
     if (.not. outside_step(st, kw, loc)) return
     if (kind == SEC_BEAM) then
-       call check_params(st, kw, loc, [character(NAME_LEN) :: 'ELSET', 'MATERIAL', 'SECTION', &
-            'POISSON', 'TEMPERATURE'], [character(NAME_LEN) :: 'LUMPED', 'ROTARY INERTIA'])
-       call get_param(st, kw, loc, 'SECTION', .false., value, found)
-       if (found) then
-          if (to_upper(value) /= 'GENERAL') call report_loc(st, loc, &
-               'only SECTION=GENERAL (A, I data) is supported on *BEAM SECTION')
-       end if
+       call beam_section_params(st, kw, loc, sec)
     else
        call check_params(st, kw, loc, [character(NAME_LEN) :: 'ELSET', 'MATERIAL'], [character(NAME_LEN) ::])
     end if
@@ -1243,6 +1243,14 @@ contains
     type(source_loc_t), intent(in) :: loc
     integer :: i
     real(wp) :: v(4)
+    if (st%card_ndata == 1 .and. .not. st%sections(st%card_item)%data_ok) then
+       st%card = CARD_SKIP                  ! refused on its keyword line: no further messages
+       return
+    end if
+    if (st%sections(st%card_item)%shape /= SHAPE_NONE) then
+       call data_beam_shape(st, line, loc)
+       return
+    end if
     associate (sec => st%sections(st%card_item))
       if (st%card_ndata == 1) sec%data_loc = loc
       if (sec%kind /= SEC_BEAM .and. st%card_ndata > 1 .or. st%card_ndata > 2) then
@@ -1656,7 +1664,7 @@ contains
     type(keyword_line_t), intent(in) :: kw
     type(source_loc_t), intent(in) :: loc
     st%card = CARD_SKIP
-    call check_params(st, kw, loc, [character(NAME_LEN) :: 'SOLVER', 'TOTAL TIME AT START'], &
+    call check_params(st, kw, loc, [character(NAME_LEN) :: 'SOLVER'], &
          [character(NAME_LEN) :: 'DIRECT', 'TIME RESET', 'EXPLICIT'])
     if (param_index(kw, 'EXPLICIT') > 0) then
        call report_loc(st, loc, 'superjoin does linear statics; *STATIC, EXPLICIT is not supported')
@@ -1783,6 +1791,144 @@ contains
       end do
     end associate
   end subroutine data_request
+
+  subroutine beam_section_params(st, kw, loc, sec)
+    !! Parameters of *BEAM SECTION / *BEAM GENERAL SECTION: SECTION= picks
+    !! superjoin's constants (GENERAL on *BEAM SECTION: A, I or A, Iy, Iz, J),
+    !! Abaqus's general section (GENERAL on *BEAM GENERAL SECTION, the default
+    !! there: A, I11, I12, I22, J) or a library shape (RECT, CIRC, PIPE, BOX, I,
+    !! L); OFFSET1/OFFSET2 (CalculiX) must be 0: the beam acts at the centroid.
+    type(deck_state_t), intent(inout) :: st
+    type(keyword_line_t), intent(in) :: kw
+    type(source_loc_t), intent(in) :: loc
+    type(sec_b_t), intent(inout) :: sec
+    character(:), allocatable :: value
+    logical :: found, general_card
+    integer :: k, stat
+    real(wp) :: x
+    general_card = kw%keyword == 'BEAM GENERAL SECTION'
+    call check_params(st, kw, loc, [character(NAME_LEN) :: 'ELSET', 'MATERIAL', 'SECTION', &
+         'POISSON', 'TEMPERATURE', 'OFFSET1', 'OFFSET2', 'ORIENTATION', 'DENSITY'], &
+         [character(NAME_LEN) :: 'LUMPED', 'ROTARY INERTIA'])
+    do k = 1, 2
+       call get_param(st, kw, loc, 'OFFSET'//itoa(k), .false., value, found)
+       if (.not. found) cycle
+       call parse_real(value, x, stat)
+       if (stat /= TOK_OK) then
+          call report_loc(st, loc, real_message(value, stat))
+       else if (x /= 0.0_wp) then
+          call report_loc(st, loc, 'OFFSET'//itoa(k)//'='//clip(value)//' is not supported: superjoin''s '// &
+               'beams act at the centroid of their section (OFFSET'//itoa(k)//'=0)')
+       end if
+    end do
+    call get_param(st, kw, loc, 'SECTION', .false., value, found)
+    if (.not. found) value = 'GENERAL'
+    value = to_upper(value)
+    if (value == 'GENERAL') then
+       if (general_card) sec%shape = SHAPE_GENERAL
+       return
+    end if
+    sec%shape = shape_index(value)
+    if (sec%shape == SHAPE_NONE) then
+       call report_loc(st, loc, 'SECTION='//clip(value)//' is not supported on *'//kw%keyword// &
+            ' (GENERAL, RECT, CIRC, PIPE, BOX, I)')
+       sec%data_ok = .false.
+    else if (sec%shape == SHAPE_L) then
+       call report_loc(st, loc, 'SECTION=L is not supported: an angle''s legs are not principal axes '// &
+            '(I12 /= 0) and its origin is not its centroid; give its principal constants with SECTION=GENERAL')
+       sec%data_ok = .false.
+    end if
+  end subroutine beam_section_params
+
+  subroutine data_beam_shape(st, line, loc)
+    !! First data line of a library section (its dimensions, constants computed
+    !! by superjoin_deck_beam_sections) or of Abaqus's general section
+    !! (A, I11, I12, I22, J); the second line, the direction of axis 1, is the
+    !! beam's orientation vector v.
+    type(deck_state_t), intent(inout) :: st
+    character(*), intent(in) :: line
+    type(source_loc_t), intent(in) :: loc
+    real(wp) :: d(MAX_SHAPE_DIMS)
+    type(section_props_t) :: p
+    character(:), allocatable :: problem, expected
+    integer :: i, nmin, nmax
+    real(wp), parameter :: CENTROID_TOL = 1.0e-9_wp
+    associate (sec => st%sections(st%card_item))
+      if (st%card_ndata == 1) sec%data_loc = loc
+      if (st%card_ndata > 2) then
+         call report_loc(st, loc, 'too many data lines for '//st%card_name)
+         sec%data_ok = .false.
+         st%card = CARD_SKIP
+         return
+      end if
+      if (st%card_ndata == 2) then
+         if (.not. field_count(st, loc, VECTOR_FIELDS, VECTOR_FIELDS, 'vx, vy, vz (direction of section axis 1)')) then
+            sec%data_ok = .false.
+            return
+         end if
+         do i = 1, 3
+            if (.not. get_real(st, line, loc, i, d(i))) then
+               sec%data_ok = .false.
+               return
+            end if
+         end do
+         if (norm2(d(1:3)) == 0.0_wp) then
+            call report_loc(st, loc, 'beam orientation vector is zero')
+            sec%data_ok = .false.
+            return
+         end if
+         sec%v = d(1:3)
+         sec%has_v = .true.
+         return
+      end if
+      if (sec%shape == SHAPE_GENERAL) then
+         nmin = GENERAL_FIELDS
+         nmax = GENERAL_FIELDS
+         expected = 'A, I11, I12, I22, J'
+      else
+         nmin = SHAPE_DIMS_MIN(sec%shape)
+         nmax = SHAPE_DIMS_MAX(sec%shape)
+         expected = trim(SHAPE_DATA(sec%shape))//' for SECTION='//trim(SHAPE_NAMES(sec%shape))
+      end if
+      if (.not. field_count(st, loc, nmin, nmax, expected)) then
+         sec%data_ok = .false.
+         return
+      end if
+      do i = 1, st%f%n
+         if (.not. get_real(st, line, loc, i, d(i))) then
+            sec%data_ok = .false.
+            return
+         end if
+      end do
+      if (sec%shape == SHAPE_GENERAL) then
+         if (.not. (d(1) > 0.0_wp .and. d(2) > 0.0_wp .and. d(4) > 0.0_wp .and. d(5) > 0.0_wp)) then
+            call report_loc(st, loc, 'beam section constants A, I11, I22, J must be positive')
+            sec%data_ok = .false.
+         else if (d(3) /= 0.0_wp) then
+            call report_loc(st, loc, 'I12 = '//fld(st, line, 3)//' is not supported: superjoin''s beams '// &
+                 'need principal axes (I12 = 0); give the principal constants and point v along axis 1')
+            sec%data_ok = .false.
+         else
+            sec%sp = [d(1), d(2), d(4), 0.0_wp, d(5)]
+         end if
+         return
+      end if
+      call section_properties(sec%shape, d(1:st%f%n), p, problem)
+      if (len(problem) > 0) then
+         call report_loc(st, loc, problem//' (SECTION='//trim(SHAPE_NAMES(sec%shape))//')')
+         sec%data_ok = .false.
+         return
+      end if
+      if (norm2(p%c) > CENTROID_TOL*maxval(d(1:st%f%n))) then
+         call report_loc(st, loc, 'the section''s centroid is not at its origin (offset '// &
+              real_text(p%c(1))//', '//real_text(p%c(2))//'): superjoin''s beams act at the centroid'// &
+              pick(sec%shape == SHAPE_I, ' (set l to the centroid height)', ''))
+         sec%data_ok = .false.
+         return
+      end if
+      sec%sp = [p%area, p%i11, p%i22, p%i12, p%j]
+    end associate
+  end subroutine data_beam_shape
 
   function loc_string(st, loc) result(s)
     !! "file:line" of a location.

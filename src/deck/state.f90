@@ -14,6 +14,8 @@ module superjoin_deck_state
   integer, parameter, public :: MAX_ERRORS = 50          !! messages before '... too many errors'
   integer, parameter, public :: MAX_INCLUDE_DEPTH = 16   !! nested *INCLUDE levels
   integer, parameter :: INITIAL_CAPACITY = 16
+  integer, parameter, public :: SHAPE_GENERAL = 100
+    !! sec_b_t%shape of *BEAM GENERAL SECTION, SECTION=GENERAL (A, I11, I12, I22, J).
   integer, parameter, public :: BEAM_2D_VALUES = 2, BEAM_3D_VALUES = 4
     !! Numbers on the first data line of *BEAM SECTION: A, I (2D) or A, Iy, Iz, J (3D).
 
@@ -85,6 +87,8 @@ module superjoin_deck_state
      integer :: ndata = 0
      logical :: data_ok = .true.
      type(source_loc_t) :: loc, data_loc
+     integer :: shape = 0                  !! SHAPE_* of superjoin_deck_beam_sections, SHAPE_GENERAL, 0: A, I data
+     real(wp) :: sp(5) = 0.0_wp            !! its A, I11, I22, I12, J (section axes 1, 2)
   end type sec_b_t
 
   type, public :: contact_b_t

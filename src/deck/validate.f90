@@ -498,6 +498,19 @@ contains
       case (SEC_SHELL)
          sec%thickness = sb%val(1)
       case (SEC_BEAM)
+         if (sb%shape /= 0) then    ! library shape or Abaqus general section: constants in sb%sp
+            sec%area = sb%sp(1)
+            if (nb23 > 0) then
+               sec%iz = sb%sp(2)    ! a 2D beam bends about section axis 1, normal to its plane
+            else
+               sec%iy = sb%sp(2)    ! local y = section axis 1 (along v), local z = axis 2
+               sec%iz = sb%sp(3)
+               sec%j = sb%sp(5)
+               sec%has_v = sb%has_v
+               if (sb%has_v) sec%v = sb%v
+            end if
+            return
+         end if
          if (nb23 > 0 .and. sb%nval /= BEAM_2D_VALUES) then
             call report_loc(st, sb%data_loc, '*BEAM SECTION of 2D beams (B23) needs A, I')
             return

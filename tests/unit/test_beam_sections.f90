@@ -122,6 +122,7 @@ program test_beam_sections
   call section_properties(SHAPE_I, [0.15_wp, 0.3_wp, 0.1_wp, 0.1_wp, 0.16_wp, 0.16_wp, 0.01_wp], p, problem)
   call check(index(problem, 'flanges fill') > 0, 'I flanges filling the height refused')
   call check(shape_index('RECT') == SHAPE_RECT .and. shape_index('HEX') == SHAPE_NONE, 'shape names')
+  deallocate (problem)    ! the main program's variables are not freed at its end (LeakSanitizer)
   call finish()
 
 contains

@@ -25,6 +25,9 @@ module superjoin_deck_parser
        SHAPE_L, SHAPE_I, SHAPE_NAMES, SHAPE_DIMS_MIN, SHAPE_DIMS_MAX, SHAPE_DATA, MAX_SHAPE_DIMS
   use superjoin_deck_state, only: SHAPE_GENERAL
   use superjoin_elements_frame, only: real_text
+  use superjoin_deck_state, only: spring_elem_b_t, spring_card_b_t, add_spring_elem, add_spring_card, &
+       SPRING_1, SPRING_2, SPRING_A
+  use superjoin_deck_springs, only: translate_springs
   use superjoin_utils_strings, only: pick
   use superjoin_output_vtk, only: vtk_path_problem
   implicit none (type, external)
@@ -37,7 +40,7 @@ module superjoin_deck_parser
        CARD_ELASTIC = 9, CARD_ORIENTATION = 10, CARD_CONTACT = 11, CARD_SUPPORT = 12, &
        CARD_BOUNDARY = 13, CARD_CLOAD = 14, CARD_DLOAD = 15, CARD_DENSITY = 16
     !! What the current card does with data lines.
-  integer, parameter :: CARD_STATIC = 101, CARD_REQUEST = 102
+  integer, parameter :: CARD_STATIC = 101, CARD_REQUEST = 102, CARD_SPRING_ELEMENT = 103, CARD_SPRING = 104
     !! CalculiX/Abaqus analysis cards (numbered apart from the model cards).
   integer, parameter :: PROC_STATIC = 1
     !! Procedures of a step (st%step_procedure).
@@ -171,6 +174,7 @@ contains
     integer :: k
     type(source_loc_t) :: loc
     call end_card(st)
+    call translate_springs(st)
     if (st%cur_sub > 0) call report_loc(st, st%subs(st%cur_sub)%loc, &
          '*SUBSTRUCTURE '//st%subs(st%cur_sub)%name//' has no *END SUBSTRUCTURE')
     if (st%cur_step > 0) call report_loc(st, st%steps(st%cur_step)%loc, &
@@ -269,6 +273,8 @@ contains
        end if
     case ('STATIC')
        call kw_static(st, kw, loc)
+    case ('SPRING')
+       call kw_spring(st, kw, loc)
     case ('NODE PRINT', 'EL PRINT', 'NODE FILE', 'EL FILE', 'NODE OUTPUT', 'ELEMENT OUTPUT')
        call kw_request(st, kw, loc)
     case ('CLOAD')
@@ -613,6 +619,10 @@ contains
     st%card = CARD_SKIP
     if (.not. found) return
     typ = to_upper(typ)
+    if (spring_type(typ) > 0) then
+       call kw_spring_element(st, kw, loc, spring_type(typ))
+       return
+    end if
     st%card_etype = 0
     do k = 1, NUM_ELEMENT_TYPES
        if (trim(ELEMENT_TYPE_NAMES(k)) == typ) st%card_etype = k
@@ -924,6 +934,10 @@ contains
        call data_load(st, line, loc)
     case (CARD_STATIC)
        call data_static(st, line, loc)
+    case (CARD_SPRING_ELEMENT)
+       call data_spring_element(st, line, loc)
+    case (CARD_SPRING)
+       call data_spring(st, line, loc)
     case (CARD_REQUEST)
        call data_request(st, line, loc)
     end select
@@ -1929,6 +1943,108 @@ contains
       sec%sp = [p%area, p%i11, p%i22, p%i12, p%j]
     end associate
   end subroutine data_beam_shape
+
+  pure integer function spring_type(name) result(kind)
+    !! SPRING_* of an element type name, 0 for the others.
+    character(*), intent(in) :: name
+    select case (name)
+    case ('SPRING1')
+       kind = SPRING_1
+    case ('SPRING2')
+       kind = SPRING_2
+    case ('SPRINGA')
+       kind = SPRING_A
+    case default
+       kind = 0
+    end select
+  end function spring_type
+
+  subroutine kw_spring_element(st, kw, loc, kind)
+    !! *ELEMENT, TYPE=SPRING1 | SPRING2 | SPRINGA: spring elements, turned into
+    !! supports and contact elements by their *SPRING card (superjoin_deck_springs).
+    type(deck_state_t), intent(inout) :: st
+    type(keyword_line_t), intent(in) :: kw
+    type(source_loc_t), intent(in) :: loc
+    integer, intent(in) :: kind
+    character(:), allocatable :: elset
+    logical :: found
+    call get_name_param(st, kw, loc, 'ELSET', .false., elset, found)
+    if (.not. found) elset = ''
+    st%spring_elset = elset
+    st%card = CARD_SPRING_ELEMENT
+    st%card_sub = target_sub(st, loc)
+    st%card_etype = kind
+  end subroutine kw_spring_element
+
+  subroutine data_spring_element(st, line, loc)
+    !! id, node (SPRING1) or id, node 1, node 2 (SPRING2, SPRINGA).
+    type(deck_state_t), intent(inout) :: st
+    character(*), intent(in) :: line
+    type(source_loc_t), intent(in) :: loc
+    type(spring_elem_b_t) :: e
+    integer :: nn, i
+    nn = merge(1, 2, st%card_etype == SPRING_1)
+    if (.not. field_count(st, loc, nn + 1, nn + 1, 'id and '//itoa(nn)//' node'//pick(nn == 1, '', 's')// &
+         ' for a spring')) return
+    if (.not. get_id(st, line, loc, 1, 'element id', e%id)) return
+    do i = 1, nn
+       if (.not. get_id(st, line, loc, i + 1, 'node id', e%nid(i))) return
+    end do
+    e%kind = st%card_etype
+    e%sub = st%card_sub
+    e%elset = st%spring_elset
+    e%loc = loc
+    call add_spring_elem(st, e)
+  end subroutine data_spring_element
+
+  subroutine kw_spring(st, kw, loc)
+    !! *SPRING, ELSET=e: the DOF line (SPRING1, SPRING2) and the stiffness line.
+    type(deck_state_t), intent(inout) :: st
+    type(keyword_line_t), intent(in) :: kw
+    type(source_loc_t), intent(in) :: loc
+    type(spring_card_b_t) :: c
+    logical :: found
+    st%card = CARD_SKIP
+    if (.not. outside_step(st, kw, loc)) return
+    call check_params(st, kw, loc, [character(NAME_LEN) :: 'ELSET', 'ORIENTATION'], [character(NAME_LEN) :: 'NONLINEAR'])
+    if (param_index(kw, 'NONLINEAR') > 0) then
+       call report_loc(st, loc, 'superjoin does linear statics; *SPRING, NONLINEAR (a nonlinear spring) '// &
+            'is not supported')
+       return
+    end if
+    if (param_index(kw, 'ORIENTATION') > 0) then
+       call report_loc(st, loc, '*SPRING, ORIENTATION= is not supported: a SPRING1/SPRING2 acts on global '// &
+            'DOFs (for an oriented joint use *CONTACT, ORIENTATION=)')
+       return
+    end if
+    call get_name_param(st, kw, loc, 'ELSET', .true., c%elset, found)
+    if (.not. found) return
+    c%sub = target_sub(st, loc)
+    c%loc = loc
+    call add_spring_card(st, c, st%card_item)
+    st%card = CARD_SPRING
+  end subroutine kw_spring
+
+  subroutine data_spring(st, line, loc)
+    type(deck_state_t), intent(inout) :: st
+    character(*), intent(in) :: line
+    type(source_loc_t), intent(in) :: loc
+    integer :: i
+    associate (c => st%spring_cards(st%card_item))
+      if (st%card_ndata > 2) then
+         call report_loc(st, loc, 'too many data lines for *SPRING (DOF line, stiffness line)')
+         st%card = CARD_SKIP
+         return
+      end if
+      if (.not. field_count(st, loc, 1, 2, 'DOF(s) or stiffness')) return
+      do i = 1, st%f%n
+         if (.not. get_real(st, line, loc, i, c%v(i, st%card_ndata))) return
+      end do
+      c%ndata = st%card_ndata
+      c%nfield(st%card_ndata) = st%f%n
+      c%data_loc(st%card_ndata) = loc
+    end associate
+  end subroutine data_spring
 
   function loc_string(st, loc) result(s)
     !! "file:line" of a location.

@@ -150,6 +150,31 @@ module superjoin_deck_state
      type(source_loc_t) :: loc
   end type request_b_t
 
+  integer, parameter, public :: SPRING_1 = 1, SPRING_2 = 2, SPRING_A = 3
+    !! Spring element types (*ELEMENT, TYPE=SPRING1 | SPRING2 | SPRINGA).
+
+  type, public :: spring_elem_b_t
+    !! A spring element: not a finite element of the model but a support
+    !! (SPRING1) or a contact element (SPRING2, SPRINGA) once its *SPRING is read.
+     integer(ip) :: id = 0
+     integer :: kind = 0                   !! SPRING_*
+     integer(ip) :: nid(2) = 0             !! user node ids (SPRING1: nid(1) only)
+     integer :: sub = 0                    !! its substructure
+     character(:), allocatable :: elset    !! ELSET= of its *ELEMENT card ('' without)
+     type(source_loc_t) :: loc
+  end type spring_elem_b_t
+
+  type, public :: spring_card_b_t
+    !! A *SPRING card: its ELSET= and the numbers of its (at most two) data lines.
+     character(:), allocatable :: elset
+     integer :: sub = 0
+     integer :: ndata = 0
+     integer :: nfield(2) = 0
+     real(wp) :: v(2, 2) = 0.0_wp          !! (field, line)
+     type(source_loc_t) :: loc
+     type(source_loc_t) :: data_loc(2)
+  end type spring_card_b_t
+
   type, public :: deck_state_t
     !! Everything the reader has collected, and the card being read.
      type(error_t), allocatable :: error
@@ -187,6 +212,10 @@ module superjoin_deck_state
      type(request_b_t), allocatable :: requests(:)
      integer :: step_procedure = 0                  !! procedure card of the open step (0: none yet)
      type(source_loc_t) :: step_procedure_loc
+     integer :: nspring_elem = 0, nspring_card = 0  !! spring elements and *SPRING cards
+     type(spring_elem_b_t), allocatable :: spring_elems(:)
+     type(spring_card_b_t), allocatable :: spring_cards(:)
+     character(:), allocatable :: spring_elset      !! ELSET= of the open spring *ELEMENT card
      integer :: nelem_cards = 0
      ! block and card state
      integer :: cur_sub = 0                !! open *SUBSTRUCTURE block
@@ -213,7 +242,7 @@ module superjoin_deck_state
   public :: report, report_loc, report_oom, new_sub, find_sub, find_set, new_set, add_chunk, push_pool
   public :: add_node, add_element, add_heading, add_material, add_orientation, add_section
   public :: add_contact, add_cline, add_support, add_step, add_load, file_of
-  public :: add_request, add_request_var
+  public :: add_request, add_request_var, add_spring_elem, add_spring_card
 
 contains
 
@@ -703,4 +732,38 @@ contains
       list(n)%s = name
     end subroutine push_name
   end subroutine add_request_var
+
+  ! ------------------------------------------------------------------ springs
+
+  subroutine add_spring_elem(st, e)
+    !! Append a spring element.
+    type(deck_state_t), intent(inout) :: st
+    type(spring_elem_b_t), intent(in) :: e
+    type(spring_elem_b_t), allocatable :: tmp(:)
+    if (.not. allocated(st%spring_elems)) allocate (st%spring_elems(INITIAL_CAPACITY))
+    if (st%nspring_elem == size(st%spring_elems)) then
+       allocate (tmp(2*st%nspring_elem))
+       tmp(1:st%nspring_elem) = st%spring_elems(1:st%nspring_elem)
+       call move_alloc(tmp, st%spring_elems)
+    end if
+    st%nspring_elem = st%nspring_elem + 1
+    st%spring_elems(st%nspring_elem) = e
+  end subroutine add_spring_elem
+
+  subroutine add_spring_card(st, c, k)
+    !! Append a *SPRING card; `k` is its index.
+    type(deck_state_t), intent(inout) :: st
+    type(spring_card_b_t), intent(in) :: c
+    integer, intent(out) :: k
+    type(spring_card_b_t), allocatable :: tmp(:)
+    if (.not. allocated(st%spring_cards)) allocate (st%spring_cards(INITIAL_CAPACITY))
+    if (st%nspring_card == size(st%spring_cards)) then
+       allocate (tmp(2*st%nspring_card))
+       tmp(1:st%nspring_card) = st%spring_cards(1:st%nspring_card)
+       call move_alloc(tmp, st%spring_cards)
+    end if
+    st%nspring_card = st%nspring_card + 1
+    k = st%nspring_card
+    st%spring_cards(k) = c
+  end subroutine add_spring_card
 end module superjoin_deck_state

@@ -21,6 +21,11 @@ against independent computations of the same 2x2 mesh written here from the
 textbook element definitions: the C3D8 expansion (one layer of 8-node bricks,
 2x2x2 Gauss, faces at +-t/2, mid-plane symmetry) must reproduce .dat.ref, and
 QM6 (Wilson-Taylor incompatible modes, condensed) must reproduce superjoin.
+
+spring1.inp (SPRINGA, k = 10, load 1): refused as written (*STEP, NLGEOM);
+the script also runs a copy whose only change is *STEP, NLGEOM -> *STEP and
+compares *NODE PRINT U with .dat.ref (u = 1/k = 0.1; a spring along its own
+axis is linear, so CalculiX's NLGEOM answer is the linear one).
 """
 import math
 import os
@@ -41,12 +46,12 @@ def check(what, got, want, scale):
         FAILURES.append(what)
 
 
-def run(binary, outdir, name):
+def run(binary, outdir, name, deckdir=HERE):
     os.makedirs(outdir, exist_ok=True)
     lst = os.path.join(outdir, name + '.lst')
     if os.path.exists(lst):
         os.remove(lst)
-    proc = subprocess.run([binary, '-q', name + '.inp', '-o', lst], cwd=HERE,
+    proc = subprocess.run([binary, '-q', name + '.inp', '-o', lst], cwd=deckdir,
                           stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
     if proc.returncode != 0:
         print(f'FAIL: superjoin exited with {proc.returncode} on {name}.inp:\n{proc.stderr}')
@@ -261,6 +266,28 @@ def planestress3(binary, outdir):
           f'vy {got[5][1] / ref[(5,)][1]:.4f} (different elements; a point load has no finite exact displacement)')
 
 
+def spring1(binary, outdir):
+    print('spring1.inp: refused as written; with *STEP, NLGEOM -> *STEP: *NODE PRINT, NSET=NALL, U')
+    proc = subprocess.run([binary, '-q', '--check', 'spring1.inp'], cwd=HERE, stdout=subprocess.PIPE,
+                          stderr=subprocess.PIPE, text=True)
+    ok = proc.returncode == 1 and 'spring1.inp:16: error: superjoin does linear statics; *STEP, NLGEOM' in proc.stderr
+    print(f"  {'ok  ' if ok else 'FAIL'} refused as written: {proc.stderr.strip()}")
+    if not ok:
+        FAILURES.append('spring1 refusal')
+    os.makedirs(outdir, exist_ok=True)
+    with open(os.path.join(HERE, 'spring1.inp')) as f:
+        text = f.read()
+    assert text.count('*STEP,NLGEOM') == 1
+    with open(os.path.join(outdir, 'spring1_linear.inp'), 'w') as f:
+        f.write(text.replace('*STEP,NLGEOM', '*STEP'))
+    got = listing_table(run(binary, outdir, 'spring1_linear', outdir), '*NODE PRINT, NSET=NALL', 'U')
+    ref = dat_blocks(os.path.join(HERE, 'spring1.dat.ref'))[('displacements', 'NALL')]
+    scale = max(abs(v) for vals in ref.values() for v in vals)
+    for (node,), vals in sorted(ref.items()):
+        for c in range(3):
+            check(f'node {node} u{c + 1}', got[node][c], vals[c], scale)
+
+
 def main():
     if len(sys.argv) != 3:
         print(__doc__)
@@ -268,6 +295,7 @@ def main():
     binary, outdir = os.path.abspath(sys.argv[1]), os.path.abspath(sys.argv[2])
     truss(binary, outdir)
     planestress3(binary, outdir)
+    spring1(binary, outdir)
     if FAILURES:
         print(f'FAIL: {len(FAILURES)} comparisons')
         sys.exit(1)

@@ -2010,19 +2010,18 @@ contains
     if (param_index(kw, 'NONLINEAR') > 0) then
        call report_loc(st, loc, 'superjoin does linear statics; *SPRING, NONLINEAR (a nonlinear spring) '// &
             'is not supported')
-       return
-    end if
-    if (param_index(kw, 'ORIENTATION') > 0) then
+       c%refused = .true.
+    else if (param_index(kw, 'ORIENTATION') > 0) then
        call report_loc(st, loc, '*SPRING, ORIENTATION= is not supported: a SPRING1/SPRING2 acts on global '// &
             'DOFs (for an oriented joint use *CONTACT, ORIENTATION=)')
-       return
+       c%refused = .true.
     end if
     call get_name_param(st, kw, loc, 'ELSET', .true., c%elset, found)
     if (.not. found) return
     c%sub = target_sub(st, loc)
     c%loc = loc
     call add_spring_card(st, c, st%card_item)
-    st%card = CARD_SPRING
+    if (.not. c%refused) st%card = CARD_SPRING
   end subroutine kw_spring
 
   subroutine data_spring(st, line, loc)

@@ -58,7 +58,7 @@ contains
     do e = 1, st%nspring_elem
        associate (se => st%spring_elems(e))
          if (se%sub /= card%sub .or. se%elset /= card%elset) cycle
-         if (used(e)) then
+         if (used(e) .and. .not. card%refused) then
             call report_loc(st, card%loc, 'spring element '//itoa(se%id)//' already has a *SPRING card')
             return
          end if
@@ -80,6 +80,7 @@ contains
     do e = 1, st%nspring_elem    ! used, even when the card is refused (no second message)
        if (st%spring_elems(e)%sub == card%sub .and. st%spring_elems(e)%elset == card%elset) used(e) = .true.
     end do
+    if (card%refused) return
     call card_data(st, card, kind, dof1, dof2, k, ok)
     if (.not. ok) return
     if (.not. (k > 0.0_wp)) return          ! k = 0: no connection, as a contact g = 0

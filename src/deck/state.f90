@@ -171,6 +171,7 @@ module superjoin_deck_state
      integer :: ndata = 0
      integer :: nfield(2) = 0
      real(wp) :: v(2, 2) = 0.0_wp          !! (field, line)
+     logical :: refused = .false.          !! reported on its keyword line: its elements get no other message
      type(source_loc_t) :: loc
      type(source_loc_t) :: data_loc(2)
   end type spring_card_b_t

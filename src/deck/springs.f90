@@ -15,13 +15,19 @@ module superjoin_deck_springs
   use superjoin_kinds, only: wp, ip
   use superjoin_model_types, only: source_loc_t, NDOF_NODE, LINK_FINITE
   use superjoin_deck_state, only: deck_state_t, spring_card_b_t, spring_elem_b_t, support_b_t, &
-       contact_b_t, cline_b_t, report_loc, add_support, add_contact, add_cline, add_orientation, &
+       contact_b_t, cline_b_t, report_loc, add_support, add_contact, add_cline, add_orientation, file_of, &
        SPRING_1, SPRING_2, SPRING_A
   use superjoin_utils_strings, only: itoa
+  use superjoin_utils_sorting, only: stable_argsort
   implicit none (type, external)
   private
 
   public :: translate_springs
+
+  type :: id_index_t
+    !! The user ids of one substructure's nodes (or elements) in ascending order.
+     integer, allocatable :: order(:)      !! local indices sorted by id
+  end type id_index_t
 
   character(len=7), parameter :: SPRING_NAMES(3) = ['SPRING1', 'SPRING2', 'SPRINGA']
   real(wp), parameter :: ZERO_LENGTH_TOL = 1.0e-14_wp
@@ -35,10 +41,13 @@ contains
     type(deck_state_t), intent(inout) :: st
     integer :: c, e
     logical, allocatable :: used(:)
-    allocate (used(st%nspring_elem))
+    type(id_index_t), allocatable :: nodes(:)
+    if (st%nspring_elem == 0 .and. st%nspring_card == 0) return
+    allocate (used(st%nspring_elem), nodes(st%nsub))
     used = .false.
+    call check_ids(st)
     do c = 1, st%nspring_card
-       call translate_card(st, st%spring_cards(c), used)
+       call translate_card(st, st%spring_cards(c), used, nodes)
     end do
     do e = 1, st%nspring_elem
        if (.not. used(e)) call report_loc(st, st%spring_elems(e)%loc, trim(SPRING_NAMES(st%spring_elems(e)%kind))// &
@@ -46,10 +55,11 @@ contains
     end do
   end subroutine translate_springs
 
-  subroutine translate_card(st, card, used)
+  subroutine translate_card(st, card, used, nodes)
     type(deck_state_t), intent(inout) :: st
     type(spring_card_b_t), intent(in) :: card
     logical, intent(inout) :: used(:)
+    type(id_index_t), intent(inout) :: nodes(:)
     integer :: e, kind, first, dof1, dof2, icontact
     real(wp) :: k
     logical :: ok
@@ -95,7 +105,9 @@ contains
             if (icontact == 0) call new_contact(st, 'SPRING_'//card%elset, '', card%sub, card%loc, icontact)
             call spring_link(st, se, icontact, dof1, k)
          case (SPRING_A)
-            call springa(st, se, card, k)
+            if (.not. allocated(nodes(se%sub)%order)) call sort_ids(st%subs(se%sub)%node_id(1:st%subs(se%sub)%nnode), &
+                 nodes(se%sub)%order)
+            call springa(st, se, card, k, nodes(se%sub))
          end select
        end associate
     end do
@@ -218,19 +230,20 @@ contains
     call add_cline(st, c)
   end subroutine spring_link
 
-  subroutine springa(st, se, card, k)
+  subroutine springa(st, se, card, k, nodes)
     !! An axial spring: a frame with axis 1 along node 1 -> node 2 and a
     !! contact k on its DOF 1.
     type(deck_state_t), intent(inout) :: st
     type(spring_elem_b_t), intent(in) :: se
     type(spring_card_b_t), intent(in) :: card
     real(wp), intent(in) :: k
+    type(id_index_t), intent(in) :: nodes
     real(wp) :: x(3, 2), e1(3), e2(3), e3(3), len_a
     integer :: i, io, ic
     integer(ip) :: n
     character(:), allocatable :: name
     do i = 1, 2
-       n = node_index(st, se%sub, se%nid(i))
+       n = find_id(st%subs(se%sub)%node_id, nodes%order, se%nid(i))
        if (n == 0) then
           call report_loc(st, se%loc, 'SPRINGA element '//itoa(se%id)//' refers to undefined node '//itoa(se%nid(i)))
           return
@@ -258,14 +271,69 @@ contains
     call spring_link(st, se, ic, 1, k)
   end subroutine springa
 
-  integer(ip) function node_index(st, sub, id) result(n)
-    !! Index of node `id` in the substructure as read (0 if undefined).
-    type(deck_state_t), intent(in) :: st
-    integer, intent(in) :: sub
+  subroutine sort_ids(ids, order)
+    !! Local indices of `ids` in ascending order of id.
+    integer(ip), intent(in) :: ids(:)
+    integer, allocatable, intent(out) :: order(:)
+    integer :: i
+    order = [(i, i = 1, size(ids))]
+    call stable_argsort(real(ids, wp), order)     ! ids < 2**31 are exact reals
+  end subroutine sort_ids
+
+  pure integer function find_id(ids, order, id) result(k)
+    !! Index of `id` in ids (0 if absent), by bisection on the sorted order.
+    integer(ip), intent(in) :: ids(:)
+    integer, intent(in) :: order(:)
     integer(ip), intent(in) :: id
-    do n = 1, st%subs(sub)%nnode
-       if (st%subs(sub)%node_id(n) == id) return
+    integer :: lo, hi, mid
+    k = 0
+    lo = 1
+    hi = size(order)
+    do while (lo <= hi)
+       mid = lo + (hi - lo)/2
+       if (ids(order(mid)) == id) then
+          k = order(mid)
+          return
+       else if (ids(order(mid)) < id) then
+          lo = mid + 1
+       else
+          hi = mid - 1
+       end if
     end do
-    n = 0
-  end function node_index
+  end function find_id
+
+  subroutine check_ids(st)
+    !! A spring element id must be unique in its substructure, among the
+    !! springs and the finite elements.
+    type(deck_state_t), intent(inout) :: st
+    integer :: isub, e, k
+    integer, allocatable :: elems(:), springs(:), by_id(:)
+    integer(ip), allocatable :: sid(:)
+    do isub = 1, st%nsub
+       if (.not. any(st%spring_elems(1:st%nspring_elem)%sub == isub)) cycle
+       sid = pack(st%spring_elems(1:st%nspring_elem)%id, st%spring_elems(1:st%nspring_elem)%sub == isub)
+       springs = pack([(e, e = 1, st%nspring_elem)], st%spring_elems(1:st%nspring_elem)%sub == isub)
+       call sort_ids(st%subs(isub)%elem_id(1:st%subs(isub)%nelem), elems)
+       call sort_ids(sid, by_id)        ! stable: a repeated id reports its later definitions
+       do k = 1, size(springs)
+          associate (se => st%spring_elems(springs(by_id(k))))
+            e = find_id(st%subs(isub)%elem_id, elems, se%id)
+            if (e > 0) then
+               call report_loc(st, se%loc, 'duplicate element id '//itoa(se%id)//' (also defined at '// &
+                    loc_text(st, st%subs(isub)%elem_loc(e))//')')
+            else if (k > 1) then
+               if (sid(by_id(k - 1)) == se%id) call report_loc(st, se%loc, 'duplicate spring element id '// &
+                    itoa(se%id)//' (also defined at '//loc_text(st, st%spring_elems(springs(by_id(k - 1)))%loc)//')')
+            end if
+          end associate
+       end do
+    end do
+  end subroutine check_ids
+
+  function loc_text(st, loc) result(s)
+    type(deck_state_t), intent(in) :: st
+    type(source_loc_t), intent(in) :: loc
+    character(:), allocatable :: s
+    s = file_of(st, loc%file)//':'//itoa(loc%line)
+  end function loc_text
 end module superjoin_deck_springs

@@ -867,7 +867,7 @@ contains
     type(source_loc_t), intent(in) :: loc
     character(:), allocatable :: value, problem
     logical :: found
-    call check_params(st, kw, loc, [character(NAME_LEN) :: 'VTK', 'FREQUENCY'], &
+    call check_params(st, kw, loc, [character(NAME_LEN) :: 'VTK', 'FREQUENCY', 'VARIABLE'], &
          [character(NAME_LEN) :: 'FIELD', 'HISTORY'])
     if (param_index(kw, 'VTK') == 0 .and. (param_index(kw, 'FIELD') > 0 .or. param_index(kw, 'HISTORY') > 0)) return
     call get_param(st, kw, loc, 'VTK', .true., value, found)
@@ -1743,7 +1743,7 @@ contains
     pset = pick(node, 'NSET', 'ELSET')
     set_param = pset
     call check_params(st, kw, loc, [character(NAME_LEN) :: set_param, 'TOTALS', 'FREQUENCY', 'FREQUENCYF', &
-         'GLOBAL', 'OUTPUT', 'TIME POINTS', 'VARIABLE'], &
+         'GLOBAL', 'OUTPUT', 'TIME POINTS', 'VARIABLE', 'DIRECTIONS', 'POSITION'], &
          [character(NAME_LEN) :: 'SECTION FORCES', 'LAST ITERATIONS', 'CONTACT ELEMENTS'])
     call get_param(st, kw, loc, 'TOTALS', .false., value, found)
     r%totals = TOTALS_NO

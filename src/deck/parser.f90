@@ -18,6 +18,17 @@ module superjoin_deck_parser
        push_pool, add_node, add_element, add_heading, add_material, add_orientation, &
        add_section, add_contact, add_cline, add_support, add_step, add_load, &
        MAX_INCLUDE_DEPTH, CH_IDS, CH_GEN, CH_RANGE, CH_REF, BEAM_2D_VALUES, BEAM_3D_VALUES
+  use superjoin_deck_state, only: request_b_t, add_request, add_request_var
+  use superjoin_deck_ccx_cards, only: refused_card_reason, request_kind, is_node_request, &
+       classify_variable, VAR_UNKNOWN, VAR_PRODUCED
+  use superjoin_model_types, only: TOTALS_NO, TOTALS_YES, TOTALS_ONLY
+  use superjoin_deck_beam_sections, only: section_props_t, section_properties, shape_index, SHAPE_NONE, &
+       SHAPE_L, SHAPE_I, SHAPE_NAMES, SHAPE_DIMS_MIN, SHAPE_DIMS_MAX, SHAPE_DATA, MAX_SHAPE_DIMS
+  use superjoin_deck_state, only: SHAPE_GENERAL
+  use superjoin_elements_frame, only: real_text
+  use superjoin_deck_state, only: spring_elem_b_t, spring_card_b_t, add_spring_elem, add_spring_card, &
+       SPRING_1, SPRING_2, SPRING_A
+  use superjoin_deck_springs, only: translate_springs
   use superjoin_utils_strings, only: pick
   use superjoin_output_vtk, only: vtk_path_problem
   use superjoin_elements_catalog, only: unsupported_type_message
@@ -38,6 +49,14 @@ module superjoin_deck_parser
     !! What the current card does with data lines.
   integer, parameter :: CARD_INSTANCE = 101, CARD_CHANGE_CONTACT = 102, CARD_INTERFACE = 103
     !! Cards of parts, instances and joint studies (submodule superjoin_deck_parts).
+  integer, parameter :: CARD_STATIC = 111, CARD_REQUEST = 112, CARD_SPRING_ELEMENT = 113, CARD_SPRING = 114
+    !! CalculiX/Abaqus analysis cards (numbered apart from the model cards).
+  integer, parameter :: PROC_STATIC = 1
+    !! Procedures of a step (st%step_procedure).
+  integer, parameter :: STATIC_FIELDS = 4
+  integer, parameter :: GENERAL_FIELDS = 5
+    !! *BEAM GENERAL SECTION, SECTION=GENERAL: A, I11, I12, I22, J.
+    !! *STATIC data: initial increment, time period, minimum, maximum increment.
 
   character(*), parameter :: MAIN_NAME = 'MAIN'
     !! Name of the implicit substructure.
@@ -52,7 +71,8 @@ module superjoin_deck_parser
     !! Relative size below which orientation vectors count as zero or parallel.
   integer, parameter :: NAME_LEN = 16
   integer, parameter :: ORIENT_VALUES = 6
-  integer, parameter :: NODE_FIELDS_MIN = 3, NODE_FIELDS_MAX = 4
+  integer, parameter :: NODE_FIELDS_MIN = 1, NODE_FIELDS_MAX = 7, NODE_COORD_FIELDS = 4
+    !! id, x, y, z, then (Abaqus) the direction cosines of a shell normal, checked and ignored.
     !! Numbers of fields of data lines.
   integer, parameter :: GEN_FIELDS_MIN = 2, GEN_FIELDS_MAX = 3
   integer, parameter :: ELASTIC_FIELDS = 2, VECTOR_FIELDS = 3, CONTACT_FIELDS = 5, LOAD_FIELDS = 3, &
@@ -229,6 +249,7 @@ contains
     type(source_loc_t) :: loc
     call end_card(st)
     call finish_assembly(st)
+    call translate_springs(st)
     if (st%cur_sub > 0) call report_loc(st, st%subs(st%cur_sub)%loc, &
          '*SUBSTRUCTURE '//st%subs(st%cur_sub)%name//' has no *END SUBSTRUCTURE')
     if (st%cur_step > 0) call report_loc(st, st%steps(st%cur_step)%loc, &
@@ -301,7 +322,7 @@ contains
        call kw_set(st, kw, loc, .true.)
     case ('SOLID SECTION')
        call kw_section(st, kw, loc, SEC_SOLID)
-    case ('BEAM SECTION')
+    case ('BEAM SECTION', 'BEAM GENERAL SECTION')
        call kw_section(st, kw, loc, SEC_BEAM)
     case ('SHELL SECTION')
        call kw_section(st, kw, loc, SEC_SHELL)
@@ -330,6 +351,12 @@ contains
        else
           st%cur_step = 0
        end if
+    case ('STATIC')
+       call kw_static(st, kw, loc)
+    case ('SPRING')
+       call kw_spring(st, kw, loc)
+    case ('NODE PRINT', 'EL PRINT', 'NODE FILE', 'EL FILE', 'NODE OUTPUT', 'ELEMENT OUTPUT')
+       call kw_request(st, kw, loc)
     case ('CLOAD')
        call kw_load(st, kw, loc, CARD_CLOAD)
     case ('DLOAD')
@@ -345,7 +372,7 @@ contains
     case ('INTERFACE')
        call kw_interface(st, kw, loc)
     case default
-       call report_loc(st, loc, 'unknown keyword *'//clip(kw%keyword))
+       if (.not. refused_card(st, kw, loc, prev_mat)) call report_loc(st, loc, 'unknown keyword *'//clip(kw%keyword))
        st%card = CARD_SKIP
     end select
   end subroutine keyword_line
@@ -609,9 +636,12 @@ contains
     call check_params(st, kw, loc, [character(NAME_LEN) :: 'TYPE'], [character(NAME_LEN) ::])
     call get_param(st, kw, loc, 'TYPE', .false., typ, found)
     if (found) then
-       if (to_upper(typ) /= 'ISOTROPIC') then
-          call report_loc(st, loc, 'only TYPE=ISOTROPIC is supported on *ELASTIC')
+       if (to_upper(typ) /= 'ISOTROPIC' .and. to_upper(typ) /= 'ISO') then
+          call report_loc(st, loc, '*ELASTIC, TYPE='//clip(typ)//' is not supported: superjoin''s materials '// &
+               'are isotropic (TYPE=ISO)')
           st%card = CARD_SKIP
+          st%cur_mat = mat                   ! the material's next cards still find it
+          if (mat > 0) st%materials(mat)%has_elastic = .true.   ! and it is not reported again as without *ELASTIC
           return
        end if
     end if
@@ -690,6 +720,10 @@ contains
     st%card = CARD_SKIP
     if (.not. found) return
     typ = to_upper(typ)
+    if (spring_type(typ) > 0) then
+       call kw_spring_element(st, kw, loc, spring_type(typ))
+       return
+    end if
     st%card_etype = 0
     do k = 1, NUM_ELEMENT_TYPES
        if (trim(ELEMENT_TYPE_NAMES(k)) == typ) st%card_etype = k
@@ -750,18 +784,12 @@ contains
     type(keyword_line_t), intent(in) :: kw
     type(source_loc_t), intent(in) :: loc
     integer, intent(in) :: kind
-    character(:), allocatable :: elset, material, value
-    logical :: found_e, found_m, found
+    character(:), allocatable :: elset, material
+    logical :: found_e, found_m
     type(sec_b_t) :: sec
     if (.not. outside_step(st, kw, loc)) return
     if (kind == SEC_BEAM) then
-       call check_params(st, kw, loc, [character(NAME_LEN) :: 'ELSET', 'MATERIAL', 'SECTION', &
-            'POISSON', 'TEMPERATURE'], [character(NAME_LEN) :: 'LUMPED', 'ROTARY INERTIA'])
-       call get_param(st, kw, loc, 'SECTION', .false., value, found)
-       if (found) then
-          if (to_upper(value) /= 'GENERAL') call report_loc(st, loc, &
-               'only SECTION=GENERAL (A, I data) is supported on *BEAM SECTION')
-       end if
+       call beam_section_params(st, kw, loc, sec)
     else
        call check_params(st, kw, loc, [character(NAME_LEN) :: 'ELSET', 'MATERIAL'], [character(NAME_LEN) ::])
     end if
@@ -896,7 +924,7 @@ contains
     character(:), allocatable :: name
     logical :: found
     integer :: k
-    call check_params(st, kw, loc, [character(NAME_LEN) :: 'NAME'], [character(NAME_LEN) ::])
+    call step_params(st, kw, loc)
     if (st%cur_sub > 0) then
        call report_loc(st, loc, '*STEP inside *SUBSTRUCTURE '//st%subs(st%cur_sub)%name// &
             ' (missing *END SUBSTRUCTURE?)')
@@ -997,7 +1025,9 @@ contains
     type(source_loc_t), intent(in) :: loc
     character(:), allocatable :: value, problem
     logical :: found
-    call check_params(st, kw, loc, [character(NAME_LEN) :: 'VTK'], [character(NAME_LEN) :: 'FIELD'])
+    call check_params(st, kw, loc, [character(NAME_LEN) :: 'VTK', 'FREQUENCY', 'VARIABLE'], &
+         [character(NAME_LEN) :: 'FIELD', 'HISTORY'])
+    if (param_index(kw, 'VTK') == 0 .and. (param_index(kw, 'FIELD') > 0 .or. param_index(kw, 'HISTORY') > 0)) return
     call get_param(st, kw, loc, 'VTK', .true., value, found)
     if (.not. found) return
     problem = vtk_path_problem(value)
@@ -1068,6 +1098,14 @@ contains
        call data_change_contact(st, line, loc)
     case (CARD_INTERFACE)
        call data_interface(st, line, loc)
+    case (CARD_STATIC)
+       call data_static(st, line, loc)
+    case (CARD_SPRING_ELEMENT)
+       call data_spring_element(st, line, loc)
+    case (CARD_SPRING)
+       call data_spring(st, line, loc)
+    case (CARD_REQUEST)
+       call data_request(st, line, loc)
     end select
   end subroutine data_line
 
@@ -1263,15 +1301,20 @@ contains
     character(*), intent(in) :: line
     type(source_loc_t), intent(in) :: loc
     integer(ip) :: id
-    real(wp) :: x(3)
+    real(wp) :: x(3), normal
     integer :: i
     integer(i8) :: failed_bytes
     st%subs(st%card_sub)%node_lines = st%subs(st%card_sub)%node_lines + 1
-    if (.not. field_count(st, loc, NODE_FIELDS_MIN, NODE_FIELDS_MAX, 'id, x, y[, z]')) return
+    if (.not. field_count(st, loc, NODE_FIELDS_MIN, NODE_FIELDS_MAX, 'id[, x[, y[, z[, nx, ny, nz]]]]')) return
     if (.not. get_id(st, line, loc, 1, 'node id', id)) return
     x = 0.0_wp
     do i = 2, st%f%n
-       if (.not. get_real(st, line, loc, i, x(i - 1))) return
+       if (st%f%last(i) < st%f%first(i)) cycle    ! an omitted coordinate is 0, as in Abaqus
+       if (i <= NODE_COORD_FIELDS) then
+          if (.not. get_real(st, line, loc, i, x(i - 1))) return
+       else
+          if (.not. get_real(st, line, loc, i, normal)) return
+       end if
     end do
     associate (sub => st%subs(st%card_sub))
       call add_node(sub, id, x, loc, failed_bytes)
@@ -1380,6 +1423,14 @@ contains
     type(source_loc_t), intent(in) :: loc
     integer :: i
     real(wp) :: v(4)
+    if (st%card_ndata == 1 .and. .not. st%sections(st%card_item)%data_ok) then
+       st%card = CARD_SKIP                  ! refused on its keyword line: no further messages
+       return
+    end if
+    if (st%sections(st%card_item)%shape /= SHAPE_NONE) then
+       call data_beam_shape(st, line, loc)
+       return
+    end if
     associate (sec => st%sections(st%card_item))
       if (st%card_ndata == 1) sec%data_loc = loc
       if (sec%kind /= SEC_BEAM .and. st%card_ndata > 1 .or. st%card_ndata > 2) then
@@ -1464,15 +1515,18 @@ contains
     type(deck_state_t), intent(inout) :: st
     character(*), intent(in) :: line
     type(source_loc_t), intent(in) :: loc
-    real(wp) :: e, nu
+    real(wp) :: e, nu, temp
     if (st%card_ndata > 1) then
        call report_loc(st, loc, 'too many data lines for *ELASTIC')
        st%card = CARD_SKIP
        return
     end if
-    if (.not. field_count(st, loc, ELASTIC_FIELDS, ELASTIC_FIELDS, 'E, nu')) return
+    if (.not. field_count(st, loc, ELASTIC_FIELDS, ELASTIC_FIELDS + 1, 'E, nu[, temperature]')) return
     if (.not. get_real(st, line, loc, 1, e)) return
     if (.not. get_real(st, line, loc, 2, nu)) return
+    if (st%f%n > ELASTIC_FIELDS) then      ! the temperature of a one-line table: any value
+       if (.not. get_real(st, line, loc, ELASTIC_FIELDS + 1, temp)) return
+    end if
     if (.not. (e > 0.0_wp)) then
        call report_loc(st, loc, 'Young''s modulus E must be positive, not '//fld(st, line, 1))
        return
@@ -1706,6 +1760,456 @@ contains
     call add_load(st%steps(st%card_item), ld, dload)
   end subroutine data_load
 
+
+  ! ================================================================== CalculiX/Abaqus analysis cards
+
+  logical function refused_card(st, kw, loc, prev_mat) result(refused)
+    !! A procedure, material behaviour or contact card that linear statics does
+    !! not have: one message, its data lines skipped, and the current material
+    !! kept so that the material's next cards still find it.
+    type(deck_state_t), intent(inout) :: st
+    type(keyword_line_t), intent(in) :: kw
+    type(source_loc_t), intent(in) :: loc
+    integer, intent(in) :: prev_mat
+    character(:), allocatable :: reason
+    reason = refused_card_reason(kw%keyword)
+    refused = len(reason) > 0
+    if (.not. refused) return
+    call report_loc(st, loc, 'superjoin does linear statics; *'//kw%keyword//' ('//reason// &
+         ') is not supported')
+    st%cur_mat = prev_mat
+    if (st%cur_step > 0) then
+       st%step_procedure = -1
+       st%step_procedure_loc = loc
+    end if
+  end function refused_card
+
+  subroutine step_params(st, kw, loc)
+    !! Parameters of *STEP: NAME=, NLGEOM=NO (NLGEOM and NLGEOM=YES refused),
+    !! PERTURBATION, INC=, INCF=, AMPLITUDE=RAMP|STEP; THERMAL NETWORK refused.
+    type(deck_state_t), intent(inout) :: st
+    type(keyword_line_t), intent(in) :: kw
+    type(source_loc_t), intent(in) :: loc
+    type(keyword_line_t) :: rest
+    integer :: k, stat
+    integer(ip) :: n
+    st%step_procedure = 0
+    rest%keyword = kw%keyword
+    rest%nparam = 0
+    allocate (rest%params(max(kw%nparam, 1)))
+    do k = 1, kw%nparam
+       associate (p => kw%params(k))
+         select case (p%name)
+         case ('NLGEOM')
+            if (.not. p%has_value) then
+               call report_loc(st, loc, 'superjoin does linear statics; *STEP, NLGEOM (geometric '// &
+                    'nonlinearity) is not supported (NLGEOM=NO is accepted)')
+            else if (to_upper(p%value) == 'YES') then
+               call report_loc(st, loc, 'superjoin does linear statics; *STEP, NLGEOM=YES (geometric '// &
+                    'nonlinearity) is not supported (NLGEOM=NO is accepted)')
+            else if (to_upper(p%value) /= 'NO') then
+               call report_loc(st, loc, 'NLGEOM must be YES or NO, not '//clip(p%value))
+            end if
+         case ('INC', 'INCF')
+            if (.not. p%has_value) then
+               call report_loc(st, loc, 'parameter '//p%name//' of *STEP needs a value ('//p%name//'=...)')
+            else
+               call parse_id(p%value, n, stat)
+               if (stat /= TOK_OK) call report_loc(st, loc, p%name//'= of *STEP must be a positive '// &
+                    'integer, not '//clip(p%value))
+            end if
+         case ('AMPLITUDE')
+            if (.not. p%has_value) then
+               call report_loc(st, loc, 'parameter AMPLITUDE of *STEP needs a value (AMPLITUDE=...)')
+            else if (to_upper(p%value) /= 'RAMP' .and. to_upper(p%value) /= 'STEP') then
+               call report_loc(st, loc, 'AMPLITUDE= of *STEP must be RAMP or STEP, not '//clip(p%value))
+            end if
+         case ('THERMAL NETWORK')
+            call report_loc(st, loc, 'superjoin does linear statics; *STEP, THERMAL NETWORK (heat '// &
+                 'transfer) is not supported')
+         case default
+            rest%nparam = rest%nparam + 1
+            rest%params(rest%nparam) = p
+         end select
+       end associate
+    end do
+    call check_params(st, rest, loc, [character(NAME_LEN) :: 'NAME'], [character(NAME_LEN) :: 'PERTURBATION'])
+  end subroutine step_params
+
+  subroutine kw_static(st, kw, loc)
+    !! *STATIC inside *STEP: linear statics, superjoin's only procedure. The
+    !! optional data line (increments and time period) is checked and ignored:
+    !! a linear static step has one increment.
+    type(deck_state_t), intent(inout) :: st
+    type(keyword_line_t), intent(in) :: kw
+    type(source_loc_t), intent(in) :: loc
+    st%card = CARD_SKIP
+    call check_params(st, kw, loc, [character(NAME_LEN) :: 'SOLVER'], &
+         [character(NAME_LEN) :: 'DIRECT', 'TIME RESET', 'EXPLICIT'])
+    if (param_index(kw, 'EXPLICIT') > 0) then
+       call report_loc(st, loc, 'superjoin does linear statics; *STATIC, EXPLICIT is not supported')
+       return
+    end if
+    if (st%cur_step == 0) then
+       call report_loc(st, loc, '*STATIC must stand inside *STEP')
+       return
+    end if
+    if (st%step_procedure /= 0) then
+       call report_loc(st, loc, 'a step has one procedure: *STATIC after the one at '// &
+            loc_string(st, st%step_procedure_loc))
+       return
+    end if
+    st%step_procedure = PROC_STATIC
+    st%step_procedure_loc = loc
+    st%card = CARD_STATIC
+  end subroutine kw_static
+
+  subroutine data_static(st, line, loc)
+    !! initial increment, time period, minimum increment, maximum increment:
+    !! each optional, a real > 0 when given.
+    type(deck_state_t), intent(inout) :: st
+    character(*), intent(in) :: line
+    type(source_loc_t), intent(in) :: loc
+    integer :: i
+    real(wp) :: x
+    if (st%card_ndata > 1) then
+       call report_loc(st, loc, 'too many data lines for *STATIC')
+       st%card = CARD_SKIP
+       return
+    end if
+    if (.not. field_count(st, loc, 0, STATIC_FIELDS, &
+         'initial increment, time period, minimum increment, maximum increment')) return
+    do i = 1, st%f%n
+       if (st%f%last(i) < st%f%first(i)) cycle
+       if (.not. get_real(st, line, loc, i, x)) return
+       if (.not. (x > 0.0_wp)) then
+          call report_loc(st, loc, '*STATIC increments and time period must be positive, not '//fld(st, line, i))
+          return
+       end if
+    end do
+  end subroutine data_static
+
+  subroutine kw_request(st, kw, loc)
+    !! *NODE PRINT, *EL PRINT, *NODE FILE, *EL FILE, *NODE OUTPUT, *ELEMENT OUTPUT:
+    !! NSET= or ELSET= (a set, resolved later), TOTALS=, FREQUENCY= and the
+    !! CalculiX flags; the variables follow as data lines.
+    type(deck_state_t), intent(inout) :: st
+    type(keyword_line_t), intent(in) :: kw
+    type(source_loc_t), intent(in) :: loc
+    type(request_b_t) :: r
+    character(:), allocatable :: value, pset
+    character(len=NAME_LEN) :: set_param
+    logical :: found, node
+    integer(ip) :: n
+    integer :: stat
+    st%card = CARD_SKIP
+    r%kind = request_kind(kw%keyword)
+    r%card = '*'//kw%keyword
+    node = is_node_request(r%kind)
+    pset = pick(node, 'NSET', 'ELSET')
+    set_param = pset
+    call check_params(st, kw, loc, [character(NAME_LEN) :: set_param, 'TOTALS', 'FREQUENCY', 'FREQUENCYF', &
+         'GLOBAL', 'OUTPUT', 'TIME POINTS', 'VARIABLE', 'DIRECTIONS', 'POSITION'], &
+         [character(NAME_LEN) :: 'SECTION FORCES', 'LAST ITERATIONS', 'CONTACT ELEMENTS'])
+    call get_param(st, kw, loc, 'TOTALS', .false., value, found)
+    r%totals = TOTALS_NO
+    if (found) then
+       select case (to_upper(value))
+       case ('YES')
+          r%totals = TOTALS_YES
+       case ('ONLY')
+          r%totals = TOTALS_ONLY
+       case ('NO')
+          r%totals = TOTALS_NO
+       case default
+          call report_loc(st, loc, 'TOTALS must be YES, ONLY or NO, not '//clip(value))
+       end select
+    end if
+    call get_param(st, kw, loc, 'FREQUENCY', .false., value, found)
+    if (found .and. value /= '0') then
+       call parse_id(value, n, stat)
+       if (stat /= TOK_OK) call report_loc(st, loc, 'FREQUENCY= must be an integer >= 0, not '//clip(value))
+    end if
+    call get_param(st, kw, loc, 'VARIABLE', .false., value, found)
+    if (found) then
+       if (to_upper(value) /= 'PRESELECT' .and. to_upper(value) /= 'ALL') call report_loc(st, loc, &
+            'VARIABLE= must be PRESELECT or ALL, not '//clip(value))
+    end if
+    call get_param(st, kw, loc, pset, .false., value, found)
+    if (found) then
+       if (.not. parse_ref(st, value, .not. node, st%cur_sub, loc, r%set)) return
+       if (.not. r%set%is_set) then
+          call report_loc(st, loc, pset//'='//clip(value)//' must name a '//pick(node, 'node', 'element')//' set')
+          return
+       end if
+       r%has_set = .true.
+    end if
+    r%step = st%cur_step
+    r%loc = loc
+    call add_request(st, r, st%card_item)
+    st%card = CARD_REQUEST
+  end subroutine kw_request
+
+  subroutine data_request(st, line, loc)
+    !! Variable names of an output request, several per line.
+    type(deck_state_t), intent(inout) :: st
+    character(*), intent(in) :: line
+    type(source_loc_t), intent(in) :: loc
+    character(:), allocatable :: name
+    integer :: i, what
+    associate (r => st%requests(st%card_item))
+      do i = 1, st%f%n
+         name = to_upper(fld(st, line, i))
+         if (len(name) == 0) cycle
+         what = classify_variable(r%kind, name)
+         if (what == VAR_UNKNOWN) then
+            call report_loc(st, loc, 'unknown output variable '''//clip(fld(st, line, i))//''' for '// &
+                 r%card//' (superjoin produces '//pick(is_node_request(r%kind), 'U, RF, CF', 'S, E, SF')//')')
+         else
+            call add_request_var(r, name, what == VAR_PRODUCED)
+         end if
+      end do
+    end associate
+  end subroutine data_request
+
+  subroutine beam_section_params(st, kw, loc, sec)
+    !! Parameters of *BEAM SECTION / *BEAM GENERAL SECTION: SECTION= picks
+    !! superjoin's constants (GENERAL on *BEAM SECTION: A, I or A, Iy, Iz, J),
+    !! Abaqus's general section (GENERAL on *BEAM GENERAL SECTION, the default
+    !! there: A, I11, I12, I22, J) or a library shape (RECT, CIRC, PIPE, BOX, I,
+    !! L); OFFSET1/OFFSET2 (CalculiX) must be 0: the beam acts at the centroid.
+    type(deck_state_t), intent(inout) :: st
+    type(keyword_line_t), intent(in) :: kw
+    type(source_loc_t), intent(in) :: loc
+    type(sec_b_t), intent(inout) :: sec
+    character(:), allocatable :: value
+    logical :: found, general_card
+    integer :: k, stat
+    real(wp) :: x
+    general_card = kw%keyword == 'BEAM GENERAL SECTION'
+    call check_params(st, kw, loc, [character(NAME_LEN) :: 'ELSET', 'MATERIAL', 'SECTION', &
+         'POISSON', 'TEMPERATURE', 'OFFSET1', 'OFFSET2', 'ORIENTATION', 'DENSITY'], &
+         [character(NAME_LEN) :: 'LUMPED', 'ROTARY INERTIA'])
+    do k = 1, 2
+       call get_param(st, kw, loc, 'OFFSET'//itoa(k), .false., value, found)
+       if (.not. found) cycle
+       call parse_real(value, x, stat)
+       if (stat /= TOK_OK) then
+          call report_loc(st, loc, real_message(value, stat))
+       else if (x /= 0.0_wp) then
+          call report_loc(st, loc, 'OFFSET'//itoa(k)//'='//clip(value)//' is not supported: superjoin''s '// &
+               'beams act at the centroid of their section (OFFSET'//itoa(k)//'=0)')
+       end if
+    end do
+    call get_param(st, kw, loc, 'SECTION', .false., value, found)
+    if (.not. found) value = 'GENERAL'
+    value = to_upper(value)
+    if (value == 'GENERAL') then
+       if (general_card) sec%shape = SHAPE_GENERAL
+       return
+    end if
+    sec%shape = shape_index(value)
+    if (sec%shape == SHAPE_NONE) then
+       call report_loc(st, loc, 'SECTION='//clip(value)//' is not supported on *'//kw%keyword// &
+            ' (GENERAL, RECT, CIRC, PIPE, BOX, I)')
+       sec%data_ok = .false.
+    else if (sec%shape == SHAPE_L) then
+       call report_loc(st, loc, 'SECTION=L is not supported: an angle''s legs are not principal axes '// &
+            '(I12 /= 0) and its origin is not its centroid; give its principal constants with SECTION=GENERAL')
+       sec%data_ok = .false.
+    end if
+  end subroutine beam_section_params
+
+  subroutine data_beam_shape(st, line, loc)
+    !! First data line of a library section (its dimensions, constants computed
+    !! by superjoin_deck_beam_sections) or of Abaqus's general section
+    !! (A, I11, I12, I22, J); the second line, the direction of axis 1, is the
+    !! beam's orientation vector v.
+    type(deck_state_t), intent(inout) :: st
+    character(*), intent(in) :: line
+    type(source_loc_t), intent(in) :: loc
+    real(wp) :: d(MAX_SHAPE_DIMS)
+    type(section_props_t) :: p
+    character(:), allocatable :: problem, expected
+    integer :: i, nmin, nmax
+    real(wp), parameter :: CENTROID_TOL = 1.0e-9_wp
+    associate (sec => st%sections(st%card_item))
+      if (st%card_ndata == 1) sec%data_loc = loc
+      if (st%card_ndata > 2) then
+         call report_loc(st, loc, 'too many data lines for '//st%card_name)
+         sec%data_ok = .false.
+         st%card = CARD_SKIP
+         return
+      end if
+      if (st%card_ndata == 2) then
+         if (.not. field_count(st, loc, VECTOR_FIELDS, VECTOR_FIELDS, 'vx, vy, vz (direction of section axis 1)')) then
+            sec%data_ok = .false.
+            return
+         end if
+         do i = 1, 3
+            if (.not. get_real(st, line, loc, i, d(i))) then
+               sec%data_ok = .false.
+               return
+            end if
+         end do
+         if (norm2(d(1:3)) == 0.0_wp) then
+            call report_loc(st, loc, 'beam orientation vector is zero')
+            sec%data_ok = .false.
+            return
+         end if
+         sec%v = d(1:3)
+         sec%has_v = .true.
+         return
+      end if
+      if (sec%shape == SHAPE_GENERAL) then
+         nmin = GENERAL_FIELDS
+         nmax = GENERAL_FIELDS
+         expected = 'A, I11, I12, I22, J'
+      else
+         nmin = SHAPE_DIMS_MIN(sec%shape)
+         nmax = SHAPE_DIMS_MAX(sec%shape)
+         expected = trim(SHAPE_DATA(sec%shape))//' for SECTION='//trim(SHAPE_NAMES(sec%shape))
+      end if
+      if (.not. field_count(st, loc, nmin, nmax, expected)) then
+         sec%data_ok = .false.
+         return
+      end if
+      do i = 1, st%f%n
+         if (.not. get_real(st, line, loc, i, d(i))) then
+            sec%data_ok = .false.
+            return
+         end if
+      end do
+      if (sec%shape == SHAPE_GENERAL) then
+         if (.not. (d(1) > 0.0_wp .and. d(2) > 0.0_wp .and. d(4) > 0.0_wp .and. d(5) > 0.0_wp)) then
+            call report_loc(st, loc, 'beam section constants A, I11, I22, J must be positive')
+            sec%data_ok = .false.
+         else if (d(3) /= 0.0_wp) then
+            call report_loc(st, loc, 'I12 = '//fld(st, line, 3)//' is not supported: superjoin''s beams '// &
+                 'need principal axes (I12 = 0); give the principal constants and point v along axis 1')
+            sec%data_ok = .false.
+         else
+            sec%sp = [d(1), d(2), d(4), 0.0_wp, d(5)]
+         end if
+         return
+      end if
+      call section_properties(sec%shape, d(1:st%f%n), p, problem)
+      if (len(problem) > 0) then
+         call report_loc(st, loc, problem//' (SECTION='//trim(SHAPE_NAMES(sec%shape))//')')
+         sec%data_ok = .false.
+         return
+      end if
+      if (norm2(p%c) > CENTROID_TOL*maxval(d(1:st%f%n))) then
+         call report_loc(st, loc, 'the section''s centroid is not at its origin (offset '// &
+              real_text(p%c(1))//', '//real_text(p%c(2))//'): superjoin''s beams act at the centroid'// &
+              pick(sec%shape == SHAPE_I, ' (set l to the centroid height)', ''))
+         sec%data_ok = .false.
+         return
+      end if
+      sec%sp = [p%area, p%i11, p%i22, p%i12, p%j]
+    end associate
+  end subroutine data_beam_shape
+
+  pure integer function spring_type(name) result(kind)
+    !! SPRING_* of an element type name, 0 for the others.
+    character(*), intent(in) :: name
+    select case (name)
+    case ('SPRING1')
+       kind = SPRING_1
+    case ('SPRING2')
+       kind = SPRING_2
+    case ('SPRINGA')
+       kind = SPRING_A
+    case default
+       kind = 0
+    end select
+  end function spring_type
+
+  subroutine kw_spring_element(st, kw, loc, kind)
+    !! *ELEMENT, TYPE=SPRING1 | SPRING2 | SPRINGA: spring elements, turned into
+    !! supports and contact elements by their *SPRING card (superjoin_deck_springs).
+    type(deck_state_t), intent(inout) :: st
+    type(keyword_line_t), intent(in) :: kw
+    type(source_loc_t), intent(in) :: loc
+    integer, intent(in) :: kind
+    character(:), allocatable :: elset
+    logical :: found
+    call get_name_param(st, kw, loc, 'ELSET', .false., elset, found)
+    if (.not. found) elset = ''
+    st%spring_elset = elset
+    st%card = CARD_SPRING_ELEMENT
+    st%card_sub = target_sub(st, loc)
+    st%card_etype = kind
+  end subroutine kw_spring_element
+
+  subroutine data_spring_element(st, line, loc)
+    !! id, node (SPRING1) or id, node 1, node 2 (SPRING2, SPRINGA).
+    type(deck_state_t), intent(inout) :: st
+    character(*), intent(in) :: line
+    type(source_loc_t), intent(in) :: loc
+    type(spring_elem_b_t) :: e
+    integer :: nn, i
+    nn = merge(1, 2, st%card_etype == SPRING_1)
+    if (.not. field_count(st, loc, nn + 1, nn + 1, 'id and '//itoa(nn)//' node'//pick(nn == 1, '', 's')// &
+         ' for a spring')) return
+    if (.not. get_id(st, line, loc, 1, 'element id', e%id)) return
+    do i = 1, nn
+       if (.not. get_id(st, line, loc, i + 1, 'node id', e%nid(i))) return
+    end do
+    e%kind = st%card_etype
+    e%sub = st%card_sub
+    e%elset = st%spring_elset
+    e%loc = loc
+    call add_spring_elem(st, e)
+  end subroutine data_spring_element
+
+  subroutine kw_spring(st, kw, loc)
+    !! *SPRING, ELSET=e: the DOF line (SPRING1, SPRING2) and the stiffness line.
+    type(deck_state_t), intent(inout) :: st
+    type(keyword_line_t), intent(in) :: kw
+    type(source_loc_t), intent(in) :: loc
+    type(spring_card_b_t) :: c
+    logical :: found
+    st%card = CARD_SKIP
+    if (.not. outside_step(st, kw, loc)) return
+    call check_params(st, kw, loc, [character(NAME_LEN) :: 'ELSET', 'ORIENTATION'], [character(NAME_LEN) :: 'NONLINEAR'])
+    if (param_index(kw, 'NONLINEAR') > 0) then
+       call report_loc(st, loc, 'superjoin does linear statics; *SPRING, NONLINEAR (a nonlinear spring) '// &
+            'is not supported')
+       c%refused = .true.
+    else if (param_index(kw, 'ORIENTATION') > 0) then
+       call report_loc(st, loc, '*SPRING, ORIENTATION= is not supported: a SPRING1/SPRING2 acts on global '// &
+            'DOFs (for an oriented joint use *CONTACT, ORIENTATION=)')
+       c%refused = .true.
+    end if
+    call get_name_param(st, kw, loc, 'ELSET', .true., c%elset, found)
+    if (.not. found) return
+    c%sub = target_sub(st, loc)
+    c%loc = loc
+    call add_spring_card(st, c, st%card_item)
+    if (.not. c%refused) st%card = CARD_SPRING
+  end subroutine kw_spring
+
+  subroutine data_spring(st, line, loc)
+    type(deck_state_t), intent(inout) :: st
+    character(*), intent(in) :: line
+    type(source_loc_t), intent(in) :: loc
+    integer :: i
+    associate (c => st%spring_cards(st%card_item))
+      if (st%card_ndata > 2) then
+         call report_loc(st, loc, 'too many data lines for *SPRING (DOF line, stiffness line)')
+         st%card = CARD_SKIP
+         return
+      end if
+      if (.not. field_count(st, loc, 1, 2, 'DOF(s) or stiffness')) return
+      do i = 1, st%f%n
+         if (.not. get_real(st, line, loc, i, c%v(i, st%card_ndata))) return
+      end do
+      c%ndata = st%card_ndata
+      c%nfield(st%card_ndata) = st%f%n
+      c%data_loc(st%card_ndata) = loc
+    end associate
+  end subroutine data_spring
 
   function loc_string(st, loc) result(s)
     !! "file:line" of a location.

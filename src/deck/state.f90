@@ -14,6 +14,8 @@ module superjoin_deck_state
   integer, parameter, public :: MAX_ERRORS = 50          !! messages before '... too many errors'
   integer, parameter, public :: MAX_INCLUDE_DEPTH = 16   !! nested *INCLUDE levels
   integer, parameter :: INITIAL_CAPACITY = 16
+  integer, parameter, public :: SHAPE_GENERAL = 100
+    !! sec_b_t%shape of *BEAM GENERAL SECTION, SECTION=GENERAL (A, I11, I12, I22, J).
   integer, parameter, public :: BEAM_2D_VALUES = 2, BEAM_3D_VALUES = 4
     !! Numbers on the first data line of *BEAM SECTION: A, I (2D) or A, Iy, Iz, J (3D).
 
@@ -93,6 +95,8 @@ module superjoin_deck_state
      integer :: ndata = 0
      logical :: data_ok = .true.
      type(source_loc_t) :: loc, data_loc
+     integer :: shape = 0                  !! SHAPE_* of superjoin_deck_beam_sections, SHAPE_GENERAL, 0: A, I data
+     real(wp) :: sp(5) = 0.0_wp            !! its A, I11, I22, I12, J (section axes 1, 2)
   end type sec_b_t
 
   type, public :: contact_b_t
@@ -178,6 +182,45 @@ module superjoin_deck_state
      type(source_loc_t) :: sweep_loc
   end type step_b_t
 
+  type, public :: request_b_t
+    !! An output request card as read (set still by name).
+     integer :: kind = 0                   !! REQ_* of the model
+     character(:), allocatable :: card     !! '*NODE PRINT', ... as written (upper case)
+     integer :: step = 0                   !! step index, 0 outside *STEP
+     logical :: has_set = .false.
+     type(ref_t) :: set                    !! NSET= / ELSET= as written
+     integer :: totals = 0
+     integer :: nvar = 0, nignored = 0
+     type(string_t), allocatable :: vars(:), ignored(:)
+     type(source_loc_t) :: loc
+  end type request_b_t
+
+  integer, parameter, public :: SPRING_1 = 1, SPRING_2 = 2, SPRING_A = 3
+    !! Spring element types (*ELEMENT, TYPE=SPRING1 | SPRING2 | SPRINGA).
+
+  type, public :: spring_elem_b_t
+    !! A spring element: not a finite element of the model but a support
+    !! (SPRING1) or a contact element (SPRING2, SPRINGA) once its *SPRING is read.
+     integer(ip) :: id = 0
+     integer :: kind = 0                   !! SPRING_*
+     integer(ip) :: nid(2) = 0             !! user node ids (SPRING1: nid(1) only)
+     integer :: sub = 0                    !! its substructure
+     character(:), allocatable :: elset    !! ELSET= of its *ELEMENT card ('' without)
+     type(source_loc_t) :: loc
+  end type spring_elem_b_t
+
+  type, public :: spring_card_b_t
+    !! A *SPRING card: its ELSET= and the numbers of its (at most two) data lines.
+     character(:), allocatable :: elset
+     integer :: sub = 0
+     integer :: ndata = 0
+     integer :: nfield(2) = 0
+     real(wp) :: v(2, 2) = 0.0_wp          !! (field, line)
+     logical :: refused = .false.          !! reported on its keyword line: its elements get no other message
+     type(source_loc_t) :: loc
+     type(source_loc_t) :: data_loc(2)
+  end type spring_card_b_t
+
   type, public :: deck_state_t
     !! Everything the reader has collected, and the card being read.
      type(error_t), allocatable :: error
@@ -211,6 +254,14 @@ module superjoin_deck_state
      type(controls_t) :: controls
      character(:), allocatable :: vtk_path          !! *OUTPUT, VTK= resolved against its file's directory
      type(source_loc_t) :: vtk_loc
+     integer :: nreq = 0                            !! output request cards
+     type(request_b_t), allocatable :: requests(:)
+     integer :: step_procedure = 0                  !! procedure card of the open step (0: none yet)
+     type(source_loc_t) :: step_procedure_loc
+     integer :: nspring_elem = 0, nspring_card = 0  !! spring elements and *SPRING cards
+     type(spring_elem_b_t), allocatable :: spring_elems(:)
+     type(spring_card_b_t), allocatable :: spring_cards(:)
+     character(:), allocatable :: spring_elset      !! ELSET= of the open spring *ELEMENT card
      integer :: nelem_cards = 0
      integer :: ninst = 0
      type(instance_b_t), allocatable :: instances(:)
@@ -243,6 +294,7 @@ module superjoin_deck_state
   public :: report, report_loc, report_oom, new_sub, find_sub, find_set, new_set, add_chunk, push_pool
   public :: add_node, add_element, add_heading, add_material, add_orientation, add_section
   public :: add_contact, add_cline, add_support, add_step, add_load, file_of
+  public :: add_request, add_request_var, add_spring_elem, add_spring_card
 
 contains
 
@@ -683,4 +735,88 @@ contains
        step%cloads(step%ncload) = load
     end if
   end subroutine add_load
+
+  ! ------------------------------------------------------------------ output requests
+
+  subroutine add_request(st, r, k)
+    !! Append an output request card; `k` is its index.
+    type(deck_state_t), intent(inout) :: st
+    type(request_b_t), intent(in) :: r
+    integer, intent(out) :: k
+    type(request_b_t), allocatable :: tmp(:)
+    if (.not. allocated(st%requests)) allocate (st%requests(INITIAL_CAPACITY))
+    if (st%nreq == size(st%requests)) then
+       allocate (tmp(2*st%nreq))
+       tmp(1:st%nreq) = st%requests(1:st%nreq)
+       call move_alloc(tmp, st%requests)
+    end if
+    st%nreq = st%nreq + 1
+    k = st%nreq
+    st%requests(k) = r
+    allocate (st%requests(k)%vars(INITIAL_CAPACITY), st%requests(k)%ignored(INITIAL_CAPACITY))
+  end subroutine add_request
+
+  subroutine add_request_var(r, name, produced)
+    !! Add a variable to a request (kept once): to vars when superjoin produces
+    !! it, else to ignored.
+    type(request_b_t), intent(inout) :: r
+    character(*), intent(in) :: name
+    logical, intent(in) :: produced
+    if (produced) then
+       call push_name(r%vars, r%nvar)
+    else
+       call push_name(r%ignored, r%nignored)
+    end if
+  contains
+    subroutine push_name(list, n)
+      type(string_t), allocatable, intent(inout) :: list(:)
+      integer, intent(inout) :: n
+      type(string_t), allocatable :: tmp(:)
+      integer :: i
+      do i = 1, n
+         if (list(i)%s == name) return
+      end do
+      if (n == size(list)) then
+         allocate (tmp(2*n))
+         tmp(1:n) = list(1:n)
+         call move_alloc(tmp, list)
+      end if
+      n = n + 1
+      list(n)%s = name
+    end subroutine push_name
+  end subroutine add_request_var
+
+  ! ------------------------------------------------------------------ springs
+
+  subroutine add_spring_elem(st, e)
+    !! Append a spring element.
+    type(deck_state_t), intent(inout) :: st
+    type(spring_elem_b_t), intent(in) :: e
+    type(spring_elem_b_t), allocatable :: tmp(:)
+    if (.not. allocated(st%spring_elems)) allocate (st%spring_elems(INITIAL_CAPACITY))
+    if (st%nspring_elem == size(st%spring_elems)) then
+       allocate (tmp(2*st%nspring_elem))
+       tmp(1:st%nspring_elem) = st%spring_elems(1:st%nspring_elem)
+       call move_alloc(tmp, st%spring_elems)
+    end if
+    st%nspring_elem = st%nspring_elem + 1
+    st%spring_elems(st%nspring_elem) = e
+  end subroutine add_spring_elem
+
+  subroutine add_spring_card(st, c, k)
+    !! Append a *SPRING card; `k` is its index.
+    type(deck_state_t), intent(inout) :: st
+    type(spring_card_b_t), intent(in) :: c
+    integer, intent(out) :: k
+    type(spring_card_b_t), allocatable :: tmp(:)
+    if (.not. allocated(st%spring_cards)) allocate (st%spring_cards(INITIAL_CAPACITY))
+    if (st%nspring_card == size(st%spring_cards)) then
+       allocate (tmp(2*st%nspring_card))
+       tmp(1:st%nspring_card) = st%spring_cards(1:st%nspring_card)
+       call move_alloc(tmp, st%spring_cards)
+    end if
+    st%nspring_card = st%nspring_card + 1
+    k = st%nspring_card
+    st%spring_cards(k) = c
+  end subroutine add_spring_card
 end module superjoin_deck_state

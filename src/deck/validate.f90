@@ -12,6 +12,7 @@ module superjoin_deck_validate
   use superjoin_deck_state, only: deck_state_t, sub_b_t, ref_t, load_b_t, report, report_loc, report_oom, find_set, &
        CH_IDS, CH_GEN, CH_RANGE, CH_REF, BEAM_2D_VALUES, BEAM_3D_VALUES, SUBK_INSTANCE
   use superjoin_utils_strings, only: pick
+  use superjoin_deck_requests, only: build_requests
   implicit none (type, external)
   private
 
@@ -150,6 +151,7 @@ contains
     call build_steps(st, model)
     if (st%aborted) return
     call build_overrides(st, model)
+    call build_requests(st, model)
   end subroutine build_model
 
   ! ================================================================== substructures
@@ -571,6 +573,19 @@ contains
       case (SEC_SHELL)
          sec%thickness = sb%val(1)
       case (SEC_BEAM)
+         if (sb%shape /= 0) then    ! library shape or Abaqus general section: constants in sb%sp
+            sec%area = sb%sp(1)
+            if (nb23 > 0) then
+               sec%iz = sb%sp(2)    ! a 2D beam bends about section axis 1, normal to its plane
+            else
+               sec%iy = sb%sp(2)    ! local y = section axis 1 (along v), local z = axis 2
+               sec%iz = sb%sp(3)
+               sec%j = sb%sp(5)
+               sec%has_v = sb%has_v
+               if (sb%has_v) sec%v = sb%v
+            end if
+            return
+         end if
          if (nb23 > 0 .and. sb%nval /= BEAM_2D_VALUES) then
             call report_loc(st, sb%data_loc, '*BEAM SECTION of 2D beams (B23) needs A, I')
             return

@@ -189,6 +189,33 @@ module superjoin_model_types
      type(link_override_t), allocatable :: link_overrides(:)  !! *CHANGE CONTACT (unallocated or empty: none)
   end type step_t
 
+  integer, parameter, public :: REQ_NODE_PRINT = 1, REQ_EL_PRINT = 2, REQ_NODE_FILE = 3, REQ_EL_FILE = 4
+    !! Kinds of output requests (CalculiX groups: *NODE OUTPUT counts as *NODE FILE,
+    !! *ELEMENT OUTPUT as *EL FILE).
+  integer, parameter, public :: NUM_REQ_KINDS = 4
+  character(len=11), parameter, public :: REQ_KIND_NAMES(NUM_REQ_KINDS) = &
+       ['*NODE PRINT', '*EL PRINT  ', '*NODE FILE ', '*EL FILE   ']
+  integer, parameter, public :: TOTALS_NO = 0, TOTALS_YES = 1, TOTALS_ONLY = 2
+    !! TOTALS= of a print request.
+
+  type, public :: output_request_t
+    !! One output request card (*NODE PRINT, *EL PRINT, *NODE FILE, *EL FILE,
+    !! *NODE OUTPUT, *ELEMENT OUTPUT). CalculiX scoping: the requests of a kind
+    !! written in a step replace those of earlier steps; a step without a request
+    !! of that kind keeps the previous step's (step 0: written outside *STEP,
+    !! the default of every step).
+     integer :: kind = 0                   !! REQ_*
+     character(:), allocatable :: card     !! the keyword as written (upper case, with '*')
+     integer :: step = 0                   !! index into model%steps; 0: outside *STEP
+     integer :: sub = 0                    !! substructure of the set; 0: the whole model
+     character(:), allocatable :: set_name !! NSET= / ELSET= (upper case), unallocated: all
+     integer(ip), allocatable :: items(:)  !! local node or element indices in sub (with a set)
+     integer :: totals = TOTALS_NO         !! TOTALS_*
+     type(string_t), allocatable :: vars(:)     !! variables superjoin produces (upper case)
+     type(string_t), allocatable :: ignored(:)  !! variables it knows but cannot produce (thermal, plastic...)
+     type(source_loc_t) :: loc
+  end type output_request_t
+
   type, public :: controls_t
     !! Analysis controls from *CONTROLS.
      integer :: formulation = FORM_TRANSFORM
@@ -210,6 +237,7 @@ module superjoin_model_types
      type(controls_t) :: controls
      character(:), allocatable :: vtk_path          !! *OUTPUT, VTK= joined to its deck file's directory, or unallocated
      type(string_t), allocatable :: parts(:)        !! *PART names; subs(i)%part indexes this list
+     type(output_request_t), allocatable :: requests(:)  !! output request cards in order (empty: full output)
   end type model_t
 
   public :: find_node, find_elem, node_label, loc_text

@@ -12,6 +12,8 @@ module superjoin_output_listing
   use superjoin_output_text_buffer, only: text_buffer_t
   use superjoin_config, only: SUPERJOIN_VERSION
   use superjoin_utils_strings, only: itoa
+  use superjoin_utils_memory, only: out_of_memory
+  use superjoin_output_requests, only: write_print_requests
   implicit none (type, external)
   private
 
@@ -31,12 +33,16 @@ contains
     type(results_t), intent(in) :: res
     type(error_t), allocatable, intent(out) :: error
     type(text_buffer_t), allocatable :: lu
-    integer :: is
+    integer :: is, stat
     logical :: ok
     character(:), allocatable :: tmp
 
     tmp = path//'.tmp'
-    allocate (lu)
+    allocate (lu, stat=stat)
+    if (stat /= 0) then
+       call out_of_memory(error, 'the listing buffer', int(storage_size(lu)/8, i8))
+       return
+    end if
     call temp_register(tmp)
     call lu%open(tmp, error)
     if (allocated(error)) then
@@ -46,6 +52,7 @@ contains
     call header(lu, model, res)
     do is = 1, size(model%steps)
        call step_block(lu, model, res, is)
+       call write_print_requests(lu, model, res, is)
     end do
     call lu%line(RULE)
     call lu%line('END OF LISTING')

@@ -47,6 +47,13 @@ static void cleanup_handler(int sig)
 
 /* Returns 0 when every handler was installed (SJ_SETUP_HANDLERS if not).
  * *blas_bytes is 0 when BLAS is ready, else the bytes its buffer needs. */
+/* A run that the Fortran runtime ends (an allocation inside its I/O library
+   failing, say) leaves through exit(): the temporary file goes too. */
+static void remove_temp_at_exit(void)
+{
+    if (atomic_load(&temp_set)) unlink(temp_path);
+}
+
 int sj_process_setup(int64_t *blas_bytes)
 {
     int status = 0;
@@ -57,6 +64,7 @@ int sj_process_setup(int64_t *blas_bytes)
     void *probe;
 
     if (signal(SIGXFSZ, SIG_IGN) == SIG_ERR) status = SJ_SETUP_HANDLERS;
+    if (atexit(remove_temp_at_exit) != 0) status = SJ_SETUP_HANDLERS;
     memset(&sa, 0, sizeof sa);
     sa.sa_handler = cleanup_handler;
     sigemptyset(&sa.sa_mask);

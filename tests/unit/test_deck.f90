@@ -691,7 +691,8 @@ contains
          'invalid real')
     call read_bad(join([character(L) :: '*NODE', '1, 0, nan']), 'NaN and Inf are not allowed', 'NaN')
     call read_bad(join([character(L) :: '*NODE', '1, 0, 1e999']), "real out of range '1e999'", 'overflow')
-    call read_bad(join([character(L) :: '*NODE', '1, , 0']), 'invalid real: empty field', 'empty real')
+    call read_bad(join([character(L) :: '*MATERIAL, NAME=M', '*ELASTIC', ', 0.3']), 'invalid real: empty field', &
+         'empty real')
     call read_bad(join([character(L) :: '*NODE', '0, 0, 0']), "inline.deck:2: error: invalid node id '0'", 'id 0')
     call read_bad(join([character(L) :: '*NODE', '2147483648, 0, 0']), "invalid node id '2147483648'", 'id 2**31')
     call read_bad(join([character(L) :: '*NODE', '1, 0, 0', '1, 1, 0']), &
@@ -706,7 +707,7 @@ contains
          'element node count')
     call read_bad(join([character(L) :: '*NODE', '1, 0, 0', '*ELEMENT, TYPE=C3D8', '4, 1, 2, 3']), &
          'inline.deck:3: error: unsupported element type C3D8', 'element type')
-    call read_bad(join([character(L) :: '*NODE', '1, 0', '']), 'wrong number of fields on *NODE data line', &
+    call read_bad(join([character(L) :: '*NODE', '1, 0, 0, 0, 0, 0, 1, 2', '']), 'wrong number of fields on *NODE data line', &
          'node field count')
     call read_bad(join([character(L) :: '1, 0, 0']), 'inline.deck:1: error: data line without a keyword', &
          'data before any keyword')

@@ -1,0 +1,113 @@
+module superjoin_deck_ccx_cards
+  !! Tables of the CalculiX/Abaqus analysis cards that the deck reader knows
+  !! without doing: procedures and material or contact behaviour that linear
+  !! statics does not have (refused with one clear message each), the output
+  !! request cards and their variables (produced, known but not produced, or
+  !! unknown). Pure look-ups; the parser reports.
+  use superjoin_model_types, only: REQ_NODE_PRINT, REQ_EL_PRINT, REQ_NODE_FILE, REQ_EL_FILE
+  implicit none (type, external)
+  private
+
+  public :: refused_card_reason, request_kind, is_node_request, classify_variable
+
+  integer, parameter, public :: VAR_UNKNOWN = 0, VAR_PRODUCED = 1, VAR_NOT_PRODUCED = 2
+    !! What superjoin does with an output variable.
+
+  integer, parameter :: KW_LEN = 40, REASON_LEN = 60, VAR_LEN = 5
+
+  integer, parameter :: NUM_REFUSED = 32
+  character(len=KW_LEN), parameter :: REFUSED_KEYWORDS(NUM_REFUSED) = [character(len=KW_LEN) :: &
+       'FREQUENCY', 'BUCKLE', 'DYNAMIC', 'MODAL DYNAMIC', 'STEADY STATE DYNAMICS', &
+       'COMPLEX FREQUENCY', 'HEAT TRANSFER', 'COUPLED TEMPERATURE-DISPLACEMENT', &
+       'UNCOUPLED TEMPERATURE-DISPLACEMENT', 'VISCO', 'GREEN', 'SENSITIVITY', 'ELECTROMAGNETICS', &
+       'CFD', 'SUBSTRUCTURE GENERATE', &
+       'PLASTIC', 'HYPERELASTIC', 'HYPERFOAM', 'CREEP', 'DEFORMATION PLASTICITY', 'USER MATERIAL', &
+       'CYCLIC HARDENING', 'CONTACT PAIR', 'SURFACE INTERACTION', 'SURFACE BEHAVIOR', 'FRICTION', &
+       'GAP', 'GAP CONDUCTANCE', 'TEMPERATURE', 'INITIAL CONDITIONS', 'MODAL DAMPING', &
+       'CONTACT DAMPING']
+  character(len=REASON_LEN), parameter :: REFUSED_REASONS(NUM_REFUSED) = [character(len=REASON_LEN) :: &
+       'natural frequencies', 'linear buckling', 'dynamics', 'modal dynamics', &
+       'steady-state dynamics', 'complex frequencies', 'heat transfer', &
+       'coupled thermomechanics', 'thermomechanics', 'viscoplasticity', &
+       'Green functions', 'sensitivities', 'electromagnetics', 'fluid dynamics', &
+       'superelement generation', &
+       'plasticity', 'hyperelasticity', 'hyperelastic foams', 'creep', 'deformation plasticity', &
+       'user materials', 'plastic hardening', 'nonlinear contact', 'nonlinear contact', &
+       'nonlinear contact', 'friction', 'gap elements', 'heat transfer', 'thermal loads', &
+       'initial conditions', 'dynamics', 'dynamics']
+
+  integer, parameter :: NUM_NODE_PRODUCED = 3, NUM_EL_PRODUCED = 3
+  character(len=VAR_LEN), parameter :: NODE_PRODUCED(NUM_NODE_PRODUCED) = ['U    ', 'RF   ', 'CF   ']
+  character(len=VAR_LEN), parameter :: EL_PRODUCED(NUM_EL_PRODUCED) = ['S    ', 'E    ', 'SF   ']
+  integer, parameter :: NUM_NODE_KNOWN = 25
+  character(len=VAR_LEN), parameter :: NODE_KNOWN(NUM_NODE_KNOWN) = [character(len=VAR_LEN) :: &
+       'NT', 'TS', 'RFL', 'PN', 'PS', 'PT', 'TT', 'TTF', 'MF', 'V', 'VF', 'DEPF', 'TURB', 'MACH', 'CP', &
+       'SEN', 'POT', 'PU', 'PNT', 'PHS', 'MAXU', 'HCRI', 'CONC', 'SLIP', 'UR']
+  integer, parameter :: NUM_EL_KNOWN = 30
+  character(len=VAR_LEN), parameter :: EL_KNOWN(NUM_EL_KNOWN) = [character(len=VAR_LEN) :: &
+       'ME', 'PEEQ', 'CEEQ', 'ENER', 'SDV', 'HFL', 'HFLF', 'COORD', 'ELSE', 'ELKE', 'EVOL', 'EMAS', &
+       'EBHE', 'CENT', 'ZZS', 'ERR', 'HER', 'MAXS', 'MAXE', 'SVF', 'ESE', 'THE', 'PHS', 'EMFE', 'EMFB', &
+       'MF', 'DEPF', 'CELS', 'CDIS', 'CSTR']
+
+contains
+
+  pure function refused_card_reason(keyword) result(reason)
+    !! For a card that linear statics does not have, what it is ('natural
+    !! frequencies' for FREQUENCY); '' for any other keyword.
+    character(*), intent(in) :: keyword
+    character(:), allocatable :: reason
+    integer :: k
+    reason = ''
+    do k = 1, NUM_REFUSED
+       if (trim(REFUSED_KEYWORDS(k)) == keyword) then
+          reason = trim(REFUSED_REASONS(k))
+          return
+       end if
+    end do
+  end function refused_card_reason
+
+  pure integer function request_kind(keyword) result(kind)
+    !! REQ_* of an output request keyword (0 for any other keyword).
+    character(*), intent(in) :: keyword
+    select case (keyword)
+    case ('NODE PRINT')
+       kind = REQ_NODE_PRINT
+    case ('EL PRINT')
+       kind = REQ_EL_PRINT
+    case ('NODE FILE', 'NODE OUTPUT')
+       kind = REQ_NODE_FILE
+    case ('EL FILE', 'ELEMENT OUTPUT')
+       kind = REQ_EL_FILE
+    case default
+       kind = 0
+    end select
+  end function request_kind
+
+  pure logical function is_node_request(kind)
+    !! Does a request of this kind name nodes (NSET=) rather than elements (ELSET=)?
+    integer, intent(in) :: kind
+    is_node_request = kind == REQ_NODE_PRINT .or. kind == REQ_NODE_FILE
+  end function is_node_request
+
+  pure integer function classify_variable(kind, name) result(what)
+    !! VAR_PRODUCED, VAR_NOT_PRODUCED or VAR_UNKNOWN for variable `name` (upper
+    !! case) of a request of this kind.
+    integer, intent(in) :: kind
+    character(*), intent(in) :: name
+    what = VAR_UNKNOWN
+    if (len(name) > VAR_LEN) return
+    if (is_node_request(kind)) then
+       if (any(NODE_PRODUCED == name)) then
+          what = VAR_PRODUCED
+       else if (any(NODE_KNOWN == name)) then
+          what = VAR_NOT_PRODUCED
+       end if
+    else
+       if (any(EL_PRODUCED == name)) then
+          what = VAR_PRODUCED
+       else if (any(EL_KNOWN == name)) then
+          what = VAR_NOT_PRODUCED
+       end if
+    end if
+  end function classify_variable
+end module superjoin_deck_ccx_cards

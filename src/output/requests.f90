@@ -1,0 +1,483 @@
+module superjoin_output_requests
+  !! The listing section of the print requests (*NODE PRINT, *EL PRINT): per
+  !! step, after the standard tables, the requested variables for the
+  !! requested sets, as CalculiX writes them to its .dat file. A deck without
+  !! print requests gets no such section (its listing is unchanged).
+  !!
+  !! CalculiX scoping: the requests of one kind written in a step replace those
+  !! of earlier steps; a step without one keeps the previous step's; requests
+  !! written outside *STEP (superjoin) are the default of every step.
+  use superjoin_kinds, only: wp, i8, ip
+  use superjoin_model_types, only: model_t, output_request_t, NDOF_NODE, REQ_NODE_PRINT, REQ_EL_PRINT, &
+       REQ_KIND_NAMES, TOTALS_YES, TOTALS_ONLY, ET_T2D2, ET_T3D2, ET_CPS3, ET_CPS4, ELEMENT_TYPE_NAMES, &
+       ELEMENT_NODE_COUNT
+  use superjoin_elements, only: is_plate_type
+  use superjoin_elements_shell, only: shell_frame
+  use superjoin_error, only: error_t
+  use superjoin_analysis_results, only: results_t
+  use superjoin_output_text_buffer, only: text_buffer_t
+  use superjoin_utils_strings, only: itoa
+  implicit none (type, external)
+  private
+
+  public :: write_print_requests, effective_requests
+
+  real(wp), parameter :: CHOP_FRACTION = 1.0e-13_wp
+    !! As in the listing: values below this fraction of their table's largest print as zero.
+  integer, parameter :: NTENSOR = 6
+  character(len=15), parameter :: TENSOR_HEAD(NTENSOR) = ['             xx', '             yy', &
+       '             zz', '             xy', '             xz', '             yz']
+  character(len=15), parameter :: NODE_HEAD(NDOF_NODE) = ['              1', '              2', &
+       '              3', '              4', '              5', '              6']
+
+contains
+
+  subroutine effective_requests(model, is, kind, idx)
+    !! Indices into model%requests of the requests of `kind` that apply to step `is`.
+    type(model_t), intent(in) :: model
+    integer, intent(in) :: is, kind
+    integer, allocatable, intent(out) :: idx(:)
+    integer :: s, k
+    allocate (idx(0))
+    if (.not. allocated(model%requests)) return
+    do s = is, 0, -1
+       do k = 1, size(model%requests)
+          if (model%requests(k)%kind == kind .and. model%requests(k)%step == s) idx = [idx, k]
+       end do
+       if (size(idx) > 0) return
+    end do
+  end subroutine effective_requests
+
+  subroutine write_print_requests(lu, model, res, is)
+    !! The REQUESTED OUTPUT section of step `is` (nothing without print requests).
+    type(text_buffer_t), intent(inout) :: lu
+    type(model_t), intent(in) :: model
+    type(results_t), intent(in) :: res
+    integer, intent(in) :: is
+    integer, allocatable :: nodes(:), elems(:)
+    integer :: k
+    call effective_requests(model, is, REQ_NODE_PRINT, nodes)
+    call effective_requests(model, is, REQ_EL_PRINT, elems)
+    if (size(nodes) + size(elems) == 0) return
+    call lu%line('REQUESTED OUTPUT (*NODE PRINT, *EL PRINT) of step '//itoa(is))
+    do k = 1, size(nodes)
+       call node_request(lu, model, res, is, model%requests(nodes(k)))
+    end do
+    do k = 1, size(elems)
+       call element_request(lu, model, res, is, model%requests(elems(k)))
+    end do
+  end subroutine write_print_requests
+
+  subroutine request_title(lu, model, r)
+    type(text_buffer_t), intent(inout) :: lu
+    type(model_t), intent(in) :: model
+    type(output_request_t), intent(in) :: r
+    character(:), allocatable :: t
+    integer :: k
+    t = '  '//trim(REQ_KIND_NAMES(r%kind))
+    if (allocated(r%set_name)) then
+       if (r%kind == REQ_NODE_PRINT) then
+          t = t//', NSET='//r%set_name
+       else
+          t = t//', ELSET='//r%set_name
+       end if
+    end if
+    if (r%totals == TOTALS_YES) t = t//', TOTALS=YES'
+    if (r%totals == TOTALS_ONLY) t = t//', TOTALS=ONLY'
+    call lu%line(t//'   ('//card_place(model, r)//')')
+    do k = 1, size(r%ignored)
+       call lu%line('    '//r%ignored(k)%s//': not produced by superjoin (linear statics)')
+    end do
+  end subroutine request_title
+
+  function card_place(model, r) result(s)
+    type(model_t), intent(in) :: model
+    type(output_request_t), intent(in) :: r
+    character(:), allocatable :: s
+    s = 'line '//itoa(r%loc%line)
+    if (r%loc%file >= 1 .and. r%loc%file <= size(model%files)) s = model%files(r%loc%file)%s//':'//itoa(r%loc%line)
+  end function card_place
+
+  ! ------------------------------------------------------------------ nodes
+
+  subroutine node_request(lu, model, res, is, r)
+    type(text_buffer_t), intent(inout) :: lu
+    type(model_t), intent(in) :: model
+    type(results_t), intent(in) :: res
+    integer, intent(in) :: is
+    type(output_request_t), intent(in) :: r
+    integer :: iv
+    integer(ip) :: nsel
+    integer, allocatable :: subs(:)
+    integer(ip), allocatable :: nodes(:)
+    real(wp), allocatable :: vals(:, :)
+    call request_title(lu, model, r)
+    call selected_nodes(model, r, subs, nodes)
+    nsel = size(nodes, kind=ip)
+    allocate (vals(NDOF_NODE, nsel))
+    do iv = 1, size(r%vars)
+       select case (r%vars(iv)%s)
+       case ('U')
+          call lu%line('    U   displacements (global axes; 4-6: rotations)')
+          call fill_u(vals)
+       case ('RF')
+          call lu%line('    RF  reaction forces (sum of the support reactions on the node, global axes)')
+          call fill_rf(vals)
+       case ('CF')
+          call lu%line('    CF  concentrated loads (*CLOAD, global axes)')
+          call fill_cf(vals)
+       case default
+          cycle
+       end select
+       call node_table(lu, model, r, subs, nodes, vals)
+    end do
+    call lu%line('')
+  contains
+    subroutine fill_u(v)
+      real(wp), intent(out) :: v(:, :)
+      integer(ip) :: i
+      integer(i8) :: vx
+      integer :: d
+      do i = 1, nsel
+         vx = res%vertex_offset(subs(i)) + nodes(i)
+         do d = 1, NDOF_NODE
+            v(d, i) = res%u(NDOF_NODE*(vx - 1) + d, is)
+         end do
+      end do
+    end subroutine fill_u
+    subroutine fill_rf(v)
+      real(wp), intent(out) :: v(:, :)
+      integer(ip) :: i
+      integer :: k
+      v = 0.0_wp
+      do k = 1, size(res%steps(is)%reactions)
+         associate (rc => res%steps(is)%reactions(k))
+           do i = 1, nsel
+              if (subs(i) == rc%sub .and. nodes(i) == rc%node) v(rc%dof, i) = v(rc%dof, i) + rc%force
+           end do
+         end associate
+      end do
+    end subroutine fill_rf
+    subroutine fill_cf(v)
+      real(wp), intent(out) :: v(:, :)
+      integer(ip) :: i
+      integer :: k
+      v = 0.0_wp
+      do k = 1, size(model%steps(is)%cloads)
+         associate (cl => model%steps(is)%cloads(k))
+           do i = 1, nsel
+              if (subs(i) == cl%sub .and. nodes(i) == cl%node) v(cl%dof, i) = v(cl%dof, i) + cl%value
+           end do
+         end associate
+      end do
+    end subroutine fill_cf
+  end subroutine node_request
+
+  subroutine selected_nodes(model, r, subs, nodes)
+    !! The nodes a request names: its set, or every node of the model.
+    type(model_t), intent(in) :: model
+    type(output_request_t), intent(in) :: r
+    integer, allocatable, intent(out) :: subs(:)
+    integer(ip), allocatable, intent(out) :: nodes(:)
+    integer :: isub
+    integer(ip) :: n, k
+    if (r%sub > 0 .and. allocated(r%items)) then
+       nodes = r%items
+       allocate (subs(size(nodes)))
+       subs = r%sub
+       return
+    end if
+    n = 0
+    do isub = 1, size(model%subs)
+       n = n + model%subs(isub)%nnode
+    end do
+    allocate (subs(n), nodes(n))
+    k = 0
+    do isub = 1, size(model%subs)
+       do n = 1, model%subs(isub)%nnode
+          k = k + 1
+          subs(k) = isub
+          nodes(k) = n
+       end do
+    end do
+  end subroutine selected_nodes
+
+  subroutine node_table(lu, model, r, subs, nodes, vals)
+    type(text_buffer_t), intent(inout) :: lu
+    type(model_t), intent(in) :: model
+    type(output_request_t), intent(in) :: r
+    integer, intent(in) :: subs(:)
+    integer(ip), intent(in) :: nodes(:)
+    real(wp), intent(in) :: vals(:, :)
+    character(len=200) :: hline
+    real(wp) :: scale
+    integer :: i, d
+    write (hline, '(4x,a20,a10,6a15)') 'substructure        ', '      node', NODE_HEAD
+    call lu%line(trim(hline))
+    scale = 0.0_wp
+    if (size(vals) > 0) scale = maxval(abs(vals))
+    if (r%totals /= TOTALS_ONLY) then
+       do i = 1, size(nodes)
+          call lu%put('    ')
+          call lu%put_field(model%subs(subs(i))%name, 20)
+          call lu%put_int(int(model%subs(subs(i))%node_id(nodes(i)), i8), 10)
+          do d = 1, NDOF_NODE
+             call lu%put_es(chop(vals(d, i), scale))
+          end do
+          call lu%newline()
+       end do
+    end if
+    if (r%totals /= TOTALS_YES .and. r%totals /= TOTALS_ONLY) return
+    call lu%put('    ')
+    call lu%put_field('total', 30)
+    do d = 1, NDOF_NODE
+       call lu%put_es(chop(sum(vals(d, :)), scale))
+    end do
+    call lu%newline()
+  end subroutine node_table
+
+  ! ------------------------------------------------------------------ elements
+
+  subroutine element_request(lu, model, res, is, r)
+    type(text_buffer_t), intent(inout) :: lu
+    type(model_t), intent(in) :: model
+    type(results_t), intent(in) :: res
+    integer, intent(in) :: is
+    type(output_request_t), intent(in) :: r
+    integer :: iv
+    integer, allocatable :: subs(:)
+    integer(ip), allocatable :: elems(:)
+    call request_title(lu, model, r)
+    call selected_elements(model, r, subs, elems)
+    do iv = 1, size(r%vars)
+       select case (r%vars(iv)%s)
+       case ('S')
+          call lu%line('    S   stresses (global axes; trusses: uniaxial N/A; CPS3/CPS4: at the centroid)')
+          call tensor_table(lu, model, res, is, subs, elems, .false.)
+       case ('E')
+          call lu%line('    E   strains (tensor components, global axes; trusses: uniaxial stress state; '// &
+               'CPS3/CPS4: at the centroid)')
+          call tensor_table(lu, model, res, is, subs, elems, .true.)
+       case ('SF')
+          call lu%line('    SF  section forces (trusses and beams: end forces, local axes, as ELEMENT END FORCES; '// &
+               'plates and shells: nx, ny, nxy, mx, my, mxy at the centroid, element frame)')
+          call section_force_table(lu, model, res, is, subs, elems)
+       end select
+    end do
+    call lu%line('')
+  end subroutine element_request
+
+  subroutine selected_elements(model, r, subs, elems)
+    !! The elements a request names: its set, or every element of the model.
+    type(model_t), intent(in) :: model
+    type(output_request_t), intent(in) :: r
+    integer, allocatable, intent(out) :: subs(:)
+    integer(ip), allocatable, intent(out) :: elems(:)
+    integer :: isub
+    integer(ip) :: n, k
+    if (r%sub > 0 .and. allocated(r%items)) then
+       elems = r%items
+       allocate (subs(size(elems)))
+       subs = r%sub
+       return
+    end if
+    n = 0
+    do isub = 1, size(model%subs)
+       n = n + model%subs(isub)%nelem
+    end do
+    allocate (subs(n), elems(n))
+    k = 0
+    do isub = 1, size(model%subs)
+       do n = 1, model%subs(isub)%nelem
+          k = k + 1
+          subs(k) = isub
+          elems(k) = n
+       end do
+    end do
+  end subroutine selected_elements
+
+  subroutine element_tensor(model, res, is, isub, ie, strain, t, ok)
+    !! Stress (or strain) tensor of one element in global axes, Voigt order
+    !! xx, yy, zz, xy, xz, yz (tensor shear components); ok false for element
+    !! types without one (beams, shells).
+    type(model_t), intent(in) :: model
+    type(results_t), intent(in) :: res
+    integer, intent(in) :: is, isub
+    integer(ip), intent(in) :: ie
+    logical, intent(in) :: strain
+    real(wp), intent(out) :: t(NTENSOR)
+    logical, intent(out) :: ok
+    real(wp) :: a(3), m(3, 3), sig(3, 3), x(3, 4), ex(3), ey(3), ez(3), e, nu, thick, sl(3), el(3)
+    real(wp) :: r(3, 3), xl(2, 4), h(4)
+    type(error_t), allocatable :: error
+    integer(i8) :: iel
+    integer :: etype, nn, i
+    t = 0.0_wp
+    ok = .false.
+    associate (sub => model%subs(isub))
+      etype = sub%elem_type(ie)
+      if (sub%elem_section(ie) <= 0) return
+      associate (sec => sub%sections(sub%elem_section(ie)))
+        e = model%materials(sec%material)%e
+        nu = model%materials(sec%material)%nu
+        iel = res%elem_offset(isub) + ie
+        nn = ELEMENT_NODE_COUNT(etype)
+        do i = 1, nn
+           x(:, i) = sub%x(:, sub%elem_nodes(i, ie))
+        end do
+        select case (etype)
+        case (ET_T2D2, ET_T3D2)
+           a = x(:, 2) - x(:, 1)
+           a = a/norm2(a)
+           sl(1) = res%elem_force(1, 2, iel, is)/sec%area
+           if (strain) then
+              sl(1) = sl(1)/e
+              sig = -nu*sl(1)*identity() + (1.0_wp + nu)*sl(1)*outer(a, a)
+           else
+              sig = sl(1)*outer(a, a)
+           end if
+        case (ET_CPS3, ET_CPS4)
+           thick = sec%thickness
+           call shell_frame(x(:, 1:nn), r, xl(:, 1:nn), h(1:nn), error)
+           if (allocated(error)) return
+           ex = r(1, :)
+           ey = r(2, :)
+           ez = r(3, :)
+           sl = res%plate(1:3, iel, is)/thick        ! sx, sy, txy in the element frame
+           if (strain) then
+              el(1) = (sl(1) - nu*sl(2))/e
+              el(2) = (sl(2) - nu*sl(1))/e
+              el(3) = (1.0_wp + nu)*sl(3)/e       ! tensor shear strain = gamma/2
+              sig = el(1)*outer(ex, ex) + el(2)*outer(ey, ey) + el(3)*(outer(ex, ey) + outer(ey, ex)) &
+                   - nu*(sl(1) + sl(2))/e*outer(ez, ez)
+           else
+              sig = sl(1)*outer(ex, ex) + sl(2)*outer(ey, ey) + sl(3)*(outer(ex, ey) + outer(ey, ex))
+           end if
+        case default
+           return
+        end select
+      end associate
+    end associate
+    m = sig
+    t = [m(1, 1), m(2, 2), m(3, 3), m(1, 2), m(1, 3), m(2, 3)]
+    ok = .true.
+  contains
+    pure function outer(p, q) result(o)
+      real(wp), intent(in) :: p(3), q(3)
+      real(wp) :: o(3, 3)
+      o = spread(p, 2, 3)*spread(q, 1, 3)
+    end function outer
+    pure function identity() result(o)
+      real(wp) :: o(3, 3)
+      integer :: j
+      o = 0.0_wp
+      do j = 1, 3
+         o(j, j) = 1.0_wp
+      end do
+    end function identity
+  end subroutine element_tensor
+
+  subroutine tensor_table(lu, model, res, is, subs, elems, strain)
+    type(text_buffer_t), intent(inout) :: lu
+    type(model_t), intent(in) :: model
+    type(results_t), intent(in) :: res
+    integer, intent(in) :: is
+    integer, intent(in) :: subs(:)
+    integer(ip), intent(in) :: elems(:)
+    logical, intent(in) :: strain
+    real(wp), allocatable :: t(:, :)
+    logical, allocatable :: ok(:)
+    character(len=200) :: hline
+    real(wp) :: scale
+    integer :: i, d, nskip
+    allocate (t(NTENSOR, size(elems)), ok(size(elems)))
+    do i = 1, size(elems)
+       call element_tensor(model, res, is, subs(i), elems(i), strain, t(:, i), ok(i))
+    end do
+    write (hline, '(4x,a20,a10,a6,6a15)') 'substructure        ', '   element', '  type', TENSOR_HEAD
+    call lu%line(trim(hline))
+    scale = 0.0_wp
+    if (any(ok)) scale = maxval(abs(t))
+    nskip = 0
+    do i = 1, size(elems)
+       if (.not. ok(i)) then
+          nskip = nskip + 1
+          cycle
+       end if
+       call element_prefix(lu, model, subs(i), elems(i))
+       do d = 1, NTENSOR
+          call lu%put_es(chop(t(d, i), scale))
+       end do
+       call lu%newline()
+    end do
+    if (nskip > 0) call lu%line('    ('//itoa(nskip)//' beam or shell elements of the set have no '// &
+         'single tensor: see SF)')
+  end subroutine tensor_table
+
+  subroutine section_force_table(lu, model, res, is, subs, elems)
+    type(text_buffer_t), intent(inout) :: lu
+    type(model_t), intent(in) :: model
+    type(results_t), intent(in) :: res
+    integer, intent(in) :: is
+    integer, intent(in) :: subs(:)
+    integer(ip), intent(in) :: elems(:)
+    character(len=200) :: hline
+    real(wp) :: scale_bar, scale_plate
+    integer(i8) :: iel
+    integer :: i, d, k
+    scale_bar = 0.0_wp
+    scale_plate = 0.0_wp
+    do i = 1, size(elems)
+       iel = res%elem_offset(subs(i)) + elems(i)
+       if (is_plate_type(model%subs(subs(i))%elem_type(elems(i)))) then
+          scale_plate = max(scale_plate, maxval(abs(res%plate(:, iel, is))))
+       else
+          scale_bar = max(scale_bar, maxval(abs(res%elem_force(:, :, iel, is))))
+       end if
+    end do
+    write (hline, '(4x,a20,a10,a6,a4,6a15)') 'substructure        ', '   element', '  type', ' end', &
+         '         n / nx', '        vy / ny', '       vz / nxy', '         t / mx', '        my / my', &
+         '       mz / mxy'
+    call lu%line(trim(hline))
+    do i = 1, size(elems)
+       iel = res%elem_offset(subs(i)) + elems(i)
+       if (is_plate_type(model%subs(subs(i))%elem_type(elems(i)))) then
+          call element_prefix(lu, model, subs(i), elems(i))
+          call lu%put('   -')
+          do d = 1, 6
+             call lu%put_es(chop(res%plate(d, iel, is), scale_plate))
+          end do
+          call lu%newline()
+       else
+          do k = 1, 2
+             call element_prefix(lu, model, subs(i), elems(i))
+             call lu%put_int(int(k, i8), 4)
+             do d = 1, 6
+                call lu%put_es(chop(res%elem_force(d, k, iel, is), scale_bar))
+             end do
+             call lu%newline()
+          end do
+       end if
+    end do
+  end subroutine section_force_table
+
+  subroutine element_prefix(lu, model, isub, ie)
+    type(text_buffer_t), intent(inout) :: lu
+    type(model_t), intent(in) :: model
+    integer, intent(in) :: isub
+    integer(ip), intent(in) :: ie
+    call lu%put('    ')
+    call lu%put_field(model%subs(isub)%name, 20)
+    call lu%put_int(int(model%subs(isub)%elem_id(ie), i8), 10)
+    call lu%put('  ')
+    call lu%put_field(ELEMENT_TYPE_NAMES(model%subs(isub)%elem_type(ie)), 4)
+  end subroutine element_prefix
+
+  elemental function chop(x, scale) result(y)
+    !! Round-off noise relative to the table's scale prints as zero.
+    real(wp), intent(in) :: x, scale
+    real(wp) :: y
+    y = x
+    if (abs(x) <= CHOP_FRACTION*scale) y = 0.0_wp
+  end function chop
+end module superjoin_output_requests

@@ -3,7 +3,7 @@ program superjoin_main
   !! listing (and CSV results on request). The only place that stops.
   use, intrinsic :: iso_fortran_env, only: error_unit, output_unit
   use superjoin_kinds, only: wp, i8
-  use superjoin_error, only: error_t, EXIT_OK, EXIT_USAGE, EXIT_IO
+  use superjoin_error, only: error_t, EXIT_OK, EXIT_USAGE, EXIT_IO, EXIT_INACCURATE
   use superjoin_model_types, only: model_t, FORM_TRANSFORM, FORM_PENALTY
   use superjoin_deck_reader, only: read_deck
   use superjoin_analysis, only: solve_model
@@ -24,14 +24,14 @@ program superjoin_main
   type(results_t) :: res
   type(error_t), allocatable :: error
   character(:), allocatable :: deck, listing, csv_dir, vtk_file, target
-  logical :: check_only
+  logical :: check_only, demo
   type(stopwatch_t) :: clock
   real(wp) :: t_read
   integer :: i
   integer(i8) :: blas_bytes
   logical :: ok
 
-  call parse_command_line(opts, deck, listing, csv_dir, check_only, vtk_file)
+  call parse_command_line(opts, deck, listing, csv_dir, check_only, vtk_file, demo)
   call process_setup(ok, blas_bytes)
   if (.not. ok) write (error_unit, '(a)') 'superjoin: warning: signal handlers not installed'
   if (blas_bytes > 0 .and. .not. check_only) then
@@ -63,8 +63,9 @@ program superjoin_main
   call solve_model(model, opts, res, error)
   call fail_on(error, deck)
   res%phase_seconds(PH_READ) = t_read
+  ! Warnings are printed also under -q (it silences progress only).
   do i = 1, size(res%warnings)
-     if (.not. opts%quiet) write (error_unit, '(a)') deck//': warning: '//res%warnings(i)%s
+     write (error_unit, '(a)') deck//': warning: '//res%warnings(i)%s
   end do
 
   call clock%start()
@@ -81,6 +82,12 @@ program superjoin_main
   end if
   res%phase_seconds(PH_WRITE) = clock%seconds()
   call report_phase(opts%quiet, 'write', res%phase_seconds(PH_WRITE), listing)
+  if (demo .and. .not. opts%quiet) write (error_unit, '(a)') 'superjoin: listing written to '//listing
+  if (res%inaccurate .and. .not. opts%accept_inaccurate) then
+     write (error_unit, '(a)') deck//': error: the results are judged inaccurate (see the warnings above); '// &
+          'the listing is written, exit status 5 (--accept-inaccurate: exit 0)'
+     stop EXIT_INACCURATE, quiet=.true.
+  end if
   stop EXIT_OK, quiet=.true.
 
 contains
@@ -129,20 +136,23 @@ contains
          '  --export-matrix F  also write the assembled stiffness matrix (Matrix Market)', &
          '  --vtk FILE         VTK files for ParaView: FILE.pvd and FILE_<step>.vtu', &
          '                     (overrides *OUTPUT, VTK= of the deck)', &
-         '  -q, --quiet        no progress on stderr', &
+         '  --accept-inaccurate  exit 0 even when the results are judged inaccurate', &
+         '  -q, --quiet        no progress on stderr (warnings are still printed)', &
          '  -v, --verbose      more detail on stderr', &
          '  --help             this text', &
          '  --version          version', &
          '', &
          'exit status: 0 solved; 1 deck error; 2 usage error; 3 structure cannot be solved', &
-         '             (mechanism, singular); 4 input/output or resource failure'
+         '             (mechanism, singular); 4 input/output or resource failure;', &
+         '             5 solved and listing written, but the results are judged inaccurate'
   end subroutine print_help
 
-  subroutine parse_command_line(opts, deck, listing, csv_dir, check_only, vtk_file)
+  subroutine parse_command_line(opts, deck, listing, csv_dir, check_only, vtk_file, demo)
     !! Options and file names from the command line (usage errors stop with 2).
+    !! demo: no deck given, the bundled demo deck is solved.
     type(run_options_t), intent(out) :: opts
     character(:), allocatable, intent(out) :: deck, listing, csv_dir, vtk_file
-    logical, intent(out) :: check_only
+    logical, intent(out) :: check_only, demo
     integer :: i, n
     character(:), allocatable :: arg, val
     logical :: exists
@@ -167,6 +177,8 @@ contains
           opts%verbose = .true.
        case ('--check')
           check_only = .true.
+       case ('--accept-inaccurate')
+          opts%accept_inaccurate = .true.
        case ('-o', '--csv', '--solver', '--formulation', '--export-matrix', '--vtk')
           if (i == n) call usage_error('option '//arg//' needs a value')
           i = i + 1
@@ -206,7 +218,8 @@ contains
           deck = arg
        end select
     end do
-    if (.not. allocated(deck)) then
+    demo = .not. allocated(deck)
+    if (demo) then
        inquire (file=DEMO_DECK_SOURCE, exist=exists)
        if (exists) then
           deck = DEMO_DECK_SOURCE
@@ -214,6 +227,8 @@ contains
           deck = DEMO_DECK_INSTALLED
        end if
        if (.not. allocated(listing)) listing = 'demo.lst'
+       if (.not. opts%quiet) write (error_unit, '(a)') 'superjoin: no deck given: solving the bundled demo deck '// &
+            deck//'; listing: '//listing//' (relative to the current directory)'
     end if
     inquire (file=deck, exist=exists)
     if (.not. exists) then

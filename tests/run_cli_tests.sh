@@ -23,15 +23,37 @@ expect 4 "missing deck" -- "$bin" no_such.deck
 expect 0 "check only" -- "$bin" -q --check "$src/decks/demo.deck" -o check.lst
 [ ! -e check.lst ] || { fail=$((fail+1)); echo "FAIL: --check wrote a listing"; }
 expect 0 "demo without deck" -- "$bin" -q
+"$bin" 2>err.txt >/dev/null
+grep -q 'no deck given: solving the bundled demo deck' err.txt || { fail=$((fail+1)); echo "FAIL: demo run does not say what it solves"; }
+grep -q 'listing written to demo.lst' err.txt || { fail=$((fail+1)); echo "FAIL: demo run does not say where the listing went"; }
 [ -s demo.lst ] || { fail=$((fail+1)); echo "FAIL: no demo.lst"; }
 grep -q 'END OF LISTING' demo.lst || { fail=$((fail+1)); echo "FAIL: demo listing incomplete"; }
 for s in cholmod umfpack lapack; do
   expect 0 "solver $s" -- "$bin" -q --solver $s "$src/decks/demo.deck" -o demo_$s.lst
 done
-# The demo's RIGID joints become g = 1e12 x the largest diagonal under PENALTY:
-# numerically singular (MAXRATIO past 1e13), refused with a hint on the formulation.
-expect 3 "penalty" -- "$bin" -q --formulation penalty "$src/decks/demo.deck" -o pen.lst
+# Under PENALTY the demo's RIGID joints get the default g = k/sqrt(eps): solved
+# (exit 0), the MAXRATIO warning printed also under -q, the g range in the notes.
+for d in "$src"/decks/*.deck; do
+  expect 0 "penalty $(basename "$d")" -- "$bin" -q --formulation penalty "$d" -o pen.lst
+done
+expect 0 "penalty" -- "$bin" -q --formulation penalty "$src/decks/demo.deck" -o pen.lst
+grep -q 'warning: MAXRATIO' err.txt || { fail=$((fail+1)); echo "FAIL: -q hid the MAXRATIO warning"; }
+grep -q '1/sqrt(epsilon)' pen.lst || { fail=$((fail+1)); echo "FAIL: penalty default g not in the notes"; }
+# LARGE=1e12 given explicitly: numerically singular (MAXRATIO past 1e13), refused
+# with a hint on the formulation.
+sed '1i *CONTROLS, RIGID=LARGE, LARGE=1e12' "$src/decks/demo.deck" > large.deck
+expect 3 "penalty LARGE=1e12" -- "$bin" -q --formulation penalty large.deck -o pen.lst
 grep -q 'under PENALTY' err.txt || { fail=$((fail+1)); echo "FAIL: penalty breakdown without the formulation hint"; }
+# LARGE=1e10: solved, but the residual judges it inaccurate: exit 5, listing
+# written, the warning shown under -q; --accept-inaccurate makes it 0.
+sed '1i *CONTROLS, RIGID=LARGE, LARGE=1e10' "$src/decks/demo.deck" > large.deck
+rm -f pen.lst
+expect 5 "inaccurate" -- "$bin" -q --formulation penalty large.deck -o pen.lst
+grep -q 'warning: relative residual' err.txt || { fail=$((fail+1)); echo "FAIL: -q hid the residual warning"; }
+grep -q 'error: the results are judged inaccurate' err.txt || { fail=$((fail+1)); echo "FAIL: no exit-5 message"; }
+grep -q 'END OF LISTING' pen.lst || { fail=$((fail+1)); echo "FAIL: exit 5 without the listing"; }
+expect 0 "accept inaccurate" -- "$bin" -q --accept-inaccurate --formulation penalty large.deck -o pen.lst
+grep -q 'warning: relative residual' err.txt || { fail=$((fail+1)); echo "FAIL: --accept-inaccurate hid the warning"; }
 expect 0 "export matrix" -- "$bin" -q --export-matrix k.mtx "$src/decks/demo.deck" -o mm.lst
 head -1 k.mtx | grep -q '%%MatrixMarket matrix coordinate real symmetric' || { fail=$((fail+1)); echo "FAIL: matrix market header"; }
 expect 0 "csv" -- "$bin" -q "$src/decks/demo.deck" -o c.lst --csv csvdir

@@ -827,6 +827,7 @@ contains
           call report_loc(st, loc, 'LARGE must be greater than 1, not '//clip(value))
        else
           st%controls%large = x
+          st%controls%large_given = .true.
        end if
     end if
   end subroutine kw_controls

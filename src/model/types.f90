@@ -35,6 +35,9 @@ module superjoin_model_types
     !! Formulation and rigid-link controls.
   integer, parameter, public :: RIGID_ELIMINATE = 1, RIGID_LARGE = 2
   real(wp), parameter, public :: DEFAULT_LARGE = 1.0e12_wp
+  real(wp), parameter, public :: DEFAULT_PENALTY_LARGE = 1.0_wp/sqrt(epsilon(1.0_wp))
+    !! LARGE under FORMULATION=PENALTY unless *CONTROLS sets it: 1/sqrt(eps) = 6.7e7, the classic
+    !! penalty choice (constraint error and round-off both about sqrt(eps): half the digits survive).
 
   type, public :: string_t
     !! A character string of any length (for arrays of strings).
@@ -170,6 +173,7 @@ module superjoin_model_types
      integer :: formulation = FORM_TRANSFORM
      integer :: rigid = RIGID_ELIMINATE
      real(wp) :: large = DEFAULT_LARGE
+     logical :: large_given = .false.      !! LARGE= given on *CONTROLS
   end type controls_t
 
   type, public :: model_t

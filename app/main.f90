@@ -12,6 +12,7 @@ program superjoin_main
   use superjoin_output_csv, only: write_csv
   use superjoin_output_vtk, only: write_vtk, vtk_path_problem
   use superjoin_output_posix, only: output_target
+  use superjoin_output_mechanism, only: write_mechanism_vtk, write_mechanism_csv, mechanism_vtk_path, MECHANISM_CSV
   use superjoin_config, only: SUPERJOIN_VERSION, DEMO_DECK_SOURCE, DEMO_DECK_INSTALLED
   use superjoin_utils_strings, only: to_lower
   use superjoin_utils_clock, only: stopwatch_t, report_phase
@@ -61,6 +62,8 @@ program superjoin_main
   end if
 
   call solve_model(model, opts, res, error)
+  if (.not. allocated(vtk_file) .and. allocated(model%vtk_path)) vtk_file = model%vtk_path
+  if (allocated(error) .and. allocated(res%mechanism)) call write_mechanism(error)
   call fail_on(error, deck)
   res%phase_seconds(PH_READ) = t_read
   ! Warnings are printed also under -q (it silences progress only).
@@ -75,7 +78,6 @@ program superjoin_main
      call write_csv(csv_dir, model, res, error)
      call fail_on(error, deck)
   end if
-  if (.not. allocated(vtk_file) .and. allocated(model%vtk_path)) vtk_file = model%vtk_path
   if (allocated(vtk_file)) then
      call write_vtk(vtk_file, model, res, error)
      call fail_on(error, deck)
@@ -91,6 +93,37 @@ program superjoin_main
   stop EXIT_OK, quiet=.true.
 
 contains
+
+  subroutine write_mechanism(error)
+    !! The mechanism mode into the VTK and CSV outputs asked for; the files
+    !! written (or why not) are added to the error's message.
+    type(error_t), intent(inout) :: error
+    type(error_t), allocatable :: werr
+    character(:), allocatable :: written
+    written = ''
+    if (allocated(vtk_file)) then
+       call write_mechanism_vtk(vtk_file, model, res%mechanism, werr)
+       if (allocated(werr)) then
+          error%message = error%message//new_line('a')//werr%message
+          deallocate (werr)
+       else
+          written = ' '//mechanism_vtk_path(vtk_file)
+       end if
+    end if
+    if (allocated(csv_dir)) then
+       call write_mechanism_csv(csv_dir, model, res%mechanism, werr)
+       if (allocated(werr)) then
+          error%message = error%message//new_line('a')//werr%message
+       else
+          written = written//' '//csv_dir//'/'//MECHANISM_CSV
+       end if
+    end if
+    if (len(written) > 0) then
+       error%message = error%message//new_line('a')//'  the mode is written to'//written
+    else
+       error%message = error%message//new_line('a')//'  (--vtk FILE or --csv DIR write the mode, to see it)'
+    end if
+  end subroutine write_mechanism
 
   subroutine fail_on(error, deck)
     !! Print the error's lines on stderr and stop with its exit status.

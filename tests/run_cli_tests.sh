@@ -73,6 +73,14 @@ printf '*NODE\n1, 0, 0\n*SUPPORT\n1, 6, 6\n*CLOAD\n1, 1, 5.0\n' > y.deck
 cp x.lst y.lst
 expect 3 "mechanism" -- "$bin" -q y.deck -o y.lst
 cmp -s x.lst y.lst || { fail=$((fail+1)); echo "FAIL: failed run touched the previous listing"; }
+# A mechanism's mode goes to the VTK and CSV outputs asked for: the hinge of
+# tests/singular/hinge_three_parts.deck, S3 rotating about S3.1.
+expect 3 "mechanism mode files" -- "$bin" -q "$src/tests/singular/hinge_three_parts.deck" -o h.lst --vtk hv/h --csv hc
+grep -q 'the mode is written to hv/h_mechanism.vtu hc/mechanism.csv' err.txt || { fail=$((fail+1)); echo "FAIL: mode files not named"; }
+grep -qx 'S3,2,0,1.0000000000000000E+000,0,0,0,1.0000000000000000E+000' hc/mechanism.csv || { fail=$((fail+1)); echo "FAIL: mechanism.csv S3.2"; cat hc/mechanism.csv; }
+grep -qx 'S1,3,0,0,0,0,0,0' hc/mechanism.csv || { fail=$((fail+1)); echo "FAIL: mechanism.csv: the fixed part moves"; }
+grep -q 'Name="mechanism"' hv/h_mechanism.vtu || { fail=$((fail+1)); echo "FAIL: no mechanism array in the VTU"; }
+[ ! -e h.lst ] || { fail=$((fail+1)); echo "FAIL: a mechanism run wrote a listing"; }
 ls *.tmp >/dev/null 2>&1 && { fail=$((fail+1)); echo "FAIL: temporary files left"; }
 # Outputs are renamed over their names: never over a device or a FIFO, and a
 # symbolic link keeps pointing at its (rewritten) file.

@@ -16,6 +16,7 @@ module superjoin_analysis
   use superjoin_analysis_results, only: results_t, run_options_t, PH_ASSEMBLE, PH_ORDER, PH_FACTOR, PH_SOLVE
   use superjoin_analysis_recover, only: recover_results
   use superjoin_analysis_penalty, only: apply_penalty_default
+  use superjoin_analysis_mechanism, only: mechanism_t, find_mechanism, mechanism_message
   use superjoin_utils_clock, only: stopwatch_t, report_phase
   use superjoin_utils_union_find, only: find_root
   use superjoin_utils_strings, only: itoa
@@ -571,6 +572,8 @@ contains
        if (error%code == EXIT_SINGULAR) then
           jf = solver%info%failed_column
           deallocate (error)
+          call report_mechanism(model, table, tr, k, solver_name, res, error)
+          if (allocated(error)) return
           if (jf >= 1 .and. jf <= tr%ncol) then
              call fatal_error(error, EXIT_SINGULAR, 'error: the structure cannot be solved: '// &
                   'mechanism or singular stiffness at '//column_label(model, table, tr, jf)//penalty_hint(res))
@@ -656,6 +659,8 @@ contains
     res%maxratio_at = 'n/a'
     if (jmax > 0) res%maxratio_at = column_label(model, table, tr, jmax)
     if (res%maxratio > MAXRATIO_FATAL) then
+       call report_mechanism(model, table, tr, k, pick_solver(opts), res, error)
+       if (allocated(error)) return
        write (buf, '(es10.2e3)') res%maxratio
        call fatal_error(error, EXIT_SINGULAR, 'error: the structure cannot be solved: stiffness is '// &
             'numerically singular at '//res%maxratio_at//' (MAXRATIO '//trim(adjustl(buf))// &
@@ -725,6 +730,31 @@ contains
       end do
     end subroutine residuals
   end subroutine health
+
+  subroutine report_mechanism(model, table, tr, k, solver_name, res, error)
+    !! EXIT_SINGULAR error naming the mechanism (src/analysis/mechanism.f90),
+    !! its mode kept in res%mechanism; no error when none is found.
+    type(model_t), intent(in) :: model
+    type(dof_table_t), intent(in) :: table
+    type(transform_t), intent(in) :: tr
+    type(sparse_sym_t), intent(in) :: k
+    character(*), intent(in) :: solver_name
+    type(results_t), intent(inout) :: res
+    type(error_t), allocatable, intent(out) :: error
+    type(mechanism_t) :: mech
+    call find_mechanism(k, solver_name, model, table, tr, mech)
+    if (.not. mech%found) return
+    call fatal_error(error, EXIT_SINGULAR, mechanism_message(mech, penalty_hint(res)))
+    call move_alloc(mech%mode, res%mechanism)
+  end subroutine report_mechanism
+
+  pure function pick_solver(opts) result(name)
+    !! The backend named on the command line ('auto' if none).
+    type(run_options_t), intent(in) :: opts
+    character(:), allocatable :: name
+    name = 'auto'
+    if (allocated(opts%solver)) name = opts%solver
+  end function pick_solver
 
   function penalty_hint(res) result(s)
     !! Under PENALTY a breakdown is usually the contact stiffness, not a mechanism.

@@ -61,6 +61,7 @@ module superjoin_analysis_results
      character(:), allocatable :: formulation
      type(string_t), allocatable :: notes(:)      !! decisions and warnings for the listing
      type(string_t), allocatable :: warnings(:)   !! also printed on stderr
+     real(wp), allocatable :: mechanism(:, :)     !! (6, nvertex) mechanism mode of an exit-3 run, global axes
      logical :: inaccurate = .false.              !! a warning judges the results inaccurate (exit EXIT_INACCURATE)
      real(wp), allocatable :: u(:, :)             !! (6*nvertex, nstep) displacements per vertex, global axes
      logical, allocatable :: has_dof(:, :)        !! (6, nvertex)

@@ -61,6 +61,13 @@ for f in displacements reactions contact_forces element_forces; do
   [ -s csvdir/$f.csv ] || { fail=$((fail+1)); echo "FAIL: no $f.csv"; }
 done
 head -1 csvdir/displacements.csv | grep -qx 'step,substructure,node,u1,u2,u3,ur1,ur2,ur3' || { fail=$((fail+1)); echo "FAIL: csv header"; }
+# Plausibility: the demo with E in MPa (lengths in m) sways 2.7 km on a 7 m
+# frame: a warning naming the node and what to check, also under -q; exit 0.
+sed 's/^2\.1e11,/2.1e5,/' "$src/decks/demo.deck" > mpa.deck
+expect 0 "units mix-up" -- "$bin" -q mpa.deck -o mpa.lst
+grep -q "warning: step WIND: displacement 2.67E+003 at COLL.5 is 3.70E+002 times the model's size 7.21E+000" err.txt \
+  || { fail=$((fail+1)); echo "FAIL: no plausibility warning"; cat err.txt; }
+grep -q 'Check the units' mpa.lst || { fail=$((fail+1)); echo "FAIL: plausibility warning not in the listing"; }
 # progress on stderr unless quiet
 "$bin" "$src/decks/demo.deck" -o p.lst 2>err.txt >/dev/null
 grep -q 'superjoin: factor' err.txt || { fail=$((fail+1)); echo "FAIL: no phase report on stderr"; }

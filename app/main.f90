@@ -8,6 +8,7 @@ program superjoin_main
   use superjoin_deck_reader, only: read_deck
   use superjoin_analysis, only: solve_model
   use superjoin_analysis_plausibility, only: check_plausibility
+  use superjoin_analysis_contact_gaps, only: check_contact_gaps
   use superjoin_analysis_results, only: results_t, run_options_t, PH_READ, PH_WRITE
   use superjoin_output_listing, only: write_listing
   use superjoin_output_csv, only: write_csv
@@ -66,6 +67,7 @@ program superjoin_main
   if (.not. allocated(vtk_file) .and. allocated(model%vtk_path)) vtk_file = model%vtk_path
   if (allocated(error) .and. allocated(res%mechanism)) call write_mechanism(error)
   call fail_on(error, deck)
+  call check_contact_gaps(model, res%warnings)
   call check_plausibility(model, res)
   res%phase_seconds(PH_READ) = t_read
   ! Warnings are printed also under -q (it silences progress only).

@@ -68,6 +68,18 @@ expect 0 "units mix-up" -- "$bin" -q mpa.deck -o mpa.lst
 grep -q "warning: step WIND: displacement 2.67E+003 at COLL.5 is 3.70E+002 times the model's size 7.21E+000" err.txt \
   || { fail=$((fail+1)); echo "FAIL: no plausibility warning"; cat err.txt; }
 grep -q 'Check the units' mpa.lst || { fail=$((fail+1)); echo "FAIL: plausibility warning not in the listing"; }
+# Contact node pairs far apart: the hinge deck with S3 moved by 0.5 along x
+# (and its hinge made rigid): one warning per contact, with the count and the
+# farthest pair; POSITION TOLERANCE=0.2 (x the model's size 4.5) silences it.
+sed -e 's/^1, 3, 0$/1, 3.5, 0/' -e 's/^2, 4, 0$/2, 4.5, 0/' -e 's/^2, 1, 6, 6, 0\.$/2, 1, 6, 6, RIGID/' \
+  "$src/tests/singular/hinge_three_parts.deck" | grep -v '^\*\*' > gap.deck
+expect 0 "contact gap" -- "$bin" -q gap.deck -o gap.lst
+grep -q "warning: contact HINGE: 1 of 1 node pair(s) farther apart than 4.50E-003 (1.0E-003 x the model's size), the farthest S2.2 - S3.1 at 5.00E-001" err.txt \
+  || { fail=$((fail+1)); echo "FAIL: no contact gap warning"; cat err.txt; }
+[ "$(grep -c 'warning: contact' err.txt)" -eq 1 ] || { fail=$((fail+1)); echo "FAIL: contact J12 (coincident) warned"; }
+sed '1i *CONTROLS, POSITION TOLERANCE=0.2' gap.deck > gap2.deck
+expect 0 "contact gap within tolerance" -- "$bin" -q gap2.deck -o gap.lst
+[ ! -s err.txt ] || { fail=$((fail+1)); echo "FAIL: warned within POSITION TOLERANCE"; cat err.txt; }
 # progress on stderr unless quiet
 "$bin" "$src/decks/demo.deck" -o p.lst 2>err.txt >/dev/null
 grep -q 'superjoin: factor' err.txt || { fail=$((fail+1)); echo "FAIL: no phase report on stderr"; }

@@ -41,7 +41,7 @@ module superjoin_deck_parser
     !! Poisson's ratio bounds (open interval).
   real(wp), parameter :: PARALLEL_TOL = 1.0e-10_wp
     !! Relative size below which orientation vectors count as zero or parallel.
-  integer, parameter :: NAME_LEN = 16
+  integer, parameter :: NAME_LEN = 24
   integer, parameter :: ORIENT_VALUES = 6
   integer, parameter :: NODE_FIELDS_MIN = 3, NODE_FIELDS_MAX = 4
     !! Numbers of fields of data lines.
@@ -794,7 +794,8 @@ contains
     logical :: found
     real(wp) :: x
     integer :: stat
-    call check_params(st, kw, loc, [character(NAME_LEN) :: 'FORMULATION', 'RIGID', 'LARGE'], &
+    call check_params(st, kw, loc, [character(NAME_LEN) :: 'FORMULATION', 'RIGID', 'LARGE', &
+         'POSITION TOLERANCE'], &
          [character(NAME_LEN) ::])
     call get_param(st, kw, loc, 'FORMULATION', .false., value, found)
     if (found) then
@@ -828,6 +829,17 @@ contains
        else
           st%controls%large = x
           st%controls%large_given = .true.
+       end if
+    end if
+    call get_param(st, kw, loc, 'POSITION TOLERANCE', .false., value, found)
+    if (found) then
+       call parse_real(value, x, stat)
+       if (stat /= TOK_OK) then
+          call report_loc(st, loc, real_message(value, stat))
+       else if (.not. (x >= 0.0_wp)) then
+          call report_loc(st, loc, 'POSITION TOLERANCE must be 0 or more, not '//clip(value))
+       else
+          st%controls%position_tolerance = x
        end if
     end if
   end subroutine kw_controls

@@ -12,6 +12,7 @@ program superjoin_main
   use superjoin_analysis_results, only: results_t, run_options_t, PH_READ, PH_WRITE
   use superjoin_output_listing, only: write_listing
   use superjoin_output_csv, only: write_csv
+  use superjoin_output_nodes_csv, only: write_nodes_csv
   use superjoin_output_vtk, only: write_vtk, vtk_path_problem
   use superjoin_output_posix, only: output_target
   use superjoin_output_mechanism, only: write_mechanism_vtk, write_mechanism_csv, mechanism_vtk_path, MECHANISM_CSV
@@ -80,6 +81,8 @@ program superjoin_main
   call fail_on(error, deck)
   if (allocated(csv_dir)) then
      call write_csv(csv_dir, model, res, error)
+     call fail_on(error, deck)
+     call write_nodes_csv(csv_dir, model, error)
      call fail_on(error, deck)
   end if
   if (allocated(vtk_file)) then

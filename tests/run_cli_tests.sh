@@ -60,6 +60,9 @@ expect 0 "csv" -- "$bin" -q "$src/decks/demo.deck" -o c.lst --csv csvdir
 for f in displacements reactions contact_forces element_forces; do
   [ -s csvdir/$f.csv ] || { fail=$((fail+1)); echo "FAIL: no $f.csv"; }
 done
+head -1 csvdir/nodes.csv | grep -qx 'substructure,node,x,y,z' || { fail=$((fail+1)); echo "FAIL: nodes.csv header"; }
+[ "$(tail -n +2 csvdir/nodes.csv | cut -d, -f1,2 | sort)" = "$(tail -n +2 csvdir/displacements.csv | cut -d, -f2,3 | sort -u)" ] \
+  || { fail=$((fail+1)); echo "FAIL: nodes.csv does not list the nodes of displacements.csv"; }
 head -1 csvdir/displacements.csv | grep -qx 'step,substructure,node,u1,u2,u3,ur1,ur2,ur3' || { fail=$((fail+1)); echo "FAIL: csv header"; }
 # Plausibility: the demo with E in MPa (lengths in m) sways 2.7 km on a 7 m
 # frame: a warning naming the node and what to check, also under -q; exit 0.

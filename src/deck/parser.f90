@@ -596,6 +596,7 @@ contains
     if (st%card_etype == 0) then
        call report_loc(st, loc, 'unsupported element type '//clip(typ)// &
             ' (T2D2, T3D2, B23, B33, CPS3, CPS4, S3, S4)')
+       call declare_elset(st, kw, loc)
        return
     end if
     isub = target_sub(st, loc)
@@ -613,6 +614,22 @@ contains
        end associate
     end if
   end subroutine kw_element
+
+  subroutine declare_elset(st, kw, loc)
+    !! The ELSET of a rejected *ELEMENT card still exists (empty), so that the
+    !! cards naming it do not each report it as unknown: one error per mistake.
+    type(deck_state_t), intent(inout) :: st
+    type(keyword_line_t), intent(in) :: kw
+    type(source_loc_t), intent(in) :: loc
+    character(:), allocatable :: elset
+    logical :: found
+    integer :: isub, iset
+    call get_name_param(st, kw, loc, 'ELSET', .false., elset, found)
+    if (.not. found) return
+    isub = target_sub(st, loc)
+    iset = find_set(st%subs(isub), elset, .true.)
+    if (iset == 0) call new_set(st%subs(isub), elset, .true., loc, iset)
+  end subroutine declare_elset
 
   subroutine kw_set(st, kw, loc, elem)
     type(deck_state_t), intent(inout) :: st
@@ -667,10 +684,18 @@ contains
     call get_param(st, kw, loc, 'ELSET', .true., elset, found_e)
     call get_name_param(st, kw, loc, 'MATERIAL', .true., material, found_m)
     st%card = CARD_SKIP
-    if (.not. (found_e .and. found_m)) return
-    if (.not. parse_ref(st, elset, .true., st%cur_sub, loc, sec%elset)) return
+    if (.not. (found_e .and. found_m)) then
+       ! one mistake: the elements it meant are not reported again as without a section
+       st%section_rejected(kind) = .true.
+       return
+    end if
+    if (.not. parse_ref(st, elset, .true., st%cur_sub, loc, sec%elset)) then
+       st%section_rejected(kind) = .true.
+       return
+    end if
     if (.not. sec%elset%is_set) then
        call report_loc(st, loc, 'ELSET='//clip(elset)//' must name an element set')
+       st%section_rejected(kind) = .true.
        return
     end if
     sec%kind = kind

@@ -167,6 +167,7 @@ module superjoin_deck_state
      character(:), allocatable :: vtk_path          !! *OUTPUT, VTK= resolved against its file's directory
      type(source_loc_t) :: vtk_loc
      integer :: nelem_cards = 0
+     logical :: section_rejected(3) = .false.  !! a *SOLID/*BEAM/*SHELL SECTION card (SEC_* index) was rejected
      ! block and card state
      integer :: cur_sub = 0                !! open *SUBSTRUCTURE block
      integer :: cur_step = 0               !! open *STEP block

@@ -21,8 +21,16 @@ module superjoin_analysis_mechanism
   private
 
   real(wp), parameter, public :: MECH_SHIFT = 1.0e-10_wp
-    !! s = MECH_SHIFT x the largest diagonal of K: far above the round-off of
-    !! the null eigenvalue (about eps x ‖K‖), far below any real stiffness.
+    !! s = MECH_SHIFT x the median diagonal of K (the unknowns taken out of the
+    !! factorization, identity columns, left aside): far below any real
+    !! stiffness, far above the round-off of a null eigenvalue (eps x ‖K‖) while
+    !! the diagonal spans less than 1e5 around its median. The median, not the
+    !! largest: a few PENALTY springs must not set the scale.
+  real(wp), parameter, public :: MECH_ACCEPT = 0.5_wp
+    !! A mode is a mechanism when the last solve grew it by at least
+    !! MECH_ACCEPT / s, i.e. its stiffness λ is at most about s: a structure
+    !! that is only ill-conditioned (PENALTY with a huge g) has λ ≫ s and keeps
+    !! the breakdown message instead.
   integer, parameter, public :: MECH_ITERATIONS = 4
     !! Inverse iterations (each damps a mode of stiffness λ by s / (λ + s)).
   integer, parameter, public :: MODE_DIGITS = 3
@@ -58,7 +66,7 @@ contains
     class(linear_solver_t), allocatable :: solver
     type(error_t), allocatable :: error
     real(wp), allocatable :: x(:, :), y(:, :), d(:)
-    real(wp) :: s, xmax
+    real(wp) :: s, xmax, growth
     integer(i8) :: j
     integer :: it, stat
 
@@ -66,7 +74,7 @@ contains
     allocate (d(k%n), x(k%n, 1), y(k%n, 1), stat=stat)
     if (stat /= 0) return
     call k%diagonal(d)
-    s = MECH_SHIFT*maxval(abs(d))
+    s = MECH_SHIFT*median_diagonal(k, d)
     if (.not. (s > 0.0_wp)) return
     ks = k
     do j = 1, k%n
@@ -84,19 +92,49 @@ contains
     do j = 1, k%n
        x(j, 1) = start_value(j)
     end do
+    growth = 0.0_wp
     do it = 1, MECH_ITERATIONS
        call solver%solve(x, y, error)
        if (allocated(error)) exit
        xmax = maxval(abs(y))
        if (.not. (xmax > 0.0_wp .and. xmax <= huge(xmax))) exit
+       growth = xmax/maxval(abs(x))
        x = y/xmax
     end do
     call solver%release()
     if (allocated(error) .or. it <= MECH_ITERATIONS) return
+    if (growth*s < MECH_ACCEPT) return
     call expand(x(:, 1), table, tr, mech%mode)
     mech%no_support = .not. any(table%units(1:table%nunit)%kind == UNIT_SUPPORT)
     call rank_report(model, table, mech)
   end subroutine find_mechanism
+
+  function median_diagonal(k, d) result(m)
+    !! Median of |K_jj| over the columns that are not identity columns (the
+    !! unknowns dropped or skipped before factoring); 0 if there are none.
+    type(sparse_sym_t), intent(in) :: k
+    real(wp), intent(in) :: d(:)
+    real(wp) :: m
+    real(wp), allocatable :: a(:)
+    integer, allocatable :: order(:)
+    integer(i8) :: j
+    integer :: n, i
+    allocate (a(size(d)))
+    n = 0
+    do j = 1, k%n
+       if (d(j) == 1.0_wp) then
+          if (all(k%val(k%colptr(j):k%colptr(j + 1) - 2) == 0.0_wp)) cycle
+       end if
+       if (d(j) == 0.0_wp) cycle
+       n = n + 1
+       a(n) = abs(d(j))
+    end do
+    m = 0.0_wp
+    if (n == 0) return
+    order = [(i, i=1, n)]
+    call stable_argsort(a(1:n), order)
+    m = a(order((n + 1)/2))
+  end function median_diagonal
 
   pure function start_value(j) result(v)
     !! A fixed start vector with no symmetry a mechanism could be orthogonal to.

@@ -15,8 +15,8 @@ module superjoin_analysis
   use superjoin_output_matrix_market, only: write_matrix_market
   use superjoin_analysis_results, only: results_t, run_options_t, PH_ASSEMBLE, PH_ORDER, PH_FACTOR, PH_SOLVE
   use superjoin_analysis_recover, only: recover_results
-  use superjoin_analysis_penalty, only: apply_penalty_default
-  use superjoin_analysis_mechanism, only: mechanism_t, find_mechanism, mechanism_message
+  use superjoin_analysis_penalty, only: apply_penalty_default, penalty_default_note
+  use superjoin_analysis_mechanism, only: mechanism_error
   use superjoin_utils_clock, only: stopwatch_t, report_phase
   use superjoin_utils_union_find, only: find_root
   use superjoin_utils_strings, only: itoa
@@ -249,7 +249,8 @@ contains
     end do
     if (.not. any_rigid) return
     if (form == FORM_PENALTY .and. .not. model%controls%large_given) then
-       call penalty_default_note(model, table, notes, error)
+       call apply_penalty_default(model, table, DEFAULT_PENALTY_LARGE, dmax, glarge, error)
+       if (.not. allocated(error)) call note(notes, penalty_default_note(dmax, glarge))
        return
     end if
     call max_element_diagonal(model, table, dmax, error)
@@ -268,22 +269,6 @@ contains
     write (buf, '(es10.3)') glarge
     call note(notes, 'RIGID contacts use g = LARGE x largest element diagonal = '//trim(adjustl(buf)))
   end subroutine apply_large
-
-  subroutine penalty_default_note(model, table, notes, error)
-    !! PENALTY without LARGE=: g = DEFAULT_PENALTY_LARGE x the local stiffness scale, noted.
-    type(model_t), intent(in) :: model
-    type(dof_table_t), intent(inout) :: table
-    type(string_t), allocatable, intent(inout) :: notes(:)
-    type(error_t), allocatable, intent(out) :: error
-    real(wp) :: gmin, gmax
-    character(len=32) :: b1, b2
-    call apply_penalty_default(model, table, DEFAULT_PENALTY_LARGE, gmin, gmax, error)
-    if (allocated(error)) return
-    write (b1, '(es10.3)') gmin
-    write (b2, '(es10.3)') gmax
-    call note(notes, 'RIGID contacts use g = 1/sqrt(epsilon) x the element stiffness along each DOF they join (the smaller side) '// &
-         '(PENALTY default, *CONTROLS LARGE= overrides): g from '//trim(adjustl(b1))//' to '//trim(adjustl(b2)))
-  end subroutine penalty_default_note
 
   subroutine describe_transform(model, table, tr, form, res, notes)
     !! Notes on what was transformed and what was assembled plainly.
@@ -572,7 +557,7 @@ contains
        if (error%code == EXIT_SINGULAR) then
           jf = solver%info%failed_column
           deallocate (error)
-          call report_mechanism(model, table, tr, k, solver_name, res, error)
+          call mechanism_error(k, solver_name, model, table, tr, penalty_hint(res), res%mechanism, error)
           if (allocated(error)) return
           if (jf >= 1 .and. jf <= tr%ncol) then
              call fatal_error(error, EXIT_SINGULAR, 'error: the structure cannot be solved: '// &
@@ -624,6 +609,7 @@ contains
     integer(i8) :: j, jmax
     real(wp) :: ratio, cond, knorm
     character(len=32) :: buf
+    character(:), allocatable :: backend
 
     nstep = size(q, 2)
     allocate (r(k%n, nstep), dq(k%n, nstep), q_try(k%n, nstep), r_try(k%n, nstep), berr(nstep), &
@@ -659,7 +645,9 @@ contains
     res%maxratio_at = 'n/a'
     if (jmax > 0) res%maxratio_at = column_label(model, table, tr, jmax)
     if (res%maxratio > MAXRATIO_FATAL) then
-       call report_mechanism(model, table, tr, k, pick_solver(opts), res, error)
+       backend = 'auto'
+       if (allocated(opts%solver)) backend = opts%solver
+       call mechanism_error(k, backend, model, table, tr, penalty_hint(res), res%mechanism, error)
        if (allocated(error)) return
        write (buf, '(es10.2e3)') res%maxratio
        call fatal_error(error, EXIT_SINGULAR, 'error: the structure cannot be solved: stiffness is '// &
@@ -730,31 +718,6 @@ contains
       end do
     end subroutine residuals
   end subroutine health
-
-  subroutine report_mechanism(model, table, tr, k, solver_name, res, error)
-    !! EXIT_SINGULAR error naming the mechanism (src/analysis/mechanism.f90),
-    !! its mode kept in res%mechanism; no error when none is found.
-    type(model_t), intent(in) :: model
-    type(dof_table_t), intent(in) :: table
-    type(transform_t), intent(in) :: tr
-    type(sparse_sym_t), intent(in) :: k
-    character(*), intent(in) :: solver_name
-    type(results_t), intent(inout) :: res
-    type(error_t), allocatable, intent(out) :: error
-    type(mechanism_t) :: mech
-    call find_mechanism(k, solver_name, model, table, tr, mech)
-    if (.not. mech%found) return
-    call fatal_error(error, EXIT_SINGULAR, mechanism_message(mech, penalty_hint(res)))
-    call move_alloc(mech%mode, res%mechanism)
-  end subroutine report_mechanism
-
-  pure function pick_solver(opts) result(name)
-    !! The backend named on the command line ('auto' if none).
-    type(run_options_t), intent(in) :: opts
-    character(:), allocatable :: name
-    name = 'auto'
-    if (allocated(opts%solver)) name = opts%solver
-  end function pick_solver
 
   function penalty_hint(res) result(s)
     !! Under PENALTY a breakdown is usually the contact stiffness, not a mechanism.

@@ -10,7 +10,7 @@ module superjoin_analysis_mechanism
   !! the order of the model) so that listings and messages do not depend on
   !! the backend.
   use superjoin_kinds, only: wp, i8, ip
-  use superjoin_error, only: error_t
+  use superjoin_error, only: error_t, fatal_error, EXIT_SINGULAR
   use superjoin_model_types, only: model_t, NDOF_NODE
   use superjoin_assembly_dofs, only: dof_table_t, UNIT_SUPPORT
   use superjoin_assembly_transform, only: transform_t
@@ -47,7 +47,7 @@ module superjoin_analysis_mechanism
      logical :: no_support = .false.            !! the model has no support at all
   end type mechanism_t
 
-  public :: find_mechanism, mechanism_message
+  public :: find_mechanism, mechanism_message, mechanism_error
 
 contains
 
@@ -239,6 +239,25 @@ contains
          ' more substructures)'
     mech%details = text
   end subroutine rank_report
+
+  subroutine mechanism_error(k, solver_name, model, table, tr, hint, mode, error)
+    !! For a factorization that failed: the EXIT_SINGULAR error naming the
+    !! mechanism of k (hint appended to its first line) and its mode, or
+    !! neither when k has no mechanism (the caller keeps its own message).
+    type(sparse_sym_t), intent(in) :: k
+    character(*), intent(in) :: solver_name
+    type(model_t), intent(in) :: model
+    type(dof_table_t), intent(in) :: table
+    type(transform_t), intent(in) :: tr
+    character(*), intent(in) :: hint
+    real(wp), allocatable, intent(out) :: mode(:, :)
+    type(error_t), allocatable, intent(out) :: error
+    type(mechanism_t) :: mech
+    call find_mechanism(k, solver_name, model, table, tr, mech)
+    if (.not. mech%found) return
+    call fatal_error(error, EXIT_SINGULAR, mechanism_message(mech, hint))
+    call move_alloc(mech%mode, mode)
+  end subroutine mechanism_error
 
   function mechanism_message(mech, hint) result(text)
     !! The exit-3 message of a found mechanism: location, hint, report lines.

@@ -22,7 +22,7 @@ module superjoin_analysis_penalty
 
   integer, parameter :: MAX_ITEM_DOFS = 24   !! physical DOFs of the largest element
 
-  public :: apply_penalty_default
+  public :: apply_penalty_default, penalty_default_note
 
 contains
 
@@ -102,6 +102,18 @@ contains
       end if
     end function side_min
   end subroutine apply_penalty_default
+
+  function penalty_default_note(gmin, gmax) result(text)
+    !! The listing note on the default penalty stiffness and its range.
+    real(wp), intent(in) :: gmin, gmax
+    character(:), allocatable :: text
+    character(len=32) :: b1, b2
+    write (b1, '(es10.3)') gmin
+    write (b2, '(es10.3)') gmax
+    text = 'RIGID contacts use g = 1/sqrt(epsilon) x the element stiffness along each DOF they join '// &
+         '(the smaller side) (PENALTY default, *CONTROLS LARGE= overrides): g from '//trim(adjustl(b1))// &
+         ' to '//trim(adjustl(b2))
+  end function penalty_default_note
 
   subroutine element_diagonal(model, table, diag, error)
     !! Diagonal of the physical stiffness of the elements alone.

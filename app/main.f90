@@ -4,7 +4,7 @@ program superjoin_main
   use, intrinsic :: iso_fortran_env, only: error_unit, output_unit
   use superjoin_kinds, only: wp, i8
   use superjoin_error, only: error_t, EXIT_OK, EXIT_USAGE, EXIT_IO, EXIT_INACCURATE
-  use superjoin_model_types, only: model_t, FORM_TRANSFORM, FORM_PENALTY
+  use superjoin_model_types, only: model_t, string_t, FORM_TRANSFORM, FORM_PENALTY
   use superjoin_deck_reader, only: read_deck
   use superjoin_analysis, only: solve_model
   use superjoin_analysis_plausibility, only: check_plausibility
@@ -27,6 +27,7 @@ program superjoin_main
   type(model_t) :: model
   type(results_t) :: res
   type(error_t), allocatable :: error
+  type(string_t), allocatable :: deck_warnings(:)
   character(:), allocatable :: deck, listing, csv_dir, vtk_file, target
   logical :: check_only, demo
   type(stopwatch_t) :: clock
@@ -59,6 +60,13 @@ program superjoin_main
   call fail_on(error, deck)
   t_read = clock%seconds()
   call report_phase(opts%quiet, 'read', t_read, deck)
+  ! Warnings on the deck itself come first, so that they accompany a failure too
+  ! (a wrong node number in a contact often makes a mechanism).
+  allocate (deck_warnings(0))
+  call check_contact_gaps(model, deck_warnings)
+  do i = 1, size(deck_warnings)
+     write (error_unit, '(a)') deck//': warning: '//deck_warnings(i)%s
+  end do
   if (check_only) then
      if (.not. opts%quiet) write (error_unit, '(a)') 'superjoin: '//deck//': deck is valid'
      stop EXIT_OK, quiet=.true.
@@ -68,13 +76,13 @@ program superjoin_main
   if (.not. allocated(vtk_file) .and. allocated(model%vtk_path)) vtk_file = model%vtk_path
   if (allocated(error) .and. allocated(res%mechanism)) call write_mechanism(error)
   call fail_on(error, deck)
-  call check_contact_gaps(model, res%warnings)
   call check_plausibility(model, res)
   res%phase_seconds(PH_READ) = t_read
   ! Warnings are printed also under -q (it silences progress only).
   do i = 1, size(res%warnings)
      write (error_unit, '(a)') deck//': warning: '//res%warnings(i)%s
   end do
+  if (size(deck_warnings) > 0) res%warnings = [deck_warnings, res%warnings]
 
   call clock%start()
   call write_listing(listing, model, res, error)

@@ -80,6 +80,12 @@ expect 0 "contact gap" -- "$bin" -q gap.deck -o gap.lst
 grep -q "warning: contact HINGE: 1 of 1 node pair(s) farther apart than 4.50E-003 (1.0E-003 x the model's size), the farthest S2.2 - S3.1 at 5.00E-001" err.txt \
   || { fail=$((fail+1)); echo "FAIL: no contact gap warning"; cat err.txt; }
 [ "$(grep -c 'warning: contact' err.txt)" -eq 1 ] || { fail=$((fail+1)); echo "FAIL: contact J12 (coincident) warned"; }
+grep -c 'WARNING: contact HINGE' gap.lst | grep -qx 1 || { fail=$((fail+1)); echo "FAIL: contact gap warning not once in the listing"; }
+expect 0 "contact gap, --check" -- "$bin" -q --check gap.deck
+grep -q "warning: contact HINGE: 1 of 1 node pair" err.txt || { fail=$((fail+1)); echo "FAIL: --check without the contact gap warning"; }
+sed 's/^2, 1, 6, 6, RIGID$/2, 1, 6, 6, 0./' gap.deck > gap3.deck
+expect 3 "contact gap and a mechanism" -- "$bin" -q gap3.deck -o gap3.lst
+grep -q "warning: contact HINGE: 1 of 1 node pair" err.txt || { fail=$((fail+1)); echo "FAIL: a failed run without the contact gap warning"; }
 sed '1i *CONTROLS, POSITION TOLERANCE=0.2' gap.deck > gap2.deck
 expect 0 "contact gap within tolerance" -- "$bin" -q gap2.deck -o gap.lst
 [ ! -s err.txt ] || { fail=$((fail+1)); echo "FAIL: warned within POSITION TOLERANCE"; cat err.txt; }

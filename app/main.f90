@@ -3,15 +3,20 @@ program superjoin_main
   !! listing (and CSV results on request). The only place that stops.
   use, intrinsic :: iso_fortran_env, only: error_unit, output_unit
   use superjoin_kinds, only: wp, i8
-  use superjoin_error, only: error_t, EXIT_OK, EXIT_USAGE, EXIT_IO
-  use superjoin_model_types, only: model_t, FORM_TRANSFORM, FORM_PENALTY, CONDENSE_YES, CONDENSE_NO, CONDENSE_AUTO
+  use superjoin_error, only: error_t, EXIT_OK, EXIT_USAGE, EXIT_IO, EXIT_INACCURATE
+  use superjoin_model_types, only: model_t, string_t, FORM_TRANSFORM, FORM_PENALTY, CONDENSE_YES, CONDENSE_NO, &
+       CONDENSE_AUTO
   use superjoin_deck_reader, only: read_deck
   use superjoin_analysis_joint_steps, only: solve_joint_steps
+  use superjoin_analysis_plausibility, only: check_plausibility
+  use superjoin_analysis_contact_gaps, only: check_contact_gaps
   use superjoin_analysis_results, only: results_t, run_options_t, PH_READ, PH_WRITE
   use superjoin_output_listing, only: write_listing
   use superjoin_output_csv, only: write_csv
+  use superjoin_output_nodes_csv, only: write_nodes_csv
   use superjoin_output_vtk, only: write_vtk, vtk_path_problem
   use superjoin_output_posix, only: output_target
+  use superjoin_output_mechanism, only: write_mechanism_vtk, write_mechanism_csv, mechanism_vtk_path, MECHANISM_CSV
   use superjoin_config, only: SUPERJOIN_VERSION, DEMO_DECK_SOURCE, DEMO_DECK_INSTALLED
   use superjoin_utils_strings, only: to_lower
   use superjoin_utils_clock, only: stopwatch_t, report_phase
@@ -23,15 +28,16 @@ program superjoin_main
   type(model_t) :: model
   type(results_t) :: res
   type(error_t), allocatable :: error
+  type(string_t), allocatable :: deck_warnings(:)
   character(:), allocatable :: deck, listing, csv_dir, vtk_file, target
-  logical :: check_only
+  logical :: check_only, demo
   type(stopwatch_t) :: clock
   real(wp) :: t_read
   integer :: i
   integer(i8) :: blas_bytes
   logical :: ok
 
-  call parse_command_line(opts, deck, listing, csv_dir, check_only, vtk_file)
+  call parse_command_line(opts, deck, listing, csv_dir, check_only, vtk_file, demo)
   call process_setup(ok, blas_bytes)
   if (.not. ok) write (error_unit, '(a)') 'superjoin: warning: signal handlers not installed'
   if (blas_bytes > 0 .and. .not. check_only) then
@@ -55,17 +61,29 @@ program superjoin_main
   call fail_on(error, deck)
   t_read = clock%seconds()
   call report_phase(opts%quiet, 'read', t_read, deck)
+  ! Warnings on the deck itself come first, so that they accompany a failure too
+  ! (a wrong node number in a contact often makes a mechanism).
+  allocate (deck_warnings(0))
+  call check_contact_gaps(model, deck_warnings)
+  do i = 1, size(deck_warnings)
+     write (error_unit, '(a)') deck//': warning: '//deck_warnings(i)%s
+  end do
   if (check_only) then
      if (.not. opts%quiet) write (error_unit, '(a)') 'superjoin: '//deck//': deck is valid'
      stop EXIT_OK, quiet=.true.
   end if
 
   call solve_joint_steps(model, opts, res, error)
+  if (.not. allocated(vtk_file) .and. allocated(model%vtk_path)) vtk_file = model%vtk_path
+  if (allocated(error) .and. allocated(res%mechanism)) call write_mechanism(error)
   call fail_on(error, deck)
+  call check_plausibility(model, res)
   res%phase_seconds(PH_READ) = t_read
+  ! Warnings are printed also under -q (it silences progress only).
   do i = 1, size(res%warnings)
-     if (.not. opts%quiet) write (error_unit, '(a)') deck//': warning: '//res%warnings(i)%s
+     write (error_unit, '(a)') deck//': warning: '//res%warnings(i)%s
   end do
+  if (size(deck_warnings) > 0) res%warnings = [deck_warnings, res%warnings]
 
   call clock%start()
   call write_listing(listing, model, res, error)
@@ -73,17 +91,55 @@ program superjoin_main
   if (allocated(csv_dir)) then
      call write_csv(csv_dir, model, res, error)
      call fail_on(error, deck)
+     call write_nodes_csv(csv_dir, model, error)
+     call fail_on(error, deck)
   end if
-  if (.not. allocated(vtk_file) .and. allocated(model%vtk_path)) vtk_file = model%vtk_path
   if (allocated(vtk_file)) then
      call write_vtk(vtk_file, model, res, error)
      call fail_on(error, deck)
   end if
   res%phase_seconds(PH_WRITE) = clock%seconds()
   call report_phase(opts%quiet, 'write', res%phase_seconds(PH_WRITE), listing)
+  if (demo .and. .not. opts%quiet) write (error_unit, '(a)') 'superjoin: listing written to '//listing
+  if (res%inaccurate .and. .not. opts%accept_inaccurate) then
+     write (error_unit, '(a)') deck//': error: the results are judged inaccurate (see the warnings above); '// &
+          'the listing is written, exit status 5 (--accept-inaccurate: exit 0)'
+     stop EXIT_INACCURATE, quiet=.true.
+  end if
   stop EXIT_OK, quiet=.true.
 
 contains
+
+  subroutine write_mechanism(error)
+    !! The mechanism mode into the VTK and CSV outputs asked for; the files
+    !! written (or why not) are added to the error's message.
+    type(error_t), intent(inout) :: error
+    type(error_t), allocatable :: werr
+    character(:), allocatable :: written
+    written = ''
+    if (allocated(vtk_file)) then
+       call write_mechanism_vtk(vtk_file, model, res%mechanism, werr)
+       if (allocated(werr)) then
+          error%message = error%message//new_line('a')//werr%message
+          deallocate (werr)
+       else
+          written = ' '//mechanism_vtk_path(vtk_file)
+       end if
+    end if
+    if (allocated(csv_dir)) then
+       call write_mechanism_csv(csv_dir, model, res%mechanism, werr)
+       if (allocated(werr)) then
+          error%message = error%message//new_line('a')//werr%message
+       else
+          written = written//' '//csv_dir//'/'//MECHANISM_CSV
+       end if
+    end if
+    if (len(written) > 0) then
+       error%message = error%message//new_line('a')//'  the mode is written to'//written
+    else
+       error%message = error%message//new_line('a')//'  (--vtk FILE or --csv DIR write the mode, to see it)'
+    end if
+  end subroutine write_mechanism
 
   subroutine fail_on(error, deck)
     !! Print the error's lines on stderr and stop with its exit status.
@@ -131,20 +187,23 @@ contains
          '  --export-matrix F  also write the assembled stiffness matrix (Matrix Market)', &
          '  --vtk FILE         VTK files for ParaView: FILE.pvd and FILE_<step>.vtu', &
          '                     (overrides *OUTPUT, VTK= of the deck)', &
-         '  -q, --quiet        no progress on stderr', &
+         '  --accept-inaccurate  exit 0 even when the results are judged inaccurate', &
+         '  -q, --quiet        no progress on stderr (warnings are still printed)', &
          '  -v, --verbose      more detail on stderr', &
          '  --help             this text', &
          '  --version          version', &
          '', &
          'exit status: 0 solved; 1 deck error; 2 usage error; 3 structure cannot be solved', &
-         '             (mechanism, singular); 4 input/output or resource failure'
+         '             (mechanism, singular); 4 input/output or resource failure;', &
+         '             5 solved and listing written, but the results are judged inaccurate'
   end subroutine print_help
 
-  subroutine parse_command_line(opts, deck, listing, csv_dir, check_only, vtk_file)
+  subroutine parse_command_line(opts, deck, listing, csv_dir, check_only, vtk_file, demo)
     !! Options and file names from the command line (usage errors stop with 2).
+    !! demo: no deck given, the bundled demo deck is solved.
     type(run_options_t), intent(out) :: opts
     character(:), allocatable, intent(out) :: deck, listing, csv_dir, vtk_file
-    logical, intent(out) :: check_only
+    logical, intent(out) :: check_only, demo
     integer :: i, n
     character(:), allocatable :: arg, val
     logical :: exists
@@ -169,6 +228,8 @@ contains
           opts%verbose = .true.
        case ('--check')
           check_only = .true.
+       case ('--accept-inaccurate')
+          opts%accept_inaccurate = .true.
        case ('-o', '--csv', '--solver', '--formulation', '--export-matrix', '--vtk', '--condense')
           if (i == n) call usage_error('option '//arg//' needs a value')
           i = i + 1
@@ -219,7 +280,8 @@ contains
           deck = arg
        end select
     end do
-    if (.not. allocated(deck)) then
+    demo = .not. allocated(deck)
+    if (demo) then
        inquire (file=DEMO_DECK_SOURCE, exist=exists)
        if (exists) then
           deck = DEMO_DECK_SOURCE
@@ -227,6 +289,8 @@ contains
           deck = DEMO_DECK_INSTALLED
        end if
        if (.not. allocated(listing)) listing = 'demo.lst'
+       if (.not. opts%quiet) write (error_unit, '(a)') 'superjoin: no deck given: solving the bundled demo deck '// &
+            deck//'; listing: '//listing//' (relative to the current directory)'
     end if
     inquire (file=deck, exist=exists)
     if (.not. exists) then

@@ -8,6 +8,7 @@ module superjoin_error
   integer, parameter, public :: EXIT_USAGE = 2     !! usage error
   integer, parameter, public :: EXIT_SINGULAR = 3  !! structure cannot be solved
   integer, parameter, public :: EXIT_IO = 4        !! input/output or resource failure
+  integer, parameter, public :: EXIT_INACCURATE = 5 !! solved, listing written, but the results are judged inaccurate
 
   type, public :: error_t
     !! An error: its exit status and one or more message lines (already formatted).

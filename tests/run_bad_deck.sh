@@ -6,6 +6,7 @@
 #   ** expect: STATUS SUBSTRING
 # and any number of following lines may add substrings that must appear too:
 #   ** also: SUBSTRING
+# A line `** errors: N` requires exactly N error lines (one error per mistake).
 # The binary runs in the deck's directory on NAME.deck, so messages name
 # `NAME.deck:LINE`. The test passes when the exit status is STATUS, stderr
 # contains every substring, nothing looks like a crash and no listing is written.
@@ -51,6 +52,11 @@ while IFS= read -r line; do
     "** also: "*) check_substring "${line#"** also: "}" ;;
   esac
 done < <(tail -n +2 "$deck")
+want_errors=$(grep -m1 -E '^\*\* errors: [0-9]+' "$deck" | tr -dc '0-9')
+if [ -n "$want_errors" ]; then
+  got_errors=$(grep -c ': error: ' "$err")
+  [ "$got_errors" -eq "$want_errors" ] || { echo "FAIL: $got_errors error lines, expected $want_errors"; fail=1; }
+fi
 if grep -qiE 'runtime error|backtrace|segmentation' "$out" "$err"; then
   echo "FAIL: output looks like a crash"; fail=1
 fi

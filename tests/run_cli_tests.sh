@@ -23,22 +23,72 @@ expect 4 "missing deck" -- "$bin" no_such.deck
 expect 0 "check only" -- "$bin" -q --check "$src/decks/demo.deck" -o check.lst
 [ ! -e check.lst ] || { fail=$((fail+1)); echo "FAIL: --check wrote a listing"; }
 expect 0 "demo without deck" -- "$bin" -q
+"$bin" 2>err.txt >/dev/null
+grep -q 'no deck given: solving the bundled demo deck' err.txt || { fail=$((fail+1)); echo "FAIL: demo run does not say what it solves"; }
+grep -q 'listing written to demo.lst' err.txt || { fail=$((fail+1)); echo "FAIL: demo run does not say where the listing went"; }
 [ -s demo.lst ] || { fail=$((fail+1)); echo "FAIL: no demo.lst"; }
 grep -q 'END OF LISTING' demo.lst || { fail=$((fail+1)); echo "FAIL: demo listing incomplete"; }
 for s in cholmod umfpack lapack; do
   expect 0 "solver $s" -- "$bin" -q --solver $s "$src/decks/demo.deck" -o demo_$s.lst
 done
-# The demo's RIGID joints become g = 1e12 x the largest diagonal under PENALTY:
-# numerically singular (MAXRATIO past 1e13), refused with a hint on the formulation.
-expect 3 "penalty" -- "$bin" -q --formulation penalty "$src/decks/demo.deck" -o pen.lst
+# Under PENALTY the demo's RIGID joints get the default g = k/sqrt(eps): solved
+# (exit 0), the MAXRATIO warning printed also under -q, the g range in the notes.
+for d in "$src"/decks/*.deck; do
+  expect 0 "penalty $(basename "$d")" -- "$bin" -q --formulation penalty "$d" -o pen.lst
+done
+expect 0 "penalty" -- "$bin" -q --formulation penalty "$src/decks/demo.deck" -o pen.lst
+grep -q 'warning: MAXRATIO' err.txt || { fail=$((fail+1)); echo "FAIL: -q hid the MAXRATIO warning"; }
+grep -q '1/sqrt(epsilon)' pen.lst || { fail=$((fail+1)); echo "FAIL: penalty default g not in the notes"; }
+# LARGE=1e12 given explicitly: numerically singular (MAXRATIO past 1e13), refused
+# with a hint on the formulation.
+sed '1i *CONTROLS, RIGID=LARGE, LARGE=1e12' "$src/decks/demo.deck" > large.deck
+expect 3 "penalty LARGE=1e12" -- "$bin" -q --formulation penalty large.deck -o pen.lst
 grep -q 'under PENALTY' err.txt || { fail=$((fail+1)); echo "FAIL: penalty breakdown without the formulation hint"; }
+# LARGE=1e10: solved, but the residual judges it inaccurate: exit 5, listing
+# written, the warning shown under -q; --accept-inaccurate makes it 0.
+sed '1i *CONTROLS, RIGID=LARGE, LARGE=1e10' "$src/decks/demo.deck" > large.deck
+rm -f pen.lst
+expect 5 "inaccurate" -- "$bin" -q --formulation penalty large.deck -o pen.lst
+grep -q 'warning: relative residual' err.txt || { fail=$((fail+1)); echo "FAIL: -q hid the residual warning"; }
+grep -q 'error: the results are judged inaccurate' err.txt || { fail=$((fail+1)); echo "FAIL: no exit-5 message"; }
+grep -q 'END OF LISTING' pen.lst || { fail=$((fail+1)); echo "FAIL: exit 5 without the listing"; }
+expect 0 "accept inaccurate" -- "$bin" -q --accept-inaccurate --formulation penalty large.deck -o pen.lst
+grep -q 'warning: relative residual' err.txt || { fail=$((fail+1)); echo "FAIL: --accept-inaccurate hid the warning"; }
 expect 0 "export matrix" -- "$bin" -q --export-matrix k.mtx "$src/decks/demo.deck" -o mm.lst
 head -1 k.mtx | grep -q '%%MatrixMarket matrix coordinate real symmetric' || { fail=$((fail+1)); echo "FAIL: matrix market header"; }
 expect 0 "csv" -- "$bin" -q "$src/decks/demo.deck" -o c.lst --csv csvdir
 for f in displacements reactions contact_forces element_forces; do
   [ -s csvdir/$f.csv ] || { fail=$((fail+1)); echo "FAIL: no $f.csv"; }
 done
+head -1 csvdir/nodes.csv | grep -qx 'substructure,node,x,y,z' || { fail=$((fail+1)); echo "FAIL: nodes.csv header"; }
+[ "$(tail -n +2 csvdir/nodes.csv | cut -d, -f1,2 | sort)" = "$(tail -n +2 csvdir/displacements.csv | cut -d, -f2,3 | sort -u)" ] \
+  || { fail=$((fail+1)); echo "FAIL: nodes.csv does not list the nodes of displacements.csv"; }
 head -1 csvdir/displacements.csv | grep -qx 'step,substructure,node,u1,u2,u3,ur1,ur2,ur3' || { fail=$((fail+1)); echo "FAIL: csv header"; }
+# Plausibility: the demo with E in MPa (lengths in m) sways 2.7 km on a 7 m
+# frame: a warning naming the node and what to check, also under -q; exit 0.
+sed 's/^2\.1e11,/2.1e5,/' "$src/decks/demo.deck" > mpa.deck
+expect 0 "units mix-up" -- "$bin" -q mpa.deck -o mpa.lst
+grep -q "warning: step WIND: displacement 2.67E+003 at COLL.5 is 3.70E+002 times the model's size 7.21E+000" err.txt \
+  || { fail=$((fail+1)); echo "FAIL: no plausibility warning"; cat err.txt; }
+grep -q 'Check the units' mpa.lst || { fail=$((fail+1)); echo "FAIL: plausibility warning not in the listing"; }
+# Contact node pairs far apart: the hinge deck with S3 moved by 0.5 along x
+# (and its hinge made rigid): one warning per contact, with the count and the
+# farthest pair; POSITION TOLERANCE=0.2 (x the model's size 4.5) silences it.
+sed -e 's/^1, 3, 0$/1, 3.5, 0/' -e 's/^2, 4, 0$/2, 4.5, 0/' -e 's/^2, 1, 6, 6, 0\.$/2, 1, 6, 6, RIGID/' \
+  "$src/tests/singular/hinge_three_parts.deck" | grep -v '^\*\*' > gap.deck
+expect 0 "contact gap" -- "$bin" -q gap.deck -o gap.lst
+grep -q "warning: contact HINGE: 1 of 1 node pair(s) farther apart than 4.50E-003 (1.0E-003 x the model's size), the farthest S2.2 - S3.1 at 5.00E-001" err.txt \
+  || { fail=$((fail+1)); echo "FAIL: no contact gap warning"; cat err.txt; }
+[ "$(grep -c 'warning: contact' err.txt)" -eq 1 ] || { fail=$((fail+1)); echo "FAIL: contact J12 (coincident) warned"; }
+grep -c 'WARNING: contact HINGE' gap.lst | grep -qx 1 || { fail=$((fail+1)); echo "FAIL: contact gap warning not once in the listing"; }
+expect 0 "contact gap, --check" -- "$bin" -q --check gap.deck
+grep -q "warning: contact HINGE: 1 of 1 node pair" err.txt || { fail=$((fail+1)); echo "FAIL: --check without the contact gap warning"; }
+sed 's/^2, 1, 6, 6, RIGID$/2, 1, 6, 6, 0./' gap.deck > gap3.deck
+expect 3 "contact gap and a mechanism" -- "$bin" -q gap3.deck -o gap3.lst
+grep -q "warning: contact HINGE: 1 of 1 node pair" err.txt || { fail=$((fail+1)); echo "FAIL: a failed run without the contact gap warning"; }
+sed '1i *CONTROLS, POSITION TOLERANCE=0.2' gap.deck > gap2.deck
+expect 0 "contact gap within tolerance" -- "$bin" -q gap2.deck -o gap.lst
+[ ! -s err.txt ] || { fail=$((fail+1)); echo "FAIL: warned within POSITION TOLERANCE"; cat err.txt; }
 # progress on stderr unless quiet
 "$bin" "$src/decks/demo.deck" -o p.lst 2>err.txt >/dev/null
 grep -q 'superjoin: factor' err.txt || { fail=$((fail+1)); echo "FAIL: no phase report on stderr"; }
@@ -51,6 +101,14 @@ printf '*NODE\n1, 0, 0\n*SUPPORT\n1, 6, 6\n*CLOAD\n1, 1, 5.0\n' > y.deck
 cp x.lst y.lst
 expect 3 "mechanism" -- "$bin" -q y.deck -o y.lst
 cmp -s x.lst y.lst || { fail=$((fail+1)); echo "FAIL: failed run touched the previous listing"; }
+# A mechanism's mode goes to the VTK and CSV outputs asked for: the hinge of
+# tests/singular/hinge_three_parts.deck, S3 rotating about S3.1.
+expect 3 "mechanism mode files" -- "$bin" -q "$src/tests/singular/hinge_three_parts.deck" -o h.lst --vtk hv/h --csv hc
+grep -q 'the mode is written to hv/h_mechanism.vtu hc/mechanism.csv' err.txt || { fail=$((fail+1)); echo "FAIL: mode files not named"; }
+grep -qx 'S3,2,0,1.0000000000000000E+000,0,0,0,1.0000000000000000E+000' hc/mechanism.csv || { fail=$((fail+1)); echo "FAIL: mechanism.csv S3.2"; cat hc/mechanism.csv; }
+grep -qx 'S1,3,0,0,0,0,0,0' hc/mechanism.csv || { fail=$((fail+1)); echo "FAIL: mechanism.csv: the fixed part moves"; }
+grep -q 'Name="mechanism"' hv/h_mechanism.vtu || { fail=$((fail+1)); echo "FAIL: no mechanism array in the VTU"; }
+[ ! -e h.lst ] || { fail=$((fail+1)); echo "FAIL: a mechanism run wrote a listing"; }
 ls *.tmp >/dev/null 2>&1 && { fail=$((fail+1)); echo "FAIL: temporary files left"; }
 # Outputs are renamed over their names: never over a device or a FIFO, and a
 # symbolic link keeps pointing at its (rewritten) file.

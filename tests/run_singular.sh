@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # Solve a deck that must fail in the solution phase (exit 3) and check the
-# message names the location, nothing crashes and no listing is written.
+# message names the location, nothing crashes, no listing is written, and
+# every backend (--solver lapack, cholmod, umfpack) prints the same message.
 # usage: run_singular.sh SUPERJOIN DECK OUTDIR
 # The deck's first line: '** expect: STATUS SUBSTRING'; more '** also: SUBSTRING' lines may follow.
 set -u
@@ -22,5 +23,14 @@ done || fail=1
 grep -qiE 'runtime error|backtrace|segmentation|sigsegv' "$outdir/$name.err" && { echo "FAIL: crash output"; fail=1; }
 [ -e "$lst" ] && { echo "FAIL: a listing was written"; fail=1; }
 ls "$outdir/$name.lst.tmp" >/dev/null 2>&1 && { echo "FAIL: temporary listing left"; fail=1; }
-[ $fail -eq 0 ] && echo "singular $name: status $status as expected"; cat "$outdir/$name.err"
+# The same message (location and mechanism report) from every backend.
+for s in lapack cholmod umfpack; do
+  (cd "$(dirname "$deck")" && "$bin" -q --solver $s "$name.deck" -o "$lst" >/dev/null 2>"$outdir/$name.$s.err")
+  st=$?
+  [ "$st" -eq "$want_status" ] || { echo "FAIL: --solver $s: exit status $st, expected $want_status"; fail=1; }
+  cmp -s "$outdir/$name.err" "$outdir/$name.$s.err" || {
+    echo "FAIL: --solver $s reports differently:"; diff "$outdir/$name.err" "$outdir/$name.$s.err"; fail=1; }
+done
+[ -e "$lst" ] && { echo "FAIL: a listing was written"; fail=1; }
+[ $fail -eq 0 ] && echo "singular $name: status $status as expected, same report from every backend"; cat "$outdir/$name.err"
 exit $fail

@@ -1,7 +1,16 @@
 #!/usr/bin/env bash
 # Install the Debian packages superjoin needs, if any is missing.
+# usage: deps.sh [--test]
+#   (no option)  what building and running the solver needs (tools/build.sh, tools/demo)
+#   --test       also what the tests and benchmarks use: Python, GNU time,
+#                CalculiX (cross-checks), gnuplot (tools/render), valgrind
 set -euo pipefail
-packages=(gfortran gcc cmake make liblapack-dev libopenblas-dev libsuitesparse-dev libmetis-dev python3 time calculix-ccx gnuplot-nox valgrind)
+packages=(gfortran gcc cmake make liblapack-dev libopenblas-dev libsuitesparse-dev libmetis-dev)
+if [ "${1:-}" = "--test" ]; then
+  packages+=(python3 time calculix-ccx gnuplot-nox valgrind)
+elif [ $# -gt 0 ]; then
+  echo "usage: deps.sh [--test]" >&2; exit 2
+fi
 missing=()
 for p in "${packages[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")

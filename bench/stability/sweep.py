@@ -11,7 +11,7 @@ refinement steps, EPSILON, MAXRATIO, condition estimate, warnings).
 
 Verdict per run:
   accurate  exit 0 and error <= ACCURATE (1e-8)
-  warned    exit 0, error above it, and the listing has a WARNING
+  warned    exit 0 or 5 (judged inaccurate), error above it, and the listing has a WARNING
   refused   exit 3 with a message naming the location, on a mechanism (right)
   breakdown exit 3 on a structure that has an answer (PENALTY past 1/eps: the
             factorization breaks down or MAXRATIO is fatal; wrong for TRANSFORM)
@@ -126,7 +126,8 @@ def run_one(binary, case_name, value, formulation, solver, work):
     row = dict(case=case_name, value=value, formulation=formulation, solver=solver, status=p.returncode,
                rel_error='', residual='', residual0='', refinements='', epsilon='', maxratio='', cond='',
                warning='', message=' '.join(p.stderr.replace(work + os.sep, '').split())[:300])
-    if p.returncode == 0:
+    if p.returncode in (0, 5):
+        # 5: solved and listed, but judged inaccurate (a WARNING in the listing)
         h = parse_listing(lst)
         row.update({k: h.get(k, '') for k in ('residual', 'residual0', 'refinements', 'epsilon', 'maxratio',
                                                 'cond', 'warning')})

@@ -4,7 +4,7 @@ module superjoin_analysis
   use, intrinsic :: iso_fortran_env, only: error_unit
   use superjoin_kinds, only: wp, i8, ip
   use superjoin_error, only: error_t, fatal_error, add_error_line, EXIT_SINGULAR
-  use superjoin_model_types, only: model_t, string_t, FORM_TRANSFORM, FORM_PENALTY, RIGID_LARGE, &
+  use superjoin_model_types, only: model_t, string_t, FORM_TRANSFORM, FORM_PENALTY, RIGID_LARGE, DEFAULT_PENALTY_LARGE, &
        LINK_FINITE, LINK_RIGID, node_label, CONDENSE_YES, CONDENSE_NO, CONDENSE_AUTO
   use superjoin_assembly_dofs, only: dof_table_t, build_dof_table, UNIT_LINK, UNIT_SUPPORT, GROUND, block_dof
   use superjoin_assembly_forest, only: forest_t, build_forest
@@ -19,6 +19,8 @@ module superjoin_analysis
   use superjoin_output_matrix_market, only: write_matrix_market
   use superjoin_analysis_results, only: results_t, run_options_t, PH_ASSEMBLE, PH_ORDER, PH_FACTOR, PH_SOLVE
   use superjoin_analysis_recover, only: recover_results
+  use superjoin_analysis_penalty, only: apply_penalty_default, penalty_default_note
+  use superjoin_analysis_mechanism, only: mechanism_error
   use superjoin_utils_clock, only: stopwatch_t, report_phase
   use superjoin_utils_union_find, only: find_root
   use superjoin_utils_strings, only: itoa
@@ -50,6 +52,11 @@ module superjoin_analysis
     !! CONDENSE=AUTO condenses no part whose dense K* would exceed this (2 GiB).
   real(wp), parameter, public :: RESIDUAL_WARN = 1.0e-6_wp
     !! A relative residual still above this after refinement is reported as a warning.
+  real(wp), parameter, public :: RESIDUAL_WARN_PENALTY = 1.0e-4_wp
+    !! The same under PENALTY, whose residual floor is about eps x g / k (the
+    !! penalty springs' forces on round-off): 1e-6 to 1e-5 with the default
+    !! g = k / sqrt(eps) on the bundled decks, whose displacements then agree with
+    !! TRANSFORM to 1.4e-6 relative or better (doc/verification.md).
 
   public :: solve_model, solve_group, release_cache
 
@@ -318,6 +325,11 @@ contains
             any(table%units(iu)%state(1:table%units(iu)%n) == LINK_RIGID)
     end do
     if (.not. any_rigid) return
+    if (form == FORM_PENALTY .and. .not. model%controls%large_given) then
+       call apply_penalty_default(model, table, DEFAULT_PENALTY_LARGE, dmax, glarge, error)
+       if (.not. allocated(error)) call note(notes, penalty_default_note(dmax, glarge))
+       return
+    end if
     call max_element_diagonal(model, table, dmax, error)
     if (allocated(error)) return
     if (dmax <= 0.0_wp) dmax = 1.0_wp
@@ -865,6 +877,8 @@ contains
        if (error%code == EXIT_SINGULAR) then
           jf = solver%info%failed_column
           deallocate (error)
+          call mechanism_error(k, solver_name, model, table, tr, penalty_hint(res), res%mechanism, error)
+          if (allocated(error)) return
           if (jf >= 1 .and. jf <= tr%ncol()) then
              call fatal_error(error, EXIT_SINGULAR, 'error: the structure cannot be solved: '// &
                   'mechanism or singular stiffness at '//column_label(model, table, tr, jf)//penalty_hint(res))
@@ -915,6 +929,7 @@ contains
     integer(i8) :: j, jmax
     real(wp) :: ratio, cond, knorm
     character(len=32) :: buf
+    character(:), allocatable :: backend
 
     nstep = size(q, 2)
     allocate (r(k%n, nstep), dq(k%n, nstep), q_try(k%n, nstep), r_try(k%n, nstep), berr(nstep), &
@@ -950,6 +965,10 @@ contains
     res%maxratio_at = 'n/a'
     if (jmax > 0) res%maxratio_at = column_label(model, table, tr, jmax)
     if (res%maxratio > MAXRATIO_FATAL) then
+       backend = 'auto'
+       if (allocated(opts%solver)) backend = opts%solver
+       call mechanism_error(k, backend, model, table, tr, penalty_hint(res), res%mechanism, error)
+       if (allocated(error)) return
        write (buf, '(es10.2e3)') res%maxratio
        call fatal_error(error, EXIT_SINGULAR, 'error: the structure cannot be solved: stiffness is '// &
             'numerically singular at '//res%maxratio_at//' (MAXRATIO '//trim(adjustl(buf))// &
@@ -983,9 +1002,10 @@ contains
        res%steps(:)%refinements = it
     end do
 
-    if (maxval(res%steps(:)%residual) > RESIDUAL_WARN) then
+    if (maxval(res%steps(:)%residual) > merge(RESIDUAL_WARN_PENALTY, RESIDUAL_WARN, res%formulation == 'PENALTY')) then
        write (buf, '(es10.2e3)') maxval(res%steps(:)%residual)
        call warn(res, 'relative residual '//trim(adjustl(buf))//' after refinement: results are inaccurate')
+       res%inaccurate = .true.
     end if
     if (res%maxratio > MAXRATIO_WARN) then
        write (buf, '(es10.2e3)') res%maxratio
@@ -996,6 +1016,7 @@ contains
     if (.not. ieee_is_finite(cond) .or. cond > huge(cond)) then
        cond = huge(cond)
        call warn(res, 'condition estimate overflows (above 1.8E+308): results are unreliable')
+       res%inaccurate = .true.
     end if
     res%cond_est = cond
     if (.not. opts%quiet .and. opts%verbose) then

@@ -19,6 +19,7 @@ module superjoin_analysis_results
      character(:), allocatable :: export_matrix !! Matrix Market path, or unallocated
      logical :: quiet = .false.
      logical :: verbose = .false.
+     logical :: accept_inaccurate = .false. !! --accept-inaccurate: exit 0 even when results are judged inaccurate
   end type run_options_t
 
   type, public :: reaction_t
@@ -63,6 +64,8 @@ module superjoin_analysis_results
      character(:), allocatable :: formulation
      type(string_t), allocatable :: notes(:)      !! decisions and warnings for the listing
      type(string_t), allocatable :: warnings(:)   !! also printed on stderr
+     real(wp), allocatable :: mechanism(:, :)     !! (6, nvertex) mechanism mode of an exit-3 run, global axes
+     logical :: inaccurate = .false.              !! a warning judges the results inaccurate (exit EXIT_INACCURATE)
      real(wp), allocatable :: u(:, :)             !! (6*nvertex, nstep) displacements per vertex, global axes
      logical, allocatable :: has_dof(:, :)        !! (6, nvertex)
      real(wp), allocatable :: elem_force(:, :, :, :)  !! (6, 2, nelem_total, nstep)

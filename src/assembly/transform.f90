@@ -661,14 +661,20 @@ contains
       name = node_label(model, isub, int(v - table%vertex_offset(isub), kind(model%subs(1)%nnode)))
     end function vertex_name
   end function unit_nodes
-  subroutine transform_expand(tr, q, u)
-    !! u = T q + u0 over the physical DOFs (DOFs without a column: u0 only).
+  subroutine transform_expand(tr, q, u, linear)
+    !! u = T q + u0 over the physical DOFs (DOFs without a column: u0 only);
+    !! with linear = .true., u = T q (a mode shape, no prescribed values).
     class(transform_t), intent(in) :: tr
     real(wp), intent(in) :: q(:, :)          !! (ncol, nrhs)
     real(wp), intent(out) :: u(:, :)         !! (np, nrhs)
+    logical, intent(in), optional :: linear
     integer(i8) :: p, j
+    logical :: with_u0
+    with_u0 = .true.
+    if (present(linear)) with_u0 = .not. linear
     do p = 1, size(tr%map_len, kind=i8)
-       u(p, :) = tr%u0(p)
+       u(p, :) = 0.0_wp
+       if (with_u0) u(p, :) = tr%u0(p)
        do j = tr%map_start(p), tr%map_start(p) + tr%map_len(p) - 1
           u(p, :) = u(p, :) + tr%pool_coef(j)*q(tr%pool_col(j), :)
        end do

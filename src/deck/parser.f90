@@ -69,7 +69,7 @@ module superjoin_deck_parser
     !! Poisson's ratio bounds (open interval).
   real(wp), parameter :: PARALLEL_TOL = 1.0e-10_wp
     !! Relative size below which orientation vectors count as zero or parallel.
-  integer, parameter :: NAME_LEN = 16
+  integer, parameter :: NAME_LEN = 24
   integer, parameter :: ORIENT_VALUES = 6
   integer, parameter :: NODE_FIELDS_MIN = 1, NODE_FIELDS_MAX = 7, NODE_COORD_FIELDS = 4
     !! id, x, y, z, then (Abaqus) the direction cosines of a shell normal, checked and ignored.
@@ -730,6 +730,7 @@ contains
     end do
     if (st%card_etype == 0) then
        call report_loc(st, loc, unsupported_type_message(clip(typ)))
+       call declare_elset(st, kw, loc)
        return
     end if
     isub = target_sub(st, loc)
@@ -747,6 +748,22 @@ contains
        end associate
     end if
   end subroutine kw_element
+
+  subroutine declare_elset(st, kw, loc)
+    !! The ELSET of a rejected *ELEMENT card still exists (empty), so that the
+    !! cards naming it do not each report it as unknown: one error per mistake.
+    type(deck_state_t), intent(inout) :: st
+    type(keyword_line_t), intent(in) :: kw
+    type(source_loc_t), intent(in) :: loc
+    character(:), allocatable :: elset
+    logical :: found
+    integer :: isub, iset
+    call get_name_param(st, kw, loc, 'ELSET', .false., elset, found)
+    if (.not. found) return
+    isub = target_sub(st, loc)
+    iset = find_set(st%subs(isub), elset, .true.)
+    if (iset == 0) call new_set(st%subs(isub), elset, .true., loc, iset)
+  end subroutine declare_elset
 
   subroutine kw_set(st, kw, loc, elem)
     type(deck_state_t), intent(inout) :: st
@@ -796,10 +813,18 @@ contains
     call get_param(st, kw, loc, 'ELSET', .true., elset, found_e)
     call get_name_param(st, kw, loc, 'MATERIAL', .true., material, found_m)
     st%card = CARD_SKIP
-    if (.not. (found_e .and. found_m)) return
-    if (.not. parse_ref(st, elset, .true., st%cur_sub, loc, sec%elset)) return
+    if (.not. (found_e .and. found_m)) then
+       ! one mistake: the elements it meant are not reported again as without a section
+       st%section_rejected(kind) = .true.
+       return
+    end if
+    if (.not. parse_ref(st, elset, .true., st%cur_sub, loc, sec%elset)) then
+       st%section_rejected(kind) = .true.
+       return
+    end if
     if (.not. sec%elset%is_set) then
        call report_loc(st, loc, 'ELSET='//clip(elset)//' must name an element set')
+       st%section_rejected(kind) = .true.
        return
     end if
     sec%kind = kind
@@ -980,7 +1005,8 @@ contains
     logical :: found
     real(wp) :: x
     integer :: stat
-    call check_params(st, kw, loc, [character(NAME_LEN) :: 'FORMULATION', 'RIGID', 'LARGE'], &
+    call check_params(st, kw, loc, [character(NAME_LEN) :: 'FORMULATION', 'RIGID', 'LARGE', &
+         'POSITION TOLERANCE'], &
          [character(NAME_LEN) ::])
     call get_param(st, kw, loc, 'FORMULATION', .false., value, found)
     if (found) then
@@ -1013,6 +1039,18 @@ contains
           call report_loc(st, loc, 'LARGE must be greater than 1, not '//clip(value))
        else
           st%controls%large = x
+          st%controls%large_given = .true.
+       end if
+    end if
+    call get_param(st, kw, loc, 'POSITION TOLERANCE', .false., value, found)
+    if (found) then
+       call parse_real(value, x, stat)
+       if (stat /= TOK_OK) then
+          call report_loc(st, loc, real_message(value, stat))
+       else if (.not. (x >= 0.0_wp)) then
+          call report_loc(st, loc, 'POSITION TOLERANCE must be 0 or more, not '//clip(value))
+       else
+          st%controls%position_tolerance = x
        end if
     end if
   end subroutine kw_controls

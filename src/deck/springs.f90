@@ -210,6 +210,7 @@ contains
     c%slave = st%subs(sub)%name
     if (len(orientation) > 0) c%orientation = orientation
     c%loc = loc
+    c%remote = .true.
     call add_contact(st, c, k)
   end subroutine new_contact
 

@@ -104,6 +104,7 @@ module superjoin_deck_state
      character(:), allocatable :: name, master, slave, orientation
      type(source_loc_t) :: loc
      logical :: nearest = .false.          !! PAIR=NEAREST: slave nodes take the nearest master node
+     logical :: remote = .false.           !! joins nodes at different places on purpose (springs)
      real(wp) :: tol = 0.0_wp              !! TOL= of PAIR=NEAREST (*INTERFACE: < 0 until set)
      logical :: is_interface = .false.     !! an *INTERFACE card (Goodman joint)
      real(wp) :: kn = 0.0_wp, kt = 0.0_wp  !! *INTERFACE: stiffness per unit length or area
@@ -265,6 +266,7 @@ module superjoin_deck_state
      integer :: nelem_cards = 0
      integer :: ninst = 0
      type(instance_b_t), allocatable :: instances(:)
+     logical :: section_rejected(3) = .false.  !! a *SOLID/*BEAM/*SHELL SECTION card (SEC_* index) was rejected
      ! block and card state
      integer :: cur_inst = 0               !! open *INSTANCE block
      logical :: in_assembly = .false.      !! inside *ASSEMBLY ... *END ASSEMBLY

@@ -499,6 +499,7 @@ contains
       sec%elset = iset
       if (iset == 0) then
          call report_loc(st, sb%loc, 'unknown element set '//sb%elset%set//' in substructure '//sub%name)
+         st%section_rejected(sb%kind) = .true.   ! its elements are not reported again
          return
       end if
 
@@ -640,6 +641,21 @@ contains
     end select
   end function needed_card
 
+  pure logical function section_card_rejected(st, etype)
+    !! A section card that could have covered an element of type etype was
+    !! rejected (already reported): the element is not reported again.
+    type(deck_state_t), intent(in) :: st
+    integer, intent(in) :: etype
+    select case (etype)
+    case (ET_B23, ET_B33)
+       section_card_rejected = st%section_rejected(SEC_BEAM)
+    case (ET_S3, ET_S4)
+       section_card_rejected = st%section_rejected(SEC_SHELL)
+    case default
+       section_card_rejected = st%section_rejected(SEC_SOLID) .or. st%section_rejected(SEC_SHELL)
+    end select
+  end function section_card_rejected
+
   subroutine check_unassigned(st, model)
     !! Elements without a section: one message per *ELEMENT card.
     type(deck_state_t), intent(inout) :: st
@@ -654,6 +670,7 @@ contains
        associate (sub => model%subs(isub))
          do e = 1, sub%nelem
             if (sub%elem_section(e) /= 0) cycle
+            if (section_card_rejected(st, sub%elem_type(e))) cycle
             c = st%subs(isub)%elem_card(e)
             count(c) = count(c) + 1
             if (count(c) == 1) then
@@ -789,6 +806,7 @@ contains
          c%name = cb%name
          c%loc = cb%loc
          c%master_sub = sub_index(model, cb%master)
+         c%remote = cb%remote
          c%slave_sub = sub_index(model, cb%slave)
          if (c%master_sub == 0) call report_loc(st, cb%loc, 'unknown substructure '//cb%master//' in MASTER='// &
               part_hint(model, cb%master))

@@ -38,6 +38,11 @@ module superjoin_model_types
     !! Formulation and rigid-link controls.
   integer, parameter, public :: RIGID_ELIMINATE = 1, RIGID_LARGE = 2
   real(wp), parameter, public :: DEFAULT_LARGE = 1.0e12_wp
+  real(wp), parameter, public :: DEFAULT_POSITION_TOLERANCE = 1.0e-3_wp
+    !! Contact node pairs farther apart than this x the model's size are warned.
+  real(wp), parameter, public :: DEFAULT_PENALTY_LARGE = 1.0_wp/sqrt(epsilon(1.0_wp))
+    !! LARGE under FORMULATION=PENALTY unless *CONTROLS sets it: 1/sqrt(eps) = 6.7e7, the classic
+    !! penalty choice (constraint error and round-off both about sqrt(eps): half the digits survive).
 
   integer, parameter, public :: CONDENSE_AUTO = 0, CONDENSE_YES = 1, CONDENSE_NO = 2
     !! Static condensation of a substructure's interior DOFs (*SUBSTRUCTURE, CONDENSE=).
@@ -127,6 +132,7 @@ module superjoin_model_types
      integer :: master_sub = 0             !! substructure indices
      integer :: slave_sub = 0
      integer :: orientation = 0            !! index into model%orientations, 0 = global axes
+     logical :: remote = .false.           !! joins nodes at different places on purpose (springs)
      type(source_loc_t) :: loc
   end type contact_t
 
@@ -221,6 +227,8 @@ module superjoin_model_types
      integer :: formulation = FORM_TRANSFORM
      integer :: rigid = RIGID_ELIMINATE
      real(wp) :: large = DEFAULT_LARGE
+     logical :: large_given = .false.      !! LARGE= given on *CONTROLS
+     real(wp) :: position_tolerance = DEFAULT_POSITION_TOLERANCE  !! POSITION TOLERANCE= (relative)
   end type controls_t
 
   type, public :: model_t

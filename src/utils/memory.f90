@@ -45,7 +45,7 @@ contains
     else
        write (buf, '(f0.1,a)') real(nbytes, wp)/MIB, ' MiB'
     end if
-    if (buf(1:1) == '.') buf = '0'//buf
+    if (buf(1:1) == '.') buf = '0'//buf(1:len(buf) - 1)
     s = itoa(nbytes)//' bytes ('//trim(buf)//')'
   end function bytes_text
 end module superjoin_utils_memory

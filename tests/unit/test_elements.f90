@@ -290,6 +290,7 @@ contains
     integer :: it, io, etype, nd, m, nrank
     character(:), allocatable :: what
 
+    allocate (ke(0, 0))   ! defined bounds before the first reallocation (gfortran -Wuninitialized)
     do it = 1, size(LINE_TYPES)
        etype = LINE_TYPES(it)
        nd = size(element_node_dofs(etype))

@@ -1,7 +1,7 @@
 #!/usr/bin/env python3
 """A tower of identical storey modules, as *PART and *INSTANCE cards.
 
-usage: gen_modules.py [--mesh M] [--storeys N] [--no-turn] [--joint G] [--explicit] > tower.deck
+usage: gen_modules.py [--mesh M] [--storeys N] [--no-turn] [--joint G] [--row] [--explicit] > tower.deck
 
 One *PART MODULE: a square S4 slab (side 4 m, M x M elements, 0.2 m thick,
 concrete) at the top of four B33 columns (0.4 m square) standing on the corners.
@@ -13,6 +13,12 @@ PAIR=NEAREST (RIGID on all six DOFs, or translations RIGID and rotations of
 stiffness G with --joint G); the feet of the first storey are clamped. Every
 slab carries its own pressure (it grows with the storey) and the top slab a
 horizontal load at one corner, so that the tower sways and twists.
+
+With --row the N modules stand side by side along x instead (a floor of
+panels, each on its own four clamped columns, each turned about its own
+vertical axis), neighbouring slabs joined at their two shared corners: the
+structure the identical-parts benchmark uses (a tall tower of slender columns
+is conditioned so that no method gets its answer to better than about 1e-8).
 
 With --explicit the same tower is written without parts: one *SUBSTRUCTURE per
 storey with its nodes placed here as Abaqus places an instance (translation,
@@ -53,6 +59,9 @@ def module(m):
     out.append(", ".join(str(c) for c in corners))
     out.append("*NSET, NSET=BOT")
     out.append(", ".join(str(f) for f in feet))
+    for k, c in enumerate(corners):
+        out.append(f"*NSET, NSET=C{k + 1}")
+        out.append(str(c))
     out.append("*NSET, NSET=LOADED")
     out.append(str(corners[2]))
     out.append("*SHELL SECTION, ELSET=SLAB, MATERIAL=CONCRETE")
@@ -66,8 +75,26 @@ def module(m):
     return out
 
 
-def explicit(part, k, shift, angle):
-    """The part's cards as *SUBSTRUCTURE S<k>, nodes placed."""
+def corner_positions(k, no_turn):
+    """Plan positions of the slab corners C1..C4 of module k in a row."""
+    angle = 0 if no_turn else (90 * (k - 1)) % 360
+    ca, sa = round(math.cos(math.radians(angle))), round(math.sin(math.radians(angle)))
+    c = SIDE / 2
+    pos = []
+    for x, y in ((0, 0), (SIDE, 0), (SIDE, SIDE), (0, SIDE)):
+        pos.append(((k - 1) * SIDE + c + ca * (x - c) - sa * (y - c), c + sa * (x - c) + ca * (y - c)))
+    return pos
+
+
+def shared_corners(ka, kb, no_turn):
+    """Pairs (i, j): corner Ci of module ka at the place of corner Cj of module kb."""
+    pa, pb = corner_positions(ka, no_turn), corner_positions(kb, no_turn)
+    return [(i + 1, j + 1) for i, a in enumerate(pa) for j, b in enumerate(pb)
+            if abs(a[0] - b[0]) < 1e-9 and abs(a[1] - b[1]) < 1e-9]
+
+
+def explicit(part, k, shift, angle, cx=SIDE / 2):
+    """The part's cards as *SUBSTRUCTURE S<k>, nodes placed (shift: (dx, dz))."""
     c = SIDE / 2
     ca, sa = math.cos(math.radians(angle)), math.sin(math.radians(angle))
     out = [f"*SUBSTRUCTURE, NAME=S{k}"]
@@ -84,9 +111,9 @@ def explicit(part, k, shift, angle):
             continue
         if in_nodes:
             nid, x, y, z = line.split(", ")
-            x, y, z = float(x), float(y), float(z) + shift
-            xr = c + ca * (x - c) - sa * (y - c)
-            yr = c + sa * (x - c) + ca * (y - c)
+            x, y, z = float(x) + shift[0], float(y), float(z) + shift[1]
+            xr = cx + ca * (x - cx) - sa * (y - c)
+            yr = c + sa * (x - cx) + ca * (y - c)
             out.append(f"{nid}, {xr:.17g}, {yr:.17g}, {z:.17g}")
         else:
             out.append(line)
@@ -101,6 +128,7 @@ def main():
     ap.add_argument("--no-turn", action="store_true")
     ap.add_argument("--joint", default="RIGID", help="rotational stiffness of the joints (default RIGID)")
     ap.add_argument("--explicit", action="store_true", help="the same tower without *PART/*INSTANCE")
+    ap.add_argument("--row", action="store_true", help="modules side by side on their own columns")
     args = ap.parse_args()
     m, n = args.mesh, args.storeys
     out = ["*HEADING", f"Tower of {n} identical storey modules ({m}x{m} S4 slab on four B33 columns), "
@@ -114,14 +142,21 @@ def main():
         out.append("*ASSEMBLY, NAME=TOWER")
     for k in range(1, n + 1):
         angle = 0 if args.no_turn else (90 * (k - 1)) % 360
+        dx, dz = ((k - 1) * SIDE, 0.0) if args.row else (0.0, (k - 1) * HEIGHT)
         if args.explicit:
-            out += explicit(part, k, (k - 1) * HEIGHT, angle)
+            out += explicit(part, k, (dx, dz), angle, c + dx)
             continue
         out.append(f"*INSTANCE, NAME=S{k}, PART=MODULE")
-        out.append(f"0, 0, {(k - 1) * HEIGHT:.12g}")
-        out.append(f"{c:.12g}, {c:.12g}, 0, {c:.12g}, {c:.12g}, 1, {angle}")
+        out.append(f"{dx:.12g}, 0, {dz:.12g}")
+        out.append(f"{c + dx:.12g}, {c:.12g}, 0, {c + dx:.12g}, {c:.12g}, 1, {angle}")
         out.append("*END INSTANCE")
     for k in range(2, n + 1):
+        if args.row:
+            # corners i of module k-1 and j of module k at the same place
+            out.append(f"*CONTACT, NAME=J{k}, MASTER=S{k - 1}, SLAVE=S{k}")
+            for i, j in shared_corners(k - 1, k, args.no_turn):
+                out.append(f"C{i}, C{j}, 1, 6, RIGID")
+            continue
         out.append(f"*CONTACT, NAME=J{k}, MASTER=S{k - 1}, SLAVE=S{k}, PAIR=NEAREST, TOL=1.0e-6")
         if args.joint.upper() == "RIGID":
             out.append("TOP, BOT, 1, 6, RIGID")
@@ -131,7 +166,11 @@ def main():
     if not args.explicit:
         out.append("*END ASSEMBLY")
     out.append("*BOUNDARY")
-    out.append("S1.BOT, 1, 6")
+    if args.row:
+        for k in range(1, n + 1):
+            out.append(f"S{k}.BOT, 1, 6")
+    else:
+        out.append("S1.BOT, 1, 6")
     out.append("*STEP, NAME=SERVICE")
     out.append("*DLOAD")
     for k in range(1, n + 1):

@@ -187,7 +187,7 @@ contains
     logical, allocatable :: bnd(:), bnd_c(:), keep(:)
     type(assembly_plan_t) :: plan
     type(part_view_t), allocatable :: parts(:)
-    real(wp), allocatable :: f_eff(:, :), u(:, :)
+    real(wp), allocatable :: f_eff(:, :), u(:, :), ku(:, :)
     integer(i8) :: p
     integer :: i, stat
 
@@ -297,7 +297,12 @@ contains
        call report_phase(opts%quiet, 'recover interiors', clock%seconds())
        call clock%start()
     end if
-    call recover_results(model, table, forest, tr, q, u, f_phys, res, error)
+    if (res%n_condensed > 0) then
+       call parts_ku(ctx%cache, parts, u, ku)
+       call recover_results(model, table, forest, tr, q, u, f_phys, res, error, ku)
+    else
+       call recover_results(model, table, forest, tr, q, u, f_phys, res, error)
+    end if
     if (allocated(error)) return
     res%phase_seconds(PH_SOLVE) = res%phase_seconds(PH_SOLVE) + clock%seconds()
     call report_phase(opts%quiet, 'recover', clock%seconds())
@@ -553,10 +558,11 @@ contains
     integer(i8), allocatable :: spc(:)
     integer :: isub, ip_, i, computed0, reused0, nrot
     real(wp) :: dmax
-    ! Every element's matrix first, in deck order, so that a bad element is
-    ! reported as a deck error before any condensation meets it.
+    ! The elements of the substructures kept in the interface first, so that
+    ! a bad element there is reported as a deck error before a condensation
+    ! meets its consequences (condensed ones are checked as they are built).
     if (cache%n == 0) then
-       call max_element_diagonal(model, table, dmax, error)
+       call max_element_diagonal(model, table, dmax, error, only=.not. res%sub_condensed)
        if (allocated(error)) return
     end if
     solver_name = 'auto'
@@ -610,6 +616,25 @@ contains
     end do
   end subroutine recover_parts
 
+  subroutine parts_ku(cache, parts, u, ku)
+    !! k u of every condensed substructure, with its own assembled stiffness,
+    !! on the physical DOFs (zero elsewhere): the element forces of the
+    !! recovery for those substructures, without forming an element matrix.
+    type(part_cache_t), intent(in) :: cache
+    type(part_view_t), intent(in) :: parts(:)
+    real(wp), intent(in) :: u(:, :)
+    real(wp), allocatable, intent(out) :: ku(:, :)
+    real(wp), allocatable :: y(:, :)
+    integer :: i
+    allocate (ku(size(u, 1), size(u, 2)), source=0.0_wp)
+    do i = 1, size(parts)
+       allocate (y(size(parts(i)%pdof), size(u, 2)))
+       call view_stiffness_times(cache, parts(i), u(parts(i)%pdof, :), y)
+       ku(parts(i)%pdof, :) = ku(parts(i)%pdof, :) + y
+       deallocate (y)
+    end do
+  end subroutine parts_ku
+
   subroutine full_health(cache, tr, k, parts, q, u, f_red, f_eff, f_phys, res)
     !! Residual and EPSILON of the whole reduced system, as if it had been
     !! solved monolithically, from the recovered displacements and each
@@ -648,7 +673,11 @@ contains
          call view_residual(cache, parts(i), u(sys%pdof, :), f_phys(sys%pdof, :), rl)
          u0l = 0.0_wp
          u0l(ni + 1:, 1) = tr%prescribed(sys%pdof(ni + 1:))
-         call view_stiffness_times(cache, parts(i), u0l, w)
+         if (any(u0l /= 0.0_wp)) then
+            call view_stiffness_times(cache, parts(i), u0l, w)
+         else
+            w = 0.0_wp
+         end if
          ks = matmul(kst, u(sys%pdof(ni + 1:), :))
          ku0 = matmul(kst, u0l(ni + 1:, 1))
          rf(at + 1:at + ni, :) = rl(1:ni, :)

@@ -27,9 +27,12 @@ module superjoin_analysis_recover
 
 contains
 
-  subroutine recover_results(model, table, forest, tr, q, u, f_phys, res, error)
+  subroutine recover_results(model, table, forest, tr, q, u, f_phys, res, error, ku_parts)
     !! Fill res%u, res%elem_force and res%steps(:) from the reduced solution q
     !! and the physical displacements u (T q + u0, with condensed interiors).
+    !! With ku_parts (physical DOFs × steps: k u of the substructures in
+    !! res%sub_condensed, from their own assembled stiffness), the elements of
+    !! those substructures give only their results, not k_e u_e again.
     type(model_t), intent(in) :: model
     type(dof_table_t), intent(in) :: table
     type(forest_t), intent(in) :: forest
@@ -39,6 +42,7 @@ contains
     real(wp), intent(in) :: f_phys(:, :)     !! (np, nstep)
     type(results_t), intent(inout) :: res
     type(error_t), allocatable, intent(out) :: error
+    real(wp), intent(in), optional :: ku_parts(:, :)
     real(wp), allocatable :: r(:, :), delta(:, :, :), rclose(:, :), acc(:, :)
     real(wp), allocatable :: rigid_force(:, :, :)  ! (3, nunit, nstep): rigid force on child / λ, local
     integer :: nstep, is, stat
@@ -54,7 +58,8 @@ contains
        return
     end if
     r = -f_phys
-    call element_results(model, table, u, r, res, error)
+    if (present(ku_parts)) r = r + ku_parts
+    call element_results(model, table, u, r, res, error, present(ku_parts))
     if (allocated(error)) return
     call unit_deltas(table, tr, q, u, delta)
     call add_spring_forces(table, delta, r)
@@ -94,14 +99,17 @@ contains
     end do
   end subroutine store_displacements
 
-  subroutine element_results(model, table, u, r, res, error)
-    !! Element end forces of every step and r += K_e u_e.
+  subroutine element_results(model, table, u, r, res, error, parts_done)
+    !! Element end forces of every step and r += K_e u_e (but for the
+    !! condensed substructures when parts_done: r already holds their k u).
     type(model_t), intent(in) :: model
     type(dof_table_t), intent(in) :: table
     real(wp), intent(in) :: u(:, :)
     real(wp), intent(inout) :: r(:, :)
     type(results_t), intent(inout) :: res
     type(error_t), allocatable, intent(inout) :: error
+    logical, intent(in) :: parts_done
+    logical, allocatable :: own_ku(:)
     real(wp), allocatable :: ql(:, :, :), fe(:)
     real(wp) :: qloc(3), f(6, 2), fg(MAX_ELEM_DOFS)
     real(wp), allocatable :: fg2(:, :)
@@ -125,6 +133,8 @@ contains
     end if
     res%elem_force = 0.0_wp
     res%plate = 0.0_wp
+    allocate (own_ku(size(model%subs)), source=.false.)
+    if (parts_done) own_ku = res%sub_condensed
 
     ! Distributed loads in element axes, per element and step.
     ql = 0.0_wp
@@ -139,6 +149,7 @@ contains
             ie = res%elem_offset(dl%sub) + dl%elem
             ql(:, ie, is) = ql(:, ie, is) + qloc
             ! f_phys holds this consistent load; element_nodal_forces leaves it out.
+            if (own_ku(dl%sub)) cycle
             call element_pdofs(model, table, dl%sub, dl%elem, pd, n)
             r(pd(1:n), is) = r(pd(1:n), is) + fe
           end associate
@@ -155,12 +166,13 @@ contains
               if (is_plate_type(s%elem_type(e))) then
                  ! r takes K_e u_e (the distributed loads of these elements are left out of r above)
                  call shell_forces(s%elem_type(e), s%x(:, s%elem_nodes(1:nn, e)), sec, &
-                      model%materials(sec%material), u(pd(1:n), :), res%plate(:, ie, :), fg2(1:n, :), inner)
+                      model%materials(sec%material), u(pd(1:n), :), res%plate(:, ie, :), fg2(1:n, :), inner, &
+                      with_forces=.not. own_ku(isub))
                  if (allocated(inner)) then
                     call add_error_line(error, EXIT_DECK, inner%message)
                     return
                  end if
-                 r(pd(1:n), :) = r(pd(1:n), :) + fg2(1:n, :)
+                 if (.not. own_ku(isub)) r(pd(1:n), :) = r(pd(1:n), :) + fg2(1:n, :)
                  cycle
               end if
               do is = 1, nstep
@@ -171,6 +183,7 @@ contains
                     return
                  end if
                  res%elem_force(:, :, ie, is) = f
+                 if (own_ku(isub)) cycle
                  ! r += K_e u_e - f_eq (the consistent load is added back below)
                  call element_nodal_forces(s%elem_type(e), s%x(:, s%elem_nodes(1:nn, e)), sec, f, &
                       fg(1:n), inner)

@@ -119,13 +119,15 @@ contains
     end associate
   end subroutine unit_plain_stiffness
 
-  subroutine max_element_diagonal(model, table, dmax, error)
+  subroutine max_element_diagonal(model, table, dmax, error, only)
     !! Largest diagonal entry of the physical stiffness of the elements alone
-    !! (the scale for RIGID=LARGE).
+    !! (the scale for RIGID=LARGE); with `only`, of the substructures it marks
+    !! (and their element errors first, in deck order).
     type(model_t), intent(in) :: model
     type(dof_table_t), intent(in) :: table
     real(wp), intent(out) :: dmax
     type(error_t), allocatable, intent(out) :: error
+    logical, intent(in), optional :: only(:)
     real(wp), allocatable :: diag(:), ke(:, :)
     integer(i8) :: pd(MAX_ITEM_DOFS)
     integer :: isub, n, a
@@ -137,6 +139,9 @@ contains
        return
     end if
     do isub = 1, size(model%subs)
+       if (present(only)) then
+          if (.not. only(isub)) cycle
+       end if
        associate (s => model%subs(isub))
          do e = 1, s%nelem
             call element_matrix(model, isub, e, ke, error)

@@ -110,11 +110,12 @@ contains
     ke = to_global(kf, node_maps(etype, r, h))
   end subroutine shell_stiffness
 
-  pure subroutine shell_forces(etype, x, sec, mat, ue, res, fg, error)
+  pure subroutine shell_forces(etype, x, sec, mat, ue, res, fg, error, with_forces)
     !! For every step (columns of ue, element displacements in global axes):
     !! the resultants res(6, step) as shell_resultants, and the forces the nodes
     !! exert on the element fg(:, step) = K_e u_e (global axes), the element
-    !! matrix being formed once, in the element frame.
+    !! matrix being formed once, in the element frame. With with_forces =
+    !! .false. only the resultants (fg = 0, no element matrix formed).
     integer, intent(in) :: etype
     real(wp), intent(in) :: x(:, :)
     type(section_t), intent(in) :: sec
@@ -122,18 +123,26 @@ contains
     real(wp), intent(in) :: ue(:, :)
     real(wp), intent(out) :: res(:, :), fg(:, :)
     type(error_t), allocatable, intent(out) :: error
+    logical, intent(in), optional :: with_forces
     real(wp), allocatable :: kf(:, :), maps(:, :, :), d(:)
     real(wp) :: r(3, 3), xl(2, size(x, 2)), h(size(x, 2))
     integer :: is
+    logical :: forces
 
     res = 0.0_wp
     fg = 0.0_wp
-    call flat_stiffness(etype, x, sec, mat, kf, r, xl, h, error)
+    forces = .true.
+    if (present(with_forces)) forces = with_forces
+    if (forces) then
+       call flat_stiffness(etype, x, sec, mat, kf, r, xl, h, error)
+    else
+       call setup(etype, x, r, xl, h, error)
+    end if
     if (allocated(error)) return
     maps = node_maps(etype, r, h)
     do is = 1, size(ue, 2)
        d = to_local(maps, ue(:, is))
-       fg(:, is) = to_global_vector(maps, matmul(kf, d))
+       if (forces) fg(:, is) = to_global_vector(maps, matmul(kf, d))
        call local_resultants(etype, xl, sec, mat, d, res(:, is), error)
        if (allocated(error)) return
     end do

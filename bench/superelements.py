@@ -1,0 +1,172 @@
+#!/usr/bin/env python3
+"""Benchmarks of the superelement layer (doc/performance.md, "Superelements").
+
+usage: bench/superelements.py [--bin build/superjoin] [--work DIR] [--quick]
+
+1. Identical parts: bench/gen_modules.py --row --mesh 56 --storeys 20, twenty
+   instances of one storey module of 19 518 DOFs (390 360 DOFs in all), solved
+   with CONDENSE=AUTO (one condensation, reused by nineteen instances, fifteen of
+   them turned), against bare CHOLMOD's analyze + factorize + solve of the
+   monolithic matrix of the same model (superjoin --condense no
+   --export-matrix; build/cholmod_bare), wall clock and peak memory measured
+   in the same run; results against the monolithic superjoin run.
+2. Joint sweep: bench/gen_panels.py --plane --mesh 224, two CPS4 panels of
+   101 250 DOFs each (202 500 DOFs, joint 900 DOFs, 0.4 %), the joint's shear
+   stiffness swept over 20 values by *CHANGE CONTACT, SWEEP. The extra cost of a
+   value is (T(20 values) - T(1 value)) / 19, both condensed, against T(1 value)
+   condensed (the first full solve) and monolithic; steps 1, 10 and 20 against
+   independent monolithic runs with that g.
+Every run writes a listing and no CSV but where results are compared. --quick
+uses small meshes (for checking the script, not for figures).
+"""
+import argparse
+import csv
+import os
+import re
+import subprocess
+import sys
+import time
+
+ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+sys.path.insert(0, os.path.join(ROOT, "tools"))
+import equiv  # noqa: E402
+
+
+def timed(cmd, cwd):
+    """Wall seconds, peak resident MiB (GNU time), exit status, stderr."""
+    t0 = time.perf_counter()
+    p = subprocess.run(["/usr/bin/time", "-f", "MAXRSS %M"] + cmd, cwd=cwd, capture_output=True, text=True)
+    wall = time.perf_counter() - t0
+    m = re.search(r"MAXRSS (\d+)", p.stderr)
+    return wall, (int(m.group(1)) / 1024 if m else float("nan")), p.returncode, p.stderr
+
+
+def generate(script, args, path):
+    with open(path, "w") as fh:
+        subprocess.run([sys.executable, os.path.join(ROOT, "bench", script)] + args, stdout=fh, check=True)
+
+
+def compare_dirs(da, db, rtol=1e-10):
+    worst, bad = 0.0, None
+    for f in sorted(os.listdir(da)):
+        w, m = equiv.compare_file(os.path.join(da, f), os.path.join(db, f), rtol, 1e-14)
+        if m and bad is None:
+            bad = f"{f}: {m}"
+        worst = max(worst, w or 0.0)
+    return worst, bad
+
+
+def step_rows(path, step):
+    with open(path, newline="") as fh:
+        rows = list(csv.reader(fh))
+    return rows[0], [r for r in rows[1:] if r[0] == step]
+
+
+def compare_step(dir_sweep, step, dir_single, rtol=1e-10):
+    """Rows of one step of the sweep against the single run's step STUDY."""
+    worst, bad = 0.0, None
+    for f in ("displacements.csv", "reactions.csv", "contact_forces.csv", "plate_results.csv"):
+        ha, ra = step_rows(os.path.join(dir_sweep, f), step)
+        hb, rb = step_rows(os.path.join(dir_single, f), "STUDY")
+        ta, tb = os.path.join(dir_sweep, "a.csv"), os.path.join(dir_sweep, "b.csv")
+        for path, h, rows in ((ta, ha, ra), (tb, hb, rb)):
+            with open(path, "w", newline="") as fh:
+                w = csv.writer(fh)
+                w.writerow(h)
+                w.writerows([["S"] + r[1:] for r in rows])
+        w, m = equiv.compare_file(ta, tb, rtol, 1e-14)
+        if m and bad is None:
+            bad = f"{f}: {m}"
+        worst = max(worst, w or 0.0)
+    return worst, bad
+
+
+def identical_parts(binary, bare, work, quick):
+    mesh, n = (8, 20) if quick else (56, 20)
+    deck = os.path.join(work, "modules.deck")
+    generate("gen_modules.py", ["--row", "--mesh", str(mesh), "--storeys", str(n)], deck)
+    t_inst, m_inst, rc, err = timed([binary, "-q", "modules.deck", "-o", "inst.lst", "--csv", "inst"], work)
+    assert rc == 0, err
+    with open(os.path.join(work, "inst.lst")) as fh:
+        note = re.search(r"condensations: .*", fh.read()).group(0)
+    t_mono, m_mono, rc, err = timed([binary, "-q", "--condense", "no", "modules.deck", "-o", "mono.lst",
+                                     "--csv", "mono"], work)
+    assert rc == 0, err
+    subprocess.run([binary, "-q", "--condense", "no", "modules.deck", "-o", "export.lst",
+                    "--export-matrix", "K.mtx"], cwd=work, check=True)
+    p = subprocess.run([bare, "K.mtx"], cwd=work, capture_output=True, text=True, check=True)
+    phases = {k: float(v) for k, v in re.findall(r"time (analyze|factor|solve)\s+(\S+) s", p.stdout)}
+    t_bare = sum(phases.values())
+    m_bare = float(re.search(r"peak VmHWM\s+(\S+) MiB", p.stdout).group(1))
+    worst, bad = compare_dirs(os.path.join(work, "mono"), os.path.join(work, "inst"))
+    print(f"## Identical parts: {n} instances of a {6 * (mesh + 1) ** 2 + 24}-DOF module "
+          f"(gen_modules.py --row --mesh {mesh} --storeys {n})")
+    print(f"- superjoin with instances (CONDENSE=AUTO, CSV written): {t_inst:.2f} s, peak {m_inst:.0f} MiB; {note}")
+    print(f"- bare CHOLMOD analyze + factorize + solve of the monolithic matrix: {t_bare:.2f} s "
+          f"(analyze {phases['analyze']:.2f}, factorize {phases['factor']:.2f}, solve {phases['solve']:.2f}), "
+          f"peak {m_bare:.0f} MiB")
+    print(f"- superjoin monolithic (--condense no, CSV written): {t_mono:.2f} s, peak {m_mono:.0f} MiB")
+    print(f"- speed-up against bare CHOLMOD: {t_bare / t_inst:.2f}x; memory {m_inst / m_bare:.2f} of bare CHOLMOD's")
+    print(f"- results against the monolithic run: largest relative difference {worst:.2e}"
+          + (f" (above 1e-10: {bad})" if bad else ""))
+    return dict(bench="identical", t_inst=t_inst, t_bare=t_bare, t_mono=t_mono, m_inst=m_inst, m_bare=m_bare,
+                m_mono=m_mono, worst=worst)
+
+
+def joint_sweep(binary, work, quick):
+    mesh = 16 if quick else 224
+    nvals = 20
+    gen = ["--plane", "--mesh", str(mesh)]
+    generate("gen_panels.py", gen + ["--sweep", str(nvals)], os.path.join(work, "sweep.deck"))
+    generate("gen_panels.py", gen + ["--sweep", "1"], os.path.join(work, "one.deck"))
+    t20, m20, rc, err = timed([binary, "-q", "sweep.deck", "-o", "sweep.lst"], work)
+    assert rc == 0, err
+    t1c, m1c, rc, err = timed([binary, "-q", "--condense", "yes", "one.deck", "-o", "one.lst"], work)
+    assert rc == 0, err
+    t1m, m1m, rc, err = timed([binary, "-q", "--condense", "no", "one.deck", "-o", "onem.lst"], work)
+    assert rc == 0, err
+    extra = (t20 - t1c) / (nvals - 1)
+    # steps against independent monolithic runs
+    subprocess.run([binary, "-q", "sweep.deck", "-o", "sweepc.lst", "--csv", "sweepc"], cwd=work, check=True)
+    with open(os.path.join(work, "sweep.deck")) as fh:
+        values = fh.read().split("*CHANGE CONTACT, NAME=JOINT, SWEEP\n")[1].split("\n")[0].split(", ")[4:]
+    worst, bad = 0.0, None
+    for k in (1, nvals // 2, nvals):
+        generate("gen_panels.py", gen + ["--single", values[k - 1]], os.path.join(work, f"single{k}.deck"))
+        subprocess.run([binary, "-q", "--condense", "no", f"single{k}.deck", "-o", f"single{k}.lst",
+                        "--csv", f"single{k}"], cwd=work, check=True)
+        w, b = compare_step(os.path.join(work, "sweepc"), f"STUDY-{k}", os.path.join(work, f"single{k}"))
+        worst = max(worst, w)
+        bad = bad or b
+    ndof = 2 * 2 * (mesh + 1) ** 2
+    print(f"## Joint sweep: two CPS4 panels, {ndof} DOFs, joint {2 * 2 * (mesh + 1)} DOFs, {nvals} values "
+          f"(gen_panels.py --plane --mesh {mesh})")
+    print(f"- {nvals} values, condensed (AUTO): {t20:.2f} s, peak {m20:.0f} MiB")
+    print(f"- 1 value, condensed (--condense yes): {t1c:.2f} s; monolithic (--condense no): {t1m:.2f} s, "
+          f"peak {m1m:.0f} MiB")
+    print(f"- each extra value: {extra:.3f} s = {100 * extra / t1c:.1f} % of the first full solve "
+          f"(condensed), {100 * extra / t1m:.1f} % of a monolithic solve")
+    print(f"- steps 1, {nvals // 2}, {nvals} against independent monolithic runs: largest relative difference "
+          f"{worst:.2e}" + (f" (above 1e-10: {bad})" if bad else ""))
+    return dict(bench="joint_sweep", t20=t20, t1c=t1c, t1m=t1m, extra=extra, m20=m20, m1m=m1m, worst=worst)
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    ap.add_argument("--bin", default=os.path.join(ROOT, "build", "superjoin"))
+    ap.add_argument("--work", default=os.path.join(ROOT, "build", "bench-superelements"))
+    ap.add_argument("--quick", action="store_true")
+    args = ap.parse_args()
+    binary = os.path.abspath(args.bin)
+    bare = os.path.join(ROOT, "build", "cholmod_bare")
+    if not os.path.exists(bare):
+        subprocess.run(["gcc", "-O2", "-I/usr/include/suitesparse", os.path.join(ROOT, "bench", "cholmod_bare.c"),
+                        "-lcholmod", "-lsuitesparseconfig", "-lm", "-o", bare], check=True)
+    os.makedirs(args.work, exist_ok=True)
+    identical_parts(binary, bare, args.work, args.quick)
+    joint_sweep(binary, args.work, args.quick)
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())

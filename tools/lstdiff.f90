@@ -3,11 +3,20 @@ program lstdiff
   !! |a - b| <= atol + rtol * max(|a|, |b|). Exit 0 when equal, 1 otherwise.
   !! usage: lstdiff [--rtol R] [--atol A] [--scale-atol F] REFERENCE OUTPUT
   !! (--scale-atol: the absolute tolerance is at least F times the largest number in REFERENCE)
+  !! [--health-rtol H [--health-floor F]]: the numbers of the NUMERICAL HEALTH
+  !! lines (relative residual, residual before refinement, EPSILON, MAXRATIO,
+  !! condition estimate) are compared with the relative tolerance H alone, never
+  !! with an absolute one; two values both at or below F in magnitude (default
+  !! 1e-10: round-off, which differs between builds) count as equal.
   use, intrinsic :: iso_fortran_env, only: real64, error_unit
   implicit none (type, external)
   integer, parameter :: wp = real64
   integer, parameter :: MAX_REPORTED = 20
   real(wp) :: rtol = 1.0e-6_wp, atol = 1.0e-9_wp, scale_atol = 0.0_wp
+  real(wp) :: health_rtol = 0.0_wp, health_floor = 1.0e-10_wp
+  character(len=*), parameter :: HEALTH_LABELS(5) = [character(len=27) :: 'relative residual', &
+       'residual before refinement', 'EPSILON (energy error)', 'MAXRATIO', 'condition estimate']
+    !! Lines of the NUMERICAL HEALTH block (compared relatively with --health-rtol).
   integer :: status
 
   call compare_files(status)
@@ -40,6 +49,14 @@ contains
         i = i + 1
         val = get_arg(i)
         read (val, *) scale_atol
+     case ('--health-rtol')
+        i = i + 1
+        val = get_arg(i)
+        read (val, *) health_rtol
+     case ('--health-floor')
+        i = i + 1
+        val = get_arg(i)
+        read (val, *) health_floor
      case default
         if (.not. allocated(ref)) then
            ref = arg
@@ -49,7 +66,8 @@ contains
      end select
   end do
   if (.not. allocated(out)) then
-     write (error_unit, '(a)') 'usage: lstdiff [--rtol R] [--atol A] REFERENCE OUTPUT'
+     write (error_unit, '(a)') 'usage: lstdiff [--rtol R] [--atol A] [--scale-atol F] '// &
+          '[--health-rtol H] [--health-floor F] REFERENCE OUTPUT'
      status = 2
      return
   end if
@@ -77,7 +95,7 @@ contains
         nbad = nbad + 1
         exit
      end if
-     if (.not. same_line(a, b)) then
+     if (.not. same_line(a, b, health_rtol > 0.0_wp .and. is_health_line(a))) then
         nbad = nbad + 1
         if (nbad <= MAX_REPORTED) then
            write (error_unit, '(a,i0)') 'line ', lineno
@@ -147,9 +165,21 @@ contains
     end do
   end subroutine read_line
 
-  logical function same_line(a, b)
-    !! Lines match when their tokens match (numbers within tolerance).
+  logical function is_health_line(line)
+    !! Whether a listing line is one of the NUMERICAL HEALTH values.
+    character(*), intent(in) :: line
+    integer :: k
+    is_health_line = .false.
+    do k = 1, size(HEALTH_LABELS)
+       if (index(adjustl(line), trim(HEALTH_LABELS(k))) == 1) is_health_line = .true.
+    end do
+  end function is_health_line
+
+  logical function same_line(a, b, health)
+    !! Lines match when their tokens match (numbers within tolerance; health
+    !! values relatively, above the round-off floor).
     character(*), intent(in) :: a, b
+    logical, intent(in) :: health
     integer :: pa, pb
     character(:), allocatable :: ta, tb
     real(wp) :: xa, xb
@@ -168,7 +198,13 @@ contains
           same_line = .false.
           return
        end if
-       if (abs(xa - xb) > atol + rtol*max(abs(xa), abs(xb))) then
+       if (health) then
+          if (max(abs(xa), abs(xb)) <= health_floor) cycle
+          if (abs(xa - xb) > health_rtol*max(abs(xa), abs(xb))) then
+             same_line = .false.
+             return
+          end if
+       else if (abs(xa - xb) > atol + rtol*max(abs(xa), abs(xb))) then
           same_line = .false.
           return
        end if

@@ -555,7 +555,9 @@ contains
     type(sparse_sym_t) :: a, b
     type(error_t), allocatable :: error
     character(:), allocatable :: dir, path
-    integer :: unit, ios
+    integer :: unit, ios, nlower, nentry
+    integer(i8) :: row, col
+    character(len=200) :: line
     logical :: exists
 
     dir = temp_dir()
@@ -583,6 +585,24 @@ contains
        call check(all(b%val == a%val), 'mm: round trip values exact')
        call check(all(sign(1.0_wp, b%val) == sign(1.0_wp, a%val)), 'mm: round trip signs')
     end if
+    ! a "symmetric" Matrix Market file stores the lower triangle: row >= column
+    ! on every entry line (the reader accepts either, so read the text)
+    nlower = 0
+    nentry = 0
+    open (newunit=unit, file=path, status='old', action='read', iostat=ios)
+    read (unit, '(a)', iostat=ios) line      ! banner
+    read (unit, '(a)', iostat=ios) line      ! comment
+    read (unit, '(a)', iostat=ios) line      ! sizes
+    do
+       read (unit, '(a)', iostat=ios) line
+       if (ios /= 0) exit
+       read (line, *, iostat=ios) row, col
+       if (ios /= 0) cycle
+       nentry = nentry + 1
+       if (row >= col) nlower = nlower + 1
+    end do
+    close (unit)
+    call check(nentry == a%nnz() .and. nlower == nentry, 'mm: every entry in the lower triangle')
 
     ! a hand-written file: comments, upper and lower entries, duplicates,
     ! a missing diagonal, integer field

@@ -1,0 +1,128 @@
+module superjoin_analysis_condensation
+  !! The condensed substructures in one solve: their condensations (computed
+  !! or reused from the cache the solve context keeps), the loads the interface
+  !! sees, interior recovery and their k u for the force recovery.
+  use superjoin_kinds, only: wp, i8
+  use superjoin_error, only: error_t, add_error_line, EXIT_SINGULAR
+  use superjoin_model_types, only: model_t, string_t
+  use superjoin_assembly_dofs, only: dof_table_t
+  use superjoin_assembly_assemble, only: max_element_diagonal
+  use superjoin_substructure_local_system, only: dof_label
+  use superjoin_substructure_cache, only: part_cache_t, part_view_t, acquire_view, view_condense_loads, &
+       view_recover, view_stiffness_times, view_spc
+  use superjoin_analysis_results, only: results_t, run_options_t
+  use superjoin_analysis_notes, only: note
+  use superjoin_utils_strings, only: itoa
+  implicit none (type, external)
+  private
+
+  type, public :: solve_context_t
+    !! What outlives one solve: the condensations (reused by later solves of
+    !! the same structure with other contact stiffnesses), and whether the run
+    !! is a joint study (several sets of contact stiffnesses).
+     type(part_cache_t) :: cache
+     logical :: joint_study = .false.
+  end type solve_context_t
+
+  public :: condense_parts, recover_parts, parts_ku
+
+contains
+
+  subroutine condense_parts(model, table, bnd, opts, f_phys, cache, res, notes, parts, f_eff, error)
+    !! The condensations of the condensed substructures (computed, or reused
+    !! from the cache: another instance of the same part, or an earlier solve
+    !! of a joint study), and the loads the interface sees: f_phys with each
+    !! condensed boundary replaced by f* (interior rows have no reduced unknown).
+    type(model_t), intent(in) :: model
+    type(dof_table_t), intent(in) :: table
+    logical, intent(in) :: bnd(:)
+    type(run_options_t), intent(in) :: opts
+    real(wp), intent(in) :: f_phys(:, :)
+    type(part_cache_t), intent(inout) :: cache
+    type(results_t), intent(inout) :: res
+    type(string_t), allocatable, intent(inout) :: notes(:)
+    type(part_view_t), allocatable, intent(out) :: parts(:)
+    real(wp), allocatable, intent(out) :: f_eff(:, :)
+    type(error_t), allocatable, intent(out) :: error
+    character(:), allocatable :: solver_name
+    real(wp), allocatable :: fstar(:, :)
+    integer(i8), allocatable :: spc(:)
+    integer :: isub, ip_, i, computed0, reused0, nrot
+    real(wp) :: dmax
+    ! The elements of the substructures kept in the interface first, so that
+    ! a bad element there is reported as a deck error before a condensation
+    ! meets its consequences (condensed ones are checked as they are built).
+    if (cache%n == 0) then
+       call max_element_diagonal(model, table, dmax, error, only=.not. res%sub_condensed)
+       if (allocated(error)) return
+    end if
+    solver_name = 'auto'
+    if (allocated(opts%solver)) solver_name = opts%solver
+    allocate (parts(res%n_condensed))
+    f_eff = f_phys
+    computed0 = cache%computed
+    reused0 = cache%reused
+    nrot = 0
+    ip_ = 0
+    do isub = 1, size(model%subs)
+       if (.not. res%sub_condensed(isub)) cycle
+       ip_ = ip_ + 1
+       call acquire_view(cache, model, table, isub, bnd, solver_name, parts(ip_), error)
+       if (allocated(error)) return
+       if (parts(ip_)%rotated) nrot = nrot + 1
+       call view_spc(cache, parts(ip_), spc)
+       do i = 1, size(spc)
+          if (any(f_phys(spc(i), :) /= 0.0_wp)) then
+             call add_error_line(error, EXIT_SINGULAR, 'error: load on a DOF without stiffness: '// &
+                  dof_label(model, table, spc(i)))
+          else if (.not. parts(ip_)%reused) then
+             call note(notes, 'AUTOSPC: '//dof_label(model, table, spc(i))//' has no stiffness and no load: dropped')
+          end if
+       end do
+       if (allocated(error)) return
+       allocate (fstar(parts(ip_)%nb, size(f_phys, 2)))
+       call view_condense_loads(cache, parts(ip_), f_phys(parts(ip_)%pdof, :), fstar, error)
+       if (allocated(error)) return
+       f_eff(parts(ip_)%se%pdof, :) = fstar
+       deallocate (fstar)
+    end do
+    call note(notes, 'condensations: '//itoa(cache%computed - computed0)//' computed, '// &
+         itoa(cache%reused - reused0)//' reused ('//itoa(nrot)//' turned by their instance''s placement)')
+  end subroutine condense_parts
+
+  subroutine recover_parts(cache, parts, f_phys, u, error)
+    !! Interior displacements of every condensed substructure from its boundary.
+    type(part_cache_t), intent(inout) :: cache
+    type(part_view_t), intent(in) :: parts(:)
+    real(wp), intent(in) :: f_phys(:, :)
+    real(wp), intent(inout) :: u(:, :)
+    type(error_t), allocatable, intent(out) :: error
+    real(wp), allocatable :: ul(:, :)
+    integer :: i
+    do i = 1, size(parts)
+       ul = u(parts(i)%pdof, :)
+       call view_recover(cache, parts(i), f_phys(parts(i)%pdof, :), ul, error)
+       if (allocated(error)) return
+       u(parts(i)%pdof, :) = ul
+    end do
+  end subroutine recover_parts
+
+  subroutine parts_ku(cache, parts, u, ku)
+    !! k u of every condensed substructure, with its own assembled stiffness,
+    !! on the physical DOFs (zero elsewhere): the element forces of the
+    !! recovery for those substructures, without forming an element matrix.
+    type(part_cache_t), intent(in) :: cache
+    type(part_view_t), intent(in) :: parts(:)
+    real(wp), intent(in) :: u(:, :)
+    real(wp), allocatable, intent(out) :: ku(:, :)
+    real(wp), allocatable :: y(:, :)
+    integer :: i
+    allocate (ku(size(u, 1), size(u, 2)), source=0.0_wp)
+    do i = 1, size(parts)
+       allocate (y(size(parts(i)%pdof), size(u, 2)))
+       call view_stiffness_times(cache, parts(i), u(parts(i)%pdof, :), y)
+       ku(parts(i)%pdof, :) = ku(parts(i)%pdof, :) + y
+       deallocate (y)
+    end do
+  end subroutine parts_ku
+end module superjoin_analysis_condensation

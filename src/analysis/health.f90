@@ -1,0 +1,393 @@
+module superjoin_analysis_health
+  !! Numerical health of a solution: residual, EPSILON, iterative refinement,
+  !! MAXRATIO, condition estimate, the whole-system figures of a condensed run,
+  !! and the check that no result overflows.
+  use, intrinsic :: iso_fortran_env, only: error_unit
+  use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
+  use superjoin_kinds, only: wp, i8, ip
+  use superjoin_error, only: error_t, fatal_error, EXIT_SINGULAR
+  use superjoin_model_types, only: model_t
+  use superjoin_assembly_dofs, only: dof_table_t
+  use superjoin_assembly_transform, only: transform_t
+  use superjoin_substructure_local_system, only: dof_label
+  use superjoin_substructure_cache, only: part_cache_t, part_view_t, view_residual, view_stiffness_times, &
+       view_maxratio
+  use superjoin_solvers, only: linear_solver_t, sparse_sym_t, condition_estimate, norm1_sym
+  use superjoin_analysis_results, only: results_t, run_options_t
+  use superjoin_analysis_mechanism, only: mechanism_error
+  use superjoin_analysis_labels, only: column_label
+  use superjoin_analysis_notes, only: warn
+  use superjoin_utils_strings, only: itoa
+  use superjoin_utils_memory, only: out_of_memory, BYTES_REAL
+  implicit none (type, external)
+  private
+
+  real(wp), parameter, public :: REFINE_BERR = 10*epsilon(1.0_wp)
+    !! iterative refinement runs while the backward error exceeds this,
+  real(wp), parameter, public :: REFINE_RESIDUAL = 1.0e-9_wp
+    !! or while the relative residual or |EPSILON| of a step exceeds this
+  real(wp), parameter, public :: REFINE_GAIN = 0.5_wp
+    !! and while each step multiplies the largest residual by at most this
+  integer, parameter, public :: MAX_REFINE = 3
+    !! At most this many refinement steps.
+  real(wp), parameter, public :: MAXRATIO_WARN = 1.0e6_wp
+    !! MAXRATIO above this is flagged as a loss of accuracy (digits lost ≈ log10):
+    !! PENALTY's measured errors reach 10 MAXRATIO ε, so past 1e6 fewer than 8 digits are sure.
+  real(wp), parameter, public :: MAXRATIO_FATAL = 1.0e13_wp
+    !! MAXRATIO above this (a pivot within about 1/(45 ε) of total cancellation)
+    !! is numerically singular (exit 3): exact mechanisms factor with MAXRATIO
+    !! from about 5e13 up, and nothing meaningful is left of an answer above 1e13.
+  real(wp), parameter :: RATIO_CAP = 1.0e300_wp
+    !! MAXRATIO reported when K_jj / D_jj would overflow.
+  real(wp), parameter, public :: RESIDUAL_WARN = 1.0e-6_wp
+    !! A relative residual still above this after refinement is reported as a warning.
+  real(wp), parameter, public :: RESIDUAL_WARN_PENALTY = 1.0e-4_wp
+    !! The same under PENALTY, whose residual floor is about eps x g / k (the
+    !! penalty springs' forces on round-off): 1e-6 to 1e-5 with the default
+    !! g = k / sqrt(eps) on the bundled decks, whose displacements then agree with
+    !! TRANSFORM to 1.4e-6 relative or better (doc/verification.md).
+
+  public :: check_finite, health, full_health, parts_maxratio, penalty_hint
+
+contains
+
+  subroutine check_finite(model, res, error)
+    !! EXIT_SINGULAR error naming the first kind of result that is not finite
+    !! (including the surface stresses n/t ± 6 m/t² the listing derives).
+    type(model_t), intent(in) :: model
+    type(results_t), intent(in) :: res
+    type(error_t), allocatable, intent(out) :: error
+    character(:), allocatable :: what
+    integer :: is, isub
+    integer(ip) :: e
+    real(wp) :: t
+    if (allocated(res%u)) then
+       if (.not. all(ieee_is_finite(res%u))) what = 'displacements'
+    end if
+    if (.not. allocated(what) .and. allocated(res%elem_force)) then
+       if (.not. all(ieee_is_finite(res%elem_force))) what = 'element forces'
+    end if
+    if (.not. allocated(what) .and. allocated(res%plate)) then
+       if (.not. all(ieee_is_finite(res%plate))) what = 'plate resultants'
+    end if
+    if (.not. allocated(what) .and. allocated(res%plate)) then
+       do isub = 1, size(model%subs)
+          do e = 1, model%subs(isub)%nelem
+             if (model%subs(isub)%elem_section(e) == 0) cycle
+             t = model%subs(isub)%sections(model%subs(isub)%elem_section(e))%thickness
+             if (t <= 0.0_wp) cycle
+             associate (p => res%plate(:, res%elem_offset(isub) + e, :))
+               if (any(too_big(p(1:3, :), t, 1)) .or. any(too_big(6.0_wp*p(4:6, :), t, 2))) &
+                    what = 'plate stresses'
+             end associate
+          end do
+       end do
+    end if
+    if (.not. allocated(what) .and. allocated(res%steps)) then
+       do is = 1, size(res%steps)
+          associate (st => res%steps(is))
+            if (allocated(st%reactions)) then
+               if (.not. all(ieee_is_finite(st%reactions(:)%force))) what = 'support reactions'
+            end if
+            if (allocated(st%link_force)) then
+               if (.not. (all(ieee_is_finite(st%link_force)) .and. all(ieee_is_finite(st%link_delta)))) &
+                    what = 'contact forces'
+            end if
+            if (.not. (all(ieee_is_finite(st%applied)) .and. all(ieee_is_finite(st%reaction)))) &
+                 what = 'equilibrium resultants'
+            if (.not. (ieee_is_finite(st%residual) .and. ieee_is_finite(st%epsilon))) what = 'residuals'
+          end associate
+          if (allocated(what)) exit
+       end do
+    end if
+    if (.not. allocated(what)) return
+    call fatal_error(error, EXIT_SINGULAR, 'error: the '//what//' overflow the floating-point range '// &
+         '(beyond 1.8E+308 or undefined): check the magnitudes and units of loads, stiffnesses, '// &
+         'contact g and coordinates')
+  end subroutine check_finite
+
+  subroutine health(k, q, f_red, spc, solver, model, table, tr, res, opts, error)
+    !! Residual, EPSILON, iterative refinement, MAXRATIO and condition estimate.
+    type(sparse_sym_t), intent(in) :: k
+    real(wp), intent(inout) :: q(:, :)
+    real(wp), intent(in) :: f_red(:, :)
+    logical, intent(in) :: spc(:)
+    class(linear_solver_t), intent(inout) :: solver
+    type(model_t), intent(in) :: model
+    type(dof_table_t), intent(in) :: table
+    type(transform_t), intent(in) :: tr
+    type(results_t), intent(inout) :: res
+    type(run_options_t), intent(in) :: opts
+    type(error_t), allocatable, intent(out) :: error
+    real(wp), allocatable :: r(:, :), dq(:, :), d(:), kd(:), q_try(:, :), r_try(:, :), berr(:), berr_try(:), &
+         prev_res(:), prev_eps(:)
+    type(error_t), allocatable :: inner
+    integer :: is, it, nstep, stat
+    integer(i8) :: j, jmax
+    real(wp) :: ratio, cond, knorm
+    character(len=32) :: buf
+    character(:), allocatable :: backend
+
+    nstep = size(q, 2)
+    allocate (r(k%n, nstep), dq(k%n, nstep), q_try(k%n, nstep), r_try(k%n, nstep), berr(nstep), &
+         berr_try(nstep), d(k%n), kd(k%n), stat=stat)
+    if (stat /= 0) then
+       call out_of_memory(error, 'the residual checks', (4*nstep + 2)*k%n*BYTES_REAL)
+       return
+    end if
+    knorm = norm1_sym(k)
+    call residuals(q, r, berr)
+    do is = 1, nstep
+       res%steps(is)%residual0 = res%steps(is)%residual
+    end do
+    ! MAXRATIO = max K_jj / D_jj, first: a numerically singular matrix stops
+    ! here, before refinement solves with a factor that is not worth using.
+    call solver%pivots(d)
+    call k%diagonal(kd)
+    res%maxratio = 0.0_wp
+    jmax = 0
+    do j = 1, k%n
+       if (spc(j) .or. d(j) == 0.0_wp) cycle
+       ! kd/d guarded against overflow (PENALTY with an absurd g)
+       if (abs(d(j)) <= abs(kd(j))/RATIO_CAP) then
+          ratio = RATIO_CAP
+       else
+          ratio = abs(kd(j)/d(j))
+       end if
+       if (ratio > res%maxratio) then
+          res%maxratio = ratio
+          jmax = j
+       end if
+    end do
+    res%maxratio_at = 'n/a'
+    if (jmax > 0) res%maxratio_at = column_label(model, table, tr, jmax)
+    if (res%maxratio > MAXRATIO_FATAL) then
+       backend = 'auto'
+       if (allocated(opts%solver)) backend = opts%solver
+       call mechanism_error(k, backend, model, table, tr, penalty_hint(res), res%mechanism, error)
+       if (allocated(error)) return
+       write (buf, '(es10.2e3)') res%maxratio
+       call fatal_error(error, EXIT_SINGULAR, 'error: the structure cannot be solved: stiffness is '// &
+            'numerically singular at '//res%maxratio_at//' (MAXRATIO '//trim(adjustl(buf))// &
+            '): a mechanism, or a stiffness contrast beyond double precision'//penalty_hint(res))
+       return
+    end if
+    ! Iterative refinement with the existing factor, while the backward error
+    ! is above a few ulps or the residual or EPSILON above REFINE_RESIDUAL, and
+    ! each step at least halves the largest residual.
+    do it = 1, MAX_REFINE
+       if (all(berr <= REFINE_BERR .and. res%steps(:)%residual <= REFINE_RESIDUAL .and. &
+            abs(res%steps(:)%epsilon) <= REFINE_RESIDUAL)) exit
+       res%steps(:)%refine_tried = it
+       call solver%solve(r, dq, inner)
+       if (allocated(inner)) exit
+       q_try = q - dq
+       prev_res = res%steps(:)%residual
+       prev_eps = res%steps(:)%epsilon
+       r_try = r
+       call residuals(q_try, r_try, berr_try)
+       ! keep a step only if it is finite and gains (a NaN residual compares false)
+       if (.not. all(ieee_is_finite(q_try)) .or. &
+           .not. (maxval(res%steps(:)%residual) <= REFINE_GAIN*maxval(prev_res))) then
+          res%steps(:)%residual = prev_res
+          res%steps(:)%epsilon = prev_eps
+          exit
+       end if
+       q = q_try
+       r = r_try
+       berr = berr_try
+       res%steps(:)%refinements = it
+    end do
+
+    if (maxval(res%steps(:)%residual) > merge(RESIDUAL_WARN_PENALTY, RESIDUAL_WARN, res%formulation == 'PENALTY')) then
+       write (buf, '(es10.2e3)') maxval(res%steps(:)%residual)
+       call warn(res, 'relative residual '//trim(adjustl(buf))//' after refinement: results are inaccurate')
+       res%inaccurate = .true.
+    end if
+    if (res%maxratio > MAXRATIO_WARN) then
+       write (buf, '(es10.2e3)') res%maxratio
+       call warn(res, 'MAXRATIO '//trim(adjustl(buf))//' at '//res%maxratio_at// &
+            ': about '//itoa(nint(log10(res%maxratio)))//' digits may be lost')
+    end if
+    call condition_estimate(k, solver, cond)
+    if (.not. ieee_is_finite(cond) .or. cond > huge(cond)) then
+       cond = huge(cond)
+       call warn(res, 'condition estimate overflows (above 1.8E+308): results are unreliable')
+       res%inaccurate = .true.
+    end if
+    res%cond_est = cond
+    if (.not. opts%quiet .and. opts%verbose) then
+       write (error_unit, '(a,es10.3)') 'superjoin: condition estimate ', cond
+    end if
+  contains
+    subroutine residuals(x, r, berr)
+      !! r = K x - f, the relative residual and EPSILON of every step, and the
+      !! backward error ‖r‖∞ / (‖K‖∞ ‖x‖∞ + ‖f‖∞).
+      real(wp), intent(in) :: x(:, :)
+      real(wp), intent(out) :: r(:, :), berr(:)
+      integer :: s
+      call k%matvec(x, r)
+      r = r - f_red
+      do s = 1, nstep
+         res%steps(s)%residual = safe_div(norm2(r(:, s)), norm2(f_red(:, s)))
+         res%steps(s)%epsilon = energy_error(x(:, s), r(:, s), f_red(:, s))
+         berr(s) = safe_div(maxval(abs(r(:, s))), knorm*maxval(abs(x(:, s))) + maxval(abs(f_red(:, s))))
+      end do
+    end subroutine residuals
+  end subroutine health
+
+  subroutine full_health(cache, tr, k, parts, q, u, f_red, f_eff, f_phys, res)
+    !! Residual and EPSILON of the whole reduced system, as if it had been
+    !! solved monolithically, from the recovered displacements and each
+    !! condensed substructure's own stiffness (so an error in a condensation
+    !! or a recovery shows). Unknowns: the interface columns q, then every
+    !! condensed interior u_i. Interface rows: K_if q − f_if plus, for each
+    !! part, Mᵀ[(k u − f)_b − (K* u_b − f*)]; interior rows: k_ii u_i + k_ib u_b − f_i.
+    !! The loads likewise, with the prescribed values' terms (−k u0).
+    type(part_cache_t), intent(in) :: cache
+    type(transform_t), intent(in) :: tr
+    type(sparse_sym_t), intent(in) :: k
+    type(part_view_t), intent(in) :: parts(:)
+    real(wp), intent(in) :: q(:, :), u(:, :), f_red(:, :), f_eff(:, :), f_phys(:, :)
+    type(results_t), intent(inout) :: res
+    real(wp), allocatable :: r(:, :), f(:, :), rl(:, :), u0l(:, :), w(:, :), ks(:, :), ku0(:), &
+         rf(:, :), ffull(:, :), qfull(:, :)
+    integer :: i, is, nstep
+    integer(i8) :: ni, nb, l, ntot, at
+    character(len=32) :: buf
+    nstep = size(q, 2)
+    allocate (r(k%n, nstep))
+    call k%matvec(q, r)
+    r = r - f_red
+    f = f_red
+    ntot = k%n
+    do i = 1, size(parts)
+       ntot = ntot + parts(i)%ni
+    end do
+    allocate (rf(ntot, nstep), ffull(ntot, nstep), qfull(ntot, nstep))
+    at = k%n
+    do i = 1, size(parts)
+       associate (sys => parts(i), kst => parts(i)%se%k)
+         ni = sys%ni
+         nb = sys%nb
+         allocate (rl(ni + nb, nstep), u0l(ni + nb, 1), w(ni + nb, 1))
+         call view_residual(cache, parts(i), u(sys%pdof, :), f_phys(sys%pdof, :), rl)
+         u0l = 0.0_wp
+         u0l(ni + 1:, 1) = tr%prescribed(sys%pdof(ni + 1:))
+         if (any(u0l /= 0.0_wp)) then
+            call view_stiffness_times(cache, parts(i), u0l, w)
+         else
+            w = 0.0_wp
+         end if
+         ks = matmul(kst, u(sys%pdof(ni + 1:), :))
+         ku0 = matmul(kst, u0l(ni + 1:, 1))
+         rf(at + 1:at + ni, :) = rl(1:ni, :)
+         do is = 1, nstep
+            ffull(at + 1:at + ni, is) = f_phys(sys%pdof(1:ni), is) - w(1:ni, 1)
+         end do
+         qfull(at + 1:at + ni, :) = u(sys%pdof(1:ni), :)
+         at = at + ni
+         do l = 1, nb
+            associate (pb => sys%pdof(ni + l))
+              call tr%reduce_add(pb, rl(ni + l, :) - (ks(l, :) - f_eff(pb, :)), r)
+              call tr%reduce_add(pb, (f_phys(pb, :) - w(ni + l, 1)) - (f_eff(pb, :) - ku0(l)), f)
+            end associate
+         end do
+         deallocate (rl, u0l, w)
+       end associate
+    end do
+    rf(1:k%n, :) = r
+    ffull(1:k%n, :) = f
+    qfull(1:k%n, :) = q
+    do is = 1, nstep
+       res%steps(is)%residual = safe_div(norm2(rf(:, is)), norm2(ffull(:, is)))
+       res%steps(is)%epsilon = energy_error(qfull(:, is), rf(:, is), ffull(:, is))
+    end do
+    if (maxval(res%steps(:)%residual) > RESIDUAL_WARN) then
+       write (buf, '(es10.2e3)') maxval(res%steps(:)%residual)
+       call warn(res, 'relative residual '//trim(adjustl(buf))//' of the whole system (condensed '// &
+            'substructures recovered): results are inaccurate')
+    end if
+  end subroutine full_health
+
+  subroutine parts_maxratio(model, table, cache, parts, res, error)
+    !! MAXRATIO over the interior factors of the condensed substructures:
+    !! the largest of them and the interface's is reported, with its place.
+    type(model_t), intent(in) :: model
+    type(dof_table_t), intent(in) :: table
+    type(part_cache_t), intent(in) :: cache
+    type(part_view_t), intent(in) :: parts(:)
+    type(results_t), intent(inout) :: res
+    type(error_t), allocatable, intent(out) :: error
+    character(len=32) :: buf
+    real(wp) :: ratio
+    integer(i8) :: p
+    integer :: i
+    do i = 1, size(parts)
+       call view_maxratio(cache, parts(i), ratio, p)
+       if (ratio <= res%maxratio .or. p == 0) cycle
+       res%maxratio = ratio
+       res%maxratio_at = dof_label(model, table, p)
+       write (buf, '(es10.2e3)') res%maxratio
+       if (res%maxratio > MAXRATIO_FATAL) then
+          call fatal_error(error, EXIT_SINGULAR, 'error: the structure cannot be solved: stiffness is '// &
+               'numerically singular at '//res%maxratio_at//' (MAXRATIO '//trim(adjustl(buf))// &
+               '): a mechanism, or a stiffness contrast beyond double precision')
+          return
+       end if
+       if (res%maxratio > MAXRATIO_WARN) call warn(res, 'MAXRATIO '//trim(adjustl(buf))//' at '// &
+            res%maxratio_at//': about '//itoa(nint(log10(res%maxratio)))//' digits may be lost')
+    end do
+  end subroutine parts_maxratio
+
+  function penalty_hint(res) result(s)
+    !! Under PENALTY a breakdown is usually the contact stiffness, not a mechanism.
+    type(results_t), intent(in) :: res
+    character(:), allocatable :: s
+    s = ''
+    if (res%formulation == 'PENALTY') s = ' (unless it is a mechanism: under PENALTY a contact stiffness '// &
+         'beyond about 1/epsilon times the structure''s breaks the factorization; TRANSFORM does not)'
+  end function penalty_hint
+
+  pure function energy_error(x, r, f) result(eps)
+    !! EPSILON = xᵀr / xᵀf, with x, r and f scaled by powers of two first so
+    !! that the dot products cannot overflow (the ratio does not change).
+    real(wp), intent(in) :: x(:), r(:), f(:)
+    real(wp) :: eps, sx, sf
+    sx = scale_of(x)
+    sf = max(scale_of(f), scale_of(r))
+    eps = safe_div(dot_product(x/sx, r/sf), dot_product(x/sx, f/sf))
+  end function energy_error
+
+  pure function scale_of(v) result(s)
+    !! A power of two near max|v| (1 for a zero or empty vector).
+    real(wp), intent(in) :: v(:)
+    real(wp) :: s, m
+    s = 1.0_wp
+    if (size(v) == 0) return
+    m = maxval(abs(v))
+    if (m > 0.0_wp .and. m <= huge(m)) s = set_exponent(1.0_wp, exponent(m))
+  end function scale_of
+
+  elemental logical function too_big(a, t, power)
+    !! Whether |a| / t**power would come near the overflow threshold (tested on
+    !! logarithms, so that the test itself cannot overflow or divide by zero).
+    real(wp), intent(in) :: a, t
+    integer, intent(in) :: power
+    real(wp), parameter :: MARGIN = 1.0_wp   !! decades kept below huge()
+    too_big = .false.
+    if (a == 0.0_wp .or. t <= 0.0_wp) return
+    too_big = log10(abs(a)) - power*log10(t) > log10(huge(a)) - MARGIN
+  end function too_big
+
+  pure function safe_div(a, b) result(c)
+    real(wp), intent(in) :: a, b
+    real(wp) :: c
+    if (b == 0.0_wp) then
+       c = 0.0_wp
+       if (a /= 0.0_wp) c = huge(1.0_wp)
+    else
+       c = a/b
+    end if
+  end function safe_div
+end module superjoin_analysis_health

@@ -1,0 +1,363 @@
+module superjoin_analysis_policy
+  !! Decisions the pipeline takes before it solves: RIGID as a large number,
+  !! what the transform did, column groups, boundaries, which substructures are
+  !! condensed, AUTOSPC and the unknowns coupled to no load.
+  use superjoin_kinds, only: wp, i8
+  use superjoin_error, only: error_t, add_error_line, EXIT_SINGULAR
+  use superjoin_model_types, only: model_t, string_t, FORM_TRANSFORM, FORM_PENALTY, RIGID_LARGE, &
+       DEFAULT_PENALTY_LARGE, LINK_FINITE, LINK_RIGID, CONDENSE_YES, CONDENSE_NO, CONDENSE_AUTO
+  use superjoin_assembly_dofs, only: dof_table_t, UNIT_LINK, UNIT_SUPPORT
+  use superjoin_assembly_forest, only: forest_t
+  use superjoin_assembly_transform, only: transform_t, constraint_t, COL_PHYS, ROLE_TREE, ROLE_PLAIN, &
+       CONS_REDUNDANT, CONS_ELIMINATED
+  use superjoin_assembly_assemble, only: max_element_diagonal
+  use superjoin_solvers, only: sparse_sym_t
+  use superjoin_analysis_results, only: results_t, run_options_t
+  use superjoin_analysis_penalty, only: apply_penalty_default, penalty_default_note
+  use superjoin_analysis_labels, only: column_label, vertex_label, block_name, local_name
+  use superjoin_analysis_notes, only: note
+  use superjoin_analysis_condensation, only: solve_context_t
+  use superjoin_utils_union_find, only: find_root
+  use superjoin_utils_strings, only: itoa
+  use superjoin_utils_memory, only: BYTES_REAL
+  implicit none (type, external)
+  private
+
+  real(wp), parameter :: AUTO_KSTAR_BYTES = 2.0_wp*2.0_wp**30
+    !! CONDENSE=AUTO condenses no part whose dense K* would exceed this (2 GiB).
+
+  public :: apply_large, describe_transform, column_groups, count_boundary, choose_condensation, autospc, &
+       skip_unloaded_parts
+
+contains
+
+  subroutine apply_large(model, table, form, notes, error)
+    !! RIGID contacts become g = LARGE × (largest element diagonal) under
+    !! RIGID=LARGE, and under PENALTY (which has no exact elimination).
+    type(model_t), intent(in) :: model
+    type(dof_table_t), intent(inout) :: table
+    integer, intent(in) :: form
+    type(string_t), allocatable, intent(inout) :: notes(:)
+    type(error_t), allocatable, intent(out) :: error
+    real(wp) :: dmax, glarge
+    integer :: iu
+    logical :: any_rigid
+    character(len=32) :: buf
+
+    if (model%controls%rigid /= RIGID_LARGE .and. form /= FORM_PENALTY) return
+    any_rigid = .false.
+    do iu = 1, table%nunit
+       if (table%units(iu)%kind == UNIT_LINK) any_rigid = any_rigid .or. &
+            any(table%units(iu)%state(1:table%units(iu)%n) == LINK_RIGID)
+    end do
+    if (.not. any_rigid) return
+    if (form == FORM_PENALTY .and. .not. model%controls%large_given) then
+       call apply_penalty_default(model, table, DEFAULT_PENALTY_LARGE, dmax, glarge, error)
+       if (.not. allocated(error)) call note(notes, penalty_default_note(dmax, glarge))
+       return
+    end if
+    call max_element_diagonal(model, table, dmax, error)
+    if (allocated(error)) return
+    if (dmax <= 0.0_wp) dmax = 1.0_wp
+    glarge = model%controls%large*dmax
+    do iu = 1, table%nunit
+       associate (u => table%units(iu))
+         if (u%kind /= UNIT_LINK) cycle
+         where (u%state(1:u%n) == LINK_RIGID)
+            u%g(1:u%n) = glarge
+            u%state(1:u%n) = LINK_FINITE
+         end where
+       end associate
+    end do
+    write (buf, '(es10.3)') glarge
+    call note(notes, 'RIGID contacts use g = LARGE x largest element diagonal = '//trim(adjustl(buf)))
+  end subroutine apply_large
+
+  subroutine describe_transform(model, table, tr, form, res, notes)
+    !! Notes on what was transformed and what was assembled plainly.
+    type(model_t), intent(in) :: model
+    type(dof_table_t), intent(in) :: table
+    type(transform_t), intent(in) :: tr
+    integer, intent(in) :: form
+    type(results_t), intent(inout) :: res
+    type(string_t), allocatable, intent(inout) :: notes(:)
+    integer :: iu, i
+    type(constraint_t) :: cs
+    res%n_tree = 0
+    res%n_plain = 0
+    res%n_support_units = 0
+    do iu = 1, table%nunit
+       associate (u => table%units(iu))
+         if (u%kind == UNIT_SUPPORT) then
+            res%n_support_units = res%n_support_units + 1
+            if (tr%unit_role(iu) == ROLE_PLAIN) call note(notes, 'support at '//vertex_label(model, table, u%vb)// &
+                 ' '//block_name(u%block)//' closes a loop through the ground: assembled plainly')
+         else if (tr%unit_role(iu) == ROLE_TREE) then
+            res%n_tree = res%n_tree + 1
+         else
+            res%n_plain = res%n_plain + 1
+            if (form == FORM_TRANSFORM) call note(notes, 'contact '//model%contacts(model%links(u%source)%contact)%name// &
+                 ' '//vertex_label(model, table, u%va)//' - '//vertex_label(model, table, u%vb)//' '// &
+                 block_name(u%block)//': closes a loop, assembled plainly')
+         end if
+       end associate
+       do i = 1, tr%nconstraints()
+          cs = tr%constraint(i)
+          if (cs%unit /= iu) cycle
+          associate (u => table%units(iu))
+            if (cs%status == CONS_REDUNDANT) then
+               call note(notes, '  RIGID '//local_name(u%block, u%lcomp(cs%k))//' of that unit is redundant '// &
+                    '(already implied by the tree); its force is carried by the tree')
+            else if (cs%status == CONS_ELIMINATED) then
+               call note(notes, '  RIGID '//local_name(u%block, u%lcomp(cs%k))//' of that unit is enforced exactly '// &
+                    'by eliminating one unknown')
+            end if
+          end associate
+       end do
+    end do
+  end subroutine describe_transform
+
+  subroutine column_groups(table, forest, tr, first)
+    !! Columns grouped by node (a node's own DOFs and the δ of the contact
+    !! above it are numbered together): first(g) is the first column of group g.
+    !! Unallocated when the columns of a node are not consecutive.
+    type(dof_table_t), intent(in) :: table
+    type(forest_t), intent(in) :: forest
+    type(transform_t), intent(in) :: tr
+    integer(i8), allocatable, intent(out) :: first(:)
+    integer(i8), allocatable :: vert(:)
+    integer(i8) :: j, p, ng
+    integer :: iu
+    allocate (vert(tr%ncol()))
+    do j = 1, tr%ncol()
+       if (tr%column_kind(j) == COL_PHYS) then
+          p = tr%column_ref(j)
+          vert(j) = table%vertex_offset(table%p_sub(p)) + table%p_node(p)
+       else
+          iu = int(tr%column_ref(j))
+          if (forest%child_is_a(iu)) then
+             vert(j) = table%units(iu)%va
+          else
+             vert(j) = table%units(iu)%vb
+          end if
+       end if
+       if (j > 1) then
+          if (vert(j) < vert(j - 1)) return
+       end if
+    end do
+    ng = 0
+    do j = 1, tr%ncol()
+       if (j == 1) then
+          ng = 1
+       else if (vert(j) /= vert(j - 1)) then
+          ng = ng + 1
+       end if
+    end do
+    allocate (first(ng + 1))
+    ng = 0
+    do j = 1, tr%ncol()
+       if (j == 1) then
+          ng = 1
+          first(1) = 1
+       else if (vert(j) /= vert(j - 1)) then
+          ng = ng + 1
+          first(ng) = j
+       end if
+    end do
+    first(ng + 1) = tr%ncol() + 1
+  end subroutine column_groups
+
+  subroutine count_boundary(model, table, bnd, res)
+    !! Active and boundary DOFs per substructure: the boundary DOFs (those a
+    !! contact or support touches) form k_bb, the others k_ii.
+    type(model_t), intent(in) :: model
+    type(dof_table_t), intent(in) :: table
+    logical, intent(in) :: bnd(:)
+    type(results_t), intent(inout) :: res
+    integer(i8) :: p
+    integer :: isub
+    allocate (res%sub_dofs(size(model%subs)), res%sub_boundary(size(model%subs)), source=0_i8)
+    do p = 1, table%np
+       isub = table%p_sub(p)
+       res%sub_dofs(isub) = res%sub_dofs(isub) + 1
+       if (bnd(p)) res%sub_boundary(isub) = res%sub_boundary(isub) + 1
+    end do
+  end subroutine count_boundary
+
+  subroutine choose_condensation(model, table, opts, ctx, bnd, res, notes)
+    !! Which substructures are condensed. CONDENSE=YES (deck or --condense)
+    !! condenses a substructure that has both interior and boundary DOFs.
+    !! AUTO condenses where a condensation is reused: an instance of a part
+    !! placed more than once (one condensation for all its instances), and
+    !! every substructure of a joint study (the parts are condensed once, each
+    !! further set of contact stiffnesses factors only the interface), provided
+    !! its K* (n_b² doubles) stays within AUTO_KSTAR_BYTES and its boundary is
+    !! smaller than its interior. Otherwise AUTO keeps the part in the one
+    !! sparse matrix: for a single factorization a fill-reducing ordering of
+    !! the whole model already exploits the cut. NO never condenses.
+    type(model_t), intent(in) :: model
+    type(dof_table_t), intent(in) :: table
+    type(run_options_t), intent(in) :: opts
+    type(solve_context_t), intent(in) :: ctx
+    logical, intent(in) :: bnd(:)              !! condensation boundary
+    type(results_t), intent(inout) :: res
+    type(string_t), allocatable, intent(inout) :: notes(:)
+    integer :: isub, mode, ninst
+    integer(i8) :: nb, ni, p
+    integer(i8), allocatable :: nbs(:)
+    character(:), allocatable :: why, small
+    small = ''
+    allocate (res%sub_condensed(size(model%subs)), source=.false.)
+    allocate (nbs(size(model%subs)), source=0_i8)
+    do p = 1, table%np
+       if (bnd(p)) nbs(table%p_sub(p)) = nbs(table%p_sub(p)) + 1
+    end do
+    res%n_condensed = 0
+    do isub = 1, size(model%subs)
+       mode = model%subs(isub)%condense
+       if (opts%condense >= 0) mode = opts%condense
+       nb = nbs(isub)
+       ni = res%sub_dofs(isub) - nb
+       if (mode == CONDENSE_NO) cycle
+       if (mode == CONDENSE_AUTO) then
+          ninst = 0
+          if (model%subs(isub)%part > 0) ninst = count(model%subs(:)%part == model%subs(isub)%part)
+          if (ninst > 1) then
+             why = 'AUTO: one of '//itoa(ninst)//' instances of part '//model%parts(model%subs(isub)%part)%s
+          else if (ctx%joint_study) then
+             why = 'AUTO: joint study'
+          else
+             cycle
+          end if
+          if (nb == 0 .or. ni == 0) cycle
+          if (nb >= ni) then
+             small = small//' '//model%subs(isub)%name
+             cycle
+          end if
+          if (real(nb, wp)**2*BYTES_REAL > AUTO_KSTAR_BYTES) then
+             call note(notes, 'substructure '//model%subs(isub)%name//' not condensed ('//why// &
+                  '): its K* would take '//itoa(nb*nb*BYTES_REAL/2**20)//' MiB')
+             cycle
+          end if
+       else
+          why = 'CONDENSE=YES'
+       end if
+       if (nb == 0) then
+          call note(notes, 'substructure '//model%subs(isub)%name//' not condensed: no contact or support '// &
+               'touches it (a separate system)')
+       else if (ni == 0) then
+          call note(notes, 'substructure '//model%subs(isub)%name//' not condensed: every DOF is on its boundary')
+       else
+          res%sub_condensed(isub) = .true.
+          res%n_condensed = res%n_condensed + 1
+          call note(notes, 'substructure '//model%subs(isub)%name//' condensed ('//why//'): '// &
+               itoa(ni)//' interior DOFs eliminated, K* of order '//itoa(nb)//' on its boundary')
+       end if
+    end do
+    if (len(small) > 0) call note(notes, 'CONDENSE=AUTO: not condensed, the boundary being no smaller '// &
+         'than the interior:'//small)
+  end subroutine choose_condensation
+
+  subroutine autospc(model, table, tr, k, f_red, spc, notes, error)
+    !! Unknowns with no stiffness at all: dropped (diagonal 1, load 0) when
+    !! unloaded, reported; a loaded one is an error (exit 3).
+    type(model_t), intent(in) :: model
+    type(dof_table_t), intent(in) :: table
+    type(transform_t), intent(in) :: tr
+    type(sparse_sym_t), intent(inout) :: k
+    real(wp), intent(inout) :: f_red(:, :)
+    logical, allocatable, intent(out) :: spc(:)
+    type(string_t), allocatable, intent(inout) :: notes(:)
+    type(error_t), allocatable, intent(out) :: error
+    logical, allocatable :: nz(:)
+    integer(i8) :: j, pos
+    allocate (nz(tr%ncol()), source=.false.)
+    allocate (spc(tr%ncol()), source=.false.)
+    do j = 1, k%n
+       do pos = k%colptr(j), k%colptr(j + 1) - 1
+          if (k%val(pos) /= 0.0_wp) then
+             nz(j) = .true.
+             nz(k%rowind(pos)) = .true.
+          end if
+       end do
+    end do
+    do j = 1, tr%ncol()
+       if (nz(j)) cycle
+       if (any(f_red(j, :) /= 0.0_wp)) then
+          call add_error_line(error, EXIT_SINGULAR, 'error: load on a DOF without stiffness: '// &
+               column_label(model, table, tr, j))
+          cycle
+       end if
+       spc(j) = .true.
+       k%val(k%colptr(j + 1) - 1) = 1.0_wp
+       call note(notes, 'AUTOSPC: '//column_label(model, table, tr, j)//' has no stiffness and no load: dropped')
+    end do
+  end subroutine autospc
+
+  subroutine skip_unloaded_parts(model, table, tr, k, f_red, spc, notes)
+    !! Groups of unknowns coupled to nothing else and loaded in no step have a
+    !! zero solution: they are taken out of the factorization (identity rows)
+    !! and reported, so an unloaded free part is not a mechanism.
+    type(model_t), intent(in) :: model
+    type(dof_table_t), intent(in) :: table
+    type(transform_t), intent(in) :: tr
+    type(sparse_sym_t), intent(inout) :: k
+    real(wp), intent(in) :: f_red(:, :)
+    logical, intent(inout) :: spc(:)
+    type(string_t), allocatable, intent(inout) :: notes(:)
+    integer(i8), allocatable :: root(:)
+    logical, allocatable :: loaded(:), skip(:), named(:)
+    integer(i8) :: j, pos, a, b, nskip
+    integer :: isub
+    character(:), allocatable :: subs
+
+    if (k%n == 0) return
+    allocate (root(0:k%n))
+    do j = 0, k%n
+       root(j) = j
+    end do
+    do j = 1, k%n
+       do pos = k%colptr(j), k%colptr(j + 1) - 1
+          if (k%val(pos) == 0.0_wp) cycle
+          a = find_root(root, k%rowind(pos))
+          b = find_root(root, j)
+          if (a /= b) root(max(a, b)) = min(a, b)
+       end do
+    end do
+    allocate (loaded(k%n), source=.false.)
+    do j = 1, k%n
+       root(j) = find_root(root, j)
+       if (any(f_red(j, :) /= 0.0_wp)) loaded(root(j)) = .true.
+    end do
+    allocate (skip(k%n))
+    nskip = 0
+    do j = 1, k%n
+       skip(j) = .not. loaded(root(j)) .and. .not. spc(j)
+       if (skip(j)) nskip = nskip + 1
+    end do
+    if (nskip == 0) return
+    allocate (named(size(model%subs)), source=.false.)
+    do j = 1, k%n
+       if (.not. skip(j)) cycle
+       do pos = k%colptr(j), k%colptr(j + 1) - 1
+          k%val(pos) = 0.0_wp
+       end do
+       k%val(k%colptr(j + 1) - 1) = 1.0_wp
+       spc(j) = .true.
+       if (tr%column_kind(j) == COL_PHYS) named(table%p_sub(tr%column_ref(j))) = .true.
+    end do
+    ! Entries above the diagonal in other columns that belong to skipped rows.
+    do j = 1, k%n
+       do pos = k%colptr(j), k%colptr(j + 1) - 2
+          if (skip(k%rowind(pos))) k%val(pos) = 0.0_wp
+       end do
+    end do
+    subs = ''
+    do isub = 1, size(model%subs)
+       if (named(isub)) subs = subs//' '//model%subs(isub)%name
+    end do
+    if (len(subs) == 0) subs = ' (contact and support unknowns)'
+    if (subs(1:2) /= ' (') subs = ' (in substructures'//subs//')'
+    call note(notes, itoa(int(nskip))//' unknowns'//subs//' are coupled to no load: zero displacement, not solved')
+  end subroutine skip_unloaded_parts
+end module superjoin_analysis_policy

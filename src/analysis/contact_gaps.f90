@@ -8,6 +8,7 @@ module superjoin_analysis_contact_gaps
   use superjoin_kinds, only: wp, i8, ip
   use superjoin_model_types, only: model_t, node_label, string_t
   use superjoin_utils_strings, only: itoa
+  use superjoin_analysis_notes, only: append_string
   implicit none (type, external)
   private
 
@@ -58,7 +59,7 @@ contains
        write (b2, '(es10.2e3)') tol
        write (b3, '(es8.1e3)') model%controls%position_tolerance
        associate (ct => model%contacts(ic), lk => model%links(ifar))
-         call append(warnings, 'contact '//ct%name//': '//itoa(nfar)//' of '//itoa(npair)// &
+         call append_string(warnings, 'contact '//ct%name//': '//itoa(nfar)//' of '//itoa(npair)// &
               ' node pair(s) farther apart than '//trim(adjustl(b2))//' ('//trim(adjustl(b3))// &
               ' x the model''s size), the farthest '//node_label(model, ct%master_sub, lk%master_node)//' - '// &
               node_label(model, ct%slave_sub, lk%slave_node)//' at '//trim(adjustl(b1))// &
@@ -77,20 +78,4 @@ contains
       d = norm2(model%subs(ct%slave_sub)%x(:, lk%slave_node) - model%subs(ct%master_sub)%x(:, lk%master_node))
     end associate
   end function pair_distance
-
-  subroutine append(list, text)
-    !! Grow a list of strings by one.
-    type(string_t), allocatable, intent(inout) :: list(:)
-    character(*), intent(in) :: text
-    type(string_t), allocatable :: tmp(:)
-    integer :: i, n
-    n = 0
-    if (allocated(list)) n = size(list)
-    allocate (tmp(n + 1))
-    do i = 1, n
-       call move_alloc(list(i)%s, tmp(i)%s)
-    end do
-    tmp(n + 1)%s = text
-    call move_alloc(tmp, list)
-  end subroutine append
 end module superjoin_analysis_contact_gaps

@@ -13,6 +13,7 @@ module superjoin_analysis_joint_steps
   use superjoin_analysis, only: solve_model, solve_group, solve_context_t, release_cache
   use superjoin_analysis_results, only: results_t, run_options_t
   use superjoin_utils_strings, only: itoa
+  use superjoin_analysis_notes, only: append_string
   implicit none (type, external)
   private
 
@@ -88,7 +89,7 @@ contains
        call note_group(model, members, res)
     end do
     call release_cache(ctx%cache)
-    call append(res%notes, 'joint study (*CHANGE CONTACT): '//itoa(ngroup)// &
+    call append_string(res%notes, 'joint study (*CHANGE CONTACT): '//itoa(ngroup)// &
          ' sets of contact stiffnesses, '//itoa(ngroup)//' interface factorizations, '// &
          itoa(ctx%cache%computed)//' condensations computed and reused '//itoa(ctx%cache%reused)// &
          ' times; the counts above and MAXRATIO are the largest over them')
@@ -178,10 +179,10 @@ contains
        res%phase_seconds = res%phase_seconds + r%phase_seconds
        res%factor_mbytes = max(res%factor_mbytes, r%factor_mbytes)
        do i = 1, size(r%notes)
-          if (.not. any_string(res%notes, r%notes(i)%s)) call append(res%notes, r%notes(i)%s)
+          if (.not. any_string(res%notes, r%notes(i)%s)) call append_string(res%notes, r%notes(i)%s)
        end do
        do i = 1, size(r%warnings)
-          if (.not. any_string(res%warnings, r%warnings(i)%s)) call append(res%warnings, r%warnings(i)%s)
+          if (.not. any_string(res%warnings, r%warnings(i)%s)) call append_string(res%warnings, r%warnings(i)%s)
        end do
     end if
     do k = 1, size(members)
@@ -218,7 +219,7 @@ contains
     else
        text = text//': *CHANGE CONTACT on '//itoa(n)//' contact element(s)'
     end if
-    call append(res%notes, text)
+    call append_string(res%notes, text)
   end subroutine note_group
 
   function step_list(model, members) result(text)
@@ -232,19 +233,4 @@ contains
        text = text//' '//model%steps(members(k))%name
     end do
   end function step_list
-
-  subroutine append(list, text)
-    !! Append a string (explicit growth: an array constructor of a type with
-    !! allocatable components leaks with gfortran 12).
-    type(string_t), allocatable, intent(inout) :: list(:)
-    character(*), intent(in) :: text
-    type(string_t), allocatable :: tmp(:)
-    integer :: n
-    n = 0
-    if (allocated(list)) n = size(list)
-    allocate (tmp(n + 1))
-    if (n > 0) tmp(1:n) = list
-    tmp(n + 1)%s = text
-    call move_alloc(tmp, list)
-  end subroutine append
 end module superjoin_analysis_joint_steps

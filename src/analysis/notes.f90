@@ -5,7 +5,7 @@ module superjoin_analysis_notes
   implicit none (type, external)
   private
 
-  public :: note, warn
+  public :: note, warn, append_string
 
 contains
 

@@ -8,6 +8,7 @@ module superjoin_analysis_plausibility
   use superjoin_model_types, only: model_t, NDOF_NODE, node_label, string_t
   use superjoin_analysis_results, only: results_t
   use superjoin_utils_strings, only: itoa
+  use superjoin_analysis_notes, only: append_string
   implicit none (type, external)
   private
 
@@ -62,27 +63,11 @@ contains
        write (b1, '(es10.2e3)') umax
        write (b2, '(es10.2e3)') size_model
        write (b3, '(es10.2e3)') umax/size_model
-       call append(res%warnings, 'step '//model%steps(is)%name//': displacement '//trim(adjustl(b1))// &
+       call append_string(res%warnings, 'step '//model%steps(is)%name//': displacement '//trim(adjustl(b1))// &
             ' at '//node_label(model, at_sub, at_node)//' is '//trim(adjustl(b3))//' times the model''s size '// &
             trim(adjustl(b2))//': beyond small-displacement (linear) theory. Check the units (E in MPa or '// &
             'N/mm2 with lengths in m?), the magnitude of the loads and that the supports hold the structure')
        exit
     end do
   end subroutine check_plausibility
-
-  subroutine append(list, text)
-    !! Grow a list of strings by one.
-    type(string_t), allocatable, intent(inout) :: list(:)
-    character(*), intent(in) :: text
-    type(string_t), allocatable :: tmp(:)
-    integer :: i, n
-    n = 0
-    if (allocated(list)) n = size(list)
-    allocate (tmp(n + 1))
-    do i = 1, n
-       call move_alloc(list(i)%s, tmp(i)%s)
-    end do
-    tmp(n + 1)%s = text
-    call move_alloc(tmp, list)
-  end subroutine append
 end module superjoin_analysis_plausibility

@@ -9,7 +9,10 @@ program test_interface
   !! - expand of a δ column: the slave moves by qsᵀ e_k against its master;
   !! - assembly (scatter of every element, superelement and spring) equals the
   !!   explicit Tᵀ K_phys T + diag(g) formed from expand of unit vectors;
-  !! - a condensation's K* equals k_bb − k_bi k_ii⁻¹ k_ib formed densely.
+  !! - a condensation's K* equals k_bb − k_bi k_ii⁻¹ k_ib formed densely;
+  !! - recovery: contact δ = Q (u_slave − u_master), finite force g δ, and the
+  !!   recovered forces of the rigid contacts and supports hold part B in
+  !!   equilibrium (forces and moments) with its load, on every backend.
   use superjoin_kinds, only: wp, i8, ip
   use superjoin_error, only: error_t
   use superjoin_model_types, only: model_t, LINK_RIGID
@@ -23,6 +26,9 @@ program test_interface
   use superjoin_substructure_cache, only: part_cache_t, part_view_t, acquire_view, release_cache
   use superjoin_solvers, only: sparse_sym_t
   use superjoin_testing, only: check, check_close, finish
+  use superjoin_analysis, only: solve_model
+  use superjoin_analysis_results, only: results_t, run_options_t
+  use verification_support, only: disp, reaction
   use test_lapack, only: dgesv
   implicit none (type, external)
 
@@ -65,6 +71,10 @@ program test_interface
   call delta_column_check()
   call assembly_check()
   call condensation_check()
+  call recovery_check('lapack')
+  call recovery_check('cholmod')
+  call recovery_check('umfpack')
+  call recovery_check('cholmod', condensed=.true.)
   call finish()
 
 contains
@@ -274,4 +284,85 @@ contains
     call check(all(view%se%pdof == view%pdof(ni + 1:)), 'K* on the physical boundary DOFs')
     call release_cache(cache)
   end subroutine condensation_check
+  subroutine recovery_check(solver, condensed)
+    !! Contact J (oriented, DOFs 1-3 RIGID, 4-6 g) and L (RIGID, global axes)
+    !! hold part B with the elastic support at B.2 against the load at B.3.
+    character(*), intent(in) :: solver
+    logical, intent(in), optional :: condensed
+    type(model_t) :: m
+    type(results_t) :: res
+    type(run_options_t) :: opts
+    real(wp) :: q(3, 3), du(6), dl(6), fglob(6), ftot(3), mtot(3), x(3), fl(3), ml(3), scale
+    integer :: il, k, d
+    character(:), allocatable :: tag
+    tag = solver
+    if (present(condensed)) tag = tag//' condensed'
+    call read_deck_string(DECK, 'interface.deck', m, error)
+    opts%quiet = .true.
+    opts%solver = solver
+    if (present(condensed)) opts%condense = 1
+    call solve_model(m, opts, res, error)
+    call check(.not. allocated(error), 'solve '//tag)
+    if (allocated(error)) then
+       deallocate (error)
+       return
+    end if
+    q = m%orientations(1)%q
+    ftot = 0.0_wp
+    mtot = 0.0_wp
+    do il = 1, size(m%links)
+       associate (lk => m%links(il), ct => m%contacts(m%links(il)%contact))
+         do d = 1, 6
+            du(d) = disp(m, res, 'B', int(m%subs(ct%slave_sub)%node_id(lk%slave_node)), d, 1) - &
+                 disp(m, res, 'A', int(m%subs(ct%master_sub)%node_id(lk%master_node)), d, 1)
+         end do
+         if (ct%orientation > 0) then
+            dl(1:3) = matmul(q, du(1:3))
+            dl(4:6) = matmul(q, du(4:6))
+         else
+            dl = du
+         end if
+         scale = maxval(abs(du)) + tiny(1.0_wp)
+         do k = 1, 6
+            call check_close(res%steps(1)%link_delta(k, il), dl(k), 1.0e-12_wp*scale, &
+                 'delta = Q (u_s - u_m), '//ct%name//', '//tag)
+            if (lk%state(k) == LINK_RIGID) then
+               call check_close(res%steps(1)%link_delta(k, il), 0.0_wp, 1.0e-12_wp*scale, 'rigid delta 0, '//tag)
+            else
+               call check_close(res%steps(1)%link_force(k, il), lk%g(k)*dl(k), &
+                    1.0e-12_wp*abs(lk%g(k)*dl(k)) + 1.0e-12_wp, 'force = g delta, '//tag)
+            end if
+         end do
+         ! force of the contact on the slave node = minus the force on the master, global axes
+         if (ct%orientation > 0) then
+            fglob(1:3) = -matmul(transpose(q), res%steps(1)%link_force(1:3, il))
+            fglob(4:6) = -matmul(transpose(q), res%steps(1)%link_force(4:6, il))
+         else
+            fglob = -res%steps(1)%link_force(:, il)
+         end if
+         x = m%subs(ct%slave_sub)%x(:, lk%slave_node)
+         ftot = ftot + fglob(1:3)
+         mtot = mtot + fglob(4:6) + cross3(x, fglob(1:3))
+       end associate
+    end do
+    ! the load at B.3 and the elastic support at B.2
+    fl = [0.0_wp, -1000.0_wp, 0.0_wp]
+    x = m%subs(2)%x(:, 3)
+    ftot = ftot + fl
+    mtot = mtot + cross3(x, fl)
+    fl = [0.0_wp, 0.0_wp, reaction(m, res, 'B', 2, 3, 1)]
+    call check(abs(fl(3)) > 0.0_wp, 'the elastic support carries load, '//tag)
+    x = m%subs(2)%x(:, 2)
+    ftot = ftot + fl
+    mtot = mtot + cross3(x, fl)
+    ml = 0.0_wp
+    call check(maxval(abs(ftot)) <= 1.0e-9_wp*1000.0_wp, 'part B: forces balance, '//tag)
+    call check(maxval(abs(mtot + ml)) <= 1.0e-9_wp*1000.0_wp*5.0_wp, 'part B: moments balance, '//tag)
+  end subroutine recovery_check
+
+  pure function cross3(a, b) result(c)
+    real(wp), intent(in) :: a(3), b(3)
+    real(wp) :: c(3)
+    c = [a(2)*b(3) - a(3)*b(2), a(3)*b(1) - a(1)*b(3), a(1)*b(2) - a(2)*b(1)]
+  end function cross3
 end program test_interface

@@ -175,7 +175,7 @@ contains
     real(wp), intent(out) :: fstar(:, :)
     type(error_t), allocatable, intent(out) :: error
     real(wp), allocatable :: fc(:, :)
-    fc = f_local
+    allocate (fc, source=f_local)
     if (view%rotated) call rotate_local(view, fc, .false.)
     call condense_loads(cache%entries(view%entry)%e%cond, fc, fstar, error)
     if (allocated(error)) return
@@ -190,7 +190,7 @@ contains
     real(wp), intent(inout) :: u_local(:, :)
     type(error_t), allocatable, intent(out) :: error
     real(wp), allocatable :: fc(:, :)
-    fc = f_local
+    allocate (fc, source=f_local)
     if (view%rotated) then
        call rotate_local(view, fc, .false.)
        call rotate_local(view, u_local, .false.)
@@ -206,8 +206,8 @@ contains
     real(wp), intent(in) :: u_local(:, :), f_local(:, :)
     real(wp), intent(out) :: r_local(:, :)
     real(wp), allocatable :: uc(:, :), fc(:, :)
-    uc = u_local
-    fc = f_local
+    allocate (uc, source=u_local)
+    allocate (fc, source=f_local)
     if (view%rotated) then
        call rotate_local(view, uc, .false.)
        call rotate_local(view, fc, .false.)
@@ -223,7 +223,7 @@ contains
     real(wp), intent(in) :: x_local(:, :)
     real(wp), intent(out) :: y_local(:, :)
     real(wp), allocatable :: xc(:, :)
-    xc = x_local
+    allocate (xc, source=x_local)
     if (view%rotated) call rotate_local(view, xc, .false.)
     call cache%entries(view%entry)%e%cond%sys%k%matvec(xc, y_local)
     if (view%rotated) call rotate_local(view, y_local, .true.)

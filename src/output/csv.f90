@@ -7,7 +7,7 @@ module superjoin_output_csv
        ET_B23, ET_B33, ET_B21, ET_B31
   use superjoin_analysis_results, only: results_t
   use superjoin_elements, only: is_plate_type
-  use superjoin_output_posix, only: rename_file, remove_file, make_directory
+  use superjoin_output_posix, only: remove_file, make_directory
   use superjoin_utils_process, only: temp_register, temp_unregister
   use superjoin_output_text_buffer, only: text_buffer_t
   use superjoin_utils_strings, only: itoa, full_real
@@ -68,7 +68,6 @@ contains
     integer(ip) :: n
     integer(i8) :: v, iel
     character(:), allocatable :: tmp
-    logical :: ok
 
     tmp = path//'.tmp'
     call temp_register(tmp)
@@ -149,16 +148,7 @@ contains
           end do
        end do
     end select
-    call tb%close(ok)
-    if (.not. ok) then
-       call remove_file(tmp)
-       call temp_unregister()
-       call fatal_error(error, EXIT_IO, 'error: failed writing '//path//': '//trim(tb%why))
-       return
-    end if
-    call rename_file(tmp, path, error)
-    if (allocated(error)) call remove_file(tmp)
-    call temp_unregister()
+    call tb%commit(tmp, path, '', error)
 
   contains
 

@@ -7,7 +7,6 @@ module superjoin_output_listing
        RIGID_ELIMINATE, ET_CPS3, ET_CPS4, ET_CPE3, ET_CPE4
   use superjoin_elements, only: is_plate_type
   use superjoin_analysis_results, only: results_t
-  use superjoin_output_posix, only: rename_file, remove_file
   use superjoin_utils_process, only: temp_register, temp_unregister
   use superjoin_output_text_buffer, only: text_buffer_t
   use superjoin_config, only: SUPERJOIN_VERSION
@@ -34,7 +33,6 @@ contains
     type(error_t), allocatable, intent(out) :: error
     type(text_buffer_t), allocatable :: lu
     integer :: is, stat
-    logical :: ok
     character(:), allocatable :: tmp
 
     tmp = path//'.tmp'
@@ -56,16 +54,7 @@ contains
     end do
     call lu%line(RULE)
     call lu%line('END OF LISTING')
-    call lu%close(ok)
-    if (.not. ok) then
-       call remove_file(tmp)
-       call temp_unregister()
-       call fatal_error(error, EXIT_IO, 'error: failed writing listing '//path//': '//lu%reason())
-       return
-    end if
-    call rename_file(tmp, path, error)
-    if (allocated(error)) call remove_file(tmp)
-    call temp_unregister()
+    call lu%commit(tmp, path, 'listing ', error)
   end subroutine write_listing
 
   subroutine header(lu, model, res)

@@ -4,7 +4,6 @@ module superjoin_output_nodes_csv
   use superjoin_error, only: error_t, fatal_error, EXIT_IO
   use superjoin_kinds, only: ip
   use superjoin_model_types, only: model_t
-  use superjoin_output_posix, only: rename_file, remove_file
   use superjoin_output_text_buffer, only: text_buffer_t
   use superjoin_utils_process, only: temp_register, temp_unregister
   use superjoin_utils_strings, only: itoa, full_real
@@ -27,7 +26,6 @@ contains
     character(:), allocatable :: path, tmp
     integer :: isub
     integer(ip) :: n
-    logical :: ok
     path = dir//'/'//NODES_CSV
     tmp = path//'.tmp'
     call temp_register(tmp)
@@ -45,15 +43,6 @@ contains
                full_real(model%subs(isub)%x(3, n)))
        end do
     end do
-    call tb%close(ok)
-    if (.not. ok) then
-       call remove_file(tmp)
-       call temp_unregister()
-       call fatal_error(error, EXIT_IO, 'error: failed writing '//path//': '//trim(tb%why))
-       return
-    end if
-    call rename_file(tmp, path, error)
-    if (allocated(error)) call remove_file(tmp)
-    call temp_unregister()
+    call tb%commit(tmp, path, '', error)
   end subroutine write_nodes_csv
 end module superjoin_output_nodes_csv

@@ -112,7 +112,7 @@ contains
     integer(ip), allocatable :: nodes(:)
     real(wp), allocatable :: vals(:, :)
     call request_title(lu, model, r)
-    call selected_nodes(model, r, subs, nodes)
+    call selected_items(r, model%subs(:)%nnode, subs, nodes)
     nsel = size(nodes, kind=ip)
     allocate (vals(NDOF_NODE, nsel))
     do iv = 1, size(r%vars)
@@ -173,34 +173,31 @@ contains
     end subroutine fill_cf
   end subroutine node_request
 
-  subroutine selected_nodes(model, r, subs, nodes)
-    !! The nodes a request names: its set, or every node of the model.
-    type(model_t), intent(in) :: model
+  subroutine selected_items(r, counts, subs, items)
+    !! The nodes or elements a request names: its set, or every one of the
+    !! model (counts: nodes or elements per substructure).
     type(output_request_t), intent(in) :: r
+    integer(ip), intent(in) :: counts(:)
     integer, allocatable, intent(out) :: subs(:)
-    integer(ip), allocatable, intent(out) :: nodes(:)
+    integer(ip), allocatable, intent(out) :: items(:)
     integer :: isub
     integer(ip) :: n, k
     if (r%sub > 0 .and. allocated(r%items)) then
-       nodes = r%items
-       allocate (subs(size(nodes)))
+       items = r%items
+       allocate (subs(size(items)))
        subs = r%sub
        return
     end if
-    n = 0
-    do isub = 1, size(model%subs)
-       n = n + model%subs(isub)%nnode
-    end do
-    allocate (subs(n), nodes(n))
+    allocate (subs(sum(counts)), items(sum(counts)))
     k = 0
-    do isub = 1, size(model%subs)
-       do n = 1, model%subs(isub)%nnode
+    do isub = 1, size(counts)
+       do n = 1, counts(isub)
           k = k + 1
           subs(k) = isub
-          nodes(k) = n
+          items(k) = n
        end do
     end do
-  end subroutine selected_nodes
+  end subroutine selected_items
 
   subroutine node_table(lu, model, r, subs, nodes, vals)
     type(text_buffer_t), intent(inout) :: lu
@@ -248,7 +245,7 @@ contains
     integer, allocatable :: subs(:)
     integer(ip), allocatable :: elems(:)
     call request_title(lu, model, r)
-    call selected_elements(model, r, subs, elems)
+    call selected_items(r, model%subs(:)%nelem, subs, elems)
     do iv = 1, size(r%vars)
        select case (r%vars(iv)%s)
        case ('S')
@@ -266,35 +263,6 @@ contains
     end do
     call lu%line('')
   end subroutine element_request
-
-  subroutine selected_elements(model, r, subs, elems)
-    !! The elements a request names: its set, or every element of the model.
-    type(model_t), intent(in) :: model
-    type(output_request_t), intent(in) :: r
-    integer, allocatable, intent(out) :: subs(:)
-    integer(ip), allocatable, intent(out) :: elems(:)
-    integer :: isub
-    integer(ip) :: n, k
-    if (r%sub > 0 .and. allocated(r%items)) then
-       elems = r%items
-       allocate (subs(size(elems)))
-       subs = r%sub
-       return
-    end if
-    n = 0
-    do isub = 1, size(model%subs)
-       n = n + model%subs(isub)%nelem
-    end do
-    allocate (subs(n), elems(n))
-    k = 0
-    do isub = 1, size(model%subs)
-       do n = 1, model%subs(isub)%nelem
-          k = k + 1
-          subs(k) = isub
-          elems(k) = n
-       end do
-    end do
-  end subroutine selected_elements
 
   subroutine element_tensor(model, res, is, isub, ie, strain, t, ok)
     !! Stress (or strain) tensor of one element in global axes, Voigt order

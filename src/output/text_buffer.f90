@@ -4,6 +4,8 @@ module superjoin_output_text_buffer
   !! (unformatted stream), instead of one formatted WRITE per line.
   use superjoin_kinds, only: wp, i8
   use superjoin_error, only: error_t, fatal_error, EXIT_IO
+  use superjoin_output_posix, only: rename_file, remove_file
+  use superjoin_utils_process, only: temp_unregister
   implicit none (type, external)
   private
 
@@ -36,6 +38,7 @@ module superjoin_output_text_buffer
      procedure :: line => tb_line
      procedure :: newline => tb_newline
      procedure :: close => tb_close
+     procedure :: commit => tb_commit
      procedure :: reason => tb_reason
   end type text_buffer_t
 
@@ -165,6 +168,26 @@ contains
        why = 'only '//trim(got)//' of '//trim(want)//' bytes reached the file (disk full or file size limit?)'
     end if
   end subroutine check_file_size
+
+  subroutine tb_commit(self, tmp, path, what, error)
+    !! Close the temporary file tmp and rename it to path; on any failure the
+    !! temporary file goes and error says 'failed writing <what><path>'. The
+    !! temporary name is unregistered (it was registered before opening).
+    class(text_buffer_t), intent(inout) :: self
+    character(*), intent(in) :: tmp, path, what
+    type(error_t), allocatable, intent(out) :: error
+    logical :: ok
+    call self%close(ok)
+    if (.not. ok) then
+       call remove_file(tmp)
+       call temp_unregister()
+       call fatal_error(error, EXIT_IO, 'error: failed writing '//what//path//': '//self%reason())
+       return
+    end if
+    call rename_file(tmp, path, error)
+    if (allocated(error)) call remove_file(tmp)
+    call temp_unregister()
+  end subroutine tb_commit
 
   function tb_reason(self) result(why)
     !! Why writing failed (the I/O library's message).

@@ -3,12 +3,13 @@ module superjoin_output_listing
   !! Written to a temporary name and renamed only when complete.
   use superjoin_kinds, only: wp, i8, ip
   use superjoin_error, only: error_t, fatal_error, EXIT_IO
-  use superjoin_model_types, only: model_t, NDOF_NODE, LINK_RIGID, ELEMENT_TYPE_NAMES, &
+  use superjoin_model_types, only: model_t, NDOF_NODE, LINK_RIGID, &
        RIGID_ELIMINATE, ET_CPS3, ET_CPS4, ET_CPE3, ET_CPE4
   use superjoin_elements, only: is_plate_type
   use superjoin_analysis_results, only: results_t
   use superjoin_utils_process, only: temp_register, temp_unregister
   use superjoin_output_text_buffer, only: text_buffer_t
+  use superjoin_output_columns, only: element_prefix, chop
   use superjoin_config, only: SUPERJOIN_VERSION
   use superjoin_utils_strings, only: itoa
   use superjoin_utils_memory, only: out_of_memory
@@ -16,8 +17,6 @@ module superjoin_output_listing
   implicit none (type, external)
   private
 
-  real(wp), parameter, public :: CHOP_FRACTION = 1.0e-13_wp
-    !! Values below this fraction of the largest value of their table print as zero.
   character(*), parameter :: RULE = repeat('=', 100)
   character(*), parameter :: FMT_EQUILIBRIUM = '(2x,a10,3(1x,es14.6e3),1x,es13.2e3)'
 
@@ -248,7 +247,7 @@ contains
                if (is_plate_type(model%subs(isub)%elem_type(ie))) cycle
                iel = res%elem_offset(isub) + ie
                do k = 1, 2
-                  call element_prefix(lu, model, isub, ie)
+                  call element_prefix(lu, model, isub, ie, 2)
                   call lu%put_int(int(k, i8), 4)
                   do d = 1, 6
                      call lu%put_es(chop(res%elem_force(d, k, iel, is), scale))
@@ -321,7 +320,7 @@ contains
        do ie = 1, model%subs(isub)%nelem
           if (.not. is_plate_type(model%subs(isub)%elem_type(ie))) cycle
           iel = res%elem_offset(isub) + ie
-          call element_prefix(lu, model, isub, ie)
+          call element_prefix(lu, model, isub, ie, 2)
           do d = 1, 6
              call lu%put_es(chop(res%plate(d, iel, is), scale((d + 2)/3)))
           end do
@@ -353,7 +352,7 @@ contains
                   sig(4) = von_mises_3(sig(1:3), model%materials(sec%material)%nu*(sig(1) + sig(2)))
                 end associate
              end if
-             call element_prefix(lu, model, isub, ie)
+             call element_prefix(lu, model, isub, ie, 2)
              if (nsurf == 1) then
                 call lu%put_field('  '//SURFACES(3), 8)
              else
@@ -393,26 +392,6 @@ contains
     c = sz/sc
     vm = sc*sqrt(max(0.0_wp, ((a(1) - a(2))**2 + (a(2) - c)**2 + (c - a(1))**2)/2 + 3.0_wp*a(3)**2))
   end function von_mises_3
-
-  subroutine element_prefix(lu, model, isub, ie)
-    !! Substructure, element id and type columns of an element row.
-    type(text_buffer_t), intent(inout) :: lu
-    type(model_t), intent(in) :: model
-    integer, intent(in) :: isub, ie
-    call lu%put('  ')
-    call lu%put_field(model%subs(isub)%name, 20)
-    call lu%put_int(int(model%subs(isub)%elem_id(ie), i8), 10)
-    call lu%put('  ')
-    call lu%put_field(ELEMENT_TYPE_NAMES(model%subs(isub)%elem_type(ie)), 4)
-  end subroutine element_prefix
-
-  elemental function chop(x, scale) result(y)
-    !! Round-off noise relative to the table's scale prints as zero.
-    real(wp), intent(in) :: x, scale
-    real(wp) :: y
-    y = x
-    if (abs(x) <= CHOP_FRACTION*scale) y = 0.0_wp
-  end function chop
 
   pure function field(text, n) result(f)
     !! Text left-justified in a field of width n (cut if longer).

@@ -9,21 +9,20 @@ module superjoin_output_requests
   !! written outside *STEP (superjoin) are the default of every step.
   use superjoin_kinds, only: wp, i8, ip
   use superjoin_model_types, only: model_t, output_request_t, NDOF_NODE, REQ_NODE_PRINT, REQ_EL_PRINT, &
-       REQ_KIND_NAMES, TOTALS_YES, TOTALS_ONLY, ET_T2D2, ET_T3D2, ET_CPS3, ET_CPS4, ELEMENT_TYPE_NAMES, &
+       REQ_KIND_NAMES, TOTALS_YES, TOTALS_ONLY, ET_T2D2, ET_T3D2, ET_CPS3, ET_CPS4, &
        ELEMENT_NODE_COUNT
   use superjoin_elements, only: is_plate_type
   use superjoin_elements_shell, only: shell_frame
   use superjoin_error, only: error_t
   use superjoin_analysis_results, only: results_t
   use superjoin_output_text_buffer, only: text_buffer_t
+  use superjoin_output_columns, only: element_prefix, chop
   use superjoin_utils_strings, only: itoa
   implicit none (type, external)
   private
 
   public :: write_print_requests, effective_requests
 
-  real(wp), parameter :: CHOP_FRACTION = 1.0e-13_wp
-    !! As in the listing: values below this fraction of their table's largest print as zero.
   integer, parameter :: NTENSOR = 6
   character(len=15), parameter :: TENSOR_HEAD(NTENSOR) = ['             xx', '             yy', &
        '             zz', '             xy', '             xz', '             yz']
@@ -372,7 +371,7 @@ contains
           nskip = nskip + 1
           cycle
        end if
-       call element_prefix(lu, model, subs(i), elems(i))
+       call element_prefix(lu, model, subs(i), elems(i), 4)
        do d = 1, NTENSOR
           call lu%put_es(chop(t(d, i), scale))
        end do
@@ -410,7 +409,7 @@ contains
     do i = 1, size(elems)
        iel = res%elem_offset(subs(i)) + elems(i)
        if (is_plate_type(model%subs(subs(i))%elem_type(elems(i)))) then
-          call element_prefix(lu, model, subs(i), elems(i))
+          call element_prefix(lu, model, subs(i), elems(i), 4)
           call lu%put('   -')
           do d = 1, 6
              call lu%put_es(chop(res%plate(d, iel, is), scale_plate))
@@ -418,7 +417,7 @@ contains
           call lu%newline()
        else
           do k = 1, 2
-             call element_prefix(lu, model, subs(i), elems(i))
+             call element_prefix(lu, model, subs(i), elems(i), 4)
              call lu%put_int(int(k, i8), 4)
              do d = 1, 6
                 call lu%put_es(chop(res%elem_force(d, k, iel, is), scale_bar))
@@ -428,24 +427,4 @@ contains
        end if
     end do
   end subroutine section_force_table
-
-  subroutine element_prefix(lu, model, isub, ie)
-    type(text_buffer_t), intent(inout) :: lu
-    type(model_t), intent(in) :: model
-    integer, intent(in) :: isub
-    integer(ip), intent(in) :: ie
-    call lu%put('    ')
-    call lu%put_field(model%subs(isub)%name, 20)
-    call lu%put_int(int(model%subs(isub)%elem_id(ie), i8), 10)
-    call lu%put('  ')
-    call lu%put_field(ELEMENT_TYPE_NAMES(model%subs(isub)%elem_type(ie)), 4)
-  end subroutine element_prefix
-
-  elemental function chop(x, scale) result(y)
-    !! Round-off noise relative to the table's scale prints as zero.
-    real(wp), intent(in) :: x, scale
-    real(wp) :: y
-    y = x
-    if (abs(x) <= CHOP_FRACTION*scale) y = 0.0_wp
-  end function chop
 end module superjoin_output_requests

@@ -73,8 +73,10 @@ program superjoin_main
      stop EXIT_OK, quiet=.true.
   end if
 
-  call solve_joint_steps(model, opts, res, error)
   if (.not. allocated(vtk_file) .and. allocated(model%vtk_path)) vtk_file = model%vtk_path
+  opts%csv = allocated(csv_dir)
+  opts%vtk = allocated(vtk_file)
+  call solve_joint_steps(model, opts, res, error)
   if (allocated(error) .and. allocated(res%mechanism)) call write_mechanism(error)
   call fail_on(error, deck)
   call check_plausibility(model, res)

@@ -60,6 +60,9 @@ def main():
     ap.add_argument("--values")
     ap.add_argument("--single")
     ap.add_argument("--plane", action="store_true", help="CPS4 panels, in-plane joint")
+    ap.add_argument("--requests", action="store_true",
+                    help="print only what a joint study reads: the loaded edge's displacements "
+                         "(*NODE PRINT) besides the contact forces")
     args = ap.parse_args()
     m = args.mesh
     if args.values:
@@ -90,6 +93,9 @@ def main():
         out.append("*DLOAD")
         out.append("A.SKIN, P, %g" % PRESSURE)
         out.append("B.SKIN, P, %g" % PRESSURE)
+    if args.requests:
+        out.append("*NODE PRINT, NSET=B.RIGHT")
+        out.append("U")
     if not args.single:
         out.append("*CHANGE CONTACT, NAME=JOINT, SWEEP")
         out.append(f"RIGHT, LEFT, {swept}, " + ", ".join(values))

@@ -22,7 +22,7 @@ module superjoin_analysis
   use superjoin_analysis_labels, only: column_label
   use superjoin_analysis_health, only: check_finite, health, full_health, parts_maxratio, penalty_hint
   use superjoin_analysis_policy, only: apply_large, describe_transform, column_groups, count_boundary, &
-       choose_condensation, autospc, skip_unloaded_parts
+       choose_condensation, autospc, skip_unloaded_parts, wanted_elements
   use superjoin_analysis_condensation, only: solve_context_t, condense_parts, recover_parts, parts_ku
   use superjoin_utils_clock, only: stopwatch_t, report_phase
   use superjoin_utils_memory, only: out_of_memory, BYTES_REAL
@@ -97,7 +97,7 @@ contains
     type(string_t), allocatable :: notes(:)
     integer :: form
     character(len=64) :: buf
-    logical, allocatable :: bnd(:), bnd_c(:), keep(:)
+    logical, allocatable :: bnd(:), bnd_c(:), keep(:), wanted(:)
     type(assembly_plan_t) :: plan
     type(part_view_t), allocatable :: parts(:)
     real(wp), allocatable :: f_eff(:, :), u(:, :), ku(:, :)
@@ -203,18 +203,19 @@ contains
     if (res%n_condensed > 0) then
        call recover_parts(ctx%cache, parts, f_phys, u, error)
        if (allocated(error)) return
-       if (tr%ncol() > 0) call full_health(ctx%cache, tr, k, parts, q, u, f_red, f_eff, f_phys, res)
+       call parts_ku(ctx%cache, parts, u, ku)
+       if (tr%ncol() > 0) call full_health(ctx%cache, tr, k, parts, q, u, ku, f_red, f_eff, f_phys, res)
        call parts_maxratio(model, table, ctx%cache, parts, res, error)
        if (allocated(error)) return
        res%phase_seconds(PH_SOLVE) = res%phase_seconds(PH_SOLVE) + clock%seconds()
        call report_phase(opts%quiet, 'recover interiors', clock%seconds())
        call clock%start()
     end if
+    call wanted_elements(model, opts, wanted, notes)
     if (res%n_condensed > 0) then
-       call parts_ku(ctx%cache, parts, u, ku)
-       call recover_results(model, table, forest, tr, q, u, f_phys, res, error, ku)
+       call recover_results(model, table, forest, tr, q, u, f_phys, res, error, wanted, ku)
     else
-       call recover_results(model, table, forest, tr, q, u, f_phys, res, error)
+       call recover_results(model, table, forest, tr, q, u, f_phys, res, error, wanted)
     end if
     if (allocated(error)) return
     res%phase_seconds(PH_SOLVE) = res%phase_seconds(PH_SOLVE) + clock%seconds()

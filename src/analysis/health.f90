@@ -10,7 +10,7 @@ module superjoin_analysis_health
   use superjoin_assembly_dofs, only: dof_table_t
   use superjoin_assembly_transform, only: transform_t
   use superjoin_substructure_local_system, only: dof_label
-  use superjoin_substructure_cache, only: part_cache_t, part_view_t, view_residual, view_stiffness_times, &
+  use superjoin_substructure_cache, only: part_cache_t, part_view_t, view_stiffness_times, &
        view_maxratio
   use superjoin_solvers, only: linear_solver_t, sparse_sym_t, condition_estimate, norm1_sym
   use superjoin_analysis_results, only: results_t, run_options_t
@@ -236,7 +236,7 @@ contains
     end subroutine residuals
   end subroutine health
 
-  subroutine full_health(cache, tr, k, parts, q, u, f_red, f_eff, f_phys, res)
+  subroutine full_health(cache, tr, k, parts, q, u, ku, f_red, f_eff, f_phys, res)
     !! Residual and EPSILON of the whole reduced system, as if it had been
     !! solved monolithically, from the recovered displacements and each
     !! condensed substructure's own stiffness (so an error in a condensation
@@ -244,11 +244,12 @@ contains
     !! condensed interior u_i. Interface rows: K_if q − f_if plus, for each
     !! part, Mᵀ[(k u − f)_b − (K* u_b − f*)]; interior rows: k_ii u_i + k_ib u_b − f_i.
     !! The loads likewise, with the prescribed values' terms (−k u0).
+    !! ku: k u of the condensed substructures on the physical DOFs (parts_ku).
     type(part_cache_t), intent(in) :: cache
     type(transform_t), intent(in) :: tr
     type(sparse_sym_t), intent(in) :: k
     type(part_view_t), intent(in) :: parts(:)
-    real(wp), intent(in) :: q(:, :), u(:, :), f_red(:, :), f_eff(:, :), f_phys(:, :)
+    real(wp), intent(in) :: q(:, :), u(:, :), ku(:, :), f_red(:, :), f_eff(:, :), f_phys(:, :)
     type(results_t), intent(inout) :: res
     real(wp), allocatable :: r(:, :), f(:, :), rl(:, :), u0l(:, :), w(:, :), ks(:, :), ku0(:), &
          rf(:, :), ffull(:, :), qfull(:, :)
@@ -270,8 +271,8 @@ contains
        associate (sys => parts(i), kst => parts(i)%se%k)
          ni = sys%ni
          nb = sys%nb
-         allocate (rl(ni + nb, nstep), u0l(ni + nb, 1), w(ni + nb, 1))
-         call view_residual(cache, parts(i), u(sys%pdof, :), f_phys(sys%pdof, :), rl)
+         allocate (u0l(ni + nb, 1), w(ni + nb, 1))
+         rl = ku(sys%pdof, :) - f_phys(sys%pdof, :)
          u0l = 0.0_wp
          u0l(ni + 1:, 1) = tr%prescribed(sys%pdof(ni + 1:))
          if (any(u0l /= 0.0_wp)) then

@@ -1,11 +1,14 @@
 module superjoin_analysis_policy
   !! Decisions the pipeline takes before it solves: RIGID as a large number,
   !! what the transform did, column groups, boundaries, which substructures are
-  !! condensed, AUTOSPC and the unknowns coupled to no load.
+  !! condensed, AUTOSPC, the unknowns coupled to no load, and the elements whose
+  !! results somebody reads.
   use superjoin_kinds, only: wp, i8
   use superjoin_error, only: error_t, add_error_line, EXIT_SINGULAR
   use superjoin_model_types, only: model_t, string_t, FORM_TRANSFORM, FORM_PENALTY, RIGID_LARGE, &
-       DEFAULT_PENALTY_LARGE, LINK_FINITE, LINK_RIGID, CONDENSE_YES, CONDENSE_NO, CONDENSE_AUTO
+       DEFAULT_PENALTY_LARGE, LINK_FINITE, LINK_RIGID, CONDENSE_YES, CONDENSE_NO, CONDENSE_AUTO, &
+       REQ_EL_PRINT, REQ_EL_FILE
+  use superjoin_model_request_masks, only: has_requests, any_request_of, request_mask
   use superjoin_assembly_dofs, only: dof_table_t, UNIT_LINK, UNIT_SUPPORT
   use superjoin_assembly_forest, only: forest_t
   use superjoin_assembly_transform, only: transform_t, constraint_t, COL_PHYS, ROLE_TREE, ROLE_PLAIN, &
@@ -27,9 +30,38 @@ module superjoin_analysis_policy
     !! CONDENSE=AUTO condenses no part whose dense K* would exceed this (2 GiB).
 
   public :: apply_large, describe_transform, column_groups, count_boundary, choose_condensation, autospc, &
-       skip_unloaded_parts
+       skip_unloaded_parts, wanted_elements
 
 contains
+
+  subroutine wanted_elements(model, opts, wanted, notes)
+    !! The elements whose results somebody reads (numbered over the
+    !! substructures): every one in a deck without output requests, or when a
+    !! VTK file is written (a picture of the whole model), or CSV tables without
+    !! *EL FILE requests; else those that *EL PRINT (and, with CSV, *EL FILE)
+    !! requests cover. Says in a note how many that is when it is not all.
+    type(model_t), intent(in) :: model
+    type(run_options_t), intent(in) :: opts
+    logical, allocatable, intent(out) :: wanted(:)
+    type(string_t), allocatable, intent(inout) :: notes(:)
+    integer :: isub
+    integer(i8) :: nelem
+    nelem = 0
+    do isub = 1, size(model%subs)
+       nelem = nelem + model%subs(isub)%nelem
+    end do
+    if (.not. has_requests(model) .or. opts%vtk .or. (opts%csv .and. .not. any_request_of(model, [REQ_EL_FILE]))) then
+       allocate (wanted(nelem), source=.true.)
+       return
+    end if
+    if (opts%csv) then
+       call request_mask(model, [REQ_EL_PRINT, REQ_EL_FILE], .false., wanted)
+    else
+       call request_mask(model, [REQ_EL_PRINT], .false., wanted)
+    end if
+    if (count(wanted, kind=i8) < nelem) call note(notes, 'element results computed for '// &
+         itoa(count(wanted, kind=i8))//' of '//itoa(nelem)//' elements (those the output requests name)')
+  end subroutine wanted_elements
 
   subroutine apply_large(model, table, form, notes, error)
     !! RIGID contacts become g = LARGE × (largest element diagonal) under

@@ -27,12 +27,15 @@ module superjoin_analysis_recover
 
 contains
 
-  subroutine recover_results(model, table, forest, tr, q, u, f_phys, res, error, ku_parts)
+  subroutine recover_results(model, table, forest, tr, q, u, f_phys, res, error, wanted, ku_parts)
     !! Fill res%u, res%elem_force and res%steps(:) from the reduced solution q
     !! and the physical displacements u (T q + u0, with condensed interiors).
     !! With ku_parts (physical DOFs × steps: k u of the substructures in
     !! res%sub_condensed, from their own assembled stiffness), the elements of
     !! those substructures give only their results, not k_e u_e again.
+    !! wanted (elements numbered over the substructures): the elements whose
+    !! results somebody reads; the others are left at zero and skipped unless
+    !! their k_e u_e is needed (a node of theirs carries a contact or support).
     type(model_t), intent(in) :: model
     type(dof_table_t), intent(in) :: table
     type(forest_t), intent(in) :: forest
@@ -42,6 +45,7 @@ contains
     real(wp), intent(in) :: f_phys(:, :)     !! (np, nstep)
     type(results_t), intent(inout) :: res
     type(error_t), allocatable, intent(out) :: error
+    logical, intent(in) :: wanted(:)
     real(wp), intent(in), optional :: ku_parts(:, :)
     real(wp), allocatable :: r(:, :), delta(:, :, :), rclose(:, :), acc(:, :)
     real(wp), allocatable :: rigid_force(:, :, :)  ! (3, nunit, nstep): rigid force on child / λ, local
@@ -59,7 +63,7 @@ contains
     end if
     r = -f_phys
     if (present(ku_parts)) r = r + ku_parts
-    call element_results(model, table, u, r, res, error, present(ku_parts))
+    call element_results(model, table, u, r, res, error, present(ku_parts), wanted)
     if (allocated(error)) return
     call unit_deltas(table, tr, q, u, delta)
     call add_spring_forces(table, delta, r)
@@ -99,9 +103,13 @@ contains
     end do
   end subroutine store_displacements
 
-  subroutine element_results(model, table, u, r, res, error, parts_done)
+  subroutine element_results(model, table, u, r, res, error, parts_done, wanted)
     !! Element end forces of every step and r += K_e u_e (but for the
     !! condensed substructures when parts_done: r already holds their k u).
+    !! An element not wanted is skipped when its k_e u_e is not needed either:
+    !! r is read only at the nodes of contact and support units (subtree sums,
+    !! loop closures), so an element none of whose nodes is in a unit, or one of
+    !! a condensed substructure, contributes nothing anybody reads.
     type(model_t), intent(in) :: model
     type(dof_table_t), intent(in) :: table
     real(wp), intent(in) :: u(:, :)
@@ -109,7 +117,8 @@ contains
     type(results_t), intent(inout) :: res
     type(error_t), allocatable, intent(inout) :: error
     logical, intent(in) :: parts_done
-    logical, allocatable :: own_ku(:)
+    logical, intent(in) :: wanted(:)
+    logical, allocatable :: own_ku(:), in_unit(:)
     real(wp), allocatable :: ql(:, :, :), fe(:)
     real(wp) :: qloc(3), f(6, 2), fg(MAX_ELEM_DOFS)
     real(wp), allocatable :: fg2(:, :)
@@ -135,6 +144,7 @@ contains
     res%plate = 0.0_wp
     allocate (own_ku(size(model%subs)), source=.false.)
     if (parts_done) own_ku = res%sub_condensed
+    call unit_vertices(table, in_unit)
 
     ! Distributed loads in element axes, per element and step.
     ql = 0.0_wp
@@ -160,9 +170,13 @@ contains
        associate (s => model%subs(isub))
          do e = 1, s%nelem
             nn = ELEMENT_NODE_COUNT(s%elem_type(e))
+            ie = res%elem_offset(isub) + e
+            if (.not. wanted(ie)) then
+               if (own_ku(isub)) cycle
+               if (.not. any(in_unit(table%vertex_offset(isub) + s%elem_nodes(1:nn, e)))) cycle
+            end if
             associate (sec => s%sections(s%elem_section(e)))
               call element_pdofs(model, table, isub, e, pd, n)
-              ie = res%elem_offset(isub) + e
               if (is_plate_type(s%elem_type(e))) then
                  ! r takes K_e u_e (the distributed loads of these elements are left out of r above)
                  call shell_forces(s%elem_type(e), s%x(:, s%elem_nodes(1:nn, e)), sec, &
@@ -198,6 +212,20 @@ contains
        end associate
     end do
   end subroutine element_results
+
+  subroutine unit_vertices(table, in_unit)
+    !! in_unit(v): vertex v is a side of a contact or support unit.
+    type(dof_table_t), intent(in) :: table
+    logical, allocatable, intent(out) :: in_unit(:)
+    integer :: iu
+    allocate (in_unit(table%nvertex), source=.false.)
+    do iu = 1, table%nunit
+       associate (un => table%units(iu))
+         if (un%va /= GROUND) in_unit(un%va) = .true.
+         in_unit(un%vb) = .true.
+       end associate
+    end do
+  end subroutine unit_vertices
 
 
   subroutine unit_deltas(table, tr, q, u, delta)

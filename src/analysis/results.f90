@@ -20,6 +20,8 @@ module superjoin_analysis_results
      logical :: quiet = .false.
      logical :: verbose = .false.
      logical :: accept_inaccurate = .false. !! --accept-inaccurate: exit 0 even when results are judged inaccurate
+     logical :: csv = .false.                !! CSV tables will be written (--csv)
+     logical :: vtk = .false.                !! VTK files will be written (--vtk or *OUTPUT, VTK=)
   end type run_options_t
 
   type, public :: reaction_t

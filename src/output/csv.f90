@@ -4,7 +4,8 @@ module superjoin_output_csv
   use superjoin_kinds, only: wp, i8, ip
   use superjoin_error, only: error_t, fatal_error, EXIT_IO
   use superjoin_model_types, only: model_t, NDOF_NODE, ELEMENT_TYPE_NAMES, ET_T2D2, ET_T3D2, &
-       ET_B23, ET_B33, ET_B21, ET_B31
+       ET_B23, ET_B33, ET_B21, ET_B31, REQ_NODE_FILE, REQ_EL_FILE
+  use superjoin_model_request_masks, only: any_request_of, request_mask, asks_variable
   use superjoin_analysis_results, only: results_t
   use superjoin_elements, only: is_plate_type
   use superjoin_output_posix, only: remove_file, make_directory
@@ -16,33 +17,68 @@ module superjoin_output_csv
 
   public :: write_csv
 
+  integer, parameter :: NTABLE = 5
+  character(len=18), parameter :: TABLE_FILES(NTABLE) = [character(len=18) :: 'displacements.csv', &
+       'reactions.csv', 'contact_forces.csv', 'element_forces.csv', 'plate_results.csv']
+
+  type :: selection_t
+    !! What the CSV tables hold: which tables, which nodes and elements
+    !! (numbered over the substructures).
+     logical :: table(NTABLE) = .true.
+     logical, allocatable :: node(:), elem(:)
+  end type selection_t
+
 contains
 
   subroutine write_csv(dir, model, res, error)
     !! Write displacements.csv, reactions.csv, contact_forces.csv and
     !! element_forces.csv into dir (created if needed), and plate_results.csv
-    !! when the model has plane-stress or shell elements.
+    !! when the model has plane-stress or shell elements. With *NODE FILE
+    !! (*EL FILE) requests, the node (element) tables are those their variables
+    !! name (U: displacements, RF: reactions; S, E, SF: element tables), for the
+    !! nodes (elements) of their sets; contact forces are always written. A
+    !! table not written is removed, so that one of an earlier run into the
+    !! same directory does not survive.
     character(*), intent(in) :: dir
     type(model_t), intent(in) :: model
     type(results_t), intent(in) :: res
     type(error_t), allocatable, intent(out) :: error
+    type(selection_t) :: sel
+    integer :: k
     call make_directory(dir, error)
     if (allocated(error)) return
-    call write_table(dir//'/displacements.csv', 1, model, res, error)
-    if (allocated(error)) return
-    call write_table(dir//'/reactions.csv', 2, model, res, error)
-    if (allocated(error)) return
-    call write_table(dir//'/contact_forces.csv', 3, model, res, error)
-    if (allocated(error)) return
-    call write_table(dir//'/element_forces.csv', 4, model, res, error)
-    if (allocated(error)) return
-    if (any_plates(model)) then
-       call write_table(dir//'/plate_results.csv', 5, model, res, error)
-    else
-       ! a table of an earlier run into the same directory must not survive
-       call remove_file(dir//'/plate_results.csv')
-    end if
+    call select_output(model, sel)
+    do k = 1, NTABLE
+       if (sel%table(k)) then
+          call write_table(dir//'/'//trim(TABLE_FILES(k)), k, model, res, sel, error)
+          if (allocated(error)) return
+       else
+          call remove_file(dir//'/'//trim(TABLE_FILES(k)))
+       end if
+    end do
   end subroutine write_csv
+
+  subroutine select_output(model, sel)
+    !! The tables, nodes and elements the CSV files hold (see write_csv).
+    type(model_t), intent(in) :: model
+    type(selection_t), intent(out) :: sel
+    if (any_request_of(model, [REQ_NODE_FILE])) then
+       call request_mask(model, [REQ_NODE_FILE], .true., sel%node)
+       sel%table(1) = asks_variable(model, [REQ_NODE_FILE], ['U '])
+       sel%table(2) = asks_variable(model, [REQ_NODE_FILE], ['RF'])
+    else
+       call request_mask(model, [integer ::], .true., sel%node)
+       sel%node = .true.
+    end if
+    if (any_request_of(model, [REQ_EL_FILE])) then
+       call request_mask(model, [REQ_EL_FILE], .false., sel%elem)
+       sel%table(4) = asks_variable(model, [REQ_EL_FILE], ['S ', 'E ', 'SF'])
+    else
+       call request_mask(model, [integer ::], .false., sel%elem)
+       sel%elem = .true.
+    end if
+    sel%table(5) = sel%table(4) .and. any_plates(model)
+  end subroutine select_output
 
   pure logical function any_plates(model)
     !! True when the model has plane-stress or shell elements.
@@ -55,13 +91,15 @@ contains
     end do
   end function any_plates
 
-  subroutine write_table(path, which, model, res, error)
+  subroutine write_table(path, which, model, res, sel, error)
     !! One CSV table (which: 1 displacements, 2 reactions, 3 contact forces,
-    !! 4 element forces, 5 plate results), through the buffered writer.
+    !! 4 element forces, 5 plate results) of the selected nodes or elements,
+    !! through the buffered writer.
     character(*), intent(in) :: path
     integer, intent(in) :: which
     type(model_t), intent(in) :: model
     type(results_t), intent(in) :: res
+    type(selection_t), intent(in) :: sel
     type(error_t), allocatable, intent(out) :: error
     type(text_buffer_t), allocatable :: tb
     integer :: is, isub, d, k, il, e
@@ -84,7 +122,7 @@ contains
           do isub = 1, size(model%subs)
              do n = 1, model%subs(isub)%nnode
                 v = res%vertex_offset(isub) + n
-                if (.not. any(res%has_dof(:, v))) cycle
+                if (.not. any(res%has_dof(:, v)) .or. .not. sel%node(v)) cycle
                 call keys(model%steps(is)%name, model%subs(isub)%name, int(model%subs(isub)%node_id(n), i8))
                 call reals(res%u(NDOF_NODE*(v - 1) + 1:NDOF_NODE*v, is))
              end do
@@ -95,6 +133,7 @@ contains
        do is = 1, size(model%steps)
           do k = 1, size(res%steps(is)%reactions)
              associate (rc => res%steps(is)%reactions(k))
+               if (.not. sel%node(res%vertex_offset(rc%sub) + rc%node)) cycle
                call keys(model%steps(is)%name, model%subs(rc%sub)%name, &
                     int(model%subs(rc%sub)%node_id(rc%node), i8), int(rc%dof, i8))
                call reals([rc%force])
@@ -127,6 +166,7 @@ contains
                    cycle
                 end select
                 iel = res%elem_offset(isub) + e
+                if (.not. sel%elem(iel)) cycle
                 do k = 1, 2
                    call keys(model%steps(is)%name, model%subs(isub)%name, int(model%subs(isub)%elem_id(e), i8))
                    call tb%put(','//trim(ELEMENT_TYPE_NAMES(model%subs(isub)%elem_type(e)))//','//itoa(k))
@@ -142,6 +182,7 @@ contains
              do e = 1, model%subs(isub)%nelem
                 if (.not. is_plate_type(model%subs(isub)%elem_type(e))) cycle
                 iel = res%elem_offset(isub) + e
+                if (.not. sel%elem(iel)) cycle
                 call keys(model%steps(is)%name, model%subs(isub)%name, int(model%subs(isub)%elem_id(e), i8))
                 call reals(res%plate(:, iel, is))
              end do

@@ -14,6 +14,7 @@ module superjoin_output_listing
   use superjoin_utils_strings, only: itoa
   use superjoin_utils_memory, only: out_of_memory
   use superjoin_output_requests, only: write_print_requests
+  use superjoin_model_request_masks, only: has_requests
   implicit none (type, external)
   private
 
@@ -143,35 +144,100 @@ contains
   end subroutine count_line
 
   subroutine step_block(lu, model, res, is)
+    !! One step: the standard tables (not in a deck with output requests, whose
+    !! REQUESTED OUTPUT section prints what they ask for), contact forces,
+    !! equilibrium and health.
     type(text_buffer_t), intent(inout) :: lu
     type(model_t), intent(in) :: model
     type(results_t), intent(in) :: res
     integer, intent(in) :: is
-    integer :: isub, d, k, il, ie, dirs
-    integer(ip) :: n
-    integer(i8) :: v, iel
-    real(wp) :: scale, dscale, vals(NDOF_NODE)
+    integer :: d, k, il, dirs
+    real(wp) :: scale, dscale
     character(len=300) :: hline
     character(len=3), parameter :: DIR_NAMES(6) = ['FX ', 'FY ', 'FZ ', 'MX ', 'MY ', 'MZ ']
-    logical :: has_bars, has_plates
+    logical :: tables
 
-    has_bars = .false.
-    has_plates = .false.
-    do isub = 1, size(model%subs)
-       do ie = 1, model%subs(isub)%nelem
-          if (is_plate_type(model%subs(isub)%elem_type(ie))) then
-             has_plates = .true.
-          else
-             has_bars = .true.
-          end if
-       end do
-    end do
-
+    tables = .not. has_requests(model)
     associate (st => res%steps(is))
       call lu%line(RULE)
       call lu%line('STEP '//itoa(is)//'  '//model%steps(is)%name)
       call lu%line(RULE)
 
+      if (tables) call node_tables(lu, model, res, is)
+
+      call lu%line('CONTACT FORCES (contact frame; delta = u_slave - u_master, force on the master)')
+      write (hline, '(2x,a16,2a10,a6,2a15)') 'contact         ', '    master', '     slave', '   dof', &
+           '          delta', '          force'
+      call lu%line(trim(hline))
+      scale = max(0.0_wp, maxval(abs(st%link_force)))
+      dscale = max(0.0_wp, maxval(abs(st%link_delta)))
+      do il = 1, size(model%links)
+         associate (lk => model%links(il), ct => model%contacts(model%links(il)%contact))
+           do d = 1, NDOF_NODE
+              if (.not. res%link_used(d, il)) cycle
+              call lu%put('  ')
+              call lu%put_field(ct%name, 16)
+              call lu%put_int(int(model%subs(ct%master_sub)%node_id(lk%master_node), i8), 10)
+              call lu%put_int(int(model%subs(ct%slave_sub)%node_id(lk%slave_node), i8), 10)
+              call lu%put_int(int(d, i8), 6)
+              call lu%put_es(chop(st%link_delta(d, il), dscale))
+              call lu%put_es(chop(st%link_force(d, il), scale))
+              if (lk%state(d) == LINK_RIGID) call lu%put('   RIGID')
+              call lu%newline()
+           end do
+         end associate
+      end do
+      call lu%line('')
+
+      if (tables) call element_tables(lu, model, res, is)
+
+      call lu%line('EQUILIBRIUM (resultants about the origin)')
+      write (hline, '(2x,a10,4a15)') 'direction ', '        applied', '      reactions', '            sum', &
+           '       relative'
+      call lu%line(trim(hline))
+      scale = max(maxval(abs(st%applied)), maxval(abs(st%reaction)))
+      do dirs = 1, 6
+         write (hline, FMT_EQUILIBRIUM) field(DIR_NAMES(dirs), 10), chop(st%applied(dirs), scale), &
+              chop(st%reaction(dirs), scale), chop(st%applied(dirs) + st%reaction(dirs), scale), &
+              rel(st%applied(dirs) + st%reaction(dirs), scale)
+         call lu%line(trim(hline))
+      end do
+      call lu%line('')
+
+      call lu%line('NUMERICAL HEALTH')
+      write (hline, '(2x,a30,es10.2e3)') 'relative residual             ', st%residual
+      call lu%line(trim(hline))
+      if (st%refine_tried > 0) then
+         write (hline, '(2x,a30,es10.2e3,a)') 'residual before refinement    ', st%residual0, &
+              ' ('//itoa(st%refinements)//' refinement steps kept of '//itoa(st%refine_tried)//' tried)'
+         call lu%line(trim(hline))
+      end if
+      write (hline, '(2x,a30,es10.2e3)') 'EPSILON (energy error)        ', st%epsilon
+      call lu%line(trim(hline))
+      write (hline, '(2x,a30,es10.2e3,a)') 'MAXRATIO                      ', res%maxratio, '  at '//res%maxratio_at
+      call lu%line(trim(hline))
+      write (hline, '(2x,a30,es10.2e3)') 'condition estimate (1-norm)   ', res%cond_est
+      call lu%line(trim(hline))
+      do k = 1, size(res%warnings)
+         call lu%line('  '//'WARNING: '//res%warnings(k)%s)
+      end do
+      call lu%line('')
+    end associate
+  end subroutine step_block
+
+  subroutine node_tables(lu, model, res, is)
+    !! DISPLACEMENTS and SUPPORT REACTIONS of step is.
+    type(text_buffer_t), intent(inout) :: lu
+    type(model_t), intent(in) :: model
+    type(results_t), intent(in) :: res
+    integer, intent(in) :: is
+    integer :: isub, d, k
+    integer(ip) :: n
+    integer(i8) :: v
+    real(wp) :: scale, vals(NDOF_NODE)
+    character(len=300) :: hline
+
+    associate (st => res%steps(is))
       call lu%line('DISPLACEMENTS (global axes)')
       write (hline, '(2x,a20,a10,6a15)') 'substructure        ', '      node', '             u1', &
            '             u2', '             u3', '            ur1', '            ur2', '            ur3'
@@ -210,89 +276,57 @@ contains
          end associate
       end do
       call lu%line('')
-
-      call lu%line('CONTACT FORCES (contact frame; delta = u_slave - u_master, force on the master)')
-      write (hline, '(2x,a16,2a10,a6,2a15)') 'contact         ', '    master', '     slave', '   dof', &
-           '          delta', '          force'
-      call lu%line(trim(hline))
-      scale = max(0.0_wp, maxval(abs(st%link_force)))
-      dscale = max(0.0_wp, maxval(abs(st%link_delta)))
-      do il = 1, size(model%links)
-         associate (lk => model%links(il), ct => model%contacts(model%links(il)%contact))
-           do d = 1, NDOF_NODE
-              if (.not. res%link_used(d, il)) cycle
-              call lu%put('  ')
-              call lu%put_field(ct%name, 16)
-              call lu%put_int(int(model%subs(ct%master_sub)%node_id(lk%master_node), i8), 10)
-              call lu%put_int(int(model%subs(ct%slave_sub)%node_id(lk%slave_node), i8), 10)
-              call lu%put_int(int(d, i8), 6)
-              call lu%put_es(chop(st%link_delta(d, il), dscale))
-              call lu%put_es(chop(st%link_force(d, il), scale))
-              if (lk%state(d) == LINK_RIGID) call lu%put('   RIGID')
-              call lu%newline()
-           end do
-         end associate
-      end do
-      call lu%line('')
-
-      if (has_bars) then
-         call lu%line('ELEMENT END FORCES (local axes; forces the nodes exert on the element)')
-         write (hline, '(2x,a20,a10,a6,a4,6a15)') 'substructure        ', '   element', '  type', ' end', &
-              '              n', '             vy', '             vz', '              t', '             my', &
-              '             mz'
-         call lu%line(trim(hline))
-         scale = max(0.0_wp, maxval(abs(res%elem_force(:, :, :, is))))
-         do isub = 1, size(model%subs)
-            do ie = 1, model%subs(isub)%nelem
-               if (is_plate_type(model%subs(isub)%elem_type(ie))) cycle
-               iel = res%elem_offset(isub) + ie
-               do k = 1, 2
-                  call element_prefix(lu, model, isub, ie, 2)
-                  call lu%put_int(int(k, i8), 4)
-                  do d = 1, 6
-                     call lu%put_es(chop(res%elem_force(d, k, iel, is), scale))
-                  end do
-                  call lu%newline()
-               end do
-            end do
-         end do
-         call lu%line('')
-      end if
-      if (has_plates) call plate_block(lu, model, res, is)
-
-      call lu%line('EQUILIBRIUM (resultants about the origin)')
-      write (hline, '(2x,a10,4a15)') 'direction ', '        applied', '      reactions', '            sum', &
-           '       relative'
-      call lu%line(trim(hline))
-      scale = max(maxval(abs(st%applied)), maxval(abs(st%reaction)))
-      do dirs = 1, 6
-         write (hline, FMT_EQUILIBRIUM) field(DIR_NAMES(dirs), 10), chop(st%applied(dirs), scale), &
-              chop(st%reaction(dirs), scale), chop(st%applied(dirs) + st%reaction(dirs), scale), &
-              rel(st%applied(dirs) + st%reaction(dirs), scale)
-         call lu%line(trim(hline))
-      end do
-      call lu%line('')
-
-      call lu%line('NUMERICAL HEALTH')
-      write (hline, '(2x,a30,es10.2e3)') 'relative residual             ', st%residual
-      call lu%line(trim(hline))
-      if (st%refine_tried > 0) then
-         write (hline, '(2x,a30,es10.2e3,a)') 'residual before refinement    ', st%residual0, &
-              ' ('//itoa(st%refinements)//' refinement steps kept of '//itoa(st%refine_tried)//' tried)'
-         call lu%line(trim(hline))
-      end if
-      write (hline, '(2x,a30,es10.2e3)') 'EPSILON (energy error)        ', st%epsilon
-      call lu%line(trim(hline))
-      write (hline, '(2x,a30,es10.2e3,a)') 'MAXRATIO                      ', res%maxratio, '  at '//res%maxratio_at
-      call lu%line(trim(hline))
-      write (hline, '(2x,a30,es10.2e3)') 'condition estimate (1-norm)   ', res%cond_est
-      call lu%line(trim(hline))
-      do k = 1, size(res%warnings)
-         call lu%line('  '//'WARNING: '//res%warnings(k)%s)
-      end do
-      call lu%line('')
     end associate
-  end subroutine step_block
+  end subroutine node_tables
+
+  subroutine element_tables(lu, model, res, is)
+    !! ELEMENT END FORCES of the bars and the plate and shell resultants of step is.
+    type(text_buffer_t), intent(inout) :: lu
+    type(model_t), intent(in) :: model
+    type(results_t), intent(in) :: res
+    integer, intent(in) :: is
+    integer :: isub, d, k, ie
+    integer(i8) :: iel
+    real(wp) :: scale
+    character(len=300) :: hline
+    logical :: has_bars, has_plates
+
+    has_bars = .false.
+    has_plates = .false.
+    do isub = 1, size(model%subs)
+       do ie = 1, model%subs(isub)%nelem
+          if (is_plate_type(model%subs(isub)%elem_type(ie))) then
+             has_plates = .true.
+          else
+             has_bars = .true.
+          end if
+       end do
+    end do
+    if (has_bars) then
+       call lu%line('ELEMENT END FORCES (local axes; forces the nodes exert on the element)')
+       write (hline, '(2x,a20,a10,a6,a4,6a15)') 'substructure        ', '   element', '  type', ' end', &
+            '              n', '             vy', '             vz', '              t', '             my', &
+            '             mz'
+       call lu%line(trim(hline))
+       scale = max(0.0_wp, maxval(abs(res%elem_force(:, :, :, is))))
+       do isub = 1, size(model%subs)
+          do ie = 1, model%subs(isub)%nelem
+             if (is_plate_type(model%subs(isub)%elem_type(ie))) cycle
+             iel = res%elem_offset(isub) + ie
+             do k = 1, 2
+                call element_prefix(lu, model, isub, ie, 2)
+                call lu%put_int(int(k, i8), 4)
+                do d = 1, 6
+                   call lu%put_es(chop(res%elem_force(d, k, iel, is), scale))
+                end do
+                call lu%newline()
+             end do
+          end do
+       end do
+       call lu%line('')
+    end if
+    if (has_plates) call plate_block(lu, model, res, is)
+  end subroutine element_tables
 
   subroutine plate_block(lu, model, res, is)
     !! Resultants per unit length of the plane and shell elements at their

@@ -17,8 +17,7 @@ module superjoin_substructure_cache
   use superjoin_assembly_dofs, only: dof_table_t
   use superjoin_assembly_assemble, only: superelement_t
   use superjoin_substructure_local_system, only: local_system_t, build_local_system, local_numbering
-  use superjoin_substructure_condensed, only: condensed_t, condense, condense_loads, recover_interior, &
-       local_residual
+  use superjoin_substructure_condensed, only: condensed_t, condense, condense_loads, recover_interior
   implicit none (type, external)
   private
 
@@ -63,7 +62,7 @@ module superjoin_substructure_cache
      type(superelement_t) :: se               !! K* of this substructure on its physical boundary DOFs
   end type part_view_t
 
-  public :: release_cache, acquire_view, view_condense_loads, view_recover, view_residual, view_stiffness_times, &
+  public :: release_cache, acquire_view, view_condense_loads, view_recover, view_stiffness_times, &
        view_maxratio, view_spc
 
 contains
@@ -198,23 +197,6 @@ contains
     call recover_interior(cache%entries(view%entry)%e%cond, fc, u_local, error)
     if (view%rotated) call rotate_local(view, u_local, .true.)
   end subroutine view_recover
-
-  subroutine view_residual(cache, view, u_local, f_local, r_local)
-    !! r = k u − f with the substructure's own element stiffness (this frame).
-    type(part_cache_t), intent(in) :: cache
-    type(part_view_t), intent(in) :: view
-    real(wp), intent(in) :: u_local(:, :), f_local(:, :)
-    real(wp), intent(out) :: r_local(:, :)
-    real(wp), allocatable :: uc(:, :), fc(:, :)
-    allocate (uc, source=u_local)
-    allocate (fc, source=f_local)
-    if (view%rotated) then
-       call rotate_local(view, uc, .false.)
-       call rotate_local(view, fc, .false.)
-    end if
-    call local_residual(cache%entries(view%entry)%e%cond, uc, fc, r_local)
-    if (view%rotated) call rotate_local(view, r_local, .true.)
-  end subroutine view_residual
 
   subroutine view_stiffness_times(cache, view, x_local, y_local)
     !! y = k x with the substructure's element stiffness (this frame).

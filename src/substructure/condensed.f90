@@ -30,9 +30,12 @@ module superjoin_substructure_condensed
      real(wp) :: maxratio = 0.0_wp                   !! max k_jj / D_jj over k_ii
      integer(i8), allocatable :: spc(:)              !! interior DOFs without stiffness (physical), dropped
      integer(i8) :: maxratio_at = 0                  !! its local DOF (1..ni)
+     real(wp), allocatable :: memo_f(:, :)           !! the loads of the last condense_loads (local)
+     real(wp), allocatable :: memo_fstar(:, :)       !! and their f*: a joint study's next set of
+                                                     !! contact stiffnesses has the same loads
   end type condensed_t
 
-  public :: condense, condense_loads, recover_interior, local_residual
+  public :: condense, condense_loads, recover_interior
 
 contains
 
@@ -180,6 +183,8 @@ contains
 
   subroutine condense_loads(cond, f_local, fstar, error)
     !! f* = f_b − k_bi k_ii⁻¹ f_i for every step (f_local: local numbering).
+    !! The same loads as the previous call (the next set of contact
+    !! stiffnesses of a joint study) give the previous f* without a solve.
     type(condensed_t), intent(inout) :: cond
     real(wp), intent(in) :: f_local(:, :)      !! (ni+nb, nstep)
     real(wp), intent(out) :: fstar(:, :)       !! (nb, nstep)
@@ -188,12 +193,22 @@ contains
     integer(i8) :: ni, nb
     ni = cond%sys%ni
     nb = cond%sys%nb
+    if (allocated(cond%memo_f)) then
+       if (all(shape(cond%memo_f) == shape(f_local))) then
+          if (all(cond%memo_f == f_local)) then
+             fstar = cond%memo_fstar
+             return
+          end if
+       end if
+    end if
     fstar = f_local(ni + 1:ni + nb, :)
     if (ni == 0) return
     allocate (x(ni, size(f_local, 2)))
     call cond%solver%solve(f_local(1:ni, :), x, error)
     if (allocated(error)) return
     call sub_kbi(cond%sys%k, ni, nb, x, fstar)
+    cond%memo_f = f_local
+    cond%memo_fstar = fstar
   end subroutine condense_loads
 
   subroutine recover_interior(cond, f_local, u_local, error)
@@ -220,15 +235,6 @@ contains
     end associate
     call cond%solver%solve(rhs, u_local(1:ni, :), error)
   end subroutine recover_interior
-
-  subroutine local_residual(cond, u_local, f_local, r_local)
-    !! r = k u − f over the whole substructure, with its own element stiffness.
-    type(condensed_t), intent(in) :: cond
-    real(wp), intent(in) :: u_local(:, :), f_local(:, :)
-    real(wp), intent(out) :: r_local(:, :)
-    call cond%sys%k%matvec(u_local, r_local)
-    r_local = r_local - f_local
-  end subroutine local_residual
 
   subroutine sub_kbi(k, ni, nb, x, y)
     !! y -= k_bi x (k_bi = k_ibᵀ, read from the boundary columns of k).

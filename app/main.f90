@@ -77,33 +77,33 @@ program superjoin_main
   opts%csv = allocated(csv_dir)
   opts%vtk = allocated(vtk_file)
   call solve_joint_steps(model, opts, res, error)
-  if (allocated(error) .and. allocated(res%mechanism)) call write_mechanism(error)
+  if (allocated(error) .and. allocated(res%fields%mechanism)) call write_mechanism(error)
   call fail_on(error, deck)
   call check_plausibility(model, res)
-  res%phase_seconds(PH_READ) = t_read
+  res%log%phase_seconds(PH_READ) = t_read
   ! Warnings are printed also under -q (it silences progress only).
-  do i = 1, size(res%warnings)
-     write (error_unit, '(a)') deck//': warning: '//res%warnings(i)%s
+  do i = 1, size(res%log%warnings)
+     write (error_unit, '(a)') deck//': warning: '//res%log%warnings(i)%s
   end do
-  if (size(deck_warnings) > 0) res%warnings = [deck_warnings, res%warnings]
+  if (size(deck_warnings) > 0) res%log%warnings = [deck_warnings, res%log%warnings]
 
   call clock%start()
   call write_listing(listing, model, res, error)
   call fail_on(error, deck)
   if (allocated(csv_dir)) then
-     call write_csv(csv_dir, model, res, error)
+     call write_csv(csv_dir, model, res%fields, error)
      call fail_on(error, deck)
      call write_nodes_csv(csv_dir, model, error)
      call fail_on(error, deck)
   end if
   if (allocated(vtk_file)) then
-     call write_vtk(vtk_file, model, res, error)
+     call write_vtk(vtk_file, model, res%fields, error)
      call fail_on(error, deck)
   end if
-  res%phase_seconds(PH_WRITE) = clock%seconds()
-  call report_phase(opts%quiet, 'write', res%phase_seconds(PH_WRITE), listing)
+  res%log%phase_seconds(PH_WRITE) = clock%seconds()
+  call report_phase(opts%quiet, 'write', res%log%phase_seconds(PH_WRITE), listing)
   if (demo .and. .not. opts%quiet) write (error_unit, '(a)') 'superjoin: listing written to '//listing
-  if (res%inaccurate .and. .not. opts%accept_inaccurate) then
+  if (res%log%inaccurate .and. .not. opts%accept_inaccurate) then
      write (error_unit, '(a)') deck//': error: the results are judged inaccurate (see the warnings above); '// &
           'the listing is written, exit status 5 (--accept-inaccurate: exit 0)'
      stop EXIT_INACCURATE, quiet=.true.
@@ -120,7 +120,7 @@ contains
     character(:), allocatable :: written
     written = ''
     if (allocated(vtk_file)) then
-       call write_mechanism_vtk(vtk_file, model, res%mechanism, werr)
+       call write_mechanism_vtk(vtk_file, model, res%fields%mechanism, werr)
        if (allocated(werr)) then
           error%message = error%message//new_line('a')//werr%message
           deallocate (werr)
@@ -129,7 +129,7 @@ contains
        end if
     end if
     if (allocated(csv_dir)) then
-       call write_mechanism_csv(csv_dir, model, res%mechanism, werr)
+       call write_mechanism_csv(csv_dir, model, res%fields%mechanism, werr)
        if (allocated(werr)) then
           error%message = error%message//new_line('a')//werr%message
        else

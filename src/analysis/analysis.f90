@@ -104,13 +104,13 @@ contains
     integer(i8) :: p
     integer :: i, stat
 
-    allocate (notes(0), res%warnings(0))
-    res%maxratio_at = 'n/a (no unknowns)'
+    allocate (notes(0), res%log%warnings(0))
+    res%summary%maxratio_at = 'n/a (no unknowns)'
     call clock%start()
     form = model%controls%formulation
     if (opts%formulation /= 0) form = opts%formulation
-    res%formulation = merge('TRANSFORM', 'PENALTY  ', form == FORM_TRANSFORM)
-    res%formulation = trim(res%formulation)
+    res%summary%formulation = merge('TRANSFORM', 'PENALTY  ', form == FORM_TRANSFORM)
+    res%summary%formulation = trim(res%summary%formulation)
 
     call build_dof_table(model, table, error)
     if (allocated(error)) return
@@ -121,19 +121,19 @@ contains
     call build_forest(table, form == FORM_TRANSFORM, forest, error)
     if (allocated(error)) return
     call boundary_dofs(table, bnd)
-    call count_boundary(model, table, bnd, res)
+    call count_boundary(model, table, bnd, res%summary)
     ! Condensation boundaries: the instances of a part share theirs.
     call part_boundary(model, table, bnd, bnd_c)
-    call choose_condensation(model, table, opts, ctx, bnd_c, res, notes)
+    call choose_condensation(model, table, opts, ctx, bnd_c, res%summary, notes)
     allocate (keep(table%np))
     do p = 1, table%np
-       keep(p) = bnd_c(p) .or. .not. res%sub_condensed(table%p_sub(p))
+       keep(p) = bnd_c(p) .or. .not. res%summary%sub_condensed(table%p_sub(p))
     end do
     call build_transform(model, table, forest, tr, error, keep)
     if (allocated(error)) return
-    call describe_transform(model, table, tr, form, res, notes)
+    call describe_transform(model, table, tr, form, res%summary, notes)
 
-    if (res%n_condensed == 0) then
+    if (res%summary%n_condensed == 0) then
        allocate (plan%skip_sub(size(model%subs)), source=.false.)
        allocate (plan%supers(0))
        call assemble_stiffness(model, table, tr, plan, k, f_u0, error)
@@ -144,9 +144,9 @@ contains
     else
        call assemble_loads(model, table, f_phys, error)
        if (allocated(error)) return
-       call condense_parts(model, table, bnd_c, opts, f_phys, ctx%cache, res, notes, parts, f_eff, error)
+       call condense_parts(model, table, bnd_c, opts, f_phys, ctx%cache, res%summary, notes, parts, f_eff, error)
        if (allocated(error)) return
-       plan%skip_sub = res%sub_condensed
+       plan%skip_sub = res%summary%sub_condensed
        allocate (plan%supers(size(parts)))
        do i = 1, size(parts)
           plan%supers(i) = parts(i)%se
@@ -160,14 +160,14 @@ contains
     call autospc(model, table, tr, k, f_red, spc, notes, error)
     if (allocated(error)) return
     call skip_unloaded_parts(model, table, tr, k, f_red, spc, notes)
-    res%nphys = table%np
-    res%ncol = tr%ncol()
-    res%neq = tr%ncol() - count(spc, kind=i8)
-    res%ndelta = count_delta(tr)
-    res%matrix_nnz = k%nnz()
-    res%phase_seconds(PH_ASSEMBLE) = clock%seconds()
-    write (buf, '(a,i0,a,i0)') 'equations ', res%neq, ', nonzeros ', res%matrix_nnz
-    call report_phase(opts%quiet, 'assemble', res%phase_seconds(PH_ASSEMBLE), trim(buf))
+    res%summary%nphys = table%np
+    res%summary%ncol = tr%ncol()
+    res%summary%neq = tr%ncol() - count(spc, kind=i8)
+    res%summary%ndelta = count_delta(tr)
+    res%summary%matrix_nnz = k%nnz()
+    res%log%phase_seconds(PH_ASSEMBLE) = clock%seconds()
+    write (buf, '(a,i0,a,i0)') 'equations ', res%summary%neq, ', nonzeros ', res%summary%matrix_nnz
+    call report_phase(opts%quiet, 'assemble', res%log%phase_seconds(PH_ASSEMBLE), trim(buf))
 
     if (allocated(opts%export_matrix)) then
        call write_matrix_market(opts%export_matrix, k, error)
@@ -180,17 +180,17 @@ contains
        if (allocated(error)) return
     else
        allocate (q(0, size(model%steps)))
-       res%solver_name = 'none (no unknowns)'
-       res%ordering = 'none'
+       res%summary%solver_name = 'none (no unknowns)'
+       res%summary%ordering = 'none'
     end if
 
     ! Health first: iterative refinement may still improve q.
-    allocate (res%steps(size(model%steps)))
+    allocate (res%fields%steps(size(model%steps)))
     if (tr%ncol() > 0) then
        call clock%start()
        call health(k, q, f_red, spc, solver, model, table, tr, res, opts, error)
        if (allocated(error)) return
-       res%phase_seconds(PH_SOLVE) = res%phase_seconds(PH_SOLVE) + clock%seconds()
+       res%log%phase_seconds(PH_SOLVE) = res%log%phase_seconds(PH_SOLVE) + clock%seconds()
        call report_phase(opts%quiet, 'health', clock%seconds())
     end if
     call clock%start()
@@ -200,28 +200,28 @@ contains
        return
     end if
     call tr%expand(q, u)
-    if (res%n_condensed > 0) then
+    if (res%summary%n_condensed > 0) then
        call recover_parts(ctx%cache, parts, f_phys, u, error)
        if (allocated(error)) return
        call parts_ku(ctx%cache, parts, u, ku)
        if (tr%ncol() > 0) call full_health(ctx%cache, tr, k, parts, q, u, ku, f_red, f_eff, f_phys, res)
        call parts_maxratio(model, table, ctx%cache, parts, res, error)
        if (allocated(error)) return
-       res%phase_seconds(PH_SOLVE) = res%phase_seconds(PH_SOLVE) + clock%seconds()
+       res%log%phase_seconds(PH_SOLVE) = res%log%phase_seconds(PH_SOLVE) + clock%seconds()
        call report_phase(opts%quiet, 'recover interiors', clock%seconds())
        call clock%start()
     end if
     call wanted_elements(model, opts, wanted, notes)
-    if (res%n_condensed > 0) then
+    if (res%summary%n_condensed > 0) then
        call recover_results(model, table, forest, tr, q, u, f_phys, res, error, wanted, ku)
     else
        call recover_results(model, table, forest, tr, q, u, f_phys, res, error, wanted)
     end if
     if (allocated(error)) return
-    res%phase_seconds(PH_SOLVE) = res%phase_seconds(PH_SOLVE) + clock%seconds()
+    res%log%phase_seconds(PH_SOLVE) = res%log%phase_seconds(PH_SOLVE) + clock%seconds()
     call report_phase(opts%quiet, 'recover', clock%seconds())
     if (allocated(solver)) call solver%release()
-    res%notes = notes
+    res%log%notes = notes
   end subroutine solve_steps
 
   subroutine reduce_loads(tr, f_phys, f_u0, f_red, error)
@@ -279,8 +279,8 @@ contains
     if (allocated(groups)) call solver%set_groups(groups)
     call solver%analyze(k, error)
     if (allocated(error)) return
-    res%phase_seconds(PH_ORDER) = clock%seconds()
-    call report_phase(opts%quiet, 'order', res%phase_seconds(PH_ORDER), solver%info%ordering)
+    res%log%phase_seconds(PH_ORDER) = clock%seconds()
+    call report_phase(opts%quiet, 'order', res%log%phase_seconds(PH_ORDER), solver%info%ordering)
 
     call clock%start()
     call solver%factorize(k, error)
@@ -288,7 +288,7 @@ contains
        if (error%code == EXIT_SINGULAR) then
           jf = solver%info%failed_column
           deallocate (error)
-          call mechanism_error(k, solver_name, model, table, tr, penalty_hint(res), res%mechanism, error)
+          call mechanism_error(k, solver_name, model, table, tr, penalty_hint(res), res%fields%mechanism, error)
           if (allocated(error)) return
           if (jf >= 1 .and. jf <= tr%ncol()) then
              call fatal_error(error, EXIT_SINGULAR, 'error: the structure cannot be solved: '// &
@@ -300,13 +300,13 @@ contains
        end if
        return
     end if
-    res%phase_seconds(PH_FACTOR) = clock%seconds()
-    res%solver_name = solver%info%name
-    res%ordering = solver%info%ordering
-    res%factor_nnz = solver%info%factor_nnz
-    res%factor_mbytes = solver%info%factor_mbytes
-    write (buf, '(a,i0)') 'factor nonzeros ', res%factor_nnz
-    call report_phase(opts%quiet, 'factor', res%phase_seconds(PH_FACTOR), solver%info%name//', '//trim(buf))
+    res%log%phase_seconds(PH_FACTOR) = clock%seconds()
+    res%summary%solver_name = solver%info%name
+    res%summary%ordering = solver%info%ordering
+    res%summary%factor_nnz = solver%info%factor_nnz
+    res%summary%factor_mbytes = solver%info%factor_mbytes
+    write (buf, '(a,i0)') 'factor nonzeros ', res%summary%factor_nnz
+    call report_phase(opts%quiet, 'factor', res%log%phase_seconds(PH_FACTOR), solver%info%name//', '//trim(buf))
 
     call clock%start()
     allocate (q(k%n, size(f_red, 2)), stat=stat)
@@ -316,8 +316,8 @@ contains
     end if
     call solver%solve(f_red, q, error)
     if (allocated(error)) return
-    res%phase_seconds(PH_SOLVE) = clock%seconds()
-    call report_phase(opts%quiet, 'solve', res%phase_seconds(PH_SOLVE))
+    res%log%phase_seconds(PH_SOLVE) = clock%seconds()
+    call report_phase(opts%quiet, 'solve', res%log%phase_seconds(PH_SOLVE))
   end subroutine factor_and_solve
 
 end module superjoin_analysis

@@ -10,7 +10,7 @@ module superjoin_analysis_condensation
   use superjoin_substructure_local_system, only: dof_label
   use superjoin_substructure_cache, only: part_cache_t, part_view_t, acquire_view, view_condense_loads, &
        view_recover, view_stiffness_times, view_spc
-  use superjoin_analysis_results, only: results_t, run_options_t
+  use superjoin_analysis_results, only: run_summary_t, run_options_t
   use superjoin_analysis_notes, only: note
   use superjoin_utils_strings, only: itoa
   implicit none (type, external)
@@ -28,7 +28,7 @@ module superjoin_analysis_condensation
 
 contains
 
-  subroutine condense_parts(model, table, bnd, opts, f_phys, cache, res, notes, parts, f_eff, error)
+  subroutine condense_parts(model, table, bnd, opts, f_phys, cache, summary, notes, parts, f_eff, error)
     !! The condensations of the condensed substructures (computed, or reused
     !! from the cache: another instance of the same part, or an earlier solve
     !! of a joint study), and the loads the interface sees: f_phys with each
@@ -39,7 +39,7 @@ contains
     type(run_options_t), intent(in) :: opts
     real(wp), intent(in) :: f_phys(:, :)
     type(part_cache_t), intent(inout) :: cache
-    type(results_t), intent(inout) :: res
+    type(run_summary_t), intent(inout) :: summary
     type(string_t), allocatable, intent(inout) :: notes(:)
     type(part_view_t), allocatable, intent(out) :: parts(:)
     real(wp), allocatable, intent(out) :: f_eff(:, :)
@@ -53,19 +53,19 @@ contains
     ! a bad element there is reported as a deck error before a condensation
     ! meets its consequences (condensed ones are checked as they are built).
     if (cache%n == 0) then
-       call max_element_diagonal(model, table, dmax, error, only=.not. res%sub_condensed)
+       call max_element_diagonal(model, table, dmax, error, only=.not. summary%sub_condensed)
        if (allocated(error)) return
     end if
     solver_name = 'auto'
     if (allocated(opts%solver)) solver_name = opts%solver
-    allocate (parts(res%n_condensed))
+    allocate (parts(summary%n_condensed))
     f_eff = f_phys
     computed0 = cache%computed
     reused0 = cache%reused
     nrot = 0
     ip_ = 0
     do isub = 1, size(model%subs)
-       if (.not. res%sub_condensed(isub)) cycle
+       if (.not. summary%sub_condensed(isub)) cycle
        ip_ = ip_ + 1
        call acquire_view(cache, model, table, isub, bnd, solver_name, parts(ip_), error)
        if (allocated(error)) return

@@ -61,31 +61,31 @@ contains
     integer :: is, isub
     integer(ip) :: e
     real(wp) :: t
-    if (allocated(res%u)) then
-       if (.not. all(ieee_is_finite(res%u))) what = 'displacements'
+    if (allocated(res%fields%u)) then
+       if (.not. all(ieee_is_finite(res%fields%u))) what = 'displacements'
     end if
-    if (.not. allocated(what) .and. allocated(res%elem_force)) then
-       if (.not. all(ieee_is_finite(res%elem_force))) what = 'element forces'
+    if (.not. allocated(what) .and. allocated(res%fields%elem_force)) then
+       if (.not. all(ieee_is_finite(res%fields%elem_force))) what = 'element forces'
     end if
-    if (.not. allocated(what) .and. allocated(res%plate)) then
-       if (.not. all(ieee_is_finite(res%plate))) what = 'plate resultants'
+    if (.not. allocated(what) .and. allocated(res%fields%plate)) then
+       if (.not. all(ieee_is_finite(res%fields%plate))) what = 'plate resultants'
     end if
-    if (.not. allocated(what) .and. allocated(res%plate)) then
+    if (.not. allocated(what) .and. allocated(res%fields%plate)) then
        do isub = 1, size(model%subs)
           do e = 1, model%subs(isub)%nelem
              if (model%subs(isub)%elem_section(e) == 0) cycle
              t = model%subs(isub)%sections(model%subs(isub)%elem_section(e))%thickness
              if (t <= 0.0_wp) cycle
-             associate (p => res%plate(:, res%elem_offset(isub) + e, :))
+             associate (p => res%fields%plate(:, res%fields%elem_offset(isub) + e, :))
                if (any(too_big(p(1:3, :), t, 1)) .or. any(too_big(6.0_wp*p(4:6, :), t, 2))) &
                     what = 'plate stresses'
              end associate
           end do
        end do
     end if
-    if (.not. allocated(what) .and. allocated(res%steps)) then
-       do is = 1, size(res%steps)
-          associate (st => res%steps(is))
+    if (.not. allocated(what) .and. allocated(res%fields%steps)) then
+       do is = 1, size(res%fields%steps)
+          associate (st => res%fields%steps(is))
             if (allocated(st%reactions)) then
                if (.not. all(ieee_is_finite(st%reactions(:)%force))) what = 'support reactions'
             end if
@@ -138,13 +138,13 @@ contains
     knorm = norm1_sym(k)
     call residuals(q, r, berr)
     do is = 1, nstep
-       res%steps(is)%residual0 = res%steps(is)%residual
+       res%fields%steps(is)%residual0 = res%fields%steps(is)%residual
     end do
     ! MAXRATIO = max K_jj / D_jj, first: a numerically singular matrix stops
     ! here, before refinement solves with a factor that is not worth using.
     call solver%pivots(d)
     call k%diagonal(kd)
-    res%maxratio = 0.0_wp
+    res%summary%maxratio = 0.0_wp
     jmax = 0
     do j = 1, k%n
        if (spc(j) .or. d(j) == 0.0_wp) cycle
@@ -154,21 +154,21 @@ contains
        else
           ratio = abs(kd(j)/d(j))
        end if
-       if (ratio > res%maxratio) then
-          res%maxratio = ratio
+       if (ratio > res%summary%maxratio) then
+          res%summary%maxratio = ratio
           jmax = j
        end if
     end do
-    res%maxratio_at = 'n/a'
-    if (jmax > 0) res%maxratio_at = column_label(model, table, tr, jmax)
-    if (res%maxratio > MAXRATIO_FATAL) then
+    res%summary%maxratio_at = 'n/a'
+    if (jmax > 0) res%summary%maxratio_at = column_label(model, table, tr, jmax)
+    if (res%summary%maxratio > MAXRATIO_FATAL) then
        backend = 'auto'
        if (allocated(opts%solver)) backend = opts%solver
-       call mechanism_error(k, backend, model, table, tr, penalty_hint(res), res%mechanism, error)
+       call mechanism_error(k, backend, model, table, tr, penalty_hint(res), res%fields%mechanism, error)
        if (allocated(error)) return
-       write (buf, '(es10.2e3)') res%maxratio
+       write (buf, '(es10.2e3)') res%summary%maxratio
        call fatal_error(error, EXIT_SINGULAR, 'error: the structure cannot be solved: stiffness is '// &
-            'numerically singular at '//res%maxratio_at//' (MAXRATIO '//trim(adjustl(buf))// &
+            'numerically singular at '//res%summary%maxratio_at//' (MAXRATIO '//trim(adjustl(buf))// &
             '): a mechanism, or a stiffness contrast beyond double precision'//penalty_hint(res))
        return
     end if
@@ -176,46 +176,46 @@ contains
     ! is above a few ulps or the residual or EPSILON above REFINE_RESIDUAL, and
     ! each step at least halves the largest residual.
     do it = 1, MAX_REFINE
-       if (all(berr <= REFINE_BERR .and. res%steps(:)%residual <= REFINE_RESIDUAL .and. &
-            abs(res%steps(:)%epsilon) <= REFINE_RESIDUAL)) exit
-       res%steps(:)%refine_tried = it
+       if (all(berr <= REFINE_BERR .and. res%fields%steps(:)%residual <= REFINE_RESIDUAL .and. &
+            abs(res%fields%steps(:)%epsilon) <= REFINE_RESIDUAL)) exit
+       res%fields%steps(:)%refine_tried = it
        call solver%solve(r, dq, inner)
        if (allocated(inner)) exit
        q_try = q - dq
-       prev_res = res%steps(:)%residual
-       prev_eps = res%steps(:)%epsilon
+       prev_res = res%fields%steps(:)%residual
+       prev_eps = res%fields%steps(:)%epsilon
        r_try = r
        call residuals(q_try, r_try, berr_try)
        ! keep a step only if it is finite and gains (a NaN residual compares false)
        if (.not. all(ieee_is_finite(q_try)) .or. &
-           .not. (maxval(res%steps(:)%residual) <= REFINE_GAIN*maxval(prev_res))) then
-          res%steps(:)%residual = prev_res
-          res%steps(:)%epsilon = prev_eps
+           .not. (maxval(res%fields%steps(:)%residual) <= REFINE_GAIN*maxval(prev_res))) then
+          res%fields%steps(:)%residual = prev_res
+          res%fields%steps(:)%epsilon = prev_eps
           exit
        end if
        q = q_try
        r = r_try
        berr = berr_try
-       res%steps(:)%refinements = it
+       res%fields%steps(:)%refinements = it
     end do
 
-    if (maxval(res%steps(:)%residual) > merge(RESIDUAL_WARN_PENALTY, RESIDUAL_WARN, res%formulation == 'PENALTY')) then
-       write (buf, '(es10.2e3)') maxval(res%steps(:)%residual)
+    if (maxval(res%fields%steps(:)%residual) > merge(RESIDUAL_WARN_PENALTY, RESIDUAL_WARN, res%summary%formulation == 'PENALTY')) then
+       write (buf, '(es10.2e3)') maxval(res%fields%steps(:)%residual)
        call warn(res, 'relative residual '//trim(adjustl(buf))//' after refinement: results are inaccurate')
-       res%inaccurate = .true.
+       res%log%inaccurate = .true.
     end if
-    if (res%maxratio > MAXRATIO_WARN) then
-       write (buf, '(es10.2e3)') res%maxratio
-       call warn(res, 'MAXRATIO '//trim(adjustl(buf))//' at '//res%maxratio_at// &
-            ': about '//itoa(nint(log10(res%maxratio)))//' digits may be lost')
+    if (res%summary%maxratio > MAXRATIO_WARN) then
+       write (buf, '(es10.2e3)') res%summary%maxratio
+       call warn(res, 'MAXRATIO '//trim(adjustl(buf))//' at '//res%summary%maxratio_at// &
+            ': about '//itoa(nint(log10(res%summary%maxratio)))//' digits may be lost')
     end if
     call condition_estimate(k, solver, cond)
     if (.not. ieee_is_finite(cond) .or. cond > huge(cond)) then
        cond = huge(cond)
        call warn(res, 'condition estimate overflows (above 1.8E+308): results are unreliable')
-       res%inaccurate = .true.
+       res%log%inaccurate = .true.
     end if
-    res%cond_est = cond
+    res%summary%cond_est = cond
     if (.not. opts%quiet .and. opts%verbose) then
        write (error_unit, '(a,es10.3)') 'superjoin: condition estimate ', cond
     end if
@@ -229,8 +229,8 @@ contains
       call k%matvec(x, r)
       r = r - f_red
       do s = 1, nstep
-         res%steps(s)%residual = safe_div(norm2(r(:, s)), norm2(f_red(:, s)))
-         res%steps(s)%epsilon = energy_error(x(:, s), r(:, s), f_red(:, s))
+         res%fields%steps(s)%residual = safe_div(norm2(r(:, s)), norm2(f_red(:, s)))
+         res%fields%steps(s)%epsilon = energy_error(x(:, s), r(:, s), f_red(:, s))
          berr(s) = safe_div(maxval(abs(r(:, s))), knorm*maxval(abs(x(:, s))) + maxval(abs(f_red(:, s))))
       end do
     end subroutine residuals
@@ -301,11 +301,11 @@ contains
     ffull(1:k%n, :) = f
     qfull(1:k%n, :) = q
     do is = 1, nstep
-       res%steps(is)%residual = safe_div(norm2(rf(:, is)), norm2(ffull(:, is)))
-       res%steps(is)%epsilon = energy_error(qfull(:, is), rf(:, is), ffull(:, is))
+       res%fields%steps(is)%residual = safe_div(norm2(rf(:, is)), norm2(ffull(:, is)))
+       res%fields%steps(is)%epsilon = energy_error(qfull(:, is), rf(:, is), ffull(:, is))
     end do
-    if (maxval(res%steps(:)%residual) > RESIDUAL_WARN) then
-       write (buf, '(es10.2e3)') maxval(res%steps(:)%residual)
+    if (maxval(res%fields%steps(:)%residual) > RESIDUAL_WARN) then
+       write (buf, '(es10.2e3)') maxval(res%fields%steps(:)%residual)
        call warn(res, 'relative residual '//trim(adjustl(buf))//' of the whole system (condensed '// &
             'substructures recovered): results are inaccurate')
     end if
@@ -326,18 +326,18 @@ contains
     integer :: i
     do i = 1, size(parts)
        call view_maxratio(cache, parts(i), ratio, p)
-       if (ratio <= res%maxratio .or. p == 0) cycle
-       res%maxratio = ratio
-       res%maxratio_at = dof_label(model, table, p)
-       write (buf, '(es10.2e3)') res%maxratio
-       if (res%maxratio > MAXRATIO_FATAL) then
+       if (ratio <= res%summary%maxratio .or. p == 0) cycle
+       res%summary%maxratio = ratio
+       res%summary%maxratio_at = dof_label(model, table, p)
+       write (buf, '(es10.2e3)') res%summary%maxratio
+       if (res%summary%maxratio > MAXRATIO_FATAL) then
           call fatal_error(error, EXIT_SINGULAR, 'error: the structure cannot be solved: stiffness is '// &
-               'numerically singular at '//res%maxratio_at//' (MAXRATIO '//trim(adjustl(buf))// &
+               'numerically singular at '//res%summary%maxratio_at//' (MAXRATIO '//trim(adjustl(buf))// &
                '): a mechanism, or a stiffness contrast beyond double precision')
           return
        end if
-       if (res%maxratio > MAXRATIO_WARN) call warn(res, 'MAXRATIO '//trim(adjustl(buf))//' at '// &
-            res%maxratio_at//': about '//itoa(nint(log10(res%maxratio)))//' digits may be lost')
+       if (res%summary%maxratio > MAXRATIO_WARN) call warn(res, 'MAXRATIO '//trim(adjustl(buf))//' at '// &
+            res%summary%maxratio_at//': about '//itoa(nint(log10(res%summary%maxratio)))//' digits may be lost')
     end do
   end subroutine parts_maxratio
 
@@ -346,7 +346,7 @@ contains
     type(results_t), intent(in) :: res
     character(:), allocatable :: s
     s = ''
-    if (res%formulation == 'PENALTY') s = ' (unless it is a mechanism: under PENALTY a contact stiffness '// &
+    if (res%summary%formulation == 'PENALTY') s = ' (unless it is a mechanism: under PENALTY a contact stiffness '// &
          'beyond about 1/epsilon times the structure''s breaks the factorization; TRANSFORM does not)'
   end function penalty_hint
 

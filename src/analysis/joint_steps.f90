@@ -89,7 +89,7 @@ contains
        call note_group(model, members, res)
     end do
     call release_cache(ctx%cache)
-    call append_string(res%notes, 'joint study (*CHANGE CONTACT): '//itoa(ngroup)// &
+    call append_string(res%log%notes, 'joint study (*CHANGE CONTACT): '//itoa(ngroup)// &
          ' sets of contact stiffnesses, '//itoa(ngroup)//' interface factorizations, '// &
          itoa(ctx%cache%computed)//' condensations computed and reused '//itoa(ctx%cache%reused)// &
          ' times; the counts above and MAXRATIO are the largest over them')
@@ -140,56 +140,56 @@ contains
     integer :: k, i
     if (first) then
        res = r
-       if (allocated(r%u)) then
-          deallocate (res%u)
-          allocate (res%u(size(r%u, 1), nstep))
-          res%u = 0.0_wp
+       if (allocated(r%fields%u)) then
+          deallocate (res%fields%u)
+          allocate (res%fields%u(size(r%fields%u, 1), nstep))
+          res%fields%u = 0.0_wp
        end if
-       if (allocated(r%elem_force)) then
-          deallocate (res%elem_force)
-          allocate (res%elem_force(size(r%elem_force, 1), size(r%elem_force, 2), size(r%elem_force, 3), nstep))
-          res%elem_force = 0.0_wp
+       if (allocated(r%fields%elem_force)) then
+          deallocate (res%fields%elem_force)
+          allocate (res%fields%elem_force(size(r%fields%elem_force, 1), size(r%fields%elem_force, 2), size(r%fields%elem_force, 3), nstep))
+          res%fields%elem_force = 0.0_wp
        end if
-       if (allocated(r%plate)) then
-          deallocate (res%plate)
-          allocate (res%plate(size(r%plate, 1), size(r%plate, 2), nstep))
-          res%plate = 0.0_wp
+       if (allocated(r%fields%plate)) then
+          deallocate (res%fields%plate)
+          allocate (res%fields%plate(size(r%fields%plate, 1), size(r%fields%plate, 2), nstep))
+          res%fields%plate = 0.0_wp
        end if
-       deallocate (res%steps)
-       allocate (res%steps(nstep))
+       deallocate (res%fields%steps)
+       allocate (res%fields%steps(nstep))
     else
-       res%nphys = max(res%nphys, r%nphys)
-       res%ncol = max(res%ncol, r%ncol)
-       res%neq = max(res%neq, r%neq)
-       res%ndelta = max(res%ndelta, r%ndelta)
-       res%matrix_nnz = max(res%matrix_nnz, r%matrix_nnz)
-       res%factor_nnz = max(res%factor_nnz, r%factor_nnz)
-       res%n_tree = max(res%n_tree, r%n_tree)
-       res%n_plain = max(res%n_plain, r%n_plain)
-       res%n_support_units = max(res%n_support_units, r%n_support_units)
-       res%sub_dofs = max(res%sub_dofs, r%sub_dofs)
-       res%sub_boundary = max(res%sub_boundary, r%sub_boundary)
-       res%has_dof = res%has_dof .or. r%has_dof
-       res%link_used = res%link_used .or. r%link_used
-       if (r%maxratio > res%maxratio) then
-          res%maxratio = r%maxratio
-          res%maxratio_at = r%maxratio_at
+       res%summary%nphys = max(res%summary%nphys, r%summary%nphys)
+       res%summary%ncol = max(res%summary%ncol, r%summary%ncol)
+       res%summary%neq = max(res%summary%neq, r%summary%neq)
+       res%summary%ndelta = max(res%summary%ndelta, r%summary%ndelta)
+       res%summary%matrix_nnz = max(res%summary%matrix_nnz, r%summary%matrix_nnz)
+       res%summary%factor_nnz = max(res%summary%factor_nnz, r%summary%factor_nnz)
+       res%summary%n_tree = max(res%summary%n_tree, r%summary%n_tree)
+       res%summary%n_plain = max(res%summary%n_plain, r%summary%n_plain)
+       res%summary%n_support_units = max(res%summary%n_support_units, r%summary%n_support_units)
+       res%summary%sub_dofs = max(res%summary%sub_dofs, r%summary%sub_dofs)
+       res%summary%sub_boundary = max(res%summary%sub_boundary, r%summary%sub_boundary)
+       res%fields%has_dof = res%fields%has_dof .or. r%fields%has_dof
+       res%fields%link_used = res%fields%link_used .or. r%fields%link_used
+       if (r%summary%maxratio > res%summary%maxratio) then
+          res%summary%maxratio = r%summary%maxratio
+          res%summary%maxratio_at = r%summary%maxratio_at
        end if
-       res%cond_est = max(res%cond_est, r%cond_est)
-       res%phase_seconds = res%phase_seconds + r%phase_seconds
-       res%factor_mbytes = max(res%factor_mbytes, r%factor_mbytes)
-       do i = 1, size(r%notes)
-          if (.not. any_string(res%notes, r%notes(i)%s)) call append_string(res%notes, r%notes(i)%s)
+       res%summary%cond_est = max(res%summary%cond_est, r%summary%cond_est)
+       res%log%phase_seconds = res%log%phase_seconds + r%log%phase_seconds
+       res%summary%factor_mbytes = max(res%summary%factor_mbytes, r%summary%factor_mbytes)
+       do i = 1, size(r%log%notes)
+          if (.not. any_string(res%log%notes, r%log%notes(i)%s)) call append_string(res%log%notes, r%log%notes(i)%s)
        end do
-       do i = 1, size(r%warnings)
-          if (.not. any_string(res%warnings, r%warnings(i)%s)) call append_string(res%warnings, r%warnings(i)%s)
+       do i = 1, size(r%log%warnings)
+          if (.not. any_string(res%log%warnings, r%log%warnings(i)%s)) call append_string(res%log%warnings, r%log%warnings(i)%s)
        end do
     end if
     do k = 1, size(members)
-       if (allocated(r%u)) res%u(:, members(k)) = r%u(:, k)
-       if (allocated(r%elem_force)) res%elem_force(:, :, :, members(k)) = r%elem_force(:, :, :, k)
-       if (allocated(r%plate)) res%plate(:, :, members(k)) = r%plate(:, :, k)
-       res%steps(members(k)) = r%steps(k)
+       if (allocated(r%fields%u)) res%fields%u(:, members(k)) = r%fields%u(:, k)
+       if (allocated(r%fields%elem_force)) res%fields%elem_force(:, :, :, members(k)) = r%fields%elem_force(:, :, :, k)
+       if (allocated(r%fields%plate)) res%fields%plate(:, :, members(k)) = r%fields%plate(:, :, k)
+       res%fields%steps(members(k)) = r%fields%steps(k)
     end do
   end subroutine merge_results
 
@@ -219,7 +219,7 @@ contains
     else
        text = text//': *CHANGE CONTACT on '//itoa(n)//' contact element(s)'
     end if
-    call append_string(res%notes, text)
+    call append_string(res%log%notes, text)
   end subroutine note_group
 
   function step_list(model, members) result(text)

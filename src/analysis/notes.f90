@@ -20,7 +20,7 @@ contains
     !! Append a warning (listing and stderr).
     type(results_t), intent(inout) :: res
     character(*), intent(in) :: text
-    call append_string(res%warnings, text)
+    call append_string(res%log%warnings, text)
   end subroutine warn
 
   subroutine append_string(list, text)

@@ -22,7 +22,7 @@ module superjoin_analysis_plausibility
 contains
 
   subroutine check_plausibility(model, res)
-    !! Append a warning to res%warnings for the step whose largest translation
+    !! Append a warning to res%log%warnings for the step whose largest translation
     !! exceeds DISPLACEMENT_FRACTION x the model's size (first such step only).
     type(model_t), intent(in) :: model
     type(results_t), intent(inout) :: res
@@ -32,7 +32,7 @@ contains
     integer(i8) :: v
     character(len=16) :: b1, b2, b3
 
-    if (.not. allocated(res%u) .or. size(model%steps) == 0) return
+    if (.not. allocated(res%fields%u) .or. size(model%steps) == 0) return
     lo = huge(1.0_wp)
     hi = -huge(1.0_wp)
     do isub = 1, size(model%subs)
@@ -43,7 +43,7 @@ contains
     end do
     size_model = norm2(hi - lo)
     if (.not. (size_model > 0.0_wp)) return
-    do is = 1, size(res%u, 2)
+    do is = 1, size(res%fields%u, 2)
        umax = 0.0_wp
        at_sub = 0
        at_node = 0
@@ -51,7 +51,7 @@ contains
        do isub = 1, size(model%subs)
           do n = 1, model%subs(isub)%nnode
              v = v + 1
-             t = norm2(res%u(NDOF_NODE*(v - 1) + 1:NDOF_NODE*(v - 1) + 3, is))
+             t = norm2(res%fields%u(NDOF_NODE*(v - 1) + 1:NDOF_NODE*(v - 1) + 3, is))
              if (t > umax) then
                 umax = t
                 at_sub = isub
@@ -63,7 +63,7 @@ contains
        write (b1, '(es10.2e3)') umax
        write (b2, '(es10.2e3)') size_model
        write (b3, '(es10.2e3)') umax/size_model
-       call append_string(res%warnings, 'step '//model%steps(is)%name//': displacement '//trim(adjustl(b1))// &
+       call append_string(res%log%warnings, 'step '//model%steps(is)%name//': displacement '//trim(adjustl(b1))// &
             ' at '//node_label(model, at_sub, at_node)//' is '//trim(adjustl(b3))//' times the model''s size '// &
             trim(adjustl(b2))//': beyond small-displacement (linear) theory. Check the units (E in MPa or '// &
             'N/mm2 with lengths in m?), the magnitude of the loads and that the supports hold the structure')

@@ -15,7 +15,7 @@ module superjoin_analysis_policy
        CONS_REDUNDANT, CONS_ELIMINATED
   use superjoin_assembly_assemble, only: max_element_diagonal
   use superjoin_solvers, only: sparse_sym_t
-  use superjoin_analysis_results, only: results_t, run_options_t
+  use superjoin_analysis_results, only: run_summary_t, run_options_t
   use superjoin_analysis_penalty, only: apply_penalty_default, penalty_default_note
   use superjoin_analysis_labels, only: column_label, vertex_label, block_name, local_name
   use superjoin_analysis_notes, only: note
@@ -105,29 +105,29 @@ contains
     call note(notes, 'RIGID contacts use g = LARGE x largest element diagonal = '//trim(adjustl(buf)))
   end subroutine apply_large
 
-  subroutine describe_transform(model, table, tr, form, res, notes)
+  subroutine describe_transform(model, table, tr, form, summary, notes)
     !! Notes on what was transformed and what was assembled plainly.
     type(model_t), intent(in) :: model
     type(dof_table_t), intent(in) :: table
     type(transform_t), intent(in) :: tr
     integer, intent(in) :: form
-    type(results_t), intent(inout) :: res
+    type(run_summary_t), intent(inout) :: summary
     type(string_t), allocatable, intent(inout) :: notes(:)
     integer :: iu, i
     type(constraint_t) :: cs
-    res%n_tree = 0
-    res%n_plain = 0
-    res%n_support_units = 0
+    summary%n_tree = 0
+    summary%n_plain = 0
+    summary%n_support_units = 0
     do iu = 1, table%nunit
        associate (u => table%units(iu))
          if (u%kind == UNIT_SUPPORT) then
-            res%n_support_units = res%n_support_units + 1
+            summary%n_support_units = summary%n_support_units + 1
             if (tr%unit_role(iu) == ROLE_PLAIN) call note(notes, 'support at '//vertex_label(model, table, u%vb)// &
                  ' '//block_name(u%block)//' closes a loop through the ground: assembled plainly')
          else if (tr%unit_role(iu) == ROLE_TREE) then
-            res%n_tree = res%n_tree + 1
+            summary%n_tree = summary%n_tree + 1
          else
-            res%n_plain = res%n_plain + 1
+            summary%n_plain = summary%n_plain + 1
             if (form == FORM_TRANSFORM) call note(notes, 'contact '//model%contacts(model%links(u%source)%contact)%name// &
                  ' '//vertex_label(model, table, u%va)//' - '//vertex_label(model, table, u%vb)//' '// &
                  block_name(u%block)//': closes a loop, assembled plainly')
@@ -199,24 +199,24 @@ contains
     first(ng + 1) = tr%ncol() + 1
   end subroutine column_groups
 
-  subroutine count_boundary(model, table, bnd, res)
+  subroutine count_boundary(model, table, bnd, summary)
     !! Active and boundary DOFs per substructure: the boundary DOFs (those a
     !! contact or support touches) form k_bb, the others k_ii.
     type(model_t), intent(in) :: model
     type(dof_table_t), intent(in) :: table
     logical, intent(in) :: bnd(:)
-    type(results_t), intent(inout) :: res
+    type(run_summary_t), intent(inout) :: summary
     integer(i8) :: p
     integer :: isub
-    allocate (res%sub_dofs(size(model%subs)), res%sub_boundary(size(model%subs)), source=0_i8)
+    allocate (summary%sub_dofs(size(model%subs)), summary%sub_boundary(size(model%subs)), source=0_i8)
     do p = 1, table%np
        isub = table%p_sub(p)
-       res%sub_dofs(isub) = res%sub_dofs(isub) + 1
-       if (bnd(p)) res%sub_boundary(isub) = res%sub_boundary(isub) + 1
+       summary%sub_dofs(isub) = summary%sub_dofs(isub) + 1
+       if (bnd(p)) summary%sub_boundary(isub) = summary%sub_boundary(isub) + 1
     end do
   end subroutine count_boundary
 
-  subroutine choose_condensation(model, table, opts, ctx, bnd, res, notes)
+  subroutine choose_condensation(model, table, opts, ctx, bnd, summary, notes)
     !! Which substructures are condensed. CONDENSE=YES (deck or --condense)
     !! condenses a substructure that has both interior and boundary DOFs.
     !! AUTO condenses where a condensation is reused: an instance of a part
@@ -232,24 +232,24 @@ contains
     type(run_options_t), intent(in) :: opts
     type(solve_context_t), intent(in) :: ctx
     logical, intent(in) :: bnd(:)              !! condensation boundary
-    type(results_t), intent(inout) :: res
+    type(run_summary_t), intent(inout) :: summary
     type(string_t), allocatable, intent(inout) :: notes(:)
     integer :: isub, mode, ninst
     integer(i8) :: nb, ni, p
     integer(i8), allocatable :: nbs(:)
     character(:), allocatable :: why, small
     small = ''
-    allocate (res%sub_condensed(size(model%subs)), source=.false.)
+    allocate (summary%sub_condensed(size(model%subs)), source=.false.)
     allocate (nbs(size(model%subs)), source=0_i8)
     do p = 1, table%np
        if (bnd(p)) nbs(table%p_sub(p)) = nbs(table%p_sub(p)) + 1
     end do
-    res%n_condensed = 0
+    summary%n_condensed = 0
     do isub = 1, size(model%subs)
        mode = model%subs(isub)%condense
        if (opts%condense >= 0) mode = opts%condense
        nb = nbs(isub)
-       ni = res%sub_dofs(isub) - nb
+       ni = summary%sub_dofs(isub) - nb
        if (mode == CONDENSE_NO) cycle
        if (mode == CONDENSE_AUTO) then
           ninst = 0
@@ -280,8 +280,8 @@ contains
        else if (ni == 0) then
           call note(notes, 'substructure '//model%subs(isub)%name//' not condensed: every DOF is on its boundary')
        else
-          res%sub_condensed(isub) = .true.
-          res%n_condensed = res%n_condensed + 1
+          summary%sub_condensed(isub) = .true.
+          summary%n_condensed = summary%n_condensed + 1
           call note(notes, 'substructure '//model%subs(isub)%name//' condensed ('//why//'): '// &
                itoa(ni)//' interior DOFs eliminated, K* of order '//itoa(nb)//' on its boundary')
        end if

@@ -28,10 +28,10 @@ module superjoin_analysis_recover
 contains
 
   subroutine recover_results(model, table, forest, tr, q, u, f_phys, res, error, wanted, ku_parts)
-    !! Fill res%u, res%elem_force and res%steps(:) from the reduced solution q
+    !! Fill res%fields%u, res%fields%elem_force and res%fields%steps(:) from the reduced solution q
     !! and the physical displacements u (T q + u0, with condensed interiors).
     !! With ku_parts (physical DOFs × steps: k u of the substructures in
-    !! res%sub_condensed, from their own assembled stiffness), the elements of
+    !! res%summary%sub_condensed, from their own assembled stiffness), the elements of
     !! those substructures give only their results, not k_e u_e again.
     !! wanted (elements numbered over the substructures): the elements whose
     !! results somebody reads; the others are left at zero and skipped unless
@@ -86,19 +86,19 @@ contains
     type(error_t), allocatable, intent(inout) :: error
     integer(i8) :: v, p
     integer :: d, stat
-    allocate (res%u(NDOF_NODE*table%nvertex, size(u, 2)), res%has_dof(NDOF_NODE, table%nvertex), stat=stat)
+    allocate (res%fields%u(NDOF_NODE*table%nvertex, size(u, 2)), res%fields%has_dof(NDOF_NODE, table%nvertex), stat=stat)
     if (stat /= 0) then
        call out_of_memory(error, 'the displacement results', &
             int(NDOF_NODE, i8)*table%nvertex*(size(u, 2)*BYTES_REAL + BYTES_INT))
        return
     end if
-    res%u = 0.0_wp
-    res%has_dof = table%pdof(:, 1:table%nvertex) > 0
-    res%vertex_offset = table%vertex_offset
+    res%fields%u = 0.0_wp
+    res%fields%has_dof = table%pdof(:, 1:table%nvertex) > 0
+    res%fields%vertex_offset = table%vertex_offset
     do v = 1, table%nvertex
        do d = 1, NDOF_NODE
           p = table%pdof(d, v)
-          if (p > 0) res%u(NDOF_NODE*(v - 1) + d, :) = u(p, :)
+          if (p > 0) res%fields%u(NDOF_NODE*(v - 1) + d, :) = u(p, :)
        end do
     end do
   end subroutine store_displacements
@@ -128,22 +128,22 @@ contains
     type(error_t), allocatable :: inner
 
     nstep = size(u, 2)
-    allocate (res%elem_offset(size(model%subs) + 1))
-    res%elem_offset(1) = 0
+    allocate (res%fields%elem_offset(size(model%subs) + 1))
+    res%fields%elem_offset(1) = 0
     do isub = 1, size(model%subs)
-       res%elem_offset(isub + 1) = res%elem_offset(isub) + model%subs(isub)%nelem
+       res%fields%elem_offset(isub + 1) = res%fields%elem_offset(isub) + model%subs(isub)%nelem
     end do
-    ntot = res%elem_offset(size(model%subs) + 1)
-    allocate (res%elem_force(6, 2, ntot, nstep), res%plate(6, ntot, nstep), ql(3, ntot, nstep), &
+    ntot = res%fields%elem_offset(size(model%subs) + 1)
+    allocate (res%fields%elem_force(6, 2, ntot, nstep), res%fields%plate(6, ntot, nstep), ql(3, ntot, nstep), &
          fg2(MAX_ELEM_DOFS, nstep), stat=stat)
     if (stat /= 0) then
        call out_of_memory(error, 'the element results', (21*ntot + MAX_ELEM_DOFS)*nstep*BYTES_REAL)
        return
     end if
-    res%elem_force = 0.0_wp
-    res%plate = 0.0_wp
+    res%fields%elem_force = 0.0_wp
+    res%fields%plate = 0.0_wp
     allocate (own_ku(size(model%subs)), source=.false.)
-    if (parts_done) own_ku = res%sub_condensed
+    if (parts_done) own_ku = res%summary%sub_condensed
     call unit_vertices(table, in_unit)
 
     ! Distributed loads in element axes, per element and step.
@@ -156,7 +156,7 @@ contains
             if (is_plate_type(s%elem_type(dl%elem))) cycle
             call distributed_load(model, dl, fe, qloc, inner)
             if (allocated(inner)) deallocate (inner)
-            ie = res%elem_offset(dl%sub) + dl%elem
+            ie = res%fields%elem_offset(dl%sub) + dl%elem
             ql(:, ie, is) = ql(:, ie, is) + qloc
             ! f_phys holds this consistent load; element_nodal_forces leaves it out.
             if (own_ku(dl%sub)) cycle
@@ -170,7 +170,7 @@ contains
        associate (s => model%subs(isub))
          do e = 1, s%nelem
             nn = ELEMENT_NODE_COUNT(s%elem_type(e))
-            ie = res%elem_offset(isub) + e
+            ie = res%fields%elem_offset(isub) + e
             if (.not. wanted(ie)) then
                if (own_ku(isub)) cycle
                if (.not. any(in_unit(table%vertex_offset(isub) + s%elem_nodes(1:nn, e)))) cycle
@@ -180,7 +180,7 @@ contains
               if (is_plate_type(s%elem_type(e))) then
                  ! r takes K_e u_e (the distributed loads of these elements are left out of r above)
                  call shell_forces(s%elem_type(e), s%x(:, s%elem_nodes(1:nn, e)), sec, &
-                      model%materials(sec%material), u(pd(1:n), :), res%plate(:, ie, :), fg2(1:n, :), inner, &
+                      model%materials(sec%material), u(pd(1:n), :), res%fields%plate(:, ie, :), fg2(1:n, :), inner, &
                       with_forces=.not. own_ku(isub))
                  if (allocated(inner)) then
                     call add_error_line(error, EXIT_DECK, inner%message)
@@ -196,7 +196,7 @@ contains
                     call add_error_line(error, EXIT_DECK, inner%message)
                     return
                  end if
-                 res%elem_force(:, :, ie, is) = f
+                 res%fields%elem_force(:, :, ie, is) = f
                  if (own_ku(isub)) cycle
                  ! r += K_e u_e - f_eq (the consistent load is added back below)
                  call element_nodal_forces(s%elem_type(e), s%x(:, s%elem_nodes(1:nn, e)), sec, f, &
@@ -405,18 +405,18 @@ contains
     integer(i8) :: p
 
     nstep = size(delta, 3)
-    allocate (res%link_used(NDOF_NODE, size(model%links)), source=.false.)
+    allocate (res%fields%link_used(NDOF_NODE, size(model%links)), source=.false.)
     do iu = 1, table%nunit
        associate (un => table%units(iu))
          if (un%kind /= UNIT_LINK) cycle
          do k = 1, un%n
-            if (un%state(k) /= LINK_NONE) res%link_used(block_dof(un%block, un%lcomp(k)), un%source) = .true.
+            if (un%state(k) /= LINK_NONE) res%fields%link_used(block_dof(un%block, un%lcomp(k)), un%source) = .true.
          end do
        end associate
     end do
     do is = 1, nstep
-       allocate (res%steps(is)%link_delta(NDOF_NODE, size(model%links)), source=0.0_wp)
-       allocate (res%steps(is)%link_force(NDOF_NODE, size(model%links)), source=0.0_wp)
+       allocate (res%fields%steps(is)%link_delta(NDOF_NODE, size(model%links)), source=0.0_wp)
+       allocate (res%fields%steps(is)%link_force(NDOF_NODE, size(model%links)), source=0.0_wp)
        allocate (reac(3*table%nunit + 1))
        nr = 0
        do iu = 1, table%nunit
@@ -432,8 +432,8 @@ contains
                end select
                if (un%kind == UNIT_LINK) then
                   ld = block_dof(un%block, un%lcomp(k))
-                  res%steps(is)%link_delta(ld, un%source) = delta(k, iu, is)
-                  res%steps(is)%link_force(ld, un%source) = force
+                  res%fields%steps(is)%link_delta(ld, un%source) = delta(k, iu, is)
+                  res%fields%steps(is)%link_force(ld, un%source) = force
                else if (un%state(k) /= LINK_NONE) then
                   ! Reaction: the force the support exerts on the structure.
                   if (un%state(k) == LINK_FINITE) force = -force
@@ -447,21 +447,21 @@ contains
           end associate
        end do
        ! Support units are built in (substructure, node, DOF) order.
-       res%steps(is)%reactions = reac(1:nr)
+       res%fields%steps(is)%reactions = reac(1:nr)
        deallocate (reac)
 
        ! Resultants about the origin.
-       res%steps(is)%applied = 0.0_wp
+       res%fields%steps(is)%applied = 0.0_wp
        do p = 1, table%np
           if (f_phys(p, is) == 0.0_wp) cycle
           isub = table%p_sub(p)
-          call add_resultant(res%steps(is)%applied, model%subs(isub)%x(:, table%p_node(p)), &
+          call add_resultant(res%fields%steps(is)%applied, model%subs(isub)%x(:, table%p_node(p)), &
                table%p_dof(p), f_phys(p, is))
        end do
-       res%steps(is)%reaction = 0.0_wp
-       do k = 1, size(res%steps(is)%reactions)
-          associate (rc => res%steps(is)%reactions(k))
-            call add_resultant(res%steps(is)%reaction, model%subs(rc%sub)%x(:, rc%node), rc%dof, rc%force)
+       res%fields%steps(is)%reaction = 0.0_wp
+       do k = 1, size(res%fields%steps(is)%reactions)
+          associate (rc => res%fields%steps(is)%reactions(k))
+            call add_resultant(res%fields%steps(is)%reaction, model%subs(rc%sub)%x(:, rc%node), rc%dof, rc%force)
           end associate
        end do
     end do

@@ -46,8 +46,9 @@ module superjoin_analysis_results
      integer :: refine_tried = 0                 !! refinement steps tried
   end type step_results_t
 
-  type, public :: results_t
-    !! Everything the listing and the CSV files need.
+  type, public :: run_summary_t
+    !! What the listing's MODEL block and health block report of the solve:
+    !! counts, the solver and formulation chosen, MAXRATIO, condition estimate.
      integer(i8) :: nphys = 0          !! active physical DOFs
      integer(i8) :: ncol = 0           !! reduced unknowns
      integer(i8) :: neq = 0            !! equations solved (reduced unknowns less AUTOSPC)
@@ -64,10 +65,25 @@ module superjoin_analysis_results
      character(:), allocatable :: solver_name
      character(:), allocatable :: ordering
      character(:), allocatable :: formulation
+     real(wp) :: maxratio = 0.0_wp
+     character(:), allocatable :: maxratio_at
+     real(wp) :: cond_est = 0.0_wp
+     real(wp) :: factor_mbytes = 0.0_wp
+  end type run_summary_t
+
+  type, public :: run_log_t
+    !! What the run says of itself: notes, warnings, the verdict on accuracy,
+    !! and the time of each phase.
      type(string_t), allocatable :: notes(:)      !! decisions and warnings for the listing
      type(string_t), allocatable :: warnings(:)   !! also printed on stderr
-     real(wp), allocatable :: mechanism(:, :)     !! (6, nvertex) mechanism mode of an exit-3 run, global axes
      logical :: inaccurate = .false.              !! a warning judges the results inaccurate (exit EXIT_INACCURATE)
+     real(wp) :: phase_seconds(NPHASE) = 0.0_wp
+  end type run_log_t
+
+  type, public :: result_fields_t
+    !! The results proper, per step: displacements, element results, contact
+    !! forces, reactions and residuals (what the listing, CSV and VTK write).
+     real(wp), allocatable :: mechanism(:, :)     !! (6, nvertex) mechanism mode of an exit-3 run, global axes
      real(wp), allocatable :: u(:, :)             !! (6*nvertex, nstep) displacements per vertex, global axes
      logical, allocatable :: has_dof(:, :)        !! (6, nvertex)
      real(wp), allocatable :: elem_force(:, :, :, :)  !! (6, 2, nelem_total, nstep)
@@ -77,10 +93,12 @@ module superjoin_analysis_results
      integer(i8), allocatable :: vertex_offset(:) !! (nsub+1)
      type(step_results_t), allocatable :: steps(:)
      logical, allocatable :: link_used(:, :)      !! (6, nlink) contact DOFs that connect something
-     real(wp) :: maxratio = 0.0_wp
-     character(:), allocatable :: maxratio_at
-     real(wp) :: cond_est = 0.0_wp
-     real(wp) :: phase_seconds(NPHASE) = 0.0_wp
-     real(wp) :: factor_mbytes = 0.0_wp
+  end type result_fields_t
+
+  type, public :: results_t
+    !! Everything a solved deck produces, in three parts.
+     type(run_summary_t) :: summary
+     type(run_log_t) :: log
+     type(result_fields_t) :: fields
   end type results_t
 end module superjoin_analysis_results

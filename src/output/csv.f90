@@ -6,7 +6,7 @@ module superjoin_output_csv
   use superjoin_model_types, only: model_t, NDOF_NODE, ELEMENT_TYPE_NAMES, ET_T2D2, ET_T3D2, &
        ET_B23, ET_B33, ET_B21, ET_B31, REQ_NODE_FILE, REQ_EL_FILE
   use superjoin_model_request_masks, only: any_request_of, request_mask, asks_variable
-  use superjoin_analysis_results, only: results_t
+  use superjoin_analysis_results, only: result_fields_t
   use superjoin_elements, only: is_plate_type
   use superjoin_output_posix, only: remove_file, make_directory
   use superjoin_utils_process, only: temp_register, temp_unregister
@@ -30,7 +30,7 @@ module superjoin_output_csv
 
 contains
 
-  subroutine write_csv(dir, model, res, error)
+  subroutine write_csv(dir, model, fields, error)
     !! Write displacements.csv, reactions.csv, contact_forces.csv and
     !! element_forces.csv into dir (created if needed), and plate_results.csv
     !! when the model has plane-stress or shell elements. With *NODE FILE
@@ -41,7 +41,7 @@ contains
     !! same directory does not survive.
     character(*), intent(in) :: dir
     type(model_t), intent(in) :: model
-    type(results_t), intent(in) :: res
+    type(result_fields_t), intent(in) :: fields
     type(error_t), allocatable, intent(out) :: error
     type(selection_t) :: sel
     integer :: k
@@ -50,7 +50,7 @@ contains
     call select_output(model, sel)
     do k = 1, NTABLE
        if (sel%table(k)) then
-          call write_table(dir//'/'//trim(TABLE_FILES(k)), k, model, res, sel, error)
+          call write_table(dir//'/'//trim(TABLE_FILES(k)), k, model, fields, sel, error)
           if (allocated(error)) return
        else
           call remove_file(dir//'/'//trim(TABLE_FILES(k)))
@@ -91,14 +91,14 @@ contains
     end do
   end function any_plates
 
-  subroutine write_table(path, which, model, res, sel, error)
+  subroutine write_table(path, which, model, fields, sel, error)
     !! One CSV table (which: 1 displacements, 2 reactions, 3 contact forces,
     !! 4 element forces, 5 plate results) of the selected nodes or elements,
     !! through the buffered writer.
     character(*), intent(in) :: path
     integer, intent(in) :: which
     type(model_t), intent(in) :: model
-    type(results_t), intent(in) :: res
+    type(result_fields_t), intent(in) :: fields
     type(selection_t), intent(in) :: sel
     type(error_t), allocatable, intent(out) :: error
     type(text_buffer_t), allocatable :: tb
@@ -121,19 +121,19 @@ contains
        do is = 1, size(model%steps)
           do isub = 1, size(model%subs)
              do n = 1, model%subs(isub)%nnode
-                v = res%vertex_offset(isub) + n
-                if (.not. any(res%has_dof(:, v)) .or. .not. sel%node(v)) cycle
+                v = fields%vertex_offset(isub) + n
+                if (.not. any(fields%has_dof(:, v)) .or. .not. sel%node(v)) cycle
                 call keys(model%steps(is)%name, model%subs(isub)%name, int(model%subs(isub)%node_id(n), i8))
-                call reals(res%u(NDOF_NODE*(v - 1) + 1:NDOF_NODE*v, is))
+                call reals(fields%u(NDOF_NODE*(v - 1) + 1:NDOF_NODE*v, is))
              end do
           end do
        end do
     case (2)
        call tb%line('step,substructure,node,dof,force')
        do is = 1, size(model%steps)
-          do k = 1, size(res%steps(is)%reactions)
-             associate (rc => res%steps(is)%reactions(k))
-               if (.not. sel%node(res%vertex_offset(rc%sub) + rc%node)) cycle
+          do k = 1, size(fields%steps(is)%reactions)
+             associate (rc => fields%steps(is)%reactions(k))
+               if (.not. sel%node(fields%vertex_offset(rc%sub) + rc%node)) cycle
                call keys(model%steps(is)%name, model%subs(rc%sub)%name, &
                     int(model%subs(rc%sub)%node_id(rc%node), i8), int(rc%dof, i8))
                call reals([rc%force])
@@ -146,11 +146,11 @@ contains
           do il = 1, size(model%links)
              associate (lk => model%links(il), ct => model%contacts(model%links(il)%contact))
                do d = 1, NDOF_NODE
-                  if (.not. res%link_used(d, il)) cycle
+                  if (.not. fields%link_used(d, il)) cycle
                   call keys(model%steps(is)%name, ct%name, &
                        int(model%subs(ct%master_sub)%node_id(lk%master_node), i8), &
                        int(model%subs(ct%slave_sub)%node_id(lk%slave_node), i8), int(d, i8))
-                  call reals([res%steps(is)%link_delta(d, il), res%steps(is)%link_force(d, il)])
+                  call reals([fields%steps(is)%link_delta(d, il), fields%steps(is)%link_force(d, il)])
                end do
              end associate
           end do
@@ -165,12 +165,12 @@ contains
                 case default
                    cycle
                 end select
-                iel = res%elem_offset(isub) + e
+                iel = fields%elem_offset(isub) + e
                 if (.not. sel%elem(iel)) cycle
                 do k = 1, 2
                    call keys(model%steps(is)%name, model%subs(isub)%name, int(model%subs(isub)%elem_id(e), i8))
                    call tb%put(','//trim(ELEMENT_TYPE_NAMES(model%subs(isub)%elem_type(e)))//','//itoa(k))
-                   call reals(res%elem_force(:, k, iel, is))
+                   call reals(fields%elem_force(:, k, iel, is))
                 end do
              end do
           end do
@@ -181,10 +181,10 @@ contains
           do isub = 1, size(model%subs)
              do e = 1, model%subs(isub)%nelem
                 if (.not. is_plate_type(model%subs(isub)%elem_type(e))) cycle
-                iel = res%elem_offset(isub) + e
+                iel = fields%elem_offset(isub) + e
                 if (.not. sel%elem(iel)) cycle
                 call keys(model%steps(is)%name, model%subs(isub)%name, int(model%subs(isub)%elem_id(e), i8))
-                call reals(res%plate(:, iel, is))
+                call reals(fields%plate(:, iel, is))
              end do
           end do
        end do

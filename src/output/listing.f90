@@ -50,7 +50,7 @@ contains
     call header(lu, model, res)
     do is = 1, size(model%steps)
        call step_block(lu, model, res, is)
-       call write_print_requests(lu, model, res, is)
+       call write_print_requests(lu, model, res%fields, is)
     end do
     call lu%line(RULE)
     call lu%line('END OF LISTING')
@@ -88,19 +88,19 @@ contains
     call count_line(lu, 'contact elements', int(size(model%links), i8))
     call count_line(lu, 'supported DOFs', int(size(model%supports), i8))
     call count_line(lu, 'load steps', int(size(model%steps), i8))
-    call count_line(lu, 'active DOFs', res%nphys)
-    call count_line(lu, 'reduced unknowns', res%ncol)
-    call count_line(lu, '  of which relative (delta)', res%ndelta)
-    call count_line(lu, 'equations', res%neq)
-    call count_line(lu, 'matrix nonzeros (upper)', res%matrix_nnz)
-    call count_line(lu, 'factor nonzeros', res%factor_nnz)
-    write (hline, '(2x,a34,1x,a)') field('formulation', 34), res%formulation// &
+    call count_line(lu, 'active DOFs', res%summary%nphys)
+    call count_line(lu, 'reduced unknowns', res%summary%ncol)
+    call count_line(lu, '  of which relative (delta)', res%summary%ndelta)
+    call count_line(lu, 'equations', res%summary%neq)
+    call count_line(lu, 'matrix nonzeros (upper)', res%summary%matrix_nnz)
+    call count_line(lu, 'factor nonzeros', res%summary%factor_nnz)
+    write (hline, '(2x,a34,1x,a)') field('formulation', 34), res%summary%formulation// &
          merge(' (RIGID eliminated exactly)', ' (RIGID as LARGE stiffness)', &
-         model%controls%rigid == RIGID_ELIMINATE .and. res%formulation == 'TRANSFORM')
+         model%controls%rigid == RIGID_ELIMINATE .and. res%summary%formulation == 'TRANSFORM')
     call lu%line(trim(hline))
-    write (hline, '(2x,a34,1x,a)') field('solver', 34), res%solver_name
+    write (hline, '(2x,a34,1x,a)') field('solver', 34), res%summary%solver_name
     call lu%line(trim(hline))
-    write (hline, '(2x,a34,1x,a)') field('ordering', 34), res%ordering
+    write (hline, '(2x,a34,1x,a)') field('ordering', 34), res%summary%ordering
     call lu%line(trim(hline))
     call lu%line('')
 
@@ -113,20 +113,20 @@ contains
          nsets = 0
          if (allocated(s%nsets)) nsets = nsets + size(s%nsets)
          if (allocated(s%elsets)) nsets = nsets + size(s%elsets)
-         write (hline, '(2x,a20,6i10)') field(s%name, 20), s%nnode, s%nelem, nsets, res%sub_dofs(isub), &
-              res%sub_dofs(isub) - res%sub_boundary(isub), res%sub_boundary(isub)
+         write (hline, '(2x,a20,6i10)') field(s%name, 20), s%nnode, s%nelem, nsets, res%summary%sub_dofs(isub), &
+              res%summary%sub_dofs(isub) - res%summary%sub_boundary(isub), res%summary%sub_boundary(isub)
          call lu%line(trim(hline))
        end associate
     end do
     call lu%line('')
 
     call lu%line('CONTACT ELEMENTS AND SUPPORTS')
-    call count_line(lu, 'contact units transformed', int(res%n_tree, i8))
-    call count_line(lu, 'contact units assembled plainly', int(res%n_plain, i8))
-    call count_line(lu, 'support units', int(res%n_support_units, i8))
-    if (allocated(res%notes)) then
-       do i = 1, size(res%notes)
-          call lu%line('  '//res%notes(i)%s)
+    call count_line(lu, 'contact units transformed', int(res%summary%n_tree, i8))
+    call count_line(lu, 'contact units assembled plainly', int(res%summary%n_plain, i8))
+    call count_line(lu, 'support units', int(res%summary%n_support_units, i8))
+    if (allocated(res%log%notes)) then
+       do i = 1, size(res%log%notes)
+          call lu%line('  '//res%log%notes(i)%s)
        end do
     end if
     call lu%line('')
@@ -158,7 +158,7 @@ contains
     logical :: tables
 
     tables = .not. has_requests(model)
-    associate (st => res%steps(is))
+    associate (st => res%fields%steps(is))
       call lu%line(RULE)
       call lu%line('STEP '//itoa(is)//'  '//model%steps(is)%name)
       call lu%line(RULE)
@@ -174,7 +174,7 @@ contains
       do il = 1, size(model%links)
          associate (lk => model%links(il), ct => model%contacts(model%links(il)%contact))
            do d = 1, NDOF_NODE
-              if (.not. res%link_used(d, il)) cycle
+              if (.not. res%fields%link_used(d, il)) cycle
               call lu%put('  ')
               call lu%put_field(ct%name, 16)
               call lu%put_int(int(model%subs(ct%master_sub)%node_id(lk%master_node), i8), 10)
@@ -214,12 +214,12 @@ contains
       end if
       write (hline, '(2x,a30,es10.2e3)') 'EPSILON (energy error)        ', st%epsilon
       call lu%line(trim(hline))
-      write (hline, '(2x,a30,es10.2e3,a)') 'MAXRATIO                      ', res%maxratio, '  at '//res%maxratio_at
+      write (hline, '(2x,a30,es10.2e3,a)') 'MAXRATIO                      ', res%summary%maxratio, '  at '//res%summary%maxratio_at
       call lu%line(trim(hline))
-      write (hline, '(2x,a30,es10.2e3)') 'condition estimate (1-norm)   ', res%cond_est
+      write (hline, '(2x,a30,es10.2e3)') 'condition estimate (1-norm)   ', res%summary%cond_est
       call lu%line(trim(hline))
-      do k = 1, size(res%warnings)
-         call lu%line('  '//'WARNING: '//res%warnings(k)%s)
+      do k = 1, size(res%log%warnings)
+         call lu%line('  '//'WARNING: '//res%log%warnings(k)%s)
       end do
       call lu%line('')
     end associate
@@ -237,18 +237,18 @@ contains
     real(wp) :: scale, vals(NDOF_NODE)
     character(len=300) :: hline
 
-    associate (st => res%steps(is))
+    associate (st => res%fields%steps(is))
       call lu%line('DISPLACEMENTS (global axes)')
       write (hline, '(2x,a20,a10,6a15)') 'substructure        ', '      node', '             u1', &
            '             u2', '             u3', '            ur1', '            ur2', '            ur3'
       call lu%line(trim(hline))
-      scale = max(0.0_wp, maxval(abs(res%u(:, is))))
+      scale = max(0.0_wp, maxval(abs(res%fields%u(:, is))))
       do isub = 1, size(model%subs)
          do n = 1, model%subs(isub)%nnode
-            v = res%vertex_offset(isub) + n
-            if (.not. any(res%has_dof(:, v))) cycle
+            v = res%fields%vertex_offset(isub) + n
+            if (.not. any(res%fields%has_dof(:, v))) cycle
             do d = 1, NDOF_NODE
-               vals(d) = chop(res%u(NDOF_NODE*(v - 1) + d, is), scale)
+               vals(d) = chop(res%fields%u(NDOF_NODE*(v - 1) + d, is), scale)
             end do
             call lu%put('  ')
             call lu%put_field(model%subs(isub)%name, 20)
@@ -308,16 +308,16 @@ contains
             '              n', '             vy', '             vz', '              t', '             my', &
             '             mz'
        call lu%line(trim(hline))
-       scale = max(0.0_wp, maxval(abs(res%elem_force(:, :, :, is))))
+       scale = max(0.0_wp, maxval(abs(res%fields%elem_force(:, :, :, is))))
        do isub = 1, size(model%subs)
           do ie = 1, model%subs(isub)%nelem
              if (is_plate_type(model%subs(isub)%elem_type(ie))) cycle
-             iel = res%elem_offset(isub) + ie
+             iel = res%fields%elem_offset(isub) + ie
              do k = 1, 2
                 call element_prefix(lu, model, isub, ie, 2)
                 call lu%put_int(int(k, i8), 4)
                 do d = 1, 6
-                   call lu%put_es(chop(res%elem_force(d, k, iel, is), scale))
+                   call lu%put_es(chop(res%fields%elem_force(d, k, iel, is), scale))
                 end do
                 call lu%newline()
              end do
@@ -348,15 +348,15 @@ contains
          '             nx', '             ny', '            nxy', '             mx', '             my', &
          '            mxy'
     call lu%line(trim(hline))
-    scale(1) = max(0.0_wp, maxval(abs(res%plate(1:3, :, is))))
-    scale(2) = max(0.0_wp, maxval(abs(res%plate(4:6, :, is))))
+    scale(1) = max(0.0_wp, maxval(abs(res%fields%plate(1:3, :, is))))
+    scale(2) = max(0.0_wp, maxval(abs(res%fields%plate(4:6, :, is))))
     do isub = 1, size(model%subs)
        do ie = 1, model%subs(isub)%nelem
           if (.not. is_plate_type(model%subs(isub)%elem_type(ie))) cycle
-          iel = res%elem_offset(isub) + ie
+          iel = res%fields%elem_offset(isub) + ie
           call element_prefix(lu, model, isub, ie, 2)
           do d = 1, 6
-             call lu%put_es(chop(res%plate(d, iel, is), scale((d + 2)/3)))
+             call lu%put_es(chop(res%fields%plate(d, iel, is), scale((d + 2)/3)))
           end do
           call lu%newline()
        end do
@@ -370,16 +370,16 @@ contains
     do isub = 1, size(model%subs)
        do ie = 1, model%subs(isub)%nelem
           if (.not. is_plate_type(model%subs(isub)%elem_type(ie))) cycle
-          iel = res%elem_offset(isub) + ie
+          iel = res%fields%elem_offset(isub) + ie
           t = model%subs(isub)%sections(model%subs(isub)%elem_section(ie))%thickness
           nsurf = 2
           if (model%subs(isub)%elem_type(ie) == ET_CPS3 .or. model%subs(isub)%elem_type(ie) == ET_CPS4) nsurf = 1
           plane_strain = model%subs(isub)%elem_type(ie) == ET_CPE3 .or. model%subs(isub)%elem_type(ie) == ET_CPE4
           if (plane_strain) nsurf = 1
           do k = 1, nsurf
-             sig(1:3) = res%plate(1:3, iel, is)/t
+             sig(1:3) = res%fields%plate(1:3, iel, is)/t
              ! (m/t)/t: no t**2 to underflow
-             if (nsurf == 2) sig(1:3) = sig(1:3) + merge(1.0_wp, -1.0_wp, k == 1)*6.0_wp*(res%plate(4:6, iel, is)/t)/t
+             if (nsurf == 2) sig(1:3) = sig(1:3) + merge(1.0_wp, -1.0_wp, k == 1)*6.0_wp*(res%fields%plate(4:6, iel, is)/t)/t
              sig(4) = von_mises(sig(1:3))
              if (plane_strain) then   ! with sz = nu (sx + sy)
                 associate (sec => model%subs(isub)%sections(model%subs(isub)%elem_section(ie)))

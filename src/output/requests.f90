@@ -14,7 +14,7 @@ module superjoin_output_requests
   use superjoin_elements, only: is_plate_type
   use superjoin_elements_shell, only: shell_frame
   use superjoin_error, only: error_t
-  use superjoin_analysis_results, only: results_t
+  use superjoin_analysis_results, only: result_fields_t
   use superjoin_output_text_buffer, only: text_buffer_t
   use superjoin_output_columns, only: element_prefix, chop
   use superjoin_utils_strings, only: itoa
@@ -47,11 +47,11 @@ contains
     end do
   end subroutine effective_requests
 
-  subroutine write_print_requests(lu, model, res, is)
+  subroutine write_print_requests(lu, model, fields, is)
     !! The REQUESTED OUTPUT section of step `is` (nothing without print requests).
     type(text_buffer_t), intent(inout) :: lu
     type(model_t), intent(in) :: model
-    type(results_t), intent(in) :: res
+    type(result_fields_t), intent(in) :: fields
     integer, intent(in) :: is
     integer, allocatable :: nodes(:), elems(:)
     integer :: k
@@ -60,10 +60,10 @@ contains
     if (size(nodes) + size(elems) == 0) return
     call lu%line('REQUESTED OUTPUT (*NODE PRINT, *EL PRINT) of step '//itoa(is))
     do k = 1, size(nodes)
-       call node_request(lu, model, res, is, model%requests(nodes(k)))
+       call node_request(lu, model, fields, is, model%requests(nodes(k)))
     end do
     do k = 1, size(elems)
-       call element_request(lu, model, res, is, model%requests(elems(k)))
+       call element_request(lu, model, fields, is, model%requests(elems(k)))
     end do
   end subroutine write_print_requests
 
@@ -99,10 +99,10 @@ contains
 
   ! ------------------------------------------------------------------ nodes
 
-  subroutine node_request(lu, model, res, is, r)
+  subroutine node_request(lu, model, fields, is, r)
     type(text_buffer_t), intent(inout) :: lu
     type(model_t), intent(in) :: model
-    type(results_t), intent(in) :: res
+    type(result_fields_t), intent(in) :: fields
     integer, intent(in) :: is
     type(output_request_t), intent(in) :: r
     integer :: iv
@@ -138,9 +138,9 @@ contains
       integer(i8) :: vx
       integer :: d
       do i = 1, nsel
-         vx = res%vertex_offset(subs(i)) + nodes(i)
+         vx = fields%vertex_offset(subs(i)) + nodes(i)
          do d = 1, NDOF_NODE
-            v(d, i) = res%u(NDOF_NODE*(vx - 1) + d, is)
+            v(d, i) = fields%u(NDOF_NODE*(vx - 1) + d, is)
          end do
       end do
     end subroutine fill_u
@@ -149,8 +149,8 @@ contains
       integer(ip) :: i
       integer :: k
       v = 0.0_wp
-      do k = 1, size(res%steps(is)%reactions)
-         associate (rc => res%steps(is)%reactions(k))
+      do k = 1, size(fields%steps(is)%reactions)
+         associate (rc => fields%steps(is)%reactions(k))
            do i = 1, nsel
               if (subs(i) == rc%sub .and. nodes(i) == rc%node) v(rc%dof, i) = v(rc%dof, i) + rc%force
            end do
@@ -234,10 +234,10 @@ contains
 
   ! ------------------------------------------------------------------ elements
 
-  subroutine element_request(lu, model, res, is, r)
+  subroutine element_request(lu, model, fields, is, r)
     type(text_buffer_t), intent(inout) :: lu
     type(model_t), intent(in) :: model
-    type(results_t), intent(in) :: res
+    type(result_fields_t), intent(in) :: fields
     integer, intent(in) :: is
     type(output_request_t), intent(in) :: r
     integer :: iv
@@ -249,26 +249,26 @@ contains
        select case (r%vars(iv)%s)
        case ('S')
           call lu%line('    S   stresses (global axes; trusses: uniaxial N/A; CPS3/CPS4: at the centroid)')
-          call tensor_table(lu, model, res, is, subs, elems, .false.)
+          call tensor_table(lu, model, fields, is, subs, elems, .false.)
        case ('E')
           call lu%line('    E   strains (tensor components, global axes; trusses: uniaxial stress state; '// &
                'CPS3/CPS4: at the centroid)')
-          call tensor_table(lu, model, res, is, subs, elems, .true.)
+          call tensor_table(lu, model, fields, is, subs, elems, .true.)
        case ('SF')
           call lu%line('    SF  section forces (trusses and beams: end forces, local axes, as ELEMENT END FORCES; '// &
                'plates and shells: nx, ny, nxy, mx, my, mxy at the centroid, element frame)')
-          call section_force_table(lu, model, res, is, subs, elems)
+          call section_force_table(lu, model, fields, is, subs, elems)
        end select
     end do
     call lu%line('')
   end subroutine element_request
 
-  subroutine element_tensor(model, res, is, isub, ie, strain, t, ok)
+  subroutine element_tensor(model, fields, is, isub, ie, strain, t, ok)
     !! Stress (or strain) tensor of one element in global axes, Voigt order
     !! xx, yy, zz, xy, xz, yz (tensor shear components); ok false for element
     !! types without one (beams, shells).
     type(model_t), intent(in) :: model
-    type(results_t), intent(in) :: res
+    type(result_fields_t), intent(in) :: fields
     integer, intent(in) :: is, isub
     integer(ip), intent(in) :: ie
     logical, intent(in) :: strain
@@ -287,7 +287,7 @@ contains
       associate (sec => sub%sections(sub%elem_section(ie)))
         e = model%materials(sec%material)%e
         nu = model%materials(sec%material)%nu
-        iel = res%elem_offset(isub) + ie
+        iel = fields%elem_offset(isub) + ie
         nn = ELEMENT_NODE_COUNT(etype)
         do i = 1, nn
            x(:, i) = sub%x(:, sub%elem_nodes(i, ie))
@@ -296,7 +296,7 @@ contains
         case (ET_T2D2, ET_T3D2)
            a = x(:, 2) - x(:, 1)
            a = a/norm2(a)
-           sl(1) = res%elem_force(1, 2, iel, is)/sec%area
+           sl(1) = fields%elem_force(1, 2, iel, is)/sec%area
            if (strain) then
               sl(1) = sl(1)/e
               sig = -nu*sl(1)*identity() + (1.0_wp + nu)*sl(1)*outer(a, a)
@@ -310,7 +310,7 @@ contains
            ex = r(1, :)
            ey = r(2, :)
            ez = r(3, :)
-           sl = res%plate(1:3, iel, is)/thick        ! sx, sy, txy in the element frame
+           sl = fields%plate(1:3, iel, is)/thick        ! sx, sy, txy in the element frame
            if (strain) then
               el(1) = (sl(1) - nu*sl(2))/e
               el(2) = (sl(2) - nu*sl(1))/e
@@ -344,10 +344,10 @@ contains
     end function identity
   end subroutine element_tensor
 
-  subroutine tensor_table(lu, model, res, is, subs, elems, strain)
+  subroutine tensor_table(lu, model, fields, is, subs, elems, strain)
     type(text_buffer_t), intent(inout) :: lu
     type(model_t), intent(in) :: model
-    type(results_t), intent(in) :: res
+    type(result_fields_t), intent(in) :: fields
     integer, intent(in) :: is
     integer, intent(in) :: subs(:)
     integer(ip), intent(in) :: elems(:)
@@ -359,7 +359,7 @@ contains
     integer :: i, d, nskip
     allocate (t(NTENSOR, size(elems)), ok(size(elems)))
     do i = 1, size(elems)
-       call element_tensor(model, res, is, subs(i), elems(i), strain, t(:, i), ok(i))
+       call element_tensor(model, fields, is, subs(i), elems(i), strain, t(:, i), ok(i))
     end do
     write (hline, '(4x,a20,a10,a6,6a15)') 'substructure        ', '   element', '  type', TENSOR_HEAD
     call lu%line(trim(hline))
@@ -381,10 +381,10 @@ contains
          'single tensor: see SF)')
   end subroutine tensor_table
 
-  subroutine section_force_table(lu, model, res, is, subs, elems)
+  subroutine section_force_table(lu, model, fields, is, subs, elems)
     type(text_buffer_t), intent(inout) :: lu
     type(model_t), intent(in) :: model
-    type(results_t), intent(in) :: res
+    type(result_fields_t), intent(in) :: fields
     integer, intent(in) :: is
     integer, intent(in) :: subs(:)
     integer(ip), intent(in) :: elems(:)
@@ -395,11 +395,11 @@ contains
     scale_bar = 0.0_wp
     scale_plate = 0.0_wp
     do i = 1, size(elems)
-       iel = res%elem_offset(subs(i)) + elems(i)
+       iel = fields%elem_offset(subs(i)) + elems(i)
        if (is_plate_type(model%subs(subs(i))%elem_type(elems(i)))) then
-          scale_plate = max(scale_plate, maxval(abs(res%plate(:, iel, is))))
+          scale_plate = max(scale_plate, maxval(abs(fields%plate(:, iel, is))))
        else
-          scale_bar = max(scale_bar, maxval(abs(res%elem_force(:, :, iel, is))))
+          scale_bar = max(scale_bar, maxval(abs(fields%elem_force(:, :, iel, is))))
        end if
     end do
     write (hline, '(4x,a20,a10,a6,a4,6a15)') 'substructure        ', '   element', '  type', ' end', &
@@ -407,12 +407,12 @@ contains
          '       mz / mxy'
     call lu%line(trim(hline))
     do i = 1, size(elems)
-       iel = res%elem_offset(subs(i)) + elems(i)
+       iel = fields%elem_offset(subs(i)) + elems(i)
        if (is_plate_type(model%subs(subs(i))%elem_type(elems(i)))) then
           call element_prefix(lu, model, subs(i), elems(i), 4)
           call lu%put('   -')
           do d = 1, 6
-             call lu%put_es(chop(res%plate(d, iel, is), scale_plate))
+             call lu%put_es(chop(fields%plate(d, iel, is), scale_plate))
           end do
           call lu%newline()
        else
@@ -420,7 +420,7 @@ contains
              call element_prefix(lu, model, subs(i), elems(i), 4)
              call lu%put_int(int(k, i8), 4)
              do d = 1, 6
-                call lu%put_es(chop(res%elem_force(d, k, iel, is), scale_bar))
+                call lu%put_es(chop(fields%elem_force(d, k, iel, is), scale_bar))
              end do
              call lu%newline()
           end do

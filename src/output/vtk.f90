@@ -10,7 +10,7 @@ module superjoin_output_vtk
   use superjoin_error, only: error_t, fatal_error, EXIT_IO
   use superjoin_model_types, only: model_t, NDOF_NODE, ELEMENT_NODE_COUNT, ET_T2D2, ET_T3D2, &
        ET_B23, ET_B33, ET_CPS3, ET_CPS4, ET_S3, ET_S4, ET_B21, ET_B31, ET_CPE3, ET_CPE4
-  use superjoin_analysis_results, only: results_t
+  use superjoin_analysis_results, only: result_fields_t
   use superjoin_output_posix, only: rename_file, remove_file, make_directory
   use superjoin_output_text_buffer, only: text_buffer_t
   use superjoin_config, only: SUPERJOIN_VERSION
@@ -86,12 +86,12 @@ contains
          msg = 'the VTK output needs a file name (FILE gives FILE.pvd and FILE_<step>.vtu), not '''//path//''''
   end function vtk_path_problem
 
-  subroutine write_vtk(path, model, res, error)
+  subroutine write_vtk(path, model, fields, error)
     !! Write BASE.pvd and BASE_1.vtu ... BASE_<nstep>.vtu (BASE: path without
     !! .pvd); the directory of BASE is created if needed.
     character(*), intent(in) :: path
     type(model_t), intent(in) :: model
-    type(results_t), intent(in) :: res
+    type(result_fields_t), intent(in) :: fields
     type(error_t), allocatable, intent(out) :: error
     character(:), allocatable :: base, dir
     type(grid_t) :: grid
@@ -112,9 +112,9 @@ contains
        end if
     end if
     nstep = size(model%steps)
-    call build_grid(model, res, grid)
+    call build_grid(model, fields, grid)
     do is = 1, nstep
-       call write_piece(vtk_piece_path(path, is), model, res, grid, is, error)
+       call write_piece(vtk_piece_path(path, is), model, fields, grid, is, error)
        if (allocated(error)) then
           call remove_temporaries(is)
           return
@@ -151,21 +151,21 @@ contains
     end subroutine remove_temporaries
   end subroutine write_vtk
 
-  subroutine build_grid(model, res, grid)
+  subroutine build_grid(model, fields, grid)
     !! Count the cells; the support cells are the nodes with a reaction, in
     !! vertex order.
     type(model_t), intent(in) :: model
-    type(results_t), intent(in) :: res
+    type(result_fields_t), intent(in) :: fields
     type(grid_t), intent(out) :: grid
     integer :: k, isub
     integer(i8) :: v
-    grid%npoint = res%vertex_offset(size(model%subs) + 1)
-    grid%nelem = res%elem_offset(size(model%subs) + 1)
+    grid%npoint = fields%vertex_offset(size(model%subs) + 1)
+    grid%nelem = fields%elem_offset(size(model%subs) + 1)
     allocate (grid%vertex_support(grid%npoint), source=0_i8)
     if (size(model%steps) > 0) then
-       do k = 1, size(res%steps(1)%reactions)
-          associate (rc => res%steps(1)%reactions(k))
-            v = res%vertex_offset(rc%sub) + rc%node
+       do k = 1, size(fields%steps(1)%reactions)
+          associate (rc => fields%steps(1)%reactions(k))
+            v = fields%vertex_offset(rc%sub) + rc%node
             grid%vertex_support(v) = 1
           end associate
        end do
@@ -174,7 +174,7 @@ contains
     allocate (grid%support_vertex(grid%nsupport))
     grid%nsupport = 0
     do isub = 1, size(model%subs)
-       do v = res%vertex_offset(isub) + 1, res%vertex_offset(isub + 1)
+       do v = fields%vertex_offset(isub) + 1, fields%vertex_offset(isub + 1)
           if (grid%vertex_support(v) == 0) cycle
           grid%nsupport = grid%nsupport + 1
           grid%support_vertex(grid%nsupport) = v
@@ -217,11 +217,11 @@ contains
     end if
   end subroutine write_collection
 
-  subroutine write_piece(final, model, res, grid, is, error)
+  subroutine write_piece(final, model, fields, grid, is, error)
     !! The .vtu file of step is (written to final.tmp).
     character(*), intent(in) :: final
     type(model_t), intent(in) :: model
-    type(results_t), intent(in) :: res
+    type(result_fields_t), intent(in) :: fields
     type(grid_t), intent(in) :: grid
     integer, intent(in) :: is
     type(error_t), allocatable, intent(out) :: error
@@ -250,10 +250,10 @@ contains
          itoa(is)//'</DataArray>')
     call lu%line('    </FieldData>')
     call lu%line('    <Piece NumberOfPoints="'//itoa(grid%npoint)//'" NumberOfCells="'//itoa(grid%ncell)//'">')
-    call point_data(lu, model, res, is)
-    call cell_data(lu, model, res, grid, is)
+    call point_data(lu, model, fields, is)
+    call cell_data(lu, model, fields, grid, is)
     call points(lu, model)
-    call cells(lu, model, res, grid)
+    call cells(lu, model, fields, grid)
     call lu%line('    </Piece>')
     call lu%line('  </UnstructuredGrid>')
     call lu%line('</VTKFile>')
@@ -264,11 +264,11 @@ contains
     end if
   end subroutine write_piece
 
-  subroutine point_data(lu, model, res, is)
+  subroutine point_data(lu, model, fields, is)
     !! displacement and rotation (global axes), substructure index and node id.
     type(text_buffer_t), intent(inout) :: lu
     type(model_t), intent(in) :: model
-    type(results_t), intent(in) :: res
+    type(result_fields_t), intent(in) :: fields
     integer, intent(in) :: is
     integer :: isub, d, first
     integer(ip) :: n
@@ -280,10 +280,10 @@ contains
        else
           call open_array(lu, 'Float64', 'rotation', 3)
        end if
-       do v = 1, size(res%has_dof, 2, kind=i8)
+       do v = 1, size(fields%has_dof, 2, kind=i8)
           do d = first, first + 2
              if (d > first) call lu%put(' ')
-             call lu%put(full_real(res%u(NDOF_NODE*(v - 1) + d, is)))
+             call lu%put(full_real(fields%u(NDOF_NODE*(v - 1) + d, is)))
           end do
           call lu%newline()
        end do
@@ -306,12 +306,12 @@ contains
     call lu%line('      </PointData>')
   end subroutine point_data
 
-  subroutine cell_data(lu, model, res, grid, is)
+  subroutine cell_data(lu, model, fields, grid, is)
     !! Per cell: kind, substructure, element id and type, contact index, element
     !! end forces, shell/plane resultants, contact Δ and F, support reaction.
     type(text_buffer_t), intent(inout) :: lu
     type(model_t), intent(in) :: model
-    type(results_t), intent(in) :: res
+    type(result_fields_t), intent(in) :: fields
     type(grid_t), intent(in) :: grid
     integer, intent(in) :: is
     integer :: isub, k, il
@@ -345,7 +345,7 @@ contains
        call lu%line(itoa(model%contacts(model%links(il)%contact)%master_sub))
     end do
     do c = 1, grid%nsupport
-       call lu%line(itoa(vertex_sub(model, res, grid%support_vertex(c))))
+       call lu%line(itoa(vertex_sub(model, fields, grid%support_vertex(c))))
     end do
     call close_array(lu)
 
@@ -378,7 +378,7 @@ contains
     do k = 1, 2
        call open_array(lu, 'Float64', 'end'//itoa(k), NCOMP, FORCE_NAMES)
        do c = 1, grid%nelem
-          call put_tuple(lu, res%elem_force(:, k, c, is))
+          call put_tuple(lu, fields%elem_force(:, k, c, is))
        end do
        call zeros(lu, size(model%links, kind=i8) + grid%nsupport, NCOMP)
        call close_array(lu)
@@ -386,20 +386,20 @@ contains
 
     call open_array(lu, 'Float64', 'plate', NCOMP, PLATE_NAMES)
     do c = 1, grid%nelem
-       call put_tuple(lu, res%plate(:, c, is))
+       call put_tuple(lu, fields%plate(:, c, is))
     end do
     call zeros(lu, size(model%links, kind=i8) + grid%nsupport, NCOMP)
     call close_array(lu)
 
-    call contact_array('delta', res%steps(is)%link_delta)
-    call contact_array('force', res%steps(is)%link_force)
+    call contact_array('delta', fields%steps(is)%link_delta)
+    call contact_array('force', fields%steps(is)%link_force)
 
     call open_array(lu, 'Float64', 'reaction', NCOMP, DOF_NAMES)
     call zeros(lu, grid%nelem + size(model%links, kind=i8), NCOMP)
     allocate (reac(NCOMP, grid%nsupport), source=0.0_wp)
-    do k = 1, size(res%steps(is)%reactions)
-       associate (rc => res%steps(is)%reactions(k))
-         c = grid%vertex_support(res%vertex_offset(rc%sub) + rc%node)
+    do k = 1, size(fields%steps(is)%reactions)
+       associate (rc => fields%steps(is)%reactions(k))
+         c = grid%vertex_support(fields%vertex_offset(rc%sub) + rc%node)
          if (c > 0) reac(rc%dof, c) = reac(rc%dof, c) + rc%force
        end associate
     end do
@@ -417,7 +417,7 @@ contains
       call open_array(lu, 'Float64', name, NCOMP, DOF_NAMES)
       call zeros(lu, grid%nelem, NCOMP)
       do il = 1, size(model%links)
-         call put_tuple(lu, merge(values(:, il), zero, res%link_used(:, il)))
+         call put_tuple(lu, merge(values(:, il), zero, fields%link_used(:, il)))
       end do
       call zeros(lu, grid%nsupport, NCOMP)
       call close_array(lu)
@@ -441,11 +441,11 @@ contains
     call lu%line('      </Points>')
   end subroutine points
 
-  subroutine cells(lu, model, res, grid)
+  subroutine cells(lu, model, fields, grid)
     !! Connectivity (0-based point indices), offsets and cell types.
     type(text_buffer_t), intent(inout) :: lu
     type(model_t), intent(in) :: model
-    type(results_t), intent(in) :: res
+    type(result_fields_t), intent(in) :: fields
     type(grid_t), intent(in) :: grid
     integer :: isub, il, j, nn
     integer(ip) :: e
@@ -457,15 +457,15 @@ contains
           nn = ELEMENT_NODE_COUNT(model%subs(isub)%elem_type(e))
           do j = 1, nn
              if (j > 1) call lu%put(' ')
-             call lu%put(itoa(res%vertex_offset(isub) + model%subs(isub)%elem_nodes(j, e) - 1))
+             call lu%put(itoa(fields%vertex_offset(isub) + model%subs(isub)%elem_nodes(j, e) - 1))
           end do
           call lu%newline()
        end do
     end do
     do il = 1, size(model%links)
        associate (lk => model%links(il), ct => model%contacts(model%links(il)%contact))
-         call lu%line(itoa(res%vertex_offset(ct%master_sub) + lk%master_node - 1)//' '// &
-              itoa(res%vertex_offset(ct%slave_sub) + lk%slave_node - 1))
+         call lu%line(itoa(fields%vertex_offset(ct%master_sub) + lk%master_node - 1)//' '// &
+              itoa(fields%vertex_offset(ct%slave_sub) + lk%slave_node - 1))
        end associate
     end do
     do c = 1, grid%nsupport
@@ -522,13 +522,13 @@ contains
     end select
   end function cell_type
 
-  pure integer function vertex_sub(model, res, v) result(isub)
+  pure integer function vertex_sub(model, fields, v) result(isub)
     !! Substructure of vertex v.
     type(model_t), intent(in) :: model
-    type(results_t), intent(in) :: res
+    type(result_fields_t), intent(in) :: fields
     integer(i8), intent(in) :: v
     do isub = 1, size(model%subs)
-       if (v <= res%vertex_offset(isub + 1)) return
+       if (v <= fields%vertex_offset(isub + 1)) return
     end do
     isub = size(model%subs)
   end function vertex_sub

@@ -94,7 +94,7 @@ contains
     integer(ip) :: n
     isub = sub_index(model, sub)
     n = find_node(model%subs(isub), int(id, ip))
-    u = res%u(6*(res%vertex_offset(isub) + n - 1) + dof, step)
+    u = res%fields%u(6*(res%fields%vertex_offset(isub) + n - 1) + dof, step)
   end function disp
 
   function reaction(model, res, sub, id, dof, step) result(f)
@@ -107,8 +107,8 @@ contains
     integer :: isub, k
     isub = sub_index(model, sub)
     f = 0.0_wp
-    do k = 1, size(res%steps(step)%reactions)
-       associate (rc => res%steps(step)%reactions(k))
+    do k = 1, size(res%fields%steps(step)%reactions)
+       associate (rc => res%fields%steps(step)%reactions(k))
          if (rc%sub == isub .and. model%subs(isub)%node_id(rc%node) == id .and. rc%dof == dof) f = f + rc%force
        end associate
     end do
@@ -121,7 +121,7 @@ contains
     character(*), intent(in) :: name
     integer, intent(in) :: dof, step
     real(wp) :: f
-    f = res%steps(step)%link_force(dof, first_link(model, name))
+    f = res%fields%steps(step)%link_force(dof, first_link(model, name))
   end function link_force
 
   function link_delta(model, res, name, dof, step) result(d)
@@ -131,7 +131,7 @@ contains
     character(*), intent(in) :: name
     integer, intent(in) :: dof, step
     real(wp) :: d
-    d = res%steps(step)%link_delta(dof, first_link(model, name))
+    d = res%fields%steps(step)%link_delta(dof, first_link(model, name))
   end function link_delta
 
   integer function first_link(model, name) result(il)
@@ -149,7 +149,7 @@ contains
     type(results_t), intent(in) :: res
     integer, intent(in) :: step
     real(wp) :: e, scale
-    associate (st => res%steps(step))
+    associate (st => res%fields%steps(step))
       scale = max(maxval(abs(st%applied)), maxval(abs(st%reaction)), tiny(1.0_wp))
       e = maxval(abs(st%applied + st%reaction))/scale
     end associate

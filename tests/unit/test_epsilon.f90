@@ -45,13 +45,13 @@ program test_epsilon
   do ij = 1, size(JOINTS)
      do is = 1, size(SOLVERS)
         call solve_text(cantilever(JOINTS(ij)), model, res, trim(SOLVERS(is)))
-        do st = 1, size(res%steps)
+        do st = 1, size(res%fields%steps)
            eps_phys = physical_epsilon(model, res, st, bound)
-           worst = max(worst, abs(res%steps(st)%epsilon - eps_phys)/bound)
+           worst = max(worst, abs(res%fields%steps(st)%epsilon - eps_phys)/bound)
            write (what, '(a,es8.1,a,i0)') 'EPSILON, joint ', JOINTS(ij), ' '//trim(SOLVERS(is))//' step ', st
-           if (res%steps(st)%refine_tried > res%steps(st)%refinements) rejected = rejected + 1
+           if (res%fields%steps(st)%refine_tried > res%fields%steps(st)%refinements) rejected = rejected + 1
            if (abs(eps_phys) > 1.0e-12_wp) compared = compared + 1
-           call check_close(res%steps(st)%epsilon, eps_phys, bound, trim(what))
+           call check_close(res%fields%steps(st)%epsilon, eps_phys, bound, trim(what))
         end do
      end do
   end do
@@ -176,6 +176,6 @@ contains
     type(results_t), intent(in) :: res
     integer, intent(in) :: isub, dof, st
     integer(ip), intent(in) :: n
-    u_of = res%u(6*(res%vertex_offset(isub) + n - 1) + dof, st)
+    u_of = res%fields%u(6*(res%fields%vertex_offset(isub) + n - 1) + dof, st)
   end function u_of
 end program test_epsilon

@@ -324,21 +324,21 @@ contains
          end if
          scale = maxval(abs(du)) + tiny(1.0_wp)
          do k = 1, 6
-            call check_close(res%steps(1)%link_delta(k, il), dl(k), 1.0e-12_wp*scale, &
+            call check_close(res%fields%steps(1)%link_delta(k, il), dl(k), 1.0e-12_wp*scale, &
                  'delta = Q (u_s - u_m), '//ct%name//', '//tag)
             if (lk%state(k) == LINK_RIGID) then
-               call check_close(res%steps(1)%link_delta(k, il), 0.0_wp, 1.0e-12_wp*scale, 'rigid delta 0, '//tag)
+               call check_close(res%fields%steps(1)%link_delta(k, il), 0.0_wp, 1.0e-12_wp*scale, 'rigid delta 0, '//tag)
             else
-               call check_close(res%steps(1)%link_force(k, il), lk%g(k)*dl(k), &
+               call check_close(res%fields%steps(1)%link_force(k, il), lk%g(k)*dl(k), &
                     1.0e-12_wp*abs(lk%g(k)*dl(k)) + 1.0e-12_wp, 'force = g delta, '//tag)
             end if
          end do
          ! force of the contact on the slave node = minus the force on the master, global axes
          if (ct%orientation > 0) then
-            fglob(1:3) = -matmul(transpose(q), res%steps(1)%link_force(1:3, il))
-            fglob(4:6) = -matmul(transpose(q), res%steps(1)%link_force(4:6, il))
+            fglob(1:3) = -matmul(transpose(q), res%fields%steps(1)%link_force(1:3, il))
+            fglob(4:6) = -matmul(transpose(q), res%fields%steps(1)%link_force(4:6, il))
          else
-            fglob = -res%steps(1)%link_force(:, il)
+            fglob = -res%fields%steps(1)%link_force(:, il)
          end if
          x = m%subs(ct%slave_sub)%x(:, lk%slave_node)
          ftot = ftot + fglob(1:3)

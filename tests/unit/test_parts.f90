@@ -167,14 +167,14 @@ contains
     call solve_joint_steps(model, opts, r2, error)
     call check(.not. allocated(error), path//': solve_joint_steps')
     if (allocated(error)) return
-    same = all(r1%u == r2%u) .and. all(r1%elem_force == r2%elem_force) .and. size(r1%notes) == size(r2%notes) &
-         .and. r1%maxratio == r2%maxratio .and. r1%neq == r2%neq .and. r1%factor_nnz == r2%factor_nnz
-    do i = 1, min(size(r1%notes), size(r2%notes))
-       same = same .and. r1%notes(i)%s == r2%notes(i)%s
+    same = all(r1%fields%u == r2%fields%u) .and. all(r1%fields%elem_force == r2%fields%elem_force) .and. size(r1%log%notes) == size(r2%log%notes) &
+         .and. r1%summary%maxratio == r2%summary%maxratio .and. r1%summary%neq == r2%summary%neq .and. r1%summary%factor_nnz == r2%summary%factor_nnz
+    do i = 1, min(size(r1%log%notes), size(r2%log%notes))
+       same = same .and. r1%log%notes(i)%s == r2%log%notes(i)%s
     end do
-    do i = 1, size(r1%steps)
-       same = same .and. r1%steps(i)%residual == r2%steps(i)%residual .and. &
-            all(r1%steps(i)%reaction == r2%steps(i)%reaction)
+    do i = 1, size(r1%fields%steps)
+       same = same .and. r1%fields%steps(i)%residual == r2%fields%steps(i)%residual .and. &
+            all(r1%fields%steps(i)%reaction == r2%fields%steps(i)%reaction)
     end do
     call check(same, path//': the same results, bit for bit, as solve_model')
   end subroutine test_plain_path

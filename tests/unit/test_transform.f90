@@ -112,8 +112,8 @@ contains
     g = 1.0e-6_wp*EI/LEN
     call solve_text(deck(g), m, r)
     call check_rel(disp(m, r, 'II', NEL + 1, 2, 1), exact(g), 1.0e-4_wp, 'soft joint: still close')
-    call check(size(r%warnings) > 0, 'soft joint: MAXRATIO warning')
-    call check(r%maxratio > 1.0e7_wp, 'soft joint: MAXRATIO flags the near-mechanism')
+    call check(size(r%log%warnings) > 0, 'soft joint: MAXRATIO warning')
+    call check(r%summary%maxratio > 1.0e7_wp, 'soft joint: MAXRATIO flags the near-mechanism')
   end subroutine soft_joint
 
   subroutine zero_joint()

@@ -97,32 +97,32 @@ contains
     model%links(1)%master_node = 3
     model%links(1)%slave_node = 1
 
-    res%vertex_offset = [0_i8, 5_i8, 7_i8]
-    res%elem_offset = [0_i8, 2_i8, 3_i8]
-    allocate (res%u(NDOF_NODE*7, 1), source=0.0_wp)
-    res%u(NDOF_NODE*4 + 3, 1) = -0.25_wp             ! PLATE.5 u3
-    allocate (res%has_dof(NDOF_NODE, 7), source=.true.)
-    allocate (res%elem_force(6, 2, 3, 1), source=0.0_wp)
-    res%elem_force(1, 2, 3, 1) = 42.0_wp              ! BEAM.30 end 2 n
-    allocate (res%plate(6, 3, 1), source=0.0_wp)
-    res%plate(:, 2, 1) = PLATE2
-    allocate (res%steps(1))
-    allocate (res%steps(1)%reactions(2))
-    res%steps(1)%reactions(:)%sub = 1
-    res%steps(1)%reactions(:)%node = 1
-    res%steps(1)%reactions(1)%dof = 1
-    res%steps(1)%reactions(2)%dof = 2
-    res%steps(1)%reactions(1)%force = -5.0_wp
-    res%steps(1)%reactions(2)%force = 6.0_wp
-    allocate (res%steps(1)%link_delta(NDOF_NODE, 1), res%steps(1)%link_force(NDOF_NODE, 1), source=0.0_wp)
-    res%steps(1)%link_delta(4, 1) = 1.0e-3_wp
-    res%steps(1)%link_force(4, 1) = 2.0e3_wp
-    allocate (res%link_used(NDOF_NODE, 1), source=.false.)
-    res%link_used(4, 1) = .true.
+    res%fields%vertex_offset = [0_i8, 5_i8, 7_i8]
+    res%fields%elem_offset = [0_i8, 2_i8, 3_i8]
+    allocate (res%fields%u(NDOF_NODE*7, 1), source=0.0_wp)
+    res%fields%u(NDOF_NODE*4 + 3, 1) = -0.25_wp             ! PLATE.5 u3
+    allocate (res%fields%has_dof(NDOF_NODE, 7), source=.true.)
+    allocate (res%fields%elem_force(6, 2, 3, 1), source=0.0_wp)
+    res%fields%elem_force(1, 2, 3, 1) = 42.0_wp              ! BEAM.30 end 2 n
+    allocate (res%fields%plate(6, 3, 1), source=0.0_wp)
+    res%fields%plate(:, 2, 1) = PLATE2
+    allocate (res%fields%steps(1))
+    allocate (res%fields%steps(1)%reactions(2))
+    res%fields%steps(1)%reactions(:)%sub = 1
+    res%fields%steps(1)%reactions(:)%node = 1
+    res%fields%steps(1)%reactions(1)%dof = 1
+    res%fields%steps(1)%reactions(2)%dof = 2
+    res%fields%steps(1)%reactions(1)%force = -5.0_wp
+    res%fields%steps(1)%reactions(2)%force = 6.0_wp
+    allocate (res%fields%steps(1)%link_delta(NDOF_NODE, 1), res%fields%steps(1)%link_force(NDOF_NODE, 1), source=0.0_wp)
+    res%fields%steps(1)%link_delta(4, 1) = 1.0e-3_wp
+    res%fields%steps(1)%link_force(4, 1) = 2.0e3_wp
+    allocate (res%fields%link_used(NDOF_NODE, 1), source=.false.)
+    res%fields%link_used(4, 1) = .true.
 
     dir = executable_dir()//'vtk_unit'
     base = dir//'/plates'
-    call write_vtk(base//'.pvd', model, res, error)
+    call write_vtk(base//'.pvd', model, res%fields, error)
     call check(.not. allocated(error), 'write_vtk succeeds')
     if (allocated(error)) return
     inquire (file=base//'_1.vtu.tmp', exist=exists)
@@ -153,7 +153,7 @@ contains
     call check(k > 0, 'substructure names in comments')
 
     ! a directory that cannot be created: EXIT_IO, nothing written
-    call write_vtk('/proc/superjoin-no-such-dir/x', model, res, error)
+    call write_vtk('/proc/superjoin-no-such-dir/x', model, res%fields, error)
     call check(allocated(error), 'unwritable directory is an error')
     if (allocated(error)) call check(error%code == EXIT_IO, 'unwritable directory: EXIT_IO')
   end subroutine plate_cells

@@ -8,6 +8,11 @@
  *    being written (registered with sj_temp_register), then the signal is
  *    raised again with its default action, so the exit status still says
  *    which signal ended the run. unlink and raise are async-signal-safe.
+ *  - SIGSEGV, SIGBUS, SIGABRT, SIGFPE (a crash, or the Fortran runtime's own
+ *    error termination when even its backtrace cannot allocate memory): the
+ *    temporary file is removed too (on an alternate stack: the crash is often
+ *    a stack that could not grow under ulimit -v), then the handler that was
+ *    installed before (the Fortran runtime's backtrace) gets the signal.
  *  - OpenBLAS's work buffer is allocated now, by a 1 x 1 dpotrf: OpenBLAS
  *    retries a failed buffer allocation forever (it spins), so when memory
  *    runs out later the failure must land in code that reports it. If even
@@ -37,12 +42,34 @@ static char temp_path[SJ_TEMP_PATH_MAX];
 static atomic_int temp_set = 0;
 
 static const int cleanup_signals[] = {SIGINT, SIGTERM, SIGHUP};
+static const int fatal_signals[] = {SIGSEGV, SIGBUS, SIGABRT, SIGFPE};
+#define SJ_NFATAL (sizeof fatal_signals / sizeof fatal_signals[0])
+static struct sigaction fatal_previous[SJ_NFATAL];
+/* The fatal handler runs on a stack of its own: a stack that could not grow
+ * (ulimit -v reached) is the usual way such a run ends. Static, so that
+ * nothing is allocated for it. */
+#define SJ_ALT_STACK_BYTES (64 * 1024)
+static char alt_stack[SJ_ALT_STACK_BYTES];
 
 static void cleanup_handler(int sig)
 {
     if (atomic_load(&temp_set)) unlink(temp_path);
     signal(sig, SIG_DFL);
     raise(sig);
+}
+
+/* Remove the temporary file, put back the handler found at set-up and
+ * deliver the signal to it (on return from here for a fault: the faulting
+ * instruction runs again and faults into that handler). */
+static void fatal_handler(int sig)
+{
+    size_t k;
+    if (atomic_load(&temp_set)) unlink(temp_path);
+    atomic_store(&temp_set, 0);
+    for (k = 0; k < SJ_NFATAL; k++) {
+        if (fatal_signals[k] == sig) sigaction(sig, &fatal_previous[k], NULL);
+    }
+    if (sig == SIGABRT) raise(sig);
 }
 
 /* Returns 0 when every handler was installed (SJ_SETUP_HANDLERS if not).
@@ -73,6 +100,18 @@ int sj_process_setup(int64_t *blas_bytes)
         /* keep a signal that was ignored when we started (nohup, &) ignored */
         if (sigaction(cleanup_signals[k], NULL, &old) == 0 && old.sa_handler == SIG_IGN) continue;
         if (sigaction(cleanup_signals[k], &sa, NULL) != 0) status = SJ_SETUP_HANDLERS;
+    }
+    {
+        stack_t ss;
+        memset(&ss, 0, sizeof ss);
+        ss.ss_sp = alt_stack;
+        ss.ss_size = sizeof alt_stack;
+        if (sigaltstack(&ss, NULL) != 0) status = SJ_SETUP_HANDLERS;
+    }
+    sa.sa_handler = fatal_handler;
+    sa.sa_flags = SA_ONSTACK;
+    for (k = 0; k < SJ_NFATAL; k++) {
+        if (sigaction(fatal_signals[k], &sa, &fatal_previous[k]) != 0) status = SJ_SETUP_HANDLERS;
     }
     probe = malloc(SJ_BLAS_BUFFER_BYTES);
     if (probe == NULL) {

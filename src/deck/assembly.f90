@@ -255,7 +255,8 @@ contains
     if (abs(inst%rot(3, 3) - 1.0_wp) > PLANE_ROT_TOL) then
        do e = 1, m%nelem
           select case (m%elem_type(e))
-          case (ET_T2D2, ET_B23, ET_CPS3, ET_CPS4)
+          case (ET_T2D2, ET_B23, ET_CPS3, ET_CPS4, ET_CPE3, ET_CPE4, ET_CPS6, ET_CPS8, ET_CPE6, ET_CPE8, &
+               ET_CPS8R, ET_CPE8R)
              call report_loc(st, inst%loc, '*INSTANCE '//name//' turns element '//itoa(m%elem_id(e))//' ('// &
                   trim(ELEMENT_TYPE_NAMES(m%elem_type(e)))//') of its part out of the XY plane '// &
                   '(2D parts turn only about an axis parallel to Z)')

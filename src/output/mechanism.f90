@@ -8,7 +8,8 @@ module superjoin_output_mechanism
   use superjoin_model_types, only: model_t, NDOF_NODE, ELEMENT_NODE_COUNT
   use superjoin_output_posix, only: rename_file, remove_file, make_directory
   use superjoin_output_text_buffer, only: text_buffer_t
-  use superjoin_output_vtk, only: vtk_base, VTK_VERTEX, VTK_LINE, VTK_TRIANGLE, VTK_QUAD
+  use superjoin_output_vtk, only: vtk_base, VTK_VERTEX, VTK_LINE, VTK_TRIANGLE, VTK_QUAD, &
+       VTK_QUADRATIC_TRIANGLE, VTK_QUADRATIC_QUAD
   use superjoin_config, only: SUPERJOIN_VERSION
   use superjoin_utils_strings, only: itoa, full_real
   implicit none (type, external)
@@ -235,6 +236,10 @@ contains
        cell_of = VTK_TRIANGLE
     case (4)
        cell_of = VTK_QUAD
+    case (6)
+       cell_of = VTK_QUADRATIC_TRIANGLE
+    case (8)
+       cell_of = VTK_QUADRATIC_QUAD
     case default
        cell_of = VTK_VERTEX
     end select

@@ -474,6 +474,16 @@ contains
            nn = ELEMENT_NODE_COUNT(sub%elem_type(e))
            if (any(sub%elem_nodes(1:nn, e) == 0)) cycle   ! undefined node, reported
            select case (sub%elem_type(e))
+           case (ET_CPS6, ET_CPS8, ET_CPE6, ET_CPE8, ET_CPS8R, ET_CPE8R)
+              if (count(inset(sub%elem_nodes(1:nn, e))) >= 2) then
+                 call report_loc(st, cb%loc, '*INTERFACE '//cb%name//': element '//itoa(sub%elem_id(e))// &
+                      ' ('//trim(ELEMENT_TYPE_NAMES(sub%elem_type(e)))//') on node set '// &
+                      ref_text(cb%iface_master)//' is a second-order element; the tributary shares of '// &
+                      'its mid-side nodes are not implemented: join it with *CONTACT lines')
+                 return
+              end if
+           end select
+           select case (sub%elem_type(e))
            case (ET_CPS3, ET_CPS4, ET_S3, ET_S4)
               if (all(inset(sub%elem_nodes(1:nn, e)))) face = .true.
            end select

@@ -474,7 +474,7 @@ contains
            nn = ELEMENT_NODE_COUNT(sub%elem_type(e))
            if (any(sub%elem_nodes(1:nn, e) == 0)) cycle   ! undefined node, reported
            select case (sub%elem_type(e))
-           case (ET_CPS6, ET_CPS8, ET_CPE6, ET_CPE8, ET_CPS8R, ET_CPE8R)
+           case (ET_CPS6, ET_CPS8, ET_CPE6, ET_CPE8, ET_CPS8R, ET_CPE8R, ET_B32)
               if (count(inset(sub%elem_nodes(1:nn, e))) >= 2) then
                  call report_loc(st, cb%loc, '*INTERFACE '//cb%name//': element '//itoa(sub%elem_id(e))// &
                       ' ('//trim(ELEMENT_TYPE_NAMES(sub%elem_type(e)))//') on node set '// &

@@ -8,7 +8,7 @@ module superjoin_deck_validate
        ELEMENT_TYPE_NAMES, ELEMENT_NODE_COUNT, NDOF_NODE, SEC_SOLID, SEC_BEAM, SEC_SHELL, &
        LINK_FINITE, LINK_RIGID, ET_T2D2, ET_T3D2, ET_B23, ET_B33, ET_CPS3, ET_CPS4, &
        ET_S3, ET_S4, ET_B21, ET_B31, ET_CPE3, ET_CPE4, ET_CPS6, ET_CPS8, ET_CPE6, ET_CPE8, ET_CPS8R, ET_CPE8R, &
-       DLOAD_PX, DLOAD_PY, DLOAD_PZ, DLOAD_P, DLOAD_GRAV, DLOAD_NAMES
+       ET_B32, DLOAD_PX, DLOAD_PY, DLOAD_PZ, DLOAD_P, DLOAD_GRAV, DLOAD_NAMES
   use superjoin_deck_lexer, only: itoa, plural
   use superjoin_deck_state, only: deck_state_t, sub_b_t, ref_t, load_b_t, report, report_loc, report_oom, find_set, &
        CH_IDS, CH_GEN, CH_RANGE, CH_REF, BEAM_2D_VALUES, BEAM_3D_VALUES, SUBK_INSTANCE
@@ -528,7 +528,7 @@ contains
          case (ET_B23, ET_B21)
             nb23 = nb23 + 1
             if (sb%kind /= SEC_BEAM) call bad(e)
-         case (ET_B33, ET_B31)
+         case (ET_B33, ET_B31, ET_B32)
             nb33 = nb33 + 1
             if (sb%kind /= SEC_BEAM) call bad(e)
          case (ET_S3, ET_S4)
@@ -633,7 +633,7 @@ contains
     integer, intent(in) :: etype
     character(:), allocatable :: card
     select case (etype)
-    case (ET_B23, ET_B33, ET_B21, ET_B31)
+    case (ET_B23, ET_B33, ET_B21, ET_B31, ET_B32)
        card = '*BEAM SECTION'
     case (ET_S3, ET_S4)
        card = '*SHELL SECTION'
@@ -1228,7 +1228,7 @@ contains
     case (DLOAD_P)
        dload_fits = etype == ET_S3 .or. etype == ET_S4
     case (DLOAD_GRAV)
-       dload_fits = .true.
+       dload_fits = etype /= ET_B32
     case default
        dload_fits = .false.
     end select
@@ -1242,6 +1242,8 @@ contains
        s = 'PX and PY apply to beams B23, B33, B21 and B31'
     case (DLOAD_PZ)
        s = 'PZ applies to 3D beams B33 and B31'
+    case (DLOAD_GRAV)
+       s = 'GRAV applies to every type but B32, whose distributed loads are not implemented yet'
     case default
        s = 'P applies to shells S3 and S4'
     end select

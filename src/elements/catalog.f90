@@ -30,8 +30,9 @@ module superjoin_elements_catalog
        advice_t('S8R', 'eight-node thick shells are not implemented yet; nearest: S4 (thin shell)'), &
        advice_t('S4R5', 'nearest: S4 (thin shell)'), &
        advice_t('STRI3', 'nearest: S3 (thin shell)'), &
-       advice_t('B32', 'three-node beams are not implemented yet; nearest: B31 (two-node Timoshenko beam)'), &
-       advice_t('B22', 'three-node beams are not implemented yet; nearest: B21 (two-node Timoshenko beam)'), &
+       advice_t('B32R', 'nearest: B32 (three-node Timoshenko beam, two integration points)'), &
+       advice_t('B22', 'planar three-node beams are not implemented yet; nearest: B21 (two-node ' // &
+                'Timoshenko beam) or B32 (three-node beam in space)'), &
        advice_t('B31H', 'hybrid beams are not implemented; nearest: B31'), &
        advice_t('B21H', 'hybrid beams are not implemented; nearest: B21'), &
        advice_t('B31OS', 'open-section warping beams are not implemented; nearest: B31'), &

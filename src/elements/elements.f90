@@ -9,11 +9,12 @@ module superjoin_elements
   use superjoin_error, only: error_t, fatal_error, EXIT_DECK
   use superjoin_model_types, only: section_t, material_t, ET_T2D2, ET_T3D2, ET_B23, ET_B33, &
        ET_CPS3, ET_CPS4, ET_S3, ET_S4, ET_B21, ET_B31, ET_CPE3, ET_CPE4, NUM_ELEMENT_TYPES, ELEMENT_TYPE_NAMES, &
-       ET_CPS6, ET_CPS8, ET_CPE6, ET_CPE8, ET_CPS8R, ET_CPE8R, &
+       ET_CPS6, ET_CPS8, ET_CPE6, ET_CPE8, ET_CPS8R, ET_CPE8R, ET_B32, &
        DLOAD_PX, DLOAD_PY, DLOAD_PZ, DLOAD_P
   use superjoin_elements_frame, only: beam_frame
   use superjoin_elements_truss, only: truss_stiffness, truss_end_forces, truss_distributed_load
   use superjoin_elements_beam, only: beam_stiffness, beam_end_forces, beam_load
+  use superjoin_elements_beam3, only: beam3_stiffness, beam3_end_forces, beam3_nodal_forces
   use superjoin_elements_shell, only: is_plate_type, is_plane_type, is_plane_strain_type, shell_stiffness, shell_resultants, shell_pressure_load, &
        shell_area_load, shell_forces
   implicit none (type, external)
@@ -50,7 +51,7 @@ contains
        dofs = [1, 2, 3]
     case (ET_B23, ET_B21)
        dofs = [1, 2, 6]
-    case (ET_B33, ET_B31, ET_S3, ET_S4)
+    case (ET_B33, ET_B31, ET_S3, ET_S4, ET_B32)
        dofs = [(i, i=1, 6)]
     case default
        allocate (dofs(0))
@@ -70,7 +71,7 @@ contains
        mask(1:3) = .true.
     case (ET_B23, ET_B21)
        mask([1, 2, 6]) = .true.
-    case (ET_B33, ET_B31, ET_S3, ET_S4)
+    case (ET_B33, ET_B31, ET_S3, ET_S4, ET_B32)
        mask = .true.
     end select
   end function element_dof_mask
@@ -104,6 +105,8 @@ contains
              fg(k) = g(d)
           end do
        end do
+    case (ET_B32)
+       call beam3_nodal_forces(x, sec, f, fg, error)
     case default
        call unsupported(etype, error)
     end select
@@ -111,7 +114,7 @@ contains
 
   pure subroutine element_stiffness(etype, x, sec, mat, ke, error)
     !! Element stiffness in global axes, node-major ordering (node 1 DOFs in
-    !! element_node_dofs order, then node 2 ...). x(3, nnode) are the node
+    !! element_node_dofs order, then node 2 ...; B32: end, middle, end). x(3, nnode) are the node
     !! coordinates. Errors: zero-length element, orientation vector parallel to
     !! beam axis, nonpositive A, I, J, t or E, plane-stress element out of the
     !! XY plane, zero area, distorted (non-convex) quadrilateral.
@@ -126,6 +129,8 @@ contains
        call truss_stiffness(etype, x, sec, mat, ke, error)
     case (ET_B23, ET_B33, ET_B21, ET_B31)
        call beam_stiffness(etype, x, sec, mat, ke, error)
+    case (ET_B32)
+       call beam3_stiffness(x, sec, mat, ke, error)
     case (ET_CPS3, ET_CPS4, ET_S3, ET_S4, ET_CPE3, ET_CPE4, ET_CPS6, ET_CPS8, ET_CPE6, ET_CPE8, ET_CPS8R, ET_CPE8R)
        call shell_stiffness(etype, x, sec, mat, ke, error)
     case default
@@ -157,6 +162,8 @@ contains
        call truss_end_forces(etype, x, sec, mat, ue, q_local, f, error)
     case (ET_B23, ET_B33, ET_B21, ET_B31)
        call beam_end_forces(etype, x, sec, mat, ue, q_local, f, error)
+    case (ET_B32)
+       call beam3_end_forces(x, sec, mat, ue, f, error)
     case (ET_CPS3, ET_CPS4, ET_S3, ET_S4, ET_CPE3, ET_CPE4, ET_CPS6, ET_CPS8, ET_CPE6, ET_CPE8, ET_CPS8R, ET_CPE8R)
        continue
     case default
@@ -184,6 +191,9 @@ contains
        call truss_distributed_load(etype, x, sec, wglobal, fe, q_local, error)
     case (ET_B23, ET_B33, ET_B21, ET_B31)
        call beam_load(etype, x, sec, wglobal, fe, q_local, error)
+    case (ET_B32)
+       call fatal_error(error, EXIT_DECK, 'distributed loads on B32 are not implemented yet '// &
+            '(nearest: B31 elements, or nodal loads)')
     case default
        if (etype >= 1 .and. etype <= NUM_ELEMENT_TYPES) then
           call fatal_error(error, EXIT_DECK, 'load per unit length on element type '// &
@@ -237,7 +247,7 @@ contains
     type(error_t), allocatable, intent(out) :: error
     q_local = 0.0_wp
     select case (etype)
-    case (ET_T2D2, ET_T3D2, ET_B23, ET_B33, ET_B21, ET_B31)
+    case (ET_T2D2, ET_T3D2, ET_B23, ET_B33, ET_B21, ET_B31, ET_B32)
        call beam_distributed_load(etype, x, sec, mat%density*sec%area*accel, fe, q_local, error)
     case (ET_CPS3, ET_CPS4, ET_S3, ET_S4, ET_CPE3, ET_CPE4, ET_CPS6, ET_CPS8, ET_CPE6, ET_CPE8, ET_CPS8R, ET_CPE8R)
        call shell_area_load(etype, x, mat%density*sec%thickness*accel, fe, error)

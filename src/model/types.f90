@@ -16,17 +16,19 @@ module superjoin_model_types
   integer, parameter, public :: ET_CPS6 = 16, ET_CPS8 = 17, ET_CPE6 = 18, ET_CPE8 = 19, &
                                 ET_CPS8R = 20, ET_CPE8R = 21
     !! Second-order plane elements: 6-node triangles, 8-node quadrilaterals (…R: 2×2 reduced integration).
-  integer, parameter, public :: NUM_ELEMENT_TYPES = 21
+  integer, parameter, public :: ET_B32 = 22
+    !! Three-node Timoshenko beam (end, middle, end), curved geometry allowed.
+  integer, parameter, public :: NUM_ELEMENT_TYPES = 22
   character(len=5), parameter, public :: ELEMENT_TYPE_NAMES(NUM_ELEMENT_TYPES) = &
        ['T2D2 ', 'T3D2 ', 'B23  ', 'B33  ', 'CPS3 ', 'CPS4 ', 'S3   ', 'S4   ', &
         'B21  ', 'B31  ', 'CPE3 ', 'CPE4 ', &
         '     ', '     ', '     ', &
-        'CPS6 ', 'CPS8 ', 'CPE6 ', 'CPE8 ', 'CPS8R', 'CPE8R']
+        'CPS6 ', 'CPS8 ', 'CPE6 ', 'CPE8 ', 'CPS8R', 'CPE8R', 'B32  ']
     !! Blank names (13-15) are reserved numbers without an element.
   integer, parameter, public :: ELEMENT_NODE_COUNT(NUM_ELEMENT_TYPES) = [2, 2, 2, 2, 3, 4, 3, 4, &
        2, 2, 3, 4, &
        0, 0, 0, &
-       6, 8, 6, 8, 8, 8]
+       6, 8, 6, 8, 8, 8, 3]
   integer, parameter, public :: MAX_ELEMENT_NODES = 8
 
   integer, parameter, public :: NDOF_NODE = 6

@@ -386,6 +386,111 @@ def timoshenko_goodier(exe, work):
     return orders
 
 
+
+# ------------------------------------------------------------------ B32
+
+B32_E, B32_NU, B32_A, B32_IY, B32_IZ, B32_J, B32_K = 1000.0, 0.25, 1.0, 0.1, 0.2, 0.15, 300.0
+
+
+def b32_deck(name, points, cloads, ring=False):
+    """B32 chain through the points (end, middle, end, middle, ...), node 1
+    clamped; section A, Iy, Iz, J with K = 300 in both directions."""
+    out = ["*HEADING", name, "*MATERIAL, NAME=MAT", "*ELASTIC", f" {fmt(B32_E)}, {fmt(B32_NU)}", "*NODE"]
+    out += [f" {i + 1}, {fmt(x)}, {fmt(y)}, {fmt(z)}" for i, (x, y, z) in enumerate(points)]
+    out.append("*ELEMENT, TYPE=B32, ELSET=B")
+    out += [f" {k + 1}, {2 * k + 1}, {2 * k + 2}, {2 * k + 3}" for k in range((len(points) - 1) // 2)]
+    out += ["*BEAM SECTION, ELSET=B, MATERIAL=MAT", f" {B32_A}, {B32_IY}, {B32_IZ}, {B32_J}",
+            "*TRANSVERSE SHEAR STIFFNESS", f" {B32_K}, {B32_K}", "*BOUNDARY", " 1, 1, 6",
+            "*STEP, NAME=LOAD", "*CLOAD"]
+    out += [f" {n}, {d}, {fmt(v)}" for n, d, v in cloads]
+    out.append("*END STEP")
+    return "\n".join(out) + "\n"
+
+
+def solve_b32(exe, work, name, text):
+    """Displacements {node: [6]} and end forces {(element, end): [6]}."""
+    path = os.path.join(work, name + ".deck")
+    with open(path, "w") as f:
+        f.write(text)
+    out = os.path.join(work, name + "_csv")
+    r = subprocess.run([exe, "-q", "--csv", out, "-o", os.path.join(work, name + ".lst"), path],
+                       capture_output=True, text=True)
+    if r.returncode != 0:
+        check(False, f"{name}: exit {r.returncode}: {r.stderr.strip()[:300]}")
+        return None, None
+    disp, forces = {}, {}
+    with open(os.path.join(out, "displacements.csv")) as f:
+        for row in csv.DictReader(f):
+            disp[int(row["node"])] = [float(row[k]) for k in ("u1", "u2", "u3", "ur1", "ur2", "ur3")]
+    with open(os.path.join(out, "element_forces.csv")) as f:
+        for row in csv.DictReader(f):
+            forces[(int(row["element"]), int(row["end"]))] = [float(row[k]) for k in
+                                                                ("n", "vy", "vz", "t", "my", "mz")]
+    return disp, forces
+
+
+def b32_tests(exe, work):
+    """Straight Timoshenko cantilever (exact) and quarter ring (convergence)."""
+    e, g = B32_E, B32_E / (2 * (1 + B32_NU))
+    say("\n## B32: straight Timoshenko cantilever (L = 4 along X, tip loads)\n")
+    say("E = 1000, nu = 0.25, A = 1, Iy = 0.1, Iz = 0.2, J = 0.15, K = 300 (both directions). Local y is "
+        "global Z (default v), so Y deflection uses Iy, Z deflection uses Iz.\n")
+    say("| elements | tip u / exact - 1 (X, Y, Z, twist) | root end forces / exact - 1 (n, my, mz) |")
+    say("|---|---|---|")
+    length, p = 4.0, (3.0, 1.0, 2.0, 0.5)
+    exact = (p[0] * length / (e * B32_A),
+             p[1] * length ** 3 / (3 * e * B32_IY) + p[1] * length / B32_K,
+             p[2] * length ** 3 / (3 * e * B32_IZ) + p[2] * length / B32_K,
+             p[3] * length / (g * B32_J))
+    for nel in (1, 3):
+        pts = [(length * i / (2 * nel), 0.0, 0.0) for i in range(2 * nel + 1)]
+        tip = 2 * nel + 1
+        name = f"b32_cantilever_{nel}"
+        disp, forces = solve_b32(exe, work, name, b32_deck(name, pts, [(tip, 1, p[0]), (tip, 2, p[1]),
+                                                                      (tip, 3, p[2]), (tip, 4, p[3])]))
+        if disp is None:
+            continue
+        got = (disp[tip][0], disp[tip][1], disp[tip][2], disp[tip][3])
+        errs = [gv / ev - 1 for gv, ev in zip(got, exact)]
+        # root (end 1 of element 1), local axes x = X, y = Z, z = -Y: n = -Px; the Y load
+        # turns about Z = local y (my = -Py L), the Z load about -Y = local z (mz = -Pz L)
+        f = forces[(1, 1)]
+        ferr = [f[0] / -p[0] - 1, f[4] / (-p[1] * length) - 1, f[5] / (-p[2] * length) - 1]
+        say(f"| {nel} | " + ", ".join(f"{v:.1e}" for v in errs) + " | " + ", ".join(f"{v:.1e}" for v in ferr) + " |")
+        check(max(abs(v) for v in errs) < 1e-10, f"{name}: tip displacements exact ({max(map(abs, errs)):.1e})")
+        check(max(abs(v) for v in ferr) < 1e-10, f"{name}: root end forces exact ({max(map(abs, ferr)):.1e})")
+
+    say("\n## B32: quarter ring (radius 10 in the XY plane, clamped at 0 degrees, tip load at 90 degrees)\n")
+    say("Closed form of the curved rod (Castigliano, bending + axial + shear, torsion out of plane): "
+        "in plane, radial load P: pi P R/4 (R^2/EIy + 1/EA + 1/K); out of plane, load P along Z: "
+        "P R^3 (pi/4)/EIz + P R^3 (3 pi/4 - 2)/GJ + P R (pi/2)/K. Middle nodes on the arc.\n")
+    say("| elements | in plane: error | order | out of plane: error | order |")
+    say("|---|---|---|---|---|")
+    radius, pl = 10.0, 1.0
+    d_in = math.pi * pl * radius / 4 * (radius ** 2 / (e * B32_IY) + 1 / (e * B32_A) + 1 / B32_K)
+    d_out = (pl * radius ** 3 * (math.pi / 4) / (e * B32_IZ) + pl * radius ** 3 * (3 * math.pi / 4 - 2) / (g * B32_J)
+             + pl * radius * (math.pi / 2) / B32_K)
+    prev = None
+    orders = []
+    for nel in (2, 4, 8, 16):
+        pts = [(radius * math.cos(math.pi / 2 * i / (2 * nel)), radius * math.sin(math.pi / 2 * i / (2 * nel)), 0.0)
+               for i in range(2 * nel + 1)]
+        tip = 2 * nel + 1
+        errs = []
+        for d, ref in ((2, d_in), (3, d_out)):
+            name = f"b32_ring_{nel}_{d}"
+            disp, _ = solve_b32(exe, work, name, b32_deck(name, pts, [(tip, d, pl)]))
+            if disp is None:
+                return
+            errs.append(disp[tip][d - 1] / ref - 1)
+        ords = ["", ""] if prev is None else [f"{math.log(abs(a / b), 2):.2f}" for a, b in zip(prev, errs)]
+        if prev is not None:
+            orders.append([math.log(abs(a / b), 2) for a, b in zip(prev, errs)])
+        say(f"| {nel} | {errs[0]:+.3e} | {ords[0]} | {errs[1]:+.3e} | {ords[1]} |")
+        prev = errs
+    check(abs(prev[0]) < 1e-5 and abs(prev[1]) < 1e-5, f"quarter ring 16 B32: errors {prev[0]:.1e}, {prev[1]:.1e}")
+    check(all(o > 3.5 for o in orders[-1]), f"quarter ring B32: orders {orders[-1]} above 3.5")
+
 def main():
     ap = argparse.ArgumentParser()
     ap.add_argument("exe")
@@ -412,6 +517,7 @@ def main():
         if key in mh:
             check(abs(mh[key] - 1) < 0.04, f"MacNeal {key}: within 4 % of the reference")
     tg = timoshenko_goodier(exe, a.work)
+    b32_tests(exe, a.work)
     for et, (errs, order) in tg.items():
         want = {"CPS4": 1.9, "CPS8R": 2.8}.get(et, 3.5)
         check(order > want, f"Timoshenko-Goodier {et}: order {order:.2f} > {want}")

@@ -29,6 +29,8 @@ module superjoin_elements_beam3
 
   integer, parameter :: NNODE = 3, NDOF = 6, NSTRAIN = 6
   real(wp), parameter :: G2 = 1/sqrt(3.0_wp)     !! 2-point Gauss abscissa (weights 1)
+  real(wp), parameter :: XI_CHECK(5) = [-1.0_wp, -G2, 0.0_wp, G2, 1.0_wp]
+    !! points where the tangent must point along the chord (node 1 to node 3)
 
   type :: beam3_props_t
     !! Rigidities of one B32 (diagonal of the section matrix).
@@ -61,6 +63,15 @@ contains
              return
           end if
        end do
+    end do
+    ! the tangent must keep running from node 1 towards node 3 (ends, middle, Gauss points)
+    do i = 1, size(XI_CHECK)
+       if (.not. (dot_product(matmul(x, [XI_CHECK(i) - 0.5_wp, -2*XI_CHECK(i), XI_CHECK(i) + 0.5_wp]), &
+            x(:, 3) - x(:, 1)) > 0.0_wp)) then
+          call fatal_error(error, EXIT_DECK, 'folded element: the middle node is misplaced, or the '// &
+               'element turns through 180 degrees or more')
+          return
+       end if
     end do
     call require_positive(sec%area, 'cross-section area A', error)
     call require_positive(sec%iy, 'moment of inertia Iy', error)

@@ -1222,13 +1222,14 @@ contains
     integer, intent(in) :: kind, etype
     select case (kind)
     case (DLOAD_PX, DLOAD_PY)
-       dload_fits = etype == ET_B23 .or. etype == ET_B33 .or. etype == ET_B21 .or. etype == ET_B31
+       dload_fits = etype == ET_B23 .or. etype == ET_B33 .or. etype == ET_B21 .or. etype == ET_B31 .or. &
+            etype == ET_B32
     case (DLOAD_PZ)
-       dload_fits = etype == ET_B33 .or. etype == ET_B31
+       dload_fits = etype == ET_B33 .or. etype == ET_B31 .or. etype == ET_B32
     case (DLOAD_P)
        dload_fits = etype == ET_S3 .or. etype == ET_S4
     case (DLOAD_GRAV)
-       dload_fits = etype /= ET_B32
+       dload_fits = .true.
     case default
        dload_fits = .false.
     end select
@@ -1239,11 +1240,9 @@ contains
     character(:), allocatable :: s
     select case (kind)
     case (DLOAD_PX, DLOAD_PY)
-       s = 'PX and PY apply to beams B23, B33, B21 and B31'
+       s = 'PX and PY apply to beams B23, B33, B21, B31 and B32'
     case (DLOAD_PZ)
-       s = 'PZ applies to 3D beams B33 and B31'
-    case (DLOAD_GRAV)
-       s = 'GRAV applies to every type but B32, whose distributed loads are not implemented yet'
+       s = 'PZ applies to 3D beams B33, B31 and B32'
     case default
        s = 'P applies to shells S3 and S4'
     end select

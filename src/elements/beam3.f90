@@ -16,10 +16,12 @@ module superjoin_elements_beam3
   !! plane of the tangent and the section's orientation vector v (default global
   !! Z, global X for a tangent along Z), z = x × y.
   !!
-  !! End forces are K_e u_e at the end nodes (1 and 3) in the frame of the
-  !! tangent there, as the other beams report them; the middle node's share
-  !! follows from the element's equilibrium. Distributed loads are not
-  !! implemented for B32.
+  !! End forces are K_e u_e - f_eq at the end nodes (1 and 3) in the frame of
+  !! the tangent there, as the other beams report them; the middle node's share
+  !! follows from the element's equilibrium. Distributed loads w per unit length
+  !! (global axes, along the curved axis) have the consistent nodal forces
+  !! ∫ Nᵢ w ds (no nodal moments: the rotations are interpolated on their own);
+  !! a B32 keeps its load in global axes where other beams use local ones.
   use superjoin_kinds, only: wp
   use superjoin_error, only: error_t, fatal_error, EXIT_DECK
   use superjoin_model_types, only: section_t, material_t, ET_B31
@@ -37,7 +39,7 @@ module superjoin_elements_beam3
      real(wp) :: d(NSTRAIN) = 0.0_wp     !! EA, Ky, Kz, GJ, EIy, EIz
   end type beam3_props_t
 
-  public :: beam3_stiffness, beam3_end_forces, beam3_nodal_forces
+  public :: beam3_stiffness, beam3_end_forces, beam3_nodal_forces, beam3_load
 
 contains
 
@@ -159,17 +161,46 @@ contains
     ke = 0.5_wp*(ke + transpose(ke))
   end subroutine beam3_stiffness
 
-  pure subroutine beam3_end_forces(x, sec, mat, ue, f, error)
+  pure subroutine beam3_load(x, w, fe, error)
+    !! Consistent nodal loads fe(18) (global axes, node-major) of a load w(3)
+    !! per unit length along the axis, global axes: ∫ Nᵢ w ds by 3 Gauss points.
+    real(wp), intent(in) :: x(:, :)
+    real(wp), intent(in) :: w(3)
+    real(wp), allocatable, intent(out) :: fe(:)
+    type(error_t), allocatable, intent(out) :: error
+    real(wp), parameter :: G3 = sqrt(0.6_wp), W3(3) = [5.0_wp, 8.0_wp, 5.0_wp]/9
+    real(wp) :: xi, nf(NNODE), dn(NNODE)
+    integer :: k, i
+
+    allocate (fe(NDOF*NNODE), source=0.0_wp)
+    if (size(x, 1) /= 3 .or. size(x, 2) /= NNODE) then
+       call fatal_error(error, EXIT_DECK, 'a B32 element needs 3 nodes')
+       return
+    end if
+    do k = 1, 3
+       xi = G3*(k - 2)
+       nf = [xi*(xi - 1)/2, 1 - xi**2, xi*(xi + 1)/2]
+       dn = [xi - 0.5_wp, -2*xi, xi + 0.5_wp]
+       do i = 1, NNODE
+          fe(NDOF*(i - 1) + 1:NDOF*(i - 1) + 3) = fe(NDOF*(i - 1) + 1:NDOF*(i - 1) + 3) + &
+               W3(k)*norm2(matmul(x, dn))*nf(i)*w
+       end do
+    end do
+  end subroutine beam3_load
+
+  pure subroutine beam3_end_forces(x, sec, mat, ue, w, f, error)
     !! Forces and moments the end nodes (1 and 3) exert on the element, each in
     !! the local frame of the tangent at that node: f(1:6, end) = n, vy, vz, t,
-    !! my, mz (K_e u_e; no distributed loads on B32).
+    !! my, mz (K_e u_e - f_eq with f_eq the consistent loads of w(3) per unit
+    !! length, global axes).
     real(wp), intent(in) :: x(:, :)
     type(section_t), intent(in) :: sec
     type(material_t), intent(in) :: mat
     real(wp), intent(in) :: ue(:)
+    real(wp), intent(in) :: w(3)
     real(wp), intent(out) :: f(6, 2)
     type(error_t), allocatable, intent(out) :: error
-    real(wp), allocatable :: ke(:, :)
+    real(wp), allocatable :: ke(:, :), fe(:)
     real(wp) :: fg(NDOF*NNODE), r(3, 3), jac, nf(NNODE), ds(NNODE)
     integer :: a, o
 
@@ -180,7 +211,9 @@ contains
        call fatal_error(error, EXIT_DECK, 'wrong number of element DOF values')
        return
     end if
-    fg = matmul(ke, ue)
+    call beam3_load(x, w, fe, error)
+    if (allocated(error)) return
+    fg = matmul(ke, ue) - fe
     do a = 1, 2
        call point(x, sec, merge(-1.0_wp, 1.0_wp, a == 1), r, jac, nf, ds, error)
        if (allocated(error)) return
@@ -190,16 +223,19 @@ contains
     end do
   end subroutine beam3_end_forces
 
-  pure subroutine beam3_nodal_forces(x, sec, f, fg, error)
-    !! The forces the three nodes exert on the element in global axes, node-major,
-    !! from the end forces f(6, 2) of beam3_end_forces: the ends rotated back, the
-    !! middle node from the element's equilibrium (no distributed load).
+  pure subroutine beam3_nodal_forces(x, sec, f, w, fg, error)
+    !! K_e u_e - f_eq in global axes, node-major, from the end forces f(6, 2) of
+    !! beam3_end_forces and the load w(3) per unit length (global axes): the ends
+    !! rotated back, the middle node from the element's equilibrium (the forces
+    !! sum to -∫ w ds, the moments about node 2 to -Σ (xᵢ - x₂) × f_eq,ᵢ).
     real(wp), intent(in) :: x(:, :)
     type(section_t), intent(in) :: sec
     real(wp), intent(in) :: f(6, 2)
+    real(wp), intent(in) :: w(3)
     real(wp), intent(out) :: fg(:)
     type(error_t), allocatable, intent(out) :: error
     real(wp) :: r(3, 3), jac, nf(NNODE), ds(NNODE), g(6, 2)
+    real(wp), allocatable :: fe(:)
     integer :: a
 
     fg = 0.0_wp
@@ -213,9 +249,12 @@ contains
        g(1:3, a) = matmul(transpose(r), f(1:3, a))
        g(4:6, a) = matmul(transpose(r), f(4:6, a))
     end do
+    call beam3_load(x, w, fe, error)
+    if (allocated(error)) return
     fg(1:6) = g(:, 1)
     fg(13:18) = g(:, 2)
-    fg(7:9) = -g(1:3, 1) - g(1:3, 2)
-    fg(10:12) = -g(4:6, 1) - g(4:6, 2) - cross(x(:, 1) - x(:, 2), g(1:3, 1)) - cross(x(:, 3) - x(:, 2), g(1:3, 2))
+    fg(7:9) = -g(1:3, 1) - g(1:3, 2) - (fe(1:3) + fe(7:9) + fe(13:15))
+    fg(10:12) = -g(4:6, 1) - g(4:6, 2) - cross(x(:, 1) - x(:, 2), g(1:3, 1) + fe(1:3)) &
+         - cross(x(:, 3) - x(:, 2), g(1:3, 2) + fe(13:15))
   end subroutine beam3_nodal_forces
 end module superjoin_elements_beam3

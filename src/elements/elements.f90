@@ -14,7 +14,7 @@ module superjoin_elements
   use superjoin_elements_frame, only: beam_frame
   use superjoin_elements_truss, only: truss_stiffness, truss_end_forces, truss_distributed_load
   use superjoin_elements_beam, only: beam_stiffness, beam_end_forces, beam_load
-  use superjoin_elements_beam3, only: beam3_stiffness, beam3_end_forces, beam3_nodal_forces
+  use superjoin_elements_beam3, only: beam3_stiffness, beam3_end_forces, beam3_nodal_forces, beam3_load
   use superjoin_elements_shell, only: is_plate_type, is_plane_type, is_plane_strain_type, shell_stiffness, shell_resultants, shell_pressure_load, &
        shell_area_load, shell_forces
   implicit none (type, external)
@@ -76,16 +76,19 @@ contains
     end select
   end function element_dof_mask
 
-  pure subroutine element_nodal_forces(etype, x, sec, f, fg, error)
+  pure subroutine element_nodal_forces(etype, x, sec, f, fg, error, q_local)
     !! The forces the nodes exert on the element in global axes, element
     !! ordering (as ke), from its local end forces f(6, 2) (element_end_forces):
-    !! fg = K_e u_e - f_eq, without forming K_e.
+    !! fg = K_e u_e - f_eq, without forming K_e. B32 needs its distributed load
+    !! q_local (as beam_distributed_load returns it; absent: none) for the
+    !! middle node.
     integer, intent(in) :: etype
     real(wp), intent(in) :: x(:, :)
     type(section_t), intent(in) :: sec
     real(wp), intent(in) :: f(6, 2)
     real(wp), intent(out) :: fg(:)
     type(error_t), allocatable, intent(out) :: error
+    real(wp), intent(in), optional :: q_local(3)
     real(wp) :: r(3, 3), length, g(6)
     integer :: a, k, d
     logical :: mask(6)
@@ -106,7 +109,11 @@ contains
           end do
        end do
     case (ET_B32)
-       call beam3_nodal_forces(x, sec, f, fg, error)
+       if (present(q_local)) then
+          call beam3_nodal_forces(x, sec, f, q_local, fg, error)
+       else
+          call beam3_nodal_forces(x, sec, f, [0.0_wp, 0.0_wp, 0.0_wp], fg, error)
+       end if
     case default
        call unsupported(etype, error)
     end select
@@ -163,7 +170,7 @@ contains
     case (ET_B23, ET_B33, ET_B21, ET_B31)
        call beam_end_forces(etype, x, sec, mat, ue, q_local, f, error)
     case (ET_B32)
-       call beam3_end_forces(x, sec, mat, ue, f, error)
+       call beam3_end_forces(x, sec, mat, ue, q_local, f, error)
     case (ET_CPS3, ET_CPS4, ET_S3, ET_S4, ET_CPE3, ET_CPE4, ET_CPS6, ET_CPS8, ET_CPE6, ET_CPE8, ET_CPS8R, ET_CPE8R)
        continue
     case default
@@ -192,8 +199,8 @@ contains
     case (ET_B23, ET_B33, ET_B21, ET_B31)
        call beam_load(etype, x, sec, wglobal, fe, q_local, error)
     case (ET_B32)
-       call fatal_error(error, EXIT_DECK, 'distributed loads on B32 are not implemented yet '// &
-            '(nearest: B31 elements, or nodal loads)')
+       call beam3_load(x, wglobal, fe, error)     ! B32: q_local holds the load in global axes
+       q_local = wglobal
     case default
        if (etype >= 1 .and. etype <= NUM_ELEMENT_TYPES) then
           call fatal_error(error, EXIT_DECK, 'load per unit length on element type '// &

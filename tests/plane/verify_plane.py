@@ -392,7 +392,7 @@ def timoshenko_goodier(exe, work):
 B32_E, B32_NU, B32_A, B32_IY, B32_IZ, B32_J, B32_K = 1000.0, 0.25, 1.0, 0.1, 0.2, 0.15, 300.0
 
 
-def b32_deck(name, points, cloads, ring=False):
+def b32_deck(name, points, cloads, ring=False, dloads=()):
     """B32 chain through the points (end, middle, end, middle, ...), node 1
     clamped; section A, Iy, Iz, J with K = 300 in both directions."""
     out = ["*HEADING", name, "*MATERIAL, NAME=MAT", "*ELASTIC", f" {fmt(B32_E)}, {fmt(B32_NU)}", "*NODE"]
@@ -401,9 +401,17 @@ def b32_deck(name, points, cloads, ring=False):
     out += [f" {k + 1}, {2 * k + 1}, {2 * k + 2}, {2 * k + 3}" for k in range((len(points) - 1) // 2)]
     out += ["*BEAM SECTION, ELSET=B, MATERIAL=MAT", f" {B32_A}, {B32_IY}, {B32_IZ}, {B32_J}",
             "*TRANSVERSE SHEAR STIFFNESS", f" {B32_K}, {B32_K}", "*BOUNDARY", " 1, 1, 6",
-            "*STEP, NAME=LOAD", "*CLOAD"]
-    out += [f" {n}, {d}, {fmt(v)}" for n, d, v in cloads]
+            "*STEP, NAME=LOAD"]
+    if cloads:
+        out.append("*CLOAD")
+        out += [f" {n}, {d}, {fmt(v)}" for n, d, v in cloads]
+    if dloads:
+        out.append("*DLOAD")
+        out += [" " + d for d in dloads]
     out.append("*END STEP")
+    if dloads:
+        out.insert(5, "*DENSITY")
+        out.insert(6, " 2.0")
     return "\n".join(out) + "\n"
 
 
@@ -459,6 +467,26 @@ def b32_tests(exe, work):
         say(f"| {nel} | " + ", ".join(f"{v:.1e}" for v in errs) + " | " + ", ".join(f"{v:.1e}" for v in ferr) + " |")
         check(max(abs(v) for v in errs) < 1e-10, f"{name}: tip displacements exact ({max(map(abs, errs)):.1e})")
         check(max(abs(v) for v in ferr) < 1e-10, f"{name}: root end forces exact ({max(map(abs, ferr)):.1e})")
+
+    say("\n## B32: uniform loads on the straight cantilever (PY = 1; GRAV 0.5 along Z with density 2, A = 1)\n")
+    say("| elements | tip v / (wL^4/8EIy + wL^2/2K) - 1 | tip w / (wL^4/8EIz + wL^2/2K) - 1 | root vz, my / exact - 1 |")
+    say("|---|---|---|---|")
+    for nel in (1, 2):
+        pts = [(length * i / (2 * nel), 0.0, 0.0) for i in range(2 * nel + 1)]
+        tip = 2 * nel + 1
+        res = []
+        for dl, d, ei in (("B, PY, 1.0", 1, B32_IY), ("B, GRAV, 0.5, 0, 0, 1", 2, B32_IZ)):
+            name = f"b32_udl_{nel}_{d}"
+            disp, forces = solve_b32(exe, work, name, b32_deck(name, pts, [], dloads=[dl]))
+            if disp is None:
+                return
+            ref = length ** 4 / (8 * e * ei) + length ** 2 / (2 * B32_K)
+            res.append(disp[tip][d] / ref - 1)
+            if d == 1:
+                f = forces[(1, 1)]
+                ferr = [f[2] / length - 1, f[4] / (-length ** 2 / 2) - 1]
+        say(f"| {nel} | {res[0]:.1e} | {res[1]:.1e} | {ferr[0]:.1e}, {ferr[1]:.1e} |")
+        check(max(abs(v) for v in res + ferr) < 1e-10, f"B32 uniform loads, {nel} elements: exact")
 
     say("\n## B32: quarter ring (radius 10 in the XY plane, clamped at 0 degrees, tip load at 90 degrees)\n")
     say("Closed form of the curved rod (Castigliano, bending + axial + shear, torsion out of plane): "

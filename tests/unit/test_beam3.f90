@@ -6,7 +6,7 @@ program test_beam3
   use superjoin_kinds, only: wp
   use superjoin_error, only: error_t, EXIT_DECK
   use superjoin_model_types, only: section_t, material_t
-  use superjoin_elements_beam3, only: beam3_stiffness, beam3_end_forces, beam3_nodal_forces
+  use superjoin_elements_beam3, only: beam3_stiffness, beam3_end_forces, beam3_nodal_forces, beam3_load
   use superjoin_elements_frame, only: cross
   use superjoin_testing, only: check, finish
   use test_lapack, only: eigenvalues
@@ -43,6 +43,8 @@ contains
     character(*), intent(in) :: what
     real(wp), allocatable :: ke(:, :), w(:)
     real(wp) :: u(18, 6), kmax, ue(18), f(6, 2), fg(18), ku(18)
+    real(wp), allocatable :: fe(:)
+    real(wp), parameter :: WLOAD(3) = [0.3_wp, -0.2_wp, 0.5_wp]
     type(error_t), allocatable :: error
     integer :: m, i, nzero
 
@@ -68,14 +70,22 @@ contains
     nzero = count(abs(w) <= TOL_ZERO_EIG*w(18))
     call check(nzero == 6, what//': exactly 6 zero eigenvalues (got '//itoa(nzero)//')')
     call check(w(7) >= MIN_POSITIVE*w(18), what//': the other eigenvalues clearly positive')
-    ! nodal forces from the end forces (middle node by equilibrium) equal K u
+    ! nodal forces from the end forces (middle node by equilibrium) equal K u - f_eq
     ue = [(sin(0.7_wp*i) * 1.0e-3_wp, i=1, 18)]
-    call beam3_end_forces(x, sec, mat, ue, f, error)
+    call beam3_end_forces(x, sec, mat, ue, WLOAD, f, error)
     call check(.not. allocated(error), what//': end forces without error')
-    call beam3_nodal_forces(x, sec, f, fg, error)
+    call beam3_nodal_forces(x, sec, f, WLOAD, fg, error)
     call check(.not. allocated(error), what//': nodal forces without error')
-    ku = matmul(ke, ue)
-    call check(maxval(abs(fg - ku)) <= TOL_EXACT*maxval(abs(ku)), what//': nodal forces from end forces equal K u')
+    call beam3_load(x, WLOAD, fe, error)
+    ku = matmul(ke, ue) - fe
+    call check(maxval(abs(fg - ku)) <= TOL_EXACT*maxval(abs(ku)), what//': nodal forces from end forces equal K u - f_eq')
+    ! the consistent load of a uniform w sums to w times the arc length (3-point
+    ! Gauss on the parabola: exact for the straight element)
+    if (what == 'straight') then
+       call check(maxval(abs(fe(1:3) + fe(7:9) + fe(13:15) - WLOAD*norm2(x(:, 3) - x(:, 1)))) <= &
+            TOL_EXACT*maxval(abs(WLOAD))*norm2(x(:, 3) - x(:, 1)), what//': load sums to w L')
+       call check(maxval(abs(fe(7:9) - 4*fe(1:3))) <= TOL_EXACT*maxval(abs(fe)), what//': shares L/6, 2L/3, L/6')
+    end if
   end subroutine test_element
 
   pure function unit(m) result(e)

@@ -200,7 +200,7 @@ contains
                  if (own_ku(isub)) cycle
                  ! r += K_e u_e - f_eq (the consistent load is added back below)
                  call element_nodal_forces(s%elem_type(e), s%x(:, s%elem_nodes(1:nn, e)), sec, f, &
-                      fg(1:n), inner)
+                      fg(1:n), inner, q_local=ql(:, ie, is))
                  if (allocated(inner)) then
                     call add_error_line(error, EXIT_DECK, inner%message)
                     return

@@ -255,7 +255,8 @@ contains
     if (abs(inst%rot(3, 3) - 1.0_wp) > PLANE_ROT_TOL) then
        do e = 1, m%nelem
           select case (m%elem_type(e))
-          case (ET_T2D2, ET_B23, ET_CPS3, ET_CPS4)
+          case (ET_T2D2, ET_B23, ET_CPS3, ET_CPS4, ET_CPE3, ET_CPE4, ET_CPS6, ET_CPS8, ET_CPE6, ET_CPE8, &
+               ET_CPS8R, ET_CPE8R)
              call report_loc(st, inst%loc, '*INSTANCE '//name//' turns element '//itoa(m%elem_id(e))//' ('// &
                   trim(ELEMENT_TYPE_NAMES(m%elem_type(e)))//') of its part out of the XY plane '// &
                   '(2D parts turn only about an axis parallel to Z)')
@@ -472,6 +473,16 @@ contains
         do e = 1, sub%nelem
            nn = ELEMENT_NODE_COUNT(sub%elem_type(e))
            if (any(sub%elem_nodes(1:nn, e) == 0)) cycle   ! undefined node, reported
+           select case (sub%elem_type(e))
+           case (ET_CPS6, ET_CPS8, ET_CPE6, ET_CPE8, ET_CPS8R, ET_CPE8R, ET_B32)
+              if (count(inset(sub%elem_nodes(1:nn, e))) >= 2) then
+                 call report_loc(st, cb%loc, '*INTERFACE '//cb%name//': element '//itoa(sub%elem_id(e))// &
+                      ' ('//trim(ELEMENT_TYPE_NAMES(sub%elem_type(e)))//') on node set '// &
+                      ref_text(cb%iface_master)//' is a second-order element; the tributary shares of '// &
+                      'its mid-side nodes are not implemented: join it with *CONTACT lines')
+                 return
+              end if
+           end select
            select case (sub%elem_type(e))
            case (ET_CPS3, ET_CPS4, ET_S3, ET_S4)
               if (all(inset(sub%elem_nodes(1:nn, e)))) face = .true.

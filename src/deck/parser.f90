@@ -726,7 +726,7 @@ contains
     end if
     st%card_etype = 0
     do k = 1, NUM_ELEMENT_TYPES
-       if (trim(ELEMENT_TYPE_NAMES(k)) == typ) st%card_etype = k
+       if (len_trim(ELEMENT_TYPE_NAMES(k)) > 0 .and. trim(ELEMENT_TYPE_NAMES(k)) == typ) st%card_etype = k
     end do
     if (st%card_etype == 0) then
        call report_loc(st, loc, unsupported_type_message(clip(typ)))

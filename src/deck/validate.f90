@@ -7,7 +7,8 @@ module superjoin_deck_validate
        link_t, support_t, cload_t, dload_t, source_loc_t, find_node, find_elem, &
        ELEMENT_TYPE_NAMES, ELEMENT_NODE_COUNT, NDOF_NODE, SEC_SOLID, SEC_BEAM, SEC_SHELL, &
        LINK_FINITE, LINK_RIGID, ET_T2D2, ET_T3D2, ET_B23, ET_B33, ET_CPS3, ET_CPS4, &
-       ET_S3, ET_S4, ET_B21, ET_B31, ET_CPE3, ET_CPE4, DLOAD_PX, DLOAD_PY, DLOAD_PZ, DLOAD_P, DLOAD_GRAV, DLOAD_NAMES
+       ET_S3, ET_S4, ET_B21, ET_B31, ET_CPE3, ET_CPE4, ET_CPS6, ET_CPS8, ET_CPE6, ET_CPE8, ET_CPS8R, ET_CPE8R, &
+       ET_B32, DLOAD_PX, DLOAD_PY, DLOAD_PZ, DLOAD_P, DLOAD_GRAV, DLOAD_NAMES
   use superjoin_deck_lexer, only: itoa, plural
   use superjoin_deck_state, only: deck_state_t, sub_b_t, ref_t, load_b_t, report, report_loc, report_oom, find_set, &
        CH_IDS, CH_GEN, CH_RANGE, CH_REF, BEAM_2D_VALUES, BEAM_3D_VALUES, SUBK_INSTANCE
@@ -521,13 +522,13 @@ contains
                ncps = ncps + 1
                if (sb%kind /= SEC_SOLID) call bad(e)
             end if
-         case (ET_CPE3, ET_CPE4)
+         case (ET_CPE3, ET_CPE4, ET_CPS6, ET_CPS8, ET_CPE6, ET_CPE8, ET_CPS8R, ET_CPE8R)
             ncps = ncps + 1
             if (sb%kind /= SEC_SOLID) call bad(e)
          case (ET_B23, ET_B21)
             nb23 = nb23 + 1
             if (sb%kind /= SEC_BEAM) call bad(e)
-         case (ET_B33, ET_B31)
+         case (ET_B33, ET_B31, ET_B32)
             nb33 = nb33 + 1
             if (sb%kind /= SEC_BEAM) call bad(e)
          case (ET_S3, ET_S4)
@@ -632,7 +633,7 @@ contains
     integer, intent(in) :: etype
     character(:), allocatable :: card
     select case (etype)
-    case (ET_B23, ET_B33, ET_B21, ET_B31)
+    case (ET_B23, ET_B33, ET_B21, ET_B31, ET_B32)
        card = '*BEAM SECTION'
     case (ET_S3, ET_S4)
        card = '*SHELL SECTION'
@@ -1221,9 +1222,10 @@ contains
     integer, intent(in) :: kind, etype
     select case (kind)
     case (DLOAD_PX, DLOAD_PY)
-       dload_fits = etype == ET_B23 .or. etype == ET_B33 .or. etype == ET_B21 .or. etype == ET_B31
+       dload_fits = etype == ET_B23 .or. etype == ET_B33 .or. etype == ET_B21 .or. etype == ET_B31 .or. &
+            etype == ET_B32
     case (DLOAD_PZ)
-       dload_fits = etype == ET_B33 .or. etype == ET_B31
+       dload_fits = etype == ET_B33 .or. etype == ET_B31 .or. etype == ET_B32
     case (DLOAD_P)
        dload_fits = etype == ET_S3 .or. etype == ET_S4
     case (DLOAD_GRAV)
@@ -1238,9 +1240,9 @@ contains
     character(:), allocatable :: s
     select case (kind)
     case (DLOAD_PX, DLOAD_PY)
-       s = 'PX and PY apply to beams B23, B33, B21 and B31'
+       s = 'PX and PY apply to beams B23, B33, B21, B31 and B32'
     case (DLOAD_PZ)
-       s = 'PZ applies to 3D beams B33 and B31'
+       s = 'PZ applies to 3D beams B33, B31 and B32'
     case default
        s = 'P applies to shells S3 and S4'
     end select

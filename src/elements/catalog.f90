@@ -21,12 +21,8 @@ module superjoin_elements_catalog
        advice_t('CPS4I', 'nearest: CPS4, which has incompatible modes (QM6)'), &
        advice_t('CPE4I', 'nearest: CPE4, which has incompatible modes (QM6)'), &
        advice_t('CPE4H', 'hybrid (pressure) elements are not implemented; nearest: CPE4'), &
-       advice_t('CPS6', 'second-order plane elements are not implemented yet; nearest: CPS3'), &
-       advice_t('CPE6', 'second-order plane elements are not implemented yet; nearest: CPE3'), &
-       advice_t('CPS8', 'second-order plane elements are not implemented yet; nearest: CPS4'), &
-       advice_t('CPS8R', 'second-order plane elements are not implemented yet; nearest: CPS4'), &
-       advice_t('CPE8', 'second-order plane elements are not implemented yet; nearest: CPE4'), &
-       advice_t('CPE8R', 'second-order plane elements are not implemented yet; nearest: CPE4'), &
+       advice_t('CPS6M', 'nearest: CPS6 (six-node triangle, 3-point integration)'), &
+       advice_t('CPE6M', 'nearest: CPE6 (six-node triangle, 3-point integration)'), &
        advice_t('S4R', 'thick (shear-flexible) shells are not implemented yet; nearest: S4, ' // &
                 'a thin (Kirchhoff) shell without transverse shear deformation'), &
        advice_t('S3R', 'thick (shear-flexible) shells are not implemented yet; nearest: S3, ' // &
@@ -34,8 +30,9 @@ module superjoin_elements_catalog
        advice_t('S8R', 'eight-node thick shells are not implemented yet; nearest: S4 (thin shell)'), &
        advice_t('S4R5', 'nearest: S4 (thin shell)'), &
        advice_t('STRI3', 'nearest: S3 (thin shell)'), &
-       advice_t('B32', 'three-node beams are not implemented yet; nearest: B31 (two-node Timoshenko beam)'), &
-       advice_t('B22', 'three-node beams are not implemented yet; nearest: B21 (two-node Timoshenko beam)'), &
+       advice_t('B32R', 'nearest: B32 (three-node Timoshenko beam, two integration points)'), &
+       advice_t('B22', 'planar three-node beams are not implemented yet; nearest: B21 (two-node ' // &
+                'Timoshenko beam) or B32 (three-node beam in space)'), &
        advice_t('B31H', 'hybrid beams are not implemented; nearest: B31'), &
        advice_t('B21H', 'hybrid beams are not implemented; nearest: B21'), &
        advice_t('B31OS', 'open-section warping beams are not implemented; nearest: B31'), &
@@ -63,6 +60,7 @@ contains
     end do
     text = text//' (supported: '//trim(ELEMENT_TYPE_NAMES(1))
     do k = 2, NUM_ELEMENT_TYPES
+       if (len_trim(ELEMENT_TYPE_NAMES(k)) == 0) cycle   ! a reserved number
        text = text//', '//trim(ELEMENT_TYPE_NAMES(k))
     end do
     text = text//')'

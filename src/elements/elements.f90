@@ -9,11 +9,13 @@ module superjoin_elements
   use superjoin_error, only: error_t, fatal_error, EXIT_DECK
   use superjoin_model_types, only: section_t, material_t, ET_T2D2, ET_T3D2, ET_B23, ET_B33, &
        ET_CPS3, ET_CPS4, ET_S3, ET_S4, ET_B21, ET_B31, ET_CPE3, ET_CPE4, NUM_ELEMENT_TYPES, ELEMENT_TYPE_NAMES, &
+       ET_CPS6, ET_CPS8, ET_CPE6, ET_CPE8, ET_CPS8R, ET_CPE8R, ET_B32, &
        DLOAD_PX, DLOAD_PY, DLOAD_PZ, DLOAD_P
   use superjoin_elements_frame, only: beam_frame
   use superjoin_elements_truss, only: truss_stiffness, truss_end_forces, truss_distributed_load
   use superjoin_elements_beam, only: beam_stiffness, beam_end_forces, beam_load
-  use superjoin_elements_shell, only: is_plate_type, shell_stiffness, shell_resultants, shell_pressure_load, &
+  use superjoin_elements_beam3, only: beam3_stiffness, beam3_end_forces, beam3_nodal_forces, beam3_load
+  use superjoin_elements_shell, only: is_plate_type, is_plane_type, is_plane_strain_type, shell_stiffness, shell_resultants, shell_pressure_load, &
        shell_area_load, shell_forces
   implicit none (type, external)
   private
@@ -21,7 +23,10 @@ module superjoin_elements
   public :: element_node_dofs, element_dof_mask, element_stiffness, element_end_forces, beam_distributed_load, &
        element_nodal_forces, element_distributed_load, element_gravity_load
   public :: is_plate_type, shell_resultants, shell_forces
-    !! is_plate_type(etype): CPS3, CPS4, CPE3, CPE4, S3, S4. shell_resultants(etype, x, sec,
+  public :: is_plane_type, is_plane_strain_type
+    !! is_plane_type(etype): plane stress and plane strain types (CPS*, CPE*);
+    !! is_plane_strain_type(etype): CPE*.
+    !! is_plate_type(etype): the plane types (CPS*, CPE*), S3, S4. shell_resultants(etype, x, sec,
     !! mat, ue, res, error): nx, ny, nxy, mx, my, mxy at the centroid, element
     !! frame; shell_forces(etype, x, sec, mat, ue(:, nstep), res(6, nstep),
     !! fg(:, nstep), error): resultants and K_e u_e of every step with one
@@ -35,18 +40,18 @@ contains
   pure function element_node_dofs(etype) result(dofs)
     !! DOF numbers (1..6: ux, uy, uz, rx, ry, rz) carried by each node of an
     !! element type: T2D2 [1,2]; T3D2 [1,2,3]; B23, B21 [1,2,6]; B33, B31 [1..6];
-    !! CPS3/CPS4/CPE3/CPE4 [1,2]; S3/S4 [1..6]; an unknown type gives an empty array.
+    !! CPS3/CPS4/CPE3/CPE4 and CPS6/CPS8/CPS8R/CPE6/CPE8/CPE8R [1,2]; S3/S4 [1..6]; an unknown type gives an empty array.
     integer, intent(in) :: etype
     integer, allocatable :: dofs(:)
     integer :: i
     select case (etype)
-    case (ET_T2D2, ET_CPS3, ET_CPS4, ET_CPE3, ET_CPE4)
+    case (ET_T2D2, ET_CPS3, ET_CPS4, ET_CPE3, ET_CPE4, ET_CPS6, ET_CPS8, ET_CPE6, ET_CPE8, ET_CPS8R, ET_CPE8R)
        dofs = [1, 2]
     case (ET_T3D2)
        dofs = [1, 2, 3]
     case (ET_B23, ET_B21)
        dofs = [1, 2, 6]
-    case (ET_B33, ET_B31, ET_S3, ET_S4)
+    case (ET_B33, ET_B31, ET_S3, ET_S4, ET_B32)
        dofs = [(i, i=1, 6)]
     case default
        allocate (dofs(0))
@@ -60,27 +65,30 @@ contains
     logical :: mask(6)
     mask = .false.
     select case (etype)
-    case (ET_T2D2, ET_CPS3, ET_CPS4, ET_CPE3, ET_CPE4)
+    case (ET_T2D2, ET_CPS3, ET_CPS4, ET_CPE3, ET_CPE4, ET_CPS6, ET_CPS8, ET_CPE6, ET_CPE8, ET_CPS8R, ET_CPE8R)
        mask(1:2) = .true.
     case (ET_T3D2)
        mask(1:3) = .true.
     case (ET_B23, ET_B21)
        mask([1, 2, 6]) = .true.
-    case (ET_B33, ET_B31, ET_S3, ET_S4)
+    case (ET_B33, ET_B31, ET_S3, ET_S4, ET_B32)
        mask = .true.
     end select
   end function element_dof_mask
 
-  pure subroutine element_nodal_forces(etype, x, sec, f, fg, error)
+  pure subroutine element_nodal_forces(etype, x, sec, f, fg, error, q_local)
     !! The forces the nodes exert on the element in global axes, element
     !! ordering (as ke), from its local end forces f(6, 2) (element_end_forces):
-    !! fg = K_e u_e - f_eq, without forming K_e.
+    !! fg = K_e u_e - f_eq, without forming K_e. B32 needs its distributed load
+    !! q_local (as beam_distributed_load returns it; absent: none) for the
+    !! middle node.
     integer, intent(in) :: etype
     real(wp), intent(in) :: x(:, :)
     type(section_t), intent(in) :: sec
     real(wp), intent(in) :: f(6, 2)
     real(wp), intent(out) :: fg(:)
     type(error_t), allocatable, intent(out) :: error
+    real(wp), intent(in), optional :: q_local(3)
     real(wp) :: r(3, 3), length, g(6)
     integer :: a, k, d
     logical :: mask(6)
@@ -100,6 +108,12 @@ contains
              fg(k) = g(d)
           end do
        end do
+    case (ET_B32)
+       if (present(q_local)) then
+          call beam3_nodal_forces(x, sec, f, q_local, fg, error)
+       else
+          call beam3_nodal_forces(x, sec, f, [0.0_wp, 0.0_wp, 0.0_wp], fg, error)
+       end if
     case default
        call unsupported(etype, error)
     end select
@@ -107,7 +121,7 @@ contains
 
   pure subroutine element_stiffness(etype, x, sec, mat, ke, error)
     !! Element stiffness in global axes, node-major ordering (node 1 DOFs in
-    !! element_node_dofs order, then node 2 ...). x(3, nnode) are the node
+    !! element_node_dofs order, then node 2 ...; B32: end, middle, end). x(3, nnode) are the node
     !! coordinates. Errors: zero-length element, orientation vector parallel to
     !! beam axis, nonpositive A, I, J, t or E, plane-stress element out of the
     !! XY plane, zero area, distorted (non-convex) quadrilateral.
@@ -122,7 +136,9 @@ contains
        call truss_stiffness(etype, x, sec, mat, ke, error)
     case (ET_B23, ET_B33, ET_B21, ET_B31)
        call beam_stiffness(etype, x, sec, mat, ke, error)
-    case (ET_CPS3, ET_CPS4, ET_S3, ET_S4, ET_CPE3, ET_CPE4)
+    case (ET_B32)
+       call beam3_stiffness(x, sec, mat, ke, error)
+    case (ET_CPS3, ET_CPS4, ET_S3, ET_S4, ET_CPE3, ET_CPE4, ET_CPS6, ET_CPS8, ET_CPE6, ET_CPE8, ET_CPS8R, ET_CPE8R)
        call shell_stiffness(etype, x, sec, mat, ke, error)
     case default
        call unsupported(etype, error)
@@ -153,7 +169,9 @@ contains
        call truss_end_forces(etype, x, sec, mat, ue, q_local, f, error)
     case (ET_B23, ET_B33, ET_B21, ET_B31)
        call beam_end_forces(etype, x, sec, mat, ue, q_local, f, error)
-    case (ET_CPS3, ET_CPS4, ET_S3, ET_S4, ET_CPE3, ET_CPE4)
+    case (ET_B32)
+       call beam3_end_forces(x, sec, mat, ue, q_local, f, error)
+    case (ET_CPS3, ET_CPS4, ET_S3, ET_S4, ET_CPE3, ET_CPE4, ET_CPS6, ET_CPS8, ET_CPE6, ET_CPE8, ET_CPS8R, ET_CPE8R)
        continue
     case default
        call unsupported(etype, error)
@@ -180,6 +198,9 @@ contains
        call truss_distributed_load(etype, x, sec, wglobal, fe, q_local, error)
     case (ET_B23, ET_B33, ET_B21, ET_B31)
        call beam_load(etype, x, sec, wglobal, fe, q_local, error)
+    case (ET_B32)
+       call beam3_load(x, wglobal, fe, error)     ! B32: q_local holds the load in global axes
+       q_local = wglobal
     case default
        if (etype >= 1 .and. etype <= NUM_ELEMENT_TYPES) then
           call fatal_error(error, EXIT_DECK, 'load per unit length on element type '// &
@@ -233,9 +254,9 @@ contains
     type(error_t), allocatable, intent(out) :: error
     q_local = 0.0_wp
     select case (etype)
-    case (ET_T2D2, ET_T3D2, ET_B23, ET_B33, ET_B21, ET_B31)
+    case (ET_T2D2, ET_T3D2, ET_B23, ET_B33, ET_B21, ET_B31, ET_B32)
        call beam_distributed_load(etype, x, sec, mat%density*sec%area*accel, fe, q_local, error)
-    case (ET_CPS3, ET_CPS4, ET_S3, ET_S4, ET_CPE3, ET_CPE4)
+    case (ET_CPS3, ET_CPS4, ET_S3, ET_S4, ET_CPE3, ET_CPE4, ET_CPS6, ET_CPS8, ET_CPE6, ET_CPE8, ET_CPS8R, ET_CPE8R)
        call shell_area_load(etype, x, mat%density*sec%thickness*accel, fe, error)
     case default
        call unsupported(etype, error)

@@ -78,6 +78,7 @@ module superjoin_elements_membrane
 
   public :: membrane_stiffness, membrane_resultants, membrane_drill_stiffness
   public :: plane_strain_stiffness, plane_strain_resultants
+  public :: plane_stress, plane_strain, check_plane_material
 
 contains
 
@@ -242,13 +243,8 @@ contains
        call fatal_error(error, EXIT_DECK, 'a membrane element needs 3 or 4 nodes in a 2D frame')
        return
     end if
-    call require_positive(t, 'thickness t', error)
-    call require_positive(e, 'Young''s modulus E', error)
+    call check_plane_material(t, e, nu, state, error)
     if (allocated(error)) return
-    if (.not. (nu > NU_MIN .and. nu < NU_MAX)) then
-       call fatal_error(error, EXIT_DECK, 'Poisson''s ratio nu must lie in (-1, 0.5) for '//state)
-       return
-    end if
 
     area = polygon_area(xl)
     lmax2 = 0.0_wp
@@ -281,6 +277,20 @@ contains
        end if
     end do
   end subroutine check_element
+
+  pure subroutine check_plane_material(t, e, nu, state, error)
+    !! Data checks of a plane element: t > 0, E > 0, -1 < nu < 0.5; `state`
+    !! ('plane stress' or 'plane strain') goes into the nu message.
+    real(wp), intent(in) :: t, e, nu
+    character(*), intent(in) :: state
+    type(error_t), allocatable, intent(out) :: error
+    call require_positive(t, 'thickness t', error)
+    call require_positive(e, 'Young''s modulus E', error)
+    if (allocated(error)) return
+    if (.not. (nu > NU_MIN .and. nu < NU_MAX)) then
+       call fatal_error(error, EXIT_DECK, 'Poisson''s ratio nu must lie in (-1, 0.5) for '//state)
+    end if
+  end subroutine check_plane_material
 
   pure real(wp) function polygon_area(xl) result(area)
     !! Signed area of the polygon xl(2, n) (positive counter-clockwise).

@@ -1,6 +1,8 @@
 module superjoin_elements_shell
   !! Plane-stress elements CPS3/CPS4 and plane-strain elements CPE3/CPE4 (XY
-  !! plane, DOFs 1, 2, the same elements with another elasticity matrix) and flat shells
+  !! plane, DOFs 1, 2, the same elements with another elasticity matrix), their
+  !! second-order relatives CPS6/CPS8/CPS8R and CPE6/CPE8/CPE8R
+  !! (superjoin_elements_quadratic), and flat shells
   !! S3/S4 (DOFs 1-6): the element frame, the membrane (superjoin_elements_membrane)
   !! and plate bending (superjoin_elements_plate) parts put together, rotated
   !! to global axes.
@@ -15,15 +17,17 @@ module superjoin_elements_shell
   use superjoin_kinds, only: wp
   use superjoin_error, only: error_t, fatal_error, EXIT_DECK
   use superjoin_model_types, only: section_t, material_t, ET_CPS3, ET_CPS4, ET_S3, ET_S4, &
-       ET_CPE3, ET_CPE4, ELEMENT_NODE_COUNT
+       ET_CPE3, ET_CPE4, ELEMENT_NODE_COUNT, ET_CPS6, ET_CPS8, ET_CPE6, ET_CPE8, ET_CPS8R, ET_CPE8R
   use superjoin_elements_membrane, only: membrane_stiffness, membrane_drill_stiffness, membrane_resultants, &
        plane_strain_stiffness, plane_strain_resultants
   use superjoin_elements_plate, only: plate_stiffness, plate_moments, plate_pressure_load
   use superjoin_elements_frame, only: cross
+  use superjoin_elements_quadratic, only: plane_props_t, quadratic_stiffness, quadratic_resultants, &
+       quadratic_shape_integrals
   implicit none (type, external)
   private
 
-  public :: is_plate_type, is_plane_type, shell_frame, shell_stiffness, shell_resultants, shell_forces, shell_pressure_load, &
+  public :: is_plate_type, is_plane_type, is_plane_strain_type, is_quadratic_plane_type, shell_frame, shell_stiffness, shell_resultants, shell_forces, shell_pressure_load, &
        shell_area_load
 
   integer, parameter :: MEMBRANE_DOFS(3) = [1, 2, 6]
@@ -42,15 +46,50 @@ contains
   end function is_plate_type
 
   elemental logical function is_plane_type(etype)
-    !! True for the plane-stress (CPS3, CPS4) and plane-strain (CPE3, CPE4) types.
+    !! True for the plane-stress (CPS3, CPS4, CPS6, CPS8, CPS8R) and plane-strain
+    !! (CPE3, CPE4, CPE6, CPE8, CPE8R) types.
     integer, intent(in) :: etype
-    is_plane_type = etype == ET_CPS3 .or. etype == ET_CPS4 .or. etype == ET_CPE3 .or. etype == ET_CPE4
+    is_plane_type = etype == ET_CPS3 .or. etype == ET_CPS4 .or. etype == ET_CPE3 .or. etype == ET_CPE4 &
+         .or. is_quadratic_plane_type(etype)
   end function is_plane_type
+
+  elemental logical function is_plane_strain_type(etype)
+    !! True for the plane-strain types CPE3, CPE4, CPE6, CPE8, CPE8R.
+    integer, intent(in) :: etype
+    select case (etype)
+    case (ET_CPE3, ET_CPE4, ET_CPE6, ET_CPE8, ET_CPE8R)
+       is_plane_strain_type = .true.
+    case default
+       is_plane_strain_type = .false.
+    end select
+  end function is_plane_strain_type
+
+  elemental logical function is_quadratic_plane_type(etype)
+    !! True for the second-order plane types CPS6, CPS8, CPS8R, CPE6, CPE8, CPE8R.
+    integer, intent(in) :: etype
+    select case (etype)
+    case (ET_CPS6, ET_CPS8, ET_CPS8R, ET_CPE6, ET_CPE8, ET_CPE8R)
+       is_quadratic_plane_type = .true.
+    case default
+       is_quadratic_plane_type = .false.
+    end select
+  end function is_quadratic_plane_type
+
+  pure function quadratic_props(etype, sec, mat) result(props)
+    !! Data of a second-order plane element.
+    integer, intent(in) :: etype
+    type(section_t), intent(in) :: sec
+    type(material_t), intent(in) :: mat
+    type(plane_props_t) :: props
+    props = plane_props_t(t=sec%thickness, e=mat%e, nu=mat%nu, strain=is_plane_strain_type(etype), &
+         reduced=etype == ET_CPS8R .or. etype == ET_CPE8R)
+  end function quadratic_props
 
   pure subroutine shell_frame(x, r, xl, h, error)
     !! Element frame of a 3- or 4-node element with nodes x(3, n): rows of r
     !! are the local x, y, z axes; xl(2, n) the local coordinates of the nodes
     !! projected onto the mean plane, h(n) their offsets along z (0 unless warped).
+    !! A 6- or 8-node element takes the frame of its corners (the first 3 or 4 nodes).
     real(wp), intent(in) :: x(:, :)
     real(wp), intent(out) :: r(3, 3)
     real(wp), intent(out) :: xl(2, size(x, 2)), h(size(x, 2))
@@ -61,7 +100,7 @@ contains
     r = 0.0_wp
     xl = 0.0_wp
     h = 0.0_wp
-    if (n == 4) then
+    if (n == 4 .or. n == 8) then
        nrm = cross(x(:, 3) - x(:, 1), x(:, 4) - x(:, 2))
     else
        nrm = cross(x(:, 2) - x(:, 1), x(:, 3) - x(:, 1))
@@ -77,7 +116,7 @@ contains
        h(i) = dot_product(x(:, i) - c, nrm)
        p(:, i) = x(:, i) - h(i)*nrm
     end do
-    if (n == 3) h = 0.0_wp
+    if (n == 3 .or. n == 6) h = 0.0_wp
     ex = p(:, 2) - p(:, 1)
     if (norm2(ex) <= epsilon(1.0_wp)*size_e) then
        call fatal_error(error, EXIT_DECK, 'nodes 1 and 2 coincide')
@@ -184,6 +223,10 @@ contains
     n = size(x, 2)
     call setup(etype, x, r, xl, h, error)
     if (allocated(error)) return
+    if (is_quadratic_plane_type(etype)) then
+       call quadratic_stiffness(xl, quadratic_props(etype, sec, mat), kf, error)
+       return
+    end if
     if (etype == ET_CPS3 .or. etype == ET_CPS4) then
        call membrane_stiffness(xl, sec%thickness, mat%e, mat%nu, kf, error)
        return
@@ -213,6 +256,10 @@ contains
     real(wp) :: um(2*size(xl, 2)), ub(3*size(xl, 2))
     integer :: i
     res = 0.0_wp
+    if (is_quadratic_plane_type(etype)) then
+       call quadratic_resultants(xl, quadratic_props(etype, sec, mat), d, res(1:3), error)
+       return
+    end if
     if (etype == ET_CPS3 .or. etype == ET_CPS4) then
        call membrane_resultants(xl, sec%thickness, mat%e, mat%nu, d, res(1:3), error)
        return
@@ -342,8 +389,13 @@ contains
     n = size(x, 2)
     call setup(etype, x, r, xl, h, error)
     if (allocated(error)) return
-    ! plate_pressure_load with p = 1 gives the integrals of the shape functions
-    call plate_pressure_load(xl, 1.0_wp, fb)
+    if (is_quadratic_plane_type(etype)) then
+       allocate (fb(3*n), source=0.0_wp)
+       call quadratic_shape_integrals(xl, fb(1:3*n:3))
+    else
+       ! plate_pressure_load with p = 1 gives the integrals of the shape functions
+       call plate_pressure_load(xl, 1.0_wp, fb)
+    end if
     if (is_plane_type(etype)) then
        if (w(3) /= 0.0_wp) then
           call fatal_error(error, EXIT_DECK, 'load along Z on a plane element (XY plane)')

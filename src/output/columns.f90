@@ -25,8 +25,16 @@ contains
     call lu%put(repeat(' ', indent))
     call lu%put_field(model%subs(isub)%name, 20)
     call lu%put_int(int(model%subs(isub)%elem_id(ie), i8), 10)
-    call lu%put('  ')
-    call lu%put_field(ELEMENT_TYPE_NAMES(model%subs(isub)%elem_type(ie)), 4)
+    ! a five-letter type (CPS8R) takes one of the two blanks: the columns stay in place
+    associate (name => ELEMENT_TYPE_NAMES(model%subs(isub)%elem_type(ie)))
+      if (len_trim(name) > 4) then
+         call lu%put(' ')
+         call lu%put_field(name, 5)
+      else
+         call lu%put('  ')
+         call lu%put_field(name, 4)
+      end if
+    end associate
   end subroutine element_prefix
 
   elemental function chop(x, scale) result(y)

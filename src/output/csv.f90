@@ -4,7 +4,7 @@ module superjoin_output_csv
   use superjoin_kinds, only: wp, i8, ip
   use superjoin_error, only: error_t, fatal_error, EXIT_IO
   use superjoin_model_types, only: model_t, NDOF_NODE, ELEMENT_TYPE_NAMES, ET_T2D2, ET_T3D2, &
-       ET_B23, ET_B33, ET_B21, ET_B31, REQ_NODE_FILE, REQ_EL_FILE
+       ET_B23, ET_B33, ET_B21, ET_B31, ET_B32, REQ_NODE_FILE, REQ_EL_FILE
   use superjoin_model_request_masks, only: any_request_of, request_mask, asks_variable
   use superjoin_analysis_results, only: result_fields_t
   use superjoin_elements, only: is_plate_type
@@ -161,7 +161,7 @@ contains
           do isub = 1, size(model%subs)
              do e = 1, model%subs(isub)%nelem
                 select case (model%subs(isub)%elem_type(e))
-                case (ET_T2D2, ET_T3D2, ET_B23, ET_B33, ET_B21, ET_B31)
+                case (ET_T2D2, ET_T3D2, ET_B23, ET_B33, ET_B21, ET_B31, ET_B32)
                 case default
                    cycle
                 end select

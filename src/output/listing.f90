@@ -4,8 +4,8 @@ module superjoin_output_listing
   use superjoin_kinds, only: wp, i8, ip
   use superjoin_error, only: error_t, fatal_error, EXIT_IO
   use superjoin_model_types, only: model_t, NDOF_NODE, LINK_RIGID, &
-       RIGID_ELIMINATE, ET_CPS3, ET_CPS4, ET_CPE3, ET_CPE4
-  use superjoin_elements, only: is_plate_type
+       RIGID_ELIMINATE
+  use superjoin_elements, only: is_plate_type, is_plane_type, is_plane_strain_type
   use superjoin_analysis_results, only: results_t
   use superjoin_utils_process, only: temp_register, temp_unregister
   use superjoin_output_text_buffer, only: text_buffer_t
@@ -373,8 +373,8 @@ contains
           iel = res%fields%elem_offset(isub) + ie
           t = model%subs(isub)%sections(model%subs(isub)%elem_section(ie))%thickness
           nsurf = 2
-          if (model%subs(isub)%elem_type(ie) == ET_CPS3 .or. model%subs(isub)%elem_type(ie) == ET_CPS4) nsurf = 1
-          plane_strain = model%subs(isub)%elem_type(ie) == ET_CPE3 .or. model%subs(isub)%elem_type(ie) == ET_CPE4
+          if (is_plane_type(model%subs(isub)%elem_type(ie))) nsurf = 1
+          plane_strain = is_plane_strain_type(model%subs(isub)%elem_type(ie))
           if (plane_strain) nsurf = 1
           do k = 1, nsurf
              sig(1:3) = res%fields%plate(1:3, iel, is)/t

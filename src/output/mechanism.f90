@@ -5,10 +5,11 @@ module superjoin_output_mechanism
   !! Both written to a temporary name and renamed when complete.
   use superjoin_kinds, only: wp, i8, ip
   use superjoin_error, only: error_t, fatal_error, EXIT_IO
-  use superjoin_model_types, only: model_t, NDOF_NODE, ELEMENT_NODE_COUNT
+  use superjoin_model_types, only: model_t, NDOF_NODE, ELEMENT_NODE_COUNT, ET_B32
   use superjoin_output_posix, only: rename_file, remove_file, make_directory
   use superjoin_output_text_buffer, only: text_buffer_t
-  use superjoin_output_vtk, only: vtk_base, VTK_VERTEX, VTK_LINE, VTK_TRIANGLE, VTK_QUAD
+  use superjoin_output_vtk, only: vtk_base, VTK_VERTEX, VTK_LINE, VTK_TRIANGLE, VTK_QUAD, &
+       VTK_QUADRATIC_TRIANGLE, VTK_QUADRATIC_QUAD, VTK_POLY_LINE
   use superjoin_config, only: SUPERJOIN_VERSION
   use superjoin_utils_strings, only: itoa, full_real
   implicit none (type, external)
@@ -145,7 +146,11 @@ contains
     call open_array('UInt8', 'types', 1)
     do isub = 1, size(model%subs)
        do e = 1, model%subs(isub)%nelem
-          call lu%line(itoa(cell_of(ELEMENT_NODE_COUNT(model%subs(isub)%elem_type(e)))))
+          if (model%subs(isub)%elem_type(e) == ET_B32) then
+             call lu%line(itoa(VTK_POLY_LINE))     ! a three-node beam, not a triangle
+          else
+             call lu%line(itoa(cell_of(ELEMENT_NODE_COUNT(model%subs(isub)%elem_type(e)))))
+          end if
        end do
     end do
     do il = 1, size(model%links)
@@ -235,6 +240,10 @@ contains
        cell_of = VTK_TRIANGLE
     case (4)
        cell_of = VTK_QUAD
+    case (6)
+       cell_of = VTK_QUADRATIC_TRIANGLE
+    case (8)
+       cell_of = VTK_QUADRATIC_QUAD
     case default
        cell_of = VTK_VERTEX
     end select

@@ -10,7 +10,7 @@ module superjoin_output_requests
   use superjoin_kinds, only: wp, i8, ip
   use superjoin_model_types, only: model_t, output_request_t, NDOF_NODE, REQ_NODE_PRINT, REQ_EL_PRINT, &
        REQ_KIND_NAMES, TOTALS_YES, TOTALS_ONLY, ET_T2D2, ET_T3D2, ET_CPS3, ET_CPS4, &
-       ELEMENT_NODE_COUNT
+       ELEMENT_NODE_COUNT, ET_CPS6, ET_CPS8, ET_CPS8R, MAX_ELEMENT_NODES
   use superjoin_elements, only: is_plate_type
   use superjoin_elements_shell, only: shell_frame
   use superjoin_error, only: error_t
@@ -274,8 +274,8 @@ contains
     logical, intent(in) :: strain
     real(wp), intent(out) :: t(NTENSOR)
     logical, intent(out) :: ok
-    real(wp) :: a(3), m(3, 3), sig(3, 3), x(3, 4), ex(3), ey(3), ez(3), e, nu, thick, sl(3), el(3)
-    real(wp) :: r(3, 3), xl(2, 4), h(4)
+    real(wp) :: a(3), m(3, 3), sig(3, 3), x(3, MAX_ELEMENT_NODES), ex(3), ey(3), ez(3), e, nu, thick, sl(3), el(3)
+    real(wp) :: r(3, 3), xl(2, MAX_ELEMENT_NODES), h(MAX_ELEMENT_NODES)
     type(error_t), allocatable :: error
     integer(i8) :: iel
     integer :: etype, nn, i
@@ -303,7 +303,7 @@ contains
            else
               sig = sl(1)*outer(a, a)
            end if
-        case (ET_CPS3, ET_CPS4)
+        case (ET_CPS3, ET_CPS4, ET_CPS6, ET_CPS8, ET_CPS8R)
            thick = sec%thickness
            call shell_frame(x(:, 1:nn), r, xl(:, 1:nn), h(1:nn), error)
            if (allocated(error)) return

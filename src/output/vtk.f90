@@ -9,7 +9,8 @@ module superjoin_output_vtk
   use superjoin_kinds, only: wp, i8, ip
   use superjoin_error, only: error_t, fatal_error, EXIT_IO
   use superjoin_model_types, only: model_t, NDOF_NODE, ELEMENT_NODE_COUNT, ET_T2D2, ET_T3D2, &
-       ET_B23, ET_B33, ET_CPS3, ET_CPS4, ET_S3, ET_S4, ET_B21, ET_B31, ET_CPE3, ET_CPE4
+       ET_B23, ET_B33, ET_CPS3, ET_CPS4, ET_S3, ET_S4, ET_B21, ET_B31, ET_CPE3, ET_CPE4, &
+       ET_CPS6, ET_CPS8, ET_CPE6, ET_CPE8, ET_CPS8R, ET_CPE8R, ET_B32
   use superjoin_analysis_results, only: result_fields_t
   use superjoin_output_posix, only: rename_file, remove_file, make_directory
   use superjoin_output_text_buffer, only: text_buffer_t
@@ -21,6 +22,7 @@ module superjoin_output_vtk
   public :: write_vtk, vtk_base, vtk_piece_path, vtk_path_problem
 
   integer, parameter, public :: VTK_VERTEX = 1, VTK_LINE = 3, VTK_TRIANGLE = 5, VTK_QUAD = 9
+  integer, parameter, public :: VTK_QUADRATIC_TRIANGLE = 22, VTK_QUADRATIC_QUAD = 23, VTK_POLY_LINE = 4
     !! VTK cell type codes.
   integer, parameter, public :: CELL_ELEMENT = 1, CELL_CONTACT = 2, CELL_SUPPORT = 3
     !! Values of the cell array `kind`.
@@ -517,6 +519,12 @@ contains
        cell_type = VTK_TRIANGLE
     case (ET_CPS4, ET_S4, ET_CPE4)
        cell_type = VTK_QUAD
+    case (ET_B32)
+       cell_type = VTK_POLY_LINE              ! end, middle, end: the points in order
+    case (ET_CPS6, ET_CPE6)
+       cell_type = VTK_QUADRATIC_TRIANGLE     ! VTK's node order is Abaqus's
+    case (ET_CPS8, ET_CPE8, ET_CPS8R, ET_CPE8R)
+       cell_type = VTK_QUADRATIC_QUAD
     case default
        cell_type = VTK_VERTEX
     end select

@@ -22,7 +22,7 @@ for f in $(grep -li '^\*static' *.inp | sort); do
     # the reason without file:line, element types and numbers kept
     echo "${msg#*: error: }|${f%.inp}"
   fi
-done | sed -E 's/ \(T2D2, T3D2, B23, B33, CPS3, CPS4, S3, S4\)//; s/got [0-9]+ fields/got more fields/' |
+done | sed -E 's/ \(supported: [^)]*\)//; s/got [0-9]+ fields/got more fields/' |
   awk -F'|' '/^reads: /{r = r " " substr($0, 8); next}
              {n[$1]++; d[$1] = d[$1] " " $2}
              END {print n_r "reads unchanged:" r;

@@ -1,0 +1,260 @@
+module superjoin_elements_beam3
+  !! B32: three-node Timoshenko beam in space (DOFs 1..6 per node), isoparametric
+  !! and quadratic in displacement, rotation and geometry, so the member may be
+  !! curved. Node order as in Abaqus and CalculiX: end, middle, end (ξ = -1, 0, 1).
+  !!
+  !! Linear strains at a point with the local frame e1 (tangent), e2, e3:
+  !!   ε = e1·u',  γy = e2·u' - e3·θ,  γz = e3·u' + e2·θ,  κ = (e1, e2, e3)·θ'
+  !! (' = d/ds along the axis), with the rigidities EA, Ky, Kz (transverse shear
+  !! stiffness: *TRANSVERSE SHEAR STIFFNESS or k G A, as B31), GJ, EIy, EIz; γy
+  !! and κz belong to deflection along local y (Iz), γz and κy to local z (Iy).
+  !! Two Gauss points along the axis (reduced integration, as Abaqus B32): no
+  !! shear or membrane locking, and exactly the six rigid-body modes (12
+  !! strain samples for 12 deformation modes).
+  !!
+  !! The local frame at a point is the B31 frame of the tangent: local y in the
+  !! plane of the tangent and the section's orientation vector v (default global
+  !! Z, global X for a tangent along Z), z = x × y.
+  !!
+  !! End forces are K_e u_e - f_eq at the end nodes (1 and 3) in the frame of
+  !! the tangent there, as the other beams report them; the middle node's share
+  !! follows from the element's equilibrium. Distributed loads w per unit length
+  !! (global axes, along the curved axis) have the consistent nodal forces
+  !! ∫ Nᵢ w ds (no nodal moments: the rotations are interpolated on their own);
+  !! a B32 keeps its load in global axes where other beams use local ones.
+  use superjoin_kinds, only: wp
+  use superjoin_error, only: error_t, fatal_error, EXIT_DECK
+  use superjoin_model_types, only: section_t, material_t, ET_B31
+  use superjoin_elements_frame, only: beam_frame, require_positive, cross, ZERO_LENGTH_TOL
+  implicit none (type, external)
+  private
+
+  integer, parameter :: NNODE = 3, NDOF = 6, NSTRAIN = 6
+  real(wp), parameter :: G2 = 1/sqrt(3.0_wp)     !! 2-point Gauss abscissa (weights 1)
+  real(wp), parameter :: XI_CHECK(5) = [-1.0_wp, -G2, 0.0_wp, G2, 1.0_wp]
+    !! points where the tangent must point along the chord (node 1 to node 3)
+
+  type :: beam3_props_t
+    !! Rigidities of one B32 (diagonal of the section matrix).
+     real(wp) :: d(NSTRAIN) = 0.0_wp     !! EA, Ky, Kz, GJ, EIy, EIz
+  end type beam3_props_t
+
+  public :: beam3_stiffness, beam3_end_forces, beam3_nodal_forces, beam3_load
+
+contains
+
+  pure subroutine setup(x, sec, mat, p, error)
+    !! Rigidities with the data checks (as B31), and the node geometry.
+    real(wp), intent(in) :: x(:, :)
+    type(section_t), intent(in) :: sec
+    type(material_t), intent(in) :: mat
+    type(beam3_props_t), intent(out) :: p
+    type(error_t), allocatable, intent(out) :: error
+    real(wp) :: g, ks(2), scale
+    integer :: i, j
+
+    if (size(x, 1) /= 3 .or. size(x, 2) /= NNODE) then
+       call fatal_error(error, EXIT_DECK, 'a B32 element needs 3 nodes')
+       return
+    end if
+    scale = maxval(abs(x))
+    do j = 1, NNODE
+       do i = 1, j - 1
+          if (norm2(x(:, j) - x(:, i)) <= ZERO_LENGTH_TOL*scale) then
+             call fatal_error(error, EXIT_DECK, 'coincident nodes')
+             return
+          end if
+       end do
+    end do
+    ! the tangent must keep running from node 1 towards node 3 (ends, middle, Gauss points)
+    do i = 1, size(XI_CHECK)
+       if (.not. (dot_product(matmul(x, [XI_CHECK(i) - 0.5_wp, -2*XI_CHECK(i), XI_CHECK(i) + 0.5_wp]), &
+            x(:, 3) - x(:, 1)) > 0.0_wp)) then
+          call fatal_error(error, EXIT_DECK, 'folded element: the middle node is misplaced, or the '// &
+               'element turns through 180 degrees or more')
+          return
+       end if
+    end do
+    call require_positive(sec%area, 'cross-section area A', error)
+    call require_positive(sec%iy, 'moment of inertia Iy', error)
+    call require_positive(sec%iz, 'moment of inertia Iz', error)
+    call require_positive(sec%j, 'torsion constant J', error)
+    call require_positive(mat%e, 'Young''s modulus E', error)
+    call require_positive(sec%shear_factor, 'shear factor k', error)
+    if (allocated(error)) return
+    if (.not. (mat%nu > -1.0_wp)) then
+       call fatal_error(error, EXIT_DECK, 'Poisson''s ratio nu must be greater than -1 for a beam')
+       return
+    end if
+    g = mat%e/(2*(1 + mat%nu))
+    ks = merge(sec%shear_k, sec%shear_factor*g*sec%area, sec%shear_k > 0.0_wp)
+    p%d = [mat%e*sec%area, ks(1), ks(2), g*sec%j, mat%e*sec%iy, mat%e*sec%iz]
+  end subroutine setup
+
+  pure subroutine point(x, sec, xi, r, jac, nf, ds, error)
+    !! At ξ: frame r (rows e1, e2, e3), jac = ds/dξ, shape functions nf and
+    !! their derivatives along the axis ds = dN/ds.
+    real(wp), intent(in) :: x(3, NNODE), xi
+    type(section_t), intent(in) :: sec
+    real(wp), intent(out) :: r(3, 3), jac, nf(NNODE), ds(NNODE)
+    type(error_t), allocatable, intent(out) :: error
+    real(wp) :: dn(NNODE), t(3), ends(3, 2), length
+    nf = [xi*(xi - 1)/2, 1 - xi**2, xi*(xi + 1)/2]
+    dn = [xi - 0.5_wp, -2*xi, xi + 0.5_wp]
+    t = matmul(x, dn)
+    jac = norm2(t)
+    r = 0.0_wp
+    ds = 0.0_wp
+    if (.not. (jac > ZERO_LENGTH_TOL*max(maxval(abs(x)), norm2(x(:, 3) - x(:, 1))))) then
+       call fatal_error(error, EXIT_DECK, 'zero-length or folded element (middle node misplaced)')
+       return
+    end if
+    ds = dn/jac
+    ends(:, 1) = 0.0_wp
+    ends(:, 2) = t/jac
+    call beam_frame(ET_B31, ends, sec, r, length, error)
+  end subroutine point
+
+  pure subroutine b_matrix(r, nf, ds, b)
+    !! Strains (ε, γy, γz, κx, κy, κz) = b (u, θ per node).
+    real(wp), intent(in) :: r(3, 3), nf(NNODE), ds(NNODE)
+    real(wp), intent(out) :: b(NSTRAIN, NDOF*NNODE)
+    integer :: i, o
+    b = 0.0_wp
+    do i = 1, NNODE
+       o = NDOF*(i - 1)
+       b(1, o + 1:o + 3) = ds(i)*r(1, :)
+       b(2, o + 1:o + 3) = ds(i)*r(2, :)
+       b(2, o + 4:o + 6) = -nf(i)*r(3, :)
+       b(3, o + 1:o + 3) = ds(i)*r(3, :)
+       b(3, o + 4:o + 6) = nf(i)*r(2, :)
+       b(4, o + 4:o + 6) = ds(i)*r(1, :)
+       b(5, o + 4:o + 6) = ds(i)*r(2, :)
+       b(6, o + 4:o + 6) = ds(i)*r(3, :)
+    end do
+  end subroutine b_matrix
+
+  pure subroutine beam3_stiffness(x, sec, mat, ke, error)
+    !! Stiffness ke(18, 18) in global axes, node-major (u, θ per node), of a B32
+    !! with nodes x(3, 3) (end, middle, end).
+    real(wp), intent(in) :: x(:, :)
+    type(section_t), intent(in) :: sec
+    type(material_t), intent(in) :: mat
+    real(wp), allocatable, intent(out) :: ke(:, :)
+    type(error_t), allocatable, intent(out) :: error
+    type(beam3_props_t) :: p
+    real(wp) :: r(3, 3), jac, nf(NNODE), ds(NNODE), b(NSTRAIN, NDOF*NNODE), xi
+    integer :: k, i
+
+    call setup(x, sec, mat, p, error)
+    if (allocated(error)) return
+    allocate (ke(NDOF*NNODE, NDOF*NNODE), source=0.0_wp)
+    do k = 1, 2
+       xi = merge(-G2, G2, k == 1)
+       call point(x, sec, xi, r, jac, nf, ds, error)
+       if (allocated(error)) return
+       call b_matrix(r, nf, ds, b)
+       do i = 1, NSTRAIN
+          ke = ke + (jac*p%d(i))*spread(b(i, :), 2, NDOF*NNODE)*spread(b(i, :), 1, NDOF*NNODE)
+       end do
+    end do
+    ke = 0.5_wp*(ke + transpose(ke))
+  end subroutine beam3_stiffness
+
+  pure subroutine beam3_load(x, w, fe, error)
+    !! Consistent nodal loads fe(18) (global axes, node-major) of a load w(3)
+    !! per unit length along the axis, global axes: ∫ Nᵢ w ds by 3 Gauss points.
+    real(wp), intent(in) :: x(:, :)
+    real(wp), intent(in) :: w(3)
+    real(wp), allocatable, intent(out) :: fe(:)
+    type(error_t), allocatable, intent(out) :: error
+    real(wp), parameter :: G3 = sqrt(0.6_wp), W3(3) = [5.0_wp, 8.0_wp, 5.0_wp]/9
+    real(wp) :: xi, nf(NNODE), dn(NNODE)
+    integer :: k, i
+
+    allocate (fe(NDOF*NNODE), source=0.0_wp)
+    if (size(x, 1) /= 3 .or. size(x, 2) /= NNODE) then
+       call fatal_error(error, EXIT_DECK, 'a B32 element needs 3 nodes')
+       return
+    end if
+    do k = 1, 3
+       xi = G3*(k - 2)
+       nf = [xi*(xi - 1)/2, 1 - xi**2, xi*(xi + 1)/2]
+       dn = [xi - 0.5_wp, -2*xi, xi + 0.5_wp]
+       do i = 1, NNODE
+          fe(NDOF*(i - 1) + 1:NDOF*(i - 1) + 3) = fe(NDOF*(i - 1) + 1:NDOF*(i - 1) + 3) + &
+               W3(k)*norm2(matmul(x, dn))*nf(i)*w
+       end do
+    end do
+  end subroutine beam3_load
+
+  pure subroutine beam3_end_forces(x, sec, mat, ue, w, f, error)
+    !! Forces and moments the end nodes (1 and 3) exert on the element, each in
+    !! the local frame of the tangent at that node: f(1:6, end) = n, vy, vz, t,
+    !! my, mz (K_e u_e - f_eq with f_eq the consistent loads of w(3) per unit
+    !! length, global axes).
+    real(wp), intent(in) :: x(:, :)
+    type(section_t), intent(in) :: sec
+    type(material_t), intent(in) :: mat
+    real(wp), intent(in) :: ue(:)
+    real(wp), intent(in) :: w(3)
+    real(wp), intent(out) :: f(6, 2)
+    type(error_t), allocatable, intent(out) :: error
+    real(wp), allocatable :: ke(:, :), fe(:)
+    real(wp) :: fg(NDOF*NNODE), r(3, 3), jac, nf(NNODE), ds(NNODE)
+    integer :: a, o
+
+    f = 0.0_wp
+    call beam3_stiffness(x, sec, mat, ke, error)
+    if (allocated(error)) return
+    if (size(ue) /= NDOF*NNODE) then
+       call fatal_error(error, EXIT_DECK, 'wrong number of element DOF values')
+       return
+    end if
+    call beam3_load(x, w, fe, error)
+    if (allocated(error)) return
+    fg = matmul(ke, ue) - fe
+    do a = 1, 2
+       call point(x, sec, merge(-1.0_wp, 1.0_wp, a == 1), r, jac, nf, ds, error)
+       if (allocated(error)) return
+       o = merge(0, 2*NDOF, a == 1)
+       f(1:3, a) = matmul(r, fg(o + 1:o + 3))
+       f(4:6, a) = matmul(r, fg(o + 4:o + 6))
+    end do
+  end subroutine beam3_end_forces
+
+  pure subroutine beam3_nodal_forces(x, sec, f, w, fg, error)
+    !! K_e u_e - f_eq in global axes, node-major, from the end forces f(6, 2) of
+    !! beam3_end_forces and the load w(3) per unit length (global axes): the ends
+    !! rotated back, the middle node from the element's equilibrium (the forces
+    !! sum to -∫ w ds, the moments about node 2 to -Σ (xᵢ - x₂) × f_eq,ᵢ).
+    real(wp), intent(in) :: x(:, :)
+    type(section_t), intent(in) :: sec
+    real(wp), intent(in) :: f(6, 2)
+    real(wp), intent(in) :: w(3)
+    real(wp), intent(out) :: fg(:)
+    type(error_t), allocatable, intent(out) :: error
+    real(wp) :: r(3, 3), jac, nf(NNODE), ds(NNODE), g(6, 2)
+    real(wp), allocatable :: fe(:)
+    integer :: a
+
+    fg = 0.0_wp
+    if (size(x, 2) /= NNODE .or. size(fg) /= NDOF*NNODE) then
+       call fatal_error(error, EXIT_DECK, 'a B32 element needs 3 nodes')
+       return
+    end if
+    do a = 1, 2
+       call point(x, sec, merge(-1.0_wp, 1.0_wp, a == 1), r, jac, nf, ds, error)
+       if (allocated(error)) return
+       g(1:3, a) = matmul(transpose(r), f(1:3, a))
+       g(4:6, a) = matmul(transpose(r), f(4:6, a))
+    end do
+    call beam3_load(x, w, fe, error)
+    if (allocated(error)) return
+    fg(1:6) = g(:, 1)
+    fg(13:18) = g(:, 2)
+    fg(7:9) = -g(1:3, 1) - g(1:3, 2) - (fe(1:3) + fe(7:9) + fe(13:15))
+    fg(10:12) = -g(4:6, 1) - g(4:6, 2) - cross(x(:, 1) - x(:, 2), g(1:3, 1) + fe(1:3)) &
+         - cross(x(:, 3) - x(:, 2), g(1:3, 2) + fe(13:15))
+  end subroutine beam3_nodal_forces
+end module superjoin_elements_beam3

@@ -18,6 +18,7 @@ module superjoin_output_requests
   use superjoin_output_text_buffer, only: text_buffer_t
   use superjoin_output_columns, only: element_prefix, chop
   use superjoin_utils_strings, only: itoa
+  use superjoin_output_energy, only: write_energy_request
   implicit none (type, external)
   private
 
@@ -258,6 +259,8 @@ contains
           call lu%line('    SF  section forces (trusses and beams: end forces, local axes, as ELEMENT END FORCES; '// &
                'plates and shells: nx, ny, nxy, mx, my, mxy at the centroid, element frame)')
           call section_force_table(lu, model, res, is, subs, elems)
+       case ('ENER')
+          call write_energy_request(lu, model, res, is, subs, elems)
        end select
     end do
     call lu%line('')

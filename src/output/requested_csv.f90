@@ -1,0 +1,142 @@
+module superjoin_output_requested_csv
+  !! CSV tables of the derived results that only exist on request (--csv DIR
+  !! and an output request of a step naming the variable, *EL PRINT / *EL FILE
+  !! or *NODE PRINT / *NODE FILE, with CalculiX's scoping of requests):
+  !!   energies.csv   ENER: strain energies and the energy balance
+  !! Without such a request the table of an earlier run into DIR is removed.
+  use superjoin_kinds, only: wp, ip
+  use superjoin_error, only: error_t
+  use superjoin_model_types, only: model_t, REQ_EL_PRINT, REQ_EL_FILE
+  use superjoin_analysis_results, only: results_t
+  use superjoin_output_requests, only: effective_requests
+  use superjoin_output_energy, only: energy_t, compute_energies, requests_name
+  use superjoin_output_text_buffer, only: text_buffer_t
+  use superjoin_output_posix, only: remove_file
+  use superjoin_utils_process, only: temp_register, temp_unregister
+  use superjoin_utils_strings, only: itoa, full_real
+  implicit none (type, external)
+  private
+
+  character(*), parameter, public :: ENERGY_CSV = 'energies.csv'
+
+  public :: write_requested_csv, step_requests
+
+contains
+
+  subroutine write_requested_csv(dir, model, res, error)
+    !! The requested derived tables into DIR (which exists).
+    character(*), intent(in) :: dir
+    type(model_t), intent(in) :: model
+    type(results_t), intent(in) :: res
+    type(error_t), allocatable, intent(out) :: error
+    call write_energy_csv(dir, model, res, error)
+  end subroutine write_requested_csv
+
+  logical function step_requests(model, is, kinds, name)
+    !! Does a request of one of `kinds` that applies to step `is` name `name`?
+    type(model_t), intent(in) :: model
+    integer, intent(in) :: is
+    integer, intent(in) :: kinds(:)
+    character(*), intent(in) :: name
+    integer, allocatable :: idx(:)
+    integer :: k, j
+    step_requests = .false.
+    do k = 1, size(kinds)
+       call effective_requests(model, is, kinds(k), idx)
+       do j = 1, size(idx)
+          if (requests_name(model%requests(idx(j)), name)) step_requests = .true.
+       end do
+    end do
+  end function step_requests
+
+  subroutine open_table(path, tmp, tb, error)
+    !! Open the temporary file of a table (registered for removal on a signal).
+    character(*), intent(in) :: path
+    character(:), allocatable, intent(out) :: tmp
+    type(text_buffer_t), intent(inout) :: tb
+    type(error_t), allocatable, intent(out) :: error
+    tmp = path//'.tmp'
+    call temp_register(tmp)
+    call tb%open(tmp, error)
+    if (allocated(error)) call temp_unregister()
+  end subroutine open_table
+
+  subroutine abandon_table(tb, tmp)
+    !! Close and remove a table that cannot be completed.
+    type(text_buffer_t), intent(inout) :: tb
+    character(*), intent(in) :: tmp
+    logical :: ok
+    call tb%close(ok)
+    call remove_file(tmp)
+    call temp_unregister()
+  end subroutine abandon_table
+
+  subroutine write_energy_csv(dir, model, res, error)
+    !! DIR/energies.csv: step,kind,name,id,energy with kind element (name: its
+    !! substructure, id: its id), substructure, contact_element (name: the
+    !! *CONTACT card, id: the slave node id), contact (the card), and the model's
+    !! spring_supports, total, load_work (½ fᵀu), prescribed_work (½ Σ R ū).
+    character(*), intent(in) :: dir
+    type(model_t), intent(in) :: model
+    type(results_t), intent(in) :: res
+    type(error_t), allocatable, intent(out) :: error
+    type(text_buffer_t), allocatable :: tb
+    type(energy_t) :: en
+    character(:), allocatable :: path, tmp
+    logical, allocatable :: wanted(:)
+    integer :: is, isub, il
+    integer(ip) :: e
+    path = dir//'/'//ENERGY_CSV
+    allocate (wanted(size(model%steps)))
+    do is = 1, size(model%steps)
+       wanted(is) = step_requests(model, is, [REQ_EL_PRINT, REQ_EL_FILE], 'ENER')
+    end do
+    if (.not. any(wanted)) then
+       call remove_file(path)
+       return
+    end if
+    allocate (tb)
+    call open_table(path, tmp, tb, error)
+    if (allocated(error)) return
+    call tb%line('step,kind,name,id,energy')
+    do is = 1, size(model%steps)
+       if (.not. wanted(is)) cycle
+       call compute_energies(model, res, is, en, error)
+       if (allocated(error)) then
+          call abandon_table(tb, tmp)
+          return
+       end if
+       associate (sn => model%steps(is)%name)
+         do isub = 1, size(model%subs)
+            do e = 1, model%subs(isub)%nelem
+               call row(sn, 'element', model%subs(isub)%name, itoa(int(model%subs(isub)%elem_id(e))), &
+                    en%element(res%elem_offset(isub) + e))
+            end do
+         end do
+         do isub = 1, size(model%subs)
+            call row(sn, 'substructure', model%subs(isub)%name, '', en%part(isub))
+         end do
+         do il = 1, size(model%links)
+            associate (lk => model%links(il), ct => model%contacts(model%links(il)%contact))
+              call row(sn, 'contact_element', ct%name, &
+                   itoa(int(model%subs(ct%slave_sub)%node_id(lk%slave_node))), en%link(il))
+            end associate
+         end do
+         do il = 1, size(model%contacts)
+            call row(sn, 'contact', model%contacts(il)%name, '', en%contact(il))
+         end do
+         call row(sn, 'spring_supports', '', '', en%supports)
+         call row(sn, 'total', '', '', en%internal)
+         call row(sn, 'load_work', '', '', en%load_work)
+         call row(sn, 'prescribed_work', '', '', en%prescribed_work)
+       end associate
+    end do
+    call tb%commit(tmp, path, '', error)
+  contains
+    subroutine row(step, kind, name, id, value)
+      character(*), intent(in) :: step, kind, name, id
+      real(wp), intent(in) :: value
+      call tb%line(step//','//kind//','//name//','//id//','//full_real(value))
+    end subroutine row
+  end subroutine write_energy_csv
+end module superjoin_output_requested_csv

@@ -36,8 +36,8 @@ module superjoin_deck_ccx_cards
        'nonlinear contact', 'friction', 'gap elements', 'heat transfer', 'thermal loads', &
        'initial conditions', 'dynamics', 'dynamics']
 
-  integer, parameter :: NUM_NODE_PRODUCED = 3, NUM_EL_PRODUCED = 4
-  character(len=VAR_LEN), parameter :: NODE_PRODUCED(NUM_NODE_PRODUCED) = ['U    ', 'RF   ', 'CF   ']
+  integer, parameter :: NUM_NODE_PRODUCED = 4, NUM_EL_PRODUCED = 4
+  character(len=VAR_LEN), parameter :: NODE_PRODUCED(NUM_NODE_PRODUCED) = ['U    ', 'RF   ', 'CF   ', 'S    ']
   character(len=VAR_LEN), parameter :: EL_PRODUCED(NUM_EL_PRODUCED) = ['S    ', 'E    ', 'SF   ', 'ENER ']
   integer, parameter :: NUM_NODE_KNOWN = 25
   character(len=VAR_LEN), parameter :: NODE_KNOWN(NUM_NODE_KNOWN) = [character(len=VAR_LEN) :: &

@@ -2,11 +2,16 @@ module superjoin_output_requested_csv
   !! CSV tables of the derived results that only exist on request (--csv DIR
   !! and an output request of a step naming the variable, *EL PRINT / *EL FILE
   !! or *NODE PRINT / *NODE FILE, with CalculiX's scoping of requests):
-  !!   energies.csv   ENER: strain energies and the energy balance
+  !!   energies.csv        ENER (*EL PRINT, *EL FILE): strain energies and the energy balance
+  !!   point_stresses.csv  S (*EL PRINT, *EL FILE): plane elements, at the integration points
+  !!   nodal_stresses.csv  S (*NODE PRINT, *NODE FILE, *EL FILE): plane elements, at the nodes,
+  !!                       averaged over the elements of the substructure
   !! Without such a request the table of an earlier run into DIR is removed.
   use superjoin_kinds, only: wp, ip
   use superjoin_error, only: error_t
-  use superjoin_model_types, only: model_t, REQ_EL_PRINT, REQ_EL_FILE
+  use superjoin_model_types, only: model_t, REQ_EL_PRINT, REQ_EL_FILE, REQ_NODE_PRINT, REQ_NODE_FILE, &
+       ELEMENT_TYPE_NAMES
+  use superjoin_output_stresses, only: plane_stresses, nodal_stresses
   use superjoin_analysis_results, only: results_t
   use superjoin_output_requests, only: effective_requests
   use superjoin_output_energy, only: energy_t, compute_energies, requests_name
@@ -17,7 +22,8 @@ module superjoin_output_requested_csv
   implicit none (type, external)
   private
 
-  character(*), parameter, public :: ENERGY_CSV = 'energies.csv'
+  character(*), parameter, public :: ENERGY_CSV = 'energies.csv', POINT_STRESS_CSV = 'point_stresses.csv', &
+       NODAL_STRESS_CSV = 'nodal_stresses.csv'
 
   public :: write_requested_csv, step_requests
 
@@ -30,6 +36,10 @@ contains
     type(results_t), intent(in) :: res
     type(error_t), allocatable, intent(out) :: error
     call write_energy_csv(dir, model, res, error)
+    if (allocated(error)) return
+    call write_point_stress_csv(dir, model, res, error)
+    if (allocated(error)) return
+    call write_nodal_stress_csv(dir, model, res, error)
   end subroutine write_requested_csv
 
   logical function step_requests(model, is, kinds, name)
@@ -139,4 +149,98 @@ contains
       call tb%line(step//','//kind//','//name//','//id//','//full_real(value))
     end subroutine row
   end subroutine write_energy_csv
+
+  subroutine write_point_stress_csv(dir, model, res, error)
+    !! DIR/point_stresses.csv: step,substructure,element,type,point,sxx,syy,szz,sxy,sxz,syz
+    !! for every plane element, in the steps whose element requests name S.
+    character(*), intent(in) :: dir
+    type(model_t), intent(in) :: model
+    type(results_t), intent(in) :: res
+    type(error_t), allocatable, intent(out) :: error
+    type(text_buffer_t), allocatable :: tb
+    character(:), allocatable :: path, tmp
+    real(wp), allocatable :: points(:, :), nodes(:, :)
+    logical, allocatable :: wanted(:)
+    logical :: ok
+    integer :: is, isub, k, d
+    integer(ip) :: e
+    path = dir//'/'//POINT_STRESS_CSV
+    allocate (wanted(size(model%steps)))
+    do is = 1, size(model%steps)
+       wanted(is) = step_requests(model, is, [REQ_EL_PRINT, REQ_EL_FILE], 'S')
+    end do
+    if (.not. any(wanted)) then
+       call remove_file(path)
+       return
+    end if
+    allocate (tb)
+    call open_table(path, tmp, tb, error)
+    if (allocated(error)) return
+    call tb%line('step,substructure,element,type,point,sxx,syy,szz,sxy,sxz,syz')
+    do is = 1, size(model%steps)
+       if (.not. wanted(is)) cycle
+       do isub = 1, size(model%subs)
+          do e = 1, model%subs(isub)%nelem
+             call plane_stresses(model, res, is, isub, e, points, nodes, ok)
+             if (.not. ok) cycle
+             do k = 1, size(points, 2)
+                call tb%put(model%steps(is)%name//','//model%subs(isub)%name//','// &
+                     itoa(int(model%subs(isub)%elem_id(e)))//','// &
+                     trim(ELEMENT_TYPE_NAMES(model%subs(isub)%elem_type(e)))//','//itoa(k))
+                do d = 1, size(points, 1)
+                   call tb%put(','//full_real(points(d, k)))
+                end do
+                call tb%newline()
+             end do
+          end do
+       end do
+    end do
+    call tb%commit(tmp, path, '', error)
+  end subroutine write_point_stress_csv
+
+  subroutine write_nodal_stress_csv(dir, model, res, error)
+    !! DIR/nodal_stresses.csv: step,substructure,node,elements,sxx,syy,szz,sxy,sxz,syz
+    !! for every node of a plane element (elements: how many were averaged), in
+    !! the steps whose node requests, or *EL FILE requests, name S.
+    character(*), intent(in) :: dir
+    type(model_t), intent(in) :: model
+    type(results_t), intent(in) :: res
+    type(error_t), allocatable, intent(out) :: error
+    type(text_buffer_t), allocatable :: tb
+    character(:), allocatable :: path, tmp
+    real(wp), allocatable :: avg(:, :)
+    integer, allocatable :: nel(:)
+    logical, allocatable :: wanted(:)
+    integer :: is, isub, d
+    integer(ip) :: n
+    path = dir//'/'//NODAL_STRESS_CSV
+    allocate (wanted(size(model%steps)))
+    do is = 1, size(model%steps)
+       wanted(is) = step_requests(model, is, [REQ_NODE_PRINT, REQ_NODE_FILE, REQ_EL_FILE], 'S')
+    end do
+    if (.not. any(wanted)) then
+       call remove_file(path)
+       return
+    end if
+    allocate (tb)
+    call open_table(path, tmp, tb, error)
+    if (allocated(error)) return
+    call tb%line('step,substructure,node,elements,sxx,syy,szz,sxy,sxz,syz')
+    do is = 1, size(model%steps)
+       if (.not. wanted(is)) cycle
+       do isub = 1, size(model%subs)
+          call nodal_stresses(model, res, is, isub, avg, nel)
+          do n = 1, model%subs(isub)%nnode
+             if (nel(n) == 0) cycle
+             call tb%put(model%steps(is)%name//','//model%subs(isub)%name//','// &
+                  itoa(int(model%subs(isub)%node_id(n)))//','//itoa(nel(n)))
+             do d = 1, size(avg, 1)
+                call tb%put(','//full_real(avg(d, n)))
+             end do
+             call tb%newline()
+          end do
+       end do
+    end do
+    call tb%commit(tmp, path, '', error)
+  end subroutine write_nodal_stress_csv
 end module superjoin_output_requested_csv

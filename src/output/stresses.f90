@@ -1,0 +1,225 @@
+module superjoin_output_stresses
+  !! Stresses of the plane elements (CPS3, CPS4, CPE3, CPE4) where benchmarks
+  !! quote them: at the integration points (*EL PRINT S, as CalculiX's .dat)
+  !! and at the nodes (*NODE PRINT S / *NODE FILE S): extrapolated from the
+  !! integration points of each element (superjoin_elements_membrane,
+  !! membrane_point_stresses) and averaged over the plane elements of the same
+  !! substructure (part) that share the node. Tensors in global axes, Voigt
+  !! order xx, yy, zz, xy, xz, yz; plane strain has σzz = ν (σxx + σyy).
+  use superjoin_kinds, only: wp, i8, ip
+  use superjoin_error, only: error_t
+  use superjoin_model_types, only: model_t, ELEMENT_NODE_COUNT, ET_CPE3, ET_CPE4
+  use superjoin_elements_shell, only: shell_frame, is_plane_type
+  use superjoin_elements_membrane, only: membrane_point_stresses
+  use superjoin_analysis_results, only: results_t
+  use superjoin_output_energy, only: element_displacements
+  use superjoin_output_text_buffer, only: text_buffer_t
+  use superjoin_output_columns, only: element_prefix, chop
+  use superjoin_utils_strings, only: itoa
+  implicit none (type, external)
+  private
+
+  integer, parameter, public :: NTENSOR = 6
+  character(len=15), parameter :: TENSOR_HEAD(NTENSOR) = ['             xx', '             yy', &
+       '             zz', '             xy', '             xz', '             yz']
+
+  type :: real_block_t
+    !! One table of reals of a list of tables.
+     real(wp), allocatable :: v(:, :)
+  end type real_block_t
+
+  type :: int_block_t
+    !! One list of counts of a list of lists.
+     integer, allocatable :: n(:)
+  end type int_block_t
+
+  public :: plane_stresses, nodal_stresses, write_point_stress_table, write_nodal_stress_table
+
+contains
+
+  subroutine plane_stresses(model, res, is, isub, ie, points, nodes, ok)
+    !! Stress tensors of plane element ie of substructure isub in step is:
+    !! points(6, npoint) at its integration points, nodes(6, nnode)
+    !! extrapolated to its nodes; ok false (and empty arrays) for other
+    !! element types or an element that cannot be evaluated.
+    type(model_t), intent(in) :: model
+    type(results_t), intent(in) :: res
+    integer, intent(in) :: is, isub
+    integer(ip), intent(in) :: ie
+    real(wp), allocatable, intent(out) :: points(:, :), nodes(:, :)
+    logical, intent(out) :: ok
+    real(wp) :: x(3, 4), r(3, 3), xl(2, 4), h(4), nu
+    real(wp), allocatable :: ue(:), ul(:), sp(:, :), sn(:, :)
+    type(error_t), allocatable :: error
+    integer :: etype, nn, a
+    logical :: strain
+    ok = .false.
+    allocate (points(NTENSOR, 0), nodes(NTENSOR, 0))
+    associate (sub => model%subs(isub))
+      etype = sub%elem_type(ie)
+      if (.not. is_plane_type(etype) .or. sub%elem_section(ie) <= 0) return
+      nn = ELEMENT_NODE_COUNT(etype)
+      do a = 1, nn
+         x(:, a) = sub%x(:, sub%elem_nodes(a, ie))
+      end do
+      call shell_frame(x(:, 1:nn), r, xl(:, 1:nn), h(1:nn), error)
+      if (allocated(error)) return
+      call element_displacements(model, res, is, isub, ie, ue)
+      allocate (ul(2*nn))
+      do a = 1, nn
+         ul(2*a - 1) = r(1, 1)*ue(2*a - 1) + r(1, 2)*ue(2*a)
+         ul(2*a) = r(2, 1)*ue(2*a - 1) + r(2, 2)*ue(2*a)
+      end do
+      strain = etype == ET_CPE3 .or. etype == ET_CPE4
+      associate (mat => model%materials(sub%sections(sub%elem_section(ie))%material))
+        nu = mat%nu
+        call membrane_point_stresses(xl(:, 1:nn), mat%e, mat%nu, strain, ul, sp, sn, error)
+      end associate
+      if (allocated(error)) return
+    end associate
+    deallocate (points, nodes)
+    allocate (points(NTENSOR, size(sp, 2)), nodes(NTENSOR, size(sn, 2)))
+    do a = 1, size(sp, 2)
+       points(:, a) = to_global(sp(:, a))
+    end do
+    do a = 1, size(sn, 2)
+       nodes(:, a) = to_global(sn(:, a))
+    end do
+    ok = .true.
+  contains
+    pure function to_global(s) result(t)
+      !! (σx, σy, τxy) of the element frame as a global tensor, Voigt order.
+      real(wp), intent(in) :: s(3)
+      real(wp) :: t(NTENSOR)
+      real(wp) :: m(3, 3), szz
+      szz = 0.0_wp
+      if (strain) szz = nu*(s(1) + s(2))
+      m = s(1)*outer(r(1, :), r(1, :)) + s(2)*outer(r(2, :), r(2, :)) + &
+           s(3)*(outer(r(1, :), r(2, :)) + outer(r(2, :), r(1, :))) + szz*outer(r(3, :), r(3, :))
+      t = [m(1, 1), m(2, 2), m(3, 3), m(1, 2), m(1, 3), m(2, 3)]
+    end function to_global
+    pure function outer(p, q) result(o)
+      real(wp), intent(in) :: p(3), q(3)
+      real(wp) :: o(3, 3)
+      o = spread(p, 2, 3)*spread(q, 1, 3)
+    end function outer
+  end subroutine plane_stresses
+
+  subroutine nodal_stresses(model, res, is, isub, avg, nel)
+    !! Nodal stresses of substructure isub in step is: avg(6, nnode) the mean
+    !! of the values extrapolated to the node by each plane element of isub
+    !! that has it, nel(nnode) how many (0: no plane element, avg = 0).
+    type(model_t), intent(in) :: model
+    type(results_t), intent(in) :: res
+    integer, intent(in) :: is, isub
+    real(wp), allocatable, intent(out) :: avg(:, :)
+    integer, allocatable, intent(out) :: nel(:)
+    real(wp), allocatable :: points(:, :), nodes(:, :)
+    integer(ip) :: e, node
+    integer :: a
+    logical :: ok
+    associate (sub => model%subs(isub))
+      allocate (avg(NTENSOR, sub%nnode), source=0.0_wp)
+      allocate (nel(sub%nnode), source=0)
+      do e = 1, sub%nelem
+         call plane_stresses(model, res, is, isub, e, points, nodes, ok)
+         if (.not. ok) cycle
+         do a = 1, size(nodes, 2)
+            node = sub%elem_nodes(a, e)
+            avg(:, node) = avg(:, node) + nodes(:, a)
+            nel(node) = nel(node) + 1
+         end do
+      end do
+      do node = 1, sub%nnode
+         if (nel(node) > 0) avg(:, node) = avg(:, node)/real(nel(node), wp)
+      end do
+    end associate
+  end subroutine nodal_stresses
+
+  subroutine write_point_stress_table(lu, model, res, is, subs, elems)
+    !! *EL PRINT S: the stresses at the integration points of the plane
+    !! elements among `elems` (nothing if there are none).
+    type(text_buffer_t), intent(inout) :: lu
+    type(model_t), intent(in) :: model
+    type(results_t), intent(in) :: res
+    integer, intent(in) :: is
+    integer, intent(in) :: subs(:)
+    integer(ip), intent(in) :: elems(:)
+    type(real_block_t), allocatable :: vals(:)
+    real(wp), allocatable :: nodes(:, :)
+    logical, allocatable :: ok(:)
+    character(len=200) :: hline
+    real(wp) :: scale
+    integer :: i, k, d
+    allocate (vals(size(elems)), ok(size(elems)))
+    scale = 0.0_wp
+    do i = 1, size(elems)
+       call plane_stresses(model, res, is, subs(i), elems(i), vals(i)%v, nodes, ok(i))
+       if (ok(i)) scale = max(scale, maxval(abs(vals(i)%v)))
+    end do
+    if (.not. any(ok)) return
+    call lu%line('    S   at the integration points of the plane elements (global axes; CPS3/CPE3: 1, the '// &
+         'centroid; CPS4/CPE4: 2x2 Gauss, point k next to node k)')
+    write (hline, '(4x,a20,a10,a6,a4,6a15)') 'substructure        ', '   element', '  type', '  ip', TENSOR_HEAD
+    call lu%line(trim(hline))
+    do i = 1, size(elems)
+       if (.not. ok(i)) cycle
+       do k = 1, size(vals(i)%v, 2)
+          call element_prefix(lu, model, subs(i), elems(i), 4)
+          call lu%put_int(int(k, i8), 4)
+          do d = 1, NTENSOR
+             call lu%put_es(chop(vals(i)%v(d, k), scale))
+          end do
+          call lu%newline()
+       end do
+    end do
+  end subroutine write_point_stress_table
+
+  subroutine write_nodal_stress_table(lu, model, res, is, subs, nodes)
+    !! *NODE PRINT S: the averaged nodal stresses of the requested nodes that
+    !! belong to plane elements (the others are counted in a note).
+    type(text_buffer_t), intent(inout) :: lu
+    type(model_t), intent(in) :: model
+    type(results_t), intent(in) :: res
+    integer, intent(in) :: is
+    integer, intent(in) :: subs(:)
+    integer(ip), intent(in) :: nodes(:)
+    type(real_block_t), allocatable :: avg(:)
+    type(int_block_t), allocatable :: nel(:)
+    logical, allocatable :: done(:)
+    character(len=200) :: hline
+    real(wp) :: scale
+    integer :: i, d, nskip
+    allocate (avg(size(model%subs)), nel(size(model%subs)))
+    allocate (done(size(model%subs)), source=.false.)
+    do i = 1, size(nodes)
+       if (done(subs(i))) cycle
+       call nodal_stresses(model, res, is, subs(i), avg(subs(i))%v, nel(subs(i))%n)
+       done(subs(i)) = .true.
+    end do
+    call lu%line('    S   nodal stresses: extrapolated from the integration points, averaged over the plane '// &
+         'elements of the substructure that share the node (global axes)')
+    write (hline, '(4x,a20,a10,a6,6a15)') 'substructure        ', '      node', ' elems', TENSOR_HEAD
+    call lu%line(trim(hline))
+    scale = 0.0_wp
+    do i = 1, size(nodes)
+       if (nel(subs(i))%n(nodes(i)) > 0) scale = max(scale, maxval(abs(avg(subs(i))%v(:, nodes(i)))))
+    end do
+    nskip = 0
+    do i = 1, size(nodes)
+       if (nel(subs(i))%n(nodes(i)) == 0) then
+          nskip = nskip + 1
+          cycle
+       end if
+       call lu%put('    ')
+       call lu%put_field(model%subs(subs(i))%name, 20)
+       call lu%put_int(int(model%subs(subs(i))%node_id(nodes(i)), i8), 10)
+       call lu%put_int(int(nel(subs(i))%n(nodes(i)), i8), 6)
+       do d = 1, NTENSOR
+          call lu%put_es(chop(avg(subs(i))%v(d, nodes(i)), scale))
+       end do
+       call lu%newline()
+    end do
+    if (nskip > 0) call lu%line('    ('//itoa(nskip)//' nodes of the set belong to no plane element)')
+  end subroutine write_nodal_stress_table
+end module superjoin_output_stresses

@@ -4,6 +4,7 @@ module superjoin_output_requested_csv
   !! or *NODE PRINT / *NODE FILE, with CalculiX's scoping of requests):
   !!   energies.csv        ENER (*EL PRINT, *EL FILE): strain energies and the energy balance
   !!   point_stresses.csv  S (*EL PRINT, *EL FILE): plane elements, at the integration points
+  !!   fibre_stresses.csv  S (*EL PRINT, *EL FILE): beams with a library section, extreme points
   !!   nodal_stresses.csv  S (*NODE PRINT, *NODE FILE, *EL FILE): plane elements, at the nodes,
   !!                       averaged over the elements of the substructure
   !! Without such a request the table of an earlier run into DIR is removed.
@@ -11,7 +12,7 @@ module superjoin_output_requested_csv
   use superjoin_error, only: error_t
   use superjoin_model_types, only: model_t, REQ_EL_PRINT, REQ_EL_FILE, REQ_NODE_PRINT, REQ_NODE_FILE, &
        ELEMENT_TYPE_NAMES
-  use superjoin_output_stresses, only: plane_stresses, nodal_stresses
+  use superjoin_output_stresses, only: plane_stresses, nodal_stresses, fibre_stresses
   use superjoin_analysis_results, only: results_t
   use superjoin_output_requests, only: effective_requests
   use superjoin_output_energy, only: energy_t, compute_energies, requests_name
@@ -23,7 +24,7 @@ module superjoin_output_requested_csv
   private
 
   character(*), parameter, public :: ENERGY_CSV = 'energies.csv', POINT_STRESS_CSV = 'point_stresses.csv', &
-       NODAL_STRESS_CSV = 'nodal_stresses.csv'
+       NODAL_STRESS_CSV = 'nodal_stresses.csv', FIBRE_STRESS_CSV = 'fibre_stresses.csv'
 
   public :: write_requested_csv, step_requests
 
@@ -40,6 +41,8 @@ contains
     call write_point_stress_csv(dir, model, res, error)
     if (allocated(error)) return
     call write_nodal_stress_csv(dir, model, res, error)
+    if (allocated(error)) return
+    call write_fibre_stress_csv(dir, model, res, error)
   end subroutine write_requested_csv
 
   logical function step_requests(model, is, kinds, name)
@@ -243,4 +246,52 @@ contains
     end do
     call tb%commit(tmp, path, '', error)
   end subroutine write_nodal_stress_csv
+
+  subroutine write_fibre_stress_csv(dir, model, res, error)
+    !! DIR/fibre_stresses.csv: step,substructure,element,type,end,point,y,z,sxx for
+    !! every beam with a library section, in the steps whose element requests name S.
+    character(*), intent(in) :: dir
+    type(model_t), intent(in) :: model
+    type(results_t), intent(in) :: res
+    type(error_t), allocatable, intent(out) :: error
+    type(text_buffer_t), allocatable :: tb
+    character(:), allocatable :: path, tmp
+    real(wp) :: sig(4, 2)
+    logical, allocatable :: wanted(:)
+    integer :: is, isub, k, ends, n
+    integer(ip) :: e
+    path = dir//'/'//FIBRE_STRESS_CSV
+    allocate (wanted(size(model%steps)))
+    do is = 1, size(model%steps)
+       wanted(is) = step_requests(model, is, [REQ_EL_PRINT, REQ_EL_FILE], 'S')
+    end do
+    if (.not. any(wanted)) then
+       call remove_file(path)
+       return
+    end if
+    allocate (tb)
+    call open_table(path, tmp, tb, error)
+    if (allocated(error)) return
+    call tb%line('step,substructure,element,type,end,point,y,z,sxx')
+    do is = 1, size(model%steps)
+       if (.not. wanted(is)) cycle
+       do isub = 1, size(model%subs)
+          do e = 1, model%subs(isub)%nelem
+             call fibre_stresses(model, res, is, isub, e, sig, n)
+             associate (sub => model%subs(isub))
+               do ends = 1, 2
+                  do k = 1, n
+                     associate (sec => sub%sections(sub%elem_section(e)))
+                       call tb%line(model%steps(is)%name//','//sub%name//','//itoa(int(sub%elem_id(e)))//','// &
+                            trim(ELEMENT_TYPE_NAMES(sub%elem_type(e)))//','//itoa(ends)//','//itoa(k)//','// &
+                            full_real(sec%fibre(1, k))//','//full_real(sec%fibre(2, k))//','//full_real(sig(k, ends)))
+                     end associate
+                  end do
+               end do
+             end associate
+          end do
+       end do
+    end do
+    call tb%commit(tmp, path, '', error)
+  end subroutine write_fibre_stress_csv
 end module superjoin_output_requested_csv

@@ -19,7 +19,8 @@ module superjoin_output_requests
   use superjoin_output_columns, only: element_prefix, chop
   use superjoin_utils_strings, only: itoa
   use superjoin_output_energy, only: write_energy_request
-  use superjoin_output_stresses, only: write_point_stress_table, write_nodal_stress_table
+  use superjoin_output_stresses, only: write_point_stress_table, write_nodal_stress_table, &
+       write_fibre_stress_table
   implicit none (type, external)
   private
 
@@ -256,6 +257,7 @@ contains
           call lu%line('    S   stresses (global axes; trusses: uniaxial N/A; CPS3/CPS4: at the centroid)')
           call tensor_table(lu, model, res, is, subs, elems, .false.)
           call write_point_stress_table(lu, model, res, is, subs, elems)
+          call write_fibre_stress_table(lu, model, res, is, subs, elems)
        case ('E')
           call lu%line('    E   strains (tensor components, global axes; trusses: uniaxial stress state; '// &
                'CPS3/CPS4: at the centroid)')

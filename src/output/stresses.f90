@@ -6,9 +6,19 @@ module superjoin_output_stresses
   !! membrane_point_stresses) and averaged over the plane elements of the same
   !! substructure (part) that share the node. Tensors in global axes, Voigt
   !! order xx, yy, zz, xy, xz, yz; plane strain has σzz = ν (σxx + σyy).
+  !!
+  !! Beams with a library section (*BEAM SECTION, SECTION=RECT, CIRC, PIPE,
+  !! BOX, I) also get the axial fibre stress at the extreme points of the
+  !! section (superjoin_deck_beam_sections, section_fibres) at both ends:
+  !!   σ = N/A - Mz y/Iz + My z/Iy
+  !! with the section forces of the sign convention of the user manual: the
+  !! force and moment that the part of the beam beyond the cut (+x side) exerts
+  !! on the part before it, in local axes, so S(end 1) = -f(end 1) and
+  !! S(end 2) = +f(end 2) for the end forces f (forces the nodes exert on the
+  !! element); N > 0 in tension, Mz > 0 stretches the -y fibres.
   use superjoin_kinds, only: wp, i8, ip
   use superjoin_error, only: error_t
-  use superjoin_model_types, only: model_t, ELEMENT_NODE_COUNT, ET_CPE3, ET_CPE4
+  use superjoin_model_types, only: model_t, ELEMENT_NODE_COUNT, ET_CPE3, ET_CPE4, ET_B23, ET_B33, ET_B21, ET_B31
   use superjoin_elements_shell, only: shell_frame, is_plane_type
   use superjoin_elements_membrane, only: membrane_point_stresses
   use superjoin_analysis_results, only: results_t
@@ -34,6 +44,7 @@ module superjoin_output_stresses
   end type int_block_t
 
   public :: plane_stresses, nodal_stresses, write_point_stress_table, write_nodal_stress_table
+  public :: fibre_stresses, write_fibre_stress_table
 
 contains
 
@@ -222,4 +233,88 @@ contains
     end do
     if (nskip > 0) call lu%line('    ('//itoa(nskip)//' nodes of the set belong to no plane element)')
   end subroutine write_nodal_stress_table
+
+  subroutine fibre_stresses(model, res, is, isub, ie, sig, n)
+    !! Axial fibre stresses sig(point, end) of beam ie of substructure isub in
+    !! step is at the n extreme points of its library section (n = 0: not a
+    !! beam, or a section given by its constants only).
+    type(model_t), intent(in) :: model
+    type(results_t), intent(in) :: res
+    integer, intent(in) :: is, isub
+    integer(ip), intent(in) :: ie
+    real(wp), intent(out) :: sig(4, 2)
+    integer, intent(out) :: n
+    real(wp) :: sf(6), y, z
+    integer(i8) :: iel
+    integer :: k, ends
+    sig = 0.0_wp
+    n = 0
+    associate (sub => model%subs(isub))
+      select case (sub%elem_type(ie))
+      case (ET_B23, ET_B33, ET_B21, ET_B31)
+      case default
+         return
+      end select
+      if (sub%elem_section(ie) <= 0) return
+      associate (sec => sub%sections(sub%elem_section(ie)))
+        n = sec%nfibre
+        iel = res%elem_offset(isub) + ie
+        do ends = 1, 2
+           sf = res%elem_force(:, ends, iel, is)
+           if (ends == 1) sf = -sf
+           do k = 1, n
+              y = sec%fibre(1, k)
+              z = sec%fibre(2, k)
+              sig(k, ends) = sf(1)/sec%area - sf(6)*y/sec%iz
+              if (sec%iy > 0.0_wp) sig(k, ends) = sig(k, ends) + sf(5)*z/sec%iy
+           end do
+        end do
+      end associate
+    end associate
+  end subroutine fibre_stresses
+
+  subroutine write_fibre_stress_table(lu, model, res, is, subs, elems)
+    !! *EL PRINT S: the fibre stresses of the beams with a library section
+    !! among `elems` (nothing if there are none).
+    type(text_buffer_t), intent(inout) :: lu
+    type(model_t), intent(in) :: model
+    type(results_t), intent(in) :: res
+    integer, intent(in) :: is
+    integer, intent(in) :: subs(:)
+    integer(ip), intent(in) :: elems(:)
+    real(wp), allocatable :: sig(:, :, :)
+    integer, allocatable :: n(:)
+    character(len=200) :: hline
+    real(wp) :: scale, ymax
+    integer :: i, k, ends
+    allocate (sig(4, 2, size(elems)), n(size(elems)))
+    scale = 0.0_wp
+    do i = 1, size(elems)
+       call fibre_stresses(model, res, is, subs(i), elems(i), sig(:, :, i), n(i))
+       if (n(i) > 0) scale = max(scale, maxval(abs(sig(1:n(i), :, i))))
+    end do
+    if (all(n == 0)) return
+    call lu%line('    S   beam fibre stresses sxx = N/A - Mz y/Iz + My z/Iy at the extreme points of the '// &
+         'library sections (local y, z; section forces: see the user manual)')
+    write (hline, '(4x,a20,a10,a6,a4,a6,3a15)') 'substructure        ', '   element', '  type', ' end', ' point', &
+         '              y', '              z', '            sxx'
+    call lu%line(trim(hline))
+    do i = 1, size(elems)
+       if (n(i) == 0) cycle
+       associate (sec => model%subs(subs(i))%sections(model%subs(subs(i))%elem_section(elems(i))))
+         ymax = maxval(abs(sec%fibre))
+         do ends = 1, 2
+            do k = 1, n(i)
+               call element_prefix(lu, model, subs(i), elems(i), 4)
+               call lu%put_int(int(ends, i8), 4)
+               call lu%put_int(int(k, i8), 6)
+               call lu%put_es(chop(sec%fibre(1, k), ymax))
+               call lu%put_es(chop(sec%fibre(2, k), ymax))
+               call lu%put_es(chop(sig(k, ends, i), scale))
+               call lu%newline()
+            end do
+         end do
+       end associate
+    end do
+  end subroutine write_fibre_stress_table
 end module superjoin_output_stresses

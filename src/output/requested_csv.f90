@@ -7,12 +7,14 @@ module superjoin_output_requested_csv
   !!   fibre_stresses.csv  S (*EL PRINT, *EL FILE): beams with a library section, extreme points
   !!   nodal_stresses.csv  S (*NODE PRINT, *NODE FILE, *EL FILE): plane elements, at the nodes,
   !!                       averaged over the elements of the substructure
-  !! Without such a request the table of an earlier run into DIR is removed.
+  !! Without such a request (or without the elements a stress table is about)
+  !! the table of an earlier run into DIR is removed.
   use superjoin_kinds, only: wp, ip
   use superjoin_error, only: error_t
   use superjoin_model_types, only: model_t, REQ_EL_PRINT, REQ_EL_FILE, REQ_NODE_PRINT, REQ_NODE_FILE, &
        ELEMENT_TYPE_NAMES
   use superjoin_output_stresses, only: plane_stresses, nodal_stresses, fibre_stresses
+  use superjoin_elements_shell, only: is_plane_type
   use superjoin_analysis_results, only: results_t
   use superjoin_output_requests, only: effective_requests
   use superjoin_output_energy, only: energy_t, compute_energies, requests_name
@@ -172,7 +174,7 @@ contains
     do is = 1, size(model%steps)
        wanted(is) = step_requests(model, is, [REQ_EL_PRINT, REQ_EL_FILE], 'S')
     end do
-    if (.not. any(wanted)) then
+    if (.not. any(wanted) .or. .not. any_plane(model)) then
        call remove_file(path)
        return
     end if
@@ -221,7 +223,7 @@ contains
     do is = 1, size(model%steps)
        wanted(is) = step_requests(model, is, [REQ_NODE_PRINT, REQ_NODE_FILE, REQ_EL_FILE], 'S')
     end do
-    if (.not. any(wanted)) then
+    if (.not. any(wanted) .or. .not. any_plane(model)) then
        call remove_file(path)
        return
     end if
@@ -265,7 +267,7 @@ contains
     do is = 1, size(model%steps)
        wanted(is) = step_requests(model, is, [REQ_EL_PRINT, REQ_EL_FILE], 'S')
     end do
-    if (.not. any(wanted)) then
+    if (.not. any(wanted) .or. .not. any_fibres(model)) then
        call remove_file(path)
        return
     end if
@@ -294,4 +296,28 @@ contains
     end do
     call tb%commit(tmp, path, '', error)
   end subroutine write_fibre_stress_csv
+
+  pure logical function any_plane(model)
+    !! Does the model have plane elements (CPS3, CPS4, CPE3, CPE4)?
+    type(model_t), intent(in) :: model
+    integer :: isub
+    any_plane = .false.
+    do isub = 1, size(model%subs)
+       if (model%subs(isub)%nelem == 0) cycle
+       if (any(is_plane_type(model%subs(isub)%elem_type(1:model%subs(isub)%nelem)))) any_plane = .true.
+    end do
+  end function any_plane
+
+  pure logical function any_fibres(model)
+    !! Does some section of the model have fibre points (library beam sections)?
+    type(model_t), intent(in) :: model
+    integer :: isub, k
+    any_fibres = .false.
+    do isub = 1, size(model%subs)
+       if (.not. allocated(model%subs(isub)%sections)) cycle
+       do k = 1, size(model%subs(isub)%sections)
+          if (model%subs(isub)%sections(k)%nfibre > 0) any_fibres = .true.
+       end do
+    end do
+  end function any_fibres
 end module superjoin_output_requested_csv

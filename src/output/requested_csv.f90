@@ -3,9 +3,9 @@ module superjoin_output_requested_csv
   !! and an output request of a step naming the variable, *EL PRINT / *EL FILE
   !! or *NODE PRINT / *NODE FILE, with CalculiX's scoping of requests):
   !!   energies.csv        ENER (*EL PRINT, *EL FILE): strain energies and the energy balance
-  !!   point_stresses.csv  S (*EL PRINT, *EL FILE): plane elements, at the integration points
+  !!   point_stresses.csv  S (*EL PRINT, *EL FILE): plane and shell elements, at the integration points
   !!   fibre_stresses.csv  S (*EL PRINT, *EL FILE): beams with a library section, extreme points
-  !!   nodal_stresses.csv  S (*NODE PRINT, *NODE FILE, *EL FILE): plane elements, at the nodes,
+  !!   nodal_stresses.csv  S (*NODE PRINT, *NODE FILE, *EL FILE): plane and shell elements, at the nodes,
   !!                       averaged over the elements of the substructure
   !! Without such a request (or without the elements a stress table is about)
   !! the table of an earlier run into DIR is removed.
@@ -14,7 +14,7 @@ module superjoin_output_requested_csv
   use superjoin_model_types, only: model_t, REQ_EL_PRINT, REQ_EL_FILE, REQ_NODE_PRINT, REQ_NODE_FILE, &
        ELEMENT_TYPE_NAMES
   use superjoin_output_stresses, only: plane_stresses, nodal_stresses, fibre_stresses
-  use superjoin_elements_shell, only: is_plane_type
+  use superjoin_elements_shell, only: is_plate_type
   use superjoin_analysis_results, only: results_t
   use superjoin_output_requests, only: effective_requests
   use superjoin_output_energy, only: energy_t, compute_energies, requests_name
@@ -156,18 +156,20 @@ contains
   end subroutine write_energy_csv
 
   subroutine write_point_stress_csv(dir, model, res, error)
-    !! DIR/point_stresses.csv: step,substructure,element,type,point,sxx,syy,szz,sxy,sxz,syz
-    !! for every plane element, in the steps whose element requests name S.
+    !! DIR/point_stresses.csv:
+    !! step,substructure,element,type,point,surface,sxx,syy,szz,sxy,sxz,syz for
+    !! every plane (surface mid) and shell element (surfaces bottom and top), in
+    !! the steps whose element requests name S.
     character(*), intent(in) :: dir
     type(model_t), intent(in) :: model
     type(results_t), intent(in) :: res
     type(error_t), allocatable, intent(out) :: error
     type(text_buffer_t), allocatable :: tb
     character(:), allocatable :: path, tmp
-    real(wp), allocatable :: points(:, :), nodes(:, :)
+    real(wp), allocatable :: points(:, :, :), nodes(:, :, :)
     logical, allocatable :: wanted(:)
     logical :: ok
-    integer :: is, isub, k, d
+    integer :: is, isub, k, d, m
     integer(ip) :: e
     path = dir//'/'//POINT_STRESS_CSV
     allocate (wanted(size(model%steps)))
@@ -181,21 +183,24 @@ contains
     allocate (tb)
     call open_table(path, tmp, tb, error)
     if (allocated(error)) return
-    call tb%line('step,substructure,element,type,point,sxx,syy,szz,sxy,sxz,syz')
+    call tb%line('step,substructure,element,type,point,surface,sxx,syy,szz,sxy,sxz,syz')
     do is = 1, size(model%steps)
        if (.not. wanted(is)) cycle
        do isub = 1, size(model%subs)
           do e = 1, model%subs(isub)%nelem
              call plane_stresses(model, res, is, isub, e, points, nodes, ok)
              if (.not. ok) cycle
-             do k = 1, size(points, 2)
-                call tb%put(model%steps(is)%name//','//model%subs(isub)%name//','// &
-                     itoa(int(model%subs(isub)%elem_id(e)))//','// &
-                     trim(ELEMENT_TYPE_NAMES(model%subs(isub)%elem_type(e)))//','//itoa(k))
-                do d = 1, size(points, 1)
-                   call tb%put(','//full_real(points(d, k)))
+             do m = 1, size(points, 3)
+                do k = 1, size(points, 2)
+                   call tb%put(model%steps(is)%name//','//model%subs(isub)%name//','// &
+                        itoa(int(model%subs(isub)%elem_id(e)))//','// &
+                        trim(ELEMENT_TYPE_NAMES(model%subs(isub)%elem_type(e)))//','//itoa(k)//','// &
+                        surface_name(size(points, 3), m))
+                   do d = 1, size(points, 1)
+                      call tb%put(','//full_real(points(d, k, m)))
+                   end do
+                   call tb%newline()
                 end do
-                call tb%newline()
              end do
           end do
        end do
@@ -203,20 +208,34 @@ contains
     call tb%commit(tmp, path, '', error)
   end subroutine write_point_stress_csv
 
+  pure function surface_name(nsurf, k) result(name)
+    !! mid (plane elements), bottom or top (shells).
+    integer, intent(in) :: nsurf, k
+    character(:), allocatable :: name
+    if (nsurf == 1) then
+       name = 'mid'
+    else if (k == 1) then
+       name = 'bottom'
+    else
+       name = 'top'
+    end if
+  end function surface_name
+
   subroutine write_nodal_stress_csv(dir, model, res, error)
-    !! DIR/nodal_stresses.csv: step,substructure,node,elements,sxx,syy,szz,sxy,sxz,syz
-    !! for every node of a plane element (elements: how many were averaged), in
-    !! the steps whose node requests, or *EL FILE requests, name S.
+    !! DIR/nodal_stresses.csv: step,substructure,node,elements,surface,sxx,syy,szz,sxy,sxz,syz
+    !! for every node of a plane or shell element (elements: how many were
+    !! averaged; surface mid, or bottom and top at a node of a shell), in the
+    !! steps whose node requests, or *EL FILE requests, name S.
     character(*), intent(in) :: dir
     type(model_t), intent(in) :: model
     type(results_t), intent(in) :: res
     type(error_t), allocatable, intent(out) :: error
     type(text_buffer_t), allocatable :: tb
     character(:), allocatable :: path, tmp
-    real(wp), allocatable :: avg(:, :)
+    real(wp), allocatable :: avg(:, :, :)
     integer, allocatable :: nel(:)
-    logical, allocatable :: wanted(:)
-    integer :: is, isub, d
+    logical, allocatable :: wanted(:), shell(:)
+    integer :: is, isub, d, k, ns
     integer(ip) :: n
     path = dir//'/'//NODAL_STRESS_CSV
     allocate (wanted(size(model%steps)))
@@ -230,19 +249,23 @@ contains
     allocate (tb)
     call open_table(path, tmp, tb, error)
     if (allocated(error)) return
-    call tb%line('step,substructure,node,elements,sxx,syy,szz,sxy,sxz,syz')
+    call tb%line('step,substructure,node,elements,surface,sxx,syy,szz,sxy,sxz,syz')
     do is = 1, size(model%steps)
        if (.not. wanted(is)) cycle
        do isub = 1, size(model%subs)
-          call nodal_stresses(model, res, is, isub, avg, nel)
+          call nodal_stresses(model, res, is, isub, avg, nel, shell)
           do n = 1, model%subs(isub)%nnode
              if (nel(n) == 0) cycle
-             call tb%put(model%steps(is)%name//','//model%subs(isub)%name//','// &
-                  itoa(int(model%subs(isub)%node_id(n)))//','//itoa(nel(n)))
-             do d = 1, size(avg, 1)
-                call tb%put(','//full_real(avg(d, n)))
+             ns = 1
+             if (shell(n)) ns = 2
+             do k = 1, ns
+                call tb%put(model%steps(is)%name//','//model%subs(isub)%name//','// &
+                     itoa(int(model%subs(isub)%node_id(n)))//','//itoa(nel(n))//','//surface_name(ns, k))
+                do d = 1, size(avg, 1)
+                   call tb%put(','//full_real(avg(d, n, k)))
+                end do
+                call tb%newline()
              end do
-             call tb%newline()
           end do
        end do
     end do
@@ -298,13 +321,13 @@ contains
   end subroutine write_fibre_stress_csv
 
   pure logical function any_plane(model)
-    !! Does the model have plane elements (CPS3, CPS4, CPE3, CPE4)?
+    !! Does the model have plane or shell elements (CPS3, CPS4, CPE3, CPE4, S3, S4)?
     type(model_t), intent(in) :: model
     integer :: isub
     any_plane = .false.
     do isub = 1, size(model%subs)
        if (model%subs(isub)%nelem == 0) cycle
-       if (any(is_plane_type(model%subs(isub)%elem_type(1:model%subs(isub)%nelem)))) any_plane = .true.
+       if (any(is_plate_type(model%subs(isub)%elem_type(1:model%subs(isub)%nelem)))) any_plane = .true.
     end do
   end function any_plane
 

@@ -14,6 +14,7 @@ program superjoin_main
   use superjoin_output_listing, only: write_listing
   use superjoin_output_csv, only: write_csv
   use superjoin_output_nodes_csv, only: write_nodes_csv
+  use superjoin_output_requested_csv, only: write_requested_csv
   use superjoin_output_vtk, only: write_vtk, vtk_path_problem
   use superjoin_output_posix, only: output_target
   use superjoin_output_mechanism, only: write_mechanism_vtk, write_mechanism_csv, mechanism_vtk_path, MECHANISM_CSV
@@ -94,6 +95,8 @@ program superjoin_main
      call write_csv(csv_dir, model, res%fields, error)
      call fail_on(error, deck)
      call write_nodes_csv(csv_dir, model, error)
+     call fail_on(error, deck)
+     call write_requested_csv(csv_dir, model, res%fields, error)
      call fail_on(error, deck)
   end if
   if (allocated(vtk_file)) then

@@ -51,6 +51,10 @@ module superjoin_deck_beam_sections
   end type section_props_t
 
   public :: shape_index, section_properties, rect_torsion
+  public :: section_fibres
+
+  integer, parameter, public :: MAX_FIBRES = 4
+    !! Extreme points of a library section at which fibre stresses are reported.
 
   real(wp), parameter :: PI = acos(-1.0_wp)
   real(wp), parameter :: ZETA5 = 1.0369277551433699263_wp   !! Riemann ζ(5)
@@ -207,4 +211,41 @@ contains
        p%i12 = p%i12 + ar(k)*(cx(k) - p%c(1))*(cy(k) - p%c(2))
     end do
   end subroutine rectangles
+
+  pure subroutine section_fibres(shape, dims, pts, n)
+    !! The extreme points of a library section (section axes 1 and 2, origin at
+    !! the section's data origin, which the beams require at the centroid):
+    !! RECT and BOX: the corners (+a/2, +b/2), (-a/2, +b/2), (-a/2, -b/2),
+    !! (+a/2, -b/2); CIRC and PIPE: the ends of the axes (+r1, 0), (0, +r2),
+    !! (-r1, 0), (0, -r2); I: the flange tips, top (+b2/2, h - l), (-b2/2, h - l),
+    !! bottom (-b1/2, -l), (+b1/2, -l). n = 0 for other shapes (L, general).
+    integer, intent(in) :: shape
+    real(wp), intent(in) :: dims(:)
+    real(wp), intent(out) :: pts(2, MAX_FIBRES)
+    integer, intent(out) :: n
+    real(wp) :: a, b
+    pts = 0.0_wp
+    n = 0
+    select case (shape)
+    case (SHAPE_RECT, SHAPE_BOX)
+       a = dims(1)/2
+       b = dims(2)/2
+       pts = reshape([a, b, -a, b, -a, -b, a, -b], [2, MAX_FIBRES])
+       n = 4
+    case (SHAPE_CIRC, SHAPE_PIPE)
+       a = dims(1)
+       b = dims(1)
+       if (shape == SHAPE_CIRC .and. size(dims) == 2) then
+          a = dims(1)/2
+          b = dims(2)/2
+       end if
+       pts = reshape([a, 0.0_wp, 0.0_wp, b, -a, 0.0_wp, 0.0_wp, -b], [2, MAX_FIBRES])
+       n = 4
+    case (SHAPE_I)
+       associate (l => dims(1), h => dims(2), b1 => dims(3), b2 => dims(4))
+         pts = reshape([b2/2, h - l, -b2/2, h - l, -b1/2, -l, b1/2, -l], [2, MAX_FIBRES])
+       end associate
+       n = 4
+    end select
+  end subroutine section_fibres
 end module superjoin_deck_beam_sections

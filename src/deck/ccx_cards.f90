@@ -36,16 +36,16 @@ module superjoin_deck_ccx_cards
        'nonlinear contact', 'friction', 'gap elements', 'heat transfer', 'thermal loads', &
        'initial conditions', 'dynamics', 'dynamics']
 
-  integer, parameter :: NUM_NODE_PRODUCED = 3, NUM_EL_PRODUCED = 3
-  character(len=VAR_LEN), parameter :: NODE_PRODUCED(NUM_NODE_PRODUCED) = ['U    ', 'RF   ', 'CF   ']
-  character(len=VAR_LEN), parameter :: EL_PRODUCED(NUM_EL_PRODUCED) = ['S    ', 'E    ', 'SF   ']
+  integer, parameter :: NUM_NODE_PRODUCED = 4, NUM_EL_PRODUCED = 4
+  character(len=VAR_LEN), parameter :: NODE_PRODUCED(NUM_NODE_PRODUCED) = ['U    ', 'RF   ', 'CF   ', 'S    ']
+  character(len=VAR_LEN), parameter :: EL_PRODUCED(NUM_EL_PRODUCED) = ['S    ', 'E    ', 'SF   ', 'ENER ']
   integer, parameter :: NUM_NODE_KNOWN = 25
   character(len=VAR_LEN), parameter :: NODE_KNOWN(NUM_NODE_KNOWN) = [character(len=VAR_LEN) :: &
        'NT', 'TS', 'RFL', 'PN', 'PS', 'PT', 'TT', 'TTF', 'MF', 'V', 'VF', 'DEPF', 'TURB', 'MACH', 'CP', &
        'SEN', 'POT', 'PU', 'PNT', 'PHS', 'MAXU', 'HCRI', 'CONC', 'SLIP', 'UR']
-  integer, parameter :: NUM_EL_KNOWN = 30
+  integer, parameter :: NUM_EL_KNOWN = 29
   character(len=VAR_LEN), parameter :: EL_KNOWN(NUM_EL_KNOWN) = [character(len=VAR_LEN) :: &
-       'ME', 'PEEQ', 'CEEQ', 'ENER', 'SDV', 'HFL', 'HFLF', 'COORD', 'ELSE', 'ELKE', 'EVOL', 'EMAS', &
+       'ME', 'PEEQ', 'CEEQ', 'SDV', 'HFL', 'HFLF', 'COORD', 'ELSE', 'ELKE', 'EVOL', 'EMAS', &
        'EBHE', 'CENT', 'ZZS', 'ERR', 'HER', 'MAXS', 'MAXE', 'SVF', 'ESE', 'THE', 'PHS', 'EMFE', 'EMFB', &
        'MF', 'DEPF', 'CELS', 'CDIS', 'CSTR']
 

@@ -2145,6 +2145,8 @@ contains
          return
       end if
       sec%sp = [p%area, p%i11, p%i22, p%i12, p%j]
+      sec%ndims = st%f%n
+      sec%dims(1:st%f%n) = d(1:st%f%n)
     end associate
   end subroutine data_beam_shape
 

@@ -97,6 +97,8 @@ module superjoin_deck_state
      type(source_loc_t) :: loc, data_loc
      integer :: shape = 0                  !! SHAPE_* of superjoin_deck_beam_sections, SHAPE_GENERAL, 0: A, I data
      real(wp) :: sp(5) = 0.0_wp            !! its A, I11, I22, I12, J (section axes 1, 2)
+     integer :: ndims = 0                  !! library shape: number of dimensions on its data line
+     real(wp) :: dims(7) = 0.0_wp          !! library shape: the dimensions (for the fibre points)
   end type sec_b_t
 
   type, public :: contact_b_t

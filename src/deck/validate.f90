@@ -14,6 +14,9 @@ module superjoin_deck_validate
        CH_IDS, CH_GEN, CH_RANGE, CH_REF, BEAM_2D_VALUES, BEAM_3D_VALUES, SUBK_INSTANCE
   use superjoin_utils_strings, only: pick
   use superjoin_deck_requests, only: build_requests
+  use superjoin_deck_state, only: sec_b_t
+  use superjoin_model_types, only: section_t
+  use superjoin_deck_beam_sections, only: section_fibres, MAX_FIBRES
   implicit none (type, external)
   private
 
@@ -577,6 +580,7 @@ contains
       case (SEC_BEAM)
          if (sb%shape /= 0) then    ! library shape or Abaqus general section: constants in sb%sp
             sec%area = sb%sp(1)
+            call beam_fibres(sb, nb23 > 0, sec)
             if (nb23 > 0) then
                sec%iz = sb%sp(2)    ! a 2D beam bends about section axis 1, normal to its plane
             else
@@ -1333,4 +1337,22 @@ contains
        width = 2*width
     end do
   end subroutine argsort_ids
+  pure subroutine beam_fibres(sb, plane, sec)
+    !! The fibre points of a library beam section in the beam's local (y, z):
+    !! 3D beams have y along section axis 1 and z along axis 2; a 2D beam (plane)
+    !! bends in its plane about axis 1, so its local y is axis 2 (and z = -axis 1,
+    !! Abaqus's n1 = -Z of planar beams).
+    type(sec_b_t), intent(in) :: sb
+    logical, intent(in) :: plane
+    type(section_t), intent(inout) :: sec
+    real(wp) :: pts(2, MAX_FIBRES)
+    if (sb%ndims == 0) return
+    call section_fibres(sb%shape, sb%dims(1:sb%ndims), pts, sec%nfibre)
+    if (plane) then
+       sec%fibre(1, :) = pts(2, :)
+       sec%fibre(2, :) = -pts(1, :)
+    else
+       sec%fibre = pts
+    end if
+  end subroutine beam_fibres
 end module superjoin_deck_validate

@@ -79,6 +79,7 @@ module superjoin_elements_membrane
   public :: membrane_stiffness, membrane_resultants, membrane_drill_stiffness
   public :: plane_strain_stiffness, plane_strain_resultants
   public :: plane_stress, plane_strain, check_plane_material
+  public :: membrane_point_stresses
 
 contains
 
@@ -529,4 +530,62 @@ contains
        x(i, :) = (x(i, :) - matmul(l(i + 1:n, i), x(i + 1:n, :)))/l(i, i)
     end do
   end function spd_solve
+
+  ! ------------------------------------------------ stresses at points and nodes
+
+  pure subroutine membrane_point_stresses(xl, e, nu, strain_state, ue, sig_points, sig_nodes, error)
+    !! Stresses (σx, σy, τxy) in the element frame from the element
+    !! displacements ue(2n) (node-major u, v), plane stress or (strain_state)
+    !! plane strain: sig_points at the integration points, the CST's single
+    !! point (sig_points(3, 1)) or the quadrilateral's 2×2 Gauss points
+    !! (sig_points(3, 4) at (ξ, η) = (-g, -g), (g, -g), (g, g), (-g, g), g = 1/√3,
+    !! the point next to node k first), incompatible modes recovered as for
+    !! the resultants; sig_nodes(3, n) extrapolated to the nodes: the CST's
+    !! constant, the bilinear field through the four Gauss values evaluated at
+    !! the corners (ξ, η = ±1, i.e. ±√3 in the Gauss points' own coordinates).
+    real(wp), intent(in) :: xl(:, :)
+    real(wp), intent(in) :: e, nu
+    logical, intent(in) :: strain_state
+    real(wp), intent(in) :: ue(:)
+    real(wp), allocatable, intent(out) :: sig_points(:, :), sig_nodes(:, :)
+    type(error_t), allocatable, intent(out) :: error
+    real(wp) :: d(NSTRAIN, NSTRAIN), kua(8, NMODE), kaa(NMODE, NMODE), x(2, 4)
+    real(wp) :: alpha(NMODE, 1), bc(NSTRAIN, 8), ba(NSTRAIN, NMODE), b3(NSTRAIN, 6), jac, area
+    real(wp), allocatable :: kuu(:, :)
+    integer :: k, n
+
+    n = size(xl, 2)
+    if (strain_state) then
+       call check_element(xl, 1.0_wp, e, nu, 'plane strain', error)
+       d = plane_strain(e, nu)
+    else
+       call check_element(xl, 1.0_wp, e, nu, 'plane stress', error)
+       d = plane_stress(e, nu)
+    end if
+    if (allocated(error)) return
+    if (size(ue) /= 2*n) then
+       call fatal_error(error, EXIT_DECK, 'wrong number of element DOF values')
+       return
+    end if
+    if (n == 3) then
+       call cst_b(xl, b3, area)
+       allocate (sig_points(NSTRAIN, 1), sig_nodes(NSTRAIN, 3))
+       sig_points(:, 1) = matmul(d, matmul(b3, ue))
+       sig_nodes = spread(sig_points(:, 1), 2, 3)
+       return
+    end if
+    x = xl
+    call qm6_matrices(x, d, kuu, kua, kaa)
+    alpha = -spd_solve(kaa, matmul(transpose(kua), reshape(ue, [8, 1])))
+    allocate (sig_points(NSTRAIN, NGAUSS), sig_nodes(NSTRAIN, 4))
+    do k = 1, NGAUSS
+       call qm6_b(x, XI_GAUSS(k), ETA_GAUSS(k), bc, ba, jac)
+       sig_points(:, k) = matmul(d, matmul(bc, ue) + matmul(ba, alpha(:, 1)))
+    end do
+    ! The Gauss points are the corners of a square of half-side g in (ξ, η), in the
+    ! order of the nodes: node k sits at (ξ_k/g, η_k/g) = √3 (ξ_k, η_k) of that square.
+    do k = 1, 4
+       sig_nodes(:, k) = matmul(sig_points, shape4(sqrt(3.0_wp)*XI_NODE(k), sqrt(3.0_wp)*ETA_NODE(k)))
+    end do
+  end subroutine membrane_point_stresses
 end module superjoin_elements_membrane

@@ -52,6 +52,7 @@ module superjoin_elements_plate
     !! 3-point rule on the unit triangle: (a, a), (b, a), (a, b), weights 1/6 (exact for degree 2)
 
   public :: plate_stiffness, plate_moments, plate_pressure_load
+  public :: plate_point_moments
 
 contains
 
@@ -365,4 +366,53 @@ contains
        b(3, :) = b(3, :) + dx(n + k, 2)*tk(1, :) + dx(n + k, 1)*tk(2, :)
     end do
   end subroutine curvature_matrix
+
+  pure subroutine plate_point_moments(xl, t, e, nu, ue, m_points, m_nodes, error)
+    !! Moments per unit length (mx, my, mxy) from the local DOF values ue(3n) at
+    !! the points where stresses are reported and at the nodes: DKT one point,
+    !! the centroid (m_points(3, 1)), and the corners themselves (its curvature
+    !! is linear, so this is the extrapolation of any points); DKQ the 2×2 Gauss
+    !! points (m_points(3, 4), (ξ, η) = (-g, -g), (g, -g), (g, g), (-g, g),
+    !! g = 1/√3, point k next to node k) and the corners by the bilinear
+    !! extrapolation of the four values.
+    real(wp), intent(in) :: xl(:, :)
+    real(wp), intent(in) :: t, e, nu
+    real(wp), intent(in) :: ue(:)
+    real(wp), allocatable, intent(out) :: m_points(:, :), m_nodes(:, :)
+    type(error_t), allocatable, intent(out) :: error
+    real(wp), allocatable :: b(:, :)
+    real(wp) :: db(NSTRAIN, NSTRAIN), detj, w(NQUAD)
+    real(wp), parameter :: TRI_XI(NTRI) = [0.0_wp, 1.0_wp, 0.0_wp], TRI_ETA(NTRI) = [0.0_wp, 0.0_wp, 1.0_wp]
+    integer :: n, k
+    call check_element(xl, t, e, nu, error)
+    if (allocated(error)) return
+    n = size(xl, 2)
+    if (size(ue) /= NDN*n) then
+       call fatal_error(error, EXIT_DECK, 'wrong number of element DOF values')
+       return
+    end if
+    db = bending_rigidity(t, e, nu)
+    allocate (b(NSTRAIN, size(ue)))
+    allocate (m_nodes(NSTRAIN, n))
+    if (n == NTRI) then
+       allocate (m_points(NSTRAIN, 1))
+       call curvature_matrix(xl, ONE_THIRD, ONE_THIRD, b, detj)
+       m_points(:, 1) = matmul(db, matmul(b, ue))
+       do k = 1, NTRI
+          call curvature_matrix(xl, TRI_XI(k), TRI_ETA(k), b, detj)
+          m_nodes(:, k) = matmul(db, matmul(b, ue))
+       end do
+       return
+    end if
+    allocate (m_points(NSTRAIN, NQUAD))
+    do k = 1, NQUAD
+       call curvature_matrix(xl, GAUSS2*QUAD_XI(k), GAUSS2*QUAD_ETA(k), b, detj)
+       m_points(:, k) = matmul(db, matmul(b, ue))
+    end do
+    do k = 1, NQUAD
+       ! bilinear functions of the Gauss points (corners of a square of half-side g) at node k
+       w = (1 + sqrt(3.0_wp)*QUAD_XI(k)*QUAD_XI)*(1 + sqrt(3.0_wp)*QUAD_ETA(k)*QUAD_ETA)/4
+       m_nodes(:, k) = matmul(m_points, w)
+    end do
+  end subroutine plate_point_moments
 end module superjoin_elements_plate

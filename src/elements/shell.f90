@@ -21,6 +21,8 @@ module superjoin_elements_shell
   use superjoin_elements_membrane, only: membrane_stiffness, membrane_drill_stiffness, membrane_resultants, &
        plane_strain_stiffness, plane_strain_resultants
   use superjoin_elements_plate, only: plate_stiffness, plate_moments, plate_pressure_load
+  use superjoin_elements_plate, only: plate_point_moments
+  use superjoin_elements_membrane, only: membrane_point_stresses
   use superjoin_elements_frame, only: cross
   use superjoin_elements_quadratic, only: plane_props_t, quadratic_stiffness, quadratic_resultants, &
        quadratic_shape_integrals
@@ -29,6 +31,7 @@ module superjoin_elements_shell
 
   public :: is_plate_type, is_plane_type, is_plane_strain_type, is_quadratic_plane_type, shell_frame, shell_stiffness, shell_resultants, shell_forces, shell_pressure_load, &
        shell_area_load
+  public :: shell_surface_stresses
 
   integer, parameter :: MEMBRANE_DOFS(3) = [1, 2, 6]
     !! Local shell DOFs (u, v, w, θx, θy, θz) of the membrane (u, v, θz).
@@ -452,4 +455,43 @@ contains
        end do
     end do
   end subroutine scatter
+
+  pure subroutine shell_surface_stresses(x, sec, mat, ue, r, sig_points, sig_nodes, error)
+    !! Stresses (σx, σy, τxy) in the element frame r of an S3 or S4 from its
+    !! displacements ue (global axes, element ordering) on the bottom (surface 1,
+    !! z = -t/2) and top (surface 2, z = +t/2) surfaces, σ = n/t ∓ 6 m/t²:
+    !! sig_points(3, point, surface) at the points of membrane_point_stresses
+    !! and plate_point_moments (S3: the centroid; S4: 2×2 Gauss, point k next
+    !! to node k), sig_nodes(3, node, surface) extrapolated to the nodes.
+    real(wp), intent(in) :: x(:, :)
+    type(section_t), intent(in) :: sec
+    type(material_t), intent(in) :: mat
+    real(wp), intent(in) :: ue(:)
+    real(wp), intent(out) :: r(3, 3)
+    real(wp), allocatable, intent(out) :: sig_points(:, :, :), sig_nodes(:, :, :)
+    type(error_t), allocatable, intent(out) :: error
+    real(wp) :: xl(2, size(x, 2)), h(size(x, 2)), d(size(ue)), um(2*size(x, 2)), ub(3*size(x, 2)), t
+    real(wp), allocatable :: sp(:, :), sn(:, :), mp(:, :), mn(:, :)
+    integer :: i, n, etype
+    n = size(x, 2)
+    etype = ET_S4
+    if (n == 3) etype = ET_S3
+    call setup(etype, x, r, xl, h, error)
+    if (allocated(error)) return
+    d = to_local(node_maps(etype, r, h), ue)
+    do i = 1, n
+       um(2*i - 1:2*i) = d(6*(i - 1) + MEMBRANE_DOFS(1:2))
+       ub(3*i - 2:3*i) = d(6*(i - 1) + PLATE_DOFS)
+    end do
+    t = sec%thickness
+    call membrane_point_stresses(xl, mat%e, mat%nu, .false., um, sp, sn, error)
+    if (allocated(error)) return
+    call plate_point_moments(xl, t, mat%e, mat%nu, ub, mp, mn, error)
+    if (allocated(error)) return
+    allocate (sig_points(3, size(sp, 2), 2), sig_nodes(3, n, 2))
+    sig_points(:, :, 1) = sp - 6*mp/t**2
+    sig_points(:, :, 2) = sp + 6*mp/t**2
+    sig_nodes(:, :, 1) = sn - 6*mn/t**2
+    sig_nodes(:, :, 2) = sn + 6*mn/t**2
+  end subroutine shell_surface_stresses
 end module superjoin_elements_shell

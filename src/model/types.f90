@@ -95,6 +95,8 @@ module superjoin_model_types
                                            !! deflection along local y, z (*TRANSVERSE SHEAR STIFFNESS);
                                            !! 0 = shear_factor × G × A
      real(wp) :: shear_factor = 1.0_wp     !! k of the default shear stiffness k G A
+     integer :: nfibre = 0                 !! library beam sections: extreme points for fibre stresses
+     real(wp) :: fibre(2, 4) = 0.0_wp      !! their local (y, z) about the centroid
      type(source_loc_t) :: loc
   end type section_t
 

@@ -15,6 +15,7 @@ module superjoin_output_listing
   use superjoin_utils_memory, only: out_of_memory
   use superjoin_output_requests, only: write_print_requests
   use superjoin_model_request_masks, only: has_requests
+  use superjoin_output_layout, only: displacement_columns, node_dof_mask, is_truss
   implicit none (type, external)
   private
 
@@ -236,11 +237,19 @@ contains
     integer(i8) :: v
     real(wp) :: scale, vals(NDOF_NODE)
     character(len=300) :: hline
+    character(len=3), parameter :: DISP_NAMES(NDOF_NODE) = ['u1 ', 'u2 ', 'u3 ', 'ur1', 'ur2', 'ur3']
+    integer :: cols(NDOF_NODE), ncol
+    logical, allocatable :: has(:, :)
 
+    call node_dof_mask(model, res%fields%vertex_offset, has)
     associate (st => res%fields%steps(is))
       call lu%line('DISPLACEMENTS (global axes)')
-      write (hline, '(2x,a20,a10,6a15)') 'substructure        ', '      node', '             u1', &
-           '             u2', '             u3', '            ur1', '            ur2', '            ur3'
+      call displacement_columns(model, cols, ncol)
+      hline = ''
+      write (hline, '(2x,a20,a10)') 'substructure        ', '      node'
+      do k = 1, ncol
+         hline = trim(hline)//repeat(' ', 15 - len_trim(DISP_NAMES(cols(k))))//trim(DISP_NAMES(cols(k)))
+      end do
       call lu%line(trim(hline))
       scale = max(0.0_wp, maxval(abs(res%fields%u(:, is))))
       do isub = 1, size(model%subs)
@@ -253,8 +262,8 @@ contains
             call lu%put('  ')
             call lu%put_field(model%subs(isub)%name, 20)
             call lu%put_int(int(model%subs(isub)%node_id(n), i8), 10)
-            do d = 1, NDOF_NODE
-               call lu%put_es(vals(d))
+            do k = 1, ncol
+               call lu%put_es(vals(cols(k)))
             end do
             call lu%newline()
          end do
@@ -267,6 +276,7 @@ contains
       scale = max(0.0_wp, maxval(abs(st%reactions(:)%force)))
       do k = 1, size(st%reactions)
          associate (rc => st%reactions(k))
+           if (.not. has(rc%dof, res%fields%vertex_offset(rc%sub) + rc%node)) cycle
            call lu%put('  ')
            call lu%put_field(model%subs(rc%sub)%name, 20)
            call lu%put_int(int(model%subs(rc%sub)%node_id(rc%node), i8), 10)
@@ -280,7 +290,8 @@ contains
   end subroutine node_tables
 
   subroutine element_tables(lu, model, res, is)
-    !! ELEMENT END FORCES of the bars and the plate and shell resultants of step is.
+    !! TRUSS AXIAL FORCES, ELEMENT END FORCES of the beams and the plate and
+    !! shell resultants of step is.
     type(text_buffer_t), intent(inout) :: lu
     type(model_t), intent(in) :: model
     type(results_t), intent(in) :: res
@@ -289,19 +300,23 @@ contains
     integer(i8) :: iel
     real(wp) :: scale
     character(len=300) :: hline
-    logical :: has_bars, has_plates
+    logical :: has_bars, has_plates, has_trusses
 
     has_bars = .false.
     has_plates = .false.
+    has_trusses = .false.
     do isub = 1, size(model%subs)
        do ie = 1, model%subs(isub)%nelem
           if (is_plate_type(model%subs(isub)%elem_type(ie))) then
              has_plates = .true.
+          else if (is_truss(model%subs(isub)%elem_type(ie))) then
+             has_trusses = .true.
           else
              has_bars = .true.
           end if
        end do
     end do
+    if (has_trusses) call truss_block(lu, model, res, is)
     if (has_bars) then
        call lu%line('ELEMENT END FORCES (local axes; forces the nodes exert on the element)')
        write (hline, '(2x,a20,a10,a6,a4,6a15)') 'substructure        ', '   element', '  type', ' end', &
@@ -312,6 +327,7 @@ contains
        do isub = 1, size(model%subs)
           do ie = 1, model%subs(isub)%nelem
              if (is_plate_type(model%subs(isub)%elem_type(ie))) cycle
+             if (is_truss(model%subs(isub)%elem_type(ie))) cycle
              iel = res%fields%elem_offset(isub) + ie
              do k = 1, 2
                 call element_prefix(lu, model, isub, ie, 2)
@@ -327,6 +343,47 @@ contains
     end if
     if (has_plates) call plate_block(lu, model, res, is)
   end subroutine element_tables
+
+  subroutine truss_block(lu, model, res, is)
+    !! One axial force per truss, tension positive: N = (n2 - n1)/2 of the end
+    !! forces, the force at mid-length (n2 = -n1 = N without an axial load
+    !! along the bar; element_forces.csv keeps both ends).
+    type(text_buffer_t), intent(inout) :: lu
+    type(model_t), intent(in) :: model
+    type(results_t), intent(in) :: res
+    integer, intent(in) :: is
+    character(len=100) :: hline
+    real(wp) :: scale
+    integer :: isub
+    integer(ip) :: ie
+    integer(i8) :: iel
+    call lu%line('TRUSS AXIAL FORCES (tension positive)')
+    write (hline, '(2x,a20,a10,a6,a15)') 'substructure        ', '   element', '  type', '              N'
+    call lu%line(trim(hline))
+    scale = 0.0_wp
+    do isub = 1, size(model%subs)
+       do ie = 1, model%subs(isub)%nelem
+          if (.not. is_truss(model%subs(isub)%elem_type(ie))) cycle
+          iel = res%fields%elem_offset(isub) + ie
+          scale = max(scale, abs(axial(iel)))
+       end do
+    end do
+    do isub = 1, size(model%subs)
+       do ie = 1, model%subs(isub)%nelem
+          if (.not. is_truss(model%subs(isub)%elem_type(ie))) cycle
+          iel = res%fields%elem_offset(isub) + ie
+          call element_prefix(lu, model, isub, ie, 2)
+          call lu%put_es(chop(axial(iel), scale))
+          call lu%newline()
+       end do
+    end do
+    call lu%line('')
+  contains
+    pure real(wp) function axial(iel) result(n)
+      integer(i8), intent(in) :: iel
+      n = 0.5_wp*(res%fields%elem_force(1, 2, iel, is) - res%fields%elem_force(1, 1, iel, is))
+    end function axial
+  end subroutine truss_block
 
   subroutine plate_block(lu, model, res, is)
     !! Resultants per unit length of the plane and shell elements at their

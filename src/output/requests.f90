@@ -18,6 +18,9 @@ module superjoin_output_requests
   use superjoin_output_text_buffer, only: text_buffer_t
   use superjoin_output_columns, only: element_prefix, chop
   use superjoin_utils_strings, only: itoa
+  use superjoin_output_energy, only: write_energy_request
+  use superjoin_output_stresses, only: write_point_stress_table, write_nodal_stress_table, &
+       write_fibre_stress_table
   implicit none (type, external)
   private
 
@@ -125,6 +128,9 @@ contains
        case ('CF')
           call lu%line('    CF  concentrated loads (*CLOAD, global axes)')
           call fill_cf(vals)
+       case ('S')
+          call write_nodal_stress_table(lu, model, fields, is, subs, nodes)
+          cycle
        case default
           cycle
        end select
@@ -250,6 +256,8 @@ contains
        case ('S')
           call lu%line('    S   stresses (global axes; trusses: uniaxial N/A; CPS3/CPS4: at the centroid)')
           call tensor_table(lu, model, fields, is, subs, elems, .false.)
+          call write_point_stress_table(lu, model, fields, is, subs, elems)
+          call write_fibre_stress_table(lu, model, fields, is, subs, elems)
        case ('E')
           call lu%line('    E   strains (tensor components, global axes; trusses: uniaxial stress state; '// &
                'CPS3/CPS4: at the centroid)')
@@ -258,6 +266,8 @@ contains
           call lu%line('    SF  section forces (trusses and beams: end forces, local axes, as ELEMENT END FORCES; '// &
                'plates and shells: nx, ny, nxy, mx, my, mxy at the centroid, element frame)')
           call section_force_table(lu, model, fields, is, subs, elems)
+       case ('ENER')
+          call write_energy_request(lu, model, fields, is, subs, elems)
        end select
     end do
     call lu%line('')

@@ -1,0 +1,113 @@
+module superjoin_output_layout
+  !! Which columns and rows of the listing's standard tables can carry a value
+  !! (issue 12, readable results):
+  !! - a planar model, whose elements are all T2D2, B21, B23, CPS3, CPS4, CPE3
+  !!   or CPE4 (and which has at least one element), has no u3, ur1, ur2: its
+  !!   DISPLACEMENTS table shows u1, u2, ur3;
+  !! - a node has the DOFs that its elements carry (element_dof_mask) and those
+  !!   of the contact elements on it (the DOF itself; every DOF of its block,
+  !!   translations or rotations, for a contact with an orientation); a support
+  !!   on any other DOF gives no row of SUPPORT REACTIONS;
+  !! - trusses (T2D2, T3D2) print one axial force per bar (TRUSS AXIAL FORCES)
+  !!   instead of rows of ELEMENT END FORCES.
+  use superjoin_kinds, only: i8, ip
+  use superjoin_model_types, only: model_t, NDOF_NODE, LINK_NONE, ELEMENT_NODE_COUNT, ET_T2D2, ET_T3D2, ET_B21, ET_B23, &
+       ET_CPS3, ET_CPS4, ET_CPE3, ET_CPE4
+  use superjoin_elements, only: element_dof_mask
+  implicit none (type, external)
+  private
+
+  integer, parameter :: BLOCK = 3
+    !! DOFs per block (translations 1-3, rotations 4-6).
+
+  public :: is_planar_model, node_dof_mask, is_truss, displacement_columns
+
+contains
+
+  pure logical function is_planar_model(model)
+    !! True when every element of the model is T2D2, B21, B23, CPS3, CPS4,
+    !! CPE3 or CPE4 (and there is at least one).
+    type(model_t), intent(in) :: model
+    integer :: isub
+    integer(ip) :: e
+    logical :: any_element
+    is_planar_model = .true.
+    any_element = .false.
+    do isub = 1, size(model%subs)
+       do e = 1, model%subs(isub)%nelem
+          any_element = .true.
+          select case (model%subs(isub)%elem_type(e))
+          case (ET_T2D2, ET_B21, ET_B23, ET_CPS3, ET_CPS4, ET_CPE3, ET_CPE4)
+          case default
+             is_planar_model = .false.
+             return
+          end select
+       end do
+    end do
+    is_planar_model = any_element
+  end function is_planar_model
+
+  pure subroutine displacement_columns(model, cols, ncol)
+    !! The DOFs of the DISPLACEMENTS table, cols(1:ncol): 1, 2, 6 in a planar
+    !! model, else 1-6.
+    type(model_t), intent(in) :: model
+    integer, intent(out) :: cols(NDOF_NODE)
+    integer, intent(out) :: ncol
+    integer :: d
+    cols = [(d, d=1, NDOF_NODE)]
+    ncol = NDOF_NODE
+    if (is_planar_model(model)) then
+       cols(1:3) = [1, 2, 6]
+       ncol = 3
+    end if
+  end subroutine displacement_columns
+
+  elemental logical function is_truss(etype)
+    !! T2D2 and T3D2.
+    integer, intent(in) :: etype
+    is_truss = etype == ET_T2D2 .or. etype == ET_T3D2
+  end function is_truss
+
+  pure subroutine node_dof_mask(model, vertex_offset, mask)
+    !! mask(d, v): node v (numbered by vertex_offset over the substructures)
+    !! has DOF d from an element or a contact element.
+    type(model_t), intent(in) :: model
+    integer(i8), intent(in) :: vertex_offset(:)
+    logical, allocatable, intent(out) :: mask(:, :)
+    integer :: isub, a, il, d, b
+    integer(ip) :: e
+    integer(i8) :: nv, vm, vs
+    logical :: m(NDOF_NODE)
+    nv = vertex_offset(size(model%subs) + 1)
+    allocate (mask(NDOF_NODE, nv), source=.false.)
+    do isub = 1, size(model%subs)
+       associate (sub => model%subs(isub))
+         do e = 1, sub%nelem
+            m = element_dof_mask(sub%elem_type(e))
+            do a = 1, ELEMENT_NODE_COUNT(sub%elem_type(e))
+               associate (v => vertex_offset(isub) + sub%elem_nodes(a, e))
+                 mask(:, v) = mask(:, v) .or. m
+               end associate
+            end do
+         end do
+       end associate
+    end do
+    do il = 1, size(model%links)
+       associate (lk => model%links(il), ct => model%contacts(model%links(il)%contact))
+         vm = vertex_offset(ct%master_sub) + lk%master_node
+         vs = vertex_offset(ct%slave_sub) + lk%slave_node
+         do d = 1, NDOF_NODE
+            if (lk%state(d) == LINK_NONE) cycle
+            if (ct%orientation > 0) then
+               b = (d - 1)/BLOCK
+               mask(b*BLOCK + 1:b*BLOCK + BLOCK, vm) = .true.
+               mask(b*BLOCK + 1:b*BLOCK + BLOCK, vs) = .true.
+            else
+               mask(d, vm) = .true.
+               mask(d, vs) = .true.
+            end if
+         end do
+       end associate
+    end do
+  end subroutine node_dof_mask
+end module superjoin_output_layout

@@ -1,0 +1,346 @@
+module superjoin_output_requested_csv
+  !! CSV tables of the derived results that only exist on request (--csv DIR
+  !! and an output request of a step naming the variable, *EL PRINT / *EL FILE
+  !! or *NODE PRINT / *NODE FILE, with CalculiX's scoping of requests):
+  !!   energies.csv        ENER (*EL PRINT, *EL FILE): strain energies and the energy balance
+  !!   point_stresses.csv  S (*EL PRINT, *EL FILE): plane and shell elements, at the integration points
+  !!   fibre_stresses.csv  S (*EL PRINT, *EL FILE): beams with a library section, extreme points
+  !!   nodal_stresses.csv  S (*NODE PRINT, *NODE FILE, *EL FILE): plane and shell elements, at the nodes,
+  !!                       averaged over the elements of the substructure
+  !! Without such a request (or without the elements a stress table is about)
+  !! the table of an earlier run into DIR is removed.
+  use superjoin_kinds, only: wp, ip
+  use superjoin_error, only: error_t
+  use superjoin_model_types, only: model_t, REQ_EL_PRINT, REQ_EL_FILE, REQ_NODE_PRINT, REQ_NODE_FILE, &
+       ELEMENT_TYPE_NAMES
+  use superjoin_output_stresses, only: plane_stresses, nodal_stresses, fibre_stresses
+  use superjoin_elements_shell, only: is_plate_type
+  use superjoin_analysis_results, only: result_fields_t
+  use superjoin_output_requests, only: effective_requests
+  use superjoin_output_energy, only: energy_t, compute_energies, requests_name
+  use superjoin_output_text_buffer, only: text_buffer_t
+  use superjoin_output_posix, only: remove_file
+  use superjoin_utils_process, only: temp_register, temp_unregister
+  use superjoin_utils_strings, only: itoa, full_real
+  implicit none (type, external)
+  private
+
+  character(*), parameter, public :: ENERGY_CSV = 'energies.csv', POINT_STRESS_CSV = 'point_stresses.csv', &
+       NODAL_STRESS_CSV = 'nodal_stresses.csv', FIBRE_STRESS_CSV = 'fibre_stresses.csv'
+
+  public :: write_requested_csv, step_requests
+
+contains
+
+  subroutine write_requested_csv(dir, model, fields, error)
+    !! The requested derived tables into DIR (which exists).
+    character(*), intent(in) :: dir
+    type(model_t), intent(in) :: model
+    type(result_fields_t), intent(in) :: fields
+    type(error_t), allocatable, intent(out) :: error
+    call write_energy_csv(dir, model, fields, error)
+    if (allocated(error)) return
+    call write_point_stress_csv(dir, model, fields, error)
+    if (allocated(error)) return
+    call write_nodal_stress_csv(dir, model, fields, error)
+    if (allocated(error)) return
+    call write_fibre_stress_csv(dir, model, fields, error)
+  end subroutine write_requested_csv
+
+  logical function step_requests(model, is, kinds, name)
+    !! Does a request of one of `kinds` that applies to step `is` name `name`?
+    type(model_t), intent(in) :: model
+    integer, intent(in) :: is
+    integer, intent(in) :: kinds(:)
+    character(*), intent(in) :: name
+    integer, allocatable :: idx(:)
+    integer :: k, j
+    step_requests = .false.
+    do k = 1, size(kinds)
+       call effective_requests(model, is, kinds(k), idx)
+       do j = 1, size(idx)
+          if (requests_name(model%requests(idx(j)), name)) step_requests = .true.
+       end do
+    end do
+  end function step_requests
+
+  subroutine open_table(path, tmp, tb, error)
+    !! Open the temporary file of a table (registered for removal on a signal).
+    character(*), intent(in) :: path
+    character(:), allocatable, intent(out) :: tmp
+    type(text_buffer_t), intent(inout) :: tb
+    type(error_t), allocatable, intent(out) :: error
+    tmp = path//'.tmp'
+    call temp_register(tmp)
+    call tb%open(tmp, error)
+    if (allocated(error)) call temp_unregister()
+  end subroutine open_table
+
+  subroutine abandon_table(tb, tmp)
+    !! Close and remove a table that cannot be completed.
+    type(text_buffer_t), intent(inout) :: tb
+    character(*), intent(in) :: tmp
+    logical :: ok
+    call tb%close(ok)
+    call remove_file(tmp)
+    call temp_unregister()
+  end subroutine abandon_table
+
+  subroutine write_energy_csv(dir, model, fields, error)
+    !! DIR/energies.csv: step,kind,name,id,energy with kind element (name: its
+    !! substructure, id: its id), substructure, contact_element (name: the
+    !! *CONTACT card, id: the slave node id), contact (the card), and the model's
+    !! spring_supports, total, load_work (½ fᵀu), prescribed_work (½ Σ R ū).
+    character(*), intent(in) :: dir
+    type(model_t), intent(in) :: model
+    type(result_fields_t), intent(in) :: fields
+    type(error_t), allocatable, intent(out) :: error
+    type(text_buffer_t), allocatable :: tb
+    type(energy_t) :: en
+    character(:), allocatable :: path, tmp
+    logical, allocatable :: wanted(:)
+    integer :: is, isub, il
+    integer(ip) :: e
+    path = dir//'/'//ENERGY_CSV
+    allocate (wanted(size(model%steps)))
+    do is = 1, size(model%steps)
+       wanted(is) = step_requests(model, is, [REQ_EL_PRINT, REQ_EL_FILE], 'ENER')
+    end do
+    if (.not. any(wanted)) then
+       call remove_file(path)
+       return
+    end if
+    allocate (tb)
+    call open_table(path, tmp, tb, error)
+    if (allocated(error)) return
+    call tb%line('step,kind,name,id,energy')
+    do is = 1, size(model%steps)
+       if (.not. wanted(is)) cycle
+       call compute_energies(model, fields, is, en, error)
+       if (allocated(error)) then
+          call abandon_table(tb, tmp)
+          return
+       end if
+       associate (sn => model%steps(is)%name)
+         do isub = 1, size(model%subs)
+            do e = 1, model%subs(isub)%nelem
+               call row(sn, 'element', model%subs(isub)%name, itoa(int(model%subs(isub)%elem_id(e))), &
+                    en%element(fields%elem_offset(isub) + e))
+            end do
+         end do
+         do isub = 1, size(model%subs)
+            call row(sn, 'substructure', model%subs(isub)%name, '', en%part(isub))
+         end do
+         do il = 1, size(model%links)
+            associate (lk => model%links(il), ct => model%contacts(model%links(il)%contact))
+              call row(sn, 'contact_element', ct%name, &
+                   itoa(int(model%subs(ct%slave_sub)%node_id(lk%slave_node))), en%link(il))
+            end associate
+         end do
+         do il = 1, size(model%contacts)
+            call row(sn, 'contact', model%contacts(il)%name, '', en%contact(il))
+         end do
+         call row(sn, 'spring_supports', '', '', en%supports)
+         call row(sn, 'total', '', '', en%internal)
+         call row(sn, 'load_work', '', '', en%load_work)
+         call row(sn, 'prescribed_work', '', '', en%prescribed_work)
+       end associate
+    end do
+    call tb%commit(tmp, path, '', error)
+  contains
+    subroutine row(step, kind, name, id, value)
+      character(*), intent(in) :: step, kind, name, id
+      real(wp), intent(in) :: value
+      call tb%line(step//','//kind//','//name//','//id//','//full_real(value))
+    end subroutine row
+  end subroutine write_energy_csv
+
+  subroutine write_point_stress_csv(dir, model, fields, error)
+    !! DIR/point_stresses.csv:
+    !! step,substructure,element,type,point,surface,sxx,syy,szz,sxy,sxz,syz for
+    !! every plane (surface mid) and shell element (surfaces bottom and top), in
+    !! the steps whose element requests name S.
+    character(*), intent(in) :: dir
+    type(model_t), intent(in) :: model
+    type(result_fields_t), intent(in) :: fields
+    type(error_t), allocatable, intent(out) :: error
+    type(text_buffer_t), allocatable :: tb
+    character(:), allocatable :: path, tmp
+    real(wp), allocatable :: points(:, :, :), nodes(:, :, :)
+    logical, allocatable :: wanted(:)
+    logical :: ok
+    integer :: is, isub, k, d, m
+    integer(ip) :: e
+    path = dir//'/'//POINT_STRESS_CSV
+    allocate (wanted(size(model%steps)))
+    do is = 1, size(model%steps)
+       wanted(is) = step_requests(model, is, [REQ_EL_PRINT, REQ_EL_FILE], 'S')
+    end do
+    if (.not. any(wanted) .or. .not. any_plane(model)) then
+       call remove_file(path)
+       return
+    end if
+    allocate (tb)
+    call open_table(path, tmp, tb, error)
+    if (allocated(error)) return
+    call tb%line('step,substructure,element,type,point,surface,sxx,syy,szz,sxy,sxz,syz')
+    do is = 1, size(model%steps)
+       if (.not. wanted(is)) cycle
+       do isub = 1, size(model%subs)
+          do e = 1, model%subs(isub)%nelem
+             call plane_stresses(model, fields, is, isub, e, points, nodes, ok)
+             if (.not. ok) cycle
+             do m = 1, size(points, 3)
+                do k = 1, size(points, 2)
+                   call tb%put(model%steps(is)%name//','//model%subs(isub)%name//','// &
+                        itoa(int(model%subs(isub)%elem_id(e)))//','// &
+                        trim(ELEMENT_TYPE_NAMES(model%subs(isub)%elem_type(e)))//','//itoa(k)//','// &
+                        surface_name(size(points, 3), m))
+                   do d = 1, size(points, 1)
+                      call tb%put(','//full_real(points(d, k, m)))
+                   end do
+                   call tb%newline()
+                end do
+             end do
+          end do
+       end do
+    end do
+    call tb%commit(tmp, path, '', error)
+  end subroutine write_point_stress_csv
+
+  pure function surface_name(nsurf, k) result(name)
+    !! mid (plane elements), bottom or top (shells).
+    integer, intent(in) :: nsurf, k
+    character(:), allocatable :: name
+    if (nsurf == 1) then
+       name = 'mid'
+    else if (k == 1) then
+       name = 'bottom'
+    else
+       name = 'top'
+    end if
+  end function surface_name
+
+  subroutine write_nodal_stress_csv(dir, model, fields, error)
+    !! DIR/nodal_stresses.csv: step,substructure,node,elements,surface,sxx,syy,szz,sxy,sxz,syz
+    !! for every node of a plane or shell element (elements: how many were
+    !! averaged; surface mid, or bottom and top at a node of a shell), in the
+    !! steps whose node requests, or *EL FILE requests, name S.
+    character(*), intent(in) :: dir
+    type(model_t), intent(in) :: model
+    type(result_fields_t), intent(in) :: fields
+    type(error_t), allocatable, intent(out) :: error
+    type(text_buffer_t), allocatable :: tb
+    character(:), allocatable :: path, tmp
+    real(wp), allocatable :: avg(:, :, :)
+    integer, allocatable :: nel(:)
+    logical, allocatable :: wanted(:), shell(:)
+    integer :: is, isub, d, k, ns
+    integer(ip) :: n
+    path = dir//'/'//NODAL_STRESS_CSV
+    allocate (wanted(size(model%steps)))
+    do is = 1, size(model%steps)
+       wanted(is) = step_requests(model, is, [REQ_NODE_PRINT, REQ_NODE_FILE, REQ_EL_FILE], 'S')
+    end do
+    if (.not. any(wanted) .or. .not. any_plane(model)) then
+       call remove_file(path)
+       return
+    end if
+    allocate (tb)
+    call open_table(path, tmp, tb, error)
+    if (allocated(error)) return
+    call tb%line('step,substructure,node,elements,surface,sxx,syy,szz,sxy,sxz,syz')
+    do is = 1, size(model%steps)
+       if (.not. wanted(is)) cycle
+       do isub = 1, size(model%subs)
+          call nodal_stresses(model, fields, is, isub, avg, nel, shell)
+          do n = 1, model%subs(isub)%nnode
+             if (nel(n) == 0) cycle
+             ns = 1
+             if (shell(n)) ns = 2
+             do k = 1, ns
+                call tb%put(model%steps(is)%name//','//model%subs(isub)%name//','// &
+                     itoa(int(model%subs(isub)%node_id(n)))//','//itoa(nel(n))//','//surface_name(ns, k))
+                do d = 1, size(avg, 1)
+                   call tb%put(','//full_real(avg(d, n, k)))
+                end do
+                call tb%newline()
+             end do
+          end do
+       end do
+    end do
+    call tb%commit(tmp, path, '', error)
+  end subroutine write_nodal_stress_csv
+
+  subroutine write_fibre_stress_csv(dir, model, fields, error)
+    !! DIR/fibre_stresses.csv: step,substructure,element,type,end,point,y,z,sxx for
+    !! every beam with a library section, in the steps whose element requests name S.
+    character(*), intent(in) :: dir
+    type(model_t), intent(in) :: model
+    type(result_fields_t), intent(in) :: fields
+    type(error_t), allocatable, intent(out) :: error
+    type(text_buffer_t), allocatable :: tb
+    character(:), allocatable :: path, tmp
+    real(wp) :: sig(4, 2)
+    logical, allocatable :: wanted(:)
+    integer :: is, isub, k, ends, n
+    integer(ip) :: e
+    path = dir//'/'//FIBRE_STRESS_CSV
+    allocate (wanted(size(model%steps)))
+    do is = 1, size(model%steps)
+       wanted(is) = step_requests(model, is, [REQ_EL_PRINT, REQ_EL_FILE], 'S')
+    end do
+    if (.not. any(wanted) .or. .not. any_fibres(model)) then
+       call remove_file(path)
+       return
+    end if
+    allocate (tb)
+    call open_table(path, tmp, tb, error)
+    if (allocated(error)) return
+    call tb%line('step,substructure,element,type,end,point,y,z,sxx')
+    do is = 1, size(model%steps)
+       if (.not. wanted(is)) cycle
+       do isub = 1, size(model%subs)
+          do e = 1, model%subs(isub)%nelem
+             call fibre_stresses(model, fields, is, isub, e, sig, n)
+             associate (sub => model%subs(isub))
+               do ends = 1, 2
+                  do k = 1, n
+                     associate (sec => sub%sections(sub%elem_section(e)))
+                       call tb%line(model%steps(is)%name//','//sub%name//','//itoa(int(sub%elem_id(e)))//','// &
+                            trim(ELEMENT_TYPE_NAMES(sub%elem_type(e)))//','//itoa(ends)//','//itoa(k)//','// &
+                            full_real(sec%fibre(1, k))//','//full_real(sec%fibre(2, k))//','//full_real(sig(k, ends)))
+                     end associate
+                  end do
+               end do
+             end associate
+          end do
+       end do
+    end do
+    call tb%commit(tmp, path, '', error)
+  end subroutine write_fibre_stress_csv
+
+  pure logical function any_plane(model)
+    !! Does the model have plane or shell elements (CPS3, CPS4, CPE3, CPE4, S3, S4)?
+    type(model_t), intent(in) :: model
+    integer :: isub
+    any_plane = .false.
+    do isub = 1, size(model%subs)
+       if (model%subs(isub)%nelem == 0) cycle
+       if (any(is_plate_type(model%subs(isub)%elem_type(1:model%subs(isub)%nelem)))) any_plane = .true.
+    end do
+  end function any_plane
+
+  pure logical function any_fibres(model)
+    !! Does some section of the model have fibre points (library beam sections)?
+    type(model_t), intent(in) :: model
+    integer :: isub, k
+    any_fibres = .false.
+    do isub = 1, size(model%subs)
+       if (.not. allocated(model%subs(isub)%sections)) cycle
+       do k = 1, size(model%subs(isub)%sections)
+          if (model%subs(isub)%sections(k)%nfibre > 0) any_fibres = .true.
+       end do
+    end do
+  end function any_fibres
+end module superjoin_output_requested_csv

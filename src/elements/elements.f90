@@ -10,6 +10,7 @@ module superjoin_elements
   use superjoin_model_types, only: section_t, material_t, ET_T2D2, ET_T3D2, ET_B23, ET_B33, &
        ET_CPS3, ET_CPS4, ET_S3, ET_S4, ET_B21, ET_B31, ET_CPE3, ET_CPE4, NUM_ELEMENT_TYPES, ELEMENT_TYPE_NAMES, &
        DLOAD_PX, DLOAD_PY, DLOAD_PZ, DLOAD_P
+  use superjoin_model_types, only: ET_S4R, ET_S3R
   use superjoin_elements_frame, only: beam_frame
   use superjoin_elements_truss, only: truss_stiffness, truss_end_forces, truss_distributed_load
   use superjoin_elements_beam, only: beam_stiffness, beam_end_forces, beam_load
@@ -21,7 +22,7 @@ module superjoin_elements
   public :: element_node_dofs, element_dof_mask, element_stiffness, element_end_forces, beam_distributed_load, &
        element_nodal_forces, element_distributed_load, element_gravity_load
   public :: is_plate_type, shell_resultants, shell_forces
-    !! is_plate_type(etype): CPS3, CPS4, CPE3, CPE4, S3, S4. shell_resultants(etype, x, sec,
+    !! is_plate_type(etype): CPS3, CPS4, CPE3, CPE4, S3, S4, S3R, S4R. shell_resultants(etype, x, sec,
     !! mat, ue, res, error): nx, ny, nxy, mx, my, mxy at the centroid, element
     !! frame; shell_forces(etype, x, sec, mat, ue(:, nstep), res(6, nstep),
     !! fg(:, nstep), error): resultants and K_e u_e of every step with one
@@ -35,7 +36,7 @@ contains
   pure function element_node_dofs(etype) result(dofs)
     !! DOF numbers (1..6: ux, uy, uz, rx, ry, rz) carried by each node of an
     !! element type: T2D2 [1,2]; T3D2 [1,2,3]; B23, B21 [1,2,6]; B33, B31 [1..6];
-    !! CPS3/CPS4/CPE3/CPE4 [1,2]; S3/S4 [1..6]; an unknown type gives an empty array.
+    !! CPS3/CPS4/CPE3/CPE4 [1,2]; S3/S4/S3R/S4R [1..6]; an unknown type gives an empty array.
     integer, intent(in) :: etype
     integer, allocatable :: dofs(:)
     integer :: i
@@ -46,7 +47,7 @@ contains
        dofs = [1, 2, 3]
     case (ET_B23, ET_B21)
        dofs = [1, 2, 6]
-    case (ET_B33, ET_B31, ET_S3, ET_S4)
+    case (ET_B33, ET_B31, ET_S3, ET_S4, ET_S4R, ET_S3R)
        dofs = [(i, i=1, 6)]
     case default
        allocate (dofs(0))
@@ -66,7 +67,7 @@ contains
        mask(1:3) = .true.
     case (ET_B23, ET_B21)
        mask([1, 2, 6]) = .true.
-    case (ET_B33, ET_B31, ET_S3, ET_S4)
+    case (ET_B33, ET_B31, ET_S3, ET_S4, ET_S4R, ET_S3R)
        mask = .true.
     end select
   end function element_dof_mask
@@ -122,7 +123,7 @@ contains
        call truss_stiffness(etype, x, sec, mat, ke, error)
     case (ET_B23, ET_B33, ET_B21, ET_B31)
        call beam_stiffness(etype, x, sec, mat, ke, error)
-    case (ET_CPS3, ET_CPS4, ET_S3, ET_S4, ET_CPE3, ET_CPE4)
+    case (ET_CPS3, ET_CPS4, ET_S3, ET_S4, ET_CPE3, ET_CPE4, ET_S4R, ET_S3R)
        call shell_stiffness(etype, x, sec, mat, ke, error)
     case default
        call unsupported(etype, error)
@@ -153,7 +154,7 @@ contains
        call truss_end_forces(etype, x, sec, mat, ue, q_local, f, error)
     case (ET_B23, ET_B33, ET_B21, ET_B31)
        call beam_end_forces(etype, x, sec, mat, ue, q_local, f, error)
-    case (ET_CPS3, ET_CPS4, ET_S3, ET_S4, ET_CPE3, ET_CPE4)
+    case (ET_CPS3, ET_CPS4, ET_S3, ET_S4, ET_CPE3, ET_CPE4, ET_S4R, ET_S3R)
        continue
     case default
        call unsupported(etype, error)
@@ -235,7 +236,7 @@ contains
     select case (etype)
     case (ET_T2D2, ET_T3D2, ET_B23, ET_B33, ET_B21, ET_B31)
        call beam_distributed_load(etype, x, sec, mat%density*sec%area*accel, fe, q_local, error)
-    case (ET_CPS3, ET_CPS4, ET_S3, ET_S4, ET_CPE3, ET_CPE4)
+    case (ET_CPS3, ET_CPS4, ET_S3, ET_S4, ET_CPE3, ET_CPE4, ET_S4R, ET_S3R)
        call shell_area_load(etype, x, mat%density*sec%thickness*accel, fe, error)
     case default
        call unsupported(etype, error)

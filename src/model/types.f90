@@ -11,14 +11,18 @@ module superjoin_model_types
 
   integer, parameter, public :: ET_T2D2 = 1, ET_T3D2 = 2, ET_B23 = 3, ET_B33 = 4, &
                                 ET_CPS3 = 5, ET_CPS4 = 6, ET_S3 = 7, ET_S4 = 8, &
-                                ET_B21 = 9, ET_B31 = 10, ET_CPE3 = 11, ET_CPE4 = 12
-    !! Element types (B21, B31: two-node Timoshenko beams; CPE3, CPE4: plane strain).
-  integer, parameter, public :: NUM_ELEMENT_TYPES = 12
+                                ET_B21 = 9, ET_B31 = 10, ET_CPE3 = 11, ET_CPE4 = 12, &
+                                ET_S4R = 13, ET_S3R = 14
+    !! Element types (B21, B31: two-node Timoshenko beams; CPE3, CPE4: plane strain;
+    !! S4R, S3R: thick (Reissner-Mindlin) shells).
+  integer, parameter, public :: NUM_ELEMENT_TYPES = 14
   character(len=4), parameter, public :: ELEMENT_TYPE_NAMES(NUM_ELEMENT_TYPES) = &
        ['T2D2', 'T3D2', 'B23 ', 'B33 ', 'CPS3', 'CPS4', 'S3  ', 'S4  ', &
-        'B21 ', 'B31 ', 'CPE3', 'CPE4']
+        'B21 ', 'B31 ', 'CPE3', 'CPE4', &
+        'S4R ', 'S3R ']
   integer, parameter, public :: ELEMENT_NODE_COUNT(NUM_ELEMENT_TYPES) = [2, 2, 2, 2, 3, 4, 3, 4, &
-       2, 2, 3, 4]
+       2, 2, 3, 4, &
+       4, 3]
   integer, parameter, public :: MAX_ELEMENT_NODES = 4
 
   integer, parameter, public :: NDOF_NODE = 6

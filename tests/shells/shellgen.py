@@ -43,7 +43,7 @@ def grid(part, nx, ny, mapping, etype, first_node=1, first_elem=1, diag="alt", i
         for i in range(nx + 1):
             part.nodes[nid(i, j)] = mapping(i / nx, j / ny)
     e = first_elem
-    tri = etype in ("S3", "CPS3")
+    tri = etype in ("S3", "CPS3", "S3R")
     for j in range(ny):
         for i in range(nx):
             a, b, c, d = nid(i, j), nid(i + 1, j), nid(i + 1, j + 1), nid(i, j + 1)

@@ -215,7 +215,11 @@ def thickjoint(value, n=8, a_over_t=10):
     same mesh (its substructure named L, the probe's id kept); for g = 0 the
     two halves apart (each is supported on three edges, no mechanism).  The
     joint's compliance is about 1/value relative, so values from 1e12 on are
-    judged.  Probe: the L node on the cut at y = a/4 (w, both slopes nonzero)."""
+    judged.  Probe: the L node on the cut at y = a/4 (w, both slopes nonzero).
+    The two cut nodes on the supported edges y = 0, a are held on the master
+    side only: with the supports on both sides of a joined DOF as well, TRANSFORM
+    reports the slave's rotation (DOF 4, about the edge normal, nearly free at
+    the corner) numerically singular from g = 1e12 k on (the same with S4)."""
     a = shellgen.PLATE_A
     t = a / a_over_t
     e = 12.0 * (1.0 - shellgen.PLATE_NU ** 2) / t ** 3

@@ -30,8 +30,8 @@ CELL_POINTS = {1: 1, 3: 2, 5: 3, 9: 4}   # vertex, line, triangle, quad
 KIND_ELEMENT, KIND_CONTACT, KIND_SUPPORT = 1, 2, 3
 LINE_TYPES = {"T2D2", "T3D2", "B23", "B33", "B21", "B31"}
 ELEMENT_TYPE_CODES = {"T2D2": 1, "T3D2": 2, "B23": 3, "B33": 4, "CPS3": 5, "CPS4": 6, "S3": 7, "S4": 8,
-                      "B21": 9, "B31": 10, "CPE3": 11, "CPE4": 12}
-ELEMENT_CELL = {1: 3, 2: 3, 3: 3, 4: 3, 5: 5, 6: 9, 7: 5, 8: 9, 9: 3, 10: 3, 11: 5, 12: 9}
+                      "B21": 9, "B31": 10, "CPE3": 11, "CPE4": 12, "S4R": 13, "S3R": 14}
+ELEMENT_CELL = {1: 3, 2: 3, 3: 3, 4: 3, 5: 5, 6: 9, 7: 5, 8: 9, 9: 3, 10: 3, 11: 5, 12: 9, 13: 9, 14: 5}
 
 problems = []
 

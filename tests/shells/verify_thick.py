@@ -49,13 +49,42 @@ def mindlin_ss_uniform(a_over_t, nu=NU, nterms=801):
     return s
 
 
-def thick_plate(n, etype, support, a_over_t):
-    """Square plate a = 1, D = 1, uniform pressure 1, n x n mesh of S4R/S3R (or S4/S3).
+def distorted(s, u):
+    """A smooth map of the unit square onto itself (edges kept, centre kept):
+    interior elements become general quadrilaterals, angles down to about 60 degrees."""
+    d = DISTORTION * math.sin(2 * math.pi * s) * math.sin(2 * math.pi * u)
+    return (s + d, u + d, 0.0)
+
+
+DISTORTION = 0.06
+ZIGZAG = 0.25
+
+
+def zigzag(s, u, n):
+    """Interior nodes moved by +-ZIGZAG h along x and y in a checkerboard
+    pattern: every element stays a general (non-parallelogram) quadrilateral
+    on every mesh, the distortion does not fade under refinement."""
+    i, j = round(s * n), round(u * n)
+    if 0 < i < n and 0 < j < n:
+        d = ZIGZAG / n * (1 if (i + j) % 2 == 0 else -1)
+        return (s + d, u + d, 0.0)
+    return (s, u, 0.0)
+
+
+def thick_plate(n, etype, support, a_over_t, mesh="regular"):
+    """Square plate a = 1, D = 1, uniform pressure 1, n x n mesh of S4R/S3R (or S4/S3),
+    regular or distorted (see distorted()).
     SS: w and the rotation about the edge normal fixed (hard support); CL: all."""
     t = 1.0 / a_over_t
     e = 12.0 * (1.0 - NU ** 2) / t ** 3
     p = g.Part("PLATE")
-    nid = g.grid(p, n, n, lambda s, u: (s, u, 0.0), etype)
+    if mesh == "regular":
+        mapping = lambda s, u: (s, u, 0.0)  # noqa: E731
+    elif mesh == "distorted":
+        mapping = distorted
+    else:
+        mapping = lambda s, u: zigzag(s, u, n)  # noqa: E731
+    nid = g.grid(p, n, n, mapping, etype)
     p.nsets["X0"] = [nid(0, j) for j in range(n + 1)] + [nid(n, j) for j in range(n + 1)]
     p.nsets["Y0"] = [nid(i, 0) for i in range(n + 1)] + [nid(i, n) for i in range(n + 1)]
     p.nsets["ALLN"] = list(p.nodes)
@@ -65,7 +94,7 @@ def thick_plate(n, etype, support, a_over_t):
     else:
         bnd = [("PLATE.X0", 3, 5), ("PLATE.Y0", 3, 5)]
     bnd += [("PLATE.ALLN", 1, 2), ("PLATE.ALLN", 6, 6)]   # the flat plate has no membrane load
-    name = f"thick_{support}_{etype}_{a_over_t}_{n}"
+    name = f"thick_{support}_{etype}_{a_over_t}_{n}" + ("" if mesh == "regular" else "_" + mesh)
     deck = g.deck_text(name, [p], e, NU, t, bnd, (), [("PLATE.ALL", "P", 1.0)])
     if support == "SS":
         ref, src = -mindlin_ss_uniform(a_over_t), "Reissner-Mindlin Navier series, k = 5/6"
@@ -134,6 +163,20 @@ def main():
             vs.convergence(exe, a.work, f"{et} a/t = {r}",
                            lambda n, et=et, r=r: thick_plate(n, et, "SS", r), meshes,
                            2e-3 if et == "S4R" else 5e-3, 1.7, True)
+    vs.say("\n## Thick square plates, simply supported, distorted mesh (x = s + d, y = t + d, "
+           f"d = {DISTORTION} sin 2 pi s sin 2 pi t)")
+    for et in ("S4R", "S3R"):
+        for r in (10, 100, 1000):
+            vs.convergence(exe, a.work, f"{et} a/t = {r}, distorted",
+                           lambda n, et=et, r=r: thick_plate(n, et, "SS", r, "distorted"), meshes,
+                           5e-3, 1.5, True)
+    # (triangles are affine images of each other whatever the distortion: S4R only)
+    vs.say(f"\n## Thick square plates, simply supported, zigzag mesh (interior nodes +-{ZIGZAG} h)")
+    for et in ("S4R",):
+        for r in (10, 100, 1000):
+            vs.convergence(exe, a.work, f"{et} a/t = {r}, zigzag",
+                           lambda n, et=et, r=r: thick_plate(n, et, "SS", r, "zigzag"), meshes,
+                           2e-2, 1.5, True)
     vs.say("\n## Thick square plates, clamped, uniform pressure")
     for et in ("S4R", "S3R"):
         clamped_table(exe, a.work, et, (5, 10, 20, 100), meshes)

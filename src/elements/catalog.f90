@@ -27,7 +27,7 @@ module superjoin_elements_catalog
        advice_t('CPS8R', 'second-order plane elements are not implemented yet; nearest: CPS4'), &
        advice_t('CPE8', 'second-order plane elements are not implemented yet; nearest: CPE4'), &
        advice_t('CPE8R', 'second-order plane elements are not implemented yet; nearest: CPE4'), &
-       advice_t('S8R', 'eight-node thick shells are not implemented yet; nearest: S4 (thin shell)'), &
+       advice_t('S8R', 'eight-node thick shells are not implemented yet; nearest: S4R (four-node thick shell)'), &
        advice_t('S4R5', 'nearest: S4 (thin shell) or S4R (thick shell)'), &
        advice_t('STRI3', 'nearest: S3 (thin shell)'), &
        advice_t('B32', 'three-node beams are not implemented yet; nearest: B31 (two-node Timoshenko beam)'), &

@@ -14,7 +14,7 @@ module superjoin_model_types
                                 ET_B21 = 9, ET_B31 = 10, ET_CPE3 = 11, ET_CPE4 = 12, &
                                 ET_S4R = 13, ET_S3R = 14
     !! Element types (B21, B31: two-node Timoshenko beams; CPE3, CPE4: plane strain;
-    !! S4R, S3R: thick (Reissner-Mindlin) shells).
+    !! S4R, S3R: thick (Reissner-Mindlin) shells; 15 is reserved for S8R, not implemented).
   integer, parameter, public :: NUM_ELEMENT_TYPES = 14
   character(len=4), parameter, public :: ELEMENT_TYPE_NAMES(NUM_ELEMENT_TYPES) = &
        ['T2D2', 'T3D2', 'B23 ', 'B33 ', 'CPS3', 'CPS4', 'S3  ', 'S4  ', &

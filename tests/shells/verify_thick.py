@@ -22,6 +22,7 @@ import argparse
 import functools
 import math
 import os
+import subprocess
 import sys
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
@@ -144,6 +145,24 @@ def thin_limit(exe, work, n):
             vs.check(abs(r - 1.0) < 0.01, f"thin limit {et} {sup}: {r:.5f} of the thin element")
 
 
+def goodman_face_s4r(exe, work):
+    """decks/goodman_face.deck (a plate on a face *INTERFACE of normal stiffness
+    KN per unit area, pressure p: uniform sinking p/KN) with S4R plates: its
+    `** expect:` lines checked by tests/examples/check_example.py."""
+    root = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
+    text = open(os.path.join(root, "decks", "goodman_face.deck")).read()
+    vs.check("TYPE=S4," in text, "goodman_face.deck has no S4 elements")
+    deck = os.path.join(work, "goodman_face_s4r.deck")
+    with open(deck, "w") as f:
+        f.write(text.replace("TYPE=S4,", "TYPE=S4R,"))
+    r = subprocess.run([sys.executable, os.path.join(root, "tests", "examples", "check_example.py"), exe, deck,
+                        os.path.join(work, "goodman_face_s4r")], capture_output=True, text=True)
+    vs.say("\n## Face *INTERFACE on S4R (decks/goodman_face.deck with S4R)\n")
+    for line in r.stdout.strip().splitlines():
+        vs.say("    " + line)
+    vs.check(r.returncode == 0, f"goodman_face with S4R: check_example.py exit {r.returncode}: {r.stdout[-300:]}")
+
+
 def main():
     ap = argparse.ArgumentParser()
     ap.add_argument("exe")
@@ -155,6 +174,7 @@ def main():
     exe = a.exe
 
     vs.patch_tests(exe, a.work, ("S4R", "S3R"))
+    goodman_face_s4r(exe, a.work)
 
     meshes = [4, 8, 16, 32] + ([64] if a.full else [])
     vs.say("\n## Thick square plates, simply supported (hard), uniform pressure, centre deflection")

@@ -206,6 +206,79 @@ def panel(value, n=8):
     return Case('panel', subst, ('PANEL', line[n // 4]), [], extra=dict(reference_deck=ref, judged_from=1.0e12))
 
 
+def thickjoint(value, n=8, a_over_t=10):
+    """Two thick-shell parts joined: a square S4R plate (a = 1, a/t = 10, D = 1,
+    hard simply supported edges with u, v held, pressure 1) cut at x = a/2 into
+    substructures L and R, joined node by node on all six DOFs by g = value x
+    k_t on the translations and value x k_t a^2 on the rotations (k_t as for
+    the panel).  Exact answer for RIGID and large g: the one-piece plate on the
+    same mesh (its substructure named L, the probe's id kept); for g = 0 the
+    two halves apart (each is supported on three edges, no mechanism).  The
+    joint's compliance is about 1/value relative, so values from 1e12 on are
+    judged.  Probe: the L node on the cut at y = a/4 (w, both slopes nonzero).
+    The two cut nodes on the supported edges y = 0, a are held on the master
+    side only: with the supports on both sides of a joined DOF as well, TRANSFORM
+    reports the slave's rotation (DOF 4, about the edge normal, nearly free at
+    the corner) numerically singular from g = 1e12 k on (the same with S4)."""
+    a = shellgen.PLATE_A
+    t = a / a_over_t
+    e = 12.0 * (1.0 - shellgen.PLATE_NU ** 2) / t ** 3
+    kt = 1.0 / (shellgen.levy_ss_point() * a * a)
+    kr = kt * a * a
+    h = n // 2
+
+    def lid(i, j):
+        return 1 + j * (h + 1) + i
+
+    def rid(i, j):                      # i = h .. n
+        return 1001 + j * (h + 1) + (i - h)
+    left = shellgen.Part('L')
+    right = shellgen.Part('R')
+    for j in range(n + 1):
+        for i in range(h + 1):
+            left.nodes[lid(i, j)] = (i * a / n, j * a / n, 0.0)
+            right.nodes[rid(h + i, j)] = ((h + i) * a / n, j * a / n, 0.0)
+    k = 1
+    for j in range(n):
+        for i in range(h):
+            left.elems.append((k, 'S4R', (lid(i, j), lid(i + 1, j), lid(i + 1, j + 1), lid(i, j + 1))))
+            right.elems.append((1000 + k, 'S4R', (rid(h + i, j), rid(h + i + 1, j), rid(h + i + 1, j + 1),
+                                                  rid(h + i, j + 1))))
+            k += 1
+    # hard simple support: w, u, v and the rotation about the edge normal
+    left.nsets['XE'] = [lid(0, j) for j in range(n + 1)]
+    left.nsets['YE'] = [lid(i, j) for i in range(h + 1) for j in (0, n)]
+    right.nsets['XE'] = [rid(n, j) for j in range(n + 1)]
+    right.nsets['YE'] = [rid(i, j) for i in range(h + 1, n + 1) for j in (0, n)]
+    bnd = []
+    for p in ('L', 'R'):
+        bnd += [(p + '.XE', 1, 4), (p + '.YE', 1, 3), (p + '.YE', 5, 5)]
+    loads = [('L.ALL', 'P', 1.0), ('R.ALL', 'P', 1.0)]
+    gt, gr = scaled(value, kt), scaled(value, kr)
+    contacts = []
+    if value == RIGID or float(value) != 0.0:
+        contacts.append('*CONTACT, NAME=JOINT, MASTER=L, SLAVE=R')
+        for j in range(n + 1):
+            contacts.append(' %d, %d, 1, 3, %s' % (lid(h, j), rid(h, j), g_text(gt)))
+            contacts.append(' %d, %d, 4, 6, %s' % (lid(h, j), rid(h, j), g_text(gr)))
+    title = 'thick-shell joint, g = %s x (k_t on u, k_t a^2 on theta), k_t = %.6g' % (value, kt)
+    deck = shellgen.deck_text(title, [left, right], e, shellgen.PLATE_NU, t, bnd, (), loads, contacts)
+    if value != RIGID and float(value) == 0.0:
+        ref = deck
+    else:
+        one = shellgen.Part('L')
+        one.nodes.update(left.nodes)
+        ren = {rid(i, j): (lid(h, j) if i == h else rid(i, j)) for j in range(n + 1) for i in range(h, n + 1)}
+        one.nodes.update({ren[i]: x for i, x in right.nodes.items() if ren[i] == i})
+        one.elems = left.elems + [(e_, t_, tuple(ren[v] for v in ns)) for (e_, t_, ns) in right.elems]
+        one.nsets['XE'] = left.nsets['XE'] + right.nsets['XE']
+        one.nsets['YE'] = left.nsets['YE'] + [ren[v] for v in right.nsets['YE']]
+        ref = shellgen.deck_text(title + ' (one piece)', [one], e, shellgen.PLATE_NU, t,
+                                 [('L.XE', 1, 4), ('L.YE', 1, 3), ('L.YE', 5, 5)], (), [('L.ALL', 'P', 1.0)])
+    return Case('thickjoint', dict(deck=deck), ('L', lid(h, n // 4)), [],
+                extra=dict(reference_deck=ref, judged_from=1.0e12))
+
+
 G_VALUES = ['0', '1e-6', '1e-3', '1', '1e3', '1e6', '1e8', '1e10', '1e12', '1e14', '1e16', '1e20', '1e50',
             '1e100', '1e200', '1e300', RIGID]
 
@@ -213,6 +286,7 @@ CASES = {
     'cantilever': (cantilever, G_VALUES),
     'frame3d': (frame3d, G_VALUES),
     'panel': (panel, G_VALUES),
+    'thickjoint': (thickjoint, G_VALUES),
     'timoshenko': (timoshenko, G_VALUES),
     'contrast': (contrast, ['1e-12', '1e-9', '1e-6', '1e-3', '1', '1e3', '1e6', '1e9', '1e12']),
     'slender': (slender, ['10', '100', '1e3', '1e4', '1e5', '1e6']),

@@ -484,7 +484,7 @@ contains
               end if
            end select
            select case (sub%elem_type(e))
-           case (ET_CPS3, ET_CPS4, ET_S3, ET_S4)
+           case (ET_CPS3, ET_CPS4, ET_S3, ET_S4, ET_S4R, ET_S3R)
               if (all(inset(sub%elem_nodes(1:nn, e)))) face = .true.
            end select
         end do
@@ -495,7 +495,7 @@ contains
               nn = ELEMENT_NODE_COUNT(sub%elem_type(e))
               if (any(sub%elem_nodes(1:nn, e) == 0)) cycle
               select case (sub%elem_type(e))
-              case (ET_CPS3, ET_CPS4, ET_S3, ET_S4)
+              case (ET_CPS3, ET_CPS4, ET_S3, ET_S4, ET_S4R, ET_S3R)
                  if (.not. all(inset(sub%elem_nodes(1:nn, e)))) cycle
                  call face_share(sub%x(:, sub%elem_nodes(1:nn, e)), trib, sub%elem_nodes(1:nn, e), d)
                  if (norm2(d) == 0.0_wp) cycle   ! a degenerate face adds nothing
@@ -545,7 +545,7 @@ contains
                     ref = mid - cen
                     if (nn == 2) ref = 0.0_wp
                     select case (sub%elem_type(e))
-                    case (ET_S3, ET_S4)
+                    case (ET_S3, ET_S4, ET_S4R, ET_S3R)
                        w = face_normal(sub%x(:, sub%elem_nodes(1:nn, e)))
                     case default
                        w = [0.0_wp, 0.0_wp, 1.0_wp]

@@ -832,11 +832,11 @@ contains
     sec%loc = loc
     call add_section(st, sec, st%card_item)
     st%card = CARD_SECTION
-    if (kind == SEC_BEAM) st%cur_beam_sec = st%card_item
+    if (kind == SEC_BEAM .or. kind == SEC_SHELL) st%cur_beam_sec = st%card_item
   end subroutine kw_section
 
   subroutine kw_transverse_shear(st, kw, loc, isec)
-    !! *TRANSVERSE SHEAR STIFFNESS right after the *BEAM SECTION it applies to.
+    !! *TRANSVERSE SHEAR STIFFNESS right after the *BEAM SECTION or *SHELL SECTION it applies to.
     type(deck_state_t), intent(inout) :: st
     type(keyword_line_t), intent(in) :: kw
     type(source_loc_t), intent(in) :: loc
@@ -845,12 +845,12 @@ contains
     if (.not. outside_step(st, kw, loc)) return
     call check_params(st, kw, loc, [character(NAME_LEN) ::], [character(NAME_LEN) ::])
     if (isec == 0) then
-       call report_loc(st, loc, '*TRANSVERSE SHEAR STIFFNESS must follow the *BEAM SECTION it applies to '// &
-            '(shell sections have no transverse shear input)')
+       call report_loc(st, loc, '*TRANSVERSE SHEAR STIFFNESS must follow the *BEAM SECTION or *SHELL SECTION '// &
+            'it applies to')
        return
     end if
     if (st%sections(isec)%has_ks) then
-       call report_loc(st, loc, 'second *TRANSVERSE SHEAR STIFFNESS for the same *BEAM SECTION')
+       call report_loc(st, loc, 'second *TRANSVERSE SHEAR STIFFNESS for the same section')
        return
     end if
     st%sections(isec)%ks_loc = loc

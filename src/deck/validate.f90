@@ -9,6 +9,7 @@ module superjoin_deck_validate
        LINK_FINITE, LINK_RIGID, ET_T2D2, ET_T3D2, ET_B23, ET_B33, ET_CPS3, ET_CPS4, &
        ET_S3, ET_S4, ET_B21, ET_B31, ET_CPE3, ET_CPE4, ET_CPS6, ET_CPS8, ET_CPE6, ET_CPE8, ET_CPS8R, ET_CPE8R, &
        ET_B32, DLOAD_PX, DLOAD_PY, DLOAD_PZ, DLOAD_P, DLOAD_GRAV, DLOAD_NAMES
+  use superjoin_model_types, only: ET_S4R, ET_S3R
   use superjoin_deck_lexer, only: itoa, plural
   use superjoin_deck_state, only: deck_state_t, sub_b_t, ref_t, load_b_t, report, report_loc, report_oom, find_set, &
        CH_IDS, CH_GEN, CH_RANGE, CH_REF, BEAM_2D_VALUES, BEAM_3D_VALUES, SUBK_INSTANCE
@@ -534,7 +535,7 @@ contains
          case (ET_B33, ET_B31, ET_B32)
             nb33 = nb33 + 1
             if (sb%kind /= SEC_BEAM) call bad(e)
-         case (ET_S3, ET_S4)
+         case (ET_S3, ET_S4, ET_S4R, ET_S3R)
             nshell = nshell + 1
             if (sb%kind /= SEC_SHELL) call bad(e)
          end select
@@ -577,6 +578,15 @@ contains
          if (ncps > 0 .or. ntruss == 0) sec%thickness = sb%val(1)
       case (SEC_SHELL)
          sec%thickness = sb%val(1)
+         ! *TRANSVERSE SHEAR STIFFNESS K11, K22 [, K12]: per unit length along
+         ! the element's local x, y; only the thick shells have shear flexibility.
+         if (sb%has_ks) then
+            if (sb%nks < 2) then
+               call report_loc(st, sb%ks_loc, '*TRANSVERSE SHEAR STIFFNESS of shells needs K11, K22')
+               return
+            end if
+            sec%shear_k = sb%ks
+         end if
       case (SEC_BEAM)
          if (sb%shape /= 0) then    ! library shape or Abaqus general section: constants in sb%sp
             sec%area = sb%sp(1)
@@ -639,7 +649,7 @@ contains
     select case (etype)
     case (ET_B23, ET_B33, ET_B21, ET_B31, ET_B32)
        card = '*BEAM SECTION'
-    case (ET_S3, ET_S4)
+    case (ET_S3, ET_S4, ET_S4R, ET_S3R)
        card = '*SHELL SECTION'
     case default
        card = '*SOLID SECTION'
@@ -654,7 +664,7 @@ contains
     select case (etype)
     case (ET_B23, ET_B33)
        section_card_rejected = st%section_rejected(SEC_BEAM)
-    case (ET_S3, ET_S4)
+    case (ET_S3, ET_S4, ET_S4R, ET_S3R)
        section_card_rejected = st%section_rejected(SEC_SHELL)
     case default
        section_card_rejected = st%section_rejected(SEC_SOLID) .or. st%section_rejected(SEC_SHELL)
@@ -1231,7 +1241,7 @@ contains
     case (DLOAD_PZ)
        dload_fits = etype == ET_B33 .or. etype == ET_B31 .or. etype == ET_B32
     case (DLOAD_P)
-       dload_fits = etype == ET_S3 .or. etype == ET_S4
+       dload_fits = etype == ET_S3 .or. etype == ET_S4 .or. etype == ET_S4R .or. etype == ET_S3R
     case (DLOAD_GRAV)
        dload_fits = .true.
     case default

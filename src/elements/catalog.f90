@@ -3,7 +3,7 @@ module superjoin_elements_catalog
   !! does not implement, with the reason and the nearest supported type, for
   !! the message that refuses them. A name is never mapped silently to another
   !! formulation: CPS4R (one-point integration with hourglass control) is not
-  !! CPS4, S4R (thick shell) is not S4 (thin shell).
+  !! CPS4, S4R5 (thin shell with 5 DOFs per node) is not S4.
   use superjoin_model_types, only: ELEMENT_TYPE_NAMES, NUM_ELEMENT_TYPES
   implicit none (type, external)
   private
@@ -23,12 +23,8 @@ module superjoin_elements_catalog
        advice_t('CPE4H', 'hybrid (pressure) elements are not implemented; nearest: CPE4'), &
        advice_t('CPS6M', 'nearest: CPS6 (six-node triangle, 3-point integration)'), &
        advice_t('CPE6M', 'nearest: CPE6 (six-node triangle, 3-point integration)'), &
-       advice_t('S4R', 'thick (shear-flexible) shells are not implemented yet; nearest: S4, ' // &
-                'a thin (Kirchhoff) shell without transverse shear deformation'), &
-       advice_t('S3R', 'thick (shear-flexible) shells are not implemented yet; nearest: S3, ' // &
-                'a thin (Kirchhoff) shell without transverse shear deformation'), &
-       advice_t('S8R', 'eight-node thick shells are not implemented yet; nearest: S4 (thin shell)'), &
-       advice_t('S4R5', 'nearest: S4 (thin shell)'), &
+       advice_t('S8R', 'eight-node thick shells are not implemented yet; nearest: S4R (four-node thick shell)'), &
+       advice_t('S4R5', 'nearest: S4 (thin shell) or S4R (thick shell)'), &
        advice_t('STRI3', 'nearest: S3 (thin shell)'), &
        advice_t('B32R', 'nearest: B32 (three-node Timoshenko beam, two integration points)'), &
        advice_t('B22', 'planar three-node beams are not implemented yet; nearest: B21 (two-node ' // &

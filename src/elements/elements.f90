@@ -11,6 +11,7 @@ module superjoin_elements
        ET_CPS3, ET_CPS4, ET_S3, ET_S4, ET_B21, ET_B31, ET_CPE3, ET_CPE4, NUM_ELEMENT_TYPES, ELEMENT_TYPE_NAMES, &
        ET_CPS6, ET_CPS8, ET_CPE6, ET_CPE8, ET_CPS8R, ET_CPE8R, ET_B32, &
        DLOAD_PX, DLOAD_PY, DLOAD_PZ, DLOAD_P
+  use superjoin_model_types, only: ET_S4R, ET_S3R
   use superjoin_elements_frame, only: beam_frame
   use superjoin_elements_truss, only: truss_stiffness, truss_end_forces, truss_distributed_load
   use superjoin_elements_beam, only: beam_stiffness, beam_end_forces, beam_load
@@ -26,7 +27,7 @@ module superjoin_elements
   public :: is_plane_type, is_plane_strain_type
     !! is_plane_type(etype): plane stress and plane strain types (CPS*, CPE*);
     !! is_plane_strain_type(etype): CPE*.
-    !! is_plate_type(etype): the plane types (CPS*, CPE*), S3, S4. shell_resultants(etype, x, sec,
+    !! is_plate_type(etype): the plane types (CPS*, CPE*), S3, S4, S3R, S4R. shell_resultants(etype, x, sec,
     !! mat, ue, res, error): nx, ny, nxy, mx, my, mxy at the centroid, element
     !! frame; shell_forces(etype, x, sec, mat, ue(:, nstep), res(6, nstep),
     !! fg(:, nstep), error): resultants and K_e u_e of every step with one
@@ -40,7 +41,7 @@ contains
   pure function element_node_dofs(etype) result(dofs)
     !! DOF numbers (1..6: ux, uy, uz, rx, ry, rz) carried by each node of an
     !! element type: T2D2 [1,2]; T3D2 [1,2,3]; B23, B21 [1,2,6]; B33, B31 [1..6];
-    !! CPS3/CPS4/CPE3/CPE4 and CPS6/CPS8/CPS8R/CPE6/CPE8/CPE8R [1,2]; S3/S4 [1..6]; an unknown type gives an empty array.
+    !! CPS3/CPS4/CPE3/CPE4 and CPS6/CPS8/CPS8R/CPE6/CPE8/CPE8R [1,2]; S3/S4/S3R/S4R [1..6]; an unknown type gives an empty array.
     integer, intent(in) :: etype
     integer, allocatable :: dofs(:)
     integer :: i
@@ -51,7 +52,7 @@ contains
        dofs = [1, 2, 3]
     case (ET_B23, ET_B21)
        dofs = [1, 2, 6]
-    case (ET_B33, ET_B31, ET_S3, ET_S4, ET_B32)
+    case (ET_B33, ET_B31, ET_S3, ET_S4, ET_B32, ET_S4R, ET_S3R)
        dofs = [(i, i=1, 6)]
     case default
        allocate (dofs(0))
@@ -71,7 +72,7 @@ contains
        mask(1:3) = .true.
     case (ET_B23, ET_B21)
        mask([1, 2, 6]) = .true.
-    case (ET_B33, ET_B31, ET_S3, ET_S4, ET_B32)
+    case (ET_B33, ET_B31, ET_S3, ET_S4, ET_B32, ET_S4R, ET_S3R)
        mask = .true.
     end select
   end function element_dof_mask
@@ -138,7 +139,7 @@ contains
        call beam_stiffness(etype, x, sec, mat, ke, error)
     case (ET_B32)
        call beam3_stiffness(x, sec, mat, ke, error)
-    case (ET_CPS3, ET_CPS4, ET_S3, ET_S4, ET_CPE3, ET_CPE4, ET_CPS6, ET_CPS8, ET_CPE6, ET_CPE8, ET_CPS8R, ET_CPE8R)
+    case (ET_CPS3, ET_CPS4, ET_S3, ET_S4, ET_CPE3, ET_CPE4, ET_CPS6, ET_CPS8, ET_CPE6, ET_CPE8, ET_CPS8R, ET_CPE8R, ET_S4R, ET_S3R)
        call shell_stiffness(etype, x, sec, mat, ke, error)
     case default
        call unsupported(etype, error)
@@ -171,7 +172,7 @@ contains
        call beam_end_forces(etype, x, sec, mat, ue, q_local, f, error)
     case (ET_B32)
        call beam3_end_forces(x, sec, mat, ue, q_local, f, error)
-    case (ET_CPS3, ET_CPS4, ET_S3, ET_S4, ET_CPE3, ET_CPE4, ET_CPS6, ET_CPS8, ET_CPE6, ET_CPE8, ET_CPS8R, ET_CPE8R)
+    case (ET_CPS3, ET_CPS4, ET_S3, ET_S4, ET_CPE3, ET_CPE4, ET_CPS6, ET_CPS8, ET_CPE6, ET_CPE8, ET_CPS8R, ET_CPE8R, ET_S4R, ET_S3R)
        continue
     case default
        call unsupported(etype, error)
@@ -256,7 +257,7 @@ contains
     select case (etype)
     case (ET_T2D2, ET_T3D2, ET_B23, ET_B33, ET_B21, ET_B31, ET_B32)
        call beam_distributed_load(etype, x, sec, mat%density*sec%area*accel, fe, q_local, error)
-    case (ET_CPS3, ET_CPS4, ET_S3, ET_S4, ET_CPE3, ET_CPE4, ET_CPS6, ET_CPS8, ET_CPE6, ET_CPE8, ET_CPS8R, ET_CPE8R)
+    case (ET_CPS3, ET_CPS4, ET_S3, ET_S4, ET_CPE3, ET_CPE4, ET_CPS6, ET_CPS8, ET_CPE6, ET_CPE8, ET_CPS8R, ET_CPE8R, ET_S4R, ET_S3R)
        call shell_area_load(etype, x, mat%density*sec%thickness*accel, fe, error)
     case default
        call unsupported(etype, error)

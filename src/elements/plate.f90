@@ -53,6 +53,7 @@ module superjoin_elements_plate
 
   public :: plate_stiffness, plate_moments, plate_pressure_load
   public :: plate_point_moments
+  public :: plate_check, bending_rigidity
 
 contains
 
@@ -151,6 +152,15 @@ contains
        end do
     end do
   end subroutine plate_pressure_load
+
+  pure subroutine plate_check(xl, t, e, nu, error)
+    !! The checks of plate_stiffness (t, E, ν, node count, area, sides, Jacobian at the 2×2 Gauss points),
+    !! for other plate formulations on the same geometry (superjoin_elements_mindlin).
+    real(wp), intent(in) :: xl(:, :)
+    real(wp), intent(in) :: t, e, nu
+    type(error_t), allocatable, intent(out) :: error
+    call check_element(xl, t, e, nu, error)
+  end subroutine plate_check
 
   ! ------------------------------------------------------------------ internals
 

@@ -5,7 +5,10 @@ module superjoin_elements_shell
   !! (superjoin_elements_quadratic), and flat shells
   !! S3/S4 (DOFs 1-6): the element frame, the membrane (superjoin_elements_membrane)
   !! and plate bending (superjoin_elements_plate) parts put together, rotated
-  !! to global axes.
+  !! to global axes. The thick shells S4R/S3R are the same with the thin plate
+  !! replaced by the Reissner-Mindlin MITC4/MITC3 plate (superjoin_elements_mindlin),
+  !! with the transverse shear stiffness of the section (shear_k, K11 and K22 of
+  !! *TRANSVERSE SHEAR STIFFNESS) or 5/6 G t.
   !!
   !! Element frame (deck contract, section 8): local z is the normal by the
   !! right-hand rule on the node order (S4: along the cross product of the
@@ -18,6 +21,7 @@ module superjoin_elements_shell
   use superjoin_error, only: error_t, fatal_error, EXIT_DECK
   use superjoin_model_types, only: section_t, material_t, ET_CPS3, ET_CPS4, ET_S3, ET_S4, &
        ET_CPE3, ET_CPE4, ELEMENT_NODE_COUNT, ET_CPS6, ET_CPS8, ET_CPE6, ET_CPE8, ET_CPS8R, ET_CPE8R
+  use superjoin_model_types, only: ET_S4R, ET_S3R
   use superjoin_elements_membrane, only: membrane_stiffness, membrane_drill_stiffness, membrane_resultants, &
        plane_strain_stiffness, plane_strain_resultants
   use superjoin_elements_plate, only: plate_stiffness, plate_moments, plate_pressure_load
@@ -26,9 +30,11 @@ module superjoin_elements_shell
   use superjoin_elements_frame, only: cross
   use superjoin_elements_quadratic, only: plane_props_t, quadratic_stiffness, quadratic_resultants, &
        quadratic_shape_integrals
+  use superjoin_elements_mindlin, only: mindlin_stiffness, mindlin_resultants, default_shear_stiffness
   implicit none (type, external)
   private
 
+  public :: is_thick_shell_type, shell_shear_stiffness
   public :: is_plate_type, is_plane_type, is_plane_strain_type, is_quadratic_plane_type, shell_frame, shell_stiffness, shell_resultants, shell_forces, shell_pressure_load, &
        shell_area_load
   public :: shell_surface_stresses
@@ -45,8 +51,28 @@ contains
   elemental logical function is_plate_type(etype)
     !! True for the plane (stress and strain) and shell element types.
     integer, intent(in) :: etype
-    is_plate_type = is_plane_type(etype) .or. etype == ET_S3 .or. etype == ET_S4
+    is_plate_type = is_plane_type(etype) .or. etype == ET_S3 .or. etype == ET_S4 .or. is_thick_shell_type(etype)
   end function is_plate_type
+
+  elemental logical function is_thick_shell_type(etype)
+    !! True for the thick (Reissner-Mindlin) shells S4R, S3R.
+    integer, intent(in) :: etype
+    is_thick_shell_type = etype == ET_S4R .or. etype == ET_S3R
+  end function is_thick_shell_type
+
+  pure function shell_shear_stiffness(sec, mat) result(ks)
+    !! Transverse shear stiffness per unit length of a thick shell along its
+    !! local x, y: the section's K11, K22 (*TRANSVERSE SHEAR STIFFNESS) when
+    !! given, else 5/6 G t.
+    type(section_t), intent(in) :: sec
+    type(material_t), intent(in) :: mat
+    real(wp) :: ks(2)
+    if (all(sec%shear_k > 0.0_wp)) then
+       ks = sec%shear_k
+    else
+       ks = default_shear_stiffness(sec%thickness, mat%e, mat%nu)
+    end if
+  end function shell_shear_stiffness
 
   elemental logical function is_plane_type(etype)
     !! True for the plane-stress (CPS3, CPS4, CPS6, CPS8, CPS8R) and plane-strain
@@ -240,7 +266,11 @@ contains
     end if
     call membrane_drill_stiffness(xl, sec%thickness, mat%e, mat%nu, km, error)
     if (allocated(error)) return
-    call plate_stiffness(xl, sec%thickness, mat%e, mat%nu, kb, error)
+    if (is_thick_shell_type(etype)) then
+       call mindlin_stiffness(xl, sec%thickness, mat%e, mat%nu, shell_shear_stiffness(sec, mat), kb, error)
+    else
+       call plate_stiffness(xl, sec%thickness, mat%e, mat%nu, kb, error)
+    end if
     if (allocated(error)) return
     allocate (kf(6*n, 6*n), source=0.0_wp)
     call scatter(km, MEMBRANE_DOFS, n, kf)
@@ -256,7 +286,7 @@ contains
     real(wp), intent(in) :: d(:)
     real(wp), intent(out) :: res(6)
     type(error_t), allocatable, intent(out) :: error
-    real(wp) :: um(2*size(xl, 2)), ub(3*size(xl, 2))
+    real(wp) :: um(2*size(xl, 2)), ub(3*size(xl, 2)), q(2)
     integer :: i
     res = 0.0_wp
     if (is_quadratic_plane_type(etype)) then
@@ -277,7 +307,12 @@ contains
     end do
     call membrane_resultants(xl, sec%thickness, mat%e, mat%nu, um, res(1:3), error)
     if (allocated(error)) return
-    call plate_moments(xl, sec%thickness, mat%e, mat%nu, ub, res(4:6), error)
+    if (is_thick_shell_type(etype)) then
+       call mindlin_resultants(xl, sec%thickness, mat%e, mat%nu, shell_shear_stiffness(sec, mat), ub, res(4:6), q, &
+            error)
+    else
+       call plate_moments(xl, sec%thickness, mat%e, mat%nu, ub, res(4:6), error)
+    end if
   end subroutine local_resultants
 
   pure function node_maps(etype, r, h) result(maps)
@@ -362,8 +397,8 @@ contains
 
     p_local = -p
     n = size(x, 2)
-    if (etype /= ET_S3 .and. etype /= ET_S4) then
-       call fatal_error(error, EXIT_DECK, 'pressure P applies to shells (S3, S4) only')
+    if (etype /= ET_S3 .and. etype /= ET_S4 .and. .not. is_thick_shell_type(etype)) then
+       call fatal_error(error, EXIT_DECK, 'pressure P applies to shells (S3, S4, S3R, S4R) only')
        return
     end if
     call setup(etype, x, r, xl, h, error)

@@ -11,6 +11,7 @@ module superjoin_output_vtk
   use superjoin_model_types, only: model_t, NDOF_NODE, ELEMENT_NODE_COUNT, ET_T2D2, ET_T3D2, &
        ET_B23, ET_B33, ET_CPS3, ET_CPS4, ET_S3, ET_S4, ET_B21, ET_B31, ET_CPE3, ET_CPE4, &
        ET_CPS6, ET_CPS8, ET_CPE6, ET_CPE8, ET_CPS8R, ET_CPE8R, ET_B32
+  use superjoin_model_types, only: ET_S4R, ET_S3R
   use superjoin_analysis_results, only: result_fields_t
   use superjoin_output_posix, only: rename_file, remove_file, make_directory
   use superjoin_output_text_buffer, only: text_buffer_t
@@ -515,9 +516,9 @@ contains
     select case (et)
     case (ET_T2D2, ET_T3D2, ET_B23, ET_B33, ET_B21, ET_B31)
        cell_type = VTK_LINE
-    case (ET_CPS3, ET_S3, ET_CPE3)
+    case (ET_CPS3, ET_S3, ET_CPE3, ET_S3R)
        cell_type = VTK_TRIANGLE
-    case (ET_CPS4, ET_S4, ET_CPE4)
+    case (ET_CPS4, ET_S4, ET_CPE4, ET_S4R)
        cell_type = VTK_QUAD
     case (ET_B32)
        cell_type = VTK_POLY_LINE              ! end, middle, end: the points in order

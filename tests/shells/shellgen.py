@@ -43,7 +43,7 @@ def grid(part, nx, ny, mapping, etype, first_node=1, first_elem=1, diag="alt", i
         for i in range(nx + 1):
             part.nodes[nid(i, j)] = mapping(i / nx, j / ny)
     e = first_elem
-    tri = etype in ("S3", "CPS3")
+    tri = etype in ("S3", "CPS3", "S3R")
     for j in range(ny):
         for i in range(nx):
             a, b, c, d = nid(i, j), nid(i + 1, j), nid(i + 1, j + 1), nid(i, j + 1)
@@ -450,12 +450,12 @@ def shell_patch(etype):
         p.nodes[i] = tuple(glob((x, y, 0.0)))
     e = 1
     for q in PATCH_QUADS:
-        if etype == "S4":
-            p.elems.append((e, "S4", q))
+        if etype in ("S4", "S4R"):
+            p.elems.append((e, etype, q))
             e += 1
         else:
-            p.elems.append((e, "S3", (q[0], q[1], q[2])))
-            p.elems.append((e + 1, "S3", (q[0], q[2], q[3])))
+            p.elems.append((e, etype, (q[0], q[1], q[2])))
+            p.elems.append((e + 1, etype, (q[0], q[2], q[3])))
             e += 2
     bnd = []
     for i in (1, 2, 3, 4):

@@ -132,8 +132,8 @@ def split_plate(exe, work, n, etype):
     check(worst / scale < 1e-10, f"split plate {etype} {n}: RIGID differs from one piece by {worst / scale:.1e}")
 
 
-def patch_tests(exe, work):
-    """Membrane + bending patch test of S4 and S3 in an oblique plane through the
+def patch_tests(exe, work, etypes=("S4", "S3")):
+    """Membrane + bending patch test of S4 and S3 (or etypes) in an oblique plane through the
     whole program: interior displacements and every element's resultants exact."""
     say("\n## Shell patch test (MacNeal-Harder patch, membrane + bending, oblique plane)\n")
     say("| element | max interior DOF error / max DOF | max resultant error / max resultant |")
@@ -143,7 +143,7 @@ def patch_tests(exe, work):
     n_ex = [c * (1e-3 + nu * 1e-3), c * (1e-3 + nu * 1e-3), e * t / (2 * (1 + nu)) * 1e-3]
     d = e * t ** 3 / (12 * (1 - nu * nu))
     m_ex = [-d * (1e-3 + nu * 1e-3), -d * (1e-3 + nu * 1e-3), -d * (1 - nu) * 0.5e-3]
-    for et in ("S4", "S3"):
+    for et in etypes:
         deck, rot, part = g.shell_patch(et)
         case = g.Case(f"patch_{et}", deck, "PATCH", 5, 1, 1.0, "exact")
         disp, _ = solve(exe, work, case)

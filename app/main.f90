@@ -7,7 +7,7 @@ program superjoin_main
   use superjoin_model_types, only: model_t, string_t, FORM_TRANSFORM, FORM_PENALTY, CONDENSE_YES, CONDENSE_NO, &
        CONDENSE_AUTO
   use superjoin_deck_reader, only: read_deck
-  use superjoin_analysis_joint_steps, only: solve_joint_steps
+  use superjoin_analysis_boundary_steps, only: solve_steps
   use superjoin_analysis_plausibility, only: check_plausibility
   use superjoin_analysis_contact_gaps, only: check_contact_gaps
   use superjoin_analysis_results, only: results_t, run_options_t, PH_READ, PH_WRITE
@@ -73,7 +73,7 @@ program superjoin_main
      stop EXIT_OK, quiet=.true.
   end if
 
-  call solve_joint_steps(model, opts, res, error)
+  call solve_steps(model, opts, res, error)
   if (.not. allocated(vtk_file) .and. allocated(model%vtk_path)) vtk_file = model%vtk_path
   if (allocated(error) .and. allocated(res%mechanism)) call write_mechanism(error)
   call fail_on(error, deck)

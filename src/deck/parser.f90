@@ -14,7 +14,7 @@ module superjoin_deck_parser
        TOK_OK, TOK_RANGE, TOK_NONFINITE
   use superjoin_deck_state, only: deck_state_t, sec_b_t, contact_b_t, cline_b_t, support_b_t, &
        load_b_t, ref_t, report, report_loc, report_oom, new_sub, find_sub, find_set, new_set, add_chunk, &
-       override_b_t, SUBK_PART, SUBK_INSTANCE, &
+       override_b_t, SUBK_PART, SUBK_INSTANCE, step_b_t, OP_DEFAULT, OP_MOD, OP_NEW, &
        push_pool, add_node, add_element, add_heading, add_material, add_orientation, &
        add_section, add_contact, add_cline, add_support, add_step, add_load, &
        MAX_INCLUDE_DEPTH, CH_IDS, CH_GEN, CH_RANGE, CH_REF, BEAM_2D_VALUES, BEAM_3D_VALUES
@@ -338,10 +338,7 @@ contains
        st%card = CARD_SUPPORT
        st%card_home = st%cur_sub
     case ('BOUNDARY')
-       if (.not. outside_step(st, kw, loc)) return
-       call check_params(st, kw, loc, [character(NAME_LEN) ::], [character(NAME_LEN) ::])
-       st%card = CARD_BOUNDARY
-       st%card_home = st%cur_sub
+       call kw_boundary(st, kw, loc)
     case ('STEP')
        call kw_step(st, kw, loc)
     case ('END STEP')
@@ -976,11 +973,15 @@ contains
     type(keyword_line_t), intent(in) :: kw
     type(source_loc_t), intent(in) :: loc
     integer, intent(in) :: card
-    call check_params(st, kw, loc, [character(NAME_LEN) ::], [character(NAME_LEN) ::])
+    integer :: op
+    call check_params(st, kw, loc, [character(NAME_LEN) :: 'OP'], [character(NAME_LEN) ::])
+    op = op_param(st, kw, loc)
     st%card = CARD_SKIP
     if (st%cur_step > 0) then
        st%card_item = st%cur_step
+       call record_load_op(st%steps(st%cur_step), card == CARD_DLOAD, op)
     else
+       if (op /= OP_DEFAULT) call report_loc(st, loc, 'OP= of *'//kw%keyword//' applies inside *STEP only')
        if (st%nstep_cards > 0) then
           if (.not. st%mix_reported) call report_loc(st, loc, '*'//kw%keyword// &
                ' outside *STEP cannot be mixed with *STEP cards')
@@ -1701,6 +1702,8 @@ contains
     if (.not. parse_ref(st, fld(st, line, 1), .false., st%card_home, loc, s%ref)) return
     s%state = LINK_RIGID
     s%loc = loc
+    s%step = st%card_item
+    s%boundary = .true.
     tok = to_upper(fld(st, line, 2))
     if (.not. looks_numeric(tok) .and. len(tok) > 0) then
        do k = 1, NUM_BC_TYPES
@@ -2248,6 +2251,62 @@ contains
       c%data_loc(st%card_ndata) = loc
     end associate
   end subroutine data_spring
+
+  ! ================================================================== step history (OP=)
+
+  subroutine kw_boundary(st, kw, loc)
+    !! *BOUNDARY[, OP=MOD|NEW]: model data, or inside *STEP the step's own
+    !! boundary conditions (Abaqus/CalculiX history: later steps keep them;
+    !! OP=NEW removes every earlier *BOUNDARY condition, model data included).
+    type(deck_state_t), intent(inout) :: st
+    type(keyword_line_t), intent(in) :: kw
+    type(source_loc_t), intent(in) :: loc
+    integer :: op
+    call check_params(st, kw, loc, [character(NAME_LEN) :: 'OP'], [character(NAME_LEN) ::])
+    op = op_param(st, kw, loc)
+    st%card = CARD_BOUNDARY
+    st%card_home = st%cur_sub
+    st%card_item = st%cur_step
+    if (st%cur_step > 0) then
+       st%steps(st%cur_step)%has_boundary = .true.
+       st%steps(st%cur_step)%bc_op = max(st%steps(st%cur_step)%bc_op, op)
+    else if (op /= OP_DEFAULT) then
+       call report_loc(st, loc, 'OP= of *BOUNDARY applies inside *STEP only')
+    end if
+  end subroutine kw_boundary
+
+  integer function op_param(st, kw, loc) result(op)
+    !! OP= of a *BOUNDARY, *CLOAD or *DLOAD card: OP_MOD, OP_NEW or OP_DEFAULT
+    !! (not written; a wrong value is reported).
+    type(deck_state_t), intent(inout) :: st
+    type(keyword_line_t), intent(in) :: kw
+    type(source_loc_t), intent(in) :: loc
+    integer :: k
+    op = OP_DEFAULT
+    k = param_index(kw, 'OP')
+    if (k == 0) return
+    if (.not. kw%params(k)%has_value) return   ! reported by check_params
+    select case (to_upper(kw%params(k)%value))
+    case ('MOD')
+       op = OP_MOD
+    case ('NEW')
+       op = OP_NEW
+    case default
+       call report_loc(st, loc, 'OP= of *'//kw%keyword//' must be MOD or NEW, not '//clip(kw%params(k)%value))
+    end select
+  end function op_param
+
+  pure subroutine record_load_op(step, dload, op)
+    !! Remember OP= of a load card of a step (NEW wins over MOD).
+    type(step_b_t), intent(inout) :: step
+    logical, intent(in) :: dload
+    integer, intent(in) :: op
+    if (dload) then
+       step%dload_op = max(step%dload_op, op)
+    else
+       step%cload_op = max(step%cload_op, op)
+    end if
+  end subroutine record_load_op
 
   function loc_string(st, loc) result(s)
     !! "file:line" of a location.

@@ -130,6 +130,8 @@ module superjoin_deck_state
      real(wp) :: g = 0.0_wp
      real(wp) :: value = 0.0_wp
      type(source_loc_t) :: loc
+     integer :: step = 0                   !! *BOUNDARY inside *STEP: the step (0: model data)
+     logical :: boundary = .false.         !! written on *BOUNDARY (not *SUPPORT)
   end type support_b_t
 
   type, public :: load_b_t
@@ -181,7 +183,12 @@ module superjoin_deck_state
      type(override_b_t), allocatable :: overrides(:)   !! *CHANGE CONTACT lines
      integer :: nsweep = 0                             !! SWEEP: number of values (0: no sweep)
      type(source_loc_t) :: sweep_loc
+     logical :: has_boundary = .false.                 !! a *BOUNDARY card stands in the step
+     integer :: bc_op = 0, cload_op = 0, dload_op = 0  !! OP= of its *BOUNDARY, *CLOAD, *DLOAD cards (OP_*)
   end type step_b_t
+
+  integer, parameter, public :: OP_DEFAULT = 0, OP_MOD = 1, OP_NEW = 2
+    !! OP= of the step's load and boundary cards (OP_DEFAULT: none written).
 
   type, public :: request_b_t
     !! An output request card as read (set still by name).

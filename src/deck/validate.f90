@@ -13,6 +13,8 @@ module superjoin_deck_validate
        CH_IDS, CH_GEN, CH_RANGE, CH_REF, BEAM_2D_VALUES, BEAM_3D_VALUES, SUBK_INSTANCE
   use superjoin_utils_strings, only: pick
   use superjoin_deck_requests, only: build_requests
+  use superjoin_deck_state, only: OP_NEW, OP_MOD
+  use superjoin_model_history, only: support_list_t, step_ops_t, apply_boundary_history, apply_load_history
   implicit none (type, external)
   private
 
@@ -1017,6 +1019,15 @@ contains
   subroutine build_supports(st, model)
     type(deck_state_t), intent(inout) :: st
     type(model_t), intent(inout) :: model
+    call support_list(st, model, 0, model%supports)
+  end subroutine build_supports
+
+  subroutine support_list(st, model, step, out)
+    !! The supported DOFs of the *SUPPORT and *BOUNDARY lines of a step (0: model data).
+    type(deck_state_t), intent(inout) :: st
+    type(model_t), intent(in) :: model
+    integer, intent(in) :: step
+    type(support_t), allocatable, intent(out) :: out(:)
     type(support_t), allocatable :: list(:), tmp(:)
     integer(ip), allocatable :: nodes(:)
     integer :: k, n, isub, d, stat
@@ -1026,6 +1037,7 @@ contains
     n = 0
     do k = 1, st%nsupport
        if (st%aborted) return
+       if (st%supports(k)%step /= step) cycle
        associate (sb => st%supports(k))
          isub = resolve_sub(st, model, sb%ref, sb%loc, 'node')
          if (isub == 0) cycle
@@ -1052,19 +1064,43 @@ contains
                list(n)%g = sb%g
                list(n)%value = sb%value
                list(n)%loc = sb%loc
+               list(n)%from_boundary = sb%boundary
             end do
          end do
        end associate
     end do
     ! explicit allocation: an assignment's reallocation would not report failure
-    allocate (model%supports(n), stat=stat)
+    allocate (out(n), stat=stat)
     if (stat /= 0) then
        call report_oom(st, st%supports(st%nsupport)%loc, 'the supported DOFs ('//itoa(n)//')', &
             int(n, i8)*storage_size(list(1))/8)
        return
     end if
-    model%supports(1:n) = list(1:n)
-  end subroutine build_supports
+    out(1:n) = list(1:n)
+  end subroutine support_list
+
+  subroutine build_history(st, model)
+    !! The steps' boundary conditions and the loads continued by OP=MOD
+    !! (superjoin_model_history).
+    type(deck_state_t), intent(inout) :: st
+    type(model_t), intent(inout) :: model
+    type(support_list_t), allocatable :: own(:)
+    type(step_ops_t), allocatable :: ops(:)
+    integer :: s
+    allocate (own(st%nstep), ops(st%nstep))
+    do s = 1, st%nstep
+       ops(s)%bc_new = st%steps(s)%bc_op == OP_NEW
+       ops(s)%cload_mod = st%steps(s)%cload_op == OP_MOD
+       ops(s)%dload_mod = st%steps(s)%dload_op == OP_MOD
+    end do
+    call apply_load_history(model, ops)
+    if (.not. any(st%steps(1:st%nstep)%has_boundary)) return
+    do s = 1, st%nstep
+       call support_list(st, model, s, own(s)%items)
+       if (st%aborted) return
+    end do
+    call apply_boundary_history(model, own, ops)
+  end subroutine build_history
 
   subroutine build_steps(st, model)
     type(deck_state_t), intent(inout) :: st
@@ -1090,6 +1126,7 @@ contains
        call move_alloc(dl, model%steps(s)%dloads)
        if (st%aborted) return
     end do
+    call build_history(st, model)
   end subroutine build_steps
 
   subroutine build_cloads(st, model, loads, out)

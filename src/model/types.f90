@@ -157,6 +157,7 @@ module superjoin_model_types
      real(wp) :: g = 0.0_wp                !! stiffness when finite
      real(wp) :: value = 0.0_wp            !! prescribed displacement when rigid
      type(source_loc_t) :: loc
+     logical :: from_boundary = .false.    !! written on *BOUNDARY (OP=NEW in a step removes it), not *SUPPORT
   end type support_t
 
   type, public :: cload_t
@@ -193,6 +194,8 @@ module superjoin_model_types
      type(dload_t), allocatable :: dloads(:)
      type(source_loc_t) :: loc
      type(link_override_t), allocatable :: link_overrides(:)  !! *CHANGE CONTACT (unallocated or empty: none)
+     type(support_t), allocatable :: supports(:)  !! supports in effect in this step when some step has a
+                                                  !! *BOUNDARY of its own (unallocated: model%supports)
   end type step_t
 
   integer, parameter, public :: REQ_NODE_PRINT = 1, REQ_EL_PRINT = 2, REQ_NODE_FILE = 3, REQ_EL_FILE = 4

@@ -1,0 +1,152 @@
+module superjoin_analysis_boundary_steps
+  !! Steps with boundary conditions of their own (*BOUNDARY inside *STEP).
+  !!
+  !! A wrapper around solve_joint_steps that does not touch the analysis
+  !! itself: the steps are grouped by the supports in effect (which DOFs are
+  !! fixed and their prescribed values: the Δu transform carries one vector of
+  !! prescribed values); each group is solved as a model of its own (the model
+  !! with that group's supports and only its steps), one factorization per
+  !! group and per set of contact stiffnesses; the results are merged in the
+  !! original step order. Steps that differ only in their loads share a
+  !! factorization. Without a step-level *BOUNDARY this is exactly
+  !! solve_joint_steps.
+  use superjoin_kinds, only: wp
+  use superjoin_error, only: error_t, add_error_line
+  use superjoin_model_types, only: model_t, support_t
+  use superjoin_analysis_joint_steps, only: solve_joint_steps, merge_results
+  use superjoin_analysis_results, only: results_t, run_options_t
+  use superjoin_analysis_notes, only: append_string
+  use superjoin_utils_strings, only: itoa
+  implicit none (type, external)
+  private
+
+  public :: solve_steps, has_step_boundaries, same_supports
+
+contains
+
+  pure logical function has_step_boundaries(model)
+    !! Whether the steps carry supports of their own (a *BOUNDARY inside *STEP).
+    type(model_t), intent(in) :: model
+    has_step_boundaries = .false.
+    if (.not. allocated(model%steps)) return
+    if (size(model%steps) == 0) return
+    has_step_boundaries = allocated(model%steps(1)%supports)
+  end function has_step_boundaries
+
+  subroutine solve_steps(model, opts, res, error)
+    !! Solve every step of a validated model with the supports in effect in it
+    !! (one factorization per distinct set of supports and contact stiffnesses).
+    type(model_t), intent(in) :: model
+    type(run_options_t), intent(in) :: opts
+    type(results_t), intent(out) :: res
+    type(error_t), allocatable, intent(out) :: error
+    integer, allocatable :: group(:), members(:)
+    integer :: ngroup, s, t, g, nstep
+    type(model_t) :: sub
+    type(results_t) :: r
+
+    if (.not. has_step_boundaries(model)) then
+       call solve_joint_steps(model, opts, res, error)
+       return
+    end if
+    nstep = size(model%steps)
+    allocate (group(nstep))
+    ngroup = 0
+    do s = 1, nstep
+       group(s) = 0
+       do t = 1, s - 1
+          if (same_supports(model%steps(s)%supports, model%steps(t)%supports)) then
+             group(s) = group(t)
+             exit
+          end if
+       end do
+       if (group(s) == 0) then
+          ngroup = ngroup + 1
+          group(s) = ngroup
+       end if
+    end do
+    if (ngroup == 1) then
+       sub = model
+       sub%supports = model%steps(1)%supports
+       call solve_joint_steps(sub, opts, res, error)
+       if (allocated(error)) return
+       call append_string(res%notes, 'boundary conditions (*BOUNDARY in steps): the same in every step, '// &
+            itoa(size(sub%supports))//' supported DOFs')
+       return
+    end if
+
+    do g = 1, ngroup
+       members = pack([(s, s=1, nstep)], group == g)
+       sub = model
+       sub%supports = model%steps(members(1))%supports
+       sub%steps = model%steps(members)
+       call solve_joint_steps(sub, opts, r, error)
+       if (allocated(error)) then
+          call add_error_line(error, error%code, '  (while solving '//step_list(model, members)// &
+               ' with their boundary conditions, *BOUNDARY)')
+          return
+       end if
+       call merge_results(r, members, nstep, g == 1, res)
+       call append_string(res%notes, step_list(model, members)//': '//itoa(size(sub%supports))// &
+            ' supported DOFs'//prescribed_text(sub%supports))
+    end do
+    call append_string(res%notes, 'boundary conditions (*BOUNDARY in steps): '//itoa(ngroup)// &
+         ' sets of supports, '//itoa(ngroup)//' separate solves; the counts above and MAXRATIO '// &
+         'are the largest over them')
+  end subroutine solve_steps
+
+  pure logical function same_supports(a, b)
+    !! Two lists of supports are the same constraint (same DOFs, states,
+    !! stiffnesses and prescribed values, in any order).
+    type(support_t), intent(in) :: a(:), b(:)
+    integer :: i, j
+    logical :: found
+    same_supports = size(a) == size(b)
+    if (.not. same_supports) return
+    do i = 1, size(a)
+       ! the lists of consecutive steps share their order: try the same position first
+       found = same_support(a(i), b(i))
+       if (.not. found) then
+          do j = 1, size(b)
+             if (same_support(a(i), b(j))) then
+                found = .true.
+                exit
+             end if
+          end do
+       end if
+       if (.not. found) then
+          same_supports = .false.
+          return
+       end if
+    end do
+  end function same_supports
+
+  pure logical function same_support(a, b)
+    type(support_t), intent(in) :: a, b
+    same_support = a%sub == b%sub .and. a%node == b%node .and. a%dof == b%dof .and. &
+         a%state == b%state .and. a%g == b%g .and. a%value == b%value
+  end function same_support
+
+  function prescribed_text(list) result(text)
+    !! ', n with prescribed displacements' when some supports prescribe one.
+    type(support_t), intent(in) :: list(:)
+    character(:), allocatable :: text
+    integer :: n
+    n = count(list%value /= 0.0_wp)
+    text = ''
+    if (n > 0) text = ', '//itoa(n)//' with prescribed displacements'
+  end function prescribed_text
+
+  function step_list(model, members) result(text)
+    !! 'steps A B C' for messages.
+    type(model_t), intent(in) :: model
+    integer, intent(in) :: members(:)
+    character(:), allocatable :: text
+    integer :: k
+    text = merge('steps', 'step ', size(members) > 1)
+    text = trim(text)
+    do k = 1, size(members)
+       text = text//' '//model%steps(members(k))%name
+    end do
+  end function step_list
+end module superjoin_analysis_boundary_steps

@@ -6,7 +6,7 @@ module superjoin_deck_parser
   use superjoin_kinds, only: wp, ip, i8
   use superjoin_model_types, only: source_loc_t, string_t, ELEMENT_TYPE_NAMES, ELEMENT_NODE_COUNT, &
        NUM_ELEMENT_TYPES, MAX_ELEMENT_NODES, NDOF_NODE, SEC_SOLID, SEC_BEAM, SEC_SHELL, &
-       LINK_NONE, LINK_FINITE, LINK_RIGID, DLOAD_PX, DLOAD_PY, DLOAD_PZ, DLOAD_P, DLOAD_GRAV, &
+       LINK_NONE, LINK_FINITE, LINK_RIGID, DLOAD_PX, DLOAD_PY, DLOAD_PZ, DLOAD_P, DLOAD_GRAV, DLOAD_P1, &
        FORM_TRANSFORM, FORM_PENALTY, RIGID_ELIMINATE, RIGID_LARGE, CONDENSE_AUTO, CONDENSE_YES, CONDENSE_NO
   use superjoin_deck_lexer, only: keyword_line_t, load_file, next_line, first_nonblank, to_upper, &
        parse_keyword_line, split_fields, drop_trailing_empty, parse_real, parse_id, is_name, &
@@ -1789,8 +1789,11 @@ contains
           ld%kind = DLOAD_PZ
        case ('P')
           ld%kind = DLOAD_P
+       case ('P1', 'P2', 'P3', 'P4')
+          ld%kind = face_load_kind(typ)
        case default
-          call report_loc(st, loc, 'unknown *DLOAD type '''//clip(fld(st, line, 2))//''' (PX, PY, PZ, P or GRAV)')
+          call report_loc(st, loc, 'unknown *DLOAD type '''//clip(fld(st, line, 2))// &
+               ''' (PX, PY, PZ, P, P1 to P4 or GRAV)')
           return
        end select
     else
@@ -2295,6 +2298,12 @@ contains
        call report_loc(st, loc, 'OP= of *'//kw%keyword//' must be MOD or NEW, not '//clip(kw%params(k)%value))
     end select
   end function op_param
+
+  pure integer function face_load_kind(typ) result(kind)
+    !! DLOAD_P1 .. DLOAD_P4 of the *DLOAD type 'P1' .. 'P4'.
+    character(*), intent(in) :: typ
+    kind = DLOAD_P1 + index('1234', typ(2:2)) - 1
+  end function face_load_kind
 
   pure subroutine record_load_op(step, dload, op)
     !! Remember OP= of a load card of a step (NEW wins over MOD).

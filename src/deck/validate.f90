@@ -8,6 +8,7 @@ module superjoin_deck_validate
        ELEMENT_TYPE_NAMES, ELEMENT_NODE_COUNT, NDOF_NODE, SEC_SOLID, SEC_BEAM, SEC_SHELL, &
        LINK_FINITE, LINK_RIGID, ET_T2D2, ET_T3D2, ET_B23, ET_B33, ET_CPS3, ET_CPS4, &
        ET_S3, ET_S4, ET_B21, ET_B31, ET_CPE3, ET_CPE4, DLOAD_PX, DLOAD_PY, DLOAD_PZ, DLOAD_P, DLOAD_GRAV, DLOAD_NAMES
+  use superjoin_model_types, only: DLOAD_P1, DLOAD_P2, DLOAD_P3, DLOAD_P4
   use superjoin_deck_lexer, only: itoa, plural
   use superjoin_deck_state, only: deck_state_t, sub_b_t, ref_t, load_b_t, report, report_loc, report_oom, find_set, &
        CH_IDS, CH_GEN, CH_RANGE, CH_REF, BEAM_2D_VALUES, BEAM_3D_VALUES, SUBK_INSTANCE
@@ -1265,10 +1266,24 @@ contains
        dload_fits = etype == ET_S3 .or. etype == ET_S4
     case (DLOAD_GRAV)
        dload_fits = .true.
+    case (DLOAD_P1)
+       dload_fits = is_plane(etype) .or. etype == ET_B33 .or. etype == ET_B31
+    case (DLOAD_P2)
+       dload_fits = is_plane(etype) .or. etype == ET_B23 .or. etype == ET_B33 .or. etype == ET_B21 .or. etype == ET_B31
+    case (DLOAD_P3)
+       dload_fits = is_plane(etype)
+    case (DLOAD_P4)
+       dload_fits = etype == ET_CPS4 .or. etype == ET_CPE4
     case default
        dload_fits = .false.
     end select
   end function dload_fits
+
+  elemental logical function is_plane(etype)
+    !! A plane-stress or plane-strain element (edge pressure P1 ... P4).
+    integer, intent(in) :: etype
+    is_plane = etype == ET_CPS3 .or. etype == ET_CPS4 .or. etype == ET_CPE3 .or. etype == ET_CPE4
+  end function is_plane
 
   pure function dload_targets(kind) result(s)
     integer, intent(in) :: kind
@@ -1278,6 +1293,14 @@ contains
        s = 'PX and PY apply to beams B23, B33, B21 and B31'
     case (DLOAD_PZ)
        s = 'PZ applies to 3D beams B33 and B31'
+    case (DLOAD_P1)
+       s = 'P1 applies to the first edge of plane elements and to 3D beams B33 and B31'
+    case (DLOAD_P2)
+       s = 'P2 applies to the second edge of plane elements and to beams'
+    case (DLOAD_P3)
+       s = 'P3 applies to the third edge of plane elements'
+    case (DLOAD_P4)
+       s = 'P4 applies to the fourth edge of quadrilaterals CPS4 and CPE4'
     case default
        s = 'P applies to shells S3 and S4'
     end select

@@ -41,7 +41,7 @@ contains
     type(support_t), allocatable :: cur(:)
     integer :: s, k, j
     logical :: found
-    cur = model%supports
+    allocate (cur, source=model%supports)   ! source=: no -Wuninitialized false positive
     do s = 1, size(model%steps)
        if (ops(s)%bc_new) cur = pack(cur, .not. cur%from_boundary)
        do k = 1, size(own(s)%items)

@@ -31,8 +31,11 @@ module superjoin_model_types
     !! State of one DOF of a contact element or support.
 
   integer, parameter, public :: DLOAD_PX = 1, DLOAD_PY = 2, DLOAD_PZ = 3, DLOAD_P = 4, DLOAD_GRAV = 5
-    !! Distributed load kinds.
-  character(len=4), parameter, public :: DLOAD_NAMES(5) = ['PX  ', 'PY  ', 'PZ  ', 'P   ', 'GRAV']
+  integer, parameter, public :: DLOAD_P1 = 6, DLOAD_P2 = 7, DLOAD_P3 = 8, DLOAD_P4 = 9
+    !! Distributed load kinds (P1..P4: pressure on face k of a plane element; P1, P2 on
+    !! beams: load per unit length along local y (n1) and local z (n2), CalculiX's forms).
+  character(len=4), parameter, public :: DLOAD_NAMES(9) = ['PX  ', 'PY  ', 'PZ  ', 'P   ', 'GRAV', &
+       'P1  ', 'P2  ', 'P3  ', 'P4  ']
 
   integer, parameter, public :: FORM_TRANSFORM = 1, FORM_PENALTY = 2
     !! Formulation and rigid-link controls.

@@ -8,6 +8,7 @@ program superjoin_main
        CONDENSE_AUTO
   use superjoin_deck_reader, only: read_deck
   use superjoin_analysis_boundary_steps, only: solve_steps
+  use superjoin_analysis_combinations, only: add_combinations
   use superjoin_analysis_plausibility, only: check_plausibility
   use superjoin_analysis_contact_gaps, only: check_contact_gaps
   use superjoin_analysis_results, only: results_t, run_options_t, PH_READ, PH_WRITE
@@ -76,6 +77,8 @@ program superjoin_main
   call solve_steps(model, opts, res, error)
   if (.not. allocated(vtk_file) .and. allocated(model%vtk_path)) vtk_file = model%vtk_path
   if (allocated(error) .and. allocated(res%mechanism)) call write_mechanism(error)
+  call fail_on(error, deck)
+  call add_combinations(model, res, error)
   call fail_on(error, deck)
   call check_plausibility(model, res)
   res%phase_seconds(PH_READ) = t_read

@@ -14,7 +14,7 @@ module superjoin_deck_parser
        TOK_OK, TOK_RANGE, TOK_NONFINITE
   use superjoin_deck_state, only: deck_state_t, sec_b_t, contact_b_t, cline_b_t, support_b_t, &
        load_b_t, ref_t, report, report_loc, report_oom, new_sub, find_sub, find_set, new_set, add_chunk, &
-       override_b_t, SUBK_PART, SUBK_INSTANCE, step_b_t, OP_DEFAULT, OP_MOD, OP_NEW, &
+       override_b_t, SUBK_PART, SUBK_INSTANCE, step_b_t, combo_b_t, OP_DEFAULT, OP_MOD, OP_NEW, &
        push_pool, add_node, add_element, add_heading, add_material, add_orientation, &
        add_section, add_contact, add_cline, add_support, add_step, add_load, &
        MAX_INCLUDE_DEPTH, CH_IDS, CH_GEN, CH_RANGE, CH_REF, BEAM_2D_VALUES, BEAM_3D_VALUES
@@ -51,6 +51,8 @@ module superjoin_deck_parser
     !! Cards of parts, instances and joint studies (submodule superjoin_deck_parts).
   integer, parameter :: CARD_STATIC = 111, CARD_REQUEST = 112, CARD_SPRING_ELEMENT = 113, CARD_SPRING = 114
     !! CalculiX/Abaqus analysis cards (numbered apart from the model cards).
+  integer, parameter :: CARD_COMBINATION = 131
+    !! Load cases and combinations (superjoin's *LOAD COMBINATION).
   integer, parameter :: PROC_STATIC = 1
     !! Procedures of a step (st%step_procedure).
   integer, parameter :: STATIC_FIELDS = 4
@@ -358,6 +360,8 @@ contains
        call kw_load(st, kw, loc, CARD_CLOAD)
     case ('DLOAD')
        call kw_load(st, kw, loc, CARD_DLOAD)
+    case ('LOAD COMBINATION')
+       call kw_load_combination(st, kw, loc)
     case ('CONTROLS')
        call kw_controls(st, kw, loc)
     case ('OUTPUT')
@@ -406,6 +410,8 @@ contains
           call report_loc(st, st%card_loc, st%card_name//' needs a data line')
           st%sections(st%card_item)%data_ok = .false.
        end if
+    case (CARD_COMBINATION)
+       if (st%card_ndata == 0) call report_loc(st, st%card_loc, st%card_name//' needs a data line (step, factor)')
     end select
     st%card = CARD_NONE
   end subroutine end_card
@@ -1145,6 +1151,8 @@ contains
        call data_spring(st, line, loc)
     case (CARD_REQUEST)
        call data_request(st, line, loc)
+    case (CARD_COMBINATION)
+       call data_combination(st, line, loc)
     end select
   end subroutine data_line
 
@@ -2316,6 +2324,69 @@ contains
        step%cload_op = max(step%cload_op, op)
     end if
   end subroutine record_load_op
+
+  ! ================================================================== load combinations
+
+  subroutine kw_load_combination(st, kw, loc)
+    !! *LOAD COMBINATION, NAME=c (superjoin): outside *STEP; data lines
+    !! `step, factor` (step by name or position).
+    type(deck_state_t), intent(inout) :: st
+    type(keyword_line_t), intent(in) :: kw
+    type(source_loc_t), intent(in) :: loc
+    character(:), allocatable :: name
+    logical :: found
+    type(combo_b_t), allocatable :: tmp(:)
+    st%card = CARD_SKIP
+    if (.not. outside_step(st, kw, loc)) return
+    call check_params(st, kw, loc, [character(NAME_LEN) :: 'NAME'], [character(NAME_LEN) ::])
+    call get_name_param(st, kw, loc, 'NAME', .true., name, found)
+    if (.not. found) return
+    if (.not. allocated(st%combos)) allocate (st%combos(4))
+    if (st%ncombo == size(st%combos)) then
+       allocate (tmp(2*st%ncombo))
+       tmp(1:st%ncombo) = st%combos(1:st%ncombo)
+       call move_alloc(tmp, st%combos)
+    end if
+    st%ncombo = st%ncombo + 1
+    st%combos(st%ncombo)%name = name
+    st%combos(st%ncombo)%loc = loc
+    allocate (st%combos(st%ncombo)%steps(4), st%combos(st%ncombo)%factors(4), &
+         st%combos(st%ncombo)%line_loc(4))
+    st%card = CARD_COMBINATION
+    st%card_item = st%ncombo
+  end subroutine kw_load_combination
+
+  subroutine data_combination(st, line, loc)
+    !! A data line of *LOAD COMBINATION: step (name or position), factor.
+    type(deck_state_t), intent(inout) :: st
+    character(*), intent(in) :: line
+    type(source_loc_t), intent(in) :: loc
+    real(wp) :: factor
+    type(string_t), allocatable :: ts(:)
+    real(wp), allocatable :: tf(:)
+    type(source_loc_t), allocatable :: tl(:)
+    if (.not. field_count(st, loc, 2, 2, 'step, factor')) return
+    if (len(fld(st, line, 1)) == 0) then
+       call report_loc(st, loc, 'empty step name on *LOAD COMBINATION data line')
+       return
+    end if
+    if (.not. get_real(st, line, loc, 2, factor)) return
+    associate (c => st%combos(st%card_item))
+      if (c%n == size(c%steps)) then
+         allocate (ts(2*c%n), tf(2*c%n), tl(2*c%n))
+         ts(1:c%n) = c%steps(1:c%n)
+         tf(1:c%n) = c%factors(1:c%n)
+         tl(1:c%n) = c%line_loc(1:c%n)
+         call move_alloc(ts, c%steps)
+         call move_alloc(tf, c%factors)
+         call move_alloc(tl, c%line_loc)
+      end if
+      c%n = c%n + 1
+      c%steps(c%n)%s = to_upper(fld(st, line, 1))
+      c%factors(c%n) = factor
+      c%line_loc(c%n) = loc
+    end associate
+  end subroutine data_combination
 
   function loc_string(st, loc) result(s)
     !! "file:line" of a location.

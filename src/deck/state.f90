@@ -187,6 +187,16 @@ module superjoin_deck_state
      integer :: bc_op = 0, cload_op = 0, dload_op = 0  !! OP= of its *BOUNDARY, *CLOAD, *DLOAD cards (OP_*)
   end type step_b_t
 
+  type, public :: combo_b_t
+    !! A *LOAD COMBINATION card as read: steps by name, factors.
+     character(:), allocatable :: name
+     integer :: n = 0
+     type(string_t), allocatable :: steps(:)
+     real(wp), allocatable :: factors(:)
+     type(source_loc_t), allocatable :: line_loc(:)
+     type(source_loc_t) :: loc
+  end type combo_b_t
+
   integer, parameter, public :: OP_DEFAULT = 0, OP_MOD = 1, OP_NEW = 2
     !! OP= of the step's load and boundary cards (OP_DEFAULT: none written).
 
@@ -273,6 +283,8 @@ module superjoin_deck_state
      integer :: nelem_cards = 0
      integer :: ninst = 0
      type(instance_b_t), allocatable :: instances(:)
+     integer :: ncombo = 0                          !! *LOAD COMBINATION cards
+     type(combo_b_t), allocatable :: combos(:)
      logical :: section_rejected(3) = .false.  !! a *SOLID/*BEAM/*SHELL SECTION card (SEC_* index) was rejected
      ! block and card state
      integer :: cur_inst = 0               !! open *INSTANCE block

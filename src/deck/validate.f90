@@ -15,6 +15,7 @@ module superjoin_deck_validate
   use superjoin_utils_strings, only: pick
   use superjoin_deck_requests, only: build_requests
   use superjoin_deck_state, only: OP_NEW, OP_MOD
+  use superjoin_deck_combinations, only: build_combinations
   use superjoin_model_history, only: support_list_t, step_ops_t, apply_boundary_history, apply_load_history
   implicit none (type, external)
   private
@@ -154,6 +155,7 @@ contains
     call build_steps(st, model)
     if (st%aborted) return
     call build_overrides(st, model)
+    call build_combinations(st, model)
     call build_requests(st, model)
   end subroutine build_model
 

@@ -197,9 +197,18 @@ module superjoin_model_types
      type(dload_t), allocatable :: dloads(:)
      type(source_loc_t) :: loc
      type(link_override_t), allocatable :: link_overrides(:)  !! *CHANGE CONTACT (unallocated or empty: none)
+     integer :: combination = 0            !! results of model%combinations(k), no solve (0: a solved step)
      type(support_t), allocatable :: supports(:)  !! supports in effect in this step when some step has a
                                                   !! *BOUNDARY of its own (unallocated: model%supports)
   end type step_t
+
+  type, public :: combination_t
+    !! *LOAD COMBINATION (superjoin): results as Σ factor × results of solved steps.
+     character(:), allocatable :: name     !! upper case
+     integer, allocatable :: steps(:)      !! indices into model%steps (solved steps)
+     real(wp), allocatable :: factors(:)
+     type(source_loc_t) :: loc
+  end type combination_t
 
   integer, parameter, public :: REQ_NODE_PRINT = 1, REQ_EL_PRINT = 2, REQ_NODE_FILE = 3, REQ_EL_FILE = 4
     !! Kinds of output requests (CalculiX groups: *NODE OUTPUT counts as *NODE FILE,
@@ -252,6 +261,7 @@ module superjoin_model_types
      character(:), allocatable :: vtk_path          !! *OUTPUT, VTK= joined to its deck file's directory, or unallocated
      type(string_t), allocatable :: parts(:)        !! *PART names; subs(i)%part indexes this list
      type(output_request_t), allocatable :: requests(:)  !! output request cards in order (empty: full output)
+     type(combination_t), allocatable :: combinations(:) !! *LOAD COMBINATION cards (unallocated: none)
   end type model_t
 
   public :: find_node, find_elem, node_label, loc_text

@@ -14,6 +14,7 @@ module superjoin_output_listing
   use superjoin_utils_strings, only: itoa
   use superjoin_utils_memory, only: out_of_memory
   use superjoin_output_requests, only: write_print_requests
+  use superjoin_output_envelope, only: write_envelope
   implicit none (type, external)
   private
 
@@ -51,6 +52,7 @@ contains
        call step_block(lu, model, res, is)
        call write_print_requests(lu, model, res, is)
     end do
+    call write_envelope(lu, model, res)
     call lu%line(RULE)
     call lu%line('END OF LISTING')
     call lu%commit(tmp, path, 'listing ', error)

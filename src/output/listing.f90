@@ -88,7 +88,9 @@ contains
     call count_line(lu, 'contact cards', int(size(model%contacts), i8))
     call count_line(lu, 'contact elements', int(size(model%links), i8))
     call count_line(lu, 'supported DOFs', int(size(model%supports), i8))
-    call count_line(lu, 'load steps', int(size(model%steps), i8))
+    call count_line(lu, 'load steps', int(count(model%steps%combination == 0), i8))
+    if (any(model%steps%combination > 0)) &
+         call count_line(lu, 'load combinations', int(count(model%steps%combination > 0), i8))
     call count_line(lu, 'active DOFs', res%nphys)
     call count_line(lu, 'reduced unknowns', res%ncol)
     call count_line(lu, '  of which relative (delta)', res%ndelta)

@@ -14,7 +14,7 @@ module superjoin_deck_parser
        TOK_OK, TOK_RANGE, TOK_NONFINITE
   use superjoin_deck_state, only: deck_state_t, sec_b_t, contact_b_t, cline_b_t, support_b_t, &
        load_b_t, ref_t, report, report_loc, report_oom, new_sub, find_sub, find_set, new_set, add_chunk, &
-       override_b_t, SUBK_PART, SUBK_INSTANCE, step_b_t, combo_b_t, OP_DEFAULT, OP_MOD, OP_NEW, &
+       override_b_t, SUBK_PART, SUBK_INSTANCE, step_b_t, combo_b_t, temp_b_t, OP_DEFAULT, OP_MOD, OP_NEW, &
        push_pool, add_node, add_element, add_heading, add_material, add_orientation, &
        add_section, add_contact, add_cline, add_support, add_step, add_load, &
        MAX_INCLUDE_DEPTH, CH_IDS, CH_GEN, CH_RANGE, CH_REF, BEAM_2D_VALUES, BEAM_3D_VALUES
@@ -51,7 +51,7 @@ module superjoin_deck_parser
     !! Cards of parts, instances and joint studies (submodule superjoin_deck_parts).
   integer, parameter :: CARD_STATIC = 111, CARD_REQUEST = 112, CARD_SPRING_ELEMENT = 113, CARD_SPRING = 114
     !! CalculiX/Abaqus analysis cards (numbered apart from the model cards).
-  integer, parameter :: CARD_COMBINATION = 131
+  integer, parameter :: CARD_COMBINATION = 131, CARD_EXPANSION = 132, CARD_TEMPERATURE = 133
     !! Load cases and combinations (superjoin's *LOAD COMBINATION).
   integer, parameter :: PROC_STATIC = 1
     !! Procedures of a step (st%step_procedure).
@@ -362,6 +362,10 @@ contains
        call kw_load(st, kw, loc, CARD_DLOAD)
     case ('LOAD COMBINATION')
        call kw_load_combination(st, kw, loc)
+    case ('EXPANSION')
+       call kw_expansion(st, kw, loc, prev_mat)
+    case ('INITIAL CONDITIONS', 'TEMPERATURE')
+       call kw_temperature(st, kw, loc, prev_mat)
     case ('CONTROLS')
        call kw_controls(st, kw, loc)
     case ('OUTPUT')
@@ -412,6 +416,8 @@ contains
        end if
     case (CARD_COMBINATION)
        if (st%card_ndata == 0) call report_loc(st, st%card_loc, st%card_name//' needs a data line (step, factor)')
+    case (CARD_EXPANSION)
+       if (st%card_ndata == 0) call report_loc(st, st%card_loc, st%card_name//' needs a data line')
     end select
     st%card = CARD_NONE
   end subroutine end_card
@@ -1153,6 +1159,10 @@ contains
        call data_request(st, line, loc)
     case (CARD_COMBINATION)
        call data_combination(st, line, loc)
+    case (CARD_EXPANSION)
+       call data_expansion(st, line, loc)
+    case (CARD_TEMPERATURE)
+       call data_temperature(st, line, loc)
     end select
   end subroutine data_line
 
@@ -2387,6 +2397,120 @@ contains
       c%line_loc(c%n) = loc
     end associate
   end subroutine data_combination
+
+  ! ================================================================== temperature
+
+  subroutine kw_expansion(st, kw, loc, mat)
+    !! *EXPANSION[, TYPE=ISO][, ZERO=t] of the current material: one data line
+    !! alpha[, temperature] (a constant coefficient, so ZERO= changes nothing).
+    type(deck_state_t), intent(inout) :: st
+    type(keyword_line_t), intent(in) :: kw
+    type(source_loc_t), intent(in) :: loc
+    integer, intent(in) :: mat
+    character(:), allocatable :: typ
+    logical :: found
+    st%card = CARD_SKIP
+    if (.not. outside_step(st, kw, loc)) return
+    call check_params(st, kw, loc, [character(NAME_LEN) :: 'TYPE', 'ZERO'], [character(NAME_LEN) ::])
+    call get_param(st, kw, loc, 'TYPE', .false., typ, found)
+    if (found) then
+       if (to_upper(typ) /= 'ISO' .and. to_upper(typ) /= 'ISOTROPIC') then
+          call report_loc(st, loc, '*EXPANSION, TYPE='//clip(typ)//' is not supported (isotropic expansion only)')
+          return
+       end if
+    end if
+    if (mat == 0) then
+       call report_loc(st, loc, '*EXPANSION must follow a *MATERIAL card')
+       return
+    end if
+    if (st%materials(mat)%has_expansion) then
+       call report_loc(st, loc, 'material '//st%materials(mat)%name//' has more than one *EXPANSION')
+       return
+    end if
+    st%materials(mat)%has_expansion = .true.
+    st%cur_mat = mat
+    st%card = CARD_EXPANSION
+    st%card_item = mat
+  end subroutine kw_expansion
+
+  subroutine data_expansion(st, line, loc)
+    !! The expansion coefficient: alpha[, temperature]; one line (a coefficient
+    !! that depends on temperature is refused).
+    type(deck_state_t), intent(inout) :: st
+    character(*), intent(in) :: line
+    type(source_loc_t), intent(in) :: loc
+    real(wp) :: alpha
+    if (st%card_ndata > 1) then
+       call report_loc(st, loc, 'superjoin takes one *EXPANSION line (a coefficient that depends on '// &
+            'temperature is not supported)')
+       st%card = CARD_SKIP
+       return
+    end if
+    if (.not. field_count(st, loc, 1, 2, 'alpha[, temperature]')) return
+    if (.not. get_real(st, line, loc, 1, alpha)) return
+    st%materials(st%card_item)%alpha = alpha
+  end subroutine data_expansion
+
+  subroutine kw_temperature(st, kw, loc, prev_mat)
+    !! *INITIAL CONDITIONS, TYPE=TEMPERATURE (model data) and *TEMPERATURE
+    !! (inside *STEP): data lines `node or nset, temperature`. Other TYPE=
+    !! of *INITIAL CONDITIONS are refused as before.
+    type(deck_state_t), intent(inout) :: st
+    type(keyword_line_t), intent(in) :: kw
+    type(source_loc_t), intent(in) :: loc
+    integer, intent(in) :: prev_mat
+    character(:), allocatable :: typ
+    logical :: found
+    st%card = CARD_SKIP
+    if (kw%keyword == 'INITIAL CONDITIONS') then
+       call get_param(st, kw, loc, 'TYPE', .false., typ, found)
+       if (.not. found) typ = ''
+       if (to_upper(typ) /= 'TEMPERATURE') then
+          if (refused_card(st, kw, loc, prev_mat)) return
+       end if
+       if (.not. outside_step(st, kw, loc)) return
+       call check_params(st, kw, loc, [character(NAME_LEN) :: 'TYPE'], [character(NAME_LEN) ::])
+       st%card_item = 0
+    else
+       call check_params(st, kw, loc, [character(NAME_LEN) ::], [character(NAME_LEN) ::])
+       if (st%cur_step == 0) then
+          call report_loc(st, loc, '*TEMPERATURE stands inside *STEP (the initial temperatures: '// &
+               '*INITIAL CONDITIONS, TYPE=TEMPERATURE)')
+          return
+       end if
+       st%card_item = st%cur_step
+    end if
+    st%card = CARD_TEMPERATURE
+    st%card_home = st%cur_sub
+  end subroutine kw_temperature
+
+  subroutine data_temperature(st, line, loc)
+    !! `node or nset, temperature` (uniform across the section: a gradient,
+    !! CalculiX's further fields, is refused).
+    type(deck_state_t), intent(inout) :: st
+    character(*), intent(in) :: line
+    type(source_loc_t), intent(in) :: loc
+    type(temp_b_t) :: t
+    type(temp_b_t), allocatable :: tmp(:)
+    if (st%f%n > 2) then
+       call report_loc(st, loc, 'temperature gradients across the section are not supported '// &
+            '(node or nset, temperature)')
+       return
+    end if
+    if (.not. field_count(st, loc, 2, 2, 'node or nset, temperature')) return
+    if (.not. parse_ref(st, fld(st, line, 1), .false., st%card_home, loc, t%ref)) return
+    if (.not. get_real(st, line, loc, 2, t%value)) return
+    t%step = st%card_item
+    t%loc = loc
+    if (.not. allocated(st%temps)) allocate (st%temps(16))
+    if (st%ntemp == size(st%temps)) then
+       allocate (tmp(2*st%ntemp))
+       tmp(1:st%ntemp) = st%temps(1:st%ntemp)
+       call move_alloc(tmp, st%temps)
+    end if
+    st%ntemp = st%ntemp + 1
+    st%temps(st%ntemp) = t
+  end subroutine data_temperature
 
   function loc_string(st, loc) result(s)
     !! "file:line" of a location.

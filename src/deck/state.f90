@@ -187,6 +187,15 @@ module superjoin_deck_state
      integer :: bc_op = 0, cload_op = 0, dload_op = 0  !! OP= of its *BOUNDARY, *CLOAD, *DLOAD cards (OP_*)
   end type step_b_t
 
+  type, public :: temp_b_t
+    !! A data line of *INITIAL CONDITIONS, TYPE=TEMPERATURE (step 0) or of
+    !! *TEMPERATURE in a step: node or nset, temperature.
+     type(ref_t) :: ref
+     real(wp) :: value = 0.0_wp
+     integer :: step = 0
+     type(source_loc_t) :: loc
+  end type temp_b_t
+
   type, public :: combo_b_t
     !! A *LOAD COMBINATION card as read: steps by name, factors.
      character(:), allocatable :: name
@@ -283,6 +292,8 @@ module superjoin_deck_state
      integer :: nelem_cards = 0
      integer :: ninst = 0
      type(instance_b_t), allocatable :: instances(:)
+     integer :: ntemp = 0                           !! temperature lines
+     type(temp_b_t), allocatable :: temps(:)
      integer :: ncombo = 0                          !! *LOAD COMBINATION cards
      type(combo_b_t), allocatable :: combos(:)
      logical :: section_rejected(3) = .false.  !! a *SOLID/*BEAM/*SHELL SECTION card (SEC_* index) was rejected

@@ -8,7 +8,7 @@ module superjoin_deck_validate
        ELEMENT_TYPE_NAMES, ELEMENT_NODE_COUNT, NDOF_NODE, SEC_SOLID, SEC_BEAM, SEC_SHELL, &
        LINK_FINITE, LINK_RIGID, ET_T2D2, ET_T3D2, ET_B23, ET_B33, ET_CPS3, ET_CPS4, &
        ET_S3, ET_S4, ET_B21, ET_B31, ET_CPE3, ET_CPE4, DLOAD_PX, DLOAD_PY, DLOAD_PZ, DLOAD_P, DLOAD_GRAV, DLOAD_NAMES
-  use superjoin_model_types, only: DLOAD_P1, DLOAD_P2, DLOAD_P3, DLOAD_P4
+  use superjoin_model_types, only: DLOAD_P1, DLOAD_P2, DLOAD_P3, DLOAD_P4, DLOAD_THERMAL
   use superjoin_deck_lexer, only: itoa, plural
   use superjoin_deck_state, only: deck_state_t, sub_b_t, ref_t, load_b_t, report, report_loc, report_oom, find_set, &
        CH_IDS, CH_GEN, CH_RANGE, CH_REF, BEAM_2D_VALUES, BEAM_3D_VALUES, SUBK_INSTANCE
@@ -39,6 +39,11 @@ module superjoin_deck_validate
      integer(i8), allocatable :: keys(:)
      integer, allocatable :: vals(:)
   end type pair_map_t
+
+  type :: real_list_t
+    !! A real value per node of one substructure (temperatures).
+     real(wp), allocatable :: v(:)
+  end type real_list_t
 
   type :: link_list_t
     !! Growing list of links / supports while they are generated.
@@ -1082,6 +1087,105 @@ contains
     out(1:n) = list(1:n)
   end subroutine support_list
 
+  subroutine build_thermal(st, model)
+    !! Thermal loads from *INITIAL CONDITIONS, TYPE=TEMPERATURE and the steps'
+    !! *TEMPERATURE lines: a truss or beam whose material has *EXPANSION gets,
+    !! in each step with temperatures, the load of its uniform temperature
+    !! change ΔT (the mean of its nodes' T - T0; nodes without a step
+    !! temperature keep T0, nodes without an initial one start at 0), a
+    !! DLOAD_THERMAL entry of value E A α ΔT. Plane and shell elements with a
+    !! temperature change are refused (not implemented).
+    type(deck_state_t), intent(inout) :: st
+    type(model_t), intent(inout) :: model
+    type(real_list_t), allocatable :: t0(:), t(:)
+    type(dload_t), allocatable :: extra(:)
+    integer :: s, k, isub, nn, n, nplate
+    integer(ip) :: e, i, first_plate
+    integer(ip), allocatable :: nodes(:)
+    logical :: ok
+    real(wp) :: dt
+    type(source_loc_t) :: plate_loc
+    if (st%ntemp == 0) return
+    allocate (t0(size(model%subs)), t(size(model%subs)))
+    do isub = 1, size(model%subs)
+       allocate (t0(isub)%v(model%subs(isub)%nnode), source=0.0_wp)
+    end do
+    call apply_lines(0, t0)
+    do s = 1, size(model%steps)
+       if (.not. any(st%temps(1:st%ntemp)%step == s)) cycle
+       t = t0
+       call apply_lines(s, t)
+       if (st%aborted) return
+       allocate (extra(0))
+       nplate = 0
+       do isub = 1, size(model%subs)
+          associate (sub => model%subs(isub))
+            do e = 1, sub%nelem
+               if (sub%elem_section(e) == 0) cycle
+               associate (sec => sub%sections(sub%elem_section(e)))
+                 associate (mat => model%materials(sec%material))
+                   if (.not. mat%has_expansion .or. mat%alpha == 0.0_wp) cycle
+                   nn = ELEMENT_NODE_COUNT(sub%elem_type(e))
+                   dt = sum(t(isub)%v(sub%elem_nodes(1:nn, e)) - t0(isub)%v(sub%elem_nodes(1:nn, e)))/nn
+                   if (dt == 0.0_wp) cycle
+                   select case (sub%elem_type(e))
+                   case (ET_T2D2, ET_T3D2, ET_B23, ET_B33, ET_B21, ET_B31)
+                      n = size(extra) + 1
+                      extra = [extra, dload_t(sub=isub, elem=e, kind=DLOAD_THERMAL, &
+                           value=mat%e*sec%area*mat%alpha*dt, loc=first_line(s))]
+                   case default
+                      nplate = nplate + 1
+                      if (nplate == 1) then
+                         first_plate = e
+                         plate_loc = first_line(s)
+                      end if
+                   end select
+                 end associate
+               end associate
+            end do
+            if (nplate > 0) then
+               call report_loc(st, plate_loc, 'temperature change on element '//itoa(sub%elem_id(first_plate))// &
+                    ' of type '//trim(ELEMENT_TYPE_NAMES(sub%elem_type(first_plate)))//' of substructure '// &
+                    sub%name//': thermal loads are implemented for trusses and beams only'//more_text(nplate - 1))
+               nplate = 0
+            end if
+          end associate
+       end do
+       model%steps(s)%dloads = [model%steps(s)%dloads, extra]
+       deallocate (extra)
+    end do
+  contains
+    subroutine apply_lines(step, field)
+      !! Set the temperatures the lines of step (0: initial conditions) give.
+      integer, intent(in) :: step
+      type(real_list_t), intent(inout) :: field(:)
+      integer :: j, js
+      do j = 1, st%ntemp
+         if (st%temps(j)%step /= step) cycle
+         js = resolve_sub(st, model, st%temps(j)%ref, st%temps(j)%loc, 'node')
+         if (js == 0) cycle
+         call resolve_items(st, model, js, st%temps(j)%ref, .false., st%temps(j)%loc, nodes, ok)
+         if (.not. ok) cycle
+         do i = 1, size(nodes, kind=ip)
+            field(js)%v(nodes(i)) = st%temps(j)%value
+         end do
+      end do
+    end subroutine apply_lines
+    function first_line(step) result(loc)
+      !! The first *TEMPERATURE line of a step (where its thermal loads come from).
+      integer, intent(in) :: step
+      type(source_loc_t) :: loc
+      integer :: j
+      loc = model%steps(step)%loc
+      do j = 1, st%ntemp
+         if (st%temps(j)%step == step) then
+            loc = st%temps(j)%loc
+            return
+         end if
+      end do
+    end function first_line
+  end subroutine build_thermal
+
   subroutine build_history(st, model)
     !! The steps' boundary conditions and the loads continued by OP=MOD
     !! (superjoin_model_history).
@@ -1129,6 +1233,8 @@ contains
        call move_alloc(dl, model%steps(s)%dloads)
        if (st%aborted) return
     end do
+    call build_thermal(st, model)
+    if (st%aborted) return
     call build_history(st, model)
   end subroutine build_steps
 

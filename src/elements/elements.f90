@@ -9,8 +9,9 @@ module superjoin_elements
   use superjoin_error, only: error_t, fatal_error, EXIT_DECK
   use superjoin_model_types, only: section_t, material_t, ET_T2D2, ET_T3D2, ET_B23, ET_B33, &
        ET_CPS3, ET_CPS4, ET_S3, ET_S4, ET_B21, ET_B31, ET_CPE3, ET_CPE4, NUM_ELEMENT_TYPES, ELEMENT_TYPE_NAMES, &
-       DLOAD_PX, DLOAD_PY, DLOAD_PZ, DLOAD_P, DLOAD_P1, DLOAD_P2, DLOAD_P3, DLOAD_P4
+       DLOAD_PX, DLOAD_PY, DLOAD_PZ, DLOAD_P, DLOAD_P1, DLOAD_P2, DLOAD_P3, DLOAD_P4, DLOAD_THERMAL
   use superjoin_elements_edge_load, only: plane_edge_load
+  use superjoin_elements_thermal, only: thermal_axial_load
   use superjoin_elements_frame, only: beam_frame
   use superjoin_elements_truss, only: truss_stiffness, truss_end_forces, truss_distributed_load
   use superjoin_elements_beam, only: beam_stiffness, beam_end_forces, beam_load
@@ -216,6 +217,13 @@ contains
        call shell_pressure_load(etype, x, value, fe, q_local(3), error)
     case (DLOAD_P1, DLOAD_P2, DLOAD_P3, DLOAD_P4)
        call face_load(etype, x, sec, kind - DLOAD_P1 + 1, value, fe, q_local, error)
+    case (DLOAD_THERMAL)
+       select case (etype)
+       case (ET_T2D2, ET_T3D2, ET_B23, ET_B33, ET_B21, ET_B31)
+          call thermal_axial_load(etype, x, sec, element_node_dofs(etype), value, fe, error)
+       case default
+          call fatal_error(error, EXIT_DECK, 'thermal loads are implemented for trusses and beams only')
+       end select
     case default
        call fatal_error(error, EXIT_DECK, 'unknown distributed load kind')
     end select

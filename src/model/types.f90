@@ -32,10 +32,13 @@ module superjoin_model_types
 
   integer, parameter, public :: DLOAD_PX = 1, DLOAD_PY = 2, DLOAD_PZ = 3, DLOAD_P = 4, DLOAD_GRAV = 5
   integer, parameter, public :: DLOAD_P1 = 6, DLOAD_P2 = 7, DLOAD_P3 = 8, DLOAD_P4 = 9
+  integer, parameter, public :: DLOAD_THERMAL = 10
+    !! Thermal load of a truss or beam (uniform temperature change): value = E A α ΔT, the
+    !! axial force it would take to hold the element at its length (from *TEMPERATURE).
     !! Distributed load kinds (P1..P4: pressure on face k of a plane element; P1, P2 on
     !! beams: load per unit length along local y (n1) and local z (n2), CalculiX's forms).
-  character(len=4), parameter, public :: DLOAD_NAMES(9) = ['PX  ', 'PY  ', 'PZ  ', 'P   ', 'GRAV', &
-       'P1  ', 'P2  ', 'P3  ', 'P4  ']
+  character(len=4), parameter, public :: DLOAD_NAMES(10) = ['PX  ', 'PY  ', 'PZ  ', 'P   ', 'GRAV', &
+       'P1  ', 'P2  ', 'P3  ', 'P4  ', 'TEMP']
 
   integer, parameter, public :: FORM_TRANSFORM = 1, FORM_PENALTY = 2
     !! Formulation and rigid-link controls.
@@ -69,6 +72,8 @@ module superjoin_model_types
      real(wp) :: density = 0.0_wp         !! mass per unit volume (*DENSITY)
      logical :: has_elastic = .false.
      logical :: has_density = .false.
+     real(wp) :: alpha = 0.0_wp           !! thermal expansion coefficient (*EXPANSION)
+     logical :: has_expansion = .false.
      type(source_loc_t) :: loc
   end type material_t
 

@@ -8,12 +8,16 @@ module superjoin_analysis_boundary_steps
   !! with that group's supports and only its steps), one factorization per
   !! group and per set of contact stiffnesses; the results are merged in the
   !! original step order. Steps that differ only in their loads share a
-  !! factorization. Without a step-level *BOUNDARY this is exactly
-  !! solve_joint_steps.
+  !! solve; groups that fix the same DOFs with other prescribed values are
+  !! solved one after the other and reuse the factorization (analysis/
+  !! factor_reuse: the matrix is the same). Without a step-level *BOUNDARY
+  !! this is exactly solve_joint_steps.
   use superjoin_kinds, only: wp
   use superjoin_error, only: error_t, add_error_line
   use superjoin_model_types, only: model_t, support_t
-  use superjoin_analysis_joint_steps, only: solve_joint_steps, merge_results
+  use superjoin_analysis_joint_steps, only: solve_joint_steps, merge_results, has_joint_changes
+  use superjoin_analysis, only: solve_group, solve_context_t, release_cache
+  use superjoin_analysis_factor_reuse, only: release_factor
   use superjoin_analysis_results, only: results_t, run_options_t
   use superjoin_analysis_notes, only: append_string
   use superjoin_utils_strings, only: itoa
@@ -40,10 +44,12 @@ contains
     type(run_options_t), intent(in) :: opts
     type(results_t), intent(out) :: res
     type(error_t), allocatable, intent(out) :: error
-    integer, allocatable :: group(:), members(:)
-    integer :: ngroup, s, t, g, nstep
+    integer, allocatable :: group(:), members(:), order(:)
+    integer :: ngroup, s, t, g, nstep, k
     type(model_t) :: sub
     type(results_t) :: r
+    type(solve_context_t) :: ctx
+    logical :: joint
 
     if (.not. has_step_boundaries(model)) then
        call solve_joint_steps(model, opts, res, error)
@@ -75,40 +81,90 @@ contains
        return
     end if
 
-    do g = 1, ngroup
+    ! Groups that fix the same DOFs (other prescribed values) one after the
+    ! other: their matrices are the same, and each solve keeps its
+    ! factorization for the next (without *CHANGE CONTACT, whose own
+    ! grouping runs inside solve_joint_steps).
+    order = fixed_set_order(model, group, ngroup)
+    joint = has_joint_changes(model)
+    ctx%factor%keep = .not. joint
+    do k = 1, ngroup
+       g = order(k)
        members = pack([(s, s=1, nstep)], group == g)
        sub = model
        sub%supports = model%steps(members(1))%supports
        sub%steps = model%steps(members)
-       call solve_joint_steps(sub, opts, r, error)
+       if (joint) then
+          call solve_joint_steps(sub, opts, r, error)
+       else
+          call solve_group(sub, opts, ctx, r, error)
+       end if
        if (allocated(error)) then
+          call release_factor(ctx%factor)
+          call release_cache(ctx%cache)
           call add_error_line(error, error%code, '  (while solving '//step_list(model, members)// &
                ' with their boundary conditions, *BOUNDARY)')
           return
        end if
-       call merge_results(r, members, nstep, g == 1, res)
+       call merge_results(r, members, nstep, k == 1, res)
        call append_string(res%notes, step_list(model, members)//': '//itoa(size(sub%supports))// &
             ' supported DOFs'//prescribed_text(sub%supports))
     end do
+    call release_factor(ctx%factor)
+    call release_cache(ctx%cache)
     call append_string(res%notes, 'boundary conditions (*BOUNDARY in steps): '//itoa(ngroup)// &
-         ' sets of supports, '//itoa(ngroup)//' separate solves; the counts above and MAXRATIO '// &
-         'are the largest over them')
+         ' sets of supports, '//itoa(ngroup - ctx%factor%reuses)//' factorizations ('// &
+         itoa(ctx%factor%reuses)//' reused: only prescribed values changed); the counts above and '// &
+         'MAXRATIO are the largest over them')
   end subroutine solve_steps
 
-  pure logical function same_supports(a, b)
+  function fixed_set_order(model, group, ngroup) result(order)
+    !! The groups in an order that puts those fixing the same DOFs (in the same
+    !! states, with other prescribed values) next to each other, by first appearance.
+    type(model_t), intent(in) :: model
+    integer, intent(in) :: group(:), ngroup
+    integer :: order(ngroup)
+    integer :: first(ngroup), cls(ngroup), g, h, n, c
+    do g = 1, ngroup
+       first(g) = findloc(group, g, dim=1)
+    end do
+    do g = 1, ngroup
+       cls(g) = g
+       do h = 1, g - 1
+          if (same_supports(model%steps(first(g))%supports, model%steps(first(h))%supports, &
+               values=.false.)) then
+             cls(g) = cls(h)
+             exit
+          end if
+       end do
+    end do
+    n = 0
+    do c = 1, ngroup
+       do g = 1, ngroup
+          if (cls(g) /= c) cycle
+          n = n + 1
+          order(n) = g
+       end do
+    end do
+  end function fixed_set_order
+
+  pure logical function same_supports(a, b, values)
     !! Two lists of supports are the same constraint (same DOFs, states,
-    !! stiffnesses and prescribed values, in any order).
+    !! stiffnesses and, unless values is false, prescribed values; in any order).
     type(support_t), intent(in) :: a(:), b(:)
+    logical, intent(in), optional :: values
     integer :: i, j
-    logical :: found
+    logical :: found, with_values
+    with_values = .true.
+    if (present(values)) with_values = values
     same_supports = size(a) == size(b)
     if (.not. same_supports) return
     do i = 1, size(a)
        ! the lists of consecutive steps share their order: try the same position first
-       found = same_support(a(i), b(i))
+       found = same_support(a(i), b(i), with_values)
        if (.not. found) then
           do j = 1, size(b)
-             if (same_support(a(i), b(j))) then
+             if (same_support(a(i), b(j), with_values)) then
                 found = .true.
                 exit
              end if
@@ -121,10 +177,12 @@ contains
     end do
   end function same_supports
 
-  pure logical function same_support(a, b)
+  pure logical function same_support(a, b, with_values)
     type(support_t), intent(in) :: a, b
+    logical, intent(in) :: with_values
     same_support = a%sub == b%sub .and. a%node == b%node .and. a%dof == b%dof .and. &
-         a%state == b%state .and. a%g == b%g .and. a%value == b%value
+         a%state == b%state .and. a%g == b%g
+    if (with_values) same_support = same_support .and. a%value == b%value
   end function same_support
 
   function prescribed_text(list) result(text)

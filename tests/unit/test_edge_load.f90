@@ -90,5 +90,6 @@ program test_edge_load
   end do
   call plane_edge_load(x4, 4, 1, P, T, fe, error)
   call check(allocated(error), 'zero area is refused')
+  if (allocated(error)) deallocate (error)
   call finish()
 end program test_edge_load

@@ -21,6 +21,7 @@ module superjoin_analysis_boundary_steps
   use superjoin_analysis_results, only: results_t, run_options_t
   use superjoin_analysis_notes, only: append_string
   use superjoin_utils_strings, only: itoa
+  use superjoin_utils_sorting, only: stable_argsort
   implicit none (type, external)
   private
 
@@ -148,34 +149,45 @@ contains
     end do
   end function fixed_set_order
 
-  pure logical function same_supports(a, b, values)
+  logical function same_supports(a, b, values)
     !! Two lists of supports are the same constraint (same DOFs, states,
-    !! stiffnesses and, unless values is false, prescribed values; in any order).
+    !! stiffnesses and, unless values is false, prescribed values; in any order:
+    !! the lists of consecutive steps mostly share their order, else both are
+    !! sorted by substructure, node and DOF).
     type(support_t), intent(in) :: a(:), b(:)
     logical, intent(in), optional :: values
-    integer :: i, j
-    logical :: found, with_values
+    integer, allocatable :: oa(:), ob(:)
+    integer :: i
+    logical :: with_values
     with_values = .true.
     if (present(values)) with_values = values
     same_supports = size(a) == size(b)
     if (.not. same_supports) return
     do i = 1, size(a)
-       ! the lists of consecutive steps share their order: try the same position first
-       found = same_support(a(i), b(i), with_values)
-       if (.not. found) then
-          do j = 1, size(b)
-             if (same_support(a(i), b(j), with_values)) then
-                found = .true.
-                exit
-             end if
-          end do
-       end if
-       if (.not. found) then
+       if (.not. same_support(a(i), b(i), with_values)) exit
+    end do
+    if (i > size(a)) return
+    call dof_order(a, oa)
+    call dof_order(b, ob)
+    do i = 1, size(a)
+       if (.not. same_support(a(oa(i)), b(ob(i)), with_values)) then
           same_supports = .false.
           return
        end if
     end do
   end function same_supports
+
+  subroutine dof_order(list, order)
+    !! Indices that sort list by substructure, node and DOF (stable sorts from
+    !! the last key to the first).
+    type(support_t), intent(in) :: list(:)
+    integer, allocatable, intent(out) :: order(:)
+    integer :: i
+    order = [(i, i=1, size(list))]
+    call stable_argsort(real(list%dof, wp), order)
+    call stable_argsort(real(list%node, wp), order)
+    call stable_argsort(real(list%sub, wp), order)
+  end subroutine dof_order
 
   pure logical function same_support(a, b, with_values)
     type(support_t), intent(in) :: a, b

@@ -11,15 +11,11 @@ module superjoin_analysis_combinations
   use superjoin_analysis_notes, only: append_string
   use superjoin_analysis_health, only: check_finite
   use superjoin_error, only: error_t
-  use, intrinsic :: ieee_exceptions, only: ieee_flag_type, ieee_get_halting_mode, ieee_set_halting_mode, &
-       ieee_overflow, ieee_invalid
+  use superjoin_utils_halting, only: halting_t, halting_off, halting_restore
   implicit none (type, external)
   private
 
   public :: add_combinations, combination_text
-
-  type(ieee_flag_type), parameter :: HALT_FLAGS(2) = [ieee_overflow, ieee_invalid]
-    !! Exceptions whose halting is off while superposing (results are checked instead).
 
 contains
 
@@ -30,18 +26,12 @@ contains
     type(model_t), intent(inout) :: model
     type(results_t), intent(inout) :: res
     type(error_t), allocatable, intent(out) :: error
-    logical :: halting(size(HALT_FLAGS))
-    integer :: i
+    type(halting_t) :: saved
     if (.not. allocated(model%combinations)) return
     if (size(model%combinations) == 0) return
-    do i = 1, size(HALT_FLAGS)
-       call ieee_get_halting_mode(HALT_FLAGS(i), halting(i))
-       call ieee_set_halting_mode(HALT_FLAGS(i), .false.)
-    end do
+    call halting_off(saved)
     call superpose(model, res)
-    do i = 1, size(HALT_FLAGS)
-       call ieee_set_halting_mode(HALT_FLAGS(i), halting(i))
-    end do
+    call halting_restore(saved)
     call check_finite(model, res, error)
   end subroutine add_combinations
 

@@ -1099,7 +1099,7 @@ contains
     type(model_t), intent(inout) :: model
     type(real_list_t), allocatable :: t0(:), t(:)
     type(dload_t), allocatable :: extra(:)
-    integer :: s, k, isub, nn, n, nplate
+    integer :: s, isub, nn, nplate
     integer(ip) :: e, i, first_plate
     integer(ip), allocatable :: nodes(:)
     logical :: ok
@@ -1130,7 +1130,6 @@ contains
                    if (dt == 0.0_wp) cycle
                    select case (sub%elem_type(e))
                    case (ET_T2D2, ET_T3D2, ET_B23, ET_B33, ET_B21, ET_B31)
-                      n = size(extra) + 1
                       extra = [extra, dload_t(sub=isub, elem=e, kind=DLOAD_THERMAL, &
                            value=mat%e*sec%area*mat%alpha*dt, loc=first_line(s))]
                    case default

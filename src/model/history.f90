@@ -12,7 +12,9 @@ module superjoin_model_history
   !! *CLOAD or *DLOAD card with OP=MOD written explicitly continues the loads of
   !! that kind of the previous step, replacing those on the same node and DOF
   !! (element and load type); OP=NEW, or no OP=, starts from nothing.
+  use superjoin_kinds, only: wp
   use superjoin_model_types, only: model_t, support_t, cload_t, dload_t
+  use superjoin_utils_sorting, only: stable_argsort
   implicit none (type, external)
   private
 
@@ -39,28 +41,63 @@ contains
     type(support_list_t), intent(in) :: own(:)
     type(step_ops_t), intent(in) :: ops(:)
     type(support_t), allocatable :: cur(:)
-    integer :: s, k, j
-    logical :: found
+    integer :: s
     allocate (cur, source=model%supports)   ! source=: no -Wuninitialized false positive
     do s = 1, size(model%steps)
        if (ops(s)%bc_new) cur = pack(cur, .not. cur%from_boundary)
-       do k = 1, size(own(s)%items)
-          associate (b => own(s)%items(k))
-            found = .false.
-            do j = 1, size(cur)
-               if (cur(j)%from_boundary .and. cur(j)%sub == b%sub .and. cur(j)%node == b%node .and. &
-                    cur(j)%dof == b%dof) then
-                  cur(j)%value = b%value
-                  cur(j)%loc = b%loc
-                  found = .true.
-               end if
-            end do
-            if (.not. found) cur = [cur, b]
-          end associate
-       end do
+       if (size(own(s)%items) > 0) call merge_boundaries(cur, own(s)%items)
        model%steps(s)%supports = cur
     end do
   end subroutine apply_boundary_history
+
+  subroutine merge_boundaries(cur, add)
+    !! cur followed by add, where a *BOUNDARY condition of add on a DOF that a
+    !! *BOUNDARY condition of cur (or an earlier one of add) holds replaces its
+    !! value in place (OP=MOD); *SUPPORT entries are never merged. Sorted by
+    !! substructure, node and DOF (stable), so O(n log n).
+    type(support_t), allocatable, intent(inout) :: cur(:)
+    type(support_t), intent(in) :: add(:)
+    type(support_t), allocatable :: merged(:)
+    integer, allocatable :: order(:)
+    logical, allocatable :: keep(:)
+    integer :: i, j, first
+    allocate (merged(size(cur) + size(add)))   ! not [cur, add]: gfortran's -Wuninitialized false positive
+    merged(1:size(cur)) = cur
+    merged(size(cur) + 1:) = add
+    order = [(i, i=1, size(merged))]
+    call stable_argsort(real(merged%dof, wp), order)
+    call stable_argsort(real(merged%node, wp), order)
+    call stable_argsort(real(merged%sub, wp), order)
+    allocate (keep(size(merged)), source=.true.)
+    i = 1
+    do while (i <= size(merged))
+       ! the run of equal keys order(i:j), in their original order
+       j = i
+       do while (j < size(merged))
+          if (.not. same_dof(merged(order(i)), merged(order(j + 1)))) exit
+          j = j + 1
+       end do
+       first = 0
+       do while (i <= j)
+          if (merged(order(i))%from_boundary) then
+             if (first == 0) then
+                first = order(i)
+             else
+                merged(first)%value = merged(order(i))%value
+                merged(first)%loc = merged(order(i))%loc
+                keep(order(i)) = .false.
+             end if
+          end if
+          i = i + 1
+       end do
+    end do
+    cur = pack(merged, keep)
+  end subroutine merge_boundaries
+
+  pure logical function same_dof(a, b)
+    type(support_t), intent(in) :: a, b
+    same_dof = a%sub == b%sub .and. a%node == b%node .and. a%dof == b%dof
+  end function same_dof
 
   subroutine apply_load_history(model, ops)
     !! Continue the loads of the previous step into the steps whose *CLOAD or

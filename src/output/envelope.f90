@@ -1,8 +1,9 @@
 module superjoin_output_envelope
   !! The listing section ENVELOPE OF THE LOAD COMBINATIONS (only when the deck
-  !! has *LOAD COMBINATION cards): for every displacement, support reaction
-  !! and element end force, the largest and the smallest value over the
-  !! combinations and the combination that gives each (the first one on a tie).
+  !! has *LOAD COMBINATION cards): for every displacement, support reaction,
+  !! truss and beam end force and plate or shell resultant, the largest and the
+  !! smallest value over the combinations and the combination that gives each
+  !! (the first one on a tie).
   use superjoin_kinds, only: wp, i8, ip
   use superjoin_model_types, only: model_t, NDOF_NODE
   use superjoin_analysis_results, only: results_t, reaction_t
@@ -17,6 +18,7 @@ module superjoin_output_envelope
   character(*), parameter :: RULE = repeat('=', 100)
   integer, parameter :: NAME_WIDTH = 16
   character(len=3), parameter :: FORCE_NAMES(6) = ['n  ', 'vy ', 'vz ', 't  ', 'my ', 'mz ']
+  character(len=3), parameter :: PLATE_NAMES(6) = ['nx ', 'ny ', 'nxy', 'mx ', 'my ', 'mxy']
 
 contains
 
@@ -42,6 +44,7 @@ contains
     call displacements(lu, model, res, cs)
     call reactions(lu, model, res, cs)
     call end_forces(lu, model, res, cs)
+    call plate_resultants(lu, model, res, cs)
   end subroutine write_envelope
 
   subroutine header_line(lu, first)
@@ -189,4 +192,39 @@ contains
     end do
     call lu%line('')
   end subroutine end_forces
+
+  subroutine plate_resultants(lu, model, res, cs)
+    !! Plane and shell elements: every resultant per unit length at the centroid.
+    type(text_buffer_t), intent(inout) :: lu
+    type(model_t), intent(in) :: model
+    type(results_t), intent(in) :: res
+    integer, intent(in) :: cs(:)
+    integer :: isub, d
+    integer(ip) :: ie
+    integer(i8) :: iel
+    real(wp) :: scale
+    logical :: any_plate
+    if (.not. allocated(res%plate)) return
+    any_plate = .false.
+    do isub = 1, size(model%subs)
+       if (any(is_plate_type(model%subs(isub)%elem_type(1:model%subs(isub)%nelem)))) any_plate = .true.
+    end do
+    if (.not. any_plate) return
+    call lu%line('PLATE AND SHELL RESULTANTS (element frame, per unit length, at the centroid)')
+    call header_line(lu, '  substructure           element  type resultant')
+    scale = max(0.0_wp, maxval(abs(res%plate(:, :, cs))))
+    do isub = 1, size(model%subs)
+       do ie = 1, model%subs(isub)%nelem
+          if (.not. is_plate_type(model%subs(isub)%elem_type(ie))) cycle
+          iel = res%elem_offset(isub) + ie
+          do d = 1, 6
+             call element_prefix(lu, model, isub, ie, 2)
+             call lu%put('  ')
+             call lu%put_field(PLATE_NAMES(d), 7)
+             call put_extremes(lu, model, res%plate(d, iel, cs), cs, scale)
+          end do
+       end do
+    end do
+    call lu%line('')
+  end subroutine plate_resultants
 end module superjoin_output_envelope

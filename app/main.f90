@@ -7,7 +7,8 @@ program superjoin_main
   use superjoin_model_types, only: model_t, string_t, FORM_TRANSFORM, FORM_PENALTY, CONDENSE_YES, CONDENSE_NO, &
        CONDENSE_AUTO
   use superjoin_deck_reader, only: read_deck
-  use superjoin_analysis_joint_steps, only: solve_joint_steps
+  use superjoin_analysis_boundary_steps, only: solve_steps
+  use superjoin_analysis_combinations, only: add_combinations
   use superjoin_analysis_plausibility, only: check_plausibility
   use superjoin_analysis_contact_gaps, only: check_contact_gaps
   use superjoin_analysis_results, only: results_t, run_options_t, PH_READ, PH_WRITE
@@ -77,8 +78,10 @@ program superjoin_main
   if (.not. allocated(vtk_file) .and. allocated(model%vtk_path)) vtk_file = model%vtk_path
   opts%csv = allocated(csv_dir)
   opts%vtk = allocated(vtk_file)
-  call solve_joint_steps(model, opts, res, error)
+  call solve_steps(model, opts, res, error)
   if (allocated(error) .and. allocated(res%fields%mechanism)) call write_mechanism(error)
+  call fail_on(error, deck)
+  call add_combinations(model, res, error)
   call fail_on(error, deck)
   call check_plausibility(model, res)
   res%log%phase_seconds(PH_READ) = t_read

@@ -24,6 +24,7 @@ module superjoin_analysis
   use superjoin_analysis_policy, only: apply_large, describe_transform, column_groups, count_boundary, &
        choose_condensation, autospc, skip_unloaded_parts, wanted_elements
   use superjoin_analysis_condensation, only: solve_context_t, condense_parts, recover_parts, parts_ku
+  use superjoin_analysis_factor_reuse, only: take_factor, keep_factor, solve_with
   use superjoin_utils_clock, only: stopwatch_t, report_phase
   use superjoin_utils_memory, only: out_of_memory, BYTES_REAL
   use superjoin_utils_strings, only: itoa
@@ -175,8 +176,13 @@ contains
     end if
 
     if (tr%ncol() > 0) then
-       call column_groups(table, forest, tr, groups)
-       call factor_and_solve(model, table, tr, k, f_red, opts, groups, solver, q, res, error)
+       call take_factor(ctx%factor, k, solver)   ! loads: the same matrix as the previous solve
+       if (allocated(solver)) then
+          call solve_with(solver, k%n, f_red, opts%quiet, q, res, error)
+       else
+          call column_groups(table, forest, tr, groups)
+          call factor_and_solve(model, table, tr, k, f_red, opts, groups, solver, q, res, error)
+       end if
        if (allocated(error)) return
     else
        allocate (q(0, size(model%steps)))
@@ -220,7 +226,7 @@ contains
     if (allocated(error)) return
     res%log%phase_seconds(PH_SOLVE) = res%log%phase_seconds(PH_SOLVE) + clock%seconds()
     call report_phase(opts%quiet, 'recover', clock%seconds())
-    if (allocated(solver)) call solver%release()
+    call keep_factor(ctx%factor, k, solver)   ! released unless ctx%factor%keep
     res%log%notes = notes
   end subroutine solve_steps
 

@@ -12,6 +12,7 @@ module superjoin_analysis_condensation
        view_recover, view_stiffness_times, view_spc
   use superjoin_analysis_results, only: run_summary_t, run_options_t
   use superjoin_analysis_notes, only: note
+  use superjoin_analysis_factor_reuse, only: kept_factor_t
   use superjoin_utils_strings, only: itoa
   implicit none (type, external)
   private
@@ -22,6 +23,7 @@ module superjoin_analysis_condensation
     !! is a joint study (several sets of contact stiffnesses).
      type(part_cache_t) :: cache
      logical :: joint_study = .false.
+     type(kept_factor_t) :: factor          !! loads: a factorization kept for a next solve of the same matrix
   end type solve_context_t
 
   public :: condense_parts, recover_parts, parts_ku

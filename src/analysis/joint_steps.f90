@@ -17,7 +17,7 @@ module superjoin_analysis_joint_steps
   implicit none (type, external)
   private
 
-  public :: solve_joint_steps, has_joint_changes
+  public :: solve_joint_steps, has_joint_changes, merge_results
 
 contains
 

@@ -8,7 +8,7 @@ module superjoin_analysis_recover
   !! closed a loop gets its force from the equation of the column it eliminated.
   use superjoin_kinds, only: wp, ip, i8
   use superjoin_error, only: error_t, add_error_line, EXIT_DECK
-  use superjoin_model_types, only: model_t, ELEMENT_NODE_COUNT, LINK_NONE, LINK_FINITE, LINK_RIGID, &
+  use superjoin_model_types, only: model_t, DLOAD_THERMAL, ELEMENT_NODE_COUNT, LINK_NONE, LINK_FINITE, LINK_RIGID, &
        NDOF_NODE, loc_text
   use superjoin_elements, only: element_end_forces, element_nodal_forces, &
        is_plate_type, shell_forces
@@ -119,7 +119,7 @@ contains
     logical, intent(in) :: parts_done
     logical, intent(in) :: wanted(:)
     logical, allocatable :: own_ku(:), in_unit(:)
-    real(wp), allocatable :: ql(:, :, :), fe(:)
+    real(wp), allocatable :: ql(:, :, :), fe(:), nt(:, :)
     real(wp) :: qloc(3), f(6, 2), fg(MAX_ELEM_DOFS)
     real(wp), allocatable :: fg2(:, :)
     integer(i8) :: pd(MAX_ELEM_DOFS), ie, ntot
@@ -146,6 +146,7 @@ contains
     if (parts_done) own_ku = res%summary%sub_condensed
     call unit_vertices(table, in_unit)
 
+    allocate (nt(ntot, nstep), source=0.0_wp)   ! loads: thermal axial force E A alpha dT
     ! Distributed loads in element axes, per element and step.
     ql = 0.0_wp
     do is = 1, nstep
@@ -158,6 +159,7 @@ contains
             if (allocated(inner)) deallocate (inner)
             ie = res%fields%elem_offset(dl%sub) + dl%elem
             ql(:, ie, is) = ql(:, ie, is) + qloc
+            if (dl%kind == DLOAD_THERMAL) nt(ie, is) = nt(ie, is) + dl%value   ! loads: thermal
             ! f_phys holds this consistent load; element_nodal_forces leaves it out.
             if (own_ku(dl%sub)) cycle
             call element_pdofs(model, table, dl%sub, dl%elem, pd, n)
@@ -196,6 +198,8 @@ contains
                     call add_error_line(error, EXIT_DECK, inner%message)
                     return
                  end if
+                 ! loads: N = E A (eps - alpha dT), the thermal force off the axial end forces
+                 f(1, :) = f(1, :) + [nt(ie, is), -nt(ie, is)]
                  res%fields%elem_force(:, :, ie, is) = f
                  if (own_ku(isub)) cycle
                  ! r += K_e u_e - f_eq (the consistent load is added back below)

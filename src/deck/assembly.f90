@@ -109,6 +109,9 @@ contains
     do k = 1, st%nsupport
        call renumber(st%supports(k)%ref%home)
     end do
+    do k = 1, st%ntemp
+       call renumber(st%temps(k)%ref%home)
+    end do
     do s = 1, st%nstep
        do j = 1, st%steps(s)%ncload
           call renumber(st%steps(s)%cloads(j)%ref%home)

@@ -6,7 +6,7 @@ module superjoin_deck_parser
   use superjoin_kinds, only: wp, ip, i8
   use superjoin_model_types, only: source_loc_t, string_t, ELEMENT_TYPE_NAMES, ELEMENT_NODE_COUNT, &
        NUM_ELEMENT_TYPES, MAX_ELEMENT_NODES, NDOF_NODE, SEC_SOLID, SEC_BEAM, SEC_SHELL, &
-       LINK_NONE, LINK_FINITE, LINK_RIGID, DLOAD_PX, DLOAD_PY, DLOAD_PZ, DLOAD_P, DLOAD_GRAV, &
+       LINK_NONE, LINK_FINITE, LINK_RIGID, DLOAD_PX, DLOAD_PY, DLOAD_PZ, DLOAD_P, DLOAD_GRAV, DLOAD_P1, &
        FORM_TRANSFORM, FORM_PENALTY, RIGID_ELIMINATE, RIGID_LARGE, CONDENSE_AUTO, CONDENSE_YES, CONDENSE_NO
   use superjoin_deck_lexer, only: keyword_line_t, load_file, next_line, first_nonblank, to_upper, &
        parse_keyword_line, split_fields, drop_trailing_empty, parse_real, parse_id, is_name, &
@@ -14,7 +14,7 @@ module superjoin_deck_parser
        TOK_OK, TOK_RANGE, TOK_NONFINITE
   use superjoin_deck_state, only: deck_state_t, sec_b_t, contact_b_t, cline_b_t, support_b_t, &
        load_b_t, ref_t, report, report_loc, report_oom, new_sub, find_sub, find_set, new_set, add_chunk, &
-       override_b_t, SUBK_PART, SUBK_INSTANCE, &
+       override_b_t, SUBK_PART, SUBK_INSTANCE, step_b_t, combo_b_t, temp_b_t, OP_DEFAULT, OP_MOD, OP_NEW, &
        push_pool, add_node, add_element, add_heading, add_material, add_orientation, &
        add_section, add_contact, add_cline, add_support, add_step, add_load, &
        MAX_INCLUDE_DEPTH, CH_IDS, CH_GEN, CH_RANGE, CH_REF, BEAM_2D_VALUES, BEAM_3D_VALUES
@@ -51,6 +51,8 @@ module superjoin_deck_parser
     !! Cards of parts, instances and joint studies (submodule superjoin_deck_parts).
   integer, parameter :: CARD_STATIC = 111, CARD_REQUEST = 112, CARD_SPRING_ELEMENT = 113, CARD_SPRING = 114
     !! CalculiX/Abaqus analysis cards (numbered apart from the model cards).
+  integer, parameter :: CARD_COMBINATION = 131, CARD_EXPANSION = 132, CARD_TEMPERATURE = 133
+    !! Load cases and combinations (superjoin's *LOAD COMBINATION).
   integer, parameter :: PROC_STATIC = 1
     !! Procedures of a step (st%step_procedure).
   integer, parameter :: STATIC_FIELDS = 4
@@ -338,10 +340,7 @@ contains
        st%card = CARD_SUPPORT
        st%card_home = st%cur_sub
     case ('BOUNDARY')
-       if (.not. outside_step(st, kw, loc)) return
-       call check_params(st, kw, loc, [character(NAME_LEN) ::], [character(NAME_LEN) ::])
-       st%card = CARD_BOUNDARY
-       st%card_home = st%cur_sub
+       call kw_boundary(st, kw, loc)
     case ('STEP')
        call kw_step(st, kw, loc)
     case ('END STEP')
@@ -361,6 +360,12 @@ contains
        call kw_load(st, kw, loc, CARD_CLOAD)
     case ('DLOAD')
        call kw_load(st, kw, loc, CARD_DLOAD)
+    case ('LOAD COMBINATION')
+       call kw_load_combination(st, kw, loc)
+    case ('EXPANSION')
+       call kw_expansion(st, kw, loc, prev_mat)
+    case ('INITIAL CONDITIONS', 'TEMPERATURE')
+       call kw_temperature(st, kw, loc, prev_mat)
     case ('CONTROLS')
        call kw_controls(st, kw, loc)
     case ('OUTPUT')
@@ -409,6 +414,10 @@ contains
           call report_loc(st, st%card_loc, st%card_name//' needs a data line')
           st%sections(st%card_item)%data_ok = .false.
        end if
+    case (CARD_COMBINATION)
+       if (st%card_ndata == 0) call report_loc(st, st%card_loc, st%card_name//' needs a data line (step, factor)')
+    case (CARD_EXPANSION)
+       if (st%card_ndata == 0) call report_loc(st, st%card_loc, st%card_name//' needs a data line')
     end select
     st%card = CARD_NONE
   end subroutine end_card
@@ -976,11 +985,15 @@ contains
     type(keyword_line_t), intent(in) :: kw
     type(source_loc_t), intent(in) :: loc
     integer, intent(in) :: card
-    call check_params(st, kw, loc, [character(NAME_LEN) ::], [character(NAME_LEN) ::])
+    integer :: op
+    call check_params(st, kw, loc, [character(NAME_LEN) :: 'OP'], [character(NAME_LEN) ::])
+    op = op_param(st, kw, loc)
     st%card = CARD_SKIP
     if (st%cur_step > 0) then
        st%card_item = st%cur_step
+       call record_load_op(st%steps(st%cur_step), card == CARD_DLOAD, op)
     else
+       if (op /= OP_DEFAULT) call report_loc(st, loc, 'OP= of *'//kw%keyword//' applies inside *STEP only')
        if (st%nstep_cards > 0) then
           if (.not. st%mix_reported) call report_loc(st, loc, '*'//kw%keyword// &
                ' outside *STEP cannot be mixed with *STEP cards')
@@ -1144,6 +1157,12 @@ contains
        call data_spring(st, line, loc)
     case (CARD_REQUEST)
        call data_request(st, line, loc)
+    case (CARD_COMBINATION)
+       call data_combination(st, line, loc)
+    case (CARD_EXPANSION)
+       call data_expansion(st, line, loc)
+    case (CARD_TEMPERATURE)
+       call data_temperature(st, line, loc)
     end select
   end subroutine data_line
 
@@ -1701,6 +1720,8 @@ contains
     if (.not. parse_ref(st, fld(st, line, 1), .false., st%card_home, loc, s%ref)) return
     s%state = LINK_RIGID
     s%loc = loc
+    s%step = st%card_item
+    s%boundary = .true.
     tok = to_upper(fld(st, line, 2))
     if (.not. looks_numeric(tok) .and. len(tok) > 0) then
        do k = 1, NUM_BC_TYPES
@@ -1786,8 +1807,11 @@ contains
           ld%kind = DLOAD_PZ
        case ('P')
           ld%kind = DLOAD_P
+       case ('P1', 'P2', 'P3', 'P4')
+          ld%kind = face_load_kind(typ)
        case default
-          call report_loc(st, loc, 'unknown *DLOAD type '''//clip(fld(st, line, 2))//''' (PX, PY, PZ, P or GRAV)')
+          call report_loc(st, loc, 'unknown *DLOAD type '''//clip(fld(st, line, 2))// &
+               ''' (PX, PY, PZ, P, P1 to P4 or GRAV)')
           return
        end select
     else
@@ -2250,6 +2274,245 @@ contains
       c%data_loc(st%card_ndata) = loc
     end associate
   end subroutine data_spring
+
+  ! ================================================================== step history (OP=)
+
+  subroutine kw_boundary(st, kw, loc)
+    !! *BOUNDARY[, OP=MOD|NEW]: model data, or inside *STEP the step's own
+    !! boundary conditions (Abaqus/CalculiX history: later steps keep them;
+    !! OP=NEW removes every earlier *BOUNDARY condition, model data included).
+    type(deck_state_t), intent(inout) :: st
+    type(keyword_line_t), intent(in) :: kw
+    type(source_loc_t), intent(in) :: loc
+    integer :: op
+    call check_params(st, kw, loc, [character(NAME_LEN) :: 'OP'], [character(NAME_LEN) ::])
+    op = op_param(st, kw, loc)
+    st%card = CARD_BOUNDARY
+    st%card_home = st%cur_sub
+    st%card_item = st%cur_step
+    if (st%cur_step > 0) then
+       st%steps(st%cur_step)%has_boundary = .true.
+       st%steps(st%cur_step)%bc_op = max(st%steps(st%cur_step)%bc_op, op)
+    else if (op /= OP_DEFAULT) then
+       call report_loc(st, loc, 'OP= of *BOUNDARY applies inside *STEP only')
+    end if
+  end subroutine kw_boundary
+
+  integer function op_param(st, kw, loc) result(op)
+    !! OP= of a *BOUNDARY, *CLOAD or *DLOAD card: OP_MOD, OP_NEW or OP_DEFAULT
+    !! (not written; a wrong value is reported).
+    type(deck_state_t), intent(inout) :: st
+    type(keyword_line_t), intent(in) :: kw
+    type(source_loc_t), intent(in) :: loc
+    integer :: k
+    op = OP_DEFAULT
+    k = param_index(kw, 'OP')
+    if (k == 0) return
+    if (.not. kw%params(k)%has_value) return   ! reported by check_params
+    select case (to_upper(kw%params(k)%value))
+    case ('MOD')
+       op = OP_MOD
+    case ('NEW')
+       op = OP_NEW
+    case default
+       call report_loc(st, loc, 'OP= of *'//kw%keyword//' must be MOD or NEW, not '//clip(kw%params(k)%value))
+    end select
+  end function op_param
+
+  pure integer function face_load_kind(typ) result(kind)
+    !! DLOAD_P1 .. DLOAD_P4 of the *DLOAD type 'P1' .. 'P4'.
+    character(*), intent(in) :: typ
+    kind = DLOAD_P1 + index('1234', typ(2:2)) - 1
+  end function face_load_kind
+
+  pure subroutine record_load_op(step, dload, op)
+    !! Remember OP= of a load card of a step (NEW wins over MOD).
+    type(step_b_t), intent(inout) :: step
+    logical, intent(in) :: dload
+    integer, intent(in) :: op
+    if (dload) then
+       step%dload_op = max(step%dload_op, op)
+    else
+       step%cload_op = max(step%cload_op, op)
+    end if
+  end subroutine record_load_op
+
+  ! ================================================================== load combinations
+
+  subroutine kw_load_combination(st, kw, loc)
+    !! *LOAD COMBINATION, NAME=c (superjoin): outside *STEP; data lines
+    !! `step, factor` (step by name or position).
+    type(deck_state_t), intent(inout) :: st
+    type(keyword_line_t), intent(in) :: kw
+    type(source_loc_t), intent(in) :: loc
+    character(:), allocatable :: name
+    logical :: found
+    type(combo_b_t), allocatable :: tmp(:)
+    st%card = CARD_SKIP
+    if (.not. outside_step(st, kw, loc)) return
+    call check_params(st, kw, loc, [character(NAME_LEN) :: 'NAME'], [character(NAME_LEN) ::])
+    call get_name_param(st, kw, loc, 'NAME', .true., name, found)
+    if (.not. found) return
+    if (.not. allocated(st%combos)) allocate (st%combos(4))
+    if (st%ncombo == size(st%combos)) then
+       allocate (tmp(2*st%ncombo))
+       tmp(1:st%ncombo) = st%combos(1:st%ncombo)
+       call move_alloc(tmp, st%combos)
+    end if
+    st%ncombo = st%ncombo + 1
+    st%combos(st%ncombo)%name = name
+    st%combos(st%ncombo)%loc = loc
+    allocate (st%combos(st%ncombo)%steps(4), st%combos(st%ncombo)%factors(4), &
+         st%combos(st%ncombo)%line_loc(4))
+    st%card = CARD_COMBINATION
+    st%card_item = st%ncombo
+  end subroutine kw_load_combination
+
+  subroutine data_combination(st, line, loc)
+    !! A data line of *LOAD COMBINATION: step (name or position), factor.
+    type(deck_state_t), intent(inout) :: st
+    character(*), intent(in) :: line
+    type(source_loc_t), intent(in) :: loc
+    real(wp) :: factor
+    type(string_t), allocatable :: ts(:)
+    real(wp), allocatable :: tf(:)
+    type(source_loc_t), allocatable :: tl(:)
+    if (.not. field_count(st, loc, 2, 2, 'step, factor')) return
+    if (len(fld(st, line, 1)) == 0) then
+       call report_loc(st, loc, 'empty step name on *LOAD COMBINATION data line')
+       return
+    end if
+    if (.not. get_real(st, line, loc, 2, factor)) return
+    associate (c => st%combos(st%card_item))
+      if (c%n == size(c%steps)) then
+         allocate (ts(2*c%n), tf(2*c%n), tl(2*c%n))
+         ts(1:c%n) = c%steps(1:c%n)
+         tf(1:c%n) = c%factors(1:c%n)
+         tl(1:c%n) = c%line_loc(1:c%n)
+         call move_alloc(ts, c%steps)
+         call move_alloc(tf, c%factors)
+         call move_alloc(tl, c%line_loc)
+      end if
+      c%n = c%n + 1
+      c%steps(c%n)%s = to_upper(fld(st, line, 1))
+      c%factors(c%n) = factor
+      c%line_loc(c%n) = loc
+    end associate
+  end subroutine data_combination
+
+  ! ================================================================== temperature
+
+  subroutine kw_expansion(st, kw, loc, mat)
+    !! *EXPANSION[, TYPE=ISO][, ZERO=t] of the current material: one data line
+    !! alpha[, temperature] (a constant coefficient, so ZERO= changes nothing).
+    type(deck_state_t), intent(inout) :: st
+    type(keyword_line_t), intent(in) :: kw
+    type(source_loc_t), intent(in) :: loc
+    integer, intent(in) :: mat
+    character(:), allocatable :: typ
+    logical :: found
+    st%card = CARD_SKIP
+    if (.not. outside_step(st, kw, loc)) return
+    call check_params(st, kw, loc, [character(NAME_LEN) :: 'TYPE', 'ZERO'], [character(NAME_LEN) ::])
+    call get_param(st, kw, loc, 'TYPE', .false., typ, found)
+    if (found) then
+       if (to_upper(typ) /= 'ISO' .and. to_upper(typ) /= 'ISOTROPIC') then
+          call report_loc(st, loc, '*EXPANSION, TYPE='//clip(typ)//' is not supported (isotropic expansion only)')
+          return
+       end if
+    end if
+    if (mat == 0) then
+       call report_loc(st, loc, '*EXPANSION must follow a *MATERIAL card')
+       return
+    end if
+    if (st%materials(mat)%has_expansion) then
+       call report_loc(st, loc, 'material '//st%materials(mat)%name//' has more than one *EXPANSION')
+       return
+    end if
+    st%materials(mat)%has_expansion = .true.
+    st%cur_mat = mat
+    st%card = CARD_EXPANSION
+    st%card_item = mat
+  end subroutine kw_expansion
+
+  subroutine data_expansion(st, line, loc)
+    !! The expansion coefficient: alpha[, temperature]; one line (a coefficient
+    !! that depends on temperature is refused).
+    type(deck_state_t), intent(inout) :: st
+    character(*), intent(in) :: line
+    type(source_loc_t), intent(in) :: loc
+    real(wp) :: alpha
+    if (st%card_ndata > 1) then
+       call report_loc(st, loc, 'superjoin takes one *EXPANSION line (a coefficient that depends on '// &
+            'temperature is not supported)')
+       st%card = CARD_SKIP
+       return
+    end if
+    if (.not. field_count(st, loc, 1, 2, 'alpha[, temperature]')) return
+    if (.not. get_real(st, line, loc, 1, alpha)) return
+    st%materials(st%card_item)%alpha = alpha
+  end subroutine data_expansion
+
+  subroutine kw_temperature(st, kw, loc, prev_mat)
+    !! *INITIAL CONDITIONS, TYPE=TEMPERATURE (model data) and *TEMPERATURE
+    !! (inside *STEP): data lines `node or nset, temperature`. Other TYPE=
+    !! of *INITIAL CONDITIONS are refused as before.
+    type(deck_state_t), intent(inout) :: st
+    type(keyword_line_t), intent(in) :: kw
+    type(source_loc_t), intent(in) :: loc
+    integer, intent(in) :: prev_mat
+    character(:), allocatable :: typ
+    logical :: found
+    st%card = CARD_SKIP
+    if (kw%keyword == 'INITIAL CONDITIONS') then
+       call get_param(st, kw, loc, 'TYPE', .false., typ, found)
+       if (.not. found) typ = ''
+       if (to_upper(typ) /= 'TEMPERATURE') then
+          if (refused_card(st, kw, loc, prev_mat)) return
+       end if
+       if (.not. outside_step(st, kw, loc)) return
+       call check_params(st, kw, loc, [character(NAME_LEN) :: 'TYPE'], [character(NAME_LEN) ::])
+       st%card_item = 0
+    else
+       call check_params(st, kw, loc, [character(NAME_LEN) ::], [character(NAME_LEN) ::])
+       if (st%cur_step == 0) then
+          call report_loc(st, loc, '*TEMPERATURE stands inside *STEP (the initial temperatures: '// &
+               '*INITIAL CONDITIONS, TYPE=TEMPERATURE)')
+          return
+       end if
+       st%card_item = st%cur_step
+    end if
+    st%card = CARD_TEMPERATURE
+    st%card_home = st%cur_sub
+  end subroutine kw_temperature
+
+  subroutine data_temperature(st, line, loc)
+    !! `node or nset, temperature` (uniform across the section: a gradient,
+    !! CalculiX's further fields, is refused).
+    type(deck_state_t), intent(inout) :: st
+    character(*), intent(in) :: line
+    type(source_loc_t), intent(in) :: loc
+    type(temp_b_t) :: t
+    type(temp_b_t), allocatable :: tmp(:)
+    if (st%f%n > 2) then
+       call report_loc(st, loc, 'temperature gradients across the section are not supported '// &
+            '(node or nset, temperature)')
+       return
+    end if
+    if (.not. field_count(st, loc, 2, 2, 'node or nset, temperature')) return
+    if (.not. parse_ref(st, fld(st, line, 1), .false., st%card_home, loc, t%ref)) return
+    if (.not. get_real(st, line, loc, 2, t%value)) return
+    t%step = st%card_item
+    t%loc = loc
+    if (.not. allocated(st%temps)) allocate (st%temps(16))
+    if (st%ntemp == size(st%temps)) then
+       allocate (tmp(2*st%ntemp))
+       tmp(1:st%ntemp) = st%temps(1:st%ntemp)
+       call move_alloc(tmp, st%temps)
+    end if
+    st%ntemp = st%ntemp + 1
+    st%temps(st%ntemp) = t
+  end subroutine data_temperature
 
   function loc_string(st, loc) result(s)
     !! "file:line" of a location.

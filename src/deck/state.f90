@@ -132,6 +132,8 @@ module superjoin_deck_state
      real(wp) :: g = 0.0_wp
      real(wp) :: value = 0.0_wp
      type(source_loc_t) :: loc
+     integer :: step = 0                   !! *BOUNDARY inside *STEP: the step (0: model data)
+     logical :: boundary = .false.         !! written on *BOUNDARY (not *SUPPORT)
   end type support_b_t
 
   type, public :: load_b_t
@@ -183,7 +185,31 @@ module superjoin_deck_state
      type(override_b_t), allocatable :: overrides(:)   !! *CHANGE CONTACT lines
      integer :: nsweep = 0                             !! SWEEP: number of values (0: no sweep)
      type(source_loc_t) :: sweep_loc
+     logical :: has_boundary = .false.                 !! a *BOUNDARY card stands in the step
+     integer :: bc_op = 0, cload_op = 0, dload_op = 0  !! OP= of its *BOUNDARY, *CLOAD, *DLOAD cards (OP_*)
   end type step_b_t
+
+  type, public :: temp_b_t
+    !! A data line of *INITIAL CONDITIONS, TYPE=TEMPERATURE (step 0) or of
+    !! *TEMPERATURE in a step: node or nset, temperature.
+     type(ref_t) :: ref
+     real(wp) :: value = 0.0_wp
+     integer :: step = 0
+     type(source_loc_t) :: loc
+  end type temp_b_t
+
+  type, public :: combo_b_t
+    !! A *LOAD COMBINATION card as read: steps by name, factors.
+     character(:), allocatable :: name
+     integer :: n = 0
+     type(string_t), allocatable :: steps(:)
+     real(wp), allocatable :: factors(:)
+     type(source_loc_t), allocatable :: line_loc(:)
+     type(source_loc_t) :: loc
+  end type combo_b_t
+
+  integer, parameter, public :: OP_DEFAULT = 0, OP_MOD = 1, OP_NEW = 2
+    !! OP= of the step's load and boundary cards (OP_DEFAULT: none written).
 
   type, public :: request_b_t
     !! An output request card as read (set still by name).
@@ -268,6 +294,10 @@ module superjoin_deck_state
      integer :: nelem_cards = 0
      integer :: ninst = 0
      type(instance_b_t), allocatable :: instances(:)
+     integer :: ntemp = 0                           !! temperature lines
+     type(temp_b_t), allocatable :: temps(:)
+     integer :: ncombo = 0                          !! *LOAD COMBINATION cards
+     type(combo_b_t), allocatable :: combos(:)
      logical :: section_rejected(3) = .false.  !! a *SOLID/*BEAM/*SHELL SECTION card (SEC_* index) was rejected
      ! block and card state
      integer :: cur_inst = 0               !! open *INSTANCE block

@@ -10,6 +10,7 @@ module superjoin_deck_validate
        ET_S3, ET_S4, ET_B21, ET_B31, ET_CPE3, ET_CPE4, ET_CPS6, ET_CPS8, ET_CPE6, ET_CPE8, ET_CPS8R, ET_CPE8R, &
        ET_B32, DLOAD_PX, DLOAD_PY, DLOAD_PZ, DLOAD_P, DLOAD_GRAV, DLOAD_NAMES
   use superjoin_model_types, only: ET_S4R, ET_S3R
+  use superjoin_model_types, only: DLOAD_P1, DLOAD_P2, DLOAD_P3, DLOAD_P4, DLOAD_THERMAL
   use superjoin_deck_lexer, only: itoa, plural
   use superjoin_deck_state, only: deck_state_t, sub_b_t, ref_t, load_b_t, report, report_loc, report_oom, find_set, &
        CH_IDS, CH_GEN, CH_RANGE, CH_REF, BEAM_2D_VALUES, BEAM_3D_VALUES, SUBK_INSTANCE
@@ -18,6 +19,9 @@ module superjoin_deck_validate
   use superjoin_deck_state, only: sec_b_t
   use superjoin_model_types, only: section_t
   use superjoin_deck_beam_sections, only: section_fibres, MAX_FIBRES
+  use superjoin_deck_state, only: OP_NEW, OP_MOD
+  use superjoin_deck_combinations, only: build_combinations
+  use superjoin_model_history, only: support_list_t, step_ops_t, apply_boundary_history, apply_load_history
   implicit none (type, external)
   private
 
@@ -40,6 +44,11 @@ module superjoin_deck_validate
      integer(i8), allocatable :: keys(:)
      integer, allocatable :: vals(:)
   end type pair_map_t
+
+  type :: real_list_t
+    !! A real value per node of one substructure (temperatures).
+     real(wp), allocatable :: v(:)
+  end type real_list_t
 
   type :: link_list_t
     !! Growing list of links / supports while they are generated.
@@ -156,6 +165,7 @@ contains
     call build_steps(st, model)
     if (st%aborted) return
     call build_overrides(st, model)
+    call build_combinations(st, model)
     call build_requests(st, model)
   end subroutine build_model
 
@@ -1032,6 +1042,15 @@ contains
   subroutine build_supports(st, model)
     type(deck_state_t), intent(inout) :: st
     type(model_t), intent(inout) :: model
+    call support_list(st, model, 0, model%supports)
+  end subroutine build_supports
+
+  subroutine support_list(st, model, step, out)
+    !! The supported DOFs of the *SUPPORT and *BOUNDARY lines of a step (0: model data).
+    type(deck_state_t), intent(inout) :: st
+    type(model_t), intent(in) :: model
+    integer, intent(in) :: step
+    type(support_t), allocatable, intent(out) :: out(:)
     type(support_t), allocatable :: list(:), tmp(:)
     integer(ip), allocatable :: nodes(:)
     integer :: k, n, isub, d, stat
@@ -1041,6 +1060,7 @@ contains
     n = 0
     do k = 1, st%nsupport
        if (st%aborted) return
+       if (st%supports(k)%step /= step) cycle
        associate (sb => st%supports(k))
          isub = resolve_sub(st, model, sb%ref, sb%loc, 'node')
          if (isub == 0) cycle
@@ -1067,19 +1087,141 @@ contains
                list(n)%g = sb%g
                list(n)%value = sb%value
                list(n)%loc = sb%loc
+               list(n)%from_boundary = sb%boundary
             end do
          end do
        end associate
     end do
     ! explicit allocation: an assignment's reallocation would not report failure
-    allocate (model%supports(n), stat=stat)
+    allocate (out(n), stat=stat)
     if (stat /= 0) then
        call report_oom(st, st%supports(st%nsupport)%loc, 'the supported DOFs ('//itoa(n)//')', &
             int(n, i8)*storage_size(list(1))/8)
        return
     end if
-    model%supports(1:n) = list(1:n)
-  end subroutine build_supports
+    out(1:n) = list(1:n)
+  end subroutine support_list
+
+  subroutine build_thermal(st, model)
+    !! Thermal loads from *INITIAL CONDITIONS, TYPE=TEMPERATURE and the steps'
+    !! *TEMPERATURE lines: a truss or beam whose material has *EXPANSION gets,
+    !! in each step with temperatures, the load of its uniform temperature
+    !! change ΔT (the mean of its nodes' T - T0; nodes without a step
+    !! temperature keep T0, nodes without an initial one start at 0), a
+    !! DLOAD_THERMAL entry of value E A α ΔT. Plane and shell elements with a
+    !! temperature change are refused (not implemented).
+    type(deck_state_t), intent(inout) :: st
+    type(model_t), intent(inout) :: model
+    type(real_list_t), allocatable :: t0(:), t(:)
+    type(dload_t), allocatable :: extra(:)
+    integer :: s, isub, nn, nplate
+    integer(ip) :: e, i, first_plate
+    integer(ip), allocatable :: nodes(:)
+    logical :: ok
+    real(wp) :: dt
+    type(source_loc_t) :: plate_loc
+    if (st%ntemp == 0) return
+    allocate (t0(size(model%subs)), t(size(model%subs)))
+    do isub = 1, size(model%subs)
+       allocate (t0(isub)%v(model%subs(isub)%nnode), source=0.0_wp)
+    end do
+    call apply_lines(0, t0)
+    do s = 1, size(model%steps)
+       if (.not. any(st%temps(1:st%ntemp)%step == s)) cycle
+       t = t0
+       call apply_lines(s, t)
+       if (st%aborted) return
+       allocate (extra(0))
+       nplate = 0
+       do isub = 1, size(model%subs)
+          associate (sub => model%subs(isub))
+            do e = 1, sub%nelem
+               if (sub%elem_section(e) == 0) cycle
+               associate (sec => sub%sections(sub%elem_section(e)))
+                 associate (mat => model%materials(sec%material))
+                   if (.not. mat%has_expansion .or. mat%alpha == 0.0_wp) cycle
+                   nn = ELEMENT_NODE_COUNT(sub%elem_type(e))
+                   dt = sum(t(isub)%v(sub%elem_nodes(1:nn, e)) - t0(isub)%v(sub%elem_nodes(1:nn, e)))/nn
+                   if (dt == 0.0_wp) cycle
+                   select case (sub%elem_type(e))
+                   case (ET_T2D2, ET_T3D2, ET_B23, ET_B33, ET_B21, ET_B31)
+                      extra = [extra, dload_t(sub=isub, elem=e, kind=DLOAD_THERMAL, &
+                           value=mat%e*sec%area*mat%alpha*dt, loc=first_line(s))]
+                   case default
+                      nplate = nplate + 1
+                      if (nplate == 1) then
+                         first_plate = e
+                         plate_loc = first_line(s)
+                      end if
+                   end select
+                 end associate
+               end associate
+            end do
+            if (nplate > 0) then
+               call report_loc(st, plate_loc, 'temperature change on element '//itoa(sub%elem_id(first_plate))// &
+                    ' of type '//trim(ELEMENT_TYPE_NAMES(sub%elem_type(first_plate)))//' of substructure '// &
+                    sub%name//': thermal loads are implemented for trusses and beams only'//more_text(nplate - 1))
+               nplate = 0
+            end if
+          end associate
+       end do
+       model%steps(s)%dloads = [model%steps(s)%dloads, extra]
+       deallocate (extra)
+    end do
+  contains
+    subroutine apply_lines(step, field)
+      !! Set the temperatures the lines of step (0: initial conditions) give.
+      integer, intent(in) :: step
+      type(real_list_t), intent(inout) :: field(:)
+      integer :: j, js
+      do j = 1, st%ntemp
+         if (st%temps(j)%step /= step) cycle
+         js = resolve_sub(st, model, st%temps(j)%ref, st%temps(j)%loc, 'node')
+         if (js == 0) cycle
+         call resolve_items(st, model, js, st%temps(j)%ref, .false., st%temps(j)%loc, nodes, ok)
+         if (.not. ok) cycle
+         do i = 1, size(nodes, kind=ip)
+            field(js)%v(nodes(i)) = st%temps(j)%value
+         end do
+      end do
+    end subroutine apply_lines
+    function first_line(step) result(loc)
+      !! The first *TEMPERATURE line of a step (where its thermal loads come from).
+      integer, intent(in) :: step
+      type(source_loc_t) :: loc
+      integer :: j
+      loc = model%steps(step)%loc
+      do j = 1, st%ntemp
+         if (st%temps(j)%step == step) then
+            loc = st%temps(j)%loc
+            return
+         end if
+      end do
+    end function first_line
+  end subroutine build_thermal
+
+  subroutine build_history(st, model)
+    !! The steps' boundary conditions and the loads continued by OP=MOD
+    !! (superjoin_model_history).
+    type(deck_state_t), intent(inout) :: st
+    type(model_t), intent(inout) :: model
+    type(support_list_t), allocatable :: own(:)
+    type(step_ops_t), allocatable :: ops(:)
+    integer :: s
+    allocate (own(st%nstep), ops(st%nstep))
+    do s = 1, st%nstep
+       ops(s)%bc_new = st%steps(s)%bc_op == OP_NEW
+       ops(s)%cload_mod = st%steps(s)%cload_op == OP_MOD
+       ops(s)%dload_mod = st%steps(s)%dload_op == OP_MOD
+    end do
+    call apply_load_history(model, ops)
+    if (.not. any(st%steps(1:st%nstep)%has_boundary)) return
+    do s = 1, st%nstep
+       call support_list(st, model, s, own(s)%items)
+       if (st%aborted) return
+    end do
+    call apply_boundary_history(model, own, ops)
+  end subroutine build_history
 
   subroutine build_steps(st, model)
     type(deck_state_t), intent(inout) :: st
@@ -1105,6 +1247,9 @@ contains
        call move_alloc(dl, model%steps(s)%dloads)
        if (st%aborted) return
     end do
+    call build_thermal(st, model)
+    if (st%aborted) return
+    call build_history(st, model)
   end subroutine build_steps
 
   subroutine build_cloads(st, model, loads, out)
@@ -1244,10 +1389,24 @@ contains
        dload_fits = etype == ET_S3 .or. etype == ET_S4 .or. etype == ET_S4R .or. etype == ET_S3R
     case (DLOAD_GRAV)
        dload_fits = .true.
+    case (DLOAD_P1)
+       dload_fits = is_plane(etype) .or. etype == ET_B33 .or. etype == ET_B31
+    case (DLOAD_P2)
+       dload_fits = is_plane(etype) .or. etype == ET_B23 .or. etype == ET_B33 .or. etype == ET_B21 .or. etype == ET_B31
+    case (DLOAD_P3)
+       dload_fits = is_plane(etype)
+    case (DLOAD_P4)
+       dload_fits = etype == ET_CPS4 .or. etype == ET_CPE4
     case default
        dload_fits = .false.
     end select
   end function dload_fits
+
+  elemental logical function is_plane(etype)
+    !! A plane-stress or plane-strain element (edge pressure P1 ... P4).
+    integer, intent(in) :: etype
+    is_plane = etype == ET_CPS3 .or. etype == ET_CPS4 .or. etype == ET_CPE3 .or. etype == ET_CPE4
+  end function is_plane
 
   pure function dload_targets(kind) result(s)
     integer, intent(in) :: kind
@@ -1257,6 +1416,14 @@ contains
        s = 'PX and PY apply to beams B23, B33, B21, B31 and B32'
     case (DLOAD_PZ)
        s = 'PZ applies to 3D beams B33, B31 and B32'
+    case (DLOAD_P1)
+       s = 'P1 applies to the first edge of plane elements and to 3D beams B33 and B31'
+    case (DLOAD_P2)
+       s = 'P2 applies to the second edge of plane elements and to beams'
+    case (DLOAD_P3)
+       s = 'P3 applies to the third edge of plane elements'
+    case (DLOAD_P4)
+       s = 'P4 applies to the fourth edge of quadrilaterals CPS4 and CPE4'
     case default
        s = 'P applies to shells S3 and S4'
     end select

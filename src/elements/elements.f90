@@ -12,6 +12,9 @@ module superjoin_elements
        ET_CPS6, ET_CPS8, ET_CPE6, ET_CPE8, ET_CPS8R, ET_CPE8R, ET_B32, &
        DLOAD_PX, DLOAD_PY, DLOAD_PZ, DLOAD_P
   use superjoin_model_types, only: ET_S4R, ET_S3R
+  use superjoin_model_types, only: DLOAD_P1, DLOAD_P2, DLOAD_P3, DLOAD_P4, DLOAD_THERMAL
+  use superjoin_elements_edge_load, only: plane_edge_load
+  use superjoin_elements_thermal, only: thermal_axial_load
   use superjoin_elements_frame, only: beam_frame
   use superjoin_elements_truss, only: truss_stiffness, truss_end_forces, truss_distributed_load
   use superjoin_elements_beam, only: beam_stiffness, beam_end_forces, beam_load
@@ -235,10 +238,62 @@ contains
        call beam_distributed_load(etype, x, sec, w, fe, q_local, error)
     case (DLOAD_P)
        call shell_pressure_load(etype, x, value, fe, q_local(3), error)
+    case (DLOAD_P1, DLOAD_P2, DLOAD_P3, DLOAD_P4)
+       call face_load(etype, x, sec, kind - DLOAD_P1 + 1, value, fe, q_local, error)
+    case (DLOAD_THERMAL)
+       select case (etype)
+       case (ET_T2D2, ET_T3D2, ET_B23, ET_B33, ET_B21, ET_B31)
+          call thermal_axial_load(etype, x, sec, element_node_dofs(etype), value, fe, error)
+       case default
+          call fatal_error(error, EXIT_DECK, 'thermal loads are implemented for trusses and beams only')
+       end select
     case default
        call fatal_error(error, EXIT_DECK, 'unknown distributed load kind')
     end select
   end subroutine element_distributed_load
+
+  pure subroutine face_load(etype, x, sec, face, value, fe, q_local, error)
+    !! CalculiX's numbered *DLOAD forms: Pk, pressure on face k of a plane
+    !! element (superjoin_elements_edge_load); on beams P1 and P2, a load per
+    !! unit length along the local y (Abaqus n1) and local z (n2) axes. A planar
+    !! beam (B21, B23) takes P2 only: its n1 is normal to the XY plane.
+    integer, intent(in) :: etype
+    real(wp), intent(in) :: x(:, :)
+    type(section_t), intent(in) :: sec
+    integer, intent(in) :: face
+    real(wp), intent(in) :: value
+    real(wp), allocatable, intent(out) :: fe(:)
+    real(wp), intent(out) :: q_local(3)
+    type(error_t), allocatable, intent(out) :: error
+    real(wp) :: r(3, 3), length, ql(3)
+    integer, parameter :: PLANE_CORNERS(4) = [3, 4, 3, 4]
+    q_local = 0.0_wp
+    select case (etype)
+    case (ET_CPS3, ET_CPS4, ET_CPE3, ET_CPE4)
+       call plane_edge_load(x, PLANE_CORNERS(merge(1, 2, etype == ET_CPS3 .or. etype == ET_CPE3)), &
+            face, value, sec%thickness, fe, error)
+    case (ET_B23, ET_B33, ET_B21, ET_B31)
+       if (face > 2) then
+          call fatal_error(error, EXIT_DECK, 'a beam takes P1 and P2 (per unit length in local axes)')
+          return
+       end if
+       if ((etype == ET_B23 .or. etype == ET_B21) .and. face == 1) then
+          call fatal_error(error, EXIT_DECK, 'P1 on a planar beam acts normal to its plane (use P2, along local y)')
+          return
+       end if
+       call beam_frame(etype, x, sec, r, length, error)
+       if (allocated(error)) return
+       ql = 0.0_wp
+       if (etype == ET_B23 .or. etype == ET_B21) then
+          ql(2) = value
+       else
+          ql(face + 1) = value
+       end if
+       call beam_distributed_load(etype, x, sec, matmul(transpose(r), ql), fe, q_local, error)
+    case default
+       call fatal_error(error, EXIT_DECK, 'face loads P1 to P4 apply to plane elements and beams')
+    end select
+  end subroutine face_load
 
   pure subroutine element_gravity_load(etype, x, sec, mat, accel, fe, q_local, error)
     !! Consistent nodal loads fe (global axes, element ordering) of the self

@@ -43,8 +43,14 @@ module superjoin_model_types
     !! State of one DOF of a contact element or support.
 
   integer, parameter, public :: DLOAD_PX = 1, DLOAD_PY = 2, DLOAD_PZ = 3, DLOAD_P = 4, DLOAD_GRAV = 5
-    !! Distributed load kinds.
-  character(len=4), parameter, public :: DLOAD_NAMES(5) = ['PX  ', 'PY  ', 'PZ  ', 'P   ', 'GRAV']
+  integer, parameter, public :: DLOAD_P1 = 6, DLOAD_P2 = 7, DLOAD_P3 = 8, DLOAD_P4 = 9
+  integer, parameter, public :: DLOAD_THERMAL = 10
+    !! Thermal load of a truss or beam (uniform temperature change): value = E A α ΔT, the
+    !! axial force it would take to hold the element at its length (from *TEMPERATURE).
+    !! Distributed load kinds (P1..P4: pressure on face k of a plane element; P1, P2 on
+    !! beams: load per unit length along local y (n1) and local z (n2), CalculiX's forms).
+  character(len=4), parameter, public :: DLOAD_NAMES(10) = ['PX  ', 'PY  ', 'PZ  ', 'P   ', 'GRAV', &
+       'P1  ', 'P2  ', 'P3  ', 'P4  ', 'TEMP']
 
   integer, parameter, public :: FORM_TRANSFORM = 1, FORM_PENALTY = 2
     !! Formulation and rigid-link controls.
@@ -78,6 +84,8 @@ module superjoin_model_types
      real(wp) :: density = 0.0_wp         !! mass per unit volume (*DENSITY)
      logical :: has_elastic = .false.
      logical :: has_density = .false.
+     real(wp) :: alpha = 0.0_wp           !! thermal expansion coefficient (*EXPANSION)
+     logical :: has_expansion = .false.
      type(source_loc_t) :: loc
   end type material_t
 
@@ -171,6 +179,7 @@ module superjoin_model_types
      real(wp) :: g = 0.0_wp                !! stiffness when finite
      real(wp) :: value = 0.0_wp            !! prescribed displacement when rigid
      type(source_loc_t) :: loc
+     logical :: from_boundary = .false.    !! written on *BOUNDARY (OP=NEW in a step removes it), not *SUPPORT
   end type support_t
 
   type, public :: cload_t
@@ -207,7 +216,18 @@ module superjoin_model_types
      type(dload_t), allocatable :: dloads(:)
      type(source_loc_t) :: loc
      type(link_override_t), allocatable :: link_overrides(:)  !! *CHANGE CONTACT (unallocated or empty: none)
+     integer :: combination = 0            !! results of model%combinations(k), no solve (0: a solved step)
+     type(support_t), allocatable :: supports(:)  !! supports in effect in this step when some step has a
+                                                  !! *BOUNDARY of its own (unallocated: model%supports)
   end type step_t
+
+  type, public :: combination_t
+    !! *LOAD COMBINATION (superjoin): results as Σ factor × results of solved steps.
+     character(:), allocatable :: name     !! upper case
+     integer, allocatable :: steps(:)      !! indices into model%steps (solved steps)
+     real(wp), allocatable :: factors(:)
+     type(source_loc_t) :: loc
+  end type combination_t
 
   integer, parameter, public :: REQ_NODE_PRINT = 1, REQ_EL_PRINT = 2, REQ_NODE_FILE = 3, REQ_EL_FILE = 4
     !! Kinds of output requests (CalculiX groups: *NODE OUTPUT counts as *NODE FILE,
@@ -260,6 +280,7 @@ module superjoin_model_types
      character(:), allocatable :: vtk_path          !! *OUTPUT, VTK= joined to its deck file's directory, or unallocated
      type(string_t), allocatable :: parts(:)        !! *PART names; subs(i)%part indexes this list
      type(output_request_t), allocatable :: requests(:)  !! output request cards in order (empty: full output)
+     type(combination_t), allocatable :: combinations(:) !! *LOAD COMBINATION cards (unallocated: none)
   end type model_t
 
   public :: find_node, find_elem, node_label, loc_text

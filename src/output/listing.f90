@@ -16,6 +16,7 @@ module superjoin_output_listing
   use superjoin_output_requests, only: write_print_requests
   use superjoin_model_request_masks, only: has_requests
   use superjoin_output_layout, only: displacement_columns, node_dof_mask, is_truss
+  use superjoin_output_envelope, only: write_envelope
   implicit none (type, external)
   private
 
@@ -53,6 +54,7 @@ contains
        call step_block(lu, model, res, is)
        call write_print_requests(lu, model, res%fields, is)
     end do
+    call write_envelope(lu, model, res)
     call lu%line(RULE)
     call lu%line('END OF LISTING')
     call lu%commit(tmp, path, 'listing ', error)
@@ -88,7 +90,9 @@ contains
     call count_line(lu, 'contact cards', int(size(model%contacts), i8))
     call count_line(lu, 'contact elements', int(size(model%links), i8))
     call count_line(lu, 'supported DOFs', int(size(model%supports), i8))
-    call count_line(lu, 'load steps', int(size(model%steps), i8))
+    call count_line(lu, 'load steps', int(count(model%steps%combination == 0), i8))
+    if (any(model%steps%combination > 0)) &
+         call count_line(lu, 'load combinations', int(count(model%steps%combination > 0), i8))
     call count_line(lu, 'active DOFs', res%summary%nphys)
     call count_line(lu, 'reduced unknowns', res%summary%ncol)
     call count_line(lu, '  of which relative (delta)', res%summary%ndelta)

@@ -1,0 +1,108 @@
+module superjoin_analysis_factor_reuse
+  !! A factorization kept from one solve for the next solve of the same matrix
+  !! (steps whose supports differ only in their prescribed values: the Δu
+  !! transform carries one vector of prescribed values, so such steps are
+  !! solved apart, but their reduced stiffness is the same). The kept factor is
+  !! reused only when the next assembled matrix is identical, entry for entry
+  !! (pattern and values): a change of the AUTOSPC decisions or anything else
+  !! that touches the matrix simply factors again.
+  use superjoin_kinds, only: wp, i8
+  use superjoin_error, only: error_t
+  use superjoin_solvers, only: linear_solver_t, sparse_sym_t
+  use superjoin_analysis_results, only: results_t, PH_ORDER, PH_FACTOR, PH_SOLVE
+  use superjoin_utils_clock, only: stopwatch_t, report_phase
+  use superjoin_utils_memory, only: out_of_memory, BYTES_REAL
+  implicit none (type, external)
+  private
+
+  type, public :: kept_factor_t
+    !! The factorization of the last solve and its matrix (with keep set).
+     logical :: keep = .false.                        !! keep each solve's factorization for the next
+     class(linear_solver_t), allocatable :: solver
+     type(sparse_sym_t) :: k
+     integer :: reuses = 0                            !! solves that reused a kept factorization
+  end type kept_factor_t
+
+  public :: take_factor, keep_factor, release_factor, solve_with
+
+contains
+
+  subroutine take_factor(kf, k, solver)
+    !! Hand over the kept factorization when it factors exactly k (else none).
+    type(kept_factor_t), intent(inout) :: kf
+    type(sparse_sym_t), intent(in) :: k
+    class(linear_solver_t), allocatable, intent(inout) :: solver
+    if (.not. (kf%keep .and. allocated(kf%solver))) return
+    if (.not. same_matrix(kf%k, k)) return
+    call move_alloc(kf%solver, solver)
+    kf%reuses = kf%reuses + 1
+  end subroutine take_factor
+
+  subroutine keep_factor(kf, k, solver)
+    !! At the end of a solve: keep its factorization (and matrix) when kf%keep,
+    !! release it otherwise.
+    type(kept_factor_t), intent(inout) :: kf
+    type(sparse_sym_t), intent(in) :: k
+    class(linear_solver_t), allocatable, intent(inout) :: solver
+    if (.not. allocated(solver)) return
+    if (.not. kf%keep) then
+       call solver%release()
+       deallocate (solver)
+       return
+    end if
+    call release_factor(kf)
+    call move_alloc(solver, kf%solver)
+    kf%k = k
+  end subroutine keep_factor
+
+  subroutine release_factor(kf)
+    !! Free the kept factorization.
+    type(kept_factor_t), intent(inout) :: kf
+    if (allocated(kf%solver)) then
+       call kf%solver%release()
+       deallocate (kf%solver)
+    end if
+  end subroutine release_factor
+
+  subroutine solve_with(solver, n, f_red, quiet, q, res, error)
+    !! Solve every step with a kept factorization (no analysis, no factorization).
+    class(linear_solver_t), intent(inout) :: solver
+    integer(i8), intent(in) :: n
+    real(wp), intent(in) :: f_red(:, :)
+    logical, intent(in) :: quiet
+    real(wp), allocatable, intent(out) :: q(:, :)
+    type(results_t), intent(inout) :: res
+    type(error_t), allocatable, intent(out) :: error
+    type(stopwatch_t) :: clock
+    integer :: stat
+    res%summary%solver_name = solver%info%name
+    res%summary%ordering = solver%info%ordering
+    res%summary%factor_nnz = solver%info%factor_nnz
+    res%summary%factor_mbytes = solver%info%factor_mbytes
+    res%log%phase_seconds(PH_ORDER) = 0.0_wp
+    res%log%phase_seconds(PH_FACTOR) = 0.0_wp
+    call report_phase(quiet, 'factor', 0.0_wp, 'reused (same stiffness as the previous solve)')
+    call clock%start()
+    allocate (q(n, size(f_red, 2)), stat=stat)
+    if (stat /= 0) then
+       call out_of_memory(error, 'the solution', n*size(f_red, 2)*BYTES_REAL)
+       return
+    end if
+    call solver%solve(f_red, q, error)
+    if (allocated(error)) return
+    res%log%phase_seconds(PH_SOLVE) = clock%seconds()
+    call report_phase(quiet, 'solve', res%log%phase_seconds(PH_SOLVE))
+  end subroutine solve_with
+
+  pure logical function same_matrix(a, b)
+    !! Identical pattern and values.
+    type(sparse_sym_t), intent(in) :: a, b
+    same_matrix = .false.
+    if (a%n /= b%n) return
+    if (.not. (allocated(a%colptr) .and. allocated(b%colptr))) return
+    if (size(a%rowind) /= size(b%rowind)) return
+    if (any(a%colptr /= b%colptr)) return
+    if (any(a%rowind /= b%rowind)) return
+    same_matrix = all(a%val == b%val)
+  end function same_matrix
+end module superjoin_analysis_factor_reuse

@@ -1,0 +1,148 @@
+module superjoin_model_history
+  !! The load history of a deck's steps (Abaqus/CalculiX semantics of OP=).
+  !!
+  !! Boundary conditions: *BOUNDARY written as model data holds in every step;
+  !! a *BOUNDARY written inside a step holds in that step and in the later ones
+  !! (OP=MOD, the default: a DOF that already has a prescribed value gets the
+  !! new one); OP=NEW first removes every earlier *BOUNDARY condition, model
+  !! data included (as ccx 2.20 does). *SUPPORT (superjoin's contact elements to
+  !! the ground) is part of the structure and stays.
+  !!
+  !! Loads: a superjoin step is a load case of its own (the deck contract). A
+  !! *CLOAD or *DLOAD card with OP=MOD written explicitly continues the loads of
+  !! that kind of the previous step, replacing those on the same node and DOF
+  !! (element and load type); OP=NEW, or no OP=, starts from nothing.
+  use superjoin_kinds, only: wp
+  use superjoin_model_types, only: model_t, support_t, cload_t, dload_t
+  use superjoin_utils_sorting, only: stable_argsort
+  implicit none (type, external)
+  private
+
+  public :: support_list_t, apply_boundary_history, apply_load_history
+
+  type, public :: step_ops_t
+    !! What a step's cards say about the history (from the deck reader).
+     logical :: bc_new = .false.           !! a *BOUNDARY, OP=NEW stands in the step
+     logical :: cload_mod = .false.        !! a *CLOAD, OP=MOD (and no OP=NEW)
+     logical :: dload_mod = .false.        !! a *DLOAD, OP=MOD (and no OP=NEW)
+  end type step_ops_t
+
+  type :: support_list_t
+    !! The *BOUNDARY conditions a step writes itself (resolved to DOFs, in order).
+     type(support_t), allocatable :: items(:)
+  end type support_list_t
+
+contains
+
+  subroutine apply_boundary_history(model, own, ops)
+    !! Set model%steps(s)%supports, the supports in effect in step s, from the
+    !! model's supports and the steps' own *BOUNDARY lines own(s).
+    type(model_t), intent(inout) :: model
+    type(support_list_t), intent(in) :: own(:)
+    type(step_ops_t), intent(in) :: ops(:)
+    type(support_t), allocatable :: cur(:)
+    integer :: s
+    allocate (cur, source=model%supports)   ! source=: no -Wuninitialized false positive
+    do s = 1, size(model%steps)
+       if (ops(s)%bc_new) cur = pack(cur, .not. cur%from_boundary)
+       if (size(own(s)%items) > 0) call merge_boundaries(cur, own(s)%items)
+       model%steps(s)%supports = cur
+    end do
+  end subroutine apply_boundary_history
+
+  subroutine merge_boundaries(cur, add)
+    !! cur followed by add, where a *BOUNDARY condition of add on a DOF that a
+    !! *BOUNDARY condition of cur (or an earlier one of add) holds replaces its
+    !! value in place (OP=MOD); *SUPPORT entries are never merged. Sorted by
+    !! substructure, node and DOF (stable), so O(n log n).
+    type(support_t), allocatable, intent(inout) :: cur(:)
+    type(support_t), intent(in) :: add(:)
+    type(support_t), allocatable :: merged(:)
+    integer, allocatable :: order(:)
+    logical, allocatable :: keep(:)
+    integer :: i, j, first
+    allocate (merged(size(cur) + size(add)))   ! not [cur, add]: gfortran's -Wuninitialized false positive
+    merged(1:size(cur)) = cur
+    merged(size(cur) + 1:) = add
+    order = [(i, i=1, size(merged))]
+    call stable_argsort(real(merged%dof, wp), order)
+    call stable_argsort(real(merged%node, wp), order)
+    call stable_argsort(real(merged%sub, wp), order)
+    allocate (keep(size(merged)), source=.true.)
+    i = 1
+    do while (i <= size(merged))
+       ! the run of equal keys order(i:j), in their original order
+       j = i
+       do while (j < size(merged))
+          if (.not. same_dof(merged(order(i)), merged(order(j + 1)))) exit
+          j = j + 1
+       end do
+       first = 0
+       do while (i <= j)
+          if (merged(order(i))%from_boundary) then
+             if (first == 0) then
+                first = order(i)
+             else
+                merged(first)%value = merged(order(i))%value
+                merged(first)%loc = merged(order(i))%loc
+                keep(order(i)) = .false.
+             end if
+          end if
+          i = i + 1
+       end do
+    end do
+    cur = pack(merged, keep)
+  end subroutine merge_boundaries
+
+  pure logical function same_dof(a, b)
+    type(support_t), intent(in) :: a, b
+    same_dof = a%sub == b%sub .and. a%node == b%node .and. a%dof == b%dof
+  end function same_dof
+
+  subroutine apply_load_history(model, ops)
+    !! Continue the loads of the previous step into the steps whose *CLOAD or
+    !! *DLOAD says OP=MOD (the step's own loads replace those on the same DOF
+    !! or the same element and load type).
+    type(model_t), intent(inout) :: model
+    type(step_ops_t), intent(in) :: ops(:)
+    integer :: s
+    do s = 2, size(model%steps)
+       if (ops(s)%cload_mod) model%steps(s)%cloads = [pack(model%steps(s - 1)%cloads, &
+            .not. cload_replaced(model%steps(s - 1)%cloads, model%steps(s)%cloads)), model%steps(s)%cloads]
+       if (ops(s)%dload_mod) model%steps(s)%dloads = [pack(model%steps(s - 1)%dloads, &
+            .not. dload_replaced(model%steps(s - 1)%dloads, model%steps(s)%dloads)), model%steps(s)%dloads]
+    end do
+  end subroutine apply_load_history
+
+  pure function cload_replaced(prev, own) result(hit)
+    !! Which loads of prev act on a node and DOF that own loads too.
+    type(cload_t), intent(in) :: prev(:), own(:)
+    logical :: hit(size(prev))
+    integer :: i, j
+    do i = 1, size(prev)
+       hit(i) = .false.
+       do j = 1, size(own)
+          if (prev(i)%sub == own(j)%sub .and. prev(i)%node == own(j)%node .and. prev(i)%dof == own(j)%dof) then
+             hit(i) = .true.
+             exit
+          end if
+       end do
+    end do
+  end function cload_replaced
+
+  pure function dload_replaced(prev, own) result(hit)
+    !! Which loads of prev act on an element with a load type that own loads too.
+    type(dload_t), intent(in) :: prev(:), own(:)
+    logical :: hit(size(prev))
+    integer :: i, j
+    do i = 1, size(prev)
+       hit(i) = .false.
+       do j = 1, size(own)
+          if (prev(i)%sub == own(j)%sub .and. prev(i)%elem == own(j)%elem .and. prev(i)%kind == own(j)%kind) then
+             hit(i) = .true.
+             exit
+          end if
+       end do
+    end do
+  end function dload_replaced
+end module superjoin_model_history

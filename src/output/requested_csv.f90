@@ -90,7 +90,8 @@ contains
     !! DIR/energies.csv: step,kind,name,id,energy with kind element (name: its
     !! substructure, id: its id), substructure, contact_element (name: the
     !! *CONTACT card, id: the slave node id), contact (the card), and the model's
-    !! spring_supports, total, load_work (½ fᵀu), prescribed_work (½ Σ R ū).
+    !! spring_supports, total, load_work (½ fᵀu), prescribed_work (½ Σ R ū), and
+    !! balance_not_checked (name: why) in a step the balance does not apply to.
     character(*), intent(in) :: dir
     type(model_t), intent(in) :: model
     type(result_fields_t), intent(in) :: fields
@@ -144,6 +145,7 @@ contains
          call row(sn, 'total', '', '', en%internal)
          call row(sn, 'load_work', '', '', en%load_work)
          call row(sn, 'prescribed_work', '', '', en%prescribed_work)
+         if (allocated(en%no_balance)) call row(sn, 'balance_not_checked', en%no_balance, '', 0.0_wp)
        end associate
     end do
     call tb%commit(tmp, path, '', error)

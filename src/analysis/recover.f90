@@ -12,7 +12,8 @@ module superjoin_analysis_recover
        NDOF_NODE, loc_text
   use superjoin_elements, only: element_end_forces, element_nodal_forces, &
        is_plate_type, shell_forces
-  use superjoin_assembly_dofs, only: dof_table_t, NBLOCK, GROUND, UNIT_LINK, UNIT_SUPPORT, block_dof
+  use superjoin_assembly_dofs, only: dof_table_t, unit_t, NBLOCK, GROUND, UNIT_LINK, UNIT_SUPPORT, block_dof, &
+       unit_terms, arm_matrix, MAX_UNIT_TERMS
   use superjoin_assembly_forest, only: forest_t
   use superjoin_assembly_transform, only: transform_t, form_spring_t, constraint_t, ROLE_TREE, CONS_ELIMINATED
   use superjoin_assembly_assemble, only: element_pdofs, distributed_load
@@ -208,13 +209,12 @@ contains
     type(transform_t), intent(in) :: tr
     real(wp), intent(in) :: q(:, :), u(:, :)
     real(wp), allocatable, intent(out) :: delta(:, :, :)
-    integer :: iu, k, c, i
-    integer(i8) :: pa, pb
-    real(wp), allocatable :: ua(:), ub(:)
+    integer :: iu, k, c, i, nt
+    integer(i8) :: pt(MAX_UNIT_TERMS)
+    real(wp) :: wt(MAX_UNIT_TERMS)
     type(form_spring_t) :: fs
 
     allocate (delta(3, table%nunit, size(q, 2)), source=0.0_wp)
-    allocate (ua(size(q, 2)), ub(size(q, 2)))
     do iu = 1, table%nunit
        associate (un => table%units(iu))
          if (tr%unit_role(iu) == ROLE_TREE) then
@@ -227,15 +227,9 @@ contains
             end do
          else
             do k = 1, un%n
-               do c = 1, un%n
-                  ua = 0.0_wp
-                  if (un%va /= GROUND) then
-                     pa = table%pdof(block_dof(un%block, un%comp(c)), un%va)
-                     ua = u(pa, :)
-                  end if
-                  pb = table%pdof(block_dof(un%block, un%comp(c)), un%vb)
-                  ub = u(pb, :)
-                  delta(k, iu, :) = delta(k, iu, :) + un%qs(k, c)*(ub - ua)
+               call unit_terms(table, un, k, pt, wt, nt)
+               do i = 1, nt
+                  delta(k, iu, :) = delta(k, iu, :) + wt(i)*u(pt(i), :)
                end do
             end do
          end if
@@ -258,19 +252,16 @@ contains
     type(dof_table_t), intent(in) :: table
     real(wp), intent(in) :: delta(:, :, :)
     real(wp), intent(inout) :: r(:, :)
-    integer :: iu, k, c
-    integer(i8) :: pa, pb
+    integer :: iu, k, i, nt
+    integer(i8) :: pt(MAX_UNIT_TERMS)
+    real(wp) :: wt(MAX_UNIT_TERMS)
     do iu = 1, table%nunit
        associate (un => table%units(iu))
          do k = 1, un%n
             if (un%state(k) /= LINK_FINITE) cycle
-            do c = 1, un%n
-               pb = table%pdof(block_dof(un%block, un%comp(c)), un%vb)
-               r(pb, :) = r(pb, :) + un%qs(k, c)*un%g(k)*delta(k, iu, :)
-               if (un%va /= GROUND) then
-                  pa = table%pdof(block_dof(un%block, un%comp(c)), un%va)
-                  r(pa, :) = r(pa, :) - un%qs(k, c)*un%g(k)*delta(k, iu, :)
-               end if
+            call unit_terms(table, un, k, pt, wt, nt)
+            do i = 1, nt
+               r(pt(i), :) = r(pt(i), :) + wt(i)*un%g(k)*delta(k, iu, :)
             end do
          end do
        end associate
@@ -284,8 +275,9 @@ contains
     type(transform_t), intent(in) :: tr
     real(wp), intent(in) :: r(:, :)
     real(wp), intent(inout) :: rigid_force(:, :, :), rclose(:, :)
-    integer :: i, c, is
-    integer(i8) :: pa, pb
+    integer :: i, c, is, nt
+    integer(i8) :: pt(MAX_UNIT_TERMS)
+    real(wp) :: wt(MAX_UNIT_TERMS)
     real(wp) :: lambda, e
     type(constraint_t) :: cs
     do i = 1, tr%nconstraints()
@@ -301,13 +293,9 @@ contains
               else
                  rigid_force(cs%k, cs%unit, is) = lambda
               end if
-              do c = 1, un%n
-                 pb = table%pdof(block_dof(un%block, un%comp(c)), un%vb)
-                 rclose(pb, is) = rclose(pb, is) - lambda*un%qs(cs%k, c)
-                 if (un%va /= GROUND) then
-                    pa = table%pdof(block_dof(un%block, un%comp(c)), un%va)
-                    rclose(pa, is) = rclose(pa, is) + lambda*un%qs(cs%k, c)
-                 end if
+              call unit_terms(table, un, cs%k, pt, wt, nt)
+              do c = 1, nt
+                 rclose(pt(c), is) = rclose(pt(c), is) - lambda*wt(c)
               end do
            end do
          end associate
@@ -325,7 +313,11 @@ contains
     integer :: b, c, k, pu
     integer(i8) :: io, v, w, p
     real(wp) :: fk
+    real(wp), allocatable :: mom(:, :)
 
+    ! Moments that eccentric (OFFSET=RIGID) translations put on their master's
+    ! rotations: the translation block comes first and fills them.
+    allocate (mom(3, 0:table%nvertex), source=0.0_wp)
     do b = 1, NBLOCK
        acc = 0.0_wp
        do v = 1, table%nvertex
@@ -334,6 +326,7 @@ contains
              if (p > 0) acc(c, v) = rt(p)
           end do
        end do
+       if (b == 2) acc = acc + mom
        do io = forest%norder(b), 1, -1
           v = forest%order(b, io)
           pu = forest%parent_unit(b, v)
@@ -344,6 +337,7 @@ contains
                w = un%va
             end if
             acc(:, w) = acc(:, w) + acc(:, v)
+            if (un%eccentric) call arm_moment(un, acc(:, v), forest%child_is_a(pu), mom(:, un%va))
             do k = 1, un%n
                if (un%state(k) /= LINK_RIGID) cycle
                fk = 0.0_wp
@@ -364,6 +358,25 @@ contains
        end do
     end do
   end subroutine tree_forces
+
+  pure subroutine arm_moment(un, f, child_is_master, m)
+    !! Moment the subtree force f (translations) of an eccentric tree unit puts on
+    !! the master's rotations: u_child = u_parent ± θ_master × r gives ±(r × f)
+    !! over the unit's components (+ when the child is the slave).
+    type(unit_t), intent(in) :: un
+    real(wp), intent(in) :: f(3)
+    logical, intent(in) :: child_is_master
+    real(wp), intent(inout) :: m(3)
+    real(wp) :: a(3, 3), sgn
+    integer :: c, d
+    a = arm_matrix(un%arm)
+    sgn = merge(-1.0_wp, 1.0_wp, child_is_master)
+    do d = 1, 3
+       do c = 1, un%n
+          m(d) = m(d) + sgn*a(un%comp(c), d)*f(un%comp(c))
+       end do
+    end do
+  end subroutine arm_moment
 
   subroutine link_and_support_results(model, table, delta, rigid_force, f_phys, res)
     !! Contact Δ and F per link (local axes), reactions, resultants.

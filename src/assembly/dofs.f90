@@ -40,6 +40,8 @@ module superjoin_assembly_dofs
      real(wp) :: g(BLOCK_SIZE) = 0.0_wp
      real(wp) :: value(BLOCK_SIZE) = 0.0_wp  !! prescribed delta of rigid components
      integer :: src(BLOCK_SIZE) = 0          !! support index per component (supports only)
+     logical :: eccentric = .false.          !! OFFSET=RIGID translations: side b hangs on a rigid arm
+     real(wp) :: arm(3) = 0.0_wp             !! r = x_b - x_a; delta = qs (u_b - u_a - theta_a x r)
   end type unit_t
 
   type, public :: dof_table_t
@@ -56,7 +58,10 @@ module superjoin_assembly_dofs
      integer, allocatable :: ignored_links(:)  !! links with named DOFs that no node carries
   end type dof_table_t
 
-  public :: build_dof_table, vertex_of, block_dof
+  integer, parameter, public :: MAX_UNIT_TERMS = 3*BLOCK_SIZE
+    !! Physical DOFs one unit touches: side a, side b, and side a's rotations (arm).
+
+  public :: build_dof_table, vertex_of, block_dof, unit_terms, unit_dofs, arm_matrix
 
 contains
 
@@ -101,7 +106,7 @@ contains
     call activate_elements(model, table, has)
     call activate_supports(model, table, has)
 
-    call build_link_units(model, table, has)
+    call build_link_units(model, table, has, error)
     call build_support_units(model, table, error)
     if (allocated(error)) return
 
@@ -178,11 +183,13 @@ contains
     end do
   end subroutine activate_units
 
-  subroutine build_link_units(model, table, has)
+  subroutine build_link_units(model, table, has, error)
     !! One unit per link and block with any connected DOF that a node carries.
+    !! The translations of an OFFSET=RIGID contact carry the arm x_slave - x_master.
     type(model_t), intent(in) :: model
     type(dof_table_t), intent(inout) :: table
     logical, intent(in) :: has(:, :)
+    type(error_t), allocatable, intent(inout) :: error
     integer :: il, b
     integer(i8) :: va, vb
     type(unit_t) :: u
@@ -214,6 +221,9 @@ contains
             u%source = il
             u%va = va
             u%vb = vb
+            if (b == 1 .and. ct%rigid_offset) then
+               call set_arm(model, il, has(4:6, va), u, error)
+            end if
             call push_unit(table, u)
          end do
          if (ignored) then
@@ -224,6 +234,97 @@ contains
     end do
     table%ignored_links = ign(1:nign)
   end subroutine build_link_units
+
+  subroutine set_arm(model, il, rot, u, error)
+    !! Arm of the translation unit of OFFSET=RIGID link il; the master must carry
+    !! every rotation the arm couples (rot: its rotational DOFs 4-6).
+    type(model_t), intent(in) :: model
+    integer, intent(in) :: il
+    logical, intent(in) :: rot(3)
+    type(unit_t), intent(inout) :: u
+    type(error_t), allocatable, intent(inout) :: error
+    real(wp) :: a(3, 3)
+    integer :: c, d
+    logical :: need(3)
+    associate (lk => model%links(il), ct => model%contacts(model%links(il)%contact))
+      u%eccentric = .true.
+      u%arm = model%subs(ct%slave_sub)%x(:, lk%slave_node) - model%subs(ct%master_sub)%x(:, lk%master_node)
+      a = arm_matrix(u%arm)
+      need = .false.
+      do d = 1, 3
+         do c = 1, u%n
+            if (a(u%comp(c), d) /= 0.0_wp) need(d) = .true.
+         end do
+      end do
+      if (.not. any(rot) .or. any(need .and. .not. rot)) then
+         call add_error_line(error, EXIT_DECK, loc_text(model, lk%loc)//': error: contact '//ct%name// &
+              ', OFFSET=RIGID: master node '//node_label(model, ct%master_sub, lk%master_node)// &
+              ' has no rotational DOFs to carry the rigid arm to slave node '// &
+              node_label(model, ct%slave_sub, lk%slave_node)//' (join it to a beam or shell node)')
+      end if
+    end associate
+  end subroutine set_arm
+
+  pure function arm_matrix(r) result(a)
+    !! A with (theta x r)_c = sum_d A(c, d) theta_d.
+    real(wp), intent(in) :: r(3)
+    real(wp) :: a(3, 3)
+    a = 0.0_wp
+    a(1, 2) = r(3)
+    a(1, 3) = -r(2)
+    a(2, 1) = -r(3)
+    a(2, 3) = r(1)
+    a(3, 1) = r(2)
+    a(3, 2) = -r(1)
+  end function arm_matrix
+
+  pure subroutine unit_terms(table, u, k, p, w, n)
+    !! delta_k of unit u as a linear form of physical DOFs: delta_k = sum_i w(i) u(p(i)) - value(k),
+    !! side a first, then side b, then side a's rotations (eccentric units).
+    type(dof_table_t), intent(in) :: table
+    type(unit_t), intent(in) :: u
+    integer, intent(in) :: k
+    integer(i8), intent(out) :: p(MAX_UNIT_TERMS)
+    real(wp), intent(out) :: w(MAX_UNIT_TERMS)
+    integer, intent(out) :: n
+    real(wp) :: a(3, 3), t
+    integer :: c, d
+    n = 0
+    if (u%va /= GROUND) then
+       do c = 1, u%n
+          n = n + 1
+          p(n) = table%pdof(block_dof(u%block, u%comp(c)), u%va)
+          w(n) = -u%qs(k, c)
+       end do
+    end if
+    do c = 1, u%n
+       n = n + 1
+       p(n) = table%pdof(block_dof(u%block, u%comp(c)), u%vb)
+       w(n) = u%qs(k, c)
+    end do
+    if (.not. u%eccentric) return
+    a = arm_matrix(u%arm)
+    do d = 1, 3
+       if (table%pdof(3 + d, u%va) == 0) cycle
+       t = 0.0_wp
+       do c = 1, u%n
+          t = t + u%qs(k, c)*a(u%comp(c), d)
+       end do
+       n = n + 1
+       p(n) = table%pdof(3 + d, u%va)
+       w(n) = -t
+    end do
+  end subroutine unit_terms
+
+  pure subroutine unit_dofs(table, u, p, n)
+    !! The physical DOFs unit u touches, in unit_terms order.
+    type(dof_table_t), intent(in) :: table
+    type(unit_t), intent(in) :: u
+    integer(i8), intent(out) :: p(MAX_UNIT_TERMS)
+    integer, intent(out) :: n
+    real(wp) :: w(MAX_UNIT_TERMS)
+    call unit_terms(table, u, 1, p, w, n)
+  end subroutine unit_dofs
 
   subroutine link_unit(state, g, q, present, u, ignored)
     !! Components of one link on one block. `present(c)` tells whether either node

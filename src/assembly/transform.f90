@@ -13,7 +13,7 @@ module superjoin_assembly_transform
   use superjoin_error, only: error_t, add_error_line, EXIT_DECK
   use superjoin_model_types, only: model_t, LINK_NONE, LINK_FINITE, LINK_RIGID, loc_text, node_label
   use superjoin_assembly_dofs, only: dof_table_t, unit_t, NBLOCK, GROUND, UNIT_LINK, &
-       UNIT_SUPPORT, block_dof
+       UNIT_SUPPORT, block_dof, unit_terms, arm_matrix, MAX_UNIT_TERMS
   use superjoin_assembly_forest, only: forest_t
   use superjoin_utils_strings, only: rtoa
   use superjoin_utils_sorting, only: sort_unique_i8
@@ -203,8 +203,9 @@ contains
     type(transform_t), intent(inout) :: tr
     type(error_t), allocatable, intent(out) :: error
     integer(i8) :: j, p, v, w, pw, io, cap
-    integer :: b, c, k, pu, stat
+    integer :: b, ib, c, k, pu, stat
     real(wp) :: sgn, coef
+    logical :: eccentric
 
     cap = table%np + 4*table%nunit + 16
     allocate (tr%map_start(table%np), source=0_i8, stat=stat)
@@ -224,7 +225,15 @@ contains
        tr%map_start(p) = tr%pool_n
        tr%map_len(p) = 1
     end do
-    do b = 1, NBLOCK
+    ! Rotations first when a unit is eccentric: its translations take the
+    ! master's rotations through the arm (rotations never take translations).
+    eccentric = .false.
+    do pu = 1, table%nunit
+       if (table%units(pu)%eccentric) eccentric = .true.
+    end do
+    do ib = 1, NBLOCK
+       b = ib
+       if (eccentric) b = NBLOCK + 1 - ib
        do io = 1, forest%norder(b)
           v = forest%order(b, io)
           pu = forest%parent_unit(b, v)
@@ -258,11 +267,49 @@ contains
                      tr%u0(p) = tr%u0(p) + coef*u%value(k)
                   end if
                end do
+               if (u%eccentric) call add_arm(table, tr, u, c, sgn, p)
             end do
           end associate
        end do
     end do
   end subroutine build_maps
+
+  subroutine add_arm(table, tr, u, c, sgn, p)
+    !! Append sgn (theta_a x r)_c to the map of p (the last one in the pool),
+    !! theta_a the master's rotations (their maps are complete), then merge
+    !! repeated columns so that each column appears once in a map.
+    type(dof_table_t), intent(in) :: table
+    type(transform_t), intent(inout) :: tr
+    type(unit_t), intent(in) :: u
+    integer, intent(in) :: c
+    real(wp), intent(in) :: sgn
+    integer(i8), intent(in) :: p
+    real(wp) :: a(3, 3), coef
+    integer(i8) :: pr, j
+    integer(i8), allocatable :: col(:)
+    real(wp), allocatable :: cf(:)
+    integer :: d
+
+    a = arm_matrix(u%arm)
+    do d = 1, 3
+       coef = sgn*a(u%comp(c), d)
+       if (coef == 0.0_wp) cycle
+       pr = table%pdof(3 + d, u%va)
+       if (pr == 0) cycle
+       do j = tr%map_start(pr), tr%map_start(pr) + tr%map_len(pr) - 1
+          call pool_push(tr, tr%pool_col(j), coef*tr%pool_coef(j))
+       end do
+       tr%map_len(p) = tr%map_len(p) + tr%map_len(pr)
+       tr%u0(p) = tr%u0(p) + coef*tr%u0(pr)
+    end do
+    col = tr%pool_col(tr%map_start(p):tr%map_start(p) + tr%map_len(p) - 1)
+    cf = tr%pool_coef(tr%map_start(p):tr%map_start(p) + tr%map_len(p) - 1)
+    call merge_terms(col, cf)
+    tr%map_len(p) = size(col)
+    tr%pool_col(tr%map_start(p):tr%map_start(p) + size(col) - 1) = col
+    tr%pool_coef(tr%map_start(p):tr%map_start(p) + size(col) - 1) = cf
+    tr%pool_n = tr%map_start(p) + size(col) - 1
+  end subroutine add_arm
 
   subroutine pool_push(tr, col, coef)
     type(transform_t), intent(inout) :: tr
@@ -291,41 +338,25 @@ contains
     integer(i8), allocatable, intent(out) :: col(:)
     real(wp), allocatable, intent(out) :: coef(:)
     real(wp), intent(out) :: const
-    integer(i8) :: p, j, n
-    integer :: c, side
-    real(wp) :: s
+    integer(i8) :: pt(MAX_UNIT_TERMS), p, j, n
+    real(wp) :: wt(MAX_UNIT_TERMS)
+    integer :: i, nt
 
+    call unit_terms(table, u, k, pt, wt, nt)
     n = 0
-    do c = 1, u%n
-       do side = 1, 2
-          if (side == 1 .and. u%va == GROUND) cycle
-          if (side == 1) then
-             p = table%pdof(block_dof(u%block, u%comp(c)), u%va)
-          else
-             p = table%pdof(block_dof(u%block, u%comp(c)), u%vb)
-          end if
-          n = n + tr%map_len(p)
-       end do
+    do i = 1, nt
+       n = n + tr%map_len(pt(i))
     end do
     allocate (col(n), coef(n))
     n = 0
     const = -u%value(k)
-    do c = 1, u%n
-       do side = 1, 2
-          if (side == 1 .and. u%va == GROUND) cycle
-          if (side == 1) then
-             p = table%pdof(block_dof(u%block, u%comp(c)), u%va)
-             s = -u%qs(k, c)
-          else
-             p = table%pdof(block_dof(u%block, u%comp(c)), u%vb)
-             s = u%qs(k, c)
-          end if
-          const = const + s*tr%u0(p)
-          do j = tr%map_start(p), tr%map_start(p) + tr%map_len(p) - 1
-             n = n + 1
-             col(n) = tr%pool_col(j)
-             coef(n) = s*tr%pool_coef(j)
-          end do
+    do i = 1, nt
+       p = pt(i)
+       const = const + wt(i)*tr%u0(p)
+       do j = tr%map_start(p), tr%map_start(p) + tr%map_len(p) - 1
+          n = n + 1
+          col(n) = tr%pool_col(j)
+          coef(n) = wt(i)*tr%pool_coef(j)
        end do
     end do
     call merge_terms(col, coef)

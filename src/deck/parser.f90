@@ -119,6 +119,13 @@ module superjoin_deck_parser
        type(source_loc_t), intent(in) :: loc
        type(contact_b_t), intent(inout) :: c
      end subroutine contact_pair_params
+     module subroutine contact_offset_param(st, kw, loc, c)
+       !! OFFSET=RIGID | NONE of *CONTACT.
+       type(deck_state_t), intent(inout) :: st
+       type(keyword_line_t), intent(in) :: kw
+       type(source_loc_t), intent(in) :: loc
+       type(contact_b_t), intent(inout) :: c
+     end subroutine contact_offset_param
      module subroutine kw_interface(st, kw, loc)
        !! *INTERFACE, NAME=j, MASTER=s1, SLAVE=s2, KN=kn, KT=kt[, TOL=t].
        type(deck_state_t), intent(inout) :: st
@@ -922,8 +929,9 @@ contains
     integer :: k
     if (.not. outside_step(st, kw, loc)) return
     call check_params(st, kw, loc, [character(NAME_LEN) :: 'NAME', 'MASTER', 'SLAVE', 'ORIENTATION', &
-         'PAIR', 'TOL'], [character(NAME_LEN) ::])
+         'PAIR', 'TOL', 'OFFSET'], [character(NAME_LEN) ::])
     call contact_pair_params(st, kw, loc, c)
+    call contact_offset_param(st, kw, loc, c)
     call get_name_param(st, kw, loc, 'NAME', .true., c%name, f1)
     call get_name_param(st, kw, loc, 'MASTER', .true., c%master, f2)
     call get_name_param(st, kw, loc, 'SLAVE', .true., c%slave, f3)

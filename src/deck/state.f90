@@ -105,6 +105,7 @@ module superjoin_deck_state
      type(source_loc_t) :: loc
      logical :: nearest = .false.          !! PAIR=NEAREST: slave nodes take the nearest master node
      logical :: remote = .false.           !! joins nodes at different places on purpose (springs)
+     logical :: rigid_offset = .false.     !! OFFSET=RIGID (eccentric contact)
      real(wp) :: tol = 0.0_wp              !! TOL= of PAIR=NEAREST (*INTERFACE: < 0 until set)
      logical :: is_interface = .false.     !! an *INTERFACE card (Goodman joint)
      real(wp) :: kn = 0.0_wp, kt = 0.0_wp  !! *INTERFACE: stiffness per unit length or area

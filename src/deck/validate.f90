@@ -807,6 +807,7 @@ contains
          c%loc = cb%loc
          c%master_sub = sub_index(model, cb%master)
          c%remote = cb%remote
+         c%rigid_offset = cb%rigid_offset
          c%slave_sub = sub_index(model, cb%slave)
          if (c%master_sub == 0) call report_loc(st, cb%loc, 'unknown substructure '//cb%master//' in MASTER='// &
               part_hint(model, cb%master))

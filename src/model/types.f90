@@ -133,6 +133,7 @@ module superjoin_model_types
      integer :: slave_sub = 0
      integer :: orientation = 0            !! index into model%orientations, 0 = global axes
      logical :: remote = .false.           !! joins nodes at different places on purpose (springs)
+     logical :: rigid_offset = .false.     !! OFFSET=RIGID: the slave hangs on a rigid arm from the master
      type(source_loc_t) :: loc
   end type contact_t
 

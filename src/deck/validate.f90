@@ -13,6 +13,7 @@ module superjoin_deck_validate
        CH_IDS, CH_GEN, CH_RANGE, CH_REF, BEAM_2D_VALUES, BEAM_3D_VALUES, SUBK_INSTANCE
   use superjoin_utils_strings, only: pick
   use superjoin_deck_requests, only: build_requests
+  use superjoin_deck_eccentric, only: check_offset_masters
   implicit none (type, external)
   private
 
@@ -148,6 +149,7 @@ contains
     if (st%aborted) return
     call build_supports(st, model)
     if (st%aborted) return
+    call check_offset_masters(st, model)
     call build_steps(st, model)
     if (st%aborted) return
     call build_overrides(st, model)

@@ -46,6 +46,7 @@ contains
     real(wp), intent(in), optional :: ku_parts(:, :)
     real(wp), allocatable :: r(:, :), delta(:, :, :), rclose(:, :), acc(:, :)
     real(wp), allocatable :: rigid_force(:, :, :)  ! (3, nunit, nstep): rigid force on child / λ, local
+    real(wp), allocatable :: req(:, :)             ! (np, nstep): *EQUATION forces on the structure
     integer :: nstep, is, stat
 
     nstep = size(q, 2)
@@ -67,13 +68,33 @@ contains
 
     rigid_force = 0.0_wp
     rclose = 0.0_wp
-    call closer_forces(table, tr, r, rigid_force, rclose)
+    call closer_forces(table, tr, r, rigid_force, rclose, req)
     r = r - rclose     ! in place: no temporary of np values per step
     do is = 1, nstep
        call tree_forces(table, forest, r(:, is), acc, rigid_force(:, :, is))
     end do
     call link_and_support_results(model, table, delta, rigid_force, f_phys, res)
+    if (allocated(req)) call add_equation_resultants(model, table, req, res)
   end subroutine recover_results
+
+  subroutine add_equation_resultants(model, table, req, res)
+    !! *EQUATION forces on the structure join the reactions of the equilibrium
+    !! check (an equation whose coefficients do not cancel per direction, a
+    !! lever u_a = 2 u_b, acts partly as a support).
+    type(model_t), intent(in) :: model
+    type(dof_table_t), intent(in) :: table
+    real(wp), intent(in) :: req(:, :)
+    type(results_t), intent(inout) :: res
+    integer(i8) :: p
+    integer :: is
+    do is = 1, size(req, 2)
+       do p = 1, table%np
+          if (req(p, is) == 0.0_wp) cycle
+          call add_resultant(res%steps(is)%reaction, model%subs(table%p_sub(p))%x(:, table%p_node(p)), &
+               table%p_dof(p), req(p, is))
+       end do
+    end do
+  end subroutine add_equation_resultants
 
   subroutine store_displacements(table, u, res, error)
     !! Displacements per vertex (global axes) and which DOFs each vertex has.
@@ -268,13 +289,15 @@ contains
     end do
   end subroutine add_spring_forces
 
-  subroutine closer_forces(table, tr, r, rigid_force, rclose)
+  subroutine closer_forces(table, tr, r, rigid_force, rclose, req)
     !! Force of each eliminated loop constraint, λ = -(Σ T(p,j*) r_p) / a_j*,
-    !! stored as the force on the master (local) and as nodal forces rclose.
+    !! stored as the force on the master (local) and as nodal forces rclose;
+    !! those of *EQUATION constraints also in req (allocated when there are any).
     type(dof_table_t), intent(in) :: table
     type(transform_t), intent(in) :: tr
     real(wp), intent(in) :: r(:, :)
     real(wp), intent(inout) :: rigid_force(:, :, :), rclose(:, :)
+    real(wp), allocatable, intent(inout) :: req(:, :)
     integer :: i, c, is, nt
     integer(i8) :: pt(MAX_UNIT_TERMS)
     real(wp) :: wt(MAX_UNIT_TERMS)
@@ -283,6 +306,20 @@ contains
     do i = 1, tr%nconstraints()
        cs = tr%constraint(i)
          if (cs%status /= CONS_ELIMINATED) cycle
+         if (cs%equation > 0) then
+            ! *EQUATION sum a_i u_i = 0: forces -λ a_i on its DOFs.
+            associate (te => table%equations(cs%equation))
+              do is = 1, size(r, 2)
+                 lambda = -sum(cs%fp_c*r(cs%fp_p, is))/cs%pivot
+                 if (.not. allocated(req)) allocate (req(size(r, 1), size(r, 2)), source=0.0_wp)
+                 do c = 1, size(te%p)
+                    rclose(te%p(c), is) = rclose(te%p(c), is) - lambda*te%a(c)
+                    req(te%p(c), is) = req(te%p(c), is) - lambda*te%a(c)
+                 end do
+              end do
+            end associate
+            cycle
+         end if
          associate (un => table%units(cs%unit))
            do is = 1, size(r, 2)
               e = sum(cs%fp_c*r(cs%fp_p, is))

@@ -44,6 +44,13 @@ module superjoin_assembly_dofs
      real(wp) :: arm(3) = 0.0_wp             !! r = x_b - x_a; delta = qs (u_b - u_a - theta_a x r)
   end type unit_t
 
+  type, public :: equation_terms_t
+    !! An *EQUATION on physical DOFs: sum_i a(i) u(p(i)) = 0, p(1) the dependent DOF.
+     integer(i8), allocatable :: p(:)
+     real(wp), allocatable :: a(:)
+     integer :: source = 0                 !! index into model%equations
+  end type equation_terms_t
+
   type, public :: dof_table_t
     !! Physical DOFs: every active (node, dof) pair, numbered node by node.
      integer(i8) :: nvertex = 0                !! nodes over all substructures
@@ -56,6 +63,7 @@ module superjoin_assembly_dofs
      type(unit_t), allocatable :: units(:)
      integer :: nunit = 0
      integer, allocatable :: ignored_links(:)  !! links with named DOFs that no node carries
+     type(equation_terms_t), allocatable :: equations(:)  !! *EQUATION constraints (empty: none)
   end type dof_table_t
 
   integer, parameter, public :: MAX_UNIT_TERMS = 3*BLOCK_SIZE
@@ -134,7 +142,33 @@ contains
           end do
        end do
     end do
+    call build_equation_terms(model, table, error)
   end subroutine build_dof_table
+
+  subroutine build_equation_terms(model, table, error)
+    !! The *EQUATION terms on physical DOFs; a DOF that its node does not carry
+    !! (no element or support gives it) is a deck error.
+    type(model_t), intent(in) :: model
+    type(dof_table_t), intent(inout) :: table
+    type(error_t), allocatable, intent(inout) :: error
+    integer :: ie, t, n
+    n = 0
+    if (allocated(model%equations)) n = size(model%equations)
+    allocate (table%equations(n))
+    do ie = 1, n
+       associate (e => model%equations(ie), te => table%equations(ie))
+         te%source = ie
+         allocate (te%p(size(e%coef)), te%a(size(e%coef)))
+         te%a = e%coef
+         do t = 1, size(e%coef)
+            te%p(t) = table%pdof(e%dof(t), table%vertex_offset(e%sub(t)) + e%node(t))
+            if (te%p(t) == 0) call add_error_line(error, EXIT_DECK, loc_text(model, e%loc)// &
+                 ': error: *EQUATION: node '//node_label(model, e%sub(t), e%node(t))//' has no DOF '// &
+                 itoa(e%dof(t))//' (no element or support of that node carries it)')
+         end do
+       end associate
+    end do
+  end subroutine build_equation_terms
 
   subroutine activate_elements(model, table, has)
     type(model_t), intent(in) :: model

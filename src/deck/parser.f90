@@ -37,7 +37,7 @@ module superjoin_deck_parser
 
   public :: parse_source, finish_parse, register_file
   public :: outside_step, check_params, param_index, get_param, get_name_param, field_count, fld, get_real, &
-       real_message, get_dof_range, get_stiffness, parse_ref, loc_string, target_sub
+       real_message, get_dof_range, get_stiffness, parse_ref, loc_string, target_sub, get_dof
     !! Card helpers, public only because the submodule superjoin_deck_parts calls
     !! them: gfortran 12 does not export private module procedures to submodules.
 
@@ -51,6 +51,8 @@ module superjoin_deck_parser
     !! Cards of parts, instances and joint studies (submodule superjoin_deck_parts).
   integer, parameter :: CARD_STATIC = 111, CARD_REQUEST = 112, CARD_SPRING_ELEMENT = 113, CARD_SPRING = 114
     !! CalculiX/Abaqus analysis cards (numbered apart from the model cards).
+  integer, parameter :: CARD_EQUATION = 121
+    !! Linear constraints (submodule superjoin_deck_equations).
   integer, parameter :: PROC_STATIC = 1
     !! Procedures of a step (st%step_procedure).
   integer, parameter :: STATIC_FIELDS = 4
@@ -126,6 +128,22 @@ module superjoin_deck_parser
        type(source_loc_t), intent(in) :: loc
        type(contact_b_t), intent(inout) :: c
      end subroutine contact_offset_param
+     module subroutine kw_equation(st, kw, loc)
+       !! *EQUATION: linear constraints between DOFs (Abaqus/CalculiX form).
+       type(deck_state_t), intent(inout) :: st
+       type(keyword_line_t), intent(in) :: kw
+       type(source_loc_t), intent(in) :: loc
+     end subroutine kw_equation
+     module subroutine data_equation(st, line, loc)
+       !! A data line of *EQUATION: a number of terms, or node, dof, coefficient triples.
+       type(deck_state_t), intent(inout) :: st
+       character(*), intent(in) :: line
+       type(source_loc_t), intent(in) :: loc
+     end subroutine data_equation
+     module subroutine end_equation_card(st)
+       !! End of an *EQUATION card: the last equation must have all its terms.
+       type(deck_state_t), intent(inout) :: st
+     end subroutine end_equation_card
      module subroutine kw_interface(st, kw, loc)
        !! *INTERFACE, NAME=j, MASTER=s1, SLAVE=s2, KN=kn, KT=kt[, TOL=t].
        type(deck_state_t), intent(inout) :: st
@@ -378,6 +396,8 @@ contains
        call kw_change_contact(st, kw, loc)
     case ('INTERFACE')
        call kw_interface(st, kw, loc)
+    case ('EQUATION')
+       call kw_equation(st, kw, loc)
     case default
        if (.not. refused_card(st, kw, loc, prev_mat)) call report_loc(st, loc, 'unknown keyword *'//clip(kw%keyword))
        st%card = CARD_SKIP
@@ -416,6 +436,8 @@ contains
           call report_loc(st, st%card_loc, st%card_name//' needs a data line')
           st%sections(st%card_item)%data_ok = .false.
        end if
+    case (CARD_EQUATION)
+       call end_equation_card(st)
     end select
     st%card = CARD_NONE
   end subroutine end_card
@@ -1144,6 +1166,8 @@ contains
        call data_change_contact(st, line, loc)
     case (CARD_INTERFACE)
        call data_interface(st, line, loc)
+    case (CARD_EQUATION)
+       call data_equation(st, line, loc)
     case (CARD_STATIC)
        call data_static(st, line, loc)
     case (CARD_SPRING_ELEMENT)

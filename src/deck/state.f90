@@ -123,6 +123,18 @@ module superjoin_deck_state
      type(source_loc_t) :: loc
   end type cline_b_t
 
+  type, public :: equation_b_t
+    !! One *EQUATION as read: the number of terms, then (node, dof, coefficient) terms.
+     integer :: nterm = 0                  !! terms announced
+     integer :: n = 0                      !! terms read
+     type(ref_t), allocatable :: node(:)
+     integer, allocatable :: dof(:)
+     real(wp), allocatable :: coef(:)
+     type(source_loc_t), allocatable :: term_loc(:)
+     type(source_loc_t) :: loc             !! the line with the number of terms
+     logical :: ok = .true.                !! every term was read
+  end type equation_b_t
+
   type, public :: support_b_t
     !! One data line of *SUPPORT or *BOUNDARY.
      type(ref_t) :: ref
@@ -251,6 +263,8 @@ module superjoin_deck_state
      type(cline_b_t), allocatable :: clines(:)
      integer :: nsupport = 0
      type(support_b_t), allocatable :: supports(:)
+     integer :: nequation = 0
+     type(equation_b_t), allocatable :: equations(:)   !! *EQUATION constraints as read
      integer :: nstep = 0
      type(step_b_t), allocatable :: steps(:)
      type(controls_t) :: controls

@@ -18,7 +18,7 @@ module superjoin_deck_validate
   private
 
   public :: build_model
-  public :: resolve_items, where, ref_text, resolve_sets
+  public :: resolve_items, where, ref_text, resolve_sets, resolve_sub
     !! Public only because the submodule superjoin_deck_assembly calls them:
     !! gfortran 12 does not export private module procedures to submodules.
 

@@ -160,6 +160,16 @@ module superjoin_model_types
      type(source_loc_t) :: loc
   end type support_t
 
+  type, public :: equation_t
+    !! One *EQUATION: sum_i coef(i) u(node(i), dof(i)) = 0; the first term's DOF is
+    !! the dependent one (eliminated).
+     integer, allocatable :: sub(:)
+     integer(ip), allocatable :: node(:)
+     integer, allocatable :: dof(:)
+     real(wp), allocatable :: coef(:)
+     type(source_loc_t) :: loc             !! the line with the number of terms
+  end type equation_t
+
   type, public :: cload_t
     !! A concentrated load on one DOF of one node.
      integer :: sub = 0
@@ -247,6 +257,7 @@ module superjoin_model_types
      character(:), allocatable :: vtk_path          !! *OUTPUT, VTK= joined to its deck file's directory, or unallocated
      type(string_t), allocatable :: parts(:)        !! *PART names; subs(i)%part indexes this list
      type(output_request_t), allocatable :: requests(:)  !! output request cards in order (empty: full output)
+     type(equation_t), allocatable :: equations(:)  !! *EQUATION constraints (unallocated or empty: none)
   end type model_t
 
   public :: find_node, find_elem, node_label, loc_text

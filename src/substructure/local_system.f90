@@ -55,6 +55,10 @@ contains
           if (p(c) > 0) bnd(p(c)) = .true.
        end do
     end do
+    ! The DOFs of *EQUATION constraints are eliminated in the reduced system.
+    do iu = 1, size(table%equations)
+       bnd(table%equations(iu)%p) = .true.
+    end do
   end subroutine boundary_dofs
 
   subroutine local_numbering(table, isub, bnd, pdof, ni)

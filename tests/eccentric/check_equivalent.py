@@ -19,6 +19,9 @@ Each pair is made from a verification deck of tests/decks by text substitution:
   condensed  --condense yes against no condensation (the master's rotations are
              boundary DOFs of its substructure)
   solvers    lapack, cholmod and umfpack
+  equation   the rigid arm written as three *EQUATIONs (equation_knee.deck)
+             against OFFSET=RIGID, and that deck condensed and under PENALTY
+             (equations are eliminated exactly under both formulations)
 """
 import csv
 import os
@@ -82,6 +85,11 @@ def main(argv):
                    '\n 3, 1, 6, 6, RIGID', '\n 3, 1, 6, 6, 2.0e6')
     pairs.append(('plain', soft, ('--formulation', 'transform'), soft, ('--formulation', 'penalty')))
     pairs.append(('condensed', crank, (), crank, ('--condense', 'yes')))
+    with open(os.path.join(src, 'decks', 'equation_knee.deck')) as f:
+        eqk = f.read()
+    pairs.append(('equation', crank, (), eqk, ()))
+    pairs.append(('equation condensed', eqk, (), eqk, ('--condense', 'yes')))
+    pairs.append(('equation penalty', eqk, (), eqk, ('--formulation', 'penalty')))
     for solver in ('lapack', 'cholmod', 'umfpack'):
         pairs.append(('solver ' + solver, stiff, ('--solver', 'lapack'), stiff, ('--solver', solver)))
     fails = 0

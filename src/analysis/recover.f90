@@ -421,7 +421,7 @@ contains
     type(dof_table_t), intent(in) :: table
     real(wp), intent(in) :: delta(:, :, :), rigid_force(:, :, :), f_phys(:, :)
     type(results_t), intent(inout) :: res
-    integer :: nstep, is, iu, k, ld, nr, isub
+    integer :: nstep, is, iu, k, ld, nr, isub, c
     real(wp) :: force
     type(reaction_t), allocatable :: reac(:)
     integer(i8) :: p
@@ -462,7 +462,7 @@ contains
                   nr = nr + 1
                   reac(nr)%sub = model%supports(un%src(k))%sub
                   reac(nr)%node = model%supports(un%src(k))%node
-                  reac(nr)%dof = block_dof(un%block, un%comp(k))
+                  reac(nr)%dof = block_dof(un%block, un%lcomp(k))   ! nodal system (*TRANSFORM) if any
                   reac(nr)%force = force
                end if
             end do
@@ -481,9 +481,22 @@ contains
                table%p_dof(p), f_phys(p, is))
        end do
        res%steps(is)%reaction = 0.0_wp
-       do k = 1, size(res%steps(is)%reactions)
-          associate (rc => res%steps(is)%reactions(k))
-            call add_resultant(res%steps(is)%reaction, model%subs(rc%sub)%x(:, rc%node), rc%dof, rc%force)
+       nr = 0
+       do iu = 1, table%nunit
+          associate (un => table%units(iu))
+            if (un%kind == UNIT_LINK) cycle
+            do k = 1, un%n
+               if (un%state(k) == LINK_NONE) cycle
+               nr = nr + 1
+               associate (rc => res%steps(is)%reactions(nr))
+                 ! Along the support's axis: qsᵀ e_k (the identity without *TRANSFORM).
+                 do c = 1, un%n
+                    if (un%qs(k, c) == 0.0_wp) cycle
+                    call add_resultant(res%steps(is)%reaction, model%subs(rc%sub)%x(:, rc%node), &
+                         block_dof(un%block, un%comp(c)), un%qs(k, c)*rc%force)
+                 end do
+               end associate
+            end do
           end associate
        end do
     end do

@@ -115,7 +115,7 @@ contains
     call activate_supports(model, table, has)
 
     call build_link_units(model, table, has, error)
-    call build_support_units(model, table, error)
+    call build_support_units(model, table, has, error)
     if (allocated(error)) return
 
     ! Unit components are active on both of their nodes.
@@ -425,11 +425,13 @@ contains
     end do
   end subroutine link_unit
 
-  subroutine build_support_units(model, table, error)
+  subroutine build_support_units(model, table, has, error)
     !! Merge the supports per node and DOF (finite g add up, RIGID wins, two
-    !! RIGID values must agree) into one unit per node and block.
+    !! RIGID values must agree) into one unit per node and block. The DOFs of a
+    !! node with a nodal system (*TRANSFORM) are in that system.
     type(model_t), intent(in) :: model
     type(dof_table_t), intent(inout) :: table
+    logical, intent(in) :: has(:, :)
     type(error_t), allocatable, intent(inout) :: error
     integer(i8), allocatable :: key(:)
     integer, allocatable :: order(:)
@@ -461,7 +463,7 @@ contains
          b = (sp%dof - 1)/3 + 1
          c = sp%dof - (b - 1)*3
          if (v /= vprev .or. b /= bprev) then
-            if (u%n > 0) call push_unit(table, u)
+            if (u%n > 0) call push_support_unit(model, table, has, u, error)
             u = unit_t()
             u%block = b
             u%kind = UNIT_SUPPORT
@@ -501,8 +503,71 @@ contains
          end select
        end associate
     end do
-    if (u%n > 0) call push_unit(table, u)
+    if (u%n > 0) call push_support_unit(model, table, has, u, error)
   end subroutine build_support_units
+
+  subroutine push_support_unit(model, table, has, u, error)
+    !! Push a support unit; on a node with a nodal system its components are
+    !! local axes: the unit becomes delta = Q u over the global components they
+    !! couple (an oblique support, free local components as free delta).
+    type(model_t), intent(in) :: model
+    type(dof_table_t), intent(inout) :: table
+    logical, intent(in) :: has(:, :)
+    type(unit_t), intent(in) :: u
+    type(error_t), allocatable, intent(inout) :: error
+    type(unit_t) :: w
+    integer :: f, isub, i, k, state(3), src(3)
+    real(wp) :: g(3), value(3)
+    logical :: ignored
+    integer(ip) :: node
+
+    isub = 1
+    do while (u%vb > table%vertex_offset(isub + 1))
+       isub = isub + 1
+    end do
+    node = int(u%vb - table%vertex_offset(isub), ip)
+    f = 0
+    if (allocated(model%frames)) then
+       do i = 1, size(model%frames)
+          if (model%frames(i)%sub == isub .and. model%frames(i)%node == node) f = i
+       end do
+    end if
+    if (f == 0) then
+       call push_unit(table, u)
+       return
+    end if
+    state = LINK_NONE
+    g = 0.0_wp
+    value = 0.0_wp
+    src = 0
+    do i = 1, u%n
+       state(u%comp(i)) = u%state(i)
+       g(u%comp(i)) = u%g(i)
+       value(u%comp(i)) = u%value(i)
+       src(u%comp(i)) = u%src(i)
+    end do
+    ignored = .false.
+    call link_unit(state, g, model%frames(f)%q, has((u%block - 1)*3 + 1:u%block*3, u%vb), w, ignored)
+    if (ignored) then
+       call add_error_line(error, EXIT_DECK, loc_text(model, model%supports(u%source)%loc)// &
+            ': error: node '//node_label(model, isub, node)//': its nodal system (*TRANSFORM at '// &
+            loc_text(model, model%frames(f)%loc)//') turns a supported DOF onto a global DOF the node '// &
+            'does not carry')
+       return
+    end if
+    if (w%n == 0) return
+    w%block = u%block
+    w%kind = UNIT_SUPPORT
+    w%source = u%source
+    w%va = GROUND
+    w%vb = u%vb
+    do k = 1, w%n
+       w%value(k) = value(w%lcomp(k))
+       w%src(k) = src(w%lcomp(k))
+       if (w%src(k) == 0) w%src(k) = u%source
+    end do
+    call push_unit(table, w)
+  end subroutine push_support_unit
 
   subroutine push_unit(table, u)
     type(dof_table_t), intent(inout) :: table

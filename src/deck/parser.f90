@@ -51,8 +51,8 @@ module superjoin_deck_parser
     !! Cards of parts, instances and joint studies (submodule superjoin_deck_parts).
   integer, parameter :: CARD_STATIC = 111, CARD_REQUEST = 112, CARD_SPRING_ELEMENT = 113, CARD_SPRING = 114
     !! CalculiX/Abaqus analysis cards (numbered apart from the model cards).
-  integer, parameter :: CARD_EQUATION = 121
-    !! Linear constraints (submodule superjoin_deck_equations).
+  integer, parameter :: CARD_EQUATION = 121, CARD_TRANSFORM = 122
+    !! Linear constraints and nodal systems (submodules superjoin_deck_equations, _transforms).
   integer, parameter :: PROC_STATIC = 1
     !! Procedures of a step (st%step_procedure).
   integer, parameter :: STATIC_FIELDS = 4
@@ -144,6 +144,18 @@ module superjoin_deck_parser
        !! End of an *EQUATION card: the last equation must have all its terms.
        type(deck_state_t), intent(inout) :: st
      end subroutine end_equation_card
+     module subroutine kw_transform(st, kw, loc)
+       !! *TRANSFORM, NSET=n[, TYPE=R|C]: nodal systems (CalculiX).
+       type(deck_state_t), intent(inout) :: st
+       type(keyword_line_t), intent(in) :: kw
+       type(source_loc_t), intent(in) :: loc
+     end subroutine kw_transform
+     module subroutine data_transform(st, line, loc)
+       !! The data line of *TRANSFORM: ax, ay, az, bx, by, bz.
+       type(deck_state_t), intent(inout) :: st
+       character(*), intent(in) :: line
+       type(source_loc_t), intent(in) :: loc
+     end subroutine data_transform
      module subroutine kw_interface(st, kw, loc)
        !! *INTERFACE, NAME=j, MASTER=s1, SLAVE=s2, KN=kn, KT=kt[, TOL=t].
        type(deck_state_t), intent(inout) :: st
@@ -398,6 +410,8 @@ contains
        call kw_interface(st, kw, loc)
     case ('EQUATION')
        call kw_equation(st, kw, loc)
+    case ('TRANSFORM')
+       call kw_transform(st, kw, loc)
     case default
        if (.not. refused_card(st, kw, loc, prev_mat)) call report_loc(st, loc, 'unknown keyword *'//clip(kw%keyword))
        st%card = CARD_SKIP
@@ -427,7 +441,7 @@ contains
     !! Checks when a card ends (next keyword or end of input): data it needed.
     type(deck_state_t), intent(inout) :: st
     select case (st%card)
-    case (CARD_ELASTIC, CARD_ORIENTATION, CARD_DENSITY, CARD_TSHEAR)
+    case (CARD_ELASTIC, CARD_ORIENTATION, CARD_DENSITY, CARD_TSHEAR, CARD_TRANSFORM)
        if (st%card_ndata == 0) call report_loc(st, st%card_loc, st%card_name//' needs a data line')
     case (CARD_SECTION)
        ! *SOLID SECTION of plane elements may omit the thickness (1, as Abaqus);
@@ -1168,6 +1182,8 @@ contains
        call data_interface(st, line, loc)
     case (CARD_EQUATION)
        call data_equation(st, line, loc)
+    case (CARD_TRANSFORM)
+       call data_transform(st, line, loc)
     case (CARD_STATIC)
        call data_static(st, line, loc)
     case (CARD_SPRING_ELEMENT)

@@ -135,6 +135,15 @@ module superjoin_deck_state
      logical :: ok = .true.                !! every term was read
   end type equation_b_t
 
+  type, public :: transform_b_t
+    !! A *TRANSFORM card: nodal systems of a node set.
+     type(ref_t) :: nset
+     logical :: cylindrical = .false.      !! TYPE=C (else TYPE=R)
+     real(wp) :: a(3) = 0.0_wp, b(3) = 0.0_wp
+     logical :: has_data = .false.
+     type(source_loc_t) :: loc
+  end type transform_b_t
+
   type, public :: support_b_t
     !! One data line of *SUPPORT or *BOUNDARY.
      type(ref_t) :: ref
@@ -263,6 +272,8 @@ module superjoin_deck_state
      type(cline_b_t), allocatable :: clines(:)
      integer :: nsupport = 0
      type(support_b_t), allocatable :: supports(:)
+     integer :: ntransform = 0
+     type(transform_b_t), allocatable :: transforms(:) !! *TRANSFORM cards as read
      integer :: nequation = 0
      type(equation_b_t), allocatable :: equations(:)   !! *EQUATION constraints as read
      integer :: nstep = 0

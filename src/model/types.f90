@@ -170,6 +170,15 @@ module superjoin_model_types
      type(source_loc_t) :: loc             !! the line with the number of terms
   end type equation_t
 
+  type, public :: node_frame_t
+    !! A nodal system (*TRANSFORM): rows of q are the local axes of the node;
+    !! its *BOUNDARY/*SUPPORT DOFs and *CLOAD components are in these axes.
+     integer :: sub = 0
+     integer(ip) :: node = 0
+     real(wp) :: q(3, 3) = 0.0_wp
+     type(source_loc_t) :: loc             !! the *TRANSFORM card
+  end type node_frame_t
+
   type, public :: cload_t
     !! A concentrated load on one DOF of one node.
      integer :: sub = 0
@@ -258,6 +267,7 @@ module superjoin_model_types
      type(string_t), allocatable :: parts(:)        !! *PART names; subs(i)%part indexes this list
      type(output_request_t), allocatable :: requests(:)  !! output request cards in order (empty: full output)
      type(equation_t), allocatable :: equations(:)  !! *EQUATION constraints (unallocated or empty: none)
+     type(node_frame_t), allocatable :: frames(:)   !! *TRANSFORM nodal systems (unallocated or empty: none)
   end type model_t
 
   public :: find_node, find_elem, node_label, loc_text

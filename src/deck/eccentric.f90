@@ -27,6 +27,7 @@ contains
     real(wp) :: r(3)
     integer :: ic, il, isub, c, d
     if (.not. any(model%contacts%rigid_offset)) return
+    if (allocated(st%error)) return   ! one error per mistake: the model may be incomplete
     do ic = 1, size(model%contacts)
        if (.not. model%contacts(ic)%rigid_offset) cycle
        isub = model%contacts(ic)%master_sub
@@ -75,6 +76,7 @@ contains
          mask = element_dof_mask(s%elem_type(e))
          if (.not. any(mask(ROT_FIRST:ROT_LAST))) cycle
          do a = 1, ELEMENT_NODE_COUNT(s%elem_type(e))
+            if (s%elem_nodes(a, e) < 1 .or. s%elem_nodes(a, e) > s%nnode) cycle
             rot(:, s%elem_nodes(a, e)) = rot(:, s%elem_nodes(a, e)) .or. mask(ROT_FIRST:ROT_LAST)
          end do
       end do

@@ -29,6 +29,7 @@ contains
        associate (eb => st%equations(k))
          if (.not. eb%ok) cycle
          n = n + 1
+         list(n) = equation_t()
          allocate (list(n)%sub(eb%nterm), list(n)%node(eb%nterm), list(n)%dof(eb%nterm), list(n)%coef(eb%nterm))
          list(n)%loc = eb%loc
          good = .true.

@@ -5,7 +5,7 @@ module superjoin_deck_frame_build
   !! global axes. Supports keep their local DOFs: the DOF table builds them as
   !! oblique contact units to the ground (superjoin_assembly_dofs).
   use superjoin_kinds, only: wp, ip
-  use superjoin_model_types, only: model_t, node_frame_t, cload_t, node_label, loc_text
+  use superjoin_model_types, only: model_t, node_frame_t, cload_t, node_label
   use superjoin_deck_state, only: deck_state_t, report_loc, file_of
   use superjoin_deck_validate, only: resolve_items, resolve_sub
   use superjoin_utils_strings, only: itoa
@@ -29,7 +29,7 @@ contains
     integer(ip), allocatable :: nodes(:)
     integer :: k, isub, n, j
     integer(ip) :: i
-    logical :: ok
+    logical :: ok, twice
     real(wp) :: q(3, 3)
 
     allocate (list(8))
@@ -51,15 +51,16 @@ contains
             else
                q = rect_frame(t%a, t%b)
             end if
+            twice = .false.
             do j = 1, n
                if (list(j)%sub == isub .and. list(j)%node == nodes(i)) then
                   call report_loc(st, t%loc, '*TRANSFORM: node '//node_label(model, isub, nodes(i))// &
                        ' already has a nodal system (from '//file_of(st, list(j)%loc%file)//':'// &
                        itoa(list(j)%loc%line)//')')
-                  ok = .false.
+                  twice = .true.
                end if
             end do
-            if (.not. ok) cycle
+            if (twice) cycle
             if (n == size(list)) then
                allocate (tmp(2*n))
                tmp(1:n) = list(1:n)

@@ -43,7 +43,8 @@ contains
             do c = 1, 3
                if (.not. named(c)) cycle
                do d = 1, 3
-                  if (c /= d .and. r(6 - c - d) /= 0.0_wp) need(d) = .true.
+                  if (c == d) cycle
+                  if (r(6 - c - d) /= 0.0_wp) need(d) = .true.   ! the third axis
                end do
             end do
             if (.not. any(rot(:, lk%master_node))) then

@@ -462,7 +462,7 @@ contains
     type(dof_table_t), intent(in) :: table
     type(transform_t), intent(inout) :: tr
     type(error_t), allocatable, intent(inout) :: error
-    integer :: ie, t, best, i
+    integer :: ie, best, i
     integer(i8) :: p1, jstar, j
     integer(i8), allocatable :: col(:)
     real(wp), allocatable :: coef(:)

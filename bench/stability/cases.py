@@ -124,15 +124,29 @@ def hinge(value):
 def frame3d(value):
     """3D frame: column (Z), girder (X), arm (Y) of B33, two oblique joints with
     g = value x (3EIz/L^3, EIz/L) x (1, 2, 0.5) on local DOFs 1-3 and 4-6."""
+    return _frame3d(value, [[0.0, 0.0, 0.0], [0.0, 0.0, 3.0], [4.0, 0.0, 3.0]],
+                    [[0.0, 0.0, 3.0], [4.0, 0.0, 3.0], [4.0, 2.0, 3.0]], 'frame3d')
+
+
+def eccentric(value):
+    """The 3D frame of frame3d with eccentric joints (*CONTACT, OFFSET=RIGID): the
+    girder starts 0.2, 0.3, 0.4 m away from the column top and the arm 0.5, 0.1,
+    -0.3 m away from the girder's end; the slave hangs on a rigid arm from the
+    master, the joint's springs sit at the slave end (exact.joint_segment there)."""
+    return _frame3d(value, [[0.0, 0.0, 0.0], [0.2, 0.3, 3.4], [4.7, 0.4, 3.1]],
+                    [[0.0, 0.0, 3.0], [4.2, 0.3, 3.4], [4.7, 2.4, 3.1]], 'eccentric')
+
+
+def _frame3d(value, starts, ends, template):
     e, nu, a, iy, iz, j = 2.0e11, 0.3, 1.0e-2, 1.0e-4, 2.0e-4, 1.5e-4
     lg = 4.0
     kt, kr = 3 * e * iz / lg**3, e * iz / lg
     mult = [1.0, 2.0, 0.5]
     gt = [None if value == RIGID else scaled(value, kt) * c for c in mult]
     gr = [None if value == RIGID else scaled(value, kr) * c for c in mult]
-    members = [('COL', [0.0, 0.0, 0.0], [0.0, 0.0, 3.0], 6),
-               ('GIRD', [0.0, 0.0, 3.0], [lg, 0.0, 3.0], 8),
-               ('ARM', [lg, 0.0, 3.0], [lg, 2.0, 3.0], 4)]
+    members = [('COL', starts[0], ends[0], 6),
+               ('GIRD', starts[1], ends[1], 8),
+               ('ARM', starts[2], ends[2], 4)]
     parts = []
     segs = []
     f1 = exact.frame_axes([1.0, 1.0, 0.0], [0.0, 1.0, 1.0])
@@ -160,7 +174,7 @@ def frame3d(value):
     loads = '\n'.join(' ARM.5, %d, %r' % (d + 1, v) for d, v in enumerate(load_f + load_m) if v != 0.0)
     subst = dict(factor=value, E=repr(e), nu=repr(nu), parts='\n'.join(parts), joint1=joint(7), joint2=joint(9),
                  loads=loads)
-    return Case('frame3d', subst, ('ARM', 5), ex)
+    return Case(template, subst, ('ARM', 5), ex)
 
 
 def panel(value, n=8):
@@ -285,6 +299,7 @@ G_VALUES = ['0', '1e-6', '1e-3', '1', '1e3', '1e6', '1e8', '1e10', '1e12', '1e14
 CASES = {
     'cantilever': (cantilever, G_VALUES),
     'frame3d': (frame3d, G_VALUES),
+    'eccentric': (eccentric, ['0'] + G_VALUES[G_VALUES.index('1'):]),
     'panel': (panel, G_VALUES),
     'thickjoint': (thickjoint, G_VALUES),
     'timoshenko': (timoshenko, G_VALUES),

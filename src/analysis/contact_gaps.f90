@@ -5,6 +5,7 @@ module superjoin_analysis_contact_gaps
   !! the other part); it is warned, once per contact card with a count and the
   !! farthest pair. The tolerance is relative to the model's size (the diagonal
   !! of the box around all nodes), *CONTROLS, POSITION TOLERANCE= sets it.
+  !! Contacts with OFFSET=RIGID join distant nodes on purpose and are exempt.
   use superjoin_kinds, only: wp, i8, ip
   use superjoin_model_types, only: model_t, node_label, string_t
   use superjoin_utils_strings, only: itoa
@@ -39,6 +40,7 @@ contains
     tol = model%controls%position_tolerance*size_model
     do ic = 1, size(model%contacts)
        if (model%contacts(ic)%remote) cycle
+       if (model%contacts(ic)%rigid_offset) cycle   ! eccentric on purpose: the arm is the distance
        nfar = 0
        npair = 0
        far = -1.0_wp

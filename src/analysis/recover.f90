@@ -12,7 +12,8 @@ module superjoin_analysis_recover
        NDOF_NODE, loc_text
   use superjoin_elements, only: element_end_forces, element_nodal_forces, &
        is_plate_type, shell_forces
-  use superjoin_assembly_dofs, only: dof_table_t, NBLOCK, GROUND, UNIT_LINK, UNIT_SUPPORT, block_dof
+  use superjoin_assembly_dofs, only: dof_table_t, unit_t, NBLOCK, GROUND, UNIT_LINK, UNIT_SUPPORT, block_dof, &
+       unit_terms, arm_matrix, MAX_UNIT_TERMS
   use superjoin_assembly_forest, only: forest_t
   use superjoin_assembly_transform, only: transform_t, form_spring_t, constraint_t, ROLE_TREE, CONS_ELIMINATED
   use superjoin_assembly_assemble, only: element_pdofs, distributed_load
@@ -49,6 +50,7 @@ contains
     real(wp), intent(in), optional :: ku_parts(:, :)
     real(wp), allocatable :: r(:, :), delta(:, :, :), rclose(:, :), acc(:, :)
     real(wp), allocatable :: rigid_force(:, :, :)  ! (3, nunit, nstep): rigid force on child / λ, local
+    real(wp), allocatable :: req(:, :)             ! (np, nstep): *EQUATION forces on the structure
     integer :: nstep, is, stat
 
     nstep = size(q, 2)
@@ -70,13 +72,33 @@ contains
 
     rigid_force = 0.0_wp
     rclose = 0.0_wp
-    call closer_forces(table, tr, r, rigid_force, rclose)
+    call closer_forces(table, tr, r, rigid_force, rclose, req)
     r = r - rclose     ! in place: no temporary of np values per step
     do is = 1, nstep
        call tree_forces(table, forest, r(:, is), acc, rigid_force(:, :, is))
     end do
     call link_and_support_results(model, table, delta, rigid_force, f_phys, res)
+    if (allocated(req)) call add_equation_resultants(model, table, req, res)
   end subroutine recover_results
+
+  subroutine add_equation_resultants(model, table, req, res)
+    !! *EQUATION forces on the structure join the reactions of the equilibrium
+    !! check (an equation whose coefficients do not cancel per direction, a
+    !! lever u_a = 2 u_b, acts partly as a support).
+    type(model_t), intent(in) :: model
+    type(dof_table_t), intent(in) :: table
+    real(wp), intent(in) :: req(:, :)
+    type(results_t), intent(inout) :: res
+    integer(i8) :: p
+    integer :: is
+    do is = 1, size(req, 2)
+       do p = 1, table%np
+          if (req(p, is) == 0.0_wp) cycle
+          call add_resultant(res%fields%steps(is)%reaction, model%subs(table%p_sub(p))%x(:, table%p_node(p)), &
+               table%p_dof(p), req(p, is))
+       end do
+    end do
+  end subroutine add_equation_resultants
 
   subroutine store_displacements(table, u, res, error)
     !! Displacements per vertex (global axes) and which DOFs each vertex has.
@@ -240,13 +262,12 @@ contains
     type(transform_t), intent(in) :: tr
     real(wp), intent(in) :: q(:, :), u(:, :)
     real(wp), allocatable, intent(out) :: delta(:, :, :)
-    integer :: iu, k, c, i
-    integer(i8) :: pa, pb
-    real(wp), allocatable :: ua(:), ub(:)
+    integer :: iu, k, c, i, nt
+    integer(i8) :: pt(MAX_UNIT_TERMS)
+    real(wp) :: wt(MAX_UNIT_TERMS)
     type(form_spring_t) :: fs
 
     allocate (delta(3, table%nunit, size(q, 2)), source=0.0_wp)
-    allocate (ua(size(q, 2)), ub(size(q, 2)))
     do iu = 1, table%nunit
        associate (un => table%units(iu))
          if (tr%unit_role(iu) == ROLE_TREE) then
@@ -259,15 +280,9 @@ contains
             end do
          else
             do k = 1, un%n
-               do c = 1, un%n
-                  ua = 0.0_wp
-                  if (un%va /= GROUND) then
-                     pa = table%pdof(block_dof(un%block, un%comp(c)), un%va)
-                     ua = u(pa, :)
-                  end if
-                  pb = table%pdof(block_dof(un%block, un%comp(c)), un%vb)
-                  ub = u(pb, :)
-                  delta(k, iu, :) = delta(k, iu, :) + un%qs(k, c)*(ub - ua)
+               call unit_terms(table, un, k, pt, wt, nt)
+               do i = 1, nt
+                  delta(k, iu, :) = delta(k, iu, :) + wt(i)*u(pt(i), :)
                end do
             end do
          end if
@@ -290,39 +305,53 @@ contains
     type(dof_table_t), intent(in) :: table
     real(wp), intent(in) :: delta(:, :, :)
     real(wp), intent(inout) :: r(:, :)
-    integer :: iu, k, c
-    integer(i8) :: pa, pb
+    integer :: iu, k, i, nt
+    integer(i8) :: pt(MAX_UNIT_TERMS)
+    real(wp) :: wt(MAX_UNIT_TERMS)
     do iu = 1, table%nunit
        associate (un => table%units(iu))
          do k = 1, un%n
             if (un%state(k) /= LINK_FINITE) cycle
-            do c = 1, un%n
-               pb = table%pdof(block_dof(un%block, un%comp(c)), un%vb)
-               r(pb, :) = r(pb, :) + un%qs(k, c)*un%g(k)*delta(k, iu, :)
-               if (un%va /= GROUND) then
-                  pa = table%pdof(block_dof(un%block, un%comp(c)), un%va)
-                  r(pa, :) = r(pa, :) - un%qs(k, c)*un%g(k)*delta(k, iu, :)
-               end if
+            call unit_terms(table, un, k, pt, wt, nt)
+            do i = 1, nt
+               r(pt(i), :) = r(pt(i), :) + wt(i)*un%g(k)*delta(k, iu, :)
             end do
          end do
        end associate
     end do
   end subroutine add_spring_forces
 
-  subroutine closer_forces(table, tr, r, rigid_force, rclose)
+  subroutine closer_forces(table, tr, r, rigid_force, rclose, req)
     !! Force of each eliminated loop constraint, λ = -(Σ T(p,j*) r_p) / a_j*,
-    !! stored as the force on the master (local) and as nodal forces rclose.
+    !! stored as the force on the master (local) and as nodal forces rclose;
+    !! those of *EQUATION constraints also in req (allocated when there are any).
     type(dof_table_t), intent(in) :: table
     type(transform_t), intent(in) :: tr
     real(wp), intent(in) :: r(:, :)
     real(wp), intent(inout) :: rigid_force(:, :, :), rclose(:, :)
-    integer :: i, c, is
-    integer(i8) :: pa, pb
+    real(wp), allocatable, intent(inout) :: req(:, :)
+    integer :: i, c, is, nt
+    integer(i8) :: pt(MAX_UNIT_TERMS)
+    real(wp) :: wt(MAX_UNIT_TERMS)
     real(wp) :: lambda, e
     type(constraint_t) :: cs
     do i = 1, tr%nconstraints()
        cs = tr%constraint(i)
          if (cs%status /= CONS_ELIMINATED) cycle
+         if (cs%equation > 0) then
+            ! *EQUATION sum a_i u_i = 0: forces -λ a_i on its DOFs.
+            associate (te => table%equations(cs%equation))
+              do is = 1, size(r, 2)
+                 lambda = -sum(cs%fp_c*r(cs%fp_p, is))/cs%pivot
+                 if (.not. allocated(req)) allocate (req(size(r, 1), size(r, 2)), source=0.0_wp)
+                 do c = 1, size(te%p)
+                    rclose(te%p(c), is) = rclose(te%p(c), is) - lambda*te%a(c)
+                    req(te%p(c), is) = req(te%p(c), is) - lambda*te%a(c)
+                 end do
+              end do
+            end associate
+            cycle
+         end if
          associate (un => table%units(cs%unit))
            do is = 1, size(r, 2)
               e = sum(cs%fp_c*r(cs%fp_p, is))
@@ -333,13 +362,9 @@ contains
               else
                  rigid_force(cs%k, cs%unit, is) = lambda
               end if
-              do c = 1, un%n
-                 pb = table%pdof(block_dof(un%block, un%comp(c)), un%vb)
-                 rclose(pb, is) = rclose(pb, is) - lambda*un%qs(cs%k, c)
-                 if (un%va /= GROUND) then
-                    pa = table%pdof(block_dof(un%block, un%comp(c)), un%va)
-                    rclose(pa, is) = rclose(pa, is) + lambda*un%qs(cs%k, c)
-                 end if
+              call unit_terms(table, un, cs%k, pt, wt, nt)
+              do c = 1, nt
+                 rclose(pt(c), is) = rclose(pt(c), is) - lambda*wt(c)
               end do
            end do
          end associate
@@ -357,7 +382,11 @@ contains
     integer :: b, c, k, pu
     integer(i8) :: io, v, w, p
     real(wp) :: fk
+    real(wp), allocatable :: mom(:, :)
 
+    ! Moments that eccentric (OFFSET=RIGID) translations put on their master's
+    ! rotations: the translation block comes first and fills them.
+    allocate (mom(3, 0:table%nvertex), source=0.0_wp)
     do b = 1, NBLOCK
        acc = 0.0_wp
        do v = 1, table%nvertex
@@ -366,6 +395,7 @@ contains
              if (p > 0) acc(c, v) = rt(p)
           end do
        end do
+       if (b == 2) acc = acc + mom
        do io = forest%norder(b), 1, -1
           v = forest%order(b, io)
           pu = forest%parent_unit(b, v)
@@ -376,6 +406,7 @@ contains
                w = un%va
             end if
             acc(:, w) = acc(:, w) + acc(:, v)
+            if (un%eccentric) call arm_moment(un, acc(:, v), forest%child_is_a(pu), mom(:, un%va))
             do k = 1, un%n
                if (un%state(k) /= LINK_RIGID) cycle
                fk = 0.0_wp
@@ -397,13 +428,32 @@ contains
     end do
   end subroutine tree_forces
 
+  pure subroutine arm_moment(un, f, child_is_master, m)
+    !! Moment the subtree force f (translations) of an eccentric tree unit puts on
+    !! the master's rotations: u_child = u_parent ± θ_master × r gives ±(r × f)
+    !! over the unit's components (+ when the child is the slave).
+    type(unit_t), intent(in) :: un
+    real(wp), intent(in) :: f(3)
+    logical, intent(in) :: child_is_master
+    real(wp), intent(inout) :: m(3)
+    real(wp) :: a(3, 3), sgn
+    integer :: c, d
+    a = arm_matrix(un%arm)
+    sgn = merge(-1.0_wp, 1.0_wp, child_is_master)
+    do d = 1, 3
+       do c = 1, un%n
+          m(d) = m(d) + sgn*a(un%comp(c), d)*f(un%comp(c))
+       end do
+    end do
+  end subroutine arm_moment
+
   subroutine link_and_support_results(model, table, delta, rigid_force, f_phys, res)
     !! Contact Δ and F per link (local axes), reactions, resultants.
     type(model_t), intent(in) :: model
     type(dof_table_t), intent(in) :: table
     real(wp), intent(in) :: delta(:, :, :), rigid_force(:, :, :), f_phys(:, :)
     type(results_t), intent(inout) :: res
-    integer :: nstep, is, iu, k, ld, nr, isub
+    integer :: nstep, is, iu, k, ld, nr, isub, c
     real(wp) :: force
     type(reaction_t), allocatable :: reac(:)
     integer(i8) :: p
@@ -444,7 +494,7 @@ contains
                   nr = nr + 1
                   reac(nr)%sub = model%supports(un%src(k))%sub
                   reac(nr)%node = model%supports(un%src(k))%node
-                  reac(nr)%dof = block_dof(un%block, un%comp(k))
+                  reac(nr)%dof = block_dof(un%block, un%lcomp(k))   ! nodal system (*TRANSFORM) if any
                   reac(nr)%force = force
                end if
             end do
@@ -463,9 +513,22 @@ contains
                table%p_dof(p), f_phys(p, is))
        end do
        res%fields%steps(is)%reaction = 0.0_wp
-       do k = 1, size(res%fields%steps(is)%reactions)
-          associate (rc => res%fields%steps(is)%reactions(k))
-            call add_resultant(res%fields%steps(is)%reaction, model%subs(rc%sub)%x(:, rc%node), rc%dof, rc%force)
+       nr = 0
+       do iu = 1, table%nunit
+          associate (un => table%units(iu))
+            if (un%kind == UNIT_LINK) cycle
+            do k = 1, un%n
+               if (un%state(k) == LINK_NONE) cycle
+               nr = nr + 1
+               associate (rc => res%fields%steps(is)%reactions(nr))
+                 ! Along the support's axis: qsᵀ e_k (the identity without *TRANSFORM).
+                 do c = 1, un%n
+                    if (un%qs(k, c) == 0.0_wp) cycle
+                    call add_resultant(res%fields%steps(is)%reaction, model%subs(rc%sub)%x(:, rc%node), &
+                         block_dof(un%block, un%comp(c)), un%qs(k, c)*rc%force)
+                 end do
+               end associate
+            end do
           end associate
        end do
     end do

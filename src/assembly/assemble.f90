@@ -7,7 +7,7 @@ module superjoin_assembly_assemble
   use superjoin_model_types, only: model_t, dload_t, ELEMENT_NODE_COUNT, LINK_FINITE, DLOAD_GRAV, loc_text
   use superjoin_elements, only: element_dof_mask, element_stiffness, element_distributed_load, &
        element_gravity_load
-  use superjoin_assembly_dofs, only: dof_table_t, GROUND, block_dof
+  use superjoin_assembly_dofs, only: dof_table_t, GROUND, block_dof, unit_dofs, unit_terms, MAX_UNIT_TERMS
   use superjoin_assembly_transform, only: transform_t, form_spring_t, ROLE_PLAIN
   use superjoin_solvers_sparse, only: sparse_sym_t
   use superjoin_solvers_pattern, only: build_pattern, find_entry, items_of_columns
@@ -65,57 +65,40 @@ contains
   end subroutine element_pdofs
 
   subroutine unit_pdofs(table, iu, pd, n)
-    !! Physical DOFs of a plain unit: side a components (unless ground), then side b.
+    !! Physical DOFs of a unit assembled in plain form: side a's components, side
+    !! b's, then side a's rotations for an eccentric unit (OFFSET=RIGID).
     type(dof_table_t), intent(in) :: table
     integer, intent(in) :: iu
     integer(i8), intent(out) :: pd(:)
     integer, intent(out) :: n
-    integer :: c
-    associate (u => table%units(iu))
-      n = 0
-      if (u%va /= GROUND) then
-         do c = 1, u%n
-            n = n + 1
-            pd(n) = table%pdof(block_dof(u%block, u%comp(c)), u%va)
-         end do
-      end if
-      do c = 1, u%n
-         n = n + 1
-         pd(n) = table%pdof(block_dof(u%block, u%comp(c)), u%vb)
-      end do
-    end associate
+    integer(i8) :: p(MAX_UNIT_TERMS)
+    call unit_dofs(table, table%units(iu), p, n)
+    pd(1:n) = p(1:n)
   end subroutine unit_pdofs
 
   subroutine unit_plain_stiffness(table, iu, ke, n)
     !! Plain stiffness of a unit's finite components over unit_pdofs ordering:
-    !! S = qsᵀ G qs, [S -S; -S S] (or S alone against the ground).
+    !! Σ_k g_k w_k w_kᵀ with δ_k = w_kᵀ u (S = qsᵀ G qs, [S -S; -S S], or S
+    !! alone against the ground, for a concentric unit).
     type(dof_table_t), intent(in) :: table
     integer, intent(in) :: iu
     real(wp), intent(out) :: ke(:, :)
     integer, intent(out) :: n
-    real(wp) :: s(3, 3)
-    integer :: i, j, k, m
+    integer(i8) :: p(MAX_UNIT_TERMS)
+    real(wp) :: w(MAX_UNIT_TERMS)
+    integer :: i, j, k
     associate (u => table%units(iu))
-      m = u%n
-      s = 0.0_wp
-      do k = 1, m
+      call unit_dofs(table, u, p, n)
+      ke(1:n, 1:n) = 0.0_wp
+      do k = 1, u%n
          if (u%state(k) /= LINK_FINITE) cycle
-         do j = 1, m
-            do i = 1, m
-               s(i, j) = s(i, j) + u%qs(k, i)*u%g(k)*u%qs(k, j)
+         call unit_terms(table, u, k, p, w, n)
+         do j = 1, n
+            do i = 1, n
+               ke(i, j) = ke(i, j) + w(i)*u%g(k)*w(j)
             end do
          end do
       end do
-      if (u%va == GROUND) then
-         n = m
-         ke(1:m, 1:m) = s(1:m, 1:m)
-      else
-         n = 2*m
-         ke(1:m, 1:m) = s(1:m, 1:m)
-         ke(1:m, m + 1:n) = -s(1:m, 1:m)
-         ke(m + 1:n, 1:m) = -s(1:m, 1:m)
-         ke(m + 1:n, m + 1:n) = s(1:m, 1:m)
-      end if
     end associate
   end subroutine unit_plain_stiffness
 
@@ -281,10 +264,10 @@ contains
        it = it + 1
        call tr%scatter_dense(plan%supers(i)%pdof, plan%supers(i)%k, k, f_u0)
     end do
-    if (.not. allocated(ke)) allocate (ke(6, 6))
-    if (size(ke, 1) < 6) then
+    if (.not. allocated(ke)) allocate (ke(MAX_UNIT_TERMS, MAX_UNIT_TERMS))
+    if (size(ke, 1) < MAX_UNIT_TERMS .or. size(ke, 2) < MAX_UNIT_TERMS) then
        deallocate (ke)
-       allocate (ke(6, 6))
+       allocate (ke(MAX_UNIT_TERMS, MAX_UNIT_TERMS))
     end if
     do iu = 1, table%nunit
        if (tr%unit_role(iu) /= ROLE_PLAIN) cycle

@@ -40,7 +40,16 @@ module superjoin_assembly_dofs
      real(wp) :: g(BLOCK_SIZE) = 0.0_wp
      real(wp) :: value(BLOCK_SIZE) = 0.0_wp  !! prescribed delta of rigid components
      integer :: src(BLOCK_SIZE) = 0          !! support index per component (supports only)
+     logical :: eccentric = .false.          !! OFFSET=RIGID translations: side b hangs on a rigid arm
+     real(wp) :: arm(3) = 0.0_wp             !! r = x_b - x_a; delta = qs (u_b - u_a - theta_a x r)
   end type unit_t
+
+  type, public :: equation_terms_t
+    !! An *EQUATION on physical DOFs: sum_i a(i) u(p(i)) = 0, p(1) the dependent DOF.
+     integer(i8), allocatable :: p(:)
+     real(wp), allocatable :: a(:)
+     integer :: source = 0                 !! index into model%equations
+  end type equation_terms_t
 
   type, public :: dof_table_t
     !! Physical DOFs: every active (node, dof) pair, numbered node by node.
@@ -54,9 +63,13 @@ module superjoin_assembly_dofs
      type(unit_t), allocatable :: units(:)
      integer :: nunit = 0
      integer, allocatable :: ignored_links(:)  !! links with named DOFs that no node carries
+     type(equation_terms_t), allocatable :: equations(:)  !! *EQUATION constraints (empty: none)
   end type dof_table_t
 
-  public :: build_dof_table, vertex_of, block_dof
+  integer, parameter, public :: MAX_UNIT_TERMS = 3*BLOCK_SIZE
+    !! Physical DOFs one unit touches: side a, side b, and side a's rotations (arm).
+
+  public :: build_dof_table, vertex_of, block_dof, unit_terms, unit_dofs, arm_matrix
 
 contains
 
@@ -101,8 +114,8 @@ contains
     call activate_elements(model, table, has)
     call activate_supports(model, table, has)
 
-    call build_link_units(model, table, has)
-    call build_support_units(model, table, error)
+    call build_link_units(model, table, has, error)
+    call build_support_units(model, table, has, error)
     if (allocated(error)) return
 
     ! Unit components are active on both of their nodes.
@@ -129,7 +142,33 @@ contains
           end do
        end do
     end do
+    call build_equation_terms(model, table, error)
   end subroutine build_dof_table
+
+  subroutine build_equation_terms(model, table, error)
+    !! The *EQUATION terms on physical DOFs; a DOF that its node does not carry
+    !! (no element or support gives it) is a deck error.
+    type(model_t), intent(in) :: model
+    type(dof_table_t), intent(inout) :: table
+    type(error_t), allocatable, intent(inout) :: error
+    integer :: ie, t, n
+    n = 0
+    if (allocated(model%equations)) n = size(model%equations)
+    allocate (table%equations(n))
+    do ie = 1, n
+       associate (e => model%equations(ie), te => table%equations(ie))
+         te%source = ie
+         allocate (te%p(size(e%coef)), te%a(size(e%coef)))
+         te%a = e%coef
+         do t = 1, size(e%coef)
+            te%p(t) = table%pdof(e%dof(t), table%vertex_offset(e%sub(t)) + e%node(t))
+            if (te%p(t) == 0) call add_error_line(error, EXIT_DECK, loc_text(model, e%loc)// &
+                 ': error: *EQUATION: node '//node_label(model, e%sub(t), e%node(t))//' has no DOF '// &
+                 itoa(e%dof(t))//' (no element or support of that node carries it)')
+         end do
+       end associate
+    end do
+  end subroutine build_equation_terms
 
   subroutine activate_elements(model, table, has)
     type(model_t), intent(in) :: model
@@ -178,11 +217,13 @@ contains
     end do
   end subroutine activate_units
 
-  subroutine build_link_units(model, table, has)
+  subroutine build_link_units(model, table, has, error)
     !! One unit per link and block with any connected DOF that a node carries.
+    !! The translations of an OFFSET=RIGID contact carry the arm x_slave - x_master.
     type(model_t), intent(in) :: model
     type(dof_table_t), intent(inout) :: table
     logical, intent(in) :: has(:, :)
+    type(error_t), allocatable, intent(inout) :: error
     integer :: il, b
     integer(i8) :: va, vb
     type(unit_t) :: u
@@ -214,6 +255,9 @@ contains
             u%source = il
             u%va = va
             u%vb = vb
+            if (b == 1 .and. ct%rigid_offset) then
+               call set_arm(model, il, has(4:6, va), u, error)
+            end if
             call push_unit(table, u)
          end do
          if (ignored) then
@@ -224,6 +268,97 @@ contains
     end do
     table%ignored_links = ign(1:nign)
   end subroutine build_link_units
+
+  subroutine set_arm(model, il, rot, u, error)
+    !! Arm of the translation unit of OFFSET=RIGID link il; the master must carry
+    !! every rotation the arm couples (rot: its rotational DOFs 4-6).
+    type(model_t), intent(in) :: model
+    integer, intent(in) :: il
+    logical, intent(in) :: rot(3)
+    type(unit_t), intent(inout) :: u
+    type(error_t), allocatable, intent(inout) :: error
+    real(wp) :: a(3, 3)
+    integer :: c, d
+    logical :: need(3)
+    associate (lk => model%links(il), ct => model%contacts(model%links(il)%contact))
+      u%eccentric = .true.
+      u%arm = model%subs(ct%slave_sub)%x(:, lk%slave_node) - model%subs(ct%master_sub)%x(:, lk%master_node)
+      a = arm_matrix(u%arm)
+      need = .false.
+      do d = 1, 3
+         do c = 1, u%n
+            if (a(u%comp(c), d) /= 0.0_wp) need(d) = .true.
+         end do
+      end do
+      if (.not. any(rot) .or. any(need .and. .not. rot)) then
+         call add_error_line(error, EXIT_DECK, loc_text(model, lk%loc)//': error: contact '//ct%name// &
+              ', OFFSET=RIGID: master node '//node_label(model, ct%master_sub, lk%master_node)// &
+              ' has no rotational DOFs to carry the rigid arm to slave node '// &
+              node_label(model, ct%slave_sub, lk%slave_node)//' (join it to a beam or shell node)')
+      end if
+    end associate
+  end subroutine set_arm
+
+  pure function arm_matrix(r) result(a)
+    !! A with (theta x r)_c = sum_d A(c, d) theta_d.
+    real(wp), intent(in) :: r(3)
+    real(wp) :: a(3, 3)
+    a = 0.0_wp
+    a(1, 2) = r(3)
+    a(1, 3) = -r(2)
+    a(2, 1) = -r(3)
+    a(2, 3) = r(1)
+    a(3, 1) = r(2)
+    a(3, 2) = -r(1)
+  end function arm_matrix
+
+  pure subroutine unit_terms(table, u, k, p, w, n)
+    !! delta_k of unit u as a linear form of physical DOFs: delta_k = sum_i w(i) u(p(i)) - value(k),
+    !! side a first, then side b, then side a's rotations (eccentric units).
+    type(dof_table_t), intent(in) :: table
+    type(unit_t), intent(in) :: u
+    integer, intent(in) :: k
+    integer(i8), intent(out) :: p(MAX_UNIT_TERMS)
+    real(wp), intent(out) :: w(MAX_UNIT_TERMS)
+    integer, intent(out) :: n
+    real(wp) :: a(3, 3), t
+    integer :: c, d
+    n = 0
+    if (u%va /= GROUND) then
+       do c = 1, u%n
+          n = n + 1
+          p(n) = table%pdof(block_dof(u%block, u%comp(c)), u%va)
+          w(n) = -u%qs(k, c)
+       end do
+    end if
+    do c = 1, u%n
+       n = n + 1
+       p(n) = table%pdof(block_dof(u%block, u%comp(c)), u%vb)
+       w(n) = u%qs(k, c)
+    end do
+    if (.not. u%eccentric) return
+    a = arm_matrix(u%arm)
+    do d = 1, 3
+       if (table%pdof(3 + d, u%va) == 0) cycle
+       t = 0.0_wp
+       do c = 1, u%n
+          t = t + u%qs(k, c)*a(u%comp(c), d)
+       end do
+       n = n + 1
+       p(n) = table%pdof(3 + d, u%va)
+       w(n) = -t
+    end do
+  end subroutine unit_terms
+
+  pure subroutine unit_dofs(table, u, p, n)
+    !! The physical DOFs unit u touches, in unit_terms order.
+    type(dof_table_t), intent(in) :: table
+    type(unit_t), intent(in) :: u
+    integer(i8), intent(out) :: p(MAX_UNIT_TERMS)
+    integer, intent(out) :: n
+    real(wp) :: w(MAX_UNIT_TERMS)
+    call unit_terms(table, u, 1, p, w, n)
+  end subroutine unit_dofs
 
   subroutine link_unit(state, g, q, present, u, ignored)
     !! Components of one link on one block. `present(c)` tells whether either node
@@ -290,11 +425,13 @@ contains
     end do
   end subroutine link_unit
 
-  subroutine build_support_units(model, table, error)
+  subroutine build_support_units(model, table, has, error)
     !! Merge the supports per node and DOF (finite g add up, RIGID wins, two
-    !! RIGID values must agree) into one unit per node and block.
+    !! RIGID values must agree) into one unit per node and block. The DOFs of a
+    !! node with a nodal system (*TRANSFORM) are in that system.
     type(model_t), intent(in) :: model
     type(dof_table_t), intent(inout) :: table
+    logical, intent(in) :: has(:, :)
     type(error_t), allocatable, intent(inout) :: error
     integer(i8), allocatable :: key(:)
     integer, allocatable :: order(:)
@@ -326,7 +463,7 @@ contains
          b = (sp%dof - 1)/3 + 1
          c = sp%dof - (b - 1)*3
          if (v /= vprev .or. b /= bprev) then
-            if (u%n > 0) call push_unit(table, u)
+            if (u%n > 0) call push_support_unit(model, table, has, u, error)
             u = unit_t()
             u%block = b
             u%kind = UNIT_SUPPORT
@@ -366,8 +503,71 @@ contains
          end select
        end associate
     end do
-    if (u%n > 0) call push_unit(table, u)
+    if (u%n > 0) call push_support_unit(model, table, has, u, error)
   end subroutine build_support_units
+
+  subroutine push_support_unit(model, table, has, u, error)
+    !! Push a support unit; on a node with a nodal system its components are
+    !! local axes: the unit becomes delta = Q u over the global components they
+    !! couple (an oblique support, free local components as free delta).
+    type(model_t), intent(in) :: model
+    type(dof_table_t), intent(inout) :: table
+    logical, intent(in) :: has(:, :)
+    type(unit_t), intent(in) :: u
+    type(error_t), allocatable, intent(inout) :: error
+    type(unit_t) :: w
+    integer :: f, isub, i, k, state(3), src(3)
+    real(wp) :: g(3), value(3)
+    logical :: ignored
+    integer(ip) :: node
+
+    isub = 1
+    do while (u%vb > table%vertex_offset(isub + 1))
+       isub = isub + 1
+    end do
+    node = int(u%vb - table%vertex_offset(isub), ip)
+    f = 0
+    if (allocated(model%frames)) then
+       do i = 1, size(model%frames)
+          if (model%frames(i)%sub == isub .and. model%frames(i)%node == node) f = i
+       end do
+    end if
+    if (f == 0) then
+       call push_unit(table, u)
+       return
+    end if
+    state = LINK_NONE
+    g = 0.0_wp
+    value = 0.0_wp
+    src = 0
+    do i = 1, u%n
+       state(u%comp(i)) = u%state(i)
+       g(u%comp(i)) = u%g(i)
+       value(u%comp(i)) = u%value(i)
+       src(u%comp(i)) = u%src(i)
+    end do
+    ignored = .false.
+    call link_unit(state, g, model%frames(f)%q, has((u%block - 1)*3 + 1:u%block*3, u%vb), w, ignored)
+    if (ignored) then
+       call add_error_line(error, EXIT_DECK, loc_text(model, model%supports(u%source)%loc)// &
+            ': error: node '//node_label(model, isub, node)//': its nodal system (*TRANSFORM at '// &
+            loc_text(model, model%frames(f)%loc)//') turns a supported DOF onto a global DOF the node '// &
+            'does not carry')
+       return
+    end if
+    if (w%n == 0) return
+    w%block = u%block
+    w%kind = UNIT_SUPPORT
+    w%source = u%source
+    w%va = GROUND
+    w%vb = u%vb
+    do k = 1, w%n
+       w%value(k) = value(w%lcomp(k))
+       w%src(k) = src(w%lcomp(k))
+       if (w%src(k) == 0) w%src(k) = u%source
+    end do
+    call push_unit(table, w)
+  end subroutine push_support_unit
 
   subroutine push_unit(table, u)
     type(dof_table_t), intent(inout) :: table

@@ -11,9 +11,9 @@ module superjoin_assembly_transform
   !! column is eliminated exactly by substitution.
   use superjoin_kinds, only: wp, i8
   use superjoin_error, only: error_t, add_error_line, EXIT_DECK
-  use superjoin_model_types, only: model_t, LINK_NONE, LINK_FINITE, LINK_RIGID, loc_text, node_label
+  use superjoin_model_types, only: model_t, equation_t, LINK_NONE, LINK_FINITE, LINK_RIGID, loc_text, node_label
   use superjoin_assembly_dofs, only: dof_table_t, unit_t, NBLOCK, GROUND, UNIT_LINK, &
-       UNIT_SUPPORT, block_dof
+       UNIT_SUPPORT, block_dof, unit_terms, arm_matrix, MAX_UNIT_TERMS, equation_terms_t
   use superjoin_assembly_forest, only: forest_t
   use superjoin_utils_strings, only: rtoa
   use superjoin_utils_sorting, only: sort_unique_i8
@@ -55,6 +55,7 @@ module superjoin_assembly_transform
      real(wp) :: pivot = 0.0_wp            !! its coefficient in the constraint
      real(wp) :: g = 0.0_wp                !! spring that sat on the eliminated column
      integer :: form = 0                   !! form spring that replaced it (0: none)
+     integer :: equation = 0               !! an *EQUATION (index into the table's equations), unit 0
      integer(i8), allocatable :: fp_p(:)   !! footprint of the eliminated column: physical DOFs
      real(wp), allocatable :: fp_c(:)      !! and their coefficients
   end type constraint_t
@@ -137,6 +138,8 @@ contains
     if (allocated(error)) return
     call close_loops(model, table, tr, error)
     if (allocated(error)) return
+    call apply_equations(model, table, tr, error)
+    if (allocated(error)) return
     call compact_columns(tr, error)
     if (allocated(error)) return
   end subroutine build_transform
@@ -203,8 +206,9 @@ contains
     type(transform_t), intent(inout) :: tr
     type(error_t), allocatable, intent(out) :: error
     integer(i8) :: j, p, v, w, pw, io, cap
-    integer :: b, c, k, pu, stat
+    integer :: b, ib, c, k, pu, stat
     real(wp) :: sgn, coef
+    logical :: eccentric
 
     cap = table%np + 4*table%nunit + 16
     allocate (tr%map_start(table%np), source=0_i8, stat=stat)
@@ -224,7 +228,15 @@ contains
        tr%map_start(p) = tr%pool_n
        tr%map_len(p) = 1
     end do
-    do b = 1, NBLOCK
+    ! Rotations first when a unit is eccentric: its translations take the
+    ! master's rotations through the arm (rotations never take translations).
+    eccentric = .false.
+    do pu = 1, table%nunit
+       if (table%units(pu)%eccentric) eccentric = .true.
+    end do
+    do ib = 1, NBLOCK
+       b = ib
+       if (eccentric) b = NBLOCK + 1 - ib
        do io = 1, forest%norder(b)
           v = forest%order(b, io)
           pu = forest%parent_unit(b, v)
@@ -258,11 +270,49 @@ contains
                      tr%u0(p) = tr%u0(p) + coef*u%value(k)
                   end if
                end do
+               if (u%eccentric) call add_arm(table, tr, u, c, sgn, p)
             end do
           end associate
        end do
     end do
   end subroutine build_maps
+
+  subroutine add_arm(table, tr, u, c, sgn, p)
+    !! Append sgn (theta_a x r)_c to the map of p (the last one in the pool),
+    !! theta_a the master's rotations (their maps are complete), then merge
+    !! repeated columns so that each column appears once in a map.
+    type(dof_table_t), intent(in) :: table
+    type(transform_t), intent(inout) :: tr
+    type(unit_t), intent(in) :: u
+    integer, intent(in) :: c
+    real(wp), intent(in) :: sgn
+    integer(i8), intent(in) :: p
+    real(wp) :: a(3, 3), coef
+    integer(i8) :: pr, j
+    integer(i8), allocatable :: col(:)
+    real(wp), allocatable :: cf(:)
+    integer :: d
+
+    a = arm_matrix(u%arm)
+    do d = 1, 3
+       coef = sgn*a(u%comp(c), d)
+       if (coef == 0.0_wp) cycle
+       pr = table%pdof(3 + d, u%va)
+       if (pr == 0) cycle
+       do j = tr%map_start(pr), tr%map_start(pr) + tr%map_len(pr) - 1
+          call pool_push(tr, tr%pool_col(j), coef*tr%pool_coef(j))
+       end do
+       tr%map_len(p) = tr%map_len(p) + tr%map_len(pr)
+       tr%u0(p) = tr%u0(p) + coef*tr%u0(pr)
+    end do
+    col = tr%pool_col(tr%map_start(p):tr%map_start(p) + tr%map_len(p) - 1)
+    cf = tr%pool_coef(tr%map_start(p):tr%map_start(p) + tr%map_len(p) - 1)
+    call merge_terms(col, cf)
+    tr%map_len(p) = size(col)
+    tr%pool_col(tr%map_start(p):tr%map_start(p) + size(col) - 1) = col
+    tr%pool_coef(tr%map_start(p):tr%map_start(p) + size(col) - 1) = cf
+    tr%pool_n = tr%map_start(p) + size(col) - 1
+  end subroutine add_arm
 
   subroutine pool_push(tr, col, coef)
     type(transform_t), intent(inout) :: tr
@@ -291,41 +341,25 @@ contains
     integer(i8), allocatable, intent(out) :: col(:)
     real(wp), allocatable, intent(out) :: coef(:)
     real(wp), intent(out) :: const
-    integer(i8) :: p, j, n
-    integer :: c, side
-    real(wp) :: s
+    integer(i8) :: pt(MAX_UNIT_TERMS), p, j, n
+    real(wp) :: wt(MAX_UNIT_TERMS)
+    integer :: i, nt
 
+    call unit_terms(table, u, k, pt, wt, nt)
     n = 0
-    do c = 1, u%n
-       do side = 1, 2
-          if (side == 1 .and. u%va == GROUND) cycle
-          if (side == 1) then
-             p = table%pdof(block_dof(u%block, u%comp(c)), u%va)
-          else
-             p = table%pdof(block_dof(u%block, u%comp(c)), u%vb)
-          end if
-          n = n + tr%map_len(p)
-       end do
+    do i = 1, nt
+       n = n + tr%map_len(pt(i))
     end do
     allocate (col(n), coef(n))
     n = 0
     const = -u%value(k)
-    do c = 1, u%n
-       do side = 1, 2
-          if (side == 1 .and. u%va == GROUND) cycle
-          if (side == 1) then
-             p = table%pdof(block_dof(u%block, u%comp(c)), u%va)
-             s = -u%qs(k, c)
-          else
-             p = table%pdof(block_dof(u%block, u%comp(c)), u%vb)
-             s = u%qs(k, c)
-          end if
-          const = const + s*tr%u0(p)
-          do j = tr%map_start(p), tr%map_start(p) + tr%map_len(p) - 1
-             n = n + 1
-             col(n) = tr%pool_col(j)
-             coef(n) = s*tr%pool_coef(j)
-          end do
+    do i = 1, nt
+       p = pt(i)
+       const = const + wt(i)*tr%u0(p)
+       do j = tr%map_start(p), tr%map_start(p) + tr%map_len(p) - 1
+          n = n + 1
+          col(n) = tr%pool_col(j)
+          coef(n) = wt(i)*tr%pool_coef(j)
        end do
     end do
     call merge_terms(col, coef)
@@ -416,6 +450,111 @@ contains
        end do
     end do
   end subroutine close_loops
+
+  subroutine apply_equations(model, table, tr, error)
+    !! *EQUATION constraints, in deck order: the first term's DOF is eliminated
+    !! (its own column is substituted everywhere by the others), so chains of
+    !! equations and contacts compose. Its DOF must still be its own column: a
+    !! DOF made dependent by a contact or a support cannot be, and a DOF that
+    !! comes back through the other terms (through earlier equations: a cycle)
+    !! cannot either.
+    type(model_t), intent(in) :: model
+    type(dof_table_t), intent(in) :: table
+    type(transform_t), intent(inout) :: tr
+    type(error_t), allocatable, intent(inout) :: error
+    integer :: ie, best, i
+    integer(i8) :: p1, jstar, j
+    integer(i8), allocatable :: col(:)
+    real(wp), allocatable :: coef(:)
+    real(wp) :: const, amax, scale
+    type(constraint_t) :: cs
+    character(:), allocatable :: head
+
+    do ie = 1, size(table%equations)
+       associate (te => table%equations(ie), e => model%equations(table%equations(ie)%source))
+         head = loc_text(model, e%loc)//': error: *EQUATION: '
+         p1 = te%p(1)
+         jstar = 0
+         if (tr%map_len(p1) == 1) then
+            j = tr%pool_col(tr%map_start(p1))
+            if (tr%col_kind(j) == COL_PHYS .and. tr%col_ref(j) == p1 .and. &
+                tr%pool_coef(tr%map_start(p1)) == 1.0_wp .and. tr%u0(p1) == 0.0_wp) jstar = j
+         end if
+         if (jstar == 0) then
+            call add_error_line(error, EXIT_DECK, head//'the dependent DOF '//dof_text(e, 1)// &
+                 ' is already dependent (a contact slave, a support or an earlier equation makes it so); '// &
+                 'start the equation with another of its DOFs')
+            cycle
+         end if
+         call equation_form(tr, te, col, coef, const)
+         scale = maxval(abs(te%a))
+         amax = 0.0_wp
+         if (size(coef) > 0) amax = maxval(abs(coef))
+         if (amax <= CONS_ZERO*scale) then
+            call add_error_line(error, EXIT_DECK, head//'its terms cancel (after the contacts, supports '// &
+                 'and earlier equations are substituted, nothing is left to constrain)')
+            cycle
+         end if
+         best = 0
+         do i = 1, size(col)
+            if (col(i) == jstar) best = i
+         end do
+         if (best == 0) then
+            call add_error_line(error, EXIT_DECK, head//'the dependent DOF '//dof_text(e, 1)// &
+                 ' cancels out of its own equation (through the other terms and earlier equations: a cycle)')
+            cycle
+         end if
+         if (abs(coef(best) - te%a(1)) > CONS_ZERO*scale) then
+            call add_error_line(error, EXIT_DECK, head//'the dependent DOF '//dof_text(e, 1)// &
+                 ' comes back through the other terms (an earlier equation or contact expresses one of them '// &
+                 'in it: a cycle)')
+            cycle
+         end if
+         cs = constraint_t()
+         cs%equation = ie
+         call eliminate(tr, col, coef, const, best, cs)
+         cs%status = CONS_ELIMINATED
+         call push_constraint(tr, cs)
+       end associate
+    end do
+  contains
+    function dof_text(e, t) result(text)
+      type(equation_t), intent(in) :: e
+      integer, intent(in) :: t
+      character(:), allocatable :: text
+      character(len=12) :: buf
+      write (buf, '(i0)') e%dof(t)
+      text = node_label(model, e%sub(t), e%node(t))//' DOF '//trim(buf)
+    end function dof_text
+  end subroutine apply_equations
+
+  subroutine equation_form(tr, te, col, coef, const)
+    !! The equation sum_i a_i u(p_i) = 0 as aᵀq + const over the current maps.
+    type(transform_t), intent(in) :: tr
+    type(equation_terms_t), intent(in) :: te
+    integer(i8), allocatable, intent(out) :: col(:)
+    real(wp), allocatable, intent(out) :: coef(:)
+    real(wp), intent(out) :: const
+    integer(i8) :: p, j, n
+    integer :: i
+    n = 0
+    do i = 1, size(te%p)
+       n = n + tr%map_len(te%p(i))
+    end do
+    allocate (col(n), coef(n))
+    n = 0
+    const = 0.0_wp
+    do i = 1, size(te%p)
+       p = te%p(i)
+       const = const + te%a(i)*tr%u0(p)
+       do j = tr%map_start(p), tr%map_start(p) + tr%map_len(p) - 1
+          n = n + 1
+          col(n) = tr%pool_col(j)
+          coef(n) = te%a(i)*tr%pool_coef(j)
+       end do
+    end do
+    call merge_terms(col, coef)
+  end subroutine equation_form
 
   pure function choose_pivot(tr, col, coef, amax) result(best)
     !! Pivot among the terms whose coefficient is large enough: a δ column

@@ -37,7 +37,7 @@ module superjoin_deck_parser
 
   public :: parse_source, finish_parse, register_file
   public :: outside_step, check_params, param_index, get_param, get_name_param, field_count, fld, get_real, &
-       real_message, get_dof_range, get_stiffness, parse_ref, loc_string, target_sub
+       real_message, get_dof_range, get_stiffness, parse_ref, loc_string, target_sub, get_dof
     !! Card helpers, public only because the submodule superjoin_deck_parts calls
     !! them: gfortran 12 does not export private module procedures to submodules.
 
@@ -53,6 +53,8 @@ module superjoin_deck_parser
     !! CalculiX/Abaqus analysis cards (numbered apart from the model cards).
   integer, parameter :: CARD_COMBINATION = 131, CARD_EXPANSION = 132, CARD_TEMPERATURE = 133
     !! Load cases and combinations (superjoin's *LOAD COMBINATION).
+  integer, parameter :: CARD_EQUATION = 121, CARD_TRANSFORM = 122
+    !! Linear constraints and nodal systems (submodules superjoin_deck_equations, _transforms).
   integer, parameter :: PROC_STATIC = 1
     !! Procedures of a step (st%step_procedure).
   integer, parameter :: STATIC_FIELDS = 4
@@ -121,6 +123,41 @@ module superjoin_deck_parser
        type(source_loc_t), intent(in) :: loc
        type(contact_b_t), intent(inout) :: c
      end subroutine contact_pair_params
+     module subroutine contact_offset_param(st, kw, loc, c)
+       !! OFFSET=RIGID | NONE of *CONTACT.
+       type(deck_state_t), intent(inout) :: st
+       type(keyword_line_t), intent(in) :: kw
+       type(source_loc_t), intent(in) :: loc
+       type(contact_b_t), intent(inout) :: c
+     end subroutine contact_offset_param
+     module subroutine kw_equation(st, kw, loc)
+       !! *EQUATION: linear constraints between DOFs (Abaqus/CalculiX form).
+       type(deck_state_t), intent(inout) :: st
+       type(keyword_line_t), intent(in) :: kw
+       type(source_loc_t), intent(in) :: loc
+     end subroutine kw_equation
+     module subroutine data_equation(st, line, loc)
+       !! A data line of *EQUATION: a number of terms, or node, dof, coefficient triples.
+       type(deck_state_t), intent(inout) :: st
+       character(*), intent(in) :: line
+       type(source_loc_t), intent(in) :: loc
+     end subroutine data_equation
+     module subroutine end_equation_card(st)
+       !! End of an *EQUATION card: the last equation must have all its terms.
+       type(deck_state_t), intent(inout) :: st
+     end subroutine end_equation_card
+     module subroutine kw_transform(st, kw, loc)
+       !! *TRANSFORM, NSET=n[, TYPE=R|C]: nodal systems (CalculiX).
+       type(deck_state_t), intent(inout) :: st
+       type(keyword_line_t), intent(in) :: kw
+       type(source_loc_t), intent(in) :: loc
+     end subroutine kw_transform
+     module subroutine data_transform(st, line, loc)
+       !! The data line of *TRANSFORM: ax, ay, az, bx, by, bz.
+       type(deck_state_t), intent(inout) :: st
+       character(*), intent(in) :: line
+       type(source_loc_t), intent(in) :: loc
+     end subroutine data_transform
      module subroutine kw_interface(st, kw, loc)
        !! *INTERFACE, NAME=j, MASTER=s1, SLAVE=s2, KN=kn, KT=kt[, TOL=t].
        type(deck_state_t), intent(inout) :: st
@@ -376,6 +413,10 @@ contains
        call kw_change_contact(st, kw, loc)
     case ('INTERFACE')
        call kw_interface(st, kw, loc)
+    case ('EQUATION')
+       call kw_equation(st, kw, loc)
+    case ('TRANSFORM')
+       call kw_transform(st, kw, loc)
     case default
        if (.not. refused_card(st, kw, loc, prev_mat)) call report_loc(st, loc, 'unknown keyword *'//clip(kw%keyword))
        st%card = CARD_SKIP
@@ -405,7 +446,7 @@ contains
     !! Checks when a card ends (next keyword or end of input): data it needed.
     type(deck_state_t), intent(inout) :: st
     select case (st%card)
-    case (CARD_ELASTIC, CARD_ORIENTATION, CARD_DENSITY, CARD_TSHEAR)
+    case (CARD_ELASTIC, CARD_ORIENTATION, CARD_DENSITY, CARD_TSHEAR, CARD_TRANSFORM)
        if (st%card_ndata == 0) call report_loc(st, st%card_loc, st%card_name//' needs a data line')
     case (CARD_SECTION)
        ! *SOLID SECTION of plane elements may omit the thickness (1, as Abaqus);
@@ -418,6 +459,8 @@ contains
        if (st%card_ndata == 0) call report_loc(st, st%card_loc, st%card_name//' needs a data line (step, factor)')
     case (CARD_EXPANSION)
        if (st%card_ndata == 0) call report_loc(st, st%card_loc, st%card_name//' needs a data line')
+    case (CARD_EQUATION)
+       call end_equation_card(st)
     end select
     st%card = CARD_NONE
   end subroutine end_card
@@ -931,8 +974,9 @@ contains
     integer :: k
     if (.not. outside_step(st, kw, loc)) return
     call check_params(st, kw, loc, [character(NAME_LEN) :: 'NAME', 'MASTER', 'SLAVE', 'ORIENTATION', &
-         'PAIR', 'TOL'], [character(NAME_LEN) ::])
+         'PAIR', 'TOL', 'OFFSET'], [character(NAME_LEN) ::])
     call contact_pair_params(st, kw, loc, c)
+    call contact_offset_param(st, kw, loc, c)
     call get_name_param(st, kw, loc, 'NAME', .true., c%name, f1)
     call get_name_param(st, kw, loc, 'MASTER', .true., c%master, f2)
     call get_name_param(st, kw, loc, 'SLAVE', .true., c%slave, f3)
@@ -1149,6 +1193,10 @@ contains
        call data_change_contact(st, line, loc)
     case (CARD_INTERFACE)
        call data_interface(st, line, loc)
+    case (CARD_EQUATION)
+       call data_equation(st, line, loc)
+    case (CARD_TRANSFORM)
+       call data_transform(st, line, loc)
     case (CARD_STATIC)
        call data_static(st, line, loc)
     case (CARD_SPRING_ELEMENT)

@@ -390,6 +390,25 @@ contains
     end if
   end subroutine contact_pair_params
 
+  module subroutine contact_offset_param(st, kw, loc, c)
+    type(deck_state_t), intent(inout) :: st
+    type(keyword_line_t), intent(in) :: kw
+    type(source_loc_t), intent(in) :: loc
+    type(contact_b_t), intent(inout) :: c
+    character(:), allocatable :: value
+    logical :: found
+    call get_param(st, kw, loc, 'OFFSET', .false., value, found)
+    if (.not. found) return
+    select case (to_upper(value))
+    case ('RIGID')
+       c%rigid_offset = .true.
+    case ('NONE')
+       c%rigid_offset = .false.
+    case default
+       call report_loc(st, loc, 'OFFSET must be RIGID or NONE, not '//clip(value))
+    end select
+  end subroutine contact_offset_param
+
   ! ================================================================== *INTERFACE
 
   module subroutine kw_interface(st, kw, loc)

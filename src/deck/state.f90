@@ -107,6 +107,7 @@ module superjoin_deck_state
      type(source_loc_t) :: loc
      logical :: nearest = .false.          !! PAIR=NEAREST: slave nodes take the nearest master node
      logical :: remote = .false.           !! joins nodes at different places on purpose (springs)
+     logical :: rigid_offset = .false.     !! OFFSET=RIGID (eccentric contact)
      real(wp) :: tol = 0.0_wp              !! TOL= of PAIR=NEAREST (*INTERFACE: < 0 until set)
      logical :: is_interface = .false.     !! an *INTERFACE card (Goodman joint)
      real(wp) :: kn = 0.0_wp, kt = 0.0_wp  !! *INTERFACE: stiffness per unit length or area
@@ -123,6 +124,27 @@ module superjoin_deck_state
      real(wp) :: g = 0.0_wp
      type(source_loc_t) :: loc
   end type cline_b_t
+
+  type, public :: equation_b_t
+    !! One *EQUATION as read: the number of terms, then (node, dof, coefficient) terms.
+     integer :: nterm = 0                  !! terms announced
+     integer :: n = 0                      !! terms read
+     type(ref_t), allocatable :: node(:)
+     integer, allocatable :: dof(:)
+     real(wp), allocatable :: coef(:)
+     type(source_loc_t), allocatable :: term_loc(:)
+     type(source_loc_t) :: loc             !! the line with the number of terms
+     logical :: ok = .true.                !! every term was read
+  end type equation_b_t
+
+  type, public :: transform_b_t
+    !! A *TRANSFORM card: nodal systems of a node set.
+     type(ref_t) :: nset
+     logical :: cylindrical = .false.      !! TYPE=C (else TYPE=R)
+     real(wp) :: a(3) = 0.0_wp, b(3) = 0.0_wp
+     logical :: has_data = .false.
+     type(source_loc_t) :: loc
+  end type transform_b_t
 
   type, public :: support_b_t
     !! One data line of *SUPPORT or *BOUNDARY.
@@ -278,6 +300,10 @@ module superjoin_deck_state
      type(cline_b_t), allocatable :: clines(:)
      integer :: nsupport = 0
      type(support_b_t), allocatable :: supports(:)
+     integer :: ntransform = 0
+     type(transform_b_t), allocatable :: transforms(:) !! *TRANSFORM cards as read
+     integer :: nequation = 0
+     type(equation_b_t), allocatable :: equations(:)   !! *EQUATION constraints as read
      integer :: nstep = 0
      type(step_b_t), allocatable :: steps(:)
      type(controls_t) :: controls

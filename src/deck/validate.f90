@@ -22,11 +22,12 @@ module superjoin_deck_validate
   use superjoin_deck_state, only: OP_NEW, OP_MOD
   use superjoin_deck_combinations, only: build_combinations
   use superjoin_model_history, only: support_list_t, step_ops_t, apply_boundary_history, apply_load_history
+  use superjoin_deck_eccentric, only: check_offset_masters
   implicit none (type, external)
   private
 
   public :: build_model
-  public :: resolve_items, where, ref_text, resolve_sets
+  public :: resolve_items, where, ref_text, resolve_sets, resolve_sub
     !! Public only because the submodule superjoin_deck_assembly calls them:
     !! gfortran 12 does not export private module procedures to submodules.
 
@@ -162,6 +163,7 @@ contains
     if (st%aborted) return
     call build_supports(st, model)
     if (st%aborted) return
+    call check_offset_masters(st, model)
     call build_steps(st, model)
     if (st%aborted) return
     call build_overrides(st, model)
@@ -832,6 +834,7 @@ contains
          c%loc = cb%loc
          c%master_sub = sub_index(model, cb%master)
          c%remote = cb%remote
+         c%rigid_offset = cb%rigid_offset
          c%slave_sub = sub_index(model, cb%slave)
          if (c%master_sub == 0) call report_loc(st, cb%loc, 'unknown substructure '//cb%master//' in MASTER='// &
               part_hint(model, cb%master))

@@ -155,6 +155,7 @@ module superjoin_model_types
      integer :: slave_sub = 0
      integer :: orientation = 0            !! index into model%orientations, 0 = global axes
      logical :: remote = .false.           !! joins nodes at different places on purpose (springs)
+     logical :: rigid_offset = .false.     !! OFFSET=RIGID: the slave hangs on a rigid arm from the master
      type(source_loc_t) :: loc
   end type contact_t
 
@@ -181,6 +182,25 @@ module superjoin_model_types
      type(source_loc_t) :: loc
      logical :: from_boundary = .false.    !! written on *BOUNDARY (OP=NEW in a step removes it), not *SUPPORT
   end type support_t
+
+  type, public :: equation_t
+    !! One *EQUATION: sum_i coef(i) u(node(i), dof(i)) = 0; the first term's DOF is
+    !! the dependent one (eliminated).
+     integer, allocatable :: sub(:)
+     integer(ip), allocatable :: node(:)
+     integer, allocatable :: dof(:)
+     real(wp), allocatable :: coef(:)
+     type(source_loc_t) :: loc             !! the line with the number of terms
+  end type equation_t
+
+  type, public :: node_frame_t
+    !! A nodal system (*TRANSFORM): rows of q are the local axes of the node;
+    !! its *BOUNDARY/*SUPPORT DOFs and *CLOAD components are in these axes.
+     integer :: sub = 0
+     integer(ip) :: node = 0
+     real(wp) :: q(3, 3) = 0.0_wp
+     type(source_loc_t) :: loc             !! the *TRANSFORM card
+  end type node_frame_t
 
   type, public :: cload_t
     !! A concentrated load on one DOF of one node.
@@ -281,6 +301,8 @@ module superjoin_model_types
      type(string_t), allocatable :: parts(:)        !! *PART names; subs(i)%part indexes this list
      type(output_request_t), allocatable :: requests(:)  !! output request cards in order (empty: full output)
      type(combination_t), allocatable :: combinations(:) !! *LOAD COMBINATION cards (unallocated: none)
+     type(equation_t), allocatable :: equations(:)  !! *EQUATION constraints (unallocated or empty: none)
+     type(node_frame_t), allocatable :: frames(:)   !! *TRANSFORM nodal systems (unallocated or empty: none)
   end type model_t
 
   public :: find_node, find_elem, node_label, loc_text

@@ -6,7 +6,7 @@ module superjoin_substructure_local_system
   use superjoin_kinds, only: wp, ip, i8
   use superjoin_error, only: error_t
   use superjoin_model_types, only: model_t
-  use superjoin_assembly_dofs, only: dof_table_t, GROUND, block_dof
+  use superjoin_assembly_dofs, only: dof_table_t, unit_dofs, MAX_UNIT_TERMS
   use superjoin_assembly_assemble, only: element_pdofs, element_matrix
   use superjoin_solvers_sparse, only: sparse_sym_t
   use superjoin_solvers_pattern, only: build_pattern, find_entry, items_of_columns
@@ -45,20 +45,19 @@ contains
     !! bnd(p): physical DOF p is touched by a contact element or a support.
     type(dof_table_t), intent(in) :: table
     logical, allocatable, intent(out) :: bnd(:)
-    integer(i8) :: p
-    integer :: iu, c
+    integer(i8) :: p(MAX_UNIT_TERMS)
+    integer :: iu, c, n
     allocate (bnd(table%np), source=.false.)
     do iu = 1, table%nunit
-       associate (u => table%units(iu))
-         do c = 1, u%n
-            if (u%va /= GROUND) then
-               p = table%pdof(block_dof(u%block, u%comp(c)), u%va)
-               if (p > 0) bnd(p) = .true.
-            end if
-            p = table%pdof(block_dof(u%block, u%comp(c)), u%vb)
-            if (p > 0) bnd(p) = .true.
-         end do
-       end associate
+       ! Both sides, and the master's rotations of an eccentric unit (OFFSET=RIGID).
+       call unit_dofs(table, table%units(iu), p, n)
+       do c = 1, n
+          if (p(c) > 0) bnd(p(c)) = .true.
+       end do
+    end do
+    ! The DOFs of *EQUATION constraints are eliminated in the reduced system.
+    do iu = 1, size(table%equations)
+       bnd(table%equations(iu)%p) = .true.
     end do
   end subroutine boundary_dofs
 

@@ -1,0 +1,160 @@
+module superjoin_deck_frame_build
+  !! Validation side of `*TRANSFORM`: the nodal system of every node of the
+  !! sets (rectangular, or cylindrical from the node's position), and the
+  !! `*CLOAD` components of those nodes turned from the nodal system into
+  !! global axes. Supports keep their local DOFs: the DOF table builds them as
+  !! oblique contact units to the ground (superjoin_assembly_dofs).
+  use superjoin_kinds, only: wp, ip
+  use superjoin_model_types, only: model_t, node_frame_t, cload_t, node_label
+  use superjoin_deck_state, only: deck_state_t, report_loc, file_of
+  use superjoin_deck_validate, only: resolve_items, resolve_sub
+  use superjoin_utils_strings, only: itoa
+  implicit none (type, external)
+  private
+
+  real(wp), parameter :: AXIS_TOL = 1.0e-9_wp
+    !! A node closer to a cylindrical system's axis than this x the axis
+    !! points' distance has no radial direction.
+  integer, parameter :: BLOCK = 3
+
+  public :: build_frames, frame_of_node
+
+contains
+
+  subroutine build_frames(st, model)
+    !! model%frames from the *TRANSFORM cards; *CLOAD on their nodes to global axes.
+    type(deck_state_t), intent(inout) :: st
+    type(model_t), intent(inout) :: model
+    type(node_frame_t), allocatable :: list(:), tmp(:)
+    integer(ip), allocatable :: nodes(:)
+    integer :: k, isub, n, j
+    integer(ip) :: i
+    logical :: ok, twice
+    real(wp) :: q(3, 3)
+
+    allocate (list(8))
+    n = 0
+    do k = 1, st%ntransform
+       associate (t => st%transforms(k))
+         if (.not. t%has_data) cycle
+         isub = resolve_sub(st, model, t%nset, t%loc, 'node')
+         if (isub == 0) cycle
+         call resolve_items(st, model, isub, t%nset, .false., t%loc, nodes, ok)
+         if (.not. ok) cycle
+         do i = 1, size(nodes, kind=ip)
+            if (t%cylindrical) then
+               if (.not. cylinder_frame(t%a, t%b, model%subs(isub)%x(:, nodes(i)), q)) then
+                  call report_loc(st, t%loc, '*TRANSFORM, TYPE=C: node '//node_label(model, isub, nodes(i))// &
+                       ' lies on the cylinder''s axis (no radial direction)')
+                  cycle
+               end if
+            else
+               q = rect_frame(t%a, t%b)
+            end if
+            twice = .false.
+            do j = 1, n
+               if (list(j)%sub == isub .and. list(j)%node == nodes(i)) then
+                  call report_loc(st, t%loc, '*TRANSFORM: node '//node_label(model, isub, nodes(i))// &
+                       ' already has a nodal system (from '//file_of(st, list(j)%loc%file)//':'// &
+                       itoa(list(j)%loc%line)//')')
+                  twice = .true.
+               end if
+            end do
+            if (twice) cycle
+            if (n == size(list)) then
+               allocate (tmp(2*n))
+               tmp(1:n) = list(1:n)
+               call move_alloc(tmp, list)
+            end if
+            n = n + 1
+            list(n)%sub = isub
+            list(n)%node = nodes(i)
+            list(n)%q = q
+            list(n)%loc = t%loc
+         end do
+       end associate
+    end do
+    model%frames = list(1:n)
+    if (n > 0) call loads_to_global(model)
+  end subroutine build_frames
+
+  pure integer function frame_of_node(model, isub, node) result(k)
+    !! Index of the nodal system of a node in model%frames, 0 if none.
+    type(model_t), intent(in) :: model
+    integer, intent(in) :: isub
+    integer(ip), intent(in) :: node
+    if (allocated(model%frames)) then
+       do k = 1, size(model%frames)
+          if (model%frames(k)%sub == isub .and. model%frames(k)%node == node) return
+       end do
+    end if
+    k = 0
+  end function frame_of_node
+
+  pure function rect_frame(a, b) result(q)
+    !! Rows: local 1 along a, 2 in the a-b plane, 3 = 1 x 2.
+    real(wp), intent(in) :: a(3), b(3)
+    real(wp) :: q(3, 3), e1(3), e2(3)
+    e1 = a/norm2(a)
+    e2 = b - dot_product(b, e1)*e1
+    e2 = e2/norm2(e2)
+    q(1, :) = e1
+    q(2, :) = e2
+    q(3, :) = cross(e1, e2)
+  end function rect_frame
+
+  logical function cylinder_frame(a, b, x, q) result(ok)
+    !! Rows: radial (from the axis a-b to x), tangential, axial (a to b).
+    real(wp), intent(in) :: a(3), b(3), x(3)
+    real(wp), intent(out) :: q(3, 3)
+    real(wp) :: e3(3), d(3)
+    e3 = (b - a)/norm2(b - a)
+    d = (x - a) - dot_product(x - a, e3)*e3
+    ok = norm2(d) > AXIS_TOL*max(norm2(b - a), norm2(x - a))
+    q = 0.0_wp
+    if (.not. ok) return
+    q(1, :) = d/norm2(d)
+    q(3, :) = e3
+    q(2, :) = cross(e3, q(1, :))
+  end function cylinder_frame
+
+  pure function cross(u, v) result(w)
+    real(wp), intent(in) :: u(3), v(3)
+    real(wp) :: w(3)
+    w = [u(2)*v(3) - u(3)*v(2), u(3)*v(1) - u(1)*v(3), u(1)*v(2) - u(2)*v(1)]
+  end function cross
+
+  subroutine loads_to_global(model)
+    !! A *CLOAD component on a node with a nodal system is along that system's
+    !! axis: split it into its global components (exact zeros left out).
+    type(model_t), intent(inout) :: model
+    type(cload_t), allocatable :: out(:)
+    integer :: s, k, m, f, b, kl, c
+    do s = 1, size(model%steps)
+       if (.not. allocated(model%steps(s)%cloads)) cycle
+       associate (cl => model%steps(s)%cloads)
+         allocate (out(BLOCK*size(cl)))
+         m = 0
+         do k = 1, size(cl)
+            f = frame_of_node(model, cl(k)%sub, cl(k)%node)
+            if (f == 0) then
+               m = m + 1
+               out(m) = cl(k)
+               cycle
+            end if
+            b = (cl(k)%dof - 1)/BLOCK
+            kl = cl(k)%dof - BLOCK*b
+            do c = 1, BLOCK
+               if (model%frames(f)%q(kl, c) == 0.0_wp) cycle
+               m = m + 1
+               out(m) = cl(k)
+               out(m)%dof = BLOCK*b + c
+               out(m)%value = model%frames(f)%q(kl, c)*cl(k)%value
+            end do
+         end do
+       end associate
+       model%steps(s)%cloads = out(1:m)
+       deallocate (out)
+    end do
+  end subroutine loads_to_global
+end module superjoin_deck_frame_build

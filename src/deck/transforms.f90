@@ -1,0 +1,94 @@
+submodule (superjoin_deck_parser) superjoin_deck_transforms
+  !! Parser side of `*TRANSFORM, NSET=n[, TYPE=R|C]` (CalculiX): nodal systems
+  !! in which the `*BOUNDARY`/`*SUPPORT` DOFs and the `*CLOAD` components of
+  !! the set's nodes are written. Data line `ax, ay, az, bx, by, bz`:
+  !! TYPE=R (default) local 1 along a, local 2 in the a-b plane, 3 = 1 x 2;
+  !! TYPE=C a cylindrical system about the axis from point a to point b:
+  !! local 1 radial, 2 tangential, 3 along the axis. The frames are computed
+  !! per node by superjoin_deck_frame_build.
+  use superjoin_deck_state, only: transform_b_t
+  implicit none (type, external)
+
+contains
+
+  module subroutine kw_transform(st, kw, loc)
+    type(deck_state_t), intent(inout) :: st
+    type(keyword_line_t), intent(in) :: kw
+    type(source_loc_t), intent(in) :: loc
+    type(transform_b_t) :: t
+    type(transform_b_t), allocatable :: tmp(:)
+    character(:), allocatable :: value
+    logical :: found
+    integer, parameter :: INITIAL_TRANSFORMS = 4
+    if (.not. outside_step(st, kw, loc)) return
+    call check_params(st, kw, loc, [character(NAME_LEN) :: 'NSET', 'TYPE'], [character(NAME_LEN) ::])
+    st%card = CARD_SKIP
+    call get_param(st, kw, loc, 'TYPE', .false., value, found)
+    if (found) then
+       select case (to_upper(value))
+       case ('R')
+          t%cylindrical = .false.
+       case ('C')
+          t%cylindrical = .true.
+       case default
+          call report_loc(st, loc, '*TRANSFORM TYPE must be R (rectangular) or C (cylindrical), not '//clip(value))
+          return
+       end select
+    end if
+    call get_param(st, kw, loc, 'NSET', .true., value, found)
+    if (.not. found) return
+    if (.not. parse_ref(st, value, .false., st%cur_sub, loc, t%nset)) return
+    if (.not. t%nset%is_set) then
+       call report_loc(st, loc, '*TRANSFORM NSET= names a node set, not '//clip(value))
+       return
+    end if
+    t%loc = loc
+    if (.not. allocated(st%transforms)) allocate (st%transforms(INITIAL_TRANSFORMS))
+    if (st%ntransform == size(st%transforms)) then
+       allocate (tmp(2*st%ntransform))
+       tmp(1:st%ntransform) = st%transforms(1:st%ntransform)
+       call move_alloc(tmp, st%transforms)
+    end if
+    st%ntransform = st%ntransform + 1
+    st%transforms(st%ntransform) = t
+    st%card = CARD_TRANSFORM
+    st%card_item = st%ntransform
+  end subroutine kw_transform
+
+  module subroutine data_transform(st, line, loc)
+    type(deck_state_t), intent(inout) :: st
+    character(*), intent(in) :: line
+    type(source_loc_t), intent(in) :: loc
+    real(wp) :: v(ORIENT_VALUES)
+    integer :: i
+    associate (t => st%transforms(st%card_item))
+      if (st%card_ndata > 1) then
+         call report_loc(st, loc, 'too many data lines for *TRANSFORM')
+         st%card = CARD_SKIP
+         return
+      end if
+      if (.not. field_count(st, loc, ORIENT_VALUES, ORIENT_VALUES, 'ax, ay, az, bx, by, bz')) return
+      do i = 1, ORIENT_VALUES
+         if (.not. get_real(st, line, loc, i, v(i))) return
+      end do
+      t%a = v(1:3)
+      t%b = v(4:6)
+      if (t%cylindrical) then
+         if (norm2(t%b - t%a) == 0.0_wp) then
+            call report_loc(st, loc, '*TRANSFORM, TYPE=C: points a and b coincide (they define the cylinder''s axis)')
+            return
+         end if
+      else
+         if (norm2(t%a) == 0.0_wp .or. norm2(t%b) == 0.0_wp) then
+            call report_loc(st, loc, '*TRANSFORM, TYPE=R: vector '//pick(norm2(t%a) == 0.0_wp, 'a', 'b')//' is zero')
+            return
+         end if
+         if (norm2(t%b - dot_product(t%b, t%a)/dot_product(t%a, t%a)*t%a) <= PARALLEL_TOL*norm2(t%b)) then
+            call report_loc(st, loc, '*TRANSFORM, TYPE=R: vectors a and b are parallel')
+            return
+         end if
+      end if
+      t%has_data = .true.
+    end associate
+  end subroutine data_transform
+end submodule superjoin_deck_transforms

@@ -156,13 +156,14 @@ contains
     type(result_fields_t), intent(in) :: fields
     integer, intent(in) :: is
     type(energy_t), intent(inout) :: en
-    real(wp), allocatable :: g(:, :)
+    real(wp), allocatable :: g(:, :), ubar(:, :)
     logical, allocatable :: rigid(:, :)
     integer :: k
     integer(i8) :: vx, nv
     nv = size(fields%has_dof, 2, kind=i8)
     allocate (g(NDOF_NODE, nv), source=0.0_wp)
     allocate (rigid(NDOF_NODE, nv), source=.false.)
+    allocate (ubar(NDOF_NODE, nv), source=0.0_wp)
     if (allocated(model%steps(is)%supports)) then
        call mark_supports(model%steps(is)%supports)
     else
@@ -178,7 +179,9 @@ contains
        associate (rc => fields%steps(is)%reactions(k))
          vx = fields%vertex_offset(rc%sub) + rc%node
          if (.not. rigid(rc%dof, vx)) cycle
-         en%prescribed_work = en%prescribed_work + 0.5_wp*rc%force*node_u(fields, is, rc%sub, int(rc%node, ip), rc%dof)
+         ! ū: the support's prescribed value, along the reaction's own axis (the
+         ! nodal system of a *TRANSFORM, where reaction and support are local)
+         en%prescribed_work = en%prescribed_work + 0.5_wp*rc%force*ubar(rc%dof, vx)
        end associate
     end do
   contains
@@ -192,6 +195,7 @@ contains
               g(sp%dof, vx) = g(sp%dof, vx) + sp%g
            else
               rigid(sp%dof, vx) = .true.
+              ubar(sp%dof, vx) = sp%value
            end if
          end associate
       end do

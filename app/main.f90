@@ -22,6 +22,7 @@ program superjoin_main
   use superjoin_utils_clock, only: stopwatch_t, report_phase
   use superjoin_utils_process, only: process_setup, quick_exit
   use superjoin_utils_memory, only: oom_message
+  use superjoin_solvers, only: mumps_available
   implicit none (type, external)
 
   type(run_options_t) :: opts
@@ -179,7 +180,7 @@ contains
          '', &
          '  -o FILE            listing path (default: DECK with extension .lst)', &
          '  --csv DIR          full-precision CSV results in DIR (created if needed)', &
-         '  --solver NAME      auto | cholmod | umfpack | lapack   (default auto)', &
+         '  --solver NAME      auto | cholmod | umfpack | lapack | mumps | mumps-ldlt (default auto)', &
          '  --formulation F    transform | penalty   (overrides *CONTROLS)', &
          '  --condense C       yes | no | auto: static condensation of every substructure', &
          '                     (overrides CONDENSE= of *SUBSTRUCTURE)', &
@@ -241,10 +242,13 @@ contains
              csv_dir = val
           case ('--solver')
              select case (to_lower(val))
-             case ('auto', 'cholmod', 'umfpack', 'lapack')
+             case ('auto', 'cholmod', 'umfpack', 'lapack', 'mumps', 'mumps-ldlt')
                 opts%solver = to_lower(val)
+                if (index(opts%solver, 'mumps') == 1 .and. .not. mumps_available()) &
+                     call usage_error('solver '//opts%solver//': this superjoin is built without MUMPS '// &
+                     '(cmake -DSUPERJOIN_MUMPS=ON or -DSUPERJOIN_MPI=ON, doc/user-manual.md)')
              case default
-                call usage_error('unknown solver '''//val//''' (auto, cholmod, umfpack, lapack)')
+                call usage_error('unknown solver '''//val//''' (auto, cholmod, umfpack, lapack, mumps, mumps-ldlt)')
              end select
           case ('--formulation')
              select case (to_lower(val))

@@ -1,0 +1,107 @@
+/* superjoin: the communication layer over MPI (built with -DSUPERJOIN_MPI=ON).
+ *
+ * The same functions exist in comm_serial.c for one process; the Fortran
+ * module superjoin_parallel_comm (comm.f90) binds to them, so the code paths
+ * are the same in both builds. MPI is started on first use (sj_comm_start)
+ * and finalized at exit (atexit), so that every Fortran `stop` ends MPI
+ * cleanly and mpirun sees the process's own exit status.
+ *
+ * Agreement protocol (sj_comm_agree): every rank contributes its status (0 or
+ * an exit status) and learns the largest one and the lowest rank that
+ * reported it. Once an agreement has returned a failure, the failure is
+ * remembered (sj_comm_failed_agreed) so that a rank ending on it does not
+ * enter a second agreement the others will never reach.
+ */
+#include <mpi.h>
+#include <stdint.h>
+#include <stdlib.h>
+
+static int failed_agreed = 0;
+
+static void finish(void)
+{
+    int init = 0, fin = 0;
+    MPI_Initialized(&init);
+    MPI_Finalized(&fin);
+    if (init && !fin) MPI_Finalize();
+}
+
+int sj_comm_start(void)
+{
+    int init = 0;
+    MPI_Initialized(&init);
+    if (!init) {
+        if (MPI_Init(NULL, NULL) != MPI_SUCCESS) return -1;
+        atexit(finish);
+    }
+    return 0;
+}
+
+int sj_comm_rank(void)
+{
+    int r = 0;
+    if (sj_comm_start() != 0) return 0;
+    MPI_Comm_rank(MPI_COMM_WORLD, &r);
+    return r;
+}
+
+int sj_comm_size(void)
+{
+    int s = 1;
+    if (sj_comm_start() != 0) return 1;
+    MPI_Comm_size(MPI_COMM_WORLD, &s);
+    return s;
+}
+
+int sj_comm_is_parallel_build(void) { return 1; }
+
+/* The Fortran handle of the communicator, for MUMPS's comm_fortran. */
+int sj_comm_fortran(void)
+{
+    sj_comm_start();
+    return (int)MPI_Comm_c2f(MPI_COMM_WORLD);
+}
+
+/* status: this rank's status (0: fine). Returns the largest status of all
+ * ranks; *first = the lowest rank whose status equals it (0 if all fine). */
+int sj_comm_agree(int status, int *first)
+{
+    int in[2], out[2], rank = sj_comm_rank(), size = sj_comm_size();
+    int worst = status;
+    if (MPI_Allreduce(&status, &worst, 1, MPI_INT, MPI_MAX, MPI_COMM_WORLD) != MPI_SUCCESS) worst = status;
+    in[0] = (worst != 0 && status == worst) ? rank : size;
+    in[1] = 0;
+    out[0] = in[0];
+    out[1] = 0;
+    if (MPI_Allreduce(in, out, 1, MPI_INT, MPI_MIN, MPI_COMM_WORLD) != MPI_SUCCESS) out[0] = rank;
+    *first = worst != 0 ? out[0] : 0;
+    if (worst != 0) failed_agreed = 1;
+    return worst;
+}
+
+int sj_comm_failed_agreed(void) { return failed_agreed; }
+
+/* Broadcast n doubles from rank root to every rank. */
+int sj_comm_bcast_real(double *x, int64_t n, int root)
+{
+    const int64_t chunk = 1 << 30;
+    for (int64_t k = 0; k < n; k += chunk) {
+        int64_t m = n - k < chunk ? n - k : chunk;
+        if (MPI_Bcast(x + k, (int)m, MPI_DOUBLE, root, MPI_COMM_WORLD) != MPI_SUCCESS) return -1;
+    }
+    return 0;
+}
+
+/* Sum n int64 counters over the ranks, in place. */
+int sj_comm_sum_i8(int64_t *x, int64_t n)
+{
+    if (n <= 0) return 0;
+    return MPI_Allreduce(MPI_IN_PLACE, x, (int)n, MPI_INT64_T, MPI_SUM, MPI_COMM_WORLD) == MPI_SUCCESS ? 0 : -1;
+}
+
+/* Largest of n doubles over the ranks, in place. */
+int sj_comm_max_real(double *x, int64_t n)
+{
+    if (n <= 0) return 0;
+    return MPI_Allreduce(MPI_IN_PLACE, x, (int)n, MPI_DOUBLE, MPI_MAX, MPI_COMM_WORLD) == MPI_SUCCESS ? 0 : -1;
+}

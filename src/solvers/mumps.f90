@@ -29,7 +29,7 @@ module superjoin_solvers_mumps
   use superjoin_error, only: error_t, fatal_error, EXIT_SINGULAR, EXIT_IO, EXIT_USAGE
   use superjoin_solvers_sparse, only: sparse_sym_t
   use superjoin_solvers_solver, only: linear_solver_t
-  use superjoin_parallel_comm, only: comm_t, comm_world, agree, broadcast, fortran_handle
+  use superjoin_parallel_comm, only: comm_t, comm_world, agree, broadcast, sum_counts, fortran_handle
   use superjoin_utils_memory, only: oom_message
   use superjoin_utils_strings, only: itoa
   implicit none (type, external)
@@ -207,6 +207,7 @@ contains
     end if
     self%n = a%n
     self%info%ordering = ordering_name(int(sj_mumps_infog(self%handle, INFOG_ORDERING)))
+    if (self%comm%size > 1) self%info%ordering = self%info%ordering//'; '//distribution(self, a, c1, c2)
     self%info%factor_nnz = entries(sj_mumps_infog(self%handle, INFOG_FACTOR_ESTIMATE))
   end subroutine mumps_analyze
 
@@ -429,6 +430,25 @@ contains
     j = probe%info%failed_column
     call probe%release()
   end function null_column
+
+  function distribution(self, a, c1, c2) result(text)
+    !! 'N processes, matrix entries per process n0 n1 ..' (collective).
+    class(mumps_solver_t), intent(in) :: self
+    type(sparse_sym_t), intent(in) :: a
+    integer(i8), intent(in) :: c1, c2
+    character(:), allocatable :: text
+    integer(i8), allocatable :: counts(:)
+    integer :: r
+    logical :: ok
+    allocate (counts(0:self%comm%size - 1))
+    counts = 0
+    if (c2 >= c1) counts(self%comm%rank) = a%colptr(c2 + 1) - a%colptr(c1)
+    call sum_counts(counts, ok)
+    text = itoa(int(self%comm%size, i8))//' processes, matrix entries per process'
+    do r = 0, self%comm%size - 1
+       text = text//' '//itoa(counts(r))
+    end do
+  end function distribution
 
   subroutine agreed(self, status, phase, error)
     !! Collective: before a MUMPS phase every process says whether it is

@@ -78,6 +78,7 @@ void *sj_mumps_create(int sym, int comm, double null_threshold, int ordering, in
     h->id.ICNTL(20) = 0;   /* dense right-hand side on the host */
     h->id.ICNTL(21) = 0;   /* solution centralized on the host */
     h->id.ICNTL(24) = 1;   /* null pivot detection */
+    h->id.ICNTL(28) = 1;   /* sequential analysis: the same ordering for any number of processes */
     h->id.CNTL(3) = null_threshold;
     h->id.CNTL(5) = 0.0;   /* null pivots: not fixed, listed in pivnul_list */
     h->id.ICNTL(13) = 0;

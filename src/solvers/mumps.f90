@@ -40,7 +40,12 @@ module superjoin_solvers_mumps
   real(wp), parameter, public :: NULL_PIVOT_RELATIVE = 1.0e-13_wp
     !! CNTL(3): a pivot row whose norm is below this fraction of the scaled
     !! matrix's norm is null (the reciprocal of the health block's MAXRATIO limit)
-  integer(c_int), parameter :: ORDERING_SCOTCH = 3    !! ICNTL(7) = 3, in every Debian MUMPS build
+  integer(i8), parameter, public :: INVERSE_DIAGONAL_MAX_N = 20000_i8
+    !! pivots() computes diag(A^-1) up to this order; above it (n = 1e5: about
+    !! 40 times the factorization's time) the pivots are unknown (zeros)
+  integer(c_int), parameter :: ORDERING_AMD = 0
+    !! ICNTL(7) = 0: AMD, deterministic (SCOTCH through MUMPS gave a different
+    !! factor size from run to run, and 60 % more fill on the 1e5 frame)
   integer(c_int), parameter :: SJ_OK = 0
   integer(c_int), parameter :: SJ_NOMEM = -105        !! shim: malloc failed
   integer(c_int), parameter :: SJ_TOO_LARGE = -106    !! shim: order beyond MUMPS's 32-bit indices
@@ -155,7 +160,7 @@ contains
 
   subroutine mumps_analyze(self, a, error)
     !! Start MUMPS (first call), hand in this process's share of the pattern
-    !! and run the analysis (SCOTCH ordering, symbolic factorization).
+    !! and run the analysis (AMD ordering, symbolic factorization).
     class(mumps_solver_t), intent(inout) :: self
     type(sparse_sym_t), intent(in) :: a
     type(error_t), allocatable, intent(out) :: error
@@ -180,7 +185,7 @@ contains
     self%comm = comm_world()
     if (.not. c_associated(self%handle)) then
        self%handle = sj_mumps_create(int(self%sym, c_int), int(fortran_handle(), c_int), &
-            real(NULL_PIVOT_RELATIVE, c_double), ORDERING_SCOTCH, status)
+            real(NULL_PIVOT_RELATIVE, c_double), ORDERING_AMD, status)
        if (status == SJ_NOT_BUILT) then
           call fatal_error(error, EXIT_USAGE, 'solver mumps: this superjoin is built without MUMPS '// &
                '(configure with cmake -DSUPERJOIN_MUMPS=ON or -DSUPERJOIN_MPI=ON)')
@@ -321,8 +326,9 @@ contains
     !! matrix that is the smallest pivot j can have in any elimination order,
     !! so K_jj/d(j) bounds the diagonal decay ratio of every ordering from
     !! above: the health block's MAXRATIO is then an upper bound, independent
-    !! of the ordering (and of the number of processes). d = 0 (unknown) if
-    !! the computation fails. Collective.
+    !! of the ordering (and of the number of processes). d = 0 (unknown, the
+    !! health block's MAXRATIO is then n/a) above INVERSE_DIAGONAL_MAX_N
+    !! unknowns or if the computation fails. Collective.
     class(mumps_solver_t), intent(inout) :: self
     real(wp), intent(out) :: d(:)
     integer(c_int), allocatable :: ptr(:), irow(:)
@@ -333,6 +339,7 @@ contains
 
     d = 0.0_wp
     if (.not. self%factored .or. self%n <= 0 .or. size(d, kind=i8) < self%n) return
+    if (self%n > INVERSE_DIAGONAL_MAX_N) return
     allocate (ptr(self%n + 1), irow(self%n), dinv(self%n), stat=stat)
     call agree(merge(0, EXIT_IO, stat == 0), worst, first)
     if (worst /= 0) return

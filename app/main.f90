@@ -31,7 +31,7 @@ program superjoin_main
   use superjoin_utils_process, only: process_setup, quick_exit
   use superjoin_utils_memory, only: oom_message
   use superjoin_solvers, only: mumps_available
-  use superjoin_parallel_comm, only: comm_t, comm_world, agree, failure_agreed
+  use superjoin_parallel_comm, only: comm_t, comm_world, agree, failure_agreed, agreed_first
   implicit none (type, external)
 
   type(run_options_t) :: opts
@@ -187,9 +187,13 @@ contains
     integer :: start, nl, worst, first
     character(:), allocatable :: line
     if (.not. allocated(error)) return
-    if (failure_agreed()) stop error%code, quiet=.true.
-    call agree(error%code, worst, first)
-    if (first /= comm%rank) stop worst, quiet=.true.
+    if (failure_agreed()) then
+       ! every process knows already: only the one that failed first prints
+       if (agreed_first() /= comm%rank) stop error%code, quiet=.true.
+    else
+       call agree(error%code, worst, first)
+       if (first /= comm%rank) stop worst, quiet=.true.
+    end if
     start = 1
     do
        nl = index(error%message(start:), new_line('a'))

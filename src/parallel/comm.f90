@@ -11,7 +11,13 @@ module superjoin_parallel_comm
   !! Errors on any process reach every process through agree(): each process
   !! contributes its status (0, or the exit status it would end with) and all
   !! learn the largest one and the lowest process that reported it, which is
-  !! the one that prints the message.
+  !! the one that prints the message. The protocol: every collective MUMPS
+  !! call is preceded by an agreement at which every process says whether it
+  !! is ready; a process that failed elsewhere makes no further collective
+  !! call except the one agreement of its ending (app/main.f90 fail_on), which
+  !! meets the others at their next agreement. A procedure that returns an
+  !! agreed failure records it (note_agreed_failure), so that the ending does
+  !! not agree a second time, and only the process that failed first prints.
   use, intrinsic :: iso_c_binding, only: c_int, c_int64_t, c_double
   use superjoin_kinds, only: wp, i8
   implicit none (type, external)
@@ -26,7 +32,11 @@ module superjoin_parallel_comm
      procedure :: is_root => comm_is_root
   end type comm_t
 
-  public :: comm_world, agree, failure_agreed, broadcast, sum_counts, max_reals, fortran_handle
+  public :: comm_world, agree, failure_agreed, note_agreed_failure, agreed_first, broadcast, sum_counts, &
+       max_reals, fortran_handle
+
+  logical :: failure_noted = .false.   !! an agreement returned a failure to the caller
+  integer :: failure_first = 0         !! the lowest process that reported it
 
   interface
      function sj_comm_rank() bind(c, name='sj_comm_rank') result(r)
@@ -51,10 +61,6 @@ module superjoin_parallel_comm
        integer(c_int), intent(out) :: first
        integer(c_int) :: worst
      end function sj_comm_agree
-     function sj_comm_failed_agreed() bind(c, name='sj_comm_failed_agreed') result(f)
-       import :: c_int
-       integer(c_int) :: f
-     end function sj_comm_failed_agreed
      function sj_comm_bcast_real(x, n, root) bind(c, name='sj_comm_bcast_real') result(status)
        import :: c_int, c_int64_t, c_double
        real(c_double), intent(inout) :: x(*)
@@ -106,11 +112,25 @@ contains
   end subroutine agree
 
   function failure_agreed() result(yes)
-    !! Has an agreement already returned a failure (so that every process
-    !! knows, and none may wait for another agreement)?
+    !! Has an agreement already returned a failure as an error (so that every
+    !! process knows, and none may wait for another agreement)?
     logical :: yes
-    yes = sj_comm_failed_agreed() /= 0
+    yes = failure_noted
   end function failure_agreed
+
+  function agreed_first() result(rank)
+    !! The process that failed first in the agreed failure (failure_agreed()).
+    integer :: rank
+    rank = failure_first
+  end function agreed_first
+
+  subroutine note_agreed_failure(first)
+    !! Record that an agreement returned a failure to the caller, reported
+    !! first by process first.
+    integer, intent(in) :: first
+    failure_noted = .true.
+    failure_first = first
+  end subroutine note_agreed_failure
 
   subroutine broadcast(x, root, ok)
     !! Collective: x on every process becomes x of process root.

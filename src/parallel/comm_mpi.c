@@ -11,11 +11,9 @@
  * (atexit), so that every Fortran `stop` ends MPI cleanly and mpirun sees the
  * process's own exit status.
  *
- * Agreement protocol (sj_comm_agree): every rank contributes its status (0 or
- * an exit status) and learns the largest one and the lowest rank that
- * reported it. Once an agreement has returned a failure, the failure is
- * remembered (sj_comm_failed_agreed) so that a rank ending on it does not
- * enter a second agreement the others will never reach.
+ * Agreement (sj_comm_agree): every rank contributes its status (0 or an exit
+ * status) and learns the largest one and the lowest rank that reported it
+ * (the protocol around it: src/parallel/comm.f90).
  */
 #define _XOPEN_SOURCE 700
 #include <mpi.h>
@@ -25,7 +23,6 @@
 #include <string.h>
 #include <ftw.h>
 
-static int failed_agreed = 0;
 static char session_base[4096] = "";
 
 static int launched(void);
@@ -121,7 +118,6 @@ int sj_comm_agree(int status, int *first)
     int worst = status;
     if (!running()) {
         *first = 0;
-        if (status != 0) failed_agreed = 1;
         return status;
     }
     rank = sj_comm_rank();
@@ -133,11 +129,9 @@ int sj_comm_agree(int status, int *first)
     out[1] = 0;
     if (MPI_Allreduce(in, out, 1, MPI_INT, MPI_MIN, MPI_COMM_WORLD) != MPI_SUCCESS) out[0] = rank;
     *first = worst != 0 ? out[0] : 0;
-    if (worst != 0) failed_agreed = 1;
     return worst;
 }
 
-int sj_comm_failed_agreed(void) { return failed_agreed; }
 
 /* Broadcast n doubles from rank root to every rank. */
 int sj_comm_bcast_real(double *x, int64_t n, int root)

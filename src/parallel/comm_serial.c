@@ -10,16 +10,13 @@ int sj_comm_is_parallel_build(void) { return 0; }
 /* MUMPS's USE_COMM_WORLD: the sequential MUMPS library ignores it. */
 int sj_comm_fortran(void) { return -987654; }
 
-static int failed_agreed = 0;
 
 int sj_comm_agree(int status, int *first)
 {
     *first = 0;
-    if (status != 0) failed_agreed = 1;
     return status;
 }
 
-int sj_comm_failed_agreed(void) { return failed_agreed; }
 int sj_comm_bcast_real(double *x, int64_t n, int root) { (void)x; (void)n; (void)root; return 0; }
 int sj_comm_sum_i8(int64_t *x, int64_t n) { (void)x; (void)n; return 0; }
 int sj_comm_max_real(double *x, int64_t n) { (void)x; (void)n; return 0; }

@@ -29,7 +29,8 @@ module superjoin_solvers_mumps
   use superjoin_error, only: error_t, fatal_error, EXIT_SINGULAR, EXIT_IO, EXIT_USAGE
   use superjoin_solvers_sparse, only: sparse_sym_t
   use superjoin_solvers_solver, only: linear_solver_t
-  use superjoin_parallel_comm, only: comm_t, comm_world, agree, broadcast, sum_counts, fortran_handle
+  use superjoin_parallel_comm, only: comm_t, comm_world, agree, broadcast, sum_counts, fortran_handle, &
+       note_agreed_failure
   use superjoin_utils_memory, only: oom_message
   use superjoin_utils_strings, only: itoa
   implicit none (type, external)
@@ -51,6 +52,7 @@ module superjoin_solvers_mumps
   integer(c_int), parameter :: SJ_TOO_LARGE = -106    !! shim: order beyond MUMPS's 32-bit indices
   integer(c_int), parameter :: SJ_NOT_BUILT = -108    !! stub: no MUMPS in this build
   integer(c_int), parameter :: MUMPS_ALLOC_FAILED = -13     !! INFOG(1): allocation failed
+  integer(c_int), parameter :: MUMPS_INT_ALLOC_FAILED = -7  !! INFOG(1): integer workspace allocation failed
   integer(c_int), parameter :: MUMPS_WORKSPACE = -9         !! INFOG(1): workspace too small
   integer(c_int), parameter :: MUMPS_SINGULAR = -10         !! INFOG(1): numerically singular
   integer, parameter :: INFOG_ERROR = 1, INFOG_DETAIL = 2, INFOG_ORDERING = 7, INFOG_NEGATIVE = 12, &
@@ -148,6 +150,10 @@ module superjoin_solvers_mumps
        import :: c_ptr
        type(c_ptr), value :: h
      end subroutine sj_mumps_free
+     subroutine sj_mumps_forget(h) bind(c, name='sj_mumps_forget')
+       import :: c_ptr
+       type(c_ptr), value :: h
+     end subroutine sj_mumps_forget
   end interface
 
 contains
@@ -183,6 +189,8 @@ contains
        return
     end if
     self%comm = comm_world()
+    call agreed(self, SJ_OK, 'start', error)
+    if (allocated(error)) return
     if (.not. c_associated(self%handle)) then
        self%handle = sj_mumps_create(int(self%sym, c_int), int(fortran_handle(), c_int), &
             real(NULL_PIVOT_RELATIVE, c_double), ORDERING_AMD, status)
@@ -299,13 +307,9 @@ contains
     end if
     if (self%n == 0 .or. size(b, 2) == 0) return
     allocate (work(self%n*size(b, 2)), stat=stat)
-    if (stat /= 0) then
-       call fatal_error(error, EXIT_IO, oom_message('MUMPS solve', self%n*size(b, 2, i8)*BYTES_ENTRY))
-       return
-    end if
-    work = reshape(b, [size(work, kind=i8)])
-    call agreed(self, SJ_OK, 'solve', error)
+    call agreed(self, merge(SJ_OK, SJ_NOMEM, stat == 0), 'solve', error)
     if (allocated(error)) return
+    work = reshape(b, [size(work, kind=i8)])
     status = sj_mumps_solve(self%handle, int(size(b, 2), c_int64_t), work)
     if (status < 0) then
        call status_error(self, status, 'solve', error)
@@ -376,9 +380,13 @@ contains
   end function mumps_negative_pivots
 
   subroutine mumps_finalize(self)
-    !! Finalizer: free the C side if the caller forgot release().
+    !! Finalizer: free the shim's own arrays only, without ending the MUMPS
+    !! instance (JOB = -2 is collective, and a finalizer also runs on the way
+    !! out of an error that only this process had: it must not wait for the
+    !! others). Normal paths call release(); this leaks MUMPS's memory only
+    !! when a run ends on an error.
     type(mumps_solver_t), intent(inout) :: self
-    if (c_associated(self%handle)) call sj_mumps_free(self%handle)
+    if (c_associated(self%handle)) call sj_mumps_forget(self%handle)
     self%handle = c_null_ptr
   end subroutine mumps_finalize
 
@@ -458,21 +466,29 @@ contains
   end function distribution
 
   subroutine agreed(self, status, phase, error)
-    !! Collective: before a MUMPS phase every process says whether it is
-    !! ready; if one is not, every process ends here with its status (the
-    !! failing process prints the message, see superjoin_parallel_comm).
+    !! Collective, before every MUMPS phase: each process says whether it is
+    !! ready (status SJ_OK, or the shim status of its own failure). If one is
+    !! not, every process returns an error with the agreed exit status: the
+    !! process that failed first with its own message (it prints it), the
+    !! others with a note (silent, see superjoin_parallel_comm).
     class(mumps_solver_t), intent(in) :: self
     integer(c_int), intent(in) :: status
     character(*), intent(in) :: phase
     type(error_t), allocatable, intent(out) :: error
-    integer :: worst, first
+    integer :: worst, first, mine
+    mine = 0
     if (status /= SJ_OK) then
-       ! this process failed: it reports, and agrees when it ends (main)
        call status_error(self, status, phase, error)
-       return
+       mine = error%code
     end if
-    call agree(0, worst, first)
-    if (worst /= 0) call fatal_error(error, worst, 'MUMPS '//phase//': process '//itoa(first)//' failed')
+    call agree(mine, worst, first)
+    if (worst == 0) return
+    call note_agreed_failure(first)
+    if (allocated(error)) then
+       error%code = worst
+    else
+       call fatal_error(error, worst, 'MUMPS '//phase//': process '//itoa(int(first, i8))//' failed')
+    end if
   end subroutine agreed
 
   subroutine status_error(self, status, phase, error)
@@ -486,9 +502,12 @@ contains
     if (c_associated(self%handle)) detail = sj_mumps_infog(self%handle, INFOG_DETAIL)
     select case (status)
     case (SJ_NOMEM)
-       call fatal_error(error, EXIT_IO, 'MUMPS '//phase//': out of memory')
+       call fatal_error(error, EXIT_IO, 'error: out of memory: MUMPS '//phase)
     case (SJ_TOO_LARGE)
        call fatal_error(error, EXIT_IO, 'MUMPS '//phase//': the matrix is too large for MUMPS''s 32-bit indices')
+    case (MUMPS_INT_ALLOC_FAILED)
+       call fatal_error(error, EXIT_IO, 'error: out of memory: MUMPS '//phase//' could not allocate its '// &
+            'integer workspace (MUMPS INFOG(1) = '//itoa(int(status, i8))//', INFOG(2) = '//itoa(detail)//')')
     case (MUMPS_ALLOC_FAILED, MUMPS_WORKSPACE)
        call fatal_error(error, EXIT_IO, oom_message('MUMPS '//phase, entries(int(detail, c_int64_t))*BYTES_ENTRY)// &
             ' (MUMPS INFOG(1) = '//itoa(int(status, i8))//', INFOG(2) = '//itoa(detail)//')')

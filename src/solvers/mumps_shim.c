@@ -211,3 +211,13 @@ void sj_mumps_free(void *vh)
     free(h->irn); free(h->jcn); free(h->a);
     free(h);
 }
+
+/* Free the shim's arrays without ending the MUMPS instance (no collective
+ * call): for a finalizer that may run on one process only. */
+void sj_mumps_forget(void *vh)
+{
+    sj_mumps_t *h = vh;
+    if (!h) return;
+    free(h->irn); free(h->jcn); free(h->a);
+    free(h);
+}

@@ -26,3 +26,4 @@ int64_t sj_mumps_info(void *h, int i) { (void)h; (void)i; return 0; }
 double sj_mumps_rinfog(void *h, int i) { (void)h; (void)i; return 0.0; }
 int64_t sj_mumps_null_pivot(void *h, int64_t k) { (void)h; (void)k; return 0; }
 void sj_mumps_free(void *h) { (void)h; }
+void sj_mumps_forget(void *h) { (void)h; }

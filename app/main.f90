@@ -1,6 +1,14 @@
 program superjoin_main
   !! superjoin: command-line driver. Reads a deck, solves every step, writes the
   !! listing (and CSV results on request). The only place that stops.
+  !!
+  !! Under MPI (cmake -DSUPERJOIN_MPI=ON, mpirun -np N) every process runs this
+  !! same program on the same deck; the solver is MUMPS over all of them
+  !! (--solver auto means mumps when N > 1); rank 0 alone prints progress and
+  !! warnings and writes the outputs. Every stop goes through finish() or
+  !! fail_on(), which agree on the exit status across the processes
+  !! (superjoin_parallel_comm): an error on any process ends every process
+  !! with the same status and one message, from the process that had it.
   use, intrinsic :: iso_fortran_env, only: error_unit, output_unit
   use superjoin_kinds, only: wp, i8
   use superjoin_error, only: error_t, EXIT_OK, EXIT_USAGE, EXIT_IO, EXIT_INACCURATE
@@ -24,6 +32,8 @@ program superjoin_main
   use superjoin_utils_clock, only: stopwatch_t, report_phase
   use superjoin_utils_process, only: process_setup, quick_exit
   use superjoin_utils_memory, only: oom_message
+  use superjoin_solvers, only: mumps_available
+  use superjoin_parallel_comm, only: comm_t, comm_world, agree, failure_agreed, agreed_first
   implicit none (type, external)
 
   type(run_options_t) :: opts
@@ -38,8 +48,19 @@ program superjoin_main
   integer :: i
   integer(i8) :: blas_bytes
   logical :: ok
+  type(comm_t) :: comm
 
+  comm = comm_world()
   call parse_command_line(opts, deck, listing, csv_dir, check_only, vtk_file, demo)
+  if (comm%size > 1) then
+     if (.not. allocated(opts%solver)) opts%solver = 'auto'
+     if (opts%solver == 'auto') opts%solver = 'mumps'
+  end if
+  if (.not. comm%is_root()) then
+     ! one voice: progress, warnings and every output file come from rank 0
+     opts%quiet = .true.
+     if (allocated(opts%export_matrix)) deallocate (opts%export_matrix)
+  end if
   call process_setup(ok, blas_bytes)
   if (.not. ok) write (error_unit, '(a)') 'superjoin: warning: signal handlers not installed'
   if (blas_bytes > 0 .and. .not. check_only) then
@@ -67,54 +88,60 @@ program superjoin_main
   ! (a wrong node number in a contact often makes a mechanism).
   allocate (deck_warnings(0))
   call check_contact_gaps(model, deck_warnings)
-  do i = 1, size(deck_warnings)
-     write (error_unit, '(a)') deck//': warning: '//deck_warnings(i)%s
-  end do
+  if (comm%is_root()) then
+     do i = 1, size(deck_warnings)
+        write (error_unit, '(a)') deck//': warning: '//deck_warnings(i)%s
+     end do
+  end if
   if (check_only) then
      if (.not. opts%quiet) write (error_unit, '(a)') 'superjoin: '//deck//': deck is valid'
-     stop EXIT_OK, quiet=.true.
+     call finish(EXIT_OK)
   end if
 
   if (.not. allocated(vtk_file) .and. allocated(model%vtk_path)) vtk_file = model%vtk_path
   opts%csv = allocated(csv_dir)
   opts%vtk = allocated(vtk_file)
   call solve_steps(model, opts, res, error)
-  if (allocated(error) .and. allocated(res%fields%mechanism)) call write_mechanism(error)
+  if (allocated(error) .and. allocated(res%fields%mechanism) .and. comm%is_root()) call write_mechanism(error)
   call fail_on(error, deck)
   call add_combinations(model, res, error)
   call fail_on(error, deck)
   call check_plausibility(model, res)
   res%log%phase_seconds(PH_READ) = t_read
   ! Warnings are printed also under -q (it silences progress only).
-  do i = 1, size(res%log%warnings)
-     write (error_unit, '(a)') deck//': warning: '//res%log%warnings(i)%s
-  end do
+  if (comm%is_root()) then
+     do i = 1, size(res%log%warnings)
+        write (error_unit, '(a)') deck//': warning: '//res%log%warnings(i)%s
+     end do
+  end if
   if (size(deck_warnings) > 0) res%log%warnings = [deck_warnings, res%log%warnings]
 
   call clock%start()
-  call write_listing(listing, model, res, error)
-  call fail_on(error, deck)
-  if (allocated(csv_dir)) then
-     call write_csv(csv_dir, model, res%fields, error)
+  if (comm%is_root()) then
+     call write_listing(listing, model, res, error)
      call fail_on(error, deck)
-     call write_nodes_csv(csv_dir, model, error)
-     call fail_on(error, deck)
-     call write_requested_csv(csv_dir, model, res%fields, error)
-     call fail_on(error, deck)
-  end if
-  if (allocated(vtk_file)) then
-     call write_vtk(vtk_file, model, res%fields, error)
-     call fail_on(error, deck)
+     if (allocated(csv_dir)) then
+        call write_csv(csv_dir, model, res%fields, error)
+        call fail_on(error, deck)
+        call write_nodes_csv(csv_dir, model, error)
+        call fail_on(error, deck)
+        call write_requested_csv(csv_dir, model, res%fields, error)
+        call fail_on(error, deck)
+     end if
+     if (allocated(vtk_file)) then
+        call write_vtk(vtk_file, model, res%fields, error)
+        call fail_on(error, deck)
+     end if
   end if
   res%log%phase_seconds(PH_WRITE) = clock%seconds()
   call report_phase(opts%quiet, 'write', res%log%phase_seconds(PH_WRITE), listing)
   if (demo .and. .not. opts%quiet) write (error_unit, '(a)') 'superjoin: listing written to '//listing
   if (res%log%inaccurate .and. .not. opts%accept_inaccurate) then
-     write (error_unit, '(a)') deck//': error: the results are judged inaccurate (see the warnings above); '// &
-          'the listing is written, exit status 5 (--accept-inaccurate: exit 0)'
-     stop EXIT_INACCURATE, quiet=.true.
+     if (comm%is_root()) write (error_unit, '(a)') deck//': error: the results are judged inaccurate '// &
+          '(see the warnings above); the listing is written, exit status 5 (--accept-inaccurate: exit 0)'
+     call finish(EXIT_INACCURATE)
   end if
-  stop EXIT_OK, quiet=.true.
+  call finish(EXIT_OK)
 
 contains
 
@@ -149,13 +176,32 @@ contains
     end if
   end subroutine write_mechanism
 
+  subroutine finish(status)
+    !! Stop with status, agreed with every other process: the largest status
+    !! of all (a process that failed late, while writing, is heard here).
+    integer, intent(in) :: status
+    integer :: worst, first
+    call agree(status, worst, first)
+    stop worst, quiet=.true.
+  end subroutine finish
+
   subroutine fail_on(error, deck)
-    !! Print the error's lines on stderr and stop with its exit status.
+    !! Print the error's lines on stderr and stop with its exit status. Under
+    !! MPI: if the error came from an agreement (another process failed),
+    !! stop silently with the agreed status; otherwise agree now, and the
+    !! lowest process with the worst status prints.
     type(error_t), allocatable, intent(in) :: error
     character(*), intent(in) :: deck
-    integer :: start, nl
+    integer :: start, nl, worst, first
     character(:), allocatable :: line
     if (.not. allocated(error)) return
+    if (failure_agreed()) then
+       ! every process knows already: only the one that failed first prints
+       if (agreed_first() /= comm%rank) stop error%code, quiet=.true.
+    else
+       call agree(error%code, worst, first)
+       if (first /= comm%rank) stop worst, quiet=.true.
+    end if
     start = 1
     do
        nl = index(error%message(start:), new_line('a'))
@@ -187,7 +233,7 @@ contains
          '', &
          '  -o FILE            listing path (default: DECK with extension .lst)', &
          '  --csv DIR          full-precision CSV results in DIR (created if needed)', &
-         '  --solver NAME      auto | cholmod | umfpack | lapack   (default auto)', &
+         '  --solver NAME      auto | cholmod | umfpack | lapack | mumps | mumps-ldlt (default auto)', &
          '  --formulation F    transform | penalty   (overrides *CONTROLS)', &
          '  --condense C       yes | no | auto: static condensation of every substructure', &
          '                     (overrides CONDENSE= of *SUBSTRUCTURE)', &
@@ -249,10 +295,13 @@ contains
              csv_dir = val
           case ('--solver')
              select case (to_lower(val))
-             case ('auto', 'cholmod', 'umfpack', 'lapack')
+             case ('auto', 'cholmod', 'umfpack', 'lapack', 'mumps', 'mumps-ldlt')
                 opts%solver = to_lower(val)
+                if (index(opts%solver, 'mumps') == 1 .and. .not. mumps_available()) &
+                     call usage_error('solver '//opts%solver//': this superjoin is built without MUMPS '// &
+                     '(cmake -DSUPERJOIN_MUMPS=ON or -DSUPERJOIN_MPI=ON, doc/user-manual.md)')
              case default
-                call usage_error('unknown solver '''//val//''' (auto, cholmod, umfpack, lapack)')
+                call usage_error('unknown solver '''//val//''' (auto, cholmod, umfpack, lapack, mumps, mumps-ldlt)')
              end select
           case ('--formulation')
              select case (to_lower(val))

@@ -31,6 +31,15 @@ grep -q 'END OF LISTING' demo.lst || { fail=$((fail+1)); echo "FAIL: demo listin
 for s in cholmod umfpack lapack; do
   expect 0 "solver $s" -- "$bin" -q --solver $s "$src/decks/demo.deck" -o demo_$s.lst
 done
+# MUMPS: solves when built in, otherwise a usage error naming the cmake option
+if "$bin" --solver mumps --version >/dev/null 2>&1; then
+  for s in mumps mumps-ldlt; do
+    expect 0 "solver $s" -- "$bin" -q --solver $s "$src/decks/demo.deck" -o demo_$s.lst
+  done
+else
+  expect 2 "solver mumps not built" -- "$bin" -q --solver mumps "$src/decks/demo.deck" -o demo_mumps.lst
+  grep -q 'SUPERJOIN_MUMPS=ON' err.txt || { fail=$((fail+1)); echo "FAIL: --solver mumps without MUMPS does not say how to build it"; }
+fi
 # Under PENALTY the demo's RIGID joints get the default g = k/sqrt(eps): solved
 # (exit 0), the MAXRATIO warning printed also under -q, the g range in the notes.
 for d in "$src"/decks/*.deck; do

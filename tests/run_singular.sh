@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # Solve a deck that must fail in the solution phase (exit 3) and check the
 # message names the location, nothing crashes, no listing is written, and
-# every backend (--solver lapack, cholmod, umfpack) prints the same message.
+# every backend (--solver lapack, cholmod, umfpack; mumps and mumps-ldlt when
+# built in) prints the same message.
 # usage: run_singular.sh SUPERJOIN DECK OUTDIR
 # The deck's first line: '** expect: STATUS SUBSTRING'; more '** also: SUBSTRING' lines may follow.
 set -u
@@ -23,8 +24,11 @@ done || fail=1
 grep -qiE 'runtime error|backtrace|segmentation|sigsegv' "$outdir/$name.err" && { echo "FAIL: crash output"; fail=1; }
 [ -e "$lst" ] && { echo "FAIL: a listing was written"; fail=1; }
 ls "$outdir/$name.lst.tmp" >/dev/null 2>&1 && { echo "FAIL: temporary listing left"; fail=1; }
-# The same message (location and mechanism report) from every backend.
-for s in lapack cholmod umfpack; do
+# The same message (location and mechanism report) from every backend, MUMPS
+# included when built in (--solver mumps is a usage error otherwise).
+backends="lapack cholmod umfpack"
+"$bin" --solver mumps --version >/dev/null 2>&1 && backends="$backends mumps mumps-ldlt"
+for s in $backends; do
   (cd "$(dirname "$deck")" && "$bin" -q --solver $s "$name.deck" -o "$lst" >/dev/null 2>"$outdir/$name.$s.err")
   st=$?
   [ "$st" -eq "$want_status" ] || { echo "FAIL: --solver $s: exit status $st, expected $want_status"; fail=1; }

@@ -1,16 +1,21 @@
 #!/usr/bin/env bash
 # Install the Debian packages superjoin needs, if any is missing.
-# usage: deps.sh [--test]
+# usage: deps.sh [--test] [--mumps | --mpi]
 #   (no option)  what building and running the solver needs (tools/build.sh, tools/demo)
 #   --test       also what the tests and benchmarks use: Python, GNU time,
 #                CalculiX (cross-checks), gnuplot (tools/render), valgrind
+#   --mumps      also sequential MUMPS (cmake -DSUPERJOIN_MUMPS=ON)
+#   --mpi        also Open MPI and MUMPS with PT-SCOTCH (cmake -DSUPERJOIN_MPI=ON)
 set -euo pipefail
 packages=(gfortran gcc cmake make liblapack-dev libopenblas-dev libsuitesparse-dev libmetis-dev)
-if [ "${1:-}" = "--test" ]; then
-  packages+=(python3 time calculix-ccx gnuplot-nox valgrind)
-elif [ $# -gt 0 ]; then
-  echo "usage: deps.sh [--test]" >&2; exit 2
-fi
+for opt in "$@"; do
+  case "$opt" in
+    --test) packages+=(python3 time calculix-ccx gnuplot-nox valgrind) ;;
+    --mumps) packages+=(libmumps-seq-dev) ;;
+    --mpi) packages+=(openmpi-bin libopenmpi-dev libmumps-ptscotch-dev) ;;
+    *) echo "usage: deps.sh [--test] [--mumps | --mpi]" >&2; exit 2 ;;
+  esac
+done
 missing=()
 for p in "${packages[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")

@@ -9,12 +9,13 @@ module superjoin_solvers
   use superjoin_solvers_cholmod, only: cholmod_solver_t
   use superjoin_solvers_umfpack, only: umfpack_solver_t
   use superjoin_solvers_lapack, only: lapack_solver_t
+  use superjoin_solvers_mumps, only: mumps_solver_t, MUMPS_SPD, MUMPS_SYMMETRIC, mumps_available
   implicit none (type, external)
   private
 
   public :: linear_solver_t, solver_info_t, sparse_sym_t
-  public :: cholmod_solver_t, umfpack_solver_t, lapack_solver_t
-  public :: new_solver, condition_estimate, norm1_sym
+  public :: cholmod_solver_t, umfpack_solver_t, lapack_solver_t, mumps_solver_t
+  public :: new_solver, condition_estimate, norm1_sym, mumps_available
 
   integer(i8), parameter, public :: AUTO_LAPACK_MAX = 1000_i8  !! 'auto': LAPACK up to this n, CHOLMOD above
   integer, parameter :: HAGER_MAX_ITER = 5                      !! iterations of the 1-norm estimator
@@ -22,9 +23,11 @@ module superjoin_solvers
 contains
 
   subroutine new_solver(name, n, solver, error)
-    !! Allocate the solver called name ('auto', 'cholmod', 'umfpack', 'lapack';
+    !! Allocate the solver called name ('auto', 'cholmod', 'umfpack', 'lapack',
+    !! 'mumps' (MUMPS LDL^T, SPD) or 'mumps-ldlt' (MUMPS LDL^T with pivoting);
     !! case and surrounding blanks ignored) for a matrix of order n. 'auto'
-    !! takes LAPACK for n <= AUTO_LAPACK_MAX and CHOLMOD otherwise.
+    !! takes LAPACK for n <= AUTO_LAPACK_MAX and CHOLMOD otherwise. A MUMPS
+    !! solver in a build without MUMPS fails in analyze (EXIT_USAGE).
     !! Unknown name: error with code EXIT_USAGE.
     character(*), intent(in) :: name
     integer(i8), intent(in) :: n
@@ -46,9 +49,15 @@ contains
        allocate (umfpack_solver_t :: solver)
     case ('lapack')
        allocate (lapack_solver_t :: solver)
+    case ('mumps', 'mumps-ldlt')
+       allocate (mumps_solver_t :: solver)
+       select type (solver)
+       type is (mumps_solver_t)
+          solver%sym = merge(MUMPS_SPD, MUMPS_SYMMETRIC, key == 'mumps')
+       end select
     case default
        call fatal_error(error, EXIT_USAGE, "unknown solver '"//trim(adjustl(name))// &
-            "' (expected auto, cholmod, umfpack or lapack)")
+            "' (expected auto, cholmod, umfpack, lapack, mumps or mumps-ldlt)")
     end select
   end subroutine new_solver
 

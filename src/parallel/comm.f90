@@ -1,0 +1,163 @@
+module superjoin_parallel_comm
+  !! The communication layer: which process this is among how many, and the
+  !! few collective operations superjoin needs (agreeing on a status, sending
+  !! the solution to every process, summing counters).
+  !!
+  !! The procedures bind to C functions with one implementation per build:
+  !! src/parallel/comm_mpi.c over MPI_COMM_WORLD (cmake -DSUPERJOIN_MPI=ON)
+  !! and src/parallel/comm_serial.c for one process (the default build, every
+  !! collective the identity), so both builds compile and run the same code.
+  !!
+  !! Errors on any process reach every process through agree(): each process
+  !! contributes its status (0, or the exit status it would end with) and all
+  !! learn the largest one and the lowest process that reported it, which is
+  !! the one that prints the message. The protocol: every collective MUMPS
+  !! call is preceded by an agreement at which every process says whether it
+  !! is ready; a process that failed elsewhere makes no further collective
+  !! call except the one agreement of its ending (app/main.f90 fail_on), which
+  !! meets the others at their next agreement. A procedure that returns an
+  !! agreed failure records it (note_agreed_failure), so that the ending does
+  !! not agree a second time, and only the process that failed first prints.
+  use, intrinsic :: iso_c_binding, only: c_int, c_int64_t, c_double
+  use superjoin_kinds, only: wp, i8
+  implicit none (type, external)
+  private
+
+  type, public :: comm_t
+    !! This process's place in the run (MPI_COMM_WORLD, or one process).
+     integer :: rank = 0        !! 0 .. size-1
+     integer :: size = 1        !! number of processes
+     logical :: parallel_build = .false.  !! built with MPI (even when size = 1)
+   contains
+     procedure :: is_root => comm_is_root
+  end type comm_t
+
+  public :: comm_world, agree, failure_agreed, note_agreed_failure, agreed_first, broadcast, sum_counts, &
+       max_reals, fortran_handle
+
+  logical :: failure_noted = .false.   !! an agreement returned a failure to the caller
+  integer :: failure_first = 0         !! the lowest process that reported it
+
+  interface
+     function sj_comm_rank() bind(c, name='sj_comm_rank') result(r)
+       import :: c_int
+       integer(c_int) :: r
+     end function sj_comm_rank
+     function sj_comm_size() bind(c, name='sj_comm_size') result(s)
+       import :: c_int
+       integer(c_int) :: s
+     end function sj_comm_size
+     function sj_comm_is_parallel_build() bind(c, name='sj_comm_is_parallel_build') result(p)
+       import :: c_int
+       integer(c_int) :: p
+     end function sj_comm_is_parallel_build
+     function sj_comm_fortran() bind(c, name='sj_comm_fortran') result(h)
+       import :: c_int
+       integer(c_int) :: h
+     end function sj_comm_fortran
+     function sj_comm_agree(status, first) bind(c, name='sj_comm_agree') result(worst)
+       import :: c_int
+       integer(c_int), value :: status
+       integer(c_int), intent(out) :: first
+       integer(c_int) :: worst
+     end function sj_comm_agree
+     function sj_comm_bcast_real(x, n, root) bind(c, name='sj_comm_bcast_real') result(status)
+       import :: c_int, c_int64_t, c_double
+       real(c_double), intent(inout) :: x(*)
+       integer(c_int64_t), value :: n
+       integer(c_int), value :: root
+       integer(c_int) :: status
+     end function sj_comm_bcast_real
+     function sj_comm_sum_i8(x, n) bind(c, name='sj_comm_sum_i8') result(status)
+       import :: c_int, c_int64_t
+       integer(c_int64_t), intent(inout) :: x(*)
+       integer(c_int64_t), value :: n
+       integer(c_int) :: status
+     end function sj_comm_sum_i8
+     function sj_comm_max_real(x, n) bind(c, name='sj_comm_max_real') result(status)
+       import :: c_int, c_int64_t, c_double
+       real(c_double), intent(inout) :: x(*)
+       integer(c_int64_t), value :: n
+       integer(c_int) :: status
+     end function sj_comm_max_real
+  end interface
+
+contains
+
+  function comm_world() result(comm)
+    !! This process in MPI_COMM_WORLD (starting MPI on first use), or the one
+    !! process of the serial build.
+    type(comm_t) :: comm
+    comm%rank = sj_comm_rank()
+    comm%size = sj_comm_size()
+    comm%parallel_build = sj_comm_is_parallel_build() /= 0
+  end function comm_world
+
+  pure function comm_is_root(self) result(root)
+    !! Is this the process that writes the outputs (rank 0)?
+    class(comm_t), intent(in) :: self
+    logical :: root
+    root = self%rank == 0
+  end function comm_is_root
+
+  subroutine agree(status, worst, first)
+    !! Collective: every process contributes status (0: fine); worst is the
+    !! largest status of all, first the lowest rank that reported it (0 when
+    !! all are fine). Every process must call it at the same point.
+    integer, intent(in) :: status
+    integer, intent(out) :: worst, first
+    integer(c_int) :: f
+    worst = sj_comm_agree(int(status, c_int), f)
+    first = f
+  end subroutine agree
+
+  function failure_agreed() result(yes)
+    !! Has an agreement already returned a failure as an error (so that every
+    !! process knows, and none may wait for another agreement)?
+    logical :: yes
+    yes = failure_noted
+  end function failure_agreed
+
+  function agreed_first() result(rank)
+    !! The process that failed first in the agreed failure (failure_agreed()).
+    integer :: rank
+    rank = failure_first
+  end function agreed_first
+
+  subroutine note_agreed_failure(first)
+    !! Record that an agreement returned a failure to the caller, reported
+    !! first by process first.
+    integer, intent(in) :: first
+    failure_noted = .true.
+    failure_first = first
+  end subroutine note_agreed_failure
+
+  subroutine broadcast(x, root, ok)
+    !! Collective: x on every process becomes x of process root.
+    real(wp), intent(inout), contiguous :: x(:)
+    integer, intent(in) :: root
+    logical, intent(out) :: ok
+    ok = sj_comm_bcast_real(x, size(x, kind=c_int64_t), int(root, c_int)) == 0
+  end subroutine broadcast
+
+  subroutine sum_counts(x, ok)
+    !! Collective: each entry of x becomes its sum over the processes.
+    integer(i8), intent(inout), contiguous :: x(:)
+    logical, intent(out) :: ok
+    ok = sj_comm_sum_i8(x, size(x, kind=c_int64_t)) == 0
+  end subroutine sum_counts
+
+  subroutine max_reals(x, ok)
+    !! Collective: each entry of x becomes its largest value over the processes.
+    real(wp), intent(inout), contiguous :: x(:)
+    logical, intent(out) :: ok
+    ok = sj_comm_max_real(x, size(x, kind=c_int64_t)) == 0
+  end subroutine max_reals
+
+  function fortran_handle() result(h)
+    !! The Fortran handle of MPI_COMM_WORLD (MUMPS's COMM), or MUMPS's
+    !! USE_COMM_WORLD placeholder in the serial build.
+    integer :: h
+    h = sj_comm_fortran()
+  end function fortran_handle
+end module superjoin_parallel_comm

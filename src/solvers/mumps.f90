@@ -1,0 +1,554 @@
+module superjoin_solvers_mumps
+  !! Sparse multifrontal LDL^T (MUMPS) behind the linear_solver_t interface,
+  !! sequential or over MPI.
+  !!
+  !! Binding: MUMPS's C interface (dmumps_c) through the C shim
+  !! src/solvers/mumps_shim.c, which owns the DMUMPS_STRUC_C and is reached
+  !! with bind(c); a build without MUMPS links src/solvers/mumps_stub.c
+  !! instead, where creating the solver fails with a message naming the cmake
+  !! option. Every procedure is collective over the processes of the run
+  !! (superjoin_parallel_comm): all call it in the same order with the same
+  !! matrix. Each process contributes the entries of its share of the columns
+  !! (contiguous blocks, nodes kept whole, balanced by entries) as MUMPS's
+  !! distributed assembled input (ICNTL(18) = 3); right-hand sides and
+  !! solutions are centralized on rank 0 and the solution is broadcast, so that
+  !! every process continues with the same numbers.
+  !!
+  !! Matrix type: SYM = 1 (symmetric positive definite, no pivoting) by
+  !! default, as CHOLMOD; SYM = 2 (general symmetric, pivoting) for
+  !! `--solver mumps-ldlt`. A breakdown is reported as the other backends do
+  !! (EXIT_SINGULAR and info%failed_column): MUMPS's null pivot detection
+  !! (ICNTL(24) = 1, threshold CNTL(3) = NULL_PIVOT_RELATIVE of the norm of the
+  !! scaled matrix) gives the first null pivot's column; with SYM = 1 a
+  !! negative pivot (INFOG(12) > 0) means not positive definite. MUMPS does not
+  !! give its pivots to the caller: pivots() returns 1/(A^-1)_jj instead (see
+  !! there), which makes the health block's MAXRATIO an ordering-independent
+  !! upper bound of the usual one.
+  use, intrinsic :: iso_c_binding, only: c_ptr, c_null_ptr, c_associated, c_int, c_int64_t, c_double
+  use superjoin_kinds, only: wp, i8
+  use superjoin_error, only: error_t, fatal_error, EXIT_SINGULAR, EXIT_IO, EXIT_USAGE
+  use superjoin_solvers_sparse, only: sparse_sym_t
+  use superjoin_solvers_solver, only: linear_solver_t
+  use superjoin_parallel_comm, only: comm_t, comm_world, agree, broadcast, sum_counts, fortran_handle, &
+       note_agreed_failure
+  use superjoin_utils_memory, only: oom_message
+  use superjoin_utils_strings, only: itoa
+  implicit none (type, external)
+  private
+
+  integer, parameter, public :: MUMPS_SPD = 1         !! SYM = 1: symmetric positive definite
+  integer, parameter, public :: MUMPS_SYMMETRIC = 2   !! SYM = 2: general symmetric (pivoting)
+  real(wp), parameter, public :: NULL_PIVOT_RELATIVE = 1.0e-13_wp
+    !! CNTL(3): a pivot row whose norm is below this fraction of the scaled
+    !! matrix's norm is null (the reciprocal of the health block's MAXRATIO limit)
+  integer(i8), parameter, public :: INVERSE_DIAGONAL_MAX_N = 20000_i8
+    !! pivots() computes diag(A^-1) up to this order; above it (n = 1e5: about
+    !! 40 times the factorization's time) the pivots are unknown (zeros)
+  integer(c_int), parameter :: ORDERING_AMD = 0
+    !! ICNTL(7) = 0: AMD, deterministic (SCOTCH through MUMPS gave a different
+    !! factor size from run to run, and 60 % more fill on the 1e5 frame)
+  integer(c_int), parameter :: SJ_OK = 0
+  integer(c_int), parameter :: SJ_NOMEM = -105        !! shim: malloc failed
+  integer(c_int), parameter :: SJ_TOO_LARGE = -106    !! shim: order beyond MUMPS's 32-bit indices
+  integer(c_int), parameter :: SJ_NOT_BUILT = -108    !! stub: no MUMPS in this build
+  integer(c_int), parameter :: MUMPS_ALLOC_FAILED = -13     !! INFOG(1): allocation failed
+  integer(c_int), parameter :: MUMPS_INT_ALLOC_FAILED = -7  !! INFOG(1): integer workspace allocation failed
+  integer(c_int), parameter :: MUMPS_WORKSPACE = -9         !! INFOG(1): workspace too small
+  integer(c_int), parameter :: MUMPS_SINGULAR = -10         !! INFOG(1): numerically singular
+  integer, parameter :: INFOG_ERROR = 1, INFOG_DETAIL = 2, INFOG_ORDERING = 7, INFOG_NEGATIVE = 12, &
+       INFOG_FACTOR_ENTRIES = 29, INFOG_FACTOR_ESTIMATE = 20, INFOG_NULL_PIVOTS = 28
+  integer, parameter :: RINFOG_FLOPS = 3
+  real(wp), parameter :: MBYTE = 1048576.0_wp
+  real(wp), parameter :: MILLION = 1.0e6_wp
+  integer, parameter :: BYTES_ENTRY = 8                !! a real(wp) factor entry
+
+  type, extends(linear_solver_t), public :: mumps_solver_t
+    !! MUMPS multifrontal LDL^T.
+     private
+     type(c_ptr) :: handle = c_null_ptr
+     integer, public :: sym = MUMPS_SPD   !! MUMPS_SPD or MUMPS_SYMMETRIC (set before analyze)
+     integer(i8) :: n = -1
+     logical :: factored = .false.
+     real(wp) :: fl = 0.0_wp
+     type(comm_t) :: comm
+   contains
+     procedure :: analyze => mumps_analyze
+     procedure :: factorize => mumps_factorize
+     procedure :: solve => mumps_solve
+     procedure :: pivots => mumps_pivots
+     procedure :: release => mumps_release
+     procedure :: flops => mumps_flops
+     procedure :: negative_pivots => mumps_negative_pivots
+     final :: mumps_finalize
+  end type mumps_solver_t
+
+  public :: mumps_available
+
+  interface
+     function sj_mumps_built() bind(c, name='sj_mumps_built') result(yes)
+       import :: c_int
+       integer(c_int) :: yes
+     end function sj_mumps_built
+     function sj_mumps_create(sym, comm, null_threshold, ordering, status) bind(c, name='sj_mumps_create') result(h)
+       import :: c_ptr, c_int, c_double
+       integer(c_int), value :: sym, comm, ordering
+       real(c_double), value :: null_threshold
+       integer(c_int), intent(out) :: status
+       type(c_ptr) :: h
+     end function sj_mumps_create
+     function sj_mumps_pattern(h, n, colptr, rowind, c1, c2) bind(c, name='sj_mumps_pattern') result(status)
+       import :: c_ptr, c_int, c_int64_t
+       type(c_ptr), value :: h
+       integer(c_int64_t), value :: n, c1, c2
+       integer(c_int64_t), intent(in) :: colptr(*), rowind(*)
+       integer(c_int) :: status
+     end function sj_mumps_pattern
+     function sj_mumps_analyze(h) bind(c, name='sj_mumps_analyze') result(status)
+       import :: c_ptr, c_int
+       type(c_ptr), value :: h
+       integer(c_int) :: status
+     end function sj_mumps_analyze
+     function sj_mumps_factorize(h, val) bind(c, name='sj_mumps_factorize') result(status)
+       import :: c_ptr, c_int, c_double
+       type(c_ptr), value :: h
+       real(c_double), intent(in) :: val(*)
+       integer(c_int) :: status
+     end function sj_mumps_factorize
+     function sj_mumps_solve(h, nrhs, x) bind(c, name='sj_mumps_solve') result(status)
+       import :: c_ptr, c_int, c_int64_t, c_double
+       type(c_ptr), value :: h
+       integer(c_int64_t), value :: nrhs
+       real(c_double), intent(inout) :: x(*)
+       integer(c_int) :: status
+     end function sj_mumps_solve
+     function sj_mumps_inverse_diagonal(h, ptr, irow, dinv) bind(c, name='sj_mumps_inverse_diagonal') result(status)
+       import :: c_ptr, c_int, c_double
+       type(c_ptr), value :: h
+       integer(c_int), intent(inout) :: ptr(*), irow(*)
+       real(c_double), intent(inout) :: dinv(*)
+       integer(c_int) :: status
+     end function sj_mumps_inverse_diagonal
+     function sj_mumps_infog(h, i) bind(c, name='sj_mumps_infog') result(v)
+       import :: c_ptr, c_int, c_int64_t
+       type(c_ptr), value :: h
+       integer(c_int), value :: i
+       integer(c_int64_t) :: v
+     end function sj_mumps_infog
+     function sj_mumps_rinfog(h, i) bind(c, name='sj_mumps_rinfog') result(v)
+       import :: c_ptr, c_int, c_double
+       type(c_ptr), value :: h
+       integer(c_int), value :: i
+       real(c_double) :: v
+     end function sj_mumps_rinfog
+     function sj_mumps_null_pivot(h, k) bind(c, name='sj_mumps_null_pivot') result(j)
+       import :: c_ptr, c_int64_t
+       type(c_ptr), value :: h
+       integer(c_int64_t), value :: k
+       integer(c_int64_t) :: j
+     end function sj_mumps_null_pivot
+     subroutine sj_mumps_free(h) bind(c, name='sj_mumps_free')
+       import :: c_ptr
+       type(c_ptr), value :: h
+     end subroutine sj_mumps_free
+     subroutine sj_mumps_forget(h) bind(c, name='sj_mumps_forget')
+       import :: c_ptr
+       type(c_ptr), value :: h
+     end subroutine sj_mumps_forget
+  end interface
+
+contains
+
+  function mumps_available() result(yes)
+    !! Is MUMPS built into this superjoin (cmake -DSUPERJOIN_MUMPS=ON or -DSUPERJOIN_MPI=ON)?
+    logical :: yes
+    yes = sj_mumps_built() /= 0
+  end function mumps_available
+
+  subroutine mumps_analyze(self, a, error)
+    !! Start MUMPS (first call), hand in this process's share of the pattern
+    !! and run the analysis (AMD ordering, symbolic factorization).
+    class(mumps_solver_t), intent(inout) :: self
+    type(sparse_sym_t), intent(in) :: a
+    type(error_t), allocatable, intent(out) :: error
+    integer(c_int) :: status
+    integer(i8) :: c1, c2, one(1)
+
+    self%factored = .false.
+    self%n = -1
+    if (self%sym == MUMPS_SPD) then
+       self%info%name = 'MUMPS multifrontal LDL^T (SPD)'
+    else
+       self%info%name = 'MUMPS multifrontal LDL^T (symmetric, pivoting)'
+    end if
+    self%info%ordering = 'none'
+    self%info%factor_nnz = 0
+    self%info%factor_mbytes = 0.0_wp
+    self%info%failed_column = 0
+    if (a%n < 0 .or. .not. allocated(a%colptr)) then
+       call fatal_error(error, EXIT_IO, 'MUMPS: invalid matrix')
+       return
+    end if
+    self%comm = comm_world()
+    call agreed(self, SJ_OK, 'start', error)
+    if (allocated(error)) return
+    if (.not. c_associated(self%handle)) then
+       self%handle = sj_mumps_create(int(self%sym, c_int), int(fortran_handle(), c_int), &
+            real(NULL_PIVOT_RELATIVE, c_double), ORDERING_AMD, status)
+       if (status == SJ_NOT_BUILT) then
+          call fatal_error(error, EXIT_USAGE, 'solver mumps: this superjoin is built without MUMPS '// &
+               '(configure with cmake -DSUPERJOIN_MUMPS=ON or -DSUPERJOIN_MPI=ON)')
+          return
+       end if
+       if (status /= SJ_OK) then
+          call status_error(self, status, 'start', error)
+          return
+       end if
+    end if
+    call share(self, a, c1, c2)
+    one = 1
+    if (a%nnz() > 0) then
+       status = sj_mumps_pattern(self%handle, a%n, a%colptr, a%rowind, c1, c2)
+    else
+       status = sj_mumps_pattern(self%handle, a%n, a%colptr, one, 1_i8, 0_i8)
+    end if
+    call agreed(self, status, 'analyze', error)
+    if (allocated(error)) return
+    status = sj_mumps_analyze(self%handle)
+    if (status < 0) then
+       call status_error(self, status, 'analyze', error)
+       return
+    end if
+    self%n = a%n
+    self%info%ordering = ordering_name(int(sj_mumps_infog(self%handle, INFOG_ORDERING)))
+    if (self%comm%size > 1) self%info%ordering = self%info%ordering//'; '//distribution(self, a, c1, c2)
+    self%info%factor_nnz = entries(sj_mumps_infog(self%handle, INFOG_FACTOR_ESTIMATE))
+  end subroutine mumps_analyze
+
+  subroutine mumps_factorize(self, a, error)
+    !! Numeric factorization. A null pivot (or, SPD, a negative one): error
+    !! with EXIT_SINGULAR and info%failed_column (0 when MUMPS does not say).
+    class(mumps_solver_t), intent(inout) :: self
+    type(sparse_sym_t), intent(in) :: a
+    type(error_t), allocatable, intent(out) :: error
+    integer(c_int) :: status
+    integer(i8) :: nnull, nneg
+    real(wp) :: first(1)
+    real(wp) :: zero(1)
+    logical :: ok
+
+    self%factored = .false.
+    self%info%failed_column = 0
+    if (.not. c_associated(self%handle) .or. self%n < 0) then
+       call fatal_error(error, EXIT_IO, 'MUMPS: factorize called before analyze')
+       return
+    end if
+    if (a%n /= self%n) then
+       call fatal_error(error, EXIT_IO, 'MUMPS: matrix order differs from the analyzed one')
+       return
+    end if
+    call agreed(self, SJ_OK, 'factorize', error)
+    if (allocated(error)) return
+    zero = 0.0_wp
+    if (a%nnz() > 0) then
+       status = sj_mumps_factorize(self%handle, a%val)
+    else
+       status = sj_mumps_factorize(self%handle, zero)
+    end if
+    self%fl = sj_mumps_rinfog(self%handle, RINFOG_FLOPS)
+    if (status == MUMPS_SINGULAR) then
+       ! SYM = 1 stops at a zero pivot without naming it: the pivoting
+       ! variant, with null pivot detection, finds the column
+       if (self%sym == MUMPS_SPD) self%info%failed_column = null_column(a)
+       call fatal_error(error, EXIT_SINGULAR, 'matrix is numerically singular (MUMPS)')
+       return
+    end if
+    if (status < 0) then
+       call status_error(self, status, 'factorize', error)
+       return
+    end if
+    self%info%factor_nnz = entries(sj_mumps_infog(self%handle, INFOG_FACTOR_ENTRIES))
+    self%info%factor_mbytes = real(self%info%factor_nnz, wp)*BYTES_ENTRY/MBYTE
+    nnull = sj_mumps_infog(self%handle, INFOG_NULL_PIVOTS)
+    if (nnull > 0) then
+       ! the list is on the host only: every process must report the same column
+       first(1) = real(sj_mumps_null_pivot(self%handle, 1_c_int64_t), wp)
+       call broadcast(first, 0, ok)
+       self%info%failed_column = int(first(1), i8)
+       call fatal_error(error, EXIT_SINGULAR, 'matrix is singular: '//itoa(nnull)// &
+            ' null pivot(s), the first at column '//itoa(self%info%failed_column))
+       return
+    end if
+    nneg = sj_mumps_infog(self%handle, INFOG_NEGATIVE)
+    if (self%sym == MUMPS_SPD .and. nneg > 0) then
+       call fatal_error(error, EXIT_SINGULAR, 'matrix is not positive definite: '//itoa(nneg)//' negative pivot(s)')
+       return
+    end if
+    self%factored = .true.
+  end subroutine mumps_factorize
+
+  subroutine mumps_solve(self, b, x, error)
+    !! x = A^-1 b for every column of b, on every process.
+    class(mumps_solver_t), intent(inout) :: self
+    real(wp), intent(in) :: b(:, :)
+    real(wp), intent(out) :: x(:, :)
+    type(error_t), allocatable, intent(out) :: error
+    integer(c_int) :: status
+    real(wp), allocatable :: work(:)
+    integer :: stat
+    logical :: ok
+
+    if (.not. self%factored) then
+       call fatal_error(error, EXIT_IO, 'MUMPS: solve called without a valid factorization')
+       return
+    end if
+    if (size(b, 1, i8) /= self%n .or. size(x, 1, i8) /= self%n .or. size(b, 2) /= size(x, 2)) then
+       call fatal_error(error, EXIT_IO, 'MUMPS: right-hand side and solution shapes do not match the matrix')
+       return
+    end if
+    if (self%n == 0 .or. size(b, 2) == 0) return
+    allocate (work(self%n*size(b, 2)), stat=stat)
+    call agreed(self, merge(SJ_OK, SJ_NOMEM, stat == 0), 'solve', error)
+    if (allocated(error)) return
+    work = reshape(b, [size(work, kind=i8)])
+    status = sj_mumps_solve(self%handle, int(size(b, 2), c_int64_t), work)
+    if (status < 0) then
+       call status_error(self, status, 'solve', error)
+       return
+    end if
+    call broadcast(work, 0, ok)
+    if (.not. ok) then
+       call fatal_error(error, EXIT_IO, 'MUMPS solve: the solution could not be sent to every process')
+       return
+    end if
+    x = reshape(work, shape(x))
+  end subroutine mumps_solve
+
+  subroutine mumps_pivots(self, d)
+    !! MUMPS does not give its pivots to the caller. Instead d(j) = 1/(A^-1)_jj,
+    !! the pivot column j would have if it were eliminated last (MUMPS's
+    !! selected entries of the inverse, ICNTL(30)). For a positive definite
+    !! matrix that is the smallest pivot j can have in any elimination order,
+    !! so K_jj/d(j) bounds the diagonal decay ratio of every ordering from
+    !! above: the health block's MAXRATIO is then an upper bound, independent
+    !! of the ordering (and of the number of processes). d = 0 (unknown, the
+    !! health block's MAXRATIO is then n/a) above INVERSE_DIAGONAL_MAX_N
+    !! unknowns or if the computation fails. Collective.
+    class(mumps_solver_t), intent(inout) :: self
+    real(wp), intent(out) :: d(:)
+    integer(c_int), allocatable :: ptr(:), irow(:)
+    real(wp), allocatable :: dinv(:)
+    integer(c_int) :: status
+    integer :: stat, worst, first
+    logical :: ok
+
+    d = 0.0_wp
+    if (.not. self%factored .or. self%n <= 0 .or. size(d, kind=i8) < self%n) return
+    if (self%n > INVERSE_DIAGONAL_MAX_N) return
+    allocate (ptr(self%n + 1), irow(self%n), dinv(self%n), stat=stat)
+    call agree(merge(0, EXIT_IO, stat == 0), worst, first)
+    if (worst /= 0) return
+    dinv = 0.0_wp
+    status = sj_mumps_inverse_diagonal(self%handle, ptr, irow, dinv)
+    if (status < 0) return
+    call broadcast(dinv, 0, ok)
+    if (.not. ok) return
+    where (dinv /= 0.0_wp) d(1:self%n) = 1.0_wp/dinv
+  end subroutine mumps_pivots
+
+  subroutine mumps_release(self)
+    !! End the MUMPS instance (collective) and free the shim.
+    class(mumps_solver_t), intent(inout) :: self
+    if (c_associated(self%handle)) call sj_mumps_free(self%handle)
+    self%handle = c_null_ptr
+    self%n = -1
+    self%factored = .false.
+  end subroutine mumps_release
+
+  pure function mumps_flops(self) result(fl)
+    !! Floating-point operations of the last factorization (RINFOG(3), all processes).
+    class(mumps_solver_t), intent(in) :: self
+    real(wp) :: fl
+    fl = self%fl
+  end function mumps_flops
+
+  function mumps_negative_pivots(self) result(nneg)
+    !! Negative pivots of the last factorization (INFOG(12)): the inertia for SYM = 2.
+    class(mumps_solver_t), intent(in) :: self
+    integer(i8) :: nneg
+    nneg = 0
+    if (c_associated(self%handle)) nneg = sj_mumps_infog(self%handle, INFOG_NEGATIVE)
+  end function mumps_negative_pivots
+
+  subroutine mumps_finalize(self)
+    !! Finalizer: free the shim's own arrays only, without ending the MUMPS
+    !! instance (JOB = -2 is collective, and a finalizer also runs on the way
+    !! out of an error that only this process had: it must not wait for the
+    !! others). Normal paths call release(); this leaks MUMPS's memory only
+    !! when a run ends on an error.
+    type(mumps_solver_t), intent(inout) :: self
+    if (c_associated(self%handle)) call sj_mumps_forget(self%handle)
+    self%handle = c_null_ptr
+  end subroutine mumps_finalize
+
+  ! ---- helpers
+
+  subroutine share(self, a, c1, c2)
+    !! This process's columns c1..c2: contiguous blocks holding about
+    !! nnz/size entries each, ending on a node boundary when groups are set.
+    class(mumps_solver_t), intent(in) :: self
+    type(sparse_sym_t), intent(in) :: a
+    integer(i8), intent(out) :: c1, c2
+    integer(i8) :: j, target_lo, target_hi, nz
+    c1 = 1
+    c2 = a%n
+    if (self%comm%size <= 1 .or. a%n == 0) return
+    nz = a%nnz()
+    target_lo = nz*self%comm%rank/self%comm%size
+    target_hi = nz*(self%comm%rank + 1)/self%comm%size
+    c1 = boundary(target_lo) + 1
+    c2 = boundary(target_hi)
+    if (self%comm%rank == self%comm%size - 1) c2 = a%n
+  contains
+    function boundary(t) result(jb)
+      !! Last column whose entries end at or before position t, moved to a node end.
+      integer(i8), intent(in) :: t
+      integer(i8) :: jb, g
+      jb = 0
+      do j = 1, a%n
+         if (a%colptr(j + 1) - 1 > t) exit
+         jb = j
+      end do
+      if (allocated(self%group_first) .and. jb > 0 .and. jb < a%n) then
+         do g = 1, size(self%group_first, kind=i8) - 1
+            if (self%group_first(g + 1) - 1 >= jb) then
+               jb = self%group_first(g + 1) - 1
+               exit
+            end if
+         end do
+         jb = min(jb, a%n)
+      end if
+    end function boundary
+  end subroutine share
+
+  function null_column(a) result(j)
+    !! The first null pivot column of a as found by MUMPS with pivoting
+    !! (SYM = 2, null pivot detection); 0 if none is found. Collective.
+    type(sparse_sym_t), intent(in) :: a
+    integer(i8) :: j
+    type(mumps_solver_t) :: probe
+    type(error_t), allocatable :: error
+    j = 0
+    probe%sym = MUMPS_SYMMETRIC
+    call probe%analyze(a, error)
+    if (allocated(error)) return
+    call probe%factorize(a, error)
+    j = probe%info%failed_column
+    call probe%release()
+  end function null_column
+
+  function distribution(self, a, c1, c2) result(text)
+    !! 'N processes, matrix entries per process n0 n1 ..' (collective).
+    class(mumps_solver_t), intent(in) :: self
+    type(sparse_sym_t), intent(in) :: a
+    integer(i8), intent(in) :: c1, c2
+    character(:), allocatable :: text
+    integer(i8), allocatable :: counts(:)
+    integer :: r
+    logical :: ok
+    allocate (counts(0:self%comm%size - 1))
+    counts = 0
+    if (c2 >= c1) counts(self%comm%rank) = a%colptr(c2 + 1) - a%colptr(c1)
+    call sum_counts(counts, ok)
+    text = itoa(int(self%comm%size, i8))//' processes, matrix entries per process'
+    do r = 0, self%comm%size - 1
+       text = text//' '//itoa(counts(r))
+    end do
+  end function distribution
+
+  subroutine agreed(self, status, phase, error)
+    !! Collective, before every MUMPS phase: each process says whether it is
+    !! ready (status SJ_OK, or the shim status of its own failure). If one is
+    !! not, every process returns an error with the agreed exit status: the
+    !! process that failed first with its own message (it prints it), the
+    !! others with a note (silent, see superjoin_parallel_comm).
+    class(mumps_solver_t), intent(in) :: self
+    integer(c_int), intent(in) :: status
+    character(*), intent(in) :: phase
+    type(error_t), allocatable, intent(out) :: error
+    integer :: worst, first, mine
+    mine = 0
+    if (status /= SJ_OK) then
+       call status_error(self, status, phase, error)
+       mine = error%code
+    end if
+    call agree(mine, worst, first)
+    if (worst == 0) return
+    call note_agreed_failure(first)
+    if (allocated(error)) then
+       error%code = worst
+    else
+       call fatal_error(error, worst, 'MUMPS '//phase//': process '//itoa(int(first, i8))//' failed')
+    end if
+  end subroutine agreed
+
+  subroutine status_error(self, status, phase, error)
+    !! Error for a failed shim or MUMPS call (INFOG(1) < 0).
+    class(mumps_solver_t), intent(in) :: self
+    integer(c_int), intent(in) :: status
+    character(*), intent(in) :: phase
+    type(error_t), allocatable, intent(out) :: error
+    integer(i8) :: detail
+    detail = 0
+    if (c_associated(self%handle)) detail = sj_mumps_infog(self%handle, INFOG_DETAIL)
+    select case (status)
+    case (SJ_NOMEM)
+       call fatal_error(error, EXIT_IO, 'error: out of memory: MUMPS '//phase)
+    case (SJ_TOO_LARGE)
+       call fatal_error(error, EXIT_IO, 'MUMPS '//phase//': the matrix is too large for MUMPS''s 32-bit indices')
+    case (MUMPS_INT_ALLOC_FAILED)
+       call fatal_error(error, EXIT_IO, 'error: out of memory: MUMPS '//phase//' could not allocate its '// &
+            'integer workspace (MUMPS INFOG(1) = '//itoa(int(status, i8))//', INFOG(2) = '//itoa(detail)//')')
+    case (MUMPS_ALLOC_FAILED, MUMPS_WORKSPACE)
+       call fatal_error(error, EXIT_IO, oom_message('MUMPS '//phase, entries(int(detail, c_int64_t))*BYTES_ENTRY)// &
+            ' (MUMPS INFOG(1) = '//itoa(int(status, i8))//', INFOG(2) = '//itoa(detail)//')')
+    case default
+       call fatal_error(error, EXIT_IO, 'MUMPS '//phase//' failed: INFOG(1) = '//itoa(int(status, i8))// &
+            ', INFOG(2) = '//itoa(detail))
+    end select
+  end subroutine status_error
+
+  pure function entries(v) result(n)
+    !! A MUMPS count: negative values are millions.
+    integer(c_int64_t), intent(in) :: v
+    integer(i8) :: n
+    if (v < 0) then
+       n = int(-real(v, wp)*MILLION, i8)
+    else
+       n = v
+    end if
+  end function entries
+
+  pure function ordering_name(code) result(name)
+    !! The ordering MUMPS used (INFOG(7)).
+    integer, intent(in) :: code
+    character(:), allocatable :: name
+    select case (code)
+    case (0)
+       name = 'AMD (MUMPS)'
+    case (1)
+       name = 'given'
+    case (2)
+       name = 'AMF (MUMPS)'
+    case (3)
+       name = 'SCOTCH (MUMPS)'
+    case (4)
+       name = 'PORD (MUMPS)'
+    case (5)
+       name = 'METIS (MUMPS)'
+    case (6)
+       name = 'QAMD (MUMPS)'
+    case default
+       name = 'MUMPS ordering '//itoa(int(code, i8))
+    end select
+  end function ordering_name
+end module superjoin_solvers_mumps

@@ -64,6 +64,37 @@ contains
     end do
   end function step_requests
 
+  subroutine start_table(path, model, kinds, name, applies, header, wanted, tb, tmp, error)
+    !! The steps whose requests of `kinds` name `name`; when there are none or
+    !! the table does not apply to the model, the table is removed (one of an
+    !! earlier run must not survive) and tb is left unallocated; else its
+    !! temporary file is opened with the header line.
+    character(*), intent(in) :: path, name, header
+    type(model_t), intent(in) :: model
+    integer, intent(in) :: kinds(:)
+    logical, intent(in) :: applies
+    logical, allocatable, intent(out) :: wanted(:)
+    type(text_buffer_t), allocatable, intent(out) :: tb
+    character(:), allocatable, intent(out) :: tmp
+    type(error_t), allocatable, intent(out) :: error
+    integer :: is
+    allocate (wanted(size(model%steps)))
+    do is = 1, size(model%steps)
+       wanted(is) = step_requests(model, is, kinds, name)
+    end do
+    if (.not. any(wanted) .or. .not. applies) then
+       call remove_file(path)
+       return
+    end if
+    allocate (tb)
+    call open_table(path, tmp, tb, error)
+    if (allocated(error)) then
+       deallocate (tb)
+       return
+    end if
+    call tb%line(header)
+  end subroutine start_table
+
   subroutine open_table(path, tmp, tb, error)
     !! Open the temporary file of a table (registered for removal on a signal).
     character(*), intent(in) :: path
@@ -103,18 +134,9 @@ contains
     integer :: is, isub, il
     integer(ip) :: e
     path = dir//'/'//ENERGY_CSV
-    allocate (wanted(size(model%steps)))
-    do is = 1, size(model%steps)
-       wanted(is) = step_requests(model, is, [REQ_EL_PRINT, REQ_EL_FILE], 'ENER')
-    end do
-    if (.not. any(wanted)) then
-       call remove_file(path)
-       return
-    end if
-    allocate (tb)
-    call open_table(path, tmp, tb, error)
-    if (allocated(error)) return
-    call tb%line('step,kind,name,id,energy')
+    call start_table(path, model, [REQ_EL_PRINT, REQ_EL_FILE], 'ENER', .true., &
+         'step,kind,name,id,energy', wanted, tb, tmp, error)
+    if (.not. allocated(tb) .or. allocated(error)) return
     do is = 1, size(model%steps)
        if (.not. wanted(is)) cycle
        call compute_energies(model, fields, is, en, error)
@@ -174,18 +196,9 @@ contains
     integer :: is, isub, k, d, m
     integer(ip) :: e
     path = dir//'/'//POINT_STRESS_CSV
-    allocate (wanted(size(model%steps)))
-    do is = 1, size(model%steps)
-       wanted(is) = step_requests(model, is, [REQ_EL_PRINT, REQ_EL_FILE], 'S')
-    end do
-    if (.not. any(wanted) .or. .not. any_plane(model)) then
-       call remove_file(path)
-       return
-    end if
-    allocate (tb)
-    call open_table(path, tmp, tb, error)
-    if (allocated(error)) return
-    call tb%line('step,substructure,element,type,point,surface,sxx,syy,szz,sxy,sxz,syz')
+    call start_table(path, model, [REQ_EL_PRINT, REQ_EL_FILE], 'S', any_plane(model), &
+         'step,substructure,element,type,point,surface,sxx,syy,szz,sxy,sxz,syz', wanted, tb, tmp, error)
+    if (.not. allocated(tb) .or. allocated(error)) return
     do is = 1, size(model%steps)
        if (.not. wanted(is)) cycle
        do isub = 1, size(model%subs)
@@ -240,18 +253,9 @@ contains
     integer :: is, isub, d, k, ns
     integer(ip) :: n
     path = dir//'/'//NODAL_STRESS_CSV
-    allocate (wanted(size(model%steps)))
-    do is = 1, size(model%steps)
-       wanted(is) = step_requests(model, is, [REQ_NODE_PRINT, REQ_NODE_FILE, REQ_EL_FILE], 'S')
-    end do
-    if (.not. any(wanted) .or. .not. any_plane(model)) then
-       call remove_file(path)
-       return
-    end if
-    allocate (tb)
-    call open_table(path, tmp, tb, error)
-    if (allocated(error)) return
-    call tb%line('step,substructure,node,elements,surface,sxx,syy,szz,sxy,sxz,syz')
+    call start_table(path, model, [REQ_NODE_PRINT, REQ_NODE_FILE, REQ_EL_FILE], 'S', any_plane(model), &
+         'step,substructure,node,elements,surface,sxx,syy,szz,sxy,sxz,syz', wanted, tb, tmp, error)
+    if (.not. allocated(tb) .or. allocated(error)) return
     do is = 1, size(model%steps)
        if (.not. wanted(is)) cycle
        do isub = 1, size(model%subs)
@@ -288,18 +292,9 @@ contains
     integer :: is, isub, k, ends, n
     integer(ip) :: e
     path = dir//'/'//FIBRE_STRESS_CSV
-    allocate (wanted(size(model%steps)))
-    do is = 1, size(model%steps)
-       wanted(is) = step_requests(model, is, [REQ_EL_PRINT, REQ_EL_FILE], 'S')
-    end do
-    if (.not. any(wanted) .or. .not. any_fibres(model)) then
-       call remove_file(path)
-       return
-    end if
-    allocate (tb)
-    call open_table(path, tmp, tb, error)
-    if (allocated(error)) return
-    call tb%line('step,substructure,element,type,end,point,y,z,sxx')
+    call start_table(path, model, [REQ_EL_PRINT, REQ_EL_FILE], 'S', any_fibres(model), &
+         'step,substructure,element,type,end,point,y,z,sxx', wanted, tb, tmp, error)
+    if (.not. allocated(tb) .or. allocated(error)) return
     do is = 1, size(model%steps)
        if (.not. wanted(is)) cycle
        do isub = 1, size(model%subs)

@@ -22,6 +22,7 @@ module superjoin_analysis_boundary_steps
   use superjoin_analysis_notes, only: append_string
   use superjoin_utils_strings, only: itoa
   use superjoin_utils_sorting, only: stable_argsort
+  use superjoin_analysis_step_groups, only: group_steps
   implicit none (type, external)
   private
 
@@ -46,6 +47,7 @@ contains
     type(results_t), intent(out) :: res
     type(error_t), allocatable, intent(out) :: error
     integer, allocatable :: group(:), members(:), order(:)
+    logical, allocatable :: related(:, :)
     integer :: ngroup, s, t, g, nstep, k
     type(model_t) :: sub
     type(results_t) :: r
@@ -57,21 +59,13 @@ contains
        return
     end if
     nstep = size(model%steps)
-    allocate (group(nstep))
-    ngroup = 0
+    allocate (related(nstep, nstep), source=.false.)
     do s = 1, nstep
-       group(s) = 0
        do t = 1, s - 1
-          if (same_supports(model%steps(s)%supports, model%steps(t)%supports)) then
-             group(s) = group(t)
-             exit
-          end if
+          related(s, t) = same_supports(model%steps(s)%supports, model%steps(t)%supports)
        end do
-       if (group(s) == 0) then
-          ngroup = ngroup + 1
-          group(s) = ngroup
-       end if
     end do
+    call group_steps(related, group, ngroup)
     if (ngroup == 1) then
        sub = model
        sub%supports = model%steps(1)%supports

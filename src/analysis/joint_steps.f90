@@ -14,6 +14,7 @@ module superjoin_analysis_joint_steps
   use superjoin_analysis_results, only: results_t, run_options_t
   use superjoin_utils_strings, only: itoa
   use superjoin_analysis_notes, only: append_string
+  use superjoin_analysis_step_groups, only: group_steps
   implicit none (type, external)
   private
 
@@ -42,6 +43,7 @@ contains
     type(results_t), intent(out) :: res
     type(error_t), allocatable, intent(out) :: error
     integer, allocatable :: group(:), members(:)
+    logical, allocatable :: related(:, :)
     integer :: ngroup, s, t, g, nstep
     type(model_t) :: sub
     type(results_t) :: r
@@ -52,21 +54,13 @@ contains
        return
     end if
     nstep = size(model%steps)
-    allocate (group(nstep))
-    ngroup = 0
+    allocate (related(nstep, nstep), source=.false.)
     do s = 1, nstep
-       group(s) = 0
        do t = 1, s - 1
-          if (same_overrides(model%steps(s)%link_overrides, model%steps(t)%link_overrides)) then
-             group(s) = group(t)
-             exit
-          end if
+          related(s, t) = same_overrides(model%steps(s)%link_overrides, model%steps(t)%link_overrides)
        end do
-       if (group(s) == 0) then
-          ngroup = ngroup + 1
-          group(s) = ngroup
-       end if
     end do
+    call group_steps(related, group, ngroup)
 
     ! One context for all groups: the parts are condensed once and reused.
     ctx%joint_study = ngroup > 1

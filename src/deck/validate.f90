@@ -1140,10 +1140,14 @@ contains
           associate (sub => model%subs(isub))
             do e = 1, sub%nelem
                if (sub%elem_section(e) == 0) cycle
+               ! an undefined material or node has been reported already
+               if (sub%sections(sub%elem_section(e))%material <= 0) cycle
                associate (sec => sub%sections(sub%elem_section(e)))
                  associate (mat => model%materials(sec%material))
                    if (.not. mat%has_expansion .or. mat%alpha == 0.0_wp) cycle
                    nn = ELEMENT_NODE_COUNT(sub%elem_type(e))
+                   ! an element with an undefined node has been reported already
+                   if (nn == 0 .or. any(sub%elem_nodes(1:nn, e) <= 0)) cycle
                    dt = sum(t(isub)%v(sub%elem_nodes(1:nn, e)) - t0(isub)%v(sub%elem_nodes(1:nn, e)))/nn
                    if (dt == 0.0_wp) cycle
                    select case (sub%elem_type(e))

@@ -208,6 +208,9 @@ contains
     end if
     if (allocated(error)) return
     maps = node_maps(etype, r, h)
+    ! d allocated before the loop: gfortran's reallocation check on an
+    ! unallocated d reads its undefined bounds (UBSan saw the overflow).
+    allocate (d(size(ue, 1)))
     do is = 1, size(ue, 2)
        d = to_local(maps, ue(:, is))
        if (forces) fg(:, is) = to_global_vector(maps, matmul(kf, d))

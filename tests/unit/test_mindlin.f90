@@ -80,6 +80,7 @@ contains
     character(*), intent(in) :: what
     real(wp), allocatable :: w(:)
     character(len=160) :: buf
+    allocate (w(size(k, 1)))   ! before the assignment: gfortran warns of its bounds otherwise
     w = eigenvalues(k)
     write (buf, '(a,es10.2,a,es10.2)') ' eig(nzero)/max', abs(w(nzero))/w(size(w)), ' eig(nzero+1)/max', &
          w(nzero + 1)/w(size(w))

@@ -44,7 +44,7 @@ module superjoin_elements_mindlin
   use superjoin_kinds, only: wp
   use superjoin_error, only: error_t, fatal_error, EXIT_DECK
   use superjoin_elements_frame, only: require_positive
-  use superjoin_elements_plate, only: plate_check, bending_rigidity
+  use superjoin_elements_plate, only: plate_check, bending_rigidity, integration_rule
   implicit none (type, external)
   private
 
@@ -52,10 +52,8 @@ module superjoin_elements_mindlin
   integer, parameter :: NTRI = 3, NQUAD = 4
   real(wp), parameter :: SHEAR_CORRECTION = 5.0_wp/6.0_wp
     !! κ of the default transverse shear stiffness κ G t (a homogeneous section)
-  real(wp), parameter :: GAUSS2 = 0.57735026918962576451_wp    !! 1/√3
   real(wp), parameter :: QUAD_XI(NQUAD) = [-1.0_wp, 1.0_wp, 1.0_wp, -1.0_wp]
   real(wp), parameter :: QUAD_ETA(NQUAD) = [-1.0_wp, -1.0_wp, 1.0_wp, 1.0_wp]
-  real(wp), parameter :: TRI_A = 1.0_wp/6.0_wp, TRI_B = 2.0_wp/3.0_wp, TRI_W = 1.0_wp/6.0_wp
     !! 3-point rule on the unit triangle (degree 2)
   real(wp), parameter :: ONE_THIRD = 1.0_wp/3.0_wp
   real(wp), parameter :: TRI_STABILIZATION = 0.1_wp
@@ -89,7 +87,7 @@ contains
     n = size(xl, 2)
     db = bending_rigidity(t, e, nu)
     kse = ks*shear_scaling(xl, t)
-    call rule(n, xi, eta, wt)
+    call integration_rule(n, xi, eta, wt)
     allocate (kb(NDN*n, NDN*n), source=0.0_wp)
     do g = 1, size(wt)
        call strain_matrices(xl, xi(g), eta(g), bb, bs, detj)
@@ -150,21 +148,6 @@ contains
     if (allocated(error)) return
     call require_positive(minval(ks), 'transverse shear stiffness', error)
   end subroutine check
-
-  pure subroutine rule(n, xi, eta, wt)
-    !! Integration points: 3-point rule on the unit triangle, 2×2 Gauss on the square.
-    integer, intent(in) :: n
-    real(wp), allocatable, intent(out) :: xi(:), eta(:), wt(:)
-    if (n == NTRI) then
-       xi = [TRI_A, TRI_B, TRI_A]
-       eta = [TRI_A, TRI_A, TRI_B]
-       wt = [TRI_W, TRI_W, TRI_W]
-    else
-       xi = GAUSS2*QUAD_XI
-       eta = GAUSS2*QUAD_ETA
-       wt = [1.0_wp, 1.0_wp, 1.0_wp, 1.0_wp]
-    end if
-  end subroutine rule
 
   pure subroutine shape(n, xi, eta, sf, dsf)
     !! Corner functions sf(i) and their derivatives dsf(i, 1:2) = ∂N_i/∂(ξ, η):

@@ -53,7 +53,7 @@ module superjoin_elements_plate
 
   public :: plate_stiffness, plate_moments, plate_pressure_load
   public :: plate_point_moments
-  public :: plate_check, bending_rigidity
+  public :: plate_check, bending_rigidity, integration_rule
 
 contains
 

@@ -1971,6 +1971,7 @@ contains
     end if
     st%step_procedure = PROC_STATIC
     st%step_procedure_loc = loc
+    st%steps(st%cur_step)%has_procedure = .true.
     st%card = CARD_STATIC
   end subroutine kw_static
 

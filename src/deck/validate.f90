@@ -19,7 +19,7 @@ module superjoin_deck_validate
   use superjoin_deck_state, only: sec_b_t
   use superjoin_model_types, only: section_t
   use superjoin_deck_beam_sections, only: section_fibres, MAX_FIBRES
-  use superjoin_deck_state, only: OP_NEW, OP_MOD
+  use superjoin_deck_state, only: OP_NEW, OP_MOD, OP_DEFAULT
   use superjoin_deck_combinations, only: build_combinations
   use superjoin_model_history, only: support_list_t, step_ops_t, apply_boundary_history, apply_load_history
   use superjoin_deck_eccentric, only: check_offset_masters
@@ -1240,6 +1240,9 @@ contains
     do s = 1, st%nstep
        model%steps(s)%name = st%steps(s)%name
        model%steps(s)%loc = st%steps(s)%loc
+       model%steps(s)%procedure_card = st%steps(s)%has_procedure
+       model%steps(s)%cload_op_given = st%steps(s)%cload_op /= OP_DEFAULT
+       model%steps(s)%dload_op_given = st%steps(s)%dload_op /= OP_DEFAULT
        do j = 1, s - 1
           if (st%steps(j)%name == st%steps(s)%name) then
              call report_loc(st, st%steps(s)%loc, 'duplicate step name '//st%steps(s)%name// &

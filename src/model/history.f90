@@ -18,7 +18,7 @@ module superjoin_model_history
   implicit none (type, external)
   private
 
-  public :: support_list_t, apply_boundary_history, apply_load_history
+  public :: support_list_t, apply_boundary_history, apply_load_history, cload_replaced, dload_replaced
 
   type, public :: step_ops_t
     !! What a step's cards say about the history (from the deck reader).

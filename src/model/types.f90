@@ -239,6 +239,9 @@ module superjoin_model_types
      integer :: combination = 0            !! results of model%combinations(k), no solve (0: a solved step)
      type(support_t), allocatable :: supports(:)  !! supports in effect in this step when some step has a
                                                   !! *BOUNDARY of its own (unallocated: model%supports)
+     logical :: procedure_card = .false.   !! the step has *STATIC (written for CalculiX/Abaqus)
+     logical :: cload_op_given = .false.   !! one of its *CLOAD cards has OP=
+     logical :: dload_op_given = .false.   !! one of its *DLOAD cards has OP=
   end type step_t
 
   type, public :: combination_t

@@ -36,9 +36,9 @@ contains
 
   subroutine wanted_elements(model, opts, wanted, notes)
     !! The elements whose results somebody reads (numbered over the
-    !! substructures): every one in a deck without output requests, or when a
-    !! VTK file is written (a picture of the whole model), or CSV tables without
-    !! *EL FILE requests; else those that *EL PRINT (and, with CSV, *EL FILE)
+    !! substructures): every one in a deck without output requests, or when
+    !! result files (CSV, VTK) are written and the deck has no *EL FILE
+    !! request; else those that *EL PRINT (and, with result files, *EL FILE)
     !! requests cover. Says in a note how many that is when it is not all.
     type(model_t), intent(in) :: model
     type(run_options_t), intent(in) :: opts
@@ -50,11 +50,11 @@ contains
     do isub = 1, size(model%subs)
        nelem = nelem + model%subs(isub)%nelem
     end do
-    if (.not. has_requests(model) .or. opts%vtk .or. (opts%csv .and. .not. any_request_of(model, [REQ_EL_FILE]))) then
+    if (.not. has_requests(model) .or. ((opts%csv .or. opts%vtk) .and. .not. any_request_of(model, [REQ_EL_FILE]))) then
        allocate (wanted(nelem), source=.true.)
        return
     end if
-    if (opts%csv) then
+    if (opts%csv .or. opts%vtk) then
        call request_mask(model, [REQ_EL_PRINT, REQ_EL_FILE], .false., wanted)
     else
        call request_mask(model, [REQ_EL_PRINT], .false., wanted)

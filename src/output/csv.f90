@@ -4,10 +4,10 @@ module superjoin_output_csv
   use superjoin_kinds, only: wp, i8, ip
   use superjoin_error, only: error_t, fatal_error, EXIT_IO
   use superjoin_model_types, only: model_t, NDOF_NODE, ELEMENT_TYPE_NAMES, ET_T2D2, ET_T3D2, &
-       ET_B23, ET_B33, ET_B21, ET_B31, ET_B32, REQ_NODE_FILE, REQ_EL_FILE
-  use superjoin_model_request_masks, only: any_request_of, request_mask, asks_variable
-  use superjoin_analysis_results, only: result_fields_t
+       ET_B23, ET_B33, ET_B21, ET_B31, ET_B32
+  use superjoin_output_file_selection, only: file_selection_t, select_file_output, NUM_FILE_RESULTS
   use superjoin_elements, only: is_plate_type
+  use superjoin_analysis_results, only: result_fields_t
   use superjoin_output_posix, only: remove_file, make_directory
   use superjoin_utils_process, only: temp_register, temp_unregister
   use superjoin_output_text_buffer, only: text_buffer_t
@@ -17,16 +17,8 @@ module superjoin_output_csv
 
   public :: write_csv
 
-  integer, parameter :: NTABLE = 5
-  character(len=18), parameter :: TABLE_FILES(NTABLE) = [character(len=18) :: 'displacements.csv', &
+  character(len=18), parameter :: TABLE_FILES(NUM_FILE_RESULTS) = [character(len=18) :: 'displacements.csv', &
        'reactions.csv', 'contact_forces.csv', 'element_forces.csv', 'plate_results.csv']
-
-  type :: selection_t
-    !! What the CSV tables hold: which tables, which nodes and elements
-    !! (numbered over the substructures).
-     logical :: table(NTABLE) = .true.
-     logical, allocatable :: node(:), elem(:)
-  end type selection_t
 
 contains
 
@@ -43,13 +35,13 @@ contains
     type(model_t), intent(in) :: model
     type(result_fields_t), intent(in) :: fields
     type(error_t), allocatable, intent(out) :: error
-    type(selection_t) :: sel
+    type(file_selection_t) :: sel
     integer :: k
     call make_directory(dir, error)
     if (allocated(error)) return
-    call select_output(model, sel)
-    do k = 1, NTABLE
-       if (sel%table(k)) then
+    call select_file_output(model, sel)
+    do k = 1, NUM_FILE_RESULTS
+       if (sel%kind(k)) then
           call write_table(dir//'/'//trim(TABLE_FILES(k)), k, model, fields, sel, error)
           if (allocated(error)) return
        else
@@ -57,39 +49,6 @@ contains
        end if
     end do
   end subroutine write_csv
-
-  subroutine select_output(model, sel)
-    !! The tables, nodes and elements the CSV files hold (see write_csv).
-    type(model_t), intent(in) :: model
-    type(selection_t), intent(out) :: sel
-    if (any_request_of(model, [REQ_NODE_FILE])) then
-       call request_mask(model, [REQ_NODE_FILE], .true., sel%node)
-       sel%table(1) = asks_variable(model, [REQ_NODE_FILE], ['U '])
-       sel%table(2) = asks_variable(model, [REQ_NODE_FILE], ['RF'])
-    else
-       call request_mask(model, [integer ::], .true., sel%node)
-       sel%node = .true.
-    end if
-    if (any_request_of(model, [REQ_EL_FILE])) then
-       call request_mask(model, [REQ_EL_FILE], .false., sel%elem)
-       sel%table(4) = asks_variable(model, [REQ_EL_FILE], ['S ', 'E ', 'SF'])
-    else
-       call request_mask(model, [integer ::], .false., sel%elem)
-       sel%elem = .true.
-    end if
-    sel%table(5) = sel%table(4) .and. any_plates(model)
-  end subroutine select_output
-
-  pure logical function any_plates(model)
-    !! True when the model has plane-stress or shell elements.
-    type(model_t), intent(in) :: model
-    integer :: isub
-    any_plates = .false.
-    do isub = 1, size(model%subs)
-       if (model%subs(isub)%nelem == 0) cycle
-       if (any(is_plate_type(model%subs(isub)%elem_type(1:model%subs(isub)%nelem)))) any_plates = .true.
-    end do
-  end function any_plates
 
   subroutine write_table(path, which, model, fields, sel, error)
     !! One CSV table (which: 1 displacements, 2 reactions, 3 contact forces,
@@ -99,7 +58,7 @@ contains
     integer, intent(in) :: which
     type(model_t), intent(in) :: model
     type(result_fields_t), intent(in) :: fields
-    type(selection_t), intent(in) :: sel
+    type(file_selection_t), intent(in) :: sel
     type(error_t), allocatable, intent(out) :: error
     type(text_buffer_t), allocatable :: tb
     integer :: is, isub, d, k, il, e

@@ -13,6 +13,8 @@ module superjoin_output_vtk
        ET_CPS6, ET_CPS8, ET_CPE6, ET_CPE8, ET_CPS8R, ET_CPE8R, ET_B32
   use superjoin_model_types, only: ET_S4R, ET_S3R
   use superjoin_analysis_results, only: result_fields_t
+  use superjoin_output_file_selection, only: file_selection_t, select_file_output, FILE_DISPLACEMENTS, &
+       FILE_REACTIONS, FILE_ELEMENT_FORCES
   use superjoin_output_posix, only: rename_file, remove_file, make_directory
   use superjoin_output_text_buffer, only: text_buffer_t
   use superjoin_config, only: SUPERJOIN_VERSION
@@ -98,6 +100,7 @@ contains
     type(error_t), allocatable, intent(out) :: error
     character(:), allocatable :: base, dir
     type(grid_t) :: grid
+    type(file_selection_t) :: sel
     integer :: is, nstep, slash
 
     base = vtk_base(path)
@@ -116,8 +119,9 @@ contains
     end if
     nstep = size(model%steps)
     call build_grid(model, fields, grid)
+    call select_file_output(model, sel)
     do is = 1, nstep
-       call write_piece(vtk_piece_path(path, is), model, fields, grid, is, error)
+       call write_piece(vtk_piece_path(path, is), model, fields, grid, sel, is, error)
        if (allocated(error)) then
           call remove_temporaries(is)
           return
@@ -220,12 +224,14 @@ contains
     end if
   end subroutine write_collection
 
-  subroutine write_piece(final, model, fields, grid, is, error)
-    !! The .vtu file of step is (written to final.tmp).
+  subroutine write_piece(final, model, fields, grid, sel, is, error)
+    !! The .vtu file of step is (written to final.tmp): the arrays the file
+    !! requests select (all without them).
     character(*), intent(in) :: final
     type(model_t), intent(in) :: model
     type(result_fields_t), intent(in) :: fields
     type(grid_t), intent(in) :: grid
+    type(file_selection_t), intent(in) :: sel
     integer, intent(in) :: is
     type(error_t), allocatable, intent(out) :: error
     type(text_buffer_t), allocatable :: lu
@@ -253,8 +259,8 @@ contains
          itoa(is)//'</DataArray>')
     call lu%line('    </FieldData>')
     call lu%line('    <Piece NumberOfPoints="'//itoa(grid%npoint)//'" NumberOfCells="'//itoa(grid%ncell)//'">')
-    call point_data(lu, model, fields, is)
-    call cell_data(lu, model, fields, grid, is)
+    call point_data(lu, model, fields, sel, is)
+    call cell_data(lu, model, fields, grid, sel, is)
     call points(lu, model)
     call cells(lu, model, fields, grid)
     call lu%line('    </Piece>')
@@ -267,17 +273,25 @@ contains
     end if
   end subroutine write_piece
 
-  subroutine point_data(lu, model, fields, is)
-    !! displacement and rotation (global axes), substructure index and node id.
+  subroutine point_data(lu, model, fields, sel, is)
+    !! displacement and rotation (global axes; when selected), substructure
+    !! index and node id. When a node set narrows the node results, the other
+    !! points hold zeros and the point array `results` says which hold results (1).
     type(text_buffer_t), intent(inout) :: lu
     type(model_t), intent(in) :: model
     type(result_fields_t), intent(in) :: fields
+    type(file_selection_t), intent(in) :: sel
     integer, intent(in) :: is
     integer :: isub, d, first
     integer(ip) :: n
     integer(i8) :: v
-    call lu%line('      <PointData Vectors="displacement">')
+    if (.not. sel%kind(FILE_DISPLACEMENTS)) then
+       call lu%line('      <PointData>')
+    else
+       call lu%line('      <PointData Vectors="displacement">')
+    end if
     do first = 1, 4, 3
+       if (.not. sel%kind(FILE_DISPLACEMENTS)) exit
        if (first == 1) then
           call open_array(lu, 'Float64', 'displacement', 3)
        else
@@ -286,12 +300,20 @@ contains
        do v = 1, size(fields%has_dof, 2, kind=i8)
           do d = first, first + 2
              if (d > first) call lu%put(' ')
-             call lu%put(full_real(fields%u(NDOF_NODE*(v - 1) + d, is)))
+             call lu%put(full_real(merge(fields%u(NDOF_NODE*(v - 1) + d, is), 0.0_wp, sel%node(v))))
           end do
           call lu%newline()
        end do
        call close_array(lu)
     end do
+    if (.not. all(sel%node)) then
+       ! a node set narrows the node results: say which points hold them
+       call open_array(lu, 'Int32', 'results', 1)
+       do v = 1, size(sel%node, kind=i8)
+          call lu%line(itoa(merge(1, 0, sel%node(v))))
+       end do
+       call close_array(lu)
+    end if
     call open_array(lu, 'Int32', 'substructure', 1)
     do isub = 1, size(model%subs)
        do n = 1, model%subs(isub)%nnode
@@ -309,13 +331,17 @@ contains
     call lu%line('      </PointData>')
   end subroutine point_data
 
-  subroutine cell_data(lu, model, fields, grid, is)
+  subroutine cell_data(lu, model, fields, grid, sel, is)
     !! Per cell: kind, substructure, element id and type, contact index, element
     !! end forces, shell/plane resultants, contact Δ and F, support reaction.
+    !! The element results and the reactions only when selected; when the
+    !! element results are selected for some elements only, the others hold
+    !! zeros and the cell array `results` says which hold results (1).
     type(text_buffer_t), intent(inout) :: lu
     type(model_t), intent(in) :: model
     type(result_fields_t), intent(in) :: fields
     type(grid_t), intent(in) :: grid
+    type(file_selection_t), intent(in) :: sel
     integer, intent(in) :: is
     integer :: isub, k, il
     integer(ip) :: e
@@ -378,32 +404,46 @@ contains
     call zeros(lu, grid%nsupport, 1)
     call close_array(lu)
 
-    do k = 1, 2
-       call open_array(lu, 'Float64', 'end'//itoa(k), NCOMP, FORCE_NAMES)
+    if (sel%kind(FILE_ELEMENT_FORCES)) then
+       if (.not. all(sel%elem)) then
+          call open_array(lu, 'Int32', 'results', 1)
+          do c = 1, grid%nelem
+             call lu%line(itoa(merge(1, 0, sel%elem(c))))
+          end do
+          call zeros(lu, size(model%links, kind=i8) + grid%nsupport, 1)
+          call close_array(lu)
+       end if
+       do k = 1, 2
+          call open_array(lu, 'Float64', 'end'//itoa(k), NCOMP, FORCE_NAMES)
+          do c = 1, grid%nelem
+             call put_tuple(lu, merge(fields%elem_force(:, k, c, is), zero, sel%elem(c)))
+          end do
+          call zeros(lu, size(model%links, kind=i8) + grid%nsupport, NCOMP)
+          call close_array(lu)
+       end do
+
+       call open_array(lu, 'Float64', 'plate', NCOMP, PLATE_NAMES)
        do c = 1, grid%nelem
-          call put_tuple(lu, fields%elem_force(:, k, c, is))
+          call put_tuple(lu, merge(fields%plate(:, c, is), zero, sel%elem(c)))
        end do
        call zeros(lu, size(model%links, kind=i8) + grid%nsupport, NCOMP)
        call close_array(lu)
-    end do
-
-    call open_array(lu, 'Float64', 'plate', NCOMP, PLATE_NAMES)
-    do c = 1, grid%nelem
-       call put_tuple(lu, fields%plate(:, c, is))
-    end do
-    call zeros(lu, size(model%links, kind=i8) + grid%nsupport, NCOMP)
-    call close_array(lu)
+    end if
 
     call contact_array('delta', fields%steps(is)%link_delta)
     call contact_array('force', fields%steps(is)%link_force)
 
+    if (.not. sel%kind(FILE_REACTIONS)) then
+       call lu%line('      </CellData>')
+       return
+    end if
     call open_array(lu, 'Float64', 'reaction', NCOMP, DOF_NAMES)
     call zeros(lu, grid%nelem + size(model%links, kind=i8), NCOMP)
     allocate (reac(NCOMP, grid%nsupport), source=0.0_wp)
     do k = 1, size(fields%steps(is)%reactions)
        associate (rc => fields%steps(is)%reactions(k))
          c = grid%vertex_support(fields%vertex_offset(rc%sub) + rc%node)
-         if (c > 0) reac(rc%dof, c) = reac(rc%dof, c) + rc%force
+         if (c > 0 .and. sel%node(fields%vertex_offset(rc%sub) + rc%node)) reac(rc%dof, c) = reac(rc%dof, c) + rc%force
        end associate
     end do
     do c = 1, grid%nsupport

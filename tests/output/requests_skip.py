@@ -13,7 +13,10 @@ Solves DECK as it is (full output) and a copy with REQUEST CARDS appended
 - element_forces.csv / plate_results.csv name EXPECT_ELEMENTS distinct
   elements (0: the table must be absent), and the listing says for how many
   elements results were computed when it is fewer than all;
-- the listing has no DISPLACEMENTS table (the requests replace it).
+- the listing has no DISPLACEMENTS table (the requests replace it);
+- the VTK file written with the CSV files holds the same arrays and values
+  (tests/vtk/check_vtk.py: an array exactly when its table exists, zeros and
+  a `results` flag of 0 outside the requested sets).
 """
 import csv
 import os
@@ -56,7 +59,8 @@ def main(argv):
             os.mkdir(os.path.join(tmp, "a"))
             os.mkdir(os.path.join(tmp, "b"))
             full, _ = run(binary, deck, os.path.join(tmp, "a"), args)
-            part, listing = run(binary, variant, os.path.join(tmp, "b"), args)
+            vtk = os.path.join(tmp, "b", "vtk", "part")
+            part, listing = run(binary, variant, os.path.join(tmp, "b"), args + ["--vtk", vtk])
         finally:
             os.remove(variant)
         for name in ("displacements.csv", "reactions.csv", "contact_forces.csv", "element_forces.csv",
@@ -83,6 +87,12 @@ def main(argv):
             fails.append(f"the element tables name {len(elems)} elements, expected {expect}")
         if expect == 0 and any(os.path.exists(os.path.join(part, n)) for n in ("element_forces.csv",)):
             fails.append("element_forces.csv written though no *EL FILE asks for it")
+        # the VTK arrays follow the same requests: the same values as the CSV files
+        chk = subprocess.run([sys.executable, os.path.join(os.path.dirname(os.path.dirname(os.path.abspath(__file__))),
+                                                            "vtk", "check_vtk.py"), vtk + ".pvd", "--csv", part],
+                             capture_output=True, text=True)
+        if chk.returncode != 0:
+            fails.append("VTK with requests: " + (chk.stdout + chk.stderr).strip()[-800:])
         if re.search(r"^DISPLACEMENTS", listing, re.M):
             fails.append("the listing still has the DISPLACEMENTS table")
         m = re.search(r"element results computed for (\d+) of (\d+) elements", listing)

@@ -296,6 +296,8 @@ contains
     end do
     call lu%line('    S   nodal stresses: extrapolated from the integration points, averaged over the plane '// &
          'and shell elements of the substructure that share the node (global axes; shells: bottom and top surface)')
+    if (any([(npoint(subs(i))%n(nodes(i)) == NSURF, i=1, size(nodes))])) call lu%line('    (nodes of S4R/S3R: '// &
+         'also the mid-surface, with xz/yz = 1.5 q/t; thin shells count (bot + top)/2 there)')
     write (hline, '(4x,a20,a10,a6,a5,6a15)') 'substructure        ', '      node', ' elems', ' surf', TENSOR_HEAD
     call lu%line(trim(hline))
     scale = 0.0_wp

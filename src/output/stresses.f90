@@ -1,9 +1,13 @@
 module superjoin_output_stresses
-  !! Stresses of the plane elements (CPS3, CPS4, CPE3, CPE4) and of the shells
-  !! (S3, S4: bottom and top surface, σ = n/t ∓ 6 m/t²) where benchmarks quote them: at the integration points (*EL PRINT S, as CalculiX's .dat)
+  !! Stresses of the plane elements (CPS3, CPS4, CPE3, CPE4; second order CPS6,
+  !! CPS8, CPS8R, CPE6, CPE8, CPE8R) and of the shells (S3, S4: bottom and top
+  !! surface, σ = n/t ∓ 6 m/t²; S3R, S4R: also the mid-surface with the
+  !! transverse shear 1.5 q/t) where benchmarks quote them: at the integration points (*EL PRINT S, as CalculiX's .dat)
   !! and at the nodes (*NODE PRINT S / *NODE FILE S): extrapolated from the
   !! integration points of each element (superjoin_elements_membrane,
-  !! membrane_point_stresses; superjoin_elements_shell, shell_surface_stresses)
+  !! membrane_point_stresses; superjoin_elements_quadratic,
+  !! quadratic_point_stresses; superjoin_elements_shell, shell_surface_stresses
+  !! and thick_shell_stresses)
   !! and averaged over the plane and shell elements of the same
   !! substructure (part) that share the node. Tensors in global axes, Voigt
   !! order xx, yy, zz, xy, xz, yz; plane strain has σzz = ν (σxx + σyy).
@@ -71,7 +75,8 @@ contains
     !! Each element family computes its stresses in its own element routine
     !! (membrane_point_stresses, quadratic_point_stresses, shell_surface_stresses,
     !! thick_shell_stresses), where a thermal strain is subtracted; a new family
-    !! (the S8R shell) adds its case to the select below.
+    !! (the S8R shell, catalog type 15) adds a branch to the chain below that
+    !! returns its section points in the layout of thick_shell_stresses.
     type(model_t), intent(in) :: model
     type(result_fields_t), intent(in) :: fields
     integer, intent(in) :: is, isub

@@ -17,11 +17,11 @@ counts of NAFEMS's coarse (6) and fine (24) meshes. Mid-side nodes lie on the
 ellipses. The outer traction is applied as consistent nodal loads (*CLOAD),
 integrated by Gauss points along each (straight or parabolic) edge.
 
-superjoin reports plane-element stresses at the element centroid only (nodal
-averaging is a separate piece of work): the table gives sigma_yy at the
-centroid of the element at D, and its distance from D. These are centroid
-values, NOT the NAFEMS nodal value; they approach 92.7 only as the centroid
-approaches D.
+The table gives sigma_yy at the centroid of the element at D, and its
+distance from D. These are centroid values, NOT the NAFEMS nodal value; they
+approach 92.7 only as the centroid approaches D. The nodal value (*NODE PRINT
+S, extrapolated from the integration points and averaged) with CPS4, CPS8 and
+CPS8R: tests/results/le1_convergence.py (doc/verification.md).
 """
 import argparse
 import csv

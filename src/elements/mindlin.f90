@@ -60,6 +60,7 @@ module superjoin_elements_mindlin
     !! α of the MITC3 shear stiffness scaling t²/(t² + α h²) (see the module header)
 
   public :: mindlin_stiffness, mindlin_resultants, default_shear_stiffness, SHEAR_CORRECTION
+  public :: mindlin_point_resultants
 
 contains
 
@@ -121,6 +122,55 @@ contains
     m = matmul(bending_rigidity(t, e, nu), matmul(bb, ue))
     q = ks*shear_scaling(xl, t)*matmul(bs, ue)
   end subroutine mindlin_resultants
+
+  pure subroutine mindlin_point_resultants(xl, t, e, nu, ks, ue, r_points, r_nodes, error)
+    !! Resultants per unit length (mx, my, mxy, qx, qy) from the local DOF values
+    !! ue(3n) at the points where stresses are reported, r_points(5, k), and at
+    !! the nodes, r_nodes(5, n): MITC4 at its 2×2 Gauss points ((ξ, η) = (-g, -g),
+    !! (g, -g), (g, g), (-g, g), g = 1/√3, point k next to node k), extrapolated
+    !! to the corners by the bilinear field through the four values (exact for
+    !! the element's bilinear moments and shear forces); MITC3 at its centroid,
+    !! the value at every node (constant curvature; its assumed shear varies
+    !! linearly but is reported, as the resultants, at the centroid).
+    real(wp), intent(in) :: xl(:, :)
+    real(wp), intent(in) :: t, e, nu, ks(2)
+    real(wp), intent(in) :: ue(:)
+    real(wp), allocatable, intent(out) :: r_points(:, :), r_nodes(:, :)
+    type(error_t), allocatable, intent(out) :: error
+    real(wp), parameter :: G = 1/sqrt(3.0_wp)
+    real(wp) :: bb(3, NDN*size(xl, 2)), bs(2, NDN*size(xl, 2)), detj, db(3, 3), kse(2), sf(NQUAD), dsf(NQUAD, 2)
+    integer :: n, k
+
+    call check(xl, t, e, nu, ks, error)
+    if (allocated(error)) return
+    n = size(xl, 2)
+    if (size(ue) /= NDN*n) then
+       call fatal_error(error, EXIT_DECK, 'wrong number of element DOF values')
+       return
+    end if
+    db = bending_rigidity(t, e, nu)
+    kse = ks*shear_scaling(xl, t)
+    allocate (r_nodes(5, n))
+    if (n == NTRI) then
+       allocate (r_points(5, 1))
+       call strain_matrices(xl, ONE_THIRD, ONE_THIRD, bb, bs, detj)
+       r_points(1:3, 1) = matmul(db, matmul(bb, ue))
+       r_points(4:5, 1) = kse*matmul(bs, ue)
+       r_nodes = spread(r_points(:, 1), 2, n)
+       return
+    end if
+    allocate (r_points(5, NQUAD))
+    do k = 1, NQUAD
+       call strain_matrices(xl, G*QUAD_XI(k), G*QUAD_ETA(k), bb, bs, detj)
+       r_points(1:3, k) = matmul(db, matmul(bb, ue))
+       r_points(4:5, k) = kse*matmul(bs, ue)
+    end do
+    ! node k sits at (ξ_k/g, η_k/g) = √3 (ξ_k, η_k) of the square of the Gauss points
+    do k = 1, NQUAD
+       call shape(NQUAD, QUAD_XI(k)/G, QUAD_ETA(k)/G, sf, dsf)
+       r_nodes(:, k) = matmul(r_points, sf)
+    end do
+  end subroutine mindlin_point_resultants
 
   pure real(wp) function shear_scaling(xl, t) result(f)
     !! Factor on the shear stiffness: t²/(t² + α h²) on the triangle (h its

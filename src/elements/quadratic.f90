@@ -58,6 +58,7 @@ module superjoin_elements_quadratic
   integer, parameter :: RULE_STIFFNESS = 1, RULE_FULL = 2   !! which rule: stiffness, or area and loads
 
   public :: quadratic_stiffness, quadratic_resultants, quadratic_shape_integrals, quadratic_shape
+  public :: quadratic_point_stresses, quadratic_stress_points
 
 contains
 
@@ -172,7 +173,107 @@ contains
     end do
   end subroutine quadratic_shape
 
+  pure subroutine quadratic_point_stresses(xl, props, ue, sig_points, sig_nodes, error)
+    !! Stresses (σx, σy, τxy) in the element frame from the element displacements
+    !! ue(2n) (node-major u, v): sig_points(3, k) at the integration points of the
+    !! stiffness rule (quadratic_stress_points: CPS6 3 points, CPS8 3×3, CPS8R 2×2,
+    !! point k next to node k for the corner points), sig_nodes(3, n) extrapolated
+    !! to the nodes as CalculiX and Abaqus do: the unique polynomial through the
+    !! point values (linear through the triangle's 3 points, bilinear through 2×2,
+    !! biquadratic through 3×3) evaluated at the nodes. The extrapolation is exact
+    !! whenever the stress is such a polynomial (constant stress on any element,
+    !! linear stress on straight-sided triangles and parallelograms). Plane strain:
+    !! σz = ν (σx + σy) is added by the caller.
+    real(wp), intent(in) :: xl(:, :)
+    type(plane_props_t), intent(in) :: props
+    real(wp), intent(in) :: ue(:)
+    real(wp), allocatable, intent(out) :: sig_points(:, :), sig_nodes(:, :)
+    type(error_t), allocatable, intent(out) :: error
+    real(wp), allocatable :: pts(:, :), wts(:), b(:, :)
+    real(wp) :: d(NSTRAIN, NSTRAIN), jac, pn(2)
+    integer :: k, n
+
+    call check_element(xl, props, error)
+    if (allocated(error)) return
+    n = size(xl, 2)
+    if (size(ue) /= 2*n) then
+       call fatal_error(error, EXIT_DECK, 'wrong number of element DOF values')
+       return
+    end if
+    d = material(props)/props%t
+    call rule(n, RULE_STIFFNESS, props%reduced, pts, wts)
+    allocate (b(NSTRAIN, 2*n), sig_points(NSTRAIN, size(wts)), sig_nodes(NSTRAIN, n))
+    do k = 1, size(wts)
+       call b_matrix(xl, pts(:, k), b, jac)
+       ! σ = D (ε - ε₀): a thermal strain ε₀ = α ΔT (1, 1, 0) is subtracted here.
+       sig_points(:, k) = matmul(d, matmul(b, ue))
+    end do
+    do k = 1, n
+       pn = node_natural(n, k)
+       sig_nodes(:, k) = matmul(sig_points, point_weights(n, props%reduced, pn))
+    end do
+  end subroutine quadratic_point_stresses
+
+  pure subroutine quadratic_stress_points(n, reduced, pts)
+    !! Natural coordinates pts(2, k) of the points where quadratic_point_stresses
+    !! reports stresses (the stiffness rule of a 6- or 8-node element).
+    integer, intent(in) :: n
+    logical, intent(in) :: reduced
+    real(wp), allocatable, intent(out) :: pts(:, :)
+    real(wp), allocatable :: wts(:)
+    call rule(n, RULE_STIFFNESS, reduced, pts, wts)
+  end subroutine quadratic_stress_points
+
   ! ------------------------------------------------------------ internals
+
+  pure function node_natural(n, k) result(p)
+    !! Natural coordinates of node k of the 6-node triangle or 8-node quadrilateral.
+    integer, intent(in) :: n, k
+    real(wp) :: p(2)
+    real(wp), parameter :: TRI_XI(6) = [0.0_wp, 1.0_wp, 0.0_wp, 0.5_wp, 0.5_wp, 0.0_wp]
+    real(wp), parameter :: TRI_ETA(6) = [0.0_wp, 0.0_wp, 1.0_wp, 0.0_wp, 0.5_wp, 0.5_wp]
+    if (n == 6) then
+       p = [TRI_XI(k), TRI_ETA(k)]
+    else
+       p = [XI_NODE(k), ETA_NODE(k)]
+    end if
+  end function node_natural
+
+  pure function point_weights(n, reduced, p) result(w)
+    !! Weights w(k) of the values at the stress points (quadratic_stress_points)
+    !! of the polynomial through them, evaluated at the natural point p: the
+    !! linear interpolant through the triangle's 3 points (1/6, 1/6), (2/3, 1/6),
+    !! (1/6, 2/3); the bilinear one through 2×2 Gauss points, the biquadratic
+    !! (Lagrange) one through 3×3, in the points' own coordinates ξ/g.
+    integer, intent(in) :: n
+    logical, intent(in) :: reduced
+    real(wp), intent(in) :: p(2)
+    real(wp), allocatable :: w(:)
+    real(wp) :: a, b, la(3), lb(3)
+    integer :: i, j
+    if (n == 6) then
+       ! the points are the corners of the triangle (1/6, 1/6) + (1/2) (reference triangle)
+       a = (p(1) - TRI3_A)/(TRI3_B - TRI3_A)
+       b = (p(2) - TRI3_A)/(TRI3_B - TRI3_A)
+       w = [1 - a - b, a, b]
+    else if (reduced) then
+       a = p(1)/G2
+       b = p(2)/G2
+       w = [(1 - a)*(1 - b), (1 + a)*(1 - b), (1 + a)*(1 + b), (1 - a)*(1 + b)]/4
+    else
+       a = p(1)/G3
+       b = p(2)/G3
+       la = [a*(a - 1)/2, 1 - a**2, a*(a + 1)/2]
+       lb = [b*(b - 1)/2, 1 - b**2, b*(b + 1)/2]
+       allocate (w(9))
+       do j = 1, 3
+          do i = 1, 3
+             w(i + 3*(j - 1)) = la(i)*lb(j)
+          end do
+       end do
+    end if
+  end function point_weights
+
 
   pure function material(props) result(d)
     !! t D for the element's state.

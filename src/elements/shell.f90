@@ -31,18 +31,23 @@ module superjoin_elements_shell
   use superjoin_elements_quadratic, only: plane_props_t, quadratic_stiffness, quadratic_resultants, &
        quadratic_shape_integrals
   use superjoin_elements_mindlin, only: mindlin_stiffness, mindlin_resultants, default_shear_stiffness
+  use superjoin_elements_mindlin, only: mindlin_point_resultants
   implicit none (type, external)
   private
 
-  public :: is_thick_shell_type, shell_shear_stiffness
+  public :: is_thick_shell_type, shell_shear_stiffness, quadratic_props
   public :: is_plate_type, is_plane_type, is_plane_strain_type, is_quadratic_plane_type, shell_frame, shell_stiffness, shell_resultants, shell_forces, shell_pressure_load, &
        shell_area_load
-  public :: shell_surface_stresses
+  public :: shell_surface_stresses, thick_shell_stresses, THICK_SURFACES
 
   integer, parameter :: MEMBRANE_DOFS(3) = [1, 2, 6]
     !! Local shell DOFs (u, v, w, θx, θy, θz) of the membrane (u, v, θz).
   integer, parameter :: PLATE_DOFS(3) = [3, 4, 5]
     !! Local shell DOFs of plate bending (w, θx, θy).
+  integer, parameter :: THICK_SURFACES = 3
+    !! Section points of thick_shell_stresses: 1 bottom, 2 top, 3 mid-surface.
+  real(wp), parameter :: PARABOLIC_SHEAR_PEAK = 1.5_wp
+    !! τ(z = 0) = 1.5 q / t, the peak of the parabolic transverse shear stress of a homogeneous section.
   real(wp), parameter :: PLANE_TOL = 1.0e-8_wp
     !! Largest |z| spread of a plane-stress element relative to its size.
 
@@ -532,4 +537,56 @@ contains
     sig_nodes(:, :, 1) = sn - 6*mn/t**2
     sig_nodes(:, :, 2) = sn + 6*mn/t**2
   end subroutine shell_surface_stresses
+
+  pure subroutine thick_shell_stresses(etype, x, sec, mat, ue, r, sig_points, sig_nodes, error)
+    !! Stresses (σx, σy, τxy, τxz, τyz) in the element frame r of an S4R or S3R
+    !! from its displacements ue (global axes, element ordering) at three
+    !! section points: bottom (1, z = -t/2), top (2, z = +t/2) and the
+    !! mid-surface (3): σ = n/t - 6 m/t², n/t + 6 m/t², n/t, with the transverse
+    !! shear stresses 0 on the faces and 1.5 q/t on the mid-surface (the peak of
+    !! the parabolic distribution of a homogeneous section). sig_points(5,
+    !! point, surface) at the points of membrane_point_stresses and
+    !! mindlin_point_resultants (S3R: the centroid; S4R: 2×2 Gauss, point k next
+    !! to node k), sig_nodes(5, node, surface) extrapolated to the nodes.
+    !! The thick eight-node shell S8R (catalog type 15) gets its own routine
+    !! with the same result layout, called from superjoin_output_stresses.
+    integer, intent(in) :: etype
+    real(wp), intent(in) :: x(:, :)
+    type(section_t), intent(in) :: sec
+    type(material_t), intent(in) :: mat
+    real(wp), intent(in) :: ue(:)
+    real(wp), intent(out) :: r(3, 3)
+    real(wp), allocatable, intent(out) :: sig_points(:, :, :), sig_nodes(:, :, :)
+    type(error_t), allocatable, intent(out) :: error
+    real(wp) :: xl(2, size(x, 2)), h(size(x, 2)), d(size(ue)), um(2*size(x, 2)), ub(3*size(x, 2)), t
+    real(wp), allocatable :: sp(:, :), sn(:, :), rp(:, :), rn(:, :)
+    integer :: i, n
+    n = size(x, 2)
+    call setup(etype, x, r, xl, h, error)
+    if (allocated(error)) return
+    d = to_local(node_maps(etype, r, h), ue)
+    do i = 1, n
+       um(2*i - 1:2*i) = d(6*(i - 1) + MEMBRANE_DOFS(1:2))
+       ub(3*i - 2:3*i) = d(6*(i - 1) + PLATE_DOFS)
+    end do
+    t = sec%thickness
+    call membrane_point_stresses(xl, mat%e, mat%nu, .false., um, sp, sn, error)
+    if (allocated(error)) return
+    call mindlin_point_resultants(xl, t, mat%e, mat%nu, shell_shear_stiffness(sec, mat), ub, rp, rn, error)
+    if (allocated(error)) return
+    call surfaces(sp, rp, sig_points)
+    call surfaces(sn, rn, sig_nodes)
+  contains
+    pure subroutine surfaces(sm, res, sig)
+      !! Section point stresses from membrane stresses sm(3, k) and bending and
+      !! shear resultants res(5, k) (mx, my, mxy, qx, qy).
+      real(wp), intent(in) :: sm(:, :), res(:, :)
+      real(wp), allocatable, intent(out) :: sig(:, :, :)
+      allocate (sig(5, size(sm, 2), THICK_SURFACES), source=0.0_wp)
+      sig(1:3, :, 1) = sm - 6*res(1:3, :)/t**2
+      sig(1:3, :, 2) = sm + 6*res(1:3, :)/t**2
+      sig(1:3, :, 3) = sm
+      sig(4:5, :, 3) = PARABOLIC_SHEAR_PEAK*res(4:5, :)/t
+    end subroutine surfaces
+  end subroutine thick_shell_stresses
 end module superjoin_elements_shell

@@ -224,10 +224,10 @@ contains
   end subroutine write_point_stress_csv
 
   pure function surface_name(nsurf, k) result(name)
-    !! mid (plane elements), bottom or top (shells).
+    !! mid (plane elements), bottom, top or mid (shells: section points 1, 2, 3).
     integer, intent(in) :: nsurf, k
     character(:), allocatable :: name
-    if (nsurf == 1) then
+    if (nsurf == 1 .or. k == 3) then
        name = 'mid'
     else if (k == 1) then
        name = 'bottom'
@@ -249,7 +249,8 @@ contains
     character(:), allocatable :: path, tmp
     real(wp), allocatable :: avg(:, :, :)
     integer, allocatable :: nel(:)
-    logical, allocatable :: wanted(:), shell(:)
+    logical, allocatable :: wanted(:)
+    integer, allocatable :: nsurf(:)
     integer :: is, isub, d, k, ns
     integer(ip) :: n
     path = dir//'/'//NODAL_STRESS_CSV
@@ -259,11 +260,10 @@ contains
     do is = 1, size(model%steps)
        if (.not. wanted(is)) cycle
        do isub = 1, size(model%subs)
-          call nodal_stresses(model, fields, is, isub, avg, nel, shell)
+          call nodal_stresses(model, fields, is, isub, avg, nel, nsurf)
           do n = 1, model%subs(isub)%nnode
              if (nel(n) == 0) cycle
-             ns = 1
-             if (shell(n)) ns = 2
+             ns = nsurf(n)
              do k = 1, ns
                 call tb%put(model%steps(is)%name//','//model%subs(isub)%name//','// &
                      itoa(int(model%subs(isub)%node_id(n)))//','//itoa(nel(n))//','//surface_name(ns, k))

@@ -1,9 +1,13 @@
 module superjoin_output_stresses
-  !! Stresses of the plane elements (CPS3, CPS4, CPE3, CPE4) and of the shells
-  !! (S3, S4: bottom and top surface, σ = n/t ∓ 6 m/t²) where benchmarks quote them: at the integration points (*EL PRINT S, as CalculiX's .dat)
+  !! Stresses of the plane elements (CPS3, CPS4, CPE3, CPE4; second order CPS6,
+  !! CPS8, CPS8R, CPE6, CPE8, CPE8R) and of the shells (S3, S4: bottom and top
+  !! surface, σ = n/t ∓ 6 m/t²; S3R, S4R: also the mid-surface with the
+  !! transverse shear 1.5 q/t) where benchmarks quote them: at the integration points (*EL PRINT S, as CalculiX's .dat)
   !! and at the nodes (*NODE PRINT S / *NODE FILE S): extrapolated from the
   !! integration points of each element (superjoin_elements_membrane,
-  !! membrane_point_stresses; superjoin_elements_shell, shell_surface_stresses)
+  !! membrane_point_stresses; superjoin_elements_quadratic,
+  !! quadratic_point_stresses; superjoin_elements_shell, shell_surface_stresses
+  !! and thick_shell_stresses)
   !! and averaged over the plane and shell elements of the same
   !! substructure (part) that share the node. Tensors in global axes, Voigt
   !! order xx, yy, zz, xy, xz, yz; plane strain has σzz = ν (σxx + σyy).
@@ -19,8 +23,11 @@ module superjoin_output_stresses
   !! element); N > 0 in tension, Mz > 0 stretches the -y fibres.
   use superjoin_kinds, only: wp, i8, ip
   use superjoin_error, only: error_t
-  use superjoin_model_types, only: model_t, ELEMENT_NODE_COUNT, ET_CPE3, ET_CPE4, ET_B23, ET_B33, ET_B21, ET_B31
+  use superjoin_model_types, only: model_t, ELEMENT_NODE_COUNT, ET_B23, ET_B33, ET_B21, ET_B31
   use superjoin_elements_shell, only: shell_frame, is_plane_type, is_plate_type, shell_surface_stresses
+  use superjoin_elements_shell, only: is_plane_strain_type, is_quadratic_plane_type, is_thick_shell_type, &
+       quadratic_props, thick_shell_stresses, THICK_SURFACES
+  use superjoin_elements_quadratic, only: quadratic_point_stresses
   use superjoin_elements_membrane, only: membrane_point_stresses
   use superjoin_analysis_results, only: result_fields_t
   use superjoin_output_energy, only: element_displacements
@@ -31,9 +38,14 @@ module superjoin_output_stresses
   private
 
   integer, parameter, public :: NTENSOR = 6
-  integer, parameter, public :: NSURF = 2
-    !! Surfaces of a shell: 1 bottom (z = -t/2), 2 top (z = +t/2, along the element normal).
-  character(len=3), parameter :: SURF_NAMES(NSURF) = ['bot', 'top']
+  integer, parameter, public :: NSURF = THICK_SURFACES
+    !! Section points of a shell: 1 bottom (z = -t/2), 2 top (z = +t/2, along the
+    !! element normal), 3 the mid-surface (thick shells only).
+  integer, parameter :: THIN_SURFACES = 2
+  integer, parameter :: TRANSVERSE = 5
+    !! Element-frame stress components with the transverse shears (σx, σy, τxy, τxz, τyz).
+  integer, parameter :: MAX_PLANE_NODES = 8
+  character(len=3), parameter :: SURF_NAMES(NSURF) = ['bot', 'top', 'mid']
   character(len=15), parameter :: TENSOR_HEAD(NTENSOR) = ['             xx', '             yy', &
        '             zz', '             xy', '             xz', '             yz']
 
@@ -41,11 +53,6 @@ module superjoin_output_stresses
     !! One table of reals of a list of tables.
      real(wp), allocatable :: v(:, :, :)
   end type real_block_t
-
-  type :: logical_block_t
-    !! One list of flags of a list of lists.
-     logical, allocatable :: b(:)
-  end type logical_block_t
 
   type :: int_block_t
     !! One list of counts of a list of lists.
@@ -61,16 +68,22 @@ contains
     !! Stress tensors of plane or shell element ie of substructure isub in
     !! step is: points(6, npoint, nsurf) at its integration points,
     !! nodes(6, nnode, nsurf) extrapolated to its nodes; nsurf = 1 for plane
-    !! elements, 2 for shells (1: bottom surface z = -t/2, 2: top, z along the
-    !! element normal). ok false (and empty arrays) for other element types or
-    !! an element that cannot be evaluated.
+    !! elements, 2 for thin shells (1: bottom surface z = -t/2, 2: top, z along
+    !! the element normal), 3 for thick shells (bottom, top, mid-surface). ok
+    !! false (and empty arrays) for other element types or an element that
+    !! cannot be evaluated.
+    !! Each element family computes its stresses in its own element routine
+    !! (membrane_point_stresses, quadratic_point_stresses, shell_surface_stresses,
+    !! thick_shell_stresses), where a thermal strain is subtracted; a new family
+    !! (the S8R shell, catalog type 15) adds a branch to the chain below that
+    !! returns its section points in the layout of thick_shell_stresses.
     type(model_t), intent(in) :: model
     type(result_fields_t), intent(in) :: fields
     integer, intent(in) :: is, isub
     integer(ip), intent(in) :: ie
     real(wp), allocatable, intent(out) :: points(:, :, :), nodes(:, :, :)
     logical, intent(out) :: ok
-    real(wp) :: x(3, 4), r(3, 3), xl(2, 4), h(4), nu
+    real(wp) :: x(3, MAX_PLANE_NODES), r(3, 3), xl(2, MAX_PLANE_NODES), h(MAX_PLANE_NODES), nu
     real(wp), allocatable :: ue(:), ul(:), sp(:, :), sn(:, :), sp3(:, :, :), sn3(:, :, :)
     type(error_t), allocatable :: error
     integer :: etype, nn, a, k
@@ -81,11 +94,12 @@ contains
       etype = sub%elem_type(ie)
       if (.not. is_plate_type(etype) .or. sub%elem_section(ie) <= 0) return
       nn = ELEMENT_NODE_COUNT(etype)
+      if (nn > MAX_PLANE_NODES) return
       do a = 1, nn
          x(:, a) = sub%x(:, sub%elem_nodes(a, ie))
       end do
       call element_displacements(model, fields, is, isub, ie, ue)
-      strain = etype == ET_CPE3 .or. etype == ET_CPE4
+      strain = is_plane_strain_type(etype)
       associate (sec => sub%sections(sub%elem_section(ie)), mat => model%materials(sub%sections(sub%elem_section(ie))%material))
         nu = mat%nu
         if (is_plane_type(etype)) then
@@ -96,10 +110,17 @@ contains
               ul(2*a - 1) = r(1, 1)*ue(2*a - 1) + r(1, 2)*ue(2*a)
               ul(2*a) = r(2, 1)*ue(2*a - 1) + r(2, 2)*ue(2*a)
            end do
-           call membrane_point_stresses(xl(:, 1:nn), mat%e, mat%nu, strain, ul, sp, sn, error)
+           if (is_quadratic_plane_type(etype)) then
+              call quadratic_point_stresses(xl(:, 1:nn), quadratic_props(etype, sec, mat), ul, sp, sn, error)
+           else
+              call membrane_point_stresses(xl(:, 1:nn), mat%e, mat%nu, strain, ul, sp, sn, error)
+           end if
            if (allocated(error)) return
            sp3 = reshape(sp, [3, size(sp, 2), 1])
            sn3 = reshape(sn, [3, size(sn, 2), 1])
+        else if (is_thick_shell_type(etype)) then
+           call thick_shell_stresses(etype, x(:, 1:nn), sec, mat, ue, r, sp3, sn3, error)
+           if (allocated(error)) return
         else
            call shell_surface_stresses(x(:, 1:nn), sec, mat, ue, r, sp3, sn3, error)
            if (allocated(error)) return
@@ -119,14 +140,16 @@ contains
     ok = .true.
   contains
     pure function to_global(s) result(t)
-      !! (σx, σy, τxy) of the element frame as a global tensor, Voigt order.
-      real(wp), intent(in) :: s(3)
+      !! (σx, σy, τxy[, τxz, τyz]) of the element frame as a global tensor, Voigt order.
+      real(wp), intent(in) :: s(:)
       real(wp) :: t(NTENSOR)
       real(wp) :: m(3, 3), szz
       szz = 0.0_wp
       if (strain) szz = nu*(s(1) + s(2))
       m = s(1)*outer(r(1, :), r(1, :)) + s(2)*outer(r(2, :), r(2, :)) + &
            s(3)*(outer(r(1, :), r(2, :)) + outer(r(2, :), r(1, :))) + szz*outer(r(3, :), r(3, :))
+      if (size(s) == TRANSVERSE) m = m + s(4)*(outer(r(1, :), r(3, :)) + outer(r(3, :), r(1, :))) + &
+           s(5)*(outer(r(2, :), r(3, :)) + outer(r(3, :), r(2, :)))
       t = [m(1, 1), m(2, 2), m(3, 3), m(1, 2), m(1, 3), m(2, 3)]
     end function to_global
     pure function outer(p, q) result(o)
@@ -136,18 +159,20 @@ contains
     end function outer
   end subroutine plane_stresses
 
-  subroutine nodal_stresses(model, fields, is, isub, avg, nel, shell)
-    !! Nodal stresses of substructure isub in step is: avg(6, nnode, 2) the
+  subroutine nodal_stresses(model, fields, is, isub, avg, nel, npoint)
+    !! Nodal stresses of substructure isub in step is: avg(6, nnode, NSURF) the
     !! mean of the values extrapolated to the node by each plane or shell
-    !! element of isub that has it, per surface (plane elements count on
-    !! both), nel(nnode) how many (0: none, avg = 0), shell(nnode) whether a
-    !! shell is among them (then the two surfaces differ).
+    !! element of isub that has it, per section point (plane elements count on
+    !! all three, thin shells count (bottom + top)/2 on the mid-surface),
+    !! nel(nnode) how many (0: none, avg = 0), npoint(nnode) the section points
+    !! worth reporting: 1 (plane elements only), 2 (bottom and top: a thin shell
+    !! is among them) or 3 (bottom, top, mid-surface: a thick shell is).
     type(model_t), intent(in) :: model
     type(result_fields_t), intent(in) :: fields
     integer, intent(in) :: is, isub
     real(wp), allocatable, intent(out) :: avg(:, :, :)
     integer, allocatable, intent(out) :: nel(:)
-    logical, allocatable, intent(out) :: shell(:)
+    integer, allocatable, intent(out) :: npoint(:)
     real(wp), allocatable :: points(:, :, :), nodes(:, :, :)
     integer(ip) :: e, node
     integer :: a, k
@@ -155,17 +180,25 @@ contains
     associate (sub => model%subs(isub))
       allocate (avg(NTENSOR, sub%nnode, NSURF), source=0.0_wp)
       allocate (nel(sub%nnode), source=0)
-      allocate (shell(sub%nnode), source=.false.)
+      allocate (npoint(sub%nnode), source=1)
       do e = 1, sub%nelem
          call plane_stresses(model, fields, is, isub, e, points, nodes, ok)
          if (.not. ok) cycle
          do a = 1, size(nodes, 2)
             node = sub%elem_nodes(a, e)
-            do k = 1, NSURF
-               avg(:, node, k) = avg(:, node, k) + nodes(:, a, min(k, size(nodes, 3)))
-            end do
+            select case (size(nodes, 3))
+            case (1)
+               do k = 1, NSURF
+                  avg(:, node, k) = avg(:, node, k) + nodes(:, a, 1)
+               end do
+            case (THIN_SURFACES)
+               avg(:, node, 1:2) = avg(:, node, 1:2) + nodes(:, a, 1:2)
+               avg(:, node, 3) = avg(:, node, 3) + 0.5_wp*(nodes(:, a, 1) + nodes(:, a, 2))
+            case default
+               avg(:, node, :) = avg(:, node, :) + nodes(:, a, :)
+            end select
             nel(node) = nel(node) + 1
-            if (size(nodes, 3) == NSURF) shell(node) = .true.
+            npoint(node) = max(npoint(node), size(nodes, 3))
          end do
       end do
       do node = 1, sub%nnode
@@ -174,12 +207,26 @@ contains
     end associate
   end subroutine nodal_stresses
 
+  pure function newer_family(model, subs, elems) result(yes)
+    !! Per element of the list: a second-order plane element or a thick shell
+    !! (their integration points get a note under the table's header).
+    type(model_t), intent(in) :: model
+    integer, intent(in) :: subs(:)
+    integer(ip), intent(in) :: elems(:)
+    logical :: yes(size(elems))
+    integer :: i, etype
+    do i = 1, size(elems)
+       etype = model%subs(subs(i))%elem_type(elems(i))
+       yes(i) = is_quadratic_plane_type(etype) .or. is_thick_shell_type(etype)
+    end do
+  end function newer_family
+
   pure function surface_label(nsurface, k) result(label)
-    !! '-' for a plane element's single surface, 'bot' / 'top' for shells.
+    !! '-' for a plane element's single surface, 'bot' / 'top' / 'mid' for shells.
     integer, intent(in) :: nsurface, k
     character(len=3) :: label
     label = '  -'
-    if (nsurface == NSURF) label = SURF_NAMES(k)
+    if (nsurface > 1) label = SURF_NAMES(k)
   end function surface_label
 
   subroutine write_point_stress_table(lu, model, fields, is, subs, elems)
@@ -206,6 +253,9 @@ contains
     if (.not. any(ok)) return
     call lu%line('    S   at the integration points of the plane and shell elements (global axes; CPS3/CPE3/S3: 1, '// &
          'the centroid; CPS4/CPE4/S4: 2x2 Gauss, point k next to node k; shells: bottom and top surface)')
+    if (any(ok .and. newer_family(model, subs, elems))) call lu%line('    (CPS6/CPE6: 3 points, point k next '// &
+         'to corner k; CPS8/CPE8: 3x3 Gauss, xi fastest from corner 1; CPS8R/CPE8R, S4R: 2x2 Gauss, point k next '// &
+         'to node k; S3R: the centroid; S4R/S3R: bottom, top and mid-surface, xz/yz = 1.5 q/t at mid)')
     write (hline, '(4x,a20,a10,a6,a4,a5,6a15)') 'substructure        ', '   element', '  type', '  ip', ' surf', &
          TENSOR_HEAD
     call lu%line(trim(hline))
@@ -237,20 +287,22 @@ contains
     integer(ip), intent(in) :: nodes(:)
     type(real_block_t), allocatable :: avg(:)
     type(int_block_t), allocatable :: nel(:)
-    type(logical_block_t), allocatable :: shell(:)
+    type(int_block_t), allocatable :: npoint(:)
     logical, allocatable :: done(:)
     character(len=200) :: hline
     real(wp) :: scale
     integer :: i, d, nskip, k, ns
-    allocate (avg(size(model%subs)), nel(size(model%subs)), shell(size(model%subs)))
+    allocate (avg(size(model%subs)), nel(size(model%subs)), npoint(size(model%subs)))
     allocate (done(size(model%subs)), source=.false.)
     do i = 1, size(nodes)
        if (done(subs(i))) cycle
-       call nodal_stresses(model, fields, is, subs(i), avg(subs(i))%v, nel(subs(i))%n, shell(subs(i))%b)
+       call nodal_stresses(model, fields, is, subs(i), avg(subs(i))%v, nel(subs(i))%n, npoint(subs(i))%n)
        done(subs(i)) = .true.
     end do
     call lu%line('    S   nodal stresses: extrapolated from the integration points, averaged over the plane '// &
          'and shell elements of the substructure that share the node (global axes; shells: bottom and top surface)')
+    if (any([(npoint(subs(i))%n(nodes(i)) == NSURF, i=1, size(nodes))])) call lu%line('    (nodes of S4R/S3R: '// &
+         'also the mid-surface, with xz/yz = 1.5 q/t; thin shells count (bot + top)/2 there)')
     write (hline, '(4x,a20,a10,a6,a5,6a15)') 'substructure        ', '      node', ' elems', ' surf', TENSOR_HEAD
     call lu%line(trim(hline))
     scale = 0.0_wp
@@ -263,8 +315,7 @@ contains
           nskip = nskip + 1
           cycle
        end if
-       ns = 1
-       if (shell(subs(i))%b(nodes(i))) ns = NSURF
+       ns = npoint(subs(i))%n(nodes(i))
        do k = 1, ns
           call lu%put('    ')
           call lu%put_field(model%subs(subs(i))%name, 20)

@@ -5,12 +5,14 @@ program test_mindlin
   !! thicknesses), that the null space is the rigid motions, exact energy and
   !! resultants for constant-curvature and constant-shear fields on distorted
   !! elements, the constant-curvature patch test on a distorted mesh, data checks,
-  !! and the section's transverse shear stiffness.
+  !! and the section's transverse shear stiffness; moments at the 2×2 points of
+  !! MITC4 and extrapolated to its nodes, exact for a linear curvature field.
   use superjoin_kinds, only: wp
   use superjoin_error, only: error_t, EXIT_DECK
   use superjoin_model_types, only: section_t, material_t, ET_S4R, ET_S3R, SEC_SHELL
   use superjoin_elements, only: element_stiffness, shell_resultants
   use superjoin_elements_mindlin, only: mindlin_stiffness, mindlin_resultants, default_shear_stiffness
+  use superjoin_elements_mindlin, only: mindlin_point_resultants
   use superjoin_elements_plate, only: bending_rigidity
   use superjoin_testing, only: check, check_close, check_rel, finish
   use test_lapack, only: eigenvalues, dgesv
@@ -37,6 +39,7 @@ program test_mindlin
   call test_patch(.true.)
   call test_errors()
   call test_section_shear()
+  call test_point_moments()
   call finish()
 
 contains
@@ -356,4 +359,50 @@ contains
     call check(.not. allocated(error), 'S4R resultants')
     call check(maxval(abs(res)) <= TOL*123.0_wp, 'constant shear: no membrane forces or moments')
   end subroutine test_section_shear
+
+  subroutine test_point_moments()
+    !! mindlin_point_resultants on a rectangular MITC4 (x y is bilinear in ξ, η) with the bilinear
+    !! rotation field βx = c1 x y + c2 x, βy = c3 x y + c4 y (w = 0): its
+    !! curvatures (c1 y + c2, c3 x + c4, c1 x + c3 y) are linear, so the moments
+    !! D_b κ are exact at the Gauss points and, extrapolated bilinearly, at the
+    !! nodes.
+    real(wp), parameter :: XQ(2, 4) = reshape([0.5_wp, 0.2_wp, 2.5_wp, 0.2_wp, 2.5_wp, 1.4_wp, 0.5_wp, 1.4_wp], [2, 4])
+    real(wp), parameter :: C(4) = [1.0e-3_wp, -2.0e-3_wp, 1.5e-3_wp, 5.0e-4_wp]
+    real(wp), parameter :: G = 1/sqrt(3.0_wp), T = 0.1_wp
+    real(wp), parameter :: XIG(4) = [-G, G, G, -G], ETAG(4) = [-G, -G, G, G]
+    real(wp), allocatable :: rp(:, :), rn(:, :)
+    type(error_t), allocatable :: error
+    real(wp) :: ue(12), db(3, 3), x(2), ex(3), err, scale, sf(4)
+    integer :: k
+    db = bending_rigidity(T, E_MOD, NU)
+    do k = 1, 4
+       ! (w, θx, θy) with βx = θy, βy = -θx
+       ue(3*k - 2:3*k) = [0.0_wp, -(C(3)*XQ(1, k)*XQ(2, k) + C(4)*XQ(2, k)), C(1)*XQ(1, k)*XQ(2, k) + C(2)*XQ(1, k)]
+    end do
+    call mindlin_point_resultants(XQ, T, E_MOD, NU, default_shear_stiffness(T, E_MOD, NU), ue, rp, rn, error)
+    call check(.not. allocated(error), 'MITC4 point moments without error')
+    if (allocated(error)) return
+    scale = maxval(abs(rn(1:3, :)))
+    err = 0.0_wp
+    do k = 1, 4
+       sf = 0.25_wp*(1 + [-1.0_wp, 1.0_wp, 1.0_wp, -1.0_wp]*XIG(k))*(1 + [-1.0_wp, -1.0_wp, 1.0_wp, 1.0_wp]*ETAG(k))
+       x = matmul(XQ, sf)
+       err = max(err, maxval(abs(rp(1:3, k) - matmul(db, kappa(x, C)))))
+    end do
+    call check(err <= TOL*scale, 'MITC4 linear curvature: moments exact at the Gauss points')
+    err = 0.0_wp
+    do k = 1, 4
+       ex = matmul(db, kappa(XQ(:, k), C))
+       err = max(err, maxval(abs(rn(1:3, k) - ex)))
+    end do
+    call check(err <= TOL*scale, 'MITC4 linear curvature: moments exact at the nodes (extrapolated)')
+    call check(maxval(rn(1, :)) - minval(rn(1, :)) > 0.1_wp*scale, 'MITC4 linear curvature: mx does vary')
+  end subroutine test_point_moments
+
+  pure function kappa(p, c) result(kp)
+    !! Curvatures at p of βx = c1 x y + c2 x, βy = c3 x y + c4 y.
+    real(wp), intent(in) :: p(2), c(4)
+    real(wp) :: kp(3)
+    kp = [c(1)*p(2) + c(2), c(3)*p(1) + c(4), c(1)*p(1) + c(3)*p(2)]
+  end function kappa
 end program test_mindlin

@@ -3,13 +3,16 @@ program test_quadratic
   !! shape functions, data checks, matrix properties (symmetry, rigid modes, zero
   !! eigenvalues: 3 for CPS6/CPS8, 4 for the single CPS8R with its spurious mode),
   !! consistent area loads, and exact resultants of a constant strain state on
-  !! elements with curved sides (plane stress and plane strain). Patch tests on
+  !! elements with curved sides (plane stress and plane strain); stresses at the
+  !! integration points and extrapolated to the nodes: exact for constant stress
+  !! on curved elements and for linear stress (a complete quadratic displacement
+  !! field: bending) on a parallelogram and a straight-sided triangle. Patch tests on
   !! meshes, MacNeal-Harder and convergence run through the whole program in
   !! tests/plane/verify_plane.py.
   use superjoin_kinds, only: wp
   use superjoin_error, only: error_t, EXIT_DECK
   use superjoin_elements_quadratic, only: plane_props_t, quadratic_stiffness, quadratic_resultants, &
-       quadratic_shape_integrals, quadratic_shape
+       quadratic_shape_integrals, quadratic_shape, quadratic_point_stresses, quadratic_stress_points
   use superjoin_testing, only: check, check_close, check_rel, finish
   use test_lapack, only: eigenvalues
   use superjoin_utils_strings, only: itoa
@@ -29,11 +32,16 @@ program test_quadratic
        0.0_wp, 0.0_wp, 2.0_wp, 0.2_wp, 2.4_wp, 1.5_wp, -0.2_wp, 1.0_wp, &
        1.0_wp, -0.1_wp, 2.3_wp, 0.8_wp, 1.1_wp, 1.35_wp, -0.05_wp, 0.5_wp], [2, 8])
 
+  ! u = Σ a_k m_k(x, y), v = Σ b_k m_k(x, y) with m = (1, x, y, x², x y, y²)
+  real(wp), parameter :: AU(6) = [1.0e-3_wp, 2.0e-3_wp, -1.0e-3_wp, 3.0e-4_wp, -5.0e-4_wp, 7.0e-4_wp]
+  real(wp), parameter :: BV(6) = [-2.0e-3_wp, 5.0e-4_wp, 1.5e-3_wp, -6.0e-4_wp, 4.0e-4_wp, 2.0e-4_wp]
+
   call test_shape_functions()
   call test_errors()
   call test_matrix_properties()
   call test_area_loads()
   call test_constant_strain()
+  call test_point_stresses()
   call finish()
 
 contains
@@ -284,4 +292,96 @@ contains
        deallocate (ue)
     end do
   end subroutine test_constant_strain
+
+  subroutine test_point_stresses()
+    !! quadratic_point_stresses against D ε(x) of an exact displacement field at
+    !! every integration point and every node: a linear field (constant stress)
+    !! on the curved elements, and a complete quadratic field (linear stress:
+    !! bending and more) on a parallelogram and a straight-sided triangle, for
+    !! CPS6, CPS8, CPS8R, CPE6, CPE8, CPE8R.
+    real(wp), parameter :: PARA8(2, 8) = reshape([ &
+         0.0_wp, 0.0_wp, 2.0_wp, 0.4_wp, 2.6_wp, 1.9_wp, 0.6_wp, 1.5_wp, &
+         1.0_wp, 0.2_wp, 2.3_wp, 1.15_wp, 1.6_wp, 1.7_wp, 0.3_wp, 0.75_wp], [2, 8])
+    real(wp), parameter :: TRI6S(2, 6) = reshape([ &
+         0.1_wp, -0.2_wp, 2.0_wp, 0.3_wp, 0.5_wp, 1.6_wp, &
+         1.05_wp, 0.05_wp, 1.25_wp, 0.95_wp, 0.3_wp, 0.7_wp], [2, 6])
+    real(wp), allocatable :: xl(:, :), ue(:), sp(:, :), sn(:, :), pts(:, :)
+    real(wp) :: nf(8), dn(2, 8), xp(2), smax, err
+    type(plane_props_t) :: props
+    type(error_t), allocatable :: error
+    character(len=5), parameter :: NAMES(6) = ['CPS6 ', 'CPS8 ', 'CPS8R', 'CPE6 ', 'CPE8 ', 'CPE8R']
+    integer :: etype, field, i, n, nq
+    character(:), allocatable :: what
+    allocate (xl(0, 0))
+    do field = 1, 2
+       do etype = 1, 6
+          n = merge(6, 8, etype == 1 .or. etype == 4)
+          if (field == 1 .and. n == 6) xl = TRI6
+          if (field == 1 .and. n == 8) xl = QUAD8
+          if (field == 2 .and. n == 6) xl = TRI6S
+          if (field == 2 .and. n == 8) xl = PARA8
+          nq = merge(2, 6, field == 1)
+          props = plane_props_t(t=T, e=E, nu=NU, strain=etype > 3, reduced=etype == 3 .or. etype == 6)
+          what = trim(NAMES(etype))// &
+               trim(merge(' constant stress', ' linear stress  ', field == 1))
+          allocate (ue(2*n))
+          do i = 1, n
+             ue(2*i - 1) = dot_product(AU(2:nq), monomials(xl(:, i), nq))
+             ue(2*i) = dot_product(BV(2:nq), monomials(xl(:, i), nq))
+          end do
+          call quadratic_point_stresses(xl, props, ue, sp, sn, error)
+          call check(.not. allocated(error), what//': stresses without error')
+          if (allocated(error)) return
+          call quadratic_stress_points(n, props%reduced, pts)
+          call check(size(sp, 2) == size(pts, 2), what//': one stress per integration point')
+          smax = max(maxval(abs(sp)), tiny(1.0_wp))
+          err = 0.0_wp
+          do i = 1, size(pts, 2)
+             call quadratic_shape(n, pts(:, i), nf(1:n), dn(:, 1:n))
+             xp = matmul(xl, nf(1:n))
+             err = max(err, maxval(abs(sp(:, i) - exact_stress(xp, props%strain, nq))))
+          end do
+          call check(err <= TOL_EXACT*smax, what//': exact at the integration points')
+          err = 0.0_wp
+          do i = 1, n
+             err = max(err, maxval(abs(sn(:, i) - exact_stress(xl(:, i), props%strain, nq))))
+          end do
+          call check(err <= TOL_EXACT*smax, what//': exact at the nodes (extrapolated)')
+          if (field == 2) call check(maxval(sn(1, :)) - minval(sn(1, :)) > 0.1_wp*smax, &
+               what//': the stress does vary over the element')
+          deallocate (ue)
+       end do
+    end do
+  end subroutine test_point_stresses
+
+    pure function monomials(x, nq) result(m)
+      !! The non-constant monomials x, y, x², x y, y² of a field with nq terms.
+      real(wp), intent(in) :: x(2)
+      integer, intent(in) :: nq
+      real(wp) :: m(nq - 1)
+      real(wp) :: mm(5)
+      mm = [x(1), x(2), x(1)**2, x(1)*x(2), x(2)**2]
+      m = mm(1:nq - 1)
+    end function monomials
+    pure function exact_stress(x, strain, nq) result(sig)
+      !! D ε of the field at x (closed form derivatives of the monomials).
+      real(wp), intent(in) :: x(2)
+      logical, intent(in) :: strain
+      integer, intent(in) :: nq
+      real(wp) :: sig(3), a(6), b(6), ex, ey, gxy, c
+      a = 0.0_wp
+      b = 0.0_wp
+      a(2:nq) = AU(2:nq)
+      b(2:nq) = BV(2:nq)
+      ex = a(2) + 2*a(4)*x(1) + a(5)*x(2)
+      ey = b(3) + b(5)*x(1) + 2*b(6)*x(2)
+      gxy = a(3) + a(5)*x(1) + 2*a(6)*x(2) + b(2) + 2*b(4)*x(1) + b(5)*x(2)
+      if (strain) then
+         c = E/((1 + NU)*(1 - 2*NU))
+         sig = [c*((1 - NU)*ex + NU*ey), c*(NU*ex + (1 - NU)*ey), E/(2*(1 + NU))*gxy]
+      else
+         c = E/(1 - NU**2)
+         sig = [c*(ex + NU*ey), c*(NU*ex + ey), c*(1 - NU)/2*gxy]
+      end if
+    end function exact_stress
 end program test_quadratic

@@ -2535,21 +2535,25 @@ contains
   end subroutine kw_temperature
 
   subroutine data_temperature(st, line, loc)
-    !! `node or nset, temperature` (uniform across the section: a gradient,
-    !! CalculiX's further fields, is refused).
+    !! `node or nset, temperature[, gradient]`: CalculiX's third field, the
+    !! temperature gradient along the normal of a shell (the fourth, a beam's
+    !! second gradient, is refused).
     type(deck_state_t), intent(inout) :: st
     character(*), intent(in) :: line
     type(source_loc_t), intent(in) :: loc
     type(temp_b_t) :: t
     type(temp_b_t), allocatable :: tmp(:)
-    if (st%f%n > 2) then
-       call report_loc(st, loc, 'temperature gradients across the section are not supported '// &
-            '(node or nset, temperature)')
+    if (st%f%n > 3) then
+       call report_loc(st, loc, 'temperature gradients across a beam section are not supported '// &
+            '(node or nset, temperature[, gradient along a shell''s normal])')
        return
     end if
-    if (.not. field_count(st, loc, 2, 2, 'node or nset, temperature')) return
+    if (.not. field_count(st, loc, 2, 3, 'node or nset, temperature[, gradient]')) return
     if (.not. parse_ref(st, fld(st, line, 1), .false., st%card_home, loc, t%ref)) return
     if (.not. get_real(st, line, loc, 2, t%value)) return
+    if (st%f%n == 3) then
+       if (.not. get_real(st, line, loc, 3, t%grad)) return
+    end if
     t%step = st%card_item
     t%loc = loc
     if (.not. allocated(st%temps)) allocate (st%temps(16))

@@ -213,9 +213,10 @@ module superjoin_deck_state
 
   type, public :: temp_b_t
     !! A data line of *INITIAL CONDITIONS, TYPE=TEMPERATURE (step 0) or of
-    !! *TEMPERATURE in a step: node or nset, temperature.
+    !! *TEMPERATURE in a step: node or nset, temperature[, gradient along the shell normal].
      type(ref_t) :: ref
      real(wp) :: value = 0.0_wp
+     real(wp) :: grad = 0.0_wp
      integer :: step = 0
      type(source_loc_t) :: loc
   end type temp_b_t

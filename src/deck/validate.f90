@@ -1111,28 +1111,33 @@ contains
     !! in each step with temperatures, the load of its uniform temperature
     !! change ΔT (the mean of its nodes' T - T0; nodes without a step
     !! temperature keep T0, nodes without an initial one start at 0), a
-    !! DLOAD_THERMAL entry of value E A α ΔT. Plane and shell elements with a
-    !! temperature change are refused (not implemented).
+    !! DLOAD_THERMAL entry of value E A α ΔT. A plane or shell element gets
+    !! the entry of its thermal strain α ΔT (the mean over its nodes) and, on
+    !! shells, of its curvature α ∂T/∂n (the mean of its nodes' gradients,
+    !! the third field of the temperature lines); a gradient on any other
+    !! element is refused.
     type(deck_state_t), intent(inout) :: st
     type(model_t), intent(inout) :: model
-    type(real_list_t), allocatable :: t0(:), t(:)
+    type(real_list_t), allocatable :: t0(:), t(:), g0(:), g(:)
     type(dload_t), allocatable :: extra(:)
     integer :: s, isub, nn, nplate
     integer(ip) :: e, i, first_plate
     integer(ip), allocatable :: nodes(:)
     logical :: ok
-    real(wp) :: dt
+    real(wp) :: dt, dg
     type(source_loc_t) :: plate_loc
     if (st%ntemp == 0) return
-    allocate (t0(size(model%subs)), t(size(model%subs)))
+    allocate (t0(size(model%subs)), t(size(model%subs)), g0(size(model%subs)))
     do isub = 1, size(model%subs)
        allocate (t0(isub)%v(model%subs(isub)%nnode), source=0.0_wp)
+       allocate (g0(isub)%v(model%subs(isub)%nnode), source=0.0_wp)
     end do
-    call apply_lines(0, t0)
+    call apply_lines(0, t0, g0)
     do s = 1, size(model%steps)
        if (.not. any(st%temps(1:st%ntemp)%step == s)) cycle
        t = t0
-       call apply_lines(s, t)
+       g = g0
+       call apply_lines(s, t, g)
        if (st%aborted) return
        allocate (extra(0))
        nplate = 0
@@ -1149,11 +1154,28 @@ contains
                    ! an element with an undefined node has been reported already
                    if (nn == 0 .or. any(sub%elem_nodes(1:nn, e) <= 0)) cycle
                    dt = sum(t(isub)%v(sub%elem_nodes(1:nn, e)) - t0(isub)%v(sub%elem_nodes(1:nn, e)))/nn
-                   if (dt == 0.0_wp) cycle
+                   dg = sum(g(isub)%v(sub%elem_nodes(1:nn, e)) - g0(isub)%v(sub%elem_nodes(1:nn, e)))/nn
+                   if (dt == 0.0_wp .and. dg == 0.0_wp) cycle
                    select case (sub%elem_type(e))
                    case (ET_T2D2, ET_T3D2, ET_B23, ET_B33, ET_B21, ET_B31)
+                      if (dg /= 0.0_wp) then
+                         call report_loc(st, first_line(s), 'temperature gradient on element '// &
+                              itoa(sub%elem_id(e))//' of type '//trim(ELEMENT_TYPE_NAMES(sub%elem_type(e)))// &
+                              ': the gradient (third field) applies to shells only')
+                         return
+                      end if
                       extra = [extra, dload_t(sub=isub, elem=e, kind=DLOAD_THERMAL, &
                            value=mat%e*sec%area*mat%alpha*dt, loc=first_line(s))]
+                   case (ET_CPS3, ET_CPS4, ET_CPE3, ET_CPE4, ET_CPS6, ET_CPS8, ET_CPE6, ET_CPE8, ET_CPS8R, &
+                        ET_CPE8R, ET_S3, ET_S4, ET_S4R, ET_S3R)
+                      if (dg /= 0.0_wp .and. .not. any(sub%elem_type(e) == [ET_S3, ET_S4, ET_S4R, ET_S3R])) then
+                         call report_loc(st, first_line(s), 'temperature gradient on element '// &
+                              itoa(sub%elem_id(e))//' of type '//trim(ELEMENT_TYPE_NAMES(sub%elem_type(e)))// &
+                              ': the gradient (third field) applies to shells only')
+                         return
+                      end if
+                      extra = [extra, dload_t(sub=isub, elem=e, kind=DLOAD_THERMAL, &
+                           value=mat%alpha*dt, curvature=mat%alpha*dg, loc=first_line(s))]
                    case default
                       nplate = nplate + 1
                       if (nplate == 1) then
@@ -1167,7 +1189,8 @@ contains
             if (nplate > 0) then
                call report_loc(st, plate_loc, 'temperature change on element '//itoa(sub%elem_id(first_plate))// &
                     ' of type '//trim(ELEMENT_TYPE_NAMES(sub%elem_type(first_plate)))//' of substructure '// &
-                    sub%name//': thermal loads are implemented for trusses and beams only'//more_text(nplate - 1))
+                    sub%name//': thermal loads are implemented for trusses, beams, plane and shell elements only'// &
+                    more_text(nplate - 1))
                nplate = 0
             end if
           end associate
@@ -1176,10 +1199,10 @@ contains
        deallocate (extra)
     end do
   contains
-    subroutine apply_lines(step, field)
-      !! Set the temperatures the lines of step (0: initial conditions) give.
+    subroutine apply_lines(step, field, grad)
+      !! Set the temperatures and gradients the lines of step (0: initial conditions) give.
       integer, intent(in) :: step
-      type(real_list_t), intent(inout) :: field(:)
+      type(real_list_t), intent(inout) :: field(:), grad(:)
       integer :: j, js
       do j = 1, st%ntemp
          if (st%temps(j)%step /= step) cycle
@@ -1189,6 +1212,7 @@ contains
          if (.not. ok) cycle
          do i = 1, size(nodes, kind=ip)
             field(js)%v(nodes(i)) = st%temps(j)%value
+            grad(js)%v(nodes(i)) = st%temps(j)%grad
          end do
       end do
     end subroutine apply_lines

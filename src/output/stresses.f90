@@ -24,6 +24,7 @@ module superjoin_output_stresses
   use superjoin_elements_membrane, only: membrane_point_stresses
   use superjoin_analysis_results, only: result_fields_t
   use superjoin_output_energy, only: element_displacements
+  use superjoin_elements_thermal, only: thermal_free_field
   use superjoin_output_text_buffer, only: text_buffer_t
   use superjoin_output_columns, only: element_prefix, chop
   use superjoin_utils_strings, only: itoa
@@ -70,8 +71,8 @@ contains
     integer(ip), intent(in) :: ie
     real(wp), allocatable, intent(out) :: points(:, :, :), nodes(:, :, :)
     logical, intent(out) :: ok
-    real(wp) :: x(3, 4), r(3, 3), xl(2, 4), h(4), nu
-    real(wp), allocatable :: ue(:), ul(:), sp(:, :), sn(:, :), sp3(:, :, :), sn3(:, :, :)
+    real(wp) :: x(3, 4), r(3, 3), xl(2, 4), h(4), nu, szz0
+    real(wp), allocatable :: ue(:), ul(:), sp(:, :), sn(:, :), sp3(:, :, :), sn3(:, :, :), u0(:)
     type(error_t), allocatable :: error
     integer :: etype, nn, a, k
     logical :: strain
@@ -88,6 +89,15 @@ contains
       strain = etype == ET_CPE3 .or. etype == ET_CPE4
       associate (sec => sub%sections(sub%elem_section(ie)), mat => model%materials(sub%sections(sub%elem_section(ie))%material))
         nu = mat%nu
+        szz0 = 0.0_wp
+        if (allocated(fields%thermal)) then   ! loads: σ = D (ε - ε0), the free thermal expansion taken off u
+           associate (th => fields%thermal(:, fields%elem_offset(isub) + ie, is))
+             call thermal_free_field(etype, x(:, 1:nn), nu, th(1), th(2), u0, error)
+             if (allocated(error)) return
+             ue = ue - u0
+             szz0 = mat%e*th(1)
+           end associate
+        end if
         if (is_plane_type(etype)) then
            call shell_frame(x(:, 1:nn), r, xl(:, 1:nn), h(1:nn), error)
            if (allocated(error)) return
@@ -124,7 +134,7 @@ contains
       real(wp) :: t(NTENSOR)
       real(wp) :: m(3, 3), szz
       szz = 0.0_wp
-      if (strain) szz = nu*(s(1) + s(2))
+      if (strain) szz = nu*(s(1) + s(2)) - szz0
       m = s(1)*outer(r(1, :), r(1, :)) + s(2)*outer(r(2, :), r(2, :)) + &
            s(3)*(outer(r(1, :), r(2, :)) + outer(r(2, :), r(1, :))) + szz*outer(r(3, :), r(3, :))
       t = [m(1, 1), m(2, 2), m(3, 3), m(1, 2), m(1, 3), m(2, 3)]

@@ -6,7 +6,7 @@ module superjoin_deck_parser
   use superjoin_kinds, only: wp, ip, i8
   use superjoin_model_types, only: source_loc_t, string_t, ELEMENT_TYPE_NAMES, ELEMENT_NODE_COUNT, &
        NUM_ELEMENT_TYPES, MAX_ELEMENT_NODES, NDOF_NODE, SEC_SOLID, SEC_BEAM, SEC_SHELL, &
-       LINK_NONE, LINK_FINITE, LINK_RIGID, DLOAD_PX, DLOAD_PY, DLOAD_PZ, DLOAD_P, DLOAD_GRAV, DLOAD_P1, &
+       LINK_NONE, LINK_FINITE, LINK_RIGID, DLOAD_PX, DLOAD_PY, DLOAD_PZ, DLOAD_P, DLOAD_GRAV, DLOAD_P1, DLOAD_CENTRIF, &
        FORM_TRANSFORM, FORM_PENALTY, RIGID_ELIMINATE, RIGID_LARGE, CONDENSE_AUTO, CONDENSE_YES, CONDENSE_NO
   use superjoin_deck_lexer, only: keyword_line_t, load_file, next_line, first_nonblank, to_upper, &
        parse_keyword_line, split_fields, drop_trailing_empty, parse_real, parse_id, is_name, &
@@ -82,6 +82,9 @@ module superjoin_deck_parser
   integer, parameter :: ELASTIC_FIELDS = 2, VECTOR_FIELDS = 3, CONTACT_FIELDS = 5, LOAD_FIELDS = 3, &
        GRAV_FIELDS = 6
   integer, parameter :: SUPPORT_FIELDS_MIN = 3, SUPPORT_FIELDS_MAX = 4
+  integer, parameter :: CENTRIF_FIELDS = 9
+  integer, parameter :: CARD_SURFACE = 151, CARD_DSLOAD = 152
+    !! loads: *SURFACE, TYPE=ELEMENT and *DSLOAD (superjoin_deck_surfaces)
   integer, parameter :: BOUNDARY_FIELDS_MIN = 2, BOUNDARY_FIELDS_MAX = 4
 
   interface
@@ -1816,6 +1819,10 @@ contains
     dload = st%card == CARD_DLOAD
     if (dload) then
        if (st%f%n >= 2) typ = to_upper(fld(st, line, 2))
+       if (st%f%n >= 2 .and. typ == 'CENTRIF') then
+          call data_centrif(st, line, loc)
+          return
+       end if
        if (st%f%n >= 2 .and. typ == 'GRAV') then
           if (.not. field_count(st, loc, GRAV_FIELDS, GRAV_FIELDS, &
                'element or elset (empty: the whole model), GRAV, acceleration, dx, dy, dz')) return
@@ -1859,7 +1866,7 @@ contains
           ld%kind = face_load_kind(typ)
        case default
           call report_loc(st, loc, 'unknown *DLOAD type '''//clip(fld(st, line, 2))// &
-               ''' (PX, PY, PZ, P, P1 to P4 or GRAV)')
+               ''' (PX, PY, PZ, P, P1 to P4, GRAV or CENTRIF)')
           return
        end select
     else
@@ -1869,6 +1876,45 @@ contains
     ld%loc = loc
     call add_load(st%steps(st%card_item), ld, dload)
   end subroutine data_load
+
+  subroutine data_centrif(st, line, loc)
+    !! *DLOAD `elset, CENTRIF, omega^2, px, py, pz, ax, ay, az` (CalculiX): the
+    !! centrifugal load of a rotation at the angular velocity omega about the
+    !! axis through p along a; an empty first field loads the whole model (or
+    !! the substructure block), as GRAV.
+    type(deck_state_t), intent(inout) :: st
+    character(*), intent(in) :: line
+    type(source_loc_t), intent(in) :: loc
+    type(load_b_t) :: ld
+    real(wp) :: anorm
+    integer :: k
+    if (.not. field_count(st, loc, CENTRIF_FIELDS, CENTRIF_FIELDS, &
+         'element or elset, CENTRIF, omega^2, point x, y, z, axis ax, ay, az')) return
+    ld%kind = DLOAD_CENTRIF
+    if (.not. get_real(st, line, loc, 3, ld%value)) return
+    do k = 1, 3
+       if (.not. get_real(st, line, loc, 3 + k, ld%point(k))) return
+       if (.not. get_real(st, line, loc, 6 + k, ld%dir(k))) return
+    end do
+    anorm = norm2(ld%dir)
+    if (.not. (anorm > 0.0_wp)) then
+       call report_loc(st, loc, 'CENTRIF needs a nonzero axis direction ax, ay, az')
+       return
+    end if
+    if (ld%value < 0.0_wp) then
+       call report_loc(st, loc, 'CENTRIF takes omega^2, which cannot be negative')
+       return
+    end if
+    ld%dir = ld%dir/anorm
+    ld%loc = loc
+    if (len(fld(st, line, 1)) == 0) then
+       ld%whole_model = .true.
+       ld%home = st%card_home
+    else
+       if (.not. parse_ref(st, fld(st, line, 1), .true., st%card_home, loc, ld%ref)) return
+    end if
+    call add_load(st%steps(st%card_item), ld, .true.)
+  end subroutine data_centrif
 
 
   ! ================================================================== CalculiX/Abaqus analysis cards

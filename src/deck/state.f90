@@ -164,7 +164,8 @@ module superjoin_deck_state
      integer :: dof = 0                    !! *CLOAD
      integer :: kind = 0                   !! *DLOAD
      real(wp) :: value = 0.0_wp
-     real(wp) :: dir(3) = 0.0_wp           !! *DLOAD GRAV: unit direction
+     real(wp) :: dir(3) = 0.0_wp           !! *DLOAD GRAV: unit direction (CENTRIF: unit axis)
+     real(wp) :: point(3) = 0.0_wp         !! *DLOAD CENTRIF: a point of the axis
      logical :: whole_model = .false.      !! *DLOAD GRAV with an empty first field
      integer :: home = 0                   !! its substructure block (0: the whole model)
      type(source_loc_t) :: loc

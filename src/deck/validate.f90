@@ -10,7 +10,7 @@ module superjoin_deck_validate
        ET_S3, ET_S4, ET_B21, ET_B31, ET_CPE3, ET_CPE4, ET_CPS6, ET_CPS8, ET_CPE6, ET_CPE8, ET_CPS8R, ET_CPE8R, &
        ET_B32, DLOAD_PX, DLOAD_PY, DLOAD_PZ, DLOAD_P, DLOAD_GRAV, DLOAD_NAMES
   use superjoin_model_types, only: ET_S4R, ET_S3R
-  use superjoin_model_types, only: DLOAD_P1, DLOAD_P2, DLOAD_P3, DLOAD_P4, DLOAD_THERMAL
+  use superjoin_model_types, only: DLOAD_P1, DLOAD_P2, DLOAD_P3, DLOAD_P4, DLOAD_THERMAL, DLOAD_CENTRIF
   use superjoin_deck_lexer, only: itoa, plural
   use superjoin_deck_state, only: deck_state_t, sub_b_t, ref_t, load_b_t, report, report_loc, report_oom, find_set, &
        CH_IDS, CH_GEN, CH_RANGE, CH_REF, BEAM_2D_VALUES, BEAM_3D_VALUES, SUBK_INSTANCE
@@ -1365,7 +1365,7 @@ contains
              if (nbad == 1) first_bad = elems(i)
              cycle
           end if
-          if (loads(k)%kind == DLOAD_GRAV) then
+          if (loads(k)%kind == DLOAD_GRAV .or. loads(k)%kind == DLOAD_CENTRIF) then
              associate (sub => model%subs(isub))
                if (sub%elem_section(elems(i)) == 0) cycle
                if (.not. model%materials(sub%sections(sub%elem_section(elems(i)))%material)%has_density) then
@@ -1386,11 +1386,13 @@ contains
           out(n)%kind = loads(k)%kind
           out(n)%value = loads(k)%value
           out(n)%dir = loads(k)%dir
+          out(n)%point = loads(k)%point
           out(n)%loc = loads(k)%loc
        end do
        if (nodens > 0) then
           associate (sub => model%subs(isub))
-            call report_loc(st, loads(k)%loc, '*DLOAD GRAV on element '//itoa(sub%elem_id(first_nodens))// &
+            call report_loc(st, loads(k)%loc, '*DLOAD '//trim(DLOAD_NAMES(loads(k)%kind))//' on element '// &
+                 itoa(sub%elem_id(first_nodens))// &
                  ' of substructure '//sub%name//', whose material '// &
                  model%materials(sub%sections(sub%elem_section(first_nodens))%material)%name// &
                  ' has no *DENSITY'//more_text(nodens - 1))
@@ -1420,6 +1422,8 @@ contains
        dload_fits = etype == ET_S3 .or. etype == ET_S4 .or. etype == ET_S4R .or. etype == ET_S3R
     case (DLOAD_GRAV)
        dload_fits = .true.
+    case (DLOAD_CENTRIF)
+       dload_fits = etype /= ET_B32
     case (DLOAD_P1)
        dload_fits = is_plane(etype) .or. etype == ET_B33 .or. etype == ET_B31
     case (DLOAD_P2)
@@ -1455,6 +1459,8 @@ contains
        s = 'P3 applies to the third edge of plane elements'
     case (DLOAD_P4)
        s = 'P4 applies to the fourth edge of quadrilaterals CPS4 and CPE4'
+    case (DLOAD_CENTRIF)
+       s = 'CENTRIF applies to trusses, two-node beams, plane and shell elements'
     case default
        s = 'P applies to shells S3 and S4'
     end select

@@ -15,6 +15,7 @@ module superjoin_deck_parser
   use superjoin_deck_state, only: deck_state_t, sec_b_t, contact_b_t, cline_b_t, support_b_t, &
        load_b_t, ref_t, report, report_loc, report_oom, new_sub, find_sub, find_set, new_set, add_chunk, &
        override_b_t, SUBK_PART, SUBK_INSTANCE, step_b_t, combo_b_t, temp_b_t, OP_DEFAULT, OP_MOD, OP_NEW, &
+       surface_b_t, &
        push_pool, add_node, add_element, add_heading, add_material, add_orientation, &
        add_section, add_contact, add_cline, add_support, add_step, add_load, &
        MAX_INCLUDE_DEPTH, CH_IDS, CH_GEN, CH_RANGE, CH_REF, BEAM_2D_VALUES, BEAM_3D_VALUES
@@ -400,6 +401,10 @@ contains
        call kw_load(st, kw, loc, CARD_CLOAD)
     case ('DLOAD')
        call kw_load(st, kw, loc, CARD_DLOAD)
+    case ('SURFACE')
+       call kw_surface(st, kw, loc)
+    case ('DSLOAD')
+       call kw_load(st, kw, loc, CARD_DSLOAD)
     case ('LOAD COMBINATION')
        call kw_load_combination(st, kw, loc)
     case ('EXPANSION')
@@ -462,6 +467,9 @@ contains
        if (st%card_ndata == 0) call report_loc(st, st%card_loc, st%card_name//' needs a data line (step, factor)')
     case (CARD_EXPANSION)
        if (st%card_ndata == 0) call report_loc(st, st%card_loc, st%card_name//' needs a data line')
+    case (CARD_SURFACE)
+       if (st%card_ndata == 0) call report_loc(st, st%card_loc, st%card_name// &
+            ' needs a data line (element or elset, face)')
     case (CARD_EQUATION)
        call end_equation_card(st)
     end select
@@ -1038,7 +1046,7 @@ contains
     st%card = CARD_SKIP
     if (st%cur_step > 0) then
        st%card_item = st%cur_step
-       call record_load_op(st%steps(st%cur_step), card == CARD_DLOAD, op)
+       call record_load_op(st%steps(st%cur_step), card == CARD_DLOAD .or. card == CARD_DSLOAD, op)
     else
        if (op /= OP_DEFAULT) call report_loc(st, loc, 'OP= of *'//kw%keyword//' applies inside *STEP only')
        if (st%nstep_cards > 0) then
@@ -1214,6 +1222,10 @@ contains
        call data_expansion(st, line, loc)
     case (CARD_TEMPERATURE)
        call data_temperature(st, line, loc)
+    case (CARD_SURFACE)
+       call data_surface(st, line, loc)
+    case (CARD_DSLOAD)
+       call data_dsload(st, line, loc)
     end select
   end subroutine data_line
 
@@ -2611,6 +2623,127 @@ contains
     st%ntemp = st%ntemp + 1
     st%temps(st%ntemp) = t
   end subroutine data_temperature
+
+  ! ================================================================== surfaces
+
+  subroutine kw_surface(st, kw, loc)
+    !! *SURFACE, NAME=name[, TYPE=ELEMENT]: element faces for *DSLOAD; data
+    !! lines `element or elset, face`. Node surfaces (TYPE=NODE), which only
+    !! contact and ties use, are refused.
+    type(deck_state_t), intent(inout) :: st
+    type(keyword_line_t), intent(in) :: kw
+    type(source_loc_t), intent(in) :: loc
+    character(:), allocatable :: name, typ
+    type(surface_b_t), allocatable :: tmp(:)
+    logical :: found
+    integer :: k
+    st%card = CARD_SKIP
+    call check_params(st, kw, loc, [character(NAME_LEN) :: 'NAME', 'TYPE'], [character(NAME_LEN) ::])
+    if (.not. outside_step(st, kw, loc)) return
+    call get_param(st, kw, loc, 'TYPE', .false., typ, found)
+    if (found) then
+       if (to_upper(typ) /= 'ELEMENT') then
+          call report_loc(st, loc, '*SURFACE, TYPE='//clip(typ)//' is not supported (element faces, '// &
+               'TYPE=ELEMENT, for *DSLOAD)')
+          return
+       end if
+    end if
+    call get_param(st, kw, loc, 'NAME', .true., name, found)
+    if (.not. found) return
+    name = to_upper(name)
+    do k = 1, st%nsurface
+       if (st%surfaces(k)%name == name) then
+          call report_loc(st, loc, 'surface '//name//' is already defined (at '// &
+               loc_string(st, st%surfaces(k)%loc)//')')
+          return
+       end if
+    end do
+    if (.not. allocated(st%surfaces)) allocate (st%surfaces(4))
+    if (st%nsurface == size(st%surfaces)) then
+       allocate (tmp(2*st%nsurface))
+       tmp(1:st%nsurface) = st%surfaces(1:st%nsurface)
+       call move_alloc(tmp, st%surfaces)
+    end if
+    st%nsurface = st%nsurface + 1
+    st%surfaces(st%nsurface)%name = name
+    st%surfaces(st%nsurface)%loc = loc
+    allocate (st%surfaces(st%nsurface)%refs(0), st%surfaces(st%nsurface)%kinds(0), st%surfaces(st%nsurface)%signs(0))
+    st%card = CARD_SURFACE
+    st%card_item = st%nsurface
+    st%card_home = st%cur_sub
+  end subroutine kw_surface
+
+  subroutine data_surface(st, line, loc)
+    !! `element or elset, face`: S1 to S4, the edges of a plane element
+    !! (CalculiX's faces, as P1 to P4 of *DLOAD), SPOS or SNEG, the face of a
+    !! shell along or against its normal.
+    type(deck_state_t), intent(inout) :: st
+    character(*), intent(in) :: line
+    type(source_loc_t), intent(in) :: loc
+    type(ref_t) :: ref
+    character(:), allocatable :: face
+    integer :: kind
+    real(wp) :: sgn
+    if (.not. field_count(st, loc, 2, 2, 'element or elset, face (S1 to S4, SPOS or SNEG)')) return
+    face = to_upper(fld(st, line, 2))
+    sgn = 1.0_wp
+    select case (face)
+    case ('S1', 'S2', 'S3', 'S4')
+       kind = face_load_kind('P'//face(2:2))
+    case ('SPOS')
+       kind = DLOAD_P
+    case ('SNEG')
+       kind = DLOAD_P
+       sgn = -1.0_wp
+    case default
+       call report_loc(st, loc, 'unknown face '''//clip(fld(st, line, 2))// &
+            ''' (S1 to S4: edges of plane elements; SPOS, SNEG: faces of shells)')
+       return
+    end select
+    if (.not. parse_ref(st, fld(st, line, 1), .true., st%card_home, loc, ref)) return
+    associate (sf => st%surfaces(st%card_item))
+      sf%n = sf%n + 1
+      sf%refs = [sf%refs, ref]
+      sf%kinds = [sf%kinds, kind]
+      sf%signs = [sf%signs, sgn]
+    end associate
+  end subroutine data_surface
+
+  subroutine data_dsload(st, line, loc)
+    !! *DSLOAD `surface, P, pressure`: the pressure on every face of an
+    !! element surface, as *DLOAD Pk (plane edges) or P (shells, SNEG with the
+    !! sign turned) on its elements.
+    type(deck_state_t), intent(inout) :: st
+    character(*), intent(in) :: line
+    type(source_loc_t), intent(in) :: loc
+    type(load_b_t) :: ld
+    character(:), allocatable :: name
+    real(wp) :: p
+    integer :: k, i
+    if (.not. field_count(st, loc, LOAD_FIELDS, LOAD_FIELDS, 'surface, P, pressure')) return
+    if (to_upper(fld(st, line, 2)) /= 'P') then
+       call report_loc(st, loc, 'unknown *DSLOAD type '''//clip(fld(st, line, 2))//''' (P, a uniform pressure)')
+       return
+    end if
+    if (.not. get_real(st, line, loc, 3, p)) return
+    name = to_upper(fld(st, line, 1))
+    do k = 1, st%nsurface
+       if (st%surfaces(k)%name == name) exit
+    end do
+    if (k > st%nsurface) then
+       call report_loc(st, loc, 'unknown surface '''//clip(fld(st, line, 1))//''' (define it with *SURFACE, '// &
+            'TYPE=ELEMENT before the step)')
+       return
+    end if
+    do i = 1, st%surfaces(k)%n
+       ld%ref = st%surfaces(k)%refs(i)
+       ld%kind = st%surfaces(k)%kinds(i)
+       ld%value = st%surfaces(k)%signs(i)*p
+       ld%surface = .true.
+       ld%loc = loc
+       call add_load(st%steps(st%card_item), ld, .true.)
+    end do
+  end subroutine data_dsload
 
   function loc_string(st, loc) result(s)
     !! "file:line" of a location.

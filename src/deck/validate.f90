@@ -1354,16 +1354,29 @@ contains
       !! The loads of line k on elems of substructure isub, with the checks.
        integer :: nodens
        integer(ip) :: first_nodens
+       logical :: plane_ok
        nbad = 0
        first_bad = 0
        nodens = 0
        first_nodens = 0
+       ! CENTRIF keeps the XY plane in itself: axis along Z, or in the plane
+       plane_ok = loads(k)%kind /= DLOAD_CENTRIF .or. abs(loads(k)%dir(3)) == 1.0_wp .or. &
+            (loads(k)%dir(3) == 0.0_wp .and. loads(k)%point(3) == 0.0_wp)
        do i = 1, size(elems, kind=ip)
           et = model%subs(isub)%elem_type(elems(i))
           if (.not. dload_fits(loads(k)%kind, et)) then
              nbad = nbad + 1
              if (nbad == 1) first_bad = elems(i)
              cycle
+          end if
+          if (loads(k)%kind == DLOAD_CENTRIF .and. .not. plane_ok) then
+             if (any(et == [ET_CPS3, ET_CPS4, ET_CPE3, ET_CPE4, ET_CPS6, ET_CPS8, ET_CPE6, ET_CPE8, ET_CPS8R, &
+                  ET_CPE8R])) then
+                call report_loc(st, loads(k)%loc, 'CENTRIF loads a plane element out of the XY plane '// &
+                     '(the axis must be parallel to Z, or lie in the XY plane)')
+                plane_ok = .true.   ! reported once
+                cycle
+             end if
           end if
           if (loads(k)%kind == DLOAD_GRAV .or. loads(k)%kind == DLOAD_CENTRIF) then
              associate (sub => model%subs(isub))
@@ -1400,14 +1413,28 @@ contains
        end if
        if (nbad > 0) then
           associate (sub => model%subs(isub))
-            call report_loc(st, loads(k)%loc, '*DLOAD '//trim(DLOAD_NAMES(loads(k)%kind))// &
-                 ' does not apply to element '//itoa(sub%elem_id(first_bad))//' of type '// &
+            call report_loc(st, loads(k)%loc, trim(merge('*DSLOAD: face', '*DLOAD       ', loads(k)%surface))// &
+                 ' '//trim(surface_face(loads(k)))//' does not apply to element '//itoa(sub%elem_id(first_bad))//' of type '// &
                  trim(ELEMENT_TYPE_NAMES(sub%elem_type(first_bad)))//' ('// &
                  dload_targets(loads(k)%kind)//')'//more_text(nbad - 1))
           end associate
        end if
     end subroutine add_elements
   end subroutine build_dloads
+
+  pure function surface_face(ld) result(name)
+    !! The load form as the deck wrote it: a *DLOAD type, or the face of a
+    !! *SURFACE line (S1 to S4, SPOS / SNEG) for a *DSLOAD.
+    type(load_b_t), intent(in) :: ld
+    character(:), allocatable :: name
+    name = trim(DLOAD_NAMES(ld%kind))
+    if (.not. ld%surface) return
+    if (ld%kind >= DLOAD_P1 .and. ld%kind <= DLOAD_P4) then
+       name = 'S'//name(2:2)//' (edge '//name(2:2)//')'
+    else if (ld%kind == DLOAD_P) then
+       name = 'SPOS or SNEG'
+    end if
+  end function surface_face
 
   pure logical function dload_fits(kind, etype)
     !! Whether a distributed load kind applies to an element type.

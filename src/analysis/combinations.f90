@@ -12,6 +12,7 @@ module superjoin_analysis_combinations
   use superjoin_analysis_health, only: check_finite
   use superjoin_error, only: error_t
   use superjoin_utils_halting, only: halting_t, halting_off, halting_restore
+  use superjoin_analysis_body_loads, only: superpose_thermal
   implicit none (type, external)
   private
 
@@ -84,6 +85,7 @@ contains
     if (allocated(u)) call move_alloc(u, res%fields%u)
     if (allocated(ef)) call move_alloc(ef, res%fields%elem_force)
     if (allocated(pl)) call move_alloc(pl, res%fields%plate)
+    call superpose_thermal(model%combinations, ns, res%fields%thermal)
   end subroutine superpose
 
   function combination_text(model, c) result(text)

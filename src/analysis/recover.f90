@@ -18,6 +18,7 @@ module superjoin_analysis_recover
   use superjoin_assembly_transform, only: transform_t, form_spring_t, constraint_t, ROLE_TREE, CONS_ELIMINATED
   use superjoin_assembly_assemble, only: element_pdofs, distributed_load
   use superjoin_analysis_results, only: results_t, reaction_t
+  use superjoin_analysis_body_loads, only: plate_thermal_strains, line_centrif_forces, take_thermal_resultants
   use superjoin_utils_memory, only: out_of_memory, BYTES_REAL, BYTES_INT
   implicit none (type, external)
   private
@@ -141,7 +142,7 @@ contains
     logical, intent(in) :: parts_done
     logical, intent(in) :: wanted(:)
     logical, allocatable :: own_ku(:), in_unit(:)
-    real(wp), allocatable :: ql(:, :, :), fe(:), nt(:, :)
+    real(wp), allocatable :: ql(:, :, :), fe(:), nt(:, :), f0(:, :, :, :)
     real(wp) :: qloc(3), f(6, 2), fg(MAX_ELEM_DOFS)
     real(wp), allocatable :: fg2(:, :)
     integer(i8) :: pd(MAX_ELEM_DOFS), ie, ntot
@@ -169,6 +170,9 @@ contains
     call unit_vertices(table, in_unit)
 
     allocate (nt(ntot, nstep), source=0.0_wp)   ! loads: thermal axial force E A alpha dT
+    ! loads: thermal strains of plane and shell elements, centrifugal end loads of bars and beams
+    call plate_thermal_strains(model, res%fields%elem_offset, nstep, res%fields%thermal)
+    call line_centrif_forces(model, res%fields%elem_offset, nstep, f0)
     ! Distributed loads in element axes, per element and step.
     ql = 0.0_wp
     do is = 1, nstep
@@ -211,6 +215,10 @@ contains
                     return
                  end if
                  if (.not. own_ku(isub)) r(pd(1:n), :) = r(pd(1:n), :) + fg2(1:n, :)
+                 ! loads: N = D (eps - eps0), the free thermal expansion's resultants taken off
+                 if (allocated(res%fields%thermal)) call take_thermal_resultants(s%elem_type(e), &
+                      s%x(:, s%elem_nodes(1:nn, e)), sec, model%materials(sec%material), &
+                      res%fields%thermal(:, ie, :), res%fields%plate(:, ie, :))
                  cycle
               end if
               do is = 1, nstep
@@ -222,6 +230,8 @@ contains
                  end if
                  ! loads: N = E A (eps - alpha dT), the thermal force off the axial end forces
                  f(1, :) = f(1, :) + [nt(ie, is), -nt(ie, is)]
+                 ! loads: CENTRIF, the consistent end loads of its linearly varying load
+                 if (allocated(f0)) f = f - f0(:, :, ie, is)
                  res%fields%elem_force(:, :, ie, is) = f
                  if (own_ku(isub)) cycle
                  ! r += K_e u_e - f_eq (the consistent load is added back below)

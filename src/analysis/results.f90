@@ -89,6 +89,8 @@ module superjoin_analysis_results
      real(wp), allocatable :: elem_force(:, :, :, :)  !! (6, 2, nelem_total, nstep)
      real(wp), allocatable :: plate(:, :, :)      !! (6, nelem_total, nstep) nx, ny, nxy, mx, my, mxy
                                                   !! at the centroid, element frame (plane and shell elements; 0 otherwise)
+     real(wp), allocatable :: thermal(:, :, :)    !! (2, nelem_total, nstep) thermal strain α ΔT and curvature
+                                                  !! α ∂T/∂n of plane and shell elements (unallocated: none)
      integer(i8), allocatable :: elem_offset(:)   !! (nsub+1) element numbering over substructures
      integer(i8), allocatable :: vertex_offset(:) !! (nsub+1)
      type(step_results_t), allocatable :: steps(:)

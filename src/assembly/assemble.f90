@@ -5,6 +5,8 @@ module superjoin_assembly_assemble
   use superjoin_kinds, only: wp, ip, i8
   use superjoin_error, only: error_t, add_error_line, EXIT_DECK, EXIT_SINGULAR
   use superjoin_model_types, only: model_t, dload_t, ELEMENT_NODE_COUNT, LINK_FINITE, DLOAD_GRAV, loc_text
+  use superjoin_model_types, only: DLOAD_THERMAL, DLOAD_CENTRIF
+  use superjoin_elements, only: element_material_load, is_plate_type
   use superjoin_elements, only: element_dof_mask, element_stiffness, element_distributed_load, &
        element_gravity_load
   use superjoin_assembly_dofs, only: dof_table_t, GROUND, block_dof, unit_dofs, unit_terms, MAX_UNIT_TERMS
@@ -331,7 +333,7 @@ contains
 
   subroutine distributed_load(model, dl, fe, q_local, error)
     !! Nodal loads (global axes, element ordering) and local load of one
-    !! distributed load: PX/PY/PZ, P or GRAV.
+    !! distributed load: PX/PY/PZ, P, GRAV, CENTRIF or TEMP.
     type(model_t), intent(in) :: model
     type(dload_t), intent(in) :: dl
     real(wp), allocatable, intent(out) :: fe(:)
@@ -344,6 +346,10 @@ contains
         if (dl%kind == DLOAD_GRAV) then
            call element_gravity_load(s%elem_type(dl%elem), s%x(:, s%elem_nodes(1:nn, dl%elem)), sec, &
                 model%materials(sec%material), dl%value*dl%dir, fe, q_local, error)
+        else if (dl%kind == DLOAD_CENTRIF .or. (dl%kind == DLOAD_THERMAL .and. is_plate_type(s%elem_type(dl%elem)))) then
+           q_local = 0.0_wp   ! CENTRIF on a bar or beam: its end forces take fe itself (superjoin_analysis_recover)
+           call element_material_load(s%elem_type(dl%elem), s%x(:, s%elem_nodes(1:nn, dl%elem)), sec, &
+                model%materials(sec%material), dl, fe, error)
         else
            call element_distributed_load(s%elem_type(dl%elem), s%x(:, s%elem_nodes(1:nn, dl%elem)), sec, &
                 dl%kind, dl%value, fe, q_local, error)

@@ -6,7 +6,7 @@ module superjoin_deck_parser
   use superjoin_kinds, only: wp, ip, i8
   use superjoin_model_types, only: source_loc_t, string_t, ELEMENT_TYPE_NAMES, ELEMENT_NODE_COUNT, &
        NUM_ELEMENT_TYPES, MAX_ELEMENT_NODES, NDOF_NODE, SEC_SOLID, SEC_BEAM, SEC_SHELL, &
-       LINK_NONE, LINK_FINITE, LINK_RIGID, DLOAD_PX, DLOAD_PY, DLOAD_PZ, DLOAD_P, DLOAD_GRAV, DLOAD_P1, &
+       LINK_NONE, LINK_FINITE, LINK_RIGID, DLOAD_PX, DLOAD_PY, DLOAD_PZ, DLOAD_P, DLOAD_GRAV, DLOAD_P1, DLOAD_CENTRIF, &
        FORM_TRANSFORM, FORM_PENALTY, RIGID_ELIMINATE, RIGID_LARGE, CONDENSE_AUTO, CONDENSE_YES, CONDENSE_NO
   use superjoin_deck_lexer, only: keyword_line_t, load_file, next_line, first_nonblank, to_upper, &
        parse_keyword_line, split_fields, drop_trailing_empty, parse_real, parse_id, is_name, &
@@ -15,6 +15,7 @@ module superjoin_deck_parser
   use superjoin_deck_state, only: deck_state_t, sec_b_t, contact_b_t, cline_b_t, support_b_t, &
        load_b_t, ref_t, report, report_loc, report_oom, new_sub, find_sub, find_set, new_set, add_chunk, &
        override_b_t, SUBK_PART, SUBK_INSTANCE, step_b_t, combo_b_t, temp_b_t, OP_DEFAULT, OP_MOD, OP_NEW, &
+       surface_b_t, &
        push_pool, add_node, add_element, add_heading, add_material, add_orientation, &
        add_section, add_contact, add_cline, add_support, add_step, add_load, &
        MAX_INCLUDE_DEPTH, CH_IDS, CH_GEN, CH_RANGE, CH_REF, BEAM_2D_VALUES, BEAM_3D_VALUES
@@ -82,6 +83,9 @@ module superjoin_deck_parser
   integer, parameter :: ELASTIC_FIELDS = 2, VECTOR_FIELDS = 3, CONTACT_FIELDS = 5, LOAD_FIELDS = 3, &
        GRAV_FIELDS = 6
   integer, parameter :: SUPPORT_FIELDS_MIN = 3, SUPPORT_FIELDS_MAX = 4
+  integer, parameter :: CENTRIF_FIELDS = 9
+  integer, parameter :: CARD_SURFACE = 151, CARD_DSLOAD = 152
+    !! loads: *SURFACE, TYPE=ELEMENT and *DSLOAD (superjoin_deck_surfaces)
   integer, parameter :: BOUNDARY_FIELDS_MIN = 2, BOUNDARY_FIELDS_MAX = 4
 
   interface
@@ -397,6 +401,10 @@ contains
        call kw_load(st, kw, loc, CARD_CLOAD)
     case ('DLOAD')
        call kw_load(st, kw, loc, CARD_DLOAD)
+    case ('SURFACE')
+       call kw_surface(st, kw, loc)
+    case ('DSLOAD')
+       call kw_load(st, kw, loc, CARD_DSLOAD)
     case ('LOAD COMBINATION')
        call kw_load_combination(st, kw, loc)
     case ('EXPANSION')
@@ -459,6 +467,9 @@ contains
        if (st%card_ndata == 0) call report_loc(st, st%card_loc, st%card_name//' needs a data line (step, factor)')
     case (CARD_EXPANSION)
        if (st%card_ndata == 0) call report_loc(st, st%card_loc, st%card_name//' needs a data line')
+    case (CARD_SURFACE)
+       if (st%card_ndata == 0) call report_loc(st, st%card_loc, st%card_name// &
+            ' needs a data line (element or elset, face)')
     case (CARD_EQUATION)
        call end_equation_card(st)
     end select
@@ -1035,7 +1046,7 @@ contains
     st%card = CARD_SKIP
     if (st%cur_step > 0) then
        st%card_item = st%cur_step
-       call record_load_op(st%steps(st%cur_step), card == CARD_DLOAD, op)
+       call record_load_op(st%steps(st%cur_step), card == CARD_DLOAD .or. card == CARD_DSLOAD, op)
     else
        if (op /= OP_DEFAULT) call report_loc(st, loc, 'OP= of *'//kw%keyword//' applies inside *STEP only')
        if (st%nstep_cards > 0) then
@@ -1211,6 +1222,10 @@ contains
        call data_expansion(st, line, loc)
     case (CARD_TEMPERATURE)
        call data_temperature(st, line, loc)
+    case (CARD_SURFACE)
+       call data_surface(st, line, loc)
+    case (CARD_DSLOAD)
+       call data_dsload(st, line, loc)
     end select
   end subroutine data_line
 
@@ -1816,6 +1831,10 @@ contains
     dload = st%card == CARD_DLOAD
     if (dload) then
        if (st%f%n >= 2) typ = to_upper(fld(st, line, 2))
+       if (st%f%n >= 2 .and. typ == 'CENTRIF') then
+          call data_centrif(st, line, loc)
+          return
+       end if
        if (st%f%n >= 2 .and. typ == 'GRAV') then
           if (.not. field_count(st, loc, GRAV_FIELDS, GRAV_FIELDS, &
                'element or elset (empty: the whole model), GRAV, acceleration, dx, dy, dz')) return
@@ -1859,7 +1878,7 @@ contains
           ld%kind = face_load_kind(typ)
        case default
           call report_loc(st, loc, 'unknown *DLOAD type '''//clip(fld(st, line, 2))// &
-               ''' (PX, PY, PZ, P, P1 to P4 or GRAV)')
+               ''' (PX, PY, PZ, P, P1 to P4, GRAV or CENTRIF)')
           return
        end select
     else
@@ -1869,6 +1888,45 @@ contains
     ld%loc = loc
     call add_load(st%steps(st%card_item), ld, dload)
   end subroutine data_load
+
+  subroutine data_centrif(st, line, loc)
+    !! *DLOAD `elset, CENTRIF, omega^2, px, py, pz, ax, ay, az` (CalculiX): the
+    !! centrifugal load of a rotation at the angular velocity omega about the
+    !! axis through p along a; an empty first field loads the whole model (or
+    !! the substructure block), as GRAV.
+    type(deck_state_t), intent(inout) :: st
+    character(*), intent(in) :: line
+    type(source_loc_t), intent(in) :: loc
+    type(load_b_t) :: ld
+    real(wp) :: anorm
+    integer :: k
+    if (.not. field_count(st, loc, CENTRIF_FIELDS, CENTRIF_FIELDS, &
+         'element or elset, CENTRIF, omega^2, point x, y, z, axis ax, ay, az')) return
+    ld%kind = DLOAD_CENTRIF
+    if (.not. get_real(st, line, loc, 3, ld%value)) return
+    do k = 1, 3
+       if (.not. get_real(st, line, loc, 3 + k, ld%point(k))) return
+       if (.not. get_real(st, line, loc, 6 + k, ld%dir(k))) return
+    end do
+    anorm = norm2(ld%dir)
+    if (.not. (anorm > 0.0_wp)) then
+       call report_loc(st, loc, 'CENTRIF needs a nonzero axis direction ax, ay, az')
+       return
+    end if
+    if (ld%value < 0.0_wp) then
+       call report_loc(st, loc, 'CENTRIF takes omega^2, which cannot be negative')
+       return
+    end if
+    ld%dir = ld%dir/anorm
+    ld%loc = loc
+    if (len(fld(st, line, 1)) == 0) then
+       ld%whole_model = .true.
+       ld%home = st%card_home
+    else
+       if (.not. parse_ref(st, fld(st, line, 1), .true., st%card_home, loc, ld%ref)) return
+    end if
+    call add_load(st%steps(st%card_item), ld, .true.)
+  end subroutine data_centrif
 
 
   ! ================================================================== CalculiX/Abaqus analysis cards
@@ -2536,21 +2594,25 @@ contains
   end subroutine kw_temperature
 
   subroutine data_temperature(st, line, loc)
-    !! `node or nset, temperature` (uniform across the section: a gradient,
-    !! CalculiX's further fields, is refused).
+    !! `node or nset, temperature[, gradient]`: CalculiX's third field, the
+    !! temperature gradient along the normal of a shell (the fourth, a beam's
+    !! second gradient, is refused).
     type(deck_state_t), intent(inout) :: st
     character(*), intent(in) :: line
     type(source_loc_t), intent(in) :: loc
     type(temp_b_t) :: t
     type(temp_b_t), allocatable :: tmp(:)
-    if (st%f%n > 2) then
-       call report_loc(st, loc, 'temperature gradients across the section are not supported '// &
-            '(node or nset, temperature)')
+    if (st%f%n > 3) then
+       call report_loc(st, loc, 'temperature gradients across a beam section are not supported '// &
+            '(node or nset, temperature[, gradient along a shell''s normal])')
        return
     end if
-    if (.not. field_count(st, loc, 2, 2, 'node or nset, temperature')) return
+    if (.not. field_count(st, loc, 2, 3, 'node or nset, temperature[, gradient]')) return
     if (.not. parse_ref(st, fld(st, line, 1), .false., st%card_home, loc, t%ref)) return
     if (.not. get_real(st, line, loc, 2, t%value)) return
+    if (st%f%n == 3) then
+       if (.not. get_real(st, line, loc, 3, t%grad)) return
+    end if
     t%step = st%card_item
     t%loc = loc
     if (.not. allocated(st%temps)) allocate (st%temps(16))
@@ -2562,6 +2624,127 @@ contains
     st%ntemp = st%ntemp + 1
     st%temps(st%ntemp) = t
   end subroutine data_temperature
+
+  ! ================================================================== surfaces
+
+  subroutine kw_surface(st, kw, loc)
+    !! *SURFACE, NAME=name[, TYPE=ELEMENT]: element faces for *DSLOAD; data
+    !! lines `element or elset, face`. Node surfaces (TYPE=NODE), which only
+    !! contact and ties use, are refused.
+    type(deck_state_t), intent(inout) :: st
+    type(keyword_line_t), intent(in) :: kw
+    type(source_loc_t), intent(in) :: loc
+    character(:), allocatable :: name, typ
+    type(surface_b_t), allocatable :: tmp(:)
+    logical :: found
+    integer :: k
+    st%card = CARD_SKIP
+    call check_params(st, kw, loc, [character(NAME_LEN) :: 'NAME', 'TYPE'], [character(NAME_LEN) ::])
+    if (.not. outside_step(st, kw, loc)) return
+    call get_param(st, kw, loc, 'TYPE', .false., typ, found)
+    if (found) then
+       if (to_upper(typ) /= 'ELEMENT') then
+          call report_loc(st, loc, '*SURFACE, TYPE='//clip(typ)//' is not supported (element faces, '// &
+               'TYPE=ELEMENT, for *DSLOAD)')
+          return
+       end if
+    end if
+    call get_param(st, kw, loc, 'NAME', .true., name, found)
+    if (.not. found) return
+    name = to_upper(name)
+    do k = 1, st%nsurface
+       if (st%surfaces(k)%name == name) then
+          call report_loc(st, loc, 'surface '//name//' is already defined (at '// &
+               loc_string(st, st%surfaces(k)%loc)//')')
+          return
+       end if
+    end do
+    if (.not. allocated(st%surfaces)) allocate (st%surfaces(4))
+    if (st%nsurface == size(st%surfaces)) then
+       allocate (tmp(2*st%nsurface))
+       tmp(1:st%nsurface) = st%surfaces(1:st%nsurface)
+       call move_alloc(tmp, st%surfaces)
+    end if
+    st%nsurface = st%nsurface + 1
+    st%surfaces(st%nsurface)%name = name
+    st%surfaces(st%nsurface)%loc = loc
+    allocate (st%surfaces(st%nsurface)%refs(0), st%surfaces(st%nsurface)%kinds(0), st%surfaces(st%nsurface)%signs(0))
+    st%card = CARD_SURFACE
+    st%card_item = st%nsurface
+    st%card_home = st%cur_sub
+  end subroutine kw_surface
+
+  subroutine data_surface(st, line, loc)
+    !! `element or elset, face`: S1 to S4, the edges of a plane element
+    !! (CalculiX's faces, as P1 to P4 of *DLOAD), SPOS or SNEG, the face of a
+    !! shell along or against its normal.
+    type(deck_state_t), intent(inout) :: st
+    character(*), intent(in) :: line
+    type(source_loc_t), intent(in) :: loc
+    type(ref_t) :: ref
+    character(:), allocatable :: face
+    integer :: kind
+    real(wp) :: sgn
+    if (.not. field_count(st, loc, 2, 2, 'element or elset, face (S1 to S4, SPOS or SNEG)')) return
+    face = to_upper(fld(st, line, 2))
+    sgn = 1.0_wp
+    select case (face)
+    case ('S1', 'S2', 'S3', 'S4')
+       kind = face_load_kind('P'//face(2:2))
+    case ('SPOS')
+       kind = DLOAD_P
+    case ('SNEG')
+       kind = DLOAD_P
+       sgn = -1.0_wp
+    case default
+       call report_loc(st, loc, 'unknown face '''//clip(fld(st, line, 2))// &
+            ''' (S1 to S4: edges of plane elements; SPOS, SNEG: faces of shells)')
+       return
+    end select
+    if (.not. parse_ref(st, fld(st, line, 1), .true., st%card_home, loc, ref)) return
+    associate (sf => st%surfaces(st%card_item))
+      sf%n = sf%n + 1
+      sf%refs = [sf%refs, ref]
+      sf%kinds = [sf%kinds, kind]
+      sf%signs = [sf%signs, sgn]
+    end associate
+  end subroutine data_surface
+
+  subroutine data_dsload(st, line, loc)
+    !! *DSLOAD `surface, P, pressure`: the pressure on every face of an
+    !! element surface, as *DLOAD Pk (plane edges) or P (shells, SNEG with the
+    !! sign turned) on its elements.
+    type(deck_state_t), intent(inout) :: st
+    character(*), intent(in) :: line
+    type(source_loc_t), intent(in) :: loc
+    type(load_b_t) :: ld
+    character(:), allocatable :: name
+    real(wp) :: p
+    integer :: k, i
+    if (.not. field_count(st, loc, LOAD_FIELDS, LOAD_FIELDS, 'surface, P, pressure')) return
+    if (to_upper(fld(st, line, 2)) /= 'P') then
+       call report_loc(st, loc, 'unknown *DSLOAD type '''//clip(fld(st, line, 2))//''' (P, a uniform pressure)')
+       return
+    end if
+    if (.not. get_real(st, line, loc, 3, p)) return
+    name = to_upper(fld(st, line, 1))
+    do k = 1, st%nsurface
+       if (st%surfaces(k)%name == name) exit
+    end do
+    if (k > st%nsurface) then
+       call report_loc(st, loc, 'unknown surface '''//clip(fld(st, line, 1))//''' (define it with *SURFACE, '// &
+            'TYPE=ELEMENT before the step)')
+       return
+    end if
+    do i = 1, st%surfaces(k)%n
+       ld%ref = st%surfaces(k)%refs(i)
+       ld%kind = st%surfaces(k)%kinds(i)
+       ld%value = st%surfaces(k)%signs(i)*p
+       ld%surface = .true.
+       ld%loc = loc
+       call add_load(st%steps(st%card_item), ld, .true.)
+    end do
+  end subroutine data_dsload
 
   function loc_string(st, loc) result(s)
     !! "file:line" of a location.

@@ -164,7 +164,9 @@ module superjoin_deck_state
      integer :: dof = 0                    !! *CLOAD
      integer :: kind = 0                   !! *DLOAD
      real(wp) :: value = 0.0_wp
-     real(wp) :: dir(3) = 0.0_wp           !! *DLOAD GRAV: unit direction
+     real(wp) :: dir(3) = 0.0_wp           !! *DLOAD GRAV: unit direction (CENTRIF: unit axis)
+     real(wp) :: point(3) = 0.0_wp         !! *DLOAD CENTRIF: a point of the axis
+     logical :: surface = .false.          !! from a *DSLOAD on a *SURFACE (for messages)
      logical :: whole_model = .false.      !! *DLOAD GRAV with an empty first field
      integer :: home = 0                   !! its substructure block (0: the whole model)
      type(source_loc_t) :: loc
@@ -214,12 +216,25 @@ module superjoin_deck_state
 
   type, public :: temp_b_t
     !! A data line of *INITIAL CONDITIONS, TYPE=TEMPERATURE (step 0) or of
-    !! *TEMPERATURE in a step: node or nset, temperature.
+    !! *TEMPERATURE in a step: node or nset, temperature[, gradient along the shell normal].
      type(ref_t) :: ref
      real(wp) :: value = 0.0_wp
+     real(wp) :: grad = 0.0_wp
      integer :: step = 0
      type(source_loc_t) :: loc
   end type temp_b_t
+
+  type, public :: surface_b_t
+    !! A *SURFACE, TYPE=ELEMENT as read: per data line an element or elset and
+    !! the load form of its face (DLOAD_P1..P4 for the edges S1..S4 of plane
+    !! elements, DLOAD_P with sign +1 / -1 for the faces SPOS / SNEG of shells).
+     character(:), allocatable :: name     !! upper case
+     integer :: n = 0
+     type(ref_t), allocatable :: refs(:)
+     integer, allocatable :: kinds(:)
+     real(wp), allocatable :: signs(:)
+     type(source_loc_t) :: loc
+  end type surface_b_t
 
   type, public :: combo_b_t
     !! A *LOAD COMBINATION card as read: steps by name, factors.
@@ -324,6 +339,8 @@ module superjoin_deck_state
      integer :: ntemp = 0                           !! temperature lines
      type(temp_b_t), allocatable :: temps(:)
      integer :: ncombo = 0                          !! *LOAD COMBINATION cards
+     integer :: nsurface = 0                        !! *SURFACE cards
+     type(surface_b_t), allocatable :: surfaces(:)
      type(combo_b_t), allocatable :: combos(:)
      logical :: section_rejected(3) = .false.  !! a *SOLID/*BEAM/*SHELL SECTION card (SEC_* index) was rejected
      ! block and card state

@@ -10,7 +10,7 @@ module superjoin_deck_validate
        ET_S3, ET_S4, ET_B21, ET_B31, ET_CPE3, ET_CPE4, ET_CPS6, ET_CPS8, ET_CPE6, ET_CPE8, ET_CPS8R, ET_CPE8R, &
        ET_B32, DLOAD_PX, DLOAD_PY, DLOAD_PZ, DLOAD_P, DLOAD_GRAV, DLOAD_NAMES
   use superjoin_model_types, only: ET_S4R, ET_S3R
-  use superjoin_model_types, only: DLOAD_P1, DLOAD_P2, DLOAD_P3, DLOAD_P4, DLOAD_THERMAL
+  use superjoin_model_types, only: DLOAD_P1, DLOAD_P2, DLOAD_P3, DLOAD_P4, DLOAD_THERMAL, DLOAD_CENTRIF
   use superjoin_deck_lexer, only: itoa, plural
   use superjoin_deck_state, only: deck_state_t, sub_b_t, ref_t, load_b_t, report, report_loc, report_oom, find_set, &
        CH_IDS, CH_GEN, CH_RANGE, CH_REF, BEAM_2D_VALUES, BEAM_3D_VALUES, SUBK_INSTANCE
@@ -1111,28 +1111,33 @@ contains
     !! in each step with temperatures, the load of its uniform temperature
     !! change ΔT (the mean of its nodes' T - T0; nodes without a step
     !! temperature keep T0, nodes without an initial one start at 0), a
-    !! DLOAD_THERMAL entry of value E A α ΔT. Plane and shell elements with a
-    !! temperature change are refused (not implemented).
+    !! DLOAD_THERMAL entry of value E A α ΔT. A plane or shell element gets
+    !! the entry of its thermal strain α ΔT (the mean over its nodes) and, on
+    !! shells, of its curvature α ∂T/∂n (the mean of its nodes' gradients,
+    !! the third field of the temperature lines); a gradient on any other
+    !! element is refused.
     type(deck_state_t), intent(inout) :: st
     type(model_t), intent(inout) :: model
-    type(real_list_t), allocatable :: t0(:), t(:)
+    type(real_list_t), allocatable :: t0(:), t(:), g0(:), g(:)
     type(dload_t), allocatable :: extra(:)
     integer :: s, isub, nn, nplate
     integer(ip) :: e, i, first_plate
     integer(ip), allocatable :: nodes(:)
     logical :: ok
-    real(wp) :: dt
+    real(wp) :: dt, dg
     type(source_loc_t) :: plate_loc
     if (st%ntemp == 0) return
-    allocate (t0(size(model%subs)), t(size(model%subs)))
+    allocate (t0(size(model%subs)), t(size(model%subs)), g0(size(model%subs)))
     do isub = 1, size(model%subs)
        allocate (t0(isub)%v(model%subs(isub)%nnode), source=0.0_wp)
+       allocate (g0(isub)%v(model%subs(isub)%nnode), source=0.0_wp)
     end do
-    call apply_lines(0, t0)
+    call apply_lines(0, t0, g0)
     do s = 1, size(model%steps)
        if (.not. any(st%temps(1:st%ntemp)%step == s)) cycle
        t = t0
-       call apply_lines(s, t)
+       g = g0
+       call apply_lines(s, t, g)
        if (st%aborted) return
        allocate (extra(0))
        nplate = 0
@@ -1149,11 +1154,28 @@ contains
                    ! an element with an undefined node has been reported already
                    if (nn == 0 .or. any(sub%elem_nodes(1:nn, e) <= 0)) cycle
                    dt = sum(t(isub)%v(sub%elem_nodes(1:nn, e)) - t0(isub)%v(sub%elem_nodes(1:nn, e)))/nn
-                   if (dt == 0.0_wp) cycle
+                   dg = sum(g(isub)%v(sub%elem_nodes(1:nn, e)) - g0(isub)%v(sub%elem_nodes(1:nn, e)))/nn
+                   if (dt == 0.0_wp .and. dg == 0.0_wp) cycle
                    select case (sub%elem_type(e))
                    case (ET_T2D2, ET_T3D2, ET_B23, ET_B33, ET_B21, ET_B31)
+                      if (dg /= 0.0_wp) then
+                         call report_loc(st, first_line(s), 'temperature gradient on element '// &
+                              itoa(sub%elem_id(e))//' of type '//trim(ELEMENT_TYPE_NAMES(sub%elem_type(e)))// &
+                              ': the gradient (third field) applies to shells only')
+                         return
+                      end if
                       extra = [extra, dload_t(sub=isub, elem=e, kind=DLOAD_THERMAL, &
                            value=mat%e*sec%area*mat%alpha*dt, loc=first_line(s))]
+                   case (ET_CPS3, ET_CPS4, ET_CPE3, ET_CPE4, ET_CPS6, ET_CPS8, ET_CPE6, ET_CPE8, ET_CPS8R, &
+                        ET_CPE8R, ET_S3, ET_S4, ET_S4R, ET_S3R)
+                      if (dg /= 0.0_wp .and. .not. any(sub%elem_type(e) == [ET_S3, ET_S4, ET_S4R, ET_S3R])) then
+                         call report_loc(st, first_line(s), 'temperature gradient on element '// &
+                              itoa(sub%elem_id(e))//' of type '//trim(ELEMENT_TYPE_NAMES(sub%elem_type(e)))// &
+                              ': the gradient (third field) applies to shells only')
+                         return
+                      end if
+                      extra = [extra, dload_t(sub=isub, elem=e, kind=DLOAD_THERMAL, &
+                           value=mat%alpha*dt, curvature=mat%alpha*dg, loc=first_line(s))]
                    case default
                       nplate = nplate + 1
                       if (nplate == 1) then
@@ -1167,7 +1189,8 @@ contains
             if (nplate > 0) then
                call report_loc(st, plate_loc, 'temperature change on element '//itoa(sub%elem_id(first_plate))// &
                     ' of type '//trim(ELEMENT_TYPE_NAMES(sub%elem_type(first_plate)))//' of substructure '// &
-                    sub%name//': thermal loads are implemented for trusses and beams only'//more_text(nplate - 1))
+                    sub%name//': thermal loads are implemented for trusses, beams, plane and shell elements only'// &
+                    more_text(nplate - 1))
                nplate = 0
             end if
           end associate
@@ -1176,10 +1199,10 @@ contains
        deallocate (extra)
     end do
   contains
-    subroutine apply_lines(step, field)
-      !! Set the temperatures the lines of step (0: initial conditions) give.
+    subroutine apply_lines(step, field, grad)
+      !! Set the temperatures and gradients the lines of step (0: initial conditions) give.
       integer, intent(in) :: step
-      type(real_list_t), intent(inout) :: field(:)
+      type(real_list_t), intent(inout) :: field(:), grad(:)
       integer :: j, js
       do j = 1, st%ntemp
          if (st%temps(j)%step /= step) cycle
@@ -1189,6 +1212,7 @@ contains
          if (.not. ok) cycle
          do i = 1, size(nodes, kind=ip)
             field(js)%v(nodes(i)) = st%temps(j)%value
+            grad(js)%v(nodes(i)) = st%temps(j)%grad
          end do
       end do
     end subroutine apply_lines
@@ -1333,10 +1357,14 @@ contains
       !! The loads of line k on elems of substructure isub, with the checks.
        integer :: nodens
        integer(ip) :: first_nodens
+       logical :: plane_ok
        nbad = 0
        first_bad = 0
        nodens = 0
        first_nodens = 0
+       ! CENTRIF keeps the XY plane in itself: axis along Z, or in the plane
+       plane_ok = loads(k)%kind /= DLOAD_CENTRIF .or. abs(loads(k)%dir(3)) == 1.0_wp .or. &
+            (loads(k)%dir(3) == 0.0_wp .and. loads(k)%point(3) == 0.0_wp)
        do i = 1, size(elems, kind=ip)
           et = model%subs(isub)%elem_type(elems(i))
           if (.not. dload_fits(loads(k)%kind, et)) then
@@ -1344,7 +1372,16 @@ contains
              if (nbad == 1) first_bad = elems(i)
              cycle
           end if
-          if (loads(k)%kind == DLOAD_GRAV) then
+          if (loads(k)%kind == DLOAD_CENTRIF .and. .not. plane_ok) then
+             if (any(et == [ET_CPS3, ET_CPS4, ET_CPE3, ET_CPE4, ET_CPS6, ET_CPS8, ET_CPE6, ET_CPE8, ET_CPS8R, &
+                  ET_CPE8R])) then
+                call report_loc(st, loads(k)%loc, 'CENTRIF loads a plane element out of the XY plane '// &
+                     '(the axis must be parallel to Z, or lie in the XY plane)')
+                plane_ok = .true.   ! reported once
+                cycle
+             end if
+          end if
+          if (loads(k)%kind == DLOAD_GRAV .or. loads(k)%kind == DLOAD_CENTRIF) then
              associate (sub => model%subs(isub))
                if (sub%elem_section(elems(i)) == 0) cycle
                if (.not. model%materials(sub%sections(sub%elem_section(elems(i)))%material)%has_density) then
@@ -1365,11 +1402,13 @@ contains
           out(n)%kind = loads(k)%kind
           out(n)%value = loads(k)%value
           out(n)%dir = loads(k)%dir
+          out(n)%point = loads(k)%point
           out(n)%loc = loads(k)%loc
        end do
        if (nodens > 0) then
           associate (sub => model%subs(isub))
-            call report_loc(st, loads(k)%loc, '*DLOAD GRAV on element '//itoa(sub%elem_id(first_nodens))// &
+            call report_loc(st, loads(k)%loc, '*DLOAD '//trim(DLOAD_NAMES(loads(k)%kind))//' on element '// &
+                 itoa(sub%elem_id(first_nodens))// &
                  ' of substructure '//sub%name//', whose material '// &
                  model%materials(sub%sections(sub%elem_section(first_nodens))%material)%name// &
                  ' has no *DENSITY'//more_text(nodens - 1))
@@ -1377,14 +1416,28 @@ contains
        end if
        if (nbad > 0) then
           associate (sub => model%subs(isub))
-            call report_loc(st, loads(k)%loc, '*DLOAD '//trim(DLOAD_NAMES(loads(k)%kind))// &
-                 ' does not apply to element '//itoa(sub%elem_id(first_bad))//' of type '// &
+            call report_loc(st, loads(k)%loc, trim(merge('*DSLOAD: face', '*DLOAD       ', loads(k)%surface))// &
+                 ' '//trim(surface_face(loads(k)))//' does not apply to element '//itoa(sub%elem_id(first_bad))//' of type '// &
                  trim(ELEMENT_TYPE_NAMES(sub%elem_type(first_bad)))//' ('// &
                  dload_targets(loads(k)%kind)//')'//more_text(nbad - 1))
           end associate
        end if
     end subroutine add_elements
   end subroutine build_dloads
+
+  pure function surface_face(ld) result(name)
+    !! The load form as the deck wrote it: a *DLOAD type, or the face of a
+    !! *SURFACE line (S1 to S4, SPOS / SNEG) for a *DSLOAD.
+    type(load_b_t), intent(in) :: ld
+    character(:), allocatable :: name
+    name = trim(DLOAD_NAMES(ld%kind))
+    if (.not. ld%surface) return
+    if (ld%kind >= DLOAD_P1 .and. ld%kind <= DLOAD_P4) then
+       name = 'S'//name(2:2)//' (edge '//name(2:2)//')'
+    else if (ld%kind == DLOAD_P) then
+       name = 'SPOS or SNEG'
+    end if
+  end function surface_face
 
   pure logical function dload_fits(kind, etype)
     !! Whether a distributed load kind applies to an element type.
@@ -1399,6 +1452,8 @@ contains
        dload_fits = etype == ET_S3 .or. etype == ET_S4 .or. etype == ET_S4R .or. etype == ET_S3R
     case (DLOAD_GRAV)
        dload_fits = .true.
+    case (DLOAD_CENTRIF)
+       dload_fits = etype /= ET_B32
     case (DLOAD_P1)
        dload_fits = is_plane(etype) .or. etype == ET_B33 .or. etype == ET_B31
     case (DLOAD_P2)
@@ -1434,6 +1489,8 @@ contains
        s = 'P3 applies to the third edge of plane elements'
     case (DLOAD_P4)
        s = 'P4 applies to the fourth edge of quadrilaterals CPS4 and CPE4'
+    case (DLOAD_CENTRIF)
+       s = 'CENTRIF applies to trusses, two-node beams, plane and shell elements'
     case default
        s = 'P applies to shells S3 and S4'
     end select

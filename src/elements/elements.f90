@@ -14,7 +14,9 @@ module superjoin_elements
   use superjoin_model_types, only: ET_S4R, ET_S3R
   use superjoin_model_types, only: DLOAD_P1, DLOAD_P2, DLOAD_P3, DLOAD_P4, DLOAD_THERMAL
   use superjoin_elements_edge_load, only: plane_edge_load
-  use superjoin_elements_thermal, only: thermal_axial_load
+  use superjoin_elements_thermal, only: thermal_axial_load, thermal_plate_load
+  use superjoin_model_types, only: dload_t, DLOAD_CENTRIF
+  use superjoin_elements_centrif, only: centrif_load
   use superjoin_elements_frame, only: beam_frame
   use superjoin_elements_truss, only: truss_stiffness, truss_end_forces, truss_distributed_load
   use superjoin_elements_beam, only: beam_stiffness, beam_end_forces, beam_load
@@ -26,6 +28,7 @@ module superjoin_elements
 
   public :: element_node_dofs, element_dof_mask, element_stiffness, element_end_forces, beam_distributed_load, &
        element_nodal_forces, element_distributed_load, element_gravity_load
+  public :: element_material_load
   public :: is_plate_type, shell_resultants, shell_forces
   public :: is_plane_type, is_plane_strain_type
     !! is_plane_type(etype): plane stress and plane strain types (CPS*, CPE*);
@@ -318,6 +321,32 @@ contains
        call unsupported(etype, error)
     end select
   end subroutine element_gravity_load
+
+  pure subroutine element_material_load(etype, x, sec, mat, dl, fe, error)
+    !! Consistent nodal loads fe (global axes, element ordering) of the loads
+    !! that need the material: the thermal strain of a plane or shell element
+    !! (DLOAD_THERMAL, superjoin_elements_thermal) and the centrifugal load
+    !! (DLOAD_CENTRIF, superjoin_elements_centrif).
+    integer, intent(in) :: etype
+    real(wp), intent(in) :: x(:, :)
+    type(section_t), intent(in) :: sec
+    type(material_t), intent(in) :: mat
+    type(dload_t), intent(in) :: dl
+    real(wp), allocatable, intent(out) :: fe(:)
+    type(error_t), allocatable, intent(out) :: error
+    select case (dl%kind)
+    case (DLOAD_THERMAL)
+       if (.not. is_plate_type(etype)) then
+          call fatal_error(error, EXIT_DECK, 'thermal strain load on an element that is not a plane or shell element')
+          return
+       end if
+       call thermal_plate_load(etype, x, sec, mat, dl%value, dl%curvature, fe, error)
+    case (DLOAD_CENTRIF)
+       call centrif_load(etype, x, sec, mat, dl, element_node_dofs(etype), fe, error)
+    case default
+       call fatal_error(error, EXIT_DECK, 'unknown distributed load kind')
+    end select
+  end subroutine element_material_load
 
   pure subroutine unsupported(etype, error)
     !! Error for an element type without an implementation.

@@ -46,11 +46,16 @@ module superjoin_model_types
   integer, parameter, public :: DLOAD_P1 = 6, DLOAD_P2 = 7, DLOAD_P3 = 8, DLOAD_P4 = 9
   integer, parameter, public :: DLOAD_THERMAL = 10
     !! Thermal load of a truss or beam (uniform temperature change): value = E A α ΔT, the
-    !! axial force it would take to hold the element at its length (from *TEMPERATURE).
+    !! axial force it would take to hold the element at its length (from *TEMPERATURE);
+    !! of a plane or shell element: value = α ΔT, the free thermal strain (shells: of the
+    !! mid-surface, with curvature = α ∂T/∂n through the thickness).
     !! Distributed load kinds (P1..P4: pressure on face k of a plane element; P1, P2 on
     !! beams: load per unit length along local y (n1) and local z (n2), CalculiX's forms).
-  character(len=4), parameter, public :: DLOAD_NAMES(10) = ['PX  ', 'PY  ', 'PZ  ', 'P   ', 'GRAV', &
-       'P1  ', 'P2  ', 'P3  ', 'P4  ', 'TEMP']
+  integer, parameter, public :: DLOAD_CENTRIF = 11
+    !! *DLOAD CENTRIF: value = ω², dir = the unit axis, point = a point of the axis; the load
+    !! is ρ ω² r per unit volume, r the distance vector from the axis (consistent mass).
+  character(len=7), parameter, public :: DLOAD_NAMES(11) = ['PX     ', 'PY     ', 'PZ     ', 'P      ', &
+       'GRAV   ', 'P1     ', 'P2     ', 'P3     ', 'P4     ', 'TEMP   ', 'CENTRIF']
 
   integer, parameter, public :: FORM_TRANSFORM = 1, FORM_PENALTY = 2
     !! Formulation and rigid-link controls.
@@ -218,6 +223,8 @@ module superjoin_model_types
      integer :: kind = 0                   !! DLOAD_*
      real(wp) :: value = 0.0_wp            !! GRAV: the acceleration
      real(wp) :: dir(3) = 0.0_wp           !! GRAV: unit direction, global axes
+     real(wp) :: point(3) = 0.0_wp         !! CENTRIF: a point of the axis (dir: the unit axis)
+     real(wp) :: curvature = 0.0_wp        !! TEMP on a shell: α ∂T/∂n, the thermal curvature
      type(source_loc_t) :: loc
   end type dload_t
 

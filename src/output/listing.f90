@@ -445,6 +445,10 @@ contains
              if (plane_strain) then   ! with sz = nu (sx + sy)
                 associate (sec => model%subs(isub)%sections(model%subs(isub)%elem_section(ie)))
                   sig(4) = von_mises_3(sig(1:3), model%materials(sec%material)%nu*(sig(1) + sig(2)))
+                  ! loads: a thermal strain adds -E alpha dT to sz
+                  if (allocated(res%fields%thermal)) sig(4) = von_mises_3(sig(1:3), &
+                       model%materials(sec%material)%nu*(sig(1) + sig(2)) - &
+                       model%materials(sec%material)%e*res%fields%thermal(1, iel, is))
                 end associate
              end if
              call element_prefix(lu, model, isub, ie, 2)

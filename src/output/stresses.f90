@@ -31,6 +31,7 @@ module superjoin_output_stresses
   use superjoin_elements_membrane, only: membrane_point_stresses
   use superjoin_analysis_results, only: result_fields_t
   use superjoin_output_energy, only: element_displacements
+  use superjoin_elements_thermal, only: thermal_free_field
   use superjoin_output_text_buffer, only: text_buffer_t
   use superjoin_output_columns, only: element_prefix, chop
   use superjoin_utils_strings, only: itoa
@@ -83,8 +84,8 @@ contains
     integer(ip), intent(in) :: ie
     real(wp), allocatable, intent(out) :: points(:, :, :), nodes(:, :, :)
     logical, intent(out) :: ok
-    real(wp) :: x(3, MAX_PLANE_NODES), r(3, 3), xl(2, MAX_PLANE_NODES), h(MAX_PLANE_NODES), nu
-    real(wp), allocatable :: ue(:), ul(:), sp(:, :), sn(:, :), sp3(:, :, :), sn3(:, :, :)
+    real(wp) :: x(3, MAX_PLANE_NODES), r(3, 3), xl(2, MAX_PLANE_NODES), h(MAX_PLANE_NODES), nu, szz0
+    real(wp), allocatable :: ue(:), ul(:), sp(:, :), sn(:, :), sp3(:, :, :), sn3(:, :, :), u0(:)
     type(error_t), allocatable :: error
     integer :: etype, nn, a, k
     logical :: strain
@@ -102,6 +103,15 @@ contains
       strain = is_plane_strain_type(etype)
       associate (sec => sub%sections(sub%elem_section(ie)), mat => model%materials(sub%sections(sub%elem_section(ie))%material))
         nu = mat%nu
+        szz0 = 0.0_wp
+        if (allocated(fields%thermal)) then   ! loads: σ = D (ε - ε0), the free thermal expansion taken off u
+           associate (th => fields%thermal(:, fields%elem_offset(isub) + ie, is))
+             call thermal_free_field(etype, x(:, 1:nn), nu, th(1), th(2), u0, error)
+             if (allocated(error)) return
+             ue = ue - u0
+             szz0 = mat%e*th(1)
+           end associate
+        end if
         if (is_plane_type(etype)) then
            call shell_frame(x(:, 1:nn), r, xl(:, 1:nn), h(1:nn), error)
            if (allocated(error)) return
@@ -145,7 +155,7 @@ contains
       real(wp) :: t(NTENSOR)
       real(wp) :: m(3, 3), szz
       szz = 0.0_wp
-      if (strain) szz = nu*(s(1) + s(2))
+      if (strain) szz = nu*(s(1) + s(2)) - szz0
       m = s(1)*outer(r(1, :), r(1, :)) + s(2)*outer(r(2, :), r(2, :)) + &
            s(3)*(outer(r(1, :), r(2, :)) + outer(r(2, :), r(1, :))) + szz*outer(r(3, :), r(3, :))
       if (size(s) == TRANSVERSE) m = m + s(4)*(outer(r(1, :), r(3, :)) + outer(r(3, :), r(1, :))) + &

@@ -1,0 +1,128 @@
+module superjoin_analysis_body_loads
+  !! What the element results need of the loads that are not the element's
+  !! own distributed-load forms: the thermal strains of plane and shell
+  !! elements (their resultants and stresses are D (ε - ε0)) and the
+  !! consistent end loads of a centrifugal load on bars and beams (their end
+  !! forces are K u - f_eq with a load that varies along the element).
+  use superjoin_kinds, only: wp, i8
+  use superjoin_error, only: error_t
+  use superjoin_model_types, only: model_t, section_t, material_t, DLOAD_THERMAL, DLOAD_CENTRIF, &
+       ELEMENT_NODE_COUNT, combination_t
+  use superjoin_elements, only: is_plate_type, element_material_load, element_node_dofs, beam_frame
+  use superjoin_elements_thermal, only: thermal_plate_resultants
+  implicit none (type, external)
+  private
+
+  public :: plate_thermal_strains, line_centrif_forces, take_thermal_resultants, superpose_thermal
+
+contains
+
+  subroutine plate_thermal_strains(model, elem_offset, nstep, th)
+    !! th(1:2, element, step): the thermal strain α ΔT and curvature α ∂T/∂n
+    !! of every plane and shell element (model-wide element numbering
+    !! elem_offset); unallocated when no step heats one.
+    type(model_t), intent(in) :: model
+    integer(i8), intent(in) :: elem_offset(:)
+    integer, intent(in) :: nstep
+    real(wp), allocatable, intent(out) :: th(:, :, :)
+    integer :: is, i
+    do is = 1, nstep
+       if (.not. allocated(model%steps(is)%dloads)) cycle
+       do i = 1, size(model%steps(is)%dloads)
+          associate (dl => model%steps(is)%dloads(i))
+            if (dl%kind /= DLOAD_THERMAL) cycle
+            if (.not. is_plate_type(model%subs(dl%sub)%elem_type(dl%elem))) cycle
+            if (.not. allocated(th)) allocate (th(2, elem_offset(size(elem_offset)), nstep), source=0.0_wp)
+            th(:, elem_offset(dl%sub) + dl%elem, is) = th(:, elem_offset(dl%sub) + dl%elem, is) + &
+                 [dl%value, dl%curvature]
+          end associate
+       end do
+    end do
+  end subroutine plate_thermal_strains
+
+  subroutine line_centrif_forces(model, elem_offset, nstep, f0)
+    !! f0(1:6, end, element, step): the consistent nodal loads of the
+    !! centrifugal loads on bars and beams in their local axes (what their end
+    !! forces K u - f_eq take off); unallocated when there is none.
+    type(model_t), intent(in) :: model
+    integer(i8), intent(in) :: elem_offset(:)
+    integer, intent(in) :: nstep
+    real(wp), allocatable, intent(out) :: f0(:, :, :, :)
+    real(wp), allocatable :: fe(:)
+    real(wp) :: r(3, 3), length, g(6)
+    integer, allocatable :: dofs(:)
+    integer :: is, i, a, nn, nd, etype
+    integer(i8) :: ie
+    type(error_t), allocatable :: error
+    do is = 1, nstep
+       if (.not. allocated(model%steps(is)%dloads)) cycle
+       do i = 1, size(model%steps(is)%dloads)
+          associate (dl => model%steps(is)%dloads(i), s => model%subs(model%steps(is)%dloads(i)%sub))
+            if (dl%kind /= DLOAD_CENTRIF) cycle
+            etype = s%elem_type(dl%elem)
+            if (is_plate_type(etype)) cycle
+            nn = ELEMENT_NODE_COUNT(etype)
+            associate (sec => s%sections(s%elem_section(dl%elem)))
+              ! errors were reported when the loads were assembled
+              call element_material_load(etype, s%x(:, s%elem_nodes(1:nn, dl%elem)), sec, &
+                   model%materials(sec%material), dl, fe, error)
+              if (allocated(error)) cycle
+              call beam_frame(etype, s%x(:, s%elem_nodes(1:nn, dl%elem)), sec, r, length, error)
+              if (allocated(error)) cycle
+            end associate
+            if (.not. allocated(f0)) allocate (f0(6, 2, elem_offset(size(elem_offset)), nstep), source=0.0_wp)
+            dofs = element_node_dofs(etype)
+            nd = size(dofs)
+            ie = elem_offset(dl%sub) + dl%elem
+            do a = 1, 2
+               g = 0.0_wp
+               g(dofs) = fe(nd*(a - 1) + 1:nd*a)
+               f0(1:3, a, ie, is) = f0(1:3, a, ie, is) + matmul(r, g(1:3))
+               f0(4:6, a, ie, is) = f0(4:6, a, ie, is) + matmul(r, g(4:6))
+            end do
+          end associate
+       end do
+    end do
+  end subroutine line_centrif_forces
+
+  subroutine superpose_thermal(combos, ns, th)
+    !! Append to the thermal strains th(2, nelem, ns) of the ns solved steps
+    !! those of the load combinations (the stresses of a combination are
+    !! D (ε - ε0) of its superposed strains); nothing when th is unallocated.
+    type(combination_t), intent(in) :: combos(:)
+    integer, intent(in) :: ns
+    real(wp), allocatable, intent(inout) :: th(:, :, :)
+    real(wp), allocatable :: all(:, :, :)
+    integer :: c, k
+    if (.not. allocated(th)) return
+    allocate (all(size(th, 1), size(th, 2), ns + size(combos)), source=0.0_wp)
+    all(:, :, 1:ns) = th(:, :, 1:ns)
+    do c = 1, size(combos)
+       do k = 1, size(combos(c)%steps)
+          all(:, :, ns + c) = all(:, :, ns + c) + combos(c)%factors(k)*th(:, :, combos(c)%steps(k))
+       end do
+    end do
+    call move_alloc(all, th)
+  end subroutine superpose_thermal
+
+  pure subroutine take_thermal_resultants(etype, x, sec, mat, th, plate)
+    !! Take the resultants of the free thermal expansion th(1:2, step) off the
+    !! resultants plate(6, step) of a plane or shell element (N = D (ε - ε0)).
+    integer, intent(in) :: etype
+    real(wp), intent(in) :: x(:, :)
+    type(section_t), intent(in) :: sec
+    type(material_t), intent(in) :: mat
+    real(wp), intent(in) :: th(:, :)
+    real(wp), intent(inout) :: plate(:, :)
+    real(wp) :: res0(6)
+    type(error_t), allocatable :: error
+    integer :: is
+    do is = 1, size(th, 2)
+       if (all(th(:, is) == 0.0_wp)) cycle
+       ! an element that cannot be evaluated has been reported by shell_forces
+       call thermal_plate_resultants(etype, x, sec, mat, th(1, is), th(2, is), res0, error)
+       if (allocated(error)) return
+       plate(:, is) = plate(:, is) - res0
+    end do
+  end subroutine take_thermal_resultants
+end module superjoin_analysis_body_loads

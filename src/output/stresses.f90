@@ -80,6 +80,7 @@ contains
     associate (sub => model%subs(isub))
       etype = sub%elem_type(ie)
       if (.not. is_plate_type(etype) .or. sub%elem_section(ie) <= 0) return
+      if (.not. is_plane_type(etype) .and. ELEMENT_NODE_COUNT(etype) > size(x, 2)) return   ! S8R: none yet
       nn = ELEMENT_NODE_COUNT(etype)
       do a = 1, nn
          x(:, a) = sub%x(:, sub%elem_nodes(a, ie))

@@ -180,7 +180,7 @@ contains
     if (etype == ET_S8R) then
        call setup(etype, x, r, xl, h, error)
        if (allocated(error)) return
-       call shell8_stiffness(x, r(1, :), shell8_props(sec, mat), ke, error)
+       call shell8_stiffness(x, [r(1, 1), r(1, 2), r(1, 3)], shell8_props(sec, mat), ke, error)
        return
     end if
     call flat_stiffness(etype, x, sec, mat, kf, r, xl, h, error)
@@ -211,12 +211,12 @@ contains
     call setup(ET_S8R, x, r, xl, h, error)
     if (allocated(error)) return
     if (forces) then
-       call shell8_stiffness(x, r(1, :), shell8_props(sec, mat), ke, error)
+       call shell8_stiffness(x, [r(1, 1), r(1, 2), r(1, 3)], shell8_props(sec, mat), ke, error)
        if (allocated(error)) return
     end if
     do is = 1, size(ue, 2)
        if (forces) fg(:, is) = matmul(ke, ue(:, is))
-       call shell8_resultants(x, r(1, :), shell8_props(sec, mat), ue(:, is), res(:, is), q, error)
+       call shell8_resultants(x, [r(1, 1), r(1, 2), r(1, 3)], shell8_props(sec, mat), ue(:, is), res(:, is), q, error)
        if (allocated(error)) return
     end do
   end subroutine shell8_forces
@@ -283,7 +283,7 @@ contains
     call setup(etype, x, r, xl, h, error)
     if (allocated(error)) return
     if (etype == ET_S8R) then
-       call shell8_resultants(x, r(1, :), shell8_props(sec, mat), ue, res, q, error)
+       call shell8_resultants(x, [r(1, 1), r(1, 2), r(1, 3)], shell8_props(sec, mat), ue, res, q, error)
        return
     end if
     call local_resultants(etype, xl, sec, mat, to_local(node_maps(etype, r, h), ue), res, error)
@@ -490,8 +490,12 @@ contains
        call quadratic_shape_integrals(xl, fb(1:3*n:3))
     else if (etype == ET_S8R) then
        allocate (fb(3*n), source=0.0_wp)
-       call shell8_area_shares(x, fb(1:3*n:3), error)
-       if (allocated(error)) return
+       block
+         real(wp) :: shares(n)
+         call shell8_area_shares(x, shares, error)
+         if (allocated(error)) return
+         fb(1:3*n:3) = shares
+       end block
     else
        ! plate_pressure_load with p = 1 gives the integrals of the shape functions
        call plate_pressure_load(xl, 1.0_wp, fb)

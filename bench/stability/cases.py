@@ -220,7 +220,7 @@ def panel(value, n=8):
     return Case('panel', subst, ('PANEL', line[n // 4]), [], extra=dict(reference_deck=ref, judged_from=1.0e12))
 
 
-def thickjoint(value, n=8, a_over_t=10):
+def thickjoint(value, n=8, a_over_t=10, etype='S4R'):
     """Two thick-shell parts joined: a square S4R plate (a = 1, a/t = 10, D = 1,
     hard simply supported edges with u, v held, pressure 1) cut at x = a/2 into
     substructures L and R, joined node by node on all six DOFs by g = value x
@@ -233,7 +233,9 @@ def thickjoint(value, n=8, a_over_t=10):
     The two cut nodes on the supported edges y = 0, a are held on the master
     side only: with the supports on both sides of a joined DOF as well, TRANSFORM
     reports the slave's rotation (DOF 4, about the edge normal, nearly free at
-    the corner) numerically singular from g = 1e12 k on (the same with S4)."""
+    the corner) numerically singular from g = 1e12 k on (the same with S4).
+    etype='S8R' (case thickjoint8): the same plate of eight-node shells, each
+    on a 2 x 2 block of the n x n node grid (the block centres are no nodes)."""
     a = shellgen.PLATE_A
     t = a / a_over_t
     e = 12.0 * (1.0 - shellgen.PLATE_NU ** 2) / t ** 3
@@ -248,13 +250,24 @@ def thickjoint(value, n=8, a_over_t=10):
         return 1001 + j * (h + 1) + (i - h)
     left = shellgen.Part('L')
     right = shellgen.Part('R')
+    quad8 = etype == 'S8R'
     for j in range(n + 1):
         for i in range(h + 1):
+            if quad8 and i % 2 and j % 2:
+                continue
             left.nodes[lid(i, j)] = (i * a / n, j * a / n, 0.0)
             right.nodes[rid(h + i, j)] = ((h + i) * a / n, j * a / n, 0.0)
     k = 1
-    for j in range(n):
-        for i in range(h):
+    for j in range(0, n, 2 if quad8 else 1):
+        for i in range(0, h, 2 if quad8 else 1):
+            if quad8:
+                def block(f):
+                    return (f(i, j), f(i + 2, j), f(i + 2, j + 2), f(i, j + 2),
+                            f(i + 1, j), f(i + 2, j + 1), f(i + 1, j + 2), f(i, j + 1))
+                left.elems.append((k, 'S8R', block(lid)))
+                right.elems.append((1000 + k, 'S8R', block(lambda ii, jj: rid(h + ii, jj))))
+                k += 1
+                continue
             left.elems.append((k, 'S4R', (lid(i, j), lid(i + 1, j), lid(i + 1, j + 1), lid(i, j + 1))))
             right.elems.append((1000 + k, 'S4R', (rid(h + i, j), rid(h + i + 1, j), rid(h + i + 1, j + 1),
                                                   rid(h + i, j + 1))))
@@ -302,6 +315,7 @@ CASES = {
     'eccentric': (eccentric, ['0'] + G_VALUES[G_VALUES.index('1'):]),
     'panel': (panel, G_VALUES),
     'thickjoint': (thickjoint, G_VALUES),
+    'thickjoint8': (lambda value: thickjoint(value, etype='S8R'), G_VALUES),
     'timoshenko': (timoshenko, G_VALUES),
     'contrast': (contrast, ['1e-12', '1e-9', '1e-6', '1e-3', '1', '1e3', '1e6', '1e9', '1e12']),
     'slender': (slender, ['10', '100', '1e3', '1e4', '1e5', '1e6']),

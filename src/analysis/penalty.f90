@@ -20,7 +20,7 @@ module superjoin_analysis_penalty
   implicit none (type, external)
   private
 
-  integer, parameter :: MAX_ITEM_DOFS = 24   !! physical DOFs of the largest element
+  integer, parameter :: MAX_ITEM_DOFS = 48   !! physical DOFs of the largest element (S8R: 8 x 6)
 
   public :: apply_penalty_default, penalty_default_note
 

@@ -23,7 +23,7 @@ module superjoin_analysis_recover
   implicit none (type, external)
   private
 
-  integer, parameter :: MAX_ELEM_DOFS = 24
+  integer, parameter :: MAX_ELEM_DOFS = 48   ! S8R: 8 nodes x 6 DOFs
 
   public :: recover_results
 

@@ -19,7 +19,7 @@ module superjoin_assembly_assemble
   implicit none (type, external)
   private
 
-  integer, parameter :: MAX_ITEM_DOFS = 24
+  integer, parameter :: MAX_ITEM_DOFS = 48   ! S8R: 8 nodes x 6 DOFs
     !! Largest number of physical DOFs one item (element or contact) touches.
 
   type, public :: superelement_t

@@ -8,6 +8,7 @@ submodule (superjoin_deck_validate) superjoin_deck_assembly
   !!   structure turned; then the parts leave model%subs;
   !! - PAIR=NEAREST on *CONTACT: each slave node takes the nearest master node;
   !! - *CHANGE CONTACT: per-step link overrides, SWEEP steps expanded.
+  use superjoin_model_types, only: ET_S8R
   use superjoin_model_types, only: section_t, link_override_t, step_t, node_label, MAX_ELEMENT_NODES, &
        orientation_t
   use superjoin_deck_state, only: SUBK_PART, SUBK_INSTANCE, instance_b_t, step_b_t
@@ -477,7 +478,7 @@ contains
            nn = ELEMENT_NODE_COUNT(sub%elem_type(e))
            if (any(sub%elem_nodes(1:nn, e) == 0)) cycle   ! undefined node, reported
            select case (sub%elem_type(e))
-           case (ET_CPS6, ET_CPS8, ET_CPE6, ET_CPE8, ET_CPS8R, ET_CPE8R, ET_B32)
+           case (ET_CPS6, ET_CPS8, ET_CPE6, ET_CPE8, ET_CPS8R, ET_CPE8R, ET_B32, ET_S8R)
               if (count(inset(sub%elem_nodes(1:nn, e))) >= 2) then
                  call report_loc(st, cb%loc, '*INTERFACE '//cb%name//': element '//itoa(sub%elem_id(e))// &
                       ' ('//trim(ELEMENT_TYPE_NAMES(sub%elem_type(e)))//') on node set '// &

@@ -425,6 +425,10 @@ contains
        call kw_equation(st, kw, loc)
     case ('TRANSFORM')
        call kw_transform(st, kw, loc)
+    case ('NODAL THICKNESS')
+       call report_loc(st, loc, '*NODAL THICKNESS (a thickness per node) is not supported: shells take the '// &
+            'constant thickness of their *SHELL SECTION')
+       st%card = CARD_SKIP
     case default
        if (.not. refused_card(st, kw, loc, prev_mat)) call report_loc(st, loc, 'unknown keyword *'//clip(kw%keyword))
        st%card = CARD_SKIP
@@ -859,6 +863,41 @@ contains
     st%card_generate = param_index(kw, 'GENERATE') > 0
   end subroutine kw_set
 
+  logical function shell_section_params(st, kw, loc) result(ok)
+    !! Parameters of *SHELL SECTION: ELSET=, MATERIAL=, OFFSET=0 (the mid-surface,
+    !! the default; another offset is refused); COMPOSITE (layers) is refused
+    !! with one message (false: the card and its data lines are skipped).
+    type(deck_state_t), intent(inout) :: st
+    type(keyword_line_t), intent(in) :: kw
+    type(source_loc_t), intent(in) :: loc
+    type(keyword_line_t) :: rest
+    real(wp) :: v
+    integer :: k, stat
+    ok = .true.
+    if (param_index(kw, 'COMPOSITE') > 0) then
+       call report_loc(st, loc, '*SHELL SECTION, COMPOSITE (a layered section) is not supported: superjoin''s '// &
+            'shells have one material and one thickness')
+       ok = .false.
+       return
+    end if
+    rest%keyword = kw%keyword
+    rest%nparam = 0
+    allocate (rest%params(max(kw%nparam, 1)))
+    do k = 1, kw%nparam
+       associate (p => kw%params(k))
+         if (p%name == 'OFFSET' .and. p%has_value) then
+            read (p%value, *, iostat=stat) v
+            if (stat /= 0 .or. v /= 0.0_wp) call report_loc(st, loc, 'OFFSET='//clip(p%value)// &
+                 ' is not supported: superjoin''s shells lie on their mid-surface (OFFSET=0)')
+         else
+            rest%nparam = rest%nparam + 1
+            rest%params(rest%nparam) = p
+         end if
+       end associate
+    end do
+    call check_params(st, rest, loc, [character(NAME_LEN) :: 'ELSET', 'MATERIAL', 'OFFSET'], [character(NAME_LEN) ::])
+  end function shell_section_params
+
   subroutine kw_section(st, kw, loc, kind)
     type(deck_state_t), intent(inout) :: st
     type(keyword_line_t), intent(in) :: kw
@@ -870,6 +909,12 @@ contains
     if (.not. outside_step(st, kw, loc)) return
     if (kind == SEC_BEAM) then
        call beam_section_params(st, kw, loc, sec)
+    else if (kind == SEC_SHELL) then
+       if (.not. shell_section_params(st, kw, loc)) then
+          st%card = CARD_SKIP
+          st%section_rejected(kind) = .true.
+          return
+       end if
     else
        call check_params(st, kw, loc, [character(NAME_LEN) :: 'ELSET', 'MATERIAL'], [character(NAME_LEN) ::])
     end if

@@ -10,6 +10,7 @@ module superjoin_deck_validate
        ET_S3, ET_S4, ET_B21, ET_B31, ET_CPE3, ET_CPE4, ET_CPS6, ET_CPS8, ET_CPE6, ET_CPE8, ET_CPS8R, ET_CPE8R, &
        ET_B32, DLOAD_PX, DLOAD_PY, DLOAD_PZ, DLOAD_P, DLOAD_GRAV, DLOAD_NAMES
   use superjoin_model_types, only: ET_S4R, ET_S3R
+  use superjoin_model_types, only: ET_S8R
   use superjoin_model_types, only: DLOAD_P1, DLOAD_P2, DLOAD_P3, DLOAD_P4, DLOAD_THERMAL, DLOAD_CENTRIF
   use superjoin_deck_lexer, only: itoa, plural
   use superjoin_deck_state, only: deck_state_t, sub_b_t, ref_t, load_b_t, report, report_loc, report_oom, find_set, &
@@ -547,7 +548,7 @@ contains
          case (ET_B33, ET_B31, ET_B32)
             nb33 = nb33 + 1
             if (sb%kind /= SEC_BEAM) call bad(e)
-         case (ET_S3, ET_S4, ET_S4R, ET_S3R)
+         case (ET_S3, ET_S4, ET_S4R, ET_S3R, ET_S8R)
             nshell = nshell + 1
             if (sb%kind /= SEC_SHELL) call bad(e)
          end select
@@ -661,7 +662,7 @@ contains
     select case (etype)
     case (ET_B23, ET_B33, ET_B21, ET_B31, ET_B32)
        card = '*BEAM SECTION'
-    case (ET_S3, ET_S4, ET_S4R, ET_S3R)
+    case (ET_S3, ET_S4, ET_S4R, ET_S3R, ET_S8R)
        card = '*SHELL SECTION'
     case default
        card = '*SOLID SECTION'
@@ -676,7 +677,7 @@ contains
     select case (etype)
     case (ET_B23, ET_B33)
        section_card_rejected = st%section_rejected(SEC_BEAM)
-    case (ET_S3, ET_S4, ET_S4R, ET_S3R)
+    case (ET_S3, ET_S4, ET_S4R, ET_S3R, ET_S8R)
        section_card_rejected = st%section_rejected(SEC_SHELL)
     case default
        section_card_rejected = st%section_rejected(SEC_SOLID) .or. st%section_rejected(SEC_SHELL)
@@ -1189,7 +1190,7 @@ contains
             if (nplate > 0) then
                call report_loc(st, plate_loc, 'temperature change on element '//itoa(sub%elem_id(first_plate))// &
                     ' of type '//trim(ELEMENT_TYPE_NAMES(sub%elem_type(first_plate)))//' of substructure '// &
-                    sub%name//': thermal loads are implemented for trusses, beams, plane and shell elements only'// &
+                    sub%name//': thermal loads are implemented for trusses, beams, plane elements and S3, S4, S3R, S4R shells only'// &
                     more_text(nplate - 1))
                nplate = 0
             end if
@@ -1449,11 +1450,12 @@ contains
     case (DLOAD_PZ)
        dload_fits = etype == ET_B33 .or. etype == ET_B31 .or. etype == ET_B32
     case (DLOAD_P)
-       dload_fits = etype == ET_S3 .or. etype == ET_S4 .or. etype == ET_S4R .or. etype == ET_S3R
+       dload_fits = etype == ET_S3 .or. etype == ET_S4 .or. etype == ET_S4R .or. etype == ET_S3R .or. &
+            etype == ET_S8R
     case (DLOAD_GRAV)
        dload_fits = .true.
     case (DLOAD_CENTRIF)
-       dload_fits = etype /= ET_B32
+       dload_fits = etype /= ET_B32 .and. etype /= ET_S8R   ! S8R: not verified yet
     case (DLOAD_P1)
        dload_fits = is_plane(etype) .or. etype == ET_B33 .or. etype == ET_B31
     case (DLOAD_P2)

@@ -23,7 +23,6 @@ module superjoin_elements_catalog
        advice_t('CPE4H', 'hybrid (pressure) elements are not implemented; nearest: CPE4'), &
        advice_t('CPS6M', 'nearest: CPS6 (six-node triangle, 3-point integration)'), &
        advice_t('CPE6M', 'nearest: CPE6 (six-node triangle, 3-point integration)'), &
-       advice_t('S8R', 'eight-node thick shells are not implemented yet; nearest: S4R (four-node thick shell)'), &
        advice_t('S4R5', 'nearest: S4 (thin shell) or S4R (thick shell)'), &
        advice_t('STRI3', 'nearest: S3 (thin shell)'), &
        advice_t('B32R', 'nearest: B32 (three-node Timoshenko beam, two integration points)'), &

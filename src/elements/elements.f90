@@ -12,6 +12,7 @@ module superjoin_elements
        ET_CPS6, ET_CPS8, ET_CPE6, ET_CPE8, ET_CPS8R, ET_CPE8R, ET_B32, &
        DLOAD_PX, DLOAD_PY, DLOAD_PZ, DLOAD_P
   use superjoin_model_types, only: ET_S4R, ET_S3R
+  use superjoin_model_types, only: ET_S8R
   use superjoin_model_types, only: DLOAD_P1, DLOAD_P2, DLOAD_P3, DLOAD_P4, DLOAD_THERMAL
   use superjoin_elements_edge_load, only: plane_edge_load
   use superjoin_elements_thermal, only: thermal_axial_load, thermal_plate_load
@@ -47,7 +48,7 @@ contains
   pure function element_node_dofs(etype) result(dofs)
     !! DOF numbers (1..6: ux, uy, uz, rx, ry, rz) carried by each node of an
     !! element type: T2D2 [1,2]; T3D2 [1,2,3]; B23, B21 [1,2,6]; B33, B31 [1..6];
-    !! CPS3/CPS4/CPE3/CPE4 and CPS6/CPS8/CPS8R/CPE6/CPE8/CPE8R [1,2]; S3/S4/S3R/S4R [1..6]; an unknown type gives an empty array.
+    !! CPS3/CPS4/CPE3/CPE4 and CPS6/CPS8/CPS8R/CPE6/CPE8/CPE8R [1,2]; S3/S4/S3R/S4R/S8R [1..6]; an unknown type gives an empty array.
     integer, intent(in) :: etype
     integer, allocatable :: dofs(:)
     integer :: i
@@ -58,7 +59,7 @@ contains
        dofs = [1, 2, 3]
     case (ET_B23, ET_B21)
        dofs = [1, 2, 6]
-    case (ET_B33, ET_B31, ET_S3, ET_S4, ET_B32, ET_S4R, ET_S3R)
+    case (ET_B33, ET_B31, ET_S3, ET_S4, ET_B32, ET_S4R, ET_S3R, ET_S8R)
        dofs = [(i, i=1, 6)]
     case default
        allocate (dofs(0))
@@ -78,7 +79,7 @@ contains
        mask(1:3) = .true.
     case (ET_B23, ET_B21)
        mask([1, 2, 6]) = .true.
-    case (ET_B33, ET_B31, ET_S3, ET_S4, ET_B32, ET_S4R, ET_S3R)
+    case (ET_B33, ET_B31, ET_S3, ET_S4, ET_B32, ET_S4R, ET_S3R, ET_S8R)
        mask = .true.
     end select
   end function element_dof_mask
@@ -145,7 +146,8 @@ contains
        call beam_stiffness(etype, x, sec, mat, ke, error)
     case (ET_B32)
        call beam3_stiffness(x, sec, mat, ke, error)
-    case (ET_CPS3, ET_CPS4, ET_S3, ET_S4, ET_CPE3, ET_CPE4, ET_CPS6, ET_CPS8, ET_CPE6, ET_CPE8, ET_CPS8R, ET_CPE8R, ET_S4R, ET_S3R)
+    case (ET_CPS3, ET_CPS4, ET_S3, ET_S4, ET_CPE3, ET_CPE4, ET_CPS6, ET_CPS8, ET_CPE6, ET_CPE8, ET_CPS8R, ET_CPE8R, ET_S4R, ET_S3R, &
+         ET_S8R)
        call shell_stiffness(etype, x, sec, mat, ke, error)
     case default
        call unsupported(etype, error)
@@ -178,7 +180,8 @@ contains
        call beam_end_forces(etype, x, sec, mat, ue, q_local, f, error)
     case (ET_B32)
        call beam3_end_forces(x, sec, mat, ue, q_local, f, error)
-    case (ET_CPS3, ET_CPS4, ET_S3, ET_S4, ET_CPE3, ET_CPE4, ET_CPS6, ET_CPS8, ET_CPE6, ET_CPE8, ET_CPS8R, ET_CPE8R, ET_S4R, ET_S3R)
+    case (ET_CPS3, ET_CPS4, ET_S3, ET_S4, ET_CPE3, ET_CPE4, ET_CPS6, ET_CPS8, ET_CPE6, ET_CPE8, ET_CPS8R, ET_CPE8R, ET_S4R, ET_S3R, &
+         ET_S8R)
        continue
     case default
        call unsupported(etype, error)
@@ -315,7 +318,8 @@ contains
     select case (etype)
     case (ET_T2D2, ET_T3D2, ET_B23, ET_B33, ET_B21, ET_B31, ET_B32)
        call beam_distributed_load(etype, x, sec, mat%density*sec%area*accel, fe, q_local, error)
-    case (ET_CPS3, ET_CPS4, ET_S3, ET_S4, ET_CPE3, ET_CPE4, ET_CPS6, ET_CPS8, ET_CPE6, ET_CPE8, ET_CPS8R, ET_CPE8R, ET_S4R, ET_S3R)
+    case (ET_CPS3, ET_CPS4, ET_S3, ET_S4, ET_CPE3, ET_CPE4, ET_CPS6, ET_CPS8, ET_CPE6, ET_CPE8, ET_CPS8R, ET_CPE8R, ET_S4R, ET_S3R, &
+         ET_S8R)
        call shell_area_load(etype, x, mat%density*sec%thickness*accel, fe, error)
     case default
        call unsupported(etype, error)

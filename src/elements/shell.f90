@@ -22,6 +22,9 @@ module superjoin_elements_shell
   use superjoin_model_types, only: section_t, material_t, ET_CPS3, ET_CPS4, ET_S3, ET_S4, &
        ET_CPE3, ET_CPE4, ELEMENT_NODE_COUNT, ET_CPS6, ET_CPS8, ET_CPE6, ET_CPE8, ET_CPS8R, ET_CPE8R
   use superjoin_model_types, only: ET_S4R, ET_S3R
+  use superjoin_model_types, only: ET_S8R
+  use superjoin_elements_shell8, only: shell8_props_t, shell8_stiffness, shell8_resultants, shell8_area_shares, &
+       shell8_pressure_load
   use superjoin_elements_membrane, only: membrane_stiffness, membrane_drill_stiffness, membrane_resultants, &
        plane_strain_stiffness, plane_strain_resultants
   use superjoin_elements_plate, only: plate_stiffness, plate_moments, plate_pressure_load
@@ -56,7 +59,8 @@ contains
   elemental logical function is_plate_type(etype)
     !! True for the plane (stress and strain) and shell element types.
     integer, intent(in) :: etype
-    is_plate_type = is_plane_type(etype) .or. etype == ET_S3 .or. etype == ET_S4 .or. is_thick_shell_type(etype)
+    is_plate_type = is_plane_type(etype) .or. etype == ET_S3 .or. etype == ET_S4 .or. is_thick_shell_type(etype) &
+         .or. etype == ET_S8R
   end function is_plate_type
 
   elemental logical function is_thick_shell_type(etype)
@@ -178,10 +182,49 @@ contains
     real(wp), allocatable :: kf(:, :)
     real(wp) :: r(3, 3), xl(2, size(x, 2)), h(size(x, 2))
 
+    if (etype == ET_S8R) then
+       call setup(etype, x, r, xl, h, error)
+       if (allocated(error)) return
+       call shell8_stiffness(x, [r(1, 1), r(1, 2), r(1, 3)], shell8_props(sec, mat), ke, error)
+       return
+    end if
     call flat_stiffness(etype, x, sec, mat, kf, r, xl, h, error)
     if (allocated(error)) return
     ke = to_global(kf, node_maps(etype, r, h))
   end subroutine shell_stiffness
+
+  pure function shell8_props(sec, mat) result(props)
+    !! Section and material data of an S8R.
+    type(section_t), intent(in) :: sec
+    type(material_t), intent(in) :: mat
+    type(shell8_props_t) :: props
+    props = shell8_props_t(t=sec%thickness, e=mat%e, nu=mat%nu, ks=shell_shear_stiffness(sec, mat))
+  end function shell8_props
+
+  pure subroutine shell8_forces(x, sec, mat, ue, res, fg, forces, error)
+    !! shell_forces of an S8R: resultants at the centre (lamina frame) and K_e u_e.
+    real(wp), intent(in) :: x(:, :)
+    type(section_t), intent(in) :: sec
+    type(material_t), intent(in) :: mat
+    real(wp), intent(in) :: ue(:, :)
+    real(wp), intent(inout) :: res(:, :), fg(:, :)
+    logical, intent(in) :: forces
+    type(error_t), allocatable, intent(out) :: error
+    real(wp), allocatable :: ke(:, :)
+    real(wp) :: r(3, 3), xl(2, size(x, 2)), h(size(x, 2)), q(2)
+    integer :: is
+    call setup(ET_S8R, x, r, xl, h, error)
+    if (allocated(error)) return
+    if (forces) then
+       call shell8_stiffness(x, [r(1, 1), r(1, 2), r(1, 3)], shell8_props(sec, mat), ke, error)
+       if (allocated(error)) return
+    end if
+    do is = 1, size(ue, 2)
+       if (forces) fg(:, is) = matmul(ke, ue(:, is))
+       call shell8_resultants(x, [r(1, 1), r(1, 2), r(1, 3)], shell8_props(sec, mat), ue(:, is), res(:, is), q, error)
+       if (allocated(error)) return
+    end do
+  end subroutine shell8_forces
 
   pure subroutine shell_forces(etype, x, sec, mat, ue, res, fg, error, with_forces)
     !! For every step (columns of ue, element displacements in global axes):
@@ -206,6 +249,10 @@ contains
     fg = 0.0_wp
     forces = .true.
     if (present(with_forces)) forces = with_forces
+    if (etype == ET_S8R) then
+       call shell8_forces(x, sec, mat, ue, res, fg, forces, error)
+       return
+    end if
     if (forces) then
        call flat_stiffness(etype, x, sec, mat, kf, r, xl, h, error)
     else
@@ -235,11 +282,15 @@ contains
     real(wp), intent(in) :: ue(:)
     real(wp), intent(out) :: res(6)
     type(error_t), allocatable, intent(out) :: error
-    real(wp) :: r(3, 3), xl(2, size(x, 2)), h(size(x, 2))
+    real(wp) :: r(3, 3), xl(2, size(x, 2)), h(size(x, 2)), q(2)
 
     res = 0.0_wp
     call setup(etype, x, r, xl, h, error)
     if (allocated(error)) return
+    if (etype == ET_S8R) then
+       call shell8_resultants(x, [r(1, 1), r(1, 2), r(1, 3)], shell8_props(sec, mat), ue, res, q, error)
+       return
+    end if
     call local_resultants(etype, xl, sec, mat, to_local(node_maps(etype, r, h), ue), res, error)
   end subroutine shell_resultants
 
@@ -405,12 +456,16 @@ contains
 
     p_local = -p
     n = size(x, 2)
-    if (etype /= ET_S3 .and. etype /= ET_S4 .and. .not. is_thick_shell_type(etype)) then
-       call fatal_error(error, EXIT_DECK, 'pressure P applies to shells (S3, S4, S3R, S4R) only')
+    if (etype /= ET_S3 .and. etype /= ET_S4 .and. .not. is_thick_shell_type(etype) .and. etype /= ET_S8R) then
+       call fatal_error(error, EXIT_DECK, 'pressure P applies to shells (S3, S4, S3R, S4R, S8R) only')
        return
     end if
     call setup(etype, x, r, xl, h, error)
     if (allocated(error)) return
+    if (etype == ET_S8R) then
+       call shell8_pressure_load(x, p, fe, error)
+       return
+    end if
     call plate_pressure_load(xl, p_local, fb)
     allocate (ff(6*n), source=0.0_wp)
     do i = 1, n
@@ -438,6 +493,14 @@ contains
     if (is_quadratic_plane_type(etype)) then
        allocate (fb(3*n), source=0.0_wp)
        call quadratic_shape_integrals(xl, fb(1:3*n:3))
+    else if (etype == ET_S8R) then
+       allocate (fb(3*n), source=0.0_wp)
+       block
+         real(wp) :: shares(n)
+         call shell8_area_shares(x, shares, error)
+         if (allocated(error)) return
+         fb(1:3*n:3) = shares
+       end block
     else
        ! plate_pressure_load with p = 1 gives the integrals of the shape functions
        call plate_pressure_load(xl, 1.0_wp, fb)

@@ -12,9 +12,9 @@ module superjoin_model_types
   integer, parameter, public :: ET_T2D2 = 1, ET_T3D2 = 2, ET_B23 = 3, ET_B33 = 4, &
                                 ET_CPS3 = 5, ET_CPS4 = 6, ET_S3 = 7, ET_S4 = 8, &
                                 ET_B21 = 9, ET_B31 = 10, ET_CPE3 = 11, ET_CPE4 = 12, &
-                                ET_S4R = 13, ET_S3R = 14
+                                ET_S4R = 13, ET_S3R = 14, ET_S8R = 15
     !! Element types (B21, B31: two-node Timoshenko beams; CPE3, CPE4: plane strain;
-    !! S4R, S3R: thick (Reissner-Mindlin) shells; 15 is reserved for S8R, not implemented).
+    !! S4R, S3R, S8R: thick (Reissner-Mindlin) shells).
   integer, parameter, public :: ET_CPS6 = 16, ET_CPS8 = 17, ET_CPE6 = 18, ET_CPE8 = 19, &
                                 ET_CPS8R = 20, ET_CPE8R = 21
     !! Second-order plane elements: 6-node triangles, 8-node quadrilaterals (…R: 2×2 reduced integration).
@@ -24,12 +24,12 @@ module superjoin_model_types
   character(len=5), parameter, public :: ELEMENT_TYPE_NAMES(NUM_ELEMENT_TYPES) = &
        ['T2D2 ', 'T3D2 ', 'B23  ', 'B33  ', 'CPS3 ', 'CPS4 ', 'S3   ', 'S4   ', &
         'B21  ', 'B31  ', 'CPE3 ', 'CPE4 ', &
-        'S4R  ', 'S3R  ', '     ', &
+        'S4R  ', 'S3R  ', 'S8R  ', &
         'CPS6 ', 'CPS8 ', 'CPE6 ', 'CPE8 ', 'CPS8R', 'CPE8R', 'B32  ']
-    !! A blank name (15, S8R's) is a reserved number without an element.
+    !! A blank name would be a reserved number without an element.
   integer, parameter, public :: ELEMENT_NODE_COUNT(NUM_ELEMENT_TYPES) = [2, 2, 2, 2, 3, 4, 3, 4, &
        2, 2, 3, 4, &
-       4, 3, 0, &
+       4, 3, 8, &
        6, 8, 6, 8, 8, 8, 3]
   integer, parameter, public :: MAX_ELEMENT_NODES = 8
 

@@ -94,6 +94,7 @@ contains
     associate (sub => model%subs(isub))
       etype = sub%elem_type(ie)
       if (.not. is_plate_type(etype) .or. sub%elem_section(ie) <= 0) return
+      if (.not. is_plane_type(etype) .and. ELEMENT_NODE_COUNT(etype) > size(x, 2)) return   ! S8R: none yet
       nn = ELEMENT_NODE_COUNT(etype)
       if (nn > MAX_PLANE_NODES) return
       do a = 1, nn

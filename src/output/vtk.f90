@@ -12,6 +12,7 @@ module superjoin_output_vtk
        ET_B23, ET_B33, ET_CPS3, ET_CPS4, ET_S3, ET_S4, ET_B21, ET_B31, ET_CPE3, ET_CPE4, &
        ET_CPS6, ET_CPS8, ET_CPE6, ET_CPE8, ET_CPS8R, ET_CPE8R, ET_B32
   use superjoin_model_types, only: ET_S4R, ET_S3R
+  use superjoin_model_types, only: ET_S8R
   use superjoin_analysis_results, only: result_fields_t
   use superjoin_output_file_selection, only: file_selection_t, select_file_output, FILE_DISPLACEMENTS, &
        FILE_REACTIONS, FILE_ELEMENT_FORCES
@@ -564,7 +565,7 @@ contains
        cell_type = VTK_POLY_LINE              ! end, middle, end: the points in order
     case (ET_CPS6, ET_CPE6)
        cell_type = VTK_QUADRATIC_TRIANGLE     ! VTK's node order is Abaqus's
-    case (ET_CPS8, ET_CPE8, ET_CPS8R, ET_CPE8R)
+    case (ET_CPS8, ET_CPE8, ET_CPS8R, ET_CPE8R, ET_S8R)
        cell_type = VTK_QUADRATIC_QUAD
     case default
        cell_type = VTK_VERTEX

@@ -16,7 +16,7 @@ module superjoin_substructure_local_system
   implicit none (type, external)
   private
 
-  integer, parameter :: MAX_ELEMENT_DOFS = 24
+  integer, parameter :: MAX_ELEMENT_DOFS = 48   ! S8R: 8 nodes x 6 DOFs
     !! Largest number of DOFs of one element.
 
   type, public :: local_system_t

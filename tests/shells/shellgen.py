@@ -39,6 +39,8 @@ def grid(part, nx, ny, mapping, etype, first_node=1, first_elem=1, diag="alt", i
     """
     def nid(i, j):
         return first_node + j * (nx + 1) + i
+    if etype == "S8R":
+        return grid8(part, nx, ny, mapping, nid, first_elem)
     for j in range(ny + 1):
         for i in range(nx + 1):
             part.nodes[nid(i, j)] = mapping(i / nx, j / ny)
@@ -59,6 +61,28 @@ def grid(part, nx, ny, mapping, etype, first_node=1, first_elem=1, diag="alt", i
                 part.elems.append((e, etype, (a, b, c)))
                 part.elems.append((e + 1, etype, (a, c, d)))
             e += 2
+    return nid
+
+
+def grid8(part, nx, ny, mapping, nid, first_elem):
+    """S8R on the logical grid: nx, ny are the node intervals (even), each
+    element takes a 2 x 2 block of them (corners at even (i, j), mid-side
+    nodes at mixed parity; the block centres, both odd, are not nodes), so that
+    the mid-side nodes lie on the mapped surface and a case written for an
+    nx-by-ny grid of S4R has the same nodes (less the centres) with S8R."""
+    if nx % 2 or ny % 2:
+        raise ValueError("S8R grid: the node intervals must be even")
+    for j in range(ny + 1):
+        for i in range(nx + 1):
+            if i % 2 and j % 2:
+                continue
+            part.nodes[nid(i, j)] = mapping(i / nx, j / ny)
+    e = first_elem
+    for j in range(0, ny, 2):
+        for i in range(0, nx, 2):
+            part.elems.append((e, "S8R", (nid(i, j), nid(i + 2, j), nid(i + 2, j + 2), nid(i, j + 2),
+                                          nid(i + 1, j), nid(i + 2, j + 1), nid(i + 1, j + 2), nid(i, j + 1))))
+            e += 1
     return nid
 
 

@@ -1,0 +1,409 @@
+module superjoin_elements_shell8
+  !! S8R: the eight-node thick (Reissner-Mindlin) shell, a degenerated-solid
+  !! (Ahmad-Irons-Zienkiewicz) element with serendipity interpolation and the
+  !! 2×2 reduced in-plane integration of Abaqus's S8R; the surface may be curved.
+  !!
+  !! Node order (Abaqus): corners 1-4 counter-clockwise, then the mid-side
+  !! nodes 5 (between 1 and 2), 6, 7, 8; natural coordinates ξ, η in [-1, 1],
+  !! ζ in [-1, 1] through the thickness t. DOFs per node (global axes):
+  !! ux, uy, uz, rx, ry, rz.
+  !!
+  !! Geometry and displacement (directors n_i, unit normals of the element's
+  !! own isoparametric surface at its nodes):
+  !!   X = Σ N_i (x_i + ζ t/2 n_i),   U = Σ N_i (u_i + ζ t/2 θ_i × n_i).
+  !! Strains in the lamina frame (e3 normal to the surface at the point, e1 the
+  !! projection of the element's local x onto the tangent plane, e2 = e3 × e1):
+  !! ε11, ε22, γ12 (plane stress, E, ν) and γ13, γ23 (transverse shear, modulus
+  !! ks/t from the section's K11, K22, default 5/6 G t). Two Gauss points
+  !! through the thickness. In the plane, as Abaqus's S8R, the membrane strains
+  !! (the mean of the two thickness points) and the transverse shear take the
+  !! reduced 2×2 rule (no membrane or shear locking on regular meshes); the
+  !! bending strains (∂ε/∂ζ) take the full 3×3 rule, which removes the
+  !! bending hourglass that a 2×2 rule leaves in a single element.
+  !!
+  !! Drilling: θ·n produces no strain; the element adds the penalty
+  !!   ½ DRILL_FACTOR G t ∫ (θ·e3 - ω)² dA,   ω = ½ (∂u2/∂x1 - ∂u1/∂x2),
+  !! the in-plane rotation of the mid-surface (Hughes-Brezzi), with the 3×3
+  !! rule so that the eight normal rotations are all held. Rigid rotations
+  !! have θ·e3 = ω: the element keeps exactly six rigid modes.
+  !!
+  !! Spurious modes (tests/unit/test_shell8.f90): a single flat element has
+  !! exactly six zero eigenvalues and one near-zero mode, the membrane
+  !! hourglass of the 2×2 rule (CPS8R's), held only by the drilling penalty;
+  !! a curved element has none (bending holds it), and in a patch of elements
+  !! it is not communicable (no near-zero mode). No hourglass control is added.
+  !! Known limitation: on distorted (non-parallelogram) elements the element
+  !! does not pass the constant-curvature patch test; the error grows as
+  !! t → 0 (shear locking of the 2×2 shear constraints; measured in the unit
+  !! test and doc/verification.md). Constant membrane strain passes on
+  !! distorted meshes, constant curvature on parallelograms.
+  !!
+  !! Errors come back as error_t (code EXIT_DECK) with a message without
+  !! file:line; the caller prefixes it.
+  use superjoin_kinds, only: wp
+  use superjoin_error, only: error_t, fatal_error, EXIT_DECK
+  use superjoin_elements_frame, only: cross, require_positive
+  use superjoin_elements_membrane, only: plane_stress, check_plane_material
+  use superjoin_elements_quadratic, only: quadratic_shape
+  implicit none (type, external)
+  private
+
+  integer, parameter :: NN = 8              !! nodes
+  integer, parameter :: NDN = 6             !! DOFs per node
+  integer, parameter :: NDOF = NN*NDN
+  integer, parameter :: NSTR = 5            !! ε11, ε22, γ12, γ13, γ23
+  real(wp), parameter :: XI_NODE(NN) = [-1.0_wp, 1.0_wp, 1.0_wp, -1.0_wp, 0.0_wp, 1.0_wp, 0.0_wp, -1.0_wp]
+  real(wp), parameter :: ETA_NODE(NN) = [-1.0_wp, -1.0_wp, 1.0_wp, 1.0_wp, -1.0_wp, 0.0_wp, 1.0_wp, 0.0_wp]
+  real(wp), parameter :: G2 = 1/sqrt(3.0_wp)                    !! 2-point Gauss abscissa
+  real(wp), parameter :: G3(3) = [-sqrt(0.6_wp), 0.0_wp, sqrt(0.6_wp)]   !! 3-point Gauss abscissae
+  real(wp), parameter :: W3(3) = [5.0_wp, 8.0_wp, 5.0_wp]/9     !! 3-point Gauss weights
+  real(wp), parameter, public :: S8R_DRILL_FACTOR = 1.0e-2_wp
+    !! Drilling penalty as a fraction of G t (see the module header).
+  real(wp), parameter :: JACOBIAN_TOL = 1.0e-10_wp
+    !! det J at a 3×3 point must exceed this × (element size)² × t.
+
+  type :: point_t
+    !! Geometry of one point (ξ, η, ζ).
+     real(wp) :: nf(NN) = 0.0_wp            !! shape functions
+     real(wp) :: dn(2, NN) = 0.0_wp         !! ∂N/∂(ξ, η)
+     real(wp) :: jinv(3, 3) = 0.0_wp        !! ∂(ξ, η, ζ)/∂x
+     real(wp) :: detj = 0.0_wp
+     real(wp) :: r(3, 3) = 0.0_wp           !! rows: lamina axes e1, e2, e3
+  end type point_t
+
+  type, public :: shell8_props_t
+    !! Section and material of one S8R.
+     real(wp) :: t = 0.0_wp                 !! thickness
+     real(wp) :: e = 0.0_wp                 !! Young's modulus
+     real(wp) :: nu = 0.0_wp                !! Poisson's ratio
+     real(wp) :: ks(2) = 0.0_wp             !! transverse shear stiffness per unit length (local x, y)
+  end type shell8_props_t
+
+  public :: shell8_stiffness, shell8_resultants, shell8_area_shares, shell8_pressure_load
+
+contains
+
+  pure subroutine shell8_stiffness(x, ex, props, ke, error)
+    !! Stiffness ke(48, 48) in global axes (ux, uy, uz, rx, ry, rz per node,
+    !! node-major) of an S8R with nodes x(3, 8); ex is the element's local x
+    !! axis (its projection on the tangent plane is the lamina e1).
+    real(wp), intent(in) :: x(:, :), ex(3)
+    type(shell8_props_t), intent(in) :: props
+    real(wp), allocatable, intent(out) :: ke(:, :)
+    type(error_t), allocatable, intent(out) :: error
+    real(wp) :: dir(3, NN), d(NSTR, NSTR), b(NSTR, NDOF), dr(NDOF), gmod, kd
+    real(wp) :: bm(3, NDOF), bb(3, NDOF), detj(2)
+    type(point_t) :: pt
+    integer :: i, j, k
+
+    call check(x, props, dir, error)
+    if (allocated(error)) return
+    d = material(props)
+    allocate (ke(NDOF, NDOF), source=0.0_wp)
+    ! in-plane strains: the membrane part (mean of the two ζ points) with the
+    ! 2×2 rule, the bending part (their difference) with 3×3
+    do i = 1, 3
+       do j = 1, 3
+          call in_plane_parts(x, dir, ex, props%t, [G3(i), G3(j)], bm, bb, detj)
+          ke = ke + (2*W3(i)*W3(j)*G2**2)*sum(detj)/2*matmul(transpose(bb), matmul(d(1:3, 1:3), bb))
+       end do
+    end do
+    do i = 1, 2
+       do j = 1, 2
+          call in_plane_parts(x, dir, ex, props%t, [gauss2(i), gauss2(j)], bm, bb, detj)
+          ke = ke + sum(detj)*matmul(transpose(bm), matmul(d(1:3, 1:3), bm))
+       end do
+    end do
+    ! transverse shear: 2×2 (×2 through the thickness)
+    do i = 1, 2
+       do j = 1, 2
+          do k = 1, 2
+             call point(x, dir, ex, props%t, [gauss2(i), gauss2(j), gauss2(k)], pt)
+             b = strain_rows(pt, dir, props%t, gauss2(k))
+             ke = ke + pt%detj*matmul(transpose(b(4:5, :)), matmul(d(4:5, 4:5), b(4:5, :)))
+          end do
+       end do
+    end do
+    ! drilling penalty: 3×3 on the mid-surface (ζ = 0; ∫ dζ = 2, det J ≈ t/2 dA)
+    gmod = props%e/(2*(1 + props%nu))
+    kd = S8R_DRILL_FACTOR*gmod*props%t
+    do i = 1, 3
+       do j = 1, 3
+          call point(x, dir, ex, props%t, [G3(i), G3(j), 0.0_wp], pt)
+          dr = drill_row(pt, dir, props%t)
+          do k = 1, NDOF
+             ke(:, k) = ke(:, k) + (kd*W3(i)*W3(j)*2*pt%detj/props%t)*dr(k)*dr
+          end do
+       end do
+    end do
+    ke = 0.5_wp*(ke + transpose(ke))
+  end subroutine shell8_stiffness
+
+  pure subroutine shell8_resultants(x, ex, props, ue, res, q, error)
+    !! Resultants per unit length at the element centre (ξ = η = 0) in the
+    !! lamina frame there (e1 along the projection of ex): res = nx, ny, nxy,
+    !! mx, my, mxy (m = ∫ σ z dz, the signs of the other shells) and the
+    !! transverse shear forces q = qx, qy; ue(48) in global axes.
+    real(wp), intent(in) :: x(:, :), ex(3)
+    type(shell8_props_t), intent(in) :: props
+    real(wp), intent(in) :: ue(:)
+    real(wp), intent(out) :: res(6), q(2)
+    type(error_t), allocatable, intent(out) :: error
+    real(wp) :: dir(3, NN), d(NSTR, NSTR), s(NSTR), z
+    type(point_t) :: pt
+    integer :: k
+
+    res = 0.0_wp
+    q = 0.0_wp
+    call check(x, props, dir, error)
+    if (allocated(error)) return
+    if (size(ue) /= NDOF) then
+       call fatal_error(error, EXIT_DECK, 'wrong number of element DOF values')
+       return
+    end if
+    d = material(props)
+    do k = 1, 2
+       call point(x, dir, ex, props%t, [0.0_wp, 0.0_wp, gauss2(k)], pt)
+       s = matmul(d, matmul(strain_rows(pt, dir, props%t, gauss2(k)), ue))
+       z = gauss2(k)*props%t/2
+       ! 2-point rule through the thickness: weight 1 each, dz = t/2 dζ
+       res(1:3) = res(1:3) + s(1:3)*props%t/2
+       res(4:6) = res(4:6) + s(1:3)*z*props%t/2
+       q = q + s(4:5)*props%t/2
+    end do
+  end subroutine shell8_resultants
+
+  pure subroutine shell8_area_shares(x, shares, error)
+    !! shares(i) = ∫ N_i dA over the mid-surface (3×3 rule): the nodal loads
+    !! of a unit load per unit area (the corner shares of a flat element are
+    !! negative, -1/12 of its area, the mid-side ones 1/3).
+    real(wp), intent(in) :: x(:, :)
+    real(wp), intent(out) :: shares(NN)
+    type(error_t), allocatable, intent(out) :: error
+    real(wp) :: nf(NN), dn(2, NN), a(3, 2)
+    integer :: i, j
+    shares = 0.0_wp
+    if (size(x, 1) /= 3 .or. size(x, 2) /= NN) then
+       call fatal_error(error, EXIT_DECK, 'an S8R needs 8 nodes')
+       return
+    end if
+    do i = 1, 3
+       do j = 1, 3
+          call quadratic_shape(NN, [G3(i), G3(j)], nf, dn)
+          a = matmul(x, transpose(dn))
+          shares = shares + W3(i)*W3(j)*norm2(cross(a(:, 1), a(:, 2)))*nf
+       end do
+    end do
+  end subroutine shell8_area_shares
+
+  pure subroutine shell8_pressure_load(x, p, fe, error)
+    !! Consistent nodal loads fe(48) (global axes) of a uniform pressure p,
+    !! positive against the normal a_ξ × a_η of the surface (the right-hand
+    !! rule on the node order): f_i = -p ∫ N_i (a_ξ × a_η) dξ dη, 3×3 rule.
+    real(wp), intent(in) :: x(:, :)
+    real(wp), intent(in) :: p
+    real(wp), allocatable, intent(out) :: fe(:)
+    type(error_t), allocatable, intent(out) :: error
+    real(wp) :: nf(NN), dn(2, NN), a(3, 2), nv(3)
+    integer :: i, j, k
+    if (size(x, 1) /= 3 .or. size(x, 2) /= NN) then
+       call fatal_error(error, EXIT_DECK, 'an S8R needs 8 nodes')
+       return
+    end if
+    allocate (fe(NDOF), source=0.0_wp)
+    do i = 1, 3
+       do j = 1, 3
+          call quadratic_shape(NN, [G3(i), G3(j)], nf, dn)
+          a = matmul(x, transpose(dn))
+          nv = cross(a(:, 1), a(:, 2))
+          do k = 1, NN
+             fe(NDN*(k - 1) + 1:NDN*(k - 1) + 3) = fe(NDN*(k - 1) + 1:NDN*(k - 1) + 3) - &
+                  p*W3(i)*W3(j)*nf(k)*nv
+          end do
+       end do
+    end do
+  end subroutine shell8_pressure_load
+
+  ! ------------------------------------------------------------------ internals
+
+  pure real(wp) function gauss2(i)
+    !! Abscissa i (1, 2) of the 2-point Gauss rule.
+    integer, intent(in) :: i
+    gauss2 = merge(-G2, G2, i == 1)
+  end function gauss2
+
+  pure function material(props) result(d)
+    !! Lamina elasticity (ε11, ε22, γ12, γ13, γ23) -> stresses.
+    type(shell8_props_t), intent(in) :: props
+    real(wp) :: d(NSTR, NSTR)
+    d = 0.0_wp
+    d(1:3, 1:3) = plane_stress(props%e, props%nu)
+    d(4, 4) = props%ks(1)/props%t
+    d(5, 5) = props%ks(2)/props%t
+  end function material
+
+  pure subroutine check(x, props, dir, error)
+    !! Data checks (node count, t, E, ν, ks, a positive Jacobian at the 3×3
+    !! points of the mid-surface) and the nodal directors dir(3, 8).
+    real(wp), intent(in) :: x(:, :)
+    type(shell8_props_t), intent(in) :: props
+    real(wp), intent(out) :: dir(3, NN)
+    type(error_t), allocatable, intent(out) :: error
+    real(wp) :: nf(NN), dn(2, NN), a(3, 2), nv(3), size_e, ref(3), c(3)
+    integer :: i, j
+    dir = 0.0_wp
+    if (size(x, 1) /= 3 .or. size(x, 2) /= NN) then
+       call fatal_error(error, EXIT_DECK, 'an S8R needs 8 nodes')
+       return
+    end if
+    call check_plane_material(props%t, props%e, props%nu, 'shells', error)
+    if (allocated(error)) return
+    call require_positive(minval(props%ks), 'transverse shear stiffness', error)
+    if (allocated(error)) return
+    c = sum(x, dim=2)/NN
+    size_e = maxval(norm2(x - spread(c, 2, NN), dim=1))
+    ref = cross(x(:, 3) - x(:, 1), x(:, 4) - x(:, 2))
+    if (size_e <= 0.0_wp .or. norm2(ref) <= epsilon(1.0_wp)*size_e**2) then
+       call fatal_error(error, EXIT_DECK, 'zero area (collinear or coincident nodes)')
+       return
+    end if
+    do i = 1, 3
+       do j = 1, 3
+          call quadratic_shape(NN, [G3(i), G3(j)], nf, dn)
+          a = matmul(x, transpose(dn))
+          nv = cross(a(:, 1), a(:, 2))
+          if (dot_product(nv, ref)/norm2(ref) <= JACOBIAN_TOL*size_e**2) then
+             call fatal_error(error, EXIT_DECK, 'distorted S8R (the surface Jacobian is not positive '// &
+                  'everywhere; check the node order and the mid-side nodes)')
+             return
+          end if
+       end do
+    end do
+    do i = 1, NN
+       call quadratic_shape(NN, [XI_NODE(i), ETA_NODE(i)], nf, dn)
+       a = matmul(x, transpose(dn))
+       nv = cross(a(:, 1), a(:, 2))
+       if (norm2(nv) <= JACOBIAN_TOL*size_e**2) then
+          call fatal_error(error, EXIT_DECK, 'distorted S8R (no normal at a node)')
+          return
+       end if
+       dir(:, i) = nv/norm2(nv)
+    end do
+  end subroutine check
+
+  pure subroutine point(x, dir, ex, t, p, pt)
+    !! Geometry at p = (ξ, η, ζ): shape functions, inverse Jacobian, det J and
+    !! the lamina frame.
+    real(wp), intent(in) :: x(3, NN), dir(3, NN), ex(3), t, p(3)
+    type(point_t), intent(out) :: pt
+    real(wp) :: jac(3, 3), e1(3), e3(3)
+    call quadratic_shape(NN, p(1:2), pt%nf, pt%dn)
+    ! jac(a, b) = ∂X_a/∂ξ_b
+    jac(:, 1:2) = matmul(x + (p(3)*t/2)*dir, transpose(pt%dn))
+    jac(:, 3) = (t/2)*matmul(dir, pt%nf)
+    pt%detj = det3(jac)
+    pt%jinv = inv3(jac, pt%detj)
+    e3 = cross(jac(:, 1), jac(:, 2))
+    e3 = e3/norm2(e3)
+    e1 = ex - dot_product(ex, e3)*e3
+    if (norm2(e1) < 0.1_wp) e1 = jac(:, 1) - dot_product(jac(:, 1), e3)*e3   ! ex nearly normal
+    e1 = e1/norm2(e1)
+    pt%r(1, :) = e1
+    pt%r(2, :) = cross(e3, e1)
+    pt%r(3, :) = e3
+  end subroutine point
+
+  pure function strain_rows(pt, dir, t, zeta) result(b)
+    !! Rows b(5, 48) with (ε11, ε22, γ12, γ13, γ23) = b u in the lamina frame.
+    type(point_t), intent(in) :: pt
+    real(wp), intent(in) :: dir(3, NN), t, zeta
+    real(wp) :: b(NSTR, NDOF)
+    real(wp) :: g(3), h(3), a(3), qv(3), ev(3)
+    integer :: i, k, col
+    do i = 1, NN
+       ! ∂U/∂X of the node's u: u ⊗ g; of its θ: (-(t/2) n × θ) ⊗ h
+       g = matmul(pt%dn(:, i), pt%jinv(1:2, :))
+       h = zeta*g + pt%nf(i)*pt%jinv(3, :)
+       do k = 1, 3
+          col = NDN*(i - 1) + k
+          ev = 0.0_wp
+          ev(k) = 1.0_wp
+          a = matmul(pt%r, ev)
+          qv = matmul(pt%r, g)
+          b(:, col) = voigt(a, qv)
+          a = matmul(pt%r, -(t/2)*cross(dir(:, i), ev))
+          qv = matmul(pt%r, h)
+          b(:, col + 3) = voigt(a, qv)
+       end do
+    end do
+  end function strain_rows
+
+  pure subroutine in_plane_parts(x, dir, ex, t, p, bm, bb, detj)
+    !! In-plane strain rows (ε11, ε22, γ12) at p = (ξ, η) split into the
+    !! membrane part bm (the mean of the two Gauss points through the
+    !! thickness, ζ = ±1/√3) and the bending part bb = ∂ε/∂ζ (their
+    !! difference over 2/√3); detj at the two points. With ε(ζ) = bm + ζ bb
+    !! the energy density through the thickness is 2 bmᵀ D bm + (2/3) bbᵀ D bb
+    !! times the mean det J (the cross term vanishes where det J does not vary
+    !! through the thickness, i.e. on a flat element; on a curved one it is of
+    !! relative order t/R and dropped).
+    real(wp), intent(in) :: x(3, NN), dir(3, NN), ex(3), t, p(2)
+    real(wp), intent(out) :: bm(3, NDOF), bb(3, NDOF), detj(2)
+    type(point_t) :: pt
+    real(wp) :: b(NSTR, NDOF, 2)
+    integer :: k
+    do k = 1, 2
+       call point(x, dir, ex, t, [p, gauss2(k)], pt)
+       b(:, :, k) = strain_rows(pt, dir, t, gauss2(k))
+       detj(k) = pt%detj
+    end do
+    bm = (b(1:3, :, 1) + b(1:3, :, 2))/2
+    bb = (b(1:3, :, 2) - b(1:3, :, 1))/(2*G2)
+  end subroutine in_plane_parts
+
+  pure function drill_row(pt, dir, t) result(dr)
+    !! Row dr(48) with θ·e3 - ω = dr u at the point (ζ = 0).
+    type(point_t), intent(in) :: pt
+    real(wp), intent(in) :: dir(3, NN), t
+    real(wp) :: dr(NDOF)
+    real(wp) :: g(3), h(3), a(3), qv(3), ev(3)
+    integer :: i, k, col
+    do i = 1, NN
+       g = matmul(pt%dn(:, i), pt%jinv(1:2, :))
+       h = pt%nf(i)*pt%jinv(3, :)
+       do k = 1, 3
+          col = NDN*(i - 1) + k
+          ev = 0.0_wp
+          ev(k) = 1.0_wp
+          a = matmul(pt%r, ev)
+          qv = matmul(pt%r, g)
+          dr(col) = -0.5_wp*(a(2)*qv(1) - a(1)*qv(2))
+          a = matmul(pt%r, -(t/2)*cross(dir(:, i), ev))
+          qv = matmul(pt%r, h)
+          dr(col + 3) = pt%nf(i)*pt%r(3, k) - 0.5_wp*(a(2)*qv(1) - a(1)*qv(2))
+       end do
+    end do
+  end function drill_row
+
+  pure function voigt(a, q) result(s)
+    !! Strains of the displacement gradient a ⊗ q (lamina frame).
+    real(wp), intent(in) :: a(3), q(3)
+    real(wp) :: s(NSTR)
+    s = [a(1)*q(1), a(2)*q(2), a(1)*q(2) + a(2)*q(1), a(1)*q(3) + a(3)*q(1), a(2)*q(3) + a(3)*q(2)]
+  end function voigt
+
+  pure real(wp) function det3(m)
+    !! Determinant of a 3 x 3 matrix.
+    real(wp), intent(in) :: m(3, 3)
+    det3 = dot_product(m(:, 1), cross(m(:, 2), m(:, 3)))
+  end function det3
+
+  pure function inv3(m, det) result(v)
+    !! Inverse of a 3 x 3 matrix with determinant det (rows: the cofactors).
+    real(wp), intent(in) :: m(3, 3), det
+    real(wp) :: v(3, 3)
+    v(1, :) = cross(m(:, 2), m(:, 3))/det
+    v(2, :) = cross(m(:, 3), m(:, 1))/det
+    v(3, :) = cross(m(:, 1), m(:, 2))/det
+  end function inv3
+end module superjoin_elements_shell8

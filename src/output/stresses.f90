@@ -154,13 +154,14 @@ contains
       !! (σx, σy, τxy[, τxz, τyz]) of the element frame as a global tensor, Voigt order.
       real(wp), intent(in) :: s(:)
       real(wp) :: t(NTENSOR)
-      real(wp) :: m(3, 3), szz
+      real(wp) :: m(3, 3), szz, e1(3), e2(3), e3(3)
       szz = 0.0_wp
       if (strain) szz = nu*(s(1) + s(2)) - szz0
-      m = s(1)*outer(r(1, :), r(1, :)) + s(2)*outer(r(2, :), r(2, :)) + &
-           s(3)*(outer(r(1, :), r(2, :)) + outer(r(2, :), r(1, :))) + szz*outer(r(3, :), r(3, :))
-      if (size(s) == TRANSVERSE) m = m + s(4)*(outer(r(1, :), r(3, :)) + outer(r(3, :), r(1, :))) + &
-           s(5)*(outer(r(2, :), r(3, :)) + outer(r(3, :), r(2, :)))
+      e1 = r(1, :)
+      e2 = r(2, :)
+      e3 = r(3, :)
+      m = s(1)*outer(e1, e1) + s(2)*outer(e2, e2) + s(3)*(outer(e1, e2) + outer(e2, e1)) + szz*outer(e3, e3)
+      if (size(s) == TRANSVERSE) m = m + s(4)*(outer(e1, e3) + outer(e3, e1)) + s(5)*(outer(e2, e3) + outer(e3, e2))
       t = [m(1, 1), m(2, 2), m(3, 3), m(1, 2), m(1, 3), m(2, 3)]
     end function to_global
     pure function outer(p, q) result(o)

@@ -860,7 +860,8 @@ contains
     if (kind == SEC_BEAM) then
        call beam_section_params(st, kw, loc, sec)
     else
-       call check_params(st, kw, loc, [character(NAME_LEN) :: 'ELSET', 'MATERIAL'], [character(NAME_LEN) ::])
+       call check_params(st, kw, loc, [character(NAME_LEN) :: 'ELSET', 'MATERIAL', 'OFFSET'], [character(NAME_LEN) ::])
+       call section_offset(st, kw, loc, kind)
     end if
     call get_param(st, kw, loc, 'ELSET', .true., elset, found_e)
     call get_name_param(st, kw, loc, 'MATERIAL', .true., material, found_m)
@@ -886,6 +887,29 @@ contains
     st%card = CARD_SECTION
     if (kind == SEC_BEAM .or. kind == SEC_SHELL) st%cur_beam_sec = st%card_item
   end subroutine kw_section
+
+  subroutine section_offset(st, kw, loc, kind)
+    !! OFFSET= of *SOLID SECTION / *SHELL SECTION (CalculiX): 0 (the mid-surface, the default)
+    !! is accepted; another offset of the reference surface is refused.
+    type(deck_state_t), intent(inout) :: st
+    type(keyword_line_t), intent(in) :: kw
+    type(source_loc_t), intent(in) :: loc
+    integer, intent(in) :: kind
+    character(:), allocatable :: value
+    logical :: found
+    integer :: stat
+    real(wp) :: x
+    call get_param(st, kw, loc, 'OFFSET', .false., value, found)
+    if (.not. found) return
+    call parse_real(value, x, stat)
+    if (stat /= TOK_OK) then
+       call report_loc(st, loc, real_message(value, stat))
+    else if (x /= 0.0_wp) then
+       call report_loc(st, loc, 'OFFSET='//clip(value)//' is not supported: superjoin''s '// &
+            pick(kind == SEC_SHELL, 'shells', 'plane elements')//' have their reference surface at the '// &
+            'mid-surface (OFFSET=0)')
+    end if
+  end subroutine section_offset
 
   subroutine kw_transverse_shear(st, kw, loc, isec)
     !! *TRANSVERSE SHEAR STIFFNESS right after the *BEAM SECTION or *SHELL SECTION it applies to.
@@ -949,11 +973,25 @@ contains
     character(:), allocatable :: name
     logical :: found
     integer :: k
+    logical :: cylindrical
+    character(:), allocatable :: system
     if (.not. outside_step(st, kw, loc)) return
-    call check_params(st, kw, loc, [character(NAME_LEN) :: 'NAME'], [character(NAME_LEN) ::])
+    call check_params(st, kw, loc, [character(NAME_LEN) :: 'NAME', 'SYSTEM'], [character(NAME_LEN) ::])
     call get_name_param(st, kw, loc, 'NAME', .true., name, found)
     st%card = CARD_SKIP
     if (.not. found) return
+    cylindrical = .false.
+    call get_param(st, kw, loc, 'SYSTEM', .false., system, found)
+    if (found) then
+       select case (to_upper(system))
+       case ('RECTANGULAR', 'R')
+       case ('CYLINDRICAL', 'C')
+          cylindrical = .true.
+       case default
+          call report_loc(st, loc, '*ORIENTATION SYSTEM must be RECTANGULAR or CYLINDRICAL, not '//clip(system))
+          return
+       end select
+    end if
     do k = 1, st%norient
        if (st%orientations(k)%name == name) then
           call report_loc(st, loc, 'duplicate orientation name '//name//' (first defined at '// &
@@ -962,6 +1000,7 @@ contains
        end if
     end do
     call add_orientation(st, name, loc, st%card_item)
+    st%orientations(st%card_item)%cylindrical = cylindrical
     st%card = CARD_ORIENTATION
   end subroutine kw_orientation
 
@@ -1681,6 +1720,18 @@ contains
     end do
     a = v(1:3)
     b = v(4:6)
+    if (st%orientations(st%card_item)%cylindrical) then
+       ! SYSTEM=CYLINDRICAL (CalculiX): a and b are two points of the axis; the frame
+       ! (radial, tangential, axial) is taken per node pair when the links are built
+       if (norm2(b - a) == 0.0_wp) then
+          call report_loc(st, loc, '*ORIENTATION, SYSTEM=CYLINDRICAL: points a and b coincide (they define '// &
+               'the cylinder''s axis)')
+          return
+       end if
+       st%orientations(st%card_item)%a = a
+       st%orientations(st%card_item)%b = b
+       return
+    end if
     na = norm2(a)
     nb = norm2(b)
     if (na == 0.0_wp) then
@@ -2033,6 +2084,17 @@ contains
           r%totals = TOTALS_NO
        case default
           call report_loc(st, loc, 'TOTALS must be YES, ONLY or NO, not '//clip(value))
+       end select
+    end if
+    call get_param(st, kw, loc, 'GLOBAL', .false., value, found)
+    if (found) then
+       select case (to_upper(value))
+       case ('YES')
+          r%global = .true.
+       case ('NO')
+          r%global = .false.
+       case default
+          call report_loc(st, loc, 'GLOBAL must be YES or NO, not '//clip(value))
        end select
     end if
     call get_param(st, kw, loc, 'FREQUENCY', .false., value, found)

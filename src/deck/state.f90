@@ -241,6 +241,7 @@ module superjoin_deck_state
      logical :: has_set = .false.
      type(ref_t) :: set                    !! NSET= / ELSET= as written
      integer :: totals = 0
+     logical :: global = .false.           !! GLOBAL=YES
      integer :: nvar = 0, nignored = 0
      type(string_t), allocatable :: vars(:), ignored(:)
      type(source_loc_t) :: loc

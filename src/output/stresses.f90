@@ -81,6 +81,8 @@ contains
       etype = sub%elem_type(ie)
       if (.not. is_plate_type(etype) .or. sub%elem_section(ie) <= 0) return
       nn = ELEMENT_NODE_COUNT(etype)
+      ! second-order plane elements (CPS6/CPS8/CPE6/CPE8...) have no integration-point table here
+      if (nn > size(x, 2)) return
       do a = 1, nn
          x(:, a) = sub%x(:, sub%elem_nodes(a, ie))
       end do

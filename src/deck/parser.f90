@@ -54,6 +54,7 @@ module superjoin_deck_parser
   integer, parameter :: CARD_COMBINATION = 131, CARD_EXPANSION = 132, CARD_TEMPERATURE = 133
     !! Load cases and combinations (superjoin's *LOAD COMBINATION).
   integer, parameter :: CARD_EQUATION = 121, CARD_TRANSFORM = 122
+  integer, parameter :: CARD_NODAL_THICKNESS = 141
     !! Linear constraints and nodal systems (submodules superjoin_deck_equations, _transforms).
   integer, parameter :: PROC_STATIC = 1
     !! Procedures of a step (st%step_procedure).
@@ -158,6 +159,18 @@ module superjoin_deck_parser
        character(*), intent(in) :: line
        type(source_loc_t), intent(in) :: loc
      end subroutine data_transform
+     module subroutine kw_nodal_thickness(st, kw, loc)
+       !! *NODAL THICKNESS (CalculiX): shell and plane element thickness given at the nodes.
+       type(deck_state_t), intent(inout) :: st
+       type(keyword_line_t), intent(in) :: kw
+       type(source_loc_t), intent(in) :: loc
+     end subroutine kw_nodal_thickness
+     module subroutine data_nodal_thickness(st, line, loc)
+       !! A data line of *NODAL THICKNESS: node or node set, thickness[, second thickness].
+       type(deck_state_t), intent(inout) :: st
+       character(*), intent(in) :: line
+       type(source_loc_t), intent(in) :: loc
+     end subroutine data_nodal_thickness
      module subroutine kw_interface(st, kw, loc)
        !! *INTERFACE, NAME=j, MASTER=s1, SLAVE=s2, KN=kn, KT=kt[, TOL=t].
        type(deck_state_t), intent(inout) :: st
@@ -417,6 +430,8 @@ contains
        call kw_equation(st, kw, loc)
     case ('TRANSFORM')
        call kw_transform(st, kw, loc)
+    case ('NODAL THICKNESS')
+       call kw_nodal_thickness(st, kw, loc)
     case default
        if (.not. refused_card(st, kw, loc, prev_mat)) call report_loc(st, loc, 'unknown keyword *'//clip(kw%keyword))
        st%card = CARD_SKIP
@@ -1236,6 +1251,8 @@ contains
        call data_equation(st, line, loc)
     case (CARD_TRANSFORM)
        call data_transform(st, line, loc)
+    case (CARD_NODAL_THICKNESS)
+       call data_nodal_thickness(st, line, loc)
     case (CARD_STATIC)
        call data_static(st, line, loc)
     case (CARD_SPRING_ELEMENT)

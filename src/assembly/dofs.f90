@@ -239,7 +239,9 @@ contains
        associate (lk => model%links(il), ct => model%contacts(model%links(il)%contact))
          va = table%vertex_offset(ct%master_sub) + lk%master_node
          vb = table%vertex_offset(ct%slave_sub) + lk%slave_node
-         if (ct%orientation > 0) then
+         if (lk%has_q) then
+            q = lk%q
+         else if (ct%orientation > 0) then
             q = model%orientations(ct%orientation)%q
          else
             q = 0.0_wp

@@ -17,7 +17,7 @@ module superjoin_deck_frame_build
     !! points' distance has no radial direction.
   integer, parameter :: BLOCK = 3
 
-  public :: build_frames, frame_of_node
+  public :: build_frames, frame_of_node, cylinder_frame, link_frames
 
 contains
 
@@ -77,6 +77,33 @@ contains
     model%frames = list(1:n)
     if (n > 0) call loads_to_global(model)
   end subroutine build_frames
+
+  subroutine link_frames(st, model)
+    !! The frame of every link of a *CONTACT whose orientation is cylindrical
+    !! (*ORIENTATION, SYSTEM=CYLINDRICAL): radial, tangential and axial at the
+    !! midpoint of its two nodes, as CalculiX evaluates a cylindrical system
+    !! where it is used.
+    type(deck_state_t), intent(inout) :: st
+    type(model_t), intent(inout) :: model
+    integer :: il, io
+    real(wp) :: mid(3)
+    if (.not. allocated(model%links)) return
+    do il = 1, size(model%links)
+       associate (lk => model%links(il), ct => model%contacts(model%links(il)%contact))
+         io = ct%orientation
+         if (io <= 0) cycle
+         if (.not. model%orientations(io)%cylindrical) cycle
+         mid = (model%subs(ct%master_sub)%x(:, lk%master_node) + model%subs(ct%slave_sub)%x(:, lk%slave_node))/2
+         if (.not. cylinder_frame(model%orientations(io)%a, model%orientations(io)%b, mid, lk%q)) then
+            call report_loc(st, lk%loc, '*CONTACT '//ct%name//', ORIENTATION='//model%orientations(io)%name// &
+                 ': the pair '//node_label(model, ct%master_sub, lk%master_node)//' - '// &
+                 node_label(model, ct%slave_sub, lk%slave_node)//' lies on the cylinder''s axis (no radial direction)')
+            cycle
+         end if
+         lk%has_q = .true.
+       end associate
+    end do
+  end subroutine link_frames
 
   pure integer function frame_of_node(model, isub, node) result(k)
     !! Index of the nodal system of a node in model%frames, 0 if none.

@@ -55,6 +55,7 @@ module superjoin_deck_parser
   integer, parameter :: CARD_COMBINATION = 131, CARD_EXPANSION = 132, CARD_TEMPERATURE = 133
     !! Load cases and combinations (superjoin's *LOAD COMBINATION).
   integer, parameter :: CARD_EQUATION = 121, CARD_TRANSFORM = 122
+  integer, parameter :: CARD_NODAL_THICKNESS = 141
     !! Linear constraints and nodal systems (submodules superjoin_deck_equations, _transforms).
   integer, parameter :: PROC_STATIC = 1
     !! Procedures of a step (st%step_procedure).
@@ -162,6 +163,18 @@ module superjoin_deck_parser
        character(*), intent(in) :: line
        type(source_loc_t), intent(in) :: loc
      end subroutine data_transform
+     module subroutine kw_nodal_thickness(st, kw, loc)
+       !! *NODAL THICKNESS (CalculiX): shell and plane element thickness given at the nodes.
+       type(deck_state_t), intent(inout) :: st
+       type(keyword_line_t), intent(in) :: kw
+       type(source_loc_t), intent(in) :: loc
+     end subroutine kw_nodal_thickness
+     module subroutine data_nodal_thickness(st, line, loc)
+       !! A data line of *NODAL THICKNESS: node or node set, thickness[, second thickness].
+       type(deck_state_t), intent(inout) :: st
+       character(*), intent(in) :: line
+       type(source_loc_t), intent(in) :: loc
+     end subroutine data_nodal_thickness
      module subroutine kw_interface(st, kw, loc)
        !! *INTERFACE, NAME=j, MASTER=s1, SLAVE=s2, KN=kn, KT=kt[, TOL=t].
        type(deck_state_t), intent(inout) :: st
@@ -426,9 +439,7 @@ contains
     case ('TRANSFORM')
        call kw_transform(st, kw, loc)
     case ('NODAL THICKNESS')
-       call report_loc(st, loc, '*NODAL THICKNESS (a thickness per node) is not supported: shells take the '// &
-            'constant thickness of their *SHELL SECTION')
-       st%card = CARD_SKIP
+       call kw_nodal_thickness(st, kw, loc)
     case default
        if (.not. refused_card(st, kw, loc, prev_mat)) call report_loc(st, loc, 'unknown keyword *'//clip(kw%keyword))
        st%card = CARD_SKIP
@@ -916,7 +927,8 @@ contains
           return
        end if
     else
-       call check_params(st, kw, loc, [character(NAME_LEN) :: 'ELSET', 'MATERIAL'], [character(NAME_LEN) ::])
+       call check_params(st, kw, loc, [character(NAME_LEN) :: 'ELSET', 'MATERIAL', 'OFFSET'], [character(NAME_LEN) ::])
+       call section_offset(st, kw, loc, kind)
     end if
     call get_param(st, kw, loc, 'ELSET', .true., elset, found_e)
     call get_name_param(st, kw, loc, 'MATERIAL', .true., material, found_m)
@@ -942,6 +954,29 @@ contains
     st%card = CARD_SECTION
     if (kind == SEC_BEAM .or. kind == SEC_SHELL) st%cur_beam_sec = st%card_item
   end subroutine kw_section
+
+  subroutine section_offset(st, kw, loc, kind)
+    !! OFFSET= of *SOLID SECTION / *SHELL SECTION (CalculiX): 0 (the mid-surface, the default)
+    !! is accepted; another offset of the reference surface is refused.
+    type(deck_state_t), intent(inout) :: st
+    type(keyword_line_t), intent(in) :: kw
+    type(source_loc_t), intent(in) :: loc
+    integer, intent(in) :: kind
+    character(:), allocatable :: value
+    logical :: found
+    integer :: stat
+    real(wp) :: x
+    call get_param(st, kw, loc, 'OFFSET', .false., value, found)
+    if (.not. found) return
+    call parse_real(value, x, stat)
+    if (stat /= TOK_OK) then
+       call report_loc(st, loc, real_message(value, stat))
+    else if (x /= 0.0_wp) then
+       call report_loc(st, loc, 'OFFSET='//clip(value)//' is not supported: superjoin''s '// &
+            pick(kind == SEC_SHELL, 'shells', 'plane elements')//' have their reference surface at the '// &
+            'mid-surface (OFFSET=0)')
+    end if
+  end subroutine section_offset
 
   subroutine kw_transverse_shear(st, kw, loc, isec)
     !! *TRANSVERSE SHEAR STIFFNESS right after the *BEAM SECTION or *SHELL SECTION it applies to.
@@ -1005,11 +1040,25 @@ contains
     character(:), allocatable :: name
     logical :: found
     integer :: k
+    logical :: cylindrical
+    character(:), allocatable :: system
     if (.not. outside_step(st, kw, loc)) return
-    call check_params(st, kw, loc, [character(NAME_LEN) :: 'NAME'], [character(NAME_LEN) ::])
+    call check_params(st, kw, loc, [character(NAME_LEN) :: 'NAME', 'SYSTEM'], [character(NAME_LEN) ::])
     call get_name_param(st, kw, loc, 'NAME', .true., name, found)
     st%card = CARD_SKIP
     if (.not. found) return
+    cylindrical = .false.
+    call get_param(st, kw, loc, 'SYSTEM', .false., system, found)
+    if (found) then
+       select case (to_upper(system))
+       case ('RECTANGULAR', 'R')
+       case ('CYLINDRICAL', 'C')
+          cylindrical = .true.
+       case default
+          call report_loc(st, loc, '*ORIENTATION SYSTEM must be RECTANGULAR or CYLINDRICAL, not '//clip(system))
+          return
+       end select
+    end if
     do k = 1, st%norient
        if (st%orientations(k)%name == name) then
           call report_loc(st, loc, 'duplicate orientation name '//name//' (first defined at '// &
@@ -1018,6 +1067,7 @@ contains
        end if
     end do
     call add_orientation(st, name, loc, st%card_item)
+    st%orientations(st%card_item)%cylindrical = cylindrical
     st%card = CARD_ORIENTATION
   end subroutine kw_orientation
 
@@ -1253,6 +1303,8 @@ contains
        call data_equation(st, line, loc)
     case (CARD_TRANSFORM)
        call data_transform(st, line, loc)
+    case (CARD_NODAL_THICKNESS)
+       call data_nodal_thickness(st, line, loc)
     case (CARD_STATIC)
        call data_static(st, line, loc)
     case (CARD_SPRING_ELEMENT)
@@ -1741,6 +1793,18 @@ contains
     end do
     a = v(1:3)
     b = v(4:6)
+    if (st%orientations(st%card_item)%cylindrical) then
+       ! SYSTEM=CYLINDRICAL (CalculiX): a and b are two points of the axis; the frame
+       ! (radial, tangential, axial) is taken per node pair when the links are built
+       if (norm2(b - a) == 0.0_wp) then
+          call report_loc(st, loc, '*ORIENTATION, SYSTEM=CYLINDRICAL: points a and b coincide (they define '// &
+               'the cylinder''s axis)')
+          return
+       end if
+       st%orientations(st%card_item)%a = a
+       st%orientations(st%card_item)%b = b
+       return
+    end if
     na = norm2(a)
     nb = norm2(b)
     if (na == 0.0_wp) then
@@ -2137,6 +2201,17 @@ contains
           r%totals = TOTALS_NO
        case default
           call report_loc(st, loc, 'TOTALS must be YES, ONLY or NO, not '//clip(value))
+       end select
+    end if
+    call get_param(st, kw, loc, 'GLOBAL', .false., value, found)
+    if (found) then
+       select case (to_upper(value))
+       case ('YES')
+          r%global = .true.
+       case ('NO')
+          r%global = .false.
+       case default
+          call report_loc(st, loc, 'GLOBAL must be YES or NO, not '//clip(value))
        end select
     end if
     call get_param(st, kw, loc, 'FREQUENCY', .false., value, found)

@@ -12,7 +12,8 @@ module superjoin_deck_reader
   use superjoin_deck_parser, only: parse_source, finish_parse, register_file
   use superjoin_deck_validate, only: build_model
   use superjoin_deck_equation_build, only: build_equations
-  use superjoin_deck_frame_build, only: build_frames
+  use superjoin_deck_frame_build, only: build_frames, link_frames
+  use superjoin_deck_thickness_build, only: apply_nodal_thickness
   implicit none (type, external)
   private
 
@@ -58,6 +59,8 @@ contains
     if (.not. st%aborted) call build_model(st, model)
     if (.not. st%aborted) call build_equations(st, model)
     if (.not. st%aborted) call build_frames(st, model)
+    if (.not. st%aborted) call link_frames(st, model)
+    if (.not. st%aborted) call apply_nodal_thickness(st, model)
     if (allocated(st%error)) call move_alloc(st%error, error)
   end subroutine read_deck_string
 end module superjoin_deck_reader

@@ -42,6 +42,7 @@ contains
     r%card = b%card
     r%step = b%step
     r%totals = b%totals
+    r%global = b%global
     r%loc = b%loc
     if (b%nvar == 0 .and. b%nignored == 0) then
        allocate (r%vars(1))

@@ -146,6 +146,13 @@ module superjoin_deck_state
      type(source_loc_t) :: loc
   end type transform_b_t
 
+  type, public :: nthick_b_t
+    !! One data line of *NODAL THICKNESS: node or node set, thickness.
+     type(ref_t) :: node
+     real(wp) :: t = 0.0_wp
+     type(source_loc_t) :: loc
+  end type nthick_b_t
+
   type, public :: support_b_t
     !! One data line of *SUPPORT or *BOUNDARY.
      type(ref_t) :: ref
@@ -257,6 +264,7 @@ module superjoin_deck_state
      logical :: has_set = .false.
      type(ref_t) :: set                    !! NSET= / ELSET= as written
      integer :: totals = 0
+     logical :: global = .false.           !! GLOBAL=YES
      integer :: nvar = 0, nignored = 0
      type(string_t), allocatable :: vars(:), ignored(:)
      type(source_loc_t) :: loc
@@ -318,6 +326,8 @@ module superjoin_deck_state
      type(support_b_t), allocatable :: supports(:)
      integer :: ntransform = 0
      type(transform_b_t), allocatable :: transforms(:) !! *TRANSFORM cards as read
+     integer :: nnthick = 0
+     type(nthick_b_t), allocatable :: nthicks(:)       !! *NODAL THICKNESS data lines as read
      integer :: nequation = 0
      type(equation_b_t), allocatable :: equations(:)   !! *EQUATION constraints as read
      integer :: nstep = 0

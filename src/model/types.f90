@@ -150,6 +150,9 @@ module superjoin_model_types
     !! A frame for oriented contacts: rows of q are the local axes.
      character(:), allocatable :: name
      real(wp) :: q(3, 3) = 0.0_wp
+     logical :: cylindrical = .false.      !! SYSTEM=CYLINDRICAL: each link takes its own frame (link_t%q)
+     real(wp) :: a(3) = 0.0_wp             !! cylindrical: two points a, b of the axis
+     real(wp) :: b(3) = 0.0_wp
      type(source_loc_t) :: loc
   end type orientation_t
 
@@ -174,6 +177,8 @@ module superjoin_model_types
      integer :: state(NDOF_NODE) = LINK_NONE
      real(wp) :: g(NDOF_NODE) = 0.0_wp
      type(source_loc_t) :: loc             !! first line that defined it
+     logical :: has_q = .false.            !! its own frame q (cylindrical orientation), not the card's
+     real(wp) :: q(3, 3) = 0.0_wp          !! rows: radial, tangential, axial at the pair's midpoint
   end type link_t
 
   type, public :: support_t
@@ -283,6 +288,7 @@ module superjoin_model_types
      integer :: totals = TOTALS_NO         !! TOTALS_*
      type(string_t), allocatable :: vars(:)     !! variables superjoin produces (upper case)
      type(string_t), allocatable :: ignored(:)  !! variables it knows but cannot produce (thermal, plastic...)
+     logical :: global = .false.           !! *NODE PRINT, GLOBAL=YES: nodes with a *TRANSFORM in global axes too
      type(source_loc_t) :: loc
   end type output_request_t
 

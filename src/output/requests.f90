@@ -10,7 +10,8 @@ module superjoin_output_requests
   use superjoin_kinds, only: wp, i8, ip
   use superjoin_model_types, only: model_t, output_request_t, NDOF_NODE, REQ_NODE_PRINT, REQ_EL_PRINT, &
        REQ_KIND_NAMES, TOTALS_YES, TOTALS_ONLY, ET_T2D2, ET_T3D2, ET_CPS3, ET_CPS4, &
-       ELEMENT_NODE_COUNT, ET_CPS6, ET_CPS8, ET_CPS8R, MAX_ELEMENT_NODES
+       ELEMENT_NODE_COUNT, ET_CPS6, ET_CPS8, ET_CPS8R, MAX_ELEMENT_NODES, &
+       ET_CPE3, ET_CPE4, ET_CPE6, ET_CPE8, ET_CPE8R
   use superjoin_elements, only: is_plate_type
   use superjoin_elements_shell, only: shell_frame
   use superjoin_error, only: error_t
@@ -103,6 +104,9 @@ contains
   ! ------------------------------------------------------------------ nodes
 
   subroutine node_request(lu, model, fields, is, r)
+    !! One *NODE PRINT card. As CalculiX's .dat file: a node with a nodal system
+    !! (*TRANSFORM) prints U, RF and CF in that system, its row marked L, unless
+    !! the card says GLOBAL=YES; totals are sums of the global components.
     type(text_buffer_t), intent(inout) :: lu
     type(model_t), intent(in) :: model
     type(result_fields_t), intent(in) :: fields
@@ -110,23 +114,31 @@ contains
     type(output_request_t), intent(in) :: r
     integer :: iv
     integer(ip) :: nsel
-    integer, allocatable :: subs(:)
+    integer, allocatable :: subs(:), frame(:)
     integer(ip), allocatable :: nodes(:)
-    real(wp), allocatable :: vals(:, :)
+    real(wp), allocatable :: vals(:, :), gvals(:, :)
+    logical :: local
+    character(:), allocatable :: axes
     call request_title(lu, model, r)
     call selected_items(r, model%subs(:)%nnode, subs, nodes)
     nsel = size(nodes, kind=ip)
     allocate (vals(NDOF_NODE, nsel))
+    call node_frames(model, subs, nodes, frame)
+    local = .not. r%global .and. any(frame > 0)
+    axes = 'global axes'
+    if (local) axes = 'global axes; rows marked L: the node''s *TRANSFORM system'
     do iv = 1, size(r%vars)
        select case (r%vars(iv)%s)
        case ('U')
-          call lu%line('    U   displacements (global axes; 4-6: rotations)')
+          call lu%line('    U   displacements ('//axes//'; 4-6: rotations)')
           call fill_u(vals)
        case ('RF')
-          call lu%line('    RF  reaction forces (sum of the support reactions on the node, global axes)')
+          call lu%line('    RF  reaction forces (sum of the support reactions on the node, '//axes//')')
           call fill_rf(vals)
+          ! the reactions of a node with a nodal system are along its axes
+          call rotate_rows(model, frame, .true., vals)
        case ('CF')
-          call lu%line('    CF  concentrated loads (*CLOAD, global axes)')
+          call lu%line('    CF  concentrated loads (*CLOAD, '//axes//')')
           call fill_cf(vals)
        case ('S')
           call write_nodal_stress_table(lu, model, fields, is, subs, nodes)
@@ -134,7 +146,9 @@ contains
        case default
           cycle
        end select
-       call node_table(lu, model, r, subs, nodes, vals)
+       gvals = vals
+       if (local) call rotate_rows(model, frame, .false., vals)
+       call node_table(lu, model, r, subs, nodes, vals, gvals, local .and. frame > 0)
     end do
     call lu%line('')
   contains
@@ -178,6 +192,45 @@ contains
     end subroutine fill_cf
   end subroutine node_request
 
+  subroutine node_frames(model, subs, nodes, frame)
+    !! Index into model%frames of the nodal system of each node (0: none).
+    type(model_t), intent(in) :: model
+    integer, intent(in) :: subs(:)
+    integer(ip), intent(in) :: nodes(:)
+    integer, allocatable, intent(out) :: frame(:)
+    integer :: k
+    allocate (frame(size(nodes)))
+    frame = 0
+    if (.not. allocated(model%frames)) return
+    do k = size(model%frames), 1, -1
+       associate (f => model%frames(k))
+         where (subs == f%sub .and. nodes == f%node) frame = k
+       end associate
+    end do
+  end subroutine node_frames
+
+  subroutine rotate_rows(model, frame, to_global, vals)
+    !! Turn the translations and rotations of every node with a nodal system
+    !! from global axes into it (q v), or back (q^T v) when `to_global`.
+    type(model_t), intent(in) :: model
+    integer, intent(in) :: frame(:)
+    logical, intent(in) :: to_global
+    real(wp), intent(inout) :: vals(:, :)
+    integer :: i, b
+    do i = 1, size(frame)
+       if (frame(i) == 0) cycle
+       associate (q => model%frames(frame(i))%q)
+         do b = 0, NDOF_NODE - 3, 3
+            if (to_global) then
+               vals(b + 1:b + 3, i) = matmul(transpose(q), vals(b + 1:b + 3, i))
+            else
+               vals(b + 1:b + 3, i) = matmul(q, vals(b + 1:b + 3, i))
+            end if
+         end do
+       end associate
+    end do
+  end subroutine rotate_rows
+
   subroutine selected_items(r, counts, subs, items)
     !! The nodes or elements a request names: its set, or every one of the
     !! model (counts: nodes or elements per substructure).
@@ -204,20 +257,22 @@ contains
     end do
   end subroutine selected_items
 
-  subroutine node_table(lu, model, r, subs, nodes, vals)
+  subroutine node_table(lu, model, r, subs, nodes, vals, gvals, marked)
+    !! Rows of vals (rows `marked` L: in the node's nodal system); totals: sums of gvals (global axes).
     type(text_buffer_t), intent(inout) :: lu
     type(model_t), intent(in) :: model
     type(output_request_t), intent(in) :: r
     integer, intent(in) :: subs(:)
     integer(ip), intent(in) :: nodes(:)
-    real(wp), intent(in) :: vals(:, :)
+    real(wp), intent(in) :: vals(:, :), gvals(:, :)
+    logical, intent(in) :: marked(:)
     character(len=200) :: hline
     real(wp) :: scale
     integer :: i, d
     write (hline, '(4x,a20,a10,6a15)') 'substructure        ', '      node', NODE_HEAD
     call lu%line(trim(hline))
     scale = 0.0_wp
-    if (size(vals) > 0) scale = maxval(abs(vals))
+    if (size(vals) > 0) scale = max(maxval(abs(vals)), maxval(abs(gvals)))
     if (r%totals /= TOTALS_ONLY) then
        do i = 1, size(nodes)
           call lu%put('    ')
@@ -226,6 +281,7 @@ contains
           do d = 1, NDOF_NODE
              call lu%put_es(chop(vals(d, i), scale))
           end do
+          if (marked(i)) call lu%put('  L')
           call lu%newline()
        end do
     end if
@@ -233,7 +289,7 @@ contains
     call lu%put('    ')
     call lu%put_field('total', 30)
     do d = 1, NDOF_NODE
-       call lu%put_es(chop(sum(vals(d, :)), scale))
+       call lu%put_es(chop(sum(gvals(d, :)), scale))
     end do
     call lu%newline()
   end subroutine node_table
@@ -285,7 +341,7 @@ contains
     real(wp), intent(out) :: t(NTENSOR)
     logical, intent(out) :: ok
     real(wp) :: a(3), m(3, 3), sig(3, 3), x(3, MAX_ELEMENT_NODES), ex(3), ey(3), ez(3), e, nu, thick, sl(3), el(3)
-    real(wp) :: r(3, 3), xl(2, MAX_ELEMENT_NODES), h(MAX_ELEMENT_NODES)
+    real(wp) :: r(3, 3), xl(2, MAX_ELEMENT_NODES), h(MAX_ELEMENT_NODES), eth
     type(error_t), allocatable :: error
     integer(i8) :: iel
     integer :: etype, nn, i
@@ -298,6 +354,8 @@ contains
         e = model%materials(sec%material)%e
         nu = model%materials(sec%material)%nu
         iel = fields%elem_offset(isub) + ie
+        eth = 0.0_wp                                     ! free thermal strain α ΔT of the element
+        if (allocated(fields%thermal)) eth = fields%thermal(1, iel, is)
         nn = ELEMENT_NODE_COUNT(etype)
         do i = 1, nn
            x(:, i) = sub%x(:, sub%elem_nodes(i, ie))
@@ -321,14 +379,31 @@ contains
            ey = r(2, :)
            ez = r(3, :)
            sl = fields%plate(1:3, iel, is)/thick        ! sx, sy, txy in the element frame
-           if (strain) then
-              el(1) = (sl(1) - nu*sl(2))/e
-              el(2) = (sl(2) - nu*sl(1))/e
+           if (strain) then                              ! total strain: elastic + α ΔT
+              el(1) = (sl(1) - nu*sl(2))/e + eth
+              el(2) = (sl(2) - nu*sl(1))/e + eth
               el(3) = (1.0_wp + nu)*sl(3)/e       ! tensor shear strain = gamma/2
               sig = el(1)*outer(ex, ex) + el(2)*outer(ey, ey) + el(3)*(outer(ex, ey) + outer(ey, ex)) &
-                   - nu*(sl(1) + sl(2))/e*outer(ez, ez)
+                   + (eth - nu*(sl(1) + sl(2))/e)*outer(ez, ez)
            else
               sig = sl(1)*outer(ex, ex) + sl(2)*outer(ey, ey) + sl(3)*(outer(ex, ey) + outer(ey, ex))
+           end if
+        case (ET_CPE3, ET_CPE4, ET_CPE6, ET_CPE8, ET_CPE8R)
+           ! plane strain: sz = nu (sx + sy) - E α ΔT, ez = 0
+           call shell_frame(x(:, 1:nn), r, xl(:, 1:nn), h(1:nn), error)
+           if (allocated(error)) return
+           ex = r(1, :)
+           ey = r(2, :)
+           ez = r(3, :)
+           sl = fields%plate(1:3, iel, is)/sec%thickness
+           if (strain) then
+              el(1) = (1.0_wp + nu)*((1.0_wp - nu)*sl(1) - nu*sl(2))/e + (1.0_wp + nu)*eth
+              el(2) = (1.0_wp + nu)*((1.0_wp - nu)*sl(2) - nu*sl(1))/e + (1.0_wp + nu)*eth
+              el(3) = (1.0_wp + nu)*sl(3)/e
+              sig = el(1)*outer(ex, ex) + el(2)*outer(ey, ey) + el(3)*(outer(ex, ey) + outer(ey, ex))
+           else
+              sig = sl(1)*outer(ex, ex) + sl(2)*outer(ey, ey) + sl(3)*(outer(ex, ey) + outer(ey, ex)) &
+                   + (nu*(sl(1) + sl(2)) - e*eth)*outer(ez, ez)
            end if
         case default
            return

@@ -26,7 +26,36 @@ spring1.inp (SPRINGA, k = 10, load 1): refused as written (*STEP, NLGEOM);
 the script also runs a copy whose only change is *STEP, NLGEOM -> *STEP and
 compares *NODE PRINT U with .dat.ref (u = 1/k = 0.1; a spring along its own
 axis is linear, so CalculiX's NLGEOM answer is the linear one).
+
+CalculiX's "forces" of a node are its internal nodal forces: the support
+reaction plus the applied load; superjoin's RF is the reaction alone, so the
+script compares RF + the deck's *CLOAD with them.
+
+beamlin.inp, b31.inp, rot1.inp, rot2.inp (B32, B31 beams): CalculiX expands a
+beam into 3D bricks, so its values are those of the brick model. superjoin
+must reproduce the closed forms (round-off, 1e-10 of the table); the ratio
+of CalculiX's value to the closed form is printed as a note, and the
+reactions, which are statically determinate, must agree with .dat.ref.
+rot1/rot2 step 2: CalculiX carries a step's loads into the next step,
+superjoin's steps are load cases of their own unless *CLOAD, OP=MOD says
+so (doc/user-manual.md). The unchanged decks' step 2 is checked against its
+superjoin meaning (rot1: no load, zero; rot2: only the new moment), and a
+copy whose only change is OP=MOD on the step-2 *CLOAD (rot1: an added empty
+*CLOAD, OP=MOD card) against the closed form of CalculiX's load case.
+
+planestrain.inp (CPE4), planestrain2.inp (CPE8): uniform stress (patch
+test), so every integration point of CalculiX's expanded brick must show the
+element's single tensor; displacements, strains and stresses must agree.
+oneel.inp (CPE8, *EQUATION): no print request (.dat.ref is empty); its
+*NODE FILE displacements go to CSV and are compared with the DISP block of
+oneel.frd.ref (5 significant digits: 1e-5 of the table).
+
+transform_print.inp (not from the suite; written for superjoin and run
+through CalculiX 2.20 to make its .dat.ref): *NODE PRINT of U and RF of a
+node with a *TRANSFORM, in the nodal system by default (CalculiX marks the
+rows L, so does superjoin), in global axes with GLOBAL=YES.
 """
+import csv
 import math
 import os
 import re
@@ -288,6 +317,258 @@ def spring1(binary, outdir):
             check(f'node {node} u{c + 1}', got[node][c], vals[c], scale)
 
 
+# ---------------------------------------------------------------- general tables
+
+def dat_tables(path):
+    """[(kind, set, time, {key: [values]}, {keys marked L})] from a CalculiX .dat file."""
+    tables = []
+    with open(path) as f:
+        for line in f:
+            m = re.match(r'\s*(displacements|stresses|strains|forces) \(.*\) for ?set (\S+) and time\s+(\S+)', line)
+            if m:
+                cur, marked = {}, set()
+                tables.append((m.group(1), m.group(2), float(m.group(3)), cur, marked))
+                continue
+            fields = line.split()
+            if tables and fields:
+                if fields[-1] == 'L':
+                    fields = fields[:-1]
+                    marked.add(int(fields[0]))
+                if '.' in fields[1]:
+                    cur[(int(fields[0]),)] = [float(v) for v in fields[1:]]
+                else:
+                    cur[(int(fields[0]), int(fields[1]))] = [float(v) for v in fields[2:]]
+    return tables
+
+
+def dat_table(path, kind, set_name, nth=0):
+    found = [t for t in dat_tables(path) if t[0] == kind and t[1] == set_name]
+    return found[nth][3], found[nth][4]
+
+
+def frd_disp(path):
+    """{node: [u1, u2, u3]} of the first DISP block of a CalculiX .frd file."""
+    rows, inside = {}, False
+    with open(path) as f:
+        for line in f:
+            if line.startswith(' -4  DISP'):
+                inside = True
+            elif inside and line.startswith(' -3'):
+                break
+            elif inside and line.startswith(' -1'):
+                rows[int(line[3:13])] = [float(line[13 + 12 * k:25 + 12 * k]) for k in range(3)]
+    return rows
+
+
+def listing_rows(text, step, place, header):
+    """Rows of one table of the REQUESTED OUTPUT of `step`: the request whose
+    title names `place` (deck:line), the table whose header line starts with
+    `header`. {id: (values, marked L)} for node tables, {id: values} otherwise."""
+    sec = text[text.index(f'REQUESTED OUTPUT (*NODE PRINT, *EL PRINT) of step {step}\n'):]
+    sec = sec[sec.index('(' + place + ')'):]
+    sec = sec[sec.index('\n' + header):]
+    rows = {}
+    for line in sec.splitlines()[3:]:
+        f = line.split()
+        if not line.startswith('    ') or len(f) < 7 or not f[1].isdigit():
+            break
+        marked = f[-1] == 'L'
+        if marked:
+            f = f[:-1]
+        rows[int(f[1])] = ([float(v.replace('E', 'e')) for v in f[-6:]], marked)
+    return rows
+
+
+def table_scale(rows):
+    return max(max(abs(v) for v in vals) for vals in rows.values())
+
+
+def note(text):
+    print(f'  note: {text}')
+
+
+# ---------------------------------------------------------------- beams
+
+def beamlin(binary, outdir):
+    print('beamlin.inp (B32, two sections): *NODE PRINT U, RF; *EL PRINT S')
+    text = run(binary, outdir, 'beamlin')
+    u = listing_rows(text, 1, 'beamlin.inp:32', '    U ')
+    rf = listing_rows(text, 1, 'beamlin.inp:32', '    RF ')
+    ref_u, _ = dat_table(os.path.join(HERE, 'beamlin.dat.ref'), 'displacements', 'NALL')
+    ref_f, _ = dat_table(os.path.join(HERE, 'beamlin.dat.ref'), 'forces', 'NALL')
+    p, e = 5000.0, 200000.0
+    # u(x) = P x / (E A): A = 100 on 0..100, 25 on 100..150
+    exact = {1: 0.0, 2: p * 50 / (e * 100), 3: p * 100 / (e * 100)}
+    exact[4] = exact[3] + p * 25 / (e * 25)
+    exact[5] = exact[3] + p * 50 / (e * 25)
+    for node, want in exact.items():
+        check(f'node {node} u1 = P x/(EA) (closed form)', u[node][0][0], want, exact[5])
+    note('CalculiX (B32 expanded into bricks) / closed form at node 5: '
+         f'{ref_u[(5,)][0] / exact[5]:.5f}')
+    scale = table_scale(ref_f)
+    load = {5: [p, 0.0, 0.0]}
+    for (node,), vals in sorted(ref_f.items()):
+        for c in range(3):
+            got = rf[node][0][c] + load.get(node, [0.0] * 3)[c]
+            check(f'node {node} RF{c + 1} + CLOAD against CalculiX forces', got, vals[c], scale)
+    ref_s, _ = dat_table(os.path.join(HERE, 'beamlin.dat.ref'), 'stresses', 'ELALL')
+    for elem, area in ((1, 100.0), (2, 25.0)):
+        pts = [v[0] for k, v in ref_s.items() if k[0] == elem]
+        note(f'element {elem}: CalculiX mean sxx of its {len(pts)} brick points / (P/A) = '
+             f'{sum(pts) / len(pts) / (p / area):.5f} (superjoin prints no fibre stresses of B32: SF gives N)')
+
+
+def b31(binary, outdir):
+    print('b31.inp (ten B31, tip load 1 along x): *EL PRINT S (fibre stresses)')
+    text = run(binary, outdir, 'b31')
+    sec = text[text.index('beam fibre stresses'):]
+    rows = []
+    for line in sec.splitlines()[2:]:
+        f = line.split()
+        if len(f) != 8 or f[2] != 'B31':
+            break
+        rows.append((int(f[1]), int(f[3]), float(f[5].replace('E', 'e')), float(f[7].replace('E', 'e'))))
+    i = 0.25 ** 4 / 12
+    # element k spans z = k-1 .. k; M(z) = P (10 - z) about local axis; sxx = -M y / I with y the fibre's x
+    scale = 10 * 0.125 / i
+    for elem, end, y, sxx in rows:
+        z = elem - 1 + (end - 1)
+        want = -(10 - z) * y / i
+        check(f'element {elem} end {end} y {y:+.3f}: sxx = -P (L - z) x / I (closed form)', sxx, want, scale)
+    ref_s, _ = dat_table(os.path.join(HERE, 'b31.dat.ref'), 'stresses', 'EALL')
+    ratios = [abs(v[2]) / ((10 - (e - 0.5)) * 0.125 / math.sqrt(3) / i) for (e, _), v in ref_s.items()]
+    note(f'CalculiX (B31 expanded into bricks) |szz| at its 8 points / beam theory at the element middle '
+         f'and the section\'s Gauss points (+-a/(2 sqrt 3)): {min(ratios):.3f} .. {max(ratios):.3f}')
+
+
+def rot_decks(binary, outdir):
+    e, m, length = 210000.0, 1.0e-3, 0.8
+    ei = e * 0.03 * 0.015 ** 3 / 12
+    x = {10: 0.0, 20: 0.2, 30: 0.4, 4: 0.6, 5: 0.8}
+    scale = m * length ** 2 / (2 * ei)
+    for name in ('rot1', 'rot2'):
+        print(f'{name}.inp (B32 cantilever, moment at the tip): *NODE PRINT U in two steps')
+        text = run(binary, outdir, name)
+        ref1, _ = dat_table(os.path.join(HERE, name + '.dat.ref'), 'displacements', 'NS_ALL', 0)
+        place = {'rot1': ('rot1.inp:28', 'rot1.inp:35'), 'rot2': ('rot2.inp:28', 'rot2.inp:35')}[name]
+        u1 = listing_rows(text, 1, place[0], '    U ')
+        for node, xn in x.items():
+            check(f'step 1 node {node} v = M x^2/(2EI)', u1[node][0][1], m * xn ** 2 / (2 * ei), scale)
+            check(f'step 1 node {node} rz = M x/(EI)', u1[node][0][5], m * xn / ei, m * length / ei)
+        note(f'CalculiX (bricks) / closed form, step 1 node 5: {ref1[(5,)][1] / (m * length ** 2 / (2 * ei)):.5f}')
+        u2 = listing_rows(text, 2, place[1], '    U ')
+        for node, xn in x.items():
+            if name == 'rot1':
+                want = 0.0     # superjoin: step 2 writes no load
+            else:
+                want = -m * min(xn, 0.4) ** 2 / (2 * ei) - m * 0.4 / ei * max(xn - 0.4, 0.0)
+            check(f'step 2 as written (superjoin: a step is its own load case) node {node} v', u2[node][0][1], want, scale)
+        with open(os.path.join(HERE, name + '.inp')) as f:
+            deck = f.read()
+        if name == 'rot1':
+            assert deck.count('*BOUNDARY, OP=NEW') == 0 and deck.count('*BOUNDARY,OP=NEW') == 1
+            deck = deck.replace('*BOUNDARY,OP=NEW', '*CLOAD,OP=MOD\n*BOUNDARY,OP=NEW')
+        else:
+            assert deck.count('*CLOAD\n30,6,-1.e-3') == 1
+            deck = deck.replace('*CLOAD\n30,6,-1.e-3', '*CLOAD,OP=MOD\n30,6,-1.e-3')
+        with open(os.path.join(outdir, name + '_mod.inp'), 'w') as f:
+            f.write(deck)
+        u2 = listing_rows(run(binary, outdir, name + '_mod', outdir), 2, name + '_mod.inp:' + place[1].split(':')[1]
+                          if name == 'rot2' else 'rot1_mod.inp:36', '    U ')
+        ref2, _ = dat_table(os.path.join(HERE, name + '.dat.ref'), 'displacements', 'NS_ALL', 1)
+        for node, xn in x.items():
+            # CalculiX's load case: M at node 5 and the part from node 30 on clamped (rot1: at 30 only;
+            # rot2: -M at 30 cancels the moment left of it)
+            want = m * max(xn - 0.4, 0.0) ** 2 / (2 * ei)
+            check(f'step 2 with OP=MOD (CalculiX\'s loads) node {node} v', u2[node][0][1], want, scale)
+        note(f'CalculiX step 2 node 5 / closed form: {ref2[(5,)][1] / (m * 0.4 ** 2 / (2 * ei)):.5f}; nodes 10, 20, 30 '
+             f'(an unloaded, clamped part, exactly 0): CalculiX {ref2[(10,)][1]:.3e}, {ref2[(20,)][1]:.3e}, '
+             f'{ref2[(30,)][1]:.3e} (its brick expansion and rotational knots)')
+
+
+# ---------------------------------------------------------------- plane strain
+
+def plane_strain(binary, outdir):
+    for name, ds_line in (('planestrain', 'planestrain.inp:31'), ('planestrain2', 'planestrain2.inp:37')):
+        print(f'{name}.inp: *NODE PRINT U, *EL PRINT E, S')
+        text = run(binary, outdir, name)
+        ref_path = os.path.join(HERE, name + '.dat.ref')
+        ref_u, _ = dat_table(ref_path, 'displacements', 'NALL')
+        u = listing_rows(text, 1, ds_line.split(':')[0] + ':' + str(int(ds_line.split(':')[1]) - 2), '    U ')
+        scale = table_scale(ref_u)
+        for (node,), vals in sorted(ref_u.items()):
+            for c in range(3):
+                check(f'node {node} u{c + 1}', u[node][0][c], vals[c], scale)
+        for kind, header in (('strains', '    E '), ('stresses', '    S   stresses')):
+            ref, _ = dat_table(ref_path, kind, 'EALL')
+            got = listing_rows(text, 1, ds_line, header)
+            scale = table_scale(ref)
+            for (elem, ip), vals in sorted(ref.items()):
+                for c in range(6):
+                    check(f'element {elem} point {ip} {kind} {c + 1} (uniform state)', got[elem][0][c], vals[c], scale)
+
+
+def oneel(binary, outdir):
+    print('oneel.inp (CPE8, *EQUATION): *NODE FILE U (CSV) against oneel.frd.ref')
+    out = os.path.join(outdir, 'oneel_csv')
+    os.makedirs(out, exist_ok=True)
+    proc = subprocess.run([binary, '-q', 'oneel.inp', '-o', os.path.join(out, 'oneel.lst'), '--csv', out], cwd=HERE,
+                          stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+    if proc.returncode != 0:
+        print(f'FAIL: superjoin exited with {proc.returncode} on oneel.inp:\n{proc.stderr}')
+        sys.exit(1)
+    with open(os.path.join(out, 'displacements.csv')) as f:
+        got = {int(r['node']): [float(r[k]) for k in ('u1', 'u2', 'u3')] for r in csv.DictReader(f)}
+    ref = frd_disp(os.path.join(HERE, 'oneel.frd.ref'))
+    scale = table_scale(ref)
+    for node, vals in sorted(ref.items()):
+        for c in range(3):
+            err = abs(got[node][c] - vals[c])
+            ok = err <= 1.0e-5 * scale
+            print(f"  {'ok  ' if ok else 'FAIL'} node {node} u{c + 1}: {got[node][c]:.7e}  reference {vals[c]:.5e}"
+                  f"  |diff|/scale {err / scale:.1e}")
+            if not ok:
+                FAILURES.append(f'oneel node {node}')
+    # closed form: uniform sy = 1 (unit load on a unit edge, thickness 1), plane strain
+    e, nu = 210000.0, 0.3
+    check('node 3 u2 = (1 - nu^2)/E', got[3][1], (1 - nu ** 2) / e, scale * 1e-4)
+    check('node 3 u1 = -nu (1 + nu)/E', got[3][0], -nu * (1 + nu) / e, scale * 1e-4)
+
+
+# ---------------------------------------------------------------- nodal systems
+
+def transform_print(binary, outdir):
+    print('transform_print.inp: *NODE PRINT U, RF of a node with a *TRANSFORM (local; GLOBAL=YES)')
+    text = run(binary, outdir, 'transform_print')
+    ref = os.path.join(HERE, 'transform_print.dat.ref')
+    c30, s30 = math.sqrt(3) / 2, 0.5
+    load_local = [1000.0, 500.0, 0.0]
+    load_global = [c30 * load_local[0] - s30 * load_local[1], s30 * load_local[0] + c30 * load_local[1], 0.0]
+    for place, set_name, load in (('transform_print.inp:33', 'NALL', load_local),
+                                  ('transform_print.inp:35', 'END', load_global)):
+        ref_u, mark_u = dat_table(ref, 'displacements', set_name)
+        ref_f, mark_f = dat_table(ref, 'forces', set_name)
+        u = listing_rows(text, 1, place, '    U ')
+        rf = listing_rows(text, 1, place, '    RF ')
+        for table, refs, marks, what in ((u, ref_u, mark_u, 'U'), (rf, ref_f, mark_f, 'RF + CLOAD')):
+            scale = table_scale(refs)
+            for (node,), vals in sorted(refs.items()):
+                for c in range(3):
+                    got = table[node][0][c] + (load[c] if what != 'U' and node == 2 else 0.0)
+                    check(f'{set_name} node {node} {what} {c + 1}', got, vals[c], scale)
+                ok = table[node][1] == (node in marks)
+                print(f"  {'ok  ' if ok else 'FAIL'} {set_name} node {node} {what}: marked L "
+                      f"{table[node][1]}, CalculiX {node in marks}")
+                if not ok:
+                    FAILURES.append(f'{what} mark node {node}')
+        header = text[text.index('(' + place + ')'):].splitlines()[1]
+        want = "rows marked L: the node's *TRANSFORM system" in header
+        ok = want == (set_name == 'NALL')
+        print(f"  {'ok  ' if ok else 'FAIL'} header: {header.strip()}")
+        if not ok:
+            FAILURES.append('transform header')
+
+
 def main():
     if len(sys.argv) != 3:
         print(__doc__)
@@ -296,6 +577,12 @@ def main():
     truss(binary, outdir)
     planestress3(binary, outdir)
     spring1(binary, outdir)
+    beamlin(binary, outdir)
+    b31(binary, outdir)
+    rot_decks(binary, outdir)
+    plane_strain(binary, outdir)
+    oneel(binary, outdir)
+    transform_print(binary, outdir)
     if FAILURES:
         print(f'FAIL: {len(FAILURES)} comparisons')
         sys.exit(1)

@@ -1,0 +1,57 @@
+submodule (superjoin_deck_parser) superjoin_deck_nodal_thickness
+  !! Parser side of `*NODAL THICKNESS` (CalculiX): the thickness of shell and
+  !! plane elements given at their nodes, in place of the section's. Data
+  !! lines `node or nset, t[, t2]`; t2 (the second thickness of beams in
+  !! CalculiX) is read and must be absent, empty or 0 here. The values are
+  !! applied per element by superjoin_deck_thickness_build.
+  use superjoin_deck_state, only: nthick_b_t
+  implicit none (type, external)
+
+contains
+
+  module subroutine kw_nodal_thickness(st, kw, loc)
+    type(deck_state_t), intent(inout) :: st
+    type(keyword_line_t), intent(in) :: kw
+    type(source_loc_t), intent(in) :: loc
+    st%card = CARD_SKIP
+    if (.not. outside_step(st, kw, loc)) return
+    call check_params(st, kw, loc, [character(NAME_LEN) ::], [character(NAME_LEN) ::])
+    st%card = CARD_NODAL_THICKNESS
+    st%card_home = st%cur_sub
+  end subroutine kw_nodal_thickness
+
+  module subroutine data_nodal_thickness(st, line, loc)
+    type(deck_state_t), intent(inout) :: st
+    character(*), intent(in) :: line
+    type(source_loc_t), intent(in) :: loc
+    integer, parameter :: INITIAL_LINES = 8, MAX_FIELDS = 3
+    type(nthick_b_t) :: d
+    type(nthick_b_t), allocatable :: tmp(:)
+    real(wp) :: t2
+    if (.not. field_count(st, loc, 2, MAX_FIELDS, 'node or nset, thickness')) return
+    if (.not. parse_ref(st, fld(st, line, 1), .false., st%card_home, loc, d%node)) return
+    if (.not. get_real(st, line, loc, 2, d%t)) return
+    if (.not. (d%t > 0.0_wp)) then
+       call report_loc(st, loc, 'nodal thickness must be positive, not '//fld(st, line, 2))
+       return
+    end if
+    if (st%f%n == MAX_FIELDS) then
+       if (len(fld(st, line, MAX_FIELDS)) > 0) then
+          if (.not. get_real(st, line, loc, MAX_FIELDS, t2)) return
+          if (t2 /= 0.0_wp) then
+             call report_loc(st, loc, '*NODAL THICKNESS: a second thickness (beams in CalculiX) is not supported')
+             return
+          end if
+       end if
+    end if
+    d%loc = loc
+    if (.not. allocated(st%nthicks)) allocate (st%nthicks(INITIAL_LINES))
+    if (st%nnthick == size(st%nthicks)) then
+       allocate (tmp(2*st%nnthick))
+       tmp(1:st%nnthick) = st%nthicks(1:st%nnthick)
+       call move_alloc(tmp, st%nthicks)
+    end if
+    st%nnthick = st%nnthick + 1
+    st%nthicks(st%nnthick) = d
+  end subroutine data_nodal_thickness
+end submodule superjoin_deck_nodal_thickness

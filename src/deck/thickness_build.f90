@@ -1,0 +1,136 @@
+module superjoin_deck_thickness_build
+  !! Validation side of `*NODAL THICKNESS` (CalculiX): a plane or shell element
+  !! all of whose nodes have a nodal thickness takes it in place of its
+  !! section's thickness (CalculiX: the nodal thickness has precedence).
+  !! superjoin's elements have one thickness, so the element's nodes must
+  !! agree (relative difference below THICK_TOL); an element with a nodal
+  !! thickness at some nodes only, or different ones, is a deck error at the
+  !! data line of its first node. Elements of other types ignore the card.
+  !! Each distinct (section, thickness) pair becomes a copy of the section.
+  use superjoin_kinds, only: wp, ip
+  use superjoin_model_types, only: model_t, section_t, ELEMENT_NODE_COUNT, node_label
+  use superjoin_elements, only: is_plate_type
+  use superjoin_deck_state, only: deck_state_t, report_loc
+  use superjoin_deck_validate, only: resolve_items, resolve_sub
+  use superjoin_utils_strings, only: itoa
+  implicit none (type, external)
+  private
+
+  real(wp), parameter :: THICK_TOL = 1.0e-12_wp
+    !! Nodal thicknesses of one element closer than this (relative) are equal.
+
+  public :: apply_nodal_thickness
+
+contains
+
+  subroutine apply_nodal_thickness(st, model)
+    !! Give every plane or shell element whose nodes carry a *NODAL THICKNESS that thickness.
+    type(deck_state_t), intent(inout) :: st
+    type(model_t), intent(inout) :: model
+    real(wp), allocatable :: t(:)
+    integer, allocatable :: line(:)
+    integer(ip), allocatable :: nodes(:)
+    integer, allocatable :: lsub(:)
+    integer(ip) :: i, e
+    integer :: k, isub, nn, a, s
+    logical :: ok
+    real(wp) :: te
+    if (st%nnthick == 0) return
+    allocate (lsub(st%nnthick))
+    do k = 1, st%nnthick
+       lsub(k) = resolve_sub(st, model, st%nthicks(k)%node, st%nthicks(k)%loc, 'node')
+    end do
+    do isub = 1, size(model%subs)
+       associate (sub => model%subs(isub))
+         allocate (t(sub%nnode), line(sub%nnode))
+         t = 0.0_wp
+         line = 0
+         ! the thickness of each node of this substructure (a later line wins)
+         do k = 1, st%nnthick
+            associate (d => st%nthicks(k))
+              if (lsub(k) /= isub) cycle
+              call resolve_items(st, model, isub, d%node, .false., d%loc, nodes, ok)
+              if (.not. ok) cycle
+              do i = 1, size(nodes, kind=ip)
+                 t(nodes(i)) = d%t
+                 line(nodes(i)) = k
+              end do
+            end associate
+         end do
+         do e = 1, sub%nelem
+            if (.not. is_plate_type(sub%elem_type(e)) .or. sub%elem_section(e) <= 0) cycle
+            nn = ELEMENT_NODE_COUNT(sub%elem_type(e))
+            if (all(line(sub%elem_nodes(1:nn, e)) == 0)) cycle
+            te = 0.0_wp
+            do a = 1, nn
+               associate (n => sub%elem_nodes(a, e))
+                 if (line(n) == 0) then
+                    call report_loc(st, st%nthicks(first_line(e))%loc, '*NODAL THICKNESS: node '// &
+                         node_label(model, isub, n)//' of element '//itoa(sub%elem_id(e))//' has none '// &
+                         '(superjoin''s elements have one thickness: give it at all their nodes)')
+                    te = -1.0_wp
+                    exit
+                 end if
+                 if (a == 1) then
+                    te = t(n)
+                 else if (abs(t(n) - te) > THICK_TOL*te) then
+                    call report_loc(st, st%nthicks(first_line(e))%loc, '*NODAL THICKNESS: the nodes of element '// &
+                         itoa(sub%elem_id(e))//' have different thicknesses (superjoin''s elements have one '// &
+                         'thickness)')
+                    te = -1.0_wp
+                    exit
+                 end if
+               end associate
+            end do
+            if (te <= 0.0_wp) cycle
+            s = section_with_thickness(sub%sections, sub%elem_section(e), te)
+            sub%elem_section(e) = s
+         end do
+         deallocate (t, line)
+       end associate
+    end do
+  contains
+    integer function first_line(e) result(k)
+      !! The *NODAL THICKNESS data line of the first node of element e that has one.
+      integer(ip), intent(in) :: e
+      integer :: b
+      k = 0
+      associate (sub => model%subs(isub))
+        do b = 1, ELEMENT_NODE_COUNT(sub%elem_type(e))
+           k = line(sub%elem_nodes(b, e))
+           if (k > 0) return
+        end do
+      end associate
+    end function first_line
+  end subroutine apply_nodal_thickness
+
+  integer function section_with_thickness(sections, isec, t) result(k)
+    !! Index of a section equal to sections(isec) but of thickness t (appended when new).
+    type(section_t), allocatable, intent(inout) :: sections(:)
+    integer, intent(in) :: isec
+    real(wp), intent(in) :: t
+    type(section_t), allocatable :: tmp(:)
+    integer :: n
+    if (sections(isec)%thickness == t) then
+       k = isec
+       return
+    end if
+    n = size(sections)
+    do k = 1, n
+       if (sections(k)%thickness == t .and. same_but_thickness(sections(k), sections(isec))) return
+    end do
+    allocate (tmp(n + 1))
+    tmp(1:n) = sections
+    tmp(n + 1) = sections(isec)
+    tmp(n + 1)%thickness = t
+    call move_alloc(tmp, sections)
+    k = n + 1
+  end function section_with_thickness
+
+  pure logical function same_but_thickness(a, b)
+    !! Two sections that differ at most in their thickness (a copy made here).
+    type(section_t), intent(in) :: a, b
+    same_but_thickness = a%material == b%material .and. a%kind == b%kind .and. &
+         a%loc%file == b%loc%file .and. a%loc%line == b%loc%line
+  end function same_but_thickness
+end module superjoin_deck_thickness_build

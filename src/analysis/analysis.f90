@@ -25,6 +25,7 @@ module superjoin_analysis
        choose_condensation, autospc, skip_unloaded_parts, wanted_elements
   use superjoin_analysis_condensation, only: solve_context_t, condense_parts, recover_parts, parts_ku
   use superjoin_analysis_factor_reuse, only: take_factor, keep_factor, solve_with
+  use superjoin_analysis_distributed, only: plan_distribution
   use superjoin_utils_clock, only: stopwatch_t, report_phase
   use superjoin_utils_memory, only: out_of_memory, BYTES_REAL
   use superjoin_utils_strings, only: itoa
@@ -123,6 +124,8 @@ contains
     if (allocated(error)) return
     call boundary_dofs(table, bnd)
     call count_boundary(model, table, bnd, res%summary)
+    call plan_distribution(model, res%summary, res%log, error)   ! several MPI processes only
+    if (allocated(error)) return
     ! Condensation boundaries: the instances of a part share theirs.
     call part_boundary(model, table, bnd, bnd_c)
     call choose_condensation(model, table, opts, ctx, bnd_c, res%summary, notes)

@@ -55,6 +55,8 @@ program superjoin_main
   if (comm%size > 1) then
      if (.not. allocated(opts%solver)) opts%solver = 'auto'
      if (opts%solver == 'auto') opts%solver = 'mumps'
+     ! each process condenses the parts it owns (analysis/distributed)
+     if (opts%condense < 0) opts%condense = CONDENSE_YES
   end if
   if (.not. comm%is_root()) then
      ! one voice: progress, warnings and every output file come from rank 0

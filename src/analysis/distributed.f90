@@ -29,7 +29,9 @@ module superjoin_analysis_distributed
   use superjoin_analysis_notes, only: note
   use superjoin_analysis_condensation, only: part_solver
   use superjoin_parallel_comm, only: comm_t, comm_world, agree, note_agreed_failure, broadcast, sum_reals, &
-       sum_counts
+       sum_counts, bytes_moved
+  use superjoin_parallel_stats, only: mumps_stats_t, mumps_stats
+  use, intrinsic :: iso_fortran_env, only: error_unit
   use superjoin_parallel_partition, only: part_graph_t, partition_t, build_part_graph, partition_parts, &
        partition_report
   use superjoin_utils_strings, only: itoa
@@ -39,7 +41,13 @@ module superjoin_analysis_distributed
   integer, parameter :: NHEAD = 5
     !! Header of an owner's message: reused, rotated, MAXRATIO, its DOF, number of DOFs without stiffness.
 
-  public :: plan_distribution, is_distributed, condense_distributed, recover_distributed, parts_ku_distributed
+  public :: plan_distribution, is_distributed, condense_distributed, recover_distributed, parts_ku_distributed, &
+       mpi_summary
+
+  integer, parameter :: BYTES_MUMPS_ENTRY = 16
+    !! One entry of MUMPS's distributed assembled input: value (8 bytes), row and column (4 each).
+  integer, parameter :: NSTAT = 5
+    !! Figures per process in the MPI summary.
 
 contains
 
@@ -298,6 +306,44 @@ contains
        at = at + m*nstep
     end do
   end subroutine parts_ku_distributed
+
+  subroutine mpi_summary(quiet, error)
+    !! Collective, once the solve has ended on every process (it agrees
+    !! first, so that a process that failed meets it): per process the bytes
+    !! it passed to collectives (broadcasts of condensations, sums of
+    !! interiors, the solution), the matrix entries it handed MUMPS and their
+    !! bytes, and MUMPS's memory (INFO(16); INFOG(18) the largest process,
+    !! INFOG(19) all). Rank 0 prints them on stderr unless quiet. Nothing on
+    !! one process.
+    logical, intent(in) :: quiet
+    type(error_t), allocatable, intent(out) :: error
+    type(comm_t) :: comm
+    type(mumps_stats_t) :: ms
+    integer(i8), allocatable :: v(:)
+    integer(i8) :: moved
+    integer :: r
+    logical :: ok
+    character(len=200) :: line
+    comm = comm_world()
+    if (comm%size <= 1) return
+    call agreed(error)
+    if (allocated(error)) return
+    moved = bytes_moved()
+    ms = mumps_stats()
+    allocate (v(NSTAT*comm%size), source=0_i8)
+    v(NSTAT*comm%rank + 1:NSTAT*comm%rank + NSTAT) = [moved, ms%entries, ms%mb_here, ms%mb_max, ms%mb_total]
+    call sum_counts(v, ok)
+    if (.not. ok .or. quiet .or. .not. comm%is_root()) return
+    do r = 0, comm%size - 1
+       associate (x => v(NSTAT*r + 1:NSTAT*r + NSTAT))
+         write (line, '(a,i0,a,i0,a,i0,a,i0,a,i0,a)') 'superjoin: MPI process ', r, ': collectives ', x(1), &
+              ' bytes, MUMPS input ', x(2), ' entries (', x(2)*BYTES_MUMPS_ENTRY, ' bytes), MUMPS memory ', x(3), ' MB'
+       end associate
+       write (error_unit, '(a)') trim(line)
+    end do
+    write (error_unit, '(a,i0,a,i0,a)') 'superjoin: MUMPS memory over the processes (INFOG(18), INFOG(19)): largest ', &
+         v(4), ' MB, all ', v(5), ' MB'
+  end subroutine mpi_summary
 
   subroutine agreed(error)
     !! Collective: every process says whether it failed (error allocated). A

@@ -7,7 +7,9 @@
 #    PARTITION block, which only runs on several processes print (present
 #    on two, absent on one);
 #  - every singular deck (tests/singular): the same exit status and the same
-#    stderr, printed once;
+#    stderr, printed once (hinge_chain: the singular part B is condensed by
+#    process 1, A having the larger estimated cost (greedy rule): the
+#    failure of one process's condensation reaches the other, no hang);
 #  - a few bad decks (tests/bad: number, name, reference, contact, step
 #    errors): the same exit status and the same stderr, once;
 #  - a failure on rank 0 alone (the listing cannot be written): every process

@@ -38,8 +38,9 @@ module superjoin_analysis_distributed
   implicit none (type, external)
   private
 
-  integer, parameter :: NHEAD = 5
-    !! Header of an owner's message: reused, rotated, MAXRATIO, its DOF, number of DOFs without stiffness.
+  integer, parameter :: NHEAD = 6
+    !! Header of an owner's message: reused, rotated, MAXRATIO, its DOF, number of DOFs without
+    !! stiffness, whether k u0 follows (it is sent only when some prescribed value is nonzero).
 
   public :: plan_distribution, is_distributed, condense_distributed, recover_distributed, parts_ku_distributed, &
        mpi_summary
@@ -103,7 +104,7 @@ contains
     logical, allocatable :: reused(:)
     integer(i8) :: counts(2)
     integer :: isub, ip_, i, nrot, nstep, computed0, reused0
-    integer(i8) :: nb, ni, nspc, at
+    integer(i8) :: nb, ni, nspc, at, nku0
     logical :: ok, mine
     real(wp) :: dmax
     comm = comm_world()
@@ -150,13 +151,14 @@ contains
             call view_condense_loads(cache, v, f_phys(v%pdof, :), fstar, error)
             if (allocated(error)) return   ! a load condensation does not fail in practice; see module notes
             head = [merge(1.0_wp, 0.0_wp, v%reused), merge(1.0_wp, 0.0_wp, v%rotated), v%ratio, &
-                 real(v%ratio_at, wp), real(size(v%spc), wp)]
+                 real(v%ratio_at, wp), real(size(v%spc), wp), merge(1.0_wp, 0.0_wp, any(v%ku0 /= 0.0_wp))]
          end if
          call broadcast(head, summary%sub_owner(isub), ok)
          if (.not. ok) call fatal_error(error, EXIT_IO, 'error: MPI broadcast of a condensation failed')
          if (allocated(error)) return
          nspc = nint(head(5), i8)
-         allocate (body(nspc + nb*nb + nb*nstep + ni + nb))
+         nku0 = merge(ni + nb, 0_i8, head(6) /= 0.0_wp)
+         allocate (body(nspc + nb*nb + nb*nstep + nku0))
          if (mine) then
             body(1:nspc) = real(v%spc, wp)
             at = nspc
@@ -164,7 +166,7 @@ contains
             at = at + nb*nb
             body(at + 1:at + nb*nstep) = reshape(fstar, [nb*nstep])
             at = at + nb*nstep
-            body(at + 1:) = v%ku0
+            if (nku0 > 0) body(at + 1:) = v%ku0
          end if
          call broadcast(body, summary%sub_owner(isub), ok)
          if (.not. ok) call fatal_error(error, EXIT_IO, 'error: MPI broadcast of a condensation failed')
@@ -180,7 +182,11 @@ contains
             at = at + nb*nb
             fstar = reshape(body(at + 1:at + nb*nstep), [nb, int(nstep, i8)])
             at = at + nb*nstep
-            v%ku0 = body(at + 1:)
+            if (nku0 > 0) then
+               v%ku0 = body(at + 1:)
+            else
+               allocate (v%ku0(ni + nb), source=0.0_wp)
+            end if
          end if
          if (v%rotated) nrot = nrot + 1
          reused(ip_) = v%reused

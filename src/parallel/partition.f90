@@ -27,6 +27,7 @@ module superjoin_parallel_partition
   use superjoin_model_types, only: model_t, string_t
   use superjoin_utils_sorting, only: stable_argsort
   use superjoin_utils_strings, only: itoa
+  use superjoin_analysis_notes, only: append_string
   implicit none (type, external)
   private
 
@@ -365,7 +366,7 @@ contains
   contains
     subroutine add(s)
       character(*), intent(in) :: s
-      lines = [lines, string_t(s)]
+      call append_string(lines, s)
     end subroutine add
   end subroutine partition_report
 end module superjoin_parallel_partition

@@ -35,6 +35,7 @@ program superjoin_main
   use superjoin_utils_memory, only: oom_message
   use superjoin_solvers, only: mumps_available
   use superjoin_parallel_comm, only: comm_t, comm_world, agree, failure_agreed, agreed_first
+  use superjoin_analysis_distributed, only: mpi_summary
   implicit none (type, external)
 
   type(run_options_t) :: opts
@@ -56,6 +57,8 @@ program superjoin_main
   if (comm%size > 1) then
      if (.not. allocated(opts%solver)) opts%solver = 'auto'
      if (opts%solver == 'auto') opts%solver = 'mumps'
+     ! each process condenses the parts it owns (analysis/distributed)
+     if (opts%condense < 0) opts%condense = CONDENSE_YES
   end if
   if (.not. comm%is_root()) then
      ! one voice: progress, warnings and every output file come from rank 0
@@ -109,6 +112,8 @@ program superjoin_main
   call add_combinations(model, res, error)
   call fail_on(error, deck)
   call check_plausibility(model, res)
+  call mpi_summary(opts%quiet, error)   ! several MPI processes: communication and memory per process
+  call fail_on(error, deck)
   res%log%phase_seconds(PH_READ) = t_read
   ! Warnings are printed also under -q (it silences progress only).
   if (comm%is_root()) then

@@ -25,6 +25,8 @@ module superjoin_analysis
        choose_condensation, autospc, skip_unloaded_parts, wanted_elements
   use superjoin_analysis_condensation, only: solve_context_t, condense_parts, recover_parts, parts_ku
   use superjoin_analysis_factor_reuse, only: take_factor, keep_factor, solve_with
+  use superjoin_analysis_distributed, only: plan_distribution, is_distributed, condense_distributed, &
+       recover_distributed, parts_ku_distributed
   use superjoin_utils_clock, only: stopwatch_t, report_phase
   use superjoin_utils_memory, only: out_of_memory, BYTES_REAL
   use superjoin_utils_strings, only: itoa
@@ -123,6 +125,8 @@ contains
     if (allocated(error)) return
     call boundary_dofs(table, bnd)
     call count_boundary(model, table, bnd, res%summary)
+    call plan_distribution(model, res%summary, res%log, error)   ! several MPI processes only
+    if (allocated(error)) return
     ! Condensation boundaries: the instances of a part share theirs.
     call part_boundary(model, table, bnd, bnd_c)
     call choose_condensation(model, table, opts, ctx, bnd_c, res%summary, notes)
@@ -145,7 +149,12 @@ contains
     else
        call assemble_loads(model, table, f_phys, error)
        if (allocated(error)) return
-       call condense_parts(model, table, bnd_c, opts, f_phys, ctx%cache, res%summary, notes, parts, f_eff, error)
+       if (is_distributed(res%summary)) then   ! several MPI processes: each condenses its own parts
+          call condense_distributed(model, table, tr, bnd_c, opts, f_phys, ctx%cache, res%summary, notes, &
+               parts, f_eff, error)
+       else
+          call condense_parts(model, table, bnd_c, opts, f_phys, ctx%cache, res%summary, notes, parts, f_eff, error)
+       end if
        if (allocated(error)) return
        plan%skip_sub = res%summary%sub_condensed
        allocate (plan%supers(size(parts)))
@@ -207,9 +216,16 @@ contains
     end if
     call tr%expand(q, u)
     if (res%summary%n_condensed > 0) then
-       call recover_parts(ctx%cache, parts, f_phys, u, error)
+       if (is_distributed(res%summary)) then
+          call recover_distributed(ctx%cache, parts, f_phys, u, error)
+          if (allocated(error)) return
+          call parts_ku_distributed(ctx%cache, parts, u, ku, error)
+       else
+          call recover_parts(ctx%cache, parts, f_phys, u, error)
+          if (allocated(error)) return
+          call parts_ku(ctx%cache, parts, u, ku)
+       end if
        if (allocated(error)) return
-       call parts_ku(ctx%cache, parts, u, ku)
        if (tr%ncol() > 0) call full_health(ctx%cache, tr, k, parts, q, u, ku, f_red, f_eff, f_phys, res)
        call parts_maxratio(model, table, ctx%cache, parts, res, error)
        if (allocated(error)) return

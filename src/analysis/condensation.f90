@@ -26,7 +26,7 @@ module superjoin_analysis_condensation
      type(kept_factor_t) :: factor          !! loads: a factorization kept for a next solve of the same matrix
   end type solve_context_t
 
-  public :: condense_parts, recover_parts, parts_ku
+  public :: condense_parts, recover_parts, parts_ku, part_solver
 
 contains
 
@@ -58,8 +58,7 @@ contains
        call max_element_diagonal(model, table, dmax, error, only=.not. summary%sub_condensed)
        if (allocated(error)) return
     end if
-    solver_name = 'auto'
-    if (allocated(opts%solver)) solver_name = opts%solver
+    solver_name = part_solver(opts)
     allocate (parts(summary%n_condensed))
     f_eff = f_phys
     computed0 = cache%computed
@@ -91,6 +90,19 @@ contains
     call note(notes, 'condensations: '//itoa(cache%computed - computed0)//' computed, '// &
          itoa(cache%reused - reused0)//' reused ('//itoa(nrot)//' turned by their instance''s placement)')
   end subroutine condense_parts
+
+  function part_solver(opts) result(name)
+    !! The solver of the condensations: the one asked for, except that MUMPS
+    !! (--solver mumps, mumps-ldlt) solves the interface only and the parts
+    !! get CHOLMOD: under MPI each part is condensed by one process alone, and
+    !! MUMPS's calls are collective over all of them; one process does the
+    !! same, so that its results equal those of several.
+    type(run_options_t), intent(in) :: opts
+    character(:), allocatable :: name
+    name = 'auto'
+    if (allocated(opts%solver)) name = opts%solver
+    if (index(name, 'mumps') == 1) name = 'cholmod'
+  end function part_solver
 
   subroutine recover_parts(cache, parts, f_phys, u, error)
     !! Interior displacements of every condensed substructure from its boundary.

@@ -275,7 +275,9 @@ contains
          rl = ku(sys%pdof, :) - f_phys(sys%pdof, :)
          u0l = 0.0_wp
          u0l(ni + 1:, 1) = tr%prescribed(sys%pdof(ni + 1:))
-         if (any(u0l /= 0.0_wp)) then
+         if (parts(i)%entry == 0) then   ! condensed by another MPI process, which sent k u0
+            w(:, 1) = parts(i)%ku0
+         else if (any(u0l /= 0.0_wp)) then
             call view_stiffness_times(cache, parts(i), u0l, w)
          else
             w = 0.0_wp

@@ -61,6 +61,7 @@ module superjoin_analysis_results
      integer(i8), allocatable :: sub_dofs(:)       !! active DOFs per substructure
      integer(i8), allocatable :: sub_boundary(:)   !! of which touched by contacts or supports (k_gg)
      logical, allocatable :: sub_condensed(:)      !! interior condensed (static condensation)
+     integer, allocatable :: sub_owner(:)          !! MPI process owning each substructure (unallocated: one process)
      integer :: n_condensed = 0                    !! condensations computed
      character(:), allocatable :: solver_name
      character(:), allocatable :: ordering
@@ -78,6 +79,7 @@ module superjoin_analysis_results
      type(string_t), allocatable :: warnings(:)   !! also printed on stderr
      logical :: inaccurate = .false.              !! a warning judges the results inaccurate (exit EXIT_INACCURATE)
      real(wp) :: phase_seconds(NPHASE) = 0.0_wp
+     type(string_t), allocatable :: partition(:)  !! PARTITION block of an MPI run on several processes (else unallocated)
   end type run_log_t
 
   type, public :: result_fields_t

@@ -124,6 +124,12 @@ contains
        end associate
     end do
     call lu%line('')
+    if (allocated(res%log%partition)) then   ! MPI runs on several processes only
+       do i = 1, size(res%log%partition)
+          call lu%line(res%log%partition(i)%s)
+       end do
+       call lu%line('')
+    end if
 
     call lu%line('CONTACT ELEMENTS AND SUPPORTS')
     call count_line(lu, 'contact units transformed', int(res%summary%n_tree, i8))

@@ -33,7 +33,9 @@ module superjoin_parallel_comm
   end type comm_t
 
   public :: comm_world, agree, failure_agreed, note_agreed_failure, agreed_first, broadcast, sum_counts, &
-       max_reals, fortran_handle
+       max_reals, sum_reals, fortran_handle, bytes_moved
+
+  integer(i8) :: moved = 0             !! bytes this process passed to broadcast/sum_reals/sum_counts/max_reals
 
   logical :: failure_noted = .false.   !! an agreement returned a failure to the caller
   integer :: failure_first = 0         !! the lowest process that reported it
@@ -74,6 +76,12 @@ module superjoin_parallel_comm
        integer(c_int64_t), value :: n
        integer(c_int) :: status
      end function sj_comm_sum_i8
+     function sj_comm_sum_real(x, n) bind(c, name='sj_comm_sum_real') result(status)
+       import :: c_int, c_int64_t, c_double
+       real(c_double), intent(inout) :: x(*)
+       integer(c_int64_t), value :: n
+       integer(c_int) :: status
+     end function sj_comm_sum_real
      function sj_comm_max_real(x, n) bind(c, name='sj_comm_max_real') result(status)
        import :: c_int, c_int64_t, c_double
        real(c_double), intent(inout) :: x(*)
@@ -138,6 +146,7 @@ contains
     integer, intent(in) :: root
     logical, intent(out) :: ok
     ok = sj_comm_bcast_real(x, size(x, kind=c_int64_t), int(root, c_int)) == 0
+    call count_moved(size(x, kind=i8)*8)
   end subroutine broadcast
 
   subroutine sum_counts(x, ok)
@@ -145,6 +154,7 @@ contains
     integer(i8), intent(inout), contiguous :: x(:)
     logical, intent(out) :: ok
     ok = sj_comm_sum_i8(x, size(x, kind=c_int64_t)) == 0
+    call count_moved(size(x, kind=i8)*8)
   end subroutine sum_counts
 
   subroutine max_reals(x, ok)
@@ -152,7 +162,30 @@ contains
     real(wp), intent(inout), contiguous :: x(:)
     logical, intent(out) :: ok
     ok = sj_comm_max_real(x, size(x, kind=c_int64_t)) == 0
+    call count_moved(size(x, kind=i8)*8)
   end subroutine max_reals
+
+  subroutine sum_reals(x, ok)
+    !! Collective: each entry of x becomes its sum over the processes.
+    real(wp), intent(inout), contiguous :: x(:)
+    logical, intent(out) :: ok
+    ok = sj_comm_sum_real(x, size(x, kind=c_int64_t)) == 0
+    call count_moved(size(x, kind=i8)*8)
+  end subroutine sum_reals
+
+  subroutine count_moved(nbytes)
+    !! Add to the bytes this process passed to collectives (on several processes only).
+    integer(i8), intent(in) :: nbytes
+    if (sj_comm_size() > 1) moved = moved + nbytes
+  end subroutine count_moved
+
+  function bytes_moved() result(n)
+    !! Bytes this process has passed to the collectives so far (the size of
+    !! each broadcast or reduction buffer; 0 on one process). The MUMPS input
+    !! is counted by the MUMPS backend.
+    integer(i8) :: n
+    n = moved
+  end function bytes_moved
 
   function fortran_handle() result(h)
     !! The Fortran handle of MPI_COMM_WORLD (MUMPS's COMM), or MUMPS's

@@ -158,3 +158,15 @@ int sj_comm_max_real(double *x, int64_t n)
     if (n <= 0 || !running()) return 0;
     return MPI_Allreduce(MPI_IN_PLACE, x, (int)n, MPI_DOUBLE, MPI_MAX, MPI_COMM_WORLD) == MPI_SUCCESS ? 0 : -1;
 }
+
+/* Sum n doubles over the ranks, in place (chunks of 2^30). */
+int sj_comm_sum_real(double *x, int64_t n)
+{
+    const int64_t chunk = 1 << 30;
+    if (n <= 0 || !running()) return 0;
+    for (int64_t k = 0; k < n; k += chunk) {
+        int64_t m = n - k < chunk ? n - k : chunk;
+        if (MPI_Allreduce(MPI_IN_PLACE, x + k, (int)m, MPI_DOUBLE, MPI_SUM, MPI_COMM_WORLD) != MPI_SUCCESS) return -1;
+    }
+    return 0;
+}

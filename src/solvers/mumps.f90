@@ -32,6 +32,7 @@ module superjoin_solvers_mumps
   use superjoin_parallel_comm, only: comm_t, comm_world, agree, broadcast, sum_counts, fortran_handle, &
        note_agreed_failure
   use superjoin_utils_memory, only: oom_message
+  use superjoin_parallel_stats, only: record_mumps_input, record_mumps_memory
   use superjoin_utils_strings, only: itoa
   implicit none (type, external)
   private
@@ -58,6 +59,8 @@ module superjoin_solvers_mumps
   integer, parameter :: INFOG_ERROR = 1, INFOG_DETAIL = 2, INFOG_ORDERING = 7, INFOG_NEGATIVE = 12, &
        INFOG_FACTOR_ENTRIES = 29, INFOG_FACTOR_ESTIMATE = 20, INFOG_NULL_PIVOTS = 28
   integer, parameter :: RINFOG_FLOPS = 3
+  integer, parameter :: INFO_MB_HERE = 16, INFOG_MB_MAX = 18, INFOG_MB_TOTAL = 19
+    !! MUMPS's memory in MB allocated by the factorization: this process, the largest, all
   real(wp), parameter :: MBYTE = 1048576.0_wp
   real(wp), parameter :: MILLION = 1.0e6_wp
   integer, parameter :: BYTES_ENTRY = 8                !! a real(wp) factor entry
@@ -134,6 +137,12 @@ module superjoin_solvers_mumps
        integer(c_int), value :: i
        integer(c_int64_t) :: v
      end function sj_mumps_infog
+     function sj_mumps_info(h, i) bind(c, name='sj_mumps_info') result(v)
+       import :: c_ptr, c_int, c_int64_t
+       type(c_ptr), value :: h
+       integer(c_int), value :: i
+       integer(c_int64_t) :: v
+     end function sj_mumps_info
      function sj_mumps_rinfog(h, i) bind(c, name='sj_mumps_rinfog') result(v)
        import :: c_ptr, c_int, c_double
        type(c_ptr), value :: h
@@ -267,6 +276,8 @@ contains
        return
     end if
     self%info%factor_nnz = entries(sj_mumps_infog(self%handle, INFOG_FACTOR_ENTRIES))
+    call record_mumps_memory(sj_mumps_info(self%handle, INFO_MB_HERE), sj_mumps_infog(self%handle, INFOG_MB_MAX), &
+         sj_mumps_infog(self%handle, INFOG_MB_TOTAL))
     self%info%factor_mbytes = real(self%info%factor_nnz, wp)*BYTES_ENTRY/MBYTE
     nnull = sj_mumps_infog(self%handle, INFOG_NULL_PIVOTS)
     if (nnull > 0) then
@@ -458,6 +469,7 @@ contains
     allocate (counts(0:self%comm%size - 1))
     counts = 0
     if (c2 >= c1) counts(self%comm%rank) = a%colptr(c2 + 1) - a%colptr(c1)
+    call record_mumps_input(counts(self%comm%rank))
     call sum_counts(counts, ok)
     text = itoa(int(self%comm%size, i8))//' processes, matrix entries per process'
     do r = 0, self%comm%size - 1

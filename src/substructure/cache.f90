@@ -60,10 +60,16 @@ module superjoin_substructure_cache
      integer(i8), allocatable :: pdof(:)      !! physical DOF of each local DOF (this substructure)
      integer, allocatable :: grp(:, :)        !! (BLOCK, ngroup) local DOFs of each node block (0: absent)
      type(superelement_t) :: se               !! K* of this substructure on its physical boundary DOFs
+     ! A remote view (entry = 0): the substructure is condensed by another MPI
+     ! process, which sent K* and what follows (analysis/distributed).
+     real(wp) :: ratio = 0.0_wp               !! remote: MAXRATIO of the interior factor
+     integer(i8) :: ratio_at = 0              !! remote: its physical DOF (0: none)
+     integer(i8), allocatable :: spc(:)       !! remote: physical interior DOFs without stiffness
+     real(wp), allocatable :: ku0(:)          !! remote: k u0 (prescribed boundary values), local order
   end type part_view_t
 
   public :: release_cache, acquire_view, view_condense_loads, view_recover, view_stiffness_times, &
-       view_maxratio, view_spc
+       view_maxratio, view_spc, remote_view
 
 contains
 
@@ -154,6 +160,22 @@ contains
     end associate
   end subroutine acquire_view
 
+  subroutine remote_view(table, isub, bnd, view)
+    !! The numbering of a substructure that another process condenses
+    !! (entry 0): its physical DOFs, interior first; K* and the rest are
+    !! filled from that process's message.
+    type(dof_table_t), intent(in) :: table
+    integer, intent(in) :: isub
+    logical, intent(in) :: bnd(:)
+    type(part_view_t), intent(out) :: view
+    integer(i8) :: ni
+    view%isub = isub
+    call local_numbering(table, isub, bnd, view%pdof, ni)
+    view%ni = ni
+    view%nb = size(view%pdof, kind=i8) - ni
+    view%se%pdof = view%pdof(ni + 1:)
+  end subroutine remote_view
+
   subroutine release_cache(cache)
     !! Free every factor the cache holds.
     type(part_cache_t), intent(inout) :: cache
@@ -217,6 +239,11 @@ contains
     type(part_view_t), intent(in) :: view
     real(wp), intent(out) :: ratio
     integer(i8), intent(out) :: p
+    if (view%entry == 0) then   ! remote
+       ratio = view%ratio
+       p = view%ratio_at
+       return
+    end if
     ratio = cache%entries(view%entry)%e%cond%maxratio
     p = 0
     if (cache%entries(view%entry)%e%cond%maxratio_at > 0) p = view%pdof(cache%entries(view%entry)%e%cond%maxratio_at)
@@ -229,6 +256,10 @@ contains
     integer(i8), allocatable, intent(out) :: p(:)
     integer(i8), allocatable :: l(:)
     integer(i8) :: i
+    if (view%entry == 0) then   ! remote
+       p = view%spc
+       return
+    end if
     associate (c => cache%entries(view%entry)%e%cond)
       allocate (l(size(c%spc)))
       do i = 1, size(c%spc, kind=i8)

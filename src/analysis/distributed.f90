@@ -1,0 +1,371 @@
+module superjoin_analysis_distributed
+  !! The distributed pipeline of a run on several MPI processes.
+  !!
+  !! plan_distribution: which process owns which substructure
+  !! (superjoin_parallel_partition) and the PARTITION block of the listing.
+  !! condense_distributed: each process condenses only the condensed
+  !! substructures it owns; the owner then sends every process K*, f*, the
+  !! interior DOFs without stiffness, MAXRATIO and k u0 of each, so that the
+  !! interface system is assembled, factored (MUMPS, distributed input) and
+  !! checked as on one process. recover_distributed and parts_ku_distributed:
+  !! each process recovers the interiors (and k u) of its own substructures,
+  !! and a sum over the processes gives every process the whole field, so the
+  !! rest of the pipeline (element results, health, listing on rank 0) runs
+  !! unchanged. On one process (and in the serial build) none of this runs.
+  !!
+  !! Errors: a process whose condensation or recovery fails returns at once
+  !! (its ending agrees, app/main.f90); the others learn it at the agreement
+  !! that precedes each exchange (superjoin_parallel_comm's protocol).
+  use superjoin_kinds, only: wp, i8
+  use superjoin_error, only: error_t, fatal_error, add_error_line, EXIT_SINGULAR, EXIT_IO
+  use superjoin_model_types, only: model_t, string_t
+  use superjoin_assembly_dofs, only: dof_table_t
+  use superjoin_assembly_transform, only: transform_t
+  use superjoin_assembly_assemble, only: max_element_diagonal
+  use superjoin_substructure_local_system, only: dof_label
+  use superjoin_substructure_cache, only: part_cache_t, part_view_t, acquire_view, remote_view, &
+       view_condense_loads, view_recover, view_stiffness_times, view_spc, view_maxratio
+  use superjoin_analysis_results, only: run_summary_t, run_log_t, run_options_t
+  use superjoin_analysis_notes, only: note
+  use superjoin_analysis_condensation, only: part_solver
+  use superjoin_parallel_comm, only: comm_t, comm_world, agree, note_agreed_failure, broadcast, sum_reals, &
+       sum_counts, bytes_moved
+  use superjoin_parallel_stats, only: mumps_stats_t, mumps_stats
+  use, intrinsic :: iso_fortran_env, only: error_unit
+  use superjoin_parallel_partition, only: part_graph_t, partition_t, build_part_graph, partition_parts, &
+       partition_report
+  use superjoin_utils_strings, only: itoa
+  implicit none (type, external)
+  private
+
+  integer, parameter :: NHEAD = 6
+    !! Header of an owner's message: reused, rotated, MAXRATIO, its DOF, number of DOFs without
+    !! stiffness, whether k u0 follows (it is sent only when some prescribed value is nonzero).
+
+  public :: plan_distribution, is_distributed, condense_distributed, recover_distributed, parts_ku_distributed, &
+       mpi_summary
+
+  integer, parameter :: BYTES_MUMPS_ENTRY = 16
+    !! One entry of MUMPS's distributed assembled input: value (8 bytes), row and column (4 each).
+  integer, parameter :: NSTAT = 5
+    !! Figures per process in the MPI summary.
+
+contains
+
+  subroutine plan_distribution(model, summary, log, error)
+    !! With more than one process: the owner of every substructure
+    !! (summary%sub_owner) and the PARTITION block (log%partition), the same
+    !! on every process (the partition is deterministic and every process
+    !! holds the whole model). Needs summary%sub_dofs and sub_boundary.
+    type(model_t), intent(in) :: model
+    type(run_summary_t), intent(inout) :: summary
+    type(run_log_t), intent(inout) :: log
+    type(error_t), allocatable, intent(out) :: error
+    type(comm_t) :: comm
+    type(part_graph_t) :: graph
+    type(partition_t) :: part
+    comm = comm_world()
+    if (comm%size <= 1) return
+    call build_part_graph(model, summary%sub_dofs, summary%sub_boundary, graph)
+    call partition_parts(graph, comm%size, part, error)
+    if (allocated(error)) return
+    summary%sub_owner = part%owner
+    call partition_report(model, graph, part, log%partition)
+  end subroutine plan_distribution
+
+  pure function is_distributed(summary) result(yes)
+    !! Are the substructures shared out over several processes (plan_distribution)?
+    type(run_summary_t), intent(in) :: summary
+    logical :: yes
+    yes = allocated(summary%sub_owner)
+  end function is_distributed
+
+  subroutine condense_distributed(model, table, tr, bnd, opts, f_phys, cache, summary, notes, parts, f_eff, error)
+    !! condense_parts (analysis/condensation) over several processes: each
+    !! condenses its own substructures and sends the others what the
+    !! interface needs. parts and f_eff end equal on every process, and so do
+    !! the notes (AUTOSPC per substructure in order; the condensations
+    !! computed and reused summed over the processes).
+    type(model_t), intent(in) :: model
+    type(dof_table_t), intent(in) :: table
+    type(transform_t), intent(in) :: tr
+    logical, intent(in) :: bnd(:)
+    type(run_options_t), intent(in) :: opts
+    real(wp), intent(in) :: f_phys(:, :)
+    type(part_cache_t), intent(inout) :: cache
+    type(run_summary_t), intent(inout) :: summary
+    type(string_t), allocatable, intent(inout) :: notes(:)
+    type(part_view_t), allocatable, intent(out) :: parts(:)
+    real(wp), allocatable, intent(out) :: f_eff(:, :)
+    type(error_t), allocatable, intent(out) :: error
+    type(comm_t) :: comm
+    character(:), allocatable :: solver_name
+    real(wp), allocatable :: fstar(:, :), head(:), body(:)
+    logical, allocatable :: reused(:)
+    integer(i8) :: counts(2)
+    integer :: isub, ip_, i, nrot, nstep, computed0, reused0
+    integer(i8) :: nb, ni, nspc, at, nku0
+    logical :: ok, mine
+    real(wp) :: dmax
+    comm = comm_world()
+    ! as condense_parts: the elements kept in the interface checked first
+    if (cache%n == 0) then
+       call max_element_diagonal(model, table, dmax, error, only=.not. summary%sub_condensed)
+       if (allocated(error)) return
+    end if
+    solver_name = part_solver(opts)   ! never MUMPS: a part is condensed by one process alone
+    nstep = size(f_phys, 2)
+    allocate (parts(summary%n_condensed), reused(summary%n_condensed))
+    f_eff = f_phys
+    computed0 = cache%computed
+    reused0 = cache%reused
+    ! 1. this process's own condensations (a failure returns at once)
+    ip_ = 0
+    do isub = 1, size(model%subs)
+       if (.not. summary%sub_condensed(isub)) cycle
+       ip_ = ip_ + 1
+       if (summary%sub_owner(isub) == comm%rank) then
+          call acquire_view(cache, model, table, isub, bnd, solver_name, parts(ip_), error)
+          if (allocated(error)) return
+       else
+          call remote_view(table, isub, bnd, parts(ip_))
+       end if
+    end do
+    call agreed(error)
+    if (allocated(error)) return
+    ! 2. every condensed substructure from its owner, in order
+    nrot = 0
+    ip_ = 0
+    do isub = 1, size(model%subs)
+       if (.not. summary%sub_condensed(isub)) cycle
+       ip_ = ip_ + 1
+       mine = summary%sub_owner(isub) == comm%rank
+       associate (v => parts(ip_))
+         ni = v%ni
+         nb = v%nb
+         allocate (head(NHEAD), fstar(nb, nstep), source=0.0_wp)
+         if (mine) then
+            call view_spc(cache, v, v%spc)
+            call view_maxratio(cache, v, v%ratio, v%ratio_at)
+            call owner_ku0(cache, tr, v)
+            call view_condense_loads(cache, v, f_phys(v%pdof, :), fstar, error)
+            if (allocated(error)) return   ! a load condensation does not fail in practice; see module notes
+            head = [merge(1.0_wp, 0.0_wp, v%reused), merge(1.0_wp, 0.0_wp, v%rotated), v%ratio, &
+                 real(v%ratio_at, wp), real(size(v%spc), wp), merge(1.0_wp, 0.0_wp, any(v%ku0 /= 0.0_wp))]
+         end if
+         call broadcast(head, summary%sub_owner(isub), ok)
+         if (.not. ok) call fatal_error(error, EXIT_IO, 'error: MPI broadcast of a condensation failed')
+         if (allocated(error)) return
+         nspc = nint(head(5), i8)
+         nku0 = merge(ni + nb, 0_i8, head(6) /= 0.0_wp)
+         allocate (body(nspc + nb*nb + nb*nstep + nku0))
+         if (mine) then
+            body(1:nspc) = real(v%spc, wp)
+            at = nspc
+            body(at + 1:at + nb*nb) = reshape(v%se%k, [nb*nb])
+            at = at + nb*nb
+            body(at + 1:at + nb*nstep) = reshape(fstar, [nb*nstep])
+            at = at + nb*nstep
+            if (nku0 > 0) body(at + 1:) = v%ku0
+         end if
+         call broadcast(body, summary%sub_owner(isub), ok)
+         if (.not. ok) call fatal_error(error, EXIT_IO, 'error: MPI broadcast of a condensation failed')
+         if (allocated(error)) return
+         if (.not. mine) then
+            v%reused = head(1) /= 0.0_wp
+            v%rotated = head(2) /= 0.0_wp
+            v%ratio = head(3)
+            v%ratio_at = nint(head(4), i8)
+            v%spc = nint(body(1:nspc), i8)
+            at = nspc
+            v%se%k = reshape(body(at + 1:at + nb*nb), [nb, nb])
+            at = at + nb*nb
+            fstar = reshape(body(at + 1:at + nb*nstep), [nb, int(nstep, i8)])
+            at = at + nb*nstep
+            if (nku0 > 0) then
+               v%ku0 = body(at + 1:)
+            else
+               allocate (v%ku0(ni + nb), source=0.0_wp)
+            end if
+         end if
+         if (v%rotated) nrot = nrot + 1
+         reused(ip_) = v%reused
+         ! as condense_parts: AUTOSPC notes and loads on DOFs without stiffness
+         do i = 1, size(v%spc)
+            if (any(f_phys(v%spc(i), :) /= 0.0_wp)) then
+               call add_error_line(error, EXIT_SINGULAR, 'error: load on a DOF without stiffness: '// &
+                    dof_label(model, table, v%spc(i)))
+            else if (.not. v%reused) then
+               call note(notes, 'AUTOSPC: '//dof_label(model, table, v%spc(i))//' has no stiffness and no load: dropped')
+            end if
+         end do
+         if (allocated(error)) return   ! the same on every process: the ending agrees, rank 0 prints
+         f_eff(v%se%pdof, :) = fstar
+         deallocate (head, fstar, body)
+       end associate
+    end do
+    counts = [int(cache%computed - computed0, i8), int(cache%reused - reused0, i8)]
+    call sum_counts(counts, ok)
+    call note(notes, 'condensations: '//itoa(counts(1))//' computed, '//itoa(counts(2))//' reused ('// &
+         itoa(nrot)//' turned by their instance''s placement) on '//itoa(comm%size)//' processes')
+  end subroutine condense_distributed
+
+  subroutine owner_ku0(cache, tr, v)
+    !! k u0 of an own substructure: its stiffness times the prescribed values
+    !! of its boundary (what full_health needs of every substructure).
+    type(part_cache_t), intent(in) :: cache
+    type(transform_t), intent(in) :: tr
+    type(part_view_t), intent(inout) :: v
+    real(wp), allocatable :: u0l(:, :), w(:, :)
+    allocate (u0l(v%ni + v%nb, 1), w(v%ni + v%nb, 1), source=0.0_wp)
+    u0l(v%ni + 1:, 1) = tr%prescribed(v%pdof(v%ni + 1:))
+    if (any(u0l /= 0.0_wp)) call view_stiffness_times(cache, v, u0l, w)
+    v%ku0 = w(:, 1)
+  end subroutine owner_ku0
+
+  subroutine recover_distributed(cache, parts, f_phys, u, error)
+    !! recover_parts over several processes: each process recovers the
+    !! interiors of its own substructures (the views that are not remote);
+    !! the sum over the processes fills in the others.
+    type(part_cache_t), intent(inout) :: cache
+    type(part_view_t), intent(in) :: parts(:)
+    real(wp), intent(in) :: f_phys(:, :)
+    real(wp), intent(inout) :: u(:, :)
+    type(error_t), allocatable, intent(out) :: error
+    real(wp), allocatable :: ul(:, :), buf(:)
+    integer(i8) :: at, n
+    integer :: i, nstep
+    logical :: ok
+    nstep = size(u, 2)
+    n = 0
+    do i = 1, size(parts)
+       n = n + parts(i)%ni*nstep
+    end do
+    allocate (buf(n), source=0.0_wp)
+    at = 0
+    do i = 1, size(parts)
+       associate (v => parts(i))
+         if (v%entry > 0) then
+            ul = u(v%pdof, :)
+            call view_recover(cache, v, f_phys(v%pdof, :), ul, error)
+            if (allocated(error)) return
+            buf(at + 1:at + v%ni*nstep) = reshape(ul(1:v%ni, :), [v%ni*nstep])
+         end if
+         at = at + v%ni*nstep
+       end associate
+    end do
+    call agreed(error)
+    if (allocated(error)) return
+    call sum_reals(buf, ok)
+    if (.not. ok) then
+       call fatal_error(error, EXIT_IO, 'error: MPI sum of the recovered interiors failed')
+       return
+    end if
+    at = 0
+    do i = 1, size(parts)
+       associate (v => parts(i))
+         u(v%pdof(1:v%ni), :) = reshape(buf(at + 1:at + v%ni*nstep), [v%ni, int(nstep, i8)])
+         at = at + v%ni*nstep
+       end associate
+    end do
+  end subroutine recover_distributed
+
+  subroutine parts_ku_distributed(cache, parts, u, ku, error)
+    !! parts_ku over several processes: k u of each condensed substructure by
+    !! its owner, summed over the processes (zero off the condensed DOFs).
+    type(part_cache_t), intent(in) :: cache
+    type(part_view_t), intent(in) :: parts(:)
+    real(wp), intent(in) :: u(:, :)
+    real(wp), allocatable, intent(out) :: ku(:, :)
+    type(error_t), allocatable, intent(out) :: error
+    real(wp), allocatable :: y(:, :), buf(:)
+    integer(i8) :: at, n, m
+    integer :: i, nstep
+    logical :: ok
+    nstep = size(u, 2)
+    n = 0
+    do i = 1, size(parts)
+       n = n + size(parts(i)%pdof, kind=i8)*nstep
+    end do
+    allocate (buf(n), source=0.0_wp)
+    at = 0
+    do i = 1, size(parts)
+       m = size(parts(i)%pdof, kind=i8)
+       if (parts(i)%entry > 0) then
+          allocate (y(m, nstep))
+          call view_stiffness_times(cache, parts(i), u(parts(i)%pdof, :), y)
+          buf(at + 1:at + m*nstep) = reshape(y, [m*nstep])
+          deallocate (y)
+       end if
+       at = at + m*nstep
+    end do
+    call sum_reals(buf, ok)
+    if (.not. ok) then
+       call fatal_error(error, EXIT_IO, 'error: MPI sum of the substructures'' k u failed')
+       return
+    end if
+    allocate (ku(size(u, 1), nstep), source=0.0_wp)
+    at = 0
+    do i = 1, size(parts)
+       m = size(parts(i)%pdof, kind=i8)
+       ku(parts(i)%pdof, :) = ku(parts(i)%pdof, :) + reshape(buf(at + 1:at + m*nstep), [m, int(nstep, i8)])
+       at = at + m*nstep
+    end do
+  end subroutine parts_ku_distributed
+
+  subroutine mpi_summary(quiet, error)
+    !! Collective, once the solve has ended on every process (it agrees
+    !! first, so that a process that failed meets it): per process the bytes
+    !! it passed to collectives (broadcasts of condensations, sums of
+    !! interiors, the solution), the matrix entries it handed MUMPS and their
+    !! bytes, and MUMPS's memory (INFO(16); INFOG(18) the largest process,
+    !! INFOG(19) all). Rank 0 prints them on stderr unless quiet. Nothing on
+    !! one process.
+    logical, intent(in) :: quiet
+    type(error_t), allocatable, intent(out) :: error
+    type(comm_t) :: comm
+    type(mumps_stats_t) :: ms
+    integer(i8), allocatable :: v(:)
+    integer(i8) :: moved
+    integer :: r
+    logical :: ok
+    character(len=200) :: line
+    comm = comm_world()
+    if (comm%size <= 1) return
+    call agreed(error)
+    if (allocated(error)) return
+    moved = bytes_moved()
+    ms = mumps_stats()
+    allocate (v(NSTAT*comm%size), source=0_i8)
+    v(NSTAT*comm%rank + 1:NSTAT*comm%rank + NSTAT) = [moved, ms%entries, ms%mb_here, ms%mb_max, ms%mb_total]
+    call sum_counts(v, ok)
+    if (.not. ok .or. quiet .or. .not. comm%is_root()) return
+    do r = 0, comm%size - 1
+       associate (x => v(NSTAT*r + 1:NSTAT*r + NSTAT))
+         write (line, '(a,i0,a,i0,a,i0,a,i0,a,i0,a)') 'superjoin: MPI process ', r, ': collectives ', x(1), &
+              ' bytes, MUMPS input ', x(2), ' entries (', x(2)*BYTES_MUMPS_ENTRY, ' bytes), MUMPS memory ', x(3), ' MB'
+       end associate
+       write (error_unit, '(a)') trim(line)
+    end do
+    write (error_unit, '(a,i0,a,i0,a)') 'superjoin: MUMPS memory over the processes (INFOG(18), INFOG(19)): largest ', &
+         v(4), ' MB, all ', v(5), ' MB'
+  end subroutine mpi_summary
+
+  subroutine agreed(error)
+    !! Collective: every process says whether it failed (error allocated). A
+    !! process that failed keeps its own error; the others get a silent one
+    !! with the agreed status (the failing process prints).
+    type(error_t), allocatable, intent(inout) :: error
+    integer :: worst, first, mine
+    mine = 0
+    if (allocated(error)) mine = error%code
+    call agree(mine, worst, first)
+    if (worst == 0) return
+    call note_agreed_failure(first)
+    if (allocated(error)) then
+       error%code = worst
+    else
+       call fatal_error(error, worst, 'error: process '//itoa(first)//' failed')
+    end if
+  end subroutine agreed
+end module superjoin_analysis_distributed

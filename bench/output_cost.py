@@ -6,7 +6,9 @@ usage: bench/output_cost.py [--bin build/superjoin] [--dofs 1e6] [--work DIR]
 The frame of bench/gen_frame.f90 (--dofs N, tower) solved three ways in one
 run: (1) the full output, listing + --csv + --vtk; (2) the listing alone;
 (3) the deck with output requests (the base reactions with their totals and
-the windward column line's displacements, *NODE PRINT), listing alone. Prints
+the windward column line's displacements, *NODE PRINT), listing alone; (4) the
+same with file requests (*NODE FILE U of the windward column line, *EL FILE SF
+of the columns), listing + CSV + VTK, which the requests narrow. Prints
 each run's wall time, peak memory and superjoin's own phase times (its
 progress lines on stderr): the solve is the same in all three, the
 difference is recovery and writing.
@@ -23,6 +25,11 @@ REQUESTS = """*NODE PRINT, NSET=COLUMNS.BASE, TOTALS=YES
 RF
 *NODE PRINT, NSET=COLUMNS.WINDWARD
 U
+"""
+FILE_REQUESTS = """*NODE FILE, NSET=COLUMNS.WINDWARD
+U
+*EL FILE, ELSET=COLUMNS.COLS
+SF
 """
 
 
@@ -55,11 +62,15 @@ def main():
     at = text.index("*STEP")
     with open(os.path.join(args.work, "frame_req.deck"), "w") as fh:
         fh.write(text[:at] + REQUESTS + text[at:])
+    with open(os.path.join(args.work, "frame_file.deck"), "w") as fh:
+        fh.write(text[:at] + REQUESTS + FILE_REQUESTS + text[at:])
     binary = os.path.abspath(args.bin)
     runs = [("full output: listing + CSV + VTK", ["frame.deck", "-o", "full.lst", "--csv", "full_csv",
                                                   "--vtk", "full"]),
             ("listing only", ["frame.deck", "-o", "plain.lst"]),
-            ("output requests (*NODE PRINT), listing", ["frame_req.deck", "-o", "req.lst"])]
+            ("output requests (*NODE PRINT), listing", ["frame_req.deck", "-o", "req.lst"]),
+            ("output and file requests (*NODE FILE U, *EL FILE SF of the columns): listing + CSV + VTK",
+             ["frame_file.deck", "-o", "file.lst", "--csv", "file_csv", "--vtk", "file"])]
     print(f"## Output cost: gen_frame --dofs {args.dofs} (tower)")
     print("| run | wall s | peak MiB | assemble+order+factor+solve s | recover s | write s |")
     print("|---|---|---|---|---|---|")

@@ -60,6 +60,8 @@ contains
          do e = 1, sub%nelem
             if (.not. is_plate_type(sub%elem_type(e)) .or. sub%elem_section(e) <= 0) cycle
             nn = ELEMENT_NODE_COUNT(sub%elem_type(e))
+            ! an element with a node the deck does not define is an error reported already
+            if (any(sub%elem_nodes(1:nn, e) < 1 .or. sub%elem_nodes(1:nn, e) > sub%nnode)) cycle
             if (all(line(sub%elem_nodes(1:nn, e)) == 0)) cycle
             te = 0.0_wp
             do a = 1, nn

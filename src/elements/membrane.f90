@@ -80,6 +80,7 @@ module superjoin_elements_membrane
   public :: plane_strain_stiffness, plane_strain_resultants
   public :: plane_stress, plane_strain, check_plane_material
   public :: membrane_point_stresses
+  public :: check_membrane_element
 
 contains
 
@@ -227,6 +228,16 @@ contains
   end subroutine membrane_drill_stiffness
 
   ! ------------------------------------------------------------------ checks
+
+  pure subroutine check_membrane_element(xl, t, e, nu, state, error)
+    !! The data checks of the membrane elements (check_element) for the other
+    !! membrane formulations (superjoin_elements_drilling).
+    real(wp), intent(in) :: xl(:, :)
+    real(wp), intent(in) :: t, e, nu
+    character(*), intent(in) :: state
+    type(error_t), allocatable, intent(out) :: error
+    call check_element(xl, t, e, nu, state, error)
+  end subroutine check_membrane_element
 
   pure subroutine check_element(xl, t, e, nu, state, error)
     !! Data checks: node count, t > 0, E > 0, -1 < nu < 0.5, positive area,

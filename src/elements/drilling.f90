@@ -11,24 +11,42 @@ module superjoin_elements_drilling
   !! displacement quadratic along the edge whose slopes at the ends are θᵢ, θⱼ:
   !!   Δu_k = (l_k/8)(θⱼ - θᵢ) n_k = (θⱼ - θᵢ)/8 (yⱼ - yᵢ, -(xⱼ - xᵢ)),
   !! n_k the outward normal, l_k the edge length. A constant θ adds nothing, so
-  !! the element has a fourth zero-energy mode (equal θ, u = v = 0) that the
-  !! penalty of Hughes-Brezzi on the skew-symmetric part of the displacement
-  !! gradient removes; with an independent skew-symmetric stress constant in the
-  !! element (Ibrahimbegovic-Taylor-Wilson) it condenses to
-  !!   ½ γ t A (θ̄ - ω̄)²,  θ̄ = (1/A)∫ Σ Nᵢ θᵢ dA,  ω̄ = (1/A)∫ (∂v/∂x - ∂u/∂y)/2 dA,
-  !! ω of the full field (edge bubbles included), γ = DRILL_PENALTY G.
+  !! without more the element has a fourth zero-energy mode (equal θ, u = v = 0),
+  !! which the Hughes-Brezzi penalty on the skew-symmetric part of the
+  !! displacement gradient removes:
+  !!   ½ γ t ∫ (ω - θ)² dA,  ω = (∂v/∂x - ∂u/∂y)/2 of the full field (edge
+  !!   bubbles included),  θ = Σ Nᵢ θᵢ (corner functions),  γ = DRILL_PENALTY G.
   !!
-  !! Integration: the triangle's strains are linear, its stiffness is exact with
-  !! the three midside points; the quadrilateral is integrated with 2×2 Gauss
-  !! (as Ibrahimbegovic-Taylor-Wilson), which is exact for the integrals of the
-  !! bubble derivatives that decide the patch test. A linear displacement field
-  !! with θ equal to its (constant) rotation makes every Δu_k vanish: constant
-  !! strain is represented exactly on any shape and the penalty is zero, so both
-  !! elements pass the patch test; a shared edge has the same Δu_k in both its
-  !! elements (normal and θⱼ - θᵢ both change sign), so the field is conforming.
+  !! Triangle (Allman): strains linear, stiffness exact with the three midside
+  !! points; the penalty acts on the element means, ½ γ t A (θ̄ - ω̄)² (an
+  !! independent skew-symmetric stress constant in the element).
+  !! Quadrilateral (Ibrahimbegovic-Taylor-Wilson): 2×2 Gauss for the strains and
+  !! the penalty (γ = G as in their paper), plus the incompatible modes
+  !! 1 - ξ², 1 - η² of QM6 (superjoin_elements_membrane) in u and v with Taylor's
+  !! correction, condensed statically. Measured on the MacNeal-Harder straight
+  !! cantilever (6 × 1, in-plane shear, tip / 0.1081; regular, trapezoidal,
+  !! parallelogram) and the 48 × 4 mesh, with tests/shells/verify_drilling.py
+  !! for the shells:
+  !!   without modes, mean penalty (γ = G):  0.904 0.811 0.898, 48×4 0.992
+  !!   without modes, 2×2 penalty:           0.904 0.785 0.799
+  !!   modes, mean penalty:                  0.993 0.910 0.984, 48×4 1.201 (a
+  !!                                         spurious mode: 4 zero eigenvalues)
+  !!   modes, 2×2 penalty (this element):    0.993 0.888 0.962, 48×4 0.9994
+  !! (γ = 0.01 G: the same on the cantilever, the twisted beam 1.04 / 1.09 and
+  !! Scordelis-Lo 4 × 4 1.21 too flexible, so γ = G.) For the triangle the mean
+  !! penalty with γ = G: 0.158 0.161 0.110, 48×4 0.894 (γ = 0.01 G: 0.218, 0.922).
+  !!
+  !! Patch test: a linear displacement field with θ equal to its (constant)
+  !! rotation makes every Δu_k vanish and the penalty zero; the incompatible
+  !! modes have zero mean strain on any shape; the integrals of the bubble
+  !! derivatives are exact with the rules above. A shared edge has the same Δu_k
+  !! in both its elements (normal and θⱼ - θᵢ both change sign): the nodal field
+  !! is conforming. Boundary edges under a traction carry consistent edge moments
+  !! (±σnn l²/12 at the ends) that superjoin's loads do not apply (as Abaqus and
+  !! CalculiX apply none to drilling rotations): the loss is of higher order.
   use superjoin_kinds, only: wp
   use superjoin_error, only: error_t, fatal_error, EXIT_DECK
-  use superjoin_elements_membrane, only: plane_stress, check_membrane_element
+  use superjoin_elements_membrane, only: plane_stress, check_membrane_element, spd_solve
   implicit none (type, external)
   private
 
@@ -41,6 +59,9 @@ module superjoin_elements_drilling
   real(wp), parameter :: XI_NODE(4) = [-1.0_wp, 1.0_wp, 1.0_wp, -1.0_wp]
   real(wp), parameter :: ETA_NODE(4) = [-1.0_wp, -1.0_wp, 1.0_wp, 1.0_wp]
   integer, parameter :: NPOINT_QUAD = 4, NPOINT_TRI = 3
+  integer, parameter :: NMODE = 4
+    !! incompatible modes of the quadrilateral (QM6's 1 - ξ², 1 - η² in u and v)
+    !! the quadrilateral with the incompatible modes (see the module header)
 
   type :: point_t
      !! Strain and rotation rows of the element at one point.
@@ -50,6 +71,8 @@ module superjoin_elements_drilling
        !! ω - θ = w . d, θ interpolated by the corner functions
      real(wp) :: weight = 0.0_wp
        !! integration weight (area share)
+     real(wp) :: ba(NSTRAIN, NMODE) = 0.0_wp
+       !! strains of the incompatible modes (quadrilateral)
   end type point_t
 
 contains
@@ -63,8 +86,8 @@ contains
     real(wp), allocatable, intent(out) :: ke(:, :)
     type(error_t), allocatable, intent(out) :: error
     type(point_t), allocatable :: pts(:)
-    real(wp), allocatable :: g(:)
-    real(wp) :: d(NSTRAIN, NSTRAIN), area
+    real(wp), allocatable :: g(:), kda(:, :)
+    real(wp) :: d(NSTRAIN, NSTRAIN), area, kaa(NMODE, NMODE)
     integer :: n, k, j
 
     call check_membrane_element(xl, t, e, nu, 'plane stress', error)
@@ -72,17 +95,29 @@ contains
     n = size(xl, 2)
     d = t*plane_stress(e, nu)
     call points(xl, pts)
-    allocate (ke(3*n, 3*n), g(3*n), source=0.0_wp)
+    allocate (ke(3*n, 3*n), g(3*n), kda(3*n, NMODE), source=0.0_wp)
+    kaa = 0.0_wp
     area = 0.0_wp
     do k = 1, size(pts)
        ke = ke + pts(k)%weight*matmul(transpose(pts(k)%b), matmul(d, pts(k)%b))
+       kda = kda + pts(k)%weight*matmul(transpose(pts(k)%b), matmul(d, pts(k)%ba))
+       kaa = kaa + pts(k)%weight*matmul(transpose(pts(k)%ba), matmul(d, pts(k)%ba))
        g = g + pts(k)%weight*pts(k)%w
        area = area + pts(k)%weight
     end do
     g = g/area
-    do j = 1, 3*n
-       ke(:, j) = ke(:, j) + DRILL_PENALTY*e/(2*(1 + nu))*t*area*g(j)*g
-    end do
+    if (n == 4) then
+       ke = ke - matmul(kda, spd_solve(kaa, transpose(kda)))
+       do k = 1, size(pts)
+          do j = 1, 3*n
+             ke(:, j) = ke(:, j) + DRILL_PENALTY*e/(2*(1 + nu))*t*pts(k)%weight*pts(k)%w(j)*pts(k)%w
+          end do
+       end do
+    else
+       do j = 1, 3*n
+          ke(:, j) = ke(:, j) + DRILL_PENALTY*e/(2*(1 + nu))*t*area*g(j)*g
+       end do
+    end if
     ke = 0.5_wp*(ke + transpose(ke))
   end subroutine drilling_stiffness
 
@@ -105,10 +140,11 @@ contains
     end if
     if (size(xl, 2) == 3) then
        p = point_tri(xl, [1.0_wp, 1.0_wp, 1.0_wp]/3, 0.0_wp)
+       nres = t*matmul(plane_stress(e, nu), matmul(p%b, ue))
     else
        p = point_quad(xl, 0.0_wp, 0.0_wp, 0.0_wp)
+       nres = t*matmul(plane_stress(e, nu), matmul(p%b, ue) + matmul(p%ba, modes(xl, e, nu, ue)))
     end if
-    nres = t*matmul(plane_stress(e, nu), matmul(p%b, ue))
   end subroutine drilling_resultants
 
   pure subroutine drilling_point_stresses(xl, e, nu, ue, sig_points, sig_nodes, error)
@@ -125,7 +161,7 @@ contains
     real(wp), allocatable, intent(out) :: sig_points(:, :), sig_nodes(:, :)
     type(error_t), allocatable, intent(out) :: error
     type(point_t) :: p
-    real(wp) :: d(NSTRAIN, NSTRAIN), lc(3)
+    real(wp) :: d(NSTRAIN, NSTRAIN), lc(3), alpha(NMODE)
     integer :: k, n
     call check_membrane_element(xl, 1.0_wp, e, nu, 'plane stress', error)
     if (allocated(error)) return
@@ -148,14 +184,35 @@ contains
        return
     end if
     allocate (sig_points(NSTRAIN, 4), sig_nodes(NSTRAIN, 4))
+    alpha = modes(xl, e, nu, ue)
     do k = 1, 4
        p = point_quad(xl, GP*XI_NODE(k), GP*ETA_NODE(k), 0.0_wp)
-       sig_points(:, k) = matmul(d, matmul(p%b, ue))
+       sig_points(:, k) = matmul(d, matmul(p%b, ue) + matmul(p%ba, alpha))
     end do
     do k = 1, 4
        sig_nodes(:, k) = matmul(sig_points, bilinear(sqrt(3.0_wp)*XI_NODE(k), sqrt(3.0_wp)*ETA_NODE(k)))
     end do
   end subroutine drilling_point_stresses
+
+  pure function modes(xl, e, nu, ue) result(alpha)
+    !! Incompatible-mode amplitudes of a quadrilateral from its nodal values
+    !! (static condensation undone): α = -Kaa⁻¹ Kad ue.
+    real(wp), intent(in) :: xl(:, :), e, nu, ue(:)
+    real(wp) :: alpha(NMODE)
+    type(point_t), allocatable :: pts(:)
+    real(wp) :: d(NSTRAIN, NSTRAIN), kaa(NMODE, NMODE), rhs(NMODE, 1), x(NMODE, 1)
+    integer :: k
+    d = plane_stress(e, nu)
+    call points(xl, pts)
+    kaa = 0.0_wp
+    rhs = 0.0_wp
+    do k = 1, size(pts)
+       kaa = kaa + pts(k)%weight*matmul(transpose(pts(k)%ba), matmul(d, pts(k)%ba))
+       rhs(:, 1) = rhs(:, 1) + pts(k)%weight*matmul(transpose(pts(k)%ba), matmul(d, matmul(pts(k)%b, ue)))
+    end do
+    x = spd_solve(kaa, rhs)
+    alpha = -x(:, 1)
+  end function modes
 
   ! ----------------------------------------------------------------- points
 
@@ -208,7 +265,8 @@ contains
     !! Rows at (ξ, η) of a quadrilateral; weight multiplied by det J.
     real(wp), intent(in) :: xl(2, 4), xi, eta, weight
     type(point_t) :: p
-    real(wp) :: dn(2, 4), dpn(2, 4), jm(2, 2), inv(2, 2), jac
+    real(wp) :: dn(2, 4), dpn(2, 4), jm(2, 2), inv(2, 2), jac, j0(2, 2), adj0(2, 2), dm(2, 2)
+    integer :: i
     ! natural derivatives of the corners
     dn(1, :) = XI_NODE*(1 + eta*ETA_NODE)/4
     dn(2, :) = ETA_NODE*(1 + xi*XI_NODE)/4
@@ -223,6 +281,24 @@ contains
     inv(2, :) = [-jm(2, 1), jm(1, 1)]
     inv = inv/jac
     p = assemble(xl, bilinear(xi, eta), matmul(inv, dn), matmul(inv, dpn), weight*jac)
+    ! Incompatible modes 1 - ξ², 1 - η² with Taylor's correction (derivatives
+    ! mapped by the centre's J₀ and scaled by j₀/j, i.e. adj(J₀)/j): their
+    ! integral over the element vanishes, the patch test holds on any shape.
+    dn(1, :) = XI_NODE/4
+    dn(2, :) = ETA_NODE/4
+    j0 = matmul(dn, transpose(xl))
+    adj0(1, :) = [j0(2, 2), -j0(1, 2)]
+    adj0(2, :) = [-j0(2, 1), j0(1, 1)]
+    dm(:, 1) = [-2*xi, 0.0_wp]
+    dm(:, 2) = [0.0_wp, -2*eta]
+    dm = matmul(adj0, dm)/jac
+    p%ba = 0.0_wp
+    do i = 1, 2
+       p%ba(1, i) = dm(1, i)
+       p%ba(3, i) = dm(2, i)
+       p%ba(2, 2 + i) = dm(2, i)
+       p%ba(3, 2 + i) = dm(1, i)
+    end do
   end function point_quad
 
   pure function assemble(xl, nc, dn, dp, weight) result(p)

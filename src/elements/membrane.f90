@@ -80,7 +80,7 @@ module superjoin_elements_membrane
   public :: plane_strain_stiffness, plane_strain_resultants
   public :: plane_stress, plane_strain, check_plane_material
   public :: membrane_point_stresses
-  public :: check_membrane_element
+  public :: check_membrane_element, spd_solve
 
 contains
 

@@ -31,6 +31,7 @@ module superjoin_elements_shell
   use superjoin_elements_quadratic, only: plane_props_t, quadratic_stiffness, quadratic_resultants, &
        quadratic_shape_integrals
   use superjoin_elements_mindlin, only: mindlin_stiffness, mindlin_resultants, default_shear_stiffness
+  use superjoin_elements_drilling, only: drilling_stiffness, drilling_resultants, drilling_point_stresses
   implicit none (type, external)
   private
 
@@ -38,11 +39,14 @@ module superjoin_elements_shell
   public :: is_plate_type, is_plane_type, is_plane_strain_type, is_quadratic_plane_type, shell_frame, shell_stiffness, shell_resultants, shell_forces, shell_pressure_load, &
        shell_area_load
   public :: shell_surface_stresses
+  public :: has_drilling_membrane
 
   integer, parameter :: MEMBRANE_DOFS(3) = [1, 2, 6]
     !! Local shell DOFs (u, v, w, θx, θy, θz) of the membrane (u, v, θz).
   integer, parameter :: PLATE_DOFS(3) = [3, 4, 5]
     !! Local shell DOFs of plate bending (w, θx, θy).
+  integer, parameter :: DRILLING_MEMBRANE_TYPES(*) = [ET_S4, ET_S4R]
+    !! Shell types with the drilling membrane (has_drilling_membrane).
   real(wp), parameter :: PLANE_TOL = 1.0e-8_wp
     !! Largest |z| spread of a plane-stress element relative to its size.
 
@@ -53,6 +57,14 @@ contains
     integer, intent(in) :: etype
     is_plate_type = is_plane_type(etype) .or. etype == ET_S3 .or. etype == ET_S4 .or. is_thick_shell_type(etype)
   end function is_plate_type
+
+  elemental logical function has_drilling_membrane(etype)
+    !! True for the shells whose membrane is the drilling-rotation element of
+    !! superjoin_elements_drilling (Allman triangle, Ibrahimbegovic-Taylor-Wilson
+    !! quadrilateral) instead of the CST / QM6 with soft drilling springs.
+    integer, intent(in) :: etype
+    has_drilling_membrane = any(etype == DRILLING_MEMBRANE_TYPES)
+  end function has_drilling_membrane
 
   elemental logical function is_thick_shell_type(etype)
     !! True for the thick (Reissner-Mindlin) shells S4R, S3R.
@@ -267,7 +279,11 @@ contains
        call plane_strain_stiffness(xl, sec%thickness, mat%e, mat%nu, kf, error)
        return
     end if
-    call membrane_drill_stiffness(xl, sec%thickness, mat%e, mat%nu, km, error)
+    if (has_drilling_membrane(etype)) then
+       call drilling_stiffness(xl, sec%thickness, mat%e, mat%nu, km, error)
+    else
+       call membrane_drill_stiffness(xl, sec%thickness, mat%e, mat%nu, km, error)
+    end if
     if (allocated(error)) return
     if (is_thick_shell_type(etype)) then
        call mindlin_stiffness(xl, sec%thickness, mat%e, mat%nu, shell_shear_stiffness(sec, mat), kb, error)
@@ -289,7 +305,7 @@ contains
     real(wp), intent(in) :: d(:)
     real(wp), intent(out) :: res(6)
     type(error_t), allocatable, intent(out) :: error
-    real(wp) :: um(2*size(xl, 2)), ub(3*size(xl, 2)), q(2)
+    real(wp) :: um(2*size(xl, 2)), ub(3*size(xl, 2)), q(2), ud(3*size(xl, 2))
     integer :: i
     res = 0.0_wp
     if (is_quadratic_plane_type(etype)) then
@@ -306,9 +322,14 @@ contains
     end if
     do i = 1, size(xl, 2)
        um(2*i - 1:2*i) = d(6*(i - 1) + MEMBRANE_DOFS(1:2))
+       ud(3*i - 2:3*i) = d(6*(i - 1) + MEMBRANE_DOFS)
        ub(3*i - 2:3*i) = d(6*(i - 1) + PLATE_DOFS)
     end do
-    call membrane_resultants(xl, sec%thickness, mat%e, mat%nu, um, res(1:3), error)
+    if (has_drilling_membrane(etype)) then
+       call drilling_resultants(xl, sec%thickness, mat%e, mat%nu, ud, res(1:3), error)
+    else
+       call membrane_resultants(xl, sec%thickness, mat%e, mat%nu, um, res(1:3), error)
+    end if
     if (allocated(error)) return
     if (is_thick_shell_type(etype)) then
        call mindlin_resultants(xl, sec%thickness, mat%e, mat%nu, shell_shear_stiffness(sec, mat), ub, res(4:6), q, &
@@ -509,6 +530,7 @@ contains
     real(wp), allocatable, intent(out) :: sig_points(:, :, :), sig_nodes(:, :, :)
     type(error_t), allocatable, intent(out) :: error
     real(wp) :: xl(2, size(x, 2)), h(size(x, 2)), d(size(ue)), um(2*size(x, 2)), ub(3*size(x, 2)), t
+    real(wp) :: ud(3*size(x, 2))
     real(wp), allocatable :: sp(:, :), sn(:, :), mp(:, :), mn(:, :)
     integer :: i, n, etype
     n = size(x, 2)
@@ -519,10 +541,15 @@ contains
     d = to_local(node_maps(etype, r, h), ue)
     do i = 1, n
        um(2*i - 1:2*i) = d(6*(i - 1) + MEMBRANE_DOFS(1:2))
+       ud(3*i - 2:3*i) = d(6*(i - 1) + MEMBRANE_DOFS)
        ub(3*i - 2:3*i) = d(6*(i - 1) + PLATE_DOFS)
     end do
     t = sec%thickness
-    call membrane_point_stresses(xl, mat%e, mat%nu, .false., um, sp, sn, error)
+    if (has_drilling_membrane(etype)) then
+       call drilling_point_stresses(xl, mat%e, mat%nu, ud, sp, sn, error)
+    else
+       call membrane_point_stresses(xl, mat%e, mat%nu, .false., um, sp, sn, error)
+    end if
     if (allocated(error)) return
     call plate_point_moments(xl, t, mat%e, mat%nu, ub, mp, mn, error)
     if (allocated(error)) return

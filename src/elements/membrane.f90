@@ -19,7 +19,8 @@ module superjoin_elements_membrane
   !! area (mapped back to (ξ, η) by Newton's method for the quadrilateral), with the
   !! incompatible-mode amplitudes recovered from the nodal displacements.
   !!
-  !! Drilling rotation (membrane_drill_stiffness): membrane_stiffness plus
+  !! Drilling rotation (membrane_drill_stiffness, the membrane of S3/S3R; S4/S4R
+  !! have true drilling rotations, superjoin_elements_drilling): membrane_stiffness plus
   !!   ½ kr (θ̄ - ω̄)² + ½ kn Σᵢ (θᵢ - θ̄)²,   kr = DRILL_ROTATION_FACTOR G t A,
   !!                                          kn = DRILL_NODE_FACTOR G t A,
   !! with θ̄ the mean nodal θz and ω̄ = (1/A) ∫ (∂v/∂x - ∂u/∂y)/2 dA the mean

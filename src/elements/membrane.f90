@@ -19,7 +19,9 @@ module superjoin_elements_membrane
   !! area (mapped back to (ξ, η) by Newton's method for the quadrilateral), with the
   !! incompatible-mode amplitudes recovered from the nodal displacements.
   !!
-  !! Drilling rotation (membrane_drill_stiffness): membrane_stiffness plus
+  !! Drilling rotation (membrane_drill_stiffness, the membrane of S3/S4/S3R/S4R;
+  !! the true drilling rotations of superjoin_elements_drilling are measured but
+  !! not used by any element type): membrane_stiffness plus
   !!   ½ kr (θ̄ - ω̄)² + ½ kn Σᵢ (θᵢ - θ̄)²,   kr = DRILL_ROTATION_FACTOR G t A,
   !!                                          kn = DRILL_NODE_FACTOR G t A,
   !! with θ̄ the mean nodal θz and ω̄ = (1/A) ∫ (∂v/∂x - ∂u/∂y)/2 dA the mean
@@ -80,6 +82,7 @@ module superjoin_elements_membrane
   public :: plane_strain_stiffness, plane_strain_resultants
   public :: plane_stress, plane_strain, check_plane_material
   public :: membrane_point_stresses
+  public :: check_membrane_element, spd_solve
 
 contains
 
@@ -227,6 +230,16 @@ contains
   end subroutine membrane_drill_stiffness
 
   ! ------------------------------------------------------------------ checks
+
+  pure subroutine check_membrane_element(xl, t, e, nu, state, error)
+    !! The data checks of the membrane elements (check_element) for the other
+    !! membrane formulations (superjoin_elements_drilling).
+    real(wp), intent(in) :: xl(:, :)
+    real(wp), intent(in) :: t, e, nu
+    character(*), intent(in) :: state
+    type(error_t), allocatable, intent(out) :: error
+    call check_element(xl, t, e, nu, state, error)
+  end subroutine check_membrane_element
 
   pure subroutine check_element(xl, t, e, nu, state, error)
     !! Data checks: node count, t > 0, E > 0, -1 < nu < 0.5, positive area,

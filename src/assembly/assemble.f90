@@ -33,6 +33,10 @@ module superjoin_assembly_assemble
     !! What goes into the reduced matrix besides contacts and springs.
      logical, allocatable :: skip_sub(:)      !! (nsub) elements left out (condensed substructures)
      type(superelement_t), allocatable :: supers(:)  !! their condensed stiffness instead
+     logical :: shared = .true.
+       !! the terms that belong to no substructure (plain contact units, loop
+       !! springs, g of the δ columns) go in; .false. for a term of K_red that
+       !! is summed with others (one process's share under MPI)
   end type assembly_plan_t
 
   public :: element_matrix
@@ -177,7 +181,8 @@ contains
     !! Assemble K_red (pattern and values) and the reduced load of the
     !! prescribed values, f_u0 = -Tᵀ K_phys u0: the elements of every
     !! substructure the plan does not skip, the plan's superelements, plain
-    !! contact units, loop springs, and g on the diagonal of every δ.
+    !! contact units, loop springs, and g on the diagonal of every δ (these
+    !! three only if plan%shared).
     type(model_t), intent(in) :: model
     type(dof_table_t), intent(in) :: table
     type(transform_t), intent(in) :: tr
@@ -187,7 +192,7 @@ contains
     type(error_t), allocatable, intent(out) :: error
     integer(i8), allocatable :: item_ptr(:), item_col(:), col_ptr(:), col_item(:), cols(:)
     integer(i8) :: pd(MAX_ITEM_DOFS), nitem, it, j
-    integer :: isub, n, nc, iu, i
+    integer :: isub, n, nc, iu, i, nforms
     integer(ip) :: e
     real(wp), allocatable :: ke(:, :)
     integer :: stat
@@ -195,12 +200,14 @@ contains
     real(wp) :: g
 
     ! Items: elements of every substructure, then plain units, then form springs.
-    nitem = tr%nforms() + size(plan%supers)
+    nforms = 0
+    if (plan%shared) nforms = tr%nforms()
+    nitem = nforms + size(plan%supers)
     do isub = 1, size(model%subs)
        if (plan%skip_sub(isub)) cycle
        nitem = nitem + model%subs(isub)%nelem
     end do
-    nitem = nitem + tr%count_role(ROLE_PLAIN)
+    if (plan%shared) nitem = nitem + tr%count_role(ROLE_PLAIN)
     allocate (item_ptr(nitem + 1), cols(64), item_col(max(16_i8, 12*nitem)), stat=stat)
     if (stat /= 0) then
        call out_of_memory(error, 'the column lists of the elements', (13*nitem + 1)*BYTES_I8)
@@ -225,13 +232,13 @@ contains
        if (allocated(error)) return
     end do
     do iu = 1, table%nunit
-       if (tr%unit_role(iu) /= ROLE_PLAIN) cycle
+       if (tr%unit_role(iu) /= ROLE_PLAIN .or. .not. plan%shared) cycle
        call unit_pdofs(table, iu, pd, n)
        call tr%element_columns(pd, n, cols, nc)
        call append_item(cols(1:nc))
        if (allocated(error)) return
     end do
-    do i = 1, tr%nforms()
+    do i = 1, nforms
        fs = tr%form(i)
        call append_item(fs%col)
        if (allocated(error)) return
@@ -272,19 +279,19 @@ contains
        allocate (ke(MAX_UNIT_TERMS, MAX_UNIT_TERMS))
     end if
     do iu = 1, table%nunit
-       if (tr%unit_role(iu) /= ROLE_PLAIN) cycle
+       if (tr%unit_role(iu) /= ROLE_PLAIN .or. .not. plan%shared) cycle
        it = it + 1
        call unit_pdofs(table, iu, pd, n)
        call unit_plain_stiffness(table, iu, ke, n)
        call tr%scatter(pd(1:n), ke(1:n, 1:n), item_col(item_ptr(it):item_ptr(it + 1) - 1), k, f_u0)
     end do
-    do i = 1, tr%nforms()
+    do i = 1, nforms
        it = it + 1
        fs = tr%form(i)
        call scatter_form(fs%col, fs%coef, fs%g, fs%const, k, f_u0)
     end do
     ! δ springs: g on the diagonal of their own column, nowhere else.
-    do j = 1, tr%ncol()
+    do j = 1, merge(tr%ncol(), 0_i8, plan%shared)
        g = tr%column_g(j)
        if (g /= 0.0_wp) k%val(k%colptr(j + 1) - 1) = k%val(k%colptr(j + 1) - 1) + g
     end do

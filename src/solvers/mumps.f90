@@ -10,7 +10,9 @@ module superjoin_solvers_mumps
   !! (superjoin_parallel_comm): all call it in the same order with the same
   !! matrix. Each process contributes the entries of its share of the columns
   !! (contiguous blocks, nodes kept whole, balanced by entries) as MUMPS's
-  !! distributed assembled input (ICNTL(18) = 3); right-hand sides and
+  !! distributed assembled input (ICNTL(18) = 3), or, with local_input, all the
+  !! entries of its own term of a matrix that is the sum over the processes
+  !! (MUMPS sums duplicates: nobody assembles the whole); right-hand sides and
   !! solutions are centralized on rank 0 and the solution is broadcast, so that
   !! every process continues with the same numbers.
   !!
@@ -29,7 +31,7 @@ module superjoin_solvers_mumps
   use superjoin_error, only: error_t, fatal_error, EXIT_SINGULAR, EXIT_IO, EXIT_USAGE
   use superjoin_solvers_sparse, only: sparse_sym_t
   use superjoin_solvers_solver, only: linear_solver_t
-  use superjoin_parallel_comm, only: comm_t, comm_world, agree, broadcast, sum_counts, fortran_handle, &
+  use superjoin_parallel_comm, only: comm_t, comm_world, agree, broadcast, sum_counts, max_reals, fortran_handle, &
        note_agreed_failure
   use superjoin_utils_memory, only: oom_message
   use superjoin_parallel_stats, only: record_mumps_input, record_mumps_memory
@@ -70,6 +72,12 @@ module superjoin_solvers_mumps
      private
      type(c_ptr) :: handle = c_null_ptr
      integer, public :: sym = MUMPS_SPD   !! MUMPS_SPD or MUMPS_SYMMETRIC (set before analyze)
+     logical, public :: local_input = .false.
+       !! Set before analyze: the matrix each process passes is its own term of
+       !! a sum (for example the stiffness of the substructures it owns), all of
+       !! whose entries it hands MUMPS; the matrix factored is the sum over the
+       !! processes (MUMPS sums duplicate entries). Otherwise every process passes
+       !! the same whole matrix and contributes a block of its columns.
      integer(i8) :: n = -1
      logical :: factored = .false.
      real(wp) :: fl = 0.0_wp
@@ -181,6 +189,8 @@ contains
     type(error_t), allocatable, intent(out) :: error
     integer(c_int) :: status
     integer(i8) :: c1, c2, one(1)
+    real(wp) :: orders(2)
+    logical :: ok
 
     self%factored = .false.
     self%n = -1
@@ -200,6 +210,16 @@ contains
     self%comm = comm_world()
     call agreed(self, SJ_OK, 'start', error)
     if (allocated(error)) return
+    if (self%local_input .and. self%comm%size > 1) then
+       ! every process's term must have the same order: the largest n and the
+       ! largest -n agree (the same verdict on every process)
+       orders = [real(a%n, wp), -real(a%n, wp)]
+       call max_reals(orders, ok)
+       if (.not. ok .or. orders(1) /= -orders(2)) then
+          call fatal_error(error, EXIT_IO, 'MUMPS: the processes'' terms of the matrix differ in order')
+          return
+       end if
+    end if
     if (.not. c_associated(self%handle)) then
        self%handle = sj_mumps_create(int(self%sym, c_int), int(fortran_handle(), c_int), &
             real(NULL_PIVOT_RELATIVE, c_double), ORDERING_AMD, status)
@@ -267,7 +287,7 @@ contains
     if (status == MUMPS_SINGULAR) then
        ! SYM = 1 stops at a zero pivot without naming it: the pivoting
        ! variant, with null pivot detection, finds the column
-       if (self%sym == MUMPS_SPD) self%info%failed_column = null_column(a)
+       if (self%sym == MUMPS_SPD) self%info%failed_column = null_column(a, self%local_input)
        call fatal_error(error, EXIT_SINGULAR, 'matrix is numerically singular (MUMPS)')
        return
     end if
@@ -412,7 +432,7 @@ contains
     integer(i8) :: j, target_lo, target_hi, nz
     c1 = 1
     c2 = a%n
-    if (self%comm%size <= 1 .or. a%n == 0) return
+    if (self%local_input .or. self%comm%size <= 1 .or. a%n == 0) return
     nz = a%nnz()
     target_lo = nz*self%comm%rank/self%comm%size
     target_hi = nz*(self%comm%rank + 1)/self%comm%size
@@ -441,15 +461,18 @@ contains
     end function boundary
   end subroutine share
 
-  function null_column(a) result(j)
-    !! The first null pivot column of a as found by MUMPS with pivoting
-    !! (SYM = 2, null pivot detection); 0 if none is found. Collective.
+  function null_column(a, local_input) result(j)
+    !! The first null pivot column of a (with local_input: of the sum of the
+    !! processes' a) as found by MUMPS with pivoting (SYM = 2, null pivot
+    !! detection); 0 if none is found. Collective.
     type(sparse_sym_t), intent(in) :: a
+    logical, intent(in) :: local_input
     integer(i8) :: j
     type(mumps_solver_t) :: probe
     type(error_t), allocatable :: error
     j = 0
     probe%sym = MUMPS_SYMMETRIC
+    probe%local_input = local_input
     call probe%analyze(a, error)
     if (allocated(error)) return
     call probe%factorize(a, error)

@@ -9,6 +9,8 @@ program test_interface
   !! - expand of a δ column: the slave moves by qsᵀ e_k against its master;
   !! - assembly (scatter of every element, superelement and spring) equals the
   !!   explicit Tᵀ K_phys T + diag(g) formed from expand of unit vectors;
+!! - two terms of K_red (each substructure in one, the terms of no
+!!   substructure in one only: plan%shared) sum to K_red and f_u0;
   !! - a condensation's K* equals k_bb − k_bi k_ii⁻¹ k_ib formed densely;
   !! - recovery: contact δ = Q (u_slave − u_master), finite force g δ, and the
   !!   recovered forces of the rigid contacts and supports hold part B in
@@ -70,6 +72,7 @@ program test_interface
   call adjoint_check()
   call delta_column_check()
   call assembly_check()
+  call shared_terms_check()
   call condensation_check()
   call recovery_check('lapack')
   call recovery_check('cholmod')
@@ -236,6 +239,48 @@ contains
     call check(maxval(abs(f_u0 + matmul(transpose(t), matmul(kphys, u0)))) <= 1.0e-13_wp*kmax*maxval(abs(u0)), &
          'f_u0 = -T^T K_phys u0')
   end subroutine assembly_check
+
+  subroutine shared_terms_check()
+    !! The terms of two processes (substructure A with the shared terms, B
+    !! without them: plan%shared) sum to the whole K_red and f_u0.
+    type(assembly_plan_t) :: plan
+    type(sparse_sym_t) :: k
+    real(wp), allocatable :: f_u0(:), f_sum(:), f_all(:), whole(:, :), summed(:, :)
+    integer :: iterm
+    integer(i8) :: ncol
+    ncol = tr%ncol()
+    allocate (whole(ncol, ncol), summed(ncol, ncol), f_sum(ncol), source=0.0_wp)
+    allocate (plan%skip_sub(size(model%subs)), source=.false.)
+    allocate (plan%supers(0))
+    call assemble_stiffness(model, table, tr, plan, k, f_all, error)
+    call check(.not. allocated(error), 'whole assembly')
+    call densify(k, whole)
+    call check(size(model%subs) == 2, 'two substructures')
+    do iterm = 1, 2
+       plan%skip_sub = [iterm /= 1, iterm /= 2]
+       plan%shared = iterm == 1
+       call assemble_stiffness(model, table, tr, plan, k, f_u0, error)
+       call check(.not. allocated(error), 'assembly of a term')
+       call densify(k, summed)
+       f_sum = f_sum + f_u0
+    end do
+    call check(maxval(abs(summed - whole)) <= 1.0e-13_wp*maxval(abs(whole)), 'terms sum to K_red')
+    call check(maxval(abs(f_sum - f_all)) <= 1.0e-13_wp*maxval(abs(f_all)), 'terms sum to f_u0')
+    call check(maxval(abs(f_all)) > 0.0_wp, 'f_u0 is not zero (a prescribed value)')
+  end subroutine shared_terms_check
+
+  subroutine densify(k, dense)
+    !! dense += the symmetric matrix whose upper triangle is k.
+    type(sparse_sym_t), intent(in) :: k
+    real(wp), intent(inout) :: dense(:, :)
+    integer(i8) :: j, pos
+    do j = 1, k%n
+       do pos = k%colptr(j), k%colptr(j + 1) - 1
+          dense(k%rowind(pos), j) = dense(k%rowind(pos), j) + k%val(pos)
+          if (k%rowind(pos) /= j) dense(j, k%rowind(pos)) = dense(j, k%rowind(pos)) + k%val(pos)
+       end do
+    end do
+  end subroutine densify
 
   subroutine condensation_check()
     !! K* of substructure B (its boundary: the contact and support DOFs)

@@ -601,28 +601,15 @@ contains
     real(wp), intent(out) :: r(3, 3)
     real(wp), allocatable, intent(out) :: sig_points(:, :, :), sig_nodes(:, :, :)
     type(error_t), allocatable, intent(out) :: error
-    real(wp) :: xl(2, size(x, 2)), h(size(x, 2)), d(size(ue)), um(2*size(x, 2)), ub(3*size(x, 2)), t
-    real(wp) :: ud(3*size(x, 2))
+    real(wp) :: xl(2, size(x, 2)), ub(3*size(x, 2)), t
     real(wp), allocatable :: sp(:, :), sn(:, :), mp(:, :), mn(:, :)
-    integer :: i, n, etype
+    integer :: n, etype
     n = size(x, 2)
     etype = ET_S4
     if (n == 3) etype = ET_S3
-    call setup(etype, x, r, xl, h, error)
+    call membrane_part(etype, x, mat, ue, r, xl, ub, sp, sn, error)
     if (allocated(error)) return
-    d = to_local(node_maps(etype, r, h), ue)
-    do i = 1, n
-       um(2*i - 1:2*i) = d(6*(i - 1) + MEMBRANE_DOFS(1:2))
-       ud(3*i - 2:3*i) = d(6*(i - 1) + MEMBRANE_DOFS)
-       ub(3*i - 2:3*i) = d(6*(i - 1) + PLATE_DOFS)
-    end do
     t = sec%thickness
-    if (has_drilling_membrane(etype)) then
-       call drilling_point_stresses(xl, mat%e, mat%nu, ud, sp, sn, error)
-    else
-       call membrane_point_stresses(xl, mat%e, mat%nu, .false., um, sp, sn, error)
-    end if
-    if (allocated(error)) return
     call plate_point_moments(xl, t, mat%e, mat%nu, ub, mp, mn, error)
     if (allocated(error)) return
     allocate (sig_points(3, size(sp, 2), 2), sig_nodes(3, n, 2))
@@ -631,6 +618,35 @@ contains
     sig_nodes(:, :, 1) = sn - 6*mn/t**2
     sig_nodes(:, :, 2) = sn + 6*mn/t**2
   end subroutine shell_surface_stresses
+
+  pure subroutine membrane_part(etype, x, mat, ue, r, xl, ub, sp, sn, error)
+    !! What the shell stress routines share: the element frame r and local
+    !! coordinates xl, the plate DOFs ub (w, θx, θy per node) of the local
+    !! displacements, and the membrane stresses at the points (sp) and nodes
+    !! (sn) of the element's membrane (drilling or QM6/CST).
+    integer, intent(in) :: etype
+    real(wp), intent(in) :: x(:, :)
+    type(material_t), intent(in) :: mat
+    real(wp), intent(in) :: ue(:)
+    real(wp), intent(out) :: r(3, 3), xl(:, :), ub(:)
+    real(wp), allocatable, intent(out) :: sp(:, :), sn(:, :)
+    type(error_t), allocatable, intent(out) :: error
+    real(wp) :: h(size(x, 2)), d(size(ue)), um(2*size(x, 2)), ud(3*size(x, 2))
+    integer :: i
+    call setup(etype, x, r, xl, h, error)
+    if (allocated(error)) return
+    d = to_local(node_maps(etype, r, h), ue)
+    do i = 1, size(x, 2)
+       um(2*i - 1:2*i) = d(6*(i - 1) + MEMBRANE_DOFS(1:2))
+       ud(3*i - 2:3*i) = d(6*(i - 1) + MEMBRANE_DOFS)
+       ub(3*i - 2:3*i) = d(6*(i - 1) + PLATE_DOFS)
+    end do
+    if (has_drilling_membrane(etype)) then
+       call drilling_point_stresses(xl, mat%e, mat%nu, ud, sp, sn, error)
+    else
+       call membrane_point_stresses(xl, mat%e, mat%nu, .false., um, sp, sn, error)
+    end if
+  end subroutine membrane_part
 
   pure subroutine thick_shell_stresses(etype, x, sec, mat, ue, r, sig_points, sig_nodes, error)
     !! Stresses (σx, σy, τxy, τxz, τyz) in the element frame r of an S4R or S3R
@@ -653,26 +669,11 @@ contains
     real(wp), intent(out) :: r(3, 3)
     real(wp), allocatable, intent(out) :: sig_points(:, :, :), sig_nodes(:, :, :)
     type(error_t), allocatable, intent(out) :: error
-    real(wp) :: xl(2, size(x, 2)), h(size(x, 2)), d(size(ue)), um(2*size(x, 2)), ub(3*size(x, 2)), t
-    real(wp) :: ud(3*size(x, 2))
+    real(wp) :: xl(2, size(x, 2)), ub(3*size(x, 2)), t
     real(wp), allocatable :: sp(:, :), sn(:, :), rp(:, :), rn(:, :)
-    integer :: i, n
-    n = size(x, 2)
-    call setup(etype, x, r, xl, h, error)
+    call membrane_part(etype, x, mat, ue, r, xl, ub, sp, sn, error)
     if (allocated(error)) return
-    d = to_local(node_maps(etype, r, h), ue)
-    do i = 1, n
-       um(2*i - 1:2*i) = d(6*(i - 1) + MEMBRANE_DOFS(1:2))
-       ud(3*i - 2:3*i) = d(6*(i - 1) + MEMBRANE_DOFS)
-       ub(3*i - 2:3*i) = d(6*(i - 1) + PLATE_DOFS)
-    end do
     t = sec%thickness
-    if (has_drilling_membrane(etype)) then
-       call drilling_point_stresses(xl, mat%e, mat%nu, ud, sp, sn, error)
-    else
-       call membrane_point_stresses(xl, mat%e, mat%nu, .false., um, sp, sn, error)
-    end if
-    if (allocated(error)) return
     call mindlin_point_resultants(xl, t, mat%e, mat%nu, shell_shear_stiffness(sec, mat), ub, rp, rn, error)
     if (allocated(error)) return
     call surfaces(sp, rp, sig_points)

@@ -12,7 +12,7 @@ module superjoin_model_history
   !! *CLOAD or *DLOAD card with OP=MOD written explicitly continues the loads of
   !! that kind of the previous step, replacing those on the same node and DOF
   !! (element and load type); OP=NEW, or no OP=, starts from nothing.
-  use superjoin_kinds, only: wp
+  use superjoin_kinds, only: wp, i8
   use superjoin_model_types, only: model_t, support_t, cload_t, dload_t
   use superjoin_utils_sorting, only: stable_argsort
   implicit none (type, external)
@@ -114,35 +114,68 @@ contains
     end do
   end subroutine apply_load_history
 
-  pure function cload_replaced(prev, own) result(hit)
+  function cload_replaced(prev, own) result(hit)
     !! Which loads of prev act on a node and DOF that own loads too.
     type(cload_t), intent(in) :: prev(:), own(:)
     logical :: hit(size(prev))
-    integer :: i, j
-    do i = 1, size(prev)
-       hit(i) = .false.
-       do j = 1, size(own)
-          if (prev(i)%sub == own(j)%sub .and. prev(i)%node == own(j)%node .and. prev(i)%dof == own(j)%dof) then
-             hit(i) = .true.
-             exit
-          end if
-       end do
-    end do
+    integer :: i
+    hit = tuples_found(reshape([(int([prev(i)%sub, int(prev(i)%node), prev(i)%dof], i8), i = 1, size(prev))], &
+         [3, size(prev)]), reshape([(int([own(i)%sub, int(own(i)%node), own(i)%dof], i8), i = 1, size(own))], &
+         [3, size(own)]))
   end function cload_replaced
 
-  pure function dload_replaced(prev, own) result(hit)
+  function dload_replaced(prev, own) result(hit)
     !! Which loads of prev act on an element with a load type that own loads too.
     type(dload_t), intent(in) :: prev(:), own(:)
     logical :: hit(size(prev))
-    integer :: i, j
-    do i = 1, size(prev)
-       hit(i) = .false.
-       do j = 1, size(own)
-          if (prev(i)%sub == own(j)%sub .and. prev(i)%elem == own(j)%elem .and. prev(i)%kind == own(j)%kind) then
-             hit(i) = .true.
+    integer :: i
+    hit = tuples_found(reshape([(int([prev(i)%sub, int(prev(i)%elem), prev(i)%kind], i8), i = 1, size(prev))], &
+         [3, size(prev)]), reshape([(int([own(i)%sub, int(own(i)%elem), own(i)%kind], i8), i = 1, size(own))], &
+         [3, size(own)]))
+  end function dload_replaced
+
+  function tuples_found(want, have) result(hit)
+    !! hit(j): the tuple want(:, j) is one of the columns of have. The columns
+    !! of have are sorted (stable passes, last component first) and searched by
+    !! bisection: O((m + n) log n), as decks with many loads per step need.
+    integer(i8), intent(in) :: want(:, :), have(:, :)
+    logical :: hit(size(want, 2))
+    integer, allocatable :: order(:)
+    integer :: j, c, lo, hi, mid
+    allocate (order(size(have, 2)))
+    order = [(j, j = 1, size(have, 2))]
+    do c = size(have, 1), 1, -1
+       call stable_argsort(real(have(c, :), wp), order)
+    end do
+    do j = 1, size(want, 2)
+       lo = 1
+       hi = size(order)
+       hit(j) = .false.
+       do while (lo <= hi)
+          mid = (lo + hi)/2
+          c = compare(have(:, order(mid)), want(:, j))
+          if (c == 0) then
+             hit(j) = .true.
              exit
+          else if (c < 0) then
+             lo = mid + 1
+          else
+             hi = mid - 1
           end if
        end do
     end do
-  end function dload_replaced
+  end function tuples_found
+
+  pure integer function compare(a, b)
+    !! Lexicographic order of two tuples: -1, 0 or 1.
+    integer(i8), intent(in) :: a(:), b(:)
+    integer :: k
+    compare = 0
+    do k = 1, size(a)
+       if (a(k) /= b(k)) then
+          compare = merge(-1, 1, a(k) < b(k))
+          return
+       end if
+    end do
+  end function compare
 end module superjoin_model_history

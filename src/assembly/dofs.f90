@@ -17,6 +17,13 @@ module superjoin_assembly_dofs
   implicit none (type, external)
   private
 
+  integer, parameter :: INITIAL_UNITS = 16   !! unit table slots before the first doubling
+
+  interface grow
+     !! Make room for element n + 1 of an allocatable array (grow_template.inc).
+     module procedure grow_unit
+  end interface grow
+
   integer, parameter, public :: NBLOCK = 2          !! translations, rotations
   integer, parameter, public :: BLOCK_SIZE = 3
   integer, parameter, public :: UNIT_LINK = 1, UNIT_SUPPORT = 2
@@ -232,7 +239,7 @@ contains
     integer, allocatable :: ign(:)
     integer :: nign
 
-    allocate (table%units(max(16, 2*size(model%links) + size(model%supports))))
+    allocate (table%units(max(INITIAL_UNITS, 2*size(model%links) + size(model%supports))))
     allocate (ign(size(model%links)))
     nign = 0
     do il = 1, size(model%links)
@@ -574,13 +581,15 @@ contains
   subroutine push_unit(table, u)
     type(dof_table_t), intent(inout) :: table
     type(unit_t), intent(in) :: u
-    type(unit_t), allocatable :: tmp(:)
-    if (table%nunit == size(table%units)) then
-       allocate (tmp(2*size(table%units)))
-       tmp(1:table%nunit) = table%units(1:table%nunit)
-       call move_alloc(tmp, table%units)
-    end if
+    call grow(table%units, table%nunit, INITIAL_UNITS)
     table%nunit = table%nunit + 1
     table%units(table%nunit) = u
   end subroutine push_unit
+
+  ! ------------------------------------------------------------------ growing arrays
+
+#define GROW_NAME grow_unit
+#define GROW_TYPE type(unit_t)
+#include "grow_template.inc"
+
 end module superjoin_assembly_dofs

@@ -23,6 +23,13 @@ module superjoin_assembly_transform
   implicit none (type, external)
   private
 
+  integer, parameter :: INITIAL_CONS = 4   !! constraint and spring-form slots before the first doubling
+
+  interface grow
+     !! Make room for element n + 1 of an allocatable array (grow_template.inc).
+     module procedure grow_constraint, grow_form_spring
+  end interface grow
+
   integer, parameter, public :: COL_PHYS = 1, COL_DELTA = 2, COL_DEAD = 3
     !! Column kinds.
   integer, parameter, public :: ROLE_TREE = 1, ROLE_PLAIN = 2
@@ -420,7 +427,7 @@ contains
     real(wp) :: const, amax, scale
     type(constraint_t) :: cs
 
-    allocate (tr%cons(4), tr%forms(4))
+    allocate (tr%cons(INITIAL_CONS), tr%forms(INITIAL_CONS))
     do iu = 1, table%nunit
        if (tr%role(iu) /= ROLE_PLAIN) cycle
        do k = 1, table%units(iu)%n
@@ -743,12 +750,7 @@ contains
   subroutine push_constraint(tr, cs)
     type(transform_t), intent(inout) :: tr
     type(constraint_t), intent(in) :: cs
-    type(constraint_t), allocatable :: tmp(:)
-    if (tr%ncons == size(tr%cons)) then
-       allocate (tmp(2*size(tr%cons)))
-       tmp(1:tr%ncons) = tr%cons(1:tr%ncons)
-       call move_alloc(tmp, tr%cons)
-    end if
+    call grow(tr%cons, tr%ncons, INITIAL_CONS)
     tr%ncons = tr%ncons + 1
     tr%cons(tr%ncons) = cs
   end subroutine push_constraint
@@ -756,12 +758,7 @@ contains
   subroutine push_form(tr, fs)
     type(transform_t), intent(inout) :: tr
     type(form_spring_t), intent(in) :: fs
-    type(form_spring_t), allocatable :: tmp(:)
-    if (tr%nform == size(tr%forms)) then
-       allocate (tmp(2*size(tr%forms)))
-       tmp(1:tr%nform) = tr%forms(1:tr%nform)
-       call move_alloc(tmp, tr%forms)
-    end if
+    call grow(tr%forms, tr%nform, INITIAL_CONS)
     tr%nform = tr%nform + 1
     tr%forms(tr%nform) = fs
   end subroutine push_form
@@ -1105,4 +1102,15 @@ contains
     end do
     b = 0
   end function locate
+
+  ! ------------------------------------------------------------------ growing arrays
+
+#define GROW_NAME grow_constraint
+#define GROW_TYPE type(constraint_t)
+#include "grow_template.inc"
+
+#define GROW_NAME grow_form_spring
+#define GROW_TYPE type(form_spring_t)
+#include "grow_template.inc"
+
 end module superjoin_assembly_transform

@@ -117,14 +117,8 @@ contains
     !! Append an equation to the deck state.
     type(deck_state_t), intent(inout) :: st
     type(equation_b_t), intent(in) :: eq
-    type(equation_b_t), allocatable :: tmp(:)
     integer, parameter :: INITIAL_EQUATIONS = 8
-    if (.not. allocated(st%equations)) allocate (st%equations(INITIAL_EQUATIONS))
-    if (st%nequation == size(st%equations)) then
-       allocate (tmp(2*st%nequation))
-       tmp(1:st%nequation) = st%equations(1:st%nequation)
-       call move_alloc(tmp, st%equations)
-    end if
+    call grow(st%equations, st%nequation, INITIAL_EQUATIONS)
     st%nequation = st%nequation + 1
     st%equations(st%nequation) = eq
   end subroutine push_equation

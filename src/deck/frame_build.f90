@@ -12,6 +12,13 @@ module superjoin_deck_frame_build
   implicit none (type, external)
   private
 
+  integer, parameter :: INITIAL_FRAMES = 8   !! nodal-system slots before the first doubling
+
+  interface grow
+     !! Make room for element n + 1 of an allocatable array (grow_template.inc).
+     module procedure grow_node_frame
+  end interface grow
+
   real(wp), parameter :: AXIS_TOL = 1.0e-9_wp
     !! A node closer to a cylindrical system's axis than this x the axis
     !! points' distance has no radial direction.
@@ -25,14 +32,14 @@ contains
     !! model%frames from the *TRANSFORM cards; *CLOAD on their nodes to global axes.
     type(deck_state_t), intent(inout) :: st
     type(model_t), intent(inout) :: model
-    type(node_frame_t), allocatable :: list(:), tmp(:)
+    type(node_frame_t), allocatable :: list(:)
     integer(ip), allocatable :: nodes(:)
     integer :: k, isub, n, j
     integer(ip) :: i
     logical :: ok, twice
     real(wp) :: q(3, 3)
 
-    allocate (list(8))
+    allocate (list(INITIAL_FRAMES))
     n = 0
     do k = 1, st%ntransform
        associate (t => st%transforms(k))
@@ -61,11 +68,7 @@ contains
                end if
             end do
             if (twice) cycle
-            if (n == size(list)) then
-               allocate (tmp(2*n))
-               tmp(1:n) = list(1:n)
-               call move_alloc(tmp, list)
-            end if
+            call grow(list, n, INITIAL_FRAMES)
             n = n + 1
             list(n)%sub = isub
             list(n)%node = nodes(i)
@@ -184,4 +187,11 @@ contains
        deallocate (out)
     end do
   end subroutine loads_to_global
+
+  ! ------------------------------------------------------------------ growing arrays
+
+#define GROW_NAME grow_node_frame
+#define GROW_TYPE type(node_frame_t)
+#include "grow_template.inc"
+
 end module superjoin_deck_frame_build

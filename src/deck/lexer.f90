@@ -6,6 +6,7 @@ module superjoin_deck_lexer
   use, intrinsic :: ieee_exceptions, only: ieee_status_type, ieee_get_status, ieee_set_status
   use superjoin_kinds, only: wp, ip, i8
   use superjoin_utils_strings, only: itoa
+  use superjoin_utils_grow, only: grow
   implicit none (type, external)
   private
 
@@ -323,7 +324,6 @@ contains
     character(*), intent(in) :: line
     type(fields_t), intent(inout) :: f
     integer :: start, c, e, a, b
-    if (.not. allocated(f%first)) allocate (f%first(INITIAL_FIELDS), f%last(INITIAL_FIELDS))
     f%n = 0
     start = 1
     do
@@ -343,22 +343,14 @@ contains
           if (line(b:b) /= BLANK .and. line(b:b) /= TAB) exit
           b = b - 1
        end do
-       if (f%n == size(f%first)) call grow
+       call grow(f%first, f%n, INITIAL_FIELDS)
+       call grow(f%last, f%n, INITIAL_FIELDS)
        f%n = f%n + 1
        f%first(f%n) = a
        f%last(f%n) = b
        if (c == 0) exit
        start = start + c
     end do
-  contains
-    pure subroutine grow
-      integer, allocatable :: t1(:), t2(:)
-      allocate (t1(2*size(f%first)), t2(2*size(f%first)))
-      t1(1:f%n) = f%first(1:f%n)
-      t2(1:f%n) = f%last(1:f%n)
-      call move_alloc(t1, f%first)
-      call move_alloc(t2, f%last)
-    end subroutine grow
   end subroutine split_fields
 
   pure subroutine drop_trailing_empty(f)

@@ -26,7 +26,6 @@ contains
     type(source_loc_t), intent(in) :: loc
     integer, parameter :: INITIAL_LINES = 8, MAX_FIELDS = 3
     type(nthick_b_t) :: d
-    type(nthick_b_t), allocatable :: tmp(:)
     real(wp) :: t2
     if (.not. field_count(st, loc, 2, MAX_FIELDS, 'node or nset, thickness')) return
     if (.not. parse_ref(st, fld(st, line, 1), .false., st%card_home, loc, d%node)) return
@@ -45,12 +44,7 @@ contains
        end if
     end if
     d%loc = loc
-    if (.not. allocated(st%nthicks)) allocate (st%nthicks(INITIAL_LINES))
-    if (st%nnthick == size(st%nthicks)) then
-       allocate (tmp(2*st%nnthick))
-       tmp(1:st%nnthick) = st%nthicks(1:st%nnthick)
-       call move_alloc(tmp, st%nthicks)
-    end if
+    call grow(st%nthicks, st%nnthick, INITIAL_LINES)
     st%nnthick = st%nnthick + 1
     st%nthicks(st%nnthick) = d
   end subroutine data_nodal_thickness

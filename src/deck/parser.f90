@@ -19,7 +19,7 @@ module superjoin_deck_parser
        push_pool, add_node, add_element, add_heading, add_material, add_orientation, &
        add_section, add_contact, add_cline, add_support, add_step, add_load, &
        MAX_INCLUDE_DEPTH, CH_IDS, CH_GEN, CH_RANGE, CH_REF, BEAM_2D_VALUES, BEAM_3D_VALUES
-  use superjoin_deck_state, only: request_b_t, add_request, add_request_var
+  use superjoin_deck_state, only: request_b_t, add_request, add_request_var, grow
   use superjoin_deck_ccx_cards, only: refused_card_reason, request_kind, is_node_request, &
        classify_variable, VAR_UNKNOWN, VAR_PRODUCED
   use superjoin_model_types, only: TOTALS_NO, TOTALS_YES, TOTALS_ONLY
@@ -35,6 +35,11 @@ module superjoin_deck_parser
   use superjoin_elements_catalog, only: unsupported_type_message
   implicit none (type, external)
   private
+
+  integer, parameter :: INITIAL_COMBOS = 4         !! *LOAD COMBINATION cards before the first doubling
+  integer, parameter :: INITIAL_TERMS = 4          !! terms of one combination before the first doubling
+  integer, parameter :: INITIAL_TEMPERATURES = 16  !! *TEMPERATURE lines before the first doubling
+  integer, parameter :: INITIAL_SURFACES = 4       !! *SURFACE cards before the first doubling
 
   public :: parse_source, finish_parse, register_file
   public :: outside_step, check_params, param_index, get_param, get_name_param, field_count, fld, get_real, &
@@ -225,19 +230,12 @@ contains
     type(deck_state_t), intent(inout) :: st
     character(*), intent(in) :: path, norm
     integer, intent(out) :: k
-    type(string_t), allocatable :: t1(:), t2(:)
     integer, parameter :: INITIAL_FILES = 4
     do k = 1, st%nfile
        if (st%norm_files(k)%s == norm) return
     end do
-    if (.not. allocated(st%files)) allocate (st%files(INITIAL_FILES), st%norm_files(INITIAL_FILES))
-    if (st%nfile == size(st%files)) then
-       allocate (t1(2*st%nfile), t2(2*st%nfile))
-       t1(1:st%nfile) = st%files(1:st%nfile)
-       t2(1:st%nfile) = st%norm_files(1:st%nfile)
-       call move_alloc(t1, st%files)
-       call move_alloc(t2, st%norm_files)
-    end if
+    call grow(st%files, st%nfile, INITIAL_FILES)
+    call grow(st%norm_files, st%nfile, INITIAL_FILES)
     st%nfile = st%nfile + 1
     k = st%nfile
     st%files(k)%s = path
@@ -2574,23 +2572,15 @@ contains
     type(source_loc_t), intent(in) :: loc
     character(:), allocatable :: name
     logical :: found
-    type(combo_b_t), allocatable :: tmp(:)
     st%card = CARD_SKIP
     if (.not. outside_step(st, kw, loc)) return
     call check_params(st, kw, loc, [character(NAME_LEN) :: 'NAME'], [character(NAME_LEN) ::])
     call get_name_param(st, kw, loc, 'NAME', .true., name, found)
     if (.not. found) return
-    if (.not. allocated(st%combos)) allocate (st%combos(4))
-    if (st%ncombo == size(st%combos)) then
-       allocate (tmp(2*st%ncombo))
-       tmp(1:st%ncombo) = st%combos(1:st%ncombo)
-       call move_alloc(tmp, st%combos)
-    end if
+    call grow(st%combos, st%ncombo, INITIAL_COMBOS)
     st%ncombo = st%ncombo + 1
     st%combos(st%ncombo)%name = name
     st%combos(st%ncombo)%loc = loc
-    allocate (st%combos(st%ncombo)%steps(4), st%combos(st%ncombo)%factors(4), &
-         st%combos(st%ncombo)%line_loc(4))
     st%card = CARD_COMBINATION
     st%card_item = st%ncombo
   end subroutine kw_load_combination
@@ -2601,9 +2591,6 @@ contains
     character(*), intent(in) :: line
     type(source_loc_t), intent(in) :: loc
     real(wp) :: factor
-    type(string_t), allocatable :: ts(:)
-    real(wp), allocatable :: tf(:)
-    type(source_loc_t), allocatable :: tl(:)
     if (.not. field_count(st, loc, 2, 2, 'step, factor')) return
     if (len(fld(st, line, 1)) == 0) then
        call report_loc(st, loc, 'empty step name on *LOAD COMBINATION data line')
@@ -2611,15 +2598,9 @@ contains
     end if
     if (.not. get_real(st, line, loc, 2, factor)) return
     associate (c => st%combos(st%card_item))
-      if (c%n == size(c%steps)) then
-         allocate (ts(2*c%n), tf(2*c%n), tl(2*c%n))
-         ts(1:c%n) = c%steps(1:c%n)
-         tf(1:c%n) = c%factors(1:c%n)
-         tl(1:c%n) = c%line_loc(1:c%n)
-         call move_alloc(ts, c%steps)
-         call move_alloc(tf, c%factors)
-         call move_alloc(tl, c%line_loc)
-      end if
+      call grow(c%steps, c%n, INITIAL_TERMS)
+      call grow(c%factors, c%n, INITIAL_TERMS)
+      call grow(c%line_loc, c%n, INITIAL_TERMS)
       c%n = c%n + 1
       c%steps(c%n)%s = to_upper(fld(st, line, 1))
       c%factors(c%n) = factor
@@ -2721,7 +2702,6 @@ contains
     character(*), intent(in) :: line
     type(source_loc_t), intent(in) :: loc
     type(temp_b_t) :: t
-    type(temp_b_t), allocatable :: tmp(:)
     if (st%f%n > 3) then
        call report_loc(st, loc, 'temperature gradients across a beam section are not supported '// &
             '(node or nset, temperature[, gradient along a shell''s normal])')
@@ -2735,12 +2715,7 @@ contains
     end if
     t%step = st%card_item
     t%loc = loc
-    if (.not. allocated(st%temps)) allocate (st%temps(16))
-    if (st%ntemp == size(st%temps)) then
-       allocate (tmp(2*st%ntemp))
-       tmp(1:st%ntemp) = st%temps(1:st%ntemp)
-       call move_alloc(tmp, st%temps)
-    end if
+    call grow(st%temps, st%ntemp, INITIAL_TEMPERATURES)
     st%ntemp = st%ntemp + 1
     st%temps(st%ntemp) = t
   end subroutine data_temperature
@@ -2755,7 +2730,6 @@ contains
     type(keyword_line_t), intent(in) :: kw
     type(source_loc_t), intent(in) :: loc
     character(:), allocatable :: name, typ
-    type(surface_b_t), allocatable :: tmp(:)
     logical :: found
     integer :: k
     st%card = CARD_SKIP
@@ -2779,12 +2753,7 @@ contains
           return
        end if
     end do
-    if (.not. allocated(st%surfaces)) allocate (st%surfaces(4))
-    if (st%nsurface == size(st%surfaces)) then
-       allocate (tmp(2*st%nsurface))
-       tmp(1:st%nsurface) = st%surfaces(1:st%nsurface)
-       call move_alloc(tmp, st%surfaces)
-    end if
+    call grow(st%surfaces, st%nsurface, INITIAL_SURFACES)
     st%nsurface = st%nsurface + 1
     st%surfaces(st%nsurface)%name = name
     st%surfaces(st%nsurface)%loc = loc

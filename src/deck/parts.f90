@@ -210,7 +210,6 @@ contains
     character(:), allocatable :: name, part
     logical :: f1, f2
     integer :: k, isub
-    type(instance_b_t), allocatable :: tmp(:)
     integer, parameter :: INITIAL_INSTANCES = 8
     if (.not. outside_step(st, kw, loc)) return
     call check_params(st, kw, loc, [character(NAME_LEN) :: 'NAME', 'PART'], [character(NAME_LEN) ::])
@@ -231,12 +230,7 @@ contains
             ' (defined at '//loc_string(st, st%subs(k)%loc)//')')
        return
     end if
-    if (.not. allocated(st%instances)) allocate (st%instances(INITIAL_INSTANCES))
-    if (st%ninst == size(st%instances)) then
-       allocate (tmp(2*st%ninst))
-       tmp(1:st%ninst) = st%instances(1:st%ninst)
-       call move_alloc(tmp, st%instances)
-    end if
+    call grow(st%instances, st%ninst, INITIAL_INSTANCES)
     call new_sub(st, name, loc, isub)
     st%ninst = st%ninst + 1
     st%subs(isub)%kind = SUBK_INSTANCE
@@ -526,7 +520,6 @@ contains
     character(*), intent(in) :: line
     type(source_loc_t), intent(in) :: loc
     type(override_b_t) :: o
-    type(override_b_t), allocatable :: tmp(:)
     integer :: nval, i
     integer, parameter :: INITIAL_OVERRIDES = 4
     if (st%card_generate) then
@@ -561,12 +554,7 @@ contains
             return
          end if
       end if
-      if (.not. allocated(step%overrides)) allocate (step%overrides(INITIAL_OVERRIDES))
-      if (step%noverride == size(step%overrides)) then
-         allocate (tmp(2*step%noverride))
-         tmp(1:step%noverride) = step%overrides(1:step%noverride)
-         call move_alloc(tmp, step%overrides)
-      end if
+      call grow(step%overrides, step%noverride, INITIAL_OVERRIDES)
       step%noverride = step%noverride + 1
       step%overrides(step%noverride) = o
     end associate

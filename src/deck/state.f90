@@ -8,8 +8,15 @@ module superjoin_deck_state
   use superjoin_model_types, only: string_t, source_loc_t, material_t, orientation_t, &
        controls_t, MAX_ELEMENT_NODES, NDOF_NODE, LINK_NONE
   use superjoin_deck_lexer, only: itoa, fields_t
+  use superjoin_utils_grow, only: grow
   implicit none (type, external)
   private
+
+  public :: grow
+  interface grow
+     !! Make room for element n + 1 of an allocatable array (grow_template.inc).
+     module procedure grow_sub_b, grow_set_b, grow_chunk, grow_string, grow_material, grow_orientation, grow_sec_b, grow_contact_b, grow_cline_b, grow_step_b, grow_load_b, grow_request_b, grow_spring_elem_b, grow_spring_card_b, grow_nthick_b, grow_transform_b, grow_equation_b, grow_temp_b, grow_surface_b, grow_combo_b, grow_instance_b, grow_override_b, grow_source_loc
+  end interface grow
 
   integer, parameter, public :: MAX_ERRORS = 50          !! messages before '... too many errors'
   integer, parameter, public :: MAX_INCLUDE_DEPTH = 16   !! nested *INCLUDE levels
@@ -352,7 +359,7 @@ module superjoin_deck_state
      integer :: nsurface = 0                        !! *SURFACE cards
      type(surface_b_t), allocatable :: surfaces(:)
      type(combo_b_t), allocatable :: combos(:)
-     logical :: section_rejected(3) = .false.  !! a *SOLID/*BEAM/*SHELL SECTION card (SEC_* index) was rejected
+     logical :: section_rejected(3) = .false.  !! a *SOLID, *BEAM or *SHELL SECTION card (SEC_* index) was rejected
      ! block and card state
      integer :: cur_inst = 0               !! open *INSTANCE block
      logical :: in_assembly = .false.      !! inside *ASSEMBLY ... *END ASSEMBLY
@@ -457,13 +464,7 @@ contains
     character(*), intent(in) :: name
     type(source_loc_t), intent(in) :: loc
     integer, intent(out) :: k
-    type(sub_b_t), allocatable :: tmp(:)
-    if (.not. allocated(st%subs)) allocate (st%subs(INITIAL_CAPACITY))
-    if (st%nsub == size(st%subs)) then
-       allocate (tmp(2*st%nsub))
-       tmp(1:st%nsub) = st%subs(1:st%nsub)
-       call move_alloc(tmp, st%subs)
-    end if
+    call grow(st%subs, st%nsub, INITIAL_CAPACITY)
     st%nsub = st%nsub + 1
     k = st%nsub
     st%subs(k)%name = name
@@ -501,23 +502,14 @@ contains
     logical, intent(in) :: elem
     type(source_loc_t), intent(in) :: loc
     integer, intent(out) :: k
-    type(set_b_t), allocatable :: tmp(:)
     if (elem) then
-       if (sub%nelset == size(sub%elsets)) then
-          allocate (tmp(2*sub%nelset))
-          tmp(1:sub%nelset) = sub%elsets(1:sub%nelset)
-          call move_alloc(tmp, sub%elsets)
-       end if
+       call grow(sub%elsets, sub%nelset, INITIAL_CAPACITY)
        sub%nelset = sub%nelset + 1
        k = sub%nelset
        sub%elsets(k)%name = name
        sub%elsets(k)%loc = loc
     else
-       if (sub%nnset == size(sub%nsets)) then
-          allocate (tmp(2*sub%nnset))
-          tmp(1:sub%nnset) = sub%nsets(1:sub%nnset)
-          call move_alloc(tmp, sub%nsets)
-       end if
+       call grow(sub%nsets, sub%nnset, INITIAL_CAPACITY)
        sub%nnset = sub%nnset + 1
        k = sub%nnset
        sub%nsets(k)%name = name
@@ -532,12 +524,7 @@ contains
     logical, intent(in) :: elem
     type(source_loc_t), intent(in) :: loc
     integer, intent(out) :: k
-    type(chunk_t), allocatable :: tmp(:)
-    if (sub%nchunk == size(sub%chunks)) then
-       allocate (tmp(2*sub%nchunk))
-       tmp(1:sub%nchunk) = sub%chunks(1:sub%nchunk)
-       call move_alloc(tmp, sub%chunks)
-    end if
+    call grow(sub%chunks, sub%nchunk, INITIAL_CAPACITY)
     sub%nchunk = sub%nchunk + 1
     k = sub%nchunk
     sub%chunks(k)%set = set
@@ -552,12 +539,7 @@ contains
     !! Append an id to the pool of explicit set members.
     type(sub_b_t), intent(inout) :: sub
     integer(ip), intent(in) :: id
-    integer(ip), allocatable :: tmp(:)
-    if (sub%npool == size(sub%pool)) then
-       allocate (tmp(2*size(sub%pool)))
-       tmp(1:sub%npool) = sub%pool(1:sub%npool)
-       call move_alloc(tmp, sub%pool)
-    end if
+    call grow(sub%pool, sub%npool, INITIAL_CAPACITY)
     sub%npool = sub%npool + 1
     sub%pool(sub%npool) = id
   end subroutine push_pool
@@ -660,13 +642,7 @@ contains
     !! Append a heading line.
     type(deck_state_t), intent(inout) :: st
     character(*), intent(in) :: text
-    type(string_t), allocatable :: tmp(:)
-    if (.not. allocated(st%heading)) allocate (st%heading(INITIAL_CAPACITY))
-    if (st%nheading == size(st%heading)) then
-       allocate (tmp(2*st%nheading))
-       tmp(1:st%nheading) = st%heading(1:st%nheading)
-       call move_alloc(tmp, st%heading)
-    end if
+    call grow(st%heading, st%nheading, INITIAL_CAPACITY)
     st%nheading = st%nheading + 1
     st%heading(st%nheading)%s = text
   end subroutine add_heading
@@ -677,13 +653,7 @@ contains
     character(*), intent(in) :: name
     type(source_loc_t), intent(in) :: loc
     integer, intent(out) :: k
-    type(material_t), allocatable :: tmp(:)
-    if (.not. allocated(st%materials)) allocate (st%materials(INITIAL_CAPACITY))
-    if (st%nmat == size(st%materials)) then
-       allocate (tmp(2*st%nmat))
-       tmp(1:st%nmat) = st%materials(1:st%nmat)
-       call move_alloc(tmp, st%materials)
-    end if
+    call grow(st%materials, st%nmat, INITIAL_CAPACITY)
     st%nmat = st%nmat + 1
     k = st%nmat
     st%materials(k)%name = name
@@ -696,13 +666,7 @@ contains
     character(*), intent(in) :: name
     type(source_loc_t), intent(in) :: loc
     integer, intent(out) :: k
-    type(orientation_t), allocatable :: tmp(:)
-    if (.not. allocated(st%orientations)) allocate (st%orientations(INITIAL_CAPACITY))
-    if (st%norient == size(st%orientations)) then
-       allocate (tmp(2*st%norient))
-       tmp(1:st%norient) = st%orientations(1:st%norient)
-       call move_alloc(tmp, st%orientations)
-    end if
+    call grow(st%orientations, st%norient, INITIAL_CAPACITY)
     st%norient = st%norient + 1
     k = st%norient
     st%orientations(k)%name = name
@@ -714,13 +678,7 @@ contains
     type(deck_state_t), intent(inout) :: st
     type(sec_b_t), intent(in) :: sec
     integer, intent(out) :: k
-    type(sec_b_t), allocatable :: tmp(:)
-    if (.not. allocated(st%sections)) allocate (st%sections(INITIAL_CAPACITY))
-    if (st%nsec == size(st%sections)) then
-       allocate (tmp(2*st%nsec))
-       tmp(1:st%nsec) = st%sections(1:st%nsec)
-       call move_alloc(tmp, st%sections)
-    end if
+    call grow(st%sections, st%nsec, INITIAL_CAPACITY)
     st%nsec = st%nsec + 1
     k = st%nsec
     st%sections(k) = sec
@@ -731,13 +689,7 @@ contains
     type(deck_state_t), intent(inout) :: st
     type(contact_b_t), intent(in) :: c
     integer, intent(out) :: k
-    type(contact_b_t), allocatable :: tmp(:)
-    if (.not. allocated(st%contacts)) allocate (st%contacts(INITIAL_CAPACITY))
-    if (st%ncontact == size(st%contacts)) then
-       allocate (tmp(2*st%ncontact))
-       tmp(1:st%ncontact) = st%contacts(1:st%ncontact)
-       call move_alloc(tmp, st%contacts)
-    end if
+    call grow(st%contacts, st%ncontact, INITIAL_CAPACITY)
     st%ncontact = st%ncontact + 1
     k = st%ncontact
     st%contacts(k) = c
@@ -747,13 +699,7 @@ contains
     !! Append a contact data line.
     type(deck_state_t), intent(inout) :: st
     type(cline_b_t), intent(in) :: c
-    type(cline_b_t), allocatable :: tmp(:)
-    if (.not. allocated(st%clines)) allocate (st%clines(INITIAL_CAPACITY))
-    if (st%ncline == size(st%clines)) then
-       allocate (tmp(2*st%ncline))
-       tmp(1:st%ncline) = st%clines(1:st%ncline)
-       call move_alloc(tmp, st%clines)
-    end if
+    call grow(st%clines, st%ncline, INITIAL_CAPACITY)
     st%ncline = st%ncline + 1
     st%clines(st%ncline) = c
   end subroutine add_cline
@@ -785,13 +731,7 @@ contains
     character(*), intent(in) :: name
     type(source_loc_t), intent(in) :: loc
     integer, intent(out) :: k
-    type(step_b_t), allocatable :: tmp(:)
-    if (.not. allocated(st%steps)) allocate (st%steps(INITIAL_CAPACITY))
-    if (st%nstep == size(st%steps)) then
-       allocate (tmp(2*st%nstep))
-       tmp(1:st%nstep) = st%steps(1:st%nstep)
-       call move_alloc(tmp, st%steps)
-    end if
+    call grow(st%steps, st%nstep, INITIAL_CAPACITY)
     st%nstep = st%nstep + 1
     k = st%nstep
     st%steps(k)%name = name
@@ -804,21 +744,12 @@ contains
     type(step_b_t), intent(inout) :: step
     type(load_b_t), intent(in) :: load
     logical, intent(in) :: dload
-    type(load_b_t), allocatable :: tmp(:)
     if (dload) then
-       if (step%ndload == size(step%dloads)) then
-          allocate (tmp(2*step%ndload))
-          tmp(1:step%ndload) = step%dloads(1:step%ndload)
-          call move_alloc(tmp, step%dloads)
-       end if
+       call grow(step%dloads, step%ndload, INITIAL_CAPACITY)
        step%ndload = step%ndload + 1
        step%dloads(step%ndload) = load
     else
-       if (step%ncload == size(step%cloads)) then
-          allocate (tmp(2*step%ncload))
-          tmp(1:step%ncload) = step%cloads(1:step%ncload)
-          call move_alloc(tmp, step%cloads)
-       end if
+       call grow(step%cloads, step%ncload, INITIAL_CAPACITY)
        step%ncload = step%ncload + 1
        step%cloads(step%ncload) = load
     end if
@@ -831,13 +762,7 @@ contains
     type(deck_state_t), intent(inout) :: st
     type(request_b_t), intent(in) :: r
     integer, intent(out) :: k
-    type(request_b_t), allocatable :: tmp(:)
-    if (.not. allocated(st%requests)) allocate (st%requests(INITIAL_CAPACITY))
-    if (st%nreq == size(st%requests)) then
-       allocate (tmp(2*st%nreq))
-       tmp(1:st%nreq) = st%requests(1:st%nreq)
-       call move_alloc(tmp, st%requests)
-    end if
+    call grow(st%requests, st%nreq, INITIAL_CAPACITY)
     st%nreq = st%nreq + 1
     k = st%nreq
     st%requests(k) = r
@@ -859,16 +784,11 @@ contains
     subroutine push_name(list, n)
       type(string_t), allocatable, intent(inout) :: list(:)
       integer, intent(inout) :: n
-      type(string_t), allocatable :: tmp(:)
       integer :: i
       do i = 1, n
          if (list(i)%s == name) return
       end do
-      if (n == size(list)) then
-         allocate (tmp(2*n))
-         tmp(1:n) = list(1:n)
-         call move_alloc(tmp, list)
-      end if
+      call grow(list, n, INITIAL_CAPACITY)
       n = n + 1
       list(n)%s = name
     end subroutine push_name
@@ -880,13 +800,7 @@ contains
     !! Append a spring element.
     type(deck_state_t), intent(inout) :: st
     type(spring_elem_b_t), intent(in) :: e
-    type(spring_elem_b_t), allocatable :: tmp(:)
-    if (.not. allocated(st%spring_elems)) allocate (st%spring_elems(INITIAL_CAPACITY))
-    if (st%nspring_elem == size(st%spring_elems)) then
-       allocate (tmp(2*st%nspring_elem))
-       tmp(1:st%nspring_elem) = st%spring_elems(1:st%nspring_elem)
-       call move_alloc(tmp, st%spring_elems)
-    end if
+    call grow(st%spring_elems, st%nspring_elem, INITIAL_CAPACITY)
     st%nspring_elem = st%nspring_elem + 1
     st%spring_elems(st%nspring_elem) = e
   end subroutine add_spring_elem
@@ -896,15 +810,104 @@ contains
     type(deck_state_t), intent(inout) :: st
     type(spring_card_b_t), intent(in) :: c
     integer, intent(out) :: k
-    type(spring_card_b_t), allocatable :: tmp(:)
-    if (.not. allocated(st%spring_cards)) allocate (st%spring_cards(INITIAL_CAPACITY))
-    if (st%nspring_card == size(st%spring_cards)) then
-       allocate (tmp(2*st%nspring_card))
-       tmp(1:st%nspring_card) = st%spring_cards(1:st%nspring_card)
-       call move_alloc(tmp, st%spring_cards)
-    end if
+    call grow(st%spring_cards, st%nspring_card, INITIAL_CAPACITY)
     st%nspring_card = st%nspring_card + 1
     k = st%nspring_card
     st%spring_cards(k) = c
   end subroutine add_spring_card
+
+  ! ------------------------------------------------------------------ growing arrays
+
+#define GROW_NAME grow_sub_b
+#define GROW_TYPE type(sub_b_t)
+#include "grow_template.inc"
+
+#define GROW_NAME grow_set_b
+#define GROW_TYPE type(set_b_t)
+#include "grow_template.inc"
+
+#define GROW_NAME grow_chunk
+#define GROW_TYPE type(chunk_t)
+#include "grow_template.inc"
+
+#define GROW_NAME grow_string
+#define GROW_TYPE type(string_t)
+#include "grow_template.inc"
+
+#define GROW_NAME grow_material
+#define GROW_TYPE type(material_t)
+#include "grow_template.inc"
+
+#define GROW_NAME grow_orientation
+#define GROW_TYPE type(orientation_t)
+#include "grow_template.inc"
+
+#define GROW_NAME grow_sec_b
+#define GROW_TYPE type(sec_b_t)
+#include "grow_template.inc"
+
+#define GROW_NAME grow_contact_b
+#define GROW_TYPE type(contact_b_t)
+#include "grow_template.inc"
+
+#define GROW_NAME grow_cline_b
+#define GROW_TYPE type(cline_b_t)
+#include "grow_template.inc"
+
+#define GROW_NAME grow_step_b
+#define GROW_TYPE type(step_b_t)
+#include "grow_template.inc"
+
+#define GROW_NAME grow_load_b
+#define GROW_TYPE type(load_b_t)
+#include "grow_template.inc"
+
+#define GROW_NAME grow_request_b
+#define GROW_TYPE type(request_b_t)
+#include "grow_template.inc"
+
+#define GROW_NAME grow_spring_elem_b
+#define GROW_TYPE type(spring_elem_b_t)
+#include "grow_template.inc"
+
+#define GROW_NAME grow_spring_card_b
+#define GROW_TYPE type(spring_card_b_t)
+#include "grow_template.inc"
+
+#define GROW_NAME grow_nthick_b
+#define GROW_TYPE type(nthick_b_t)
+#include "grow_template.inc"
+
+#define GROW_NAME grow_transform_b
+#define GROW_TYPE type(transform_b_t)
+#include "grow_template.inc"
+
+#define GROW_NAME grow_equation_b
+#define GROW_TYPE type(equation_b_t)
+#include "grow_template.inc"
+
+#define GROW_NAME grow_temp_b
+#define GROW_TYPE type(temp_b_t)
+#include "grow_template.inc"
+
+#define GROW_NAME grow_surface_b
+#define GROW_TYPE type(surface_b_t)
+#include "grow_template.inc"
+
+#define GROW_NAME grow_combo_b
+#define GROW_TYPE type(combo_b_t)
+#include "grow_template.inc"
+
+#define GROW_NAME grow_instance_b
+#define GROW_TYPE type(instance_b_t)
+#include "grow_template.inc"
+
+#define GROW_NAME grow_override_b
+#define GROW_TYPE type(override_b_t)
+#include "grow_template.inc"
+
+#define GROW_NAME grow_source_loc
+#define GROW_TYPE type(source_loc_t)
+#include "grow_template.inc"
+
 end module superjoin_deck_state

@@ -16,7 +16,6 @@ contains
     type(keyword_line_t), intent(in) :: kw
     type(source_loc_t), intent(in) :: loc
     type(transform_b_t) :: t
-    type(transform_b_t), allocatable :: tmp(:)
     character(:), allocatable :: value
     logical :: found
     integer, parameter :: INITIAL_TRANSFORMS = 4
@@ -43,12 +42,7 @@ contains
        return
     end if
     t%loc = loc
-    if (.not. allocated(st%transforms)) allocate (st%transforms(INITIAL_TRANSFORMS))
-    if (st%ntransform == size(st%transforms)) then
-       allocate (tmp(2*st%ntransform))
-       tmp(1:st%ntransform) = st%transforms(1:st%ntransform)
-       call move_alloc(tmp, st%transforms)
-    end if
+    call grow(st%transforms, st%ntransform, INITIAL_TRANSFORMS)
     st%ntransform = st%ntransform + 1
     st%transforms(st%ntransform) = t
     st%card = CARD_TRANSFORM

@@ -24,8 +24,14 @@ module superjoin_deck_validate
   use superjoin_deck_combinations, only: build_combinations
   use superjoin_model_history, only: support_list_t, step_ops_t, apply_boundary_history, apply_load_history
   use superjoin_deck_eccentric, only: check_offset_masters
+  use superjoin_utils_grow, only: grow
   implicit none (type, external)
   private
+
+  interface grow
+     !! Make room for element n + 1 of an allocatable array (grow_template.inc).
+     module procedure grow_cload, grow_dload
+  end interface grow
 
   public :: build_model
   public :: resolve_items, where, ref_text, resolve_sets, resolve_sub
@@ -89,7 +95,7 @@ module superjoin_deck_validate
      end function part_hint
      module integer function assembly_set_owner(model, name, elem, main) result(k)
        !! Substructure of an unscoped set name: MAIN when MAIN has it, else the one
-       !! instance that has it (an assembly-level *NSET/*ELSET, INSTANCE=), else main.
+       !! instance that has it (an assembly-level *NSET or *ELSET, INSTANCE=), else main.
        type(model_t), intent(in) :: model
        character(*), intent(in) :: name
        logical, intent(in) :: elem
@@ -398,14 +404,9 @@ contains
 
     subroutine add(i)
       integer(ip), intent(in) :: i
-      integer(ip), allocatable :: tmp(:)
       if (mark(i) == stamp) return
       mark(i) = stamp
-      if (n == size(items)) then
-         allocate (tmp(2*n))
-         tmp(1:n) = items(1:n)
-         call move_alloc(tmp, items)
-      end if
+      call grow(items, n, INITIAL_CAPACITY)
       n = n + 1
       items(n) = i
     end subroutine add
@@ -1002,7 +1003,7 @@ contains
     integer, intent(out) :: val
     logical, intent(out) :: added
     integer :: h, mask
-    if (2*(map%n + 1) > size(map%keys)) call grow
+    if (2*(map%n + 1) > size(map%keys)) call rehash
     mask = size(map%keys) - 1
     h = slot_of(key, mask)
     do
@@ -1020,7 +1021,7 @@ contains
     val = newval
     added = .true.
   contains
-    subroutine grow
+    subroutine rehash
       integer(i8), allocatable :: ok(:)
       integer, allocatable :: ov(:)
       integer :: i, nmask, j
@@ -1038,7 +1039,7 @@ contains
          map%keys(j) = ok(i)
          map%vals(j) = ov(i)
       end do
-    end subroutine grow
+    end subroutine rehash
   end subroutine map_get_or_add
 
   ! ================================================================== supports and loads
@@ -1305,11 +1306,7 @@ contains
        call resolve_items(st, model, isub, loads(k)%ref, .false., loads(k)%loc, nodes, ok)
        if (.not. ok) cycle
        do i = 1, size(nodes, kind=ip)
-          if (n == size(out)) then
-             allocate (tmp(2*n))
-             tmp(1:n) = out(1:n)
-             call move_alloc(tmp, out)
-          end if
+          call grow(out, n, INITIAL_CAPACITY)
           n = n + 1
           out(n)%sub = isub
           out(n)%node = nodes(i)
@@ -1392,11 +1389,7 @@ contains
                end if
              end associate
           end if
-          if (n == size(out)) then
-             allocate (tmp(2*n))
-             tmp(1:n) = out(1:n)
-             call move_alloc(tmp, out)
-          end if
+          call grow(out, n, INITIAL_CAPACITY)
           n = n + 1
           out(n)%sub = isub
           out(n)%elem = elems(i)
@@ -1601,4 +1594,15 @@ contains
        sec%fibre = pts
     end if
   end subroutine beam_fibres
+
+  ! ------------------------------------------------------------------ growing arrays
+
+#define GROW_NAME grow_cload
+#define GROW_TYPE type(cload_t)
+#include "grow_template.inc"
+
+#define GROW_NAME grow_dload
+#define GROW_TYPE type(dload_t)
+#include "grow_template.inc"
+
 end module superjoin_deck_validate

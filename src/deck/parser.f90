@@ -1705,23 +1705,7 @@ contains
             sec%data_ok = .false.
             return
          end if
-         if (.not. field_count(st, loc, VECTOR_FIELDS, VECTOR_FIELDS, 'vx, vy, vz')) then
-            sec%data_ok = .false.
-            return
-         end if
-         do i = 1, 3
-            if (.not. get_real(st, line, loc, i, v(i))) then
-               sec%data_ok = .false.
-               return
-            end if
-         end do
-         if (norm2(v(1:3)) == 0.0_wp) then
-            call report_loc(st, loc, 'beam orientation vector is zero')
-            sec%data_ok = .false.
-            return
-         end if
-         sec%v = v(1:3)
-         sec%has_v = .true.
+         call read_orientation_vector(st, line, loc, 'vx, vy, vz', st%card_item)
       end if
     end associate
   end subroutine data_section
@@ -2307,6 +2291,32 @@ contains
     end if
   end subroutine beam_section_params
 
+  subroutine read_orientation_vector(st, line, loc, expected, isec)
+    !! The orientation-vector data line of beam section `isec` (vx, vy, vz, not
+    !! zero) into its v; any problem is reported and marks the section's data bad.
+    type(deck_state_t), intent(inout) :: st
+    character(*), intent(in) :: line, expected
+    type(source_loc_t), intent(in) :: loc
+    integer, intent(in) :: isec
+    real(wp) :: v(VECTOR_FIELDS)
+    integer :: i
+    logical :: ok
+    ok = field_count(st, loc, VECTOR_FIELDS, VECTOR_FIELDS, expected)
+    do i = 1, VECTOR_FIELDS
+       if (ok) ok = get_real(st, line, loc, i, v(i))
+    end do
+    if (ok .and. norm2(v) == 0.0_wp) then
+       call report_loc(st, loc, 'beam orientation vector is zero')
+       ok = .false.
+    end if
+    if (.not. ok) then
+       st%sections(isec)%data_ok = .false.
+       return
+    end if
+    st%sections(isec)%v = v
+    st%sections(isec)%has_v = .true.
+  end subroutine read_orientation_vector
+
   subroutine data_beam_shape(st, line, loc)
     !! First data line of a library section (its dimensions, constants computed
     !! by superjoin_deck_beam_sections) or of Abaqus's general section
@@ -2329,23 +2339,7 @@ contains
          return
       end if
       if (st%card_ndata == 2) then
-         if (.not. field_count(st, loc, VECTOR_FIELDS, VECTOR_FIELDS, 'vx, vy, vz (direction of section axis 1)')) then
-            sec%data_ok = .false.
-            return
-         end if
-         do i = 1, 3
-            if (.not. get_real(st, line, loc, i, d(i))) then
-               sec%data_ok = .false.
-               return
-            end if
-         end do
-         if (norm2(d(1:3)) == 0.0_wp) then
-            call report_loc(st, loc, 'beam orientation vector is zero')
-            sec%data_ok = .false.
-            return
-         end if
-         sec%v = d(1:3)
-         sec%has_v = .true.
+         call read_orientation_vector(st, line, loc, 'vx, vy, vz (direction of section axis 1)', st%card_item)
          return
       end if
       if (sec%shape == SHAPE_GENERAL) then

@@ -1,13 +1,15 @@
 module superjoin_output_stresses
   !! Stresses of the plane elements (CPS3, CPS4, CPE3, CPE4; second order CPS6,
   !! CPS8, CPS8R, CPE6, CPE8, CPE8R) and of the shells (S3, S4: bottom and top
-  !! surface, σ = n/t ∓ 6 m/t²; S3R, S4R: also the mid-surface with the
+  !! surface, σ = n/t ∓ 6 m/t²; S3R, S4R, S8R: also the mid-surface with the
   !! transverse shear 1.5 q/t) where benchmarks quote them: at the integration points (*EL PRINT S, as CalculiX's .dat)
   !! and at the nodes (*NODE PRINT S / *NODE FILE S): extrapolated from the
   !! integration points of each element (superjoin_elements_membrane,
   !! membrane_point_stresses; superjoin_elements_quadratic,
   !! quadratic_point_stresses; superjoin_elements_shell, shell_surface_stresses
-  !! and thick_shell_stresses)
+  !! and thick_shell_stresses; S8R: superjoin_elements_shell8, shell8_stresses,
+  !! at its 2×2 points, corners extrapolated bilinearly, mid-side nodes the
+  !! mean of their corners)
   !! and averaged over the plane and shell elements of the same
   !! substructure (part) that share the node. Tensors in global axes, Voigt
   !! order xx, yy, zz, xy, xz, yz; plane strain has σzz = ν (σxx + σyy).
@@ -78,9 +80,10 @@ contains
     !! cannot be evaluated.
     !! Each element family computes its stresses in its own element routine
     !! (membrane_point_stresses, quadratic_point_stresses, shell_surface_stresses,
-    !! thick_shell_stresses), where a thermal strain is subtracted; a new family
-    !! (the S8R shell, catalog type 15) adds a branch to the chain below that
-    !! returns its section points in the layout of thick_shell_stresses.
+    !! thick_shell_stresses), where a thermal strain is subtracted; the S8R
+    !! (s8r_element_stresses) returns global tensors at its section points in
+    !! the layout of thick_shell_stresses, its thermal strain subtracted in
+    !! the element routine (shell8_stresses' thermal hook).
     type(model_t), intent(in) :: model
     type(result_fields_t), intent(in) :: fields
     integer, intent(in) :: is, isub

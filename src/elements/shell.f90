@@ -25,6 +25,7 @@ module superjoin_elements_shell
   use superjoin_model_types, only: ET_S8R
   use superjoin_elements_shell8, only: shell8_props_t, shell8_stiffness, shell8_resultants, shell8_area_shares, &
        shell8_pressure_load
+  use superjoin_elements_shell8, only: shell8_stresses
   use superjoin_elements_membrane, only: membrane_stiffness, membrane_drill_stiffness, membrane_resultants, &
        plane_strain_stiffness, plane_strain_resultants
   use superjoin_elements_plate, only: plate_stiffness, plate_moments, plate_pressure_load
@@ -44,6 +45,7 @@ module superjoin_elements_shell
        shell_area_load
   public :: shell_surface_stresses, thick_shell_stresses, THICK_SURFACES
   public :: has_drilling_membrane
+  public :: s8r_stresses
 
   integer, parameter :: MEMBRANE_DOFS(3) = [1, 2, 6]
     !! Local shell DOFs (u, v, w, θx, θy, θz) of the membrane (u, v, θz).
@@ -691,4 +693,22 @@ contains
       sig(4:5, :, 3) = PARABOLIC_SHEAR_PEAK*res(4:5, :)/t
     end subroutine surfaces
   end subroutine thick_shell_stresses
+  pure subroutine s8r_stresses(x, sec, mat, ue, sig_points, sig_nodes, error, thermal)
+    !! shell8_stresses of an S8R with its section and material: global stress
+    !! tensors sig_points(6, 4, 3) at the 2×2 points and sig_nodes(6, 8, 3) at
+    !! the nodes, section points bottom, top, mid-surface; thermal (optional):
+    !! α ΔT and α ∂T/∂n, subtracted as a free thermal strain.
+    real(wp), intent(in) :: x(:, :)
+    type(section_t), intent(in) :: sec
+    type(material_t), intent(in) :: mat
+    real(wp), intent(in) :: ue(:)
+    real(wp), intent(out) :: sig_points(:, :, :), sig_nodes(:, :, :)
+    type(error_t), allocatable, intent(out) :: error
+    real(wp), intent(in), optional :: thermal(2)
+    real(wp) :: r(3, 3), xl(2, size(x, 2)), h(size(x, 2))
+    call setup(ET_S8R, x, r, xl, h, error)
+    if (allocated(error)) return
+    call shell8_stresses(x, [r(1, 1), r(1, 2), r(1, 3)], shell8_props(sec, mat), ue, sig_points, sig_nodes, &
+         error, thermal)
+  end subroutine s8r_stresses
 end module superjoin_elements_shell

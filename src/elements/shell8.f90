@@ -80,6 +80,15 @@ module superjoin_elements_shell8
   end type shell8_props_t
 
   public :: shell8_stiffness, shell8_resultants, shell8_area_shares, shell8_pressure_load
+  public :: shell8_stresses
+
+  integer, parameter, public :: S8R_STRESS_POINTS = 4
+    !! Stress points of shell8_stresses: the 2×2 reduced rule.
+  integer, parameter, public :: S8R_SECTION_POINTS = 3
+    !! Section points of shell8_stresses: 1 bottom, 2 top, 3 mid-surface.
+  integer, parameter :: NTENSOR = 6          !! global tensor xx, yy, zz, xy, xz, yz
+  real(wp), parameter :: SHEAR_PEAK = 1.5_wp
+    !! τ(z = 0) = 1.5 q / t, the peak of the parabolic transverse shear of a homogeneous section.
 
 contains
 
@@ -172,6 +181,81 @@ contains
        q = q + s(4:5)*props%t/2
     end do
   end subroutine shell8_resultants
+
+  pure subroutine shell8_stresses(x, ex, props, ue, sig_points, sig_nodes, error, thermal)
+    !! Stress tensors (global axes, Voigt order xx, yy, zz, xy, xz, yz) of an
+    !! S8R from its displacements ue(48) (global axes): sig_points(6, 4, 3) at
+    !! the 2×2 points of the reduced rule, point k next to corner k (ξ, η =
+    !! ±1/√3 with the signs of corner k), sig_nodes(6, 8, 3) at the nodes; the
+    !! last index is the section point: 1 bottom (ζ = -1, z = -t/2), 2 top
+    !! (ζ = +1, along the surface normal a_ξ × a_η), 3 mid-surface.
+    !! In-plane: ε(ζ) = εm + ζ εb with the membrane and bending parts of the
+    !! stiffness (in_plane_parts, lamina frame), σ = D (ε - ε0(ζ)); the thermal
+    !! strain ε0(ζ) = thermal(1) + ζ t/2 thermal(2) (α ΔT and α ∂T/∂n, the
+    !! layout of the thermal fields of the other shells; isotropic in the
+    !! plane, absent = 0) is the single thermal hook. So n = t σ_mid and
+    !! m = t² (σ_top - σ_bot)/12 are the resultants of shell8_resultants.
+    !! Transverse shear: 0 on the faces, 1.5 q/t on the mid-surface with q the
+    !! shear force of the 2×2 rule (mean of the two thickness points).
+    !! Nodes: the four point values of each component extrapolated bilinearly
+    !! (in ξ, η) to the corners; a mid-side node takes the mean of its two
+    !! corners, which is the bilinear field's value there (four points fix
+    !! no quadratic field; CalculiX does the same for its reduced quadratic
+    !! elements). Components are extrapolated in global axes, so the result
+    !! does not depend on the lamina frame of a curved element.
+    real(wp), intent(in) :: x(:, :), ex(3)
+    type(shell8_props_t), intent(in) :: props
+    real(wp), intent(in) :: ue(:)
+    real(wp), intent(out) :: sig_points(NTENSOR, S8R_STRESS_POINTS, S8R_SECTION_POINTS)
+    real(wp), intent(out) :: sig_nodes(NTENSOR, NN, S8R_SECTION_POINTS)
+    type(error_t), allocatable, intent(out) :: error
+    real(wp), intent(in), optional :: thermal(2)
+    real(wp) :: dir(3, NN), d(NSTR, NSTR), bm(3, NDOF), bb(3, NDOF), detj(2), b(NSTR, NDOF)
+    real(wp) :: em(3), eb(3), gam(2), e0(2), s(NSTR), zeta, w(S8R_STRESS_POINTS)
+    real(wp), parameter :: SECTION_ZETA(S8R_SECTION_POINTS) = [-1.0_wp, 1.0_wp, 0.0_wp]
+    type(point_t) :: pt
+    integer :: k, kz, m, i
+
+    sig_points = 0.0_wp
+    sig_nodes = 0.0_wp
+    call check(x, props, dir, error)
+    if (allocated(error)) return
+    if (size(ue) /= NDOF) then
+       call fatal_error(error, EXIT_DECK, 'wrong number of element DOF values')
+       return
+    end if
+    e0 = 0.0_wp
+    if (present(thermal)) e0 = [thermal(1), thermal(2)*props%t/2]
+    d = material(props)
+    do k = 1, S8R_STRESS_POINTS
+       call in_plane_parts(x, dir, ex, props%t, G2*[XI_NODE(k), ETA_NODE(k)], bm, bb, detj)
+       em = matmul(bm, ue)
+       eb = matmul(bb, ue)
+       gam = 0.0_wp
+       do kz = 1, 2
+          call point(x, dir, ex, props%t, [G2*XI_NODE(k), G2*ETA_NODE(k), gauss2(kz)], pt)
+          b = strain_rows(pt, dir, props%t, gauss2(kz))
+          gam = gam + matmul(b(4:5, :), ue)/2
+       end do
+       call point(x, dir, ex, props%t, [G2*XI_NODE(k), G2*ETA_NODE(k), 0.0_wp], pt)
+       do m = 1, S8R_SECTION_POINTS
+          zeta = SECTION_ZETA(m)
+          s = 0.0_wp
+          s(1:3) = matmul(d(1:3, 1:3), em + zeta*eb - (e0(1) + zeta*e0(2))*[1.0_wp, 1.0_wp, 0.0_wp])
+          if (m == 3) s(4:5) = SHEAR_PEAK*matmul(d(4:5, 4:5), gam)
+          sig_points(:, k, m) = lamina_to_global(s, pt%r)
+       end do
+    end do
+    do i = 1, 4
+       w = bilinear_weights(sqrt(3.0_wp)*[XI_NODE(i), ETA_NODE(i)])
+       do m = 1, S8R_SECTION_POINTS
+          sig_nodes(:, i, m) = matmul(sig_points(:, :, m), w)
+       end do
+    end do
+    do i = 5, NN
+       sig_nodes(:, i, :) = (sig_nodes(:, i - 4, :) + sig_nodes(:, mod(i - 4, 4) + 1, :))/2
+    end do
+  end subroutine shell8_stresses
 
   pure subroutine shell8_area_shares(x, shares, error)
     !! shares(i) = ∫ N_i dA over the mid-surface (3×3 rule): the nodal loads
@@ -384,6 +468,29 @@ contains
        end do
     end do
   end function drill_row
+
+  pure function bilinear_weights(p) result(w)
+    !! Weights of the four 2×2 point values (point k next to corner k) of the
+    !! bilinear field through them at p, in coordinates scaled so the points
+    !! sit at (±1, ±1) (a corner of the element is at ±√3).
+    real(wp), intent(in) :: p(2)
+    real(wp) :: w(S8R_STRESS_POINTS)
+    integer :: k
+    do k = 1, S8R_STRESS_POINTS
+       w(k) = (1 + p(1)*XI_NODE(k))*(1 + p(2)*ETA_NODE(k))/4
+    end do
+  end function bilinear_weights
+
+  pure function lamina_to_global(s, r) result(t)
+    !! Lamina stresses s = (σ11, σ22, τ12, τ13, τ23) in the frame with rows
+    !! r = e1, e2, e3 as a global tensor, Voigt order xx, yy, zz, xy, xz, yz.
+    real(wp), intent(in) :: s(NSTR), r(3, 3)
+    real(wp) :: t(NTENSOR)
+    real(wp) :: sl(3, 3), m(3, 3)
+    sl = reshape([s(1), s(3), s(4), s(3), s(2), s(5), s(4), s(5), 0.0_wp], [3, 3])
+    m = matmul(transpose(r), matmul(sl, r))
+    t = [m(1, 1), m(2, 2), m(3, 3), m(1, 2), m(1, 3), m(2, 3)]
+  end function lamina_to_global
 
   pure function voigt(a, q) result(s)
     !! Strains of the displacement gradient a ⊗ q (lamina frame).

@@ -1,13 +1,15 @@
 module superjoin_output_stresses
   !! Stresses of the plane elements (CPS3, CPS4, CPE3, CPE4; second order CPS6,
   !! CPS8, CPS8R, CPE6, CPE8, CPE8R) and of the shells (S3, S4: bottom and top
-  !! surface, σ = n/t ∓ 6 m/t²; S3R, S4R: also the mid-surface with the
+  !! surface, σ = n/t ∓ 6 m/t²; S3R, S4R, S8R: also the mid-surface with the
   !! transverse shear 1.5 q/t) where benchmarks quote them: at the integration points (*EL PRINT S, as CalculiX's .dat)
   !! and at the nodes (*NODE PRINT S / *NODE FILE S): extrapolated from the
   !! integration points of each element (superjoin_elements_membrane,
   !! membrane_point_stresses; superjoin_elements_quadratic,
   !! quadratic_point_stresses; superjoin_elements_shell, shell_surface_stresses
-  !! and thick_shell_stresses)
+  !! and thick_shell_stresses; S8R: superjoin_elements_shell8, shell8_stresses,
+  !! at its 2×2 points, corners extrapolated bilinearly, mid-side nodes the
+  !! mean of their corners)
   !! and averaged over the plane and shell elements of the same
   !! substructure (part) that share the node. Tensors in global axes, Voigt
   !! order xx, yy, zz, xy, xz, yz; plane strain has σzz = ν (σxx + σyy).
@@ -24,6 +26,9 @@ module superjoin_output_stresses
   use superjoin_kinds, only: wp, i8, ip
   use superjoin_error, only: error_t
   use superjoin_model_types, only: model_t, ELEMENT_NODE_COUNT, ET_B23, ET_B33, ET_B21, ET_B31
+  use superjoin_model_types, only: ET_S8R
+  use superjoin_elements_shell, only: s8r_stresses
+  use superjoin_elements_shell8, only: S8R_STRESS_POINTS
   use superjoin_elements_shell, only: shell_frame, is_plane_type, is_plate_type, shell_surface_stresses
   use superjoin_elements_shell, only: is_plane_strain_type, is_quadratic_plane_type, is_thick_shell_type, &
        quadratic_props, thick_shell_stresses, THICK_SURFACES
@@ -75,9 +80,10 @@ contains
     !! cannot be evaluated.
     !! Each element family computes its stresses in its own element routine
     !! (membrane_point_stresses, quadratic_point_stresses, shell_surface_stresses,
-    !! thick_shell_stresses), where a thermal strain is subtracted; a new family
-    !! (the S8R shell, catalog type 15) adds a branch to the chain below that
-    !! returns its section points in the layout of thick_shell_stresses.
+    !! thick_shell_stresses), where a thermal strain is subtracted; the S8R
+    !! (s8r_element_stresses) returns global tensors at its section points in
+    !! the layout of thick_shell_stresses, its thermal strain subtracted in
+    !! the element routine (shell8_stresses' thermal hook).
     type(model_t), intent(in) :: model
     type(result_fields_t), intent(in) :: fields
     integer, intent(in) :: is, isub
@@ -94,7 +100,11 @@ contains
     associate (sub => model%subs(isub))
       etype = sub%elem_type(ie)
       if (.not. is_plate_type(etype) .or. sub%elem_section(ie) <= 0) return
-      if (.not. is_plane_type(etype) .and. ELEMENT_NODE_COUNT(etype) > size(x, 2)) return   ! S8R: none yet
+      if (etype == ET_S8R) then
+         call s8r_element_stresses(model, fields, is, isub, ie, points, nodes, ok)
+         return
+      end if
+      if (.not. is_plane_type(etype) .and. ELEMENT_NODE_COUNT(etype) > size(x, 2)) return
       nn = ELEMENT_NODE_COUNT(etype)
       if (nn > MAX_PLANE_NODES) return
       do a = 1, nn
@@ -171,6 +181,43 @@ contains
     end function outer
   end subroutine plane_stresses
 
+  subroutine s8r_element_stresses(model, fields, is, isub, ie, points, nodes, ok)
+    !! plane_stresses of an S8R (superjoin_elements_shell8, shell8_stresses):
+    !! points(6, 4, 3) at the 2×2 points, nodes(6, 8, 3), section points
+    !! bottom, top, mid-surface, global axes; the element's thermal strain
+    !! and curvature of the step (if any) subtracted.
+    type(model_t), intent(in) :: model
+    type(result_fields_t), intent(in) :: fields
+    integer, intent(in) :: is, isub
+    integer(ip), intent(in) :: ie
+    real(wp), allocatable, intent(inout) :: points(:, :, :), nodes(:, :, :)
+    logical, intent(out) :: ok
+    real(wp) :: x(3, ELEMENT_NODE_COUNT(ET_S8R)), th(2)
+    real(wp), allocatable :: ue(:)
+    type(error_t), allocatable :: error
+    integer :: a
+    ok = .false.
+    associate (sub => model%subs(isub))
+      do a = 1, size(x, 2)
+         x(:, a) = sub%x(:, sub%elem_nodes(a, ie))
+      end do
+      call element_displacements(model, fields, is, isub, ie, ue)
+      th = 0.0_wp
+      if (allocated(fields%thermal)) th = fields%thermal(:, fields%elem_offset(isub) + ie, is)
+      deallocate (points, nodes)
+      allocate (points(NTENSOR, S8R_STRESS_POINTS, NSURF), nodes(NTENSOR, size(x, 2), NSURF))
+      associate (sec => sub%sections(sub%elem_section(ie)), mat => model%materials(sub%sections(sub%elem_section(ie))%material))
+        call s8r_stresses(x, sec, mat, ue, points, nodes, error, th)
+      end associate
+    end associate
+    if (allocated(error)) then
+       deallocate (points, nodes)
+       allocate (points(NTENSOR, 0, 1), nodes(NTENSOR, 0, 1))
+       return
+    end if
+    ok = .true.
+  end subroutine s8r_element_stresses
+
   subroutine nodal_stresses(model, fields, is, isub, avg, nel, npoint)
     !! Nodal stresses of substructure isub in step is: avg(6, nnode, NSURF) the
     !! mean of the values extrapolated to the node by each plane or shell
@@ -233,6 +280,45 @@ contains
     end do
   end function newer_family
 
+  pure function is_s8r(model, subs, elems) result(yes)
+    !! Per element of the list: an S8R (its points get a note under the table's header).
+    type(model_t), intent(in) :: model
+    integer, intent(in) :: subs(:)
+    integer(ip), intent(in) :: elems(:)
+    logical :: yes(size(elems))
+    integer :: i
+    do i = 1, size(elems)
+       yes(i) = model%subs(subs(i))%elem_type(elems(i)) == ET_S8R
+    end do
+  end function is_s8r
+
+  pure function s8r_nodes(model, subs, nodes) result(yes)
+    !! Per node of the list (of substructures subs): a node of an S8R with a section.
+    type(model_t), intent(in) :: model
+    integer, intent(in) :: subs(:)
+    integer(ip), intent(in) :: nodes(:)
+    logical :: yes(size(nodes))
+    logical, allocatable :: mask(:)
+    integer(ip) :: e
+    integer :: isub, i
+    yes = .false.
+    do isub = 1, size(model%subs)
+       if (.not. any(subs == isub)) cycle
+       associate (sub => model%subs(isub))
+         if (.not. any(sub%elem_type == ET_S8R)) cycle
+         allocate (mask(sub%nnode), source=.false.)
+         do e = 1, sub%nelem
+            if (sub%elem_type(e) == ET_S8R .and. sub%elem_section(e) > 0) &
+                 mask(sub%elem_nodes(1:ELEMENT_NODE_COUNT(ET_S8R), e)) = .true.
+         end do
+         do i = 1, size(nodes)
+            if (subs(i) == isub) yes(i) = mask(nodes(i))
+         end do
+         deallocate (mask)
+       end associate
+    end do
+  end function s8r_nodes
+
   pure function surface_label(nsurface, k) result(label)
     !! '-' for a plane element's single surface, 'bot' / 'top' / 'mid' for shells.
     integer, intent(in) :: nsurface, k
@@ -268,6 +354,8 @@ contains
     if (any(ok .and. newer_family(model, subs, elems))) call lu%line('    (CPS6/CPE6: 3 points, point k next '// &
          'to corner k; CPS8/CPE8: 3x3 Gauss, xi fastest from corner 1; CPS8R/CPE8R, S4R: 2x2 Gauss, point k next '// &
          'to node k; S3R: the centroid; S4R/S3R: bottom, top and mid-surface, xz/yz = 1.5 q/t at mid)')
+    if (any(ok .and. is_s8r(model, subs, elems))) call lu%line('    (S8R: 2x2 Gauss of the reduced rule, point k '// &
+         'next to corner k; bottom, top and mid-surface, xz/yz = 1.5 q/t at mid)')
     write (hline, '(4x,a20,a10,a6,a4,a5,6a15)') 'substructure        ', '   element', '  type', '  ip', ' surf', &
          TENSOR_HEAD
     call lu%line(trim(hline))
@@ -300,7 +388,7 @@ contains
     type(real_block_t), allocatable :: avg(:)
     type(int_block_t), allocatable :: nel(:)
     type(int_block_t), allocatable :: npoint(:)
-    logical, allocatable :: done(:)
+    logical, allocatable :: done(:), s8r(:)
     character(len=200) :: hline
     real(wp) :: scale
     integer :: i, d, nskip, k, ns
@@ -313,8 +401,12 @@ contains
     end do
     call lu%line('    S   nodal stresses: extrapolated from the integration points, averaged over the plane '// &
          'and shell elements of the substructure that share the node (global axes; shells: bottom and top surface)')
-    if (any([(npoint(subs(i))%n(nodes(i)) == NSURF, i=1, size(nodes))])) call lu%line('    (nodes of S4R/S3R: '// &
+    s8r = s8r_nodes(model, subs, nodes)
+    if (any([(npoint(subs(i))%n(nodes(i)) == NSURF .and. .not. s8r(i), i=1, size(nodes))])) &
+         call lu%line('    (nodes of S4R/S3R: '// &
          'also the mid-surface, with xz/yz = 1.5 q/t; thin shells count (bot + top)/2 there)')
+    if (any(s8r)) call lu%line('    (nodes of S8R: also the '// &
+         'mid-surface; corners extrapolated bilinearly from the 2x2 points, mid-side nodes the mean of their two corners)')
     write (hline, '(4x,a20,a10,a6,a5,6a15)') 'substructure        ', '      node', ' elems', ' surf', TENSOR_HEAD
     call lu%line(trim(hline))
     scale = 0.0_wp

@@ -1,9 +1,9 @@
 #!/usr/bin/env python3
-"""NAFEMS LE5 (Z-section cantilever under an end torque) with S4R or S4: the
+"""NAFEMS LE5 (Z-section cantilever under an end torque) with S4R, S4 or S8R: the
 axial stress sigma_xx at point A on the mid-surface (averaged nodal stress,
 *NODE PRINT S, section point 'mid'), on refined meshes, with the observed rate.
 
-usage: le5_convergence.py SUPERJOIN WORKDIR [--check] [--fine] [--element S4R|S4] [--write-deck K FILE]
+usage: le5_convergence.py SUPERJOIN WORKDIR [--check] [--fine] [--element S4R|S4|S8R] [--write-deck K FILE]
 
 NAFEMS LE5 (TNSB Rev. 3, 1990): a cantilever of length 10 m along x with a
 Z cross-section of wall thickness 0.1 m: a web 2 m wide from (y, z) = (-1, 0)
@@ -55,6 +55,8 @@ def section_point(s):
 
 
 def deck_text(k, etype="S4R"):
+    if etype == "S8R":
+        return deck_text8(k)
     nx, ns = 8 * k, 4 * k
     nid = {}
     lines = ["*HEADING", f"NAFEMS LE5 Z-section cantilever, {etype}, level {k} ({nx} x {ns} elements)",
@@ -91,6 +93,51 @@ def deck_text(k, etype="S4R"):
     return "\n".join(lines) + "\n", nid[nx // 4, 4 * k], nid[nx // 4, 0]
 
 
+def deck_text8(k):
+    """The same model with S8R: 8k x 4k elements on the node grid of twice the
+    intervals (less the element centres); the end shears in the consistent
+    shares 1/6, 2/3, 1/6 of each edge element."""
+    nx, ns = 8 * k, 4 * k
+    nid = {}
+    lines = ["*HEADING", f"NAFEMS LE5 Z-section cantilever, S8R, level {k} ({nx} x {ns} elements)",
+             "(tests/results/le5_convergence.py)", "*NODE"]
+    for j in range(2 * ns + 1):
+        y, z = section_point(4.0 * j / (2 * ns))
+        for i in range(2 * nx + 1):
+            if i % 2 and j % 2:
+                continue
+            n = len(nid) + 1
+            nid[i, j] = n
+            lines.append(f"{n}, {LENGTH * i / (2 * nx):.17g}, {y:.17g}, {z:.17g}")
+    lines.append("*ELEMENT, TYPE=S8R, ELSET=ZED")
+    e = 0
+    for j in range(0, 2 * ns, 2):
+        for i in range(0, 2 * nx, 2):
+            e += 1
+            ids = [nid[i, j], nid[i + 2, j], nid[i + 2, j + 2], nid[i, j + 2],
+                   nid[i + 1, j], nid[i + 2, j + 1], nid[i + 1, j + 2], nid[i, j + 1]]
+            lines.append(f"{e}, " + ", ".join(str(v) for v in ids))
+    lines.append("*NSET, NSET=ROOT")
+    lines += [f"{nid[0, j]}," for j in range(2 * ns + 1)]
+    a_top, a_bot = nid[2 * nx // 4, 2 * ns], nid[2 * nx // 4, 0]
+    lines.append("*NSET, NSET=A")
+    lines.append(f"{a_top}, {a_bot}")
+    lines += ["*MATERIAL, NAME=STEEL", "*ELASTIC", f"{E:.17g}, {NU}",
+              "*SHELL SECTION, ELSET=ZED, MATERIAL=STEEL", f"{T}",
+              "*BOUNDARY", "ROOT, 1, 3", "*STEP", "*CLOAD"]
+    force = {}
+    h = 1.0 / k
+    for j in range(k):   # bottom flange edge elements 0..k-1 (force -z), top flange 3k..4k-1 (+z)
+        for first, sign in ((2 * j, -1.0), (2 * (3 * k + j), 1.0)):
+            for r, share in ((first, 1 / 6), (first + 1, 2 / 3), (first + 2, 1 / 6)):
+                n = nid[2 * nx, r]
+                force[n] = force.get(n, 0.0) + sign * SHEAR * h * share
+    for n in sorted(force):
+        lines.append(f"{n}, 3, {force[n]:.17g}")
+    lines += ["*NODE PRINT, NSET=A", "S", "*END STEP"]
+    return "\n".join(lines) + "\n", a_top, a_bot
+
+
 def main(argv):
     if len(argv) < 3:
         print(__doc__.strip().splitlines()[4], file=sys.stderr)
@@ -99,8 +146,8 @@ def main(argv):
     opts = argv[3:]
     check = "--check" in opts
     etype = opts[opts.index("--element") + 1].upper() if "--element" in opts else "S4R"
-    if etype not in ("S4R", "S4"):
-        print(f"unknown element {etype} (S4R, S4)", file=sys.stderr)
+    if etype not in ("S4R", "S4", "S8R"):
+        print(f"unknown element {etype} (S4R, S4, S8R)", file=sys.stderr)
         return 2
     if "--write-deck" in opts:
         k, path = int(opts[opts.index("--write-deck") + 1]), opts[opts.index("--write-deck") + 2]

@@ -7,8 +7,14 @@ module superjoin_deck_thickness_build
   !! thickness at some nodes only, or different ones, is a deck error at the
   !! data line of its first node. Elements of other types ignore the card.
   !! Each distinct (section, thickness) pair becomes a copy of the section.
+  !!
+  !! S8R (degenerated solid, the director length per node is natural) takes a
+  !! thickness per node, as CalculiX: a node without a nodal thickness has
+  !! the section's; an S8R whose nodes differ gets a copy of its section of
+  !! its own with node_thickness (superjoin_elements_shell8 interpolates it).
   use superjoin_kinds, only: wp, ip
   use superjoin_model_types, only: model_t, section_t, ELEMENT_NODE_COUNT, node_label
+  use superjoin_model_types, only: ET_S8R
   use superjoin_elements, only: is_plate_type
   use superjoin_deck_state, only: deck_state_t, report_loc
   use superjoin_deck_validate, only: resolve_items, resolve_sub
@@ -35,6 +41,8 @@ contains
     integer :: k, isub, nn, a, s
     logical :: ok
     real(wp) :: te
+    integer(ip), allocatable :: tapered(:)   ! S8R elements whose nodes differ
+    integer(ip) :: ntaper
     if (st%nnthick == 0) return
     allocate (lsub(st%nnthick))
     do k = 1, st%nnthick
@@ -45,6 +53,8 @@ contains
          allocate (t(sub%nnode), line(sub%nnode))
          t = 0.0_wp
          line = 0
+         ntaper = 0
+         allocate (tapered(0))
          ! the thickness of each node of this substructure (a later line wins)
          do k = 1, st%nnthick
             associate (d => st%nthicks(k))
@@ -63,6 +73,10 @@ contains
             ! an element with a node the deck does not define is an error reported already
             if (any(sub%elem_nodes(1:nn, e) < 1 .or. sub%elem_nodes(1:nn, e) > sub%nnode)) cycle
             if (all(line(sub%elem_nodes(1:nn, e)) == 0)) cycle
+            if (sub%elem_type(e) == ET_S8R) then
+               call s8r_thickness(e)
+               cycle
+            end if
             te = 0.0_wp
             do a = 1, nn
                associate (n => sub%elem_nodes(a, e))
@@ -88,10 +102,31 @@ contains
             s = section_with_thickness(sub%sections, sub%elem_section(e), te)
             sub%elem_section(e) = s
          end do
-         deallocate (t, line)
+         if (ntaper > 0) call add_tapered_sections(sub%sections, sub%elem_section, tapered(1:ntaper), &
+              sub%elem_nodes, t, line)
+         deallocate (t, line, tapered)
        end associate
     end do
   contains
+    subroutine s8r_thickness(e)
+      !! An S8R with a nodal thickness at some node: one thickness (a shared
+      !! section copy) when its nodes agree, else listed as tapered.
+      integer(ip), intent(in) :: e
+      real(wp) :: tn(ELEMENT_NODE_COUNT(ET_S8R))
+      associate (sub => model%subs(isub))
+        tn = node_thicknesses(sub%elem_nodes(1:size(tn), e), t, line, &
+             sub%sections(sub%elem_section(e))%thickness)
+        if (all(abs(tn - tn(1)) <= THICK_TOL*abs(tn(1)))) then
+           if (tn(1) <= 0.0_wp) return   ! a bad thickness is reported by the element checks
+           sub%elem_section(e) = section_with_thickness(sub%sections, sub%elem_section(e), tn(1))
+        else
+           if (ntaper == size(tapered, kind=ip)) tapered = [tapered, spread(0_ip, 1, int(max(16_ip, ntaper)))]
+           ntaper = ntaper + 1
+           tapered(ntaper) = e
+        end if
+      end associate
+    end subroutine s8r_thickness
+
     integer function first_line(e) result(k)
       !! The *NODAL THICKNESS data line of the first node of element e that has one.
       integer(ip), intent(in) :: e
@@ -106,6 +141,43 @@ contains
     end function first_line
   end subroutine apply_nodal_thickness
 
+  pure function node_thicknesses(nodes, t, line, t_section) result(tn)
+    !! The thickness at each of an element's nodes: its *NODAL THICKNESS, or
+    !! the section's where it has none (CalculiX).
+    integer(ip), intent(in) :: nodes(:)
+    real(wp), intent(in) :: t(:)
+    integer, intent(in) :: line(:)
+    real(wp), intent(in) :: t_section
+    real(wp) :: tn(size(nodes))
+    tn = merge(t(nodes), t_section, line(nodes) > 0)
+  end function node_thicknesses
+
+  subroutine add_tapered_sections(sections, elem_section, elems, elem_nodes, t, line)
+    !! Give each of the tapered S8R elems a copy of its section with its
+    !! nodal thicknesses (thickness: their mean), appended in one go.
+    type(section_t), allocatable, intent(inout) :: sections(:)
+    integer, intent(inout) :: elem_section(:)
+    integer(ip), intent(in) :: elems(:)
+    integer(ip), intent(in) :: elem_nodes(:, :)
+    real(wp), intent(in) :: t(:)
+    integer, intent(in) :: line(:)
+    type(section_t), allocatable :: tmp(:)
+    integer :: n, k, nn
+    n = size(sections)
+    nn = ELEMENT_NODE_COUNT(ET_S8R)
+    allocate (tmp(n + size(elems)))
+    tmp(1:n) = sections
+    do k = 1, size(elems)
+       associate (e => elems(k))
+         tmp(n + k) = sections(elem_section(e))
+         tmp(n + k)%node_thickness = node_thicknesses(elem_nodes(1:nn, e), t, line, sections(elem_section(e))%thickness)
+         tmp(n + k)%thickness = sum(tmp(n + k)%node_thickness)/nn
+         elem_section(e) = n + k
+       end associate
+    end do
+    call move_alloc(tmp, sections)
+  end subroutine add_tapered_sections
+
   integer function section_with_thickness(sections, isec, t) result(k)
     !! Index of a section equal to sections(isec) but of thickness t (appended when new).
     type(section_t), allocatable, intent(inout) :: sections(:)
@@ -119,6 +191,7 @@ contains
     end if
     n = size(sections)
     do k = 1, n
+       if (allocated(sections(k)%node_thickness)) cycle
        if (sections(k)%thickness == t .and. same_but_thickness(sections(k), sections(isec))) return
     end do
     allocate (tmp(n + 1))

@@ -1168,8 +1168,8 @@ contains
                       extra = [extra, dload_t(sub=isub, elem=e, kind=DLOAD_THERMAL, &
                            value=mat%e*sec%area*mat%alpha*dt, loc=first_line(s))]
                    case (ET_CPS3, ET_CPS4, ET_CPE3, ET_CPE4, ET_CPS6, ET_CPS8, ET_CPE6, ET_CPE8, ET_CPS8R, &
-                        ET_CPE8R, ET_S3, ET_S4, ET_S4R, ET_S3R)
-                      if (dg /= 0.0_wp .and. .not. any(sub%elem_type(e) == [ET_S3, ET_S4, ET_S4R, ET_S3R])) then
+                        ET_CPE8R, ET_S3, ET_S4, ET_S4R, ET_S3R, ET_S8R)
+                      if (dg /= 0.0_wp .and. .not. any(sub%elem_type(e) == [ET_S3, ET_S4, ET_S4R, ET_S3R, ET_S8R])) then
                          call report_loc(st, first_line(s), 'temperature gradient on element '// &
                               itoa(sub%elem_id(e))//' of type '//trim(ELEMENT_TYPE_NAMES(sub%elem_type(e)))// &
                               ': the gradient (third field) applies to shells only')
@@ -1190,7 +1190,7 @@ contains
             if (nplate > 0) then
                call report_loc(st, plate_loc, 'temperature change on element '//itoa(sub%elem_id(first_plate))// &
                     ' of type '//trim(ELEMENT_TYPE_NAMES(sub%elem_type(first_plate)))//' of substructure '// &
-                    sub%name//': thermal loads are implemented for trusses, beams, plane elements and S3, S4, S3R, S4R shells only'// &
+                    sub%name//': thermal loads are implemented for trusses, beams, plane elements and S3, S4, S3R, S4R, S8R shells only'// &
                     more_text(nplate - 1))
                nplate = 0
             end if
@@ -1455,7 +1455,7 @@ contains
     case (DLOAD_GRAV)
        dload_fits = .true.
     case (DLOAD_CENTRIF)
-       dload_fits = etype /= ET_B32 .and. etype /= ET_S8R   ! S8R: not verified yet
+       dload_fits = etype /= ET_B32
     case (DLOAD_P1)
        dload_fits = is_plane(etype) .or. etype == ET_B33 .or. etype == ET_B31
     case (DLOAD_P2)

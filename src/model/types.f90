@@ -113,6 +113,10 @@ module superjoin_model_types
      integer :: nfibre = 0                 !! library beam sections: extreme points for fibre stresses
      real(wp) :: fibre(2, 4) = 0.0_wp      !! their local (y, z) about the centroid
      type(source_loc_t) :: loc
+     real(wp), allocatable :: node_thickness(:)  !! S8R with a *NODAL THICKNESS that varies: the
+                                           !! thickness at each node of the one element this copy
+                                           !! of the section belongs to (element node order);
+                                           !! unallocated: `thickness` everywhere
   end type section_t
 
   type, public :: index_set_t

@@ -217,9 +217,12 @@ contains
     type(shell8_props_t) :: props
     props = shell8_props_t(t=sec%thickness, e=mat%e, nu=mat%nu, ks=shell_shear_stiffness(sec, mat))
     if (allocated(sec%node_thickness)) then
+       ! equal nodal thicknesses: the untapered element (its formulas, bit for bit)
        if (size(sec%node_thickness) == size(props%tn)) then
-          props%tapered = .true.
-          props%tn = sec%node_thickness
+          if (any(sec%node_thickness /= sec%node_thickness(1))) then
+             props%tapered = .true.
+             props%tn = sec%node_thickness
+          end if
        end if
     end if
   end function shell8_props

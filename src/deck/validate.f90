@@ -1135,11 +1135,13 @@ contains
     end do
     call apply_lines(0, t0, g0)
     do s = 1, size(model%steps)
+       call keep_temperatures(s, t0)
        if (.not. any(st%temps(1:st%ntemp)%step == s)) cycle
        t = t0
        g = g0
        call apply_lines(s, t, g)
        if (st%aborted) return
+       call keep_temperatures(s, t)
        allocate (extra(0))
        nplate = 0
        do isub = 1, size(model%subs)
@@ -1200,6 +1202,18 @@ contains
        deallocate (extra)
     end do
   contains
+    subroutine keep_temperatures(step, field)
+      !! The nodal temperatures of a step, for *NODE PRINT NT.
+      integer, intent(in) :: step
+      type(real_list_t), intent(in) :: field(:)
+      integer :: k
+      if (model%steps(step)%combination > 0) return
+      if (.not. allocated(model%steps(step)%temperature)) allocate (model%steps(step)%temperature(size(field)))
+      do k = 1, size(field)
+         model%steps(step)%temperature(k)%v = field(k)%v
+      end do
+    end subroutine keep_temperatures
+
     subroutine apply_lines(step, field, grad)
       !! Set the temperatures and gradients the lines of step (0: initial conditions) give.
       integer, intent(in) :: step

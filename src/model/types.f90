@@ -245,6 +245,11 @@ module superjoin_model_types
      real(wp) :: g(NDOF_NODE) = 0.0_wp
   end type link_override_t
 
+  type, public :: node_values_t
+    !! One value per node of a substructure.
+     real(wp), allocatable :: v(:)
+  end type node_values_t
+
   type, public :: step_t
     !! A load case.
      character(:), allocatable :: name     !! as written (upper-cased)
@@ -258,6 +263,9 @@ module superjoin_model_types
      logical :: procedure_card = .false.   !! the step has *STATIC (written for CalculiX/Abaqus)
      logical :: cload_op_given = .false.   !! one of its *CLOAD cards has OP=
      logical :: dload_op_given = .false.   !! one of its *DLOAD cards has OP=
+     type(node_values_t), allocatable :: temperature(:)  !! per substructure: the nodal temperatures of
+                                           !! the step (*INITIAL CONDITIONS / *TEMPERATURE; unallocated: none
+                                           !! in the model, all 0), for *NODE PRINT NT
   end type step_t
 
   type, public :: combination_t

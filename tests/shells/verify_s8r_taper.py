@@ -200,7 +200,7 @@ def patch_deck(dt, grad, held, taper=True):
         text += "NALL, 1, 2\nNALL, 6, 6\n" + f"{origin}, 3, 5\n"
     else:   # rotations held, translations free but the origin
         text += "NALL, 4, 6\n" + f"{origin}, 1, 3\n"
-    text += f"*STEP\n*STATIC\n*TEMPERATURE\nNALL, {20.0 + dt}, {grad}\n*END STEP\n"
+    text += f"*STEP\n*STATIC\n*TEMPERATURE\nNALL, {20.0 + dt}, {grad}\n*NODE PRINT, NSET=NALL\nNT\n*END STEP\n"
     thick_at = {e: (0.05 + 0.02 * sum(nodes[c][2][0] for c in conn[:4]) / 4 - 0.01 * sum(nodes[c][2][1]
                     for c in conn[:4]) / 4 if taper else 0.05) for e, conn in elems}
     return text, nodes, elems, thick_at
@@ -219,6 +219,12 @@ def thermal(exe, work):
     nmax = max(abs(v) for r in plate.values() for v in r)
     check(nmax < 1e-8 * E * e0 * 0.05, f"free, uniform dT: no resultants (max {nmax:.1e}, "
           f"E alpha dT t = {E * e0 * 0.05:.1e})")
+    with open(os.path.join(work, "thermal_free.lst")) as f:
+        lst = f.read()
+    rows = [ln.split() for ln in lst[lst.index("    NT  temperatures"):].splitlines()[2:]]
+    temps = [float(r[2].replace("E", "e")) for r in rows if len(r) == 3 and r[1].isdigit()]
+    check(len(temps) == len(nodes) and all(t == 20.0 + dt for t in temps),
+          f"*NODE PRINT NT: the step's temperature {20.0 + dt} at all {len(nodes)} nodes")
     text, nodes, elems, _ = patch_deck(dt, 0.0, "free")
     disp, plate = run(exe, work, "thermal_free_tapered", text)
     err = max(abs(disp[k][c] - e0 * x[c]) for k, (_, _, x) in nodes.items() for c in range(2)) / (2 * e0)

@@ -42,8 +42,8 @@ contains
     logical :: ok
     real(wp) :: te
     integer(ip), allocatable :: tapered(:)   ! S8R elements whose nodes differ
-    integer(ip) :: ntaper
-    if (st%nnthick == 0) return
+    integer(ip) :: ntaper, nmiss, first_miss
+    if (st%nnthick == 0 .and. .not. any_nodal_thickness_section(model)) return
     allocate (lsub(st%nnthick))
     do k = 1, st%nnthick
        lsub(k) = resolve_sub(st, model, st%nthicks(k)%node, st%nthicks(k)%loc, 'node')
@@ -54,6 +54,8 @@ contains
          t = 0.0_wp
          line = 0
          ntaper = 0
+         nmiss = 0
+         first_miss = 0
          allocate (tapered(0))
          ! the thickness of each node of this substructure (a later line wins)
          do k = 1, st%nnthick
@@ -72,6 +74,14 @@ contains
             nn = ELEMENT_NODE_COUNT(sub%elem_type(e))
             ! an element with a node the deck does not define is an error reported already
             if (any(sub%elem_nodes(1:nn, e) < 1 .or. sub%elem_nodes(1:nn, e) > sub%nnode)) cycle
+            if (sub%sections(sub%elem_section(e))%nodal_thickness) then
+               ! *SHELL SECTION, NODAL THICKNESS: every node needs one (CalculiX)
+               if (any(line(sub%elem_nodes(1:nn, e)) == 0)) then
+                  nmiss = nmiss + 1
+                  if (nmiss == 1) first_miss = e
+                  cycle
+               end if
+            end if
             if (all(line(sub%elem_nodes(1:nn, e)) == 0)) cycle
             if (sub%elem_type(e) == ET_S8R) then
                call s8r_thickness(e)
@@ -102,12 +112,30 @@ contains
             s = section_with_thickness(sub%sections, sub%elem_section(e), te)
             sub%elem_section(e) = s
          end do
+         if (nmiss > 0) call report_missing(first_miss, nmiss)
          if (ntaper > 0) call add_tapered_sections(sub%sections, sub%elem_section, tapered(1:ntaper), &
               sub%elem_nodes, t, line)
          deallocate (t, line, tapered)
        end associate
     end do
   contains
+    subroutine report_missing(e, n)
+      !! Elements of a *SHELL SECTION, NODAL THICKNESS with a node without one.
+      integer(ip), intent(in) :: e, n
+      integer :: a
+      character(:), allocatable :: more
+      more = ''
+      if (n > 1) more = ' (and '//itoa(n - 1)//' more elements)'
+      associate (sub => model%subs(isub))
+        do a = 1, ELEMENT_NODE_COUNT(sub%elem_type(e))
+           if (line(sub%elem_nodes(a, e)) == 0) exit
+        end do
+        call report_loc(st, sub%sections(sub%elem_section(e))%loc, '*SHELL SECTION, NODAL THICKNESS: node '// &
+             node_label(model, isub, sub%elem_nodes(a, e))//' of element '//itoa(sub%elem_id(e))// &
+             ' has no *NODAL THICKNESS'//more)
+      end associate
+    end subroutine report_missing
+
     subroutine s8r_thickness(e)
       !! An S8R with a nodal thickness at some node: one thickness (a shared
       !! section copy) when its nodes agree, else listed as tapered.
@@ -140,6 +168,17 @@ contains
       end associate
     end function first_line
   end subroutine apply_nodal_thickness
+
+  pure logical function any_nodal_thickness_section(model)
+    !! Has some substructure a *SHELL SECTION, NODAL THICKNESS?
+    type(model_t), intent(in) :: model
+    integer :: isub
+    any_nodal_thickness_section = .false.
+    do isub = 1, size(model%subs)
+       if (.not. allocated(model%subs(isub)%sections)) cycle
+       if (any(model%subs(isub)%sections(:)%nodal_thickness)) any_nodal_thickness_section = .true.
+    end do
+  end function any_nodal_thickness_section
 
   pure function node_thicknesses(nodes, t, line, t_section) result(tn)
     !! The thickness at each of an element's nodes: its *NODAL THICKNESS, or

@@ -591,6 +591,7 @@ contains
          if (ncps > 0 .or. ntruss == 0) sec%thickness = sb%val(1)
       case (SEC_SHELL)
          sec%thickness = sb%val(1)
+         sec%nodal_thickness = sb%nodal_thickness
          ! *TRANSVERSE SHEAR STIFFNESS K11, K22 [, K12]: per unit length along
          ! the element's local x, y; only the thick shells have shear flexibility.
          if (sb%has_ks) then

@@ -113,6 +113,8 @@ module superjoin_model_types
      integer :: nfibre = 0                 !! library beam sections: extreme points for fibre stresses
      real(wp) :: fibre(2, 4) = 0.0_wp      !! their local (y, z) about the centroid
      type(source_loc_t) :: loc
+     logical :: nodal_thickness = .false.  !! *SHELL SECTION, NODAL THICKNESS: every node of its elements
+                                           !! must have a *NODAL THICKNESS (thickness: 0 until then)
      real(wp), allocatable :: node_thickness(:)  !! S8R with a *NODAL THICKNESS that varies: the
                                            !! thickness at each node of the one element this copy
                                            !! of the section belongs to (element node order);

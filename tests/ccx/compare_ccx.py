@@ -87,7 +87,8 @@ expansion. Step 2 (moments at x = 0.5): superjoin's step is a load case of
 its own, CalculiX's carries step 1's moments: noted, step 1 + step 2
 against CalculiX's step 2. Debian's ccx 2.20 honours *NODAL THICKNESS only with
 *SHELL SECTION, NODAL THICKNESS (without it, it takes 0.01 and its tip w is
--1.3067); the .dat.ref files come from ccx 2.11, which honoured it.
+-1.3067); the .dat.ref files come from ccx 2.11, which honoured it. A copy
+with that parameter (ccx 2.20's form) must give the deck's displacements.
 
 transform_print.inp (not from the suite; written for superjoin and run
 through CalculiX 2.20 to make its .dat.ref): *NODE PRINT of U and RF of a
@@ -746,6 +747,17 @@ def rot4(binary, outdir):
     note(f'CalculiX (2x2, C3D20R expansion, rigid knots at the loaded nodes) node 15 w {ref1[(15,)][2]:.6e}: '
          f'{ref1[(15,)][2] / w16:.4f} of the 16x16; plate with cylindrical bending m L^2/(2D) = '
          f'{-m / (2 * 210000 * 0.02 ** 3 / (12 * 0.91)):.6e}, beam m L^2/(2EI) = {-m / (2 * 210000 * 0.02 ** 3 / 12):.6e}')
+    # ccx 2.20 / Abaqus form: *SHELL SECTION, NODAL THICKNESS (the data line's 0.01 is then unused)
+    old_sec = '*SHELL SECTION,ELSET=Eall,MATERIAL=EL,OFFSET=0.'
+    assert deck.count(old_sec) == 1
+    with open(os.path.join(outdir, 'rot4_nt.inp'), 'w') as f:
+        f.write(deck.replace(old_sec, old_sec + ',NODAL THICKNESS'))
+    un = listing_rows(run(binary, outdir, 'rot4_nt', outdir), 1, 'rot4_nt.inp:69', '    U ')
+    scale = max(max(abs(v) for v in vals[0]) for vals in u1.values())
+    for node in sorted(u1):
+        for c in range(6):
+            check(f'*SHELL SECTION, NODAL THICKNESS (ccx 2.20 form): node {node} U{c + 1} as the deck', un[node][0][c],
+                  u1[node][0][c], scale)
     # step 2: CalculiX carries the step-1 moments into step 2, superjoin's step 2 is a load case of its own
     ref2, _ = dat_table(os.path.join(HERE, 'rot4.dat.ref'), 'displacements', 'NALL', 1)
     both = u1[15][0][2] + u2[15][0][2]

@@ -10,6 +10,8 @@ module superjoin_analysis_body_loads
        ELEMENT_NODE_COUNT, combination_t
   use superjoin_elements, only: is_plate_type, element_material_load, element_node_dofs, beam_frame
   use superjoin_elements_thermal, only: thermal_plate_resultants
+  use superjoin_elements_shell8_loads, only: s8r_thermal_resultants
+  use superjoin_model_types, only: ET_S8R
   implicit none (type, external)
   private
 
@@ -120,8 +122,12 @@ contains
     do is = 1, size(th, 2)
        if (all(th(:, is) == 0.0_wp)) cycle
        ! an element that cannot be evaluated has been reported by shell_forces
-       call thermal_plate_resultants(etype, x, sec, mat, th(1, is), th(2, is), res0, error)
-       if (allocated(error)) return
+       if (etype == ET_S8R) then
+          call s8r_thermal_resultants(sec, mat, th(1, is), th(2, is), res0)
+       else
+          call thermal_plate_resultants(etype, x, sec, mat, th(1, is), th(2, is), res0, error)
+          if (allocated(error)) return
+       end if
        plate(:, is) = plate(:, is) - res0
     end do
   end subroutine take_thermal_resultants

@@ -96,6 +96,10 @@ contains
     character(*), intent(in) :: name
     what = VAR_UNKNOWN
     if (len(name) > VAR_LEN) return
+    if (kind == REQ_NODE_PRINT .and. name == 'NT') then
+       what = VAR_PRODUCED   ! the nodal temperatures in the listing (not in the CSV of *NODE FILE)
+       return
+    end if
     if (is_node_request(kind)) then
        if (any(NODE_PRODUCED == name)) then
           what = VAR_PRODUCED

@@ -472,7 +472,8 @@ contains
     case (CARD_SECTION)
        ! *SOLID SECTION of plane elements may omit the thickness (1, as Abaqus);
        ! the element types are known when the model is built (validate).
-       if (st%card_ndata == 0 .and. st%sections(st%card_item)%kind /= SEC_SOLID) then
+       if (st%card_ndata == 0 .and. st%sections(st%card_item)%kind /= SEC_SOLID .and. &
+            .not. st%sections(st%card_item)%nodal_thickness) then
           call report_loc(st, st%card_loc, st%card_name//' needs a data line')
           st%sections(st%card_item)%data_ok = .false.
        end if
@@ -904,7 +905,8 @@ contains
          end if
        end associate
     end do
-    call check_params(st, rest, loc, [character(NAME_LEN) :: 'ELSET', 'MATERIAL', 'OFFSET'], [character(NAME_LEN) ::])
+    call check_params(st, rest, loc, [character(NAME_LEN) :: 'ELSET', 'MATERIAL', 'OFFSET'], &
+         [character(NAME_LEN) :: 'NODAL THICKNESS'])
   end function shell_section_params
 
   subroutine kw_section(st, kw, loc, kind)
@@ -948,6 +950,8 @@ contains
     sec%kind = kind
     sec%material = material
     sec%loc = loc
+    ! CalculiX / Abaqus: the thickness of every node comes from *NODAL THICKNESS (a data line is optional)
+    sec%nodal_thickness = kind == SEC_SHELL .and. param_index(kw, 'NODAL THICKNESS') > 0
     call add_section(st, sec, st%card_item)
     st%card = CARD_SECTION
     if (kind == SEC_BEAM .or. kind == SEC_SHELL) st%cur_beam_sec = st%card_item

@@ -101,6 +101,7 @@ module superjoin_deck_state
      type(source_loc_t) :: ks_loc
      integer :: ndata = 0
      logical :: data_ok = .true.
+     logical :: nodal_thickness = .false.  !! *SHELL SECTION, NODAL THICKNESS: every node has a *NODAL THICKNESS
      type(source_loc_t) :: loc, data_loc
      integer :: shape = 0                  !! SHAPE_* of superjoin_deck_beam_sections, SHAPE_GENERAL, 0: A, I data
      real(wp) :: sp(5) = 0.0_wp            !! its A, I11, I22, I12, J (section axes 1, 2)

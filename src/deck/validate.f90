@@ -592,6 +592,7 @@ contains
          if (ncps > 0 .or. ntruss == 0) sec%thickness = sb%val(1)
       case (SEC_SHELL)
          sec%thickness = sb%val(1)
+         sec%nodal_thickness = sb%nodal_thickness
          ! *TRANSVERSE SHEAR STIFFNESS K11, K22 [, K12]: per unit length along
          ! the element's local x, y; only the thick shells have shear flexibility.
          if (sb%has_ks) then
@@ -1136,11 +1137,13 @@ contains
     end do
     call apply_lines(0, t0, g0)
     do s = 1, size(model%steps)
+       call keep_temperatures(s, t0)
        if (.not. any(st%temps(1:st%ntemp)%step == s)) cycle
        t = t0
        g = g0
        call apply_lines(s, t, g)
        if (st%aborted) return
+       call keep_temperatures(s, t)
        allocate (extra(0))
        nplate = 0
        do isub = 1, size(model%subs)
@@ -1169,8 +1172,8 @@ contains
                       extra = [extra, dload_t(sub=isub, elem=e, kind=DLOAD_THERMAL, &
                            value=mat%e*sec%area*mat%alpha*dt, loc=first_line(s))]
                    case (ET_CPS3, ET_CPS4, ET_CPE3, ET_CPE4, ET_CPS6, ET_CPS8, ET_CPE6, ET_CPE8, ET_CPS8R, &
-                        ET_CPE8R, ET_S3, ET_S4, ET_S4R, ET_S3R)
-                      if (dg /= 0.0_wp .and. .not. any(sub%elem_type(e) == [ET_S3, ET_S4, ET_S4R, ET_S3R])) then
+                        ET_CPE8R, ET_S3, ET_S4, ET_S4R, ET_S3R, ET_S8R)
+                      if (dg /= 0.0_wp .and. .not. any(sub%elem_type(e) == [ET_S3, ET_S4, ET_S4R, ET_S3R, ET_S8R])) then
                          call report_loc(st, first_line(s), 'temperature gradient on element '// &
                               itoa(sub%elem_id(e))//' of type '//trim(ELEMENT_TYPE_NAMES(sub%elem_type(e)))// &
                               ': the gradient (third field) applies to shells only')
@@ -1191,7 +1194,7 @@ contains
             if (nplate > 0) then
                call report_loc(st, plate_loc, 'temperature change on element '//itoa(sub%elem_id(first_plate))// &
                     ' of type '//trim(ELEMENT_TYPE_NAMES(sub%elem_type(first_plate)))//' of substructure '// &
-                    sub%name//': thermal loads are implemented for trusses, beams, plane elements and S3, S4, S3R, S4R shells only'// &
+                    sub%name//': thermal loads are implemented for trusses, beams, plane elements and S3, S4, S3R, S4R, S8R shells only'// &
                     more_text(nplate - 1))
                nplate = 0
             end if
@@ -1201,6 +1204,18 @@ contains
        deallocate (extra)
     end do
   contains
+    subroutine keep_temperatures(step, field)
+      !! The nodal temperatures of a step, for *NODE PRINT NT.
+      integer, intent(in) :: step
+      type(real_list_t), intent(in) :: field(:)
+      integer :: k
+      if (model%steps(step)%combination > 0) return
+      if (.not. allocated(model%steps(step)%temperature)) allocate (model%steps(step)%temperature(size(field)))
+      do k = 1, size(field)
+         model%steps(step)%temperature(k)%v = field(k)%v
+      end do
+    end subroutine keep_temperatures
+
     subroutine apply_lines(step, field, grad)
       !! Set the temperatures and gradients the lines of step (0: initial conditions) give.
       integer, intent(in) :: step
@@ -1448,7 +1463,7 @@ contains
     case (DLOAD_GRAV)
        dload_fits = .true.
     case (DLOAD_CENTRIF)
-       dload_fits = etype /= ET_B32 .and. etype /= ET_S8R   ! S8R: not verified yet
+       dload_fits = etype /= ET_B32
     case (DLOAD_P1)
        dload_fits = is_plane(etype) .or. etype == ET_B33 .or. etype == ET_B31
     case (DLOAD_P2)

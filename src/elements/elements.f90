@@ -18,6 +18,7 @@ module superjoin_elements
   use superjoin_elements_thermal, only: thermal_axial_load, thermal_plate_load
   use superjoin_model_types, only: dload_t, DLOAD_CENTRIF
   use superjoin_elements_centrif, only: centrif_load
+  use superjoin_elements_shell8_loads, only: s8r_is_tapered, s8r_gravity_load, s8r_thermal_load, s8r_centrif_load
   use superjoin_elements_frame, only: beam_frame
   use superjoin_elements_truss, only: truss_stiffness, truss_end_forces, truss_distributed_load
   use superjoin_elements_beam, only: beam_stiffness, beam_end_forces, beam_load
@@ -315,6 +316,10 @@ contains
     real(wp), intent(out) :: q_local(3)
     type(error_t), allocatable, intent(out) :: error
     q_local = 0.0_wp
+    if (s8r_is_tapered(etype, sec)) then
+       call s8r_gravity_load(x, sec, mat, accel, fe, error)   ! ρ t(ξ, η) per unit area
+       return
+    end if
     select case (etype)
     case (ET_T2D2, ET_T3D2, ET_B23, ET_B33, ET_B21, ET_B31, ET_B32)
        call beam_distributed_load(etype, x, sec, mat%density*sec%area*accel, fe, q_local, error)
@@ -344,8 +349,16 @@ contains
           call fatal_error(error, EXIT_DECK, 'thermal strain load on an element that is not a plane or shell element')
           return
        end if
+       if (etype == ET_S8R) then
+          call s8r_thermal_load(x, sec, mat, dl%value, dl%curvature, fe, error)
+          return
+       end if
        call thermal_plate_load(etype, x, sec, mat, dl%value, dl%curvature, fe, error)
     case (DLOAD_CENTRIF)
+       if (etype == ET_S8R) then
+          call s8r_centrif_load(x, sec, mat, dl, fe, error)
+          return
+       end if
        call centrif_load(etype, x, sec, mat, dl, element_node_dofs(etype), fe, error)
     case default
        call fatal_error(error, EXIT_DECK, 'unknown distributed load kind')

@@ -46,6 +46,7 @@ module superjoin_elements_shell
   public :: shell_surface_stresses, thick_shell_stresses, THICK_SURFACES
   public :: has_drilling_membrane
   public :: s8r_stresses
+  public :: shell8_props
 
   integer, parameter :: MEMBRANE_DOFS(3) = [1, 2, 6]
     !! Local shell DOFs (u, v, w, θx, θy, θz) of the membrane (u, v, θz).
@@ -217,6 +218,15 @@ contains
     type(material_t), intent(in) :: mat
     type(shell8_props_t) :: props
     props = shell8_props_t(t=sec%thickness, e=mat%e, nu=mat%nu, ks=shell_shear_stiffness(sec, mat))
+    if (allocated(sec%node_thickness)) then
+       ! equal nodal thicknesses: the untapered element (its formulas, bit for bit)
+       if (size(sec%node_thickness) == size(props%tn)) then
+          if (any(sec%node_thickness /= sec%node_thickness(1))) then
+             props%tapered = .true.
+             props%tn = sec%node_thickness
+          end if
+       end if
+    end if
   end function shell8_props
 
   pure subroutine shell8_forces(x, sec, mat, ue, res, fg, forces, error)

@@ -38,6 +38,21 @@ module superjoin_elements_shell8
   !! test and doc/verification.md). Constant membrane strain passes on
   !! distorted meshes, constant curvature on parallelograms.
   !!
+  !! Tapered sections (*NODAL THICKNESS varying inside the element): the
+  !! director of node i has the length t_i (X = Σ N_i (x_i + ζ t_i/2 n_i),
+  !! U = Σ N_i (u_i + ζ t_i/2 θ_i × n_i)), so the thickness is interpolated
+  !! with the shape functions, t(ξ, η) = Σ N_i t_i, in the Jacobian and
+  !! everywhere through it (stiffness, resultants, thermal strains); the
+  !! transverse shear modulus ks/t of the section and the drilling modulus
+  !! per unit thickness are constants, the mass per unit area is ρ t(ξ, η)
+  !! (shell8_volume_shares, shell8_mass). With equal t_i the element is the
+  !! untapered one, bit for bit (the untapered formulas are kept).
+  !!
+  !! Thermal strains (shell8_thermal_load): ε0(ζ) = α ΔT + α ∂T/∂n z,
+  !! z = ζ t/2 along e3, in the plane (ε11 = ε22, γ12 = 0), integrated with
+  !! the same rules as the stiffness (membrane 2×2, bending 3×3), so a free
+  !! element that can follow ε0 exactly is stress-free to round-off.
+  !!
   !! Errors come back as error_t (code EXIT_DECK) with a message without
   !! file:line; the caller prefixes it.
   use superjoin_kinds, only: wp
@@ -59,6 +74,10 @@ module superjoin_elements_shell8
   real(wp), parameter :: W3(3) = [5.0_wp, 8.0_wp, 5.0_wp]/9     !! 3-point Gauss weights
   real(wp), parameter, public :: S8R_DRILL_FACTOR = 1.0e-2_wp
     !! Drilling penalty as a fraction of G t (see the module header).
+  real(wp), parameter :: G4(4) = [-sqrt(3.0_wp/7 + 2.0_wp/7*sqrt(1.2_wp)), -sqrt(3.0_wp/7 - 2.0_wp/7*sqrt(1.2_wp)), &
+       sqrt(3.0_wp/7 - 2.0_wp/7*sqrt(1.2_wp)), sqrt(3.0_wp/7 + 2.0_wp/7*sqrt(1.2_wp))]   !! 4-point Gauss abscissae
+  real(wp), parameter :: W4(4) = [(18 - sqrt(30.0_wp))/36, (18 + sqrt(30.0_wp))/36, (18 + sqrt(30.0_wp))/36, &
+       (18 - sqrt(30.0_wp))/36]                                 !! 4-point Gauss weights
   real(wp), parameter :: JACOBIAN_TOL = 1.0e-10_wp
     !! det J at a 3×3 point must exceed this × (element size)² × t.
 
@@ -77,6 +96,8 @@ module superjoin_elements_shell8
      real(wp) :: e = 0.0_wp                 !! Young's modulus
      real(wp) :: nu = 0.0_wp                !! Poisson's ratio
      real(wp) :: ks(2) = 0.0_wp             !! transverse shear stiffness per unit length (local x, y)
+     logical :: tapered = .false.           !! the thickness varies: tn at the nodes
+     real(wp) :: tn(NN) = 0.0_wp            !! tapered: thickness at each node (t is then a mean, ks/t the shear modulus)
   end type shell8_props_t
 
   public :: shell8_stiffness, shell8_resultants, shell8_area_shares, shell8_pressure_load
@@ -89,6 +110,7 @@ module superjoin_elements_shell8
   integer, parameter :: NTENSOR = 6          !! global tensor xx, yy, zz, xy, xz, yz
   real(wp), parameter :: SHEAR_PEAK = 1.5_wp
     !! τ(z = 0) = 1.5 q / t, the peak of the parabolic transverse shear of a homogeneous section.
+  public :: shell8_volume_shares, shell8_mass, shell8_thermal_load, shell8_thermal_resultants
 
 contains
 
@@ -100,7 +122,7 @@ contains
     type(shell8_props_t), intent(in) :: props
     real(wp), allocatable, intent(out) :: ke(:, :)
     type(error_t), allocatable, intent(out) :: error
-    real(wp) :: dir(3, NN), d(NSTR, NSTR), b(NSTR, NDOF), dr(NDOF), gmod, kd
+    real(wp) :: dir(3, NN), d(NSTR, NSTR), b(NSTR, NDOF), dr(NDOF), gmod, kd, tp
     real(wp) :: bm(3, NDOF), bb(3, NDOF), detj(2)
     type(point_t) :: pt
     integer :: i, j, k
@@ -113,13 +135,13 @@ contains
     ! 2×2 rule, the bending part (their difference) with 3×3
     do i = 1, 3
        do j = 1, 3
-          call in_plane_parts(x, dir, ex, props%t, [G3(i), G3(j)], bm, bb, detj)
+          call in_plane_parts(x, dir, ex, props, [G3(i), G3(j)], bm, bb, detj)
           ke = ke + (2*W3(i)*W3(j)*G2**2)*sum(detj)/2*matmul(transpose(bb), matmul(d(1:3, 1:3), bb))
        end do
     end do
     do i = 1, 2
        do j = 1, 2
-          call in_plane_parts(x, dir, ex, props%t, [gauss2(i), gauss2(j)], bm, bb, detj)
+          call in_plane_parts(x, dir, ex, props, [gauss2(i), gauss2(j)], bm, bb, detj)
           ke = ke + sum(detj)*matmul(transpose(bm), matmul(d(1:3, 1:3), bm))
        end do
     end do
@@ -127,21 +149,22 @@ contains
     do i = 1, 2
        do j = 1, 2
           do k = 1, 2
-             call point(x, dir, ex, props%t, [gauss2(i), gauss2(j), gauss2(k)], pt)
-             b = strain_rows(pt, dir, props%t, gauss2(k))
+             call point(x, dir, ex, props, [gauss2(i), gauss2(j), gauss2(k)], pt)
+             b = strain_rows(pt, dir, nodal_thickness(props), gauss2(k))
              ke = ke + pt%detj*matmul(transpose(b(4:5, :)), matmul(d(4:5, 4:5), b(4:5, :)))
           end do
        end do
     end do
     ! drilling penalty: 3×3 on the mid-surface (ζ = 0; ∫ dζ = 2, det J ≈ t/2 dA)
     gmod = props%e/(2*(1 + props%nu))
-    kd = S8R_DRILL_FACTOR*gmod*props%t
     do i = 1, 3
        do j = 1, 3
-          call point(x, dir, ex, props%t, [G3(i), G3(j), 0.0_wp], pt)
-          dr = drill_row(pt, dir, props%t)
+          call point(x, dir, ex, props, [G3(i), G3(j), 0.0_wp], pt)
+          dr = drill_row(pt, dir, nodal_thickness(props))
+          tp = thickness_at(props, pt%nf)
+          kd = S8R_DRILL_FACTOR*gmod*tp
           do k = 1, NDOF
-             ke(:, k) = ke(:, k) + (kd*W3(i)*W3(j)*2*pt%detj/props%t)*dr(k)*dr
+             ke(:, k) = ke(:, k) + (kd*W3(i)*W3(j)*2*pt%detj/tp)*dr(k)*dr
           end do
        end do
     end do
@@ -158,7 +181,7 @@ contains
     real(wp), intent(in) :: ue(:)
     real(wp), intent(out) :: res(6), q(2)
     type(error_t), allocatable, intent(out) :: error
-    real(wp) :: dir(3, NN), d(NSTR, NSTR), s(NSTR), z
+    real(wp) :: dir(3, NN), d(NSTR, NSTR), s(NSTR), z, tc
     type(point_t) :: pt
     integer :: k
 
@@ -172,13 +195,14 @@ contains
     end if
     d = material(props)
     do k = 1, 2
-       call point(x, dir, ex, props%t, [0.0_wp, 0.0_wp, gauss2(k)], pt)
-       s = matmul(d, matmul(strain_rows(pt, dir, props%t, gauss2(k)), ue))
-       z = gauss2(k)*props%t/2
+       call point(x, dir, ex, props, [0.0_wp, 0.0_wp, gauss2(k)], pt)
+       s = matmul(d, matmul(strain_rows(pt, dir, nodal_thickness(props), gauss2(k)), ue))
+       tc = thickness_at(props, pt%nf)
+       z = gauss2(k)*tc/2
        ! 2-point rule through the thickness: weight 1 each, dz = t/2 dζ
-       res(1:3) = res(1:3) + s(1:3)*props%t/2
-       res(4:6) = res(4:6) + s(1:3)*z*props%t/2
-       q = q + s(4:5)*props%t/2
+       res(1:3) = res(1:3) + s(1:3)*tc/2
+       res(4:6) = res(4:6) + s(1:3)*z*tc/2
+       q = q + s(4:5)*tc/2
     end do
   end subroutine shell8_resultants
 
@@ -225,19 +249,20 @@ contains
        return
     end if
     e0 = 0.0_wp
-    if (present(thermal)) e0 = [thermal(1), thermal(2)*props%t/2]
     d = material(props)
     do k = 1, S8R_STRESS_POINTS
-       call in_plane_parts(x, dir, ex, props%t, G2*[XI_NODE(k), ETA_NODE(k)], bm, bb, detj)
+       call in_plane_parts(x, dir, ex, props, G2*[XI_NODE(k), ETA_NODE(k)], bm, bb, detj)
        em = matmul(bm, ue)
        eb = matmul(bb, ue)
        gam = 0.0_wp
        do kz = 1, 2
-          call point(x, dir, ex, props%t, [G2*XI_NODE(k), G2*ETA_NODE(k), gauss2(kz)], pt)
-          b = strain_rows(pt, dir, props%t, gauss2(kz))
+          call point(x, dir, ex, props, [G2*XI_NODE(k), G2*ETA_NODE(k), gauss2(kz)], pt)
+          b = strain_rows(pt, dir, nodal_thickness(props), gauss2(kz))
           gam = gam + matmul(b(4:5, :), ue)/2
        end do
-       call point(x, dir, ex, props%t, [G2*XI_NODE(k), G2*ETA_NODE(k), 0.0_wp], pt)
+       call point(x, dir, ex, props, [G2*XI_NODE(k), G2*ETA_NODE(k), 0.0_wp], pt)
+       ! the thickness at the point (Σ N_i t_i when tapered) scales the gradient's strain
+       if (present(thermal)) e0 = [thermal(1), thermal(2)*thickness_at(props, pt%nf)/2]
        do m = 1, S8R_SECTION_POINTS
           zeta = SECTION_ZETA(m)
           s = 0.0_wp
@@ -308,6 +333,113 @@ contains
     end do
   end subroutine shell8_pressure_load
 
+  pure subroutine shell8_volume_shares(x, props, shares, error)
+    !! shares(i) = ∫ N_i t dA over the mid-surface (3×3 rule, exact for a
+    !! parallelogram): the nodal loads of a unit load per unit volume
+    !! through the thickness (self weight / ρ g) with t = Σ N_j t_j.
+    real(wp), intent(in) :: x(:, :)
+    type(shell8_props_t), intent(in) :: props
+    real(wp), intent(out) :: shares(NN)
+    type(error_t), allocatable, intent(out) :: error
+    real(wp) :: nf(NN), dn(2, NN), a(3, 2)
+    integer :: i, j
+    shares = 0.0_wp
+    if (size(x, 1) /= 3 .or. size(x, 2) /= NN) then
+       call fatal_error(error, EXIT_DECK, 'an S8R needs 8 nodes')
+       return
+    end if
+    do i = 1, 3
+       do j = 1, 3
+          call quadratic_shape(NN, [G3(i), G3(j)], nf, dn)
+          a = matmul(x, transpose(dn))
+          shares = shares + W3(i)*W3(j)*norm2(cross(a(:, 1), a(:, 2)))*thickness_at(props, nf)*nf
+       end do
+    end do
+  end subroutine shell8_volume_shares
+
+  pure subroutine shell8_mass(x, props, m, error)
+    !! m(i, j) = ∫ N_i N_j t dA over the mid-surface (the consistent mass per
+    !! unit density), t = Σ N_k t_k; 4×4 rule (exact for a tapered
+    !! parallelogram: degree 6 in each direction).
+    real(wp), intent(in) :: x(:, :)
+    type(shell8_props_t), intent(in) :: props
+    real(wp), intent(out) :: m(NN, NN)
+    type(error_t), allocatable, intent(out) :: error
+    real(wp) :: nf(NN), dn(2, NN), a(3, 2), w
+    integer :: i, j, k
+    m = 0.0_wp
+    if (size(x, 1) /= 3 .or. size(x, 2) /= NN) then
+       call fatal_error(error, EXIT_DECK, 'an S8R needs 8 nodes')
+       return
+    end if
+    do i = 1, 4
+       do j = 1, 4
+          call quadratic_shape(NN, [G4(i), G4(j)], nf, dn)
+          a = matmul(x, transpose(dn))
+          w = W4(i)*W4(j)*norm2(cross(a(:, 1), a(:, 2)))*thickness_at(props, nf)
+          do k = 1, NN
+             m(:, k) = m(:, k) + w*nf(k)*nf
+          end do
+       end do
+    end do
+  end subroutine shell8_mass
+
+  pure subroutine shell8_thermal_load(x, ex, props, strain, curvature, fe, error)
+    !! Consistent nodal loads fe(48) (global axes) of the thermal strain
+    !! ε0 = strain + curvature z in the plane of the lamina (z = ζ t/2 along
+    !! e3; strain = α ΔT, curvature = α ∂T/∂n): ∫ Bᵀ D ε0 dV with the rules
+    !! of the stiffness (membrane part 2×2, bending part 3×3).
+    real(wp), intent(in) :: x(:, :), ex(3)
+    type(shell8_props_t), intent(in) :: props
+    real(wp), intent(in) :: strain, curvature
+    real(wp), allocatable, intent(out) :: fe(:)
+    type(error_t), allocatable, intent(out) :: error
+    real(wp) :: dir(3, NN), d(NSTR, NSTR), bm(3, NDOF), bb(3, NDOF), detj(2), nf(NN), dn(2, NN)
+    real(wp), parameter :: IN_PLANE(3) = [1.0_wp, 1.0_wp, 0.0_wp]
+    integer :: i, j
+
+    call check(x, props, dir, error)
+    if (allocated(error)) return
+    d = material(props)
+    allocate (fe(NDOF), source=0.0_wp)
+    ! bending: dε0/dζ = curvature t/2 at the point
+    if (curvature /= 0.0_wp) then
+       do i = 1, 3
+          do j = 1, 3
+             call in_plane_parts(x, dir, ex, props, [G3(i), G3(j)], bm, bb, detj)
+             call quadratic_shape(NN, [G3(i), G3(j)], nf, dn)
+             fe = fe + (2*W3(i)*W3(j)*G2**2)*sum(detj)/2* &
+                  matmul(transpose(bb), matmul(d(1:3, 1:3), curvature*thickness_at(props, nf)/2*IN_PLANE))
+          end do
+       end do
+    end if
+    if (strain /= 0.0_wp) then
+       do i = 1, 2
+          do j = 1, 2
+             call in_plane_parts(x, dir, ex, props, [gauss2(i), gauss2(j)], bm, bb, detj)
+             fe = fe + sum(detj)*matmul(transpose(bm), matmul(d(1:3, 1:3), strain*IN_PLANE))
+          end do
+       end do
+    end if
+  end subroutine shell8_thermal_load
+
+  pure subroutine shell8_thermal_resultants(props, strain, curvature, res)
+    !! The resultants (nx, ny, nxy, mx, my, mxy, lamina frame) of the thermal
+    !! strain at the element centre, as shell8_resultants integrates them:
+    !! n = D ε0 t, m = D κ0 t³/12 (in-plane, equal biaxial): what K u gives
+    !! and the element does not carry (N = D (ε - ε0)).
+    type(shell8_props_t), intent(in) :: props
+    real(wp), intent(in) :: strain, curvature
+    real(wp), intent(out) :: res(6)
+    real(wp) :: d(NSTR, NSTR), nf(NN), dn(2, NN), tc
+    real(wp), parameter :: IN_PLANE(3) = [1.0_wp, 1.0_wp, 0.0_wp]
+    d = material(props)
+    call quadratic_shape(NN, [0.0_wp, 0.0_wp], nf, dn)
+    tc = thickness_at(props, nf)
+    res(1:3) = matmul(d(1:3, 1:3), strain*IN_PLANE)*tc
+    res(4:6) = matmul(d(1:3, 1:3), curvature*IN_PLANE)*tc**3/12
+  end subroutine shell8_thermal_resultants
+
   ! ------------------------------------------------------------------ internals
 
   pure real(wp) function gauss2(i)
@@ -315,6 +447,28 @@ contains
     integer, intent(in) :: i
     gauss2 = merge(-G2, G2, i == 1)
   end function gauss2
+
+  pure function nodal_thickness(props) result(tn)
+    !! The thickness at the nodes: tn of a tapered element, else t at each.
+    type(shell8_props_t), intent(in) :: props
+    real(wp) :: tn(NN)
+    if (props%tapered) then
+       tn = props%tn
+    else
+       tn = props%t
+    end if
+  end function nodal_thickness
+
+  pure real(wp) function thickness_at(props, nf)
+    !! The thickness at a point with shape functions nf: Σ N_i t_i (tapered), else t.
+    type(shell8_props_t), intent(in) :: props
+    real(wp), intent(in) :: nf(NN)
+    if (props%tapered) then
+       thickness_at = dot_product(nf, props%tn)
+    else
+       thickness_at = props%t
+    end if
+  end function thickness_at
 
   pure function material(props) result(d)
     !! Lamina elasticity (ε11, ε22, γ12, γ13, γ23) -> stresses.
@@ -344,6 +498,10 @@ contains
     if (allocated(error)) return
     call require_positive(minval(props%ks), 'transverse shear stiffness', error)
     if (allocated(error)) return
+    if (props%tapered) then
+       call require_positive(minval(props%tn), 'nodal thickness', error)
+       if (allocated(error)) return
+    end if
     c = sum(x, dim=2)/NN
     size_e = maxval(norm2(x - spread(c, 2, NN), dim=1))
     ref = cross(x(:, 3) - x(:, 1), x(:, 4) - x(:, 2))
@@ -375,16 +533,22 @@ contains
     end do
   end subroutine check
 
-  pure subroutine point(x, dir, ex, t, p, pt)
+  pure subroutine point(x, dir, ex, props, p, pt)
     !! Geometry at p = (ξ, η, ζ): shape functions, inverse Jacobian, det J and
     !! the lamina frame.
-    real(wp), intent(in) :: x(3, NN), dir(3, NN), ex(3), t, p(3)
+    real(wp), intent(in) :: x(3, NN), dir(3, NN), ex(3), p(3)
+    type(shell8_props_t), intent(in) :: props
     type(point_t), intent(out) :: pt
-    real(wp) :: jac(3, 3), e1(3), e3(3)
+    real(wp) :: jac(3, 3), e1(3), e3(3), tn(NN)
     call quadratic_shape(NN, p(1:2), pt%nf, pt%dn)
+    tn = nodal_thickness(props)
     ! jac(a, b) = ∂X_a/∂ξ_b
-    jac(:, 1:2) = matmul(x + (p(3)*t/2)*dir, transpose(pt%dn))
-    jac(:, 3) = (t/2)*matmul(dir, pt%nf)
+    jac(:, 1:2) = matmul(x + spread(p(3)*tn/2, 1, 3)*dir, transpose(pt%dn))
+    if (props%tapered) then
+       jac(:, 3) = matmul(dir, pt%nf*tn)/2
+    else
+       jac(:, 3) = (props%t/2)*matmul(dir, pt%nf)
+    end if
     pt%detj = det3(jac)
     pt%jinv = inv3(jac, pt%detj)
     e3 = cross(jac(:, 1), jac(:, 2))
@@ -397,10 +561,11 @@ contains
     pt%r(3, :) = e3
   end subroutine point
 
-  pure function strain_rows(pt, dir, t, zeta) result(b)
-    !! Rows b(5, 48) with (ε11, ε22, γ12, γ13, γ23) = b u in the lamina frame.
+  pure function strain_rows(pt, dir, tn, zeta) result(b)
+    !! Rows b(5, 48) with (ε11, ε22, γ12, γ13, γ23) = b u in the lamina frame;
+    !! tn: the thickness at the nodes.
     type(point_t), intent(in) :: pt
-    real(wp), intent(in) :: dir(3, NN), t, zeta
+    real(wp), intent(in) :: dir(3, NN), tn(NN), zeta
     real(wp) :: b(NSTR, NDOF)
     real(wp) :: g(3), h(3), a(3), qv(3), ev(3)
     integer :: i, k, col
@@ -415,14 +580,14 @@ contains
           a = matmul(pt%r, ev)
           qv = matmul(pt%r, g)
           b(:, col) = voigt(a, qv)
-          a = matmul(pt%r, -(t/2)*cross(dir(:, i), ev))
+          a = matmul(pt%r, -(tn(i)/2)*cross(dir(:, i), ev))
           qv = matmul(pt%r, h)
           b(:, col + 3) = voigt(a, qv)
        end do
     end do
   end function strain_rows
 
-  pure subroutine in_plane_parts(x, dir, ex, t, p, bm, bb, detj)
+  pure subroutine in_plane_parts(x, dir, ex, props, p, bm, bb, detj)
     !! In-plane strain rows (ε11, ε22, γ12) at p = (ξ, η) split into the
     !! membrane part bm (the mean of the two Gauss points through the
     !! thickness, ζ = ±1/√3) and the bending part bb = ∂ε/∂ζ (their
@@ -431,24 +596,26 @@ contains
     !! times the mean det J (the cross term vanishes where det J does not vary
     !! through the thickness, i.e. on a flat element; on a curved one it is of
     !! relative order t/R and dropped).
-    real(wp), intent(in) :: x(3, NN), dir(3, NN), ex(3), t, p(2)
+    real(wp), intent(in) :: x(3, NN), dir(3, NN), ex(3), p(2)
+    type(shell8_props_t), intent(in) :: props
     real(wp), intent(out) :: bm(3, NDOF), bb(3, NDOF), detj(2)
     type(point_t) :: pt
     real(wp) :: b(NSTR, NDOF, 2)
     integer :: k
     do k = 1, 2
-       call point(x, dir, ex, t, [p, gauss2(k)], pt)
-       b(:, :, k) = strain_rows(pt, dir, t, gauss2(k))
+       call point(x, dir, ex, props, [p, gauss2(k)], pt)
+       b(:, :, k) = strain_rows(pt, dir, nodal_thickness(props), gauss2(k))
        detj(k) = pt%detj
     end do
     bm = (b(1:3, :, 1) + b(1:3, :, 2))/2
     bb = (b(1:3, :, 2) - b(1:3, :, 1))/(2*G2)
   end subroutine in_plane_parts
 
-  pure function drill_row(pt, dir, t) result(dr)
-    !! Row dr(48) with θ·e3 - ω = dr u at the point (ζ = 0).
+  pure function drill_row(pt, dir, tn) result(dr)
+    !! Row dr(48) with θ·e3 - ω = dr u at the point (ζ = 0); tn: the
+    !! thickness at the nodes.
     type(point_t), intent(in) :: pt
-    real(wp), intent(in) :: dir(3, NN), t
+    real(wp), intent(in) :: dir(3, NN), tn(NN)
     real(wp) :: dr(NDOF)
     real(wp) :: g(3), h(3), a(3), qv(3), ev(3)
     integer :: i, k, col
@@ -462,7 +629,7 @@ contains
           a = matmul(pt%r, ev)
           qv = matmul(pt%r, g)
           dr(col) = -0.5_wp*(a(2)*qv(1) - a(1)*qv(2))
-          a = matmul(pt%r, -(t/2)*cross(dir(:, i), ev))
+          a = matmul(pt%r, -(tn(i)/2)*cross(dir(:, i), ev))
           qv = matmul(pt%r, h)
           dr(col + 3) = pt%nf(i)*pt%r(3, k) - 0.5_wp*(a(2)*qv(1) - a(1)*qv(2))
        end do

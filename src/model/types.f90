@@ -113,6 +113,12 @@ module superjoin_model_types
      integer :: nfibre = 0                 !! library beam sections: extreme points for fibre stresses
      real(wp) :: fibre(2, 4) = 0.0_wp      !! their local (y, z) about the centroid
      type(source_loc_t) :: loc
+     logical :: nodal_thickness = .false.  !! *SHELL SECTION, NODAL THICKNESS: every node of its elements
+                                           !! must have a *NODAL THICKNESS (thickness: 0 until then)
+     real(wp), allocatable :: node_thickness(:)  !! S8R with a *NODAL THICKNESS that varies: the
+                                           !! thickness at each node of the one element this copy
+                                           !! of the section belongs to (element node order);
+                                           !! unallocated: `thickness` everywhere
   end type section_t
 
   type, public :: index_set_t
@@ -241,6 +247,11 @@ module superjoin_model_types
      real(wp) :: g(NDOF_NODE) = 0.0_wp
   end type link_override_t
 
+  type, public :: node_values_t
+    !! One value per node of a substructure.
+     real(wp), allocatable :: v(:)
+  end type node_values_t
+
   type, public :: step_t
     !! A load case.
      character(:), allocatable :: name     !! as written (upper-cased)
@@ -254,6 +265,9 @@ module superjoin_model_types
      logical :: procedure_card = .false.   !! the step has *STATIC (written for CalculiX/Abaqus)
      logical :: cload_op_given = .false.   !! one of its *CLOAD cards has OP=
      logical :: dload_op_given = .false.   !! one of its *DLOAD cards has OP=
+     type(node_values_t), allocatable :: temperature(:)  !! per substructure: the nodal temperatures of
+                                           !! the step (*INITIAL CONDITIONS / *TEMPERATURE; unallocated: none
+                                           !! in the model, all 0), for *NODE PRINT NT
   end type step_t
 
   type, public :: combination_t

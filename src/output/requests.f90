@@ -143,6 +143,9 @@ contains
        case ('S')
           call write_nodal_stress_table(lu, model, fields, is, subs, nodes)
           cycle
+       case ('NT')
+          call temperature_table(lu, model, r, is, subs, nodes)
+          cycle
        case default
           cycle
        end select
@@ -191,6 +194,38 @@ contains
       end do
     end subroutine fill_cf
   end subroutine node_request
+
+  subroutine temperature_table(lu, model, r, is, subs, nodes)
+    !! *NODE PRINT NT: the nodal temperatures of step `is` (as CalculiX's
+    !! "temperatures" block: the *TEMPERATURE of the step, else the initial
+    !! ones, 0 where none is given); a load combination has none.
+    type(text_buffer_t), intent(inout) :: lu
+    type(model_t), intent(in) :: model
+    type(output_request_t), intent(in) :: r
+    integer, intent(in) :: is
+    integer, intent(in) :: subs(:)
+    integer(ip), intent(in) :: nodes(:)
+    character(len=200) :: hline
+    real(wp) :: t
+    integer :: i
+    if (model%steps(is)%combination > 0) then
+       call lu%line('    NT  temperatures: none for a load combination')
+       return
+    end if
+    call lu%line('    NT  temperatures (*TEMPERATURE of the step, else *INITIAL CONDITIONS; 0 where none)')
+    write (hline, '(4x,a20,a10,a15)') 'substructure        ', '      node', '              T'
+    call lu%line(trim(hline))
+    if (r%totals == TOTALS_ONLY) return
+    do i = 1, size(nodes)
+       t = 0.0_wp
+       if (allocated(model%steps(is)%temperature)) t = model%steps(is)%temperature(subs(i))%v(nodes(i))
+       call lu%put('    ')
+       call lu%put_field(model%subs(subs(i))%name, 20)
+       call lu%put_int(int(model%subs(subs(i))%node_id(nodes(i)), i8), 10)
+       call lu%put_es(t)
+       call lu%newline()
+    end do
+  end subroutine temperature_table
 
   subroutine node_frames(model, subs, nodes, frame)
     !! Index into model%frames of the nodal system of each node (0: none).

@@ -127,7 +127,7 @@ contains
     call read_ok(BAR//join([character(L) :: '*NSET, NSET=TIP', '2', '*BOUNDARY', '1, 1, 2', '2, 2, 2', &
          '*EL PRINT', 'SF', &
          '*STEP', '*STATIC', '*CLOAD', '2, 1, 1.', &
-         '*NODE PRINT, NSET=TIP, TOTALS=YES', 'U, RF', 'NT', &
+         '*NODE PRINT, NSET=TIP, TOTALS=YES', 'U, RF', 'NT, RFL', &
          '*NODE FILE', &
          '*END STEP', &
          '*STEP', '*STATIC', '*CLOAD', '2, 1, 2.', &
@@ -144,8 +144,8 @@ contains
       call check(r(2)%kind == REQ_NODE_PRINT .and. r(2)%step == 1 .and. r(2)%totals == TOTALS_YES, &
            '*NODE PRINT in step 1 with TOTALS=YES')
       call check(r(2)%set_name == 'TIP' .and. r(2)%sub == 1 .and. size(r(2)%items) == 1, 'NSET=TIP resolved')
-      call check(size(r(2)%vars) == 2 .and. size(r(2)%ignored) == 1, 'U, RF produced; NT noted')
-      if (size(r(2)%ignored) == 1) call check(r(2)%ignored(1)%s == 'NT', 'NT not produced')
+      call check(size(r(2)%vars) == 3 .and. size(r(2)%ignored) == 1, 'U, RF, NT produced; RFL noted')
+      if (size(r(2)%ignored) == 1) call check(r(2)%ignored(1)%s == 'RFL', 'RFL not produced')
       call check(r(3)%kind == REQ_NODE_FILE .and. size(r(3)%vars) == 1, '*NODE FILE')
       if (size(r(3)%vars) == 1) call check(r(3)%vars(1)%s == 'U', '*NODE FILE without data: U')
       call check(r(4)%kind == REQ_EL_PRINT .and. r(4)%step == 2 .and. r(4)%totals == TOTALS_NO, &

@@ -1,0 +1,111 @@
+module superjoin_elements_shell8_loads
+  !! The loads of an S8R that need its section and material beyond the
+  !! pressure: self weight of a tapered section (ρ t(ξ, η) per unit area),
+  !! thermal strains (uniform α ΔT and the gradient α ∂T/∂n through the
+  !! thickness) and the centrifugal load (consistent mass ∫ ρ t N_i N_j dA
+  !! times the nodal distance vectors from the axis, exact because that
+  !! vector is linear in x). The element itself is superjoin_elements_shell8;
+  !! this module is the glue from section_t / material_t / dload_t, in the
+  !! element frame of superjoin_elements_shell (lamina e1 along its local x).
+  use superjoin_kinds, only: wp
+  use superjoin_error, only: error_t, fatal_error, EXIT_DECK
+  use superjoin_model_types, only: section_t, material_t, dload_t, ELEMENT_NODE_COUNT, ET_S8R
+  use superjoin_elements_shell, only: shell_frame, shell8_props
+  use superjoin_elements_shell8, only: shell8_volume_shares, shell8_mass, shell8_thermal_load, &
+       shell8_thermal_resultants
+  use superjoin_elements_centrif, only: axis_distance
+  implicit none (type, external)
+  private
+
+  integer, parameter :: NDN = 6   !! DOFs per S8R node
+
+  public :: s8r_is_tapered, s8r_gravity_load, s8r_thermal_load, s8r_thermal_resultants, s8r_centrif_load
+
+contains
+
+  pure logical function s8r_is_tapered(etype, sec)
+    !! An S8R whose section carries a thickness per node.
+    integer, intent(in) :: etype
+    type(section_t), intent(in) :: sec
+    s8r_is_tapered = etype == ET_S8R .and. allocated(sec%node_thickness)
+  end function s8r_is_tapered
+
+  pure subroutine s8r_gravity_load(x, sec, mat, accel, fe, error)
+    !! Consistent nodal loads fe(48) (global axes) of the self weight ρ t(ξ, η)
+    !! per unit area under the acceleration accel(3) (global axes).
+    real(wp), intent(in) :: x(:, :)
+    type(section_t), intent(in) :: sec
+    type(material_t), intent(in) :: mat
+    real(wp), intent(in) :: accel(3)
+    real(wp), allocatable, intent(out) :: fe(:)
+    type(error_t), allocatable, intent(out) :: error
+    real(wp) :: shares(size(x, 2))
+    integer :: i
+    if (size(x, 2) /= ELEMENT_NODE_COUNT(ET_S8R)) then
+       call fatal_error(error, EXIT_DECK, 'wrong number of nodes')
+       return
+    end if
+    call shell8_volume_shares(x, shell8_props(sec, mat), shares, error)
+    if (allocated(error)) return
+    allocate (fe(NDN*size(x, 2)), source=0.0_wp)
+    do i = 1, size(x, 2)
+       fe(NDN*i - 5:NDN*i - 3) = shares(i)*mat%density*accel
+    end do
+  end subroutine s8r_gravity_load
+
+  pure subroutine s8r_thermal_load(x, sec, mat, strain, curvature, fe, error)
+    !! Consistent nodal loads fe(48) (global axes) of the thermal strain
+    !! strain = α ΔT and curvature = α ∂T/∂n (superjoin_elements_shell8).
+    real(wp), intent(in) :: x(:, :)
+    type(section_t), intent(in) :: sec
+    type(material_t), intent(in) :: mat
+    real(wp), intent(in) :: strain, curvature
+    real(wp), allocatable, intent(out) :: fe(:)
+    type(error_t), allocatable, intent(out) :: error
+    real(wp) :: r(3, 3), xl(2, size(x, 2)), h(size(x, 2))
+    if (size(x, 2) /= ELEMENT_NODE_COUNT(ET_S8R)) then
+       call fatal_error(error, EXIT_DECK, 'wrong number of nodes')
+       return
+    end if
+    call shell_frame(x, r, xl, h, error)
+    if (allocated(error)) return
+    call shell8_thermal_load(x, r(1, :), shell8_props(sec, mat), strain, curvature, fe, error)
+  end subroutine s8r_thermal_load
+
+  pure subroutine s8r_thermal_resultants(sec, mat, strain, curvature, res)
+    !! Resultants (nx .. mxy, lamina frame at the centre) of the free thermal
+    !! strain, to be taken off those of the solution.
+    type(section_t), intent(in) :: sec
+    type(material_t), intent(in) :: mat
+    real(wp), intent(in) :: strain, curvature
+    real(wp), intent(out) :: res(6)
+    call shell8_thermal_resultants(shell8_props(sec, mat), strain, curvature, res)
+  end subroutine s8r_thermal_resultants
+
+  pure subroutine s8r_centrif_load(x, sec, mat, dl, fe, error)
+    !! Consistent nodal loads fe(48) (global axes) of the centrifugal load dl
+    !! (value ω², axis through dl%point along dl%dir): f_i = ρ ω² Σ_j M_ij r_j.
+    real(wp), intent(in) :: x(:, :)
+    type(section_t), intent(in) :: sec
+    type(material_t), intent(in) :: mat
+    type(dload_t), intent(in) :: dl
+    real(wp), allocatable, intent(out) :: fe(:)
+    type(error_t), allocatable, intent(out) :: error
+    real(wp) :: m(size(x, 2), size(x, 2)), rn(3, size(x, 2))
+    integer :: i, n
+    n = size(x, 2)
+    if (n /= ELEMENT_NODE_COUNT(ET_S8R)) then
+       call fatal_error(error, EXIT_DECK, 'wrong number of nodes')
+       return
+    end if
+    call shell8_mass(x, shell8_props(sec, mat), m, error)
+    if (allocated(error)) return
+    do i = 1, n
+       rn(:, i) = axis_distance(dl, x(:, i))
+    end do
+    allocate (fe(NDN*n), source=0.0_wp)
+    do i = 1, n
+       fe(NDN*i - 5:NDN*i - 3) = mat%density*dl%value*matmul(rn, m(:, i))
+    end do
+  end subroutine s8r_centrif_load
+end module superjoin_elements_shell8_loads

@@ -68,8 +68,10 @@ tip, linear in each element; *DLOAD P on the outer half, an axial *CLOAD):
    (generated here; measured 1.3 %), CalculiX's ratio is printed.
 4. Statics: the reactions balance the loads (1e-6: 7 printed digits). *NODE PRINT NT: the
    nodal temperatures equal .dat.ref's (273, the initial conditions);
-   *EL PRINT S of S8R: S8R stresses are another helper's work (issue 13):
-   the S block is skipped until the listing has them.
+   *EL PRINT S of S8R: printed (2x2 points, bottom/top/mid; checked against closed forms
+   and a ccx cantilever in tests/shells/verify_s8r_stress.py) but not compared here:
+   CalculiX's values sit at the C3D20R brick points of a 2x2 expansion whose tip
+   deflection is 16 % below the converged one.
 
 rot4.inp (S8R, t = 0.02 given by *NODAL THICKNESS, tip moments 0.01 at each
 of the 5 nodes of the edge x = 1): the "plate closed form" m L^2/(2 D) =
@@ -702,8 +704,12 @@ def shell1lin(binary, outdir):
         FAILURES.append('shell1lin refinement')
     note(f'CalculiX (2x2, C3D20R expansion) node 15 w {ref_u[(15,)][2]:.6e}: {ref_u[(15,)][2] / w16:.4f} of '
          "superjoin's 16x16 (ccx 2.20 on refined copies: -0.1406 2x2 .. -0.1638 32x32, still rising)")
-    note('*EL PRINT S of S8R: skipped, S8R stresses are not in the listing yet (issue 13, another helper); '
-         f"listing: {'(4 beam or shell elements of the set have no single tensor' in text}")
+    has_s8r_s = 'S8R    1  bot' in text
+    note('*EL PRINT S of S8R: in the listing' if has_s8r_s else '*EL PRINT S of S8R: MISSING from the listing')
+    if not has_s8r_s:
+        FAILURES.append('shell1lin S8R stresses')
+    note("S of S8R not compared with .dat.ref: CalculiX's points are C3D20R brick points of a 2x2 "
+         'expansion 16 % too stiff (verify_s8r_stress.py compares a converged cantilever)')
 
 
 def rot4(binary, outdir):
@@ -785,7 +791,7 @@ def main():
     if FAILURES:
         print(f'FAIL: {len(FAILURES)} comparisons')
         sys.exit(1)
-    print('all comparisons within 1e-6 of the table scale')
+    print('all comparisons within their stated tolerances')
 
 
 if __name__ == '__main__':

@@ -83,7 +83,7 @@ module superjoin_elements_membrane
   public :: plane_strain_stiffness, plane_strain_resultants
   public :: plane_stress, plane_strain, check_plane_material
   public :: membrane_point_stresses
-  public :: membrane_thermal_load
+  public :: membrane_thermal_load, membrane_centroid_weights
   public :: check_membrane_element, spd_solve
 
 contains
@@ -239,6 +239,21 @@ contains
     call qm6_initial_strain(x, d, eps0, fu, fa)
     fe = fu - matmul(kua, reshape(spd_solve(kaa, reshape(fa, [NMODE, 1])), [NMODE]))
   end subroutine membrane_thermal_load
+
+  pure subroutine membrane_centroid_weights(xl, w)
+    !! The shape functions w(n) of a CST (1/3 each) or of the bilinear
+    !! quadrilateral at the area centroid, where the resultants are evaluated.
+    real(wp), intent(in) :: xl(:, :)
+    real(wp), intent(out) :: w(:)
+    real(wp) :: x(2, 4), xi, eta
+    if (size(xl, 2) == 3) then
+       w = 1.0_wp/3
+       return
+    end if
+    x = xl
+    call centroid_natural(x, xi, eta)
+    w = shape4(xi, eta)
+  end subroutine membrane_centroid_weights
 
   pure subroutine qm6_initial_strain(x, d, eps0, fu, fa)
     !! ∫ [bc ba]ᵀ d ε0 dA by 2×2 Gauss of QM6 for the isotropic initial strain

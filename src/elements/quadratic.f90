@@ -60,7 +60,7 @@ module superjoin_elements_quadratic
 
   public :: quadratic_stiffness, quadratic_resultants, quadratic_shape_integrals, quadratic_shape
   public :: quadratic_point_stresses, quadratic_stress_points
-  public :: quadratic_thermal_load
+  public :: quadratic_thermal_load, quadratic_centroid_weights
 
 contains
 
@@ -118,6 +118,14 @@ contains
        nres = nres - dot_product(nf, eps0)*matmul(material(props), ISOTROPIC)
     end if
   end subroutine quadratic_resultants
+
+  pure subroutine quadratic_centroid_weights(xl, w)
+    !! The shape functions w(n) at the area centroid, where the resultants are evaluated.
+    real(wp), intent(in) :: xl(:, :)
+    real(wp), intent(out) :: w(size(xl, 2))
+    real(wp) :: dn(2, size(xl, 2))
+    call quadratic_shape(size(xl, 2), centroid_natural(xl), w, dn)
+  end subroutine quadratic_centroid_weights
 
   pure subroutine quadratic_thermal_load(xl, props, eps0, fe, error)
     !! Consistent nodal loads fe(2n) = ∫ Bᵀ t D ε0 dA (element frame, node-major

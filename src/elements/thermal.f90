@@ -41,15 +41,16 @@ module superjoin_elements_thermal
   use superjoin_elements_shell, only: shell_frame, shell_stiffness, shell_resultants, is_plane_type, &
        is_plane_strain_type
   use superjoin_elements_shell, only: is_quadratic_plane_type, quadratic_props
-  use superjoin_elements_membrane, only: membrane_thermal_load, membrane_resultants, plane_strain_resultants
-  use superjoin_elements_quadratic, only: quadratic_thermal_load, quadratic_resultants
+  use superjoin_elements_membrane, only: membrane_thermal_load, membrane_resultants, plane_strain_resultants, &
+       membrane_centroid_weights
+  use superjoin_elements_quadratic, only: quadratic_thermal_load, quadratic_resultants, quadratic_centroid_weights
   use superjoin_elements_beam, only: beam_stiffness, beam_end_forces
   use superjoin_model_types, only: ET_B23, ET_B21, ET_B33, ET_B31
   implicit none (type, external)
   private
 
   public :: thermal_axial_load, thermal_free_field, thermal_plate_load, thermal_plate_resultants
-  public :: thermal_plane_nodal_load, plane_initial_strains
+  public :: thermal_plane_nodal_load, plane_initial_strains, plane_centroid_remainder
   public :: thermal_beam_free_field, thermal_beam_load, thermal_beam_end_forces
 
 contains
@@ -173,6 +174,27 @@ contains
     if (allocated(error)) return
     res(1:3) = res(1:3) - rd
   end subroutine thermal_plate_resultants
+
+  pure real(wp) function plane_centroid_remainder(etype, x, nodal) result(v)
+    !! The nodal remainder nodal(n) of the thermal strain of a plane element
+    !! interpolated to the area centroid, where its resultants and element
+    !! values are taken (0 if the element cannot be evaluated: reported elsewhere).
+    integer, intent(in) :: etype
+    real(wp), intent(in) :: x(:, :)
+    real(wp), intent(in) :: nodal(:)
+    real(wp) :: r(3, 3), xl(2, size(x, 2)), h(size(x, 2)), w(size(x, 2))
+    type(error_t), allocatable :: error
+    v = 0.0_wp
+    if (.not. is_plane_type(etype) .or. all(nodal == 0.0_wp)) return
+    call shell_frame(x, r, xl, h, error)
+    if (allocated(error)) return
+    if (is_quadratic_plane_type(etype)) then
+       call quadratic_centroid_weights(xl, w)
+    else
+       call membrane_centroid_weights(xl, w)
+    end if
+    v = dot_product(w, nodal)
+  end function plane_centroid_remainder
 
   pure subroutine plane_initial_strains(etype, nu, nodal, e0)
     !! The in-plane initial strains e0 of a plane element from its nodal

@@ -18,7 +18,9 @@ usage: verify_thermal.py SUPERJOIN WORKDIR [--table]
    parallelograms with its incompatible modes (which take their share of the
    thermal load before they are condensed), so with the temperature interpolated to
    the integration points every stress is 0 to 1e-10 of E alpha dT and every
-   displacement the exact one to 1e-10. (The element mean of the nodal
+   displacement the exact one to 1e-10; the element values of *EL PRINT S
+   (at the centroid; plane strain sigma_zz = -E alpha T there) to the 7
+   digits of the listing. (The element mean of the nodal
    temperatures, what superjoin did before, leaves stresses of order
    E alpha a h: the table in doc/verification.md.)
 2. Quadratic temperature across a long free strip (plane stress), T = T0 y^2/c^2,
@@ -155,8 +157,25 @@ def plate_deck(etype, nodes, elems, temp, supports):
               "*SOLID SECTION, ELSET=P, MATERIAL=M", f"{THICK}", "*BOUNDARY"] + supports
     lines += ["*INITIAL CONDITIONS, TYPE=TEMPERATURE", "ALL, 0.0", "*STEP", "*STATIC", "*TEMPERATURE"]
     lines += [f"{k + 1}, {temp(x, y)!r}" for k, (x, y) in enumerate(nodes)]
-    lines += ["*NODE FILE", "U, S", "*EL FILE", "S", "*END STEP"]
+    lines += ["*NODE FILE", "U, S", "*EL FILE", "S", "*EL PRINT, ELSET=P", "S", "*END STEP"]
     return "\n".join(lines) + "\n"
+
+
+def element_values(work, name):
+    """The element (centroid) stresses of *EL PRINT S in the listing: {element: [xx, yy, zz, xy]}."""
+    out, on = {}, False
+    with open(os.path.join(work, name + ".lst")) as f:
+        for line in f:
+            if "S   stresses (global axes" in line:
+                on = True
+                continue
+            if on:
+                p = line.split()
+                if len(p) == 9 and p[1].isdigit():
+                    out[int(p[1])] = [float(v) for v in p[3:7]]
+                elif out:
+                    break
+    return out
 
 
 def linear_study(exe, work, table):
@@ -183,6 +202,19 @@ def linear_study(exe, work, table):
             for r in res["nodal_stresses"]:
                 x, y = nodes[int(r["node"]) - 1]
                 szz = max(szz, abs(float(r["szz"]) + E * ALPHA * lin_temp(x, y)))
+        # the element values of *EL PRINT S (listing, 7 digits) at the area centroid
+        # (straight sides, affine: the mean of the corners): 0, plane strain sigma_zz = -E alpha T
+        ev = element_values(work, f"linear_{etype}")
+        ncorner = 3 if len(elems[0]) in (3, 6) else 4
+        eerr = 0.0
+        for k, c in enumerate(elems):
+            xc = sum(nodes[n - 1][0] for n in c[:ncorner]) / ncorner
+            yc = sum(nodes[n - 1][1] for n in c[:ncorner]) / ncorner
+            want = [0.0, 0.0, -E * ALPHA * lin_temp(xc, yc) if strain else 0.0, 0.0]
+            eerr = max(eerr, max(abs(a - b) for a, b in zip(ev[k + 1], want)))
+        if len(ev) != len(elems) or eerr > 1e-6 * scale:
+            print(f"FAIL: free plate, linear T, {etype}: *EL PRINT S element values off by {eerr / scale:.2e}")
+            ok = False
         # exact displacement with the rigid rotation of the supports: v(node 2) = 0
         x2, y2 = nodes[n2]
         w = -lin_exact(x2, y2, strain)[1] / x2

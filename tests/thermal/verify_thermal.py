@@ -20,7 +20,9 @@ usage: verify_thermal.py SUPERJOIN WORKDIR [--table]
    the integration points every stress is 0 to 1e-10 of E alpha dT and every
    displacement the exact one to 1e-10; the element values of *EL PRINT S
    (at the centroid; plane strain sigma_zz = -E alpha T there) to the 7
-   digits of the listing. (The element mean of the nodal
+   digits of the listing. CPS8 and CPE4 also solve a load combination
+   2 x the step: its stresses are 0 too (the superposed temperatures are
+   taken off). (The element mean of the nodal
    temperatures, what superjoin did before, leaves stresses of order
    E alpha a h: the table in doc/verification.md.)
 2. Quadratic temperature across a long free strip (plane stress), T = T0 y^2/c^2,
@@ -148,7 +150,7 @@ def quad4_mesh(nx, ny):
     return [nodes[n - 1] for n in used], [[new[n] for n in e[:4]] for e in elems]
 
 
-def plate_deck(etype, nodes, elems, temp, supports):
+def plate_deck(etype, nodes, elems, temp, supports, combination=False):
     lines = ["*HEADING", f"free plate {etype}", "*NODE, NSET=ALL"]
     lines += [f"{k + 1}, {x!r}, {y!r}" for k, (x, y) in enumerate(nodes)]
     lines.append(f"*ELEMENT, TYPE={etype}, ELSET=P")
@@ -158,6 +160,8 @@ def plate_deck(etype, nodes, elems, temp, supports):
     lines += ["*INITIAL CONDITIONS, TYPE=TEMPERATURE", "ALL, 0.0", "*STEP", "*STATIC", "*TEMPERATURE"]
     lines += [f"{k + 1}, {temp(x, y)!r}" for k, (x, y) in enumerate(nodes)]
     lines += ["*NODE FILE", "U, S", "*EL FILE", "S", "*EL PRINT, ELSET=P", "S", "*END STEP"]
+    if combination:   # results of 2 x the step: superposed, temperatures included
+        lines += ["*LOAD COMBINATION, NAME=TWICE", "1, 2.0"]
     return "\n".join(lines) + "\n"
 
 
@@ -178,6 +182,11 @@ def element_values(work, name):
     return out
 
 
+def factor(row):
+    """1 for the step, 2 for the combination TWICE (2 x the step)."""
+    return 1 if row["step"] == "1" else 2
+
+
 def linear_study(exe, work, table):
     ok = True
     rows = []
@@ -189,8 +198,9 @@ def linear_study(exe, work, table):
         strain = etype.startswith("CPE")
         # node 1 at the origin held, the node farthest along x held in y
         n2 = max(range(len(nodes)), key=lambda k: nodes[k][0])
+        combo = etype in ("CPS8", "CPE4")
         res = run(exe, work, f"linear_{etype}", plate_deck(etype, nodes, elems, lin_temp,
-                                                            ["1, 1, 2", f"{n2 + 1}, 2, 2"]))
+                                                            ["1, 1, 2", f"{n2 + 1}, 2, 2"], combo))
         dtmax = max(abs(lin_temp(x, y)) for x, y in nodes)
         scale = E * ALPHA * dtmax
         sig = 0.0
@@ -198,10 +208,13 @@ def linear_study(exe, work, table):
             for r in res[tab]:
                 sig = max(sig, abs(float(r["sxx"])), abs(float(r["syy"])), abs(float(r["sxy"])))
         szz = 0.0
-        if strain:    # sigma_zz = -E alpha T at the nodes
+        if strain:    # sigma_zz = -E alpha T at the nodes (the combination: twice)
             for r in res["nodal_stresses"]:
                 x, y = nodes[int(r["node"]) - 1]
-                szz = max(szz, abs(float(r["szz"]) + E * ALPHA * lin_temp(x, y)))
+                szz = max(szz, abs(float(r["szz"]) + factor(r) * E * ALPHA * lin_temp(x, y)))
+        if combo and {factor(r) for r in res["point_stresses"]} != {1, 2}:
+            print(f"FAIL: free plate, linear T, {etype}: the combination's stresses are missing")
+            ok = False
         # the element values of *EL PRINT S (listing, 7 digits) at the area centroid
         # (straight sides, affine: the mean of the corners): 0, plane strain sigma_zz = -E alpha T
         ev = element_values(work, f"linear_{etype}")
@@ -224,7 +237,8 @@ def linear_study(exe, work, table):
             x, y = nodes[int(r["node"]) - 1]
             ue, ve = lin_exact(x, y, strain)
             ue, ve = ue - w * y, ve + w * x
-            du = max(du, abs(float(r["u1"]) - ue), abs(float(r["u2"]) - ve))
+            f = factor(r)    # the combination TWICE: 2 x step 1
+            du = max(du, abs(float(r["u1"]) - f * ue), abs(float(r["u2"]) - f * ve))
         rows.append((etype, len(elems), sig / scale, szz / scale, du / umax))
         if sig > 1e-10 * scale or szz > 1e-10 * scale or du > 1e-10 * umax:
             print(f"FAIL: free plate, linear T, {etype}: stress {sig / scale:.2e}, szz {szz / scale:.2e}, "

@@ -1114,7 +1114,8 @@ contains
     !! change ΔT (the mean of its nodes' T - T0; nodes without a step
     !! temperature keep T0, nodes without an initial one start at 0), a
     !! DLOAD_THERMAL entry of value E A α ΔT; a beam also the thermal
-    !! curvatures α ∂T/∂y, α ∂T/∂z of the mean gradients across its section
+    !! curvatures α ∂T/∂y, α ∂T/∂z of the gradients across its section at its
+    !! two nodes (linear in between)
     !! (CalculiX's third field: along the 2-direction, local z of B31/B33,
     !! local y of the planar B21/B23; the fourth: along the 1-direction, local
     !! y). A plane or shell element gets the entry of its thermal strain α ΔT
@@ -1183,9 +1184,13 @@ contains
                       extra = [extra, dload_t(sub=isub, elem=e, kind=DLOAD_THERMAL, &
                            value=mat%e*sec%area*mat%alpha*dt, loc=first_line(s))]
                       if (any(sub%elem_type(e) == [ET_B23, ET_B21])) then
-                         extra(size(extra))%gradient = [mat%alpha*dg, 0.0_wp]
+                         extra(size(extra))%gradient(1, :) = mat%alpha*(g(isub)%v(sub%elem_nodes(1:2, e)) - &
+                              g0(isub)%v(sub%elem_nodes(1:2, e)))
                       else if (any(sub%elem_type(e) == [ET_B33, ET_B31])) then
-                         extra(size(extra))%gradient = [mat%alpha*dh, mat%alpha*dg]
+                         extra(size(extra))%gradient(1, :) = mat%alpha*(h(isub)%v(sub%elem_nodes(1:2, e)) - &
+                              h0(isub)%v(sub%elem_nodes(1:2, e)))
+                         extra(size(extra))%gradient(2, :) = mat%alpha*(g(isub)%v(sub%elem_nodes(1:2, e)) - &
+                              g0(isub)%v(sub%elem_nodes(1:2, e)))
                       end if
                    case (ET_CPS3, ET_CPS4, ET_CPE3, ET_CPE4, ET_CPS6, ET_CPS8, ET_CPE6, ET_CPE8, ET_CPS8R, &
                         ET_CPE8R, ET_S3, ET_S4, ET_S4R, ET_S3R)

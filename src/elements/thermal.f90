@@ -29,10 +29,13 @@ module superjoin_elements_thermal
   !!
   !! Beams: a temperature gradient across the section, α ∂T/∂y and α ∂T/∂z
   !! (local axes), is the thermal curvature of the free beam: fibres at +y
-  !! grow by α (∂T/∂y) y, so v'' = -α ∂T/∂y and w'' = -α ∂T/∂z. Its free
-  !! bending (thermal_beam_free_field) has no shear, for Euler-Bernoulli and
+  !! grow by α (∂T/∂y) y, so v'' = -α ∂T/∂y and w'' = -α ∂T/∂z, linear along
+  !! the element between its nodes' values. Its free bending
+  !! (thermal_beam_free_field: a cubic v, w, which the Hermite and the exact
+  !! Timoshenko elements hold) has no shear, for Euler-Bernoulli and
   !! Timoshenko beams alike, and the consistent load is K_e u_free: the end
-  !! moments ∓E I α ∂T; the end forces are those of u - u_free.
+  !! moments ∓E I α ∂T (and, if the gradient varies, the shear pair of its
+  !! slope); the end forces are those of u - u_free.
   use superjoin_kinds, only: wp
   use superjoin_error, only: error_t, fatal_error, EXIT_DECK
   use superjoin_model_types, only: section_t
@@ -243,20 +246,24 @@ contains
   pure subroutine thermal_beam_free_field(etype, x, sec, gradient, u, error)
     !! Nodal displacements u (global axes, node-major with the beam's DOFs:
     !! B23, B21 ux, uy, rz; B33, B31 all six) of the free bending of a beam
-    !! under the thermal curvatures gradient = (α ∂T/∂y, α ∂T/∂z), local axes
-    !! (planar beams: the first only), node 1 held: v = -κy x²/2, θz = -κy x,
-    !! w = -κz x²/2, θy = κz x.
+    !! under the thermal curvatures gradient(:, node) = (α ∂T/∂y, α ∂T/∂z)
+    !! at its two nodes, local axes (planar beams: the first only), linear in
+    !! between, node 1 held: v'' = -κy, θz = v'; w'' = -κz, θy = -w', so at
+    !! node 2 v = -L² (2 κy1 + κy2)/6, θz = -L (κy1 + κy2)/2 and the same for
+    !! w, -θy with κz.
     integer, intent(in) :: etype
     real(wp), intent(in) :: x(:, :)
     type(section_t), intent(in) :: sec
-    real(wp), intent(in) :: gradient(2)
+    real(wp), intent(in) :: gradient(2, 2)
     real(wp), allocatable, intent(out) :: u(:)
     type(error_t), allocatable, intent(out) :: error
-    real(wp) :: r(3, 3), length, d(3), t(3)
+    real(wp) :: r(3, 3), length, d(3), t(3), defl(2), turn(2)
     call beam_frame(etype, x, sec, r, length, error)
     if (allocated(error)) return
-    d = [0.0_wp, -gradient(1)*length**2/2, -gradient(2)*length**2/2]
-    t = [0.0_wp, gradient(2)*length, -gradient(1)*length]
+    defl = -length**2*(2*gradient(:, 1) + gradient(:, 2))/6
+    turn = -length*(gradient(:, 1) + gradient(:, 2))/2
+    d = [0.0_wp, defl(1), defl(2)]
+    t = [0.0_wp, -turn(2), turn(1)]
     select case (etype)
     case (ET_B23, ET_B21)
        ! (ux, uy, rz) = rᵀ (u, v, θz): the planar frame has r(3, :) = Z
@@ -276,7 +283,7 @@ contains
     real(wp), intent(in) :: x(:, :)
     type(section_t), intent(in) :: sec
     type(material_t), intent(in) :: mat
-    real(wp), intent(in) :: gradient(2)
+    real(wp), intent(in) :: gradient(2, 2)
     real(wp), allocatable, intent(out) :: fe(:)
     type(error_t), allocatable, intent(out) :: error
     real(wp), allocatable :: u(:), ke(:, :)
@@ -295,7 +302,7 @@ contains
     real(wp), intent(in) :: x(:, :)
     type(section_t), intent(in) :: sec
     type(material_t), intent(in) :: mat
-    real(wp), intent(in) :: gradient(2)
+    real(wp), intent(in) :: gradient(2, 2)
     real(wp), intent(out) :: f(6, 2)
     type(error_t), allocatable, intent(out) :: error
     real(wp), allocatable :: u(:)

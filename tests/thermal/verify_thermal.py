@@ -38,6 +38,15 @@ usage: verify_thermal.py SUPERJOIN WORKDIR [--table]
    bends freely, tip deflection -alpha g L^2/2 and rotation alpha g L, with
    no stress (fibre stresses < 1e-12 E alpha g h); clamped at both ends it does
    not move and its fibres carry -E alpha (dT + g y) (1e-12).
+   A gradient varying linearly along the beam (nodal values 10 to 40, 4
+   elements, the element interpolating between its nodes): the cantilever's
+   tip deflects -alpha L^2 (g0/2 + g1/6) and turns alpha L (g0 + g1/2),
+   stress-free (all four types); clamped, the Euler-Bernoulli B23/B33 do not
+   move and carry -E alpha g(x) y at every element end (1e-12; the free
+   bending is a cubic, which the elements hold). A clamped Timoshenko beam
+   does move (the slope of the thermal moment is a shear force): one B21
+   element clamped at both ends has the fixed-end shear E I b/(1 + phi) of
+   kappa0 = a + b x, phi = 12 E I/(k G A L^2), and end moments that balance it.
    A temperature rising linearly along a clamped beam (4 elements): every
    element carries N = -E A alpha (the beam's mean dT), 1e-12.
 4. CalculiX: thermal_linear_cps8.inp (a CPS8 plate clamped at x = 0, T linear
@@ -363,6 +372,61 @@ def beam_study(exe, work, table):
                 ok = False
         if ok:
             print(f"ok: {etype}: free cantilever bends to alpha g, clamped beam carries -E alpha (dT + g y)")
+    # a gradient varying linearly along the beam, g(x) = g0 + g1 x/L, given at
+    # the nodes: the cantilever's tip deflects -alpha L^2 (g0/2 + g1/6) and
+    # turns alpha L (g0 + g1/2), stress-free; clamped, it does not move and the
+    # fibres at x carry -E alpha g(x) z (at both ends of every element)
+    g0, g1 = 10.0, 30.0
+    for etype in ("B33", "B31", "B23", "B21"):
+        planar = etype in ("B21", "B23")
+        ucol, rcol, coord = ("u2", "ur3", "y") if planar else ("u3", "ur2", "z")
+        lines = [f"{i + 1}, 20.0, {g0 + g1 * i / n!r}" for i in range(n + 1)]
+        res = run(exe, work, f"beam_{etype}_slope_free", beam_deck(etype, "cantilever", n, lines))
+        tip = [r for r in res["displacements"] if int(r["node"]) == n + 1][0]
+        w, th = float(tip[ucol]), float(tip[rcol])
+        w_exact = -ALPHA * length ** 2 * (g0 / 2 + g1 / 6)
+        th_exact = ALPHA * length * (g0 + g1 / 2) * (-1 if planar else 1)
+        smax = max(abs(float(r["sxx"])) for r in res["fibre_stresses"])
+        e1 = max(abs(w / w_exact - 1), abs(th / th_exact - 1))
+        umax = serr = 0.0
+        scale = E * ALPHA * (g0 + g1) * h / 2
+        if etype in ("B33", "B23"):
+            # Euler-Bernoulli only: the Timoshenko beam's shear V = -E I kappa0' deforms it
+            res = run(exe, work, f"beam_{etype}_slope_clamped", beam_deck(etype, "clamped", n, lines))
+            umax = max(abs(float(r[k])) for r in res["displacements"]
+                       for k in ("u1", "u2", "u3", "ur1", "ur2", "ur3"))
+            for r in res["fibre_stresses"]:
+                xe = length * (int(r["element"]) - 2 + int(r["end"])) / n
+                serr = max(serr, abs(float(r["sxx"]) + E * ALPHA * (g0 + g1 * xe / length) * float(r[coord])))
+        clamped = (f"clamped: max displacement {umax:.1e}, fibre stress error {serr / scale:.1e}"
+                   if etype in ("B33", "B23") else "clamped: see the one-element row")
+        rows.append((etype, "gradient 10 to 40 along it", f"cantilever tip {ucol} {w:.6e} (exact {w_exact:.6e}); "
+                     + clamped,
+                     f"{e1:.1e}", f"{smax / (E * ALPHA * g0 * h):.1e}"))
+        if e1 > 1e-12 or smax > 1e-12 * E * ALPHA * g0 * h or umax > 1e-15 or serr > 1e-12 * scale:
+            print(f"FAIL: {etype} with a gradient varying along it: tip error {e1:.2e}, free stress {smax:.2e}, "
+                  f"clamped displacement {umax:.2e}, fibre stress error {serr / scale:.2e}")
+            ok = False
+        else:
+            print(f"ok: {etype}: a gradient varying along the beam (exact: tip error {e1:.1e})")
+    # one Timoshenko B21 clamped at both ends, gradient 10 to 40: the fixed-end
+    # shear of kappa0 = a + b x is E I b/(1 + phi), phi = 12 E I/(k G A L^2)
+    # (k = 1, superjoin's default), the end moments balance it
+    res = run(exe, work, "beam_B21_slope_one", beam_deck("B21", "clamped", 1, ["1, 20.0, 10.0", "2, 20.0, 40.0"]))
+    with open(os.path.join(work, "beam_B21_slope_one.csv", "element_forces.csv"), newline="") as f:
+        ef = list(csv.DictReader(f))
+    inertia, area = b * h ** 3 / 12, b * h
+    phi = 12 * E * inertia / (E / (2 * (1 + NU)) * area * length ** 2)
+    v_exact = E * inertia * ALPHA * 30.0 / length / (1 + phi)
+    verr = max(abs(abs(float(r["vy"])) - v_exact) for r in ef) / v_exact
+    mbal = abs(float(ef[0]["mz"]) + float(ef[1]["mz"]) - float(ef[0]["vy"]) * length) / (v_exact * length)
+    rows.append(("B21", "one element clamped, gradient 10 to 40", f"end shear {abs(float(ef[0]['vy'])):.6e} "
+                 f"(E I b/(1 + phi) = {v_exact:.6e})", f"{max(verr, mbal):.1e}", "-"))
+    if verr > 1e-12 or mbal > 1e-12:
+        print(f"FAIL: clamped B21 with a varying gradient: shear error {verr:.2e}, moment balance {mbal:.2e}")
+        ok = False
+    else:
+        print(f"ok: clamped B21 with a varying gradient: fixed-end shear E I b/(1 + phi) to {verr:.1e}")
     # a temperature rising linearly from 0 to 40 along a clamped beam: every
     # element carries N = -E A alpha 20 (the mean over the beam; the element
     # means differ, the inner nodes move)

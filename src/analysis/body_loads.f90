@@ -12,10 +12,13 @@ module superjoin_analysis_body_loads
   use superjoin_elements_thermal, only: thermal_plate_resultants
   use superjoin_elements_shell8_loads, only: s8r_thermal_resultants
   use superjoin_model_types, only: ET_S8R
+  use superjoin_elements_thermal, only: thermal_beam_end_forces
+  use superjoin_model_types, only: MAX_ELEMENT_NODES
   implicit none (type, external)
   private
 
   public :: plate_thermal_strains, line_centrif_forces, take_thermal_resultants, superpose_thermal
+  public :: plane_thermal_nodal, line_thermal_forces
 
 contains
 
@@ -41,6 +44,62 @@ contains
        end do
     end do
   end subroutine plate_thermal_strains
+
+  subroutine plane_thermal_nodal(model, elem_offset, nstep, tn)
+    !! tn(1:n, element, step): α ΔT at the n nodes of every plane element whose
+    !! temperature varies, minus its mean (model-wide element numbering
+    !! elem_offset); unallocated when no step has one.
+    type(model_t), intent(in) :: model
+    integer(i8), intent(in) :: elem_offset(:)
+    integer, intent(in) :: nstep
+    real(wp), allocatable, intent(out) :: tn(:, :, :)
+    integer :: is, i, n
+    do is = 1, nstep
+       if (.not. allocated(model%steps(is)%dloads)) cycle
+       do i = 1, size(model%steps(is)%dloads)
+          associate (dl => model%steps(is)%dloads(i))
+            if (dl%kind /= DLOAD_THERMAL .or. .not. allocated(dl%nodal)) cycle
+            if (.not. allocated(tn)) allocate (tn(MAX_ELEMENT_NODES, elem_offset(size(elem_offset)), nstep), &
+                 source=0.0_wp)
+            n = size(dl%nodal)
+            tn(1:n, elem_offset(dl%sub) + dl%elem, is) = tn(1:n, elem_offset(dl%sub) + dl%elem, is) + dl%nodal
+          end associate
+       end do
+    end do
+  end subroutine plane_thermal_nodal
+
+  subroutine line_thermal_forces(model, elem_offset, nstep, f0)
+    !! Add to f0(1:6, end, element, step) (allocated here if need be) the end
+    !! forces of the free thermal bending of every beam with a temperature
+    !! gradient across its section (what its end forces K u - f_eq take off).
+    type(model_t), intent(in) :: model
+    integer(i8), intent(in) :: elem_offset(:)
+    integer, intent(in) :: nstep
+    real(wp), allocatable, intent(inout) :: f0(:, :, :, :)
+    real(wp) :: f(6, 2)
+    integer :: is, i, nn, etype
+    integer(i8) :: ie
+    type(error_t), allocatable :: error
+    do is = 1, nstep
+       if (.not. allocated(model%steps(is)%dloads)) cycle
+       do i = 1, size(model%steps(is)%dloads)
+          associate (dl => model%steps(is)%dloads(i), s => model%subs(model%steps(is)%dloads(i)%sub))
+            if (dl%kind /= DLOAD_THERMAL .or. all(dl%gradient == 0.0_wp)) cycle
+            etype = s%elem_type(dl%elem)
+            nn = ELEMENT_NODE_COUNT(etype)
+            associate (sec => s%sections(s%elem_section(dl%elem)))
+              ! errors were reported when the loads were assembled
+              call thermal_beam_end_forces(etype, s%x(:, s%elem_nodes(1:nn, dl%elem)), sec, &
+                   model%materials(sec%material), dl%gradient, f, error)
+              if (allocated(error)) cycle
+            end associate
+            if (.not. allocated(f0)) allocate (f0(6, 2, elem_offset(size(elem_offset)), nstep), source=0.0_wp)
+            ie = elem_offset(dl%sub) + dl%elem
+            f0(:, :, ie, is) = f0(:, :, ie, is) + f
+          end associate
+       end do
+    end do
+  end subroutine line_thermal_forces
 
   subroutine line_centrif_forces(model, elem_offset, nstep, f0)
     !! f0(1:6, end, element, step): the consistent nodal loads of the
@@ -107,23 +166,32 @@ contains
     call move_alloc(all, th)
   end subroutine superpose_thermal
 
-  pure subroutine take_thermal_resultants(etype, x, sec, mat, th, plate)
+  pure subroutine take_thermal_resultants(etype, x, sec, mat, th, plate, tn)
     !! Take the resultants of the free thermal expansion th(1:2, step) off the
-    !! resultants plate(6, step) of a plane or shell element (N = D (ε - ε0)).
+    !! resultants plate(6, step) of a plane or shell element (N = D (ε - ε0));
+    !! tn(:, step): the nodal remainders of a varying temperature (plane
+    !! elements, plane_thermal_nodal), if any.
     integer, intent(in) :: etype
     real(wp), intent(in) :: x(:, :)
     type(section_t), intent(in) :: sec
     type(material_t), intent(in) :: mat
     real(wp), intent(in) :: th(:, :)
     real(wp), intent(inout) :: plate(:, :)
+    real(wp), intent(in), optional :: tn(:, :)
     real(wp) :: res0(6)
     type(error_t), allocatable :: error
     integer :: is
     do is = 1, size(th, 2)
-       if (all(th(:, is) == 0.0_wp)) cycle
+       if (all(th(:, is) == 0.0_wp)) then
+          if (.not. present(tn)) cycle
+          if (all(tn(1:size(x, 2), is) == 0.0_wp)) cycle
+       end if
        ! an element that cannot be evaluated has been reported by shell_forces
        if (etype == ET_S8R) then
           call s8r_thermal_resultants(sec, mat, th(1, is), th(2, is), res0)
+       else if (present(tn)) then
+          call thermal_plate_resultants(etype, x, sec, mat, th(1, is), th(2, is), res0, error, tn(1:size(x, 2), is))
+          if (allocated(error)) return
        else
           call thermal_plate_resultants(etype, x, sec, mat, th(1, is), th(2, is), res0, error)
           if (allocated(error)) return

@@ -86,6 +86,7 @@ contains
     if (allocated(ef)) call move_alloc(ef, res%fields%elem_force)
     if (allocated(pl)) call move_alloc(pl, res%fields%plate)
     call superpose_thermal(model%combinations, ns, res%fields%thermal)
+    call superpose_thermal(model%combinations, ns, res%fields%thermal_nodal)
   end subroutine superpose
 
   function combination_text(model, c) result(text)

@@ -19,6 +19,7 @@ module superjoin_analysis_recover
   use superjoin_assembly_assemble, only: element_pdofs, distributed_load
   use superjoin_analysis_results, only: results_t, reaction_t
   use superjoin_analysis_body_loads, only: plate_thermal_strains, line_centrif_forces, take_thermal_resultants
+  use superjoin_analysis_body_loads, only: plane_thermal_nodal, line_thermal_forces
   use superjoin_utils_memory, only: out_of_memory, BYTES_REAL, BYTES_INT
   implicit none (type, external)
   private
@@ -173,6 +174,9 @@ contains
     ! loads: thermal strains of plane and shell elements, centrifugal end loads of bars and beams
     call plate_thermal_strains(model, res%fields%elem_offset, nstep, res%fields%thermal)
     call line_centrif_forces(model, res%fields%elem_offset, nstep, f0)
+    ! loads: temperatures that vary over plane elements, gradients across beams
+    call plane_thermal_nodal(model, res%fields%elem_offset, nstep, res%fields%thermal_nodal)
+    call line_thermal_forces(model, res%fields%elem_offset, nstep, f0)
     ! Distributed loads in element axes, per element and step.
     ql = 0.0_wp
     do is = 1, nstep
@@ -216,9 +220,15 @@ contains
                  end if
                  if (.not. own_ku(isub)) r(pd(1:n), :) = r(pd(1:n), :) + fg2(1:n, :)
                  ! loads: N = D (eps - eps0), the free thermal expansion's resultants taken off
-                 if (allocated(res%fields%thermal)) call take_thermal_resultants(s%elem_type(e), &
-                      s%x(:, s%elem_nodes(1:nn, e)), sec, model%materials(sec%material), &
-                      res%fields%thermal(:, ie, :), res%fields%plate(:, ie, :))
+                 if (allocated(res%fields%thermal_nodal)) then
+                    call take_thermal_resultants(s%elem_type(e), &
+                         s%x(:, s%elem_nodes(1:nn, e)), sec, model%materials(sec%material), &
+                         res%fields%thermal(:, ie, :), res%fields%plate(:, ie, :), res%fields%thermal_nodal(:, ie, :))
+                 else if (allocated(res%fields%thermal)) then
+                    call take_thermal_resultants(s%elem_type(e), &
+                         s%x(:, s%elem_nodes(1:nn, e)), sec, model%materials(sec%material), &
+                         res%fields%thermal(:, ie, :), res%fields%plate(:, ie, :))
+                 end if
                  cycle
               end if
               do is = 1, nstep

@@ -2693,23 +2693,22 @@ contains
   end subroutine kw_temperature
 
   subroutine data_temperature(st, line, loc)
-    !! `node or nset, temperature[, gradient]`: CalculiX's third field, the
-    !! temperature gradient along the normal of a shell (the fourth, a beam's
-    !! second gradient, is refused).
+    !! `node or nset, temperature[, gradient[, gradient 1]]`: CalculiX's third
+    !! field, the temperature gradient along the normal of a shell or along a
+    !! beam's 2-direction, and its fourth, the gradient along a beam's
+    !! 1-direction.
     type(deck_state_t), intent(inout) :: st
     character(*), intent(in) :: line
     type(source_loc_t), intent(in) :: loc
     type(temp_b_t) :: t
-    if (st%f%n > 3) then
-       call report_loc(st, loc, 'temperature gradients across a beam section are not supported '// &
-            '(node or nset, temperature[, gradient along a shell''s normal])')
-       return
-    end if
-    if (.not. field_count(st, loc, 2, 3, 'node or nset, temperature[, gradient]')) return
+    if (.not. field_count(st, loc, 2, 4, 'node or nset, temperature[, gradient[, gradient 1]]')) return
     if (.not. parse_ref(st, fld(st, line, 1), .false., st%card_home, loc, t%ref)) return
     if (.not. get_real(st, line, loc, 2, t%value)) return
-    if (st%f%n == 3) then
+    if (st%f%n >= 3) then
        if (.not. get_real(st, line, loc, 3, t%grad)) return
+    end if
+    if (st%f%n == 4) then
+       if (.not. get_real(st, line, loc, 4, t%grad1)) return
     end if
     t%step = st%card_item
     t%loc = loc

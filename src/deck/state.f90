@@ -231,10 +231,12 @@ module superjoin_deck_state
 
   type, public :: temp_b_t
     !! A data line of *INITIAL CONDITIONS, TYPE=TEMPERATURE (step 0) or of
-    !! *TEMPERATURE in a step: node or nset, temperature[, gradient along the shell normal].
+    !! *TEMPERATURE in a step: node or nset, temperature[, gradient along the shell normal
+    !! or a beam's 2-direction[, gradient along a beam's 1-direction]].
      type(ref_t) :: ref
      real(wp) :: value = 0.0_wp
      real(wp) :: grad = 0.0_wp
+     real(wp) :: grad1 = 0.0_wp     !! the fourth field: ∂T along a beam's 1-direction (local y)
      integer :: step = 0
      type(source_loc_t) :: loc
   end type temp_b_t

@@ -19,6 +19,7 @@ module superjoin_deck_validate
   use superjoin_deck_requests, only: build_requests
   use superjoin_deck_state, only: sec_b_t
   use superjoin_model_types, only: section_t
+  use superjoin_model_types, only: MAX_ELEMENT_NODES
   use superjoin_deck_beam_sections, only: section_fibres, MAX_FIBRES
   use superjoin_deck_state, only: OP_NEW, OP_MOD, OP_DEFAULT
   use superjoin_deck_combinations, only: build_combinations
@@ -1114,34 +1115,42 @@ contains
     !! in each step with temperatures, the load of its uniform temperature
     !! change ΔT (the mean of its nodes' T - T0; nodes without a step
     !! temperature keep T0, nodes without an initial one start at 0), a
-    !! DLOAD_THERMAL entry of value E A α ΔT. A plane or shell element gets
-    !! the entry of its thermal strain α ΔT (the mean over its nodes) and, on
-    !! shells, of its curvature α ∂T/∂n (the mean of its nodes' gradients,
-    !! the third field of the temperature lines); a gradient on any other
-    !! element is refused.
+    !! DLOAD_THERMAL entry of value E A α ΔT; a beam also the thermal
+    !! curvatures α ∂T/∂y, α ∂T/∂z of the gradients across its section at its
+    !! two nodes (linear in between)
+    !! (CalculiX's third field: along the 2-direction, local z of B31/B33,
+    !! local y of the planar B21/B23; the fourth: along the 1-direction, local
+    !! y). A plane or shell element gets the entry of its thermal strain α ΔT
+    !! (the mean over its nodes; a plane element whose nodes differ also the
+    !! nodal values, interpolated to its integration points) and, on shells,
+    !! of its curvature α ∂T/∂n (the mean of its nodes' gradients, the third
+    !! field of the temperature lines); a gradient on any other element is
+    !! refused.
     type(deck_state_t), intent(inout) :: st
     type(model_t), intent(inout) :: model
-    type(real_list_t), allocatable :: t0(:), t(:), g0(:), g(:)
+    type(real_list_t), allocatable :: t0(:), t(:), g0(:), g(:), h0(:), h(:)
     type(dload_t), allocatable :: extra(:)
     integer :: s, isub, nn, nplate
     integer(ip) :: e, i, first_plate
     integer(ip), allocatable :: nodes(:)
     logical :: ok
-    real(wp) :: dt, dg
+    real(wp) :: dt, dg, dh, dtn(MAX_ELEMENT_NODES)
     type(source_loc_t) :: plate_loc
     if (st%ntemp == 0) return
-    allocate (t0(size(model%subs)), t(size(model%subs)), g0(size(model%subs)))
+    allocate (t0(size(model%subs)), t(size(model%subs)), g0(size(model%subs)), h0(size(model%subs)))
     do isub = 1, size(model%subs)
        allocate (t0(isub)%v(model%subs(isub)%nnode), source=0.0_wp)
        allocate (g0(isub)%v(model%subs(isub)%nnode), source=0.0_wp)
+       allocate (h0(isub)%v(model%subs(isub)%nnode), source=0.0_wp)
     end do
-    call apply_lines(0, t0, g0)
+    call apply_lines(0, t0, g0, h0)
     do s = 1, size(model%steps)
        call keep_temperatures(s, t0)
        if (.not. any(st%temps(1:st%ntemp)%step == s)) cycle
        t = t0
        g = g0
-       call apply_lines(s, t, g)
+       h = h0
+       call apply_lines(s, t, g, h)
        if (st%aborted) return
        call keep_temperatures(s, t)
        allocate (extra(0))
@@ -1158,29 +1167,48 @@ contains
                    nn = ELEMENT_NODE_COUNT(sub%elem_type(e))
                    ! an element with an undefined node has been reported already
                    if (nn == 0 .or. any(sub%elem_nodes(1:nn, e) <= 0)) cycle
-                   dt = sum(t(isub)%v(sub%elem_nodes(1:nn, e)) - t0(isub)%v(sub%elem_nodes(1:nn, e)))/nn
-                   dg = sum(g(isub)%v(sub%elem_nodes(1:nn, e)) - g0(isub)%v(sub%elem_nodes(1:nn, e)))/nn
-                   if (dt == 0.0_wp .and. dg == 0.0_wp) cycle
+                   associate (en => sub%elem_nodes(1:nn, e))
+                     dtn(1:nn) = t(isub)%v(en) - t0(isub)%v(en)
+                     dt = sum(t(isub)%v(en) - t0(isub)%v(en))/nn
+                     dg = sum(g(isub)%v(en) - g0(isub)%v(en))/nn
+                     dh = sum(h(isub)%v(en) - h0(isub)%v(en))/nn
+                   end associate
+                   if (dt == 0.0_wp .and. dg == 0.0_wp .and. dh == 0.0_wp .and. all(dtn(1:nn) == 0.0_wp)) cycle
                    select case (sub%elem_type(e))
                    case (ET_T2D2, ET_T3D2, ET_B23, ET_B33, ET_B21, ET_B31)
-                      if (dg /= 0.0_wp) then
-                         call report_loc(st, first_line(s), 'temperature gradient on element '// &
-                              itoa(sub%elem_id(e))//' of type '//trim(ELEMENT_TYPE_NAMES(sub%elem_type(e)))// &
-                              ': the gradient (third field) applies to shells only')
+                      if (dg /= 0.0_wp .and. any(sub%elem_type(e) == [ET_T2D2, ET_T3D2])) then
+                         call refuse('the gradients (third and fourth fields) apply to shells and beams only')
+                         return
+                      end if
+                      if (dh /= 0.0_wp .and. any(sub%elem_type(e) == [ET_T2D2, ET_T3D2, ET_B23, ET_B21])) then
+                         call refuse('the fourth field, the gradient along the 1-direction of a beam in space, '// &
+                              'acts normal to the plane of a planar element')
                          return
                       end if
                       extra = [extra, dload_t(sub=isub, elem=e, kind=DLOAD_THERMAL, &
                            value=mat%e*sec%area*mat%alpha*dt, loc=first_line(s))]
+                      if (any(sub%elem_type(e) == [ET_B23, ET_B21])) then
+                         extra(size(extra))%gradient(1, :) = mat%alpha*(g(isub)%v(sub%elem_nodes(1:2, e)) - &
+                              g0(isub)%v(sub%elem_nodes(1:2, e)))
+                      else if (any(sub%elem_type(e) == [ET_B33, ET_B31])) then
+                         extra(size(extra))%gradient(1, :) = mat%alpha*(h(isub)%v(sub%elem_nodes(1:2, e)) - &
+                              h0(isub)%v(sub%elem_nodes(1:2, e)))
+                         extra(size(extra))%gradient(2, :) = mat%alpha*(g(isub)%v(sub%elem_nodes(1:2, e)) - &
+                              g0(isub)%v(sub%elem_nodes(1:2, e)))
+                      end if
                    case (ET_CPS3, ET_CPS4, ET_CPE3, ET_CPE4, ET_CPS6, ET_CPS8, ET_CPE6, ET_CPE8, ET_CPS8R, &
                         ET_CPE8R, ET_S3, ET_S4, ET_S4R, ET_S3R, ET_S8R)
-                      if (dg /= 0.0_wp .and. .not. any(sub%elem_type(e) == [ET_S3, ET_S4, ET_S4R, ET_S3R, ET_S8R])) then
-                         call report_loc(st, first_line(s), 'temperature gradient on element '// &
-                              itoa(sub%elem_id(e))//' of type '//trim(ELEMENT_TYPE_NAMES(sub%elem_type(e)))// &
-                              ': the gradient (third field) applies to shells only')
+                      if ((dg /= 0.0_wp .and. .not. any(sub%elem_type(e) == [ET_S3, ET_S4, ET_S4R, ET_S3R, ET_S8R])) &
+                           .or. dh /= 0.0_wp) then
+                         call refuse('the gradient (third field) applies to shells and beams only, the fourth '// &
+                              'field to beams only')
                          return
                       end if
                       extra = [extra, dload_t(sub=isub, elem=e, kind=DLOAD_THERMAL, &
                            value=mat%alpha*dt, curvature=mat%alpha*dg, loc=first_line(s))]
+                      ! a plane element whose nodes differ: the nodal values, interpolated to its points
+                      if (is_plane_element(sub%elem_type(e)) .and. any(dtn(1:nn) /= dtn(1))) &
+                           extra(size(extra))%nodal = mat%alpha*dtn(1:nn) - mat%alpha*dt
                    case default
                       nplate = nplate + 1
                       if (nplate == 1) then
@@ -1216,10 +1244,23 @@ contains
       end do
     end subroutine keep_temperatures
 
-    subroutine apply_lines(step, field, grad)
+    subroutine refuse(why)
+      !! Refuse a gradient on element e of substructure isub of step s.
+      character(*), intent(in) :: why
+      call report_loc(st, first_line(s), 'temperature gradient on element '// &
+           itoa(model%subs(isub)%elem_id(e))//' of type '// &
+           trim(ELEMENT_TYPE_NAMES(model%subs(isub)%elem_type(e)))//': '//why)
+    end subroutine refuse
+    pure logical function is_plane_element(etype)
+      !! CPS*, CPE*: the types that interpolate a varying temperature.
+      integer, intent(in) :: etype
+      is_plane_element = any(etype == [ET_CPS3, ET_CPS4, ET_CPE3, ET_CPE4, ET_CPS6, ET_CPS8, ET_CPE6, &
+           ET_CPE8, ET_CPS8R, ET_CPE8R])
+    end function is_plane_element
+    subroutine apply_lines(step, field, grad, grad1)
       !! Set the temperatures and gradients the lines of step (0: initial conditions) give.
       integer, intent(in) :: step
-      type(real_list_t), intent(inout) :: field(:), grad(:)
+      type(real_list_t), intent(inout) :: field(:), grad(:), grad1(:)
       integer :: j, js
       do j = 1, st%ntemp
          if (st%temps(j)%step /= step) cycle
@@ -1230,6 +1271,7 @@ contains
          do i = 1, size(nodes, kind=ip)
             field(js)%v(nodes(i)) = st%temps(j)%value
             grad(js)%v(nodes(i)) = st%temps(j)%grad
+            grad1(js)%v(nodes(i)) = st%temps(j)%grad1
          end do
       end do
     end subroutine apply_lines

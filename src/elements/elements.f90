@@ -16,6 +16,7 @@ module superjoin_elements
   use superjoin_model_types, only: DLOAD_P1, DLOAD_P2, DLOAD_P3, DLOAD_P4, DLOAD_THERMAL
   use superjoin_elements_edge_load, only: plane_edge_load
   use superjoin_elements_thermal, only: thermal_axial_load, thermal_plate_load
+  use superjoin_elements_thermal, only: thermal_plane_nodal_load, thermal_beam_load
   use superjoin_model_types, only: dload_t, DLOAD_CENTRIF
   use superjoin_elements_centrif, only: centrif_load
   use superjoin_elements_shell8_loads, only: s8r_is_tapered, s8r_gravity_load, s8r_thermal_load, s8r_centrif_load
@@ -343,8 +344,18 @@ contains
     type(dload_t), intent(in) :: dl
     real(wp), allocatable, intent(out) :: fe(:)
     type(error_t), allocatable, intent(out) :: error
+    real(wp), allocatable :: f2(:)
     select case (dl%kind)
     case (DLOAD_THERMAL)
+       if (any(etype == [ET_B23, ET_B33, ET_B21, ET_B31])) then
+          ! a beam: the axial force E A α ΔT and the end moments of its thermal curvatures
+          call thermal_axial_load(etype, x, sec, element_node_dofs(etype), dl%value, fe, error)
+          if (allocated(error)) return
+          call thermal_beam_load(etype, x, sec, mat, dl%gradient, f2, error)
+          if (allocated(error)) return
+          fe = fe + f2
+          return
+       end if
        if (.not. is_plate_type(etype)) then
           call fatal_error(error, EXIT_DECK, 'thermal strain load on an element that is not a plane or shell element')
           return
@@ -354,6 +365,11 @@ contains
           return
        end if
        call thermal_plate_load(etype, x, sec, mat, dl%value, dl%curvature, fe, error)
+       if (allocated(error) .or. .not. allocated(dl%nodal)) return
+       ! a temperature that varies over the element: the nodal remainder, interpolated
+       call thermal_plane_nodal_load(etype, x, sec, mat, dl%nodal, f2, error)
+       if (allocated(error)) return
+       fe = fe + f2
     case (DLOAD_CENTRIF)
        if (etype == ET_S8R) then
           call s8r_centrif_load(x, sec, mat, dl, fe, error)

@@ -77,11 +77,13 @@ module superjoin_elements_membrane
   integer, parameter :: NEWTON_MAX = 50       !! iterations of the inverse map to the centroid
   real(wp), parameter :: NEWTON_TOL = 1.0e-15_wp   !! on the natural coordinates
   real(wp), parameter :: NU_MIN = -1.0_wp, NU_MAX = 0.5_wp   !! open interval of Poisson's ratio
+  real(wp), parameter :: ISOTROPIC(NSTRAIN) = [1.0_wp, 1.0_wp, 0.0_wp]   !! an isotropic in-plane strain
 
   public :: membrane_stiffness, membrane_resultants, membrane_drill_stiffness
   public :: plane_strain_stiffness, plane_strain_resultants
   public :: plane_stress, plane_strain, check_plane_material
   public :: membrane_point_stresses
+  public :: membrane_thermal_load, membrane_centroid_weights
   public :: check_membrane_element, spd_solve
 
 contains
@@ -127,42 +129,48 @@ contains
     ke = 0.5_wp*(ke + transpose(ke))
   end function stiffness_of
 
-  pure subroutine membrane_resultants(xl, t, e, nu, ue, nres, error)
+  pure subroutine membrane_resultants(xl, t, e, nu, ue, nres, error, eps0)
     !! Membrane resultants nres = (nx, ny, nxy) = t σ at the centroid from the
-    !! element displacements ue(2n) (node-major u, v).
+    !! element displacements ue(2n) (node-major u, v); with eps0(n), an
+    !! isotropic initial strain ε0 (1, 1, 0) interpolated from its nodal values
+    !! (see membrane_thermal_load), t D (ε - ε0).
     real(wp), intent(in) :: xl(:, :)
     real(wp), intent(in) :: t, e, nu
     real(wp), intent(in) :: ue(:)
     real(wp), intent(out) :: nres(NSTRAIN)
     type(error_t), allocatable, intent(out) :: error
+    real(wp), intent(in), optional :: eps0(:)
     nres = 0.0_wp
     call check_element(xl, t, e, nu, 'plane stress', error)
     if (allocated(error)) return
-    call resultants_of(xl, t*plane_stress(e, nu), ue, nres, error)
+    call resultants_of(xl, t*plane_stress(e, nu), ue, nres, error, eps0)
   end subroutine membrane_resultants
 
-  pure subroutine plane_strain_resultants(xl, t, e, nu, ue, nres, error)
+  pure subroutine plane_strain_resultants(xl, t, e, nu, ue, nres, error, eps0)
     !! In-plane resultants (nx, ny, nxy) = t σ at the centroid of a plane-strain
-    !! element (σz = ν (σx + σy) is not returned).
+    !! element (σz = ν (σx + σy) is not returned); eps0 as for membrane_resultants.
     real(wp), intent(in) :: xl(:, :)
     real(wp), intent(in) :: t, e, nu
     real(wp), intent(in) :: ue(:)
     real(wp), intent(out) :: nres(NSTRAIN)
     type(error_t), allocatable, intent(out) :: error
+    real(wp), intent(in), optional :: eps0(:)
     nres = 0.0_wp
     call check_element(xl, t, e, nu, 'plane strain', error)
     if (allocated(error)) return
-    call resultants_of(xl, t*plane_strain(e, nu), ue, nres, error)
+    call resultants_of(xl, t*plane_strain(e, nu), ue, nres, error, eps0)
   end subroutine plane_strain_resultants
 
-  pure subroutine resultants_of(xl, d, ue, nres, error)
-    !! Resultants d (B u) at the centroid of a checked element, d = t D.
+  pure subroutine resultants_of(xl, d, ue, nres, error, eps0)
+    !! Resultants d (B u - ε0) at the centroid of a checked element, d = t D
+    !! (eps0: nodal values of an isotropic initial strain, absent: none).
     real(wp), intent(in) :: xl(:, :)
     real(wp), intent(in) :: d(NSTRAIN, NSTRAIN)
     real(wp), intent(in) :: ue(:)
     real(wp), intent(out) :: nres(NSTRAIN)
     type(error_t), allocatable, intent(out) :: error
-    real(wp) :: kua(8, NMODE), kaa(NMODE, NMODE), x(2, 4)
+    real(wp), intent(in), optional :: eps0(:)
+    real(wp) :: kua(8, NMODE), kaa(NMODE, NMODE), x(2, 4), fu(8), fa(NMODE)
     real(wp) :: alpha(NMODE, 1), bc(NSTRAIN, 8), ba(NSTRAIN, NMODE), b3(NSTRAIN, 6), xi, eta, area
     real(wp), allocatable :: kuu(:, :)
 
@@ -174,15 +182,96 @@ contains
     if (size(xl, 2) == 3) then
        call cst_b(xl, b3, area)
        nres = matmul(d, matmul(b3, ue))
+       ! the CST's strain is its mean: ε0 at the centroid, the mean of the nodes
+       if (present(eps0)) nres = nres - sum(eps0)/3*matmul(d, ISOTROPIC)
        return
     end if
     x = xl
     call qm6_matrices(x, d, kuu, kua, kaa)
     alpha = -spd_solve(kaa, matmul(transpose(kua), reshape(ue, [8, 1])))
     call centroid_natural(x, xi, eta)
+    if (present(eps0)) then
+       ! the modes carry their share of the initial strain: α = kaa⁻¹ (f_a - kau u)
+       call qm6_initial_strain(x, d, eps0, fu, fa)
+       alpha = alpha + spd_solve(kaa, reshape(fa, [NMODE, 1]))
+    end if
     call qm6_b(x, xi, eta, bc, ba, area)
     nres = matmul(d, matmul(bc, ue) + matmul(ba, alpha(:, 1)))
+    if (present(eps0)) nres = nres - dot_product(shape4(xi, eta), eps0(1:4))*matmul(d, ISOTROPIC)
   end subroutine resultants_of
+
+  pure subroutine membrane_thermal_load(xl, t, e, nu, strain_state, eps0, fe, error)
+    !! Consistent nodal loads fe(2n) = ∫ Bᵀ t D ε0 dA (element frame, node-major
+    !! u, v) of an isotropic initial strain ε0 (1, 1, 0) whose nodal values
+    !! eps0(n) are interpolated with the shape functions, as CalculiX
+    !! interpolates nodal temperatures to the integration points. CST: its
+    !! constant B takes the mean; QM6: 2×2 Gauss, the incompatible modes'
+    !! share condensed (f_u - kua kaa⁻¹ f_a). Plane strain (strain_state): eps0
+    !! is the in-plane strain, (1 + ν) α ΔT.
+    real(wp), intent(in) :: xl(:, :)
+    real(wp), intent(in) :: t, e, nu
+    logical, intent(in) :: strain_state
+    real(wp), intent(in) :: eps0(:)
+    real(wp), allocatable, intent(out) :: fe(:)
+    type(error_t), allocatable, intent(out) :: error
+    real(wp) :: d(NSTRAIN, NSTRAIN), kua(8, NMODE), kaa(NMODE, NMODE), x(2, 4), fu(8), fa(NMODE)
+    real(wp) :: b3(NSTRAIN, 6), area
+    real(wp), allocatable :: kuu(:, :)
+    if (strain_state) then
+       call check_element(xl, t, e, nu, 'plane strain', error)
+       d = t*plane_strain(e, nu)
+    else
+       call check_element(xl, t, e, nu, 'plane stress', error)
+       d = t*plane_stress(e, nu)
+    end if
+    if (allocated(error)) return
+    if (size(eps0) /= size(xl, 2)) then
+       call fatal_error(error, EXIT_DECK, 'wrong number of nodal initial strains')
+       return
+    end if
+    if (size(xl, 2) == 3) then
+       call cst_b(xl, b3, area)
+       fe = area*sum(eps0)/3*matmul(transpose(b3), matmul(d, ISOTROPIC))
+       return
+    end if
+    x = xl
+    call qm6_matrices(x, d, kuu, kua, kaa)
+    call qm6_initial_strain(x, d, eps0, fu, fa)
+    fe = fu - matmul(kua, reshape(spd_solve(kaa, reshape(fa, [NMODE, 1])), [NMODE]))
+  end subroutine membrane_thermal_load
+
+  pure subroutine membrane_centroid_weights(xl, w)
+    !! The shape functions w(n) of a CST (1/3 each) or of the bilinear
+    !! quadrilateral at the area centroid, where the resultants are evaluated.
+    real(wp), intent(in) :: xl(:, :)
+    real(wp), intent(out) :: w(:)
+    real(wp) :: x(2, 4), xi, eta
+    if (size(xl, 2) == 3) then
+       w = 1.0_wp/3
+       return
+    end if
+    x = xl
+    call centroid_natural(x, xi, eta)
+    w = shape4(xi, eta)
+  end subroutine membrane_centroid_weights
+
+  pure subroutine qm6_initial_strain(x, d, eps0, fu, fa)
+    !! ∫ [bc ba]ᵀ d ε0 dA by 2×2 Gauss of QM6 for the isotropic initial strain
+    !! ε0 (1, 1, 0) interpolated bilinearly from eps0(4): fu on the nodal (u, v),
+    !! fa on the incompatible modes.
+    real(wp), intent(in) :: x(2, 4), d(NSTRAIN, NSTRAIN), eps0(:)
+    real(wp), intent(out) :: fu(8), fa(NMODE)
+    real(wp) :: bc(NSTRAIN, 8), ba(NSTRAIN, NMODE), jac, s0(NSTRAIN)
+    integer :: k
+    fu = 0.0_wp
+    fa = 0.0_wp
+    do k = 1, NGAUSS
+       call qm6_b(x, XI_GAUSS(k), ETA_GAUSS(k), bc, ba, jac)
+       s0 = jac*dot_product(shape4(XI_GAUSS(k), ETA_GAUSS(k)), eps0(1:4))*matmul(d, ISOTROPIC)
+       fu = fu + matmul(transpose(bc), s0)
+       fa = fa + matmul(transpose(ba), s0)
+    end do
+  end subroutine qm6_initial_strain
 
   pure subroutine membrane_drill_stiffness(xl, t, e, nu, ke, error)
     !! Stiffness ke(3n, 3n) of a membrane with drilling rotation (u, v, θz per node):
@@ -546,7 +635,8 @@ contains
 
   ! ------------------------------------------------ stresses at points and nodes
 
-  pure subroutine membrane_point_stresses(xl, e, nu, strain_state, ue, sig_points, sig_nodes, error)
+  pure subroutine membrane_point_stresses(xl, e, nu, strain_state, ue, sig_points, sig_nodes, error, eps0, &
+       e0_points, e0_nodes)
     !! Stresses (σx, σy, τxy) in the element frame from the element
     !! displacements ue(2n) (node-major u, v), plane stress or (strain_state)
     !! plane strain: sig_points at the integration points, the CST's single
@@ -556,14 +646,20 @@ contains
     !! the resultants; sig_nodes(3, n) extrapolated to the nodes: the CST's
     !! constant, the bilinear field through the four Gauss values evaluated at
     !! the corners (ξ, η = ±1, i.e. ±√3 in the Gauss points' own coordinates).
+    !! With eps0(n), the nodal values of an isotropic initial strain
+    !! (membrane_thermal_load), σ = D (ε - ε0) with ε0 interpolated to each
+    !! point, and e0_points, e0_nodes the ε0 there (extrapolated as σ is).
     real(wp), intent(in) :: xl(:, :)
     real(wp), intent(in) :: e, nu
     logical, intent(in) :: strain_state
     real(wp), intent(in) :: ue(:)
     real(wp), allocatable, intent(out) :: sig_points(:, :), sig_nodes(:, :)
     type(error_t), allocatable, intent(out) :: error
-    real(wp) :: d(NSTRAIN, NSTRAIN), kua(8, NMODE), kaa(NMODE, NMODE), x(2, 4)
+    real(wp), intent(in), optional :: eps0(:)
+    real(wp), allocatable, intent(out), optional :: e0_points(:), e0_nodes(:)
+    real(wp) :: d(NSTRAIN, NSTRAIN), kua(8, NMODE), kaa(NMODE, NMODE), x(2, 4), fu(8), fa(NMODE)
     real(wp) :: alpha(NMODE, 1), bc(NSTRAIN, 8), ba(NSTRAIN, NMODE), b3(NSTRAIN, 6), jac, area
+    real(wp) :: ep(NGAUSS)
     real(wp), allocatable :: kuu(:, :)
     integer :: k, n
 
@@ -584,21 +680,41 @@ contains
        call cst_b(xl, b3, area)
        allocate (sig_points(NSTRAIN, 1), sig_nodes(NSTRAIN, 3))
        sig_points(:, 1) = matmul(d, matmul(b3, ue))
+       if (present(eps0)) then   ! the CST's one point: the mean of the nodal ε0
+          sig_points(:, 1) = sig_points(:, 1) - sum(eps0)/3*matmul(d, ISOTROPIC)
+          if (present(e0_points)) e0_points = [sum(eps0)/3]
+          if (present(e0_nodes)) e0_nodes = spread(sum(eps0)/3, 1, 3)
+       end if
        sig_nodes = spread(sig_points(:, 1), 2, 3)
        return
     end if
     x = xl
     call qm6_matrices(x, d, kuu, kua, kaa)
     alpha = -spd_solve(kaa, matmul(transpose(kua), reshape(ue, [8, 1])))
+    ep = 0.0_wp
+    if (present(eps0)) then   ! α = kaa⁻¹ (f_a - kau u), σ = D (ε - ε0)
+       call qm6_initial_strain(x, d, eps0, fu, fa)
+       alpha = alpha + spd_solve(kaa, reshape(fa, [NMODE, 1]))
+       do k = 1, NGAUSS
+          ep(k) = dot_product(shape4(XI_GAUSS(k), ETA_GAUSS(k)), eps0(1:4))
+       end do
+    end if
     allocate (sig_points(NSTRAIN, NGAUSS), sig_nodes(NSTRAIN, 4))
     do k = 1, NGAUSS
        call qm6_b(x, XI_GAUSS(k), ETA_GAUSS(k), bc, ba, jac)
-       sig_points(:, k) = matmul(d, matmul(bc, ue) + matmul(ba, alpha(:, 1)))
+       sig_points(:, k) = matmul(d, matmul(bc, ue) + matmul(ba, alpha(:, 1)) - ep(k)*ISOTROPIC)
     end do
     ! The Gauss points are the corners of a square of half-side g in (ξ, η), in the
     ! order of the nodes: node k sits at (ξ_k/g, η_k/g) = √3 (ξ_k, η_k) of that square.
     do k = 1, 4
        sig_nodes(:, k) = matmul(sig_points, shape4(sqrt(3.0_wp)*XI_NODE(k), sqrt(3.0_wp)*ETA_NODE(k)))
     end do
+    if (present(e0_points)) e0_points = ep
+    if (present(e0_nodes)) then
+       allocate (e0_nodes(4))
+       do k = 1, 4
+          e0_nodes(k) = dot_product(ep, shape4(sqrt(3.0_wp)*XI_NODE(k), sqrt(3.0_wp)*ETA_NODE(k)))
+       end do
+    end if
   end subroutine membrane_point_stresses
 end module superjoin_elements_membrane

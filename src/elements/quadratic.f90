@@ -44,6 +44,7 @@ module superjoin_elements_quadratic
     !! point of the full rule and at the centre.
 
   integer, parameter :: NSTRAIN = 3
+  real(wp), parameter :: ISOTROPIC(NSTRAIN) = [1.0_wp, 1.0_wp, 0.0_wp]   !! an isotropic in-plane strain
   integer, parameter :: NEWTON_MAX = 50            !! iterations of the inverse map to the centroid
   real(wp), parameter :: NEWTON_TOL = 1.0e-14_wp   !! on the natural coordinates
   real(wp), parameter :: XI_NODE(8) = [-1.0_wp, 1.0_wp, 1.0_wp, -1.0_wp, 0.0_wp, 1.0_wp, 0.0_wp, -1.0_wp]
@@ -59,6 +60,7 @@ module superjoin_elements_quadratic
 
   public :: quadratic_stiffness, quadratic_resultants, quadratic_shape_integrals, quadratic_shape
   public :: quadratic_point_stresses, quadratic_stress_points
+  public :: quadratic_thermal_load, quadratic_centroid_weights
 
 contains
 
@@ -86,17 +88,19 @@ contains
     ke = 0.5_wp*(ke + transpose(ke))
   end subroutine quadratic_stiffness
 
-  pure subroutine quadratic_resultants(xl, props, ue, nres, error)
+  pure subroutine quadratic_resultants(xl, props, ue, nres, error, eps0)
     !! Resultants nres = (nx, ny, nxy) = t σ at the area centroid from the element
     !! displacements ue(2n) (node-major u, v). Plane strain: σz = ν (σx + σy) is
-    !! not returned.
+    !! not returned. With eps0(n), the nodal values of an isotropic initial
+    !! strain (quadratic_thermal_load): t D (ε - ε0) at the centroid.
     real(wp), intent(in) :: xl(:, :)
     type(plane_props_t), intent(in) :: props
     real(wp), intent(in) :: ue(:)
     real(wp), intent(out) :: nres(NSTRAIN)
     type(error_t), allocatable, intent(out) :: error
+    real(wp), intent(in), optional :: eps0(:)
     real(wp), allocatable :: b(:, :)
-    real(wp) :: p(2), jac
+    real(wp) :: p(2), jac, nf(size(xl, 2)), dn(2, size(xl, 2))
 
     nres = 0.0_wp
     call check_element(xl, props, error)
@@ -109,7 +113,51 @@ contains
     allocate (b(NSTRAIN, 2*size(xl, 2)))
     call b_matrix(xl, p, b, jac)
     nres = matmul(material(props), matmul(b, ue))
+    if (present(eps0)) then
+       call quadratic_shape(size(xl, 2), p, nf, dn)
+       nres = nres - dot_product(nf, eps0)*matmul(material(props), ISOTROPIC)
+    end if
   end subroutine quadratic_resultants
+
+  pure subroutine quadratic_centroid_weights(xl, w)
+    !! The shape functions w(n) at the area centroid, where the resultants are evaluated.
+    real(wp), intent(in) :: xl(:, :)
+    real(wp), intent(out) :: w(size(xl, 2))
+    real(wp) :: dn(2, size(xl, 2))
+    call quadratic_shape(size(xl, 2), centroid_natural(xl), w, dn)
+  end subroutine quadratic_centroid_weights
+
+  pure subroutine quadratic_thermal_load(xl, props, eps0, fe, error)
+    !! Consistent nodal loads fe(2n) = ∫ Bᵀ t D ε0 dA (element frame, node-major
+    !! u, v) of an isotropic initial strain ε0 (1, 1, 0) whose nodal values
+    !! eps0(n) are interpolated with the shape functions to the points of the
+    !! stiffness rule, as CalculiX interpolates nodal temperatures (plane
+    !! strain: eps0 is the in-plane strain (1 + ν) α ΔT).
+    real(wp), intent(in) :: xl(:, :)
+    type(plane_props_t), intent(in) :: props
+    real(wp), intent(in) :: eps0(:)
+    real(wp), allocatable, intent(out) :: fe(:)
+    type(error_t), allocatable, intent(out) :: error
+    real(wp), allocatable :: pts(:, :), wts(:), b(:, :)
+    real(wp) :: s0(NSTRAIN), jac, nf(size(xl, 2)), dn(2, size(xl, 2))
+    integer :: k, n
+
+    call check_element(xl, props, error)
+    if (allocated(error)) return
+    n = size(xl, 2)
+    if (size(eps0) /= n) then
+       call fatal_error(error, EXIT_DECK, 'wrong number of nodal initial strains')
+       return
+    end if
+    s0 = matmul(material(props), ISOTROPIC)
+    call rule(n, RULE_STIFFNESS, props%reduced, pts, wts)
+    allocate (b(NSTRAIN, 2*n), fe(2*n), source=0.0_wp)
+    do k = 1, size(wts)
+       call b_matrix(xl, pts(:, k), b, jac)
+       call quadratic_shape(n, pts(:, k), nf, dn)
+       fe = fe + wts(k)*jac*dot_product(nf, eps0)*matmul(transpose(b), s0)
+    end do
+  end subroutine quadratic_thermal_load
 
   pure subroutine quadratic_shape_integrals(xl, w)
     !! w(i) = ∫ Nᵢ dA over the element (consistent nodal shares of a uniform
@@ -173,7 +221,7 @@ contains
     end do
   end subroutine quadratic_shape
 
-  pure subroutine quadratic_point_stresses(xl, props, ue, sig_points, sig_nodes, error)
+  pure subroutine quadratic_point_stresses(xl, props, ue, sig_points, sig_nodes, error, eps0, e0_points, e0_nodes)
     !! Stresses (σx, σy, τxy) in the element frame from the element displacements
     !! ue(2n) (node-major u, v): sig_points(3, k) at the integration points of the
     !! stiffness rule (quadratic_stress_points: CPS6 3 points, CPS8 3×3, CPS8R 2×2,
@@ -183,14 +231,19 @@ contains
     !! biquadratic through 3×3) evaluated at the nodes. The extrapolation is exact
     !! whenever the stress is such a polynomial (constant stress on any element,
     !! linear stress on straight-sided triangles and parallelograms). Plane strain:
-    !! σz = ν (σx + σy) is added by the caller.
+    !! σz = ν (σx + σy) is added by the caller. With eps0(n), the nodal values
+    !! of an isotropic initial strain (quadratic_thermal_load), σ = D (ε - ε0)
+    !! with ε0 interpolated to each point, and e0_points, e0_nodes the ε0
+    !! there (extrapolated as σ is).
     real(wp), intent(in) :: xl(:, :)
     type(plane_props_t), intent(in) :: props
     real(wp), intent(in) :: ue(:)
     real(wp), allocatable, intent(out) :: sig_points(:, :), sig_nodes(:, :)
     type(error_t), allocatable, intent(out) :: error
-    real(wp), allocatable :: pts(:, :), wts(:), b(:, :)
-    real(wp) :: d(NSTRAIN, NSTRAIN), jac, pn(2)
+    real(wp), intent(in), optional :: eps0(:)
+    real(wp), allocatable, intent(out), optional :: e0_points(:), e0_nodes(:)
+    real(wp), allocatable :: pts(:, :), wts(:), b(:, :), ep(:)
+    real(wp) :: d(NSTRAIN, NSTRAIN), jac, pn(2), nf(size(xl, 2)), dn(2, size(xl, 2))
     integer :: k, n
 
     call check_element(xl, props, error)
@@ -203,15 +256,23 @@ contains
     d = material(props)/props%t
     call rule(n, RULE_STIFFNESS, props%reduced, pts, wts)
     allocate (b(NSTRAIN, 2*n), sig_points(NSTRAIN, size(wts)), sig_nodes(NSTRAIN, n))
+    allocate (ep(size(wts)), source=0.0_wp)
     do k = 1, size(wts)
        call b_matrix(xl, pts(:, k), b, jac)
-       ! σ = D (ε - ε₀): a thermal strain ε₀ = α ΔT (1, 1, 0) is subtracted here.
-       sig_points(:, k) = matmul(d, matmul(b, ue))
+       ! σ = D (ε - ε₀): an initial strain interpolated from its nodal values
+       if (present(eps0)) then
+          call quadratic_shape(n, pts(:, k), nf, dn)
+          ep(k) = dot_product(nf, eps0)
+       end if
+       sig_points(:, k) = matmul(d, matmul(b, ue) - ep(k)*ISOTROPIC)
     end do
+    if (present(e0_nodes)) allocate (e0_nodes(n))
     do k = 1, n
        pn = node_natural(n, k)
        sig_nodes(:, k) = matmul(sig_points, point_weights(n, props%reduced, pn))
+       if (present(e0_nodes)) e0_nodes(k) = dot_product(ep, point_weights(n, props%reduced, pn))
     end do
+    if (present(e0_points)) e0_points = ep
   end subroutine quadratic_point_stresses
 
   pure subroutine quadratic_stress_points(n, reduced, pts)

@@ -18,17 +18,43 @@ module superjoin_elements_thermal
   !! D (B u - ε0) are those of u - u_free: no element needs a thermal
   !! routine of its own, and a free element heated uniformly is stress-free
   !! to round-off whatever its shape.
+  !!
+  !! A temperature that varies over a plane element (CPS*, CPE*) is
+  !! interpolated from its nodes to the integration points with the shape
+  !! functions, as CalculiX does: the element mean ε̄ is taken as above, and the
+  !! nodal remainder δᵢ = α ΔTᵢ - ε̄ adds the load ∫ Bᵀ D (Σ Nᵢ δᵢ) dA
+  !! (thermal_plane_nodal_load) and is taken off the strains at every point
+  !! (σ = D (ε - ε̄ - Σ Nᵢ δᵢ)): in all, the consistent ∫ Bᵀ D ε0(ξ) dA. A
+  !! uniform temperature has no remainder and takes the mean path alone.
+  !!
+  !! Beams: a temperature gradient across the section, α ∂T/∂y and α ∂T/∂z
+  !! (local axes), is the thermal curvature of the free beam: fibres at +y
+  !! grow by α (∂T/∂y) y, so v'' = -α ∂T/∂y and w'' = -α ∂T/∂z, linear along
+  !! the element between its nodes' values. Its free bending
+  !! (thermal_beam_free_field: a cubic v, w, which the Hermite and the exact
+  !! Timoshenko elements hold) has no shear, for Euler-Bernoulli and
+  !! Timoshenko beams alike, and the consistent load is K_e u_free: the end
+  !! moments ∓E I α ∂T (and, if the gradient varies, the shear pair of its
+  !! slope); the end forces are those of u - u_free.
   use superjoin_kinds, only: wp
-  use superjoin_error, only: error_t
+  use superjoin_error, only: error_t, fatal_error, EXIT_DECK
   use superjoin_model_types, only: section_t
   use superjoin_elements_frame, only: beam_frame
   use superjoin_model_types, only: material_t
   use superjoin_elements_shell, only: shell_frame, shell_stiffness, shell_resultants, is_plane_type, &
        is_plane_strain_type
+  use superjoin_elements_shell, only: is_quadratic_plane_type, quadratic_props
+  use superjoin_elements_membrane, only: membrane_thermal_load, membrane_resultants, plane_strain_resultants, &
+       membrane_centroid_weights
+  use superjoin_elements_quadratic, only: quadratic_thermal_load, quadratic_resultants, quadratic_centroid_weights
+  use superjoin_elements_beam, only: beam_stiffness, beam_end_forces
+  use superjoin_model_types, only: ET_B23, ET_B21, ET_B33, ET_B31
   implicit none (type, external)
   private
 
   public :: thermal_axial_load, thermal_free_field, thermal_plate_load, thermal_plate_resultants
+  public :: thermal_plane_nodal_load, plane_initial_strains, plane_centroid_remainder
+  public :: thermal_beam_free_field, thermal_beam_load, thermal_beam_end_forces
 
 contains
 
@@ -114,10 +140,12 @@ contains
     fe = matmul(ke, u)
   end subroutine thermal_plate_load
 
-  pure subroutine thermal_plate_resultants(etype, x, sec, mat, strain, curvature, res, error)
+  pure subroutine thermal_plate_resultants(etype, x, sec, mat, strain, curvature, res, error, nodal)
     !! The resultants (nx, ny, nxy, mx, my, mxy, element frame) of the free
     !! thermal expansion: what K_e u gives and the element does not carry, to
-    !! be taken off the resultants of the solution (N = D (ε - ε0)).
+    !! be taken off the resultants of the solution (N = D (ε - ε0)). With
+    !! nodal (a plane element: α ΔT at its nodes minus the mean strain), also
+    !! what the remainder takes off at the centroid.
     integer, intent(in) :: etype
     real(wp), intent(in) :: x(:, :)
     type(section_t), intent(in) :: sec
@@ -125,10 +153,162 @@ contains
     real(wp), intent(in) :: strain, curvature
     real(wp), intent(out) :: res(6)
     type(error_t), allocatable, intent(out) :: error
-    real(wp), allocatable :: u(:)
+    real(wp), intent(in), optional :: nodal(:)
+    real(wp), allocatable :: u(:), z(:), e0(:)
+    real(wp) :: r(3, 3), xl(2, size(x, 2)), h(size(x, 2)), rd(3)
     res = 0.0_wp
     call thermal_free_field(etype, x, mat%nu, strain, curvature, u, error)
     if (allocated(error)) return
     call shell_resultants(etype, x, sec, mat, u, res, error)
+    if (allocated(error) .or. .not. present(nodal)) return
+    if (.not. is_plane_type(etype) .or. all(nodal == 0.0_wp)) return
+    ! the remainder alone (u = 0): t D (B_a α - ε0) at the centroid; res takes it off
+    call shell_frame(x, r, xl, h, error)
+    if (allocated(error)) return
+    call plane_initial_strains(etype, mat%nu, nodal, e0)
+    allocate (z(2*size(x, 2)), source=0.0_wp)
+    if (is_quadratic_plane_type(etype)) then
+       call quadratic_resultants(xl, quadratic_props(etype, sec, mat), z, rd, error, e0)
+    else if (is_plane_strain_type(etype)) then
+       call plane_strain_resultants(xl, sec%thickness, mat%e, mat%nu, z, rd, error, e0)
+    else
+       call membrane_resultants(xl, sec%thickness, mat%e, mat%nu, z, rd, error, e0)
+    end if
+    if (allocated(error)) return
+    res(1:3) = res(1:3) - rd
   end subroutine thermal_plate_resultants
+
+  pure real(wp) function plane_centroid_remainder(etype, x, nodal) result(v)
+    !! The nodal remainder nodal(n) of the thermal strain of a plane element
+    !! interpolated to the area centroid, where its resultants and element
+    !! values are taken (0 if the element cannot be evaluated: reported elsewhere).
+    integer, intent(in) :: etype
+    real(wp), intent(in) :: x(:, :)
+    real(wp), intent(in) :: nodal(:)
+    real(wp) :: r(3, 3), xl(2, size(x, 2)), h(size(x, 2)), w(size(x, 2))
+    type(error_t), allocatable :: error
+    v = 0.0_wp
+    if (.not. is_plane_type(etype) .or. all(nodal == 0.0_wp)) return
+    call shell_frame(x, r, xl, h, error)
+    if (allocated(error)) return
+    if (is_quadratic_plane_type(etype)) then
+       call quadratic_centroid_weights(xl, w)
+    else
+       call membrane_centroid_weights(xl, w)
+    end if
+    v = dot_product(w, nodal)
+  end function plane_centroid_remainder
+
+  pure subroutine plane_initial_strains(etype, nu, nodal, e0)
+    !! The in-plane initial strains e0 of a plane element from its nodal
+    !! thermal strains α ΔT: the same (plane stress), (1 + ν) times (plane
+    !! strain: the expansion across the plane is held).
+    integer, intent(in) :: etype
+    real(wp), intent(in) :: nu, nodal(:)
+    real(wp), allocatable, intent(out) :: e0(:)
+    e0 = nodal
+    if (is_plane_strain_type(etype)) e0 = (1.0_wp + nu)*nodal
+  end subroutine plane_initial_strains
+
+  pure subroutine thermal_plane_nodal_load(etype, x, sec, mat, nodal, fe, error)
+    !! Consistent nodal loads fe (global axes, node-major ux, uy) ∫ Bᵀ D ε0 dA
+    !! of a thermal strain interpolated from its nodal values nodal(n) (α ΔT
+    !! of each node, or their remainder after the mean) on a plane element.
+    integer, intent(in) :: etype
+    real(wp), intent(in) :: x(:, :)
+    type(section_t), intent(in) :: sec
+    type(material_t), intent(in) :: mat
+    real(wp), intent(in) :: nodal(:)
+    real(wp), allocatable, intent(out) :: fe(:)
+    type(error_t), allocatable, intent(out) :: error
+    real(wp), allocatable :: fl(:), e0(:)
+    real(wp) :: r(3, 3), xl(2, size(x, 2)), h(size(x, 2))
+    integer :: i
+    if (.not. is_plane_type(etype)) then
+       call fatal_error(error, EXIT_DECK, 'nodal thermal strains on an element that is not a plane element')
+       return
+    end if
+    call shell_frame(x, r, xl, h, error)
+    if (allocated(error)) return
+    call plane_initial_strains(etype, mat%nu, nodal, e0)
+    if (is_quadratic_plane_type(etype)) then
+       call quadratic_thermal_load(xl, quadratic_props(etype, sec, mat), e0, fl, error)
+    else
+       call membrane_thermal_load(xl, sec%thickness, mat%e, mat%nu, is_plane_strain_type(etype), e0, fl, error)
+    end if
+    if (allocated(error)) return
+    allocate (fe(size(fl)))
+    do i = 1, size(x, 2)   ! element frame -> global: f_g = r(1:2, 1:2)ᵀ f_l
+       fe(2*i - 1:2*i) = matmul(transpose(r(1:2, 1:2)), fl(2*i - 1:2*i))
+    end do
+  end subroutine thermal_plane_nodal_load
+
+  pure subroutine thermal_beam_free_field(etype, x, sec, gradient, u, error)
+    !! Nodal displacements u (global axes, node-major with the beam's DOFs:
+    !! B23, B21 ux, uy, rz; B33, B31 all six) of the free bending of a beam
+    !! under the thermal curvatures gradient(:, node) = (α ∂T/∂y, α ∂T/∂z)
+    !! at its two nodes, local axes (planar beams: the first only), linear in
+    !! between, node 1 held: v'' = -κy, θz = v'; w'' = -κz, θy = -w', so at
+    !! node 2 v = -L² (2 κy1 + κy2)/6, θz = -L (κy1 + κy2)/2 and the same for
+    !! w, -θy with κz.
+    integer, intent(in) :: etype
+    real(wp), intent(in) :: x(:, :)
+    type(section_t), intent(in) :: sec
+    real(wp), intent(in) :: gradient(2, 2)
+    real(wp), allocatable, intent(out) :: u(:)
+    type(error_t), allocatable, intent(out) :: error
+    real(wp) :: r(3, 3), length, d(3), t(3), defl(2), turn(2)
+    call beam_frame(etype, x, sec, r, length, error)
+    if (allocated(error)) return
+    defl = -length**2*(2*gradient(:, 1) + gradient(:, 2))/6
+    turn = -length*(gradient(:, 1) + gradient(:, 2))/2
+    d = [0.0_wp, defl(1), defl(2)]
+    t = [0.0_wp, -turn(2), turn(1)]
+    select case (etype)
+    case (ET_B23, ET_B21)
+       ! (ux, uy, rz) = rᵀ (u, v, θz): the planar frame has r(3, :) = Z
+       u = [0.0_wp, 0.0_wp, 0.0_wp, matmul(transpose(r), [d(1), d(2), t(3)])]
+    case (ET_B33, ET_B31)
+       u = [spread(0.0_wp, 1, 6), matmul(transpose(r), d), matmul(transpose(r), t)]
+    case default
+       call fatal_error(error, EXIT_DECK, 'a temperature gradient across the section applies to beams only')
+    end select
+  end subroutine thermal_beam_free_field
+
+  pure subroutine thermal_beam_load(etype, x, sec, mat, gradient, fe, error)
+    !! Consistent nodal loads fe = K_e u_free (global axes, node-major) of the
+    !! thermal curvatures gradient of a beam (thermal_beam_free_field): the end
+    !! moments ∓E I α ∂T, no shear.
+    integer, intent(in) :: etype
+    real(wp), intent(in) :: x(:, :)
+    type(section_t), intent(in) :: sec
+    type(material_t), intent(in) :: mat
+    real(wp), intent(in) :: gradient(2, 2)
+    real(wp), allocatable, intent(out) :: fe(:)
+    type(error_t), allocatable, intent(out) :: error
+    real(wp), allocatable :: u(:), ke(:, :)
+    call thermal_beam_free_field(etype, x, sec, gradient, u, error)
+    if (allocated(error)) return
+    call beam_stiffness(etype, x, sec, mat, ke, error)
+    if (allocated(error)) return
+    fe = matmul(ke, u)
+  end subroutine thermal_beam_load
+
+  pure subroutine thermal_beam_end_forces(etype, x, sec, mat, gradient, f, error)
+    !! The end forces f(6, 2) (local axes, as beam_end_forces) of the free
+    !! thermal bending: what K u gives and the beam does not carry, taken off
+    !! its end forces (M = E I (κ - κ0)).
+    integer, intent(in) :: etype
+    real(wp), intent(in) :: x(:, :)
+    type(section_t), intent(in) :: sec
+    type(material_t), intent(in) :: mat
+    real(wp), intent(in) :: gradient(2, 2)
+    real(wp), intent(out) :: f(6, 2)
+    type(error_t), allocatable, intent(out) :: error
+    real(wp), allocatable :: u(:)
+    f = 0.0_wp
+    call thermal_beam_free_field(etype, x, sec, gradient, u, error)
+    if (allocated(error)) return
+    call beam_end_forces(etype, x, sec, mat, u, [0.0_wp, 0.0_wp, 0.0_wp], f, error)
+  end subroutine thermal_beam_end_forces
 end module superjoin_elements_thermal

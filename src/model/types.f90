@@ -236,6 +236,10 @@ module superjoin_model_types
      real(wp) :: dir(3) = 0.0_wp           !! GRAV: unit direction, global axes
      real(wp) :: point(3) = 0.0_wp         !! CENTRIF: a point of the axis (dir: the unit axis)
      real(wp) :: curvature = 0.0_wp        !! TEMP on a shell: α ∂T/∂n, the thermal curvature
+     real(wp), allocatable :: nodal(:)     !! TEMP on a plane element: α ΔT at each node minus value, the
+                                           !! element mean (unallocated: uniform), interpolated to the points
+     real(wp) :: gradient(2, 2) = 0.0_wp   !! TEMP on a beam: α ∂T/∂y, α ∂T/∂z (local axes), the thermal
+                                           !! curvatures, at its node 1 and node 2 (linear in between)
      type(source_loc_t) :: loc
   end type dload_t
 

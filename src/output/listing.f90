@@ -6,6 +6,8 @@ module superjoin_output_listing
   use superjoin_model_types, only: model_t, NDOF_NODE, LINK_RIGID, &
        RIGID_ELIMINATE
   use superjoin_elements, only: is_plate_type, is_plane_type, is_plane_strain_type
+  use superjoin_elements_thermal, only: plane_centroid_remainder
+  use superjoin_model_types, only: ELEMENT_NODE_COUNT
   use superjoin_analysis_results, only: results_t
   use superjoin_utils_process, only: temp_register, temp_unregister
   use superjoin_output_text_buffer, only: text_buffer_t
@@ -454,7 +456,7 @@ contains
                   ! loads: a thermal strain adds -E alpha dT to sz
                   if (allocated(res%fields%thermal)) sig(4) = von_mises_3(sig(1:3), &
                        model%materials(sec%material)%nu*(sig(1) + sig(2)) - &
-                       model%materials(sec%material)%e*res%fields%thermal(1, iel, is))
+                       model%materials(sec%material)%e*(res%fields%thermal(1, iel, is) + centroid_remainder()))
                 end associate
              end if
              call element_prefix(lu, model, isub, ie, 2)
@@ -471,6 +473,18 @@ contains
        end do
     end do
     call lu%line('')
+  contains
+    real(wp) function centroid_remainder()
+      !! A temperature varying over plane element ie of isub: its remainder at the centroid.
+      integer :: nn
+      centroid_remainder = 0.0_wp
+      if (.not. allocated(res%fields%thermal_nodal)) return
+      associate (sub => model%subs(isub))
+        nn = ELEMENT_NODE_COUNT(sub%elem_type(ie))
+        centroid_remainder = plane_centroid_remainder(sub%elem_type(ie), sub%x(:, sub%elem_nodes(1:nn, ie)), &
+             res%fields%thermal_nodal(1:nn, iel, is))
+      end associate
+    end function centroid_remainder
   end subroutine plate_block
 
   pure function von_mises(sig) result(vm)

@@ -14,6 +14,7 @@ module superjoin_output_requests
        ET_CPE3, ET_CPE4, ET_CPE6, ET_CPE8, ET_CPE8R
   use superjoin_elements, only: is_plate_type
   use superjoin_elements_shell, only: shell_frame
+  use superjoin_elements_thermal, only: plane_centroid_remainder
   use superjoin_error, only: error_t
   use superjoin_analysis_results, only: result_fields_t
   use superjoin_output_text_buffer, only: text_buffer_t
@@ -395,6 +396,9 @@ contains
         do i = 1, nn
            x(:, i) = sub%x(:, sub%elem_nodes(i, ie))
         end do
+        ! a temperature varying over a plane element: its value at the centroid
+        if (allocated(fields%thermal_nodal)) eth = eth + &
+             plane_centroid_remainder(etype, x(:, 1:nn), fields%thermal_nodal(1:nn, iel, is))
         select case (etype)
         case (ET_T2D2, ET_T3D2)
            a = x(:, 2) - x(:, 1)

@@ -37,6 +37,7 @@ module superjoin_output_stresses
   use superjoin_analysis_results, only: result_fields_t
   use superjoin_output_energy, only: element_displacements
   use superjoin_elements_thermal, only: thermal_free_field
+  use superjoin_elements_thermal, only: plane_initial_strains
   use superjoin_output_text_buffer, only: text_buffer_t
   use superjoin_output_columns, only: element_prefix, chop
   use superjoin_utils_strings, only: itoa
@@ -92,9 +93,11 @@ contains
     logical, intent(out) :: ok
     real(wp) :: x(3, MAX_PLANE_NODES), r(3, 3), xl(2, MAX_PLANE_NODES), h(MAX_PLANE_NODES), nu, szz0
     real(wp), allocatable :: ue(:), ul(:), sp(:, :), sn(:, :), sp3(:, :, :), sn3(:, :, :), u0(:)
+    real(wp), allocatable :: e0(:), e0p(:), e0n(:)   ! a temperature varying over a plane element
+    real(wp) :: szz_here
     type(error_t), allocatable :: error
     integer :: etype, nn, a, k
-    logical :: strain
+    logical :: strain, varying
     ok = .false.
     allocate (points(NTENSOR, 0, 1), nodes(NTENSOR, 0, 1))
     associate (sub => model%subs(isub))
@@ -131,7 +134,18 @@ contains
               ul(2*a - 1) = r(1, 1)*ue(2*a - 1) + r(1, 2)*ue(2*a)
               ul(2*a) = r(2, 1)*ue(2*a - 1) + r(2, 2)*ue(2*a)
            end do
-           if (is_quadratic_plane_type(etype)) then
+           varying = .false.
+           if (allocated(fields%thermal_nodal)) &
+                varying = any(fields%thermal_nodal(1:nn, fields%elem_offset(isub) + ie, is) /= 0.0_wp)
+           if (varying) then   ! loads: the nodal remainder of the temperature, interpolated to the points
+              call plane_initial_strains(etype, nu, fields%thermal_nodal(1:nn, fields%elem_offset(isub) + ie, is), e0)
+              if (is_quadratic_plane_type(etype)) then
+                 call quadratic_point_stresses(xl(:, 1:nn), quadratic_props(etype, sec, mat), ul, sp, sn, error, &
+                      e0, e0p, e0n)
+              else
+                 call membrane_point_stresses(xl(:, 1:nn), mat%e, mat%nu, strain, ul, sp, sn, error, e0, e0p, e0n)
+              end if
+           else if (is_quadratic_plane_type(etype)) then
               call quadratic_point_stresses(xl(:, 1:nn), quadratic_props(etype, sec, mat), ul, sp, sn, error)
            else
               call membrane_point_stresses(xl(:, 1:nn), mat%e, mat%nu, strain, ul, sp, sn, error)
@@ -150,11 +164,15 @@ contains
     end associate
     deallocate (points, nodes)
     allocate (points(NTENSOR, size(sp3, 2), size(sp3, 3)), nodes(NTENSOR, size(sn3, 2), size(sn3, 3)))
+    szz_here = 0.0_wp
     do k = 1, size(sp3, 3)
        do a = 1, size(sp3, 2)
+          ! plane strain: σzz takes -E α ΔT of the remainder there, (1 + ν) α ΔT being e0
+          if (allocated(e0p)) szz_here = mat_e()*e0p(a)/(1.0_wp + nu)
           points(:, a, k) = to_global(sp3(:, a, k))
        end do
        do a = 1, size(sn3, 2)
+          if (allocated(e0n)) szz_here = mat_e()*e0n(a)/(1.0_wp + nu)
           nodes(:, a, k) = to_global(sn3(:, a, k))
        end do
     end do
@@ -166,7 +184,7 @@ contains
       real(wp) :: t(NTENSOR)
       real(wp) :: m(3, 3), szz, e1(3), e2(3), e3(3)
       szz = 0.0_wp
-      if (strain) szz = nu*(s(1) + s(2)) - szz0
+      if (strain) szz = nu*(s(1) + s(2)) - szz0 - szz_here
       e1 = r(1, :)
       e2 = r(2, :)
       e3 = r(3, :)
@@ -174,6 +192,12 @@ contains
       if (size(s) == TRANSVERSE) m = m + s(4)*(outer(e1, e3) + outer(e3, e1)) + s(5)*(outer(e2, e3) + outer(e3, e2))
       t = [m(1, 1), m(2, 2), m(3, 3), m(1, 2), m(1, 3), m(2, 3)]
     end function to_global
+    pure real(wp) function mat_e()
+      !! Young's modulus of the element.
+      associate (sub => model%subs(isub))
+        mat_e = model%materials(sub%sections(sub%elem_section(ie))%material)%e
+      end associate
+    end function mat_e
     pure function outer(p, q) result(o)
       real(wp), intent(in) :: p(3), q(3)
       real(wp) :: o(3, 3)

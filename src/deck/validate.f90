@@ -1134,7 +1134,7 @@ contains
     integer(ip) :: e, i, first_plate
     integer(ip), allocatable :: nodes(:)
     logical :: ok
-    real(wp) :: dt, dg, dh, dtn(MAX_ELEMENT_NODES)
+    real(wp) :: dt, dg, dh, dtn(MAX_ELEMENT_NODES), dgn(MAX_ELEMENT_NODES)
     type(source_loc_t) :: plate_loc
     if (st%ntemp == 0) return
     allocate (t0(size(model%subs)), t(size(model%subs)), g0(size(model%subs)), h0(size(model%subs)))
@@ -1169,6 +1169,7 @@ contains
                    if (nn == 0 .or. any(sub%elem_nodes(1:nn, e) <= 0)) cycle
                    associate (en => sub%elem_nodes(1:nn, e))
                      dtn(1:nn) = t(isub)%v(en) - t0(isub)%v(en)
+                     dgn(1:nn) = g(isub)%v(en) - g0(isub)%v(en)
                      dt = sum(t(isub)%v(en) - t0(isub)%v(en))/nn
                      dg = sum(g(isub)%v(en) - g0(isub)%v(en))/nn
                      dh = sum(h(isub)%v(en) - h0(isub)%v(en))/nn
@@ -1209,6 +1210,10 @@ contains
                       ! a plane element whose nodes differ: the nodal values, interpolated to its points
                       if (is_plane_element(sub%elem_type(e)) .and. any(dtn(1:nn) /= dtn(1))) &
                            extra(size(extra))%nodal = mat%alpha*dtn(1:nn) - mat%alpha*dt
+                      ! shells take the element mean (check_shell_temperatures warns)
+                      if (.not. is_plane_element(sub%elem_type(e)) .and. &
+                           (any(dtn(1:nn) /= dtn(1)) .or. any(dgn(1:nn) /= dgn(1)))) &
+                           model%steps(s)%shell_mean_temperatures = model%steps(s)%shell_mean_temperatures + 1
                    case default
                       nplate = nplate + 1
                       if (nplate == 1) then

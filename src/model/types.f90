@@ -272,6 +272,8 @@ module superjoin_model_types
      type(node_values_t), allocatable :: temperature(:)  !! per substructure: the nodal temperatures of
                                            !! the step (*INITIAL CONDITIONS / *TEMPERATURE; unallocated: none
                                            !! in the model, all 0), for *NODE PRINT NT
+     integer :: shell_mean_temperatures = 0  !! shell elements whose nodal temperature change or
+                                           !! gradient differs between their nodes (each takes its mean)
   end type step_t
 
   type, public :: combination_t

@@ -1210,7 +1210,7 @@ contains
                       ! a plane element whose nodes differ: the nodal values, interpolated to its points
                       if (is_plane_element(sub%elem_type(e)) .and. any(dtn(1:nn) /= dtn(1))) &
                            extra(size(extra))%nodal = mat%alpha*dtn(1:nn) - mat%alpha*dt
-                      ! shells take the element mean (check_shell_temperatures warns)
+                      ! shells take the element mean (superjoin_analysis_ccx_differences warns)
                       if (.not. is_plane_element(sub%elem_type(e)) .and. &
                            (any(dtn(1:nn) /= dtn(1)) .or. any(dgn(1:nn) /= dgn(1)))) &
                            model%steps(s)%shell_mean_temperatures = model%steps(s)%shell_mean_temperatures + 1
@@ -1341,6 +1341,8 @@ contains
        call build_cloads(st, model, st%steps(s)%cloads(1:st%steps(s)%ncload), cl)
        call move_alloc(cl, model%steps(s)%cloads)
        if (st%aborted) return
+       model%steps(s)%shell_pressure_lines = count(st%steps(s)%dloads(1:st%steps(s)%ndload)%kind == DLOAD_P .and. &
+            .not. st%steps(s)%dloads(1:st%steps(s)%ndload)%surface)
        call build_dloads(st, model, st%steps(s)%dloads(1:st%steps(s)%ndload), dl)
        call move_alloc(dl, model%steps(s)%dloads)
        if (st%aborted) return

@@ -274,6 +274,7 @@ module superjoin_model_types
                                            !! in the model, all 0), for *NODE PRINT NT
      integer :: shell_mean_temperatures = 0  !! shell elements whose nodal temperature change or
                                            !! gradient differs between their nodes (each takes its mean)
+     integer :: shell_pressure_lines = 0   !! *DLOAD P data lines (shell pressure, not *DSLOAD) of the step
   end type step_t
 
   type, public :: combination_t

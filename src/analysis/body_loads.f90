@@ -10,6 +10,7 @@ module superjoin_analysis_body_loads
        ELEMENT_NODE_COUNT, combination_t
   use superjoin_elements, only: is_plate_type, element_material_load, element_node_dofs, beam_frame
   use superjoin_elements_thermal, only: thermal_plate_resultants
+  use superjoin_elements_drill_mask, only: element_drill
   implicit none (type, external)
   private
 
@@ -65,7 +66,7 @@ contains
             associate (sec => s%sections(s%elem_section(dl%elem)))
               ! errors were reported when the loads were assembled
               call element_material_load(etype, s%x(:, s%elem_nodes(1:nn, dl%elem)), sec, &
-                   model%materials(sec%material), dl, fe, error)
+                   model%materials(sec%material), dl, fe, error, element_drill(s, dl%elem))
               if (allocated(error)) cycle
               call beam_frame(etype, s%x(:, s%elem_nodes(1:nn, dl%elem)), sec, r, length, error)
               if (allocated(error)) cycle

@@ -127,18 +127,21 @@ contains
     end select
   end subroutine element_nodal_forces
 
-  pure subroutine element_stiffness(etype, x, sec, mat, ke, error)
+  pure subroutine element_stiffness(etype, x, sec, mat, ke, error, drill)
     !! Element stiffness in global axes, node-major ordering (node 1 DOFs in
     !! element_node_dofs order, then node 2 ...; B32: end, middle, end). x(3, nnode) are the node
     !! coordinates. Errors: zero-length element, orientation vector parallel to
     !! beam axis, nonpositive A, I, J, t or E, plane-stress element out of the
-    !! XY plane, zero area, distorted (non-convex) quadrilateral.
+    !! XY plane, zero area, distorted (non-convex) quadrilateral. drill: the
+    !! element's drilling-membrane edge mask (superjoin_elements_drill_mask;
+    !! absent: every edge).
     integer, intent(in) :: etype
     real(wp), intent(in) :: x(:, :)
     type(section_t), intent(in) :: sec
     type(material_t), intent(in) :: mat
     real(wp), allocatable, intent(out) :: ke(:, :)
     type(error_t), allocatable, intent(out) :: error
+    integer, intent(in), optional :: drill
     select case (etype)
     case (ET_T2D2, ET_T3D2)
        call truss_stiffness(etype, x, sec, mat, ke, error)
@@ -148,7 +151,7 @@ contains
        call beam3_stiffness(x, sec, mat, ke, error)
     case (ET_CPS3, ET_CPS4, ET_S3, ET_S4, ET_CPE3, ET_CPE4, ET_CPS6, ET_CPS8, ET_CPE6, ET_CPE8, ET_CPS8R, ET_CPE8R, ET_S4R, ET_S3R, &
          ET_S8R)
-       call shell_stiffness(etype, x, sec, mat, ke, error)
+       call shell_stiffness(etype, x, sec, mat, ke, error, drill)
     case default
        call unsupported(etype, error)
     end select
@@ -326,11 +329,11 @@ contains
     end select
   end subroutine element_gravity_load
 
-  pure subroutine element_material_load(etype, x, sec, mat, dl, fe, error)
+  pure subroutine element_material_load(etype, x, sec, mat, dl, fe, error, drill)
     !! Consistent nodal loads fe (global axes, element ordering) of the loads
     !! that need the material: the thermal strain of a plane or shell element
     !! (DLOAD_THERMAL, superjoin_elements_thermal) and the centrifugal load
-    !! (DLOAD_CENTRIF, superjoin_elements_centrif).
+    !! (DLOAD_CENTRIF, superjoin_elements_centrif). drill as element_stiffness.
     integer, intent(in) :: etype
     real(wp), intent(in) :: x(:, :)
     type(section_t), intent(in) :: sec
@@ -338,13 +341,14 @@ contains
     type(dload_t), intent(in) :: dl
     real(wp), allocatable, intent(out) :: fe(:)
     type(error_t), allocatable, intent(out) :: error
+    integer, intent(in), optional :: drill
     select case (dl%kind)
     case (DLOAD_THERMAL)
        if (.not. is_plate_type(etype)) then
           call fatal_error(error, EXIT_DECK, 'thermal strain load on an element that is not a plane or shell element')
           return
        end if
-       call thermal_plate_load(etype, x, sec, mat, dl%value, dl%curvature, fe, error)
+       call thermal_plate_load(etype, x, sec, mat, dl%value, dl%curvature, fe, error, drill)
     case (DLOAD_CENTRIF)
        call centrif_load(etype, x, sec, mat, dl, element_node_dofs(etype), fe, error)
     case default

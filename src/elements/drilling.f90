@@ -36,6 +36,14 @@ module superjoin_elements_drilling
   !! Scordelis-Lo 4 × 4 1.21 too flexible, so γ = G.) For the triangle the mean
   !! penalty with γ = G: 0.158 0.161 0.110, 48×4 0.894 (γ = 0.01 G: 0.218, 0.922).
   !!
+  !! Edge masks (the optional `edges` arguments): an edge without its bubble
+  !! stays straight; superjoin_elements_drill_mask keeps the bubbles of S4/S4R
+  !! on flat regions only (an edge's two nodes flat and not restraining its
+  !! in-plane normal translation), so the mask is a property of the edge and
+  !! the two elements sharing it agree. The quadrilateral's 2×2 penalty holds
+  !! θz under any mask (three zero eigenvalues); the triangle's mean penalty
+  !! does not, so it is used with all its bubbles only.
+  !!
   !! Patch test: a linear displacement field with θ equal to its (constant)
   !! rotation makes every Δu_k vanish and the penalty zero; the incompatible
   !! modes have zero mean strain on any shape; the integrals of the bubble

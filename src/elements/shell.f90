@@ -54,11 +54,14 @@ module superjoin_elements_shell
   real(wp), parameter :: PARABOLIC_SHEAR_PEAK = 1.5_wp
     !! τ(z = 0) = 1.5 q / t, the peak of the parabolic transverse shear stress of a homogeneous section.
   integer, parameter :: DRILLING_MEMBRANE_TYPES(*) = [ET_S4, ET_S4R]
-    !! Shell types with the drilling membrane (has_drilling_membrane): none.
-    !! [ET_S4, ET_S4R] switches S4/S4R to the Ibrahimbegovic-Taylor-Wilson
-    !! membrane of superjoin_elements_drilling; measured and not adopted
-    !! (doc/verification.md, "Drilling membranes": the pinched hemisphere 4x4
-    !! falls from 1.042 to 0.479, and a symmetry plane must then fix θz too).
+    !! Shell types with the drilling membrane (has_drilling_membrane): S4 and
+    !! S4R take the Ibrahimbegovic-Taylor-Wilson membrane of
+    !! superjoin_elements_drilling with the edge bubbles of flat, unrestrained
+    !! edges only (superjoin_elements_drill_mask; with bubbles on every edge
+    !! the coarse pinched hemisphere locks, 4x4: 0.479 against QM6's 1.042);
+    !! an element without any is QM6 with soft drilling springs. S3/S3R keep
+    !! the CST: the Allman triangle gains too little on flat meshes
+    !! (doc/verification.md, "Drilling membranes").
   integer, parameter :: DRILL_ALL_EDGES = 15
     !! Edge mask of a drilling membrane with every edge's bubble (bit k - 1:
     !! edge k from node k to k + 1); the default of the optional `drill`

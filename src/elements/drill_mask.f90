@@ -72,71 +72,78 @@ contains
     !! Set model%subs(:)%elem_drill (drill_edge_masks) from the mesh and the
     !! rigid translational supports of the model data and of every step.
     type(model_t), intent(inout) :: model
-    type(restraint_t) :: rest
+    type(restraint_t), allocatable :: rest(:)
     type(flatness_t), allocatable :: fl(:)
+    real(wp), allocatable :: q(:, :, :)
     integer :: isub, k, is
-    allocate (fl(size(model%subs)))
+    allocate (fl(size(model%subs)), rest(size(model%subs)))
     do isub = 1, size(model%subs)
        call node_flatness(model%subs(isub), fl(isub)%flat, fl(isub)%seen, fl(isub)%first)
+       allocate (rest(isub)%fixed(NTRANS, model%subs(isub)%nnode), source=.false.)
+       allocate (rest(isub)%frame(model%subs(isub)%nnode), source=0)
     end do
     if (allocated(model%links)) call join_flatness(model, fl)
+    allocate (q(3, 3, 0))
+    if (allocated(model%frames)) then
+       q = reshape([(model%frames(k)%q, k=1, size(model%frames))], [3, 3, size(model%frames)])
+       do k = 1, size(model%frames)
+          rest(model%frames(k)%sub)%frame(model%frames(k)%node) = k
+       end do
+    end if
+    if (allocated(model%supports)) call add_fixed(model%supports, rest)
+    if (allocated(model%steps)) then
+       do is = 1, size(model%steps)
+          if (allocated(model%steps(is)%supports)) call add_fixed(model%steps(is)%supports, rest)
+       end do
+    end if
     do isub = 1, size(model%subs)
-       associate (sub => model%subs(isub))
-         allocate (rest%fixed(NTRANS, sub%nnode), source=.false.)
-         allocate (rest%frame(sub%nnode), source=0)
-         allocate (rest%q(3, 3, 0))
-         if (allocated(model%frames)) then
-            rest%q = reshape([(model%frames(k)%q, k=1, size(model%frames))], [3, 3, size(model%frames)])
-            do k = 1, size(model%frames)
-               if (model%frames(k)%sub == isub) rest%frame(model%frames(k)%node) = k
-            end do
-         end if
-         if (allocated(model%supports)) call add_fixed(model%supports, isub, rest%fixed)
-         if (allocated(model%steps)) then
-            do is = 1, size(model%steps)
-               if (allocated(model%steps(is)%supports)) call add_fixed(model%steps(is)%supports, isub, rest%fixed)
-            end do
-         end if
-         sub%elem_drill = drill_edge_masks(sub, fl(isub)%flat, rest)
-       end associate
-       deallocate (rest%fixed, rest%frame, rest%q)
+       call move_alloc(q, rest(isub)%q)
+       model%subs(isub)%elem_drill = drill_edge_masks(model%subs(isub), fl(isub)%flat, rest(isub))
+       call move_alloc(rest(isub)%q, q)
+       deallocate (rest(isub)%fixed, rest(isub)%frame)
     end do
   end subroutine mark_drilling_edges
 
   pure subroutine join_flatness(model, fl)
     !! Nodes joined by a contact element (any DOF) are one node for the
     !! flatness: not flat unless both are and their shells are coplanar (a
-    !! fold split between two substructures is a fold).
+    !! fold split between two substructures is a fold). Repeated until nothing
+    !! changes, so that a chain of joined nodes agrees.
     type(model_t), intent(in) :: model
     type(flatness_t), intent(inout) :: fl(:)
     integer :: k, ms, ss, a, b
-    logical :: both
-    do k = 1, size(model%links)
-       if (all(model%links(k)%state == LINK_NONE)) cycle
-       ms = model%contacts(model%links(k)%contact)%master_sub
-       ss = model%contacts(model%links(k)%contact)%slave_sub
-       a = int(model%links(k)%master_node)
-       b = int(model%links(k)%slave_node)
-       if (ms < 1 .or. ss < 1 .or. a < 1 .or. b < 1) cycle
-       both = fl(ms)%flat(a) .and. fl(ss)%flat(b)
-       if (both .and. fl(ms)%seen(a) .and. fl(ss)%seen(b)) &
-            both = norm2(cross(fl(ms)%first(:, a), fl(ss)%first(:, b))) <= sin(FLAT_ANGLE_TOL)
-       if (.not. both) then
-          fl(ms)%flat(a) = .false.
-          fl(ss)%flat(b) = .false.
-       end if
+    logical :: both, changed
+    changed = .true.
+    do while (changed)
+       changed = .false.
+       do k = 1, size(model%links)
+          if (all(model%links(k)%state == LINK_NONE)) cycle
+          ms = model%contacts(model%links(k)%contact)%master_sub
+          ss = model%contacts(model%links(k)%contact)%slave_sub
+          a = int(model%links(k)%master_node)
+          b = int(model%links(k)%slave_node)
+          if (ms < 1 .or. ss < 1 .or. a < 1 .or. b < 1) cycle
+          if (.not. (fl(ms)%flat(a) .or. fl(ss)%flat(b))) cycle
+          both = fl(ms)%flat(a) .and. fl(ss)%flat(b)
+          if (both .and. fl(ms)%seen(a) .and. fl(ss)%seen(b)) &
+               both = norm2(cross(fl(ms)%first(:, a), fl(ss)%first(:, b))) <= sin(FLAT_ANGLE_TOL)
+          if (.not. both) then
+             fl(ms)%flat(a) = .false.
+             fl(ss)%flat(b) = .false.
+             changed = .true.
+          end if
+       end do
     end do
   end subroutine join_flatness
 
-  pure subroutine add_fixed(list, isub, fixed)
-    !! Mark the rigid translational supports of substructure isub in list.
+  pure subroutine add_fixed(list, rest)
+    !! Mark the rigid translational supports of list in rest(sub).
     type(support_t), intent(in) :: list(:)
-    integer, intent(in) :: isub
-    logical, intent(inout) :: fixed(:, :)
+    type(restraint_t), intent(inout) :: rest(:)
     integer :: k
     do k = 1, size(list)
-       if (list(k)%sub /= isub .or. list(k)%state /= LINK_RIGID .or. list(k)%dof > NTRANS) cycle
-       fixed(list(k)%dof, list(k)%node) = .true.
+       if (list(k)%state /= LINK_RIGID .or. list(k)%dof > NTRANS) cycle
+       rest(list(k)%sub)%fixed(list(k)%dof, list(k)%node) = .true.
     end do
   end subroutine add_fixed
 

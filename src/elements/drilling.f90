@@ -100,12 +100,15 @@ contains
     real(wp), allocatable :: g(:), kda(:, :)
     real(wp) :: d(NSTRAIN, NSTRAIN), area, kaa(NMODE, NMODE)
     integer :: n, k, j
+    logical :: ed(size(xl, 2))
 
     call check_membrane_element(xl, t, e, nu, 'plane stress', error)
     if (allocated(error)) return
     n = size(xl, 2)
     d = t*plane_stress(e, nu)
-    call points(xl, edge_mask(n, edges), pts)
+    ed = .true.
+    if (present(edges)) ed = edges(1:n)
+    call points(xl, ed, pts)
     allocate (ke(3*n, 3*n), g(3*n), kda(3*n, NMODE), source=0.0_wp)
     kaa = 0.0_wp
     area = 0.0_wp
@@ -151,7 +154,8 @@ contains
        call fatal_error(error, EXIT_DECK, 'wrong number of element DOF values')
        return
     end if
-    ed = edge_mask(size(xl, 2), edges)
+    ed = .true.
+    if (present(edges)) ed = edges(1:size(xl, 2))
     if (size(xl, 2) == 3) then
        p = point_tri(xl, [1.0_wp, 1.0_wp, 1.0_wp]/3, 0.0_wp, ed)
        nres = t*matmul(plane_stress(e, nu), matmul(p%b, ue))
@@ -187,7 +191,8 @@ contains
        return
     end if
     d = plane_stress(e, nu)
-    ed = edge_mask(n, edges)
+    ed = .true.
+    if (present(edges)) ed = edges(1:n)
     if (n == 3) then
        allocate (sig_points(NSTRAIN, 1), sig_nodes(NSTRAIN, 3))
        p = point_tri(xl, [1.0_wp, 1.0_wp, 1.0_wp]/3, 0.0_wp, ed)
@@ -233,15 +238,6 @@ contains
   end function modes
 
   ! ----------------------------------------------------------------- points
-
-  pure function edge_mask(n, edges) result(ed)
-    !! The edges with bubbles: edges when present, else all n.
-    integer, intent(in) :: n
-    logical, intent(in), optional :: edges(:)
-    logical :: ed(n)
-    ed = .true.
-    if (present(edges)) ed = edges(1:n)
-  end function edge_mask
 
   pure subroutine points(xl, ed, pts)
     !! The integration points of a checked element with their rows (ed: the

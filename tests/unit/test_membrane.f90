@@ -66,7 +66,11 @@ contains
     logical, intent(in), optional :: edges(:)
     real(wp), allocatable :: ke(:, :)
     type(error_t), allocatable :: error
-    call stiff(kind, xl, t, e, nu, ke, error, edges)
+    if (present(edges)) then
+       call stiff(kind, xl, t, e, nu, ke, error, edges)
+    else
+       call stiff(kind, xl, t, e, nu, ke, error)
+    end if
     call check(.not. allocated(error), what//': stiffness without error')
     if (allocated(error)) then
        write (*, '(a)') '  message: '//error%message
@@ -175,7 +179,11 @@ contains
     else if (kind == KIND_STRAIN) then
        call plane_strain_stiffness(xl, t, e, nu, ke, error)
     else if (kind == KIND_ALLMAN) then
-       call drilling_stiffness(xl, t, e, nu, ke, error, edges)
+       if (present(edges)) then
+          call drilling_stiffness(xl, t, e, nu, ke, error, edges)
+       else
+          call drilling_stiffness(xl, t, e, nu, ke, error)
+       end if
     else
        call membrane_drill_stiffness(xl, t, e, nu, ke, error)
     end if

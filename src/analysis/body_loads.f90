@@ -14,6 +14,7 @@ module superjoin_analysis_body_loads
   use superjoin_model_types, only: ET_S8R
   use superjoin_elements_thermal, only: thermal_beam_end_forces
   use superjoin_model_types, only: MAX_ELEMENT_NODES
+  use superjoin_elements_drill_mask, only: element_drill
   implicit none (type, external)
   private
 
@@ -126,7 +127,7 @@ contains
             associate (sec => s%sections(s%elem_section(dl%elem)))
               ! errors were reported when the loads were assembled
               call element_material_load(etype, s%x(:, s%elem_nodes(1:nn, dl%elem)), sec, &
-                   model%materials(sec%material), dl, fe, error)
+                   model%materials(sec%material), dl, fe, error, element_drill(s, dl%elem))
               if (allocated(error)) cycle
               call beam_frame(etype, s%x(:, s%elem_nodes(1:nn, dl%elem)), sec, r, length, error)
               if (allocated(error)) cycle

@@ -13,6 +13,7 @@ module superjoin_analysis_penalty
   use superjoin_error, only: error_t, add_error_line, EXIT_DECK
   use superjoin_model_types, only: model_t, ELEMENT_NODE_COUNT, LINK_FINITE, LINK_RIGID, loc_text
   use superjoin_elements, only: element_stiffness
+  use superjoin_elements_drill_mask, only: element_drill
   use superjoin_assembly_dofs, only: dof_table_t, GROUND, UNIT_LINK, BLOCK_SIZE, block_dof
   use superjoin_assembly_assemble, only: element_pdofs
   use superjoin_utils_strings, only: itoa
@@ -137,7 +138,7 @@ contains
             nn = ELEMENT_NODE_COUNT(s%elem_type(e))
             call element_stiffness(s%elem_type(e), s%x(:, s%elem_nodes(1:nn, e)), &
                  s%sections(s%elem_section(e)), model%materials(s%sections(s%elem_section(e))%material), &
-                 ke, inner)
+                 ke, inner, element_drill(s, e))
             if (allocated(inner)) then
                call add_error_line(error, EXIT_DECK, loc_text(model, s%loc)// &
                     ': error: element '//itoa(int(s%elem_id(e)))//': '//inner%message)

@@ -21,6 +21,7 @@ module superjoin_analysis_recover
   use superjoin_analysis_body_loads, only: plate_thermal_strains, line_centrif_forces, take_thermal_resultants
   use superjoin_analysis_body_loads, only: plane_thermal_nodal, line_thermal_forces
   use superjoin_utils_memory, only: out_of_memory, BYTES_REAL, BYTES_INT
+  use superjoin_elements_drill_mask, only: element_drill
   implicit none (type, external)
   private
 
@@ -213,7 +214,7 @@ contains
                  ! r takes K_e u_e (the distributed loads of these elements are left out of r above)
                  call shell_forces(s%elem_type(e), s%x(:, s%elem_nodes(1:nn, e)), sec, &
                       model%materials(sec%material), u(pd(1:n), :), res%fields%plate(:, ie, :), fg2(1:n, :), inner, &
-                      with_forces=.not. own_ku(isub))
+                      with_forces=.not. own_ku(isub), drill=element_drill(s, e))
                  if (allocated(inner)) then
                     call add_error_line(error, EXIT_DECK, inner%message)
                     return

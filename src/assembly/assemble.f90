@@ -16,6 +16,7 @@ module superjoin_assembly_assemble
   use superjoin_utils_sorting, only: sort_unique_i8
   use superjoin_utils_strings, only: itoa
   use superjoin_utils_memory, only: out_of_memory, BYTES_REAL, BYTES_I8
+  use superjoin_elements_drill_mask, only: element_drill
   implicit none (type, external)
   private
 
@@ -159,7 +160,7 @@ contains
       nn = ELEMENT_NODE_COUNT(s%elem_type(e))
       call element_stiffness(s%elem_type(e), s%x(:, s%elem_nodes(1:nn, e)), &
            s%sections(s%elem_section(e)), model%materials(s%sections(s%elem_section(e))%material), &
-           ke, inner)
+           ke, inner, element_drill(s, e))
       if (allocated(inner)) call add_error_line(error, EXIT_DECK, element_where(model, isub, e)// &
            ': error: element '//itoa(int(s%elem_id(e)))//': '//inner%message)
     end associate
@@ -357,7 +358,7 @@ contains
              .or. any(dl%gradient /= 0.0_wp)))) then   ! TEMP: a beam with a gradient needs E I
            q_local = 0.0_wp   ! CENTRIF on a bar or beam: its end forces take fe itself (superjoin_analysis_recover)
            call element_material_load(s%elem_type(dl%elem), s%x(:, s%elem_nodes(1:nn, dl%elem)), sec, &
-                model%materials(sec%material), dl, fe, error)
+                model%materials(sec%material), dl, fe, error, element_drill(s, dl%elem))
         else
            call element_distributed_load(s%elem_type(dl%elem), s%x(:, s%elem_nodes(1:nn, dl%elem)), sec, &
                 dl%kind, dl%value, fe, q_local, error)

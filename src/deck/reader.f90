@@ -13,6 +13,7 @@ module superjoin_deck_reader
   use superjoin_deck_validate, only: build_model
   use superjoin_deck_equation_build, only: build_equations
   use superjoin_deck_frame_build, only: build_frames, link_frames
+  use superjoin_elements_drill_mask, only: mark_drilling_edges
   use superjoin_deck_thickness_build, only: apply_nodal_thickness
   implicit none (type, external)
   private
@@ -61,6 +62,7 @@ contains
     if (.not. st%aborted) call build_frames(st, model)
     if (.not. st%aborted) call link_frames(st, model)
     if (.not. st%aborted) call apply_nodal_thickness(st, model)
+    if (.not. st%aborted .and. .not. allocated(st%error)) call mark_drilling_edges(model)
     if (allocated(st%error)) call move_alloc(st%error, error)
   end subroutine read_deck_string
 end module superjoin_deck_reader

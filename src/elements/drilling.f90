@@ -36,6 +36,14 @@ module superjoin_elements_drilling
   !! Scordelis-Lo 4 × 4 1.21 too flexible, so γ = G.) For the triangle the mean
   !! penalty with γ = G: 0.158 0.161 0.110, 48×4 0.894 (γ = 0.01 G: 0.218, 0.922).
   !!
+  !! Edge masks (the optional `edges` arguments): an edge without its bubble
+  !! stays straight; superjoin_elements_drill_mask keeps the bubbles of S4/S4R
+  !! on flat regions only (an edge's two nodes flat and not restraining its
+  !! in-plane normal translation), so the mask is a property of the edge and
+  !! the two elements sharing it agree. The quadrilateral's 2×2 penalty holds
+  !! θz under any mask (three zero eigenvalues); the triangle's mean penalty
+  !! does not, so it is used with all its bubbles only.
+  !!
   !! Patch test: a linear displacement field with θ equal to its (constant)
   !! rotation makes every Δu_k vanish and the penalty zero; the incompatible
   !! modes have zero mean strain on any shape; the integrals of the bubble
@@ -77,24 +85,30 @@ module superjoin_elements_drilling
 
 contains
 
-  pure subroutine drilling_stiffness(xl, t, e, nu, ke, error)
+  pure subroutine drilling_stiffness(xl, t, e, nu, ke, error, edges)
     !! Stiffness ke(3n, 3n) of the Allman triangle (n = 3) or the
     !! Ibrahimbegovic-Taylor-Wilson quadrilateral (n = 4), node-major (u, v, θz),
     !! in the local frame xl(2, n) (nodes counter-clockwise), thickness t.
+    !! edges(k) (optional, default all true): edge k (node k to k + 1) has its
+    !! bubble; without it the edge stays straight (u, v linear along it).
     real(wp), intent(in) :: xl(:, :)
     real(wp), intent(in) :: t, e, nu
     real(wp), allocatable, intent(out) :: ke(:, :)
     type(error_t), allocatable, intent(out) :: error
+    logical, intent(in), optional :: edges(:)
     type(point_t), allocatable :: pts(:)
     real(wp), allocatable :: g(:), kda(:, :)
     real(wp) :: d(NSTRAIN, NSTRAIN), area, kaa(NMODE, NMODE)
     integer :: n, k, j
+    logical :: ed(size(xl, 2))
 
     call check_membrane_element(xl, t, e, nu, 'plane stress', error)
     if (allocated(error)) return
     n = size(xl, 2)
     d = t*plane_stress(e, nu)
-    call points(xl, pts)
+    ed = .true.
+    if (present(edges)) ed = edges(1:n)
+    call points(xl, ed, pts)
     allocate (ke(3*n, 3*n), g(3*n), kda(3*n, NMODE), source=0.0_wp)
     kaa = 0.0_wp
     area = 0.0_wp
@@ -121,16 +135,18 @@ contains
     ke = 0.5_wp*(ke + transpose(ke))
   end subroutine drilling_stiffness
 
-  pure subroutine drilling_resultants(xl, t, e, nu, ue, nres, error)
+  pure subroutine drilling_resultants(xl, t, e, nu, ue, nres, error, edges)
     !! Membrane resultants nres = (nx, ny, nxy) = t σ at the centroid of the
     !! natural coordinates (triangle: area centroid; quadrilateral: ξ = η = 0)
-    !! from ue(3n) = (u, v, θz) node-major.
+    !! from ue(3n) = (u, v, θz) node-major; edges as drilling_stiffness.
     real(wp), intent(in) :: xl(:, :)
     real(wp), intent(in) :: t, e, nu
     real(wp), intent(in) :: ue(:)
     real(wp), intent(out) :: nres(NSTRAIN)
     type(error_t), allocatable, intent(out) :: error
+    logical, intent(in), optional :: edges(:)
     type(point_t) :: p
+    logical :: ed(size(xl, 2))
     nres = 0.0_wp
     call check_membrane_element(xl, t, e, nu, 'plane stress', error)
     if (allocated(error)) return
@@ -138,28 +154,32 @@ contains
        call fatal_error(error, EXIT_DECK, 'wrong number of element DOF values')
        return
     end if
+    ed = .true.
+    if (present(edges)) ed = edges(1:size(xl, 2))
     if (size(xl, 2) == 3) then
-       p = point_tri(xl, [1.0_wp, 1.0_wp, 1.0_wp]/3, 0.0_wp)
+       p = point_tri(xl, [1.0_wp, 1.0_wp, 1.0_wp]/3, 0.0_wp, ed)
        nres = t*matmul(plane_stress(e, nu), matmul(p%b, ue))
     else
-       p = point_quad(xl, 0.0_wp, 0.0_wp, 0.0_wp)
-       nres = t*matmul(plane_stress(e, nu), matmul(p%b, ue) + matmul(p%ba, modes(xl, e, nu, ue)))
+       p = point_quad(xl, 0.0_wp, 0.0_wp, 0.0_wp, ed)
+       nres = t*matmul(plane_stress(e, nu), matmul(p%b, ue) + matmul(p%ba, modes(xl, e, nu, ue, ed)))
     end if
   end subroutine drilling_resultants
 
-  pure subroutine drilling_point_stresses(xl, e, nu, ue, sig_points, sig_nodes, error)
+  pure subroutine drilling_point_stresses(xl, e, nu, ue, sig_points, sig_nodes, error, edges)
     !! Stresses (σx, σy, τxy) from ue(3n) = (u, v, θz): the triangle's
     !! centroid (sig_points(3, 1)), the quadrilateral's 2×2 Gauss points in the
     !! order of superjoin_elements_membrane's membrane_point_stresses (the point
     !! next to node k k-th); sig_nodes(3, n) at the nodes (the strain field of
     !! the element evaluated there: it is linear on the triangle, and on the
     !! quadrilateral the bilinear field through the Gauss values extrapolated,
-    !! as membrane_point_stresses does).
+    !! as membrane_point_stresses does); edges as drilling_stiffness.
     real(wp), intent(in) :: xl(:, :)
     real(wp), intent(in) :: e, nu
     real(wp), intent(in) :: ue(:)
     real(wp), allocatable, intent(out) :: sig_points(:, :), sig_nodes(:, :)
     type(error_t), allocatable, intent(out) :: error
+    logical, intent(in), optional :: edges(:)
+    logical :: ed(size(xl, 2))
     type(point_t) :: p
     real(wp) :: d(NSTRAIN, NSTRAIN), lc(3), alpha(NMODE)
     integer :: k, n
@@ -171,22 +191,24 @@ contains
        return
     end if
     d = plane_stress(e, nu)
+    ed = .true.
+    if (present(edges)) ed = edges(1:n)
     if (n == 3) then
        allocate (sig_points(NSTRAIN, 1), sig_nodes(NSTRAIN, 3))
-       p = point_tri(xl, [1.0_wp, 1.0_wp, 1.0_wp]/3, 0.0_wp)
+       p = point_tri(xl, [1.0_wp, 1.0_wp, 1.0_wp]/3, 0.0_wp, ed)
        sig_points(:, 1) = matmul(d, matmul(p%b, ue))
        do k = 1, 3
           lc = 0.0_wp
           lc(k) = 1.0_wp
-          p = point_tri(xl, lc, 0.0_wp)
+          p = point_tri(xl, lc, 0.0_wp, ed)
           sig_nodes(:, k) = matmul(d, matmul(p%b, ue))
        end do
        return
     end if
     allocate (sig_points(NSTRAIN, 4), sig_nodes(NSTRAIN, 4))
-    alpha = modes(xl, e, nu, ue)
+    alpha = modes(xl, e, nu, ue, ed)
     do k = 1, 4
-       p = point_quad(xl, GP*XI_NODE(k), GP*ETA_NODE(k), 0.0_wp)
+       p = point_quad(xl, GP*XI_NODE(k), GP*ETA_NODE(k), 0.0_wp, ed)
        sig_points(:, k) = matmul(d, matmul(p%b, ue) + matmul(p%ba, alpha))
     end do
     do k = 1, 4
@@ -194,16 +216,17 @@ contains
     end do
   end subroutine drilling_point_stresses
 
-  pure function modes(xl, e, nu, ue) result(alpha)
+  pure function modes(xl, e, nu, ue, ed) result(alpha)
     !! Incompatible-mode amplitudes of a quadrilateral from its nodal values
-    !! (static condensation undone): α = -Kaa⁻¹ Kad ue.
+    !! (static condensation undone): α = -Kaa⁻¹ Kad ue; ed the edges with bubbles.
     real(wp), intent(in) :: xl(:, :), e, nu, ue(:)
+    logical, intent(in) :: ed(:)
     real(wp) :: alpha(NMODE)
     type(point_t), allocatable :: pts(:)
     real(wp) :: d(NSTRAIN, NSTRAIN), kaa(NMODE, NMODE), rhs(NMODE, 1), x(NMODE, 1)
     integer :: k
     d = plane_stress(e, nu)
-    call points(xl, pts)
+    call points(xl, ed, pts)
     kaa = 0.0_wp
     rhs = 0.0_wp
     do k = 1, size(pts)
@@ -216,9 +239,11 @@ contains
 
   ! ----------------------------------------------------------------- points
 
-  pure subroutine points(xl, pts)
-    !! The integration points of a checked element with their rows.
+  pure subroutine points(xl, ed, pts)
+    !! The integration points of a checked element with their rows (ed: the
+    !! edges with bubbles).
     real(wp), intent(in) :: xl(:, :)
+    logical, intent(in) :: ed(:)
     type(point_t), allocatable, intent(out) :: pts(:)
     real(wp) :: lc(3)
     integer :: k
@@ -228,20 +253,22 @@ contains
           ! midside points: L_k = 0, the other two 1/2
           lc = 0.5_wp
           lc(k) = 0.0_wp
-          pts(k) = point_tri(xl, lc, triangle_area(xl)/NPOINT_TRI)
+          pts(k) = point_tri(xl, lc, triangle_area(xl)/NPOINT_TRI, ed)
        end do
     else
        allocate (pts(NPOINT_QUAD))
        do k = 1, NPOINT_QUAD
           ! Gauss weight 1, times det J inside point_quad
-          pts(k) = point_quad(xl, GP*XI_NODE(k), GP*ETA_NODE(k), 1.0_wp)
+          pts(k) = point_quad(xl, GP*XI_NODE(k), GP*ETA_NODE(k), 1.0_wp, ed)
        end do
     end if
   end subroutine points
 
-  pure function point_tri(xl, lc, weight) result(p)
-    !! Rows at the point of area coordinates lc of a triangle.
+  pure function point_tri(xl, lc, weight, ed) result(p)
+    !! Rows at the point of area coordinates lc of a triangle (ed: the edges
+    !! with bubbles).
     real(wp), intent(in) :: xl(2, 3), lc(3), weight
+    logical, intent(in) :: ed(3)
     type(point_t) :: p
     real(wp) :: dl(2, 3), dp(2, 3), area, pe(3)
     integer :: i, j, k
@@ -258,12 +285,14 @@ contains
        pe(i) = 4*lc(i)*lc(j)
        dp(:, i) = 4*(lc(j)*dl(:, i) + lc(i)*dl(:, j))
     end do
-    p = assemble(xl, lc, dl, dp, weight)
+    p = assemble(xl, lc, dl, dp, weight, ed)
   end function point_tri
 
-  pure function point_quad(xl, xi, eta, weight) result(p)
-    !! Rows at (ξ, η) of a quadrilateral; weight multiplied by det J.
+  pure function point_quad(xl, xi, eta, weight, ed) result(p)
+    !! Rows at (ξ, η) of a quadrilateral; weight multiplied by det J (ed: the
+    !! edges with bubbles).
     real(wp), intent(in) :: xl(2, 4), xi, eta, weight
+    logical, intent(in) :: ed(4)
     type(point_t) :: p
     real(wp) :: dn(2, 4), dpn(2, 4), jm(2, 2), inv(2, 2), jac, j0(2, 2), adj0(2, 2), dm(2, 2)
     integer :: i
@@ -280,7 +309,7 @@ contains
     inv(1, :) = [jm(2, 2), -jm(1, 2)]
     inv(2, :) = [-jm(2, 1), jm(1, 1)]
     inv = inv/jac
-    p = assemble(xl, bilinear(xi, eta), matmul(inv, dn), matmul(inv, dpn), weight*jac)
+    p = assemble(xl, bilinear(xi, eta), matmul(inv, dn), matmul(inv, dpn), weight*jac, ed)
     ! Incompatible modes 1 - ξ², 1 - η² with Taylor's correction (derivatives
     ! mapped by the centre's J₀ and scaled by j₀/j, i.e. adj(J₀)/j): their
     ! integral over the element vanishes, the patch test holds on any shape.
@@ -301,10 +330,12 @@ contains
     end do
   end function point_quad
 
-  pure function assemble(xl, nc, dn, dp, weight) result(p)
+  pure function assemble(xl, nc, dn, dp, weight, ed) result(p)
     !! Rows from the corner functions nc(n) and their Cartesian derivatives
-    !! dn(2, n), and the edge-bubble derivatives dp(2, n) (edge k from node k to k + 1).
+    !! dn(2, n), and the edge-bubble derivatives dp(2, n) (edge k from node k to
+    !! k + 1) of the edges with ed(k).
     real(wp), intent(in) :: xl(:, :), nc(:), dn(:, :), dp(:, :), weight
+    logical, intent(in) :: ed(:)
     type(point_t) :: p
     real(wp) :: cu, cv
     integer :: n, a, i, j, k
@@ -321,6 +352,7 @@ contains
        p%w(3*a) = -nc(a)
     end do
     do k = 1, n
+       if (.not. ed(k)) cycle
        i = k
        j = modulo(k, n) + 1
        ! Δu_k = (θⱼ - θᵢ)(cu, cv)

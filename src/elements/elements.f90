@@ -129,18 +129,21 @@ contains
     end select
   end subroutine element_nodal_forces
 
-  pure subroutine element_stiffness(etype, x, sec, mat, ke, error)
+  pure subroutine element_stiffness(etype, x, sec, mat, ke, error, drill)
     !! Element stiffness in global axes, node-major ordering (node 1 DOFs in
     !! element_node_dofs order, then node 2 ...; B32: end, middle, end). x(3, nnode) are the node
     !! coordinates. Errors: zero-length element, orientation vector parallel to
     !! beam axis, nonpositive A, I, J, t or E, plane-stress element out of the
-    !! XY plane, zero area, distorted (non-convex) quadrilateral.
+    !! XY plane, zero area, distorted (non-convex) quadrilateral. drill: the
+    !! element's drilling-membrane edge mask (superjoin_elements_drill_mask;
+    !! absent: every edge).
     integer, intent(in) :: etype
     real(wp), intent(in) :: x(:, :)
     type(section_t), intent(in) :: sec
     type(material_t), intent(in) :: mat
     real(wp), allocatable, intent(out) :: ke(:, :)
     type(error_t), allocatable, intent(out) :: error
+    integer, intent(in), optional :: drill
     select case (etype)
     case (ET_T2D2, ET_T3D2)
        call truss_stiffness(etype, x, sec, mat, ke, error)
@@ -150,7 +153,7 @@ contains
        call beam3_stiffness(x, sec, mat, ke, error)
     case (ET_CPS3, ET_CPS4, ET_S3, ET_S4, ET_CPE3, ET_CPE4, ET_CPS6, ET_CPS8, ET_CPE6, ET_CPE8, ET_CPS8R, ET_CPE8R, ET_S4R, ET_S3R, &
          ET_S8R)
-       call shell_stiffness(etype, x, sec, mat, ke, error)
+       call shell_stiffness(etype, x, sec, mat, ke, error, drill)
     case default
        call unsupported(etype, error)
     end select
@@ -332,11 +335,11 @@ contains
     end select
   end subroutine element_gravity_load
 
-  pure subroutine element_material_load(etype, x, sec, mat, dl, fe, error)
+  pure subroutine element_material_load(etype, x, sec, mat, dl, fe, error, drill)
     !! Consistent nodal loads fe (global axes, element ordering) of the loads
     !! that need the material: the thermal strain of a plane or shell element
     !! (DLOAD_THERMAL, superjoin_elements_thermal) and the centrifugal load
-    !! (DLOAD_CENTRIF, superjoin_elements_centrif).
+    !! (DLOAD_CENTRIF, superjoin_elements_centrif). drill as element_stiffness.
     integer, intent(in) :: etype
     real(wp), intent(in) :: x(:, :)
     type(section_t), intent(in) :: sec
@@ -344,6 +347,7 @@ contains
     type(dload_t), intent(in) :: dl
     real(wp), allocatable, intent(out) :: fe(:)
     type(error_t), allocatable, intent(out) :: error
+    integer, intent(in), optional :: drill
     real(wp), allocatable :: f2(:)
     select case (dl%kind)
     case (DLOAD_THERMAL)
@@ -364,7 +368,7 @@ contains
           call s8r_thermal_load(x, sec, mat, dl%value, dl%curvature, fe, error)
           return
        end if
-       call thermal_plate_load(etype, x, sec, mat, dl%value, dl%curvature, fe, error)
+       call thermal_plate_load(etype, x, sec, mat, dl%value, dl%curvature, fe, error, drill)
        if (allocated(error) .or. .not. allocated(dl%nodal)) return
        ! a temperature that varies over the element: the nodal remainder, interpolated
        call thermal_plane_nodal_load(etype, x, sec, mat, dl%nodal, f2, error)

@@ -19,9 +19,9 @@ module superjoin_elements_membrane
   !! area (mapped back to (ξ, η) by Newton's method for the quadrilateral), with the
   !! incompatible-mode amplitudes recovered from the nodal displacements.
   !!
-  !! Drilling rotation (membrane_drill_stiffness, the membrane of S3/S4/S3R/S4R;
-  !! the true drilling rotations of superjoin_elements_drilling are measured but
-  !! not used by any element type): membrane_stiffness plus
+  !! Drilling rotation (membrane_drill_stiffness, the membrane of S3/S3R, and of
+  !! S4/S4R elements without any flat edge; flat regions of S4/S4R take the true
+  !! drilling rotations of superjoin_elements_drilling): membrane_stiffness plus
   !!   ½ kr (θ̄ - ω̄)² + ½ kn Σᵢ (θᵢ - θ̄)²,   kr = DRILL_ROTATION_FACTOR G t A,
   !!                                          kn = DRILL_NODE_FACTOR G t A,
   !! with θ̄ the mean nodal θz and ω̄ = (1/A) ∫ (∂v/∂x - ∂u/∂y)/2 dA the mean

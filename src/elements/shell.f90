@@ -44,7 +44,7 @@ module superjoin_elements_shell
   public :: is_plate_type, is_plane_type, is_plane_strain_type, is_quadratic_plane_type, shell_frame, shell_stiffness, shell_resultants, shell_forces, shell_pressure_load, &
        shell_area_load
   public :: shell_surface_stresses, thick_shell_stresses, THICK_SURFACES
-  public :: has_drilling_membrane
+  public :: has_drilling_membrane, drilling_edges, DRILL_ALL_EDGES
   public :: s8r_stresses
   public :: shell8_props
 
@@ -56,12 +56,20 @@ module superjoin_elements_shell
     !! Section points of thick_shell_stresses: 1 bottom, 2 top, 3 mid-surface.
   real(wp), parameter :: PARABOLIC_SHEAR_PEAK = 1.5_wp
     !! τ(z = 0) = 1.5 q / t, the peak of the parabolic transverse shear stress of a homogeneous section.
-  integer, parameter :: DRILLING_MEMBRANE_TYPES(*) = [integer ::]
-    !! Shell types with the drilling membrane (has_drilling_membrane): none.
-    !! [ET_S4, ET_S4R] switches S4/S4R to the Ibrahimbegovic-Taylor-Wilson
-    !! membrane of superjoin_elements_drilling; measured and not adopted
-    !! (doc/verification.md, "Drilling membranes": the pinched hemisphere 4x4
-    !! falls from 1.042 to 0.479, and a symmetry plane must then fix θz too).
+  integer, parameter :: DRILLING_MEMBRANE_TYPES(*) = [ET_S4, ET_S4R]
+    !! Shell types with the drilling membrane (has_drilling_membrane): S4 and
+    !! S4R take the Ibrahimbegovic-Taylor-Wilson membrane of
+    !! superjoin_elements_drilling with the edge bubbles of flat, unrestrained
+    !! edges only (superjoin_elements_drill_mask; with bubbles on every edge
+    !! the coarse pinched hemisphere locks, 4x4: 0.479 against QM6's 1.042);
+    !! an element without any is QM6 with soft drilling springs. S3/S3R keep
+    !! the CST: the Allman triangle gains too little on flat meshes
+    !! (doc/verification.md, "Drilling membranes").
+  integer, parameter :: DRILL_ALL_EDGES = 15
+    !! Edge mask of a drilling membrane with every edge's bubble (bit k - 1:
+    !! edge k from node k to k + 1); the default of the optional `drill`
+    !! arguments below (superjoin_elements_drill_mask computes the mask of
+    !! each element of a mesh).
   real(wp), parameter :: PLANE_TOL = 1.0e-8_wp
     !! Largest |z| spread of a plane-stress element relative to its size.
 
@@ -81,6 +89,22 @@ contains
     integer, intent(in) :: etype
     has_drilling_membrane = any(etype == DRILLING_MEMBRANE_TYPES)
   end function has_drilling_membrane
+
+  pure function drilling_edges(etype, n, drill) result(edges)
+    !! The edges of an n-node element of type etype whose bubble the drilling
+    !! membrane carries under the edge mask drill (absent: DRILL_ALL_EDGES);
+    !! all false unless has_drilling_membrane(etype). An element without any
+    !! is the CST / QM6 with soft drilling springs.
+    integer, intent(in) :: etype, n
+    integer, intent(in), optional :: drill
+    logical :: edges(n)
+    integer :: mask, k
+    mask = DRILL_ALL_EDGES
+    if (present(drill)) mask = drill
+    do k = 1, n
+       edges(k) = has_drilling_membrane(etype) .and. btest(mask, k - 1)
+    end do
+  end function drilling_edges
 
   elemental logical function is_thick_shell_type(etype)
     !! True for the thick (Reissner-Mindlin) shells S4R, S3R.
@@ -189,15 +213,17 @@ contains
     end do
   end subroutine shell_frame
 
-  pure subroutine shell_stiffness(etype, x, sec, mat, ke, error)
+  pure subroutine shell_stiffness(etype, x, sec, mat, ke, error, drill)
     !! Stiffness in global axes, node-major: CPS3/CPS4 (ux, uy per node),
-    !! S3/S4 (ux, uy, uz, rx, ry, rz per node).
+    !! S3/S4 (ux, uy, uz, rx, ry, rz per node). drill: the element's edge
+    !! mask for a drilling membrane (drilling_edges; absent: every edge).
     integer, intent(in) :: etype
     real(wp), intent(in) :: x(:, :)
     type(section_t), intent(in) :: sec
     type(material_t), intent(in) :: mat
     real(wp), allocatable, intent(out) :: ke(:, :)
     type(error_t), allocatable, intent(out) :: error
+    integer, intent(in), optional :: drill
     real(wp), allocatable :: kf(:, :)
     real(wp) :: r(3, 3), xl(2, size(x, 2)), h(size(x, 2))
 
@@ -207,7 +233,7 @@ contains
        call shell8_stiffness(x, [r(1, 1), r(1, 2), r(1, 3)], shell8_props(sec, mat), ke, error)
        return
     end if
-    call flat_stiffness(etype, x, sec, mat, kf, r, xl, h, error)
+    call flat_stiffness(etype, x, sec, mat, kf, r, xl, h, error, drilling_edges(etype, size(x, 2), drill))
     if (allocated(error)) return
     ke = to_global(kf, node_maps(etype, r, h))
   end subroutine shell_stiffness
@@ -254,12 +280,13 @@ contains
     end do
   end subroutine shell8_forces
 
-  pure subroutine shell_forces(etype, x, sec, mat, ue, res, fg, error, with_forces)
+  pure subroutine shell_forces(etype, x, sec, mat, ue, res, fg, error, with_forces, drill)
     !! For every step (columns of ue, element displacements in global axes):
     !! the resultants res(6, step) as shell_resultants, and the forces the nodes
     !! exert on the element fg(:, step) = K_e u_e (global axes), the element
     !! matrix being formed once, in the element frame. With with_forces =
-    !! .false. only the resultants (fg = 0, no element matrix formed).
+    !! .false. only the resultants (fg = 0, no element matrix formed). drill
+    !! as shell_stiffness.
     integer, intent(in) :: etype
     real(wp), intent(in) :: x(:, :)
     type(section_t), intent(in) :: sec
@@ -268,10 +295,11 @@ contains
     real(wp), intent(out) :: res(:, :), fg(:, :)
     type(error_t), allocatable, intent(out) :: error
     logical, intent(in), optional :: with_forces
+    integer, intent(in), optional :: drill
     real(wp), allocatable :: kf(:, :), maps(:, :, :), d(:)
     real(wp) :: r(3, 3), xl(2, size(x, 2)), h(size(x, 2))
     integer :: is
-    logical :: forces
+    logical :: forces, edges(size(x, 2))
 
     res = 0.0_wp
     fg = 0.0_wp
@@ -281,8 +309,9 @@ contains
        call shell8_forces(x, sec, mat, ue, res, fg, forces, error)
        return
     end if
+    edges = drilling_edges(etype, size(x, 2), drill)
     if (forces) then
-       call flat_stiffness(etype, x, sec, mat, kf, r, xl, h, error)
+       call flat_stiffness(etype, x, sec, mat, kf, r, xl, h, error, edges)
     else
        call setup(etype, x, r, xl, h, error)
     end if
@@ -294,15 +323,16 @@ contains
     do is = 1, size(ue, 2)
        d = to_local(maps, ue(:, is))
        if (forces) fg(:, is) = to_global_vector(maps, matmul(kf, d))
-       call local_resultants(etype, xl, sec, mat, d, res(:, is), error)
+       call local_resultants(etype, xl, sec, mat, d, res(:, is), error, edges)
        if (allocated(error)) return
     end do
   end subroutine shell_forces
 
-  pure subroutine shell_resultants(etype, x, sec, mat, ue, res, error)
+  pure subroutine shell_resultants(etype, x, sec, mat, ue, res, error, drill)
     !! Resultants per unit length at the centroid in the element frame,
     !! res = nx, ny, nxy, mx, my, mxy (plane stress: moments 0), from the
-    !! element displacements ue in global axes (element_stiffness ordering).
+    !! element displacements ue in global axes (element_stiffness ordering);
+    !! drill as shell_stiffness.
     integer, intent(in) :: etype
     real(wp), intent(in) :: x(:, :)
     type(section_t), intent(in) :: sec
@@ -310,6 +340,7 @@ contains
     real(wp), intent(in) :: ue(:)
     real(wp), intent(out) :: res(6)
     type(error_t), allocatable, intent(out) :: error
+    integer, intent(in), optional :: drill
     real(wp) :: r(3, 3), xl(2, size(x, 2)), h(size(x, 2)), q(2)
 
     res = 0.0_wp
@@ -319,13 +350,15 @@ contains
        call shell8_resultants(x, [r(1, 1), r(1, 2), r(1, 3)], shell8_props(sec, mat), ue, res, q, error)
        return
     end if
-    call local_resultants(etype, xl, sec, mat, to_local(node_maps(etype, r, h), ue), res, error)
+    call local_resultants(etype, xl, sec, mat, to_local(node_maps(etype, r, h), ue), res, error, &
+         drilling_edges(etype, size(x, 2), drill))
   end subroutine shell_resultants
 
-  pure subroutine flat_stiffness(etype, x, sec, mat, kf, r, xl, h, error)
+  pure subroutine flat_stiffness(etype, x, sec, mat, kf, r, xl, h, error, edges)
     !! The element matrix in the element frame (plane stress: u, v per node;
     !! shells: u, v, w, θx, θy, θz per node at the projected points), with the
-    !! frame r, local coordinates xl and warp offsets h.
+    !! frame r, local coordinates xl and warp offsets h; edges: the bubbles of
+    !! the drilling membrane (drilling_edges; none: CST / QM6 with springs).
     integer, intent(in) :: etype
     real(wp), intent(in) :: x(:, :)
     type(section_t), intent(in) :: sec
@@ -333,6 +366,7 @@ contains
     real(wp), allocatable, intent(out) :: kf(:, :)
     real(wp), intent(out) :: r(3, 3), xl(:, :), h(:)
     type(error_t), allocatable, intent(out) :: error
+    logical, intent(in) :: edges(:)
     real(wp), allocatable :: km(:, :), kb(:, :)
     integer :: n
 
@@ -351,8 +385,8 @@ contains
        call plane_strain_stiffness(xl, sec%thickness, mat%e, mat%nu, kf, error)
        return
     end if
-    if (has_drilling_membrane(etype)) then
-       call drilling_stiffness(xl, sec%thickness, mat%e, mat%nu, km, error)
+    if (any(edges)) then
+       call drilling_stiffness(xl, sec%thickness, mat%e, mat%nu, km, error, edges)
     else
        call membrane_drill_stiffness(xl, sec%thickness, mat%e, mat%nu, km, error)
     end if
@@ -368,8 +402,9 @@ contains
     call scatter(kb, PLATE_DOFS, n, kf)
   end subroutine flat_stiffness
 
-  pure subroutine local_resultants(etype, xl, sec, mat, d, res, error)
-    !! Resultants from the element-frame DOFs d (flat_stiffness ordering).
+  pure subroutine local_resultants(etype, xl, sec, mat, d, res, error, edges)
+    !! Resultants from the element-frame DOFs d (flat_stiffness ordering);
+    !! edges as flat_stiffness.
     integer, intent(in) :: etype
     real(wp), intent(in) :: xl(:, :)
     type(section_t), intent(in) :: sec
@@ -377,6 +412,7 @@ contains
     real(wp), intent(in) :: d(:)
     real(wp), intent(out) :: res(6)
     type(error_t), allocatable, intent(out) :: error
+    logical, intent(in) :: edges(:)
     real(wp) :: um(2*size(xl, 2)), ub(3*size(xl, 2)), q(2), ud(3*size(xl, 2))
     integer :: i
     res = 0.0_wp
@@ -397,8 +433,8 @@ contains
        ud(3*i - 2:3*i) = d(6*(i - 1) + MEMBRANE_DOFS)
        ub(3*i - 2:3*i) = d(6*(i - 1) + PLATE_DOFS)
     end do
-    if (has_drilling_membrane(etype)) then
-       call drilling_resultants(xl, sec%thickness, mat%e, mat%nu, ud, res(1:3), error)
+    if (any(edges)) then
+       call drilling_resultants(xl, sec%thickness, mat%e, mat%nu, ud, res(1:3), error, edges)
     else
        call membrane_resultants(xl, sec%thickness, mat%e, mat%nu, um, res(1:3), error)
     end if
@@ -599,13 +635,14 @@ contains
     end do
   end subroutine scatter
 
-  pure subroutine shell_surface_stresses(x, sec, mat, ue, r, sig_points, sig_nodes, error)
+  pure subroutine shell_surface_stresses(x, sec, mat, ue, r, sig_points, sig_nodes, error, drill)
     !! Stresses (σx, σy, τxy) in the element frame r of an S3 or S4 from its
     !! displacements ue (global axes, element ordering) on the bottom (surface 1,
     !! z = -t/2) and top (surface 2, z = +t/2) surfaces, σ = n/t ∓ 6 m/t²:
     !! sig_points(3, point, surface) at the points of membrane_point_stresses
     !! and plate_point_moments (S3: the centroid; S4: 2×2 Gauss, point k next
-    !! to node k), sig_nodes(3, node, surface) extrapolated to the nodes.
+    !! to node k), sig_nodes(3, node, surface) extrapolated to the nodes;
+    !! drill as shell_stiffness.
     real(wp), intent(in) :: x(:, :)
     type(section_t), intent(in) :: sec
     type(material_t), intent(in) :: mat
@@ -613,13 +650,14 @@ contains
     real(wp), intent(out) :: r(3, 3)
     real(wp), allocatable, intent(out) :: sig_points(:, :, :), sig_nodes(:, :, :)
     type(error_t), allocatable, intent(out) :: error
+    integer, intent(in), optional :: drill
     real(wp) :: xl(2, size(x, 2)), ub(3*size(x, 2)), t
     real(wp), allocatable :: sp(:, :), sn(:, :), mp(:, :), mn(:, :)
     integer :: n, etype
     n = size(x, 2)
     etype = ET_S4
     if (n == 3) etype = ET_S3
-    call membrane_part(etype, x, mat, ue, r, xl, ub, sp, sn, error)
+    call membrane_part(etype, x, mat, ue, r, xl, ub, sp, sn, error, drilling_edges(etype, n, drill))
     if (allocated(error)) return
     t = sec%thickness
     call plate_point_moments(xl, t, mat%e, mat%nu, ub, mp, mn, error)
@@ -631,11 +669,12 @@ contains
     sig_nodes(:, :, 2) = sn + 6*mn/t**2
   end subroutine shell_surface_stresses
 
-  pure subroutine membrane_part(etype, x, mat, ue, r, xl, ub, sp, sn, error)
+  pure subroutine membrane_part(etype, x, mat, ue, r, xl, ub, sp, sn, error, edges)
     !! What the shell stress routines share: the element frame r and local
     !! coordinates xl, the plate DOFs ub (w, θx, θy per node) of the local
     !! displacements, and the membrane stresses at the points (sp) and nodes
-    !! (sn) of the element's membrane (drilling or QM6/CST).
+    !! (sn) of the element's membrane (drilling with the bubbles of edges, or
+    !! QM6/CST when there are none).
     integer, intent(in) :: etype
     real(wp), intent(in) :: x(:, :)
     type(material_t), intent(in) :: mat
@@ -643,6 +682,7 @@ contains
     real(wp), intent(out) :: r(3, 3), xl(:, :), ub(:)
     real(wp), allocatable, intent(out) :: sp(:, :), sn(:, :)
     type(error_t), allocatable, intent(out) :: error
+    logical, intent(in) :: edges(:)
     real(wp) :: h(size(x, 2)), d(size(ue)), um(2*size(x, 2)), ud(3*size(x, 2))
     integer :: i
     call setup(etype, x, r, xl, h, error)
@@ -653,14 +693,14 @@ contains
        ud(3*i - 2:3*i) = d(6*(i - 1) + MEMBRANE_DOFS)
        ub(3*i - 2:3*i) = d(6*(i - 1) + PLATE_DOFS)
     end do
-    if (has_drilling_membrane(etype)) then
-       call drilling_point_stresses(xl, mat%e, mat%nu, ud, sp, sn, error)
+    if (any(edges)) then
+       call drilling_point_stresses(xl, mat%e, mat%nu, ud, sp, sn, error, edges)
     else
        call membrane_point_stresses(xl, mat%e, mat%nu, .false., um, sp, sn, error)
     end if
   end subroutine membrane_part
 
-  pure subroutine thick_shell_stresses(etype, x, sec, mat, ue, r, sig_points, sig_nodes, error)
+  pure subroutine thick_shell_stresses(etype, x, sec, mat, ue, r, sig_points, sig_nodes, error, drill)
     !! Stresses (σx, σy, τxy, τxz, τyz) in the element frame r of an S4R or S3R
     !! from its displacements ue (global axes, element ordering) at three
     !! section points: bottom (1, z = -t/2), top (2, z = +t/2) and the
@@ -673,6 +713,7 @@ contains
     !! to node k), sig_nodes(5, node, surface) extrapolated to the nodes.
     !! The thick eight-node shell S8R (catalog type 15) gets its own routine
     !! with the same result layout, called from superjoin_output_stresses.
+    !! drill as shell_stiffness.
     integer, intent(in) :: etype
     real(wp), intent(in) :: x(:, :)
     type(section_t), intent(in) :: sec
@@ -681,9 +722,10 @@ contains
     real(wp), intent(out) :: r(3, 3)
     real(wp), allocatable, intent(out) :: sig_points(:, :, :), sig_nodes(:, :, :)
     type(error_t), allocatable, intent(out) :: error
+    integer, intent(in), optional :: drill
     real(wp) :: xl(2, size(x, 2)), ub(3*size(x, 2)), t
     real(wp), allocatable :: sp(:, :), sn(:, :), rp(:, :), rn(:, :)
-    call membrane_part(etype, x, mat, ue, r, xl, ub, sp, sn, error)
+    call membrane_part(etype, x, mat, ue, r, xl, ub, sp, sn, error, drilling_edges(etype, size(x, 2), drill))
     if (allocated(error)) return
     t = sec%thickness
     call mindlin_point_resultants(xl, t, mat%e, mat%nu, shell_shear_stiffness(sec, mat), ub, rp, rn, error)

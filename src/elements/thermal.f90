@@ -121,10 +121,11 @@ contains
     end do
   end subroutine thermal_free_field
 
-  pure subroutine thermal_plate_load(etype, x, sec, mat, strain, curvature, fe, error)
+  pure subroutine thermal_plate_load(etype, x, sec, mat, strain, curvature, fe, error, drill)
     !! Consistent nodal loads fe = K_e u_free (global axes, element ordering)
     !! of the thermal strain and curvature of a plane or shell element (see
-    !! the module header and thermal_free_field).
+    !! the module header and thermal_free_field); drill: the drilling edge
+    !! mask of shell_stiffness.
     integer, intent(in) :: etype
     real(wp), intent(in) :: x(:, :)
     type(section_t), intent(in) :: sec
@@ -132,10 +133,11 @@ contains
     real(wp), intent(in) :: strain, curvature
     real(wp), allocatable, intent(out) :: fe(:)
     type(error_t), allocatable, intent(out) :: error
+    integer, intent(in), optional :: drill
     real(wp), allocatable :: ke(:, :), u(:)
     call thermal_free_field(etype, x, mat%nu, strain, curvature, u, error)
     if (allocated(error)) return
-    call shell_stiffness(etype, x, sec, mat, ke, error)
+    call shell_stiffness(etype, x, sec, mat, ke, error, drill)
     if (allocated(error)) return
     fe = matmul(ke, u)
   end subroutine thermal_plate_load

@@ -138,6 +138,7 @@ module superjoin_model_types
      integer, allocatable :: elem_type(:)           !! ET_* per element
      integer(ip), allocatable :: elem_nodes(:, :)   !! (MAX_ELEMENT_NODES, nelem) local node indices
      integer, allocatable :: elem_section(:)        !! index into sections (0: none)
+     integer, allocatable :: elem_drill(:)          !! drilling-membrane edge mask (superjoin_elements_drill_mask)
      type(source_loc_t), allocatable :: elem_loc(:) !! where each element was defined
      type(index_set_t), allocatable :: nsets(:)
      type(index_set_t), allocatable :: elsets(:)

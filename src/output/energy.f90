@@ -18,6 +18,7 @@ module superjoin_output_energy
   use superjoin_model_types, only: model_t, output_request_t, NDOF_NODE, ELEMENT_NODE_COUNT, &
        LINK_FINITE, loc_text, DLOAD_THERMAL, support_t
   use superjoin_elements, only: element_dof_mask, element_stiffness
+  use superjoin_elements_drill_mask, only: element_drill
   use superjoin_assembly_assemble, only: distributed_load
   use superjoin_analysis_results, only: result_fields_t
   use superjoin_output_text_buffer, only: text_buffer_t
@@ -94,7 +95,7 @@ contains
             nn = ELEMENT_NODE_COUNT(sub%elem_type(e))
             associate (sec => sub%sections(sub%elem_section(e)))
               call element_stiffness(sub%elem_type(e), sub%x(:, sub%elem_nodes(1:nn, e)), sec, &
-                   model%materials(sec%material), ke, inner)
+                   model%materials(sec%material), ke, inner, element_drill(sub, e))
             end associate
             if (allocated(inner)) then
                call add_error_line(error, EXIT_DECK, loc_text(model, sub%elem_loc(e))//': error: '//inner%message)

@@ -41,6 +41,7 @@ module superjoin_output_stresses
   use superjoin_output_text_buffer, only: text_buffer_t
   use superjoin_output_columns, only: element_prefix, chop
   use superjoin_utils_strings, only: itoa
+  use superjoin_elements_drill_mask, only: element_drill
   implicit none (type, external)
   private
 
@@ -154,10 +155,10 @@ contains
            sp3 = reshape(sp, [3, size(sp, 2), 1])
            sn3 = reshape(sn, [3, size(sn, 2), 1])
         else if (is_thick_shell_type(etype)) then
-           call thick_shell_stresses(etype, x(:, 1:nn), sec, mat, ue, r, sp3, sn3, error)
+           call thick_shell_stresses(etype, x(:, 1:nn), sec, mat, ue, r, sp3, sn3, error, element_drill(sub, ie))
            if (allocated(error)) return
         else
-           call shell_surface_stresses(x(:, 1:nn), sec, mat, ue, r, sp3, sn3, error)
+           call shell_surface_stresses(x(:, 1:nn), sec, mat, ue, r, sp3, sn3, error, element_drill(sub, ie))
            if (allocated(error)) return
         end if
       end associate

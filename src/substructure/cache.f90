@@ -33,6 +33,8 @@ module superjoin_substructure_cache
      integer(ip), allocatable :: lnode(:)     !! local node of each local DOF
      integer, allocatable :: ldof(:)          !! DOF number 1..6 of each local DOF
      real(wp) :: rot(3, 3) = 0.0_wp           !! placement rotation of its substructure
+     integer, allocatable :: drill(:)         !! its elements' drilling edge masks (elem_drill; they
+                                              !! depend on supports and contacts, not only on the part)
   end type entry_t
 
   type :: entry_box_t
@@ -110,6 +112,7 @@ contains
             exit
          end if
          if (en%part == 0 .or. en%part /= model%subs(isub)%part) cycle
+         if (.not. same_masks(en%drill, model%subs(isub)%elem_drill)) cycle
          q = matmul(model%subs(isub)%rot, transpose(en%rot))
          if (.not. keeps_dofs(q, view%grp)) cycle
          if (.not. all(abs(q - identity()) <= ROT_ZERO) .and. mixed_blocks(view%grp, ni)) cycle
@@ -140,6 +143,7 @@ contains
          en%lnode = lnode
          en%ldof = ldof
          en%rot = model%subs(isub)%rot
+         if (allocated(model%subs(isub)%elem_drill)) en%drill = model%subs(isub)%elem_drill
        end associate
        view%entry = cache%n
        cache%computed = cache%computed + 1
@@ -268,6 +272,15 @@ contains
     end associate
     p = view%pdof(l)
   end subroutine view_spc
+
+  pure logical function same_masks(a, b)
+    !! Two instances' drilling edge masks agree (both absent, or equal).
+    integer, allocatable, intent(in) :: a(:), b(:)
+    same_masks = allocated(a) .eqv. allocated(b)
+    if (.not. same_masks .or. .not. allocated(a)) return
+    same_masks = size(a) == size(b)
+    if (same_masks) same_masks = all(a == b)
+  end function same_masks
 
   pure function identity() result(q)
     real(wp) :: q(3, 3)

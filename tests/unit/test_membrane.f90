@@ -57,14 +57,20 @@ contains
 
   ! ---------------------------------------------------------------- helpers
 
-  function element_matrix(kind, xl, t, e, nu, what) result(ke)
-    !! Stiffness of a membrane (kind KIND_MEMBRANE) or drilling membrane that must succeed.
+  function element_matrix(kind, xl, t, e, nu, what, edges) result(ke)
+    !! Stiffness of a membrane (kind KIND_MEMBRANE) or drilling membrane that
+    !! must succeed (edges: the bubbles of KIND_ALLMAN, default all).
     integer, intent(in) :: kind
     real(wp), intent(in) :: xl(:, :), t, e, nu
     character(*), intent(in) :: what
+    logical, intent(in), optional :: edges(:)
     real(wp), allocatable :: ke(:, :)
     type(error_t), allocatable :: error
-    call stiff(kind, xl, t, e, nu, ke, error)
+    if (present(edges)) then
+       call stiff(kind, xl, t, e, nu, ke, error, edges)
+    else
+       call stiff(kind, xl, t, e, nu, ke, error)
+    end if
     call check(.not. allocated(error), what//': stiffness without error')
     if (allocated(error)) then
        write (*, '(a)') '  message: '//error%message
@@ -100,16 +106,20 @@ contains
     end do
   end function rigid_modes
 
-  subroutine solve_mesh(kind, x, conn, t, e, nu, fixed, u, f)
+  subroutine solve_mesh(kind, x, conn, t, e, nu, fixed, u, f, flat)
     !! Assemble a small mesh densely and solve: on entry u holds the prescribed
     !! values where fixed is true, f the nodal loads; on return u is the solution.
-    !! DOFs node-major, 2 (u, v) or 3 (u, v, θz) per node.
+    !! DOFs node-major, 2 (u, v) or 3 (u, v, θz) per node. flat (KIND_ALLMAN,
+    !! optional): per node; an edge has its bubble when both its nodes are flat
+    !! (the rule of superjoin_elements_drill_mask).
     integer, intent(in) :: kind
     real(wp), intent(in) :: x(:, :), t, e, nu
     integer, intent(in) :: conn(:, :)
     logical, intent(in) :: fixed(:)
     real(wp), intent(inout) :: u(:)
     real(wp), intent(in) :: f(:)
+    logical, intent(in), optional :: flat(:)
+    logical :: edges(size(conn, 1))
     real(wp), allocatable :: k(:, :), ke(:, :), kff(:, :), rhs(:, :)
     integer, allocatable :: dofs(:), free(:), ipiv(:)
     integer :: nd, ie, a, b, nf, info
@@ -119,7 +129,13 @@ contains
     allocate (k(nd*size(x, 2), nd*size(x, 2)), source=0.0_wp)
     allocate (dofs(nd*size(conn, 1)))
     do ie = 1, size(conn, 2)
-       ke = element_matrix(kind, x(:, conn(:, ie)), t, e, nu, 'mesh element '//itoa(ie))
+       edges = .true.
+       if (present(flat)) then
+          do a = 1, size(conn, 1)
+             edges(a) = flat(conn(a, ie)) .and. flat(conn(modulo(a, size(conn, 1)) + 1, ie))
+          end do
+       end if
+       ke = element_matrix(kind, x(:, conn(:, ie)), t, e, nu, 'mesh element '//itoa(ie), edges)
        if (size(ke, 1) /= size(dofs)) return
        do a = 1, size(conn, 1)
           do b = 1, nd
@@ -151,18 +167,23 @@ contains
          what//': message without a location or "error:" prefix')
   end subroutine check_error
 
-  subroutine stiff(kind, xl, t, e, nu, ke, error)
+  subroutine stiff(kind, xl, t, e, nu, ke, error, edges)
     !! Membrane or drilling-membrane stiffness, errors returned.
     integer, intent(in) :: kind
     real(wp), intent(in) :: xl(:, :), t, e, nu
     real(wp), allocatable, intent(out) :: ke(:, :)
     type(error_t), allocatable, intent(out) :: error
+    logical, intent(in), optional :: edges(:)
     if (kind == KIND_MEMBRANE) then
        call membrane_stiffness(xl, t, e, nu, ke, error)
     else if (kind == KIND_STRAIN) then
        call plane_strain_stiffness(xl, t, e, nu, ke, error)
     else if (kind == KIND_ALLMAN) then
-       call drilling_stiffness(xl, t, e, nu, ke, error)
+       if (present(edges)) then
+          call drilling_stiffness(xl, t, e, nu, ke, error, edges)
+       else
+          call drilling_stiffness(xl, t, e, nu, ke, error)
+       end if
     else
        call membrane_drill_stiffness(xl, t, e, nu, ke, error)
     end if
@@ -763,10 +784,20 @@ contains
     !! (θz = the rotation) free of force to round-off; bad data reported.
     real(wp), allocatable :: ke(:, :), r(:, :), ev(:)
     type(error_t), allocatable :: error
-    integer :: s
+    integer :: s, m, k, n, nmask
+    logical, allocatable :: edges(:)
+    real(wp) :: xs(2, 4)
     character(:), allocatable :: what
     allocate (ke(0, 0), r(0, 0))   ! (quiets a spurious gfortran -Wuninitialized)
+    nmask = 0
     do s = 1, size(TRI, 3) + size(QUAD, 3)
+       if (s <= size(TRI, 3)) then
+          n = 3
+          xs(:, 1:3) = TRI(:, :, s)
+       else
+          n = 4
+          xs = QUAD(:, :, s - size(TRI, 3))
+       end if
        if (s <= size(TRI, 3)) then
           what = 'Allman triangle '//itoa(s)
           ke = element_matrix(KIND_ALLMAN, TRI(:, :, s), 0.1_wp, 2.0e5_wp, 0.3_wp, what)
@@ -782,7 +813,24 @@ contains
        ev = eigenvalues(ke)
        call check(count(abs(ev) <= TOL_ZERO_EIG*maxval(abs(ev))) == 3, what//': exactly 3 zero eigenvalues')
        call check(minval(ev) >= -TOL_ZERO_EIG*maxval(abs(ev)), what//': positive semi-definite')
+       ! the edge masks of superjoin_elements_drill_mask (quadrilateral; the
+       ! triangle's penalty on the element mean cannot hold θz without its
+       ! bubbles): every subset of the edges
+       if (n == 3) cycle
+       do m = 0, 2**n - 2
+          edges = [(btest(m, k - 1), k=1, n)]
+          ke = element_matrix(KIND_ALLMAN, xs(:, 1:n), 0.1_wp, 2.0e5_wp, 0.3_wp, what, edges)
+          ev = eigenvalues(ke)
+          if (.not. (maxval(abs(ke - transpose(ke))) <= TOL_SYM*maxval(abs(ke)) .and. &
+               maxval(abs(matmul(ke, r))) <= TOL_EXACT*maxval(abs(ke))*maxval(abs(r)) .and. &
+               count(abs(ev) <= TOL_ZERO_EIG*maxval(abs(ev))) == 3 .and. &
+               minval(ev) >= -TOL_ZERO_EIG*maxval(abs(ev)))) then
+             call check(.false., what//', edge mask '//itoa(m)//': symmetric, rigid modes free, 3 zero eigenvalues')
+          end if
+          nmask = nmask + 1
+       end do
     end do
+    call check(nmask == size(QUAD, 3)*15, 'every partial edge mask tried')
     call drilling_stiffness(reshape([0.0_wp, 0.0_wp, 1.0_wp, 0.0_wp, 2.0_wp, 0.0_wp], [2, 3]), &
          0.1_wp, 2.0e5_wp, 0.3_wp, ke, error)
     call check_error(error, 'area', 'Allman triangle, collinear nodes')
@@ -796,7 +844,10 @@ contains
     !! (u, v and θz = ω at the corners: a free boundary θz would need the
     !! consistent edge moments ±σnn l²/12 of the edge bubbles): interior u, v
     !! and θz (= ω) exact to round-off (the θz have real stiffness now),
-    !! resultants and nodal stresses of every element exact.
+    !! resultants and nodal stresses of every element exact. Meshes 3 and 4:
+    !! the quadrilaterals with the edge masks of superjoin_elements_drill_mask
+    !! when interior node 5 (mesh 3) or nodes 5 and 7 (mesh 4) are not flat
+    !! (their edges straight, elements with and without bubbles side by side).
     real(wp), parameter :: E = 1.0e6_wp, NU = 0.25_wp, T = 0.001_wp, A = 1.0e-3_wp, OMEGA = 2.0e-4_wp
     real(wp), parameter :: NX = T*E/(1 - NU**2)*(A + NU*A), NXY = T*E/(2*(1 + NU))*A
     real(wp) :: x(2, 8), exact(3, 8), nres(3)
@@ -804,6 +855,7 @@ contains
     integer, allocatable :: conn(:, :)
     real(wp), allocatable :: u(:), f(:), ue(:), sp(:, :), sn(:, :)
     logical, allocatable :: fixed(:)
+    logical :: flat(8), edges(4)
     type(error_t), allocatable :: error
     character(:), allocatable :: what
 
@@ -814,13 +866,19 @@ contains
        exact(3, i) = OMEGA
     end do
     allocate (conn(0, 0))
-    do mesh = 1, 2
+    do mesh = 1, 4
+       flat = .true.
        if (mesh == 1) then
           conn = quads
           what = 'patch ITW quadrilateral'
-       else
+       else if (mesh == 2) then
           conn = split_quads(quads)
           what = 'patch Allman triangle'
+       else
+          conn = quads
+          flat(5) = .false.
+          if (mesh == 4) flat(7) = .false.
+          what = 'patch ITW quadrilateral, node 5'//merge(' and 7', '      ', mesh == 4)//' not flat'
        end if
        allocate (u(24), f(24), source=0.0_wp)
        allocate (fixed(24), source=.false.)
@@ -828,7 +886,7 @@ contains
           fixed(3*i - 2:3*i) = .true.
           u(3*i - 2:3*i) = exact(:, i)
        end do
-       call solve_mesh(KIND_ALLMAN, x, conn, T, E, NU, fixed, u, f)
+       call solve_mesh(KIND_ALLMAN, x, conn, T, E, NU, fixed, u, f, flat)
        do i = 5, 8
           call check_close(u(3*i - 2), exact(1, i), TOL_EXACT*maxval(abs(exact(1:2, :))), what//': u at node '//itoa(i))
           call check_close(u(3*i - 1), exact(2, i), TOL_EXACT*maxval(abs(exact(1:2, :))), what//': v at node '//itoa(i))
@@ -838,12 +896,15 @@ contains
        end do
        do ie = 1, size(conn, 2)
           ue = [(u(3*(conn(i, ie) - 1) + 1:3*conn(i, ie)), i=1, size(conn, 1))]
-          call drilling_resultants(x(:, conn(:, ie)), T, E, NU, ue, nres, error)
+          edges(1:size(conn, 1)) = [(flat(conn(i, ie)) .and. flat(conn(modulo(i, size(conn, 1)) + 1, ie)), &
+               i=1, size(conn, 1))]
+          if (mesh >= 3 .and. ie == 1) call check(count(.not. edges) > 0, what//': some edges without bubbles')
+          call drilling_resultants(x(:, conn(:, ie)), T, E, NU, ue, nres, error, edges(1:size(conn, 1)))
           call check(.not. allocated(error), what//': resultants without error')
           call check_rel(nres(1), NX, TOL_EXACT, what//': nx of element '//itoa(ie))
           call check_rel(nres(2), NX, TOL_EXACT, what//': ny of element '//itoa(ie))
           call check_rel(nres(3), NXY, TOL_EXACT, what//': nxy of element '//itoa(ie))
-          call drilling_point_stresses(x(:, conn(:, ie)), E, NU, ue, sp, sn, error)
+          call drilling_point_stresses(x(:, conn(:, ie)), E, NU, ue, sp, sn, error, edges(1:size(conn, 1)))
           call check(.not. allocated(error), what//': point stresses without error')
           if (allocated(error)) cycle
           call check(maxval(abs(sn(1, :) - NX/T)) <= TOL_EXACT*NX/T .and. &

@@ -111,7 +111,7 @@ contains
     type(sparse_sym_t), intent(in) :: k
     integer(i8), intent(out) :: root(:)
     type(error_t), allocatable, intent(out) :: error
-    integer(i8), allocatable :: up(:), lab(:)
+    integer(i8), allocatable :: up(:), lab(:), prev(:)
     real(wp), allocatable :: buf(:)
     integer(i8) :: j, pos
     logical :: ok
@@ -138,14 +138,20 @@ contains
           return
        end if
        lab = nint(-buf, i8)
+       ! stop when a round changes no label: lab and prev are the same on
+       ! every process, so every process stops at the same round
+       if (allocated(prev)) then
+          if (all(lab == prev)) exit
+       end if
+       prev = lab
        do j = 1, k%n
           call join(j, lab(j))
        end do
        do j = 1, k%n
           root(j) = find(j)
        end do
-       if (all(root(1:k%n) == lab)) exit   ! lab is the same on every process: so is the exit
     end do
+    root(1:k%n) = lab
   contains
     function find(i) result(r)
       integer(i8), intent(in) :: i

@@ -151,8 +151,8 @@ contains
     !! interface needs. parts and f_eff end equal on every process, and so do
     !! the notes (AUTOSPC per substructure in order; the condensations
     !! computed and reused summed over the processes). With owned (owner
-    !! terms, see owner_terms) K* and k u0 stay with their owner: the others
-    !! get the loads f*, the AUTOSPC list and MAXRATIO only.
+    !! terms, see owner_terms) K* stays with its owner: the others get the
+    !! loads f*, the AUTOSPC list, MAXRATIO and k u0 (when nonzero) only.
     type(model_t), intent(in) :: model
     type(dof_table_t), intent(in) :: table
     type(transform_t), intent(in) :: tr
@@ -220,8 +220,7 @@ contains
             call view_condense_loads(cache, v, f_phys(v%pdof, :), fstar, error)
             if (allocated(error)) return   ! a load condensation does not fail in practice; see module notes
             head = [merge(1.0_wp, 0.0_wp, v%reused), merge(1.0_wp, 0.0_wp, v%rotated), v%ratio, &
-                 real(v%ratio_at, wp), real(size(v%spc), wp), &
-                 merge(1.0_wp, 0.0_wp, any(v%ku0 /= 0.0_wp) .and. .not. owned)]
+                 real(v%ratio_at, wp), real(size(v%spc), wp), merge(1.0_wp, 0.0_wp, any(v%ku0 /= 0.0_wp))]
          end if
          call broadcast(head, summary%sub_owner(isub), ok)
          if (.not. ok) call fatal_error(error, EXIT_IO, 'error: MPI broadcast of a condensation failed')

@@ -275,8 +275,9 @@ contains
     !! The loads likewise, with the prescribed values' terms (−k u0).
     !! ku: k u of the condensed substructures on the physical DOFs (parts_ku).
     !! summed: k is this MPI process's term of K_red and only the own
-    !! substructures (entry > 0) hold K*: each process adds its own terms,
-    !! the rows are summed over the processes (error then present).
+    !! substructures (entry > 0) hold K*: each process adds its own terms to
+    !! the interface rows, which are summed over the processes (error then
+    !! present).
     type(part_cache_t), intent(in) :: cache
     type(transform_t), intent(in) :: tr
     type(sparse_sym_t), intent(in) :: k
@@ -309,11 +310,6 @@ contains
     allocate (rf(ntot, nstep), ffull(ntot, nstep), qfull(ntot, nstep), source=0.0_wp)
     at = k%n
     do i = 1, size(parts)
-       if (terms .and. parts(i)%entry == 0) then   ! another process's substructure: its owner adds it
-          qfull(at + 1:at + parts(i)%ni, :) = u(parts(i)%pdof(1:parts(i)%ni), :)
-          at = at + parts(i)%ni
-          cycle
-       end if
        associate (sys => parts(i), kst => parts(i)%se%k)
          ni = sys%ni
          nb = sys%nb
@@ -328,14 +324,19 @@ contains
          else
             w = 0.0_wp
          end if
-         ks = matmul(kst, u(sys%pdof(ni + 1:), :))
-         ku0 = matmul(kst, u0l(ni + 1:, 1))
          rf(at + 1:at + ni, :) = rl(1:ni, :)
          do is = 1, nstep
             ffull(at + 1:at + ni, is) = f_phys(sys%pdof(1:ni), is) - w(1:ni, 1)
          end do
          qfull(at + 1:at + ni, :) = u(sys%pdof(1:ni), :)
          at = at + ni
+         ! interface rows: K* is with the owner only under owner terms
+         if (terms .and. parts(i)%entry == 0) then
+            deallocate (rl, u0l, w)
+            cycle
+         end if
+         ks = matmul(kst, u(sys%pdof(ni + 1:), :))
+         ku0 = matmul(kst, u0l(ni + 1:, 1))
          do l = 1, nb
             associate (pb => sys%pdof(ni + l))
               call tr%reduce_add(pb, rl(ni + l, :) - (ks(l, :) - f_eff(pb, :)), r)
@@ -349,17 +350,16 @@ contains
     ffull(1:k%n, :) = f
     qfull(1:k%n, :) = q
     if (terms) then
-       ! rows of every process's terms summed (interface and interiors)
-       rows = [reshape(rf, [size(rf, kind=i8)]), reshape(ffull, [size(ffull, kind=i8)])]
+       ! interface rows of every process's terms summed (the interior rows
+       ! every process has: ku is summed already, k u0 sent by the owners)
+       rows = [reshape(r, [size(r, kind=i8)]), reshape(f, [size(f, kind=i8)])]
        call sum_reals(rows, ok)
        if (.not. ok) then
           call fatal_error(error, EXIT_IO, 'error: MPI sum of the whole-system residual failed')
           return
        end if
-       rf = reshape(rows(1:size(rf, kind=i8)), shape(rf))
-       ffull = reshape(rows(size(rf, kind=i8) + 1:), shape(ffull))
-       rf(1:k%n, :) = rf(1:k%n, :) - f_red
-       ffull(1:k%n, :) = ffull(1:k%n, :) + f_red
+       rf(1:k%n, :) = reshape(rows(1:size(r, kind=i8)), shape(r)) - f_red
+       ffull(1:k%n, :) = reshape(rows(size(r, kind=i8) + 1:), shape(f)) + f_red
     end if
     do is = 1, nstep
        res%fields%steps(is)%residual = safe_div(norm2(rf(:, is)), norm2(ffull(:, is)))

@@ -8,13 +8,17 @@
 # on stderr the bytes each process passed to collectives and the entries of
 # the reduced matrix it assembled. One process: --solver mumps --condense yes
 # (what the MPI runs are compared with in the tests).
-# usage: bench/run_mpi_owner.sh [-n MODULES] M...   (M: elements per slab side)
+# With --strip instead: bench/gen_strip.py, N panels joined edge to edge
+# (parts whose boundaries are large, so K* outweighs their interiors).
+# usage: bench/run_mpi_owner.sh [--strip] [-n MODULES] M...   (M: elements per slab side)
 # Needs build-mpi/ (tools/build.sh -DSUPERJOIN_MPI=ON).
 set -euo pipefail
 ROOT=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
 BIN=${SUPERJOIN:-$ROOT/build-mpi/superjoin}
 SCRATCH=${BENCH_DIR:-$ROOT/build-mpi/bench_owner}
 N=16
+kinds="explicit instances"
+if [ "${1:-}" = "--strip" ]; then kinds=strip; shift; fi
 if [ "${1:-}" = "-n" ]; then N=$2; shift 2; fi
 [ $# -gt 0 ] || set -- 40
 export OPENBLAS_NUM_THREADS=1
@@ -24,9 +28,11 @@ timed=(bash -c '/usr/bin/time -f "%M" -o "$0.${OMPI_COMM_WORLD_RANK:-0}" "$@"')
 echo "load average: $(cut -d' ' -f1-3 /proc/loadavg)"
 printf '%-10s %-4s %8s %-10s %7s %9s %10s %14s %16s\n' model M DOFs run wall assemble 'peak MB' 'collectives B' 'matrix entries'
 for m in "$@"; do
-  for kind in explicit instances; do
+  for kind in $kinds; do
     deck=$SCRATCH/modules_${kind}_$m.deck
-    if [ $kind = explicit ]; then
+    if [ $kind = strip ]; then
+      python3 "$ROOT/bench/gen_strip.py" --panels "$N" --mesh "$m" >"$deck"
+    elif [ $kind = explicit ]; then
       python3 "$ROOT/bench/gen_modules.py" --row --mesh "$m" --storeys "$N" --explicit >"$deck"
     else
       python3 "$ROOT/bench/gen_modules.py" --row --mesh "$m" --storeys "$N" >"$deck"

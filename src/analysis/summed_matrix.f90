@@ -204,10 +204,12 @@ contains
        anorm = maxval(colsum)
        return
     end if
-    ! columns touched by several processes
+    ! columns where several processes have nonzero entries (every term
+    ! stores the whole diagonal: its zeros count for nothing)
     allocate (touch(n), source=0_i8)
     do j = 1, n
        do pos = k%colptr(j), k%colptr(j + 1) - 1
+          if (k%val(pos) == 0.0_wp) cycle
           touch(j) = 1
           touch(k%rowind(pos)) = 1
        end do
@@ -220,6 +222,7 @@ contains
     nmine = 0
     do j = 1, n
        do pos = k%colptr(j), k%colptr(j + 1) - 1
+          if (k%val(pos) == 0.0_wp) cycle
           if (touch(j) > 1 .and. touch(k%rowind(pos)) > 1) then
              nmine = nmine + 1
           else
@@ -231,6 +234,7 @@ contains
     at = 0
     do j = 1, n
        do pos = k%colptr(j), k%colptr(j + 1) - 1
+          if (k%val(pos) == 0.0_wp) cycle
           if (touch(j) > 1 .and. touch(k%rowind(pos)) > 1) then
              mine(at + 1:at + NFIELD) = [real(k%rowind(pos), wp), real(j, wp), k%val(pos)]
              at = at + NFIELD

@@ -154,6 +154,7 @@ contains
     root(1:k%n) = lab
   contains
     function find(i) result(r)
+      !! Root of i's group (paths halved on the way).
       integer(i8), intent(in) :: i
       integer(i8) :: r
       r = i
@@ -163,6 +164,7 @@ contains
       end do
     end function find
     subroutine join(a, b)
+      !! Merge the groups of a and b under the smaller root.
       integer(i8), intent(in) :: a, b
       integer(i8) :: ra, rb
       ra = find(a)
@@ -292,6 +294,7 @@ contains
     anorm = maxval(colsum)
   contains
     subroutine add(ii, jj, x)
+      !! |entry (ii, jj)| into the sums of its column and (symmetric) row.
       integer(i8), intent(in) :: ii, jj
       real(wp), intent(in) :: x
       colsum(jj) = colsum(jj) + x

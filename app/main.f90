@@ -60,6 +60,12 @@ program superjoin_main
      if (opts%solver == 'auto') opts%solver = 'mumps'
      ! each process condenses the parts it owns (analysis/distributed)
      if (opts%condense < 0) opts%condense = CONDENSE_YES
+     ! with MUMPS each process holds only its own term of the matrix
+     if (allocated(opts%export_matrix) .and. index(opts%solver, 'mumps') == 1) then
+        if (.not. comm%is_root()) stop EXIT_USAGE, quiet=.true.
+        call usage_error('--export-matrix is not available on several MPI processes with MUMPS: no process '// &
+             'assembles the matrix (run on one process, or with --solver cholmod)')
+     end if
   end if
   if (.not. comm%is_root()) then
      ! one voice: progress, warnings and every output file come from rank 0

@@ -26,7 +26,9 @@ module superjoin_analysis
   use superjoin_analysis_condensation, only: solve_context_t, condense_parts, recover_parts, parts_ku
   use superjoin_analysis_factor_reuse, only: take_factor, keep_factor, solve_with
   use superjoin_analysis_distributed, only: plan_distribution, is_distributed, condense_distributed, &
-       recover_distributed, parts_ku_distributed
+       recover_distributed, parts_ku_distributed, owner_terms, owner_plan, sum_owner_loads, agreed
+  use superjoin_solvers, only: mumps_solver_t
+  use superjoin_parallel_stats, only: record_matrix_held
   use superjoin_utils_clock, only: stopwatch_t, report_phase
   use superjoin_utils_memory, only: out_of_memory, BYTES_REAL
   use superjoin_utils_strings, only: itoa
@@ -106,6 +108,7 @@ contains
     real(wp), allocatable :: f_eff(:, :), u(:, :), ku(:, :)
     integer(i8) :: p
     integer :: i, stat
+    logical :: owned
 
     allocate (notes(0), res%log%warnings(0))
     res%summary%maxratio_at = 'n/a (no unknowns)'
@@ -137,11 +140,22 @@ contains
     call build_transform(model, table, forest, tr, error, keep)
     if (allocated(error)) return
     call describe_transform(model, table, tr, form, res%summary, notes)
+    ! several MPI processes with MUMPS: each process holds and hands MUMPS its
+    ! own term of K_red only (analysis/distributed, analysis/summed_matrix)
+    owned = owner_terms(res%summary, opts)
 
     if (res%summary%n_condensed == 0) then
-       allocate (plan%skip_sub(size(model%subs)), source=.false.)
-       allocate (plan%supers(0))
+       if (owned) then
+          allocate (parts(0))
+          call owner_plan(model, res%summary, parts, plan)
+       else
+          allocate (plan%skip_sub(size(model%subs)), source=.false.)
+          allocate (plan%supers(0))
+       end if
        call assemble_stiffness(model, table, tr, plan, k, f_u0, error)
+       if (owned) call agreed(error)
+       if (allocated(error)) return
+       if (owned) call sum_owner_loads(f_u0, error)
        if (allocated(error)) return
        call assemble_loads(model, table, f_phys, error)
        if (allocated(error)) return
@@ -151,46 +165,60 @@ contains
        if (allocated(error)) return
        if (is_distributed(res%summary)) then   ! several MPI processes: each condenses its own parts
           call condense_distributed(model, table, tr, bnd_c, opts, f_phys, ctx%cache, res%summary, notes, &
-               parts, f_eff, error)
+               parts, f_eff, error, owned)
        else
           call condense_parts(model, table, bnd_c, opts, f_phys, ctx%cache, res%summary, notes, parts, f_eff, error)
        end if
        if (allocated(error)) return
-       plan%skip_sub = res%summary%sub_condensed
-       allocate (plan%supers(size(parts)))
-       do i = 1, size(parts)
-          plan%supers(i) = parts(i)%se
-       end do
+       if (owned) then
+          call owner_plan(model, res%summary, parts, plan)
+       else
+          plan%skip_sub = res%summary%sub_condensed
+          allocate (plan%supers(size(parts)))
+          do i = 1, size(parts)
+             plan%supers(i) = parts(i)%se
+          end do
+       end if
        call assemble_stiffness(model, table, tr, plan, k, f_u0, error)
+       if (owned) call agreed(error)
        if (allocated(error)) return
        deallocate (plan%supers)
+       if (owned) call sum_owner_loads(f_u0, error)
+       if (allocated(error)) return
        call reduce_loads(tr, f_eff, f_u0, f_red, error)
     end if
     if (allocated(error)) return
-    call autospc(model, table, tr, k, f_red, spc, notes, error)
+    call autospc(model, table, tr, k, f_red, spc, notes, error, summed=owned)
     if (allocated(error)) return
-    call skip_unloaded_parts(model, table, tr, k, f_red, spc, notes)
+    call skip_unloaded_parts(model, table, tr, k, f_red, spc, notes, summed=owned, error=error)
+    if (allocated(error)) return
     res%summary%nphys = table%np
     res%summary%ncol = tr%ncol()
     res%summary%neq = tr%ncol() - count(spc, kind=i8)
     res%summary%ndelta = count_delta(tr)
     res%summary%matrix_nnz = k%nnz()
+    call record_matrix_held(k%nnz())   ! MPI summary: what this process assembled
+    if (owned) res%summary%matrix_nnz = -1   ! not assembled anywhere: the listing says n/a
     res%log%phase_seconds(PH_ASSEMBLE) = clock%seconds()
     write (buf, '(a,i0,a,i0)') 'equations ', res%summary%neq, ', nonzeros ', res%summary%matrix_nnz
+    if (owned) write (buf, '(a,i0,a,i0)') 'equations ', res%summary%neq, ', nonzeros of this process''s term ', &
+         k%nnz()
     call report_phase(opts%quiet, 'assemble', res%log%phase_seconds(PH_ASSEMBLE), trim(buf))
 
-    if (allocated(opts%export_matrix)) then
+    if (allocated(opts%export_matrix) .and. .not. owned) then   ! app/main.f90 refuses it with owner terms
        call write_matrix_market(opts%export_matrix, k, error)
        if (allocated(error)) return
     end if
 
     if (tr%ncol() > 0) then
-       call take_factor(ctx%factor, k, solver)   ! loads: the same matrix as the previous solve
+       ! loads: the same matrix as the previous solve (not with owner terms:
+       ! each process would judge its own term; they refactor instead)
+       if (.not. owned) call take_factor(ctx%factor, k, solver)
        if (allocated(solver)) then
           call solve_with(solver, k%n, f_red, opts%quiet, q, res, error)
        else
           call column_groups(table, forest, tr, groups)
-          call factor_and_solve(model, table, tr, k, f_red, opts, groups, solver, q, res, error)
+          call factor_and_solve(model, table, tr, k, f_red, opts, groups, solver, q, res, error, owned)
        end if
        if (allocated(error)) return
     else
@@ -203,7 +231,7 @@ contains
     allocate (res%fields%steps(size(model%steps)))
     if (tr%ncol() > 0) then
        call clock%start()
-       call health(k, q, f_red, spc, solver, model, table, tr, res, opts, error)
+       call health(k, q, f_red, spc, solver, model, table, tr, res, opts, error, summed=owned)
        if (allocated(error)) return
        res%log%phase_seconds(PH_SOLVE) = res%log%phase_seconds(PH_SOLVE) + clock%seconds()
        call report_phase(opts%quiet, 'health', clock%seconds())
@@ -226,7 +254,9 @@ contains
           call parts_ku(ctx%cache, parts, u, ku)
        end if
        if (allocated(error)) return
-       if (tr%ncol() > 0) call full_health(ctx%cache, tr, k, parts, q, u, ku, f_red, f_eff, f_phys, res)
+       if (tr%ncol() > 0) call full_health(ctx%cache, tr, k, parts, q, u, ku, f_red, f_eff, f_phys, res, &
+            summed=owned, error=error)
+       if (allocated(error)) return
        call parts_maxratio(model, table, ctx%cache, parts, res, error)
        if (allocated(error)) return
        res%log%phase_seconds(PH_SOLVE) = res%log%phase_seconds(PH_SOLVE) + clock%seconds()
@@ -242,7 +272,11 @@ contains
     if (allocated(error)) return
     res%log%phase_seconds(PH_SOLVE) = res%log%phase_seconds(PH_SOLVE) + clock%seconds()
     call report_phase(opts%quiet, 'recover', clock%seconds())
-    call keep_factor(ctx%factor, k, solver)   ! released unless ctx%factor%keep
+    if (owned) then
+       if (allocated(solver)) call solver%release()
+    else
+       call keep_factor(ctx%factor, k, solver)   ! released unless ctx%factor%keep
+    end if
     res%log%notes = notes
   end subroutine solve_steps
 
@@ -274,8 +308,9 @@ contains
     end do
   end function count_delta
 
-  subroutine factor_and_solve(model, table, tr, k, f_red, opts, groups, solver, q, res, error)
-    !! Analyze, factorize (mapping a breakdown to its location) and solve all steps.
+  subroutine factor_and_solve(model, table, tr, k, f_red, opts, groups, solver, q, res, error, owned)
+    !! Analyze, factorize (mapping a breakdown to its location) and solve all
+    !! steps. owned: k is this process's term of K_red (MUMPS local input).
     type(model_t), intent(in) :: model
     type(dof_table_t), intent(in) :: table
     type(transform_t), intent(in) :: tr
@@ -287,6 +322,7 @@ contains
     real(wp), allocatable, intent(out) :: q(:, :)
     type(results_t), intent(inout) :: res
     type(error_t), allocatable, intent(out) :: error
+    logical, intent(in) :: owned
     type(stopwatch_t) :: clock
     character(:), allocatable :: solver_name
     integer(i8) :: jf
@@ -299,6 +335,12 @@ contains
     call new_solver(solver_name, k%n, solver, error)
     if (allocated(error)) return
     if (allocated(groups)) call solver%set_groups(groups)
+    if (owned) then
+       select type (solver)
+       type is (mumps_solver_t)
+          solver%local_input = .true.
+       end select
+    end if
     call solver%analyze(k, error)
     if (allocated(error)) return
     res%log%phase_seconds(PH_ORDER) = clock%seconds()
@@ -310,7 +352,8 @@ contains
        if (error%code == EXIT_SINGULAR) then
           jf = solver%info%failed_column
           deallocate (error)
-          call mechanism_error(k, solver_name, model, table, tr, penalty_hint(res), res%fields%mechanism, error)
+          call mechanism_error(k, solver_name, model, table, tr, penalty_hint(res), res%fields%mechanism, error, &
+               summed=owned)
           if (allocated(error)) return
           if (jf >= 1 .and. jf <= tr%ncol()) then
              call fatal_error(error, EXIT_SINGULAR, 'error: the structure cannot be solved: '// &

@@ -13,6 +13,12 @@ module superjoin_analysis_distributed
   !! rest of the pipeline (element results, health, listing on rank 0) runs
   !! unchanged. On one process (and in the serial build) none of this runs.
   !!
+  !! Owner terms (owner_terms: the MUMPS backend, the default on several
+  !! processes): K* is not sent. Each process assembles its own term of
+  !! K_red (owner_plan) and hands it to MUMPS as it is (local_input,
+  !! ICNTL(18) = 3, duplicates summed by MUMPS); what the pipeline needs of
+  !! the whole matrix is computed from the terms (analysis/summed_matrix).
+  !!
   !! Errors: a process whose condensation or recovery fails returns at once
   !! (its ending agrees, app/main.f90); the others learn it at the agreement
   !! that precedes each exchange (superjoin_parallel_comm's protocol).
@@ -21,7 +27,7 @@ module superjoin_analysis_distributed
   use superjoin_model_types, only: model_t, string_t
   use superjoin_assembly_dofs, only: dof_table_t
   use superjoin_assembly_transform, only: transform_t
-  use superjoin_assembly_assemble, only: max_element_diagonal
+  use superjoin_assembly_assemble, only: max_element_diagonal, assembly_plan_t
   use superjoin_substructure_local_system, only: dof_label
   use superjoin_substructure_cache, only: part_cache_t, part_view_t, acquire_view, remote_view, &
        view_condense_loads, view_recover, view_stiffness_times, view_spc, view_maxratio
@@ -43,11 +49,11 @@ module superjoin_analysis_distributed
     !! stiffness, whether k u0 follows (it is sent only when some prescribed value is nonzero).
 
   public :: plan_distribution, is_distributed, condense_distributed, recover_distributed, parts_ku_distributed, &
-       mpi_summary
+       mpi_summary, owner_terms, owner_plan, sum_owner_loads, agreed
 
   integer, parameter :: BYTES_MUMPS_ENTRY = 16
     !! One entry of MUMPS's distributed assembled input: value (8 bytes), row and column (4 each).
-  integer, parameter :: NSTAT = 5
+  integer, parameter :: NSTAT = 6
     !! Figures per process in the MPI summary.
 
 contains
@@ -80,12 +86,73 @@ contains
     yes = allocated(summary%sub_owner)
   end function is_distributed
 
-  subroutine condense_distributed(model, table, tr, bnd, opts, f_phys, cache, summary, notes, parts, f_eff, error)
+  function owner_terms(summary, opts) result(yes)
+    !! Does each process hand MUMPS only its own term of the reduced matrix
+    !! (several processes, the MUMPS backend)? Then nobody assembles K_red:
+    !! see analysis/summed_matrix for what is computed from the terms.
+    !! For measurements only (doc/performance.md), the environment variable
+    !! SUPERJOIN_BROADCAST_KSTAR=1 (the same on every process) keeps the
+    !! pipeline of the previous increment: every K* sent to every process,
+    !! which assembles the whole K_red and hands MUMPS a block of its columns.
+    type(run_summary_t), intent(in) :: summary
+    type(run_options_t), intent(in) :: opts
+    logical :: yes
+    character(len=8) :: env
+    integer :: stat
+    yes = is_distributed(summary)
+    if (.not. yes) return
+    yes = .false.
+    if (allocated(opts%solver)) yes = index(opts%solver, 'mumps') == 1
+    call get_environment_variable('SUPERJOIN_BROADCAST_KSTAR', env, status=stat)
+    if (stat == 0 .and. env == '1') yes = .false.
+  end function owner_terms
+
+  subroutine owner_plan(model, summary, parts, plan)
+    !! The assembly plan of this process's term of K_red: the elements of its
+    !! own substructures that are not condensed, the K* of its own condensed
+    !! ones, and on process 0 the terms of no substructure (plan%shared).
+    type(model_t), intent(in) :: model
+    type(run_summary_t), intent(in) :: summary
+    type(part_view_t), intent(in) :: parts(:)
+    type(assembly_plan_t), intent(out) :: plan
+    type(comm_t) :: comm
+    integer :: i, n, isub
+    comm = comm_world()
+    allocate (plan%skip_sub(size(model%subs)))
+    do isub = 1, size(model%subs)
+       plan%skip_sub(isub) = summary%sub_owner(isub) /= comm%rank
+       if (allocated(summary%sub_condensed)) plan%skip_sub(isub) = plan%skip_sub(isub) .or. summary%sub_condensed(isub)
+    end do
+    n = count(parts(:)%entry > 0)
+    allocate (plan%supers(n))
+    n = 0
+    do i = 1, size(parts)
+       if (parts(i)%entry == 0) cycle
+       n = n + 1
+       plan%supers(n) = parts(i)%se
+    end do
+    plan%shared = comm%is_root()
+  end subroutine owner_plan
+
+  subroutine sum_owner_loads(f_u0, error)
+    !! f_u0 (the reduced load of the prescribed values) of the processes'
+    !! terms, summed.
+    real(wp), intent(inout) :: f_u0(:)
+    type(error_t), allocatable, intent(out) :: error
+    logical :: ok
+    call sum_reals(f_u0, ok)
+    if (.not. ok) call fatal_error(error, EXIT_IO, 'error: MPI sum of the prescribed values'' loads failed')
+  end subroutine sum_owner_loads
+
+  subroutine condense_distributed(model, table, tr, bnd, opts, f_phys, cache, summary, notes, parts, f_eff, error, &
+       owned)
     !! condense_parts (analysis/condensation) over several processes: each
     !! condenses its own substructures and sends the others what the
     !! interface needs. parts and f_eff end equal on every process, and so do
     !! the notes (AUTOSPC per substructure in order; the condensations
-    !! computed and reused summed over the processes).
+    !! computed and reused summed over the processes). With owned (owner
+    !! terms, see owner_terms) K* stays with its owner: the others get the
+    !! loads f*, the AUTOSPC list, MAXRATIO and k u0 (when nonzero) only.
     type(model_t), intent(in) :: model
     type(dof_table_t), intent(in) :: table
     type(transform_t), intent(in) :: tr
@@ -98,9 +165,11 @@ contains
     type(part_view_t), allocatable, intent(out) :: parts(:)
     real(wp), allocatable, intent(out) :: f_eff(:, :)
     type(error_t), allocatable, intent(out) :: error
+    logical, intent(in) :: owned
     type(comm_t) :: comm
     character(:), allocatable :: solver_name
     real(wp), allocatable :: fstar(:, :), head(:), body(:)
+    integer(i8) :: nkk
     logical, allocatable :: reused(:)
     integer(i8) :: counts(2)
     integer :: isub, ip_, i, nrot, nstep, computed0, reused0
@@ -158,12 +227,13 @@ contains
          if (allocated(error)) return
          nspc = nint(head(5), i8)
          nku0 = merge(ni + nb, 0_i8, head(6) /= 0.0_wp)
-         allocate (body(nspc + nb*nb + nb*nstep + nku0))
+         nkk = merge(0_i8, nb*nb, owned)   ! owner terms: K* stays with its owner
+         allocate (body(nspc + nkk + nb*nstep + nku0))
          if (mine) then
             body(1:nspc) = real(v%spc, wp)
             at = nspc
-            body(at + 1:at + nb*nb) = reshape(v%se%k, [nb*nb])
-            at = at + nb*nb
+            if (.not. owned) body(at + 1:at + nkk) = reshape(v%se%k, [nkk])
+            at = at + nkk
             body(at + 1:at + nb*nstep) = reshape(fstar, [nb*nstep])
             at = at + nb*nstep
             if (nku0 > 0) body(at + 1:) = v%ku0
@@ -178,8 +248,8 @@ contains
             v%ratio_at = nint(head(4), i8)
             v%spc = nint(body(1:nspc), i8)
             at = nspc
-            v%se%k = reshape(body(at + 1:at + nb*nb), [nb, nb])
-            at = at + nb*nb
+            if (.not. owned) v%se%k = reshape(body(at + 1:at + nkk), [nb, nb])
+            at = at + nkk
             fstar = reshape(body(at + 1:at + nb*nstep), [nb, int(nstep, i8)])
             at = at + nb*nstep
             if (nku0 > 0) then
@@ -319,8 +389,9 @@ contains
     !! it passed to collectives (broadcasts of condensations, sums of
     !! interiors, the solution), the matrix entries it handed MUMPS and their
     !! bytes, and MUMPS's memory (INFO(16); INFOG(18) the largest process,
-    !! INFOG(19) all). Rank 0 prints them on stderr unless quiet. Nothing on
-    !! one process.
+    !! INFOG(19) all), and the entries of the reduced matrix it assembled
+    !! (the whole K_red, or with owner terms only its own term). Rank 0 prints
+    !! them on stderr unless quiet. Nothing on one process.
     logical, intent(in) :: quiet
     type(error_t), allocatable, intent(out) :: error
     type(comm_t) :: comm
@@ -337,13 +408,14 @@ contains
     moved = bytes_moved()
     ms = mumps_stats()
     allocate (v(NSTAT*comm%size), source=0_i8)
-    v(NSTAT*comm%rank + 1:NSTAT*comm%rank + NSTAT) = [moved, ms%entries, ms%mb_here, ms%mb_max, ms%mb_total]
+    v(NSTAT*comm%rank + 1:NSTAT*comm%rank + NSTAT) = [moved, ms%entries, ms%mb_here, ms%mb_max, ms%mb_total, ms%held]
     call sum_counts(v, ok)
     if (.not. ok .or. quiet .or. .not. comm%is_root()) return
     do r = 0, comm%size - 1
        associate (x => v(NSTAT*r + 1:NSTAT*r + NSTAT))
-         write (line, '(a,i0,a,i0,a,i0,a,i0,a,i0,a)') 'superjoin: MPI process ', r, ': collectives ', x(1), &
-              ' bytes, MUMPS input ', x(2), ' entries (', x(2)*BYTES_MUMPS_ENTRY, ' bytes), MUMPS memory ', x(3), ' MB'
+         write (line, '(a,i0,a,i0,a,i0,a,i0,a,i0,a,i0,a)') 'superjoin: MPI process ', r, ': collectives ', x(1), &
+              ' bytes, matrix assembled ', x(6), ' entries, MUMPS input ', x(2), ' entries (', &
+              x(2)*BYTES_MUMPS_ENTRY, ' bytes), MUMPS memory ', x(3), ' MB'
        end associate
        write (error_unit, '(a)') trim(line)
     end do

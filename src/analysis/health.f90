@@ -5,7 +5,7 @@ module superjoin_analysis_health
   use, intrinsic :: iso_fortran_env, only: error_unit
   use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
   use superjoin_kinds, only: wp, i8, ip
-  use superjoin_error, only: error_t, fatal_error, EXIT_SINGULAR
+  use superjoin_error, only: error_t, fatal_error, EXIT_SINGULAR, EXIT_IO
   use superjoin_model_types, only: model_t
   use superjoin_assembly_dofs, only: dof_table_t
   use superjoin_assembly_transform, only: transform_t
@@ -19,6 +19,8 @@ module superjoin_analysis_health
   use superjoin_analysis_notes, only: warn
   use superjoin_utils_strings, only: itoa
   use superjoin_utils_memory, only: out_of_memory, BYTES_REAL
+  use superjoin_analysis_summed_matrix, only: summed_matvec, summed_diagonal, summed_norm1
+  use superjoin_parallel_comm, only: sum_reals
   implicit none (type, external)
   private
 
@@ -106,8 +108,10 @@ contains
          'contact g and coordinates')
   end subroutine check_finite
 
-  subroutine health(k, q, f_red, spc, solver, model, table, tr, res, opts, error)
-    !! Residual, EPSILON, iterative refinement, MAXRATIO and condition estimate.
+  subroutine health(k, q, f_red, spc, solver, model, table, tr, res, opts, error, summed)
+    !! Residual, EPSILON, iterative refinement, MAXRATIO and condition
+    !! estimate. summed: k is this MPI process's term of K_red
+    !! (analysis/summed_matrix): products, diagonal and norm are the sum's.
     type(sparse_sym_t), intent(in) :: k
     real(wp), intent(inout) :: q(:, :)
     real(wp), intent(in) :: f_red(:, :)
@@ -119,8 +123,10 @@ contains
     type(results_t), intent(inout) :: res
     type(run_options_t), intent(in) :: opts
     type(error_t), allocatable, intent(out) :: error
+    logical, intent(in), optional :: summed
     real(wp), allocatable :: r(:, :), dq(:, :), d(:), kd(:), q_try(:, :), r_try(:, :), berr(:), berr_try(:), &
          prev_res(:), prev_eps(:)
+    logical :: terms
     type(error_t), allocatable :: inner
     integer :: is, it, nstep, stat
     integer(i8) :: j, jmax
@@ -135,15 +141,28 @@ contains
        call out_of_memory(error, 'the residual checks', (4*nstep + 2)*k%n*BYTES_REAL)
        return
     end if
-    knorm = norm1_sym(k)
+    terms = .false.
+    if (present(summed)) terms = summed
+    if (terms) then
+       call summed_norm1(k, knorm, error)
+       if (allocated(error)) return
+    else
+       knorm = norm1_sym(k)
+    end if
     call residuals(q, r, berr)
+    if (allocated(error)) return
     do is = 1, nstep
        res%fields%steps(is)%residual0 = res%fields%steps(is)%residual
     end do
     ! MAXRATIO = max K_jj / D_jj, first: a numerically singular matrix stops
     ! here, before refinement solves with a factor that is not worth using.
     call solver%pivots(d)
-    call k%diagonal(kd)
+    if (terms) then
+       call summed_diagonal(k, kd, error)
+       if (allocated(error)) return
+    else
+       call k%diagonal(kd)
+    end if
     res%summary%maxratio = 0.0_wp
     jmax = 0
     do j = 1, k%n
@@ -164,7 +183,7 @@ contains
     if (res%summary%maxratio > MAXRATIO_FATAL) then
        backend = 'auto'
        if (allocated(opts%solver)) backend = opts%solver
-       call mechanism_error(k, backend, model, table, tr, penalty_hint(res), res%fields%mechanism, error)
+       call mechanism_error(k, backend, model, table, tr, penalty_hint(res), res%fields%mechanism, error, summed=terms)
        if (allocated(error)) return
        write (buf, '(es10.2e3)') res%summary%maxratio
        call fatal_error(error, EXIT_SINGULAR, 'error: the structure cannot be solved: stiffness is '// &
@@ -186,6 +205,7 @@ contains
        prev_eps = res%fields%steps(:)%epsilon
        r_try = r
        call residuals(q_try, r_try, berr_try)
+       if (allocated(error)) return
        ! keep a step only if it is finite and gains (a NaN residual compares false)
        if (.not. all(ieee_is_finite(q_try)) .or. &
            .not. (maxval(res%fields%steps(:)%residual) <= REFINE_GAIN*maxval(prev_res))) then
@@ -209,7 +229,11 @@ contains
        call warn(res, 'MAXRATIO '//trim(adjustl(buf))//' at '//res%summary%maxratio_at// &
             ': about '//itoa(nint(log10(res%summary%maxratio)))//' digits may be lost')
     end if
-    call condition_estimate(k, solver, cond)
+    if (terms) then
+       call condition_estimate(k, solver, cond, anorm_given=knorm)
+    else
+       call condition_estimate(k, solver, cond)
+    end if
     if (.not. ieee_is_finite(cond) .or. cond > huge(cond)) then
        cond = huge(cond)
        call warn(res, 'condition estimate overflows (above 1.8E+308): results are unreliable')
@@ -226,7 +250,12 @@ contains
       real(wp), intent(in) :: x(:, :)
       real(wp), intent(out) :: r(:, :), berr(:)
       integer :: s
-      call k%matvec(x, r)
+      if (terms) then
+         call summed_matvec(k, x, r, error)
+         if (allocated(error)) return
+      else
+         call k%matvec(x, r)
+      end if
       r = r - f_red
       do s = 1, nstep
          res%fields%steps(s)%residual = safe_div(norm2(r(:, s)), norm2(f_red(:, s)))
@@ -236,7 +265,7 @@ contains
     end subroutine residuals
   end subroutine health
 
-  subroutine full_health(cache, tr, k, parts, q, u, ku, f_red, f_eff, f_phys, res)
+  subroutine full_health(cache, tr, k, parts, q, u, ku, f_red, f_eff, f_phys, res, summed, error)
     !! Residual and EPSILON of the whole reduced system, as if it had been
     !! solved monolithically, from the recovered displacements and each
     !! condensed substructure's own stiffness (so an error in a condensation
@@ -245,27 +274,40 @@ contains
     !! part, Mᵀ[(k u − f)_b − (K* u_b − f*)]; interior rows: k_ii u_i + k_ib u_b − f_i.
     !! The loads likewise, with the prescribed values' terms (−k u0).
     !! ku: k u of the condensed substructures on the physical DOFs (parts_ku).
+    !! summed: k is this MPI process's term of K_red and only the own
+    !! substructures (entry > 0) hold K*: each process adds its own terms to
+    !! the interface rows, which are summed over the processes (error then
+    !! present).
     type(part_cache_t), intent(in) :: cache
     type(transform_t), intent(in) :: tr
     type(sparse_sym_t), intent(in) :: k
     type(part_view_t), intent(in) :: parts(:)
     real(wp), intent(in) :: q(:, :), u(:, :), ku(:, :), f_red(:, :), f_eff(:, :), f_phys(:, :)
     type(results_t), intent(inout) :: res
+    logical, intent(in), optional :: summed
+    type(error_t), allocatable, intent(out), optional :: error
     real(wp), allocatable :: r(:, :), f(:, :), rl(:, :), u0l(:, :), w(:, :), ks(:, :), ku0(:), &
-         rf(:, :), ffull(:, :), qfull(:, :)
+         rf(:, :), ffull(:, :), qfull(:, :), rows(:)
+    logical :: terms, ok
     integer :: i, is, nstep
     integer(i8) :: ni, nb, l, ntot, at
     character(len=32) :: buf
     nstep = size(q, 2)
+    terms = .false.
+    if (present(summed)) terms = summed
     allocate (r(k%n, nstep))
     call k%matvec(q, r)
-    r = r - f_red
-    f = f_red
+    if (terms) then   ! this process's terms first; f_red once the rows are summed
+       allocate (f(k%n, nstep), source=0.0_wp)
+    else
+       r = r - f_red
+       f = f_red
+    end if
     ntot = k%n
     do i = 1, size(parts)
        ntot = ntot + parts(i)%ni
     end do
-    allocate (rf(ntot, nstep), ffull(ntot, nstep), qfull(ntot, nstep))
+    allocate (rf(ntot, nstep), ffull(ntot, nstep), qfull(ntot, nstep), source=0.0_wp)
     at = k%n
     do i = 1, size(parts)
        associate (sys => parts(i), kst => parts(i)%se%k)
@@ -282,14 +324,19 @@ contains
          else
             w = 0.0_wp
          end if
-         ks = matmul(kst, u(sys%pdof(ni + 1:), :))
-         ku0 = matmul(kst, u0l(ni + 1:, 1))
          rf(at + 1:at + ni, :) = rl(1:ni, :)
          do is = 1, nstep
             ffull(at + 1:at + ni, is) = f_phys(sys%pdof(1:ni), is) - w(1:ni, 1)
          end do
          qfull(at + 1:at + ni, :) = u(sys%pdof(1:ni), :)
          at = at + ni
+         ! interface rows: K* is with the owner only under owner terms
+         if (terms .and. parts(i)%entry == 0) then
+            deallocate (rl, u0l, w)
+            cycle
+         end if
+         ks = matmul(kst, u(sys%pdof(ni + 1:), :))
+         ku0 = matmul(kst, u0l(ni + 1:, 1))
          do l = 1, nb
             associate (pb => sys%pdof(ni + l))
               call tr%reduce_add(pb, rl(ni + l, :) - (ks(l, :) - f_eff(pb, :)), r)
@@ -302,6 +349,18 @@ contains
     rf(1:k%n, :) = r
     ffull(1:k%n, :) = f
     qfull(1:k%n, :) = q
+    if (terms) then
+       ! interface rows of every process's terms summed (the interior rows
+       ! every process has: ku is summed already, k u0 sent by the owners)
+       rows = [reshape(r, [size(r, kind=i8)]), reshape(f, [size(f, kind=i8)])]
+       call sum_reals(rows, ok)
+       if (.not. ok) then
+          call fatal_error(error, EXIT_IO, 'error: MPI sum of the whole-system residual failed')
+          return
+       end if
+       rf(1:k%n, :) = reshape(rows(1:size(r, kind=i8)), shape(r)) - f_red
+       ffull(1:k%n, :) = reshape(rows(size(r, kind=i8) + 1:), shape(f)) + f_red
+    end if
     do is = 1, nstep
        res%fields%steps(is)%residual = safe_div(norm2(rf(:, is)), norm2(ffull(:, is)))
        res%fields%steps(is)%epsilon = energy_error(qfull(:, is), rf(:, is), ffull(:, is))

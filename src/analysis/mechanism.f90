@@ -14,7 +14,8 @@ module superjoin_analysis_mechanism
   use superjoin_model_types, only: model_t, NDOF_NODE
   use superjoin_assembly_dofs, only: dof_table_t, UNIT_SUPPORT
   use superjoin_assembly_transform, only: transform_t
-  use superjoin_solvers, only: linear_solver_t, sparse_sym_t, new_solver
+  use superjoin_solvers, only: linear_solver_t, sparse_sym_t, new_solver, mumps_solver_t
+  use superjoin_analysis_summed_matrix, only: summed_diagonal, summed_nonzero, holds_shared_terms
   use superjoin_utils_sorting, only: stable_argsort
   use superjoin_utils_strings, only: itoa
   implicit none (type, external)
@@ -51,17 +52,20 @@ module superjoin_analysis_mechanism
 
 contains
 
-  subroutine find_mechanism(k, solver_name, model, table, tr, mech)
+  subroutine find_mechanism(k, solver_name, model, table, tr, mech, summed)
     !! Null vector of the reduced stiffness k (inverse iteration on k + s I with
     !! the backend solver_name), expanded to the physical DOFs and ranked into
     !! mech. mech%found stays false when the shifted matrix cannot be factored
     !! or there is nothing to report (the caller keeps its own message).
+    !! summed: k is this MPI process's term of K_red (analysis/summed_matrix;
+    !! MUMPS local input): the diagonal is the sum's, process 0 adds the shift.
     type(sparse_sym_t), intent(in) :: k
     character(*), intent(in) :: solver_name
     type(model_t), intent(in) :: model
     type(dof_table_t), intent(in) :: table
     type(transform_t), intent(in) :: tr
     type(mechanism_t), intent(out) :: mech
+    logical, intent(in), optional :: summed
     type(sparse_sym_t) :: ks
     class(linear_solver_t), allocatable :: solver
     type(error_t), allocatable :: error
@@ -69,19 +73,39 @@ contains
     real(wp) :: s, xmax, growth
     integer(i8) :: j
     integer :: it, stat
+    logical :: terms
+    logical, allocatable :: nz(:), offdiag(:)
 
+    terms = .false.
+    if (present(summed)) terms = summed
     if (k%n <= 0) return
     allocate (d(k%n), x(k%n, 1), y(k%n, 1), stat=stat)
-    if (stat /= 0) return
-    call k%diagonal(d)
-    s = MECH_SHIFT*median_diagonal(k, d)
+    if (stat /= 0) return   ! (with summed, every process has the same n: an allocation this small does not differ)
+    if (terms) then
+       allocate (nz(k%n), offdiag(k%n))
+       call summed_diagonal(k, d, error)
+       if (.not. allocated(error)) call summed_nonzero(k, nz, offdiag, error)
+       if (allocated(error)) return
+       s = MECH_SHIFT*median_diagonal(k, d, offdiag)
+    else
+       call k%diagonal(d)
+       s = MECH_SHIFT*median_diagonal(k, d)
+    end if
     if (.not. (s > 0.0_wp)) return
     ks = k
-    do j = 1, k%n
-       ks%val(ks%colptr(j + 1) - 1) = ks%val(ks%colptr(j + 1) - 1) + s
-    end do
+    if (.not. terms .or. holds_shared_terms()) then
+       do j = 1, k%n
+          ks%val(ks%colptr(j + 1) - 1) = ks%val(ks%colptr(j + 1) - 1) + s
+       end do
+    end if
     call new_solver(solver_name, ks%n, solver, error)
     if (allocated(error)) return
+    if (terms) then
+       select type (solver)
+       type is (mumps_solver_t)
+          solver%local_input = .true.
+       end select
+    end if
     call solver%analyze(ks, error)
     if (allocated(error)) return
     call solver%factorize(ks, error)
@@ -109,11 +133,14 @@ contains
     call rank_report(model, table, mech)
   end subroutine find_mechanism
 
-  function median_diagonal(k, d) result(m)
+  function median_diagonal(k, d, offdiag) result(m)
     !! Median of |K_jj| over the columns that are not identity columns (the
     !! unknowns dropped or skipped before factoring); 0 if there are none.
+    !! offdiag (MPI terms): whether column j of the sum has a nonzero above
+    !! the diagonal (else k's own entries tell).
     type(sparse_sym_t), intent(in) :: k
     real(wp), intent(in) :: d(:)
+    logical, intent(in), optional :: offdiag(:)
     real(wp) :: m
     real(wp), allocatable :: a(:)
     integer, allocatable :: order(:)
@@ -123,7 +150,11 @@ contains
     n = 0
     do j = 1, k%n
        if (d(j) == 1.0_wp) then
-          if (all(k%val(k%colptr(j):k%colptr(j + 1) - 2) == 0.0_wp)) cycle
+          if (present(offdiag)) then
+             if (.not. offdiag(j)) cycle
+          else if (all(k%val(k%colptr(j):k%colptr(j + 1) - 2) == 0.0_wp)) then
+             cycle
+          end if
        end if
        if (d(j) == 0.0_wp) cycle
        n = n + 1
@@ -239,10 +270,11 @@ contains
     mech%details = text
   end subroutine rank_report
 
-  subroutine mechanism_error(k, solver_name, model, table, tr, hint, mode, error)
+  subroutine mechanism_error(k, solver_name, model, table, tr, hint, mode, error, summed)
     !! For a factorization that failed: the EXIT_SINGULAR error naming the
     !! mechanism of k (hint appended to its first line) and its mode, or
     !! neither when k has no mechanism (the caller keeps its own message).
+    !! summed: k is this MPI process's term of K_red (see find_mechanism).
     type(sparse_sym_t), intent(in) :: k
     character(*), intent(in) :: solver_name
     type(model_t), intent(in) :: model
@@ -251,8 +283,9 @@ contains
     character(*), intent(in) :: hint
     real(wp), allocatable, intent(out) :: mode(:, :)
     type(error_t), allocatable, intent(out) :: error
+    logical, intent(in), optional :: summed
     type(mechanism_t) :: mech
-    call find_mechanism(k, solver_name, model, table, tr, mech)
+    call find_mechanism(k, solver_name, model, table, tr, mech, summed)
     if (.not. mech%found) return
     call fatal_error(error, EXIT_SINGULAR, mechanism_message(mech, hint))
     call move_alloc(mech%mode, mode)

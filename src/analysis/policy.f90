@@ -21,6 +21,7 @@ module superjoin_analysis_policy
   use superjoin_analysis_notes, only: note
   use superjoin_analysis_condensation, only: solve_context_t
   use superjoin_utils_union_find, only: find_root
+  use superjoin_analysis_summed_matrix, only: summed_nonzero, summed_groups, holds_shared_terms
   use superjoin_utils_strings, only: itoa
   use superjoin_utils_memory, only: BYTES_REAL
   implicit none (type, external)
@@ -290,9 +291,11 @@ contains
          'than the interior:'//small)
   end subroutine choose_condensation
 
-  subroutine autospc(model, table, tr, k, f_red, spc, notes, error)
+  subroutine autospc(model, table, tr, k, f_red, spc, notes, error, summed)
     !! Unknowns with no stiffness at all: dropped (diagonal 1, load 0) when
-    !! unloaded, reported; a loaded one is an error (exit 3).
+    !! unloaded, reported; a loaded one is an error (exit 3). summed: k is
+    !! this MPI process's term of K_red (analysis/summed_matrix): the columns
+    !! without stiffness are those of no process, and process 0 puts the 1.
     type(model_t), intent(in) :: model
     type(dof_table_t), intent(in) :: table
     type(transform_t), intent(in) :: tr
@@ -301,11 +304,20 @@ contains
     logical, allocatable, intent(out) :: spc(:)
     type(string_t), allocatable, intent(inout) :: notes(:)
     type(error_t), allocatable, intent(out) :: error
-    logical, allocatable :: nz(:)
+    logical, intent(in), optional :: summed
+    logical, allocatable :: nz(:), offdiag(:)
     integer(i8) :: j, pos
+    logical :: terms
+    terms = .false.
+    if (present(summed)) terms = summed
     allocate (nz(tr%ncol()), source=.false.)
     allocate (spc(tr%ncol()), source=.false.)
-    do j = 1, k%n
+    if (terms) then
+       allocate (offdiag(tr%ncol()))
+       call summed_nonzero(k, nz, offdiag, error)
+       if (allocated(error)) return
+    end if
+    do j = 1, merge(0_i8, k%n, terms)
        do pos = k%colptr(j), k%colptr(j + 1) - 1
           if (k%val(pos) /= 0.0_wp) then
              nz(j) = .true.
@@ -321,15 +333,17 @@ contains
           cycle
        end if
        spc(j) = .true.
-       k%val(k%colptr(j + 1) - 1) = 1.0_wp
+       if (.not. terms .or. holds_shared_terms()) k%val(k%colptr(j + 1) - 1) = 1.0_wp
        call note(notes, 'AUTOSPC: '//column_label(model, table, tr, j)//' has no stiffness and no load: dropped')
     end do
   end subroutine autospc
 
-  subroutine skip_unloaded_parts(model, table, tr, k, f_red, spc, notes)
+  subroutine skip_unloaded_parts(model, table, tr, k, f_red, spc, notes, summed, error)
     !! Groups of unknowns coupled to nothing else and loaded in no step have a
     !! zero solution: they are taken out of the factorization (identity rows)
-    !! and reported, so an unloaded free part is not a mechanism.
+    !! and reported, so an unloaded free part is not a mechanism. summed: k is
+    !! this MPI process's term of K_red (the groups are those of the sum,
+    !! analysis/summed_matrix; process 0 puts the 1s); error is then present.
     type(model_t), intent(in) :: model
     type(dof_table_t), intent(in) :: table
     type(transform_t), intent(in) :: tr
@@ -337,18 +351,28 @@ contains
     real(wp), intent(in) :: f_red(:, :)
     logical, intent(inout) :: spc(:)
     type(string_t), allocatable, intent(inout) :: notes(:)
+    logical, intent(in), optional :: summed
+    type(error_t), allocatable, intent(out), optional :: error
     integer(i8), allocatable :: root(:)
     logical, allocatable :: loaded(:), skip(:), named(:)
     integer(i8) :: j, pos, a, b, nskip
     integer :: isub
     character(:), allocatable :: subs
 
+    logical :: terms
+
+    terms = .false.
+    if (present(summed)) terms = summed
     if (k%n == 0) return
     allocate (root(0:k%n))
     do j = 0, k%n
        root(j) = j
     end do
-    do j = 1, k%n
+    if (terms) then
+       call summed_groups(k, root(1:), error)
+       if (allocated(error)) return
+    end if
+    do j = 1, merge(0_i8, k%n, terms)
        do pos = k%colptr(j), k%colptr(j + 1) - 1
           if (k%val(pos) == 0.0_wp) cycle
           a = find_root(root, k%rowind(pos))
@@ -358,7 +382,7 @@ contains
     end do
     allocate (loaded(k%n), source=.false.)
     do j = 1, k%n
-       root(j) = find_root(root, j)
+       if (.not. terms) root(j) = find_root(root, j)
        if (any(f_red(j, :) /= 0.0_wp)) loaded(root(j)) = .true.
     end do
     allocate (skip(k%n))
@@ -374,7 +398,7 @@ contains
        do pos = k%colptr(j), k%colptr(j + 1) - 1
           k%val(pos) = 0.0_wp
        end do
-       k%val(k%colptr(j + 1) - 1) = 1.0_wp
+       if (.not. terms .or. holds_shared_terms()) k%val(k%colptr(j + 1) - 1) = 1.0_wp
        spc(j) = .true.
        if (tr%column_kind(j) == COL_PHYS) named(table%p_sub(tr%column_ref(j))) = .true.
     end do

@@ -99,7 +99,13 @@ contains
     call count_line(lu, 'reduced unknowns', res%summary%ncol)
     call count_line(lu, '  of which relative (delta)', res%summary%ndelta)
     call count_line(lu, 'equations', res%summary%neq)
-    call count_line(lu, 'matrix nonzeros (upper)', res%summary%matrix_nnz)
+    if (res%summary%matrix_nnz >= 0) then
+       call count_line(lu, 'matrix nonzeros (upper)', res%summary%matrix_nnz)
+    else   ! several MPI processes, each handing MUMPS its own term (analysis/distributed)
+       write (hline, '(2x,a34,1x,a)') field('matrix nonzeros (upper)', 34), 'n/a (summed by MUMPS from '// &
+            'each MPI process''s own terms)'
+       call lu%line(trim(hline))
+    end if
     call count_line(lu, 'factor nonzeros', res%summary%factor_nnz)
     write (hline, '(2x,a34,1x,a)') field('formulation', 34), res%summary%formulation// &
          merge(' (RIGID eliminated exactly)', ' (RIGID as LARGE stiffness)', &

@@ -1,7 +1,7 @@
 module superjoin_parallel_stats
   !! What this process contributed to a run on several processes, for the
-  !! MPI summary on stderr (analysis/distributed, mpi_summary): the matrix
-  !! entries it handed MUMPS, and MUMPS's memory figures of the last
+  !! MPI summary on stderr (analysis/distributed, mpi_summary): the entries
+  !! of the reduced matrix it assembled, the matrix entries it handed MUMPS, and MUMPS's memory figures of the last
   !! factorization (INFO(16): this process, INFOG(18): the largest process,
   !! INFOG(19): all processes, in MB). The bytes passed to collectives are
   !! counted by superjoin_parallel_comm (bytes_moved).
@@ -16,11 +16,12 @@ module superjoin_parallel_stats
      integer(i8) :: mb_max = 0        !! INFOG(18): the largest INFO(16) over the processes
      integer(i8) :: mb_total = 0      !! INFOG(19): the sum over the processes
      integer :: factorizations = 0
+     integer(i8) :: held = 0          !! entries of the largest reduced matrix (or term of it) this process assembled
   end type mumps_stats_t
 
   type(mumps_stats_t) :: stats
 
-  public :: record_mumps_input, record_mumps_memory, mumps_stats
+  public :: record_mumps_input, record_mumps_memory, record_matrix_held, mumps_stats
 
 contains
 
@@ -29,6 +30,13 @@ contains
     integer(i8), intent(in) :: entries
     stats%entries = max(stats%entries, entries)
   end subroutine record_mumps_input
+
+  subroutine record_matrix_held(entries)
+    !! Count the entries of the reduced matrix this process assembled (the
+    !! whole K_red, or with owner terms its own term; the largest of the run).
+    integer(i8), intent(in) :: entries
+    stats%held = max(stats%held, entries)
+  end subroutine record_matrix_held
 
   subroutine record_mumps_memory(mb_here, mb_max, mb_total)
     !! Keep MUMPS's memory figures (the largest of the run's factorizations).

@@ -81,7 +81,7 @@ contains
     anorm = maxval(colsum)
   end function norm1_sym
 
-  subroutine condition_estimate(a, solver, cond1, anorm1, inv_norm1, error)
+  subroutine condition_estimate(a, solver, cond1, anorm1, inv_norm1, error, anorm_given)
     !! 1-norm condition number estimate cond1 = ||A||_1 ||A^-1||_1 of the
     !! symmetric matrix a, with solver holding its factorization. ||A^-1||_1 is
     !! estimated with Hager's method as refined by Higham (LAPACK's dlacon:
@@ -90,15 +90,19 @@ contains
     !! estimate is a lower bound of the true value, usually within a small
     !! factor. anorm1 and inv_norm1 (optional) return the two factors. If a
     !! solve fails, cond1 = 0 (unknown) and error (optional) tells why.
+    !! anorm_given: ||A||_1 computed by the caller (a is then only one MPI
+    !! process's term of A, whose norm is not A's).
     type(sparse_sym_t), intent(in) :: a
     class(linear_solver_t), intent(inout) :: solver
     real(wp), intent(out) :: cond1
     real(wp), intent(out), optional :: anorm1, inv_norm1
     type(error_t), allocatable, intent(out), optional :: error
+    real(wp), intent(in), optional :: anorm_given
     type(error_t), allocatable :: err
     real(wp) :: anorm, ainv
 
     call estimate(a, solver, anorm, ainv, err)
+    if (present(anorm_given)) anorm = anorm_given
     cond1 = anorm*ainv
     if (allocated(err)) then
        cond1 = 0.0_wp

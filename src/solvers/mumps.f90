@@ -90,6 +90,7 @@ module superjoin_solvers_mumps
      procedure :: release => mumps_release
      procedure :: flops => mumps_flops
      procedure :: negative_pivots => mumps_negative_pivots
+     procedure, public :: input_norm => mumps_input_norm
      final :: mumps_finalize
   end type mumps_solver_t
 
@@ -139,6 +140,13 @@ module superjoin_solvers_mumps
        real(c_double), intent(inout) :: dinv(*)
        integer(c_int) :: status
      end function sj_mumps_inverse_diagonal
+     function sj_mumps_input_norm(h, x, anorm) bind(c, name='sj_mumps_input_norm') result(status)
+       import :: c_ptr, c_int, c_double
+       type(c_ptr), value :: h
+       real(c_double), intent(inout) :: x(*)
+       real(c_double), intent(out) :: anorm
+       integer(c_int) :: status
+     end function sj_mumps_input_norm
      function sj_mumps_infog(h, i) bind(c, name='sj_mumps_infog') result(v)
        import :: c_ptr, c_int, c_int64_t
        type(c_ptr), value :: h
@@ -385,6 +393,36 @@ contains
     if (.not. ok) return
     where (dinv /= 0.0_wp) d(1:self%n) = 1.0_wp/dinv
   end subroutine mumps_pivots
+
+  subroutine mumps_input_norm(self, anorm, error)
+    !! The 1-norm (= infinity norm, the matrix is symmetric) of the matrix
+    !! MUMPS factored, with local_input the sum of the processes' terms that no
+    !! process holds: RINFOG(4) of one extra solve with MUMPS's main error
+    !! statistics (ICNTL(11) = 2). The same on every process. Collective.
+    class(mumps_solver_t), intent(inout) :: self
+    real(wp), intent(out) :: anorm
+    type(error_t), allocatable, intent(out) :: error
+    real(wp), allocatable :: x(:)
+    integer(c_int) :: status
+    integer :: stat
+    real(c_double) :: a
+    anorm = 0.0_wp
+    if (.not. self%factored) then
+       call fatal_error(error, EXIT_IO, 'MUMPS: input_norm called without a valid factorization')
+       return
+    end if
+    if (self%n == 0) return
+    allocate (x(self%n), stat=stat)
+    call agreed(self, merge(SJ_OK, SJ_NOMEM, stat == 0), 'solve', error)
+    if (allocated(error)) return
+    x = 1.0_wp
+    status = sj_mumps_input_norm(self%handle, x, a)
+    if (status < 0) then
+       call status_error(self, status, 'solve', error)
+       return
+    end if
+    anorm = a
+  end subroutine mumps_input_norm
 
   subroutine mumps_release(self)
     !! End the MUMPS instance (collective) and free the shim.

@@ -190,6 +190,30 @@ int sj_mumps_inverse_diagonal(void *vh, MUMPS_INT *ptr, MUMPS_INT *irow, double 
     return st;
 }
 
+/* The infinity norm of the matrix MUMPS factored (the sum of every
+ * process's entries), RINFOG(4) of a solve with the main error statistics
+ * (ICNTL(11) = 2) for the one right-hand side x(n) on the host; x becomes
+ * its solution. *anorm is set on every process (RINFOG is global). */
+int sj_mumps_input_norm(void *vh, double *x, double *anorm)
+{
+    sj_mumps_t *h = vh;
+    int st;
+    *anorm = 0.0;
+    if (!h || !h->initialized) return SJ_STATE;
+    if (h->host) {
+        h->id.rhs = x;
+        h->id.lrhs = (MUMPS_INT)h->n;
+    }
+    h->id.nrhs = 1;
+    h->id.ICNTL(11) = 2;
+    call(h, JOB_SOLVE);
+    st = h->id.INFOG(1);
+    h->id.ICNTL(11) = 0;
+    h->id.rhs = NULL;
+    *anorm = h->id.RINFOG(4);
+    return st;
+}
+
 /* INFOG(i), RINFOG(i) and INFO(i) (1-based as in the MUMPS guide). */
 int64_t sj_mumps_infog(void *vh, int i) { sj_mumps_t *h = vh; return h ? h->id.INFOG(i) : 0; }
 int64_t sj_mumps_info(void *vh, int i) { sj_mumps_t *h = vh; return h ? h->id.INFO(i) : 0; }

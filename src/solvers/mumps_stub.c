@@ -21,6 +21,8 @@ int sj_mumps_factorize(void *h, const double *val) { (void)h; (void)val; return 
 int sj_mumps_solve(void *h, int64_t nrhs, double *x) { (void)h; (void)nrhs; (void)x; return SJ_NOT_BUILT; }
 int sj_mumps_inverse_diagonal(void *h, int *ptr, int *irow, double *dinv)
 { (void)h; (void)ptr; (void)irow; (void)dinv; return SJ_NOT_BUILT; }
+int sj_mumps_input_norm(void *h, double *x, double *anorm)
+{ (void)h; (void)x; *anorm = 0.0; return SJ_NOT_BUILT; }
 int64_t sj_mumps_infog(void *h, int i) { (void)h; (void)i; return 0; }
 int64_t sj_mumps_info(void *h, int i) { (void)h; (void)i; return 0; }
 double sj_mumps_rinfog(void *h, int i) { (void)h; (void)i; return 0.0; }

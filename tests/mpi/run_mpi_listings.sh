@@ -5,7 +5,9 @@
 #    one-process listing within its printed digits (tools/lstdiff, as the deck
 #    tests), except the 'ordering' line, which names the processes, and the
 #    PARTITION block, which only runs on several processes print (present
-#    on two, absent on one);
+#    on two, absent on one), and the 'matrix nonzeros' line: on two
+#    processes each hands MUMPS its own term of the matrix and nobody
+#    assembles it, the line says n/a (checked here);
 #  - every singular deck (tests/singular): the same exit status and the same
 #    stderr, printed once (hinge_chain: the singular part B is condensed by
 #    process 1, A having the larger estimated cost (greedy rule): the
@@ -25,7 +27,7 @@ fail=0; n=0
 # (--condense yes on one process gives the same system); instances of one part
 # on different processes are condensed once on each, so the counts of
 # condensations computed and reused differ and are not compared.
-counts='^  condensations: \|^  joint study '
+counts='^  condensations: \|^  joint study \|^  matrix nonzeros (upper) '
 for deck in "$src"/tests/decks/*.deck; do
   name=$(basename "$deck" .deck); n=$((n + 1))
   (cd "$(dirname "$deck")" && "$bin" -q --solver mumps --condense yes "$name.deck" -o "$outdir/$name.1.lst" 2>"$outdir/$name.1.err")
@@ -40,6 +42,8 @@ for deck in "$src"/tests/decks/*.deck; do
   grep -q '^PARTITION (2 processes; ' "$outdir/$name.2.lst" || { echo "FAIL: $name: no PARTITION block on two processes"; fail=1; }
   "$lstdiff" --scale-atol 1e-11 --health-rtol 2e-2 --health-floor 1e-9 "$outdir/$name.1.cmp" "$outdir/$name.2.cmp" >"$outdir/$name.diff" ||
     { echo "FAIL: $name: listing on two processes differs"; head -5 "$outdir/$name.diff"; fail=1; }
+  grep -q '^  matrix nonzeros (upper)  *n/a (summed by MUMPS from each MPI process.s own terms)$' "$outdir/$name.2.lst" ||
+    { echo "FAIL: $name: the matrix nonzeros line on two processes is not n/a"; fail=1; }
   grep -q '^  ordering  *none$' "$outdir/$name.1.lst" ||   # every unknown condensed: no MUMPS
   grep -q '^  ordering .*2 processes, matrix entries per process' "$outdir/$name.2.lst" ||
     { echo "FAIL: $name: no distribution in the ordering line"; fail=1; }

@@ -10,11 +10,12 @@ program test_mumps_local
   !! mpi). Skipped (status 77) in a build without MUMPS.
   use superjoin_kinds, only: wp, i8
   use superjoin_error, only: error_t, EXIT_SINGULAR
-  use superjoin_solvers, only: linear_solver_t, sparse_sym_t, new_solver, mumps_available
+  use superjoin_solvers, only: linear_solver_t, sparse_sym_t, new_solver, mumps_available, norm1_sym
   use superjoin_solvers_mumps, only: mumps_solver_t
   use superjoin_parallel_comm, only: comm_t, comm_world
   use superjoin_parallel_stats, only: mumps_stats_t, mumps_stats
   use superjoin_testing, only: check, finish
+  use superjoin_analysis_summed_matrix, only: summed_norm1, summed_matvec, summed_diagonal, summed_groups
   implicit none (type, external)
 
   integer, parameter :: SKIP = 77
@@ -23,7 +24,9 @@ program test_mumps_local
   integer, parameter :: NRHS = 3
   real(wp), parameter :: TOL = 1.0e-10_wp      !! against CHOLMOD, relative
   real(wp), parameter :: RES_TOL = 1.0e-13_wp  !! relative residual of a direct solve
-  real(wp), parameter :: SHARE = 0.25_wp       !! diagonal share of every process but 0
+  real(wp), parameter :: NORM_TOL = 1.0e-14_wp  !! MUMPS's norm of the summed terms against norm1_sym
+  real(wp), parameter :: SHARE = -0.25_wp      !! diagonal share of every process but 0 (negative:
+    !! the sum of the terms' absolute values is not the norm of their sum)
   type(comm_t) :: comm
 
   if (.not. mumps_available()) then
@@ -43,11 +46,11 @@ contains
     type(mumps_solver_t) :: s
     class(linear_solver_t), allocatable :: c
     type(error_t), allocatable :: error
-    real(wp), allocatable :: b(:, :), x(:, :), xc(:, :), r(:, :), d(:), e(:, :), y(:, :)
+    real(wp), allocatable :: b(:, :), x(:, :), xc(:, :), r(:, :), d(:), e(:, :), y(:, :), dg(:)
     integer(i8) :: i, j
     type(mumps_stats_t) :: ms
     integer :: k
-    real(wp) :: worst
+    real(wp) :: worst, anorm
     call laplace2d(GRID, a)
     call term(a, t)
     allocate (b(a%n, NRHS), x(a%n, NRHS), xc(a%n, NRHS), r(a%n, NRHS), d(a%n))
@@ -66,6 +69,26 @@ contains
        return
     end if
     call s%pivots(d)
+    call s%input_norm(anorm, error)
+    call check(.not. allocated(error), 'local input: MUMPS''s norm of the summed matrix (RINFOG(4))')
+    ! RINFOG(4) adds the absolute values of duplicate entries: the norm on one
+    ! process, an upper bound of it when the terms overlap with opposite signs
+    call check(anorm >= (1.0_wp - NORM_TOL)*norm1_sym(a), 'local input: RINFOG(4) bounds the 1-norm of the sum')
+    if (comm%size == 1) call check(abs(anorm - norm1_sym(a)) <= NORM_TOL*norm1_sym(a), &
+         'local input: RINFOG(4) equals the 1-norm on one process')
+    call summed_norm1(t, anorm, error)
+    call check(.not. allocated(error) .and. abs(anorm - norm1_sym(a)) <= NORM_TOL*norm1_sym(a), &
+         'summed_norm1 of the terms equals the 1-norm of the whole matrix')
+    call summed_matvec(t, b, r, error)
+    call a%matvec(b, xc)
+    call check(.not. allocated(error) .and. maxval(abs(r - xc)) <= NORM_TOL*maxval(abs(xc)), &
+         'summed_matvec of the terms equals the whole matrix''s product')
+    allocate (dg(a%n))
+    call summed_diagonal(t, dg, error)
+    call a%diagonal(r(:, 1))
+    call check(.not. allocated(error) .and. maxval(abs(dg - r(:, 1))) <= NORM_TOL*maxval(abs(r(:, 1))), &
+         'summed_diagonal of the terms equals the whole matrix''s diagonal')
+    call test_groups(a, t)
     call s%release()
     ms = mumps_stats()
     if (comm%size > 1) call check(ms%entries == t%nnz(), &
@@ -151,6 +174,30 @@ contains
     t%rowind = t%rowind(1:m)
     t%val = t%val(1:m)
   end subroutine term
+
+  subroutine test_groups(a, t)
+    !! summed_groups: the Laplacian is connected; with the entries of one grid
+    !! column pair removed from every term it falls in two groups.
+    type(sparse_sym_t), intent(in) :: a, t
+    type(sparse_sym_t) :: tc
+    integer(i8), allocatable :: root(:)
+    type(error_t), allocatable :: error
+    integer(i8) :: j, pos, cut
+    allocate (root(a%n))
+    call summed_groups(t, root, error)
+    call check(.not. allocated(error) .and. all(root == 1), 'summed_groups: the Laplacian is one group')
+    ! unknowns 1..cut (grid columns 1..GRID/2) cut off from the rest
+    cut = GRID*(GRID/2)
+    tc = t
+    do j = 1, tc%n
+       do pos = tc%colptr(j), tc%colptr(j + 1) - 1
+          if ((tc%rowind(pos) <= cut) .neqv. (j <= cut)) tc%val(pos) = 0.0_wp
+       end do
+    end do
+    call summed_groups(tc, root, error)
+    call check(.not. allocated(error) .and. all(root(1:cut) == 1) .and. all(root(cut + 1:) == cut + 1), &
+         'summed_groups: two groups once the coupling is cut')
+  end subroutine test_groups
 
   subroutine laplace2d(m, a)
     !! 5-point Laplacian on an m x m grid (upper triangle, CSC, diagonal last).

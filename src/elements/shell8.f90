@@ -289,20 +289,7 @@ contains
     real(wp), intent(in) :: x(:, :)
     real(wp), intent(out) :: shares(NN)
     type(error_t), allocatable, intent(out) :: error
-    real(wp) :: nf(NN), dn(2, NN), a(3, 2)
-    integer :: i, j
-    shares = 0.0_wp
-    if (size(x, 1) /= 3 .or. size(x, 2) /= NN) then
-       call fatal_error(error, EXIT_DECK, 'an S8R needs 8 nodes')
-       return
-    end if
-    do i = 1, 3
-       do j = 1, 3
-          call quadratic_shape(NN, [G3(i), G3(j)], nf, dn)
-          a = matmul(x, transpose(dn))
-          shares = shares + W3(i)*W3(j)*norm2(cross(a(:, 1), a(:, 2)))*nf
-       end do
-    end do
+    call surface_shares(x, shares, error)
   end subroutine shell8_area_shares
 
   pure subroutine shell8_pressure_load(x, p, fe, error)
@@ -341,7 +328,17 @@ contains
     type(shell8_props_t), intent(in) :: props
     real(wp), intent(out) :: shares(NN)
     type(error_t), allocatable, intent(out) :: error
-    real(wp) :: nf(NN), dn(2, NN), a(3, 2)
+    call surface_shares(x, shares, error, props)
+  end subroutine shell8_volume_shares
+
+  pure subroutine surface_shares(x, shares, error, props)
+    !! shares(i) = ∫ N_i w dA over the mid-surface (3×3 rule) with the weight
+    !! w = the thickness t = Σ N_j t_j when props is present, else 1.
+    real(wp), intent(in) :: x(:, :)
+    real(wp), intent(out) :: shares(NN)
+    type(error_t), allocatable, intent(out) :: error
+    type(shell8_props_t), intent(in), optional :: props
+    real(wp) :: nf(NN), dn(2, NN), a(3, 2), w
     integer :: i, j
     shares = 0.0_wp
     if (size(x, 1) /= 3 .or. size(x, 2) /= NN) then
@@ -352,10 +349,12 @@ contains
        do j = 1, 3
           call quadratic_shape(NN, [G3(i), G3(j)], nf, dn)
           a = matmul(x, transpose(dn))
-          shares = shares + W3(i)*W3(j)*norm2(cross(a(:, 1), a(:, 2)))*thickness_at(props, nf)*nf
+          w = 1.0_wp
+          if (present(props)) w = thickness_at(props, nf)
+          shares = shares + W3(i)*W3(j)*norm2(cross(a(:, 1), a(:, 2)))*w*nf
        end do
     end do
-  end subroutine shell8_volume_shares
+  end subroutine surface_shares
 
   pure subroutine shell8_mass(x, props, m, error)
     !! m(i, j) = ∫ N_i N_j t dA over the mid-surface (the consistent mass per

@@ -86,7 +86,8 @@ def ccx_deck(dofs):
     out.append('*NSET, NSET=EDGE')
     out += [', '.join(map(str, edge[k:k + 16])) for k in range(0, len(edge), 16)]
     centre = nid(n // 2, n // 2)
-    # CalculiX's P on a shell pushes along +Z for this node order; -1 loads it like superjoin's P = 1
+    # CalculiX's P on a shell pushes along +Z for this node order; -1 loads it like superjoin's P = 1 in a
+    # step without *STATIC (superjoin reads this deck's *STATIC step as CalculiX does)
     out += ['*NSET, NSET=CENTRE', str(centre), '*MATERIAL, NAME=MAT', '*ELASTIC',
             '%r, %r' % (shellgen.PLATE_E, shellgen.PLATE_NU),
             '*SHELL SECTION, ELSET=EALL, MATERIAL=MAT', repr(shellgen.PLATE_T),

@@ -6,10 +6,6 @@ module superjoin_analysis_ccx_differences
   !!   nodes to their integration points, as CalculiX does; the shells (S3, S4,
   !!   S3R, S4R, S8R) take each element's mean temperature change and mean
   !!   gradient: a step with shells whose nodal values differ is warned.
-  !! - `*DLOAD, P` on shells pushes against the element normal here (the deck
-  !!   reference); CalculiX pushes along it. A CalculiX-style step (with
-  !!   *STATIC) that has such loads is warned (*DSLOAD on a SPOS / SNEG face
-  !!   names the side it pushes on).
   use superjoin_model_types, only: model_t, string_t, loc_text
   use superjoin_utils_strings, only: itoa
   use superjoin_analysis_notes, only: append_string
@@ -25,25 +21,7 @@ contains
     type(model_t), intent(in) :: model
     type(string_t), allocatable, intent(inout) :: warnings(:)
     call check_shell_temperatures(model, warnings)
-    call check_shell_pressures(model, warnings)
   end subroutine check_ccx_differences
-
-  subroutine check_shell_pressures(model, warnings)
-    !! Append a warning for every CalculiX-style step with *DLOAD P lines.
-    type(model_t), intent(in) :: model
-    type(string_t), allocatable, intent(inout) :: warnings(:)
-    integer :: s
-    do s = 1, size(model%steps)
-       associate (step => model%steps(s))
-         if (step%shell_pressure_lines == 0 .or. .not. step%procedure_card) cycle
-         call append_string(warnings, 'step '//step%name//' ('//loc_text(model, step%loc)//'): '// &
-              itoa(step%shell_pressure_lines)//' *DLOAD P line(s) on shells: superjoin applies P against the '// &
-              'element normal (the deck reference), CalculiX along it, so these shells are loaded the other way '// &
-              'than in CalculiX. Negate P for CalculiX''s result, or load a *SURFACE face (SPOS, SNEG) with '// &
-              '*DSLOAD, which names the side it pushes on')
-       end associate
-    end do
-  end subroutine check_shell_pressures
 
   subroutine check_shell_temperatures(model, warnings)
     !! Append a warning for every step in which some shell element's nodal

@@ -1130,6 +1130,7 @@ contains
     if (.not. found) name = itoa(st%nstep + 1)
     call add_step(st, name, loc, k)
     st%cur_step = k
+    st%steps(k)%perturbation = param_index(kw, 'PERTURBATION') > 0
   end subroutine kw_step
 
   subroutine kw_load(st, kw, loc, card)
@@ -2522,7 +2523,7 @@ contains
   end subroutine kw_boundary
 
   integer function op_param(st, kw, loc) result(op)
-    !! OP= of a *BOUNDARY, *CLOAD or *DLOAD card: OP_MOD, OP_NEW or OP_DEFAULT
+    !! OP= of a *BOUNDARY, *CLOAD, *DLOAD or *TEMPERATURE card: OP_MOD, OP_NEW or OP_DEFAULT
     !! (not written; a wrong value is reported).
     type(deck_state_t), intent(inout) :: st
     type(keyword_line_t), intent(in) :: kw
@@ -2660,9 +2661,9 @@ contains
   end subroutine data_expansion
 
   subroutine kw_temperature(st, kw, loc, prev_mat)
-    !! *INITIAL CONDITIONS, TYPE=TEMPERATURE (model data) and *TEMPERATURE
-    !! (inside *STEP): data lines `node or nset, temperature`. Other TYPE=
-    !! of *INITIAL CONDITIONS are refused as before.
+    !! *INITIAL CONDITIONS, TYPE=TEMPERATURE (model data) and *TEMPERATURE[,
+    !! OP=MOD|NEW] (inside *STEP): data lines `node or nset, temperature`.
+    !! Other TYPE= of *INITIAL CONDITIONS are refused as before.
     type(deck_state_t), intent(inout) :: st
     type(keyword_line_t), intent(in) :: kw
     type(source_loc_t), intent(in) :: loc
@@ -2680,13 +2681,14 @@ contains
        call check_params(st, kw, loc, [character(NAME_LEN) :: 'TYPE'], [character(NAME_LEN) ::])
        st%card_item = 0
     else
-       call check_params(st, kw, loc, [character(NAME_LEN) ::], [character(NAME_LEN) ::])
+       call check_params(st, kw, loc, [character(NAME_LEN) :: 'OP'], [character(NAME_LEN) ::])
        if (st%cur_step == 0) then
           call report_loc(st, loc, '*TEMPERATURE stands inside *STEP (the initial temperatures: '// &
                '*INITIAL CONDITIONS, TYPE=TEMPERATURE)')
           return
        end if
        st%card_item = st%cur_step
+       st%steps(st%cur_step)%temp_op = max(st%steps(st%cur_step)%temp_op, op_param(st, kw, loc))
     end if
     st%card = CARD_TEMPERATURE
     st%card_home = st%cur_sub

@@ -226,7 +226,9 @@ module superjoin_deck_state
      type(source_loc_t) :: sweep_loc
      logical :: has_boundary = .false.                 !! a *BOUNDARY card stands in the step
      integer :: bc_op = 0, cload_op = 0, dload_op = 0  !! OP= of its *BOUNDARY, *CLOAD, *DLOAD cards (OP_*)
+     integer :: temp_op = 0                            !! OP= of its *TEMPERATURE cards (OP_*)
      logical :: has_procedure = .false.               !! a procedure card (*STATIC) stands in the step
+     logical :: perturbation = .false.                !! *STEP, PERTURBATION (its loads are its own)
   end type step_b_t
 
   type, public :: temp_b_t

@@ -17,7 +17,7 @@ module superjoin_deck_validate
        CH_IDS, CH_GEN, CH_RANGE, CH_REF, BEAM_2D_VALUES, BEAM_3D_VALUES, SUBK_INSTANCE
   use superjoin_utils_strings, only: pick
   use superjoin_deck_requests, only: build_requests
-  use superjoin_deck_state, only: sec_b_t
+  use superjoin_deck_state, only: sec_b_t, step_b_t
   use superjoin_model_types, only: section_t
   use superjoin_model_types, only: MAX_ELEMENT_NODES
   use superjoin_deck_beam_sections, only: section_fibres, MAX_FIBRES
@@ -1114,7 +1114,8 @@ contains
     !! *TEMPERATURE lines: a truss or beam whose material has *EXPANSION gets,
     !! in each step with temperatures, the load of its uniform temperature
     !! change ΔT (the mean of its nodes' T - T0; nodes without a step
-    !! temperature keep T0, nodes without an initial one start at 0), a
+    !! temperature keep T0, or the previous step's temperature where the step
+    !! continues it (keeps_previous), nodes without an initial one start at 0), a
     !! DLOAD_THERMAL entry of value E A α ΔT; a beam also the thermal
     !! curvatures α ∂T/∂y, α ∂T/∂z of the gradients across its section at its
     !! two nodes (linear in between)
@@ -1128,8 +1129,9 @@ contains
     !! refused.
     type(deck_state_t), intent(inout) :: st
     type(model_t), intent(inout) :: model
-    type(real_list_t), allocatable :: t0(:), t(:), g0(:), g(:), h0(:), h(:)
+    type(real_list_t), allocatable :: t0(:), t(:), g0(:), g(:), h0(:), h(:), tp(:), gp(:), hp(:)
     type(dload_t), allocatable :: extra(:)
+    logical :: kept
     integer :: s, isub, nn, nplate
     integer(ip) :: e, i, first_plate
     integer(ip), allocatable :: nodes(:)
@@ -1144,15 +1146,38 @@ contains
        allocate (h0(isub)%v(model%subs(isub)%nnode), source=0.0_wp)
     end do
     call apply_lines(0, t0, g0, h0)
+    tp = t0
+    gp = g0
+    hp = h0
     do s = 1, size(model%steps)
-       call keep_temperatures(s, t0)
-       if (.not. any(st%temps(1:st%ntemp)%step == s)) cycle
-       t = t0
-       g = g0
-       h = h0
+       ! the step's temperatures start from the previous step's (OP=MOD, or
+       ! CalculiX's rule in a step with *STATIC) or from the initial ones
+       kept = .false.
+       if (s > 1 .and. keeps_previous(st%steps(s), st%steps(s)%temp_op)) &
+            kept = differ(tp, t0) .or. differ(gp, g0) .or. differ(hp, h0)
+       model%steps(s)%kept_temperatures = kept
+       if (.not. kept .and. .not. any(st%temps(1:st%ntemp)%step == s)) then
+          call keep_temperatures(s, t0)
+          tp = t0
+          gp = g0
+          hp = h0
+          cycle
+       end if
+       if (kept) then
+          t = tp
+          g = gp
+          h = hp
+       else
+          t = t0
+          g = g0
+          h = h0
+       end if
        call apply_lines(s, t, g, h)
        if (st%aborted) return
        call keep_temperatures(s, t)
+       tp = t
+       gp = g
+       hp = h
        allocate (extra(0))
        nplate = 0
        do isub = 1, size(model%subs)
@@ -1249,6 +1274,16 @@ contains
       end do
     end subroutine keep_temperatures
 
+    pure logical function differ(a, b)
+      !! Whether two nodal fields (per substructure) differ anywhere.
+      type(real_list_t), intent(in) :: a(:), b(:)
+      integer :: k
+      differ = .false.
+      do k = 1, size(a)
+         if (any(a(k)%v /= b(k)%v)) differ = .true.
+      end do
+    end function differ
+
     subroutine refuse(why)
       !! Refuse a gradient on element e of substructure isub of step s.
       character(*), intent(in) :: why
@@ -1306,8 +1341,8 @@ contains
     allocate (own(st%nstep), ops(st%nstep))
     do s = 1, st%nstep
        ops(s)%bc_new = st%steps(s)%bc_op == OP_NEW
-       ops(s)%cload_mod = st%steps(s)%cload_op == OP_MOD
-       ops(s)%dload_mod = st%steps(s)%dload_op == OP_MOD
+       ops(s)%cload_mod = keeps_previous(st%steps(s), st%steps(s)%cload_op)
+       ops(s)%dload_mod = keeps_previous(st%steps(s), st%steps(s)%dload_op)
     end do
     call apply_load_history(model, ops)
     if (.not. any(st%steps(1:st%nstep)%has_boundary)) return
@@ -1318,19 +1353,29 @@ contains
     call apply_boundary_history(model, own, ops)
   end subroutine build_history
 
+  pure logical function keeps_previous(step, op)
+    !! Whether a step's loads of one kind (*CLOAD, *DLOAD or *TEMPERATURE,
+    !! whose cards say op) continue those of the previous step: with OP=MOD,
+    !! and by default in a step with a procedure card (*STATIC) that is not a
+    !! PERTURBATION step, as ccx 2.20 does (checked on two-step decks); a
+    !! superjoin step without a procedure card is a load case of its own.
+    type(step_b_t), intent(in) :: step
+    integer, intent(in) :: op
+    keeps_previous = op == OP_MOD .or. (op == OP_DEFAULT .and. step%has_procedure .and. .not. step%perturbation)
+  end function keeps_previous
+
   subroutine build_steps(st, model)
     type(deck_state_t), intent(inout) :: st
     type(model_t), intent(inout) :: model
     integer :: s, j
     type(cload_t), allocatable :: cl(:)
     type(dload_t), allocatable :: dl(:)
+    type(load_b_t), allocatable :: own(:)
     allocate (model%steps(st%nstep))
     do s = 1, st%nstep
        model%steps(s)%name = st%steps(s)%name
        model%steps(s)%loc = st%steps(s)%loc
        model%steps(s)%procedure_card = st%steps(s)%has_procedure
-       model%steps(s)%cload_op_given = st%steps(s)%cload_op /= OP_DEFAULT
-       model%steps(s)%dload_op_given = st%steps(s)%dload_op /= OP_DEFAULT
        do j = 1, s - 1
           if (st%steps(j)%name == st%steps(s)%name) then
              call report_loc(st, st%steps(s)%loc, 'duplicate step name '//st%steps(s)%name// &
@@ -1341,9 +1386,12 @@ contains
        call build_cloads(st, model, st%steps(s)%cloads(1:st%steps(s)%ncload), cl)
        call move_alloc(cl, model%steps(s)%cloads)
        if (st%aborted) return
-       model%steps(s)%shell_pressure_lines = count(st%steps(s)%dloads(1:st%steps(s)%ndload)%kind == DLOAD_P .and. &
-            .not. st%steps(s)%dloads(1:st%steps(s)%ndload)%surface)
-       call build_dloads(st, model, st%steps(s)%dloads(1:st%steps(s)%ndload), dl)
+       own = st%steps(s)%dloads(1:st%steps(s)%ndload)
+       ! CalculiX rules (a step with *STATIC): *DLOAD P pushes along the shell
+       ! normal; superjoin's own P (and the load of a *SURFACE SPOS face)
+       ! pushes against it
+       if (st%steps(s)%has_procedure) where (own%kind == DLOAD_P .and. .not. own%surface) own%value = -own%value
+       call build_dloads(st, model, own, dl)
        call move_alloc(dl, model%steps(s)%dloads)
        if (st%aborted) return
     end do

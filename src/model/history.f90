@@ -9,11 +9,14 @@ module superjoin_model_history
   !! the ground) is part of the structure and stays.
   !!
   !! Loads: a superjoin step is a load case of its own (the deck contract). A
-  !! *CLOAD or *DLOAD card with OP=MOD written explicitly continues the loads of
-  !! that kind of the previous step, replacing those on the same node and DOF
-  !! (element and load type); OP=NEW, or no OP=, starts from nothing.
+  !! *CLOAD or *DLOAD card with OP=MOD, or with no OP= in a step that has a
+  !! procedure card (*STATIC, CalculiX's and Abaqus's rule), continues the loads
+  !! of that kind of the previous step, replacing those on the same node and
+  !! DOF (element and load type); OP=NEW, or no OP= in a step without a
+  !! procedure card, starts from nothing. Thermal loads are not continued
+  !! here: they follow from the nodal temperatures of each step.
   use superjoin_kinds, only: wp, i8
-  use superjoin_model_types, only: model_t, support_t, cload_t, dload_t
+  use superjoin_model_types, only: model_t, support_t, cload_t, dload_t, DLOAD_THERMAL
   use superjoin_utils_sorting, only: stable_argsort
   implicit none (type, external)
   private
@@ -101,16 +104,27 @@ contains
 
   subroutine apply_load_history(model, ops)
     !! Continue the loads of the previous step into the steps whose *CLOAD or
-    !! *DLOAD says OP=MOD (the step's own loads replace those on the same DOF
-    !! or the same element and load type).
+    !! *DLOAD keeps them (step_ops_t; the step's own loads replace those on the
+    !! same DOF or the same element and load type); count them in the step.
     type(model_t), intent(inout) :: model
     type(step_ops_t), intent(in) :: ops(:)
+    type(cload_t), allocatable :: kc(:)
+    type(dload_t), allocatable :: kd(:)
     integer :: s
     do s = 2, size(model%steps)
-       if (ops(s)%cload_mod) model%steps(s)%cloads = [pack(model%steps(s - 1)%cloads, &
-            .not. cload_replaced(model%steps(s - 1)%cloads, model%steps(s)%cloads)), model%steps(s)%cloads]
-       if (ops(s)%dload_mod) model%steps(s)%dloads = [pack(model%steps(s - 1)%dloads, &
-            .not. dload_replaced(model%steps(s - 1)%dloads, model%steps(s)%dloads)), model%steps(s)%dloads]
+       associate (prev => model%steps(s - 1), now => model%steps(s))
+         if (ops(s)%cload_mod) then
+            kc = pack(prev%cloads, .not. cload_replaced(prev%cloads, now%cloads))
+            now%kept_cloads = size(kc)
+            now%cloads = [kc, now%cloads]
+         end if
+         if (ops(s)%dload_mod) then
+            kd = pack(prev%dloads, prev%dloads%kind /= DLOAD_THERMAL .and. &
+                 .not. dload_replaced(prev%dloads, now%dloads))
+            now%kept_dloads = size(kd)
+            now%dloads = [kd, now%dloads]
+         end if
+       end associate
     end do
   end subroutine apply_load_history
 

@@ -267,15 +267,16 @@ module superjoin_model_types
      integer :: combination = 0            !! results of model%combinations(k), no solve (0: a solved step)
      type(support_t), allocatable :: supports(:)  !! supports in effect in this step when some step has a
                                                   !! *BOUNDARY of its own (unallocated: model%supports)
-     logical :: procedure_card = .false.   !! the step has *STATIC (written for CalculiX/Abaqus)
-     logical :: cload_op_given = .false.   !! one of its *CLOAD cards has OP=
-     logical :: dload_op_given = .false.   !! one of its *DLOAD cards has OP=
+     logical :: procedure_card = .false.   !! the step has *STATIC (written for CalculiX/Abaqus: its
+                                           !! loads continue the previous step's, shell P along the normal)
+     integer :: kept_cloads = 0            !! concentrated loads continued from the previous step
+     integer :: kept_dloads = 0            !! distributed loads continued from the previous step
+     logical :: kept_temperatures = .false.  !! nodal temperatures continued from the previous step
      type(node_values_t), allocatable :: temperature(:)  !! per substructure: the nodal temperatures of
                                            !! the step (*INITIAL CONDITIONS / *TEMPERATURE; unallocated: none
                                            !! in the model, all 0), for *NODE PRINT NT
      integer :: shell_mean_temperatures = 0  !! shell elements whose nodal temperature change or
                                            !! gradient differs between their nodes (each takes its mean)
-     integer :: shell_pressure_lines = 0   !! *DLOAD P data lines (shell pressure, not *DSLOAD) of the step
   end type step_t
 
   type, public :: combination_t

@@ -95,6 +95,8 @@ contains
     call count_line(lu, 'load steps', int(count(model%steps%combination == 0), i8))
     if (any(model%steps%combination > 0)) &
          call count_line(lu, 'load combinations', int(count(model%steps%combination > 0), i8))
+    if (any(model%steps%procedure_card)) &
+         call count_line(lu, 'of which CalculiX rules (*STATIC)', int(count(model%steps%procedure_card), i8))
     call count_line(lu, 'active DOFs', res%summary%nphys)
     call count_line(lu, 'reduced unknowns', res%summary%ncol)
     call count_line(lu, '  of which relative (delta)', res%summary%ndelta)
@@ -162,6 +164,25 @@ contains
     call lu%line(trim(hline))
   end subroutine count_line
 
+  subroutine kept_line(lu, model, is)
+    !! What step is continues of the previous step (OP=MOD, or CalculiX's
+    !! rule in a step with *STATIC), when anything.
+    type(text_buffer_t), intent(inout) :: lu
+    type(model_t), intent(in) :: model
+    integer, intent(in) :: is
+    character(:), allocatable :: what
+    associate (step => model%steps(is))
+      what = ''
+      if (step%kept_cloads > 0) what = what//', '//itoa(step%kept_cloads)//' concentrated load(s)'
+      if (step%kept_dloads > 0) what = what//', '//itoa(step%kept_dloads)//' distributed load(s)'
+      if (step%kept_temperatures) what = what//', the nodal temperatures'
+      if (len(what) == 0) return
+      call lu%line('  kept from step '//model%steps(is - 1)%name//' (OP=MOD, the default in a step with '// &
+           '*STATIC): '//what(3:))
+      call lu%line('')
+    end associate
+  end subroutine kept_line
+
   subroutine step_block(lu, model, res, is)
     !! One step: the standard tables (not in a deck with output requests, whose
     !! REQUESTED OUTPUT section prints what they ask for), contact forces,
@@ -181,6 +202,7 @@ contains
       call lu%line(RULE)
       call lu%line('STEP '//itoa(is)//'  '//model%steps(is)%name)
       call lu%line(RULE)
+      call kept_line(lu, model, is)
 
       if (tables) call node_tables(lu, model, res, is)
 

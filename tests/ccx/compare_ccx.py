@@ -36,12 +36,13 @@ beam into 3D bricks, so its values are those of the brick model. superjoin
 must reproduce the closed forms (round-off, 1e-10 of the table); the ratio
 of CalculiX's value to the closed form is printed as a note, and the
 reactions, which are statically determinate, must agree with .dat.ref.
-rot1/rot2 step 2: CalculiX carries a step's loads into the next step,
-superjoin's steps are load cases of their own unless *CLOAD, OP=MOD says
-so (doc/user-manual.md). The unchanged decks' step 2 is checked against its
-superjoin meaning (rot1: no load, zero; rot2: only the new moment), and a
-copy whose only change is OP=MOD on the step-2 *CLOAD (rot1: an added empty
-*CLOAD, OP=MOD card) against the closed form of CalculiX's load case.
+rot1/rot2 step 2: CalculiX carries a step's loads into the next step, and
+so does superjoin in a step with *STATIC (CalculiX's rules; without a
+procedure card a superjoin step is a load case of its own, doc/user-manual.md).
+The unchanged decks' step 2 is checked against the closed form of CalculiX's
+load case, and a copy whose only change is OP=NEW on the step-2 *CLOAD (rot1:
+an added empty *CLOAD, OP=NEW card) against the step's own loads (rot1: no
+load, zero; rot2: only the new moment).
 
 planestrain.inp (CPE4), planestrain2.inp (CPE8): uniform stress (patch
 test), so every integration point of CalculiX's expanded brick must show the
@@ -54,11 +55,11 @@ shell1lin.inp (S8R cantilever, *NODAL THICKNESS 0.01 at the clamp (the
 section's: the clamped nodes have none) to 0.03 at x = 0.5 and 0.02 at the
 tip, linear in each element; *DLOAD P on the outer half, an axial *CLOAD):
 1. CalculiX's shell pressure P acts along the element normal (ccx manual,
-   *DLOAD: "pressure in the direction of the normal on the shell"),
-   superjoin's against it (doc/user-manual.md, the deck contract): the
-   unchanged deck's w and rotations are exactly the negatives of those of a
-   copy with P negated (round-off), its in-plane displacements equal; the
-   copy is compared with .dat.ref.
+   *DLOAD: "pressure in the direction of the normal on the shell"), and so
+   does superjoin's in a step with *STATIC (CalculiX's rules; a superjoin
+   step without a procedure card pushes against it, the deck contract): the
+   unchanged deck deflects the way .dat.ref does, and a copy with P negated
+   gives exactly the negated w and rotations (round-off).
 2. In-plane displacements (the axial load): membrane behaviour, both
    elements represent it well: within 1 % of the table scale of .dat.ref.
 3. Deflection: CalculiX expands the S8R into one C3D20R brick through the
@@ -501,29 +502,29 @@ def rot_decks(binary, outdir):
         note(f'CalculiX (bricks) / closed form, step 1 node 5: {ref1[(5,)][1] / (m * length ** 2 / (2 * ei)):.5f}')
         u2 = listing_rows(text, 2, place[1], '    U ')
         for node, xn in x.items():
-            if name == 'rot1':
-                want = 0.0     # superjoin: step 2 writes no load
-            else:
-                want = -m * min(xn, 0.4) ** 2 / (2 * ei) - m * 0.4 / ei * max(xn - 0.4, 0.0)
-            check(f'step 2 as written (superjoin: a step is its own load case) node {node} v', u2[node][0][1], want, scale)
+            # CalculiX's load case: M at node 5 and the part from node 30 on clamped (rot1: at 30 only;
+            # rot2: -M at 30 cancels the moment left of it)
+            want = m * max(xn - 0.4, 0.0) ** 2 / (2 * ei)
+            check(f'step 2 as written (loads kept, CalculiX\'s rule) node {node} v', u2[node][0][1], want, scale)
         with open(os.path.join(HERE, name + '.inp')) as f:
             deck = f.read()
         if name == 'rot1':
             assert deck.count('*BOUNDARY, OP=NEW') == 0 and deck.count('*BOUNDARY,OP=NEW') == 1
-            deck = deck.replace('*BOUNDARY,OP=NEW', '*CLOAD,OP=MOD\n*BOUNDARY,OP=NEW')
+            deck = deck.replace('*BOUNDARY,OP=NEW', '*CLOAD,OP=NEW\n*BOUNDARY,OP=NEW')
         else:
             assert deck.count('*CLOAD\n30,6,-1.e-3') == 1
-            deck = deck.replace('*CLOAD\n30,6,-1.e-3', '*CLOAD,OP=MOD\n30,6,-1.e-3')
-        with open(os.path.join(outdir, name + '_mod.inp'), 'w') as f:
+            deck = deck.replace('*CLOAD\n30,6,-1.e-3', '*CLOAD,OP=NEW\n30,6,-1.e-3')
+        with open(os.path.join(outdir, name + '_new.inp'), 'w') as f:
             f.write(deck)
-        u2 = listing_rows(run(binary, outdir, name + '_mod', outdir), 2, name + '_mod.inp:' + place[1].split(':')[1]
-                          if name == 'rot2' else 'rot1_mod.inp:36', '    U ')
+        u2 = listing_rows(run(binary, outdir, name + '_new', outdir), 2, name + '_new.inp:' + place[1].split(':')[1]
+                          if name == 'rot2' else 'rot1_new.inp:36', '    U ')
         ref2, _ = dat_table(os.path.join(HERE, name + '.dat.ref'), 'displacements', 'NS_ALL', 1)
         for node, xn in x.items():
-            # CalculiX's load case: M at node 5 and the part from node 30 on clamped (rot1: at 30 only;
-            # rot2: -M at 30 cancels the moment left of it)
-            want = m * max(xn - 0.4, 0.0) ** 2 / (2 * ei)
-            check(f'step 2 with OP=MOD (CalculiX\'s loads) node {node} v', u2[node][0][1], want, scale)
+            if name == 'rot1':
+                want = 0.0     # OP=NEW: step 2 writes no load
+            else:
+                want = -m * min(xn, 0.4) ** 2 / (2 * ei) - m * 0.4 / ei * max(xn - 0.4, 0.0)
+            check(f'step 2 with OP=NEW (its own loads) node {node} v', u2[node][0][1], want, scale)
         note(f'CalculiX step 2 node 5 / closed form: {ref2[(5,)][1] / (m * 0.4 ** 2 / (2 * ei)):.5f}; nodes 10, 20, 30 '
              f'(an unloaded, clamped part, exactly 0): CalculiX {ref2[(10,)][1]:.3e}, {ref2[(20,)][1]:.3e}, '
              f'{ref2[(30,)][1]:.3e} (its brick expansion and rotational knots)')
@@ -658,36 +659,41 @@ def shell1lin(binary, outdir):
     with open(os.path.join(HERE, 'shell1lin.inp')) as f:
         deck = f.read()
     assert deck.count('3,P,-.1\n4,P,-.1') == 1
-    with open(os.path.join(outdir, 'shell1lin_pos.inp'), 'w') as f:
+    with open(os.path.join(outdir, 'shell1lin_neg.inp'), 'w') as f:
         f.write(deck.replace('3,P,-.1\n4,P,-.1', '3,P,.1\n4,P,.1'))
-    text_pos = run(binary, outdir, 'shell1lin_pos', outdir)
-    up = listing_rows(text_pos, 1, 'shell1lin_pos.inp:79', '    U ')
-    rfp = listing_rows(text_pos, 1, 'shell1lin_pos.inp:79', '    RF ')
-    scale = max(max(abs(v) for v in vals[0]) for vals in up.values())
-    for node in sorted(up):
+    text_neg = run(binary, outdir, 'shell1lin_neg', outdir)
+    un = listing_rows(text_neg, 1, 'shell1lin_neg.inp:79', '    U ')
+    scale = max(max(abs(v) for v in vals[0]) for vals in u.values())
+    for node in sorted(u):
         for c in range(6):
             sign = -1.0 if c in (2, 3, 4) else 1.0
-            check(f'node {node} U{c + 1}: unchanged deck = {sign:+.0f} x copy with P negated', u[node][0][c],
-                  sign * up[node][0][c], scale * 1e-4)
+            check(f'node {node} U{c + 1}: copy with P negated = {sign:+.0f} x unchanged deck', un[node][0][c],
+                  sign * u[node][0][c], scale * 1e-4)
     ref_u, _ = dat_table(os.path.join(HERE, 'shell1lin.dat.ref'), 'displacements', 'NALL')
     scale_in = max(max(abs(v[0]), abs(v[1])) for v in ref_u.values())
     for (node,), vals in sorted(ref_u.items()):
         for c in range(2):
-            err = abs(up[node][0][c] - vals[c])
+            err = abs(u[node][0][c] - vals[c])
             ok = err <= 1e-2 * scale_in
-            print(f"  {'ok  ' if ok else 'FAIL'} node {node} u{c + 1} (in-plane): {up[node][0][c]:.6e}  .dat.ref "
+            print(f"  {'ok  ' if ok else 'FAIL'} node {node} u{c + 1} (in-plane): {u[node][0][c]:.6e}  .dat.ref "
                   f"{vals[c]:.6e}  |diff|/scale {err / scale_in:.1e} (tolerance 1e-2: different elements)")
             if not ok:
                 FAILURES.append(f'shell1lin node {node} u{c + 1}')
-    # statics: sum of the reactions = - applied loads (P = 0.1 on 0.5 x 1 against +z; 1 along x)
-    check('sum RF1 = -CLOAD (1)', sum(v[0][0] for v in rfp.values()), -1.0, 1.0)
-    check('sum RF3 = pressure x area (0.05)', sum(v[0][2] for v in rfp.values()), 0.05, 0.05)
+    # the unchanged deck deflects the way CalculiX's does (P along the normal in a *STATIC step)
+    ok = u[15][0][2] * ref_u[(15,)][2] > 0 and abs(u[15][0][2]) > 0.5 * abs(ref_u[(15,)][2])
+    print(f"  {'ok  ' if ok else 'FAIL'} node 15 w: {u[15][0][2]:.6e}, .dat.ref {ref_u[(15,)][2]:.6e} "
+          '(same direction; magnitudes compared below)')
+    if not ok:
+        FAILURES.append('shell1lin pressure direction')
+    # statics: sum of the reactions = - applied loads (P = -0.1 along +z on 0.5 x 1; 1 along x)
+    check('sum RF1 = -CLOAD (1)', sum(v[0][0] for v in rf.values()), -1.0, 1.0)
+    check('sum RF3 = pressure x area (0.05)', sum(v[0][2] for v in rf.values()), 0.05, 0.05)
 
     def thick(x):
         return 0.01 + 0.04 * x if x <= 0.5 else 0.03 - 0.02 * (x - 0.5)
 
     def loads(nodes, elems):
-        lines = ''.join(f'{e},P,.1\n' for e, conn in elems if nodes[conn[0]][2][0] >= 0.5 - 1e-12)
+        lines = ''.join(f'{e},P,-.1\n' for e, conn in elems if nodes[conn[0]][2][0] >= 0.5 - 1e-12)
         return '*DLOAD\n' + lines + f'*CLOAD\n{tip[1]},1,1.\n'
     tip = [None, None]
     n = 16
@@ -695,7 +701,7 @@ def shell1lin(binary, outdir):
     tip[1] = tips[n]
     fine, _ = square_s8r(n, thick, loads)
     w16 = tip_w(binary, outdir, 'shell1lin_16x16', fine, tip[1])
-    w2 = up[15][0][2]
+    w2 = u[15][0][2]
     err = abs(w2 / w16 - 1)
     ok = err <= 0.02
     print(f"  {'ok  ' if ok else 'FAIL'} node 15 w: 2x2 {w2:.6e}, 16x16 refinement {w16:.6e}: {err:.2%} "
@@ -764,12 +770,21 @@ def rot4(binary, outdir):
         for c in range(6):
             check(f'*SHELL SECTION, NODAL THICKNESS (ccx 2.20 form): node {node} U{c + 1} as the deck', un[node][0][c],
                   u1[node][0][c], scale)
-    # step 2: CalculiX carries the step-1 moments into step 2, superjoin's step 2 is a load case of its own
+    # step 2: the step-1 moments are kept (CalculiX's rule in a step with *STATIC): step 2 = step 1 + a copy
+    # of step 2 with *CLOAD, OP=NEW (its own moments), by superposition
     ref2, _ = dat_table(os.path.join(HERE, 'rot4.dat.ref'), 'displacements', 'NALL', 1)
-    both = u1[15][0][2] + u2[15][0][2]
-    note(f'step 2 (CalculiX: the moments of both steps) node 15 w: superjoin step 1 + step 2 {both:.6e}, '
-         f'CalculiX {ref2[(15,)][2]:.6e} (ratio {ref2[(15,)][2] / both:.4f}; superjoin step 2 alone '
-         f'{u2[15][0][2]:.6e}: a step is a load case unless *CLOAD, OP=MOD)')
+    step2 = '*STEP\n*STATIC\n*CLOAD\n3,5,0.01'
+    assert deck.count(step2) == 1
+    with open(os.path.join(outdir, 'rot4_new.inp'), 'w') as f:
+        f.write(deck.replace(step2, step2.replace('*CLOAD', '*CLOAD,OP=NEW')))
+    un = listing_rows(run(binary, outdir, 'rot4_new', outdir), 2, 'rot4_new.inp:82', '    U ')
+    for node in sorted(u2):
+        for c in range(6):
+            check(f'step 2 kept step 1\'s moments: node {node} U{c + 1} = step 1 + step 2 with OP=NEW',
+                  u2[node][0][c], u1[node][0][c] + un[node][0][c], scale)
+    note(f'step 2 (the moments of both steps) node 15 w: superjoin {u2[15][0][2]:.6e}, CalculiX '
+         f'{ref2[(15,)][2]:.6e} (ratio {ref2[(15,)][2] / u2[15][0][2]:.4f}: its rigid knots at the loaded nodes '
+         'of x = 0.5)')
 
 
 def main():

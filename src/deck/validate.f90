@@ -1156,6 +1156,7 @@ contains
        if (s > 1 .and. keeps_previous(st%steps(s), st%steps(s)%temp_op)) &
             kept = differ(tp, t0) .or. differ(gp, g0) .or. differ(hp, h0)
        model%steps(s)%kept_temperatures = kept
+       if (kept) model%steps(s)%kept_from = model%steps(s - 1)%name
        if (.not. kept .and. .not. any(st%temps(1:st%ntemp)%step == s)) then
           call keep_temperatures(s, t0)
           tp = t0

@@ -116,12 +116,14 @@ contains
          if (ops(s)%cload_mod) then
             kc = pack(prev%cloads, .not. cload_replaced(prev%cloads, now%cloads))
             now%kept_cloads = size(kc)
+            if (size(kc) > 0) now%kept_from = prev%name
             now%cloads = [kc, now%cloads]
          end if
          if (ops(s)%dload_mod) then
             kd = pack(prev%dloads, prev%dloads%kind /= DLOAD_THERMAL .and. &
                  .not. dload_replaced(prev%dloads, now%dloads))
             now%kept_dloads = size(kd)
+            if (size(kd) > 0) now%kept_from = prev%name
             now%dloads = [kd, now%dloads]
          end if
        end associate

@@ -165,8 +165,8 @@ contains
   end subroutine count_line
 
   subroutine kept_line(lu, model, is)
-    !! What step is continues of the previous step (OP=MOD, or CalculiX's
-    !! rule in a step with *STATIC), when anything.
+    !! What step is continues of the step before it in the deck (OP=MOD, or
+    !! CalculiX's rule in a step with *STATIC), when anything.
     type(text_buffer_t), intent(inout) :: lu
     type(model_t), intent(in) :: model
     integer, intent(in) :: is
@@ -177,7 +177,7 @@ contains
       if (step%kept_dloads > 0) what = what//', '//itoa(step%kept_dloads)//' distributed load(s)'
       if (step%kept_temperatures) what = what//', the nodal temperatures'
       if (len(what) == 0) return
-      call lu%line('  kept from step '//model%steps(is - 1)%name//' (OP=MOD, the default in a step with '// &
+      call lu%line('  kept from step '//step%kept_from//' (OP=MOD, the default in a step with '// &
            '*STATIC): '//what(3:))
       call lu%line('')
     end associate

@@ -57,6 +57,7 @@ program test_membrane
   call test_opt_patch()
   call test_opt_bending()
   call test_opt_macneal()
+  call test_cps3_unique()
   call finish()
 
 contains
@@ -1198,4 +1199,53 @@ contains
     call check_rel(tip, OPT_FINE_PIN, REL_PIN, 'MacNeal OPT triangle 48 x 4: pin')
     call check_rel(tip, 1.0_wp, 2.0e-3_wp, 'MacNeal OPT triangle 48 x 4: within 0.2 % of 0.1081')
   end subroutine test_opt_macneal
+
+  subroutine test_cps3_unique()
+    !! Why CPS3 stays the CST: the three rigid modes and the three constant-strain
+    !! modes of a triangle (two DOFs per node) are a basis V of the six DOFs, K r = 0
+    !! on the rigid ones, and the patch test fixes K c on the others: the nodal
+    !! forces of the constant stress σ = D ε (each edge's traction t σ n l split
+    !! half to each end node, computed here from the edges, not from any element).
+    !! So K = F V⁻¹ is the only 6-DOF triangle that passes the patch test; it
+    !! equals membrane_stiffness's CST to round-off on the distorted shapes.
+    real(wp), parameter :: E = 2.0e5_wp, NU = 0.3_wp, T = 0.1_wp
+    real(wp) :: v(6, 6), f(6, 6), d(3, 3), eps(3), sig(3), nl(2), tr(2), vt(6, 6), ft(6, 6)
+    real(wp), allocatable :: kc(:, :)
+    integer :: s, m, i, j, k, ipiv(6), info
+    character(:), allocatable :: what
+    d = reshape([1.0_wp, NU, 0.0_wp, NU, 1.0_wp, 0.0_wp, 0.0_wp, 0.0_wp, (1 - NU)/2], [3, 3])*E/(1 - NU**2)
+    do s = 1, size(TRI, 3)
+       what = 'CPS3 uniqueness, triangle '//itoa(s)
+       v = 0.0_wp
+       f = 0.0_wp
+       v(:, 1:3) = rigid_modes(TRI(:, :, s), 2)
+       do m = 1, 3
+          eps = 0.0_wp
+          eps(m) = 1.0_wp
+          do i = 1, 3
+             ! u = εx x + γ y / 2, v = εy y + γ x / 2
+             v(2*i - 1, 3 + m) = eps(1)*TRI(1, i, s) + eps(3)*TRI(2, i, s)/2
+             v(2*i, 3 + m) = eps(2)*TRI(2, i, s) + eps(3)*TRI(1, i, s)/2
+          end do
+          sig = matmul(d, eps)
+          do i = 1, 3
+             j = modulo(i, 3) + 1
+             ! edge i → j (counter-clockwise): l n = (Δy, -Δx)
+             nl = [TRI(2, j, s) - TRI(2, i, s), -(TRI(1, j, s) - TRI(1, i, s))]
+             tr = T*[sig(1)*nl(1) + sig(3)*nl(2), sig(3)*nl(1) + sig(2)*nl(2)]
+             do k = 1, 2
+                f(2*i - 2 + k, 3 + m) = f(2*i - 2 + k, 3 + m) + tr(k)/2
+                f(2*j - 2 + k, 3 + m) = f(2*j - 2 + k, 3 + m) + tr(k)/2
+             end do
+          end do
+       end do
+       ! K V = F  ⇔  Vᵀ K = Fᵀ (K symmetric)
+       vt = transpose(v)
+       ft = transpose(f)
+       call dgesv(6, 6, vt, 6, ipiv, ft, 6, info)
+       call check(info == 0, what//': rigid and constant-strain modes are a basis')
+       kc = element_matrix(KIND_MEMBRANE, TRI(:, :, s), T, E, NU, what)
+       call check(maxval(abs(ft - kc)) <= TOL_EXACT*maxval(abs(kc)), what//': the patch test gives the CST')
+    end do
+  end subroutine test_cps3_unique
 end program test_membrane

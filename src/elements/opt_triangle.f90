@@ -22,11 +22,16 @@ module superjoin_elements_opt_triangle
   !! energy-orthogonal to the basic ones; the stiffness t ∫ εᵀ D ε dA is exact
   !! with the three midside points. A linear field with θ = its rotation has
   !! θ̃ = 0 and no bubble term: the patch test holds under any edge mask, and
-  !! the rigid modes are force-free; θ̃ (three values) carries the higher-order
-  !! stiffness, so the element has exactly three zero-energy modes whatever
-  !! the mask (with every edge masked the element is the CST plus the
-  !! higher-order stiffness; superjoin_elements_shell uses the CST with soft
-  !! drilling springs there instead).
+  !! the rigid modes are force-free.
+  !!
+  !! Edge masks: a corner none of whose two edges carries its α_b term (a
+  !! curved or held node) keeps its θ̃ out of the higher-order strains (that
+  !! stiffness ties θz of a curved node, part of the neighbouring facets'
+  !! bending rotation, to the facet's in-plane rotation: the coarse pinched
+  !! hemisphere locks) and gets the CST's soft drilling springs instead, so the
+  !! element keeps exactly three zero-energy modes under any mask.
+  !! superjoin_elements_shell uses the CST with springs for a triangle without
+  !! any qualifying edge (doc/verification.md, "The OPT triangle for S3/S3R").
   use superjoin_kinds, only: wp
   use superjoin_error, only: error_t, fatal_error, EXIT_DECK
   use superjoin_elements_membrane, only: plane_stress, check_membrane_element, DRILL_ROTATION_FACTOR, &

@@ -12,8 +12,10 @@ every CSV file is compared with
 (the second term: entries that are round-off next to the file's largest result;
 identifier columns such as node, element and dof are compared exactly; atol,
 default 1e-14, is a floor for files whose every value is round-off of an exact 0,
-as the deck tests' absolute tolerance 1e-12). The largest relative difference
-printed is over every entry, the floor aside.
+as the deck tests' absolute tolerance 1e-12). A deck that declares its
+conditioning with a header line "** csv-tolerance: X" (as for the deck tests,
+tests/run_deck_test.sh) is compared with max(rtol, X). The largest relative
+difference printed is over every entry, the floor aside.
 Both runs must end with the same exit status. Uses: the proof that a
 restructuring changed no result (old binary against new), and the proof that the
 condensed path equals the monolithic one (same binary, --b "BIN --condense yes").
@@ -98,6 +100,18 @@ def compare_file(fa, fb, rtol, atol):
     return worst, bad
 
 
+def deck_csv_tolerance(deck):
+    """The relative CSV tolerance a deck declares ("** csv-tolerance: X"), 0 if none."""
+    try:
+        with open(deck, encoding="utf-8", errors="replace") as f:
+            for line in f:
+                if line.startswith("** csv-tolerance:"):
+                    return float(line.split(":", 1)[1].split()[0])
+    except OSError:
+        pass
+    return 0.0
+
+
 def main():
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("--a", required=True, help="reference command (binary and options)")
@@ -128,8 +142,9 @@ def main():
             files = sorted(os.listdir(os.path.join(da, "csv")))
             if files != sorted(os.listdir(os.path.join(db, "csv"))):
                 msg = "different CSV files"
+            rtol = max(args.rtol, deck_csv_tolerance(deck))
             for f in files if msg is None else []:
-                w, m = compare_file(os.path.join(da, "csv", f), os.path.join(db, "csv", f), args.rtol, args.atol)
+                w, m = compare_file(os.path.join(da, "csv", f), os.path.join(db, "csv", f), rtol, args.atol)
                 if m:
                     msg = f"{f}: {m}"
                     break

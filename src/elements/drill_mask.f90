@@ -4,7 +4,9 @@ module superjoin_elements_drill_mask
   !! one where every attached three- or four-node shell (S3, S4, S3R, S4R) lies
   !! in the same plane (element normals parallel within FLAT_ANGLE_TOL, either
   !! sense). Elsewhere the edges stay straight, and an element without any
-  !! bubble is the CST / QM6 with soft drilling springs.
+  !! bubble is the CST / QM6 with soft drilling springs. The same mask gives
+  !! the S3/S3R triangles (superjoin_elements_opt_triangle) their α_b edge
+  !! terms and the corners of their higher-order stiffness.
   !!
   !! Why: where the facets of a curved surface meet at an angle, part of a
   !! node's bending rotation is the θz of the neighbouring facets, and the

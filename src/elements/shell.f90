@@ -37,6 +37,7 @@ module superjoin_elements_shell
   use superjoin_elements_mindlin, only: mindlin_stiffness, mindlin_resultants, default_shear_stiffness
   use superjoin_elements_mindlin, only: mindlin_point_resultants
   use superjoin_elements_drilling, only: drilling_stiffness, drilling_resultants, drilling_point_stresses
+  use superjoin_elements_opt_triangle, only: opt_stiffness, opt_resultants, opt_point_stresses
   implicit none (type, external)
   private
 
@@ -56,15 +57,16 @@ module superjoin_elements_shell
     !! Section points of thick_shell_stresses: 1 bottom, 2 top, 3 mid-surface.
   real(wp), parameter :: PARABOLIC_SHEAR_PEAK = 1.5_wp
     !! τ(z = 0) = 1.5 q / t, the peak of the parabolic transverse shear stress of a homogeneous section.
-  integer, parameter :: DRILLING_MEMBRANE_TYPES(*) = [ET_S4, ET_S4R]
+  integer, parameter :: DRILLING_MEMBRANE_TYPES(*) = [ET_S4, ET_S4R, ET_S3, ET_S3R]
     !! Shell types with the drilling membrane (has_drilling_membrane): S4 and
     !! S4R take the Ibrahimbegovic-Taylor-Wilson membrane of
     !! superjoin_elements_drilling with the edge bubbles of flat, unrestrained
     !! edges only (superjoin_elements_drill_mask; with bubbles on every edge
     !! the coarse pinched hemisphere locks, 4x4: 0.479 against QM6's 1.042);
-    !! an element without any is QM6 with soft drilling springs. S3/S3R keep
-    !! the CST: the Allman triangle gains too little on flat meshes
-    !! (doc/verification.md, "Drilling membranes").
+    !! an element without any is QM6 with soft drilling springs. S3 and S3R
+    !! take Felippa's OPT triangle (superjoin_elements_opt_triangle) with the
+    !! α_b terms of the same edges, the CST with soft drilling springs when
+    !! none of its edges qualifies (doc/verification.md, "Drilling membranes").
   integer, parameter :: DRILL_ALL_EDGES = 15
     !! Edge mask of a drilling membrane with every edge's bubble (bit k - 1:
     !! edge k from node k to k + 1); the default of the optional `drill`
@@ -385,7 +387,9 @@ contains
        call plane_strain_stiffness(xl, sec%thickness, mat%e, mat%nu, kf, error)
        return
     end if
-    if (any(edges)) then
+    if (any(edges) .and. n == 3) then
+       call opt_stiffness(xl, sec%thickness, mat%e, mat%nu, km, error, edges)
+    else if (any(edges)) then
        call drilling_stiffness(xl, sec%thickness, mat%e, mat%nu, km, error, edges)
     else
        call membrane_drill_stiffness(xl, sec%thickness, mat%e, mat%nu, km, error)
@@ -433,7 +437,9 @@ contains
        ud(3*i - 2:3*i) = d(6*(i - 1) + MEMBRANE_DOFS)
        ub(3*i - 2:3*i) = d(6*(i - 1) + PLATE_DOFS)
     end do
-    if (any(edges)) then
+    if (any(edges) .and. size(xl, 2) == 3) then
+       call opt_resultants(xl, sec%thickness, mat%e, mat%nu, ud, res(1:3), error, edges)
+    else if (any(edges)) then
        call drilling_resultants(xl, sec%thickness, mat%e, mat%nu, ud, res(1:3), error, edges)
     else
        call membrane_resultants(xl, sec%thickness, mat%e, mat%nu, um, res(1:3), error)
@@ -693,7 +699,9 @@ contains
        ud(3*i - 2:3*i) = d(6*(i - 1) + MEMBRANE_DOFS)
        ub(3*i - 2:3*i) = d(6*(i - 1) + PLATE_DOFS)
     end do
-    if (any(edges)) then
+    if (any(edges) .and. size(x, 2) == 3) then
+       call opt_point_stresses(xl, mat%e, mat%nu, ud, sp, sn, error, edges)
+    else if (any(edges)) then
        call drilling_point_stresses(xl, mat%e, mat%nu, ud, sp, sn, error, edges)
     else
        call membrane_point_stresses(xl, mat%e, mat%nu, .false., um, sp, sn, error)

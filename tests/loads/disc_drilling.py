@@ -10,6 +10,9 @@ max(|u(a)/u_a - 1|, |u(b)/u_b - 1|) on the radial line theta = 0 and the rate of
 each halving; no pass/fail (a measurement for doc/verification.md,
 "Drilling membranes").
 
+Triangles (S3, CPS3) split every quadrilateral of the S4 / CPS4 mesh along
+its diagonal 1-3.
+
 usage: disc_drilling.py SUPERJOIN WORKDIR [ETYPE ...]   (default S4 CPS4)
 """
 import math
@@ -22,7 +25,34 @@ import verify_loads as V  # noqa: E402
 MESHES = [(2, 4), (4, 8), (8, 16), (16, 32)]
 
 
+QUAD_OF = {"S3": "S4", "CPS3": "CPS4"}
+
+
+def split_triangles(text, etype):
+    """The deck of the quadrilateral type QUAD_OF[etype] with each element
+    cut into two triangles of type etype (diagonal 1-3)."""
+    out, inside, k = [], False, 0
+    for line in text.split("\n"):
+        if line.startswith("*"):
+            inside = line.startswith("*ELEMENT")
+            if inside:
+                line = line.replace(f"TYPE={QUAD_OF[etype]}", f"TYPE={etype}")
+            out.append(line)
+            continue
+        if inside and line.strip():
+            n = [x.strip() for x in line.split(",")][1:]
+            for tri in ([n[0], n[1], n[2]], [n[0], n[2], n[3]]):
+                k += 1
+                out.append(f"{k}, " + ", ".join(tri))
+            continue
+        out.append(line)
+    return "\n".join(out)
+
+
 def quarter(etype, nr, nt, fix_theta):
+    if etype in QUAD_OF:
+        text, na, nb = quarter(QUAD_OF[etype], nr, nt, fix_theta)
+        return split_triangles(text, etype), na, nb
     text, na, nb = V.disc_deck(etype, nr, nt)
     if not fix_theta:
         return text, na, nb
@@ -37,6 +67,9 @@ def quarter(etype, nr, nt, fix_theta):
 
 def full(etype, nr, nt):
     """Full annulus with 4 nt elements around (the quarter's element shapes)."""
+    if etype in QUAD_OF:
+        text, na, nb = full(QUAD_OF[etype], nr, nt)
+        return split_triangles(text, etype), na, nb
     nt = 4 * nt
     shell = etype.startswith("S")
     ids = {}

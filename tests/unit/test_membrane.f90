@@ -6,6 +6,7 @@ program test_membrane
   use superjoin_elements_membrane, only: membrane_stiffness, membrane_resultants, &
        membrane_drill_stiffness, plane_strain_stiffness, plane_strain_resultants
   use superjoin_elements_drilling, only: drilling_stiffness, drilling_resultants, drilling_point_stresses
+  use superjoin_elements_opt_triangle, only: opt_stiffness, opt_resultants, opt_point_stresses
   use superjoin_testing, only: check, check_close, check_rel, finish
   use test_lapack, only: dsyev, dgesv, eigenvalues
   use superjoin_utils_strings, only: itoa
@@ -20,8 +21,9 @@ program test_membrane
     !! stiffness) hold it, so the round-off of the membrane equations reaches it
     !! amplified about 1e6 times (measured up to 8.5e-9 in the patch test)
 
-  integer, parameter :: KIND_MEMBRANE = 1, KIND_DRILL = 2, KIND_STRAIN = 3, KIND_ALLMAN = 4
-    !! KIND_ALLMAN: the Allman triangle / Ibrahimbegovic-Taylor-Wilson quadrilateral
+  integer, parameter :: KIND_MEMBRANE = 1, KIND_DRILL = 2, KIND_STRAIN = 3, KIND_ALLMAN = 4, KIND_OPT = 5
+    !! KIND_ALLMAN: the Allman triangle / Ibrahimbegovic-Taylor-Wilson quadrilateral;
+    !! KIND_OPT: Felippa's optimal ANDES triangle
 
   ! MacNeal-Harder straight cantilever.
   real(wp), parameter :: MH_E = 1.0e7_wp, MH_NU = 0.3_wp, MH_T = 0.1_wp, MH_H = 0.2_wp, MH_L = 6.0_wp
@@ -51,6 +53,11 @@ program test_membrane
   call test_allman_properties()
   call test_allman_patch()
   call test_allman_macneal()
+  call test_opt_properties()
+  call test_opt_patch()
+  call test_opt_bending()
+  call test_opt_macneal()
+  call test_cps3_unique()
   call finish()
 
 contains
@@ -125,7 +132,7 @@ contains
     integer :: nd, ie, a, b, nf, info
 
     nd = 2
-    if (kind == KIND_DRILL .or. kind == KIND_ALLMAN) nd = 3
+    if (kind == KIND_DRILL .or. kind == KIND_ALLMAN .or. kind == KIND_OPT) nd = 3
     allocate (k(nd*size(x, 2), nd*size(x, 2)), source=0.0_wp)
     allocate (dofs(nd*size(conn, 1)))
     do ie = 1, size(conn, 2)
@@ -183,6 +190,12 @@ contains
           call drilling_stiffness(xl, t, e, nu, ke, error, edges)
        else
           call drilling_stiffness(xl, t, e, nu, ke, error)
+       end if
+    else if (kind == KIND_OPT) then
+       if (present(edges)) then
+          call opt_stiffness(xl, t, e, nu, ke, error, edges)
+       else
+          call opt_stiffness(xl, t, e, nu, ke, error)
        end if
     else
        call membrane_drill_stiffness(xl, t, e, nu, ke, error)
@@ -959,4 +972,280 @@ contains
        end if
     end do
   end subroutine test_allman_macneal
+
+  ! ------------------------------------------- OPT triangle (Felippa 2003)
+
+  subroutine test_opt_properties()
+    !! The OPT triangle on the distorted test shapes under every edge mask (the
+    !! eight subsets of its edges' α_b terms): symmetric, positive semi-definite,
+    !! exactly three zero eigenvalues, the rigid modes (θz = the rotation) free
+    !! of force to round-off; bad data reported.
+    real(wp), allocatable :: ke(:, :), r(:, :), ev(:)
+    type(error_t), allocatable :: error
+    integer :: s, m, k, ntried
+    logical :: edges(3)
+    character(:), allocatable :: what
+    ntried = 0
+    do s = 1, size(TRI, 3)
+       r = rigid_modes(TRI(:, :, s), 3)
+       do m = 0, 7
+          edges = [(btest(m, k - 1), k=1, 3)]
+          what = 'OPT triangle '//itoa(s)//', edge mask '//itoa(m)
+          ke = element_matrix(KIND_OPT, TRI(:, :, s), 0.1_wp, 2.0e5_wp, 0.3_wp, what, edges)
+          if (size(ke, 1) /= 9) cycle
+          ev = eigenvalues(ke)
+          call check(maxval(abs(ke - transpose(ke))) <= TOL_SYM*maxval(abs(ke)), what//': symmetric')
+          call check(maxval(abs(matmul(ke, r))) <= TOL_EXACT*maxval(abs(ke))*maxval(abs(r)), &
+               what//': rigid modes free of force')
+          call check(count(abs(ev) <= TOL_ZERO_EIG*maxval(abs(ev))) == 3, what//': exactly 3 zero eigenvalues')
+          call check(minval(ev) >= -TOL_ZERO_EIG*maxval(abs(ev)), what//': positive semi-definite')
+          ntried = ntried + 1
+       end do
+    end do
+    call check(ntried == 8*size(TRI, 3), 'OPT: every edge mask tried')
+    ! ν = 0.49: β₀ at its floor 0.01, the element still stable
+    ke = element_matrix(KIND_OPT, TRI(:, :, 2), 0.1_wp, 2.0e5_wp, 0.49_wp, 'OPT triangle, nu = 0.49')
+    ev = eigenvalues(ke)
+    call check(count(abs(ev) <= TOL_ZERO_EIG*maxval(abs(ev))) == 3, 'OPT nu = 0.49: exactly 3 zero eigenvalues')
+    call opt_stiffness(reshape([0.0_wp, 0.0_wp, 1.0_wp, 0.0_wp, 2.0_wp, 0.0_wp], [2, 3]), &
+         0.1_wp, 2.0e5_wp, 0.3_wp, ke, error)
+    call check_error(error, 'area', 'OPT triangle, collinear nodes')
+    call opt_stiffness(TRI(:, :, 1), 0.1_wp, 2.0e5_wp, 0.6_wp, ke, error)
+    call check_error(error, 'Poisson', 'OPT triangle, nu = 0.6')
+    call opt_stiffness(QUAD(:, :, 1), 0.1_wp, 2.0e5_wp, 0.3_wp, ke, error)
+    call check_error(error, 'three nodes', 'OPT triangle given four nodes')
+  end subroutine test_opt_properties
+
+  subroutine test_opt_patch()
+    !! test_allman_patch for the OPT triangle (the MacNeal-Harder patch cut into
+    !! triangles, every boundary DOF prescribed, θz = ω at the corners): interior
+    !! u, v, θz, the resultants and the corner stresses of every element exact,
+    !! with every edge's α_b term (mesh 1), and with the edge masks of
+    !! superjoin_elements_drill_mask when node 5 (mesh 2) or nodes 5 and 7
+    !! (mesh 3) are not flat (elements with all, some and none of their edges
+    !! side by side; the higher-order stiffness is kept in every element).
+    real(wp), parameter :: E = 1.0e6_wp, NU = 0.25_wp, T = 0.001_wp, A = 1.0e-3_wp, OMEGA = 2.0e-4_wp
+    real(wp), parameter :: NX = T*E/(1 - NU**2)*(A + NU*A), NXY = T*E/(2*(1 + NU))*A
+    real(wp) :: x(2, 8), exact(3, 8), nres(3)
+    integer :: quads(4, 5), mesh, i, ie, nmixed
+    integer, allocatable :: conn(:, :)
+    real(wp), allocatable :: u(:), f(:), ue(:), sp(:, :), sn(:, :)
+    logical, allocatable :: fixed(:)
+    logical :: flat(8), edges(3)
+    type(error_t), allocatable :: error
+    character(:), allocatable :: what
+
+    call patch_mesh(x, quads)
+    do i = 1, 8
+       exact(1, i) = A*(x(1, i) + x(2, i)/2) - OMEGA*x(2, i)
+       exact(2, i) = A*(x(2, i) + x(1, i)/2) + OMEGA*x(1, i)
+       exact(3, i) = OMEGA
+    end do
+    conn = split_quads(quads)
+    do mesh = 1, 3
+       flat = .true.
+       if (mesh >= 2) flat(5) = .false.
+       if (mesh == 3) flat(7) = .false.
+       what = 'patch OPT triangle, mesh '//itoa(mesh)
+       allocate (u(24), f(24), source=0.0_wp)
+       allocate (fixed(24), source=.false.)
+       do i = 1, 4
+          fixed(3*i - 2:3*i) = .true.
+          u(3*i - 2:3*i) = exact(:, i)
+       end do
+       call solve_mesh(KIND_OPT, x, conn, T, E, NU, fixed, u, f, flat)
+       do i = 5, 8
+          call check_close(u(3*i - 2), exact(1, i), TOL_EXACT*maxval(abs(exact(1:2, :))), what//': u at node '//itoa(i))
+          call check_close(u(3*i - 1), exact(2, i), TOL_EXACT*maxval(abs(exact(1:2, :))), what//': v at node '//itoa(i))
+          call check_rel(u(3*i), OMEGA, TOL_EXACT, what//': θz at node '//itoa(i))
+       end do
+       nmixed = 0
+       do ie = 1, size(conn, 2)
+          ue = [(u(3*(conn(i, ie) - 1) + 1:3*conn(i, ie)), i=1, 3)]
+          edges = [(flat(conn(i, ie)) .and. flat(conn(modulo(i, 3) + 1, ie)), i=1, 3)]
+          if (count(edges) > 0 .and. count(edges) < 3) nmixed = nmixed + 1
+          call opt_resultants(x(:, conn(:, ie)), T, E, NU, ue, nres, error, edges)
+          call check(.not. allocated(error), what//': resultants without error')
+          call check_rel(nres(1), NX, TOL_EXACT, what//': nx of element '//itoa(ie))
+          call check_rel(nres(2), NX, TOL_EXACT, what//': ny of element '//itoa(ie))
+          call check_rel(nres(3), NXY, TOL_EXACT, what//': nxy of element '//itoa(ie))
+          call opt_point_stresses(x(:, conn(:, ie)), E, NU, ue, sp, sn, error, edges)
+          call check(.not. allocated(error), what//': point stresses without error')
+          if (allocated(error)) cycle
+          call check(maxval(abs(sn(1:2, :) - NX/T)) <= TOL_EXACT*NX/T .and. &
+               maxval(abs(sn(3, :) - NXY/T)) <= TOL_EXACT*NX/T, what//': corner stresses of element '//itoa(ie))
+          call check(maxval(abs(sp(1:2, 1) - NX/T)) <= TOL_EXACT*NX/T, what//': centroid stress of element '//itoa(ie))
+       end do
+       if (mesh >= 2) call check(nmixed > 0, what//': elements with some but not all edges')
+       deallocate (u, f, fixed)
+    end do
+  end subroutine test_opt_patch
+
+  subroutine rect_mesh(nx, ny, a, b, x, conn)
+    !! nx × ny rectangles a × b from the origin, each cut into two triangles
+    !! along its diagonal 1-3; node (i, j) is j + (ny + 1) i + 1.
+    integer, intent(in) :: nx, ny
+    real(wp), intent(in) :: a, b
+    real(wp), allocatable, intent(out) :: x(:, :)
+    integer, allocatable, intent(out) :: conn(:, :)
+    integer, allocatable :: quads(:, :)
+    integer :: i, j, c
+    allocate (x(2, (nx + 1)*(ny + 1)), quads(4, nx*ny))
+    do i = 0, nx
+       do j = 0, ny
+          x(:, j + (ny + 1)*i + 1) = [a*i, b*j]
+       end do
+    end do
+    do i = 0, nx - 1
+       do j = 0, ny - 1
+          c = j + (ny + 1)*i + 1
+          quads(:, j + ny*i + 1) = [c, c + ny + 1, c + ny + 2, c + 1]
+       end do
+    end do
+    conn = split_quads(quads)
+  end subroutine rect_mesh
+
+  subroutine test_opt_bending()
+    !! Felippa's bending test (2003, section 5; the sense of "optimal"): a
+    !! rectangular mesh unit a × b (two triangles, either diagonal) given the
+    !! nodal values of the exact pure-bending field u = -κ x y, v = κ (x² + ν y²)/2,
+    !! θz = κ x (origin at the centre) stores exactly the energy of the
+    !! continuum, E t κ² a b³/24, for any aspect ratio a/b and ν (with
+    !! β₀ = (1 - 4ν²)/2), and likewise in bending along y: r = U_FE/U = 1 to
+    !! round-off. The CST and the Allman triangle are stiffer (r > 1.01;
+    !! measured smallest r over these cases: 3.02 and 1.50).
+    real(wp), parameter :: KAPPA = 1.0e-3_wp, E = 1000.0_wp, T = 0.1_wp
+    real(wp), parameter :: ASPECT(5) = [1.0_wp, 4.0_wp, 0.25_wp, 10.0_wp, 0.1_wp], NUS(3) = [0.0_wp, 0.3_wp, 0.45_wp]
+    real(wp) :: corners(2, 4), xl(2, 3), d(9), a, b, xb, yb, energy, exact, r, rmin
+    real(wp), allocatable :: ke(:, :)
+    integer :: ia, inu, dir, diag, kind, k, node, tris(3, 2)
+    character(:), allocatable :: what
+    do kind = KIND_DRILL, KIND_OPT
+       if (kind == KIND_STRAIN) cycle
+       rmin = huge(1.0_wp)
+       do dir = 1, 2
+          do inu = 1, size(NUS)
+             do ia = 1, size(ASPECT)
+                a = sqrt(ASPECT(ia))
+                b = 1/sqrt(ASPECT(ia))
+                corners = reshape([-a/2, -b/2, a/2, -b/2, a/2, b/2, -a/2, b/2], [2, 4])
+                do diag = 1, 2
+                   if (diag == 1) then
+                      tris = reshape([1, 2, 3, 1, 3, 4], [3, 2])
+                   else
+                      tris = reshape([1, 2, 4, 2, 3, 4], [3, 2])
+                   end if
+                   energy = 0.0_wp
+                   do k = 1, 2
+                      xl = corners(:, tris(:, k))
+                      do node = 1, 3
+                         ! bending along x (dir 1) or along y (dir 2: the field turned by 90°)
+                         xb = merge(xl(1, node), xl(2, node), dir == 1)
+                         yb = merge(xl(2, node), -xl(1, node), dir == 1)
+                         if (dir == 1) then
+                            d(3*node - 2) = -KAPPA*xb*yb
+                            d(3*node - 1) = KAPPA*(xb**2 + NUS(inu)*yb**2)/2
+                         else
+                            d(3*node - 2) = -KAPPA*(xb**2 + NUS(inu)*yb**2)/2
+                            d(3*node - 1) = -KAPPA*xb*yb
+                         end if
+                         d(3*node) = KAPPA*xb
+                      end do
+                      ke = element_matrix(kind, xl, T, E, NUS(inu), 'bending test')
+                      energy = energy + dot_product(d, matmul(ke, d))/2
+                   end do
+                   ! σ = -E κ yb along the bending direction: U = E t κ² ∫ yb² dA / 2
+                   exact = E*T*KAPPA**2*merge(a*b**3, b*a**3, dir == 1)/24
+                   r = energy/exact
+                   what = merge('OPT', 'CST', kind == KIND_OPT)//' bending test along '// &
+                        merge('x', 'y', dir == 1)//', a/b = '//itoa(nint(100*ASPECT(ia)))//'/100, nu = '// &
+                        itoa(nint(100*NUS(inu)))//'/100, diagonal '//itoa(diag)
+                   if (kind == KIND_OPT) call check_rel(r, 1.0_wp, TOL_EXACT, what//': energy exact')
+                   rmin = min(rmin, r)
+                end do
+             end do
+          end do
+       end do
+       if (kind /= KIND_OPT) then
+          what = merge('CST (with springs)', 'Allman            ', kind == KIND_DRILL)
+          write (*, '(a, f10.4)') 'bending test, smallest energy ratio of the '//what//': ', rmin
+          call check(rmin > 1.01_wp, what//' bending test: stiffer than the continuum')
+       end if
+    end do
+  end subroutine test_opt_bending
+
+  subroutine test_opt_macneal()
+    !! MacNeal-Harder straight cantilever (test_macneal's meshes and load, θz
+    !! free, two triangles per quadrilateral) with the OPT triangle: printed,
+    !! pinned (REL_PIN), at least three times as flexible as the Allman triangle
+    !! (which is 5 to 10 times the CST) on every 6 × 1 mesh, and on 48 × 4
+    !! within 0.2 % of the beam reference (Allman 11 %, CST 37 %).
+    real(wp), parameter :: REL_PIN = 1.0e-6_wp
+    real(wp), parameter :: OPT_PIN(3) = [1.066848160971979_wp, 0.5386630031692523_wp, 0.5596431225115949_wp]
+    real(wp), parameter :: OPT_FINE_PIN = 0.9988808188084477_wp
+    real(wp) :: tip, allman
+    integer :: shape
+    character(:), allocatable :: what
+    do shape = MESH_REGULAR, MESH_PARALLELOGRAM
+       what = 'MacNeal OPT triangle '//trim(MESH_NAMES(shape))
+       tip = cantilever_tip(KIND_OPT, shape, 6, 1, .true., .false.)/MH_REF
+       allman = cantilever_tip(KIND_ALLMAN, shape, 6, 1, .true., .false.)/MH_REF
+       write (*, '(a, a, f12.8)') what, ': ', tip
+       call check_rel(tip, OPT_PIN(shape), REL_PIN, what//': pin')
+       call check(tip > 3*allman, what//': three times as flexible as the Allman triangle')
+    end do
+    tip = cantilever_tip(KIND_OPT, MESH_REGULAR, 48, 4, .true., .false.)/MH_REF
+    write (*, '(a, f12.8)') 'MacNeal OPT triangle 48 x 4: ', tip
+    call check_rel(tip, OPT_FINE_PIN, REL_PIN, 'MacNeal OPT triangle 48 x 4: pin')
+    call check_rel(tip, 1.0_wp, 2.0e-3_wp, 'MacNeal OPT triangle 48 x 4: within 0.2 % of 0.1081')
+  end subroutine test_opt_macneal
+
+  subroutine test_cps3_unique()
+    !! Why CPS3 stays the CST: the three rigid modes and the three constant-strain
+    !! modes of a triangle (two DOFs per node) are a basis V of the six DOFs, K r = 0
+    !! on the rigid ones, and the patch test fixes K c on the others: the nodal
+    !! forces of the constant stress σ = D ε (each edge's traction t σ n l split
+    !! half to each end node, computed here from the edges, not from any element).
+    !! So K = F V⁻¹ is the only 6-DOF triangle that passes the patch test; it
+    !! equals membrane_stiffness's CST to round-off on the distorted shapes.
+    real(wp), parameter :: E = 2.0e5_wp, NU = 0.3_wp, T = 0.1_wp
+    real(wp) :: v(6, 6), f(6, 6), d(3, 3), eps(3), sig(3), nl(2), tr(2), vt(6, 6), ft(6, 6)
+    real(wp), allocatable :: kc(:, :)
+    integer :: s, m, i, j, k, ipiv(6), info
+    character(:), allocatable :: what
+    d = reshape([1.0_wp, NU, 0.0_wp, NU, 1.0_wp, 0.0_wp, 0.0_wp, 0.0_wp, (1 - NU)/2], [3, 3])*E/(1 - NU**2)
+    do s = 1, size(TRI, 3)
+       what = 'CPS3 uniqueness, triangle '//itoa(s)
+       v = 0.0_wp
+       f = 0.0_wp
+       v(:, 1:3) = rigid_modes(TRI(:, :, s), 2)
+       do m = 1, 3
+          eps = 0.0_wp
+          eps(m) = 1.0_wp
+          do i = 1, 3
+             ! u = εx x + γ y / 2, v = εy y + γ x / 2
+             v(2*i - 1, 3 + m) = eps(1)*TRI(1, i, s) + eps(3)*TRI(2, i, s)/2
+             v(2*i, 3 + m) = eps(2)*TRI(2, i, s) + eps(3)*TRI(1, i, s)/2
+          end do
+          sig = matmul(d, eps)
+          do i = 1, 3
+             j = modulo(i, 3) + 1
+             ! edge i → j (counter-clockwise): l n = (Δy, -Δx)
+             nl = [TRI(2, j, s) - TRI(2, i, s), -(TRI(1, j, s) - TRI(1, i, s))]
+             tr = T*[sig(1)*nl(1) + sig(3)*nl(2), sig(3)*nl(1) + sig(2)*nl(2)]
+             do k = 1, 2
+                f(2*i - 2 + k, 3 + m) = f(2*i - 2 + k, 3 + m) + tr(k)/2
+                f(2*j - 2 + k, 3 + m) = f(2*j - 2 + k, 3 + m) + tr(k)/2
+             end do
+          end do
+       end do
+       ! K V = F  ⇔  Vᵀ K = Fᵀ (K symmetric)
+       vt = transpose(v)
+       ft = transpose(f)
+       call dgesv(6, 6, vt, 6, ipiv, ft, 6, info)
+       call check(info == 0, what//': rigid and constant-strain modes are a basis')
+       kc = element_matrix(KIND_MEMBRANE, TRI(:, :, s), T, E, NU, what)
+       call check(maxval(abs(ft - kc)) <= TOL_EXACT*maxval(abs(kc)), what//': the patch test gives the CST')
+    end do
+  end subroutine test_cps3_unique
 end program test_membrane

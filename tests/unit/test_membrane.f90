@@ -986,6 +986,7 @@ contains
     logical :: edges(3)
     character(:), allocatable :: what
     ntried = 0
+    allocate (ke(9, 9), source=0.0_wp)   ! allocated before the loop: no -Wuninitialized false positive
     do s = 1, size(TRI, 3)
        r = rigid_modes(TRI(:, :, s), 3)
        do m = 0, 7
@@ -1080,30 +1081,6 @@ contains
        deallocate (u, f, fixed)
     end do
   end subroutine test_opt_patch
-
-  subroutine rect_mesh(nx, ny, a, b, x, conn)
-    !! nx × ny rectangles a × b from the origin, each cut into two triangles
-    !! along its diagonal 1-3; node (i, j) is j + (ny + 1) i + 1.
-    integer, intent(in) :: nx, ny
-    real(wp), intent(in) :: a, b
-    real(wp), allocatable, intent(out) :: x(:, :)
-    integer, allocatable, intent(out) :: conn(:, :)
-    integer, allocatable :: quads(:, :)
-    integer :: i, j, c
-    allocate (x(2, (nx + 1)*(ny + 1)), quads(4, nx*ny))
-    do i = 0, nx
-       do j = 0, ny
-          x(:, j + (ny + 1)*i + 1) = [a*i, b*j]
-       end do
-    end do
-    do i = 0, nx - 1
-       do j = 0, ny - 1
-          c = j + (ny + 1)*i + 1
-          quads(:, j + ny*i + 1) = [c, c + ny + 1, c + ny + 2, c + 1]
-       end do
-    end do
-    conn = split_quads(quads)
-  end subroutine rect_mesh
 
   subroutine test_opt_bending()
     !! Felippa's bending test (2003, section 5; the sense of "optimal"): a

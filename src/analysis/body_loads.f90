@@ -13,6 +13,7 @@ module superjoin_analysis_body_loads
   use superjoin_elements_shell8_loads, only: s8r_thermal_resultants
   use superjoin_model_types, only: ET_S8R
   use superjoin_elements_thermal, only: thermal_beam_end_forces
+  use superjoin_elements_beam3, only: beam3_thermal_end_forces
   use superjoin_model_types, only: MAX_ELEMENT_NODES
   use superjoin_elements_drill_mask, only: element_drill
   implicit none (type, external)
@@ -72,7 +73,8 @@ contains
   subroutine line_thermal_forces(model, elem_offset, nstep, f0)
     !! Add to f0(1:6, end, element, step) (allocated here if need be) the end
     !! forces of the free thermal bending of every beam with a temperature
-    !! gradient across its section (what its end forces K u - f_eq take off).
+    !! gradient across its section, and the end shares of the whole thermal
+    !! load of a B32 (what their end forces K u - f_eq take off).
     type(model_t), intent(in) :: model
     integer(i8), intent(in) :: elem_offset(:)
     integer, intent(in) :: nstep
@@ -85,13 +87,19 @@ contains
        if (.not. allocated(model%steps(is)%dloads)) cycle
        do i = 1, size(model%steps(is)%dloads)
           associate (dl => model%steps(is)%dloads(i), s => model%subs(model%steps(is)%dloads(i)%sub))
-            if (dl%kind /= DLOAD_THERMAL .or. all(dl%gradient == 0.0_wp)) cycle
+            if (dl%kind /= DLOAD_THERMAL) cycle
+            if (all(dl%gradient == 0.0_wp) .and. .not. allocated(dl%line_nodal)) cycle
             etype = s%elem_type(dl%elem)
             nn = ELEMENT_NODE_COUNT(etype)
             associate (sec => s%sections(s%elem_section(dl%elem)))
               ! errors were reported when the loads were assembled
-              call thermal_beam_end_forces(etype, s%x(:, s%elem_nodes(1:nn, dl%elem)), sec, &
-                   model%materials(sec%material), dl%gradient, f, error)
+              if (allocated(dl%line_nodal)) then   ! a B32: its whole thermal load
+                 call beam3_thermal_end_forces(s%x(:, s%elem_nodes(1:nn, dl%elem)), sec, &
+                      model%materials(sec%material), dl%line_nodal, f, error)
+              else
+                 call thermal_beam_end_forces(etype, s%x(:, s%elem_nodes(1:nn, dl%elem)), sec, &
+                      model%materials(sec%material), dl%gradient, f, error)
+              end if
               if (allocated(error)) cycle
             end associate
             if (.not. allocated(f0)) allocate (f0(6, 2, elem_offset(size(elem_offset)), nstep), source=0.0_wp)

@@ -24,6 +24,7 @@ module superjoin_elements
   use superjoin_elements_truss, only: truss_stiffness, truss_end_forces, truss_distributed_load
   use superjoin_elements_beam, only: beam_stiffness, beam_end_forces, beam_load
   use superjoin_elements_beam3, only: beam3_stiffness, beam3_end_forces, beam3_nodal_forces, beam3_load
+  use superjoin_elements_beam3, only: beam3_thermal_load
   use superjoin_elements_shell, only: is_plate_type, is_plane_type, is_plane_strain_type, shell_stiffness, shell_resultants, shell_pressure_load, &
        shell_area_load, shell_forces
   implicit none (type, external)
@@ -351,6 +352,15 @@ contains
     real(wp), allocatable :: f2(:)
     select case (dl%kind)
     case (DLOAD_THERMAL)
+       if (etype == ET_B32) then
+          ! the three-node beam: its nodal strains and curvatures, interpolated
+          if (.not. allocated(dl%line_nodal)) then
+             call fatal_error(error, EXIT_DECK, 'thermal load on a B32 without its nodal values')
+             return
+          end if
+          call beam3_thermal_load(x, sec, mat, dl%line_nodal, fe, error)
+          return
+       end if
        if (any(etype == [ET_B23, ET_B33, ET_B21, ET_B31])) then
           ! a beam: the axial force E A α ΔT and the end moments of its thermal curvatures
           call thermal_axial_load(etype, x, sec, element_node_dofs(etype), dl%value, fe, error)

@@ -1121,10 +1121,10 @@ contains
     !! (CalculiX's third field: along the 2-direction, local z of B31/B33,
     !! local y of the planar B21/B23; the fourth: along the 1-direction, local
     !! y). A plane or shell element gets the entry of its thermal strain α ΔT
-    !! (the mean over its nodes; a plane element whose nodes differ also the
-    !! nodal values, interpolated to its integration points) and, on shells,
+    !! (the mean over its nodes; an element whose nodes differ also the
+    !! nodal remainders, interpolated to its integration points) and, on shells,
     !! of its curvature α ∂T/∂n (the mean of its nodes' gradients, the third
-    !! field of the temperature lines); a B32 gets α ΔT and both gradients at
+    !! field of the temperature lines, with the nodal remainders likewise); a B32 gets α ΔT and both gradients at
     !! its three nodes (line_nodal, interpolated along it); a gradient on any
     !! other element is refused.
     type(deck_state_t), intent(inout) :: st
@@ -1222,10 +1222,12 @@ contains
                       ! a plane element whose nodes differ: the nodal values, interpolated to its points
                       if (is_plane_element(sub%elem_type(e)) .and. any(dtn(1:nn) /= dtn(1))) &
                            extra(size(extra))%nodal = mat%alpha*dtn(1:nn) - mat%alpha*dt
-                      ! shells take the element mean (superjoin_analysis_ccx_differences warns)
+                      ! a shell whose nodes differ: both nodal remainders, interpolated to its points
                       if (.not. is_plane_element(sub%elem_type(e)) .and. &
-                           (any(dtn(1:nn) /= dtn(1)) .or. any(dgn(1:nn) /= dgn(1)))) &
-                           model%steps(s)%shell_mean_temperatures = model%steps(s)%shell_mean_temperatures + 1
+                           (any(dtn(1:nn) /= dtn(1)) .or. any(dgn(1:nn) /= dgn(1)))) then
+                         extra(size(extra))%nodal = mat%alpha*dtn(1:nn) - mat%alpha*dt
+                         extra(size(extra))%curvature_nodal = mat%alpha*dgn(1:nn) - mat%alpha*dg
+                      end if
                    case default
                       nplate = nplate + 1
                       if (nplate == 1) then

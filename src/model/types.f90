@@ -241,6 +241,8 @@ module superjoin_model_types
                                            !! element mean (unallocated: uniform), interpolated to the points
      real(wp) :: gradient(2, 2) = 0.0_wp   !! TEMP on a beam: α ∂T/∂y, α ∂T/∂z (local axes), the thermal
                                            !! curvatures, at its node 1 and node 2 (linear in between)
+     real(wp), allocatable :: curvature_nodal(:)  !! TEMP on a shell whose nodes differ: α ∂T/∂n at each node
+                                           !! minus curvature (allocated with nodal, which a shell then has too)
      real(wp), allocatable :: line_nodal(:, :)  !! TEMP on a B32: α ΔT, α ∂T/∂y, α ∂T/∂z (local axes) at each
                                            !! of its three nodes (rows 1:3, columns nodes; value = 0)
      type(source_loc_t) :: loc

@@ -278,7 +278,8 @@ module superjoin_model_types
                                            !! the step (*INITIAL CONDITIONS / *TEMPERATURE; unallocated: none
                                            !! in the model, all 0), for *NODE PRINT NT
      integer :: shell_mean_temperatures = 0  !! shell elements whose nodal temperature change or
-                                           !! gradient differs between their nodes (each takes its mean)
+                                           !! gradient differs between their nodes (each takes its mean);
+                                           !! no longer counted: shells interpolate them (always 0)
      integer :: shell_pressure_lines = 0   !! *DLOAD P data lines (shell pressure, not *DSLOAD) of the step
   end type step_t
 

@@ -37,7 +37,13 @@ are m = -D (1 + nu) alpha g(x, y) at every integration point.
    five the resultants at the centroid (n = -E t alpha T/(1 - nu), m = -E t^3
    alpha g/(12 (1 - nu)); the incompatible modes' strains vanish there); a
    load combination 2 x the step has twice every point stress.
-3. CalculiX: thermal_linear_s8r.inp (the free S8R plate of 1, 4 x 4,
+3. A free strip 10 x 1 (c = 0.5) with T = 100 (y/c)^2 (not compatible: it
+   carries sigma_x = E alpha T0 (1/3 - y^2/c^2) away from the ends, Timoshenko
+   & Goodier sec. 150), nodal stresses at the middle section, S8R and S4
+   meshes halved three times: S8R's error below 2e-2 and falling at a rate
+   >= 1.8 (its nodal stresses extrapolate the reduced 2 x 2 points), S4's at
+   >= 0.8.
+4. CalculiX: thermal_linear_s8r.inp (the free S8R plate of 1, 4 x 4,
    translations held at three nodes) run unchanged against
    thermal_linear_s8r.dat.ref written by ccx 2.20 from the same file (ccx
    expands the S8R into C3D20R bricks; the exact field is stress-free in 3D
@@ -266,6 +272,64 @@ def ccx_study(exe, work, rows):
     return True
 
 
+def strip_study(exe, work, rows, old=None):
+    """A free strip 10 x 1 (c = 0.5) with T = 100 (y/c)^2: away from the ends sigma_x = E alpha T0
+    (1/3 - y^2/c^2) (Timoshenko & Goodier, sec. 150), nodal stresses at the middle section at y = 0
+    and y = c; S8R and S4 meshes halved three times: the error falls (S8R: rate >= 1.8 on the last
+    halving and below 2e-2 on the finest, its nodal values being the bilinear extrapolation of its
+    reduced 2 x 2 points; S4: rate >= 0.8). With old (a superjoin that took the element mean) its
+    errors are printed beside."""
+    c, half, t0 = 0.5, 5.0, 100.0
+    ok = True
+    for etype in ("S8R", "S4"):
+        errs = []
+        for ny in (1, 2, 4, 8):
+            nx = 10 * ny
+            nodes, ids, elems = [], {}, []
+            mx, my = 2 * nx, 2 * ny
+            for i in range(mx + 1):
+                for j in range(my + 1):
+                    if etype == "S8R" and i % 2 == 1 and j % 2 == 1:
+                        continue
+                    nodes.append((-half + 2 * half * i / mx, -c + 2 * c * j / my))
+                    ids[(i, j)] = len(nodes)
+            if etype == "S8R":
+                for i in range(nx):
+                    for j in range(ny):
+                        i0, j0 = 2 * i, 2 * j
+                        elems.append([ids[(i0, j0)], ids[(i0 + 2, j0)], ids[(i0 + 2, j0 + 2)], ids[(i0, j0 + 2)],
+                                      ids[(i0 + 1, j0)], ids[(i0 + 2, j0 + 1)], ids[(i0 + 1, j0 + 2)],
+                                      ids[(i0, j0 + 1)]])
+            else:
+                for i in range(mx):
+                    for j in range(my):
+                        elems.append([ids[(i, j)], ids[(i + 1, j)], ids[(i + 1, j + 1)], ids[(i, j + 1)]])
+            mid, top = ids[(mx // 2, my // 2)], ids[(mx // 2, my)]
+            sup = [f"{mid}, 1, 5", f"{ids[(mx // 2, 0)]}, 1, 1", f"{ids[(mx // 2, 0)]}, 3, 3", f"{ids[(0, 0)]}, 3, 3"]
+            res = run(exe, work, f"strip_{etype}_{ny}",
+                      deck(etype, nodes, elems, sup, lambda k, x, y: t0 * (y / c) ** 2))
+            sx = {int(r["node"]): float(r["sxx"]) for r in res["nodal_stresses"] if r["surface"] == "top"}
+            exact_mid, exact_top = E * ALPHA * t0 / 3, -2 * E * ALPHA * t0 / 3
+            err = max(abs(sx[mid] - exact_mid), abs(sx[top] - exact_top)) / abs(exact_top)
+            errs.append(err)
+            what = "σx(0, 0), σx(0, c)"
+            if old:
+                res = run(old, work + "/old", f"strip_{etype}_{ny}",
+                          deck(etype, nodes, elems, sup, lambda k, x, y: t0 * (y / c) ** 2))
+                so = {int(r["node"]): float(r["sxx"]) for r in res["nodal_stresses"] if r["surface"] == "top"}
+                what += f" (element mean: {max(abs(so[mid] - exact_mid), abs(so[top] - exact_top)) / abs(exact_top):.1e})"
+            rows.append((etype, f"strip, T quadratic, {nx} x {ny}", what, f"{err:.1e}"))
+        rate = math.log2(errs[-2] / errs[-1])
+        good = rate >= (1.8 if etype == "S8R" else 0.8) and (etype != "S8R" or errs[-1] < 2e-2)
+        if good:
+            print(f"ok: strip with quadratic T ({etype}): errors {', '.join(f'{e:.1e}' for e in errs)}, "
+                  f"last rate {rate:.2f}")
+        else:
+            print(f"FAIL: strip with quadratic T ({etype}): errors {errs}, last rate {rate:.2f}")
+            ok = False
+    return ok
+
+
 def main(argv):
     if len(argv) < 3:
         print(__doc__.strip().splitlines()[2], file=sys.stderr)
@@ -303,6 +367,7 @@ def main(argv):
     crows = []
     ok = clamped_study(exe, work, crows) and ok
     ok = ccx_study(exe, work, crows) and ok
+    ok = strip_study(exe, work, crows, old) and ok
     if table:
         print("\n| element | case | max stress / (E α a) | displacement error / max | element mean (before): stress / displacement |")
         print("|---|---|---|---|---|")

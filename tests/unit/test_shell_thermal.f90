@@ -9,12 +9,18 @@ program test_shell_thermal
   !! and moments about the origin sum to 0), and one that differs from its
   !! mean gives a different load (the interpolation is not the mean) except
   !! on the S3R, whose CST membrane and MITC3 bending have constant strain
-  !! rows (its load is the mean's; only its stresses change).
+  !! rows (its load is the mean's; only its stresses change); on a
+  !! rectangle the drilling quadrilateral with every bubble holds the free
+  !! expansion of a temperature linear in x and y (quadratic u, v, θz the
+  !! field's rotation), so K_e u_free equals the load to round-off (not on a
+  !! skewed parallelogram: there the incompatible modes' share of the
+  !! quadratic field rotates, which the drilling penalty, blind to the modes,
+  !! resists).
   use superjoin_kinds, only: wp
   use superjoin_error, only: error_t
   use superjoin_model_types, only: section_t, material_t, ET_S3, ET_S4, ET_S3R, ET_S4R, ET_S8R, SEC_SHELL
   use superjoin_elements_thermal, only: thermal_plate_load, thermal_plate_resultants
-  use superjoin_elements_shell, only: shell_thermal_nodal_load, shell_thermal_nodal_resultants
+  use superjoin_elements_shell, only: shell_thermal_nodal_load, shell_thermal_nodal_resultants, shell_stiffness
   use superjoin_elements_shell8_loads, only: s8r_thermal_load
   use superjoin_elements_frame, only: cross
   use superjoin_testing, only: check, check_close, finish
@@ -46,6 +52,8 @@ program test_shell_thermal
   end do
   call varying(ET_S3, 3, 15)
   call varying(ET_S3R, 3, 15)
+  call held_field(ET_S4)
+  call held_field(ET_S4R)
   call finish()
 
 contains
@@ -140,4 +148,36 @@ contains
        call check(maxval(abs(f2 - f1)) > 1.0e-5_wp*maxval(abs(f1)), trim(what)//': differs from the mean''s load')
     end if
   end subroutine varying
+
+  subroutine held_field(etype)
+    !! A rectangle in the XY plane, T = T0 + a x + b y at its nodes: the
+    !! exact free expansion u = α (T0 x + a (x² - y²)/2 + b x y), v = α (T0 y +
+    !! b (y² - x²)/2 + a x y), θz = α (a y - b x) at the nodes is in the drilling
+    !! quadrilateral's space (bubbles and incompatible modes), so K_e u = f.
+    integer, intent(in) :: etype
+    real(wp), parameter :: T0 = 20.0_wp, A = 60.0_wp, B = -40.0_wp
+    real(wp) :: x(3, 4), u(24), s(4), mean
+    real(wp), allocatable :: ke(:, :), f1(:), f2(:), r(:)
+    type(error_t), allocatable :: error
+    integer :: i
+    x = reshape([0.0_wp, 0.0_wp, 0.0_wp, 1.2_wp, 0.0_wp, 0.0_wp, 1.2_wp, 0.9_wp, 0.0_wp, 0.0_wp, 0.9_wp, 0.0_wp], [3, 4])
+    u = 0.0_wp
+    do i = 1, 4
+       associate (px => x(1, i), py => x(2, i))
+         s(i) = mat%alpha*(T0 + A*px + B*py)
+         u(6*i - 5) = mat%alpha*(T0*px + A*(px**2 - py**2)/2 + B*px*py)
+         u(6*i - 4) = mat%alpha*(T0*py + B*(py**2 - px**2)/2 + A*px*py)
+         u(6*i) = mat%alpha*(A*py - B*px)
+       end associate
+    end do
+    mean = sum(s)/4
+    call shell_stiffness(etype, x, sec, mat, ke, error, 15)
+    call thermal_plate_load(etype, x, sec, mat, mean, 0.0_wp, f1, error, 15)
+    call shell_thermal_nodal_load(etype, x, sec, mat, s - mean, spread(0.0_wp, 1, 4), f2, error, 15)
+    call check(.not. allocated(error), 'held field: load')
+    if (allocated(error)) return
+    r = matmul(ke, u) - f1 - f2
+    call check_close(maxval(abs(r)), 0.0_wp, TOL*maxval(abs(f1 + f2)), &
+         'drilling quadrilateral holds the free expansion of a linear temperature: K u = f')
+  end subroutine held_field
 end program test_shell_thermal

@@ -13,13 +13,15 @@ module superjoin_analysis_body_loads
   use superjoin_elements_shell8_loads, only: s8r_thermal_resultants
   use superjoin_model_types, only: ET_S8R
   use superjoin_elements_thermal, only: thermal_beam_end_forces
+  use superjoin_elements_beam3, only: beam3_thermal_end_forces
+  use superjoin_elements_shell, only: shell_thermal_nodal_resultants, is_plane_type
   use superjoin_model_types, only: MAX_ELEMENT_NODES
   use superjoin_elements_drill_mask, only: element_drill
   implicit none (type, external)
   private
 
   public :: plate_thermal_strains, line_centrif_forces, take_thermal_resultants, superpose_thermal
-  public :: plane_thermal_nodal, line_thermal_forces
+  public :: plane_thermal_nodal, line_thermal_forces, shell_thermal_curvature_nodal
 
 contains
 
@@ -47,9 +49,9 @@ contains
   end subroutine plate_thermal_strains
 
   subroutine plane_thermal_nodal(model, elem_offset, nstep, tn)
-    !! tn(1:n, element, step): α ΔT at the n nodes of every plane element whose
-    !! temperature varies, minus its mean (model-wide element numbering
-    !! elem_offset); unallocated when no step has one.
+    !! tn(1:n, element, step): α ΔT at the n nodes of every plane or shell
+    !! element whose temperature varies, minus its mean (model-wide element
+    !! numbering elem_offset); unallocated when no step has one.
     type(model_t), intent(in) :: model
     integer(i8), intent(in) :: elem_offset(:)
     integer, intent(in) :: nstep
@@ -69,10 +71,35 @@ contains
     end do
   end subroutine plane_thermal_nodal
 
+  subroutine shell_thermal_curvature_nodal(model, elem_offset, nstep, cn)
+    !! cn(1:n, element, step): α ∂T/∂n at the n nodes of every shell whose
+    !! temperature or gradient varies, minus its mean (model-wide element
+    !! numbering elem_offset); unallocated when no step has one.
+    type(model_t), intent(in) :: model
+    integer(i8), intent(in) :: elem_offset(:)
+    integer, intent(in) :: nstep
+    real(wp), allocatable, intent(out) :: cn(:, :, :)
+    integer :: is, i, n
+    do is = 1, nstep
+       if (.not. allocated(model%steps(is)%dloads)) cycle
+       do i = 1, size(model%steps(is)%dloads)
+          associate (dl => model%steps(is)%dloads(i))
+            if (dl%kind /= DLOAD_THERMAL .or. .not. allocated(dl%curvature_nodal)) cycle
+            if (.not. allocated(cn)) allocate (cn(MAX_ELEMENT_NODES, elem_offset(size(elem_offset)), nstep), &
+                 source=0.0_wp)
+            n = size(dl%curvature_nodal)
+            cn(1:n, elem_offset(dl%sub) + dl%elem, is) = cn(1:n, elem_offset(dl%sub) + dl%elem, is) + &
+                 dl%curvature_nodal
+          end associate
+       end do
+    end do
+  end subroutine shell_thermal_curvature_nodal
+
   subroutine line_thermal_forces(model, elem_offset, nstep, f0)
     !! Add to f0(1:6, end, element, step) (allocated here if need be) the end
     !! forces of the free thermal bending of every beam with a temperature
-    !! gradient across its section (what its end forces K u - f_eq take off).
+    !! gradient across its section, and the end shares of the whole thermal
+    !! load of a B32 (what their end forces K u - f_eq take off).
     type(model_t), intent(in) :: model
     integer(i8), intent(in) :: elem_offset(:)
     integer, intent(in) :: nstep
@@ -85,13 +112,19 @@ contains
        if (.not. allocated(model%steps(is)%dloads)) cycle
        do i = 1, size(model%steps(is)%dloads)
           associate (dl => model%steps(is)%dloads(i), s => model%subs(model%steps(is)%dloads(i)%sub))
-            if (dl%kind /= DLOAD_THERMAL .or. all(dl%gradient == 0.0_wp)) cycle
+            if (dl%kind /= DLOAD_THERMAL) cycle
+            if (all(dl%gradient == 0.0_wp) .and. .not. allocated(dl%line_nodal)) cycle
             etype = s%elem_type(dl%elem)
             nn = ELEMENT_NODE_COUNT(etype)
             associate (sec => s%sections(s%elem_section(dl%elem)))
               ! errors were reported when the loads were assembled
-              call thermal_beam_end_forces(etype, s%x(:, s%elem_nodes(1:nn, dl%elem)), sec, &
-                   model%materials(sec%material), dl%gradient, f, error)
+              if (allocated(dl%line_nodal)) then   ! a B32: its whole thermal load
+                 call beam3_thermal_end_forces(s%x(:, s%elem_nodes(1:nn, dl%elem)), sec, &
+                      model%materials(sec%material), dl%line_nodal, f, error)
+              else
+                 call thermal_beam_end_forces(etype, s%x(:, s%elem_nodes(1:nn, dl%elem)), sec, &
+                      model%materials(sec%material), dl%gradient, f, error)
+              end if
               if (allocated(error)) cycle
             end associate
             if (.not. allocated(f0)) allocate (f0(6, 2, elem_offset(size(elem_offset)), nstep), source=0.0_wp)
@@ -167,36 +200,51 @@ contains
     call move_alloc(all, th)
   end subroutine superpose_thermal
 
-  pure subroutine take_thermal_resultants(etype, x, sec, mat, th, plate, tn)
+  pure subroutine take_thermal_resultants(etype, x, sec, mat, th, plate, tn, cn, drill)
     !! Take the resultants of the free thermal expansion th(1:2, step) off the
     !! resultants plate(6, step) of a plane or shell element (N = D (ε - ε0));
-    !! tn(:, step): the nodal remainders of a varying temperature (plane
-    !! elements, plane_thermal_nodal), if any.
+    !! tn(:, step): the nodal remainders of a varying temperature (plane and
+    !! shell elements, plane_thermal_nodal), cn(:, step) those of the
+    !! gradient of a shell (shell_thermal_curvature_nodal), if any; drill:
+    !! the shell's drilling edge mask.
     integer, intent(in) :: etype
     real(wp), intent(in) :: x(:, :)
     type(section_t), intent(in) :: sec
     type(material_t), intent(in) :: mat
     real(wp), intent(in) :: th(:, :)
     real(wp), intent(inout) :: plate(:, :)
-    real(wp), intent(in), optional :: tn(:, :)
-    real(wp) :: res0(6)
+    real(wp), intent(in), optional :: tn(:, :), cn(:, :)
+    integer, intent(in), optional :: drill
+    real(wp) :: res0(6), rem(2, size(x, 2))
     type(error_t), allocatable :: error
-    integer :: is
+    integer :: is, n
+    logical :: varying
+    n = size(x, 2)
     do is = 1, size(th, 2)
-       if (all(th(:, is) == 0.0_wp)) then
-          if (.not. present(tn)) cycle
-          if (all(tn(1:size(x, 2), is) == 0.0_wp)) cycle
-       end if
+       rem = 0.0_wp
+       if (present(tn)) rem(1, :) = tn(1:n, is)
+       if (present(cn)) rem(2, :) = cn(1:n, is)
+       varying = any(rem /= 0.0_wp)
+       if (all(th(:, is) == 0.0_wp) .and. .not. varying) cycle
        ! an element that cannot be evaluated has been reported by shell_forces
        if (etype == ET_S8R) then
-          call s8r_thermal_resultants(sec, mat, th(1, is), th(2, is), res0)
+          if (varying) then
+             call s8r_thermal_resultants(sec, mat, th(1, is), th(2, is), res0, rem)
+          else
+             call s8r_thermal_resultants(sec, mat, th(1, is), th(2, is), res0)
+          end if
        else if (present(tn)) then
-          call thermal_plate_resultants(etype, x, sec, mat, th(1, is), th(2, is), res0, error, tn(1:size(x, 2), is))
+          call thermal_plate_resultants(etype, x, sec, mat, th(1, is), th(2, is), res0, error, tn(1:n, is))
           if (allocated(error)) return
        else
           call thermal_plate_resultants(etype, x, sec, mat, th(1, is), th(2, is), res0, error)
           if (allocated(error)) return
        end if
+       plate(:, is) = plate(:, is) - res0
+       if (etype == ET_S8R .or. is_plane_type(etype) .or. .not. varying) cycle
+       ! a shell whose temperature varies: the nodal remainders, interpolated
+       call shell_thermal_nodal_resultants(etype, x, sec, mat, rem(1, :), rem(2, :), res0, error, drill)
+       if (allocated(error)) return
        plate(:, is) = plate(:, is) - res0
     end do
   end subroutine take_thermal_resultants

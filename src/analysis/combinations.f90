@@ -87,6 +87,7 @@ contains
     if (allocated(pl)) call move_alloc(pl, res%fields%plate)
     call superpose_thermal(model%combinations, ns, res%fields%thermal)
     call superpose_thermal(model%combinations, ns, res%fields%thermal_nodal)
+    call superpose_thermal(model%combinations, ns, res%fields%thermal_curvature_nodal)
   end subroutine superpose
 
   function combination_text(model, c) result(text)

@@ -20,6 +20,7 @@ module superjoin_analysis_recover
   use superjoin_analysis_results, only: results_t, reaction_t
   use superjoin_analysis_body_loads, only: plate_thermal_strains, line_centrif_forces, take_thermal_resultants
   use superjoin_analysis_body_loads, only: plane_thermal_nodal, line_thermal_forces
+  use superjoin_analysis_body_loads, only: shell_thermal_curvature_nodal
   use superjoin_utils_memory, only: out_of_memory, BYTES_REAL, BYTES_INT
   use superjoin_elements_drill_mask, only: element_drill
   implicit none (type, external)
@@ -177,6 +178,7 @@ contains
     call line_centrif_forces(model, res%fields%elem_offset, nstep, f0)
     ! loads: temperatures that vary over plane elements, gradients across beams
     call plane_thermal_nodal(model, res%fields%elem_offset, nstep, res%fields%thermal_nodal)
+    call shell_thermal_curvature_nodal(model, res%fields%elem_offset, nstep, res%fields%thermal_curvature_nodal)
     call line_thermal_forces(model, res%fields%elem_offset, nstep, f0)
     ! Distributed loads in element axes, per element and step.
     ql = 0.0_wp
@@ -221,7 +223,12 @@ contains
                  end if
                  if (.not. own_ku(isub)) r(pd(1:n), :) = r(pd(1:n), :) + fg2(1:n, :)
                  ! loads: N = D (eps - eps0), the free thermal expansion's resultants taken off
-                 if (allocated(res%fields%thermal_nodal)) then
+                 if (allocated(res%fields%thermal_curvature_nodal)) then   ! shells whose temperature varies
+                    call take_thermal_resultants(s%elem_type(e), &
+                         s%x(:, s%elem_nodes(1:nn, e)), sec, model%materials(sec%material), &
+                         res%fields%thermal(:, ie, :), res%fields%plate(:, ie, :), res%fields%thermal_nodal(:, ie, :), &
+                         res%fields%thermal_curvature_nodal(:, ie, :), element_drill(s, e))
+                 else if (allocated(res%fields%thermal_nodal)) then
                     call take_thermal_resultants(s%elem_type(e), &
                          s%x(:, s%elem_nodes(1:nn, e)), sec, model%materials(sec%material), &
                          res%fields%thermal(:, ie, :), res%fields%plate(:, ie, :), res%fields%thermal_nodal(:, ie, :))

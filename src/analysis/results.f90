@@ -94,7 +94,9 @@ module superjoin_analysis_results
      real(wp), allocatable :: thermal(:, :, :)    !! (2, nelem_total, nstep) thermal strain α ΔT and curvature
                                                   !! α ∂T/∂n of plane and shell elements (unallocated: none)
      real(wp), allocatable :: thermal_nodal(:, :, :)  !! (MAX_ELEMENT_NODES, nelem_total, nstep) α ΔT at the nodes
-                                                  !! of a plane element minus thermal(1) (unallocated: all uniform)
+                                                  !! of a plane or shell element minus thermal(1) (unallocated: all uniform)
+     real(wp), allocatable :: thermal_curvature_nodal(:, :, :)  !! (MAX_ELEMENT_NODES, nelem_total, nstep) α ∂T/∂n
+                                                  !! at the nodes of a shell minus thermal(2) (unallocated: all uniform)
      integer(i8), allocatable :: elem_offset(:)   !! (nsub+1) element numbering over substructures
      integer(i8), allocatable :: vertex_offset(:) !! (nsub+1)
      type(step_results_t), allocatable :: steps(:)

@@ -355,7 +355,7 @@ contains
            call element_gravity_load(s%elem_type(dl%elem), s%x(:, s%elem_nodes(1:nn, dl%elem)), sec, &
                 model%materials(sec%material), dl%value*dl%dir, fe, q_local, error)
         else if (dl%kind == DLOAD_CENTRIF .or. (dl%kind == DLOAD_THERMAL .and. (is_plate_type(s%elem_type(dl%elem)) &
-             .or. any(dl%gradient /= 0.0_wp)))) then   ! TEMP: a beam with a gradient needs E I
+             .or. any(dl%gradient /= 0.0_wp) .or. allocated(dl%line_nodal)))) then   ! TEMP: a beam with a gradient, a B32 need E I
            q_local = 0.0_wp   ! CENTRIF on a bar or beam: its end forces take fe itself (superjoin_analysis_recover)
            call element_material_load(s%elem_type(dl%elem), s%x(:, s%elem_nodes(1:nn, dl%elem)), sec, &
                 model%materials(sec%material), dl, fe, error, element_drill(s, dl%elem))

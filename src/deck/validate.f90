@@ -1122,11 +1122,12 @@ contains
     !! (CalculiX's third field: along the 2-direction, local z of B31/B33,
     !! local y of the planar B21/B23; the fourth: along the 1-direction, local
     !! y). A plane or shell element gets the entry of its thermal strain α ΔT
-    !! (the mean over its nodes; a plane element whose nodes differ also the
-    !! nodal values, interpolated to its integration points) and, on shells,
+    !! (the mean over its nodes; an element whose nodes differ also the
+    !! nodal remainders, interpolated to its integration points) and, on shells,
     !! of its curvature α ∂T/∂n (the mean of its nodes' gradients, the third
-    !! field of the temperature lines); a gradient on any other element is
-    !! refused.
+    !! field of the temperature lines, with the nodal remainders likewise); a B32 gets α ΔT and both gradients at
+    !! its three nodes (line_nodal, interpolated along it); a gradient on any
+    !! other element is refused.
     type(deck_state_t), intent(inout) :: st
     type(model_t), intent(inout) :: model
     type(real_list_t), allocatable :: t0(:), t(:), g0(:), g(:), h0(:), h(:), tp(:), gp(:), hp(:)
@@ -1200,7 +1201,8 @@ contains
                      dg = sum(g(isub)%v(en) - g0(isub)%v(en))/nn
                      dh = sum(h(isub)%v(en) - h0(isub)%v(en))/nn
                    end associate
-                   if (dt == 0.0_wp .and. dg == 0.0_wp .and. dh == 0.0_wp .and. all(dtn(1:nn) == 0.0_wp)) cycle
+                   if (dt == 0.0_wp .and. dg == 0.0_wp .and. dh == 0.0_wp .and. all(dtn(1:nn) == 0.0_wp) &
+                        .and. all(dgn(1:nn) == 0.0_wp)) cycle
                    select case (sub%elem_type(e))
                    case (ET_T2D2, ET_T3D2, ET_B23, ET_B33, ET_B21, ET_B31)
                       if (dg /= 0.0_wp .and. any(sub%elem_type(e) == [ET_T2D2, ET_T3D2])) then
@@ -1223,6 +1225,16 @@ contains
                          extra(size(extra))%gradient(2, :) = mat%alpha*(g(isub)%v(sub%elem_nodes(1:2, e)) - &
                               g0(isub)%v(sub%elem_nodes(1:2, e)))
                       end if
+                   case (ET_B32)
+                      ! the three-node beam: α ΔT and both gradients (fourth field: local y,
+                      ! third: local z) at each node, interpolated along it
+                      extra = [extra, dload_t(sub=isub, elem=e, kind=DLOAD_THERMAL, value=0.0_wp, &
+                           loc=first_line(s))]
+                      associate (en => sub%elem_nodes(1:3, e))
+                        extra(size(extra))%line_nodal = mat%alpha*transpose(reshape([ &
+                             t(isub)%v(en) - t0(isub)%v(en), h(isub)%v(en) - h0(isub)%v(en), &
+                             g(isub)%v(en) - g0(isub)%v(en)], [3, 3]))
+                      end associate
                    case (ET_CPS3, ET_CPS4, ET_CPE3, ET_CPE4, ET_CPS6, ET_CPS8, ET_CPE6, ET_CPE8, ET_CPS8R, &
                         ET_CPE8R, ET_S3, ET_S4, ET_S4R, ET_S3R, ET_S8R)
                       if ((dg /= 0.0_wp .and. .not. any(sub%elem_type(e) == [ET_S3, ET_S4, ET_S4R, ET_S3R, ET_S8R])) &
@@ -1236,10 +1248,12 @@ contains
                       ! a plane element whose nodes differ: the nodal values, interpolated to its points
                       if (is_plane_element(sub%elem_type(e)) .and. any(dtn(1:nn) /= dtn(1))) &
                            extra(size(extra))%nodal = mat%alpha*dtn(1:nn) - mat%alpha*dt
-                      ! shells take the element mean (superjoin_analysis_ccx_differences warns)
+                      ! a shell whose nodes differ: both nodal remainders, interpolated to its points
                       if (.not. is_plane_element(sub%elem_type(e)) .and. &
-                           (any(dtn(1:nn) /= dtn(1)) .or. any(dgn(1:nn) /= dgn(1)))) &
-                           model%steps(s)%shell_mean_temperatures = model%steps(s)%shell_mean_temperatures + 1
+                           (any(dtn(1:nn) /= dtn(1)) .or. any(dgn(1:nn) /= dgn(1)))) then
+                         extra(size(extra))%nodal = mat%alpha*dtn(1:nn) - mat%alpha*dt
+                         extra(size(extra))%curvature_nodal = mat%alpha*dgn(1:nn) - mat%alpha*dg
+                      end if
                    case default
                       nplate = nplate + 1
                       if (nplate == 1) then

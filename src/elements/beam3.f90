@@ -22,6 +22,17 @@ module superjoin_elements_beam3
   !! (global axes, along the curved axis) have the consistent nodal forces
   !! ∫ Nᵢ w ds (no nodal moments: the rotations are interpolated on their own);
   !! a B32 keeps its load in global axes where other beams use local ones.
+  !!
+  !! Thermal load (beam3_thermal_load): the nodal values of α ΔT and of the
+  !! thermal curvatures α ∂T/∂y, α ∂T/∂z (local axes) are interpolated with the
+  !! shape functions to the two Gauss points of the stiffness, where they are
+  !! the initial strains ε0 = α ΔT, κy0 = α ∂T/∂z, κz0 = -α ∂T/∂y (fibres at +y
+  !! grow by α (∂T/∂y) y: v'' = κz = -α ∂T/∂y; at +z: -w'' = κy = α ∂T/∂z), and
+  !! the load is ∫ Bᵀ D ε0 ds by the same rule: a free element whose thermal
+  !! strains its displacements can take (a uniform ΔT, a gradient constant or
+  !! linear along a straight element) gets exactly K_e u_free, so it deforms
+  !! freely without force. The end forces take its end-node shares off
+  !! (beam3_thermal_end_forces): N = E A (ε - α ΔT), M = E I (κ - κ0).
   use superjoin_kinds, only: wp
   use superjoin_error, only: error_t, fatal_error, EXIT_DECK
   use superjoin_model_types, only: section_t, material_t, ET_B31
@@ -40,6 +51,7 @@ module superjoin_elements_beam3
   end type beam3_props_t
 
   public :: beam3_stiffness, beam3_end_forces, beam3_nodal_forces, beam3_load
+  public :: beam3_thermal_load, beam3_thermal_end_forces
 
 contains
 
@@ -257,4 +269,57 @@ contains
     fg(10:12) = -g(4:6, 1) - g(4:6, 2) - cross(x(:, 1) - x(:, 2), g(1:3, 1) + fe(1:3)) &
          - cross(x(:, 3) - x(:, 2), g(1:3, 2) + fe(13:15))
   end subroutine beam3_nodal_forces
+
+  pure subroutine beam3_thermal_load(x, sec, mat, th, fe, error)
+    !! Consistent nodal loads fe(18) (global axes, node-major) ∫ Bᵀ D ε0 ds of
+    !! the thermal strains of a B32 with the nodal values th(1:3, node) = α ΔT,
+    !! α ∂T/∂y, α ∂T/∂z (local axes), interpolated to the two Gauss points of
+    !! the stiffness (module header).
+    real(wp), intent(in) :: x(:, :)
+    type(section_t), intent(in) :: sec
+    type(material_t), intent(in) :: mat
+    real(wp), intent(in) :: th(3, NNODE)
+    real(wp), allocatable, intent(out) :: fe(:)
+    type(error_t), allocatable, intent(out) :: error
+    type(beam3_props_t) :: p
+    real(wp) :: r(3, 3), jac, nf(NNODE), ds(NNODE), b(NSTRAIN, NDOF*NNODE), e0(NSTRAIN), tp(3)
+    integer :: k
+
+    call setup(x, sec, mat, p, error)
+    if (allocated(error)) return
+    allocate (fe(NDOF*NNODE), source=0.0_wp)
+    do k = 1, 2
+       call point(x, sec, merge(-G2, G2, k == 1), r, jac, nf, ds, error)
+       if (allocated(error)) return
+       call b_matrix(r, nf, ds, b)
+       tp = matmul(th, nf)
+       e0 = [tp(1), 0.0_wp, 0.0_wp, 0.0_wp, tp(3), -tp(2)]
+       fe = fe + jac*matmul(p%d*e0, b)
+    end do
+  end subroutine beam3_thermal_load
+
+  pure subroutine beam3_thermal_end_forces(x, sec, mat, th, f, error)
+    !! The end-node shares f(6, 2) (local axes of the tangent at nodes 1 and 3,
+    !! as beam3_end_forces) of the thermal load of beam3_thermal_load: what the
+    !! end forces K_e u_e take off (N = E A (ε - α ΔT), M = E I (κ - κ0)).
+    real(wp), intent(in) :: x(:, :)
+    type(section_t), intent(in) :: sec
+    type(material_t), intent(in) :: mat
+    real(wp), intent(in) :: th(3, NNODE)
+    real(wp), intent(out) :: f(6, 2)
+    type(error_t), allocatable, intent(out) :: error
+    real(wp), allocatable :: fe(:)
+    real(wp) :: r(3, 3), jac, nf(NNODE), ds(NNODE)
+    integer :: a, o
+    f = 0.0_wp
+    call beam3_thermal_load(x, sec, mat, th, fe, error)
+    if (allocated(error)) return
+    do a = 1, 2
+       call point(x, sec, merge(-1.0_wp, 1.0_wp, a == 1), r, jac, nf, ds, error)
+       if (allocated(error)) return
+       o = merge(0, 2*NDOF, a == 1)
+       f(1:3, a) = matmul(r, fe(o + 1:o + 3))
+       f(4:6, a) = matmul(r, fe(o + 4:o + 6))
+    end do
+  end subroutine beam3_thermal_end_forces
 end module superjoin_elements_beam3

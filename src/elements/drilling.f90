@@ -59,6 +59,7 @@ module superjoin_elements_drilling
   private
 
   public :: drilling_stiffness, drilling_resultants, drilling_point_stresses
+  public :: drilling_thermal_load, drilling_thermal_stresses
 
   real(wp), parameter, public :: DRILL_PENALTY = 1.0_wp
     !! γ / G of the skew-symmetric penalty (Ibrahimbegovic-Taylor-Wilson: γ = G).
@@ -68,6 +69,8 @@ module superjoin_elements_drilling
   real(wp), parameter :: ETA_NODE(4) = [-1.0_wp, -1.0_wp, 1.0_wp, 1.0_wp]
   integer, parameter :: NPOINT_QUAD = 4, NPOINT_TRI = 3
   integer, parameter :: NMODE = 4
+  real(wp), parameter :: ISOTROPIC_STRAIN(NSTRAIN) = [1.0_wp, 1.0_wp, 0.0_wp]
+    !! an isotropic in-plane strain of unit size (εx, εy, γxy)
     !! incompatible modes of the quadrilateral (QM6's 1 - ξ², 1 - η² in u and v)
     !! the quadrilateral with the incompatible modes (see the module header)
 
@@ -215,6 +218,123 @@ contains
        sig_nodes(:, k) = matmul(sig_points, bilinear(sqrt(3.0_wp)*XI_NODE(k), sqrt(3.0_wp)*ETA_NODE(k)))
     end do
   end subroutine drilling_point_stresses
+
+  pure subroutine drilling_thermal_load(xl, t, e, nu, eps0, fe, error, edges)
+    !! Consistent nodal loads fe(3n) = ∫ Bᵀ t D ε0 dA (node-major u, v, θz) of
+    !! an isotropic initial strain ε0 (1, 1, 0) whose nodal values eps0(n) are
+    !! interpolated with the corner functions to the points of the stiffness;
+    !! the quadrilateral's incompatible modes take their share before they are
+    !! condensed (f_d - K_da K_aa⁻¹ f_a); the penalty has no initial strain.
+    !! edges as drilling_stiffness.
+    real(wp), intent(in) :: xl(:, :)
+    real(wp), intent(in) :: t, e, nu
+    real(wp), intent(in) :: eps0(:)
+    real(wp), allocatable, intent(out) :: fe(:)
+    type(error_t), allocatable, intent(out) :: error
+    logical, intent(in), optional :: edges(:)
+    type(point_t), allocatable :: pts(:)
+    real(wp), allocatable :: kda(:, :)
+    real(wp) :: d(NSTRAIN, NSTRAIN), kaa(NMODE, NMODE), fa(NMODE, 1), s0(NSTRAIN)
+    integer :: n, k
+    logical :: ed(size(xl, 2))
+    call check_membrane_element(xl, t, e, nu, 'plane stress', error)
+    if (allocated(error)) return
+    n = size(xl, 2)
+    if (size(eps0) /= n) then
+       call fatal_error(error, EXIT_DECK, 'wrong number of nodal initial strains')
+       return
+    end if
+    d = t*plane_stress(e, nu)
+    ed = .true.
+    if (present(edges)) ed = edges(1:n)
+    call points(xl, ed, pts)
+    allocate (fe(3*n), kda(3*n, NMODE), source=0.0_wp)
+    kaa = 0.0_wp
+    fa = 0.0_wp
+    do k = 1, size(pts)
+       s0 = pts(k)%weight*point_strain(xl, k, eps0)*matmul(d, ISOTROPIC_STRAIN)
+       fe = fe + matmul(transpose(pts(k)%b), s0)
+       fa(:, 1) = fa(:, 1) + matmul(transpose(pts(k)%ba), s0)
+       kda = kda + pts(k)%weight*matmul(transpose(pts(k)%b), matmul(d, pts(k)%ba))
+       kaa = kaa + pts(k)%weight*matmul(transpose(pts(k)%ba), matmul(d, pts(k)%ba))
+    end do
+    if (n == 4) fe = fe - reshape(matmul(kda, spd_solve(kaa, fa)), [3*n])
+  end subroutine drilling_thermal_load
+
+  pure subroutine drilling_thermal_stresses(xl, t, e, nu, eps0, nres, sig_points, sig_nodes, error, edges)
+    !! What an isotropic initial strain with the nodal values eps0(n) adds to
+    !! the results of drilling_resultants and drilling_point_stresses at zero
+    !! nodal displacements (σ = D (ε - ε0), the quadrilateral's modes α =
+    !! K_aa⁻¹ f_a): nres = t σ at the centre, sig_points and sig_nodes at the
+    !! points and nodes of drilling_point_stresses; edges as drilling_stiffness.
+    real(wp), intent(in) :: xl(:, :)
+    real(wp), intent(in) :: t, e, nu
+    real(wp), intent(in) :: eps0(:)
+    real(wp), intent(out) :: nres(NSTRAIN)
+    real(wp), allocatable, intent(out) :: sig_points(:, :), sig_nodes(:, :)
+    type(error_t), allocatable, intent(out) :: error
+    logical, intent(in), optional :: edges(:)
+    type(point_t), allocatable :: pts(:)
+    type(point_t) :: p
+    real(wp) :: d(NSTRAIN, NSTRAIN), kaa(NMODE, NMODE), fa(NMODE, 1), alpha(NMODE, 1)
+    integer :: n, k
+    logical :: ed(size(xl, 2))
+    nres = 0.0_wp
+    call check_membrane_element(xl, t, e, nu, 'plane stress', error)
+    if (allocated(error)) return
+    n = size(xl, 2)
+    if (size(eps0) /= n) then
+       call fatal_error(error, EXIT_DECK, 'wrong number of nodal initial strains')
+       return
+    end if
+    d = plane_stress(e, nu)
+    ed = .true.
+    if (present(edges)) ed = edges(1:n)
+    if (n == 3) then   ! no modes: σ = -D ε0 wherever it is taken
+       allocate (sig_points(NSTRAIN, 1), sig_nodes(NSTRAIN, 3))
+       sig_points(:, 1) = -sum(eps0)/3*matmul(d, ISOTROPIC_STRAIN)
+       do k = 1, 3
+          sig_nodes(:, k) = -eps0(k)*matmul(d, ISOTROPIC_STRAIN)
+       end do
+       nres = t*sig_points(:, 1)
+       return
+    end if
+    call points(xl, ed, pts)
+    kaa = 0.0_wp
+    fa = 0.0_wp
+    do k = 1, size(pts)
+       fa(:, 1) = fa(:, 1) + pts(k)%weight*point_strain(xl, k, eps0)*matmul(transpose(pts(k)%ba), &
+            matmul(d, ISOTROPIC_STRAIN))
+       kaa = kaa + pts(k)%weight*matmul(transpose(pts(k)%ba), matmul(d, pts(k)%ba))
+    end do
+    alpha = spd_solve(kaa, fa)
+    allocate (sig_points(NSTRAIN, 4), sig_nodes(NSTRAIN, 4))
+    do k = 1, 4
+       sig_points(:, k) = matmul(d, matmul(pts(k)%ba, alpha(:, 1)) - point_strain(xl, k, eps0)*ISOTROPIC_STRAIN)
+    end do
+    do k = 1, 4
+       sig_nodes(:, k) = matmul(sig_points, bilinear(sqrt(3.0_wp)*XI_NODE(k), sqrt(3.0_wp)*ETA_NODE(k)))
+    end do
+    p = point_quad(xl, 0.0_wp, 0.0_wp, 0.0_wp, ed)
+    nres = t*matmul(d, matmul(p%ba, alpha(:, 1)) - dot_product(bilinear(0.0_wp, 0.0_wp), eps0)*ISOTROPIC_STRAIN)
+  end subroutine drilling_thermal_stresses
+
+  pure real(wp) function point_strain(xl, k, eps0) result(v)
+    !! The nodal values eps0(n) interpolated to integration point k of points
+    !! (triangle: midside point opposite node k; quadrilateral: Gauss point
+    !! next to node k).
+    real(wp), intent(in) :: xl(:, :)
+    integer, intent(in) :: k
+    real(wp), intent(in) :: eps0(:)
+    real(wp) :: lc(3)
+    if (size(xl, 2) == 3) then
+       lc = 0.5_wp
+       lc(k) = 0.0_wp
+       v = dot_product(lc, eps0)
+    else
+       v = dot_product(bilinear(GP*XI_NODE(k), GP*ETA_NODE(k)), eps0)
+    end if
+  end function point_strain
 
   pure function modes(xl, e, nu, ue, ed) result(alpha)
     !! Incompatible-mode amplitudes of a quadrilateral from its nodal values

@@ -24,6 +24,8 @@ module superjoin_elements
   use superjoin_elements_truss, only: truss_stiffness, truss_end_forces, truss_distributed_load
   use superjoin_elements_beam, only: beam_stiffness, beam_end_forces, beam_load
   use superjoin_elements_beam3, only: beam3_stiffness, beam3_end_forces, beam3_nodal_forces, beam3_load
+  use superjoin_elements_beam3, only: beam3_thermal_load
+  use superjoin_elements_shell, only: shell_thermal_nodal_load
   use superjoin_elements_shell, only: is_plate_type, is_plane_type, is_plane_strain_type, shell_stiffness, shell_resultants, shell_pressure_load, &
        shell_area_load, shell_forces
   implicit none (type, external)
@@ -351,6 +353,15 @@ contains
     real(wp), allocatable :: f2(:)
     select case (dl%kind)
     case (DLOAD_THERMAL)
+       if (etype == ET_B32) then
+          ! the three-node beam: its nodal strains and curvatures, interpolated
+          if (.not. allocated(dl%line_nodal)) then
+             call fatal_error(error, EXIT_DECK, 'thermal load on a B32 without its nodal values')
+             return
+          end if
+          call beam3_thermal_load(x, sec, mat, dl%line_nodal, fe, error)
+          return
+       end if
        if (any(etype == [ET_B23, ET_B33, ET_B21, ET_B31])) then
           ! a beam: the axial force E A α ΔT and the end moments of its thermal curvatures
           call thermal_axial_load(etype, x, sec, element_node_dofs(etype), dl%value, fe, error)
@@ -365,13 +376,21 @@ contains
           return
        end if
        if (etype == ET_S8R) then
-          call s8r_thermal_load(x, sec, mat, dl%value, dl%curvature, fe, error)
+          if (allocated(dl%nodal)) then   ! varying over the element: its nodal values, interpolated
+             call s8r_thermal_load(x, sec, mat, dl%value, dl%curvature, fe, error, dl%nodal, dl%curvature_nodal)
+          else
+             call s8r_thermal_load(x, sec, mat, dl%value, dl%curvature, fe, error)
+          end if
           return
        end if
        call thermal_plate_load(etype, x, sec, mat, dl%value, dl%curvature, fe, error, drill)
        if (allocated(error) .or. .not. allocated(dl%nodal)) return
        ! a temperature that varies over the element: the nodal remainder, interpolated
-       call thermal_plane_nodal_load(etype, x, sec, mat, dl%nodal, f2, error)
+       if (is_plane_type(etype)) then
+          call thermal_plane_nodal_load(etype, x, sec, mat, dl%nodal, f2, error)
+       else
+          call shell_thermal_nodal_load(etype, x, sec, mat, dl%nodal, dl%curvature_nodal, f2, error, drill)
+       end if
        if (allocated(error)) return
        fe = fe + f2
     case (DLOAD_CENTRIF)

@@ -45,6 +45,7 @@ module superjoin_elements_mindlin
   use superjoin_error, only: error_t, fatal_error, EXIT_DECK
   use superjoin_elements_frame, only: require_positive
   use superjoin_elements_plate, only: plate_check, bending_rigidity, integration_rule
+  use superjoin_elements_plate, only: corner_functions
   implicit none (type, external)
   private
 
@@ -61,6 +62,7 @@ module superjoin_elements_mindlin
 
   public :: mindlin_stiffness, mindlin_resultants, default_shear_stiffness, SHEAR_CORRECTION
   public :: mindlin_point_resultants
+  public :: mindlin_thermal_load
 
 contains
 
@@ -171,6 +173,36 @@ contains
        r_nodes(:, k) = matmul(r_points, sf)
     end do
   end subroutine mindlin_point_resultants
+
+  pure subroutine mindlin_thermal_load(xl, t, e, nu, ks, kappa0, fe, error)
+    !! Consistent nodal loads fe(3n) = ∫ Bbᵀ D_b κ0 dA (local w, θx, θy per
+    !! node) of an isotropic initial curvature κ0 (1, 1, 0) whose nodal values
+    !! kappa0(n) are interpolated with the corner functions to the points of
+    !! the stiffness; the transverse shear takes no initial strain.
+    real(wp), intent(in) :: xl(:, :)
+    real(wp), intent(in) :: t, e, nu, ks(2)
+    real(wp), intent(in) :: kappa0(:)
+    real(wp), allocatable, intent(out) :: fe(:)
+    type(error_t), allocatable, intent(out) :: error
+    real(wp), allocatable :: xi(:), eta(:), wt(:)
+    real(wp) :: db(3, 3), bb(3, NDN*size(xl, 2)), bs(2, NDN*size(xl, 2)), detj
+    integer :: n, g
+    call check(xl, t, e, nu, ks, error)
+    if (allocated(error)) return
+    n = size(xl, 2)
+    if (size(kappa0) /= n) then
+       call fatal_error(error, EXIT_DECK, 'wrong number of nodal initial curvatures')
+       return
+    end if
+    db = bending_rigidity(t, e, nu)
+    call integration_rule(n, xi, eta, wt)
+    allocate (fe(NDN*n), source=0.0_wp)
+    do g = 1, size(wt)
+       call strain_matrices(xl, xi(g), eta(g), bb, bs, detj)
+       fe = fe + (wt(g)*detj*dot_product(corner_functions(n, xi(g), eta(g)), kappa0))* &
+            matmul(transpose(bb), matmul(db, [1.0_wp, 1.0_wp, 0.0_wp]))
+    end do
+  end subroutine mindlin_thermal_load
 
   pure real(wp) function shear_scaling(xl, t) result(f)
     !! Factor on the shear stiffness: t²/(t² + α h²) on the triangle (h its

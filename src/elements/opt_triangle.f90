@@ -39,7 +39,7 @@ module superjoin_elements_opt_triangle
   implicit none (type, external)
   private
 
-  public :: opt_stiffness, opt_resultants, opt_point_stresses
+  public :: opt_stiffness, opt_resultants, opt_point_stresses, opt_thermal_load
 
   real(wp), parameter, public :: OPT_ALPHA_B = 1.5_wp
     !! α_b of OPT: the weight of the Allman boundary term in the basic stiffness.
@@ -139,6 +139,37 @@ contains
        sig_nodes(:, k) = matmul(d, matmul(s%bb + s%bh(:, :, k), ue))
     end do
   end subroutine opt_point_stresses
+
+  pure subroutine opt_thermal_load(xl, t, e, nu, eps0, fe, error, edges)
+    !! Consistent nodal load fe(9) = t ∫ Bᵀ D ε0 dA of an isotropic initial
+    !! strain ε0 (1, 1, 0) whose nodal values eps0(3) are interpolated
+    !! linearly, with the element's own strain rows (basic and higher-order:
+    !! midside points, exact for the quadratic integrand); edges as
+    !! opt_stiffness. Equal nodal values give t A B_bᵀ D ε0 (the higher-order
+    !! rows sum to zero), K times the free expansion.
+    real(wp), intent(in) :: xl(:, :)
+    real(wp), intent(in) :: t, e, nu
+    real(wp), intent(in) :: eps0(:)
+    real(wp), allocatable, intent(out) :: fe(:)
+    type(error_t), allocatable, intent(out) :: error
+    logical, intent(in), optional :: edges(:)
+    type(opt_t) :: s
+    real(wp) :: d(NSTRAIN, NSTRAIN), b(NSTRAIN, NDOF), e0
+    integer :: k
+    if (size(eps0) /= NNODE) then
+       call fatal_error(error, EXIT_DECK, 'wrong number of nodal initial strains')
+       return
+    end if
+    call setup(xl, t, e, nu, s, error, edges)
+    if (allocated(error)) return
+    d = t*plane_stress(e, nu)
+    allocate (fe(NDOF), source=0.0_wp)
+    do k = 1, NNODE
+       b = s%bb + 0.5_wp*(sum(s%bh, dim=3) - s%bh(:, :, k))
+       e0 = 0.5_wp*(sum(eps0) - eps0(k))
+       fe = fe + s%area/NNODE*e0*matmul(transpose(b), matmul(d, [1.0_wp, 1.0_wp, 0.0_wp]))
+    end do
+  end subroutine opt_thermal_load
 
   pure subroutine check_size(ue, error)
     !! Nine element DOF values or an error.

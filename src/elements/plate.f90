@@ -54,6 +54,7 @@ module superjoin_elements_plate
   public :: plate_stiffness, plate_moments, plate_pressure_load
   public :: plate_point_moments
   public :: plate_check, bending_rigidity, integration_rule
+  public :: plate_thermal_load, corner_functions
 
 contains
 
@@ -152,6 +153,49 @@ contains
        end do
     end do
   end subroutine plate_pressure_load
+
+  pure subroutine plate_thermal_load(xl, t, e, nu, kappa0, fe, error)
+    !! Consistent nodal loads fe(3n) = ∫ Bᵀ D_b κ0 dA (local w, θx, θy per
+    !! node) of an isotropic initial curvature κ0 (1, 1, 0) (α ∂T/∂n: the top
+    !! surface the longer one) whose nodal values kappa0(n) are interpolated
+    !! with the corner functions to the points of the stiffness (DKT 3-point,
+    !! DKQ 2×2 Gauss) and integrated with the element's own curvature matrix.
+    real(wp), intent(in) :: xl(:, :)
+    real(wp), intent(in) :: t, e, nu
+    real(wp), intent(in) :: kappa0(:)
+    real(wp), allocatable, intent(out) :: fe(:)
+    type(error_t), allocatable, intent(out) :: error
+    real(wp), allocatable :: xi(:), eta(:), wt(:), b(:, :)
+    real(wp) :: db(NSTRAIN, NSTRAIN), detj
+    integer :: n, g
+    call check_element(xl, t, e, nu, error)
+    if (allocated(error)) return
+    n = size(xl, 2)
+    if (size(kappa0) /= n) then
+       call fatal_error(error, EXIT_DECK, 'wrong number of nodal initial curvatures')
+       return
+    end if
+    db = bending_rigidity(t, e, nu)
+    call integration_rule(n, xi, eta, wt)
+    allocate (b(NSTRAIN, NDN*n), fe(NDN*n), source=0.0_wp)
+    do g = 1, size(wt)
+       call curvature_matrix(xl, xi(g), eta(g), b, detj)
+       fe = fe + (wt(g)*detj*dot_product(corner_functions(n, xi(g), eta(g)), kappa0))* &
+            matmul(transpose(b), matmul(db, [1.0_wp, 1.0_wp, 0.0_wp]))
+    end do
+  end subroutine plate_thermal_load
+
+  pure function corner_functions(n, xi, eta) result(nf)
+    !! The linear (n = 3, unit triangle) or bilinear (n = 4) corner functions at (ξ, η).
+    integer, intent(in) :: n
+    real(wp), intent(in) :: xi, eta
+    real(wp) :: nf(n)
+    if (n == NTRI) then
+       nf = [1 - xi - eta, xi, eta]
+    else
+       nf = 0.25_wp*(1 + QUAD_XI*xi)*(1 + QUAD_ETA*eta)
+    end if
+  end function corner_functions
 
   pure subroutine plate_check(xl, t, e, nu, error)
     !! The checks of plate_stiffness (t, E, ν, node count, area, sides, Jacobian at the 2×2 Gauss points),

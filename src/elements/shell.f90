@@ -37,7 +37,12 @@ module superjoin_elements_shell
   use superjoin_elements_mindlin, only: mindlin_stiffness, mindlin_resultants, default_shear_stiffness
   use superjoin_elements_mindlin, only: mindlin_point_resultants
   use superjoin_elements_drilling, only: drilling_stiffness, drilling_resultants, drilling_point_stresses
-  use superjoin_elements_opt_triangle, only: opt_stiffness, opt_resultants, opt_point_stresses
+  use superjoin_elements_opt_triangle, only: opt_stiffness, opt_resultants, opt_point_stresses, opt_thermal_load
+
+  use superjoin_elements_drilling, only: drilling_thermal_load, drilling_thermal_stresses
+  use superjoin_elements_membrane, only: membrane_thermal_load
+  use superjoin_elements_plate, only: plate_thermal_load, corner_functions, bending_rigidity
+  use superjoin_elements_mindlin, only: mindlin_thermal_load
   implicit none (type, external)
   private
 
@@ -48,6 +53,7 @@ module superjoin_elements_shell
   public :: has_drilling_membrane, drilling_edges, DRILL_ALL_EDGES
   public :: s8r_stresses
   public :: shell8_props
+  public :: shell_thermal_nodal_load, shell_thermal_nodal_resultants, shell_thermal_nodal_stresses
 
   integer, parameter :: MEMBRANE_DOFS(3) = [1, 2, 6]
     !! Local shell DOFs (u, v, w, θx, θy, θz) of the membrane (u, v, θz).
@@ -753,11 +759,12 @@ contains
       sig(4:5, :, 3) = PARABOLIC_SHEAR_PEAK*res(4:5, :)/t
     end subroutine surfaces
   end subroutine thick_shell_stresses
-  pure subroutine s8r_stresses(x, sec, mat, ue, sig_points, sig_nodes, error, thermal)
+  pure subroutine s8r_stresses(x, sec, mat, ue, sig_points, sig_nodes, error, thermal, thermal_nodal)
     !! shell8_stresses of an S8R with its section and material: global stress
     !! tensors sig_points(6, 4, 3) at the 2×2 points and sig_nodes(6, 8, 3) at
     !! the nodes, section points bottom, top, mid-surface; thermal (optional):
-    !! α ΔT and α ∂T/∂n, subtracted as a free thermal strain.
+    !! α ΔT and α ∂T/∂n, subtracted as a free thermal strain; thermal_nodal
+    !! (optional, 2 × 8): the nodes' remainders of both, interpolated.
     real(wp), intent(in) :: x(:, :)
     type(section_t), intent(in) :: sec
     type(material_t), intent(in) :: mat
@@ -765,10 +772,175 @@ contains
     real(wp), intent(out) :: sig_points(:, :, :), sig_nodes(:, :, :)
     type(error_t), allocatable, intent(out) :: error
     real(wp), intent(in), optional :: thermal(2)
+    real(wp), intent(in), optional :: thermal_nodal(:, :)
     real(wp) :: r(3, 3), xl(2, size(x, 2)), h(size(x, 2))
     call setup(ET_S8R, x, r, xl, h, error)
     if (allocated(error)) return
     call shell8_stresses(x, [r(1, 1), r(1, 2), r(1, 3)], shell8_props(sec, mat), ue, sig_points, sig_nodes, &
-         error, thermal)
+         error, thermal, thermal_nodal)
   end subroutine s8r_stresses
+  pure subroutine shell_thermal_nodal_load(etype, x, sec, mat, strain, curvature, fe, error, drill)
+    !! Consistent nodal loads fe(6n) (global axes, element ordering) of the
+    !! thermal strain and curvature of an S3, S4, S3R or S4R given at its
+    !! nodes, strain(n) = α ΔT and curvature(n) = α ∂T/∂n, interpolated with
+    !! the corner functions to the integration points of the element's own
+    !! membrane and bending parts: ∫ Bᵀ D ε0(ξ) dA with the membrane's B (CST,
+    !! QM6 with its incompatible modes, or the drilling membrane under the
+    !! edge mask drill) and ∫ Bbᵀ D_b κ0(ξ) dA with the plate's (DKT/DKQ
+    !! discrete Kirchhoff curvatures, MITC3/MITC4 bending rows).
+    integer, intent(in) :: etype
+    real(wp), intent(in) :: x(:, :)
+    type(section_t), intent(in) :: sec
+    type(material_t), intent(in) :: mat
+    real(wp), intent(in) :: strain(:), curvature(:)
+    real(wp), allocatable, intent(out) :: fe(:)
+    type(error_t), allocatable, intent(out) :: error
+    integer, intent(in), optional :: drill
+    real(wp) :: r(3, 3), xl(2, size(x, 2)), h(size(x, 2))
+    real(wp), allocatable :: fm(:), fb(:), fl(:)
+    logical :: edges(size(x, 2))
+    integer :: n, i
+    n = size(x, 2)
+    if (is_plane_type(etype) .or. etype == ET_S8R .or. size(strain) /= n .or. size(curvature) /= n) then
+       call fatal_error(error, EXIT_DECK, 'nodal thermal strains of a shell: S3, S4, S3R, S4R with a value per node')
+       return
+    end if
+    call setup(etype, x, r, xl, h, error)
+    if (allocated(error)) return
+    edges = drilling_edges(etype, n, drill)
+    allocate (fl(6*n), source=0.0_wp)
+    if (any(edges)) then
+       ! the membrane of the stiffness: OPT (triangle) or the drilling quadrilateral
+       if (n == 3) then
+          call opt_thermal_load(xl, sec%thickness, mat%e, mat%nu, strain, fm, error, edges)
+       else
+          call drilling_thermal_load(xl, sec%thickness, mat%e, mat%nu, strain, fm, error, edges)
+       end if
+       if (allocated(error)) return
+       do i = 1, n
+          fl(6*(i - 1) + MEMBRANE_DOFS) = fm(3*i - 2:3*i)
+       end do
+    else
+       call membrane_thermal_load(xl, sec%thickness, mat%e, mat%nu, .false., strain, fm, error)
+       if (allocated(error)) return
+       do i = 1, n
+          fl(6*(i - 1) + MEMBRANE_DOFS(1:2)) = fm(2*i - 1:2*i)
+       end do
+    end if
+    if (is_thick_shell_type(etype)) then
+       call mindlin_thermal_load(xl, sec%thickness, mat%e, mat%nu, shell_shear_stiffness(sec, mat), curvature, fb, &
+            error)
+    else
+       call plate_thermal_load(xl, sec%thickness, mat%e, mat%nu, curvature, fb, error)
+    end if
+    if (allocated(error)) return
+    do i = 1, n
+       fl(6*(i - 1) + PLATE_DOFS) = fb(3*i - 2:3*i)
+    end do
+    fe = to_global_vector(node_maps(etype, r, h), fl)
+  end subroutine shell_thermal_nodal_load
+
+  pure subroutine shell_thermal_nodal_resultants(etype, x, sec, mat, strain, curvature, res0, error, drill)
+    !! The resultants res0 (nx, ny, nxy, mx, my, mxy at the centre, element
+    !! frame, as shell_resultants) to be taken off those of the displacements
+    !! for the nodal thermal strains and curvatures of shell_thermal_nodal_load:
+    !! minus the resultants of that initial strain at zero displacement
+    !! (N = D (ε - ε0), the membrane's incompatible modes included).
+    integer, intent(in) :: etype
+    real(wp), intent(in) :: x(:, :)
+    type(section_t), intent(in) :: sec
+    type(material_t), intent(in) :: mat
+    real(wp), intent(in) :: strain(:), curvature(:)
+    real(wp), intent(out) :: res0(6)
+    type(error_t), allocatable, intent(out) :: error
+    integer, intent(in), optional :: drill
+    real(wp) :: r(3, 3), xl(2, size(x, 2)), h(size(x, 2)), nres(3), kc
+    real(wp), allocatable :: sp(:, :), sn(:, :)
+    logical :: edges(size(x, 2))
+    integer :: n
+    res0 = 0.0_wp
+    n = size(x, 2)
+    call setup(etype, x, r, xl, h, error)
+    if (allocated(error)) return
+    edges = drilling_edges(etype, n, drill)
+    if (any(edges)) then
+       call drilling_thermal_stresses(xl, sec%thickness, mat%e, mat%nu, strain, nres, sp, sn, error, edges)
+    else
+       call membrane_resultants(xl, sec%thickness, mat%e, mat%nu, spread(0.0_wp, 1, 2*n), nres, error, strain)
+    end if
+    if (allocated(error)) return
+    res0(1:3) = -nres
+    ! the plate parts take their moments at the centroid (triangle) or ξ = η = 0
+    kc = sum(curvature)/n
+    res0(4:6) = matmul(bending_rigidity(sec%thickness, mat%e, mat%nu), kc*[1.0_wp, 1.0_wp, 0.0_wp])
+  end subroutine shell_thermal_nodal_resultants
+
+  pure subroutine shell_thermal_nodal_stresses(etype, x, sec, mat, strain, curvature, sig_points, sig_nodes, error, &
+       drill)
+    !! What the nodal thermal strains and curvatures of shell_thermal_nodal_load
+    !! add to the stresses of shell_surface_stresses (S3, S4) or
+    !! thick_shell_stresses (S3R, S4R), same layout: the stresses of the initial
+    !! strain at zero displacement, σ = D (ε - ε0(ξ)) with ε0 interpolated to
+    !! each point (the membrane's modes included; extrapolated to the nodes as
+    !! those routines extrapolate).
+    integer, intent(in) :: etype
+    real(wp), intent(in) :: x(:, :)
+    type(section_t), intent(in) :: sec
+    type(material_t), intent(in) :: mat
+    real(wp), intent(in) :: strain(:), curvature(:)
+    real(wp), allocatable, intent(out) :: sig_points(:, :, :), sig_nodes(:, :, :)
+    type(error_t), allocatable, intent(out) :: error
+    integer, intent(in), optional :: drill
+    real(wp), parameter :: GAUSS_2 = 0.57735026918962576451_wp
+    real(wp), parameter :: XI_CORNER(4) = [-1.0_wp, 1.0_wp, 1.0_wp, -1.0_wp], ETA_CORNER(4) = [-1.0_wp, -1.0_wp, &
+         1.0_wp, 1.0_wp]
+    real(wp) :: r(3, 3), xl(2, size(x, 2)), h(size(x, 2)), nres(3), db(3, 3), t
+    real(wp), allocatable :: sp(:, :), sn(:, :), kp(:)
+    logical :: edges(size(x, 2))
+    integer :: n, k, ncomp, nsurf
+    n = size(x, 2)
+    call setup(etype, x, r, xl, h, error)
+    if (allocated(error)) return
+    edges = drilling_edges(etype, n, drill)
+    if (any(edges)) then
+       call drilling_thermal_stresses(xl, sec%thickness, mat%e, mat%nu, strain, nres, sp, sn, error, edges)
+    else
+       call membrane_point_stresses(xl, mat%e, mat%nu, .false., spread(0.0_wp, 1, 2*n), sp, sn, error, strain)
+    end if
+    if (allocated(error)) return
+    ! the initial curvature at the points of the plate parts (triangle: centroid; quadrilateral: 2×2 Gauss)
+    if (n == 3) then
+       kp = [sum(curvature)/3]
+    else
+       allocate (kp(4))
+       do k = 1, 4
+          kp(k) = dot_product(corner_functions(4, GAUSS_2*XI_CORNER(k), GAUSS_2*ETA_CORNER(k)), curvature)
+       end do
+    end if
+    t = sec%thickness
+    db = bending_rigidity(t, mat%e, mat%nu)
+    ncomp = 3
+    nsurf = 2
+    if (is_thick_shell_type(etype)) then
+       ncomp = 5
+       nsurf = THICK_SURFACES
+    end if
+    allocate (sig_points(ncomp, size(sp, 2), nsurf), sig_nodes(ncomp, n, nsurf), source=0.0_wp)
+    ! m = -D_b κ0: the surface stresses ∓ 6 m/t² (the transverse shear takes no initial strain)
+    do k = 1, size(sp, 2)
+       call surfaces(sig_points(:, k, :), sp(:, k), -kp(k)*matmul(db, [1.0_wp, 1.0_wp, 0.0_wp]))
+    end do
+    do k = 1, n
+       call surfaces(sig_nodes(:, k, :), sn(:, k), -curvature(k)*matmul(db, [1.0_wp, 1.0_wp, 0.0_wp]))
+    end do
+  contains
+    pure subroutine surfaces(sig, sm, m)
+      !! Section point stresses from the membrane stresses sm(3) and the moments m(3).
+      real(wp), intent(inout) :: sig(:, :)
+      real(wp), intent(in) :: sm(3), m(3)
+      sig(1:3, 1) = sm - 6*m/t**2
+      sig(1:3, 2) = sm + 6*m/t**2
+      if (size(sig, 2) == THICK_SURFACES) sig(1:3, 3) = sm
+    end subroutine surfaces
+  end subroutine shell_thermal_nodal_stresses
 end module superjoin_elements_shell

@@ -206,7 +206,7 @@ contains
     end do
   end subroutine shell8_resultants
 
-  pure subroutine shell8_stresses(x, ex, props, ue, sig_points, sig_nodes, error, thermal)
+  pure subroutine shell8_stresses(x, ex, props, ue, sig_points, sig_nodes, error, thermal, thermal_nodal)
     !! Stress tensors (global axes, Voigt order xx, yy, zz, xy, xz, yz) of an
     !! S8R from its displacements ue(48) (global axes): sig_points(6, 4, 3) at
     !! the 2×2 points of the reduced rule, point k next to corner k (ξ, η =
@@ -217,7 +217,9 @@ contains
     !! stiffness (in_plane_parts, lamina frame), σ = D (ε - ε0(ζ)); the thermal
     !! strain ε0(ζ) = thermal(1) + ζ t/2 thermal(2) (α ΔT and α ∂T/∂n, the
     !! layout of the thermal fields of the other shells; isotropic in the
-    !! plane, absent = 0) is the single thermal hook. So n = t σ_mid and
+    !! plane, absent = 0) is the single thermal hook; thermal_nodal(2, 8), the
+    !! nodes' remainders of both (a temperature varying over the element), are
+    !! interpolated to each point and added. So n = t σ_mid and
     !! m = t² (σ_top - σ_bot)/12 are the resultants of shell8_resultants.
     !! Transverse shear: 0 on the faces, 1.5 q/t on the mid-surface with q the
     !! shear force of the 2×2 rule (mean of the two thickness points).
@@ -234,6 +236,7 @@ contains
     real(wp), intent(out) :: sig_nodes(NTENSOR, NN, S8R_SECTION_POINTS)
     type(error_t), allocatable, intent(out) :: error
     real(wp), intent(in), optional :: thermal(2)
+    real(wp), intent(in), optional :: thermal_nodal(:, :)
     real(wp) :: dir(3, NN), d(NSTR, NSTR), bm(3, NDOF), bb(3, NDOF), detj(2), b(NSTR, NDOF)
     real(wp) :: em(3), eb(3), gam(2), e0(2), s(NSTR), zeta, w(S8R_STRESS_POINTS)
     real(wp), parameter :: SECTION_ZETA(S8R_SECTION_POINTS) = [-1.0_wp, 1.0_wp, 0.0_wp]
@@ -263,6 +266,8 @@ contains
        call point(x, dir, ex, props, [G2*XI_NODE(k), G2*ETA_NODE(k), 0.0_wp], pt)
        ! the thickness at the point (Σ N_i t_i when tapered) scales the gradient's strain
        if (present(thermal)) e0 = [thermal(1), thermal(2)*thickness_at(props, pt%nf)/2]
+       if (present(thermal_nodal)) e0 = e0 + [dot_product(pt%nf, thermal_nodal(1, 1:NN)), &
+            dot_product(pt%nf, thermal_nodal(2, 1:NN))*thickness_at(props, pt%nf)/2]
        do m = 1, S8R_SECTION_POINTS
           zeta = SECTION_ZETA(m)
           s = 0.0_wp
@@ -383,40 +388,51 @@ contains
     end do
   end subroutine shell8_mass
 
-  pure subroutine shell8_thermal_load(x, ex, props, strain, curvature, fe, error)
+  pure subroutine shell8_thermal_load(x, ex, props, strain, curvature, fe, error, strain_nodal, curvature_nodal)
     !! Consistent nodal loads fe(48) (global axes) of the thermal strain
     !! ε0 = strain + curvature z in the plane of the lamina (z = ζ t/2 along
     !! e3; strain = α ΔT, curvature = α ∂T/∂n): ∫ Bᵀ D ε0 dV with the rules
-    !! of the stiffness (membrane part 2×2, bending part 3×3).
+    !! of the stiffness (membrane part 2×2, bending part 3×3). With
+    !! strain_nodal(8), curvature_nodal(8) (a temperature varying over the
+    !! element: the nodes' remainders after strain and curvature) these are
+    !! interpolated with the shape functions and added at every point.
     real(wp), intent(in) :: x(:, :), ex(3)
     type(shell8_props_t), intent(in) :: props
     real(wp), intent(in) :: strain, curvature
     real(wp), allocatable, intent(out) :: fe(:)
     type(error_t), allocatable, intent(out) :: error
+    real(wp), intent(in), optional :: strain_nodal(:), curvature_nodal(:)
     real(wp) :: dir(3, NN), d(NSTR, NSTR), bm(3, NDOF), bb(3, NDOF), detj(2), nf(NN), dn(2, NN)
+    real(wp) :: sn(NN), cn(NN)
     real(wp), parameter :: IN_PLANE(3) = [1.0_wp, 1.0_wp, 0.0_wp]
     integer :: i, j
 
     call check(x, props, dir, error)
     if (allocated(error)) return
+    sn = 0.0_wp
+    cn = 0.0_wp
+    if (present(strain_nodal)) sn = strain_nodal(1:NN)
+    if (present(curvature_nodal)) cn = curvature_nodal(1:NN)
     d = material(props)
     allocate (fe(NDOF), source=0.0_wp)
     ! bending: dε0/dζ = curvature t/2 at the point
-    if (curvature /= 0.0_wp) then
+    if (curvature /= 0.0_wp .or. any(cn /= 0.0_wp)) then
        do i = 1, 3
           do j = 1, 3
              call in_plane_parts(x, dir, ex, props, [G3(i), G3(j)], bm, bb, detj)
              call quadratic_shape(NN, [G3(i), G3(j)], nf, dn)
              fe = fe + (2*W3(i)*W3(j)*G2**2)*sum(detj)/2* &
-                  matmul(transpose(bb), matmul(d(1:3, 1:3), curvature*thickness_at(props, nf)/2*IN_PLANE))
+                  matmul(transpose(bb), matmul(d(1:3, 1:3), (curvature + dot_product(nf, cn))* &
+                  thickness_at(props, nf)/2*IN_PLANE))
           end do
        end do
     end if
-    if (strain /= 0.0_wp) then
+    if (strain /= 0.0_wp .or. any(sn /= 0.0_wp)) then
        do i = 1, 2
           do j = 1, 2
              call in_plane_parts(x, dir, ex, props, [gauss2(i), gauss2(j)], bm, bb, detj)
-             fe = fe + sum(detj)*matmul(transpose(bm), matmul(d(1:3, 1:3), strain*IN_PLANE))
+             call quadratic_shape(NN, [gauss2(i), gauss2(j)], nf, dn)
+             fe = fe + sum(detj)*matmul(transpose(bm), matmul(d(1:3, 1:3), (strain + dot_product(nf, sn))*IN_PLANE))
           end do
        end do
     end if

@@ -18,6 +18,7 @@ module superjoin_elements_shell8_loads
   private
 
   integer, parameter :: NDN = 6   !! DOFs per S8R node
+  integer, parameter :: NN8 = 8   !! nodes of an S8R
 
   public :: s8r_is_tapered, s8r_gravity_load, s8r_thermal_load, s8r_thermal_resultants, s8r_centrif_load
 
@@ -53,15 +54,18 @@ contains
     end do
   end subroutine s8r_gravity_load
 
-  pure subroutine s8r_thermal_load(x, sec, mat, strain, curvature, fe, error)
+  pure subroutine s8r_thermal_load(x, sec, mat, strain, curvature, fe, error, strain_nodal, curvature_nodal)
     !! Consistent nodal loads fe(48) (global axes) of the thermal strain
-    !! strain = α ΔT and curvature = α ∂T/∂n (superjoin_elements_shell8).
+    !! strain = α ΔT and curvature = α ∂T/∂n (superjoin_elements_shell8); with
+    !! strain_nodal(8), curvature_nodal(8) the nodes' remainders after them,
+    !! interpolated to the integration points.
     real(wp), intent(in) :: x(:, :)
     type(section_t), intent(in) :: sec
     type(material_t), intent(in) :: mat
     real(wp), intent(in) :: strain, curvature
     real(wp), allocatable, intent(out) :: fe(:)
     type(error_t), allocatable, intent(out) :: error
+    real(wp), intent(in), optional :: strain_nodal(:), curvature_nodal(:)
     real(wp) :: r(3, 3), xl(2, size(x, 2)), h(size(x, 2))
     if (size(x, 2) /= ELEMENT_NODE_COUNT(ET_S8R)) then
        call fatal_error(error, EXIT_DECK, 'wrong number of nodes')
@@ -69,16 +73,27 @@ contains
     end if
     call shell_frame(x, r, xl, h, error)
     if (allocated(error)) return
-    call shell8_thermal_load(x, r(1, :), shell8_props(sec, mat), strain, curvature, fe, error)
+    call shell8_thermal_load(x, r(1, :), shell8_props(sec, mat), strain, curvature, fe, error, strain_nodal, &
+         curvature_nodal)
   end subroutine s8r_thermal_load
 
-  pure subroutine s8r_thermal_resultants(sec, mat, strain, curvature, res)
+  pure subroutine s8r_thermal_resultants(sec, mat, strain, curvature, res, nodal)
     !! Resultants (nx .. mxy, lamina frame at the centre) of the free thermal
-    !! strain, to be taken off those of the solution.
+    !! strain, to be taken off those of the solution; nodal(2, 8): the nodes'
+    !! remainders of both (a temperature varying over the element), taken at
+    !! the centre ξ = η = 0 (serendipity: -1/4 of each corner, 1/2 of each
+    !! mid-side node).
     type(section_t), intent(in) :: sec
     type(material_t), intent(in) :: mat
     real(wp), intent(in) :: strain, curvature
     real(wp), intent(out) :: res(6)
+    real(wp), intent(in), optional :: nodal(:, :)
+    real(wp), parameter :: CENTRE(NN8) = [-0.25_wp, -0.25_wp, -0.25_wp, -0.25_wp, 0.5_wp, 0.5_wp, 0.5_wp, 0.5_wp]
+    if (present(nodal)) then
+       call shell8_thermal_resultants(shell8_props(sec, mat), strain + dot_product(CENTRE, nodal(1, 1:NN8)), &
+            curvature + dot_product(CENTRE, nodal(2, 1:NN8)), res)
+       return
+    end if
     call shell8_thermal_resultants(shell8_props(sec, mat), strain, curvature, res)
   end subroutine s8r_thermal_resultants
 

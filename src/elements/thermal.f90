@@ -26,6 +26,11 @@ module superjoin_elements_thermal
   !! (thermal_plane_nodal_load) and is taken off the strains at every point
   !! (σ = D (ε - ε̄ - Σ Nᵢ δᵢ)): in all, the consistent ∫ Bᵀ D ε0(ξ) dA. A
   !! uniform temperature has no remainder and takes the mean path alone.
+  !! Shells do the same with their own parts (superjoin_elements_shell,
+  !! shell_thermal_nodal_load: the membrane's and the plate's rows, the nodal
+  !! remainders of α ΔT and α ∂T/∂n), S8R at its own points
+  !! (superjoin_elements_shell8); B32 interpolates along its three nodes
+  !! (superjoin_elements_beam3, beam3_thermal_load).
   !!
   !! Beams: a temperature gradient across the section, α ∂T/∂y and α ∂T/∂z
   !! (local axes), is the thermal curvature of the free beam: fibres at +y

@@ -241,6 +241,10 @@ module superjoin_model_types
                                            !! element mean (unallocated: uniform), interpolated to the points
      real(wp) :: gradient(2, 2) = 0.0_wp   !! TEMP on a beam: α ∂T/∂y, α ∂T/∂z (local axes), the thermal
                                            !! curvatures, at its node 1 and node 2 (linear in between)
+     real(wp), allocatable :: curvature_nodal(:)  !! TEMP on a shell whose nodes differ: α ∂T/∂n at each node
+                                           !! minus curvature (allocated with nodal, which a shell then has too)
+     real(wp), allocatable :: line_nodal(:, :)  !! TEMP on a B32: α ΔT, α ∂T/∂y, α ∂T/∂z (local axes) at each
+                                           !! of its three nodes (rows 1:3, columns nodes; value = 0)
      type(source_loc_t) :: loc
   end type dload_t
 
@@ -276,8 +280,6 @@ module superjoin_model_types
      type(node_values_t), allocatable :: temperature(:)  !! per substructure: the nodal temperatures of
                                            !! the step (*INITIAL CONDITIONS / *TEMPERATURE; unallocated: none
                                            !! in the model, all 0), for *NODE PRINT NT
-     integer :: shell_mean_temperatures = 0  !! shell elements whose nodal temperature change or
-                                           !! gradient differs between their nodes (each takes its mean)
   end type step_t
 
   type, public :: combination_t

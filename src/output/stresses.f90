@@ -28,6 +28,7 @@ module superjoin_output_stresses
   use superjoin_model_types, only: model_t, ELEMENT_NODE_COUNT, ET_B23, ET_B33, ET_B21, ET_B31
   use superjoin_model_types, only: ET_S8R
   use superjoin_elements_shell, only: s8r_stresses
+  use superjoin_elements_shell, only: shell_thermal_nodal_stresses
   use superjoin_elements_shell8, only: S8R_STRESS_POINTS
   use superjoin_elements_shell, only: shell_frame, is_plane_type, is_plate_type, shell_surface_stresses
   use superjoin_elements_shell, only: is_plane_strain_type, is_quadratic_plane_type, is_thick_shell_type, &
@@ -95,6 +96,7 @@ contains
     real(wp) :: x(3, MAX_PLANE_NODES), r(3, 3), xl(2, MAX_PLANE_NODES), h(MAX_PLANE_NODES), nu, szz0
     real(wp), allocatable :: ue(:), ul(:), sp(:, :), sn(:, :), sp3(:, :, :), sn3(:, :, :), u0(:)
     real(wp), allocatable :: e0(:), e0p(:), e0n(:)   ! a temperature varying over a plane element
+    real(wp), allocatable :: sp3_rem(:, :, :), sn3_rem(:, :, :)   ! a shell's: what its nodal remainders add
     real(wp) :: szz_here
     type(error_t), allocatable :: error
     integer :: etype, nn, a, k
@@ -161,6 +163,19 @@ contains
            call shell_surface_stresses(x(:, 1:nn), sec, mat, ue, r, sp3, sn3, error, element_drill(sub, ie))
            if (allocated(error)) return
         end if
+        if (.not. is_plane_type(etype) .and. allocated(fields%thermal_curvature_nodal)) then
+           ! loads: a shell whose temperature varies, the nodal remainders interpolated to the points
+           associate (tn => fields%thermal_nodal(1:nn, fields%elem_offset(isub) + ie, is), &
+                cn => fields%thermal_curvature_nodal(1:nn, fields%elem_offset(isub) + ie, is))
+             if (any(tn /= 0.0_wp) .or. any(cn /= 0.0_wp)) then
+                call shell_thermal_nodal_stresses(etype, x(:, 1:nn), sec, mat, tn, cn, sp3_rem, sn3_rem, error, &
+                     element_drill(sub, ie))
+                if (allocated(error)) return
+                sp3 = sp3 + sp3_rem
+                sn3 = sn3 + sn3_rem
+             end if
+           end associate
+        end if
       end associate
     end associate
     deallocate (points, nodes)
@@ -217,7 +232,7 @@ contains
     integer(ip), intent(in) :: ie
     real(wp), allocatable, intent(inout) :: points(:, :, :), nodes(:, :, :)
     logical, intent(out) :: ok
-    real(wp) :: x(3, ELEMENT_NODE_COUNT(ET_S8R)), th(2)
+    real(wp) :: x(3, ELEMENT_NODE_COUNT(ET_S8R)), th(2), rem(2, ELEMENT_NODE_COUNT(ET_S8R))
     real(wp), allocatable :: ue(:)
     type(error_t), allocatable :: error
     integer :: a
@@ -229,10 +244,18 @@ contains
       call element_displacements(model, fields, is, isub, ie, ue)
       th = 0.0_wp
       if (allocated(fields%thermal)) th = fields%thermal(:, fields%elem_offset(isub) + ie, is)
+      rem = 0.0_wp   ! loads: a temperature varying over the element, the nodes' remainders
+      if (allocated(fields%thermal_nodal)) rem(1, :) = fields%thermal_nodal(1:size(x, 2), fields%elem_offset(isub) + ie, is)
+      if (allocated(fields%thermal_curvature_nodal)) &
+           rem(2, :) = fields%thermal_curvature_nodal(1:size(x, 2), fields%elem_offset(isub) + ie, is)
       deallocate (points, nodes)
       allocate (points(NTENSOR, S8R_STRESS_POINTS, NSURF), nodes(NTENSOR, size(x, 2), NSURF))
       associate (sec => sub%sections(sub%elem_section(ie)), mat => model%materials(sub%sections(sub%elem_section(ie))%material))
-        call s8r_stresses(x, sec, mat, ue, points, nodes, error, th)
+        if (any(rem /= 0.0_wp)) then
+           call s8r_stresses(x, sec, mat, ue, points, nodes, error, th, rem)
+        else
+           call s8r_stresses(x, sec, mat, ue, points, nodes, error, th)
+        end if
       end associate
     end associate
     if (allocated(error)) then

@@ -47,6 +47,21 @@ load, zero; rot2: only the new moment).
 planestrain.inp (CPE4), planestrain2.inp (CPE8): uniform stress (patch
 test), so every integration point of CalculiX's expanded brick must show the
 element's single tensor; displacements, strains and stresses must agree.
+planestress.inp, planestress2.inp (CPS8R, *DLOAD P2 = -100 on the right
+edge x = 1, a tension of 100 on a quadratic edge): planestress is a patch
+test (thickness 0.01 everywhere): u = s x / E, v = -nu s (y - 0.5) / E at
+every node (closed form, round-off) and .dat.ref's displacements and its
+stresses at each of CalculiX's 8 points equal superjoin's element tensor
+(1e-6 of the table). planestress2 gives its four elements the thicknesses
+0.01 .. 0.04, so the stress is not uniform: CalculiX expands a CPS8R into a
+C3D20R brick (2x2x2 points; points 5-8 repeat 1-4 through the thickness,
+points 3 and 4 in the order xi, eta = (-, +), (+, +)), superjoin's CPS8R has
+2x2 points numbered next to nodes 1..4. The in-plane components xx, yy, xy
+must agree within 1e-5 of the table (they are the same element in the plane;
+measured 5.1e-6); zz, xz, yz are 0 in plane stress and within 5e-4 of the
+table in CalculiX's brick (a 3D effect of the thickness steps between its
+bricks; measured 3.8e-4).
+
 oneel.inp (CPE8, *EQUATION): no print request (.dat.ref is empty); its
 *NODE FILE displacements go to CSV and are compared with the DISP block of
 oneel.frd.ref (5 significant digits: 1e-5 of the table).
@@ -552,6 +567,67 @@ def plane_strain(binary, outdir):
                     check(f'element {elem} point {ip} {kind} {c + 1} (uniform state)', got[elem][0][c], vals[c], scale)
 
 
+def plane_stress_cps8r(binary, outdir):
+    print('planestress.inp (CPS8R, *DLOAD P2 on quadratic edges): *NODE PRINT U, *EL PRINT S')
+    text = run(binary, outdir, 'planestress')
+    ref_path = os.path.join(HERE, 'planestress.dat.ref')
+    ref_u, _ = dat_table(ref_path, 'displacements', 'NALL')
+    u = listing_rows(text, 1, 'planestress.inp:51', '    U ')
+    e, nu, s = 210000.0, 0.3, 100.0
+    scale = table_scale(ref_u)
+    for (node,), vals in sorted(ref_u.items()):
+        for c in range(3):
+            check(f'node {node} u{c + 1}', u[node][0][c], vals[c], scale)
+    # closed form: the nodes of planestress.inp lie on x, y in {0, 0.25, .., 1} (x = -7.45e-9 for 0)
+    coords = {}
+    with open(os.path.join(HERE, 'planestress.inp')) as f:
+        lines = f.read().splitlines()
+    for line in lines[lines.index('*NODE, NSET=Nall') + 1:]:
+        if line.startswith('*'):
+            break
+        fields = [v for v in line.replace(',', ' ').split()]
+        coords[int(fields[0])] = (float(fields[1]), float(fields[2]))
+    for node, (x, y) in sorted(coords.items()):
+        x0 = coords[1][0]
+        check(f'node {node} u1 = s x / E (closed form)', u[node][0][0], s * (x - x0) / e, scale)
+        check(f'node {node} u2 = -nu s (y - 0.5) / E (closed form)', u[node][0][1], -nu * s * (y - 0.5) / e, scale)
+    ref, _ = dat_table(ref_path, 'stresses', 'EALL')
+    got = listing_rows(text, 1, 'planestress.inp:53', '    S   stresses')
+    scale = table_scale(ref)
+    for (elem, ip), vals in sorted(ref.items()):
+        for c in range(6):
+            check(f'element {elem} point {ip} stress {c + 1} (uniform state)', got[elem][0][c], vals[c], scale)
+
+    print('planestress2.inp (CPS8R, thicknesses 0.01 .. 0.04): *EL PRINT S at the integration points')
+    text = run(binary, outdir, 'planestress2')
+    ref, _ = dat_table(os.path.join(HERE, 'planestress2.dat.ref'), 'stresses', 'EALL')
+    sec = text[text.index('(planestress2.inp:65)'):]
+    sec = sec[sec.index('\n    S   at the integration points'):]
+    points = {}
+    for line in sec.splitlines()[4:]:
+        f = line.split()
+        if not line.startswith('    ') or len(f) < 11 or not f[1].isdigit():
+            break
+        points[(int(f[1]), int(f[3]))] = [float(v.replace('E', 'e')) for v in f[-6:]]
+    scale = table_scale(ref)
+    ccx_to_superjoin = {1: 1, 2: 2, 3: 4, 4: 3}
+    worst = [0.0, 0.0]
+    for (elem, ip), vals in sorted(ref.items()):
+        mine = points[(elem, ccx_to_superjoin[(ip - 1) % 4 + 1])]
+        for c in range(6):
+            in_plane = c in (0, 1, 3)
+            err = abs(mine[c] - vals[c]) / scale
+            worst[0 if in_plane else 1] = max(worst[0 if in_plane else 1], err)
+            ok = err <= (1e-5 if in_plane else 5e-4)
+            if not in_plane:
+                ok = ok and mine[c] == 0.0
+            if not ok:
+                FAILURES.append(f'planestress2 element {elem} point {ip} stress {c + 1}')
+                print(f'  FAIL element {elem} point {ip} stress {c + 1}: {mine[c]:.7e} reference {vals[c]:.7e}')
+    print(f'  ok   {len(ref)} points x 6 components; largest |diff|/scale in the plane {worst[0]:.1e} '
+          f'(tolerance 1e-5), out of the plane {worst[1]:.1e} (CalculiX\'s brick; tolerance 5e-4)')
+
+
 def oneel(binary, outdir):
     print('oneel.inp (CPE8, *EQUATION): *NODE FILE U (CSV) against oneel.frd.ref')
     out = os.path.join(outdir, 'oneel_csv')
@@ -799,6 +875,7 @@ def main():
     b31(binary, outdir)
     rot_decks(binary, outdir)
     plane_strain(binary, outdir)
+    plane_stress_cps8r(binary, outdir)
     oneel(binary, outdir)
     transform_print(binary, outdir)
     shell1lin(binary, outdir)

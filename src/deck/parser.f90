@@ -33,6 +33,7 @@ module superjoin_deck_parser
   use superjoin_utils_strings, only: pick
   use superjoin_output_vtk, only: vtk_path_problem
   use superjoin_elements_catalog, only: unsupported_type_message
+  use superjoin_deck_ccx_cards, only: canonical_keyword
   implicit none (type, external)
   private
 
@@ -334,6 +335,8 @@ contains
        call set_card(st, CARD_SKIP, '*', loc)
        return
     end if
+    ! CalculiX and Abaqus ignore blanks in keywords (*SOLIDSECTION, *NODEPRINT)
+    kw%keyword = canonical_keyword(kw%keyword)
     if (kw%keyword == 'INCLUDE') then
        call do_include(st, kw, loc)
        return

@@ -85,8 +85,9 @@ contains
     !! The keyword as the reader spells it (upper case, words separated by one
     !! blank: 'SOLID SECTION', 'CLOAD') for a keyword written with its blanks
     !! left out or put elsewhere ('SOLIDSECTION', 'C LOAD'): CalculiX and
-    !! Abaqus ignore blanks in keywords. `keyword` is upper case. A keyword that matches no known card comes back
-    !! unchanged (so its error message names it as written).
+    !! Abaqus ignore blanks in keywords. `keyword` is upper case. A keyword
+    !! that matches no known card comes back unchanged (so its error message
+    !! names it as written).
     character(*), intent(in) :: keyword
     character(:), allocatable :: canon
     character(:), allocatable :: key

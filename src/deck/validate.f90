@@ -1563,7 +1563,7 @@ contains
     case (DLOAD_P3)
        dload_fits = is_plane_type(etype)
     case (DLOAD_P4)
-       dload_fits = is_plane_type(etype) .and. ELEMENT_NODE_COUNT(etype) /= 3 .and. ELEMENT_NODE_COUNT(etype) /= 6
+       dload_fits = is_plane_type(etype) .and. .not. any(etype == [ET_CPS3, ET_CPE3, ET_CPS6, ET_CPE6])
     case default
        dload_fits = .false.
     end select

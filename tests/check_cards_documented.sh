@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # Every keyword the parser dispatches (the `select case (kw%keyword)` block of
-# src/deck/parser.f90, plus *INCLUDE) has a row in doc/deck-reference.md and a
-# heading in doc/user-manual.md.
+# src/deck/parser.f90, plus *INCLUDE) has a row in doc/deck-reference.md, a
+# heading in doc/user-manual.md and an entry in the keyword table of
+# src/deck/ccx_cards.f90 (blanks in keywords are ignored through it).
 # usage: check_cards_documented.sh SOURCE_DIR
 set -u
 src=$1
@@ -13,6 +14,12 @@ while IFS= read -r kw; do
   n=$((n+1))
   grep -qE -- "^\|.*\`\*$kw" "$src/doc/deck-reference.md" || { echo "FAIL: *$kw has no row in doc/deck-reference.md"; fail=1; }
   grep -qE -- "^###.*\*$kw" "$src/doc/user-manual.md" || { echo "FAIL: *$kw has no heading in doc/user-manual.md"; fail=1; }
+done <<< "$(printf '%s\nINCLUDE\n' "$kws")"
+# Keywords are compared with their blanks removed (superjoin_deck_ccx_cards,
+# canonical_keyword): every dispatched keyword must be in its table.
+known=$(awk '/KNOWN_KEYWORDS\(NUM_KNOWN\) =/ {on=1} on {print} on && /\]/ {exit}' "$src/src/deck/ccx_cards.f90")
+while IFS= read -r kw; do
+  grep -qF -- "'$kw'" <<< "$known" || { echo "FAIL: *$kw is not in KNOWN_KEYWORDS of src/deck/ccx_cards.f90"; fail=1; }
 done <<< "$(printf '%s\nINCLUDE\n' "$kws")"
 # Part 2 of the reference is extensions.md itself (tools/deck_reference.py).
 if command -v python3 >/dev/null; then python3 "$src/tools/deck_reference.py" --check || fail=1; fi

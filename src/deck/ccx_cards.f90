@@ -5,10 +5,12 @@ module superjoin_deck_ccx_cards
   !! request cards and their variables (produced, known but not produced, or
   !! unknown). Pure look-ups; the parser reports.
   use superjoin_model_types, only: REQ_NODE_PRINT, REQ_EL_PRINT, REQ_NODE_FILE, REQ_EL_FILE
+  use superjoin_utils_strings, only: without_blanks
   implicit none (type, external)
   private
 
   public :: refused_card_reason, request_kind, is_node_request, classify_variable
+  public :: canonical_keyword
 
   integer, parameter, public :: VAR_UNKNOWN = 0, VAR_PRODUCED = 1, VAR_NOT_PRODUCED = 2
     !! What superjoin does with an output variable.
@@ -25,6 +27,19 @@ module superjoin_deck_ccx_cards
        'CYCLIC HARDENING', 'CONTACT PAIR', 'SURFACE INTERACTION', 'SURFACE BEHAVIOR', 'FRICTION', &
        'GAP', 'GAP CONDUCTANCE', 'TEMPERATURE', 'INITIAL CONDITIONS', 'MODAL DAMPING', &
        'CONTACT DAMPING']
+  integer, parameter :: NUM_KNOWN = 51
+  character(len=KW_LEN), parameter :: KNOWN_KEYWORDS(NUM_KNOWN) = [character(len=KW_LEN) :: &
+       'ASSEMBLY', 'BEAM GENERAL SECTION', 'BEAM SECTION', 'BOUNDARY', 'CHANGE CONTACT', 'CLOAD', &
+       'CONTACT', 'CONTROLS', 'DENSITY', 'DLOAD', 'DSLOAD', 'EL FILE', 'EL PRINT', 'ELASTIC', &
+       'ELEMENT', 'ELEMENT OUTPUT', 'ELSET', 'END ASSEMBLY', 'END INSTANCE', 'END PART', &
+       'END STEP', 'END SUBSTRUCTURE', 'EQUATION', 'EXPANSION', 'HEADING', 'INCLUDE', &
+       'INITIAL CONDITIONS', 'INSTANCE', 'INTERFACE', 'LOAD COMBINATION', 'MATERIAL', &
+       'NODAL THICKNESS', 'NODE', 'NODE FILE', 'NODE OUTPUT', 'NODE PRINT', 'NSET', 'ORIENTATION', &
+       'OUTPUT', 'PART', 'SHELL SECTION', 'SOLID SECTION', 'SPRING', 'STATIC', 'STEP', &
+       'SUBSTRUCTURE', 'SUPPORT', 'SURFACE', 'TEMPERATURE', 'TRANSFORM', &
+       'TRANSVERSE SHEAR STIFFNESS']
+    !! Every keyword the reader dispatches (kept complete by
+    !! tests/check_cards_documented.sh), as canonical_keyword spells it.
   character(len=REASON_LEN), parameter :: REFUSED_REASONS(NUM_REFUSED) = [character(len=REASON_LEN) :: &
        'natural frequencies', 'linear buckling', 'dynamics', 'modal dynamics', &
        'steady-state dynamics', 'complex frequencies', 'heat transfer', &
@@ -65,6 +80,33 @@ contains
        end if
     end do
   end function refused_card_reason
+
+  pure function canonical_keyword(keyword) result(canon)
+    !! The keyword as the reader spells it (upper case, words separated by one
+    !! blank: 'SOLID SECTION', 'CLOAD') for a keyword written with its blanks
+    !! left out or put elsewhere ('SOLIDSECTION', 'C LOAD'): CalculiX and
+    !! Abaqus ignore blanks in keywords. `keyword` is upper case. A keyword
+    !! that matches no known card comes back unchanged (so its error message
+    !! names it as written).
+    character(*), intent(in) :: keyword
+    character(:), allocatable :: canon
+    character(:), allocatable :: key
+    integer :: k
+    key = without_blanks(keyword)
+    do k = 1, NUM_KNOWN
+       if (without_blanks(KNOWN_KEYWORDS(k)) == key) then
+          canon = trim(KNOWN_KEYWORDS(k))
+          return
+       end if
+    end do
+    do k = 1, NUM_REFUSED
+       if (without_blanks(REFUSED_KEYWORDS(k)) == key) then
+          canon = trim(REFUSED_KEYWORDS(k))
+          return
+       end if
+    end do
+    canon = keyword
+  end function canonical_keyword
 
   pure integer function request_kind(keyword) result(kind)
     !! REQ_* of an output request keyword (0 for any other keyword).

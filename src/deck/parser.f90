@@ -23,6 +23,7 @@ module superjoin_deck_parser
   use superjoin_deck_ccx_cards, only: refused_card_reason, request_kind, is_node_request, &
        classify_variable, VAR_UNKNOWN, VAR_PRODUCED
   use superjoin_model_types, only: TOTALS_NO, TOTALS_YES, TOTALS_ONLY
+  use superjoin_model_types, only: ET_B32
   use superjoin_deck_beam_sections, only: section_props_t, section_properties, shape_index, SHAPE_NONE, &
        SHAPE_L, SHAPE_I, SHAPE_NAMES, SHAPE_DIMS_MIN, SHAPE_DIMS_MAX, SHAPE_DATA, MAX_SHAPE_DIMS
   use superjoin_deck_state, only: SHAPE_GENERAL
@@ -33,6 +34,7 @@ module superjoin_deck_parser
   use superjoin_utils_strings, only: pick
   use superjoin_output_vtk, only: vtk_path_problem
   use superjoin_elements_catalog, only: unsupported_type_message
+  use superjoin_deck_ccx_cards, only: canonical_keyword
   implicit none (type, external)
   private
 
@@ -334,6 +336,8 @@ contains
        call set_card(st, CARD_SKIP, '*', loc)
        return
     end if
+    ! CalculiX and Abaqus ignore blanks in keywords (*SOLIDSECTION, *NODEPRINT)
+    kw%keyword = canonical_keyword(kw%keyword)
     if (kw%keyword == 'INCLUDE') then
        call do_include(st, kw, loc)
        return
@@ -805,6 +809,9 @@ contains
     do k = 1, NUM_ELEMENT_TYPES
        if (len_trim(ELEMENT_TYPE_NAMES(k)) > 0 .and. trim(ELEMENT_TYPE_NAMES(k)) == typ) st%card_etype = k
     end do
+    ! CalculiX's B32R (reduced integration) is superjoin's B32, which has the
+    ! reduced two-point rule (doc/verification.md, CalculiX test decks)
+    if (typ == 'B32R') st%card_etype = ET_B32
     if (st%card_etype == 0) then
        call report_loc(st, loc, unsupported_type_message(clip(typ)))
        call declare_elset(st, kw, loc)

@@ -25,6 +25,7 @@ module superjoin_deck_validate
   use superjoin_deck_combinations, only: build_combinations
   use superjoin_model_history, only: support_list_t, step_ops_t, apply_boundary_history, apply_load_history
   use superjoin_deck_eccentric, only: check_offset_masters
+  use superjoin_elements, only: is_plane_type
   use superjoin_utils_grow, only: grow
   implicit none (type, external)
   private
@@ -1246,10 +1247,10 @@ contains
                       extra = [extra, dload_t(sub=isub, elem=e, kind=DLOAD_THERMAL, &
                            value=mat%alpha*dt, curvature=mat%alpha*dg, loc=first_line(s))]
                       ! a plane element whose nodes differ: the nodal values, interpolated to its points
-                      if (is_plane_element(sub%elem_type(e)) .and. any(dtn(1:nn) /= dtn(1))) &
+                      if (is_plane_type(sub%elem_type(e)) .and. any(dtn(1:nn) /= dtn(1))) &
                            extra(size(extra))%nodal = mat%alpha*dtn(1:nn) - mat%alpha*dt
                       ! a shell whose nodes differ: both nodal remainders, interpolated to its points
-                      if (.not. is_plane_element(sub%elem_type(e)) .and. &
+                      if (.not. is_plane_type(sub%elem_type(e)) .and. &
                            (any(dtn(1:nn) /= dtn(1)) .or. any(dgn(1:nn) /= dgn(1)))) then
                          extra(size(extra))%nodal = mat%alpha*dtn(1:nn) - mat%alpha*dt
                          extra(size(extra))%curvature_nodal = mat%alpha*dgn(1:nn) - mat%alpha*dg
@@ -1306,12 +1307,6 @@ contains
            itoa(model%subs(isub)%elem_id(e))//' of type '// &
            trim(ELEMENT_TYPE_NAMES(model%subs(isub)%elem_type(e)))//': '//why)
     end subroutine refuse
-    pure logical function is_plane_element(etype)
-      !! CPS*, CPE*: the types that interpolate a varying temperature.
-      integer, intent(in) :: etype
-      is_plane_element = any(etype == [ET_CPS3, ET_CPS4, ET_CPE3, ET_CPE4, ET_CPS6, ET_CPS8, ET_CPE6, &
-           ET_CPE8, ET_CPS8R, ET_CPE8R])
-    end function is_plane_element
     subroutine apply_lines(step, field, grad, grad1)
       !! Set the temperatures and gradients the lines of step (0: initial conditions) give.
       integer, intent(in) :: step
@@ -1577,23 +1572,17 @@ contains
     case (DLOAD_CENTRIF)
        dload_fits = etype /= ET_B32
     case (DLOAD_P1)
-       dload_fits = is_plane(etype) .or. etype == ET_B33 .or. etype == ET_B31
+       dload_fits = is_plane_type(etype) .or. etype == ET_B33 .or. etype == ET_B31
     case (DLOAD_P2)
-       dload_fits = is_plane(etype) .or. etype == ET_B23 .or. etype == ET_B33 .or. etype == ET_B21 .or. etype == ET_B31
+       dload_fits = is_plane_type(etype) .or. etype == ET_B23 .or. etype == ET_B33 .or. etype == ET_B21 .or. etype == ET_B31
     case (DLOAD_P3)
-       dload_fits = is_plane(etype)
+       dload_fits = is_plane_type(etype)
     case (DLOAD_P4)
-       dload_fits = etype == ET_CPS4 .or. etype == ET_CPE4
+       dload_fits = is_plane_type(etype) .and. .not. any(etype == [ET_CPS3, ET_CPE3, ET_CPS6, ET_CPE6])
     case default
        dload_fits = .false.
     end select
   end function dload_fits
-
-  elemental logical function is_plane(etype)
-    !! A plane-stress or plane-strain element (edge pressure P1 ... P4).
-    integer, intent(in) :: etype
-    is_plane = etype == ET_CPS3 .or. etype == ET_CPS4 .or. etype == ET_CPE3 .or. etype == ET_CPE4
-  end function is_plane
 
   pure function dload_targets(kind) result(s)
     integer, intent(in) :: kind
@@ -1610,7 +1599,7 @@ contains
     case (DLOAD_P3)
        s = 'P3 applies to the third edge of plane elements'
     case (DLOAD_P4)
-       s = 'P4 applies to the fourth edge of quadrilaterals CPS4 and CPE4'
+       s = 'P4 applies to the fourth edge of quadrilaterals CPS4, CPS8, CPS8R, CPE4, CPE8 and CPE8R'
     case (DLOAD_CENTRIF)
        s = 'CENTRIF applies to trusses, two-node beams, plane and shell elements'
     case default

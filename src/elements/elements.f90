@@ -279,12 +279,13 @@ contains
     real(wp), intent(out) :: q_local(3)
     type(error_t), allocatable, intent(out) :: error
     real(wp) :: r(3, 3), length, ql(3)
-    integer, parameter :: PLANE_CORNERS(4) = [3, 4, 3, 4]
+    integer, parameter :: TRIANGLE_CORNERS = 3, QUAD_CORNERS = 4
     q_local = 0.0_wp
     select case (etype)
-    case (ET_CPS3, ET_CPS4, ET_CPE3, ET_CPE4)
-       call plane_edge_load(x, PLANE_CORNERS(merge(1, 2, etype == ET_CPS3 .or. etype == ET_CPE3)), &
-            face, value, sec%thickness, fe, error)
+    case (ET_CPS3, ET_CPE3, ET_CPS6, ET_CPE6)
+       call plane_edge_load(x, TRIANGLE_CORNERS, face, value, sec%thickness, fe, error)
+    case (ET_CPS4, ET_CPE4, ET_CPS8, ET_CPE8, ET_CPS8R, ET_CPE8R)
+       call plane_edge_load(x, QUAD_CORNERS, face, value, sec%thickness, fe, error)
     case (ET_B23, ET_B33, ET_B21, ET_B31)
        if (face > 2) then
           call fatal_error(error, EXIT_DECK, 'a beam takes P1 and P2 (per unit length in local axes)')

@@ -11,6 +11,7 @@ module superjoin_utils_strings
   end interface itoa
 
   public :: itoa, rtoa, full_real, pick, to_lower
+  public :: without_blanks
 
 contains
 
@@ -71,4 +72,20 @@ contains
        s = b
     end if
   end function pick
+
+  pure function without_blanks(s) result(t)
+    !! s with every blank removed.
+    character(*), intent(in) :: s
+    character(:), allocatable :: t
+    integer :: i, n
+    allocate (character(len=len(s)) :: t)
+    n = 0
+    do i = 1, len(s)
+       if (s(i:i) /= ' ') then
+          n = n + 1
+          t(n:n) = s(i:i)
+       end if
+    end do
+    t = t(1:n)
+  end function without_blanks
 end module superjoin_utils_strings

@@ -47,6 +47,36 @@ load, zero; rot2: only the new moment).
 planestrain.inp (CPE4), planestrain2.inp (CPE8): uniform stress (patch
 test), so every integration point of CalculiX's expanded brick must show the
 element's single tensor; displacements, strains and stresses must agree.
+planestress.inp, planestress2.inp (CPS8R, *DLOAD P2 = -100 on the right
+edge x = 1, a tension of 100 on a quadratic edge): planestress is a patch
+test (thickness 0.01 everywhere): u = s x / E, v = -nu s (y - 0.5) / E at
+every node (closed form, round-off) and .dat.ref's displacements and its
+stresses at each of CalculiX's 8 points equal superjoin's element tensor
+(1e-6 of the table). planestress2 gives its four elements the thicknesses
+0.01 .. 0.04, so the stress is not uniform: CalculiX expands a CPS8R into a
+C3D20R brick (2x2x2 points; points 5-8 repeat 1-4 through the thickness,
+points 3 and 4 in the order xi, eta = (-, +), (+, +)), superjoin's CPS8R has
+2x2 points numbered next to nodes 1..4. The in-plane components xx, yy, xy
+must agree within 1e-5 of the table (they are the same element in the plane;
+measured 5.1e-6); zz, xz, yz are 0 in plane stress and within 5e-4 of the
+table in CalculiX's brick (a 3D effect of the thickness steps between its
+bricks; measured 3.8e-4).
+
+simplebeam.inp, simplebeampipe1.inp, simplebeampipe2.inp,
+simplebeampipe4.inp (B32R cantilevers, L = 10, E = 1e7, nu = 0.3; RECT 0.25 x
+0.25, one element; PIPE r = 0.11, t = 0.01 by *BEAM GENERAL SECTION, ten
+elements; tip load 1 across, pipe2 with the section turned by 45 degrees,
+pipe4 a tip torque): superjoin reads B32R as its B32, which has the reduced
+two-point rule (a full three-point rule locks: 0.75 of the tip deflection
+for one slender element, doc/verification.md). Closed form at every node,
+a = distance from the clamp: w = P a^2 (3 L - a)/(6 EI) + P a/(k G A) with
+superjoin's k = 1, exact for the two-point element (simplebeam: the CSV to
+1e-12; pipes: the listing within 1e-6 of the table). CalculiX's brick
+expansions: noted (ratio to the closed form). pipe4: superjoin prints no
+stress tensor of a beam (B32 has no fibre-stress table), so the deck is
+solved, its equilibrium checked (the reaction torque), and CalculiX's shear
+stress is noted against T r / J.
+
 oneel.inp (CPE8, *EQUATION): no print request (.dat.ref is empty); its
 *NODE FILE displacements go to CSV and are compared with the DISP block of
 oneel.frd.ref (5 significant digits: 1e-5 of the table).
@@ -552,6 +582,143 @@ def plane_strain(binary, outdir):
                     check(f'element {elem} point {ip} {kind} {c + 1} (uniform state)', got[elem][0][c], vals[c], scale)
 
 
+def plane_stress_cps8r(binary, outdir):
+    print('planestress.inp (CPS8R, *DLOAD P2 on quadratic edges): *NODE PRINT U, *EL PRINT S')
+    text = run(binary, outdir, 'planestress')
+    ref_path = os.path.join(HERE, 'planestress.dat.ref')
+    ref_u, _ = dat_table(ref_path, 'displacements', 'NALL')
+    u = listing_rows(text, 1, 'planestress.inp:51', '    U ')
+    e, nu, s = 210000.0, 0.3, 100.0
+    scale = table_scale(ref_u)
+    for (node,), vals in sorted(ref_u.items()):
+        for c in range(3):
+            check(f'node {node} u{c + 1}', u[node][0][c], vals[c], scale)
+    # closed form: the nodes of planestress.inp lie on x, y in {0, 0.25, .., 1} (x = -7.45e-9 for 0)
+    coords = {}
+    with open(os.path.join(HERE, 'planestress.inp')) as f:
+        lines = f.read().splitlines()
+    for line in lines[lines.index('*NODE, NSET=Nall') + 1:]:
+        if line.startswith('*'):
+            break
+        fields = [v for v in line.replace(',', ' ').split()]
+        coords[int(fields[0])] = (float(fields[1]), float(fields[2]))
+    for node, (x, y) in sorted(coords.items()):
+        x0 = coords[1][0]
+        check(f'node {node} u1 = s x / E (closed form)', u[node][0][0], s * (x - x0) / e, scale)
+        check(f'node {node} u2 = -nu s (y - 0.5) / E (closed form)', u[node][0][1], -nu * s * (y - 0.5) / e, scale)
+    ref, _ = dat_table(ref_path, 'stresses', 'EALL')
+    got = listing_rows(text, 1, 'planestress.inp:53', '    S   stresses')
+    scale = table_scale(ref)
+    for (elem, ip), vals in sorted(ref.items()):
+        for c in range(6):
+            check(f'element {elem} point {ip} stress {c + 1} (uniform state)', got[elem][0][c], vals[c], scale)
+
+    print('planestress2.inp (CPS8R, thicknesses 0.01 .. 0.04): *EL PRINT S at the integration points')
+    text = run(binary, outdir, 'planestress2')
+    ref, _ = dat_table(os.path.join(HERE, 'planestress2.dat.ref'), 'stresses', 'EALL')
+    sec = text[text.index('(planestress2.inp:65)'):]
+    sec = sec[sec.index('\n    S   at the integration points'):]
+    points = {}
+    for line in sec.splitlines()[4:]:
+        f = line.split()
+        if not line.startswith('    ') or len(f) < 11 or not f[1].isdigit():
+            break
+        points[(int(f[1]), int(f[3]))] = [float(v.replace('E', 'e')) for v in f[-6:]]
+    scale = table_scale(ref)
+    ccx_to_superjoin = {1: 1, 2: 2, 3: 4, 4: 3}
+    worst = [0.0, 0.0]
+    for (elem, ip), vals in sorted(ref.items()):
+        mine = points[(elem, ccx_to_superjoin[(ip - 1) % 4 + 1])]
+        for c in range(6):
+            in_plane = c in (0, 1, 3)
+            err = abs(mine[c] - vals[c]) / scale
+            worst[0 if in_plane else 1] = max(worst[0 if in_plane else 1], err)
+            ok = err <= (1e-5 if in_plane else 5e-4)
+            if not in_plane:
+                ok = ok and mine[c] == 0.0
+            if not ok:
+                FAILURES.append(f'planestress2 element {elem} point {ip} stress {c + 1}')
+                print(f'  FAIL element {elem} point {ip} stress {c + 1}: {mine[c]:.7e} reference {vals[c]:.7e}')
+    print(f'  ok   {len(ref)} points x 6 components; largest |diff|/scale in the plane {worst[0]:.1e} '
+          f'(tolerance 1e-5), out of the plane {worst[1]:.1e} (CalculiX\'s brick; tolerance 5e-4)')
+
+
+def b32r_decks(binary, outdir):
+    e, nu, length, p = 1.0e7, 0.3, 10.0, 1.0
+    g = e/(2*(1 + nu))
+
+    def tip_curve(z, ei, ga):
+        a = length - z
+        return p*a*a*(3*length - a)/(6*ei) + p*a/ga
+
+    print('simplebeam.inp (one B32R, RECT 0.25 x 0.25): *NODE FILE U (CSV) against the closed form')
+    out = os.path.join(outdir, 'simplebeam_csv')
+    os.makedirs(out, exist_ok=True)
+    proc = subprocess.run([binary, '-q', 'simplebeam.inp', '-o', os.path.join(out, 'simplebeam.lst'), '--csv', out],
+                          cwd=HERE, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+    if proc.returncode != 0:
+        print(f'FAIL: superjoin exited with {proc.returncode} on simplebeam.inp:\n{proc.stderr}')
+        sys.exit(1)
+    b = 0.25
+    ei, ga = e*b**4/12, g*b*b
+    z = {1: 0.0, 2: 5.0, 3: 10.0}
+    rows = {}
+    with open(os.path.join(out, 'displacements.csv')) as f:
+        for line in f.readlines()[1:]:
+            v = line.strip().split(',')
+            rows[int(v[2])] = [float(x) for x in v[3:]]
+    scale = tip_curve(0.0, ei, ga)
+    for node in sorted(z):
+        want = tip_curve(z[node], ei, ga)
+        err = abs(rows[node][0] - want)
+        ok = err <= 1e-12*scale
+        print(f"  {'ok  ' if ok else 'FAIL'} node {node} u1 {rows[node][0]:.12e} closed form {want:.12e} "
+              f"|diff|/scale {err/scale:.1e} (tolerance 1e-12)")
+        if not ok:
+            FAILURES.append(f'simplebeam node {node} u1')
+    frd = frd_disp(os.path.join(HERE, 'simplebeam.frd.ref'))
+    note(f'CalculiX (B32R expanded into C3D20R bricks) / closed form at the tip: {frd[1][0]/scale:.5f}')
+
+    ro, t = 0.11, 0.01
+    ri = ro - t
+    area, inertia, polar = math.pi*(ro**2 - ri**2), math.pi/4*(ro**4 - ri**4), math.pi/2*(ro**4 - ri**4)
+    for name, place in (('simplebeampipe1', 'simplebeampipe1.inp:51'), ('simplebeampipe2', 'simplebeampipe2.inp:51')):
+        print(f'{name}.inp (ten B32R, PIPE 0.11, 0.01): *NODE PRINT U against the closed form')
+        text = run(binary, outdir, name)
+        u = listing_rows(text, 1, place, '    U ')
+        ref, _ = dat_table(os.path.join(HERE, name + '.dat.ref'), 'displacements', 'NALL')
+        scale = tip_curve(0.0, e*inertia, g*area)
+        for node in range(1, 22):
+            zn = 0.5*(node - 1)
+            check(f'node {node} u1 = closed form', u[node][0][0], tip_curve(zn, e*inertia, g*area), scale)
+            check(f'node {node} u2, u3 = 0', abs(u[node][0][1]) + abs(u[node][0][2]), 0.0, scale)
+        note(f'CalculiX (PIPE expanded into bricks) / closed form at the tip: {ref[(1,)][0]/scale:.5f}; '
+             f'its u2 {ref[(1,)][1]:.1e} (0 in the closed form)')
+    print('simplebeampipe4.inp (ten B32R, PIPE, tip torque 1): the tip twist T L / (G J)')
+    out = os.path.join(outdir, 'simplebeampipe4_csv')
+    os.makedirs(out, exist_ok=True)
+    proc = subprocess.run([binary, '-q', 'simplebeampipe4.inp', '-o', os.path.join(out, 'pipe4.lst'), '--csv', out],
+                          cwd=HERE, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+    if proc.returncode != 0:
+        print(f'FAIL: superjoin exited with {proc.returncode} on simplebeampipe4.inp:\n{proc.stderr}')
+        sys.exit(1)
+    twist = None
+    with open(os.path.join(out, 'displacements.csv')) as f:
+        for line in f.readlines()[1:]:
+            v = line.strip().split(',')
+            if int(v[2]) == 1:
+                twist = float(v[8])
+    want = length/(g*polar)
+    err = abs(twist - want)/want
+    print(f"  {'ok  ' if err <= 1e-12 else 'FAIL'} tip twist {twist:.12e} = T L/(G J) {want:.12e} (rel. {err:.1e})")
+    if err > 1e-12:
+        FAILURES.append('simplebeampipe4 tip twist')
+    ref, _ = dat_table(os.path.join(HERE, 'simplebeampipe4.dat.ref'), 'stresses', 'EALL')
+    tau = max(math.hypot(v[3], math.hypot(v[4], v[5])) for v in ref.values())
+    note(f'CalculiX largest shear stress {tau:.6e}: T r/J = {ro/polar:.6e} at r = {ro}, {ri/polar:.6e} at r = {ri} '
+         f'(superjoin prints no stress tensor of a B32)')
+
+
 def oneel(binary, outdir):
     print('oneel.inp (CPE8, *EQUATION): *NODE FILE U (CSV) against oneel.frd.ref')
     out = os.path.join(outdir, 'oneel_csv')
@@ -799,6 +966,8 @@ def main():
     b31(binary, outdir)
     rot_decks(binary, outdir)
     plane_strain(binary, outdir)
+    plane_stress_cps8r(binary, outdir)
+    b32r_decks(binary, outdir)
     oneel(binary, outdir)
     transform_print(binary, outdir)
     shell1lin(binary, outdir)

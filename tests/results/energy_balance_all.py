@@ -47,7 +47,7 @@ def main(argv):
         path = os.path.join(csvdir, "energies.csv")
         if not os.path.exists(path):
             with open(deck) as f:
-                own = "*EL PRINT" in f.read().upper()
+                own = "*ELPRINT" in f.read().upper().replace(" ", "")   # blanks in keywords do not count
             if own:   # every step has an *EL PRINT of its own, without ENER
                 print(f"skipped: {name} (its steps have their own *EL PRINT)")
                 continue

@@ -11,6 +11,7 @@ program test_deck_ccx
   use superjoin_deck_reader, only: read_deck_string
   use superjoin_output_requests, only: effective_requests
   use superjoin_testing, only: check, check_close, finish
+  use superjoin_deck_ccx_cards, only: canonical_keyword
   implicit none (type, external)
 
   character, parameter :: LF = achar(10)
@@ -24,6 +25,7 @@ program test_deck_ccx
   call test_nodes()
   call test_requests()
   call test_springs()
+  call test_keyword_blanks()
   call finish()
 
 contains
@@ -187,4 +189,18 @@ contains
     call check(all(abs(model%orientations(1)%q(1, :) - [1.0_wp, 0.0_wp, 0.0_wp]) <= epsilon(1.0_wp)), &
          'frame axis 1 along node 2 -> node 3')
   end subroutine test_springs
+
+  subroutine test_keyword_blanks()
+    !! Keywords compare with their blanks removed (CalculiX, Abaqus); unknown
+    !! keywords come back as written.
+    call check(canonical_keyword('SOLIDSECTION') == 'SOLID SECTION', 'SOLIDSECTION')
+    call check(canonical_keyword('NODE  PRINT') == 'NODE PRINT', 'NODE  PRINT')
+    call check(canonical_keyword('C LOAD') == 'CLOAD', 'C LOAD')
+    call check(canonical_keyword('ENDSTEP') == 'END STEP', 'ENDSTEP')
+    call check(canonical_keyword('BEAMGENERALSECTION') == 'BEAM GENERAL SECTION', 'BEAMGENERALSECTION')
+    call check(canonical_keyword('HEATTRANSFER') == 'HEAT TRANSFER', 'a refused card too')
+    call check(canonical_keyword('STEP') == 'STEP', 'a keyword as it is')
+    call check(canonical_keyword('SOLID SECTIONX') == 'SOLID SECTIONX', 'unknown: unchanged')
+    call check(canonical_keyword('RIGIDBODY') == 'RIGIDBODY', 'unknown without blanks: unchanged')
+  end subroutine test_keyword_blanks
 end program test_deck_ccx

@@ -36,8 +36,8 @@ module superjoin_solvers_mumps
   use superjoin_utils_memory, only: oom_message
   use superjoin_parallel_stats, only: record_mumps_input, record_mumps_memory, record_host_ordering, &
        record_mumps_factor, mumps_order_stats_t
-  use superjoin_solvers_mumps_order, only: ordering_choice, host_nested_dissection, ORDER_AMD, ORDER_PTSCOTCH, &
-       ORDER_METIS
+  use superjoin_solvers_mumps_order, only: ordering_choice, host_nested_dissection, ORDER_PTSCOTCH, ORDER_METIS, &
+       ORDERING_NO_MEMORY
   use superjoin_utils_strings, only: itoa
   implicit none (type, external)
   private
@@ -287,6 +287,7 @@ contains
     if (self%ordering == ORDER_METIS) then
        ! collective (the gather of the terms' patterns) whatever this process's status
        call host_nested_dissection(a, self%local_input, iperm, gathered_bytes, seconds, host_status)
+       if (status == SJ_OK .and. host_status == ORDERING_NO_MEMORY) status = SJ_NOMEM
        if (status == SJ_OK .and. host_status /= 0) status = SJ_ORDERING
        if (status == SJ_OK) status = sj_mumps_perm_in(self%handle, iperm)
     end if

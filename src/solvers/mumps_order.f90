@@ -16,11 +16,11 @@ module superjoin_solvers_mumps_order
   use superjoin_kinds, only: wp, i8
   use superjoin_error, only: error_t, fatal_error, EXIT_USAGE
   use superjoin_solvers_sparse, only: sparse_sym_t
-  use superjoin_parallel_comm, only: comm_t, comm_world, broadcast, gather_counts
+  use superjoin_parallel_comm, only: comm_t, comm_world, broadcast, gather_counts, agree
   implicit none (type, external)
   private
 
-  public :: ordering_choice, host_nested_dissection, ordering_label
+  public :: ordering_choice, host_nested_dissection
 
   integer, parameter, public :: ORDER_AMD = 1          !! sequential analysis, AMD
   integer, parameter, public :: ORDER_PTSCOTCH = 2     !! parallel analysis, PT-SCOTCH
@@ -32,6 +32,8 @@ module superjoin_solvers_mumps_order
   integer, parameter :: ENV_LEN = 32
   integer, parameter :: PAIR = 2
     !! A pattern entry sent to the host: row, column.
+  integer, parameter, public :: ORDERING_FAILED = -1    !! host_nested_dissection: METIS or the gather failed
+  integer, parameter, public :: ORDERING_NO_MEMORY = -2 !! host_nested_dissection: an allocation failed
 
   interface
      function sj_metis_nested_dissection(n, xadj, adjncy, iperm) bind(c, name='sj_metis_nested_dissection') &
@@ -96,20 +98,6 @@ contains
     end function named
   end function ordering_choice
 
-  pure function ordering_label(choice) result(name)
-    !! The environment variable's name of an ordering.
-    integer, intent(in) :: choice
-    character(:), allocatable :: name
-    select case (choice)
-    case (ORDER_PTSCOTCH)
-       name = 'ptscotch'
-    case (ORDER_METIS)
-       name = 'metis'
-    case default
-       name = 'amd'
-    end select
-  end function ordering_label
-
   subroutine host_nested_dissection(a, gathered, iperm, gathered_bytes, seconds, status)
     !! METIS nested dissection of the graph of a's pattern (off-diagonal
     !! entries, both directions), on process 0: iperm(i) the position of
@@ -118,22 +106,23 @@ contains
     !! process's off-diagonal pattern is gathered to process 0 (rows and
     !! columns, 16 bytes an entry: gathered_bytes, the total received) and
     !! the graph is that of the union, the pattern of the sum. seconds: the
-    !! host's time for the graph and METIS. status 0, or a failure (the same
-    !! on every process only for the gather; the caller agrees on it).
-    !! Collective when gathered.
+    !! host's time for the graph and METIS. status 0, ORDERING_FAILED or
+    !! ORDERING_NO_MEMORY (the same on every process only for the gather;
+    !! the caller agrees on it). Collective when gathered.
     type(sparse_sym_t), intent(in) :: a
     logical, intent(in) :: gathered
     integer(i8), allocatable, intent(out) :: iperm(:)
     integer(i8), intent(out) :: gathered_bytes
     real(wp), intent(out) :: seconds
     integer, intent(out) :: status
-    integer, parameter :: FAILED = -1
     type(comm_t) :: comm
     integer(i8), allocatable :: mine(:), pairs(:), xadj(:), adj(:), fill(:), mark(:)
     integer(i8) :: j, pos, k, m, i, v, w, at, n
     integer(i8) :: t0, t1, rate
-    logical :: ok
+    integer :: stat, worst, first
+    logical :: ok, gather
     comm = comm_world()
+    gather = gathered .and. comm%size > 1
     n = a%n
     gathered_bytes = 0
     seconds = 0.0_wp
@@ -143,7 +132,17 @@ contains
     do j = 1, n
        m = m + count(a%rowind(a%colptr(j):a%colptr(j + 1) - 1) /= j)
     end do
-    allocate (mine(PAIR*m))
+    allocate (mine(PAIR*m), stat=stat)
+    if (gather) then
+       ! the gather is collective: every process must reach it ready
+       call agree(stat, worst, first)
+       stat = worst
+    end if
+    if (stat /= 0) then
+       status = ORDERING_NO_MEMORY
+       allocate (iperm(0))
+       return
+    end if
     at = 0
     do j = 1, n
        do pos = a%colptr(j), a%colptr(j + 1) - 1
@@ -152,10 +151,10 @@ contains
           at = at + PAIR
        end do
     end do
-    if (gathered .and. comm%size > 1) then
+    if (gather) then
        call gather_counts(mine, 0, pairs, ok)
        if (.not. ok) then
-          status = FAILED
+          status = ORDERING_FAILED
           allocate (iperm(0))
           return
        end if
@@ -171,7 +170,13 @@ contains
     call system_clock(t0, rate)
     ! adjacency in both directions, repeats (entries several terms hold) dropped
     m = size(pairs, kind=i8)/PAIR
-    allocate (xadj(n + 1), source=0_i8)
+    allocate (xadj(n + 1), source=0_i8, stat=stat)
+    if (stat == 0) allocate (adj(max(2*m, 1_i8)), fill(n), mark(n), iperm(n), stat=stat)
+    if (stat /= 0) then
+       status = ORDERING_NO_MEMORY
+       if (.not. allocated(iperm)) allocate (iperm(0))
+       return
+    end if
     do k = 1, m
        i = pairs(PAIR*k - 1)
        j = pairs(PAIR*k)
@@ -182,7 +187,6 @@ contains
     do v = 1, n
        xadj(v + 1) = xadj(v + 1) + xadj(v)
     end do
-    allocate (adj(max(xadj(n + 1) - 1, 1_i8)), fill(n))
     fill = xadj(1:n)
     do k = 1, m
        i = pairs(PAIR*k - 1)
@@ -193,7 +197,7 @@ contains
        fill(j) = fill(j) + 1
     end do
     deallocate (pairs, fill)
-    allocate (mark(n), source=0_i8)
+    mark = 0
     at = 0
     do v = 1, n
        pos = xadj(v)
@@ -207,9 +211,8 @@ contains
        end do
     end do
     xadj(n + 1) = at + 1
-    allocate (iperm(n))
     if (n > 0) then
-       if (sj_metis_nested_dissection(n, xadj, adj, iperm) /= 0) status = FAILED
+       if (sj_metis_nested_dissection(n, xadj, adj, iperm) /= 0) status = ORDERING_FAILED
     end if
     call system_clock(t1)
     seconds = real(t1 - t0, wp)/real(max(rate, 1_i8), wp)

@@ -247,6 +247,11 @@ contains
     self%comm = comm_world()
     call agreed(self, SJ_OK, 'start', error)
     if (allocated(error)) return
+    if (self%ordering == 0) then
+       ! collective, where every process is (the value of process 0, the same verdict everywhere)
+       self%ordering = ordering_choice(error)
+       if (allocated(error)) return
+    end if
     if (self%local_input .and. self%comm%size > 1) then
        ! every process's term must have the same order: the largest n and the
        ! largest -n agree (the same verdict on every process)
@@ -269,10 +274,6 @@ contains
           call status_error(self, status, 'start', error)
           return
        end if
-    end if
-    if (self%ordering == 0) then
-       self%ordering = ordering_choice(error)
-       if (allocated(error)) return
     end if
     call share(self, a, c1, c2)
     one = 1

@@ -36,7 +36,7 @@ module superjoin_analysis_distributed
   use superjoin_analysis_condensation, only: part_solver
   use superjoin_parallel_comm, only: comm_t, comm_world, agree, note_agreed_failure, broadcast, sum_reals, &
        sum_counts, bytes_moved
-  use superjoin_parallel_stats, only: mumps_stats_t, mumps_stats
+  use superjoin_parallel_stats, only: mumps_stats_t, mumps_stats, mumps_order_stats_t, mumps_order_stats
   use, intrinsic :: iso_fortran_env, only: error_unit
   use superjoin_parallel_partition, only: part_graph_t, partition_t, build_part_graph, partition_parts, &
        partition_report
@@ -391,7 +391,8 @@ contains
     !! bytes, and MUMPS's memory (INFO(16); INFOG(18) the largest process,
     !! INFOG(19) all), and the entries of the reduced matrix it assembled
     !! (the whole K_red, or with owner terms only its own term). Rank 0 prints
-    !! them on stderr unless quiet. Nothing on one process.
+    !! them on stderr unless quiet. On one process only the MUMPS ordering
+    !! line (order_summary), if MUMPS factored.
     logical, intent(in) :: quiet
     type(error_t), allocatable, intent(out) :: error
     type(comm_t) :: comm
@@ -402,7 +403,10 @@ contains
     logical :: ok
     character(len=200) :: line
     comm = comm_world()
-    if (comm%size <= 1) return
+    if (comm%size <= 1) then
+       if (.not. quiet) call order_summary()
+       return
+    end if
     call agreed(error)
     if (allocated(error)) return
     moved = bytes_moved()
@@ -421,7 +425,30 @@ contains
     end do
     write (error_unit, '(a,i0,a,i0,a)') 'superjoin: MUMPS memory over the processes (INFOG(18), INFOG(19)): largest ', &
          v(4), ' MB, all ', v(5), ' MB'
+    call order_summary()
   end subroutine mpi_summary
+
+  subroutine order_summary()
+    !! The ordering and factor of the run's largest MUMPS factorization on
+    !! stderr (issue 14, orderings compared): INFOG(29) factor entries and
+    !! the analysis's estimate INFOG(20), RINFOG(3) flops, the estimated
+    !! memory INFOG(21) (largest process) and INFOG(22) (all), and for
+    !! superjoin's own METIS ordering the host's seconds and the pattern
+    !! gathered to it. Nothing if MUMPS did not factor.
+    type(mumps_order_stats_t) :: os
+    character(len=40) :: flops
+    os = mumps_order_stats()
+    if (os%factor_entries < 0) return
+    write (flops, '(es10.3)') os%flops
+    write (error_unit, '(a)') 'superjoin: MUMPS ordering '//os%ordering//': factor entries '// &
+         itoa(os%factor_entries)//' (estimate '//itoa(os%estimate)//'), flops '//trim(adjustl(flops))// &
+         ', estimated memory largest '//itoa(os%mb_estimate_max)//' MB, all '//itoa(os%mb_estimate_total)//' MB'
+    if (os%host_seconds > 0.0_wp .or. os%gathered_bytes > 0) then
+       write (flops, '(f10.3)') os%host_seconds
+       write (error_unit, '(a)') 'superjoin: METIS ordering by superjoin: '//trim(adjustl(flops))// &
+            ' s on the host, pattern gathered '//itoa(os%gathered_bytes)//' bytes'
+    end if
+  end subroutine order_summary
 
   subroutine agreed(error)
     !! Collective: every process says whether it failed (error allocated). A

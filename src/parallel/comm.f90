@@ -34,6 +34,7 @@ module superjoin_parallel_comm
 
   public :: comm_world, agree, failure_agreed, note_agreed_failure, agreed_first, broadcast, sum_counts, &
        max_reals, sum_reals, fortran_handle, bytes_moved
+  public :: gather_counts
 
   integer(i8) :: moved = 0             !! bytes this process passed to broadcast/sum_reals/sum_counts/max_reals
 
@@ -88,6 +89,15 @@ module superjoin_parallel_comm
        integer(c_int64_t), value :: n
        integer(c_int) :: status
      end function sj_comm_max_real
+     function sj_comm_gather_i8(x, n, out, counts, displs, root) bind(c, name='sj_comm_gather_i8') result(status)
+       import :: c_int, c_int64_t
+       integer(c_int64_t), intent(in) :: x(*)
+       integer(c_int64_t), value :: n
+       integer(c_int64_t), intent(inout) :: out(*)
+       integer(c_int), intent(in) :: counts(*), displs(*)
+       integer(c_int), value :: root
+       integer(c_int) :: status
+     end function sj_comm_gather_i8
   end interface
 
 contains
@@ -172,6 +182,58 @@ contains
     ok = sj_comm_sum_real(x, size(x, kind=c_int64_t)) == 0
     call count_moved(size(x, kind=i8)*8)
   end subroutine sum_reals
+
+  subroutine gather_counts(x, root, all, ok)
+    !! Collective: every process's x, in rank order, into all on process root
+    !! (size 0 elsewhere). ok is the same on every process: false if a
+    !! process's share exceeds MPI's counts (2^31 - 1 values) or root cannot
+    !! allocate all. Counts the bytes each process sends (root: receives).
+    integer(i8), intent(in), contiguous :: x(:)
+    integer, intent(in) :: root
+    integer(i8), allocatable, intent(out) :: all(:)
+    logical, intent(out) :: ok
+    integer(i8), allocatable :: sizes(:)
+    integer(c_int), allocatable :: counts(:), displs(:)
+    integer(i8) :: total
+    integer :: rank, nproc, r, stat, worst, first
+    rank = sj_comm_rank()
+    nproc = sj_comm_size()
+    allocate (sizes(0:nproc - 1), source=0_i8)
+    sizes(rank) = size(x, kind=i8)
+    call sum_counts(sizes, ok)
+    if (.not. ok) return
+    total = sum(sizes)
+    if (maxval(sizes) > huge(0_c_int) .or. total > huge(0_c_int)) then
+       ok = .false.
+       return
+    end if
+    stat = 0
+    if (rank == root) then
+       allocate (all(total), counts(0:nproc - 1), displs(0:nproc - 1), stat=stat)
+       if (stat == 0) then
+          counts = int(sizes, c_int)
+          displs(0) = 0
+          do r = 1, nproc - 1
+             displs(r) = displs(r - 1) + counts(r - 1)
+          end do
+       end if
+    else
+       allocate (all(0), counts(1), displs(1))
+       counts = 0
+       displs = 0
+    end if
+    call agree(stat, worst, first)
+    ok = worst == 0
+    if (.not. ok) return
+    ok = sj_comm_gather_i8(x, size(x, kind=c_int64_t), all, counts, displs, int(root, c_int)) == 0
+    if (rank == root) then
+       call count_moved((total - sizes(rank))*8)
+    else
+       call count_moved(sizes(rank)*8)
+    end if
+    call agree(merge(0, 1, ok), worst, first)
+    ok = worst == 0
+  end subroutine gather_counts
 
   subroutine count_moved(nbytes)
     !! Add to the bytes this process passed to collectives (on several processes only).

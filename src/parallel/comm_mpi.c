@@ -170,3 +170,16 @@ int sj_comm_sum_real(double *x, int64_t n)
     }
     return 0;
 }
+
+/* Gather n int64 values of every rank to rank root, in rank order: rank r's
+ * values go to out[displs[r] ..] (counts, displs and out: root only, the
+ * caller allocates them; every rank's n is at most INT_MAX). */
+int sj_comm_gather_i8(const int64_t *x, int64_t n, int64_t *out, const int *counts, const int *displs, int root)
+{
+    if (!running()) {
+        if (n > 0) memcpy(out, x, (size_t)n * sizeof(int64_t));
+        return 0;
+    }
+    return MPI_Gatherv(x, (int)n, MPI_INT64_T, out, counts, displs, MPI_INT64_T, root, MPI_COMM_WORLD) == MPI_SUCCESS
+        ? 0 : -1;
+}

@@ -34,7 +34,10 @@ module superjoin_solvers_mumps
   use superjoin_parallel_comm, only: comm_t, comm_world, agree, broadcast, sum_counts, max_reals, fortran_handle, &
        note_agreed_failure
   use superjoin_utils_memory, only: oom_message
-  use superjoin_parallel_stats, only: record_mumps_input, record_mumps_memory
+  use superjoin_parallel_stats, only: record_mumps_input, record_mumps_memory, record_host_ordering, &
+       record_mumps_factor, mumps_order_stats_t
+  use superjoin_solvers_mumps_order, only: ordering_choice, host_nested_dissection, ORDER_PTSCOTCH, ORDER_METIS, &
+       ORDERING_NO_MEMORY
   use superjoin_utils_strings, only: itoa
   implicit none (type, external)
   private
@@ -50,10 +53,14 @@ module superjoin_solvers_mumps
   integer(c_int), parameter :: ORDERING_AMD = 0
     !! ICNTL(7) = 0: AMD, deterministic (SCOTCH through MUMPS gave a different
     !! factor size from run to run, and 60 % more fill on the 1e5 frame)
+  integer(c_int), parameter :: ORDERING_GIVEN = 1       !! ICNTL(7) = 1: PERM_IN
+  integer(c_int), parameter :: PAR_ORDERING_PTSCOTCH = 1  !! ICNTL(29) = 1
+  integer(c_int), parameter :: PAR_ORDERING_PARMETIS = 2  !! ICNTL(29) = 2
   integer(c_int), parameter :: SJ_OK = 0
   integer(c_int), parameter :: SJ_NOMEM = -105        !! shim: malloc failed
   integer(c_int), parameter :: SJ_TOO_LARGE = -106    !! shim: order beyond MUMPS's 32-bit indices
   integer(c_int), parameter :: SJ_NOT_BUILT = -108    !! stub: no MUMPS in this build
+  integer(c_int), parameter :: SJ_ORDERING = -109     !! superjoin's METIS ordering (or its gather) failed
   integer(c_int), parameter :: MUMPS_ALLOC_FAILED = -13     !! INFOG(1): allocation failed
   integer(c_int), parameter :: MUMPS_INT_ALLOC_FAILED = -7  !! INFOG(1): integer workspace allocation failed
   integer(c_int), parameter :: MUMPS_WORKSPACE = -9         !! INFOG(1): workspace too small
@@ -61,6 +68,9 @@ module superjoin_solvers_mumps
   integer, parameter :: INFOG_ERROR = 1, INFOG_DETAIL = 2, INFOG_ORDERING = 7, INFOG_NEGATIVE = 12, &
        INFOG_FACTOR_ENTRIES = 29, INFOG_FACTOR_ESTIMATE = 20, INFOG_NULL_PIVOTS = 28
   integer, parameter :: RINFOG_FLOPS = 3
+  integer, parameter :: INFOG_MB_ESTIMATE_MAX = 21, INFOG_MB_ESTIMATE_TOTAL = 22, INFOG_ANALYSIS = 32
+    !! estimated MB (in core) of the largest process and of all; the analysis done (1 sequential, 2 parallel)
+  integer, parameter :: PARALLEL_ANALYSIS = 2
   integer, parameter :: INFO_MB_HERE = 16, INFOG_MB_MAX = 18, INFOG_MB_TOTAL = 19
     !! MUMPS's memory in MB allocated by the factorization: this process, the largest, all
   real(wp), parameter :: MBYTE = 1048576.0_wp
@@ -81,6 +91,9 @@ module superjoin_solvers_mumps
      integer(i8) :: n = -1
      logical :: factored = .false.
      real(wp) :: fl = 0.0_wp
+     integer, public :: ordering = 0
+       !! superjoin_solvers_mumps_order's ORDER_*: the analysis's ordering;
+       !! 0 (set before the first analyze): SUPERJOIN_MUMPS_ORDERING or the default
      type(comm_t) :: comm
    contains
      procedure :: analyze => mumps_analyze
@@ -115,6 +128,19 @@ module superjoin_solvers_mumps
        integer(c_int64_t), intent(in) :: colptr(*), rowind(*)
        integer(c_int) :: status
      end function sj_mumps_pattern
+     function sj_mumps_set_ordering(h, ordering, parallel, par_ordering) bind(c, name='sj_mumps_set_ordering') &
+          result(status)
+       import :: c_ptr, c_int
+       type(c_ptr), value :: h
+       integer(c_int), value :: ordering, parallel, par_ordering
+       integer(c_int) :: status
+     end function sj_mumps_set_ordering
+     function sj_mumps_perm_in(h, iperm) bind(c, name='sj_mumps_perm_in') result(status)
+       import :: c_ptr, c_int, c_int64_t
+       type(c_ptr), value :: h
+       integer(c_int64_t), intent(in) :: iperm(*)
+       integer(c_int) :: status
+     end function sj_mumps_perm_in
      function sj_mumps_analyze(h) bind(c, name='sj_mumps_analyze') result(status)
        import :: c_ptr, c_int
        type(c_ptr), value :: h
@@ -191,13 +217,16 @@ contains
 
   subroutine mumps_analyze(self, a, error)
     !! Start MUMPS (first call), hand in this process's share of the pattern
-    !! and run the analysis (AMD ordering, symbolic factorization).
+    !! and run the analysis (the ordering of self%ordering, see
+    !! superjoin_solvers_mumps_order; symbolic factorization).
     class(mumps_solver_t), intent(inout) :: self
     type(sparse_sym_t), intent(in) :: a
     type(error_t), allocatable, intent(out) :: error
     integer(c_int) :: status
-    integer(i8) :: c1, c2, one(1)
-    real(wp) :: orders(2)
+    integer(i8) :: c1, c2, one(1), gathered_bytes
+    integer(i8), allocatable :: iperm(:)
+    real(wp) :: orders(2), seconds
+    integer :: host_status
     logical :: ok
 
     self%factored = .false.
@@ -218,6 +247,11 @@ contains
     self%comm = comm_world()
     call agreed(self, SJ_OK, 'start', error)
     if (allocated(error)) return
+    if (self%ordering == 0) then
+       ! collective, where every process is (the value of process 0, the same verdict everywhere)
+       self%ordering = ordering_choice(error)
+       if (allocated(error)) return
+    end if
     if (self%local_input .and. self%comm%size > 1) then
        ! every process's term must have the same order: the largest n and the
        ! largest -n agree (the same verdict on every process)
@@ -248,6 +282,17 @@ contains
     else
        status = sj_mumps_pattern(self%handle, a%n, a%colptr, one, 1_i8, 0_i8)
     end if
+    gathered_bytes = 0
+    seconds = 0.0_wp
+    if (status == SJ_OK) status = set_ordering(self%handle, self%ordering)
+    if (self%ordering == ORDER_METIS) then
+       ! collective (the gather of the terms' patterns) whatever this process's status
+       call host_nested_dissection(a, self%local_input, iperm, gathered_bytes, seconds, host_status)
+       if (status == SJ_OK .and. host_status == ORDERING_NO_MEMORY) status = SJ_NOMEM
+       if (status == SJ_OK .and. host_status /= 0) status = SJ_ORDERING
+       if (status == SJ_OK) status = sj_mumps_perm_in(self%handle, iperm)
+    end if
+    call record_host_ordering(gathered_bytes, seconds)
     call agreed(self, status, 'analyze', error)
     if (allocated(error)) return
     status = sj_mumps_analyze(self%handle)
@@ -256,7 +301,8 @@ contains
        return
     end if
     self%n = a%n
-    self%info%ordering = ordering_name(int(sj_mumps_infog(self%handle, INFOG_ORDERING)))
+    self%info%ordering = ordering_name(int(sj_mumps_infog(self%handle, INFOG_ORDERING)), &
+         sj_mumps_infog(self%handle, INFOG_ANALYSIS) == PARALLEL_ANALYSIS)
     if (self%comm%size > 1) self%info%ordering = self%info%ordering//'; '//distribution(self, a, c1, c2)
     self%info%factor_nnz = entries(sj_mumps_infog(self%handle, INFOG_FACTOR_ESTIMATE))
   end subroutine mumps_analyze
@@ -304,6 +350,7 @@ contains
        return
     end if
     self%info%factor_nnz = entries(sj_mumps_infog(self%handle, INFOG_FACTOR_ENTRIES))
+    call record_factor(self)
     call record_mumps_memory(sj_mumps_info(self%handle, INFO_MB_HERE), sj_mumps_infog(self%handle, INFOG_MB_MAX), &
          sj_mumps_infog(self%handle, INFOG_MB_TOTAL))
     self%info%factor_mbytes = real(self%info%factor_nnz, wp)*BYTES_ENTRY/MBYTE
@@ -576,6 +623,8 @@ contains
     select case (status)
     case (SJ_NOMEM)
        call fatal_error(error, EXIT_IO, 'error: out of memory: MUMPS '//phase)
+    case (SJ_ORDERING)
+       call fatal_error(error, EXIT_IO, 'MUMPS '//phase//': the METIS ordering of the matrix''s graph failed')
     case (SJ_TOO_LARGE)
        call fatal_error(error, EXIT_IO, 'MUMPS '//phase//': the matrix is too large for MUMPS''s 32-bit indices')
     case (MUMPS_INT_ALLOC_FAILED)
@@ -601,15 +650,56 @@ contains
     end if
   end function entries
 
-  pure function ordering_name(code) result(name)
-    !! The ordering MUMPS used (INFOG(7)).
+  function set_ordering(handle, choice) result(status)
+    !! Set ICNTL(7), ICNTL(28), ICNTL(29) for an ORDER_* choice (local).
+    type(c_ptr), intent(in) :: handle
+    integer, intent(in) :: choice
+    integer(c_int) :: status
+    select case (choice)
+    case (ORDER_PTSCOTCH)
+       status = sj_mumps_set_ordering(handle, ORDERING_AMD, 1_c_int, PAR_ORDERING_PTSCOTCH)
+    case (ORDER_METIS)
+       status = sj_mumps_set_ordering(handle, ORDERING_GIVEN, 0_c_int, PAR_ORDERING_PTSCOTCH)
+    case default
+       status = sj_mumps_set_ordering(handle, ORDERING_AMD, 0_c_int, PAR_ORDERING_PTSCOTCH)
+    end select
+  end function set_ordering
+
+  subroutine record_factor(self)
+    !! The factorization's figures for the ordering line on stderr (superjoin_parallel_stats).
+    class(mumps_solver_t), intent(in) :: self
+    type(mumps_order_stats_t) :: figures
+    figures%ordering = self%info%ordering
+    figures%factor_entries = entries(sj_mumps_infog(self%handle, INFOG_FACTOR_ENTRIES))
+    figures%estimate = entries(sj_mumps_infog(self%handle, INFOG_FACTOR_ESTIMATE))
+    figures%flops = self%fl
+    figures%mb_estimate_max = sj_mumps_infog(self%handle, INFOG_MB_ESTIMATE_MAX)
+    figures%mb_estimate_total = sj_mumps_infog(self%handle, INFOG_MB_ESTIMATE_TOTAL)
+    call record_mumps_factor(figures)
+  end subroutine record_factor
+
+  pure function ordering_name(code, parallel) result(name)
+    !! The ordering MUMPS used (INFOG(7); after a parallel analysis, INFOG(32)
+    !! = 2, coded as ICNTL(29)).
     integer, intent(in) :: code
+    logical, intent(in) :: parallel
     character(:), allocatable :: name
+    if (parallel) then
+       select case (code)
+       case (PAR_ORDERING_PTSCOTCH)
+          name = 'PT-SCOTCH (MUMPS, parallel analysis)'
+       case (PAR_ORDERING_PARMETIS)
+          name = 'ParMETIS (MUMPS, parallel analysis)'
+       case default
+          name = 'MUMPS parallel ordering '//itoa(int(code, i8))
+       end select
+       return
+    end if
     select case (code)
     case (0)
        name = 'AMD (MUMPS)'
     case (1)
-       name = 'given'
+       name = 'METIS nested dissection (superjoin)'
     case (2)
        name = 'AMF (MUMPS)'
     case (3)

@@ -41,6 +41,7 @@ typedef struct {
     int64_t first;      /* 1-based CSC position of the first local entry */
     MUMPS_INT *irn, *jcn;
     double *a;
+    MUMPS_INT *perm;    /* PERM_IN on the host (ICNTL(7) = 1), else NULL */
     int initialized;
     int host;           /* rank 0: holds right-hand sides and solutions */
 } sj_mumps_t;
@@ -116,6 +117,38 @@ int sj_mumps_pattern(void *vh, int64_t n, const int64_t *colptr, const int64_t *
     h->id.irn_loc = h->irn;
     h->id.jcn_loc = h->jcn;
     h->id.a_loc = h->a;
+    return SJ_OK;
+}
+
+/* The ordering of the next analysis: ICNTL(7) (sequential analysis), or
+ * with parallel = 1 MUMPS's parallel analysis (ICNTL(28) = 2) with the
+ * parallel ordering ICNTL(29) (1 PT-SCOTCH, 2 ParMETIS). Local. */
+int sj_mumps_set_ordering(void *vh, int ordering, int parallel, int par_ordering)
+{
+    sj_mumps_t *h = vh;
+    if (!h || !h->initialized) return SJ_STATE;
+    h->id.ICNTL(7) = ordering;
+    h->id.ICNTL(28) = parallel ? 2 : 1;
+    h->id.ICNTL(29) = par_ordering;
+    return SJ_OK;
+}
+
+/* The pivot order handed in (ICNTL(7) = 1): iperm(i) the 1-based position
+ * of variable i, n entries, on the host (ignored elsewhere). Set after
+ * sj_mumps_pattern (which sets n). Local. */
+int sj_mumps_perm_in(void *vh, const int64_t *iperm)
+{
+    sj_mumps_t *h = vh;
+    int64_t i;
+    if (!h || !h->initialized) return SJ_STATE;
+    free(h->perm);
+    h->perm = NULL;
+    h->id.perm_in = NULL;
+    if (!h->host) return SJ_OK;
+    h->perm = malloc((size_t)(h->n > 0 ? h->n : 1) * sizeof(MUMPS_INT));
+    if (!h->perm) return SJ_NOMEM;
+    for (i = 0; i < h->n; ++i) h->perm[i] = (MUMPS_INT)iperm[i];
+    h->id.perm_in = h->perm;
     return SJ_OK;
 }
 
@@ -232,7 +265,7 @@ void sj_mumps_free(void *vh)
     sj_mumps_t *h = vh;
     if (!h) return;
     if (h->initialized) call(h, JOB_END);
-    free(h->irn); free(h->jcn); free(h->a);
+    free(h->irn); free(h->jcn); free(h->a); free(h->perm);
     free(h);
 }
 
@@ -242,6 +275,6 @@ void sj_mumps_forget(void *vh)
 {
     sj_mumps_t *h = vh;
     if (!h) return;
-    free(h->irn); free(h->jcn); free(h->a);
+    free(h->irn); free(h->jcn); free(h->a); free(h->perm);
     free(h);
 }

@@ -29,3 +29,6 @@ double sj_mumps_rinfog(void *h, int i) { (void)h; (void)i; return 0.0; }
 int64_t sj_mumps_null_pivot(void *h, int64_t k) { (void)h; (void)k; return 0; }
 void sj_mumps_free(void *h) { (void)h; }
 void sj_mumps_forget(void *h) { (void)h; }
+int sj_mumps_set_ordering(void *h, int ordering, int parallel, int par_ordering)
+{ (void)h; (void)ordering; (void)parallel; (void)par_ordering; return SJ_NOT_BUILT; }
+int sj_mumps_perm_in(void *h, const int64_t *iperm) { (void)h; (void)iperm; return SJ_NOT_BUILT; }

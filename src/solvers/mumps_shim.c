@@ -16,6 +16,7 @@
 #include <limits.h>
 
 int sj_comm_rank(void);   /* src/parallel/comm_*.c */
+int sj_comm_agree(int status, int *first);
 
 #define JOB_INIT -1
 #define JOB_END -2
@@ -60,7 +61,10 @@ static void call(sj_mumps_t *h, int job)
 void *sj_mumps_create(int sym, int comm, double null_threshold, int ordering, int *status)
 {
     sj_mumps_t *h = calloc(1, sizeof(sj_mumps_t));
-    if (!h) { *status = SJ_NOMEM; return NULL; }
+    int first;
+    /* JOB_INIT is collective: every process enters it or none (a failed
+     * allocation on one process alone would leave the others waiting) */
+    if (sj_comm_agree(h ? 0 : 1, &first) != 0) { free(h); *status = SJ_NOMEM; return NULL; }
     h->id.sym = sym;
     h->id.par = 1;
     h->id.comm_fortran = comm;

@@ -30,7 +30,7 @@ module superjoin_analysis
   use superjoin_solvers, only: mumps_solver_t
   use superjoin_parallel_stats, only: record_matrix_held
   use superjoin_utils_clock, only: stopwatch_t, report_phase
-  use superjoin_utils_memory, only: out_of_memory, BYTES_REAL
+  use superjoin_utils_memory, only: out_of_memory, BYTES_REAL, BYTES_INT
   use superjoin_utils_strings, only: itoa
   use, intrinsic :: ieee_exceptions, only: ieee_flag_type, ieee_get_halting_mode, ieee_set_halting_mode, &
        ieee_overflow, ieee_invalid, ieee_divide_by_zero
@@ -133,7 +133,11 @@ contains
     ! Condensation boundaries: the instances of a part share theirs.
     call part_boundary(model, table, bnd, bnd_c)
     call choose_condensation(model, table, opts, ctx, bnd_c, res%summary, notes)
-    allocate (keep(table%np))
+    allocate (keep(table%np), stat=stat)
+    if (stat /= 0) then
+       call out_of_memory(error, 'the condensation flags', table%np*BYTES_INT)
+       return
+    end if
     do p = 1, table%np
        keep(p) = bnd_c(p) .or. .not. res%summary%sub_condensed(table%p_sub(p))
     end do

@@ -1417,7 +1417,7 @@ contains
     type(cload_t), allocatable, intent(out) :: out(:)
     type(cload_t), allocatable :: tmp(:)
     integer(ip), allocatable :: nodes(:)
-    integer :: k, n, isub
+    integer :: k, n, isub, stat
     integer(ip) :: i
     logical :: ok
     allocate (out(INITIAL_CAPACITY))
@@ -1428,7 +1428,12 @@ contains
        call resolve_items(st, model, isub, loads(k)%ref, .false., loads(k)%loc, nodes, ok)
        if (.not. ok) cycle
        do i = 1, size(nodes, kind=ip)
-          call grow(out, n, INITIAL_CAPACITY)
+          call grow(out, n, INITIAL_CAPACITY, stat)
+          if (stat /= 0) then
+             call report_oom(st, loads(k)%loc, 'the concentrated loads', &
+                  int(max(2*n, INITIAL_CAPACITY), i8)*storage_size(out)/8)
+             return
+          end if
           n = n + 1
           out(n)%sub = isub
           out(n)%node = nodes(i)
@@ -1437,7 +1442,12 @@ contains
           out(n)%loc = loads(k)%loc
        end do
     end do
-    tmp = out(1:n)
+    allocate (tmp(n), stat=stat)
+    if (stat /= 0) then
+       call report_oom(st, loads(size(loads))%loc, 'the concentrated loads', int(n, i8)*storage_size(out)/8)
+       return
+    end if
+    tmp(:) = out(1:n)
     call move_alloc(tmp, out)
   end subroutine build_cloads
 
@@ -1448,7 +1458,7 @@ contains
     type(dload_t), allocatable, intent(out) :: out(:)
     type(dload_t), allocatable :: tmp(:)
     integer(ip), allocatable :: elems(:)
-    integer :: k, n, isub, nbad, et
+    integer :: k, n, isub, nbad, et, stat
     integer(ip) :: i, first_bad
     logical :: ok
     allocate (out(INITIAL_CAPACITY))
@@ -1461,6 +1471,7 @@ contains
              if (loads(k)%home /= 0 .and. isub /= loads(k)%home) cycle
              elems = [(i, i=1, model%subs(isub)%nelem)]
              call add_elements()
+             if (st%aborted) return
           end do
           cycle
        end if
@@ -1469,8 +1480,14 @@ contains
        call resolve_items(st, model, isub, loads(k)%ref, .true., loads(k)%loc, elems, ok)
        if (.not. ok) cycle
        call add_elements()
+       if (st%aborted) return
     end do
-    tmp = out(1:n)
+    allocate (tmp(n), stat=stat)
+    if (stat /= 0) then
+       call report_oom(st, loads(size(loads))%loc, 'the distributed loads', int(n, i8)*storage_size(out)/8)
+       return
+    end if
+    tmp(:) = out(1:n)
     call move_alloc(tmp, out)
   contains
     subroutine add_elements()
@@ -1511,7 +1528,12 @@ contains
                end if
              end associate
           end if
-          call grow(out, n, INITIAL_CAPACITY)
+          call grow(out, n, INITIAL_CAPACITY, stat)
+          if (stat /= 0) then
+             call report_oom(st, loads(k)%loc, 'the distributed loads', &
+                  int(max(2*n, INITIAL_CAPACITY), i8)*storage_size(out)/8)
+             return
+          end if
           n = n + 1
           out(n)%sub = isub
           out(n)%elem = elems(i)

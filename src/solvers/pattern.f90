@@ -26,9 +26,9 @@ contains
     nitem = size(item_ptr, kind=i8) - 1
     s_total = item_ptr(nitem + 1) - 1
     allocate (col_ptr(ncol + 1), source=0_i8, stat=stat)
-    if (stat == 0) allocate (col_item(max(s_total, 1_i8)), stat=stat)
+    if (stat == 0) allocate (col_item(max(s_total, 1_i8)), fill(ncol), stat=stat)
     if (stat /= 0) then
-       call out_of_memory(error, 'the item lists of the columns', (ncol + 1 + s_total)*BYTES_I8)
+       call out_of_memory(error, 'the item lists of the columns', (2*ncol + 1 + s_total)*BYTES_I8)
        return
     end if
     do pos = 1, s_total
@@ -38,7 +38,7 @@ contains
     do j = 1, ncol
        col_ptr(j + 1) = col_ptr(j + 1) + col_ptr(j)
     end do
-    fill = col_ptr(1:ncol)
+    fill(:) = col_ptr(1:ncol)   ! allocated above with stat= (an assignment's allocation is not checked)
     do it = 1, nitem
        do pos = item_ptr(it), item_ptr(it + 1) - 1
           j = item_col(pos)

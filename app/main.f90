@@ -19,7 +19,7 @@ program superjoin_main
   use superjoin_analysis_combinations, only: add_combinations
   use superjoin_analysis_plausibility, only: check_plausibility
   use superjoin_analysis_contact_gaps, only: check_contact_gaps
-  use superjoin_analysis_results, only: results_t, run_options_t, PH_READ, PH_WRITE
+  use superjoin_model_results, only: results_t, run_options_t, PH_READ, PH_WRITE
   use superjoin_output_listing, only: write_listing
   use superjoin_output_csv, only: write_csv
   use superjoin_output_nodes_csv, only: write_nodes_csv

@@ -15,10 +15,10 @@ module superjoin_analysis
   use superjoin_substructure_cache, only: release_cache, part_view_t
   use superjoin_solvers, only: linear_solver_t, sparse_sym_t, new_solver
   use superjoin_output_matrix_market, only: write_matrix_market
-  use superjoin_analysis_results, only: results_t, run_options_t, PH_ASSEMBLE, PH_ORDER, PH_FACTOR, PH_SOLVE
+  use superjoin_model_results, only: results_t, run_options_t, PH_ASSEMBLE, PH_ORDER, PH_FACTOR, PH_SOLVE
   use superjoin_analysis_recover, only: recover_results
   use superjoin_analysis_mechanism, only: mechanism_error
-  use superjoin_analysis_notes, only: note
+  use superjoin_model_notes, only: note
   use superjoin_analysis_labels, only: column_label
   use superjoin_analysis_health, only: check_finite, health, full_health, parts_maxratio, penalty_hint
   use superjoin_analysis_policy, only: apply_large, describe_transform, column_groups, count_boundary, &

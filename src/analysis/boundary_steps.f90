@@ -18,8 +18,8 @@ module superjoin_analysis_boundary_steps
   use superjoin_analysis_joint_steps, only: solve_joint_steps, merge_results, has_joint_changes
   use superjoin_analysis, only: solve_group, solve_context_t, release_cache
   use superjoin_analysis_factor_reuse, only: release_factor
-  use superjoin_analysis_results, only: results_t, run_options_t
-  use superjoin_analysis_notes, only: append_string
+  use superjoin_model_results, only: results_t, run_options_t
+  use superjoin_model_notes, only: append_string
   use superjoin_utils_strings, only: itoa
   use superjoin_utils_sorting, only: stable_argsort
   use superjoin_analysis_step_groups, only: group_steps

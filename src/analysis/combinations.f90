@@ -7,8 +7,8 @@ module superjoin_analysis_combinations
   !! output requests treat it as a step; model%steps(k)%combination says which.
   use superjoin_kinds, only: wp
   use superjoin_model_types, only: model_t, step_t
-  use superjoin_analysis_results, only: results_t, step_results_t, reaction_t
-  use superjoin_analysis_notes, only: append_string
+  use superjoin_model_results, only: results_t, step_results_t, reaction_t
+  use superjoin_model_notes, only: append_string
   use superjoin_analysis_health, only: check_finite
   use superjoin_error, only: error_t
   use superjoin_utils_halting, only: halting_t, halting_off, halting_restore

@@ -10,8 +10,8 @@ module superjoin_analysis_condensation
   use superjoin_substructure_local_system, only: dof_label
   use superjoin_substructure_cache, only: part_cache_t, part_view_t, acquire_view, view_condense_loads, &
        view_recover, view_stiffness_times, view_spc
-  use superjoin_analysis_results, only: run_summary_t, run_options_t
-  use superjoin_analysis_notes, only: note
+  use superjoin_model_results, only: run_summary_t, run_options_t
+  use superjoin_model_notes, only: note
   use superjoin_analysis_factor_reuse, only: kept_factor_t
   use superjoin_utils_strings, only: itoa
   implicit none (type, external)

@@ -9,7 +9,7 @@ module superjoin_analysis_contact_gaps
   use superjoin_kinds, only: wp, i8, ip
   use superjoin_model_types, only: model_t, node_label, string_t
   use superjoin_utils_strings, only: itoa
-  use superjoin_analysis_notes, only: append_string
+  use superjoin_model_notes, only: append_string
   implicit none (type, external)
   private
 

@@ -31,8 +31,8 @@ module superjoin_analysis_distributed
   use superjoin_substructure_local_system, only: dof_label
   use superjoin_substructure_cache, only: part_cache_t, part_view_t, acquire_view, remote_view, &
        view_condense_loads, view_recover, view_stiffness_times, view_spc, view_maxratio
-  use superjoin_analysis_results, only: run_summary_t, run_log_t, run_options_t
-  use superjoin_analysis_notes, only: note
+  use superjoin_model_results, only: run_summary_t, run_log_t, run_options_t
+  use superjoin_model_notes, only: note
   use superjoin_analysis_condensation, only: part_solver
   use superjoin_parallel_comm, only: comm_t, comm_world, agree, note_agreed_failure, broadcast, sum_reals, &
        sum_counts, bytes_moved

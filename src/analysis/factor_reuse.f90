@@ -9,7 +9,7 @@ module superjoin_analysis_factor_reuse
   use superjoin_kinds, only: wp, i8
   use superjoin_error, only: error_t
   use superjoin_solvers, only: linear_solver_t, sparse_sym_t
-  use superjoin_analysis_results, only: results_t, PH_ORDER, PH_FACTOR, PH_SOLVE
+  use superjoin_model_results, only: results_t, PH_ORDER, PH_FACTOR, PH_SOLVE
   use superjoin_utils_clock, only: stopwatch_t, report_phase
   use superjoin_utils_memory, only: out_of_memory, BYTES_REAL
   implicit none (type, external)

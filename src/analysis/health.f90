@@ -13,10 +13,10 @@ module superjoin_analysis_health
   use superjoin_substructure_cache, only: part_cache_t, part_view_t, view_stiffness_times, &
        view_maxratio
   use superjoin_solvers, only: linear_solver_t, sparse_sym_t, condition_estimate, norm1_sym
-  use superjoin_analysis_results, only: results_t, run_options_t
+  use superjoin_model_results, only: results_t, run_options_t
   use superjoin_analysis_mechanism, only: mechanism_error
   use superjoin_analysis_labels, only: column_label
-  use superjoin_analysis_notes, only: warn
+  use superjoin_model_notes, only: warn
   use superjoin_utils_strings, only: itoa
   use superjoin_utils_memory, only: out_of_memory, BYTES_REAL
   use superjoin_analysis_summed_matrix, only: summed_matvec, summed_diagonal, summed_norm1

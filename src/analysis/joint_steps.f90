@@ -11,9 +11,9 @@ module superjoin_analysis_joint_steps
   use superjoin_error, only: error_t, add_error_line
   use superjoin_model_types, only: model_t, link_override_t, string_t
   use superjoin_analysis, only: solve_model, solve_group, solve_context_t, release_cache
-  use superjoin_analysis_results, only: results_t, run_options_t
+  use superjoin_model_results, only: results_t, run_options_t
   use superjoin_utils_strings, only: itoa
-  use superjoin_analysis_notes, only: append_string
+  use superjoin_model_notes, only: append_string
   use superjoin_analysis_step_groups, only: group_steps
   implicit none (type, external)
   private

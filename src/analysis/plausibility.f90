@@ -6,9 +6,9 @@ module superjoin_analysis_plausibility
   !! to check; the run still exits 0 (the answer is the exact one of the deck).
   use superjoin_kinds, only: wp, i8, ip
   use superjoin_model_types, only: model_t, NDOF_NODE, node_label, string_t
-  use superjoin_analysis_results, only: results_t
+  use superjoin_model_results, only: results_t
   use superjoin_utils_strings, only: itoa
-  use superjoin_analysis_notes, only: append_string
+  use superjoin_model_notes, only: append_string
   implicit none (type, external)
   private
 

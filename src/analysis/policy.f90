@@ -15,10 +15,10 @@ module superjoin_analysis_policy
        CONS_REDUNDANT, CONS_ELIMINATED
   use superjoin_assembly_assemble, only: max_element_diagonal
   use superjoin_solvers, only: sparse_sym_t
-  use superjoin_analysis_results, only: run_summary_t, run_options_t
+  use superjoin_model_results, only: run_summary_t, run_options_t
   use superjoin_analysis_penalty, only: apply_penalty_default, penalty_default_note
   use superjoin_analysis_labels, only: column_label, vertex_label, block_name, local_name
-  use superjoin_analysis_notes, only: note
+  use superjoin_model_notes, only: note
   use superjoin_analysis_condensation, only: solve_context_t
   use superjoin_utils_union_find, only: find_root
   use superjoin_analysis_summed_matrix, only: summed_nonzero, summed_groups, holds_shared_terms

@@ -7,7 +7,7 @@ module superjoin_output_csv
        ET_B23, ET_B33, ET_B21, ET_B31, ET_B32
   use superjoin_output_file_selection, only: file_selection_t, select_file_output, NUM_FILE_RESULTS
   use superjoin_elements, only: is_plate_type
-  use superjoin_analysis_results, only: result_fields_t
+  use superjoin_model_results, only: result_fields_t
   use superjoin_output_posix, only: remove_file, make_directory
   use superjoin_utils_process, only: temp_register, temp_unregister
   use superjoin_output_text_buffer, only: text_buffer_t

@@ -8,7 +8,7 @@ module superjoin_output_listing
   use superjoin_elements, only: is_plate_type, is_plane_type, is_plane_strain_type
   use superjoin_elements_thermal, only: plane_centroid_remainder
   use superjoin_model_types, only: ELEMENT_NODE_COUNT
-  use superjoin_analysis_results, only: results_t
+  use superjoin_model_results, only: results_t
   use superjoin_utils_process, only: temp_register, temp_unregister
   use superjoin_output_text_buffer, only: text_buffer_t
   use superjoin_output_columns, only: element_prefix, chop

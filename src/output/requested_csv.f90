@@ -15,7 +15,7 @@ module superjoin_output_requested_csv
        ELEMENT_TYPE_NAMES
   use superjoin_output_stresses, only: plane_stresses, nodal_stresses, fibre_stresses
   use superjoin_elements_shell, only: is_plate_type
-  use superjoin_analysis_results, only: result_fields_t
+  use superjoin_model_results, only: result_fields_t
   use superjoin_output_requests, only: effective_requests
   use superjoin_output_energy, only: energy_t, compute_energies, requests_name
   use superjoin_output_text_buffer, only: text_buffer_t

@@ -16,7 +16,7 @@ module superjoin_output_requests
   use superjoin_elements_shell, only: shell_frame
   use superjoin_elements_thermal, only: plane_centroid_remainder
   use superjoin_error, only: error_t
-  use superjoin_analysis_results, only: result_fields_t
+  use superjoin_model_results, only: result_fields_t
   use superjoin_output_text_buffer, only: text_buffer_t
   use superjoin_output_columns, only: element_prefix, chop
   use superjoin_utils_strings, only: itoa

@@ -35,7 +35,7 @@ module superjoin_output_stresses
        quadratic_props, thick_shell_stresses, THICK_SURFACES
   use superjoin_elements_quadratic, only: quadratic_point_stresses
   use superjoin_elements_membrane, only: membrane_point_stresses
-  use superjoin_analysis_results, only: result_fields_t
+  use superjoin_model_results, only: result_fields_t
   use superjoin_output_energy, only: element_displacements
   use superjoin_elements_thermal, only: thermal_free_field
   use superjoin_elements_thermal, only: plane_initial_strains

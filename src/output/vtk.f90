@@ -13,7 +13,7 @@ module superjoin_output_vtk
        ET_CPS6, ET_CPS8, ET_CPE6, ET_CPE8, ET_CPS8R, ET_CPE8R, ET_B32
   use superjoin_model_types, only: ET_S4R, ET_S3R
   use superjoin_model_types, only: ET_S8R
-  use superjoin_analysis_results, only: result_fields_t
+  use superjoin_model_results, only: result_fields_t
   use superjoin_output_file_selection, only: file_selection_t, select_file_output, FILE_DISPLACEMENTS, &
        FILE_REACTIONS, FILE_ELEMENT_FORCES
   use superjoin_output_posix, only: rename_file, remove_file, make_directory

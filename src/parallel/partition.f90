@@ -27,7 +27,7 @@ module superjoin_parallel_partition
   use superjoin_model_types, only: model_t, string_t
   use superjoin_utils_sorting, only: stable_argsort
   use superjoin_utils_strings, only: itoa
-  use superjoin_analysis_notes, only: append_string
+  use superjoin_model_notes, only: append_string
   implicit none (type, external)
   private
 

@@ -5,7 +5,7 @@ module verification_support
   use superjoin_model_types, only: model_t, find_node
   use superjoin_deck_reader, only: read_deck, read_deck_string
   use superjoin_analysis, only: solve_model
-  use superjoin_analysis_results, only: results_t, run_options_t
+  use superjoin_model_results, only: results_t, run_options_t
   implicit none (type, external)
   private
 

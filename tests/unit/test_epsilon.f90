@@ -23,7 +23,7 @@ program test_epsilon
   use, intrinsic :: iso_fortran_env, only: real128
   use superjoin_kinds, only: wp, ip
   use superjoin_model_types, only: model_t, LINK_FINITE, ELEMENT_NODE_COUNT
-  use superjoin_analysis_results, only: results_t
+  use superjoin_model_results, only: results_t
   use superjoin_elements, only: element_stiffness, element_node_dofs
   use superjoin_error, only: error_t
   use superjoin_testing, only: check, check_close, finish

@@ -29,7 +29,7 @@ program test_interface
   use superjoin_solvers, only: sparse_sym_t
   use superjoin_testing, only: check, check_close, finish
   use superjoin_analysis, only: solve_model
-  use superjoin_analysis_results, only: results_t, run_options_t
+  use superjoin_model_results, only: results_t, run_options_t
   use verification_support, only: disp, reaction
   use test_lapack, only: dgesv
   implicit none (type, external)

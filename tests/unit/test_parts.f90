@@ -10,7 +10,7 @@ program test_parts
   use superjoin_deck_reader, only: read_deck, read_deck_string
   use superjoin_analysis, only: solve_model
   use superjoin_analysis_joint_steps, only: solve_joint_steps, has_joint_changes
-  use superjoin_analysis_results, only: results_t, run_options_t
+  use superjoin_model_results, only: results_t, run_options_t
   use superjoin_testing, only: check, check_close, finish
   implicit none (type, external)
 

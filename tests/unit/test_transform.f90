@@ -4,7 +4,7 @@ program test_transform
   !! penalty assembly where that one is still accurate.
   use superjoin_kinds, only: wp
   use superjoin_model_types, only: model_t, FORM_TRANSFORM, FORM_PENALTY
-  use superjoin_analysis_results, only: results_t
+  use superjoin_model_results, only: results_t
   use superjoin_testing, only: check, check_rel, finish
   use verification_support, only: solve_text, disp, equilibrium_error
   implicit none (type, external)

@@ -3,7 +3,7 @@ program test_verification
   !! pipeline (deck → transform → solver → recovery) and checked to round-off.
   use superjoin_kinds, only: wp
   use superjoin_model_types, only: model_t
-  use superjoin_analysis_results, only: results_t
+  use superjoin_model_results, only: results_t
   use superjoin_testing, only: check, check_rel, check_close, finish
   use verification_support, only: disp, reaction, link_force, link_delta, solve_file, equilibrium_error
   use superjoin_elements_frame, only: cross

@@ -6,7 +6,7 @@ program test_vtk
   use superjoin_kinds, only: wp, i8, ip
   use superjoin_error, only: error_t, EXIT_IO
   use superjoin_model_types, only: model_t, ET_CPS4, ET_S3, ET_B33, NDOF_NODE
-  use superjoin_analysis_results, only: results_t
+  use superjoin_model_results, only: results_t
   use superjoin_deck_reader, only: read_deck_string
   use superjoin_output_vtk, only: write_vtk, vtk_base, vtk_piece_path, vtk_path_problem, &
        VTK_VERTEX, VTK_LINE, VTK_TRIANGLE, VTK_QUAD

@@ -1,4 +1,4 @@
-module superjoin_analysis_results
+module superjoin_model_results
   !! What a solved deck produces: counts, notes, per-step results and health.
   use superjoin_kinds, only: wp, i8
   use superjoin_model_types, only: string_t
@@ -109,4 +109,4 @@ module superjoin_analysis_results
      type(run_log_t) :: log
      type(result_fields_t) :: fields
   end type results_t
-end module superjoin_analysis_results
+end module superjoin_model_results

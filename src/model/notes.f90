@@ -1,7 +1,7 @@
-module superjoin_analysis_notes
+module superjoin_model_notes
   !! Notes and warnings of a run: lines for the listing (and, warnings, stderr).
   use superjoin_model_types, only: string_t
-  use superjoin_analysis_results, only: results_t
+  use superjoin_model_results, only: results_t
   implicit none (type, external)
   private
 
@@ -38,4 +38,4 @@ contains
     tmp(n + 1)%s = text
     call move_alloc(tmp, list)
   end subroutine append_string
-end module superjoin_analysis_notes
+end module superjoin_model_notes

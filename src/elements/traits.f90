@@ -1,0 +1,200 @@
+module superjoin_elements_traits
+  !! What every element type is, in one table: the answers the deck reader,
+  !! the analysis and the output ask of an element type (family, nodes, DOFs
+  !! per node, whether it lies in the x-y plane, the section card it needs,
+  !! the loads it takes, the VTK cell). The rest of the program asks this
+  !! table (or the element routines) and never branches on an ET_* constant.
+  !!
+  !! A new element type: its ET_* number, name and node count in
+  !! superjoin_model_types, one row here, its stiffness and loads behind the
+  !! facade superjoin_elements.
+  use superjoin_model_types, only: NUM_ELEMENT_TYPES, ELEMENT_TYPE_NAMES, ELEMENT_NODE_COUNT, &
+       SEC_SOLID, SEC_BEAM, SEC_SHELL, &
+       ET_T2D2, ET_T3D2, ET_B23, ET_B33, ET_CPS3, ET_CPS4, ET_S3, ET_S4, ET_B21, ET_B31, &
+       ET_CPE3, ET_CPE4, ET_S4R, ET_S3R, ET_S8R, ET_CPS6, ET_CPS8, ET_CPE6, ET_CPE8, &
+       ET_CPS8R, ET_CPE8R, ET_B32, &
+       DLOAD_PX, DLOAD_PY, DLOAD_PZ, DLOAD_P, DLOAD_GRAV, DLOAD_P1, DLOAD_P2, DLOAD_P3, &
+       DLOAD_P4, DLOAD_CENTRIF
+  implicit none (type, external)
+  private
+
+  integer, parameter, public :: FAMILY_NONE = 0, FAMILY_TRUSS = 1, FAMILY_BEAM = 2, &
+                                FAMILY_PLANE = 3, FAMILY_SHELL = 4
+    !! Element families (a solid family comes with the solid elements).
+  character(len=6), parameter, public :: FAMILY_NAMES(0:4) = &
+       ['none  ', 'truss ', 'beam  ', 'plane ', 'shell ']
+
+  integer, parameter, public :: VTK_VERTEX = 1, VTK_LINE = 3, VTK_POLY_LINE = 4, &
+                                VTK_TRIANGLE = 5, VTK_QUAD = 9, &
+                                VTK_QUADRATIC_TRIANGLE = 22, VTK_QUADRATIC_QUAD = 23
+    !! VTK cell type numbers (VTK's file format; its node order is Abaqus's for these cells).
+
+  type, public :: element_traits_t
+    !! One element type, as the rest of the program sees it.
+     character(len=5) :: name = ''        !! deck name (T2D2, CPS4, S8R, …)
+     integer :: family = FAMILY_NONE      !! FAMILY_*
+     integer :: nodes = 0                 !! nodes per element
+     integer :: corners = 0               !! corner nodes (the first ones); the rest are mid-side nodes
+     logical :: planar = .false.          !! a 2D element of the x-y plane (T2D2, B21, B23, CPS*, CPE*)
+     logical :: quadratic = .false.       !! mid-side nodes (CPS6, CPS8(R), CPE6, CPE8(R), S8R, B32)
+     logical :: plane_strain = .false.    !! CPE*
+     logical :: shear_flexible = .false.  !! Timoshenko beams (B21, B31, B32), thick shells (S3R, S4R, S8R)
+     logical :: reduced = .false.         !! reduced integration named by the type (CPS8R, CPE8R, S4R, S3R, S8R)
+     integer :: edges = 0                 !! faces of a plane element (P1..Pn), edges of a shell
+     logical :: dofs(6) = .false.         !! DOFs 1..6 (ux, uy, uz, rx, ry, rz) carried by each node
+     integer :: section = 0               !! SEC_* kind of the section card that covers it
+     integer :: vtk_cell = VTK_VERTEX     !! VTK cell type
+  end type element_traits_t
+
+  logical, parameter :: D2(6) = [.true., .true., .false., .false., .false., .false.]
+  logical, parameter :: D3(6) = [.true., .true., .true., .false., .false., .false.]
+  logical, parameter :: D126(6) = [.true., .true., .false., .false., .false., .true.]
+  logical, parameter :: D6(6) = .true.
+
+  public :: element_traits, element_family, is_family, accepts_dload, section_card_name
+  public :: valid_element_type
+
+contains
+
+  pure logical function valid_element_type(etype)
+    !! etype names an implemented element type.
+    integer, intent(in) :: etype
+    valid_element_type = etype >= 1 .and. etype <= NUM_ELEMENT_TYPES
+    if (valid_element_type) valid_element_type = len_trim(ELEMENT_TYPE_NAMES(etype)) > 0
+  end function valid_element_type
+
+  pure function element_traits(etype) result(t)
+    !! The traits of element type etype (FAMILY_NONE and no DOFs for an unknown number).
+    integer, intent(in) :: etype
+    type(element_traits_t) :: t
+    if (.not. valid_element_type(etype)) return
+    t%name = ELEMENT_TYPE_NAMES(etype)
+    t%nodes = ELEMENT_NODE_COUNT(etype)
+    t%corners = t%nodes
+    select case (etype)
+    case (ET_T2D2)
+       t = with(t, FAMILY_TRUSS, D2, SEC_SOLID, VTK_LINE, planar=.true.)
+    case (ET_T3D2)
+       t = with(t, FAMILY_TRUSS, D3, SEC_SOLID, VTK_LINE)
+    case (ET_B23)
+       t = with(t, FAMILY_BEAM, D126, SEC_BEAM, VTK_LINE, planar=.true.)
+    case (ET_B21)
+       t = with(t, FAMILY_BEAM, D126, SEC_BEAM, VTK_LINE, planar=.true., shear=.true.)
+    case (ET_B33)
+       t = with(t, FAMILY_BEAM, D6, SEC_BEAM, VTK_LINE)
+    case (ET_B31)
+       t = with(t, FAMILY_BEAM, D6, SEC_BEAM, VTK_LINE, shear=.true.)
+    case (ET_B32)
+       t = with(t, FAMILY_BEAM, D6, SEC_BEAM, VTK_POLY_LINE, shear=.true., corners=2)
+    case (ET_CPS3, ET_CPE3)
+       t = with(t, FAMILY_PLANE, D2, SEC_SOLID, VTK_TRIANGLE, planar=.true., edges=3)
+    case (ET_CPS4, ET_CPE4)
+       t = with(t, FAMILY_PLANE, D2, SEC_SOLID, VTK_QUAD, planar=.true., edges=4)
+    case (ET_CPS6, ET_CPE6)
+       t = with(t, FAMILY_PLANE, D2, SEC_SOLID, VTK_QUADRATIC_TRIANGLE, planar=.true., edges=3, corners=3)
+    case (ET_CPS8, ET_CPE8)
+       t = with(t, FAMILY_PLANE, D2, SEC_SOLID, VTK_QUADRATIC_QUAD, planar=.true., edges=4, corners=4)
+    case (ET_CPS8R, ET_CPE8R)
+       t = with(t, FAMILY_PLANE, D2, SEC_SOLID, VTK_QUADRATIC_QUAD, planar=.true., edges=4, corners=4, &
+                reduced=.true.)
+    case (ET_S3)
+       t = with(t, FAMILY_SHELL, D6, SEC_SHELL, VTK_TRIANGLE, edges=3)
+    case (ET_S4)
+       t = with(t, FAMILY_SHELL, D6, SEC_SHELL, VTK_QUAD, edges=4)
+    case (ET_S3R)
+       t = with(t, FAMILY_SHELL, D6, SEC_SHELL, VTK_TRIANGLE, edges=3, shear=.true., reduced=.true.)
+    case (ET_S4R)
+       t = with(t, FAMILY_SHELL, D6, SEC_SHELL, VTK_QUAD, edges=4, shear=.true., reduced=.true.)
+    case (ET_S8R)
+       t = with(t, FAMILY_SHELL, D6, SEC_SHELL, VTK_QUADRATIC_QUAD, edges=4, corners=4, shear=.true., &
+                reduced=.true.)
+    end select
+    t%quadratic = t%corners < t%nodes
+    t%plane_strain = any(etype == [ET_CPE3, ET_CPE4, ET_CPE6, ET_CPE8, ET_CPE8R])
+  end function element_traits
+
+  pure function with(t0, family, dofs, section, vtk_cell, planar, shear, reduced, edges, corners) result(t)
+    !! t0 with the given traits (one row of the table).
+    type(element_traits_t), intent(in) :: t0
+    integer, intent(in) :: family, section, vtk_cell
+    logical, intent(in) :: dofs(6)
+    logical, intent(in), optional :: planar, shear, reduced
+    integer, intent(in), optional :: edges, corners
+    type(element_traits_t) :: t
+    t = t0
+    t%family = family
+    t%dofs = dofs
+    t%section = section
+    t%vtk_cell = vtk_cell
+    if (present(planar)) t%planar = planar
+    if (present(shear)) t%shear_flexible = shear
+    if (present(reduced)) t%reduced = reduced
+    if (present(edges)) t%edges = edges
+    if (present(corners)) t%corners = corners
+  end function with
+
+  elemental integer function element_family(etype)
+    !! FAMILY_* of element type etype.
+    integer, intent(in) :: etype
+    type(element_traits_t) :: t
+    t = element_traits(etype)
+    element_family = t%family
+  end function element_family
+
+  elemental logical function is_family(etype, family)
+    !! Element type etype belongs to FAMILY_* family.
+    integer, intent(in) :: etype, family
+    is_family = element_family(etype) == family
+  end function is_family
+
+  pure function section_card_name(etype) result(card)
+    !! The section card that covers element type etype.
+    integer, intent(in) :: etype
+    character(:), allocatable :: card
+    type(element_traits_t) :: t
+    t = element_traits(etype)
+    select case (t%section)
+    case (SEC_BEAM)
+       card = '*BEAM SECTION'
+    case (SEC_SHELL)
+       card = '*SHELL SECTION'
+    case default
+       card = '*SOLID SECTION'
+    end select
+  end function section_card_name
+
+  elemental logical function accepts_dload(kind, etype)
+    !! Whether a distributed load of kind DLOAD_* applies to element type etype:
+    !! PX, PY on beams (per unit length), PZ on beams in space, P on shells,
+    !! GRAV on every element, CENTRIF on all but B32, P1..Pn on the faces of a
+    !! plane element; on beams P1 (local y) in space and P2 (local z) also on
+    !! planar two-node beams.
+    integer, intent(in) :: kind, etype
+    type(element_traits_t) :: t
+    logical :: beam2
+    t = element_traits(etype)
+    beam2 = t%family == FAMILY_BEAM .and. .not. t%quadratic
+    select case (kind)
+    case (DLOAD_PX, DLOAD_PY)
+       accepts_dload = t%family == FAMILY_BEAM
+    case (DLOAD_PZ)
+       accepts_dload = t%family == FAMILY_BEAM .and. .not. t%planar
+    case (DLOAD_P)
+       accepts_dload = t%family == FAMILY_SHELL
+    case (DLOAD_GRAV)
+       accepts_dload = .true.
+    case (DLOAD_CENTRIF)
+       accepts_dload = etype /= ET_B32
+    case (DLOAD_P1)
+       accepts_dload = t%family == FAMILY_PLANE .or. (beam2 .and. .not. t%planar)
+    case (DLOAD_P2)
+       accepts_dload = t%family == FAMILY_PLANE .or. beam2
+    case (DLOAD_P3)
+       accepts_dload = t%family == FAMILY_PLANE
+    case (DLOAD_P4)
+       accepts_dload = t%family == FAMILY_PLANE .and. t%edges >= 4
+    case default
+       accepts_dload = .false.
+    end select
+  end function accepts_dload
+end module superjoin_elements_traits

@@ -11,7 +11,7 @@ module superjoin_assembly_dofs
   use superjoin_model_types, only: model_t, NDOF_NODE, LINK_NONE, LINK_FINITE, LINK_RIGID, &
        ELEMENT_NODE_COUNT, loc_text, node_label
   use superjoin_elements, only: element_dof_mask
-  use superjoin_utils_sorting, only: stable_argsort
+  use superjoin_utils_sorting, only: sort_index
   use superjoin_utils_strings, only: itoa
   use superjoin_utils_memory, only: out_of_memory, BYTES_INT, BYTES_I8
   implicit none (type, external)
@@ -460,7 +460,7 @@ contains
        end associate
        order(i) = i
     end do
-    call stable_argsort(real(key, wp), order)
+    call sort_index(key, order)
 
     vprev = -1
     bprev = 0

@@ -8,7 +8,7 @@ module superjoin_assembly_forest
   use superjoin_kinds, only: wp, i8
   use superjoin_model_types, only: LINK_FINITE, LINK_RIGID
   use superjoin_assembly_dofs, only: dof_table_t, unit_t, NBLOCK, GROUND, UNIT_LINK
-  use superjoin_utils_sorting, only: stable_argsort
+  use superjoin_utils_sorting, only: sort_index
   use superjoin_utils_union_find, only: find_root
   use superjoin_error, only: error_t
   use superjoin_utils_memory, only: out_of_memory, BYTES_INT, BYTES_I8, BYTES_REAL
@@ -75,7 +75,7 @@ contains
           cand(nc) = i
           w(i) = unit_weight(table%units(i))
        end do
-       call stable_argsort(-w, cand(1:nc))
+       call sort_index(-w, cand(1:nc))
        do i = 0, int(table%nvertex)
           uf(i) = i
        end do

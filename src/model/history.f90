@@ -15,9 +15,9 @@ module superjoin_model_history
   !! DOF (element and load type); OP=NEW, or no OP= in a step without a
   !! procedure card, starts from nothing. Thermal loads are not continued
   !! here: they follow from the nodal temperatures of each step.
-  use superjoin_kinds, only: wp, i8
+  use superjoin_kinds, only: i8
   use superjoin_model_types, only: model_t, support_t, cload_t, dload_t, DLOAD_THERMAL
-  use superjoin_utils_sorting, only: stable_argsort
+  use superjoin_utils_sorting, only: sort_index
   implicit none (type, external)
   private
 
@@ -68,9 +68,9 @@ contains
     merged(1:size(cur)) = cur
     merged(size(cur) + 1:) = add
     order = [(i, i=1, size(merged))]
-    call stable_argsort(real(merged%dof, wp), order)
-    call stable_argsort(real(merged%node, wp), order)
-    call stable_argsort(real(merged%sub, wp), order)
+    call sort_index(merged%dof, order)
+    call sort_index(merged%node, order)
+    call sort_index(merged%sub, order)
     allocate (keep(size(merged)), source=.true.)
     i = 1
     do while (i <= size(merged))
@@ -161,7 +161,7 @@ contains
     allocate (order(size(have, 2)))
     order = [(j, j = 1, size(have, 2))]
     do c = size(have, 1), 1, -1
-       call stable_argsort(real(have(c, :), wp), order)
+       call sort_index(have(c, :), order)
     end do
     do j = 1, size(want, 2)
        lo = 1

@@ -6,6 +6,7 @@ module superjoin_model_types
   !! substructure index and its local index inside that substructure (1..nnode, in
   !! order of definition); user ids are kept for output only.
   use superjoin_kinds, only: wp, ip
+  use superjoin_utils_sorting, only: find_sorted
   implicit none (type, external)
   private
 
@@ -356,7 +357,7 @@ contains
     type(substructure_t), intent(in) :: sub
     integer(ip), intent(in) :: id
     integer(ip) :: k
-    k = search_sorted(sub%node_id, sub%node_order, id)
+    k = find_sorted(sub%node_id, sub%node_order, id)
   end function find_node
 
   pure function find_elem(sub, id) result(k)
@@ -364,28 +365,8 @@ contains
     type(substructure_t), intent(in) :: sub
     integer(ip), intent(in) :: id
     integer(ip) :: k
-    k = search_sorted(sub%elem_id, sub%elem_order, id)
+    k = find_sorted(sub%elem_id, sub%elem_order, id)
   end function find_elem
-
-  pure function search_sorted(ids, order, id) result(k)
-    integer(ip), intent(in) :: ids(:), order(:)
-    integer(ip), intent(in) :: id
-    integer(ip) :: k, lo, hi, mid
-    k = 0
-    lo = 1
-    hi = size(order, kind=ip)
-    do while (lo <= hi)
-       mid = lo + (hi - lo)/2
-       if (ids(order(mid)) == id) then
-          k = order(mid)
-          return
-       else if (ids(order(mid)) < id) then
-          lo = mid + 1
-       else
-          hi = mid - 1
-       end if
-    end do
-  end function search_sorted
 
   pure function node_label(model, isub, inode) result(label)
     !! "SUB.id" label of a node for messages (plain id in MAIN).

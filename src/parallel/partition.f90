@@ -25,7 +25,7 @@ module superjoin_parallel_partition
   use superjoin_kinds, only: wp, i8
   use superjoin_error, only: error_t, fatal_error, EXIT_IO
   use superjoin_model_types, only: model_t, string_t
-  use superjoin_utils_sorting, only: stable_argsort
+  use superjoin_utils_sorting, only: sort_index
   use superjoin_utils_strings, only: itoa
   use superjoin_model_notes, only: append_string
   implicit none (type, external)
@@ -93,7 +93,7 @@ contains
     integer(i8), intent(in) :: sub_dofs(:), sub_boundary(:)
     type(part_graph_t), intent(out) :: graph
     integer, allocatable :: ea(:), eb(:), order(:), fill(:)
-    real(wp), allocatable :: key(:)
+    integer(i8), allocatable :: key(:)
     integer :: n, ne, i, j, k, a, b
     n = size(model%subs)
     graph%n = n
@@ -109,10 +109,10 @@ contains
     ne = size(ea)
     allocate (key(ne), order(ne))
     do k = 1, ne
-       key(k) = real(ea(k) - 1, wp)*real(n, wp) + real(eb(k) - 1, wp)
+       key(k) = int(ea(k) - 1, i8)*n + (eb(k) - 1)
        order(k) = k
     end do
-    call stable_argsort(key, order)
+    call sort_index(key, order)
     ! count distinct pairs and their multiplicity, both directions
     allocate (graph%xadj(n + 1), source=0)
     k = 1
@@ -280,7 +280,7 @@ contains
     integer :: k, i, r
     allocate (order(graph%n), load(0:nrank - 1))
     order = [(i, i=1, graph%n)]
-    call stable_argsort(-graph%cost, order)
+    call sort_index(-graph%cost, order)
     load = 0.0_wp
     do k = 1, graph%n
        i = order(k)

@@ -10,6 +10,7 @@ module superjoin_solvers
   use superjoin_solvers_umfpack, only: umfpack_solver_t
   use superjoin_solvers_lapack, only: lapack_solver_t
   use superjoin_solvers_mumps, only: mumps_solver_t, MUMPS_SPD, MUMPS_SYMMETRIC, mumps_available
+  use superjoin_utils_strings, only: to_lower
   implicit none (type, external)
   private
 
@@ -35,7 +36,7 @@ contains
     type(error_t), allocatable, intent(out) :: error
     character(:), allocatable :: key
 
-    key = lower(trim(adjustl(name)))
+    key = to_lower(trim(adjustl(name)))
     select case (key)
     case ('auto')
        if (n <= AUTO_LAPACK_MAX) then
@@ -182,16 +183,4 @@ contains
        s = -1.0_wp
     end where
   end function sign_of
-
-  pure function lower(s) result(t)
-    !! ASCII lower case.
-    character(*), intent(in) :: s
-    character(len(s)) :: t
-    integer :: i, c
-    t = s
-    do i = 1, len(s)
-       c = iachar(s(i:i))
-       if (c >= iachar('A') .and. c <= iachar('Z')) t(i:i) = achar(c + 32)
-    end do
-  end function lower
 end module superjoin_solvers

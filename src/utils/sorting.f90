@@ -1,46 +1,53 @@
 module superjoin_utils_sorting
-  !! Sorting helpers.
+  !! Sorting and searching: one stable index sort and one binary search for
+  !! integer (default and i8) and real keys, so that integer keys are
+  !! compared as integers (a conversion to real is inexact above 2**53).
   use superjoin_kinds, only: wp, i8
   implicit none (type, external)
   private
 
-  public :: stable_argsort, sort_unique_i8
+  public :: sort_index, find_sorted, sort_unique_i8
+  public :: stable_argsort
+
+  interface sort_index
+    !! Stable ascending index sort: call sort_index(key, order) reorders the
+    !! indices `order` so that key(order) ascends, ties in their order.
+     module procedure sort_index_int, sort_index_i8, sort_index_real
+  end interface sort_index
+
+  interface stable_argsort
+    !! The former name of sort_index, kept while src/deck and src/analysis
+    !! still call it.
+     module procedure sort_index_int, sort_index_i8, sort_index_real
+  end interface stable_argsort
+
+  interface find_sorted
+    !! find_sorted(keys, order, key): an index i with keys(i) == key, where
+    !! keys(order) ascends, or 0.
+     module procedure find_sorted_int, find_sorted_i8
+  end interface find_sorted
 
 contains
 
-  subroutine stable_argsort(key, order)
-    !! Reorder the indices `order` so that key(order) ascends; equal keys keep
-    !! their relative order (merge sort, deterministic).
-    real(wp), intent(in) :: key(:)
-    integer, intent(inout) :: order(:)
-    integer, allocatable :: tmp(:)
-    integer :: width, lo, mid, hi, i, j, k, n
-    n = size(order)
-    allocate (tmp(n))
-    width = 1
-    do while (width < n)
-       lo = 1
-       do while (lo <= n)
-          mid = min(lo + width - 1, n)
-          hi = min(lo + 2*width - 1, n)
-          i = lo; j = mid + 1; k = lo
-          do while (i <= mid .and. j <= hi)
-             if (key(order(j)) < key(order(i))) then
-                tmp(k) = order(j); j = j + 1
-             else
-                tmp(k) = order(i); i = i + 1
-             end if
-             k = k + 1
-          end do
-          tmp(k:k + mid - i) = order(i:mid)
-          k = k + mid - i + 1
-          tmp(k:k + hi - j) = order(j:hi)
-          lo = hi + 1
-       end do
-       order = tmp
-       width = 2*width
-    end do
-  end subroutine stable_argsort
+#define SORT_NAME sort_index_int
+#define SORT_TYPE integer
+#include "sort_index_template.inc"
+
+#define SORT_NAME sort_index_i8
+#define SORT_TYPE integer(i8)
+#include "sort_index_template.inc"
+
+#define SORT_NAME sort_index_real
+#define SORT_TYPE real(wp)
+#include "sort_index_template.inc"
+
+#define FIND_NAME find_sorted_int
+#define FIND_TYPE integer
+#include "find_sorted_template.inc"
+
+#define FIND_NAME find_sorted_i8
+#define FIND_TYPE integer(i8)
+#include "find_sorted_template.inc"
 
   pure subroutine sort_unique_i8(a, n)
     !! Sort a short integer list in place (insertion sort) and drop repeats;

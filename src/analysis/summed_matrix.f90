@@ -17,7 +17,7 @@ module superjoin_analysis_summed_matrix
   use superjoin_error, only: error_t, fatal_error, EXIT_IO
   use superjoin_solvers, only: sparse_sym_t
   use superjoin_parallel_comm, only: comm_t, comm_world, broadcast, sum_reals, sum_counts, max_reals
-  use superjoin_utils_sorting, only: stable_argsort
+  use superjoin_utils_sorting, only: sort_index
   implicit none (type, external)
   private
 
@@ -186,12 +186,9 @@ contains
     type(error_t), allocatable, intent(out) :: error
     type(comm_t) :: comm
     integer(i8), allocatable :: touch(:)
-    real(wp), allocatable :: colsum(:), mine(:), all_(:), key(:), head(:), got(:)
-    integer, allocatable :: order(:)
-    integer(i8) :: j, pos, i, n, nmine, at
-    integer :: r, m, a
+    real(wp), allocatable :: colsum(:), mine(:), all_(:)
+    integer(i8) :: j, pos, n
     logical :: ok
-    real(wp) :: v, kij
     comm = comm_world()
     n = k%n
     anorm = 0.0_wp
@@ -200,16 +197,43 @@ contains
     if (comm%size <= 1) then
        do j = 1, n
           do pos = k%colptr(j), k%colptr(j + 1) - 1
-             call add(k%rowind(pos), j, abs(k%val(pos)))
+             call add_entry(colsum, k%rowind(pos), j, abs(k%val(pos)))
           end do
        end do
        anorm = maxval(colsum)
        return
     end if
-    ! columns where several processes have nonzero entries (every term
-    ! stores the whole diagonal: its zeros count for nothing)
-    allocate (touch(n), source=0_i8)
-    do j = 1, n
+    call shared_columns(k, touch, ok)
+    if (.not. ok) then
+       call fatal_error(error, EXIT_IO, 'error: MPI sum of the matrix pattern failed')
+       return
+    end if
+    call split_cut(k, touch, colsum, mine)
+    ! column sums of the entries counted where they live, summed
+    call sum_reals(colsum, ok)
+    if (.not. ok) then
+       call fatal_error(error, EXIT_IO, 'error: MPI sum of the column sums failed')
+       return
+    end if
+    call share_cut(mine, all_, ok)
+    if (.not. ok) then
+       call fatal_error(error, EXIT_IO, 'error: MPI exchange of the matrix cut failed')
+       return
+    end if
+    call add_cut(all_, n, colsum)
+    anorm = maxval(colsum)
+  end subroutine summed_norm1
+
+  subroutine shared_columns(k, touch, ok)
+    !! touch(j): the number of processes with nonzero entries in row or
+    !! column j (every term stores the whole diagonal: its zeros count for
+    !! nothing). ok: the MPI sum succeeded.
+    type(sparse_sym_t), intent(in) :: k
+    integer(i8), allocatable, intent(out) :: touch(:)
+    logical, intent(out) :: ok
+    integer(i8) :: j, pos
+    allocate (touch(k%n), source=0_i8)
+    do j = 1, k%n
        do pos = k%colptr(j), k%colptr(j + 1) - 1
           if (k%val(pos) == 0.0_wp) cycle
           touch(j) = 1
@@ -217,24 +241,31 @@ contains
        end do
     end do
     call sum_counts(touch, ok)
-    if (.not. ok) then
-       call fatal_error(error, EXIT_IO, 'error: MPI sum of the matrix pattern failed')
-       return
-    end if
+  end subroutine shared_columns
+
+  subroutine split_cut(k, touch, colsum, mine)
+    !! The nonzero entries of k whose row and column several processes touch
+    !! (the cut) into mine, NFIELD reals each (row, column, value); every
+    !! other entry's absolute value into colsum.
+    type(sparse_sym_t), intent(in) :: k
+    integer(i8), intent(in) :: touch(:)
+    real(wp), intent(inout) :: colsum(:)
+    real(wp), allocatable, intent(out) :: mine(:)
+    integer(i8) :: j, pos, nmine, at
     nmine = 0
-    do j = 1, n
+    do j = 1, k%n
        do pos = k%colptr(j), k%colptr(j + 1) - 1
           if (k%val(pos) == 0.0_wp) cycle
           if (touch(j) > 1 .and. touch(k%rowind(pos)) > 1) then
              nmine = nmine + 1
           else
-             call add(k%rowind(pos), j, abs(k%val(pos)))
+             call add_entry(colsum, k%rowind(pos), j, abs(k%val(pos)))
           end if
        end do
     end do
     allocate (mine(NFIELD*nmine))
     at = 0
-    do j = 1, n
+    do j = 1, k%n
        do pos = k%colptr(j), k%colptr(j + 1) - 1
           if (k%val(pos) == 0.0_wp) cycle
           if (touch(j) > 1 .and. touch(k%rowind(pos)) > 1) then
@@ -243,16 +274,21 @@ contains
           end if
        end do
     end do
-    ! column sums of the entries counted where they live, summed
-    call sum_reals(colsum, ok)
-    if (.not. ok) then
-       call fatal_error(error, EXIT_IO, 'error: MPI sum of the column sums failed')
-       return
-    end if
-    ! every process's cut entries to every process, in rank order
+  end subroutine split_cut
+
+  subroutine share_cut(mine, all_, ok)
+    !! Every process's cut entries (mine) to every process, in rank order.
+    real(wp), intent(in) :: mine(:)
+    real(wp), allocatable, intent(out) :: all_(:)
+    logical, intent(out) :: ok
+    type(comm_t) :: comm
+    real(wp), allocatable :: head(:), got(:)
+    integer :: r
+    comm = comm_world()
     allocate (all_(0))
+    ok = .true.
     do r = 0, comm%size - 1
-       head = [real(nmine, wp)]
+       head = [real(size(mine, kind=i8)/NFIELD, wp)]
        call broadcast(head, r, ok)
        if (.not. ok) exit
        if (r == comm%rank) then
@@ -265,19 +301,27 @@ contains
        all_ = [all_, got]
        deallocate (got)
     end do
-    if (.not. ok) then
-       call fatal_error(error, EXIT_IO, 'error: MPI exchange of the matrix cut failed')
-       return
-    end if
-    ! duplicates summed, then their absolute values counted (the same list,
-    ! so the same sums, on every process)
+  end subroutine share_cut
+
+  subroutine add_cut(all_, n, colsum)
+    !! The cut entries of all processes (all_, the same list on every
+    !! process): duplicates summed, then their absolute values into colsum
+    !! (so the same sums on every process).
+    real(wp), intent(in) :: all_(:)
+    integer(i8), intent(in) :: n
+    real(wp), intent(inout) :: colsum(:)
+    integer(i8), allocatable :: key(:)
+    integer, allocatable :: order(:)
+    integer(i8) :: i, j, kij
+    integer :: m, a
+    real(wp) :: v
     m = int(size(all_, kind=i8)/NFIELD)
     allocate (key(m), order(m))
     do a = 1, m
-       key(a) = all_(NFIELD*(a - 1) + 1)*real(n + 1, wp) + all_(NFIELD*(a - 1) + 2)
+       key(a) = nint(all_(NFIELD*(a - 1) + 1), i8)*(n + 1) + nint(all_(NFIELD*(a - 1) + 2), i8)
        order(a) = a
     end do
-    call stable_argsort(key, order)
+    call sort_index(key, order)
     a = 1
     do while (a <= m)
        v = 0.0_wp
@@ -289,18 +333,18 @@ contains
           v = v + all_(NFIELD*(order(a) - 1) + 3)
           a = a + 1
        end do
-       call add(i, j, abs(v))
+       call add_entry(colsum, i, j, abs(v))
     end do
-    anorm = maxval(colsum)
-  contains
-    subroutine add(ii, jj, x)
-      !! |entry (ii, jj)| into the sums of its column and (symmetric) row.
-      integer(i8), intent(in) :: ii, jj
-      real(wp), intent(in) :: x
-      colsum(jj) = colsum(jj) + x
-      if (ii /= jj) colsum(ii) = colsum(ii) + x
-    end subroutine add
-  end subroutine summed_norm1
+  end subroutine add_cut
+
+  pure subroutine add_entry(colsum, i, j, x)
+    !! |entry (i, j)| = x into the sums of its column and (symmetric) row.
+    real(wp), intent(inout) :: colsum(:)
+    integer(i8), intent(in) :: i, j
+    real(wp), intent(in) :: x
+    colsum(j) = colsum(j) + x
+    if (i /= j) colsum(i) = colsum(i) + x
+  end subroutine add_entry
 
   function comm_world_size() result(n)
     !! Number of processes of the run.

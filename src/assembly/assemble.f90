@@ -13,7 +13,6 @@ module superjoin_assembly_assemble
   use superjoin_assembly_transform, only: transform_t, form_spring_t, ROLE_PLAIN
   use superjoin_solvers_sparse, only: sparse_sym_t
   use superjoin_solvers_pattern, only: build_pattern, find_entry, items_of_columns
-  use superjoin_utils_sorting, only: sort_unique_i8
   use superjoin_utils_strings, only: itoa
   use superjoin_utils_memory, only: out_of_memory, BYTES_REAL, BYTES_I8
   use superjoin_elements_drill_mask, only: element_drill
@@ -39,6 +38,15 @@ module superjoin_assembly_assemble
        !! springs, g of the δ columns) go in; .false. for a term of K_red that
        !! is summed with others (one process's share under MPI)
   end type assembly_plan_t
+
+  type :: item_columns_t
+    !! The reduced columns of the items of K_red (elements, superelements,
+    !! plain units, form springs), item after item: item i's columns are
+    !! col(ptr(i):ptr(i+1)-1).
+     integer(i8), allocatable :: ptr(:)     !! (items + 1)
+     integer(i8), allocatable :: col(:)     !! grows by doubling
+     integer(i8) :: n = 0                   !! items listed so far
+  end type item_columns_t
 
   public :: element_matrix
   public :: assemble_stiffness, assemble_loads, distributed_load, element_pdofs, unit_pdofs, unit_plain_stiffness, &
@@ -191,65 +199,21 @@ contains
     type(sparse_sym_t), intent(out) :: k
     real(wp), allocatable, intent(out) :: f_u0(:)
     type(error_t), allocatable, intent(out) :: error
-    integer(i8), allocatable :: item_ptr(:), item_col(:), col_ptr(:), col_item(:), cols(:)
-    integer(i8) :: pd(MAX_ITEM_DOFS), nitem, it, j
-    integer :: isub, n, nc, iu, i, nforms
-    integer(ip) :: e
-    real(wp), allocatable :: ke(:, :)
+    type(item_columns_t) :: items
+    integer(i8), allocatable :: col_ptr(:), col_item(:)
+    integer(i8) :: j
     integer :: stat
-    type(form_spring_t) :: fs
     real(wp) :: g
 
-    ! Items: elements of every substructure, then plain units, then form springs.
-    nforms = 0
-    if (plan%shared) nforms = tr%nforms()
-    nitem = nforms + size(plan%supers)
-    do isub = 1, size(model%subs)
-       if (plan%skip_sub(isub)) cycle
-       nitem = nitem + model%subs(isub)%nelem
-    end do
-    if (plan%shared) nitem = nitem + tr%count_role(ROLE_PLAIN)
-    allocate (item_ptr(nitem + 1), cols(64), item_col(max(16_i8, 12*nitem)), stat=stat)
-    if (stat /= 0) then
-       call out_of_memory(error, 'the column lists of the elements', (13*nitem + 1)*BYTES_I8)
-       return
-    end if
-    item_ptr(1) = 1
-
     ! Pass 1: column lists of all items.
-    it = 0
-    do isub = 1, size(model%subs)
-       if (plan%skip_sub(isub)) cycle
-       do e = 1, model%subs(isub)%nelem
-          call element_pdofs(model, table, isub, e, pd, n)
-          call tr%element_columns(pd, n, cols, nc)
-          call append_item(cols(1:nc))
-          if (allocated(error)) return
-       end do
-    end do
-    do i = 1, size(plan%supers)
-       call tr%element_columns(plan%supers(i)%pdof, size(plan%supers(i)%pdof), cols, nc)
-       call append_item(cols(1:nc))
-       if (allocated(error)) return
-    end do
-    do iu = 1, table%nunit
-       if (tr%unit_role(iu) /= ROLE_PLAIN .or. .not. plan%shared) cycle
-       call unit_pdofs(table, iu, pd, n)
-       call tr%element_columns(pd, n, cols, nc)
-       call append_item(cols(1:nc))
-       if (allocated(error)) return
-    end do
-    do i = 1, nforms
-       fs = tr%form(i)
-       call append_item(fs%col)
-       if (allocated(error)) return
-    end do
-
-    ! Transpose: items of each column.
-    call items_of_columns(tr%ncol(), item_ptr(1:nitem + 1), item_col, col_ptr, col_item, error)
+    call list_item_columns(model, table, tr, plan, items, error)
     if (allocated(error)) return
 
-    call build_pattern(tr%ncol(), item_ptr, item_col, col_ptr, col_item, k, error)
+    ! Transpose: items of each column.
+    call items_of_columns(tr%ncol(), items%ptr(1:items%n + 1), items%col, col_ptr, col_item, error)
+    if (allocated(error)) return
+
+    call build_pattern(tr%ncol(), items%ptr, items%col, col_ptr, col_item, k, error)
     if (allocated(error)) return
     deallocate (col_ptr, col_item)
 
@@ -259,6 +223,126 @@ contains
        call out_of_memory(error, 'the reduced load', tr%ncol()*BYTES_REAL)
        return
     end if
+    call scatter_items(model, table, tr, plan, items, k, f_u0, error)
+    if (allocated(error)) return
+    ! δ springs: g on the diagonal of their own column, nowhere else.
+    do j = 1, merge(tr%ncol(), 0_i8, plan%shared)
+       g = tr%column_g(j)
+       if (g /= 0.0_wp) k%val(k%colptr(j + 1) - 1) = k%val(k%colptr(j + 1) - 1) + g
+    end do
+  end subroutine assemble_stiffness
+
+  pure function shared_forms(tr, plan) result(nforms)
+    !! Number of loop springs (form springs) the plan assembles.
+    type(transform_t), intent(in) :: tr
+    type(assembly_plan_t), intent(in) :: plan
+    integer :: nforms
+    nforms = 0
+    if (plan%shared) nforms = tr%nforms()
+  end function shared_forms
+
+  subroutine list_item_columns(model, table, tr, plan, items, error)
+    !! The reduced columns of every item the plan assembles, in this order:
+    !! elements of every substructure not skipped, superelements, plain
+    !! units, form springs (the order of scatter_items).
+    type(model_t), intent(in) :: model
+    type(dof_table_t), intent(in) :: table
+    type(transform_t), intent(in) :: tr
+    type(assembly_plan_t), intent(in) :: plan
+    type(item_columns_t), intent(out) :: items
+    type(error_t), allocatable, intent(out) :: error
+    integer(i8), allocatable :: cols(:)
+    integer(i8) :: pd(MAX_ITEM_DOFS), nitem
+    integer :: isub, n, nc, iu, i, nforms, stat
+    integer(ip) :: e
+    type(form_spring_t) :: fs
+
+    nforms = shared_forms(tr, plan)
+    nitem = nforms + size(plan%supers)
+    do isub = 1, size(model%subs)
+       if (plan%skip_sub(isub)) cycle
+       nitem = nitem + model%subs(isub)%nelem
+    end do
+    if (plan%shared) nitem = nitem + tr%count_role(ROLE_PLAIN)
+    allocate (items%ptr(nitem + 1), cols(64), items%col(max(16_i8, 12*nitem)), stat=stat)
+    if (stat /= 0) then
+       call out_of_memory(error, 'the column lists of the elements', (13*nitem + 1)*BYTES_I8)
+       return
+    end if
+    items%ptr(1) = 1
+    items%n = 0
+    do isub = 1, size(model%subs)
+       if (plan%skip_sub(isub)) cycle
+       do e = 1, model%subs(isub)%nelem
+          call element_pdofs(model, table, isub, e, pd, n)
+          call tr%element_columns(pd, n, cols, nc)
+          call append_item(items, cols(1:nc), error)
+          if (allocated(error)) return
+       end do
+    end do
+    do i = 1, size(plan%supers)
+       call tr%element_columns(plan%supers(i)%pdof, size(plan%supers(i)%pdof), cols, nc)
+       call append_item(items, cols(1:nc), error)
+       if (allocated(error)) return
+    end do
+    do iu = 1, table%nunit
+       if (tr%unit_role(iu) /= ROLE_PLAIN .or. .not. plan%shared) cycle
+       call unit_pdofs(table, iu, pd, n)
+       call tr%element_columns(pd, n, cols, nc)
+       call append_item(items, cols(1:nc), error)
+       if (allocated(error)) return
+    end do
+    do i = 1, nforms
+       fs = tr%form(i)
+       call append_item(items, fs%col, error)
+       if (allocated(error)) return
+    end do
+  end subroutine list_item_columns
+
+  subroutine append_item(items, c, error)
+    !! The columns c of the next item at the end of items (the column list
+    !! doubles when full).
+    type(item_columns_t), intent(inout) :: items
+    integer(i8), intent(in) :: c(:)
+    type(error_t), allocatable, intent(inout) :: error
+    integer(i8), allocatable :: tmp(:)
+    integer(i8) :: need, cap
+    integer :: stat
+    items%n = items%n + 1
+    associate (it => items%n)
+      need = items%ptr(it) + size(c) - 1
+      if (need > size(items%col, kind=i8)) then
+         cap = max(2*size(items%col, kind=i8), need)
+         allocate (tmp(cap), stat=stat)
+         if (stat /= 0) then
+            call out_of_memory(error, 'the column lists of the elements', cap*BYTES_I8)
+            return
+         end if
+         tmp(1:items%ptr(it) - 1) = items%col(1:items%ptr(it) - 1)
+         call move_alloc(tmp, items%col)
+      end if
+      items%col(items%ptr(it):need) = c
+      items%ptr(it + 1) = need + 1
+    end associate
+  end subroutine append_item
+
+  subroutine scatter_items(model, table, tr, plan, items, k, f_u0, error)
+    !! Add the stiffness of every item of list_item_columns to the values of
+    !! k (pattern built from items) and its prescribed-value load to f_u0.
+    type(model_t), intent(in) :: model
+    type(dof_table_t), intent(in) :: table
+    type(transform_t), intent(in) :: tr
+    type(assembly_plan_t), intent(in) :: plan
+    type(item_columns_t), intent(in) :: items
+    type(sparse_sym_t), intent(inout) :: k
+    real(wp), intent(inout) :: f_u0(:)
+    type(error_t), allocatable, intent(out) :: error
+    integer(i8) :: pd(MAX_ITEM_DOFS), it
+    integer :: isub, n, iu, i
+    integer(ip) :: e
+    real(wp), allocatable :: ke(:, :)
+    type(form_spring_t) :: fs
+
     it = 0
     do isub = 1, size(model%subs)
        if (plan%skip_sub(isub)) cycle
@@ -267,7 +351,7 @@ contains
           call element_matrix(model, isub, e, ke, error)
           if (allocated(error)) return
           call element_pdofs(model, table, isub, e, pd, n)
-          call tr%scatter(pd(1:n), ke, item_col(item_ptr(it):item_ptr(it + 1) - 1), k, f_u0)
+          call tr%scatter(pd(1:n), ke, items%col(items%ptr(it):items%ptr(it + 1) - 1), k, f_u0)
        end do
     end do
     do i = 1, size(plan%supers)
@@ -284,41 +368,14 @@ contains
        it = it + 1
        call unit_pdofs(table, iu, pd, n)
        call unit_plain_stiffness(table, iu, ke, n)
-       call tr%scatter(pd(1:n), ke(1:n, 1:n), item_col(item_ptr(it):item_ptr(it + 1) - 1), k, f_u0)
+       call tr%scatter(pd(1:n), ke(1:n, 1:n), items%col(items%ptr(it):items%ptr(it + 1) - 1), k, f_u0)
     end do
-    do i = 1, nforms
+    do i = 1, shared_forms(tr, plan)
        it = it + 1
        fs = tr%form(i)
        call scatter_form(fs%col, fs%coef, fs%g, fs%const, k, f_u0)
     end do
-    ! δ springs: g on the diagonal of their own column, nowhere else.
-    do j = 1, merge(tr%ncol(), 0_i8, plan%shared)
-       g = tr%column_g(j)
-       if (g /= 0.0_wp) k%val(k%colptr(j + 1) - 1) = k%val(k%colptr(j + 1) - 1) + g
-    end do
-
-  contains
-
-    subroutine append_item(c)
-      integer(i8), intent(in) :: c(:)
-      integer(i8), allocatable :: tmp(:)
-      integer(i8) :: need, cap
-      it = it + 1
-      need = item_ptr(it) + size(c) - 1
-      if (need > size(item_col, kind=i8)) then
-         cap = max(2*size(item_col, kind=i8), need)
-         allocate (tmp(cap), stat=stat)
-         if (stat /= 0) then
-            call out_of_memory(error, 'the column lists of the elements', cap*BYTES_I8)
-            return
-         end if
-         tmp(1:item_ptr(it) - 1) = item_col(1:item_ptr(it) - 1)
-         call move_alloc(tmp, item_col)
-      end if
-      item_col(item_ptr(it):need) = c
-      item_ptr(it + 1) = need + 1
-    end subroutine append_item
-  end subroutine assemble_stiffness
+  end subroutine scatter_items
 
 
   subroutine scatter_form(col, coef, g, c, k, f_u0)

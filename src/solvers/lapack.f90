@@ -46,6 +46,15 @@ module superjoin_solvers_lapack
 
   public :: rcm_ordering
 
+  type :: rcm_graph_t
+    !! The graph and work arrays of the reverse Cuthill-McKee ordering.
+     integer(i8), allocatable :: xadj(:), adj(:)   !! adjacency (CSR, no self loops)
+     integer(i8), allocatable :: deg(:)            !! degree of each node
+     integer(i8), allocatable :: level(:)          !! breadth-first level (-1: not reached)
+     integer(i8), allocatable :: queue(:)          !! breadth-first queue
+     logical, allocatable :: done(:)               !! numbered already
+  end type rcm_graph_t
+
   interface
      subroutine dpotrf(uplo, n, a, lda, info)
        import :: wp
@@ -333,118 +342,130 @@ contains
     !! and the whole Cuthill-McKee sequence is reversed at the end.
     type(sparse_sym_t), intent(in) :: a
     integer(i8), intent(out) :: perm(:)
-    integer(i8), allocatable :: xadj(:), adj(:), deg(:), level(:), queue(:)
-    logical, allocatable :: done(:)
-    integer(i8) :: n, i, j, k, nnext, root, start, head, tail, v, w, m, t
+    type(rcm_graph_t) :: g
+    integer(i8) :: n, i, nnext, root, start
 
     n = a%n
     if (n == 0) return
-    call adjacency(a, xadj, adj)
-    allocate (deg(n), level(n), queue(n), done(n))
+    call adjacency(a, g%xadj, g%adj)
+    allocate (g%deg(n), g%level(n), g%queue(n), g%done(n))
     do i = 1, n
-       deg(i) = xadj(i + 1) - xadj(i)
+       g%deg(i) = g%xadj(i + 1) - g%xadj(i)
     end do
-    done = .false.
-    level = -1
+    g%done = .false.
+    g%level = -1
     nnext = 0
     do start = 1, n
-       if (done(start)) cycle
+       if (g%done(start)) cycle
        ! the component of start: its minimum-degree node is the first guess
-       root = pseudo_peripheral(start)
-       ! Cuthill-McKee breadth-first numbering from root
-       head = nnext + 1
-       tail = nnext + 1
-       perm(tail) = root
-       done(root) = .true.
-       do while (head <= tail)
-          v = perm(head)
-          head = head + 1
-          m = tail
-          do k = xadj(v), xadj(v + 1) - 1
-             w = adj(k)
-             if (done(w)) cycle
-             done(w) = .true.
-             tail = tail + 1
-             perm(tail) = w
-          end do
-          ! the nodes just added (m+1:tail) in increasing degree (insertion sort)
-          do i = m + 2, tail
-             t = perm(i)
-             j = i - 1
-             do while (j > m)
-                if (deg(perm(j)) <= deg(t)) exit
-                perm(j + 1) = perm(j)
-                j = j - 1
-             end do
-             perm(j + 1) = t
-          end do
-       end do
-       nnext = tail
+       call pseudo_peripheral(g, start, root)
+       call cuthill_mckee(g, root, perm, nnext)
     end do
     ! reverse
     perm(1:n) = perm(n:1:-1)
-
-  contains
-
-    function pseudo_peripheral(s) result(r)
-      !! A pseudo-peripheral node of the component holding s.
-      integer(i8), intent(in) :: s
-      integer(i8) :: r, ecc, new_ecc, last_first, last_end, u, kk, best
-      integer :: iter
-      integer, parameter :: MAX_SWEEPS = 10
-      ! start from a node of minimum degree in the component
-      call bfs(s, ecc, last_first, last_end)
-      r = s
-      do kk = 1, last_end
-         if (deg(queue(kk)) < deg(r)) r = queue(kk)
-      end do
-      call bfs(r, ecc, last_first, last_end)
-      do iter = 1, MAX_SWEEPS
-         best = queue(last_first)
-         do kk = last_first, last_end
-            u = queue(kk)
-            if (deg(u) < deg(best)) best = u
-         end do
-         call bfs(best, new_ecc, last_first, last_end)
-         if (new_ecc <= ecc) exit
-         r = best
-         ecc = new_ecc
-      end do
-    end function pseudo_peripheral
-
-    subroutine bfs(s, ecc, last_first, last_end)
-      !! Breadth-first search from s over the nodes not yet numbered; queue(1:last_end)
-      !! holds the component, queue(last_first:last_end) its last level; ecc the depth.
-      integer(i8), intent(in) :: s
-      integer(i8), intent(out) :: ecc, last_first, last_end
-      integer(i8) :: h, tl, u, kk, x
-      level(s) = 0
-      queue(1) = s
-      h = 1
-      tl = 1
-      do while (h <= tl)
-         u = queue(h)
-         h = h + 1
-         do kk = xadj(u), xadj(u + 1) - 1
-            x = adj(kk)
-            if (done(x) .or. level(x) >= 0) cycle
-            tl = tl + 1
-            queue(tl) = x
-            level(x) = level(u) + 1
-         end do
-      end do
-      ecc = level(queue(tl))
-      last_end = tl
-      last_first = tl
-      do while (last_first > 1)
-         if (level(queue(last_first - 1)) /= ecc) exit
-         last_first = last_first - 1
-      end do
-      do kk = 1, tl
-         level(queue(kk)) = -1
-      end do
-    end subroutine bfs
   end subroutine rcm_ordering
+
+  subroutine cuthill_mckee(g, root, perm, nnext)
+    !! Cuthill-McKee breadth-first numbering of the component of root after
+    !! the nnext nodes numbered so far: perm(nnext+1:) gets its nodes, the
+    !! neighbours of each node by increasing degree; nnext the new count.
+    type(rcm_graph_t), intent(inout) :: g
+    integer(i8), intent(in) :: root
+    integer(i8), intent(inout) :: perm(:)
+    integer(i8), intent(inout) :: nnext
+    integer(i8) :: head, tail, v, w, m, k, i, j, t
+    head = nnext + 1
+    tail = nnext + 1
+    perm(tail) = root
+    g%done(root) = .true.
+    do while (head <= tail)
+       v = perm(head)
+       head = head + 1
+       m = tail
+       do k = g%xadj(v), g%xadj(v + 1) - 1
+          w = g%adj(k)
+          if (g%done(w)) cycle
+          g%done(w) = .true.
+          tail = tail + 1
+          perm(tail) = w
+       end do
+       ! the nodes just added (m+1:tail) in increasing degree (insertion sort)
+       do i = m + 2, tail
+          t = perm(i)
+          j = i - 1
+          do while (j > m)
+             if (g%deg(perm(j)) <= g%deg(t)) exit
+             perm(j + 1) = perm(j)
+             j = j - 1
+          end do
+          perm(j + 1) = t
+       end do
+    end do
+    nnext = tail
+  end subroutine cuthill_mckee
+
+  subroutine pseudo_peripheral(g, s, r)
+    !! r: a pseudo-peripheral node of the component holding s (among the
+    !! nodes not yet numbered).
+    type(rcm_graph_t), intent(inout) :: g
+    integer(i8), intent(in) :: s
+    integer(i8), intent(out) :: r
+    integer(i8) :: ecc, new_ecc, last_first, last_end, u, kk, best
+    integer :: iter
+    integer, parameter :: MAX_SWEEPS = 10
+    ! start from a node of minimum degree in the component
+    call bfs(g, s, ecc, last_first, last_end)
+    r = s
+    do kk = 1, last_end
+       if (g%deg(g%queue(kk)) < g%deg(r)) r = g%queue(kk)
+    end do
+    call bfs(g, r, ecc, last_first, last_end)
+    do iter = 1, MAX_SWEEPS
+       best = g%queue(last_first)
+       do kk = last_first, last_end
+          u = g%queue(kk)
+          if (g%deg(u) < g%deg(best)) best = u
+       end do
+       call bfs(g, best, new_ecc, last_first, last_end)
+       if (new_ecc <= ecc) exit
+       r = best
+       ecc = new_ecc
+    end do
+  end subroutine pseudo_peripheral
+
+  subroutine bfs(g, s, ecc, last_first, last_end)
+    !! Breadth-first search from s over the nodes not yet numbered; queue(1:last_end)
+    !! holds the component, queue(last_first:last_end) its last level; ecc the depth.
+    type(rcm_graph_t), intent(inout) :: g
+    integer(i8), intent(in) :: s
+    integer(i8), intent(out) :: ecc, last_first, last_end
+    integer(i8) :: h, tl, u, kk, x
+    g%level(s) = 0
+    g%queue(1) = s
+    h = 1
+    tl = 1
+    do while (h <= tl)
+       u = g%queue(h)
+       h = h + 1
+       do kk = g%xadj(u), g%xadj(u + 1) - 1
+          x = g%adj(kk)
+          if (g%done(x) .or. g%level(x) >= 0) cycle
+          tl = tl + 1
+          g%queue(tl) = x
+          g%level(x) = g%level(u) + 1
+       end do
+    end do
+    ecc = g%level(g%queue(tl))
+    last_end = tl
+    last_first = tl
+    do while (last_first > 1)
+       if (g%level(g%queue(last_first - 1)) /= ecc) exit
+       last_first = last_first - 1
+    end do
+    do kk = 1, tl
+       g%level(g%queue(kk)) = -1
+    end do
+  end subroutine bfs
 
   subroutine adjacency(a, xadj, adj)
     !! Symmetric adjacency (no self loops) of the upper-triangle pattern of a, CSR:

@@ -116,41 +116,21 @@ contains
     real(wp), intent(out) :: seconds
     integer, intent(out) :: status
     type(comm_t) :: comm
-    integer(i8), allocatable :: mine(:), pairs(:), xadj(:), adj(:), fill(:), mark(:)
-    integer(i8) :: j, pos, k, m, i, v, w, at, n
+    integer(i8), allocatable :: mine(:), pairs(:), xadj(:), adj(:)
+    integer(i8) :: n
     integer(i8) :: t0, t1, rate
-    integer :: stat, worst, first
+    integer :: stat
     logical :: ok, gather
     comm = comm_world()
     gather = gathered .and. comm%size > 1
     n = a%n
     gathered_bytes = 0
     seconds = 0.0_wp
-    status = 0
-    ! the off-diagonal pattern as (row, column) pairs
-    m = 0
-    do j = 1, n
-       m = m + count(a%rowind(a%colptr(j):a%colptr(j + 1) - 1) /= j)
-    end do
-    allocate (mine(PAIR*m), stat=stat)
-    if (gather) then
-       ! the gather is collective: every process must reach it ready
-       call agree(stat, worst, first)
-       stat = worst
-    end if
-    if (stat /= 0) then
-       status = ORDERING_NO_MEMORY
+    call pattern_pairs(a, gather, mine, status)
+    if (status /= 0) then
        allocate (iperm(0))
        return
     end if
-    at = 0
-    do j = 1, n
-       do pos = a%colptr(j), a%colptr(j + 1) - 1
-          if (a%rowind(pos) == j) cycle
-          mine(at + 1:at + PAIR) = [a%rowind(pos), j]
-          at = at + PAIR
-       end do
-    end do
     if (gather) then
        call gather_counts(mine, 0, pairs, ok)
        if (.not. ok) then
@@ -168,15 +148,69 @@ contains
        return
     end if
     call system_clock(t0, rate)
-    ! adjacency in both directions, repeats (entries several terms hold) dropped
-    m = size(pairs, kind=i8)/PAIR
-    allocate (xadj(n + 1), source=0_i8, stat=stat)
-    if (stat == 0) allocate (adj(max(2*m, 1_i8)), fill(n), mark(n), iperm(n), stat=stat)
+    call pair_graph(n, pairs, xadj, adj, stat)
+    if (stat == 0) allocate (iperm(n), stat=stat)
     if (stat /= 0) then
        status = ORDERING_NO_MEMORY
        if (.not. allocated(iperm)) allocate (iperm(0))
        return
     end if
+    if (n > 0) then
+       if (sj_metis_nested_dissection(n, xadj, adj, iperm) /= 0) status = ORDERING_FAILED
+    end if
+    call system_clock(t1)
+    seconds = real(t1 - t0, wp)/real(max(rate, 1_i8), wp)
+  end subroutine host_nested_dissection
+
+  subroutine pattern_pairs(a, gather, mine, status)
+    !! The off-diagonal pattern of a as (row, column) pairs, PAIR integers
+    !! each. status 0 or ORDERING_NO_MEMORY; with gather, the processes agree
+    !! on it first (collective: the gather that follows needs them all).
+    type(sparse_sym_t), intent(in) :: a
+    logical, intent(in) :: gather
+    integer(i8), allocatable, intent(out) :: mine(:)
+    integer, intent(out) :: status
+    integer(i8) :: j, pos, m, at
+    integer :: stat, worst, first
+    status = 0
+    m = 0
+    do j = 1, a%n
+       m = m + count(a%rowind(a%colptr(j):a%colptr(j + 1) - 1) /= j)
+    end do
+    allocate (mine(PAIR*m), stat=stat)
+    if (gather) then
+       ! the gather is collective: every process must reach it ready
+       call agree(stat, worst, first)
+       stat = worst
+    end if
+    if (stat /= 0) then
+       status = ORDERING_NO_MEMORY
+       return
+    end if
+    at = 0
+    do j = 1, a%n
+       do pos = a%colptr(j), a%colptr(j + 1) - 1
+          if (a%rowind(pos) == j) cycle
+          mine(at + 1:at + PAIR) = [a%rowind(pos), j]
+          at = at + PAIR
+       end do
+    end do
+  end subroutine pattern_pairs
+
+  subroutine pair_graph(n, pairs, xadj, adj, stat)
+    !! Adjacency (1-based CSR) of the n nodes joined by pairs (PAIR integers
+    !! each), in both directions, repeats (entries several terms hold)
+    !! dropped; pairs is deallocated. stat: nonzero when an allocation failed.
+    integer(i8), intent(in) :: n
+    integer(i8), allocatable, intent(inout) :: pairs(:)
+    integer(i8), allocatable, intent(out) :: xadj(:), adj(:)
+    integer, intent(out) :: stat
+    integer(i8), allocatable :: fill(:), mark(:)
+    integer(i8) :: m, k, i, j, v, w, pos, at
+    m = size(pairs, kind=i8)/PAIR
+    allocate (xadj(n + 1), source=0_i8, stat=stat)
+    if (stat == 0) allocate (adj(max(2*m, 1_i8)), fill(n), mark(n), stat=stat)
+    if (stat /= 0) return
     do k = 1, m
        i = pairs(PAIR*k - 1)
        j = pairs(PAIR*k)
@@ -211,10 +245,5 @@ contains
        end do
     end do
     xadj(n + 1) = at + 1
-    if (n > 0) then
-       if (sj_metis_nested_dissection(n, xadj, adj, iperm) /= 0) status = ORDERING_FAILED
-    end if
-    call system_clock(t1)
-    seconds = real(t1 - t0, wp)/real(max(rate, 1_i8), wp)
-  end subroutine host_nested_dissection
+  end subroutine pair_graph
 end module superjoin_solvers_mumps_order

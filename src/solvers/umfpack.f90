@@ -122,14 +122,15 @@ module superjoin_solvers_umfpack
        integer(c_long) :: status
      end function umfpack_dl_get_lunz
 
-     function umfpack_dl_get_numeric(lp, lj, lx, up, ui, ux, p, q, dx, do_recip, rs, numeric) &
-          bind(c, name='umfpack_dl_get_numeric') result(status)
-       !! All array arguments are pointers so that the unwanted parts (L, U) can be NULL.
+     function sj_umfpack_get_diagonal(numeric, p, q, dx, do_recip, rs) &
+          bind(c, name='sj_umfpack_get_diagonal') result(status)
+       !! umfpack_dl_get_numeric without L and U (umfpack_shim.c): the
+       !! permutations, the diagonal of U and the row scaling. All array
+       !! arguments are pointers so that the unwanted ones can be NULL.
        import :: c_long, c_ptr
-       type(c_ptr), value :: lp, lj, lx, up, ui, ux, p, q, dx, do_recip, rs
-       type(c_ptr), value :: numeric
+       type(c_ptr), value :: numeric, p, q, dx, do_recip, rs
        integer(c_long) :: status
-     end function umfpack_dl_get_numeric
+     end function sj_umfpack_get_diagonal
   end interface
 
 contains
@@ -274,8 +275,7 @@ contains
     if (n <= 0 .or. .not. c_associated(self%numeric)) return
     if (size(d, kind=i8) < n) return
     allocate (p(n), q(n), dx(n), rs(n))
-    status = umfpack_dl_get_numeric(c_null_ptr, c_null_ptr, c_null_ptr, c_null_ptr, c_null_ptr, &
-         c_null_ptr, c_loc(p), c_loc(q), c_loc(dx), c_loc(do_recip), c_loc(rs), self%numeric)
+    status = sj_umfpack_get_diagonal(self%numeric, c_loc(p), c_loc(q), c_loc(dx), c_loc(do_recip), c_loc(rs))
     if (status /= UMFPACK_OK) return
     do k = 1, n
        if (do_recip /= 0) then
@@ -331,8 +331,7 @@ contains
     col = 0
     if (self%n <= 0 .or. .not. c_associated(self%numeric)) return
     allocate (q(self%n), dx(self%n))
-    if (umfpack_dl_get_numeric(c_null_ptr, c_null_ptr, c_null_ptr, c_null_ptr, c_null_ptr, &
-         c_null_ptr, c_null_ptr, c_loc(q), c_loc(dx), c_null_ptr, c_null_ptr, self%numeric) &
+    if (sj_umfpack_get_diagonal(self%numeric, c_null_ptr, c_loc(q), c_loc(dx), c_null_ptr, c_null_ptr) &
          /= UMFPACK_OK) return
     do k = 1, self%n
        if (dx(k) == 0.0_c_double .or. dx(k) /= dx(k)) then

@@ -48,14 +48,34 @@ contains
     character(*), intent(in) :: solver_name
     type(condensed_t), intent(inout) :: cond
     type(error_t), allocatable, intent(out) :: error
-    real(wp), allocatable :: rhs(:, :), x(:, :), d(:), kd(:)
-    integer(i8) :: ni, nb, j0, j1, nblk, j, pos, r, c
-    integer :: stat
 
+    call split_blocks(model, cond, error)
+    if (allocated(error)) return
+    if (cond%sys%ni == 0) return
+    call factor_interior(model, table, solver_name, cond, error)
+    if (allocated(error)) return
+    call interior_maxratio(cond)
+    call subtract_interior(model, cond, error)
+    if (allocated(error)) return
+    ! Symmetric in exact arithmetic: take the mean of the two triangles.
+    cond%se%k = 0.5_wp*(cond%se%k + transpose(cond%se%k))
+    if (.not. all(ieee_is_finite(cond%se%k))) call fatal_error(error, EXIT_SINGULAR, 'error: the condensed '// &
+         'stiffness of substructure '//model%subs(cond%sys%isub)%name//' overflows the floating-point range: '// &
+         'check the magnitudes and units of the stiffnesses')
+  end subroutine condense
+
+  subroutine split_blocks(model, cond, error)
+    !! k_ii (the first ni columns of cond%sys%k, whose rows are <= ni in the
+    !! upper triangle) into cond%kii, its free DOFs dropped; K* = k_bb, both
+    !! triangles, on the physical boundary DOFs.
+    type(model_t), intent(in) :: model
+    type(condensed_t), intent(inout) :: cond
+    type(error_t), allocatable, intent(out) :: error
+    integer(i8) :: ni, nb, j, pos, r
+    integer :: stat
     ni = cond%sys%ni
     nb = cond%sys%nb
     associate (k => cond%sys%k)
-      ! k_ii: the first ni columns (their rows are <= ni in the upper triangle).
       cond%kii%n = ni
       cond%kii%colptr = k%colptr(1:ni + 1)
       cond%kii%rowind = k%rowind(1:k%colptr(ni + 1) - 1)
@@ -70,7 +90,6 @@ contains
          return
       end if
       cond%se%pdof = cond%sys%pdof(ni + 1:ni + nb)
-      ! k_bb
       cond%se%k = 0.0_wp
       do j = ni + 1, ni + nb
          do pos = k%colptr(j), k%colptr(j + 1) - 1
@@ -80,47 +99,72 @@ contains
             cond%se%k(j - ni, r - ni) = k%val(pos)
          end do
       end do
-      if (ni == 0) return
+    end associate
+  end subroutine split_blocks
 
-      call new_solver(solver_name, ni, cond%solver, error)
-      if (allocated(error)) return
-      call cond%solver%analyze(cond%kii, error)
-      if (allocated(error)) return
-      call cond%solver%factorize(cond%kii, error)
-      if (allocated(error)) then
-         if (error%code == EXIT_SINGULAR) then
-            j = cond%solver%info%failed_column
-            deallocate (error)
-            if (j >= 1 .and. j <= ni) then
-               call fatal_error(error, EXIT_SINGULAR, 'error: the structure cannot be solved: '// &
-                    'mechanism inside condensed '//dof_label(model, table, cond%sys%pdof(j))// &
-                    ' (the substructure moves with its boundary held)')
-            else
-               call fatal_error(error, EXIT_SINGULAR, 'error: the structure cannot be solved: the interior '// &
-                    'stiffness of condensed substructure '//model%subs(cond%sys%isub)%name//' is singular')
-            end if
-         end if
-         return
-      end if
-      ! MAXRATIO of the interior factor.
-      allocate (d(ni), kd(ni))
-      call cond%solver%pivots(d)
-      call cond%kii%diagonal(kd)
-      do j = 1, ni
-         if (d(j) == 0.0_wp) cycle
-         if (abs(kd(j)/d(j)) > cond%maxratio) then
-            cond%maxratio = abs(kd(j)/d(j))
-            cond%maxratio_at = j
-         end if
-      end do
+  subroutine factor_interior(model, table, solver_name, cond, error)
+    !! cond%solver: the factor of k_ii; a breakdown (EXIT_SINGULAR) names the
+    !! node and DOF of the failed column, or the substructure.
+    type(model_t), intent(in) :: model
+    type(dof_table_t), intent(in) :: table
+    character(*), intent(in) :: solver_name
+    type(condensed_t), intent(inout) :: cond
+    type(error_t), allocatable, intent(out) :: error
+    integer(i8) :: j
+    call new_solver(solver_name, cond%sys%ni, cond%solver, error)
+    if (allocated(error)) return
+    call cond%solver%analyze(cond%kii, error)
+    if (allocated(error)) return
+    call cond%solver%factorize(cond%kii, error)
+    if (.not. allocated(error)) return
+    if (error%code /= EXIT_SINGULAR) return
+    j = cond%solver%info%failed_column
+    deallocate (error)
+    if (j >= 1 .and. j <= cond%sys%ni) then
+       call fatal_error(error, EXIT_SINGULAR, 'error: the structure cannot be solved: '// &
+            'mechanism inside condensed '//dof_label(model, table, cond%sys%pdof(j))// &
+            ' (the substructure moves with its boundary held)')
+    else
+       call fatal_error(error, EXIT_SINGULAR, 'error: the structure cannot be solved: the interior '// &
+            'stiffness of condensed substructure '//model%subs(cond%sys%isub)%name//' is singular')
+    end if
+  end subroutine factor_interior
 
-      ! K* -= k_ibᵀ k_ii⁻¹ k_ib, RHS_BLOCK boundary columns at a time.
-      allocate (rhs(ni, min(RHS_BLOCK, max(nb, 1_i8))), x(ni, min(RHS_BLOCK, max(nb, 1_i8))), stat=stat)
-      if (stat /= 0) then
-         call out_of_memory(error, 'the condensation of substructure '//model%subs(cond%sys%isub)%name, &
-              2*ni*RHS_BLOCK*BYTES_REAL)
-         return
-      end if
+  subroutine interior_maxratio(cond)
+    !! MAXRATIO of the interior factor: max k_jj / D_jj and its local DOF.
+    type(condensed_t), intent(inout) :: cond
+    real(wp), allocatable :: d(:), kd(:)
+    integer(i8) :: j, ni
+    ni = cond%sys%ni
+    allocate (d(ni), kd(ni))
+    call cond%solver%pivots(d)
+    call cond%kii%diagonal(kd)
+    do j = 1, ni
+       if (d(j) == 0.0_wp) cycle
+       if (abs(kd(j)/d(j)) > cond%maxratio) then
+          cond%maxratio = abs(kd(j)/d(j))
+          cond%maxratio_at = j
+       end if
+    end do
+  end subroutine interior_maxratio
+
+  subroutine subtract_interior(model, cond, error)
+    !! K* -= k_ibᵀ k_ii⁻¹ k_ib, RHS_BLOCK boundary columns at a time.
+    type(model_t), intent(in) :: model
+    type(condensed_t), intent(inout) :: cond
+    type(error_t), allocatable, intent(out) :: error
+    real(wp), allocatable :: rhs(:, :), x(:, :)
+    integer(i8) :: ni, nb, j0, j1, nblk, pos, r, c
+    integer :: stat
+    ni = cond%sys%ni
+    nb = cond%sys%nb
+    allocate (rhs(ni, min(RHS_BLOCK, max(nb, 1_i8))), x(ni, min(RHS_BLOCK, max(nb, 1_i8))), stat=stat)
+    if (stat /= 0) then
+       call out_of_memory(error, 'the condensation of substructure '//model%subs(cond%sys%isub)%name, &
+            2*ni*RHS_BLOCK*BYTES_REAL)
+       return
+    end if
+    associate (k => cond%sys%k)
       do j0 = 1, nb, RHS_BLOCK
          j1 = min(nb, j0 + RHS_BLOCK - 1)
          nblk = j1 - j0 + 1
@@ -135,21 +179,10 @@ contains
          call cond%solver%solve(rhs(:, 1:nblk), x(:, 1:nblk), error)
          if (allocated(error)) return
          ! K*(:, j0:j1) -= k_ibᵀ x
-         do j = 1, nb
-            do pos = k%colptr(ni + j), k%colptr(ni + j + 1) - 1
-               r = k%rowind(pos)
-               if (r > ni) exit
-               cond%se%k(j, j0:j1) = cond%se%k(j, j0:j1) - k%val(pos)*x(r, 1:nblk)
-            end do
-         end do
+         call sub_kbi(k, ni, nb, x(:, 1:nblk), cond%se%k(:, j0:j1))
       end do
     end associate
-    ! Symmetric in exact arithmetic: take the mean of the two triangles.
-    cond%se%k = 0.5_wp*(cond%se%k + transpose(cond%se%k))
-    if (.not. all(ieee_is_finite(cond%se%k))) call fatal_error(error, EXIT_SINGULAR, 'error: the condensed '// &
-         'stiffness of substructure '//model%subs(cond%sys%isub)%name//' overflows the floating-point range: '// &
-         'check the magnitudes and units of the stiffnesses')
-  end subroutine condense
+  end subroutine subtract_interior
 
   subroutine drop_free_interior(cond)
     !! Interior DOFs that no element stiffens (no nonzero in their row or

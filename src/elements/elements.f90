@@ -17,7 +17,8 @@ module superjoin_elements
   use superjoin_elements_edge_load, only: plane_edge_load
   use superjoin_elements_thermal, only: thermal_axial_load, thermal_plate_load
   use superjoin_elements_thermal, only: thermal_plane_nodal_load, thermal_beam_load
-  use superjoin_model_types, only: dload_t, DLOAD_CENTRIF
+  use superjoin_model_types, only: dload_t, DLOAD_CENTRIF, model_t, ELEMENT_NODE_COUNT, DLOAD_GRAV
+  use superjoin_elements_drill_mask, only: element_drill
   use superjoin_elements_centrif, only: centrif_load
   use superjoin_elements_shell8_loads, only: s8r_is_tapered, s8r_gravity_load, s8r_thermal_load, s8r_centrif_load
   use superjoin_elements_frame, only: beam_frame
@@ -33,7 +34,7 @@ module superjoin_elements
 
   public :: element_node_dofs, element_dof_mask, element_stiffness, element_end_forces, beam_distributed_load, &
        element_nodal_forces, element_distributed_load, element_gravity_load
-  public :: element_material_load
+  public :: element_material_load, distributed_load
   public :: is_plate_type, shell_resultants, shell_forces
   public :: is_plane_type, is_plane_strain_type
     !! is_plane_type(etype): plane stress and plane strain types (CPS*, CPE*);
@@ -404,6 +405,34 @@ contains
        call fatal_error(error, EXIT_DECK, 'unknown distributed load kind')
     end select
   end subroutine element_material_load
+
+  subroutine distributed_load(model, dl, fe, q_local, error)
+    !! Nodal loads (global axes, element ordering) and local load of one
+    !! distributed load of the model: PX/PY/PZ, P, GRAV, CENTRIF or TEMP.
+    type(model_t), intent(in) :: model
+    type(dload_t), intent(in) :: dl
+    real(wp), allocatable, intent(out) :: fe(:)
+    real(wp), intent(out) :: q_local(3)
+    type(error_t), allocatable, intent(out) :: error
+    integer :: nn
+    associate (s => model%subs(dl%sub))
+      nn = ELEMENT_NODE_COUNT(s%elem_type(dl%elem))
+      associate (sec => s%sections(s%elem_section(dl%elem)))
+        if (dl%kind == DLOAD_GRAV) then
+           call element_gravity_load(s%elem_type(dl%elem), s%x(:, s%elem_nodes(1:nn, dl%elem)), sec, &
+                model%materials(sec%material), dl%value*dl%dir, fe, q_local, error)
+        else if (dl%kind == DLOAD_CENTRIF .or. (dl%kind == DLOAD_THERMAL .and. (is_plate_type(s%elem_type(dl%elem)) &
+             .or. any(dl%gradient /= 0.0_wp) .or. allocated(dl%line_nodal)))) then   ! TEMP: a beam with a gradient, a B32 need E I
+           q_local = 0.0_wp   ! CENTRIF on a bar or beam: its end forces take fe itself (superjoin_analysis_recover)
+           call element_material_load(s%elem_type(dl%elem), s%x(:, s%elem_nodes(1:nn, dl%elem)), sec, &
+                model%materials(sec%material), dl, fe, error, element_drill(s, dl%elem))
+        else
+           call element_distributed_load(s%elem_type(dl%elem), s%x(:, s%elem_nodes(1:nn, dl%elem)), sec, &
+                dl%kind, dl%value, fe, q_local, error)
+        end if
+      end associate
+    end associate
+  end subroutine distributed_load
 
   pure subroutine unsupported(etype, error)
     !! Error for an element type without an implementation.

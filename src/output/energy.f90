@@ -19,7 +19,7 @@ module superjoin_output_energy
        LINK_FINITE, loc_text, DLOAD_THERMAL, support_t
   use superjoin_elements, only: element_dof_mask, element_stiffness
   use superjoin_elements_drill_mask, only: element_drill
-  use superjoin_assembly_assemble, only: distributed_load
+  use superjoin_elements, only: distributed_load
   use superjoin_model_results, only: result_fields_t
   use superjoin_output_text_buffer, only: text_buffer_t
   use superjoin_output_columns, only: element_prefix, chop

@@ -25,7 +25,12 @@ module superjoin_elements
   use superjoin_elements_truss, only: truss_stiffness, truss_end_forces, truss_distributed_load
   use superjoin_elements_beam, only: beam_stiffness, beam_end_forces, beam_load
   use superjoin_elements_beam3, only: beam3_stiffness, beam3_end_forces, beam3_nodal_forces, beam3_load
-  use superjoin_elements_beam3, only: beam3_thermal_load
+  use superjoin_elements_beam3, only: beam3_thermal_load, beam3_thermal_end_forces
+  use superjoin_elements_thermal, only: thermal_plate_resultants, thermal_beam_end_forces, plane_centroid_remainder
+  use superjoin_elements_shell8_loads, only: s8r_thermal_resultants
+  use superjoin_elements_shell, only: shell_thermal_nodal_resultants
+  use superjoin_elements_stresses, only: NTENSOR, element_state_t, element_state, element_displacements, &
+       element_stresses, element_tensor
   use superjoin_elements_shell, only: shell_thermal_nodal_load
   use superjoin_elements_shell, only: is_plate_type, is_plane_type, is_plane_strain_type, shell_stiffness, shell_resultants, shell_pressure_load, &
        shell_area_load, shell_forces
@@ -35,6 +40,14 @@ module superjoin_elements
   public :: element_node_dofs, element_dof_mask, element_stiffness, element_end_forces, beam_distributed_load, &
        element_nodal_forces, element_distributed_load, element_gravity_load
   public :: element_material_load, distributed_load
+  public :: take_thermal_resultants, element_thermal_end_forces, element_drill, plane_centroid_remainder
+    !! element_drill(sub, e): the drilling edge mask of element e of sub
+    !! (superjoin_elements_drill_mask); plane_centroid_remainder(etype, x,
+    !! nodal): the centroid value of a plane element's nodal thermal remainders
+    !! (superjoin_elements_thermal).
+  public :: NTENSOR, element_state_t, element_state, element_displacements, element_stresses, element_tensor
+    !! The stresses and strains of one element of a solved step: see
+    !! superjoin_elements_stresses.
   public :: is_plate_type, shell_resultants, shell_forces
   public :: is_plane_type, is_plane_strain_type
     !! is_plane_type(etype): plane stress and plane strain types (CPS*, CPE*);
@@ -433,6 +446,74 @@ contains
       end associate
     end associate
   end subroutine distributed_load
+
+  pure subroutine take_thermal_resultants(etype, x, sec, mat, th, plate, tn, cn, drill)
+    !! Take the resultants of the free thermal expansion th(1:2, step) off the
+    !! resultants plate(6, step) of a plane or shell element (N = D (ε - ε0));
+    !! tn(:, step): the nodal remainders of a varying temperature (plane and
+    !! shell elements, plane_thermal_nodal), cn(:, step) those of the
+    !! gradient of a shell (shell_thermal_curvature_nodal), if any; drill:
+    !! the shell's drilling edge mask.
+    integer, intent(in) :: etype
+    real(wp), intent(in) :: x(:, :)
+    type(section_t), intent(in) :: sec
+    type(material_t), intent(in) :: mat
+    real(wp), intent(in) :: th(:, :)
+    real(wp), intent(inout) :: plate(:, :)
+    real(wp), intent(in), optional :: tn(:, :), cn(:, :)
+    integer, intent(in), optional :: drill
+    real(wp) :: res0(6), rem(2, size(x, 2))
+    type(error_t), allocatable :: error
+    integer :: is, n
+    logical :: varying
+    n = size(x, 2)
+    do is = 1, size(th, 2)
+       rem = 0.0_wp
+       if (present(tn)) rem(1, :) = tn(1:n, is)
+       if (present(cn)) rem(2, :) = cn(1:n, is)
+       varying = any(rem /= 0.0_wp)
+       if (all(th(:, is) == 0.0_wp) .and. .not. varying) cycle
+       ! an element that cannot be evaluated has been reported by shell_forces
+       if (etype == ET_S8R) then
+          if (varying) then
+             call s8r_thermal_resultants(sec, mat, th(1, is), th(2, is), res0, rem)
+          else
+             call s8r_thermal_resultants(sec, mat, th(1, is), th(2, is), res0)
+          end if
+       else if (present(tn)) then
+          call thermal_plate_resultants(etype, x, sec, mat, th(1, is), th(2, is), res0, error, tn(1:n, is))
+          if (allocated(error)) return
+       else
+          call thermal_plate_resultants(etype, x, sec, mat, th(1, is), th(2, is), res0, error)
+          if (allocated(error)) return
+       end if
+       plate(:, is) = plate(:, is) - res0
+       if (etype == ET_S8R .or. is_plane_type(etype) .or. .not. varying) cycle
+       ! a shell whose temperature varies: the nodal remainders, interpolated
+       call shell_thermal_nodal_resultants(etype, x, sec, mat, rem(1, :), rem(2, :), res0, error, drill)
+       if (allocated(error)) return
+       plate(:, is) = plate(:, is) - res0
+    end do
+  end subroutine take_thermal_resultants
+
+  pure subroutine element_thermal_end_forces(etype, x, sec, mat, dl, f, error)
+    !! The end forces f(6, 2) (local axes) of a thermal load dl on a bar or
+    !! beam that its end forces K u - f_eq take off: the free thermal bending
+    !! of a beam with a gradient across its section, the whole thermal load of
+    !! a B32 (given by its nodal values dl%line_nodal).
+    integer, intent(in) :: etype
+    real(wp), intent(in) :: x(:, :)
+    type(section_t), intent(in) :: sec
+    type(material_t), intent(in) :: mat
+    type(dload_t), intent(in) :: dl
+    real(wp), intent(out) :: f(6, 2)
+    type(error_t), allocatable, intent(out) :: error
+    if (allocated(dl%line_nodal)) then   ! a B32: its whole thermal load
+       call beam3_thermal_end_forces(x, sec, mat, dl%line_nodal, f, error)
+    else
+       call thermal_beam_end_forces(etype, x, sec, mat, dl%gradient, f, error)
+    end if
+  end subroutine element_thermal_end_forces
 
   pure subroutine unsupported(etype, error)
     !! Error for an element type without an implementation.

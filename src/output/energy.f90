@@ -17,8 +17,7 @@ module superjoin_output_energy
   use superjoin_error, only: error_t, add_error_line, EXIT_DECK
   use superjoin_model_types, only: model_t, output_request_t, NDOF_NODE, ELEMENT_NODE_COUNT, &
        LINK_FINITE, loc_text, DLOAD_THERMAL, support_t
-  use superjoin_elements, only: element_dof_mask, element_stiffness
-  use superjoin_elements_drill_mask, only: element_drill
+  use superjoin_elements, only: element_stiffness, element_drill, element_displacements
   use superjoin_elements, only: distributed_load
   use superjoin_model_results, only: result_fields_t
   use superjoin_output_text_buffer, only: text_buffer_t
@@ -40,36 +39,9 @@ module superjoin_output_energy
      character(:), allocatable :: no_balance  !! why the balance does not apply to this step (unallocated: it does)
   end type energy_t
 
-  public :: compute_energies, element_displacements, write_energy_request, requests_name
+  public :: compute_energies, write_energy_request, requests_name
 
 contains
-
-  subroutine element_displacements(model, fields, is, isub, ie, ue)
-    !! The DOF values of one element in step `is`, global axes, in the element
-    !! ordering of element_stiffness (node-major, element_node_dofs order).
-    type(model_t), intent(in) :: model
-    type(result_fields_t), intent(in) :: fields
-    integer, intent(in) :: is, isub
-    integer(ip), intent(in) :: ie
-    real(wp), allocatable, intent(out) :: ue(:)
-    logical :: mask(NDOF_NODE)
-    integer :: a, d, nn, k
-    integer(i8) :: vx
-    associate (sub => model%subs(isub))
-      mask = element_dof_mask(sub%elem_type(ie))
-      nn = ELEMENT_NODE_COUNT(sub%elem_type(ie))
-      allocate (ue(nn*count(mask)))
-      k = 0
-      do a = 1, nn
-         vx = fields%vertex_offset(isub) + sub%elem_nodes(a, ie)
-         do d = 1, NDOF_NODE
-            if (.not. mask(d)) cycle
-            k = k + 1
-            ue(k) = fields%u(NDOF_NODE*(vx - 1) + d, is)
-         end do
-      end do
-    end associate
-  end subroutine element_displacements
 
   subroutine compute_energies(model, fields, is, en, error)
     !! Every strain energy of step `is` and both sides of the balance.

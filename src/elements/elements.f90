@@ -5,7 +5,8 @@ module superjoin_elements
   !! Ordering of element vectors and matrices: node-major; the DOFs of one node
   !! in the order of element_node_dofs. Errors come back as error_t (code
   !! EXIT_DECK) with a message without file:line; the caller prefixes it.
-  use superjoin_kinds, only: wp
+  use superjoin_kinds, only: wp, ip
+  use superjoin_model_results, only: result_fields_t
   use superjoin_error, only: error_t, fatal_error, EXIT_DECK
   use superjoin_model_types, only: section_t, material_t, ET_T2D2, ET_T3D2, ET_B23, ET_B33, &
        ET_CPS3, ET_CPS4, ET_S3, ET_S4, ET_B21, ET_B31, ET_CPE3, ET_CPE4, NUM_ELEMENT_TYPES, ELEMENT_TYPE_NAMES, &
@@ -46,6 +47,7 @@ module superjoin_elements
     !! nodal): the centroid value of a plane element's nodal thermal remainders
     !! (superjoin_elements_thermal).
   public :: NTENSOR, element_state_t, element_state, element_displacements, element_stresses, element_tensor
+  public :: element_strain_energy
     !! The stresses and strains of one element of a solved step: see
     !! superjoin_elements_stresses.
   public :: is_plate_type, shell_resultants, shell_forces
@@ -514,6 +516,31 @@ contains
        call thermal_beam_end_forces(etype, x, sec, mat, dl%gradient, f, error)
     end if
   end subroutine element_thermal_end_forces
+
+  subroutine element_strain_energy(model, fields, is, isub, ie, energy, error)
+    !! The strain energy ½ u_eᵀ K_e u_e of element ie of substructure isub in
+    !! step is (K_e: element_stiffness with the element's drilling mask);
+    !! errors as element_stiffness.
+    type(model_t), intent(in) :: model
+    type(result_fields_t), intent(in) :: fields
+    integer, intent(in) :: is, isub
+    integer(ip), intent(in) :: ie
+    real(wp), intent(out) :: energy
+    type(error_t), allocatable, intent(out) :: error
+    real(wp), allocatable :: ke(:, :), ue(:)
+    integer :: nn
+    energy = 0.0_wp
+    associate (sub => model%subs(isub))
+      nn = ELEMENT_NODE_COUNT(sub%elem_type(ie))
+      associate (sec => sub%sections(sub%elem_section(ie)))
+        call element_stiffness(sub%elem_type(ie), sub%x(:, sub%elem_nodes(1:nn, ie)), sec, &
+             model%materials(sec%material), ke, error, element_drill(sub, ie))
+      end associate
+    end associate
+    if (allocated(error)) return
+    call element_displacements(model, fields, is, isub, ie, ue)
+    energy = 0.5_wp*dot_product(ue, matmul(ke, ue))
+  end subroutine element_strain_energy
 
   pure subroutine unsupported(etype, error)
     !! Error for an element type without an implementation.

@@ -1,6 +1,7 @@
 module superjoin_output_energy
   !! Strain energies of a solved step (output variable ENER of *EL PRINT and
-  !! *EL FILE): per element ½ u_eᵀ K_e u_e, per substructure (part) the sum of
+  !! *EL FILE): per element ½ u_eᵀ K_e u_e (the element facade's
+  !! element_strain_energy), per substructure (part) the sum of
   !! its elements, per contact element ½ Σ F·δ over its DOFs (½ g δ² for a
   !! finite DOF; a RIGID DOF has δ = 0 and no energy), per *CONTACT card the sum
   !! of its contact elements, and the spring supports ½ g u².
@@ -15,9 +16,9 @@ module superjoin_output_energy
   !! consistency; it is printed relative to the larger side.
   use superjoin_kinds, only: wp, i8, ip
   use superjoin_error, only: error_t, add_error_line, EXIT_DECK
-  use superjoin_model_types, only: model_t, output_request_t, NDOF_NODE, ELEMENT_NODE_COUNT, &
+  use superjoin_model_types, only: model_t, output_request_t, NDOF_NODE, &
        LINK_FINITE, loc_text, DLOAD_THERMAL, support_t
-  use superjoin_elements, only: element_stiffness, element_drill, element_displacements
+  use superjoin_elements, only: element_strain_energy, element_displacements
   use superjoin_elements, only: distributed_load
   use superjoin_model_results, only: result_fields_t
   use superjoin_output_text_buffer, only: text_buffer_t
@@ -51,9 +52,9 @@ contains
     type(energy_t), intent(out) :: en
     type(error_t), allocatable, intent(out) :: error
     type(error_t), allocatable :: inner
-    real(wp), allocatable :: ke(:, :), ue(:), fe(:)
+    real(wp), allocatable :: ue(:), fe(:)
     real(wp) :: ql(3)
-    integer :: isub, il, k, nn
+    integer :: isub, il, k
     integer(ip) :: e
     integer(i8) :: iel
 
@@ -64,18 +65,12 @@ contains
        associate (sub => model%subs(isub))
          do e = 1, sub%nelem
             if (sub%elem_section(e) <= 0) cycle
-            nn = ELEMENT_NODE_COUNT(sub%elem_type(e))
-            associate (sec => sub%sections(sub%elem_section(e)))
-              call element_stiffness(sub%elem_type(e), sub%x(:, sub%elem_nodes(1:nn, e)), sec, &
-                   model%materials(sec%material), ke, inner, element_drill(sub, e))
-            end associate
+            iel = fields%elem_offset(isub) + e
+            call element_strain_energy(model, fields, is, isub, e, en%element(iel), inner)
             if (allocated(inner)) then
                call add_error_line(error, EXIT_DECK, loc_text(model, sub%elem_loc(e))//': error: '//inner%message)
                return
             end if
-            call element_displacements(model, fields, is, isub, e, ue)
-            iel = fields%elem_offset(isub) + e
-            en%element(iel) = 0.5_wp*dot_product(ue, matmul(ke, ue))
             en%part(isub) = en%part(isub) + en%element(iel)
          end do
        end associate

@@ -9,8 +9,7 @@ module superjoin_analysis_body_loads
   use superjoin_error, only: error_t
   use superjoin_model_types, only: model_t, DLOAD_THERMAL, DLOAD_CENTRIF, &
        ELEMENT_NODE_COUNT, combination_t
-  use superjoin_elements, only: is_plate_type, element_material_load, element_node_dofs, beam_frame, &
-       element_thermal_end_forces, element_drill
+  use superjoin_elements, only: is_plate_type, element_thermal_end_forces, element_centrif_end_forces
   use superjoin_model_types, only: MAX_ELEMENT_NODES
   implicit none (type, external)
   private
@@ -133,10 +132,8 @@ contains
     integer(i8), intent(in) :: elem_offset(:)
     integer, intent(in) :: nstep
     real(wp), allocatable, intent(out) :: f0(:, :, :, :)
-    real(wp), allocatable :: fe(:)
-    real(wp) :: r(3, 3), length, g(6)
-    integer, allocatable :: dofs(:)
-    integer :: is, i, a, nn, nd, etype
+    real(wp) :: f(6, 2)
+    integer :: is, i, nn, etype
     integer(i8) :: ie
     type(error_t), allocatable :: error
     do is = 1, nstep
@@ -149,22 +146,13 @@ contains
             nn = ELEMENT_NODE_COUNT(etype)
             associate (sec => s%sections(s%elem_section(dl%elem)))
               ! errors were reported when the loads were assembled
-              call element_material_load(etype, s%x(:, s%elem_nodes(1:nn, dl%elem)), sec, &
-                   model%materials(sec%material), dl, fe, error, element_drill(s, dl%elem))
-              if (allocated(error)) cycle
-              call beam_frame(etype, s%x(:, s%elem_nodes(1:nn, dl%elem)), sec, r, length, error)
+              call element_centrif_end_forces(etype, s%x(:, s%elem_nodes(1:nn, dl%elem)), sec, &
+                   model%materials(sec%material), dl, f, error)
               if (allocated(error)) cycle
             end associate
             if (.not. allocated(f0)) allocate (f0(6, 2, elem_offset(size(elem_offset)), nstep), source=0.0_wp)
-            dofs = element_node_dofs(etype)
-            nd = size(dofs)
             ie = elem_offset(dl%sub) + dl%elem
-            do a = 1, 2
-               g = 0.0_wp
-               g(dofs) = fe(nd*(a - 1) + 1:nd*a)
-               f0(1:3, a, ie, is) = f0(1:3, a, ie, is) + matmul(r, g(1:3))
-               f0(4:6, a, ie, is) = f0(4:6, a, ie, is) + matmul(r, g(4:6))
-            end do
+            f0(:, :, ie, is) = f0(:, :, ie, is) + f
           end associate
        end do
     end do

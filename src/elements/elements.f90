@@ -1,6 +1,10 @@
 module superjoin_elements
   !! Element library facade: DOFs per node, stiffness in global axes, end forces
-  !! and distributed loads of every element type (ET_* in superjoin_model_types).
+  !! and distributed loads of every element type (ET_* in superjoin_model_types),
+  !! and what the analysis and the output ask of one element of a solved step
+  !! (thermal resultants and end forces, stresses, strains, strain energy).
+  !! The rest of the program asks this module (or the traits table,
+  !! superjoin_elements_traits), not the element modules behind it.
   !!
   !! Ordering of element vectors and matrices: node-major; the DOFs of one node
   !! in the order of element_node_dofs. Errors come back as error_t (code
@@ -41,15 +45,16 @@ module superjoin_elements
   public :: element_node_dofs, element_dof_mask, element_stiffness, element_end_forces, beam_distributed_load, &
        element_nodal_forces, element_distributed_load, element_gravity_load
   public :: element_material_load, distributed_load
-  public :: take_thermal_resultants, element_thermal_end_forces, element_drill, plane_centroid_remainder
+  public :: take_thermal_resultants, element_thermal_end_forces, element_centrif_end_forces
+  public :: element_drill, plane_centroid_remainder
     !! element_drill(sub, e): the drilling edge mask of element e of sub
     !! (superjoin_elements_drill_mask); plane_centroid_remainder(etype, x,
     !! nodal): the centroid value of a plane element's nodal thermal remainders
     !! (superjoin_elements_thermal).
   public :: NTENSOR, element_state_t, element_state, element_displacements, element_stresses, element_tensor
-  public :: element_strain_energy
     !! The stresses and strains of one element of a solved step: see
     !! superjoin_elements_stresses.
+  public :: element_strain_energy
   public :: is_plate_type, shell_resultants, shell_forces
   public :: is_plane_type, is_plane_strain_type
     !! is_plane_type(etype): plane stress and plane strain types (CPS*, CPE*);
@@ -516,6 +521,36 @@ contains
        call thermal_beam_end_forces(etype, x, sec, mat, dl%gradient, f, error)
     end if
   end subroutine element_thermal_end_forces
+
+  pure subroutine element_centrif_end_forces(etype, x, sec, mat, dl, f, error)
+    !! The consistent nodal loads of a centrifugal load dl on a bar or beam in
+    !! its local axes, per end: f(1:6, end) (what its end forces K u - f_eq
+    !! take off).
+    integer, intent(in) :: etype
+    real(wp), intent(in) :: x(:, :)
+    type(section_t), intent(in) :: sec
+    type(material_t), intent(in) :: mat
+    type(dload_t), intent(in) :: dl
+    real(wp), intent(out) :: f(6, 2)
+    type(error_t), allocatable, intent(out) :: error
+    real(wp), allocatable :: fe(:)
+    real(wp) :: r(3, 3), length, g(6)
+    integer, allocatable :: dofs(:)
+    integer :: a, nd
+    f = 0.0_wp
+    call element_material_load(etype, x, sec, mat, dl, fe, error)
+    if (allocated(error)) return
+    call beam_frame(etype, x, sec, r, length, error)
+    if (allocated(error)) return
+    dofs = element_node_dofs(etype)
+    nd = size(dofs)
+    do a = 1, 2
+       g = 0.0_wp
+       g(dofs) = fe(nd*(a - 1) + 1:nd*a)
+       f(1:3, a) = matmul(r, g(1:3))
+       f(4:6, a) = matmul(r, g(4:6))
+    end do
+  end subroutine element_centrif_end_forces
 
   subroutine element_strain_energy(model, fields, is, isub, ie, energy, error)
     !! The strain energy ½ u_eᵀ K_e u_e of element ie of substructure isub in

@@ -232,7 +232,7 @@ contains
     type(frame_stresses_t), intent(inout) :: fs
     type(error_t), allocatable, intent(out) :: error
     real(wp) :: xl(2, size(el%x, 2)), h(size(el%x, 2))
-    real(wp), allocatable :: ul(:), sp(:, :), sn(:, :), e0(:)
+    real(wp), allocatable :: ul(:), sp(:, :), sn(:, :)
     type(initial_strain_t) :: eps0
     integer :: a, nn
     logical :: varying
@@ -247,16 +247,14 @@ contains
     varying = .false.
     if (allocated(el%thermal_nodal)) varying = any(el%thermal_nodal /= 0.0_wp)
     if (varying) then   ! loads: the nodal remainder of the temperature, interpolated to the points
-       call plane_initial_strains(el%etype, el%mat%nu, el%thermal_nodal, e0)
+       call plane_initial_strains(el%etype, el%mat%nu, el%thermal_nodal, eps0%nodal)
        if (t%quadratic) then
-          call quadratic_point_stresses(xl, quadratic_props(el%etype, el%sec, el%mat), ul, sp, sn, error, &
-               e0, fs%e0p, fs%e0n)
+          call quadratic_point_stresses(xl, quadratic_props(el%etype, el%sec, el%mat), ul, sp, sn, error, eps0)
        else
-          eps0%nodal = e0
           call membrane_point_stresses(xl, el%mat%e, el%mat%nu, t%plane_strain, ul, sp, sn, error, eps0)
-          if (allocated(eps0%points)) call move_alloc(eps0%points, fs%e0p)
-          if (allocated(eps0%nodes)) call move_alloc(eps0%nodes, fs%e0n)
        end if
+       if (allocated(eps0%points)) call move_alloc(eps0%points, fs%e0p)
+       if (allocated(eps0%nodes)) call move_alloc(eps0%nodes, fs%e0n)
     else if (t%quadratic) then
        call quadratic_point_stresses(xl, quadratic_props(el%etype, el%sec, el%mat), ul, sp, sn, error)
     else

@@ -9,7 +9,7 @@ module superjoin_analysis_body_loads
   use superjoin_error, only: error_t
   use superjoin_model_types, only: model_t, DLOAD_THERMAL, DLOAD_CENTRIF, &
        ELEMENT_NODE_COUNT, combination_t
-  use superjoin_elements, only: is_plate_type, element_thermal_end_forces, element_centrif_end_forces
+  use superjoin_elements, only: is_plate_type, element_body_end_forces
   use superjoin_model_types, only: MAX_ELEMENT_NODES
   implicit none (type, external)
   private
@@ -112,7 +112,7 @@ contains
             nn = ELEMENT_NODE_COUNT(etype)
             associate (sec => s%sections(s%elem_section(dl%elem)))
               ! errors were reported when the loads were assembled
-              call element_thermal_end_forces(etype, s%x(:, s%elem_nodes(1:nn, dl%elem)), sec, &
+              call element_body_end_forces(etype, s%x(:, s%elem_nodes(1:nn, dl%elem)), sec, &
                    model%materials(sec%material), dl, f, error)
               if (allocated(error)) cycle
             end associate
@@ -146,7 +146,7 @@ contains
             nn = ELEMENT_NODE_COUNT(etype)
             associate (sec => s%sections(s%elem_section(dl%elem)))
               ! errors were reported when the loads were assembled
-              call element_centrif_end_forces(etype, s%x(:, s%elem_nodes(1:nn, dl%elem)), sec, &
+              call element_body_end_forces(etype, s%x(:, s%elem_nodes(1:nn, dl%elem)), sec, &
                    model%materials(sec%material), dl, f, error)
               if (allocated(error)) cycle
             end associate

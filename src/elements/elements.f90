@@ -45,7 +45,7 @@ module superjoin_elements
   public :: element_node_dofs, element_dof_mask, element_stiffness, element_end_forces, beam_distributed_load, &
        element_nodal_forces, element_distributed_load, element_gravity_load
   public :: element_material_load, distributed_load
-  public :: take_thermal_resultants, element_thermal_end_forces, element_centrif_end_forces
+  public :: take_thermal_resultants, element_body_end_forces
   public :: element_drill, plane_centroid_remainder
     !! element_drill(sub, e): the drilling edge mask of element e of sub
     !! (superjoin_elements_drill_mask); plane_centroid_remainder(etype, x,
@@ -503,29 +503,13 @@ contains
     end do
   end subroutine take_thermal_resultants
 
-  pure subroutine element_thermal_end_forces(etype, x, sec, mat, dl, f, error)
-    !! The end forces f(6, 2) (local axes) of a thermal load dl on a bar or
-    !! beam that its end forces K u - f_eq take off: the free thermal bending
-    !! of a beam with a gradient across its section, the whole thermal load of
-    !! a B32 (given by its nodal values dl%line_nodal).
-    integer, intent(in) :: etype
-    real(wp), intent(in) :: x(:, :)
-    type(section_t), intent(in) :: sec
-    type(material_t), intent(in) :: mat
-    type(dload_t), intent(in) :: dl
-    real(wp), intent(out) :: f(6, 2)
-    type(error_t), allocatable, intent(out) :: error
-    if (allocated(dl%line_nodal)) then   ! a B32: its whole thermal load
-       call beam3_thermal_end_forces(x, sec, mat, dl%line_nodal, f, error)
-    else
-       call thermal_beam_end_forces(etype, x, sec, mat, dl%gradient, f, error)
-    end if
-  end subroutine element_thermal_end_forces
-
-  pure subroutine element_centrif_end_forces(etype, x, sec, mat, dl, f, error)
-    !! The consistent nodal loads of a centrifugal load dl on a bar or beam in
-    !! its local axes, per end: f(1:6, end) (what its end forces K u - f_eq
-    !! take off).
+  pure subroutine element_body_end_forces(etype, x, sec, mat, dl, f, error)
+    !! The end forces f(6, 2) (local axes, per end) of a body load dl on a
+    !! bar or beam that its end forces K u - f_eq take off: DLOAD_THERMAL, the
+    !! free thermal bending of a beam with a gradient across its section, or
+    !! the whole thermal load of a B32 (given by its nodal values
+    !! dl%line_nodal); DLOAD_CENTRIF, the consistent nodal loads of the
+    !! centrifugal load in the element's local axes.
     integer, intent(in) :: etype
     real(wp), intent(in) :: x(:, :)
     type(section_t), intent(in) :: sec
@@ -538,6 +522,14 @@ contains
     integer, allocatable :: dofs(:)
     integer :: a, nd
     f = 0.0_wp
+    if (dl%kind == DLOAD_THERMAL) then
+       if (allocated(dl%line_nodal)) then   ! a B32: its whole thermal load
+          call beam3_thermal_end_forces(x, sec, mat, dl%line_nodal, f, error)
+       else
+          call thermal_beam_end_forces(etype, x, sec, mat, dl%gradient, f, error)
+       end if
+       return
+    end if
     call element_material_load(etype, x, sec, mat, dl, fe, error)
     if (allocated(error)) return
     call beam_frame(etype, x, sec, r, length, error)
@@ -550,7 +542,7 @@ contains
        f(1:3, a) = matmul(r, g(1:3))
        f(4:6, a) = matmul(r, g(4:6))
     end do
-  end subroutine element_centrif_end_forces
+  end subroutine element_body_end_forces
 
   subroutine element_strain_energy(model, fields, is, isub, ie, energy, error)
     !! The strain energy ½ u_eᵀ K_e u_e of element ie of substructure isub in

@@ -14,7 +14,7 @@ module superjoin_analysis
   use superjoin_substructure_local_system, only: boundary_dofs, part_boundary
   use superjoin_substructure_cache, only: release_cache, part_view_t
   use superjoin_solvers, only: linear_solver_t, sparse_sym_t, new_solver
-  use superjoin_output_matrix_market, only: write_matrix_market
+  use superjoin_solvers_matrix_market, only: write_matrix_market
   use superjoin_model_results, only: results_t, run_options_t, PH_ASSEMBLE, PH_ORDER, PH_FACTOR, PH_SOLVE
   use superjoin_analysis_recover, only: recover_results
   use superjoin_analysis_mechanism, only: mechanism_error

@@ -1,26 +1,20 @@
 module superjoin_analysis_body_loads
   !! What the element results need of the loads that are not the element's
   !! own distributed-load forms: the thermal strains of plane and shell
-  !! elements (their resultants and stresses are D (ε - ε0)) and the
-  !! consistent end loads of a centrifugal load on bars and beams (their end
-  !! forces are K u - f_eq with a load that varies along the element).
+  !! elements (their resultants and stresses are D (ε - ε0), taken off by the
+  !! element facade's take_thermal_resultants) and the consistent end loads
+  !! of a centrifugal load on bars and beams (their end forces are K u - f_eq
+  !! with a load that varies along the element).
   use superjoin_kinds, only: wp, i8
   use superjoin_error, only: error_t
-  use superjoin_model_types, only: model_t, section_t, material_t, DLOAD_THERMAL, DLOAD_CENTRIF, &
+  use superjoin_model_types, only: model_t, DLOAD_THERMAL, DLOAD_CENTRIF, &
        ELEMENT_NODE_COUNT, combination_t
-  use superjoin_elements, only: is_plate_type, element_material_load, element_node_dofs, beam_frame
-  use superjoin_elements_thermal, only: thermal_plate_resultants
-  use superjoin_elements_shell8_loads, only: s8r_thermal_resultants
-  use superjoin_model_types, only: ET_S8R
-  use superjoin_elements_thermal, only: thermal_beam_end_forces
-  use superjoin_elements_beam3, only: beam3_thermal_end_forces
-  use superjoin_elements_shell, only: shell_thermal_nodal_resultants, is_plane_type
+  use superjoin_elements, only: is_plate_type, element_body_end_forces
   use superjoin_model_types, only: MAX_ELEMENT_NODES
-  use superjoin_elements_drill_mask, only: element_drill
   implicit none (type, external)
   private
 
-  public :: plate_thermal_strains, line_centrif_forces, take_thermal_resultants, superpose_thermal
+  public :: plate_thermal_strains, line_centrif_forces, superpose_thermal
   public :: plane_thermal_nodal, line_thermal_forces, shell_thermal_curvature_nodal
 
 contains
@@ -118,13 +112,8 @@ contains
             nn = ELEMENT_NODE_COUNT(etype)
             associate (sec => s%sections(s%elem_section(dl%elem)))
               ! errors were reported when the loads were assembled
-              if (allocated(dl%line_nodal)) then   ! a B32: its whole thermal load
-                 call beam3_thermal_end_forces(s%x(:, s%elem_nodes(1:nn, dl%elem)), sec, &
-                      model%materials(sec%material), dl%line_nodal, f, error)
-              else
-                 call thermal_beam_end_forces(etype, s%x(:, s%elem_nodes(1:nn, dl%elem)), sec, &
-                      model%materials(sec%material), dl%gradient, f, error)
-              end if
+              call element_body_end_forces(etype, s%x(:, s%elem_nodes(1:nn, dl%elem)), sec, &
+                   model%materials(sec%material), dl, f, error)
               if (allocated(error)) cycle
             end associate
             if (.not. allocated(f0)) allocate (f0(6, 2, elem_offset(size(elem_offset)), nstep), source=0.0_wp)
@@ -143,10 +132,8 @@ contains
     integer(i8), intent(in) :: elem_offset(:)
     integer, intent(in) :: nstep
     real(wp), allocatable, intent(out) :: f0(:, :, :, :)
-    real(wp), allocatable :: fe(:)
-    real(wp) :: r(3, 3), length, g(6)
-    integer, allocatable :: dofs(:)
-    integer :: is, i, a, nn, nd, etype
+    real(wp) :: f(6, 2)
+    integer :: is, i, nn, etype
     integer(i8) :: ie
     type(error_t), allocatable :: error
     do is = 1, nstep
@@ -159,22 +146,13 @@ contains
             nn = ELEMENT_NODE_COUNT(etype)
             associate (sec => s%sections(s%elem_section(dl%elem)))
               ! errors were reported when the loads were assembled
-              call element_material_load(etype, s%x(:, s%elem_nodes(1:nn, dl%elem)), sec, &
-                   model%materials(sec%material), dl, fe, error, element_drill(s, dl%elem))
-              if (allocated(error)) cycle
-              call beam_frame(etype, s%x(:, s%elem_nodes(1:nn, dl%elem)), sec, r, length, error)
+              call element_body_end_forces(etype, s%x(:, s%elem_nodes(1:nn, dl%elem)), sec, &
+                   model%materials(sec%material), dl, f, error)
               if (allocated(error)) cycle
             end associate
             if (.not. allocated(f0)) allocate (f0(6, 2, elem_offset(size(elem_offset)), nstep), source=0.0_wp)
-            dofs = element_node_dofs(etype)
-            nd = size(dofs)
             ie = elem_offset(dl%sub) + dl%elem
-            do a = 1, 2
-               g = 0.0_wp
-               g(dofs) = fe(nd*(a - 1) + 1:nd*a)
-               f0(1:3, a, ie, is) = f0(1:3, a, ie, is) + matmul(r, g(1:3))
-               f0(4:6, a, ie, is) = f0(4:6, a, ie, is) + matmul(r, g(4:6))
-            end do
+            f0(:, :, ie, is) = f0(:, :, ie, is) + f
           end associate
        end do
     end do
@@ -199,53 +177,4 @@ contains
     end do
     call move_alloc(all, th)
   end subroutine superpose_thermal
-
-  pure subroutine take_thermal_resultants(etype, x, sec, mat, th, plate, tn, cn, drill)
-    !! Take the resultants of the free thermal expansion th(1:2, step) off the
-    !! resultants plate(6, step) of a plane or shell element (N = D (ε - ε0));
-    !! tn(:, step): the nodal remainders of a varying temperature (plane and
-    !! shell elements, plane_thermal_nodal), cn(:, step) those of the
-    !! gradient of a shell (shell_thermal_curvature_nodal), if any; drill:
-    !! the shell's drilling edge mask.
-    integer, intent(in) :: etype
-    real(wp), intent(in) :: x(:, :)
-    type(section_t), intent(in) :: sec
-    type(material_t), intent(in) :: mat
-    real(wp), intent(in) :: th(:, :)
-    real(wp), intent(inout) :: plate(:, :)
-    real(wp), intent(in), optional :: tn(:, :), cn(:, :)
-    integer, intent(in), optional :: drill
-    real(wp) :: res0(6), rem(2, size(x, 2))
-    type(error_t), allocatable :: error
-    integer :: is, n
-    logical :: varying
-    n = size(x, 2)
-    do is = 1, size(th, 2)
-       rem = 0.0_wp
-       if (present(tn)) rem(1, :) = tn(1:n, is)
-       if (present(cn)) rem(2, :) = cn(1:n, is)
-       varying = any(rem /= 0.0_wp)
-       if (all(th(:, is) == 0.0_wp) .and. .not. varying) cycle
-       ! an element that cannot be evaluated has been reported by shell_forces
-       if (etype == ET_S8R) then
-          if (varying) then
-             call s8r_thermal_resultants(sec, mat, th(1, is), th(2, is), res0, rem)
-          else
-             call s8r_thermal_resultants(sec, mat, th(1, is), th(2, is), res0)
-          end if
-       else if (present(tn)) then
-          call thermal_plate_resultants(etype, x, sec, mat, th(1, is), th(2, is), res0, error, tn(1:n, is))
-          if (allocated(error)) return
-       else
-          call thermal_plate_resultants(etype, x, sec, mat, th(1, is), th(2, is), res0, error)
-          if (allocated(error)) return
-       end if
-       plate(:, is) = plate(:, is) - res0
-       if (etype == ET_S8R .or. is_plane_type(etype) .or. .not. varying) cycle
-       ! a shell whose temperature varies: the nodal remainders, interpolated
-       call shell_thermal_nodal_resultants(etype, x, sec, mat, rem(1, :), rem(2, :), res0, error, drill)
-       if (allocated(error)) return
-       plate(:, is) = plate(:, is) - res0
-    end do
-  end subroutine take_thermal_resultants
 end module superjoin_analysis_body_loads

@@ -16,13 +16,15 @@ module superjoin_analysis_recover
        unit_terms, arm_matrix, MAX_UNIT_TERMS
   use superjoin_assembly_forest, only: forest_t
   use superjoin_assembly_transform, only: transform_t, form_spring_t, constraint_t, ROLE_TREE, CONS_ELIMINATED
-  use superjoin_assembly_assemble, only: element_pdofs, distributed_load
+  use superjoin_assembly_assemble, only: element_pdofs
+  use superjoin_elements, only: distributed_load
   use superjoin_model_results, only: results_t, reaction_t
-  use superjoin_analysis_body_loads, only: plate_thermal_strains, line_centrif_forces, take_thermal_resultants
+  use superjoin_analysis_body_loads, only: plate_thermal_strains, line_centrif_forces
+  use superjoin_elements, only: take_thermal_resultants
   use superjoin_analysis_body_loads, only: plane_thermal_nodal, line_thermal_forces
   use superjoin_analysis_body_loads, only: shell_thermal_curvature_nodal
   use superjoin_utils_memory, only: out_of_memory, BYTES_REAL, BYTES_INT
-  use superjoin_elements_drill_mask, only: element_drill
+  use superjoin_elements, only: element_drill
   implicit none (type, external)
   private
 

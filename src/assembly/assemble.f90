@@ -4,11 +4,8 @@ module superjoin_assembly_assemble
   !! scattered through the maps of its physical DOFs.
   use superjoin_kinds, only: wp, ip, i8
   use superjoin_error, only: error_t, add_error_line, EXIT_DECK, EXIT_SINGULAR
-  use superjoin_model_types, only: model_t, dload_t, ELEMENT_NODE_COUNT, LINK_FINITE, DLOAD_GRAV, loc_text
-  use superjoin_model_types, only: DLOAD_THERMAL, DLOAD_CENTRIF
-  use superjoin_elements, only: element_material_load, is_plate_type
-  use superjoin_elements, only: element_dof_mask, element_stiffness, element_distributed_load, &
-       element_gravity_load
+  use superjoin_model_types, only: model_t, ELEMENT_NODE_COUNT, LINK_FINITE, loc_text
+  use superjoin_elements, only: element_dof_mask, element_stiffness, distributed_load
   use superjoin_assembly_dofs, only: dof_table_t, GROUND, block_dof, unit_dofs, unit_terms, MAX_UNIT_TERMS
   use superjoin_assembly_transform, only: transform_t, form_spring_t, ROLE_PLAIN
   use superjoin_solvers_sparse, only: sparse_sym_t
@@ -49,7 +46,7 @@ module superjoin_assembly_assemble
   end type item_columns_t
 
   public :: element_matrix
-  public :: assemble_stiffness, assemble_loads, distributed_load, element_pdofs, unit_pdofs, unit_plain_stiffness, &
+  public :: assemble_stiffness, assemble_loads, element_pdofs, unit_pdofs, unit_plain_stiffness, &
        max_element_diagonal
 
 contains
@@ -395,34 +392,6 @@ contains
        f_u0(col(b)) = f_u0(col(b)) - g*coef(b)*c
     end do
   end subroutine scatter_form
-
-  subroutine distributed_load(model, dl, fe, q_local, error)
-    !! Nodal loads (global axes, element ordering) and local load of one
-    !! distributed load: PX/PY/PZ, P, GRAV, CENTRIF or TEMP.
-    type(model_t), intent(in) :: model
-    type(dload_t), intent(in) :: dl
-    real(wp), allocatable, intent(out) :: fe(:)
-    real(wp), intent(out) :: q_local(3)
-    type(error_t), allocatable, intent(out) :: error
-    integer :: nn
-    associate (s => model%subs(dl%sub))
-      nn = ELEMENT_NODE_COUNT(s%elem_type(dl%elem))
-      associate (sec => s%sections(s%elem_section(dl%elem)))
-        if (dl%kind == DLOAD_GRAV) then
-           call element_gravity_load(s%elem_type(dl%elem), s%x(:, s%elem_nodes(1:nn, dl%elem)), sec, &
-                model%materials(sec%material), dl%value*dl%dir, fe, q_local, error)
-        else if (dl%kind == DLOAD_CENTRIF .or. (dl%kind == DLOAD_THERMAL .and. (is_plate_type(s%elem_type(dl%elem)) &
-             .or. any(dl%gradient /= 0.0_wp) .or. allocated(dl%line_nodal)))) then   ! TEMP: a beam with a gradient, a B32 need E I
-           q_local = 0.0_wp   ! CENTRIF on a bar or beam: its end forces take fe itself (superjoin_analysis_recover)
-           call element_material_load(s%elem_type(dl%elem), s%x(:, s%elem_nodes(1:nn, dl%elem)), sec, &
-                model%materials(sec%material), dl, fe, error, element_drill(s, dl%elem))
-        else
-           call element_distributed_load(s%elem_type(dl%elem), s%x(:, s%elem_nodes(1:nn, dl%elem)), sec, &
-                dl%kind, dl%value, fe, q_local, error)
-        end if
-      end associate
-    end associate
-  end subroutine distributed_load
 
   subroutine assemble_loads(model, table, f_phys, error)
     !! Physical loads of every step, f_phys(np, nstep), and the local distributed

@@ -1,11 +1,16 @@
 module superjoin_elements
   !! Element library facade: DOFs per node, stiffness in global axes, end forces
-  !! and distributed loads of every element type (ET_* in superjoin_model_types).
+  !! and distributed loads of every element type (ET_* in superjoin_model_types),
+  !! and what the analysis and the output ask of one element of a solved step
+  !! (thermal resultants and end forces, stresses, strains, strain energy).
+  !! The rest of the program asks this module (or the traits table,
+  !! superjoin_elements_traits), not the element modules behind it.
   !!
   !! Ordering of element vectors and matrices: node-major; the DOFs of one node
   !! in the order of element_node_dofs. Errors come back as error_t (code
   !! EXIT_DECK) with a message without file:line; the caller prefixes it.
-  use superjoin_kinds, only: wp
+  use superjoin_kinds, only: wp, ip
+  use superjoin_model_results, only: result_fields_t
   use superjoin_error, only: error_t, fatal_error, EXIT_DECK
   use superjoin_model_types, only: section_t, material_t, ET_T2D2, ET_T3D2, ET_B23, ET_B33, &
        ET_CPS3, ET_CPS4, ET_S3, ET_S4, ET_B21, ET_B31, ET_CPE3, ET_CPE4, NUM_ELEMENT_TYPES, ELEMENT_TYPE_NAMES, &
@@ -17,14 +22,20 @@ module superjoin_elements
   use superjoin_elements_edge_load, only: plane_edge_load
   use superjoin_elements_thermal, only: thermal_axial_load, thermal_plate_load
   use superjoin_elements_thermal, only: thermal_plane_nodal_load, thermal_beam_load
-  use superjoin_model_types, only: dload_t, DLOAD_CENTRIF
+  use superjoin_model_types, only: dload_t, DLOAD_CENTRIF, model_t, ELEMENT_NODE_COUNT, DLOAD_GRAV
+  use superjoin_elements_drill_mask, only: element_drill
   use superjoin_elements_centrif, only: centrif_load
   use superjoin_elements_shell8_loads, only: s8r_is_tapered, s8r_gravity_load, s8r_thermal_load, s8r_centrif_load
   use superjoin_elements_frame, only: beam_frame
   use superjoin_elements_truss, only: truss_stiffness, truss_end_forces, truss_distributed_load
   use superjoin_elements_beam, only: beam_stiffness, beam_end_forces, beam_load
   use superjoin_elements_beam3, only: beam3_stiffness, beam3_end_forces, beam3_nodal_forces, beam3_load
-  use superjoin_elements_beam3, only: beam3_thermal_load
+  use superjoin_elements_beam3, only: beam3_thermal_load, beam3_thermal_end_forces
+  use superjoin_elements_thermal, only: thermal_plate_resultants, thermal_beam_end_forces, plane_centroid_remainder
+  use superjoin_elements_shell8_loads, only: s8r_thermal_resultants
+  use superjoin_elements_shell, only: shell_thermal_nodal_resultants
+  use superjoin_elements_stresses, only: NTENSOR, element_state_t, element_state, element_displacements, &
+       element_stresses, element_tensor
   use superjoin_elements_shell, only: shell_thermal_nodal_load
   use superjoin_elements_shell, only: is_plate_type, is_plane_type, is_plane_strain_type, shell_stiffness, shell_resultants, shell_pressure_load, &
        shell_area_load, shell_forces
@@ -33,7 +44,17 @@ module superjoin_elements
 
   public :: element_node_dofs, element_dof_mask, element_stiffness, element_end_forces, beam_distributed_load, &
        element_nodal_forces, element_distributed_load, element_gravity_load
-  public :: element_material_load
+  public :: element_material_load, distributed_load
+  public :: take_thermal_resultants, element_body_end_forces
+  public :: element_drill, plane_centroid_remainder
+    !! element_drill(sub, e): the drilling edge mask of element e of sub
+    !! (superjoin_elements_drill_mask); plane_centroid_remainder(etype, x,
+    !! nodal): the centroid value of a plane element's nodal thermal remainders
+    !! (superjoin_elements_thermal).
+  public :: NTENSOR, element_state_t, element_state, element_displacements, element_stresses, element_tensor
+    !! The stresses and strains of one element of a solved step: see
+    !! superjoin_elements_stresses.
+  public :: element_strain_energy
   public :: is_plate_type, shell_resultants, shell_forces
   public :: is_plane_type, is_plane_strain_type
     !! is_plane_type(etype): plane stress and plane strain types (CPS*, CPE*);
@@ -404,6 +425,149 @@ contains
        call fatal_error(error, EXIT_DECK, 'unknown distributed load kind')
     end select
   end subroutine element_material_load
+
+  subroutine distributed_load(model, dl, fe, q_local, error)
+    !! Nodal loads (global axes, element ordering) and local load of one
+    !! distributed load of the model: PX/PY/PZ, P, GRAV, CENTRIF or TEMP.
+    type(model_t), intent(in) :: model
+    type(dload_t), intent(in) :: dl
+    real(wp), allocatable, intent(out) :: fe(:)
+    real(wp), intent(out) :: q_local(3)
+    type(error_t), allocatable, intent(out) :: error
+    integer :: nn
+    associate (s => model%subs(dl%sub))
+      nn = ELEMENT_NODE_COUNT(s%elem_type(dl%elem))
+      associate (sec => s%sections(s%elem_section(dl%elem)))
+        if (dl%kind == DLOAD_GRAV) then
+           call element_gravity_load(s%elem_type(dl%elem), s%x(:, s%elem_nodes(1:nn, dl%elem)), sec, &
+                model%materials(sec%material), dl%value*dl%dir, fe, q_local, error)
+        else if (dl%kind == DLOAD_CENTRIF .or. (dl%kind == DLOAD_THERMAL .and. (is_plate_type(s%elem_type(dl%elem)) &
+             .or. any(dl%gradient /= 0.0_wp) .or. allocated(dl%line_nodal)))) then   ! TEMP: a beam with a gradient, a B32 need E I
+           q_local = 0.0_wp   ! CENTRIF on a bar or beam: its end forces take fe itself (superjoin_analysis_recover)
+           call element_material_load(s%elem_type(dl%elem), s%x(:, s%elem_nodes(1:nn, dl%elem)), sec, &
+                model%materials(sec%material), dl, fe, error, element_drill(s, dl%elem))
+        else
+           call element_distributed_load(s%elem_type(dl%elem), s%x(:, s%elem_nodes(1:nn, dl%elem)), sec, &
+                dl%kind, dl%value, fe, q_local, error)
+        end if
+      end associate
+    end associate
+  end subroutine distributed_load
+
+  pure subroutine take_thermal_resultants(etype, x, sec, mat, th, plate, tn, cn, drill)
+    !! Take the resultants of the free thermal expansion th(1:2, step) off the
+    !! resultants plate(6, step) of a plane or shell element (N = D (ε - ε0));
+    !! tn(:, step): the nodal remainders of a varying temperature (plane and
+    !! shell elements, plane_thermal_nodal), cn(:, step) those of the
+    !! gradient of a shell (shell_thermal_curvature_nodal), if any; drill:
+    !! the shell's drilling edge mask.
+    integer, intent(in) :: etype
+    real(wp), intent(in) :: x(:, :)
+    type(section_t), intent(in) :: sec
+    type(material_t), intent(in) :: mat
+    real(wp), intent(in) :: th(:, :)
+    real(wp), intent(inout) :: plate(:, :)
+    real(wp), intent(in), optional :: tn(:, :), cn(:, :)
+    integer, intent(in), optional :: drill
+    real(wp) :: res0(6), rem(2, size(x, 2))
+    type(error_t), allocatable :: error
+    integer :: is, n
+    logical :: varying
+    n = size(x, 2)
+    do is = 1, size(th, 2)
+       rem = 0.0_wp
+       if (present(tn)) rem(1, :) = tn(1:n, is)
+       if (present(cn)) rem(2, :) = cn(1:n, is)
+       varying = any(rem /= 0.0_wp)
+       if (all(th(:, is) == 0.0_wp) .and. .not. varying) cycle
+       ! an element that cannot be evaluated has been reported by shell_forces
+       if (etype == ET_S8R) then
+          if (varying) then
+             call s8r_thermal_resultants(sec, mat, th(1, is), th(2, is), res0, rem)
+          else
+             call s8r_thermal_resultants(sec, mat, th(1, is), th(2, is), res0)
+          end if
+       else if (present(tn)) then
+          call thermal_plate_resultants(etype, x, sec, mat, th(1, is), th(2, is), res0, error, tn(1:n, is))
+          if (allocated(error)) return
+       else
+          call thermal_plate_resultants(etype, x, sec, mat, th(1, is), th(2, is), res0, error)
+          if (allocated(error)) return
+       end if
+       plate(:, is) = plate(:, is) - res0
+       if (etype == ET_S8R .or. is_plane_type(etype) .or. .not. varying) cycle
+       ! a shell whose temperature varies: the nodal remainders, interpolated
+       call shell_thermal_nodal_resultants(etype, x, sec, mat, rem(1, :), rem(2, :), res0, error, drill)
+       if (allocated(error)) return
+       plate(:, is) = plate(:, is) - res0
+    end do
+  end subroutine take_thermal_resultants
+
+  pure subroutine element_body_end_forces(etype, x, sec, mat, dl, f, error)
+    !! The end forces f(6, 2) (local axes, per end) of a body load dl on a
+    !! bar or beam that its end forces K u - f_eq take off: DLOAD_THERMAL, the
+    !! free thermal bending of a beam with a gradient across its section, or
+    !! the whole thermal load of a B32 (given by its nodal values
+    !! dl%line_nodal); DLOAD_CENTRIF, the consistent nodal loads of the
+    !! centrifugal load in the element's local axes.
+    integer, intent(in) :: etype
+    real(wp), intent(in) :: x(:, :)
+    type(section_t), intent(in) :: sec
+    type(material_t), intent(in) :: mat
+    type(dload_t), intent(in) :: dl
+    real(wp), intent(out) :: f(6, 2)
+    type(error_t), allocatable, intent(out) :: error
+    real(wp), allocatable :: fe(:)
+    real(wp) :: r(3, 3), length, g(6)
+    integer, allocatable :: dofs(:)
+    integer :: a, nd
+    f = 0.0_wp
+    if (dl%kind == DLOAD_THERMAL) then
+       if (allocated(dl%line_nodal)) then   ! a B32: its whole thermal load
+          call beam3_thermal_end_forces(x, sec, mat, dl%line_nodal, f, error)
+       else
+          call thermal_beam_end_forces(etype, x, sec, mat, dl%gradient, f, error)
+       end if
+       return
+    end if
+    call element_material_load(etype, x, sec, mat, dl, fe, error)
+    if (allocated(error)) return
+    call beam_frame(etype, x, sec, r, length, error)
+    if (allocated(error)) return
+    dofs = element_node_dofs(etype)
+    nd = size(dofs)
+    do a = 1, 2
+       g = 0.0_wp
+       g(dofs) = fe(nd*(a - 1) + 1:nd*a)
+       f(1:3, a) = matmul(r, g(1:3))
+       f(4:6, a) = matmul(r, g(4:6))
+    end do
+  end subroutine element_body_end_forces
+
+  subroutine element_strain_energy(model, fields, is, isub, ie, energy, error)
+    !! The strain energy ½ u_eᵀ K_e u_e of element ie of substructure isub in
+    !! step is (K_e: element_stiffness with the element's drilling mask);
+    !! errors as element_stiffness.
+    type(model_t), intent(in) :: model
+    type(result_fields_t), intent(in) :: fields
+    integer, intent(in) :: is, isub
+    integer(ip), intent(in) :: ie
+    real(wp), intent(out) :: energy
+    type(error_t), allocatable, intent(out) :: error
+    real(wp), allocatable :: ke(:, :), ue(:)
+    integer :: nn
+    energy = 0.0_wp
+    associate (sub => model%subs(isub))
+      nn = ELEMENT_NODE_COUNT(sub%elem_type(ie))
+      associate (sec => sub%sections(sub%elem_section(ie)))
+        call element_stiffness(sub%elem_type(ie), sub%x(:, sub%elem_nodes(1:nn, ie)), sec, &
+             model%materials(sec%material), ke, error, element_drill(sub, ie))
+      end associate
+    end associate
+    if (allocated(error)) return
+    call element_displacements(model, fields, is, isub, ie, ue)
+    energy = 0.5_wp*dot_product(ue, matmul(ke, ue))
+  end subroutine element_strain_energy
 
   pure subroutine unsupported(etype, error)
     !! Error for an element type without an implementation.

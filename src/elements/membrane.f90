@@ -83,6 +83,15 @@ module superjoin_elements_membrane
   public :: plane_strain_stiffness, plane_strain_resultants
   public :: plane_stress, plane_strain, check_plane_material
   public :: membrane_point_stresses
+
+  type, public :: initial_strain_t
+    !! An isotropic initial strain ε0 (a thermal strain) of a plane element's
+    !! stresses (membrane_point_stresses): its nodal values in, the values at
+    !! the integration points and extrapolated to the nodes out.
+     real(wp), allocatable :: nodal(:)    !! (n) ε0 at the nodes
+     real(wp), allocatable :: points(:)   !! ε0 at the integration points
+     real(wp), allocatable :: nodes(:)    !! ε0 extrapolated to the nodes as σ is
+  end type initial_strain_t
   public :: membrane_thermal_load, membrane_centroid_weights
   public :: check_membrane_element, spd_solve
 
@@ -635,8 +644,7 @@ contains
 
   ! ------------------------------------------------ stresses at points and nodes
 
-  pure subroutine membrane_point_stresses(xl, e, nu, strain_state, ue, sig_points, sig_nodes, error, eps0, &
-       e0_points, e0_nodes)
+  pure subroutine membrane_point_stresses(xl, e, nu, strain_state, ue, sig_points, sig_nodes, error, eps0)
     !! Stresses (σx, σy, τxy) in the element frame from the element
     !! displacements ue(2n) (node-major u, v), plane stress or (strain_state)
     !! plane strain: sig_points at the integration points, the CST's single
@@ -646,17 +654,17 @@ contains
     !! the resultants; sig_nodes(3, n) extrapolated to the nodes: the CST's
     !! constant, the bilinear field through the four Gauss values evaluated at
     !! the corners (ξ, η = ±1, i.e. ±√3 in the Gauss points' own coordinates).
-    !! With eps0(n), the nodal values of an isotropic initial strain
-    !! (membrane_thermal_load), σ = D (ε - ε0) with ε0 interpolated to each
-    !! point, and e0_points, e0_nodes the ε0 there (extrapolated as σ is).
+    !! With eps0 (eps0%nodal(n), the nodal values of an isotropic initial
+    !! strain, membrane_thermal_load), σ = D (ε - ε0) with ε0 interpolated to
+    !! each point, and eps0%points, eps0%nodes the ε0 there (extrapolated as
+    !! σ is).
     real(wp), intent(in) :: xl(:, :)
     real(wp), intent(in) :: e, nu
     logical, intent(in) :: strain_state
     real(wp), intent(in) :: ue(:)
     real(wp), allocatable, intent(out) :: sig_points(:, :), sig_nodes(:, :)
     type(error_t), allocatable, intent(out) :: error
-    real(wp), intent(in), optional :: eps0(:)
-    real(wp), allocatable, intent(out), optional :: e0_points(:), e0_nodes(:)
+    type(initial_strain_t), intent(inout), optional :: eps0
     real(wp) :: d(NSTRAIN, NSTRAIN), kua(8, NMODE), kaa(NMODE, NMODE), x(2, 4), fu(8), fa(NMODE)
     real(wp) :: alpha(NMODE, 1), bc(NSTRAIN, 8), ba(NSTRAIN, NMODE), b3(NSTRAIN, 6), jac, area
     real(wp) :: ep(NGAUSS)
@@ -681,9 +689,9 @@ contains
        allocate (sig_points(NSTRAIN, 1), sig_nodes(NSTRAIN, 3))
        sig_points(:, 1) = matmul(d, matmul(b3, ue))
        if (present(eps0)) then   ! the CST's one point: the mean of the nodal ε0
-          sig_points(:, 1) = sig_points(:, 1) - sum(eps0)/3*matmul(d, ISOTROPIC)
-          if (present(e0_points)) e0_points = [sum(eps0)/3]
-          if (present(e0_nodes)) e0_nodes = spread(sum(eps0)/3, 1, 3)
+          sig_points(:, 1) = sig_points(:, 1) - sum(eps0%nodal)/3*matmul(d, ISOTROPIC)
+          eps0%points = [sum(eps0%nodal)/3]
+          eps0%nodes = spread(sum(eps0%nodal)/3, 1, 3)
        end if
        sig_nodes = spread(sig_points(:, 1), 2, 3)
        return
@@ -693,10 +701,10 @@ contains
     alpha = -spd_solve(kaa, matmul(transpose(kua), reshape(ue, [8, 1])))
     ep = 0.0_wp
     if (present(eps0)) then   ! α = kaa⁻¹ (f_a - kau u), σ = D (ε - ε0)
-       call qm6_initial_strain(x, d, eps0, fu, fa)
+       call qm6_initial_strain(x, d, eps0%nodal, fu, fa)
        alpha = alpha + spd_solve(kaa, reshape(fa, [NMODE, 1]))
        do k = 1, NGAUSS
-          ep(k) = dot_product(shape4(XI_GAUSS(k), ETA_GAUSS(k)), eps0(1:4))
+          ep(k) = dot_product(shape4(XI_GAUSS(k), ETA_GAUSS(k)), eps0%nodal(1:4))
        end do
     end if
     allocate (sig_points(NSTRAIN, NGAUSS), sig_nodes(NSTRAIN, 4))
@@ -709,12 +717,12 @@ contains
     do k = 1, 4
        sig_nodes(:, k) = matmul(sig_points, shape4(sqrt(3.0_wp)*XI_NODE(k), sqrt(3.0_wp)*ETA_NODE(k)))
     end do
-    if (present(e0_points)) e0_points = ep
-    if (present(e0_nodes)) then
-       allocate (e0_nodes(4))
-       do k = 1, 4
-          e0_nodes(k) = dot_product(ep, shape4(sqrt(3.0_wp)*XI_NODE(k), sqrt(3.0_wp)*ETA_NODE(k)))
-       end do
-    end if
+    if (.not. present(eps0)) return
+    eps0%points = ep
+    if (allocated(eps0%nodes)) deallocate (eps0%nodes)
+    allocate (eps0%nodes(4))
+    do k = 1, 4
+       eps0%nodes(k) = dot_product(ep, shape4(sqrt(3.0_wp)*XI_NODE(k), sqrt(3.0_wp)*ETA_NODE(k)))
+    end do
   end subroutine membrane_point_stresses
 end module superjoin_elements_membrane

@@ -23,7 +23,7 @@ module superjoin_elements_quadratic
   !! area, mapped back to natural coordinates by Newton's method, as CPS4 does.
   use superjoin_kinds, only: wp
   use superjoin_error, only: error_t, fatal_error, EXIT_DECK
-  use superjoin_elements_membrane, only: plane_stress, plane_strain, check_plane_material
+  use superjoin_elements_membrane, only: plane_stress, plane_strain, check_plane_material, initial_strain_t
   implicit none (type, external)
   private
 
@@ -221,7 +221,7 @@ contains
     end do
   end subroutine quadratic_shape
 
-  pure subroutine quadratic_point_stresses(xl, props, ue, sig_points, sig_nodes, error, eps0, e0_points, e0_nodes)
+  pure subroutine quadratic_point_stresses(xl, props, ue, sig_points, sig_nodes, error, eps0)
     !! Stresses (σx, σy, τxy) in the element frame from the element displacements
     !! ue(2n) (node-major u, v): sig_points(3, k) at the integration points of the
     !! stiffness rule (quadratic_stress_points: CPS6 3 points, CPS8 3×3, CPS8R 2×2,
@@ -231,17 +231,16 @@ contains
     !! biquadratic through 3×3) evaluated at the nodes. The extrapolation is exact
     !! whenever the stress is such a polynomial (constant stress on any element,
     !! linear stress on straight-sided triangles and parallelograms). Plane strain:
-    !! σz = ν (σx + σy) is added by the caller. With eps0(n), the nodal values
-    !! of an isotropic initial strain (quadratic_thermal_load), σ = D (ε - ε0)
-    !! with ε0 interpolated to each point, and e0_points, e0_nodes the ε0
-    !! there (extrapolated as σ is).
+    !! σz = ν (σx + σy) is added by the caller. With eps0 (eps0%nodal(n), the
+    !! nodal values of an isotropic initial strain, quadratic_thermal_load),
+    !! σ = D (ε - ε0) with ε0 interpolated to each point, and eps0%points,
+    !! eps0%nodes the ε0 there (extrapolated as σ is).
     real(wp), intent(in) :: xl(:, :)
     type(plane_props_t), intent(in) :: props
     real(wp), intent(in) :: ue(:)
     real(wp), allocatable, intent(out) :: sig_points(:, :), sig_nodes(:, :)
     type(error_t), allocatable, intent(out) :: error
-    real(wp), intent(in), optional :: eps0(:)
-    real(wp), allocatable, intent(out), optional :: e0_points(:), e0_nodes(:)
+    type(initial_strain_t), intent(inout), optional :: eps0
     real(wp), allocatable :: pts(:, :), wts(:), b(:, :), ep(:)
     real(wp) :: d(NSTRAIN, NSTRAIN), jac, pn(2), nf(size(xl, 2)), dn(2, size(xl, 2))
     integer :: k, n
@@ -262,17 +261,20 @@ contains
        ! σ = D (ε - ε₀): an initial strain interpolated from its nodal values
        if (present(eps0)) then
           call quadratic_shape(n, pts(:, k), nf, dn)
-          ep(k) = dot_product(nf, eps0)
+          ep(k) = dot_product(nf, eps0%nodal)
        end if
        sig_points(:, k) = matmul(d, matmul(b, ue) - ep(k)*ISOTROPIC)
     end do
-    if (present(e0_nodes)) allocate (e0_nodes(n))
+    if (present(eps0)) then
+       if (allocated(eps0%nodes)) deallocate (eps0%nodes)
+       allocate (eps0%nodes(n))
+    end if
     do k = 1, n
        pn = node_natural(n, k)
        sig_nodes(:, k) = matmul(sig_points, point_weights(n, props%reduced, pn))
-       if (present(e0_nodes)) e0_nodes(k) = dot_product(ep, point_weights(n, props%reduced, pn))
+       if (present(eps0)) eps0%nodes(k) = dot_product(ep, point_weights(n, props%reduced, pn))
     end do
-    if (present(e0_points)) e0_points = ep
+    if (present(eps0)) eps0%points = ep
   end subroutine quadratic_point_stresses
 
   pure subroutine quadratic_stress_points(n, reduced, pts)

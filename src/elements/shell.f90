@@ -30,7 +30,7 @@ module superjoin_elements_shell
        plane_strain_stiffness, plane_strain_resultants
   use superjoin_elements_plate, only: plate_stiffness, plate_moments, plate_pressure_load
   use superjoin_elements_plate, only: plate_point_moments
-  use superjoin_elements_membrane, only: membrane_point_stresses
+  use superjoin_elements_membrane, only: membrane_point_stresses, initial_strain_t
   use superjoin_elements_frame, only: cross
   use superjoin_elements_quadratic, only: plane_props_t, quadratic_stiffness, quadratic_resultants, &
        quadratic_shape_integrals
@@ -80,6 +80,13 @@ module superjoin_elements_shell
     !! each element of a mesh).
   real(wp), parameter :: PLANE_TOL = 1.0e-8_wp
     !! Largest |z| spread of a plane-stress element relative to its size.
+
+  type :: shell_local_t
+    !! A three- or four-node shell in its own frame, as its stress routines share it.
+     real(wp) :: r(3, 3) = 0.0_wp         !! element frame (rows: local x, y, z)
+     real(wp), allocatable :: xl(:, :)    !! (2, n) local coordinates
+     real(wp), allocatable :: ub(:)       !! (3n) plate DOFs w, θx, θy per node, local axes
+  end type shell_local_t
 
 contains
 
@@ -663,16 +670,18 @@ contains
     real(wp), allocatable, intent(out) :: sig_points(:, :, :), sig_nodes(:, :, :)
     type(error_t), allocatable, intent(out) :: error
     integer, intent(in), optional :: drill
-    real(wp) :: xl(2, size(x, 2)), ub(3*size(x, 2)), t
+    type(shell_local_t) :: loc
+    real(wp) :: t
     real(wp), allocatable :: sp(:, :), sn(:, :), mp(:, :), mn(:, :)
     integer :: n, etype
     n = size(x, 2)
     etype = ET_S4
     if (n == 3) etype = ET_S3
-    call membrane_part(etype, x, mat, ue, r, xl, ub, sp, sn, error, drilling_edges(etype, n, drill))
+    call membrane_part(etype, x, mat, ue, loc, sp, sn, error, drilling_edges(etype, n, drill))
+    r = loc%r
     if (allocated(error)) return
     t = sec%thickness
-    call plate_point_moments(xl, t, mat%e, mat%nu, ub, mp, mn, error)
+    call plate_point_moments(loc%xl, t, mat%e, mat%nu, loc%ub, mp, mn, error)
     if (allocated(error)) return
     allocate (sig_points(3, size(sp, 2), 2), sig_nodes(3, n, 2))
     sig_points(:, :, 1) = sp - 6*mp/t**2
@@ -681,36 +690,37 @@ contains
     sig_nodes(:, :, 2) = sn + 6*mn/t**2
   end subroutine shell_surface_stresses
 
-  pure subroutine membrane_part(etype, x, mat, ue, r, xl, ub, sp, sn, error, edges)
-    !! What the shell stress routines share: the element frame r and local
-    !! coordinates xl, the plate DOFs ub (w, θx, θy per node) of the local
-    !! displacements, and the membrane stresses at the points (sp) and nodes
-    !! (sn) of the element's membrane (drilling with the bubbles of edges, or
-    !! QM6/CST when there are none).
+  pure subroutine membrane_part(etype, x, mat, ue, loc, sp, sn, error, edges)
+    !! What the shell stress routines share: the element frame loc%r and local
+    !! coordinates loc%xl, the plate DOFs loc%ub (w, θx, θy per node) of the
+    !! local displacements, and the membrane stresses at the points (sp) and
+    !! nodes (sn) of the element's membrane (drilling with the bubbles of
+    !! edges, or QM6/CST when there are none).
     integer, intent(in) :: etype
     real(wp), intent(in) :: x(:, :)
     type(material_t), intent(in) :: mat
     real(wp), intent(in) :: ue(:)
-    real(wp), intent(out) :: r(3, 3), xl(:, :), ub(:)
+    type(shell_local_t), intent(out) :: loc
     real(wp), allocatable, intent(out) :: sp(:, :), sn(:, :)
     type(error_t), allocatable, intent(out) :: error
     logical, intent(in) :: edges(:)
     real(wp) :: h(size(x, 2)), d(size(ue)), um(2*size(x, 2)), ud(3*size(x, 2))
     integer :: i
-    call setup(etype, x, r, xl, h, error)
+    allocate (loc%xl(2, size(x, 2)), loc%ub(3*size(x, 2)))
+    call setup(etype, x, loc%r, loc%xl, h, error)
     if (allocated(error)) return
-    d = to_local(node_maps(etype, r, h), ue)
+    d = to_local(node_maps(etype, loc%r, h), ue)
     do i = 1, size(x, 2)
        um(2*i - 1:2*i) = d(6*(i - 1) + MEMBRANE_DOFS(1:2))
        ud(3*i - 2:3*i) = d(6*(i - 1) + MEMBRANE_DOFS)
-       ub(3*i - 2:3*i) = d(6*(i - 1) + PLATE_DOFS)
+       loc%ub(3*i - 2:3*i) = d(6*(i - 1) + PLATE_DOFS)
     end do
     if (any(edges) .and. size(x, 2) == 3) then
-       call opt_point_stresses(xl, mat%e, mat%nu, ud, sp, sn, error, edges)
+       call opt_point_stresses(loc%xl, mat%e, mat%nu, ud, sp, sn, error, edges)
     else if (any(edges)) then
-       call drilling_point_stresses(xl, mat%e, mat%nu, ud, sp, sn, error, edges)
+       call drilling_point_stresses(loc%xl, mat%e, mat%nu, ud, sp, sn, error, edges)
     else
-       call membrane_point_stresses(xl, mat%e, mat%nu, .false., um, sp, sn, error)
+       call membrane_point_stresses(loc%xl, mat%e, mat%nu, .false., um, sp, sn, error)
     end if
   end subroutine membrane_part
 
@@ -726,7 +736,7 @@ contains
     !! mindlin_point_resultants (S3R: the centroid; S4R: 2×2 Gauss, point k next
     !! to node k), sig_nodes(5, node, surface) extrapolated to the nodes.
     !! The thick eight-node shell S8R (catalog type 15) gets its own routine
-    !! with the same result layout, called from superjoin_output_stresses.
+    !! with the same result layout, called from superjoin_elements_stresses.
     !! drill as shell_stiffness.
     integer, intent(in) :: etype
     real(wp), intent(in) :: x(:, :)
@@ -737,12 +747,14 @@ contains
     real(wp), allocatable, intent(out) :: sig_points(:, :, :), sig_nodes(:, :, :)
     type(error_t), allocatable, intent(out) :: error
     integer, intent(in), optional :: drill
-    real(wp) :: xl(2, size(x, 2)), ub(3*size(x, 2)), t
+    type(shell_local_t) :: loc
+    real(wp) :: t
     real(wp), allocatable :: sp(:, :), sn(:, :), rp(:, :), rn(:, :)
-    call membrane_part(etype, x, mat, ue, r, xl, ub, sp, sn, error, drilling_edges(etype, size(x, 2), drill))
+    call membrane_part(etype, x, mat, ue, loc, sp, sn, error, drilling_edges(etype, size(x, 2), drill))
+    r = loc%r
     if (allocated(error)) return
     t = sec%thickness
-    call mindlin_point_resultants(xl, t, mat%e, mat%nu, shell_shear_stiffness(sec, mat), ub, rp, rn, error)
+    call mindlin_point_resultants(loc%xl, t, mat%e, mat%nu, shell_shear_stiffness(sec, mat), loc%ub, rp, rn, error)
     if (allocated(error)) return
     call surfaces(sp, rp, sig_points)
     call surfaces(sn, rn, sig_nodes)
@@ -896,6 +908,7 @@ contains
          1.0_wp, 1.0_wp]
     real(wp) :: r(3, 3), xl(2, size(x, 2)), h(size(x, 2)), nres(3), db(3, 3), t
     real(wp), allocatable :: sp(:, :), sn(:, :), kp(:)
+    type(initial_strain_t) :: eps0
     logical :: edges(size(x, 2))
     integer :: n, k, ncomp, nsurf
     n = size(x, 2)
@@ -905,7 +918,8 @@ contains
     if (any(edges)) then
        call drilling_thermal_stresses(xl, sec%thickness, mat%e, mat%nu, strain, nres, sp, sn, error, edges)
     else
-       call membrane_point_stresses(xl, mat%e, mat%nu, .false., spread(0.0_wp, 1, 2*n), sp, sn, error, strain)
+       eps0%nodal = strain
+       call membrane_point_stresses(xl, mat%e, mat%nu, .false., spread(0.0_wp, 1, 2*n), sp, sn, error, eps0)
     end if
     if (allocated(error)) return
     ! the initial curvature at the points of the plate parts (triangle: centroid; quadrilateral: 2×2 Gauss)

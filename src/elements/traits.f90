@@ -52,7 +52,7 @@ module superjoin_elements_traits
   logical, parameter :: D6(6) = .true.
 
   public :: element_traits, element_family, is_family, accepts_dload, section_card_name
-  public :: valid_element_type
+  public :: valid_element_type, element_vtk_cell
 
 contains
 
@@ -197,4 +197,12 @@ contains
        accepts_dload = .false.
     end select
   end function accepts_dload
+
+  elemental integer function element_vtk_cell(etype)
+    !! VTK cell type of element type etype (VTK_VERTEX for an unknown number).
+    integer, intent(in) :: etype
+    type(element_traits_t) :: t
+    t = element_traits(etype)
+    element_vtk_cell = t%vtk_cell
+  end function element_vtk_cell
 end module superjoin_elements_traits

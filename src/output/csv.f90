@@ -3,10 +3,10 @@ module superjoin_output_csv
   !! each written to a temporary name and renamed when complete.
   use superjoin_kinds, only: wp, i8, ip
   use superjoin_error, only: error_t, fatal_error, EXIT_IO
-  use superjoin_model_types, only: model_t, NDOF_NODE, ELEMENT_TYPE_NAMES, ET_T2D2, ET_T3D2, &
-       ET_B23, ET_B33, ET_B21, ET_B31, ET_B32
+  use superjoin_model_types, only: model_t, NDOF_NODE, ELEMENT_TYPE_NAMES
   use superjoin_output_file_selection, only: file_selection_t, select_file_output, NUM_FILE_RESULTS
   use superjoin_elements, only: is_plate_type
+  use superjoin_elements_traits, only: is_family, FAMILY_TRUSS, FAMILY_BEAM
   use superjoin_model_results, only: result_fields_t
   use superjoin_output_posix, only: remove_file, make_directory
   use superjoin_utils_process, only: temp_register, temp_unregister
@@ -61,9 +61,9 @@ contains
     type(file_selection_t), intent(in) :: sel
     type(error_t), allocatable, intent(out) :: error
     type(text_buffer_t), allocatable :: tb
-    integer :: is, isub, d, k, il, e
+    integer :: is, isub, d, k, il
     integer(ip) :: n
-    integer(i8) :: v, iel
+    integer(i8) :: v
     character(:), allocatable :: tmp
 
     tmp = path//'.tmp'
@@ -82,8 +82,8 @@ contains
              do n = 1, model%subs(isub)%nnode
                 v = fields%vertex_offset(isub) + n
                 if (.not. any(fields%has_dof(:, v)) .or. .not. sel%node(v)) cycle
-                call keys(model%steps(is)%name, model%subs(isub)%name, int(model%subs(isub)%node_id(n), i8))
-                call reals(fields%u(NDOF_NODE*(v - 1) + 1:NDOF_NODE*v, is))
+                call keys(tb, model%steps(is)%name, model%subs(isub)%name, int(model%subs(isub)%node_id(n), i8))
+                call reals(tb, fields%u(NDOF_NODE*(v - 1) + 1:NDOF_NODE*v, is))
              end do
           end do
        end do
@@ -93,9 +93,9 @@ contains
           do k = 1, size(fields%steps(is)%reactions)
              associate (rc => fields%steps(is)%reactions(k))
                if (.not. sel%node(fields%vertex_offset(rc%sub) + rc%node)) cycle
-               call keys(model%steps(is)%name, model%subs(rc%sub)%name, &
+               call keys(tb, model%steps(is)%name, model%subs(rc%sub)%name, &
                     int(model%subs(rc%sub)%node_id(rc%node), i8), int(rc%dof, i8))
-               call reals([rc%force])
+               call reals(tb, [rc%force])
              end associate
           end do
        end do
@@ -106,30 +106,44 @@ contains
              associate (lk => model%links(il), ct => model%contacts(model%links(il)%contact))
                do d = 1, NDOF_NODE
                   if (.not. fields%link_used(d, il)) cycle
-                  call keys(model%steps(is)%name, ct%name, &
+                  call keys(tb, model%steps(is)%name, ct%name, &
                        int(model%subs(ct%master_sub)%node_id(lk%master_node), i8), &
                        int(model%subs(ct%slave_sub)%node_id(lk%slave_node), i8), int(d, i8))
-                  call reals([fields%steps(is)%link_delta(d, il), fields%steps(is)%link_force(d, il)])
+                  call reals(tb, [fields%steps(is)%link_delta(d, il), fields%steps(is)%link_force(d, il)])
                end do
              end associate
           end do
        end do
+    case (4:5)
+       call element_table(tb, which, model, fields, sel)
+    end select
+    call tb%commit(tmp, path, '', error)
+  end subroutine write_table
+
+  subroutine element_table(tb, which, model, fields, sel)
+    !! The rows of an element table (which: 4 element forces of the trusses
+    !! and beams, 5 plate results of the plane and shell elements) of the
+    !! selected elements.
+    type(text_buffer_t), intent(inout) :: tb
+    integer, intent(in) :: which
+    type(model_t), intent(in) :: model
+    type(result_fields_t), intent(in) :: fields
+    type(file_selection_t), intent(in) :: sel
+    integer :: is, isub, k, e
+    integer(i8) :: iel
+    select case (which)
     case (4)
        call tb%line('step,substructure,element,type,end,n,vy,vz,t,my,mz')
        do is = 1, size(model%steps)
           do isub = 1, size(model%subs)
              do e = 1, model%subs(isub)%nelem
-                select case (model%subs(isub)%elem_type(e))
-                case (ET_T2D2, ET_T3D2, ET_B23, ET_B33, ET_B21, ET_B31, ET_B32)
-                case default
-                   cycle
-                end select
+                if (.not. any(is_family(model%subs(isub)%elem_type(e), [FAMILY_TRUSS, FAMILY_BEAM]))) cycle
                 iel = fields%elem_offset(isub) + e
                 if (.not. sel%elem(iel)) cycle
                 do k = 1, 2
-                   call keys(model%steps(is)%name, model%subs(isub)%name, int(model%subs(isub)%elem_id(e), i8))
+                   call keys(tb, model%steps(is)%name, model%subs(isub)%name, int(model%subs(isub)%elem_id(e), i8))
                    call tb%put(','//trim(ELEMENT_TYPE_NAMES(model%subs(isub)%elem_type(e)))//','//itoa(k))
-                   call reals(fields%elem_force(:, k, iel, is))
+                   call reals(tb, fields%elem_force(:, k, iel, is))
                 end do
              end do
           end do
@@ -142,42 +156,41 @@ contains
                 if (.not. is_plate_type(model%subs(isub)%elem_type(e))) cycle
                 iel = fields%elem_offset(isub) + e
                 if (.not. sel%elem(iel)) cycle
-                call keys(model%steps(is)%name, model%subs(isub)%name, int(model%subs(isub)%elem_id(e), i8))
-                call reals(fields%plate(:, iel, is))
+                call keys(tb, model%steps(is)%name, model%subs(isub)%name, int(model%subs(isub)%elem_id(e), i8))
+                call reals(tb, fields%plate(:, iel, is))
              end do
           end do
        end do
     end select
-    call tb%commit(tmp, path, '', error)
+  end subroutine element_table
 
-  contains
+  subroutine keys(tb, a, b, i1, i2, i3)
+    !! The leading columns of a row: two names and up to three integers.
+    type(text_buffer_t), intent(inout) :: tb
+    character(*), intent(in) :: a, b
+    integer(i8), intent(in) :: i1
+    integer(i8), intent(in), optional :: i2, i3
+    call tb%put(a//','//b//',')
+    call tb%put_int(i1, 0)
+    if (present(i2)) then
+       call tb%put(',')
+       call tb%put_int(i2, 0)
+    end if
+    if (present(i3)) then
+       call tb%put(',')
+       call tb%put_int(i3, 0)
+    end if
+  end subroutine keys
 
-    subroutine keys(a, b, i1, i2, i3)
-      !! The leading columns of a row: two names and up to three integers.
-      character(*), intent(in) :: a, b
-      integer(i8), intent(in) :: i1
-      integer(i8), intent(in), optional :: i2, i3
-      call tb%put(a//','//b//',')
-      call tb%put_int(i1, 0)
-      if (present(i2)) then
-         call tb%put(',')
-         call tb%put_int(i2, 0)
-      end if
-      if (present(i3)) then
-         call tb%put(',')
-         call tb%put_int(i3, 0)
-      end if
-    end subroutine keys
-
-    subroutine reals(x)
-      !! ',' and each value with 17 significant digits, then the end of the row.
-      real(wp), intent(in) :: x(:)
-      integer :: j
-      do j = 1, size(x)
-         call tb%put(',')
-         call tb%put(full_real(x(j)))
-      end do
-      call tb%newline()
-    end subroutine reals
-  end subroutine write_table
+  subroutine reals(tb, x)
+    !! ',' and each value with 17 significant digits, then the end of the row.
+    type(text_buffer_t), intent(inout) :: tb
+    real(wp), intent(in) :: x(:)
+    integer :: j
+    do j = 1, size(x)
+       call tb%put(',')
+       call tb%put(full_real(x(j)))
+    end do
+    call tb%newline()
+  end subroutine reals
 end module superjoin_output_csv

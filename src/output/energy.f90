@@ -1,6 +1,7 @@
 module superjoin_output_energy
   !! Strain energies of a solved step (output variable ENER of *EL PRINT and
-  !! *EL FILE): per element ½ u_eᵀ K_e u_e, per substructure (part) the sum of
+  !! *EL FILE): per element ½ u_eᵀ K_e u_e (the element facade's
+  !! element_strain_energy), per substructure (part) the sum of
   !! its elements, per contact element ½ Σ F·δ over its DOFs (½ g δ² for a
   !! finite DOF; a RIGID DOF has δ = 0 and no energy), per *CONTACT card the sum
   !! of its contact elements, and the spring supports ½ g u².
@@ -15,11 +16,10 @@ module superjoin_output_energy
   !! consistency; it is printed relative to the larger side.
   use superjoin_kinds, only: wp, i8, ip
   use superjoin_error, only: error_t, add_error_line, EXIT_DECK
-  use superjoin_model_types, only: model_t, output_request_t, NDOF_NODE, ELEMENT_NODE_COUNT, &
+  use superjoin_model_types, only: model_t, output_request_t, NDOF_NODE, &
        LINK_FINITE, loc_text, DLOAD_THERMAL, support_t
-  use superjoin_elements, only: element_dof_mask, element_stiffness
-  use superjoin_elements_drill_mask, only: element_drill
-  use superjoin_assembly_assemble, only: distributed_load
+  use superjoin_elements, only: element_strain_energy, element_displacements
+  use superjoin_elements, only: distributed_load
   use superjoin_model_results, only: result_fields_t
   use superjoin_output_text_buffer, only: text_buffer_t
   use superjoin_output_columns, only: element_prefix, chop
@@ -40,36 +40,9 @@ module superjoin_output_energy
      character(:), allocatable :: no_balance  !! why the balance does not apply to this step (unallocated: it does)
   end type energy_t
 
-  public :: compute_energies, element_displacements, write_energy_request, requests_name
+  public :: compute_energies, write_energy_request, requests_name
 
 contains
-
-  subroutine element_displacements(model, fields, is, isub, ie, ue)
-    !! The DOF values of one element in step `is`, global axes, in the element
-    !! ordering of element_stiffness (node-major, element_node_dofs order).
-    type(model_t), intent(in) :: model
-    type(result_fields_t), intent(in) :: fields
-    integer, intent(in) :: is, isub
-    integer(ip), intent(in) :: ie
-    real(wp), allocatable, intent(out) :: ue(:)
-    logical :: mask(NDOF_NODE)
-    integer :: a, d, nn, k
-    integer(i8) :: vx
-    associate (sub => model%subs(isub))
-      mask = element_dof_mask(sub%elem_type(ie))
-      nn = ELEMENT_NODE_COUNT(sub%elem_type(ie))
-      allocate (ue(nn*count(mask)))
-      k = 0
-      do a = 1, nn
-         vx = fields%vertex_offset(isub) + sub%elem_nodes(a, ie)
-         do d = 1, NDOF_NODE
-            if (.not. mask(d)) cycle
-            k = k + 1
-            ue(k) = fields%u(NDOF_NODE*(vx - 1) + d, is)
-         end do
-      end do
-    end associate
-  end subroutine element_displacements
 
   subroutine compute_energies(model, fields, is, en, error)
     !! Every strain energy of step `is` and both sides of the balance.
@@ -79,9 +52,9 @@ contains
     type(energy_t), intent(out) :: en
     type(error_t), allocatable, intent(out) :: error
     type(error_t), allocatable :: inner
-    real(wp), allocatable :: ke(:, :), ue(:), fe(:)
+    real(wp), allocatable :: ue(:), fe(:)
     real(wp) :: ql(3)
-    integer :: isub, il, k, nn
+    integer :: isub, il, k
     integer(ip) :: e
     integer(i8) :: iel
 
@@ -92,18 +65,12 @@ contains
        associate (sub => model%subs(isub))
          do e = 1, sub%nelem
             if (sub%elem_section(e) <= 0) cycle
-            nn = ELEMENT_NODE_COUNT(sub%elem_type(e))
-            associate (sec => sub%sections(sub%elem_section(e)))
-              call element_stiffness(sub%elem_type(e), sub%x(:, sub%elem_nodes(1:nn, e)), sec, &
-                   model%materials(sec%material), ke, inner, element_drill(sub, e))
-            end associate
+            iel = fields%elem_offset(isub) + e
+            call element_strain_energy(model, fields, is, isub, e, en%element(iel), inner)
             if (allocated(inner)) then
                call add_error_line(error, EXIT_DECK, loc_text(model, sub%elem_loc(e))//': error: '//inner%message)
                return
             end if
-            call element_displacements(model, fields, is, isub, e, ue)
-            iel = fields%elem_offset(isub) + e
-            en%element(iel) = 0.5_wp*dot_product(ue, matmul(ke, ue))
             en%part(isub) = en%part(isub) + en%element(iel)
          end do
        end associate

@@ -11,9 +11,9 @@ module superjoin_output_layout
   !! - trusses (T2D2, T3D2) print one axial force per bar (TRUSS AXIAL FORCES)
   !!   instead of rows of ELEMENT END FORCES.
   use superjoin_kinds, only: i8, ip
-  use superjoin_model_types, only: model_t, NDOF_NODE, LINK_NONE, ELEMENT_NODE_COUNT, ET_T2D2, ET_T3D2, ET_B21, ET_B23, &
-       ET_CPS3, ET_CPS4, ET_CPE3, ET_CPE4
+  use superjoin_model_types, only: model_t, NDOF_NODE, LINK_NONE, ELEMENT_NODE_COUNT
   use superjoin_elements, only: element_dof_mask
+  use superjoin_elements_traits, only: element_traits_t, element_traits, is_family, FAMILY_TRUSS
   implicit none (type, external)
   private
 
@@ -26,8 +26,10 @@ contains
 
   pure logical function is_planar_model(model)
     !! True when every element of the model is T2D2, B21, B23, CPS3, CPS4,
-    !! CPE3 or CPE4 (and there is at least one).
+    !! CPE3 or CPE4 (and there is at least one): planar and first order (the
+    !! second-order plane elements do not count).
     type(model_t), intent(in) :: model
+    type(element_traits_t) :: t
     integer :: isub
     integer(ip) :: e
     logical :: any_element
@@ -36,12 +38,11 @@ contains
     do isub = 1, size(model%subs)
        do e = 1, model%subs(isub)%nelem
           any_element = .true.
-          select case (model%subs(isub)%elem_type(e))
-          case (ET_T2D2, ET_B21, ET_B23, ET_CPS3, ET_CPS4, ET_CPE3, ET_CPE4)
-          case default
+          t = element_traits(model%subs(isub)%elem_type(e))
+          if (.not. t%planar .or. t%quadratic) then
              is_planar_model = .false.
              return
-          end select
+          end if
        end do
     end do
     is_planar_model = any_element
@@ -65,7 +66,7 @@ contains
   elemental logical function is_truss(etype)
     !! T2D2 and T3D2.
     integer, intent(in) :: etype
-    is_truss = etype == ET_T2D2 .or. etype == ET_T3D2
+    is_truss = is_family(etype, FAMILY_TRUSS)
   end function is_truss
 
   pure subroutine node_dof_mask(model, vertex_offset, mask)

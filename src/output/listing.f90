@@ -5,8 +5,7 @@ module superjoin_output_listing
   use superjoin_error, only: error_t, fatal_error, EXIT_IO
   use superjoin_model_types, only: model_t, NDOF_NODE, LINK_RIGID, &
        RIGID_ELIMINATE
-  use superjoin_elements, only: is_plate_type, is_plane_type, is_plane_strain_type
-  use superjoin_elements_thermal, only: plane_centroid_remainder
+  use superjoin_elements, only: is_plate_type, is_plane_type, is_plane_strain_type, plane_centroid_remainder
   use superjoin_model_types, only: ELEMENT_NODE_COUNT
   use superjoin_model_results, only: results_t
   use superjoin_utils_process, only: temp_register, temp_unregister

@@ -5,11 +5,11 @@ module superjoin_output_mechanism
   !! Both written to a temporary name and renamed when complete.
   use superjoin_kinds, only: wp, i8, ip
   use superjoin_error, only: error_t, fatal_error, EXIT_IO
-  use superjoin_model_types, only: model_t, NDOF_NODE, ELEMENT_NODE_COUNT, ET_B32
+  use superjoin_model_types, only: model_t, NDOF_NODE
   use superjoin_output_posix, only: rename_file, remove_file, make_directory
   use superjoin_output_text_buffer, only: text_buffer_t
-  use superjoin_output_vtk, only: vtk_base, VTK_VERTEX, VTK_LINE, VTK_TRIANGLE, VTK_QUAD, &
-       VTK_QUADRATIC_TRIANGLE, VTK_QUADRATIC_QUAD, VTK_POLY_LINE
+  use superjoin_output_vtk, only: vtk_base, open_array, close_array, point_ids, model_connectivity, model_offsets, &
+       model_cell_types
   use superjoin_config, only: SUPERJOIN_VERSION
   use superjoin_utils_strings, only: itoa, full_real
   implicit none (type, external)
@@ -41,9 +41,9 @@ contains
     type(text_buffer_t), allocatable :: lu
     character(:), allocatable :: file
     integer(i8), allocatable :: offset(:)
-    integer(i8) :: ncell, off
-    integer :: isub, j, il, first, nn
-    integer(ip) :: n, e
+    integer(i8) :: ncell
+    integer :: isub, j
+    integer(ip) :: n
 
     file = mechanism_vtk_path(path)
     j = index(file, '/', back=.true.)
@@ -73,104 +73,68 @@ contains
     call lu%line('  <UnstructuredGrid>')
     call lu%line('    <Piece NumberOfPoints="'//itoa(offset(size(model%subs) + 1))//'" NumberOfCells="'// &
          itoa(ncell)//'">')
-    call lu%line('      <PointData Vectors="mechanism">')
-    do first = 1, 4, 3
-       if (first == 1) then
-          call open_array('Float64', 'mechanism', 3)
-       else
-          call open_array('Float64', 'mechanism_rotation', 3)
-       end if
-       do j = 1, size(mode, 2)
-          call lu%line(full_real(mode(first, j))//' '//full_real(mode(first + 1, j))//' '// &
-               full_real(mode(first + 2, j)))
-       end do
-       call lu%line('        </DataArray>')
-    end do
-    call open_array('Int32', 'substructure', 1)
-    do isub = 1, size(model%subs)
-       do n = 1, model%subs(isub)%nnode
-          call lu%line(itoa(isub))
-       end do
-    end do
-    call lu%line('        </DataArray>')
-    call open_array('Int32', 'node', 1)
-    do isub = 1, size(model%subs)
-       do n = 1, model%subs(isub)%nnode
-          call lu%line(itoa(int(model%subs(isub)%node_id(n))))
-       end do
-    end do
-    call lu%line('        </DataArray>')
-    call lu%line('      </PointData>')
+    call mechanism_point_data(lu, model, mode)
     call lu%line('      <Points>')
-    call open_array('Float64', 'coordinates', 3)
+    call open_array(lu, 'Float64', 'coordinates', 3)
     do isub = 1, size(model%subs)
        do n = 1, model%subs(isub)%nnode
           call lu%line(full_real(model%subs(isub)%x(1, n))//' '//full_real(model%subs(isub)%x(2, n))//' '// &
                full_real(model%subs(isub)%x(3, n)))
        end do
     end do
-    call lu%line('        </DataArray>')
+    call close_array(lu)
     call lu%line('      </Points>')
-    call lu%line('      <Cells>')
-    call open_array('Int64', 'connectivity', 1)
-    do isub = 1, size(model%subs)
-       do e = 1, model%subs(isub)%nelem
-          nn = ELEMENT_NODE_COUNT(model%subs(isub)%elem_type(e))
-          do j = 1, nn
-             if (j > 1) call lu%put(' ')
-             call lu%put(itoa(offset(isub) + model%subs(isub)%elem_nodes(j, e) - 1))
-          end do
-          call lu%newline()
-       end do
-    end do
-    do il = 1, size(model%links)
-       associate (lk => model%links(il), ct => model%contacts(model%links(il)%contact))
-         call lu%line(itoa(offset(ct%master_sub) + lk%master_node - 1)//' '// &
-              itoa(offset(ct%slave_sub) + lk%slave_node - 1))
-       end associate
-    end do
-    call lu%line('        </DataArray>')
-    call open_array('Int64', 'offsets', 1)
-    off = 0
-    do isub = 1, size(model%subs)
-       do e = 1, model%subs(isub)%nelem
-          off = off + ELEMENT_NODE_COUNT(model%subs(isub)%elem_type(e))
-          call lu%line(itoa(off))
-       end do
-    end do
-    do il = 1, size(model%links)
-       off = off + 2
-       call lu%line(itoa(off))
-    end do
-    call lu%line('        </DataArray>')
-    call open_array('UInt8', 'types', 1)
-    do isub = 1, size(model%subs)
-       do e = 1, model%subs(isub)%nelem
-          if (model%subs(isub)%elem_type(e) == ET_B32) then
-             call lu%line(itoa(VTK_POLY_LINE))     ! a three-node beam, not a triangle
-          else
-             call lu%line(itoa(cell_of(ELEMENT_NODE_COUNT(model%subs(isub)%elem_type(e)))))
-          end if
-       end do
-    end do
-    do il = 1, size(model%links)
-       call lu%line(itoa(VTK_LINE))
-    end do
-    call lu%line('        </DataArray>')
-    call lu%line('      </Cells>')
+    call mechanism_cells(lu, model, offset)
     call lu%line('    </Piece>')
     call lu%line('  </UnstructuredGrid>')
     call lu%line('</VTKFile>')
     call finish(lu, file, error)
-  contains
-    subroutine open_array(vtype, name, ncomp)
-      character(*), intent(in) :: vtype, name
-      integer, intent(in) :: ncomp
-      call lu%put('        <DataArray type="'//vtype//'" Name="'//name//'"')
-      if (ncomp > 1) call lu%put(' NumberOfComponents="'//itoa(ncomp)//'"')
-      call lu%line(' format="ascii">')
-    end subroutine open_array
   end subroutine write_mechanism_vtk
+
+  subroutine mechanism_point_data(lu, model, mode)
+    !! The point arrays of the mechanism file: the mode's translations and
+    !! rotations, the substructure and the node id.
+    type(text_buffer_t), intent(inout) :: lu
+    type(model_t), intent(in) :: model
+    real(wp), intent(in) :: mode(:, :)
+    integer :: j, first
+    call lu%line('      <PointData Vectors="mechanism">')
+    do first = 1, 4, 3
+       if (first == 1) then
+          call open_array(lu, 'Float64', 'mechanism', 3)
+       else
+          call open_array(lu, 'Float64', 'mechanism_rotation', 3)
+       end if
+       do j = 1, size(mode, 2)
+          call lu%line(full_real(mode(first, j))//' '//full_real(mode(first + 1, j))//' '// &
+               full_real(mode(first + 2, j)))
+       end do
+       call close_array(lu)
+    end do
+    call point_ids(lu, model)
+    call lu%line('      </PointData>')
+  end subroutine mechanism_point_data
+
+  subroutine mechanism_cells(lu, model, offset)
+    !! The cells of the mechanism file (elements, then contacts), the points
+    !! of substructure isub numbered from offset(isub).
+    type(text_buffer_t), intent(inout) :: lu
+    type(model_t), intent(in) :: model
+    integer(i8), intent(in) :: offset(:)
+    integer(i8) :: off
+    call lu%line('      <Cells>')
+    call open_array(lu, 'Int64', 'connectivity', 1)
+    call model_connectivity(lu, model, offset)
+    call close_array(lu)
+    call open_array(lu, 'Int64', 'offsets', 1)
+    off = 0
+    call model_offsets(lu, model, off)
+    call close_array(lu)
+    call open_array(lu, 'UInt8', 'types', 1)
+    call model_cell_types(lu, model)
+    call close_array(lu)
+    call lu%line('      </Cells>')
+  end subroutine mechanism_cells
 
   subroutine write_mechanism_csv(dir, model, mode, error)
     !! DIR/mechanism.csv: substructure, node, u1..ur3 of the mode (relative
@@ -229,23 +193,4 @@ contains
        call remove_file(file//TMP_EXT)
     end if
   end subroutine finish
-
-  pure integer function cell_of(nnode)
-    !! VTK cell type of an element with nnode nodes.
-    integer, intent(in) :: nnode
-    select case (nnode)
-    case (2)
-       cell_of = VTK_LINE
-    case (3)
-       cell_of = VTK_TRIANGLE
-    case (4)
-       cell_of = VTK_QUAD
-    case (6)
-       cell_of = VTK_QUADRATIC_TRIANGLE
-    case (8)
-       cell_of = VTK_QUADRATIC_QUAD
-    case default
-       cell_of = VTK_VERTEX
-    end select
-  end function cell_of
 end module superjoin_output_mechanism

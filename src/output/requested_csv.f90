@@ -13,8 +13,9 @@ module superjoin_output_requested_csv
   use superjoin_error, only: error_t
   use superjoin_model_types, only: model_t, REQ_EL_PRINT, REQ_EL_FILE, REQ_NODE_PRINT, REQ_NODE_FILE, &
        ELEMENT_TYPE_NAMES
-  use superjoin_output_stresses, only: plane_stresses, nodal_stresses, fibre_stresses
-  use superjoin_elements_shell, only: is_plate_type
+  use superjoin_output_stresses, only: nodal_stresses, fibre_stresses
+  use superjoin_elements, only: element_stresses
+  use superjoin_elements, only: is_plate_type
   use superjoin_model_results, only: result_fields_t
   use superjoin_output_requests, only: effective_requests
   use superjoin_output_energy, only: energy_t, compute_energies, requests_name
@@ -203,7 +204,7 @@ contains
        if (.not. wanted(is)) cycle
        do isub = 1, size(model%subs)
           do e = 1, model%subs(isub)%nelem
-             call plane_stresses(model, fields, is, isub, e, points, nodes, ok)
+             call element_stresses(model, fields, is, isub, e, points, nodes, ok)
              if (.not. ok) cycle
              do m = 1, size(points, 3)
                 do k = 1, size(points, 2)

@@ -9,13 +9,8 @@ module superjoin_output_requests
   !! written outside *STEP (superjoin) are the default of every step.
   use superjoin_kinds, only: wp, i8, ip
   use superjoin_model_types, only: model_t, output_request_t, NDOF_NODE, REQ_NODE_PRINT, REQ_EL_PRINT, &
-       REQ_KIND_NAMES, TOTALS_YES, TOTALS_ONLY, ET_T2D2, ET_T3D2, ET_CPS3, ET_CPS4, &
-       ELEMENT_NODE_COUNT, ET_CPS6, ET_CPS8, ET_CPS8R, MAX_ELEMENT_NODES, &
-       ET_CPE3, ET_CPE4, ET_CPE6, ET_CPE8, ET_CPE8R
-  use superjoin_elements, only: is_plate_type
-  use superjoin_elements_shell, only: shell_frame
-  use superjoin_elements_thermal, only: plane_centroid_remainder
-  use superjoin_error, only: error_t
+       REQ_KIND_NAMES, TOTALS_YES, TOTALS_ONLY
+  use superjoin_elements, only: is_plate_type, element_tensor, NTENSOR
   use superjoin_model_results, only: result_fields_t
   use superjoin_output_text_buffer, only: text_buffer_t
   use superjoin_output_columns, only: element_prefix, chop
@@ -28,7 +23,6 @@ module superjoin_output_requests
 
   public :: write_print_requests, effective_requests
 
-  integer, parameter :: NTENSOR = 6
   character(len=15), parameter :: TENSOR_HEAD(NTENSOR) = ['             xx', '             yy', &
        '             zz', '             xy', '             xz', '             yz']
   character(len=15), parameter :: NODE_HEAD(NDOF_NODE) = ['              1', '              2', &
@@ -364,109 +358,6 @@ contains
     end do
     call lu%line('')
   end subroutine element_request
-
-  subroutine element_tensor(model, fields, is, isub, ie, strain, t, ok)
-    !! Stress (or strain) tensor of one element in global axes, Voigt order
-    !! xx, yy, zz, xy, xz, yz (tensor shear components); ok false for element
-    !! types without one (beams, shells).
-    type(model_t), intent(in) :: model
-    type(result_fields_t), intent(in) :: fields
-    integer, intent(in) :: is, isub
-    integer(ip), intent(in) :: ie
-    logical, intent(in) :: strain
-    real(wp), intent(out) :: t(NTENSOR)
-    logical, intent(out) :: ok
-    real(wp) :: a(3), m(3, 3), sig(3, 3), x(3, MAX_ELEMENT_NODES), ex(3), ey(3), ez(3), e, nu, thick, sl(3), el(3)
-    real(wp) :: r(3, 3), xl(2, MAX_ELEMENT_NODES), h(MAX_ELEMENT_NODES), eth
-    type(error_t), allocatable :: error
-    integer(i8) :: iel
-    integer :: etype, nn, i
-    t = 0.0_wp
-    ok = .false.
-    associate (sub => model%subs(isub))
-      etype = sub%elem_type(ie)
-      if (sub%elem_section(ie) <= 0) return
-      associate (sec => sub%sections(sub%elem_section(ie)))
-        e = model%materials(sec%material)%e
-        nu = model%materials(sec%material)%nu
-        iel = fields%elem_offset(isub) + ie
-        eth = 0.0_wp                                     ! free thermal strain α ΔT of the element
-        if (allocated(fields%thermal)) eth = fields%thermal(1, iel, is)
-        nn = ELEMENT_NODE_COUNT(etype)
-        do i = 1, nn
-           x(:, i) = sub%x(:, sub%elem_nodes(i, ie))
-        end do
-        ! a temperature varying over a plane element: its value at the centroid
-        if (allocated(fields%thermal_nodal)) eth = eth + &
-             plane_centroid_remainder(etype, x(:, 1:nn), fields%thermal_nodal(1:nn, iel, is))
-        select case (etype)
-        case (ET_T2D2, ET_T3D2)
-           a = x(:, 2) - x(:, 1)
-           a = a/norm2(a)
-           sl(1) = fields%elem_force(1, 2, iel, is)/sec%area
-           if (strain) then
-              sl(1) = sl(1)/e
-              sig = -nu*sl(1)*identity() + (1.0_wp + nu)*sl(1)*outer(a, a)
-           else
-              sig = sl(1)*outer(a, a)
-           end if
-        case (ET_CPS3, ET_CPS4, ET_CPS6, ET_CPS8, ET_CPS8R)
-           thick = sec%thickness
-           call shell_frame(x(:, 1:nn), r, xl(:, 1:nn), h(1:nn), error)
-           if (allocated(error)) return
-           ex = r(1, :)
-           ey = r(2, :)
-           ez = r(3, :)
-           sl = fields%plate(1:3, iel, is)/thick        ! sx, sy, txy in the element frame
-           if (strain) then                              ! total strain: elastic + α ΔT
-              el(1) = (sl(1) - nu*sl(2))/e + eth
-              el(2) = (sl(2) - nu*sl(1))/e + eth
-              el(3) = (1.0_wp + nu)*sl(3)/e       ! tensor shear strain = gamma/2
-              sig = el(1)*outer(ex, ex) + el(2)*outer(ey, ey) + el(3)*(outer(ex, ey) + outer(ey, ex)) &
-                   + (eth - nu*(sl(1) + sl(2))/e)*outer(ez, ez)
-           else
-              sig = sl(1)*outer(ex, ex) + sl(2)*outer(ey, ey) + sl(3)*(outer(ex, ey) + outer(ey, ex))
-           end if
-        case (ET_CPE3, ET_CPE4, ET_CPE6, ET_CPE8, ET_CPE8R)
-           ! plane strain: sz = nu (sx + sy) - E α ΔT, ez = 0
-           call shell_frame(x(:, 1:nn), r, xl(:, 1:nn), h(1:nn), error)
-           if (allocated(error)) return
-           ex = r(1, :)
-           ey = r(2, :)
-           ez = r(3, :)
-           sl = fields%plate(1:3, iel, is)/sec%thickness
-           if (strain) then
-              el(1) = (1.0_wp + nu)*((1.0_wp - nu)*sl(1) - nu*sl(2))/e + (1.0_wp + nu)*eth
-              el(2) = (1.0_wp + nu)*((1.0_wp - nu)*sl(2) - nu*sl(1))/e + (1.0_wp + nu)*eth
-              el(3) = (1.0_wp + nu)*sl(3)/e
-              sig = el(1)*outer(ex, ex) + el(2)*outer(ey, ey) + el(3)*(outer(ex, ey) + outer(ey, ex))
-           else
-              sig = sl(1)*outer(ex, ex) + sl(2)*outer(ey, ey) + sl(3)*(outer(ex, ey) + outer(ey, ex)) &
-                   + (nu*(sl(1) + sl(2)) - e*eth)*outer(ez, ez)
-           end if
-        case default
-           return
-        end select
-      end associate
-    end associate
-    m = sig
-    t = [m(1, 1), m(2, 2), m(3, 3), m(1, 2), m(1, 3), m(2, 3)]
-    ok = .true.
-  contains
-    pure function outer(p, q) result(o)
-      real(wp), intent(in) :: p(3), q(3)
-      real(wp) :: o(3, 3)
-      o = spread(p, 2, 3)*spread(q, 1, 3)
-    end function outer
-    pure function identity() result(o)
-      real(wp) :: o(3, 3)
-      integer :: j
-      o = 0.0_wp
-      do j = 1, 3
-         o(j, j) = 1.0_wp
-      end do
-    end function identity
-  end subroutine element_tensor
 
   subroutine tensor_table(lu, model, fields, is, subs, elems, strain)
     type(text_buffer_t), intent(inout) :: lu

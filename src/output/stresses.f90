@@ -25,35 +25,20 @@ module superjoin_output_stresses
   !! element); N > 0 in tension, Mz > 0 stretches the -y fibres.
   use superjoin_kinds, only: wp, i8, ip
   use superjoin_error, only: error_t
-  use superjoin_model_types, only: model_t, ELEMENT_NODE_COUNT, ET_B23, ET_B33, ET_B21, ET_B31
-  use superjoin_model_types, only: ET_S8R
-  use superjoin_elements_shell, only: s8r_stresses
-  use superjoin_elements_shell, only: shell_thermal_nodal_stresses
-  use superjoin_elements_shell8, only: S8R_STRESS_POINTS
-  use superjoin_elements_shell, only: shell_frame, is_plane_type, is_plate_type, shell_surface_stresses
-  use superjoin_elements_shell, only: is_plane_strain_type, is_quadratic_plane_type, is_thick_shell_type, &
-       quadratic_props, thick_shell_stresses, THICK_SURFACES
-  use superjoin_elements_quadratic, only: quadratic_point_stresses
-  use superjoin_elements_membrane, only: membrane_point_stresses
+  use superjoin_model_types, only: model_t, ELEMENT_NODE_COUNT
+  use superjoin_elements, only: element_stresses, NTENSOR
+  use superjoin_elements_traits, only: element_traits_t, element_traits, FAMILY_PLANE, FAMILY_SHELL, FAMILY_BEAM
   use superjoin_model_results, only: result_fields_t
-  use superjoin_output_energy, only: element_displacements
-  use superjoin_elements_thermal, only: thermal_free_field
-  use superjoin_elements_thermal, only: plane_initial_strains
   use superjoin_output_text_buffer, only: text_buffer_t
   use superjoin_output_columns, only: element_prefix, chop
   use superjoin_utils_strings, only: itoa
-  use superjoin_elements_drill_mask, only: element_drill
   implicit none (type, external)
   private
 
-  integer, parameter, public :: NTENSOR = 6
-  integer, parameter, public :: NSURF = THICK_SURFACES
+  integer, parameter, public :: NSURF = 3
     !! Section points of a shell: 1 bottom (z = -t/2), 2 top (z = +t/2, along the
     !! element normal), 3 the mid-surface (thick shells only).
   integer, parameter :: THIN_SURFACES = 2
-  integer, parameter :: TRANSVERSE = 5
-    !! Element-frame stress components with the transverse shears (σx, σy, τxy, τxz, τyz).
-  integer, parameter :: MAX_PLANE_NODES = 8
   character(len=3), parameter :: SURF_NAMES(NSURF) = ['bot', 'top', 'mid']
   character(len=15), parameter :: TENSOR_HEAD(NTENSOR) = ['             xx', '             yy', &
        '             zz', '             xy', '             xz', '             yz']
@@ -68,203 +53,11 @@ module superjoin_output_stresses
      integer, allocatable :: n(:)
   end type int_block_t
 
-  public :: plane_stresses, nodal_stresses, write_point_stress_table, write_nodal_stress_table
+  public :: NTENSOR
+  public :: nodal_stresses, write_point_stress_table, write_nodal_stress_table
   public :: fibre_stresses, write_fibre_stress_table
 
 contains
-
-  subroutine plane_stresses(model, fields, is, isub, ie, points, nodes, ok)
-    !! Stress tensors of plane or shell element ie of substructure isub in
-    !! step is: points(6, npoint, nsurf) at its integration points,
-    !! nodes(6, nnode, nsurf) extrapolated to its nodes; nsurf = 1 for plane
-    !! elements, 2 for thin shells (1: bottom surface z = -t/2, 2: top, z along
-    !! the element normal), 3 for thick shells (bottom, top, mid-surface). ok
-    !! false (and empty arrays) for other element types or an element that
-    !! cannot be evaluated.
-    !! Each element family computes its stresses in its own element routine
-    !! (membrane_point_stresses, quadratic_point_stresses, shell_surface_stresses,
-    !! thick_shell_stresses), where a thermal strain is subtracted; the S8R
-    !! (s8r_element_stresses) returns global tensors at its section points in
-    !! the layout of thick_shell_stresses, its thermal strain subtracted in
-    !! the element routine (shell8_stresses' thermal hook).
-    type(model_t), intent(in) :: model
-    type(result_fields_t), intent(in) :: fields
-    integer, intent(in) :: is, isub
-    integer(ip), intent(in) :: ie
-    real(wp), allocatable, intent(out) :: points(:, :, :), nodes(:, :, :)
-    logical, intent(out) :: ok
-    real(wp) :: x(3, MAX_PLANE_NODES), r(3, 3), xl(2, MAX_PLANE_NODES), h(MAX_PLANE_NODES), nu, szz0
-    real(wp), allocatable :: ue(:), ul(:), sp(:, :), sn(:, :), sp3(:, :, :), sn3(:, :, :), u0(:)
-    real(wp), allocatable :: e0(:), e0p(:), e0n(:)   ! a temperature varying over a plane element
-    real(wp), allocatable :: sp3_rem(:, :, :), sn3_rem(:, :, :)   ! a shell's: what its nodal remainders add
-    real(wp) :: szz_here
-    type(error_t), allocatable :: error
-    integer :: etype, nn, a, k
-    logical :: strain, varying
-    ok = .false.
-    allocate (points(NTENSOR, 0, 1), nodes(NTENSOR, 0, 1))
-    associate (sub => model%subs(isub))
-      etype = sub%elem_type(ie)
-      if (.not. is_plate_type(etype) .or. sub%elem_section(ie) <= 0) return
-      if (etype == ET_S8R) then
-         call s8r_element_stresses(model, fields, is, isub, ie, points, nodes, ok)
-         return
-      end if
-      if (.not. is_plane_type(etype) .and. ELEMENT_NODE_COUNT(etype) > size(x, 2)) return
-      nn = ELEMENT_NODE_COUNT(etype)
-      if (nn > MAX_PLANE_NODES) return
-      do a = 1, nn
-         x(:, a) = sub%x(:, sub%elem_nodes(a, ie))
-      end do
-      call element_displacements(model, fields, is, isub, ie, ue)
-      strain = is_plane_strain_type(etype)
-      associate (sec => sub%sections(sub%elem_section(ie)), mat => model%materials(sub%sections(sub%elem_section(ie))%material))
-        nu = mat%nu
-        szz0 = 0.0_wp
-        if (allocated(fields%thermal)) then   ! loads: σ = D (ε - ε0), the free thermal expansion taken off u
-           associate (th => fields%thermal(:, fields%elem_offset(isub) + ie, is))
-             call thermal_free_field(etype, x(:, 1:nn), nu, th(1), th(2), u0, error)
-             if (allocated(error)) return
-             ue = ue - u0
-             szz0 = mat%e*th(1)
-           end associate
-        end if
-        if (is_plane_type(etype)) then
-           call shell_frame(x(:, 1:nn), r, xl(:, 1:nn), h(1:nn), error)
-           if (allocated(error)) return
-           allocate (ul(2*nn))
-           do a = 1, nn
-              ul(2*a - 1) = r(1, 1)*ue(2*a - 1) + r(1, 2)*ue(2*a)
-              ul(2*a) = r(2, 1)*ue(2*a - 1) + r(2, 2)*ue(2*a)
-           end do
-           varying = .false.
-           if (allocated(fields%thermal_nodal)) &
-                varying = any(fields%thermal_nodal(1:nn, fields%elem_offset(isub) + ie, is) /= 0.0_wp)
-           if (varying) then   ! loads: the nodal remainder of the temperature, interpolated to the points
-              call plane_initial_strains(etype, nu, fields%thermal_nodal(1:nn, fields%elem_offset(isub) + ie, is), e0)
-              if (is_quadratic_plane_type(etype)) then
-                 call quadratic_point_stresses(xl(:, 1:nn), quadratic_props(etype, sec, mat), ul, sp, sn, error, &
-                      e0, e0p, e0n)
-              else
-                 call membrane_point_stresses(xl(:, 1:nn), mat%e, mat%nu, strain, ul, sp, sn, error, e0, e0p, e0n)
-              end if
-           else if (is_quadratic_plane_type(etype)) then
-              call quadratic_point_stresses(xl(:, 1:nn), quadratic_props(etype, sec, mat), ul, sp, sn, error)
-           else
-              call membrane_point_stresses(xl(:, 1:nn), mat%e, mat%nu, strain, ul, sp, sn, error)
-           end if
-           if (allocated(error)) return
-           sp3 = reshape(sp, [3, size(sp, 2), 1])
-           sn3 = reshape(sn, [3, size(sn, 2), 1])
-        else if (is_thick_shell_type(etype)) then
-           call thick_shell_stresses(etype, x(:, 1:nn), sec, mat, ue, r, sp3, sn3, error, element_drill(sub, ie))
-           if (allocated(error)) return
-        else
-           call shell_surface_stresses(x(:, 1:nn), sec, mat, ue, r, sp3, sn3, error, element_drill(sub, ie))
-           if (allocated(error)) return
-        end if
-        if (.not. is_plane_type(etype) .and. allocated(fields%thermal_curvature_nodal)) then
-           ! loads: a shell whose temperature varies, the nodal remainders interpolated to the points
-           associate (tn => fields%thermal_nodal(1:nn, fields%elem_offset(isub) + ie, is), &
-                cn => fields%thermal_curvature_nodal(1:nn, fields%elem_offset(isub) + ie, is))
-             if (any(tn /= 0.0_wp) .or. any(cn /= 0.0_wp)) then
-                call shell_thermal_nodal_stresses(etype, x(:, 1:nn), sec, mat, tn, cn, sp3_rem, sn3_rem, error, &
-                     element_drill(sub, ie))
-                if (allocated(error)) return
-                sp3 = sp3 + sp3_rem
-                sn3 = sn3 + sn3_rem
-             end if
-           end associate
-        end if
-      end associate
-    end associate
-    deallocate (points, nodes)
-    allocate (points(NTENSOR, size(sp3, 2), size(sp3, 3)), nodes(NTENSOR, size(sn3, 2), size(sn3, 3)))
-    szz_here = 0.0_wp
-    do k = 1, size(sp3, 3)
-       do a = 1, size(sp3, 2)
-          ! plane strain: σzz takes -E α ΔT of the remainder there, (1 + ν) α ΔT being e0
-          if (allocated(e0p)) szz_here = mat_e()*e0p(a)/(1.0_wp + nu)
-          points(:, a, k) = to_global(sp3(:, a, k))
-       end do
-       do a = 1, size(sn3, 2)
-          if (allocated(e0n)) szz_here = mat_e()*e0n(a)/(1.0_wp + nu)
-          nodes(:, a, k) = to_global(sn3(:, a, k))
-       end do
-    end do
-    ok = .true.
-  contains
-    pure function to_global(s) result(t)
-      !! (σx, σy, τxy[, τxz, τyz]) of the element frame as a global tensor, Voigt order.
-      real(wp), intent(in) :: s(:)
-      real(wp) :: t(NTENSOR)
-      real(wp) :: m(3, 3), szz, e1(3), e2(3), e3(3)
-      szz = 0.0_wp
-      if (strain) szz = nu*(s(1) + s(2)) - szz0 - szz_here
-      e1 = r(1, :)
-      e2 = r(2, :)
-      e3 = r(3, :)
-      m = s(1)*outer(e1, e1) + s(2)*outer(e2, e2) + s(3)*(outer(e1, e2) + outer(e2, e1)) + szz*outer(e3, e3)
-      if (size(s) == TRANSVERSE) m = m + s(4)*(outer(e1, e3) + outer(e3, e1)) + s(5)*(outer(e2, e3) + outer(e3, e2))
-      t = [m(1, 1), m(2, 2), m(3, 3), m(1, 2), m(1, 3), m(2, 3)]
-    end function to_global
-    pure real(wp) function mat_e()
-      !! Young's modulus of the element.
-      associate (sub => model%subs(isub))
-        mat_e = model%materials(sub%sections(sub%elem_section(ie))%material)%e
-      end associate
-    end function mat_e
-    pure function outer(p, q) result(o)
-      real(wp), intent(in) :: p(3), q(3)
-      real(wp) :: o(3, 3)
-      o = spread(p, 2, 3)*spread(q, 1, 3)
-    end function outer
-  end subroutine plane_stresses
-
-  subroutine s8r_element_stresses(model, fields, is, isub, ie, points, nodes, ok)
-    !! plane_stresses of an S8R (superjoin_elements_shell8, shell8_stresses):
-    !! points(6, 4, 3) at the 2×2 points, nodes(6, 8, 3), section points
-    !! bottom, top, mid-surface, global axes; the element's thermal strain
-    !! and curvature of the step (if any) subtracted.
-    type(model_t), intent(in) :: model
-    type(result_fields_t), intent(in) :: fields
-    integer, intent(in) :: is, isub
-    integer(ip), intent(in) :: ie
-    real(wp), allocatable, intent(inout) :: points(:, :, :), nodes(:, :, :)
-    logical, intent(out) :: ok
-    real(wp) :: x(3, ELEMENT_NODE_COUNT(ET_S8R)), th(2), rem(2, ELEMENT_NODE_COUNT(ET_S8R))
-    real(wp), allocatable :: ue(:)
-    type(error_t), allocatable :: error
-    integer :: a
-    ok = .false.
-    associate (sub => model%subs(isub))
-      do a = 1, size(x, 2)
-         x(:, a) = sub%x(:, sub%elem_nodes(a, ie))
-      end do
-      call element_displacements(model, fields, is, isub, ie, ue)
-      th = 0.0_wp
-      if (allocated(fields%thermal)) th = fields%thermal(:, fields%elem_offset(isub) + ie, is)
-      rem = 0.0_wp   ! loads: a temperature varying over the element, the nodes' remainders
-      if (allocated(fields%thermal_nodal)) rem(1, :) = fields%thermal_nodal(1:size(x, 2), fields%elem_offset(isub) + ie, is)
-      if (allocated(fields%thermal_curvature_nodal)) &
-           rem(2, :) = fields%thermal_curvature_nodal(1:size(x, 2), fields%elem_offset(isub) + ie, is)
-      deallocate (points, nodes)
-      allocate (points(NTENSOR, S8R_STRESS_POINTS, NSURF), nodes(NTENSOR, size(x, 2), NSURF))
-      associate (sec => sub%sections(sub%elem_section(ie)), mat => model%materials(sub%sections(sub%elem_section(ie))%material))
-        if (any(rem /= 0.0_wp)) then
-           call s8r_stresses(x, sec, mat, ue, points, nodes, error, th, rem)
-        else
-           call s8r_stresses(x, sec, mat, ue, points, nodes, error, th)
-        end if
-      end associate
-    end associate
-    if (allocated(error)) then
-       deallocate (points, nodes)
-       allocate (points(NTENSOR, 0, 1), nodes(NTENSOR, 0, 1))
-       return
-    end if
-    ok = .true.
-  end subroutine s8r_element_stresses
 
   subroutine nodal_stresses(model, fields, is, isub, avg, nel, npoint)
     !! Nodal stresses of substructure isub in step is: avg(6, nnode, NSURF) the
@@ -289,7 +82,7 @@ contains
       allocate (nel(sub%nnode), source=0)
       allocate (npoint(sub%nnode), source=1)
       do e = 1, sub%nelem
-         call plane_stresses(model, fields, is, isub, e, points, nodes, ok)
+         call element_stresses(model, fields, is, isub, e, points, nodes, ok)
          if (.not. ok) cycle
          do a = 1, size(nodes, 2)
             node = sub%elem_nodes(a, e)
@@ -321,10 +114,12 @@ contains
     integer, intent(in) :: subs(:)
     integer(ip), intent(in) :: elems(:)
     logical :: yes(size(elems))
-    integer :: i, etype
+    type(element_traits_t) :: t
+    integer :: i
     do i = 1, size(elems)
-       etype = model%subs(subs(i))%elem_type(elems(i))
-       yes(i) = is_quadratic_plane_type(etype) .or. is_thick_shell_type(etype)
+       t = element_traits(model%subs(subs(i))%elem_type(elems(i)))
+       yes(i) = (t%family == FAMILY_PLANE .and. t%quadratic) .or. &
+            (t%family == FAMILY_SHELL .and. t%shear_flexible .and. .not. t%quadratic)
     end do
   end function newer_family
 
@@ -336,7 +131,7 @@ contains
     logical :: yes(size(elems))
     integer :: i
     do i = 1, size(elems)
-       yes(i) = model%subs(subs(i))%elem_type(elems(i)) == ET_S8R
+       yes(i) = is_eight_node_shell(model%subs(subs(i))%elem_type(elems(i)))
     end do
   end function is_s8r
 
@@ -353,11 +148,11 @@ contains
     do isub = 1, size(model%subs)
        if (.not. any(subs == isub)) cycle
        associate (sub => model%subs(isub))
-         if (.not. any(sub%elem_type == ET_S8R)) cycle
+         if (.not. any(is_eight_node_shell(sub%elem_type))) cycle
          allocate (mask(sub%nnode), source=.false.)
          do e = 1, sub%nelem
-            if (sub%elem_type(e) == ET_S8R .and. sub%elem_section(e) > 0) &
-                 mask(sub%elem_nodes(1:ELEMENT_NODE_COUNT(ET_S8R), e)) = .true.
+            if (is_eight_node_shell(sub%elem_type(e)) .and. sub%elem_section(e) > 0) &
+                 mask(sub%elem_nodes(1:ELEMENT_NODE_COUNT(sub%elem_type(e)), e)) = .true.
          end do
          do i = 1, size(nodes)
             if (subs(i) == isub) yes(i) = mask(nodes(i))
@@ -366,6 +161,14 @@ contains
        end associate
     end do
   end function s8r_nodes
+
+  elemental logical function is_eight_node_shell(etype)
+    !! The S8R: a shell with mid-side nodes.
+    integer, intent(in) :: etype
+    type(element_traits_t) :: t
+    t = element_traits(etype)
+    is_eight_node_shell = t%family == FAMILY_SHELL .and. t%quadratic
+  end function is_eight_node_shell
 
   pure function surface_label(nsurface, k) result(label)
     !! '-' for a plane element's single surface, 'bot' / 'top' / 'mid' for shells.
@@ -393,7 +196,7 @@ contains
     allocate (vals(size(elems)), ok(size(elems)))
     scale = 0.0_wp
     do i = 1, size(elems)
-       call plane_stresses(model, fields, is, subs(i), elems(i), vals(i)%v, nodes, ok(i))
+       call element_stresses(model, fields, is, subs(i), elems(i), vals(i)%v, nodes, ok(i))
        if (ok(i)) scale = max(scale, maxval(abs(vals(i)%v)))
     end do
     if (.not. any(ok)) return
@@ -494,16 +297,14 @@ contains
     real(wp), intent(out) :: sig(4, 2)
     integer, intent(out) :: n
     real(wp) :: sf(6), y, z
+    type(element_traits_t) :: t
     integer(i8) :: iel
     integer :: k, ends
     sig = 0.0_wp
     n = 0
     associate (sub => model%subs(isub))
-      select case (sub%elem_type(ie))
-      case (ET_B23, ET_B33, ET_B21, ET_B31)
-      case default
-         return
-      end select
+      t = element_traits(sub%elem_type(ie))
+      if (t%family /= FAMILY_BEAM .or. t%quadratic) return   ! the two-node beams
       if (sub%elem_section(ie) <= 0) return
       associate (sec => sub%sections(sub%elem_section(ie)))
         n = sec%nfibre

@@ -8,11 +8,9 @@ module superjoin_output_vtk
   !! the collection last, so a failed run leaves no file that looks finished.
   use superjoin_kinds, only: wp, i8, ip
   use superjoin_error, only: error_t, fatal_error, EXIT_IO
-  use superjoin_model_types, only: model_t, NDOF_NODE, ELEMENT_NODE_COUNT, ET_T2D2, ET_T3D2, &
-       ET_B23, ET_B33, ET_CPS3, ET_CPS4, ET_S3, ET_S4, ET_B21, ET_B31, ET_CPE3, ET_CPE4, &
-       ET_CPS6, ET_CPS8, ET_CPE6, ET_CPE8, ET_CPS8R, ET_CPE8R, ET_B32
-  use superjoin_model_types, only: ET_S4R, ET_S3R
-  use superjoin_model_types, only: ET_S8R
+  use superjoin_model_types, only: model_t, NDOF_NODE, ELEMENT_NODE_COUNT
+  use superjoin_elements_traits, only: element_vtk_cell, VTK_VERTEX, VTK_LINE, VTK_TRIANGLE, VTK_QUAD, &
+       VTK_QUADRATIC_TRIANGLE, VTK_QUADRATIC_QUAD, VTK_POLY_LINE
   use superjoin_model_results, only: result_fields_t
   use superjoin_output_file_selection, only: file_selection_t, select_file_output, FILE_DISPLACEMENTS, &
        FILE_REACTIONS, FILE_ELEMENT_FORCES
@@ -24,10 +22,11 @@ module superjoin_output_vtk
   private
 
   public :: write_vtk, vtk_base, vtk_piece_path, vtk_path_problem
+  public :: open_array, close_array, point_ids, model_connectivity, model_offsets, model_cell_types
+    !! The pieces of a .vtu file that the mechanism file shares (superjoin_output_mechanism).
 
-  integer, parameter, public :: VTK_VERTEX = 1, VTK_LINE = 3, VTK_TRIANGLE = 5, VTK_QUAD = 9
-  integer, parameter, public :: VTK_QUADRATIC_TRIANGLE = 22, VTK_QUADRATIC_QUAD = 23, VTK_POLY_LINE = 4
-    !! VTK cell type codes.
+  public :: VTK_VERTEX, VTK_LINE, VTK_TRIANGLE, VTK_QUAD, VTK_QUADRATIC_TRIANGLE, VTK_QUADRATIC_QUAD, VTK_POLY_LINE
+    !! VTK cell type codes (superjoin_elements_traits).
   integer, parameter, public :: CELL_ELEMENT = 1, CELL_CONTACT = 2, CELL_SUPPORT = 3
     !! Values of the cell array `kind`.
   character(*), parameter :: PVD_EXT = '.pvd', VTU_EXT = '.vtu', TMP_EXT = '.tmp'
@@ -283,8 +282,7 @@ contains
     type(result_fields_t), intent(in) :: fields
     type(file_selection_t), intent(in) :: sel
     integer, intent(in) :: is
-    integer :: isub, d, first
-    integer(ip) :: n
+    integer :: d, first
     integer(i8) :: v
     if (.not. sel%kind(FILE_DISPLACEMENTS)) then
        call lu%line('      <PointData>')
@@ -315,20 +313,7 @@ contains
        end do
        call close_array(lu)
     end if
-    call open_array(lu, 'Int32', 'substructure', 1)
-    do isub = 1, size(model%subs)
-       do n = 1, model%subs(isub)%nnode
-          call lu%line(itoa(isub))
-       end do
-    end do
-    call close_array(lu)
-    call open_array(lu, 'Int32', 'node', 1)
-    do isub = 1, size(model%subs)
-       do n = 1, model%subs(isub)%nnode
-          call lu%line(itoa(int(model%subs(isub)%node_id(n))))
-       end do
-    end do
-    call close_array(lu)
+    call point_ids(lu, model)
     call lu%line('      </PointData>')
   end subroutine point_data
 
@@ -344,66 +329,14 @@ contains
     type(grid_t), intent(in) :: grid
     type(file_selection_t), intent(in) :: sel
     integer, intent(in) :: is
-    integer :: isub, k, il
-    integer(ip) :: e
+    integer :: k, il
     integer(i8) :: c
     real(wp) :: zero(NCOMP)
     real(wp), allocatable :: reac(:, :)
     zero = 0.0_wp
 
     call lu%line('      <CellData Scalars="kind">')
-    call open_array(lu, 'Int32', 'kind', 1)
-    do c = 1, grid%nelem
-       call lu%line(itoa(CELL_ELEMENT))
-    end do
-    do il = 1, size(model%links)
-       call lu%line(itoa(CELL_CONTACT))
-    end do
-    do c = 1, grid%nsupport
-       call lu%line(itoa(CELL_SUPPORT))
-    end do
-    call close_array(lu)
-
-    ! substructure: of the element, of the contact's master node, of the supported node
-    call open_array(lu, 'Int32', 'substructure', 1)
-    do isub = 1, size(model%subs)
-       do e = 1, model%subs(isub)%nelem
-          call lu%line(itoa(isub))
-       end do
-    end do
-    do il = 1, size(model%links)
-       call lu%line(itoa(model%contacts(model%links(il)%contact)%master_sub))
-    end do
-    do c = 1, grid%nsupport
-       call lu%line(itoa(vertex_sub(model, fields, grid%support_vertex(c))))
-    end do
-    call close_array(lu)
-
-    call open_array(lu, 'Int32', 'element', 1)
-    do isub = 1, size(model%subs)
-       do e = 1, model%subs(isub)%nelem
-          call lu%line(itoa(int(model%subs(isub)%elem_id(e))))
-       end do
-    end do
-    call zeros(lu, size(model%links, kind=i8) + grid%nsupport, 1)
-    call close_array(lu)
-
-    call open_array(lu, 'Int32', 'element_type', 1)
-    do isub = 1, size(model%subs)
-       do e = 1, model%subs(isub)%nelem
-          call lu%line(itoa(model%subs(isub)%elem_type(e)))
-       end do
-    end do
-    call zeros(lu, size(model%links, kind=i8) + grid%nsupport, 1)
-    call close_array(lu)
-
-    call open_array(lu, 'Int32', 'contact', 1)
-    call zeros(lu, grid%nelem, 1)
-    do il = 1, size(model%links)
-       call lu%line(itoa(model%links(il)%contact))
-    end do
-    call zeros(lu, grid%nsupport, 1)
-    call close_array(lu)
+    call cell_ids(lu, model, fields, grid)
 
     if (sel%kind(FILE_ELEMENT_FORCES)) then
        if (.not. all(sel%elem)) then
@@ -468,6 +401,70 @@ contains
     end subroutine contact_array
   end subroutine cell_data
 
+  subroutine cell_ids(lu, model, fields, grid)
+    !! The cell arrays that say what each cell is: kind, substructure, element
+    !! id and type, contact index.
+    type(text_buffer_t), intent(inout) :: lu
+    type(model_t), intent(in) :: model
+    type(result_fields_t), intent(in) :: fields
+    type(grid_t), intent(in) :: grid
+    integer :: isub, il
+    integer(ip) :: e
+    integer(i8) :: c
+    call open_array(lu, 'Int32', 'kind', 1)
+    do c = 1, grid%nelem
+       call lu%line(itoa(CELL_ELEMENT))
+    end do
+    do il = 1, size(model%links)
+       call lu%line(itoa(CELL_CONTACT))
+    end do
+    do c = 1, grid%nsupport
+       call lu%line(itoa(CELL_SUPPORT))
+    end do
+    call close_array(lu)
+
+    ! substructure: of the element, of the contact's master node, of the supported node
+    call open_array(lu, 'Int32', 'substructure', 1)
+    do isub = 1, size(model%subs)
+       do e = 1, model%subs(isub)%nelem
+          call lu%line(itoa(isub))
+       end do
+    end do
+    do il = 1, size(model%links)
+       call lu%line(itoa(model%contacts(model%links(il)%contact)%master_sub))
+    end do
+    do c = 1, grid%nsupport
+       call lu%line(itoa(vertex_sub(model, fields, grid%support_vertex(c))))
+    end do
+    call close_array(lu)
+
+    call open_array(lu, 'Int32', 'element', 1)
+    do isub = 1, size(model%subs)
+       do e = 1, model%subs(isub)%nelem
+          call lu%line(itoa(int(model%subs(isub)%elem_id(e))))
+       end do
+    end do
+    call zeros(lu, size(model%links, kind=i8) + grid%nsupport, 1)
+    call close_array(lu)
+
+    call open_array(lu, 'Int32', 'element_type', 1)
+    do isub = 1, size(model%subs)
+       do e = 1, model%subs(isub)%nelem
+          call lu%line(itoa(model%subs(isub)%elem_type(e)))
+       end do
+    end do
+    call zeros(lu, size(model%links, kind=i8) + grid%nsupport, 1)
+    call close_array(lu)
+
+    call open_array(lu, 'Int32', 'contact', 1)
+    call zeros(lu, grid%nelem, 1)
+    do il = 1, size(model%links)
+       call lu%line(itoa(model%links(il)%contact))
+    end do
+    call zeros(lu, grid%nsupport, 1)
+    call close_array(lu)
+  end subroutine cell_ids
+
   subroutine points(lu, model)
     !! Node coordinates, substructure after substructure.
     type(text_buffer_t), intent(inout) :: lu
@@ -491,27 +488,10 @@ contains
     type(model_t), intent(in) :: model
     type(result_fields_t), intent(in) :: fields
     type(grid_t), intent(in) :: grid
-    integer :: isub, il, j, nn
-    integer(ip) :: e
     integer(i8) :: c, offset
     call lu%line('      <Cells>')
     call open_array(lu, 'Int64', 'connectivity', 1)
-    do isub = 1, size(model%subs)
-       do e = 1, model%subs(isub)%nelem
-          nn = ELEMENT_NODE_COUNT(model%subs(isub)%elem_type(e))
-          do j = 1, nn
-             if (j > 1) call lu%put(' ')
-             call lu%put(itoa(fields%vertex_offset(isub) + model%subs(isub)%elem_nodes(j, e) - 1))
-          end do
-          call lu%newline()
-       end do
-    end do
-    do il = 1, size(model%links)
-       associate (lk => model%links(il), ct => model%contacts(model%links(il)%contact))
-         call lu%line(itoa(fields%vertex_offset(ct%master_sub) + lk%master_node - 1)//' '// &
-              itoa(fields%vertex_offset(ct%slave_sub) + lk%slave_node - 1))
-       end associate
-    end do
+    call model_connectivity(lu, model, fields%vertex_offset)
     do c = 1, grid%nsupport
        call lu%line(itoa(grid%support_vertex(c) - 1))
     end do
@@ -519,6 +499,57 @@ contains
 
     call open_array(lu, 'Int64', 'offsets', 1)
     offset = 0
+    call model_offsets(lu, model, offset)
+    do c = 1, grid%nsupport
+       offset = offset + 1
+       call lu%line(itoa(offset))
+    end do
+    call close_array(lu)
+
+    call open_array(lu, 'UInt8', 'types', 1)
+    call model_cell_types(lu, model)
+    do c = 1, grid%nsupport
+       call lu%line(itoa(VTK_VERTEX))
+    end do
+    call close_array(lu)
+    call lu%line('      </Cells>')
+  end subroutine cells
+
+  subroutine model_connectivity(lu, model, vertex_offset)
+    !! The connectivity rows of the element cells, then of the contact cells
+    !! (master node, slave node): 0-based point indices, the points of
+    !! substructure isub after vertex_offset(isub).
+    type(text_buffer_t), intent(inout) :: lu
+    type(model_t), intent(in) :: model
+    integer(i8), intent(in) :: vertex_offset(:)
+    integer :: isub, il, j, nn
+    integer(ip) :: e
+    do isub = 1, size(model%subs)
+       do e = 1, model%subs(isub)%nelem
+          nn = ELEMENT_NODE_COUNT(model%subs(isub)%elem_type(e))
+          do j = 1, nn
+             if (j > 1) call lu%put(' ')
+             call lu%put(itoa(vertex_offset(isub) + model%subs(isub)%elem_nodes(j, e) - 1))
+          end do
+          call lu%newline()
+       end do
+    end do
+    do il = 1, size(model%links)
+       associate (lk => model%links(il), ct => model%contacts(model%links(il)%contact))
+         call lu%line(itoa(vertex_offset(ct%master_sub) + lk%master_node - 1)//' '// &
+              itoa(vertex_offset(ct%slave_sub) + lk%slave_node - 1))
+       end associate
+    end do
+  end subroutine model_connectivity
+
+  subroutine model_offsets(lu, model, offset)
+    !! The offsets rows of the element cells, then of the contact cells,
+    !! counting on from offset (which returns the last).
+    type(text_buffer_t), intent(inout) :: lu
+    type(model_t), intent(in) :: model
+    integer(i8), intent(inout) :: offset
+    integer :: isub, il
+    integer(ip) :: e
     do isub = 1, size(model%subs)
        do e = 1, model%subs(isub)%nelem
           offset = offset + ELEMENT_NODE_COUNT(model%subs(isub)%elem_type(e))
@@ -529,48 +560,46 @@ contains
        offset = offset + 2
        call lu%line(itoa(offset))
     end do
-    do c = 1, grid%nsupport
-       offset = offset + 1
-       call lu%line(itoa(offset))
-    end do
-    call close_array(lu)
+  end subroutine model_offsets
 
-    call open_array(lu, 'UInt8', 'types', 1)
+  subroutine model_cell_types(lu, model)
+    !! The VTK cell types of the element cells (their element type's,
+    !! superjoin_elements_traits), then of the contact cells (lines).
+    type(text_buffer_t), intent(inout) :: lu
+    type(model_t), intent(in) :: model
+    integer :: isub, il
+    integer(ip) :: e
     do isub = 1, size(model%subs)
        do e = 1, model%subs(isub)%nelem
-          call lu%line(itoa(cell_type(model%subs(isub)%elem_type(e))))
+          call lu%line(itoa(element_vtk_cell(model%subs(isub)%elem_type(e))))
        end do
     end do
     do il = 1, size(model%links)
        call lu%line(itoa(VTK_LINE))
     end do
-    do c = 1, grid%nsupport
-       call lu%line(itoa(VTK_VERTEX))
+  end subroutine model_cell_types
+
+  subroutine point_ids(lu, model)
+    !! The point arrays substructure (index) and node (id).
+    type(text_buffer_t), intent(inout) :: lu
+    type(model_t), intent(in) :: model
+    integer :: isub
+    integer(ip) :: n
+    call open_array(lu, 'Int32', 'substructure', 1)
+    do isub = 1, size(model%subs)
+       do n = 1, model%subs(isub)%nnode
+          call lu%line(itoa(isub))
+       end do
     end do
     call close_array(lu)
-    call lu%line('      </Cells>')
-  end subroutine cells
-
-  pure integer function cell_type(et)
-    !! VTK cell type of an element type.
-    integer, intent(in) :: et
-    select case (et)
-    case (ET_T2D2, ET_T3D2, ET_B23, ET_B33, ET_B21, ET_B31)
-       cell_type = VTK_LINE
-    case (ET_CPS3, ET_S3, ET_CPE3, ET_S3R)
-       cell_type = VTK_TRIANGLE
-    case (ET_CPS4, ET_S4, ET_CPE4, ET_S4R)
-       cell_type = VTK_QUAD
-    case (ET_B32)
-       cell_type = VTK_POLY_LINE              ! end, middle, end: the points in order
-    case (ET_CPS6, ET_CPE6)
-       cell_type = VTK_QUADRATIC_TRIANGLE     ! VTK's node order is Abaqus's
-    case (ET_CPS8, ET_CPE8, ET_CPS8R, ET_CPE8R, ET_S8R)
-       cell_type = VTK_QUADRATIC_QUAD
-    case default
-       cell_type = VTK_VERTEX
-    end select
-  end function cell_type
+    call open_array(lu, 'Int32', 'node', 1)
+    do isub = 1, size(model%subs)
+       do n = 1, model%subs(isub)%nnode
+          call lu%line(itoa(int(model%subs(isub)%node_id(n))))
+       end do
+    end do
+    call close_array(lu)
+  end subroutine point_ids
 
   pure integer function vertex_sub(model, fields, v) result(isub)
     !! Substructure of vertex v.
@@ -584,6 +613,7 @@ contains
   end function vertex_sub
 
   subroutine open_array(lu, vtype, name, ncomp, extra)
+    !! The opening tag of an ASCII data array of ncomp components (extra: more attributes).
     type(text_buffer_t), intent(inout) :: lu
     character(*), intent(in) :: vtype, name
     integer, intent(in) :: ncomp
@@ -595,6 +625,7 @@ contains
   end subroutine open_array
 
   subroutine close_array(lu)
+    !! The closing tag of a data array.
     type(text_buffer_t), intent(inout) :: lu
     call lu%line('        </DataArray>')
   end subroutine close_array

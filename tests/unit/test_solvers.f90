@@ -6,7 +6,7 @@ program test_solvers
   use superjoin_solvers, only: linear_solver_t, sparse_sym_t, new_solver, condition_estimate, &
        norm1_sym, cholmod_solver_t, lapack_solver_t, umfpack_solver_t, AUTO_LAPACK_MAX
   use superjoin_solvers_lapack, only: rcm_ordering
-  use superjoin_output_matrix_market, only: write_matrix_market, read_matrix_market
+  use superjoin_solvers_matrix_market, only: write_matrix_market, read_matrix_market
   use superjoin_solvers_node_graph, only: node_graph
   use superjoin_testing, only: check, check_close, check_rel, finish
   implicit none (type, external)

@@ -1,4 +1,4 @@
-module superjoin_output_matrix_market
+module superjoin_solvers_matrix_market
   !! Matrix Market files for symmetric sparse matrices ("coordinate real
   !! symmetric": the lower triangle, 1-based, one entry per line).
   use superjoin_kinds, only: wp, i8
@@ -357,4 +357,4 @@ contains
        if (c >= iachar('A') .and. c <= iachar('Z')) t(i:i) = achar(c + 32)
     end do
   end function lower
-end module superjoin_output_matrix_market
+end module superjoin_solvers_matrix_market

@@ -14,6 +14,7 @@ module superjoin_analysis_condensation
   use superjoin_model_notes, only: note
   use superjoin_analysis_factor_reuse, only: kept_factor_t
   use superjoin_utils_strings, only: itoa
+  use superjoin_analysis_solve_state, only: solve_state_t
   implicit none (type, external)
   private
 
@@ -30,21 +31,18 @@ module superjoin_analysis_condensation
 
 contains
 
-  subroutine condense_parts(model, table, bnd, opts, f_phys, cache, summary, notes, parts, f_eff, error)
-    !! The condensations of the condensed substructures (computed, or reused
-    !! from the cache: another instance of the same part, or an earlier solve
-    !! of a joint study), and the loads the interface sees: f_phys with each
-    !! condensed boundary replaced by f* (interior rows have no reduced unknown).
+  subroutine condense_parts(st, model, opts, cache, summary, notes, error)
+    !! The condensations of the condensed substructures (st%parts: computed,
+    !! or reused from the cache: another instance of the same part, or an
+    !! earlier solve of a joint study), and the loads the interface sees:
+    !! st%f_eff, st%f_phys with each condensed boundary replaced by f*
+    !! (interior rows have no reduced unknown). Boundary: st%bnd_c.
+    type(solve_state_t), intent(inout) :: st
     type(model_t), intent(in) :: model
-    type(dof_table_t), intent(in) :: table
-    logical, intent(in) :: bnd(:)
     type(run_options_t), intent(in) :: opts
-    real(wp), intent(in) :: f_phys(:, :)
     type(part_cache_t), intent(inout) :: cache
     type(run_summary_t), intent(inout) :: summary
     type(string_t), allocatable, intent(inout) :: notes(:)
-    type(part_view_t), allocatable, intent(out) :: parts(:)
-    real(wp), allocatable, intent(out) :: f_eff(:, :)
     type(error_t), allocatable, intent(out) :: error
     character(:), allocatable :: solver_name
     real(wp), allocatable :: fstar(:, :)
@@ -55,38 +53,40 @@ contains
     ! a bad element there is reported as a deck error before a condensation
     ! meets its consequences (condensed ones are checked as they are built).
     if (cache%n == 0) then
-       call max_element_diagonal(model, table, dmax, error, only=.not. summary%sub_condensed)
+       call max_element_diagonal(model, st%table, dmax, error, only=.not. summary%sub_condensed)
        if (allocated(error)) return
     end if
     solver_name = part_solver(opts)
-    allocate (parts(summary%n_condensed))
-    f_eff = f_phys
+    allocate (st%parts(summary%n_condensed))
+    st%f_eff = st%f_phys
     computed0 = cache%computed
     reused0 = cache%reused
     nrot = 0
     ip_ = 0
-    do isub = 1, size(model%subs)
-       if (.not. summary%sub_condensed(isub)) cycle
-       ip_ = ip_ + 1
-       call acquire_view(cache, model, table, isub, bnd, solver_name, parts(ip_), error)
-       if (allocated(error)) return
-       if (parts(ip_)%rotated) nrot = nrot + 1
-       call view_spc(cache, parts(ip_), spc)
-       do i = 1, size(spc)
-          if (any(f_phys(spc(i), :) /= 0.0_wp)) then
-             call add_error_line(error, EXIT_SINGULAR, 'error: load on a DOF without stiffness: '// &
-                  dof_label(model, table, spc(i)))
-          else if (.not. parts(ip_)%reused) then
-             call note(notes, 'AUTOSPC: '//dof_label(model, table, spc(i))//' has no stiffness and no load: dropped')
-          end if
-       end do
-       if (allocated(error)) return
-       allocate (fstar(parts(ip_)%nb, size(f_phys, 2)))
-       call view_condense_loads(cache, parts(ip_), f_phys(parts(ip_)%pdof, :), fstar, error)
-       if (allocated(error)) return
-       f_eff(parts(ip_)%se%pdof, :) = fstar
-       deallocate (fstar)
-    end do
+    associate (table => st%table, bnd => st%bnd_c, f_phys => st%f_phys, parts => st%parts, f_eff => st%f_eff)
+      do isub = 1, size(model%subs)
+         if (.not. summary%sub_condensed(isub)) cycle
+         ip_ = ip_ + 1
+         call acquire_view(cache, model, table, isub, bnd, solver_name, parts(ip_), error)
+         if (allocated(error)) return
+         if (parts(ip_)%rotated) nrot = nrot + 1
+         call view_spc(cache, parts(ip_), spc)
+         do i = 1, size(spc)
+            if (any(f_phys(spc(i), :) /= 0.0_wp)) then
+               call add_error_line(error, EXIT_SINGULAR, 'error: load on a DOF without stiffness: '// &
+                    dof_label(model, table, spc(i)))
+            else if (.not. parts(ip_)%reused) then
+               call note(notes, 'AUTOSPC: '//dof_label(model, table, spc(i))//' has no stiffness and no load: dropped')
+            end if
+         end do
+         if (allocated(error)) return
+         allocate (fstar(parts(ip_)%nb, size(f_phys, 2)))
+         call view_condense_loads(cache, parts(ip_), f_phys(parts(ip_)%pdof, :), fstar, error)
+         if (allocated(error)) return
+         f_eff(parts(ip_)%se%pdof, :) = fstar
+         deallocate (fstar)
+      end do
+    end associate
     call note(notes, 'condensations: '//itoa(cache%computed - computed0)//' computed, '// &
          itoa(cache%reused - reused0)//' reused ('//itoa(nrot)//' turned by their instance''s placement)')
   end subroutine condense_parts

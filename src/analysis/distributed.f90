@@ -41,6 +41,7 @@ module superjoin_analysis_distributed
   use superjoin_parallel_partition, only: part_graph_t, partition_t, build_part_graph, partition_parts, &
        partition_report
   use superjoin_utils_strings, only: itoa
+  use superjoin_analysis_solve_state, only: solve_state_t
   implicit none (type, external)
   private
 
@@ -144,48 +145,37 @@ contains
     if (.not. ok) call fatal_error(error, EXIT_IO, 'error: MPI sum of the prescribed values'' loads failed')
   end subroutine sum_owner_loads
 
-  subroutine condense_distributed(model, table, tr, bnd, opts, f_phys, cache, summary, notes, parts, f_eff, error, &
-       owned)
+  subroutine condense_distributed(st, model, opts, cache, summary, notes, error)
     !! condense_parts (analysis/condensation) over several processes: each
     !! condenses its own substructures and sends the others what the
-    !! interface needs. parts and f_eff end equal on every process, and so do
-    !! the notes (AUTOSPC per substructure in order; the condensations
-    !! computed and reused summed over the processes). With owned (owner
+    !! interface needs. st%parts and st%f_eff end equal on every process, and
+    !! so do the notes (AUTOSPC per substructure in order; the condensations
+    !! computed and reused summed over the processes). With st%summed (owner
     !! terms, see owner_terms) K* stays with its owner: the others get the
     !! loads f*, the AUTOSPC list, MAXRATIO and k u0 (when nonzero) only.
+    type(solve_state_t), intent(inout) :: st
     type(model_t), intent(in) :: model
-    type(dof_table_t), intent(in) :: table
-    type(transform_t), intent(in) :: tr
-    logical, intent(in) :: bnd(:)
     type(run_options_t), intent(in) :: opts
-    real(wp), intent(in) :: f_phys(:, :)
     type(part_cache_t), intent(inout) :: cache
     type(run_summary_t), intent(inout) :: summary
     type(string_t), allocatable, intent(inout) :: notes(:)
-    type(part_view_t), allocatable, intent(out) :: parts(:)
-    real(wp), allocatable, intent(out) :: f_eff(:, :)
     type(error_t), allocatable, intent(out) :: error
-    logical, intent(in) :: owned
     type(comm_t) :: comm
     character(:), allocatable :: solver_name
-    real(wp), allocatable :: fstar(:, :), head(:), body(:)
-    integer(i8) :: nkk
-    logical, allocatable :: reused(:)
+    real(wp), allocatable :: fstar(:, :)
     integer(i8) :: counts(2)
-    integer :: isub, ip_, i, nrot, nstep, computed0, reused0
-    integer(i8) :: nb, ni, nspc, at, nku0
-    logical :: ok, mine
+    integer :: isub, ip_, i, nrot, computed0, reused0
+    logical :: ok
     real(wp) :: dmax
     comm = comm_world()
     ! as condense_parts: the elements kept in the interface checked first
     if (cache%n == 0) then
-       call max_element_diagonal(model, table, dmax, error, only=.not. summary%sub_condensed)
+       call max_element_diagonal(model, st%table, dmax, error, only=.not. summary%sub_condensed)
        if (allocated(error)) return
     end if
     solver_name = part_solver(opts)   ! never MUMPS: a part is condensed by one process alone
-    nstep = size(f_phys, 2)
-    allocate (parts(summary%n_condensed), reused(summary%n_condensed))
-    f_eff = f_phys
+    allocate (st%parts(summary%n_condensed))
+    st%f_eff = st%f_phys
     computed0 = cache%computed
     reused0 = cache%reused
     ! 1. this process's own condensations (a failure returns at once)
@@ -194,10 +184,10 @@ contains
        if (.not. summary%sub_condensed(isub)) cycle
        ip_ = ip_ + 1
        if (summary%sub_owner(isub) == comm%rank) then
-          call acquire_view(cache, model, table, isub, bnd, solver_name, parts(ip_), error)
+          call acquire_view(cache, model, st%table, isub, st%bnd_c, solver_name, st%parts(ip_), error)
           if (allocated(error)) return
        else
-          call remote_view(table, isub, bnd, parts(ip_))
+          call remote_view(st%table, isub, st%bnd_c, st%parts(ip_))
        end if
     end do
     call agreed(error)
@@ -208,58 +198,10 @@ contains
     do isub = 1, size(model%subs)
        if (.not. summary%sub_condensed(isub)) cycle
        ip_ = ip_ + 1
-       mine = summary%sub_owner(isub) == comm%rank
-       associate (v => parts(ip_))
-         ni = v%ni
-         nb = v%nb
-         allocate (head(NHEAD), fstar(nb, nstep), source=0.0_wp)
-         if (mine) then
-            call view_spc(cache, v, v%spc)
-            call view_maxratio(cache, v, v%ratio, v%ratio_at)
-            call owner_ku0(cache, tr, v)
-            call view_condense_loads(cache, v, f_phys(v%pdof, :), fstar, error)
-            if (allocated(error)) return   ! a load condensation does not fail in practice; see module notes
-            head = [merge(1.0_wp, 0.0_wp, v%reused), merge(1.0_wp, 0.0_wp, v%rotated), v%ratio, &
-                 real(v%ratio_at, wp), real(size(v%spc), wp), merge(1.0_wp, 0.0_wp, any(v%ku0 /= 0.0_wp))]
-         end if
-         call broadcast(head, summary%sub_owner(isub), ok)
-         if (.not. ok) call fatal_error(error, EXIT_IO, 'error: MPI broadcast of a condensation failed')
-         if (allocated(error)) return
-         nspc = nint(head(5), i8)
-         nku0 = merge(ni + nb, 0_i8, head(6) /= 0.0_wp)
-         nkk = merge(0_i8, nb*nb, owned)   ! owner terms: K* stays with its owner
-         allocate (body(nspc + nkk + nb*nstep + nku0))
-         if (mine) then
-            body(1:nspc) = real(v%spc, wp)
-            at = nspc
-            if (.not. owned) body(at + 1:at + nkk) = reshape(v%se%k, [nkk])
-            at = at + nkk
-            body(at + 1:at + nb*nstep) = reshape(fstar, [nb*nstep])
-            at = at + nb*nstep
-            if (nku0 > 0) body(at + 1:) = v%ku0
-         end if
-         call broadcast(body, summary%sub_owner(isub), ok)
-         if (.not. ok) call fatal_error(error, EXIT_IO, 'error: MPI broadcast of a condensation failed')
-         if (allocated(error)) return
-         if (.not. mine) then
-            v%reused = head(1) /= 0.0_wp
-            v%rotated = head(2) /= 0.0_wp
-            v%ratio = head(3)
-            v%ratio_at = nint(head(4), i8)
-            v%spc = nint(body(1:nspc), i8)
-            at = nspc
-            if (.not. owned) v%se%k = reshape(body(at + 1:at + nkk), [nb, nb])
-            at = at + nkk
-            fstar = reshape(body(at + 1:at + nb*nstep), [nb, int(nstep, i8)])
-            at = at + nb*nstep
-            if (nku0 > 0) then
-               v%ku0 = body(at + 1:)
-            else
-               allocate (v%ku0(ni + nb), source=0.0_wp)
-            end if
-         end if
+       call exchange_part(st, cache, summary%sub_owner(isub), ip_, fstar, error)
+       if (allocated(error)) return
+       associate (v => st%parts(ip_), f_phys => st%f_phys, table => st%table)
          if (v%rotated) nrot = nrot + 1
-         reused(ip_) = v%reused
          ! as condense_parts: AUTOSPC notes and loads on DOFs without stiffness
          do i = 1, size(v%spc)
             if (any(f_phys(v%spc(i), :) /= 0.0_wp)) then
@@ -270,15 +212,85 @@ contains
             end if
          end do
          if (allocated(error)) return   ! the same on every process: the ending agrees, rank 0 prints
-         f_eff(v%se%pdof, :) = fstar
-         deallocate (head, fstar, body)
+         st%f_eff(v%se%pdof, :) = fstar
        end associate
+       deallocate (fstar)
     end do
     counts = [int(cache%computed - computed0, i8), int(cache%reused - reused0, i8)]
     call sum_counts(counts, ok)
     call note(notes, 'condensations: '//itoa(counts(1))//' computed, '//itoa(counts(2))//' reused ('// &
          itoa(nrot)//' turned by their instance''s placement) on '//itoa(comm%size)//' processes')
   end subroutine condense_distributed
+
+  subroutine exchange_part(st, cache, owner, ip_, fstar, error)
+    !! Condensed part st%parts(ip_) from its owner to every process: its
+    !! reuse and rotation flags, MAXRATIO, DOFs without stiffness, K* (but
+    !! under owner terms, st%summed), k u0 when nonzero, and its loads f*.
+    type(solve_state_t), intent(inout) :: st
+    type(part_cache_t), intent(inout) :: cache
+    integer, intent(in) :: owner, ip_
+    real(wp), allocatable, intent(out) :: fstar(:, :)
+    type(error_t), allocatable, intent(out) :: error
+    type(comm_t) :: comm
+    real(wp), allocatable :: head(:), body(:)
+    integer(i8) :: nkk, nb, ni, nspc, at, nku0
+    integer :: nstep
+    logical :: ok, mine, owned
+    comm = comm_world()
+    mine = owner == comm%rank
+    owned = st%summed
+    nstep = size(st%f_phys, 2)
+    associate (v => st%parts(ip_), f_phys => st%f_phys, tr => st%tr)
+      ni = v%ni
+      nb = v%nb
+      allocate (head(NHEAD), fstar(nb, nstep), source=0.0_wp)
+      if (mine) then
+         call view_spc(cache, v, v%spc)
+         call view_maxratio(cache, v, v%ratio, v%ratio_at)
+         call owner_ku0(cache, tr, v)
+         call view_condense_loads(cache, v, f_phys(v%pdof, :), fstar, error)
+         if (allocated(error)) return   ! a load condensation does not fail in practice; see module notes
+         head = [merge(1.0_wp, 0.0_wp, v%reused), merge(1.0_wp, 0.0_wp, v%rotated), v%ratio, &
+              real(v%ratio_at, wp), real(size(v%spc), wp), merge(1.0_wp, 0.0_wp, any(v%ku0 /= 0.0_wp))]
+      end if
+      call broadcast(head, owner, ok)
+      if (.not. ok) call fatal_error(error, EXIT_IO, 'error: MPI broadcast of a condensation failed')
+      if (allocated(error)) return
+      nspc = nint(head(5), i8)
+      nku0 = merge(ni + nb, 0_i8, head(6) /= 0.0_wp)
+      nkk = merge(0_i8, nb*nb, owned)   ! owner terms: K* stays with its owner
+      allocate (body(nspc + nkk + nb*nstep + nku0))
+      if (mine) then
+         body(1:nspc) = real(v%spc, wp)
+         at = nspc
+         if (.not. owned) body(at + 1:at + nkk) = reshape(v%se%k, [nkk])
+         at = at + nkk
+         body(at + 1:at + nb*nstep) = reshape(fstar, [nb*nstep])
+         at = at + nb*nstep
+         if (nku0 > 0) body(at + 1:) = v%ku0
+      end if
+      call broadcast(body, owner, ok)
+      if (.not. ok) call fatal_error(error, EXIT_IO, 'error: MPI broadcast of a condensation failed')
+      if (allocated(error)) return
+      if (.not. mine) then
+         v%reused = head(1) /= 0.0_wp
+         v%rotated = head(2) /= 0.0_wp
+         v%ratio = head(3)
+         v%ratio_at = nint(head(4), i8)
+         v%spc = nint(body(1:nspc), i8)
+         at = nspc
+         if (.not. owned) v%se%k = reshape(body(at + 1:at + nkk), [nb, nb])
+         at = at + nkk
+         fstar = reshape(body(at + 1:at + nb*nstep), [nb, int(nstep, i8)])
+         at = at + nb*nstep
+         if (nku0 > 0) then
+            v%ku0 = body(at + 1:)
+         else
+            allocate (v%ku0(ni + nb), source=0.0_wp)
+         end if
+      end if
+    end associate
+  end subroutine exchange_part
 
   subroutine owner_ku0(cache, tr, v)
     !! k u0 of an own substructure: its stiffness times the prescribed values

@@ -7,15 +7,15 @@ module superjoin_analysis
   use superjoin_kinds, only: wp, i8
   use superjoin_error, only: error_t, fatal_error, EXIT_SINGULAR
   use superjoin_model_types, only: model_t, string_t, FORM_TRANSFORM, FORM_PENALTY
-  use superjoin_assembly_dofs, only: dof_table_t, build_dof_table
-  use superjoin_assembly_forest, only: forest_t, build_forest
+  use superjoin_assembly_dofs, only: build_dof_table
+  use superjoin_assembly_forest, only: build_forest
   use superjoin_assembly_transform, only: transform_t, build_transform, COL_DELTA
-  use superjoin_assembly_assemble, only: assemble_stiffness, assemble_loads, assembly_plan_t
+  use superjoin_assembly_assemble, only: assemble_stiffness, assemble_loads
   use superjoin_substructure_local_system, only: boundary_dofs, part_boundary
-  use superjoin_substructure_cache, only: release_cache, part_view_t
-  use superjoin_solvers, only: linear_solver_t, sparse_sym_t, new_solver
+  use superjoin_substructure_cache, only: release_cache
+  use superjoin_solvers, only: new_solver
   use superjoin_output_matrix_market, only: write_matrix_market
-  use superjoin_model_results, only: results_t, run_options_t, PH_ASSEMBLE, PH_ORDER, PH_FACTOR, PH_SOLVE
+  use superjoin_model_results, only: results_t, run_options_t, run_summary_t, PH_ASSEMBLE, PH_ORDER, PH_FACTOR, PH_SOLVE
   use superjoin_analysis_recover, only: recover_results
   use superjoin_analysis_mechanism, only: mechanism_error
   use superjoin_model_notes, only: note
@@ -23,12 +23,11 @@ module superjoin_analysis
   use superjoin_analysis_health, only: check_finite, health, full_health, parts_maxratio, penalty_hint
   use superjoin_analysis_policy, only: apply_large, describe_transform, column_groups, count_boundary, &
        choose_condensation, autospc, skip_unloaded_parts, wanted_elements
-  use superjoin_analysis_condensation, only: solve_context_t, condense_parts, recover_parts, parts_ku
-  use superjoin_analysis_solve_state, only: solve_state_t, PHASE_BUILT, PHASE_ASSEMBLED, PHASE_SOLVED, &
+  use superjoin_analysis_condensation, only: solve_context_t, condensed_strategy_t
+  use superjoin_analysis_solve_state, only: solve_state_t, plain_strategy_t, PHASE_BUILT, PHASE_ASSEMBLED, PHASE_SOLVED, &
        PHASE_RECOVERED
   use superjoin_analysis_factor_reuse, only: take_factor, keep_factor, solve_with
-  use superjoin_analysis_distributed, only: plan_distribution, is_distributed, condense_distributed, &
-       recover_distributed, parts_ku_distributed, owner_terms, owner_plan, sum_owner_loads, agreed
+  use superjoin_analysis_distributed, only: plan_distribution, is_distributed, owner_terms, distributed_strategy_t
   use superjoin_solvers, only: mumps_solver_t
   use superjoin_parallel_stats, only: record_matrix_held
   use superjoin_utils_clock, only: stopwatch_t, report_phase
@@ -106,11 +105,11 @@ contains
     if (allocated(error)) return
     res%log%phase_seconds(PH_ASSEMBLE) = clock%seconds()
     write (buf, '(a,i0,a,i0)') 'equations ', res%summary%neq, ', nonzeros ', res%summary%matrix_nnz
-    if (st%summed) write (buf, '(a,i0,a,i0)') 'equations ', res%summary%neq, ', nonzeros of this process''s term ', &
+    if (st%strategy%summed()) write (buf, '(a,i0,a,i0)') 'equations ', res%summary%neq, ', nonzeros of this process''s term ', &
          st%k%nnz()
     call report_phase(opts%quiet, 'assemble', res%log%phase_seconds(PH_ASSEMBLE), trim(buf))
 
-    if (allocated(opts%export_matrix) .and. .not. st%summed) then   ! app/main.f90 refuses it with owner terms
+    if (allocated(opts%export_matrix) .and. .not. st%strategy%summed()) then   ! app/main.f90 refuses it with owner terms
        call write_matrix_market(opts%export_matrix, st%k, error)
        if (allocated(error)) return
     end if
@@ -118,7 +117,7 @@ contains
     if (allocated(error)) return
     call recover_phase(st, model, opts, ctx, res, notes, error)
     if (allocated(error)) return
-    if (st%summed) then
+    if (st%strategy%summed()) then
        if (allocated(st%solver)) call st%solver%release()
     else
        call keep_factor(ctx%factor, st%k, st%solver)   ! released unless ctx%factor%keep
@@ -171,11 +170,26 @@ contains
     call build_transform(model, st%table, st%forest, st%tr, error, keep)
     if (allocated(error)) return
     call describe_transform(model, st%table, st%tr, st%form, res%summary, notes)
-    ! several MPI processes with MUMPS: each process holds and hands MUMPS its
-    ! own term of K_red only (analysis/distributed, analysis/summed_matrix)
-    st%summed = owner_terms(res%summary, opts)
+    call choose_strategy(st, res%summary, opts)
     st%phase = PHASE_BUILT
   end subroutine build_phase
+
+  subroutine choose_strategy(st, summary, opts)
+    !! How K_red is assembled (analysis/solve_state): distributed over
+    !! several MPI processes (with MUMPS, each process holds and hands MUMPS
+    !! its own term of K_red only: owner terms, analysis/summed_matrix),
+    !! condensed, or plain. A new way of solving is a new strategy here.
+    type(solve_state_t), intent(inout) :: st
+    type(run_summary_t), intent(in) :: summary
+    type(run_options_t), intent(in) :: opts
+    if (is_distributed(summary)) then
+       allocate (st%strategy, source=distributed_strategy_t(owned=owner_terms(summary, opts)))
+    else if (summary%n_condensed > 0) then
+       allocate (condensed_strategy_t :: st%strategy)
+    else
+       allocate (plain_strategy_t :: st%strategy)
+    end if
+  end subroutine choose_strategy
 
   subroutine assemble_phase(st, model, opts, ctx, res, notes, error)
     !! Assemble: the loads, the condensations (if any), K_red and the reduced
@@ -188,20 +202,11 @@ contains
     type(results_t), intent(inout) :: res
     type(string_t), allocatable, intent(inout) :: notes(:)
     type(error_t), allocatable, intent(out) :: error
-    integer :: i
 
     if (res%summary%n_condensed == 0) then
-       if (st%summed) then
-          allocate (st%parts(0))
-          call owner_plan(model, res%summary, st%parts, st%plan)
-       else
-          allocate (st%plan%skip_sub(size(model%subs)), source=.false.)
-          allocate (st%plan%supers(0))
-       end if
+       call st%strategy%set_plan(st, model, res%summary)
        call assemble_stiffness(model, st%table, st%tr, st%plan, st%k, st%f_u0, error)
-       if (st%summed) call agreed(error)
-       if (allocated(error)) return
-       if (st%summed) call sum_owner_loads(st%f_u0, error)
+       call st%strategy%combine(st, error)
        if (allocated(error)) return
        call assemble_loads(model, st%table, st%f_phys, error)
        if (allocated(error)) return
@@ -209,33 +214,19 @@ contains
     else
        call assemble_loads(model, st%table, st%f_phys, error)
        if (allocated(error)) return
-       if (is_distributed(res%summary)) then   ! several MPI processes: each condenses its own parts
-          call condense_distributed(st, model, opts, ctx%cache, res%summary, notes, error)
-       else
-          call condense_parts(st, model, opts, ctx%cache, res%summary, notes, error)
-       end if
+       call st%strategy%condense(st, model, opts, ctx%cache, res%summary, notes, error)
        if (allocated(error)) return
-       if (st%summed) then
-          call owner_plan(model, res%summary, st%parts, st%plan)
-       else
-          st%plan%skip_sub = res%summary%sub_condensed
-          allocate (st%plan%supers(size(st%parts)))
-          do i = 1, size(st%parts)
-             st%plan%supers(i) = st%parts(i)%se
-          end do
-       end if
+       call st%strategy%set_plan(st, model, res%summary)
        call assemble_stiffness(model, st%table, st%tr, st%plan, st%k, st%f_u0, error)
-       if (st%summed) call agreed(error)
+       call st%strategy%combine(st, error)
        if (allocated(error)) return
-       deallocate (st%plan%supers)
-       if (st%summed) call sum_owner_loads(st%f_u0, error)
-       if (allocated(error)) return
+       deallocate (st%plan%supers)   ! copies of the K*
        call reduce_loads(st%tr, st%f_eff, st%f_u0, st%f_red, error)
     end if
     if (allocated(error)) return
-    call autospc(model, st%table, st%tr, st%k, st%f_red, st%spc, notes, error, summed=st%summed)
+    call autospc(model, st%table, st%tr, st%k, st%f_red, st%spc, notes, error, summed=st%strategy%summed())
     if (allocated(error)) return
-    call skip_unloaded_parts(model, st%table, st%tr, st%k, st%f_red, st%spc, notes, summed=st%summed, error=error)
+    call skip_unloaded_parts(model, st%table, st%tr, st%k, st%f_red, st%spc, notes, summed=st%strategy%summed(), error=error)
     if (allocated(error)) return
     res%summary%nphys = st%table%np
     res%summary%ncol = st%tr%ncol()
@@ -243,7 +234,7 @@ contains
     res%summary%ndelta = count_delta(st%tr)
     res%summary%matrix_nnz = st%k%nnz()
     call record_matrix_held(st%k%nnz())   ! MPI summary: what this process assembled
-    if (st%summed) res%summary%matrix_nnz = -1   ! not assembled anywhere: the listing says n/a
+    if (st%strategy%summed()) res%summary%matrix_nnz = -1   ! not assembled anywhere: the listing says n/a
     st%phase = PHASE_ASSEMBLED
   end subroutine assemble_phase
 
@@ -263,7 +254,7 @@ contains
     if (st%tr%ncol() > 0) then
        ! loads: the same matrix as the previous solve (not with owner terms:
        ! each process would judge its own term; they refactor instead)
-       if (.not. st%summed) call take_factor(ctx%factor, st%k, st%solver)
+       if (.not. st%strategy%summed()) call take_factor(ctx%factor, st%k, st%solver)
        if (allocated(st%solver)) then
           call solve_with(st%solver, st%k%n, st%f_red, opts%quiet, st%q, res, error)
        else
@@ -312,15 +303,7 @@ contains
     end if
     call st%tr%expand(st%q, st%u)
     if (res%summary%n_condensed > 0) then
-       if (is_distributed(res%summary)) then
-          call recover_distributed(ctx%cache, st%parts, st%f_phys, st%u, error)
-          if (allocated(error)) return
-          call parts_ku_distributed(ctx%cache, st%parts, st%u, st%ku, error)
-       else
-          call recover_parts(ctx%cache, st%parts, st%f_phys, st%u, error)
-          if (allocated(error)) return
-          call parts_ku(ctx%cache, st%parts, st%u, st%ku)
-       end if
+       call st%strategy%recover_interiors(st, ctx%cache, error)
        if (allocated(error)) return
        if (st%tr%ncol() > 0) call full_health(st, ctx%cache, res, error)
        if (allocated(error)) return
@@ -368,8 +351,8 @@ contains
 
   subroutine factor_and_solve(st, model, opts, groups, res, error)
     !! Analyze, factorize (mapping a breakdown to its location) and solve all
-    !! steps: st%solver and st%q. st%summed: k is this process's term of
-    !! K_red (MUMPS local input).
+    !! steps: st%solver and st%q. Owner terms (st%strategy%summed()): k is
+    !! this process's term of K_red (MUMPS local input).
     type(solve_state_t), intent(inout) :: st
     type(model_t), intent(in) :: model
     type(run_options_t), intent(in) :: opts
@@ -388,7 +371,7 @@ contains
     call new_solver(solver_name, st%k%n, st%solver, error)
     if (allocated(error)) return
     if (allocated(groups)) call st%solver%set_groups(groups)
-    if (st%summed) then
+    if (st%strategy%summed()) then
        select type (s => st%solver)
        type is (mumps_solver_t)
           s%local_input = .true.
@@ -406,7 +389,7 @@ contains
           jf = st%solver%info%failed_column
           deallocate (error)
           call mechanism_error(st%k, solver_name, model, st%table, st%tr, penalty_hint(res), res%fields%mechanism, error, &
-               summed=st%summed)
+               summed=st%strategy%summed())
           if (allocated(error)) return
           if (jf >= 1 .and. jf <= st%tr%ncol()) then
              call fatal_error(error, EXIT_SINGULAR, 'error: the structure cannot be solved: '// &

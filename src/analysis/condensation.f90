@@ -5,7 +5,6 @@ module superjoin_analysis_condensation
   use superjoin_kinds, only: wp, i8
   use superjoin_error, only: error_t, add_error_line, EXIT_SINGULAR
   use superjoin_model_types, only: model_t, string_t
-  use superjoin_assembly_dofs, only: dof_table_t
   use superjoin_assembly_assemble, only: max_element_diagonal
   use superjoin_substructure_local_system, only: dof_label
   use superjoin_substructure_cache, only: part_cache_t, part_view_t, acquire_view, view_condense_loads, &
@@ -14,7 +13,7 @@ module superjoin_analysis_condensation
   use superjoin_model_notes, only: note
   use superjoin_analysis_factor_reuse, only: kept_factor_t
   use superjoin_utils_strings, only: itoa
-  use superjoin_analysis_solve_state, only: solve_state_t
+  use superjoin_analysis_solve_state, only: solve_state_t, solve_strategy_t
   implicit none (type, external)
   private
 
@@ -27,9 +26,62 @@ module superjoin_analysis_condensation
      type(kept_factor_t) :: factor          !! loads: a factorization kept for a next solve of the same matrix
   end type solve_context_t
 
+  type, extends(solve_strategy_t), public :: condensed_strategy_t
+    !! Some substructures condensed, one process: each condensed part enters
+    !! K_red as its K* (analysis/solve_state's solve_strategy_t).
+  contains
+     procedure :: set_plan => condensed_plan
+     procedure :: condense => condense_all
+     procedure :: recover_interiors => recover_all
+  end type condensed_strategy_t
+
   public :: condense_parts, recover_parts, parts_ku, part_solver
 
 contains
+
+  subroutine condensed_plan(self, st, model, summary)
+    !! The elements of the substructures not condensed, and every K*.
+    class(condensed_strategy_t), intent(in) :: self
+    type(solve_state_t), intent(inout) :: st
+    type(model_t), intent(in) :: model
+    type(run_summary_t), intent(in) :: summary
+    integer :: i
+    associate (no_use => self, no_model => model)   ! summary%sub_condensed names the substructures
+    end associate
+    st%plan%skip_sub = summary%sub_condensed
+    allocate (st%plan%supers(size(st%parts)))
+    do i = 1, size(st%parts)
+       st%plan%supers(i) = st%parts(i)%se
+    end do
+  end subroutine condensed_plan
+
+  subroutine condense_all(self, st, model, opts, cache, summary, notes, error)
+    !! condense_parts.
+    class(condensed_strategy_t), intent(in) :: self
+    type(solve_state_t), intent(inout) :: st
+    type(model_t), intent(in) :: model
+    type(run_options_t), intent(in) :: opts
+    type(part_cache_t), intent(inout) :: cache
+    type(run_summary_t), intent(inout) :: summary
+    type(string_t), allocatable, intent(inout) :: notes(:)
+    type(error_t), allocatable, intent(out) :: error
+    associate (no_use => self)
+    end associate
+    call condense_parts(st, model, opts, cache, summary, notes, error)
+  end subroutine condense_all
+
+  subroutine recover_all(self, st, cache, error)
+    !! The interiors of every condensed substructure and their k u.
+    class(condensed_strategy_t), intent(in) :: self
+    type(solve_state_t), intent(inout) :: st
+    type(part_cache_t), intent(inout) :: cache
+    type(error_t), allocatable, intent(out) :: error
+    associate (no_use => self)
+    end associate
+    call recover_parts(cache, st%parts, st%f_phys, st%u, error)
+    if (allocated(error)) return
+    call parts_ku(cache, st%parts, st%u, st%ku)
+  end subroutine recover_all
 
   subroutine condense_parts(st, model, opts, cache, summary, notes, error)
     !! The condensations of the condensed substructures (st%parts: computed,

@@ -25,7 +25,6 @@ module superjoin_analysis_distributed
   use superjoin_kinds, only: wp, i8
   use superjoin_error, only: error_t, fatal_error, add_error_line, EXIT_SINGULAR, EXIT_IO
   use superjoin_model_types, only: model_t, string_t
-  use superjoin_assembly_dofs, only: dof_table_t
   use superjoin_assembly_transform, only: transform_t
   use superjoin_assembly_assemble, only: max_element_diagonal, assembly_plan_t
   use superjoin_substructure_local_system, only: dof_label
@@ -41,7 +40,10 @@ module superjoin_analysis_distributed
   use superjoin_parallel_partition, only: part_graph_t, partition_t, build_part_graph, partition_parts, &
        partition_report
   use superjoin_utils_strings, only: itoa
-  use superjoin_analysis_solve_state, only: solve_state_t
+  use superjoin_analysis_solve_state, only: solve_state_t, plain_strategy_t
+  use superjoin_analysis_condensation, only: condensed_strategy_t
+  use superjoin_analysis_summed_matrix, only: summed_matvec, summed_diagonal, summed_norm1
+  use superjoin_solvers, only: sparse_sym_t, norm1_sym
   implicit none (type, external)
   private
 
@@ -49,8 +51,25 @@ module superjoin_analysis_distributed
     !! Header of an owner's message: reused, rotated, MAXRATIO, its DOF, number of DOFs without
     !! stiffness, whether k u0 follows (it is sent only when some prescribed value is nonzero).
 
-  public :: plan_distribution, is_distributed, condense_distributed, recover_distributed, parts_ku_distributed, &
-       mpi_summary, owner_terms, owner_plan, sum_owner_loads, agreed
+  type, extends(condensed_strategy_t), public :: distributed_strategy_t
+    !! Several MPI processes, each condensing the substructures it owns
+    !! (analysis/solve_state's solve_strategy_t). With owned (owner terms,
+    !! see owner_terms) each process assembles and hands MUMPS only its own
+    !! term of K_red, and what needs the whole matrix is computed from the
+    !! terms (analysis/summed_matrix).
+     logical :: owned = .false.
+  contains
+     procedure :: set_plan => distributed_plan
+     procedure :: condense => condense_distributed
+     procedure :: combine => combine_terms
+     procedure :: recover_interiors => recover_own
+     procedure :: summed => owner_summed
+     procedure :: matvec => terms_matvec
+     procedure :: diagonal => terms_diagonal
+     procedure :: norm1 => terms_norm1
+  end type distributed_strategy_t
+
+  public :: plan_distribution, is_distributed, mpi_summary, owner_terms
 
   integer, parameter :: BYTES_MUMPS_ENTRY = 16
     !! One entry of MUMPS's distributed assembled input: value (8 bytes), row and column (4 each).
@@ -145,14 +164,15 @@ contains
     if (.not. ok) call fatal_error(error, EXIT_IO, 'error: MPI sum of the prescribed values'' loads failed')
   end subroutine sum_owner_loads
 
-  subroutine condense_distributed(st, model, opts, cache, summary, notes, error)
+  subroutine condense_distributed(self, st, model, opts, cache, summary, notes, error)
     !! condense_parts (analysis/condensation) over several processes: each
     !! condenses its own substructures and sends the others what the
     !! interface needs. st%parts and st%f_eff end equal on every process, and
     !! so do the notes (AUTOSPC per substructure in order; the condensations
-    !! computed and reused summed over the processes). With st%summed (owner
+    !! computed and reused summed over the processes). With owned (owner
     !! terms, see owner_terms) K* stays with its owner: the others get the
     !! loads f*, the AUTOSPC list, MAXRATIO and k u0 (when nonzero) only.
+    class(distributed_strategy_t), intent(in) :: self
     type(solve_state_t), intent(inout) :: st
     type(model_t), intent(in) :: model
     type(run_options_t), intent(in) :: opts
@@ -198,7 +218,7 @@ contains
     do isub = 1, size(model%subs)
        if (.not. summary%sub_condensed(isub)) cycle
        ip_ = ip_ + 1
-       call exchange_part(st, cache, summary%sub_owner(isub), ip_, fstar, error)
+       call exchange_part(st, cache, summary%sub_owner(isub), ip_, self%owned, fstar, error)
        if (allocated(error)) return
        associate (v => st%parts(ip_), f_phys => st%f_phys, table => st%table)
          if (v%rotated) nrot = nrot + 1
@@ -222,23 +242,23 @@ contains
          itoa(nrot)//' turned by their instance''s placement) on '//itoa(comm%size)//' processes')
   end subroutine condense_distributed
 
-  subroutine exchange_part(st, cache, owner, ip_, fstar, error)
+  subroutine exchange_part(st, cache, owner, ip_, owned, fstar, error)
     !! Condensed part st%parts(ip_) from its owner to every process: its
     !! reuse and rotation flags, MAXRATIO, DOFs without stiffness, K* (but
-    !! under owner terms, st%summed), k u0 when nonzero, and its loads f*.
+    !! under owner terms, owned), k u0 when nonzero, and its loads f*.
     type(solve_state_t), intent(inout) :: st
     type(part_cache_t), intent(inout) :: cache
     integer, intent(in) :: owner, ip_
+    logical, intent(in) :: owned
     real(wp), allocatable, intent(out) :: fstar(:, :)
     type(error_t), allocatable, intent(out) :: error
     type(comm_t) :: comm
     real(wp), allocatable :: head(:), body(:)
     integer(i8) :: nkk, nb, ni, nspc, at, nku0
     integer :: nstep
-    logical :: ok, mine, owned
+    logical :: ok, mine
     comm = comm_world()
     mine = owner == comm%rank
-    owned = st%summed
     nstep = size(st%f_phys, 2)
     associate (v => st%parts(ip_), f_phys => st%f_phys, tr => st%tr)
       ni = v%ni
@@ -291,6 +311,96 @@ contains
       end if
     end associate
   end subroutine exchange_part
+
+  subroutine distributed_plan(self, st, model, summary)
+    !! Owner terms: this process's own substructures and K* (owner_plan);
+    !! else the whole K_red, as on one process.
+    class(distributed_strategy_t), intent(in) :: self
+    type(solve_state_t), intent(inout) :: st
+    type(model_t), intent(in) :: model
+    type(run_summary_t), intent(in) :: summary
+    type(plain_strategy_t) :: plain
+    if (self%owned) then
+       if (.not. allocated(st%parts)) allocate (st%parts(0))
+       call owner_plan(model, summary, st%parts, st%plan)
+    else if (summary%n_condensed > 0) then
+       call self%condensed_strategy_t%set_plan(st, model, summary)
+    else
+       call plain%set_plan(st, model, summary)
+    end if
+  end subroutine distributed_plan
+
+  subroutine combine_terms(self, st, error)
+    !! Owner terms: the processes agree on the assembly's outcome, and the
+    !! reduced load of the prescribed values is summed over their terms.
+    class(distributed_strategy_t), intent(in) :: self
+    type(solve_state_t), intent(inout) :: st
+    type(error_t), allocatable, intent(inout) :: error
+    if (.not. self%owned) return
+    call agreed(error)
+    if (allocated(error)) return
+    call sum_owner_loads(st%f_u0, error)
+  end subroutine combine_terms
+
+  subroutine recover_own(self, st, cache, error)
+    !! The interiors (and k u) of this process's own substructures, summed
+    !! over the processes (recover_distributed, parts_ku_distributed).
+    class(distributed_strategy_t), intent(in) :: self
+    type(solve_state_t), intent(inout) :: st
+    type(part_cache_t), intent(inout) :: cache
+    type(error_t), allocatable, intent(out) :: error
+    associate (no_use => self)   ! owner terms or not, every process recovers its own
+    end associate
+    call recover_distributed(cache, st%parts, st%f_phys, st%u, error)
+    if (allocated(error)) return
+    call parts_ku_distributed(cache, st%parts, st%u, st%ku, error)
+  end subroutine recover_own
+
+  logical function owner_summed(self)
+    !! Owner terms: st%k is only this process's term of K_red.
+    class(distributed_strategy_t), intent(in) :: self
+    owner_summed = self%owned
+  end function owner_summed
+
+  subroutine terms_matvec(self, k, x, y, error)
+    !! y = K x, K the sum of the processes' terms under owner terms.
+    class(distributed_strategy_t), intent(in) :: self
+    type(sparse_sym_t), intent(in) :: k
+    real(wp), intent(in) :: x(:, :)
+    real(wp), intent(out) :: y(:, :)
+    type(error_t), allocatable, intent(inout) :: error
+    if (self%owned) then
+       call summed_matvec(k, x, y, error)
+    else
+       call k%matvec(x, y)
+    end if
+  end subroutine terms_matvec
+
+  subroutine terms_diagonal(self, k, d, error)
+    !! The diagonal of K, the sum of the processes' terms under owner terms.
+    class(distributed_strategy_t), intent(in) :: self
+    type(sparse_sym_t), intent(in) :: k
+    real(wp), intent(out) :: d(:)
+    type(error_t), allocatable, intent(inout) :: error
+    if (self%owned) then
+       call summed_diagonal(k, d, error)
+    else
+       call k%diagonal(d)
+    end if
+  end subroutine terms_diagonal
+
+  subroutine terms_norm1(self, k, knorm, error)
+    !! ‖K‖₁, K the sum of the processes' terms under owner terms.
+    class(distributed_strategy_t), intent(in) :: self
+    type(sparse_sym_t), intent(in) :: k
+    real(wp), intent(out) :: knorm
+    type(error_t), allocatable, intent(inout) :: error
+    if (self%owned) then
+       call summed_norm1(k, knorm, error)
+    else
+       knorm = norm1_sym(k)
+    end if
+  end subroutine terms_norm1
 
   subroutine owner_ku0(cache, tr, v)
     !! k u0 of an own substructure: its stiffness times the prescribed values

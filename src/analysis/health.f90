@@ -8,18 +8,16 @@ module superjoin_analysis_health
   use superjoin_error, only: error_t, fatal_error, EXIT_SINGULAR, EXIT_IO
   use superjoin_model_types, only: model_t
   use superjoin_assembly_dofs, only: dof_table_t
-  use superjoin_assembly_transform, only: transform_t
   use superjoin_substructure_local_system, only: dof_label
   use superjoin_substructure_cache, only: part_cache_t, part_view_t, view_stiffness_times, &
        view_maxratio
-  use superjoin_solvers, only: linear_solver_t, sparse_sym_t, condition_estimate, norm1_sym
+  use superjoin_solvers, only: condition_estimate
   use superjoin_model_results, only: results_t, run_options_t
   use superjoin_analysis_mechanism, only: mechanism_error
   use superjoin_analysis_labels, only: column_label
   use superjoin_model_notes, only: warn
   use superjoin_utils_strings, only: itoa
   use superjoin_utils_memory, only: out_of_memory, BYTES_REAL
-  use superjoin_analysis_summed_matrix, only: summed_matvec, summed_diagonal, summed_norm1
   use superjoin_parallel_comm, only: sum_reals
   use superjoin_analysis_solve_state, only: solve_state_t
   implicit none (type, external)
@@ -116,8 +114,8 @@ contains
 
   subroutine health(st, model, opts, res, error)
     !! Residual, EPSILON, iterative refinement (of st%q, in place), MAXRATIO
-    !! and condition estimate. st%summed: k is this MPI process's term of
-    !! K_red (analysis/summed_matrix): products, diagonal and norm are the sum's.
+    !! and condition estimate. Products, diagonal and norm of K are the
+    !! strategy's (the sum of the MPI processes' terms under owner terms).
     type(solve_state_t), intent(inout) :: st
     type(model_t), intent(in) :: model
     type(run_options_t), intent(in) :: opts
@@ -137,12 +135,8 @@ contains
          return
       end if
     end associate
-    if (st%summed) then
-       call summed_norm1(st%k, knorm, error)
-       if (allocated(error)) return
-    else
-       knorm = norm1_sym(st%k)
-    end if
+    call st%strategy%norm1(st%k, knorm, error)
+    if (allocated(error)) return
     call residuals(st, knorm, st%q, w%r, w%berr, res, error)
     if (allocated(error)) return
     do is = 1, nstep
@@ -165,7 +159,7 @@ contains
        call warn(res, 'MAXRATIO '//trim(adjustl(buf))//' at '//res%summary%maxratio_at// &
             ': about '//itoa(nint(log10(res%summary%maxratio)))//' digits may be lost')
     end if
-    if (st%summed) then
+    if (st%strategy%summed()) then
        call condition_estimate(st%k, st%solver, cond, anorm_given=knorm)
     else
        call condition_estimate(st%k, st%solver, cond)
@@ -197,12 +191,8 @@ contains
     character(:), allocatable :: backend
 
     call st%solver%pivots(d)
-    if (st%summed) then
-       call summed_diagonal(st%k, kd, error)
-       if (allocated(error)) return
-    else
-       call st%k%diagonal(kd)
-    end if
+    call st%strategy%diagonal(st%k, kd, error)
+    if (allocated(error)) return
     res%summary%maxratio = 0.0_wp
     jmax = 0
     do j = 1, st%k%n
@@ -224,7 +214,7 @@ contains
        backend = 'auto'
        if (allocated(opts%solver)) backend = opts%solver
        call mechanism_error(st%k, backend, model, st%table, st%tr, penalty_hint(res), res%fields%mechanism, error, &
-            summed=st%summed)
+            summed=st%strategy%summed())
        if (allocated(error)) return
        write (buf, '(es10.2e3)') res%summary%maxratio
        call fatal_error(error, EXIT_SINGULAR, 'error: the structure cannot be solved: stiffness is '// &
@@ -286,12 +276,8 @@ contains
     type(results_t), intent(inout) :: res
     type(error_t), allocatable, intent(inout) :: error
     integer :: s
-    if (st%summed) then
-       call summed_matvec(st%k, x, r, error)
-       if (allocated(error)) return
-    else
-       call st%k%matvec(x, r)
-    end if
+    call st%strategy%matvec(st%k, x, r, error)
+    if (allocated(error)) return
     associate (f_red => st%f_red)
       r = r - f_red
       do s = 1, size(x, 2)
@@ -311,7 +297,7 @@ contains
     !! part, Mᵀ[(k u − f)_b − (K* u_b − f*)]; interior rows: k_ii u_i + k_ib u_b − f_i.
     !! The loads likewise, with the prescribed values' terms (−k u0).
     !! st%ku: k u of the condensed substructures on the physical DOFs (parts_ku).
-    !! st%summed: k is this MPI process's term of K_red and only the own
+    !! Owner terms (st%strategy%summed()): k is this MPI process's term of K_red and only the own
     !! substructures (entry > 0) hold K*: each process adds its own terms to
     !! the interface rows, which are summed over the processes.
     type(solve_state_t), intent(in) :: st
@@ -327,7 +313,7 @@ contains
       nstep = size(q, 2)
       allocate (r(k%n, nstep))
       call k%matvec(q, r)
-      if (st%summed) then   ! this process's terms first; f_red once the rows are summed
+      if (st%strategy%summed()) then   ! this process's terms first; f_red once the rows are summed
          allocate (f(k%n, nstep), source=0.0_wp)
       else
          r = r - f_red
@@ -361,7 +347,7 @@ contains
            qfull(at + 1:at + ni, :) = u(sys%pdof(1:ni), :)
            at = at + ni
            ! interface rows: K* is with the owner only under owner terms
-           if (st%summed .and. parts(i)%entry == 0) then
+           if (st%strategy%summed() .and. parts(i)%entry == 0) then
               deallocate (rl, u0l, w)
               cycle
            end if
@@ -384,7 +370,7 @@ contains
   end subroutine full_health
 
   subroutine whole_residuals(st, r, f, rf, ffull, qfull, res, error)
-    !! The end of full_health: under owner terms (st%summed) the interface rows
+    !! The end of full_health: under owner terms the interface rows
     !! r and loads f of every process's terms summed into rf and ffull; then
     !! the residual and EPSILON of every step from rf, ffull and qfull.
     type(solve_state_t), intent(in) :: st
@@ -398,7 +384,7 @@ contains
     integer :: is
     character(len=32) :: buf
     associate (k => st%k, f_red => st%f_red)
-      if (st%summed) then
+      if (st%strategy%summed()) then
          ! interface rows of every process's terms summed (the interior rows
          ! every process has: ku is summed already, k u0 sent by the owners)
          rows = [reshape(r, [size(r, kind=i8)]), reshape(f, [size(f, kind=i8)])]

@@ -4,6 +4,11 @@ module superjoin_analysis
   !! factorization (once for all steps) → solve → health checks → interiors →
   !! recovery. Decisions: analysis/policy; health: analysis/health; condensed
   !! substructures: analysis/condensation (substructure/ underneath).
+  !! One solve of a step group (run_phases) fills a solve_state_t phase by
+  !! phase: build_phase, assemble_phase, solve_phase, recover_phase; how K_red
+  !! is assembled is the state's strategy (choose_strategy: plain, condensed,
+  !! distributed; analysis/solve_state). The steps are grouped into solves by
+  !! analysis/driver.
   use superjoin_kinds, only: wp, i8
   use superjoin_error, only: error_t, fatal_error, EXIT_SINGULAR
   use superjoin_model_types, only: model_t, string_t, FORM_TRANSFORM, FORM_PENALTY

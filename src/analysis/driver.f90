@@ -17,7 +17,7 @@ module superjoin_analysis_driver
   !! is exactly solve_model.
   use superjoin_kinds, only: wp
   use superjoin_error, only: error_t, add_error_line
-  use superjoin_model_types, only: model_t, support_t, link_override_t, string_t
+  use superjoin_model_types, only: model_t, support_t, link_override_t, string_t, step_t, link_t
   use superjoin_analysis, only: solve_model, solve_group, solve_context_t, release_cache
   use superjoin_analysis_factor_reuse, only: release_factor
   use superjoin_model_results, only: results_t, run_options_t
@@ -38,6 +38,15 @@ module superjoin_analysis_driver
      integer :: nsupports = 1
      integer, allocatable :: joints(:)     !! group of contact stiffnesses of every step
   end type step_grouping_t
+
+  type :: swap_t
+    !! What enter_group took out of the model while a group is solved.
+     type(step_t), allocatable :: steps(:)
+     type(support_t), allocatable :: supports(:)
+     type(link_t), allocatable :: links(:)
+     logical :: supports_swapped = .false.
+     logical :: links_swapped = .false.
+  end type swap_t
 
 contains
 
@@ -66,27 +75,74 @@ contains
   subroutine solve_steps(model, opts, res, error)
     !! Solve every step of a validated model with the supports and contact
     !! stiffnesses in effect in it (one factorization per distinct set).
-    type(model_t), intent(in) :: model
+    !! Each group is solved on model itself, its steps, supports and links
+    !! swapped for the group's meanwhile (no copy of the model): model ends
+    !! as it came.
+    type(model_t), intent(inout) :: model
     type(run_options_t), intent(in) :: opts
     type(results_t), intent(out) :: res
     type(error_t), allocatable, intent(out) :: error
     type(step_grouping_t) :: grouping
-    type(model_t) :: sub
+    type(swap_t) :: swap
+    integer :: s, nsupported
 
     call group_once(model, grouping)
     if (.not. has_step_boundaries(model)) then
        call solve_joint_groups(model, grouping%joints, opts, res, error)
     else if (grouping%nsupports == 1) then
-       sub = model
-       sub%supports = model%steps(1)%supports
-       call solve_joint_groups(sub, grouping%joints, opts, res, error)
+       call enter_group(model, [(s, s=1, size(model%steps))], swap, supports=.true.)
+       nsupported = size(model%supports)
+       call solve_joint_groups(model, grouping%joints, opts, res, error)
+       call leave_group(model, swap)
        if (allocated(error)) return
        call append_string(res%log%notes, 'boundary conditions (*BOUNDARY in steps): the same in every step, '// &
-            itoa(size(sub%supports))//' supported DOFs')
+            itoa(nsupported)//' supported DOFs')
     else
        call solve_support_groups(model, grouping, opts, res, error)
     end if
   end subroutine solve_steps
+
+  subroutine enter_group(model, members, swap, supports, links)
+    !! model becomes the model of the steps members: only those steps, with
+    !! supports the first one's (supports) or with the first one's contact
+    !! overrides applied to the links and none left in the steps (links).
+    !! What it replaces goes to swap, for leave_group.
+    type(model_t), intent(inout) :: model
+    integer, intent(in) :: members(:)
+    type(swap_t), intent(out) :: swap
+    logical, intent(in), optional :: supports, links
+    type(link_override_t), allocatable :: overrides(:)
+    integer :: s
+    call move_alloc(model%steps, swap%steps)
+    model%steps = swap%steps(members)
+    swap%supports_swapped = .false.
+    if (present(supports)) swap%supports_swapped = supports
+    if (swap%supports_swapped) then
+       call move_alloc(model%supports, swap%supports)
+       model%supports = model%steps(1)%supports
+    end if
+    swap%links_swapped = .false.
+    if (present(links)) swap%links_swapped = links
+    if (swap%links_swapped) then
+       swap%links = model%links
+       if (allocated(model%steps(1)%link_overrides)) then
+          overrides = model%steps(1)%link_overrides
+          call apply_overrides(overrides, model)
+       end if
+       do s = 1, size(model%steps)
+          if (allocated(model%steps(s)%link_overrides)) deallocate (model%steps(s)%link_overrides)
+       end do
+    end if
+  end subroutine enter_group
+
+  subroutine leave_group(model, swap)
+    !! model as it was before enter_group.
+    type(model_t), intent(inout) :: model
+    type(swap_t), intent(inout) :: swap
+    call move_alloc(swap%steps, model%steps)
+    if (swap%supports_swapped) call move_alloc(swap%supports, model%supports)
+    if (swap%links_swapped) call move_alloc(swap%links, model%links)
+  end subroutine leave_group
 
   subroutine group_once(model, grouping)
     !! The steps' groups of supports and of contact stiffnesses.
@@ -117,15 +173,16 @@ contains
     !! (their matrices are the same, and each solve keeps its factorization
     !! for the next; not with *CHANGE CONTACT, whose groups share the
     !! condensations instead).
-    type(model_t), intent(in) :: model
+    type(model_t), intent(inout) :: model
     type(step_grouping_t), intent(in) :: grouping
     type(run_options_t), intent(in) :: opts
     type(results_t), intent(out) :: res
     type(error_t), allocatable, intent(out) :: error
     integer, allocatable :: members(:), order(:)
     integer :: s, g, k, nstep, ngroup
-    type(model_t) :: sub
+    type(swap_t) :: swap
     type(results_t) :: r
+    character(:), allocatable :: text
     type(solve_context_t) :: ctx
     logical :: joint
 
@@ -137,14 +194,14 @@ contains
     do k = 1, ngroup
        g = order(k)
        members = pack([(s, s=1, nstep)], grouping%supports == g)
-       sub = model
-       sub%supports = model%steps(members(1))%supports
-       sub%steps = model%steps(members)
+       call enter_group(model, members, swap, supports=.true.)
+       text = ': '//itoa(size(model%supports))//' supported DOFs'//prescribed_text(model%supports)
        if (joint) then
-          call solve_joint_groups(sub, grouping%joints(members), opts, r, error)
+          call solve_joint_groups(model, grouping%joints(members), opts, r, error)
        else
-          call solve_group(sub, opts, ctx, r, error)
+          call solve_group(model, opts, ctx, r, error)
        end if
+       call leave_group(model, swap)
        if (allocated(error)) then
           call release_factor(ctx%factor)
           call release_cache(ctx%cache)
@@ -153,8 +210,7 @@ contains
           return
        end if
        call merge_results(r, members, nstep, k == 1, res)
-       call append_string(res%log%notes, step_list(model, members, .false.)//': '//itoa(size(sub%supports))// &
-            ' supported DOFs'//prescribed_text(sub%supports))
+       call append_string(res%log%notes, step_list(model, members, .false.)//text)
     end do
     call release_factor(ctx%factor)
     call release_cache(ctx%cache)
@@ -169,7 +225,7 @@ contains
     !! CONTACT with their own contact stiffnesses: joints(s) is the group of
     !! contact stiffnesses of step s (numbered over the whole run). One
     !! context for all groups: the parts are condensed once and reused.
-    type(model_t), intent(in) :: model
+    type(model_t), intent(inout) :: model
     integer, intent(in) :: joints(:)
     type(run_options_t), intent(in) :: opts
     type(results_t), intent(out) :: res
@@ -177,7 +233,7 @@ contains
     integer, allocatable :: group(:), members(:)
     logical, allocatable :: related(:, :)
     integer :: ngroup, s, t, g, nstep
-    type(model_t) :: sub
+    type(swap_t) :: swap
     type(results_t) :: r
     type(solve_context_t) :: ctx
 
@@ -197,13 +253,9 @@ contains
     ctx%joint_study = ngroup > 1
     do g = 1, ngroup
        members = pack([(s, s=1, nstep)], group == g)
-       sub = model
-       sub%steps = model%steps(members)
-       do s = 1, size(sub%steps)
-          if (allocated(sub%steps(s)%link_overrides)) deallocate (sub%steps(s)%link_overrides)
-       end do
-       call apply_overrides(model%steps(members(1))%link_overrides, sub)
-       call solve_group(sub, opts, ctx, r, error)
+       call enter_group(model, members, swap, links=.true.)
+       call solve_group(model, opts, ctx, r, error)
+       call leave_group(model, swap)
        if (allocated(error)) then
           call release_cache(ctx%cache)
           call add_error_line(error, error%code, '  (while solving '//step_list(model, members, .true.)// &

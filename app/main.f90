@@ -15,7 +15,7 @@ program superjoin_main
   use superjoin_model_types, only: model_t, string_t, FORM_TRANSFORM, FORM_PENALTY, CONDENSE_YES, CONDENSE_NO, &
        CONDENSE_AUTO
   use superjoin_deck_reader, only: read_deck
-  use superjoin_analysis_boundary_steps, only: solve_steps
+  use superjoin_analysis_driver, only: solve_steps
   use superjoin_analysis_combinations, only: add_combinations
   use superjoin_analysis_plausibility, only: check_plausibility
   use superjoin_analysis_contact_gaps, only: check_contact_gaps

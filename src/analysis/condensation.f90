@@ -5,7 +5,6 @@ module superjoin_analysis_condensation
   use superjoin_kinds, only: wp, i8
   use superjoin_error, only: error_t, add_error_line, EXIT_SINGULAR
   use superjoin_model_types, only: model_t, string_t
-  use superjoin_assembly_dofs, only: dof_table_t
   use superjoin_assembly_assemble, only: max_element_diagonal
   use superjoin_substructure_local_system, only: dof_label
   use superjoin_substructure_cache, only: part_cache_t, part_view_t, acquire_view, view_condense_loads, &
@@ -14,6 +13,7 @@ module superjoin_analysis_condensation
   use superjoin_model_notes, only: note
   use superjoin_analysis_factor_reuse, only: kept_factor_t
   use superjoin_utils_strings, only: itoa
+  use superjoin_analysis_solve_state, only: solve_state_t, solve_strategy_t
   implicit none (type, external)
   private
 
@@ -26,25 +26,75 @@ module superjoin_analysis_condensation
      type(kept_factor_t) :: factor          !! loads: a factorization kept for a next solve of the same matrix
   end type solve_context_t
 
+  type, extends(solve_strategy_t), public :: condensed_strategy_t
+    !! Some substructures condensed, one process: each condensed part enters
+    !! K_red as its K* (analysis/solve_state's solve_strategy_t).
+  contains
+     procedure :: set_plan => condensed_plan
+     procedure :: condense => condense_all
+     procedure :: recover_interiors => recover_all
+  end type condensed_strategy_t
+
   public :: condense_parts, recover_parts, parts_ku, part_solver
 
 contains
 
-  subroutine condense_parts(model, table, bnd, opts, f_phys, cache, summary, notes, parts, f_eff, error)
-    !! The condensations of the condensed substructures (computed, or reused
-    !! from the cache: another instance of the same part, or an earlier solve
-    !! of a joint study), and the loads the interface sees: f_phys with each
-    !! condensed boundary replaced by f* (interior rows have no reduced unknown).
+  subroutine condensed_plan(self, st, model, summary)
+    !! The elements of the substructures not condensed, and every K*.
+    class(condensed_strategy_t), intent(in) :: self
+    type(solve_state_t), intent(inout) :: st
     type(model_t), intent(in) :: model
-    type(dof_table_t), intent(in) :: table
-    logical, intent(in) :: bnd(:)
+    type(run_summary_t), intent(in) :: summary
+    integer :: i
+    associate (no_use => self, no_model => model)   ! summary%sub_condensed names the substructures
+    end associate
+    st%plan%skip_sub = summary%sub_condensed
+    allocate (st%plan%supers(size(st%parts)))
+    do i = 1, size(st%parts)
+       st%plan%supers(i) = st%parts(i)%se
+    end do
+  end subroutine condensed_plan
+
+  subroutine condense_all(self, st, model, opts, cache, summary, notes, error)
+    !! condense_parts.
+    class(condensed_strategy_t), intent(in) :: self
+    type(solve_state_t), intent(inout) :: st
+    type(model_t), intent(in) :: model
     type(run_options_t), intent(in) :: opts
-    real(wp), intent(in) :: f_phys(:, :)
     type(part_cache_t), intent(inout) :: cache
     type(run_summary_t), intent(inout) :: summary
     type(string_t), allocatable, intent(inout) :: notes(:)
-    type(part_view_t), allocatable, intent(out) :: parts(:)
-    real(wp), allocatable, intent(out) :: f_eff(:, :)
+    type(error_t), allocatable, intent(out) :: error
+    associate (no_use => self)
+    end associate
+    call condense_parts(st, model, opts, cache, summary, notes, error)
+  end subroutine condense_all
+
+  subroutine recover_all(self, st, cache, error)
+    !! The interiors of every condensed substructure and their k u.
+    class(condensed_strategy_t), intent(in) :: self
+    type(solve_state_t), intent(inout) :: st
+    type(part_cache_t), intent(inout) :: cache
+    type(error_t), allocatable, intent(out) :: error
+    associate (no_use => self)
+    end associate
+    call recover_parts(cache, st%parts, st%f_phys, st%u, error)
+    if (allocated(error)) return
+    call parts_ku(cache, st%parts, st%u, st%ku)
+  end subroutine recover_all
+
+  subroutine condense_parts(st, model, opts, cache, summary, notes, error)
+    !! The condensations of the condensed substructures (st%parts: computed,
+    !! or reused from the cache: another instance of the same part, or an
+    !! earlier solve of a joint study), and the loads the interface sees:
+    !! st%f_eff, st%f_phys with each condensed boundary replaced by f*
+    !! (interior rows have no reduced unknown). Boundary: st%bnd_c.
+    type(solve_state_t), intent(inout) :: st
+    type(model_t), intent(in) :: model
+    type(run_options_t), intent(in) :: opts
+    type(part_cache_t), intent(inout) :: cache
+    type(run_summary_t), intent(inout) :: summary
+    type(string_t), allocatable, intent(inout) :: notes(:)
     type(error_t), allocatable, intent(out) :: error
     character(:), allocatable :: solver_name
     real(wp), allocatable :: fstar(:, :)
@@ -55,38 +105,40 @@ contains
     ! a bad element there is reported as a deck error before a condensation
     ! meets its consequences (condensed ones are checked as they are built).
     if (cache%n == 0) then
-       call max_element_diagonal(model, table, dmax, error, only=.not. summary%sub_condensed)
+       call max_element_diagonal(model, st%table, dmax, error, only=.not. summary%sub_condensed)
        if (allocated(error)) return
     end if
     solver_name = part_solver(opts)
-    allocate (parts(summary%n_condensed))
-    f_eff = f_phys
+    allocate (st%parts(summary%n_condensed))
+    st%f_eff = st%f_phys
     computed0 = cache%computed
     reused0 = cache%reused
     nrot = 0
     ip_ = 0
-    do isub = 1, size(model%subs)
-       if (.not. summary%sub_condensed(isub)) cycle
-       ip_ = ip_ + 1
-       call acquire_view(cache, model, table, isub, bnd, solver_name, parts(ip_), error)
-       if (allocated(error)) return
-       if (parts(ip_)%rotated) nrot = nrot + 1
-       call view_spc(cache, parts(ip_), spc)
-       do i = 1, size(spc)
-          if (any(f_phys(spc(i), :) /= 0.0_wp)) then
-             call add_error_line(error, EXIT_SINGULAR, 'error: load on a DOF without stiffness: '// &
-                  dof_label(model, table, spc(i)))
-          else if (.not. parts(ip_)%reused) then
-             call note(notes, 'AUTOSPC: '//dof_label(model, table, spc(i))//' has no stiffness and no load: dropped')
-          end if
-       end do
-       if (allocated(error)) return
-       allocate (fstar(parts(ip_)%nb, size(f_phys, 2)))
-       call view_condense_loads(cache, parts(ip_), f_phys(parts(ip_)%pdof, :), fstar, error)
-       if (allocated(error)) return
-       f_eff(parts(ip_)%se%pdof, :) = fstar
-       deallocate (fstar)
-    end do
+    associate (table => st%table, bnd => st%bnd_c, f_phys => st%f_phys, parts => st%parts, f_eff => st%f_eff)
+      do isub = 1, size(model%subs)
+         if (.not. summary%sub_condensed(isub)) cycle
+         ip_ = ip_ + 1
+         call acquire_view(cache, model, table, isub, bnd, solver_name, parts(ip_), error)
+         if (allocated(error)) return
+         if (parts(ip_)%rotated) nrot = nrot + 1
+         call view_spc(cache, parts(ip_), spc)
+         do i = 1, size(spc)
+            if (any(f_phys(spc(i), :) /= 0.0_wp)) then
+               call add_error_line(error, EXIT_SINGULAR, 'error: load on a DOF without stiffness: '// &
+                    dof_label(model, table, spc(i)))
+            else if (.not. parts(ip_)%reused) then
+               call note(notes, 'AUTOSPC: '//dof_label(model, table, spc(i))//' has no stiffness and no load: dropped')
+            end if
+         end do
+         if (allocated(error)) return
+         allocate (fstar(parts(ip_)%nb, size(f_phys, 2)))
+         call view_condense_loads(cache, parts(ip_), f_phys(parts(ip_)%pdof, :), fstar, error)
+         if (allocated(error)) return
+         f_eff(parts(ip_)%se%pdof, :) = fstar
+         deallocate (fstar)
+      end do
+    end associate
     call note(notes, 'condensations: '//itoa(cache%computed - computed0)//' computed, '// &
          itoa(cache%reused - reused0)//' reused ('//itoa(nrot)//' turned by their instance''s placement)')
   end subroutine condense_parts

@@ -25,7 +25,6 @@ module superjoin_analysis_distributed
   use superjoin_kinds, only: wp, i8
   use superjoin_error, only: error_t, fatal_error, add_error_line, EXIT_SINGULAR, EXIT_IO
   use superjoin_model_types, only: model_t, string_t
-  use superjoin_assembly_dofs, only: dof_table_t
   use superjoin_assembly_transform, only: transform_t
   use superjoin_assembly_assemble, only: max_element_diagonal, assembly_plan_t
   use superjoin_substructure_local_system, only: dof_label
@@ -41,6 +40,10 @@ module superjoin_analysis_distributed
   use superjoin_parallel_partition, only: part_graph_t, partition_t, build_part_graph, partition_parts, &
        partition_report
   use superjoin_utils_strings, only: itoa
+  use superjoin_analysis_solve_state, only: solve_state_t, plain_strategy_t
+  use superjoin_analysis_condensation, only: condensed_strategy_t
+  use superjoin_analysis_summed_matrix, only: summed_matvec, summed_diagonal, summed_norm1
+  use superjoin_solvers, only: sparse_sym_t, norm1_sym
   implicit none (type, external)
   private
 
@@ -48,8 +51,25 @@ module superjoin_analysis_distributed
     !! Header of an owner's message: reused, rotated, MAXRATIO, its DOF, number of DOFs without
     !! stiffness, whether k u0 follows (it is sent only when some prescribed value is nonzero).
 
-  public :: plan_distribution, is_distributed, condense_distributed, recover_distributed, parts_ku_distributed, &
-       mpi_summary, owner_terms, owner_plan, sum_owner_loads, agreed
+  type, extends(condensed_strategy_t), public :: distributed_strategy_t
+    !! Several MPI processes, each condensing the substructures it owns
+    !! (analysis/solve_state's solve_strategy_t). With owned (owner terms,
+    !! see owner_terms) each process assembles and hands MUMPS only its own
+    !! term of K_red, and what needs the whole matrix is computed from the
+    !! terms (analysis/summed_matrix).
+     logical :: owned = .false.
+  contains
+     procedure :: set_plan => distributed_plan
+     procedure :: condense => condense_distributed
+     procedure :: combine => combine_terms
+     procedure :: recover_interiors => recover_own
+     procedure :: summed => owner_summed
+     procedure :: matvec => terms_matvec
+     procedure :: diagonal => terms_diagonal
+     procedure :: norm1 => terms_norm1
+  end type distributed_strategy_t
+
+  public :: plan_distribution, is_distributed, mpi_summary, owner_terms
 
   integer, parameter :: BYTES_MUMPS_ENTRY = 16
     !! One entry of MUMPS's distributed assembled input: value (8 bytes), row and column (4 each).
@@ -144,48 +164,38 @@ contains
     if (.not. ok) call fatal_error(error, EXIT_IO, 'error: MPI sum of the prescribed values'' loads failed')
   end subroutine sum_owner_loads
 
-  subroutine condense_distributed(model, table, tr, bnd, opts, f_phys, cache, summary, notes, parts, f_eff, error, &
-       owned)
+  subroutine condense_distributed(self, st, model, opts, cache, summary, notes, error)
     !! condense_parts (analysis/condensation) over several processes: each
     !! condenses its own substructures and sends the others what the
-    !! interface needs. parts and f_eff end equal on every process, and so do
-    !! the notes (AUTOSPC per substructure in order; the condensations
+    !! interface needs. st%parts and st%f_eff end equal on every process, and
+    !! so do the notes (AUTOSPC per substructure in order; the condensations
     !! computed and reused summed over the processes). With owned (owner
     !! terms, see owner_terms) K* stays with its owner: the others get the
     !! loads f*, the AUTOSPC list, MAXRATIO and k u0 (when nonzero) only.
+    class(distributed_strategy_t), intent(in) :: self
+    type(solve_state_t), intent(inout) :: st
     type(model_t), intent(in) :: model
-    type(dof_table_t), intent(in) :: table
-    type(transform_t), intent(in) :: tr
-    logical, intent(in) :: bnd(:)
     type(run_options_t), intent(in) :: opts
-    real(wp), intent(in) :: f_phys(:, :)
     type(part_cache_t), intent(inout) :: cache
     type(run_summary_t), intent(inout) :: summary
     type(string_t), allocatable, intent(inout) :: notes(:)
-    type(part_view_t), allocatable, intent(out) :: parts(:)
-    real(wp), allocatable, intent(out) :: f_eff(:, :)
     type(error_t), allocatable, intent(out) :: error
-    logical, intent(in) :: owned
     type(comm_t) :: comm
     character(:), allocatable :: solver_name
-    real(wp), allocatable :: fstar(:, :), head(:), body(:)
-    integer(i8) :: nkk
-    logical, allocatable :: reused(:)
+    real(wp), allocatable :: fstar(:, :)
     integer(i8) :: counts(2)
-    integer :: isub, ip_, i, nrot, nstep, computed0, reused0
-    integer(i8) :: nb, ni, nspc, at, nku0
-    logical :: ok, mine
+    integer :: isub, ip_, i, nrot, computed0, reused0
+    logical :: ok
     real(wp) :: dmax
     comm = comm_world()
     ! as condense_parts: the elements kept in the interface checked first
     if (cache%n == 0) then
-       call max_element_diagonal(model, table, dmax, error, only=.not. summary%sub_condensed)
+       call max_element_diagonal(model, st%table, dmax, error, only=.not. summary%sub_condensed)
        if (allocated(error)) return
     end if
     solver_name = part_solver(opts)   ! never MUMPS: a part is condensed by one process alone
-    nstep = size(f_phys, 2)
-    allocate (parts(summary%n_condensed), reused(summary%n_condensed))
-    f_eff = f_phys
+    allocate (st%parts(summary%n_condensed))
+    st%f_eff = st%f_phys
     computed0 = cache%computed
     reused0 = cache%reused
     ! 1. this process's own condensations (a failure returns at once)
@@ -194,10 +204,10 @@ contains
        if (.not. summary%sub_condensed(isub)) cycle
        ip_ = ip_ + 1
        if (summary%sub_owner(isub) == comm%rank) then
-          call acquire_view(cache, model, table, isub, bnd, solver_name, parts(ip_), error)
+          call acquire_view(cache, model, st%table, isub, st%bnd_c, solver_name, st%parts(ip_), error)
           if (allocated(error)) return
        else
-          call remote_view(table, isub, bnd, parts(ip_))
+          call remote_view(st%table, isub, st%bnd_c, st%parts(ip_))
        end if
     end do
     call agreed(error)
@@ -208,58 +218,10 @@ contains
     do isub = 1, size(model%subs)
        if (.not. summary%sub_condensed(isub)) cycle
        ip_ = ip_ + 1
-       mine = summary%sub_owner(isub) == comm%rank
-       associate (v => parts(ip_))
-         ni = v%ni
-         nb = v%nb
-         allocate (head(NHEAD), fstar(nb, nstep), source=0.0_wp)
-         if (mine) then
-            call view_spc(cache, v, v%spc)
-            call view_maxratio(cache, v, v%ratio, v%ratio_at)
-            call owner_ku0(cache, tr, v)
-            call view_condense_loads(cache, v, f_phys(v%pdof, :), fstar, error)
-            if (allocated(error)) return   ! a load condensation does not fail in practice; see module notes
-            head = [merge(1.0_wp, 0.0_wp, v%reused), merge(1.0_wp, 0.0_wp, v%rotated), v%ratio, &
-                 real(v%ratio_at, wp), real(size(v%spc), wp), merge(1.0_wp, 0.0_wp, any(v%ku0 /= 0.0_wp))]
-         end if
-         call broadcast(head, summary%sub_owner(isub), ok)
-         if (.not. ok) call fatal_error(error, EXIT_IO, 'error: MPI broadcast of a condensation failed')
-         if (allocated(error)) return
-         nspc = nint(head(5), i8)
-         nku0 = merge(ni + nb, 0_i8, head(6) /= 0.0_wp)
-         nkk = merge(0_i8, nb*nb, owned)   ! owner terms: K* stays with its owner
-         allocate (body(nspc + nkk + nb*nstep + nku0))
-         if (mine) then
-            body(1:nspc) = real(v%spc, wp)
-            at = nspc
-            if (.not. owned) body(at + 1:at + nkk) = reshape(v%se%k, [nkk])
-            at = at + nkk
-            body(at + 1:at + nb*nstep) = reshape(fstar, [nb*nstep])
-            at = at + nb*nstep
-            if (nku0 > 0) body(at + 1:) = v%ku0
-         end if
-         call broadcast(body, summary%sub_owner(isub), ok)
-         if (.not. ok) call fatal_error(error, EXIT_IO, 'error: MPI broadcast of a condensation failed')
-         if (allocated(error)) return
-         if (.not. mine) then
-            v%reused = head(1) /= 0.0_wp
-            v%rotated = head(2) /= 0.0_wp
-            v%ratio = head(3)
-            v%ratio_at = nint(head(4), i8)
-            v%spc = nint(body(1:nspc), i8)
-            at = nspc
-            if (.not. owned) v%se%k = reshape(body(at + 1:at + nkk), [nb, nb])
-            at = at + nkk
-            fstar = reshape(body(at + 1:at + nb*nstep), [nb, int(nstep, i8)])
-            at = at + nb*nstep
-            if (nku0 > 0) then
-               v%ku0 = body(at + 1:)
-            else
-               allocate (v%ku0(ni + nb), source=0.0_wp)
-            end if
-         end if
+       call exchange_part(st, cache, summary%sub_owner(isub), ip_, self%owned, fstar, error)
+       if (allocated(error)) return
+       associate (v => st%parts(ip_), f_phys => st%f_phys, table => st%table)
          if (v%rotated) nrot = nrot + 1
-         reused(ip_) = v%reused
          ! as condense_parts: AUTOSPC notes and loads on DOFs without stiffness
          do i = 1, size(v%spc)
             if (any(f_phys(v%spc(i), :) /= 0.0_wp)) then
@@ -270,15 +232,175 @@ contains
             end if
          end do
          if (allocated(error)) return   ! the same on every process: the ending agrees, rank 0 prints
-         f_eff(v%se%pdof, :) = fstar
-         deallocate (head, fstar, body)
+         st%f_eff(v%se%pdof, :) = fstar
        end associate
+       deallocate (fstar)
     end do
     counts = [int(cache%computed - computed0, i8), int(cache%reused - reused0, i8)]
     call sum_counts(counts, ok)
     call note(notes, 'condensations: '//itoa(counts(1))//' computed, '//itoa(counts(2))//' reused ('// &
          itoa(nrot)//' turned by their instance''s placement) on '//itoa(comm%size)//' processes')
   end subroutine condense_distributed
+
+  subroutine exchange_part(st, cache, owner, ip_, owned, fstar, error)
+    !! Condensed part st%parts(ip_) from its owner to every process: its
+    !! reuse and rotation flags, MAXRATIO, DOFs without stiffness, K* (but
+    !! under owner terms, owned), k u0 when nonzero, and its loads f*.
+    type(solve_state_t), intent(inout) :: st
+    type(part_cache_t), intent(inout) :: cache
+    integer, intent(in) :: owner, ip_
+    logical, intent(in) :: owned
+    real(wp), allocatable, intent(out) :: fstar(:, :)
+    type(error_t), allocatable, intent(out) :: error
+    type(comm_t) :: comm
+    real(wp), allocatable :: head(:), body(:)
+    integer(i8) :: nkk, nb, ni, nspc, at, nku0
+    integer :: nstep
+    logical :: ok, mine
+    comm = comm_world()
+    mine = owner == comm%rank
+    nstep = size(st%f_phys, 2)
+    associate (v => st%parts(ip_), f_phys => st%f_phys, tr => st%tr)
+      ni = v%ni
+      nb = v%nb
+      allocate (head(NHEAD), fstar(nb, nstep), source=0.0_wp)
+      if (mine) then
+         call view_spc(cache, v, v%spc)
+         call view_maxratio(cache, v, v%ratio, v%ratio_at)
+         call owner_ku0(cache, tr, v)
+         call view_condense_loads(cache, v, f_phys(v%pdof, :), fstar, error)
+         if (allocated(error)) return   ! a load condensation does not fail in practice; see module notes
+         head = [merge(1.0_wp, 0.0_wp, v%reused), merge(1.0_wp, 0.0_wp, v%rotated), v%ratio, &
+              real(v%ratio_at, wp), real(size(v%spc), wp), merge(1.0_wp, 0.0_wp, any(v%ku0 /= 0.0_wp))]
+      end if
+      call broadcast(head, owner, ok)
+      if (.not. ok) call fatal_error(error, EXIT_IO, 'error: MPI broadcast of a condensation failed')
+      if (allocated(error)) return
+      nspc = nint(head(5), i8)
+      nku0 = merge(ni + nb, 0_i8, head(6) /= 0.0_wp)
+      nkk = merge(0_i8, nb*nb, owned)   ! owner terms: K* stays with its owner
+      allocate (body(nspc + nkk + nb*nstep + nku0))
+      if (mine) then
+         body(1:nspc) = real(v%spc, wp)
+         at = nspc
+         if (.not. owned) body(at + 1:at + nkk) = reshape(v%se%k, [nkk])
+         at = at + nkk
+         body(at + 1:at + nb*nstep) = reshape(fstar, [nb*nstep])
+         at = at + nb*nstep
+         if (nku0 > 0) body(at + 1:) = v%ku0
+      end if
+      call broadcast(body, owner, ok)
+      if (.not. ok) call fatal_error(error, EXIT_IO, 'error: MPI broadcast of a condensation failed')
+      if (allocated(error)) return
+      if (.not. mine) then
+         v%reused = head(1) /= 0.0_wp
+         v%rotated = head(2) /= 0.0_wp
+         v%ratio = head(3)
+         v%ratio_at = nint(head(4), i8)
+         v%spc = nint(body(1:nspc), i8)
+         at = nspc
+         if (.not. owned) v%se%k = reshape(body(at + 1:at + nkk), [nb, nb])
+         at = at + nkk
+         fstar = reshape(body(at + 1:at + nb*nstep), [nb, int(nstep, i8)])
+         at = at + nb*nstep
+         if (nku0 > 0) then
+            v%ku0 = body(at + 1:)
+         else
+            allocate (v%ku0(ni + nb), source=0.0_wp)
+         end if
+      end if
+    end associate
+  end subroutine exchange_part
+
+  subroutine distributed_plan(self, st, model, summary)
+    !! Owner terms: this process's own substructures and K* (owner_plan);
+    !! else the whole K_red, as on one process.
+    class(distributed_strategy_t), intent(in) :: self
+    type(solve_state_t), intent(inout) :: st
+    type(model_t), intent(in) :: model
+    type(run_summary_t), intent(in) :: summary
+    type(plain_strategy_t) :: plain
+    if (self%owned) then
+       if (.not. allocated(st%parts)) allocate (st%parts(0))
+       call owner_plan(model, summary, st%parts, st%plan)
+    else if (summary%n_condensed > 0) then
+       call self%condensed_strategy_t%set_plan(st, model, summary)
+    else
+       call plain%set_plan(st, model, summary)
+    end if
+  end subroutine distributed_plan
+
+  subroutine combine_terms(self, st, error)
+    !! Owner terms: the processes agree on the assembly's outcome, and the
+    !! reduced load of the prescribed values is summed over their terms.
+    class(distributed_strategy_t), intent(in) :: self
+    type(solve_state_t), intent(inout) :: st
+    type(error_t), allocatable, intent(inout) :: error
+    if (.not. self%owned) return
+    call agreed(error)
+    if (allocated(error)) return
+    call sum_owner_loads(st%f_u0, error)
+  end subroutine combine_terms
+
+  subroutine recover_own(self, st, cache, error)
+    !! The interiors (and k u) of this process's own substructures, summed
+    !! over the processes (recover_distributed, parts_ku_distributed).
+    class(distributed_strategy_t), intent(in) :: self
+    type(solve_state_t), intent(inout) :: st
+    type(part_cache_t), intent(inout) :: cache
+    type(error_t), allocatable, intent(out) :: error
+    associate (no_use => self)   ! owner terms or not, every process recovers its own
+    end associate
+    call recover_distributed(cache, st%parts, st%f_phys, st%u, error)
+    if (allocated(error)) return
+    call parts_ku_distributed(cache, st%parts, st%u, st%ku, error)
+  end subroutine recover_own
+
+  logical function owner_summed(self)
+    !! Owner terms: st%k is only this process's term of K_red.
+    class(distributed_strategy_t), intent(in) :: self
+    owner_summed = self%owned
+  end function owner_summed
+
+  subroutine terms_matvec(self, k, x, y, error)
+    !! y = K x, K the sum of the processes' terms under owner terms.
+    class(distributed_strategy_t), intent(in) :: self
+    type(sparse_sym_t), intent(in) :: k
+    real(wp), intent(in) :: x(:, :)
+    real(wp), intent(out) :: y(:, :)
+    type(error_t), allocatable, intent(inout) :: error
+    if (self%owned) then
+       call summed_matvec(k, x, y, error)
+    else
+       call k%matvec(x, y)
+    end if
+  end subroutine terms_matvec
+
+  subroutine terms_diagonal(self, k, d, error)
+    !! The diagonal of K, the sum of the processes' terms under owner terms.
+    class(distributed_strategy_t), intent(in) :: self
+    type(sparse_sym_t), intent(in) :: k
+    real(wp), intent(out) :: d(:)
+    type(error_t), allocatable, intent(inout) :: error
+    if (self%owned) then
+       call summed_diagonal(k, d, error)
+    else
+       call k%diagonal(d)
+    end if
+  end subroutine terms_diagonal
+
+  subroutine terms_norm1(self, k, knorm, error)
+    !! ‖K‖₁, K the sum of the processes' terms under owner terms.
+    class(distributed_strategy_t), intent(in) :: self
+    type(sparse_sym_t), intent(in) :: k
+    real(wp), intent(out) :: knorm
+    type(error_t), allocatable, intent(inout) :: error
+    if (self%owned) then
+       call summed_norm1(k, knorm, error)
+    else
+       knorm = norm1_sym(k)
+    end if
+  end subroutine terms_norm1
 
   subroutine owner_ku0(cache, tr, v)
     !! k u0 of an own substructure: its stiffness times the prescribed values

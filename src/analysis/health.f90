@@ -8,19 +8,18 @@ module superjoin_analysis_health
   use superjoin_error, only: error_t, fatal_error, EXIT_SINGULAR, EXIT_IO
   use superjoin_model_types, only: model_t
   use superjoin_assembly_dofs, only: dof_table_t
-  use superjoin_assembly_transform, only: transform_t
   use superjoin_substructure_local_system, only: dof_label
   use superjoin_substructure_cache, only: part_cache_t, part_view_t, view_stiffness_times, &
        view_maxratio
-  use superjoin_solvers, only: linear_solver_t, sparse_sym_t, condition_estimate, norm1_sym
+  use superjoin_solvers, only: condition_estimate
   use superjoin_model_results, only: results_t, run_options_t
   use superjoin_analysis_mechanism, only: mechanism_error
   use superjoin_analysis_labels, only: column_label
   use superjoin_model_notes, only: warn
   use superjoin_utils_strings, only: itoa
   use superjoin_utils_memory, only: out_of_memory, BYTES_REAL
-  use superjoin_analysis_summed_matrix, only: summed_matvec, summed_diagonal, summed_norm1
   use superjoin_parallel_comm, only: sum_reals
+  use superjoin_analysis_solve_state, only: solve_state_t
   implicit none (type, external)
   private
 
@@ -50,6 +49,11 @@ module superjoin_analysis_health
     !! TRANSFORM to 1.4e-6 relative or better (doc/verification.md).
 
   public :: check_finite, health, full_health, parts_maxratio, penalty_hint
+
+  type :: health_work_t
+    !! Work arrays of health (allocated together, one out-of-memory report).
+     real(wp), allocatable :: r(:, :), dq(:, :), q_try(:, :), r_try(:, :), berr(:), berr_try(:), d(:), kd(:)
+  end type health_work_t
 
 contains
 
@@ -108,65 +112,91 @@ contains
          'contact g and coordinates')
   end subroutine check_finite
 
-  subroutine health(k, q, f_red, spc, solver, model, table, tr, res, opts, error, summed)
-    !! Residual, EPSILON, iterative refinement, MAXRATIO and condition
-    !! estimate. summed: k is this MPI process's term of K_red
-    !! (analysis/summed_matrix): products, diagonal and norm are the sum's.
-    type(sparse_sym_t), intent(in) :: k
-    real(wp), intent(inout) :: q(:, :)
-    real(wp), intent(in) :: f_red(:, :)
-    logical, intent(in) :: spc(:)
-    class(linear_solver_t), intent(inout) :: solver
+  subroutine health(st, model, opts, res, error)
+    !! Residual, EPSILON, iterative refinement (of st%q, in place), MAXRATIO
+    !! and condition estimate. Products, diagonal and norm of K are the
+    !! strategy's (the sum of the MPI processes' terms under owner terms).
+    type(solve_state_t), intent(inout) :: st
     type(model_t), intent(in) :: model
-    type(dof_table_t), intent(in) :: table
-    type(transform_t), intent(in) :: tr
-    type(results_t), intent(inout) :: res
     type(run_options_t), intent(in) :: opts
+    type(results_t), intent(inout) :: res
     type(error_t), allocatable, intent(out) :: error
-    logical, intent(in), optional :: summed
-    real(wp), allocatable :: r(:, :), dq(:, :), d(:), kd(:), q_try(:, :), r_try(:, :), berr(:), berr_try(:), &
-         prev_res(:), prev_eps(:)
-    logical :: terms
-    type(error_t), allocatable :: inner
-    integer :: is, it, nstep, stat
-    integer(i8) :: j, jmax
-    real(wp) :: ratio, cond, knorm
+    type(health_work_t) :: w
+    integer :: is, nstep, stat
+    real(wp) :: cond, knorm
     character(len=32) :: buf
-    character(:), allocatable :: backend
 
-    nstep = size(q, 2)
-    allocate (r(k%n, nstep), dq(k%n, nstep), q_try(k%n, nstep), r_try(k%n, nstep), berr(nstep), &
-         berr_try(nstep), d(k%n), kd(k%n), stat=stat)
-    if (stat /= 0) then
-       call out_of_memory(error, 'the residual checks', (4*nstep + 2)*k%n*BYTES_REAL)
-       return
-    end if
-    terms = .false.
-    if (present(summed)) terms = summed
-    if (terms) then
-       call summed_norm1(k, knorm, error)
-       if (allocated(error)) return
-    else
-       knorm = norm1_sym(k)
-    end if
-    call residuals(q, r, berr)
+    nstep = size(st%q, 2)
+    associate (k => st%k)
+      allocate (w%r(k%n, nstep), w%dq(k%n, nstep), w%q_try(k%n, nstep), w%r_try(k%n, nstep), w%berr(nstep), &
+           w%berr_try(nstep), w%d(k%n), w%kd(k%n), stat=stat)
+      if (stat /= 0) then
+         call out_of_memory(error, 'the residual checks', (4*nstep + 2)*k%n*BYTES_REAL)
+         return
+      end if
+    end associate
+    call st%strategy%norm1(st%k, knorm, error)
+    if (allocated(error)) return
+    call residuals(st, knorm, st%q, w%r, w%berr, res, error)
     if (allocated(error)) return
     do is = 1, nstep
        res%fields%steps(is)%residual0 = res%fields%steps(is)%residual
     end do
     ! MAXRATIO = max K_jj / D_jj, first: a numerically singular matrix stops
     ! here, before refinement solves with a factor that is not worth using.
-    call solver%pivots(d)
-    if (terms) then
-       call summed_diagonal(k, kd, error)
-       if (allocated(error)) return
-    else
-       call k%diagonal(kd)
+    call maxratio_check(st, model, opts, w%d, w%kd, res, error)
+    if (allocated(error)) return
+    call refine(st, knorm, w, res, error)
+    if (allocated(error)) return
+
+    if (maxval(res%fields%steps(:)%residual) > merge(RESIDUAL_WARN_PENALTY, RESIDUAL_WARN, res%summary%formulation == 'PENALTY')) then
+       write (buf, '(es10.2e3)') maxval(res%fields%steps(:)%residual)
+       call warn(res, 'relative residual '//trim(adjustl(buf))//' after refinement: results are inaccurate')
+       res%log%inaccurate = .true.
     end if
+    if (res%summary%maxratio > MAXRATIO_WARN) then
+       write (buf, '(es10.2e3)') res%summary%maxratio
+       call warn(res, 'MAXRATIO '//trim(adjustl(buf))//' at '//res%summary%maxratio_at// &
+            ': about '//itoa(nint(log10(res%summary%maxratio)))//' digits may be lost')
+    end if
+    if (st%strategy%summed()) then
+       call condition_estimate(st%k, st%solver, cond, anorm_given=knorm)
+    else
+       call condition_estimate(st%k, st%solver, cond)
+    end if
+    if (.not. ieee_is_finite(cond) .or. cond > huge(cond)) then
+       cond = huge(cond)
+       call warn(res, 'condition estimate overflows (above 1.8E+308): results are unreliable')
+       res%log%inaccurate = .true.
+    end if
+    res%summary%cond_est = cond
+    if (.not. opts%quiet .and. opts%verbose) then
+       write (error_unit, '(a,es10.3)') 'superjoin: condition estimate ', cond
+    end if
+  end subroutine health
+
+  subroutine maxratio_check(st, model, opts, d, kd, res, error)
+    !! MAXRATIO = max K_jj / D_jj over the columns not dropped by AUTOSPC, and
+    !! its place; above MAXRATIO_FATAL the structure is numerically singular
+    !! (the mechanism's report, EXIT_SINGULAR). d, kd: work of K's size.
+    type(solve_state_t), intent(inout) :: st
+    type(model_t), intent(in) :: model
+    type(run_options_t), intent(in) :: opts
+    real(wp), intent(out) :: d(:), kd(:)
+    type(results_t), intent(inout) :: res
+    type(error_t), allocatable, intent(out) :: error
+    integer(i8) :: j, jmax
+    real(wp) :: ratio
+    character(len=32) :: buf
+    character(:), allocatable :: backend
+
+    call st%solver%pivots(d)
+    call st%strategy%diagonal(st%k, kd, error)
+    if (allocated(error)) return
     res%summary%maxratio = 0.0_wp
     jmax = 0
-    do j = 1, k%n
-       if (spc(j) .or. d(j) == 0.0_wp) cycle
+    do j = 1, st%k%n
+       if (st%spc(j) .or. d(j) == 0.0_wp) cycle
        ! kd/d guarded against overflow (PENALTY with an absurd g)
        if (abs(d(j)) <= abs(kd(j))/RATIO_CAP) then
           ratio = RATIO_CAP
@@ -179,11 +209,12 @@ contains
        end if
     end do
     res%summary%maxratio_at = 'n/a'
-    if (jmax > 0) res%summary%maxratio_at = column_label(model, table, tr, jmax)
+    if (jmax > 0) res%summary%maxratio_at = column_label(model, st%table, st%tr, jmax)
     if (res%summary%maxratio > MAXRATIO_FATAL) then
        backend = 'auto'
        if (allocated(opts%solver)) backend = opts%solver
-       call mechanism_error(k, backend, model, table, tr, penalty_hint(res), res%fields%mechanism, error, summed=terms)
+       call mechanism_error(st%k, backend, model, st%table, st%tr, penalty_hint(res), res%fields%mechanism, error, &
+            summed=st%strategy%summed())
        if (allocated(error)) return
        write (buf, '(es10.2e3)') res%summary%maxratio
        call fatal_error(error, EXIT_SINGULAR, 'error: the structure cannot be solved: stiffness is '// &
@@ -191,81 +222,73 @@ contains
             '): a mechanism, or a stiffness contrast beyond double precision'//penalty_hint(res))
        return
     end if
-    ! Iterative refinement with the existing factor, while the backward error
-    ! is above a few ulps or the residual or EPSILON above REFINE_RESIDUAL, and
-    ! each step at least halves the largest residual.
-    do it = 1, MAX_REFINE
-       if (all(berr <= REFINE_BERR .and. res%fields%steps(:)%residual <= REFINE_RESIDUAL .and. &
-            abs(res%fields%steps(:)%epsilon) <= REFINE_RESIDUAL)) exit
-       res%fields%steps(:)%refine_tried = it
-       call solver%solve(r, dq, inner)
-       if (allocated(inner)) exit
-       q_try = q - dq
-       prev_res = res%fields%steps(:)%residual
-       prev_eps = res%fields%steps(:)%epsilon
-       r_try = r
-       call residuals(q_try, r_try, berr_try)
-       if (allocated(error)) return
-       ! keep a step only if it is finite and gains (a NaN residual compares false)
-       if (.not. all(ieee_is_finite(q_try)) .or. &
-           .not. (maxval(res%fields%steps(:)%residual) <= REFINE_GAIN*maxval(prev_res))) then
-          res%fields%steps(:)%residual = prev_res
-          res%fields%steps(:)%epsilon = prev_eps
-          exit
-       end if
-       q = q_try
-       r = r_try
-       berr = berr_try
-       res%fields%steps(:)%refinements = it
-    end do
+  end subroutine maxratio_check
 
-    if (maxval(res%fields%steps(:)%residual) > merge(RESIDUAL_WARN_PENALTY, RESIDUAL_WARN, res%summary%formulation == 'PENALTY')) then
-       write (buf, '(es10.2e3)') maxval(res%fields%steps(:)%residual)
-       call warn(res, 'relative residual '//trim(adjustl(buf))//' after refinement: results are inaccurate')
-       res%log%inaccurate = .true.
-    end if
-    if (res%summary%maxratio > MAXRATIO_WARN) then
-       write (buf, '(es10.2e3)') res%summary%maxratio
-       call warn(res, 'MAXRATIO '//trim(adjustl(buf))//' at '//res%summary%maxratio_at// &
-            ': about '//itoa(nint(log10(res%summary%maxratio)))//' digits may be lost')
-    end if
-    if (terms) then
-       call condition_estimate(k, solver, cond, anorm_given=knorm)
-    else
-       call condition_estimate(k, solver, cond)
-    end if
-    if (.not. ieee_is_finite(cond) .or. cond > huge(cond)) then
-       cond = huge(cond)
-       call warn(res, 'condition estimate overflows (above 1.8E+308): results are unreliable')
-       res%log%inaccurate = .true.
-    end if
-    res%summary%cond_est = cond
-    if (.not. opts%quiet .and. opts%verbose) then
-       write (error_unit, '(a,es10.3)') 'superjoin: condition estimate ', cond
-    end if
-  contains
-    subroutine residuals(x, r, berr)
-      !! r = K x - f, the relative residual and EPSILON of every step, and the
-      !! backward error ‖r‖∞ / (‖K‖∞ ‖x‖∞ + ‖f‖∞).
-      real(wp), intent(in) :: x(:, :)
-      real(wp), intent(out) :: r(:, :), berr(:)
-      integer :: s
-      if (terms) then
-         call summed_matvec(k, x, r, error)
+  subroutine refine(st, knorm, w, res, error)
+    !! Iterative refinement of st%q with the existing factor, while the
+    !! backward error is above a few ulps or the residual or EPSILON above
+    !! REFINE_RESIDUAL, and each step at least halves the largest residual.
+    !! w%r, w%berr: the residuals of q on entry.
+    type(solve_state_t), intent(inout) :: st
+    real(wp), intent(in) :: knorm
+    type(health_work_t), intent(inout) :: w
+    type(results_t), intent(inout) :: res
+    type(error_t), allocatable, intent(inout) :: error
+    real(wp), allocatable :: prev_res(:), prev_eps(:)
+    type(error_t), allocatable :: inner
+    integer :: it
+    associate (q => st%q, r => w%r, dq => w%dq, q_try => w%q_try, r_try => w%r_try, berr => w%berr, &
+         berr_try => w%berr_try)
+      do it = 1, MAX_REFINE
+         if (all(berr <= REFINE_BERR .and. res%fields%steps(:)%residual <= REFINE_RESIDUAL .and. &
+              abs(res%fields%steps(:)%epsilon) <= REFINE_RESIDUAL)) exit
+         res%fields%steps(:)%refine_tried = it
+         call st%solver%solve(r, dq, inner)
+         if (allocated(inner)) exit
+         q_try = q - dq
+         prev_res = res%fields%steps(:)%residual
+         prev_eps = res%fields%steps(:)%epsilon
+         r_try = r
+         call residuals(st, knorm, q_try, r_try, berr_try, res, error)
          if (allocated(error)) return
-      else
-         call k%matvec(x, r)
-      end if
+         ! keep a step only if it is finite and gains (a NaN residual compares false)
+         if (.not. all(ieee_is_finite(q_try)) .or. &
+             .not. (maxval(res%fields%steps(:)%residual) <= REFINE_GAIN*maxval(prev_res))) then
+            res%fields%steps(:)%residual = prev_res
+            res%fields%steps(:)%epsilon = prev_eps
+            exit
+         end if
+         q = q_try
+         r = r_try
+         berr = berr_try
+         res%fields%steps(:)%refinements = it
+      end do
+    end associate
+  end subroutine refine
+
+  subroutine residuals(st, knorm, x, r, berr, res, error)
+    !! r = K x - f, the relative residual and EPSILON of every step, and the
+    !! backward error ‖r‖∞ / (‖K‖∞ ‖x‖∞ + ‖f‖∞).
+    type(solve_state_t), intent(in) :: st
+    real(wp), intent(in) :: knorm
+    real(wp), intent(in) :: x(:, :)
+    real(wp), intent(out) :: r(:, :), berr(:)
+    type(results_t), intent(inout) :: res
+    type(error_t), allocatable, intent(inout) :: error
+    integer :: s
+    call st%strategy%matvec(st%k, x, r, error)
+    if (allocated(error)) return
+    associate (f_red => st%f_red)
       r = r - f_red
-      do s = 1, nstep
+      do s = 1, size(x, 2)
          res%fields%steps(s)%residual = safe_div(norm2(r(:, s)), norm2(f_red(:, s)))
          res%fields%steps(s)%epsilon = energy_error(x(:, s), r(:, s), f_red(:, s))
          berr(s) = safe_div(maxval(abs(r(:, s))), knorm*maxval(abs(x(:, s))) + maxval(abs(f_red(:, s))))
       end do
-    end subroutine residuals
-  end subroutine health
+    end associate
+  end subroutine residuals
 
-  subroutine full_health(cache, tr, k, parts, q, u, ku, f_red, f_eff, f_phys, res, summed, error)
+  subroutine full_health(st, cache, res, error)
     !! Residual and EPSILON of the whole reduced system, as if it had been
     !! solved monolithically, from the recovered displacements and each
     !! condensed substructure's own stiffness (so an error in a condensation
@@ -273,104 +296,117 @@ contains
     !! condensed interior u_i. Interface rows: K_if q − f_if plus, for each
     !! part, Mᵀ[(k u − f)_b − (K* u_b − f*)]; interior rows: k_ii u_i + k_ib u_b − f_i.
     !! The loads likewise, with the prescribed values' terms (−k u0).
-    !! ku: k u of the condensed substructures on the physical DOFs (parts_ku).
-    !! summed: k is this MPI process's term of K_red and only the own
+    !! st%ku: k u of the condensed substructures on the physical DOFs (parts_ku).
+    !! Owner terms (st%strategy%summed()): k is this MPI process's term of K_red and only the own
     !! substructures (entry > 0) hold K*: each process adds its own terms to
-    !! the interface rows, which are summed over the processes (error then
-    !! present).
+    !! the interface rows, which are summed over the processes.
+    type(solve_state_t), intent(in) :: st
     type(part_cache_t), intent(in) :: cache
-    type(transform_t), intent(in) :: tr
-    type(sparse_sym_t), intent(in) :: k
-    type(part_view_t), intent(in) :: parts(:)
-    real(wp), intent(in) :: q(:, :), u(:, :), ku(:, :), f_red(:, :), f_eff(:, :), f_phys(:, :)
     type(results_t), intent(inout) :: res
-    logical, intent(in), optional :: summed
-    type(error_t), allocatable, intent(out), optional :: error
+    type(error_t), allocatable, intent(out) :: error
     real(wp), allocatable :: r(:, :), f(:, :), rl(:, :), u0l(:, :), w(:, :), ks(:, :), ku0(:), &
-         rf(:, :), ffull(:, :), qfull(:, :), rows(:)
-    logical :: terms, ok
+         rf(:, :), ffull(:, :), qfull(:, :)
     integer :: i, is, nstep
     integer(i8) :: ni, nb, l, ntot, at
-    character(len=32) :: buf
-    nstep = size(q, 2)
-    terms = .false.
-    if (present(summed)) terms = summed
-    allocate (r(k%n, nstep))
-    call k%matvec(q, r)
-    if (terms) then   ! this process's terms first; f_red once the rows are summed
-       allocate (f(k%n, nstep), source=0.0_wp)
-    else
-       r = r - f_red
-       f = f_red
-    end if
-    ntot = k%n
-    do i = 1, size(parts)
-       ntot = ntot + parts(i)%ni
-    end do
-    allocate (rf(ntot, nstep), ffull(ntot, nstep), qfull(ntot, nstep), source=0.0_wp)
-    at = k%n
-    do i = 1, size(parts)
-       associate (sys => parts(i), kst => parts(i)%se%k)
-         ni = sys%ni
-         nb = sys%nb
-         allocate (u0l(ni + nb, 1), w(ni + nb, 1))
-         rl = ku(sys%pdof, :) - f_phys(sys%pdof, :)
-         u0l = 0.0_wp
-         u0l(ni + 1:, 1) = tr%prescribed(sys%pdof(ni + 1:))
-         if (parts(i)%entry == 0) then   ! condensed by another MPI process, which sent k u0
-            w(:, 1) = parts(i)%ku0
-         else if (any(u0l /= 0.0_wp)) then
-            call view_stiffness_times(cache, parts(i), u0l, w)
-         else
-            w = 0.0_wp
-         end if
-         rf(at + 1:at + ni, :) = rl(1:ni, :)
-         do is = 1, nstep
-            ffull(at + 1:at + ni, is) = f_phys(sys%pdof(1:ni), is) - w(1:ni, 1)
-         end do
-         qfull(at + 1:at + ni, :) = u(sys%pdof(1:ni), :)
-         at = at + ni
-         ! interface rows: K* is with the owner only under owner terms
-         if (terms .and. parts(i)%entry == 0) then
-            deallocate (rl, u0l, w)
-            cycle
-         end if
-         ks = matmul(kst, u(sys%pdof(ni + 1:), :))
-         ku0 = matmul(kst, u0l(ni + 1:, 1))
-         do l = 1, nb
-            associate (pb => sys%pdof(ni + l))
-              call tr%reduce_add(pb, rl(ni + l, :) - (ks(l, :) - f_eff(pb, :)), r)
-              call tr%reduce_add(pb, (f_phys(pb, :) - w(ni + l, 1)) - (f_eff(pb, :) - ku0(l)), f)
-            end associate
-         end do
-         deallocate (rl, u0l, w)
-       end associate
-    end do
-    rf(1:k%n, :) = r
-    ffull(1:k%n, :) = f
-    qfull(1:k%n, :) = q
-    if (terms) then
-       ! interface rows of every process's terms summed (the interior rows
-       ! every process has: ku is summed already, k u0 sent by the owners)
-       rows = [reshape(r, [size(r, kind=i8)]), reshape(f, [size(f, kind=i8)])]
-       call sum_reals(rows, ok)
-       if (.not. ok) then
-          call fatal_error(error, EXIT_IO, 'error: MPI sum of the whole-system residual failed')
-          return
-       end if
-       rf(1:k%n, :) = reshape(rows(1:size(r, kind=i8)), shape(r)) - f_red
-       ffull(1:k%n, :) = reshape(rows(size(r, kind=i8) + 1:), shape(f)) + f_red
-    end if
-    do is = 1, nstep
-       res%fields%steps(is)%residual = safe_div(norm2(rf(:, is)), norm2(ffull(:, is)))
-       res%fields%steps(is)%epsilon = energy_error(qfull(:, is), rf(:, is), ffull(:, is))
-    end do
-    if (maxval(res%fields%steps(:)%residual) > RESIDUAL_WARN) then
-       write (buf, '(es10.2e3)') maxval(res%fields%steps(:)%residual)
-       call warn(res, 'relative residual '//trim(adjustl(buf))//' of the whole system (condensed '// &
-            'substructures recovered): results are inaccurate')
-    end if
+    associate (tr => st%tr, k => st%k, parts => st%parts, q => st%q, u => st%u, ku => st%ku, f_red => st%f_red, &
+         f_eff => st%f_eff, f_phys => st%f_phys)
+      nstep = size(q, 2)
+      allocate (r(k%n, nstep))
+      call k%matvec(q, r)
+      if (st%strategy%summed()) then   ! this process's terms first; f_red once the rows are summed
+         allocate (f(k%n, nstep), source=0.0_wp)
+      else
+         r = r - f_red
+         f = f_red
+      end if
+      ntot = k%n
+      do i = 1, size(parts)
+         ntot = ntot + parts(i)%ni
+      end do
+      allocate (rf(ntot, nstep), ffull(ntot, nstep), qfull(ntot, nstep), source=0.0_wp)
+      at = k%n
+      do i = 1, size(parts)
+         associate (sys => parts(i), kst => parts(i)%se%k)
+           ni = sys%ni
+           nb = sys%nb
+           allocate (u0l(ni + nb, 1), w(ni + nb, 1))
+           rl = ku(sys%pdof, :) - f_phys(sys%pdof, :)
+           u0l = 0.0_wp
+           u0l(ni + 1:, 1) = tr%prescribed(sys%pdof(ni + 1:))
+           if (parts(i)%entry == 0) then   ! condensed by another MPI process, which sent k u0
+              w(:, 1) = parts(i)%ku0
+           else if (any(u0l /= 0.0_wp)) then
+              call view_stiffness_times(cache, parts(i), u0l, w)
+           else
+              w = 0.0_wp
+           end if
+           rf(at + 1:at + ni, :) = rl(1:ni, :)
+           do is = 1, nstep
+              ffull(at + 1:at + ni, is) = f_phys(sys%pdof(1:ni), is) - w(1:ni, 1)
+           end do
+           qfull(at + 1:at + ni, :) = u(sys%pdof(1:ni), :)
+           at = at + ni
+           ! interface rows: K* is with the owner only under owner terms
+           if (st%strategy%summed() .and. parts(i)%entry == 0) then
+              deallocate (rl, u0l, w)
+              cycle
+           end if
+           ks = matmul(kst, u(sys%pdof(ni + 1:), :))
+           ku0 = matmul(kst, u0l(ni + 1:, 1))
+           do l = 1, nb
+              associate (pb => sys%pdof(ni + l))
+                call tr%reduce_add(pb, rl(ni + l, :) - (ks(l, :) - f_eff(pb, :)), r)
+                call tr%reduce_add(pb, (f_phys(pb, :) - w(ni + l, 1)) - (f_eff(pb, :) - ku0(l)), f)
+              end associate
+           end do
+           deallocate (rl, u0l, w)
+         end associate
+      end do
+      rf(1:k%n, :) = r
+      ffull(1:k%n, :) = f
+      qfull(1:k%n, :) = q
+    end associate
+    call whole_residuals(st, r, f, rf, ffull, qfull, res, error)
   end subroutine full_health
+
+  subroutine whole_residuals(st, r, f, rf, ffull, qfull, res, error)
+    !! The end of full_health: under owner terms the interface rows
+    !! r and loads f of every process's terms summed into rf and ffull; then
+    !! the residual and EPSILON of every step from rf, ffull and qfull.
+    type(solve_state_t), intent(in) :: st
+    real(wp), intent(in) :: r(:, :), f(:, :)
+    real(wp), intent(inout) :: rf(:, :), ffull(:, :)
+    real(wp), intent(in) :: qfull(:, :)
+    type(results_t), intent(inout) :: res
+    type(error_t), allocatable, intent(out) :: error
+    real(wp), allocatable :: rows(:)
+    logical :: ok
+    integer :: is
+    character(len=32) :: buf
+    associate (k => st%k, f_red => st%f_red)
+      if (st%strategy%summed()) then
+         ! interface rows of every process's terms summed (the interior rows
+         ! every process has: ku is summed already, k u0 sent by the owners)
+         rows = [reshape(r, [size(r, kind=i8)]), reshape(f, [size(f, kind=i8)])]
+         call sum_reals(rows, ok)
+         if (.not. ok) then
+            call fatal_error(error, EXIT_IO, 'error: MPI sum of the whole-system residual failed')
+            return
+         end if
+         rf(1:k%n, :) = reshape(rows(1:size(r, kind=i8)), shape(r)) - f_red
+         ffull(1:k%n, :) = reshape(rows(size(r, kind=i8) + 1:), shape(f)) + f_red
+      end if
+      do is = 1, size(qfull, 2)
+         res%fields%steps(is)%residual = safe_div(norm2(rf(:, is)), norm2(ffull(:, is)))
+         res%fields%steps(is)%epsilon = energy_error(qfull(:, is), rf(:, is), ffull(:, is))
+      end do
+      if (maxval(res%fields%steps(:)%residual) > RESIDUAL_WARN) then
+         write (buf, '(es10.2e3)') maxval(res%fields%steps(:)%residual)
+         call warn(res, 'relative residual '//trim(adjustl(buf))//' of the whole system (condensed '// &
+              'substructures recovered): results are inaccurate')
+      end if
+    end associate
+  end subroutine whole_residuals
 
   subroutine parts_maxratio(model, table, cache, parts, res, error)
     !! MAXRATIO over the interior factors of the condensed substructures:

@@ -11,7 +11,7 @@ module superjoin_analysis_penalty
   !! stiffness, nor a bending direction by one scaled on the axial direction.
   use superjoin_kinds, only: wp, ip, i8
   use superjoin_error, only: error_t, add_error_line, EXIT_DECK
-  use superjoin_model_types, only: model_t, ELEMENT_NODE_COUNT, LINK_FINITE, LINK_RIGID, loc_text
+  use superjoin_model_types, only: model_t, ELEMENT_NODE_COUNT, LINK_RIGID, loc_text
   use superjoin_elements, only: element_stiffness
   use superjoin_elements_drill_mask, only: element_drill
   use superjoin_assembly_dofs, only: dof_table_t, GROUND, UNIT_LINK, BLOCK_SIZE, block_dof
@@ -39,7 +39,7 @@ contains
     real(wp), intent(out) :: gmin, gmax
     type(error_t), allocatable, intent(out) :: error
     real(wp), allocatable :: diag(:)
-    real(wp) :: block_max(2), scale
+    real(wp) :: block_max(2), scale, g
     integer :: iu, c
     integer(i8) :: p
 
@@ -53,26 +53,26 @@ contains
        block_max(c) = max(block_max(c), diag(p))
     end do
     do iu = 1, table%nunit
-       associate (u => table%units(iu))
-         if (u%kind /= UNIT_LINK) cycle
-         if (.not. any(u%state(1:u%n) == LINK_RIGID)) cycle
-         do c = 1, u%n
-            if (u%state(c) /= LINK_RIGID) cycle
+       if (table%units(iu)%kind /= UNIT_LINK) cycle
+       if (.not. any(table%units(iu)%state(1:table%units(iu)%n) == LINK_RIGID)) cycle
+       do c = 1, table%units(iu)%n
+          if (table%units(iu)%state(c) /= LINK_RIGID) cycle
+          associate (u => table%units(iu))
             scale = side_min(direction_diag(u%va, c), direction_diag(u%vb, c))
             if (scale <= 0.0_wp) scale = block_max(u%block)
-            if (scale <= 0.0_wp) scale = maxval(block_max)
-            if (scale <= 0.0_wp) scale = 1.0_wp
-            u%g(c) = factor*scale
-            u%state(c) = LINK_FINITE
-            if (gmax == 0.0_wp) then
-               gmin = u%g(c)
-               gmax = u%g(c)
-            else
-               gmin = min(gmin, u%g(c))
-               gmax = max(gmax, u%g(c))
-            end if
-         end do
-       end associate
+          end associate
+          if (scale <= 0.0_wp) scale = maxval(block_max)
+          if (scale <= 0.0_wp) scale = 1.0_wp
+          g = factor*scale
+          call table%make_finite(iu, c, g)
+          if (gmax == 0.0_wp) then
+             gmin = g
+             gmax = g
+          else
+             gmin = min(gmin, g)
+             gmax = max(gmax, g)
+          end if
+       end do
     end do
   contains
     function direction_diag(v, k) result(m)

@@ -6,7 +6,7 @@ module superjoin_analysis_policy
   use superjoin_kinds, only: wp, i8
   use superjoin_error, only: error_t, add_error_line, EXIT_SINGULAR
   use superjoin_model_types, only: model_t, string_t, FORM_TRANSFORM, FORM_PENALTY, RIGID_LARGE, &
-       DEFAULT_PENALTY_LARGE, LINK_FINITE, LINK_RIGID, CONDENSE_YES, CONDENSE_NO, CONDENSE_AUTO, &
+       DEFAULT_PENALTY_LARGE, LINK_RIGID, CONDENSE_YES, CONDENSE_NO, CONDENSE_AUTO, &
        REQ_EL_PRINT, REQ_EL_FILE
   use superjoin_model_request_masks, only: has_requests, any_request_of, request_mask
   use superjoin_assembly_dofs, only: dof_table_t, UNIT_LINK, UNIT_SUPPORT
@@ -73,7 +73,7 @@ contains
     type(string_t), allocatable, intent(inout) :: notes(:)
     type(error_t), allocatable, intent(out) :: error
     real(wp) :: dmax, glarge
-    integer :: iu
+    integer :: iu, c
     logical :: any_rigid
     character(len=32) :: buf
 
@@ -94,13 +94,10 @@ contains
     if (dmax <= 0.0_wp) dmax = 1.0_wp
     glarge = model%controls%large*dmax
     do iu = 1, table%nunit
-       associate (u => table%units(iu))
-         if (u%kind /= UNIT_LINK) cycle
-         where (u%state(1:u%n) == LINK_RIGID)
-            u%g(1:u%n) = glarge
-            u%state(1:u%n) = LINK_FINITE
-         end where
-       end associate
+       if (table%units(iu)%kind /= UNIT_LINK) cycle
+       do c = 1, table%units(iu)%n
+          if (table%units(iu)%state(c) == LINK_RIGID) call table%make_finite(iu, c, glarge)
+       end do
     end do
     write (buf, '(es10.3)') glarge
     call note(notes, 'RIGID contacts use g = LARGE x largest element diagonal = '//trim(adjustl(buf)))

@@ -25,6 +25,7 @@ module superjoin_analysis_recover
   use superjoin_analysis_body_loads, only: shell_thermal_curvature_nodal
   use superjoin_utils_memory, only: out_of_memory, BYTES_REAL, BYTES_INT
   use superjoin_elements, only: element_drill
+  use superjoin_analysis_solve_state, only: solve_state_t
   implicit none (type, external)
   private
 
@@ -34,57 +35,53 @@ module superjoin_analysis_recover
 
 contains
 
-  subroutine recover_results(model, table, forest, tr, q, u, f_phys, res, error, wanted, ku_parts)
-    !! Fill res%fields%u, res%fields%elem_force and res%fields%steps(:) from the reduced solution q
-    !! and the physical displacements u (T q + u0, with condensed interiors).
-    !! With ku_parts (physical DOFs × steps: k u of the substructures in
+  subroutine recover_results(st, model, wanted, res, error)
+    !! Fill res%fields%u, res%fields%elem_force and res%fields%steps(:) from the reduced solution st%q
+    !! and the physical displacements st%u (T q + u0, with condensed interiors).
+    !! With st%ku (physical DOFs × steps: k u of the substructures in
     !! res%summary%sub_condensed, from their own assembled stiffness), the elements of
     !! those substructures give only their results, not k_e u_e again.
     !! wanted (elements numbered over the substructures): the elements whose
     !! results somebody reads; the others are left at zero and skipped unless
     !! their k_e u_e is needed (a node of theirs carries a contact or support).
+    type(solve_state_t), intent(in) :: st
     type(model_t), intent(in) :: model
-    type(dof_table_t), intent(in) :: table
-    type(forest_t), intent(in) :: forest
-    type(transform_t), intent(in) :: tr
-    real(wp), intent(in) :: q(:, :)          !! (ncol, nstep)
-    real(wp), intent(in) :: u(:, :)          !! (np, nstep)
-    real(wp), intent(in) :: f_phys(:, :)     !! (np, nstep)
+    logical, intent(in) :: wanted(:)
     type(results_t), intent(inout) :: res
     type(error_t), allocatable, intent(out) :: error
-    logical, intent(in) :: wanted(:)
-    real(wp), intent(in), optional :: ku_parts(:, :)
     real(wp), allocatable :: r(:, :), delta(:, :, :), rclose(:, :), acc(:, :)
     real(wp), allocatable :: rigid_force(:, :, :)  ! (3, nunit, nstep): rigid force on child / λ, local
     real(wp), allocatable :: req(:, :)             ! (np, nstep): *EQUATION forces on the structure
     integer :: nstep, is, stat
 
-    nstep = size(q, 2)
-    call store_displacements(table, u, res, error)
-    if (allocated(error)) return
-    allocate (r(table%np, nstep), rclose(table%np, nstep), rigid_force(3, table%nunit, nstep), &
-         acc(3, 0:table%nvertex), stat=stat)
-    if (stat /= 0) then
-       call out_of_memory(error, 'the recovery of forces', (2*table%np*nstep + 3*table%nunit*nstep + &
-            3*(table%nvertex + 1))*BYTES_REAL)
-       return
-    end if
-    r = -f_phys
-    if (present(ku_parts)) r = r + ku_parts
-    call element_results(model, table, u, r, res, error, present(ku_parts), wanted)
-    if (allocated(error)) return
-    call unit_deltas(table, tr, q, u, delta)
-    call add_spring_forces(table, delta, r)
+    associate (table => st%table, forest => st%forest, tr => st%tr, q => st%q, u => st%u, f_phys => st%f_phys)
+      nstep = size(q, 2)
+      call store_displacements(table, u, res, error)
+      if (allocated(error)) return
+      allocate (r(table%np, nstep), rclose(table%np, nstep), rigid_force(3, table%nunit, nstep), &
+           acc(3, 0:table%nvertex), stat=stat)
+      if (stat /= 0) then
+         call out_of_memory(error, 'the recovery of forces', (2*table%np*nstep + 3*table%nunit*nstep + &
+              3*(table%nvertex + 1))*BYTES_REAL)
+         return
+      end if
+      r = -f_phys
+      if (allocated(st%ku)) r = r + st%ku
+      call element_results(model, table, u, r, res, error, allocated(st%ku), wanted)
+      if (allocated(error)) return
+      call unit_deltas(table, tr, q, u, delta)
+      call add_spring_forces(table, delta, r)
 
-    rigid_force = 0.0_wp
-    rclose = 0.0_wp
-    call closer_forces(table, tr, r, rigid_force, rclose, req)
-    r = r - rclose     ! in place: no temporary of np values per step
-    do is = 1, nstep
-       call tree_forces(table, forest, r(:, is), acc, rigid_force(:, :, is))
-    end do
-    call link_and_support_results(model, table, delta, rigid_force, f_phys, res)
-    if (allocated(req)) call add_equation_resultants(model, table, req, res)
+      rigid_force = 0.0_wp
+      rclose = 0.0_wp
+      call closer_forces(table, tr, r, rigid_force, rclose, req)
+      r = r - rclose     ! in place: no temporary of np values per step
+      do is = 1, nstep
+         call tree_forces(table, forest, r(:, is), acc, rigid_force(:, :, is))
+      end do
+      call link_and_support_results(model, table, delta, rigid_force, f_phys, res)
+      if (allocated(req)) call add_equation_resultants(model, table, req, res)
+    end associate
   end subroutine recover_results
 
   subroutine add_equation_resultants(model, table, req, res)
@@ -147,20 +144,16 @@ contains
     logical, intent(in) :: parts_done
     logical, intent(in) :: wanted(:)
     logical, allocatable :: own_ku(:), in_unit(:)
-    real(wp), allocatable :: ql(:, :, :), fe(:), nt(:, :), f0(:, :, :, :)
-    real(wp) :: qloc(3), f(6, 2), fg(MAX_ELEM_DOFS)
+    real(wp), allocatable :: ql(:, :, :), nt(:, :), f0(:, :, :, :)
+    real(wp) :: f(6, 2), fg(MAX_ELEM_DOFS)
     real(wp), allocatable :: fg2(:, :)
     integer(i8) :: pd(MAX_ELEM_DOFS), ie, ntot
-    integer :: isub, n, is, nstep, i, nn, stat
+    integer :: isub, n, is, nstep, nn, stat
     integer(ip) :: e
     type(error_t), allocatable :: inner
 
     nstep = size(u, 2)
-    allocate (res%fields%elem_offset(size(model%subs) + 1))
-    res%fields%elem_offset(1) = 0
-    do isub = 1, size(model%subs)
-       res%fields%elem_offset(isub + 1) = res%fields%elem_offset(isub) + model%subs(isub)%nelem
-    end do
+    call set_elem_offsets(model, res)
     ntot = res%fields%elem_offset(size(model%subs) + 1)
     allocate (res%fields%elem_force(6, 2, ntot, nstep), res%fields%plate(6, ntot, nstep), ql(3, ntot, nstep), &
          fg2(MAX_ELEM_DOFS, nstep), stat=stat)
@@ -175,33 +168,9 @@ contains
     call unit_vertices(table, in_unit)
 
     allocate (nt(ntot, nstep), source=0.0_wp)   ! loads: thermal axial force E A alpha dT
-    ! loads: thermal strains of plane and shell elements, centrifugal end loads of bars and beams
-    call plate_thermal_strains(model, res%fields%elem_offset, nstep, res%fields%thermal)
-    call line_centrif_forces(model, res%fields%elem_offset, nstep, f0)
-    ! loads: temperatures that vary over plane elements, gradients across beams
-    call plane_thermal_nodal(model, res%fields%elem_offset, nstep, res%fields%thermal_nodal)
-    call shell_thermal_curvature_nodal(model, res%fields%elem_offset, nstep, res%fields%thermal_curvature_nodal)
-    call line_thermal_forces(model, res%fields%elem_offset, nstep, f0)
+    call body_load_fields(model, nstep, res, f0)
     ! Distributed loads in element axes, per element and step.
-    ql = 0.0_wp
-    do is = 1, nstep
-       if (.not. allocated(model%steps(is)%dloads)) cycle
-       do i = 1, size(model%steps(is)%dloads)
-          associate (dl => model%steps(is)%dloads(i), s => model%subs(model%steps(is)%dloads(i)%sub))
-            ! Plane and shell elements: r gets K_e u_e itself (shell_forces below).
-            if (is_plate_type(s%elem_type(dl%elem))) cycle
-            call distributed_load(model, dl, fe, qloc, inner)
-            if (allocated(inner)) deallocate (inner)
-            ie = res%fields%elem_offset(dl%sub) + dl%elem
-            ql(:, ie, is) = ql(:, ie, is) + qloc
-            if (dl%kind == DLOAD_THERMAL) nt(ie, is) = nt(ie, is) + dl%value   ! loads: thermal
-            ! f_phys holds this consistent load; element_nodal_forces leaves it out.
-            if (own_ku(dl%sub)) cycle
-            call element_pdofs(model, table, dl%sub, dl%elem, pd, n)
-            r(pd(1:n), is) = r(pd(1:n), is) + fe
-          end associate
-       end do
-    end do
+    call add_dload_terms(model, table, own_ku, res%fields%elem_offset, ql, nt, r)
 
     do isub = 1, size(model%subs)
        associate (s => model%subs(isub))
@@ -225,20 +194,7 @@ contains
                  end if
                  if (.not. own_ku(isub)) r(pd(1:n), :) = r(pd(1:n), :) + fg2(1:n, :)
                  ! loads: N = D (eps - eps0), the free thermal expansion's resultants taken off
-                 if (allocated(res%fields%thermal_curvature_nodal)) then   ! shells whose temperature varies
-                    call take_thermal_resultants(s%elem_type(e), &
-                         s%x(:, s%elem_nodes(1:nn, e)), sec, model%materials(sec%material), &
-                         res%fields%thermal(:, ie, :), res%fields%plate(:, ie, :), res%fields%thermal_nodal(:, ie, :), &
-                         res%fields%thermal_curvature_nodal(:, ie, :), element_drill(s, e))
-                 else if (allocated(res%fields%thermal_nodal)) then
-                    call take_thermal_resultants(s%elem_type(e), &
-                         s%x(:, s%elem_nodes(1:nn, e)), sec, model%materials(sec%material), &
-                         res%fields%thermal(:, ie, :), res%fields%plate(:, ie, :), res%fields%thermal_nodal(:, ie, :))
-                 else if (allocated(res%fields%thermal)) then
-                    call take_thermal_resultants(s%elem_type(e), &
-                         s%x(:, s%elem_nodes(1:nn, e)), sec, model%materials(sec%material), &
-                         res%fields%thermal(:, ie, :), res%fields%plate(:, ie, :))
-                 end if
+                 call thermal_resultants(model, isub, e, ie, res)
                  cycle
               end if
               do is = 1, nstep
@@ -268,6 +224,99 @@ contains
        end associate
     end do
   end subroutine element_results
+
+  subroutine body_load_fields(model, nstep, res, f0)
+    !! What the element results take off for body loads (analysis/body_loads).
+    type(model_t), intent(in) :: model
+    integer, intent(in) :: nstep
+    type(results_t), intent(inout) :: res
+    real(wp), allocatable, intent(out) :: f0(:, :, :, :)
+    ! loads: thermal strains of plane and shell elements, centrifugal end loads of bars and beams
+    call plate_thermal_strains(model, res%fields%elem_offset, nstep, res%fields%thermal)
+    call line_centrif_forces(model, res%fields%elem_offset, nstep, f0)
+    ! loads: temperatures that vary over plane elements, gradients across beams
+    call plane_thermal_nodal(model, res%fields%elem_offset, nstep, res%fields%thermal_nodal)
+    call shell_thermal_curvature_nodal(model, res%fields%elem_offset, nstep, res%fields%thermal_curvature_nodal)
+    call line_thermal_forces(model, res%fields%elem_offset, nstep, f0)
+  end subroutine body_load_fields
+
+  subroutine set_elem_offsets(model, res)
+    !! res%fields%elem_offset: the elements numbered over the substructures.
+    type(model_t), intent(in) :: model
+    type(results_t), intent(inout) :: res
+    integer :: isub
+    allocate (res%fields%elem_offset(size(model%subs) + 1))
+    res%fields%elem_offset(1) = 0
+    do isub = 1, size(model%subs)
+       res%fields%elem_offset(isub + 1) = res%fields%elem_offset(isub) + model%subs(isub)%nelem
+    end do
+  end subroutine set_elem_offsets
+
+  subroutine add_dload_terms(model, table, own_ku, elem_offset, ql, nt, r)
+    !! The distributed loads of line elements in element axes (ql), their
+    !! thermal axial forces (nt), and r += their consistent loads (f_phys
+    !! holds them; element_nodal_forces leaves them out) but for the
+    !! substructures whose k u r holds already (own_ku).
+    type(model_t), intent(in) :: model
+    type(dof_table_t), intent(in) :: table
+    logical, intent(in) :: own_ku(:)
+    integer(i8), intent(in) :: elem_offset(:)
+    real(wp), intent(inout) :: ql(:, :, :), nt(:, :), r(:, :)
+    real(wp), allocatable :: fe(:)
+    real(wp) :: qloc(3)
+    integer(i8) :: pd(MAX_ELEM_DOFS), ie
+    integer :: is, i, n
+    type(error_t), allocatable :: inner
+    ql = 0.0_wp
+    do is = 1, size(r, 2)
+       if (.not. allocated(model%steps(is)%dloads)) cycle
+       do i = 1, size(model%steps(is)%dloads)
+          associate (dl => model%steps(is)%dloads(i), s => model%subs(model%steps(is)%dloads(i)%sub))
+            ! Plane and shell elements: r gets K_e u_e itself (shell_forces below).
+            if (is_plate_type(s%elem_type(dl%elem))) cycle
+            call distributed_load(model, dl, fe, qloc, inner)
+            if (allocated(inner)) deallocate (inner)
+            ie = elem_offset(dl%sub) + dl%elem
+            ql(:, ie, is) = ql(:, ie, is) + qloc
+            if (dl%kind == DLOAD_THERMAL) nt(ie, is) = nt(ie, is) + dl%value   ! loads: thermal
+            ! f_phys holds this consistent load; element_nodal_forces leaves it out.
+            if (own_ku(dl%sub)) cycle
+            call element_pdofs(model, table, dl%sub, dl%elem, pd, n)
+            r(pd(1:n), is) = r(pd(1:n), is) + fe
+          end associate
+       end do
+    end do
+  end subroutine add_dload_terms
+
+  subroutine thermal_resultants(model, isub, e, ie, res)
+    !! Plane and shell element ie (element e of substructure isub): the free
+    !! thermal expansion's resultants taken off its plate resultants.
+    type(model_t), intent(in) :: model
+    integer, intent(in) :: isub
+    integer(ip), intent(in) :: e
+    integer(i8), intent(in) :: ie
+    type(results_t), intent(inout) :: res
+    integer :: nn
+    associate (s => model%subs(isub))
+      associate (sec => s%sections(s%elem_section(e)))
+        nn = ELEMENT_NODE_COUNT(s%elem_type(e))
+        if (allocated(res%fields%thermal_curvature_nodal)) then   ! shells whose temperature varies
+           call take_thermal_resultants(s%elem_type(e), &
+                s%x(:, s%elem_nodes(1:nn, e)), sec, model%materials(sec%material), &
+                res%fields%thermal(:, ie, :), res%fields%plate(:, ie, :), res%fields%thermal_nodal(:, ie, :), &
+                res%fields%thermal_curvature_nodal(:, ie, :), element_drill(s, e))
+        else if (allocated(res%fields%thermal_nodal)) then
+           call take_thermal_resultants(s%elem_type(e), &
+                s%x(:, s%elem_nodes(1:nn, e)), sec, model%materials(sec%material), &
+                res%fields%thermal(:, ie, :), res%fields%plate(:, ie, :), res%fields%thermal_nodal(:, ie, :))
+        else if (allocated(res%fields%thermal)) then
+           call take_thermal_resultants(s%elem_type(e), &
+                s%x(:, s%elem_nodes(1:nn, e)), sec, model%materials(sec%material), &
+                res%fields%thermal(:, ie, :), res%fields%plate(:, ie, :))
+        end if
+      end associate
+    end associate
+  end subroutine thermal_resultants
 
   subroutine unit_vertices(table, in_unit)
     !! in_unit(v): vertex v is a side of a contact or support unit.

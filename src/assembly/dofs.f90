@@ -71,6 +71,8 @@ module superjoin_assembly_dofs
      integer :: nunit = 0
      integer, allocatable :: ignored_links(:)  !! links with named DOFs that no node carries
      type(equation_terms_t), allocatable :: equations(:)  !! *EQUATION constraints (empty: none)
+  contains
+     procedure :: make_finite
   end type dof_table_t
 
   integer, parameter, public :: MAX_UNIT_TERMS = 3*BLOCK_SIZE
@@ -88,6 +90,16 @@ contains
     integer(i8) :: v
     v = table%vertex_offset(isub) + inode
   end function vertex_of
+
+  subroutine make_finite(table, iu, c, g)
+    !! Component c of contact unit iu becomes a finite spring of stiffness g
+    !! (a RIGID one under PENALTY or RIGID=LARGE, analysis/policy).
+    class(dof_table_t), intent(inout) :: table
+    integer, intent(in) :: iu, c
+    real(wp), intent(in) :: g
+    table%units(iu)%g(c) = g
+    table%units(iu)%state(c) = LINK_FINITE
+  end subroutine make_finite
 
   elemental function block_dof(b, c) result(d)
     !! DOF number (1..6) of component c of block b.

@@ -9,7 +9,7 @@ program test_parts
   use superjoin_model_types, only: model_t, find_node, LINK_FINITE, LINK_RIGID, LINK_NONE
   use superjoin_deck_reader, only: read_deck, read_deck_string
   use superjoin_analysis, only: solve_model
-  use superjoin_analysis_joint_steps, only: solve_joint_steps, has_joint_changes
+  use superjoin_analysis_driver, only: solve_joint_steps => solve_steps, has_joint_changes
   use superjoin_model_results, only: results_t, run_options_t
   use superjoin_testing, only: check, check_close, finish
   implicit none (type, external)

@@ -1,6 +1,6 @@
 submodule (superjoin_deck_validate) superjoin_deck_assembly
   !! Validation side of parts, instances and joint studies (see
-  !! superjoin_deck_parts for the cards):
+  !! superjoin_deck_cards_assembly for the cards):
   !!
   !! - every *INSTANCE becomes a substructure: a copy of its part's nodes (placed,
   !!   x' = rot x + shift), elements, sets and sections; the orientation vectors of

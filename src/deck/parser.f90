@@ -2,7 +2,10 @@ module superjoin_deck_parser
   !! Card-level parser of the deck reader: walks the lines of a deck (and of the
   !! files it includes), recognizes keyword and data lines and records what they
   !! define in the reader state, by user ids and names. References are resolved
-  !! later, by superjoin_deck_validate.
+  !! later, by superjoin_deck_validate. The keyword is dispatched here, in
+  !! open_card, to the card routines of its family: superjoin_deck_cards_model,
+  !! _cards_sections, _cards_steps, _cards_output, _cards_assembly, _equations,
+  !! _transforms, _nodal_thickness (helpers shared by them: _cards_common).
   use superjoin_kinds, only: i8
   use superjoin_model_types, only: source_loc_t, SEC_SOLID, SEC_BEAM, SEC_SHELL
   use superjoin_deck_lexer, only: keyword_line_t, load_file, next_line, first_nonblank, &

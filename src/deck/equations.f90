@@ -1,4 +1,4 @@
-submodule (superjoin_deck_parser) superjoin_deck_equations
+module superjoin_deck_equations
   !! Parser side of `*EQUATION` (Abaqus/CalculiX): each equation is a line with
   !! its number of terms n, then n terms `node, dof, coefficient`, up to four
   !! per line, continuing on the following lines:
@@ -7,8 +7,16 @@ submodule (superjoin_deck_parser) superjoin_deck_equations
   !! elsewhere (`id`, `SUB.id`); node sets are not accepted. The equations are
   !! resolved to DOFs by superjoin_deck_equation_build and eliminated exactly
   !! by the transform.
-  use superjoin_deck_state, only: equation_b_t
+  use superjoin_kinds, only: wp, ip
+  use superjoin_model_types, only: source_loc_t
+  use superjoin_deck_lexer, only: keyword_line_t, parse_id, itoa, clip, plural, TOK_OK
+  use superjoin_deck_state, only: deck_state_t, report_loc, grow, equation_b_t
+  use superjoin_deck_cards_common, only: outside_step, check_params, field_count, fld, get_real, &
+       get_dof, parse_ref, loc_string, CARD_SKIP, CARD_EQUATION, NAME_LEN
   implicit none (type, external)
+  private
+
+  public :: kw_equation, data_equation, end_equation_card
 
   integer, parameter :: TERM_FIELDS = 3
     !! node, dof, coefficient
@@ -19,7 +27,8 @@ submodule (superjoin_deck_parser) superjoin_deck_equations
 
 contains
 
-  module subroutine kw_equation(st, kw, loc)
+  subroutine kw_equation(st, kw, loc)
+    !! *EQUATION: linear constraints between DOFs (Abaqus/CalculiX form).
     type(deck_state_t), intent(inout) :: st
     type(keyword_line_t), intent(in) :: kw
     type(source_loc_t), intent(in) :: loc
@@ -30,7 +39,8 @@ contains
     st%card_item = 0
   end subroutine kw_equation
 
-  module subroutine data_equation(st, line, loc)
+  subroutine data_equation(st, line, loc)
+    !! A data line of *EQUATION: a number of terms, or node, dof, coefficient triples.
     type(deck_state_t), intent(inout) :: st
     character(*), intent(in) :: line
     type(source_loc_t), intent(in) :: loc
@@ -103,7 +113,8 @@ contains
     end associate
   end subroutine data_equation
 
-  module subroutine end_equation_card(st)
+  subroutine end_equation_card(st)
+    !! End of an *EQUATION card: the last equation must have all its terms.
     type(deck_state_t), intent(inout) :: st
     if (st%card_item == 0) return
     associate (e => st%equations(st%card_item))
@@ -122,4 +133,4 @@ contains
     st%nequation = st%nequation + 1
     st%equations(st%nequation) = eq
   end subroutine push_equation
-end submodule superjoin_deck_equations
+end module superjoin_deck_equations

@@ -7,7 +7,7 @@ module superjoin_deck_frame_build
   use superjoin_kinds, only: wp, ip
   use superjoin_model_types, only: model_t, node_frame_t, cload_t, node_label
   use superjoin_deck_state, only: deck_state_t, report_loc, file_of
-  use superjoin_deck_validate, only: resolve_items, resolve_sub
+  use superjoin_deck_build_common, only: resolve_items, resolve_sub
   use superjoin_utils_strings, only: itoa
   implicit none (type, external)
   private

@@ -62,6 +62,15 @@ module superjoin_deck_lexer
      integer, allocatable :: first(:), last(:)
   end type fields_t
 
+  type :: mantissa_t
+    !! The mantissa of a real being read: its first significant digits as an
+    !! integer m (sig of them), the power of ten they are scaled by, the
+    !! number of mantissa digits, whether nonzero digits were dropped.
+     integer(i8) :: m = 0
+     integer :: nmant = 0, sig = 0, scale = 0
+     logical :: truncated = .false.
+  end type mantissa_t
+
   public :: load_file, next_line, first_nonblank, to_upper, collapse_blanks
   public :: parse_keyword_line, split_fields, drop_trailing_empty
   public :: parse_real, parse_id, is_name, is_digits, looks_numeric, itoa
@@ -451,17 +460,13 @@ contains
     character(*), intent(in) :: s
     real(wp), intent(out) :: x
     integer, intent(out) :: stat
-    integer :: i, n, nmant, sig, scale, expo, expsign, ios, lead_exp
-    integer(i8) :: m
-    logical :: negative, after_dot, truncated, started
-    character :: c
-    real(wp) :: lead
-    type(ieee_status_type) :: fp_status
+    integer :: i, expo
+    logical :: negative, ok
+    type(mantissa_t) :: mant
 
     x = 0.0_wp
     stat = TOK_INVALID
-    n = len(s)
-    if (n == 0) return
+    if (len(s) == 0) return
     i = 1
     negative = .false.
     if (s(1:1) == '+' .or. s(1:1) == '-') then
@@ -472,76 +477,117 @@ contains
        stat = TOK_NONFINITE
        return
     end if
-    ! mantissa
-    m = 0
-    nmant = 0
-    sig = 0
-    scale = 0
+    call scan_mantissa(s, i, mant, ok)
+    if (.not. ok) return
+    call scan_exponent(s, i, expo, ok)
+    if (.not. ok) return
+    call decimal_value(s, negative, mant, expo, x, stat)
+  end subroutine parse_real
+
+  pure subroutine scan_mantissa(s, i, mant, ok)
+    !! The mantissa digits of s from position i on (i: the first character
+    !! after them): its first MAX_MANTISSA_DIGITS significant digits as an
+    !! integer, their decimal scale, whether digits were dropped; not ok for a
+    !! second '.' or no digit.
+    character(*), intent(in) :: s
+    integer, intent(inout) :: i
+    type(mantissa_t), intent(out) :: mant
+    logical, intent(out) :: ok
+    logical :: after_dot, started
+    character :: c
+    ok = .false.
     after_dot = .false.
-    truncated = .false.
     started = .false.
-    do while (i <= n)
+    do while (i <= len(s))
        c = s(i:i)
        if (c == '.') then
           if (after_dot) return
           after_dot = .true.
        else if (c >= '0' .and. c <= '9') then
-          nmant = nmant + 1
+          mant%nmant = mant%nmant + 1
           if (c /= '0') started = .true.
           if (started) then
-             if (sig < MAX_MANTISSA_DIGITS) then
-                m = 10*m + (iachar(c) - iachar('0'))
-                sig = sig + 1
-                if (after_dot) scale = scale - 1
+             if (mant%sig < MAX_MANTISSA_DIGITS) then
+                mant%m = 10*mant%m + (iachar(c) - iachar('0'))
+                mant%sig = mant%sig + 1
+                if (after_dot) mant%scale = mant%scale - 1
              else
-                if (.not. after_dot) scale = scale + 1
-                if (c /= '0') truncated = .true.
+                if (.not. after_dot) mant%scale = mant%scale + 1
+                if (c /= '0') mant%truncated = .true.
              end if
           else if (after_dot) then
-             scale = scale - 1
+             mant%scale = mant%scale - 1
           end if
        else
           exit
        end if
        i = i + 1
     end do
-    if (nmant == 0) return
-    ! exponent
-    expo = 0
-    if (i <= n) then
-       c = s(i:i)
-       if (c /= 'e' .and. c /= 'E' .and. c /= 'd' .and. c /= 'D') return
-       i = i + 1
-       expsign = 1
-       if (i <= n) then
-          if (s(i:i) == '+' .or. s(i:i) == '-') then
-             if (s(i:i) == '-') expsign = -1
-             i = i + 1
-          end if
-       end if
-       if (i > n) return
-       if (.not. is_digits(s(i:n))) return
-       do while (i <= n)
-          if (expo < 10**(MAX_EXP_DIGITS - 1)) expo = 10*expo + (iachar(s(i:i)) - iachar('0'))
-          i = i + 1
-       end do
-       expo = expsign*expo
-    end if
+    ok = mant%nmant > 0
+  end subroutine scan_mantissa
 
+  pure subroutine scan_exponent(s, i, expo, ok)
+    !! The exponent (e|E|d|D) [sign] digits of s from position i to its end
+    !! (0 when there is none); not ok for anything else.
+    character(*), intent(in) :: s
+    integer, intent(inout) :: i
+    integer, intent(out) :: expo
+    logical, intent(out) :: ok
+    integer :: n, expsign
+    character :: c
+    n = len(s)
+    expo = 0
+    ok = .true.
+    if (i > n) return
+    ok = .false.
+    c = s(i:i)
+    if (c /= 'e' .and. c /= 'E' .and. c /= 'd' .and. c /= 'D') return
+    i = i + 1
+    expsign = 1
+    if (i <= n) then
+       if (s(i:i) == '+' .or. s(i:i) == '-') then
+          if (s(i:i) == '-') expsign = -1
+          i = i + 1
+       end if
+    end if
+    if (i > n) return
+    if (.not. is_digits(s(i:n))) return
+    do while (i <= n)
+       if (expo < 10**(MAX_EXP_DIGITS - 1)) expo = 10*expo + (iachar(s(i:i)) - iachar('0'))
+       i = i + 1
+    end do
+    expo = expsign*expo
+    ok = .true.
+  end subroutine scan_exponent
+
+  subroutine decimal_value(s, negative, mant, expo, x, stat)
+    !! The value of the checked real s (mantissa mant, exponent expo): exact
+    !! when the mantissa and the power of ten are, else by the library
+    !! conversion; TOK_RANGE beyond real(wp), 0 below its range.
+    character(*), intent(in) :: s
+    logical, intent(in) :: negative
+    type(mantissa_t), intent(in) :: mant
+    integer, intent(in) :: expo
+    real(wp), intent(out) :: x
+    integer, intent(out) :: stat
+    integer :: lead_exp, ios
+    real(wp) :: lead
+    type(ieee_status_type) :: fp_status
+    x = 0.0_wp
     stat = TOK_OK
-    if (m == 0) then
+    if (mant%m == 0) then
        x = 0.0_wp
        if (negative) x = -x
        return
     end if
     ! decimal exponent of the leading digit
-    lead_exp = sig - 1 + scale + expo
+    lead_exp = mant%sig - 1 + mant%scale + expo
     if (lead_exp > MAX_DEC_EXP) then
        stat = TOK_RANGE
        return
     end if
     if (lead_exp == MAX_DEC_EXP) then
-       lead = real(m, wp)/10.0_wp**(sig - 1)
+       lead = real(mant%m, wp)/10.0_wp**(mant%sig - 1)
        if (lead >= HUGE_LEAD) then
           stat = TOK_RANGE
           return
@@ -552,11 +598,11 @@ contains
        if (negative) x = -x
        return
     end if
-    if (.not. truncated .and. m <= EXACT_MANTISSA .and. abs(scale + expo) <= MAX_EXACT_POW10) then
-       if (scale + expo >= 0) then
-          x = real(m, wp)*POW10(scale + expo)
+    if (.not. mant%truncated .and. mant%m <= EXACT_MANTISSA .and. abs(mant%scale + expo) <= MAX_EXACT_POW10) then
+       if (mant%scale + expo >= 0) then
+          x = real(mant%m, wp)*POW10(mant%scale + expo)
        else
-          x = real(m, wp)/POW10(-(scale + expo))
+          x = real(mant%m, wp)/POW10(-(mant%scale + expo))
        end if
        if (negative) x = -x
        return
@@ -570,7 +616,7 @@ contains
     else if (x /= x .or. abs(x) > huge(x)) then
        stat = TOK_RANGE
     end if
-  end subroutine parse_real
+  end subroutine decimal_value
 
   pure logical function is_nonfinite_word(u)
     character(*), intent(in) :: u

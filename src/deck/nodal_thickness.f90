@@ -1,15 +1,24 @@
-submodule (superjoin_deck_parser) superjoin_deck_nodal_thickness
+module superjoin_deck_nodal_thickness
   !! Parser side of `*NODAL THICKNESS` (CalculiX): the thickness of shell and
   !! plane elements given at their nodes, in place of the section's. Data
   !! lines `node or nset, t[, t2]`; t2 (the second thickness of beams in
   !! CalculiX) is read and must be absent, empty or 0 here. The values are
   !! applied per element by superjoin_deck_thickness_build.
-  use superjoin_deck_state, only: nthick_b_t
+  use superjoin_kinds, only: wp
+  use superjoin_model_types, only: source_loc_t
+  use superjoin_deck_lexer, only: keyword_line_t
+  use superjoin_deck_state, only: deck_state_t, report_loc, grow, nthick_b_t
+  use superjoin_deck_cards_common, only: outside_step, check_params, field_count, fld, get_real, &
+       parse_ref, CARD_SKIP, CARD_NODAL_THICKNESS, NAME_LEN
   implicit none (type, external)
+  private
+
+  public :: kw_nodal_thickness, data_nodal_thickness
 
 contains
 
-  module subroutine kw_nodal_thickness(st, kw, loc)
+  subroutine kw_nodal_thickness(st, kw, loc)
+    !! *NODAL THICKNESS (CalculiX): shell and plane element thickness given at the nodes.
     type(deck_state_t), intent(inout) :: st
     type(keyword_line_t), intent(in) :: kw
     type(source_loc_t), intent(in) :: loc
@@ -20,7 +29,8 @@ contains
     st%card_home = st%cur_sub
   end subroutine kw_nodal_thickness
 
-  module subroutine data_nodal_thickness(st, line, loc)
+  subroutine data_nodal_thickness(st, line, loc)
+    !! A data line of *NODAL THICKNESS: node or node set, thickness[, second thickness].
     type(deck_state_t), intent(inout) :: st
     character(*), intent(in) :: line
     type(source_loc_t), intent(in) :: loc
@@ -48,4 +58,4 @@ contains
     st%nnthick = st%nnthick + 1
     st%nthicks(st%nnthick) = d
   end subroutine data_nodal_thickness
-end submodule superjoin_deck_nodal_thickness
+end module superjoin_deck_nodal_thickness

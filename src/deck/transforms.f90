@@ -1,4 +1,4 @@
-submodule (superjoin_deck_parser) superjoin_deck_transforms
+module superjoin_deck_transforms
   !! Parser side of `*TRANSFORM, NSET=n[, TYPE=R|C]` (CalculiX): nodal systems
   !! in which the `*BOUNDARY`/`*SUPPORT` DOFs and the `*CLOAD` components of
   !! the set's nodes are written. Data line `ax, ay, az, bx, by, bz`:
@@ -6,12 +6,22 @@ submodule (superjoin_deck_parser) superjoin_deck_transforms
   !! TYPE=C a cylindrical system about the axis from point a to point b:
   !! local 1 radial, 2 tangential, 3 along the axis. The frames are computed
   !! per node by superjoin_deck_frame_build.
-  use superjoin_deck_state, only: transform_b_t
+  use superjoin_kinds, only: wp
+  use superjoin_model_types, only: source_loc_t
+  use superjoin_deck_lexer, only: keyword_line_t, to_upper, clip
+  use superjoin_deck_state, only: deck_state_t, report_loc, grow, transform_b_t
+  use superjoin_utils_strings, only: pick
+  use superjoin_deck_cards_common, only: outside_step, check_params, get_param, field_count, &
+       get_real, parse_ref, CARD_SKIP, CARD_TRANSFORM, PARALLEL_TOL, NAME_LEN, ORIENT_VALUES
   implicit none (type, external)
+  private
+
+  public :: kw_transform, data_transform
 
 contains
 
-  module subroutine kw_transform(st, kw, loc)
+  subroutine kw_transform(st, kw, loc)
+    !! *TRANSFORM, NSET=n[, TYPE=R|C]: nodal systems (CalculiX).
     type(deck_state_t), intent(inout) :: st
     type(keyword_line_t), intent(in) :: kw
     type(source_loc_t), intent(in) :: loc
@@ -49,7 +59,8 @@ contains
     st%card_item = st%ntransform
   end subroutine kw_transform
 
-  module subroutine data_transform(st, line, loc)
+  subroutine data_transform(st, line, loc)
+    !! The data line of *TRANSFORM: ax, ay, az, bx, by, bz.
     type(deck_state_t), intent(inout) :: st
     character(*), intent(in) :: line
     type(source_loc_t), intent(in) :: loc
@@ -85,4 +96,4 @@ contains
       t%has_data = .true.
     end associate
   end subroutine data_transform
-end submodule superjoin_deck_transforms
+end module superjoin_deck_transforms

@@ -53,6 +53,7 @@ module superjoin_elements_traits
 
   public :: element_traits, element_family, is_family, accepts_dload, section_card_name
   public :: valid_element_type, element_vtk_cell
+  public :: shell_of_plane
 
 contains
 
@@ -205,4 +206,19 @@ contains
     t = element_traits(etype)
     element_vtk_cell = t%vtk_cell
   end function element_vtk_cell
+
+  elemental integer function shell_of_plane(etype)
+    !! The shell type with the nodes of plane element type etype, that a
+    !! *SHELL SECTION turns it into (gmsh writes every 2D mesh as CPS3, CPS4):
+    !! S3 for CPS3, S4 for CPS4; 0 for the others.
+    integer, intent(in) :: etype
+    select case (etype)
+    case (ET_CPS3)
+       shell_of_plane = ET_S3
+    case (ET_CPS4)
+       shell_of_plane = ET_S4
+    case default
+       shell_of_plane = 0
+    end select
+  end function shell_of_plane
 end module superjoin_elements_traits

@@ -1,4 +1,4 @@
-submodule (superjoin_deck_parser) superjoin_deck_parts
+module superjoin_deck_cards_assembly
   !! Parser side of parts, assemblies and joint studies:
   !!
   !! - `*PART, NAME=p` ... `*END PART`: a mesh (nodes, elements, sets, sections)
@@ -11,15 +11,31 @@ submodule (superjoin_deck_parser) superjoin_deck_parts
   !!   about the axis through a and b (assembly coordinates):
   !!   x' = a + R (x + t - a);
   !! - `PAIR=NEAREST, TOL=t` on `*CONTACT`;
-  !! - `*CHANGE CONTACT, NAME=j[, SWEEP]` inside `*STEP`.
+  !! - `*CHANGE CONTACT, NAME=j[, SWEEP]` inside `*STEP`;
+  !! - the joints themselves: `*CONTACT` and `*SUPPORT` (with `*INTERFACE`).
   !!
   !! The placement itself (copying the part into its instances) is done by the
   !! validation pass (superjoin_deck_assembly).
-  use superjoin_deck_state, only: instance_b_t
+  use superjoin_kinds, only: wp
+  use superjoin_model_types, only: source_loc_t, LINK_NONE, LINK_RIGID
+  use superjoin_deck_lexer, only: keyword_line_t, to_upper, parse_real, itoa, clip, plural, TOK_OK
+  use superjoin_deck_state, only: deck_state_t, contact_b_t, cline_b_t, support_b_t, ref_t, &
+       report_loc, new_sub, find_sub, override_b_t, SUBK_PART, SUBK_INSTANCE, add_contact, &
+       add_cline, add_support, grow, instance_b_t
   use superjoin_utils_halting, only: halting_t, halting_off, halting_restore
   use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
+  use superjoin_deck_cards_common, only: outside_step, check_params, param_index, get_param, &
+       get_name_param, target_sub, field_count, fld, get_real, real_message, get_dof_range, &
+       get_stiffness, parse_ref, loc_string, CARD_SKIP, CARD_CONTACT, CARD_SUPPORT, CARD_INSTANCE, &
+       CARD_CHANGE_CONTACT, CARD_INTERFACE, NAME_LEN, CONTACT_FIELDS
   implicit none (type, external)
+  private
 
+  public :: assembly_allows, set_home, finish_assembly, kw_assembly, data_instance, kw_interface, &
+       data_interface, kw_change_contact, data_change_contact, kw_contact, data_contact, kw_support, &
+       data_support
+
+  integer, parameter :: SUPPORT_FIELDS_MIN = 3, SUPPORT_FIELDS_MAX = 4
   integer, parameter :: TRANSLATION_FIELDS = 3, ROTATION_FIELDS = 7
   real(wp), parameter :: AXIS_TOL = 1.0e-12_wp
     !! The rotation axis is degenerate when |b - a| <= AXIS_TOL max(|a|, |b|) (or 0).
@@ -30,9 +46,9 @@ submodule (superjoin_deck_parser) superjoin_deck_parts
 
 contains
 
-  ! ================================================================== structure checks
-
-  module logical function assembly_allows(st, kw, loc) result(ok)
+  logical function assembly_allows(st, kw, loc) result(ok)
+    !! False (card skipped, reported) when a keyword may not stand where it stands
+    !! (a load inside *PART, a card inside *INSTANCE, ...).
     type(deck_state_t), intent(inout) :: st
     type(keyword_line_t), intent(in) :: kw
     type(source_loc_t), intent(in) :: loc
@@ -87,7 +103,9 @@ contains
     k = 0
   end function find_part
 
-  module integer function set_home(st, kw, loc) result(isub)
+  integer function set_home(st, kw, loc) result(isub)
+    !! Substructure a *NSET/*ELSET card writes to: the instance of INSTANCE=
+    !! (Abaqus assembly-level sets), else the open block or MAIN (0: reported).
     type(deck_state_t), intent(inout) :: st
     type(keyword_line_t), intent(in) :: kw
     type(source_loc_t), intent(in) :: loc
@@ -108,7 +126,8 @@ contains
          ' names no *INSTANCE defined before it')
   end function set_home
 
-  module subroutine finish_assembly(st)
+  subroutine finish_assembly(st)
+    !! End of input: report unclosed *PART, *INSTANCE and *ASSEMBLY blocks.
     type(deck_state_t), intent(inout) :: st
     if (st%cur_inst > 0) call report_loc(st, st%instances(st%cur_inst)%loc, '*INSTANCE '// &
          st%subs(st%instances(st%cur_inst)%sub)%name//' has no *END INSTANCE')
@@ -121,9 +140,8 @@ contains
     st%in_assembly = .false.
   end subroutine finish_assembly
 
-  ! ================================================================== *PART, *ASSEMBLY, *INSTANCE
-
-  module subroutine kw_assembly(st, kw, loc)
+  subroutine kw_assembly(st, kw, loc)
+    !! *PART, *END PART, *ASSEMBLY, *END ASSEMBLY, *INSTANCE, *END INSTANCE.
     type(deck_state_t), intent(inout) :: st
     type(keyword_line_t), intent(in) :: kw
     type(source_loc_t), intent(in) :: loc
@@ -246,7 +264,8 @@ contains
     st%card_item = st%ninst
   end subroutine kw_instance
 
-  module subroutine data_instance(st, line, loc)
+  subroutine data_instance(st, line, loc)
+    !! Data lines of *INSTANCE: translation, then rotation (Abaqus form).
     type(deck_state_t), intent(inout) :: st
     character(*), intent(in) :: line
     type(source_loc_t), intent(in) :: loc
@@ -346,9 +365,8 @@ contains
     end associate
   end subroutine instance_line
 
-  ! ================================================================== *CONTACT, PAIR=NEAREST
-
-  module subroutine contact_pair_params(st, kw, loc, c)
+  subroutine contact_pair_params(st, kw, loc, c)
+    !! PAIR= and TOL= of *CONTACT.
     type(deck_state_t), intent(inout) :: st
     type(keyword_line_t), intent(in) :: kw
     type(source_loc_t), intent(in) :: loc
@@ -384,7 +402,8 @@ contains
     end if
   end subroutine contact_pair_params
 
-  module subroutine contact_offset_param(st, kw, loc, c)
+  subroutine contact_offset_param(st, kw, loc, c)
+    !! OFFSET=RIGID | NONE of *CONTACT.
     type(deck_state_t), intent(inout) :: st
     type(keyword_line_t), intent(in) :: kw
     type(source_loc_t), intent(in) :: loc
@@ -403,9 +422,8 @@ contains
     end select
   end subroutine contact_offset_param
 
-  ! ================================================================== *INTERFACE
-
-  module subroutine kw_interface(st, kw, loc)
+  subroutine kw_interface(st, kw, loc)
+    !! *INTERFACE, NAME=j, MASTER=s1, SLAVE=s2, KN=kn, KT=kt[, TOL=t].
     type(deck_state_t), intent(inout) :: st
     type(keyword_line_t), intent(in) :: kw
     type(source_loc_t), intent(in) :: loc
@@ -467,7 +485,8 @@ contains
     end function stiffness_param
   end subroutine kw_interface
 
-  module subroutine data_interface(st, line, loc)
+  subroutine data_interface(st, line, loc)
+    !! The data line of *INTERFACE: master nset, slave nset.
     type(deck_state_t), intent(inout) :: st
     character(*), intent(in) :: line
     type(source_loc_t), intent(in) :: loc
@@ -484,9 +503,8 @@ contains
     end associate
   end subroutine data_interface
 
-  ! ================================================================== *CHANGE CONTACT
-
-  module subroutine kw_change_contact(st, kw, loc)
+  subroutine kw_change_contact(st, kw, loc)
+    !! *CHANGE CONTACT, NAME=j[, G=values] inside *STEP.
     type(deck_state_t), intent(inout) :: st
     type(keyword_line_t), intent(in) :: kw
     type(source_loc_t), intent(in) :: loc
@@ -515,7 +533,8 @@ contains
     st%card = CARD_CHANGE_CONTACT
   end subroutine kw_change_contact
 
-  module subroutine data_change_contact(st, line, loc)
+  subroutine data_change_contact(st, line, loc)
+    !! A data line of *CHANGE CONTACT (the form of *CONTACT's).
     type(deck_state_t), intent(inout) :: st
     character(*), intent(in) :: line
     type(source_loc_t), intent(in) :: loc
@@ -579,4 +598,100 @@ contains
       end if
     end function ref_name
   end subroutine data_change_contact
-end submodule superjoin_deck_parts
+
+  subroutine kw_contact(st, kw, loc)
+    !! *CONTACT, NAME=j, MASTER=, SLAVE= (or PAIR=NEAREST): opens a joint.
+    type(deck_state_t), intent(inout) :: st
+    type(keyword_line_t), intent(in) :: kw
+    type(source_loc_t), intent(in) :: loc
+    type(contact_b_t) :: c
+    logical :: f1, f2, f3, f4
+    integer :: k
+    if (.not. outside_step(st, kw, loc)) return
+    call check_params(st, kw, loc, [character(NAME_LEN) :: 'NAME', 'MASTER', 'SLAVE', 'ORIENTATION', &
+         'PAIR', 'TOL', 'OFFSET'], [character(NAME_LEN) ::])
+    call contact_pair_params(st, kw, loc, c)
+    call contact_offset_param(st, kw, loc, c)
+    call get_name_param(st, kw, loc, 'NAME', .true., c%name, f1)
+    call get_name_param(st, kw, loc, 'MASTER', .true., c%master, f2)
+    call get_name_param(st, kw, loc, 'SLAVE', .true., c%slave, f3)
+    call get_name_param(st, kw, loc, 'ORIENTATION', .false., c%orientation, f4)
+    st%card = CARD_SKIP
+    if (.not. (f1 .and. f2 .and. f3)) return
+    do k = 1, st%ncontact
+       if (st%contacts(k)%name == c%name) then
+          call report_loc(st, loc, 'duplicate contact name '//c%name//' (first defined at '// &
+               loc_string(st, st%contacts(k)%loc)//')')
+          return
+       end if
+    end do
+    c%loc = loc
+    call add_contact(st, c, st%card_item)
+    st%card = CARD_CONTACT
+  end subroutine kw_contact
+
+  subroutine data_contact(st, line, loc)
+    !! A data line of *CONTACT: master, slave, first DOF, last DOF, stiffness.
+    type(deck_state_t), intent(inout) :: st
+    character(*), intent(in) :: line
+    type(source_loc_t), intent(in) :: loc
+    type(cline_b_t) :: c
+    character(:), allocatable :: master, slave
+    if (.not. field_count(st, loc, CONTACT_FIELDS, CONTACT_FIELDS, 'master, slave, first dof, last dof, g')) return
+    master = st%contacts(st%card_item)%master
+    slave = st%contacts(st%card_item)%slave
+    if (.not. contact_ref(master, 'master', 1, c%master)) return
+    if (.not. contact_ref(slave, 'slave', 2, c%slave)) return
+    if (.not. get_dof_range(st, line, loc, 3, c%first, c%last)) return
+    if (.not. get_stiffness(st, line, loc, 5, c%state, c%g)) return
+    c%contact = st%card_item
+    c%loc = loc
+    call add_cline(st, c)
+  contains
+    logical function contact_ref(subname, role, i, ref) result(ok)
+      character(*), intent(in) :: subname, role
+      integer, intent(in) :: i
+      type(ref_t), intent(out) :: ref
+      ok = parse_ref(st, fld(st, line, i), .false., 0, loc, ref)
+      if (.not. ok) return
+      if (allocated(ref%scope)) then
+         if (ref%scope /= subname) then
+            call report_loc(st, loc, 'node '''//clip(fld(st, line, i))//''' is not in the '//role// &
+                 ' substructure '//subname)
+            ok = .false.
+         end if
+      end if
+    end function contact_ref
+  end subroutine data_contact
+
+  subroutine kw_support(st, kw, loc)
+    !! *SUPPORT: its data lines tie nodes to the ground.
+    type(deck_state_t), intent(inout) :: st
+    type(keyword_line_t), intent(in) :: kw
+    type(source_loc_t), intent(in) :: loc
+    if (.not. outside_step(st, kw, loc)) return
+    call check_params(st, kw, loc, [character(NAME_LEN) ::], [character(NAME_LEN) ::])
+    st%card = CARD_SUPPORT
+    st%card_home = st%cur_sub
+  end subroutine kw_support
+
+  subroutine data_support(st, line, loc)
+    !! A data line of *SUPPORT: node, first DOF, last DOF[, stiffness].
+    type(deck_state_t), intent(inout) :: st
+    character(*), intent(in) :: line
+    type(source_loc_t), intent(in) :: loc
+    type(support_b_t) :: s
+    integer :: first, last
+    if (.not. field_count(st, loc, SUPPORT_FIELDS_MIN, SUPPORT_FIELDS_MAX, 'node or nset, first dof, last dof[, g]')) return
+    if (.not. parse_ref(st, fld(st, line, 1), .false., st%card_home, loc, s%ref)) return
+    if (.not. get_dof_range(st, line, loc, 2, first, last)) return
+    s%state = LINK_RIGID
+    if (st%f%n == SUPPORT_FIELDS_MAX) then
+       if (.not. get_stiffness(st, line, loc, 4, s%state, s%g)) return
+       if (s%state == LINK_NONE) return
+    end if
+    s%dofs(first:last) = .true.
+    s%loc = loc
+    call add_support(st, s)
+  end subroutine data_support
+end module superjoin_deck_cards_assembly

@@ -1,0 +1,201 @@
+module superjoin_deck_build_common
+  !! What the builders of the validation pass share: references resolved to
+  !! substructures and to node or element indices, the part hint of their
+  !! messages, file:line and '(and N more)' texts.
+  use superjoin_kinds, only: ip
+  use superjoin_model_types, only: model_t, source_loc_t, find_node, find_elem
+  use superjoin_deck_lexer, only: itoa
+  use superjoin_deck_state, only: deck_state_t, ref_t, report_loc, step_b_t, OP_MOD, OP_DEFAULT
+  use superjoin_utils_strings, only: pick
+  implicit none (type, external)
+  private
+
+  public :: resolve_sub, sub_index, ref_text, resolve_items, part_hint, keeps_previous, more_text, &
+       where, INITIAL_CAPACITY
+
+  character(*), parameter :: MAIN_NAME = 'MAIN'
+  integer, parameter :: INITIAL_CAPACITY = 16
+
+contains
+
+  integer function resolve_sub(st, model, ref, loc, what) result(isub)
+    !! Substructure a reference points to (0 and reported when there is none).
+    type(deck_state_t), intent(inout) :: st
+    type(model_t), intent(in) :: model
+    type(ref_t), intent(in) :: ref
+    type(source_loc_t), intent(in) :: loc
+    character(*), intent(in) :: what
+    if (allocated(ref%scope)) then
+       isub = sub_index(model, ref%scope)
+       if (isub == 0) call report_loc(st, loc, 'unknown substructure '//ref%scope//' in '// &
+            ref_text(ref)//part_hint(model, ref%scope))
+    else if (ref%home > 0) then
+       isub = ref%home
+    else
+       isub = sub_index(model, MAIN_NAME)
+       if (ref%is_set) isub = assembly_set_owner(model, ref%set, what /= 'node', isub)
+       if (isub == 0) call report_loc(st, loc, what//' '//ref_text(ref)// &
+            ' is not in a substructure: outside *SUBSTRUCTURE blocks write SUB.id or SUB.set '// &
+            '(no nodes were defined outside the blocks, so there is no substructure MAIN)')
+    end if
+  end function resolve_sub
+
+  pure integer function sub_index(model, name) result(k)
+    !! Index of the substructure named `name` (0 if none).
+    type(model_t), intent(in) :: model
+    character(*), intent(in) :: name
+    do k = size(model%subs), 1, -1
+       if (model%subs(k)%name == name) return
+    end do
+    k = 0
+  end function sub_index
+
+  pure function ref_text(ref) result(s)
+    !! A reference as the user wrote it (upper case).
+    type(ref_t), intent(in) :: ref
+    character(:), allocatable :: s
+    if (ref%is_set) then
+       s = ref%set
+    else
+       s = itoa(ref%id)
+    end if
+    if (allocated(ref%scope)) s = ref%scope//'.'//s
+  end function ref_text
+
+  subroutine resolve_items(st, model, isub, ref, elem, loc, items, ok)
+    !! Local node (elem false) or element indices a reference names in substructure isub.
+    type(deck_state_t), intent(inout) :: st
+    type(model_t), intent(in) :: model
+    integer, intent(in) :: isub
+    type(ref_t), intent(in) :: ref
+    logical, intent(in) :: elem
+    type(source_loc_t), intent(in) :: loc
+    integer(ip), allocatable, intent(out) :: items(:)
+    logical, intent(out) :: ok
+    integer :: k
+    integer(ip) :: i
+    character(:), allocatable :: what
+    what = pick(elem, 'element', 'node')
+    ok = .false.
+    associate (sub => model%subs(isub))
+      if (ref%is_set) then
+         k = 0
+         if (elem) then
+            do i = 1, size(sub%elsets)
+               if (sub%elsets(i)%name == ref%set) k = int(i)
+            end do
+            if (k > 0) items = sub%elsets(k)%items
+         else
+            do i = 1, size(sub%nsets)
+               if (sub%nsets(i)%name == ref%set) k = int(i)
+            end do
+            if (k > 0) items = sub%nsets(k)%items
+         end if
+         if (k == 0) then
+            call report_loc(st, loc, 'unknown '//what//' set '//ref%set//' in substructure '//sub%name)
+            return
+         end if
+      else
+         if (elem) then
+            i = find_elem(sub, ref%id)
+         else
+            i = find_node(sub, ref%id)
+         end if
+         if (i == 0) then
+            call report_loc(st, loc, 'undefined '//what//' '//itoa(ref%id)//' in substructure '//sub%name)
+            return
+         end if
+         items = [i]
+      end if
+    end associate
+    ok = .true.
+  end subroutine resolve_items
+
+  function part_hint(model, name) result(s)
+    !! ' (NAME is a part: name one of its instances)' when NAME is a part, else ''.
+    type(model_t), intent(in) :: model
+    character(*), intent(in) :: name
+    character(:), allocatable :: s
+    integer :: k
+    s = ''
+    if (.not. allocated(model%parts)) return
+    do k = 1, size(model%parts)
+       if (model%parts(k)%s == name) s = ' ('//name//' is a part: name one of its instances)'
+    end do
+  end function part_hint
+
+  integer function assembly_set_owner(model, name, elem, main) result(k)
+    !! Substructure of an unscoped set name: MAIN when MAIN has it, else the one
+    !! instance that has it (an assembly-level *NSET or *ELSET, INSTANCE=), else main.
+    type(model_t), intent(in) :: model
+    character(*), intent(in) :: name
+    logical, intent(in) :: elem
+    integer, intent(in) :: main
+    integer :: i, nfound
+    k = main
+    if (main > 0) then
+       if (has_set(main)) return
+    end if
+    nfound = 0
+    do i = 1, size(model%subs)
+       if (model%subs(i)%part == 0) cycle
+       if (has_set(i)) then
+          nfound = nfound + 1
+          if (nfound == 1) k = i
+       end if
+    end do
+    if (nfound /= 1) k = main
+  contains
+    logical function has_set(isub)
+      integer, intent(in) :: isub
+      integer :: j
+      has_set = .false.
+      if (elem) then
+         do j = 1, size(model%subs(isub)%elsets)
+            if (model%subs(isub)%elsets(j)%name == name) has_set = .true.
+         end do
+      else
+         do j = 1, size(model%subs(isub)%nsets)
+            if (model%subs(isub)%nsets(j)%name == name) has_set = .true.
+         end do
+      end if
+    end function has_set
+  end function assembly_set_owner
+
+  pure logical function keeps_previous(step, op)
+    !! Whether a step's loads of one kind (*CLOAD, *DLOAD or *TEMPERATURE,
+    !! whose cards say op) continue those of the previous step: with OP=MOD,
+    !! and by default in a step with a procedure card (*STATIC) that is not a
+    !! PERTURBATION step, as ccx 2.20 does (checked on two-step decks); a
+    !! superjoin step without a procedure card is a load case of its own.
+    type(step_b_t), intent(in) :: step
+    integer, intent(in) :: op
+    keeps_previous = op == OP_MOD .or. (op == OP_DEFAULT .and. step%has_procedure .and. .not. step%perturbation)
+  end function keeps_previous
+
+  pure function more_text(n, suffix) result(s)
+    !! ' (and N more)' text for counts of repeated problems.
+    integer, intent(in) :: n
+    character(*), intent(in), optional :: suffix
+    character(:), allocatable :: s
+    if (n <= 0) then
+       s = ''
+    else
+       s = ' (and '//itoa(n)//' more'
+       if (present(suffix)) s = s//suffix
+       s = s//')'
+    end if
+  end function more_text
+
+  function where(st, loc) result(s)
+    !! "file:line" of a location.
+    type(deck_state_t), intent(in) :: st
+    type(source_loc_t), intent(in) :: loc
+    character(:), allocatable :: s
+    if (loc%file >= 1 .and. loc%file <= st%nfile) then
+       s = st%files(loc%file)%s//':'//itoa(loc%line)
+    else
+       s = '<input>:'//itoa(loc%line)
+    end if
+  end function where
+end module superjoin_deck_build_common

@@ -1,0 +1,301 @@
+module superjoin_deck_build_steps
+  !! Steps of the model: concentrated and distributed loads, boundary
+  !! conditions and their history over the steps, thermal loads, combinations.
+  use superjoin_kinds, only: wp, ip, i8
+  use superjoin_model_types, only: model_t, cload_t, dload_t, ELEMENT_TYPE_NAMES, DLOAD_PX, DLOAD_PY, &
+       DLOAD_PZ, DLOAD_P, DLOAD_GRAV, DLOAD_NAMES, DLOAD_P1, DLOAD_P2, DLOAD_P3, DLOAD_P4, DLOAD_CENTRIF
+  use superjoin_elements_traits, only: accepts_dload, is_family, FAMILY_PLANE
+  use superjoin_deck_lexer, only: itoa
+  use superjoin_deck_state, only: deck_state_t, load_b_t, report_loc, report_oom, OP_NEW
+  use superjoin_model_history, only: support_list_t, step_ops_t, apply_boundary_history, &
+       apply_load_history
+  use superjoin_utils_grow, only: grow
+  use superjoin_deck_build_common, only: resolve_sub, resolve_items, keeps_previous, more_text, &
+       where, INITIAL_CAPACITY
+  use superjoin_deck_build_contacts, only: support_list
+  use superjoin_deck_build_thermal, only: build_thermal
+  implicit none (type, external)
+  private
+
+  interface grow
+     !! Make room for element n + 1 of an allocatable array (grow_template.inc).
+     module procedure grow_cload, grow_dload
+  end interface grow
+
+  public :: build_steps
+
+  type :: dload_list_t
+    !! Growing list of distributed loads while they are generated.
+     integer :: n = 0
+     type(dload_t), allocatable :: a(:)
+  end type dload_list_t
+
+contains
+
+  subroutine build_steps(st, model)
+    !! The steps of the model: loads, boundary conditions, thermal loads, output requests and combinations.
+    type(deck_state_t), intent(inout) :: st
+    type(model_t), intent(inout) :: model
+    integer :: s, j
+    type(cload_t), allocatable :: cl(:)
+    type(dload_t), allocatable :: dl(:)
+    type(load_b_t), allocatable :: own(:)
+    allocate (model%steps(st%nstep))
+    do s = 1, st%nstep
+       model%steps(s)%name = st%steps(s)%name
+       model%steps(s)%loc = st%steps(s)%loc
+       model%steps(s)%procedure_card = st%steps(s)%has_procedure
+       do j = 1, s - 1
+          if (st%steps(j)%name == st%steps(s)%name) then
+             call report_loc(st, st%steps(s)%loc, 'duplicate step name '//st%steps(s)%name// &
+                  ' (first at '//where(st, st%steps(j)%loc)//')')
+             exit
+          end if
+       end do
+       call build_cloads(st, model, st%steps(s)%cloads(1:st%steps(s)%ncload), cl)
+       call move_alloc(cl, model%steps(s)%cloads)
+       if (st%aborted) return
+       own = st%steps(s)%dloads(1:st%steps(s)%ndload)
+       ! CalculiX rules (a step with *STATIC): *DLOAD P pushes along the shell
+       ! normal; superjoin's own P (and the load of a *SURFACE SPOS face)
+       ! pushes against it
+       if (st%steps(s)%has_procedure) where (own%kind == DLOAD_P .and. .not. own%surface) own%value = -own%value
+       call build_dloads(st, model, own, dl)
+       call move_alloc(dl, model%steps(s)%dloads)
+       if (st%aborted) return
+    end do
+    call build_thermal(st, model)
+    if (st%aborted) return
+    call build_history(st, model)
+  end subroutine build_steps
+
+  subroutine build_history(st, model)
+    !! The steps' boundary conditions and the loads continued by OP=MOD
+    !! (superjoin_model_history).
+    type(deck_state_t), intent(inout) :: st
+    type(model_t), intent(inout) :: model
+    type(support_list_t), allocatable :: own(:)
+    type(step_ops_t), allocatable :: ops(:)
+    integer :: s
+    allocate (own(st%nstep), ops(st%nstep))
+    do s = 1, st%nstep
+       ops(s)%bc_new = st%steps(s)%bc_op == OP_NEW
+       ops(s)%cload_mod = keeps_previous(st%steps(s), st%steps(s)%cload_op)
+       ops(s)%dload_mod = keeps_previous(st%steps(s), st%steps(s)%dload_op)
+    end do
+    call apply_load_history(model, ops)
+    if (.not. any(st%steps(1:st%nstep)%has_boundary)) return
+    do s = 1, st%nstep
+       call support_list(st, model, s, own(s)%items)
+       if (st%aborted) return
+    end do
+    call apply_boundary_history(model, own, ops)
+  end subroutine build_history
+
+  subroutine build_cloads(st, model, loads, out)
+    type(deck_state_t), intent(inout) :: st
+    type(model_t), intent(in) :: model
+    type(load_b_t), intent(in) :: loads(:)
+    type(cload_t), allocatable, intent(out) :: out(:)
+    type(cload_t), allocatable :: tmp(:)
+    integer(ip), allocatable :: nodes(:)
+    integer :: k, n, isub, stat
+    integer(ip) :: i
+    logical :: ok
+    allocate (out(INITIAL_CAPACITY))
+    n = 0
+    do k = 1, size(loads)
+       isub = resolve_sub(st, model, loads(k)%ref, loads(k)%loc, 'node')
+       if (isub == 0) cycle
+       call resolve_items(st, model, isub, loads(k)%ref, .false., loads(k)%loc, nodes, ok)
+       if (.not. ok) cycle
+       do i = 1, size(nodes, kind=ip)
+          call grow(out, n, INITIAL_CAPACITY, stat)
+          if (stat /= 0) then
+             call report_oom(st, loads(k)%loc, 'the concentrated loads', &
+                  int(max(2*n, INITIAL_CAPACITY), i8)*storage_size(out)/8)
+             return
+          end if
+          n = n + 1
+          out(n)%sub = isub
+          out(n)%node = nodes(i)
+          out(n)%dof = loads(k)%dof
+          out(n)%value = loads(k)%value
+          out(n)%loc = loads(k)%loc
+       end do
+    end do
+    allocate (tmp(n), stat=stat)
+    if (stat /= 0) then
+       call report_oom(st, loads(size(loads))%loc, 'the concentrated loads', int(n, i8)*storage_size(out)/8)
+       return
+    end if
+    tmp(:) = out(1:n)
+    call move_alloc(tmp, out)
+  end subroutine build_cloads
+
+  subroutine build_dloads(st, model, loads, out)
+    !! The distributed loads of the lines loads on the elements they name.
+    type(deck_state_t), intent(inout) :: st
+    type(model_t), intent(in) :: model
+    type(load_b_t), intent(in) :: loads(:)
+    type(dload_t), allocatable, intent(out) :: out(:)
+    type(dload_t), allocatable :: tmp(:)
+    type(dload_list_t) :: list
+    integer(ip), allocatable :: elems(:)
+    integer :: k, isub, stat
+    integer(ip) :: i
+    logical :: ok
+    allocate (list%a(INITIAL_CAPACITY))
+    do k = 1, size(loads)
+       if (loads(k)%whole_model) then
+          ! GRAV with an empty element field: every element of the model, or of
+          ! the substructure whose block the line stands in
+          do isub = 1, size(model%subs)
+             if (loads(k)%home /= 0 .and. isub /= loads(k)%home) cycle
+             elems = [(i, i=1, model%subs(isub)%nelem)]
+             call add_elements(st, model, loads(k), isub, elems, list)
+             if (st%aborted) exit
+          end do
+          if (st%aborted) exit
+          cycle
+       end if
+       isub = resolve_sub(st, model, loads(k)%ref, loads(k)%loc, 'element')
+       if (isub == 0) cycle
+       call resolve_items(st, model, isub, loads(k)%ref, .true., loads(k)%loc, elems, ok)
+       if (.not. ok) cycle
+       call add_elements(st, model, loads(k), isub, elems, list)
+       if (st%aborted) exit
+    end do
+    if (st%aborted) then
+       call move_alloc(list%a, out)
+       return
+    end if
+    allocate (tmp(list%n), stat=stat)
+    if (stat /= 0) then
+       call report_oom(st, loads(size(loads))%loc, 'the distributed loads', int(list%n, i8)*storage_size(list%a)/8)
+       call move_alloc(list%a, out)
+       return
+    end if
+    tmp(:) = list%a(1:list%n)
+    call move_alloc(tmp, out)
+  end subroutine build_dloads
+
+  subroutine add_elements(st, model, ld, isub, elems, list)
+    !! The loads of line ld on elems of substructure isub, with the checks.
+    type(deck_state_t), intent(inout) :: st
+    type(model_t), intent(in) :: model
+    type(load_b_t), intent(in) :: ld
+    integer, intent(in) :: isub
+    integer(ip), intent(in) :: elems(:)
+    type(dload_list_t), intent(inout) :: list
+    integer :: nodens, nbad, et, stat
+    integer(ip) :: i, first_nodens, first_bad
+    logical :: plane_ok
+    nbad = 0
+    first_bad = 0
+    nodens = 0
+    first_nodens = 0
+    ! CENTRIF keeps the XY plane in itself: axis along Z, or in the plane
+    plane_ok = ld%kind /= DLOAD_CENTRIF .or. abs(ld%dir(3)) == 1.0_wp .or. &
+         (ld%dir(3) == 0.0_wp .and. ld%point(3) == 0.0_wp)
+    do i = 1, size(elems, kind=ip)
+       et = model%subs(isub)%elem_type(elems(i))
+       if (.not. accepts_dload(ld%kind, et)) then
+          nbad = nbad + 1
+          if (nbad == 1) first_bad = elems(i)
+          cycle
+       end if
+       if (ld%kind == DLOAD_CENTRIF .and. .not. plane_ok) then
+          if (is_family(et, FAMILY_PLANE)) then
+             call report_loc(st, ld%loc, 'CENTRIF loads a plane element out of the XY plane '// &
+                  '(the axis must be parallel to Z, or lie in the XY plane)')
+             plane_ok = .true.   ! reported once
+             cycle
+          end if
+       end if
+       if (ld%kind == DLOAD_GRAV .or. ld%kind == DLOAD_CENTRIF) then
+          associate (sub => model%subs(isub))
+            if (sub%elem_section(elems(i)) == 0) cycle
+            if (.not. model%materials(sub%sections(sub%elem_section(elems(i)))%material)%has_density) then
+               nodens = nodens + 1
+               if (nodens == 1) first_nodens = elems(i)
+               cycle
+            end if
+          end associate
+       end if
+       call grow(list%a, list%n, INITIAL_CAPACITY, stat)
+       if (stat /= 0) then
+          call report_oom(st, ld%loc, 'the distributed loads', &
+               int(max(2*list%n, INITIAL_CAPACITY), i8)*storage_size(list%a)/8)
+          return
+       end if
+       list%n = list%n + 1
+       associate (d => list%a(list%n))
+         d%sub = isub
+         d%elem = elems(i)
+         d%kind = ld%kind
+         d%value = ld%value
+         d%dir = ld%dir
+         d%point = ld%point
+         d%loc = ld%loc
+       end associate
+    end do
+    associate (sub => model%subs(isub))
+      if (nodens > 0) call report_loc(st, ld%loc, '*DLOAD '//trim(DLOAD_NAMES(ld%kind))//' on element '// &
+           itoa(sub%elem_id(first_nodens))//' of substructure '//sub%name//', whose material '// &
+           model%materials(sub%sections(sub%elem_section(first_nodens))%material)%name// &
+           ' has no *DENSITY'//more_text(nodens - 1))
+      if (nbad > 0) call report_loc(st, ld%loc, trim(merge('*DSLOAD: face', '*DLOAD       ', ld%surface))// &
+           ' '//trim(surface_face(ld))//' does not apply to element '//itoa(sub%elem_id(first_bad))//' of type '// &
+           trim(ELEMENT_TYPE_NAMES(sub%elem_type(first_bad)))//' ('//dload_targets(ld%kind)//')'//more_text(nbad - 1))
+    end associate
+  end subroutine add_elements
+
+  pure function surface_face(ld) result(name)
+    !! The load form as the deck wrote it: a *DLOAD type, or the face of a
+    !! *SURFACE line (S1 to S4, SPOS / SNEG) for a *DSLOAD.
+    type(load_b_t), intent(in) :: ld
+    character(:), allocatable :: name
+    name = trim(DLOAD_NAMES(ld%kind))
+    if (.not. ld%surface) return
+    if (ld%kind >= DLOAD_P1 .and. ld%kind <= DLOAD_P4) then
+       name = 'S'//name(2:2)//' (edge '//name(2:2)//')'
+    else if (ld%kind == DLOAD_P) then
+       name = 'SPOS or SNEG'
+    end if
+  end function surface_face
+
+  pure function dload_targets(kind) result(s)
+    integer, intent(in) :: kind
+    character(:), allocatable :: s
+    select case (kind)
+    case (DLOAD_PX, DLOAD_PY)
+       s = 'PX and PY apply to beams B23, B33, B21, B31 and B32'
+    case (DLOAD_PZ)
+       s = 'PZ applies to 3D beams B33, B31 and B32'
+    case (DLOAD_P1)
+       s = 'P1 applies to the first edge of plane elements and to 3D beams B33 and B31'
+    case (DLOAD_P2)
+       s = 'P2 applies to the second edge of plane elements and to beams'
+    case (DLOAD_P3)
+       s = 'P3 applies to the third edge of plane elements'
+    case (DLOAD_P4)
+       s = 'P4 applies to the fourth edge of quadrilaterals CPS4, CPS8, CPS8R, CPE4, CPE8 and CPE8R'
+    case (DLOAD_CENTRIF)
+       s = 'CENTRIF applies to trusses, two-node beams, plane and shell elements'
+    case default
+       s = 'P applies to shells S3 and S4'
+    end select
+  end function dload_targets
+
+  ! ------------------------------------------------------------------ growing arrays
+
+#define GROW_NAME grow_cload
+#define GROW_TYPE type(cload_t)
+#include "grow_template.inc"
+
+#define GROW_NAME grow_dload
+#define GROW_TYPE type(dload_t)
+#include "grow_template.inc"
+
+end module superjoin_deck_build_steps

@@ -1,0 +1,414 @@
+module superjoin_deck_build_subs
+  !! The substructures of the model: nodes and elements with their ids sorted,
+  !! node and element sets resolved (references followed, cycles reported).
+  use superjoin_kinds, only: ip, i8
+  use superjoin_model_types, only: substructure_t, index_set_t, find_node, find_elem, &
+       ELEMENT_NODE_COUNT
+  use superjoin_deck_lexer, only: itoa
+  use superjoin_deck_state, only: deck_state_t, sub_b_t, chunk_t, report_loc, find_set, CH_IDS, CH_GEN, &
+       CH_RANGE, CH_REF
+  use superjoin_utils_strings, only: pick
+  use superjoin_utils_grow, only: grow
+  use superjoin_deck_build_common, only: more_text, where, INITIAL_CAPACITY
+  implicit none (type, external)
+  private
+
+  public :: build_sub, resolve_sets
+
+  integer, parameter :: UNVISITED = 0, BUSY = 1, DONE = 2
+    !! States of a set while the sets are resolved.
+
+  type :: set_work_t
+    !! The sets of one kind of one substructure while they are resolved.
+     logical :: elem = .false.                 !! element sets (else node sets)
+     character(:), allocatable :: kind_name    !! 'element set' or 'node set'
+     integer :: nset = 0
+     integer, allocatable :: head(:), list(:)  !! chunks of set s: list(head(s):head(s + 1) - 1)
+     integer, allocatable :: state(:)          !! UNVISITED, BUSY or DONE
+     integer, allocatable :: stack_set(:), stack_pos(:)
+       !! depth-first stack: a set, the position in its chunk list
+     integer, allocatable :: mark(:)           !! stamp of the set an item was last added to
+     integer :: stamp = 0
+     type(index_set_t), allocatable :: sets(:)
+     integer(ip), allocatable :: items(:)      !! members of the set being built: items(1:n)
+     integer :: n = 0
+  end type set_work_t
+
+contains
+
+  subroutine build_sub(st, b, m)
+    !! Substructure m of the model from its parser record b: nodes, elements (ids sorted), sets.
+    type(deck_state_t), intent(inout) :: st
+    type(sub_b_t), intent(inout) :: b
+    type(substructure_t), intent(out) :: m
+    integer(ip) :: n, i, j, k, e
+    integer :: a
+
+    m%name = b%name
+    m%condense = b%condense
+    m%loc = b%loc
+    n = b%nnode
+    m%nnode = n
+    m%node_id = b%node_id(1:n)
+    m%x = b%x(:, 1:n)
+    allocate (m%node_order(n))
+    call argsort_ids(m%node_id, m%node_order)
+    if (b%node_lines == 0) call report_loc(st, b%loc, 'substructure '//b%name//' has no nodes')
+    do i = 2, n
+       if (m%node_id(m%node_order(i)) == m%node_id(m%node_order(i - 1))) then
+          call report_loc(st, b%node_loc(m%node_order(i)), 'duplicate node id '// &
+               itoa(m%node_id(m%node_order(i)))//' in substructure '//b%name//' (also defined at '// &
+               where(st, b%node_loc(m%node_order(i - 1)))//')')
+          if (st%aborted) return
+       end if
+    end do
+
+    n = b%nelem
+    m%nelem = n
+    m%elem_id = b%elem_id(1:n)
+    m%elem_type = b%elem_type(1:n)
+    m%elem_loc = b%elem_loc(1:n)
+    allocate (m%elem_order(n), m%elem_nodes(size(b%elem_nid, 1), n), m%elem_section(n))
+    m%elem_section = 0
+    m%elem_nodes = 0
+    call argsort_ids(m%elem_id, m%elem_order)
+    do i = 2, n
+       if (m%elem_id(m%elem_order(i)) == m%elem_id(m%elem_order(i - 1))) then
+          call report_loc(st, b%elem_loc(m%elem_order(i)), 'duplicate element id '// &
+               itoa(m%elem_id(m%elem_order(i)))//' in substructure '//b%name//' (also defined at '// &
+               where(st, b%elem_loc(m%elem_order(i - 1)))//')')
+          if (st%aborted) return
+       end if
+    end do
+    do e = 1, n
+       do a = 1, ELEMENT_NODE_COUNT(m%elem_type(e))
+          k = find_node(m, b%elem_nid(a, e))
+          if (k == 0) then
+             call report_loc(st, b%elem_loc(e), 'element '//itoa(m%elem_id(e))// &
+                  ' refers to undefined node '//itoa(b%elem_nid(a, e))//' of substructure '//b%name)
+             if (st%aborted) return
+          end if
+          m%elem_nodes(a, e) = k
+       end do
+       do a = 2, ELEMENT_NODE_COUNT(m%elem_type(e))
+          do j = 1, a - 1
+             if (b%elem_nid(a, e) == b%elem_nid(j, e)) then
+                call report_loc(st, b%elem_loc(e), 'element '//itoa(m%elem_id(e))//' uses node '// &
+                     itoa(b%elem_nid(a, e))//' twice')
+             end if
+          end do
+       end do
+    end do
+
+    call resolve_sets(st, b, m, .false.)
+    if (st%aborted) return
+    call resolve_sets(st, b, m, .true.)
+    allocate (m%sections(0))
+    ! the builder's copies are no longer needed
+    deallocate (b%node_id, b%x, b%elem_id, b%elem_type, b%elem_nid, b%pool)
+  end subroutine build_sub
+
+  subroutine resolve_sets(st, b, m, elem)
+    !! Resolve the node sets (elem false) or element sets of one substructure:
+    !! members in order of definition, repeats dropped, set references followed.
+    type(deck_state_t), intent(inout) :: st
+    type(sub_b_t), intent(in) :: b
+    type(substructure_t), intent(inout) :: m
+    logical, intent(in) :: elem
+    type(set_work_t) :: w
+    integer :: s
+
+    call start_sets(b, m, elem, w)
+    do s = 1, w%nset
+       if (w%state(s) /= UNVISITED) cycle
+       call visit_set(st, b, m, w, s)
+    end do
+    if (elem) then
+       call move_alloc(w%sets, m%elsets)
+    else
+       call move_alloc(w%sets, m%nsets)
+    end if
+  end subroutine resolve_sets
+
+  subroutine start_sets(b, m, elem, w)
+    !! The sets of one kind named, their chunks listed set by set (list(head(s) :
+    !! head(s + 1) - 1) are the chunks of set s, in order), nothing visited.
+    type(sub_b_t), intent(in) :: b
+    type(substructure_t), intent(in) :: m
+    logical, intent(in) :: elem
+    type(set_work_t), intent(out) :: w
+    integer :: c, s, nitem
+    w%elem = elem
+    w%kind_name = pick(elem, 'element set', 'node set')
+    if (elem) then
+       w%nset = b%nelset
+       nitem = m%nelem
+    else
+       w%nset = b%nnset
+       nitem = m%nnode
+    end if
+    allocate (w%sets(w%nset), w%head(w%nset + 1), w%list(b%nchunk), w%state(w%nset), w%stack_set(w%nset), &
+         w%stack_pos(w%nset), w%mark(nitem))
+    w%head = 0
+    do c = 1, b%nchunk
+       if (b%chunks(c)%elem .eqv. elem) w%head(b%chunks(c)%set + 1) = w%head(b%chunks(c)%set + 1) + 1
+    end do
+    w%head(1) = 1
+    do s = 1, w%nset
+       w%head(s + 1) = w%head(s + 1) + w%head(s)
+    end do
+    w%stack_pos(1:w%nset) = w%head(1:w%nset)
+    do c = 1, b%nchunk
+       if (b%chunks(c)%elem .eqv. elem) then
+          s = b%chunks(c)%set
+          w%list(w%stack_pos(s)) = c
+          w%stack_pos(s) = w%stack_pos(s) + 1
+       end if
+    end do
+    do s = 1, w%nset
+       if (elem) then
+          w%sets(s)%name = b%elsets(s)%name
+       else
+          w%sets(s)%name = b%nsets(s)%name
+       end if
+    end do
+    w%state = UNVISITED
+    w%mark = 0
+    w%stamp = 0
+  end subroutine start_sets
+
+  subroutine visit_set(st, b, m, w, s)
+    !! Build set s after the sets it refers to (depth first, without recursion);
+    !! unknown sets and cycles are reported.
+    type(deck_state_t), intent(inout) :: st
+    type(sub_b_t), intent(in) :: b
+    type(substructure_t), intent(in) :: m
+    type(set_work_t), intent(inout) :: w
+    integer, intent(in) :: s
+    integer :: sp, t, c, r
+    logical :: pushed
+    sp = 1
+    w%stack_set(1) = s
+    w%stack_pos(1) = w%head(s)
+    w%state(s) = BUSY
+    do while (sp > 0)
+       t = w%stack_set(sp)
+       pushed = .false.
+       do while (w%stack_pos(sp) < w%head(t + 1))
+          c = w%list(w%stack_pos(sp))
+          w%stack_pos(sp) = w%stack_pos(sp) + 1
+          if (b%chunks(c)%kind /= CH_REF) cycle
+          r = find_set(b, b%chunks(c)%ref, w%elem)
+          if (r == 0) then
+             call report_loc(st, b%chunks(c)%loc, w%kind_name//' '//w%sets(t)%name//' refers to unknown '// &
+                  w%kind_name//' '//b%chunks(c)%ref//' of substructure '//b%name)
+          else if (w%state(r) == BUSY) then
+             call report_loc(st, b%chunks(c)%loc, w%kind_name//' '//w%sets(t)%name//' refers to '// &
+                  w%kind_name//' '//w%sets(r)%name//', which refers back to it (cycle)')
+          else if (w%state(r) == UNVISITED) then
+             sp = sp + 1
+             w%stack_set(sp) = r
+             w%stack_pos(sp) = w%head(r)
+             w%state(r) = BUSY
+             pushed = .true.
+             exit
+          end if
+       end do
+       if (pushed) cycle
+       call build_items(st, b, m, w, t)
+       w%state(t) = DONE
+       sp = sp - 1
+    end do
+  end subroutine visit_set
+
+  subroutine build_items(st, b, m, w, t)
+    !! The members of set t from its chunks: ids, GENERATE ranges, internal
+    !! ranges and the members of the sets it refers to (built before it).
+    type(deck_state_t), intent(inout) :: st
+    type(sub_b_t), intent(in) :: b
+    type(substructure_t), intent(in) :: m
+    type(set_work_t), intent(inout) :: w
+    integer, intent(in) :: t
+    integer :: p, r, k, ngen
+    if (.not. allocated(w%items)) allocate (w%items(INITIAL_CAPACITY))
+    w%n = 0
+    w%stamp = w%stamp + 1
+    do p = w%head(t), w%head(t + 1) - 1
+       associate (ch => b%chunks(w%list(p)))
+         select case (ch%kind)
+         case (CH_IDS)
+            call add_ids(st, b, m, w, t, ch)
+         case (CH_GEN)
+            ngen = 0
+            call walk_range(m, w, ch%gen, ngen)
+            if (ngen == 0) call report_loc(st, ch%loc, w%kind_name//' '//w%sets(t)%name// &
+                 ': GENERATE '//itoa(ch%gen(1))//', '//itoa(ch%gen(2))//', '//itoa(ch%gen(3))// &
+                 ' matches no defined id')
+         case (CH_RANGE)
+            do k = ch%start, ch%start + ch%count - 1
+               call add(w, int(k, ip))
+            end do
+         case (CH_REF)
+            r = find_set(b, ch%ref, w%elem)
+            if (r > 0) then
+               if (w%state(r) == DONE) then
+                  do k = 1, size(w%sets(r)%items)
+                     call add(w, w%sets(r)%items(k))
+                  end do
+               end if
+            end if
+         end select
+       end associate
+    end do
+    w%sets(t)%items = w%items(1:w%n)
+  end subroutine build_items
+
+  subroutine add_ids(st, b, m, w, t, ch)
+    !! The members of a chunk of ids of set t (undefined ids reported).
+    type(deck_state_t), intent(inout) :: st
+    type(sub_b_t), intent(in) :: b
+    type(substructure_t), intent(in) :: m
+    type(set_work_t), intent(inout) :: w
+    integer, intent(in) :: t
+    type(chunk_t), intent(in) :: ch
+    integer :: nbad, k
+    integer(ip) :: id, bad_id, i
+    nbad = 0
+    bad_id = 0
+    do k = ch%start, ch%start + ch%count - 1
+       id = b%pool(k)
+       if (w%elem) then
+          i = find_elem(m, id)
+       else
+          i = find_node(m, id)
+       end if
+       if (i == 0) then
+          nbad = nbad + 1
+          if (nbad == 1) bad_id = id
+       else
+          call add(w, i)
+       end if
+    end do
+    if (nbad > 0) call report_loc(st, ch%loc, w%kind_name//' '//w%sets(t)%name// &
+         ': undefined '//pick(w%elem, 'element', 'node')//' '//itoa(bad_id)// &
+         more_text(nbad - 1))
+  end subroutine add_ids
+
+  subroutine add(w, i)
+    !! Member i of the set being built (once).
+    type(set_work_t), intent(inout) :: w
+    integer(ip), intent(in) :: i
+    if (w%mark(i) == w%stamp) return
+    w%mark(i) = w%stamp
+    call grow(w%items, w%n, INITIAL_CAPACITY)
+    w%n = w%n + 1
+    w%items(w%n) = i
+  end subroutine add
+
+  subroutine walk_range(m, w, gen, count)
+    !! Members with ids first, first+inc, ... <= last that exist (walks the
+    !! sorted ids, so sparse huge ranges cost nothing).
+    type(substructure_t), intent(in) :: m
+    type(set_work_t), intent(inout) :: w
+    integer(ip), intent(in) :: gen(3)
+    integer, intent(inout) :: count
+    integer(ip) :: lo, hi, mid, nn, idv
+    if (w%elem) then
+       nn = m%nelem
+    else
+       nn = m%nnode
+    end if
+    lo = 1
+    hi = nn + 1
+    do while (lo < hi)
+       mid = lo + (hi - lo)/2
+       if (sorted_id(m, w%elem, mid) < gen(1)) then
+          lo = mid + 1
+       else
+          hi = mid
+       end if
+    end do
+    do while (lo <= nn)
+       idv = sorted_id(m, w%elem, lo)
+       if (idv > gen(2)) exit
+       if (mod(int(idv, i8) - gen(1), int(gen(3), i8)) == 0) then
+          count = count + 1
+          if (w%elem) then
+             call add(w, m%elem_order(lo))
+          else
+             call add(w, m%node_order(lo))
+          end if
+       end if
+       lo = lo + 1
+    end do
+  end subroutine walk_range
+
+  pure integer(ip) function sorted_id(m, elem, k)
+    !! The k-th smallest element (elem) or node id of m.
+    type(substructure_t), intent(in) :: m
+    logical, intent(in) :: elem
+    integer(ip), intent(in) :: k
+    if (elem) then
+       sorted_id = m%elem_id(m%elem_order(k))
+    else
+       sorted_id = m%node_id(m%node_order(k))
+    end if
+  end function sorted_id
+
+  subroutine argsort_ids(ids, order)
+    !! order = permutation sorting ids ascending (stable merge sort; O(n) when already sorted).
+    integer(ip), intent(in) :: ids(:)
+    integer(ip), intent(out) :: order(:)
+    integer(ip), allocatable :: tmp(:)
+    integer(ip) :: n, width, lo, mid, hi, i, j, k
+    logical :: sorted
+    n = size(ids, kind=ip)
+    do i = 1, n
+       order(i) = i
+    end do
+    sorted = .true.
+    do i = 2, n
+       if (ids(i) < ids(i - 1)) then
+          sorted = .false.
+          exit
+       end if
+    end do
+    if (sorted) return
+    allocate (tmp(n))
+    width = 1
+    do while (width < n)
+       lo = 1
+       do while (lo <= n)
+          mid = min(lo + width - 1, n)
+          hi = min(lo + 2*width - 1, n)
+          i = lo
+          j = mid + 1
+          k = lo
+          do while (i <= mid .and. j <= hi)
+             if (ids(order(j)) < ids(order(i))) then
+                tmp(k) = order(j)
+                j = j + 1
+             else
+                tmp(k) = order(i)
+                i = i + 1
+             end if
+             k = k + 1
+          end do
+          do while (i <= mid)
+             tmp(k) = order(i)
+             i = i + 1
+             k = k + 1
+          end do
+          do while (j <= hi)
+             tmp(k) = order(j)
+             j = j + 1
+             k = k + 1
+          end do
+          lo = hi + 1
+       end do
+       order = tmp
+       if (width > n/2) exit
+       width = 2*width
+    end do
+  end subroutine argsort_ids
+end module superjoin_deck_build_subs

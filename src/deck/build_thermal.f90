@@ -1,0 +1,370 @@
+module superjoin_deck_build_thermal
+  !! Thermal loads of the steps, from *INITIAL CONDITIONS, TYPE=TEMPERATURE and
+  !! *TEMPERATURE.
+  use superjoin_kinds, only: wp, ip
+  use superjoin_model_types, only: model_t, dload_t, source_loc_t, ELEMENT_TYPE_NAMES, &
+       ELEMENT_NODE_COUNT, DLOAD_THERMAL, MAX_ELEMENT_NODES
+  use superjoin_elements_traits, only: element_traits_t, element_traits, FAMILY_TRUSS, FAMILY_BEAM, &
+       FAMILY_PLANE, FAMILY_SHELL
+  use superjoin_deck_lexer, only: itoa
+  use superjoin_deck_state, only: deck_state_t, report_loc
+  use superjoin_deck_build_common, only: resolve_sub, resolve_items, keeps_previous, more_text
+  implicit none (type, external)
+  private
+
+  public :: build_thermal
+
+  type :: real_list_t
+    !! A real value per node of one substructure (temperatures).
+     real(wp), allocatable :: v(:)
+  end type real_list_t
+
+  type :: temp_field_t
+    !! Nodal temperatures T and the gradients across the section (g: the third
+    !! field of the temperature lines, h: the fourth) of every substructure.
+     type(real_list_t), allocatable :: t(:), g(:), h(:)
+  end type temp_field_t
+
+  type :: element_change_t
+    !! The change of temperature (dtn) and of the third-field gradient (dgn) at
+    !! the nodes of an element, and the means of the changes dt, dg, dh.
+     real(wp) :: dt = 0.0_wp, dg = 0.0_wp, dh = 0.0_wp
+     real(wp) :: dtn(MAX_ELEMENT_NODES) = 0.0_wp, dgn(MAX_ELEMENT_NODES) = 0.0_wp
+  end type element_change_t
+
+  type :: thermal_step_t
+    !! The thermal loads of one step while they are collected.
+     type(dload_t), allocatable :: extra(:)
+     type(source_loc_t) :: loc        !! the step's first *TEMPERATURE line
+     integer :: nplate = 0            !! elements of a type without thermal loads (in one substructure)
+     integer(ip) :: first_plate = 0
+  end type thermal_step_t
+
+contains
+
+  subroutine build_thermal(st, model)
+    !! Thermal loads from *INITIAL CONDITIONS, TYPE=TEMPERATURE and the steps'
+    !! *TEMPERATURE lines: a truss or beam whose material has *EXPANSION gets,
+    !! in each step with temperatures, the load of its uniform temperature
+    !! change ΔT (the mean of its nodes' T - T0; nodes without a step
+    !! temperature keep T0, or the previous step's temperature where the step
+    !! continues it (keeps_previous), nodes without an initial one start at 0), a
+    !! DLOAD_THERMAL entry of value E A α ΔT; a beam also the thermal
+    !! curvatures α ∂T/∂y, α ∂T/∂z of the gradients across its section at its
+    !! two nodes (linear in between)
+    !! (CalculiX's third field: along the 2-direction, local z of B31/B33,
+    !! local y of the planar B21/B23; the fourth: along the 1-direction, local
+    !! y). A plane or shell element gets the entry of its thermal strain α ΔT
+    !! (the mean over its nodes; an element whose nodes differ also the
+    !! nodal remainders, interpolated to its integration points) and, on shells,
+    !! of its curvature α ∂T/∂n (the mean of its nodes' gradients, the third
+    !! field of the temperature lines, with the nodal remainders likewise); a B32 gets α ΔT and both gradients at
+    !! its three nodes (line_nodal, interpolated along it); a gradient on any
+    !! other element is refused.
+    type(deck_state_t), intent(inout) :: st
+    type(model_t), intent(inout) :: model
+    type(temp_field_t) :: init, prev, cur
+    logical :: kept, ok
+    integer :: s
+    if (st%ntemp == 0) return
+    call zero_field(model, init)
+    call apply_lines(st, model, 0, init)
+    prev = init
+    do s = 1, size(model%steps)
+       ! the step's temperatures start from the previous step's (OP=MOD, or
+       ! CalculiX's rule in a step with *STATIC) or from the initial ones
+       kept = .false.
+       if (s > 1 .and. keeps_previous(st%steps(s), st%steps(s)%temp_op)) kept = differ(prev, init)
+       model%steps(s)%kept_temperatures = kept
+       if (kept) model%steps(s)%kept_from = model%steps(s - 1)%name
+       if (.not. kept .and. .not. any(st%temps(1:st%ntemp)%step == s)) then
+          call keep_temperatures(model, s, init%t)
+          prev = init
+          cycle
+       end if
+       if (kept) then
+          cur = prev
+       else
+          cur = init
+       end if
+       call apply_lines(st, model, s, cur)
+       if (st%aborted) return
+       call keep_temperatures(model, s, cur%t)
+       prev = cur
+       call step_thermal_loads(st, model, s, init, cur, ok)
+       if (.not. ok) return
+    end do
+  end subroutine build_thermal
+
+  subroutine zero_field(model, f)
+    !! Temperatures and gradients 0 at every node of the model.
+    type(model_t), intent(in) :: model
+    type(temp_field_t), intent(out) :: f
+    integer :: isub
+    allocate (f%t(size(model%subs)), f%g(size(model%subs)), f%h(size(model%subs)))
+    do isub = 1, size(model%subs)
+       allocate (f%t(isub)%v(model%subs(isub)%nnode), source=0.0_wp)
+       allocate (f%g(isub)%v(model%subs(isub)%nnode), source=0.0_wp)
+       allocate (f%h(isub)%v(model%subs(isub)%nnode), source=0.0_wp)
+    end do
+  end subroutine zero_field
+
+  subroutine apply_lines(st, model, step, f)
+    !! Set the temperatures and gradients the lines of step (0: initial conditions) give.
+    type(deck_state_t), intent(inout) :: st
+    type(model_t), intent(in) :: model
+    integer, intent(in) :: step
+    type(temp_field_t), intent(inout) :: f
+    integer(ip), allocatable :: nodes(:)
+    integer(ip) :: i
+    integer :: j, js
+    logical :: ok
+    do j = 1, st%ntemp
+       if (st%temps(j)%step /= step) cycle
+       js = resolve_sub(st, model, st%temps(j)%ref, st%temps(j)%loc, 'node')
+       if (js == 0) cycle
+       call resolve_items(st, model, js, st%temps(j)%ref, .false., st%temps(j)%loc, nodes, ok)
+       if (.not. ok) cycle
+       do i = 1, size(nodes, kind=ip)
+          f%t(js)%v(nodes(i)) = st%temps(j)%value
+          f%g(js)%v(nodes(i)) = st%temps(j)%grad
+          f%h(js)%v(nodes(i)) = st%temps(j)%grad1
+       end do
+    end do
+  end subroutine apply_lines
+
+  pure logical function differ(a, b)
+    !! Whether two temperature fields differ anywhere (temperatures or gradients).
+    type(temp_field_t), intent(in) :: a, b
+    differ = lists_differ(a%t, b%t) .or. lists_differ(a%g, b%g) .or. lists_differ(a%h, b%h)
+  end function differ
+
+  pure logical function lists_differ(a, b)
+    !! Whether two nodal fields (per substructure) differ anywhere.
+    type(real_list_t), intent(in) :: a(:), b(:)
+    integer :: k
+    lists_differ = .false.
+    do k = 1, size(a)
+       if (any(a(k)%v /= b(k)%v)) lists_differ = .true.
+    end do
+  end function lists_differ
+
+  subroutine keep_temperatures(model, step, field)
+    !! The nodal temperatures of a step, for *NODE PRINT NT.
+    type(model_t), intent(inout) :: model
+    integer, intent(in) :: step
+    type(real_list_t), intent(in) :: field(:)
+    integer :: k
+    if (model%steps(step)%combination > 0) return
+    if (.not. allocated(model%steps(step)%temperature)) allocate (model%steps(step)%temperature(size(field)))
+    do k = 1, size(field)
+       model%steps(step)%temperature(k)%v = field(k)%v
+    end do
+  end subroutine keep_temperatures
+
+  function first_line(st, model, step) result(loc)
+    !! The first *TEMPERATURE line of a step (where its thermal loads come from).
+    type(deck_state_t), intent(in) :: st
+    type(model_t), intent(in) :: model
+    integer, intent(in) :: step
+    type(source_loc_t) :: loc
+    integer :: j
+    loc = model%steps(step)%loc
+    do j = 1, st%ntemp
+       if (st%temps(j)%step == step) then
+          loc = st%temps(j)%loc
+          return
+       end if
+    end do
+  end function first_line
+
+  subroutine step_thermal_loads(st, model, s, init, cur, ok)
+    !! The thermal loads of step s (temperatures cur, from init), added to its
+    !! distributed loads; not ok (nothing added) when a gradient is refused.
+    type(deck_state_t), intent(inout) :: st
+    type(model_t), intent(inout) :: model
+    integer, intent(in) :: s
+    type(temp_field_t), intent(in) :: init, cur
+    logical, intent(out) :: ok
+    type(thermal_step_t) :: ts
+    integer :: isub
+    integer(ip) :: e
+    ok = .true.
+    allocate (ts%extra(0))
+    ts%loc = first_line(st, model, s)
+    do isub = 1, size(model%subs)
+       ts%nplate = 0
+       do e = 1, model%subs(isub)%nelem
+          call element_thermal(st, model, isub, e, init, cur, ts, ok)
+          if (.not. ok) return
+       end do
+       if (ts%nplate > 0) then
+          associate (sub => model%subs(isub))
+            call report_loc(st, ts%loc, 'temperature change on element '//itoa(sub%elem_id(ts%first_plate))// &
+                 ' of type '//trim(ELEMENT_TYPE_NAMES(sub%elem_type(ts%first_plate)))//' of substructure '// &
+                 sub%name//': thermal loads are implemented for trusses, beams, plane elements and S3, S4, S3R, S4R, S8R shells only'// &
+                 more_text(ts%nplate - 1))
+          end associate
+       end if
+    end do
+    model%steps(s)%dloads = [model%steps(s)%dloads, ts%extra]
+  end subroutine step_thermal_loads
+
+  subroutine element_thermal(st, model, isub, e, init, cur, ts, ok)
+    !! The thermal load of element e of substructure isub, if its material
+    !! expands and its temperatures changed; not ok when a gradient is refused.
+    type(deck_state_t), intent(inout) :: st
+    type(model_t), intent(in) :: model
+    integer, intent(in) :: isub
+    integer(ip), intent(in) :: e
+    type(temp_field_t), intent(in) :: init, cur
+    type(thermal_step_t), intent(inout) :: ts
+    logical, intent(out) :: ok
+    type(element_change_t) :: c
+    type(element_traits_t) :: tr
+    integer :: nn
+    ok = .true.
+    associate (sub => model%subs(isub))
+      if (sub%elem_section(e) == 0) return
+      ! an undefined material or node has been reported already
+      if (sub%sections(sub%elem_section(e))%material <= 0) return
+      associate (mat => model%materials(sub%sections(sub%elem_section(e))%material))
+        if (.not. mat%has_expansion .or. mat%alpha == 0.0_wp) return
+        nn = ELEMENT_NODE_COUNT(sub%elem_type(e))
+        ! an element with an undefined node has been reported already
+        if (nn == 0 .or. any(sub%elem_nodes(1:nn, e) <= 0)) return
+        c = element_change(sub%elem_nodes(1:nn, e), isub, init, cur)
+        if (c%dt == 0.0_wp .and. c%dg == 0.0_wp .and. c%dh == 0.0_wp .and. all(c%dtn(1:nn) == 0.0_wp) &
+             .and. all(c%dgn(1:nn) == 0.0_wp)) return
+        tr = element_traits(sub%elem_type(e))
+        select case (tr%family)
+        case (FAMILY_TRUSS, FAMILY_BEAM)
+           if (tr%quadratic) then
+              ! the three-node beam: α ΔT and both gradients (fourth field: local y,
+              ! third: local z) at each node, interpolated along it
+              ts%extra = [ts%extra, dload_t(sub=isub, elem=e, kind=DLOAD_THERMAL, value=0.0_wp, loc=ts%loc)]
+              associate (en => sub%elem_nodes(1:3, e))
+                ts%extra(size(ts%extra))%line_nodal = mat%alpha*transpose(reshape([ &
+                     cur%t(isub)%v(en) - init%t(isub)%v(en), cur%h(isub)%v(en) - init%h(isub)%v(en), &
+                     cur%g(isub)%v(en) - init%g(isub)%v(en)], [3, 3]))
+              end associate
+           else
+              call line_thermal(st, model, isub, e, tr, c, init, cur, ts, ok)
+           end if
+        case (FAMILY_PLANE, FAMILY_SHELL)
+           call area_thermal(st, model, isub, e, tr, c, ts, ok)
+        case default
+           ts%nplate = ts%nplate + 1
+           if (ts%nplate == 1) ts%first_plate = e
+        end select
+      end associate
+    end associate
+  end subroutine element_thermal
+
+  pure function element_change(en, isub, init, cur) result(c)
+    !! The changes of temperature and gradients at the nodes en of an element
+    !! of substructure isub, and their means.
+    integer(ip), intent(in) :: en(:)
+    integer, intent(in) :: isub
+    type(temp_field_t), intent(in) :: init, cur
+    type(element_change_t) :: c
+    integer :: nn
+    nn = size(en)
+    c%dtn(1:nn) = cur%t(isub)%v(en) - init%t(isub)%v(en)
+    c%dgn(1:nn) = cur%g(isub)%v(en) - init%g(isub)%v(en)
+    c%dt = sum(cur%t(isub)%v(en) - init%t(isub)%v(en))/nn
+    c%dg = sum(cur%g(isub)%v(en) - init%g(isub)%v(en))/nn
+    c%dh = sum(cur%h(isub)%v(en) - init%h(isub)%v(en))/nn
+  end function element_change
+
+  subroutine line_thermal(st, model, isub, e, tr, c, init, cur, ts, ok)
+    !! Truss or two-node beam e: the axial load E A α ΔT, and on a beam the
+    !! curvatures of the gradients at its nodes (planar beams: the third field;
+    !! beams in space: the fourth field along local y, the third along local z).
+    type(deck_state_t), intent(inout) :: st
+    type(model_t), intent(in) :: model
+    integer, intent(in) :: isub
+    integer(ip), intent(in) :: e
+    type(element_traits_t), intent(in) :: tr
+    type(element_change_t), intent(in) :: c
+    type(temp_field_t), intent(in) :: init, cur
+    type(thermal_step_t), intent(inout) :: ts
+    logical, intent(out) :: ok
+    ok = .false.
+    if (c%dg /= 0.0_wp .and. tr%family == FAMILY_TRUSS) then
+       call refuse(st, model, isub, e, ts%loc, 'the gradients (third and fourth fields) apply to shells and beams only')
+       return
+    end if
+    if (c%dh /= 0.0_wp .and. (tr%family == FAMILY_TRUSS .or. tr%planar)) then
+       call refuse(st, model, isub, e, ts%loc, 'the fourth field, the gradient along the 1-direction of a beam in space, '// &
+            'acts normal to the plane of a planar element')
+       return
+    end if
+    ok = .true.
+    associate (sub => model%subs(isub), n2 => model%subs(isub)%elem_nodes(1:2, e))
+      associate (sec => sub%sections(sub%elem_section(e)))
+        associate (mat => model%materials(sec%material))
+          ts%extra = [ts%extra, dload_t(sub=isub, elem=e, kind=DLOAD_THERMAL, &
+               value=mat%e*sec%area*mat%alpha*c%dt, loc=ts%loc)]
+          if (tr%family /= FAMILY_BEAM) return
+          if (tr%planar) then
+             ts%extra(size(ts%extra))%gradient(1, :) = mat%alpha*(cur%g(isub)%v(n2) - init%g(isub)%v(n2))
+          else
+             ts%extra(size(ts%extra))%gradient(1, :) = mat%alpha*(cur%h(isub)%v(n2) - init%h(isub)%v(n2))
+             ts%extra(size(ts%extra))%gradient(2, :) = mat%alpha*(cur%g(isub)%v(n2) - init%g(isub)%v(n2))
+          end if
+        end associate
+      end associate
+    end associate
+  end subroutine line_thermal
+
+  subroutine area_thermal(st, model, isub, e, tr, c, ts, ok)
+    !! Plane or shell element e: the thermal strain α ΔT and (shells) the
+    !! curvature α ∂T/∂n, with the nodal remainders where its nodes differ.
+    type(deck_state_t), intent(inout) :: st
+    type(model_t), intent(in) :: model
+    integer, intent(in) :: isub
+    integer(ip), intent(in) :: e
+    type(element_traits_t), intent(in) :: tr
+    type(element_change_t), intent(in) :: c
+    type(thermal_step_t), intent(inout) :: ts
+    logical, intent(out) :: ok
+    integer :: nn
+    ok = .false.
+    if ((c%dg /= 0.0_wp .and. tr%family /= FAMILY_SHELL) .or. c%dh /= 0.0_wp) then
+       call refuse(st, model, isub, e, ts%loc, 'the gradient (third field) applies to shells and beams only, the fourth '// &
+            'field to beams only')
+       return
+    end if
+    ok = .true.
+    nn = tr%nodes
+    associate (sub => model%subs(isub))
+      associate (mat => model%materials(sub%sections(sub%elem_section(e))%material))
+        ts%extra = [ts%extra, dload_t(sub=isub, elem=e, kind=DLOAD_THERMAL, &
+             value=mat%alpha*c%dt, curvature=mat%alpha*c%dg, loc=ts%loc)]
+        ! a plane element whose nodes differ: the nodal values, interpolated to its points
+        if (tr%family == FAMILY_PLANE .and. any(c%dtn(1:nn) /= c%dtn(1))) &
+             ts%extra(size(ts%extra))%nodal = mat%alpha*c%dtn(1:nn) - mat%alpha*c%dt
+        ! a shell whose nodes differ: both nodal remainders, interpolated to its points
+        if (tr%family /= FAMILY_PLANE .and. &
+             (any(c%dtn(1:nn) /= c%dtn(1)) .or. any(c%dgn(1:nn) /= c%dgn(1)))) then
+           ts%extra(size(ts%extra))%nodal = mat%alpha*c%dtn(1:nn) - mat%alpha*c%dt
+           ts%extra(size(ts%extra))%curvature_nodal = mat%alpha*c%dgn(1:nn) - mat%alpha*c%dg
+        end if
+      end associate
+    end associate
+  end subroutine area_thermal
+
+  subroutine refuse(st, model, isub, e, loc, why)
+    !! Refuse a gradient on element e of substructure isub.
+    type(deck_state_t), intent(inout) :: st
+    type(model_t), intent(in) :: model
+    integer, intent(in) :: isub
+    integer(ip), intent(in) :: e
+    type(source_loc_t), intent(in) :: loc
+    character(*), intent(in) :: why
+    call report_loc(st, loc, 'temperature gradient on element '// &
+         itoa(model%subs(isub)%elem_id(e))//' of type '// &
+         trim(ELEMENT_TYPE_NAMES(model%subs(isub)%elem_type(e)))//': '//why)
+  end subroutine refuse
+end module superjoin_deck_build_thermal

@@ -1,0 +1,436 @@
+module superjoin_deck_cards_model
+  !! Model cards of the deck reader: *HEADING, *SUBSTRUCTURE, *NODE, *ELEMENT
+  !! (with the spring elements of *ELEMENT, TYPE=SPRING1|SPRING2|SPRINGA and their
+  !! *SPRING cards), *NSET and *ELSET.
+  use superjoin_kinds, only: wp, ip, i8
+  use superjoin_model_types, only: source_loc_t, ELEMENT_TYPE_NAMES, ELEMENT_NODE_COUNT, &
+       NUM_ELEMENT_TYPES, MAX_ELEMENT_NODES, CONDENSE_AUTO, CONDENSE_YES, CONDENSE_NO, ET_B32
+  use superjoin_deck_lexer, only: keyword_line_t, to_upper, is_name, looks_numeric, itoa, clip
+  use superjoin_deck_state, only: deck_state_t, report_loc, report_oom, new_sub, find_sub, find_set, &
+       new_set, add_chunk, push_pool, add_node, add_element, CH_IDS, CH_GEN, CH_RANGE, CH_REF, &
+       spring_elem_b_t, spring_card_b_t, add_spring_elem, add_spring_card, SPRING_1, SPRING_2, &
+       SPRING_A
+  use superjoin_utils_strings, only: pick
+  use superjoin_elements_catalog, only: unsupported_type_message
+  use superjoin_deck_cards_common, only: outside_step, check_params, param_index, get_param, &
+       get_name_param, target_sub, field_count, fld, get_real, get_id, loc_string, CARD_SKIP, &
+       CARD_HEADING, CARD_NODE, CARD_ELEMENT, CARD_NSET, CARD_ELSET, CARD_SPRING_ELEMENT, &
+       CARD_SPRING, NAME_LEN
+  use superjoin_deck_cards_assembly, only: set_home
+  implicit none (type, external)
+  private
+
+  public :: kw_heading, kw_substructure, kw_end_substructure, kw_node, kw_element, kw_set, &
+       data_node, data_element, data_set, data_spring_element, kw_spring, data_spring
+
+  integer, parameter :: NODE_FIELDS_MIN = 1, NODE_FIELDS_MAX = 7, NODE_COORD_FIELDS = 4
+    !! id, x, y, z, then (Abaqus) the direction cosines of a shell normal, checked and ignored.
+    !! Numbers of fields of data lines.
+  integer, parameter :: GEN_FIELDS_MIN = 2, GEN_FIELDS_MAX = 3
+
+contains
+
+  subroutine kw_heading(st, kw, loc)
+    !! *HEADING: its data lines are the title of the model.
+    type(deck_state_t), intent(inout) :: st
+    type(keyword_line_t), intent(in) :: kw
+    type(source_loc_t), intent(in) :: loc
+    if (.not. outside_step(st, kw, loc)) return
+    call check_params(st, kw, loc, [character(NAME_LEN) ::], [character(NAME_LEN) ::])
+    st%card = CARD_HEADING
+  end subroutine kw_heading
+
+  subroutine kw_substructure(st, kw, loc)
+    !! *SUBSTRUCTURE, NAME=s: opens a substructure block.
+    type(deck_state_t), intent(inout) :: st
+    type(keyword_line_t), intent(in) :: kw
+    type(source_loc_t), intent(in) :: loc
+    character(:), allocatable :: name, value
+    logical :: found
+    integer :: k
+    if (.not. outside_step(st, kw, loc)) return
+    call check_params(st, kw, loc, [character(NAME_LEN) :: 'NAME', 'CONDENSE'], [character(NAME_LEN) ::])
+    if (st%cur_sub > 0) then
+       call report_loc(st, loc, '*SUBSTRUCTURE inside *SUBSTRUCTURE '//st%subs(st%cur_sub)%name// &
+            ' (missing *END SUBSTRUCTURE?)')
+       st%cur_sub = 0
+    end if
+    call get_name_param(st, kw, loc, 'NAME', .true., name, found)
+    if (.not. found) name = '?'
+    k = find_sub(st, name)
+    if (k > 0 .and. found) call report_loc(st, loc, 'duplicate substructure name '//name// &
+         ' (first defined at '//loc_string(st, st%subs(k)%loc)//')')
+    call new_sub(st, name, loc, k)
+    st%cur_sub = k
+    call get_param(st, kw, loc, 'CONDENSE', .false., value, found)
+    if (found) then
+       select case (to_upper(value))
+       case ('AUTO')
+          st%subs(k)%condense = CONDENSE_AUTO
+       case ('YES')
+          st%subs(k)%condense = CONDENSE_YES
+       case ('NO')
+          st%subs(k)%condense = CONDENSE_NO
+       case default
+          call report_loc(st, loc, 'CONDENSE must be YES, NO or AUTO, not '//clip(value))
+       end select
+    end if
+  end subroutine kw_substructure
+
+  subroutine kw_end_substructure(st, kw, loc)
+    !! *END SUBSTRUCTURE: closes the open *SUBSTRUCTURE block.
+    type(deck_state_t), intent(inout) :: st
+    type(keyword_line_t), intent(in) :: kw
+    type(source_loc_t), intent(in) :: loc
+    call check_params(st, kw, loc, [character(NAME_LEN) ::], [character(NAME_LEN) ::])
+    if (st%cur_sub == 0) then
+       call report_loc(st, loc, '*END SUBSTRUCTURE without *SUBSTRUCTURE')
+    else
+       st%cur_sub = 0
+    end if
+  end subroutine kw_end_substructure
+
+  subroutine kw_node(st, kw, loc)
+    !! *NODE[, NSET=n]: its data lines define nodes.
+    type(deck_state_t), intent(inout) :: st
+    type(keyword_line_t), intent(in) :: kw
+    type(source_loc_t), intent(in) :: loc
+    character(:), allocatable :: nset
+    logical :: found
+    integer :: isub, iset
+    if (.not. outside_step(st, kw, loc)) return
+    call check_params(st, kw, loc, [character(NAME_LEN) :: 'NSET'], [character(NAME_LEN) ::])
+    isub = target_sub(st, loc)
+    st%card = CARD_NODE
+    st%card_sub = isub
+    call get_name_param(st, kw, loc, 'NSET', .false., nset, found)
+    if (found) then
+       associate (sub => st%subs(isub))
+         iset = find_set(sub, nset, .false.)
+         if (iset == 0) call new_set(sub, nset, .false., loc, iset)
+         call add_chunk(sub, iset, .false., CH_RANGE, loc, st%card_chunk)
+         sub%chunks(st%card_chunk)%start = sub%nnode + 1
+       end associate
+    end if
+  end subroutine kw_node
+
+  subroutine kw_element(st, kw, loc)
+    !! *ELEMENT, TYPE=t[, ELSET=e]: its data lines define elements (spring types go to kw_spring_element).
+    type(deck_state_t), intent(inout) :: st
+    type(keyword_line_t), intent(in) :: kw
+    type(source_loc_t), intent(in) :: loc
+    character(:), allocatable :: typ, elset
+    logical :: found
+    integer :: isub, iset, k
+    if (.not. outside_step(st, kw, loc)) return
+    call check_params(st, kw, loc, [character(NAME_LEN) :: 'TYPE', 'ELSET'], [character(NAME_LEN) ::])
+    call get_param(st, kw, loc, 'TYPE', .true., typ, found)
+    st%card = CARD_SKIP
+    if (.not. found) return
+    typ = to_upper(typ)
+    if (spring_type(typ) > 0) then
+       call kw_spring_element(st, kw, loc, spring_type(typ))
+       return
+    end if
+    st%card_etype = 0
+    do k = 1, NUM_ELEMENT_TYPES
+       if (len_trim(ELEMENT_TYPE_NAMES(k)) > 0 .and. trim(ELEMENT_TYPE_NAMES(k)) == typ) st%card_etype = k
+    end do
+    ! CalculiX's B32R (reduced integration) is superjoin's B32, which has the
+    ! reduced two-point rule (doc/verification.md, CalculiX test decks)
+    if (typ == 'B32R') st%card_etype = ET_B32
+    if (st%card_etype == 0) then
+       call report_loc(st, loc, unsupported_type_message(clip(typ)))
+       call declare_elset(st, kw, loc)
+       return
+    end if
+    isub = target_sub(st, loc)
+    st%card = CARD_ELEMENT
+    st%card_sub = isub
+    st%nelem_cards = st%nelem_cards + 1
+    st%card_item = st%nelem_cards
+    call get_name_param(st, kw, loc, 'ELSET', .false., elset, found)
+    if (found) then
+       associate (sub => st%subs(isub))
+         iset = find_set(sub, elset, .true.)
+         if (iset == 0) call new_set(sub, elset, .true., loc, iset)
+         call add_chunk(sub, iset, .true., CH_RANGE, loc, st%card_chunk)
+         sub%chunks(st%card_chunk)%start = sub%nelem + 1
+       end associate
+    end if
+  end subroutine kw_element
+
+  subroutine declare_elset(st, kw, loc)
+    !! The ELSET of a rejected *ELEMENT card still exists (empty), so that the
+    !! cards naming it do not each report it as unknown: one error per mistake.
+    type(deck_state_t), intent(inout) :: st
+    type(keyword_line_t), intent(in) :: kw
+    type(source_loc_t), intent(in) :: loc
+    character(:), allocatable :: elset
+    logical :: found
+    integer :: isub, iset
+    call get_name_param(st, kw, loc, 'ELSET', .false., elset, found)
+    if (.not. found) return
+    isub = target_sub(st, loc)
+    iset = find_set(st%subs(isub), elset, .true.)
+    if (iset == 0) call new_set(st%subs(isub), elset, .true., loc, iset)
+  end subroutine declare_elset
+
+  subroutine kw_set(st, kw, loc, elem)
+    !! *NSET or *ELSET (elem), NSET=|ELSET=n[, GENERATE]: its data lines list the members.
+    type(deck_state_t), intent(inout) :: st
+    type(keyword_line_t), intent(in) :: kw
+    type(source_loc_t), intent(in) :: loc
+    logical, intent(in) :: elem
+    character(:), allocatable :: name, pname
+    logical :: found
+    integer :: isub, iset
+    if (.not. outside_step(st, kw, loc)) return
+    if (elem) then
+       pname = 'ELSET'
+       call check_params(st, kw, loc, [character(NAME_LEN) :: 'ELSET', 'INSTANCE'], &
+            [character(NAME_LEN) :: 'GENERATE', 'UNSORTED'])
+    else
+       pname = 'NSET'
+       call check_params(st, kw, loc, [character(NAME_LEN) :: 'NSET', 'INSTANCE'], &
+            [character(NAME_LEN) :: 'GENERATE', 'UNSORTED'])
+    end if
+    call get_name_param(st, kw, loc, pname, .true., name, found)
+    st%card = CARD_SKIP
+    if (.not. found) return
+    isub = set_home(st, kw, loc)
+    if (isub == 0) return
+    iset = find_set(st%subs(isub), name, elem)
+    if (iset == 0) call new_set(st%subs(isub), name, elem, loc, iset)
+    st%card = merge(CARD_ELSET, CARD_NSET, elem)
+    st%card_sub = isub
+    st%card_set = iset
+    st%card_generate = param_index(kw, 'GENERATE') > 0
+  end subroutine kw_set
+
+  subroutine data_node(st, line, loc)
+    !! A data line of *NODE: id[, x[, y[, z[, nx, ny, nz]]]].
+    type(deck_state_t), intent(inout) :: st
+    character(*), intent(in) :: line
+    type(source_loc_t), intent(in) :: loc
+    integer(ip) :: id
+    real(wp) :: x(3), normal
+    integer :: i
+    integer(i8) :: failed_bytes
+    st%subs(st%card_sub)%node_lines = st%subs(st%card_sub)%node_lines + 1
+    if (.not. field_count(st, loc, NODE_FIELDS_MIN, NODE_FIELDS_MAX, 'id[, x[, y[, z[, nx, ny, nz]]]]')) return
+    if (.not. get_id(st, line, loc, 1, 'node id', id)) return
+    x = 0.0_wp
+    do i = 2, st%f%n
+       if (st%f%last(i) < st%f%first(i)) cycle    ! an omitted coordinate is 0, as in Abaqus
+       if (i <= NODE_COORD_FIELDS) then
+          if (.not. get_real(st, line, loc, i, x(i - 1))) return
+       else
+          if (.not. get_real(st, line, loc, i, normal)) return
+       end if
+    end do
+    associate (sub => st%subs(st%card_sub))
+      call add_node(sub, id, x, loc, failed_bytes)
+      if (failed_bytes > 0) then
+         call too_many(st, loc, 'nodes', sub%nnode, failed_bytes)
+         return
+      end if
+      if (st%card_chunk > 0) sub%chunks(st%card_chunk)%count = sub%chunks(st%card_chunk)%count + 1
+    end associate
+  end subroutine data_node
+
+  subroutine data_element(st, line, loc)
+    !! A data line of *ELEMENT: id and the nodes of the card's element type.
+    type(deck_state_t), intent(inout) :: st
+    character(*), intent(in) :: line
+    type(source_loc_t), intent(in) :: loc
+    integer(ip) :: id, nid(MAX_ELEMENT_NODES)
+    integer :: i, nn
+    integer(i8) :: failed_bytes
+    nn = ELEMENT_NODE_COUNT(st%card_etype)
+    if (.not. field_count(st, loc, nn + 1, nn + 1, 'id and '//itoa(nn)//' nodes for type '// &
+         trim(ELEMENT_TYPE_NAMES(st%card_etype)))) return
+    if (.not. get_id(st, line, loc, 1, 'element id', id)) return
+    nid = 0
+    do i = 1, nn
+       if (.not. get_id(st, line, loc, i + 1, 'node id', nid(i))) return
+    end do
+    associate (sub => st%subs(st%card_sub))
+      call add_element(sub, id, st%card_etype, nid, loc, st%card_item, failed_bytes)
+      if (failed_bytes > 0) then
+         call too_many(st, loc, 'elements', sub%nelem, failed_bytes)
+         return
+      end if
+      if (st%card_chunk > 0) sub%chunks(st%card_chunk)%count = sub%chunks(st%card_chunk)%count + 1
+    end associate
+  end subroutine data_element
+
+  subroutine too_many(st, loc, what, count, failed_bytes)
+    !! A substructure cannot take one more node or element: more than
+    !! huge(count) of them (a deck error), or out of memory (EXIT_IO).
+    type(deck_state_t), intent(inout) :: st
+    type(source_loc_t), intent(in) :: loc
+    character(*), intent(in) :: what
+    integer(ip), intent(in) :: count
+    integer(i8), intent(in) :: failed_bytes
+    if (count == huge(count)) then
+       call report_loc(st, loc, 'more than '//itoa(huge(count))//' '//what//' in one substructure')
+       st%aborted = .true.
+    else
+       call report_oom(st, loc, 'the '//what//' of substructure '//st%subs(st%card_sub)%name// &
+            ' ('//itoa(2_i8*count)//')', failed_bytes)
+    end if
+  end subroutine too_many
+
+  subroutine data_set(st, line, loc, elem)
+    !! A data line of *NSET or *ELSET (elem): ids, set names, or first, last[, step] with GENERATE.
+    type(deck_state_t), intent(inout) :: st
+    character(*), intent(in) :: line
+    type(source_loc_t), intent(in) :: loc
+    logical, intent(in) :: elem
+    character(:), allocatable :: what, tok
+    integer(ip) :: id, gen(3)
+    integer :: i, ck, k
+    what = pick(elem, 'element id', 'node id')
+    associate (sub => st%subs(st%card_sub))
+      if (st%card_generate) then
+         if (.not. field_count(st, loc, GEN_FIELDS_MIN, GEN_FIELDS_MAX, 'first, last[, increment]')) return
+         gen(3) = 1
+         do i = 1, st%f%n
+            if (.not. get_id(st, line, loc, i, what, gen(i))) return
+         end do
+         if (gen(1) > gen(2)) then
+            call report_loc(st, loc, 'GENERATE range '//itoa(gen(1))//' to '//itoa(gen(2))// &
+                 ': first is after last')
+            return
+         end if
+         call add_chunk(sub, st%card_set, elem, CH_GEN, loc, k)
+         sub%chunks(k)%gen = gen
+         return
+      end if
+      ck = 0
+      do i = 1, st%f%n
+         tok = fld(st, line, i)
+         if (len(tok) == 0) cycle
+         if (looks_numeric(tok)) then
+            if (.not. get_id(st, line, loc, i, what, id)) cycle
+            if (ck == 0) then
+               call add_chunk(sub, st%card_set, elem, CH_IDS, loc, ck)
+               sub%chunks(ck)%start = sub%npool + 1
+            end if
+            call push_pool(sub, id)
+            sub%chunks(ck)%count = sub%chunks(ck)%count + 1
+         else if (is_name(tok)) then
+            call add_chunk(sub, st%card_set, elem, CH_REF, loc, k)
+            sub%chunks(k)%ref = to_upper(tok)
+            ck = 0
+         else
+            call report_loc(st, loc, 'invalid entry '''//clip(tok)//''' in '//st%card_name// &
+                 ' (expected '//what//' or set name)')
+         end if
+      end do
+    end associate
+  end subroutine data_set
+
+  pure integer function spring_type(name) result(kind)
+    !! SPRING_* of an element type name, 0 for the others.
+    character(*), intent(in) :: name
+    select case (name)
+    case ('SPRING1')
+       kind = SPRING_1
+    case ('SPRING2')
+       kind = SPRING_2
+    case ('SPRINGA')
+       kind = SPRING_A
+    case default
+       kind = 0
+    end select
+  end function spring_type
+
+  subroutine kw_spring_element(st, kw, loc, kind)
+    !! *ELEMENT, TYPE=SPRING1 | SPRING2 | SPRINGA: spring elements, turned into
+    !! supports and contact elements by their *SPRING card (superjoin_deck_springs).
+    type(deck_state_t), intent(inout) :: st
+    type(keyword_line_t), intent(in) :: kw
+    type(source_loc_t), intent(in) :: loc
+    integer, intent(in) :: kind
+    character(:), allocatable :: elset
+    logical :: found
+    call get_name_param(st, kw, loc, 'ELSET', .false., elset, found)
+    if (.not. found) elset = ''
+    st%spring_elset = elset
+    st%card = CARD_SPRING_ELEMENT
+    st%card_sub = target_sub(st, loc)
+    st%card_etype = kind
+  end subroutine kw_spring_element
+
+  subroutine data_spring_element(st, line, loc)
+    !! id, node (SPRING1) or id, node 1, node 2 (SPRING2, SPRINGA).
+    type(deck_state_t), intent(inout) :: st
+    character(*), intent(in) :: line
+    type(source_loc_t), intent(in) :: loc
+    type(spring_elem_b_t) :: e
+    integer :: nn, i
+    nn = merge(1, 2, st%card_etype == SPRING_1)
+    if (.not. field_count(st, loc, nn + 1, nn + 1, 'id and '//itoa(nn)//' node'//pick(nn == 1, '', 's')// &
+         ' for a spring')) return
+    if (.not. get_id(st, line, loc, 1, 'element id', e%id)) return
+    do i = 1, nn
+       if (.not. get_id(st, line, loc, i + 1, 'node id', e%nid(i))) return
+    end do
+    e%kind = st%card_etype
+    e%sub = st%card_sub
+    e%elset = st%spring_elset
+    e%loc = loc
+    call add_spring_elem(st, e)
+  end subroutine data_spring_element
+
+  subroutine kw_spring(st, kw, loc)
+    !! *SPRING, ELSET=e: the DOF line (SPRING1, SPRING2) and the stiffness line.
+    type(deck_state_t), intent(inout) :: st
+    type(keyword_line_t), intent(in) :: kw
+    type(source_loc_t), intent(in) :: loc
+    type(spring_card_b_t) :: c
+    logical :: found
+    st%card = CARD_SKIP
+    if (.not. outside_step(st, kw, loc)) return
+    call check_params(st, kw, loc, [character(NAME_LEN) :: 'ELSET', 'ORIENTATION'], [character(NAME_LEN) :: 'NONLINEAR'])
+    if (param_index(kw, 'NONLINEAR') > 0) then
+       call report_loc(st, loc, 'superjoin does linear statics; *SPRING, NONLINEAR (a nonlinear spring) '// &
+            'is not supported')
+       c%refused = .true.
+    else if (param_index(kw, 'ORIENTATION') > 0) then
+       call report_loc(st, loc, '*SPRING, ORIENTATION= is not supported: a SPRING1/SPRING2 acts on global '// &
+            'DOFs (for an oriented joint use *CONTACT, ORIENTATION=)')
+       c%refused = .true.
+    end if
+    call get_name_param(st, kw, loc, 'ELSET', .true., c%elset, found)
+    if (.not. found) return
+    c%sub = target_sub(st, loc)
+    c%loc = loc
+    call add_spring_card(st, c, st%card_item)
+    if (.not. c%refused) st%card = CARD_SPRING
+  end subroutine kw_spring
+
+  subroutine data_spring(st, line, loc)
+    !! A data line of *SPRING: the stiffness.
+    type(deck_state_t), intent(inout) :: st
+    character(*), intent(in) :: line
+    type(source_loc_t), intent(in) :: loc
+    integer :: i
+    associate (c => st%spring_cards(st%card_item))
+      if (st%card_ndata > 2) then
+         call report_loc(st, loc, 'too many data lines for *SPRING (DOF line, stiffness line)')
+         st%card = CARD_SKIP
+         return
+      end if
+      if (.not. field_count(st, loc, 1, 2, 'DOF(s) or stiffness')) return
+      do i = 1, st%f%n
+         if (.not. get_real(st, line, loc, i, c%v(i, st%card_ndata))) return
+      end do
+      c%ndata = st%card_ndata
+      c%nfield(st%card_ndata) = st%f%n
+      c%data_loc(st%card_ndata) = loc
+    end associate
+  end subroutine data_spring
+end module superjoin_deck_cards_model

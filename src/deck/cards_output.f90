@@ -1,0 +1,140 @@
+module superjoin_deck_cards_output
+  !! Output requests: *OUTPUT and the CalculiX/Abaqus *NODE PRINT, *EL PRINT,
+  !! *NODE FILE, *EL FILE, *NODE OUTPUT, *ELEMENT OUTPUT.
+  use superjoin_kinds, only: ip
+  use superjoin_model_types, only: source_loc_t, TOTALS_NO, TOTALS_YES, TOTALS_ONLY
+  use superjoin_deck_lexer, only: keyword_line_t, to_upper, parse_id, clip, path_dirname, path_join, &
+       TOK_OK
+  use superjoin_deck_state, only: deck_state_t, report_loc, request_b_t, add_request, &
+       add_request_var
+  use superjoin_deck_ccx_cards, only: request_kind, is_node_request, classify_variable, VAR_UNKNOWN, &
+       VAR_PRODUCED
+  use superjoin_utils_strings, only: pick
+  use superjoin_output_vtk, only: vtk_path_problem
+  use superjoin_deck_cards_common, only: check_params, param_index, get_param, fld, parse_ref, &
+       loc_string, CARD_SKIP, CARD_REQUEST, NAME_LEN
+  implicit none (type, external)
+  private
+
+  public :: kw_output, kw_request, data_request
+
+contains
+
+  subroutine kw_output(st, kw, loc)
+    !! *OUTPUT, VTK=path[, FIELD]: VTK files of every step, path relative to the
+    !! directory of the file that holds the card. Allowed anywhere, once.
+    type(deck_state_t), intent(inout) :: st
+    type(keyword_line_t), intent(in) :: kw
+    type(source_loc_t), intent(in) :: loc
+    character(:), allocatable :: value, problem
+    logical :: found
+    call check_params(st, kw, loc, [character(NAME_LEN) :: 'VTK', 'FREQUENCY', 'VARIABLE'], &
+         [character(NAME_LEN) :: 'FIELD', 'HISTORY'])
+    if (param_index(kw, 'VTK') == 0 .and. (param_index(kw, 'FIELD') > 0 .or. param_index(kw, 'HISTORY') > 0)) return
+    call get_param(st, kw, loc, 'VTK', .true., value, found)
+    if (.not. found) return
+    problem = vtk_path_problem(value)
+    if (len(problem) > 0) then
+       call report_loc(st, loc, problem)
+    else if (allocated(st%vtk_path)) then
+       call report_loc(st, loc, '*OUTPUT, VTK= given twice (first at '//loc_string(st, st%vtk_loc)//')')
+    else
+       st%vtk_path = path_join(path_dirname(st%files(loc%file)%s), value)
+       st%vtk_loc = loc
+    end if
+  end subroutine kw_output
+
+  subroutine kw_request(st, kw, loc)
+    !! *NODE PRINT, *EL PRINT, *NODE FILE, *EL FILE, *NODE OUTPUT, *ELEMENT OUTPUT:
+    !! NSET= or ELSET= (a set, resolved later), TOTALS=, FREQUENCY= and the
+    !! CalculiX flags; the variables follow as data lines.
+    type(deck_state_t), intent(inout) :: st
+    type(keyword_line_t), intent(in) :: kw
+    type(source_loc_t), intent(in) :: loc
+    type(request_b_t) :: r
+    character(:), allocatable :: value, pset
+    character(len=NAME_LEN) :: set_param
+    logical :: found, node
+    integer(ip) :: n
+    integer :: stat
+    st%card = CARD_SKIP
+    r%kind = request_kind(kw%keyword)
+    r%card = '*'//kw%keyword
+    node = is_node_request(r%kind)
+    pset = pick(node, 'NSET', 'ELSET')
+    set_param = pset
+    call check_params(st, kw, loc, [character(NAME_LEN) :: set_param, 'TOTALS', 'FREQUENCY', 'FREQUENCYF', &
+         'GLOBAL', 'OUTPUT', 'TIME POINTS', 'VARIABLE', 'DIRECTIONS', 'POSITION'], &
+         [character(NAME_LEN) :: 'SECTION FORCES', 'LAST ITERATIONS', 'CONTACT ELEMENTS'])
+    call get_param(st, kw, loc, 'TOTALS', .false., value, found)
+    r%totals = TOTALS_NO
+    if (found) then
+       select case (to_upper(value))
+       case ('YES')
+          r%totals = TOTALS_YES
+       case ('ONLY')
+          r%totals = TOTALS_ONLY
+       case ('NO')
+          r%totals = TOTALS_NO
+       case default
+          call report_loc(st, loc, 'TOTALS must be YES, ONLY or NO, not '//clip(value))
+       end select
+    end if
+    call get_param(st, kw, loc, 'GLOBAL', .false., value, found)
+    if (found) then
+       select case (to_upper(value))
+       case ('YES')
+          r%global = .true.
+       case ('NO')
+          r%global = .false.
+       case default
+          call report_loc(st, loc, 'GLOBAL must be YES or NO, not '//clip(value))
+       end select
+    end if
+    call get_param(st, kw, loc, 'FREQUENCY', .false., value, found)
+    if (found .and. value /= '0') then
+       call parse_id(value, n, stat)
+       if (stat /= TOK_OK) call report_loc(st, loc, 'FREQUENCY= must be an integer >= 0, not '//clip(value))
+    end if
+    call get_param(st, kw, loc, 'VARIABLE', .false., value, found)
+    if (found) then
+       if (to_upper(value) /= 'PRESELECT' .and. to_upper(value) /= 'ALL') call report_loc(st, loc, &
+            'VARIABLE= must be PRESELECT or ALL, not '//clip(value))
+    end if
+    call get_param(st, kw, loc, pset, .false., value, found)
+    if (found) then
+       if (.not. parse_ref(st, value, .not. node, st%cur_sub, loc, r%set)) return
+       if (.not. r%set%is_set) then
+          call report_loc(st, loc, pset//'='//clip(value)//' must name a '//pick(node, 'node', 'element')//' set')
+          return
+       end if
+       r%has_set = .true.
+    end if
+    r%step = st%cur_step
+    r%loc = loc
+    call add_request(st, r, st%card_item)
+    st%card = CARD_REQUEST
+  end subroutine kw_request
+
+  subroutine data_request(st, line, loc)
+    !! Variable names of an output request, several per line.
+    type(deck_state_t), intent(inout) :: st
+    character(*), intent(in) :: line
+    type(source_loc_t), intent(in) :: loc
+    character(:), allocatable :: name
+    integer :: i, what
+    associate (r => st%requests(st%card_item))
+      do i = 1, st%f%n
+         name = to_upper(fld(st, line, i))
+         if (len(name) == 0) cycle
+         what = classify_variable(r%kind, name)
+         if (what == VAR_UNKNOWN) then
+            call report_loc(st, loc, 'unknown output variable '''//clip(fld(st, line, i))//''' for '// &
+                 r%card//' (superjoin produces '//pick(is_node_request(r%kind), 'U, RF, CF', 'S, E, SF')//')')
+         else
+            call add_request_var(r, name, what == VAR_PRODUCED)
+         end if
+      end do
+    end associate
+  end subroutine data_request
+end module superjoin_deck_cards_output

@@ -27,6 +27,10 @@ The deck's comment lines state the expected values:
       ignored)
   ** listing-if: OPTIONS | TEXT
       the same, checked only in the run with exactly these OPTIONs
+  ** refinement: STEP | KEPT of TRIED
+      the step's NUMERICAL HEALTH says "(KEPT refinement steps kept of TRIED
+      tried)"; with KEPT = 0 its relative residual is printed as the residual
+      before refinement (the kept iterate's)
   ** no-listing: TEXT
       no line of the listing contains TEXT
 """
@@ -77,6 +81,23 @@ def parse_requests(lines):
             continue
         blocks[(step, header, var)].append(words)
     return blocks, texts
+
+
+def health_block(lines, step):
+    """The NUMERICAL HEALTH lines of step number `step`."""
+    current, inside, block = None, False, []
+    for line in lines:
+        m = STEP_NAME.match(line)
+        if m:
+            current = int(m.group(1))
+        if line.startswith("NUMERICAL HEALTH"):
+            inside = current == step
+            continue
+        if inside:
+            if not line.strip():
+                break
+            block.append(line)
+    return block
 
 
 def step_numbers(lines):
@@ -191,6 +212,18 @@ def main(argv):
             if cond.split() == opts:
                 text = text.strip()
                 report(any(l.strip() == text for l in listing), f"{where}: listing line '{text}'")
+        elif line.startswith("** refinement:"):
+            parts = [p.strip() for p in line[len("** refinement:"):].split("|")]
+            kept, _, tried = parts[1].partition(" of ")
+            health = health_block(listing, step_of(parts[0]))
+            res = [l.split()[2] for l in health if l.strip().startswith("relative residual")]
+            before = [l for l in health if l.strip().startswith("residual before refinement")]
+            text = f"({kept.strip()} refinement steps kept of {tried.strip()} tried)"
+            ok = len(before) == 1 and before[0].rstrip().endswith(text) and len(res) == 1
+            if ok and kept.strip() == "0":
+                ok = before[0].split()[3] == res[0]
+            report(ok, f"{where}: step {parts[0]}: {' '.join(before).strip() or 'no refinement line'}, "
+                   f"relative residual {res}")
         elif line.startswith("** no-listing:"):
             text = line[len("** no-listing:"):].strip()
             report(not any(text in l for l in listing), f"{where}: no listing line with '{text}'")

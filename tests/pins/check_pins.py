@@ -135,6 +135,7 @@ def main(argv):
     blocks, texts = parse_requests(listing)
     steps = step_numbers(listing)
     env = {k: getattr(math, k) for k in dir(math) if not k.startswith("_")}
+    env["__builtins__"] = {}
     checks = fails = 0
     wanted_rows = {}
 
@@ -153,14 +154,14 @@ def main(argv):
         where = f"{name}:{lineno}"
         m = LET.match(line)
         if m:
-            env[m.group(1)] = eval(m.group(2), {"__builtins__": {}}, env)
+            env[m.group(1)] = eval(m.group(2), env)
         elif line.startswith("** expect:"):
             m = EXPECT.match(line)
             if not m:
                 report(False, f"{where}: cannot read the expect line")
                 continue
             table, filters, column, expr, kind, tol = m.groups()
-            want = float(eval(expr, {"__builtins__": {}}, env))
+            want = float(eval(expr, env))
             keys = dict(kv.split("=", 1) for kv in filters.split())
             with open(os.path.join(csvdir, table + ".csv"), newline="") as f:
                 rows = [row for row in csv.DictReader(f)
@@ -178,7 +179,7 @@ def main(argv):
                 report(False, f"{where}: cannot read the row line")
                 continue
             key = (step_of(parts[0]), parts[1], parts[2])
-            values = [float(eval(e, {"__builtins__": {}}, env)) for e in parts[4].split(",")]
+            values = [float(eval(e, env)) for e in parts[4].split(",")]
             wanted_rows.setdefault(key, []).append((where, parts[3].split(), values))
         elif line.startswith("** line:"):
             parts = [p.strip() for p in line[len("** line:"):].split("|")]
@@ -187,7 +188,7 @@ def main(argv):
                 report(False, f"{where}: cannot read the line line")
                 continue
             label, expr, tol = m.groups()
-            want = float(eval(expr, {"__builtins__": {}}, env))
+            want = float(eval(expr, env))
             got = None
             for (s, h), body in texts.items():
                 if s != step_of(parts[0]) or not h.startswith(parts[1]):

@@ -61,8 +61,8 @@ def parse_requests(lines):
             continue
         if step is None:
             continue
-        if line.startswith("=" * 20):
-            step = None
+        if line.strip() and not line.startswith(" "):
+            step = None   # the next section of the listing
             continue
         if line.startswith("  *"):
             header = line.strip()

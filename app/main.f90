@@ -25,7 +25,7 @@ program superjoin_main
   use superjoin_output_nodes_csv, only: write_nodes_csv
   use superjoin_output_requested_csv, only: write_requested_csv
   use superjoin_output_vtk, only: write_vtk, vtk_path_problem
-  use superjoin_output_posix, only: output_target
+  use superjoin_utils_posix, only: output_target
   use superjoin_output_mechanism, only: write_mechanism_vtk, write_mechanism_csv, mechanism_vtk_path, MECHANISM_CSV
   use superjoin_config, only: SUPERJOIN_VERSION, DEMO_DECK_SOURCE, DEMO_DECK_INSTALLED
   use superjoin_utils_strings, only: to_lower

@@ -4,7 +4,7 @@ module superjoin_deck_cards_model
   !! *SPRING cards), *NSET and *ELSET.
   use superjoin_kinds, only: wp, ip, i8
   use superjoin_model_types, only: source_loc_t, ELEMENT_TYPE_NAMES, ELEMENT_NODE_COUNT, &
-       NUM_ELEMENT_TYPES, MAX_ELEMENT_NODES, CONDENSE_AUTO, CONDENSE_YES, CONDENSE_NO, ET_B32
+       MAX_ELEMENT_NODES, CONDENSE_AUTO, CONDENSE_YES, CONDENSE_NO
   use superjoin_deck_lexer, only: keyword_line_t, to_upper, is_name, looks_numeric, itoa, clip
   use superjoin_deck_state, only: deck_state_t, report_loc, report_oom, new_sub, find_sub, find_set, &
        new_set, add_chunk, push_pool, add_node, add_element, CH_IDS, CH_GEN, CH_RANGE, CH_REF, &
@@ -12,6 +12,7 @@ module superjoin_deck_cards_model
        SPRING_A
   use superjoin_utils_strings, only: pick
   use superjoin_elements_catalog, only: unsupported_type_message
+  use superjoin_elements_traits, only: element_type_of_name
   use superjoin_deck_cards_common, only: outside_step, check_params, param_index, get_param, &
        get_name_param, target_sub, field_count, fld, get_real, get_id, loc_string, CARD_SKIP, &
        CARD_HEADING, CARD_NODE, CARD_ELEMENT, CARD_NSET, CARD_ELSET, CARD_SPRING_ELEMENT, &
@@ -121,7 +122,7 @@ contains
     type(source_loc_t), intent(in) :: loc
     character(:), allocatable :: typ, elset
     logical :: found
-    integer :: isub, iset, k
+    integer :: isub, iset
     if (.not. outside_step(st, kw, loc)) return
     call check_params(st, kw, loc, [character(NAME_LEN) :: 'TYPE', 'ELSET'], [character(NAME_LEN) ::])
     call get_param(st, kw, loc, 'TYPE', .true., typ, found)
@@ -132,13 +133,7 @@ contains
        call kw_spring_element(st, kw, loc, spring_type(typ))
        return
     end if
-    st%card_etype = 0
-    do k = 1, NUM_ELEMENT_TYPES
-       if (len_trim(ELEMENT_TYPE_NAMES(k)) > 0 .and. trim(ELEMENT_TYPE_NAMES(k)) == typ) st%card_etype = k
-    end do
-    ! CalculiX's B32R (reduced integration) is superjoin's B32, which has the
-    ! reduced two-point rule (doc/verification.md, CalculiX test decks)
-    if (typ == 'B32R') st%card_etype = ET_B32
+    st%card_etype = element_type_of_name(typ)
     if (st%card_etype == 0) then
        call report_loc(st, loc, unsupported_type_message(clip(typ)))
        call declare_elset(st, kw, loc)

@@ -10,7 +10,7 @@ module superjoin_deck_cards_output
   use superjoin_deck_ccx_cards, only: request_kind, is_node_request, classify_variable, VAR_UNKNOWN, &
        VAR_PRODUCED
   use superjoin_utils_strings, only: pick
-  use superjoin_output_vtk, only: vtk_path_problem
+  use superjoin_model_output_paths, only: vtk_path_problem
   use superjoin_deck_cards_common, only: check_params, param_index, get_param, fld, parse_ref, &
        loc_string, CARD_SKIP, CARD_REQUEST, NAME_LEN
   implicit none (type, external)

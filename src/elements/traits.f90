@@ -53,7 +53,7 @@ module superjoin_elements_traits
 
   public :: element_traits, element_family, is_family, accepts_dload, section_card_name
   public :: valid_element_type, element_vtk_cell
-  public :: shell_of_plane
+  public :: shell_of_plane, element_type_of_name
 
 contains
 
@@ -221,4 +221,17 @@ contains
        shell_of_plane = 0
     end select
   end function shell_of_plane
+
+  pure integer function element_type_of_name(name) result(etype)
+    !! The element type a deck names (upper case), 0 when superjoin has none.
+    !! CalculiX's B32R (reduced integration) is superjoin's B32, which has the
+    !! reduced two-point rule (doc/verification.md, CalculiX test decks).
+    character(*), intent(in) :: name
+    integer :: k
+    etype = 0
+    do k = 1, NUM_ELEMENT_TYPES
+       if (len_trim(ELEMENT_TYPE_NAMES(k)) > 0 .and. trim(ELEMENT_TYPE_NAMES(k)) == name) etype = k
+    end do
+    if (name == 'B32R') etype = ET_B32
+  end function element_type_of_name
 end module superjoin_elements_traits

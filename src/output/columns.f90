@@ -3,7 +3,7 @@ module superjoin_output_columns
   !! columns of a row, and round-off noise printed as zero.
   use superjoin_kinds, only: wp, i8, ip
   use superjoin_model_types, only: model_t, ELEMENT_TYPE_NAMES
-  use superjoin_output_text_buffer, only: text_buffer_t
+  use superjoin_utils_text_buffer, only: text_buffer_t
   implicit none (type, external)
   private
 

@@ -8,9 +8,9 @@ module superjoin_output_csv
   use superjoin_elements, only: is_plate_type
   use superjoin_elements_traits, only: is_family, FAMILY_TRUSS, FAMILY_BEAM
   use superjoin_model_results, only: result_fields_t
-  use superjoin_output_posix, only: remove_file, make_directory
+  use superjoin_utils_posix, only: remove_file, make_directory
   use superjoin_utils_process, only: temp_register, temp_unregister
-  use superjoin_output_text_buffer, only: text_buffer_t
+  use superjoin_utils_text_buffer, only: text_buffer_t
   use superjoin_utils_strings, only: itoa, full_real
   implicit none (type, external)
   private

@@ -21,7 +21,7 @@ module superjoin_output_energy
   use superjoin_elements, only: element_strain_energy, element_displacements
   use superjoin_elements, only: distributed_load
   use superjoin_model_results, only: result_fields_t
-  use superjoin_output_text_buffer, only: text_buffer_t
+  use superjoin_utils_text_buffer, only: text_buffer_t
   use superjoin_output_columns, only: element_prefix, chop
   implicit none (type, external)
   private

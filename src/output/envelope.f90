@@ -7,7 +7,7 @@ module superjoin_output_envelope
   use superjoin_kinds, only: wp, i8, ip
   use superjoin_model_types, only: model_t, NDOF_NODE
   use superjoin_model_results, only: results_t, reaction_t
-  use superjoin_output_text_buffer, only: text_buffer_t
+  use superjoin_utils_text_buffer, only: text_buffer_t
   use superjoin_output_columns, only: element_prefix, chop
   use superjoin_elements, only: is_plate_type
   implicit none (type, external)

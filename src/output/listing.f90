@@ -9,7 +9,7 @@ module superjoin_output_listing
   use superjoin_model_types, only: ELEMENT_NODE_COUNT
   use superjoin_model_results, only: results_t
   use superjoin_utils_process, only: temp_register, temp_unregister
-  use superjoin_output_text_buffer, only: text_buffer_t
+  use superjoin_utils_text_buffer, only: text_buffer_t
   use superjoin_output_columns, only: element_prefix, chop
   use superjoin_config, only: SUPERJOIN_VERSION
   use superjoin_utils_strings, only: itoa

@@ -6,8 +6,8 @@ module superjoin_output_mechanism
   use superjoin_kinds, only: wp, i8, ip
   use superjoin_error, only: error_t, fatal_error, EXIT_IO
   use superjoin_model_types, only: model_t, NDOF_NODE
-  use superjoin_output_posix, only: rename_file, remove_file, make_directory
-  use superjoin_output_text_buffer, only: text_buffer_t
+  use superjoin_utils_posix, only: rename_file, remove_file, make_directory
+  use superjoin_utils_text_buffer, only: text_buffer_t
   use superjoin_output_vtk, only: vtk_base, open_array, close_array, point_ids, model_connectivity, model_offsets, &
        model_cell_types
   use superjoin_config, only: SUPERJOIN_VERSION

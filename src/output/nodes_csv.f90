@@ -4,7 +4,7 @@ module superjoin_output_nodes_csv
   use superjoin_error, only: error_t, fatal_error, EXIT_IO
   use superjoin_kinds, only: ip
   use superjoin_model_types, only: model_t
-  use superjoin_output_text_buffer, only: text_buffer_t
+  use superjoin_utils_text_buffer, only: text_buffer_t
   use superjoin_utils_process, only: temp_register, temp_unregister
   use superjoin_utils_strings, only: itoa, full_real
   implicit none (type, external)

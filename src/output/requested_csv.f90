@@ -19,8 +19,8 @@ module superjoin_output_requested_csv
   use superjoin_model_results, only: result_fields_t
   use superjoin_output_requests, only: effective_requests
   use superjoin_output_energy, only: energy_t, compute_energies, requests_name
-  use superjoin_output_text_buffer, only: text_buffer_t
-  use superjoin_output_posix, only: remove_file
+  use superjoin_utils_text_buffer, only: text_buffer_t
+  use superjoin_utils_posix, only: remove_file
   use superjoin_utils_process, only: temp_register, temp_unregister
   use superjoin_utils_strings, only: itoa, full_real
   implicit none (type, external)

@@ -12,7 +12,7 @@ module superjoin_output_requests
        REQ_KIND_NAMES, TOTALS_YES, TOTALS_ONLY
   use superjoin_elements, only: is_plate_type, element_tensor, NTENSOR
   use superjoin_model_results, only: result_fields_t
-  use superjoin_output_text_buffer, only: text_buffer_t
+  use superjoin_utils_text_buffer, only: text_buffer_t
   use superjoin_output_columns, only: element_prefix, chop
   use superjoin_utils_strings, only: itoa
   use superjoin_output_energy, only: write_energy_request

@@ -29,7 +29,7 @@ module superjoin_output_stresses
   use superjoin_elements, only: element_stresses, NTENSOR
   use superjoin_elements_traits, only: element_traits_t, element_traits, FAMILY_PLANE, FAMILY_SHELL, FAMILY_BEAM
   use superjoin_model_results, only: result_fields_t
-  use superjoin_output_text_buffer, only: text_buffer_t
+  use superjoin_utils_text_buffer, only: text_buffer_t
   use superjoin_output_columns, only: element_prefix, chop
   use superjoin_utils_strings, only: itoa
   implicit none (type, external)

@@ -14,10 +14,11 @@ module superjoin_output_vtk
   use superjoin_model_results, only: result_fields_t
   use superjoin_output_file_selection, only: file_selection_t, select_file_output, FILE_DISPLACEMENTS, &
        FILE_REACTIONS, FILE_ELEMENT_FORCES
-  use superjoin_output_posix, only: rename_file, remove_file, make_directory
-  use superjoin_output_text_buffer, only: text_buffer_t
+  use superjoin_utils_posix, only: rename_file, remove_file, make_directory
+  use superjoin_utils_text_buffer, only: text_buffer_t
   use superjoin_config, only: SUPERJOIN_VERSION
   use superjoin_utils_strings, only: itoa, full_real, to_lower
+  use superjoin_model_output_paths, only: vtk_base, vtk_piece_path, vtk_path_problem, PVD_EXT
   implicit none (type, external)
   private
 
@@ -29,7 +30,7 @@ module superjoin_output_vtk
     !! VTK cell type codes (superjoin_elements_traits).
   integer, parameter, public :: CELL_ELEMENT = 1, CELL_CONTACT = 2, CELL_SUPPORT = 3
     !! Values of the cell array `kind`.
-  character(*), parameter :: PVD_EXT = '.pvd', VTU_EXT = '.vtu', TMP_EXT = '.tmp'
+  character(*), parameter :: TMP_EXT = '.tmp'
   integer, parameter :: NCOMP = 6
     !! Components of the 6-vectors (element end forces, resultants, contact Δ and F, reactions).
   character(*), parameter :: FORCE_NAMES = ' ComponentName0="n" ComponentName1="vy" ComponentName2="vz"'// &
@@ -51,45 +52,6 @@ module superjoin_output_vtk
 
 contains
 
-  pure function vtk_base(path) result(base)
-    !! The name the files are made of: path without a trailing .pvd.
-    character(*), intent(in) :: path
-    character(:), allocatable :: base
-    integer :: n
-    n = len(path)
-    base = path
-    if (n >= len(PVD_EXT)) then
-       if (to_lower(path(n - len(PVD_EXT) + 1:n)) == PVD_EXT) base = path(1:n - len(PVD_EXT))
-    end if
-  end function vtk_base
-
-  pure function vtk_piece_path(path, step) result(piece)
-    !! Path of the .vtu file of step number `step`: BASE_step.vtu.
-    character(*), intent(in) :: path
-    integer, intent(in) :: step
-    character(:), allocatable :: piece
-    piece = vtk_base(path)//'_'//itoa(step)//VTU_EXT
-  end function vtk_piece_path
-
-  pure function vtk_path_problem(path) result(msg)
-    !! Why `path` cannot name the VTK output ('' when it can).
-    character(*), intent(in) :: path
-    character(:), allocatable :: msg
-    character(:), allocatable :: base, last
-    integer :: k, slash
-    msg = ''
-    do k = 1, len(path)
-       if (iachar(path(k:k)) < iachar(' ')) then
-          msg = 'the VTK file name contains a control character'
-          return
-       end if
-    end do
-    base = vtk_base(path)
-    slash = index(base, '/', back=.true.)
-    last = base(slash + 1:)
-    if (len(last) == 0 .or. last == '.' .or. last == '..') &
-         msg = 'the VTK output needs a file name (FILE gives FILE.pvd and FILE_<step>.vtu), not '''//path//''''
-  end function vtk_path_problem
 
   subroutine write_vtk(path, model, fields, error)
     !! Write BASE.pvd and BASE_1.vtu ... BASE_<nstep>.vtu (BASE: path without

@@ -4,8 +4,8 @@ module superjoin_solvers_matrix_market
   use superjoin_kinds, only: wp, i8
   use superjoin_error, only: error_t, fatal_error, EXIT_IO
   use superjoin_solvers_sparse, only: sparse_sym_t
-  use superjoin_output_posix, only: rename_file, remove_file, scan_int, scan_real
-  use superjoin_output_text_buffer, only: check_file_size
+  use superjoin_utils_posix, only: rename_file, remove_file, scan_int, scan_real
+  use superjoin_utils_text_buffer, only: check_file_size
   implicit none (type, external)
   private
 

@@ -1,4 +1,4 @@
-module superjoin_output_posix
+module superjoin_utils_posix
   !! Tiny bindings to the C library: renaming and removing files, and fast,
   !! correctly rounded number scanning (strtod/strtoll) over a character buffer.
   use, intrinsic :: iso_c_binding, only: c_int, c_char, c_null_char, c_ptr, c_loc, &
@@ -213,4 +213,4 @@ contains
     ok = finish > start
     pos = pos + int(finish - start, i8)
   end subroutine scan_real
-end module superjoin_output_posix
+end module superjoin_utils_posix

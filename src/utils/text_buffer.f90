@@ -1,10 +1,10 @@
-module superjoin_output_text_buffer
+module superjoin_utils_text_buffer
   !! Fast buffered text output for large listings: fields are formatted by
   !! integer arithmetic into a memory buffer that is written in large blocks
   !! (unformatted stream), instead of one formatted WRITE per line.
   use superjoin_kinds, only: wp, i8
   use superjoin_error, only: error_t, fatal_error, EXIT_IO
-  use superjoin_output_posix, only: rename_file, remove_file
+  use superjoin_utils_posix, only: rename_file, remove_file
   use superjoin_utils_process, only: temp_unregister
   implicit none (type, external)
   private
@@ -292,4 +292,4 @@ contains
        y = a/TEN**(-p)
     end if
   end function scale10
-end module superjoin_output_text_buffer
+end module superjoin_utils_text_buffer

@@ -1,19 +1,22 @@
 #!/usr/bin/env bash
 # Install the Debian packages superjoin needs, if any is missing.
-# usage: deps.sh [--test] [--mumps | --mpi]
+# usage: deps.sh [--test] [--bench] [--mumps | --mpi]
 #   (no option)  what building and running the solver needs (tools/build.sh, tools/demo)
-#   --test       also what the tests and benchmarks use: Python, GNU time,
-#                CalculiX (cross-checks), gnuplot (tools/render), valgrind
+#   --test       also what the test suite uses: Python, gnuplot (tools/render,
+#                ctest render.png), valgrind
+#   --bench      also what the benchmarks use (bench/): Python, GNU time,
+#                CalculiX (cross-checks); no test runs them
 #   --mumps      also sequential MUMPS (cmake -DSUPERJOIN_MUMPS=ON)
 #   --mpi        also Open MPI and MUMPS with PT-SCOTCH (cmake -DSUPERJOIN_MPI=ON)
 set -euo pipefail
 packages=(gfortran gcc cmake make liblapack-dev libopenblas-dev libsuitesparse-dev libmetis-dev)
 for opt in "$@"; do
   case "$opt" in
-    --test) packages+=(python3 time calculix-ccx gnuplot-nox valgrind) ;;
+    --test) packages+=(python3 gnuplot-nox valgrind) ;;
+    --bench) packages+=(python3 time calculix-ccx) ;;
     --mumps) packages+=(libmumps-seq-dev) ;;
     --mpi) packages+=(openmpi-bin libopenmpi-dev libmumps-ptscotch-dev) ;;
-    *) echo "usage: deps.sh [--test] [--mumps | --mpi]" >&2; exit 2 ;;
+    *) echo "usage: deps.sh [--test] [--bench] [--mumps | --mpi]" >&2; exit 2 ;;
   esac
 done
 missing=()

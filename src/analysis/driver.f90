@@ -23,7 +23,7 @@ module superjoin_analysis_driver
   use superjoin_model_results, only: results_t, run_options_t
   use superjoin_model_notes, only: append_string
   use superjoin_utils_strings, only: itoa
-  use superjoin_utils_sorting, only: stable_argsort
+  use superjoin_utils_sorting, only: sort_index
   use superjoin_analysis_step_groups, only: group_steps
   implicit none (type, external)
   private
@@ -337,9 +337,9 @@ contains
     integer, allocatable, intent(out) :: order(:)
     integer :: i
     order = [(i, i=1, size(list))]
-    call stable_argsort(real(list%dof, wp), order)
-    call stable_argsort(real(list%node, wp), order)
-    call stable_argsort(real(list%sub, wp), order)
+    call sort_index(list%dof, order)
+    call sort_index(list%node, order)
+    call sort_index(list%sub, order)
   end subroutine dof_order
 
   pure logical function same_support(a, b, with_values)

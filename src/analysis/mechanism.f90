@@ -16,7 +16,7 @@ module superjoin_analysis_mechanism
   use superjoin_assembly_transform, only: transform_t
   use superjoin_solvers, only: linear_solver_t, sparse_sym_t, new_solver, mumps_solver_t
   use superjoin_analysis_summed_matrix, only: summed_diagonal, summed_nonzero, holds_shared_terms
-  use superjoin_utils_sorting, only: stable_argsort
+  use superjoin_utils_sorting, only: sort_index
   use superjoin_utils_strings, only: itoa
   implicit none (type, external)
   private
@@ -163,7 +163,7 @@ contains
     m = 0.0_wp
     if (n == 0) return
     order = [(i, i=1, n)]
-    call stable_argsort(a(1:n), order)
+    call sort_index(a(1:n), order)
     m = a(order((n + 1)/2))
   end function median_diagonal
 
@@ -225,7 +225,7 @@ contains
        end do
     end do
     order = [(i, i=1, n)]
-    call stable_argsort(key, order)
+    call sort_index(key, order)
     ! the sign of the largest first, and every amplitude rounded as reported:
     ! the mode written to VTK and CSV is the same for every backend too
     sgn = sign(1.0_wp, mech%mode(d_of(order(1)), v_of(order(1))))

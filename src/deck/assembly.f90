@@ -17,7 +17,7 @@ module superjoin_deck_assembly
   use superjoin_deck_state, only: deck_state_t, sub_b_t, report, report_loc, SUBK_INSTANCE, &
        step_b_t, SUBK_PART, instance_b_t
   use superjoin_elements_frame, only: DEFAULT_V_SWITCH_TOL, cross, real_text
-  use superjoin_utils_sorting, only: stable_argsort
+  use superjoin_utils_sorting, only: sort_index
   use superjoin_utils_halting, only: halting_t, halting_off, halting_restore
   use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
   use superjoin_deck_build_common, only: resolve_items, where
@@ -345,7 +345,7 @@ contains
          order(i) = i
          key(i) = msub%x(1, ms(i))
       end do
-      call stable_argsort(key, order)
+      call sort_index(key, order)
       taken = 0
       do j = 1, size(ss)
          xs = ssub%x(:, ss(j))

@@ -9,6 +9,7 @@ module superjoin_deck_build_subs
        CH_RANGE, CH_REF
   use superjoin_utils_strings, only: pick
   use superjoin_utils_grow, only: grow
+  use superjoin_utils_sorting, only: sort_index
   use superjoin_deck_build_common, only: more_text, where, INITIAL_CAPACITY
   implicit none (type, external)
   private
@@ -356,59 +357,11 @@ contains
   end function sorted_id
 
   subroutine argsort_ids(ids, order)
-    !! order = permutation sorting ids ascending (stable merge sort; O(n) when already sorted).
+    !! order = permutation sorting ids ascending (stable; O(n) when already sorted).
     integer(ip), intent(in) :: ids(:)
     integer(ip), intent(out) :: order(:)
-    integer(ip), allocatable :: tmp(:)
-    integer(ip) :: n, width, lo, mid, hi, i, j, k
-    logical :: sorted
-    n = size(ids, kind=ip)
-    do i = 1, n
-       order(i) = i
-    end do
-    sorted = .true.
-    do i = 2, n
-       if (ids(i) < ids(i - 1)) then
-          sorted = .false.
-          exit
-       end if
-    end do
-    if (sorted) return
-    allocate (tmp(n))
-    width = 1
-    do while (width < n)
-       lo = 1
-       do while (lo <= n)
-          mid = min(lo + width - 1, n)
-          hi = min(lo + 2*width - 1, n)
-          i = lo
-          j = mid + 1
-          k = lo
-          do while (i <= mid .and. j <= hi)
-             if (ids(order(j)) < ids(order(i))) then
-                tmp(k) = order(j)
-                j = j + 1
-             else
-                tmp(k) = order(i)
-                i = i + 1
-             end if
-             k = k + 1
-          end do
-          do while (i <= mid)
-             tmp(k) = order(i)
-             i = i + 1
-             k = k + 1
-          end do
-          do while (j <= hi)
-             tmp(k) = order(j)
-             j = j + 1
-             k = k + 1
-          end do
-          lo = hi + 1
-       end do
-       order = tmp
-       if (width > n/2) exit
-       width = 2*width
-    end do
+    integer(ip) :: i
+    order = [(i, i=1, size(ids, kind=ip))]
+    call sort_index(ids, order)
   end subroutine argsort_ids
 end module superjoin_deck_build_subs

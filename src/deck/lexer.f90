@@ -5,7 +5,7 @@ module superjoin_deck_lexer
   !! returns a status that the parser turns into a `file:line: error:` message.
   use, intrinsic :: ieee_exceptions, only: ieee_status_type, ieee_get_status, ieee_set_status
   use superjoin_kinds, only: wp, ip, i8
-  use superjoin_utils_strings, only: itoa
+  use superjoin_utils_strings, only: itoa, to_upper
   use superjoin_utils_grow, only: grow
   implicit none (type, external)
   private
@@ -200,17 +200,6 @@ contains
   end function first_nonblank
 
   ! ------------------------------------------------------------------ text helpers
-
-  pure function to_upper(s) result(t)
-    !! Upper-case copy of s (ASCII letters only).
-    character(*), intent(in) :: s
-    character(len(s)) :: t
-    integer :: k
-    t = s
-    do k = 1, len(s)
-       if (s(k:k) >= 'a' .and. s(k:k) <= 'z') t(k:k) = achar(iachar(s(k:k)) - 32)
-    end do
-  end function to_upper
 
   pure function collapse_blanks(s) result(t)
     !! s with tabs made blanks, leading/trailing blanks removed and inner runs

@@ -18,7 +18,7 @@ module superjoin_deck_springs
        contact_b_t, cline_b_t, report_loc, add_support, add_contact, add_cline, add_orientation, file_of, &
        SPRING_1, SPRING_2, SPRING_A
   use superjoin_utils_strings, only: itoa
-  use superjoin_utils_sorting, only: stable_argsort
+  use superjoin_utils_sorting, only: sort_index, find_sorted
   implicit none (type, external)
   private
 
@@ -244,7 +244,7 @@ contains
     integer(ip) :: n
     character(:), allocatable :: name
     do i = 1, 2
-       n = find_id(st%subs(se%sub)%node_id, nodes%order, se%nid(i))
+       n = find_sorted(st%subs(se%sub)%node_id, nodes%order, se%nid(i))
        if (n == 0) then
           call report_loc(st, se%loc, 'SPRINGA element '//itoa(se%id)//' refers to undefined node '//itoa(se%nid(i)))
           return
@@ -278,30 +278,8 @@ contains
     integer, allocatable, intent(out) :: order(:)
     integer :: i
     order = [(i, i = 1, size(ids))]
-    call stable_argsort(real(ids, wp), order)     ! ids < 2**31 are exact reals
+    call sort_index(ids, order)
   end subroutine sort_ids
-
-  pure integer function find_id(ids, order, id) result(k)
-    !! Index of `id` in ids (0 if absent), by bisection on the sorted order.
-    integer(ip), intent(in) :: ids(:)
-    integer, intent(in) :: order(:)
-    integer(ip), intent(in) :: id
-    integer :: lo, hi, mid
-    k = 0
-    lo = 1
-    hi = size(order)
-    do while (lo <= hi)
-       mid = lo + (hi - lo)/2
-       if (ids(order(mid)) == id) then
-          k = order(mid)
-          return
-       else if (ids(order(mid)) < id) then
-          lo = mid + 1
-       else
-          hi = mid - 1
-       end if
-    end do
-  end function find_id
 
   subroutine check_ids(st)
     !! A spring element id must be unique in its substructure, among the
@@ -318,7 +296,7 @@ contains
        call sort_ids(sid, by_id)        ! stable: a repeated id reports its later definitions
        do k = 1, size(springs)
           associate (se => st%spring_elems(springs(by_id(k))))
-            e = find_id(st%subs(isub)%elem_id, elems, se%id)
+            e = find_sorted(st%subs(isub)%elem_id, elems, se%id)
             if (e > 0) then
                call report_loc(st, se%loc, 'duplicate element id '//itoa(se%id)//' (also defined at '// &
                     loc_text(st, st%subs(isub)%elem_loc(e))//')')

@@ -6,6 +6,7 @@ module superjoin_solvers_matrix_market
   use superjoin_solvers_sparse, only: sparse_sym_t
   use superjoin_utils_posix, only: rename_file, remove_file, scan_int, scan_real
   use superjoin_utils_text_buffer, only: check_file_size
+  use superjoin_utils_strings, only: to_lower
   implicit none (type, external)
   private
 
@@ -237,7 +238,7 @@ contains
     character(len=32) :: words(5)
     integer :: i, nw, first
     logical :: in_word
-    low = lower(line)
+    low = to_lower(line)
     words = ''
     nw = 0
     in_word = .false.
@@ -258,7 +259,7 @@ contains
     end do
     header_ok = nw == 5
     if (.not. header_ok) return
-    header_ok = words(1) == lower(MM_BANNER) .and. words(2) == 'matrix' .and. &
+    header_ok = words(1) == to_lower(MM_BANNER) .and. words(2) == 'matrix' .and. &
          words(3) == 'coordinate' .and. (words(4) == 'real' .or. words(4) == 'integer') .and. &
          words(5) == 'symmetric'
   end function header_ok
@@ -345,16 +346,4 @@ contains
        a%colptr(j + 1) = nz + 1
     end do
   end subroutine assemble_upper
-
-  pure function lower(s) result(t)
-    !! ASCII lower case.
-    character(*), intent(in) :: s
-    character(len(s)) :: t
-    integer :: i, c
-    t = s
-    do i = 1, len(s)
-       c = iachar(s(i:i))
-       if (c >= iachar('A') .and. c <= iachar('Z')) t(i:i) = achar(c + 32)
-    end do
-  end function lower
 end module superjoin_solvers_matrix_market

@@ -7,19 +7,12 @@ module superjoin_utils_sorting
   private
 
   public :: sort_index, find_sorted, sort_unique_i8
-  public :: stable_argsort
 
   interface sort_index
     !! Stable ascending index sort: call sort_index(key, order) reorders the
     !! indices `order` so that key(order) ascends, ties in their order.
      module procedure sort_index_int, sort_index_i8, sort_index_real
   end interface sort_index
-
-  interface stable_argsort
-    !! The former name of sort_index, kept while src/deck and src/analysis
-    !! still call it.
-     module procedure sort_index_int, sort_index_i8, sort_index_real
-  end interface stable_argsort
 
   interface find_sorted
     !! find_sorted(keys, order, key): an index i with keys(i) == key, where
@@ -31,10 +24,12 @@ contains
 
 #define SORT_NAME sort_index_int
 #define SORT_TYPE integer
+#define SORT_INTEGER
 #include "sort_index_template.inc"
 
 #define SORT_NAME sort_index_i8
 #define SORT_TYPE integer(i8)
+#define SORT_INTEGER
 #include "sort_index_template.inc"
 
 #define SORT_NAME sort_index_real

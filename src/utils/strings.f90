@@ -10,7 +10,7 @@ module superjoin_utils_strings
      module procedure itoa_default, itoa_i8
   end interface itoa
 
-  public :: itoa, rtoa, full_real, pick, to_lower
+  public :: itoa, rtoa, full_real, pick, to_lower, to_upper
   public :: without_blanks
 
 contains
@@ -60,6 +60,17 @@ contains
        if (s(k:k) >= 'A' .and. s(k:k) <= 'Z') t(k:k) = achar(iachar(s(k:k)) + 32)
     end do
   end function to_lower
+
+  pure function to_upper(s) result(t)
+    !! s with ASCII letters in upper case.
+    character(*), intent(in) :: s
+    character(len(s)) :: t
+    integer :: k
+    t = s
+    do k = 1, len(s)
+       if (s(k:k) >= 'a' .and. s(k:k) <= 'z') t(k:k) = achar(iachar(s(k:k)) - 32)
+    end do
+  end function to_upper
 
   pure function pick(cond, a, b) result(s)
     !! `a` when `cond`, else `b` (strings of any lengths).

@@ -3,7 +3,7 @@ program test_sorting
   !! and of the lower-case conversion (superjoin_utils_strings).
   use superjoin_kinds, only: wp, i8
   use superjoin_utils_sorting, only: sort_index, find_sorted, sort_unique_i8
-  use superjoin_utils_strings, only: to_lower
+  use superjoin_utils_strings, only: to_lower, to_upper
   use superjoin_testing, only: check, finish
   implicit none (type, external)
 
@@ -27,6 +27,12 @@ contains
     order = [8, 7, 6, 5, 4, 3, 2, 1]
     call sort_index([5, 3, 5, 1, 3, 9, 1, 5], order)
     call check(all(order == [7, 4, 5, 2, 8, 3, 1, 6]), 'ties keep the order given, not the index order')
+    order = [3, 2, 1, 4, 5, 6, 7, 8]
+    call sort_index([2, 1, 1, 3, 4, 4, 5, 6], order)
+    call check(all(order == [3, 2, 1, 4, 5, 6, 7, 8]), 'keys already ascending along order: nothing moves')
+    order = [(i, i = 1, 8)]
+    call sort_index([1, 2, 3, 4, 5, 6, 8, 7], order)
+    call check(all(order == [1, 2, 3, 4, 5, 6, 8, 7]), 'one pair out of order at the end: sorted')
     call sort_index([integer ::], none)
     call check(size(none) == 0, 'empty list')
     one = 1
@@ -104,5 +110,7 @@ contains
     call check(to_lower('CHOLMOD') == 'cholmod', 'upper case letters lowered')
     call check(to_lower('MuMpS-LdLt 1_Z@[') == 'mumps-ldlt 1_z@[', 'other characters kept')
     call check(len(to_lower('AB  ')) == 4, 'length kept')
+    call check(to_upper('cholmod') == 'CHOLMOD', 'lower case letters raised')
+    call check(to_upper('MuMpS-LdLt 1_z@`{') == 'MUMPS-LDLT 1_Z@`{', 'other characters kept by to_upper')
   end subroutine lower_case
 end program test_sorting

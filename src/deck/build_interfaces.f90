@@ -412,22 +412,21 @@ contains
   end function is_shell_face
 
   pure logical function has_one_edge(etype)
-    !! The two-node elements whose one edge is counted once: trusses, B23 and
-    !! B33 (the shear-flexible B21, B31 have never been in this list).
+    !! The two-node line elements (trusses and beams): their one edge is
+    !! counted once (B21 and B31 were counted twice, both ways round).
     integer, intent(in) :: etype
     type(element_traits_t) :: tr
     tr = element_traits(etype)
-    has_one_edge = tr%family == FAMILY_TRUSS .or. (tr%family == FAMILY_BEAM .and. .not. tr%shear_flexible)
+    has_one_edge = (tr%family == FAMILY_TRUSS .or. tr%family == FAMILY_BEAM) .and. tr%nodes == 2
   end function has_one_edge
 
   pure logical function keeps_joint_planar(etype)
     !! An edge on an element of type etype leaves the joint in the XY plane (two
-    !! tangential DOFs only): T2D2, B23, CPS3, CPS4.
+    !! tangential DOFs only): T2D2, B23, B21, CPS3, CPS4.
     integer, intent(in) :: etype
     type(element_traits_t) :: tr
     tr = element_traits(etype)
-    keeps_joint_planar = tr%planar .and. .not. tr%quadratic .and. .not. tr%plane_strain .and. &
-         .not. tr%shear_flexible
+    keeps_joint_planar = tr%planar .and. .not. tr%quadratic .and. .not. tr%plane_strain
   end function keeps_joint_planar
 
   subroutine add_orientation_frame(model, name, q, loc)

@@ -11,7 +11,7 @@ module superjoin_deck_assembly
   use superjoin_kinds, only: wp, ip
   use superjoin_model_types, only: model_t, substructure_t, index_set_t, source_loc_t, &
        ELEMENT_TYPE_NAMES, SEC_BEAM, LINK_FINITE, section_t, MAX_ELEMENT_NODES, link_override_t, &
-       step_t, node_label
+       step_t, node_label, ELEMENT_NODE_COUNT
   use superjoin_elements_traits, only: element_traits_t, element_traits, FAMILY_BEAM
   use superjoin_deck_lexer, only: itoa, plural
   use superjoin_deck_state, only: deck_state_t, sub_b_t, report, report_loc, SUBK_INSTANCE, &
@@ -259,7 +259,7 @@ contains
        end if
        nx = 0
        do e = 1, m%nelem
-          if (m%elem_section(e) /= s .or. .not. euler_beam_3d(m%elem_type(e))) cycle
+          if (m%elem_section(e) /= s .or. .not. beam_in_space(m%elem_type(e))) cycle
           if (default_is_x(e)) nx = nx + 1
        end do
        secs(s)%has_v = .true.
@@ -269,19 +269,22 @@ contains
        secs = [secs, secs(s)]
        secs(size(secs))%v = matmul(inst%rot, GLOBAL_X)
        do e = 1, m%nelem
-          if (m%elem_section(e) /= s .or. .not. euler_beam_3d(m%elem_type(e))) cycle
+          if (m%elem_section(e) /= s .or. .not. beam_in_space(m%elem_type(e))) cycle
           if (default_is_x(e)) m%elem_section(e) = size(secs)
        end do
     end do
     call move_alloc(secs, m%sections)
   contains
     logical function default_is_x(e)
-      !! The default orientation of beam e of the part is global X (as superjoin_elements_frame).
+      !! The default orientation of beam e of the part is global X (as superjoin_elements_frame):
+      !! its ends (the first and last node) lie on a line parallel to Z.
       integer(ip), intent(in) :: e
       real(wp) :: d(3)
+      integer :: last
       default_is_x = .false.
-      if (any(part%elem_nodes(1:2, e) == 0)) return   ! undefined node, reported
-      d = part%x(:, part%elem_nodes(2, e)) - part%x(:, part%elem_nodes(1, e))
+      last = ELEMENT_NODE_COUNT(part%elem_type(e))
+      if (part%elem_nodes(1, e) == 0 .or. part%elem_nodes(last, e) == 0) return   ! undefined node, reported
+      d = part%x(:, part%elem_nodes(last, e)) - part%x(:, part%elem_nodes(1, e))
       if (norm2(d) == 0.0_wp) return
       default_is_x = norm2(cross(d/norm2(d), GLOBAL_Z)) <= DEFAULT_V_SWITCH_TOL
     end function default_is_x
@@ -297,14 +300,15 @@ contains
     must_stay_in_plane = tr%planar .and. .not. tr%shear_flexible
   end function must_stay_in_plane
 
-  pure logical function euler_beam_3d(etype)
-    !! The beam in space whose default orientation vector a turned instance
-    !! makes explicit: B33 only (the shear-flexible B31, B32 keep the part's).
+  pure logical function beam_in_space(etype)
+    !! A beam in space (B33, B31, B32), whose default orientation vector a turned
+    !! instance makes explicit (B31 and B32 were left out: a vertical B31 column
+    !! of a turned part got v = R Z along its own axis and was refused).
     integer, intent(in) :: etype
     type(element_traits_t) :: tr
     tr = element_traits(etype)
-    euler_beam_3d = tr%family == FAMILY_BEAM .and. .not. tr%planar .and. .not. tr%shear_flexible
-  end function euler_beam_3d
+    beam_in_space = tr%family == FAMILY_BEAM .and. .not. tr%planar
+  end function beam_in_space
 
   subroutine pair_nearest(st, model, icontact, loc, ms, ss, ok)
     !! PAIR=NEAREST: ms becomes, for each slave node ss(j), its nearest master node.

@@ -292,12 +292,12 @@ contains
 
   pure logical function must_stay_in_plane(etype)
     !! An element of type etype that a turned instance may not take out of the
-    !! XY plane: the planar types but B21 (the shear-flexible planar beam,
-    !! which this check has never covered).
+    !! XY plane: the planar types (B21 included; it was left out and then
+    !! refused later as a 2D element out of the XY plane).
     integer, intent(in) :: etype
     type(element_traits_t) :: tr
     tr = element_traits(etype)
-    must_stay_in_plane = tr%planar .and. .not. tr%shear_flexible
+    must_stay_in_plane = tr%planar
   end function must_stay_in_plane
 
   pure logical function beam_in_space(etype)

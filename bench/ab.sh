@@ -8,8 +8,9 @@
 # usage: bench/ab.sh [-r N] OLD_BINARY NEW_BINARY DECK [DECK...]
 #   -r N   runs of each binary per deck (default 3)
 # Extra superjoin options: SUPERJOIN_ARGS (e.g. "--condense no").
-# Prints one row per deck: median wall A, B, B/A, median user A, B, B/A,
-# listings identical or not. Exit 1 when a run fails or listings differ.
+# Prints one row per deck: median wall A, B, B/A, median CPU (user + sys) A, B,
+# B/A, listings identical or not. On a loaded machine the CPU ratio is the
+# steadier one (wall time includes waiting for a core). Exit 1 when a run fails or listings differ.
 set -euo pipefail
 runs=3
 while getopts "r:" opt; do
@@ -28,7 +29,7 @@ status=0
 
 median() { sort -g | awk '{v[NR]=$1} END {print (NR % 2) ? v[(NR+1)/2] : (v[NR/2]+v[NR/2+1])/2}'; }
 
-printf '%-28s %9s %9s %7s %9s %9s %7s  %s\n' deck wall_A wall_B B/A user_A user_B B/A listings
+printf '%-28s %9s %9s %7s %9s %9s %7s  %s\n' deck wall_A wall_B B/A cpu_A cpu_B B/A listings
 for deck in "$@"; do
   dir=$(cd "$(dirname "$deck")" && pwd); name=$(basename "$deck")
   : >"$work/wa"; : >"$work/wb"; : >"$work/ua"; : >"$work/ub"
@@ -36,12 +37,12 @@ for deck in "$@"; do
     for side in a b; do
       bin=$a; [ $side = b ] && bin=$b
       # shellcheck disable=SC2086
-      if ! (cd "$dir" && /usr/bin/time -f '%e %U' -o "$work/t" "$bin" -q $name ${SUPERJOIN_ARGS:-} \
+      if ! (cd "$dir" && /usr/bin/time -f '%e %U %S' -o "$work/t" "$bin" -q $name ${SUPERJOIN_ARGS:-} \
               -o "$work/$side.lst" >/dev/null 2>"$work/err"); then
         rc=$?; [ $rc -eq 5 ] || { echo "ab.sh: $bin $name failed (exit $rc)" >&2; cat "$work/err" >&2; status=1; }
       fi
-      read -r wall user <"$work/t"
-      echo "$wall" >>"$work/w$side"; echo "$user" >>"$work/u$side"
+      read -r wall user sys <"$work/t"
+      echo "$wall" >>"$work/w$side"; echo "$user + $sys" | bc -l >>"$work/u$side"
     done
   done
   same=identical

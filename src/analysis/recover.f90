@@ -7,11 +7,12 @@ module superjoin_analysis_recover
   !! its child with the sum of r over the child's subtree; a rigid component that
   !! closed a loop gets its force from the equation of the column it eliminated.
   use superjoin_kinds, only: wp, ip, i8
+  use superjoin_model_types, only: MAX_ELEMENT_DOFS
   use superjoin_error, only: error_t, add_error_line, EXIT_DECK
   use superjoin_model_types, only: model_t, DLOAD_THERMAL, ELEMENT_NODE_COUNT, LINK_NONE, LINK_FINITE, LINK_RIGID, &
        NDOF_NODE, loc_text
   use superjoin_elements, only: element_end_forces, element_nodal_forces, &
-       is_plate_type, shell_forces
+       is_plate_type, shell_forces, is_solid_type, solid_forces
   use superjoin_assembly_dofs, only: dof_table_t, unit_t, NBLOCK, GROUND, UNIT_LINK, UNIT_SUPPORT, block_dof, &
        unit_terms, arm_matrix, MAX_UNIT_TERMS
   use superjoin_assembly_forest, only: forest_t
@@ -29,7 +30,7 @@ module superjoin_analysis_recover
   implicit none (type, external)
   private
 
-  integer, parameter :: MAX_ELEM_DOFS = 48   ! S8R: 8 nodes x 6 DOFs
+  integer, parameter :: MAX_ELEM_DOFS = MAX_ELEMENT_DOFS
 
   public :: recover_results
 
@@ -183,6 +184,18 @@ contains
             end if
             associate (sec => s%sections(s%elem_section(e)))
               call element_pdofs(model, table, isub, e, pd, n)
+              if (is_solid_type(s%elem_type(e))) then
+                 ! solids: r takes K_e u_e (their body loads are left out of r above); no end forces
+                 if (own_ku(isub)) cycle
+                 call solid_forces(s%elem_type(e), s%x(:, s%elem_nodes(1:nn, e)), model%materials(sec%material), &
+                      u(pd(1:n), :), fg2(1:n, :), inner)
+                 if (allocated(inner)) then
+                    call add_error_line(error, EXIT_DECK, inner%message)
+                    return
+                 end if
+                 r(pd(1:n), :) = r(pd(1:n), :) + fg2(1:n, :)
+                 cycle
+              end if
               if (is_plate_type(s%elem_type(e))) then
                  ! r takes K_e u_e (the distributed loads of these elements are left out of r above)
                  call shell_forces(s%elem_type(e), s%x(:, s%elem_nodes(1:nn, e)), sec, &
@@ -273,7 +286,7 @@ contains
        do i = 1, size(model%steps(is)%dloads)
           associate (dl => model%steps(is)%dloads(i), s => model%subs(model%steps(is)%dloads(i)%sub))
             ! Plane and shell elements: r gets K_e u_e itself (shell_forces below).
-            if (is_plate_type(s%elem_type(dl%elem))) cycle
+            if (is_plate_type(s%elem_type(dl%elem)) .or. is_solid_type(s%elem_type(dl%elem))) cycle
             call distributed_load(model, dl, fe, qloc, inner)
             if (allocated(inner)) deallocate (inner)
             ie = elem_offset(dl%sub) + dl%elem

@@ -172,6 +172,8 @@ contains
     call body_load_fields(model, nstep, res, f0)
     ! Distributed loads in element axes, per element and step.
     call add_dload_terms(model, table, own_ku, res%fields%elem_offset, ql, nt, r)
+    call solid_reactions(model, table, own_ku, u, r, error)
+    if (allocated(error)) return
 
     do isub = 1, size(model%subs)
        associate (s => model%subs(isub))
@@ -184,18 +186,7 @@ contains
             end if
             associate (sec => s%sections(s%elem_section(e)))
               call element_pdofs(model, table, isub, e, pd, n)
-              if (is_solid_type(s%elem_type(e))) then
-                 ! solids: r takes K_e u_e (their body loads are left out of r above); no end forces
-                 if (own_ku(isub)) cycle
-                 call solid_forces(s%elem_type(e), s%x(:, s%elem_nodes(1:nn, e)), model%materials(sec%material), &
-                      u(pd(1:n), :), fg2(1:n, :), inner)
-                 if (allocated(inner)) then
-                    call add_error_line(error, EXIT_DECK, inner%message)
-                    return
-                 end if
-                 r(pd(1:n), :) = r(pd(1:n), :) + fg2(1:n, :)
-                 cycle
-              end if
+              if (is_solid_type(s%elem_type(e))) cycle   ! solid_reactions, above
               if (is_plate_type(s%elem_type(e))) then
                  ! r takes K_e u_e (the distributed loads of these elements are left out of r above)
                  call shell_forces(s%elem_type(e), s%x(:, s%elem_nodes(1:nn, e)), sec, &
@@ -237,6 +228,40 @@ contains
        end associate
     end do
   end subroutine element_results
+
+  subroutine solid_reactions(model, table, own_ku, u, r, error)
+    !! r += K_e u_e of the solid elements (no end forces; their body loads are
+    !! left out of r in add_dload_terms) but for the substructures whose k u r
+    !! holds already (own_ku).
+    type(model_t), intent(in) :: model
+    type(dof_table_t), intent(in) :: table
+    logical, intent(in) :: own_ku(:)
+    real(wp), intent(in) :: u(:, :)
+    real(wp), intent(inout) :: r(:, :)
+    type(error_t), allocatable, intent(inout) :: error
+    real(wp) :: fg(MAX_ELEM_DOFS, size(u, 2))
+    integer(i8) :: pd(MAX_ELEM_DOFS)
+    integer :: isub, n, nn
+    integer(ip) :: e
+    type(error_t), allocatable :: inner
+    do isub = 1, size(model%subs)
+       if (own_ku(isub)) cycle
+       associate (s => model%subs(isub))
+         do e = 1, s%nelem
+            if (.not. is_solid_type(s%elem_type(e))) cycle
+            nn = ELEMENT_NODE_COUNT(s%elem_type(e))
+            call element_pdofs(model, table, isub, e, pd, n)
+            call solid_forces(s%elem_type(e), s%x(:, s%elem_nodes(1:nn, e)), &
+                 model%materials(s%sections(s%elem_section(e))%material), u(pd(1:n), :), fg(1:n, :), inner)
+            if (allocated(inner)) then
+               call add_error_line(error, EXIT_DECK, inner%message)
+               return
+            end if
+            r(pd(1:n), :) = r(pd(1:n), :) + fg(1:n, :)
+         end do
+       end associate
+    end do
+  end subroutine solid_reactions
 
   subroutine body_load_fields(model, nstep, res, f0)
     !! What the element results take off for body loads (analysis/body_loads).

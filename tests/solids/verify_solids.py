@@ -14,7 +14,8 @@ Cases
   u = a + G x (all six strains and a rotation), the interior free. The interior
   displacements must be exact, and every boundary node's reaction must equal
   the consistent nodal force of the traction sigma.n of the constant stress
-  on the faces around it (to 1e-10 of the largest);
+  on the faces around it (to 1e-10 of the largest), and the strain energy
+  (*EL FILE ENER) sigma:eps V / 2;
 - self weight (*DLOAD GRAV), quadratic types on an undistorted block: the
   exact elasticity solution of a prism under its own weight is quadratic
   (sigma_zz = rho g (z - H)), prescribed on the boundary; the interior must be
@@ -22,6 +23,9 @@ Cases
 - a C3D20R cantilever (10 x 1 x 1, nu = 0, clamped end, end shear as a uniform
   traction) against Timoshenko's tip deflection P L^3 / 3EI + P L / (k G A),
   k = 5/6, on refined meshes;
+- two C3D8 blocks in two substructures joined by *CONTACT springs on DOFs 1-3
+  (plain and condensed): tip displacement, joint opening and reactions exact;
+- VTK cells of every type; refusals of P1, CENTRIF and *TEMPERATURE on solids;
 - CalculiX (if installed): the patch block of every type with a load instead
   of the interior prescription, `ccx -i`, displacements compared.
 """
@@ -241,9 +245,12 @@ def patch_tests(exe, work):
         mesh = Mesh((2, 2, 2), (2.0, 1.5, 1.0), et, True, curved)
         bnd = [(n, d + 1, field(x)[d]) for n, x in sorted(mesh.nodes.items()) if mesh.boundary(n) for d in range(3)]
         name = "patch_" + et + ("_curved" if curved else "")
-        disp, reac = solve(exe, work, name, deck(mesh, e, nu, bnd, []))
+        disp, reac = solve(exe, work, name, deck(mesh, e, nu, bnd, [], extra="*EL FILE\nENER"))
         if disp is None:
             continue
+        with open(os.path.join(work, name + "_csv", "energies.csv")) as f:
+            energy = sum(float(row["energy"]) for row in csv.DictReader(f) if row["kind"] == "element")
+        exact_energy = 0.5 * sum(sig[i][j] * eps[i][j] for i in range(3) for j in range(3)) * 3.0
         umax = max(abs(v) for x in mesh.nodes.values() for v in field(x))
         err = max((abs(disp[n][d] - field(x)[d]) for n, x in mesh.nodes.items() if not mesh.boundary(n)
                    for d in range(3)), default=0.0)
@@ -259,6 +266,8 @@ def patch_tests(exe, work):
         if curved:    # quadrature is not exact on curved elements: measured, not required
             continue
         check(err <= 1e-10 * umax, f"{et} patch: interior displacements exact ({err / umax:.1e})")
+        check(abs(energy - exact_energy) <= 1e-10 * exact_energy,
+              f"{et} patch: strain energy = sigma:eps V / 2 ({abs(energy / exact_energy - 1):.1e})")
         check(rerr <= 1e-10 * rmax, f"{et} patch: reactions = consistent tractions of the constant stress "
                                     f"({rerr / rmax:.1e})")
 
@@ -411,6 +420,61 @@ def refusals(exe, work):
               f"{name} on a C3D8 refused with file:line: error")
 
 
+def contact_blocks(exe, work):
+    """Two C3D8 blocks (substructures I and II, each 1 x 1 x 1, two elements
+    long, nu = 0) joined face to face by *CONTACT springs of stiffness g on DOFs
+    1-3 at the four node pairs; I clamped at x = 0, an axial load P on II's
+    far face (P/4 per corner): u_tip = 2 P L/(E A) + P/(4 g), the joint's
+    opening P/(4 g), the reactions -P; plain and with both parts condensed."""
+    print("\n## Two solid blocks joined by contact springs\n")
+    for condense in ("", ", CONDENSE=YES"):
+        contact_case(exe, work, condense)
+
+
+def contact_case(exe, work, condense):
+    e, g, p, length = 1.0e4, 250.0, 100.0, 1.0
+    mesh = Mesh((2, 1, 1), (length, 1.0, 1.0), "C3D8", False)
+    out = ["*HEADING", "two C3D8 blocks joined by contact springs", "*MATERIAL, NAME=MAT", "*ELASTIC", f" {fmt(e)}, 0.0"]
+    for name, shift in (("I", 0.0), ("II", length)):
+        out += [f"*SUBSTRUCTURE, NAME={name}{condense}", "*NODE"]
+        out += [f" {n}, {fmt(x[0] + shift)}, {fmt(x[1])}, {fmt(x[2])}" for n, x in sorted(mesh.nodes.items())]
+        out.append("*ELEMENT, TYPE=C3D8, ELSET=ALL")
+        out += [" " + ", ".join(str(v) for v in (k,) + tuple(el)) for k, el in enumerate(mesh.elems, 1)]
+        out += ["*SOLID SECTION, ELSET=ALL, MATERIAL=MAT", "*END SUBSTRUCTURE"]
+    near = sorted(n for n, x in mesh.nodes.items() if x[0] == 0.0)
+    far = sorted(n for n, x in mesh.nodes.items() if x[0] == length)
+    out.append("*CONTACT, NAME=J, MASTER=I, SLAVE=II")
+    out += [f" {m}, {sl}, 1, 3, {fmt(g)}" for m, sl in zip(far, near)]
+    out.append("*SUPPORT")
+    out += [f" I.{n}, 1, 3" for n in near]
+    out += ["*STEP", "*CLOAD"] + [f" II.{n}, 1, {fmt(p / 4)}" for n in far] + ["*END STEP"]
+    tag = "contact_blocks" + ("_condensed" if condense else "")
+    path = os.path.join(work, tag + ".deck")
+    with open(path, "w") as f:
+        f.write("\n".join(out) + "\n")
+    csvdir = os.path.join(work, tag + "_csv")
+    r = subprocess.run([exe, "-q", path, "-o", os.path.join(work, tag + ".lst"), "--csv", csvdir],
+                       capture_output=True, text=True)
+    if r.returncode != 0:
+        check(False, f"contact blocks: exit {r.returncode}: {r.stderr.strip()[:300]}")
+        return
+    u = {}
+    with open(os.path.join(csvdir, "displacements.csv")) as f:
+        for row in csv.DictReader(f):
+            u[(row["substructure"], int(row["node"]))] = float(row["u1"])
+    with open(os.path.join(csvdir, "reactions.csv")) as f:
+        rx = sum(float(row["force"]) for row in csv.DictReader(f) if row["dof"] == "1")
+    exact = 2 * p * length / e + p / (4 * g)
+    tip = [u[("II", n)] for n in far]
+    opening = [u[("II", sl)] - u[("I", m)] for m, sl in zip(far, near)]
+    err = max(abs(t - exact) for t in tip) / exact
+    print(f"tip {sum(tip) / 4:.12g}, closed form {exact:.12g}; opening {sum(opening) / 4:.12g} "
+          f"(P/4g = {p / (4 * g):.12g}); reactions {rx:.12g}")
+    check(err < 1e-10, f"{tag}: tip displacement exact ({err:.1e})")
+    check(max(abs(o - p / (4 * g)) for o in opening) < 1e-10 * exact, f"{tag}: joint opening P/(4 g)")
+    check(abs(rx + p) < 1e-10 * p, f"{tag}: reactions -P")
+
+
 def main():
     exe, work = sys.argv[1], sys.argv[2]
     os.makedirs(work, exist_ok=True)
@@ -419,6 +483,7 @@ def main():
     cantilever(exe, work)
     calculix(exe, work)
     vtk_cells(exe, work)
+    contact_blocks(exe, work)
     refusals(exe, work)
     print(f"\n{len(failures)} failures")
     return 1 if failures else 0

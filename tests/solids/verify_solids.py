@@ -418,6 +418,16 @@ def refusals(exe, work):
         print(f"{name}: {line or r.stderr.strip()[:200]}")
         check(r.returncode != 0 and re.match(r".*refuse_\w+\.deck:\d+: error: ", line) is not None,
               f"{name} on a C3D8 refused with file:line: error")
+    # an *ELEMENT data line that ends with a comma and is not continued
+    text = deck(mesh, 1.0e3, 0.3, bnd, [])
+    text = re.sub(r"(\*ELEMENT, TYPE=C3D8, ELSET=ALL\n 1, \d+, \d+, \d+),[^\n]*\n", r"\1,\n", text)
+    path = os.path.join(work, "refuse_open_line.deck")
+    with open(path, "w") as f:
+        f.write(text)
+    r = subprocess.run([exe, "-q", "--check", path], capture_output=True, text=True)
+    print(f"open line: {r.stderr.strip()[:200]}")
+    check(r.returncode != 0 and "ends with a comma, but no line continues it" in r.stderr,
+          "an *ELEMENT line ending with a comma and not continued is an error")
 
 
 def contact_blocks(exe, work):

@@ -10,6 +10,7 @@ module superjoin_analysis_penalty
   !! near 1/sqrt(eps): a rotation is not joined by a spring scaled on an axial
   !! stiffness, nor a bending direction by one scaled on the axial direction.
   use superjoin_kinds, only: wp, ip, i8
+  use superjoin_model_types, only: MAX_ELEMENT_DOFS
   use superjoin_error, only: error_t, add_error_line, EXIT_DECK
   use superjoin_model_types, only: model_t, ELEMENT_NODE_COUNT, LINK_RIGID, loc_text
   use superjoin_elements, only: element_stiffness
@@ -21,7 +22,7 @@ module superjoin_analysis_penalty
   implicit none (type, external)
   private
 
-  integer, parameter :: MAX_ITEM_DOFS = 48   !! physical DOFs of the largest element (S8R: 8 x 6)
+  integer, parameter :: MAX_ITEM_DOFS = MAX_ELEMENT_DOFS   !! physical DOFs of the largest element
 
   public :: apply_penalty_default, penalty_default_note
 

@@ -7,11 +7,12 @@ module superjoin_analysis_recover
   !! its child with the sum of r over the child's subtree; a rigid component that
   !! closed a loop gets its force from the equation of the column it eliminated.
   use superjoin_kinds, only: wp, ip, i8
+  use superjoin_model_types, only: MAX_ELEMENT_DOFS
   use superjoin_error, only: error_t, add_error_line, EXIT_DECK
   use superjoin_model_types, only: model_t, DLOAD_THERMAL, ELEMENT_NODE_COUNT, LINK_NONE, LINK_FINITE, LINK_RIGID, &
        NDOF_NODE, loc_text
   use superjoin_elements, only: element_end_forces, element_nodal_forces, &
-       is_plate_type, shell_forces
+       is_plate_type, shell_forces, is_solid_type, solid_forces
   use superjoin_assembly_dofs, only: dof_table_t, unit_t, NBLOCK, GROUND, UNIT_LINK, UNIT_SUPPORT, block_dof, &
        unit_terms, arm_matrix, MAX_UNIT_TERMS
   use superjoin_assembly_forest, only: forest_t
@@ -29,7 +30,7 @@ module superjoin_analysis_recover
   implicit none (type, external)
   private
 
-  integer, parameter :: MAX_ELEM_DOFS = 48   ! S8R: 8 nodes x 6 DOFs
+  integer, parameter :: MAX_ELEM_DOFS = MAX_ELEMENT_DOFS
 
   public :: recover_results
 
@@ -171,6 +172,8 @@ contains
     call body_load_fields(model, nstep, res, f0)
     ! Distributed loads in element axes, per element and step.
     call add_dload_terms(model, table, own_ku, res%fields%elem_offset, ql, nt, r)
+    call solid_reactions(model, table, own_ku, u, r, error)
+    if (allocated(error)) return
 
     do isub = 1, size(model%subs)
        associate (s => model%subs(isub))
@@ -183,6 +186,7 @@ contains
             end if
             associate (sec => s%sections(s%elem_section(e)))
               call element_pdofs(model, table, isub, e, pd, n)
+              if (is_solid_type(s%elem_type(e))) cycle   ! solid_reactions, above
               if (is_plate_type(s%elem_type(e))) then
                  ! r takes K_e u_e (the distributed loads of these elements are left out of r above)
                  call shell_forces(s%elem_type(e), s%x(:, s%elem_nodes(1:nn, e)), sec, &
@@ -224,6 +228,40 @@ contains
        end associate
     end do
   end subroutine element_results
+
+  subroutine solid_reactions(model, table, own_ku, u, r, error)
+    !! r += K_e u_e of the solid elements (no end forces; their body loads are
+    !! left out of r in add_dload_terms) but for the substructures whose k u r
+    !! holds already (own_ku).
+    type(model_t), intent(in) :: model
+    type(dof_table_t), intent(in) :: table
+    logical, intent(in) :: own_ku(:)
+    real(wp), intent(in) :: u(:, :)
+    real(wp), intent(inout) :: r(:, :)
+    type(error_t), allocatable, intent(inout) :: error
+    real(wp) :: fg(MAX_ELEM_DOFS, size(u, 2))
+    integer(i8) :: pd(MAX_ELEM_DOFS)
+    integer :: isub, n, nn
+    integer(ip) :: e
+    type(error_t), allocatable :: inner
+    do isub = 1, size(model%subs)
+       if (own_ku(isub)) cycle
+       associate (s => model%subs(isub))
+         do e = 1, s%nelem
+            if (.not. is_solid_type(s%elem_type(e))) cycle
+            nn = ELEMENT_NODE_COUNT(s%elem_type(e))
+            call element_pdofs(model, table, isub, e, pd, n)
+            call solid_forces(s%elem_type(e), s%x(:, s%elem_nodes(1:nn, e)), &
+                 model%materials(s%sections(s%elem_section(e))%material), u(pd(1:n), :), fg(1:n, :), inner)
+            if (allocated(inner)) then
+               call add_error_line(error, EXIT_DECK, inner%message)
+               return
+            end if
+            r(pd(1:n), :) = r(pd(1:n), :) + fg(1:n, :)
+         end do
+       end associate
+    end do
+  end subroutine solid_reactions
 
   subroutine body_load_fields(model, nstep, res, f0)
     !! What the element results take off for body loads (analysis/body_loads).
@@ -273,7 +311,7 @@ contains
        do i = 1, size(model%steps(is)%dloads)
           associate (dl => model%steps(is)%dloads(i), s => model%subs(model%steps(is)%dloads(i)%sub))
             ! Plane and shell elements: r gets K_e u_e itself (shell_forces below).
-            if (is_plate_type(s%elem_type(dl%elem))) cycle
+            if (is_plate_type(s%elem_type(dl%elem)) .or. is_solid_type(s%elem_type(dl%elem))) cycle
             call distributed_load(model, dl, fe, qloc, inner)
             if (allocated(inner)) deallocate (inner)
             ie = elem_offset(dl%sub) + dl%elem

@@ -3,6 +3,7 @@ module superjoin_assembly_assemble
   !! the reduced loads, without forming T: every element and plain contact is
   !! scattered through the maps of its physical DOFs.
   use superjoin_kinds, only: wp, ip, i8
+  use superjoin_model_types, only: MAX_ELEMENT_DOFS
   use superjoin_error, only: error_t, add_error_line, EXIT_DECK, EXIT_SINGULAR
   use superjoin_model_types, only: model_t, ELEMENT_NODE_COUNT, LINK_FINITE, loc_text
   use superjoin_elements, only: element_dof_mask, element_stiffness, distributed_load
@@ -16,7 +17,7 @@ module superjoin_assembly_assemble
   implicit none (type, external)
   private
 
-  integer, parameter :: MAX_ITEM_DOFS = 48   ! S8R: 8 nodes x 6 DOFs
+  integer, parameter :: MAX_ITEM_DOFS = MAX_ELEMENT_DOFS
     !! Largest number of physical DOFs one item (element or contact) touches.
 
   type, public :: superelement_t

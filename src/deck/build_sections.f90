@@ -6,7 +6,7 @@ module superjoin_deck_build_sections
   use superjoin_model_types, only: model_t, substructure_t, ELEMENT_TYPE_NAMES, SEC_SOLID, SEC_BEAM, &
        SEC_SHELL, section_t
   use superjoin_elements_traits, only: element_traits_t, element_traits, section_card_name, &
-       shell_of_plane, FAMILY_NONE, FAMILY_TRUSS, FAMILY_BEAM, FAMILY_PLANE, FAMILY_SHELL
+       shell_of_plane, FAMILY_NONE, FAMILY_TRUSS, FAMILY_BEAM, FAMILY_PLANE, FAMILY_SHELL, FAMILY_SOLID
   use superjoin_deck_lexer, only: itoa
   use superjoin_deck_state, only: deck_state_t, report_loc, BEAM_2D_VALUES, BEAM_3D_VALUES, sec_b_t
   use superjoin_deck_beam_sections, only: section_fibres, MAX_FIBRES
@@ -18,8 +18,8 @@ module superjoin_deck_build_sections
 
   type :: member_tally_t
     !! The elements of a section card's element set, by kind.
-     integer :: ntruss = 0, ncps = 0, nb23 = 0, nb33 = 0, nshell = 0
-       !! trusses, plane elements, 2D beams, 3D beams, shells
+     integer :: ntruss = 0, ncps = 0, nb23 = 0, nb33 = 0, nshell = 0, nsolid = 0
+       !! trusses, plane elements, 2D beams, 3D beams, shells, solids
      integer :: nbad = 0, nover = 0, other = 0
        !! members the card does not fit, members with another section (the first's section)
      integer(ip) :: first_bad = 0, first_over = 0
@@ -160,6 +160,8 @@ contains
           end if
        case (FAMILY_SHELL)
           tally%nshell = tally%nshell + 1
+       case (FAMILY_SOLID)
+          tally%nsolid = tally%nsolid + 1
        end select
        if (tr%family /= FAMILY_NONE .and. sb%kind /= tr%section) then
           tally%nbad = tally%nbad + 1
@@ -198,14 +200,14 @@ contains
   subroutine solid_values(st, sb, card, tally, sec)
     !! Area (trusses) or thickness (plane elements) of a *SOLID SECTION. With no
     !! data line plane elements take the thickness 1 (Abaqus's default);
-    !! trusses need their area.
+    !! trusses need their area; solids need nothing (a value is ignored).
     type(deck_state_t), intent(inout) :: st
     type(sec_b_t), intent(in) :: sb
     character(*), intent(in) :: card
     type(member_tally_t), intent(in) :: tally
     type(section_t), intent(inout) :: sec
     if (sb%nval == 0) then
-       if (tally%ntruss > 0 .or. tally%ncps == 0) then
+       if (tally%ntruss > 0 .or. (tally%ncps == 0 .and. tally%nsolid == 0)) then
           call report_loc(st, sb%loc, card//' needs a data line (the cross-section area of the trusses)')
           return
        end if

@@ -5,7 +5,8 @@ module superjoin_deck_cards_model
   use superjoin_kinds, only: wp, ip, i8
   use superjoin_model_types, only: source_loc_t, ELEMENT_TYPE_NAMES, ELEMENT_NODE_COUNT, &
        MAX_ELEMENT_NODES, CONDENSE_AUTO, CONDENSE_YES, CONDENSE_NO
-  use superjoin_deck_lexer, only: keyword_line_t, to_upper, is_name, looks_numeric, itoa, clip
+  use superjoin_deck_lexer, only: keyword_line_t, to_upper, is_name, looks_numeric, itoa, clip, &
+       split_fields, drop_trailing_empty
   use superjoin_deck_state, only: deck_state_t, report_loc, report_oom, new_sub, find_sub, find_set, &
        new_set, add_chunk, push_pool, add_node, add_element, CH_IDS, CH_GEN, CH_RANGE, CH_REF, &
        spring_elem_b_t, spring_card_b_t, add_spring_elem, add_spring_card, SPRING_1, SPRING_2, &
@@ -134,6 +135,7 @@ contains
        return
     end if
     st%card_etype = element_type_of_name(typ)
+    if (allocated(st%elem_pending)) deallocate (st%elem_pending)
     if (st%card_etype == 0) then
        call report_loc(st, loc, unsupported_type_message(clip(typ)))
        call declare_elset(st, kw, loc)
@@ -234,15 +236,31 @@ contains
     end associate
   end subroutine data_node
 
-  subroutine data_element(st, line, loc)
-    !! A data line of *ELEMENT: id and the nodes of the card's element type.
+  subroutine data_element(st, line0, loc)
+    !! A data line of *ELEMENT: id and the nodes of the card's element type. A
+    !! line that ends with a comma before all the nodes are given continues on
+    !! the next line (Abaqus writes at most 16 fields per line: C3D20).
     type(deck_state_t), intent(inout) :: st
-    character(*), intent(in) :: line
+    character(*), intent(in) :: line0
     type(source_loc_t), intent(in) :: loc
     integer(ip) :: id, nid(MAX_ELEMENT_NODES)
     integer :: i, nn
     integer(i8) :: failed_bytes
+    character(:), allocatable :: line
     nn = ELEMENT_NODE_COUNT(st%card_etype)
+    line = line0
+    if (allocated(st%elem_pending)) then
+       line = st%elem_pending//line0
+       deallocate (st%elem_pending)
+       call split_fields(line, st%f)
+       call drop_trailing_empty(st%f)
+    end if
+    if (st%f%n < nn + 1 .and. len_trim(line) > 0) then
+       if (line(len_trim(line):len_trim(line)) == ',') then
+          st%elem_pending = trim(line)
+          return
+       end if
+    end if
     if (.not. field_count(st, loc, nn + 1, nn + 1, 'id and '//itoa(nn)//' nodes for type '// &
          trim(ELEMENT_TYPE_NAMES(st%card_etype)))) return
     if (.not. get_id(st, line, loc, 1, 'element id', id)) return

@@ -282,6 +282,12 @@ contains
           call report_loc(st, st%card_loc, st%card_name//' needs a data line')
           st%sections(st%card_item)%data_ok = .false.
        end if
+    case (CARD_ELEMENT)
+       if (allocated(st%elem_pending)) then
+          call report_loc(st, st%card_loc, '*ELEMENT: the data line '''//clip(st%elem_pending)// &
+               ''' ends with a comma, but no line continues it')
+          deallocate (st%elem_pending)
+       end if
     case (CARD_COMBINATION)
        if (st%card_ndata == 0) call report_loc(st, st%card_loc, st%card_name//' needs a data line (step, factor)')
     case (CARD_EXPANSION)

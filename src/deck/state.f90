@@ -112,6 +112,7 @@ module superjoin_deck_state
      integer :: card_set = 0
      integer :: card_chunk = 0
      integer :: card_etype = 0
+     character(:), allocatable :: elem_pending  !! *ELEMENT: a data line ended by a comma, continued on the next
      integer :: card_item = 0              !! section, contact, material or orientation index
      integer :: card_home = 0
      logical :: card_generate = .false.

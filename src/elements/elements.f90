@@ -15,9 +15,11 @@ module superjoin_elements
   use superjoin_model_types, only: section_t, material_t, ET_T2D2, ET_T3D2, ET_B23, ET_B33, &
        ET_CPS3, ET_CPS4, ET_S3, ET_S4, ET_B21, ET_B31, ET_CPE3, ET_CPE4, NUM_ELEMENT_TYPES, ELEMENT_TYPE_NAMES, &
        ET_CPS6, ET_CPS8, ET_CPE6, ET_CPE8, ET_CPS8R, ET_CPE8R, ET_B32, &
+       ET_C3D8, ET_C3D20, ET_C3D20R, ET_C3D4, ET_C3D10, &
        DLOAD_PX, DLOAD_PY, DLOAD_PZ, DLOAD_P
   use superjoin_model_types, only: ET_S4R, ET_S3R
   use superjoin_model_types, only: ET_S8R
+  use superjoin_elements_solid, only: solid_stiffness, solid_body_load, is_solid_type, solid_forces
   use superjoin_model_types, only: DLOAD_P1, DLOAD_P2, DLOAD_P3, DLOAD_P4, DLOAD_THERMAL
   use superjoin_elements_edge_load, only: plane_edge_load
   use superjoin_elements_thermal, only: thermal_axial_load, thermal_plate_load
@@ -64,6 +66,9 @@ module superjoin_elements
     !! frame; shell_forces(etype, x, sec, mat, ue(:, nstep), res(6, nstep),
     !! fg(:, nstep), error): resultants and K_e u_e of every step with one
     !! element matrix; see superjoin_elements_shell.
+  public :: is_solid_type, solid_forces
+    !! is_solid_type(etype): the 3D solids (C3D*); solid_forces(etype, x, mat,
+    !! ue(:, nstep), fg(:, nstep), error): K_e u_e of every step (superjoin_elements_solid).
   public :: beam_frame
     !! beam_frame(etype, x, sec, r, length, error): local frame of a truss or beam
     !! (rows of r = local x, y, z axes); see superjoin_elements_frame.
@@ -73,7 +78,8 @@ contains
   pure function element_node_dofs(etype) result(dofs)
     !! DOF numbers (1..6: ux, uy, uz, rx, ry, rz) carried by each node of an
     !! element type: T2D2 [1,2]; T3D2 [1,2,3]; B23, B21 [1,2,6]; B33, B31 [1..6];
-    !! CPS3/CPS4/CPE3/CPE4 and CPS6/CPS8/CPS8R/CPE6/CPE8/CPE8R [1,2]; S3/S4/S3R/S4R/S8R [1..6]; an unknown type gives an empty array.
+    !! CPS3/CPS4/CPE3/CPE4 and CPS6/CPS8/CPS8R/CPE6/CPE8/CPE8R [1,2]; S3/S4/S3R/S4R/S8R [1..6];
+    !! the solids C3D* [1,2,3]; an unknown type gives an empty array.
     integer, intent(in) :: etype
     integer, allocatable :: dofs(:)
     integer :: i
@@ -81,6 +87,8 @@ contains
     case (ET_T2D2, ET_CPS3, ET_CPS4, ET_CPE3, ET_CPE4, ET_CPS6, ET_CPS8, ET_CPE6, ET_CPE8, ET_CPS8R, ET_CPE8R)
        dofs = [1, 2]
     case (ET_T3D2)
+       dofs = [1, 2, 3]
+    case (ET_C3D8, ET_C3D20, ET_C3D20R, ET_C3D4, ET_C3D10)
        dofs = [1, 2, 3]
     case (ET_B23, ET_B21)
        dofs = [1, 2, 6]
@@ -100,7 +108,7 @@ contains
     select case (etype)
     case (ET_T2D2, ET_CPS3, ET_CPS4, ET_CPE3, ET_CPE4, ET_CPS6, ET_CPS8, ET_CPE6, ET_CPE8, ET_CPS8R, ET_CPE8R)
        mask(1:2) = .true.
-    case (ET_T3D2)
+    case (ET_T3D2, ET_C3D8, ET_C3D20, ET_C3D20R, ET_C3D4, ET_C3D10)
        mask(1:3) = .true.
     case (ET_B23, ET_B21)
        mask([1, 2, 6]) = .true.
@@ -177,6 +185,8 @@ contains
     case (ET_CPS3, ET_CPS4, ET_S3, ET_S4, ET_CPE3, ET_CPE4, ET_CPS6, ET_CPS8, ET_CPE6, ET_CPE8, ET_CPS8R, ET_CPE8R, ET_S4R, ET_S3R, &
          ET_S8R)
        call shell_stiffness(etype, x, sec, mat, ke, error, drill)
+    case (ET_C3D8, ET_C3D20, ET_C3D20R, ET_C3D4, ET_C3D10)
+       call solid_stiffness(etype, x, mat, ke, error)
     case default
        call unsupported(etype, error)
     end select
@@ -190,7 +200,7 @@ contains
     !! tension has n < 0 at end 1 and n > 0 at end 2. ue holds the element DOF
     !! values in global axes, same ordering as element_stiffness. Components a
     !! type lacks are 0 (trusses: n, and vy, vz under a load across the bar such
-    !! as self weight; B23, B21: n, vy, mz). Plane and shell
+    !! as self weight; B23, B21: n, vy, mz). Plane, shell and solid
     !! elements have no end forces: f = 0 and no error.
     integer, intent(in) :: etype
     real(wp), intent(in) :: x(:, :)
@@ -209,7 +219,7 @@ contains
     case (ET_B32)
        call beam3_end_forces(x, sec, mat, ue, q_local, f, error)
     case (ET_CPS3, ET_CPS4, ET_S3, ET_S4, ET_CPE3, ET_CPE4, ET_CPS6, ET_CPS8, ET_CPE6, ET_CPE8, ET_CPS8R, ET_CPE8R, ET_S4R, ET_S3R, &
-         ET_S8R)
+         ET_S8R, ET_C3D8, ET_C3D20, ET_C3D20R, ET_C3D4, ET_C3D10)
        continue
     case default
        call unsupported(etype, error)
@@ -334,7 +344,8 @@ contains
     !! Consistent nodal loads fe (global axes, element ordering) of the self
     !! weight under the acceleration vector accel (global axes): density × A per
     !! unit length on trusses and beams (q_local as for beam_distributed_load),
-    !! density × t per unit area on plane and shell elements (q_local = 0).
+    !! density × t per unit area on plane and shell elements, density per unit
+    !! volume on solids (q_local = 0).
     integer, intent(in) :: etype
     real(wp), intent(in) :: x(:, :)
     type(section_t), intent(in) :: sec
@@ -354,6 +365,8 @@ contains
     case (ET_CPS3, ET_CPS4, ET_S3, ET_S4, ET_CPE3, ET_CPE4, ET_CPS6, ET_CPS8, ET_CPE6, ET_CPE8, ET_CPS8R, ET_CPE8R, ET_S4R, ET_S3R, &
          ET_S8R)
        call shell_area_load(etype, x, mat%density*sec%thickness*accel, fe, error)
+    case (ET_C3D8, ET_C3D20, ET_C3D20R, ET_C3D4, ET_C3D10)
+       call solid_body_load(etype, x, mat%density*accel, fe, error)   ! ρ g per unit volume
     case default
        call unsupported(etype, error)
     end select

@@ -12,26 +12,33 @@ module superjoin_elements_traits
        SEC_SOLID, SEC_BEAM, SEC_SHELL, &
        ET_T2D2, ET_T3D2, ET_B23, ET_B33, ET_CPS3, ET_CPS4, ET_S3, ET_S4, ET_B21, ET_B31, &
        ET_CPE3, ET_CPE4, ET_S4R, ET_S3R, ET_S8R, ET_CPS6, ET_CPS8, ET_CPE6, ET_CPE8, &
-       ET_CPS8R, ET_CPE8R, ET_B32, &
+       ET_CPS8R, ET_CPE8R, ET_B32, ET_C3D8, ET_C3D20, ET_C3D20R, ET_C3D4, ET_C3D10, &
        DLOAD_PX, DLOAD_PY, DLOAD_PZ, DLOAD_P, DLOAD_GRAV, DLOAD_P1, DLOAD_P2, DLOAD_P3, &
        DLOAD_P4, DLOAD_CENTRIF
   implicit none (type, external)
   private
 
   integer, parameter, public :: FAMILY_NONE = 0, FAMILY_TRUSS = 1, FAMILY_BEAM = 2, &
-                                FAMILY_PLANE = 3, FAMILY_SHELL = 4
-    !! Element families (a solid family comes with the solid elements).
-  character(len=6), parameter, public :: FAMILY_NAMES(0:4) = &
-       ['none  ', 'truss ', 'beam  ', 'plane ', 'shell ']
+                                FAMILY_PLANE = 3, FAMILY_SHELL = 4, FAMILY_SOLID = 5
+    !! Element families (FAMILY_SOLID: the 3D solids C3D*, DOFs 1..3).
+  character(len=6), parameter, public :: FAMILY_NAMES(0:5) = &
+       ['none  ', 'truss ', 'beam  ', 'plane ', 'shell ', 'solid ']
 
   integer, parameter, public :: VTK_VERTEX = 1, VTK_LINE = 3, VTK_POLY_LINE = 4, &
                                 VTK_TRIANGLE = 5, VTK_QUAD = 9, &
-                                VTK_QUADRATIC_TRIANGLE = 22, VTK_QUADRATIC_QUAD = 23
-    !! VTK cell type numbers (VTK's file format; its node order is Abaqus's for these cells).
+                                VTK_QUADRATIC_TRIANGLE = 22, VTK_QUADRATIC_QUAD = 23, &
+                                VTK_TETRA = 10, VTK_HEXAHEDRON = 12, VTK_QUADRATIC_TETRA = 24, &
+                                VTK_QUADRATIC_HEXAHEDRON = 25
+    !! VTK cell type numbers (VTK's file format; its node order is Abaqus's for these cells,
+    !! the 20-node hexahedron and 10-node tetrahedron included: VTK's mid-edge points 8..19
+    !! lie on the edges (0,1), (1,2), (2,3), (3,0), (4,5), (5,6), (6,7), (7,4), (0,4), (1,5),
+    !! (2,6), (3,7), Abaqus's nodes 9..20 on 1-2, 2-3, 3-4, 4-1, 5-6, 6-7, 7-8, 8-5, 1-5, 2-6,
+    !! 3-7, 4-8; the tetrahedron's 4..9 on (0,1), (1,2), (0,2), (0,3), (1,3), (2,3) as C3D10's
+    !! 5..10. CalculiX's .frd order, which differs, plays no part here).
 
   type, public :: element_traits_t
     !! One element type, as the rest of the program sees it.
-     character(len=5) :: name = ''        !! deck name (T2D2, CPS4, S8R, …)
+     character(len=6) :: name = ''        !! deck name (T2D2, CPS4, S8R, C3D20R, …)
      integer :: family = FAMILY_NONE      !! FAMILY_*
      integer :: nodes = 0                 !! nodes per element
      integer :: corners = 0               !! corner nodes (the first ones); the rest are mid-side nodes
@@ -40,7 +47,7 @@ module superjoin_elements_traits
      logical :: plane_strain = .false.    !! CPE*
      logical :: shear_flexible = .false.  !! Timoshenko beams (B21, B31, B32), thick shells (S3R, S4R, S8R)
      logical :: reduced = .false.         !! reduced integration named by the type (CPS8R, CPE8R, S4R, S3R, S8R)
-     integer :: edges = 0                 !! faces of a plane element (P1..Pn), edges of a shell
+     integer :: edges = 0                 !! faces of a plane element (P1..Pn), edges of a shell, faces of a solid
      logical :: dofs(6) = .false.         !! DOFs 1..6 (ux, uy, uz, rx, ry, rz) carried by each node
      integer :: section = 0               !! SEC_* kind of the section card that covers it
      integer :: vtk_cell = VTK_VERTEX     !! VTK cell type
@@ -109,6 +116,16 @@ contains
     case (ET_S8R)
        t = with(t, FAMILY_SHELL, D6, SEC_SHELL, VTK_QUADRATIC_QUAD, edges=4, corners=4, shear=.true., &
                 reduced=.true.)
+    case (ET_C3D8)
+       t = with(t, FAMILY_SOLID, D3, SEC_SOLID, VTK_HEXAHEDRON, edges=6)
+    case (ET_C3D20)
+       t = with(t, FAMILY_SOLID, D3, SEC_SOLID, VTK_QUADRATIC_HEXAHEDRON, edges=6, corners=8)
+    case (ET_C3D20R)
+       t = with(t, FAMILY_SOLID, D3, SEC_SOLID, VTK_QUADRATIC_HEXAHEDRON, edges=6, corners=8, reduced=.true.)
+    case (ET_C3D4)
+       t = with(t, FAMILY_SOLID, D3, SEC_SOLID, VTK_TETRA, edges=4)
+    case (ET_C3D10)
+       t = with(t, FAMILY_SOLID, D3, SEC_SOLID, VTK_QUADRATIC_TETRA, edges=4, corners=4)
     end select
     t%quadratic = t%corners < t%nodes
     t%plane_strain = any(etype == [ET_CPE3, ET_CPE4, ET_CPE6, ET_CPE8, ET_CPE8R])
@@ -167,7 +184,7 @@ contains
   elemental logical function accepts_dload(kind, etype)
     !! Whether a distributed load of kind DLOAD_* applies to element type etype:
     !! PX, PY on beams (per unit length), PZ on beams in space, P on shells,
-    !! GRAV on every element, CENTRIF on all but B32, P1..Pn on the faces of a
+    !! GRAV on every element, CENTRIF on all but B32 and the solids, P1..Pn on the faces of a
     !! plane element; on beams P1 (local y) in space and P2 (local z) also on
     !! planar two-node beams.
     integer, intent(in) :: kind, etype
@@ -185,7 +202,7 @@ contains
     case (DLOAD_GRAV)
        accepts_dload = .true.
     case (DLOAD_CENTRIF)
-       accepts_dload = etype /= ET_B32
+       accepts_dload = etype /= ET_B32 .and. t%family /= FAMILY_SOLID
     case (DLOAD_P1)
        accepts_dload = t%family == FAMILY_PLANE .or. (beam2 .and. .not. t%planar)
     case (DLOAD_P2)

@@ -21,18 +21,25 @@ module superjoin_model_types
     !! Second-order plane elements: 6-node triangles, 8-node quadrilaterals (…R: 2×2 reduced integration).
   integer, parameter, public :: ET_B32 = 22
     !! Three-node Timoshenko beam (end, middle, end), curved geometry allowed.
-  integer, parameter, public :: NUM_ELEMENT_TYPES = 22
-  character(len=5), parameter, public :: ELEMENT_TYPE_NAMES(NUM_ELEMENT_TYPES) = &
-       ['T2D2 ', 'T3D2 ', 'B23  ', 'B33  ', 'CPS3 ', 'CPS4 ', 'S3   ', 'S4   ', &
-        'B21  ', 'B31  ', 'CPE3 ', 'CPE4 ', &
-        'S4R  ', 'S3R  ', 'S8R  ', &
-        'CPS6 ', 'CPS8 ', 'CPE6 ', 'CPE8 ', 'CPS8R', 'CPE8R', 'B32  ']
+  integer, parameter, public :: ET_C3D8 = 23, ET_C3D20 = 24, ET_C3D20R = 25, ET_C3D4 = 26, ET_C3D10 = 27
+    !! 3D solids (superjoin_elements_solid): hexahedra with 8 and 20 nodes (C3D20R: 2×2×2
+    !! reduced integration), tetrahedra with 4 and 10 nodes; Abaqus node numbering.
+  integer, parameter, public :: NUM_ELEMENT_TYPES = 27
+  character(len=6), parameter, public :: ELEMENT_TYPE_NAMES(NUM_ELEMENT_TYPES) = &
+       ['T2D2  ', 'T3D2  ', 'B23   ', 'B33   ', 'CPS3  ', 'CPS4  ', 'S3    ', 'S4    ', &
+        'B21   ', 'B31   ', 'CPE3  ', 'CPE4  ', &
+        'S4R   ', 'S3R   ', 'S8R   ', &
+        'CPS6  ', 'CPS8  ', 'CPE6  ', 'CPE8  ', 'CPS8R ', 'CPE8R ', 'B32   ', &
+        'C3D8  ', 'C3D20 ', 'C3D20R', 'C3D4  ', 'C3D10 ']
     !! A blank name would be a reserved number without an element.
   integer, parameter, public :: ELEMENT_NODE_COUNT(NUM_ELEMENT_TYPES) = [2, 2, 2, 2, 3, 4, 3, 4, &
        2, 2, 3, 4, &
        4, 3, 8, &
-       6, 8, 6, 8, 8, 8, 3]
-  integer, parameter, public :: MAX_ELEMENT_NODES = 8
+       6, 8, 6, 8, 8, 8, 3, &
+       8, 20, 20, 4, 10]
+  integer, parameter, public :: MAX_ELEMENT_NODES = 20
+  integer, parameter, public :: MAX_ELEMENT_DOFS = 60
+    !! DOFs of the largest element (C3D20: 20 nodes x 3; S8R has 8 x 6).
 
   integer, parameter, public :: NDOF_NODE = 6
     !! DOFs per node (Abaqus numbering 1 ux, 2 uy, 3 uz, 4 rx, 5 ry, 6 rz).

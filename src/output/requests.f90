@@ -10,7 +10,7 @@ module superjoin_output_requests
   use superjoin_kinds, only: wp, i8, ip
   use superjoin_model_types, only: model_t, output_request_t, NDOF_NODE, REQ_NODE_PRINT, REQ_EL_PRINT, &
        REQ_KIND_NAMES, TOTALS_YES, TOTALS_ONLY
-  use superjoin_elements, only: is_plate_type, element_tensor, NTENSOR
+  use superjoin_elements, only: is_plate_type, element_tensor, NTENSOR, is_solid_type
   use superjoin_model_results, only: result_fields_t
   use superjoin_utils_text_buffer, only: text_buffer_t
   use superjoin_output_columns, only: element_prefix, chop
@@ -371,7 +371,7 @@ contains
     logical, allocatable :: ok(:)
     character(len=200) :: hline
     real(wp) :: scale
-    integer :: i, d, nskip
+    integer :: i, d, nskip, nsolid
     allocate (t(NTENSOR, size(elems)), ok(size(elems)))
     do i = 1, size(elems)
        call element_tensor(model, fields, is, subs(i), elems(i), strain, t(:, i), ok(i))
@@ -381,7 +381,12 @@ contains
     scale = 0.0_wp
     if (any(ok)) scale = maxval(abs(t))
     nskip = 0
+    nsolid = 0
     do i = 1, size(elems)
+       if (.not. ok(i) .and. is_solid_type(model%subs(subs(i))%elem_type(elems(i)))) then
+          nsolid = nsolid + 1
+          cycle
+       end if
        if (.not. ok(i)) then
           nskip = nskip + 1
           cycle
@@ -394,6 +399,7 @@ contains
     end do
     if (nskip > 0) call lu%line('    ('//itoa(nskip)//' beam or shell elements of the set have no '// &
          'single tensor: see SF)')
+    if (nsolid > 0) call lu%line(solid_note(nsolid))
   end subroutine tensor_table
 
   subroutine section_force_table(lu, model, fields, is, subs, elems)
@@ -406,7 +412,7 @@ contains
     character(len=200) :: hline
     real(wp) :: scale_bar, scale_plate
     integer(i8) :: iel
-    integer :: i, d, k
+    integer :: i, d, k, nsolid
     scale_bar = 0.0_wp
     scale_plate = 0.0_wp
     do i = 1, size(elems)
@@ -421,9 +427,12 @@ contains
          '         n / nx', '        vy / ny', '       vz / nxy', '         t / mx', '        my / my', &
          '       mz / mxy'
     call lu%line(trim(hline))
+    nsolid = 0
     do i = 1, size(elems)
        iel = fields%elem_offset(subs(i)) + elems(i)
-       if (is_plate_type(model%subs(subs(i))%elem_type(elems(i)))) then
+       if (is_solid_type(model%subs(subs(i))%elem_type(elems(i)))) then
+          nsolid = nsolid + 1
+       else if (is_plate_type(model%subs(subs(i))%elem_type(elems(i)))) then
           call element_prefix(lu, model, subs(i), elems(i), 4)
           call lu%put('   -')
           do d = 1, 6
@@ -441,5 +450,14 @@ contains
           end do
        end if
     end do
+    if (nsolid > 0) call lu%line(solid_note(nsolid))
   end subroutine section_force_table
+
+  pure function solid_note(n) result(text)
+    !! The note of a stress, strain or section force table for its n solid elements.
+    integer, intent(in) :: n
+    character(:), allocatable :: text
+    text = '    ('//itoa(n)//' solid elements of the set: stresses, strains and section forces of solids '// &
+         'are not produced yet)'
+  end function solid_note
 end module superjoin_output_requests

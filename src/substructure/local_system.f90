@@ -4,6 +4,7 @@ module superjoin_substructure_local_system
   !! elements alone, k = [k_ii k_ib; k_bi k_bb]. Boundary DOFs are those a
   !! contact element or a support touches; no contact stiffness enters k.
   use superjoin_kinds, only: wp, ip, i8
+  use superjoin_model_types, only: MAX_ELEMENT_DOFS
   use superjoin_error, only: error_t
   use superjoin_model_types, only: model_t
   use superjoin_assembly_dofs, only: dof_table_t, unit_dofs, MAX_UNIT_TERMS
@@ -16,7 +17,6 @@ module superjoin_substructure_local_system
   implicit none (type, external)
   private
 
-  integer, parameter :: MAX_ELEMENT_DOFS = 48   ! S8R: 8 nodes x 6 DOFs
     !! Largest number of DOFs of one element.
 
   type, public :: local_system_t

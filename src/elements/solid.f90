@@ -1,0 +1,320 @@
+module superjoin_elements_solid
+  !! Isoparametric 3D solid elements, isotropic linear elasticity, DOFs 1..3
+  !! per node, node numbering as Abaqus and CalculiX:
+  !!
+  !! - C3D8: trilinear hexahedron, full 2×2×2 Gauss rule;
+  !! - C3D20: serendipity hexahedron (corners 1..8, mid-side nodes 9..12 on
+  !!   the edges 1-2, 2-3, 3-4, 4-1, 13..16 on 5-6, 6-7, 7-8, 8-5, 17..20 on
+  !!   1-5, 2-6, 3-7, 4-8), full 3×3×3 rule; C3D20R: the same with 2×2×2;
+  !! - C3D4: linear tetrahedron, one point; C3D10: quadratic tetrahedron
+  !!   (mid-side nodes 5..10 on the edges 1-2, 2-3, 3-1, 1-4, 2-4, 3-4),
+  !!   four-point rule (exact for its quadratic stiffness on a straight-sided
+  !!   element).
+  !!
+  !! K_e = Σ_g Bᵀ D B det J w_g (Zienkiewicz & Taylor, vol. 1, ch. 6 and 8;
+  !! Hughes, ch. 3). Strain order: εxx, εyy, εzz, γxy, γxz, γyz.
+  use superjoin_kinds, only: wp
+  use superjoin_error, only: error_t, fatal_error, EXIT_DECK
+  use superjoin_model_types, only: material_t, ET_C3D8, ET_C3D20, ET_C3D20R, ET_C3D4, ET_C3D10
+  implicit none (type, external)
+  private
+
+  public :: is_solid_type, solid_stiffness, solid_body_load, solid_shape, solid_forces
+
+  type :: rule_t
+    !! Integration points (natural coordinates) and weights.
+     real(wp), allocatable :: xi(:, :)   !! (3, npoint)
+     real(wp), allocatable :: w(:)
+  end type rule_t
+
+contains
+
+  elemental logical function is_solid_type(etype)
+    !! etype is one of the solid element types of this module.
+    integer, intent(in) :: etype
+    is_solid_type = any(etype == [ET_C3D8, ET_C3D20, ET_C3D20R, ET_C3D4, ET_C3D10])
+  end function is_solid_type
+
+  pure subroutine solid_shape(etype, xi, n, dn)
+    !! Shape functions n(nnode) and their derivatives dn(3, nnode) with
+    !! respect to the natural coordinates xi(3) (hexahedra: -1..1 each;
+    !! tetrahedra: volume coordinates L2 = ξ, L3 = η, L4 = ζ, L1 = 1 - ξ - η - ζ).
+    integer, intent(in) :: etype
+    real(wp), intent(in) :: xi(3)
+    real(wp), allocatable, intent(out) :: n(:), dn(:, :)
+    select case (etype)
+    case (ET_C3D8)
+       call hex8(xi, n, dn)
+    case (ET_C3D20, ET_C3D20R)
+       call hex20(xi, n, dn)
+    case (ET_C3D4)
+       allocate (n(4), dn(3, 4))
+       n = [1.0_wp - sum(xi), xi(1), xi(2), xi(3)]
+       dn = reshape([-1.0_wp, -1.0_wp, -1.0_wp, 1.0_wp, 0.0_wp, 0.0_wp, &
+            0.0_wp, 1.0_wp, 0.0_wp, 0.0_wp, 0.0_wp, 1.0_wp], [3, 4])
+    case default
+       call tet10(xi, n, dn)
+    end select
+  end subroutine solid_shape
+
+  pure subroutine hex8(xi, n, dn)
+    !! Trilinear hexahedron: N_a = (1 + ξ ξa)(1 + η ηa)(1 + ζ ζa)/8.
+    real(wp), intent(in) :: xi(3)
+    real(wp), allocatable, intent(out) :: n(:), dn(:, :)
+    real(wp) :: c(3, 8), f(3)
+    integer :: a, d
+    c = hex_corners()
+    allocate (n(8), dn(3, 8))
+    do a = 1, 8
+       f = 1.0_wp + c(:, a)*xi
+       n(a) = product(f)/8.0_wp
+       do d = 1, 3
+          dn(d, a) = c(d, a)*product(f, mask=[1, 2, 3] /= d)/8.0_wp
+       end do
+    end do
+  end subroutine hex8
+
+  pure subroutine hex20(xi, n, dn)
+    !! Serendipity hexahedron: corners N = (1+ξξa)(1+ηηa)(1+ζζa)(ξξa+ηηa+ζζa-2)/8;
+    !! a mid-side node with ξa = 0: N = (1-ξ²)(1+ηηa)(1+ζζa)/4 (likewise η, ζ).
+    real(wp), intent(in) :: xi(3)
+    real(wp), allocatable, intent(out) :: n(:), dn(:, :)
+    real(wp) :: c(3, 20), f(3), s
+    integer :: a, d, k
+    c = hex20_nodes()
+    allocate (n(20), dn(3, 20))
+    do a = 1, 8
+       f = 1.0_wp + c(:, a)*xi
+       s = sum(c(:, a)*xi) - 2.0_wp
+       n(a) = product(f)*s/8.0_wp
+       do d = 1, 3
+          dn(d, a) = c(d, a)*product(f, mask=[1, 2, 3] /= d)*(s + f(d))/8.0_wp
+       end do
+    end do
+    do a = 9, 20
+       k = minloc(abs(c(:, a)), 1)          ! the direction along the node's edge
+       f = 1.0_wp + c(:, a)*xi
+       f(k) = 1.0_wp - xi(k)**2
+       n(a) = product(f)/4.0_wp
+       do d = 1, 3
+          if (d == k) then
+             dn(d, a) = -2.0_wp*xi(k)*product(f, mask=[1, 2, 3] /= d)/4.0_wp
+          else
+             dn(d, a) = c(d, a)*product(f, mask=[1, 2, 3] /= d)/4.0_wp
+          end if
+       end do
+    end do
+  end subroutine hex20
+
+  pure subroutine tet10(xi, n, dn)
+    !! Quadratic tetrahedron: corners L(2L - 1), mid-side nodes 4 Li Lj.
+    real(wp), intent(in) :: xi(3)
+    real(wp), allocatable, intent(out) :: n(:), dn(:, :)
+    integer, parameter :: EDGE(2, 6) = reshape([1, 2, 2, 3, 3, 1, 1, 4, 2, 4, 3, 4], [2, 6])
+    real(wp) :: l(4), dl(3, 4)
+    integer :: a, i, j
+    l = [1.0_wp - sum(xi), xi(1), xi(2), xi(3)]
+    dl = reshape([-1.0_wp, -1.0_wp, -1.0_wp, 1.0_wp, 0.0_wp, 0.0_wp, &
+         0.0_wp, 1.0_wp, 0.0_wp, 0.0_wp, 0.0_wp, 1.0_wp], [3, 4])
+    allocate (n(10), dn(3, 10))
+    do a = 1, 4
+       n(a) = l(a)*(2.0_wp*l(a) - 1.0_wp)
+       dn(:, a) = (4.0_wp*l(a) - 1.0_wp)*dl(:, a)
+    end do
+    do a = 1, 6
+       i = EDGE(1, a)
+       j = EDGE(2, a)
+       n(4 + a) = 4.0_wp*l(i)*l(j)
+       dn(:, 4 + a) = 4.0_wp*(l(i)*dl(:, j) + l(j)*dl(:, i))
+    end do
+  end subroutine tet10
+
+  pure function hex_corners() result(c)
+    !! Natural coordinates of the corners of a hexahedron (Abaqus order).
+    real(wp) :: c(3, 8)
+    c = reshape([-1, -1, -1, 1, -1, -1, 1, 1, -1, -1, 1, -1, &
+         -1, -1, 1, 1, -1, 1, 1, 1, 1, -1, 1, 1]*1.0_wp, [3, 8])
+  end function hex_corners
+
+  pure function hex20_nodes() result(c)
+    !! Natural coordinates of the 20 nodes of a serendipity hexahedron (Abaqus order).
+    real(wp) :: c(3, 20)
+    c(:, 1:8) = hex_corners()
+    c(:, 9:20) = reshape([0, -1, -1, 1, 0, -1, 0, 1, -1, -1, 0, -1, &
+         0, -1, 1, 1, 0, 1, 0, 1, 1, -1, 0, 1, &
+         -1, -1, 0, 1, -1, 0, 1, 1, 0, -1, 1, 0]*1.0_wp, [3, 12])
+  end function hex20_nodes
+
+  pure function solid_rule(etype, for_load) result(r)
+    !! The integration rule of element type etype (for_load: the full rule of
+    !! the reduced C3D20R, for consistent body loads).
+    integer, intent(in) :: etype
+    logical, intent(in) :: for_load
+    type(rule_t) :: r
+    real(wp), parameter :: A = 0.5854101966249685_wp, B = 0.1381966011250105_wp
+    select case (etype)
+    case (ET_C3D8)
+       r = gauss_hex(2)
+    case (ET_C3D20R)
+       r = gauss_hex(merge(3, 2, for_load))
+    case (ET_C3D20)
+       r = gauss_hex(3)
+    case (ET_C3D4)
+       r%xi = reshape([0.25_wp, 0.25_wp, 0.25_wp], [3, 1])
+       r%w = [1.0_wp/6.0_wp]
+    case default
+       r%xi = reshape([B, B, B, A, B, B, B, A, B, B, B, A], [3, 4])
+       r%w = spread(1.0_wp/24.0_wp, 1, 4)
+    end select
+  end function solid_rule
+
+  pure function gauss_hex(m) result(r)
+    !! The m×m×m Gauss-Legendre rule on the cube -1..1 (m = 2 or 3).
+    integer, intent(in) :: m
+    type(rule_t) :: r
+    real(wp) :: p(m), w(m)
+    integer :: i, j, k, g
+    if (m == 2) then
+       p = [-1.0_wp, 1.0_wp]/sqrt(3.0_wp)
+       w = 1.0_wp
+    else
+       p = [-sqrt(0.6_wp), 0.0_wp, sqrt(0.6_wp)]
+       w = [5.0_wp, 8.0_wp, 5.0_wp]/9.0_wp
+    end if
+    allocate (r%xi(3, m**3), r%w(m**3))
+    g = 0
+    do k = 1, m
+       do j = 1, m
+          do i = 1, m
+             g = g + 1
+             r%xi(:, g) = [p(i), p(j), p(k)]
+             r%w(g) = w(i)*w(j)*w(k)
+          end do
+       end do
+    end do
+  end function gauss_hex
+
+  pure subroutine point_gradients(etype, x, xi, n, dx, detj, error)
+    !! Shape functions n and their gradients dx(3, nnode) in x, y, z at xi;
+    !! detj: the Jacobian determinant (an error when it is not positive).
+    integer, intent(in) :: etype
+    real(wp), intent(in) :: x(:, :), xi(3)
+    real(wp), allocatable, intent(out) :: n(:), dx(:, :)
+    real(wp), intent(out) :: detj
+    type(error_t), allocatable, intent(out) :: error
+    real(wp), allocatable :: dn(:, :)
+    real(wp) :: jac(3, 3), inv(3, 3)
+    call solid_shape(etype, xi, n, dn)
+    jac = matmul(dn, transpose(x))          ! jac(i, j) = ∂x_j/∂ξ_i
+    detj = jac(1, 1)*(jac(2, 2)*jac(3, 3) - jac(2, 3)*jac(3, 2)) &
+         - jac(1, 2)*(jac(2, 1)*jac(3, 3) - jac(2, 3)*jac(3, 1)) &
+         + jac(1, 3)*(jac(2, 1)*jac(3, 2) - jac(2, 2)*jac(3, 1))
+    if (.not. (detj > 0.0_wp)) then
+       call fatal_error(error, EXIT_DECK, 'solid element with a non-positive Jacobian '// &
+            '(nodes out of order, or the element is inverted or too distorted)')
+       return
+    end if
+    inv(1, 1) = jac(2, 2)*jac(3, 3) - jac(2, 3)*jac(3, 2)
+    inv(1, 2) = jac(1, 3)*jac(3, 2) - jac(1, 2)*jac(3, 3)
+    inv(1, 3) = jac(1, 2)*jac(2, 3) - jac(1, 3)*jac(2, 2)
+    inv(2, 1) = jac(2, 3)*jac(3, 1) - jac(2, 1)*jac(3, 3)
+    inv(2, 2) = jac(1, 1)*jac(3, 3) - jac(1, 3)*jac(3, 1)
+    inv(2, 3) = jac(1, 3)*jac(2, 1) - jac(1, 1)*jac(2, 3)
+    inv(3, 1) = jac(2, 1)*jac(3, 2) - jac(2, 2)*jac(3, 1)
+    inv(3, 2) = jac(1, 2)*jac(3, 1) - jac(1, 1)*jac(3, 2)
+    inv(3, 3) = jac(1, 1)*jac(2, 2) - jac(1, 2)*jac(2, 1)
+    dx = matmul(inv/detj, dn)
+  end subroutine point_gradients
+
+  pure function elasticity(mat) result(d)
+    !! Isotropic elasticity matrix (engineering shear strains).
+    type(material_t), intent(in) :: mat
+    real(wp) :: d(6, 6), lam, g
+    integer :: i
+    lam = mat%e*mat%nu/((1.0_wp + mat%nu)*(1.0_wp - 2.0_wp*mat%nu))
+    g = mat%e/(2.0_wp*(1.0_wp + mat%nu))
+    d = 0.0_wp
+    d(1:3, 1:3) = lam
+    do i = 1, 3
+       d(i, i) = lam + 2.0_wp*g
+       d(i + 3, i + 3) = g
+    end do
+  end function elasticity
+
+  pure subroutine solid_stiffness(etype, x, mat, ke, error)
+    !! Stiffness ke(3 nnode, 3 nnode) of a solid element with node
+    !! coordinates x(3, nnode), node-major (ux, uy, uz of node 1, then node 2 …).
+    !! Errors: E not positive, ν outside (-1, 0.5), a non-positive Jacobian.
+    integer, intent(in) :: etype
+    real(wp), intent(in) :: x(:, :)
+    type(material_t), intent(in) :: mat
+    real(wp), allocatable, intent(out) :: ke(:, :)
+    type(error_t), allocatable, intent(out) :: error
+    type(rule_t) :: r
+    real(wp), allocatable :: n(:), dx(:, :), b(:, :)
+    real(wp) :: d(6, 6), detj
+    integer :: g, a, nn
+    nn = size(x, 2)
+    if (.not. (mat%e > 0.0_wp) .or. .not. (mat%nu > -1.0_wp .and. mat%nu < 0.5_wp)) then
+       call fatal_error(error, EXIT_DECK, 'a solid element needs E > 0 and -1 < nu < 0.5')
+       return
+    end if
+    d = elasticity(mat)
+    r = solid_rule(etype, .false.)
+    allocate (ke(3*nn, 3*nn), b(6, 3*nn))
+    ke = 0.0_wp
+    do g = 1, size(r%w)
+       call point_gradients(etype, x, r%xi(:, g), n, dx, detj, error)
+       if (allocated(error)) return
+       b = 0.0_wp
+       do a = 1, nn
+          b(1, 3*a - 2) = dx(1, a)
+          b(2, 3*a - 1) = dx(2, a)
+          b(3, 3*a) = dx(3, a)
+          b(4, 3*a - 2:3*a - 1) = [dx(2, a), dx(1, a)]
+          b(5, [3*a - 2, 3*a]) = [dx(3, a), dx(1, a)]
+          b(6, 3*a - 1:3*a) = [dx(3, a), dx(2, a)]
+       end do
+       ke = ke + matmul(transpose(b), matmul(d, b))*(detj*r%w(g))
+    end do
+  end subroutine solid_stiffness
+
+  pure subroutine solid_forces(etype, x, mat, ue, fg, error)
+    !! The forces the nodes exert on a solid element, K_e u_e, for the
+    !! displacements ue(3 nnode, nstep) of every step, with one element matrix.
+    integer, intent(in) :: etype
+    real(wp), intent(in) :: x(:, :), ue(:, :)
+    type(material_t), intent(in) :: mat
+    real(wp), intent(out) :: fg(:, :)
+    type(error_t), allocatable, intent(out) :: error
+    real(wp), allocatable :: ke(:, :)
+    fg = 0.0_wp
+    call solid_stiffness(etype, x, mat, ke, error)
+    if (allocated(error)) return
+    fg = matmul(ke, ue)
+  end subroutine solid_forces
+
+  pure subroutine solid_body_load(etype, x, force, fe, error)
+    !! Consistent nodal loads fe(3 nnode) of a uniform force per unit volume
+    !! force(3) (ρ g for the self weight): fe_a = ∫ N_a dV force, with the
+    !! full rule (exact on straight-sided elements).
+    integer, intent(in) :: etype
+    real(wp), intent(in) :: x(:, :), force(3)
+    real(wp), allocatable, intent(out) :: fe(:)
+    type(error_t), allocatable, intent(out) :: error
+    type(rule_t) :: r
+    real(wp), allocatable :: n(:), dx(:, :)
+    real(wp) :: detj
+    integer :: g, a
+    allocate (fe(3*size(x, 2)))
+    fe = 0.0_wp
+    r = solid_rule(etype, .true.)
+    do g = 1, size(r%w)
+       call point_gradients(etype, x, r%xi(:, g), n, dx, detj, error)
+       if (allocated(error)) return
+       do a = 1, size(x, 2)
+          fe(3*a - 2:3*a) = fe(3*a - 2:3*a) + n(a)*detj*r%w(g)*force
+       end do
+    end do
+  end subroutine solid_body_load
+end module superjoin_elements_solid

@@ -1,0 +1,188 @@
+program test_solids
+  !! Unit tests of the 3D solid elements (superjoin_elements_solid): partition
+  !! of unity and nodal interpolation of the shape functions, symmetry of the
+  !! element matrix, the six rigid-body modes in its null space, the number of
+  !! zero eigenvalues (6 for C3D8, C3D20, C3D4, C3D10; 12 for the single C3D20R:
+  !! six spurious modes of the 2×2×2 rule, not communicable in a mesh), the
+  !! volume from the consistent body load, K u = 0 rows for a linear field
+  !! (constant strain: Σ K u equals the nodal forces of a constant stress),
+  !! and the refusals (inverted element, ν = 0.5). Patch tests on meshes, the
+  !! cantilever and the CalculiX cross-check run through the whole program in
+  !! tests/solids/verify_solids.py.
+  use superjoin_kinds, only: wp
+  use superjoin_error, only: error_t
+  use superjoin_model_types, only: material_t, ET_C3D8, ET_C3D20, ET_C3D20R, ET_C3D4, ET_C3D10
+  use superjoin_elements_solid, only: solid_stiffness, solid_body_load, solid_shape
+  use superjoin_testing, only: check, check_close, check_rel, finish
+  use test_lapack, only: eigenvalues
+  use superjoin_utils_strings, only: itoa
+  implicit none (type, external)
+
+  real(wp), parameter :: TOL_EXACT = 1.0e-12_wp    !! exact discrete answers, relative
+  real(wp), parameter :: TOL_ZERO_EIG = 1.0e-10_wp !! a zero eigenvalue, relative to the largest
+  real(wp), parameter :: MIN_POSITIVE = 1.0e-6_wp  !! smallest non-zero eigenvalue / largest, at least
+  integer, parameter :: TYPES(5) = [ET_C3D8, ET_C3D20, ET_C3D20R, ET_C3D4, ET_C3D10]
+  character(len=6), parameter :: NAMES(5) = ['C3D8  ', 'C3D20 ', 'C3D20R', 'C3D4  ', 'C3D10 ']
+  integer, parameter :: ZERO_EIGS(5) = [6, 6, 12, 6, 6]
+  type(material_t) :: mat
+  integer :: k
+
+  mat%e = 2.1e5_wp
+  mat%nu = 0.3_wp
+  do k = 1, size(TYPES)
+     call test_shapes(TYPES(k), NAMES(k))
+     call test_matrix(TYPES(k), NAMES(k), ZERO_EIGS(k))
+     call test_volume(TYPES(k), NAMES(k))
+  end do
+  call test_errors()
+  call finish()
+
+contains
+
+  subroutine element_nodes(etype, x)
+    !! A distorted element of each type: the reference element mapped by a
+    !! smooth non-affine map (curved sides for the quadratic types).
+    integer, intent(in) :: etype
+    real(wp), allocatable, intent(out) :: x(:, :)
+    real(wp) :: r(3, 20)
+    integer :: a, nn
+    call reference_nodes(etype, r, nn)
+    allocate (x(3, nn))
+    do a = 1, nn
+       x(:, a) = [2.0_wp*r(1, a) + 0.3_wp*r(2, a) + 0.1_wp*r(2, a)*r(3, a), &
+            1.5_wp*r(2, a) - 0.2_wp*r(1, a) + 0.08_wp*r(1, a)**2, &
+            r(3, a) + 0.15_wp*r(1, a) + 0.1_wp*r(1, a)*r(2, a)]
+    end do
+  end subroutine element_nodes
+
+  subroutine reference_nodes(etype, r, nn)
+    !! Natural coordinates r(:, 1:nn) of the nn nodes (Abaqus order).
+    integer, intent(in) :: etype
+    real(wp), intent(out) :: r(3, 20)
+    integer, intent(out) :: nn
+    real(wp), parameter :: HEX(3, 20) = reshape([ &
+         -1, -1, -1, 1, -1, -1, 1, 1, -1, -1, 1, -1, -1, -1, 1, 1, -1, 1, 1, 1, 1, -1, 1, 1, &
+         0, -1, -1, 1, 0, -1, 0, 1, -1, -1, 0, -1, 0, -1, 1, 1, 0, 1, 0, 1, 1, -1, 0, 1, &
+         -1, -1, 0, 1, -1, 0, 1, 1, 0, -1, 1, 0]*1.0_wp, [3, 20])
+    real(wp), parameter :: TET(3, 10) = reshape([ &
+         0.0_wp, 0.0_wp, 0.0_wp, 1.0_wp, 0.0_wp, 0.0_wp, 0.0_wp, 1.0_wp, 0.0_wp, 0.0_wp, 0.0_wp, 1.0_wp, &
+         0.5_wp, 0.0_wp, 0.0_wp, 0.5_wp, 0.5_wp, 0.0_wp, 0.0_wp, 0.5_wp, 0.0_wp, &
+         0.0_wp, 0.0_wp, 0.5_wp, 0.5_wp, 0.0_wp, 0.5_wp, 0.0_wp, 0.5_wp, 0.5_wp], [3, 10])
+    r = 0.0_wp
+    nn = merge(8, merge(20, merge(4, 10, etype == ET_C3D4), etype == ET_C3D20 .or. etype == ET_C3D20R), &
+         etype == ET_C3D8)
+    if (etype == ET_C3D4 .or. etype == ET_C3D10) then
+       r(:, 1:nn) = TET(:, 1:nn)
+    else
+       r(:, 1:nn) = HEX(:, 1:nn)
+    end if
+  end subroutine reference_nodes
+
+  subroutine test_shapes(etype, name)
+    !! N_a(ξ_b) = δ_ab, Σ N_a = 1 and Σ ∂N_a/∂ξ = 0 at an inner point.
+    integer, intent(in) :: etype
+    character(*), intent(in) :: name
+    real(wp), allocatable :: n(:), dn(:, :), id(:, :)
+    real(wp) :: r(3, 20)
+    integer :: a, nn
+    call reference_nodes(etype, r, nn)
+    allocate (id(nn, nn))
+    do a = 1, nn
+       call solid_shape(etype, r(:, a), n, dn)
+       id(:, a) = n
+    end do
+    do a = 1, nn
+       id(a, a) = id(a, a) - 1.0_wp
+    end do
+    call check(maxval(abs(id)) < TOL_EXACT, trim(name)//': N_a(node b) = delta_ab')
+    call solid_shape(etype, [0.21_wp, 0.13_wp, 0.37_wp], n, dn)
+    call check_close(sum(n), 1.0_wp, TOL_EXACT, trim(name)//': partition of unity')
+    call check(maxval(abs(sum(dn, 2))) < TOL_EXACT, trim(name)//': derivatives sum to zero')
+  end subroutine test_shapes
+
+  subroutine test_matrix(etype, name, nzero)
+    !! Symmetry, rigid-body modes, zero eigenvalues, constant-strain forces.
+    integer, intent(in) :: etype, nzero
+    character(*), intent(in) :: name
+    real(wp), allocatable :: x(:, :), ke(:, :), u(:), w(:), f(:)
+    type(error_t), allocatable :: error
+    real(wp) :: kmax, rot(3), c(3)
+    integer :: a, m, nn, nz
+    call element_nodes(etype, x)
+    nn = size(x, 2)
+    call solid_stiffness(etype, x, mat, ke, error)
+    call check(.not. allocated(error), trim(name)//': stiffness')
+    if (allocated(error)) return
+    kmax = maxval(abs(ke))
+    call check(maxval(abs(ke - transpose(ke))) < TOL_EXACT*kmax, trim(name)//': symmetric')
+    allocate (u(3*nn))
+    c = sum(x, 2)/nn
+    do m = 1, 6                                   ! three translations, three rotations
+       do a = 1, nn
+          if (m <= 3) then
+             u(3*a - 2:3*a) = 0.0_wp
+             u(3*a - 3 + m) = 1.0_wp
+          else
+             rot = 0.0_wp
+             rot(m - 3) = 1.0_wp
+             u(3*a - 2:3*a) = cross(rot, x(:, a) - c)
+          end if
+       end do
+       f = matmul(ke, u)
+       call check(maxval(abs(f)) < TOL_EXACT*kmax*maxval(abs(u)), trim(name)//': rigid mode '//itoa(m)//' has no force')
+    end do
+    w = eigenvalues(ke)
+    nz = count(abs(w) < TOL_ZERO_EIG*maxval(w))
+    call check(nz == nzero, trim(name)//': '//itoa(nz)//' zero eigenvalues, expected '//itoa(nzero))
+    call check(minval(w) > -TOL_ZERO_EIG*maxval(w), trim(name)//': no negative eigenvalue')
+    call check(w(nzero + 1) > MIN_POSITIVE*maxval(w), trim(name)//': the other eigenvalues are positive')
+  end subroutine test_matrix
+
+  subroutine test_volume(etype, name)
+    !! Σ_a of the consistent body load (1, 2, 3) per unit volume = (1, 2, 3) × volume;
+    !! the volume of the affine image of the reference element is |det A| × its volume.
+    integer, intent(in) :: etype
+    character(*), intent(in) :: name
+    real(wp), allocatable :: x(:, :), fe(:)
+    real(wp) :: r(3, 20)
+    type(error_t), allocatable :: error
+    real(wp), parameter :: A(3, 3) = reshape([2.0_wp, 0.1_wp, 0.2_wp, 0.3_wp, 1.5_wp, -0.1_wp, &
+         0.0_wp, 0.2_wp, 1.2_wp], [3, 3])
+    real(wp) :: vol, deta
+    integer :: d, nn
+    call reference_nodes(etype, r, nn)
+    x = matmul(A, r(:, 1:nn))
+    deta = A(1, 1)*(A(2, 2)*A(3, 3) - A(2, 3)*A(3, 2)) - A(1, 2)*(A(2, 1)*A(3, 3) - A(2, 3)*A(3, 1)) &
+         + A(1, 3)*(A(2, 1)*A(3, 2) - A(2, 2)*A(3, 1))
+    vol = deta*merge(8.0_wp, 1.0_wp/6.0_wp, nn == 8 .or. nn == 20)
+    call solid_body_load(etype, x, [1.0_wp, 2.0_wp, 3.0_wp], fe, error)
+    call check(.not. allocated(error), trim(name)//': body load')
+    if (allocated(error)) return
+    do d = 1, 3
+       call check_rel(sum(fe(d::3)), d*vol, TOL_EXACT, trim(name)//': body load sums to volume x force')
+    end do
+  end subroutine test_volume
+
+  subroutine test_errors()
+    !! An inverted element and an incompressible material are refused.
+    real(wp), allocatable :: x(:, :), ke(:, :)
+    type(error_t), allocatable :: error
+    type(material_t) :: bad
+    call element_nodes(ET_C3D8, x)
+    x(:, [1, 2, 3, 4, 5, 6, 7, 8]) = x(:, [5, 6, 7, 8, 1, 2, 3, 4])   ! top and bottom swapped
+    call solid_stiffness(ET_C3D8, x, mat, ke, error)
+    call check(allocated(error), 'inverted C3D8 refused')
+    bad = mat
+    bad%nu = 0.5_wp
+    call element_nodes(ET_C3D4, x)
+    call solid_stiffness(ET_C3D4, x, bad, ke, error)
+    call check(allocated(error), 'nu = 0.5 refused')
+  end subroutine test_errors
+
+  pure function cross(a, b) result(c)
+    !! a × b.
+    real(wp), intent(in) :: a(3), b(3)
+    real(wp) :: c(3)
+    c = [a(2)*b(3) - a(3)*b(2), a(3)*b(1) - a(1)*b(3), a(1)*b(2) - a(2)*b(1)]
+  end function cross
+end program test_solids

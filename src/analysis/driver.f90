@@ -22,6 +22,7 @@ module superjoin_analysis_driver
   use superjoin_analysis_factor_reuse, only: release_factor
   use superjoin_model_results, only: results_t, run_options_t
   use superjoin_model_notes, only: append_string
+  use superjoin_model_request_notes, only: unproduced_file_variables
   use superjoin_utils_strings, only: itoa
   use superjoin_utils_sorting, only: sort_index
   use superjoin_analysis_step_groups, only: group_steps
@@ -100,6 +101,8 @@ contains
     else
        call solve_support_groups(model, grouping, opts, res, error)
     end if
+    if (allocated(error)) return
+    if (len(unproduced_file_variables(model)) > 0) call append_string(res%log%notes, unproduced_file_variables(model))
   end subroutine solve_steps
 
   subroutine enter_group(model, members, swap, supports, links)

@@ -94,6 +94,7 @@ contains
          end do
          if (p == 0) then
             call report_loc(st, inst%loc, '*INSTANCE '//st%subs(k)%name//' of undefined part '//inst%part)
+            st%subs(k)%broken = .true.   ! references into it are not reported again
             cycle
          end if
          ! an instance whose data lines were refused is placed as far as they were

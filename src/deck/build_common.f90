@@ -10,7 +10,7 @@ module superjoin_deck_build_common
   implicit none (type, external)
   private
 
-  public :: resolve_sub, sub_index, ref_text, resolve_items, part_hint, keeps_previous, more_text, &
+  public :: resolve_sub, sub_index, ref_text, resolve_items, broken_sub, part_hint, keeps_previous, more_text, &
        where, INITIAL_CAPACITY
 
   character(*), parameter :: MAIN_NAME = 'MAIN'
@@ -77,6 +77,7 @@ contains
     character(:), allocatable :: what
     what = pick(elem, 'element', 'node')
     ok = .false.
+    if (broken_sub(st, model%subs(isub)%name)) return   ! its *INSTANCE error was the one message
     associate (sub => model%subs(isub))
       if (ref%is_set) then
          k = 0
@@ -102,7 +103,9 @@ contains
             i = find_node(sub, ref%id)
          end if
          if (i == 0) then
-            call report_loc(st, loc, 'undefined '//what//' '//itoa(ref%id)//' in substructure '//sub%name)
+            ! an element of a refused *ELEMENT card (reported) is not reported again
+            if (.not. (elem .and. st%elements_refused)) call report_loc(st, loc, &
+                 'undefined '//what//' '//itoa(ref%id)//' in substructure '//sub%name)
             return
          end if
          items = [i]
@@ -110,6 +113,17 @@ contains
     end associate
     ok = .true.
   end subroutine resolve_items
+
+  pure logical function broken_sub(st, name)
+    !! Is `name` an instance of an undefined part (reported once, at its *INSTANCE)?
+    type(deck_state_t), intent(in) :: st
+    character(*), intent(in) :: name
+    integer :: k
+    broken_sub = .false.
+    do k = 1, st%nsub
+       if (st%subs(k)%broken .and. st%subs(k)%name == name) broken_sub = .true.
+    end do
+  end function broken_sub
 
   function part_hint(model, name) result(s)
     !! ' (NAME is a part: name one of its instances)' when NAME is a part, else ''.

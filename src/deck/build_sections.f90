@@ -93,6 +93,7 @@ contains
          return
       end if
       if (.not. sb%data_ok) return
+      sec%nodal_thickness = sb%nodal_thickness   ! *SHELL / *SOLID SECTION, NODAL THICKNESS
       select case (sb%kind)
       case (SEC_SOLID)
          call solid_values(st, sb, card, tally, sec)
@@ -207,6 +208,8 @@ contains
     type(member_tally_t), intent(in) :: tally
     type(section_t), intent(inout) :: sec
     if (sb%nval == 0) then
+       ! an element set left empty by a refused *ELEMENT card (reported) needs nothing more
+       if (tally%ntruss + tally%ncps + tally%nsolid + tally%nbad == 0 .and. st%elements_refused) return
        if (tally%ntruss > 0 .or. (tally%ncps == 0 .and. tally%nsolid == 0)) then
           call report_loc(st, sb%loc, card//' needs a data line (the cross-section area of the trusses)')
           return
@@ -226,7 +229,6 @@ contains
     type(sec_b_t), intent(in) :: sb
     type(section_t), intent(inout) :: sec
     sec%thickness = sb%val(1)
-    sec%nodal_thickness = sb%nodal_thickness
     if (sb%has_ks) then
        if (sb%nks < 2) then
           call report_loc(st, sb%ks_loc, '*TRANSVERSE SHEAR STIFFNESS of shells needs K11, K22')

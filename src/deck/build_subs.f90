@@ -242,7 +242,8 @@ contains
          case (CH_GEN)
             ngen = 0
             call walk_range(m, w, ch%gen, ngen)
-            if (ngen == 0) call report_loc(st, ch%loc, w%kind_name//' '//w%sets(t)%name// &
+            ! an element set may be empty because its *ELEMENT card was refused (reported)
+            if (ngen == 0 .and. .not. (w%elem .and. st%elements_refused)) call report_loc(st, ch%loc, w%kind_name//' '//w%sets(t)%name// &
                  ': GENERATE '//itoa(ch%gen(1))//', '//itoa(ch%gen(2))//', '//itoa(ch%gen(3))// &
                  ' matches no defined id')
          case (CH_RANGE)
@@ -290,8 +291,8 @@ contains
           call add(w, i)
        end if
     end do
-    if (nbad > 0) call report_loc(st, ch%loc, w%kind_name//' '//w%sets(t)%name// &
-         ': undefined '//pick(w%elem, 'element', 'node')//' '//itoa(bad_id)// &
+    if (nbad > 0 .and. .not. (w%elem .and. st%elements_refused)) call report_loc(st, ch%loc, &
+         w%kind_name//' '//w%sets(t)%name//': undefined '//pick(w%elem, 'element', 'node')//' '//itoa(bad_id)// &
          more_text(nbad - 1))
   end subroutine add_ids
 

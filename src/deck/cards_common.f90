@@ -15,7 +15,7 @@ module superjoin_deck_cards_common
 
   public :: set_card, outside_step, check_params, param_index, get_param, get_name_param, &
        target_sub, field_count, fld, get_real, real_message, get_id, get_dof, get_dof_range, &
-       get_stiffness, parse_ref, loc_string, refused_card, CARD_NONE, CARD_SKIP, CARD_NODATA, &
+       get_stiffness, parse_ref, parse_set_ref, loc_string, refused_card, CARD_NONE, CARD_SKIP, CARD_NODATA, &
        CARD_HEADING, CARD_NODE, CARD_ELEMENT, CARD_NSET, CARD_ELSET, CARD_SECTION, CARD_ELASTIC, &
        CARD_ORIENTATION, CARD_CONTACT, CARD_SUPPORT, CARD_BOUNDARY, CARD_CLOAD, CARD_DLOAD, &
        CARD_DENSITY, CARD_TSHEAR, CARD_INSTANCE, CARD_CHANGE_CONTACT, CARD_INTERFACE, CARD_STATIC, &
@@ -356,6 +356,23 @@ contains
     end if
     ok = .true.
   end function parse_ref
+
+  logical function parse_set_ref(st, tok, elem, home, loc, ref) result(ok)
+    !! A parameter that always names a set (ELSET=, NSET=): `set`, `SUB.set`.
+    !! As in CalculiX and Abaqus, a name of digits only (ELSET=1) is a set
+    !! name there; in data lines a field of digits is an id (parse_ref).
+    type(deck_state_t), intent(inout) :: st
+    character(*), intent(in) :: tok
+    logical, intent(in) :: elem
+    integer, intent(in) :: home
+    type(source_loc_t), intent(in) :: loc
+    type(ref_t), intent(out) :: ref
+    ok = parse_ref(st, tok, elem, home, loc, ref)
+    if (.not. ok .or. ref%is_set) return
+    ref%is_set = .true.
+    ref%set = tok(index(tok, '.') + 1:)
+    ref%id = 0
+  end function parse_set_ref
 
   function loc_string(st, loc) result(s)
     !! "file:line" of a location.

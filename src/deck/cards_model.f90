@@ -138,6 +138,7 @@ contains
     if (allocated(st%elem_pending)) deallocate (st%elem_pending)
     if (st%card_etype == 0) then
        call report_loc(st, loc, unsupported_type_message(clip(typ)))
+       st%elements_refused = .true.
        call declare_elset(st, kw, loc)
        return
     end if

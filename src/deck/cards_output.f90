@@ -11,7 +11,7 @@ module superjoin_deck_cards_output
        VAR_PRODUCED
   use superjoin_utils_strings, only: pick
   use superjoin_model_output_paths, only: vtk_path_problem
-  use superjoin_deck_cards_common, only: check_params, param_index, get_param, fld, parse_ref, &
+  use superjoin_deck_cards_common, only: check_params, param_index, get_param, fld, parse_set_ref, &
        loc_string, CARD_SKIP, CARD_REQUEST, NAME_LEN
   implicit none (type, external)
   private
@@ -103,11 +103,7 @@ contains
     end if
     call get_param(st, kw, loc, pset, .false., value, found)
     if (found) then
-       if (.not. parse_ref(st, value, .not. node, st%cur_sub, loc, r%set)) return
-       if (.not. r%set%is_set) then
-          call report_loc(st, loc, pset//'='//clip(value)//' must name a '//pick(node, 'node', 'element')//' set')
-          return
-       end if
+       if (.not. parse_set_ref(st, value, .not. node, st%cur_sub, loc, r%set)) return
        r%has_set = .true.
     end if
     r%step = st%cur_step

@@ -13,7 +13,7 @@ module superjoin_deck_cards_sections
   use superjoin_elements_frame, only: real_text
   use superjoin_utils_strings, only: pick
   use superjoin_deck_cards_common, only: outside_step, check_params, param_index, get_param, &
-       get_name_param, field_count, fld, get_real, real_message, parse_ref, loc_string, CARD_SKIP, &
+       get_name_param, field_count, fld, get_real, real_message, parse_set_ref, loc_string, CARD_SKIP, &
        CARD_SECTION, CARD_ELASTIC, CARD_ORIENTATION, CARD_DENSITY, CARD_TSHEAR, CARD_EXPANSION, &
        PARALLEL_TOL, NAME_LEN, ORIENT_VALUES, ELASTIC_FIELDS, VECTOR_FIELDS
   implicit none (type, external)
@@ -242,7 +242,8 @@ contains
           return
        end if
     else
-       call check_params(st, kw, loc, [character(NAME_LEN) :: 'ELSET', 'MATERIAL', 'OFFSET'], [character(NAME_LEN) ::])
+       call check_params(st, kw, loc, [character(NAME_LEN) :: 'ELSET', 'MATERIAL', 'OFFSET'], &
+            [character(NAME_LEN) :: 'NODAL THICKNESS'])
        call section_offset(st, kw, loc, kind)
     end if
     call get_param(st, kw, loc, 'ELSET', .true., elset, found_e)
@@ -253,12 +254,7 @@ contains
        st%section_rejected(kind) = .true.
        return
     end if
-    if (.not. parse_ref(st, elset, .true., st%cur_sub, loc, sec%elset)) then
-       st%section_rejected(kind) = .true.
-       return
-    end if
-    if (.not. sec%elset%is_set) then
-       call report_loc(st, loc, 'ELSET='//clip(elset)//' must name an element set')
+    if (.not. parse_set_ref(st, elset, .true., st%cur_sub, loc, sec%elset)) then
        st%section_rejected(kind) = .true.
        return
     end if
@@ -266,7 +262,8 @@ contains
     sec%material = material
     sec%loc = loc
     ! CalculiX / Abaqus: the thickness of every node comes from *NODAL THICKNESS (a data line is optional)
-    sec%nodal_thickness = kind == SEC_SHELL .and. param_index(kw, 'NODAL THICKNESS') > 0
+    ! (*SOLID SECTION: the plane elements' thickness; *BEAM SECTION refuses the parameter)
+    sec%nodal_thickness = kind /= SEC_BEAM .and. param_index(kw, 'NODAL THICKNESS') > 0
     call add_section(st, sec, st%card_item)
     st%card = CARD_SECTION
     if (kind == SEC_BEAM .or. kind == SEC_SHELL) st%cur_beam_sec = st%card_item
@@ -325,7 +322,13 @@ contains
     general_card = kw%keyword == 'BEAM GENERAL SECTION'
     call check_params(st, kw, loc, [character(NAME_LEN) :: 'ELSET', 'MATERIAL', 'SECTION', &
          'POISSON', 'TEMPERATURE', 'OFFSET1', 'OFFSET2', 'ORIENTATION', 'DENSITY'], &
-         [character(NAME_LEN) :: 'LUMPED', 'ROTARY INERTIA'])
+         [character(NAME_LEN) :: 'LUMPED', 'ROTARY INERTIA', 'NODAL THICKNESS'])
+    if (param_index(kw, 'NODAL THICKNESS') > 0) then
+       call report_loc(st, loc, '*'//kw%keyword//', NODAL THICKNESS (the section''s dimensions per node, '// &
+            'a tapered beam) is not supported: superjoin''s beams have one cross-section; give its '// &
+            'dimensions on the data line')
+       st%section_rejected(SEC_BEAM) = .true.   ! the beams' *NODAL THICKNESS lines are not reported again
+    end if
     do k = 1, 2
        call get_param(st, kw, loc, 'OFFSET'//itoa(k), .false., value, found)
        if (.not. found) cycle

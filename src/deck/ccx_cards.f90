@@ -54,15 +54,20 @@ module superjoin_deck_ccx_cards
   integer, parameter :: NUM_NODE_PRODUCED = 4, NUM_EL_PRODUCED = 4
   character(len=VAR_LEN), parameter :: NODE_PRODUCED(NUM_NODE_PRODUCED) = ['U    ', 'RF   ', 'CF   ', 'S    ']
   character(len=VAR_LEN), parameter :: EL_PRODUCED(NUM_EL_PRODUCED) = ['S    ', 'E    ', 'SF   ', 'ENER ']
-  integer, parameter :: NUM_NODE_KNOWN = 25
+  integer, parameter :: NUM_NODE_KNOWN = 31
   character(len=VAR_LEN), parameter :: NODE_KNOWN(NUM_NODE_KNOWN) = [character(len=VAR_LEN) :: &
        'NT', 'TS', 'RFL', 'PN', 'PS', 'PT', 'TT', 'TTF', 'MF', 'V', 'VF', 'DEPF', 'TURB', 'MACH', 'CP', &
-       'SEN', 'POT', 'PU', 'PNT', 'PHS', 'MAXU', 'HCRI', 'CONC', 'SLIP', 'UR']
-  integer, parameter :: NUM_EL_KNOWN = 29
+       'SEN', 'POT', 'PU', 'PNT', 'PHS', 'MAXU', 'HCRI', 'CONC', 'SLIP', 'UR', &
+       'PSF', 'TSF', 'PTF', 'DEPT', 'PRF', 'DTF']
+    !! CalculiX's nodal variables (ccx 2.21, nodeprints.f and noelfiles.f) superjoin does not produce
+  integer, parameter :: NUM_EL_KNOWN = 40
   character(len=VAR_LEN), parameter :: EL_KNOWN(NUM_EL_KNOWN) = [character(len=VAR_LEN) :: &
        'ME', 'PEEQ', 'CEEQ', 'SDV', 'HFL', 'HFLF', 'COORD', 'ELSE', 'ELKE', 'EVOL', 'EMAS', &
        'EBHE', 'CENT', 'ZZS', 'ERR', 'HER', 'MAXS', 'MAXE', 'SVF', 'ESE', 'THE', 'PHS', 'EMFE', 'EMFB', &
-       'MF', 'DEPF', 'CELS', 'CDIS', 'CSTR']
+       'MF', 'DEPF', 'CELS', 'CDIS', 'CSTR', &
+       'NOE', 'SNEG', 'SMID', 'SPOS', 'KEQ', 'PCON', 'ECD', 'DTF', 'CE', 'PE', 'COOR']
+    !! CalculiX's element variables (ccx 2.21, elprints.f and noelfiles.f; NOE: no
+    !! error estimator, SNEG/SMID/SPOS: shell stresses at the faces) superjoin does not produce
 
 contains
 

@@ -5,7 +5,7 @@ module superjoin_deck_nodal_thickness
   !! CalculiX) is read and must be absent, empty or 0 here. The values are
   !! applied per element by superjoin_deck_thickness_build.
   use superjoin_kinds, only: wp
-  use superjoin_model_types, only: source_loc_t
+  use superjoin_model_types, only: source_loc_t, SEC_BEAM
   use superjoin_deck_lexer, only: keyword_line_t
   use superjoin_deck_state, only: deck_state_t, report_loc, grow, nthick_b_t
   use superjoin_deck_cards_common, only: outside_step, check_params, field_count, fld, get_real, &
@@ -48,7 +48,9 @@ contains
        if (len(fld(st, line, MAX_FIELDS)) > 0) then
           if (.not. get_real(st, line, loc, MAX_FIELDS, t2)) return
           if (t2 /= 0.0_wp) then
-             call report_loc(st, loc, '*NODAL THICKNESS: a second thickness (beams in CalculiX) is not supported')
+             ! after a refused *BEAM SECTION, NODAL THICKNESS (reported) the line is dropped quietly
+             if (.not. st%section_rejected(SEC_BEAM)) call report_loc(st, loc, &
+                  '*NODAL THICKNESS: a second thickness (beams in CalculiX) is not supported')
              return
           end if
        end if

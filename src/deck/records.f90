@@ -60,6 +60,8 @@ module superjoin_deck_records
      integer(ip), allocatable :: pool(:)
      integer :: kind = 0                            !! SUBK_PLAIN, SUBK_PART or SUBK_INSTANCE
      integer :: inst = 0                            !! SUBK_INSTANCE: index into instances
+     logical :: broken = .false.
+       !! an instance of an undefined part: references into it are not reported again
   end type sub_b_t
 
 

@@ -7,6 +7,7 @@ module superjoin_deck_requests
   use superjoin_model_types, only: model_t, output_request_t
   use superjoin_deck_state, only: deck_state_t, request_b_t, report_loc
   use superjoin_deck_ccx_cards, only: is_node_request
+  use superjoin_deck_build_common, only: broken_sub
   use superjoin_utils_strings, only: pick
   implicit none (type, external)
   private
@@ -69,6 +70,7 @@ contains
     end if
     k = 0
     if (isub > 0) then
+       if (broken_sub(st, model%subs(isub)%name)) return   ! its *INSTANCE error was the one message
        associate (sub => model%subs(isub))
          if (node) then
             do i = 1, size(sub%nsets)

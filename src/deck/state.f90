@@ -92,6 +92,9 @@ module superjoin_deck_state
      type(surface_b_t), allocatable :: surfaces(:)
      type(combo_b_t), allocatable :: combos(:)
      logical :: section_rejected(3) = .false.  !! a *SOLID, *BEAM or *SHELL SECTION card (SEC_* index) was rejected
+     logical :: elements_refused = .false.
+       !! an *ELEMENT card of an unsupported type was refused: the element sets
+       !! and sections it leaves empty are not reported again
      ! block and card state
      integer :: cur_inst = 0               !! open *INSTANCE block
      logical :: in_assembly = .false.      !! inside *ASSEMBLY ... *END ASSEMBLY

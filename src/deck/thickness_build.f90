@@ -13,12 +13,12 @@ module superjoin_deck_thickness_build
   !! the section's; an S8R whose nodes differ gets a copy of its section of
   !! its own with node_thickness (superjoin_elements_shell8 interpolates it).
   use superjoin_kinds, only: wp, ip
-  use superjoin_model_types, only: model_t, substructure_t, section_t, ELEMENT_NODE_COUNT, node_label
+  use superjoin_model_types, only: model_t, substructure_t, section_t, ELEMENT_NODE_COUNT, node_label, SEC_SOLID
   use superjoin_elements_traits, only: element_traits_t, element_traits, FAMILY_SHELL
   use superjoin_elements, only: is_plate_type
   use superjoin_deck_state, only: deck_state_t, report_loc
   use superjoin_deck_build_common, only: resolve_items, resolve_sub
-  use superjoin_utils_strings, only: itoa
+  use superjoin_utils_strings, only: itoa, pick
   implicit none (type, external)
   private
 
@@ -176,7 +176,8 @@ contains
       do a = 1, ELEMENT_NODE_COUNT(sub%elem_type(e))
          if (w%line(sub%elem_nodes(a, e)) == 0) exit
       end do
-      call report_loc(st, sub%sections(sub%elem_section(e))%loc, '*SHELL SECTION, NODAL THICKNESS: node '// &
+      call report_loc(st, sub%sections(sub%elem_section(e))%loc, &
+           pick(sub%sections(sub%elem_section(e))%kind == SEC_SOLID, '*SOLID', '*SHELL')//' SECTION, NODAL THICKNESS: node '// &
            node_label(model, isub, sub%elem_nodes(a, e))//' of element '//itoa(sub%elem_id(e))// &
            ' has no *NODAL THICKNESS'//more)
     end associate

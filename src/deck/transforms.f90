@@ -12,7 +12,7 @@ module superjoin_deck_transforms
   use superjoin_deck_state, only: deck_state_t, report_loc, grow, transform_b_t
   use superjoin_utils_strings, only: pick
   use superjoin_deck_cards_common, only: outside_step, check_params, get_param, field_count, &
-       get_real, parse_ref, CARD_SKIP, CARD_TRANSFORM, PARALLEL_TOL, NAME_LEN, ORIENT_VALUES
+       get_real, parse_set_ref, CARD_SKIP, CARD_TRANSFORM, PARALLEL_TOL, NAME_LEN, ORIENT_VALUES
   implicit none (type, external)
   private
 
@@ -46,11 +46,7 @@ contains
     end if
     call get_param(st, kw, loc, 'NSET', .true., value, found)
     if (.not. found) return
-    if (.not. parse_ref(st, value, .false., st%cur_sub, loc, t%nset)) return
-    if (.not. t%nset%is_set) then
-       call report_loc(st, loc, '*TRANSFORM NSET= names a node set, not '//clip(value))
-       return
-    end if
+    if (.not. parse_set_ref(st, value, .false., st%cur_sub, loc, t%nset)) return
     t%loc = loc
     call grow(st%transforms, st%ntransform, INITIAL_TRANSFORMS)
     st%ntransform = st%ntransform + 1

@@ -420,18 +420,24 @@ def dat_table(path, kind, set_name, nth=0):
     return found[nth][3], found[nth][4]
 
 
-def frd_disp(path):
-    """{node: [u1, u2, u3]} of the first DISP block of a CalculiX .frd file."""
+def frd_block(path, start):
+    """{node: [v1, v2, v3]} of the first block of a CalculiX .frd file whose
+    header line starts with `start`."""
     rows, inside = {}, False
     with open(path) as f:
         for line in f:
-            if line.startswith(' -4  DISP'):
+            if line.startswith(start):
                 inside = True
             elif inside and line.startswith(' -3'):
                 break
             elif inside and line.startswith(' -1'):
                 rows[int(line[3:13])] = [float(line[13 + 12 * k:25 + 12 * k]) for k in range(3)]
     return rows
+
+
+def frd_disp(path):
+    """{node: [u1, u2, u3]} of the first DISP block of a CalculiX .frd file."""
+    return frd_block(path, ' -4  DISP')
 
 
 def listing_rows(text, step, place, header):

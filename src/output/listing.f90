@@ -53,6 +53,7 @@ contains
     call header(lu, model, res)
     do is = 1, size(model%steps)
        call step_block(lu, model, res, is)
+       if (allocated(res%fields%steps(is)%failure)) cycle
        call write_print_requests(lu, model, res%fields, is)
     end do
     call write_envelope(lu, model, res)
@@ -202,6 +203,10 @@ contains
       call lu%line('STEP '//itoa(is)//'  '//model%steps(is)%name)
       call lu%line(RULE)
       call kept_line(lu, model, is)
+      if (allocated(st%failure)) then
+         call failure_lines(lu, st%failure)
+         return
+      end if
 
       if (tables) call node_tables(lu, model, res, is)
 
@@ -264,6 +269,24 @@ contains
       call lu%line('')
     end associate
   end subroutine step_block
+
+  subroutine failure_lines(lu, message)
+    !! A step that could not be solved (the run exits 3): its message, line by
+    !! line, in place of its results.
+    type(text_buffer_t), intent(inout) :: lu
+    character(*), intent(in) :: message
+    integer :: i, j
+    call lu%line('NOT SOLVED (no results for this step; the run exits with status 3)')
+    i = 1
+    do
+       j = index(message(i:), new_line('a'))
+       if (j == 0) exit
+       call lu%line('  '//message(i:i + j - 2))
+       i = i + j
+    end do
+    call lu%line('  '//message(i:))
+    call lu%line('')
+  end subroutine failure_lines
 
   subroutine node_tables(lu, model, res, is)
     !! DISPLACEMENTS and SUPPORT REACTIONS of step is.

@@ -168,6 +168,7 @@ contains
     type(step_grouping_t) :: grouping
     type(swap_t) :: swap
     integer :: s, nsupported
+    type(link_t), allocatable :: links(:)
 
     call group_once(model, grouping)
     if (.not. has_step_boundaries(model)) then
@@ -181,7 +182,13 @@ contains
        call append_string(res%log%notes, 'boundary conditions (*BOUNDARY in steps): the same in every step, '// &
             itoa(nsupported)//' supported DOFs')
     else
+       if (has_joint_changes(model)) then
+          ! DOFs named by the steps of other sets of supports too (see keep_named_dofs)
+          links = model%links
+          call keep_named_dofs(model%steps, model)
+       end if
        call solve_support_groups(model, grouping, opts, res, error)
+       if (allocated(links)) call move_alloc(links, model%links)
     end if
   end subroutine solve_steps
 

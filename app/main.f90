@@ -15,7 +15,7 @@ program superjoin_main
   use superjoin_model_types, only: model_t, string_t, FORM_TRANSFORM, FORM_PENALTY, CONDENSE_YES, CONDENSE_NO, &
        CONDENSE_AUTO
   use superjoin_deck_reader, only: read_deck
-  use superjoin_analysis_driver, only: solve_steps
+  use superjoin_analysis_driver, only: solve_steps, partial_results
   use superjoin_analysis_combinations, only: add_combinations
   use superjoin_analysis_plausibility, only: check_plausibility
   use superjoin_analysis_contact_gaps, only: check_contact_gaps
@@ -40,7 +40,7 @@ program superjoin_main
   type(run_options_t) :: opts
   type(model_t) :: model
   type(results_t) :: res
-  type(error_t), allocatable :: error
+  type(error_t), allocatable :: error, unsolved
   type(string_t), allocatable :: deck_warnings(:)
   character(:), allocatable :: deck, listing, csv_dir, vtk_file, target
   logical :: check_only, demo
@@ -112,6 +112,8 @@ program superjoin_main
   opts%vtk = allocated(vtk_file)
   call solve_steps(model, opts, res, error)
   if (allocated(error) .and. allocated(res%fields%mechanism) .and. comm%is_root()) call write_mechanism(error)
+  ! Some steps solved, others not (exit 3): the solved ones are written first.
+  if (allocated(error) .and. partial_results(res)) call move_alloc(error, unsolved)
   call fail_on(error, deck)
   call add_combinations(model, res, error)
   call fail_on(error, deck)
@@ -147,6 +149,11 @@ program superjoin_main
   res%log%phase_seconds(PH_WRITE) = clock%seconds()
   call report_phase(opts%quiet, 'write', res%log%phase_seconds(PH_WRITE), listing)
   if (demo .and. .not. opts%quiet) write (error_unit, '(a)') 'superjoin: listing written to '//listing
+  if (allocated(unsolved)) then
+     unsolved%message = unsolved%message//new_line('a')//'  the listing is written with the results of '// &
+          'the steps solved (the others are marked NOT SOLVED)'
+     call fail_on(unsolved, deck)
+  end if
   if (res%log%inaccurate .and. .not. opts%accept_inaccurate) then
      if (comm%is_root()) write (error_unit, '(a)') deck//': error: the results are judged inaccurate '// &
           '(see the warnings above); the listing is written, exit status 5 (--accept-inaccurate: exit 0)'

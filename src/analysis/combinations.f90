@@ -72,6 +72,8 @@ contains
          call combine_step(res%fields%steps, cb%steps, cb%factors, sres(ns + c))
          do k = 1, size(cb%steps)
             j = cb%steps(k)
+            if (allocated(res%fields%steps(j)%failure) .and. .not. allocated(sres(ns + c)%failure)) &
+                 sres(ns + c)%failure = 'error: step '//model%steps(j)%name//' of this combination was not solved'
             if (allocated(u)) u(:, ns + c) = u(:, ns + c) + cb%factors(k)*u(:, j)
             if (allocated(ef)) ef(:, :, :, ns + c) = ef(:, :, :, ns + c) + cb%factors(k)*ef(:, :, :, j)
             if (allocated(pl)) pl(:, :, ns + c) = pl(:, :, ns + c) + cb%factors(k)*pl(:, :, j)

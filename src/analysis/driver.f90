@@ -16,11 +16,12 @@ module superjoin_analysis_driver
   !! once and reused. Without step-level *BOUNDARY and *CHANGE CONTACT this
   !! is exactly solve_model.
   use superjoin_kinds, only: wp
-  use superjoin_error, only: error_t, add_error_line
-  use superjoin_model_types, only: model_t, support_t, link_override_t, string_t, step_t, link_t
+  use superjoin_error, only: error_t, add_error_line, EXIT_SINGULAR
+  use superjoin_model_types, only: model_t, support_t, link_override_t, string_t, step_t, link_t, &
+       LINK_NONE, LINK_FINITE
   use superjoin_analysis, only: solve_model, solve_group, solve_context_t, release_cache
   use superjoin_analysis_factor_reuse, only: release_factor
-  use superjoin_model_results, only: results_t, run_options_t
+  use superjoin_model_results, only: results_t, run_options_t, step_results_t
   use superjoin_model_notes, only: append_string
   use superjoin_model_request_notes, only: unproduced_file_variables
   use superjoin_utils_strings, only: itoa
@@ -29,7 +30,7 @@ module superjoin_analysis_driver
   implicit none (type, external)
   private
 
-  public :: solve_steps, has_step_boundaries, has_joint_changes
+  public :: solve_steps, has_step_boundaries, has_joint_changes, partial_results
 
   type :: step_grouping_t
     !! The steps grouped once: by supports (their own *BOUNDARY) and by
@@ -49,7 +50,89 @@ module superjoin_analysis_driver
      logical :: links_swapped = .false.
   end type swap_t
 
+  type :: failures_t
+    !! The groups of steps that could not be solved (exit 3) while the others
+    !! go on: the first error, its mechanism mode, the message of every failed step.
+     type(error_t), allocatable :: first
+     real(wp), allocatable :: mechanism(:, :)
+     type(string_t), allocatable :: message(:)   !! (nstep) unallocated text: solved or in r
+     logical :: solved = .false.                 !! some group solved: res holds results
+  end type failures_t
+
 contains
+
+  logical function partial_results(res)
+    !! Whether res holds the results of some steps and failures of others
+    !! (the listing and CSV are written, the run exits 3).
+    type(results_t), intent(in) :: res
+    integer :: s
+    partial_results = .false.
+    if (.not. allocated(res%fields%steps)) return
+    do s = 1, size(res%fields%steps)
+       if (allocated(res%fields%steps(s)%failure)) partial_results = .true.
+    end do
+  end function partial_results
+
+  logical function keep_going(fail, members, nstep, r, res, error) result(going)
+    !! After a group's error: a mechanism or singular stiffness (exit 3) is
+    !! recorded against the group's steps (r: a nested solve's own partial
+    !! results, merged) and the other groups go on; any other error ends the run.
+    type(failures_t), intent(inout) :: fail
+    integer, intent(in) :: members(:), nstep
+    type(results_t), intent(in) :: r
+    type(results_t), intent(inout) :: res
+    type(error_t), allocatable, intent(inout) :: error
+    integer :: k
+    going = error%code == EXIT_SINGULAR
+    if (.not. going) return
+    if (.not. allocated(fail%message)) allocate (fail%message(nstep))
+    if (partial_results(r)) then
+       call merge_results(r, members, nstep, .not. fail%solved, res)
+       fail%solved = .true.
+    else
+       do k = 1, size(members)
+          fail%message(members(k))%s = error%message
+       end do
+    end if
+    if (.not. allocated(fail%first)) then
+       call move_alloc(error, fail%first)
+       if (allocated(r%fields%mechanism)) fail%mechanism = r%fields%mechanism
+    else
+       deallocate (error)
+    end if
+  end function keep_going
+
+  subroutine finish_failures(fail, res, error)
+    !! The failed steps into res (zero results, their message) and the first
+    !! error back; with no step solved, only the error (as a single solve).
+    type(failures_t), intent(inout) :: fail
+    type(results_t), intent(inout) :: res
+    type(error_t), allocatable, intent(inout) :: error
+    type(step_results_t) :: zero
+    integer :: s
+    if (.not. allocated(fail%first)) return
+    call move_alloc(fail%first, error)
+    if (.not. fail%solved) return
+    do s = 1, size(res%fields%steps)
+       if (.not. allocated(res%fields%steps(s)%failure) .and. .not. allocated(fail%message(s)%s)) zero = res%fields%steps(s)
+    end do
+    if (allocated(zero%link_delta)) zero%link_delta = 0.0_wp
+    if (allocated(zero%link_force)) zero%link_force = 0.0_wp
+    if (allocated(zero%reactions)) zero%reactions%force = 0.0_wp
+    zero%applied = 0.0_wp
+    zero%reaction = 0.0_wp
+    zero%residual = 0.0_wp
+    zero%epsilon = 0.0_wp
+    zero%residual0 = 0.0_wp
+    zero%refinements = 0
+    zero%refine_tried = 0
+    do s = 1, size(res%fields%steps)
+       if (.not. allocated(fail%message(s)%s)) cycle
+       res%fields%steps(s) = zero
+       res%fields%steps(s)%failure = fail%message(s)%s
+    end do
+    if (allocated(fail%mechanism)) res%fields%mechanism = fail%mechanism
+  end subroutine finish_failures
 
   pure logical function has_step_boundaries(model)
     !! Whether the steps carry supports of their own (a *BOUNDARY inside *STEP).
@@ -86,6 +169,7 @@ contains
     type(step_grouping_t) :: grouping
     type(swap_t) :: swap
     integer :: s, nsupported
+    type(link_t), allocatable :: links(:)
 
     call group_once(model, grouping)
     if (.not. has_step_boundaries(model)) then
@@ -99,7 +183,13 @@ contains
        call append_string(res%log%notes, 'boundary conditions (*BOUNDARY in steps): the same in every step, '// &
             itoa(nsupported)//' supported DOFs')
     else
+       if (has_joint_changes(model)) then
+          ! DOFs named by the steps of other sets of supports too (see keep_named_dofs)
+          links = model%links
+          call keep_named_dofs(model%steps, model)
+       end if
        call solve_support_groups(model, grouping, opts, res, error)
+       if (allocated(links)) call move_alloc(links, model%links)
     end if
     if (allocated(error)) return
     if (len(unproduced_file_variables(model)) > 0) call append_string(res%log%notes, unproduced_file_variables(model))
@@ -132,6 +222,7 @@ contains
           overrides = model%steps(1)%link_overrides
           call apply_overrides(overrides, model)
        end if
+       call keep_named_dofs(swap%steps, model)
        do s = 1, size(model%steps)
           if (allocated(model%steps(s)%link_overrides)) deallocate (model%steps(s)%link_overrides)
        end do
@@ -188,6 +279,7 @@ contains
     character(:), allocatable :: text
     type(solve_context_t) :: ctx
     logical :: joint
+    type(failures_t) :: fail
 
     nstep = size(model%steps)
     ngroup = grouping%nsupports
@@ -207,14 +299,17 @@ contains
        call leave_group(model, swap)
        if (allocated(error)) then
           call release_factor(ctx%factor)
-          call release_cache(ctx%cache)
           call add_error_line(error, error%code, '  (while solving '//step_list(model, members, .false.)// &
                ' with their boundary conditions, *BOUNDARY)')
+          if (keep_going(fail, members, nstep, r, res, error)) cycle
+          call release_cache(ctx%cache)
           return
        end if
-       call merge_results(r, members, nstep, k == 1, res)
+       call merge_results(r, members, nstep, .not. fail%solved, res)
+       fail%solved = .true.
        call append_string(res%log%notes, step_list(model, members, .false.)//text)
     end do
+    call finish_failures(fail, res, error)
     call release_factor(ctx%factor)
     call release_cache(ctx%cache)
     call append_string(res%log%notes, 'boundary conditions (*BOUNDARY in steps): '//itoa(ngroup)// &
@@ -239,6 +334,7 @@ contains
     type(swap_t) :: swap
     type(results_t) :: r
     type(solve_context_t) :: ctx
+    type(failures_t) :: fail
 
     if (.not. has_joint_changes(model)) then
        call solve_model(model, opts, res, error)
@@ -260,15 +356,18 @@ contains
        call solve_group(model, opts, ctx, r, error)
        call leave_group(model, swap)
        if (allocated(error)) then
-          call release_cache(ctx%cache)
           call add_error_line(error, error%code, '  (while solving '//step_list(model, members, .true.)// &
                ' with their contact stiffnesses, *CHANGE CONTACT)')
+          if (keep_going(fail, members, nstep, r, res, error)) cycle
+          call release_cache(ctx%cache)
           return
        end if
-       call merge_results(r, members, nstep, g == 1, res)
+       call merge_results(r, members, nstep, .not. fail%solved, res)
+       fail%solved = .true.
        call note_group(model, members, res)
     end do
     call release_cache(ctx%cache)
+    call finish_failures(fail, res, error)
     call append_string(res%log%notes, 'joint study (*CHANGE CONTACT): '//itoa(ngroup)// &
          ' sets of contact stiffnesses, '//itoa(ngroup)//' interface factorizations, '// &
          itoa(ctx%cache%computed)//' condensations computed and reused '//itoa(ctx%cache%reused)// &
@@ -398,6 +497,28 @@ contains
        end associate
     end do
   end subroutine apply_overrides
+
+  subroutine keep_named_dofs(steps, model)
+    !! A contact DOF that some step's *CHANGE CONTACT names and that this
+    !! group leaves unconnected (g = 0) stays in the links as a finite g = 0:
+    !! the DOF keeps its unit, force 0, and its true delta is listed.
+    type(step_t), intent(in) :: steps(:)
+    type(model_t), intent(inout) :: model
+    integer :: s, i, d
+    do s = 1, size(steps)
+       if (.not. allocated(steps(s)%link_overrides)) cycle
+       do i = 1, size(steps(s)%link_overrides)
+          associate (o => steps(s)%link_overrides(i), l => model%links(steps(s)%link_overrides(i)%link))
+            do d = 1, size(o%dofs)
+               if (.not. o%dofs(d)) cycle
+               if (l%state(d) /= LINK_NONE) cycle
+               l%state(d) = LINK_FINITE
+               l%g(d) = 0.0_wp
+            end do
+          end associate
+       end do
+    end do
+  end subroutine keep_named_dofs
 
   subroutine merge_results(r, members, nstep, first, res)
     !! Put the results r of the steps `members` into res (nstep steps in all).

@@ -374,14 +374,12 @@ contains
   subroutine unit_deltas(table, tr, q, u, delta)
     !! δ of every unit component (local axes): a column of its own, the rigid
     !! value, the expression that replaced an eliminated column, or, for a unit
-    !! assembled plainly, qs (u_b - u_a).
+    !! assembled plainly and for a released component (g = 0), qs (u_b - u_a).
     type(dof_table_t), intent(in) :: table
     type(transform_t), intent(in) :: tr
     real(wp), intent(in) :: q(:, :), u(:, :)
     real(wp), allocatable, intent(out) :: delta(:, :, :)
-    integer :: iu, k, c, i, nt
-    integer(i8) :: pt(MAX_UNIT_TERMS)
-    real(wp) :: wt(MAX_UNIT_TERMS)
+    integer :: iu, k, c, i
     type(form_spring_t) :: fs
 
     allocate (delta(3, table%nunit, size(q, 2)), source=0.0_wp)
@@ -393,14 +391,14 @@ contains
                   delta(k, iu, :) = q(tr%delta_column(k, iu), :)
                else if (un%state(k) == LINK_RIGID) then
                   delta(k, iu, :) = un%value(k)
+               else
+                  ! Released (g = 0): no column of its own, δ from u.
+                  call unit_delta_from_u(table, un, k, u, delta(k, iu, :))
                end if
             end do
          else
             do k = 1, un%n
-               call unit_terms(table, un, k, pt, wt, nt)
-               do i = 1, nt
-                  delta(k, iu, :) = delta(k, iu, :) + wt(i)*u(pt(i), :)
-               end do
+               call unit_delta_from_u(table, un, k, u, delta(k, iu, :))
             end do
          end if
        end associate
@@ -415,6 +413,24 @@ contains
        end do
     end do
   end subroutine unit_deltas
+
+  subroutine unit_delta_from_u(table, un, k, u, delta)
+    !! δ_k of unit un from the physical displacements u (every step): qs (u_b - u_a)
+    !! and the arm terms of an eccentric unit.
+    type(dof_table_t), intent(in) :: table
+    type(unit_t), intent(in) :: un
+    integer, intent(in) :: k
+    real(wp), intent(in) :: u(:, :)
+    real(wp), intent(out) :: delta(:)
+    integer(i8) :: pt(MAX_UNIT_TERMS)
+    real(wp) :: wt(MAX_UNIT_TERMS)
+    integer :: i, nt
+    delta = 0.0_wp
+    call unit_terms(table, un, k, pt, wt, nt)
+    do i = 1, nt
+       delta = delta + wt(i)*u(pt(i), :)
+    end do
+  end subroutine unit_delta_from_u
 
   subroutine add_spring_forces(table, delta, r)
     !! r += internal forces of the finite contact components: qsᵀ g δ on side b,
@@ -581,7 +597,9 @@ contains
        associate (un => table%units(iu))
          if (un%kind /= UNIT_LINK) cycle
          do k = 1, un%n
-            if (un%state(k) /= LINK_NONE) res%fields%link_used(block_dof(un%block, un%lcomp(k)), un%source) = .true.
+            ! Every DOF the contact names, released ones (g = 0) too: their true δ, force 0.
+            ld = block_dof(un%block, un%lcomp(k))
+            if (model%links(un%source)%state(ld) /= LINK_NONE) res%fields%link_used(ld, un%source) = .true.
          end do
        end associate
     end do

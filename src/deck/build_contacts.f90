@@ -6,7 +6,7 @@ module superjoin_deck_build_contacts
   use superjoin_deck_lexer, only: itoa, plural
   use superjoin_deck_state, only: deck_state_t, ref_t, report_loc, report_oom
   use superjoin_deck_build_common, only: resolve_sub, sub_index, ref_text, resolve_items, part_hint, &
-       INITIAL_CAPACITY
+       INITIAL_CAPACITY, where
   use superjoin_deck_assembly, only: pair_nearest
   implicit none (type, external)
   private
@@ -28,6 +28,7 @@ module superjoin_deck_build_contacts
     !! Growing list of links / supports while they are generated.
      integer :: n = 0
      type(link_t), allocatable :: a(:)
+     integer, allocatable :: first_line(:, :)   !! (NDOF_NODE, capacity): *CONTACT line that gave each DOF, 0 none
   end type link_list_t
 
 contains
@@ -71,7 +72,7 @@ contains
        end associate
     end do
 
-    allocate (links%a(INITIAL_CAPACITY))
+    allocate (links%a(INITIAL_CAPACITY), links%first_line(NDOF_NODE, INITIAL_CAPACITY))
     cur = 0
     do l = 1, st%ncline
        if (st%aborted) return
@@ -123,6 +124,7 @@ contains
                  links%a(il)%slave_node = snode
                  links%a(il)%loc = cl%loc
               end if
+              if (.not. first_definition(st, links, il, l)) exit
               call merge_dofs(links%a(il), cl%first, cl%last, cl%state, cl%g)
            end do
          end associate
@@ -130,6 +132,28 @@ contains
     end do
     model%links = links%a(1:links%n)
   end subroutine build_contacts
+
+  logical function first_definition(st, links, il, l) result(ok)
+    !! Whether *CONTACT line l is the first to give its DOFs to link il (then
+    !! they are recorded as its); a DOF given twice in one *CONTACT is an error
+    !! naming the line of its first definition.
+    type(deck_state_t), intent(inout) :: st
+    type(link_list_t), intent(inout) :: links
+    integer, intent(in) :: il, l
+    integer :: d
+    associate (cl => st%clines(l))
+      do d = cl%first, cl%last
+         ok = links%first_line(d, il) == 0
+         if (ok) cycle
+         call report_loc(st, cl%loc, 'DOF '//itoa(d)//' of contact '//st%contacts(cl%contact)%name// &
+              ' is given twice between the same nodes (first at '//where(st, st%clines(links%first_line(d, il))%loc)// &
+              '): one line per DOF')
+         return
+      end do
+      links%first_line(cl%first:cl%last, il) = l
+    end associate
+    ok = .true.
+  end function first_definition
 
   pure function pick_node(a, b) result(r)
     type(ref_t), intent(in) :: a, b
@@ -152,7 +176,7 @@ contains
   end function pick_set_name
 
   pure subroutine merge_dofs(link, first, last, state, g)
-    !! Add one contact line's DOFs to a link: finite g add up, RIGID wins, 0 adds nothing.
+    !! Add one contact line's DOFs to a link (each DOF comes from one line: first_definition).
     type(link_t), intent(inout) :: link
     integer, intent(in) :: first, last, state
     real(wp), intent(in) :: g
@@ -175,19 +199,23 @@ contains
     type(link_list_t), intent(inout) :: list
     integer(i8), intent(out) :: failed_bytes
     type(link_t), allocatable :: tmp(:)
+    integer, allocatable :: lines(:, :)
     integer :: stat
     failed_bytes = 0
     if (list%n == size(list%a)) then
-       allocate (tmp(2*list%n), stat=stat)
+       allocate (tmp(2*list%n), lines(NDOF_NODE, 2*list%n), stat=stat)
        if (stat /= 0) then
-          failed_bytes = 2*int(list%n, i8)*storage_size(list%a(1))/8
+          failed_bytes = 2*int(list%n, i8)*(storage_size(list%a(1)) + NDOF_NODE*storage_size(stat))/8
           return
        end if
        tmp(1:list%n) = list%a(1:list%n)
        call move_alloc(tmp, list%a)
+       if (allocated(list%first_line)) lines(:, 1:list%n) = list%first_line(:, 1:list%n)
+       call move_alloc(lines, list%first_line)
     end if
     list%n = list%n + 1
     list%a(list%n) = link_t()
+    if (allocated(list%first_line)) list%first_line(:, list%n) = 0
   end subroutine push_link
 
   subroutine map_reset(map)

@@ -44,6 +44,7 @@ module superjoin_model_results
      real(wp) :: residual0 = 0.0_wp              !! before iterative refinement
      integer :: refinements = 0                  !! refinement steps kept
      integer :: refine_tried = 0                 !! refinement steps tried
+     character(:), allocatable :: failure        !! why the step was not solved (exit 3): its results are zeros
   end type step_results_t
 
   type, public :: run_summary_t

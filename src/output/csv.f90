@@ -78,6 +78,7 @@ contains
     case (1)
        call tb%line('step,substructure,node,u1,u2,u3,ur1,ur2,ur3')
        do is = 1, size(model%steps)
+          if (allocated(fields%steps(is)%failure)) cycle   ! not solved: no rows
           do isub = 1, size(model%subs)
              do n = 1, model%subs(isub)%nnode
                 v = fields%vertex_offset(isub) + n
@@ -90,6 +91,7 @@ contains
     case (2)
        call tb%line('step,substructure,node,dof,force')
        do is = 1, size(model%steps)
+          if (allocated(fields%steps(is)%failure)) cycle   ! not solved: no rows
           do k = 1, size(fields%steps(is)%reactions)
              associate (rc => fields%steps(is)%reactions(k))
                if (.not. sel%node(fields%vertex_offset(rc%sub) + rc%node)) cycle
@@ -102,6 +104,7 @@ contains
     case (3)
        call tb%line('step,contact,master_node,slave_node,dof,delta,force')
        do is = 1, size(model%steps)
+          if (allocated(fields%steps(is)%failure)) cycle   ! not solved: no rows
           do il = 1, size(model%links)
              associate (lk => model%links(il), ct => model%contacts(model%links(il)%contact))
                do d = 1, NDOF_NODE
@@ -135,6 +138,7 @@ contains
     case (4)
        call tb%line('step,substructure,element,type,end,n,vy,vz,t,my,mz')
        do is = 1, size(model%steps)
+          if (allocated(fields%steps(is)%failure)) cycle   ! not solved: no rows
           do isub = 1, size(model%subs)
              do e = 1, model%subs(isub)%nelem
                 if (.not. any(is_family(model%subs(isub)%elem_type(e), [FAMILY_TRUSS, FAMILY_BEAM]))) cycle
@@ -151,6 +155,7 @@ contains
     case (5)
        call tb%line('step,substructure,element,nx,ny,nxy,mx,my,mxy')
        do is = 1, size(model%steps)
+          if (allocated(fields%steps(is)%failure)) cycle   ! not solved: no rows
           do isub = 1, size(model%subs)
              do e = 1, model%subs(isub)%nelem
                 if (.not. is_plate_type(model%subs(isub)%elem_type(e))) cycle

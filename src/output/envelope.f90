@@ -33,6 +33,8 @@ contains
     if (.not. allocated(model%combinations)) return
     if (size(model%combinations) == 0) return
     cs = pack([(s, s=1, size(model%steps))], model%steps%combination > 0)
+    ! a combination of a step that was not solved (exit 3) has no results
+    cs = pack(cs, [(.not. allocated(res%fields%steps(cs(s))%failure), s=1, size(cs))])
     if (size(cs) == 0) return
     names = ''
     do s = 1, size(cs)

@@ -53,6 +53,7 @@ contains
     call header(lu, model, res)
     do is = 1, size(model%steps)
        call step_block(lu, model, res, is)
+       if (allocated(res%fields%steps(is)%failure)) cycle
        call write_print_requests(lu, model, res%fields, is)
     end do
     call write_envelope(lu, model, res)
@@ -202,6 +203,11 @@ contains
       call lu%line('STEP '//itoa(is)//'  '//model%steps(is)%name)
       call lu%line(RULE)
       call kept_line(lu, model, is)
+      call stiffness_lines(lu, model, is)
+      if (allocated(st%failure)) then
+         call failure_lines(lu, st%failure)
+         return
+      end if
 
       if (tables) call node_tables(lu, model, res, is)
 
@@ -264,6 +270,60 @@ contains
       call lu%line('')
     end associate
   end subroutine step_block
+
+  subroutine stiffness_lines(lu, model, is)
+    !! The contact stiffnesses step is sets (*CHANGE CONTACT, one step of a
+    !! SWEEP each): contact, nodes, DOF and g (0: released) per changed DOF.
+    type(text_buffer_t), intent(inout) :: lu
+    type(model_t), intent(in) :: model
+    integer, intent(in) :: is
+    character(len=300) :: hline
+    integer :: i, d
+    if (.not. allocated(model%steps(is)%link_overrides)) return
+    if (size(model%steps(is)%link_overrides) == 0) return
+    call lu%line('CONTACT STIFFNESSES OF THIS STEP (*CHANGE CONTACT; g = 0: released)')
+    write (hline, '(2x,a16,2a10,a6,a15)') 'contact         ', '    master', '     slave', '   dof', '              g'
+    call lu%line(trim(hline))
+    do i = 1, size(model%steps(is)%link_overrides)
+       associate (o => model%steps(is)%link_overrides(i), lk => model%links(model%steps(is)%link_overrides(i)%link))
+         associate (ct => model%contacts(lk%contact))
+           do d = 1, NDOF_NODE
+              if (.not. o%dofs(d)) cycle
+              call lu%put('  ')
+              call lu%put_field(ct%name, 16)
+              call lu%put_int(int(model%subs(ct%master_sub)%node_id(lk%master_node), i8), 10)
+              call lu%put_int(int(model%subs(ct%slave_sub)%node_id(lk%slave_node), i8), 10)
+              call lu%put_int(int(d, i8), 6)
+              if (o%state(d) == LINK_RIGID) then
+                 call lu%put('          RIGID')
+              else
+                 call lu%put_es(o%g(d))
+              end if
+              call lu%newline()
+           end do
+         end associate
+       end associate
+    end do
+    call lu%line('')
+  end subroutine stiffness_lines
+
+  subroutine failure_lines(lu, message)
+    !! A step that could not be solved (the run exits 3): its message, line by
+    !! line, in place of its results.
+    type(text_buffer_t), intent(inout) :: lu
+    character(*), intent(in) :: message
+    integer :: i, j
+    call lu%line('NOT SOLVED (no results for this step; the run exits with status 3)')
+    i = 1
+    do
+       j = index(message(i:), new_line('a'))
+       if (j == 0) exit
+       call lu%line('  '//message(i:i + j - 2))
+       i = i + j
+    end do
+    call lu%line('  '//message(i:))
+    call lu%line('')
+  end subroutine failure_lines
 
   subroutine node_tables(lu, model, res, is)
     !! DISPLACEMENTS and SUPPORT REACTIONS of step is.

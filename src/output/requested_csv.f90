@@ -140,6 +140,7 @@ contains
     if (.not. allocated(tb) .or. allocated(error)) return
     do is = 1, size(model%steps)
        if (.not. wanted(is)) cycle
+       if (allocated(fields%steps(is)%failure)) cycle   ! not solved: no rows
        call compute_energies(model, fields, is, en, error)
        if (allocated(error)) then
           call abandon_table(tb, tmp)
@@ -202,6 +203,7 @@ contains
     if (.not. allocated(tb) .or. allocated(error)) return
     do is = 1, size(model%steps)
        if (.not. wanted(is)) cycle
+       if (allocated(fields%steps(is)%failure)) cycle   ! not solved: no rows
        do isub = 1, size(model%subs)
           do e = 1, model%subs(isub)%nelem
              call element_stresses(model, fields, is, isub, e, points, nodes, ok)
@@ -260,6 +262,7 @@ contains
     if (.not. allocated(tb) .or. allocated(error)) return
     do is = 1, size(model%steps)
        if (.not. wanted(is)) cycle
+       if (allocated(fields%steps(is)%failure)) cycle   ! not solved: no rows
        do isub = 1, size(model%subs)
           call nodal_stresses(model, fields, is, isub, avg, nel, nsurf)
           do n = 1, model%subs(isub)%nnode
@@ -298,6 +301,7 @@ contains
     if (.not. allocated(tb) .or. allocated(error)) return
     do is = 1, size(model%steps)
        if (.not. wanted(is)) cycle
+       if (allocated(fields%steps(is)%failure)) cycle   ! not solved: no rows
        do isub = 1, size(model%subs)
           do e = 1, model%subs(isub)%nelem
              call fibre_stresses(model, fields, is, isub, e, sig, n)

@@ -489,8 +489,8 @@ contains
          '*SUBSTRUCTURE, NAME=II', '*NODE', '1,0,0', '2,0,1', '3,0,2', '4,0,3', '*NSET, NSET=EDGEII', &
          '3, 1, 2', '*END SUBSTRUCTURE'])
     call read_ok(parts//join([character(L) :: '*CONTACT, NAME=J1, MASTER=I, SLAVE=II', &
-         ' 7, 3, 1, 2, RIGID', ' 7, 3, 6, 6, 2.5e6', ' I.7, II.3, 6, 6, 1.5e6', ' edgeI, edgeII, 1, 3, 1.0e9', &
-         ' 8, 4, 4, 4, 0', ' ONE, 4, 5, 5, rigid', ' 8, 4, 5, 5, 3.0', &
+         ' 7, 3, 1, 2, RIGID', ' I.7, II.3, 6, 6, 4.0e6', ' edgeI, edgeII, 3, 3, 1.0e9', &
+         ' 8, 4, 4, 4, 0', ' ONE, 4, 5, 5, rigid', &
          '*CONTACT, NAME=HINGE, MASTER=I, SLAVE=I', ' 5, 6, 1, 2, RIGID']), m, 'contacts')
     if (size(m%contacts) /= 2) return
     i1 = sub_of(m, 'I')
@@ -508,14 +508,17 @@ contains
          'node with a one-node set')
     associate (k => m%links(1))
       call check(all(k%state == [LINK_RIGID, LINK_RIGID, LINK_FINITE, LINK_NONE, LINK_NONE, LINK_FINITE]), &
-           'merged states (RIGID wins, finite added)')
-      call check(k%g(3) == 1.0e9_wp .and. k%g(6) == 4.0e6_wp, 'finite g add up')
+           'merged states (one line per DOF)')
+      call check(k%g(3) == 1.0e9_wp .and. k%g(6) == 4.0e6_wp, 'finite g of their lines')
       call check(k%loc%line == 22, 'link at its first line')
     end associate
     associate (k => m%links(4))
       call check(all(k%state == [LINK_NONE, LINK_NONE, LINK_NONE, LINK_NONE, LINK_RIGID, LINK_NONE]), &
-           'g = 0 leaves the DOF, RIGID wins over a later finite g')
+           'g = 0 leaves the DOF, RIGID through a one-node set')
     end associate
+    call read_bad(parts//join([character(L) :: '*CONTACT, NAME=J1, MASTER=I, SLAVE=II', ' 7, 3, 1, 6, RIGID', &
+         ' I.7, II.3, 6, 6, 2.0e7']), 'inline.deck:23: error: DOF 6 of contact J1 is given twice between '// &
+         'the same nodes (first at inline.deck:22): one line per DOF', 'a DOF given twice in one *CONTACT')
     call check(m%links(5)%contact == 2 .and. m%contacts(2)%master_sub == m%contacts(2)%slave_sub, &
          'contact inside one substructure')
 

@@ -50,6 +50,7 @@ contains
          if (.not. ok) cycle
          do i = 1, size(nodes, kind=ip)
             if (t%cylindrical) then
+               if (.not. axis_defined(t%a, t%b)) exit   ! a = b: reported at the card
                if (.not. cylinder_frame(t%a, t%b, model%subs(isub)%x(:, nodes(i)), q)) then
                   call report_loc(st, t%loc, '*TRANSFORM, TYPE=C: node '//node_label(model, isub, nodes(i))// &
                        ' lies on the cylinder''s axis (no radial direction)')
@@ -96,6 +97,8 @@ contains
          io = ct%orientation
          if (io <= 0) cycle
          if (.not. model%orientations(io)%cylindrical) cycle
+         ! no axis (no data line, or a = b): reported at the *ORIENTATION card
+         if (.not. axis_defined(model%orientations(io)%a, model%orientations(io)%b)) cycle
          mid = (model%subs(ct%master_sub)%x(:, lk%master_node) + model%subs(ct%slave_sub)%x(:, lk%slave_node))/2
          if (.not. cylinder_frame(model%orientations(io)%a, model%orientations(io)%b, mid, lk%q)) then
             call report_loc(st, lk%loc, '*CONTACT '//ct%name//', ORIENTATION='//model%orientations(io)%name// &
@@ -132,6 +135,12 @@ contains
     q(2, :) = e2
     q(3, :) = cross(e1, e2)
   end function rect_frame
+
+  pure logical function axis_defined(a, b)
+    !! The points a and b of a cylindrical system are distinct (they define its axis).
+    real(wp), intent(in) :: a(3), b(3)
+    axis_defined = norm2(b - a) > 0.0_wp
+  end function axis_defined
 
   logical function cylinder_frame(a, b, x, q) result(ok)
     !! Rows: radial (from the axis a-b to x), tangential, axial (a to b).

@@ -90,6 +90,12 @@ def mutate(lines, rng, name):
     return extra
 
 
+
+def partial_listing(path):
+    """A listing of a run that exits 3 must mark its failed steps NOT SOLVED."""
+    with open(path, errors="replace") as f:
+        return any(line.startswith("NOT SOLVED") for line in f)
+
 def main():
     ap = argparse.ArgumentParser()
     ap.add_argument('binary')
@@ -140,8 +146,12 @@ def main():
             reason = 'crash output'
         elif status == 1 and not MESSAGE.search(err):
             reason = 'status 1 without a file:line: error: message'
-        elif status not in (0, 5) and os.path.exists(lst):
+        elif status not in (0, 3, 5) and os.path.exists(lst):
             reason = 'failed run left a listing'
+        elif status == 3 and os.path.exists(lst) and not partial_listing(lst):
+            # exit 3 keeps a listing only for a study whose solved steps are
+            # written and whose failed ones are marked NOT SOLVED
+            reason = 'mechanism run left a listing without a NOT SOLVED step'
         if reason:
             failures += 1
             print('FAIL %s: %s\n%s' % (deck, reason, err[:500]))

@@ -192,6 +192,7 @@ contains
     type(error_t), allocatable, intent(out) :: error
     real(wp) :: c(3), nrm(3), p(3, size(x, 2)), ex(3), size_e
     integer :: n, i
+    logical :: flat
     n = size(x, 2)
     r = 0.0_wp
     xl = 0.0_wp
@@ -202,7 +203,11 @@ contains
        nrm = cross(x(:, 2) - x(:, 1), x(:, 3) - x(:, 1))
     end if
     size_e = maxval(abs(x - spread(x(:, 1), 2, n)))
-    if (norm2(nrm) <= epsilon(1.0_wp)*size_e**2 .or. size_e <= 0.0_wp) then
+    ! |n| <= eps size², compared without squaring the size (coordinates near
+    ! the top of the floating-point range would overflow)
+    flat = size_e > 0.0_wp
+    if (flat) flat = norm2(nrm)/size_e > epsilon(1.0_wp)*size_e
+    if (.not. flat) then
        call fatal_error(error, EXIT_DECK, 'zero area (collinear or coincident nodes)')
        return
     end if

@@ -24,6 +24,7 @@ module superjoin_deck_cards_assembly
        add_cline, add_support, grow, instance_b_t
   use superjoin_utils_halting, only: halting_t, halting_off, halting_restore
   use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
+  use superjoin_deck_cards_common, only: get_reals
   use superjoin_deck_cards_common, only: outside_step, check_params, param_index, get_param, &
        get_name_param, target_sub, field_count, fld, get_real, real_message, get_dof_range, &
        get_stiffness, parse_ref, loc_string, CARD_SKIP, CARD_CONTACT, CARD_SUPPORT, CARD_INSTANCE, &
@@ -295,12 +296,10 @@ contains
             inst%ok = .false.
             return
          end if
-         do i = 1, TRANSLATION_FIELDS
-            if (.not. get_real(st, line, loc, i, v(i))) then
-               inst%ok = .false.
-               return
-            end if
-         end do
+         if (.not. get_reals(st, line, loc, v(1:TRANSLATION_FIELDS))) then
+            inst%ok = .false.
+            return
+         end if
          inst%shift = v(1:3)
          return
       end if
@@ -309,12 +308,10 @@ contains
          inst%ok = .false.
          return
       end if
-      do i = 1, ROTATION_FIELDS
-         if (.not. get_real(st, line, loc, i, v(i))) then
-            inst%ok = .false.
-            return
-         end if
-      end do
+      if (.not. get_reals(st, line, loc, v(1:ROTATION_FIELDS))) then
+         inst%ok = .false.
+         return
+      end if
       a = v(1:3)
       b = v(4:6)
       angle = v(7)

@@ -14,7 +14,7 @@ module superjoin_deck_cards_common
   private
 
   public :: set_card, outside_step, check_params, param_index, get_param, get_name_param, &
-       target_sub, field_count, fld, get_real, real_message, get_id, get_dof, get_dof_range, &
+       target_sub, field_count, fld, get_real, get_reals, real_message, get_id, get_dof, get_dof_range, &
        get_stiffness, parse_ref, parse_set_ref, loc_string, refused_card, CARD_NONE, CARD_SKIP, CARD_NODATA, &
        CARD_HEADING, CARD_NODE, CARD_ELEMENT, CARD_NSET, CARD_ELSET, CARD_SECTION, CARD_ELASTIC, &
        CARD_ORIENTATION, CARD_CONTACT, CARD_SUPPORT, CARD_BOUNDARY, CARD_CLOAD, CARD_DLOAD, &
@@ -201,6 +201,20 @@ contains
     ok = stat == TOK_OK
     if (.not. ok) call report_loc(st, loc, real_message(fld(st, line, i), stat))
   end function get_real
+
+  logical function get_reals(st, line, loc, x) result(ok)
+    !! Reals in fields 1..size(x), up to the first invalid one (reported).
+    type(deck_state_t), intent(inout) :: st
+    character(*), intent(in) :: line
+    type(source_loc_t), intent(in) :: loc
+    real(wp), intent(inout) :: x(:)
+    integer :: i
+    ok = .true.
+    do i = 1, size(x)
+       ok = get_real(st, line, loc, i, x(i))
+       if (.not. ok) return
+    end do
+  end function get_reals
 
   function real_message(tok, stat) result(msg)
     !! Message for a real that could not be converted.

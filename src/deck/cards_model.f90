@@ -14,6 +14,7 @@ module superjoin_deck_cards_model
   use superjoin_utils_strings, only: pick
   use superjoin_elements_catalog, only: unsupported_type_message
   use superjoin_elements_traits, only: element_type_of_name
+  use superjoin_deck_cards_common, only: get_reals
   use superjoin_deck_cards_common, only: outside_step, check_params, param_index, get_param, &
        get_name_param, target_sub, field_count, fld, get_real, get_id, loc_string, CARD_SKIP, &
        CARD_HEADING, CARD_NODE, CARD_ELEMENT, CARD_NSET, CARD_ELSET, CARD_SPRING_ELEMENT, &
@@ -431,7 +432,6 @@ contains
     type(deck_state_t), intent(inout) :: st
     character(*), intent(in) :: line
     type(source_loc_t), intent(in) :: loc
-    integer :: i
     associate (c => st%spring_cards(st%card_item))
       if (st%card_ndata > 2) then
          call report_loc(st, loc, 'too many data lines for *SPRING (DOF line, stiffness line)')
@@ -439,9 +439,7 @@ contains
          return
       end if
       if (.not. field_count(st, loc, 1, 2, 'DOF(s) or stiffness')) return
-      do i = 1, st%f%n
-         if (.not. get_real(st, line, loc, i, c%v(i, st%card_ndata))) return
-      end do
+      if (.not. get_reals(st, line, loc, c%v(1:st%f%n, st%card_ndata))) return
       c%ndata = st%card_ndata
       c%nfield(st%card_ndata) = st%f%n
       c%data_loc(st%card_ndata) = loc

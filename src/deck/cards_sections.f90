@@ -12,6 +12,7 @@ module superjoin_deck_cards_sections
        MAX_SHAPE_DIMS
   use superjoin_elements_frame, only: real_text
   use superjoin_utils_strings, only: pick
+  use superjoin_deck_cards_common, only: get_reals
   use superjoin_deck_cards_common, only: outside_step, check_params, param_index, get_param, &
        get_name_param, field_count, fld, get_real, real_message, parse_set_ref, loc_string, CARD_SKIP, &
        CARD_SECTION, CARD_ELASTIC, CARD_ORIENTATION, CARD_DENSITY, CARD_TSHEAR, CARD_EXPANSION, &
@@ -498,7 +499,7 @@ contains
     real(wp) :: d(MAX_SHAPE_DIMS)
     type(section_props_t) :: p
     character(:), allocatable :: problem, expected
-    integer :: i, nmin, nmax
+    integer :: nmin, nmax
     real(wp), parameter :: CENTROID_TOL = 1.0e-9_wp
     associate (sec => st%sections(st%card_item))
       if (st%card_ndata == 1) sec%data_loc = loc
@@ -525,12 +526,10 @@ contains
          sec%data_ok = .false.
          return
       end if
-      do i = 1, st%f%n
-         if (.not. get_real(st, line, loc, i, d(i))) then
-            sec%data_ok = .false.
-            return
-         end if
-      end do
+      if (.not. get_reals(st, line, loc, d(1:st%f%n))) then
+         sec%data_ok = .false.
+         return
+      end if
       if (sec%shape == SHAPE_GENERAL) then
          if (.not. (d(1) > 0.0_wp .and. d(2) > 0.0_wp .and. d(4) > 0.0_wp .and. d(5) > 0.0_wp)) then
             call report_loc(st, loc, 'beam section constants A, I11, I22, J must be positive')
@@ -663,16 +662,13 @@ contains
     character(*), intent(in) :: line
     type(source_loc_t), intent(in) :: loc
     real(wp) :: v(ORIENT_VALUES), a(3), b(3), e1(3), e2(3), e3(3), na, nb, n2
-    integer :: i
     if (st%card_ndata > 1) then
        call report_loc(st, loc, 'too many data lines for *ORIENTATION')
        st%card = CARD_SKIP
        return
     end if
     if (.not. field_count(st, loc, ORIENT_VALUES, ORIENT_VALUES, 'ax, ay, az, bx, by, bz')) return
-    do i = 1, ORIENT_VALUES
-       if (.not. get_real(st, line, loc, i, v(i))) return
-    end do
+    if (.not. get_reals(st, line, loc, v(1:ORIENT_VALUES))) return
     a = v(1:3)
     b = v(4:6)
     if (st%orientations(st%card_item)%cylindrical) then

@@ -11,6 +11,7 @@ module superjoin_deck_transforms
   use superjoin_deck_lexer, only: keyword_line_t, to_upper, clip
   use superjoin_deck_state, only: deck_state_t, report_loc, grow, transform_b_t
   use superjoin_utils_strings, only: pick
+  use superjoin_deck_cards_common, only: get_reals
   use superjoin_deck_cards_common, only: outside_step, check_params, get_param, field_count, &
        get_real, parse_set_ref, CARD_SKIP, CARD_TRANSFORM, PARALLEL_TOL, NAME_LEN, ORIENT_VALUES
   implicit none (type, external)
@@ -61,7 +62,6 @@ contains
     character(*), intent(in) :: line
     type(source_loc_t), intent(in) :: loc
     real(wp) :: v(ORIENT_VALUES)
-    integer :: i
     associate (t => st%transforms(st%card_item))
       if (st%card_ndata > 1) then
          call report_loc(st, loc, 'too many data lines for *TRANSFORM')
@@ -69,9 +69,7 @@ contains
          return
       end if
       if (.not. field_count(st, loc, ORIENT_VALUES, ORIENT_VALUES, 'ax, ay, az, bx, by, bz')) return
-      do i = 1, ORIENT_VALUES
-         if (.not. get_real(st, line, loc, i, v(i))) return
-      end do
+      if (.not. get_reals(st, line, loc, v(1:ORIENT_VALUES))) return
       t%a = v(1:3)
       t%b = v(4:6)
       if (t%cylindrical) then

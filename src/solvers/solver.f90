@@ -4,8 +4,12 @@ module superjoin_solvers_solver
   use superjoin_kinds, only: wp, i8
   use superjoin_error, only: error_t
   use superjoin_solvers_sparse, only: sparse_sym_t
+  use superjoin_utils_memory, only: out_of_memory, BYTES_REAL
   implicit none (type, external)
   private
+
+  integer(i8), parameter :: SCHUR_BLOCK = 64
+    !! Columns of a_ib solved together by the default schur.
 
   type, public :: solver_info_t
     !! What a solver reports about itself after analyze/factorize.
@@ -28,6 +32,7 @@ module superjoin_solvers_solver
      procedure(pivots_i), deferred :: pivots
      procedure(release_i), deferred :: release
      procedure :: set_groups
+     procedure :: schur
   end type linear_solver_t
 
   abstract interface
@@ -68,6 +73,96 @@ module superjoin_solvers_solver
      end subroutine release_i
   end interface
 contains
+
+  subroutine schur(self, a, nb, kstar, error)
+    !! Static condensation: a is the whole symmetric matrix of a part (order
+    !! n, upper triangle), its last nb columns the boundary. On return
+    !!     kstar(nb, nb) = a_bb − a_bi a_ii⁻¹ a_ib   (both triangles)
+    !! and self is a solver of the interior block a_ii (order ni = n − nb):
+    !! solve, pivots and info refer to a_ii; on breakdown error%code =
+    !! EXIT_SINGULAR and info%failed_column is a column 1..ni of a.
+    !! This default analyzes and factors a_ii and forms kstar with 2 nb
+    !! triangular solves, SCHUR_BLOCK columns of a_ib at a time; a solver
+    !! that can form kstar from one factorization of a overrides it.
+    class(linear_solver_t), intent(inout) :: self
+    type(sparse_sym_t), intent(in) :: a
+    integer(i8), intent(in) :: nb
+    real(wp), intent(out) :: kstar(:, :)
+    type(error_t), allocatable, intent(out) :: error
+    type(sparse_sym_t) :: aii
+    real(wp), allocatable :: rhs(:, :), x(:, :)
+    integer(i8) :: ni, j0, j1, nblk, c, pos, r, w
+    integer :: stat
+    ni = a%n - nb
+    call boundary_block(a, nb, kstar)
+    if (ni == 0) return
+    aii%n = ni
+    aii%colptr = a%colptr(1:ni + 1)
+    aii%rowind = a%rowind(1:a%colptr(ni + 1) - 1)
+    aii%val = a%val(1:a%colptr(ni + 1) - 1)
+    call self%analyze(aii, error)
+    if (allocated(error)) return
+    call self%factorize(aii, error)
+    if (allocated(error)) return
+    w = min(SCHUR_BLOCK, max(nb, 1_i8))
+    allocate (rhs(ni, w), x(ni, w), stat=stat)
+    if (stat /= 0) then
+       call out_of_memory(error, 'the condensation by solves', 2*ni*w*BYTES_REAL)
+       return
+    end if
+    do j0 = 1, nb, SCHUR_BLOCK
+       j1 = min(nb, j0 + SCHUR_BLOCK - 1)
+       nblk = j1 - j0 + 1
+       rhs(:, 1:nblk) = 0.0_wp
+       do c = j0, j1
+          do pos = a%colptr(ni + c), a%colptr(ni + c + 1) - 1
+             r = a%rowind(pos)
+             if (r > ni) exit
+             rhs(r, c - j0 + 1) = a%val(pos)
+          end do
+       end do
+       call self%solve(rhs(:, 1:nblk), x(:, 1:nblk), error)
+       if (allocated(error)) return
+       call subtract_bi(a, nb, x(:, 1:nblk), kstar(:, j0:j1))
+    end do
+    ! Symmetric in exact arithmetic: take the mean of the two triangles.
+    kstar = 0.5_wp*(kstar + transpose(kstar))
+  end subroutine schur
+
+  subroutine boundary_block(a, nb, kbb)
+    !! kbb = a_bb, both triangles (a's last nb columns and rows).
+    type(sparse_sym_t), intent(in) :: a
+    integer(i8), intent(in) :: nb
+    real(wp), intent(out) :: kbb(:, :)
+    integer(i8) :: ni, j, pos, r
+    ni = a%n - nb
+    kbb = 0.0_wp
+    do j = ni + 1, a%n
+       do pos = a%colptr(j), a%colptr(j + 1) - 1
+          r = a%rowind(pos)
+          if (r <= ni) cycle
+          kbb(r - ni, j - ni) = a%val(pos)
+          kbb(j - ni, r - ni) = a%val(pos)
+       end do
+    end do
+  end subroutine boundary_block
+
+  subroutine subtract_bi(a, nb, x, y)
+    !! y -= a_bi x (a_bi = a_ibᵀ, read from the boundary columns of a).
+    type(sparse_sym_t), intent(in) :: a
+    integer(i8), intent(in) :: nb
+    real(wp), intent(in) :: x(:, :)
+    real(wp), intent(inout) :: y(:, :)
+    integer(i8) :: ni, j, pos, r
+    ni = a%n - nb
+    do j = 1, nb
+       do pos = a%colptr(ni + j), a%colptr(ni + j + 1) - 1
+          r = a%rowind(pos)
+          if (r > ni) exit
+          y(j, :) = y(j, :) - a%val(pos)*x(r, :)
+       end do
+    end do
+  end subroutine subtract_bi
 
   subroutine set_groups(self, first)
     !! Tell the solver that columns come in groups of consecutive columns (the

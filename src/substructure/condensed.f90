@@ -2,7 +2,7 @@ module superjoin_substructure_condensed
   !! Static condensation of one substructure in its physical boundary numbering:
   !!     K* = k_bb − k_bi k_ii⁻¹ k_ib,   f* = f_b − k_bi k_ii⁻¹ f_i,
   !!     u_i = k_ii⁻¹ (f_i − k_ib u_b)   (recovery).
-  !! k_ii is factored once (symbolic, numeric) and kept for the load
+  !! k_ii is factored once and kept for the load
   !! condensation and the recovery of every step. K* holds no contact
   !! stiffness: the Δu transform is applied to it afterwards, as to an element.
   use superjoin_kinds, only: wp, i8
@@ -18,13 +18,9 @@ module superjoin_substructure_condensed
   implicit none (type, external)
   private
 
-  integer(i8), parameter :: RHS_BLOCK = 64
-    !! Columns of k_ib solved together when forming K*.
-
   type, public :: condensed_t
     !! A condensed substructure: its local system, the factor of k_ii and K*.
      type(local_system_t) :: sys
-     type(sparse_sym_t) :: kii                       !! leading block of sys%k
      class(linear_solver_t), allocatable :: solver   !! holds the factor of k_ii
      type(superelement_t) :: se                      !! K* on the physical boundary DOFs
      real(wp) :: maxratio = 0.0_wp                   !! max k_jj / D_jj over k_ii
@@ -40,83 +36,48 @@ module superjoin_substructure_condensed
 contains
 
   subroutine condense(model, table, solver_name, cond, error)
-    !! Factor k_ii of cond%sys and form K* (dense, symmetric), in blocks of
-    !! RHS_BLOCK columns of k_ib. A breakdown names the substructure, node
-    !! and DOF where it occurred (an interior mechanism).
+    !! Form K* (dense, symmetric) and keep the factor of k_ii: the solver's
+    !! schur (one factorization of the whole part where the backend can, else
+    !! k_ii factored and 2 n_b solves). A breakdown names the substructure,
+    !! node and DOF where it occurred (an interior mechanism).
     type(model_t), intent(in) :: model
     type(dof_table_t), intent(in) :: table
     character(*), intent(in) :: solver_name
     type(condensed_t), intent(inout) :: cond
     type(error_t), allocatable, intent(out) :: error
-
-    call split_blocks(model, cond, error)
+    integer(i8) :: nb
+    integer :: stat
+    nb = cond%sys%nb
+    allocate (cond%se%k(nb, nb), stat=stat)
+    if (stat /= 0) then
+       call out_of_memory(error, 'the condensed stiffness of substructure '// &
+            model%subs(cond%sys%isub)%name//' ('//itoa(nb)//' boundary DOFs)', nb*nb*BYTES_REAL)
+       return
+    end if
+    cond%se%pdof = cond%sys%pdof(cond%sys%ni + 1:cond%sys%ni + nb)
+    call drop_free_interior(cond)
+    call new_solver(solver_name, cond%sys%ni, cond%solver, error)
     if (allocated(error)) return
+    call cond%solver%schur(cond%sys%k, nb, cond%se%k, error)
+    if (allocated(error)) then
+       call name_breakdown(model, table, cond, error)
+       return
+    end if
     if (cond%sys%ni == 0) return
-    call factor_interior(model, table, solver_name, cond, error)
-    if (allocated(error)) return
     call interior_maxratio(cond)
-    call subtract_interior(model, cond, error)
-    if (allocated(error)) return
-    ! Symmetric in exact arithmetic: take the mean of the two triangles.
-    cond%se%k = 0.5_wp*(cond%se%k + transpose(cond%se%k))
     if (.not. all(ieee_is_finite(cond%se%k))) call fatal_error(error, EXIT_SINGULAR, 'error: the condensed '// &
          'stiffness of substructure '//model%subs(cond%sys%isub)%name//' overflows the floating-point range: '// &
          'check the magnitudes and units of the stiffnesses')
   end subroutine condense
 
-  subroutine split_blocks(model, cond, error)
-    !! k_ii (the first ni columns of cond%sys%k, whose rows are <= ni in the
-    !! upper triangle) into cond%kii, its free DOFs dropped; K* = k_bb, both
-    !! triangles, on the physical boundary DOFs.
-    type(model_t), intent(in) :: model
-    type(condensed_t), intent(inout) :: cond
-    type(error_t), allocatable, intent(out) :: error
-    integer(i8) :: ni, nb, j, pos, r
-    integer :: stat
-    ni = cond%sys%ni
-    nb = cond%sys%nb
-    associate (k => cond%sys%k)
-      cond%kii%n = ni
-      cond%kii%colptr = k%colptr(1:ni + 1)
-      cond%kii%rowind = k%rowind(1:k%colptr(ni + 1) - 1)
-      cond%kii%val = k%val(1:k%colptr(ni + 1) - 1)
-
-      call drop_free_interior(cond)
-
-      allocate (cond%se%k(nb, nb), stat=stat)
-      if (stat /= 0) then
-         call out_of_memory(error, 'the condensed stiffness of substructure '// &
-              model%subs(cond%sys%isub)%name//' ('//itoa(nb)//' boundary DOFs)', nb*nb*BYTES_REAL)
-         return
-      end if
-      cond%se%pdof = cond%sys%pdof(ni + 1:ni + nb)
-      cond%se%k = 0.0_wp
-      do j = ni + 1, ni + nb
-         do pos = k%colptr(j), k%colptr(j + 1) - 1
-            r = k%rowind(pos)
-            if (r <= ni) cycle
-            cond%se%k(r - ni, j - ni) = k%val(pos)
-            cond%se%k(j - ni, r - ni) = k%val(pos)
-         end do
-      end do
-    end associate
-  end subroutine split_blocks
-
-  subroutine factor_interior(model, table, solver_name, cond, error)
-    !! cond%solver: the factor of k_ii; a breakdown (EXIT_SINGULAR) names the
-    !! node and DOF of the failed column, or the substructure.
+  subroutine name_breakdown(model, table, cond, error)
+    !! A breakdown of the interior factor (EXIT_SINGULAR) named by the node
+    !! and DOF of the failed column, or by the substructure; other errors pass.
     type(model_t), intent(in) :: model
     type(dof_table_t), intent(in) :: table
-    character(*), intent(in) :: solver_name
-    type(condensed_t), intent(inout) :: cond
-    type(error_t), allocatable, intent(out) :: error
+    type(condensed_t), intent(in) :: cond
+    type(error_t), allocatable, intent(inout) :: error
     integer(i8) :: j
-    call new_solver(solver_name, cond%sys%ni, cond%solver, error)
-    if (allocated(error)) return
-    call cond%solver%analyze(cond%kii, error)
-    if (allocated(error)) return
-    call cond%solver%factorize(cond%kii, error)
-    if (.not. allocated(error)) return
     if (error%code /= EXIT_SINGULAR) return
     j = cond%solver%info%failed_column
     deallocate (error)
@@ -128,7 +89,7 @@ contains
        call fatal_error(error, EXIT_SINGULAR, 'error: the structure cannot be solved: the interior '// &
             'stiffness of condensed substructure '//model%subs(cond%sys%isub)%name//' is singular')
     end if
-  end subroutine factor_interior
+  end subroutine name_breakdown
 
   subroutine interior_maxratio(cond)
     !! MAXRATIO of the interior factor: max k_jj / D_jj and its local DOF.
@@ -136,9 +97,9 @@ contains
     real(wp), allocatable :: d(:), kd(:)
     integer(i8) :: j, ni
     ni = cond%sys%ni
-    allocate (d(ni), kd(ni))
+    allocate (d(ni), kd(cond%sys%k%n))
     call cond%solver%pivots(d)
-    call cond%kii%diagonal(kd)
+    call cond%sys%k%diagonal(kd)
     do j = 1, ni
        if (d(j) == 0.0_wp) cycle
        if (abs(kd(j)/d(j)) > cond%maxratio) then
@@ -148,46 +109,10 @@ contains
     end do
   end subroutine interior_maxratio
 
-  subroutine subtract_interior(model, cond, error)
-    !! K* -= k_ibᵀ k_ii⁻¹ k_ib, RHS_BLOCK boundary columns at a time.
-    type(model_t), intent(in) :: model
-    type(condensed_t), intent(inout) :: cond
-    type(error_t), allocatable, intent(out) :: error
-    real(wp), allocatable :: rhs(:, :), x(:, :)
-    integer(i8) :: ni, nb, j0, j1, nblk, pos, r, c
-    integer :: stat
-    ni = cond%sys%ni
-    nb = cond%sys%nb
-    allocate (rhs(ni, min(RHS_BLOCK, max(nb, 1_i8))), x(ni, min(RHS_BLOCK, max(nb, 1_i8))), stat=stat)
-    if (stat /= 0) then
-       call out_of_memory(error, 'the condensation of substructure '//model%subs(cond%sys%isub)%name, &
-            2*ni*RHS_BLOCK*BYTES_REAL)
-       return
-    end if
-    associate (k => cond%sys%k)
-      do j0 = 1, nb, RHS_BLOCK
-         j1 = min(nb, j0 + RHS_BLOCK - 1)
-         nblk = j1 - j0 + 1
-         rhs(:, 1:nblk) = 0.0_wp
-         do c = j0, j1
-            do pos = k%colptr(ni + c), k%colptr(ni + c + 1) - 1
-               r = k%rowind(pos)
-               if (r > ni) exit
-               rhs(r, c - j0 + 1) = k%val(pos)
-            end do
-         end do
-         call cond%solver%solve(rhs(:, 1:nblk), x(:, 1:nblk), error)
-         if (allocated(error)) return
-         ! K*(:, j0:j1) -= k_ibᵀ x
-         call sub_kbi(k, ni, nb, x(:, 1:nblk), cond%se%k(:, j0:j1))
-      end do
-    end associate
-  end subroutine subtract_interior
-
   subroutine drop_free_interior(cond)
     !! Interior DOFs that no element stiffens (no nonzero in their row or
     !! column, e.g. an underflowed bending stiffness) are dropped as AUTOSPC
-    !! does: diagonal 1 in k_ii, zero solution; listed in cond%spc.
+    !! does: diagonal 1 in k_ii (in cond%sys%k), zero solution; listed in cond%spc.
     type(condensed_t), intent(inout) :: cond
     logical, allocatable :: nz(:)
     integer(i8) :: j, pos, r, ni, nspc
@@ -210,7 +135,7 @@ contains
        if (nz(j)) cycle
        nspc = nspc + 1
        cond%spc(nspc) = cond%sys%pdof(j)
-       cond%kii%val(cond%kii%colptr(j + 1) - 1) = 1.0_wp
+       cond%sys%k%val(cond%sys%k%colptr(j + 1) - 1) = 1.0_wp
     end do
   end subroutine drop_free_interior
 

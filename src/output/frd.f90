@@ -265,6 +265,7 @@ contains
     integer, parameter :: II(6) = [1, 2, 3, 1, 2, 3], JJ(6) = [1, 2, 3, 2, 3, 1]
     character(len=120) :: row
     character(len=2) :: letter
+    character(len=8) :: label
     integer :: isub, d, nv
     integer(ip) :: n
     nblock = nblock + 1
@@ -273,15 +274,18 @@ contains
     call lu%line(row(1:70))
     write (row, '(a7,i5,f12.9,i12,a20,i2,i5,10x,i2)') '  100CL', 100 + is, real(is, wp), count(mask), '', 0, is, 1
     call lu%line(trim(row))
-    write (row, '(a3,2x,a8,2i5)') ' -4', name, nv + merge(1, 0, nv == 3), 1
+    label = name    ! left-justified in its 8 columns (an A8 edit right-justifies a shorter string)
+    write (row, '(a3,2x,a8,2i5)') ' -4', label, nv + merge(1, 0, nv == 3), 1
     call lu%line(trim(row))
     letter = name(1:1)
     if (name == 'TOSTRAIN') letter = 'E'
     do d = 1, nv
        if (nv == 3) then
-          write (row, '(a3,2x,a8,4i5)') ' -5', trim(letter)//achar(iachar('0') + d), 1, 2, d, 0
+          label = trim(letter)//achar(iachar('0') + d)
+          write (row, '(a3,2x,a8,4i5)') ' -5', label, 1, 2, d, 0
        else
-          write (row, '(a3,2x,a8,4i5)') ' -5', trim(letter)//COMPS(d), 1, 4, II(d), JJ(d)
+          label = trim(letter)//COMPS(d)
+          write (row, '(a3,2x,a8,4i5)') ' -5', label, 1, 4, II(d), JJ(d)
        end if
        call lu%line(trim(row))
     end do

@@ -32,6 +32,13 @@ FILES = '*NODE FILE\nU, RF\n*EL FILE\nS, E\n'
 CASES = [('truss', None), ('b31', None), ('planestrain', None), ('shell1lin', FILES)]
 
 
+def fixed_name(line):
+    """The name of a -4 or -5 record in its columns 6..13, left-justified, as
+    FreeCAD's reader takes it (line[5:9] == 'DISP'); None when it is not."""
+    name = line[5:13]
+    return name.rstrip() if name[:1] != ' ' else None
+
+
 def read_frd(path):
     """(node count, element count, [(name, [component], {node: [values]})])."""
     nnode = nelem = 0
@@ -43,11 +50,11 @@ def read_frd(path):
             elif line.startswith('    3C'):
                 nelem = int(line[6:36])
             elif line.startswith(' -4'):
-                cur = (line[5:13].strip(), [], {})
+                cur = (fixed_name(line), [], {})
                 blocks.append(cur)
             elif line.startswith(' -5') and cur is not None:
-                if line[5:13].strip() != 'ALL':
-                    cur[1].append(line[5:13].strip())
+                if fixed_name(line) != 'ALL':
+                    cur[1].append(fixed_name(line))
             elif line.startswith(' -1') and cur is not None:
                 n = int(line[3:13])
                 cur[2][n] = [float(line[13 + 12 * k:25 + 12 * k]) for k in range(len(cur[1]))]
@@ -106,6 +113,8 @@ def check_case(binary, outdir, job, extra):
     if not counts or (int(counts.group(1)), int(counts.group(2))) != (nnode, nelem):
         failures.append(f'{job}: cgx counts {counts.group(0) if counts else None}, file {nnode} nodes {nelem} elements')
     print(f'  {job}: {nnode} nodes, {nelem} elements, blocks {[b[0] for b in blocks]}')
+    if any(b[0] is None or None in b[1] for b in blocks):
+        failures.append(f'{job}: a -4/-5 record name not left-justified in columns 6..13')
     for i, (name, comps, rows) in enumerate(blocks):
         for c, comp in enumerate(comps):
             got = values.get((i, c), {})

@@ -25,6 +25,8 @@ program superjoin_main
   use superjoin_output_nodes_csv, only: write_nodes_csv
   use superjoin_output_requested_csv, only: write_requested_csv
   use superjoin_output_vtk, only: write_vtk, vtk_path_problem
+  use superjoin_output_ccx_dat, only: write_ccx_dat, write_ccx_sta
+  use superjoin_output_frd, only: write_frd
   use superjoin_utils_posix, only: output_target
   use superjoin_output_mechanism, only: write_mechanism_vtk, write_mechanism_csv, mechanism_vtk_path, MECHANISM_CSV
   use superjoin_config, only: SUPERJOIN_VERSION, DEMO_DECK_SOURCE, DEMO_DECK_INSTALLED
@@ -42,17 +44,25 @@ program superjoin_main
   type(results_t) :: res
   type(error_t), allocatable :: error, unsolved
   type(string_t), allocatable :: deck_warnings(:)
-  character(:), allocatable :: deck, listing, csv_dir, vtk_file, target
+  character(:), allocatable :: deck, listing, csv_dir, vtk_file, target, job
   logical :: check_only, demo
   type(stopwatch_t) :: clock
   real(wp) :: t_read
-  integer :: i
+  integer :: i, msg_unit
   integer(i8) :: blas_bytes
   logical :: ok
   type(comm_t) :: comm
 
   comm = comm_world()
-  call parse_command_line(opts, deck, listing, csv_dir, check_only, vtk_file, demo)
+  call parse_command_line(opts, deck, listing, csv_dir, check_only, vtk_file, demo, job)
+  ! As ccx -i JOB: warnings and the job's progress on stdout, so that a
+  ! front-end reads a silent stderr and status 0 as success (FreeCAD does).
+  msg_unit = error_unit
+  if (allocated(job)) then
+     msg_unit = output_unit
+     opts%quiet = .true.
+     if (comm%is_root()) call start_ccx_job(job)
+  end if
   if (comm%size > 1) then
      if (.not. allocated(opts%solver)) opts%solver = 'auto'
      if (opts%solver == 'auto') opts%solver = 'mumps'
@@ -99,7 +109,7 @@ program superjoin_main
   call check_contact_gaps(model, deck_warnings)
   if (comm%is_root()) then
      do i = 1, size(deck_warnings)
-        write (error_unit, '(a)') deck//': warning: '//deck_warnings(i)%s
+        write (msg_unit, '(a)') deck//': warning: '//deck_warnings(i)%s
      end do
   end if
   if (check_only) then
@@ -124,7 +134,7 @@ program superjoin_main
   ! Warnings are printed also under -q (it silences progress only).
   if (comm%is_root()) then
      do i = 1, size(res%log%warnings)
-        write (error_unit, '(a)') deck//': warning: '//res%log%warnings(i)%s
+        write (msg_unit, '(a)') deck//': warning: '//res%log%warnings(i)%s
      end do
   end if
   if (size(deck_warnings) > 0) res%log%warnings = [deck_warnings, res%log%warnings]
@@ -145,6 +155,7 @@ program superjoin_main
         call write_vtk(vtk_file, model, res%fields, error)
         call fail_on(error, deck)
      end if
+     if (allocated(job)) call write_ccx_files(job)
   end if
   res%log%phase_seconds(PH_WRITE) = clock%seconds()
   call report_phase(opts%quiet, 'write', res%log%phase_seconds(PH_WRITE), listing)
@@ -159,9 +170,36 @@ program superjoin_main
           '(see the warnings above); the listing is written, exit status 5 (--accept-inaccurate: exit 0)'
      call finish(EXIT_INACCURATE)
   end if
+  if (allocated(job) .and. comm%is_root()) write (output_unit, '(a)') '', ' Job finished', ''
   call finish(EXIT_OK)
 
 contains
+
+  subroutine start_ccx_job(job)
+    !! The banner of a ccx -i run, and JOB.dat, .frd, .sta emptied as ccx
+    !! does at its start (a failed run leaves no results of an earlier one).
+    character(*), intent(in) :: job
+    character(len=4), parameter :: EXTS(3) = ['.dat', '.frd', '.sta']
+    integer :: k, lu, stat
+    write (output_unit, '(a)') '', 'superjoin '//SUPERJOIN_VERSION//': linear statics, a drop-in for '// &
+         'CalculiX (ccx -i '//job//'): '//job//'.inp -> '//job//'.dat, .frd, .sta and the listing '// &
+         job//'.lst', ''
+    do k = 1, size(EXTS)
+       open (newunit=lu, file=job//trim(EXTS(k)), status='replace', action='write', iostat=stat)
+       if (stat == 0) close (lu)
+    end do
+  end subroutine start_ccx_job
+
+  subroutine write_ccx_files(job)
+    !! JOB.dat, JOB.frd and JOB.sta, as ccx -i JOB writes them.
+    character(*), intent(in) :: job
+    call write_ccx_dat(job//'.dat', model, res%fields, error)
+    call fail_on(error, deck)
+    call write_frd(job//'.frd', model, res%fields, error)
+    call fail_on(error, deck)
+    call write_ccx_sta(job//'.sta', model, res%fields, error)
+    call fail_on(error, deck)
+  end subroutine write_ccx_files
 
   subroutine write_mechanism(error)
     !! The mechanism mode into the VTK and CSV outputs asked for; the files
@@ -249,6 +287,8 @@ contains
          '', &
          'usage: superjoin [options] [DECK]      (no DECK: solves the bundled demo deck)', &
          '', &
+         '  -i JOB             as CalculiX''s ccx -i JOB: reads JOB.inp, writes JOB.dat, JOB.frd, JOB.sta', &
+         '                     (*NODE/*EL PRINT and FILE requests) beside the listing JOB.lst', &
          '  -o FILE            listing path (default: DECK with extension .lst)', &
          '  --csv DIR          full-precision CSV results in DIR (created if needed)', &
          '  --solver NAME      auto | cholmod | umfpack | lapack | mumps | mumps-ldlt (default auto)', &
@@ -270,11 +310,12 @@ contains
          '             5 solved and listing written, but the results are judged inaccurate'
   end subroutine print_help
 
-  subroutine parse_command_line(opts, deck, listing, csv_dir, check_only, vtk_file, demo)
+  subroutine parse_command_line(opts, deck, listing, csv_dir, check_only, vtk_file, demo, job)
     !! Options and file names from the command line (usage errors stop with 2).
-    !! demo: no deck given, the bundled demo deck is solved.
+    !! demo: no deck given, the bundled demo deck is solved. job: -i JOB (as
+    !! ccx: the deck JOB.inp, CalculiX's result files JOB.dat, .frd, .sta).
     type(run_options_t), intent(out) :: opts
-    character(:), allocatable, intent(out) :: deck, listing, csv_dir, vtk_file
+    character(:), allocatable, intent(out) :: deck, listing, csv_dir, vtk_file, job
     logical, intent(out) :: check_only, demo
     integer :: i, n
     character(:), allocatable :: arg, val
@@ -302,6 +343,13 @@ contains
           check_only = .true.
        case ('--accept-inaccurate')
           opts%accept_inaccurate = .true.
+       case ('-i')
+          ! also "-i " with a trailing blank, as FreeCAD passes it (a blank-padded compare)
+          if (i == n) call usage_error('option -i needs a job name (as ccx -i JOB: reads JOB.inp)')
+          i = i + 1
+          if (allocated(deck)) call usage_error('more than one deck given')
+          job = job_name(get_arg(i))
+          deck = job//'.inp'
        case ('-o', '--csv', '--solver', '--formulation', '--export-matrix', '--vtk', '--condense')
           if (i == n) call usage_error('option '//arg//' needs a value')
           i = i + 1
@@ -364,6 +412,8 @@ contains
           deck = DEMO_DECK_INSTALLED
        end if
        if (.not. allocated(listing)) listing = 'demo.lst'
+       write (output_unit, '(a)') 'superjoin '//SUPERJOIN_VERSION//': linear statics; a drop-in for CalculiX: '// &
+            'superjoin -i JOB reads JOB.inp and writes JOB.dat, JOB.frd, JOB.sta (superjoin --help)'
        if (.not. opts%quiet) write (error_unit, '(a)') 'superjoin: no deck given: solving the bundled demo deck '// &
             deck//'; listing: '//listing//' (relative to the current directory)'
     end if
@@ -383,6 +433,16 @@ contains
     allocate (character(len=length) :: arg)
     if (length > 0) call get_command_argument(i, arg)
   end function get_arg
+
+  function job_name(arg) result(job)
+    !! The job of -i JOB: without blanks around it and without a trailing .inp.
+    character(*), intent(in) :: arg
+    character(:), allocatable :: job
+    job = trim(adjustl(arg))
+    if (len(job) > 4) then
+       if (to_lower(job(len(job) - 3:)) == '.inp') job = job(1:len(job) - 4)
+    end if
+  end function job_name
 
   function default_listing(path) result(lst)
     !! DECK with its extension replaced by .lst.

@@ -28,6 +28,17 @@ grep -q 'no deck given: solving the bundled demo deck' err.txt || { fail=$((fail
 grep -q 'listing written to demo.lst' err.txt || { fail=$((fail+1)); echo "FAIL: demo run does not say where the listing went"; }
 [ -s demo.lst ] || { fail=$((fail+1)); echo "FAIL: no demo.lst"; }
 grep -q 'END OF LISTING' demo.lst || { fail=$((fail+1)); echo "FAIL: demo listing incomplete"; }
+# FreeCAD accepts a CalculiX binary only if its no-argument run prints CalculiX on stdout
+"$bin" >out.txt 2>/dev/null
+grep -q 'CalculiX' out.txt || { fail=$((fail+1)); echo "FAIL: the no-argument run does not name CalculiX on stdout"; }
+# As ccx -i JOB (FreeCAD passes "-i " with a blank): JOB.dat, .frd, .sta, the listing, an empty stderr
+sed -n '1,/^\*STEP/p' "$src/tests/ccx/truss.inp" > job.inp
+printf '*STATIC\n*CLOAD\n2,1,1.\n*NODE PRINT,NSET=NALL\nU\n*NODE FILE\nU\n*END STEP\n' >> job.inp
+expect 0 "ccx -i" -- "$bin" "-i " job
+[ ! -s err.txt ] && grep -q 'Job finished' out.txt || { fail=$((fail+1)); echo "FAIL: -i: stderr not empty or no Job finished"; }
+for f in job.dat job.frd job.sta job.lst; do [ -s $f ] || { fail=$((fail+1)); echo "FAIL: -i wrote no $f"; }; done
+expect 4 "ccx -i missing job" -- "$bin" -i no_such_job
+expect 2 "ccx -i without job" -- "$bin" -i
 for s in cholmod umfpack lapack; do
   expect 0 "solver $s" -- "$bin" -q --solver $s "$src/decks/demo.deck" -o demo_$s.lst
 done

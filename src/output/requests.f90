@@ -21,7 +21,8 @@ module superjoin_output_requests
   implicit none (type, external)
   private
 
-  public :: write_print_requests, effective_requests
+  public :: write_print_requests, effective_requests, selected_items, node_frames, rotate_rows
+  public :: node_values, add_reactions, add_cloads
 
   character(len=15), parameter :: TENSOR_HEAD(NTENSOR) = ['             xx', '             yy', &
        '             zz', '             xy', '             xz', '             yz']
@@ -152,43 +153,70 @@ contains
   contains
     subroutine fill_u(v)
       real(wp), intent(out) :: v(:, :)
-      integer(ip) :: i
-      integer(i8) :: vx
-      integer :: d
-      do i = 1, nsel
-         vx = fields%vertex_offset(subs(i)) + nodes(i)
-         do d = 1, NDOF_NODE
-            v(d, i) = fields%u(NDOF_NODE*(vx - 1) + d, is)
-         end do
-      end do
+      v = node_values(fields%u(:, is), fields%vertex_offset, subs, nodes)
     end subroutine fill_u
     subroutine fill_rf(v)
       real(wp), intent(out) :: v(:, :)
-      integer(ip) :: i
-      integer :: k
-      v = 0.0_wp
-      do k = 1, size(fields%steps(is)%reactions)
-         associate (rc => fields%steps(is)%reactions(k))
-           do i = 1, nsel
-              if (subs(i) == rc%sub .and. nodes(i) == rc%node) v(rc%dof, i) = v(rc%dof, i) + rc%force
-           end do
-         end associate
-      end do
+      call add_reactions(fields, is, subs, nodes, v)
     end subroutine fill_rf
     subroutine fill_cf(v)
       real(wp), intent(out) :: v(:, :)
-      integer(ip) :: i
-      integer :: k
-      v = 0.0_wp
-      do k = 1, size(model%steps(is)%cloads)
-         associate (cl => model%steps(is)%cloads(k))
-           do i = 1, nsel
-              if (subs(i) == cl%sub .and. nodes(i) == cl%node) v(cl%dof, i) = v(cl%dof, i) + cl%value
-           end do
-         end associate
-      end do
+      call add_cloads(model, is, subs, nodes, v)
     end subroutine fill_cf
   end subroutine node_request
+
+  pure function node_values(u, vertex_offset, subs, nodes) result(v)
+    !! The six DOF values in u (6 per vertex, global axes) of the listed nodes.
+    real(wp), intent(in) :: u(:)
+    integer(i8), intent(in) :: vertex_offset(:)
+    integer, intent(in) :: subs(:)
+    integer(ip), intent(in) :: nodes(:)
+    real(wp) :: v(NDOF_NODE, size(nodes))
+    integer(i8) :: vx
+    integer :: i
+    do i = 1, size(nodes)
+       vx = vertex_offset(subs(i)) + nodes(i)
+       v(:, i) = u(NDOF_NODE*(vx - 1) + 1:NDOF_NODE*vx)
+    end do
+  end function node_values
+
+  subroutine add_reactions(fields, is, subs, nodes, v)
+    !! v(dof, node): the sum of the support reactions of step is on each listed
+    !! node (a node with a nodal system: along its axes), zero elsewhere.
+    type(result_fields_t), intent(in) :: fields
+    integer, intent(in) :: is
+    integer, intent(in) :: subs(:)
+    integer(ip), intent(in) :: nodes(:)
+    real(wp), intent(out) :: v(:, :)
+    integer :: i, k
+    v = 0.0_wp
+    do k = 1, size(fields%steps(is)%reactions)
+       associate (rc => fields%steps(is)%reactions(k))
+         do i = 1, size(nodes)
+            if (subs(i) == rc%sub .and. nodes(i) == rc%node) v(rc%dof, i) = v(rc%dof, i) + rc%force
+         end do
+       end associate
+    end do
+  end subroutine add_reactions
+
+  subroutine add_cloads(model, is, subs, nodes, v)
+    !! v(dof, node): the concentrated loads (*CLOAD) of step is on each listed
+    !! node, global axes, zero elsewhere.
+    type(model_t), intent(in) :: model
+    integer, intent(in) :: is
+    integer, intent(in) :: subs(:)
+    integer(ip), intent(in) :: nodes(:)
+    real(wp), intent(out) :: v(:, :)
+    integer :: i, k
+    v = 0.0_wp
+    do k = 1, size(model%steps(is)%cloads)
+       associate (cl => model%steps(is)%cloads(k))
+         do i = 1, size(nodes)
+            if (subs(i) == cl%sub .and. nodes(i) == cl%node) v(cl%dof, i) = v(cl%dof, i) + cl%value
+         end do
+       end associate
+    end do
+  end subroutine add_cloads
 
   subroutine temperature_table(lu, model, r, is, subs, nodes)
     !! *NODE PRINT NT: the nodal temperatures of step `is` (as CalculiX's

@@ -1,0 +1,468 @@
+module superjoin_output_ccx_dat
+  !! CalculiX's .dat file (superjoin -i JOB writes JOB.dat): every *NODE PRINT
+  !! and *EL PRINT request of every solved step in the layout of ccx 2.20, so
+  !! that a .dat.ref of CalculiX's test suite compares number by number:
+  !!
+  !!   (blank line)
+  !!    displacements (vx,vy,vz) for set NALL and time  0.1000000E+01
+  !!   (blank line)
+  !!            1  0.000000E+00  1.857143E-04  0.000000E+00
+  !!
+  !! Blocks: U "displacements", RF "forces" (CalculiX's internal nodal forces:
+  !! the support reaction plus the *CLOAD of the node), NT "temperatures", S
+  !! "stresses", E "strains", ELSE "internal energy"; TOTALS=YES adds the sum
+  !! (RF, ELSE), TOTALS=ONLY writes the sum alone. A node with a nodal system
+  !! (*TRANSFORM) prints U and RF in it, its row ending in L, unless the card
+  !! says GLOBAL=YES. The time of step k is k (every *STATIC step of
+  !! CalculiX lasts 1).
+  !!
+  !! Element values at integration points follow CalculiX's expansion of a
+  !! one- or two-dimensional element into a brick (ccx_point_map): a truss
+  !! (C3D20R) has 8 points of its one tensor; a plane element its own points
+  !! in the brick's order (xi fastest), repeated through the thickness; a
+  !! shell its bottom, top (and mid) surface values interpolated to the
+  !! brick's Gauss points through the thickness. Beams (CalculiX's brick
+  !! stresses are not a beam's) and solids print no S or E rows; strains of
+  !! plane elements are the element's centroid tensor at each point, shells
+  !! have none (doc/calculix-dropin.md).
+  use superjoin_kinds, only: wp, i8, ip
+  use superjoin_error, only: error_t
+  use superjoin_model_types, only: model_t, output_request_t, NDOF_NODE, REQ_NODE_PRINT, REQ_EL_PRINT, &
+       TOTALS_YES, TOTALS_ONLY
+  use superjoin_model_results, only: result_fields_t
+  use superjoin_elements, only: element_tensor, element_stresses, NTENSOR
+  use superjoin_elements_traits, only: element_traits_t, element_traits, FAMILY_TRUSS, FAMILY_PLANE, FAMILY_SHELL
+  use superjoin_utils_text_buffer, only: text_buffer_t
+  use superjoin_output_requests, only: effective_requests, selected_items, node_frames, rotate_rows, node_values, &
+       add_reactions, add_cloads
+  use superjoin_output_energy, only: energy_t, compute_energies
+  use superjoin_utils_process, only: temp_register, temp_unregister
+  implicit none (type, external)
+  private
+
+  public :: write_ccx_dat, write_ccx_sta, c_real, node_forces, open_output
+
+  character(*), parameter :: FMT_NODE = '(i10,3(1x,a13))'
+  integer, parameter :: MAX_CCX_POINTS = 27
+    !! Integration points of the largest brick (C3D20, 3x3x3).
+
+contains
+
+  pure function c_real(x, w, d) result(s)
+    !! x as C's %w.dE (CalculiX's number format): Fortran's ESw.d, a negative
+    !! zero written as zero.
+    real(wp), intent(in) :: x
+    integer, intent(in) :: w, d
+    character(len=w) :: s
+    character(len=16) :: f
+    real(wp) :: y
+    y = x
+    if (y == 0.0_wp) y = 0.0_wp
+    write (f, '(a,i0,a,i0,a)') '(es', w, '.', d, ')'
+    write (s, f) y
+  end function c_real
+
+  subroutine open_output(lu, path, error)
+    !! A new buffer on path.tmp (registered for removal on a signal), to be
+    !! committed over path.
+    type(text_buffer_t), allocatable, intent(out) :: lu
+    character(*), intent(in) :: path
+    type(error_t), allocatable, intent(out) :: error
+    allocate (lu)
+    call temp_register(path//'.tmp')
+    call lu%open(path//'.tmp', error)
+    if (allocated(error)) call temp_unregister()
+  end subroutine open_output
+
+  subroutine write_ccx_dat(path, model, fields, error)
+    !! JOB.dat: the print requests of every solved step (an empty file for a
+    !! deck without any, as ccx writes).
+    character(*), intent(in) :: path
+    type(model_t), intent(in) :: model
+    type(result_fields_t), intent(in) :: fields
+    type(error_t), allocatable, intent(out) :: error
+    type(text_buffer_t), allocatable :: lu
+    integer, allocatable :: nodes(:), elems(:)
+    integer :: is, k
+    call open_output(lu, path, error)
+    if (allocated(error)) return
+    do is = 1, size(model%steps)
+       if (allocated(fields%steps(is)%failure)) cycle
+       call effective_requests(model, is, REQ_NODE_PRINT, nodes)
+       call effective_requests(model, is, REQ_EL_PRINT, elems)
+       do k = 1, size(nodes)
+          call node_print(lu, model, fields, is, model%requests(nodes(k)))
+       end do
+       do k = 1, size(elems)
+          call el_print(lu, model, fields, is, model%requests(elems(k)))
+       end do
+    end do
+    call lu%commit(path//'.tmp', path, '.dat file ', error)
+  end subroutine write_ccx_dat
+
+  subroutine block_header(lu, what, r, is, fallback)
+    !! The blank line, the title " what for set NAME and time  T" and a blank line.
+    type(text_buffer_t), intent(inout) :: lu
+    character(*), intent(in) :: what, fallback
+    type(output_request_t), intent(in) :: r
+    integer, intent(in) :: is
+    character(len=14) :: t
+    character(:), allocatable :: set
+    write (t, '(e14.7)') real(is, wp)
+    set = fallback
+    if (allocated(r%set_name)) set = r%set_name
+    call lu%line('')
+    call lu%line(' '//what//' for set '//set//' and time '//t)
+    call lu%line('')
+  end subroutine block_header
+
+  subroutine node_print(lu, model, fields, is, r)
+    !! One *NODE PRINT card: U, RF, NT blocks in the card's order.
+    type(text_buffer_t), intent(inout) :: lu
+    type(model_t), intent(in) :: model
+    type(result_fields_t), intent(in) :: fields
+    integer, intent(in) :: is
+    type(output_request_t), intent(in) :: r
+    integer, allocatable :: subs(:), frame(:)
+    integer(ip), allocatable :: nodes(:)
+    real(wp), allocatable :: vals(:, :), gvals(:, :)
+    logical :: local
+    integer :: iv
+    call selected_items(r, model%subs(:)%nnode, subs, nodes)
+    call node_frames(model, subs, nodes, frame)
+    local = .not. r%global .and. any(frame > 0)
+    do iv = 1, size(r%vars)
+       select case (r%vars(iv)%s)
+       case ('U')
+          vals = node_values(fields%u(:, is), fields%vertex_offset, subs, nodes)
+          gvals = vals
+          if (local) call rotate_rows(model, frame, .false., vals)
+          if (r%totals /= TOTALS_ONLY) call block_header(lu, 'displacements (vx,vy,vz)', r, is, 'NALL')
+          if (r%totals /= TOTALS_ONLY) call node_rows(lu, model, subs, nodes, vals, local .and. frame > 0)
+       case ('RF')
+          call node_forces(model, fields, is, subs, nodes, gvals)
+          vals = gvals
+          if (local) call rotate_rows(model, frame, .false., vals)
+          if (r%totals /= TOTALS_ONLY) call block_header(lu, 'forces (fx,fy,fz)', r, is, 'NALL')
+          if (r%totals /= TOTALS_ONLY) call node_rows(lu, model, subs, nodes, vals, local .and. frame > 0)
+          if (r%totals == TOTALS_YES .or. r%totals == TOTALS_ONLY) then
+             call block_header(lu, 'total force (fx,fy,fz)', r, is, 'NALL')
+             call total_row(lu, [sum(gvals(1, :)), sum(gvals(2, :)), sum(gvals(3, :))])
+          end if
+       case ('NT')
+          ! as ccx: no block for a model without temperatures
+          if (.not. allocated(model%steps(is)%temperature)) cycle
+          call block_header(lu, 'temperatures', r, is, 'NALL')
+          call temperature_rows(lu, model, is, subs, nodes)
+       end select
+    end do
+  end subroutine node_print
+
+  subroutine node_forces(model, fields, is, subs, nodes, v)
+    !! CalculiX's "forces" of the listed nodes in step is: the support
+    !! reactions plus the concentrated loads (*CLOAD) on the node, global axes
+    !! (the reactions of a node with a *TRANSFORM are along its nodal system).
+    type(model_t), intent(in) :: model
+    type(result_fields_t), intent(in) :: fields
+    integer, intent(in) :: is
+    integer, intent(in) :: subs(:)
+    integer(ip), intent(in) :: nodes(:)
+    real(wp), allocatable, intent(out) :: v(:, :)
+    integer, allocatable :: frame(:)
+    real(wp), allocatable :: cf(:, :)
+    allocate (v(NDOF_NODE, size(nodes)), cf(NDOF_NODE, size(nodes)))
+    call add_reactions(fields, is, subs, nodes, v)
+    call node_frames(model, subs, nodes, frame)
+    call rotate_rows(model, frame, .true., v)
+    call add_cloads(model, is, subs, nodes, cf)
+    v = v + cf
+  end subroutine node_forces
+
+  subroutine node_rows(lu, model, subs, nodes, vals, marked)
+    !! One row per node: its user id and vals(1:3, node); ' L' when `marked`.
+    type(text_buffer_t), intent(inout) :: lu
+    type(model_t), intent(in) :: model
+    integer, intent(in) :: subs(:)
+    integer(ip), intent(in) :: nodes(:)
+    real(wp), intent(in) :: vals(:, :)
+    logical, intent(in) :: marked(:)
+    character(len=60) :: row
+    integer :: i
+    do i = 1, size(nodes)
+       write (row, FMT_NODE) model%subs(subs(i))%node_id(nodes(i)), c_real(vals(1, i), 13, 6), &
+            c_real(vals(2, i), 13, 6), c_real(vals(3, i), 13, 6)
+       if (marked(i)) then
+          call lu%line(trim(row)//' L')
+       else
+          call lu%line(trim(row))
+       end if
+    end do
+  end subroutine node_rows
+
+  subroutine total_row(lu, v)
+    !! The row of a TOTALS block.
+    type(text_buffer_t), intent(inout) :: lu
+    real(wp), intent(in) :: v(:)
+    integer :: d
+    call lu%put('      ')
+    do d = 1, size(v)
+       call lu%put(' '//c_real(v(d), 13, 6))
+    end do
+    call lu%newline()
+  end subroutine total_row
+
+  subroutine temperature_rows(lu, model, is, subs, nodes)
+    !! The temperature of each listed node in step is.
+    type(text_buffer_t), intent(inout) :: lu
+    type(model_t), intent(in) :: model
+    integer, intent(in) :: is
+    integer, intent(in) :: subs(:)
+    integer(ip), intent(in) :: nodes(:)
+    character(len=30) :: row
+    real(wp) :: t
+    integer :: i
+    do i = 1, size(nodes)
+       t = model%steps(is)%temperature(subs(i))%v(nodes(i))
+       write (row, '(i10,1x,a13)') model%subs(subs(i))%node_id(nodes(i)), c_real(t, 13, 6)
+       call lu%line(trim(row))
+    end do
+  end subroutine temperature_rows
+
+  ! ------------------------------------------------------------------ elements
+
+  subroutine el_print(lu, model, fields, is, r)
+    !! One *EL PRINT card: S and E blocks in the card's order, then ELSE.
+    type(text_buffer_t), intent(inout) :: lu
+    type(model_t), intent(in) :: model
+    type(result_fields_t), intent(in) :: fields
+    integer, intent(in) :: is
+    type(output_request_t), intent(in) :: r
+    integer, allocatable :: subs(:)
+    integer(ip), allocatable :: elems(:)
+    integer :: iv
+    call selected_items(r, model%subs(:)%nelem, subs, elems)
+    do iv = 1, size(r%vars)
+       select case (r%vars(iv)%s)
+       case ('S')
+          call block_header(lu, 'stresses (elem, integ.pnt.,sxx,syy,szz,sxy,sxz,syz)', r, is, 'EALL')
+          call point_rows(lu, model, fields, is, subs, elems, .false.)
+       case ('E')
+          call block_header(lu, 'strains (elem, integ.pnt.,exx,eyy,ezz,exy,exz,eyz)', r, is, 'EALL')
+          call point_rows(lu, model, fields, is, subs, elems, .true.)
+       end select
+    end do
+    ! ELSE (the element's strain energy) is not among the listing's variables
+    if (any([(r%ignored(iv)%s == 'ELSE', iv=1, size(r%ignored))])) &
+         call energy_rows(lu, model, fields, is, r, subs, elems)
+  end subroutine el_print
+
+  subroutine point_rows(lu, model, fields, is, subs, elems, strain)
+    !! Rows "element point six-components" at CalculiX's integration points.
+    type(text_buffer_t), intent(inout) :: lu
+    type(model_t), intent(in) :: model
+    type(result_fields_t), intent(in) :: fields
+    integer, intent(in) :: is
+    integer, intent(in) :: subs(:)
+    integer(ip), intent(in) :: elems(:)
+    logical, intent(in) :: strain
+    real(wp), allocatable :: vals(:, :)
+    character(len=120) :: row
+    integer :: i, k, d
+    logical :: ok
+    do i = 1, size(elems)
+       call ccx_point_values(model, fields, is, subs(i), elems(i), strain, vals, ok)
+       if (.not. ok) cycle
+       do k = 1, size(vals, 2)
+          write (row, '(i10,i4,6(1x,a13))') model%subs(subs(i))%elem_id(elems(i)), k, &
+               (c_real(vals(d, k), 13, 6), d=1, NTENSOR)
+          call lu%line(trim(row))
+       end do
+    end do
+  end subroutine point_rows
+
+  subroutine energy_rows(lu, model, fields, is, r, subs, elems)
+    !! ELSE: the strain energy of each element of the set, and its total.
+    type(text_buffer_t), intent(inout) :: lu
+    type(model_t), intent(in) :: model
+    type(result_fields_t), intent(in) :: fields
+    integer, intent(in) :: is
+    type(output_request_t), intent(in) :: r
+    integer, intent(in) :: subs(:)
+    integer(ip), intent(in) :: elems(:)
+    type(energy_t) :: en
+    type(error_t), allocatable :: error
+    character(len=30) :: row
+    real(wp) :: total
+    integer :: i
+    call compute_energies(model, fields, is, en, error)
+    if (allocated(error)) return
+    total = 0.0_wp
+    if (r%totals /= TOTALS_ONLY) call block_header(lu, 'internal energy (element, energy)', r, is, 'EALL')
+    do i = 1, size(elems)
+       associate (e => en%element(fields%elem_offset(subs(i)) + elems(i)))
+         total = total + e
+         write (row, '(i10,1x,a13)') model%subs(subs(i))%elem_id(elems(i)), c_real(e, 13, 6)
+       end associate
+       if (r%totals /= TOTALS_ONLY) call lu%line(trim(row))
+    end do
+    if (r%totals /= TOTALS_YES .and. r%totals /= TOTALS_ONLY) return
+    call block_header(lu, 'total internal energy', r, is, 'EALL')
+    call total_row(lu, [total])
+  end subroutine energy_rows
+
+  pure subroutine ccx_point_map(t, map, npoint)
+    !! CalculiX's integration points of the brick it expands element type t
+    !! into, in-plane points fastest: map(1:npoint) the index of superjoin's
+    !! point at each (0: the mean of all of superjoin's points; npoint 0: the
+    !! element prints none). Layers through the thickness: ccx_layers.
+    type(element_traits_t), intent(in) :: t
+    integer, intent(out) :: map(MAX_CCX_POINTS), npoint
+    integer :: layer(9), n, k
+    map = 1
+    npoint = 0
+    select case (t%family)
+    case (FAMILY_TRUSS)
+       npoint = 8                                       ! C3D20R, one tensor
+       return
+    case (FAMILY_PLANE, FAMILY_SHELL)
+       if (t%corners == 3 .and. .not. t%quadratic) then
+          layer(1:1) = [1]                              ! C3D6: the centroid, 2 layers
+          n = 1
+       else if (t%corners == 3) then
+          layer(1:3) = [1, 2, 3]                        ! C3D15: 3 points, 3 layers
+          n = 3
+       else if (t%family == FAMILY_SHELL .and. t%reduced .and. .not. t%quadratic) then
+          map(1) = 0                                    ! S4R -> C3D8R: one point
+          npoint = 1
+          return
+       else if (t%quadratic .and. .not. t%reduced) then
+          layer = [1, 2, 3, 4, 5, 6, 7, 8, 9]           ! C3D20: 3x3, 3 layers
+          n = 9
+       else
+          layer(1:4) = [1, 2, 4, 3]                     ! C3D8, C3D20R: 2x2, xi fastest, 2 layers
+          n = 4
+       end if
+       npoint = ccx_layers(2*n)*n
+       do k = 1, npoint
+          map(k) = layer(mod(k - 1, n) + 1)
+       end do
+    end select
+  end subroutine ccx_point_map
+
+  pure integer function ccx_layers(npoint)
+    !! Layers of integration points through the thickness of CalculiX's brick
+    !! with npoint points (a 3-point or 9-point layer: 3 layers).
+    integer, intent(in) :: npoint
+    select case (npoint)
+    case (1)
+       ccx_layers = 1
+    case (6, 9, 18, 27)
+       ccx_layers = 3
+    case default
+       ccx_layers = 2
+    end select
+  end function ccx_layers
+
+  pure function layer_zeta(nlayer) result(z)
+    !! Gauss abscissae through the thickness of CalculiX's brick.
+    integer, intent(in) :: nlayer
+    real(wp) :: z(nlayer)
+    select case (nlayer)
+    case (1)
+       z = 0.0_wp
+    case (2)
+       z = [-1.0_wp, 1.0_wp]/sqrt(3.0_wp)
+    case default
+       z = [-sqrt(0.6_wp), 0.0_wp, sqrt(0.6_wp)]
+    end select
+  end function layer_zeta
+
+  subroutine ccx_point_values(model, fields, is, isub, ie, strain, vals, ok)
+    !! vals(6, point) at CalculiX's points (ccx_point_map) of element ie of
+    !! substructure isub; ok false when there are none to print.
+    type(model_t), intent(in) :: model
+    type(result_fields_t), intent(in) :: fields
+    integer, intent(in) :: is, isub
+    integer(ip), intent(in) :: ie
+    logical, intent(in) :: strain
+    real(wp), allocatable, intent(out) :: vals(:, :)
+    logical, intent(out) :: ok
+    type(element_traits_t) :: t
+    real(wp), allocatable :: points(:, :, :), nodes(:, :, :), z(:)
+    real(wp) :: one(NTENSOR)
+    integer :: map(MAX_CCX_POINTS), npoint
+    integer :: k, nper, nlayer
+    t = element_traits(model%subs(isub)%elem_type(ie))
+    call ccx_point_map(t, map, npoint)
+    ok = npoint > 0
+    if (.not. ok) return
+    allocate (vals(NTENSOR, npoint))
+    if (t%family == FAMILY_TRUSS .or. (strain .and. t%family == FAMILY_PLANE)) then
+       call element_tensor(model, fields, is, isub, ie, strain, one, ok)
+       do k = 1, npoint
+          vals(:, k) = one
+       end do
+       return
+    end if
+    ok = .not. strain
+    if (.not. ok) return
+    call element_stresses(model, fields, is, isub, ie, points, nodes, ok)
+    if (.not. ok) return
+    nlayer = ccx_layers(npoint)
+    nper = npoint/nlayer
+    z = layer_zeta(nlayer)
+    do k = 1, npoint
+       vals(:, k) = through_thickness(points, map(k), z((k - 1)/nper + 1))
+    end do
+  end subroutine ccx_point_values
+
+  pure function through_thickness(points, ip, zeta) result(v)
+    !! The stress at point ip (0: the mean of all points) and height zeta in
+    !! [-1, 1] of the thickness: the quadratic through the bottom, mid and top
+    !! values of a shell (thin shells: the mid value is the mean, so linear);
+    !! a plane element's single value.
+    real(wp), intent(in) :: points(:, :, :)
+    integer, intent(in) :: ip
+    real(wp), intent(in) :: zeta
+    real(wp) :: v(NTENSOR), s(NTENSOR, 3)
+    integer :: m
+    do m = 1, min(3, size(points, 3))
+       if (ip == 0) then
+          s(:, m) = sum(points(:, :, m), dim=2)/real(size(points, 2), wp)
+       else
+          s(:, m) = points(:, ip, m)
+       end if
+    end do
+    select case (size(points, 3))
+    case (1)
+       v = s(:, 1)
+    case (2)
+       v = 0.5_wp*(s(:, 1) + s(:, 2)) + 0.5_wp*zeta*(s(:, 2) - s(:, 1))
+    case default
+       v = s(:, 3) + 0.5_wp*zeta*(s(:, 2) - s(:, 1)) + &
+            0.5_wp*zeta**2*(s(:, 1) + s(:, 2) - 2.0_wp*s(:, 3))
+    end select
+  end function through_thickness
+
+  subroutine write_ccx_sta(path, model, fields, error)
+    !! JOB.sta: CalculiX's job summary, one line per solved step (increment
+    !! 1, one attempt, one iteration; total time = the step's number).
+    character(*), intent(in) :: path
+    type(model_t), intent(in) :: model
+    type(result_fields_t), intent(in) :: fields
+    type(error_t), allocatable, intent(out) :: error
+    type(text_buffer_t), allocatable :: lu
+    character(len=80) :: row
+    integer :: is
+    call open_output(lu, path, error)
+    if (allocated(error)) return
+    call lu%line('SUMMARY OF JOB INFORMATION')
+    call lu%line('  STEP      INC     ATT  ITRS     TOT TIME     STEP TIME      INC TIME')
+    do is = 1, size(model%steps)
+       if (allocated(fields%steps(is)%failure)) cycle
+       write (row, '(i6,i11,i6,i6,3e14.6)') is, 1, 1, 1, real(is, wp), 1.0_wp, 1.0_wp
+       call lu%line(trim(row))
+    end do
+    call lu%commit(path//'.tmp', path, '.sta file ', error)
+  end subroutine write_ccx_sta
+end module superjoin_output_ccx_dat

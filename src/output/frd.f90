@@ -1,0 +1,377 @@
+module superjoin_output_frd
+  !! CalculiX's ASCII result file .frd (superjoin -i JOB writes JOB.frd), as
+  !! CalculiX GraphiX (cgx) and FreeCAD read it: the nodes (block 2C), the
+  !! elements in superjoin's own types (block 3C; frd types 11 beam2, 12
+  !! beam3, 7 tria3, 8 tria6, 9 quad4, 10 quad8, 1 hexa8, 4 hexa20, 3 tet4, 6
+  !! tet10: frd_type), then per solved step the result blocks that *NODE FILE
+  !! and *EL FILE ask for, as ccx writes them:
+  !!   U -> DISP (D1..D3), RF -> FORC (F1..F3: reaction plus *CLOAD, as the
+  !!   .dat's forces), S -> STRESS (SXX SYY SZZ SXY SYZ SZX), E -> TOSTRAIN.
+  !! Stresses and strains are nodal values averaged over the elements at the
+  !! node: plane and shell elements extrapolated from their points (shells:
+  !! the mid-surface, the mean of bottom and top for thin shells; output's
+  !! nodal_stresses), trusses their one tensor; strains of plane elements and
+  !! trusses their centroid tensor; a node without such an element gets 0
+  !! (beams, solids, shell strains). A deck without *NODE FILE or *EL FILE
+  !! gets the mesh alone, as with ccx.
+  !!
+  !! Numbers: a model of one substructure keeps its node and element ids;
+  !! with several substructures (whose ids may repeat) the nodes and elements
+  !! are numbered on through the substructures in order (fields%vertex_offset,
+  !! elem_offset). The file carries no date: the same bytes on every run.
+  use superjoin_kinds, only: wp, i8, ip
+  use superjoin_error, only: error_t
+  use superjoin_model_types, only: model_t, NDOF_NODE, REQ_NODE_FILE, REQ_EL_FILE
+  use superjoin_model_results, only: result_fields_t
+  use superjoin_elements, only: element_tensor, NTENSOR
+  use superjoin_elements_traits, only: element_traits_t, element_traits, FAMILY_TRUSS, FAMILY_BEAM, &
+       FAMILY_PLANE, FAMILY_SHELL, FAMILY_SOLID
+  use superjoin_utils_text_buffer, only: text_buffer_t
+  use superjoin_output_requests, only: effective_requests, selected_items
+  use superjoin_output_stresses, only: nodal_stresses
+  use superjoin_output_ccx_dat, only: c_real, node_forces, open_output
+  implicit none (type, external)
+  private
+
+  public :: write_frd, frd_type
+
+  integer, parameter :: MID = 3
+    !! The mid-surface among nodal_stresses' section points.
+  integer, parameter :: VOIGT_TO_FRD(NTENSOR) = [1, 2, 3, 4, 6, 5]
+    !! frd's order xx, yy, zz, xy, yz, zx from superjoin's xx, yy, zz, xy, xz, yz.
+
+  type :: numbering_t
+    !! The numbers the file gives nodes and elements.
+     logical :: own_ids = .true.                  !! one substructure: its user ids
+     integer(i8), allocatable :: vertex_offset(:), elem_offset(:)
+  end type numbering_t
+
+contains
+
+  pure integer function frd_type(t)
+    !! The frd element type of an element with traits t (0: none).
+    type(element_traits_t), intent(in) :: t
+    frd_type = 0
+    select case (t%family)
+    case (FAMILY_TRUSS, FAMILY_BEAM)
+       frd_type = merge(12, 11, t%nodes == 3)
+    case (FAMILY_PLANE, FAMILY_SHELL)
+       if (t%corners == 3) frd_type = merge(8, 7, t%nodes == 6)
+       if (t%corners == 4) frd_type = merge(10, 9, t%nodes == 8)
+    case (FAMILY_SOLID)
+       if (t%corners == 8) frd_type = merge(4, 1, t%nodes == 20)
+       if (t%corners == 4) frd_type = merge(6, 3, t%nodes == 10)
+    end select
+  end function frd_type
+
+  pure function frd_node_order(nodes) result(order)
+    !! The element's node positions in frd order: a 20-node brick lists its
+    !! mid-side nodes 13..16 (between the faces) after 17..20, as cgx expects.
+    integer, intent(in) :: nodes
+    integer :: order(nodes)
+    integer :: k
+    order = [(k, k=1, nodes)]
+    if (nodes == 20) order = [(k, k=1, 12), (k, k=17, 20), (k, k=13, 16)]
+  end function frd_node_order
+
+  subroutine write_frd(path, model, fields, error)
+    !! JOB.frd: mesh, then the requested results of every solved step.
+    character(*), intent(in) :: path
+    type(model_t), intent(in) :: model
+    type(result_fields_t), intent(in) :: fields
+    type(error_t), allocatable, intent(out) :: error
+    type(text_buffer_t), allocatable :: lu
+    type(numbering_t) :: num
+    integer :: is, nblock
+    num%own_ids = size(model%subs) == 1
+    num%vertex_offset = fields%vertex_offset
+    num%elem_offset = fields%elem_offset
+    call open_output(lu, path, error)
+    if (allocated(error)) return
+    call lu%line('    1C')
+    call lu%line(pad('    1UPGM               superjoin'))
+    call node_block(lu, model, num)
+    call element_block(lu, model, num)
+    nblock = 0
+    do is = 1, size(model%steps)
+       if (allocated(fields%steps(is)%failure)) cycle
+       call step_blocks(lu, model, fields, num, is, nblock)
+    end do
+    call lu%line(' 9999')
+    call lu%commit(path//'.tmp', path, '.frd file ', error)
+  end subroutine write_frd
+
+  pure function pad(text) result(s)
+    !! text padded with blanks to the 72 columns of an frd user record.
+    character(*), intent(in) :: text
+    character(len=max(72, len(text))) :: s
+    s = text
+  end function pad
+
+  pure integer(i8) function node_number(model, num, isub, n)
+    !! The number of node n of substructure isub in the file.
+    type(model_t), intent(in) :: model
+    type(numbering_t), intent(in) :: num
+    integer, intent(in) :: isub
+    integer(ip), intent(in) :: n
+    if (num%own_ids) then
+       node_number = model%subs(isub)%node_id(n)
+    else
+       node_number = num%vertex_offset(isub) + n
+    end if
+  end function node_number
+
+  subroutine node_block(lu, model, num)
+    !! Block 2C: every node and its coordinates.
+    type(text_buffer_t), intent(inout) :: lu
+    type(model_t), intent(in) :: model
+    type(numbering_t), intent(in) :: num
+    character(len=80) :: row
+    integer :: isub
+    integer(ip) :: n
+    write (row, '(a6,18x,i12,37x,i1)') '    2C', sum(int(model%subs(:)%nnode, i8)), 1
+    call lu%line(row(1:74))
+    do isub = 1, size(model%subs)
+       do n = 1, model%subs(isub)%nnode
+          write (row, '(a3,i10,3a12)') ' -1', node_number(model, num, isub, n), &
+               c_real(model%subs(isub)%x(1, n), 12, 5), c_real(model%subs(isub)%x(2, n), 12, 5), &
+               c_real(model%subs(isub)%x(3, n), 12, 5)
+          call lu%line(trim(row))
+       end do
+    end do
+    call lu%line(' -3')
+  end subroutine node_block
+
+  subroutine element_block(lu, model, num)
+    !! Block 3C: every element with an frd type, its nodes ten to a line.
+    type(text_buffer_t), intent(inout) :: lu
+    type(model_t), intent(in) :: model
+    type(numbering_t), intent(in) :: num
+    type(element_traits_t) :: t
+    character(len=120) :: row
+    integer(i8) :: id, count
+    integer(i8), allocatable :: ids(:)
+    integer, allocatable :: order(:)
+    integer :: isub, k, first
+    integer(ip) :: e
+    count = 0
+    do isub = 1, size(model%subs)
+       do e = 1, model%subs(isub)%nelem
+          if (frd_type(element_traits(model%subs(isub)%elem_type(e))) > 0) count = count + 1
+       end do
+    end do
+    write (row, '(a6,18x,i12,37x,i1)') '    3C', count, 1
+    call lu%line(row(1:74))
+    do isub = 1, size(model%subs)
+       associate (sub => model%subs(isub))
+         do e = 1, sub%nelem
+            t = element_traits(sub%elem_type(e))
+            if (frd_type(t) == 0) cycle
+            id = num%elem_offset(isub) + e
+            if (num%own_ids) id = sub%elem_id(e)
+            write (row, '(a3,i10,3i5)') ' -1', id, frd_type(t), 0, max(1, sub%elem_section(e))
+            call lu%line(trim(row))
+            order = frd_node_order(t%nodes)
+            ids = [(node_number(model, num, isub, sub%elem_nodes(order(k), e)), k=1, t%nodes)]
+            do first = 1, t%nodes, 10
+               write (row, '(a3,10i10)') ' -2', ids(first:min(first + 9, t%nodes))
+               call lu%line(trim(row))
+            end do
+         end do
+       end associate
+    end do
+    call lu%line(' -3')
+  end subroutine element_block
+
+  subroutine step_blocks(lu, model, fields, num, is, nblock)
+    !! The result blocks of step is that its *NODE FILE and *EL FILE ask for.
+    type(text_buffer_t), intent(inout) :: lu
+    type(model_t), intent(in) :: model
+    type(result_fields_t), intent(in) :: fields
+    type(numbering_t), intent(in) :: num
+    integer, intent(in) :: is
+    integer, intent(inout) :: nblock
+    logical, allocatable :: mask(:)
+    real(wp), allocatable :: vals(:, :)
+    call requested_nodes(model, is, REQ_NODE_FILE, 'U', mask)
+    if (any(mask)) then
+       call displacements(fields, is, vals)
+       call result_block(lu, model, num, is, nblock, 'DISP', vals(1:3, :), mask)
+    end if
+    call requested_nodes(model, is, REQ_EL_FILE, 'S', mask)
+    if (any(mask)) then
+       call nodal_tensors(model, fields, is, .false., vals)
+       call result_block(lu, model, num, is, nblock, 'STRESS', vals(VOIGT_TO_FRD, :), mask)
+    end if
+    call requested_nodes(model, is, REQ_EL_FILE, 'E', mask)
+    if (any(mask)) then
+       call nodal_tensors(model, fields, is, .true., vals)
+       call result_block(lu, model, num, is, nblock, 'TOSTRAIN', vals(VOIGT_TO_FRD, :), mask)
+    end if
+    call requested_nodes(model, is, REQ_NODE_FILE, 'RF', mask)
+    if (any(mask)) then
+       call forces(model, fields, is, vals)
+       call result_block(lu, model, num, is, nblock, 'FORC', vals(1:3, :), mask)
+    end if
+  end subroutine step_blocks
+
+  subroutine requested_nodes(model, is, kind, var, mask)
+    !! mask(vertex): the nodes whose `var` the requests of `kind` in step is
+    !! ask for (element requests: the nodes of their elements).
+    type(model_t), intent(in) :: model
+    integer, intent(in) :: is, kind
+    character(*), intent(in) :: var
+    logical, allocatable, intent(out) :: mask(:)
+    integer(i8), allocatable :: offset(:)
+    integer, allocatable :: idx(:), subs(:)
+    integer(ip), allocatable :: items(:)
+    integer :: k, i, isub
+    allocate (offset(size(model%subs) + 1))
+    offset(1) = 0
+    do isub = 1, size(model%subs)
+       offset(isub + 1) = offset(isub) + model%subs(isub)%nnode
+    end do
+    allocate (mask(offset(size(offset))), source=.false.)
+    call effective_requests(model, is, kind, idx)
+    do k = 1, size(idx)
+       associate (r => model%requests(idx(k)))
+         if (.not. any([(r%vars(i)%s == var, i=1, size(r%vars))])) cycle
+         if (kind == REQ_NODE_FILE) then
+            call selected_items(r, model%subs(:)%nnode, subs, items)
+            mask(offset(subs) + items) = .true.
+         else
+            call selected_items(r, model%subs(:)%nelem, subs, items)
+            do i = 1, size(items)
+               associate (sub => model%subs(subs(i)))
+                 mask(offset(subs(i)) + pack(sub%elem_nodes(:, items(i)), sub%elem_nodes(:, items(i)) > 0)) = .true.
+               end associate
+            end do
+         end if
+       end associate
+    end do
+  end subroutine requested_nodes
+
+  subroutine result_block(lu, model, num, is, nblock, name, vals, mask)
+    !! One result block: its headers and a row per node of mask.
+    type(text_buffer_t), intent(inout) :: lu
+    type(model_t), intent(in) :: model
+    type(numbering_t), intent(in) :: num
+    integer, intent(in) :: is
+    integer, intent(inout) :: nblock
+    character(*), intent(in) :: name
+    real(wp), intent(in) :: vals(:, :)
+    logical, intent(in) :: mask(:)
+    character(len=4), parameter :: COMPS(6) = ['XX', 'YY', 'ZZ', 'XY', 'YZ', 'ZX']
+    integer, parameter :: II(6) = [1, 2, 3, 1, 2, 3], JJ(6) = [1, 2, 3, 2, 3, 1]
+    character(len=120) :: row
+    character(len=2) :: letter
+    character(len=8) :: label
+    integer :: isub, d, nv
+    integer(ip) :: n
+    nblock = nblock + 1
+    nv = size(vals, 1)
+    write (row, '(a10,i26,2i12,10x)') '    1PSTEP', nblock, 1, is
+    call lu%line(row(1:70))
+    write (row, '(a7,i5,f12.9,i12,a20,i2,i5,10x,i2)') '  100CL', 100 + is, real(is, wp), count(mask), '', 0, is, 1
+    call lu%line(trim(row))
+    label = name    ! left-justified in its 8 columns (an A8 edit right-justifies a shorter string)
+    write (row, '(a3,2x,a8,2i5)') ' -4', label, nv + merge(1, 0, nv == 3), 1
+    call lu%line(trim(row))
+    letter = name(1:1)
+    if (name == 'TOSTRAIN') letter = 'E'
+    do d = 1, nv
+       if (nv == 3) then
+          label = trim(letter)//achar(iachar('0') + d)
+          write (row, '(a3,2x,a8,4i5)') ' -5', label, 1, 2, d, 0
+       else
+          label = trim(letter)//COMPS(d)
+          write (row, '(a3,2x,a8,4i5)') ' -5', label, 1, 4, II(d), JJ(d)
+       end if
+       call lu%line(trim(row))
+    end do
+    if (nv == 3) call lu%line(' -5  ALL         1    2    0    0    1ALL')
+    do isub = 1, size(model%subs)
+       do n = 1, model%subs(isub)%nnode
+          if (.not. mask(num%vertex_offset(isub) + n)) cycle
+          write (row, '(a3,i10,6a12)') ' -1', node_number(model, num, isub, n), &
+               (c_real(vals(d, num%vertex_offset(isub) + n), 12, 5), d=1, nv)
+          call lu%line(trim(row))
+       end do
+    end do
+    call lu%line(' -3')
+  end subroutine result_block
+
+  subroutine displacements(fields, is, vals)
+    !! vals(6, vertex): the displacements of step is.
+    type(result_fields_t), intent(in) :: fields
+    integer, intent(in) :: is
+    real(wp), allocatable, intent(out) :: vals(:, :)
+    vals = reshape(fields%u(:, is), [NDOF_NODE, size(fields%u, 1)/NDOF_NODE])
+  end subroutine displacements
+
+  subroutine forces(model, fields, is, vals)
+    !! vals(6, vertex): reaction plus concentrated load of every node in step is.
+    type(model_t), intent(in) :: model
+    type(result_fields_t), intent(in) :: fields
+    integer, intent(in) :: is
+    real(wp), allocatable, intent(out) :: vals(:, :)
+    real(wp), allocatable :: v(:, :)
+    integer, allocatable :: subs(:)
+    integer(ip), allocatable :: nodes(:)
+    integer :: isub
+    integer(ip) :: n
+    allocate (vals(NDOF_NODE, fields%vertex_offset(size(model%subs) + 1)), source=0.0_wp)
+    do isub = 1, size(model%subs)
+       nodes = [(n, n=1, model%subs(isub)%nnode)]
+       allocate (subs(size(nodes)), source=isub)
+       call node_forces(model, fields, is, subs, nodes, v)
+       vals(:, fields%vertex_offset(isub) + 1:fields%vertex_offset(isub + 1)) = v
+       deallocate (subs)
+    end do
+  end subroutine forces
+
+  subroutine nodal_tensors(model, fields, is, strain, vals)
+    !! vals(6, vertex): the averaged nodal stress (or strain) of step is.
+    type(model_t), intent(in) :: model
+    type(result_fields_t), intent(in) :: fields
+    integer, intent(in) :: is
+    logical, intent(in) :: strain
+    real(wp), allocatable, intent(out) :: vals(:, :)
+    real(wp), allocatable :: avg(:, :, :), sums(:, :)
+    integer, allocatable :: nel(:), npoint(:), cnt(:)
+    type(element_traits_t) :: t
+    real(wp) :: one(NTENSOR)
+    integer(i8) :: base
+    integer(ip) :: e, n
+    integer :: isub, a
+    logical :: ok
+    allocate (vals(NTENSOR, fields%vertex_offset(size(model%subs) + 1)), source=0.0_wp)
+    do isub = 1, size(model%subs)
+       associate (sub => model%subs(isub))
+         base = fields%vertex_offset(isub)
+         allocate (sums(NTENSOR, sub%nnode), source=0.0_wp)
+         allocate (cnt(sub%nnode), source=0)
+         if (.not. strain) then
+            call nodal_stresses(model, fields, is, isub, avg, nel, npoint)
+            sums = avg(:, :, MID)*spread(real(nel, wp), 1, NTENSOR)
+            cnt = nel
+         end if
+         do e = 1, sub%nelem
+            t = element_traits(sub%elem_type(e))
+            if (t%family /= FAMILY_TRUSS .and. .not. (strain .and. t%family == FAMILY_PLANE)) cycle
+            call element_tensor(model, fields, is, isub, e, strain, one, ok)
+            if (.not. ok) cycle
+            do a = 1, t%nodes
+               n = sub%elem_nodes(a, e)
+               sums(:, n) = sums(:, n) + one
+               cnt(n) = cnt(n) + 1
+            end do
+         end do
+         do n = 1, sub%nnode
+            if (cnt(n) > 0) vals(:, base + n) = sums(:, n)/real(cnt(n), wp)
+         end do
+         deallocate (sums, cnt)
+       end associate
+    end do
+  end subroutine nodal_tensors
+end module superjoin_output_frd

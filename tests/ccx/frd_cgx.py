@@ -1,0 +1,166 @@
+#!/usr/bin/env python3
+"""CalculiX GraphiX reads superjoin's .frd and reports superjoin's values.
+
+usage: frd_cgx.py SUPERJOIN OUTDIR        (exit 77: cgx not installed, skipped)
+
+For a truss (truss.inp), a beam (b31.inp), a plane (planestrain.inp) and a
+shell model (shell1lin.inp, with *NODE FILE U, RF and *EL FILE S, E added in
+its copy) of tests/ccx: `superjoin -i JOB --csv csv` writes JOB.frd, then
+`cgx -bg JOB.fbd` reads it and prints every component of every dataset at
+every node (`ds N e K` then `prnt se all`, a set of all nodes). The script
+checks that
+- cgx reads the file: its node and element counts, and one dataset per result
+  block of the file (DISP, STRESS, TOSTRAIN, FORC);
+- the values cgx prints (6 digits) equal the file's (5 digits) at every node,
+  within 1e-5 of the component's largest magnitude;
+- the file's displacements equal superjoin's displacements.csv (full
+  precision) within 1e-5 of the largest one, so cgx shows the solution;
+- truss: the two bars at 45 degrees in the x-z plane have |SZX| = SXX and
+  SYZ = 0 at their end nodes (the frd order of the shear components).
+Run by hand: cgx -bg JOB.fbd > JOB.cgx.log in OUTDIR/JOB (doc/calculix-dropin.md).
+"""
+import csv
+import os
+import re
+import shutil
+import subprocess
+import sys
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+RTOL = 1.0e-5
+FILES = '*NODE FILE\nU, RF\n*EL FILE\nS, E\n'
+CASES = [('truss', None), ('b31', None), ('planestrain', None), ('shell1lin', FILES)]
+
+
+def fixed_name(line):
+    """The name of a -4 or -5 record in its columns 6..13, left-justified, as
+    FreeCAD's reader takes it (line[5:9] == 'DISP'); None when it is not."""
+    name = line[5:13]
+    return name.rstrip() if name[:1] != ' ' else None
+
+
+def read_frd(path):
+    """(node count, element count, [(name, [component], {node: [values]})])."""
+    nnode = nelem = 0
+    blocks, cur = [], None
+    with open(path) as f:
+        for line in f:
+            if line.startswith('    2C'):
+                nnode = int(line[6:36])
+            elif line.startswith('    3C'):
+                nelem = int(line[6:36])
+            elif line.startswith(' -4'):
+                cur = (fixed_name(line), [], {})
+                blocks.append(cur)
+            elif line.startswith(' -5') and cur is not None:
+                if fixed_name(line) != 'ALL':
+                    cur[1].append(fixed_name(line))
+            elif line.startswith(' -1') and cur is not None:
+                n = int(line[3:13])
+                cur[2][n] = [float(line[13 + 12 * k:25 + 12 * k]) for k in range(len(cur[1]))]
+            elif line.startswith(' -3'):
+                cur = None
+    return nnode, nelem, blocks
+
+
+def run_cgx(work, job, blocks):
+    """{(dataset, component): {node: value}} as cgx prints them."""
+    lines = [f'read {job}.frd', 'prnt info', 'seta nn n all']
+    for i, (_, comps, _) in enumerate(blocks):
+        for k in range(len(comps)):
+            lines += [f'ds {i + 1} e {k + 1}', 'prnt se nn']
+    lines.append('quit')
+    with open(os.path.join(work, job + '.fbd'), 'w') as f:
+        f.write('\n'.join(lines) + '\n')
+    proc = subprocess.run(['cgx', '-bg', job + '.fbd'], cwd=work, stdout=subprocess.PIPE,
+                          stderr=subprocess.STDOUT, text=True, timeout=120)
+    with open(os.path.join(work, job + '.cgx.log'), 'w') as f:
+        f.write(proc.stdout)
+    values, which, k = {}, None, 0
+    order = [(i, c) for i, (_, comps, _) in enumerate(blocks) for c in range(len(comps))]
+    counts = re.search(r' n:(\d+) e:(\d+) ', proc.stdout)
+    for line in proc.stdout.splitlines():
+        if line.startswith(' node:    value:'):
+            which = order[k]
+            values[which] = {}
+            k += 1
+            continue
+        m = re.match(r'\s+(\d+) (\S+)\s+\S+\s+\S+\s+\S+\s*$', line)
+        if which is not None and m:
+            values[which][int(m.group(1))] = float(m.group(2))
+        elif which is not None and line.strip() and not m:
+            which = None
+    return values, counts
+
+
+def check_case(binary, outdir, job, extra):
+    failures = []
+    work = os.path.join(outdir, job)
+    shutil.rmtree(work, ignore_errors=True)
+    os.makedirs(work)
+    with open(os.path.join(HERE, job + '.inp')) as f:
+        deck = f.read()
+    if extra:
+        deck = re.sub(r'(?im)^\*END STEP', extra.replace('\\', r'\\') + '*END STEP', deck)
+    with open(os.path.join(work, job + '.inp'), 'w') as f:
+        f.write(deck)
+    proc = subprocess.run([binary, '-i', job, '--csv', 'csv'], cwd=work, stdout=subprocess.PIPE,
+                          stderr=subprocess.PIPE, text=True)
+    if proc.returncode != 0 or proc.stderr:
+        return [f'{job}: superjoin status {proc.returncode}: {proc.stderr}']
+    nnode, nelem, blocks = read_frd(os.path.join(work, job + '.frd'))
+    values, counts = run_cgx(work, job, blocks)
+    if not counts or (int(counts.group(1)), int(counts.group(2))) != (nnode, nelem):
+        failures.append(f'{job}: cgx counts {counts.group(0) if counts else None}, file {nnode} nodes {nelem} elements')
+    print(f'  {job}: {nnode} nodes, {nelem} elements, blocks {[b[0] for b in blocks]}')
+    if any(b[0] is None or None in b[1] for b in blocks):
+        failures.append(f'{job}: a -4/-5 record name not left-justified in columns 6..13')
+    for i, (name, comps, rows) in enumerate(blocks):
+        for c, comp in enumerate(comps):
+            got = values.get((i, c), {})
+            scale = max([abs(r[c]) for r in rows.values()] + [1e-300])
+            diff = max([abs(got[n] - r[c]) if n in got else float('inf') for n, r in rows.items()] + [0.0])
+            ok = diff <= RTOL * scale and set(got) == set(rows)
+            print(f"    {'ok  ' if ok else 'FAIL'} {name:8s} {comp:4s} {len(got):4d} nodes in cgx, "
+                  f"max {scale:.5e}, |cgx - file|/max {diff / scale:.1e}")
+            if not ok:
+                failures.append(f'{job} {name} {comp}')
+    if job == 'truss':
+        # both bars lie at 45 degrees in the x-z plane: sxx = szz = |szx| at the
+        # end nodes 1 and 3 (szx = +-sxx), syz = 0 (frd's component order)
+        s = [b for b in blocks if b[0] == 'STRESS'][0][2]
+        ok = all(abs(abs(s[n][5]) - s[n][0]) <= 1e-5 * s[n][0] and s[n][4] == 0.0 for n in (1, 3))
+        print(f"    {'ok  ' if ok else 'FAIL'} STRESS of the 45-degree bars: |SZX| = SXX, SYZ = 0 at nodes 1, 3")
+        if not ok:
+            failures.append('truss STRESS components')
+    disp = [b for b in blocks if b[0] == 'DISP']
+    if disp:
+        with open(os.path.join(work, 'csv', 'displacements.csv')) as f:
+            rows = list(csv.DictReader(f))
+        scale = max(abs(float(r[k])) for r in rows for k in ('u1', 'u2', 'u3'))
+        diff = max(abs(float(r[k]) - disp[0][2][int(r['node'])][j])
+                   for r in rows for j, k in enumerate(('u1', 'u2', 'u3')))
+        ok = diff <= RTOL * scale
+        print(f"    {'ok  ' if ok else 'FAIL'} DISP against displacements.csv: |diff|/max {diff / scale:.1e}")
+        if not ok:
+            failures.append(f'{job} DISP against the CSV')
+    return failures
+
+
+def main():
+    if shutil.which('cgx') is None:
+        print('cgx (CalculiX GraphiX, Debian calculix-cgx) not installed: skipped')
+        return 77
+    binary, outdir = os.path.abspath(sys.argv[1]), sys.argv[2]
+    os.makedirs(outdir, exist_ok=True)
+    failures = []
+    for job, extra in CASES:
+        failures += check_case(binary, outdir, job, extra)
+    print(f'{len(CASES)} models, {len(failures)} failures')
+    for f in failures:
+        print('  ' + f)
+    return 1 if failures else 0
+
+
+if __name__ == '__main__':
+    sys.exit(main())

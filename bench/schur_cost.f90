@@ -20,6 +20,7 @@ program schur_cost
   use superjoin_solvers, only: linear_solver_t, sparse_sym_t, new_solver, cholmod_solver_t
   use superjoin_solvers_solver, only: schur_by_solves, interior_block
   use superjoin_solvers_matrix_market, only: read_matrix_market
+  use superjoin_utils_sorting, only: sort_index
   implicit none (type, external)
   type(sparse_sym_t) :: a, aii
   type(error_t), allocatable :: error
@@ -108,20 +109,13 @@ contains
 
   real(wp) function median(x)
     real(wp), intent(in) :: x(:)
-    real(wp) :: y(size(x)), v
-    integer :: i, j
-    y = x
-    do i = 2, size(y)
-       v = y(i)
-       j = i - 1
-       do while (j >= 1)
-          if (y(j) <= v) exit
-          y(j + 1) = y(j)
-          j = j - 1
-       end do
-       y(j + 1) = v
-    end do
-    median = y((size(y) + 1)/2)
-    if (mod(size(y), 2) == 0) median = 0.5_wp*(y(size(y)/2) + y(size(y)/2 + 1))
+    integer, allocatable :: order(:)
+    real(wp), allocatable :: y(:)
+    integer :: m, i
+    order = [(i, i=1, size(x))]
+    call sort_index(x, order)
+    y = x(order)
+    m = size(y)
+    median = 0.5_wp*(y((m + 1)/2) + y(m/2 + 1))
   end function median
 end program schur_cost

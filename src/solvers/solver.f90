@@ -85,7 +85,8 @@ contains
     !! EXIT_SINGULAR and info%failed_column is a column 1..ni of a.
     !! This default analyzes and factors a_ii and forms kstar with 2 nb
     !! triangular solves, SCHUR_BLOCK columns of a_ib at a time; a solver
-    !! that can form kstar from one factorization of a overrides it.
+    !! that can form kstar from one factorization of a overrides it (CHOLMOD,
+    !! LAPACK; UMFPACK keeps this one).
     class(linear_solver_t), intent(inout) :: self
     type(sparse_sym_t), intent(in) :: a
     integer(i8), intent(in) :: nb

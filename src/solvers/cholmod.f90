@@ -10,9 +10,11 @@ module superjoin_solvers_cholmod
   use superjoin_kinds, only: wp, i8
   use superjoin_error, only: error_t, fatal_error, EXIT_SINGULAR, EXIT_IO
   use superjoin_solvers_sparse, only: sparse_sym_t
-  use superjoin_solvers_solver, only: linear_solver_t
+  use superjoin_solvers_solver, only: linear_solver_t, interior_block, schur_by_solves, &
+       boundary_shift, unshift
   use superjoin_solvers_node_graph, only: node_graph
-  use superjoin_utils_memory, only: oom_message, bytes_text
+  use superjoin_utils_memory, only: oom_message, bytes_text, out_of_memory, BYTES_REAL
+  use superjoin_utils_strings, only: itoa
   implicit none (type, external)
   private
 
@@ -49,6 +51,7 @@ module superjoin_solvers_cholmod
      procedure :: flops => cholmod_flops
      procedure :: peak_mbytes => cholmod_peak_mbytes
      procedure :: stored_nnz => cholmod_stored_nnz
+     procedure :: schur => cholmod_schur
      final :: cholmod_finalize
   end type cholmod_solver_t
 
@@ -143,6 +146,33 @@ module superjoin_solvers_cholmod
        integer(c_int64_t), value :: len
        integer(c_int) :: status
      end function sj_cholmod_message
+  end interface
+
+  interface
+     function sj_cholmod_schur_analyze(h, n, nb, colptr, rowind) &
+          bind(c, name='sj_cholmod_schur_analyze') result(status)
+       import :: c_ptr, c_int, c_int64_t
+       type(c_ptr), value :: h
+       integer(c_int64_t), value :: n, nb
+       integer(c_int64_t), intent(in) :: colptr(*), rowind(*)
+       integer(c_int) :: status
+     end function sj_cholmod_schur_analyze
+
+     function sj_cholmod_schur_block(h, nb, lbb) bind(c, name='sj_cholmod_schur_block') result(status)
+       import :: c_ptr, c_int, c_int64_t, c_double
+       type(c_ptr), value :: h
+       integer(c_int64_t), value :: nb
+       real(c_double), intent(out) :: lbb(*)
+       integer(c_int) :: status
+     end function sj_cholmod_schur_block
+
+     subroutine dsyrk(uplo, trans, n, k, alpha, a, lda, beta, c, ldc)
+       import :: wp
+       character(len=1), intent(in) :: uplo, trans
+       integer, intent(in) :: n, k, lda, ldc
+       real(wp), intent(in) :: alpha, beta, a(lda, *)
+       real(wp), intent(inout) :: c(ldc, *)
+     end subroutine dsyrk
   end interface
 
 contains
@@ -413,4 +443,86 @@ contains
        s(i:i) = buf(i)
     end do
   end function from_c
+
+  ! ---- static condensation with the boundary ordered last (issue 24)
+
+  subroutine cholmod_schur(self, a, nb, kstar, error)
+    !! K* = a_bb − a_bi a_ii⁻¹ a_ib from one factorization of the whole part
+    !! (the contract of linear_solver_t%schur). The interior is ordered as
+    !! analyze orders any matrix (a_ii alone), the boundary appended last, and
+    !! a + D factored, D = diag(a_bb) on the boundary (1 where a column has no
+    !! stiffness): K* + D is positive definite even when the part floats. Then
+    !! K* = L_bb L_bbᵀ − D, with an added error of order ε·√(d_i d_j) per
+    !! entry, the scale of the cancellation already in a_bb − a_bi a_ii⁻¹ a_ib.
+    !! The interior block L_ii is the factor of a_ii: solve and pivots use it.
+    !! A breakdown in the boundary block (a not semi-definite) falls back to
+    !! the default route.
+    class(cholmod_solver_t), intent(inout) :: self
+    type(sparse_sym_t), intent(in) :: a
+    integer(i8), intent(in) :: nb
+    real(wp), intent(out) :: kstar(:, :)
+    type(error_t), allocatable, intent(out) :: error
+    type(sparse_sym_t) :: aii
+    real(wp), allocatable :: val(:), shift(:)
+    integer(c_int) :: status
+    integer(c_int64_t) :: failed
+    integer(i8) :: ni
+
+    ni = a%n - nb
+    call boundary_shift(a, nb, val, shift)
+    if (ni == 0 .or. nb == 0 .or. .not. allocated(val)) then
+       call schur_by_solves(self, a, nb, kstar, error)
+       return
+    end if
+    call interior_block(a, nb, aii)
+    call self%analyze(aii, error)
+    if (allocated(error)) return
+    status = sj_cholmod_schur_analyze(self%handle, a%n, nb, a%colptr, a%rowind)
+    if (status /= SJ_OK) then
+       call status_error(self, status, 'analyze', error)
+       return
+    end if
+    self%n = a%n
+    status = sj_cholmod_factorize(self%handle, a%n, a%colptr, a%rowind, val, failed)
+    call update_info(self)
+    if (status == SJ_NOT_POSDEF .and. failed > ni) then
+       call schur_by_solves(self, a, nb, kstar, error)
+       return
+    else if (status == SJ_NOT_POSDEF) then
+       self%info%failed_column = failed
+       call fatal_error(error, EXIT_SINGULAR, 'matrix is not positive definite at column '//itoa(failed))
+       return
+    else if (status /= SJ_OK) then
+       call status_error(self, status, 'factorize', error)
+       return
+    end if
+    self%n = ni
+    self%factored = .true.
+    call trailing_product(self, nb, shift, kstar, error)
+  end subroutine cholmod_schur
+
+  subroutine trailing_product(self, nb, shift, kstar, error)
+    !! kstar = L_bb L_bbᵀ − diag(shift), both triangles (unshift).
+    class(cholmod_solver_t), intent(inout) :: self
+    integer(i8), intent(in) :: nb
+    real(wp), intent(in) :: shift(:)
+    real(wp), intent(out) :: kstar(:, :)
+    type(error_t), allocatable, intent(out) :: error
+    real(wp), allocatable :: lbb(:, :)
+    integer(c_int) :: status
+    integer :: stat
+    allocate (lbb(nb, nb), stat=stat)
+    if (stat /= 0) then
+       call out_of_memory(error, 'the boundary block of the condensation', nb*nb*BYTES_REAL)
+       return
+    end if
+    status = sj_cholmod_schur_block(self%handle, nb, lbb)
+    if (status /= SJ_OK) then
+       call status_error(self, status, 'factorize', error)
+       return
+    end if
+    kstar = 0.0_wp
+    call dsyrk('L', 'N', int(nb), int(nb), 1.0_wp, lbb, int(nb), 0.0_wp, kstar, int(nb))
+    call unshift(shift, kstar)
+  end subroutine trailing_product
 end module superjoin_solvers_cholmod

@@ -113,6 +113,7 @@ typedef struct {
     int force_node_metis;       /* offer node-graph METIS whatever AMD's fill */
     SuiteSparse_long minor;     /* permuted column where factorization stopped (n: none) */
     char message[SJ_MESSAGE_LEN];
+    SuiteSparse_long nschur;    /* boundary columns ordered last by sj_cholmod_schur_analyze (0: none) */
 } sj_cholmod_t;
 
 /* CHOLMOD's error handler has no user pointer: record the last message per
@@ -178,6 +179,7 @@ static void sj_drop_pattern(sj_cholmod_t *h)
     h->Ai = NULL;
     h->n = 0;
     h->nnz = 0;
+    h->nschur = 0;
 }
 
 /* Create a handle; NULL if out of memory or CHOLMOD cannot start. */
@@ -483,7 +485,10 @@ int sj_cholmod_factorize(void *handle, int64_t n, const int64_t *colptr,
     return SJ_OK;
 }
 
-/* x(n, nrhs) = A^-1 b(n, nrhs), column-major, leading dimension n. */
+static int sj_schur_solve(sj_cholmod_t *h, int64_t nrhs, const double *b, double *x);
+
+/* x(n, nrhs) = A^-1 b(n, nrhs), column-major, leading dimension n (after
+ * sj_cholmod_schur_analyze: the interior block, n - nschur). */
 int sj_cholmod_solve(void *handle, int64_t nrhs, const double *b, double *x)
 {
     sj_cholmod_t *h = handle;
@@ -501,6 +506,7 @@ int sj_cholmod_solve(void *handle, int64_t nrhs, const double *b, double *x)
         return SJ_E_ARGUMENT;
     }
     if (h->n == 0 || nrhs == 0) return SJ_OK;
+    if (h->nschur > 0) return sj_schur_solve(h, nrhs, b, x);
     memset(&B, 0, sizeof(cholmod_dense));
     B.nrow = (size_t)h->n;
     B.ncol = (size_t)nrhs;
@@ -532,7 +538,7 @@ int sj_cholmod_pivots(void *handle, double *d)
     SuiteSparse_long j, n;
     if (h == NULL) return SJ_E_HANDLE;
     L = h->L;
-    n = h->n;
+    n = h->n - h->nschur;           /* the interior only, after sj_cholmod_schur_analyze */
     if (d == NULL) return SJ_E_ARGUMENT;
     for (j = 0; j < n; j++) d[j] = 0.0;
     if (L == NULL || L->xtype != CHOLMOD_REAL || L->x == NULL) return SJ_E_STATE;
@@ -544,7 +550,7 @@ int sj_cholmod_pivots(void *handle, double *d)
         for (s = 0; s < nsuper; s++) {
             SuiteSparse_long k1 = super[s], k2 = super[s + 1];
             SuiteSparse_long nsrow = pi[s + 1] - pi[s];
-            for (j = k1; j < k2 && j < h->minor; j++) {
+            for (j = k1; j < k2 && j < h->minor && j < n; j++) {
                 double ljj = lx[px[s] + (j - k1) * nsrow + (j - k1)];
                 d[perm != NULL ? perm[j] : j] = ljj * ljj;
             }
@@ -656,4 +662,205 @@ int sj_cholmod_memory(void *handle, double *failed_request, double *inuse)
     if (failed_request != NULL) *failed_request = (double)sj_failed_request;
     if (inuse != NULL) *inuse = h != NULL ? (double)h->common.memory_inuse : 0.0;
     return h != NULL ? SJ_OK : SJ_E_HANDLE;
+}
+
+/* ---- Static condensation with the boundary ordered last (issue 24) ----
+ *
+ * The part's matrix A (order n, its last nb columns the boundary) is ordered
+ * with the interior first, in the order the analysis of the interior block
+ * chose, and the boundary last in its own order. Its factor is then
+ *     L = | L_ii  0    |    L_ii L_ii' = P A_ii P',  L_bb L_bb' = A_bb - L_bi L_bi',
+ *         | L_bi  L_bb |
+ * so one factorization gives the factor of the interior and the Schur
+ * complement of the boundary. */
+
+/* Symbolic factor of h->A with the given permutation, not postordered. */
+static cholmod_factor *sj_given_symbolic(sj_cholmod_t *h, SuiteSparse_long *perm)
+{
+    cholmod_factor *L;
+    int nm = h->common.nmethods, o0 = h->common.method[0].ordering, post = h->common.postorder;
+    h->common.nmethods = 1;
+    h->common.method[0].ordering = CHOLMOD_GIVEN;
+    h->common.postorder = 0;
+    L = cholmod_l_analyze_p(&h->A, perm, NULL, 0, &h->common);
+    h->common.nmethods = nm;
+    h->common.method[0].ordering = o0;
+    h->common.postorder = post;
+    return L;
+}
+
+/* The symbolic factor of the whole part with the boundary (columns ni..n-1)
+ * last, the cheaper (CHOLMOD's flop count) of two orderings: perm (the
+ * interior's own ordering, the boundary appended) and CAMD on the whole
+ * pattern with the boundary constrained last (it sees the fill the boundary
+ * brings into the interior columns). NULL on failure. */
+static cholmod_factor *sj_schur_symbolic(sj_cholmod_t *h, SuiteSparse_long *perm, SuiteSparse_long ni)
+{
+    SuiteSparse_long n = h->n, j, *cmember, *perm2;
+    cholmod_factor *L1, *L2 = NULL;
+    double fl1;
+    L1 = sj_given_symbolic(h, perm);
+    if (L1 == NULL) return NULL;
+    fl1 = h->common.fl;
+    cmember = sj_malloc((size_t)n * sizeof(SuiteSparse_long));
+    perm2 = sj_malloc((size_t)n * sizeof(SuiteSparse_long));
+    if (cmember != NULL && perm2 != NULL) {
+        for (j = 0; j < n; j++) cmember[j] = j < ni ? 0 : 1;
+        if (cholmod_l_camd(&h->A, NULL, 0, cmember, perm2, &h->common)) L2 = sj_given_symbolic(h, perm2);
+    }
+    free(cmember);
+    free(perm2);
+    if (L2 != NULL) {
+        const SuiteSparse_long *p2 = L2->Perm;
+        int ok = h->common.fl < fl1;
+        for (j = ni; ok && j < n; j++) ok = p2[j] >= ni;
+        if (ok) {
+            cholmod_l_free_factor(&L1, &h->common);
+            return L2;
+        }
+        cholmod_l_free_factor(&L2, &h->common);
+    }
+    h->common.fl = fl1;
+    h->common.status = CHOLMOD_OK;
+    return L1;
+}
+
+/* Re-analyze for the whole part: the handle holds the analysis of the
+ * interior block (its first n - nb columns, by sj_cholmod_analyze); keep its
+ * permutation, append the boundary, and analyze the whole pattern (1-based
+ * upper triangle, rows sorted, diagonal present) with that permutation, not
+ * postordered (a postorder could move interior columns behind the boundary),
+ * or with CAMD's where that is cheaper (sj_schur_symbolic). Solves and
+ * pivots then refer to the interior block only. */
+int sj_cholmod_schur_analyze(void *handle, int64_t n, int64_t nb, const int64_t *colptr,
+                             const int64_t *rowind)
+{
+    sj_cholmod_t *h = handle;
+    SuiteSparse_long ni, j, k, nnz, *perm, *ap, *ai;
+    int status;
+    if (h == NULL) return SJ_E_HANDLE;
+    sj_begin(h);
+    ni = n - nb;
+    if (h->L == NULL || h->L->Perm == NULL || h->n != ni || nb <= 0 || colptr == NULL ||
+        rowind == NULL || colptr[ni] - 1 != h->nnz) {
+        sj_set_message(h, "schur analysis without the analysis of the interior");
+        return SJ_E_STATE;
+    }
+    nnz = colptr[n] - 1;
+    perm = sj_malloc((size_t)n * sizeof(SuiteSparse_long));
+    ap = sj_malloc((size_t)(n + 1) * sizeof(SuiteSparse_long));
+    ai = sj_malloc((size_t)nnz * sizeof(SuiteSparse_long));
+    if (perm == NULL || ap == NULL || ai == NULL) {
+        free(perm); free(ap); free(ai);
+        sj_set_message(h, "out of memory copying the matrix pattern");
+        return SJ_E_NOMEM;
+    }
+    memcpy(perm, h->L->Perm, (size_t)ni * sizeof(SuiteSparse_long));
+    for (j = ni; j < n; j++) perm[j] = j;
+    memcpy(ap, h->Ap, (size_t)(ni + 1) * sizeof(SuiteSparse_long));
+    memcpy(ai, h->Ai, (size_t)h->nnz * sizeof(SuiteSparse_long));
+    for (j = ni; j < n; j++) {
+        ap[j + 1] = colptr[j + 1] - 1;
+        for (k = ap[j]; k < ap[j + 1]; k++) {
+            ai[k] = rowind[k] - 1;
+            if (ai[k] < 0 || ai[k] > j || ap[j + 1] < ap[j]) {
+                free(perm); free(ap); free(ai);
+                sj_set_message(h, "row index outside the upper triangle");
+                return SJ_E_ARGUMENT;
+            }
+        }
+    }
+    sj_drop_factor(h);
+    free(h->Ap);
+    free(h->Ai);
+    h->Ap = ap;
+    h->Ai = ai;
+    h->n = n;
+    h->nnz = nnz;
+    h->A.nrow = h->A.ncol = (size_t)n;
+    h->A.nzmax = (size_t)nnz;
+    h->A.p = ap;
+    h->A.i = ai;
+    h->L = sj_schur_symbolic(h, perm, ni);
+    free(perm);
+    status = sj_end(h, h->L != NULL);
+    if (status != SJ_OK) {
+        sj_drop_factor(h);
+        return status < 0 ? status : CHOLMOD_INVALID;
+    }
+    h->minor = n;
+    h->nschur = nb;
+    return SJ_OK;
+}
+
+/* The trailing block L_bb of the factor (after sj_cholmod_schur_analyze and
+ * sj_cholmod_factorize), its rows in the original boundary order (the
+ * ordering may permute the boundary among itself): lbb(nb, nb), column-major,
+ * so that lbb lbb' = L_bb L_bb' in that order. The boundary columns may
+ * spread over several supernodes, and the first of them may also hold
+ * interior columns. */
+int sj_cholmod_schur_block(void *handle, int64_t nb, double *lbb)
+{
+    sj_cholmod_t *h = handle;
+    cholmod_factor *L;
+    const SuiteSparse_long *perm;
+    SuiteSparse_long ni, j, r;
+    if (h == NULL) return SJ_E_HANDLE;
+    L = h->L;
+    if (!h->factored || L == NULL || nb != h->nschur || lbb == NULL) return SJ_E_STATE;
+    ni = h->n - nb;
+    perm = L->Perm;
+    memset(lbb, 0, (size_t)nb * (size_t)nb * sizeof(double));
+    if (L->is_super) {
+        const SuiteSparse_long *super = L->super, *pi = L->pi, *px = L->px, *ls = L->s;
+        const double *lx = L->x;
+        SuiteSparse_long s;
+        for (s = (SuiteSparse_long)L->nsuper - 1; s >= 0 && super[s + 1] > ni; s--) {
+            SuiteSparse_long k1 = super[s], nsrow = pi[s + 1] - pi[s];
+            for (j = (k1 > ni ? k1 : ni); j < super[s + 1]; j++) {
+                for (r = j - k1; r < nsrow; r++)
+                    lbb[(perm[ls[pi[s] + r]] - ni) + (j - ni) * nb] = lx[px[s] + (j - k1) * nsrow + r];
+            }
+        }
+    } else {
+        const SuiteSparse_long *lp = L->p, *li = L->i, *lnz = L->nz;
+        const double *lx = L->x;
+        if (!L->is_ll) return SJ_E_STATE;
+        for (j = ni; j < h->n; j++)
+            for (r = lp[j]; r < lp[j] + lnz[j]; r++) lbb[(perm[li[r]] - ni) + (j - ni) * nb] = lx[r];
+    }
+    return SJ_OK;
+}
+
+/* x = A_ii^-1 b for the interior block after sj_cholmod_schur_analyze:
+ * forward solve with L on [P_i b; 0], the boundary part of the result set to
+ * zero, backward solve with L': the boundary rows then drop out exactly. */
+static int sj_schur_solve(sj_cholmod_t *h, int64_t nrhs, const double *b, double *x)
+{
+    cholmod_dense *Y, *Z;
+    SuiteSparse_long n = h->n, ni = h->n - h->nschur, i, j;
+    int step, status;
+    static const int sys[4] = {CHOLMOD_P, CHOLMOD_L, CHOLMOD_Lt, CHOLMOD_Pt};
+    Y = cholmod_l_zeros((size_t)n, (size_t)nrhs, CHOLMOD_REAL, &h->common);
+    if (Y == NULL) return sj_end(h, 0);
+    for (j = 0; j < nrhs; j++)
+        memcpy((double *)Y->x + (size_t)j * Y->d, b + (size_t)j * (size_t)ni, (size_t)ni * sizeof(double));
+    for (step = 0; step < 4; step++) {
+        Z = cholmod_l_solve(sys[step], h->L, Y, &h->common);
+        cholmod_l_free_dense(&Y, &h->common);
+        if (Z == NULL) {
+            status = sj_end(h, 0);
+            return status < 0 ? status : CHOLMOD_INVALID;
+        }
+        Y = Z;
+        if (sys[step] == CHOLMOD_L) {
+            for (j = 0; j < nrhs; j++)
+                for (i = ni; i < n; i++) ((double *)Y->x)[i + (size_t)j * Y->d] = 0.0;
+        }
+    }
+    for (j = 0; j < nrhs; j++)
+        memcpy(x + (size_t)j * (size_t)ni, (const double *)Y->x + (size_t)j * Y->d, (size_t)ni * sizeof(double));
+    cholmod_l_free_dense(&Y, &h->common);
+    status = sj_end(h, 1);
+    return status < 0 ? status : SJ_OK;
 }

@@ -15,7 +15,8 @@ module superjoin_solvers_lapack
   use superjoin_solvers_node_graph, only: node_graph
   use superjoin_utils_memory, only: out_of_memory, BYTES_REAL
   use superjoin_utils_strings, only: itoa
-  use superjoin_solvers_solver, only: linear_solver_t
+  use superjoin_solvers_solver, only: linear_solver_t, interior_block, boundary_block, &
+       boundary_shift, unshift, schur_by_solves
   implicit none (type, external)
   private
 
@@ -42,6 +43,7 @@ module superjoin_solvers_lapack
      procedure :: pivots => lapack_pivots
      procedure :: release => lapack_release
      procedure :: bandwidth => lapack_bandwidth
+     procedure :: schur => lapack_schur
   end type lapack_solver_t
 
   public :: rcm_ordering
@@ -89,6 +91,22 @@ module superjoin_solvers_lapack
        real(wp), intent(inout) :: b(ldb, *)
        integer, intent(out) :: info
      end subroutine dpbtrs
+
+     subroutine dtbsv(uplo, trans, diag, n, k, a, lda, x, incx)
+       import :: wp
+       character(len=1), intent(in) :: uplo, trans, diag
+       integer, intent(in) :: n, k, lda, incx
+       real(wp), intent(in) :: a(lda, *)
+       real(wp), intent(inout) :: x(*)
+     end subroutine dtbsv
+
+     subroutine dsyrk(uplo, trans, n, k, alpha, a, lda, beta, c, ldc)
+       import :: wp
+       character(len=1), intent(in) :: uplo, trans
+       integer, intent(in) :: n, k, lda, ldc
+       real(wp), intent(in) :: alpha, beta, a(lda, *)
+       real(wp), intent(inout) :: c(ldc, *)
+     end subroutine dsyrk
   end interface
 
 contains
@@ -475,4 +493,115 @@ contains
     integer(i8) :: j
     call node_graph(a, [(j, j=1, a%n + 1)], xadj, adj)
   end subroutine adjacency
+
+  subroutine lapack_schur(self, a, nb, kstar, error)
+    !! K* = a_bb − a_bi a_ii⁻¹ a_ib in the storage analyze chooses for a_ii
+    !! (the contract of linear_solver_t%schur; self then holds the factor of
+    !! a_ii). Dense: the whole part factored with the boundary last and
+    !! boundary_shift's D on its diagonal, K* = U_bbᵀ U_bb − D (as CHOLMOD's
+    !! schur), U_ii kept. Banded: W = U⁻ᵀ P a_ib (dtbsv), K* = a_bb − WᵀW.
+    !! Either way one triangular solve's work per boundary column, half the
+    !! default route's.
+    class(lapack_solver_t), intent(inout) :: self
+    type(sparse_sym_t), intent(in) :: a
+    integer(i8), intent(in) :: nb
+    real(wp), intent(out) :: kstar(:, :)
+    type(error_t), allocatable, intent(out) :: error
+    type(sparse_sym_t) :: aii
+    integer(i8) :: ni
+    ni = a%n - nb
+    call interior_block(a, nb, aii)
+    call self%analyze(aii, error)
+    if (allocated(error)) return
+    if (.not. self%banded .and. ni > 0 .and. nb > 0) then
+       call dense_schur(self, a, nb, kstar, error)
+       return
+    end if
+    call boundary_block(a, nb, kstar)
+    call self%factorize(aii, error)
+    if (allocated(error) .or. ni == 0 .or. nb == 0) return
+    call band_schur(self, a, nb, kstar, error)
+  end subroutine lapack_schur
+
+  subroutine dense_schur(self, a, nb, kstar, error)
+    !! The dense route of lapack_schur (natural order, a_ii analyzed dense).
+    !! A breakdown in the boundary block (a not semi-definite) falls back to
+    !! the default route.
+    class(lapack_solver_t), intent(inout) :: self
+    type(sparse_sym_t), intent(in) :: a
+    integer(i8), intent(in) :: nb
+    real(wp), intent(out) :: kstar(:, :)
+    type(error_t), allocatable, intent(out) :: error
+    real(wp), allocatable :: full(:, :), val(:), shift(:)
+    integer(i8) :: n, ni, j, k
+    integer :: stat, info
+    n = a%n
+    ni = n - nb
+    call boundary_shift(a, nb, val, shift)
+    if (.not. allocated(val)) then
+       call schur_by_solves(self, a, nb, kstar, error)
+       return
+    end if
+    allocate (full(n, n), stat=stat)
+    if (stat /= 0) then
+       call out_of_memory(error, 'the LAPACK dense factor ('//itoa(n)//' x '//itoa(n)//')', n*n*BYTES_REAL)
+       return
+    end if
+    full = 0.0_wp
+    do j = 1, n
+       do k = a%colptr(j), a%colptr(j + 1) - 1
+          full(a%rowind(k), j) = val(k)
+       end do
+    end do
+    call dpotrf('U', int(n), full, int(n), info)
+    if (info > ni .or. info < 0) then
+       call schur_by_solves(self, a, nb, kstar, error)
+       return
+    end if
+    self%f = full(1:ni, 1:ni)
+    if (info > 0) then
+       self%nfactored = info - 1
+       self%info%failed_column = info
+       call fatal_error(error, EXIT_SINGULAR, 'matrix is not positive definite at column '//itoa(info))
+       return
+    end if
+    self%nfactored = ni
+    self%factored = .true.
+    kstar = 0.0_wp
+    call dsyrk('L', 'T', int(nb), int(nb), 1.0_wp, full(ni + 1:, ni + 1:), int(nb), 0.0_wp, kstar, int(nb))
+    call unshift(shift, kstar)
+  end subroutine dense_schur
+
+  subroutine band_schur(self, a, nb, kstar, error)
+    !! kstar −= WᵀW, W = U⁻ᵀ P a_ib with the band factor of a_ii.
+    class(lapack_solver_t), intent(inout) :: self
+    type(sparse_sym_t), intent(in) :: a
+    integer(i8), intent(in) :: nb
+    real(wp), intent(inout) :: kstar(:, :)
+    type(error_t), allocatable, intent(out) :: error
+    real(wp), allocatable :: w(:, :)
+    integer(i8) :: ni, j, pos, r
+    integer :: stat
+    ni = a%n - nb
+    allocate (w(ni, nb), stat=stat)
+    if (stat /= 0) then
+       call out_of_memory(error, 'the LAPACK condensation', ni*nb*BYTES_REAL)
+       return
+    end if
+    w = 0.0_wp
+    do j = 1, nb
+       do pos = a%colptr(ni + j), a%colptr(ni + j + 1) - 1
+          r = a%rowind(pos)
+          if (r > ni) exit
+          w(self%iperm(r), j) = a%val(pos)
+       end do
+    end do
+    do j = 1, nb
+       call dtbsv('U', 'T', 'N', int(ni), self%kd, self%f, self%kd + 1, w(:, j), 1)
+    end do
+    call dsyrk('U', 'T', int(nb), int(ni), -1.0_wp, w, int(ni), 1.0_wp, kstar, int(nb))
+    do j = 1, nb
+       kstar(j + 1:, j) = kstar(j, j + 1:)
+    end do
+  end subroutine band_schur
 end module superjoin_solvers_lapack

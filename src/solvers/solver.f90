@@ -8,6 +8,8 @@ module superjoin_solvers_solver
   implicit none (type, external)
   private
 
+  public :: interior_block, boundary_block, schur_by_solves, boundary_shift, unshift
+
   integer(i8), parameter :: SCHUR_BLOCK = 64
     !! Columns of a_ib solved together by the default schur.
 
@@ -32,7 +34,7 @@ module superjoin_solvers_solver
      procedure(pivots_i), deferred :: pivots
      procedure(release_i), deferred :: release
      procedure :: set_groups
-     procedure :: schur
+     procedure :: schur => schur_by_solves
   end type linear_solver_t
 
   abstract interface
@@ -74,7 +76,7 @@ module superjoin_solvers_solver
   end interface
 contains
 
-  subroutine schur(self, a, nb, kstar, error)
+  subroutine schur_by_solves(self, a, nb, kstar, error)
     !! Static condensation: a is the whole symmetric matrix of a part (order
     !! n, upper triangle), its last nb columns the boundary. On return
     !!     kstar(nb, nb) = a_bb − a_bi a_ii⁻¹ a_ib   (both triangles)
@@ -83,7 +85,8 @@ contains
     !! EXIT_SINGULAR and info%failed_column is a column 1..ni of a.
     !! This default analyzes and factors a_ii and forms kstar with 2 nb
     !! triangular solves, SCHUR_BLOCK columns of a_ib at a time; a solver
-    !! that can form kstar from one factorization of a overrides it.
+    !! that can form kstar from one factorization of a overrides it (CHOLMOD,
+    !! LAPACK; UMFPACK keeps this one).
     class(linear_solver_t), intent(inout) :: self
     type(sparse_sym_t), intent(in) :: a
     integer(i8), intent(in) :: nb
@@ -96,10 +99,7 @@ contains
     ni = a%n - nb
     call boundary_block(a, nb, kstar)
     if (ni == 0) return
-    aii%n = ni
-    aii%colptr = a%colptr(1:ni + 1)
-    aii%rowind = a%rowind(1:a%colptr(ni + 1) - 1)
-    aii%val = a%val(1:a%colptr(ni + 1) - 1)
+    call interior_block(a, nb, aii)
     call self%analyze(aii, error)
     if (allocated(error)) return
     call self%factorize(aii, error)
@@ -127,7 +127,20 @@ contains
     end do
     ! Symmetric in exact arithmetic: take the mean of the two triangles.
     kstar = 0.5_wp*(kstar + transpose(kstar))
-  end subroutine schur
+  end subroutine schur_by_solves
+
+  subroutine interior_block(a, nb, aii)
+    !! aii = a_ii, the leading n − nb columns of a (upper triangle).
+    type(sparse_sym_t), intent(in) :: a
+    integer(i8), intent(in) :: nb
+    type(sparse_sym_t), intent(out) :: aii
+    integer(i8) :: ni
+    ni = a%n - nb
+    aii%n = ni
+    aii%colptr = a%colptr(1:ni + 1)
+    aii%rowind = a%rowind(1:a%colptr(ni + 1) - 1)
+    aii%val = a%val(1:a%colptr(ni + 1) - 1)
+  end subroutine interior_block
 
   subroutine boundary_block(a, nb, kbb)
     !! kbb = a_bb, both triangles (a's last nb columns and rows).
@@ -163,6 +176,51 @@ contains
        end do
     end do
   end subroutine subtract_bi
+
+  subroutine boundary_shift(a, nb, val, shift)
+    !! For a factorization of the whole part with the boundary last (K* from
+    !! its trailing block, K* + D positive definite even for a floating part):
+    !! val = the values of a with d_j added to the diagonal of boundary column
+    !! j: shift(j) = d_j = its own diagonal, or shift(j) = 0 and d_j = 1 where
+    !! that is zero (no stiffness). val stays unallocated when a boundary
+    !! column has no diagonal entry stored.
+    type(sparse_sym_t), intent(in) :: a
+    integer(i8), intent(in) :: nb
+    real(wp), allocatable, intent(out) :: val(:), shift(:)
+    integer(i8) :: ni, j, pos
+    ni = a%n - nb
+    allocate (shift(nb))
+    do j = 1, nb
+       pos = a%colptr(ni + j + 1) - 1
+       if (pos < a%colptr(ni + j)) return
+       if (a%rowind(pos) /= ni + j) return
+       shift(j) = abs(a%val(pos))
+    end do
+    val = a%val
+    do j = 1, nb
+       pos = a%colptr(ni + j + 1) - 1
+       val(pos) = val(pos) + merge(shift(j), 1.0_wp, shift(j) > 0.0_wp)
+    end do
+  end subroutine boundary_shift
+
+  subroutine unshift(shift, kstar)
+    !! kstar(:, j) −= shift(j) e_j from its lower triangle (a trailing block
+    !! product of a factor of a with boundary_shift's shift), then both
+    !! triangles; the rows and columns of boundary DOFs without stiffness
+    !! (shift 0: a zero diagonal, so a zero row in a semi-definite a) exactly zero.
+    real(wp), intent(in) :: shift(:)
+    real(wp), intent(inout) :: kstar(:, :)
+    integer :: j
+    do j = 1, size(shift)
+       if (shift(j) == 0.0_wp) then
+          kstar(j:, j) = 0.0_wp
+          kstar(j, 1:j) = 0.0_wp
+       else
+          kstar(j, j) = kstar(j, j) - shift(j)
+       end if
+       kstar(j, j + 1:) = kstar(j + 1:, j)
+    end do
+  end subroutine unshift
 
   subroutine set_groups(self, first)
     !! Tell the solver that columns come in groups of consecutive columns (the

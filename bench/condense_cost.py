@@ -1,0 +1,89 @@
+#!/usr/bin/env python3
+"""First condensed solve against the monolithic solve of the same model, and a
+two-value joint sweep against two monolithic solves (issue 24; doc/performance.md,
+"Superelements: condensation at the price of a factorization").
+
+usage: bench/condense_cost.py [--bin build/superjoin] [--base OTHER_BIN] [--repeat N]
+                              [--work DIR] [--models plane,shell,modules]
+
+Models: plane = gen_panels.py --plane --mesh 224 (two CPS4 panels, 202 500 DOFs,
+900 boundary DOFs); shell = gen_panels.py --mesh 130 (two S4 panels, 205 932
+DOFs, 786 boundary DOFs); modules = gen_modules.py --row --mesh 56 --storeys 20
+(twenty instances of one storey module, 390 360 DOFs). For each model the runs
+(--condense yes with one joint value, --condense no, and for the panels
+--condense yes with two values of a sweep) are repeated N times, interleaved,
+so that a loaded machine slows all alike; wall-clock medians and their ratios
+are printed. With --base, the same condensed run of another binary (e.g. the
+previous main) is interleaved too.
+"""
+import argparse
+import os
+import statistics
+import subprocess
+import sys
+import time
+
+ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+
+
+def run(cmd):
+    t0 = time.perf_counter()
+    p = subprocess.run(cmd, capture_output=True, text=True)
+    if p.returncode not in (0, 5):
+        sys.exit("failed (%d): %s\n%s" % (p.returncode, " ".join(cmd), p.stderr[-2000:]))
+    return time.perf_counter() - t0
+
+
+def deck(work, name, script, args):
+    path = os.path.join(work, name + ".deck")
+    with open(path, "w") as fh:
+        subprocess.run([sys.executable, os.path.join(ROOT, "bench", script)] + args, stdout=fh, check=True)
+    return path
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
+    ap.add_argument("--bin", default=os.path.join(ROOT, "build", "superjoin"))
+    ap.add_argument("--base")
+    ap.add_argument("--repeat", type=int, default=3)
+    ap.add_argument("--work", default=os.path.join(ROOT, "build", "condense_cost"))
+    ap.add_argument("--models", default="plane,shell,modules")
+    args = ap.parse_args()
+    os.makedirs(args.work, exist_ok=True)
+    specs = {
+        "plane": ("gen_panels.py", ["--plane", "--mesh", "224"], True),
+        "shell": ("gen_panels.py", ["--mesh", "130"], True),
+        "modules": ("gen_modules.py", ["--row", "--mesh", "56", "--storeys", "20"], False),
+    }
+    for name in args.models.split(","):
+        script, gargs, sweep = specs[name]
+        runs = {}
+        if sweep:
+            one = deck(args.work, name + "1", script, gargs + ["--values", "1e6"])
+            two = deck(args.work, name + "2", script, gargs + ["--values", "1e6,1e7"])
+        else:
+            one = deck(args.work, name + "1", script, gargs)
+        lst = os.path.join(args.work, name + ".lst")
+        runs["condensed"] = [args.bin, "-q", one, "--condense", "yes", "-o", lst]
+        runs["monolithic"] = [args.bin, "-q", one, "--condense", "no", "-o", lst]
+        if sweep:
+            runs["sweep2"] = [args.bin, "-q", two, "--condense", "yes", "-o", lst]
+        if args.base:
+            runs["base condensed"] = [args.base, "-q", one, "--condense", "yes", "-o", lst]
+        times = {k: [] for k in runs}
+        for _ in range(args.repeat):
+            for k, cmd in runs.items():
+                times[k].append(run(cmd))
+        med = {k: statistics.median(v) for k, v in times.items()}
+        print("== %s (%d rounds, load %.1f)" % (name, args.repeat, os.getloadavg()[0]))
+        for k, v in times.items():
+            print("  %-15s median %7.2f s   %s" % (k, med[k], " ".join("%.2f" % x for x in v)))
+        print("  condensed / monolithic: %.2f" % (med["condensed"] / med["monolithic"]))
+        if sweep:
+            print("  sweep of 2 values / 2 monolithic solves: %.2f" % (med["sweep2"] / (2 * med["monolithic"])))
+        if args.base:
+            print("  base condensed / monolithic: %.2f" % (med["base condensed"] / med["monolithic"]))
+
+
+if __name__ == "__main__":
+    main()

@@ -960,6 +960,45 @@ def rot4(binary, outdir):
          'of x = 0.5)')
 
 
+SOLID_DECKS = ('achteld', 'achtelp', 'achtelg', 'achtel2', 'achtel9', 'achtel29', 'achtelcas')
+
+
+def solid_point_table(text):
+    """{(element, ip): [xx, yy, zz, xy, xz, yz]} of the listing's table of
+    stresses at the integration points of solid elements (step 1)."""
+    sec = text[text.index('S   at the integration points of the solid elements'):]
+    rows = {}
+    for line in sec.splitlines()[2:]:
+        f = line.split()
+        if len(f) < 10 or not f[1].isdigit():
+            break
+        rows[(int(f[1]), int(f[3]))] = [float(v.replace('E', 'e')) for v in f[4:10]]
+    return rows
+
+
+def solid_decks(binary, outdir):
+    """CalculiX's C3D20R cube decks (achtel*: prescribed displacements, point
+    loads, gravity, *EQUATION with 2, 9 and mixed terms, cascaded equations):
+    *NODE PRINT U and the stresses of *EL PRINT S at CalculiX's 8 integration
+    points of every element of the set must agree with .dat.ref (1e-6 of
+    the table)."""
+    for name in SOLID_DECKS:
+        print(f'{name}.inp: C3D20R, *NODE PRINT U, *EL PRINT S at the integration points')
+        text = run(binary, outdir, name)
+        tables = dat_tables(os.path.join(HERE, name + '.dat.ref'))
+        for kind, set_name, _, ref, _ in tables:
+            if kind == 'displacements':
+                got = {(k,): v[:3] for k, v in listing_table(text, 'NSET=' + set_name, 'U').items()}
+            else:
+                got = solid_point_table(text)
+            scale = max(abs(v) for row in ref.values() for v in row)
+            # the worst value of the table (a missing row counts as zeros)
+            worst = max(((abs(g - w), g, w, key) for key, want in ref.items()
+                         for g, w in zip(got.get(key, [0.0] * len(want)), want)), key=lambda t: t[0])
+            check(f'{name} {kind} of set {set_name}: {len(ref)} rows, the worst at {worst[3]}', worst[1],
+                  worst[2], scale)
+
+
 def main():
     if len(sys.argv) != 3:
         print(__doc__)
@@ -978,6 +1017,7 @@ def main():
     transform_print(binary, outdir)
     shell1lin(binary, outdir)
     rot4(binary, outdir)
+    solid_decks(binary, outdir)
     if FAILURES:
         print(f'FAIL: {len(FAILURES)} comparisons')
         sys.exit(1)

@@ -295,8 +295,8 @@ contains
     if (any(s8r)) call lu%line('    (nodes of S8R: also the '// &
          'mid-surface; corners extrapolated bilinearly from the 2x2 points, mid-side nodes the mean of their two corners)')
     if (any(solid_nodes(model, subs, nodes))) call lu%line('    (nodes of solid elements: the solids count among '// &
-         'the elements averaged; each extrapolates from its integration points: 2x2x2 trilinear, 3x3x3 triquadratic, '// &
-         'C3D10 linear, C3D4 constant)')
+         'the elements averaged; each extrapolates from its integration points as CalculiX: 2x2x2 trilinear, C3D20 '// &
+         'the least-squares fit of its 20-node field to its 27 points, C3D10 linear, C3D4 constant)')
     write (hline, '(4x,a20,a10,a6,a5,6a15)') 'substructure        ', '      node', ' elems', ' surf', TENSOR_HEAD
     call lu%line(trim(hline))
     scale = 0.0_wp

@@ -3,7 +3,8 @@ module superjoin_deck_build_steps
   !! conditions and their history over the steps, thermal loads, combinations.
   use superjoin_kinds, only: wp, ip, i8
   use superjoin_model_types, only: model_t, cload_t, dload_t, ELEMENT_TYPE_NAMES, DLOAD_PX, DLOAD_PY, &
-       DLOAD_PZ, DLOAD_P, DLOAD_GRAV, DLOAD_NAMES, DLOAD_P1, DLOAD_P2, DLOAD_P3, DLOAD_P4, DLOAD_CENTRIF
+       DLOAD_PZ, DLOAD_P, DLOAD_GRAV, DLOAD_NAMES, DLOAD_P1, DLOAD_P2, DLOAD_P3, DLOAD_P4, DLOAD_CENTRIF, &
+       DLOAD_P5, DLOAD_P6
   use superjoin_elements_traits, only: accepts_dload, is_family, FAMILY_PLANE
   use superjoin_deck_lexer, only: itoa
   use superjoin_deck_state, only: deck_state_t, load_b_t, report_loc, report_oom, OP_NEW
@@ -260,6 +261,8 @@ contains
     if (.not. ld%surface) return
     if (ld%kind >= DLOAD_P1 .and. ld%kind <= DLOAD_P4) then
        name = 'S'//name(2:2)//' (edge '//name(2:2)//')'
+    else if (ld%kind == DLOAD_P5 .or. ld%kind == DLOAD_P6) then
+       name = 'S'//name(2:2)//' (face '//name(2:2)//')'
     else if (ld%kind == DLOAD_P) then
        name = 'SPOS or SNEG'
     end if
@@ -274,13 +277,16 @@ contains
     case (DLOAD_PZ)
        s = 'PZ applies to 3D beams B33, B31 and B32'
     case (DLOAD_P1)
-       s = 'P1 applies to the first edge of plane elements and to 3D beams B33 and B31'
+       s = 'P1 applies to the first edge of plane elements, to 3D beams B33 and B31 and to face 1 of solids'
     case (DLOAD_P2)
-       s = 'P2 applies to the second edge of plane elements and to beams'
+       s = 'P2 applies to the second edge of plane elements, to beams and to face 2 of solids'
     case (DLOAD_P3)
-       s = 'P3 applies to the third edge of plane elements'
+       s = 'P3 applies to the third edge of plane elements and to face 3 of solids'
     case (DLOAD_P4)
-       s = 'P4 applies to the fourth edge of quadrilaterals CPS4, CPS8, CPS8R, CPE4, CPE8 and CPE8R'
+       s = 'P4 applies to the fourth edge of quadrilaterals CPS4, CPS8, CPS8R, CPE4, CPE8 and CPE8R and to face 4 '// &
+            'of solids'
+    case (DLOAD_P5, DLOAD_P6)
+       s = trim(DLOAD_NAMES(kind))//' applies to the faces of solid hexahedra C3D8, C3D20 and C3D20R'
     case (DLOAD_CENTRIF)
        s = 'CENTRIF applies to trusses, two-node beams, plane and shell elements'
     case default

@@ -4,7 +4,7 @@ module superjoin_deck_cards_steps
   !! *INITIAL CONDITIONS, TYPE=TEMPERATURE).
   use superjoin_kinds, only: wp, ip
   use superjoin_model_types, only: source_loc_t, NDOF_NODE, LINK_RIGID, DLOAD_PX, DLOAD_PY, &
-       DLOAD_PZ, DLOAD_P, DLOAD_GRAV, DLOAD_P1, DLOAD_CENTRIF, FORM_TRANSFORM, FORM_PENALTY, &
+       DLOAD_PZ, DLOAD_P, DLOAD_GRAV, DLOAD_P1, DLOAD_CENTRIF, FORM_TRANSFORM, FORM_PENALTY, DLOAD_P5, DLOAD_P6, &
        RIGID_ELIMINATE, RIGID_LARGE
   use superjoin_deck_lexer, only: keyword_line_t, to_upper, parse_real, parse_id, looks_numeric, &
        itoa, clip, TOK_OK
@@ -445,11 +445,11 @@ contains
           ld%kind = DLOAD_PZ
        case ('P')
           ld%kind = DLOAD_P
-       case ('P1', 'P2', 'P3', 'P4')
+       case ('P1', 'P2', 'P3', 'P4', 'P5', 'P6')
           ld%kind = face_load_kind(typ)
        case default
           call report_loc(st, loc, 'unknown *DLOAD type '''//clip(fld(st, line, 2))// &
-               ''' (PX, PY, PZ, P, P1 to P4, GRAV or CENTRIF)')
+               ''' (PX, PY, PZ, P, P1 to P6, GRAV or CENTRIF)')
           return
        end select
     else
@@ -500,9 +500,11 @@ contains
   end subroutine data_centrif
 
   pure integer function face_load_kind(typ) result(kind)
-    !! DLOAD_P1 .. DLOAD_P4 of the *DLOAD type 'P1' .. 'P4'.
+    !! DLOAD_P1 .. DLOAD_P6 of the *DLOAD type 'P1' .. 'P6'.
     character(*), intent(in) :: typ
     kind = DLOAD_P1 + index('1234', typ(2:2)) - 1
+    if (typ(2:2) == '5') kind = DLOAD_P5
+    if (typ(2:2) == '6') kind = DLOAD_P6
   end function face_load_kind
 
   subroutine kw_surface(st, kw, loc)
@@ -548,8 +550,8 @@ contains
 
   subroutine data_surface(st, line, loc)
     !! `element or elset, face`: S1 to S4, the edges of a plane element
-    !! (CalculiX's faces, as P1 to P4 of *DLOAD), SPOS or SNEG, the face of a
-    !! shell along or against its normal.
+    !! (CalculiX's faces, as P1 to P4 of *DLOAD), S1 to S6 the faces of a solid,
+    !! SPOS or SNEG, the face of a shell along or against its normal.
     type(deck_state_t), intent(inout) :: st
     character(*), intent(in) :: line
     type(source_loc_t), intent(in) :: loc
@@ -557,11 +559,11 @@ contains
     character(:), allocatable :: face
     integer :: kind
     real(wp) :: sgn
-    if (.not. field_count(st, loc, 2, 2, 'element or elset, face (S1 to S4, SPOS or SNEG)')) return
+    if (.not. field_count(st, loc, 2, 2, 'element or elset, face (S1 to S6, SPOS or SNEG)')) return
     face = to_upper(fld(st, line, 2))
     sgn = 1.0_wp
     select case (face)
-    case ('S1', 'S2', 'S3', 'S4')
+    case ('S1', 'S2', 'S3', 'S4', 'S5', 'S6')
        kind = face_load_kind('P'//face(2:2))
     case ('SPOS')
        kind = DLOAD_P
@@ -570,7 +572,7 @@ contains
        sgn = -1.0_wp
     case default
        call report_loc(st, loc, 'unknown face '''//clip(fld(st, line, 2))// &
-            ''' (S1 to S4: edges of plane elements; SPOS, SNEG: faces of shells)')
+            ''' (S1 to S4: edges of plane elements; S1 to S6: faces of solids; SPOS, SNEG: faces of shells)')
        return
     end select
     if (.not. parse_ref(st, fld(st, line, 1), .true., st%card_home, loc, ref)) return

@@ -15,12 +15,14 @@ module superjoin_elements
   use superjoin_model_types, only: section_t, material_t, ET_T2D2, ET_T3D2, ET_B23, ET_B33, &
        ET_CPS3, ET_CPS4, ET_S3, ET_S4, ET_B21, ET_B31, ET_CPE3, ET_CPE4, NUM_ELEMENT_TYPES, ELEMENT_TYPE_NAMES, &
        ET_CPS6, ET_CPS8, ET_CPE6, ET_CPE8, ET_CPS8R, ET_CPE8R, ET_B32, &
-       ET_C3D8, ET_C3D20, ET_C3D20R, ET_C3D4, ET_C3D10, &
+       ET_C3D8, ET_C3D20, ET_C3D20R, ET_C3D4, ET_C3D10, ET_C3D8I, &
        DLOAD_PX, DLOAD_PY, DLOAD_PZ, DLOAD_P
   use superjoin_model_types, only: ET_S4R, ET_S3R
   use superjoin_model_types, only: ET_S8R
   use superjoin_elements_solid, only: solid_stiffness, solid_body_load, is_solid_type, solid_forces
-  use superjoin_model_types, only: DLOAD_P1, DLOAD_P2, DLOAD_P3, DLOAD_P4, DLOAD_THERMAL
+  use superjoin_model_types, only: DLOAD_P1, DLOAD_P2, DLOAD_P3, DLOAD_P4, DLOAD_THERMAL, DLOAD_P5, DLOAD_P6
+  use superjoin_elements_solid_faces, only: solid_pressure_load
+  use superjoin_elements_traits, only: dload_face
   use superjoin_elements_edge_load, only: plane_edge_load
   use superjoin_elements_thermal, only: thermal_axial_load, thermal_plate_load
   use superjoin_elements_thermal, only: thermal_plane_nodal_load, thermal_beam_load
@@ -38,6 +40,7 @@ module superjoin_elements
   use superjoin_elements_shell, only: shell_thermal_nodal_resultants
   use superjoin_elements_stresses, only: NTENSOR, element_state_t, element_state, element_displacements, &
        element_stresses, element_tensor
+  use superjoin_elements_solid_stress, only: von_mises_tensor, principal_stresses
   use superjoin_elements_shell, only: shell_thermal_nodal_load
   use superjoin_elements_shell, only: is_plate_type, is_plane_type, is_plane_strain_type, shell_stiffness, shell_resultants, shell_pressure_load, &
        shell_area_load, shell_forces
@@ -56,6 +59,9 @@ module superjoin_elements
   public :: NTENSOR, element_state_t, element_state, element_displacements, element_stresses, element_tensor
     !! The stresses and strains of one element of a solved step: see
     !! superjoin_elements_stresses.
+  public :: von_mises_tensor, principal_stresses
+    !! Von Mises stress and principal values (largest first) of a tensor in
+    !! Voigt order (superjoin_elements_solid_stress).
   public :: element_strain_energy
   public :: is_plate_type, shell_resultants, shell_forces
   public :: is_plane_type, is_plane_strain_type
@@ -88,7 +94,7 @@ contains
        dofs = [1, 2]
     case (ET_T3D2)
        dofs = [1, 2, 3]
-    case (ET_C3D8, ET_C3D20, ET_C3D20R, ET_C3D4, ET_C3D10)
+    case (ET_C3D8, ET_C3D20, ET_C3D20R, ET_C3D4, ET_C3D10, ET_C3D8I)
        dofs = [1, 2, 3]
     case (ET_B23, ET_B21)
        dofs = [1, 2, 6]
@@ -108,7 +114,7 @@ contains
     select case (etype)
     case (ET_T2D2, ET_CPS3, ET_CPS4, ET_CPE3, ET_CPE4, ET_CPS6, ET_CPS8, ET_CPE6, ET_CPE8, ET_CPS8R, ET_CPE8R)
        mask(1:2) = .true.
-    case (ET_T3D2, ET_C3D8, ET_C3D20, ET_C3D20R, ET_C3D4, ET_C3D10)
+    case (ET_T3D2, ET_C3D8, ET_C3D20, ET_C3D20R, ET_C3D4, ET_C3D10, ET_C3D8I)
        mask(1:3) = .true.
     case (ET_B23, ET_B21)
        mask([1, 2, 6]) = .true.
@@ -185,7 +191,7 @@ contains
     case (ET_CPS3, ET_CPS4, ET_S3, ET_S4, ET_CPE3, ET_CPE4, ET_CPS6, ET_CPS8, ET_CPE6, ET_CPE8, ET_CPS8R, ET_CPE8R, ET_S4R, ET_S3R, &
          ET_S8R)
        call shell_stiffness(etype, x, sec, mat, ke, error, drill)
-    case (ET_C3D8, ET_C3D20, ET_C3D20R, ET_C3D4, ET_C3D10)
+    case (ET_C3D8, ET_C3D20, ET_C3D20R, ET_C3D4, ET_C3D10, ET_C3D8I)
        call solid_stiffness(etype, x, mat, ke, error)
     case default
        call unsupported(etype, error)
@@ -219,7 +225,7 @@ contains
     case (ET_B32)
        call beam3_end_forces(x, sec, mat, ue, q_local, f, error)
     case (ET_CPS3, ET_CPS4, ET_S3, ET_S4, ET_CPE3, ET_CPE4, ET_CPS6, ET_CPS8, ET_CPE6, ET_CPE8, ET_CPS8R, ET_CPE8R, ET_S4R, ET_S3R, &
-         ET_S8R, ET_C3D8, ET_C3D20, ET_C3D20R, ET_C3D4, ET_C3D10)
+         ET_S8R, ET_C3D8, ET_C3D20, ET_C3D20R, ET_C3D4, ET_C3D10, ET_C3D8I)
        continue
     case default
        call unsupported(etype, error)
@@ -282,8 +288,12 @@ contains
        call beam_distributed_load(etype, x, sec, w, fe, q_local, error)
     case (DLOAD_P)
        call shell_pressure_load(etype, x, value, fe, q_local(3), error)
-    case (DLOAD_P1, DLOAD_P2, DLOAD_P3, DLOAD_P4)
-       call face_load(etype, x, sec, kind - DLOAD_P1 + 1, value, fe, q_local, error)
+    case (DLOAD_P1, DLOAD_P2, DLOAD_P3, DLOAD_P4, DLOAD_P5, DLOAD_P6)
+       if (is_solid_type(etype)) then
+          call solid_pressure_load(etype, x, dload_face(kind), value, fe, error)
+       else
+          call face_load(etype, x, sec, dload_face(kind), value, fe, q_local, error)
+       end if
     case (DLOAD_THERMAL)
        select case (etype)
        case (ET_T2D2, ET_T3D2, ET_B23, ET_B33, ET_B21, ET_B31)
@@ -365,7 +375,7 @@ contains
     case (ET_CPS3, ET_CPS4, ET_S3, ET_S4, ET_CPE3, ET_CPE4, ET_CPS6, ET_CPS8, ET_CPE6, ET_CPE8, ET_CPS8R, ET_CPE8R, ET_S4R, ET_S3R, &
          ET_S8R)
        call shell_area_load(etype, x, mat%density*sec%thickness*accel, fe, error)
-    case (ET_C3D8, ET_C3D20, ET_C3D20R, ET_C3D4, ET_C3D10)
+    case (ET_C3D8, ET_C3D20, ET_C3D20R, ET_C3D4, ET_C3D10, ET_C3D8I)
        call solid_body_load(etype, x, mat%density*accel, fe, error)   ! ρ g per unit volume
     case default
        call unsupported(etype, error)

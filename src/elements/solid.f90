@@ -3,6 +3,11 @@ module superjoin_elements_solid
   !! per node, node numbering as Abaqus and CalculiX:
   !!
   !! - C3D8: trilinear hexahedron, full 2×2×2 Gauss rule;
+  !! - C3D8I: the same with three incompatible modes 1 - ξ², 1 - η², 1 - ζ² per
+  !!   displacement component (Wilson et al. 1973), their gradients taken with
+  !!   the centre Jacobian J0 and scaled by det J0 / det J (Taylor, Beresford &
+  !!   Wilson 1976), so that ∫ G dV = 0 and the element passes the patch test on
+  !!   any shape; the nine mode amplitudes are condensed per element;
   !! - C3D20: serendipity hexahedron (corners 1..8, mid-side nodes 9..12 on
   !!   the edges 1-2, 2-3, 3-4, 4-1, 13..16 on 5-6, 6-7, 7-8, 8-5, 17..20 on
   !!   1-5, 2-6, 3-7, 4-8), full 3×3×3 rule; C3D20R: the same with 2×2×2;
@@ -15,11 +20,13 @@ module superjoin_elements_solid
   !! Hughes, ch. 3). Strain order: εxx, εyy, εzz, γxy, γxz, γyz.
   use superjoin_kinds, only: wp
   use superjoin_error, only: error_t, fatal_error, EXIT_DECK
-  use superjoin_model_types, only: material_t, ET_C3D8, ET_C3D20, ET_C3D20R, ET_C3D4, ET_C3D10
+  use superjoin_model_types, only: material_t, ET_C3D8, ET_C3D20, ET_C3D20R, ET_C3D4, ET_C3D10, ET_C3D8I
   implicit none (type, external)
   private
 
   public :: is_solid_type, solid_stiffness, solid_body_load, solid_shape, solid_forces
+  public :: rule_t, solid_rule, point_gradients, elasticity, strain_matrix, solid_node_coordinates
+  public :: spd_solve, mode_strains
 
   type :: rule_t
     !! Integration points (natural coordinates) and weights.
@@ -32,7 +39,7 @@ contains
   elemental logical function is_solid_type(etype)
     !! etype is one of the solid element types of this module.
     integer, intent(in) :: etype
-    is_solid_type = any(etype == [ET_C3D8, ET_C3D20, ET_C3D20R, ET_C3D4, ET_C3D10])
+    is_solid_type = any(etype == [ET_C3D8, ET_C3D20, ET_C3D20R, ET_C3D4, ET_C3D10, ET_C3D8I])
   end function is_solid_type
 
   pure subroutine solid_shape(etype, xi, n, dn)
@@ -43,7 +50,7 @@ contains
     real(wp), intent(in) :: xi(3)
     real(wp), allocatable, intent(out) :: n(:), dn(:, :)
     select case (etype)
-    case (ET_C3D8)
+    case (ET_C3D8, ET_C3D8I)
        call hex8(xi, n, dn)
     case (ET_C3D20, ET_C3D20R)
        call hex20(xi, n, dn)
@@ -145,6 +152,27 @@ contains
          -1, -1, 0, 1, -1, 0, 1, 1, 0, -1, 1, 0]*1.0_wp, [3, 12])
   end function hex20_nodes
 
+  pure function solid_node_coordinates(etype) result(c)
+    !! Natural coordinates c(3, nnode) of the nodes of a solid element type
+    !! (tetrahedra: ξ, η, ζ = L2, L3, L4; mid-side nodes halfway along their edges).
+    integer, intent(in) :: etype
+    real(wp), allocatable :: c(:, :)
+    integer, parameter :: EDGE(2, 6) = reshape([1, 2, 2, 3, 3, 1, 1, 4, 2, 4, 3, 4], [2, 6])
+    integer :: a
+    select case (etype)
+    case (ET_C3D8, ET_C3D8I)
+       c = hex_corners()
+    case (ET_C3D20, ET_C3D20R)
+       c = hex20_nodes()
+    case default
+       allocate (c(3, merge(4, 10, etype == ET_C3D4)), source=0.0_wp)
+       c(:, 2:4) = reshape([1, 0, 0, 0, 1, 0, 0, 0, 1]*1.0_wp, [3, 3])
+       do a = 5, size(c, 2)
+          c(:, a) = 0.5_wp*(c(:, EDGE(1, a - 4)) + c(:, EDGE(2, a - 4)))
+       end do
+    end select
+  end function solid_node_coordinates
+
   pure function solid_rule(etype, for_load) result(r)
     !! The integration rule of element type etype (for_load: the full rule of
     !! the reduced C3D20R, for consistent body loads).
@@ -153,7 +181,7 @@ contains
     type(rule_t) :: r
     real(wp), parameter :: A = 0.5854101966249685_wp, B = 0.1381966011250105_wp
     select case (etype)
-    case (ET_C3D8)
+    case (ET_C3D8, ET_C3D8I)
        r = gauss_hex(2)
     case (ET_C3D20R)
        r = gauss_hex(merge(3, 2, for_load))
@@ -214,6 +242,14 @@ contains
             '(nodes out of order, or the element is inverted or too distorted)')
        return
     end if
+    inv = adjugate(jac)
+    dx = matmul(inv/detj, dn)
+  end subroutine point_gradients
+
+  pure function adjugate(jac) result(inv)
+    !! The adjugate of a 3×3 matrix (its inverse times its determinant).
+    real(wp), intent(in) :: jac(3, 3)
+    real(wp) :: inv(3, 3)
     inv(1, 1) = jac(2, 2)*jac(3, 3) - jac(2, 3)*jac(3, 2)
     inv(1, 2) = jac(1, 3)*jac(3, 2) - jac(1, 2)*jac(3, 3)
     inv(1, 3) = jac(1, 2)*jac(2, 3) - jac(1, 3)*jac(2, 2)
@@ -223,8 +259,80 @@ contains
     inv(3, 1) = jac(2, 1)*jac(3, 2) - jac(2, 2)*jac(3, 1)
     inv(3, 2) = jac(1, 2)*jac(3, 1) - jac(1, 1)*jac(3, 2)
     inv(3, 3) = jac(1, 1)*jac(2, 2) - jac(1, 2)*jac(2, 1)
-    dx = matmul(inv/detj, dn)
-  end subroutine point_gradients
+  end function adjugate
+
+  pure function spd_solve(m, b) result(x)
+    !! x = m⁻¹ b for a symmetric positive definite m (Gauss-Jordan
+    !! elimination; no pivoting is needed).
+    real(wp), intent(in) :: m(:, :), b(:, :)
+    real(wp) :: x(size(b, 1), size(b, 2))
+    real(wp) :: a(size(m, 1), size(m, 2)), f
+    integer :: i, k
+    a = m
+    x = b
+    do i = 1, size(a, 1)
+       f = a(i, i)
+       a(i, :) = a(i, :)/f
+       x(i, :) = x(i, :)/f
+       do k = 1, size(a, 1)
+          if (k == i) cycle
+          f = a(k, i)
+          a(k, :) = a(k, :) - f*a(i, :)
+          x(k, :) = x(k, :) - f*x(i, :)
+       end do
+    end do
+  end function spd_solve
+
+  pure subroutine mode_matrices(x, d, kua, kaa, g, error)
+    !! C3D8I: the coupling kua(24, 9) and mode stiffness kaa(9, 9) of the
+    !! incompatible modes, and their strain matrices g(6, 9, point) at the
+    !! 2×2×2 points: ∂P_k/∂x = J0⁻¹ ∂P_k/∂ξ det J0 / det J (Taylor's centre
+    !! Jacobian), P_k = 1 - ξ_k², modes ordered (P1: ux, uy, uz), (P2: …), (P3: …).
+    real(wp), intent(in) :: x(:, :), d(6, 6)
+    real(wp), intent(out) :: kua(24, 9), kaa(9, 9), g(6, 9, 8)
+    type(error_t), allocatable, intent(out) :: error
+    type(rule_t) :: r
+    real(wp), allocatable :: n(:), dn(:, :), dx(:, :)
+    real(wp) :: jac0(3, 3), inv0(3, 3), det0, detj, gx(3, 3), b(6, 24)
+    integer :: ig, k
+    kua = 0.0_wp
+    kaa = 0.0_wp
+    g = 0.0_wp
+    call solid_shape(ET_C3D8, [0.0_wp, 0.0_wp, 0.0_wp], n, dn)
+    jac0 = matmul(dn, transpose(x))
+    inv0 = adjugate(jac0)
+    det0 = dot_product(jac0(1, :), inv0(:, 1))
+    r = solid_rule(ET_C3D8I, .false.)
+    do ig = 1, size(r%w)
+       call point_gradients(ET_C3D8I, x, r%xi(:, ig), n, dx, detj, error)
+       if (allocated(error)) return
+       do k = 1, 3
+          gx(:, k) = -2.0_wp*r%xi(k, ig)*inv0(:, k)/detj      ! (adj J0 / det J0) det J0 / det J
+       end do
+       g(:, :, ig) = strain_matrix(gx)
+       b = strain_matrix(dx)
+       kua = kua + matmul(transpose(b), matmul(d, g(:, :, ig)))*(detj*r%w(ig))
+       kaa = kaa + matmul(transpose(g(:, :, ig)), matmul(d, g(:, :, ig)))*(detj*r%w(ig))
+    end do
+  end subroutine mode_matrices
+
+  pure subroutine mode_strains(x, mat, ue, eps, error)
+    !! C3D8I: the strains eps(6, 8) of the condensed incompatible modes at the
+    !! 2×2×2 points for the DOF values ue(24) (their amplitudes -kaa⁻¹ kauᵀ ue).
+    real(wp), intent(in) :: x(:, :), ue(:)
+    type(material_t), intent(in) :: mat
+    real(wp), intent(out) :: eps(6, 8)
+    type(error_t), allocatable, intent(out) :: error
+    real(wp) :: kua(24, 9), kaa(9, 9), g(6, 9, 8), alpha(9, 1)
+    integer :: ig
+    eps = 0.0_wp
+    call mode_matrices(x, elasticity(mat), kua, kaa, g, error)
+    if (allocated(error)) return
+    alpha = -spd_solve(kaa, matmul(transpose(kua), reshape(ue, [24, 1])))
+    do ig = 1, 8
+       eps(:, ig) = matmul(g(:, :, ig), alpha(:, 1))
+    end do
+  end subroutine mode_strains
 
   pure function elasticity(mat) result(d)
     !! Isotropic elasticity matrix (engineering shear strains).
@@ -253,7 +361,7 @@ contains
     type(rule_t) :: r
     real(wp), allocatable :: n(:), dx(:, :), b(:, :)
     real(wp) :: d(6, 6), detj
-    integer :: g, a, nn
+    integer :: g, nn
     nn = size(x, 2)
     if (.not. (mat%e > 0.0_wp) .or. .not. (mat%nu > -1.0_wp .and. mat%nu < 0.5_wp)) then
        call fatal_error(error, EXIT_DECK, 'a solid element needs E > 0 and -1 < nu < 0.5')
@@ -266,18 +374,39 @@ contains
     do g = 1, size(r%w)
        call point_gradients(etype, x, r%xi(:, g), n, dx, detj, error)
        if (allocated(error)) return
-       b = 0.0_wp
-       do a = 1, nn
-          b(1, 3*a - 2) = dx(1, a)
-          b(2, 3*a - 1) = dx(2, a)
-          b(3, 3*a) = dx(3, a)
-          b(4, 3*a - 2:3*a - 1) = [dx(2, a), dx(1, a)]
-          b(5, [3*a - 2, 3*a]) = [dx(3, a), dx(1, a)]
-          b(6, 3*a - 1:3*a) = [dx(3, a), dx(2, a)]
-       end do
+       b = strain_matrix(dx)
        ke = ke + matmul(transpose(b), matmul(d, b))*(detj*r%w(g))
     end do
+    if (etype == ET_C3D8I) call condense_modes(x, d, ke, error)
   end subroutine solid_stiffness
+
+  pure subroutine condense_modes(x, d, ke, error)
+    !! C3D8I: ke -= kua kaa⁻¹ kauᵀ, the incompatible modes condensed.
+    real(wp), intent(in) :: x(:, :), d(6, 6)
+    real(wp), intent(inout) :: ke(:, :)
+    type(error_t), allocatable, intent(out) :: error
+    real(wp) :: kua(24, 9), kaa(9, 9), g(6, 9, 8)
+    call mode_matrices(x, d, kua, kaa, g, error)
+    if (allocated(error)) return
+    ke = ke - matmul(kua, spd_solve(kaa, transpose(kua)))
+  end subroutine condense_modes
+
+  pure function strain_matrix(dx) result(b)
+    !! The strain-displacement matrix b(6, 3 nnode) of the gradients dx(3, nnode):
+    !! ε = b u_e, engineering shear strains γxy, γxz, γyz.
+    real(wp), intent(in) :: dx(:, :)
+    real(wp) :: b(6, 3*size(dx, 2))
+    integer :: a
+    b = 0.0_wp
+    do a = 1, size(dx, 2)
+       b(1, 3*a - 2) = dx(1, a)
+       b(2, 3*a - 1) = dx(2, a)
+       b(3, 3*a) = dx(3, a)
+       b(4, 3*a - 2:3*a - 1) = [dx(2, a), dx(1, a)]
+       b(5, [3*a - 2, 3*a]) = [dx(3, a), dx(1, a)]
+       b(6, 3*a - 1:3*a) = [dx(3, a), dx(2, a)]
+    end do
+  end function strain_matrix
 
   pure subroutine solid_forces(etype, x, mat, ue, fg, error)
     !! The forces the nodes exert on a solid element, K_e u_e, for the

@@ -15,7 +15,9 @@ module superjoin_elements_stresses
   use superjoin_error, only: error_t
   use superjoin_model_types, only: model_t, section_t, material_t, NDOF_NODE, ELEMENT_NODE_COUNT
   use superjoin_model_results, only: result_fields_t
-  use superjoin_elements_traits, only: element_traits_t, element_traits, FAMILY_TRUSS, FAMILY_PLANE, FAMILY_SHELL
+  use superjoin_elements_traits, only: element_traits_t, element_traits, FAMILY_TRUSS, FAMILY_PLANE, FAMILY_SHELL, &
+       FAMILY_SOLID
+  use superjoin_elements_solid_stress, only: solid_point_tensors
   use superjoin_elements_shell, only: s8r_stresses, shell_thermal_nodal_stresses, shell_frame, &
        shell_surface_stresses, quadratic_props, thick_shell_stresses, THICK_SURFACES
   use superjoin_elements_shell8, only: S8R_STRESS_POINTS
@@ -118,32 +120,42 @@ contains
     end associate
   end subroutine element_state
 
-  subroutine element_stresses(model, fields, is, isub, ie, points, nodes, ok)
-    !! Stress tensors of plane or shell element ie of substructure isub in
+  subroutine element_stresses(model, fields, is, isub, ie, points, nodes, ok, strain)
+    !! Stress tensors of plane, shell or solid element ie of substructure isub in
     !! step is: points(6, npoint, nsurf) at its integration points,
     !! nodes(6, nnode, nsurf) extrapolated to its nodes; nsurf = 1 for plane
-    !! elements, 2 for thin shells (1: bottom surface z = -t/2, 2: top, z along
+    !! and solid elements, 2 for thin shells (1: bottom surface z = -t/2, 2: top, z along
     !! the element normal), 3 for thick shells (bottom, top, mid-surface). ok
     !! false (and empty arrays) for other element types or an element that
     !! cannot be evaluated. The S8R returns global tensors at its section
     !! points (s8r_stresses), its thermal strain subtracted in its routine.
+    !! strain (present and true): the strains (tensor shears) instead, solids only.
     type(model_t), intent(in) :: model
     type(result_fields_t), intent(in) :: fields
     integer, intent(in) :: is, isub
     integer(ip), intent(in) :: ie
     real(wp), allocatable, intent(out) :: points(:, :, :), nodes(:, :, :)
     logical, intent(out) :: ok
+    logical, intent(in), optional :: strain
     type(element_state_t) :: el
     type(element_traits_t) :: t
     type(frame_stresses_t) :: fs
     type(error_t), allocatable :: error
+    logical :: want_strain
     ok = .false.
     allocate (points(NTENSOR, 0, 1), nodes(NTENSOR, 0, 1))
     t = element_traits(model%subs(isub)%elem_type(ie))
-    if (t%family /= FAMILY_PLANE .and. t%family /= FAMILY_SHELL) return
+    want_strain = .false.
+    if (present(strain)) want_strain = strain
+    if (t%family /= FAMILY_PLANE .and. t%family /= FAMILY_SHELL .and. t%family /= FAMILY_SOLID) return
+    if (want_strain .and. t%family /= FAMILY_SOLID) return
     call element_state(model, fields, is, isub, ie, el, ok)
     if (.not. ok) return
     ok = .false.
+    if (t%family == FAMILY_SOLID) then
+       call solid_element_tensors(el, want_strain, points, nodes, ok)
+       return
+    end if
     if (t%family == FAMILY_SHELL .and. t%quadratic) then
        call s8r_element_stresses(el, points, nodes, ok)
        return
@@ -154,6 +166,22 @@ contains
     call global_stresses(el%mat, t%plane_strain, fs, points, nodes)
     ok = .true.
   end subroutine element_stresses
+
+  subroutine solid_element_tensors(el, strain, points, nodes, ok)
+    !! element_stresses of a solid (superjoin_elements_solid_stress): points(6, npoint, 1),
+    !! nodes(6, nnode, 1), stresses or (strain) strains.
+    type(element_state_t), intent(in) :: el
+    logical, intent(in) :: strain
+    real(wp), allocatable, intent(inout) :: points(:, :, :), nodes(:, :, :)
+    logical, intent(out) :: ok
+    real(wp), allocatable :: sp(:, :), sn(:, :)
+    type(error_t), allocatable :: error
+    call solid_point_tensors(el%etype, el%x, el%mat, el%ue, strain, sp, sn, error)
+    ok = .not. allocated(error)
+    if (.not. ok) return
+    points = reshape(sp, [NTENSOR, size(sp, 2), 1])
+    nodes = reshape(sn, [NTENSOR, size(sn, 2), 1])
+  end subroutine solid_element_tensors
 
   subroutine s8r_element_stresses(el, points, nodes, ok)
     !! element_stresses of an S8R (superjoin_elements_shell8, shell8_stresses):

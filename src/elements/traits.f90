@@ -12,9 +12,9 @@ module superjoin_elements_traits
        SEC_SOLID, SEC_BEAM, SEC_SHELL, &
        ET_T2D2, ET_T3D2, ET_B23, ET_B33, ET_CPS3, ET_CPS4, ET_S3, ET_S4, ET_B21, ET_B31, &
        ET_CPE3, ET_CPE4, ET_S4R, ET_S3R, ET_S8R, ET_CPS6, ET_CPS8, ET_CPE6, ET_CPE8, &
-       ET_CPS8R, ET_CPE8R, ET_B32, ET_C3D8, ET_C3D20, ET_C3D20R, ET_C3D4, ET_C3D10, &
+       ET_CPS8R, ET_CPE8R, ET_B32, ET_C3D8, ET_C3D20, ET_C3D20R, ET_C3D4, ET_C3D10, ET_C3D8I, &
        DLOAD_PX, DLOAD_PY, DLOAD_PZ, DLOAD_P, DLOAD_GRAV, DLOAD_P1, DLOAD_P2, DLOAD_P3, &
-       DLOAD_P4, DLOAD_CENTRIF
+       DLOAD_P4, DLOAD_CENTRIF, DLOAD_P5, DLOAD_P6
   implicit none (type, external)
   private
 
@@ -60,7 +60,7 @@ module superjoin_elements_traits
 
   public :: element_traits, element_family, is_family, accepts_dload, section_card_name
   public :: valid_element_type, element_vtk_cell
-  public :: shell_of_plane, element_type_of_name
+  public :: shell_of_plane, element_type_of_name, dload_face
 
 contains
 
@@ -116,7 +116,7 @@ contains
     case (ET_S8R)
        t = with(t, FAMILY_SHELL, D6, SEC_SHELL, VTK_QUADRATIC_QUAD, edges=4, corners=4, shear=.true., &
                 reduced=.true.)
-    case (ET_C3D8)
+    case (ET_C3D8, ET_C3D8I)
        t = with(t, FAMILY_SOLID, D3, SEC_SOLID, VTK_HEXAHEDRON, edges=6)
     case (ET_C3D20)
        t = with(t, FAMILY_SOLID, D3, SEC_SOLID, VTK_QUADRATIC_HEXAHEDRON, edges=6, corners=8)
@@ -185,8 +185,8 @@ contains
     !! Whether a distributed load of kind DLOAD_* applies to element type etype:
     !! PX, PY on beams (per unit length), PZ on beams in space, P on shells,
     !! GRAV on every element, CENTRIF on all but B32 and the solids, P1..Pn on the faces of a
-    !! plane element; on beams P1 (local y) in space and P2 (local z) also on
-    !! planar two-node beams.
+    !! plane element and of a solid (P1..P6 on hexahedra, P1..P4 on tetrahedra); on beams P1
+    !! (local y) in space and P2 (local z) also on planar two-node beams.
     integer, intent(in) :: kind, etype
     type(element_traits_t) :: t
     logical :: beam2
@@ -204,13 +204,15 @@ contains
     case (DLOAD_CENTRIF)
        accepts_dload = etype /= ET_B32 .and. t%family /= FAMILY_SOLID
     case (DLOAD_P1)
-       accepts_dload = t%family == FAMILY_PLANE .or. (beam2 .and. .not. t%planar)
+       accepts_dload = t%family == FAMILY_PLANE .or. (beam2 .and. .not. t%planar) .or. t%family == FAMILY_SOLID
     case (DLOAD_P2)
-       accepts_dload = t%family == FAMILY_PLANE .or. beam2
+       accepts_dload = t%family == FAMILY_PLANE .or. beam2 .or. t%family == FAMILY_SOLID
     case (DLOAD_P3)
-       accepts_dload = t%family == FAMILY_PLANE
+       accepts_dload = t%family == FAMILY_PLANE .or. t%family == FAMILY_SOLID
     case (DLOAD_P4)
-       accepts_dload = t%family == FAMILY_PLANE .and. t%edges >= 4
+       accepts_dload = (t%family == FAMILY_PLANE .and. t%edges >= 4) .or. t%family == FAMILY_SOLID
+    case (DLOAD_P5, DLOAD_P6)
+       accepts_dload = t%family == FAMILY_SOLID .and. t%edges >= dload_face(kind)
     case default
        accepts_dload = .false.
     end select
@@ -251,4 +253,17 @@ contains
     end do
     if (name == 'B32R') etype = ET_B32
   end function element_type_of_name
+
+  elemental integer function dload_face(kind)
+    !! The face (or edge) number k of a *DLOAD Pk (DLOAD_P1 .. DLOAD_P6), 0 for other kinds.
+    integer, intent(in) :: kind
+    select case (kind)
+    case (DLOAD_P1, DLOAD_P2, DLOAD_P3, DLOAD_P4)
+       dload_face = kind - DLOAD_P1 + 1
+    case (DLOAD_P5, DLOAD_P6)
+       dload_face = kind - DLOAD_P5 + 5
+    case default
+       dload_face = 0
+    end select
+  end function dload_face
 end module superjoin_elements_traits

@@ -24,19 +24,21 @@ module superjoin_model_types
   integer, parameter, public :: ET_C3D8 = 23, ET_C3D20 = 24, ET_C3D20R = 25, ET_C3D4 = 26, ET_C3D10 = 27
     !! 3D solids (superjoin_elements_solid): hexahedra with 8 and 20 nodes (C3D20R: 2×2×2
     !! reduced integration), tetrahedra with 4 and 10 nodes; Abaqus node numbering.
-  integer, parameter, public :: NUM_ELEMENT_TYPES = 27
+  integer, parameter, public :: ET_C3D8I = 28
+    !! The 8-node hexahedron with incompatible modes (Wilson-Taylor, condensed per element).
+  integer, parameter, public :: NUM_ELEMENT_TYPES = 28
   character(len=6), parameter, public :: ELEMENT_TYPE_NAMES(NUM_ELEMENT_TYPES) = &
        ['T2D2  ', 'T3D2  ', 'B23   ', 'B33   ', 'CPS3  ', 'CPS4  ', 'S3    ', 'S4    ', &
         'B21   ', 'B31   ', 'CPE3  ', 'CPE4  ', &
         'S4R   ', 'S3R   ', 'S8R   ', &
         'CPS6  ', 'CPS8  ', 'CPE6  ', 'CPE8  ', 'CPS8R ', 'CPE8R ', 'B32   ', &
-        'C3D8  ', 'C3D20 ', 'C3D20R', 'C3D4  ', 'C3D10 ']
+        'C3D8  ', 'C3D20 ', 'C3D20R', 'C3D4  ', 'C3D10 ', 'C3D8I ']
     !! A blank name would be a reserved number without an element.
   integer, parameter, public :: ELEMENT_NODE_COUNT(NUM_ELEMENT_TYPES) = [2, 2, 2, 2, 3, 4, 3, 4, &
        2, 2, 3, 4, &
        4, 3, 8, &
        6, 8, 6, 8, 8, 8, 3, &
-       8, 20, 20, 4, 10]
+       8, 20, 20, 4, 10, 8]
   integer, parameter, public :: MAX_ELEMENT_NODES = 20
   integer, parameter, public :: MAX_ELEMENT_DOFS = 60
     !! DOFs of the largest element (C3D20: 20 nodes x 3; S8R has 8 x 6).
@@ -62,8 +64,10 @@ module superjoin_model_types
   integer, parameter, public :: DLOAD_CENTRIF = 11
     !! *DLOAD CENTRIF: value = ω², dir = the unit axis, point = a point of the axis; the load
     !! is ρ ω² r per unit volume, r the distance vector from the axis (consistent mass).
-  character(len=7), parameter, public :: DLOAD_NAMES(11) = ['PX     ', 'PY     ', 'PZ     ', 'P      ', &
-       'GRAV   ', 'P1     ', 'P2     ', 'P3     ', 'P4     ', 'TEMP   ', 'CENTRIF']
+  integer, parameter, public :: DLOAD_P5 = 12, DLOAD_P6 = 13
+    !! Pressure on faces 5 and 6 of a solid hexahedron (P1..P4: also its faces 1..4).
+  character(len=7), parameter, public :: DLOAD_NAMES(13) = ['PX     ', 'PY     ', 'PZ     ', 'P      ', &
+       'GRAV   ', 'P1     ', 'P2     ', 'P3     ', 'P4     ', 'TEMP   ', 'CENTRIF', 'P5     ', 'P6     ']
 
   integer, parameter, public :: FORM_TRANSFORM = 1, FORM_PENALTY = 2
     !! Formulation and rigid-link controls.

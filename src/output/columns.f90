@@ -26,8 +26,12 @@ contains
     call lu%put_field(model%subs(isub)%name, 20)
     call lu%put_int(int(model%subs(isub)%elem_id(ie), i8), 10)
     ! a five-letter type (CPS8R) takes one of the two blanks: the columns stay in place
+    ! (a six-letter one, C3D20R, shifts the rest of its row by one)
     associate (name => ELEMENT_TYPE_NAMES(model%subs(isub)%elem_type(ie)))
-      if (len_trim(name) > 4) then
+      if (len_trim(name) > 5) then
+         call lu%put(' ')
+         call lu%put_field(name, 6)
+      else if (len_trim(name) > 4) then
          call lu%put(' ')
          call lu%put_field(name, 5)
       else

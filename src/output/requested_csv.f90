@@ -3,9 +3,9 @@ module superjoin_output_requested_csv
   !! and an output request of a step naming the variable, *EL PRINT / *EL FILE
   !! or *NODE PRINT / *NODE FILE, with CalculiX's scoping of requests):
   !!   energies.csv        ENER (*EL PRINT, *EL FILE): strain energies and the energy balance
-  !!   point_stresses.csv  S (*EL PRINT, *EL FILE): plane and shell elements, at the integration points
+  !!   point_stresses.csv  S (*EL PRINT, *EL FILE): plane, shell and solid elements, at the integration points
   !!   fibre_stresses.csv  S (*EL PRINT, *EL FILE): beams with a library section, extreme points
-  !!   nodal_stresses.csv  S (*NODE PRINT, *NODE FILE, *EL FILE): plane and shell elements, at the nodes,
+  !!   nodal_stresses.csv  S (*NODE PRINT, *NODE FILE, *EL FILE): plane, shell and solid elements, at the nodes,
   !!                       averaged over the elements of the substructure
   !! Without such a request (or without the elements a stress table is about)
   !! the table of an earlier run into DIR is removed.
@@ -15,7 +15,7 @@ module superjoin_output_requested_csv
        ELEMENT_TYPE_NAMES
   use superjoin_output_stresses, only: nodal_stresses, fibre_stresses
   use superjoin_elements, only: element_stresses
-  use superjoin_elements, only: is_plate_type
+  use superjoin_elements, only: is_plate_type, is_solid_type
   use superjoin_model_results, only: result_fields_t
   use superjoin_output_requests, only: effective_requests
   use superjoin_output_energy, only: energy_t, compute_energies, requests_name
@@ -323,13 +323,15 @@ contains
   end subroutine write_fibre_stress_csv
 
   pure logical function any_plane(model)
-    !! Does the model have plane or shell elements (CPS3, CPS4, CPE3, CPE4, S3, S4)?
+    !! Does the model have plane, shell or solid elements (the elements with stresses at points)?
     type(model_t), intent(in) :: model
     integer :: isub
     any_plane = .false.
     do isub = 1, size(model%subs)
        if (model%subs(isub)%nelem == 0) cycle
-       if (any(is_plate_type(model%subs(isub)%elem_type(1:model%subs(isub)%nelem)))) any_plane = .true.
+       associate (types => model%subs(isub)%elem_type(1:model%subs(isub)%nelem))
+         if (any(is_plate_type(types) .or. is_solid_type(types))) any_plane = .true.
+       end associate
     end do
   end function any_plane
 

@@ -18,6 +18,7 @@ module superjoin_output_requests
   use superjoin_output_energy, only: write_energy_request
   use superjoin_output_stresses, only: write_point_stress_table, write_nodal_stress_table, &
        write_fibre_stress_table
+  use superjoin_output_solid_stresses, only: write_solid_point_table, solid_elements
   implicit none (type, external)
   private
 
@@ -372,10 +373,12 @@ contains
           call tensor_table(lu, model, fields, is, subs, elems, .false.)
           call write_point_stress_table(lu, model, fields, is, subs, elems)
           call write_fibre_stress_table(lu, model, fields, is, subs, elems)
+          call write_solid_point_table(lu, model, fields, is, subs, elems, .false.)
        case ('E')
           call lu%line('    E   strains (tensor components, global axes; trusses: uniaxial stress state; '// &
                'CPS3/CPS4: at the centroid)')
           call tensor_table(lu, model, fields, is, subs, elems, .true.)
+          call write_solid_point_table(lu, model, fields, is, subs, elems, .true.)
        case ('SF')
           call lu%line('    SF  section forces (trusses and beams: end forces, local axes, as ELEMENT END FORCES; '// &
                'plates and shells: nx, ny, nxy, mx, my, mxy at the centroid, element frame)')
@@ -399,7 +402,10 @@ contains
     logical, allocatable :: ok(:)
     character(len=200) :: hline
     real(wp) :: scale
-    integer :: i, d, nskip, nsolid
+    integer :: i, d, nskip
+    logical, allocatable :: solid(:)
+    allocate (solid, source=solid_elements(model, subs, elems))
+    if (size(elems) > 0 .and. all(solid)) return   ! solids: their integration-point table
     allocate (t(NTENSOR, size(elems)), ok(size(elems)))
     do i = 1, size(elems)
        call element_tensor(model, fields, is, subs(i), elems(i), strain, t(:, i), ok(i))
@@ -409,12 +415,8 @@ contains
     scale = 0.0_wp
     if (any(ok)) scale = maxval(abs(t))
     nskip = 0
-    nsolid = 0
     do i = 1, size(elems)
-       if (.not. ok(i) .and. is_solid_type(model%subs(subs(i))%elem_type(elems(i)))) then
-          nsolid = nsolid + 1
-          cycle
-       end if
+       if (solid(i)) cycle
        if (.not. ok(i)) then
           nskip = nskip + 1
           cycle
@@ -427,7 +429,6 @@ contains
     end do
     if (nskip > 0) call lu%line('    ('//itoa(nskip)//' beam or shell elements of the set have no '// &
          'single tensor: see SF)')
-    if (nsolid > 0) call lu%line(solid_note(nsolid))
   end subroutine tensor_table
 
   subroutine section_force_table(lu, model, fields, is, subs, elems)
@@ -482,10 +483,9 @@ contains
   end subroutine section_force_table
 
   pure function solid_note(n) result(text)
-    !! The note of a stress, strain or section force table for its n solid elements.
+    !! The note of a section force table for its n solid elements.
     integer, intent(in) :: n
     character(:), allocatable :: text
-    text = '    ('//itoa(n)//' solid elements of the set: stresses, strains and section forces of solids '// &
-         'are not produced yet)'
+    text = '    ('//itoa(n)//' solid elements of the set: solids have no section forces; see S and E)'
   end function solid_note
 end module superjoin_output_requests

@@ -27,7 +27,8 @@ module superjoin_output_stresses
   use superjoin_error, only: error_t
   use superjoin_model_types, only: model_t, ELEMENT_NODE_COUNT
   use superjoin_elements, only: element_stresses, NTENSOR
-  use superjoin_elements_traits, only: element_traits_t, element_traits, FAMILY_PLANE, FAMILY_SHELL, FAMILY_BEAM
+  use superjoin_elements_traits, only: element_traits_t, element_traits, FAMILY_PLANE, FAMILY_SHELL, FAMILY_BEAM, &
+       FAMILY_SOLID, is_family
   use superjoin_model_results, only: result_fields_t
   use superjoin_utils_text_buffer, only: text_buffer_t
   use superjoin_output_columns, only: element_prefix, chop
@@ -55,7 +56,7 @@ module superjoin_output_stresses
 
   public :: NTENSOR
   public :: nodal_stresses, write_point_stress_table, write_nodal_stress_table
-  public :: fibre_stresses, write_fibre_stress_table
+  public :: fibre_stresses, write_fibre_stress_table, list_types
 
 contains
 
@@ -129,11 +130,20 @@ contains
     integer, intent(in) :: subs(:)
     integer(ip), intent(in) :: elems(:)
     logical :: yes(size(elems))
+    yes = is_eight_node_shell(list_types(model, subs, elems))
+  end function is_s8r
+
+  pure function list_types(model, subs, elems) result(types)
+    !! The element type (ET_*) of each element of the list (elements elems of substructures subs).
+    type(model_t), intent(in) :: model
+    integer, intent(in) :: subs(:)
+    integer(ip), intent(in) :: elems(:)
+    integer :: types(size(elems))
     integer :: i
     do i = 1, size(elems)
-       yes(i) = is_eight_node_shell(model%subs(subs(i))%elem_type(elems(i)))
+       types(i) = model%subs(subs(i))%elem_type(elems(i))
     end do
-  end function is_s8r
+  end function list_types
 
   pure function s8r_nodes(model, subs, nodes) result(yes)
     !! Per node of the list (of substructures subs): a node of an S8R with a section.
@@ -141,17 +151,42 @@ contains
     integer, intent(in) :: subs(:)
     integer(ip), intent(in) :: nodes(:)
     logical :: yes(size(nodes))
-    logical, allocatable :: mask(:)
+    yes = nodes_of_kind(model, subs, nodes, .false.)
+  end function s8r_nodes
+
+  pure function solid_nodes(model, subs, nodes) result(yes)
+    !! Per node of the list (of substructures subs): a node of a solid element with a section.
+    type(model_t), intent(in) :: model
+    integer, intent(in) :: subs(:)
+    integer(ip), intent(in) :: nodes(:)
+    logical :: yes(size(nodes))
+    yes = nodes_of_kind(model, subs, nodes, .true.)
+  end function solid_nodes
+
+  pure function nodes_of_kind(model, subs, nodes, solid) result(yes)
+    !! Per node of the list (of substructures subs): a node of an element with
+    !! a section that is an S8R (solid false) or a solid (solid true).
+    type(model_t), intent(in) :: model
+    integer, intent(in) :: subs(:)
+    integer(ip), intent(in) :: nodes(:)
+    logical, intent(in) :: solid
+    logical :: yes(size(nodes))
+    logical, allocatable :: mask(:), pick(:)
     integer(ip) :: e
     integer :: isub, i
     yes = .false.
     do isub = 1, size(model%subs)
        if (.not. any(subs == isub)) cycle
        associate (sub => model%subs(isub))
-         if (.not. any(is_eight_node_shell(sub%elem_type))) cycle
+         if (solid) then
+            pick = is_family(sub%elem_type, FAMILY_SOLID)
+         else
+            pick = is_eight_node_shell(sub%elem_type)
+         end if
+         if (.not. any(pick)) cycle
          allocate (mask(sub%nnode), source=.false.)
          do e = 1, sub%nelem
-            if (is_eight_node_shell(sub%elem_type(e)) .and. sub%elem_section(e) > 0) &
+            if (pick(e) .and. sub%elem_section(e) > 0) &
                  mask(sub%elem_nodes(1:ELEMENT_NODE_COUNT(sub%elem_type(e)), e)) = .true.
          end do
          do i = 1, size(nodes)
@@ -160,7 +195,7 @@ contains
          deallocate (mask)
        end associate
     end do
-  end function s8r_nodes
+  end function nodes_of_kind
 
   elemental logical function is_eight_node_shell(etype)
     !! The S8R: a shell with mid-side nodes.
@@ -196,7 +231,8 @@ contains
     allocate (vals(size(elems)), ok(size(elems)))
     scale = 0.0_wp
     do i = 1, size(elems)
-       call element_stresses(model, fields, is, subs(i), elems(i), vals(i)%v, nodes, ok(i))
+       ok(i) = .not. is_family(model%subs(subs(i))%elem_type(elems(i)), FAMILY_SOLID)   ! their own table
+       if (ok(i)) call element_stresses(model, fields, is, subs(i), elems(i), vals(i)%v, nodes, ok(i))
        if (ok(i)) scale = max(scale, maxval(abs(vals(i)%v)))
     end do
     if (.not. any(ok)) return
@@ -258,6 +294,9 @@ contains
          'also the mid-surface, with xz/yz = 1.5 q/t; thin shells count (bot + top)/2 there)')
     if (any(s8r)) call lu%line('    (nodes of S8R: also the '// &
          'mid-surface; corners extrapolated bilinearly from the 2x2 points, mid-side nodes the mean of their two corners)')
+    if (any(solid_nodes(model, subs, nodes))) call lu%line('    (nodes of solid elements: the solids count among '// &
+         'the elements averaged; each extrapolates from its integration points as CalculiX: 2x2x2 trilinear, C3D20 '// &
+         'the least-squares fit of its 20-node field to its 27 points, C3D10 linear, C3D4 constant)')
     write (hline, '(4x,a20,a10,a6,a5,6a15)') 'substructure        ', '      node', ' elems', ' surf', TENSOR_HEAD
     call lu%line(trim(hline))
     scale = 0.0_wp

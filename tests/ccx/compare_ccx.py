@@ -960,6 +960,49 @@ def rot4(binary, outdir):
          'of x = 0.5)')
 
 
+SOLID_DECKS = ('achteld', 'achtelp', 'achtelg', 'achtel2', 'achtel9', 'achtel29', 'achtelcas', 'beam10p', 'beam20p',
+               'beamd')
+
+
+def solid_point_table(text):
+    """{(element, ip): [xx, yy, zz, xy, xz, yz]} of the listing's table of
+    stresses at the integration points of solid elements (step 1)."""
+    sec = text[text.index('S   at the integration points of the solid elements'):]
+    rows = {}
+    for line in sec.splitlines()[2:]:
+        f = line.split()
+        if len(f) < 10 or not f[1].isdigit():
+            break
+        rows[(int(f[1]), int(f[3]))] = [float(v.replace('E', 'e')) for v in f[4:10]]
+    return rows
+
+
+def solid_decks(binary, outdir):
+    """CalculiX's C3D20R cube decks (achtel*: prescribed displacements, point
+    loads, gravity, *EQUATION with 2, 9 and mixed terms, cascaded equations)
+    and its solid beams (beam10p: C3D10, beam20p: C3D20, beamd: C3D20R under
+    *DLOAD pressure on faces): *NODE PRINT U and the stresses of *EL PRINT S at
+    CalculiX's integration points of every element of the set must agree with
+    .dat.ref (1e-6 of the table; other tables of the .dat are not compared)."""
+    for name in SOLID_DECKS:
+        print(f'{name}.inp: *NODE PRINT U, *EL PRINT S at the integration points of its solids')
+        text = run(binary, outdir, name)
+        tables = dat_tables(os.path.join(HERE, name + '.dat.ref'))
+        for kind, set_name, _, ref, _ in tables:
+            if kind == 'displacements':
+                got = {(k,): v[:3] for k, v in listing_table(text, 'NSET=' + set_name, 'U').items()}
+            elif kind == 'stresses':
+                got = solid_point_table(text)
+            else:
+                continue
+            scale = max(abs(v) for row in ref.values() for v in row)
+            # the worst value of the table (a missing row counts as zeros)
+            worst = max(((abs(g - w), g, w, key) for key, want in ref.items()
+                         for g, w in zip(got.get(key, [0.0] * len(want)), want)), key=lambda t: t[0])
+            check(f'{name} {kind} of set {set_name}: {len(ref)} rows, the worst at {worst[3]}', worst[1],
+                  worst[2], scale)
+
+
 def main():
     if len(sys.argv) != 3:
         print(__doc__)
@@ -978,6 +1021,7 @@ def main():
     transform_print(binary, outdir)
     shell1lin(binary, outdir)
     rot4(binary, outdir)
+    solid_decks(binary, outdir)
     if FAILURES:
         print(f'FAIL: {len(FAILURES)} comparisons')
         sys.exit(1)

@@ -7,7 +7,7 @@ usage: verify_solids.py SUPERJOIN WORKDIR
 Exit status 1 if any check fails.
 
 Cases
-- patch tests, every type (C3D8, C3D20, C3D20R, C3D4, C3D10): a 2 x 2 x 2 block
+- patch tests, every type (C3D8, C3D20, C3D20R, C3D4, C3D10, C3D8I): a 2 x 2 x 2 block
   (tetrahedra: each cell split into six) on [0, 2] x [0, 1.5] x [0, 1] whose
   interior nodes are moved by a smooth non-affine map (curved interior edges
   for the quadratic types); every boundary node prescribed by a linear field
@@ -20,14 +20,19 @@ Cases
   exact elasticity solution of a prism under its own weight is quadratic
   (sigma_zz = rho g (z - H)), prescribed on the boundary; the interior must be
   exact (consistent body force);
+- C3D8I in bending, one element through the thickness: pure bending exact,
+  end shear near Timoshenko (C3D8 beside it);
 - a C3D20R cantilever (10 x 1 x 1, nu = 0, clamped end, end shear as a uniform
   traction) against Timoshenko's tip deflection P L^3 / 3EI + P L / (k G A),
   k = 5/6, on refined meshes;
 - two C3D8 blocks in two substructures joined by *CONTACT springs on DOFs 1-3
   (plain and condensed): tip displacement, joint opening and reactions exact;
-- VTK cells of every type; refusals of P1, CENTRIF and *TEMPERATURE on solids;
-- CalculiX (if installed): the patch block of every type with a load instead
-  of the interior prescription, `ccx -i`, displacements compared.
+- pressure on faces (*DLOAD P1..P6, *SURFACE S1..S6 with *DSLOAD): the
+  hydrostatic state of the distorted block on symmetry supports, exact;
+- VTK cells of every type; refusals of P, CENTRIF and *TEMPERATURE on solids;
+- CalculiX (if installed): the patch block of every type but C3D8I with a
+  load and face pressures instead of the interior prescription, `ccx -i`:
+  displacements, S and E at the integration points (.dat), nodal S (.frd).
 """
 import csv
 import itertools
@@ -39,7 +44,7 @@ import subprocess
 import sys
 
 failures = []
-TYPES = ("C3D8", "C3D20", "C3D20R", "C3D4", "C3D10")
+TYPES = ("C3D8", "C3D20", "C3D20R", "C3D4", "C3D10", "C3D8I")
 QUAD = {"C3D20", "C3D20R", "C3D10"}
 HEX_CORNERS = [(0, 0, 0), (2, 0, 0), (2, 2, 0), (0, 2, 0), (0, 0, 2), (2, 0, 2), (2, 2, 2), (0, 2, 2)]
 HEX_EDGES = [(0, 1), (1, 2), (2, 3), (3, 0), (4, 5), (5, 6), (6, 7), (7, 4), (0, 4), (1, 5), (2, 6), (3, 7)]
@@ -87,9 +92,9 @@ class Mesh:
     def cell(self, base):
         add = lambda p: tuple(b + q for b, q in zip(base, p))
         corners = [add(c) for c in HEX_CORNERS]
-        if self.etype in ("C3D8", "C3D20", "C3D20R"):
+        if self.etype in ("C3D8", "C3D8I", "C3D20", "C3D20R"):
             el = corners
-            if self.etype != "C3D8":
+            if self.etype not in ("C3D8", "C3D8I"):
                 el = el + [mid(corners[a], corners[b]) for a, b in HEX_EDGES]
             return [el]
         out = []
@@ -152,7 +157,7 @@ class Mesh:
             p = [0, 0, 0]
             p[ax], p[a], p[b] = side, i + di, j + dj
             return tuple(p)
-        if self.etype == "C3D8":
+        if self.etype in ("C3D8", "C3D8I"):
             return [(pt(di, dj), area / 4) for di in (0, 2) for dj in (0, 2)]
         if self.etype in ("C3D20", "C3D20R"):
             return ([(pt(di, dj), -area / 12) for di in (0, 2) for dj in (0, 2)]
@@ -233,8 +238,9 @@ def patch_tests(exe, work):
     print("\n## Patch tests (boundary displacements prescribed, interior free, distorted interior)\n")
     print("Interior corner nodes moved, mid-side nodes at the middle of straight edges; the quadratic")
     print("types also with curved interior edges (measured only: their rules are not exact there).\n")
-    print("| element | elements | nodes | interior error / max u | reaction error / max reaction |")
-    print("|---|---|---|---|---|")
+    print("| element | elements | nodes | interior error / max u | reaction error / max reaction "
+          "| stress error / max stress (points and nodes) |")
+    print("|---|---|---|---|---|---|")
     e, nu = 2.0e5, 0.3
     a0 = (1e-3, -2e-3, 5e-4)
     g = ((1.0e-3, 4.0e-4, -3.0e-4), (-2.0e-4, -5.0e-4, 6.0e-4), (7.0e-4, 1.0e-4, 8.0e-4))
@@ -245,9 +251,10 @@ def patch_tests(exe, work):
         mesh = Mesh((2, 2, 2), (2.0, 1.5, 1.0), et, True, curved)
         bnd = [(n, d + 1, field(x)[d]) for n, x in sorted(mesh.nodes.items()) if mesh.boundary(n) for d in range(3)]
         name = "patch_" + et + ("_curved" if curved else "")
-        disp, reac = solve(exe, work, name, deck(mesh, e, nu, bnd, [], extra="*EL FILE\nENER"))
+        disp, reac = solve(exe, work, name, deck(mesh, e, nu, bnd, [], extra="*EL FILE\nENER, S"))
         if disp is None:
             continue
+        serr = stress_error(os.path.join(work, name + "_csv"), sig)
         with open(os.path.join(work, name + "_csv", "energies.csv")) as f:
             energy = sum(float(row["energy"]) for row in csv.DictReader(f) if row["kind"] == "element")
         exact_energy = 0.5 * sum(sig[i][j] * eps[i][j] for i in range(3) for j in range(3)) * 3.0
@@ -262,7 +269,8 @@ def patch_tests(exe, work):
         rmax = max(abs(v) for v in expect.values())
         rerr = max(abs(reac.get(k, 0.0) - v) for k, v in expect.items())
         label = et + (", curved interior edges" if curved else "")
-        print(f"| {label} | {len(mesh.elems)} | {len(mesh.nodes)} | {err / umax:.1e} | {rerr / rmax:.1e} |")
+        print(f"| {label} | {len(mesh.elems)} | {len(mesh.nodes)} | {err / umax:.1e} | {rerr / rmax:.1e} "
+              f"| {serr:.1e} |")
         if curved:    # quadrature is not exact on curved elements: measured, not required
             continue
         check(err <= 1e-10 * umax, f"{et} patch: interior displacements exact ({err / umax:.1e})")
@@ -270,6 +278,87 @@ def patch_tests(exe, work):
               f"{et} patch: strain energy = sigma:eps V / 2 ({abs(energy / exact_energy - 1):.1e})")
         check(rerr <= 1e-10 * rmax, f"{et} patch: reactions = consistent tractions of the constant stress "
                                     f"({rerr / rmax:.1e})")
+        check(serr <= 1e-10, f"{et} patch: stresses at every integration point and node = the constant stress "
+                             f"({serr:.1e})")
+
+
+def stress_error(csvdir, sig):
+    """Largest difference / largest stress between the rows of point_stresses.csv
+    and nodal_stresses.csv and the constant stress tensor sig (1 if a table is
+    missing or empty)."""
+    want = [sig[0][0], sig[1][1], sig[2][2], sig[0][1], sig[0][2], sig[1][2]]
+    smax = max(abs(v) for v in want)
+    worst, rows = 0.0, 0
+    for table in ("point_stresses.csv", "nodal_stresses.csv"):
+        path = os.path.join(csvdir, table)
+        if not os.path.exists(path):
+            return 1.0
+        with open(path) as f:
+            for row in csv.DictReader(f):
+                rows += 1
+                got = [float(row[k]) for k in ("sxx", "syy", "szz", "sxy", "sxz", "syz")]
+                worst = max(worst, max(abs(a - b) for a, b in zip(got, want)) / smax)
+    return worst if rows else 1.0
+
+
+HEX_FACES = [(0, 1, 2, 3), (4, 7, 6, 5), (0, 4, 5, 1), (1, 5, 6, 2), (2, 6, 7, 3), (3, 7, 4, 0)]
+TET_FACES = [(0, 1, 2), (0, 3, 1), (1, 3, 2), (2, 3, 0)]
+
+
+def outer_faces(mesh):
+    """[(element number, face number, axis, side)] of the faces of the elements on the block's
+    faces x, y, z = size (side 1) or 0 (side 0), Abaqus's face numbering."""
+    faces = HEX_FACES if mesh.etype.startswith("C3D8") or mesh.etype.startswith("C3D20") else TET_FACES
+    out = []
+    for k, el in enumerate(mesh.elems, 1):
+        for f, corners in enumerate(faces, 1):
+            pts = [mesh.index[el[c]] for c in corners]
+            for ax in range(3):
+                for side, value in ((0, 0), (1, 2 * mesh.n[ax])):
+                    if all(p[ax] == value for p in pts):
+                        out.append((k, f, ax, side))
+    return out
+
+
+def pressure_tests(exe, work):
+    print("\n## Pressure on faces (*DLOAD Pk; C3D20R also *SURFACE S1..S6 + *DSLOAD)\n")
+    print("The distorted block (flat outer faces) on symmetry supports (u1 = 0 on x = 0, u2 on y = 0,")
+    print("u3 on z = 0) with a pressure p on its three other faces, named per element face: the")
+    print("hydrostatic state sigma = -p I, u = -p (1 - 2 nu) x / E, exact at every node; the reactions")
+    print("on each support face sum to p times its area.\n")
+    print("| element | faces loaded | displacement error / max u | stress error / p | resultant error |")
+    print("|---|---|---|---|---|")
+    e, nu, p = 2.0e5, 0.3, 7.0
+    size = (2.0, 1.5, 1.0)
+    for et in TYPES:
+        mesh = Mesh((2, 2, 2), size, et, True)
+        bnd = [(n, d + 1, 0.0) for n, x in sorted(mesh.nodes.items()) for d in range(3)
+               if mesh.index[n][d] == 0]
+        loaded = [(k, f) for k, f, ax, side in outer_faces(mesh) if side == 1]
+        if et == "C3D20R":      # the same faces through a surface
+            card = ("*DSLOAD\n LOADED, P, " + fmt(p))
+            surface = "*SURFACE, NAME=LOADED, TYPE=ELEMENT\n" + "".join(f" {k}, S{f}\n" for k, f in loaded)
+        else:
+            card = "*DLOAD\n" + "\n".join(f" {k}, P{f}, {fmt(p)}" for k, f in loaded)
+            surface = ""
+        text = deck(mesh, e, nu, bnd, [], extra=card + "\n*EL FILE\nS")
+        if surface:
+            text = text.replace("*STEP", surface + "*STEP", 1)
+        name = "pressure_" + et
+        disp, reac = solve(exe, work, name, text)
+        if disp is None:
+            continue
+        c = -p * (1 - 2 * nu) / e
+        umax = abs(c) * max(size)
+        err = max(abs(disp[n][d] - c * x[d]) for n, x in mesh.nodes.items() for d in range(3)) / umax
+        serr = stress_error(os.path.join(work, name + "_csv"), [[-p if i == j else 0.0 for j in range(3)]
+                                                                 for i in range(3)])
+        area = [size[1] * size[2], size[0] * size[2], size[0] * size[1]]
+        rerr = max(abs(sum(v for (n, dof), v in reac.items() if dof == d + 1) - p * area[d]) / (p * area[d])
+                   for d in range(3))
+        print(f"| {et} | {len(loaded)} | {err:.1e} | {serr:.1e} | {rerr:.1e} |")
+        check(err <= 1e-10 and serr <= 1e-10 and rerr <= 1e-10,
+              f"{et} pressure on faces: hydrostatic state exact ({err:.1e}, {serr:.1e}, {rerr:.1e})")
 
 
 def gravity_tests(exe, work):
@@ -305,9 +394,13 @@ def cantilever(exe, work):
     inertia, area, g = 1.0 / 12, 1.0, e / 2
     exact = p * length ** 3 / (3 * e * inertia) + p * length / (5.0 / 6.0 * g * area)
     print(f"Timoshenko: {exact:.6e} (bending {p * length ** 3 / (3 * e * inertia):.6e})\n")
-    print("| mesh (length x height x width) | tip deflection | / Timoshenko |")
-    print("|---|---|---|")
-    ratios = []
+    print("Bending stress sxx of the top fibre (y = h, nodal stresses averaged over the elements,")
+    print("mean over the width) against -P (L - x) (h/2) / I: at mid-span (-30) and at the root (-60, where the")
+    print("clamp, which also holds the section's warping, disturbs it).\n")
+    print("| mesh (length x height x width) | tip deflection | / Timoshenko | sxx mid-span / beam | "
+          "sxx root / beam |")
+    print("|---|---|---|---|---|")
+    ratios, mids = [], []
     for n in ((5, 2, 2), (10, 2, 2), (20, 2, 2), (20, 4, 4)):
         mesh = Mesh(n, (length, 1.0, 1.0), "C3D20R", False)
         bnd = [(nd, d, 0.0) for nd, x in sorted(mesh.nodes.items()) if x[0] == 0.0 for d in (1, 2, 3)]
@@ -317,33 +410,84 @@ def cantilever(exe, work):
                 if normal[0] == 1.0:
                     loads[nd] = loads.get(nd, 0.0) + s * p / area
         cl = [(nd, 2, v) for nd, v in sorted(loads.items())]
-        disp, _ = solve(exe, work, "cantilever_%d_%d_%d" % n, deck(mesh, e, 0.0, bnd, cl))
+        name = "cantilever_%d_%d_%d" % n
+        disp, _ = solve(exe, work, name, deck(mesh, e, 0.0, bnd, cl, extra="*EL FILE\nS"))
         if disp is None:
             continue
         tip = [disp[nd][1] for nd, x in mesh.nodes.items() if x[0] == length]
         mean = sum(tip) / len(tip)
         ratios.append(mean / exact)
-        print(f"| {n[0]} x {n[1]} x {n[2]} | {mean:.6e} | {mean / exact:.5f} |")
+        with open(os.path.join(work, name + "_csv", "nodal_stresses.csv")) as f:
+            sxx = {int(r["node"]): float(r["sxx"]) for r in csv.DictReader(f)}
+        fibre = [lambda xx: [sxx[nd] for nd, x in mesh.nodes.items() if x[0] == xx and x[1] == 1.0]][0]
+        mid = sum(fibre(length / 2)) / len(fibre(length / 2)) / (-p * length / 2 * 0.5 / inertia)
+        root = sum(fibre(0.0)) / len(fibre(0.0)) / (-p * length * 0.5 / inertia)
+        mids.append(mid)
+        print(f"| {n[0]} x {n[1]} x {n[2]} | {mean:.6e} | {mean / exact:.5f} | {mid:.6f} | {root:.4f} |")
     check(len(ratios) == 4 and abs(ratios[-1] - 1.0) < 0.01,
           f"C3D20R cantilever within 1% of Timoshenko on the finest mesh ({ratios[-1] if ratios else 0:.5f})")
     check(len(ratios) == 4 and abs(ratios[-1] - ratios[-2]) < 0.002,
           "C3D20R cantilever converged (last two meshes within 0.2%)")
+    if len(mids) == 4:
+        rate = math.log(abs(mids[0] - 1) / abs(mids[1] - 1)) / math.log(2) if mids[1] != 1 else float("inf")
+        print(f"\nmid-span bending stress: error {abs(mids[0] - 1):.1e}, {abs(mids[1] - 1):.1e}, "
+              f"{abs(mids[2] - 1):.1e} as the elements halve in length (rate {rate:.2f})")
+    check(len(mids) == 4 and abs(mids[-1] - 1.0) < 1e-3 and abs(mids[2] - 1) <= abs(mids[0] - 1),
+          f"C3D20R cantilever: mid-span bending stress within 0.1% of the beam's ({mids[-1] if mids else 0:.6f})")
+
+
+def c3d8i_bending(exe, work):
+    """A cantilever 10 x 1 x 1 (E = 1e5, nu = 0) of 10 hexahedra, one through the
+    thickness, clamped at x = 0: an end moment M (the consistent nodal forces
+    -+M/2 of the linear traction sxx = -12 M (y - h/2)/h^3 at the end face's
+    bottom and top corners) and an end shear P (P/4 per end corner): C3D8I
+    against the beam, C3D8 beside it (shear locking)."""
+    print("\n## C3D8I in bending (10 x 1 x 1, one element through the thickness, nu = 0)\n")
+    print("| load | beam | C3D8I | / beam | C3D8 | / beam |")
+    print("|---|---|---|---|---|---|")
+    length, e, inertia, g = 10.0, 1.0e5, 1.0 / 12, 0.5e5
+    cases = (("end moment M = 1", lambda x: -(x[1] - 0.5), 0, 1.0 * length ** 2 / (2 * e * inertia)),
+             ("end shear P = 1", lambda x: 0.25, 1, length ** 3 / (3 * e * inertia) + length / (5 / 6 * g)))
+    for label, force, dof, exact in cases:
+        row = []
+        for et in ("C3D8I", "C3D8"):
+            mesh = Mesh((10, 1, 1), (length, 1.0, 1.0), et, False)
+            bnd = [(n, d, 0.0) for n, x in sorted(mesh.nodes.items()) if x[0] == 0.0 for d in (1, 2, 3)]
+            cl = [(n, dof + 1, force(x)) for n, x in sorted(mesh.nodes.items()) if x[0] == length]
+            disp, _ = solve(exe, work, "bend_%s_%d" % (et, dof), deck(mesh, e, 0.0, bnd, cl))
+            if disp is None:
+                return
+            tip = [disp[n][1] for n, x in mesh.nodes.items() if x[0] == length]
+            row.append(sum(tip) / len(tip))
+        print(f"| {label} | {exact:.6e} | {row[0]:.6e} | {row[0] / exact:.5f} | {row[1]:.6e} | {row[1] / exact:.5f} |")
+        if dof == 0:
+            check(abs(row[0] / exact - 1) < 1e-10, f"C3D8I: pure bending exact with one element through the "
+                                                   f"thickness ({row[0] / exact:.12f})")
+        else:
+            check(abs(row[0] / exact - 1) < 0.02, f"C3D8I: end shear within 2% of Timoshenko ({row[0] / exact:.5f})")
 
 
 def calculix(exe, work):
     if shutil.which("ccx") is None:
         print("\nccx not installed: CalculiX cross-check skipped")
         return
-    print("\n## CalculiX cross-check (the distorted block, clamped at x = 0, loads on the far corner nodes)\n")
-    print("| element | largest difference / largest displacement |")
-    print("|---|---|")
+    print("\n## CalculiX cross-check (the distorted block, clamped at x = 0, loads on the far corner nodes,")
+    print("pressures 30 + 5 k on the faces of element k that lie on the block's faces y = 1.5 and z = 1)\n")
+    print("Stresses and strains at the integration points (*EL PRINT S, E: .dat, 7 digits), nodal")
+    print("stresses averaged over the elements (*EL FILE S: .frd, 5 digits).\n")
+    print("| element | U / max U | S at points / max | E at points / max | S at nodes / max |")
+    print("|---|---|---|---|---|")
     e, nu = 2.0e5, 0.3
     for et in TYPES:
+        if et == "C3D8I":       # CalculiX's C3D8I is not the Taylor element: see c3d8i_bending
+            continue
         mesh = Mesh((2, 2, 2), (2.0, 1.5, 1.0), et, True)
         bnd = [(n, d, 0.0) for n, x in sorted(mesh.nodes.items()) if x[0] == 0.0 for d in (1, 2, 3)]
         far = [n for n, p in mesh.index.items() if p[0] == 4 and p[1] in (0, 4) and p[2] in (0, 4)]
         cl = [(n, 1, 100.0) for n in far] + [(n, 3, -40.0) for n in far] + [(far[0], 2, 25.0)]
-        text = deck(mesh, e, nu, bnd, cl)
+        faces = [(k, f) for k, f, ax, side in outer_faces(mesh) if side == 1 and ax != 0]
+        dload = "*DLOAD\n" + "\n".join(f" {k}, P{f}, {fmt(30.0 + 5 * k)}" for k, f in faces)
+        text = deck(mesh, e, nu, bnd, cl, extra=dload + "\n*EL PRINT, ELSET=ALL\nS\nE\n*EL FILE\nS")
         disp, _ = solve(exe, work, "ccx_" + et, text)
         if disp is None:
             continue
@@ -351,29 +495,99 @@ def calculix(exe, work):
         with open(job + ".inp", "w") as f:
             f.write(text)
         r = subprocess.run(["ccx", "-i", os.path.basename(job)], cwd=work, capture_output=True, text=True)
-        ref = {}
-        if r.returncode == 0 and os.path.exists(job + ".dat"):
-            with open(job + ".dat") as f:
-                for line in f:
-                    m = re.match(r"^\s*(\d+)\s+(\S+)\s+(\S+)\s+(\S+)\s*$", line)
-                    if m:
-                        try:
-                            ref[int(m.group(1))] = tuple(float(v) for v in m.groups()[1:])
-                        except ValueError:
-                            pass
-        if not ref:
+        ref = dat_blocks(job + ".dat") if r.returncode == 0 and os.path.exists(job + ".dat") else {}
+        if not ref.get("displacements"):
             check(False, f"{et}: ccx gave no displacements ({r.stdout.strip()[-200:]})")
             continue
         umax = max(abs(v) for u in disp.values() for v in u)
-        diff = max(abs(disp[n][d] - ref[n][d]) for n in ref if n in disp for d in range(3))
-        print(f"| {et} | {diff / umax:.1e} |")
-        check(diff <= 1e-5 * umax, f"{et}: superjoin and ccx agree ({diff / umax:.1e}; ccx prints 7 digits)")
+        diff = max(abs(disp[n][d] - ref["displacements"][n][d]) for n in ref["displacements"] if n in disp
+                   for d in range(3)) / umax
+        mine = superjoin_points(job)
+        sdiff = table_difference(mine["S"], ref.get("stresses", {}))
+        ediff = table_difference(mine["E"], ref.get("strains", {}))
+        ndiff = table_difference(superjoin_nodes(job), frd_stresses(job + ".frd"))
+        print(f"| {et} | {diff:.1e} | {sdiff:.1e} | {ediff:.1e} | {ndiff:.1e} |")
+        check(diff <= 1e-5, f"{et}: superjoin and ccx agree on U ({diff:.1e}; ccx prints 7 digits)")
+        check(sdiff <= 1e-5 and ediff <= 1e-5, f"{et}: S and E at every integration point agree with ccx, in "
+                                               f"CalculiX's point order ({sdiff:.1e}, {ediff:.1e})")
+        check(ndiff <= 5e-5, f"{et}: averaged nodal stresses agree with ccx's .frd ({ndiff:.1e}; 5 digits)")
+
+
+def dat_blocks(path):
+    """CalculiX .dat: {'displacements': {node: values}, 'stresses'/'strains': {(elem, ip): values}}."""
+    out, block = {}, None
+    with open(path) as f:
+        for line in f:
+            m = re.match(r"\s*(displacements|stresses|strains) ", line)
+            if m:
+                block = out.setdefault(m.group(1), {})
+                continue
+            fields = line.split()
+            if block is None or not fields:
+                continue
+            try:
+                vals = [float(v) for v in fields]
+            except ValueError:
+                block = None
+                continue
+            if len(vals) == 4:
+                block[int(vals[0])] = tuple(vals[1:])
+            elif len(vals) == 8:
+                block[(int(vals[0]), int(vals[1]))] = tuple(vals[2:])
+    return out
+
+
+def superjoin_points(job):
+    """superjoin's listing tables of S and E at the integration points of solids: {(elem, ip): values}."""
+    out = {"S": {}, "E": {}}
+    block = None
+    with open(job + ".lst") as f:
+        for line in f:
+            m = re.match(r"\s+([SE])   at the integration points of the solid elements", line)
+            if m:
+                block = out[m.group(1)]
+                continue
+            fields = line.split()
+            if block is not None and len(fields) >= 10 and fields[1].isdigit():
+                block[(int(fields[1]), int(fields[3]))] = tuple(float(v) for v in fields[4:10])
+            elif block is not None and not fields:
+                block = None
+    return out
+
+
+def superjoin_nodes(job):
+    with open(job + "_csv/nodal_stresses.csv") as f:
+        return {int(r["node"]): tuple(float(r[k]) for k in ("sxx", "syy", "szz", "sxy", "sxz", "syz"))
+                for r in csv.DictReader(f)}
+
+
+def frd_stresses(path):
+    """The nodal STRESS block of a CalculiX .frd (ASCII): {node: (xx, yy, zz, xy, xz, yz)}."""
+    out, inside = {}, False
+    with open(path) as f:
+        for line in f:
+            if line.startswith(" -4  STRESS"):
+                inside = True
+            elif inside and line.startswith(" -3"):
+                break
+            elif inside and line.startswith(" -1"):
+                v = [float(line[13 + 12 * j:25 + 12 * j]) for j in range(6)]
+                out[int(line[3:13])] = (v[0], v[1], v[2], v[3], v[5], v[4])   # .frd: xx yy zz xy yz zx
+    return out
+
+
+def table_difference(mine, ref):
+    """Largest difference over the keys of ref / largest magnitude of ref (1 if a key is missing)."""
+    if not ref or any(k not in mine for k in ref):
+        return 1.0
+    scale = max(abs(v) for row in ref.values() for v in row)
+    return max(abs(a - b) for k, row in ref.items() for a, b in zip(mine[k], row)) / scale
 
 
 def vtk_cells(exe, work):
     """The VTK cells of every type: cell type and connectivity (Abaqus's node order is VTK's)."""
     print("\n## VTK cells\n")
-    cell = {"C3D8": 12, "C3D20": 25, "C3D20R": 25, "C3D4": 10, "C3D10": 24}
+    cell = {"C3D8": 12, "C3D20": 25, "C3D20R": 25, "C3D4": 10, "C3D10": 24, "C3D8I": 12}
     for et in TYPES:
         mesh = Mesh((2, 2, 2), (1.0, 1.0, 1.0), et, False)
         path = os.path.join(work, "vtk_" + et + ".deck")
@@ -403,7 +617,7 @@ def refusals(exe, work):
     print("\n## Refusals\n")
     mesh = Mesh((1, 1, 1), (1.0, 1.0, 1.0), "C3D8", False)
     bnd = [(n, d, 0.0) for n, x in mesh.nodes.items() if x[0] == 0.0 for d in (1, 2, 3)]
-    cases = [("P1", "*DLOAD\n 1, P1, 1.0", "does not apply to element 1 of type C3D8"),
+    cases = [("P", "*DLOAD\n 1, P, 1.0", "does not apply to element 1 of type C3D8"),
              ("CENTRIF", "*DLOAD\n ALL, CENTRIF, 1.0, 0., 0., 0., 0., 0., 1.", "of type C3D8"),
              ("TEMP", "*TEMPERATURE\n NALL, 10.", "of type C3D8")]
     for name, card, want in cases:
@@ -490,7 +704,9 @@ def main():
     os.makedirs(work, exist_ok=True)
     patch_tests(exe, work)
     gravity_tests(exe, work)
+    pressure_tests(exe, work)
     cantilever(exe, work)
+    c3d8i_bending(exe, work)
     calculix(exe, work)
     vtk_cells(exe, work)
     contact_blocks(exe, work)

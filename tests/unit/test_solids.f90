@@ -11,8 +11,10 @@ program test_solids
   !! tests/solids/verify_solids.py.
   use superjoin_kinds, only: wp
   use superjoin_error, only: error_t
-  use superjoin_model_types, only: material_t, ET_C3D8, ET_C3D20, ET_C3D20R, ET_C3D4, ET_C3D10
-  use superjoin_elements_solid, only: solid_stiffness, solid_body_load, solid_shape
+  use superjoin_model_types, only: material_t, ET_C3D8, ET_C3D20, ET_C3D20R, ET_C3D4, ET_C3D10, ET_C3D8I
+  use superjoin_elements_solid, only: solid_stiffness, solid_body_load, solid_shape, rule_t, solid_rule
+  use superjoin_elements_solid_faces, only: solid_pressure_load, solid_face_nodes
+  use superjoin_elements_solid_stress, only: solid_extrapolation, principal_stresses, von_mises_tensor
   use superjoin_testing, only: check, check_close, check_rel, finish
   use test_lapack, only: eigenvalues
   use superjoin_utils_strings, only: itoa
@@ -21,9 +23,9 @@ program test_solids
   real(wp), parameter :: TOL_EXACT = 1.0e-12_wp    !! exact discrete answers, relative
   real(wp), parameter :: TOL_ZERO_EIG = 1.0e-10_wp !! a zero eigenvalue, relative to the largest
   real(wp), parameter :: MIN_POSITIVE = 1.0e-6_wp  !! smallest non-zero eigenvalue / largest, at least
-  integer, parameter :: TYPES(5) = [ET_C3D8, ET_C3D20, ET_C3D20R, ET_C3D4, ET_C3D10]
-  character(len=6), parameter :: NAMES(5) = ['C3D8  ', 'C3D20 ', 'C3D20R', 'C3D4  ', 'C3D10 ']
-  integer, parameter :: ZERO_EIGS(5) = [6, 6, 12, 6, 6]
+  integer, parameter :: TYPES(6) = [ET_C3D8, ET_C3D20, ET_C3D20R, ET_C3D4, ET_C3D10, ET_C3D8I]
+  character(len=6), parameter :: NAMES(6) = ['C3D8  ', 'C3D20 ', 'C3D20R', 'C3D4  ', 'C3D10 ', 'C3D8I ']
+  integer, parameter :: ZERO_EIGS(6) = [6, 6, 12, 6, 6, 6]
   type(material_t) :: mat
   integer :: k
 
@@ -33,7 +35,10 @@ program test_solids
      call test_shapes(TYPES(k), NAMES(k))
      call test_matrix(TYPES(k), NAMES(k), ZERO_EIGS(k))
      call test_volume(TYPES(k), NAMES(k))
+     call test_faces(TYPES(k), NAMES(k))
+     call test_extrapolation(TYPES(k), NAMES(k))
   end do
+  call test_invariants()
   call test_errors()
   call finish()
 
@@ -70,7 +75,7 @@ contains
          0.0_wp, 0.0_wp, 0.5_wp, 0.5_wp, 0.0_wp, 0.5_wp, 0.0_wp, 0.5_wp, 0.5_wp], [3, 10])
     r = 0.0_wp
     nn = merge(8, merge(20, merge(4, 10, etype == ET_C3D4), etype == ET_C3D20 .or. etype == ET_C3D20R), &
-         etype == ET_C3D8)
+         etype == ET_C3D8 .or. etype == ET_C3D8I)
     if (etype == ET_C3D4 .or. etype == ET_C3D10) then
        r(:, 1:nn) = TET(:, 1:nn)
     else
@@ -162,6 +167,83 @@ contains
        call check_rel(sum(fe(d::3)), d*vol, TOL_EXACT, trim(name)//': body load sums to volume x force')
     end do
   end subroutine test_volume
+
+  subroutine test_faces(etype, name)
+    !! Pressure p on each face of the affine image of the reference element:
+    !! the nodal loads sum to p × the face's area, along its inward normal
+    !! (towards the element's centroid), and over all faces to zero.
+    integer, intent(in) :: etype
+    character(*), intent(in) :: name
+    real(wp), allocatable :: x(:, :), fe(:)
+    integer, allocatable :: nodes(:)
+    real(wp) :: r(3, 20), res(3), total(3), area(3), c(3)
+    type(error_t), allocatable :: error
+    real(wp), parameter :: A(3, 3) = reshape([2.0_wp, 0.1_wp, 0.2_wp, 0.3_wp, 1.5_wp, -0.1_wp, &
+         0.0_wp, 0.2_wp, 1.2_wp], [3, 3]), P = 3.0_wp
+    integer :: f, nc, nn, d
+    call reference_nodes(etype, r, nn)
+    x = matmul(A, r(:, 1:nn))
+    c = sum(x, 2)/nn
+    total = 0.0_wp
+    do f = 1, merge(6, 4, nn == 8 .or. nn == 20)
+       call solid_pressure_load(etype, x, f, P, fe, error)
+       call check(.not. allocated(error), trim(name)//': pressure on face '//itoa(f))
+       if (allocated(error)) return
+       call solid_face_nodes(etype, f, nodes, nc)
+       res = [(sum(fe(d::3)), d=1, 3)]
+       total = total + res
+       if (nc == 4) then       ! a flat quadrilateral: half the cross product of its diagonals
+          area = 0.5_wp*cross(x(:, nodes(3)) - x(:, nodes(1)), x(:, nodes(4)) - x(:, nodes(2)))
+       else
+          area = 0.5_wp*cross(x(:, nodes(2)) - x(:, nodes(1)), x(:, nodes(3)) - x(:, nodes(1)))
+       end if
+       call check_rel(norm2(res), P*norm2(area), TOL_EXACT, trim(name)//': face '//itoa(f)//' load = p area')
+       call check(dot_product(res, c - sum(x(:, nodes(1:nc)), 2)/nc) > 0.0_wp, &
+            trim(name)//': face '//itoa(f)//' pushed into the element')
+    end do
+    call check(maxval(abs(total)) < TOL_EXACT*P*maxval(abs(x))**2, trim(name)//': closed surface, no net force')
+    call solid_pressure_load(etype, x, 7, P, fe, error)
+    call check(allocated(error), trim(name)//': face 7 refused')
+  end subroutine test_faces
+
+  subroutine test_extrapolation(etype, name)
+    !! The nodal extrapolation of the integration-point values: a constant
+    !! field stays constant (rows sum to 1); where the points determine the
+    !! element's own field (C3D8, C3D20), its values at the points give
+    !! back its nodal values (E N = I).
+    integer, intent(in) :: etype
+    character(*), intent(in) :: name
+    real(wp), allocatable :: e(:, :), nmat(:, :), n(:), dn(:, :), id(:, :)
+    type(rule_t) :: rl
+    integer :: g, a
+    allocate (e, source=solid_extrapolation(etype))
+    call check(maxval(abs(sum(e, 2) - 1.0_wp)) < TOL_EXACT, trim(name)//': extrapolation keeps a constant')
+    if (etype /= ET_C3D8 .and. etype /= ET_C3D20 .and. etype /= ET_C3D8I) return
+    rl = solid_rule(etype, .false.)
+    allocate (nmat(size(rl%w), size(e, 1)))
+    do g = 1, size(rl%w)
+       call solid_shape(etype, rl%xi(:, g), n, dn)
+       nmat(g, :) = n
+    end do
+    allocate (id, source=matmul(e, nmat))
+    do a = 1, size(id, 1)
+       id(a, a) = id(a, a) - 1.0_wp
+    end do
+    call check(maxval(abs(id)) < 1.0e-10_wp, trim(name)//': extrapolation returns the element''s own field')
+  end subroutine test_extrapolation
+
+  subroutine test_invariants()
+    !! Von Mises and principal stresses of known tensors.
+    real(wp) :: p(3)
+    p = principal_stresses([3.0_wp, -1.0_wp, 2.0_wp, 0.0_wp, 0.0_wp, 0.0_wp])
+    call check(maxval(abs(p - [3.0_wp, 2.0_wp, -1.0_wp])) < TOL_EXACT, 'principal stresses of a diagonal tensor')
+    p = principal_stresses([0.0_wp, 0.0_wp, 0.0_wp, 5.0_wp, 0.0_wp, 0.0_wp])
+    call check(maxval(abs(p - [5.0_wp, 0.0_wp, -5.0_wp])) < TOL_EXACT, 'principal stresses of pure shear')
+    call check_close(von_mises_tensor([0.0_wp, 0.0_wp, 0.0_wp, 5.0_wp, 0.0_wp, 0.0_wp]), 5.0_wp*sqrt(3.0_wp), &
+         TOL_EXACT*10, 'von Mises of pure shear = sqrt(3) tau')
+    call check_close(von_mises_tensor([7.0_wp, 0.0_wp, 0.0_wp, 0.0_wp, 0.0_wp, 0.0_wp]), 7.0_wp, TOL_EXACT*10, &
+         'von Mises of uniaxial stress')
+  end subroutine test_invariants
 
   subroutine test_errors()
     !! An inverted element and an incompressible material are refused.

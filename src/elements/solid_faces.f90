@@ -1,0 +1,165 @@
+module superjoin_elements_solid_faces
+  !! Pressure on the faces of the 3D solid elements (*DLOAD P1..P6, *DSLOAD on
+  !! the faces S1..S6 of a *SURFACE), face numbering as Abaqus and CalculiX:
+  !!
+  !! - hexahedra (C3D8, C3D8I, C3D20, C3D20R): S1 1-2-3-4, S2 5-8-7-6, S3 1-5-6-2,
+  !!   S4 2-6-7-3, S5 3-7-8-4, S6 4-8-5-1;
+  !! - tetrahedra (C3D4, C3D10): S1 1-2-3, S2 1-4-2, S3 2-4-3, S4 3-4-1;
+  !!
+  !! the quadratic types add the mid-side node of each edge of the face. Each
+  !! face's corners run so that the right-hand normal points into the
+  !! element, the direction a positive pressure pushes. The consistent nodal
+  !! loads f_a = ∫ N_a p n dA use the face's own shape functions (bilinear or
+  !! 8-node serendipity quadrilateral, linear or 6-node triangle) and n dA =
+  !! ∂x/∂s × ∂x/∂t: 3×3 Gauss on quadrilaterals, the collapsed 3×3 Gauss rule
+  !! on triangles (exact on flat faces, and for polynomials of degree 4).
+  use superjoin_kinds, only: wp
+  use superjoin_error, only: error_t, fatal_error, EXIT_DECK
+  use superjoin_model_types, only: ET_C3D8, ET_C3D20, ET_C3D20R, ET_C3D4, ET_C3D10, ET_C3D8I
+  implicit none (type, external)
+  private
+
+  integer, parameter :: HEX_FACES(4, 6) = reshape([1, 2, 3, 4, 5, 8, 7, 6, 1, 5, 6, 2, 2, 6, 7, 3, &
+       3, 7, 8, 4, 4, 8, 5, 1], [4, 6])
+  integer, parameter :: TET_FACES(3, 4) = reshape([1, 2, 3, 1, 4, 2, 2, 4, 3, 3, 4, 1], [3, 4])
+  integer, parameter :: HEX_EDGES(2, 12) = reshape([1, 2, 2, 3, 3, 4, 4, 1, 5, 6, 6, 7, 7, 8, 8, 5, &
+       1, 5, 2, 6, 3, 7, 4, 8], [2, 12])
+  integer, parameter :: TET_EDGES(2, 6) = reshape([1, 2, 2, 3, 3, 1, 1, 4, 2, 4, 3, 4], [2, 6])
+
+  public :: solid_face_nodes, solid_pressure_load
+
+contains
+
+  pure subroutine solid_face_nodes(etype, face, nodes, ncorner)
+    !! The element's local node numbers of face `face` (corners in the face's
+    !! order, then the mid-side nodes of its edges corner 1-2, 2-3, …); nodes
+    !! is empty for a face the type does not have.
+    integer, intent(in) :: etype, face
+    integer, allocatable, intent(out) :: nodes(:)
+    integer, intent(out) :: ncorner
+    integer :: k, a, b
+    allocate (nodes(0))
+    ncorner = 0
+    select case (etype)
+    case (ET_C3D8, ET_C3D20, ET_C3D20R, ET_C3D8I)
+       if (face < 1 .or. face > 6) return
+       nodes = HEX_FACES(:, face)
+    case (ET_C3D4, ET_C3D10)
+       if (face < 1 .or. face > 4) return
+       nodes = TET_FACES(:, face)
+    case default
+       return
+    end select
+    ncorner = size(nodes)
+    if (etype == ET_C3D8 .or. etype == ET_C3D4 .or. etype == ET_C3D8I) return
+    do k = 1, ncorner
+       a = nodes(k)
+       b = nodes(mod(k, ncorner) + 1)
+       nodes = [nodes, edge_node(etype, a, b)]
+    end do
+  end subroutine solid_face_nodes
+
+  pure integer function edge_node(etype, a, b) result(m)
+    !! The mid-side node of the edge a-b of a quadratic solid.
+    integer, intent(in) :: etype, a, b
+    integer :: k
+    m = 0
+    if (etype == ET_C3D10) then
+       do k = 1, size(TET_EDGES, 2)
+          if (all(TET_EDGES(:, k) == [a, b]) .or. all(TET_EDGES(:, k) == [b, a])) m = 4 + k
+       end do
+    else
+       do k = 1, size(HEX_EDGES, 2)
+          if (all(HEX_EDGES(:, k) == [a, b]) .or. all(HEX_EDGES(:, k) == [b, a])) m = 8 + k
+       end do
+    end if
+  end function edge_node
+
+  pure subroutine solid_pressure_load(etype, x, face, p, fe, error)
+    !! Consistent nodal loads fe(3 nnode) of a pressure p (positive: pushing
+    !! into the element) on face `face` of a solid with node coordinates x(3, nnode).
+    integer, intent(in) :: etype, face
+    real(wp), intent(in) :: x(:, :), p
+    real(wp), allocatable, intent(out) :: fe(:)
+    type(error_t), allocatable, intent(out) :: error
+    integer, allocatable :: nodes(:)
+    real(wp), allocatable :: n(:), dn(:, :)
+    real(wp) :: gp(3), gw(3), s, t, w, a1(3), a2(3), nda(3)
+    integer :: nc, i, j, k
+    allocate (fe(3*size(x, 2)), source=0.0_wp)
+    call solid_face_nodes(etype, face, nodes, nc)
+    if (nc == 0) then
+       call fatal_error(error, EXIT_DECK, 'pressure on a face the solid element does not have')
+       return
+    end if
+    gp = [-sqrt(0.6_wp), 0.0_wp, sqrt(0.6_wp)]
+    gw = [5.0_wp, 8.0_wp, 5.0_wp]/9.0_wp
+    do j = 1, 3
+       do i = 1, 3
+          if (nc == 4) then
+             s = gp(i)
+             t = gp(j)
+             w = gw(i)*gw(j)
+          else            ! the collapsed rule: the square onto the triangle s, t >= 0, s + t <= 1
+             s = 0.5_wp*(1.0_wp + gp(i))
+             t = 0.5_wp*(1.0_wp - s)*(1.0_wp + gp(j))
+             w = gw(i)*gw(j)*(1.0_wp - s)/4.0_wp
+          end if
+          call face_shape(nc, size(nodes), s, t, n, dn)
+          a1 = matmul(x(:, nodes), dn(1, :))
+          a2 = matmul(x(:, nodes), dn(2, :))
+          nda = [a1(2)*a2(3) - a1(3)*a2(2), a1(3)*a2(1) - a1(1)*a2(3), a1(1)*a2(2) - a1(2)*a2(1)]
+          do k = 1, size(nodes)
+             fe(3*nodes(k) - 2:3*nodes(k)) = fe(3*nodes(k) - 2:3*nodes(k)) + n(k)*p*w*nda
+          end do
+       end do
+    end do
+  end subroutine solid_pressure_load
+
+  pure subroutine face_shape(nc, nn, s, t, n, dn)
+    !! Shape functions n(nn) and derivatives dn(2, nn) of a face with nc
+    !! corners and nn nodes: bilinear or 8-node serendipity quadrilateral on
+    !! -1..1 (corners (-1,-1), (1,-1), (1,1), (-1,1)), linear or 6-node
+    !! triangle in s, t (corners (0,0), (1,0), (0,1)).
+    integer, intent(in) :: nc, nn
+    real(wp), intent(in) :: s, t
+    real(wp), allocatable, intent(out) :: n(:), dn(:, :)
+    real(wp), parameter :: SC(4) = [-1.0_wp, 1.0_wp, 1.0_wp, -1.0_wp], TC(4) = [-1.0_wp, -1.0_wp, 1.0_wp, 1.0_wp]
+    real(wp) :: l(3), dl(2, 3)
+    integer :: a, b
+    allocate (n(nn), dn(2, nn))
+    if (nc == 4) then
+       do a = 1, 4
+          n(a) = (1.0_wp + SC(a)*s)*(1.0_wp + TC(a)*t)/4.0_wp
+          dn(:, a) = [SC(a)*(1.0_wp + TC(a)*t), TC(a)*(1.0_wp + SC(a)*s)]/4.0_wp
+          if (nn == 8) then
+             dn(:, a) = dn(:, a)*(SC(a)*s + TC(a)*t - 1.0_wp) + n(a)*[SC(a), TC(a)]
+             n(a) = n(a)*(SC(a)*s + TC(a)*t - 1.0_wp)
+          end if
+       end do
+       if (nn == 8) then
+          n(5:8) = [(1.0_wp - s*s)*(1.0_wp - t), (1.0_wp + s)*(1.0_wp - t*t), &
+               (1.0_wp - s*s)*(1.0_wp + t), (1.0_wp - s)*(1.0_wp - t*t)]/2.0_wp
+          dn(:, 5) = [-2.0_wp*s*(1.0_wp - t), -(1.0_wp - s*s)]/2.0_wp
+          dn(:, 6) = [1.0_wp - t*t, -2.0_wp*t*(1.0_wp + s)]/2.0_wp
+          dn(:, 7) = [-2.0_wp*s*(1.0_wp + t), 1.0_wp - s*s]/2.0_wp
+          dn(:, 8) = [-(1.0_wp - t*t), -2.0_wp*t*(1.0_wp - s)]/2.0_wp
+       end if
+       return
+    end if
+    l = [1.0_wp - s - t, s, t]
+    dl = reshape([-1.0_wp, -1.0_wp, 1.0_wp, 0.0_wp, 0.0_wp, 1.0_wp], [2, 3])
+    if (nn == 3) then
+       n = l
+       dn = dl
+       return
+    end if
+    do a = 1, 3
+       n(a) = l(a)*(2.0_wp*l(a) - 1.0_wp)
+       dn(:, a) = (4.0_wp*l(a) - 1.0_wp)*dl(:, a)
+       b = mod(a, 3) + 1
+       n(3 + a) = 4.0_wp*l(a)*l(b)
+       dn(:, 3 + a) = 4.0_wp*(l(a)*dl(:, b) + l(b)*dl(:, a))
+    end do
+  end subroutine face_shape
+end module superjoin_elements_solid_faces

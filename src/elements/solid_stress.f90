@@ -1,0 +1,154 @@
+module superjoin_elements_solid_stress
+  !! Stresses and strains of the 3D solid elements (superjoin_elements_solid)
+  !! at their integration points and extrapolated to their nodes, as
+  !! CalculiX's .dat (points) and .frd (nodes) give them:
+  !!
+  !! - points in the order of the element's stiffness rule, which is
+  !!   CalculiX's: hexahedra ξ fastest, then η, then ζ (2×2×2 at ±1/√3 for
+  !!   C3D8 and C3D20R, 3×3×3 at -√0.6, 0, √0.6 for C3D20); C3D4 its centroid;
+  !!   C3D10 four points, point k nearest corner k;
+  !! - nodes: the polynomial through the points of the rule evaluated at the
+  !!   nodes: trilinear through 2×2×2 points (a mid-side node gets the mean of
+  !!   its two corners), linear through C3D10's four points, constant for
+  !!   C3D4; C3D20's 27 points: the least-squares fit of the element's own
+  !!   20-node serendipity field to the 27 values (as CalculiX's .frd: checked
+  !!   against ccx 2.20 on distorted meshes, tests/solids/verify_solids.py).
+  !!
+  !! Tensors in global axes, Voigt order xx, yy, zz, xy, xz, yz; strains with
+  !! tensor shear components (γ/2), as CalculiX prints them.
+  use superjoin_kinds, only: wp
+  use superjoin_error, only: error_t
+  use superjoin_model_types, only: material_t, ET_C3D8I
+  use superjoin_elements_solid, only: rule_t, solid_rule, point_gradients, elasticity, strain_matrix, &
+       solid_node_coordinates, solid_shape, spd_solve, mode_strains
+  implicit none (type, external)
+  private
+
+  public :: solid_point_tensors, solid_extrapolation, von_mises_tensor, principal_stresses
+
+contains
+
+  pure subroutine solid_point_tensors(etype, x, mat, ue, strain, points, nodes, error)
+    !! Stresses (strain false) or strains (strain true) of a solid element with
+    !! node coordinates x(3, nnode) and DOF values ue(3 nnode): points(6, npoint)
+    !! at its integration points, nodes(6, nnode) extrapolated to its nodes.
+    integer, intent(in) :: etype
+    real(wp), intent(in) :: x(:, :), ue(:)
+    type(material_t), intent(in) :: mat
+    logical, intent(in) :: strain
+    real(wp), allocatable, intent(out) :: points(:, :), nodes(:, :)
+    type(error_t), allocatable, intent(out) :: error
+    type(rule_t) :: r
+    real(wp), allocatable :: n(:), dx(:, :)
+    real(wp) :: d(6, 6), eps(6), detj, modes(6, 8)
+    integer :: g
+    d = elasticity(mat)
+    r = solid_rule(etype, .false.)
+    modes = 0.0_wp
+    if (etype == ET_C3D8I) call mode_strains(x, mat, ue, modes, error)   ! the condensed modes' strains
+    if (allocated(error)) return
+    allocate (points(6, size(r%w)))
+    do g = 1, size(r%w)
+       call point_gradients(etype, x, r%xi(:, g), n, dx, detj, error)
+       if (allocated(error)) return
+       eps = matmul(strain_matrix(dx), ue)
+       if (etype == ET_C3D8I) eps = eps + modes(:, g)
+       if (strain) then
+          points(:, g) = [eps(1:3), 0.5_wp*eps(4:6)]
+       else
+          points(:, g) = matmul(d, eps)
+       end if
+    end do
+    nodes = matmul(points, transpose(solid_extrapolation(etype)))
+  end subroutine solid_point_tensors
+
+  pure function solid_extrapolation(etype) result(e)
+    !! e(nnode, npoint): the nodal values of the field through (or fitted to,
+    !! 27 points) the values at the integration points of the stiffness rule.
+    integer, intent(in) :: etype
+    real(wp), allocatable :: e(:, :)
+    type(rule_t) :: r
+    real(wp), allocatable :: c(:, :)
+    real(wp) :: q, l0, l1
+    integer :: a, g
+    r = solid_rule(etype, .false.)
+    if (size(r%w) == 27) then
+       e = least_squares_fit(etype, r)
+       return
+    end if
+    allocate (c, source=solid_node_coordinates(etype))
+    allocate (e(size(c, 2), size(r%w)))
+    do g = 1, size(r%w)
+       do a = 1, size(c, 2)
+          select case (size(r%w))
+          case (1)
+             e(a, g) = 1.0_wp
+          case (4)         ! linear through the points: volume coordinate of corner g
+             l0 = minval(r%xi(:, 1))
+             l1 = 1.0_wp - 3.0_wp*l0
+             q = 1.0_wp - sum(c(:, a))
+             if (g > 1) q = c(g - 1, a)
+             e(a, g) = (q - l0)/(l1 - l0)
+          case default     ! trilinear through (±1/√3)³
+             q = abs(r%xi(1, g))
+             e(a, g) = product(0.5_wp*(1.0_wp + r%xi(:, g)*c(:, a)/q**2))
+          end select
+       end do
+    end do
+  end function solid_extrapolation
+
+  pure function least_squares_fit(etype, r) result(e)
+    !! e(nnode, npoint) = (Nᵀ N)⁻¹ Nᵀ, N(npoint, nnode) the shape functions at
+    !! the points of rule r: the nodal values whose field fits the point values
+    !! best (Nᵀ N is symmetric positive definite).
+    integer, intent(in) :: etype
+    type(rule_t), intent(in) :: r
+    real(wp), allocatable :: e(:, :)
+    real(wp), allocatable :: n(:), dn(:, :), nm(:, :)
+    integer :: g
+    do g = 1, size(r%w)
+       call solid_shape(etype, r%xi(:, g), n, dn)
+       if (g == 1) allocate (nm(size(r%w), size(n)))
+       nm(g, :) = n
+    end do
+    e = spd_solve(matmul(transpose(nm), nm), transpose(nm))
+  end function least_squares_fit
+
+  pure real(wp) function von_mises_tensor(s) result(vm)
+    !! Von Mises stress of a tensor s (Voigt order, tensor shears), scaled so
+    !! that the squares cannot overflow.
+    real(wp), intent(in) :: s(6)
+    real(wp) :: a(6), sc
+    vm = 0.0_wp
+    sc = maxval(abs(s))
+    if (sc == 0.0_wp) return
+    a = s/sc
+    vm = sc*sqrt(max(0.0_wp, 0.5_wp*((a(1) - a(2))**2 + (a(2) - a(3))**2 + (a(3) - a(1))**2) &
+         + 3.0_wp*sum(a(4:6)**2)))
+  end function von_mises_tensor
+
+  pure function principal_stresses(s) result(p)
+    !! The principal values p(3) of a symmetric tensor s (Voigt order, tensor
+    !! shears), largest first (the trigonometric solution of the cubic).
+    real(wp), intent(in) :: s(6)
+    real(wp) :: p(3), a(6), sc, m, q, r, phi, det, c
+    real(wp), parameter :: PI = acos(-1.0_wp)
+    p = 0.0_wp
+    sc = maxval(abs(s))
+    if (sc == 0.0_wp) return
+    a = s/sc
+    m = sum(a(1:3))/3.0_wp
+    a(1:3) = a(1:3) - m
+    q = sqrt(max(0.0_wp, (sum(a(1:3)**2) + 2.0_wp*sum(a(4:6)**2))/6.0_wp))
+    if (q <= 1.0e-14_wp) then
+       p = m*sc
+       return
+    end if
+    det = a(1)*(a(2)*a(3) - a(6)**2) - a(4)*(a(4)*a(3) - a(6)*a(5)) + a(5)*(a(4)*a(6) - a(2)*a(5))
+    r = max(-1.0_wp, min(1.0_wp, det/(2.0_wp*q**3)))
+    phi = acos(r)/3.0_wp
+    c = 2.0_wp*q
+    p = sc*(m + c*[cos(phi), cos(phi + 2.0_wp*PI/3.0_wp), cos(phi + 4.0_wp*PI/3.0_wp)])
+    p = [maxval(p), p(1) + p(2) + p(3) - maxval(p) - minval(p), minval(p)]
+  end function principal_stresses
+end module superjoin_elements_solid_stress

@@ -570,8 +570,15 @@ contains
     logical :: ok
     ni = a%n - nb
     if (allocated(self%interior)) deallocate (self%interior)
-    if (ni == 0) then
-       call upper_to_dense(a, kstar)
+    if (ni == 0) then   ! K* = a: nothing to factor
+       kstar = 0.0_wp
+       do j = 1, nb
+          kstar(a%rowind(a%colptr(j):a%colptr(j + 1) - 1), j) = a%val(a%colptr(j):a%colptr(j + 1) - 1)
+       end do
+       kstar = kstar + transpose(kstar)
+       do j = 1, nb
+          kstar(j, j) = 0.5_wp*kstar(j, j)
+       end do
        return
     end if
     call analyze_schur(self, a, nb, error)
@@ -601,20 +608,6 @@ contains
        self%interior%val = a%val(1:a%colptr(ni + 1) - 1)
     end if
   end subroutine mumps_schur
-
-  subroutine upper_to_dense(a, full)
-    !! full = a in both triangles (a: upper triangle, CSC).
-    type(sparse_sym_t), intent(in) :: a
-    real(wp), intent(out) :: full(:, :)
-    integer(i8) :: j, pos
-    full = 0.0_wp
-    do j = 1, a%n
-       do pos = a%colptr(j), a%colptr(j + 1) - 1
-          full(a%rowind(pos), j) = a%val(pos)
-          full(j, a%rowind(pos)) = a%val(pos)
-       end do
-    end do
-  end subroutine upper_to_dense
 
   subroutine mumps_input_norm(self, anorm, error)
     !! The 1-norm (= infinity norm, the matrix is symmetric) of the matrix

@@ -5,7 +5,9 @@ program test_mumps
   !! K* formed by solves. Skipped (status 77) in a build without MUMPS.
   use superjoin_kinds, only: wp, i8
   use superjoin_error, only: error_t, EXIT_SINGULAR
-  use superjoin_solvers, only: linear_solver_t, sparse_sym_t, new_solver, mumps_available, mumps_solver_t
+  use superjoin_solvers, only: linear_solver_t, sparse_sym_t, new_solver, mumps_available, mumps_solver_t, &
+       cholmod_solver_t
+  use superjoin_solvers_by_solves, only: by_solves_t
   use superjoin_testing, only: check, finish
   implicit none (type, external)
 
@@ -98,13 +100,8 @@ contains
     class(linear_solver_t), allocatable :: s
     type(error_t), allocatable :: error
     type(sparse_sym_t) :: a
-    integer(i8) :: j, k
     call laplace2d(GRID, a)
-    do j = 1, a%n
-       do k = a%colptr(j), a%colptr(j + 1) - 1
-          if (j == KBAD .or. a%rowind(k) == KBAD) a%val(k) = 0.0_wp
-       end do
-    end do
+    call zero_column(a, KBAD)
     call new_solver(name, a%n, s, error)
     call s%analyze(a, error)
     call check(.not. allocated(error), name//': analyze of the singular matrix')
@@ -199,13 +196,8 @@ contains
     type(error_t), allocatable :: error
     type(sparse_sym_t) :: a
     real(wp), allocatable :: ks(:, :)
-    integer(i8) :: j, k
     call laplace2d(GRID, a, floating=.true.)
-    do j = 1, a%n
-       do k = a%colptr(j), a%colptr(j + 1) - 1
-          if (j == KBAD .or. a%rowind(k) == KBAD) a%val(k) = 0.0_wp
-       end do
-    end do
+    call zero_column(a, KBAD)
     call new_solver(name, a%n, s, error)
     allocate (ks(GRID, GRID))
     call s%schur(a, GRID, ks, error)
@@ -217,6 +209,18 @@ contains
     end if
     call s%release()
   end subroutine test_schur_breakdown
+
+  subroutine zero_column(a, jz)
+    !! Row and column jz of a set to zero.
+    type(sparse_sym_t), intent(inout) :: a
+    integer(i8), intent(in) :: jz
+    integer(i8) :: j, k
+    do j = 1, a%n
+       do k = a%colptr(j), a%colptr(j + 1) - 1
+          if (j == jz .or. a%rowind(k) == jz) a%val(k) = 0.0_wp
+       end do
+    end do
+  end subroutine zero_column
 
   subroutine schur_with(name, alone, a, nb, ks, x, d)
     !! K* of a by the named MUMPS solver's schur (alone: on MPI_COMM_SELF),
@@ -249,28 +253,18 @@ contains
   end subroutine schur_with
 
   subroutine reference_schur(a, nb, ks)
-    !! K* = a_bb - a_bi a_ii^-1 a_ib by CHOLMOD solves, both triangles.
+    !! K* by the default route of linear_solver_t (a_ii factored by CHOLMOD,
+    !! 2 nb solves), whatever CHOLMOD's own schur is.
     type(sparse_sym_t), intent(in) :: a
     integer(i8), intent(in) :: nb
     real(wp), allocatable, intent(out) :: ks(:, :)
-    type(sparse_sym_t) :: aii
-    real(wp), allocatable :: full(:, :), x(:, :)
-    integer(i8) :: ni, j, k
-    ni = a%n - nb
-    allocate (full(a%n, a%n))
-    full = 0.0_wp
-    do j = 1, a%n
-       do k = a%colptr(j), a%colptr(j + 1) - 1
-          full(a%rowind(k), j) = a%val(k)
-          full(j, a%rowind(k)) = a%val(k)
-       end do
-    end do
-    ks = full(ni + 1:, ni + 1:)
-    if (ni == 0) return
-    call interior(a, ni, aii)
-    call solve_with('cholmod', aii, full(1:ni, ni + 1:), x)
-    ks = ks - matmul(full(ni + 1:, 1:ni), x)
-    ks = 0.5_wp*(ks + transpose(ks))
+    type(by_solves_t) :: s
+    type(error_t), allocatable :: error
+    allocate (ks(nb, nb))
+    allocate (cholmod_solver_t :: s%inner)
+    call s%schur(a, nb, ks, error)
+    call check(.not. allocated(error), 'cholmod: K* by solves')
+    call s%release()
   end subroutine reference_schur
 
   subroutine interior(a, ni, aii)

@@ -16,7 +16,7 @@ REPS=${2:-5}
 export OPENBLAS_NUM_THREADS=1
 mpi=(mpirun --allow-run-as-root --oversubscribe --quiet -np 2)
 echo "load average: $(cut -d' ' -f1-3 /proc/loadavg)"
-for part in "plane 150" "shell 70" "frame 12 40"; do
+for part in "plane 150" "plane 150 bolts" "shell 70" "shell 70 bolts" "frame 12 40"; do
   # shellcheck disable=SC2086
   "$BIN" "$SOLVER" "$REPS" $part
   # shellcheck disable=SC2086

@@ -108,8 +108,8 @@ module superjoin_solvers_mumps
        !! pivots and info then refer to the first n - nschur
      real(wp), allocatable :: schur_block(:)
        !! the Schur complement of the last factorization, column-major upper triangle
-     type(sparse_sym_t), allocatable :: interior
-       !! schur: a_ii, kept for pivots() up to INVERSE_DIAGONAL_MAX_N columns
+     real(wp), allocatable :: interior_pivots(:)
+       !! schur: the pivots of a_ii (up to INVERSE_DIAGONAL_MAX_N columns)
      type(comm_t) :: comm
    contains
      procedure :: analyze => mumps_analyze
@@ -496,9 +496,7 @@ contains
     !! of the ordering (and of the number of processes). d = 0 (unknown, the
     !! health block's MAXRATIO is then n/a) above INVERSE_DIAGONAL_MAX_N
     !! unknowns or if the computation fails. Collective unless alone.
-    !! After schur: the pivots of a_ii (MUMPS refuses the entries of the
-    !! inverse after a Schur factorization, INFOG(1) = -48), from a factor of
-    !! a_ii made for them (see interior_pivots).
+    !! After schur: the pivots of a_ii that schur found (see pivots_of_interior).
     class(mumps_solver_t), intent(inout) :: self
     real(wp), intent(out) :: d(:)
     integer(c_int), allocatable :: ptr(:), irow(:)
@@ -511,7 +509,7 @@ contains
     if (.not. self%factored .or. self%n <= 0 .or. size(d, kind=i8) < self%n - self%nschur) return
     if (self%n - self%nschur > INVERSE_DIAGONAL_MAX_N) return
     if (self%nschur > 0) then
-       call interior_pivots(self, d)
+       if (allocated(self%interior_pivots)) d(1:self%n - self%nschur) = self%interior_pivots
        return
     end if
     allocate (ptr(self%n + 1), irow(self%n), dinv(self%n), stat=stat)
@@ -528,25 +526,38 @@ contains
     where (dinv /= 0.0_wp) d(1:self%n) = 1.0_wp/dinv
   end subroutine mumps_pivots
 
-  subroutine interior_pivots(self, d)
-    !! pivots() after schur: d(1:ni) = 1/(a_ii^-1)_jj from an instance of
-    !! a_ii alone (the same sym, communicator and ordering), factored for them
-    !! and released. Zeros if a_ii was not kept or that factorization fails.
+  subroutine pivots_of_interior(self, a, ni, error)
+    !! schur's pivots of a_ii: 1/(a_ii^-1)_jj (MUMPS refuses the entries of
+    !! the inverse after a Schur factorization, INFOG(1) = -48) from an
+    !! instance of a_ii alone (the same sym, communicator and ordering),
+    !! factored for them and released. This is also schur's check of a_ii:
+    !! with SYM = 1 MUMPS detects no null pivot, and a singular a_ii can leave
+    !! a round-off pivot in the Schur factorization; this factorization of
+    !! a_ii then fails as the default route's would (error, failed_column).
     class(mumps_solver_t), intent(inout) :: self
-    real(wp), intent(out) :: d(:)
+    type(sparse_sym_t), intent(in) :: a
+    integer(i8), intent(in) :: ni
+    type(error_t), allocatable, intent(out) :: error
     type(mumps_solver_t) :: probe
-    type(error_t), allocatable :: error
-    d = 0.0_wp
-    if (.not. allocated(self%interior)) return
+    type(sparse_sym_t) :: aii
+    aii%n = ni
+    aii%colptr = a%colptr(1:ni + 1)
+    aii%rowind = a%rowind(1:a%colptr(ni + 1) - 1)
+    aii%val = a%val(1:a%colptr(ni + 1) - 1)
     probe%sym = self%sym
     probe%alone = self%alone
     probe%local_input = self%local_input
     probe%ordering = self%ordering
-    call probe%analyze(self%interior, error)
-    if (.not. allocated(error)) call probe%factorize(self%interior, error)
-    if (.not. allocated(error)) call probe%pivots(d)
+    call probe%analyze(aii, error)
+    if (.not. allocated(error)) call probe%factorize(aii, error)
+    if (allocated(error)) then
+       self%info%failed_column = probe%info%failed_column
+    else
+       allocate (self%interior_pivots(ni))
+       call probe%pivots(self%interior_pivots)
+    end if
     call probe%release()
-  end subroutine interior_pivots
+  end subroutine pivots_of_interior
 
   subroutine mumps_schur(self, a, nb, kstar, error)
     !! Static condensation (the contract: linear_solver_t%schur) by MUMPS's
@@ -561,6 +572,10 @@ contains
     !! with ICNTL(26) = 0 solves a_ii x_i = b_i (mumps_solve). A breakdown's
     !! null pivot is an interior column (the Schur variables are not
     !! eliminated). On several processes (not alone) kstar is sent to all.
+    !! Up to INVERSE_DIAGONAL_MAX_N interior columns the pivots of a_ii are
+    !! computed here (pivots_of_interior: also the check of a singular a_ii
+    !! that SYM = 1 needs); above, pivots are unknown (zeros), as for any
+    !! MUMPS matrix of that order.
     class(mumps_solver_t), intent(inout) :: self
     type(sparse_sym_t), intent(in) :: a
     integer(i8), intent(in) :: nb
@@ -569,7 +584,7 @@ contains
     integer(i8) :: ni, i, j
     logical :: ok
     ni = a%n - nb
-    if (allocated(self%interior)) deallocate (self%interior)
+    if (allocated(self%interior_pivots)) deallocate (self%interior_pivots)
     if (ni == 0) then   ! K* = a: nothing to factor
        kstar = 0.0_wp
        do j = 1, nb
@@ -600,13 +615,7 @@ contains
        end do
     end do
     deallocate (self%schur_block)
-    if (ni <= INVERSE_DIAGONAL_MAX_N) then
-       allocate (self%interior)
-       self%interior%n = ni
-       self%interior%colptr = a%colptr(1:ni + 1)
-       self%interior%rowind = a%rowind(1:a%colptr(ni + 1) - 1)
-       self%interior%val = a%val(1:a%colptr(ni + 1) - 1)
-    end if
+    if (ni <= INVERSE_DIAGONAL_MAX_N) call pivots_of_interior(self, a, ni, error)
   end subroutine mumps_schur
 
   subroutine mumps_input_norm(self, anorm, error)
@@ -645,7 +654,7 @@ contains
     if (c_associated(self%handle)) call sj_mumps_free(self%handle)
     self%handle = c_null_ptr
     if (allocated(self%schur_block)) deallocate (self%schur_block)
-    if (allocated(self%interior)) deallocate (self%interior)
+    if (allocated(self%interior_pivots)) deallocate (self%interior_pivots)
     self%nschur = 0
     self%n = -1
     self%factored = .false.

@@ -149,6 +149,9 @@ program schur_cost
   !!   shell M [bolts]  M x M nodes, 6 DOFs, 9-point connectivity (an S4 panel), the same boundaries
   !!   frame M H M x M column lines, H storeys, 6 DOFs, columns and girders
   !!             (7-point lattice), boundary the top floor
+  !! Up to INVERSE_DIAGONAL_MAX_N interior DOFs MUMPS's schur also computes
+  !! the pivots of a_ii (a factorization of a_ii and the diagonal of its
+  !! inverse), which the other two routes do not.
   !! Under mpirun every process condenses its own copy at the same time, on
   !! its own MUMPS instance (alone, as the distributed path condenses the parts
   !! it owns), after a barrier; each process prints its medians.

@@ -144,16 +144,15 @@ contains
   end subroutine condense_parts
 
   function part_solver(opts) result(name)
-    !! The solver of the condensations: the one asked for, except that MUMPS
-    !! (--solver mumps, mumps-ldlt) solves the interface only and the parts
-    !! get CHOLMOD: under MPI each part is condensed by one process alone, and
-    !! MUMPS's calls are collective over all of them; one process does the
-    !! same, so that its results equal those of several.
+    !! The solver of the condensations: the one asked for. Under MPI each
+    !! part is condensed by one process alone: a MUMPS part solver is an
+    !! instance of that process alone (superjoin_substructure_condensed sets
+    !! it so), which forms K* by MUMPS's Schur complement; one process does
+    !! the same, so that its results equal those of several.
     type(run_options_t), intent(in) :: opts
     character(:), allocatable :: name
     name = 'auto'
     if (allocated(opts%solver)) name = opts%solver
-    if (index(name, 'mumps') == 1) name = 'cholmod'
   end function part_solver
 
   subroutine recover_parts(cache, parts, f_phys, u, error)

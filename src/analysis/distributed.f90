@@ -193,7 +193,7 @@ contains
        call max_element_diagonal(model, st%table, dmax, error, only=.not. summary%sub_condensed)
        if (allocated(error)) return
     end if
-    solver_name = part_solver(opts)   ! never MUMPS: a part is condensed by one process alone
+    solver_name = part_solver(opts)   ! a part is condensed by one process alone (MUMPS: on MPI_COMM_SELF)
     allocate (st%parts(summary%n_condensed))
     st%f_eff = st%f_phys
     computed0 = cache%computed

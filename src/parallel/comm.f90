@@ -33,7 +33,7 @@ module superjoin_parallel_comm
   end type comm_t
 
   public :: comm_world, agree, failure_agreed, note_agreed_failure, agreed_first, broadcast, sum_counts, &
-       max_reals, sum_reals, fortran_handle, bytes_moved
+       max_reals, sum_reals, fortran_handle, fortran_self_handle, bytes_moved
   public :: gather_counts
 
   integer(i8) :: moved = 0             !! bytes this process passed to broadcast/sum_reals/sum_counts/max_reals
@@ -54,6 +54,10 @@ module superjoin_parallel_comm
        import :: c_int
        integer(c_int) :: p
      end function sj_comm_is_parallel_build
+     function sj_comm_self_fortran() bind(c, name='sj_comm_self_fortran') result(h)
+       import :: c_int
+       integer(c_int) :: h
+     end function sj_comm_self_fortran
      function sj_comm_fortran() bind(c, name='sj_comm_fortran') result(h)
        import :: c_int
        integer(c_int) :: h
@@ -255,4 +259,11 @@ contains
     integer :: h
     h = sj_comm_fortran()
   end function fortran_handle
+
+  function fortran_self_handle() result(h)
+    !! The Fortran handle of MPI_COMM_SELF (a MUMPS instance of this process
+    !! alone), or MUMPS's placeholder in the serial build.
+    integer :: h
+    h = sj_comm_self_fortran()
+  end function fortran_self_handle
 end module superjoin_parallel_comm

@@ -110,6 +110,14 @@ int sj_comm_fortran(void)
     return (int)MPI_Comm_c2f(MPI_COMM_WORLD);
 }
 
+/* The Fortran handle of MPI_COMM_SELF: a MUMPS instance of this process
+ * alone (a part condensed where it lives). */
+int sj_comm_self_fortran(void)
+{
+    sj_comm_start();
+    return (int)MPI_Comm_c2f(MPI_COMM_SELF);
+}
+
 /* status: this rank's status (0: fine). Returns the largest status of all
  * ranks; *first = the lowest rank whose status equals it (0 if all fine). */
 int sj_comm_agree(int status, int *first)

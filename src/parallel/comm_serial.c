@@ -9,6 +9,7 @@ int sj_comm_is_parallel_build(void) { return 0; }
 
 /* MUMPS's USE_COMM_WORLD: the sequential MUMPS library ignores it. */
 int sj_comm_fortran(void) { return -987654; }
+int sj_comm_self_fortran(void) { return -987654; }
 
 
 int sj_comm_agree(int status, int *first)

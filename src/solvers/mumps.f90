@@ -26,18 +26,23 @@ module superjoin_solvers_mumps
   !! give its pivots to the caller: pivots() returns 1/(A^-1)_jj instead (see
   !! there), which makes the health block's MAXRATIO an ordering-independent
   !! upper bound of the usual one.
+  !!
+  !! Static condensation (schur): one analysis and factorization of the whole
+  !! part with MUMPS's Schur complement option, ICNTL(19) = 1 (see
+  !! mumps_schur). An instance with `alone` lives on MPI_COMM_SELF: a part
+  !! condensed by the one process that owns it, nothing collective.
   use, intrinsic :: iso_c_binding, only: c_ptr, c_null_ptr, c_associated, c_int, c_int64_t, c_double
   use superjoin_kinds, only: wp, i8
   use superjoin_error, only: error_t, fatal_error, EXIT_SINGULAR, EXIT_IO, EXIT_USAGE
   use superjoin_solvers_sparse, only: sparse_sym_t
   use superjoin_solvers_solver, only: linear_solver_t
   use superjoin_parallel_comm, only: comm_t, comm_world, agree, broadcast, sum_counts, max_reals, fortran_handle, &
-       note_agreed_failure
+       note_agreed_failure, fortran_self_handle
   use superjoin_utils_memory, only: oom_message
   use superjoin_parallel_stats, only: record_mumps_input, record_mumps_memory, record_host_ordering, &
        record_mumps_factor, mumps_order_stats_t
   use superjoin_solvers_mumps_order, only: ordering_choice, host_nested_dissection, ORDER_PTSCOTCH, ORDER_METIS, &
-       ORDERING_NO_MEMORY
+       ORDERING_NO_MEMORY, ORDER_AMD
   use superjoin_utils_strings, only: itoa
   implicit none (type, external)
   private
@@ -93,7 +98,18 @@ module superjoin_solvers_mumps
      real(wp) :: fl = 0.0_wp
      integer, public :: ordering = 0
        !! superjoin_solvers_mumps_order's ORDER_*: the analysis's ordering;
-       !! 0 (set before the first analyze): SUPERJOIN_MUMPS_ORDERING or the default
+       !! 0 (set before the first analyze): SUPERJOIN_MUMPS_ORDERING or the
+       !! default (with alone: AMD, always)
+     logical, public :: alone = .false.
+       !! Set before analyze: an instance of this process alone (MPI_COMM_SELF),
+       !! whose calls are not collective; for a part that one process condenses
+     integer(i8) :: nschur = 0
+       !! schur: the last nschur columns are condensed (ICNTL(19)); solve,
+       !! pivots and info then refer to the first n - nschur
+     real(wp), allocatable :: schur_block(:)
+       !! the Schur complement of the last factorization, column-major upper triangle
+     real(wp), allocatable :: interior_pivots(:)
+       !! schur: the pivots of a_ii (up to INVERSE_DIAGONAL_MAX_N columns)
      type(comm_t) :: comm
    contains
      procedure :: analyze => mumps_analyze
@@ -101,6 +117,7 @@ module superjoin_solvers_mumps
      procedure :: solve => mumps_solve
      procedure :: pivots => mumps_pivots
      procedure :: release => mumps_release
+     procedure :: schur => mumps_schur
      procedure :: flops => mumps_flops
      procedure :: negative_pivots => mumps_negative_pivots
      procedure, public :: input_norm => mumps_input_norm
@@ -114,9 +131,10 @@ module superjoin_solvers_mumps
        import :: c_int
        integer(c_int) :: yes
      end function sj_mumps_built
-     function sj_mumps_create(sym, comm, null_threshold, ordering, status) bind(c, name='sj_mumps_create') result(h)
+     function sj_mumps_create(sym, comm, null_threshold, ordering, alone, status) bind(c, name='sj_mumps_create') &
+          result(h)
        import :: c_ptr, c_int, c_double
-       integer(c_int), value :: sym, comm, ordering
+       integer(c_int), value :: sym, comm, ordering, alone
        real(c_double), value :: null_threshold
        integer(c_int), intent(out) :: status
        type(c_ptr) :: h
@@ -146,12 +164,19 @@ module superjoin_solvers_mumps
        type(c_ptr), value :: h
        integer(c_int) :: status
      end function sj_mumps_analyze
-     function sj_mumps_factorize(h, val) bind(c, name='sj_mumps_factorize') result(status)
+     function sj_mumps_factorize(h, val, schur) bind(c, name='sj_mumps_factorize') result(status)
        import :: c_ptr, c_int, c_double
        type(c_ptr), value :: h
        real(c_double), intent(in) :: val(*)
+       real(c_double), intent(inout) :: schur(*)
        integer(c_int) :: status
      end function sj_mumps_factorize
+     function sj_mumps_set_schur(h, nschur) bind(c, name='sj_mumps_set_schur') result(status)
+       import :: c_ptr, c_int, c_int64_t
+       type(c_ptr), value :: h
+       integer(c_int64_t), value :: nschur
+       integer(c_int) :: status
+     end function sj_mumps_set_schur
      function sj_mumps_solve(h, nrhs, x) bind(c, name='sj_mumps_solve') result(status)
        import :: c_ptr, c_int, c_int64_t, c_double
        type(c_ptr), value :: h
@@ -222,15 +247,25 @@ contains
     class(mumps_solver_t), intent(inout) :: self
     type(sparse_sym_t), intent(in) :: a
     type(error_t), allocatable, intent(out) :: error
+    call analyze_schur(self, a, 0_i8, error)
+  end subroutine mumps_analyze
+
+  subroutine analyze_schur(self, a, nschur, error)
+    !! The analysis of mumps_analyze, the last nschur columns of a kept for
+    !! a Schur complement (ICNTL(19) = 1; 0: none).
+    class(mumps_solver_t), intent(inout) :: self
+    type(sparse_sym_t), intent(in) :: a
+    integer(i8), intent(in) :: nschur
+    type(error_t), allocatable, intent(out) :: error
     integer(c_int) :: status
     integer(i8) :: c1, c2, one(1), gathered_bytes
     integer(i8), allocatable :: iperm(:)
-    real(wp) :: orders(2), seconds
-    integer :: host_status
-    logical :: ok
+    real(wp) :: seconds
+    integer :: host_status, stat
 
     self%factored = .false.
     self%n = -1
+    self%nschur = 0
     if (self%sym == MUMPS_SPD) then
        self%info%name = 'MUMPS multifrontal LDL^T (SPD)'
     else
@@ -240,11 +275,67 @@ contains
     self%info%factor_nnz = 0
     self%info%factor_mbytes = 0.0_wp
     self%info%failed_column = 0
-    if (a%n < 0 .or. .not. allocated(a%colptr)) then
+    if (a%n < 0 .or. .not. allocated(a%colptr) .or. nschur < 0 .or. nschur > max(a%n, 0_i8)) then
        call fatal_error(error, EXIT_IO, 'MUMPS: invalid matrix')
        return
     end if
+    call open_instance(self, a, error)
+    if (allocated(error)) return
+    call share(self, a, c1, c2)
+    one = 1
+    if (a%nnz() > 0) then
+       status = sj_mumps_pattern(self%handle, a%n, a%colptr, a%rowind, c1, c2)
+    else
+       status = sj_mumps_pattern(self%handle, a%n, a%colptr, one, 1_i8, 0_i8)
+    end if
+    if (status == SJ_OK) status = sj_mumps_set_schur(self%handle, int(nschur, c_int64_t))
+    if (allocated(self%schur_block)) deallocate (self%schur_block)
+    allocate (self%schur_block(max(1_i8, nschur*nschur)), stat=stat)
+    if (status == SJ_OK .and. stat /= 0) status = SJ_NOMEM
+    gathered_bytes = 0
+    seconds = 0.0_wp
+    if (status == SJ_OK) status = set_ordering(self%handle, self%ordering)
+    if (self%ordering == ORDER_METIS) then
+       ! collective (the gather of the terms' patterns) whatever this process's status
+       call host_nested_dissection(a, self%local_input, iperm, gathered_bytes, seconds, host_status)
+       if (status == SJ_OK .and. host_status == ORDERING_NO_MEMORY) status = SJ_NOMEM
+       if (status == SJ_OK .and. host_status /= 0) status = SJ_ORDERING
+       if (status == SJ_OK) status = sj_mumps_perm_in(self%handle, iperm)
+    end if
+    if (.not. self%alone) call record_host_ordering(gathered_bytes, seconds)
+    call agreed(self, status, 'analyze', error)
+    if (allocated(error)) return
+    status = sj_mumps_analyze(self%handle)
+    if (status < 0) then
+       call status_error(self, status, 'analyze', error)
+       return
+    end if
+    self%n = a%n
+    self%nschur = nschur
+    self%info%ordering = ordering_name(int(sj_mumps_infog(self%handle, INFOG_ORDERING)), &
+         sj_mumps_infog(self%handle, INFOG_ANALYSIS) == PARALLEL_ANALYSIS)
+    if (self%comm%size > 1) self%info%ordering = self%info%ordering//'; '//distribution(self, a, c1, c2)
+    self%info%factor_nnz = entries(sj_mumps_infog(self%handle, INFOG_FACTOR_ESTIMATE))
+  end subroutine analyze_schur
+
+  subroutine open_instance(self, a, error)
+    !! The communicator, the ordering choice and (first call) the MUMPS
+    !! instance; with local_input on several processes, a check that every
+    !! process's term has the order of a. Collective unless alone.
+    class(mumps_solver_t), intent(inout) :: self
+    type(sparse_sym_t), intent(in) :: a
+    type(error_t), allocatable, intent(out) :: error
+    integer(c_int) :: status
+    integer :: comm_handle
+    real(wp) :: orders(2)
+    logical :: ok
     self%comm = comm_world()
+    comm_handle = 0
+    if (self%alone) then
+       self%comm%rank = 0
+       self%comm%size = 1
+       if (self%ordering == 0 .or. self%ordering == ORDER_METIS) self%ordering = ORDER_AMD
+    end if
     call agreed(self, SJ_OK, 'start', error)
     if (allocated(error)) return
     if (self%ordering == 0) then
@@ -262,50 +353,21 @@ contains
           return
        end if
     end if
-    if (.not. c_associated(self%handle)) then
-       self%handle = sj_mumps_create(int(self%sym, c_int), int(fortran_handle(), c_int), &
-            real(NULL_PIVOT_RELATIVE, c_double), ORDERING_AMD, status)
-       if (status == SJ_NOT_BUILT) then
-          call fatal_error(error, EXIT_USAGE, 'solver mumps: this superjoin is built without MUMPS '// &
-               '(configure with cmake -DSUPERJOIN_MUMPS=ON or -DSUPERJOIN_MPI=ON)')
-          return
-       end if
-       if (status /= SJ_OK) then
-          call status_error(self, status, 'start', error)
-          return
-       end if
-    end if
-    call share(self, a, c1, c2)
-    one = 1
-    if (a%nnz() > 0) then
-       status = sj_mumps_pattern(self%handle, a%n, a%colptr, a%rowind, c1, c2)
+    if (c_associated(self%handle)) return
+    if (self%alone) then
+       comm_handle = fortran_self_handle()
     else
-       status = sj_mumps_pattern(self%handle, a%n, a%colptr, one, 1_i8, 0_i8)
+       comm_handle = fortran_handle()
     end if
-    gathered_bytes = 0
-    seconds = 0.0_wp
-    if (status == SJ_OK) status = set_ordering(self%handle, self%ordering)
-    if (self%ordering == ORDER_METIS) then
-       ! collective (the gather of the terms' patterns) whatever this process's status
-       call host_nested_dissection(a, self%local_input, iperm, gathered_bytes, seconds, host_status)
-       if (status == SJ_OK .and. host_status == ORDERING_NO_MEMORY) status = SJ_NOMEM
-       if (status == SJ_OK .and. host_status /= 0) status = SJ_ORDERING
-       if (status == SJ_OK) status = sj_mumps_perm_in(self%handle, iperm)
-    end if
-    call record_host_ordering(gathered_bytes, seconds)
-    call agreed(self, status, 'analyze', error)
-    if (allocated(error)) return
-    status = sj_mumps_analyze(self%handle)
-    if (status < 0) then
-       call status_error(self, status, 'analyze', error)
+    self%handle = sj_mumps_create(int(self%sym, c_int), int(comm_handle, c_int), &
+         real(NULL_PIVOT_RELATIVE, c_double), ORDERING_AMD, merge(1_c_int, 0_c_int, self%alone), status)
+    if (status == SJ_NOT_BUILT) then
+       call fatal_error(error, EXIT_USAGE, 'solver mumps: this superjoin is built without MUMPS '// &
+            '(configure with cmake -DSUPERJOIN_MUMPS=ON or -DSUPERJOIN_MPI=ON)')
        return
     end if
-    self%n = a%n
-    self%info%ordering = ordering_name(int(sj_mumps_infog(self%handle, INFOG_ORDERING)), &
-         sj_mumps_infog(self%handle, INFOG_ANALYSIS) == PARALLEL_ANALYSIS)
-    if (self%comm%size > 1) self%info%ordering = self%info%ordering//'; '//distribution(self, a, c1, c2)
-    self%info%factor_nnz = entries(sj_mumps_infog(self%handle, INFOG_FACTOR_ESTIMATE))
-  end subroutine mumps_analyze
+    if (status /= SJ_OK) call status_error(self, status, 'start', error)
+  end subroutine open_instance
 
   subroutine mumps_factorize(self, a, error)
     !! Numeric factorization. A null pivot (or, SPD, a negative one): error
@@ -332,16 +394,17 @@ contains
     call agreed(self, SJ_OK, 'factorize', error)
     if (allocated(error)) return
     zero = 0.0_wp
+    if (.not. allocated(self%schur_block)) allocate (self%schur_block(max(1_i8, self%nschur*self%nschur)))
     if (a%nnz() > 0) then
-       status = sj_mumps_factorize(self%handle, a%val)
+       status = sj_mumps_factorize(self%handle, a%val, self%schur_block)
     else
-       status = sj_mumps_factorize(self%handle, zero)
+       status = sj_mumps_factorize(self%handle, zero, self%schur_block)
     end if
     self%fl = sj_mumps_rinfog(self%handle, RINFOG_FLOPS)
     if (status == MUMPS_SINGULAR) then
        ! SYM = 1 stops at a zero pivot without naming it: the pivoting
        ! variant, with null pivot detection, finds the column
-       if (self%sym == MUMPS_SPD) self%info%failed_column = null_column(a, self%local_input)
+       if (self%sym == MUMPS_SPD) self%info%failed_column = null_column(self, a)
        call fatal_error(error, EXIT_SINGULAR, 'matrix is numerically singular (MUMPS)')
        return
     end if
@@ -350,15 +413,17 @@ contains
        return
     end if
     self%info%factor_nnz = entries(sj_mumps_infog(self%handle, INFOG_FACTOR_ENTRIES))
-    call record_factor(self)
-    call record_mumps_memory(sj_mumps_info(self%handle, INFO_MB_HERE), sj_mumps_infog(self%handle, INFOG_MB_MAX), &
-         sj_mumps_infog(self%handle, INFOG_MB_TOTAL))
+    if (.not. self%alone) then
+       call record_factor(self)
+       call record_mumps_memory(sj_mumps_info(self%handle, INFO_MB_HERE), sj_mumps_infog(self%handle, INFOG_MB_MAX), &
+            sj_mumps_infog(self%handle, INFOG_MB_TOTAL))
+    end if
     self%info%factor_mbytes = real(self%info%factor_nnz, wp)*BYTES_ENTRY/MBYTE
     nnull = sj_mumps_infog(self%handle, INFOG_NULL_PIVOTS)
     if (nnull > 0) then
        ! the list is on the host only: every process must report the same column
        first(1) = real(sj_mumps_null_pivot(self%handle, 1_c_int64_t), wp)
-       call broadcast(first, 0, ok)
+       if (.not. self%alone) call broadcast(first, 0, ok)
        self%info%failed_column = int(first(1), i8)
        call fatal_error(error, EXIT_SINGULAR, 'matrix is singular: '//itoa(nnull)// &
             ' null pivot(s), the first at column '//itoa(self%info%failed_column))
@@ -380,33 +445,45 @@ contains
     type(error_t), allocatable, intent(out) :: error
     integer(c_int) :: status
     real(wp), allocatable :: work(:)
-    integer :: stat
+    integer :: stat, c
+    integer(i8) :: ni, n
     logical :: ok
 
     if (.not. self%factored) then
        call fatal_error(error, EXIT_IO, 'MUMPS: solve called without a valid factorization')
        return
     end if
-    if (size(b, 1, i8) /= self%n .or. size(x, 1, i8) /= self%n .or. size(b, 2) /= size(x, 2)) then
+    ni = self%n - self%nschur
+    if (size(b, 1, i8) /= ni .or. size(x, 1, i8) /= ni .or. size(b, 2) /= size(x, 2)) then
        call fatal_error(error, EXIT_IO, 'MUMPS: right-hand side and solution shapes do not match the matrix')
        return
     end if
-    if (self%n == 0 .or. size(b, 2) == 0) return
-    allocate (work(self%n*size(b, 2)), stat=stat)
+    if (ni == 0 .or. size(b, 2) == 0) return
+    ! with a Schur complement MUMPS takes vectors of order n and, with
+    ! ICNTL(26) = 0, solves a_ii x_i = b_i, its x_b set to zero
+    n = self%n
+    allocate (work(n*size(b, 2)), stat=stat)
     call agreed(self, merge(SJ_OK, SJ_NOMEM, stat == 0), 'solve', error)
     if (allocated(error)) return
-    work = reshape(b, [size(work, kind=i8)])
+    work = 0.0_wp
+    do c = 1, size(b, 2)
+       work((c - 1)*n + 1:(c - 1)*n + ni) = b(:, c)
+    end do
     status = sj_mumps_solve(self%handle, int(size(b, 2), c_int64_t), work)
     if (status < 0) then
        call status_error(self, status, 'solve', error)
        return
     end if
-    call broadcast(work, 0, ok)
-    if (.not. ok) then
-       call fatal_error(error, EXIT_IO, 'MUMPS solve: the solution could not be sent to every process')
-       return
+    if (.not. self%alone) then
+       call broadcast(work, 0, ok)
+       if (.not. ok) then
+          call fatal_error(error, EXIT_IO, 'MUMPS solve: the solution could not be sent to every process')
+          return
+       end if
     end if
-    x = reshape(work, shape(x))
+    do c = 1, size(b, 2)
+       x(:, c) = work((c - 1)*n + 1:(c - 1)*n + ni)
+    end do
   end subroutine mumps_solve
 
   subroutine mumps_pivots(self, d)
@@ -418,7 +495,8 @@ contains
     !! above: the health block's MAXRATIO is then an upper bound, independent
     !! of the ordering (and of the number of processes). d = 0 (unknown, the
     !! health block's MAXRATIO is then n/a) above INVERSE_DIAGONAL_MAX_N
-    !! unknowns or if the computation fails. Collective.
+    !! unknowns or if the computation fails. Collective unless alone.
+    !! After schur: the pivots of a_ii that schur found (see pivots_of_interior).
     class(mumps_solver_t), intent(inout) :: self
     real(wp), intent(out) :: d(:)
     integer(c_int), allocatable :: ptr(:), irow(:)
@@ -428,18 +506,117 @@ contains
     logical :: ok
 
     d = 0.0_wp
-    if (.not. self%factored .or. self%n <= 0 .or. size(d, kind=i8) < self%n) return
-    if (self%n > INVERSE_DIAGONAL_MAX_N) return
+    if (.not. self%factored .or. self%n <= 0 .or. size(d, kind=i8) < self%n - self%nschur) return
+    if (self%n - self%nschur > INVERSE_DIAGONAL_MAX_N) return
+    if (self%nschur > 0) then
+       if (allocated(self%interior_pivots)) d(1:self%n - self%nschur) = self%interior_pivots
+       return
+    end if
     allocate (ptr(self%n + 1), irow(self%n), dinv(self%n), stat=stat)
-    call agree(merge(0, EXIT_IO, stat == 0), worst, first)
+    worst = merge(0, EXIT_IO, stat == 0)
+    if (.not. self%alone) call agree(merge(0, EXIT_IO, stat == 0), worst, first)
     if (worst /= 0) return
     dinv = 0.0_wp
     status = sj_mumps_inverse_diagonal(self%handle, ptr, irow, dinv)
     if (status < 0) return
-    call broadcast(dinv, 0, ok)
-    if (.not. ok) return
+    if (.not. self%alone) then
+       call broadcast(dinv, 0, ok)
+       if (.not. ok) return
+    end if
     where (dinv /= 0.0_wp) d(1:self%n) = 1.0_wp/dinv
   end subroutine mumps_pivots
+
+  subroutine pivots_of_interior(self, a, ni, error)
+    !! schur's pivots of a_ii: 1/(a_ii^-1)_jj (MUMPS refuses the entries of
+    !! the inverse after a Schur factorization, INFOG(1) = -48) from an
+    !! instance of a_ii alone (the same sym, communicator and ordering),
+    !! factored for them and released. This is also schur's check of a_ii:
+    !! with SYM = 1 MUMPS detects no null pivot, and a singular a_ii can leave
+    !! a round-off pivot in the Schur factorization; this factorization of
+    !! a_ii then fails as the default route's would (error, failed_column).
+    class(mumps_solver_t), intent(inout) :: self
+    type(sparse_sym_t), intent(in) :: a
+    integer(i8), intent(in) :: ni
+    type(error_t), allocatable, intent(out) :: error
+    type(mumps_solver_t) :: probe
+    type(sparse_sym_t) :: aii
+    aii%n = ni
+    aii%colptr = a%colptr(1:ni + 1)
+    aii%rowind = a%rowind(1:a%colptr(ni + 1) - 1)
+    aii%val = a%val(1:a%colptr(ni + 1) - 1)
+    probe%sym = self%sym
+    probe%alone = self%alone
+    probe%local_input = self%local_input
+    probe%ordering = self%ordering
+    call probe%analyze(aii, error)
+    if (.not. allocated(error)) call probe%factorize(aii, error)
+    if (allocated(error)) then
+       self%info%failed_column = probe%info%failed_column
+    else
+       allocate (self%interior_pivots(ni))
+       call probe%pivots(self%interior_pivots)
+    end if
+    call probe%release()
+  end subroutine pivots_of_interior
+
+  subroutine mumps_schur(self, a, nb, kstar, error)
+    !! Static condensation (the contract: linear_solver_t%schur) by MUMPS's
+    !! Schur complement: one analysis and factorization of the whole part
+    !! with ICNTL(19) = 1 and the last nb variables as LISTVAR_SCHUR. The
+    !! value 1 (centralized on the host) because kstar is wanted whole on the
+    !! caller's process: 2 and 3 distribute it over a process grid (3 for a
+    !! symmetric matrix in both triangles, 2 in one). With SYM = 1 or 2 MUMPS
+    !! computes one triangle (its fronts are symmetric), returned by rows as
+    !! the lower triangle, i.e. the upper triangle of the column-major array;
+    !! it is mirrored here. MUMPS then keeps the factor of a_ii: its solve
+    !! with ICNTL(26) = 0 solves a_ii x_i = b_i (mumps_solve). A breakdown's
+    !! null pivot is an interior column (the Schur variables are not
+    !! eliminated). On several processes (not alone) kstar is sent to all.
+    !! Up to INVERSE_DIAGONAL_MAX_N interior columns the pivots of a_ii are
+    !! computed here (pivots_of_interior: also the check of a singular a_ii
+    !! that SYM = 1 needs); above, pivots are unknown (zeros), as for any
+    !! MUMPS matrix of that order.
+    class(mumps_solver_t), intent(inout) :: self
+    type(sparse_sym_t), intent(in) :: a
+    integer(i8), intent(in) :: nb
+    real(wp), intent(out) :: kstar(:, :)
+    type(error_t), allocatable, intent(out) :: error
+    integer(i8) :: ni, i, j
+    logical :: ok
+    ni = a%n - nb
+    if (allocated(self%interior_pivots)) deallocate (self%interior_pivots)
+    if (ni == 0) then   ! K* = a: nothing to factor
+       kstar = 0.0_wp
+       do j = 1, nb
+          kstar(a%rowind(a%colptr(j):a%colptr(j + 1) - 1), j) = a%val(a%colptr(j):a%colptr(j + 1) - 1)
+       end do
+       kstar = kstar + transpose(kstar)
+       do j = 1, nb
+          kstar(j, j) = 0.5_wp*kstar(j, j)
+       end do
+       return
+    end if
+    call analyze_schur(self, a, nb, error)
+    if (allocated(error)) return
+    call self%factorize(a, error)
+    if (allocated(error)) return
+    if (nb == 0) return
+    if (.not. self%alone .and. self%comm%size > 1) then
+       call broadcast(self%schur_block, 0, ok)
+       if (.not. ok) then
+          call fatal_error(error, EXIT_IO, 'MUMPS: the Schur complement could not be sent to every process')
+          return
+       end if
+    end if
+    do j = 1, nb
+       do i = 1, j
+          kstar(i, j) = self%schur_block(i + (j - 1)*nb)
+          kstar(j, i) = kstar(i, j)
+       end do
+    end do
+    deallocate (self%schur_block)
+    if (ni <= INVERSE_DIAGONAL_MAX_N) call pivots_of_interior(self, a, ni, error)
+  end subroutine mumps_schur
 
   subroutine mumps_input_norm(self, anorm, error)
     !! The 1-norm (= infinity norm, the matrix is symmetric) of the matrix
@@ -476,6 +653,9 @@ contains
     class(mumps_solver_t), intent(inout) :: self
     if (c_associated(self%handle)) call sj_mumps_free(self%handle)
     self%handle = c_null_ptr
+    if (allocated(self%schur_block)) deallocate (self%schur_block)
+    if (allocated(self%interior_pivots)) deallocate (self%interior_pivots)
+    self%nschur = 0
     self%n = -1
     self%factored = .false.
   end subroutine mumps_release
@@ -546,19 +726,22 @@ contains
     end function boundary
   end subroutine share
 
-  function null_column(a, local_input) result(j)
+  function null_column(self, a) result(j)
     !! The first null pivot column of a (with local_input: of the sum of the
-    !! processes' a) as found by MUMPS with pivoting (SYM = 2, null pivot
-    !! detection); 0 if none is found. Collective.
+    !! processes' a; after schur: of a_ii) as found by MUMPS with pivoting
+    !! (SYM = 2, null pivot detection); 0 if none is found. Collective
+    !! unless alone.
+    class(mumps_solver_t), intent(in) :: self
     type(sparse_sym_t), intent(in) :: a
-    logical, intent(in) :: local_input
     integer(i8) :: j
     type(mumps_solver_t) :: probe
     type(error_t), allocatable :: error
     j = 0
     probe%sym = MUMPS_SYMMETRIC
-    probe%local_input = local_input
-    call probe%analyze(a, error)
+    probe%local_input = self%local_input
+    probe%alone = self%alone
+    probe%ordering = self%ordering
+    call analyze_schur(probe, a, self%nschur, error)
     if (allocated(error)) return
     call probe%factorize(a, error)
     j = probe%info%failed_column
@@ -601,6 +784,7 @@ contains
        call status_error(self, status, phase, error)
        mine = error%code
     end if
+    if (self%alone) return
     call agree(mine, worst, first)
     if (worst == 0) return
     call note_agreed_failure(first)

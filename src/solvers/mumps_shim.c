@@ -43,6 +43,7 @@ typedef struct {
     MUMPS_INT *irn, *jcn;
     double *a;
     MUMPS_INT *perm;    /* PERM_IN on the host (ICNTL(7) = 1), else NULL */
+    MUMPS_INT *schur_vars;  /* LISTVAR_SCHUR (ICNTL(19) = 1), else NULL */
     int initialized;
     int host;           /* rank 0: holds right-hand sides and solutions */
 } sj_mumps_t;
@@ -57,18 +58,19 @@ static void call(sj_mumps_t *h, int job)
 
 /* Start a MUMPS instance: sym 1 (SPD) or 2 (general symmetric), comm the
  * Fortran communicator handle, null_threshold CNTL(3) of the null pivot
- * detection (ICNTL(24) = 1), ordering ICNTL(7). */
-void *sj_mumps_create(int sym, int comm, double null_threshold, int ordering, int *status)
+ * detection (ICNTL(24) = 1), ordering ICNTL(7). alone: comm is this
+ * process's own (MPI_COMM_SELF), nothing is collective over the run. */
+void *sj_mumps_create(int sym, int comm, double null_threshold, int ordering, int alone, int *status)
 {
     sj_mumps_t *h = calloc(1, sizeof(sj_mumps_t));
     int first;
     /* JOB_INIT is collective: every process enters it or none (a failed
      * allocation on one process alone would leave the others waiting) */
-    if (sj_comm_agree(h ? 0 : 1, &first) != 0) { free(h); *status = SJ_NOMEM; return NULL; }
+    if (alone ? !h : sj_comm_agree(h ? 0 : 1, &first) != 0) { free(h); *status = SJ_NOMEM; return NULL; }
     h->id.sym = sym;
     h->id.par = 1;
     h->id.comm_fortran = comm;
-    h->host = sj_comm_rank() == 0;
+    h->host = alone || sj_comm_rank() == 0;
     call(h, JOB_INIT);
     *status = h->id.INFOG(1);
     if (*status < 0) return h;
@@ -87,7 +89,36 @@ void *sj_mumps_create(int sym, int comm, double null_threshold, int ordering, in
     h->id.CNTL(3) = null_threshold;
     h->id.CNTL(5) = 0.0;   /* null pivots: not fixed, listed in pivnul_list */
     h->id.ICNTL(13) = 0;
+    h->id.ICNTL(26) = 0;   /* with a Schur complement: solve the interior problem only */
     return h;
+}
+
+/* The next analysis condenses the last nschur variables (1-based n-nschur+1
+ * .. n) into a Schur complement: ICNTL(19) = 1, the Schur complement
+ * centralized on the host; for SYM = 1 and 2 MUMPS fills one triangle of it
+ * (its lower triangle by rows, which is the upper triangle of the
+ * column-major SCHUR array) and zeros the other. nschur = 0: no Schur. Set
+ * after sj_mumps_pattern (which sets n). Local. */
+int sj_mumps_set_schur(void *vh, int64_t nschur)
+{
+    sj_mumps_t *h = vh;
+    int64_t i;
+    if (!h || !h->initialized) return SJ_STATE;
+    free(h->schur_vars);
+    h->schur_vars = NULL;
+    h->id.listvar_schur = NULL;
+    h->id.size_schur = 0;
+    h->id.ICNTL(19) = 0;
+    if (nschur <= 0) return SJ_OK;
+    if (nschur > h->n) return SJ_STATE;
+    if (nschur > 46340) return SJ_TOO_LARGE;   /* nschur^2 must be a MUMPS_INT */
+    h->schur_vars = malloc((size_t)nschur * sizeof(MUMPS_INT));
+    if (!h->schur_vars) return SJ_NOMEM;
+    for (i = 0; i < nschur; ++i) h->schur_vars[i] = (MUMPS_INT)(h->n - nschur + 1 + i);
+    h->id.ICNTL(19) = 1;
+    h->id.size_schur = (MUMPS_INT)nschur;
+    h->id.listvar_schur = h->schur_vars;
+    return SJ_OK;
 }
 
 /* This process's share of the pattern: columns c1..c2 of the upper triangle
@@ -166,19 +197,24 @@ int sj_mumps_analyze(void *vh)
 }
 
 /* Numeric factorization with the values val (the whole upper triangle, CSC
- * order; this process takes its share). A workspace too small (INFOG(1) = -9
+ * order; this process takes its share). With a Schur complement
+ * (sj_mumps_set_schur) schur (nschur^2, column-major, on the host) receives
+ * it; otherwise schur is not touched. A workspace too small (INFOG(1) = -9
  * or -8) is retried with a larger ICNTL(14), MUMPS's usual remedy. */
-int sj_mumps_factorize(void *vh, const double *val)
+int sj_mumps_factorize(void *vh, const double *val, double *schur)
 {
     sj_mumps_t *h = vh;
     int r;
     if (!h || !h->initialized || !h->a) return SJ_STATE;
     if (h->nloc > 0) memcpy(h->a, val + (h->first - 1), (size_t)h->nloc * sizeof(double));
+    h->id.schur = h->id.ICNTL(19) && h->host ? schur : NULL;
+    h->id.schur_lld = h->id.size_schur;
     for (r = 0; r <= MAX_WORKSPACE_RETRIES; ++r) {
         call(h, JOB_FACTORIZE);
         if (h->id.INFOG(1) != -9 && h->id.INFOG(1) != -8) break;
         h->id.ICNTL(14) = 2 * (h->id.ICNTL(14) > 0 ? h->id.ICNTL(14) : 20);
     }
+    h->id.schur = NULL;
     return h->id.INFOG(1);
 }
 
@@ -269,7 +305,7 @@ void sj_mumps_free(void *vh)
     sj_mumps_t *h = vh;
     if (!h) return;
     if (h->initialized) call(h, JOB_END);
-    free(h->irn); free(h->jcn); free(h->a); free(h->perm);
+    free(h->irn); free(h->jcn); free(h->a); free(h->perm); free(h->schur_vars);
     free(h);
 }
 
@@ -279,6 +315,6 @@ void sj_mumps_forget(void *vh)
 {
     sj_mumps_t *h = vh;
     if (!h) return;
-    free(h->irn); free(h->jcn); free(h->a); free(h->perm);
+    free(h->irn); free(h->jcn); free(h->a); free(h->perm); free(h->schur_vars);
     free(h);
 }

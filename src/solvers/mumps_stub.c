@@ -8,16 +8,18 @@
 
 int sj_mumps_built(void) { return 0; }
 
-void *sj_mumps_create(int sym, int comm, double null_threshold, int ordering, int *status)
+void *sj_mumps_create(int sym, int comm, double null_threshold, int ordering, int alone, int *status)
 {
-    (void)sym; (void)comm; (void)null_threshold; (void)ordering;
+    (void)sym; (void)comm; (void)null_threshold; (void)ordering; (void)alone;
     *status = SJ_NOT_BUILT;
     return NULL;
 }
 int sj_mumps_pattern(void *h, int64_t n, const int64_t *colptr, const int64_t *rowind, int64_t c1, int64_t c2)
 { (void)h; (void)n; (void)colptr; (void)rowind; (void)c1; (void)c2; return SJ_NOT_BUILT; }
 int sj_mumps_analyze(void *h) { (void)h; return SJ_NOT_BUILT; }
-int sj_mumps_factorize(void *h, const double *val) { (void)h; (void)val; return SJ_NOT_BUILT; }
+int sj_mumps_factorize(void *h, const double *val, double *schur)
+{ (void)h; (void)val; (void)schur; return SJ_NOT_BUILT; }
+int sj_mumps_set_schur(void *h, int64_t nschur) { (void)h; (void)nschur; return SJ_NOT_BUILT; }
 int sj_mumps_solve(void *h, int64_t nrhs, double *x) { (void)h; (void)nrhs; (void)x; return SJ_NOT_BUILT; }
 int sj_mumps_inverse_diagonal(void *h, int *ptr, int *irow, double *dinv)
 { (void)h; (void)ptr; (void)irow; (void)dinv; return SJ_NOT_BUILT; }

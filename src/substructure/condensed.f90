@@ -11,7 +11,7 @@ module superjoin_substructure_condensed
   use superjoin_assembly_dofs, only: dof_table_t
   use superjoin_assembly_assemble, only: superelement_t
   use superjoin_substructure_local_system, only: local_system_t, dof_label
-  use superjoin_solvers, only: linear_solver_t, sparse_sym_t, new_solver
+  use superjoin_solvers, only: linear_solver_t, sparse_sym_t, new_solver, mumps_solver_t
   use superjoin_utils_memory, only: out_of_memory, BYTES_REAL
   use superjoin_utils_strings, only: itoa
   use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
@@ -58,6 +58,10 @@ contains
     call drop_free_interior(cond)
     call new_solver(solver_name, cond%sys%ni, cond%solver, error)
     if (allocated(error)) return
+    select type (s => cond%solver)
+    type is (mumps_solver_t)
+       s%alone = .true.   ! a part is condensed by one process: MUMPS on that process alone
+    end select
     call cond%solver%schur(cond%sys%k, nb, cond%se%k, error)
     if (allocated(error)) then
        call name_breakdown(model, table, cond, error)

@@ -127,6 +127,7 @@ contains
     else
        call keep_factor(ctx%factor, st%k, st%solver)   ! released unless ctx%factor%keep
     end if
+    if (allocated(res%log%notes)) notes = [notes, res%log%notes]   ! the solve phase's (health)
     res%log%notes = notes
   end subroutine run_phases
 

@@ -11,11 +11,11 @@ module superjoin_analysis_health
   use superjoin_substructure_local_system, only: dof_label
   use superjoin_substructure_cache, only: part_cache_t, part_view_t, view_stiffness_times, &
        view_maxratio
-  use superjoin_solvers, only: condition_estimate
+  use superjoin_solvers, only: condition_estimate, inverse_norm_bound, cholmod_solver_t
   use superjoin_model_results, only: results_t, run_options_t
   use superjoin_analysis_mechanism, only: mechanism_error
   use superjoin_analysis_labels, only: column_label
-  use superjoin_model_notes, only: warn
+  use superjoin_model_notes, only: warn, note
   use superjoin_utils_strings, only: itoa
   use superjoin_utils_memory, only: out_of_memory, BYTES_REAL
   use superjoin_parallel_comm, only: sum_reals
@@ -38,6 +38,11 @@ module superjoin_analysis_health
     !! MAXRATIO above this (a pivot within about 1/(45 ε) of total cancellation)
     !! is numerically singular (exit 3): exact mechanisms factor with MAXRATIO
     !! from about 5e13 up, and nothing meaningful is left of an answer above 1e13.
+  integer(i8), parameter, public :: COND_FULL_MAX = 100000_i8
+    !! Up to this many equations the condition estimate is always Hager-Higham's
+    !! (its four or so extra solves cost little there).
+  real(wp), parameter, public :: COND_BOUND_LIMIT = 1.0e10_wp
+    !! Above it, the free lower bound of the condition number calls for Hager-Higham's estimate.
   real(wp), parameter :: RATIO_CAP = 1.0e300_wp
     !! MAXRATIO reported when K_jj / D_jj would overflow.
   real(wp), parameter, public :: RESIDUAL_WARN = 1.0e-6_wp
@@ -159,11 +164,7 @@ contains
        call warn(res, 'MAXRATIO '//trim(adjustl(buf))//' at '//res%summary%maxratio_at// &
             ': about '//itoa(nint(log10(res%summary%maxratio)))//' digits may be lost')
     end if
-    if (st%strategy%summed()) then
-       call condition_estimate(st%k, st%solver, cond, anorm_given=knorm)
-    else
-       call condition_estimate(st%k, st%solver, cond)
-    end if
+    call estimate_condition(st, knorm, w%d, res, cond)
     if (.not. ieee_is_finite(cond) .or. cond > huge(cond)) then
        cond = huge(cond)
        call warn(res, 'condition estimate overflows (above 1.8E+308): results are unreliable')
@@ -174,6 +175,41 @@ contains
        write (error_unit, '(a,es10.3)') 'superjoin: condition estimate ', cond
     end if
   end subroutine health
+
+  subroutine estimate_condition(st, knorm, d, res, cond)
+    !! The condition estimate of the health block. Hager-Higham's 1-norm
+    !! estimate (condition_estimate: about four more solves) for every backend
+    !! but CHOLMOD, up to COND_FULL_MAX equations, and whenever a cheap
+    !! indicator calls for it: MAXRATIO above MAXRATIO_WARN, a relative
+    !! residual above REFINE_RESIDUAL after refinement, or the free lower
+    !! bound ||K||_1 times inverse_norm_bound (the step solutions, and the
+    !! pivots d of the columns AUTOSPC kept) above COND_BOUND_LIMIT.
+    !! Otherwise that lower bound is the estimate, and a note of the listing
+    !! says so.
+    type(solve_state_t), intent(inout) :: st
+    real(wp), intent(in) :: knorm, d(:)
+    type(results_t), intent(inout) :: res
+    real(wp), intent(out) :: cond
+    logical :: cheap
+    cheap = .false.
+    if (st%k%n > COND_FULL_MAX) then
+       select type (s => st%solver)
+       type is (cholmod_solver_t)
+          cond = knorm*inverse_norm_bound(st%q, st%f_red, merge(0.0_wp, d(1:st%k%n), st%spc))
+          cheap = cond <= COND_BOUND_LIMIT .and. res%summary%maxratio <= MAXRATIO_WARN .and. &
+               maxval(res%fields%steps(:)%residual) <= REFINE_RESIDUAL
+       end select
+    end if
+    if (cheap) then
+       call note(res%log%notes, 'condition estimate: a lower bound from the solutions and the pivots, '// &
+            'not Hager''s estimate (skipped above '//itoa(COND_FULL_MAX)//' equations while MAXRATIO, '// &
+            'the residual and this bound are small)')
+    else if (st%strategy%summed()) then
+       call condition_estimate(st%k, st%solver, cond, anorm_given=knorm)
+    else
+       call condition_estimate(st%k, st%solver, cond)
+    end if
+  end subroutine estimate_condition
 
   subroutine maxratio_check(st, model, opts, d, kd, res, error)
     !! MAXRATIO = max K_jj / D_jj over the columns not dropped by AUTOSPC, and

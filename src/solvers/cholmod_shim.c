@@ -14,10 +14,12 @@
  *
  * Factorization: supernodal LL^T (Common->supernodal = CHOLMOD_SUPERNODAL,
  * final_ll = TRUE). Ordering: CHOLMOD's default strategy (nmethods = 0: AMD,
- * then METIS when AMD's fill is high; the best is kept), or, when a node
- * graph was given (sj_cholmod_set_node_graph), two candidates: METIS nested
- * dissection of the node graph (several times smaller than the column graph)
- * expanded to columns, and CHOLMOD's AMD; CHOLMOD keeps the better.
+ * then METIS when AMD's fill is high; the best is kept). When a node graph
+ * was given (sj_cholmod_set_node_graph), the same strategy with the METIS
+ * candidate taken on the node graph (several times smaller than the column
+ * graph) and expanded to columns: AMD on the columns first, METIS on the node
+ * graph only where CHOLMOD's own test would try METIS, the smaller nnz(L)
+ * kept (sj_analyze_grouped).
  *
  * Every function returns a status: SJ_OK (0), SJ_NOT_POSDEF (1), or a
  * negative code (CHOLMOD's own negative codes -2..-5, or SJ_E_* below).
@@ -31,7 +33,6 @@
 
 #include "cholmod.h"
 #include "metis.h"
-#include "amd.h"
 
 #define SJ_OK 0
 #define SJ_NOT_POSDEF 1
@@ -46,8 +47,6 @@
  * flops per nonzero of L, and nonzeros of L per nonzero of A. */
 #define SJ_METIS_FL_PER_LNZ 500.0
 #define SJ_METIS_LNZ_PER_NNZ 5.0
-/* The node-level estimate runs low (unequal group sizes): accept a margin. */
-#define SJ_NODE_MARGIN 0.7
 
 /* Out of memory: SuiteSparse allocates through SuiteSparse_config's
  * function pointers; sj_cholmod_create routes them through these wrappers,
@@ -110,6 +109,7 @@ typedef struct {
     idx_t *gxadj, *gadjncy, *gvwgt;
     SuiteSparse_long *gfirst;   /* first column (0-based) of each group, ngroup+1 */
     int given_is_node_metis;
+    int given_is_amd;           /* the given permutation is CHOLMOD's AMD (sj_analyze_grouped) */
     int force_node_metis;       /* offer node-graph METIS whatever AMD's fill */
     SuiteSparse_long minor;     /* permuted column where factorization stopped (n: none) */
     char message[SJ_MESSAGE_LEN];
@@ -267,33 +267,6 @@ int sj_cholmod_set_node_graph(void *handle, int64_t ngroup, const int64_t *first
     return SJ_OK;
 }
 
-/* CHOLMOD's "is AMD's fill high?" test, evaluated cheaply on the node graph:
- * AMD on the groups, with the column counts scaled by the mean group size k
- * (nnz(L) and nnz(A) grow as k^2, flops as k^3). Returns 1 when METIS is worth
- * trying, 0 when AMD is good enough, -1 when the test could not run. */
-static int sj_node_fill_is_high(sj_cholmod_t *h)
-{
-    SuiteSparse_long nv = h->ngroup, k, *ap, *ai, *perm, status;
-    double info[AMD_INFO], control[AMD_CONTROL], mean, lnz, fl, anz;
-    if (nv <= 0) return -1;
-    ap = malloc((size_t)(nv + 1) * sizeof(SuiteSparse_long));
-    ai = malloc((size_t)(h->gxadj[nv] > 0 ? h->gxadj[nv] : 1) * sizeof(SuiteSparse_long));
-    perm = malloc((size_t)nv * sizeof(SuiteSparse_long));
-    if (!ap || !ai || !perm) { free(ap); free(ai); free(perm); return -1; }
-    for (k = 0; k <= nv; k++) ap[k] = h->gxadj[k];
-    for (k = 0; k < h->gxadj[nv]; k++) ai[k] = h->gadjncy[k];
-    amd_l_defaults(control);
-    status = amd_l_order(nv, ap, ai, perm, control, info);
-    free(ap); free(ai); free(perm);
-    if (status != AMD_OK && status != AMD_OK_BUT_JUMBLED) return -1;
-    mean = (double)h->n / (double)nv;
-    lnz = (info[AMD_LNZ] + nv) * mean * mean;
-    fl = (info[AMD_NDIV] + 2.0 * info[AMD_NMULTSUBS_LDL]) * mean * mean * mean;
-    anz = (double)(h->nnz > 0 ? h->nnz : 1);
-    return (lnz > 0 && fl / lnz >= SJ_NODE_MARGIN * SJ_METIS_FL_PER_LNZ &&
-            lnz / anz >= SJ_NODE_MARGIN * SJ_METIS_LNZ_PER_NNZ) ? 1 : 0;
-}
-
 /* Offer the node-graph METIS ordering even where AMD's fill is low (tests). */
 int sj_cholmod_force_node_metis(void *handle, int flag)
 {
@@ -329,6 +302,67 @@ static SuiteSparse_long *sj_node_metis_perm(sj_cholmod_t *h)
     free(perm);
     free(iperm);
     return colperm;
+}
+
+/* nnz(L) of the permutation perm of h->A (CHOLMOD's column counts, as its
+ * analysis of a given permutation computes them); -1 if that fails. */
+static double sj_given_lnz(sj_cholmod_t *h, SuiteSparse_long *perm)
+{
+    size_t n = (size_t)(h->n > 0 ? h->n : 1);
+    SuiteSparse_long *work = malloc(5 * n * sizeof(SuiteSparse_long));
+    double lnz = -1.0;
+    if (work == NULL) return lnz;
+    if (cholmod_l_analyze_ordering(&h->A, CHOLMOD_GIVEN, perm, NULL, 0, work, work + n, work + 2 * n,
+                                   work + 3 * n, work + 4 * n, &h->common))
+        lnz = h->common.lnz;
+    free(work);
+    return lnz;
+}
+
+/* Analysis with a node graph: CHOLMOD's default strategy, with the METIS
+ * candidate computed on the node graph. AMD on the columns first, as
+ * CHOLMOD's default does; METIS nested dissection of the node graph only when
+ * AMD's fill is high by CHOLMOD's own test (flops per nnz(L) and nnz(L) per
+ * nnz(A)), or when forced; the smaller nnz(L) is kept (a tie to METIS, the
+ * first candidate as before). The chosen permutation is analyzed as a given
+ * one (the same factor as CHOLMOD's AMD method, which analyzes its
+ * permutation the same way). NULL on failure. */
+static cholmod_factor *sj_analyze_grouped(sj_cholmod_t *h)
+{
+    cholmod_common *cm = &h->common;
+    SuiteSparse_long *amd, *metis = NULL, *best;
+    double amd_lnz, metis_lnz;
+    int high, nm = cm->nmethods, o0 = cm->method[0].ordering;
+    cholmod_factor *L;
+    amd = malloc((size_t)(h->n > 0 ? h->n : 1) * sizeof(SuiteSparse_long));
+    if (amd == NULL) {
+        cm->status = CHOLMOD_OUT_OF_MEMORY;
+        return NULL;
+    }
+    cm->current = 1;                 /* AMD's method slot in the default strategy */
+    if (!cholmod_l_amd(&h->A, NULL, 0, amd, cm)) {
+        free(amd);
+        return NULL;
+    }
+    amd_lnz = cm->lnz;
+    high = !(cm->fl < SJ_METIS_FL_PER_LNZ * cm->lnz || cm->lnz < SJ_METIS_LNZ_PER_NNZ * cm->anz);
+    if (high || h->force_node_metis) metis = sj_node_metis_perm(h);
+    best = amd;
+    if (metis != NULL) {
+        metis_lnz = sj_given_lnz(h, metis);
+        if (metis_lnz >= 0.0 && metis_lnz <= amd_lnz) best = metis;
+    }
+    cm->status = CHOLMOD_OK;
+    h->given_is_node_metis = best == metis;
+    h->given_is_amd = best == amd;
+    cm->nmethods = 1;
+    cm->method[0].ordering = CHOLMOD_GIVEN;
+    L = cholmod_l_analyze_p(&h->A, best, NULL, 0, cm);
+    cm->nmethods = nm;
+    cm->method[0].ordering = o0;
+    free(amd);
+    free(metis);
+    return L;
 }
 
 /* Symbolic analysis of the upper triangle given 1-based (colptr: n+1,
@@ -397,28 +431,14 @@ int sj_cholmod_analyze(void *handle, int64_t n, const int64_t *colptr,
     h->A.sorted = 1;
     h->A.packed = 1;
 
-    {
-        /* METIS on the node graph only where CHOLMOD would try METIS at all */
-        SuiteSparse_long *perm =
-            (h->force_node_metis || sj_node_fill_is_high(h) == 1) ? sj_node_metis_perm(h) : NULL;
-        h->given_is_node_metis = perm != NULL;
-        if (perm != NULL) {
-            /* two candidates: METIS on the node graph, and CHOLMOD's AMD */
-            int nm = h->common.nmethods;
-            int o0 = h->common.method[0].ordering, o1 = h->common.method[1].ordering;
-            h->common.nmethods = 2;
-            h->common.method[0].ordering = CHOLMOD_GIVEN;
-            h->common.method[1].ordering = CHOLMOD_AMD;
-            h->L = cholmod_l_analyze_p(&h->A, perm, NULL, 0, &h->common);
-            h->common.nmethods = nm;
-            h->common.method[0].ordering = o0;
-            h->common.method[1].ordering = o1;
-            free(perm);
-        } else {
-            h->L = cholmod_l_analyze(&h->A, &h->common);
-        }
-    }
+    h->given_is_node_metis = 0;
+    h->given_is_amd = 0;
+    if (h->ngroup > 0 && h->gfirst[h->ngroup] == h->n)
+        h->L = sj_analyze_grouped(h);
+    else
+        h->L = cholmod_l_analyze(&h->A, &h->common);
     ok = h->L != NULL;
+    sj_drop_graph(h);               /* only the analysis reads it; set again before the next */
     {
         int status = sj_end(h, ok);
         if (status != SJ_OK) {
@@ -628,7 +648,9 @@ int sj_cholmod_ordering(void *handle, char *buf, int64_t len)
     if (h->L != NULL) {
         switch (h->L->ordering) {
         case CHOLMOD_NATURAL: name = "natural"; break;
-        case CHOLMOD_GIVEN: name = h->given_is_node_metis ? "METIS (node graph)" : "given"; break;
+        case CHOLMOD_GIVEN:
+            name = h->given_is_node_metis ? "METIS (node graph)" : h->given_is_amd ? "AMD" : "given";
+            break;
         case CHOLMOD_AMD: name = "AMD"; break;
         case CHOLMOD_METIS: name = "METIS"; break;
         case CHOLMOD_NESDIS: name = "NESDIS"; break;

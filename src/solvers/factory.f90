@@ -16,7 +16,7 @@ module superjoin_solvers
 
   public :: linear_solver_t, solver_info_t, sparse_sym_t
   public :: cholmod_solver_t, umfpack_solver_t, lapack_solver_t, mumps_solver_t
-  public :: new_solver, condition_estimate, norm1_sym, mumps_available
+  public :: new_solver, condition_estimate, norm1_sym, mumps_available, inverse_norm_bound
 
   integer(i8), parameter, public :: AUTO_LAPACK_MAX = 1000_i8  !! 'auto': LAPACK up to this n, CHOLMOD above
   integer, parameter :: HAGER_MAX_ITER = 5                      !! iterations of the 1-norm estimator
@@ -172,6 +172,26 @@ contains
     end if
     inv_norm1 = max(est, alt)
   end subroutine estimate
+
+  pure function inverse_norm_bound(x, b, d) result(bound)
+    !! A lower bound of ||A^-1||_1 from what a solve already has, at no
+    !! further solve: ||x_s||_1 / ||b_s||_1 for every column of A x = b, and
+    !! 1 / d_j for the pivots d of an LL^T or LDL^T factorization of an SPD
+    !! A without 2x2 pivots ((A^-1)_jj >= 1 / D_jj; d <= 0 skipped: columns
+    !! a factorization did not reach, or unknown pivots).
+    real(wp), intent(in) :: x(:, :), b(:, :)
+    real(wp), intent(in), optional :: d(:)
+    real(wp) :: bound, bnorm
+    integer :: s
+    bound = 0.0_wp
+    do s = 1, min(size(x, 2), size(b, 2))
+       bnorm = sum(abs(b(:, s)))
+       if (bnorm > 0.0_wp) bound = max(bound, sum(abs(x(:, s)))/bnorm)
+    end do
+    if (present(d)) then
+       if (any(d > 0.0_wp)) bound = max(bound, 1.0_wp/minval(d, mask=d > 0.0_wp))
+    end if
+  end function inverse_norm_bound
 
   pure function sign_of(v) result(s)
     !! Elementwise sign (+1 for zero).

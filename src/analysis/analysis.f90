@@ -16,7 +16,7 @@ module superjoin_analysis
   use superjoin_assembly_forest, only: build_forest
   use superjoin_assembly_transform, only: transform_t, build_transform, COL_DELTA
   use superjoin_assembly_assemble, only: assemble_stiffness, assemble_loads
-  use superjoin_substructure_local_system, only: boundary_dofs, part_boundary
+  use superjoin_substructure_local_system, only: boundary_dofs, part_boundary, given_boundary
   use superjoin_substructure_cache, only: release_cache
   use superjoin_solvers, only: new_solver
   use superjoin_solvers_matrix_market, only: write_matrix_market
@@ -163,6 +163,7 @@ contains
     if (allocated(error)) return
     ! Condensation boundaries: the instances of a part share theirs.
     call part_boundary(model, st%table, bnd, st%bnd_c)
+    call given_boundary(model, st%table, st%bnd_c)
     call choose_condensation(model, st%table, opts, ctx, st%bnd_c, res%summary, notes)
     allocate (keep(st%table%np), stat=stat)
     if (stat /= 0) then

@@ -12,7 +12,7 @@ module superjoin_deck_parser
        parse_keyword_line, split_fields, drop_trailing_empty, itoa, clip, path_dirname, path_join, &
        path_normalize
   use superjoin_deck_state, only: deck_state_t, report, report_loc, report_oom, add_heading, &
-       add_step, MAX_INCLUDE_DEPTH, grow
+       add_step, MAX_INCLUDE_DEPTH, register_file
   use superjoin_deck_ccx_cards, only: canonical_keyword
   use superjoin_deck_springs, only: translate_springs
   use superjoin_deck_cards_common, only: set_card, check_params, get_param, refused_card, CARD_NONE, &
@@ -38,6 +38,7 @@ module superjoin_deck_parser
   use superjoin_deck_equations, only: kw_equation, data_equation, end_equation_card
   use superjoin_deck_transforms, only: kw_transform, data_transform
   use superjoin_deck_nodal_thickness, only: kw_nodal_thickness, data_nodal_thickness
+  use superjoin_deck_matrix_input, only: kw_matrix_input, kw_matrix_output
   implicit none (type, external)
   private
 
@@ -50,24 +51,6 @@ module superjoin_deck_parser
     !! default integers, so a longer line is refused rather than mis-read.
 
 contains
-
-  subroutine register_file(st, path, norm, k)
-    !! Index of file `path` in the state's file list (added if new); `norm` is
-    !! the normalized path used to detect include cycles.
-    type(deck_state_t), intent(inout) :: st
-    character(*), intent(in) :: path, norm
-    integer, intent(out) :: k
-    integer, parameter :: INITIAL_FILES = 4
-    do k = 1, st%nfile
-       if (st%norm_files(k)%s == norm) return
-    end do
-    call grow(st%files, st%nfile, INITIAL_FILES)
-    call grow(st%norm_files, st%nfile, INITIAL_FILES)
-    st%nfile = st%nfile + 1
-    k = st%nfile
-    st%files(k)%s = path
-    st%norm_files(k)%s = norm
-  end subroutine register_file
 
   recursive subroutine parse_source(st, text, file)
     !! Parse the lines of `text`, which is file number `file` (recursive through *INCLUDE).
@@ -260,6 +243,10 @@ contains
        call kw_equation(st, kw, loc)
     case ('TRANSFORM')
        call kw_transform(st, kw, loc)
+    case ('MATRIX INPUT')
+       call kw_matrix_input(st, kw, loc)
+    case ('SUBSTRUCTURE MATRIX OUTPUT')
+       call kw_matrix_output(st, kw, loc)
     case ('NODAL THICKNESS')
        call kw_nodal_thickness(st, kw, loc)
     case default

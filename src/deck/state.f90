@@ -14,7 +14,7 @@ module superjoin_deck_state
        equation_b_t, transform_b_t, nthick_b_t, support_b_t, load_b_t, SUBK_PLAIN, SUBK_PART, &
        SUBK_INSTANCE, instance_b_t, override_b_t, step_b_t, temp_b_t, surface_b_t, combo_b_t, &
        OP_DEFAULT, OP_MOD, OP_NEW, request_b_t, SPRING_1, SPRING_2, SPRING_A, spring_elem_b_t, &
-       spring_card_b_t
+       spring_card_b_t, given_b_t, export_b_t
   implicit none (type, external)
   private
 
@@ -33,7 +33,8 @@ module superjoin_deck_state
        chunk_t, set_b_t, sub_b_t, ref_t, sec_b_t, contact_b_t, cline_b_t, equation_b_t, &
        transform_b_t, nthick_b_t, support_b_t, load_b_t, SUBK_PLAIN, SUBK_PART, SUBK_INSTANCE, &
        instance_b_t, override_b_t, step_b_t, temp_b_t, surface_b_t, combo_b_t, OP_DEFAULT, OP_MOD, &
-       OP_NEW, request_b_t, SPRING_1, SPRING_2, SPRING_A, spring_elem_b_t, spring_card_b_t
+       OP_NEW, request_b_t, SPRING_1, SPRING_2, SPRING_A, spring_elem_b_t, spring_card_b_t, given_b_t, &
+       export_b_t
 
   type, public :: deck_state_t
     !! Everything the reader has collected, and the card being read.
@@ -120,8 +121,10 @@ module superjoin_deck_state
      integer :: card_home = 0
      logical :: card_generate = .false.
      type(fields_t) :: f                   !! fields of the current data line (reused)
+     type(export_b_t), allocatable :: exports(:)  !! *SUBSTRUCTURE MATRIX OUTPUT cards (unallocated: none)
   end type deck_state_t
 
+  public :: register_file
   public :: report, report_loc, report_oom, new_sub, find_sub, find_set, new_set, add_chunk, push_pool
   public :: add_node, add_element, add_heading, add_material, add_orientation, add_section
   public :: add_contact, add_cline, add_support, add_step, add_load, file_of
@@ -130,6 +133,24 @@ module superjoin_deck_state
 contains
 
   ! ------------------------------------------------------------------ errors
+
+  subroutine register_file(st, path, norm, k)
+    !! Index of file `path` in the state's file list (added if new); `norm` is
+    !! the normalized path used to detect include cycles.
+    type(deck_state_t), intent(inout) :: st
+    character(*), intent(in) :: path, norm
+    integer, intent(out) :: k
+    integer, parameter :: INITIAL_FILES = 4
+    do k = 1, st%nfile
+       if (st%norm_files(k)%s == norm) return
+    end do
+    call grow(st%files, st%nfile, INITIAL_FILES)
+    call grow(st%norm_files, st%nfile, INITIAL_FILES)
+    st%nfile = st%nfile + 1
+    k = st%nfile
+    st%files(k)%s = path
+    st%norm_files(k)%s = norm
+  end subroutine register_file
 
   subroutine report(st, file, line, message)
     !! Add `path:line: error: message` (at most MAX_ERRORS messages; after that

@@ -17,9 +17,9 @@ module superjoin_deck_matrix_input
   use superjoin_kinds, only: wp, ip, i8
   use superjoin_model_types, only: source_loc_t, substructure_t, model_t, given_matrix_t, matrix_export_t, &
        find_node, EXPORT_ABAQUS, EXPORT_DMIG, EXPORT_MATRIX_MARKET, EXPORT_CALCULIX
-  use superjoin_deck_lexer, only: keyword_line_t, load_file, next_line, split_fields, drop_trailing_empty, &
+  use superjoin_deck_lexer, only: keyword_line_t, next_line, split_fields, drop_trailing_empty, &
        parse_real, parse_id, path_dirname, path_join, path_normalize, to_upper, clip, itoa, fields_t, TOK_OK
-  use superjoin_deck_state, only: deck_state_t, report, report_loc, report_oom, register_file, given_b_t, &
+  use superjoin_deck_state, only: deck_state_t, report, report_loc, register_file, load_deck_file, given_b_t, &
        export_b_t, instance_b_t
   use superjoin_deck_cards_common, only: outside_step, check_params, get_param, get_name_param, target_sub, &
        NAME_LEN
@@ -63,8 +63,7 @@ contains
     type(source_loc_t), intent(in) :: loc
     character(:), allocatable :: rel, path, text, fmt, typ
     logical :: found, ok
-    integer(i8) :: need
-    integer :: isub, ifile
+    integer :: isub, ifile, nerr0
     type(given_b_t) :: g
     if (.not. outside_step(st, kw, loc)) return
     call check_params(st, kw, loc, [character(NAME_LEN) :: 'INPUT', 'NAME', 'FORMAT', 'TYPE'], &
@@ -89,26 +88,16 @@ contains
        call report_loc(st, loc, 'substructure '//st%subs(isub)%name//' has a *MATRIX INPUT already')
        return
     end if
-    call load_file(path, text, ok, need)
-    if (need > 0) then
-       call report_oom(st, loc, 'reading matrix file '''//path//'''', need)
-       return
-    end if
-    if (.not. ok) then
-       call report_loc(st, loc, 'cannot open matrix file '''//path//'''')
-       return
-    end if
+    call load_deck_file(st, loc, path, 'matrix', text, ok)
+    if (.not. ok) return
     call register_file(st, path, path, ifile)
+    nerr0 = st%nerr
     g%file = ifile
     g%loc = loc
     allocate (g%rnode(INITIAL_ENTRIES), g%cnode(INITIAL_ENTRIES), g%rdof(INITIAL_ENTRIES), &
          g%cdof(INITIAL_ENTRIES), g%line(INITIAL_ENTRIES), g%val(INITIAL_ENTRIES))
-    if (fmt == 'ABAQUS') then
-       call read_abaqus(st, text, g)
-    else
-       call read_calculix(st, text, g)
-    end if
-    if (g%n == 0) call report_loc(st, loc, 'matrix file '''//path//''' gives no entry')
+    call read_lines(st, text, g, fmt == 'CALCULIX')
+    if (g%n == 0 .and. st%nerr == nerr0) call report_loc(st, loc, 'matrix file '''//path//''' gives no entry')
     call move_alloc_given(g, st%subs(isub)%given)
   end subroutine kw_matrix_input
 
@@ -127,55 +116,18 @@ contains
     call move_alloc(g%val, dest%val)
   end subroutine move_alloc_given
 
-  subroutine read_abaqus(st, text, g)
-    !! Lines `row node, row DOF, column node, column DOF, value`; `**` comments
-    !! and blank lines skipped.
+  subroutine read_lines(st, text, g, calculix)
+    !! Every line of a matrix file to its reader (blank lines skipped).
     type(deck_state_t), intent(inout) :: st
     character(*), intent(in) :: text
     type(given_b_t), intent(inout) :: g
+    logical, intent(in) :: calculix
     integer(i8) :: pos, first, last
     logical :: found
     integer :: line
     type(fields_t) :: f
-    integer(ip) :: rn, cn
-    integer :: rd, cd
-    real(wp) :: v
-    logical :: ok
-    pos = 1
-    line = 0
-    do
-       call next_line(text, pos, first, last, found)
-       if (.not. found) exit
-       line = line + 1
-       associate (s => text(first:last))
-         if (len_trim(s) == 0) cycle
-         if (index(adjustl(s), '**') == 1) cycle
-         call split_fields(s, f)
-         call drop_trailing_empty(f)
-         if (f%n /= ABAQUS_FIELDS) then
-            call report(st, g%file, line, 'a matrix line has 5 fields (row node, row DOF, column node, '// &
-                 'column DOF, value), not '//itoa(f%n))
-            cycle
-         end if
-         ok = node_dof(st, g%file, line, fld_of(s, f, 1), fld_of(s, f, 2), rn, rd)
-         ok = node_dof(st, g%file, line, fld_of(s, f, 3), fld_of(s, f, 4), cn, cd) .and. ok
-         ok = value_of(st, g%file, line, fld_of(s, f, 5), v) .and. ok
-       end associate
-       if (ok) call push_entry(g, rn, rd, cn, cd, v, line)
-    end do
-  end subroutine read_abaqus
-
-  subroutine read_calculix(st, text, g)
-    !! The .mtx of CalculiX's *SUBSTRUCTURE GENERATE (see the module comment).
-    type(deck_state_t), intent(inout) :: st
-    character(*), intent(in) :: text
-    type(given_b_t), intent(inout) :: g
-    integer(i8) :: pos, first, last
-    logical :: found
-    integer :: line
     type(ccx_reader_t) :: r
-    type(fields_t) :: f
-    allocate (r%node(INITIAL_ENTRIES), r%first_pos(INITIAL_ENTRIES), r%dofs(INITIAL_ENTRIES), &
+    if (calculix) allocate (r%node(INITIAL_ENTRIES), r%first_pos(INITIAL_ENTRIES), r%dofs(INITIAL_ENTRIES), &
          r%val(INITIAL_ENTRIES), r%vline(INITIAL_ENTRIES))
     pos = 1
     line = 0
@@ -187,11 +139,38 @@ contains
          if (len_trim(s) == 0) cycle
          call split_fields(s, f)
          call drop_trailing_empty(f)
-         call ccx_line(st, g%file, line, s, f, r)
+         if (calculix) then
+            call ccx_line(st, g%file, line, s, f, r)
+         else
+            call abaqus_line(st, g, line, s, f)
+         end if
        end associate
     end do
-    call ccx_entries(st, g, r)
-  end subroutine read_calculix
+    if (calculix) call ccx_entries(st, g, r)
+  end subroutine read_lines
+
+  subroutine abaqus_line(st, g, line, s, f)
+    !! `row node, row DOF, column node, column DOF, value`; `**` comments skipped.
+    type(deck_state_t), intent(inout) :: st
+    type(given_b_t), intent(inout) :: g
+    integer, intent(in) :: line
+    character(*), intent(in) :: s
+    type(fields_t), intent(in) :: f
+    integer(ip) :: rn, cn
+    integer :: rd, cd
+    real(wp) :: v
+    logical :: ok
+    if (index(adjustl(s), '**') == 1) return
+    if (f%n /= ABAQUS_FIELDS) then
+       call report(st, g%file, line, 'a matrix line has 5 fields (row node, row DOF, column node, '// &
+            'column DOF, value), not '//itoa(f%n))
+       return
+    end if
+    ok = node_dof(st, g%file, line, fld_of(s, f, 1), fld_of(s, f, 2), rn, rd)
+    if (ok) ok = node_dof(st, g%file, line, fld_of(s, f, 3), fld_of(s, f, 4), cn, cd)
+    if (ok) ok = value_of(st, g%file, line, fld_of(s, f, 5), v)
+    if (ok) call push_entry(g, rn, rd, cn, cd, v, line)
+  end subroutine abaqus_line
 
   subroutine ccx_line(st, ifile, line, s, f, r)
     !! One line of a CalculiX .mtx.

@@ -7,7 +7,7 @@ module superjoin_deck_state
   use superjoin_utils_memory, only: oom_message, BYTES_REAL, BYTES_INT
   use superjoin_model_types, only: string_t, source_loc_t, material_t, orientation_t, &
        controls_t, MAX_ELEMENT_NODES, NDOF_NODE, LINK_NONE
-  use superjoin_deck_lexer, only: itoa, fields_t
+  use superjoin_deck_lexer, only: itoa, fields_t, load_file
   use superjoin_utils_grow, only: grow
   use superjoin_deck_records, only: SHAPE_GENERAL, BEAM_2D_VALUES, BEAM_3D_VALUES, CH_IDS, CH_GEN, &
        CH_RANGE, CH_REF, chunk_t, set_b_t, sub_b_t, ref_t, sec_b_t, contact_b_t, cline_b_t, &
@@ -124,7 +124,7 @@ module superjoin_deck_state
      type(export_b_t), allocatable :: exports(:)  !! *SUBSTRUCTURE MATRIX OUTPUT cards (unallocated: none)
   end type deck_state_t
 
-  public :: register_file
+  public :: register_file, load_deck_file
   public :: report, report_loc, report_oom, new_sub, find_sub, find_set, new_set, add_chunk, push_pool
   public :: add_node, add_element, add_heading, add_material, add_orientation, add_section
   public :: add_contact, add_cline, add_support, add_step, add_load, file_of
@@ -151,6 +151,24 @@ contains
     st%files(k)%s = path
     st%norm_files(k)%s = norm
   end subroutine register_file
+
+  subroutine load_deck_file(st, loc, path, what, text, ok)
+    !! The whole of file `path` that the card at loc names (an include or a
+    !! matrix file); a file that cannot be opened or held is reported at loc.
+    type(deck_state_t), intent(inout) :: st
+    type(source_loc_t), intent(in) :: loc
+    character(*), intent(in) :: path, what
+    character(:), allocatable, intent(out) :: text
+    logical, intent(out) :: ok
+    integer(i8) :: need
+    call load_file(path, text, ok, need)
+    if (need > 0) then
+       call report_oom(st, loc, 'reading '//what//' file '''//path//'''', need)
+       ok = .false.
+    else if (.not. ok) then
+       call report_loc(st, loc, 'cannot open '//what//' file '''//path//'''')
+    end if
+  end subroutine load_deck_file
 
   subroutine report(st, file, line, message)
     !! Add `path:line: error: message` (at most MAX_ERRORS messages; after that

@@ -158,12 +158,12 @@ contains
     call build_forest(st%table, st%form == FORM_TRANSFORM, st%forest, error)
     if (allocated(error)) return
     call boundary_dofs(st%table, bnd)
+    call given_boundary(model, st%table, bnd)
     call count_boundary(model, st%table, bnd, res%summary)
     call plan_distribution(model, res%summary, res%log, error)   ! several MPI processes only
     if (allocated(error)) return
     ! Condensation boundaries: the instances of a part share theirs.
     call part_boundary(model, st%table, bnd, st%bnd_c)
-    call given_boundary(model, st%table, st%bnd_c)
     call choose_condensation(model, st%table, opts, ctx, st%bnd_c, res%summary, notes)
     allocate (keep(st%table%np), stat=stat)
     if (stat /= 0) then

@@ -511,7 +511,7 @@ contains
     logical :: found
     if (.not. outside_step(st, kw, loc)) return
     call check_params(st, kw, loc, [character(NAME_LEN) :: 'SUBSTRUCTURE', 'FILE NAME', 'FORMAT', &
-         'STIFFNESS', 'OUTPUT FILE'], [character(NAME_LEN) ::])
+         'STIFFNESS', 'OUTPUT FILE', 'RETAIN'], [character(NAME_LEN) ::])
     call get_name_param(st, kw, loc, 'SUBSTRUCTURE', .true., e%sub, found)
     if (.not. found) return
     call get_param(st, kw, loc, 'FILE NAME', .true., value, found)
@@ -523,6 +523,8 @@ contains
     end if
     e%path = path_join(path_dirname(st%files(loc%file)%s), value)
     e%loc = loc
+    call get_name_param(st, kw, loc, 'RETAIN', .false., value, found)
+    if (found) e%retain = value
     e%format = EXPORT_ABAQUS
     call get_param(st, kw, loc, 'FORMAT', .false., value, found)
     if (found) then
@@ -563,6 +565,21 @@ contains
          'name (FILE NAME=f gives f.mtx, f.dmig or f.mtx with f_dofs.csv), not '''//path//''''
   end function export_path_problem
 
+  subroutine retained_nodes(st, e, m, x)
+    !! RETAIN=: the nodes of a node set of the exported substructure.
+    type(deck_state_t), intent(inout) :: st
+    type(export_b_t), intent(in) :: e
+    type(substructure_t), intent(in) :: m
+    type(matrix_export_t), intent(inout) :: x
+    integer :: k
+    do k = 1, size(m%nsets)
+       if (m%nsets(k)%name /= e%retain) cycle
+       x%retain = m%nsets(k)%items
+       return
+    end do
+    call report_loc(st, e%loc, 'RETAIN='//e%retain//' names no node set of substructure '//m%name)
+  end subroutine retained_nodes
+
   subroutine build_exports(st, model)
     !! model%exports from the *SUBSTRUCTURE MATRIX OUTPUT cards: the substructure
     !! by name (a plain one or an instance; a part is no substructure).
@@ -579,8 +596,12 @@ contains
          do k = 1, size(model%subs)
             if (model%subs(k)%name == e%sub) x%sub = k
          end do
-         if (x%sub == 0) call report_loc(st, e%loc, 'SUBSTRUCTURE='//e%sub//' names no substructure or '// &
-              'instance (a part is exported through one of its instances)')
+         if (x%sub == 0) then
+            call report_loc(st, e%loc, 'SUBSTRUCTURE='//e%sub//' names no substructure or '// &
+                 'instance (a part is exported through one of its instances)')
+         else if (allocated(e%retain)) then
+            call retained_nodes(st, e, model%subs(x%sub), x)
+         end if
          do j = 1, i - 1
             if (model%exports(j)%sub == x%sub .and. model%exports(j)%path == x%path .and. &
                  model%exports(j)%format == x%format) call report_loc(st, e%loc, 'the same export is asked twice')

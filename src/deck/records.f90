@@ -53,6 +53,7 @@ module superjoin_deck_records
      integer :: format = 0                          !! EXPORT_* (model types)
      character(:), allocatable :: path              !! FILE NAME= joined to its file's directory
      type(source_loc_t) :: loc
+     character(:), allocatable :: retain            !! RETAIN= node set (upper case; unallocated: none)
   end type export_b_t
 
   type, public :: sub_b_t

@@ -180,6 +180,7 @@ module superjoin_model_types
      integer :: format = 0                    !! EXPORT_* (superjoin_model_types)
      character(:), allocatable :: path        !! FILE NAME= joined to the deck's directory, no extension
      type(source_loc_t) :: loc
+     integer(ip), allocatable :: retain(:)    !! RETAIN=: local nodes kept on the boundary (unallocated: none)
   end type matrix_export_t
 
   integer, parameter, public :: EXPORT_ABAQUS = 1, EXPORT_DMIG = 2, EXPORT_MATRIX_MARKET = 3, &

@@ -136,12 +136,28 @@ contains
   subroutine given_boundary(model, table, bnd)
     !! Every DOF of a substructure with a given stiffness (*MATRIX INPUT) is on
     !! its condensation boundary: its interior is empty and K* is the matrix.
+    !! So are the DOFs of the nodes an export retains (*SUBSTRUCTURE MATRIX
+    !! OUTPUT, RETAIN=).
     type(model_t), intent(in) :: model
     type(dof_table_t), intent(in) :: table
     logical, intent(inout) :: bnd(:)
     integer(i8) :: p
+    integer :: k, d
+    integer(ip) :: i
     do p = 1, table%np
        if (allocated(model%subs(table%p_sub(p))%given)) bnd(p) = .true.
+    end do
+    if (.not. allocated(model%exports)) return
+    do k = 1, size(model%exports)
+       if (.not. allocated(model%exports(k)%retain)) cycle
+       associate (x => model%exports(k))
+         do i = 1, size(x%retain)
+            do d = 1, size(table%pdof, 1)
+               p = table%pdof(d, table%vertex_offset(x%sub) + x%retain(i))
+               if (p > 0) bnd(p) = .true.
+            end do
+         end do
+       end associate
     end do
   end subroutine given_boundary
 

@@ -8,7 +8,7 @@ module superjoin_analysis_matrix_export
   !!
   !! FORMAT=ABAQUS: FILE.mtx, Abaqus's matrix input text layout, one line
   !!   `row node, row DOF, column node, column DOF, value` per entry of the
-  !!   lower triangle (exact zeros off the diagonal left out), 17 digits;
+  !!   lower triangle (exact zeros off the diagonal left out), 17 digits (0 as `0`);
   !!   FILE_<step>.load per step: `node, DOF, value` (the data lines of *CLOAD).
   !! FORMAT=CALCULIX: FILE.mtx in the layout of CalculiX's *SUBSTRUCTURE
   !!   GENERATE (*USER ELEMENT with one position per boundary DOF, the
@@ -33,7 +33,7 @@ module superjoin_analysis_matrix_export
   use superjoin_substructure_cache, only: part_view_t
   use superjoin_utils_text_buffer, only: text_buffer_t
   use superjoin_utils_process, only: temp_register
-  use superjoin_utils_strings, only: itoa
+  use superjoin_utils_strings, only: itoa, full_real
   implicit none (type, external)
   private
 
@@ -89,15 +89,6 @@ contains
     end do
   end subroutine export_condensed
 
-  function num(x) result(s)
-    !! x with 17 significant digits.
-    real(wp), intent(in) :: x
-    character(:), allocatable :: s
-    character(len=26) :: buf
-    write (buf, '(es25.16e3)') x
-    s = trim(adjustl(buf))
-  end function num
-
   subroutine start(tb, path, error)
     !! Open path's temporary file.
     type(text_buffer_t), intent(inout) :: tb
@@ -124,7 +115,7 @@ contains
        do j = 1, i
           if (i /= j .and. k(i, j) == 0.0_wp) cycle
           call tb%line(itoa(map%node(i))//', '//itoa(map%dof(i))//', '//itoa(map%node(j))//', '// &
-               itoa(map%dof(j))//', '//num(k(i, j)))
+               itoa(map%dof(j))//', '//full_real(k(i, j)))
        end do
     end do
     call tb%commit(path//TMP_EXT, path, '', error)
@@ -160,7 +151,7 @@ contains
     call tb%line('*MATRIX,TYPE=STIFFNESS')
     do i = 1, n
        do j = 1, i
-          call tb%put(num(k(i, j))//',')
+          call tb%put(full_real(k(i, j))//',')
           if (mod(j, CCX_PER_LINE) == 0 .or. j == i) call tb%newline()
        end do
     end do
@@ -184,7 +175,7 @@ contains
        if (allocated(error)) return
        call tb%line('** superjoin: f* of step '//model%steps(s)%name//' (node, DOF, value: *CLOAD data lines)')
        do i = 1, size(map%dof)
-          call tb%line(itoa(map%node(i))//', '//itoa(map%dof(i))//', '//num(fstar(i, s)))
+          call tb%line(itoa(map%node(i))//', '//itoa(map%dof(i))//', '//full_real(fstar(i, s)))
        end do
        call tb%commit(path//TMP_EXT, path, '', error)
        if (allocated(error)) return
@@ -300,7 +291,7 @@ contains
     do j = 1, n
        do i = j, n
           if (i /= j .and. k(i, j) == 0.0_wp) cycle
-          call tb%line(itoa(i)//' '//itoa(j)//' '//num(k(i, j)))
+          call tb%line(itoa(i)//' '//itoa(j)//' '//full_real(k(i, j)))
        end do
     end do
     call tb%commit(base//'.mtx'//TMP_EXT, base//'.mtx', '', error)
@@ -312,7 +303,7 @@ contains
     call tb%line(itoa(n)//' '//itoa(size(fstar, 2)))
     do j = 1, size(fstar, 2)
        do i = 1, n
-          call tb%line(num(fstar(i, j)))
+          call tb%line(full_real(fstar(i, j)))
        end do
     end do
     call tb%commit(base//'_loads.mtx'//TMP_EXT, base//'_loads.mtx', '', error)

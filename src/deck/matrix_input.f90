@@ -23,6 +23,7 @@ module superjoin_deck_matrix_input
        export_b_t, instance_b_t
   use superjoin_deck_cards_common, only: outside_step, check_params, get_param, get_name_param, target_sub, &
        NAME_LEN
+  use superjoin_model_output_paths, only: has_control_char
   implicit none (type, external)
   private
 
@@ -552,14 +553,11 @@ contains
     character(*), intent(in) :: path
     character(:), allocatable :: msg
     character(:), allocatable :: last
-    integer :: k
     msg = ''
-    do k = 1, len(path)
-       if (iachar(path(k:k)) < iachar(' ')) then
-          msg = 'the FILE NAME of *SUBSTRUCTURE MATRIX OUTPUT contains a control character'
-          return
-       end if
-    end do
+    if (has_control_char(path)) then
+       msg = 'the FILE NAME of *SUBSTRUCTURE MATRIX OUTPUT contains a control character'
+       return
+    end if
     last = path(index(path, '/', back=.true.) + 1:)
     if (len(last) == 0 .or. last == '.' .or. last == '..') msg = '*SUBSTRUCTURE MATRIX OUTPUT needs a file '// &
          'name (FILE NAME=f gives f.mtx, f.dmig or f.mtx with f_dofs.csv), not '''//path//''''

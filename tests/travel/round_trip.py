@@ -12,7 +12,9 @@ elements (all six DOFs) to a clamped B33 frame BASE. Loads: on A's interior
 2. import: the plate part replaced by a part of its four corners whose
    stiffness is A's exported K* (*MATRIX INPUT, FORMAT=ABAQUS, and again with
    FORMAT=CALCULIX); B turned by its *INSTANCE; A's exported f* applied as
-   *CLOAD lines (the .load files). BASE and the corners of A and B must agree
+   *CLOAD lines (the .load files); once more with B the one instance of a
+   second part with the same matrix (its matrix turned at placement, not
+   A's condensation turned by the cache). BASE and the corners of A and B must agree
    with the explicit run to 1e-10 (relative to the largest displacement).
 3. the DMIG file read back by the small reader below (large-field DMIG*
    entries): its K and P must equal the ABAQUS export to its 10 digits, and
@@ -40,8 +42,8 @@ CENTRE = node(N // 2, N // 2)
 OFF = node(1, 3)
 
 
-def plate_part(matrix=None):
-    lines = ["*PART, NAME=PLATE", "*NODE"]
+def plate_part(matrix=None, name="PLATE"):
+    lines = [f"*PART, NAME={name}", "*NODE"]
     for j in range(N + 1):
         for i in range(N + 1):
             n = node(i, j)
@@ -61,12 +63,17 @@ def plate_part(matrix=None):
     return lines
 
 
-def deck(matrix=None, loads_a=None, export=False):
+def deck(matrix=None, loads_a=None, export=False, split=False):
+    """split: B is the one instance of a second part with the same matrix, so
+    that its matrix is turned by its own placement (not reused from A's)."""
     d = ["*HEADING", "plate part joined to a frame (tests/travel/round_trip.py)",
          "*MATERIAL, NAME=STEEL", "*ELASTIC", "2.1e11, 0.3"]
     d += plate_part(matrix)
+    if split:
+        d += plate_part(matrix, "PLATE2")
     d += ["*ASSEMBLY", "*INSTANCE, NAME=A, PART=PLATE", "*END INSTANCE",
-          "*INSTANCE, NAME=B, PART=PLATE", "2.0, 0.0, 0.0", "2.0, 0.0, 0.0, 3.0, 0.0, 0.0, 90.0",
+          f"*INSTANCE, NAME=B, PART={'PLATE2' if split else 'PLATE'}", "2.0, 0.0, 0.0",
+          "2.0, 0.0, 0.0, 3.0, 0.0, 0.0, 90.0",
           "*END INSTANCE", "*END ASSEMBLY"]
     # BASE: the eight corner positions, a ring of beams under each plate
     pos = {1: (0, 0, 0), 2: (1, 0, 0), 3: (0, 1, 0), 4: (1, 1, 0),
@@ -221,10 +228,11 @@ def main():
     exported = displacements(run(binary, work, "export", deck(export=True)))
     results = [compare(ref, exported, "the exporting run (A condensed) against the monolithic one"),
                check_dmig(work), check_mm(work)]
-    for fmt, base in (("ABAQUS", "pa"), ("CALCULIX", "pc")):
-        got = displacements(run(binary, work, "import_" + fmt.lower(),
-                                deck(matrix=(base + ".mtx", fmt), loads_a=load_lines(work, base))))
-        results.append(compare(ref, got, f"import of the {fmt} export, B turned by its instance"))
+    for fmt, base, split in (("ABAQUS", "pa", False), ("CALCULIX", "pc", False), ("ABAQUS", "pa", True)):
+        got = displacements(run(binary, work, "import_" + fmt.lower() + ("_split" if split else ""),
+                                deck(matrix=(base + ".mtx", fmt), loads_a=load_lines(work, base), split=split)))
+        how = "its own part's matrix turned by its instance" if split else "A's condensation turned"
+        results.append(compare(ref, got, f"import of the {fmt} export, B: {how}"))
     failed = results.count(False)
     print(f"{len(results) - failed} passed, {failed} failed")
     return 1 if failed else 0

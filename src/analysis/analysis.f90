@@ -16,7 +16,7 @@ module superjoin_analysis
   use superjoin_assembly_forest, only: build_forest
   use superjoin_assembly_transform, only: transform_t, build_transform, COL_DELTA
   use superjoin_assembly_assemble, only: assemble_stiffness, assemble_loads
-  use superjoin_substructure_local_system, only: boundary_dofs, part_boundary
+  use superjoin_substructure_local_system, only: boundary_dofs, part_boundary, given_boundary
   use superjoin_substructure_cache, only: release_cache
   use superjoin_solvers, only: new_solver
   use superjoin_solvers_matrix_market, only: write_matrix_market
@@ -159,6 +159,7 @@ contains
     call build_forest(st%table, st%form == FORM_TRANSFORM, st%forest, error)
     if (allocated(error)) return
     call boundary_dofs(st%table, bnd)
+    call given_boundary(model, st%table, bnd)
     call count_boundary(model, st%table, bnd, res%summary)
     call plan_distribution(model, res%summary, res%log, error)   ! several MPI processes only
     if (allocated(error)) return

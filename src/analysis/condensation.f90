@@ -14,6 +14,7 @@ module superjoin_analysis_condensation
   use superjoin_analysis_factor_reuse, only: kept_factor_t
   use superjoin_utils_strings, only: itoa
   use superjoin_analysis_solve_state, only: solve_state_t, solve_strategy_t
+  use superjoin_analysis_matrix_export, only: export_condensed
   implicit none (type, external)
   private
 
@@ -136,6 +137,8 @@ contains
          call view_condense_loads(cache, parts(ip_), f_phys(parts(ip_)%pdof, :), fstar, error)
          if (allocated(error)) return
          f_eff(parts(ip_)%se%pdof, :) = fstar
+         call export_condensed(model, table, parts(ip_), fstar, error)
+         if (allocated(error)) return
          deallocate (fstar)
       end do
     end associate

@@ -248,6 +248,10 @@ contains
        if (opts%condense >= 0) mode = opts%condense
        nb = nbs(isub)
        ni = summary%sub_dofs(isub) - nb
+       if (must_condense(model, isub) .and. nb > 0) then
+          call force_condensed(model, isub, ni, nb, summary, notes)
+          cycle
+       end if
        if (mode == CONDENSE_NO) cycle
        if (mode == CONDENSE_AUTO) then
           ninst = 0
@@ -287,6 +291,34 @@ contains
     if (len(small) > 0) call note(notes, 'CONDENSE=AUTO: not condensed, the boundary being no smaller '// &
          'than the interior:'//small)
   end subroutine choose_condensation
+
+  logical function must_condense(model, isub)
+    !! A substructure whose stiffness is given (*MATRIX INPUT) or whose K* is
+    !! exported (*SUBSTRUCTURE MATRIX OUTPUT) is condensed whatever CONDENSE says.
+    type(model_t), intent(in) :: model
+    integer, intent(in) :: isub
+    must_condense = allocated(model%subs(isub)%given)
+    if (must_condense .or. .not. allocated(model%exports)) return
+    must_condense = any(model%exports(:)%sub == isub)
+  end function must_condense
+
+  subroutine force_condensed(model, isub, ni, nb, summary, notes)
+    !! Mark substructure isub condensed (must_condense) and say why.
+    type(model_t), intent(in) :: model
+    integer, intent(in) :: isub
+    integer(i8), intent(in) :: ni, nb
+    type(run_summary_t), intent(inout) :: summary
+    type(string_t), allocatable, intent(inout) :: notes(:)
+    summary%sub_condensed(isub) = .true.
+    summary%n_condensed = summary%n_condensed + 1
+    if (allocated(model%subs(isub)%given)) then
+       call note(notes, 'substructure '//model%subs(isub)%name//': stiffness given by *MATRIX INPUT '// &
+            model%subs(isub)%given%file//', K* of order '//itoa(nb))
+    else
+       call note(notes, 'substructure '//model%subs(isub)%name//' condensed (*SUBSTRUCTURE MATRIX OUTPUT): '// &
+            itoa(ni)//' interior DOFs eliminated, K* of order '//itoa(nb)//' on its boundary')
+    end if
+  end subroutine force_condensed
 
   subroutine autospc(model, table, tr, k, f_red, spc, notes, error, summed)
     !! Unknowns with no stiffness at all: dropped (diagonal 1, load 0) when

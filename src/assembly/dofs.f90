@@ -131,6 +131,7 @@ contains
        return
     end if
     call activate_elements(model, table, has)
+    call activate_given(model, table, has)
     call activate_supports(model, table, has)
 
     call build_link_units(model, table, has, error)
@@ -209,6 +210,22 @@ contains
        end associate
     end do
   end subroutine activate_elements
+
+  subroutine activate_given(model, table, has)
+    !! The DOFs of a stiffness given by *MATRIX INPUT are active on its nodes.
+    type(model_t), intent(in) :: model
+    type(dof_table_t), intent(in) :: table
+    logical, intent(inout) :: has(:, :)
+    integer :: isub, r
+    do isub = 1, size(model%subs)
+       if (.not. allocated(model%subs(isub)%given)) cycle
+       associate (g => model%subs(isub)%given)
+         do r = 1, size(g%dof)
+            has(g%dof(r), table%vertex_offset(isub) + g%node(r)) = .true.
+         end do
+       end associate
+    end do
+  end subroutine activate_given
 
   subroutine activate_supports(model, table, has)
     type(model_t), intent(in) :: model

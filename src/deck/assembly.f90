@@ -8,6 +8,7 @@ module superjoin_deck_assembly
   !!   structure turned; then the parts leave model%subs;
   !! - PAIR=NEAREST on *CONTACT: each slave node takes the nearest master node;
   !! - *CHANGE CONTACT: per-step link overrides, SWEEP steps expanded.
+  use superjoin_deck_matrix_input, only: turn_given
   use superjoin_kinds, only: wp, ip
   use superjoin_model_types, only: model_t, substructure_t, index_set_t, source_loc_t, &
        ELEMENT_TYPE_NAMES, SEC_BEAM, LINK_FINITE, section_t, MAX_ELEMENT_NODES, link_override_t, &
@@ -227,6 +228,7 @@ contains
     m%loc = loc
     m%rot = inst%rot
     m%shift = inst%shift
+    if (allocated(m%given) .and. .not. all(inst%rot == IDENTITY)) call turn_given(st, inst, m)
     do i = 1, m%nnode
        m%x(:, i) = matmul(inst%rot, part%x(:, i)) + inst%shift
     end do

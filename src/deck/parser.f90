@@ -8,11 +8,11 @@ module superjoin_deck_parser
   !! _transforms, _nodal_thickness (helpers shared by them: _cards_common).
   use superjoin_kinds, only: i8
   use superjoin_model_types, only: source_loc_t, SEC_SOLID, SEC_BEAM, SEC_SHELL
-  use superjoin_deck_lexer, only: keyword_line_t, load_file, next_line, first_nonblank, &
+  use superjoin_deck_lexer, only: keyword_line_t, next_line, first_nonblank, &
        parse_keyword_line, split_fields, drop_trailing_empty, itoa, clip, path_dirname, path_join, &
        path_normalize
-  use superjoin_deck_state, only: deck_state_t, report, report_loc, report_oom, add_heading, &
-       add_step, MAX_INCLUDE_DEPTH, grow
+  use superjoin_deck_state, only: deck_state_t, report, report_loc, add_heading, &
+       add_step, MAX_INCLUDE_DEPTH, register_file, load_deck_file
   use superjoin_deck_ccx_cards, only: canonical_keyword
   use superjoin_deck_springs, only: translate_springs
   use superjoin_deck_cards_common, only: set_card, check_params, get_param, refused_card, CARD_NONE, &
@@ -38,6 +38,7 @@ module superjoin_deck_parser
   use superjoin_deck_equations, only: kw_equation, data_equation, end_equation_card
   use superjoin_deck_transforms, only: kw_transform, data_transform
   use superjoin_deck_nodal_thickness, only: kw_nodal_thickness, data_nodal_thickness
+  use superjoin_deck_matrix_input, only: kw_matrix_input, kw_matrix_output
   implicit none (type, external)
   private
 
@@ -50,24 +51,6 @@ module superjoin_deck_parser
     !! default integers, so a longer line is refused rather than mis-read.
 
 contains
-
-  subroutine register_file(st, path, norm, k)
-    !! Index of file `path` in the state's file list (added if new); `norm` is
-    !! the normalized path used to detect include cycles.
-    type(deck_state_t), intent(inout) :: st
-    character(*), intent(in) :: path, norm
-    integer, intent(out) :: k
-    integer, parameter :: INITIAL_FILES = 4
-    do k = 1, st%nfile
-       if (st%norm_files(k)%s == norm) return
-    end do
-    call grow(st%files, st%nfile, INITIAL_FILES)
-    call grow(st%norm_files, st%nfile, INITIAL_FILES)
-    st%nfile = st%nfile + 1
-    k = st%nfile
-    st%files(k)%s = path
-    st%norm_files(k)%s = norm
-  end subroutine register_file
 
   recursive subroutine parse_source(st, text, file)
     !! Parse the lines of `text`, which is file number `file` (recursive through *INCLUDE).
@@ -260,6 +243,10 @@ contains
        call kw_equation(st, kw, loc)
     case ('TRANSFORM')
        call kw_transform(st, kw, loc)
+    case ('MATRIX INPUT')
+       call kw_matrix_input(st, kw, loc)
+    case ('SUBSTRUCTURE MATRIX OUTPUT')
+       call kw_matrix_output(st, kw, loc)
     case ('NODAL THICKNESS')
        call kw_nodal_thickness(st, kw, loc)
     case default
@@ -309,7 +296,6 @@ contains
     character(:), allocatable :: rel, path, chain, text
     logical :: found, ok
     integer :: k, j, idx
-    integer(i8) :: need
     call check_params(st, kw, loc, [character(NAME_LEN) :: 'INPUT'], [character(NAME_LEN) ::])
     call get_param(st, kw, loc, 'INPUT', .true., rel, found)
     if (.not. found) return
@@ -328,15 +314,8 @@ contains
        call report_loc(st, loc, 'includes nested deeper than '//itoa(MAX_INCLUDE_DEPTH)//' levels')
        return
     end if
-    call load_file(path, text, ok, need)
-    if (need > 0) then
-       call report_oom(st, loc, 'reading include file '''//path//'''', need)
-       return
-    end if
-    if (.not. ok) then
-       call report_loc(st, loc, 'cannot open include file '''//path//'''')
-       return
-    end if
+    call load_deck_file(st, loc, path, 'include', text, ok)
+    if (.not. ok) return
     call register_file(st, path, path, idx)
     st%depth = st%depth + 1
     st%stack(st%depth) = idx

@@ -36,6 +36,26 @@ module superjoin_deck_records
      type(source_loc_t) :: loc
   end type set_b_t
 
+  type, public :: given_b_t
+    !! A *MATRIX INPUT as read (superjoin_deck_matrix_input): its entries by
+    !! user node ids, each with the line of the matrix file that gave it.
+     integer :: file = 0                            !! the matrix file (index into the deck's files)
+     type(source_loc_t) :: loc                      !! the card
+     integer :: n = 0
+     integer(ip), allocatable :: rnode(:), cnode(:)
+     integer, allocatable :: rdof(:), cdof(:), line(:)
+     real(wp), allocatable :: val(:)
+  end type given_b_t
+
+  type, public :: export_b_t
+    !! A *SUBSTRUCTURE MATRIX OUTPUT card as read.
+     character(:), allocatable :: sub               !! SUBSTRUCTURE= (upper case)
+     integer :: format = 0                          !! EXPORT_* (model types)
+     character(:), allocatable :: path              !! FILE NAME= joined to its file's directory
+     type(source_loc_t) :: loc
+     character(:), allocatable :: retain            !! RETAIN= node set (upper case; unallocated: none)
+  end type export_b_t
+
   type, public :: sub_b_t
     !! A substructure as read: user ids, coordinates, element connectivity by user ids.
      character(:), allocatable :: name
@@ -62,6 +82,7 @@ module superjoin_deck_records
      integer :: inst = 0                            !! SUBK_INSTANCE: index into instances
      logical :: broken = .false.
        !! an instance of an undefined part: references into it are not reported again
+     type(given_b_t), allocatable :: given          !! *MATRIX INPUT of the block
   end type sub_b_t
 
 

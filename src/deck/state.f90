@@ -7,14 +7,14 @@ module superjoin_deck_state
   use superjoin_utils_memory, only: oom_message, BYTES_REAL, BYTES_INT
   use superjoin_model_types, only: string_t, source_loc_t, material_t, orientation_t, &
        controls_t, MAX_ELEMENT_NODES, NDOF_NODE, LINK_NONE
-  use superjoin_deck_lexer, only: itoa, fields_t
+  use superjoin_deck_lexer, only: itoa, fields_t, load_file
   use superjoin_utils_grow, only: grow
   use superjoin_deck_records, only: SHAPE_GENERAL, BEAM_2D_VALUES, BEAM_3D_VALUES, CH_IDS, CH_GEN, &
        CH_RANGE, CH_REF, chunk_t, set_b_t, sub_b_t, ref_t, sec_b_t, contact_b_t, cline_b_t, &
        equation_b_t, transform_b_t, nthick_b_t, support_b_t, load_b_t, SUBK_PLAIN, SUBK_PART, &
        SUBK_INSTANCE, instance_b_t, override_b_t, step_b_t, temp_b_t, surface_b_t, combo_b_t, &
        OP_DEFAULT, OP_MOD, OP_NEW, request_b_t, SPRING_1, SPRING_2, SPRING_A, spring_elem_b_t, &
-       spring_card_b_t
+       spring_card_b_t, given_b_t, export_b_t
   implicit none (type, external)
   private
 
@@ -33,7 +33,8 @@ module superjoin_deck_state
        chunk_t, set_b_t, sub_b_t, ref_t, sec_b_t, contact_b_t, cline_b_t, equation_b_t, &
        transform_b_t, nthick_b_t, support_b_t, load_b_t, SUBK_PLAIN, SUBK_PART, SUBK_INSTANCE, &
        instance_b_t, override_b_t, step_b_t, temp_b_t, surface_b_t, combo_b_t, OP_DEFAULT, OP_MOD, &
-       OP_NEW, request_b_t, SPRING_1, SPRING_2, SPRING_A, spring_elem_b_t, spring_card_b_t
+       OP_NEW, request_b_t, SPRING_1, SPRING_2, SPRING_A, spring_elem_b_t, spring_card_b_t, given_b_t, &
+       export_b_t
 
   type, public :: deck_state_t
     !! Everything the reader has collected, and the card being read.
@@ -120,8 +121,10 @@ module superjoin_deck_state
      integer :: card_home = 0
      logical :: card_generate = .false.
      type(fields_t) :: f                   !! fields of the current data line (reused)
+     type(export_b_t), allocatable :: exports(:)  !! *SUBSTRUCTURE MATRIX OUTPUT cards (unallocated: none)
   end type deck_state_t
 
+  public :: register_file, load_deck_file
   public :: report, report_loc, report_oom, new_sub, find_sub, find_set, new_set, add_chunk, push_pool
   public :: add_node, add_element, add_heading, add_material, add_orientation, add_section
   public :: add_contact, add_cline, add_support, add_step, add_load, file_of
@@ -130,6 +133,42 @@ module superjoin_deck_state
 contains
 
   ! ------------------------------------------------------------------ errors
+
+  subroutine register_file(st, path, norm, k)
+    !! Index of file `path` in the state's file list (added if new); `norm` is
+    !! the normalized path used to detect include cycles.
+    type(deck_state_t), intent(inout) :: st
+    character(*), intent(in) :: path, norm
+    integer, intent(out) :: k
+    integer, parameter :: INITIAL_FILES = 4
+    do k = 1, st%nfile
+       if (st%norm_files(k)%s == norm) return
+    end do
+    call grow(st%files, st%nfile, INITIAL_FILES)
+    call grow(st%norm_files, st%nfile, INITIAL_FILES)
+    st%nfile = st%nfile + 1
+    k = st%nfile
+    st%files(k)%s = path
+    st%norm_files(k)%s = norm
+  end subroutine register_file
+
+  subroutine load_deck_file(st, loc, path, what, text, ok)
+    !! The whole of file `path` that the card at loc names (an include or a
+    !! matrix file); a file that cannot be opened or held is reported at loc.
+    type(deck_state_t), intent(inout) :: st
+    type(source_loc_t), intent(in) :: loc
+    character(*), intent(in) :: path, what
+    character(:), allocatable, intent(out) :: text
+    logical, intent(out) :: ok
+    integer(i8) :: need
+    call load_file(path, text, ok, need)
+    if (need > 0) then
+       call report_oom(st, loc, 'reading '//what//' file '''//path//'''', need)
+       ok = .false.
+    else if (.not. ok) then
+       call report_loc(st, loc, 'cannot open '//what//' file '''//path//'''')
+    end if
+  end subroutine load_deck_file
 
   subroutine report(st, file, line, message)
     !! Add `path:line: error: message` (at most MAX_ERRORS messages; after that

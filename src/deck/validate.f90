@@ -18,6 +18,7 @@ module superjoin_deck_validate
   use superjoin_deck_build_sections, only: build_sections, check_unassigned
   use superjoin_deck_build_contacts, only: build_contacts, build_supports
   use superjoin_deck_build_steps, only: build_steps
+  use superjoin_deck_matrix_input, only: build_exports, build_given
   implicit none (type, external)
   private
 
@@ -68,12 +69,14 @@ contains
        end if
        call build_sub(st, st%subs(k), model%subs(k))
        if (st%aborted) return
+       if (allocated(st%subs(k)%given)) call build_given(st, st%subs(k)%given, model%subs(k))
     end do
     call build_sections(st, model)
     if (st%aborted) return
     call check_unassigned(st, model)
     call place_instances(st, model)
     if (st%aborted) return
+    call build_exports(st, model)
     call build_contacts(st, model)
     if (st%aborted) return
     call build_interfaces(st, model)

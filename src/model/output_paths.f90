@@ -6,7 +6,7 @@ module superjoin_model_output_paths
   implicit none (type, external)
   private
 
-  public :: vtk_base, vtk_piece_path, vtk_path_problem
+  public :: vtk_base, vtk_piece_path, vtk_path_problem, has_control_char
 
   character(*), parameter, public :: PVD_EXT = '.pvd', VTU_EXT = '.vtu'
     !! Extensions of the collection and of the per-step pieces.
@@ -38,18 +38,26 @@ contains
     character(*), intent(in) :: path
     character(:), allocatable :: msg
     character(:), allocatable :: base, last
-    integer :: k, slash
+    integer :: slash
     msg = ''
-    do k = 1, len(path)
-       if (iachar(path(k:k)) < iachar(' ')) then
-          msg = 'the VTK file name contains a control character'
-          return
-       end if
-    end do
+    if (has_control_char(path)) then
+       msg = 'the VTK file name contains a control character'
+       return
+    end if
     base = vtk_base(path)
     slash = index(base, '/', back=.true.)
     last = base(slash + 1:)
     if (len(last) == 0 .or. last == '.' .or. last == '..') &
          msg = 'the VTK output needs a file name (FILE gives FILE.pvd and FILE_<step>.vtu), not '''//path//''''
   end function vtk_path_problem
+
+  pure logical function has_control_char(path)
+    !! Whether a file name holds a character below blank.
+    character(*), intent(in) :: path
+    integer :: k
+    has_control_char = .false.
+    do k = 1, len(path)
+       if (iachar(path(k:k)) < iachar(' ')) has_control_char = .true.
+    end do
+  end function has_control_char
 end module superjoin_model_output_paths

@@ -139,6 +139,17 @@ module superjoin_model_types
      integer(ip), allocatable :: items(:)
   end type index_set_t
 
+  type, public :: given_matrix_t
+    !! A reduced stiffness read from a file (*MATRIX INPUT): dense, symmetric,
+    !! on the (node, DOF) pairs listed; in the substructure's own frame (an
+    !! instance's copy is turned by its placement). Such a substructure enters
+    !! the solution as a condensed part with no interior: K* = k.
+     integer(ip), allocatable :: node(:)      !! local node of each matrix row
+     integer, allocatable :: dof(:)           !! its DOF 1..6
+     real(wp), allocatable :: k(:, :)         !! (n, n)
+     character(:), allocatable :: file        !! where it was read (for messages)
+  end type given_matrix_t
+
   type, public :: substructure_t
     !! One substructure: an ordinary finite element model with its own numbering.
      character(:), allocatable :: name     !! upper case; MAIN for the implicit one
@@ -163,7 +174,22 @@ module superjoin_model_types
      real(wp) :: rot(3, 3) = reshape([1.0_wp, 0.0_wp, 0.0_wp, 0.0_wp, 1.0_wp, 0.0_wp, &
           0.0_wp, 0.0_wp, 1.0_wp], [3, 3])          !! *INSTANCE placement: x = rot x_part + shift
      real(wp) :: shift(3) = 0.0_wp
+     type(given_matrix_t), allocatable :: given     !! *MATRIX INPUT: a stiffness given on its nodes
   end type substructure_t
+
+  type, public :: matrix_export_t
+    !! A *SUBSTRUCTURE MATRIX OUTPUT card: write K*, f* of every step and the
+    !! boundary DOF map of one condensed substructure.
+     integer :: sub = 0                       !! index into model%subs
+     integer :: format = 0                    !! EXPORT_* (superjoin_model_types)
+     character(:), allocatable :: path        !! FILE NAME= joined to the deck's directory, no extension
+     type(source_loc_t) :: loc
+     integer(ip), allocatable :: retain(:)    !! RETAIN=: local nodes kept on the boundary (unallocated: none)
+  end type matrix_export_t
+
+  integer, parameter, public :: EXPORT_ABAQUS = 1, EXPORT_DMIG = 2, EXPORT_MATRIX_MARKET = 3, &
+       EXPORT_CALCULIX = 4
+    !! FORMAT= of *SUBSTRUCTURE MATRIX OUTPUT and *MATRIX INPUT.
 
   type, public :: orientation_t
     !! A frame for oriented contacts: rows of q are the local axes.
@@ -357,6 +383,7 @@ module superjoin_model_types
      type(combination_t), allocatable :: combinations(:) !! *LOAD COMBINATION cards (unallocated: none)
      type(equation_t), allocatable :: equations(:)  !! *EQUATION constraints (unallocated or empty: none)
      type(node_frame_t), allocatable :: frames(:)   !! *TRANSFORM nodal systems (unallocated or empty: none)
+     type(matrix_export_t), allocatable :: exports(:)  !! *SUBSTRUCTURE MATRIX OUTPUT cards (unallocated: none)
   end type model_t
 
   public :: find_node, find_elem, node_label, loc_text

@@ -6,7 +6,7 @@ module superjoin_substructure_local_system
   use superjoin_kinds, only: wp, ip, i8
   use superjoin_model_types, only: MAX_ELEMENT_DOFS
   use superjoin_error, only: error_t
-  use superjoin_model_types, only: model_t
+  use superjoin_model_types, only: model_t, given_matrix_t
   use superjoin_assembly_dofs, only: dof_table_t, unit_dofs, MAX_UNIT_TERMS
   use superjoin_assembly_assemble, only: element_pdofs, element_matrix
   use superjoin_solvers_sparse, only: sparse_sym_t
@@ -30,7 +30,7 @@ module superjoin_substructure_local_system
      procedure :: n => local_size
   end type local_system_t
 
-  public :: boundary_dofs, part_boundary, build_local_system, local_numbering, dof_label
+  public :: boundary_dofs, part_boundary, given_boundary, build_local_system, local_numbering, dof_label
 
 contains
 
@@ -133,6 +133,34 @@ contains
     end do
   end subroutine part_boundary
 
+  subroutine given_boundary(model, table, bnd)
+    !! Every DOF of a substructure with a given stiffness (*MATRIX INPUT) is on
+    !! its condensation boundary: its interior is empty and K* is the matrix.
+    !! So are the DOFs of the nodes an export retains (*SUBSTRUCTURE MATRIX
+    !! OUTPUT, RETAIN=).
+    type(model_t), intent(in) :: model
+    type(dof_table_t), intent(in) :: table
+    logical, intent(inout) :: bnd(:)
+    integer(i8) :: p
+    integer :: k, d
+    integer(ip) :: i
+    do p = 1, table%np
+       if (allocated(model%subs(table%p_sub(p))%given)) bnd(p) = .true.
+    end do
+    if (.not. allocated(model%exports)) return
+    do k = 1, size(model%exports)
+       if (.not. allocated(model%exports(k)%retain)) cycle
+       associate (x => model%exports(k))
+         do i = 1, size(x%retain)
+            do d = 1, size(table%pdof, 1)
+               p = table%pdof(d, table%vertex_offset(x%sub) + x%retain(i))
+               if (p > 0) bnd(p) = .true.
+            end do
+         end do
+       end associate
+    end do
+  end subroutine given_boundary
+
   subroutine build_local_system(model, table, isub, bnd, sys, error)
     !! Number substructure isub's DOFs (see local_numbering) and assemble its
     !! element stiffness.
@@ -144,7 +172,8 @@ contains
     type(error_t), allocatable, intent(out) :: error
     integer(i8), allocatable :: local(:), item_ptr(:), item_col(:), col_ptr(:), col_item(:)
     integer(i8) :: p_lo, n, l, pd(MAX_ELEMENT_DOFS), cols(MAX_ELEMENT_DOFS)
-    integer(i8) :: it, nitem
+    integer(i8) :: it, nitem, ng
+    integer(i8), allocatable :: pg(:)
     integer(ip) :: e
     integer :: nd, a, b, nc, stat
     real(wp), allocatable :: ke(:, :)
@@ -168,7 +197,12 @@ contains
     ! Pattern from the elements' local columns.
     associate (s => model%subs(isub))
       nitem = s%nelem
-      allocate (item_ptr(nitem + 1), item_col(max(1_i8, MAX_ELEMENT_DOFS*nitem)), stat=stat)
+      ng = 0
+      if (allocated(s%given)) then
+         call given_pdofs(table, isub, s%given, pg)
+         ng = size(pg, kind=i8)
+      end if
+      allocate (item_ptr(nitem + 2), item_col(max(1_i8, MAX_ELEMENT_DOFS*nitem + ng)), stat=stat)
       if (stat /= 0) then
          call out_of_memory(error, 'the element lists of substructure '//s%name, &
               (MAX_ELEMENT_DOFS + 1)*nitem*BYTES_I8)
@@ -182,13 +216,20 @@ contains
          item_col(item_ptr(e):item_ptr(e) + nc - 1) = cols(1:nc)
          item_ptr(e + 1) = item_ptr(e) + nc
       end do
-      call items_of_columns(n, item_ptr, item_col, col_ptr, col_item, error)
+      if (ng > 0) then   ! the given stiffness: one dense item
+         nitem = nitem + 1
+         item_col(item_ptr(nitem):item_ptr(nitem) + ng - 1) = local(pg - p_lo + 1)
+         call sort_unique_i8(item_col(item_ptr(nitem):item_ptr(nitem) + ng - 1), nc)
+         item_ptr(nitem + 1) = item_ptr(nitem) + nc
+      end if
+      call items_of_columns(n, item_ptr(1:nitem + 1), item_col, col_ptr, col_item, error)
       if (allocated(error)) return
-      call build_pattern(n, item_ptr, item_col, col_ptr, col_item, sys%k, error)
+      call build_pattern(n, item_ptr(1:nitem + 1), item_col, col_ptr, col_item, sys%k, error)
       if (allocated(error)) return
       deallocate (item_ptr, item_col, col_ptr, col_item)
+      if (ng > 0) call add_given(sys%k, local(pg - p_lo + 1), s%given%k)
 
-      do it = 1, nitem
+      do it = 1, s%nelem
          e = int(it, ip)
          call element_matrix(model, isub, e, ke, error)
          if (allocated(error)) return
@@ -203,6 +244,35 @@ contains
       end do
     end associate
   end subroutine build_local_system
+
+  subroutine given_pdofs(table, isub, g, pg)
+    !! The physical DOF of each row of a given stiffness (*MATRIX INPUT).
+    type(dof_table_t), intent(in) :: table
+    integer, intent(in) :: isub
+    type(given_matrix_t), intent(in) :: g
+    integer(i8), allocatable, intent(out) :: pg(:)
+    integer :: r
+    allocate (pg(size(g%dof)))
+    do r = 1, size(g%dof)
+       pg(r) = table%pdof(g%dof(r), table%vertex_offset(isub) + g%node(r))
+    end do
+  end subroutine given_pdofs
+
+  subroutine add_given(k, lg, g)
+    !! k += g on the local DOFs lg (upper triangle of the local numbering).
+    type(sparse_sym_t), intent(inout) :: k
+    integer(i8), intent(in) :: lg(:)
+    real(wp), intent(in) :: g(:, :)
+    integer :: a, b
+    integer(i8) :: pos
+    do b = 1, size(lg)
+       do a = 1, size(lg)
+          if (lg(a) > lg(b)) cycle
+          pos = find_entry(k, lg(a), lg(b))
+          k%val(pos) = k%val(pos) + g(a, b)
+       end do
+    end do
+  end subroutine add_given
 
   function dof_label(model, table, p) result(label)
     !! "substructure S node N DOF d" of physical DOF p.

@@ -3,7 +3,7 @@
 # usage: deps.sh [--test] [--bench] [--mumps | --mpi]
 #   (no option)  what building and running the solver needs (tools/build.sh, tools/demo)
 #   --test       also what the test suite uses: Python, gnuplot (tools/render,
-#                ctest render.png), valgrind
+#                ctest render.png), valgrind, CalculiX GraphiX (ctest ccx.frd_cgx)
 #   --bench      also what the benchmarks use (bench/): Python, GNU time,
 #                CalculiX (cross-checks); no test runs them
 #   --mumps      also sequential MUMPS (cmake -DSUPERJOIN_MUMPS=ON)
@@ -12,7 +12,7 @@ set -euo pipefail
 packages=(gfortran gcc cmake make liblapack-dev libopenblas-dev libsuitesparse-dev libmetis-dev)
 for opt in "$@"; do
   case "$opt" in
-    --test) packages+=(python3 gnuplot-nox valgrind) ;;
+    --test) packages+=(python3 gnuplot-nox valgrind calculix-cgx) ;;
     --bench) packages+=(python3 time calculix-ccx) ;;
     --mumps) packages+=(libmumps-seq-dev) ;;
     --mpi) packages+=(openmpi-bin libopenmpi-dev libmumps-ptscotch-dev) ;;

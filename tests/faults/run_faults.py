@@ -188,42 +188,39 @@ def case_sigterm(bin_, work, args):
     return c.failures
 
 
-def baseline_limit(bin_, work):
-    """Smallest RLIMIT_AS (MiB, 8 MiB steps) under which a tiny deck solves."""
-    gen_limits.chain(os.path.join(work, "tiny.deck"), 4, 4)
+def smallest_limit(bin_, work, args, step):
+    """Smallest RLIMIT_AS (MiB, `step` MiB apart) under which `superjoin ARGS` ends with 0 (None: not under 4 GiB)."""
     lo, hi = 0, 4096
-    status, _ = run(bin_, ["-q", "tiny.deck"], work, preexec=limited(resource.RLIMIT_AS, hi * MIB), env=ONE_THREAD)
+    status, _ = run(bin_, args, work, preexec=limited(resource.RLIMIT_AS, hi * MIB), env=ONE_THREAD)
     if status != 0:
         return None
-    while hi - lo > 8:
+    while hi - lo > step:
         mid = (lo + hi) // 2
-        status, _ = run(bin_, ["-q", "tiny.deck"], work, preexec=limited(resource.RLIMIT_AS, mid * MIB),
-                        env=ONE_THREAD)
+        status, _ = run(bin_, args, work, preexec=limited(resource.RLIMIT_AS, mid * MIB), env=ONE_THREAD)
         if status == 0:
             hi = mid
         else:
             lo = mid
     return hi
+
+
+def baseline_limit(bin_, work):
+    """Smallest RLIMIT_AS (MiB, 8 MiB steps) under which a tiny deck solves."""
+    gen_limits.chain(os.path.join(work, "tiny.deck"), 4, 4)
+    return smallest_limit(bin_, work, ["-q", "tiny.deck"], 8)
 
 
 def check_limit(bin_, work):
     """Smallest RLIMIT_AS (MiB, 1 MiB steps) under which the tiny deck is read (--check)."""
-    lo, hi = 0, 4096
-    while hi - lo > 1:
-        mid = (lo + hi) // 2
-        status, _ = run(bin_, ["-q", "--check", "tiny.deck"], work, preexec=limited(resource.RLIMIT_AS, mid * MIB),
-                        env=ONE_THREAD)
-        if status == 0:
-            hi = mid
-        else:
-            lo = mid
-    return hi
+    return smallest_limit(bin_, work, ["-q", "--check", "tiny.deck"], 1)
 
 
 def scan_reading(c, bin_, work):
     """Every limit from the tiny deck's reading limit up, READ_STEP_MIB apart, until
     the frame's deck is read: exit 4 with the reader's out-of-memory message."""
     start = check_limit(bin_, work)
+    if not c.check(start is not None, "the tiny deck is not read under a 4 GiB limit"):
+        return
     limit, failed = float(start), 0
     while limit <= start + READ_SPAN_MIB:
         status, err = run(bin_, ["-q", "--check", "frame.deck"], work,

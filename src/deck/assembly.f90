@@ -16,7 +16,7 @@ module superjoin_deck_assembly
   use superjoin_elements_traits, only: element_traits_t, element_traits, FAMILY_BEAM
   use superjoin_deck_lexer, only: itoa, plural
   use superjoin_deck_state, only: deck_state_t, sub_b_t, report, report_loc, SUBK_INSTANCE, &
-       step_b_t, SUBK_PART, instance_b_t
+       step_b_t, SUBK_PART, instance_b_t, override_b_t
   use superjoin_elements_frame, only: DEFAULT_V_SWITCH_TOL, cross, real_text
   use superjoin_utils_sorting, only: sort_index
   use superjoin_utils_halting, only: halting_t, halting_off, halting_restore
@@ -537,6 +537,10 @@ contains
        associate (o => sb%overrides(k))
          associate (c => model%contacts(o%contact))
            if (c%master_sub == 0 .or. c%slave_sub == 0) cycle
+           if (o%whole) then
+              call whole_contact_links(st, w, o, c%name, w%line_links(k))
+              cycle
+           end if
            call resolve_items(st, model, c%master_sub, o%master, .false., o%loc, ms, ok1)
            call resolve_items(st, model, c%slave_sub, o%slave, .false., o%loc, ss, ok2)
            if (.not. (ok1 .and. ok2)) cycle
@@ -571,4 +575,34 @@ contains
        end associate
     end do lines
   end subroutine resolve_override_links
+
+  subroutine whole_contact_links(st, w, o, name, links)
+    !! The links of a *CHANGE CONTACT line that names its contact: every pair of
+    !! it (unallocated, reported, when a DOF of the line is one that no line of
+    !! the *CONTACT card names).
+    type(deck_state_t), intent(inout) :: st
+    type(override_work_t), intent(in) :: w
+    type(override_b_t), intent(in) :: o
+    character(*), intent(in) :: name
+    type(index_set_t), intent(out) :: links
+    integer :: d, l
+    logical :: named
+    do d = o%first, o%last
+       named = .false.
+       do l = 1, st%ncline
+          associate (cl => st%clines(l))
+            if (cl%contact == o%contact .and. cl%first <= d .and. d <= cl%last) named = .true.
+          end associate
+       end do
+       if (.not. named) then
+          call report_loc(st, o%loc, '*CHANGE CONTACT: contact '//name//' has no DOF '//itoa(d)// &
+               ' (no data line of its *CONTACT card names it)')
+          return
+       end if
+    end do
+    allocate (links%items(max(0, w%last_link(o%contact) - w%first_link(o%contact) + 1)))
+    do l = 1, size(links%items)
+       links%items(l) = w%first_link(o%contact) + l - 1
+    end do
+  end subroutine whole_contact_links
 end module superjoin_deck_assembly

@@ -2,10 +2,10 @@ module superjoin_deck_build_common
   !! What the builders of the validation pass share: references resolved to
   !! substructures and to node or element indices, the part hint of their
   !! messages, file:line and '(and N more)' texts.
-  use superjoin_kinds, only: ip
+  use superjoin_kinds, only: ip, i8
   use superjoin_model_types, only: model_t, source_loc_t, find_node, find_elem
   use superjoin_deck_lexer, only: itoa
-  use superjoin_deck_state, only: deck_state_t, ref_t, report_loc, step_b_t, OP_MOD, OP_DEFAULT
+  use superjoin_deck_state, only: deck_state_t, ref_t, report_loc, report_oom, step_b_t, OP_MOD, OP_DEFAULT
   use superjoin_utils_strings, only: pick
   implicit none (type, external)
   private
@@ -85,13 +85,14 @@ contains
             do i = 1, size(sub%elsets)
                if (sub%elsets(i)%name == ref%set) k = int(i)
             end do
-            if (k > 0) items = sub%elsets(k)%items
+            if (k > 0) call copy_items(sub%elsets(k)%items)
          else
             do i = 1, size(sub%nsets)
                if (sub%nsets(i)%name == ref%set) k = int(i)
             end do
-            if (k > 0) items = sub%nsets(k)%items
+            if (k > 0) call copy_items(sub%nsets(k)%items)
          end if
+         if (st%aborted) return
          if (k == 0) then
             call report_loc(st, loc, 'unknown '//what//' set '//ref%set//' in substructure '//sub%name)
             return
@@ -112,6 +113,19 @@ contains
       end if
     end associate
     ok = .true.
+  contains
+    subroutine copy_items(set_items)
+      !! items = set_items, the allocation checked (out of memory: reported).
+      integer(ip), intent(in) :: set_items(:)
+      integer :: stat
+      allocate (items(size(set_items)), stat=stat)
+      if (stat /= 0) then
+         call report_oom(st, loc, 'the members of '//what//' set '//ref%set, &
+              size(set_items, kind=i8)*storage_size(set_items)/8)
+         return
+      end if
+      items(:) = set_items
+    end subroutine copy_items
   end subroutine resolve_items
 
   pure logical function broken_sub(st, name)

@@ -40,37 +40,13 @@ contains
     type(link_list_t) :: links
     type(pair_map_t) :: map
     integer(ip), allocatable :: ms(:), ss(:)
-    integer :: k, l, cur, il, nself
+    integer :: l, cur, il, nself, stat
     integer(ip) :: p, np, mnode, snode
     logical :: ok1, ok2, added
     logical, allocatable :: usable(:)
     integer(i8) :: failed_bytes
 
-    allocate (model%contacts(st%ncontact), usable(st%ncontact))
-    do k = 1, st%ncontact
-       associate (cb => st%contacts(k), c => model%contacts(k))
-         c%name = cb%name
-         c%loc = cb%loc
-         c%master_sub = sub_index(model, cb%master)
-         c%remote = cb%remote
-         c%rigid_offset = cb%rigid_offset
-         c%slave_sub = sub_index(model, cb%slave)
-         if (c%master_sub == 0) call report_loc(st, cb%loc, 'unknown substructure '//cb%master//' in MASTER='// &
-              part_hint(model, cb%master))
-         if (c%slave_sub == 0) call report_loc(st, cb%loc, 'unknown substructure '//cb%slave//' in SLAVE='// &
-              part_hint(model, cb%slave))
-         c%orientation = 0
-         if (allocated(cb%orientation)) then
-            if (len(cb%orientation) > 0) then
-               do l = 1, size(model%orientations)
-                  if (model%orientations(l)%name == cb%orientation) c%orientation = l
-               end do
-               if (c%orientation == 0) call report_loc(st, cb%loc, 'unknown orientation '//cb%orientation)
-            end if
-         end if
-         usable(k) = c%master_sub > 0 .and. c%slave_sub > 0
-       end associate
-    end do
+    call contact_cards(st, model, usable)
 
     allocate (links%a(INITIAL_CAPACITY), links%first_line(NDOF_NODE, INITIAL_CAPACITY))
     cur = 0
@@ -112,7 +88,11 @@ contains
                       ' of substructure '//model%subs(c%master_sub)%name//' is in contact with itself')
                  cycle
               end if
-              call map_get_or_add(map, int(mnode, i8)*PAIR_SHIFT + snode, links%n + 1, il, added)
+              call map_get_or_add(map, int(mnode, i8)*PAIR_SHIFT + snode, links%n + 1, il, added, failed_bytes)
+              if (failed_bytes > 0) then
+                 call report_oom(st, cl%loc, 'the node pairs of contact '//c%name, failed_bytes)
+                 return
+              end if
               if (added) then
                  call push_link(links, failed_bytes)
                  if (failed_bytes > 0) then
@@ -130,8 +110,48 @@ contains
          end associate
        end associate
     end do
-    model%links = links%a(1:links%n)
+    allocate (model%links(links%n), stat=stat)
+    if (stat /= 0) then
+       call report_oom(st, st%contacts(max(cur, 1))%loc, 'the contact elements ('//itoa(links%n)//')', &
+            links%n*int(storage_size(links%a(1))/8, i8))
+       return
+    end if
+    model%links(:) = links%a(1:links%n)
   end subroutine build_contacts
+
+  subroutine contact_cards(st, model, usable)
+    !! model%contacts from the *CONTACT cards (substructures and orientation
+    !! resolved); usable(k): both substructures of card k exist.
+    type(deck_state_t), intent(inout) :: st
+    type(model_t), intent(inout) :: model
+    logical, allocatable, intent(out) :: usable(:)
+    integer :: k, l
+    allocate (model%contacts(st%ncontact), usable(st%ncontact))
+    do k = 1, st%ncontact
+       associate (cb => st%contacts(k), c => model%contacts(k))
+         c%name = cb%name
+         c%loc = cb%loc
+         c%master_sub = sub_index(model, cb%master)
+         c%remote = cb%remote
+         c%rigid_offset = cb%rigid_offset
+         c%slave_sub = sub_index(model, cb%slave)
+         if (c%master_sub == 0) call report_loc(st, cb%loc, 'unknown substructure '//cb%master//' in MASTER='// &
+              part_hint(model, cb%master))
+         if (c%slave_sub == 0) call report_loc(st, cb%loc, 'unknown substructure '//cb%slave//' in SLAVE='// &
+              part_hint(model, cb%slave))
+         c%orientation = 0
+         if (allocated(cb%orientation)) then
+            if (len(cb%orientation) > 0) then
+               do l = 1, size(model%orientations)
+                  if (model%orientations(l)%name == cb%orientation) c%orientation = l
+               end do
+               if (c%orientation == 0) call report_loc(st, cb%loc, 'unknown orientation '//cb%orientation)
+            end if
+         end if
+         usable(k) = c%master_sub > 0 .and. c%slave_sub > 0
+       end associate
+    end do
+  end subroutine contact_cards
 
   logical function first_definition(st, links, il, l) result(ok)
     !! Whether *CONTACT line l is the first to give its DOFs to link il (then
@@ -237,15 +257,21 @@ contains
     h = int(iand(x, int(mask, i8)))
   end function slot_of
 
-  subroutine map_get_or_add(map, key, newval, val, added)
+  subroutine map_get_or_add(map, key, newval, val, added, failed_bytes)
     !! Value stored for `key`; when absent, `newval` is stored and `added` is true.
+    !! failed_bytes > 0: the map could not grow (that many bytes), nothing stored.
     type(pair_map_t), intent(inout) :: map
     integer(i8), intent(in) :: key
     integer, intent(in) :: newval
     integer, intent(out) :: val
     logical, intent(out) :: added
+    integer(i8), intent(out) :: failed_bytes
     integer :: h, mask
+    failed_bytes = 0
+    val = 0
+    added = .false.
     if (2*(map%n + 1) > size(map%keys)) call rehash
+    if (failed_bytes > 0) return
     mask = size(map%keys) - 1
     h = slot_of(key, mask)
     do
@@ -264,12 +290,18 @@ contains
     added = .true.
   contains
     subroutine rehash
-      integer(i8), allocatable :: ok(:)
-      integer, allocatable :: ov(:)
-      integer :: i, nmask, j
+      integer(i8), allocatable :: ok(:), nk(:)
+      integer, allocatable :: ov(:), nv(:)
+      integer :: i, nmask, j, stat
+      allocate (nk(0:2*size(map%keys) - 1), nv(0:2*size(map%keys) - 1), stat=stat)
+      if (stat /= 0) then
+         failed_bytes = 2*size(map%keys, kind=i8)*(storage_size(key) + storage_size(val))/8
+         return
+      end if
       call move_alloc(map%keys, ok)
       call move_alloc(map%vals, ov)
-      allocate (map%keys(0:2*size(ok) - 1), map%vals(0:2*size(ok) - 1))
+      call move_alloc(nk, map%keys)
+      call move_alloc(nv, map%vals)
       map%keys = EMPTY_KEY
       nmask = size(map%keys) - 1
       do i = 0, size(ok) - 1

@@ -2,11 +2,12 @@ module superjoin_deck_build_subs
   !! The substructures of the model: nodes and elements with their ids sorted,
   !! node and element sets resolved (references followed, cycles reported).
   use superjoin_kinds, only: ip, i8
+  use superjoin_utils_memory, only: BYTES_INT, BYTES_REAL
   use superjoin_model_types, only: substructure_t, index_set_t, find_node, find_elem, &
        ELEMENT_NODE_COUNT
   use superjoin_deck_lexer, only: itoa
-  use superjoin_deck_state, only: deck_state_t, sub_b_t, chunk_t, report_loc, find_set, CH_IDS, CH_GEN, &
-       CH_RANGE, CH_REF
+  use superjoin_deck_state, only: deck_state_t, sub_b_t, chunk_t, report_loc, find_set, CH_IDS, CH_GEN, memory_ok, &
+       CH_RANGE, CH_REF, report_oom
   use superjoin_utils_strings, only: pick
   use superjoin_utils_grow, only: grow
   use superjoin_utils_sorting, only: sort_index
@@ -33,6 +34,7 @@ module superjoin_deck_build_subs
      type(index_set_t), allocatable :: sets(:)
      integer(ip), allocatable :: items(:)      !! members of the set being built: items(1:n)
      integer :: n = 0
+     integer(i8) :: failed_bytes = 0           !! > 0: items could not grow (that many bytes)
   end type set_work_t
 
 contains
@@ -43,16 +45,18 @@ contains
     type(sub_b_t), intent(inout) :: b
     type(substructure_t), intent(out) :: m
     integer(ip) :: n, i, j, k, e
-    integer :: a
+    integer :: a, stat
 
     m%name = b%name
     m%condense = b%condense
     m%loc = b%loc
     n = b%nnode
     m%nnode = n
-    m%node_id = b%node_id(1:n)
-    m%x = b%x(:, 1:n)
-    allocate (m%node_order(n))
+    allocate (m%node_id(n), m%x(3, n), m%node_order(n), stat=stat)
+    if (.not. memory_ok(st, stat, b%loc, 'the nodes of substructure '//b%name//' ('//itoa(n)//')', &
+         n*(2*BYTES_INT + 3*BYTES_REAL))) return
+    m%node_id(:) = b%node_id(1:n)
+    m%x(:, :) = b%x(:, 1:n)
     call argsort_ids(m%node_id, m%node_order)
     if (b%node_lines == 0) call report_loc(st, b%loc, 'substructure '//b%name//' has no nodes')
     do i = 2, n
@@ -66,10 +70,13 @@ contains
 
     n = b%nelem
     m%nelem = n
-    m%elem_id = b%elem_id(1:n)
-    m%elem_type = b%elem_type(1:n)
-    m%elem_loc = b%elem_loc(1:n)
-    allocate (m%elem_order(n), m%elem_nodes(size(b%elem_nid, 1), n), m%elem_section(n))
+    allocate (m%elem_id(n), m%elem_type(n), m%elem_loc(n), m%elem_order(n), &
+         m%elem_nodes(size(b%elem_nid, 1), n), m%elem_section(n), stat=stat)
+    if (.not. memory_ok(st, stat, b%loc, 'the elements of substructure '//b%name//' ('//itoa(n)//')', &
+         n*((4 + size(b%elem_nid, 1))*BYTES_INT + storage_size(b%loc)/8))) return
+    m%elem_id(:) = b%elem_id(1:n)
+    m%elem_type(:) = b%elem_type(1:n)
+    m%elem_loc(:) = b%elem_loc(1:n)
     m%elem_section = 0
     m%elem_nodes = 0
     call argsort_ids(m%elem_id, m%elem_order)
@@ -120,9 +127,15 @@ contains
     integer :: s
 
     call start_sets(b, m, elem, w)
+    if (w%failed_bytes > 0) then
+       call report_oom(st, b%loc, 'the '//w%kind_name//'s of substructure '//b%name, w%failed_bytes)
+       if (.not. allocated(w%sets)) allocate (w%sets(0))
+       w%nset = 0
+    end if
     do s = 1, w%nset
        if (w%state(s) /= UNVISITED) cycle
        call visit_set(st, b, m, w, s)
+       if (st%aborted) exit
     end do
     if (elem) then
        call move_alloc(w%sets, m%elsets)
@@ -138,7 +151,7 @@ contains
     type(substructure_t), intent(in) :: m
     logical, intent(in) :: elem
     type(set_work_t), intent(out) :: w
-    integer :: c, s, nitem
+    integer :: c, s, nitem, stat
     w%elem = elem
     w%kind_name = pick(elem, 'element set', 'node set')
     if (elem) then
@@ -149,7 +162,11 @@ contains
        nitem = m%nnode
     end if
     allocate (w%sets(w%nset), w%head(w%nset + 1), w%list(b%nchunk), w%state(w%nset), w%stack_set(w%nset), &
-         w%stack_pos(w%nset), w%mark(nitem))
+         w%stack_pos(w%nset), w%mark(nitem), stat=stat)
+    if (stat /= 0) then
+       w%failed_bytes = (nitem + 5_i8*w%nset + b%nchunk)*BYTES_INT
+       return
+    end if
     w%head = 0
     do c = 1, b%nchunk
        if (b%chunks(c)%elem .eqv. elem) w%head(b%chunks(c)%set + 1) = w%head(b%chunks(c)%set + 1) + 1
@@ -231,6 +248,7 @@ contains
     type(set_work_t), intent(inout) :: w
     integer, intent(in) :: t
     integer :: p, r, k, ngen
+    integer :: stat
     if (.not. allocated(w%items)) allocate (w%items(INITIAL_CAPACITY))
     w%n = 0
     w%stamp = w%stamp + 1
@@ -262,7 +280,15 @@ contains
          end select
        end associate
     end do
-    w%sets(t)%items = w%items(1:w%n)
+    if (w%failed_bytes == 0) then
+       allocate (w%sets(t)%items(w%n), stat=stat)
+       if (stat /= 0) w%failed_bytes = w%n*storage_size(w%items)/8
+    end if
+    if (w%failed_bytes > 0) then
+       call report_oom(st, b%loc, 'the '//w%kind_name//' '//w%sets(t)%name, w%failed_bytes)
+       return
+    end if
+    w%sets(t)%items(:) = w%items(1:w%n)
   end subroutine build_items
 
   subroutine add_ids(st, b, m, w, t, ch)
@@ -300,9 +326,14 @@ contains
     !! Member i of the set being built (once).
     type(set_work_t), intent(inout) :: w
     integer(ip), intent(in) :: i
-    if (w%mark(i) == w%stamp) return
+    integer :: stat
+    if (w%mark(i) == w%stamp .or. w%failed_bytes > 0) return
     w%mark(i) = w%stamp
-    call grow(w%items, w%n, INITIAL_CAPACITY)
+    call grow(w%items, w%n, INITIAL_CAPACITY, stat)
+    if (stat /= 0) then
+       w%failed_bytes = 2*size(w%items, kind=i8)*storage_size(w%items)/8
+       return
+    end if
     w%n = w%n + 1
     w%items(w%n) = i
   end subroutine add
@@ -362,7 +393,9 @@ contains
     integer(ip), intent(in) :: ids(:)
     integer(ip), intent(out) :: order(:)
     integer(ip) :: i
-    order = [(i, i=1, size(ids, kind=ip))]
+    do i = 1, size(ids, kind=ip)   ! a loop: an array constructor's temporary is not checked
+       order(i) = i
+    end do
     call sort_index(ids, order)
   end subroutine argsort_ids
 end module superjoin_deck_build_subs

@@ -23,6 +23,7 @@ module superjoin_deck_cards_assembly
        report_loc, new_sub, find_sub, override_b_t, SUBK_PART, SUBK_INSTANCE, add_contact, &
        add_cline, add_support, grow, instance_b_t
   use superjoin_utils_halting, only: halting_t, halting_off, halting_restore
+  use superjoin_utils_strings, only: pick
   use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
   use superjoin_deck_cards_common, only: get_reals
   use superjoin_deck_cards_common, only: outside_step, check_params, param_index, get_param, &
@@ -44,6 +45,8 @@ module superjoin_deck_cards_assembly
   integer, parameter :: QUARTER_TURNS = 4
   integer, parameter :: CHANGE_FIELDS_MIN = 5
     !! master, slave, first dof, last dof, g (a SWEEP adds more values of g).
+  integer, parameter :: CHANGE_LIST_FIELDS_MIN = 4
+    !! The card without NAME=: contact, first dof, last dof, g (every pair of the contact).
 
 contains
 
@@ -501,7 +504,8 @@ contains
   end subroutine data_interface
 
   subroutine kw_change_contact(st, kw, loc)
-    !! *CHANGE CONTACT, NAME=j[, G=values] inside *STEP.
+    !! *CHANGE CONTACT[, NAME=j][, SWEEP] inside *STEP (without NAME= each data
+    !! line names its contact and changes every pair of it).
     type(deck_state_t), intent(inout) :: st
     type(keyword_line_t), intent(in) :: kw
     type(source_loc_t), intent(in) :: loc
@@ -514,9 +518,15 @@ contains
        call report_loc(st, loc, '*CHANGE CONTACT must stand inside *STEP')
        return
     end if
+    st%card_item = 0
+    st%card_generate = param_index(kw, 'SWEEP') > 0
+    st%card_home = st%cur_step
+    if (param_index(kw, 'NAME') == 0) then
+       st%card = CARD_CHANGE_CONTACT
+       return
+    end if
     call get_name_param(st, kw, loc, 'NAME', .true., name, found)
     if (.not. found) return
-    st%card_item = 0
     do k = 1, st%ncontact
        if (st%contacts(k)%name == name) st%card_item = k
     end do
@@ -525,8 +535,6 @@ contains
             ' (the *CONTACT card must come before the step)')
        return
     end if
-    st%card_generate = param_index(kw, 'SWEEP') > 0
-    st%card_home = st%cur_step
     st%card = CARD_CHANGE_CONTACT
   end subroutine kw_change_contact
 
@@ -536,28 +544,34 @@ contains
     character(*), intent(in) :: line
     type(source_loc_t), intent(in) :: loc
     type(override_b_t) :: o
-    integer :: nval, i
+    integer :: nval, i, nmin
     integer, parameter :: INITIAL_OVERRIDES = 4
-    if (st%card_generate) then
-       if (.not. field_count(st, loc, CHANGE_FIELDS_MIN, huge(1), &
-            'master, slave, first dof, last dof, g1, g2, ... (SWEEP)')) return
+    if (st%card_item == 0) then
+       nmin = CHANGE_LIST_FIELDS_MIN
+       if (.not. field_count(st, loc, nmin, merge(huge(1), nmin, st%card_generate), &
+            pick(st%card_generate, 'contact, first dof, last dof, g1, g2, ... (SWEEP)', &
+            'contact, first dof, last dof, g (several values of g need SWEEP; node pairs need NAME=)'))) return
+       if (.not. contact_named(fld(st, line, 1), o%contact)) return
+       o%whole = .true.
     else
-       if (.not. field_count(st, loc, CHANGE_FIELDS_MIN, CHANGE_FIELDS_MIN, &
-            'master, slave, first dof, last dof, g (several values of g need SWEEP)')) return
+       nmin = CHANGE_FIELDS_MIN
+       if (.not. field_count(st, loc, nmin, merge(huge(1), nmin, st%card_generate), &
+            pick(st%card_generate, 'master, slave, first dof, last dof, g1, g2, ... (SWEEP)', &
+            'master, slave, first dof, last dof, g (several values of g need SWEEP)'))) return
+       associate (c => st%contacts(st%card_item))
+         if (.not. parse_ref(st, fld(st, line, 1), .false., 0, loc, o%master)) return
+         if (.not. parse_ref(st, fld(st, line, 2), .false., 0, loc, o%slave)) return
+         if (.not. scoped(o%master, c%master, 'master')) return
+         if (.not. scoped(o%slave, c%slave, 'slave')) return
+       end associate
+       o%contact = st%card_item
     end if
-    associate (c => st%contacts(st%card_item))
-      if (.not. parse_ref(st, fld(st, line, 1), .false., 0, loc, o%master)) return
-      if (.not. parse_ref(st, fld(st, line, 2), .false., 0, loc, o%slave)) return
-      if (.not. scoped(o%master, c%master, 'master')) return
-      if (.not. scoped(o%slave, c%slave, 'slave')) return
-    end associate
-    if (.not. get_dof_range(st, line, loc, 3, o%first, o%last)) return
-    nval = st%f%n - (CHANGE_FIELDS_MIN - 1)
+    if (.not. get_dof_range(st, line, loc, nmin - 2, o%first, o%last)) return
+    nval = st%f%n - (nmin - 1)
     allocate (o%states(nval), o%gs(nval))
     do i = 1, nval
-       if (.not. get_stiffness(st, line, loc, CHANGE_FIELDS_MIN - 1 + i, o%states(i), o%gs(i))) return
+       if (.not. get_stiffness(st, line, loc, nmin - 1 + i, o%states(i), o%gs(i))) return
     end do
-    o%contact = st%card_item
     o%loc = loc
     associate (step => st%steps(st%card_home))
       if (st%card_generate) then
@@ -575,6 +589,19 @@ contains
       step%overrides(step%noverride) = o
     end associate
   contains
+    logical function contact_named(field, k) result(ok)
+      !! k: the *CONTACT named by field (an unknown name is reported).
+      character(*), intent(in) :: field
+      integer, intent(out) :: k
+      character(:), allocatable :: name
+      name = to_upper(trim(adjustl(field)))
+      do k = 1, st%ncontact
+         if (st%contacts(k)%name == name) exit
+      end do
+      ok = k <= st%ncontact
+      if (.not. ok) call report_loc(st, loc, '*CHANGE CONTACT of unknown contact '//name// &
+           ' (the *CONTACT card must come before the step)')
+    end function contact_named
     logical function scoped(ref, subname, role) result(ok)
       !! A scoped reference must name the contact's own substructure.
       type(ref_t), intent(in) :: ref

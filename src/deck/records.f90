@@ -216,6 +216,7 @@ module superjoin_deck_records
     !! One data line of *CHANGE CONTACT in a step: master, slave, first dof, last
     !! dof and one stiffness (several in a SWEEP: one per expanded step).
      integer :: contact = 0                 !! index into contacts (0: unknown, reported)
+     logical :: whole = .false.             !! the line names the contact: every pair of it (no master, slave)
      type(ref_t) :: master, slave
      integer :: first = 0, last = 0
      integer, allocatable :: states(:)      !! LINK_* per value

@@ -125,7 +125,7 @@ module superjoin_deck_state
   end type deck_state_t
 
   public :: register_file, load_deck_file
-  public :: report, report_loc, report_oom, new_sub, find_sub, find_set, new_set, add_chunk, push_pool
+  public :: report, report_loc, report_oom, memory_ok, new_sub, find_sub, find_set, new_set, add_chunk, push_pool
   public :: add_node, add_element, add_heading, add_material, add_orientation, add_section
   public :: add_contact, add_cline, add_support, add_step, add_load, file_of
   public :: add_request, add_request_var, add_spring_elem, add_spring_card
@@ -199,6 +199,18 @@ contains
     st%error%code = EXIT_IO
     st%aborted = .true.
   end subroutine report_oom
+
+  logical function memory_ok(st, stat, loc, what, nbytes) result(ok)
+    !! The stat= of a checked allocation: nonzero is reported as out of memory
+    !! at loc (report_oom: exit status EXIT_IO, the reader stops).
+    type(deck_state_t), intent(inout) :: st
+    integer, intent(in) :: stat
+    type(source_loc_t), intent(in) :: loc
+    character(*), intent(in) :: what
+    integer(i8), intent(in) :: nbytes
+    ok = stat == 0
+    if (.not. ok) call report_oom(st, loc, what, nbytes)
+  end function memory_ok
 
   subroutine report_loc(st, loc, message)
     !! report() at a source location.

@@ -1,7 +1,7 @@
 module superjoin_output_envelope
   !! The listing section ENVELOPE OF THE LOAD COMBINATIONS (only when the deck
   !! has *LOAD COMBINATION cards): for every displacement, support reaction,
-  !! truss and beam end force and plate or shell resultant, the largest and the
+  !! contact delta and force (contact frame), truss and beam end force and plate or shell resultant, the largest and the
   !! smallest value over the combinations and the combination that gives each
   !! (the first one on a tie).
   use superjoin_kinds, only: wp, i8, ip
@@ -45,6 +45,7 @@ contains
     call lu%line(RULE)
     call displacements(lu, model, res, cs)
     call reactions(lu, model, res, cs)
+    call contact_forces(lu, model, res, cs)
     call end_forces(lu, model, res, cs)
     call plate_resultants(lu, model, res, cs)
   end subroutine write_envelope
@@ -144,6 +145,61 @@ contains
     end do
     call lu%line('')
   end subroutine reactions
+
+  subroutine contact_forces(lu, model, res, cs)
+    !! delta and force of every contact DOF that connects something, as the
+    !! step's CONTACT FORCES table (contact frame); nothing without such DOFs.
+    type(text_buffer_t), intent(inout) :: lu
+    type(model_t), intent(in) :: model
+    type(results_t), intent(in) :: res
+    integer, intent(in) :: cs(:)
+    real(wp) :: vals(size(cs)), fscale, dscale
+    integer :: il, d, k
+    if (.not. allocated(res%fields%link_used)) return
+    if (.not. any(res%fields%link_used)) return
+    fscale = 0.0_wp
+    dscale = 0.0_wp
+    do k = 1, size(cs)
+       associate (st => res%fields%steps(cs(k)))
+         if (.not. allocated(st%link_force)) return
+         fscale = max(fscale, maxval(abs(st%link_force)))
+         dscale = max(dscale, maxval(abs(st%link_delta)))
+       end associate
+    end do
+    call lu%line('CONTACT FORCES (contact frame; delta = u_slave - u_master, force on the master)')
+    call header_line(lu, '  contact         '//'    master     slave   dof  what')
+    do il = 1, size(model%links)
+       associate (lk => model%links(il), ct => model%contacts(model%links(il)%contact))
+         do d = 1, NDOF_NODE
+            if (.not. res%fields%link_used(d, il)) cycle
+            do k = 1, size(cs)
+               vals(k) = res%fields%steps(cs(k))%link_delta(d, il)
+            end do
+            call contact_row('delta', vals, dscale)
+            do k = 1, size(cs)
+               vals(k) = res%fields%steps(cs(k))%link_force(d, il)
+            end do
+            call contact_row('force', vals, fscale)
+         end do
+       end associate
+    end do
+    call lu%line('')
+  contains
+    subroutine contact_row(what, v, scale)
+      !! One row: the contact, its nodes, the DOF, what (delta or force) and the extremes.
+      character(*), intent(in) :: what
+      real(wp), intent(in) :: v(:), scale
+      associate (lk => model%links(il), ct => model%contacts(model%links(il)%contact))
+        call lu%put('  ')
+        call lu%put_field(ct%name, 16)
+        call lu%put_int(int(model%subs(ct%master_sub)%node_id(lk%master_node), i8), 10)
+        call lu%put_int(int(model%subs(ct%slave_sub)%node_id(lk%slave_node), i8), 10)
+        call lu%put_int(int(d, i8), 6)
+        call lu%put(' '//what)
+        call put_extremes(lu, model, v, cs, scale)
+      end associate
+    end subroutine contact_row
+  end subroutine contact_forces
 
   pure integer function find(keys, r) result(j)
     type(reaction_t), intent(in) :: keys(:), r

@@ -19,6 +19,10 @@ CASE
             and `error: out of memory: WHAT needs N bytes`, in superjoin's own
             arrays and in CHOLMOD. Limits are offsets from the smallest limit
             under which a tiny deck solves (shared libraries, BLAS buffer).
+            The reading phase too: from the smallest limit under which a tiny
+            deck is read (`--check`), every limit in READ_STEP_MIB steps up to
+            the one under which the frame's deck is read must end with exit 4
+            and `frame.deck[:N]: error: out of memory: ...` (never a signal).
             Skipped (77) in the sanitizer build (ASan reserves terabytes of
             address space) and without gen_frame.
 A case fails on any crash report.
@@ -48,6 +52,8 @@ FRAME_DOFS = 300000
 # CHOLMOD's analysis to +250, its factorization to +375, all fits at +425.
 OOM_OFFSETS = (40, 100, 200, 320)
 OOM_TIMEOUT = 120.0
+READ_STEP_MIB = 1.0              # the reading phase is scanned in steps of this many MiB ...
+READ_SPAN_MIB = 256              # ... from the tiny deck's reading limit up to at most this far
 ONE_THREAD = {"OMP_NUM_THREADS": "1", "OPENBLAS_NUM_THREADS": "1"}
 
 
@@ -182,22 +188,54 @@ def case_sigterm(bin_, work, args):
     return c.failures
 
 
-def baseline_limit(bin_, work):
-    """Smallest RLIMIT_AS (MiB, 8 MiB steps) under which a tiny deck solves."""
-    gen_limits.chain(os.path.join(work, "tiny.deck"), 4, 4)
+def smallest_limit(bin_, work, args, step):
+    """Smallest RLIMIT_AS (MiB, `step` MiB apart) under which `superjoin ARGS` ends with 0 (None: not under 4 GiB)."""
     lo, hi = 0, 4096
-    status, _ = run(bin_, ["-q", "tiny.deck"], work, preexec=limited(resource.RLIMIT_AS, hi * MIB), env=ONE_THREAD)
+    status, _ = run(bin_, args, work, preexec=limited(resource.RLIMIT_AS, hi * MIB), env=ONE_THREAD)
     if status != 0:
         return None
-    while hi - lo > 8:
+    while hi - lo > step:
         mid = (lo + hi) // 2
-        status, _ = run(bin_, ["-q", "tiny.deck"], work, preexec=limited(resource.RLIMIT_AS, mid * MIB),
-                        env=ONE_THREAD)
+        status, _ = run(bin_, args, work, preexec=limited(resource.RLIMIT_AS, mid * MIB), env=ONE_THREAD)
         if status == 0:
             hi = mid
         else:
             lo = mid
     return hi
+
+
+def baseline_limit(bin_, work):
+    """Smallest RLIMIT_AS (MiB, 8 MiB steps) under which a tiny deck solves."""
+    gen_limits.chain(os.path.join(work, "tiny.deck"), 4, 4)
+    return smallest_limit(bin_, work, ["-q", "tiny.deck"], 8)
+
+
+def check_limit(bin_, work):
+    """Smallest RLIMIT_AS (MiB, 1 MiB steps) under which the tiny deck is read (--check)."""
+    return smallest_limit(bin_, work, ["-q", "--check", "tiny.deck"], 1)
+
+
+def scan_reading(c, bin_, work):
+    """Every limit from the tiny deck's reading limit up, READ_STEP_MIB apart, until
+    the frame's deck is read: exit 4 with the reader's out-of-memory message."""
+    start = check_limit(bin_, work)
+    if not c.check(start is not None, "the tiny deck is not read under a 4 GiB limit"):
+        return
+    limit, failed = float(start), 0
+    while limit <= start + READ_SPAN_MIB:
+        status, err = run(bin_, ["-q", "--check", "frame.deck"], work,
+                          preexec=limited(resource.RLIMIT_AS, int(limit * MIB)), env=ONE_THREAD, timeout=OOM_TIMEOUT)
+        if status == 0:
+            break
+        failed += 1
+        ok = status == 4 and re.search(r"frame\.deck(:[0-9]+)?: error: out of memory: ", err) is not None \
+            and " bytes (" in err and not crashed(err)
+        c.check(ok, "reading under ulimit -v %.1f MiB: status %d: %s" % (limit, status, err.strip()[:400]))
+        limit += READ_STEP_MIB
+    print("reading: %d limits from %d MiB (tiny deck read) to %.1f MiB (frame read), %.1f MiB apart: "
+          "all out of memory, exit 4" % (failed, start, limit, READ_STEP_MIB))
+    c.check(status == 0, "the frame's deck is not read under ulimit -v %.1f MiB" % limit)
+    c.check(failed >= 10, "only %d limits failed while reading (the reading phase was not covered)" % failed)
 
 
 def case_oom(bin_, work, args):
@@ -217,6 +255,7 @@ def case_oom(bin_, work, args):
     if not c.check(base is not None, "the tiny deck does not solve under a 4 GiB limit"):
         return 1
     print("baseline: a tiny deck solves under ulimit -v %d MiB" % base)
+    scan_reading(c, bin_, work)
     cholmod = 0
     for off in OOM_OFFSETS:
         limit = base + off

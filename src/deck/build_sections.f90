@@ -11,7 +11,7 @@ module superjoin_deck_build_sections
   use superjoin_deck_lexer, only: itoa
   use superjoin_deck_state, only: deck_state_t, report_loc, BEAM_2D_VALUES, BEAM_3D_VALUES, sec_b_t
   use superjoin_deck_beam_sections, only: section_fibres, MAX_FIBRES, section_properties, section_props_t, &
-       SHAPE_CIRC
+       shape_shear_factor, SHAPE_CIRC
   use superjoin_deck_build_common, only: resolve_sub, more_text, where
   implicit none (type, external)
   private
@@ -302,6 +302,7 @@ contains
     type(section_t), intent(inout) :: sec
     if (sb%shape /= 0) then    ! library shape or Abaqus general section: constants in sb%sp
        sec%area = sb%sp(1)
+       sec%shear_factor = shape_shear_factor(sb%shape)
        call beam_shear_stiffness(st, sb, has_2d, sec)
        call beam_fibres(sb, has_2d, sec)
        if (has_2d) then

@@ -19,6 +19,7 @@ program superjoin_main
   use superjoin_analysis_combinations, only: add_combinations
   use superjoin_analysis_plausibility, only: check_plausibility
   use superjoin_analysis_contact_gaps, only: check_contact_gaps
+  use superjoin_analysis_drilling_check, only: check_partial_rotations
   use superjoin_model_results, only: results_t, run_options_t, PH_READ, PH_WRITE
   use superjoin_output_listing, only: write_listing
   use superjoin_output_csv, only: write_csv
@@ -107,6 +108,7 @@ program superjoin_main
   ! (a wrong node number in a contact often makes a mechanism).
   allocate (deck_warnings(0))
   call check_contact_gaps(model, deck_warnings)
+  call check_partial_rotations(model, deck_warnings)
   if (comm%is_root()) then
      do i = 1, size(deck_warnings)
         write (msg_unit, '(a)') deck//': warning: '//deck_warnings(i)%s

@@ -174,7 +174,7 @@ def main():
     out.append("*STEP, NAME=SERVICE")
     out.append("*DLOAD")
     for k in range(1, n + 1):
-        out.append(f"S{k}.SLAB, P, {5.0e3 * (1 + 0.1 * k):.6g}")
+        out.append(f"S{k}.SLAB, P, {-5.0e3 * (1 + 0.1 * k):.6g}")   # *DLOAD P pushes along the normal
     out.append("*CLOAD")
     out.append(f"S{n}.LOADED, 1, 2.0e5")
     out.append(f"S{n}.LOADED, 2, 1.0e5")

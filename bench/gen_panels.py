@@ -91,8 +91,8 @@ def main():
         out.append(f"B.RIGHT, 2, {2.0e3 / (m + 1):.6g}")
     else:
         out.append("*DLOAD")
-        out.append("A.SKIN, P, %g" % PRESSURE)
-        out.append("B.SKIN, P, %g" % PRESSURE)
+        out.append("A.SKIN, P, %g" % -PRESSURE)   # *DLOAD P pushes along the normal
+        out.append("B.SKIN, P, %g" % -PRESSURE)
     if args.requests:
         out.append("*NODE PRINT, NSET=B.RIGHT")
         out.append("U")

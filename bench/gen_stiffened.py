@@ -86,7 +86,7 @@ def main():
     for (i, j), b in bid.items():
         out.append(f" {sid(i, j)}, {b}, 1, 3, {G_TRANS!r}")
         out.append(f" {sid(i, j)}, {b}, 4, 6, {G_ROT!r}")
-    out += ["*BOUNDARY", " SKIN.EDGE, 1, 3", "*STEP, NAME=PRESSURE", "*DLOAD", f" SKIN.SKIN, P, {PRESSURE!r}",
+    out += ["*BOUNDARY", " SKIN.EDGE, 1, 3", "*STEP, NAME=PRESSURE", "*DLOAD", f" SKIN.SKIN, P, {-PRESSURE!r}",
             "*END STEP"]
     with open(a.deck, "w") as f:
         f.write("\n".join(out) + "\n")

@@ -51,7 +51,7 @@ def main():
         out.append("RIGHT, LEFT, 1, 3, RIGID")
         out.append(f"RIGHT, LEFT, 4, 6, {a.joint:g}")
     out += ["*BOUNDARY", "P1.LEFT, 1, 6", "*STEP, NAME=PRESSURE", "*DLOAD"]
-    out += [f"P{p + 1}.SKIN, P, 100" for p in range(n)]
+    out += [f"P{p + 1}.SKIN, P, -100" for p in range(n)]   # along -normal: *DLOAD P pushes along it
     out.append("*END STEP")
     print("\n".join(out))
 

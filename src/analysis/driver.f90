@@ -193,6 +193,11 @@ contains
     end if
     if (allocated(error)) return
     if (len(unproduced_file_variables(model)) > 0) call append_string(res%log%notes, unproduced_file_variables(model))
+    if (allocated(model%notes)) then   ! the reader's (which reading of a card it took)
+       do s = 1, size(model%notes)
+          call append_string(res%log%notes, model%notes(s)%s)
+       end do
+    end if
   end subroutine solve_steps
 
   subroutine enter_group(model, members, swap, supports, links)

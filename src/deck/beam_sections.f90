@@ -39,6 +39,14 @@ module superjoin_deck_beam_sections
        'a, b', 'r (or d1, d2: an ellipse)', 'r, t', 'a, b, t1, t2, t3, t4', 'l, h, b1, b2, t1, t2, t3', &
        'a, b, t1, t2']
   integer, parameter, public :: MAX_SHAPE_DIMS = 7
+  real(wp), parameter, public :: SHAPE_SHEAR_K(NUM_SHAPES) = [0.85_wp, 0.89_wp, 0.53_wp, 0.44_wp, 0.44_wp, &
+       0.44_wp]
+    !! Shear factor k of the default transverse shear stiffness k G A of the
+    !! shear-flexible beams (B21, B31, B32), per shape as Abaqus takes them
+    !! ("Transverse shear stiffness in beams", Abaqus Analysis User's Guide:
+    !! Cowper's 1966 factors at nu = 0.3): solid rectangle 0.85 (10(1+nu)/(12+11nu)),
+    !! solid circle 0.89 (6(1+nu)/(7+6nu)), thin-walled tube 0.53
+    !! (2(1+nu)/(4+3nu)), thin-walled box, I and L 0.44 (box: 20(1+nu)/(48+39nu)).
 
   type, public :: section_props_t
     !! Constants of a cross-section about its centroid, section axes 1 and 2.
@@ -50,7 +58,7 @@ module superjoin_deck_beam_sections
      real(wp) :: c(2) = 0.0_wp             !! centroid in the section's own axes (origin of its data)
   end type section_props_t
 
-  public :: shape_index, section_properties, rect_torsion
+  public :: shape_index, section_properties, rect_torsion, shape_shear_factor
   public :: section_fibres
 
   integer, parameter, public :: MAX_FIBRES = 4
@@ -71,6 +79,14 @@ contains
     end do
     k = SHAPE_NONE
   end function shape_index
+
+  pure real(wp) function shape_shear_factor(shape) result(k)
+    !! SHAPE_SHEAR_K of a library shape; 1 for anything else (a general
+    !! section keeps the k = 1 of superjoin's own constants).
+    integer, intent(in) :: shape
+    k = 1.0_wp
+    if (shape >= 1 .and. shape <= NUM_SHAPES) k = SHAPE_SHEAR_K(shape)
+  end function shape_shear_factor
 
   pure real(wp) function rect_torsion(a, b) result(j)
     !! Saint-Venant torsion constant of a solid a × b rectangle.

@@ -4,12 +4,14 @@ module superjoin_deck_build_sections
   !! left without a section reported.
   use superjoin_kinds, only: wp, ip
   use superjoin_model_types, only: model_t, substructure_t, ELEMENT_TYPE_NAMES, SEC_SOLID, SEC_BEAM, &
-       SEC_SHELL, section_t
+       SEC_SHELL, section_t, DIALECT_NONE, DIALECT_CALCULIX
+  use superjoin_model_notes, only: note
   use superjoin_elements_traits, only: element_traits_t, element_traits, section_card_name, &
        shell_of_plane, FAMILY_NONE, FAMILY_TRUSS, FAMILY_BEAM, FAMILY_PLANE, FAMILY_SHELL, FAMILY_SOLID
   use superjoin_deck_lexer, only: itoa
   use superjoin_deck_state, only: deck_state_t, report_loc, BEAM_2D_VALUES, BEAM_3D_VALUES, sec_b_t
-  use superjoin_deck_beam_sections, only: section_fibres, MAX_FIBRES
+  use superjoin_deck_beam_sections, only: section_fibres, MAX_FIBRES, section_properties, section_props_t, &
+       shape_shear_factor, SHAPE_CIRC
   use superjoin_deck_build_common, only: resolve_sub, more_text, where
   implicit none (type, external)
   private
@@ -34,6 +36,7 @@ contains
     integer, allocatable :: sub_of(:), count(:)
     integer :: g, isub, k
 
+    call dialect_readings(st, model)
     allocate (sub_of(st%nsec), count(size(model%subs)))
     count = 0
     do g = 1, st%nsec
@@ -54,6 +57,58 @@ contains
        if (st%aborted) return
     end do
   end subroutine build_sections
+
+  subroutine dialect_readings(st, model)
+    !! Where Abaqus and CalculiX read a beam section differently, the deck's
+    !! *CONTROLS, DIALECT= decides (Abaqus's reading when none is declared),
+    !! and a note of the listing says which reading was taken: SECTION=CIRC
+    !! with one value is Abaqus's radius r, CalculiX's diameter (ccx 2.20
+    !! with 2.0 deflects as r = 1), the circle of its two-value ellipse d, d.
+    !! *BEAM SECTION, SECTION=GENERAL with five values is CalculiX's A, I11,
+    !! I12, I22, J (four are superjoin's A, Iy, Iz, J): noted too.
+    type(deck_state_t), intent(inout) :: st
+    type(model_t), intent(inout) :: model
+    type(section_props_t) :: p
+    character(:), allocatable :: problem, text
+    integer :: g
+    do g = 1, st%nsec
+       associate (sb => st%sections(g))
+         if (sb%five_general) then
+            text = 'SECTION=GENERAL at '//where(st, sb%data_loc)//': five values, read as CalculiX''s '// &
+                 'A, I11, I12, I22, J (four values are superjoin''s A, Iy, Iz, J)'
+         else if (sb%shape == SHAPE_CIRC .and. sb%ndims == 1) then
+            text = 'SECTION=CIRC at '//where(st, sb%data_loc)//': one value, read as '
+            select case (st%controls%dialect)
+            case (DIALECT_CALCULIX)
+               sb%ndims = 2
+               sb%dims(2) = sb%dims(1)
+               call section_properties(SHAPE_CIRC, sb%dims(1:2), p, problem)
+               sb%sp = [p%area, p%i11, p%i22, p%i12, p%j]
+               text = text//'the diameter (DIALECT=CALCULIX; Abaqus reads the radius)'
+            case (DIALECT_NONE)
+               text = text//'the radius (Abaqus; CalculiX reads the diameter: *CONTROLS, DIALECT=CALCULIX)'
+            case default
+               text = text//'the radius (DIALECT=ABAQUS; CalculiX reads the diameter)'
+            end select
+         else
+            cycle
+         end if
+       end associate
+       if (.not. noted(model, text)) call note(model%notes, text)
+    end do
+  end subroutine dialect_readings
+
+  pure logical function noted(model, text)
+    !! The model already has this note (a section card of a part, met once per instance).
+    type(model_t), intent(in) :: model
+    character(*), intent(in) :: text
+    integer :: i
+    noted = .false.
+    if (.not. allocated(model%notes)) return
+    do i = 1, size(model%notes)
+       if (model%notes(i)%s == text) noted = .true.
+    end do
+  end function noted
 
   subroutine build_section(st, model, isub, k, g)
     !! Section k of substructure isub from section card g: its material and
@@ -247,6 +302,8 @@ contains
     type(section_t), intent(inout) :: sec
     if (sb%shape /= 0) then    ! library shape or Abaqus general section: constants in sb%sp
        sec%area = sb%sp(1)
+       sec%shear_factor = shape_shear_factor(sb%shape)
+       call beam_shear_stiffness(st, sb, has_2d, sec)
        call beam_fibres(sb, has_2d, sec)
        if (has_2d) then
           sec%iz = sb%sp(2)    ! a 2D beam bends about section axis 1, normal to its plane
@@ -277,18 +334,19 @@ contains
     end if
     sec%has_v = sb%has_v
     if (sb%has_v) sec%v = sb%v
-    call beam_shear_stiffness(st, sb, sec)
+    call beam_shear_stiffness(st, sb, sb%nval == BEAM_2D_VALUES, sec)
   end subroutine beam_values
 
-  subroutine beam_shear_stiffness(st, sb, sec)
+  subroutine beam_shear_stiffness(st, sb, plane, sec)
     !! *TRANSVERSE SHEAR STIFFNESS K23, K13 (Abaqus cross-section axes 1, 2) of
     !! a beam section: a planar beam deflects along axis 2 (local y), a 3D
     !! beam's local y, z are axes 1, 2.
     type(deck_state_t), intent(inout) :: st
     type(sec_b_t), intent(in) :: sb
+    logical, intent(in) :: plane
     type(section_t), intent(inout) :: sec
     if (.not. sb%has_ks) return
-    if (sb%nval == BEAM_2D_VALUES) then
+    if (plane) then
        sec%shear_k(1) = sb%ks(1)
     else if (sb%nks < 2) then
        call report_loc(st, sb%ks_loc, '*TRANSVERSE SHEAR STIFFNESS of 3D beams needs K23, K13')

@@ -57,10 +57,10 @@ contains
        call move_alloc(cl, model%steps(s)%cloads)
        if (st%aborted) return
        own = st%steps(s)%dloads(1:st%steps(s)%ndload)
-       ! CalculiX rules (a step with *STATIC): *DLOAD P pushes along the shell
-       ! normal; superjoin's own P (and the load of a *SURFACE SPOS face)
-       ! pushes against it
-       if (st%steps(s)%has_procedure) where (own%kind == DLOAD_P .and. .not. own%surface) own%value = -own%value
+       ! *DLOAD P pushes along the shell normal in every deck (Abaqus, CalculiX,
+       ! Nastran PLOAD2), with or without *STATIC; the element's value, like
+       ! the pressure on a *SURFACE SPOS face, pushes against it
+       where (own%kind == DLOAD_P .and. .not. own%surface) own%value = -own%value
        call build_dloads(st, model, own, dl)
        call move_alloc(dl, model%steps(s)%dloads)
        if (st%aborted) return

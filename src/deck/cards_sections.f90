@@ -426,6 +426,11 @@ contains
          end if
          sec%nval = 1
          sec%val(1) = v(1)
+      else if (st%card_ndata == 1 .and. st%f%n == GENERAL_FIELDS) then
+         ! CalculiX's SECTION=GENERAL: A, I11, I12, I22, J as on *BEAM GENERAL SECTION
+         sec%shape = SHAPE_GENERAL
+         sec%five_general = .true.
+         call data_beam_shape(st, line, loc)
       else if (st%card_ndata == 1) then
          if (.not. field_count(st, loc, BEAM_2D_VALUES, BEAM_3D_VALUES, 'A, I (2D) or A, Iy, Iz, J (3D)')) then
             sec%data_ok = .false.

@@ -5,7 +5,7 @@ module superjoin_deck_cards_steps
   use superjoin_kinds, only: wp, ip
   use superjoin_model_types, only: source_loc_t, NDOF_NODE, LINK_RIGID, DLOAD_PX, DLOAD_PY, &
        DLOAD_PZ, DLOAD_P, DLOAD_GRAV, DLOAD_P1, DLOAD_CENTRIF, FORM_TRANSFORM, FORM_PENALTY, DLOAD_P5, DLOAD_P6, &
-       RIGID_ELIMINATE, RIGID_LARGE
+       RIGID_ELIMINATE, RIGID_LARGE, DIALECT_ABAQUS, DIALECT_CALCULIX
   use superjoin_deck_lexer, only: keyword_line_t, to_upper, parse_real, parse_id, looks_numeric, &
        itoa, clip, TOK_OK
   use superjoin_deck_state, only: deck_state_t, support_b_t, load_b_t, ref_t, report_loc, step_b_t, &
@@ -198,7 +198,8 @@ contains
   end subroutine data_static
 
   subroutine kw_controls(st, kw, loc)
-    !! *CONTROLS: link formulation, rigid links and condensation of the run.
+    !! *CONTROLS: link formulation, rigid links and condensation of the run, and
+    !! the dialect whose reading holds where Abaqus and CalculiX differ.
     type(deck_state_t), intent(inout) :: st
     type(keyword_line_t), intent(in) :: kw
     type(source_loc_t), intent(in) :: loc
@@ -207,30 +208,14 @@ contains
     real(wp) :: x
     integer :: stat
     call check_params(st, kw, loc, [character(NAME_LEN) :: 'FORMULATION', 'RIGID', 'LARGE', &
-         'POSITION TOLERANCE'], &
+         'POSITION TOLERANCE', 'DIALECT'], &
          [character(NAME_LEN) ::])
-    call get_param(st, kw, loc, 'FORMULATION', .false., value, found)
-    if (found) then
-       select case (to_upper(value))
-       case ('TRANSFORM')
-          st%controls%formulation = FORM_TRANSFORM
-       case ('PENALTY')
-          st%controls%formulation = FORM_PENALTY
-       case default
-          call report_loc(st, loc, 'FORMULATION must be TRANSFORM or PENALTY, not '//clip(value))
-       end select
-    end if
-    call get_param(st, kw, loc, 'RIGID', .false., value, found)
-    if (found) then
-       select case (to_upper(value))
-       case ('ELIMINATE')
-          st%controls%rigid = RIGID_ELIMINATE
-       case ('LARGE')
-          st%controls%rigid = RIGID_LARGE
-       case default
-          call report_loc(st, loc, 'RIGID must be ELIMINATE or LARGE, not '//clip(value))
-       end select
-    end if
+    call choose(st, kw, loc, 'FORMULATION', [character(9) :: 'TRANSFORM', 'PENALTY'], &
+         [FORM_TRANSFORM, FORM_PENALTY], st%controls%formulation)
+    call choose(st, kw, loc, 'RIGID', [character(9) :: 'ELIMINATE', 'LARGE'], [RIGID_ELIMINATE, RIGID_LARGE], &
+         st%controls%rigid)
+    call choose(st, kw, loc, 'DIALECT', [character(8) :: 'ABAQUS', 'CALCULIX'], [DIALECT_ABAQUS, DIALECT_CALCULIX], &
+         st%controls%dialect)
     call get_param(st, kw, loc, 'LARGE', .false., value, found)
     if (found) then
        call parse_real(value, x, stat)
@@ -255,6 +240,35 @@ contains
        end if
     end if
   end subroutine kw_controls
+
+  subroutine choose(st, kw, loc, name, words, codes, code)
+    !! A parameter NAME=word of a keyword line that takes one of `words`:
+    !! code becomes the matching codes(i); another word is reported and code
+    !! is left as it was, and so is it when the parameter is absent.
+    type(deck_state_t), intent(inout) :: st
+    type(keyword_line_t), intent(in) :: kw
+    type(source_loc_t), intent(in) :: loc
+    character(*), intent(in) :: name, words(:)
+    integer, intent(in) :: codes(:)
+    integer, intent(inout) :: code
+    character(:), allocatable :: value, list
+    logical :: found
+    integer :: i
+    call get_param(st, kw, loc, name, .false., value, found)
+    if (.not. found) return
+    do i = 1, size(words)
+       if (to_upper(value) == trim(words(i))) then
+          code = codes(i)
+          return
+       end if
+    end do
+    list = trim(words(1))
+    do i = 2, size(words) - 1
+       list = list//', '//trim(words(i))
+    end do
+    if (size(words) > 1) list = list//' or '//trim(words(size(words)))
+    call report_loc(st, loc, name//' must be '//list//', not '//clip(value))
+  end subroutine choose
 
   subroutine kw_boundary(st, kw, loc)
     !! *BOUNDARY[, OP=MOD|NEW]: model data, or inside *STEP the step's own

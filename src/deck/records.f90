@@ -116,6 +116,7 @@ module superjoin_deck_records
      real(wp) :: sp(5) = 0.0_wp            !! its A, I11, I22, I12, J (section axes 1, 2)
      integer :: ndims = 0                  !! library shape: number of dimensions on its data line
      real(wp) :: dims(7) = 0.0_wp          !! library shape: the dimensions (for the fibre points)
+     logical :: five_general = .false.     !! *BEAM SECTION, SECTION=GENERAL with CalculiX's five values
   end type sec_b_t
 
   type, public :: contact_b_t

@@ -356,6 +356,9 @@ module superjoin_model_types
      type(source_loc_t) :: loc
   end type output_request_t
 
+  integer, parameter, public :: DIALECT_NONE = 0, DIALECT_ABAQUS = 1, DIALECT_CALCULIX = 2
+    !! *CONTROLS, DIALECT=: none declared (Abaqus's reading, with a note), ABAQUS or CALCULIX.
+
   type, public :: controls_t
     !! Analysis controls from *CONTROLS.
      integer :: formulation = FORM_TRANSFORM
@@ -363,6 +366,7 @@ module superjoin_model_types
      real(wp) :: large = DEFAULT_LARGE
      logical :: large_given = .false.      !! LARGE= given on *CONTROLS
      real(wp) :: position_tolerance = DEFAULT_POSITION_TOLERANCE  !! POSITION TOLERANCE= (relative)
+     integer :: dialect = DIALECT_NONE     !! DIALECT= (DIALECT_*): whose reading where Abaqus and CalculiX differ
   end type controls_t
 
   type, public :: model_t
@@ -384,6 +388,8 @@ module superjoin_model_types
      type(equation_t), allocatable :: equations(:)  !! *EQUATION constraints (unallocated or empty: none)
      type(node_frame_t), allocatable :: frames(:)   !! *TRANSFORM nodal systems (unallocated or empty: none)
      type(matrix_export_t), allocatable :: exports(:)  !! *SUBSTRUCTURE MATRIX OUTPUT cards (unallocated: none)
+     type(string_t), allocatable :: notes(:)        !! the reader's notes for the listing (which reading of a
+                                                    !! card it took where Abaqus and CalculiX differ)
   end type model_t
 
   public :: find_node, find_elem, node_label, loc_text

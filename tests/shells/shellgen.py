@@ -90,6 +90,13 @@ def fmt(v):
     return repr(float(v))
 
 
+def negated(v):
+    """-v for a number or a number's text (written as fmt would)."""
+    if isinstance(v, str):
+        return v[1:] if v.startswith("-") else "-" + v
+    return -v
+
+
 def deck_text(title, parts, e, nu, thickness, boundary=(), cloads=(), dloads=(), contacts=(),
               section="SHELL", extra=""):
     """Deck text: one material, one section per part on all its elements."""
@@ -124,8 +131,10 @@ def deck_text(title, parts, e, nu, thickness, boundary=(), cloads=(), dloads=(),
         out.append("*CLOAD")
         out += [" " + ", ".join(str(v) for v in c) for c in cloads]
     if dloads:
+        # the generators' pressure pushes against the normal; *DLOAD P pushes
+        # along it (Abaqus, CalculiX, the deck contract), so P is written negated
         out.append("*DLOAD")
-        out += [" " + ", ".join(str(v) for v in d) for d in dloads]
+        out += [" " + ", ".join(str(v) for v in (d[:2] + (negated(d[2]),) if d[1] == "P" else d)) for d in dloads]
     out.append("*END STEP")
     return "\n".join(out) + "\n"
 

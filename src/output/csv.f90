@@ -12,6 +12,7 @@ module superjoin_output_csv
   use superjoin_utils_process, only: temp_register, temp_unregister
   use superjoin_utils_text_buffer, only: text_buffer_t
   use superjoin_utils_strings, only: itoa, full_real
+  use superjoin_output_layout, only: has_node_frames, in_node_frame
   implicit none (type, external)
   private
 
@@ -89,7 +90,12 @@ contains
           end do
        end do
     case (2)
-       call tb%line('step,substructure,node,dof,force')
+       ! A model with nodal systems says per row whose axes the force is along.
+       if (has_node_frames(model)) then
+          call tb%line('step,substructure,node,dof,force,axes')
+       else
+          call tb%line('step,substructure,node,dof,force')
+       end if
        do is = 1, size(model%steps)
           if (allocated(fields%steps(is)%failure)) cycle   ! not solved: no rows
           do k = 1, size(fields%steps(is)%reactions)
@@ -97,7 +103,16 @@ contains
                if (.not. sel%node(fields%vertex_offset(rc%sub) + rc%node)) cycle
                call keys(tb, model%steps(is)%name, model%subs(rc%sub)%name, &
                     int(model%subs(rc%sub)%node_id(rc%node), i8), int(rc%dof, i8))
-               call reals(tb, [rc%force])
+               if (has_node_frames(model)) then
+                  call tb%put(','//full_real(rc%force))
+                  if (in_node_frame(model, rc%sub, rc%node)) then
+                     call tb%line(',transform')
+                  else
+                     call tb%line(',global')
+                  end if
+               else
+                  call reals(tb, [rc%force])
+               end if
              end associate
           end do
        end do

@@ -10,6 +10,7 @@ module superjoin_output_envelope
   use superjoin_utils_text_buffer, only: text_buffer_t
   use superjoin_output_columns, only: element_prefix, chop
   use superjoin_elements, only: is_plate_type
+  use superjoin_output_layout, only: has_node_frames, in_node_frame, REACTION_FRAME_NOTE, FRAME_MARK
   implicit none (type, external)
   private
 
@@ -56,12 +57,15 @@ contains
     call lu%line(first//'            max  combination                min  combination')
   end subroutine header_line
 
-  subroutine put_extremes(lu, model, vals, cs, scale)
-    !! max, its combination, min, its combination of vals(k) over the combination steps cs(k).
+  subroutine put_extremes(lu, model, vals, cs, scale, marked)
+    !! max, its combination, min, its combination of vals(k) over the
+    !! combination steps cs(k); with `marked`, FRAME_MARK after them (a row in
+    !! a node's *TRANSFORM system).
     type(text_buffer_t), intent(inout) :: lu
     type(model_t), intent(in) :: model
     real(wp), intent(in) :: vals(:), scale
     integer, intent(in) :: cs(:)
+    logical, intent(in), optional :: marked
     real(wp) :: c(size(vals))
     integer :: imax, imin, k
     c = chop(vals, scale)    ! round-off ties go to the first combination
@@ -75,6 +79,15 @@ contains
     call lu%put('  ')
     call lu%put_field(model%steps(cs(imax))%name, NAME_WIDTH)
     call lu%put_es(c(imin))
+    if (present(marked)) then
+       if (marked) then
+          call lu%put('  ')
+          call lu%put_field(model%steps(cs(imin))%name, NAME_WIDTH)
+          call lu%put(FRAME_MARK)
+          call lu%newline()
+          return
+       end if
+    end if
     call lu%put('  '//model%steps(cs(imin))%name)
     call lu%newline()
   end subroutine put_extremes
@@ -132,7 +145,11 @@ contains
           vals(j, k) = res%fields%steps(cs(k))%reactions(i)%force
        end do
     end do
-    call lu%line('SUPPORT REACTIONS (force the support exerts on the structure)')
+    if (has_node_frames(model)) then
+       call lu%line('SUPPORT REACTIONS (force the support exerts on the structure; '//REACTION_FRAME_NOTE//')')
+    else
+       call lu%line('SUPPORT REACTIONS (force the support exerts on the structure)')
+    end if
     call header_line(lu, '  substructure              node   dof')
     scale = 0.0_wp
     if (size(vals) > 0) scale = maxval(abs(vals))
@@ -141,7 +158,7 @@ contains
        call lu%put_field(model%subs(keys(i)%sub)%name, 20)
        call lu%put_int(int(model%subs(keys(i)%sub)%node_id(keys(i)%node), i8), 10)
        call lu%put_int(int(keys(i)%dof, i8), 6)
-       call put_extremes(lu, model, vals(i, :), cs, scale)
+       call put_extremes(lu, model, vals(i, :), cs, scale, in_node_frame(model, keys(i)%sub, keys(i)%node))
     end do
     call lu%line('')
   end subroutine reactions

@@ -21,6 +21,13 @@ module superjoin_output_layout
     !! DOFs per block (translations 1-3, rotations 4-6).
 
   public :: is_planar_model, node_dof_mask, is_truss, displacement_columns
+  public :: has_node_frames, in_node_frame, REACTION_FRAME_NOTE, FRAME_MARK
+
+  character(*), parameter :: REACTION_FRAME_NOTE = &
+       'global axes; rows marked L: the node''s *TRANSFORM system'
+    !! How a reactions table of a model with nodal systems names its axes.
+  character(*), parameter :: FRAME_MARK = '  L'
+    !! The mark after a reaction row in a node's *TRANSFORM system.
 
 contains
 
@@ -111,4 +118,28 @@ contains
        end associate
     end do
   end subroutine node_dof_mask
+
+  pure logical function has_node_frames(model)
+    !! True when some node of the model has a nodal system (*TRANSFORM): its
+    !! supports and so its reactions are along that system's axes.
+    type(model_t), intent(in) :: model
+    has_node_frames = .false.
+    if (allocated(model%frames)) has_node_frames = size(model%frames) > 0
+  end function has_node_frames
+
+  pure logical function in_node_frame(model, isub, node)
+    !! True when node `node` of substructure isub has a nodal system.
+    type(model_t), intent(in) :: model
+    integer, intent(in) :: isub
+    integer(ip), intent(in) :: node
+    integer :: k
+    in_node_frame = .false.
+    if (.not. allocated(model%frames)) return
+    do k = 1, size(model%frames)
+       if (model%frames(k)%sub == isub .and. model%frames(k)%node == node) then
+          in_node_frame = .true.
+          return
+       end if
+    end do
+  end function in_node_frame
 end module superjoin_output_layout

@@ -16,7 +16,8 @@ module superjoin_output_listing
   use superjoin_utils_memory, only: out_of_memory
   use superjoin_output_requests, only: write_print_requests
   use superjoin_model_request_masks, only: has_requests
-  use superjoin_output_layout, only: displacement_columns, node_dof_mask, is_truss
+  use superjoin_output_layout, only: displacement_columns, node_dof_mask, is_truss, &
+       has_node_frames, in_node_frame, REACTION_FRAME_NOTE, FRAME_MARK
   use superjoin_output_envelope, only: write_envelope
   implicit none (type, external)
   private
@@ -369,7 +370,11 @@ contains
       end do
       call lu%line('')
 
-      call lu%line('SUPPORT REACTIONS (force the support exerts on the structure)')
+      if (has_node_frames(model)) then
+         call lu%line('SUPPORT REACTIONS (force the support exerts on the structure; '//REACTION_FRAME_NOTE//')')
+      else
+         call lu%line('SUPPORT REACTIONS (force the support exerts on the structure)')
+      end if
       write (hline, '(2x,a20,a10,a6,a15)') 'substructure        ', '      node', '   dof', '          force'
       call lu%line(trim(hline))
       scale = max(0.0_wp, maxval(abs(st%reactions(:)%force)))
@@ -381,6 +386,7 @@ contains
            call lu%put_int(int(model%subs(rc%sub)%node_id(rc%node), i8), 10)
            call lu%put_int(int(rc%dof, i8), 6)
            call lu%put_es(chop(rc%force, scale))
+           if (in_node_frame(model, rc%sub, rc%node)) call lu%put(FRAME_MARK)
            call lu%newline()
          end associate
       end do

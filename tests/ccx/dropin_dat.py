@@ -15,7 +15,7 @@ them) and within the deck's tolerance below; the table printed is the one
 of doc/calculix-dropin.md.
 
 Tolerances and why (doc/calculix-dropin.md, "The .dat against .dat.ref"):
-- 1e-6 (7 printed digits): trusses (CalculiX's C3D20R of a truss carries the
+- 1e-6 (7 printed digits): solids (the same elements at the same points), trusses (CalculiX's C3D20R of a truss carries the
   uniaxial tensor), the plane patch tests, nodal systems.
 - planestress2: 5e-4 (CalculiX's brick has szz, sxz, syz from the thickness
   steps between its bricks; in-plane within 5e-6).

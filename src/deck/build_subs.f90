@@ -249,6 +249,8 @@ contains
     integer, intent(in) :: t
     integer :: p, r, k, ngen
     integer :: stat
+    logical :: gaps
+    gaps = .false.
     if (.not. allocated(w%items)) allocate (w%items(INITIAL_CAPACITY))
     w%n = 0
     w%stamp = w%stamp + 1
@@ -260,6 +262,7 @@ contains
          case (CH_GEN)
             ngen = 0
             call walk_range(m, w, ch%gen, ngen)
+            gaps = gaps .or. ngen < range_count(ch%gen, largest_node_id(m))
             ! an element set may be empty because its *ELEMENT card was refused (reported)
             if (ngen == 0 .and. .not. (w%elem .and. st%elements_refused)) call report_loc(st, ch%loc, w%kind_name//' '//w%sets(t)%name// &
                  ': GENERATE '//itoa(ch%gen(1))//', '//itoa(ch%gen(2))//', '//itoa(ch%gen(3))// &
@@ -272,6 +275,7 @@ contains
             r = find_set(b, ch%ref, w%elem)
             if (r > 0) then
                if (w%state(r) == DONE) then
+                  gaps = gaps .or. allocated(w%sets(r)%print_ids)
                   do k = 1, size(w%sets(r)%items)
                      call add(w, w%sets(r)%items(k))
                   end do
@@ -289,7 +293,80 @@ contains
        return
     end if
     w%sets(t)%items(:) = w%items(1:w%n)
+    if (gaps .and. .not. w%elem) call print_ids(b, m, w, t)
   end subroutine build_items
+
+  pure integer(ip) function largest_node_id(m)
+    !! The largest node id of m (0: no nodes).
+    type(substructure_t), intent(in) :: m
+    largest_node_id = 0
+    if (m%nnode > 0) largest_node_id = m%node_id(m%node_order(m%nnode))
+  end function largest_node_id
+
+  pure integer function range_count(gen, top)
+    !! How many ids first, first+inc, ... <= last GENERATE range gen has up to id top.
+    integer(ip), intent(in) :: gen(3), top
+    range_count = 0
+    if (top >= gen(1)) range_count = int((min(gen(2), top) - gen(1))/gen(3)) + 1
+  end function range_count
+
+  subroutine print_ids(b, m, w, t)
+    !! The ids CalculiX's .dat prints for node set t, whose GENERATE ranges (or
+    !! a set it refers to) pass over undefined ids: as ccx, every id of a range
+    !! up to the largest node id (an undefined one prints zeros), in order.
+    type(sub_b_t), intent(in) :: b
+    type(substructure_t), intent(in) :: m
+    type(set_work_t), intent(inout) :: w
+    integer, intent(in) :: t
+    integer(ip), allocatable :: ids(:)
+    integer(ip) :: id, top
+    integer :: p, k, n, r
+    top = largest_node_id(m)
+    allocate (ids(INITIAL_CAPACITY))
+    n = 0
+    do p = w%head(t), w%head(t + 1) - 1
+       associate (ch => b%chunks(w%list(p)))
+         select case (ch%kind)
+         case (CH_IDS)
+            do k = ch%start, ch%start + ch%count - 1
+               if (find_node(m, b%pool(k)) > 0) call push_id(ids, n, b%pool(k))
+            end do
+         case (CH_GEN)
+            do id = ch%gen(1), min(ch%gen(2), top), ch%gen(3)
+               call push_id(ids, n, id)
+            end do
+         case (CH_RANGE)
+            do k = ch%start, ch%start + ch%count - 1
+               call push_id(ids, n, m%node_id(k))
+            end do
+         case (CH_REF)
+            r = find_set(b, ch%ref, .false.)
+            if (r <= 0) cycle
+            if (w%state(r) /= DONE) cycle
+            if (allocated(w%sets(r)%print_ids)) then
+               do k = 1, size(w%sets(r)%print_ids)
+                  call push_id(ids, n, w%sets(r)%print_ids(k))
+               end do
+            else
+               do k = 1, size(w%sets(r)%items)
+                  call push_id(ids, n, m%node_id(w%sets(r)%items(k)))
+               end do
+            end if
+         end select
+       end associate
+    end do
+    w%sets(t)%print_ids = ids(1:n)
+  end subroutine print_ids
+
+  subroutine push_id(ids, n, id)
+    !! Appends id to ids(1:n).
+    integer(ip), allocatable, intent(inout) :: ids(:)
+    integer, intent(inout) :: n
+    integer(ip), intent(in) :: id
+    call grow(ids, n, INITIAL_CAPACITY)
+    n = n + 1
+    ids(n) = id
+  end subroutine push_id
 
   subroutine add_ids(st, b, m, w, t, ch)
     !! The members of a chunk of ids of set t (undefined ids reported).

@@ -77,6 +77,9 @@ contains
                if (sub%nsets(i)%name == b%set%set) k = i
             end do
             if (k > 0) r%items = sub%nsets(k)%items
+            if (k > 0) then
+               if (allocated(sub%nsets(k)%print_ids)) r%print_ids = sub%nsets(k)%print_ids
+            end if
          else
             do i = 1, size(sub%elsets)
                if (sub%elsets(i)%name == b%set%set) k = i

@@ -13,7 +13,9 @@ module superjoin_output_ccx_dat
   !! "stresses", E "strains", ELSE "internal energy"; TOTALS=YES adds the sum
   !! (RF, ELSE), TOTALS=ONLY writes the sum alone. A node with a nodal system
   !! (*TRANSFORM) prints U and RF in it, its row ending in L, unless the card
-  !! says GLOBAL=YES. The time of step k is k (every *STATIC step of
+  !! says GLOBAL=YES. A node set given by GENERATE ranges over undefined ids
+  !! prints U and RF rows for every id of the ranges up to the largest node
+  !! id, zeros for the undefined ones, as ccx. The time of step k is k (every *STATIC step of
   !! CalculiX lasts 1).
   !!
   !! Element values at integration points follow CalculiX's expansion of a
@@ -21,17 +23,19 @@ module superjoin_output_ccx_dat
   !! (C3D20R) has 8 points of its one tensor; a plane element its own points
   !! in the brick's order (xi fastest), repeated through the thickness; a
   !! shell its bottom, top (and mid) surface values interpolated to the
-  !! brick's Gauss points through the thickness. Beams (CalculiX's brick
-  !! stresses are not a beam's) and solids print no S or E rows; strains of
-  !! plane elements are the element's centroid tensor at each point, shells
-  !! have none (doc/calculix-dropin.md).
+  !! brick's Gauss points through the thickness; a solid its own points,
+  !! which are CalculiX's in CalculiX's order (S and E). Beams (CalculiX's
+  !! brick stresses are not a beam's) print no S or E rows; strains of plane
+  !! elements are the element's centroid tensor at each point, shells have
+  !! none (doc/calculix-dropin.md).
   use superjoin_kinds, only: wp, i8, ip
   use superjoin_error, only: error_t
-  use superjoin_model_types, only: model_t, output_request_t, NDOF_NODE, REQ_NODE_PRINT, REQ_EL_PRINT, &
-       TOTALS_YES, TOTALS_ONLY
+  use superjoin_model_types, only: model_t, output_request_t, substructure_t, find_node, NDOF_NODE, &
+       REQ_NODE_PRINT, REQ_EL_PRINT, TOTALS_YES, TOTALS_ONLY
   use superjoin_model_results, only: result_fields_t
   use superjoin_elements, only: element_tensor, element_stresses, NTENSOR
-  use superjoin_elements_traits, only: element_traits_t, element_traits, FAMILY_TRUSS, FAMILY_PLANE, FAMILY_SHELL
+  use superjoin_elements_traits, only: element_traits_t, element_traits, FAMILY_TRUSS, FAMILY_PLANE, FAMILY_SHELL, &
+       FAMILY_SOLID
   use superjoin_utils_text_buffer, only: text_buffer_t
   use superjoin_output_requests, only: effective_requests, selected_items, node_frames, rotate_rows, node_values, &
        add_reactions, add_cloads
@@ -138,13 +142,13 @@ contains
           gvals = vals
           if (local) call rotate_rows(model, frame, .false., vals)
           if (r%totals /= TOTALS_ONLY) call block_header(lu, 'displacements (vx,vy,vz)', r, is, 'NALL')
-          if (r%totals /= TOTALS_ONLY) call node_rows(lu, model, subs, nodes, vals, local .and. frame > 0)
+          if (r%totals /= TOTALS_ONLY) call node_rows(lu, model, r, subs, nodes, vals, local .and. frame > 0)
        case ('RF')
           call node_forces(model, fields, is, subs, nodes, gvals)
           vals = gvals
           if (local) call rotate_rows(model, frame, .false., vals)
           if (r%totals /= TOTALS_ONLY) call block_header(lu, 'forces (fx,fy,fz)', r, is, 'NALL')
-          if (r%totals /= TOTALS_ONLY) call node_rows(lu, model, subs, nodes, vals, local .and. frame > 0)
+          if (r%totals /= TOTALS_ONLY) call node_rows(lu, model, r, subs, nodes, vals, local .and. frame > 0)
           if (r%totals == TOTALS_YES .or. r%totals == TOTALS_ONLY) then
              call block_header(lu, 'total force (fx,fy,fz)', r, is, 'NALL')
              call total_row(lu, [sum(gvals(1, :)), sum(gvals(2, :)), sum(gvals(3, :))])
@@ -178,26 +182,70 @@ contains
     v = v + cf
   end subroutine node_forces
 
-  subroutine node_rows(lu, model, subs, nodes, vals, marked)
+  subroutine node_rows(lu, model, r, subs, nodes, vals, marked)
     !! One row per node: its user id and vals(1:3, node); ' L' when `marked`.
+    !! A set with print_ids prints those ids, as ccx (an undefined id: zeros).
     type(text_buffer_t), intent(inout) :: lu
     type(model_t), intent(in) :: model
+    type(output_request_t), intent(in) :: r
     integer, intent(in) :: subs(:)
     integer(ip), intent(in) :: nodes(:)
     real(wp), intent(in) :: vals(:, :)
     logical, intent(in) :: marked(:)
-    character(len=60) :: row
+    integer(ip), allocatable :: ids(:), at(:)
     integer :: i
-    do i = 1, size(nodes)
-       write (row, FMT_NODE) model%subs(subs(i))%node_id(nodes(i)), c_real(vals(1, i), 13, 6), &
-            c_real(vals(2, i), 13, 6), c_real(vals(3, i), 13, 6)
-       if (marked(i)) then
-          call lu%line(trim(row)//' L')
+    if (allocated(r%print_ids)) then
+       ids = r%print_ids
+       call print_positions(model%subs(r%sub), nodes, ids, at)
+    else
+       allocate (ids(size(nodes)), at(size(nodes)))
+       do i = 1, size(nodes)
+          ids(i) = model%subs(subs(i))%node_id(nodes(i))
+          at(i) = i
+       end do
+    end if
+    do i = 1, size(ids)
+       if (at(i) > 0) then
+          call node_row(lu, ids(i), vals(:, at(i)), marked(at(i)))
        else
-          call lu%line(trim(row))
+          call node_row(lu, ids(i), [0.0_wp, 0.0_wp, 0.0_wp], .false.)
        end if
     end do
   end subroutine node_rows
+
+  subroutine print_positions(sub, nodes, ids, at)
+    !! at(k): the position in nodes of the node with id ids(k) (0: none).
+    type(substructure_t), intent(in) :: sub
+    integer(ip), intent(in) :: nodes(:), ids(:)
+    integer(ip), allocatable, intent(out) :: at(:)
+    integer(ip), allocatable :: pos(:)
+    integer(ip) :: n
+    integer :: k
+    allocate (pos(sub%nnode), source=0_ip)
+    do k = 1, size(nodes)
+       pos(nodes(k)) = k
+    end do
+    allocate (at(size(ids)), source=0_ip)
+    do k = 1, size(ids)
+       n = find_node(sub, ids(k))
+       if (n > 0) at(k) = pos(n)
+    end do
+  end subroutine print_positions
+
+  subroutine node_row(lu, id, v, marked)
+    !! The row of node id: v(1:3); ' L' when `marked`.
+    type(text_buffer_t), intent(inout) :: lu
+    integer(ip), intent(in) :: id
+    real(wp), intent(in) :: v(:)
+    logical, intent(in) :: marked
+    character(len=60) :: row
+    write (row, FMT_NODE) id, c_real(v(1), 13, 6), c_real(v(2), 13, 6), c_real(v(3), 13, 6)
+    if (marked) then
+       call lu%line(trim(row)//' L')
+    else
+       call lu%line(trim(row))
+    end if
+  end subroutine node_row
 
   subroutine total_row(lu, v)
     !! The row of a TOTALS block.
@@ -393,6 +441,12 @@ contains
     integer :: map(MAX_CCX_POINTS), npoint
     integer :: k, nper, nlayer
     t = element_traits(model%subs(isub)%elem_type(ie))
+    if (t%family == FAMILY_SOLID) then
+       ! a solid's own points are CalculiX's, in its order (superjoin_elements_solid_stress)
+       call element_stresses(model, fields, is, isub, ie, points, nodes, ok, strain)
+       if (ok) vals = points(:, :, 1)
+       return
+    end if
     call ccx_point_map(t, map, npoint)
     ok = npoint > 0
     if (.not. ok) return

@@ -10,9 +10,10 @@ module superjoin_output_frd
   !! Stresses and strains are nodal values averaged over the elements at the
   !! node: plane and shell elements extrapolated from their points (shells:
   !! the mid-surface, the mean of bottom and top for thin shells; output's
-  !! nodal_stresses), trusses their one tensor; strains of plane elements and
-  !! trusses their centroid tensor; a node without such an element gets 0
-  !! (beams, solids, shell strains). A deck without *NODE FILE or *EL FILE
+  !! nodal_stresses), solids extrapolated from their points, trusses their
+  !! one tensor; strains of plane elements and trusses their centroid
+  !! tensor, of solids extrapolated from their points; a node without such
+  !! an element gets 0 (beams, shell strains). A deck without *NODE FILE or *EL FILE
   !! gets the mesh alone, as with ccx.
   !!
   !! Numbers: a model of one substructure keeps its node and element ids;
@@ -23,7 +24,7 @@ module superjoin_output_frd
   use superjoin_error, only: error_t
   use superjoin_model_types, only: model_t, NDOF_NODE, REQ_NODE_FILE, REQ_EL_FILE
   use superjoin_model_results, only: result_fields_t
-  use superjoin_elements, only: element_tensor, NTENSOR
+  use superjoin_elements, only: element_tensor, element_stresses, NTENSOR
   use superjoin_elements_traits, only: element_traits_t, element_traits, FAMILY_TRUSS, FAMILY_BEAM, &
        FAMILY_PLANE, FAMILY_SHELL, FAMILY_SOLID
   use superjoin_utils_text_buffer, only: text_buffer_t
@@ -337,13 +338,13 @@ contains
     integer, intent(in) :: is
     logical, intent(in) :: strain
     real(wp), allocatable, intent(out) :: vals(:, :)
-    real(wp), allocatable :: avg(:, :, :), sums(:, :)
+    real(wp), allocatable :: avg(:, :, :), sums(:, :), points(:, :, :), nodes(:, :, :)
     integer, allocatable :: nel(:), npoint(:), cnt(:)
     type(element_traits_t) :: t
     real(wp) :: one(NTENSOR)
     integer(i8) :: base
     integer(ip) :: e, n
-    integer :: isub, a
+    integer :: isub
     logical :: ok
     allocate (vals(NTENSOR, fields%vertex_offset(size(model%subs) + 1)), source=0.0_wp)
     do isub = 1, size(model%subs)
@@ -358,14 +359,15 @@ contains
          end if
          do e = 1, sub%nelem
             t = element_traits(sub%elem_type(e))
+            if (strain .and. t%family == FAMILY_SOLID) then
+               ! a solid's strains extrapolated to its nodes (its stresses come with nodal_stresses)
+               call element_stresses(model, fields, is, isub, e, points, nodes, ok, strain)
+               if (ok) call add_to_nodes(sub%elem_nodes(1:t%nodes, e), nodes(:, :, 1), sums, cnt)
+               cycle
+            end if
             if (t%family /= FAMILY_TRUSS .and. .not. (strain .and. t%family == FAMILY_PLANE)) cycle
             call element_tensor(model, fields, is, isub, e, strain, one, ok)
-            if (.not. ok) cycle
-            do a = 1, t%nodes
-               n = sub%elem_nodes(a, e)
-               sums(:, n) = sums(:, n) + one
-               cnt(n) = cnt(n) + 1
-            end do
+            if (ok) call add_to_nodes(sub%elem_nodes(1:t%nodes, e), spread(one, 2, t%nodes), sums, cnt)
          end do
          do n = 1, sub%nnode
             if (cnt(n) > 0) vals(:, base + n) = sums(:, n)/real(cnt(n), wp)
@@ -374,4 +376,17 @@ contains
        end associate
     end do
   end subroutine nodal_tensors
+
+  pure subroutine add_to_nodes(enodes, v, sums, cnt)
+    !! Adds v(6, a) to the sum of node enodes(a) and counts it.
+    integer(ip), intent(in) :: enodes(:)
+    real(wp), intent(in) :: v(:, :)
+    real(wp), intent(inout) :: sums(:, :)
+    integer, intent(inout) :: cnt(:)
+    integer :: a
+    do a = 1, size(enodes)
+       sums(:, enodes(a)) = sums(:, enodes(a)) + v(:, a)
+       cnt(enodes(a)) = cnt(enodes(a)) + 1
+    end do
+  end subroutine add_to_nodes
 end module superjoin_output_frd

@@ -14,8 +14,13 @@ largest magnitude in the reference block. Every block of .dat.ref must be in
 them) and within the deck's tolerance below; the table printed is the one
 of doc/calculix-dropin.md.
 
+With ccx installed it also runs achtel2, beam10p, beam20p and beamd with
+*EL FILE S, E added through superjoin -i and ccx and compares the .frd
+STRESS and TOSTRAIN blocks (solids' nodal values extrapolated from their
+points): within 5e-5 of the largest value (5 printed digits).
+
 Tolerances and why (doc/calculix-dropin.md, "The .dat against .dat.ref"):
-- 1e-6 (7 printed digits): trusses (CalculiX's C3D20R of a truss carries the
+- 1e-6 (7 printed digits): solids (the same elements at the same points), trusses (CalculiX's C3D20R of a truss carries the
   uniaxial tensor), the plane patch tests, nodal systems.
 - planestress2: 5e-4 (CalculiX's brick has szz, sxz, syz from the thickness
   steps between its bricks; in-plane within 5e-6).
@@ -48,6 +53,10 @@ TOLERANCE = {'planestress2': {'stresses': 5.0e-4}, 'planestress3': {'displacemen
 for _b in BEAMS:
     TOLERANCE[_b] = {'displacements': 0.07}
 REFUSED = {'spring1': 'NLGEOM'}
+# solid decks whose .frd STRESS and TOSTRAIN (with *EL FILE S, E added) are checked against ccx's, when
+# ccx is installed: 5 printed digits, 5e-5 of the largest value (as tests/solids/verify_solids.py)
+FRD_SOLIDS = ('achtel2', 'beam10p', 'beam20p', 'beamd')
+FRD_TOL = 5.0e-5
 TITLE = re.compile(r'\s*(\D.*?)\s+for\s*set\s+(\S+)\s+and time\s+(\S+)')
 
 
@@ -119,6 +128,57 @@ def compare(job, got, want):
     return failures
 
 
+def frd_blocks(path):
+    """{name: {node: [values]}} of the result blocks of an ASCII .frd."""
+    out, cur = {}, None
+    with open(path) as f:
+        for line in f:
+            if line.startswith(' -4'):
+                cur = out.setdefault(line.split()[1], {})
+            elif line.startswith(' -3'):
+                cur = None
+            elif cur is not None and line.startswith(' -1'):
+                n = (len(line.rstrip()) - 13) // 12
+                cur[int(line[3:13])] = [float(line[13 + 12 * i:25 + 12 * i]) for i in range(n)]
+    return out
+
+
+def frd_solids(binary, outdir):
+    """superjoin's and ccx's .frd STRESS and TOSTRAIN of the solid decks; return the failures."""
+    if shutil.which('ccx') is None:
+        print('  ccx not installed: .frd of solids not cross-checked')
+        return []
+    failures = []
+    for job in FRD_SOLIDS:
+        with open(os.path.join(HERE, job + '.inp')) as f:
+            text = re.sub(r'(?im)^\*END STEP', '*EL FILE\nS, E\n*END STEP', f.read())
+        got = {}
+        for who in ('superjoin', 'ccx'):
+            work = os.path.join(outdir, 'frd_' + who, job)
+            shutil.rmtree(work, ignore_errors=True)
+            os.makedirs(work)
+            with open(os.path.join(work, job + '.inp'), 'w') as f:
+                f.write(text)
+            subprocess.run([binary if who == 'superjoin' else 'ccx', '-i', job], cwd=work,
+                           stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+            frd = os.path.join(work, job + '.frd')
+            got[who] = frd_blocks(frd) if os.path.exists(frd) else {}
+        for name in ('STRESS', 'TOSTRAIN'):
+            ref, mine = got['ccx'].get(name, {}), got['superjoin'].get(name, {})
+            if not ref or set(ref) != set(mine):
+                print(f'  FAIL {job:16s} .frd {name}: nodes differ or block missing')
+                failures.append(f'{job} .frd {name}')
+                continue
+            scale = max([abs(v) for r in ref.values() for v in r] + [1e-300])
+            diff = max(abs(a - b) for k in ref for a, b in zip(mine[k], ref[k]))
+            ok = diff <= FRD_TOL * scale
+            print(f"  {'ok  ' if ok else 'FAIL'} {job:16s} .frd {name:8s} {len(ref):3d} nodes, |diff|/scale "
+                  f"{diff / scale:.1e} (tolerance {FRD_TOL:.2g})")
+            if not ok:
+                failures.append(f'{job} .frd {name}')
+    return failures
+
+
 def main():
     binary, outdir = os.path.abspath(sys.argv[1]), sys.argv[2]
     os.makedirs(outdir, exist_ok=True)
@@ -140,6 +200,7 @@ def main():
             failures.append(job)
             continue
         failures += compare(job, parse_dat(dat), parse_dat(os.path.join(HERE, job + '.dat.ref')))
+    failures += frd_solids(binary, outdir)
     print(f'{len(jobs)} decks, {len(failures)} failures')
     for f in failures:
         print('  ' + f)

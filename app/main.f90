@@ -12,7 +12,7 @@ program superjoin_main
   use, intrinsic :: iso_fortran_env, only: error_unit, output_unit
   use superjoin_kinds, only: wp, i8
   use superjoin_error, only: error_t, EXIT_OK, EXIT_USAGE, EXIT_IO, EXIT_INACCURATE
-  use superjoin_model_types, only: model_t, string_t, FORM_TRANSFORM, FORM_PENALTY, CONDENSE_YES, CONDENSE_NO, &
+  use superjoin_model_types, only: model_t, string_t, DIALECT_CALCULIX, FORM_TRANSFORM, FORM_PENALTY, CONDENSE_YES, CONDENSE_NO, &
        CONDENSE_AUTO
   use superjoin_deck_reader, only: read_deck
   use superjoin_analysis_driver, only: solve_steps, partial_results
@@ -100,7 +100,11 @@ program superjoin_main
   end if
 
   call clock%start()
-  call read_deck(deck, model, error)
+  if (allocated(job)) then
+     call read_deck(deck, model, error, DIALECT_CALCULIX)   ! ccx -i JOB reads a CalculiX deck
+  else
+     call read_deck(deck, model, error)
+  end if
   call fail_on(error, deck)
   t_read = clock%seconds()
   call report_phase(opts%quiet, 'read', t_read, deck)

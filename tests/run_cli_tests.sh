@@ -37,6 +37,14 @@ printf '*STATIC\n*CLOAD\n2,1,1.\n*NODE PRINT,NSET=NALL\nU\n*NODE FILE\nU\n*END S
 expect 0 "ccx -i" -- "$bin" "-i " job
 [ ! -s err.txt ] && grep -q 'Job finished' out.txt || { fail=$((fail+1)); echo "FAIL: -i: stderr not empty or no Job finished"; }
 for f in job.dat job.frd job.sta job.lst; do [ -s $f ] || { fail=$((fail+1)); echo "FAIL: -i wrote no $f"; }; done
+# -i reads a CalculiX deck: one-value SECTION=CIRC is the diameter (issue 25 item 2), said in the
+# listing; the same beam with Abaqus's radius 1.0 in a plain run must move the same
+printf '*NODE, NSET=NALL\n1,0,0,0\n2,10,0,0\n*ELEMENT,TYPE=B31,ELSET=EB\n1,1,2\n*MATERIAL,NAME=S\n*ELASTIC\n1000.,0.3\n*BEAM SECTION,ELSET=EB,MATERIAL=S,SECTION=CIRC\n%s\n0,0,1\n*BOUNDARY\n1,1,6\n*STEP\n*STATIC\n*CLOAD\n2,2,1e-3\n*END STEP\n' 2.0 > circ.inp
+sed 's/^2.0$/1.0/' circ.inp > circ_r.inp
+expect 0 "ccx -i circ" -- "$bin" -i circ
+expect 0 "circ radius" -- "$bin" -q circ_r.inp -o circ_r.lst
+grep -q 'one value, read as the diameter (ccx -i reads a CalculiX deck' circ.lst || { fail=$((fail+1)); echo "FAIL: -i does not say it read CIRC as the diameter"; }
+[ "$(sed -n '/^DISPLACEMENTS/,/^$/p' circ.lst)" = "$(sed -n '/^DISPLACEMENTS/,/^$/p' circ_r.lst)" ] && grep -q '^DISPLACEMENTS' circ.lst || { fail=$((fail+1)); echo "FAIL: -i CIRC 2.0 does not move as radius 1.0"; }
 expect 4 "ccx -i missing job" -- "$bin" -i no_such_job
 expect 2 "ccx -i without job" -- "$bin" -i
 for s in cholmod umfpack lapack; do

@@ -60,7 +60,8 @@ contains
 
   subroutine dialect_readings(st, model)
     !! Where Abaqus and CalculiX read a beam section differently, the deck's
-    !! *CONTROLS, DIALECT= decides (Abaqus's reading when none is declared),
+    !! *CONTROLS, DIALECT= decides (when none is declared: CalculiX's reading
+    !! in a ccx -i run, st%implied_dialect, else Abaqus's),
     !! and a note of the listing says which reading was taken: SECTION=CIRC
     !! with one value is Abaqus's radius r, CalculiX's diameter (ccx 2.20
     !! with 2.0 deflects as r = 1), the circle of its two-value ellipse d, d.
@@ -78,13 +79,19 @@ contains
                  'A, I11, I12, I22, J (four values are superjoin''s A, Iy, Iz, J)'
          else if (sb%shape == SHAPE_CIRC .and. sb%ndims == 1) then
             text = 'SECTION=CIRC at '//where(st, sb%data_loc)//': one value, read as '
-            select case (st%controls%dialect)
+            select case (merge(st%implied_dialect, st%controls%dialect, &
+                 st%controls%dialect == DIALECT_NONE .and. st%implied_dialect /= DIALECT_NONE))
             case (DIALECT_CALCULIX)
                sb%ndims = 2
                sb%dims(2) = sb%dims(1)
                call section_properties(SHAPE_CIRC, sb%dims(1:2), p, problem)
                sb%sp = [p%area, p%i11, p%i22, p%i12, p%j]
-               text = text//'the diameter (DIALECT=CALCULIX; Abaqus reads the radius)'
+               if (st%controls%dialect == DIALECT_CALCULIX) then
+                  text = text//'the diameter (DIALECT=CALCULIX; Abaqus reads the radius)'
+               else
+                  text = text//'the diameter (ccx -i reads a CalculiX deck; Abaqus reads the radius: '// &
+                       '*CONTROLS, DIALECT=ABAQUS)'
+               end if
             case (DIALECT_NONE)
                text = text//'the radius (Abaqus; CalculiX reads the diameter: *CONTROLS, DIALECT=CALCULIX)'
             case default

@@ -22,12 +22,16 @@ module superjoin_deck_reader
 
 contains
 
-  subroutine read_deck(path, model, error)
+  subroutine read_deck(path, model, error, dialect)
     !! Read, parse and validate a deck file into a model; all deck errors
     !! collected in error (code EXIT_DECK; EXIT_IO when the file cannot be read).
+    !! dialect (DIALECT_*): whose reading holds where Abaqus and CalculiX
+    !! differ when the deck declares none (*CONTROLS, DIALECT=); ccx -i JOB
+    !! reads a CalculiX deck.
     character(*), intent(in) :: path
     type(model_t), intent(out) :: model
     type(error_t), allocatable, intent(out) :: error
+    integer, intent(in), optional :: dialect
     character(:), allocatable :: text
     logical :: ok
     integer(i8) :: need
@@ -40,18 +44,20 @@ contains
        call fatal_error(error, EXIT_IO, path//': error: cannot open deck file')
        return
     end if
-    call read_deck_string(text, path, model, error)
+    call read_deck_string(text, path, model, error, dialect)
   end subroutine read_deck
 
-  subroutine read_deck_string(text, name, model, error)
+  subroutine read_deck_string(text, name, model, error, dialect)
     !! Same as read_deck but from text in memory (lines separated by LF, CR LF or
     !! CR); `name` is the file name used in messages and for resolving *INCLUDE
     !! relative paths (relative to the directory of name).
     character(*), intent(in) :: text, name
     type(model_t), intent(out) :: model
     type(error_t), allocatable, intent(out) :: error
+    integer, intent(in), optional :: dialect
     type(deck_state_t) :: st
     integer :: file
+    if (present(dialect)) st%implied_dialect = dialect
     call register_file(st, name, path_normalize(name), file)
     st%depth = 0
     st%stack(0) = file

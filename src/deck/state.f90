@@ -73,6 +73,7 @@ module superjoin_deck_state
      integer :: nstep = 0
      type(step_b_t), allocatable :: steps(:)
      type(controls_t) :: controls
+     integer :: implied_dialect = 0            !! DIALECT_* of the run where the deck declares none (0: none)
      character(:), allocatable :: vtk_path          !! *OUTPUT, VTK= resolved against its file's directory
      type(source_loc_t) :: vtk_loc
      integer :: nreq = 0                            !! output request cards

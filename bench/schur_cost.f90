@@ -9,6 +9,9 @@ program schur_cost
   !!   factor   analyze + factorize of a_ii alone
   !!   schur    the solver's schur (its own route, e.g. boundary last)
   !!   default  schur_by_solves (a_ii factored, 2 NB triangular solves)
+  !!   compare  (cholmod) schur with camd_first off: the interior's own
+  !!            analysis always run and compared with CAMD's (before 2026-11-28)
+  !!   analyze  analyze of a_ii alone (part of factor)
   !! and prints the medians and the ratios to factor, and the largest
   !! difference of the two K* relative to sqrt(k_ii k_jj).
   !! Build (after the library):
@@ -29,7 +32,7 @@ program schur_cost
   integer(i8) :: nb, ni, i
   integer :: reps, r
   real(wp), allocatable :: t(:, :), k1(:, :), k2(:, :), d(:)
-  real(wp) :: worst, fl(2)
+  real(wp) :: worst, fl(3)
 
   if (command_argument_count() < 2) then
      write (*, '(a)') 'usage: schur_cost K.mtx NB [REPS] [SOLVER]'
@@ -49,11 +52,12 @@ program schur_cost
   if (allocated(error)) error stop 'cannot read the matrix'
   ni = a%n - nb
   call interior_block(a, nb, aii)
-  allocate (t(reps, 3), k1(nb, nb), k2(nb, nb))
+  allocate (t(reps, 5), k1(nb, nb), k2(nb, nb))
   do r = 1, reps
      call new_solver(trim(solver), ni, s, error)
      t(r, 1) = now()
      call s%analyze(aii, error)
+     t(r, 5) = now() - t(r, 1)
      call s%factorize(aii, error)
      t(r, 1) = now() - t(r, 1)
      if (allocated(error)) error stop 'factor failed'
@@ -75,6 +79,19 @@ program schur_cost
      if (allocated(error)) error stop 'default schur failed'
      call s%release()
      deallocate (s)
+     call new_solver(trim(solver), ni, s, error)
+     call camd_first_off(s)
+     t(r, 4) = now()
+     call s%schur(a, nb, k2, error)
+     t(r, 4) = now() - t(r, 4)
+     if (allocated(error)) error stop 'compare schur failed'
+     fl(3) = flops(s)
+     call s%release()
+     deallocate (s)
+     call new_solver(trim(solver), ni, s, error)
+     call schur_by_solves(s, a, nb, k2, error)
+     call s%release()
+     deallocate (s)
   end do
   allocate (d(nb))
   d = [(sqrt(max(k2(i, i), tiny(1.0_wp))), i=1, nb)]
@@ -86,11 +103,20 @@ program schur_cost
   write (*, '(a,3f9.3)') 'medians (s): factor a_ii, schur, default: ', median(t(:, 1)), median(t(:, 2)), median(t(:, 3))
   write (*, '(a,2f7.2)') 'ratios to factor a_ii: schur, default: ', median(t(:, 2))/median(t(:, 1)), &
        median(t(:, 3))/median(t(:, 1))
-  if (fl(1) > 0.0_wp) write (*, '(a,2es10.3,a,f6.2)') 'flops (CHOLMOD): factor a_ii, schur: ', fl, &
-       '  ratio ', fl(2)/fl(1)
+  write (*, '(a,2f9.3)') 'medians (s): analyze a_ii, schur compare: ', median(t(:, 5)), median(t(:, 4))
+  if (fl(1) > 0.0_wp) write (*, '(a,3es10.3,a,2f6.2)') 'flops (CHOLMOD): factor a_ii, schur, compare: ', fl, &
+       '  ratios ', fl(2)/fl(1), fl(3)/fl(1)
   write (*, '(a,es9.2)') 'max |K*schur - K*default| / sqrt(k_ii k_jj): ', worst
 
 contains
+
+  subroutine camd_first_off(solver)
+    class(linear_solver_t), intent(inout) :: solver
+    select type (solver)
+    type is (cholmod_solver_t)
+       solver%camd_first = .false.
+    end select
+  end subroutine camd_first_off
 
   real(wp) function flops(solver)
     class(linear_solver_t), intent(in) :: solver

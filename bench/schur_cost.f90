@@ -33,6 +33,7 @@ program schur_cost
   integer :: reps, r
   real(wp), allocatable :: t(:, :), k1(:, :), k2(:, :), d(:)
   real(wp) :: worst, fl(3)
+  integer, parameter :: MODE_SCHUR = 1, MODE_DEFAULT = 2, MODE_COMPARE = 3
 
   if (command_argument_count() < 2) then
      write (*, '(a)') 'usage: schur_cost K.mtx NB [REPS] [SOLVER]'
@@ -64,34 +65,9 @@ program schur_cost
      fl(1) = flops(s)
      call s%release()
      deallocate (s)
-     call new_solver(trim(solver), ni, s, error)
-     t(r, 2) = now()
-     call s%schur(a, nb, k1, error)
-     t(r, 2) = now() - t(r, 2)
-     if (allocated(error)) error stop 'schur failed'
-     fl(2) = flops(s)
-     call s%release()
-     deallocate (s)
-     call new_solver(trim(solver), ni, s, error)
-     t(r, 3) = now()
-     call schur_by_solves(s, a, nb, k2, error)
-     t(r, 3) = now() - t(r, 3)
-     if (allocated(error)) error stop 'default schur failed'
-     call s%release()
-     deallocate (s)
-     call new_solver(trim(solver), ni, s, error)
-     call camd_first_off(s)
-     t(r, 4) = now()
-     call s%schur(a, nb, k2, error)
-     t(r, 4) = now() - t(r, 4)
-     if (allocated(error)) error stop 'compare schur failed'
-     fl(3) = flops(s)
-     call s%release()
-     deallocate (s)
-     call new_solver(trim(solver), ni, s, error)
-     call schur_by_solves(s, a, nb, k2, error)
-     call s%release()
-     deallocate (s)
+     call condense(MODE_SCHUR, k1, t(r, 2), fl(2))
+     call condense(MODE_COMPARE, k2, t(r, 4), fl(3))
+     call condense(MODE_DEFAULT, k2, t(r, 3))
   end do
   allocate (d(nb))
   d = [(sqrt(max(k2(i, i), tiny(1.0_wp))), i=1, nb)]
@@ -110,13 +86,28 @@ program schur_cost
 
 contains
 
-  subroutine camd_first_off(solver)
-    class(linear_solver_t), intent(inout) :: solver
-    select type (solver)
+  subroutine condense(mode, kstar, seconds, fl)
+    !! One condensation by a fresh solver: its K*, wall time and flop count.
+    integer, intent(in) :: mode
+    real(wp), intent(out) :: kstar(:, :), seconds
+    real(wp), intent(out), optional :: fl
+    class(linear_solver_t), allocatable :: c
+    call new_solver(trim(solver), ni, c, error)
+    select type (c)
     type is (cholmod_solver_t)
-       solver%camd_first = .false.
+       c%camd_first = mode /= MODE_COMPARE
     end select
-  end subroutine camd_first_off
+    seconds = now()
+    if (mode == MODE_DEFAULT) then
+       call schur_by_solves(c, a, nb, kstar, error)
+    else
+       call c%schur(a, nb, kstar, error)
+    end if
+    seconds = now() - seconds
+    if (allocated(error)) error stop 'condensation failed'
+    if (present(fl)) fl = flops(c)
+    call c%release()
+  end subroutine condense
 
   real(wp) function flops(solver)
     class(linear_solver_t), intent(in) :: solver

@@ -9,6 +9,9 @@ program schur_cost
   !!   factor   analyze + factorize of a_ii alone
   !!   schur    the solver's schur (its own route, e.g. boundary last)
   !!   default  schur_by_solves (a_ii factored, 2 NB triangular solves)
+  !!   compare  (cholmod) schur with camd_first off: the interior's own
+  !!            analysis always run and compared with CAMD's (before 2026-11-28)
+  !!   analyze  analyze of a_ii alone (part of factor)
   !! and prints the medians and the ratios to factor, and the largest
   !! difference of the two K* relative to sqrt(k_ii k_jj).
   !! Build (after the library):
@@ -29,7 +32,8 @@ program schur_cost
   integer(i8) :: nb, ni, i
   integer :: reps, r
   real(wp), allocatable :: t(:, :), k1(:, :), k2(:, :), d(:)
-  real(wp) :: worst, fl(2)
+  real(wp) :: worst, fl(3)
+  integer, parameter :: MODE_SCHUR = 1, MODE_DEFAULT = 2, MODE_COMPARE = 3
 
   if (command_argument_count() < 2) then
      write (*, '(a)') 'usage: schur_cost K.mtx NB [REPS] [SOLVER]'
@@ -49,32 +53,21 @@ program schur_cost
   if (allocated(error)) error stop 'cannot read the matrix'
   ni = a%n - nb
   call interior_block(a, nb, aii)
-  allocate (t(reps, 3), k1(nb, nb), k2(nb, nb))
+  allocate (t(reps, 5), k1(nb, nb), k2(nb, nb))
   do r = 1, reps
      call new_solver(trim(solver), ni, s, error)
      t(r, 1) = now()
      call s%analyze(aii, error)
+     t(r, 5) = now() - t(r, 1)
      call s%factorize(aii, error)
      t(r, 1) = now() - t(r, 1)
      if (allocated(error)) error stop 'factor failed'
      fl(1) = flops(s)
      call s%release()
      deallocate (s)
-     call new_solver(trim(solver), ni, s, error)
-     t(r, 2) = now()
-     call s%schur(a, nb, k1, error)
-     t(r, 2) = now() - t(r, 2)
-     if (allocated(error)) error stop 'schur failed'
-     fl(2) = flops(s)
-     call s%release()
-     deallocate (s)
-     call new_solver(trim(solver), ni, s, error)
-     t(r, 3) = now()
-     call schur_by_solves(s, a, nb, k2, error)
-     t(r, 3) = now() - t(r, 3)
-     if (allocated(error)) error stop 'default schur failed'
-     call s%release()
-     deallocate (s)
+     call condense(MODE_SCHUR, k1, t(r, 2), fl(2))
+     call condense(MODE_COMPARE, k2, t(r, 4), fl(3))
+     call condense(MODE_DEFAULT, k2, t(r, 3))
   end do
   allocate (d(nb))
   d = [(sqrt(max(k2(i, i), tiny(1.0_wp))), i=1, nb)]
@@ -86,11 +79,35 @@ program schur_cost
   write (*, '(a,3f9.3)') 'medians (s): factor a_ii, schur, default: ', median(t(:, 1)), median(t(:, 2)), median(t(:, 3))
   write (*, '(a,2f7.2)') 'ratios to factor a_ii: schur, default: ', median(t(:, 2))/median(t(:, 1)), &
        median(t(:, 3))/median(t(:, 1))
-  if (fl(1) > 0.0_wp) write (*, '(a,2es10.3,a,f6.2)') 'flops (CHOLMOD): factor a_ii, schur: ', fl, &
-       '  ratio ', fl(2)/fl(1)
+  write (*, '(a,2f9.3)') 'medians (s): analyze a_ii, schur compare: ', median(t(:, 5)), median(t(:, 4))
+  if (fl(1) > 0.0_wp) write (*, '(a,3es10.3,a,2f6.2)') 'flops (CHOLMOD): factor a_ii, schur, compare: ', fl, &
+       '  ratios ', fl(2)/fl(1), fl(3)/fl(1)
   write (*, '(a,es9.2)') 'max |K*schur - K*default| / sqrt(k_ii k_jj): ', worst
 
 contains
+
+  subroutine condense(mode, kstar, seconds, fl)
+    !! One condensation by a fresh solver: its K*, wall time and flop count.
+    integer, intent(in) :: mode
+    real(wp), intent(out) :: kstar(:, :), seconds
+    real(wp), intent(out), optional :: fl
+    class(linear_solver_t), allocatable :: c
+    call new_solver(trim(solver), ni, c, error)
+    select type (c)
+    type is (cholmod_solver_t)
+       c%camd_first = mode /= MODE_COMPARE
+    end select
+    seconds = now()
+    if (mode == MODE_DEFAULT) then
+       call schur_by_solves(c, a, nb, kstar, error)
+    else
+       call c%schur(a, nb, kstar, error)
+    end if
+    seconds = now() - seconds
+    if (allocated(error)) error stop 'condensation failed'
+    if (present(fl)) fl = flops(c)
+    call c%release()
+  end subroutine condense
 
   real(wp) function flops(solver)
     class(linear_solver_t), intent(in) :: solver

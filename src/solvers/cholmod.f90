@@ -20,6 +20,7 @@ module superjoin_solvers_cholmod
 
   integer(c_int), parameter :: SJ_OK = 0           !! shim status: success
   integer(c_int), parameter :: SJ_NOT_POSDEF = 1   !! shim status: not positive definite
+  integer(c_int), parameter :: SJ_TRY_INTERIOR = 2 !! schur_camd: CAMD fills much, analyze the interior
   integer(c_int), parameter :: CHOLMOD_OUT_OF_MEMORY = -2
   integer(c_int), parameter :: SJ_E_NOMEM = -105     !! malloc failed in the shim itself
   integer(c_int), parameter :: CHOLMOD_TOO_LARGE = -3
@@ -37,6 +38,9 @@ module superjoin_solvers_cholmod
      integer(i8), public :: node_graph_min = NODE_GRAPH_MIN_COLUMNS
      logical, public :: force_node_metis = .false.
        !! offer the node-graph METIS ordering even where AMD's fill is low (tests)
+     logical, public :: camd_first = .true.
+       !! schur: CAMD alone where its fill is low (.false.: always compare with
+       !! the interior's own ordering, as before; bench/schur_cost)
        !! order the node graph (when groups are set) from this many columns on
      logical :: factored = .false.
      real(wp) :: fl = 0.0_wp        !! flop count of the factorization
@@ -84,7 +88,8 @@ module superjoin_solvers_cholmod
        import :: c_ptr, c_int, c_int64_t
        type(c_ptr), value :: h
        integer(c_int64_t), value :: n
-       integer(c_int64_t), intent(in) :: colptr(*), rowind(*)
+       integer(c_int64_t) :: colptr(*), rowind(*)
+         !! shifted to 0-based during the call and back (the shim keeps no copy)
        integer(c_int) :: status
      end function sj_cholmod_analyze
 
@@ -93,7 +98,7 @@ module superjoin_solvers_cholmod
        import :: c_ptr, c_int, c_int64_t, c_double
        type(c_ptr), value :: h
        integer(c_int64_t), value :: n
-       integer(c_int64_t), intent(in) :: colptr(*), rowind(*)
+       integer(c_int64_t) :: colptr(*), rowind(*)   !! as in sj_cholmod_analyze
        real(c_double), intent(in) :: val(*)
        integer(c_int64_t), intent(out) :: failed
        integer(c_int) :: status
@@ -154,9 +159,18 @@ module superjoin_solvers_cholmod
        import :: c_ptr, c_int, c_int64_t
        type(c_ptr), value :: h
        integer(c_int64_t), value :: n, nb
-       integer(c_int64_t), intent(in) :: colptr(*), rowind(*)
+       integer(c_int64_t) :: colptr(*), rowind(*)   !! as in sj_cholmod_analyze
        integer(c_int) :: status
      end function sj_cholmod_schur_analyze
+
+     function sj_cholmod_schur_camd(h, n, nb, colptr, rowind) &
+          bind(c, name='sj_cholmod_schur_camd') result(status)
+       import :: c_ptr, c_int, c_int64_t
+       type(c_ptr), value :: h
+       integer(c_int64_t), value :: n, nb
+       integer(c_int64_t) :: colptr(*), rowind(*)   !! as in sj_cholmod_analyze
+       integer(c_int) :: status
+     end function sj_cholmod_schur_camd
 
      function sj_cholmod_schur_block(h, nb, lbb) bind(c, name='sj_cholmod_schur_block') result(status)
        import :: c_ptr, c_int, c_int64_t, c_double
@@ -187,15 +201,7 @@ contains
     integer(i8) :: one(1), ngroup
     integer(i8), allocatable :: xadj(:), adjncy(:)
 
-    self%factored = .false.
-    self%n = -1
-    self%info%name = 'CHOLMOD supernodal LL^T'
-    self%info%ordering = 'none'
-    self%info%factor_nnz = 0
-    self%info%factor_mbytes = 0.0_wp
-    self%info%failed_column = 0
-    if (.not. c_associated(self%handle)) self%handle = sj_cholmod_create()
-    if (.not. c_associated(self%handle)) then
+    if (.not. start_handle(self)) then
        call fatal_error(error, EXIT_IO, 'CHOLMOD: cannot start (out of memory)')
        return
     end if
@@ -462,7 +468,6 @@ contains
     integer(i8), intent(in) :: nb
     real(wp), intent(out) :: kstar(:, :)
     type(error_t), allocatable, intent(out) :: error
-    type(sparse_sym_t) :: aii
     real(wp), allocatable :: val(:), shift(:)
     integer(c_int) :: status
     integer(c_int64_t) :: failed
@@ -474,10 +479,8 @@ contains
        call schur_by_solves(self, a, nb, kstar, error)
        return
     end if
-    call interior_block(a, nb, aii)
-    call self%analyze(aii, error)
+    call schur_order(self, a, nb, status, error)
     if (allocated(error)) return
-    status = sj_cholmod_schur_analyze(self%handle, a%n, nb, a%colptr, a%rowind)
     if (status /= SJ_OK) then
        call status_error(self, status, 'analyze', error)
        return
@@ -500,6 +503,44 @@ contains
     self%factored = .true.
     call trailing_product(self, nb, shift, kstar, error)
   end subroutine cholmod_schur
+
+  subroutine schur_order(self, a, nb, status, error)
+    !! The boundary-last analysis of a: CAMD on the whole part alone where its
+    !! fill is low by CHOLMOD's test (no analysis of the interior, whose
+    !! ordering would then be AMD's); otherwise the interior analyzed as any
+    !! matrix and the cheaper of its ordering and CAMD's kept.
+    class(cholmod_solver_t), intent(inout) :: self
+    type(sparse_sym_t), intent(in) :: a
+    integer(i8), intent(in) :: nb
+    integer(c_int), intent(out) :: status
+    type(error_t), allocatable, intent(out) :: error
+    type(sparse_sym_t) :: aii
+
+    status = SJ_TRY_INTERIOR
+    if (self%camd_first) then
+       if (start_handle(self)) status = sj_cholmod_schur_camd(self%handle, a%n, nb, a%colptr, a%rowind)
+    end if
+    if (status /= SJ_TRY_INTERIOR) return
+    call interior_block(a, nb, aii)
+    call self%analyze(aii, error)
+    if (allocated(error)) return
+    status = sj_cholmod_schur_analyze(self%handle, a%n, nb, a%colptr, a%rowind)
+  end subroutine schur_order
+
+  logical function start_handle(self) result(ok)
+    !! Reset the analysis' info and create the shim's handle if there is none;
+    !! .false. when CHOLMOD cannot start.
+    class(cholmod_solver_t), intent(inout) :: self
+    self%factored = .false.
+    self%n = -1
+    self%info%name = 'CHOLMOD supernodal LL^T'
+    self%info%ordering = 'none'
+    self%info%factor_nnz = 0
+    self%info%factor_mbytes = 0.0_wp
+    self%info%failed_column = 0
+    if (.not. c_associated(self%handle)) self%handle = sj_cholmod_create()
+    ok = c_associated(self%handle)
+  end function start_handle
 
   subroutine trailing_product(self, nb, shift, kstar, error)
     !! kstar = L_bb L_bbᵀ − diag(shift), both triangles (unshift).

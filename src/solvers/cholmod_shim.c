@@ -8,9 +8,13 @@
  *
  * Matrices come from Fortran as the upper triangle of a symmetric matrix in
  * 1-based compressed sparse column form with 64-bit indices (rows sorted,
- * diagonal present).  sj_cholmod_analyze keeps ONE 0-based copy of the index
- * arrays in the handle; the numerical values are never copied (the
- * cholmod_sparse header points at the caller's array during factorize).
+ * diagonal present).  CHOLMOD wants 0-based indices of the same 64-bit type,
+ * so the shim keeps no copy of the pattern: during each call that reads the
+ * matrix (analyze, factorize, schur_analyze) the caller's index arrays are
+ * shifted to 0-based in place and the cholmod_sparse header points at them
+ * (and at the caller's values during factorize); they are shifted back before
+ * the call returns.  The handle keeps only a fingerprint of the pattern, which
+ * factorize checks (issue 24: the copy was ~8% of the peak at 1e6).
  *
  * Factorization: supernodal LL^T (Common->supernodal = CHOLMOD_SUPERNODAL,
  * final_ll = TRUE). Ordering: CHOLMOD's default strategy (nmethods = 0: AMD,
@@ -36,6 +40,7 @@
 
 #define SJ_OK 0
 #define SJ_NOT_POSDEF 1
+#define SJ_TRY_INTERIOR 2   /* sj_cholmod_schur_camd: analyze the interior first */
 #define SJ_E_HANDLE (-101)   /* null or unusable handle */
 #define SJ_E_ARGUMENT (-102) /* bad argument (size, index out of range) */
 #define SJ_E_PATTERN (-103)  /* factorize: pattern differs from analyze */
@@ -96,11 +101,10 @@ _Static_assert(sizeof(SuiteSparse_long) == sizeof(int64_t),
 typedef struct {
     cholmod_common common;
     cholmod_factor *L;          /* symbolic after analyze, numeric after factorize */
-    cholmod_sparse A;           /* header around Ap/Ai (owned) and the caller's values */
+    cholmod_sparse A;           /* header around the caller's arrays, during a call only */
     SuiteSparse_long n;
     SuiteSparse_long nnz;
-    SuiteSparse_long *Ap;       /* 0-based copy, n+1 */
-    SuiteSparse_long *Ai;       /* 0-based copy, nnz */
+    uint64_t pattern_hash;      /* fingerprint of the analyzed pattern (sj_pattern_hash) */
     int factored;               /* 1 when L holds a complete numeric factor */
     /* Optional node graph (groups of consecutive columns, e.g. the DOFs of one
      * node): METIS orders it and the expanded permutation is offered to
@@ -173,13 +177,61 @@ static void sj_drop_factor(sj_cholmod_t *h)
 
 static void sj_drop_pattern(sj_cholmod_t *h)
 {
-    free(h->Ap);
-    free(h->Ai);
-    h->Ap = NULL;
-    h->Ai = NULL;
     h->n = 0;
     h->nnz = 0;
     h->nschur = 0;
+    h->pattern_hash = 0;
+}
+
+/* Shift the caller's 1-based arrays to 0-based (by = -1) or back (by = +1),
+ * in place: CHOLMOD's SuiteSparse_long is int64_t (asserted below). */
+static void sj_shift(int64_t *a, SuiteSparse_long len, int by)
+{
+    SuiteSparse_long k;
+    for (k = 0; k < len; k++) a[k] += by;
+}
+
+/* FNV-1a style fingerprint of the pattern (n, column pointers, row indices),
+ * so factorize can tell a pattern that differs from the analyzed one. */
+static uint64_t sj_pattern_hash(SuiteSparse_long n, const int64_t *colptr, const int64_t *rowind)
+{
+    uint64_t hash = 1469598103934665603ULL;
+    SuiteSparse_long k, nnz = colptr[n] - colptr[0];
+    hash = (hash ^ (uint64_t)n) * 1099511628211ULL;
+    for (k = 0; k <= n; k++) hash = (hash ^ (uint64_t)colptr[k]) * 1099511628211ULL;
+    for (k = 0; k < nnz; k++) hash = (hash ^ (uint64_t)rowind[k]) * 1099511628211ULL;
+    return hash;
+}
+
+/* Point h->A (pattern only) at the caller's arrays, already 0-based. */
+static void sj_header(sj_cholmod_t *h, SuiteSparse_long n, int64_t *colptr, int64_t *rowind)
+{
+    memset(&h->A, 0, sizeof(cholmod_sparse));
+    h->A.nrow = (size_t)n;
+    h->A.ncol = (size_t)n;
+    h->A.nzmax = (size_t)(colptr[n] > 0 ? colptr[n] : 1);
+    h->A.p = colptr;
+    h->A.i = rowind;
+    h->A.stype = 1;                 /* upper triangle stored */
+    h->A.itype = CHOLMOD_LONG;
+    h->A.xtype = CHOLMOD_PATTERN;   /* values not needed to analyze */
+    h->A.dtype = CHOLMOD_DOUBLE;
+    h->A.sorted = 1;
+    h->A.packed = 1;
+}
+
+/* Check a 1-based upper-triangle pattern: pointers from 1, monotonic, rows
+ * within the upper triangle; NULL when valid, else the message. */
+static const char *sj_check_pattern(SuiteSparse_long n, const int64_t *colptr, const int64_t *rowind)
+{
+    SuiteSparse_long j, k;
+    if (colptr[0] != 1 || colptr[n] - 1 < 0) return "invalid column pointers";
+    for (j = 1; j <= n; j++)
+        if (colptr[j] < colptr[j - 1]) return "column pointers are not monotonic";
+    for (j = 0; j < n; j++)
+        for (k = colptr[j] - 1; k < colptr[j + 1] - 1; k++)
+            if (rowind[k] < 1 || rowind[k] > j + 1) return "row index outside the upper triangle";
+    return NULL;
 }
 
 /* Create a handle; NULL if out of memory or CHOLMOD cannot start. */
@@ -366,13 +418,13 @@ static cholmod_factor *sj_analyze_grouped(sj_cholmod_t *h)
 }
 
 /* Symbolic analysis of the upper triangle given 1-based (colptr: n+1,
- * rowind: colptr[n]-1).  Keeps a 0-based copy of the pattern. */
-int sj_cholmod_analyze(void *handle, int64_t n, const int64_t *colptr,
-                       const int64_t *rowind)
+ * rowind: colptr[n]-1), shifted to 0-based in place during the call. */
+int sj_cholmod_analyze(void *handle, int64_t n, int64_t *colptr, int64_t *rowind)
 {
     sj_cholmod_t *h = handle;
-    SuiteSparse_long j, k, nnz;
-    int ok;
+    SuiteSparse_long nnz;
+    const char *bad;
+    int ok, status;
     if (h == NULL) return SJ_E_HANDLE;
     sj_begin(h);
     sj_drop_factor(h);
@@ -381,70 +433,33 @@ int sj_cholmod_analyze(void *handle, int64_t n, const int64_t *colptr,
         sj_set_message(h, "invalid matrix dimensions");
         return SJ_E_ARGUMENT;
     }
-    nnz = colptr[n] - 1;
-    if (colptr[0] != 1 || nnz < 0) {
-        sj_set_message(h, "invalid column pointers");
+    bad = sj_check_pattern(n, colptr, rowind);
+    if (bad != NULL) {
+        sj_set_message(h, bad);
         return SJ_E_ARGUMENT;
     }
-    h->Ap = sj_malloc((size_t)(n + 1) * sizeof(SuiteSparse_long));
-    h->Ai = sj_malloc((size_t)(nnz > 0 ? nnz : 1) * sizeof(SuiteSparse_long));
-    if (h->Ap == NULL || h->Ai == NULL) {
-        sj_drop_pattern(h);
-        sj_set_message(h, "out of memory copying the matrix pattern");
-        return SJ_E_NOMEM;
-    }
-    for (j = 0; j <= n; j++) {
-        h->Ap[j] = colptr[j] - 1;
-        if (j > 0 && h->Ap[j] < h->Ap[j - 1]) {
-            sj_drop_pattern(h);
-            sj_set_message(h, "column pointers are not monotonic");
-            return SJ_E_ARGUMENT;
-        }
-    }
-    for (j = 0; j < n; j++) {
-        for (k = h->Ap[j]; k < h->Ap[j + 1]; k++) {
-            SuiteSparse_long i = rowind[k] - 1;
-            if (i < 0 || i > j) {
-                sj_drop_pattern(h);
-                sj_set_message(h, "row index outside the upper triangle");
-                return SJ_E_ARGUMENT;
-            }
-            h->Ai[k] = i;
-        }
-    }
+    nnz = colptr[n] - 1;
+    h->pattern_hash = sj_pattern_hash(n, colptr, rowind);
     h->n = n;
     h->nnz = nnz;
-
-    memset(&h->A, 0, sizeof(cholmod_sparse));
-    h->A.nrow = (size_t)n;
-    h->A.ncol = (size_t)n;
-    h->A.nzmax = (size_t)nnz;
-    h->A.p = h->Ap;
-    h->A.i = h->Ai;
-    h->A.nz = NULL;
-    h->A.x = NULL;
-    h->A.z = NULL;
-    h->A.stype = 1;                 /* upper triangle stored */
-    h->A.itype = CHOLMOD_LONG;
-    h->A.xtype = CHOLMOD_PATTERN;   /* values not needed to analyze */
-    h->A.dtype = CHOLMOD_DOUBLE;
-    h->A.sorted = 1;
-    h->A.packed = 1;
-
+    sj_shift(colptr, n + 1, -1);
+    sj_shift(rowind, nnz, -1);
+    sj_header(h, n, colptr, rowind);
     h->given_is_node_metis = 0;
     h->given_is_amd = 0;
     if (h->ngroup > 0 && h->gfirst[h->ngroup] == h->n)
         h->L = sj_analyze_grouped(h);
     else
         h->L = cholmod_l_analyze(&h->A, &h->common);
+    sj_shift(colptr, n + 1, 1);
+    sj_shift(rowind, nnz, 1);
+    h->A.p = h->A.i = NULL;
     ok = h->L != NULL;
     sj_drop_graph(h);               /* only the analysis reads it; set again before the next */
-    {
-        int status = sj_end(h, ok);
-        if (status != SJ_OK) {
-            sj_drop_factor(h);
-            return status < 0 ? status : CHOLMOD_INVALID;
-        }
+    status = sj_end(h, ok);
+    if (status != SJ_OK) {
+        sj_drop_factor(h);
+        return status < 0 ? status : CHOLMOD_INVALID;
     }
     h->minor = n;
     return SJ_OK;
@@ -453,17 +468,15 @@ int sj_cholmod_analyze(void *handle, int64_t n, const int64_t *colptr,
 /* Numeric factorization with the values val (same pattern as analyzed,
  * passed again to be checked).  On SJ_NOT_POSDEF, *failed_column is the
  * 1-based ORIGINAL column where the factorization broke down (else 0). */
-int sj_cholmod_factorize(void *handle, int64_t n, const int64_t *colptr,
-                         const int64_t *rowind, const double *val,
-                         int64_t *failed_column)
+int sj_cholmod_factorize(void *handle, int64_t n, int64_t *colptr, int64_t *rowind,
+                         const double *val, int64_t *failed_column)
 {
     sj_cholmod_t *h = handle;
-    SuiteSparse_long j, k;
     int ok, status;
     if (failed_column != NULL) *failed_column = 0;
     if (h == NULL) return SJ_E_HANDLE;
     sj_begin(h);
-    if (h->L == NULL || h->Ap == NULL) {
+    if (h->L == NULL) {
         sj_set_message(h, "factorize called before analyze");
         return SJ_E_STATE;
     }
@@ -472,24 +485,21 @@ int sj_cholmod_factorize(void *handle, int64_t n, const int64_t *colptr,
         sj_set_message(h, "matrix size differs from the analyzed one");
         return SJ_E_PATTERN;
     }
-    for (j = 0; j <= n; j++) {
-        if (colptr[j] - 1 != h->Ap[j]) {
-            sj_set_message(h, "matrix pattern differs from the analyzed one");
-            return SJ_E_PATTERN;
-        }
-    }
-    for (k = 0; k < h->nnz; k++) {
-        if (rowind[k] - 1 != h->Ai[k]) {
-            sj_set_message(h, "matrix pattern differs from the analyzed one");
-            return SJ_E_PATTERN;
-        }
+    if (sj_pattern_hash(n, colptr, rowind) != h->pattern_hash) {
+        sj_set_message(h, "matrix pattern differs from the analyzed one");
+        return SJ_E_PATTERN;
     }
     h->factored = 0;
     h->minor = n;
+    sj_shift(colptr, n + 1, -1);
+    sj_shift(rowind, h->nnz, -1);
+    sj_header(h, n, colptr, rowind);
     h->A.x = (void *)val;            /* CHOLMOD does not modify A */
     h->A.xtype = CHOLMOD_REAL;
     ok = cholmod_l_factorize(&h->A, h->L, &h->common);
-    h->A.x = NULL;
+    sj_shift(colptr, n + 1, 1);
+    sj_shift(rowind, h->nnz, 1);
+    h->A.p = h->A.i = h->A.x = NULL;
     h->A.xtype = CHOLMOD_PATTERN;
     status = sj_end(h, ok);
     if (status == SJ_NOT_POSDEF || (status == SJ_OK && h->L->minor < h->L->n)) {
@@ -711,6 +721,47 @@ static cholmod_factor *sj_given_symbolic(sj_cholmod_t *h, SuiteSparse_long *perm
     return L;
 }
 
+/* CAMD's permutation of h->A with the boundary (columns ni..n-1) constrained
+ * last, NULL on failure. *low: its fill is low by CHOLMOD's own test for
+ * trying METIS after AMD (flops per nnz(L), nnz(L) per nnz(A)); then the
+ * analysis of the interior alone, which orders it as cholmod_analyze would
+ * (AMD, since METIS would not be tried), is not worth its cost. */
+static SuiteSparse_long *sj_camd_perm(sj_cholmod_t *h, SuiteSparse_long ni, int *low)
+{
+    SuiteSparse_long n = h->n, j, *cmember, *perm;
+    double fl, lnz;
+    *low = 0;
+    cmember = sj_malloc((size_t)(n > 0 ? n : 1) * sizeof(SuiteSparse_long));
+    perm = sj_malloc((size_t)(n > 0 ? n : 1) * sizeof(SuiteSparse_long));
+    if (cmember != NULL && perm != NULL) {
+        for (j = 0; j < n; j++) cmember[j] = j < ni ? 0 : 1;
+        if (!cholmod_l_camd(&h->A, NULL, 0, cmember, perm, &h->common)) {
+            free(perm);
+            perm = NULL;
+        }
+    } else {
+        free(perm);
+        perm = NULL;
+    }
+    free(cmember);
+    fl = h->common.fl;
+    lnz = h->common.lnz;
+    *low = perm != NULL && (fl < SJ_METIS_FL_PER_LNZ * lnz || lnz < SJ_METIS_LNZ_PER_NNZ * (double)h->nnz);
+    return perm;
+}
+
+/* The symbolic factor of h->A for perm if it keeps the boundary (columns
+ * ni..n-1) last, else NULL. */
+static cholmod_factor *sj_boundary_last(sj_cholmod_t *h, SuiteSparse_long *perm, SuiteSparse_long ni)
+{
+    cholmod_factor *L = sj_given_symbolic(h, perm);
+    SuiteSparse_long j;
+    int ok = L != NULL;
+    for (j = ni; ok && j < h->n; j++) ok = ((const SuiteSparse_long *)L->Perm)[j] >= ni;
+    if (!ok && L != NULL) cholmod_l_free_factor(&L, &h->common);
+    return L;
+}
+
 /* The symbolic factor of the whole part with the boundary (columns ni..n-1)
  * last, the cheaper (CHOLMOD's flop count) of two orderings: perm (the
  * interior's own ordering, the boundary appended) and CAMD on the whole
@@ -718,25 +769,18 @@ static cholmod_factor *sj_given_symbolic(sj_cholmod_t *h, SuiteSparse_long *perm
  * brings into the interior columns). NULL on failure. */
 static cholmod_factor *sj_schur_symbolic(sj_cholmod_t *h, SuiteSparse_long *perm, SuiteSparse_long ni)
 {
-    SuiteSparse_long n = h->n, j, *cmember, *perm2;
+    SuiteSparse_long *perm2;
     cholmod_factor *L1, *L2 = NULL;
     double fl1;
+    int low;
     L1 = sj_given_symbolic(h, perm);
     if (L1 == NULL) return NULL;
     fl1 = h->common.fl;
-    cmember = sj_malloc((size_t)n * sizeof(SuiteSparse_long));
-    perm2 = sj_malloc((size_t)n * sizeof(SuiteSparse_long));
-    if (cmember != NULL && perm2 != NULL) {
-        for (j = 0; j < n; j++) cmember[j] = j < ni ? 0 : 1;
-        if (cholmod_l_camd(&h->A, NULL, 0, cmember, perm2, &h->common)) L2 = sj_given_symbolic(h, perm2);
-    }
-    free(cmember);
+    perm2 = sj_camd_perm(h, ni, &low);
+    if (perm2 != NULL) L2 = sj_boundary_last(h, perm2, ni);
     free(perm2);
     if (L2 != NULL) {
-        const SuiteSparse_long *p2 = L2->Perm;
-        int ok = h->common.fl < fl1;
-        for (j = ni; ok && j < n; j++) ok = p2[j] >= ni;
-        if (ok) {
+        if (h->common.fl < fl1) {
             cholmod_l_free_factor(&L1, &h->common);
             return L2;
         }
@@ -747,6 +791,79 @@ static cholmod_factor *sj_schur_symbolic(sj_cholmod_t *h, SuiteSparse_long *perm
     return L1;
 }
 
+/* Start a schur analysis of the whole part: check the pattern, shift it to
+ * 0-based in place and point h->A at it (sj_schur_done shifts it back). */
+static int sj_schur_begin(sj_cholmod_t *h, int64_t n, int64_t nb, int64_t *colptr, int64_t *rowind)
+{
+    const char *bad;
+    if (nb <= 0 || nb > n || colptr == NULL || rowind == NULL) {
+        sj_set_message(h, "invalid boundary for the schur analysis");
+        return SJ_E_ARGUMENT;
+    }
+    bad = sj_check_pattern(n, colptr, rowind);
+    if (bad != NULL) {
+        sj_set_message(h, bad);
+        return SJ_E_ARGUMENT;
+    }
+    h->pattern_hash = sj_pattern_hash(n, colptr, rowind);
+    h->n = n;
+    h->nnz = colptr[n] - 1;
+    sj_shift(colptr, n + 1, -1);
+    sj_shift(rowind, h->nnz, -1);
+    sj_header(h, n, colptr, rowind);
+    return SJ_OK;
+}
+
+/* Finish a schur analysis: the caller's arrays back to 1-based, the status. */
+static int sj_schur_done(sj_cholmod_t *h, int64_t nb, int64_t *colptr, int64_t *rowind)
+{
+    int status;
+    sj_shift(colptr, h->n + 1, 1);
+    sj_shift(rowind, h->nnz, 1);
+    h->A.p = h->A.i = NULL;
+    status = sj_end(h, h->L != NULL);
+    if (status != SJ_OK) {
+        sj_drop_factor(h);
+        return status < 0 ? status : CHOLMOD_INVALID;
+    }
+    h->minor = h->n;
+    h->nschur = nb;
+    return SJ_OK;
+}
+
+/* Analyze the whole part (1-based upper triangle, rows sorted, diagonal
+ * present; its last nb columns the boundary) with CAMD alone, the boundary
+ * constrained last, when CAMD's fill is low by CHOLMOD's test: SJ_OK, the
+ * interior's own analysis skipped. Otherwise SJ_TRY_INTERIOR and no
+ * analysis: analyze the interior block, then sj_cholmod_schur_analyze. */
+int sj_cholmod_schur_camd(void *handle, int64_t n, int64_t nb, int64_t *colptr, int64_t *rowind)
+{
+    sj_cholmod_t *h = handle;
+    SuiteSparse_long *perm;
+    int status, low;
+    if (h == NULL) return SJ_E_HANDLE;
+    sj_begin(h);
+    sj_drop_factor(h);
+    sj_drop_pattern(h);
+    sj_drop_graph(h);
+    h->given_is_node_metis = 0;
+    h->given_is_amd = 0;
+    status = sj_schur_begin(h, n, nb, colptr, rowind);
+    if (status != SJ_OK) return status;
+    perm = sj_camd_perm(h, n - nb, &low);
+    if (perm != NULL && low) h->L = sj_boundary_last(h, perm, n - nb);
+    free(perm);
+    if (h->L == NULL) {
+        sj_shift(colptr, n + 1, 1);
+        sj_shift(rowind, h->nnz, 1);
+        h->A.p = h->A.i = NULL;
+        sj_drop_pattern(h);
+        h->common.status = CHOLMOD_OK;
+        return SJ_TRY_INTERIOR;
+    }
+    return sj_schur_done(h, nb, colptr, rowind);
+}
+
 /* Re-analyze for the whole part: the handle holds the analysis of the
  * interior block (its first n - nb columns, by sj_cholmod_analyze); keep its
  * permutation, append the boundary, and analyze the whole pattern (1-based
@@ -754,11 +871,10 @@ static cholmod_factor *sj_schur_symbolic(sj_cholmod_t *h, SuiteSparse_long *perm
  * postordered (a postorder could move interior columns behind the boundary),
  * or with CAMD's where that is cheaper (sj_schur_symbolic). Solves and
  * pivots then refer to the interior block only. */
-int sj_cholmod_schur_analyze(void *handle, int64_t n, int64_t nb, const int64_t *colptr,
-                             const int64_t *rowind)
+int sj_cholmod_schur_analyze(void *handle, int64_t n, int64_t nb, int64_t *colptr, int64_t *rowind)
 {
     sj_cholmod_t *h = handle;
-    SuiteSparse_long ni, j, k, nnz, *perm, *ap, *ai;
+    SuiteSparse_long ni, j, *perm;
     int status;
     if (h == NULL) return SJ_E_HANDLE;
     sj_begin(h);
@@ -768,51 +884,22 @@ int sj_cholmod_schur_analyze(void *handle, int64_t n, int64_t nb, const int64_t 
         sj_set_message(h, "schur analysis without the analysis of the interior");
         return SJ_E_STATE;
     }
-    nnz = colptr[n] - 1;
     perm = sj_malloc((size_t)n * sizeof(SuiteSparse_long));
-    ap = sj_malloc((size_t)(n + 1) * sizeof(SuiteSparse_long));
-    ai = sj_malloc((size_t)nnz * sizeof(SuiteSparse_long));
-    if (perm == NULL || ap == NULL || ai == NULL) {
-        free(perm); free(ap); free(ai);
-        sj_set_message(h, "out of memory copying the matrix pattern");
+    if (perm == NULL) {
+        sj_set_message(h, "out of memory for the permutation");
         return SJ_E_NOMEM;
     }
     memcpy(perm, h->L->Perm, (size_t)ni * sizeof(SuiteSparse_long));
     for (j = ni; j < n; j++) perm[j] = j;
-    memcpy(ap, h->Ap, (size_t)(ni + 1) * sizeof(SuiteSparse_long));
-    memcpy(ai, h->Ai, (size_t)h->nnz * sizeof(SuiteSparse_long));
-    for (j = ni; j < n; j++) {
-        ap[j + 1] = colptr[j + 1] - 1;
-        for (k = ap[j]; k < ap[j + 1]; k++) {
-            ai[k] = rowind[k] - 1;
-            if (ai[k] < 0 || ai[k] > j || ap[j + 1] < ap[j]) {
-                free(perm); free(ap); free(ai);
-                sj_set_message(h, "row index outside the upper triangle");
-                return SJ_E_ARGUMENT;
-            }
-        }
+    status = sj_schur_begin(h, n, nb, colptr, rowind);
+    if (status != SJ_OK) {
+        free(perm);
+        return status;
     }
     sj_drop_factor(h);
-    free(h->Ap);
-    free(h->Ai);
-    h->Ap = ap;
-    h->Ai = ai;
-    h->n = n;
-    h->nnz = nnz;
-    h->A.nrow = h->A.ncol = (size_t)n;
-    h->A.nzmax = (size_t)nnz;
-    h->A.p = ap;
-    h->A.i = ai;
     h->L = sj_schur_symbolic(h, perm, ni);
     free(perm);
-    status = sj_end(h, h->L != NULL);
-    if (status != SJ_OK) {
-        sj_drop_factor(h);
-        return status < 0 ? status : CHOLMOD_INVALID;
-    }
-    h->minor = n;
-    h->nschur = nb;
-    return SJ_OK;
+    return sj_schur_done(h, nb, colptr, rowind);
 }
 
 /* The trailing block L_bb of the factor (after sj_cholmod_schur_analyze and

@@ -14,19 +14,30 @@ module superjoin_elements_solid
   !! - C3D4: linear tetrahedron, one point; C3D10: quadratic tetrahedron
   !!   (mid-side nodes 5..10 on the edges 1-2, 2-3, 3-1, 1-4, 2-4, 3-4),
   !!   four-point rule (exact for its quadratic stiffness on a straight-sided
-  !!   element).
+  !!   element);
+  !! - C3D6: linear wedge (corners 1-2-3 at ζ = -1, 4-5-6 above them at ζ = 1),
+  !!   two points (the triangle's centroid at ζ = ∓1/√3); C3D15: quadratic
+  !!   wedge (mid-side nodes 7..9 on 1-2, 2-3, 3-1, 10..12 on 4-5, 5-6, 6-4,
+  !!   13..15 on 1-4, 2-5, 3-6), nine points (the triangle's three points at
+  !!   L = 2/3, 1/6, 1/6 times Gauss's three in ζ): CalculiX's rules (ccx 2.20,
+  !!   whose .dat prints 2 and 9 points).
   !!
   !! K_e = Σ_g Bᵀ D B det J w_g (Zienkiewicz & Taylor, vol. 1, ch. 6 and 8;
   !! Hughes, ch. 3). Strain order: εxx, εyy, εzz, γxy, γxz, γyz.
   use superjoin_kinds, only: wp
   use superjoin_error, only: error_t, fatal_error, EXIT_DECK
-  use superjoin_model_types, only: material_t, ET_C3D8, ET_C3D20, ET_C3D20R, ET_C3D4, ET_C3D10, ET_C3D8I
+  use superjoin_model_types, only: material_t, ET_C3D8, ET_C3D20, ET_C3D20R, ET_C3D4, ET_C3D10, ET_C3D8I, &
+       ET_C3D6, ET_C3D15
   implicit none (type, external)
   private
 
   public :: is_solid_type, solid_stiffness, solid_body_load, solid_shape, solid_forces
   public :: rule_t, solid_rule, point_gradients, elasticity, strain_matrix, solid_node_coordinates
   public :: spd_solve, mode_strains
+
+  integer, parameter, public :: WEDGE_EDGES(2, 9) = reshape([1, 2, 2, 3, 3, 1, 4, 5, 5, 6, 6, 4, 1, 4, 2, 5, 3, 6], &
+       [2, 9])
+    !! The edges of a wedge, in the order of C3D15's mid-side nodes 7..15.
 
   type :: rule_t
     !! Integration points (natural coordinates) and weights.
@@ -39,13 +50,14 @@ contains
   elemental logical function is_solid_type(etype)
     !! etype is one of the solid element types of this module.
     integer, intent(in) :: etype
-    is_solid_type = any(etype == [ET_C3D8, ET_C3D20, ET_C3D20R, ET_C3D4, ET_C3D10, ET_C3D8I])
+    is_solid_type = any(etype == [ET_C3D8, ET_C3D20, ET_C3D20R, ET_C3D4, ET_C3D10, ET_C3D8I, ET_C3D6, ET_C3D15])
   end function is_solid_type
 
   pure subroutine solid_shape(etype, xi, n, dn)
     !! Shape functions n(nnode) and their derivatives dn(3, nnode) with
     !! respect to the natural coordinates xi(3) (hexahedra: -1..1 each;
-    !! tetrahedra: volume coordinates L2 = ξ, L3 = η, L4 = ζ, L1 = 1 - ξ - η - ζ).
+    !! tetrahedra: volume coordinates L2 = ξ, L3 = η, L4 = ζ, L1 = 1 - ξ - η - ζ;
+    !! wedges: the triangle's L2 = ξ, L3 = η, L1 = 1 - ξ - η, and ζ -1..1).
     integer, intent(in) :: etype
     real(wp), intent(in) :: xi(3)
     real(wp), allocatable, intent(out) :: n(:), dn(:, :)
@@ -59,6 +71,8 @@ contains
        n = [1.0_wp - sum(xi), xi(1), xi(2), xi(3)]
        dn = reshape([-1.0_wp, -1.0_wp, -1.0_wp, 1.0_wp, 0.0_wp, 0.0_wp, &
             0.0_wp, 1.0_wp, 0.0_wp, 0.0_wp, 0.0_wp, 1.0_wp], [3, 4])
+    case (ET_C3D6, ET_C3D15)
+       call wedge(etype == ET_C3D15, xi, n, dn)
     case default
        call tet10(xi, n, dn)
     end select
@@ -136,6 +150,62 @@ contains
     end do
   end subroutine tet10
 
+  pure subroutine wedge(quadratic, xi, n, dn)
+    !! Wedges: C3D6 N_a = L_a (1 + ζ ζa)/2; C3D15 corners
+    !! N_a = L_a (1 + ζ ζa)(2 L_a + ζ ζa - 2)/2, mid-side nodes of the triangles
+    !! 2 L_a L_b (1 + ζ ζc), of the vertical edges L_a (1 - ζ²).
+    logical, intent(in) :: quadratic
+    real(wp), intent(in) :: xi(3)
+    real(wp), allocatable, intent(out) :: n(:), dn(:, :)
+    integer, parameter :: TRI(2, 3) = reshape([1, 2, 2, 3, 3, 1], [2, 3])
+    real(wp) :: l(3), dl(3, 3), z, s, f
+    integer :: a, k, i, j
+    l = [1.0_wp - xi(1) - xi(2), xi(1), xi(2)]
+    dl = reshape([-1.0_wp, -1.0_wp, 0.0_wp, 1.0_wp, 0.0_wp, 0.0_wp, 0.0_wp, 1.0_wp, 0.0_wp], [3, 3])
+    allocate (n(merge(15, 6, quadratic)), dn(3, merge(15, 6, quadratic)))
+    do a = 1, 6
+       k = mod(a - 1, 3) + 1                      ! the corner's triangle vertex
+       z = merge(-1.0_wp, 1.0_wp, a <= 3)         ! its ζ
+       s = 1.0_wp + z*xi(3)
+       if (.not. quadratic) then
+          n(a) = 0.5_wp*l(k)*s
+          dn(:, a) = 0.5_wp*s*dl(:, k)
+          dn(3, a) = 0.5_wp*l(k)*z
+          cycle
+       end if
+       f = 2.0_wp*l(k) + z*xi(3) - 2.0_wp
+       n(a) = 0.5_wp*l(k)*s*f
+       dn(:, a) = 0.5_wp*s*(f + 2.0_wp*l(k))*dl(:, k)
+       dn(3, a) = 0.5_wp*l(k)*z*(f + s)
+    end do
+    if (.not. quadratic) return
+    do a = 1, 6
+       i = TRI(1, mod(a - 1, 3) + 1)
+       j = TRI(2, mod(a - 1, 3) + 1)
+       z = merge(-1.0_wp, 1.0_wp, a <= 3)
+       s = 1.0_wp + z*xi(3)
+       n(6 + a) = 2.0_wp*l(i)*l(j)*s
+       dn(:, 6 + a) = 2.0_wp*s*(l(i)*dl(:, j) + l(j)*dl(:, i))
+       dn(3, 6 + a) = 2.0_wp*l(i)*l(j)*z
+    end do
+    do k = 1, 3
+       n(12 + k) = l(k)*(1.0_wp - xi(3)**2)
+       dn(:, 12 + k) = (1.0_wp - xi(3)**2)*dl(:, k)
+       dn(3, 12 + k) = -2.0_wp*l(k)*xi(3)
+    end do
+  end subroutine wedge
+
+  pure function wedge_nodes(nn) result(c)
+    !! Natural coordinates c(3, nn) of the nodes of a wedge with nn = 6 or 15 nodes.
+    integer, intent(in) :: nn
+    real(wp) :: c(3, nn)
+    integer :: a
+    c(:, 1:6) = reshape([0, 0, -1, 1, 0, -1, 0, 1, -1, 0, 0, 1, 1, 0, 1, 0, 1, 1]*1.0_wp, [3, 6])
+    do a = 7, nn
+       c(:, a) = 0.5_wp*(c(:, WEDGE_EDGES(1, a - 6)) + c(:, WEDGE_EDGES(2, a - 6)))
+    end do
+  end function wedge_nodes
+
   pure function hex_corners() result(c)
     !! Natural coordinates of the corners of a hexahedron (Abaqus order).
     real(wp) :: c(3, 8)
@@ -164,6 +234,10 @@ contains
        c = hex_corners()
     case (ET_C3D20, ET_C3D20R)
        c = hex20_nodes()
+    case (ET_C3D6)
+       c = wedge_nodes(6)
+    case (ET_C3D15)
+       c = wedge_nodes(15)
     case default
        allocate (c(3, merge(4, 10, etype == ET_C3D4)), source=0.0_wp)
        c(:, 2:4) = reshape([1, 0, 0, 0, 1, 0, 0, 0, 1]*1.0_wp, [3, 3])
@@ -190,6 +264,8 @@ contains
     case (ET_C3D4)
        r%xi = reshape([0.25_wp, 0.25_wp, 0.25_wp], [3, 1])
        r%w = [1.0_wp/6.0_wp]
+    case (ET_C3D6, ET_C3D15)
+       r = gauss_wedge(etype == ET_C3D15)
     case default
        r%xi = reshape([B, B, B, A, B, B, B, A, B, B, B, A], [3, 4])
        r%w = spread(1.0_wp/24.0_wp, 1, 4)
@@ -221,6 +297,35 @@ contains
        end do
     end do
   end function gauss_hex
+
+  pure function gauss_wedge(quadratic) result(r)
+    !! The wedges' rules: C3D6 the triangle's centroid at ζ = ∓1/√3 (weights
+    !! 1/2); C3D15 the triangle's points (1/6, 1/6), (2/3, 1/6), (1/6, 2/3)
+    !! (weights 1/6) at ζ = -√0.6, 0, √0.6 (5/9, 8/9, 5/9), triangle fastest.
+    logical, intent(in) :: quadratic
+    type(rule_t) :: r
+    real(wp), parameter :: T1 = 1.0_wp/6.0_wp, T2 = 2.0_wp/3.0_wp
+    real(wp) :: zp(3), zw(3), tp(2, 3)
+    integer :: i, k, g
+    if (.not. quadratic) then
+       r%xi = reshape([1.0_wp/3.0_wp, 1.0_wp/3.0_wp, -1.0_wp/sqrt(3.0_wp), &
+            1.0_wp/3.0_wp, 1.0_wp/3.0_wp, 1.0_wp/sqrt(3.0_wp)], [3, 2])
+       r%w = [0.5_wp, 0.5_wp]
+       return
+    end if
+    zp = [-sqrt(0.6_wp), 0.0_wp, sqrt(0.6_wp)]
+    zw = [5.0_wp, 8.0_wp, 5.0_wp]/9.0_wp
+    tp = reshape([T1, T1, T2, T1, T1, T2], [2, 3])
+    allocate (r%xi(3, 9), r%w(9))
+    g = 0
+    do k = 1, 3
+       do i = 1, 3
+          g = g + 1
+          r%xi(:, g) = [tp(:, i), zp(k)]
+          r%w(g) = zw(k)/6.0_wp
+       end do
+    end do
+  end function gauss_wedge
 
   pure subroutine point_gradients(etype, x, xi, n, dx, detj, error)
     !! Shape functions n and their gradients dx(3, nnode) in x, y, z at xi;

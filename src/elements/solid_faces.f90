@@ -5,6 +5,8 @@ module superjoin_elements_solid_faces
   !! - hexahedra (C3D8, C3D8I, C3D20, C3D20R): S1 1-2-3-4, S2 5-8-7-6, S3 1-5-6-2,
   !!   S4 2-6-7-3, S5 3-7-8-4, S6 4-8-5-1;
   !! - tetrahedra (C3D4, C3D10): S1 1-2-3, S2 1-4-2, S3 2-4-3, S4 3-4-1;
+  !! - wedges (C3D6, C3D15): S1 1-2-3, S2 4-6-5, S3 1-4-5-2, S4 2-5-6-3, S5 3-6-4-1
+  !!   (CalculiX's faces 1-2-3, 4-5-6, 1-2-5-4, 2-3-6-5, 3-1-4-6, turned inwards);
   !!
   !! the quadratic types add the mid-side node of each edge of the face. Each
   !! face's corners run so that the right-hand normal points into the
@@ -15,13 +17,17 @@ module superjoin_elements_solid_faces
   !! on triangles (exact on flat faces, and for polynomials of degree 4).
   use superjoin_kinds, only: wp
   use superjoin_error, only: error_t, fatal_error, EXIT_DECK
-  use superjoin_model_types, only: ET_C3D8, ET_C3D20, ET_C3D20R, ET_C3D4, ET_C3D10, ET_C3D8I
+  use superjoin_model_types, only: ET_C3D8, ET_C3D20, ET_C3D20R, ET_C3D4, ET_C3D10, ET_C3D8I, &
+       ET_C3D6, ET_C3D15
+  use superjoin_elements_solid, only: WEDGE_EDGES
   implicit none (type, external)
   private
 
   integer, parameter :: HEX_FACES(4, 6) = reshape([1, 2, 3, 4, 5, 8, 7, 6, 1, 5, 6, 2, 2, 6, 7, 3, &
        3, 7, 8, 4, 4, 8, 5, 1], [4, 6])
   integer, parameter :: TET_FACES(3, 4) = reshape([1, 2, 3, 1, 4, 2, 2, 4, 3, 3, 4, 1], [3, 4])
+  integer, parameter :: WEDGE_TRI(3, 2) = reshape([1, 2, 3, 4, 6, 5], [3, 2])
+  integer, parameter :: WEDGE_QUAD(4, 3) = reshape([1, 4, 5, 2, 2, 5, 6, 3, 3, 6, 4, 1], [4, 3])
   integer, parameter :: HEX_EDGES(2, 12) = reshape([1, 2, 2, 3, 3, 4, 4, 1, 5, 6, 6, 7, 7, 8, 8, 5, &
        1, 5, 2, 6, 3, 7, 4, 8], [2, 12])
   integer, parameter :: TET_EDGES(2, 6) = reshape([1, 2, 2, 3, 3, 1, 1, 4, 2, 4, 3, 4], [2, 6])
@@ -47,11 +53,15 @@ contains
     case (ET_C3D4, ET_C3D10)
        if (face < 1 .or. face > 4) return
        nodes = TET_FACES(:, face)
+    case (ET_C3D6, ET_C3D15)
+       if (face < 1 .or. face > 5) return
+       if (face <= 2) nodes = WEDGE_TRI(:, face)
+       if (face >= 3) nodes = WEDGE_QUAD(:, face - 2)
     case default
        return
     end select
     ncorner = size(nodes)
-    if (etype == ET_C3D8 .or. etype == ET_C3D4 .or. etype == ET_C3D8I) return
+    if (any(etype == [ET_C3D8, ET_C3D4, ET_C3D8I, ET_C3D6])) return
     do k = 1, ncorner
        a = nodes(k)
        b = nodes(mod(k, ncorner) + 1)
@@ -62,18 +72,24 @@ contains
   pure integer function edge_node(etype, a, b) result(m)
     !! The mid-side node of the edge a-b of a quadratic solid.
     integer, intent(in) :: etype, a, b
-    integer :: k
-    m = 0
     if (etype == ET_C3D10) then
-       do k = 1, size(TET_EDGES, 2)
-          if (all(TET_EDGES(:, k) == [a, b]) .or. all(TET_EDGES(:, k) == [b, a])) m = 4 + k
-       end do
+       m = 4 + edge_index(TET_EDGES, a, b)
+    else if (etype == ET_C3D15) then
+       m = 6 + edge_index(WEDGE_EDGES, a, b)
     else
-       do k = 1, size(HEX_EDGES, 2)
-          if (all(HEX_EDGES(:, k) == [a, b]) .or. all(HEX_EDGES(:, k) == [b, a])) m = 8 + k
-       end do
+       m = 8 + edge_index(HEX_EDGES, a, b)
     end if
   end function edge_node
+
+  pure integer function edge_index(edges, a, b) result(m)
+    !! The column of the edge a-b (either way round) in edges(2, :); 0 if none.
+    integer, intent(in) :: edges(:, :), a, b
+    integer :: k
+    m = 0
+    do k = 1, size(edges, 2)
+       if (all(edges(:, k) == [a, b]) .or. all(edges(:, k) == [b, a])) m = k
+    end do
+  end function edge_index
 
   pure subroutine solid_pressure_load(etype, x, face, p, fe, error)
     !! Consistent nodal loads fe(3 nnode) of a pressure p (positive: pushing

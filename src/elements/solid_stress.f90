@@ -6,7 +6,9 @@ module superjoin_elements_solid_stress
   !! - points in the order of the element's stiffness rule, which is
   !!   CalculiX's: hexahedra ξ fastest, then η, then ζ (2×2×2 at ±1/√3 for
   !!   C3D8 and C3D20R, 3×3×3 at -√0.6, 0, √0.6 for C3D20); C3D4 its centroid;
-  !!   C3D10 four points, point k nearest corner k;
+  !!   C3D10 four points, point k nearest corner k; C3D6 two points, ζ < 0
+  !!   first; C3D15 nine, the triangle's points nearest corners 1, 2, 3 fastest,
+  !!   then ζ = -√0.6, 0, √0.6;
   !! - nodes: the polynomial through the points of the rule evaluated at the
   !!   nodes: trilinear through 2×2×2 points (a mid-side node gets the mean of
   !!   its two corners), linear through C3D10's four points, constant for
@@ -18,9 +20,9 @@ module superjoin_elements_solid_stress
   !! tensor shear components (γ/2), as CalculiX prints them.
   use superjoin_kinds, only: wp
   use superjoin_error, only: error_t
-  use superjoin_model_types, only: material_t, ET_C3D8I
+  use superjoin_model_types, only: material_t, ET_C3D8I, ET_C3D6, ET_C3D15
   use superjoin_elements_solid, only: rule_t, solid_rule, point_gradients, elasticity, strain_matrix, &
-       solid_node_coordinates, solid_shape, spd_solve, mode_strains
+       solid_node_coordinates, solid_shape, spd_solve, mode_strains, WEDGE_EDGES
   implicit none (type, external)
   private
 
@@ -76,6 +78,10 @@ contains
        e = least_squares_fit(etype, r)
        return
     end if
+    if (etype == ET_C3D6 .or. etype == ET_C3D15) then
+       e = wedge_extrapolation(etype, r)
+       return
+    end if
     allocate (c, source=solid_node_coordinates(etype))
     allocate (e(size(c, 2), size(r%w)))
     do g = 1, size(r%w)
@@ -96,6 +102,48 @@ contains
        end do
     end do
   end function solid_extrapolation
+
+  pure function wedge_extrapolation(etype, r) result(e)
+    !! e(nnode, npoint) of the wedges: the product of the Lagrange polynomials
+    !! in ζ through the layers of points and (C3D15) the linear ones in the
+    !! triangle through its three points (volume coordinate of the point's
+    !! corner, 2/3 at it and 1/6 at the others), at the corners; C3D15's
+    !! mid-side nodes take the mean of the two corners of their edge.
+    integer, intent(in) :: etype
+    type(rule_t), intent(in) :: r
+    real(wp), allocatable :: e(:, :)
+    real(wp), allocatable :: c(:, :)
+    real(wp) :: zc, tri
+    integer :: a, g, k, nz
+    allocate (c, source=solid_node_coordinates(etype))
+    allocate (e(size(c, 2), size(r%w)))
+    nz = merge(2, 3, etype == ET_C3D6)
+    do g = 1, size(r%w)
+       k = (g - 1)/(size(r%w)/nz) + 1                  ! the point's layer in ζ
+       do a = 1, 6
+          zc = c(3, a)
+          e(a, g) = lagrange(r%xi(3, ::size(r%w)/nz), k, zc)
+          if (etype == ET_C3D6) cycle
+          tri = 1.0_wp - c(1, a) - c(2, a)                ! volume coordinate of corner 1
+          if (mod(g - 1, 3) > 0) tri = c(mod(g - 1, 3), a)
+          e(a, g) = e(a, g)*(tri - 1.0_wp/6.0_wp)*2.0_wp
+       end do
+       do a = 7, size(c, 2)
+          e(a, g) = 0.5_wp*(e(WEDGE_EDGES(1, a - 6), g) + e(WEDGE_EDGES(2, a - 6), g))
+       end do
+    end do
+  end function wedge_extrapolation
+
+  pure real(wp) function lagrange(z, k, x) result(v)
+    !! The Lagrange polynomial through the abscissae z that is 1 at z(k), at x.
+    real(wp), intent(in) :: z(:), x
+    integer, intent(in) :: k
+    integer :: j
+    v = 1.0_wp
+    do j = 1, size(z)
+       if (j /= k) v = v*(x - z(j))/(z(k) - z(j))
+    end do
+  end function lagrange
 
   pure function least_squares_fit(etype, r) result(e)
     !! e(nnode, npoint) = (Nᵀ N)⁻¹ Nᵀ, N(npoint, nnode) the shape functions at

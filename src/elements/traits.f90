@@ -13,6 +13,7 @@ module superjoin_elements_traits
        ET_T2D2, ET_T3D2, ET_B23, ET_B33, ET_CPS3, ET_CPS4, ET_S3, ET_S4, ET_B21, ET_B31, &
        ET_CPE3, ET_CPE4, ET_S4R, ET_S3R, ET_S8R, ET_CPS6, ET_CPS8, ET_CPE6, ET_CPE8, &
        ET_CPS8R, ET_CPE8R, ET_B32, ET_C3D8, ET_C3D20, ET_C3D20R, ET_C3D4, ET_C3D10, ET_C3D8I, &
+       ET_C3D6, ET_C3D15, &
        DLOAD_PX, DLOAD_PY, DLOAD_PZ, DLOAD_P, DLOAD_GRAV, DLOAD_P1, DLOAD_P2, DLOAD_P3, &
        DLOAD_P4, DLOAD_CENTRIF, DLOAD_P5, DLOAD_P6
   implicit none (type, external)
@@ -28,13 +29,15 @@ module superjoin_elements_traits
                                 VTK_TRIANGLE = 5, VTK_QUAD = 9, &
                                 VTK_QUADRATIC_TRIANGLE = 22, VTK_QUADRATIC_QUAD = 23, &
                                 VTK_TETRA = 10, VTK_HEXAHEDRON = 12, VTK_QUADRATIC_TETRA = 24, &
-                                VTK_QUADRATIC_HEXAHEDRON = 25
+                                VTK_QUADRATIC_HEXAHEDRON = 25, VTK_WEDGE = 13, VTK_QUADRATIC_WEDGE = 26
     !! VTK cell type numbers (VTK's file format; its node order is Abaqus's for these cells,
     !! the 20-node hexahedron and 10-node tetrahedron included: VTK's mid-edge points 8..19
     !! lie on the edges (0,1), (1,2), (2,3), (3,0), (4,5), (5,6), (6,7), (7,4), (0,4), (1,5),
     !! (2,6), (3,7), Abaqus's nodes 9..20 on 1-2, 2-3, 3-4, 4-1, 5-6, 6-7, 7-8, 8-5, 1-5, 2-6,
     !! 3-7, 4-8; the tetrahedron's 4..9 on (0,1), (1,2), (0,2), (0,3), (1,3), (2,3) as C3D10's
-    !! 5..10. CalculiX's .frd order, which differs, plays no part here).
+    !! 5..10; the wedge's 0..5 as C3D6's 1..6, its mid-edge points 6..14 on (0,1), (1,2), (2,0),
+    !! (3,4), (4,5), (5,3), (0,3), (1,4), (2,5) as C3D15's 7..15. CalculiX's .frd order, which
+    !! differs, plays no part here).
 
   type, public :: element_traits_t
     !! One element type, as the rest of the program sees it.
@@ -126,6 +129,10 @@ contains
        t = with(t, FAMILY_SOLID, D3, SEC_SOLID, VTK_TETRA, edges=4)
     case (ET_C3D10)
        t = with(t, FAMILY_SOLID, D3, SEC_SOLID, VTK_QUADRATIC_TETRA, edges=4, corners=4)
+    case (ET_C3D6)
+       t = with(t, FAMILY_SOLID, D3, SEC_SOLID, VTK_WEDGE, edges=5)
+    case (ET_C3D15)
+       t = with(t, FAMILY_SOLID, D3, SEC_SOLID, VTK_QUADRATIC_WEDGE, edges=5, corners=6)
     end select
     t%quadratic = t%corners < t%nodes
     t%plane_strain = any(etype == [ET_CPE3, ET_CPE4, ET_CPE6, ET_CPE8, ET_CPE8R])

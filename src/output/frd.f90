@@ -62,17 +62,20 @@ contains
     case (FAMILY_SOLID)
        if (t%corners == 8) frd_type = merge(4, 1, t%nodes == 20)
        if (t%corners == 4) frd_type = merge(6, 3, t%nodes == 10)
+       if (t%corners == 6) frd_type = merge(5, 2, t%nodes == 15)
     end select
   end function frd_type
 
   pure function frd_node_order(nodes) result(order)
     !! The element's node positions in frd order: a 20-node brick lists its
-    !! mid-side nodes 13..16 (between the faces) after 17..20, as cgx expects.
+    !! mid-side nodes 13..16 (between the faces) after 17..20, as cgx expects;
+    !! a 15-node wedge likewise its 13..15 before 10..12 (as ccx 2.20 writes them).
     integer, intent(in) :: nodes
     integer :: order(nodes)
     integer :: k
     order = [(k, k=1, nodes)]
     if (nodes == 20) order = [(k, k=1, 12), (k, k=17, 20), (k, k=13, 16)]
+    if (nodes == 15) order = [(k, k=1, 9), (k, k=13, 15), (k, k=10, 12)]
   end function frd_node_order
 
   subroutine write_frd(path, model, fields, error)

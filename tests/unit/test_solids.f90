@@ -2,8 +2,9 @@ program test_solids
   !! Unit tests of the 3D solid elements (superjoin_elements_solid): partition
   !! of unity and nodal interpolation of the shape functions, symmetry of the
   !! element matrix, the six rigid-body modes in its null space, the number of
-  !! zero eigenvalues (6 for C3D8, C3D20, C3D4, C3D10; 12 for the single C3D20R:
-  !! six spurious modes of the 2×2×2 rule, not communicable in a mesh), the
+  !! zero eigenvalues (6 for C3D8, C3D20, C3D4, C3D10, C3D15; 12 for the single C3D20R:
+  !! six spurious modes of the 2×2×2 rule, not communicable in a mesh; 7 for the
+  !! single C3D6: one of its two points on the triangle's centroid, as CalculiX's), the
   !! volume from the consistent body load, K u = 0 rows for a linear field
   !! (constant strain: Σ K u equals the nodal forces of a constant stress),
   !! and the refusals (inverted element, ν = 0.5). Patch tests on meshes, the
@@ -11,7 +12,8 @@ program test_solids
   !! tests/solids/verify_solids.py.
   use superjoin_kinds, only: wp
   use superjoin_error, only: error_t
-  use superjoin_model_types, only: material_t, ET_C3D8, ET_C3D20, ET_C3D20R, ET_C3D4, ET_C3D10, ET_C3D8I
+  use superjoin_model_types, only: material_t, ET_C3D8, ET_C3D20, ET_C3D20R, ET_C3D4, ET_C3D10, ET_C3D8I, &
+       ET_C3D6, ET_C3D15
   use superjoin_elements_solid, only: solid_stiffness, solid_body_load, solid_shape, rule_t, solid_rule
   use superjoin_elements_solid_faces, only: solid_pressure_load, solid_face_nodes
   use superjoin_elements_solid_stress, only: solid_extrapolation, principal_stresses, von_mises_tensor
@@ -23,9 +25,10 @@ program test_solids
   real(wp), parameter :: TOL_EXACT = 1.0e-12_wp    !! exact discrete answers, relative
   real(wp), parameter :: TOL_ZERO_EIG = 1.0e-10_wp !! a zero eigenvalue, relative to the largest
   real(wp), parameter :: MIN_POSITIVE = 1.0e-6_wp  !! smallest non-zero eigenvalue / largest, at least
-  integer, parameter :: TYPES(6) = [ET_C3D8, ET_C3D20, ET_C3D20R, ET_C3D4, ET_C3D10, ET_C3D8I]
-  character(len=6), parameter :: NAMES(6) = ['C3D8  ', 'C3D20 ', 'C3D20R', 'C3D4  ', 'C3D10 ', 'C3D8I ']
-  integer, parameter :: ZERO_EIGS(6) = [6, 6, 12, 6, 6, 6]
+  integer, parameter :: TYPES(8) = [ET_C3D8, ET_C3D20, ET_C3D20R, ET_C3D4, ET_C3D10, ET_C3D8I, ET_C3D6, ET_C3D15]
+  character(len=6), parameter :: NAMES(8) = ['C3D8  ', 'C3D20 ', 'C3D20R', 'C3D4  ', 'C3D10 ', 'C3D8I ', &
+       'C3D6  ', 'C3D15 ']
+  integer, parameter :: ZERO_EIGS(8) = [6, 6, 12, 6, 6, 6, 7, 6]
   type(material_t) :: mat
   integer :: k
 
@@ -73,7 +76,18 @@ contains
          0.0_wp, 0.0_wp, 0.0_wp, 1.0_wp, 0.0_wp, 0.0_wp, 0.0_wp, 1.0_wp, 0.0_wp, 0.0_wp, 0.0_wp, 1.0_wp, &
          0.5_wp, 0.0_wp, 0.0_wp, 0.5_wp, 0.5_wp, 0.0_wp, 0.0_wp, 0.5_wp, 0.0_wp, &
          0.0_wp, 0.0_wp, 0.5_wp, 0.5_wp, 0.0_wp, 0.5_wp, 0.0_wp, 0.5_wp, 0.5_wp], [3, 10])
+    real(wp), parameter :: WEDGE(3, 15) = reshape([ &
+         0.0_wp, 0.0_wp, -1.0_wp, 1.0_wp, 0.0_wp, -1.0_wp, 0.0_wp, 1.0_wp, -1.0_wp, &
+         0.0_wp, 0.0_wp, 1.0_wp, 1.0_wp, 0.0_wp, 1.0_wp, 0.0_wp, 1.0_wp, 1.0_wp, &
+         0.5_wp, 0.0_wp, -1.0_wp, 0.5_wp, 0.5_wp, -1.0_wp, 0.0_wp, 0.5_wp, -1.0_wp, &
+         0.5_wp, 0.0_wp, 1.0_wp, 0.5_wp, 0.5_wp, 1.0_wp, 0.0_wp, 0.5_wp, 1.0_wp, &
+         0.0_wp, 0.0_wp, 0.0_wp, 1.0_wp, 0.0_wp, 0.0_wp, 0.0_wp, 1.0_wp, 0.0_wp], [3, 15])
     r = 0.0_wp
+    if (etype == ET_C3D6 .or. etype == ET_C3D15) then
+       nn = merge(6, 15, etype == ET_C3D6)
+       r(:, 1:nn) = WEDGE(:, 1:nn)
+       return
+    end if
     nn = merge(8, merge(20, merge(4, 10, etype == ET_C3D4), etype == ET_C3D20 .or. etype == ET_C3D20R), &
          etype == ET_C3D8 .or. etype == ET_C3D8I)
     if (etype == ET_C3D4 .or. etype == ET_C3D10) then
@@ -160,6 +174,7 @@ contains
     deta = A(1, 1)*(A(2, 2)*A(3, 3) - A(2, 3)*A(3, 2)) - A(1, 2)*(A(2, 1)*A(3, 3) - A(2, 3)*A(3, 1)) &
          + A(1, 3)*(A(2, 1)*A(3, 2) - A(2, 2)*A(3, 1))
     vol = deta*merge(8.0_wp, 1.0_wp/6.0_wp, nn == 8 .or. nn == 20)
+    if (nn == 6 .or. nn == 15) vol = deta           ! the reference wedge: a half square times 2
     call solid_body_load(etype, x, [1.0_wp, 2.0_wp, 3.0_wp], fe, error)
     call check(.not. allocated(error), trim(name)//': body load')
     if (allocated(error)) return
@@ -185,7 +200,7 @@ contains
     x = matmul(A, r(:, 1:nn))
     c = sum(x, 2)/nn
     total = 0.0_wp
-    do f = 1, merge(6, 4, nn == 8 .or. nn == 20)
+    do f = 1, merge(6, merge(5, 4, nn == 6 .or. nn == 15), nn == 8 .or. nn == 20)
        call solid_pressure_load(etype, x, f, P, fe, error)
        call check(.not. allocated(error), trim(name)//': pressure on face '//itoa(f))
        if (allocated(error)) return
@@ -202,8 +217,8 @@ contains
             trim(name)//': face '//itoa(f)//' pushed into the element')
     end do
     call check(maxval(abs(total)) < TOL_EXACT*P*maxval(abs(x))**2, trim(name)//': closed surface, no net force')
-    call solid_pressure_load(etype, x, 7, P, fe, error)
-    call check(allocated(error), trim(name)//': face 7 refused')
+    call solid_pressure_load(etype, x, f, P, fe, error)
+    call check(allocated(error), trim(name)//': face '//itoa(f)//' refused')
   end subroutine test_faces
 
   subroutine test_extrapolation(etype, name)

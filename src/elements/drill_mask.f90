@@ -37,7 +37,8 @@ module superjoin_elements_drill_mask
   !! elements as a straight edge), so the rule needs no step of its own.
   use superjoin_kinds, only: wp, ip
   use superjoin_error, only: error_t
-  use superjoin_model_types, only: substructure_t, ELEMENT_NODE_COUNT, ET_S3, ET_S4, ET_S3R, ET_S4R, ET_S8R
+  use superjoin_model_types, only: substructure_t, ELEMENT_NODE_COUNT, ET_S3, ET_S4, ET_S3R, ET_S4R
+  use superjoin_elements_traits, only: is_shell8
   use superjoin_model_types, only: model_t, support_t, LINK_RIGID, LINK_NONE
   use superjoin_elements_shell, only: shell_frame, DRILL_ALL_EDGES
   use superjoin_elements_frame, only: cross
@@ -163,8 +164,8 @@ contains
     seen = .false.
     allocate (first(3, sub%nnode), source=0.0_wp)
     do e = 1, sub%nelem
-       if (sub%elem_type(e) == ET_S8R) then
-          flat(sub%elem_nodes(1:ELEMENT_NODE_COUNT(ET_S8R), e)) = .false.
+       if (is_shell8(sub%elem_type(e))) then
+          flat(sub%elem_nodes(1:ELEMENT_NODE_COUNT(sub%elem_type(e)), e)) = .false.
           cycle
        end if
        if (.not. is_flat_shell(sub%elem_type(e))) cycle

@@ -18,11 +18,11 @@ module superjoin_elements
        ET_C3D8, ET_C3D20, ET_C3D20R, ET_C3D4, ET_C3D10, ET_C3D8I, ET_C3D6, ET_C3D15, &
        DLOAD_PX, DLOAD_PY, DLOAD_PZ, DLOAD_P
   use superjoin_model_types, only: ET_S4R, ET_S3R
-  use superjoin_model_types, only: ET_S8R
+  use superjoin_model_types, only: ET_S8R, ET_S8
   use superjoin_elements_solid, only: solid_stiffness, solid_body_load, is_solid_type, solid_forces
   use superjoin_model_types, only: DLOAD_P1, DLOAD_P2, DLOAD_P3, DLOAD_P4, DLOAD_THERMAL, DLOAD_P5, DLOAD_P6
   use superjoin_elements_solid_faces, only: solid_pressure_load
-  use superjoin_elements_traits, only: dload_face
+  use superjoin_elements_traits, only: dload_face, is_shell8
   use superjoin_elements_edge_load, only: plane_edge_load
   use superjoin_elements_thermal, only: thermal_axial_load, thermal_plate_load
   use superjoin_elements_thermal, only: thermal_plane_nodal_load, thermal_beam_load
@@ -84,7 +84,7 @@ contains
   pure function element_node_dofs(etype) result(dofs)
     !! DOF numbers (1..6: ux, uy, uz, rx, ry, rz) carried by each node of an
     !! element type: T2D2 [1,2]; T3D2 [1,2,3]; B23, B21 [1,2,6]; B33, B31 [1..6];
-    !! CPS3/CPS4/CPE3/CPE4 and CPS6/CPS8/CPS8R/CPE6/CPE8/CPE8R [1,2]; S3/S4/S3R/S4R/S8R [1..6];
+    !! CPS3/CPS4/CPE3/CPE4 and CPS6/CPS8/CPS8R/CPE6/CPE8/CPE8R [1,2]; S3/S4/S3R/S4R/S8R/S8 [1..6];
     !! the solids C3D* [1,2,3]; an unknown type gives an empty array.
     integer, intent(in) :: etype
     integer, allocatable :: dofs(:)
@@ -98,7 +98,7 @@ contains
        dofs = [1, 2, 3]
     case (ET_B23, ET_B21)
        dofs = [1, 2, 6]
-    case (ET_B33, ET_B31, ET_S3, ET_S4, ET_B32, ET_S4R, ET_S3R, ET_S8R)
+    case (ET_B33, ET_B31, ET_S3, ET_S4, ET_B32, ET_S4R, ET_S3R, ET_S8R, ET_S8)
        dofs = [(i, i=1, 6)]
     case default
        allocate (dofs(0))
@@ -118,7 +118,7 @@ contains
        mask(1:3) = .true.
     case (ET_B23, ET_B21)
        mask([1, 2, 6]) = .true.
-    case (ET_B33, ET_B31, ET_S3, ET_S4, ET_B32, ET_S4R, ET_S3R, ET_S8R)
+    case (ET_B33, ET_B31, ET_S3, ET_S4, ET_B32, ET_S4R, ET_S3R, ET_S8R, ET_S8)
        mask = .true.
     end select
   end function element_dof_mask
@@ -189,7 +189,7 @@ contains
     case (ET_B32)
        call beam3_stiffness(x, sec, mat, ke, error)
     case (ET_CPS3, ET_CPS4, ET_S3, ET_S4, ET_CPE3, ET_CPE4, ET_CPS6, ET_CPS8, ET_CPE6, ET_CPE8, ET_CPS8R, ET_CPE8R, ET_S4R, ET_S3R, &
-         ET_S8R)
+         ET_S8R, ET_S8)
        call shell_stiffness(etype, x, sec, mat, ke, error, drill)
     case (ET_C3D8, ET_C3D20, ET_C3D20R, ET_C3D4, ET_C3D10, ET_C3D8I, ET_C3D6, ET_C3D15)
        call solid_stiffness(etype, x, mat, ke, error)
@@ -225,7 +225,7 @@ contains
     case (ET_B32)
        call beam3_end_forces(x, sec, mat, ue, q_local, f, error)
     case (ET_CPS3, ET_CPS4, ET_S3, ET_S4, ET_CPE3, ET_CPE4, ET_CPS6, ET_CPS8, ET_CPE6, ET_CPE8, ET_CPS8R, ET_CPE8R, ET_S4R, ET_S3R, &
-         ET_S8R, ET_C3D8, ET_C3D20, ET_C3D20R, ET_C3D4, ET_C3D10, ET_C3D8I, ET_C3D6, ET_C3D15)
+         ET_S8R, ET_S8, ET_C3D8, ET_C3D20, ET_C3D20R, ET_C3D4, ET_C3D10, ET_C3D8I, ET_C3D6, ET_C3D15)
        continue
     case default
        call unsupported(etype, error)
@@ -373,7 +373,7 @@ contains
     case (ET_T2D2, ET_T3D2, ET_B23, ET_B33, ET_B21, ET_B31, ET_B32)
        call beam_distributed_load(etype, x, sec, mat%density*sec%area*accel, fe, q_local, error)
     case (ET_CPS3, ET_CPS4, ET_S3, ET_S4, ET_CPE3, ET_CPE4, ET_CPS6, ET_CPS8, ET_CPE6, ET_CPE8, ET_CPS8R, ET_CPE8R, ET_S4R, ET_S3R, &
-         ET_S8R)
+         ET_S8R, ET_S8)
        call shell_area_load(etype, x, mat%density*sec%thickness*accel, fe, error)
     case (ET_C3D8, ET_C3D20, ET_C3D20R, ET_C3D4, ET_C3D10, ET_C3D8I, ET_C3D6, ET_C3D15)
        call solid_body_load(etype, x, mat%density*accel, fe, error)   ! ρ g per unit volume
@@ -420,11 +420,11 @@ contains
           call fatal_error(error, EXIT_DECK, 'thermal strain load on an element that is not a plane or shell element')
           return
        end if
-       if (etype == ET_S8R) then
+       if (is_shell8(etype)) then
           if (allocated(dl%nodal)) then   ! varying over the element: its nodal values, interpolated
-             call s8r_thermal_load(x, sec, mat, dl%value, dl%curvature, fe, error, dl%nodal, dl%curvature_nodal)
+             call s8r_thermal_load(etype, x, sec, mat, dl%value, dl%curvature, fe, error, dl%nodal, dl%curvature_nodal)
           else
-             call s8r_thermal_load(x, sec, mat, dl%value, dl%curvature, fe, error)
+             call s8r_thermal_load(etype, x, sec, mat, dl%value, dl%curvature, fe, error)
           end if
           return
        end if
@@ -439,7 +439,7 @@ contains
        if (allocated(error)) return
        fe = fe + f2
     case (DLOAD_CENTRIF)
-       if (etype == ET_S8R) then
+       if (is_shell8(etype)) then
           call s8r_centrif_load(x, sec, mat, dl, fe, error)
           return
        end if
@@ -504,7 +504,7 @@ contains
        varying = any(rem /= 0.0_wp)
        if (all(th(:, is) == 0.0_wp) .and. .not. varying) cycle
        ! an element that cannot be evaluated has been reported by shell_forces
-       if (etype == ET_S8R) then
+       if (is_shell8(etype)) then
           if (varying) then
              call s8r_thermal_resultants(sec, mat, th(1, is), th(2, is), res0, rem)
           else
@@ -518,7 +518,7 @@ contains
           if (allocated(error)) return
        end if
        plate(:, is) = plate(:, is) - res0
-       if (etype == ET_S8R .or. is_plane_type(etype) .or. .not. varying) cycle
+       if (is_shell8(etype) .or. is_plane_type(etype) .or. .not. varying) cycle
        ! a shell whose temperature varies: the nodal remainders, interpolated
        call shell_thermal_nodal_resultants(etype, x, sec, mat, rem(1, :), rem(2, :), res0, error, drill)
        if (allocated(error)) return

@@ -22,7 +22,8 @@ module superjoin_elements_shell
   use superjoin_model_types, only: section_t, material_t, ET_CPS3, ET_CPS4, ET_S3, ET_S4, &
        ET_CPE3, ET_CPE4, ELEMENT_NODE_COUNT, ET_CPS6, ET_CPS8, ET_CPE6, ET_CPE8, ET_CPS8R, ET_CPE8R
   use superjoin_model_types, only: ET_S4R, ET_S3R
-  use superjoin_model_types, only: ET_S8R
+  use superjoin_model_types, only: ET_S8R, ET_S8
+  use superjoin_elements_traits, only: is_shell8
   use superjoin_elements_shell8, only: shell8_props_t, shell8_stiffness, shell8_resultants, shell8_area_shares, &
        shell8_pressure_load
   use superjoin_elements_shell8, only: shell8_stresses
@@ -94,7 +95,7 @@ contains
     !! True for the plane (stress and strain) and shell element types.
     integer, intent(in) :: etype
     is_plate_type = is_plane_type(etype) .or. etype == ET_S3 .or. etype == ET_S4 .or. is_thick_shell_type(etype) &
-         .or. etype == ET_S8R
+         .or. is_shell8(etype)
   end function is_plate_type
 
   elemental logical function has_drilling_membrane(etype)
@@ -247,10 +248,10 @@ contains
     real(wp), allocatable :: kf(:, :)
     real(wp) :: r(3, 3), xl(2, size(x, 2)), h(size(x, 2))
 
-    if (etype == ET_S8R) then
+    if (is_shell8(etype)) then
        call setup(etype, x, r, xl, h, error)
        if (allocated(error)) return
-       call shell8_stiffness(x, [r(1, 1), r(1, 2), r(1, 3)], shell8_props(sec, mat), ke, error)
+       call shell8_stiffness(x, [r(1, 1), r(1, 2), r(1, 3)], shell8_props(sec, mat, etype), ke, error)
        return
     end if
     call flat_stiffness(etype, x, sec, mat, kf, r, xl, h, error, drilling_edges(etype, size(x, 2), drill))
@@ -258,12 +259,14 @@ contains
     ke = to_global(kf, node_maps(etype, r, h))
   end subroutine shell_stiffness
 
-  pure function shell8_props(sec, mat) result(props)
-    !! Section and material data of an S8R.
+  pure function shell8_props(sec, mat, etype) result(props)
+    !! Section and material data of an S8R, or of an S8 (full integration) if etype is ET_S8.
     type(section_t), intent(in) :: sec
     type(material_t), intent(in) :: mat
+    integer, intent(in), optional :: etype
     type(shell8_props_t) :: props
     props = shell8_props_t(t=sec%thickness, e=mat%e, nu=mat%nu, ks=shell_shear_stiffness(sec, mat))
+    if (present(etype)) props%full = etype == ET_S8
     if (allocated(sec%node_thickness)) then
        ! equal nodal thicknesses: the untapered element (its formulas, bit for bit)
        if (size(sec%node_thickness) == size(props%tn)) then
@@ -275,8 +278,9 @@ contains
     end if
   end function shell8_props
 
-  pure subroutine shell8_forces(x, sec, mat, ue, res, fg, forces, error)
-    !! shell_forces of an S8R: resultants at the centre (lamina frame) and K_e u_e.
+  pure subroutine shell8_forces(etype, x, sec, mat, ue, res, fg, forces, error)
+    !! shell_forces of an S8R or S8: resultants at the centre (lamina frame) and K_e u_e.
+    integer, intent(in) :: etype
     real(wp), intent(in) :: x(:, :)
     type(section_t), intent(in) :: sec
     type(material_t), intent(in) :: mat
@@ -287,10 +291,10 @@ contains
     real(wp), allocatable :: ke(:, :)
     real(wp) :: r(3, 3), xl(2, size(x, 2)), h(size(x, 2)), q(2)
     integer :: is
-    call setup(ET_S8R, x, r, xl, h, error)
+    call setup(etype, x, r, xl, h, error)
     if (allocated(error)) return
     if (forces) then
-       call shell8_stiffness(x, [r(1, 1), r(1, 2), r(1, 3)], shell8_props(sec, mat), ke, error)
+       call shell8_stiffness(x, [r(1, 1), r(1, 2), r(1, 3)], shell8_props(sec, mat, etype), ke, error)
        if (allocated(error)) return
     end if
     do is = 1, size(ue, 2)
@@ -325,8 +329,8 @@ contains
     fg = 0.0_wp
     forces = .true.
     if (present(with_forces)) forces = with_forces
-    if (etype == ET_S8R) then
-       call shell8_forces(x, sec, mat, ue, res, fg, forces, error)
+    if (is_shell8(etype)) then
+       call shell8_forces(etype, x, sec, mat, ue, res, fg, forces, error)
        return
     end if
     edges = drilling_edges(etype, size(x, 2), drill)
@@ -366,7 +370,7 @@ contains
     res = 0.0_wp
     call setup(etype, x, r, xl, h, error)
     if (allocated(error)) return
-    if (etype == ET_S8R) then
+    if (is_shell8(etype)) then
        call shell8_resultants(x, [r(1, 1), r(1, 2), r(1, 3)], shell8_props(sec, mat), ue, res, q, error)
        return
     end if
@@ -553,13 +557,13 @@ contains
 
     p_local = -p
     n = size(x, 2)
-    if (etype /= ET_S3 .and. etype /= ET_S4 .and. .not. is_thick_shell_type(etype) .and. etype /= ET_S8R) then
+    if (etype /= ET_S3 .and. etype /= ET_S4 .and. .not. is_thick_shell_type(etype) .and. .not. is_shell8(etype)) then
        call fatal_error(error, EXIT_DECK, 'pressure P applies to shells (S3, S4, S3R, S4R, S8R) only')
        return
     end if
     call setup(etype, x, r, xl, h, error)
     if (allocated(error)) return
-    if (etype == ET_S8R) then
+    if (is_shell8(etype)) then
        call shell8_pressure_load(x, p, fe, error)
        return
     end if
@@ -590,7 +594,7 @@ contains
     if (is_quadratic_plane_type(etype)) then
        allocate (fb(3*n), source=0.0_wp)
        call quadratic_shape_integrals(xl, fb(1:3*n:3))
-    else if (etype == ET_S8R) then
+    else if (is_shell8(etype)) then
        allocate (fb(3*n), source=0.0_wp)
        block
          real(wp) :: shares(n)
@@ -818,7 +822,7 @@ contains
     logical :: edges(size(x, 2))
     integer :: n, i
     n = size(x, 2)
-    if (is_plane_type(etype) .or. etype == ET_S8R .or. size(strain) /= n .or. size(curvature) /= n) then
+    if (is_plane_type(etype) .or. is_shell8(etype) .or. size(strain) /= n .or. size(curvature) /= n) then
        call fatal_error(error, EXIT_DECK, 'nodal thermal strains of a shell: S3, S4, S3R, S4R with a value per node')
        return
     end if

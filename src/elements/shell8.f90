@@ -20,6 +20,10 @@ module superjoin_elements_shell8
   !! reduced 2×2 rule (no membrane or shear locking on regular meshes); the
   !! bending strains (∂ε/∂ζ) take the full 3×3 rule, which removes the
   !! bending hourglass that a 2×2 rule leaves in a single element.
+  !! S8 (props%full) is the same element with the full 3×3 rule for the
+  !! membrane strains and the transverse shear as well (Abaqus's S8): no
+  !! hourglass mode, shear locking on thin meshes (tests/decks/s8_cantilever.deck);
+  !! its stresses are taken at the same 2×2 points as S8R's.
   !!
   !! Drilling: θ·n produces no strain; the element adds the penalty
   !!   ½ DRILL_FACTOR G t ∫ (θ·e3 - ω)² dA,   ω = ½ (∂u2/∂x1 - ∂u1/∂x2),
@@ -98,6 +102,7 @@ module superjoin_elements_shell8
      real(wp) :: ks(2) = 0.0_wp             !! transverse shear stiffness per unit length (local x, y)
      logical :: tapered = .false.           !! the thickness varies: tn at the nodes
      real(wp) :: tn(NN) = 0.0_wp            !! tapered: thickness at each node (t is then a mean, ks/t the shear modulus)
+     logical :: full = .false.              !! S8: membrane and transverse shear with the full 3×3 rule too
   end type shell8_props_t
 
   public :: shell8_stiffness, shell8_resultants, shell8_area_shares, shell8_pressure_load
@@ -124,12 +129,14 @@ contains
     type(error_t), allocatable, intent(out) :: error
     real(wp) :: dir(3, NN), d(NSTR, NSTR), b(NSTR, NDOF), dr(NDOF), gmod, kd, tp
     real(wp) :: bm(3, NDOF), bb(3, NDOF), detj(2)
+    real(wp), allocatable :: p(:, :), w(:)
     type(point_t) :: pt
     integer :: i, j, k
 
     call check(x, props, dir, error)
     if (allocated(error)) return
     d = material(props)
+    call in_plane_rule(props, p, w)
     allocate (ke(NDOF, NDOF), source=0.0_wp)
     ! in-plane strains: the membrane part (mean of the two ζ points) with the
     ! 2×2 rule, the bending part (their difference) with 3×3
@@ -139,20 +146,16 @@ contains
           ke = ke + (2*W3(i)*W3(j)*G2**2)*sum(detj)/2*matmul(transpose(bb), matmul(d(1:3, 1:3), bb))
        end do
     end do
-    do i = 1, 2
-       do j = 1, 2
-          call in_plane_parts(x, dir, ex, props, [gauss2(i), gauss2(j)], bm, bb, detj)
-          ke = ke + sum(detj)*matmul(transpose(bm), matmul(d(1:3, 1:3), bm))
-       end do
+    do i = 1, size(w)
+       call in_plane_parts(x, dir, ex, props, p(:, i), bm, bb, detj)
+       ke = ke + (w(i)*sum(detj))*matmul(transpose(bm), matmul(d(1:3, 1:3), bm))
     end do
-    ! transverse shear: 2×2 (×2 through the thickness)
-    do i = 1, 2
-       do j = 1, 2
-          do k = 1, 2
-             call point(x, dir, ex, props, [gauss2(i), gauss2(j), gauss2(k)], pt)
-             b = strain_rows(pt, dir, nodal_thickness(props), gauss2(k))
-             ke = ke + pt%detj*matmul(transpose(b(4:5, :)), matmul(d(4:5, 4:5), b(4:5, :)))
-          end do
+    ! transverse shear: 2×2 (S8: 3×3), ×2 through the thickness
+    do i = 1, size(w)
+       do k = 1, 2
+          call point(x, dir, ex, props, [p(:, i), gauss2(k)], pt)
+          b = strain_rows(pt, dir, nodal_thickness(props), gauss2(k))
+          ke = ke + (w(i)*pt%detj)*matmul(transpose(b(4:5, :)), matmul(d(4:5, 4:5), b(4:5, :)))
        end do
     end do
     ! drilling penalty: 3×3 on the mid-surface (ζ = 0; ∫ dζ = 2, det J ≈ t/2 dA)
@@ -392,7 +395,7 @@ contains
     !! Consistent nodal loads fe(48) (global axes) of the thermal strain
     !! ε0 = strain + curvature z in the plane of the lamina (z = ζ t/2 along
     !! e3; strain = α ΔT, curvature = α ∂T/∂n): ∫ Bᵀ D ε0 dV with the rules
-    !! of the stiffness (membrane part 2×2, bending part 3×3). With
+    !! of the stiffness (membrane part 2×2, S8 3×3, bending part 3×3). With
     !! strain_nodal(8), curvature_nodal(8) (a temperature varying over the
     !! element: the nodes' remainders after strain and curvature) these are
     !! interpolated with the shape functions and added at every point.
@@ -405,6 +408,7 @@ contains
     real(wp) :: dir(3, NN), d(NSTR, NSTR), bm(3, NDOF), bb(3, NDOF), detj(2), nf(NN), dn(2, NN)
     real(wp) :: sn(NN), cn(NN)
     real(wp), parameter :: IN_PLANE(3) = [1.0_wp, 1.0_wp, 0.0_wp]
+    real(wp), allocatable :: p(:, :), w(:)
     integer :: i, j
 
     call check(x, props, dir, error)
@@ -428,12 +432,11 @@ contains
        end do
     end if
     if (strain /= 0.0_wp .or. any(sn /= 0.0_wp)) then
-       do i = 1, 2
-          do j = 1, 2
-             call in_plane_parts(x, dir, ex, props, [gauss2(i), gauss2(j)], bm, bb, detj)
-             call quadratic_shape(NN, [gauss2(i), gauss2(j)], nf, dn)
-             fe = fe + sum(detj)*matmul(transpose(bm), matmul(d(1:3, 1:3), (strain + dot_product(nf, sn))*IN_PLANE))
-          end do
+       call in_plane_rule(props, p, w)
+       do i = 1, size(w)
+          call in_plane_parts(x, dir, ex, props, p(:, i), bm, bb, detj)
+          call quadratic_shape(NN, p(:, i), nf, dn)
+          fe = fe + (w(i)*sum(detj))*matmul(transpose(bm), matmul(d(1:3, 1:3), (strain + dot_product(nf, sn))*IN_PLANE))
        end do
     end if
   end subroutine shell8_thermal_load
@@ -601,6 +604,28 @@ contains
        end do
     end do
   end function strain_rows
+
+  pure subroutine in_plane_rule(props, p, w)
+    !! The in-plane rule of the membrane strains and the transverse shear:
+    !! S8R's reduced 2×2 (unit weights) or, with props%full (S8), the 3×3
+    !! Gauss rule; points p(:, k) = (ξ, η), ξ the slower index.
+    type(shell8_props_t), intent(in) :: props
+    real(wp), allocatable, intent(out) :: p(:, :), w(:)
+    integer :: i, j, n
+    n = merge(3, 2, props%full)
+    allocate (p(2, n*n), w(n*n))
+    do i = 1, n
+       do j = 1, n
+          if (props%full) then
+             p(:, n*(i - 1) + j) = [G3(i), G3(j)]
+             w(n*(i - 1) + j) = W3(i)*W3(j)
+          else
+             p(:, n*(i - 1) + j) = [gauss2(i), gauss2(j)]
+             w(n*(i - 1) + j) = 1.0_wp
+          end if
+       end do
+    end do
+  end subroutine in_plane_rule
 
   pure subroutine in_plane_parts(x, dir, ex, props, p, bm, bb, detj)
     !! In-plane strain rows (ε11, ε22, γ12) at p = (ξ, η) split into the

@@ -11,6 +11,7 @@ module superjoin_elements_shell8_loads
   use superjoin_error, only: error_t, fatal_error, EXIT_DECK
   use superjoin_model_types, only: section_t, material_t, dload_t, ELEMENT_NODE_COUNT, ET_S8R
   use superjoin_elements_shell, only: shell_frame, shell8_props
+  use superjoin_elements_traits, only: is_shell8
   use superjoin_elements_shell8, only: shell8_volume_shares, shell8_mass, shell8_thermal_load, &
        shell8_thermal_resultants
   use superjoin_elements_centrif, only: axis_distance
@@ -25,10 +26,10 @@ module superjoin_elements_shell8_loads
 contains
 
   pure logical function s8r_is_tapered(etype, sec)
-    !! An S8R whose section carries a thickness per node.
+    !! An S8R or S8 whose section carries a thickness per node.
     integer, intent(in) :: etype
     type(section_t), intent(in) :: sec
-    s8r_is_tapered = etype == ET_S8R .and. allocated(sec%node_thickness)
+    s8r_is_tapered = is_shell8(etype) .and. allocated(sec%node_thickness)
   end function s8r_is_tapered
 
   pure subroutine s8r_gravity_load(x, sec, mat, accel, fe, error)
@@ -54,11 +55,12 @@ contains
     end do
   end subroutine s8r_gravity_load
 
-  pure subroutine s8r_thermal_load(x, sec, mat, strain, curvature, fe, error, strain_nodal, curvature_nodal)
-    !! Consistent nodal loads fe(48) (global axes) of the thermal strain
+  pure subroutine s8r_thermal_load(etype, x, sec, mat, strain, curvature, fe, error, strain_nodal, curvature_nodal)
+    !! Consistent nodal loads fe(48) (global axes) of an S8R or S8 (etype) under the thermal strain
     !! strain = α ΔT and curvature = α ∂T/∂n (superjoin_elements_shell8); with
     !! strain_nodal(8), curvature_nodal(8) the nodes' remainders after them,
     !! interpolated to the integration points.
+    integer, intent(in) :: etype
     real(wp), intent(in) :: x(:, :)
     type(section_t), intent(in) :: sec
     type(material_t), intent(in) :: mat
@@ -73,7 +75,7 @@ contains
     end if
     call shell_frame(x, r, xl, h, error)
     if (allocated(error)) return
-    call shell8_thermal_load(x, r(1, :), shell8_props(sec, mat), strain, curvature, fe, error, strain_nodal, &
+    call shell8_thermal_load(x, r(1, :), shell8_props(sec, mat, etype), strain, curvature, fe, error, strain_nodal, &
          curvature_nodal)
   end subroutine s8r_thermal_load
 

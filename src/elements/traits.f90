@@ -13,7 +13,7 @@ module superjoin_elements_traits
        ET_T2D2, ET_T3D2, ET_B23, ET_B33, ET_CPS3, ET_CPS4, ET_S3, ET_S4, ET_B21, ET_B31, &
        ET_CPE3, ET_CPE4, ET_S4R, ET_S3R, ET_S8R, ET_CPS6, ET_CPS8, ET_CPE6, ET_CPE8, &
        ET_CPS8R, ET_CPE8R, ET_B32, ET_C3D8, ET_C3D20, ET_C3D20R, ET_C3D4, ET_C3D10, ET_C3D8I, &
-       ET_C3D6, ET_C3D15, &
+       ET_C3D6, ET_C3D15, ET_S8, &
        DLOAD_PX, DLOAD_PY, DLOAD_PZ, DLOAD_P, DLOAD_GRAV, DLOAD_P1, DLOAD_P2, DLOAD_P3, &
        DLOAD_P4, DLOAD_CENTRIF, DLOAD_P5, DLOAD_P6
   implicit none (type, external)
@@ -64,6 +64,7 @@ module superjoin_elements_traits
   public :: element_traits, element_family, is_family, accepts_dload, section_card_name
   public :: valid_element_type, element_vtk_cell
   public :: shell_of_plane, element_type_of_name, dload_face
+  public :: is_shell8
 
 contains
 
@@ -119,6 +120,8 @@ contains
     case (ET_S8R)
        t = with(t, FAMILY_SHELL, D6, SEC_SHELL, VTK_QUADRATIC_QUAD, edges=4, corners=4, shear=.true., &
                 reduced=.true.)
+    case (ET_S8)
+       t = with(t, FAMILY_SHELL, D6, SEC_SHELL, VTK_QUADRATIC_QUAD, edges=4, corners=4, shear=.true.)
     case (ET_C3D8, ET_C3D8I)
        t = with(t, FAMILY_SOLID, D3, SEC_SOLID, VTK_HEXAHEDRON, edges=6)
     case (ET_C3D20)
@@ -273,4 +276,11 @@ contains
        dload_face = 0
     end select
   end function dload_face
+
+  elemental logical function is_shell8(etype)
+    !! The eight-node thick shells of superjoin_elements_shell8: S8R (2×2 reduced
+    !! in-plane rule) and S8 (full 3×3 rule).
+    integer, intent(in) :: etype
+    is_shell8 = etype == ET_S8R .or. etype == ET_S8
+  end function is_shell8
 end module superjoin_elements_traits

@@ -383,8 +383,8 @@ contains
           map(1) = 0                                    ! S4R -> C3D8R: one point
           npoint = 1
           return
-       else if (t%quadratic .and. .not. t%reduced) then
-          layer = [1, 2, 3, 4, 5, 6, 7, 8, 9]           ! C3D20: 3x3, 3 layers
+       else if (t%quadratic .and. .not. t%reduced .and. t%family /= FAMILY_SHELL) then
+          layer = [1, 2, 3, 4, 5, 6, 7, 8, 9]           ! C3D20: 3x3, 3 layers (S8: its 2x2 stress points below)
           n = 9
        else
           layer(1:4) = [1, 2, 4, 3]                     ! C3D8, C3D20R: 2x2, xi fastest, 2 layers

@@ -108,9 +108,9 @@ contains
     type(error_t), allocatable :: error
     allocate (x(3, 8))   ! before the assignment: no -Wuninitialized false positive
     x = element(8)
-    call s8r_thermal_load(x, sec, mat, STRAIN, CURVATURE, f1, error)
+    call s8r_thermal_load(ET_S8R, x, sec, mat, STRAIN, CURVATURE, f1, error)
     call check(.not. allocated(error), 'S8R uniform load')
-    call s8r_thermal_load(x, sec, mat, 0.0_wp, 0.0_wp, f2, error, spread(STRAIN, 1, 8), spread(CURVATURE, 1, 8))
+    call s8r_thermal_load(ET_S8R, x, sec, mat, 0.0_wp, 0.0_wp, f2, error, spread(STRAIN, 1, 8), spread(CURVATURE, 1, 8))
     call check(.not. allocated(error), 'S8R nodal load')
     if (allocated(error)) return
     call check_close(maxval(abs(f2 - f1)), 0.0_wp, TOL*maxval(abs(f1)), 'S8R: nodal values equal = uniform')

@@ -35,7 +35,9 @@ grep -q 'CalculiX' out.txt || { fail=$((fail+1)); echo "FAIL: the no-argument ru
 sed -n '1,/^\*STEP/p' "$src/tests/ccx/truss.inp" > job.inp
 printf '*STATIC\n*CLOAD\n2,1,1.\n*NODE PRINT,NSET=NALL\nU\n*NODE FILE\nU\n*END STEP\n' >> job.inp
 expect 0 "ccx -i" -- "$bin" "-i " job
-[ ! -s err.txt ] && grep -q 'Job finished' out.txt || { fail=$((fail+1)); echo "FAIL: -i: stderr not empty or no Job finished"; }
+# (gfortran's -fcheck=all of the Debug build reports array temporaries on stderr: not the program's output)
+grep -v -e '^At line [0-9]* of file ' -e '^Fortran runtime warning: An array temporary was created$' err.txt > err_program.txt
+[ ! -s err_program.txt ] && grep -q 'Job finished' out.txt || { fail=$((fail+1)); echo "FAIL: -i: stderr not empty or no Job finished"; }
 for f in job.dat job.frd job.sta job.lst; do [ -s $f ] || { fail=$((fail+1)); echo "FAIL: -i wrote no $f"; }; done
 # -i reads a CalculiX deck: one-value SECTION=CIRC is the diameter (issue 25 item 2), said in the
 # listing; the same beam with Abaqus's radius 1.0 in a plain run must move the same

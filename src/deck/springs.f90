@@ -290,8 +290,7 @@ contains
     integer(ip), allocatable :: sid(:)
     do isub = 1, st%nsub
        if (.not. any(st%spring_elems(1:st%nspring_elem)%sub == isub)) cycle
-       sid = pack(st%spring_elems(1:st%nspring_elem)%id, st%spring_elems(1:st%nspring_elem)%sub == isub)
-       springs = pack([(e, e = 1, st%nspring_elem)], st%spring_elems(1:st%nspring_elem)%sub == isub)
+       call springs_of(st, isub, springs, sid)
        call sort_ids(st%subs(isub)%elem_id(1:st%subs(isub)%nelem), elems)
        call sort_ids(sid, by_id)        ! stable: a repeated id reports its later definitions
        do k = 1, size(springs)
@@ -308,6 +307,29 @@ contains
        end do
     end do
   end subroutine check_ids
+
+  subroutine springs_of(st, isub, springs, sid)
+    !! The spring elements of substructure isub (indices into st%spring_elems,
+    !! in their order) and their ids; a loop, not pack over the component
+    !! sections (which gfortran passes through temporaries).
+    type(deck_state_t), intent(in) :: st
+    integer, intent(in) :: isub
+    integer, allocatable, intent(out) :: springs(:)
+    integer(ip), allocatable, intent(out) :: sid(:)
+    integer :: e, k
+    k = 0
+    do e = 1, st%nspring_elem
+       if (st%spring_elems(e)%sub == isub) k = k + 1
+    end do
+    allocate (springs(k), sid(k))
+    k = 0
+    do e = 1, st%nspring_elem
+       if (st%spring_elems(e)%sub /= isub) cycle
+       k = k + 1
+       springs(k) = e
+       sid(k) = st%spring_elems(e)%id
+    end do
+  end subroutine springs_of
 
   function loc_text(st, loc) result(s)
     type(deck_state_t), intent(in) :: st

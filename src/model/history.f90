@@ -15,7 +15,7 @@ module superjoin_model_history
   !! DOF (element and load type); OP=NEW, or no OP= in a step without a
   !! procedure card, starts from nothing. Thermal loads are not continued
   !! here: they follow from the nodal temperatures of each step.
-  use superjoin_kinds, only: i8
+  use superjoin_kinds, only: i8, ip
   use superjoin_model_types, only: model_t, support_t, cload_t, dload_t, DLOAD_THERMAL
   use superjoin_utils_sorting, only: sort_index
   implicit none (type, external)
@@ -61,16 +61,21 @@ contains
     type(support_t), allocatable, intent(inout) :: cur(:)
     type(support_t), intent(in) :: add(:)
     type(support_t), allocatable :: merged(:)
-    integer, allocatable :: order(:)
+    integer, allocatable :: order(:), key(:)
+    integer(ip), allocatable :: key8(:)
     logical, allocatable :: keep(:)
     integer :: i, j, first
     allocate (merged(size(cur) + size(add)))   ! not [cur, add]: gfortran's -Wuninitialized false positive
     merged(1:size(cur)) = cur
     merged(size(cur) + 1:) = add
     order = [(i, i=1, size(merged))]
-    call sort_index(merged%dof, order)
-    call sort_index(merged%node, order)
-    call sort_index(merged%sub, order)
+    allocate (key(size(merged)), key8(size(merged)))   ! copies: component sections would go through temporaries
+    key(:) = merged(:)%dof
+    call sort_index(key, order)
+    key8(:) = merged(:)%node
+    call sort_index(key8, order)
+    key(:) = merged(:)%sub
+    call sort_index(key, order)
     allocate (keep(size(merged)), source=.true.)
     i = 1
     do while (i <= size(merged))

@@ -116,8 +116,11 @@ contains
     real(wp), allocatable :: vals(:, :), gvals(:, :)
     logical :: local
     character(:), allocatable :: axes
+    integer(ip), allocatable :: counts(:)
+    allocate (counts(size(model%subs)))   ! a copy: the component section would go through a temporary
+    counts(:) = model%subs(:)%nnode
     call request_title(lu, model, r)
-    call selected_items(r, model%subs(:)%nnode, subs, nodes)
+    call selected_items(r, counts, subs, nodes)
     nsel = size(nodes, kind=ip)
     allocate (vals(NDOF_NODE, nsel))
     call node_frames(model, subs, nodes, frame)
@@ -363,9 +366,11 @@ contains
     type(output_request_t), intent(in) :: r
     integer :: iv
     integer, allocatable :: subs(:)
-    integer(ip), allocatable :: elems(:)
+    integer(ip), allocatable :: elems(:), counts(:)
+    allocate (counts(size(model%subs)))   ! a copy: the component section would go through a temporary
+    counts(:) = model%subs(:)%nelem
     call request_title(lu, model, r)
-    call selected_items(r, model%subs(:)%nelem, subs, elems)
+    call selected_items(r, counts, subs, elems)
     do iv = 1, size(r%vars)
        select case (r%vars(iv)%s)
        case ('S')

@@ -8,6 +8,7 @@ module superjoin_solvers_cholmod
   use, intrinsic :: iso_c_binding, only: c_ptr, c_null_ptr, c_associated, c_int, &
        c_int64_t, c_double, c_char, c_null_char
   use superjoin_kinds, only: wp, i8
+  use superjoin_solvers_blas, only: dsyrk
   use superjoin_error, only: error_t, fatal_error, EXIT_SINGULAR, EXIT_IO
   use superjoin_solvers_sparse, only: sparse_sym_t
   use superjoin_solvers_solver, only: linear_solver_t, interior_block, schur_by_solves, &
@@ -179,14 +180,6 @@ module superjoin_solvers_cholmod
        real(c_double), intent(out) :: lbb(*)
        integer(c_int) :: status
      end function sj_cholmod_schur_block
-
-     subroutine dsyrk(uplo, trans, n, k, alpha, a, lda, beta, c, ldc)
-       import :: wp
-       character(len=1), intent(in) :: uplo, trans
-       integer, intent(in) :: n, k, lda, ldc
-       real(wp), intent(in) :: alpha, beta, a(lda, *)
-       real(wp), intent(inout) :: c(ldc, *)
-     end subroutine dsyrk
   end interface
 
 contains

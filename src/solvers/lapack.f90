@@ -10,6 +10,7 @@ module superjoin_solvers_lapack
   !! Dense storage is refused above DENSE_MAX_N unknowns, and banded storage
   !! above BAND_MAX_ENTRIES stored entries (memory), with EXIT_IO.
   use superjoin_kinds, only: wp, i8
+  use superjoin_solvers_blas, only: dsyrk
   use superjoin_error, only: error_t, fatal_error, EXIT_SINGULAR, EXIT_IO
   use superjoin_solvers_sparse, only: sparse_sym_t
   use superjoin_solvers_node_graph, only: node_graph
@@ -99,14 +100,6 @@ module superjoin_solvers_lapack
        real(wp), intent(in) :: a(lda, *)
        real(wp), intent(inout) :: x(*)
      end subroutine dtbsv
-
-     subroutine dsyrk(uplo, trans, n, k, alpha, a, lda, beta, c, ldc)
-       import :: wp
-       character(len=1), intent(in) :: uplo, trans
-       integer, intent(in) :: n, k, lda, ldc
-       real(wp), intent(in) :: alpha, beta, a(lda, *)
-       real(wp), intent(inout) :: c(ldc, *)
-     end subroutine dsyrk
   end interface
 
 contains

@@ -154,6 +154,10 @@ contains
     do k = 1, size(idx)
        associate (st => steps(idx(k)))
          call add_reactions(out%reactions, st%reactions, factors(k))
+         if (allocated(st%equation_forces)) then
+            if (.not. allocated(out%equation_forces)) allocate (out%equation_forces(0))
+            call add_reactions(out%equation_forces, st%equation_forces, factors(k))
+         end if
          if (allocated(st%link_delta)) then
             if (.not. allocated(out%link_delta)) then
                allocate (out%link_delta, mold=st%link_delta)

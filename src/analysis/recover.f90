@@ -88,17 +88,24 @@ contains
   subroutine add_equation_resultants(model, table, req, res)
     !! *EQUATION forces on the structure join the reactions of the equilibrium
     !! check (an equation whose coefficients do not cancel per direction, a
-    !! lever u_a = 2 u_b, acts partly as a support).
+    !! lever u_a = 2 u_b, acts partly as a support), and are kept per node
+    !! (CalculiX's "forces" of a node in an equation include them).
     type(model_t), intent(in) :: model
     type(dof_table_t), intent(in) :: table
     real(wp), intent(in) :: req(:, :)
     type(results_t), intent(inout) :: res
     integer(i8) :: p
-    integer :: is
+    integer :: is, n
     do is = 1, size(req, 2)
+       n = count(req(:, is) /= 0.0_wp)
+       allocate (res%fields%steps(is)%equation_forces(n))
+       n = 0
        do p = 1, table%np
           if (req(p, is) == 0.0_wp) cycle
           call add_resultant(res%fields%steps(is)%reaction, model%subs(table%p_sub(p))%x(:, table%p_node(p)), &
+               table%p_dof(p), req(p, is))
+          n = n + 1
+          res%fields%steps(is)%equation_forces(n) = reaction_t(table%p_sub(p), int(table%p_node(p)), &
                table%p_dof(p), req(p, is))
        end do
     end do

@@ -35,6 +35,7 @@ module superjoin_model_results
   type, public :: step_results_t
     !! Results of one step.
      type(reaction_t), allocatable :: reactions(:)
+     type(reaction_t), allocatable :: equation_forces(:)  !! forces *EQUATION constraints exert on nodes, global axes
      real(wp), allocatable :: link_delta(:, :)   !! (6, nlink) local axes
      real(wp), allocatable :: link_force(:, :)   !! (6, nlink) on the master, local axes
      real(wp) :: applied(6) = 0.0_wp             !! resultant of loads (forces, moments about origin)

@@ -38,7 +38,7 @@ module superjoin_output_ccx_dat
        FAMILY_SOLID
   use superjoin_utils_text_buffer, only: text_buffer_t
   use superjoin_output_requests, only: effective_requests, selected_items, node_frames, rotate_rows, node_values, &
-       add_reactions, add_cloads
+       add_reactions, add_cloads, add_node_forces
   use superjoin_output_energy, only: energy_t, compute_energies
   use superjoin_utils_process, only: temp_register, temp_unregister
   implicit none (type, external)
@@ -164,8 +164,9 @@ contains
 
   subroutine node_forces(model, fields, is, subs, nodes, v)
     !! CalculiX's "forces" of the listed nodes in step is: the support
-    !! reactions plus the concentrated loads (*CLOAD) on the node, global axes
-    !! (the reactions of a node with a *TRANSFORM are along its nodal system).
+    !! reactions plus the concentrated loads (*CLOAD) on the node plus the
+    !! forces of the *EQUATION constraints on it, global axes (the reactions
+    !! of a node with a *TRANSFORM are along its nodal system).
     type(model_t), intent(in) :: model
     type(result_fields_t), intent(in) :: fields
     integer, intent(in) :: is
@@ -180,6 +181,10 @@ contains
     call rotate_rows(model, frame, .true., v)
     call add_cloads(model, is, subs, nodes, cf)
     v = v + cf
+    if (allocated(fields%steps(is)%equation_forces)) then
+       call add_node_forces(fields%steps(is)%equation_forces, subs, nodes, cf)
+       v = cf + v
+    end if
   end subroutine node_forces
 
   subroutine node_rows(lu, model, r, subs, nodes, vals, marked)

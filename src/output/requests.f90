@@ -11,7 +11,7 @@ module superjoin_output_requests
   use superjoin_model_types, only: model_t, output_request_t, NDOF_NODE, REQ_NODE_PRINT, REQ_EL_PRINT, &
        REQ_KIND_NAMES, TOTALS_YES, TOTALS_ONLY
   use superjoin_elements, only: is_plate_type, element_tensor, NTENSOR, is_solid_type
-  use superjoin_model_results, only: result_fields_t
+  use superjoin_model_results, only: result_fields_t, reaction_t
   use superjoin_utils_text_buffer, only: text_buffer_t
   use superjoin_output_columns, only: element_prefix, chop
   use superjoin_utils_strings, only: itoa
@@ -23,7 +23,7 @@ module superjoin_output_requests
   private
 
   public :: write_print_requests, effective_requests, selected_items, node_frames, rotate_rows
-  public :: node_values, add_reactions, add_cloads
+  public :: node_values, add_reactions, add_cloads, add_node_forces
 
   character(len=15), parameter :: TENSOR_HEAD(NTENSOR) = ['             xx', '             yy', &
        '             zz', '             xy', '             xz', '             yz']
@@ -192,16 +192,25 @@ contains
     integer, intent(in) :: subs(:)
     integer(ip), intent(in) :: nodes(:)
     real(wp), intent(out) :: v(:, :)
+    call add_node_forces(fields%steps(is)%reactions, subs, nodes, v)
+  end subroutine add_reactions
+
+  subroutine add_node_forces(list, subs, nodes, v)
+    !! v(dof, node): the sum of the forces of list on each listed node, zero elsewhere.
+    type(reaction_t), intent(in) :: list(:)
+    integer, intent(in) :: subs(:)
+    integer(ip), intent(in) :: nodes(:)
+    real(wp), intent(out) :: v(:, :)
     integer :: i, k
     v = 0.0_wp
-    do k = 1, size(fields%steps(is)%reactions)
-       associate (rc => fields%steps(is)%reactions(k))
+    do k = 1, size(list)
+       associate (rc => list(k))
          do i = 1, size(nodes)
             if (subs(i) == rc%sub .and. nodes(i) == rc%node) v(rc%dof, i) = v(rc%dof, i) + rc%force
          end do
        end associate
     end do
-  end subroutine add_reactions
+  end subroutine add_node_forces
 
   subroutine add_cloads(model, is, subs, nodes, v)
     !! v(dof, node): the concentrated loads (*CLOAD) of step is on each listed

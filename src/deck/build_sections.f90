@@ -9,7 +9,7 @@ module superjoin_deck_build_sections
   use superjoin_elements_traits, only: element_traits_t, element_traits, section_card_name, &
        shell_of_plane, FAMILY_NONE, FAMILY_TRUSS, FAMILY_BEAM, FAMILY_PLANE, FAMILY_SHELL, FAMILY_SOLID
   use superjoin_deck_lexer, only: itoa
-  use superjoin_deck_state, only: deck_state_t, report_loc, BEAM_2D_VALUES, BEAM_3D_VALUES, sec_b_t
+  use superjoin_deck_state, only: deck_state_t, report_loc, reading_dialect, BEAM_2D_VALUES, BEAM_3D_VALUES, sec_b_t
   use superjoin_deck_beam_sections, only: section_fibres, MAX_FIBRES, section_properties, section_props_t, &
        shape_shear_factor, SHAPE_CIRC
   use superjoin_deck_build_common, only: resolve_sub, more_text, where
@@ -37,6 +37,11 @@ contains
     integer :: g, isub, k
 
     call dialect_readings(st, model)
+    if (allocated(st%notes)) then     ! the set builder's (undefined ids CalculiX passes over)
+       do g = 1, size(st%notes)
+          call note(model%notes, st%notes(g)%s)
+       end do
+    end if
     allocate (sub_of(st%nsec), count(size(model%subs)))
     count = 0
     do g = 1, st%nsec
@@ -79,8 +84,7 @@ contains
                  'A, I11, I12, I22, J (four values are superjoin''s A, Iy, Iz, J)'
          else if (sb%shape == SHAPE_CIRC .and. sb%ndims == 1) then
             text = 'SECTION=CIRC at '//where(st, sb%data_loc)//': one value, read as '
-            select case (merge(st%implied_dialect, st%controls%dialect, &
-                 st%controls%dialect == DIALECT_NONE .and. st%implied_dialect /= DIALECT_NONE))
+            select case (reading_dialect(st))
             case (DIALECT_CALCULIX)
                sb%ndims = 2
                sb%dims(2) = sb%dims(1)

@@ -4,9 +4,10 @@ module superjoin_deck_build_subs
   use superjoin_kinds, only: ip, i8
   use superjoin_utils_memory, only: BYTES_INT, BYTES_REAL
   use superjoin_model_types, only: substructure_t, index_set_t, find_node, find_elem, &
-       ELEMENT_NODE_COUNT
+       ELEMENT_NODE_COUNT, DIALECT_CALCULIX
+  use superjoin_model_notes, only: append_string
   use superjoin_deck_lexer, only: itoa
-  use superjoin_deck_state, only: deck_state_t, sub_b_t, chunk_t, report_loc, find_set, CH_IDS, CH_GEN, memory_ok, &
+  use superjoin_deck_state, only: deck_state_t, sub_b_t, chunk_t, report_loc, reading_dialect, find_set, CH_IDS, CH_GEN, memory_ok, &
        CH_RANGE, CH_REF, report_oom
   use superjoin_utils_strings, only: pick
   use superjoin_utils_grow, only: grow
@@ -394,9 +395,17 @@ contains
           call add(w, i)
        end if
     end do
-    if (nbad > 0 .and. .not. (w%elem .and. st%elements_refused)) call report_loc(st, ch%loc, &
-         w%kind_name//' '//w%sets(t)%name//': undefined '//pick(w%elem, 'element', 'node')//' '//itoa(bad_id)// &
-         more_text(nbad - 1))
+    if (nbad == 0 .or. (w%elem .and. st%elements_refused)) return
+    if (reading_dialect(st) == DIALECT_CALCULIX) then
+       ! ccx passes over them in silence (gmsh's .inp lists the faces of a physical surface,
+       ! which users delete, in the surface's *ELSET): said in the listing, not an error.
+       call append_string(st%notes, w%kind_name//' '//w%sets(t)%name//' at '//where(st, ch%loc)// &
+            ': undefined '//pick(w%elem, 'element', 'node')//' '//itoa(bad_id)//more_text(nbad - 1)// &
+            ' left out, as CalculiX does (Abaqus: an error)')
+    else
+       call report_loc(st, ch%loc, w%kind_name//' '//w%sets(t)%name//': undefined '// &
+            pick(w%elem, 'element', 'node')//' '//itoa(bad_id)//more_text(nbad - 1))
+    end if
   end subroutine add_ids
 
   subroutine add(w, i)

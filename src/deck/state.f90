@@ -6,7 +6,7 @@ module superjoin_deck_state
   use superjoin_error, only: error_t, add_error_line, EXIT_DECK, EXIT_IO
   use superjoin_utils_memory, only: oom_message, BYTES_REAL, BYTES_INT
   use superjoin_model_types, only: string_t, source_loc_t, material_t, orientation_t, &
-       controls_t, MAX_ELEMENT_NODES, NDOF_NODE, LINK_NONE
+       controls_t, MAX_ELEMENT_NODES, NDOF_NODE, LINK_NONE, DIALECT_NONE
   use superjoin_deck_lexer, only: itoa, fields_t, load_file
   use superjoin_utils_grow, only: grow
   use superjoin_deck_records, only: SHAPE_GENERAL, BEAM_2D_VALUES, BEAM_3D_VALUES, CH_IDS, CH_GEN, &
@@ -74,6 +74,7 @@ module superjoin_deck_state
      type(step_b_t), allocatable :: steps(:)
      type(controls_t) :: controls
      integer :: implied_dialect = 0            !! DIALECT_* of the run where the deck declares none (0: none)
+     type(string_t), allocatable :: notes(:)   !! notes for the listing met before the model exists
      character(:), allocatable :: vtk_path          !! *OUTPUT, VTK= resolved against its file's directory
      type(source_loc_t) :: vtk_loc
      integer :: nreq = 0                            !! output request cards
@@ -130,8 +131,17 @@ module superjoin_deck_state
   public :: add_node, add_element, add_heading, add_material, add_orientation, add_section
   public :: add_contact, add_cline, add_support, add_step, add_load, file_of
   public :: add_request, add_request_var, add_spring_elem, add_spring_card
+  public :: reading_dialect
 
 contains
+
+  pure integer function reading_dialect(st)
+    !! DIALECT_* whose reading the deck takes where Abaqus and CalculiX differ:
+    !! its *CONTROLS, DIALECT=, else the run's (CalculiX for ccx -i), else none.
+    type(deck_state_t), intent(in) :: st
+    reading_dialect = st%controls%dialect
+    if (reading_dialect == DIALECT_NONE) reading_dialect = st%implied_dialect
+  end function reading_dialect
 
   ! ------------------------------------------------------------------ errors
 

@@ -22,7 +22,7 @@ module superjoin_output_frd
   !! elem_offset). The file carries no date: the same bytes on every run.
   use superjoin_kinds, only: wp, i8, ip
   use superjoin_error, only: error_t
-  use superjoin_model_types, only: model_t, NDOF_NODE, REQ_NODE_FILE, REQ_EL_FILE
+  use superjoin_model_types, only: model_t, NDOF_NODE, REQ_NODE_FILE, REQ_EL_FILE, LINK_NONE
   use superjoin_model_results, only: result_fields_t
   use superjoin_elements, only: element_tensor, element_stresses, NTENSOR
   use superjoin_elements_traits, only: element_traits_t, element_traits, FAMILY_TRUSS, FAMILY_BEAM, &
@@ -36,6 +36,10 @@ module superjoin_output_frd
 
   public :: write_frd, frd_type
 
+  integer, parameter :: FRD_LINE2 = 11
+    !! frd type of a two-node line element (beam2), which contact elements are written as.
+  integer, parameter :: LINK_MATERIAL = 1000
+    !! Material number of contact elements: this plus their *CONTACT card's index.
   integer, parameter :: MID = 3
     !! The mid-surface among nodal_stresses' section points.
   integer, parameter :: VOIGT_TO_FRD(NTENSOR) = [1, 2, 3, 4, 6, 5]
@@ -164,7 +168,7 @@ contains
           if (frd_type(element_traits(model%subs(isub)%elem_type(e))) > 0) count = count + 1
        end do
     end do
-    write (row, '(a6,18x,i12,37x,i1)') '    3C', count, 1
+    write (row, '(a6,18x,i12,37x,i1)') '    3C', count + count_links(model), 1
     call lu%line(row(1:74))
     do isub = 1, size(model%subs)
        associate (sub => model%subs(isub))
@@ -184,8 +188,54 @@ contains
          end do
        end associate
     end do
+    call link_elements(lu, model, num)
     call lu%line(' -3')
   end subroutine element_block
+
+  pure integer(i8) function count_links(model)
+    !! Contact elements with at least one linked DOF (written as two-node elements).
+    type(model_t), intent(in) :: model
+    integer :: k
+    count_links = 0
+    if (.not. allocated(model%links)) return
+    do k = 1, size(model%links)
+       if (any(model%links(k)%state /= LINK_NONE)) count_links = count_links + 1
+    end do
+  end function count_links
+
+  subroutine link_elements(lu, model, num)
+    !! The contact elements (and springs) with a linked DOF, as two-node
+    !! elements of frd type 11 (cgx and FreeCAD draw them as lines), numbered
+    !! on after the largest element number, material 1000 + the *CONTACT card's
+    !! index, so a viewer can show the joints apart from the parts.
+    type(text_buffer_t), intent(inout) :: lu
+    type(model_t), intent(in) :: model
+    type(numbering_t), intent(in) :: num
+    character(len=120) :: row
+    integer(i8) :: id
+    integer :: k, isub
+    if (count_links(model) == 0) return
+    id = 0
+    do isub = 1, size(model%subs)
+       if (model%subs(isub)%nelem == 0) cycle
+       if (num%own_ids) then
+          id = max(id, int(maxval(model%subs(isub)%elem_id(1:model%subs(isub)%nelem)), i8))
+       else
+          id = max(id, num%elem_offset(isub) + model%subs(isub)%nelem)
+       end if
+    end do
+    do k = 1, size(model%links)
+       associate (ln => model%links(k), c => model%contacts(model%links(k)%contact))
+         if (all(ln%state == LINK_NONE)) cycle
+         id = id + 1
+         write (row, '(a3,i10,3i5)') ' -1', id, FRD_LINE2, 0, LINK_MATERIAL + ln%contact
+         call lu%line(trim(row))
+         write (row, '(a3,2i10)') ' -2', node_number(model, num, c%master_sub, ln%master_node), &
+              node_number(model, num, c%slave_sub, ln%slave_node)
+         call lu%line(trim(row))
+       end associate
+    end do
+  end subroutine link_elements
 
   subroutine step_blocks(lu, model, fields, num, is, nblock)
     !! The result blocks of step is that its *NODE FILE and *EL FILE ask for.

@@ -33,7 +33,11 @@ DEBUG_NOISE = re.compile(r'^At line \d+ of file [^\n]*\nFortran runtime warning:
                          re.M)
 RTOL = 1.0e-5
 FILES = '*NODE FILE\nU, RF\n*EL FILE\nS, E\n'
-CASES = [('truss', None), ('b31', None), ('planestrain', None), ('shell1lin', FILES)]
+CASES = [('truss', None), ('b31', None), ('planestrain', None), ('shell1lin', FILES), ('frame2d', '*NODE FILE\nU\n')]
+# frame2d: decks/frame2d.deck (columns and a girder joined by two RIGID knees, three
+# substructures): its contact elements are two-node elements (frd type 11) of material
+# 1000 + the *CONTACT card, joining the file's numbers of their two nodes.
+SOURCES = {'frame2d': os.path.join(HERE, '..', '..', 'decks', 'frame2d.deck')}
 
 
 def fixed_name(line):
@@ -65,6 +69,25 @@ def read_frd(path):
             elif line.startswith(' -3'):
                 cur = None
     return nnode, nelem, blocks
+
+
+def read_links(path):
+    """[node numbers] of the elements of material >= 1000 (contact elements)."""
+    links, inside, cur = [], False, None
+    with open(path) as f:
+        for line in f:
+            if line.startswith('    3C'):
+                inside = True
+            elif inside and line.startswith(' -3'):
+                break
+            elif inside and line.startswith(' -1'):
+                w = line.split()
+                cur = [] if int(w[2]) == 11 and int(w[4]) >= 1000 else None
+                if cur is not None:
+                    links.append(cur)
+            elif inside and line.startswith(' -2') and cur is not None:
+                cur.extend(int(v) for v in line.split()[1:])
+    return links
 
 
 def run_cgx(work, job, blocks):
@@ -102,7 +125,7 @@ def check_case(binary, outdir, job, extra):
     work = os.path.join(outdir, job)
     shutil.rmtree(work, ignore_errors=True)
     os.makedirs(work)
-    with open(os.path.join(HERE, job + '.inp')) as f:
+    with open(SOURCES.get(job, os.path.join(HERE, job + '.inp'))) as f:
         deck = f.read()
     if extra:
         deck = re.sub(r'(?im)^\*END STEP', extra.replace('\\', r'\\') + '*END STEP', deck)
@@ -138,6 +161,16 @@ def check_case(binary, outdir, job, extra):
         print(f"    {'ok  ' if ok else 'FAIL'} STRESS of the 45-degree bars: |SZX| = SXX, SYZ = 0 at nodes 1, 3")
         if not ok:
             failures.append('truss STRESS components')
+    if job in SOURCES:
+        links = read_links(os.path.join(work, job + '.frd'))
+        with open(os.path.join(work, job + '.lst')) as f:
+            want = int(re.search(r'contact elements\s+(\d+)', f.read()).group(1))
+        ok = len(links) == want and all(len(n) == 2 for n in links)
+        print(f"    {'ok  ' if ok else 'FAIL'} {len(links)} contact elements in the file "
+              f"(frd type 11, material >= 1000), the listing counts {want}")
+        if not ok:
+            failures.append(f'{job} contact elements')
+        return failures     # several substructures: the file numbers nodes on (no CSV ids)
     disp = [b for b in blocks if b[0] == 'DISP']
     if disp:
         with open(os.path.join(work, 'csv', 'displacements.csv')) as f:

@@ -23,7 +23,7 @@ module superjoin_elements
        solid_3d_forces => solid_forces
   use superjoin_elements_axisym, only: is_axisym_type, axisym_stiffness, axisym_forces, axisym_body_load, &
        ccx_wedge_tensor, CCX_AXIAL_SEGMENTS
-  use superjoin_model_types, only: ET_CAX3, ET_CAX4, ET_CAX6, ET_CAX8, ET_CAX8R
+  use superjoin_model_types, only: ET_CAX3, ET_CAX4, ET_CAX6, ET_CAX8, ET_CAX8R, substructure_t
   use superjoin_model_types, only: DLOAD_P1, DLOAD_P2, DLOAD_P3, DLOAD_P4, DLOAD_THERMAL, DLOAD_P5, DLOAD_P6
   use superjoin_elements_solid_faces, only: solid_pressure_load
   use superjoin_elements_traits, only: dload_face, is_shell8
@@ -80,10 +80,11 @@ module superjoin_elements
     !! is_solid_type(etype): the solids, 3D (C3D*) and axisymmetric (CAX*); solid_forces(etype, x, mat,
     !! ue(:, nstep), fg(:, nstep), error): K_e u_e of every step (superjoin_elements_solid,
     !! superjoin_elements_axisym).
-  public :: has_axisymmetric, ccx_wedge_tensor, CCX_AXIAL_SEGMENTS
+  public :: has_axisymmetric, ccx_wedge_tensor, CCX_AXIAL_SEGMENTS, ring_nodes
     !! has_axisymmetric(model): the model has axisymmetric elements (CAX*), whose forces are totals
     !! around the circumference; ccx_wedge_tensor(s, zeta), CCX_AXIAL_SEGMENTS: CalculiX's 2° wedge
-    !! of such a model (superjoin_elements_axisym).
+    !! of such a model (superjoin_elements_axisym); ring_nodes(sub): per node of substructure sub, whether
+    !! it belongs to an axisymmetric element (its forces are rings around the y axis).
   public :: beam_frame
     !! beam_frame(etype, x, sec, r, length, error): local frame of a truss or beam
     !! (rows of r = local x, y, z axes); see superjoin_elements_frame.
@@ -648,6 +649,17 @@ contains
        end associate
     end do
   end function has_axisymmetric
+
+  pure function ring_nodes(sub) result(on)
+    !! Per node of sub: it belongs to an axisymmetric element (CAX*).
+    type(substructure_t), intent(in) :: sub
+    logical :: on(sub%nnode)
+    integer(ip) :: e
+    on = .false.
+    do e = 1, sub%nelem
+       if (is_axisym_type(sub%elem_type(e))) on(sub%elem_nodes(1:ELEMENT_NODE_COUNT(sub%elem_type(e)), e)) = .true.
+    end do
+  end function ring_nodes
 
   elemental logical function is_solid_type(etype)
     !! The solids: 3D (C3D*, superjoin_elements_solid) and axisymmetric (CAX*).

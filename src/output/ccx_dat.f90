@@ -448,66 +448,40 @@ contains
     integer :: map(MAX_CCX_POINTS), npoint
     integer :: k, nper, nlayer
     t = element_traits(model%subs(isub)%elem_type(ie))
-    if (t%axisymmetric) then
-       call wedge_point_values(model, fields, is, isub, ie, strain, vals, ok)
-       return
-    end if
-    if (t%family == FAMILY_SOLID) then
+    if (t%family == FAMILY_SOLID .and. .not. t%axisymmetric) then
        ! a solid's own points are CalculiX's, in its order (superjoin_elements_solid_stress)
        call element_stresses(model, fields, is, isub, ie, points, nodes, ok, strain)
        if (ok) vals = points(:, :, 1)
        return
     end if
+    ! an axisymmetric element: the points and layers of the plane element with its nodes
+    if (t%axisymmetric) t%family = FAMILY_PLANE
     call ccx_point_map(t, map, npoint)
     ok = npoint > 0
     if (.not. ok) return
     allocate (vals(NTENSOR, npoint))
-    if (t%family == FAMILY_TRUSS .or. (strain .and. t%family == FAMILY_PLANE)) then
+    if (t%family == FAMILY_TRUSS .or. (strain .and. t%family == FAMILY_PLANE .and. .not. t%axisymmetric)) then
        call element_tensor(model, fields, is, isub, ie, strain, one, ok)
        do k = 1, npoint
           vals(:, k) = one
        end do
        return
     end if
-    ok = .not. strain
+    ok = .not. strain .or. t%axisymmetric
     if (.not. ok) return
-    call element_stresses(model, fields, is, isub, ie, points, nodes, ok)
-    if (.not. ok) return
-    nlayer = ccx_layers(npoint)
-    nper = npoint/nlayer
-    z = layer_zeta(nlayer)
-    do k = 1, npoint
-       vals(:, k) = through_thickness(points, map(k), z((k - 1)/nper + 1))
-    end do
-  end subroutine ccx_point_values
-
-  subroutine wedge_point_values(model, fields, is, isub, ie, strain, vals, ok)
-    !! ccx_point_values of an axisymmetric element: its points in the layers of
-    !! CalculiX's brick (ccx_point_map, as the plane element with its nodes),
-    !! each tensor turned to the point's angle in the 2° wedge (ccx_wedge_tensor).
-    type(model_t), intent(in) :: model
-    type(result_fields_t), intent(in) :: fields
-    integer, intent(in) :: is, isub
-    integer(ip), intent(in) :: ie
-    logical, intent(in) :: strain
-    real(wp), allocatable, intent(out) :: vals(:, :)
-    logical, intent(out) :: ok
-    type(element_traits_t) :: t
-    real(wp), allocatable :: points(:, :, :), nodes(:, :, :), z(:)
-    integer :: map(MAX_CCX_POINTS), npoint, k, nper, nlayer
-    t = element_traits(model%subs(isub)%elem_type(ie))
-    t%family = FAMILY_PLANE
-    call ccx_point_map(t, map, npoint)
     call element_stresses(model, fields, is, isub, ie, points, nodes, ok, strain)
     if (.not. ok) return
     nlayer = ccx_layers(npoint)
     nper = npoint/nlayer
     z = layer_zeta(nlayer)
-    allocate (vals(NTENSOR, npoint))
     do k = 1, npoint
-       vals(:, k) = ccx_wedge_tensor(points(:, map(k), 1), z((k - 1)/nper + 1), .not. t%quadratic)
+       if (t%axisymmetric) then   ! turned to the point's angle in CalculiX's 2° wedge
+          vals(:, k) = ccx_wedge_tensor(points(:, map(k), 1), z((k - 1)/nper + 1), .not. t%quadratic)
+       else
+          vals(:, k) = through_thickness(points, map(k), z((k - 1)/nper + 1))
+       end if
     end do
-  end subroutine wedge_point_values
+  end subroutine ccx_point_values
 
   pure function through_thickness(points, ip, zeta) result(v)
     !! The stress at point ip (0: the mean of all points) and height zeta in

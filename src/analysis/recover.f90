@@ -25,7 +25,7 @@ module superjoin_analysis_recover
   use superjoin_analysis_body_loads, only: plane_thermal_nodal, line_thermal_forces
   use superjoin_analysis_body_loads, only: shell_thermal_curvature_nodal
   use superjoin_utils_memory, only: out_of_memory, BYTES_REAL, BYTES_INT
-  use superjoin_elements, only: element_drill
+  use superjoin_elements, only: element_drill, ring_nodes
   use superjoin_analysis_solve_state, only: solve_state_t
   implicit none (type, external)
   private
@@ -33,6 +33,11 @@ module superjoin_analysis_recover
   integer, parameter :: MAX_ELEM_DOFS = MAX_ELEMENT_DOFS
 
   public :: recover_results
+
+  type :: node_flags_t
+    !! One logical per node of a substructure.
+     logical, allocatable :: on(:)
+  end type node_flags_t
 
 contains
 
@@ -597,8 +602,13 @@ contains
     real(wp) :: force
     type(reaction_t), allocatable :: reac(:)
     integer(i8) :: p
+    type(node_flags_t), allocatable :: ring(:)
 
     nstep = size(delta, 3)
+    allocate (ring(size(model%subs)))
+    do isub = 1, size(model%subs)
+       ring(isub)%on = ring_nodes(model%subs(isub))
+    end do
     allocate (res%fields%link_used(NDOF_NODE, size(model%links)), source=.false.)
     do iu = 1, table%nunit
        associate (un => table%units(iu))
@@ -652,7 +662,7 @@ contains
           if (f_phys(p, is) == 0.0_wp) cycle
           isub = table%p_sub(p)
           call add_resultant(res%fields%steps(is)%applied, model%subs(isub)%x(:, table%p_node(p)), &
-               table%p_dof(p), f_phys(p, is))
+               table%p_dof(p), f_phys(p, is), ring(isub)%on(table%p_node(p)))
        end do
        res%fields%steps(is)%reaction = 0.0_wp
        nr = 0
@@ -667,7 +677,7 @@ contains
                  do c = 1, un%n
                     if (un%qs(k, c) == 0.0_wp) cycle
                     call add_resultant(res%fields%steps(is)%reaction, model%subs(rc%sub)%x(:, rc%node), &
-                         block_dof(un%block, un%comp(c)), un%qs(k, c)*rc%force)
+                         block_dof(un%block, un%comp(c)), un%qs(k, c)*rc%force, ring(rc%sub)%on(rc%node))
                  end do
                end associate
             end do
@@ -676,14 +686,22 @@ contains
     end do
   end subroutine link_and_support_results
 
-  pure subroutine add_resultant(total, x, dof, value)
+  pure subroutine add_resultant(total, x, dof, value, ring)
     !! Add a force (dof 1-3) or moment (dof 4-6) at x to a resultant about the origin.
+    !! ring (present and true): a node of an axisymmetric element, whose force is a ring around the y
+    !! axis (the whole circumference): its resultant is its axial force alone.
     real(wp), intent(inout) :: total(6)
     real(wp), intent(in) :: x(3)
     integer, intent(in) :: dof
     real(wp), intent(in) :: value
+    logical, intent(in), optional :: ring
     real(wp) :: f(3)
-    if (dof <= 3) then
+    logical :: on_ring
+    on_ring = .false.
+    if (present(ring)) on_ring = ring
+    if (on_ring) then
+       if (dof == 2) total(2) = total(2) + value
+    else if (dof <= 3) then
        f = 0.0_wp
        f(dof) = value
        total(dof) = total(dof) + value

@@ -6,6 +6,7 @@ module superjoin_deck_build_sections
   use superjoin_model_types, only: model_t, substructure_t, ELEMENT_TYPE_NAMES, SEC_SOLID, SEC_BEAM, &
        SEC_SHELL, section_t, DIALECT_NONE, DIALECT_CALCULIX
   use superjoin_model_notes, only: note
+  use superjoin_elements, only: has_axisymmetric
   use superjoin_elements_traits, only: element_traits_t, element_traits, section_card_name, &
        shell_of_plane, FAMILY_NONE, FAMILY_TRUSS, FAMILY_BEAM, FAMILY_PLANE, FAMILY_SHELL, FAMILY_SOLID
   use superjoin_deck_lexer, only: itoa
@@ -61,6 +62,9 @@ contains
        call build_section(st, model, isub, k, g)
        if (st%aborted) return
     end do
+    if (has_axisymmetric(model)) call note(model%notes, 'axisymmetric elements (CAX*): r = x, axis y; *CLOAD, '// &
+         'reactions and the EQUILIBRIUM resultants are totals around the whole circumference (a ring''s '// &
+         'resultant is its axial force FY); stresses xx = r, yy = z, zz = hoop, xy = rz')
   end subroutine build_sections
 
   subroutine dialect_readings(st, model)

@@ -49,17 +49,20 @@ contains
     end if
   end subroutine edge_node_list
 
-  pure subroutine plane_edge_load(x, ncorner, face, p, t, fe, error)
+  pure subroutine plane_edge_load(x, ncorner, face, p, t, fe, error, axisymmetric)
     !! Nodal loads fe (node-major, (fx, fy) per node, global X and Y) of a
     !! pressure p on face `face` of a plane element of thickness t with nodes
     !! x(3, nnode) in the XY plane (see the module header for the numbering).
+    !! axisymmetric (present and true): the face of a solid of revolution about
+    !! y, r = x: the thickness is 2π r along the edge (the whole circumference).
     real(wp), intent(in) :: x(:, :)
     integer, intent(in) :: ncorner, face
     real(wp), intent(in) :: p, t
     real(wp), allocatable, intent(out) :: fe(:)
     type(error_t), allocatable, intent(out) :: error
+    logical, intent(in), optional :: axisymmetric
     integer, allocatable :: nodes(:)
-    real(wp) :: orient, n(3), dn(3), dxds(2), s
+    real(wp) :: orient, n(3), dn(3), dxds(2), s, tw
     integer :: nnode, g, a
     nnode = size(x, 2)
     call edge_node_list(ncorner, nnode, face, nodes, error)
@@ -74,13 +77,17 @@ contains
        s = GAUSS_S(g)
        call edge_shape(size(nodes), s, n, dn)
        dxds = 0.0_wp
+       tw = t
        do a = 1, size(nodes)
           dxds = dxds + dn(a)*x(1:2, nodes(a))
        end do
+       if (present(axisymmetric)) then
+          if (axisymmetric) tw = 8.0_wp*atan(1.0_wp)*dot_product(n(1:size(nodes)), x(1, nodes))
+       end if
        ! outward normal times |dx/ds|: (dy, -dx) for a counter-clockwise element
        do a = 1, size(nodes)
-          fe(2*nodes(a) - 1) = fe(2*nodes(a) - 1) - GAUSS_W(g)*n(a)*p*t*orient*dxds(2)
-          fe(2*nodes(a)) = fe(2*nodes(a)) + GAUSS_W(g)*n(a)*p*t*orient*dxds(1)
+          fe(2*nodes(a) - 1) = fe(2*nodes(a) - 1) - GAUSS_W(g)*n(a)*p*tw*orient*dxds(2)
+          fe(2*nodes(a)) = fe(2*nodes(a)) + GAUSS_W(g)*n(a)*p*tw*orient*dxds(1)
        end do
     end do
   end subroutine plane_edge_load

@@ -19,7 +19,11 @@ module superjoin_elements
        DLOAD_PX, DLOAD_PY, DLOAD_PZ, DLOAD_P
   use superjoin_model_types, only: ET_S4R, ET_S3R
   use superjoin_model_types, only: ET_S8R, ET_S8
-  use superjoin_elements_solid, only: solid_stiffness, solid_body_load, is_solid_type, solid_forces
+  use superjoin_elements_solid, only: solid_stiffness, solid_body_load, is_3d_solid => is_solid_type, &
+       solid_3d_forces => solid_forces
+  use superjoin_elements_axisym, only: is_axisym_type, axisym_stiffness, axisym_forces, axisym_body_load, &
+       ccx_wedge_tensor, CCX_AXIAL_SEGMENTS
+  use superjoin_model_types, only: ET_CAX3, ET_CAX4, ET_CAX6, ET_CAX8, ET_CAX8R, substructure_t
   use superjoin_model_types, only: DLOAD_P1, DLOAD_P2, DLOAD_P3, DLOAD_P4, DLOAD_THERMAL, DLOAD_P5, DLOAD_P6
   use superjoin_elements_solid_faces, only: solid_pressure_load
   use superjoin_elements_traits, only: dload_face, is_shell8
@@ -73,8 +77,14 @@ module superjoin_elements
     !! fg(:, nstep), error): resultants and K_e u_e of every step with one
     !! element matrix; see superjoin_elements_shell.
   public :: is_solid_type, solid_forces
-    !! is_solid_type(etype): the 3D solids (C3D*); solid_forces(etype, x, mat,
-    !! ue(:, nstep), fg(:, nstep), error): K_e u_e of every step (superjoin_elements_solid).
+    !! is_solid_type(etype): the solids, 3D (C3D*) and axisymmetric (CAX*); solid_forces(etype, x, mat,
+    !! ue(:, nstep), fg(:, nstep), error): K_e u_e of every step (superjoin_elements_solid,
+    !! superjoin_elements_axisym).
+  public :: has_axisymmetric, ccx_wedge_tensor, CCX_AXIAL_SEGMENTS, ring_nodes
+    !! has_axisymmetric(model): the model has axisymmetric elements (CAX*), whose forces are totals
+    !! around the circumference; ccx_wedge_tensor(s, zeta), CCX_AXIAL_SEGMENTS: CalculiX's 2° wedge
+    !! of such a model (superjoin_elements_axisym); ring_nodes(sub): per node of substructure sub, whether
+    !! it belongs to an axisymmetric element (its forces are rings around the y axis).
   public :: beam_frame
     !! beam_frame(etype, x, sec, r, length, error): local frame of a truss or beam
     !! (rows of r = local x, y, z axes); see superjoin_elements_frame.
@@ -85,12 +95,13 @@ contains
     !! DOF numbers (1..6: ux, uy, uz, rx, ry, rz) carried by each node of an
     !! element type: T2D2 [1,2]; T3D2 [1,2,3]; B23, B21 [1,2,6]; B33, B31 [1..6];
     !! CPS3/CPS4/CPE3/CPE4 and CPS6/CPS8/CPS8R/CPE6/CPE8/CPE8R [1,2]; S3/S4/S3R/S4R/S8R/S8 [1..6];
-    !! the solids C3D* [1,2,3]; an unknown type gives an empty array.
+    !! the solids C3D* [1,2,3]; the axisymmetric CAX* [1,2] (u_r, u_z); an unknown type gives an empty array.
     integer, intent(in) :: etype
     integer, allocatable :: dofs(:)
     integer :: i
     select case (etype)
-    case (ET_T2D2, ET_CPS3, ET_CPS4, ET_CPE3, ET_CPE4, ET_CPS6, ET_CPS8, ET_CPE6, ET_CPE8, ET_CPS8R, ET_CPE8R)
+    case (ET_T2D2, ET_CPS3, ET_CPS4, ET_CPE3, ET_CPE4, ET_CPS6, ET_CPS8, ET_CPE6, ET_CPE8, ET_CPS8R, ET_CPE8R, &
+         ET_CAX3, ET_CAX4, ET_CAX6, ET_CAX8, ET_CAX8R)
        dofs = [1, 2]
     case (ET_T3D2)
        dofs = [1, 2, 3]
@@ -112,7 +123,8 @@ contains
     logical :: mask(6)
     mask = .false.
     select case (etype)
-    case (ET_T2D2, ET_CPS3, ET_CPS4, ET_CPE3, ET_CPE4, ET_CPS6, ET_CPS8, ET_CPE6, ET_CPE8, ET_CPS8R, ET_CPE8R)
+    case (ET_T2D2, ET_CPS3, ET_CPS4, ET_CPE3, ET_CPE4, ET_CPS6, ET_CPS8, ET_CPE6, ET_CPE8, ET_CPS8R, ET_CPE8R, &
+         ET_CAX3, ET_CAX4, ET_CAX6, ET_CAX8, ET_CAX8R)
        mask(1:2) = .true.
     case (ET_T3D2, ET_C3D8, ET_C3D20, ET_C3D20R, ET_C3D4, ET_C3D10, ET_C3D8I, ET_C3D6, ET_C3D15)
        mask(1:3) = .true.
@@ -193,6 +205,8 @@ contains
        call shell_stiffness(etype, x, sec, mat, ke, error, drill)
     case (ET_C3D8, ET_C3D20, ET_C3D20R, ET_C3D4, ET_C3D10, ET_C3D8I, ET_C3D6, ET_C3D15)
        call solid_stiffness(etype, x, mat, ke, error)
+    case (ET_CAX3, ET_CAX4, ET_CAX6, ET_CAX8, ET_CAX8R)
+       call axisym_stiffness(etype, x, mat, ke, error)
     case default
        call unsupported(etype, error)
     end select
@@ -225,7 +239,8 @@ contains
     case (ET_B32)
        call beam3_end_forces(x, sec, mat, ue, q_local, f, error)
     case (ET_CPS3, ET_CPS4, ET_S3, ET_S4, ET_CPE3, ET_CPE4, ET_CPS6, ET_CPS8, ET_CPE6, ET_CPE8, ET_CPS8R, ET_CPE8R, ET_S4R, ET_S3R, &
-         ET_S8R, ET_S8, ET_C3D8, ET_C3D20, ET_C3D20R, ET_C3D4, ET_C3D10, ET_C3D8I, ET_C3D6, ET_C3D15)
+         ET_S8R, ET_S8, ET_C3D8, ET_C3D20, ET_C3D20R, ET_C3D4, ET_C3D10, ET_C3D8I, ET_C3D6, ET_C3D15, &
+         ET_CAX3, ET_CAX4, ET_CAX6, ET_CAX8, ET_CAX8R)
        continue
     case default
        call unsupported(etype, error)
@@ -289,7 +304,7 @@ contains
     case (DLOAD_P)
        call shell_pressure_load(etype, x, value, fe, q_local(3), error)
     case (DLOAD_P1, DLOAD_P2, DLOAD_P3, DLOAD_P4, DLOAD_P5, DLOAD_P6)
-       if (is_solid_type(etype)) then
+       if (is_3d_solid(etype)) then
           call solid_pressure_load(etype, x, dload_face(kind), value, fe, error)
        else
           call face_load(etype, x, sec, dload_face(kind), value, fe, q_local, error)
@@ -327,6 +342,10 @@ contains
        call plane_edge_load(x, TRIANGLE_CORNERS, face, value, sec%thickness, fe, error)
     case (ET_CPS4, ET_CPE4, ET_CPS8, ET_CPE8, ET_CPS8R, ET_CPE8R)
        call plane_edge_load(x, QUAD_CORNERS, face, value, sec%thickness, fe, error)
+    case (ET_CAX3, ET_CAX6)   ! the whole circumference: 2π r per unit length of edge
+       call plane_edge_load(x, TRIANGLE_CORNERS, face, value, 1.0_wp, fe, error, axisymmetric=.true.)
+    case (ET_CAX4, ET_CAX8, ET_CAX8R)
+       call plane_edge_load(x, QUAD_CORNERS, face, value, 1.0_wp, fe, error, axisymmetric=.true.)
     case (ET_B23, ET_B33, ET_B21, ET_B31)
        if (face > 2) then
           call fatal_error(error, EXIT_DECK, 'a beam takes P1 and P2 (per unit length in local axes)')
@@ -377,6 +396,12 @@ contains
        call shell_area_load(etype, x, mat%density*sec%thickness*accel, fe, error)
     case (ET_C3D8, ET_C3D20, ET_C3D20R, ET_C3D4, ET_C3D10, ET_C3D8I, ET_C3D6, ET_C3D15)
        call solid_body_load(etype, x, mat%density*accel, fe, error)   ! ρ g per unit volume
+    case (ET_CAX3, ET_CAX4, ET_CAX6, ET_CAX8, ET_CAX8R)
+       if (accel(1) /= 0.0_wp .or. accel(3) /= 0.0_wp) then
+          call fatal_error(error, EXIT_DECK, 'GRAV on an axisymmetric element must act along its axis (y)')
+          return
+       end if
+       call axisym_body_load(etype, x, mat%density*accel(1:2), 0.0_wp, fe, error)
     case default
        call unsupported(etype, error)
     end select
@@ -439,6 +464,10 @@ contains
        if (allocated(error)) return
        fe = fe + f2
     case (DLOAD_CENTRIF)
+       if (is_axisym_type(etype)) then
+          call axisym_centrif_load(etype, x, mat, dl, fe, error)
+          return
+       end if
        if (is_shell8(etype)) then
           call s8r_centrif_load(x, sec, mat, dl, fe, error)
           return
@@ -591,6 +620,66 @@ contains
     call element_displacements(model, fields, is, isub, ie, ue)
     energy = 0.5_wp*dot_product(ue, matmul(ke, ue))
   end subroutine element_strain_energy
+
+  pure subroutine axisym_centrif_load(etype, x, mat, dl, fe, error)
+    !! CENTRIF on an axisymmetric element: the spin axis must be its axis y
+    !! (through x = z = 0); the body force ρ ω² r along r.
+    integer, intent(in) :: etype
+    real(wp), intent(in) :: x(:, :)
+    type(material_t), intent(in) :: mat
+    type(dload_t), intent(in) :: dl
+    real(wp), allocatable, intent(out) :: fe(:)
+    type(error_t), allocatable, intent(out) :: error
+    if (dl%dir(1) /= 0.0_wp .or. dl%dir(3) /= 0.0_wp .or. dl%point(1) /= 0.0_wp .or. dl%point(3) /= 0.0_wp) then
+       call fatal_error(error, EXIT_DECK, 'CENTRIF on an axisymmetric element must spin about its axis '// &
+            '(the y axis through x = z = 0)')
+       return
+    end if
+    call axisym_body_load(etype, x, [0.0_wp, 0.0_wp], mat%density*dl%value, fe, error)
+  end subroutine axisym_centrif_load
+
+  pure logical function has_axisymmetric(model)
+    !! The model has axisymmetric elements (CAX*).
+    type(model_t), intent(in) :: model
+    integer :: isub
+    has_axisymmetric = .false.
+    do isub = 1, size(model%subs)
+       associate (s => model%subs(isub))
+         if (any(is_axisym_type(s%elem_type(1:s%nelem)))) has_axisymmetric = .true.
+       end associate
+    end do
+  end function has_axisymmetric
+
+  pure function ring_nodes(sub) result(on)
+    !! Per node of sub: it belongs to an axisymmetric element (CAX*).
+    type(substructure_t), intent(in) :: sub
+    logical :: on(sub%nnode)
+    integer(ip) :: e
+    on = .false.
+    do e = 1, sub%nelem
+       if (is_axisym_type(sub%elem_type(e))) on(sub%elem_nodes(1:ELEMENT_NODE_COUNT(sub%elem_type(e)), e)) = .true.
+    end do
+  end function ring_nodes
+
+  elemental logical function is_solid_type(etype)
+    !! The solids: 3D (C3D*, superjoin_elements_solid) and axisymmetric (CAX*).
+    integer, intent(in) :: etype
+    is_solid_type = is_3d_solid(etype) .or. is_axisym_type(etype)
+  end function is_solid_type
+
+  pure subroutine solid_forces(etype, x, mat, ue, fg, error)
+    !! fg(:, step) = K_e ue(:, step) of a solid, 3D or axisymmetric, every step with one element matrix.
+    integer, intent(in) :: etype
+    real(wp), intent(in) :: x(:, :), ue(:, :)
+    type(material_t), intent(in) :: mat
+    real(wp), intent(out) :: fg(:, :)
+    type(error_t), allocatable, intent(out) :: error
+    if (is_axisym_type(etype)) then
+       call axisym_forces(etype, x, mat, ue, fg, error)
+    else
+       call solid_3d_forces(etype, x, mat, ue, fg, error)
+    end if
+  end subroutine solid_forces
 
   pure subroutine unsupported(etype, error)
     !! Error for an element type without an implementation.

@@ -18,6 +18,7 @@ module superjoin_elements_stresses
   use superjoin_elements_traits, only: element_traits_t, element_traits, FAMILY_TRUSS, FAMILY_PLANE, FAMILY_SHELL, &
        FAMILY_SOLID
   use superjoin_elements_solid_stress, only: solid_point_tensors
+  use superjoin_elements_axisym, only: is_axisym_type, axisym_point_tensors
   use superjoin_elements_shell, only: s8r_stresses, shell_thermal_nodal_stresses, shell_frame, &
        shell_surface_stresses, quadratic_props, thick_shell_stresses, THICK_SURFACES
   use superjoin_elements_shell8, only: S8R_STRESS_POINTS
@@ -168,7 +169,8 @@ contains
   end subroutine element_stresses
 
   subroutine solid_element_tensors(el, strain, points, nodes, ok)
-    !! element_stresses of a solid (superjoin_elements_solid_stress): points(6, npoint, 1),
+    !! element_stresses of a solid (superjoin_elements_solid_stress; axisymmetric: superjoin_elements_axisym,
+    !! xx = r, yy = z, zz = θ): points(6, npoint, 1),
     !! nodes(6, nnode, 1), stresses or (strain) strains.
     type(element_state_t), intent(in) :: el
     logical, intent(in) :: strain
@@ -176,7 +178,11 @@ contains
     logical, intent(out) :: ok
     real(wp), allocatable :: sp(:, :), sn(:, :)
     type(error_t), allocatable :: error
-    call solid_point_tensors(el%etype, el%x, el%mat, el%ue, strain, sp, sn, error)
+    if (is_axisym_type(el%etype)) then
+       call axisym_point_tensors(el%etype, el%x, el%mat, el%ue, strain, sp, sn, error)
+    else
+       call solid_point_tensors(el%etype, el%x, el%mat, el%ue, strain, sp, sn, error)
+    end if
     ok = .not. allocated(error)
     if (.not. ok) return
     points = reshape(sp, [NTENSOR, size(sp, 2), 1])

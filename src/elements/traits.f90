@@ -13,7 +13,7 @@ module superjoin_elements_traits
        ET_T2D2, ET_T3D2, ET_B23, ET_B33, ET_CPS3, ET_CPS4, ET_S3, ET_S4, ET_B21, ET_B31, &
        ET_CPE3, ET_CPE4, ET_S4R, ET_S3R, ET_S8R, ET_CPS6, ET_CPS8, ET_CPE6, ET_CPE8, &
        ET_CPS8R, ET_CPE8R, ET_B32, ET_C3D8, ET_C3D20, ET_C3D20R, ET_C3D4, ET_C3D10, ET_C3D8I, &
-       ET_C3D6, ET_C3D15, ET_S8, &
+       ET_C3D6, ET_C3D15, ET_S8, ET_CAX3, ET_CAX4, ET_CAX6, ET_CAX8, ET_CAX8R, &
        DLOAD_PX, DLOAD_PY, DLOAD_PZ, DLOAD_P, DLOAD_GRAV, DLOAD_P1, DLOAD_P2, DLOAD_P3, &
        DLOAD_P4, DLOAD_CENTRIF, DLOAD_P5, DLOAD_P6
   implicit none (type, external)
@@ -54,6 +54,7 @@ module superjoin_elements_traits
      logical :: dofs(6) = .false.         !! DOFs 1..6 (ux, uy, uz, rx, ry, rz) carried by each node
      integer :: section = 0               !! SEC_* kind of the section card that covers it
      integer :: vtk_cell = VTK_VERTEX     !! VTK cell type
+     logical :: axisymmetric = .false.    !! CAX*: a solid of revolution about y, r = x (FAMILY_SOLID, DOFs 1, 2)
   end type element_traits_t
 
   logical, parameter :: D2(6) = [.true., .true., .false., .false., .false., .false.]
@@ -136,7 +137,18 @@ contains
        t = with(t, FAMILY_SOLID, D3, SEC_SOLID, VTK_WEDGE, edges=5)
     case (ET_C3D15)
        t = with(t, FAMILY_SOLID, D3, SEC_SOLID, VTK_QUADRATIC_WEDGE, edges=5, corners=6)
+    case (ET_CAX3)
+       t = with(t, FAMILY_SOLID, D2, SEC_SOLID, VTK_TRIANGLE, planar=.true., edges=3)
+    case (ET_CAX4)
+       t = with(t, FAMILY_SOLID, D2, SEC_SOLID, VTK_QUAD, planar=.true., edges=4)
+    case (ET_CAX6)
+       t = with(t, FAMILY_SOLID, D2, SEC_SOLID, VTK_QUADRATIC_TRIANGLE, planar=.true., edges=3, corners=3)
+    case (ET_CAX8)
+       t = with(t, FAMILY_SOLID, D2, SEC_SOLID, VTK_QUADRATIC_QUAD, planar=.true., edges=4, corners=4)
+    case (ET_CAX8R)
+       t = with(t, FAMILY_SOLID, D2, SEC_SOLID, VTK_QUADRATIC_QUAD, planar=.true., edges=4, corners=4, reduced=.true.)
     end select
+    t%axisymmetric = any(etype == [ET_CAX3, ET_CAX4, ET_CAX6, ET_CAX8, ET_CAX8R])
     t%quadratic = t%corners < t%nodes
     t%plane_strain = any(etype == [ET_CPE3, ET_CPE4, ET_CPE6, ET_CPE8, ET_CPE8R])
   end function element_traits
@@ -194,8 +206,9 @@ contains
   elemental logical function accepts_dload(kind, etype)
     !! Whether a distributed load of kind DLOAD_* applies to element type etype:
     !! PX, PY on beams (per unit length), PZ on beams in space, P on shells,
-    !! GRAV on every element, CENTRIF on all but B32 and the solids, P1..Pn on the faces of a
-    !! plane element and of a solid (P1..P6 on hexahedra, P1..P4 on tetrahedra); on beams P1
+    !! GRAV on every element, CENTRIF on all but B32 and the 3D solids, P1..Pn on the faces of a
+    !! plane element and of a solid (P1..P6 on hexahedra, P1..P4 on tetrahedra, P1..P3 or P1..P4
+    !! on the edges of an axisymmetric element); on beams P1
     !! (local y) in space and P2 (local z) also on planar two-node beams.
     integer, intent(in) :: kind, etype
     type(element_traits_t) :: t
@@ -212,7 +225,7 @@ contains
     case (DLOAD_GRAV)
        accepts_dload = .true.
     case (DLOAD_CENTRIF)
-       accepts_dload = etype /= ET_B32 .and. t%family /= FAMILY_SOLID
+       accepts_dload = etype /= ET_B32 .and. (t%family /= FAMILY_SOLID .or. t%axisymmetric)
     case (DLOAD_P1)
        accepts_dload = t%family == FAMILY_PLANE .or. (beam2 .and. .not. t%planar) .or. t%family == FAMILY_SOLID
     case (DLOAD_P2)
@@ -220,7 +233,8 @@ contains
     case (DLOAD_P3)
        accepts_dload = t%family == FAMILY_PLANE .or. t%family == FAMILY_SOLID
     case (DLOAD_P4)
-       accepts_dload = (t%family == FAMILY_PLANE .and. t%edges >= 4) .or. t%family == FAMILY_SOLID
+       accepts_dload = ((t%family == FAMILY_PLANE .or. t%axisymmetric) .and. t%edges >= 4) .or. &
+            (t%family == FAMILY_SOLID .and. .not. t%axisymmetric)
     case (DLOAD_P5, DLOAD_P6)
        accepts_dload = t%family == FAMILY_SOLID .and. t%edges >= dload_face(kind)
     case default

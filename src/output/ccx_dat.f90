@@ -15,7 +15,9 @@ module superjoin_output_ccx_dat
   !! (*TRANSFORM) prints U and RF in it, its row ending in L, unless the card
   !! says GLOBAL=YES. A node set given by GENERATE ranges over undefined ids
   !! prints U and RF rows for every id of the ranges up to the largest node
-  !! id, zeros for the undefined ones, as ccx. The time of step k is k (every *STATIC step of
+  !! id, zeros for the undefined ones, as ccx. A model with axisymmetric elements
+  !! (CAX*) prints the forces of CalculiX's 2° wedge: superjoin's totals around
+  !! the circumference divided by 180. The time of step k is k (every *STATIC step of
   !! CalculiX lasts 1).
   !!
   !! Element values at integration points follow CalculiX's expansion of a
@@ -24,7 +26,9 @@ module superjoin_output_ccx_dat
   !! in the brick's order (xi fastest), repeated through the thickness; a
   !! shell its bottom, top (and mid) surface values interpolated to the
   !! brick's Gauss points through the thickness; a solid its own points,
-  !! which are CalculiX's in CalculiX's order (S and E). Beams (CalculiX's
+  !! which are CalculiX's in CalculiX's order (S and E); an axisymmetric
+  !! element its points as the plane element with its nodes, each tensor at
+  !! its angle in CalculiX's 2° wedge (S and E). Beams (CalculiX's
   !! brick stresses are not a beam's) print no S or E rows; strains of plane
   !! elements are the element's centroid tensor at each point, shells have
   !! none (doc/calculix-dropin.md).
@@ -33,7 +37,8 @@ module superjoin_output_ccx_dat
   use superjoin_model_types, only: model_t, output_request_t, substructure_t, find_node, NDOF_NODE, &
        REQ_NODE_PRINT, REQ_EL_PRINT, TOTALS_YES, TOTALS_ONLY
   use superjoin_model_results, only: result_fields_t
-  use superjoin_elements, only: element_tensor, element_stresses, NTENSOR
+  use superjoin_elements, only: element_tensor, element_stresses, NTENSOR, has_axisymmetric, ccx_wedge_tensor, &
+       CCX_AXIAL_SEGMENTS
   use superjoin_elements_traits, only: element_traits_t, element_traits, FAMILY_TRUSS, FAMILY_PLANE, FAMILY_SHELL, &
        FAMILY_SOLID
   use superjoin_utils_text_buffer, only: text_buffer_t
@@ -185,6 +190,8 @@ contains
        call add_node_forces(fields%steps(is)%equation_forces, subs, nodes, cf)
        v = cf + v
     end if
+    ! an axisymmetric model: CalculiX's forces are those of its 2° wedge (superjoin's: the whole circumference)
+    if (has_axisymmetric(model)) v = v/real(CCX_AXIAL_SEGMENTS, wp)
   end subroutine node_forces
 
   subroutine node_rows(lu, model, r, subs, nodes, vals, marked)
@@ -446,32 +453,38 @@ contains
     integer :: map(MAX_CCX_POINTS), npoint
     integer :: k, nper, nlayer
     t = element_traits(model%subs(isub)%elem_type(ie))
-    if (t%family == FAMILY_SOLID) then
+    if (t%family == FAMILY_SOLID .and. .not. t%axisymmetric) then
        ! a solid's own points are CalculiX's, in its order (superjoin_elements_solid_stress)
        call element_stresses(model, fields, is, isub, ie, points, nodes, ok, strain)
        if (ok) vals = points(:, :, 1)
        return
     end if
+    ! an axisymmetric element: the points and layers of the plane element with its nodes
+    if (t%axisymmetric) t%family = FAMILY_PLANE
     call ccx_point_map(t, map, npoint)
     ok = npoint > 0
     if (.not. ok) return
     allocate (vals(NTENSOR, npoint))
-    if (t%family == FAMILY_TRUSS .or. (strain .and. t%family == FAMILY_PLANE)) then
+    if (t%family == FAMILY_TRUSS .or. (strain .and. t%family == FAMILY_PLANE .and. .not. t%axisymmetric)) then
        call element_tensor(model, fields, is, isub, ie, strain, one, ok)
        do k = 1, npoint
           vals(:, k) = one
        end do
        return
     end if
-    ok = .not. strain
+    ok = .not. strain .or. t%axisymmetric
     if (.not. ok) return
-    call element_stresses(model, fields, is, isub, ie, points, nodes, ok)
+    call element_stresses(model, fields, is, isub, ie, points, nodes, ok, strain)
     if (.not. ok) return
     nlayer = ccx_layers(npoint)
     nper = npoint/nlayer
     z = layer_zeta(nlayer)
     do k = 1, npoint
-       vals(:, k) = through_thickness(points, map(k), z((k - 1)/nper + 1))
+       if (t%axisymmetric) then   ! turned to the point's angle in CalculiX's 2° wedge
+          vals(:, k) = ccx_wedge_tensor(points(:, map(k), 1), z((k - 1)/nper + 1), .not. t%quadratic)
+       else
+          vals(:, k) = through_thickness(points, map(k), z((k - 1)/nper + 1))
+       end if
     end do
   end subroutine ccx_point_values
 

@@ -57,7 +57,8 @@ contains
     !! The frd element type of an element with traits t (0: none).
     type(element_traits_t), intent(in) :: t
     frd_type = 0
-    select case (t%family)
+    ! an axisymmetric element: the cell of the plane element with its nodes (cgx draws the section)
+    select case (merge(FAMILY_PLANE, t%family, t%axisymmetric))
     case (FAMILY_TRUSS, FAMILY_BEAM)
        frd_type = merge(12, 11, t%nodes == 3)
     case (FAMILY_PLANE, FAMILY_SHELL)

@@ -189,6 +189,8 @@ def listing_table(text, request, variable):
     rows = {}
     for line in sec.splitlines()[3:]:
         f = line.split()
+        if f and f[-1] == 'L':       # a row in the node's *TRANSFORM system (CalculiX's default too)
+            f = f[:-1]
         if not line.startswith('    ') or len(f) < 7 or not f[1].isdigit():
             break
         vals = f[-6:]

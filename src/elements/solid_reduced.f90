@@ -22,7 +22,8 @@ module superjoin_elements_solid_reduced
   !!   in the spirit of Abaqus's default "enhanced" hourglass control (based on
   !!   enhanced assumed strains); CalculiX (ccx ≥ 2.3, shape8hr/hgstiffness)
   !!   uses Flanagan and Belytschko's scalar stiffness form instead,
-  !!   0.0005 E (Σ B̄:B̄ V) γγᵀ with unnormalized γ, much softer in bending
+  !!   0.0005 E (Σ B:B)/V γγᵀ (B = V b̄) with unnormalized γ: on MacNeal and
+  !!   Harder's cantilever 0.657 of beam theory, ours 0.979
   !!   (doc/verification.md, "C3D8R").
   use superjoin_kinds, only: wp
   implicit none (type, external)

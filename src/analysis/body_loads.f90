@@ -9,7 +9,7 @@ module superjoin_analysis_body_loads
   use superjoin_error, only: error_t
   use superjoin_model_types, only: model_t, DLOAD_THERMAL, DLOAD_CENTRIF, &
        ELEMENT_NODE_COUNT, combination_t
-  use superjoin_elements, only: is_plate_type, element_body_end_forces
+  use superjoin_elements, only: is_plate_type, is_solid_type, element_body_end_forces
   use superjoin_model_types, only: MAX_ELEMENT_NODES
   implicit none (type, external)
   private
@@ -142,7 +142,7 @@ contains
           associate (dl => model%steps(is)%dloads(i), s => model%subs(model%steps(is)%dloads(i)%sub))
             if (dl%kind /= DLOAD_CENTRIF) cycle
             etype = s%elem_type(dl%elem)
-            if (is_plate_type(etype)) cycle
+            if (is_plate_type(etype) .or. is_solid_type(etype)) cycle   ! no end forces
             nn = ELEMENT_NODE_COUNT(etype)
             associate (sec => s%sections(s%elem_section(dl%elem)))
               ! errors were reported when the loads were assembled

@@ -288,7 +288,7 @@ contains
     case (DLOAD_P5, DLOAD_P6)
        s = trim(DLOAD_NAMES(kind))//' applies to the faces of solid hexahedra C3D8, C3D20 and C3D20R'
     case (DLOAD_CENTRIF)
-       s = 'CENTRIF applies to trusses, two-node beams, plane and shell elements'
+       s = 'CENTRIF applies to trusses, two-node beams, plane, shell and solid elements'
     case default
        s = 'P applies to shells S3 and S4'
     end select

@@ -241,7 +241,9 @@ contains
   subroutine data_element(st, line0, loc)
     !! A data line of *ELEMENT: id and the nodes of the card's element type. A
     !! line that ends with a comma before all the nodes are given continues on
-    !! the next line (Abaqus writes at most 16 fields per line: C3D20).
+    !! the next line (Abaqus writes at most 16 fields per line: C3D20). Fields
+    !! after the nodes are ignored, as CalculiX does (beampsensfreq, dloadlinI:
+    !! C3D8 and C3D8I lines with two more node numbers).
     type(deck_state_t), intent(inout) :: st
     character(*), intent(in) :: line0
     type(source_loc_t), intent(in) :: loc
@@ -263,7 +265,8 @@ contains
           return
        end if
     end if
-    if (.not. field_count(st, loc, nn + 1, nn + 1, 'id and '//itoa(nn)//' nodes for type '// &
+    ! fields after the nodes are ignored, as CalculiX reads the line (its first id and nodes)
+    if (.not. field_count(st, loc, nn + 1, max(nn + 1, st%f%n), 'id and '//itoa(nn)//' nodes for type '// &
          trim(ELEMENT_TYPE_NAMES(st%card_etype)))) return
     if (.not. get_id(st, line, loc, 1, 'element id', id)) return
     nid = 0

@@ -462,8 +462,7 @@ contains
        case ('P1', 'P2', 'P3', 'P4', 'P5', 'P6')
           ld%kind = face_load_kind(typ)
        case default
-          call report_loc(st, loc, 'unknown *DLOAD type '''//clip(fld(st, line, 2))// &
-               ''' (PX, PY, PZ, P, P1 to P6, GRAV or CENTRIF)')
+          call report_loc(st, loc, unknown_dload(clip(fld(st, line, 2)), typ))
           return
        end select
     else
@@ -736,4 +735,24 @@ contains
     st%ntemp = st%ntemp + 1
     st%temps(st%ntemp) = t
   end subroutine data_temperature
+
+  pure function unknown_dload(name, typ) result(text)
+    !! The error for a *DLOAD type name (typ: upper case) superjoin does not
+    !! take. CalculiX's PkNP (network pressure: face k takes the pressure of the
+    !! fluid node given as the value, a node of a thermo-fluid network) and
+    !! PkNUy (a non-uniform pressure from the user subroutine dload) say why.
+    character(*), intent(in) :: name, typ
+    character(:), allocatable :: text
+    text = 'unknown *DLOAD type '''//name//''' (PX, PY, PZ, P, P1 to P6, GRAV or CENTRIF)'
+    if (len(typ) < 4) return
+    if (typ(1:1) /= 'P' .or. verify(typ(2:2), '123456') /= 0) return
+    if (typ(3:) == 'NP') then
+       text = '*DLOAD type '''//name//''' is CalculiX''s network pressure (face '//typ(2:2)// &
+            ' takes the pressure of the fluid node given as the value, a node of a thermo-fluid network), '// &
+            'which superjoin does not have: give the pressure itself with P'//typ(2:2)
+    else if (typ(3:4) == 'NU') then
+       text = '*DLOAD type '''//name//''' is a non-uniform pressure from CalculiX''s user subroutine dload, '// &
+            'which superjoin cannot call: give the pressure of each element face with P'//typ(2:2)
+    end if
+  end function unknown_dload
 end module superjoin_deck_cards_steps

@@ -34,8 +34,6 @@ module superjoin_elements_catalog
        advice_t('B31OS', 'open-section warping beams are not implemented; nearest: B31'), &
        advice_t('T3D3', 'nearest: T3D2'), &
        advice_t('T2D3', 'nearest: T2D2'), &
-       advice_t('C3D8R', 'one-point integration with hourglass control is not implemented; ' // &
-                'nearest: C3D8 (full integration) or C3D20R'), &
        advice_t('C3D10M', 'nearest: C3D10 (four-point rule)'), &
        advice_t('C3D20H', 'hybrid (pressure) elements are not implemented; nearest: C3D20') &
        ]

@@ -15,12 +15,22 @@ module superjoin_elements_centrif
   !! for the Timoshenko beams too). Plane and shell elements (mass ρ t per unit
   !! area): the mass matrix of the element's shape functions (3, 4, 6 or 8
   !! nodes), integrated with a degree-5 rule (7-point triangle, 3×3 Gauss).
+  !! Solids (C3D*, mass ρ per unit volume): f_a = ρ ω² ∫ N_a r dV, with
+  !! r(x(ξ)) = Σ_b N_b r_b, integrated with 4 Gauss points per direction of the
+  !! cube (hexahedra, 64 points), of the collapsed cube (tetrahedra: x = a,
+  !! y = b (1 - a), z = c (1 - a)(1 - b), weight (1 - a)²(1 - b); wedges: the
+  !! triangle collapsed likewise times 4 points in ζ): exact for the
+  !! quadratic elements' N_a N_b (degree 4) on straight-sided elements, more
+  !! points than any element's stiffness rule (C3D20R's 2×2×2 reduced rule is
+  !! not exact for it).
   use superjoin_kinds, only: wp
   use superjoin_error, only: error_t, fatal_error, EXIT_DECK
   use superjoin_model_types, only: section_t, material_t, dload_t, ET_T2D2, ET_T3D2, ET_B23, ET_B33, &
        ET_B21, ET_B31
   use superjoin_elements_frame, only: beam_frame
   use superjoin_elements_shell, only: shell_frame, is_plate_type, is_plane_type
+  use superjoin_elements_traits, only: element_traits, element_traits_t, FAMILY_SOLID
+  use superjoin_elements_solid, only: point_gradients
   implicit none (type, external)
   private
 
@@ -66,11 +76,83 @@ contains
     case default
        if (is_plate_type(etype)) then
           call area_load(etype, x, sec, mat, dl, fe, error)
+       else if (is_solid(etype)) then
+          call solid_load(etype, x, mat, dl, fe, error)
        else
-          call fatal_error(error, EXIT_DECK, 'CENTRIF applies to trusses, two-node beams, plane and shell elements')
+          call fatal_error(error, EXIT_DECK, 'CENTRIF applies to trusses, two-node beams, plane, shell and '// &
+               'solid elements')
        end if
     end select
   end subroutine centrif_load
+
+  pure logical function is_solid(etype)
+    !! etype is a 3D solid (FAMILY_SOLID).
+    integer, intent(in) :: etype
+    type(element_traits_t) :: t
+    t = element_traits(etype)
+    is_solid = t%family == FAMILY_SOLID
+  end function is_solid
+
+  pure subroutine solid_load(etype, x, mat, dl, fe, error)
+    !! Solids: f_a = ρ ω² ∫ N_a r dV (see the module header).
+    integer, intent(in) :: etype
+    real(wp), intent(in) :: x(:, :)
+    type(material_t), intent(in) :: mat
+    type(dload_t), intent(in) :: dl
+    real(wp), allocatable, intent(out) :: fe(:)
+    type(error_t), allocatable, intent(out) :: error
+    real(wp), allocatable :: pts(:, :), wts(:), n(:), dx(:, :)
+    real(wp) :: rn(3, size(x, 2)), detj, r(3)
+    integer :: a, g, nn
+    nn = size(x, 2)
+    do a = 1, nn
+       rn(:, a) = axis_distance(dl, x(:, a))
+    end do
+    call solid_points(element_traits(etype), pts, wts)
+    allocate (fe(3*nn), source=0.0_wp)
+    do g = 1, size(wts)
+       call point_gradients(etype, x, pts(:, g), n, dx, detj, error)
+       if (allocated(error)) return
+       r = matmul(rn, n)*(mat%density*dl%value*detj*wts(g))
+       do a = 1, nn
+          fe(3*a - 2:3*a) = fe(3*a - 2:3*a) + n(a)*r
+       end do
+    end do
+  end subroutine solid_load
+
+  pure subroutine solid_points(t, pts, wts)
+    !! The 4-point-per-direction rule of the module header in the natural
+    !! coordinates of solid t (hexahedron -1..1; tetrahedron ξ, η, ζ = L2,
+    !! L3, L4; wedge: the triangle's ξ, η and ζ -1..1): points pts(3, 64), weights wts(64).
+    type(element_traits_t), intent(in) :: t
+    real(wp), allocatable, intent(out) :: pts(:, :), wts(:)
+    real(wp), parameter :: P1 = 0.3399810435848563_wp, P2 = 0.8611363115940526_wp
+    real(wp), parameter :: W1 = 0.6521451548625461_wp, W2 = 0.3478548451374538_wp
+    real(wp), parameter :: GP(4) = [-P2, -P1, P1, P2], GW(4) = [W2, W1, W1, W2]
+    real(wp) :: u(3), w
+    integer :: i, j, k, g
+    allocate (pts(3, 64), wts(64))
+    g = 0
+    do k = 1, 4
+       do j = 1, 4
+          do i = 1, 4
+             g = g + 1
+             w = GW(i)*GW(j)*GW(k)
+             u = 0.5_wp*(1.0_wp + [GP(i), GP(j), GP(k)])      ! the unit cube
+             if (t%edges == 6) then                           ! hexahedron
+                pts(:, g) = [GP(i), GP(j), GP(k)]
+             else if (t%edges == 4) then                      ! tetrahedron
+                pts(:, g) = [u(1), u(2)*(1 - u(1)), u(3)*(1 - u(1))*(1 - u(2))]
+                w = w*(1 - u(1))**2*(1 - u(2))/8
+             else                                             ! wedge
+                pts(:, g) = [u(1), u(2)*(1 - u(1)), GP(k)]
+                w = w*(1 - u(1))/4
+             end if
+             wts(g) = w
+          end do
+       end do
+    end do
+  end subroutine solid_points
 
   pure subroutine line_load(etype, x, sec, mat, dl, dofs, fe, error)
     !! Bars and two-node beams (see the module header).

@@ -15,7 +15,7 @@ module superjoin_elements
   use superjoin_model_types, only: section_t, material_t, ET_T2D2, ET_T3D2, ET_B23, ET_B33, &
        ET_CPS3, ET_CPS4, ET_S3, ET_S4, ET_B21, ET_B31, ET_CPE3, ET_CPE4, NUM_ELEMENT_TYPES, ELEMENT_TYPE_NAMES, &
        ET_CPS6, ET_CPS8, ET_CPE6, ET_CPE8, ET_CPS8R, ET_CPE8R, ET_B32, &
-       ET_C3D8, ET_C3D20, ET_C3D20R, ET_C3D4, ET_C3D10, ET_C3D8I, ET_C3D6, ET_C3D15, &
+       ET_C3D8, ET_C3D20, ET_C3D20R, ET_C3D4, ET_C3D10, ET_C3D8I, ET_C3D6, ET_C3D15, ET_C3D8R, &
        DLOAD_PX, DLOAD_PY, DLOAD_PZ, DLOAD_P
   use superjoin_model_types, only: ET_S4R, ET_S3R
   use superjoin_model_types, only: ET_S8R, ET_S8
@@ -105,7 +105,7 @@ contains
        dofs = [1, 2]
     case (ET_T3D2)
        dofs = [1, 2, 3]
-    case (ET_C3D8, ET_C3D20, ET_C3D20R, ET_C3D4, ET_C3D10, ET_C3D8I, ET_C3D6, ET_C3D15)
+    case (ET_C3D8, ET_C3D20, ET_C3D20R, ET_C3D4, ET_C3D10, ET_C3D8I, ET_C3D6, ET_C3D15, ET_C3D8R)
        dofs = [1, 2, 3]
     case (ET_B23, ET_B21)
        dofs = [1, 2, 6]
@@ -126,7 +126,8 @@ contains
     case (ET_T2D2, ET_CPS3, ET_CPS4, ET_CPE3, ET_CPE4, ET_CPS6, ET_CPS8, ET_CPE6, ET_CPE8, ET_CPS8R, ET_CPE8R, &
          ET_CAX3, ET_CAX4, ET_CAX6, ET_CAX8, ET_CAX8R)
        mask(1:2) = .true.
-    case (ET_T3D2, ET_C3D8, ET_C3D20, ET_C3D20R, ET_C3D4, ET_C3D10, ET_C3D8I, ET_C3D6, ET_C3D15)
+    case (ET_T3D2, ET_C3D8, ET_C3D20, ET_C3D20R, ET_C3D4, ET_C3D10, ET_C3D8I, ET_C3D6, ET_C3D15, &
+         ET_C3D8R)
        mask(1:3) = .true.
     case (ET_B23, ET_B21)
        mask([1, 2, 6]) = .true.
@@ -203,7 +204,7 @@ contains
     case (ET_CPS3, ET_CPS4, ET_S3, ET_S4, ET_CPE3, ET_CPE4, ET_CPS6, ET_CPS8, ET_CPE6, ET_CPE8, ET_CPS8R, ET_CPE8R, ET_S4R, ET_S3R, &
          ET_S8R, ET_S8)
        call shell_stiffness(etype, x, sec, mat, ke, error, drill)
-    case (ET_C3D8, ET_C3D20, ET_C3D20R, ET_C3D4, ET_C3D10, ET_C3D8I, ET_C3D6, ET_C3D15)
+    case (ET_C3D8, ET_C3D20, ET_C3D20R, ET_C3D4, ET_C3D10, ET_C3D8I, ET_C3D6, ET_C3D15, ET_C3D8R)
        call solid_stiffness(etype, x, mat, ke, error)
     case (ET_CAX3, ET_CAX4, ET_CAX6, ET_CAX8, ET_CAX8R)
        call axisym_stiffness(etype, x, mat, ke, error)
@@ -240,7 +241,7 @@ contains
        call beam3_end_forces(x, sec, mat, ue, q_local, f, error)
     case (ET_CPS3, ET_CPS4, ET_S3, ET_S4, ET_CPE3, ET_CPE4, ET_CPS6, ET_CPS8, ET_CPE6, ET_CPE8, ET_CPS8R, ET_CPE8R, ET_S4R, ET_S3R, &
          ET_S8R, ET_S8, ET_C3D8, ET_C3D20, ET_C3D20R, ET_C3D4, ET_C3D10, ET_C3D8I, ET_C3D6, ET_C3D15, &
-         ET_CAX3, ET_CAX4, ET_CAX6, ET_CAX8, ET_CAX8R)
+         ET_C3D8R, ET_CAX3, ET_CAX4, ET_CAX6, ET_CAX8, ET_CAX8R)
        continue
     case default
        call unsupported(etype, error)
@@ -394,7 +395,7 @@ contains
     case (ET_CPS3, ET_CPS4, ET_S3, ET_S4, ET_CPE3, ET_CPE4, ET_CPS6, ET_CPS8, ET_CPE6, ET_CPE8, ET_CPS8R, ET_CPE8R, ET_S4R, ET_S3R, &
          ET_S8R, ET_S8)
        call shell_area_load(etype, x, mat%density*sec%thickness*accel, fe, error)
-    case (ET_C3D8, ET_C3D20, ET_C3D20R, ET_C3D4, ET_C3D10, ET_C3D8I, ET_C3D6, ET_C3D15)
+    case (ET_C3D8, ET_C3D20, ET_C3D20R, ET_C3D4, ET_C3D10, ET_C3D8I, ET_C3D6, ET_C3D15, ET_C3D8R)
        call solid_body_load(etype, x, mat%density*accel, fe, error)   ! ρ g per unit volume
     case (ET_CAX3, ET_CAX4, ET_CAX6, ET_CAX8, ET_CAX8R)
        if (accel(1) /= 0.0_wp .or. accel(3) /= 0.0_wp) then

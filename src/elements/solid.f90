@@ -8,6 +8,9 @@ module superjoin_elements_solid
   !!   the centre Jacobian J0 and scaled by det J0 / det J (Taylor, Beresford &
   !!   Wilson 1976), so that ∫ G dV = 0 and the element passes the patch test on
   !!   any shape; the nine mode amplitudes are condensed per element;
+  !! - C3D8R: one point, the mean strain of Flanagan & Belytschko and the
+  !!   hourglass stiffness of superjoin_elements_solid_reduced (C3D8I's, in the
+  !!   hourglass modes); its consistent body loads take the 2×2×2 rule;
   !! - C3D20: serendipity hexahedron (corners 1..8, mid-side nodes 9..12 on
   !!   the edges 1-2, 2-3, 3-4, 4-1, 13..16 on 5-6, 6-7, 7-8, 8-5, 17..20 on
   !!   1-5, 2-6, 3-7, 4-8), full 3×3×3 rule; C3D20R: the same with 2×2×2;
@@ -27,13 +30,14 @@ module superjoin_elements_solid
   use superjoin_kinds, only: wp
   use superjoin_error, only: error_t, fatal_error, EXIT_DECK
   use superjoin_model_types, only: material_t, ET_C3D8, ET_C3D20, ET_C3D20R, ET_C3D4, ET_C3D10, ET_C3D8I, &
-       ET_C3D6, ET_C3D15
+       ET_C3D6, ET_C3D15, ET_C3D8R
+  use superjoin_elements_solid_reduced, only: hourglass_stiffness
   implicit none (type, external)
   private
 
   public :: is_solid_type, solid_stiffness, solid_body_load, solid_shape, solid_forces
   public :: rule_t, solid_rule, point_gradients, elasticity, strain_matrix, solid_node_coordinates
-  public :: spd_solve, mode_strains
+  public :: spd_solve, mode_strains, mean_gradients
 
   integer, parameter, public :: WEDGE_EDGES(2, 9) = reshape([1, 2, 2, 3, 3, 1, 4, 5, 5, 6, 6, 4, 1, 4, 2, 5, 3, 6], &
        [2, 9])
@@ -50,7 +54,8 @@ contains
   elemental logical function is_solid_type(etype)
     !! etype is one of the solid element types of this module.
     integer, intent(in) :: etype
-    is_solid_type = any(etype == [ET_C3D8, ET_C3D20, ET_C3D20R, ET_C3D4, ET_C3D10, ET_C3D8I, ET_C3D6, ET_C3D15])
+    is_solid_type = any(etype == [ET_C3D8, ET_C3D20, ET_C3D20R, ET_C3D4, ET_C3D10, ET_C3D8I, ET_C3D6, ET_C3D15, &
+         ET_C3D8R])
   end function is_solid_type
 
   pure subroutine solid_shape(etype, xi, n, dn)
@@ -62,7 +67,7 @@ contains
     real(wp), intent(in) :: xi(3)
     real(wp), allocatable, intent(out) :: n(:), dn(:, :)
     select case (etype)
-    case (ET_C3D8, ET_C3D8I)
+    case (ET_C3D8, ET_C3D8I, ET_C3D8R)
        call hex8(xi, n, dn)
     case (ET_C3D20, ET_C3D20R)
        call hex20(xi, n, dn)
@@ -230,7 +235,7 @@ contains
     integer, parameter :: EDGE(2, 6) = reshape([1, 2, 2, 3, 3, 1, 1, 4, 2, 4, 3, 4], [2, 6])
     integer :: a
     select case (etype)
-    case (ET_C3D8, ET_C3D8I)
+    case (ET_C3D8, ET_C3D8I, ET_C3D8R)
        c = hex_corners()
     case (ET_C3D20, ET_C3D20R)
        c = hex20_nodes()
@@ -249,7 +254,7 @@ contains
 
   pure function solid_rule(etype, for_load) result(r)
     !! The integration rule of element type etype (for_load: the full rule of
-    !! the reduced C3D20R, for consistent body loads).
+    !! the reduced C3D20R and C3D8R, for consistent body loads).
     integer, intent(in) :: etype
     logical, intent(in) :: for_load
     type(rule_t) :: r
@@ -257,6 +262,11 @@ contains
     select case (etype)
     case (ET_C3D8, ET_C3D8I)
        r = gauss_hex(2)
+    case (ET_C3D8R)
+       r = gauss_hex(2)
+       if (for_load) return
+       r%xi = reshape([0.0_wp, 0.0_wp, 0.0_wp], [3, 1])
+       r%w = [8.0_wp]
     case (ET_C3D20R)
        r = gauss_hex(merge(3, 2, for_load))
     case (ET_C3D20)
@@ -473,7 +483,7 @@ contains
        return
     end if
     d = elasticity(mat)
-    r = solid_rule(etype, .false.)
+    r = solid_rule(merge(ET_C3D8I, etype, etype == ET_C3D8R), .false.)   ! C3D8R: C3D8I's, then reduced
     allocate (ke(3*nn, 3*nn), b(6, 3*nn))
     ke = 0.0_wp
     do g = 1, size(r%w)
@@ -482,8 +492,36 @@ contains
        b = strain_matrix(dx)
        ke = ke + matmul(transpose(b), matmul(d, b))*(detj*r%w(g))
     end do
-    if (etype == ET_C3D8I) call condense_modes(x, d, ke, error)
+    if (etype == ET_C3D8I .or. etype == ET_C3D8R) call condense_modes(x, d, ke, error)
+    if (allocated(error) .or. etype /= ET_C3D8R) return
+    call mean_gradients(x, dx, detj, error)
+    if (allocated(error)) return
+    b = strain_matrix(dx)
+    ke = matmul(transpose(b), matmul(d, b))*detj + hourglass_stiffness(x, dx, ke)
   end subroutine solid_stiffness
+
+  pure subroutine mean_gradients(x, bbar, vol, error)
+    !! C3D8R: the mean gradients bbar(3, 8) = (1/V) ∫ ∂N/∂x dV of the trilinear
+    !! hexahedron with corners x(3, 8) and its volume vol (2×2×2 Gauss, exact).
+    real(wp), intent(in) :: x(:, :)
+    real(wp), allocatable, intent(out) :: bbar(:, :)
+    real(wp), intent(out) :: vol
+    type(error_t), allocatable, intent(out) :: error
+    type(rule_t) :: r
+    real(wp), allocatable :: n(:), dx(:, :)
+    real(wp) :: detj
+    integer :: g
+    r = gauss_hex(2)
+    allocate (bbar(3, 8), source=0.0_wp)
+    vol = 0.0_wp
+    do g = 1, size(r%w)
+       call point_gradients(ET_C3D8, x, r%xi(:, g), n, dx, detj, error)
+       if (allocated(error)) return
+       bbar = bbar + dx*(detj*r%w(g))
+       vol = vol + detj*r%w(g)
+    end do
+    bbar = bbar/vol
+  end subroutine mean_gradients
 
   pure subroutine condense_modes(x, d, ke, error)
     !! C3D8I: ke -= kua kaa⁻¹ kauᵀ, the incompatible modes condensed.

@@ -2,7 +2,7 @@ module superjoin_elements_solid_faces
   !! Pressure on the faces of the 3D solid elements (*DLOAD P1..P6, *DSLOAD on
   !! the faces S1..S6 of a *SURFACE), face numbering as Abaqus and CalculiX:
   !!
-  !! - hexahedra (C3D8, C3D8I, C3D20, C3D20R): S1 1-2-3-4, S2 5-8-7-6, S3 1-5-6-2,
+  !! - hexahedra (C3D8, C3D8I, C3D8R, C3D20, C3D20R): S1 1-2-3-4, S2 5-8-7-6, S3 1-5-6-2,
   !!   S4 2-6-7-3, S5 3-7-8-4, S6 4-8-5-1;
   !! - tetrahedra (C3D4, C3D10): S1 1-2-3, S2 1-4-2, S3 2-4-3, S4 3-4-1;
   !! - wedges (C3D6, C3D15): S1 1-2-3, S2 4-6-5, S3 1-4-5-2, S4 2-5-6-3, S5 3-6-4-1
@@ -17,7 +17,7 @@ module superjoin_elements_solid_faces
   !! on triangles (exact on flat faces, and for polynomials of degree 4).
   use superjoin_kinds, only: wp
   use superjoin_error, only: error_t, fatal_error, EXIT_DECK
-  use superjoin_model_types, only: ET_C3D8, ET_C3D20, ET_C3D20R, ET_C3D4, ET_C3D10, ET_C3D8I, &
+  use superjoin_model_types, only: ET_C3D8, ET_C3D20, ET_C3D20R, ET_C3D4, ET_C3D10, ET_C3D8I, ET_C3D8R, &
        ET_C3D6, ET_C3D15
   use superjoin_elements_solid, only: WEDGE_EDGES
   implicit none (type, external)
@@ -47,7 +47,7 @@ contains
     allocate (nodes(0))
     ncorner = 0
     select case (etype)
-    case (ET_C3D8, ET_C3D20, ET_C3D20R, ET_C3D8I)
+    case (ET_C3D8, ET_C3D20, ET_C3D20R, ET_C3D8I, ET_C3D8R)
        if (face < 1 .or. face > 6) return
        nodes = HEX_FACES(:, face)
     case (ET_C3D4, ET_C3D10)
@@ -61,7 +61,7 @@ contains
        return
     end select
     ncorner = size(nodes)
-    if (any(etype == [ET_C3D8, ET_C3D4, ET_C3D8I, ET_C3D6])) return
+    if (any(etype == [ET_C3D8, ET_C3D4, ET_C3D8I, ET_C3D6, ET_C3D8R])) return
     do k = 1, ncorner
        a = nodes(k)
        b = nodes(mod(k, ncorner) + 1)

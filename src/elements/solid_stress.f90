@@ -8,7 +8,7 @@ module superjoin_elements_solid_stress
   !!   C3D8 and C3D20R, 3×3×3 at -√0.6, 0, √0.6 for C3D20); C3D4 its centroid;
   !!   C3D10 four points, point k nearest corner k; C3D6 two points, ζ < 0
   !!   first; C3D15 nine, the triangle's points nearest corners 1, 2, 3 fastest,
-  !!   then ζ = -√0.6, 0, √0.6;
+  !!   then ζ = -√0.6, 0, √0.6; C3D8R its centre (its mean strain);
   !! - nodes: the polynomial through the points of the rule evaluated at the
   !!   nodes: trilinear through 2×2×2 points (a mid-side node gets the mean of
   !!   its two corners), linear through C3D10's four points, constant for
@@ -20,9 +20,9 @@ module superjoin_elements_solid_stress
   !! tensor shear components (γ/2), as CalculiX prints them.
   use superjoin_kinds, only: wp
   use superjoin_error, only: error_t
-  use superjoin_model_types, only: material_t, ET_C3D8I, ET_C3D6, ET_C3D15
+  use superjoin_model_types, only: material_t, ET_C3D8I, ET_C3D6, ET_C3D15, ET_C3D8R
   use superjoin_elements_solid, only: rule_t, solid_rule, point_gradients, elasticity, strain_matrix, &
-       solid_node_coordinates, solid_shape, spd_solve, mode_strains, WEDGE_EDGES
+       solid_node_coordinates, solid_shape, spd_solve, mode_strains, WEDGE_EDGES, mean_gradients
   implicit none (type, external)
   private
 
@@ -51,7 +51,11 @@ contains
     if (allocated(error)) return
     allocate (points(6, size(r%w)))
     do g = 1, size(r%w)
-       call point_gradients(etype, x, r%xi(:, g), n, dx, detj, error)
+       if (etype == ET_C3D8R) then      ! its mean strain, at the centre
+          call mean_gradients(x, dx, detj, error)
+       else
+          call point_gradients(etype, x, r%xi(:, g), n, dx, detj, error)
+       end if
        if (allocated(error)) return
        eps = matmul(strain_matrix(dx), ue)
        if (etype == ET_C3D8I) eps = eps + modes(:, g)

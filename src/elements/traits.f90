@@ -13,7 +13,7 @@ module superjoin_elements_traits
        ET_T2D2, ET_T3D2, ET_B23, ET_B33, ET_CPS3, ET_CPS4, ET_S3, ET_S4, ET_B21, ET_B31, &
        ET_CPE3, ET_CPE4, ET_S4R, ET_S3R, ET_S8R, ET_CPS6, ET_CPS8, ET_CPE6, ET_CPE8, &
        ET_CPS8R, ET_CPE8R, ET_B32, ET_C3D8, ET_C3D20, ET_C3D20R, ET_C3D4, ET_C3D10, ET_C3D8I, &
-       ET_C3D6, ET_C3D15, ET_S8, ET_CAX3, ET_CAX4, ET_CAX6, ET_CAX8, ET_CAX8R, &
+       ET_C3D6, ET_C3D15, ET_S8, ET_C3D8R, ET_CAX3, ET_CAX4, ET_CAX6, ET_CAX8, ET_CAX8R, &
        DLOAD_PX, DLOAD_PY, DLOAD_PZ, DLOAD_P, DLOAD_GRAV, DLOAD_P1, DLOAD_P2, DLOAD_P3, &
        DLOAD_P4, DLOAD_CENTRIF, DLOAD_P5, DLOAD_P6
   implicit none (type, external)
@@ -125,6 +125,8 @@ contains
        t = with(t, FAMILY_SHELL, D6, SEC_SHELL, VTK_QUADRATIC_QUAD, edges=4, corners=4, shear=.true.)
     case (ET_C3D8, ET_C3D8I)
        t = with(t, FAMILY_SOLID, D3, SEC_SOLID, VTK_HEXAHEDRON, edges=6)
+    case (ET_C3D8R)
+       t = with(t, FAMILY_SOLID, D3, SEC_SOLID, VTK_HEXAHEDRON, edges=6, reduced=.true.)
     case (ET_C3D20)
        t = with(t, FAMILY_SOLID, D3, SEC_SOLID, VTK_QUADRATIC_HEXAHEDRON, edges=6, corners=8)
     case (ET_C3D20R)
@@ -206,7 +208,7 @@ contains
   elemental logical function accepts_dload(kind, etype)
     !! Whether a distributed load of kind DLOAD_* applies to element type etype:
     !! PX, PY on beams (per unit length), PZ on beams in space, P on shells,
-    !! GRAV on every element, CENTRIF on all but B32 and the 3D solids, P1..Pn on the faces of a
+    !! GRAV on every element, CENTRIF on all but B32, P1..Pn on the faces of a
     !! plane element and of a solid (P1..P6 on hexahedra, P1..P4 on tetrahedra, P1..P3 or P1..P4
     !! on the edges of an axisymmetric element); on beams P1
     !! (local y) in space and P2 (local z) also on planar two-node beams.
@@ -225,7 +227,7 @@ contains
     case (DLOAD_GRAV)
        accepts_dload = .true.
     case (DLOAD_CENTRIF)
-       accepts_dload = etype /= ET_B32 .and. (t%family /= FAMILY_SOLID .or. t%axisymmetric)
+       accepts_dload = etype /= ET_B32
     case (DLOAD_P1)
        accepts_dload = t%family == FAMILY_PLANE .or. (beam2 .and. .not. t%planar) .or. t%family == FAMILY_SOLID
     case (DLOAD_P2)

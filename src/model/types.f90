@@ -30,6 +30,8 @@ module superjoin_model_types
     !! Wedges (triangular prisms) with 6 and 15 nodes; Abaqus node numbering.
   integer, parameter, public :: ET_S8 = 31
     !! The eight-node thick shell with full 3×3 in-plane integration (S8R's nodes and formulation).
+  integer, parameter, public :: ET_C3D8R = 32
+    !! The 8-node hexahedron with one point and hourglass stiffness (superjoin_elements_solid_reduced).
   integer, parameter, public :: ET_CAX3 = 33, ET_CAX4 = 34, ET_CAX6 = 35, ET_CAX8 = 36, ET_CAX8R = 37
     !! Axisymmetric solids (superjoin_elements_axisym): r = x, axis y; triangles with 3 and 6
     !! nodes, quadrilaterals with 4 and 8 (CAX8R: 2×2 reduced integration).
@@ -40,14 +42,14 @@ module superjoin_model_types
         'S4R   ', 'S3R   ', 'S8R   ', &
         'CPS6  ', 'CPS8  ', 'CPE6  ', 'CPE8  ', 'CPS8R ', 'CPE8R ', 'B32   ', &
         'C3D8  ', 'C3D20 ', 'C3D20R', 'C3D4  ', 'C3D10 ', 'C3D8I ', &
-        'C3D6  ', 'C3D15 ', 'S8    ', '      ', &
+        'C3D6  ', 'C3D15 ', 'S8    ', 'C3D8R ', &
         'CAX3  ', 'CAX4  ', 'CAX6  ', 'CAX8  ', 'CAX8R ']
     !! A blank name would be a reserved number without an element.
   integer, parameter, public :: ELEMENT_NODE_COUNT(NUM_ELEMENT_TYPES) = [2, 2, 2, 2, 3, 4, 3, 4, &
        2, 2, 3, 4, &
        4, 3, 8, &
        6, 8, 6, 8, 8, 8, 3, &
-       8, 20, 20, 4, 10, 8, 6, 15, 8, 0, &
+       8, 20, 20, 4, 10, 8, 6, 15, 8, 8, &
        3, 4, 6, 8, 8]
   integer, parameter, public :: MAX_ELEMENT_NODES = 20
   integer, parameter, public :: MAX_ELEMENT_DOFS = 60

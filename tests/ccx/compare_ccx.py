@@ -189,6 +189,8 @@ def listing_table(text, request, variable):
     rows = {}
     for line in sec.splitlines()[3:]:
         f = line.split()
+        if f and f[-1] == 'L':       # a row in the node's *TRANSFORM system (CalculiX's default too)
+            f = f[:-1]
         if not line.startswith('    ') or len(f) < 7 or not f[1].isdigit():
             break
         vals = f[-6:]
@@ -960,8 +962,8 @@ def rot4(binary, outdir):
          'of x = 0.5)')
 
 
-SOLID_DECKS = ('achteld', 'achtelp', 'achtelg', 'achtel2', 'achtel9', 'achtel29', 'achtelcas', 'beam10p', 'beam20p',
-               'beamd')
+SOLID_DECKS = ('achteld', 'achtelp', 'achtelg', 'achtel2', 'achtel9', 'achtel29', 'achtelcas', 'achtelc', 'beam10p',
+               'beam20p', 'beamd')
 
 
 def solid_point_table(text):
@@ -979,7 +981,8 @@ def solid_point_table(text):
 
 def solid_decks(binary, outdir):
     """CalculiX's C3D20R cube decks (achtel*: prescribed displacements, point
-    loads, gravity, *EQUATION with 2, 9 and mixed terms, cascaded equations)
+    loads, gravity, *EQUATION with 2, 9 and mixed terms, cascaded equations,
+    achtelc: *DLOAD CENTRIF)
     and its solid beams (beam10p: C3D10, beam20p: C3D20, beamd: C3D20R under
     *DLOAD pressure on faces): *NODE PRINT U and the stresses of *EL PRINT S at
     CalculiX's integration points of every element of the set must agree with

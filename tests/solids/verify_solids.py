@@ -29,7 +29,7 @@ Cases
   (plain and condensed): tip displacement, joint opening and reactions exact;
 - pressure on faces (*DLOAD P1..P6, *SURFACE S1..S6 with *DSLOAD): the
   hydrostatic state of the distorted block on symmetry supports, exact;
-- VTK cells of every type; refusals of P, CENTRIF and *TEMPERATURE on solids;
+- VTK cells of every type; refusals of P and *TEMPERATURE on solids;
 - CalculiX (if installed): the patch block of every type but C3D8I with a
   load and face pressures instead of the interior prescription, `ccx -i`:
   displacements, S and E at the integration points (.dat), nodal S (.frd).
@@ -94,9 +94,9 @@ class Mesh:
     def cell(self, base):
         add = lambda p: tuple(b + q for b, q in zip(base, p))
         corners = [add(c) for c in HEX_CORNERS]
-        if self.etype in ("C3D8", "C3D8I", "C3D20", "C3D20R"):
+        if self.etype in ("C3D8", "C3D8I", "C3D8R", "C3D20", "C3D20R"):
             el = corners
-            if self.etype not in ("C3D8", "C3D8I"):
+            if self.etype not in ("C3D8", "C3D8I", "C3D8R"):
                 el = el + [mid(corners[a], corners[b]) for a, b in HEX_EDGES]
             return [el]
         out = []
@@ -170,7 +170,7 @@ class Mesh:
         if kind in WEDGES:      # quadrilaterals on x, y = const, triangles (as the tetrahedra's) on z = const
             kind = {("C3D6", True): "C3D4", ("C3D6", False): "C3D8",
                     ("C3D15", True): "C3D10", ("C3D15", False): "C3D20"}[(kind, ax == 2)]
-        if kind in ("C3D8", "C3D8I"):
+        if kind in ("C3D8", "C3D8I", "C3D8R"):
             return [(pt(di, dj), area / 4) for di in (0, 2) for dj in (0, 2)]
         if kind in ("C3D20", "C3D20R"):
             return ([(pt(di, dj), -area / 12) for di in (0, 2) for dj in (0, 2)]
@@ -676,7 +676,6 @@ def refusals(exe, work):
     mesh = Mesh((1, 1, 1), (1.0, 1.0, 1.0), "C3D8", False)
     bnd = [(n, d, 0.0) for n, x in mesh.nodes.items() if x[0] == 0.0 for d in (1, 2, 3)]
     cases = [("P", "*DLOAD\n 1, P, 1.0", "does not apply to element 1 of type C3D8"),
-             ("CENTRIF", "*DLOAD\n ALL, CENTRIF, 1.0, 0., 0., 0., 0., 0., 1.", "of type C3D8"),
              ("TEMP", "*TEMPERATURE\n NALL, 10.", "of type C3D8")]
     for name, card, want in cases:
         text = deck(mesh, 1.0e3, 0.3, bnd, [], extra=card, density=1.0)

@@ -708,8 +708,8 @@ contains
     call read_bad(join([character(L) :: '*NODE', '1, 0, 0', '*ELEMENT, TYPE=CPS4', '4, 1, 2, 3']), &
          'inline.deck:4: error: wrong number of fields on *ELEMENT data line: expected id and 4 nodes', &
          'element node count')
-    call read_bad(join([character(L) :: '*NODE', '1, 0, 0', '*ELEMENT, TYPE=C3D8R', '4, 1, 2, 3']), &
-         'inline.deck:3: error: unsupported element type C3D8R', 'element type')
+    call read_bad(join([character(L) :: '*NODE', '1, 0, 0', '*ELEMENT, TYPE=C3D27', '4, 1, 2, 3']), &
+         'inline.deck:3: error: unsupported element type C3D27', 'element type')
     call read_bad(join([character(L) :: '*NODE', '1, 0, 0, 0, 0, 0, 1, 2', '']), 'wrong number of fields on *NODE data line', &
          'node field count')
     call read_bad(join([character(L) :: '1, 0, 0']), 'inline.deck:1: error: data line without a keyword', &

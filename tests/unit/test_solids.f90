@@ -9,11 +9,14 @@ program test_solids
   !! (constant strain: Σ K u equals the nodal forces of a constant stress),
   !! and the refusals (inverted element, ν = 0.5). Patch tests on meshes, the
   !! cantilever and the CalculiX cross-check run through the whole program in
-  !! tests/solids/verify_solids.py.
+  !! tests/solids/verify_solids.py. C3D8R (one point, hourglass stiffness):
+  !! exactly 6 zero eigenvalues on the distorted element, the forces of a
+  !! linear field those of C3D8 (the constant stress, to round-off), and on a
+  !! parallelepiped the stiffness of C3D8I.
   use superjoin_kinds, only: wp
   use superjoin_error, only: error_t
   use superjoin_model_types, only: material_t, ET_C3D8, ET_C3D20, ET_C3D20R, ET_C3D4, ET_C3D10, ET_C3D8I, &
-       ET_C3D6, ET_C3D15
+       ET_C3D6, ET_C3D15, ET_C3D8R
   use superjoin_elements_solid, only: solid_stiffness, solid_body_load, solid_shape, rule_t, solid_rule
   use superjoin_elements_solid_faces, only: solid_pressure_load, solid_face_nodes
   use superjoin_elements_solid_stress, only: solid_extrapolation, principal_stresses, von_mises_tensor
@@ -25,10 +28,11 @@ program test_solids
   real(wp), parameter :: TOL_EXACT = 1.0e-12_wp    !! exact discrete answers, relative
   real(wp), parameter :: TOL_ZERO_EIG = 1.0e-10_wp !! a zero eigenvalue, relative to the largest
   real(wp), parameter :: MIN_POSITIVE = 1.0e-6_wp  !! smallest non-zero eigenvalue / largest, at least
-  integer, parameter :: TYPES(8) = [ET_C3D8, ET_C3D20, ET_C3D20R, ET_C3D4, ET_C3D10, ET_C3D8I, ET_C3D6, ET_C3D15]
-  character(len=6), parameter :: NAMES(8) = ['C3D8  ', 'C3D20 ', 'C3D20R', 'C3D4  ', 'C3D10 ', 'C3D8I ', &
-       'C3D6  ', 'C3D15 ']
-  integer, parameter :: ZERO_EIGS(8) = [6, 6, 12, 6, 6, 6, 7, 6]
+  integer, parameter :: TYPES(9) = [ET_C3D8, ET_C3D20, ET_C3D20R, ET_C3D4, ET_C3D10, ET_C3D8I, ET_C3D6, ET_C3D15, &
+       ET_C3D8R]
+  character(len=6), parameter :: NAMES(9) = ['C3D8  ', 'C3D20 ', 'C3D20R', 'C3D4  ', 'C3D10 ', 'C3D8I ', &
+       'C3D6  ', 'C3D15 ', 'C3D8R ']
+  integer, parameter :: ZERO_EIGS(9) = [6, 6, 12, 6, 6, 6, 7, 6, 6]
   type(material_t) :: mat
   integer :: k
 
@@ -41,6 +45,7 @@ program test_solids
      call test_faces(TYPES(k), NAMES(k))
      call test_extrapolation(TYPES(k), NAMES(k))
   end do
+  call test_reduced()
   call test_invariants()
   call test_errors()
   call finish()
@@ -89,7 +94,7 @@ contains
        return
     end if
     nn = merge(8, merge(20, merge(4, 10, etype == ET_C3D4), etype == ET_C3D20 .or. etype == ET_C3D20R), &
-         etype == ET_C3D8 .or. etype == ET_C3D8I)
+         etype == ET_C3D8 .or. etype == ET_C3D8I .or. etype == ET_C3D8R)
     if (etype == ET_C3D4 .or. etype == ET_C3D10) then
        r(:, 1:nn) = TET(:, 1:nn)
     else
@@ -246,6 +251,46 @@ contains
     end do
     call check(maxval(abs(id)) < 1.0e-10_wp, trim(name)//': extrapolation returns the element''s own field')
   end subroutine test_extrapolation
+
+  subroutine test_reduced()
+    !! C3D8R: on the distorted element, K u of a linear field u = G x equals
+    !! C3D8's (both the consistent forces of the constant stress: the element
+    !! patch test); on a parallelepiped its stiffness is C3D8I's.
+    real(wp), allocatable :: x(:, :), kr(:, :), k8(:, :), u(:)
+    type(error_t), allocatable :: error
+    real(wp) :: g(3, 3)
+    integer :: a
+    call element_nodes(ET_C3D8R, x)
+    call solid_stiffness(ET_C3D8R, x, mat, kr, error)
+    if (.not. allocated(error)) call solid_stiffness(ET_C3D8, x, mat, k8, error)
+    call check(.not. allocated(error), 'C3D8R: stiffness of the distorted element')
+    if (allocated(error)) return
+    g = reshape([0.3_wp, -0.2_wp, 0.5_wp, 0.7_wp, 0.1_wp, -0.4_wp, 0.25_wp, 0.6_wp, -0.15_wp], [3, 3])
+    allocate (u(24))
+    do a = 1, 8
+       u(3*a - 2:3*a) = matmul(g, x(:, a)) + [0.1_wp, 0.2_wp, 0.3_wp]
+    end do
+    call check(maxval(abs(matmul(kr - k8, u))) < TOL_EXACT*maxval(abs(matmul(k8, u))), &
+         'C3D8R: a linear field gives the forces of its constant stress (as C3D8), distorted element')
+    do a = 1, 8                                   ! a parallelepiped: x = A ξ + c
+       x(:, a) = matmul(reshape([2.0_wp, 0.3_wp, 0.1_wp, 0.4_wp, 1.5_wp, -0.2_wp, 0.3_wp, 0.2_wp, 1.0_wp], [3, 3]), &
+            x_corner(a)) + [1.0_wp, 2.0_wp, 3.0_wp]
+    end do
+    call solid_stiffness(ET_C3D8R, x, mat, kr, error)
+    if (.not. allocated(error)) call solid_stiffness(ET_C3D8I, x, mat, k8, error)
+    call check(.not. allocated(error), 'C3D8R: stiffness of the parallelepiped')
+    if (allocated(error)) return
+    call check(maxval(abs(kr - k8)) < TOL_EXACT*maxval(abs(k8)), 'C3D8R: the stiffness of C3D8I on a parallelepiped')
+  end subroutine test_reduced
+
+  function x_corner(a) result(c)
+    !! Natural coordinates of hexahedron corner a.
+    integer, intent(in) :: a
+    real(wp) :: c(3), r(3, 20)
+    integer :: nn
+    call reference_nodes(ET_C3D8, r, nn)
+    c = r(:, a)
+  end function x_corner
 
   subroutine test_invariants()
     !! Von Mises and principal stresses of known tensors.

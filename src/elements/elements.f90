@@ -192,7 +192,7 @@ contains
          ET_S8R, ET_S8)
        call shell_stiffness(etype, x, sec, mat, ke, error, drill)
     case (ET_C3D8, ET_C3D20, ET_C3D20R, ET_C3D4, ET_C3D10, ET_C3D8I, ET_C3D6, ET_C3D15)
-       call solid_stiffness(etype, x, mat, ke, error)
+       call solid_stiffness(etype, x, mat, ke, error, sec%axes)
     case default
        call unsupported(etype, error)
     end select

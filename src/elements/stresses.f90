@@ -176,7 +176,7 @@ contains
     logical, intent(out) :: ok
     real(wp), allocatable :: sp(:, :), sn(:, :)
     type(error_t), allocatable :: error
-    call solid_point_tensors(el%etype, el%x, el%mat, el%ue, strain, sp, sn, error)
+    call solid_point_tensors(el%etype, el%x, el%mat, el%ue, strain, sp, sn, error, el%sec%axes)
     ok = .not. allocated(error)
     if (.not. ok) return
     points = reshape(sp, [NTENSOR, size(sp, 2), 1])

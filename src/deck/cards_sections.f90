@@ -13,7 +13,7 @@ module superjoin_deck_cards_sections
        MAX_SHAPE_DIMS
   use superjoin_elements_frame, only: real_text
   use superjoin_utils_strings, only: pick
-  use superjoin_deck_cards_common, only: get_reals
+  use superjoin_deck_cards_common, only: get_reals, axis_rotation
   use superjoin_deck_cards_common, only: outside_step, check_params, param_index, get_param, &
        get_name_param, field_count, fld, get_real, real_message, parse_set_ref, loc_string, CARD_SKIP, &
        CARD_SECTION, CARD_ELASTIC, CARD_ORIENTATION, CARD_DENSITY, CARD_TSHEAR, CARD_EXPANSION, &
@@ -741,8 +741,8 @@ contains
     type(deck_state_t), intent(inout) :: st
     character(*), intent(in) :: line
     type(source_loc_t), intent(in) :: loc
-    real(wp) :: v(2), p(3), c, s, r(3, 3)
-    integer :: axis, i
+    real(wp) :: v(2)
+    integer :: axis
     if (st%orientations(st%card_item)%cylindrical) then
        call report_loc(st, loc, '*ORIENTATION: the additional rotation (second data line) is only for '// &
             'rectangular systems (as CalculiX)')
@@ -757,20 +757,7 @@ contains
        return
     end if
     associate (q => st%orientations(st%card_item)%q)
-      p = q(axis, :)
-      c = cos(v(2)*acos(-1.0_wp)/180.0_wp)
-      s = sin(v(2)*acos(-1.0_wp)/180.0_wp)
-      do i = 1, 3              ! Rodrigues: r = c I + s [p]x + (1 - c) p pᵀ
-         r(:, i) = (1.0_wp - c)*p(i)*p
-         r(i, i) = r(i, i) + c
-      end do
-      r(1, 2) = r(1, 2) - s*p(3)
-      r(1, 3) = r(1, 3) + s*p(2)
-      r(2, 1) = r(2, 1) + s*p(3)
-      r(2, 3) = r(2, 3) - s*p(1)
-      r(3, 1) = r(3, 1) - s*p(2)
-      r(3, 2) = r(3, 2) + s*p(1)
-      q = transpose(matmul(r, transpose(q)))   ! each local axis (a row of q) turned
+      q = transpose(matmul(axis_rotation(q(axis, :), v(2)), transpose(q)))   ! each local axis (a row of q) turned
     end associate
   end subroutine orientation_rotation
 end module superjoin_deck_cards_sections

@@ -33,6 +33,9 @@ Tolerances and why (doc/calculix-dropin.md, "The .dat against .dat.ref"):
 - shells (S8R: shell1lin, rot4): 0.2 on displacements, 0.3 on forces, 0.35
   on stresses (CalculiX's one-brick-thick C3D20R expansion of a 2x2 mesh is
   16 % stiff in bending, compare_ccx.py; its brick has szz).
+- c3d15: forces 5 times the reference's largest: the pressures on opposite
+  faces balance, so both programs' reactions are round-off (ccx 1.4e-14,
+  superjoin 2.5e-14); the check says both are.
 - spring1: refused (*STEP, NLGEOM): exit status 1, the reason on stderr, no
   "Job finished" on stdout and an empty .dat: a front-end sees a failure.
 """
@@ -53,7 +56,8 @@ BEAMS = ('beamlin', 'b31', 'rot1', 'rot2', 'simplebeam', 'simplebeampipe1', 'sim
 # deck -> {block kind: tolerance}; kinds: displacements, forces, stresses, strains, temperatures
 TOLERANCE = {'planestress2': {'stresses': 5.0e-4}, 'planestress3': {'displacements': 0.25},
              'shell1lin': {'displacements': 0.2, 'forces': 0.3, 'stresses': 0.35},
-             'rot4': {'displacements': 0.2, 'forces': 0.3, 'stresses': 0.35}}
+             'rot4': {'displacements': 0.2, 'forces': 0.3, 'stresses': 0.35},
+             'c3d15': {'forces': 5.0}}
 for _b in BEAMS:
     TOLERANCE[_b] = {'displacements': 0.07}
 REFUSED = {'spring1': 'NLGEOM'}

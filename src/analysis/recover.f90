@@ -264,7 +264,8 @@ contains
             nn = ELEMENT_NODE_COUNT(s%elem_type(e))
             call element_pdofs(model, table, isub, e, pd, n)
             call solid_forces(s%elem_type(e), s%x(:, s%elem_nodes(1:nn, e)), &
-                 model%materials(s%sections(s%elem_section(e))%material), u(pd(1:n), :), fg(1:n, :), inner)
+                 model%materials(s%sections(s%elem_section(e))%material), u(pd(1:n), :), fg(1:n, :), inner, &
+                 s%sections(s%elem_section(e))%axes)
             if (allocated(inner)) then
                call add_error_line(error, EXIT_DECK, inner%message)
                return

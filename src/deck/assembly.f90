@@ -237,6 +237,14 @@ contains
        m%x = 0.0_wp
        return
     end if
+    do s = 1, size(m%sections)          ! material axes (*SOLID SECTION, ORIENTATION=) move with the instance
+       if (.not. allocated(m%sections(s)%axes)) cycle
+       associate (ax => m%sections(s)%axes)
+         ax%q = matmul(ax%q, transpose(inst%rot))
+         ax%a = matmul(inst%rot, ax%a) + inst%shift
+         ax%b = matmul(inst%rot, ax%b) + inst%shift
+       end associate
+    end do
     if (all(inst%rot == IDENTITY)) return
 
     if (abs(inst%rot(3, 3) - 1.0_wp) > PLANE_ROT_TOL) then

@@ -4,7 +4,7 @@ module superjoin_deck_build_sections
   !! left without a section reported.
   use superjoin_kinds, only: wp, ip
   use superjoin_model_types, only: model_t, substructure_t, ELEMENT_TYPE_NAMES, SEC_SOLID, SEC_BEAM, &
-       SEC_SHELL, section_t, DIALECT_NONE, DIALECT_CALCULIX
+       SEC_SHELL, section_t, DIALECT_NONE, DIALECT_CALCULIX, MAT_ISO
   use superjoin_model_notes, only: note
   use superjoin_elements, only: has_axisymmetric
   use superjoin_elements_traits, only: element_traits_t, element_traits, section_card_name, &
@@ -14,6 +14,7 @@ module superjoin_deck_build_sections
   use superjoin_deck_beam_sections, only: section_fibres, MAX_FIBRES, section_properties, section_props_t, &
        shape_shear_factor, SHAPE_CIRC
   use superjoin_deck_build_common, only: resolve_sub, more_text, where
+  use superjoin_deck_cards_materials, only: ELASTIC_TYPE_NAMES
   implicit none (type, external)
   private
 
@@ -162,6 +163,7 @@ contains
               ' mixes B23 and B33 elements')
          return
       end if
+      call material_axes(st, model, sb, tally, sec)
       if (.not. sb%data_ok) return
       sec%nodal_thickness = sb%nodal_thickness   ! *SHELL / *SOLID SECTION, NODAL THICKNESS
       select case (sb%kind)
@@ -174,6 +176,36 @@ contains
       end select
     end associate
   end subroutine build_section
+
+  subroutine material_axes(st, model, sb, tally, sec)
+    !! The material axes of a *SOLID SECTION (ORIENTATION=: a copy of the
+    !! *ORIENTATION in sec%axes), and the element kinds an orthotropic or
+    !! anisotropic material may not cover: only solids take one (reported
+    !! once, on the section card).
+    type(deck_state_t), intent(inout) :: st
+    type(model_t), intent(in) :: model
+    type(sec_b_t), intent(in) :: sb
+    type(member_tally_t), intent(in) :: tally
+    type(section_t), intent(inout) :: sec
+    integer :: k, others
+    if (allocated(sb%orientation)) then
+       if (len(sb%orientation) > 0) then
+          do k = 1, st%norient
+             if (st%orientations(k)%name == sb%orientation) sec%axes = st%orientations(k)
+          end do
+          if (.not. allocated(sec%axes)) call report_loc(st, sb%loc, 'unknown orientation '//sb%orientation)
+       end if
+    end if
+    if (sec%material == 0) return
+    associate (mat => model%materials(sec%material))
+      others = tally%ntruss + tally%ncps + tally%nb23 + tally%nb33 + tally%nshell
+      if (mat%kind == MAT_ISO .or. others == 0) return
+      call report_loc(st, sb%loc, 'material '//mat%name//' (at '//where(st, mat%loc)//') is not isotropic '// &
+           '(*ELASTIC, TYPE='//trim(ELASTIC_TYPE_NAMES(mat%kind))//'): superjoin takes it on solid '// &
+           'elements (C3D*) only, and element set '//sb%elset%set//' holds '//itoa(others)//' element'// &
+           trim(merge('s ', '  ', others > 1))//' of another kind')
+    end associate
+  end subroutine material_axes
 
   integer function material_index(model, name) result(imat)
     !! Index of material name (the last of that name; 0: none).

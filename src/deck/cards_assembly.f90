@@ -25,7 +25,7 @@ module superjoin_deck_cards_assembly
   use superjoin_utils_halting, only: halting_t, halting_off, halting_restore
   use superjoin_utils_strings, only: pick
   use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
-  use superjoin_deck_cards_common, only: get_reals
+  use superjoin_deck_cards_common, only: get_reals, axis_rotation
   use superjoin_deck_cards_common, only: outside_step, check_params, param_index, get_param, &
        get_name_param, target_sub, field_count, fld, get_real, real_message, get_dof_range, &
        get_stiffness, parse_ref, loc_string, CARD_SKIP, CARD_CONTACT, CARD_SUPPORT, CARD_INSTANCE, &
@@ -41,8 +41,6 @@ module superjoin_deck_cards_assembly
   integer, parameter :: TRANSLATION_FIELDS = 3, ROTATION_FIELDS = 7
   real(wp), parameter :: AXIS_TOL = 1.0e-12_wp
     !! The rotation axis is degenerate when |b - a| <= AXIS_TOL max(|a|, |b|) (or 0).
-  real(wp), parameter :: RIGHT_ANGLE = 90.0_wp, HALF_TURN_DEG = 180.0_wp
-  integer, parameter :: QUARTER_TURNS = 4
   integer, parameter :: CHANGE_FIELDS_MIN = 5
     !! master, slave, first dof, last dof, g (a SWEEP adds more values of g).
   integer, parameter :: CHANGE_LIST_FIELDS_MIN = 4
@@ -284,8 +282,7 @@ contains
     type(deck_state_t), intent(inout) :: st
     character(*), intent(in) :: line
     type(source_loc_t), intent(in) :: loc
-    real(wp) :: v(ROTATION_FIELDS), a(3), b(3), n(3), nn, c, s, angle, q(3, 3)
-    integer :: i, turns
+    real(wp) :: v(ROTATION_FIELDS), a(3), b(3), n(3), nn, angle, q(3, 3)
     associate (inst => st%instances(st%card_item))
       inst%ndata = inst%ndata + 1
       if (inst%ndata > 2) then
@@ -333,26 +330,7 @@ contains
          return
       end if
       n = n/nn
-      ! quarter turns exactly (cos 90 degrees is not 0 in floating point)
-      if (mod(angle, RIGHT_ANGLE) == 0.0_wp .and. abs(angle) < huge(turns)*RIGHT_ANGLE) then
-         turns = modulo(nint(angle/RIGHT_ANGLE), QUARTER_TURNS)
-         c = real(merge(1, merge(-1, 0, turns == 2), turns == 0), wp)
-         s = real(merge(1, merge(-1, 0, turns == 3), turns == 1), wp)
-      else
-         c = cos(angle*acos(-1.0_wp)/HALF_TURN_DEG)
-         s = sin(angle*acos(-1.0_wp)/HALF_TURN_DEG)
-      end if
-      ! Rodrigues: R = c I + s [n]x + (1 - c) n nT
-      do i = 1, 3
-         q(:, i) = (1.0_wp - c)*n*n(i)
-         q(i, i) = q(i, i) + c
-      end do
-      q(1, 2) = q(1, 2) - s*n(3)
-      q(1, 3) = q(1, 3) + s*n(2)
-      q(2, 1) = q(2, 1) + s*n(3)
-      q(2, 3) = q(2, 3) - s*n(1)
-      q(3, 1) = q(3, 1) - s*n(2)
-      q(3, 2) = q(3, 2) + s*n(1)
+      q = axis_rotation(n, angle)
       inst%rot = q
       ! x' = a + R (x + t - a) = R x + (a + R (t - a))
       inst%shift = a + matmul(q, inst%shift - a)

@@ -13,6 +13,7 @@ module superjoin_deck_cards_common
   implicit none (type, external)
   private
 
+  public :: axis_rotation
   public :: set_card, outside_step, check_params, param_index, get_param, get_name_param, &
        target_sub, field_count, fld, get_real, get_reals, real_message, get_id, get_dof, get_dof_range, &
        get_stiffness, parse_ref, parse_set_ref, loc_string, refused_card, CARD_NONE, CARD_SKIP, CARD_NODATA, &
@@ -416,4 +417,33 @@ contains
        st%step_procedure_loc = loc
     end if
   end function refused_card
+
+  pure function axis_rotation(n, angle) result(r)
+    !! The rotation by angle degrees about the unit vector n (right hand;
+    !! Rodrigues: r = c I + s [n]x + (1 - c) n nᵀ), quarter turns exact (cos 90
+    !! degrees is not 0 in floating point).
+    real(wp), intent(in) :: n(3), angle
+    real(wp) :: r(3, 3), c, s
+    real(wp), parameter :: RIGHT_ANGLE = 90.0_wp, HALF_TURN_DEG = 180.0_wp
+    integer, parameter :: QUARTER_TURNS = 4
+    integer :: i, turns
+    if (mod(angle, RIGHT_ANGLE) == 0.0_wp .and. abs(angle) < huge(turns)*RIGHT_ANGLE) then
+       turns = modulo(nint(angle/RIGHT_ANGLE), QUARTER_TURNS)
+       c = real(merge(1, merge(-1, 0, turns == 2), turns == 0), wp)
+       s = real(merge(1, merge(-1, 0, turns == 3), turns == 1), wp)
+    else
+       c = cos(angle*acos(-1.0_wp)/HALF_TURN_DEG)
+       s = sin(angle*acos(-1.0_wp)/HALF_TURN_DEG)
+    end if
+    do i = 1, 3
+       r(:, i) = (1.0_wp - c)*n*n(i)
+       r(i, i) = r(i, i) + c
+    end do
+    r(1, 2) = r(1, 2) - s*n(3)
+    r(1, 3) = r(1, 3) + s*n(2)
+    r(2, 1) = r(2, 1) + s*n(3)
+    r(2, 3) = r(2, 3) - s*n(1)
+    r(3, 1) = r(3, 1) - s*n(2)
+    r(3, 2) = r(3, 2) + s*n(1)
+  end function axis_rotation
 end module superjoin_deck_cards_common

@@ -3,7 +3,8 @@ module superjoin_deck_cards_sections
   !! *SOLID SECTION, *SHELL SECTION, *BEAM SECTION (library shapes),
   !! *BEAM GENERAL SECTION, *TRANSVERSE SHEAR STIFFNESS and *ORIENTATION.
   use superjoin_kinds, only: wp
-  use superjoin_model_types, only: source_loc_t, SEC_BEAM, SEC_SHELL
+  use superjoin_model_types, only: source_loc_t, SEC_BEAM, SEC_SHELL, MAT_ISO
+  use superjoin_deck_cards_materials, only: elastic_kind, data_elastic_aniso
   use superjoin_deck_lexer, only: keyword_line_t, to_upper, parse_real, itoa, clip, plural, TOK_OK
   use superjoin_deck_state, only: deck_state_t, sec_b_t, report_loc, add_material, add_orientation, &
        add_section, BEAM_2D_VALUES, BEAM_3D_VALUES, SHAPE_GENERAL
@@ -12,7 +13,7 @@ module superjoin_deck_cards_sections
        MAX_SHAPE_DIMS
   use superjoin_elements_frame, only: real_text
   use superjoin_utils_strings, only: pick
-  use superjoin_deck_cards_common, only: get_reals
+  use superjoin_deck_cards_common, only: get_reals, axis_rotation
   use superjoin_deck_cards_common, only: outside_step, check_params, param_index, get_param, &
        get_name_param, field_count, fld, get_real, real_message, parse_set_ref, loc_string, CARD_SKIP, &
        CARD_SECTION, CARD_ELASTIC, CARD_ORIENTATION, CARD_DENSITY, CARD_TSHEAR, CARD_EXPANSION, &
@@ -108,13 +109,16 @@ contains
     integer, intent(in) :: mat
     character(:), allocatable :: typ
     logical :: found
+    integer :: kind
     if (.not. outside_step(st, kw, loc)) return
     call check_params(st, kw, loc, [character(NAME_LEN) :: 'TYPE'], [character(NAME_LEN) ::])
     call get_param(st, kw, loc, 'TYPE', .false., typ, found)
+    kind = MAT_ISO
     if (found) then
-       if (to_upper(typ) /= 'ISOTROPIC' .and. to_upper(typ) /= 'ISO') then
+       kind = elastic_kind(typ)
+       if (kind < 0) then
           call report_loc(st, loc, '*ELASTIC, TYPE='//clip(typ)//' is not supported: superjoin''s materials '// &
-               'are isotropic (TYPE=ISO)')
+               'are TYPE=ISO, ORTHO, ENGINEERING CONSTANTS or ANISO')
           st%card = CARD_SKIP
           st%cur_mat = mat                   ! the material's next cards still find it
           if (mat > 0) st%materials(mat)%has_elastic = .true.   ! and it is not reported again as without *ELASTIC
@@ -122,6 +126,7 @@ contains
        end if
     end if
     call material_data_card(st, loc, mat, CARD_ELASTIC)
+    if (st%card == CARD_ELASTIC) st%materials(mat)%kind = kind
   end subroutine kw_elastic
 
   subroutine kw_expansion(st, kw, loc, mat)
@@ -181,6 +186,10 @@ contains
     character(*), intent(in) :: line
     type(source_loc_t), intent(in) :: loc
     real(wp) :: e, nu, temp
+    if (st%materials(st%card_item)%kind /= MAT_ISO) then
+       call data_elastic_aniso(st, line, loc)    ! TYPE=ORTHO, ENGINEERING CONSTANTS, ANISO
+       return
+    end if
     if (st%card_ndata > 1) then
        call report_loc(st, loc, 'too many data lines for *ELASTIC')
        st%card = CARD_SKIP
@@ -231,7 +240,7 @@ contains
     type(source_loc_t), intent(in) :: loc
     integer, intent(in) :: kind
     character(:), allocatable :: elset, material
-    logical :: found_e, found_m
+    logical :: found_e, found_m, found_o
     type(sec_b_t) :: sec
     if (.not. outside_step(st, kw, loc)) return
     if (kind == SEC_BEAM) then
@@ -243,9 +252,10 @@ contains
           return
        end if
     else
-       call check_params(st, kw, loc, [character(NAME_LEN) :: 'ELSET', 'MATERIAL', 'OFFSET'], &
+       call check_params(st, kw, loc, [character(NAME_LEN) :: 'ELSET', 'MATERIAL', 'OFFSET', 'ORIENTATION'], &
             [character(NAME_LEN) :: 'NODAL THICKNESS'])
        call section_offset(st, kw, loc, kind)
+       call get_name_param(st, kw, loc, 'ORIENTATION', .false., sec%orientation, found_o)  ! material axes
     end if
     call get_param(st, kw, loc, 'ELSET', .true., elset, found_e)
     call get_name_param(st, kw, loc, 'MATERIAL', .true., material, found_m)
@@ -633,10 +643,18 @@ contains
     logical :: cylindrical
     character(:), allocatable :: system
     if (.not. outside_step(st, kw, loc)) return
-    call check_params(st, kw, loc, [character(NAME_LEN) :: 'NAME', 'SYSTEM'], [character(NAME_LEN) ::])
+    call check_params(st, kw, loc, [character(NAME_LEN) :: 'NAME', 'SYSTEM', 'DEFINITION'], [character(NAME_LEN) ::])
     call get_name_param(st, kw, loc, 'NAME', .true., name, found)
     st%card = CARD_SKIP
     if (.not. found) return
+    call get_param(st, kw, loc, 'DEFINITION', .false., system, found)   ! Abaqus's; CalculiX warns and goes on
+    if (found) then
+       if (to_upper(system) /= 'COORDINATES') then
+          call report_loc(st, loc, '*ORIENTATION, DEFINITION='//clip(system)//' is not supported: superjoin '// &
+               'takes DEFINITION=COORDINATES (the default: the points a and b)')
+          return
+       end if
+    end if
     cylindrical = .false.
     call get_param(st, kw, loc, 'SYSTEM', .false., system, found)
     if (found) then
@@ -667,7 +685,11 @@ contains
     character(*), intent(in) :: line
     type(source_loc_t), intent(in) :: loc
     real(wp) :: v(ORIENT_VALUES), a(3), b(3), e1(3), e2(3), e3(3), na, nb, n2
-    if (st%card_ndata > 1) then
+    if (st%card_ndata == 2) then
+       call orientation_rotation(st, line, loc)
+       return
+    end if
+    if (st%card_ndata > 2) then
        call report_loc(st, loc, 'too many data lines for *ORIENTATION')
        st%card = CARD_SKIP
        return
@@ -711,4 +733,31 @@ contains
     st%orientations(st%card_item)%q(2, :) = e2
     st%orientations(st%card_item)%q(3, :) = e3
   end subroutine data_orientation
+
+  subroutine orientation_rotation(st, line, loc)
+    !! The second data line of *ORIENTATION: axis, angle: the local system turns
+    !! by angle degrees about its own axis 1, 2 or 3 (right hand; Abaqus and
+    !! CalculiX; rectangular systems only, as CalculiX).
+    type(deck_state_t), intent(inout) :: st
+    character(*), intent(in) :: line
+    type(source_loc_t), intent(in) :: loc
+    real(wp) :: v(2)
+    integer :: axis
+    if (st%orientations(st%card_item)%cylindrical) then
+       call report_loc(st, loc, '*ORIENTATION: the additional rotation (second data line) is only for '// &
+            'rectangular systems (as CalculiX)')
+       return
+    end if
+    if (.not. field_count(st, loc, 2, 2, 'axis (1, 2 or 3), angle in degrees')) return
+    if (.not. get_reals(st, line, loc, v)) return
+    axis = nint(v(1))
+    if (real(axis, wp) /= v(1) .or. axis < 1 .or. axis > 3) then
+       call report_loc(st, loc, '*ORIENTATION: the axis of the additional rotation must be 1, 2 or 3, not '// &
+            fld(st, line, 1))
+       return
+    end if
+    associate (q => st%orientations(st%card_item)%q)
+      q = transpose(matmul(axis_rotation(q(axis, :), v(2)), transpose(q)))   ! each local axis (a row of q) turned
+    end associate
+  end subroutine orientation_rotation
 end module superjoin_deck_cards_sections

@@ -31,6 +31,7 @@ module superjoin_deck_parser
   use superjoin_deck_cards_sections, only: kw_material, kw_density, kw_elastic, kw_expansion, &
        data_expansion, data_elastic, data_density, kw_section, data_section, kw_transverse_shear, &
        data_transverse_shear, kw_orientation, data_orientation
+  use superjoin_deck_cards_materials, only: end_elastic_card
   use superjoin_deck_cards_steps, only: kw_step, kw_end_step, kw_static, data_static, kw_controls, &
        kw_boundary, data_boundary, kw_load, data_load, kw_surface, data_surface, data_dsload, &
        kw_load_combination, data_combination, kw_temperature, data_temperature
@@ -261,6 +262,7 @@ contains
     select case (st%card)
     case (CARD_ELASTIC, CARD_ORIENTATION, CARD_DENSITY, CARD_TSHEAR, CARD_TRANSFORM)
        if (st%card_ndata == 0) call report_loc(st, st%card_loc, st%card_name//' needs a data line')
+       call end_elastic_card(st)      ! an orthotropic or anisotropic set left incomplete
     case (CARD_SECTION)
        ! *SOLID SECTION of plane elements may omit the thickness (1, as Abaqus);
        ! the element types are known when the model is built (validate).

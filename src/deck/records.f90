@@ -117,6 +117,7 @@ module superjoin_deck_records
      integer :: ndims = 0                  !! library shape: number of dimensions on its data line
      real(wp) :: dims(7) = 0.0_wp          !! library shape: the dimensions (for the fibre points)
      logical :: five_general = .false.     !! *BEAM SECTION, SECTION=GENERAL with CalculiX's five values
+     character(:), allocatable :: orientation  !! *SOLID SECTION, ORIENTATION= (upper case; unallocated: none)
   end type sec_b_t
 
   type, public :: contact_b_t

@@ -17,7 +17,7 @@ module superjoin_elements
        ET_CPS6, ET_CPS8, ET_CPE6, ET_CPE8, ET_CPS8R, ET_CPE8R, ET_B32, &
        ET_C3D8, ET_C3D20, ET_C3D20R, ET_C3D4, ET_C3D10, ET_C3D8I, ET_C3D6, ET_C3D15, ET_C3D8R, &
        DLOAD_PX, DLOAD_PY, DLOAD_PZ, DLOAD_P
-  use superjoin_model_types, only: ET_S4R, ET_S3R
+  use superjoin_model_types, only: ET_S4R, ET_S3R, orientation_t
   use superjoin_model_types, only: ET_S8R, ET_S8
   use superjoin_elements_solid, only: solid_stiffness, solid_body_load, is_3d_solid => is_solid_type, &
        solid_3d_forces => solid_forces
@@ -205,7 +205,7 @@ contains
          ET_S8R, ET_S8)
        call shell_stiffness(etype, x, sec, mat, ke, error, drill)
     case (ET_C3D8, ET_C3D20, ET_C3D20R, ET_C3D4, ET_C3D10, ET_C3D8I, ET_C3D6, ET_C3D15, ET_C3D8R)
-       call solid_stiffness(etype, x, mat, ke, error)
+       call solid_stiffness(etype, x, mat, ke, error, sec%axes)
     case (ET_CAX3, ET_CAX4, ET_CAX6, ET_CAX8, ET_CAX8R)
        call axisym_stiffness(etype, x, mat, ke, error)
     case default
@@ -668,17 +668,19 @@ contains
     is_solid_type = is_3d_solid(etype) .or. is_axisym_type(etype)
   end function is_solid_type
 
-  pure subroutine solid_forces(etype, x, mat, ue, fg, error)
-    !! fg(:, step) = K_e ue(:, step) of a solid, 3D or axisymmetric, every step with one element matrix.
+  pure subroutine solid_forces(etype, x, mat, ue, fg, error, axes)
+    !! fg(:, step) = K_e ue(:, step) of a solid, 3D or axisymmetric, every step with one element matrix
+    !! (axes: the material axes of the section's *ORIENTATION, 3D solids).
     integer, intent(in) :: etype
     real(wp), intent(in) :: x(:, :), ue(:, :)
     type(material_t), intent(in) :: mat
     real(wp), intent(out) :: fg(:, :)
     type(error_t), allocatable, intent(out) :: error
+    type(orientation_t), intent(in), optional :: axes
     if (is_axisym_type(etype)) then
        call axisym_forces(etype, x, mat, ue, fg, error)
     else
-       call solid_3d_forces(etype, x, mat, ue, fg, error)
+       call solid_3d_forces(etype, x, mat, ue, fg, error, axes)
     end if
   end subroutine solid_forces
 

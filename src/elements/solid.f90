@@ -1,5 +1,6 @@
 module superjoin_elements_solid
-  !! Isoparametric 3D solid elements, isotropic linear elasticity, DOFs 1..3
+  !! Isoparametric 3D solid elements, linear elasticity (isotropic, orthotropic or
+  !! anisotropic in the section's material axes: superjoin_elements_materials), DOFs 1..3
   !! per node, node numbering as Abaqus and CalculiX:
   !!
   !! - C3D8: trilinear hexahedron, full 2×2×2 Gauss rule;
@@ -29,9 +30,10 @@ module superjoin_elements_solid
   !! Hughes, ch. 3). Strain order: εxx, εyy, εzz, γxy, γxz, γyz.
   use superjoin_kinds, only: wp
   use superjoin_error, only: error_t, fatal_error, EXIT_DECK
-  use superjoin_model_types, only: material_t, ET_C3D8, ET_C3D20, ET_C3D20R, ET_C3D4, ET_C3D10, ET_C3D8I, &
-       ET_C3D6, ET_C3D15, ET_C3D8R
+  use superjoin_model_types, only: material_t, orientation_t, MAT_ISO, ET_C3D8, ET_C3D20, ET_C3D20R, ET_C3D4, &
+       ET_C3D10, ET_C3D8I, ET_C3D6, ET_C3D15, ET_C3D8R
   use superjoin_elements_solid_reduced, only: hourglass_stiffness
+  use superjoin_elements_materials, only: elasticity, material_stiffness, spd_solve
   implicit none (type, external)
   private
 
@@ -376,39 +378,20 @@ contains
     inv(3, 3) = jac(1, 1)*jac(2, 2) - jac(1, 2)*jac(2, 1)
   end function adjugate
 
-  pure function spd_solve(m, b) result(x)
-    !! x = m⁻¹ b for a symmetric positive definite m (Gauss-Jordan
-    !! elimination; no pivoting is needed).
-    real(wp), intent(in) :: m(:, :), b(:, :)
-    real(wp) :: x(size(b, 1), size(b, 2))
-    real(wp) :: a(size(m, 1), size(m, 2)), f
-    integer :: i, k
-    a = m
-    x = b
-    do i = 1, size(a, 1)
-       f = a(i, i)
-       a(i, :) = a(i, :)/f
-       x(i, :) = x(i, :)/f
-       do k = 1, size(a, 1)
-          if (k == i) cycle
-          f = a(k, i)
-          a(k, :) = a(k, :) - f*a(i, :)
-          x(k, :) = x(k, :) - f*x(i, :)
-       end do
-    end do
-  end function spd_solve
-
-  pure subroutine mode_matrices(x, d, kua, kaa, g, error)
+  pure subroutine mode_matrices(x, mat, kua, kaa, g, error, axes)
     !! C3D8I: the coupling kua(24, 9) and mode stiffness kaa(9, 9) of the
     !! incompatible modes, and their strain matrices g(6, 9, point) at the
     !! 2×2×2 points: ∂P_k/∂x = J0⁻¹ ∂P_k/∂ξ det J0 / det J (Taylor's centre
     !! Jacobian), P_k = 1 - ξ_k², modes ordered (P1: ux, uy, uz), (P2: …), (P3: …).
-    real(wp), intent(in) :: x(:, :), d(6, 6)
+    !! mat, axes: the material and its axes (superjoin_elements_materials).
+    real(wp), intent(in) :: x(:, :)
+    type(material_t), intent(in) :: mat
     real(wp), intent(out) :: kua(24, 9), kaa(9, 9), g(6, 9, 8)
     type(error_t), allocatable, intent(out) :: error
+    type(orientation_t), intent(in), optional :: axes
     type(rule_t) :: r
     real(wp), allocatable :: n(:), dn(:, :), dx(:, :)
-    real(wp) :: jac0(3, 3), inv0(3, 3), det0, detj, gx(3, 3), b(6, 24)
+    real(wp) :: jac0(3, 3), inv0(3, 3), det0, detj, gx(3, 3), b(6, 24), d(6, 6)
     integer :: ig, k
     kua = 0.0_wp
     kaa = 0.0_wp
@@ -426,22 +409,24 @@ contains
        end do
        g(:, :, ig) = strain_matrix(gx)
        b = strain_matrix(dx)
+       d = material_stiffness(mat, matmul(x, n), axes)
        kua = kua + matmul(transpose(b), matmul(d, g(:, :, ig)))*(detj*r%w(ig))
        kaa = kaa + matmul(transpose(g(:, :, ig)), matmul(d, g(:, :, ig)))*(detj*r%w(ig))
     end do
   end subroutine mode_matrices
 
-  pure subroutine mode_strains(x, mat, ue, eps, error)
+  pure subroutine mode_strains(x, mat, ue, eps, error, axes)
     !! C3D8I: the strains eps(6, 8) of the condensed incompatible modes at the
     !! 2×2×2 points for the DOF values ue(24) (their amplitudes -kaa⁻¹ kauᵀ ue).
     real(wp), intent(in) :: x(:, :), ue(:)
     type(material_t), intent(in) :: mat
     real(wp), intent(out) :: eps(6, 8)
     type(error_t), allocatable, intent(out) :: error
+    type(orientation_t), intent(in), optional :: axes
     real(wp) :: kua(24, 9), kaa(9, 9), g(6, 9, 8), alpha(9, 1)
     integer :: ig
     eps = 0.0_wp
-    call mode_matrices(x, elasticity(mat), kua, kaa, g, error)
+    call mode_matrices(x, mat, kua, kaa, g, error, axes)
     if (allocated(error)) return
     alpha = -spd_solve(kaa, matmul(transpose(kua), reshape(ue, [24, 1])))
     do ig = 1, 8
@@ -449,40 +434,27 @@ contains
     end do
   end subroutine mode_strains
 
-  pure function elasticity(mat) result(d)
-    !! Isotropic elasticity matrix (engineering shear strains).
-    type(material_t), intent(in) :: mat
-    real(wp) :: d(6, 6), lam, g
-    integer :: i
-    lam = mat%e*mat%nu/((1.0_wp + mat%nu)*(1.0_wp - 2.0_wp*mat%nu))
-    g = mat%e/(2.0_wp*(1.0_wp + mat%nu))
-    d = 0.0_wp
-    d(1:3, 1:3) = lam
-    do i = 1, 3
-       d(i, i) = lam + 2.0_wp*g
-       d(i + 3, i + 3) = g
-    end do
-  end function elasticity
-
-  pure subroutine solid_stiffness(etype, x, mat, ke, error)
+  pure subroutine solid_stiffness(etype, x, mat, ke, error, axes)
     !! Stiffness ke(3 nnode, 3 nnode) of a solid element with node
-    !! coordinates x(3, nnode), node-major (ux, uy, uz of node 1, then node 2 …).
+    !! coordinates x(3, nnode), node-major (ux, uy, uz of node 1, then node 2 …);
+    !! axes: the material axes of the section's *ORIENTATION (absent: global),
+    !! D taken at each integration point (superjoin_elements_materials).
     !! Errors: E not positive, ν outside (-1, 0.5), a non-positive Jacobian.
     integer, intent(in) :: etype
     real(wp), intent(in) :: x(:, :)
     type(material_t), intent(in) :: mat
     real(wp), allocatable, intent(out) :: ke(:, :)
     type(error_t), allocatable, intent(out) :: error
+    type(orientation_t), intent(in), optional :: axes
     type(rule_t) :: r
     real(wp), allocatable :: n(:), dx(:, :), b(:, :)
     real(wp) :: d(6, 6), detj
     integer :: g, nn
     nn = size(x, 2)
-    if (.not. (mat%e > 0.0_wp) .or. .not. (mat%nu > -1.0_wp .and. mat%nu < 0.5_wp)) then
+    if (mat%kind == MAT_ISO .and. (.not. (mat%e > 0.0_wp) .or. .not. (mat%nu > -1.0_wp .and. mat%nu < 0.5_wp))) then
        call fatal_error(error, EXIT_DECK, 'a solid element needs E > 0 and -1 < nu < 0.5')
        return
     end if
-    d = elasticity(mat)
     r = solid_rule(merge(ET_C3D8I, etype, etype == ET_C3D8R), .false.)   ! C3D8R: C3D8I's, then reduced
     allocate (ke(3*nn, 3*nn), b(6, 3*nn))
     ke = 0.0_wp
@@ -490,13 +462,15 @@ contains
        call point_gradients(etype, x, r%xi(:, g), n, dx, detj, error)
        if (allocated(error)) return
        b = strain_matrix(dx)
+       d = material_stiffness(mat, matmul(x, n), axes)
        ke = ke + matmul(transpose(b), matmul(d, b))*(detj*r%w(g))
     end do
-    if (etype == ET_C3D8I .or. etype == ET_C3D8R) call condense_modes(x, d, ke, error)
+    if (etype == ET_C3D8I .or. etype == ET_C3D8R) call condense_modes(x, mat, ke, error, axes)
     if (allocated(error) .or. etype /= ET_C3D8R) return
     call mean_gradients(x, dx, detj, error)
     if (allocated(error)) return
     b = strain_matrix(dx)
+    d = material_stiffness(mat, sum(x, dim=2)/size(x, 2), axes)   ! C3D8R: D at the centre
     ke = matmul(transpose(b), matmul(d, b))*detj + hourglass_stiffness(x, dx, ke)
   end subroutine solid_stiffness
 
@@ -523,13 +497,15 @@ contains
     bbar = bbar/vol
   end subroutine mean_gradients
 
-  pure subroutine condense_modes(x, d, ke, error)
+  pure subroutine condense_modes(x, mat, ke, error, axes)
     !! C3D8I: ke -= kua kaa⁻¹ kauᵀ, the incompatible modes condensed.
-    real(wp), intent(in) :: x(:, :), d(6, 6)
+    real(wp), intent(in) :: x(:, :)
+    type(material_t), intent(in) :: mat
     real(wp), intent(inout) :: ke(:, :)
     type(error_t), allocatable, intent(out) :: error
+    type(orientation_t), intent(in), optional :: axes
     real(wp) :: kua(24, 9), kaa(9, 9), g(6, 9, 8)
-    call mode_matrices(x, d, kua, kaa, g, error)
+    call mode_matrices(x, mat, kua, kaa, g, error, axes)
     if (allocated(error)) return
     ke = ke - matmul(kua, spd_solve(kaa, transpose(kua)))
   end subroutine condense_modes
@@ -551,17 +527,19 @@ contains
     end do
   end function strain_matrix
 
-  pure subroutine solid_forces(etype, x, mat, ue, fg, error)
+  pure subroutine solid_forces(etype, x, mat, ue, fg, error, axes)
     !! The forces the nodes exert on a solid element, K_e u_e, for the
-    !! displacements ue(3 nnode, nstep) of every step, with one element matrix.
+    !! displacements ue(3 nnode, nstep) of every step, with one element matrix
+    !! (axes: the material axes, as solid_stiffness).
     integer, intent(in) :: etype
     real(wp), intent(in) :: x(:, :), ue(:, :)
     type(material_t), intent(in) :: mat
     real(wp), intent(out) :: fg(:, :)
     type(error_t), allocatable, intent(out) :: error
+    type(orientation_t), intent(in), optional :: axes
     real(wp), allocatable :: ke(:, :)
     fg = 0.0_wp
-    call solid_stiffness(etype, x, mat, ke, error)
+    call solid_stiffness(etype, x, mat, ke, error, axes)
     if (allocated(error)) return
     fg = matmul(ke, ue)
   end subroutine solid_forces

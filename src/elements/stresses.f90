@@ -181,7 +181,7 @@ contains
     if (is_axisym_type(el%etype)) then
        call axisym_point_tensors(el%etype, el%x, el%mat, el%ue, strain, sp, sn, error)
     else
-       call solid_point_tensors(el%etype, el%x, el%mat, el%ue, strain, sp, sn, error)
+       call solid_point_tensors(el%etype, el%x, el%mat, el%ue, strain, sp, sn, error, el%sec%axes)
     end if
     ok = .not. allocated(error)
     if (.not. ok) return

@@ -105,11 +105,30 @@ module superjoin_model_types
      integer :: line = 0
   end type source_loc_t
 
+  type, public :: orientation_t
+    !! A local system (*ORIENTATION) of oriented contacts and of the material
+    !! axes of solid sections: rows of q are the local axes (rectangular).
+     character(:), allocatable :: name
+     real(wp) :: q(3, 3) = 0.0_wp
+     logical :: cylindrical = .false.      !! SYSTEM=CYLINDRICAL: each link takes its own frame (link_t%q)
+     real(wp) :: a(3) = 0.0_wp             !! cylindrical: two points a, b of the axis
+     real(wp) :: b(3) = 0.0_wp
+     type(source_loc_t) :: loc
+  end type orientation_t
+
+  integer, parameter, public :: MAT_ISO = 0, MAT_ORTHO = 1, MAT_ENGINEERING = 2, MAT_ANISO = 3
+    !! material_t%kind: *ELASTIC, TYPE=ISO, ORTHO, ENGINEERING CONSTANTS, ANISO.
+
   type, public :: material_t
-    !! Isotropic linear elastic material.
+    !! Linear elastic material: isotropic (E, nu) or, kind /= MAT_ISO, the
+    !! stiffness d in its material axes (Voigt order 11, 22, 33, 12, 13, 23,
+    !! engineering shear strains, as Abaqus's D1111 .. D2323).
      character(:), allocatable :: name     !! upper case
      real(wp) :: e = 0.0_wp
      real(wp) :: nu = 0.0_wp
+     integer :: kind = MAT_ISO             !! MAT_*
+     real(wp) :: given(21) = 0.0_wp        !! anisotropic: the constants as written (9 or 21)
+     real(wp) :: d(6, 6) = 0.0_wp          !! anisotropic: the stiffness in material axes
      real(wp) :: density = 0.0_wp         !! mass per unit volume (*DENSITY)
      logical :: has_elastic = .false.
      logical :: has_density = .false.
@@ -143,6 +162,8 @@ module superjoin_model_types
                                            !! thickness at each node of the one element this copy
                                            !! of the section belongs to (element node order);
                                            !! unallocated: `thickness` everywhere
+     type(orientation_t), allocatable :: axes  !! *SOLID SECTION, ORIENTATION=: the material axes
+                                           !! (unallocated: global axes)
   end type section_t
 
   type, public :: index_set_t
@@ -206,16 +227,6 @@ module superjoin_model_types
   integer, parameter, public :: EXPORT_ABAQUS = 1, EXPORT_DMIG = 2, EXPORT_MATRIX_MARKET = 3, &
        EXPORT_CALCULIX = 4
     !! FORMAT= of *SUBSTRUCTURE MATRIX OUTPUT and *MATRIX INPUT.
-
-  type, public :: orientation_t
-    !! A frame for oriented contacts: rows of q are the local axes.
-     character(:), allocatable :: name
-     real(wp) :: q(3, 3) = 0.0_wp
-     logical :: cylindrical = .false.      !! SYSTEM=CYLINDRICAL: each link takes its own frame (link_t%q)
-     real(wp) :: a(3) = 0.0_wp             !! cylindrical: two points a, b of the axis
-     real(wp) :: b(3) = 0.0_wp
-     type(source_loc_t) :: loc
-  end type orientation_t
 
   type, public :: contact_t
     !! One *CONTACT card.

@@ -36,6 +36,9 @@ Tolerances and why (doc/calculix-dropin.md, "The .dat against .dat.ref"):
 - axial (CAX8R, CENTRIF): 1e-2 (CalculiX's 2 deg wedge of C3D20R on two elements
   0.45 long; against the spinning thin disk's closed form superjoin is the
   nearer: u at the bore -1.5 % against ccx's -2.5 %, doc/calculix-dropin.md).
+- c3d15: forces 5 times the reference's largest: the pressures on opposite
+  faces balance, so both programs' reactions are round-off (ccx 1.4e-14,
+  superjoin 2.5e-14); the check says both are.
 - spring1: refused (*STEP, NLGEOM): exit status 1, the reason on stderr, no
   "Job finished" on stdout and an empty .dat: a front-end sees a failure.
 """
@@ -57,7 +60,8 @@ BEAMS = ('beamlin', 'b31', 'rot1', 'rot2', 'simplebeam', 'simplebeampipe1', 'sim
 TOLERANCE = {'planestress2': {'stresses': 5.0e-4}, 'planestress3': {'displacements': 0.25},
              'shell1lin': {'displacements': 0.2, 'forces': 0.3, 'stresses': 0.35},
              'rot4': {'displacements': 0.2, 'forces': 0.3, 'stresses': 0.35},
-             'axial': {'displacements': 1.0e-2, 'stresses': 1.0e-2}}
+             'axial': {'displacements': 1.0e-2, 'stresses': 1.0e-2},
+             'c3d15': {'forces': 5.0}}
 for _b in BEAMS:
     TOLERANCE[_b] = {'displacements': 0.07}
 # CalculiX solved these with its iterative solvers (*STATIC, SOLVER=ITERATIVE CHOLESKY /

@@ -81,8 +81,9 @@ contains
          '2., 0.1', '*DENSITY', '7.8', '*NODE', '1, 0, 0']), 'inline.deck:4: error: superjoin does linear statics; '// &
          '*PLASTIC', 'plasticity between *ELASTIC and *DENSITY')
     call one_error(join([character(L) :: '*MATERIAL, NAME=M', '*ELASTIC, TYPE=ENGINEERING CONSTANTS', &
-         '1., 2., 3., 0.3, 0.3, 0.3, 1., 1.', '1., 0.', '*DENSITY', '7.8', '*NODE', '1, 0, 0']), &
-         '*ELASTIC, TYPE=ENGINEERING CONSTANTS is not supported', 'orthotropic elastic, two data lines')
+         '1., 2., 3., 0.3, 0.3, 0.3, 1., 1.', '1., 0.', '1., 2., 3., 0.3, 0.3, 0.3, 1., 1.', '1., 100.', &
+         '*DENSITY', '7.8', '*NODE', '1, 0, 0']), &
+         'too many data lines for *ELASTIC, TYPE=ENGINEERING CONSTANTS', 'orthotropic elastic, a temperature table')
     call one_error(BAR//join([character(L) :: '*STEP, NLGEOM=YES, INC=1000', '*STATIC', '0.1, 1.', '*END STEP']), &
          'inline.deck:11: error: superjoin does linear statics; *STEP, NLGEOM=YES', 'NLGEOM=YES')
     call one_error(BAR//join([character(L) :: '*CONTACT PAIR, INTERACTION=SI', 'S1, S2']), &

@@ -5,7 +5,7 @@ module superjoin_deck_build_thermal
   use superjoin_model_types, only: model_t, dload_t, source_loc_t, ELEMENT_TYPE_NAMES, &
        ELEMENT_NODE_COUNT, DLOAD_THERMAL, MAX_ELEMENT_NODES
   use superjoin_elements_traits, only: element_traits_t, element_traits, FAMILY_TRUSS, FAMILY_BEAM, &
-       FAMILY_PLANE, FAMILY_SHELL
+       FAMILY_PLANE, FAMILY_SHELL, FAMILY_SOLID
   use superjoin_deck_lexer, only: itoa
   use superjoin_deck_state, only: deck_state_t, report_loc
   use superjoin_deck_build_common, only: resolve_sub, resolve_items, keeps_previous, more_text
@@ -60,7 +60,9 @@ contains
     !! of its curvature α ∂T/∂n (the mean of its nodes' gradients, the third
     !! field of the temperature lines, with the nodal remainders likewise); a B32 gets α ΔT and both gradients at
     !! its three nodes (line_nodal, interpolated along it); a gradient on any
-    !! other element is refused.
+    !! other element is refused. A solid gets α ΔT at each of its nodes
+    !! (nodal, the whole value: solids have no mean part), interpolated to its
+    !! integration points (superjoin_elements_solid, solid_thermal_load).
     type(deck_state_t), intent(inout) :: st
     type(model_t), intent(inout) :: model
     type(temp_field_t) :: init, prev, cur
@@ -202,7 +204,7 @@ contains
           associate (sub => model%subs(isub))
             call report_loc(st, ts%loc, 'temperature change on element '//itoa(sub%elem_id(ts%first_plate))// &
                  ' of type '//trim(ELEMENT_TYPE_NAMES(sub%elem_type(ts%first_plate)))//' of substructure '// &
-                 sub%name//': thermal loads are implemented for trusses, beams, plane elements and S3, S4, S3R, S4R, S8R shells only'// &
+                 sub%name//': thermal loads are implemented for trusses, beams, plane elements, solids and S3, S4, S3R, S4R, S8R shells only'// &
                  more_text(ts%nplate - 1))
           end associate
        end if
@@ -253,6 +255,16 @@ contains
            end if
         case (FAMILY_PLANE, FAMILY_SHELL)
            call area_thermal(st, model, isub, e, tr, c, ts, ok)
+        case (FAMILY_SOLID)
+           ! a solid: α ΔT at every node (interpolated to its points), the mean as its value
+           if (c%dg /= 0.0_wp .or. c%dh /= 0.0_wp) then
+              call refuse(st, model, isub, e, ts%loc, 'the gradient fields (third and fourth) apply to shells and '// &
+                   'beams only: give a solid its nodal temperatures')
+              ok = .false.
+              return
+           end if
+           ts%extra = [ts%extra, dload_t(sub=isub, elem=e, kind=DLOAD_THERMAL, value=mat%alpha*c%dt, loc=ts%loc)]
+           ts%extra(size(ts%extra))%nodal = mat%alpha*c%dtn(1:nn)
         case default
            ts%nplate = ts%nplate + 1
            if (ts%nplate == 1) ts%first_plate = e

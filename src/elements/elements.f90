@@ -19,7 +19,7 @@ module superjoin_elements
        DLOAD_PX, DLOAD_PY, DLOAD_PZ, DLOAD_P
   use superjoin_model_types, only: ET_S4R, ET_S3R
   use superjoin_model_types, only: ET_S8R, ET_S8
-  use superjoin_elements_solid, only: solid_stiffness, solid_body_load, is_solid_type, solid_forces
+  use superjoin_elements_solid, only: solid_stiffness, solid_body_load, is_solid_type, solid_forces, solid_thermal_load
   use superjoin_model_types, only: DLOAD_P1, DLOAD_P2, DLOAD_P3, DLOAD_P4, DLOAD_THERMAL, DLOAD_P5, DLOAD_P6
   use superjoin_elements_solid_faces, only: solid_pressure_load
   use superjoin_elements_traits, only: dload_face, is_shell8
@@ -416,6 +416,15 @@ contains
           fe = fe + f2
           return
        end if
+       if (is_solid_type(etype)) then
+          ! a solid: α ΔT at its nodes, interpolated to its points
+          if (.not. allocated(dl%nodal)) then
+             call fatal_error(error, EXIT_DECK, 'thermal load on a solid without its nodal values')
+             return
+          end if
+          call solid_thermal_load(etype, x, mat, dl%nodal, fe, error)
+          return
+       end if
        if (.not. is_plate_type(etype)) then
           call fatal_error(error, EXIT_DECK, 'thermal strain load on an element that is not a plane or shell element')
           return
@@ -465,7 +474,7 @@ contains
            call element_gravity_load(s%elem_type(dl%elem), s%x(:, s%elem_nodes(1:nn, dl%elem)), sec, &
                 model%materials(sec%material), dl%value*dl%dir, fe, q_local, error)
         else if (dl%kind == DLOAD_CENTRIF .or. (dl%kind == DLOAD_THERMAL .and. (is_plate_type(s%elem_type(dl%elem)) &
-             .or. any(dl%gradient /= 0.0_wp) .or. allocated(dl%line_nodal)))) then   ! TEMP: a beam with a gradient, a B32 need E I
+             .or. is_solid_type(s%elem_type(dl%elem)) .or. any(dl%gradient /= 0.0_wp) .or. allocated(dl%line_nodal)))) then   ! TEMP: a beam with a gradient, a B32 need E I
            q_local = 0.0_wp   ! CENTRIF on a bar or beam: its end forces take fe itself (superjoin_analysis_recover)
            call element_material_load(s%elem_type(dl%elem), s%x(:, s%elem_nodes(1:nn, dl%elem)), sec, &
                 model%materials(sec%material), dl, fe, error, element_drill(s, dl%elem))

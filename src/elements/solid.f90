@@ -33,7 +33,7 @@ module superjoin_elements_solid
 
   public :: is_solid_type, solid_stiffness, solid_body_load, solid_shape, solid_forces
   public :: rule_t, solid_rule, point_gradients, elasticity, strain_matrix, solid_node_coordinates
-  public :: spd_solve, mode_strains
+  public :: spd_solve, mode_strains, solid_thermal_load, thermal_point_stress
 
   integer, parameter, public :: WEDGE_EDGES(2, 9) = reshape([1, 2, 2, 3, 3, 1, 4, 5, 5, 6, 6, 4, 1, 4, 2, 5, 3, 6], &
        [2, 9])
@@ -421,19 +421,25 @@ contains
     end do
   end subroutine mode_matrices
 
-  pure subroutine mode_strains(x, mat, ue, eps, error)
+  pure subroutine mode_strains(x, mat, ue, eps, error, eth)
     !! C3D8I: the strains eps(6, 8) of the condensed incompatible modes at the
-    !! 2×2×2 points for the DOF values ue(24) (their amplitudes -kaa⁻¹ kauᵀ ue).
+    !! 2×2×2 points for the DOF values ue(24) (their amplitudes -kaa⁻¹ kauᵀ ue;
+    !! with the nodal thermal strains eth(8), kaa⁻¹ (fα - kauᵀ ue), fα the
+    !! modes' share of the thermal load, mode_thermal_force).
     real(wp), intent(in) :: x(:, :), ue(:)
     type(material_t), intent(in) :: mat
     real(wp), intent(out) :: eps(6, 8)
     type(error_t), allocatable, intent(out) :: error
-    real(wp) :: kua(24, 9), kaa(9, 9), g(6, 9, 8), alpha(9, 1)
+    real(wp), intent(in), optional :: eth(:)
+    real(wp) :: kua(24, 9), kaa(9, 9), g(6, 9, 8), alpha(9, 1), fa(9)
     integer :: ig
     eps = 0.0_wp
     call mode_matrices(x, elasticity(mat), kua, kaa, g, error)
     if (allocated(error)) return
-    alpha = -spd_solve(kaa, matmul(transpose(kua), reshape(ue, [24, 1])))
+    fa = 0.0_wp
+    if (present(eth)) call mode_thermal_force(x, elasticity(mat), g, eth, fa, error)
+    if (allocated(error)) return
+    alpha = spd_solve(kaa, reshape(fa, [9, 1]) - matmul(transpose(kua), reshape(ue, [24, 1])))
     do ig = 1, 8
        eps(:, ig) = matmul(g(:, :, ig), alpha(:, 1))
     end do
@@ -527,6 +533,64 @@ contains
     if (allocated(error)) return
     fg = matmul(ke, ue)
   end subroutine solid_forces
+
+  pure function thermal_point_stress(n, eth, d) result(s0)
+    !! The stress D ε_th of the thermal strain ε_th = (Σ N_a eth_a)(1, 1, 1, 0,
+    !! 0, 0) at a point with shape functions n, nodal thermal strains eth (α ΔT).
+    real(wp), intent(in) :: n(:), eth(:), d(6, 6)
+    real(wp) :: s0(6)
+    s0 = dot_product(n, eth)*(d(:, 1) + d(:, 2) + d(:, 3))
+  end function thermal_point_stress
+
+  pure subroutine mode_thermal_force(x, d, g, eth, fa, error)
+    !! C3D8I: the incompatible modes' share fα(9) = ∫ Gᵀ D ε_th dV of the thermal
+    !! load (g: the modes' strain matrices at the 2×2×2 points, mode_matrices).
+    real(wp), intent(in) :: x(:, :), d(6, 6), g(:, :, :), eth(:)
+    real(wp), intent(out) :: fa(9)
+    type(error_t), allocatable, intent(out) :: error
+    type(rule_t) :: r
+    real(wp), allocatable :: n(:), dx(:, :)
+    real(wp) :: detj
+    integer :: ig
+    fa = 0.0_wp
+    r = solid_rule(ET_C3D8I, .false.)
+    do ig = 1, size(r%w)
+       call point_gradients(ET_C3D8I, x, r%xi(:, ig), n, dx, detj, error)
+       if (allocated(error)) return
+       fa = fa + matmul(thermal_point_stress(n, eth, d), g(:, :, ig))*(detj*r%w(ig))
+    end do
+  end subroutine mode_thermal_force
+
+  pure subroutine solid_thermal_load(etype, x, mat, eth, fe, error)
+    !! Consistent nodal loads fe(3 nnode) = ∫ Bᵀ D ε_th dV of the thermal
+    !! strain ε_th = α ΔT (1, 1, 1, 0, 0, 0) interpolated from its nodal values
+    !! eth(nnode) with the shape functions, with the stiffness rule (as
+    !! CalculiX). C3D8I: the modes' share fα is condensed as the stiffness is,
+    !! fe - kua kaa⁻¹ fα (zero for a uniform ΔT: ∫ G dV = 0).
+    integer, intent(in) :: etype
+    real(wp), intent(in) :: x(:, :), eth(:)
+    type(material_t), intent(in) :: mat
+    real(wp), allocatable, intent(out) :: fe(:)
+    type(error_t), allocatable, intent(out) :: error
+    type(rule_t) :: r
+    real(wp), allocatable :: n(:), dx(:, :)
+    real(wp) :: d(6, 6), detj, kua(24, 9), kaa(9, 9), g(6, 9, 8), fa(9, 1)
+    integer :: ig
+    d = elasticity(mat)
+    r = solid_rule(etype, .false.)
+    allocate (fe(3*size(x, 2)), source=0.0_wp)
+    do ig = 1, size(r%w)
+       call point_gradients(etype, x, r%xi(:, ig), n, dx, detj, error)
+       if (allocated(error)) return
+       fe = fe + matmul(thermal_point_stress(n, eth, d), strain_matrix(dx))*(detj*r%w(ig))
+    end do
+    if (etype /= ET_C3D8I) return
+    call mode_matrices(x, d, kua, kaa, g, error)
+    if (allocated(error)) return
+    call mode_thermal_force(x, d, g, eth, fa(:, 1), error)
+    if (allocated(error)) return
+    fe = fe - reshape(matmul(kua, spd_solve(kaa, fa)), [24])
+  end subroutine solid_thermal_load
 
   pure subroutine solid_body_load(etype, x, force, fe, error)
     !! Consistent nodal loads fe(3 nnode) of a uniform force per unit volume

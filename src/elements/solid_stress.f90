@@ -22,7 +22,7 @@ module superjoin_elements_solid_stress
   use superjoin_error, only: error_t
   use superjoin_model_types, only: material_t, ET_C3D8I, ET_C3D6, ET_C3D15
   use superjoin_elements_solid, only: rule_t, solid_rule, point_gradients, elasticity, strain_matrix, &
-       solid_node_coordinates, solid_shape, spd_solve, mode_strains, WEDGE_EDGES
+       solid_node_coordinates, solid_shape, spd_solve, mode_strains, WEDGE_EDGES, thermal_point_stress
   implicit none (type, external)
   private
 
@@ -30,16 +30,20 @@ module superjoin_elements_solid_stress
 
 contains
 
-  pure subroutine solid_point_tensors(etype, x, mat, ue, strain, points, nodes, error)
+  pure subroutine solid_point_tensors(etype, x, mat, ue, strain, points, nodes, error, eth)
     !! Stresses (strain false) or strains (strain true) of a solid element with
     !! node coordinates x(3, nnode) and DOF values ue(3 nnode): points(6, npoint)
     !! at its integration points, nodes(6, nnode) extrapolated to its nodes.
+    !! eth(nnode): the nodal thermal strains α ΔT, interpolated to the points
+    !! and taken off the strains there: σ = D (ε - ε_th); the strains are the
+    !! total ones (ε_th included, as CalculiX prints them).
     integer, intent(in) :: etype
     real(wp), intent(in) :: x(:, :), ue(:)
     type(material_t), intent(in) :: mat
     logical, intent(in) :: strain
     real(wp), allocatable, intent(out) :: points(:, :), nodes(:, :)
     type(error_t), allocatable, intent(out) :: error
+    real(wp), intent(in), optional :: eth(:)
     type(rule_t) :: r
     real(wp), allocatable :: n(:), dx(:, :)
     real(wp) :: d(6, 6), eps(6), detj, modes(6, 8)
@@ -47,7 +51,7 @@ contains
     d = elasticity(mat)
     r = solid_rule(etype, .false.)
     modes = 0.0_wp
-    if (etype == ET_C3D8I) call mode_strains(x, mat, ue, modes, error)   ! the condensed modes' strains
+    if (etype == ET_C3D8I) call mode_strains(x, mat, ue, modes, error, eth)   ! the condensed modes' strains
     if (allocated(error)) return
     allocate (points(6, size(r%w)))
     do g = 1, size(r%w)
@@ -59,6 +63,8 @@ contains
           points(:, g) = [eps(1:3), 0.5_wp*eps(4:6)]
        else
           points(:, g) = matmul(d, eps)
+          ! loads: a temperature change, σ = D (ε - ε_th)
+          if (present(eth)) points(:, g) = points(:, g) - thermal_point_stress(n, eth, d)
        end if
     end do
     nodes = matmul(points, transpose(solid_extrapolation(etype)))

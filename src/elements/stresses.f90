@@ -176,7 +176,11 @@ contains
     logical, intent(out) :: ok
     real(wp), allocatable :: sp(:, :), sn(:, :)
     type(error_t), allocatable :: error
-    call solid_point_tensors(el%etype, el%x, el%mat, el%ue, strain, sp, sn, error)
+    if (allocated(el%thermal_nodal)) then   ! loads: α ΔT at its nodes (thermal(1) is 0 on solids)
+       call solid_point_tensors(el%etype, el%x, el%mat, el%ue, strain, sp, sn, error, el%thermal_nodal)
+    else
+       call solid_point_tensors(el%etype, el%x, el%mat, el%ue, strain, sp, sn, error)
+    end if
     ok = .not. allocated(error)
     if (.not. ok) return
     points = reshape(sp, [NTENSOR, size(sp, 2), 1])

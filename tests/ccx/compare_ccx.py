@@ -961,7 +961,7 @@ def rot4(binary, outdir):
 
 
 SOLID_DECKS = ('achteld', 'achtelp', 'achtelg', 'achtel2', 'achtel9', 'achtel29', 'achtelcas', 'beam10p', 'beam20p',
-               'beamd')
+               'beamd', 'beamt', 'beamt2', 'beamt3', 'beam8t')
 
 
 def solid_point_table(text):
@@ -981,7 +981,8 @@ def solid_decks(binary, outdir):
     """CalculiX's C3D20R cube decks (achtel*: prescribed displacements, point
     loads, gravity, *EQUATION with 2, 9 and mixed terms, cascaded equations)
     and its solid beams (beam10p: C3D10, beam20p: C3D20, beamd: C3D20R under
-    *DLOAD pressure on faces): *NODE PRINT U and the stresses of *EL PRINT S at
+    *DLOAD pressure on faces; beamt, beamt2, beamt3: C3D20R, beam8t: C3D8
+    under *TEMPERATURE, uniform, per material, varying along the beam): *NODE PRINT U and the stresses of *EL PRINT S at
     CalculiX's integration points of every element of the set must agree with
     .dat.ref (1e-6 of the table; other tables of the .dat are not compared)."""
     for name in SOLID_DECKS:

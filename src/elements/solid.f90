@@ -26,6 +26,7 @@ module superjoin_elements_solid
   !! Hughes, ch. 3). Strain order: εxx, εyy, εzz, γxy, γxz, γyz.
   use superjoin_kinds, only: wp
   use superjoin_error, only: error_t, fatal_error, EXIT_DECK
+  use superjoin_model_material_table, only: point_material, point_thermal_strain
   use superjoin_model_types, only: material_t, ET_C3D8, ET_C3D20, ET_C3D20R, ET_C3D4, ET_C3D10, ET_C3D8I, &
        ET_C3D6, ET_C3D15
   implicit none (type, external)
@@ -33,7 +34,7 @@ module superjoin_elements_solid
 
   public :: is_solid_type, solid_stiffness, solid_body_load, solid_shape, solid_forces
   public :: rule_t, solid_rule, point_gradients, elasticity, strain_matrix, solid_node_coordinates
-  public :: spd_solve, mode_strains, solid_thermal_load, thermal_point_stress
+  public :: spd_solve, mode_strains, solid_thermal_load, thermal_point_stress, point_elasticity
 
   integer, parameter, public :: WEDGE_EDGES(2, 9) = reshape([1, 2, 2, 3, 3, 1, 4, 5, 5, 6, 6, 4, 1, 4, 2, 5, 3, 6], &
        [2, 9])
@@ -388,17 +389,18 @@ contains
     end do
   end function spd_solve
 
-  pure subroutine mode_matrices(x, d, kua, kaa, g, error)
+  pure subroutine mode_matrices(x, mat, kua, kaa, g, error)
     !! C3D8I: the coupling kua(24, 9) and mode stiffness kaa(9, 9) of the
     !! incompatible modes, and their strain matrices g(6, 9, point) at the
     !! 2×2×2 points: ∂P_k/∂x = J0⁻¹ ∂P_k/∂ξ det J0 / det J (Taylor's centre
     !! Jacobian), P_k = 1 - ξ_k², modes ordered (P1: ux, uy, uz), (P2: …), (P3: …).
-    real(wp), intent(in) :: x(:, :), d(6, 6)
+    real(wp), intent(in) :: x(:, :)
+    type(material_t), intent(in) :: mat
     real(wp), intent(out) :: kua(24, 9), kaa(9, 9), g(6, 9, 8)
     type(error_t), allocatable, intent(out) :: error
     type(rule_t) :: r
     real(wp), allocatable :: n(:), dn(:, :), dx(:, :)
-    real(wp) :: jac0(3, 3), inv0(3, 3), det0, detj, gx(3, 3), b(6, 24)
+    real(wp) :: jac0(3, 3), inv0(3, 3), det0, detj, gx(3, 3), b(6, 24), d0(6, 6), d(6, 6)
     integer :: ig, k
     kua = 0.0_wp
     kaa = 0.0_wp
@@ -408,9 +410,11 @@ contains
     inv0 = adjugate(jac0)
     det0 = dot_product(jac0(1, :), inv0(:, 1))
     r = solid_rule(ET_C3D8I, .false.)
+    d0 = elasticity(mat)
     do ig = 1, size(r%w)
        call point_gradients(ET_C3D8I, x, r%xi(:, ig), n, dx, detj, error)
        if (allocated(error)) return
+       d = point_elasticity(mat, n, d0)
        do k = 1, 3
           gx(:, k) = -2.0_wp*r%xi(k, ig)*inv0(:, k)/detj      ! (adj J0 / det J0) det J0 / det J
        end do
@@ -434,10 +438,10 @@ contains
     real(wp) :: kua(24, 9), kaa(9, 9), g(6, 9, 8), alpha(9, 1), fa(9)
     integer :: ig
     eps = 0.0_wp
-    call mode_matrices(x, elasticity(mat), kua, kaa, g, error)
+    call mode_matrices(x, mat, kua, kaa, g, error)
     if (allocated(error)) return
     fa = 0.0_wp
-    if (present(eth)) call mode_thermal_force(x, elasticity(mat), g, eth, fa, error)
+    if (present(eth)) call mode_thermal_force(x, mat, g, eth, fa, error)
     if (allocated(error)) return
     alpha = spd_solve(kaa, reshape(fa, [9, 1]) - matmul(transpose(kua), reshape(ue, [24, 1])))
     do ig = 1, 8
@@ -486,18 +490,19 @@ contains
        call point_gradients(etype, x, r%xi(:, g), n, dx, detj, error)
        if (allocated(error)) return
        b = strain_matrix(dx)
-       ke = ke + matmul(transpose(b), matmul(d, b))*(detj*r%w(g))
+       ke = ke + matmul(transpose(b), matmul(point_elasticity(mat, n, d), b))*(detj*r%w(g))
     end do
-    if (etype == ET_C3D8I) call condense_modes(x, d, ke, error)
+    if (etype == ET_C3D8I) call condense_modes(x, mat, ke, error)
   end subroutine solid_stiffness
 
-  pure subroutine condense_modes(x, d, ke, error)
+  pure subroutine condense_modes(x, mat, ke, error)
     !! C3D8I: ke -= kua kaa⁻¹ kauᵀ, the incompatible modes condensed.
-    real(wp), intent(in) :: x(:, :), d(6, 6)
+    real(wp), intent(in) :: x(:, :)
+    type(material_t), intent(in) :: mat
     real(wp), intent(inout) :: ke(:, :)
     type(error_t), allocatable, intent(out) :: error
     real(wp) :: kua(24, 9), kaa(9, 9), g(6, 9, 8)
-    call mode_matrices(x, d, kua, kaa, g, error)
+    call mode_matrices(x, mat, kua, kaa, g, error)
     if (allocated(error)) return
     ke = ke - matmul(kua, spd_solve(kaa, transpose(kua)))
   end subroutine condense_modes
@@ -534,30 +539,46 @@ contains
     fg = matmul(ke, ue)
   end subroutine solid_forces
 
-  pure function thermal_point_stress(n, eth, d) result(s0)
+  pure function thermal_point_stress(mat, n, eth, d) result(s0)
     !! The stress D ε_th of the thermal strain ε_th = (Σ N_a eth_a)(1, 1, 1, 0,
-    !! 0, 0) at a point with shape functions n, nodal thermal strains eth (α ΔT).
+    !! 0, 0) at a point with shape functions n, nodal thermal strains eth (α ΔT;
+    !! a table of α: the secant strain at the point, point_thermal_strain), D
+    !! the point's elasticity.
+    type(material_t), intent(in) :: mat
     real(wp), intent(in) :: n(:), eth(:), d(6, 6)
     real(wp) :: s0(6)
-    s0 = dot_product(n, eth)*(d(:, 1) + d(:, 2) + d(:, 3))
+    s0 = point_thermal_strain(mat, n, eth)*(d(:, 1) + d(:, 2) + d(:, 3))
   end function thermal_point_stress
 
-  pure subroutine mode_thermal_force(x, d, g, eth, fa, error)
+  pure function point_elasticity(mat, n, d0) result(d)
+    !! The elasticity at a point with shape functions n: d0, or for a copy of a
+    !! material with a table and its element's temperatures, at the point's
+    !! temperature (superjoin_model_material_table, point_material).
+    type(material_t), intent(in) :: mat
+    real(wp), intent(in) :: n(:), d0(6, 6)
+    real(wp) :: d(6, 6)
+    d = d0
+    if (allocated(mat%at_nodes)) d = elasticity(point_material(mat, n))
+  end function point_elasticity
+
+  pure subroutine mode_thermal_force(x, mat, g, eth, fa, error)
     !! C3D8I: the incompatible modes' share fα(9) = ∫ Gᵀ D ε_th dV of the thermal
     !! load (g: the modes' strain matrices at the 2×2×2 points, mode_matrices).
-    real(wp), intent(in) :: x(:, :), d(6, 6), g(:, :, :), eth(:)
+    real(wp), intent(in) :: x(:, :), g(:, :, :), eth(:)
+    type(material_t), intent(in) :: mat
     real(wp), intent(out) :: fa(9)
     type(error_t), allocatable, intent(out) :: error
     type(rule_t) :: r
     real(wp), allocatable :: n(:), dx(:, :)
-    real(wp) :: detj
+    real(wp) :: detj, d(6, 6)
     integer :: ig
     fa = 0.0_wp
     r = solid_rule(ET_C3D8I, .false.)
+    d = elasticity(mat)
     do ig = 1, size(r%w)
        call point_gradients(ET_C3D8I, x, r%xi(:, ig), n, dx, detj, error)
        if (allocated(error)) return
-       fa = fa + matmul(thermal_point_stress(n, eth, d), g(:, :, ig))*(detj*r%w(ig))
+       fa = fa + matmul(thermal_point_stress(mat, n, eth, point_elasticity(mat, n, d)), g(:, :, ig))*(detj*r%w(ig))
     end do
   end subroutine mode_thermal_force
 
@@ -582,12 +603,13 @@ contains
     do ig = 1, size(r%w)
        call point_gradients(etype, x, r%xi(:, ig), n, dx, detj, error)
        if (allocated(error)) return
-       fe = fe + matmul(thermal_point_stress(n, eth, d), strain_matrix(dx))*(detj*r%w(ig))
+       fe = fe + matmul(thermal_point_stress(mat, n, eth, point_elasticity(mat, n, d)), strain_matrix(dx))* &
+            (detj*r%w(ig))
     end do
     if (etype /= ET_C3D8I) return
-    call mode_matrices(x, d, kua, kaa, g, error)
+    call mode_matrices(x, mat, kua, kaa, g, error)
     if (allocated(error)) return
-    call mode_thermal_force(x, d, g, eth, fa(:, 1), error)
+    call mode_thermal_force(x, mat, g, eth, fa(:, 1), error)
     if (allocated(error)) return
     fe = fe - reshape(matmul(kua, spd_solve(kaa, fa)), [24])
   end subroutine solid_thermal_load

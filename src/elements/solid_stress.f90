@@ -22,7 +22,8 @@ module superjoin_elements_solid_stress
   use superjoin_error, only: error_t
   use superjoin_model_types, only: material_t, ET_C3D8I, ET_C3D6, ET_C3D15
   use superjoin_elements_solid, only: rule_t, solid_rule, point_gradients, elasticity, strain_matrix, &
-       solid_node_coordinates, solid_shape, spd_solve, mode_strains, WEDGE_EDGES, thermal_point_stress
+       solid_node_coordinates, solid_shape, spd_solve, mode_strains, WEDGE_EDGES, thermal_point_stress, &
+       point_elasticity
   implicit none (type, external)
   private
 
@@ -62,9 +63,9 @@ contains
        if (strain) then
           points(:, g) = [eps(1:3), 0.5_wp*eps(4:6)]
        else
-          points(:, g) = matmul(d, eps)
+          points(:, g) = matmul(point_elasticity(mat, n, d), eps)
           ! loads: a temperature change, σ = D (ε - ε_th)
-          if (present(eth)) points(:, g) = points(:, g) - thermal_point_stress(n, eth, d)
+          if (present(eth)) points(:, g) = points(:, g) - thermal_point_stress(mat, n, eth, point_elasticity(mat, n, d))
        end if
     end do
     nodes = matmul(points, transpose(solid_extrapolation(etype)))

@@ -961,7 +961,7 @@ def rot4(binary, outdir):
 
 
 SOLID_DECKS = ('achteld', 'achtelp', 'achtelg', 'achtel2', 'achtel9', 'achtel29', 'achtelcas', 'beam10p', 'beam20p',
-               'beamd', 'beamt', 'beamt2', 'beamt3', 'beam8t')
+               'beamd', 'beamt', 'beamt2', 'beamt3', 'beamt4', 'beam8t')
 
 
 def solid_point_table(text):

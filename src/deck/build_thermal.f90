@@ -38,6 +38,12 @@ module superjoin_deck_build_thermal
      logical :: tabled = .false.
   end type element_change_t
 
+  type :: copies_t
+    !! The copies of the materials with a temperature table while they are made.
+     type(material_t), allocatable :: m(:)
+     integer :: n = 0
+  end type copies_t
+
   type :: thermal_step_t
     !! The thermal loads of one step while they are collected.
      type(dload_t), allocatable :: extra(:)
@@ -131,6 +137,7 @@ contains
     type(deck_state_t) :: scratch
     type(real_list_t), allocatable :: field(:)
     type(temp_field_t) :: init
+    type(copies_t) :: cp
     integer :: isub, nmat0
     call zero_field_list(model, field)
     call zero_field(model, init)
@@ -141,9 +148,11 @@ contains
        call apply_lines(scratch, model, 0, init)
     end if
     nmat0 = size(model%materials)
+    allocate (cp%m(16))
     do isub = 1, size(model%subs)
-       call table_sub(model, isub, reshape([init%t(isub)%v, field(isub)%v], [size(field(isub)%v), 2]), nmat0)
+       call table_sub(model, isub, reshape([init%t(isub)%v, field(isub)%v], [size(field(isub)%v), 2]), nmat0, cp)
     end do
+    if (cp%n > 0) model%materials = [model%materials, cp%m(1:cp%n)]
     if (size(model%materials) > nmat0) call note(model%notes, 'temperature tables (*ELASTIC, *EXPANSION): E, nu '// &
          'and alpha taken at each integration point of the solids, at the mean temperature of each other element ('// &
          itoa(size(model%materials) - nmat0)//' copies of the materials)')
@@ -187,24 +196,28 @@ contains
     end do
   end function common_field
 
-  subroutine table_sub(model, isub, t, nmat0)
+  subroutine table_sub(model, isub, t, nmat0, cp)
     !! The elements of substructure isub whose material has a table: a copy of
     !! the material at the element's mean temperature (nodal temperatures
     !! t(:, 1) initial, t(:, 2) of the steps), shared by the elements where it
-    !! is the same (materials nmat0+1.. are the copies), and a copy of the
-    !! section with it; a solid gets a copy of its own that holds its nodes'
-    !! temperatures (at_nodes: its values taken at each integration point).
+    !! is the same (cp: the copies, to be materials nmat0+1..), and a copy of
+    !! the section with it; a solid gets a copy of its own that holds its
+    !! nodes' temperatures (at_nodes: its values taken at each integration point).
     type(model_t), intent(inout) :: model
     integer, intent(in) :: isub, nmat0
     real(wp), intent(in) :: t(:, :)
+    type(copies_t), intent(inout) :: cp
     type(material_t) :: m
     type(element_traits_t) :: tr
+    type(section_t), allocatable :: secs(:)
     integer, allocatable :: origin(:)
-    integer :: nsec0, k, im, is, nn
+    integer :: nsec0, k, im, is, nn, ns
     integer(ip) :: e
+    logical :: solid
     associate (sub => model%subs(isub))
       nsec0 = size(sub%sections)
-      allocate (origin(0))
+      allocate (origin(16), secs(16))
+      ns = 0
       do e = 1, sub%nelem
          k = sub%elem_section(e)
          if (k <= 0) cycle
@@ -213,34 +226,58 @@ contains
          nn = ELEMENT_NODE_COUNT(sub%elem_type(e))
          if (nn == 0 .or. any(sub%elem_nodes(1:nn, e) <= 0)) cycle
          m = material_at(model%materials(sub%sections(k)%material), sum(t(sub%elem_nodes(1:nn, e), 2))/nn)
-         im = 0
          tr = element_traits(sub%elem_type(e))
-         if (tr%family == FAMILY_SOLID) then
+         solid = tr%family == FAMILY_SOLID
+         im = 0
+         if (solid) then
             m%at_nodes = transpose(t(sub%elem_nodes(1:nn, e), :))
          else
-            im = find_material(model%materials(nmat0 + 1:), m)
+            im = find_material(cp%m(1:cp%n), m)
          end if
          if (im == 0) then
-            model%materials = [model%materials, m]
-            im = size(model%materials)
-         else
-            im = nmat0 + im
+            call push_material(cp, m)
+            im = cp%n
          end if
-         do is = 1, size(origin)
-            if (origin(is) == k .and. sub%sections(nsec0 + is)%material == im) exit
-         end do
-         if (is > size(origin)) then
-            origin = [origin, k]
-            sub%sections = [sub%sections, sub%sections(k)]
-            sub%sections(size(sub%sections))%material = im
+         im = nmat0 + im
+         is = ns + 1
+         if (.not. solid) then   ! a solid's copy is its own: no section to share
+            do is = 1, ns
+               if (origin(is) == k .and. secs(is)%material == im) exit
+            end do
+         end if
+         if (is > ns) then
+            if (ns == size(secs)) then
+               secs = [secs, secs]
+               origin = [origin, origin]
+            end if
+            ns = ns + 1
+            origin(ns) = k
+            secs(ns) = sub%sections(k)
+            secs(ns)%material = im
          end if
          sub%elem_section(e) = nsec0 + is
       end do
+      if (ns > 0) sub%sections = [sub%sections, secs(1:ns)]
     end associate
   end subroutine table_sub
 
+  subroutine push_material(cp, m)
+    !! Append m to the copies (their array doubled when full).
+    type(copies_t), intent(inout) :: cp
+    type(material_t), intent(in) :: m
+    type(material_t), allocatable :: grown(:)
+    if (cp%n == size(cp%m)) then
+       allocate (grown(2*size(cp%m)))
+       grown(1:cp%n) = cp%m(1:cp%n)
+       call move_alloc(grown, cp%m)
+    end if
+    cp%n = cp%n + 1
+    cp%m(cp%n) = m
+  end subroutine push_material
+
   pure integer function find_material(list, m) result(k)
-    !! The index in list of a material of m's name with m's E, nu and alpha (0: none).
+    !! The index in list of a material of m's name with m's E, nu and alpha
+    !! (0: none; a solid's own copy is never shared).
     type(material_t), intent(in) :: list(:), m
     do k = 1, size(list)
        if (allocated(list(k)%at_nodes)) cycle

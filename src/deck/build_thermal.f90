@@ -9,7 +9,7 @@ module superjoin_deck_build_thermal
        FAMILY_PLANE, FAMILY_SHELL, FAMILY_SOLID
   use superjoin_deck_lexer, only: itoa
   use superjoin_model_notes, only: note
-  use superjoin_deck_state, only: deck_state_t, report_loc
+  use superjoin_deck_state, only: deck_state_t, report_loc, grow
   use superjoin_deck_build_common, only: resolve_sub, resolve_items, keeps_previous, more_text
   implicit none (type, external)
   private
@@ -148,7 +148,6 @@ contains
        call apply_lines(scratch, model, 0, init)
     end if
     nmat0 = size(model%materials)
-    allocate (cp%m(16))
     do isub = 1, size(model%subs)
        call table_sub(model, isub, reshape([init%t(isub)%v, field(isub)%v], [size(field(isub)%v), 2]), nmat0, cp)
     end do
@@ -232,10 +231,12 @@ contains
          if (solid) then
             m%at_nodes = transpose(t(sub%elem_nodes(1:nn, e), :))
          else
-            im = find_material(cp%m(1:cp%n), m)
+            if (cp%n > 0) im = find_material(cp%m(1:cp%n), m)
          end if
          if (im == 0) then
-            call push_material(cp, m)
+            call grow(cp%m, cp%n, 16)
+            cp%n = cp%n + 1
+            cp%m(cp%n) = m
             im = cp%n
          end if
          im = nmat0 + im
@@ -260,20 +261,6 @@ contains
       if (ns > 0) sub%sections = [sub%sections, secs(1:ns)]
     end associate
   end subroutine table_sub
-
-  subroutine push_material(cp, m)
-    !! Append m to the copies (their array doubled when full).
-    type(copies_t), intent(inout) :: cp
-    type(material_t), intent(in) :: m
-    type(material_t), allocatable :: grown(:)
-    if (cp%n == size(cp%m)) then
-       allocate (grown(2*size(cp%m)))
-       grown(1:cp%n) = cp%m(1:cp%n)
-       call move_alloc(grown, cp%m)
-    end if
-    cp%n = cp%n + 1
-    cp%m(cp%n) = m
-  end subroutine push_material
 
   pure integer function find_material(list, m) result(k)
     !! The index in list of a material of m's name with m's E, nu and alpha

@@ -3,11 +3,13 @@ module superjoin_deck_build_thermal
   !! *TEMPERATURE.
   use superjoin_kinds, only: wp, ip
   use superjoin_model_types, only: model_t, dload_t, source_loc_t, ELEMENT_TYPE_NAMES, &
-       ELEMENT_NODE_COUNT, DLOAD_THERMAL, MAX_ELEMENT_NODES
+       ELEMENT_NODE_COUNT, DLOAD_THERMAL, MAX_ELEMENT_NODES, material_t, section_t
+  use superjoin_model_material_table, only: has_table, thermal_strain, material_at
   use superjoin_elements_traits, only: element_traits_t, element_traits, FAMILY_TRUSS, FAMILY_BEAM, &
-       FAMILY_PLANE, FAMILY_SHELL
+       FAMILY_PLANE, FAMILY_SHELL, FAMILY_SOLID
   use superjoin_deck_lexer, only: itoa
-  use superjoin_deck_state, only: deck_state_t, report_loc
+  use superjoin_model_notes, only: note
+  use superjoin_deck_state, only: deck_state_t, report_loc, grow
   use superjoin_deck_build_common, only: resolve_sub, resolve_items, keeps_previous, more_text
   implicit none (type, external)
   private
@@ -27,10 +29,20 @@ module superjoin_deck_build_thermal
 
   type :: element_change_t
     !! The change of temperature (dtn) and of the third-field gradient (dgn) at
-    !! the nodes of an element, and the means of the changes dt, dg, dh.
+    !! the nodes of an element, and the means of the changes dt, dg, dh; the
+    !! thermal strains at the nodes (eth: α ΔT, or the secant strain of a table
+    !! of α, tabled) and their mean.
      real(wp) :: dt = 0.0_wp, dg = 0.0_wp, dh = 0.0_wp
      real(wp) :: dtn(MAX_ELEMENT_NODES) = 0.0_wp, dgn(MAX_ELEMENT_NODES) = 0.0_wp
+     real(wp) :: eth(MAX_ELEMENT_NODES) = 0.0_wp, eth_mean = 0.0_wp
+     logical :: tabled = .false.
   end type element_change_t
+
+  type :: copies_t
+    !! The copies of the materials with a temperature table while they are made.
+     type(material_t), allocatable :: m(:)
+     integer :: n = 0
+  end type copies_t
 
   type :: thermal_step_t
     !! The thermal loads of one step while they are collected.
@@ -60,13 +72,30 @@ contains
     !! of its curvature α ∂T/∂n (the mean of its nodes' gradients, the third
     !! field of the temperature lines, with the nodal remainders likewise); a B32 gets α ΔT and both gradients at
     !! its three nodes (line_nodal, interpolated along it); a gradient on any
-    !! other element is refused.
+    !! other element is refused. A solid gets α ΔT at each of its nodes
+    !! (nodal, the whole value: solids have no mean part), interpolated to its
+    !! integration points (superjoin_elements_solid, solid_thermal_load).
     type(deck_state_t), intent(inout) :: st
     type(model_t), intent(inout) :: model
+    integer :: m
+    do m = 1, size(model%materials)
+       if (.not. has_table(model%materials(m))) cycle
+       call table_materials(st, model)
+       exit
+    end do
+    if (st%aborted .or. st%ntemp == 0) return
+    call temperature_pass(st, model, .true.)
+  end subroutine build_thermal
+
+  subroutine temperature_pass(st, model, loads)
+    !! The temperatures of every step (kept for *NODE PRINT NT) and, with
+    !! loads, the thermal loads they give.
+    type(deck_state_t), intent(inout) :: st
+    type(model_t), intent(inout) :: model
+    logical, intent(in) :: loads
     type(temp_field_t) :: init, prev, cur
     logical :: kept, ok
     integer :: s
-    if (st%ntemp == 0) return
     call zero_field(model, init)
     call apply_lines(st, model, 0, init)
     prev = init
@@ -91,10 +120,159 @@ contains
        if (st%aborted) return
        call keep_temperatures(model, s, cur%t)
        prev = cur
+       if (.not. loads) cycle
        call step_thermal_loads(st, model, s, init, cur, ok)
        if (.not. ok) return
     end do
-  end subroutine build_thermal
+  end subroutine temperature_pass
+
+  subroutine table_materials(st, model)
+    !! Temperature tables of *ELASTIC and *EXPANSION: every element of such a
+    !! material gets it at its mean temperature (the mean over its nodes of the
+    !! steps' temperature, which must be the same in every step: the stiffness
+    !! is built once; no temperatures: 0, as CalculiX), a copy of the material
+    !! and of its section per distinct value (superjoin_model_material_table).
+    type(deck_state_t), intent(inout) :: st
+    type(model_t), intent(inout) :: model
+    type(deck_state_t) :: scratch
+    type(real_list_t), allocatable :: field(:)
+    type(temp_field_t) :: init
+    type(copies_t) :: cp
+    integer :: isub, nmat0
+    call zero_field_list(model, field)
+    call zero_field(model, init)
+    if (st%ntemp > 0) then
+       scratch = st          ! the temperatures alone; their lines are reported in the real pass
+       call temperature_pass(scratch, model, .false.)
+       if (.not. common_field(st, model, field)) return
+       call apply_lines(scratch, model, 0, init)
+    end if
+    nmat0 = size(model%materials)
+    do isub = 1, size(model%subs)
+       call table_sub(model, isub, reshape([init%t(isub)%v, field(isub)%v], [size(field(isub)%v), 2]), nmat0, cp)
+    end do
+    if (cp%n > 0) model%materials = [model%materials, cp%m(1:cp%n)]
+    if (size(model%materials) > nmat0) call note(model%notes, 'temperature tables (*ELASTIC, *EXPANSION): E, nu '// &
+         'and alpha taken at each integration point of the solids, at the mean temperature of each other element ('// &
+         itoa(size(model%materials) - nmat0)//' copies of the materials)')
+  end subroutine table_materials
+
+  subroutine zero_field_list(model, field)
+    !! A temperature 0 at every node.
+    type(model_t), intent(in) :: model
+    type(real_list_t), allocatable, intent(out) :: field(:)
+    integer :: isub
+    allocate (field(size(model%subs)))
+    do isub = 1, size(model%subs)
+       allocate (field(isub)%v(model%subs(isub)%nnode), source=0.0_wp)
+    end do
+  end subroutine zero_field_list
+
+  logical function common_field(st, model, field) result(ok)
+    !! field: the temperatures of the steps (they must be the same in all;
+    !! reported if not, ok false).
+    type(deck_state_t), intent(inout) :: st
+    type(model_t), intent(in) :: model
+    type(real_list_t), intent(inout) :: field(:)
+    integer :: s, first, k
+    ok = .true.
+    first = 0
+    do s = 1, size(model%steps)
+       if (.not. allocated(model%steps(s)%temperature)) cycle
+       if (first == 0) then
+          first = s
+          do k = 1, size(field)
+             field(k)%v = model%steps(s)%temperature(k)%v
+          end do
+       else if (any([(any(model%steps(s)%temperature(k)%v /= field(k)%v), k=1, size(field))])) then
+          call report_loc(st, first_line(st, model, s), 'a material with a temperature table (*ELASTIC or '// &
+               '*EXPANSION with several lines) takes its values at the temperature of the steps, which must be '// &
+               'the same in every step (superjoin builds one stiffness): step '//model%steps(s)%name// &
+               ' differs from step '//model%steps(first)%name)
+          ok = .false.
+          return
+       end if
+    end do
+  end function common_field
+
+  subroutine table_sub(model, isub, t, nmat0, cp)
+    !! The elements of substructure isub whose material has a table: a copy of
+    !! the material at the element's mean temperature (nodal temperatures
+    !! t(:, 1) initial, t(:, 2) of the steps), shared by the elements where it
+    !! is the same (cp: the copies, to be materials nmat0+1..), and a copy of
+    !! the section with it; a solid gets a copy of its own that holds its
+    !! nodes' temperatures (at_nodes: its values taken at each integration point).
+    type(model_t), intent(inout) :: model
+    integer, intent(in) :: isub, nmat0
+    real(wp), intent(in) :: t(:, :)
+    type(copies_t), intent(inout) :: cp
+    type(material_t) :: m
+    type(element_traits_t) :: tr
+    type(section_t), allocatable :: secs(:)
+    integer, allocatable :: origin(:)
+    integer :: nsec0, k, im, is, nn, ns
+    integer(ip) :: e
+    logical :: solid
+    associate (sub => model%subs(isub))
+      nsec0 = size(sub%sections)
+      allocate (origin(16), secs(16))
+      ns = 0
+      do e = 1, sub%nelem
+         k = sub%elem_section(e)
+         if (k <= 0) cycle
+         if (sub%sections(k)%material <= 0) cycle
+         if (.not. has_table(model%materials(sub%sections(k)%material))) cycle
+         nn = ELEMENT_NODE_COUNT(sub%elem_type(e))
+         if (nn == 0 .or. any(sub%elem_nodes(1:nn, e) <= 0)) cycle
+         m = material_at(model%materials(sub%sections(k)%material), sum(t(sub%elem_nodes(1:nn, e), 2))/nn)
+         tr = element_traits(sub%elem_type(e))
+         solid = tr%family == FAMILY_SOLID
+         im = 0
+         if (solid) then
+            m%at_nodes = transpose(t(sub%elem_nodes(1:nn, e), :))
+         else
+            if (cp%n > 0) im = find_material(cp%m(1:cp%n), m)
+         end if
+         if (im == 0) then
+            call grow(cp%m, cp%n, 16)
+            cp%n = cp%n + 1
+            cp%m(cp%n) = m
+            im = cp%n
+         end if
+         im = nmat0 + im
+         is = ns + 1
+         if (.not. solid) then   ! a solid's copy is its own: no section to share
+            do is = 1, ns
+               if (origin(is) == k .and. secs(is)%material == im) exit
+            end do
+         end if
+         if (is > ns) then
+            if (ns == size(secs)) then
+               secs = [secs, secs]
+               origin = [origin, origin]
+            end if
+            ns = ns + 1
+            origin(ns) = k
+            secs(ns) = sub%sections(k)
+            secs(ns)%material = im
+         end if
+         sub%elem_section(e) = nsec0 + is
+      end do
+      if (ns > 0) sub%sections = [sub%sections, secs(1:ns)]
+    end associate
+  end subroutine table_sub
+
+  pure integer function find_material(list, m) result(k)
+    !! The index in list of a material of m's name with m's E, nu and alpha
+    !! (0: none; a solid's own copy is never shared).
+    type(material_t), intent(in) :: list(:), m
+    do k = 1, size(list)
+       if (allocated(list(k)%at_nodes)) cycle
+       if (list(k)%name == m%name .and. list(k)%e == m%e .and. list(k)%nu == m%nu .and. &
+            list(k)%alpha == m%alpha) return
+    end do
+    k = 0
+  end function find_material
 
   subroutine zero_field(model, f)
     !! Temperatures and gradients 0 at every node of the model.
@@ -202,7 +380,7 @@ contains
           associate (sub => model%subs(isub))
             call report_loc(st, ts%loc, 'temperature change on element '//itoa(sub%elem_id(ts%first_plate))// &
                  ' of type '//trim(ELEMENT_TYPE_NAMES(sub%elem_type(ts%first_plate)))//' of substructure '// &
-                 sub%name//': thermal loads are implemented for trusses, beams, plane elements and S3, S4, S3R, S4R, S8R shells only'// &
+                 sub%name//': thermal loads are implemented for trusses, beams, plane elements, solids and S3, S4, S3R, S4R, S8R shells only'// &
                  more_text(ts%nplate - 1))
           end associate
        end if
@@ -229,11 +407,11 @@ contains
       ! an undefined material or node has been reported already
       if (sub%sections(sub%elem_section(e))%material <= 0) return
       associate (mat => model%materials(sub%sections(sub%elem_section(e))%material))
-        if (.not. mat%has_expansion .or. mat%alpha == 0.0_wp) return
+        if (.not. mat%has_expansion .or. (mat%alpha == 0.0_wp .and. .not. has_table(mat))) return
         nn = ELEMENT_NODE_COUNT(sub%elem_type(e))
         ! an element with an undefined node has been reported already
         if (nn == 0 .or. any(sub%elem_nodes(1:nn, e) <= 0)) return
-        c = element_change(sub%elem_nodes(1:nn, e), isub, init, cur)
+        c = element_change(sub%elem_nodes(1:nn, e), isub, init, cur, mat)
         if (c%dt == 0.0_wp .and. c%dg == 0.0_wp .and. c%dh == 0.0_wp .and. all(c%dtn(1:nn) == 0.0_wp) &
              .and. all(c%dgn(1:nn) == 0.0_wp)) return
         tr = element_traits(sub%elem_type(e))
@@ -244,15 +422,25 @@ contains
               ! third: local z) at each node, interpolated along it
               ts%extra = [ts%extra, dload_t(sub=isub, elem=e, kind=DLOAD_THERMAL, value=0.0_wp, loc=ts%loc)]
               associate (en => sub%elem_nodes(1:3, e))
-                ts%extra(size(ts%extra))%line_nodal = mat%alpha*transpose(reshape([ &
-                     cur%t(isub)%v(en) - init%t(isub)%v(en), cur%h(isub)%v(en) - init%h(isub)%v(en), &
-                     cur%g(isub)%v(en) - init%g(isub)%v(en)], [3, 3]))
+                ts%extra(size(ts%extra))%line_nodal = transpose(reshape([c%eth(1:3), &
+                     mat%alpha*(cur%h(isub)%v(en) - init%h(isub)%v(en)), &
+                     mat%alpha*(cur%g(isub)%v(en) - init%g(isub)%v(en))], [3, 3]))
               end associate
            else
               call line_thermal(st, model, isub, e, tr, c, init, cur, ts, ok)
            end if
         case (FAMILY_PLANE, FAMILY_SHELL)
            call area_thermal(st, model, isub, e, tr, c, ts, ok)
+        case (FAMILY_SOLID)
+           ! a solid: α ΔT at every node (interpolated to its points), the mean as its value
+           if (c%dg /= 0.0_wp .or. c%dh /= 0.0_wp) then
+              call refuse(st, model, isub, e, ts%loc, 'the gradient fields (third and fourth) apply to shells and '// &
+                   'beams only: give a solid its nodal temperatures')
+              ok = .false.
+              return
+           end if
+           ts%extra = [ts%extra, dload_t(sub=isub, elem=e, kind=DLOAD_THERMAL, value=c%eth_mean, loc=ts%loc)]
+           ts%extra(size(ts%extra))%nodal = c%eth(1:nn)
         case default
            ts%nplate = ts%nplate + 1
            if (ts%nplate == 1) ts%first_plate = e
@@ -261,20 +449,31 @@ contains
     end associate
   end subroutine element_thermal
 
-  pure function element_change(en, isub, init, cur) result(c)
+  pure function element_change(en, isub, init, cur, mat) result(c)
     !! The changes of temperature and gradients at the nodes en of an element
-    !! of substructure isub, and their means.
+    !! of substructure isub of material mat, their means, and the thermal strains.
     integer(ip), intent(in) :: en(:)
     integer, intent(in) :: isub
     type(temp_field_t), intent(in) :: init, cur
+    type(material_t), intent(in) :: mat
     type(element_change_t) :: c
-    integer :: nn
+    integer :: nn, a
     nn = size(en)
     c%dtn(1:nn) = cur%t(isub)%v(en) - init%t(isub)%v(en)
     c%dgn(1:nn) = cur%g(isub)%v(en) - init%g(isub)%v(en)
     c%dt = sum(cur%t(isub)%v(en) - init%t(isub)%v(en))/nn
     c%dg = sum(cur%g(isub)%v(en) - init%g(isub)%v(en))/nn
     c%dh = sum(cur%h(isub)%v(en) - init%h(isub)%v(en))/nn
+    c%tabled = has_table(mat)
+    if (.not. c%tabled) then
+       c%eth(1:nn) = mat%alpha*c%dtn(1:nn)
+       c%eth_mean = mat%alpha*c%dt
+       return
+    end if
+    do a = 1, nn   ! a table of α: the secant strain from ZERO=
+       c%eth(a) = thermal_strain(mat, cur%t(isub)%v(en(a)), init%t(isub)%v(en(a)))
+    end do
+    c%eth_mean = sum(c%eth(1:nn))/nn
   end function element_change
 
   subroutine line_thermal(st, model, isub, e, tr, c, init, cur, ts, ok)
@@ -304,8 +503,13 @@ contains
     associate (sub => model%subs(isub), n2 => model%subs(isub)%elem_nodes(1:2, e))
       associate (sec => sub%sections(sub%elem_section(e)))
         associate (mat => model%materials(sec%material))
-          ts%extra = [ts%extra, dload_t(sub=isub, elem=e, kind=DLOAD_THERMAL, &
-               value=mat%e*sec%area*mat%alpha*c%dt, loc=ts%loc)]
+          if (c%tabled) then
+             ts%extra = [ts%extra, dload_t(sub=isub, elem=e, kind=DLOAD_THERMAL, &
+                  value=mat%e*sec%area*c%eth_mean, loc=ts%loc)]
+          else
+             ts%extra = [ts%extra, dload_t(sub=isub, elem=e, kind=DLOAD_THERMAL, &
+                  value=mat%e*sec%area*mat%alpha*c%dt, loc=ts%loc)]
+          end if
           if (tr%family /= FAMILY_BEAM) return
           if (tr%planar) then
              ts%extra(size(ts%extra))%gradient(1, :) = mat%alpha*(cur%g(isub)%v(n2) - init%g(isub)%v(n2))
@@ -341,14 +545,14 @@ contains
     associate (sub => model%subs(isub))
       associate (mat => model%materials(sub%sections(sub%elem_section(e))%material))
         ts%extra = [ts%extra, dload_t(sub=isub, elem=e, kind=DLOAD_THERMAL, &
-             value=mat%alpha*c%dt, curvature=mat%alpha*c%dg, loc=ts%loc)]
+             value=c%eth_mean, curvature=mat%alpha*c%dg, loc=ts%loc)]
         ! a plane element whose nodes differ: the nodal values, interpolated to its points
-        if (tr%family == FAMILY_PLANE .and. any(c%dtn(1:nn) /= c%dtn(1))) &
-             ts%extra(size(ts%extra))%nodal = mat%alpha*c%dtn(1:nn) - mat%alpha*c%dt
+        if (tr%family == FAMILY_PLANE .and. any(c%eth(1:nn) /= c%eth(1))) &
+             ts%extra(size(ts%extra))%nodal = c%eth(1:nn) - c%eth_mean
         ! a shell whose nodes differ: both nodal remainders, interpolated to its points
         if (tr%family /= FAMILY_PLANE .and. &
-             (any(c%dtn(1:nn) /= c%dtn(1)) .or. any(c%dgn(1:nn) /= c%dgn(1)))) then
-           ts%extra(size(ts%extra))%nodal = mat%alpha*c%dtn(1:nn) - mat%alpha*c%dt
+             (any(c%eth(1:nn) /= c%eth(1)) .or. any(c%dgn(1:nn) /= c%dgn(1)))) then
+           ts%extra(size(ts%extra))%nodal = c%eth(1:nn) - c%eth_mean
            ts%extra(size(ts%extra))%curvature_nodal = mat%alpha*c%dgn(1:nn) - mat%alpha*c%dg
         end if
       end associate

@@ -130,14 +130,16 @@ contains
   end subroutine kw_elastic
 
   subroutine kw_expansion(st, kw, loc, mat)
-    !! *EXPANSION[, TYPE=ISO][, ZERO=t] of the current material: one data line
-    !! alpha[, temperature] (a constant coefficient, so ZERO= changes nothing).
+    !! *EXPANSION[, TYPE=ISO][, ZERO=t] of the current material: data lines
+    !! alpha[, temperature] (a constant coefficient: ZERO= changes nothing; a
+    !! table: the secant thermal strain from ZERO=, model/material_table).
     type(deck_state_t), intent(inout) :: st
     type(keyword_line_t), intent(in) :: kw
     type(source_loc_t), intent(in) :: loc
     integer, intent(in) :: mat
     character(:), allocatable :: typ
     logical :: found
+    integer :: stat
     st%card = CARD_SKIP
     if (.not. outside_step(st, kw, loc)) return
     call check_params(st, kw, loc, [character(NAME_LEN) :: 'TYPE', 'ZERO'], [character(NAME_LEN) ::])
@@ -157,50 +159,83 @@ contains
        return
     end if
     st%materials(mat)%has_expansion = .true.
+    call get_param(st, kw, loc, 'ZERO', .false., typ, found)
+    if (found) then     ! the temperature of no thermal strain (a table of alpha: the secant strain)
+       call parse_real(typ, st%materials(mat)%zero, stat)
+       if (stat /= TOK_OK) then
+          call report_loc(st, loc, '*EXPANSION, ZERO= needs a number, not '//clip(typ))
+          return
+       end if
+    end if
     st%cur_mat = mat
     st%card = CARD_EXPANSION
     st%card_item = mat
   end subroutine kw_expansion
 
   subroutine data_expansion(st, line, loc)
-    !! The expansion coefficient: alpha[, temperature]; one line (a coefficient
-    !! that depends on temperature is refused).
+    !! The expansion coefficient: alpha[, temperature]; several lines make a
+    !! table in temperature (the first line's alpha the material's constant).
     type(deck_state_t), intent(inout) :: st
     character(*), intent(in) :: line
     type(source_loc_t), intent(in) :: loc
     real(wp) :: alpha
-    if (st%card_ndata > 1) then
-       call report_loc(st, loc, 'superjoin takes one *EXPANSION line (a coefficient that depends on '// &
-            'temperature is not supported)')
-       st%card = CARD_SKIP
-       return
-    end if
     if (.not. field_count(st, loc, 1, 2, 'alpha[, temperature]')) return
     if (.not. get_real(st, line, loc, 1, alpha)) return
-    st%materials(st%card_item)%alpha = alpha
+    if (st%card_ndata == 1) st%materials(st%card_item)%alpha = alpha
+    call table_line(st, line, loc, 2, [alpha], st%materials(st%card_item)%expansion_table)
   end subroutine data_expansion
 
-  subroutine data_elastic(st, line, loc)
-    !! A data line of *ELASTIC: E, nu.
+  subroutine table_line(st, line, loc, nfield, values, table)
+    !! A line of a temperature table (*ELASTIC, *EXPANSION): values and, in
+    !! field nfield, the temperature, appended to table(:, n); every line of a
+    !! table of several needs its temperature, in increasing order (the
+    !! evaluation: superjoin_model_material_table).
     type(deck_state_t), intent(inout) :: st
     character(*), intent(in) :: line
     type(source_loc_t), intent(in) :: loc
-    real(wp) :: e, nu, temp
-    if (st%materials(st%card_item)%kind /= MAT_ISO) then
-       call data_elastic_aniso(st, line, loc)    ! TYPE=ORTHO, ENGINEERING CONSTANTS, ANISO
+    integer, intent(in) :: nfield
+    real(wp), intent(in) :: values(:)
+    real(wp), allocatable, intent(inout) :: table(:, :)
+    real(wp) :: temp
+    if (st%f%n < nfield) then
+       if (st%card_ndata > 1) call report_loc(st, loc, 'each line of a temperature table needs its temperature (field '// &
+            itoa(nfield)//')')
+       if (st%card_ndata > 1) st%card = CARD_SKIP
        return
     end if
-    if (st%card_ndata > 1) then
-       call report_loc(st, loc, 'too many data lines for *ELASTIC')
+    if (.not. get_real(st, line, loc, nfield, temp)) return
+    if (st%card_ndata == 1) then
+       table = reshape([values, temp], [size(values) + 1, 1])
+       return
+    end if
+    if (.not. allocated(table)) then
+       call report_loc(st, loc, 'each line of a temperature table needs its temperature (the first line has none)')
        st%card = CARD_SKIP
+       return
+    end if
+    if (.not. (temp > table(nfield, size(table, 2)))) then
+       call report_loc(st, loc, 'the temperatures of a table must increase from line to line, not '// &
+            fld(st, line, nfield))
+       st%card = CARD_SKIP
+       return
+    end if
+    table = reshape([table, values, temp], [size(values) + 1, size(table, 2) + 1])
+  end subroutine table_line
+
+  subroutine data_elastic(st, line, loc)
+    !! A data line of *ELASTIC: E, nu[, temperature]; several lines make a
+    !! table in temperature (the first line's E, nu the material's constants).
+    type(deck_state_t), intent(inout) :: st
+    character(*), intent(in) :: line
+    type(source_loc_t), intent(in) :: loc
+    real(wp) :: e, nu
+    if (st%materials(st%card_item)%kind /= MAT_ISO) then
+       call data_elastic_aniso(st, line, loc)    ! TYPE=ORTHO, ENGINEERING CONSTANTS, ANISO
        return
     end if
     if (.not. field_count(st, loc, ELASTIC_FIELDS, ELASTIC_FIELDS + 1, 'E, nu[, temperature]')) return
     if (.not. get_real(st, line, loc, 1, e)) return
     if (.not. get_real(st, line, loc, 2, nu)) return
-    if (st%f%n > ELASTIC_FIELDS) then      ! the temperature of a one-line table: any value
-       if (.not. get_real(st, line, loc, ELASTIC_FIELDS + 1, temp)) return
-    end if
     if (.not. (e > 0.0_wp)) then
        call report_loc(st, loc, 'Young''s modulus E must be positive, not '//fld(st, line, 1))
        return
@@ -209,6 +244,9 @@ contains
        call report_loc(st, loc, 'Poisson''s ratio must be between -1 and 0.5 (exclusive), not '//fld(st, line, 2))
        return
     end if
+    ! several lines: a table in temperature (one line: its temperature any value)
+    call table_line(st, line, loc, ELASTIC_FIELDS + 1, [e, nu], st%materials(st%card_item)%elastic_table)
+    if (st%card_ndata > 1) return
     st%materials(st%card_item)%e = e
     st%materials(st%card_item)%nu = nu
   end subroutine data_elastic

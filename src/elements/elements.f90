@@ -20,7 +20,7 @@ module superjoin_elements
   use superjoin_model_types, only: ET_S4R, ET_S3R, orientation_t
   use superjoin_model_types, only: ET_S8R, ET_S8
   use superjoin_elements_solid, only: solid_stiffness, solid_body_load, is_3d_solid => is_solid_type, &
-       solid_3d_forces => solid_forces
+       solid_3d_forces => solid_forces, solid_thermal_load
   use superjoin_elements_axisym, only: is_axisym_type, axisym_stiffness, axisym_forces, axisym_body_load, &
        ccx_wedge_tensor, CCX_AXIAL_SEGMENTS
   use superjoin_model_types, only: ET_CAX3, ET_CAX4, ET_CAX6, ET_CAX8, ET_CAX8R, substructure_t
@@ -442,6 +442,15 @@ contains
           fe = fe + f2
           return
        end if
+       if (is_3d_solid(etype)) then
+          ! a solid: α ΔT at its nodes, interpolated to its points
+          if (.not. allocated(dl%nodal)) then
+             call fatal_error(error, EXIT_DECK, 'thermal load on a solid without its nodal values')
+             return
+          end if
+          call solid_thermal_load(etype, x, mat, dl%nodal, fe, error, sec%axes)
+          return
+       end if
        if (.not. is_plate_type(etype)) then
           call fatal_error(error, EXIT_DECK, 'thermal strain load on an element that is not a plane or shell element')
           return
@@ -495,7 +504,8 @@ contains
            call element_gravity_load(s%elem_type(dl%elem), s%x(:, s%elem_nodes(1:nn, dl%elem)), sec, &
                 model%materials(sec%material), dl%value*dl%dir, fe, q_local, error)
         else if (dl%kind == DLOAD_CENTRIF .or. (dl%kind == DLOAD_THERMAL .and. (is_plate_type(s%elem_type(dl%elem)) &
-             .or. any(dl%gradient /= 0.0_wp) .or. allocated(dl%line_nodal)))) then   ! TEMP: a beam with a gradient, a B32 need E I
+             .or. is_3d_solid(s%elem_type(dl%elem)) .or. any(dl%gradient /= 0.0_wp) &
+             .or. allocated(dl%line_nodal)))) then   ! TEMP: a beam with a gradient, a B32 need E I
            q_local = 0.0_wp   ! CENTRIF on a bar or beam: its end forces take fe itself (superjoin_analysis_recover)
            call element_material_load(s%elem_type(dl%elem), s%x(:, s%elem_nodes(1:nn, dl%elem)), sec, &
                 model%materials(sec%material), dl, fe, error, element_drill(s, dl%elem))

@@ -34,12 +34,13 @@ module superjoin_elements_solid
        ET_C3D10, ET_C3D8I, ET_C3D6, ET_C3D15, ET_C3D8R
   use superjoin_elements_solid_reduced, only: hourglass_stiffness
   use superjoin_elements_materials, only: elasticity, material_stiffness, spd_solve
+  use superjoin_model_material_table, only: point_material, point_thermal_strain
   implicit none (type, external)
   private
 
   public :: is_solid_type, solid_stiffness, solid_body_load, solid_shape, solid_forces
   public :: rule_t, solid_rule, point_gradients, elasticity, strain_matrix, solid_node_coordinates
-  public :: spd_solve, mode_strains, mean_gradients
+  public :: spd_solve, mode_strains, mean_gradients, solid_thermal_load, thermal_point_stress, point_elasticity
 
   integer, parameter, public :: WEDGE_EDGES(2, 9) = reshape([1, 2, 2, 3, 3, 1, 4, 5, 5, 6, 6, 4, 1, 4, 2, 5, 3, 6], &
        [2, 9])
@@ -409,26 +410,32 @@ contains
        end do
        g(:, :, ig) = strain_matrix(gx)
        b = strain_matrix(dx)
-       d = material_stiffness(mat, matmul(x, n), axes)
+       d = point_elasticity(mat, n, x, axes)
        kua = kua + matmul(transpose(b), matmul(d, g(:, :, ig)))*(detj*r%w(ig))
        kaa = kaa + matmul(transpose(g(:, :, ig)), matmul(d, g(:, :, ig)))*(detj*r%w(ig))
     end do
   end subroutine mode_matrices
 
-  pure subroutine mode_strains(x, mat, ue, eps, error, axes)
+  pure subroutine mode_strains(x, mat, ue, eps, error, axes, eth)
     !! C3D8I: the strains eps(6, 8) of the condensed incompatible modes at the
-    !! 2×2×2 points for the DOF values ue(24) (their amplitudes -kaa⁻¹ kauᵀ ue).
+    !! 2×2×2 points for the DOF values ue(24) (their amplitudes -kaa⁻¹ kauᵀ ue;
+    !! with the nodal thermal strains eth(8), kaa⁻¹ (fα - kauᵀ ue), fα the
+    !! modes' share of the thermal load, mode_thermal_force).
     real(wp), intent(in) :: x(:, :), ue(:)
     type(material_t), intent(in) :: mat
     real(wp), intent(out) :: eps(6, 8)
     type(error_t), allocatable, intent(out) :: error
     type(orientation_t), intent(in), optional :: axes
-    real(wp) :: kua(24, 9), kaa(9, 9), g(6, 9, 8), alpha(9, 1)
+    real(wp), intent(in), optional :: eth(:)
+    real(wp) :: kua(24, 9), kaa(9, 9), g(6, 9, 8), alpha(9, 1), fa(9)
     integer :: ig
     eps = 0.0_wp
     call mode_matrices(x, mat, kua, kaa, g, error, axes)
     if (allocated(error)) return
-    alpha = -spd_solve(kaa, matmul(transpose(kua), reshape(ue, [24, 1])))
+    fa = 0.0_wp
+    if (present(eth)) call mode_thermal_force(x, mat, g, eth, fa, error, axes)
+    if (allocated(error)) return
+    alpha = spd_solve(kaa, reshape(fa, [9, 1]) - matmul(transpose(kua), reshape(ue, [24, 1])))
     do ig = 1, 8
        eps(:, ig) = matmul(g(:, :, ig), alpha(:, 1))
     end do
@@ -462,7 +469,7 @@ contains
        call point_gradients(etype, x, r%xi(:, g), n, dx, detj, error)
        if (allocated(error)) return
        b = strain_matrix(dx)
-       d = material_stiffness(mat, matmul(x, n), axes)
+       d = point_elasticity(mat, n, x, axes)
        ke = ke + matmul(transpose(b), matmul(d, b))*(detj*r%w(g))
     end do
     if (etype == ET_C3D8I .or. etype == ET_C3D8R) call condense_modes(x, mat, ke, error, axes)
@@ -470,7 +477,7 @@ contains
     call mean_gradients(x, dx, detj, error)
     if (allocated(error)) return
     b = strain_matrix(dx)
-    d = material_stiffness(mat, sum(x, dim=2)/size(x, 2), axes)   ! C3D8R: D at the centre
+    d = point_elasticity(mat, spread(1.0_wp/size(x, 2), 1, size(x, 2)), x, axes)   ! C3D8R: D at the centre
     ke = matmul(transpose(b), matmul(d, b))*detj + hourglass_stiffness(x, dx, ke)
   end subroutine solid_stiffness
 
@@ -543,6 +550,97 @@ contains
     if (allocated(error)) return
     fg = matmul(ke, ue)
   end subroutine solid_forces
+
+  pure function thermal_point_stress(mat, n, eth, d) result(s0)
+    !! The stress D ε_th of the thermal strain ε_th = (Σ N_a eth_a)(1, 1, 1, 0,
+    !! 0, 0) at a point with shape functions n, nodal thermal strains eth (α ΔT;
+    !! a table of α: the secant strain at the point, point_thermal_strain), D
+    !! the point's elasticity in global axes (an isotropic expansion is the same
+    !! in every axes).
+    type(material_t), intent(in) :: mat
+    real(wp), intent(in) :: n(:), eth(:), d(6, 6)
+    real(wp) :: s0(6)
+    s0 = point_thermal_strain(mat, n, eth)*(d(:, 1) + d(:, 2) + d(:, 3))
+  end function thermal_point_stress
+
+  pure function point_elasticity(mat, n, x, axes) result(d)
+    !! D in global axes at the point with shape functions n of the element with
+    !! nodes x: the material's (turned into the section's material axes there,
+    !! superjoin_elements_materials), or for a copy of a material with a
+    !! temperature table and its element's temperatures, at the point's
+    !! temperature (superjoin_model_material_table, point_material: isotropic).
+    type(material_t), intent(in) :: mat
+    real(wp), intent(in) :: n(:), x(:, :)
+    type(orientation_t), intent(in), optional :: axes
+    real(wp) :: d(6, 6)
+    if (allocated(mat%at_nodes)) then
+       d = elasticity(point_material(mat, n))
+    else
+       d = material_stiffness(mat, matmul(x, n), axes)
+    end if
+  end function point_elasticity
+
+  pure subroutine mode_thermal_force(x, mat, g, eth, fa, error, axes)
+    !! C3D8I: the incompatible modes' share fα(9) = ∫ Gᵀ D ε_th dV of the thermal
+    !! load (g: the modes' strain matrices at the 2×2×2 points, mode_matrices).
+    real(wp), intent(in) :: x(:, :), g(:, :, :), eth(:)
+    type(material_t), intent(in) :: mat
+    real(wp), intent(out) :: fa(9)
+    type(error_t), allocatable, intent(out) :: error
+    type(orientation_t), intent(in), optional :: axes
+    type(rule_t) :: r
+    real(wp), allocatable :: n(:), dx(:, :)
+    real(wp) :: detj
+    integer :: ig
+    fa = 0.0_wp
+    r = solid_rule(ET_C3D8I, .false.)
+    do ig = 1, size(r%w)
+       call point_gradients(ET_C3D8I, x, r%xi(:, ig), n, dx, detj, error)
+       if (allocated(error)) return
+       fa = fa + matmul(thermal_point_stress(mat, n, eth, point_elasticity(mat, n, x, axes)), g(:, :, ig))* &
+            (detj*r%w(ig))
+    end do
+  end subroutine mode_thermal_force
+
+  pure subroutine solid_thermal_load(etype, x, mat, eth, fe, error, axes)
+    !! Consistent nodal loads fe(3 nnode) = ∫ Bᵀ D ε_th dV of the thermal
+    !! strain ε_th = α ΔT (1, 1, 1, 0, 0, 0) interpolated from its nodal values
+    !! eth(nnode) with the shape functions, with the stiffness rule (as
+    !! CalculiX). C3D8I: the modes' share fα is condensed as the stiffness is,
+    !! fe - kua kaa⁻¹ fα (zero for a uniform ΔT: ∫ G dV = 0). C3D8R: its
+    !! mean strain, D and ε_th at the centre (one point).
+    integer, intent(in) :: etype
+    real(wp), intent(in) :: x(:, :), eth(:)
+    type(material_t), intent(in) :: mat
+    real(wp), allocatable, intent(out) :: fe(:)
+    type(error_t), allocatable, intent(out) :: error
+    type(orientation_t), intent(in), optional :: axes
+    type(rule_t) :: r
+    real(wp), allocatable :: n(:), dx(:, :)
+    real(wp) :: detj, kua(24, 9), kaa(9, 9), g(6, 9, 8), fa(9, 1)
+    integer :: ig
+    allocate (fe(3*size(x, 2)), source=0.0_wp)
+    if (etype == ET_C3D8R) then
+       call mean_gradients(x, dx, detj, error)
+       if (allocated(error)) return
+       n = spread(1.0_wp/size(x, 2), 1, size(x, 2))
+       fe = matmul(thermal_point_stress(mat, n, eth, point_elasticity(mat, n, x, axes)), strain_matrix(dx))*detj
+       return
+    end if
+    r = solid_rule(etype, .false.)
+    do ig = 1, size(r%w)
+       call point_gradients(etype, x, r%xi(:, ig), n, dx, detj, error)
+       if (allocated(error)) return
+       fe = fe + matmul(thermal_point_stress(mat, n, eth, point_elasticity(mat, n, x, axes)), strain_matrix(dx))* &
+            (detj*r%w(ig))
+    end do
+    if (etype /= ET_C3D8I) return
+    call mode_matrices(x, mat, kua, kaa, g, error, axes)
+    if (allocated(error)) return
+    call mode_thermal_force(x, mat, g, eth, fa(:, 1), error, axes)
+    if (allocated(error)) return
+    fe = fe - reshape(matmul(kua, spd_solve(kaa, fa)), [24])
+  end subroutine solid_thermal_load
 
   pure subroutine solid_body_load(etype, x, force, fe, error)
     !! Consistent nodal loads fe(3 nnode) of a uniform force per unit volume

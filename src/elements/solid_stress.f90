@@ -21,9 +21,9 @@ module superjoin_elements_solid_stress
   use superjoin_kinds, only: wp
   use superjoin_error, only: error_t
   use superjoin_model_types, only: material_t, orientation_t, ET_C3D8I, ET_C3D6, ET_C3D15, ET_C3D8R
-  use superjoin_elements_materials, only: material_stiffness
   use superjoin_elements_solid, only: rule_t, solid_rule, point_gradients, strain_matrix, &
-       solid_node_coordinates, solid_shape, spd_solve, mode_strains, WEDGE_EDGES, mean_gradients
+       solid_node_coordinates, solid_shape, spd_solve, mode_strains, WEDGE_EDGES, mean_gradients, &
+       thermal_point_stress, point_elasticity
   implicit none (type, external)
   private
 
@@ -31,11 +31,14 @@ module superjoin_elements_solid_stress
 
 contains
 
-  pure subroutine solid_point_tensors(etype, x, mat, ue, strain, points, nodes, error, axes)
+  pure subroutine solid_point_tensors(etype, x, mat, ue, strain, points, nodes, error, axes, eth)
     !! Stresses (strain false) or strains (strain true) of a solid element with
     !! node coordinates x(3, nnode) and DOF values ue(3 nnode): points(6, npoint)
     !! at its integration points, nodes(6, nnode) extrapolated to its nodes;
     !! global axes (axes: the material axes of the section, as solid_stiffness).
+    !! eth(nnode): the nodal thermal strains α ΔT, interpolated to the points
+    !! and taken off the strains there: σ = D (ε - ε_th); the strains are the
+    !! total ones (ε_th included, as CalculiX prints them).
     integer, intent(in) :: etype
     real(wp), intent(in) :: x(:, :), ue(:)
     type(material_t), intent(in) :: mat
@@ -43,18 +46,20 @@ contains
     real(wp), allocatable, intent(out) :: points(:, :), nodes(:, :)
     type(error_t), allocatable, intent(out) :: error
     type(orientation_t), intent(in), optional :: axes
+    real(wp), intent(in), optional :: eth(:)
     type(rule_t) :: r
     real(wp), allocatable :: n(:), dx(:, :)
-    real(wp) :: eps(6), detj, modes(6, 8)
+    real(wp) :: eps(6), detj, modes(6, 8), d(6, 6)
     integer :: g
     r = solid_rule(etype, .false.)
     modes = 0.0_wp
-    if (etype == ET_C3D8I) call mode_strains(x, mat, ue, modes, error, axes)   ! the condensed modes' strains
+    if (etype == ET_C3D8I) call mode_strains(x, mat, ue, modes, error, axes, eth)   ! the condensed modes' strains
     if (allocated(error)) return
     allocate (points(6, size(r%w)))
     do g = 1, size(r%w)
        if (etype == ET_C3D8R) then      ! its mean strain, at the centre
           call mean_gradients(x, dx, detj, error)
+          n = spread(1.0_wp/size(x, 2), 1, size(x, 2))
        else
           call point_gradients(etype, x, r%xi(:, g), n, dx, detj, error)
        end if
@@ -63,10 +68,11 @@ contains
        if (etype == ET_C3D8I) eps = eps + modes(:, g)
        if (strain) then
           points(:, g) = [eps(1:3), 0.5_wp*eps(4:6)]
-       else if (etype == ET_C3D8R) then
-          points(:, g) = matmul(material_stiffness(mat, sum(x, dim=2)/size(x, 2), axes), eps)
        else
-          points(:, g) = matmul(material_stiffness(mat, matmul(x, n), axes), eps)
+          d = point_elasticity(mat, n, x, axes)
+          points(:, g) = matmul(d, eps)
+          ! loads: a temperature change, σ = D (ε - ε_th)
+          if (present(eth)) points(:, g) = points(:, g) - thermal_point_stress(mat, n, eth, d)
        end if
     end do
     nodes = matmul(points, transpose(solid_extrapolation(etype)))

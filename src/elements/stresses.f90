@@ -180,6 +180,8 @@ contains
     type(error_t), allocatable :: error
     if (is_axisym_type(el%etype)) then
        call axisym_point_tensors(el%etype, el%x, el%mat, el%ue, strain, sp, sn, error)
+    else if (allocated(el%thermal_nodal)) then   ! loads: α ΔT at its nodes (thermal(1) is 0 on solids)
+       call solid_point_tensors(el%etype, el%x, el%mat, el%ue, strain, sp, sn, error, el%sec%axes, el%thermal_nodal)
     else
        call solid_point_tensors(el%etype, el%x, el%mat, el%ue, strain, sp, sn, error, el%sec%axes)
     end if

@@ -135,6 +135,13 @@ module superjoin_model_types
      real(wp) :: alpha = 0.0_wp           !! thermal expansion coefficient (*EXPANSION)
      logical :: has_expansion = .false.
      type(source_loc_t) :: loc
+     real(wp), allocatable :: elastic_table(:, :)    !! (3, n) E, nu, temperature of a temperature-dependent
+                                                    !! *ELASTIC (unallocated: e, nu constant); see model/material_table
+     real(wp), allocatable :: expansion_table(:, :)  !! (2, n) alpha, temperature of a temperature-dependent *EXPANSION
+     real(wp) :: zero = 0.0_wp            !! *EXPANSION, ZERO=: the temperature of no thermal strain (with a table)
+     real(wp), allocatable :: at_nodes(:, :)  !! (2, nnode) initial and step temperatures at the nodes of the one
+                                              !! solid element of this copy of a material with a table (its
+                                              !! values taken at each integration point)
   end type material_t
 
   type, public :: section_t

@@ -963,7 +963,8 @@ def rot4(binary, outdir):
 
 
 SOLID_DECKS = ('achteld', 'achtelp', 'achtelg', 'achtel2', 'achtel9', 'achtel29', 'achtelcas', 'achtelc', 'beam10p',
-               'beam20p', 'beamd', 'beampo1', 'beampo2', 'aniso', 'c3d15')
+               'beam20p', 'beamd', 'beampo1', 'beampo2', 'aniso', 'c3d15', 'beamt', 'beamt2', 'beamt3', 'beamt4',
+               'beam8t')
 
 
 def solid_point_table(text):
@@ -986,9 +987,10 @@ def solid_decks(binary, outdir):
     and its solid beams (beam10p: C3D10, beam20p: C3D20, beamd: C3D20R under
     *DLOAD pressure on faces; beampo1: *ELASTIC, TYPE=ORTHOTROPIC, beampo2: the
     same turned by an *ORIENTATION, stresses printed with GLOBAL=YES, aniso:
-    TYPE=ANISOTROPIC, 21 constants), and c3d15 (C3D15 wedges under face
-    pressure, *ORIENTATION, DEFINITION=COORDINATES on an isotropic material):
-    *NODE PRINT U and the stresses of *EL PRINT S at
+    TYPE=ANISOTROPIC, 21 constants), c3d15 (C3D15 wedges under face
+    pressure, *ORIENTATION, DEFINITION=COORDINATES on an isotropic material),
+    beamt, beamt2, beamt3: C3D20R, beam8t: C3D8 under *TEMPERATURE, uniform,
+    per material, varying along the beam: *NODE PRINT U and the stresses of *EL PRINT S at
     CalculiX's integration points of every element of the set must agree with
     .dat.ref (1e-6 of the table; other tables of the .dat are not compared)."""
     for name in SOLID_DECKS:

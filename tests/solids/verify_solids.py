@@ -29,7 +29,8 @@ Cases
   (plain and condensed): tip displacement, joint opening and reactions exact;
 - pressure on faces (*DLOAD P1..P6, *SURFACE S1..S6 with *DSLOAD): the
   hydrostatic state of the distorted block on symmetry supports, exact;
-- VTK cells of every type; refusals of P and *TEMPERATURE on solids;
+- VTK cells of every type; refusals of P and a *TEMPERATURE gradient
+  (third field) on solids (their thermal loads: tests/decks/thermal_solids.deck);
 - CalculiX (if installed): the patch block of every type but C3D8I with a
   load and face pressures instead of the interior prescription, `ccx -i`:
   displacements, S and E at the integration points (.dat), nodal S (.frd).
@@ -676,7 +677,7 @@ def refusals(exe, work):
     mesh = Mesh((1, 1, 1), (1.0, 1.0, 1.0), "C3D8", False)
     bnd = [(n, d, 0.0) for n, x in mesh.nodes.items() if x[0] == 0.0 for d in (1, 2, 3)]
     cases = [("P", "*DLOAD\n 1, P, 1.0", "does not apply to element 1 of type C3D8"),
-             ("TEMP", "*TEMPERATURE\n NALL, 10.", "of type C3D8")]
+             ("TEMP", "*TEMPERATURE\n NALL, 10., 5.", "of type C3D8")]
     for name, card, want in cases:
         text = deck(mesh, 1.0e3, 0.3, bnd, [], extra=card, density=1.0)
         if name == "TEMP":
@@ -688,7 +689,7 @@ def refusals(exe, work):
         line = next((l for l in r.stderr.splitlines() if want in l), "")
         print(f"{name}: {line or r.stderr.strip()[:200]}")
         check(r.returncode != 0 and re.match(r".*refuse_\w+\.deck:\d+: error: ", line) is not None,
-              f"{name} on a C3D8 refused with file:line: error")
+              f"{name} on a C3D8 refused with file:line: error" + (" (the gradient field)" if name == "TEMP" else ""))
     # an *ELEMENT data line that ends with a comma and is not continued
     text = deck(mesh, 1.0e3, 0.3, bnd, [])
     text = re.sub(r"(\*ELEMENT, TYPE=C3D8, ELSET=ALL\n 1, \d+, \d+, \d+),[^\n]*\n", r"\1,\n", text)

@@ -29,7 +29,7 @@ import sys
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 from verify_solids import Mesh  # noqa: E402
 
-TYPES = ("C3D8", "C3D8I", "C3D20", "C3D20R", "C3D4", "C3D10", "C3D6", "C3D15")
+TYPES = ("C3D8", "C3D8I", "C3D8R", "C3D20", "C3D20R", "C3D4", "C3D10", "C3D6", "C3D15")
 QUADRATIC = ("C3D20", "C3D20R", "C3D10", "C3D15")
 E, NU, ALPHA, T0, T1 = 2.1e5, 0.3, 1.2e-5, 20.0, 120.0
 SIZE = (1.0, 0.8, 0.6)
@@ -117,7 +117,7 @@ def main():
                     f"** expect: point_stresses step=HEAT substructure=C_{t} element=1 point=1 sxz == 0 atol=1e-9",
                     f"** expect: displacements step=HEAT substructure=C_{t} node={far} u1 == 0 atol=1e-15"]
         origin = corner(held, (0, 0, 0))
-        share = {"C3D8": "-0.48/4", "C3D8I": "-0.48/4", "C3D20": "0.48/12", "C3D20R": "0.48/12"}
+        share = {"C3D8": "-0.48/4", "C3D8I": "-0.48/4", "C3D8R": "-0.48/4", "C3D20": "0.48/12", "C3D20R": "0.48/12"}
         if t in share:      # the origin corner's share of the stress on the face x = 0 (outward normal -x)
             expects.append(f"** expect: reactions step=HEAT substructure=C_{t} node={origin} dof=1 force == "
                            f"SC*{share[t]} rtol=1e-10")

@@ -25,6 +25,7 @@ module superjoin_output_section_print
   use superjoin_model_types, only: model_t, section_print_t, ELEMENT_NODE_COUNT
   use superjoin_model_results, only: result_fields_t
   use superjoin_elements_solid_faces, only: solid_face_points
+  use superjoin_elements_frame, only: cross
   use superjoin_output_stresses, only: nodal_stresses
   use superjoin_utils_text_buffer, only: text_buffer_t
   use superjoin_utils_strings, only: itoa, full_real
@@ -123,12 +124,6 @@ contains
       end do
     end associate
   end subroutine add_face
-
-  pure function cross(a, b) result(c)
-    real(wp), intent(in) :: a(3), b(3)
-    real(wp) :: c(3)
-    c = [a(2)*b(3) - a(3)*b(2), a(3)*b(1) - a(1)*b(3), a(1)*b(2) - a(2)*b(1)]
-  end function cross
 
   pure function cg_moment(r) result(m)
     !! The moment about the centre of gravity, M - c × F.

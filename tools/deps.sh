@@ -3,7 +3,8 @@
 # usage: deps.sh [--test] [--bench] [--mumps | --mpi]
 #   (no option)  what building and running the solver needs (tools/build.sh, tools/demo)
 #   --test       also what the test suite uses: Python, gnuplot (tools/render,
-#                ctest render.png), valgrind, CalculiX GraphiX (ctest ccx.frd_cgx)
+#                ctest render.png), valgrind, CalculiX GraphiX (ctest ccx.frd_cgx),
+#                FreeCAD's freecadcmd (ctest ccx.freecad_dropin)
 #   --bench      also what the benchmarks use (bench/): Python, GNU time,
 #                CalculiX (cross-checks); no test runs them
 #   --mumps      also sequential MUMPS (cmake -DSUPERJOIN_MUMPS=ON)
@@ -12,7 +13,7 @@ set -euo pipefail
 packages=(gfortran gcc cmake make liblapack-dev libopenblas-dev libsuitesparse-dev libmetis-dev)
 for opt in "$@"; do
   case "$opt" in
-    --test) packages+=(python3 gnuplot-nox valgrind calculix-cgx) ;;
+    --test) packages+=(python3 gnuplot-nox valgrind calculix-cgx freecad-python3) ;;
     --bench) packages+=(python3 time calculix-ccx) ;;
     --mumps) packages+=(libmumps-seq-dev) ;;
     --mpi) packages+=(openmpi-bin libopenmpi-dev libmumps-ptscotch-dev) ;;

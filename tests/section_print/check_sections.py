@@ -17,6 +17,8 @@ files that ccx 2.20, Debian 12's calculix-ccx, `ccx -i JOB`, writes for them):
    largest reference value (at least 1e-3 of the block's: round-off rows) (ccx's nodal stresses, which it integrates, are
    4e-5 below superjoin's on these meshes while the stresses at the
    integration points agree to 7 digits: doc/calculix-dropin.md).
+   `superjoin cantilever20r` (ccx's form without -i, as PrePoMax runs it)
+   writes the same .dat.
 2. The listing and --csv (section_forces.csv), closed forms:
    - cantilever20r: the force on LEFT (what the right part does to the left)
      is (0, 0, P), its moment about the centre of gravity (4, 0.5, 1) is
@@ -82,6 +84,14 @@ def main():
                 print('%-14s %-45s row %s: %.1e' % (job, title[:45], ' '.join('%.4g' % v for v in rr), worst))
                 if worst > 1e-4:
                     failures.append('%s: %s: %s, expected %s' % (job, title, gr, rr))
+        if job == 'cantilever20r':      # ccx's form without -i, as PrePoMax runs it: the same .dat
+            plain = os.path.join(outdir, 'plain')
+            os.makedirs(plain, exist_ok=True)
+            shutil.copy(os.path.join(HERE, job + '.inp'), plain)
+            r = subprocess.run([exe, '-q', job], cwd=plain, capture_output=True, text=True)
+            with open(os.path.join(outdir, job + '.dat')) as a, open(os.path.join(plain, job + '.dat')) as b:
+                if r.returncode != 0 or a.read() != b.read():
+                    failures.append('superjoin %s (no -i): status %d, %s' % (job, r.returncode, r.stderr))
         csvdir = os.path.join(outdir, job + '_csv')
         r = subprocess.run([exe, '-q', job + '.inp', '-o', job + '.lst', '--csv', csvdir], cwd=outdir,
                            capture_output=True, text=True)

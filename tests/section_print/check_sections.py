@@ -27,6 +27,8 @@ files that ccx 2.20, Debian 12's calculix-ccx, `ccx -i JOB`, writes for them):
    - bar8: LEFT carries (P, 0, 0) within 5e-4 (the smoothed stress of a
      clamped C3D8 bar is uniform only up to the discretisation), area 2,
      centre of gravity (4, 0.5, 1), mean normal (1, 0, 0); RIGHT opposite.
+3. Deck errors (unknown surface, unknown variable, no NAME=, a surface of
+   shell faces) stop the run with status 1 and say so.
 """
 import csv
 import os
@@ -57,6 +59,30 @@ def blocks(path):
 
 def close(a, b, tol, scale):
     return abs(a - b) <= tol * scale
+
+
+def refusals(exe, outdir):
+    """Deck errors of *SECTION PRINT: each a status 1 and its message."""
+    with open(os.path.join(HERE, 'bar8.inp')) as f:
+        deck = f.read()
+    cases = [('SURFACE=LEFT, NAME=SL', 'SURFACE=NOPE, NAME=SL', 'unknown surface NOPE'),
+             ('SOF, SOM, SOAREA', 'SOF, SOE', "unknown output variable 'SOE' for *SECTION PRINT"),
+             ('SURFACE=LEFT, NAME=SL', 'SURFACE=LEFT', 'NAME'),
+             ('*SURFACE, NAME=LEFT, TYPE=ELEMENT\n4, S4', '*SURFACE, NAME=LEFT, TYPE=ELEMENT\n4, SPOS',
+              'faces of shells or plane elements')]
+    failures = []
+    for k, (old, new, message) in enumerate(cases):
+        if old not in deck:
+            failures.append('refusal %d: %r not in bar8.inp' % (k, old))
+            continue
+        path = os.path.join(outdir, 'refused%d.inp' % k)
+        with open(path, 'w') as f:
+            f.write(deck.replace(old, new, 1))
+        r = subprocess.run([exe, '-q', '--check', path], capture_output=True, text=True)
+        print('refusal %d: status %d, %s' % (k, r.returncode, r.stderr.strip().splitlines()[:1]))
+        if r.returncode != 1 or message not in r.stderr:
+            failures.append('refusal %d: status %d, stderr %r (expected %r)' % (k, r.returncode, r.stderr, message))
+    return failures
 
 
 def main():
@@ -124,6 +150,7 @@ def main():
                 close(s['nx'], sign, 1e-12, 1.0)
             if not ok:
                 failures.append('%s %s: F %s (want %s), M about c %s (want %s)' % (job, name, f, want_f, mc, want_m))
+    failures += refusals(exe, outdir)
     for msg in failures:
         print('FAIL ' + msg)
     return 1 if failures else 0

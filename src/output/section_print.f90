@@ -19,12 +19,15 @@ module superjoin_output_section_print
   !! area and centre of gravity are those of the undeformed faces).
   !! Being an integral of smoothed stresses, F equals the load carried across
   !! the section only up to the discretisation error of the stresses (exact
-  !! for a uniform stress).
+  !! for a uniform stress); the listing and the CSV also give the resultant of
+  !! the nodal forces of the faces' elements (nodal_force_result), which is
+  !! in exact equilibrium with the loads.
   use superjoin_kinds, only: wp, ip
   use superjoin_error, only: error_t
   use superjoin_model_types, only: model_t, section_print_t, ELEMENT_NODE_COUNT
   use superjoin_model_results, only: result_fields_t
-  use superjoin_elements_solid_faces, only: solid_face_points
+  use superjoin_elements_solid_faces, only: solid_face_points, solid_face_nodes
+  use superjoin_elements, only: element_state_t, element_state, element_stiffness
   use superjoin_elements_frame, only: cross
   use superjoin_output_stresses, only: nodal_stresses
   use superjoin_utils_text_buffer, only: text_buffer_t
@@ -44,10 +47,10 @@ module superjoin_output_section_print
   end type section_result_t
 
   character(*), parameter, public :: SECTION_CSV = 'section_forces.csv'
-  integer, parameter :: LABEL_WIDTH = 27   !! width of the row labels of the listing's table
+  integer, parameter :: LABEL_WIDTH = 42   !! width of the row labels of the listing's table
 
   public :: effective_sections, section_result, write_section_prints, write_ccx_sections, write_section_csv
-  public :: cg_moment, normal_shear
+  public :: cg_moment, normal_shear, nodal_force_result
 
 contains
 
@@ -125,6 +128,56 @@ contains
     end associate
   end subroutine add_face
 
+  subroutine nodal_force_result(model, fields, is, sp, f, m)
+    !! The exact-equilibrium counterpart: f (and m, about the origin) = Σ K_e u_e
+    !! of the faces' elements at the nodes of the section's faces, the forces
+    !! these nodes exert on the faces' side (the elements' own distributed and
+    !! thermal loads not subtracted). It is the load carried across the
+    !! section when every element of that side that touches the section has a
+    !! face in it (a mesh of bricks cut along element faces; a tetrahedron
+    !! touching it by an edge only is missed).
+    type(model_t), intent(in) :: model
+    type(result_fields_t), intent(in) :: fields
+    integer, intent(in) :: is
+    type(section_print_t), intent(in) :: sp
+    real(wp), intent(out) :: f(3), m(3)
+    type(element_state_t) :: el
+    type(error_t), allocatable :: error
+    real(wp), allocatable :: ke(:, :), fe(:)
+    logical, allocatable :: cut(:)
+    integer, allocatable :: nodes(:)
+    integer :: k, a, nc, isub
+    logical :: ok
+    f = 0.0_wp
+    m = 0.0_wp
+    do isub = 1, size(model%subs)
+       if (.not. any(sp%subs == isub)) cycle
+       associate (sub => model%subs(isub))
+         allocate (cut(sub%nnode), source=.false.)
+         do k = 1, size(sp%elems)
+            if (sp%subs(k) /= isub) cycle
+            call solid_face_nodes(sub%elem_type(sp%elems(k)), sp%faces(k), nodes, nc)
+            cut(sub%elem_nodes(nodes, sp%elems(k))) = .true.
+         end do
+         do k = 1, size(sp%elems)
+            if (sp%subs(k) /= isub) cycle
+            if (any(sp%subs(1:k - 1) == isub .and. sp%elems(1:k - 1) == sp%elems(k))) cycle   ! counted once
+            call element_state(model, fields, is, isub, sp%elems(k), el, ok)
+            if (.not. ok) cycle
+            call element_stiffness(el%etype, el%x, el%sec, el%mat, ke, error)
+            if (allocated(error)) cycle
+            fe = matmul(ke, el%ue)
+            do a = 1, size(el%x, 2)
+               if (.not. cut(sub%elem_nodes(a, sp%elems(k)))) cycle
+               f = f + fe(3*a - 2:3*a)
+               m = m + cross(el%x(:, a), fe(3*a - 2:3*a))
+            end do
+         end do
+         deallocate (cut)
+       end associate
+    end do
+  end subroutine nodal_force_result
+
   pure function cg_moment(r) result(m)
     !! The moment about the centre of gravity, M - c × F.
     type(section_result_t), intent(in) :: r
@@ -148,6 +201,7 @@ contains
     integer, intent(in) :: is
     integer, allocatable :: idx(:)
     type(section_result_t) :: r
+    real(wp) :: fn(3), mn(3)
     integer :: k
     call effective_sections(model, is, idx)
     if (size(idx) == 0) return
@@ -163,6 +217,9 @@ contains
          call vector_row('centre of gravity', r%cg)
          call vector_row('mean normal', r%normal)
          call vector_row('moment about the centre', cg_moment(r))
+         call nodal_force_result(model, fields, is, sp, fn, mn)
+         call vector_row('force from the nodal forces', fn)
+         call vector_row('moment about the centre, nodal forces', mn - cross(r%cg, fn))
          call lu%line(repeat(' ', LABEL_WIDTH)//'           area   normal force    shear force         torque'// &
               ' bending moment')
          call lu%put(repeat(' ', LABEL_WIDTH))
@@ -243,7 +300,8 @@ contains
   subroutine write_section_csv(dir, model, fields, error)
     !! DIR/section_forces.csv: step,section,surface,faces,fx,fy,fz,mx,my,mz (about
     !! the origin),cx,cy,cz (centre of gravity),nx,ny,nz (mean normal),area,
-    !! full precision; removed when the deck has no *SECTION PRINT.
+    !! and the nodal-force resultant fx_nodal..mz_nodal (nodal_force_result,
+    !! moment about the origin), full precision; removed when the deck has no *SECTION PRINT.
     character(*), intent(in) :: dir
     type(model_t), intent(in) :: model
     type(result_fields_t), intent(in) :: fields
@@ -252,7 +310,7 @@ contains
     type(section_result_t) :: r
     integer, allocatable :: idx(:)
     character(:), allocatable :: path, row
-    real(wp) :: v(13)
+    real(wp) :: v(19), fn(3), mn(3)
     integer :: is, k, j
     path = dir//'/'//SECTION_CSV
     if (.not. allocated(model%section_prints)) then
@@ -266,7 +324,8 @@ contains
        call temp_unregister()
        return
     end if
-    call tb%line('step,section,surface,faces,fx,fy,fz,mx,my,mz,cx,cy,cz,nx,ny,nz,area')
+    call tb%line('step,section,surface,faces,fx,fy,fz,mx,my,mz,cx,cy,cz,nx,ny,nz,area,'// &
+         'fx_nodal,fy_nodal,fz_nodal,mx_nodal,my_nodal,mz_nodal')
     do is = 1, size(model%steps)
        if (allocated(fields%steps(is)%failure)) cycle
        call effective_sections(model, is, idx)
@@ -274,7 +333,8 @@ contains
           associate (sp => model%section_prints(idx(k)))
             call section_result(model, fields, is, sp, r)
             row = itoa(is)//','//sp%name//','//sp%surface//','//itoa(size(sp%elems))
-            v = [r%force, r%moment, r%cg, r%normal, r%area]
+            call nodal_force_result(model, fields, is, sp, fn, mn)
+            v = [r%force, r%moment, r%cg, r%normal, r%area, fn, mn]
             do j = 1, size(v)
                row = row//','//full_real(v(j))
             end do

@@ -424,6 +424,14 @@ contains
             deck//'; listing: '//listing//' (relative to the current directory)'
     end if
     inquire (file=deck, exist=exists)
+    if (.not. exists .and. .not. allocated(job)) then
+       ! ccx JOB, CalculiX's form without -i (PrePoMax runs it so): JOB.inp when JOB is no file
+       inquire (file=deck//'.inp', exist=exists)
+       if (exists) then
+          job = job_name(deck)
+          deck = job//'.inp'
+       end if
+    end if
     if (.not. exists) then
        write (error_unit, '(a)') deck//': error: cannot open deck'
        stop EXIT_IO, quiet=.true.

@@ -1,4 +1,5 @@
-"""FreeCAD end to end with superjoin as its CalculiX binary (by hand; not a ctest).
+"""FreeCAD end to end with superjoin as its CalculiX binary (by hand; three of the
+examples are the ctest ccx.freecad_dropin, tests/ccx/freecad_dropin.py).
 
 usage (Debian 12: apt-get install freecad-python3):
   SUPERJOIN=build/superjoin WORK=/tmp/fc_dropin freecadcmd tools/freecad_dropin.py

@@ -1,8 +1,8 @@
 module superjoin_deck_cards_output
   !! Output requests: *OUTPUT and the CalculiX/Abaqus *NODE PRINT, *EL PRINT,
-  !! *NODE FILE, *EL FILE, *NODE OUTPUT, *ELEMENT OUTPUT.
+  !! *NODE FILE, *EL FILE, *NODE OUTPUT, *ELEMENT OUTPUT, *SECTION PRINT.
   use superjoin_kinds, only: ip
-  use superjoin_model_types, only: source_loc_t, TOTALS_NO, TOTALS_YES, TOTALS_ONLY
+  use superjoin_model_types, only: source_loc_t, TOTALS_NO, TOTALS_YES, TOTALS_ONLY, section_print_t
   use superjoin_deck_lexer, only: keyword_line_t, to_upper, parse_id, clip, path_dirname, path_join, &
        TOK_OK
   use superjoin_deck_state, only: deck_state_t, report_loc, request_b_t, add_request, &
@@ -12,11 +12,11 @@ module superjoin_deck_cards_output
   use superjoin_utils_strings, only: pick
   use superjoin_model_output_paths, only: vtk_path_problem
   use superjoin_deck_cards_common, only: check_params, param_index, get_param, fld, parse_set_ref, &
-       loc_string, CARD_SKIP, CARD_REQUEST, NAME_LEN
+       loc_string, CARD_SKIP, CARD_REQUEST, NAME_LEN, get_name_param, CARD_SECTION_PRINT
   implicit none (type, external)
   private
 
-  public :: kw_output, kw_request, data_request
+  public :: kw_output, kw_request, data_request, kw_section_print, data_section_print
 
 contains
 
@@ -133,4 +133,47 @@ contains
       end do
     end associate
   end subroutine data_request
+
+  subroutine kw_section_print(st, kw, loc)
+    !! *SECTION PRINT, SURFACE=surface, NAME=name: the resultant force and
+    !! moment of the stresses over the faces of an element surface (CalculiX);
+    !! the surface is resolved when the model is built, the variables (SOF,
+    !! SOM, SOAREA) follow as data lines.
+    type(deck_state_t), intent(inout) :: st
+    type(keyword_line_t), intent(in) :: kw
+    type(source_loc_t), intent(in) :: loc
+    type(section_print_t) :: sp
+    character(:), allocatable :: value
+    logical :: found
+    st%card = CARD_SKIP
+    call check_params(st, kw, loc, [character(NAME_LEN) :: 'SURFACE', 'NAME', 'FREQUENCYF', 'TIME POINTS'], &
+         [character(NAME_LEN) ::])
+    call get_name_param(st, kw, loc, 'SURFACE', .true., value, found)
+    if (.not. found) return
+    sp%surface = value
+    call get_name_param(st, kw, loc, 'NAME', .true., value, found)
+    if (.not. found) return
+    sp%name = value
+    sp%step = st%cur_step
+    sp%loc = loc
+    if (.not. allocated(st%section_prints)) allocate (st%section_prints(0))
+    st%section_prints = [st%section_prints, sp]
+    st%card = CARD_SECTION_PRINT
+  end subroutine kw_section_print
+
+  subroutine data_section_print(st, line, loc)
+    !! The variables of a *SECTION PRINT: SOF, SOM, SOAREA (each asks for the
+    !! whole block, as CalculiX prints it).
+    type(deck_state_t), intent(inout) :: st
+    character(*), intent(in) :: line
+    type(source_loc_t), intent(in) :: loc
+    character(:), allocatable :: name
+    integer :: i
+    do i = 1, st%f%n
+       name = to_upper(fld(st, line, i))
+       if (len(name) == 0) cycle
+       if (name /= 'SOF' .and. name /= 'SOM' .and. name /= 'SOAREA') call report_loc(st, loc, &
+            'unknown output variable '''//clip(fld(st, line, i))//''' for *SECTION PRINT (SOF, SOM, SOAREA)')
+    end do
+  end subroutine data_section_print
 end module superjoin_deck_cards_output

@@ -21,7 +21,7 @@ module superjoin_deck_parser
        CARD_CLOAD, CARD_DLOAD, CARD_DENSITY, CARD_TSHEAR, CARD_INSTANCE, CARD_CHANGE_CONTACT, &
        CARD_INTERFACE, CARD_STATIC, CARD_REQUEST, CARD_SPRING_ELEMENT, CARD_SPRING, &
        CARD_COMBINATION, CARD_EXPANSION, CARD_TEMPERATURE, CARD_EQUATION, CARD_TRANSFORM, &
-       CARD_NODAL_THICKNESS, NAME_LEN, CARD_SURFACE, CARD_DSLOAD
+       CARD_NODAL_THICKNESS, NAME_LEN, CARD_SURFACE, CARD_DSLOAD, CARD_SECTION_PRINT
   use superjoin_deck_cards_assembly, only: assembly_allows, finish_assembly, kw_assembly, &
        data_instance, kw_interface, data_interface, kw_change_contact, data_change_contact, &
        kw_contact, data_contact, kw_support, data_support
@@ -35,7 +35,7 @@ module superjoin_deck_parser
   use superjoin_deck_cards_steps, only: kw_step, kw_end_step, kw_static, data_static, kw_controls, &
        kw_boundary, data_boundary, kw_load, data_load, kw_surface, data_surface, data_dsload, &
        kw_load_combination, data_combination, kw_temperature, data_temperature
-  use superjoin_deck_cards_output, only: kw_output, kw_request, data_request
+  use superjoin_deck_cards_output, only: kw_output, kw_request, data_request, kw_section_print, data_section_print
   use superjoin_deck_equations, only: kw_equation, data_equation, end_equation_card
   use superjoin_deck_transforms, only: kw_transform, data_transform
   use superjoin_deck_nodal_thickness, only: kw_nodal_thickness, data_nodal_thickness
@@ -222,6 +222,8 @@ contains
        call kw_load(st, kw, loc, CARD_DLOAD)
     case ('SURFACE')
        call kw_surface(st, kw, loc)
+    case ('SECTION PRINT')
+       call kw_section_print(st, kw, loc)
     case ('DSLOAD')
        call kw_load(st, kw, loc, CARD_DSLOAD)
     case ('LOAD COMBINATION')
@@ -405,6 +407,8 @@ contains
        call data_surface(st, line, loc)
     case (CARD_DSLOAD)
        call data_dsload(st, line, loc)
+    case (CARD_SECTION_PRINT)
+       call data_section_print(st, line, loc)
     end select
   end subroutine data_line
 end module superjoin_deck_parser

@@ -5,7 +5,7 @@ module superjoin_deck_state
   use superjoin_kinds, only: wp, ip, i8
   use superjoin_error, only: error_t, add_error_line, EXIT_DECK, EXIT_IO
   use superjoin_utils_memory, only: oom_message, BYTES_REAL, BYTES_INT
-  use superjoin_model_types, only: string_t, source_loc_t, material_t, orientation_t, &
+  use superjoin_model_types, only: string_t, source_loc_t, material_t, orientation_t, section_print_t, &
        controls_t, MAX_ELEMENT_NODES, NDOF_NODE, LINK_NONE, DIALECT_NONE
   use superjoin_deck_lexer, only: itoa, fields_t, load_file
   use superjoin_utils_grow, only: grow
@@ -93,6 +93,7 @@ module superjoin_deck_state
      integer :: ncombo = 0                          !! *LOAD COMBINATION cards
      integer :: nsurface = 0                        !! *SURFACE cards
      type(surface_b_t), allocatable :: surfaces(:)
+     type(section_print_t), allocatable :: section_prints(:)  !! *SECTION PRINT cards (faces resolved later)
      type(combo_b_t), allocatable :: combos(:)
      logical :: section_rejected(3) = .false.  !! a *SOLID, *BEAM or *SHELL SECTION card (SEC_* index) was rejected
      logical :: elements_refused = .false.

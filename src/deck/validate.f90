@@ -10,6 +10,7 @@ module superjoin_deck_validate
   use superjoin_model_types, only: model_t
   use superjoin_deck_state, only: deck_state_t, report, report_loc, SUBK_INSTANCE
   use superjoin_deck_requests, only: build_requests
+  use superjoin_deck_build_section_prints, only: build_section_prints
   use superjoin_deck_combinations, only: build_combinations
   use superjoin_deck_eccentric, only: check_offset_masters
   use superjoin_deck_build_subs, only: build_sub
@@ -89,5 +90,6 @@ contains
     call build_overrides(st, model)
     call build_combinations(st, model)
     call build_requests(st, model)
+    call build_section_prints(st, model)
   end subroutine build_model
 end module superjoin_deck_validate

@@ -32,7 +32,7 @@ module superjoin_elements_solid_faces
        1, 5, 2, 6, 3, 7, 4, 8], [2, 12])
   integer, parameter :: TET_EDGES(2, 6) = reshape([1, 2, 2, 3, 3, 1, 1, 4, 2, 4, 3, 4], [2, 6])
 
-  public :: solid_face_nodes, solid_pressure_load
+  public :: solid_face_nodes, solid_pressure_load, solid_face_points
 
 contains
 
@@ -131,6 +131,82 @@ contains
        end do
     end do
   end subroutine solid_pressure_load
+
+  pure subroutine solid_face_points(etype, x, face, nodes, shp, nda, xg)
+    !! CalculiX's integration points of face `face` of a solid with node
+    !! coordinates x(3, nnode), as its *SECTION PRINT uses them: nodes the
+    !! element's local node numbers of the face (solid_face_nodes, empty for a
+    !! face the type does not have), per point k the face's shape functions
+    !! shp(:, k) at it, its weighted outward area vector nda(:, k) = w n dA
+    !! (out of the element) and its position xg(:, k). Points: C3D8, C3D8I,
+    !! C3D20R, the quadrilaterals of C3D15 2×2 Gauss; C3D20 3×3; C3D4 and C3D6
+    !! (all faces) one point; the triangles of C3D10 and C3D15 three.
+    integer, intent(in) :: etype, face
+    real(wp), intent(in) :: x(:, :)
+    integer, allocatable, intent(out) :: nodes(:)
+    real(wp), allocatable, intent(out) :: shp(:, :), nda(:, :), xg(:, :)
+    real(wp), allocatable :: st(:, :), w(:), n(:), dn(:, :)
+    real(wp) :: a1(3), a2(3)
+    integer :: nc, k
+    call solid_face_nodes(etype, face, nodes, nc)
+    allocate (shp(size(nodes), 0), nda(3, 0), xg(3, 0))
+    if (nc == 0) return
+    if (etype == ET_C3D4 .or. etype == ET_C3D6) then
+       call face_rule(nc, 1, st, w)
+    else if (etype == ET_C3D20) then
+       call face_rule(nc, 3, st, w)
+    else
+       call face_rule(nc, 2, st, w)
+    end if
+    deallocate (shp, nda, xg)
+    allocate (shp(size(nodes), size(w)), nda(3, size(w)), xg(3, size(w)))
+    do k = 1, size(w)
+       call face_shape(nc, size(nodes), st(1, k), st(2, k), n, dn)
+       a1 = matmul(x(:, nodes), dn(1, :))
+       a2 = matmul(x(:, nodes), dn(2, :))
+       shp(:, k) = n
+       nda(:, k) = -w(k)*[a1(2)*a2(3) - a1(3)*a2(2), a1(3)*a2(1) - a1(1)*a2(3), a1(1)*a2(2) - a1(2)*a2(1)]
+       xg(:, k) = matmul(x(:, nodes), n)
+    end do
+  end subroutine solid_face_points
+
+  pure subroutine face_rule(nc, order, st, w)
+    !! Points st(2, :) and weights of a face with nc corners: order² Gauss
+    !! points on a quadrilateral (order 1, 2, 3); on a triangle the centroid
+    !! (order 1) or three points (1/6, 1/6), (2/3, 1/6), (1/6, 2/3) (otherwise).
+    integer, intent(in) :: nc, order
+    real(wp), allocatable, intent(out) :: st(:, :), w(:)
+    real(wp), allocatable :: gp(:), gw(:)
+    integer :: i, j
+    if (nc == 3) then
+       if (order == 1) then
+          st = reshape([1.0_wp, 1.0_wp]/3.0_wp, [2, 1])
+          w = [0.5_wp]
+       else
+          st = reshape([1.0_wp, 1.0_wp, 4.0_wp, 1.0_wp, 1.0_wp, 4.0_wp]/6.0_wp, [2, 3])
+          w = [1.0_wp, 1.0_wp, 1.0_wp]/6.0_wp
+       end if
+       return
+    end if
+    select case (order)
+    case (1)
+       gp = [0.0_wp]
+       gw = [2.0_wp]
+    case (2)
+       gp = [-1.0_wp, 1.0_wp]/sqrt(3.0_wp)
+       gw = [1.0_wp, 1.0_wp]
+    case default
+       gp = [-sqrt(0.6_wp), 0.0_wp, sqrt(0.6_wp)]
+       gw = [5.0_wp, 8.0_wp, 5.0_wp]/9.0_wp
+    end select
+    allocate (st(2, order*order), w(order*order))
+    do j = 1, order
+       do i = 1, order
+          st(:, i + order*(j - 1)) = [gp(i), gp(j)]
+          w(i + order*(j - 1)) = gw(i)*gw(j)
+       end do
+    end do
+  end subroutine face_rule
 
   pure subroutine face_shape(nc, nn, s, t, n, dn)
     !! Shape functions n(nn) and derivatives dn(2, nn) of a face with nc

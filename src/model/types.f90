@@ -391,6 +391,19 @@ module superjoin_model_types
      type(source_loc_t) :: loc
   end type output_request_t
 
+  type, public :: section_print_t
+    !! One *SECTION PRINT card: the resultant of the stresses over the element
+    !! faces of a *SURFACE (solids), CalculiX's SOF, SOM, SOAREA. Scoped as the
+    !! print requests (a step's cards replace those of earlier steps).
+     character(:), allocatable :: name     !! NAME= (upper case)
+     character(:), allocatable :: surface  !! SURFACE= (upper case)
+     integer :: step = 0                   !! index into model%steps
+     integer, allocatable :: subs(:)       !! per face: substructure,
+     integer(ip), allocatable :: elems(:)  !! local element index,
+     integer, allocatable :: faces(:)      !! face number (S1..S6 as 1..6)
+     type(source_loc_t) :: loc
+  end type section_print_t
+
   integer, parameter, public :: DIALECT_NONE = 0, DIALECT_ABAQUS = 1, DIALECT_CALCULIX = 2
     !! *CONTROLS, DIALECT=: none declared (Abaqus's reading, with a note), ABAQUS or CALCULIX.
 
@@ -420,6 +433,7 @@ module superjoin_model_types
      type(string_t), allocatable :: parts(:)        !! *PART names; subs(i)%part indexes this list
      type(output_request_t), allocatable :: requests(:)  !! output request cards in order (empty: full output)
      type(combination_t), allocatable :: combinations(:) !! *LOAD COMBINATION cards (unallocated: none)
+     type(section_print_t), allocatable :: section_prints(:)  !! *SECTION PRINT cards (unallocated: none)
      type(equation_t), allocatable :: equations(:)  !! *EQUATION constraints (unallocated or empty: none)
      type(node_frame_t), allocatable :: frames(:)   !! *TRANSFORM nodal systems (unallocated or empty: none)
      type(matrix_export_t), allocatable :: exports(:)  !! *SUBSTRUCTURE MATRIX OUTPUT cards (unallocated: none)

@@ -45,6 +45,7 @@ module superjoin_output_ccx_dat
   use superjoin_output_requests, only: effective_requests, selected_items, node_frames, rotate_rows, node_values, &
        add_reactions, add_cloads, add_node_forces
   use superjoin_output_energy, only: energy_t, compute_energies
+  use superjoin_output_section_print, only: write_ccx_sections
   use superjoin_utils_process, only: temp_register, temp_unregister
   implicit none (type, external)
   private
@@ -105,6 +106,7 @@ contains
        do k = 1, size(elems)
           call el_print(lu, model, fields, is, model%requests(elems(k)))
        end do
+       call write_ccx_sections(lu, model, fields, is)
     end do
     call lu%commit(path//'.tmp', path, '.dat file ', error)
   end subroutine write_ccx_dat

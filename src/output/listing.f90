@@ -15,6 +15,7 @@ module superjoin_output_listing
   use superjoin_utils_strings, only: itoa
   use superjoin_utils_memory, only: out_of_memory
   use superjoin_output_requests, only: write_print_requests
+  use superjoin_output_section_print, only: write_section_prints
   use superjoin_model_request_masks, only: has_requests
   use superjoin_output_layout, only: displacement_columns, node_dof_mask, is_truss, &
        has_node_frames, in_node_frame, REACTION_FRAME_NOTE, FRAME_MARK
@@ -56,6 +57,7 @@ contains
        call step_block(lu, model, res, is)
        if (allocated(res%fields%steps(is)%failure)) cycle
        call write_print_requests(lu, model, res%fields, is)
+       call write_section_prints(lu, model, res%fields, is)
     end do
     call write_envelope(lu, model, res)
     call lu%line(RULE)

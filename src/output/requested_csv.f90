@@ -19,6 +19,7 @@ module superjoin_output_requested_csv
   use superjoin_model_results, only: result_fields_t
   use superjoin_output_requests, only: effective_requests
   use superjoin_output_energy, only: energy_t, compute_energies, requests_name
+  use superjoin_output_section_print, only: write_section_csv
   use superjoin_utils_text_buffer, only: text_buffer_t
   use superjoin_utils_posix, only: remove_file
   use superjoin_utils_process, only: temp_register, temp_unregister
@@ -46,6 +47,8 @@ contains
     call write_nodal_stress_csv(dir, model, fields, error)
     if (allocated(error)) return
     call write_fibre_stress_csv(dir, model, fields, error)
+    if (allocated(error)) return
+    call write_section_csv(dir, model, fields, error)
   end subroutine write_requested_csv
 
   logical function step_requests(model, is, kinds, name)

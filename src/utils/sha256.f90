@@ -35,6 +35,8 @@ module superjoin_utils_sha256
        int(z'6a09e667', int64), int(z'bb67ae85', int64), int(z'3c6ef372', int64), int(z'a54ff53a', int64), &
        int(z'510e527f', int64), int(z'9b05688c', int64), int(z'1f83d9ab', int64), int(z'5be0cd19', int64)]
     !! Initial hash value.
+  logical, parameter :: LITTLE_ENDIAN = iachar(transfer(1_int32, 'a')) == 1
+    !! Byte order of this machine (a word's first byte is its lowest).
 
   type, public :: sha256_t
     !! A hash in progress.
@@ -70,6 +72,11 @@ contains
     pos = 1
     s%length = s%length + len(text)
     do while (pos <= len(text))
+       if (s%nbuf == 0 .and. len(text) - pos + 1 >= BLOCK_BYTES) then   ! whole blocks straight from text
+          call compress(s%h, text(pos:pos + BLOCK_BYTES - 1))
+          pos = pos + BLOCK_BYTES
+          cycle
+       end if
        take = min(BLOCK_BYTES - s%nbuf, len(text) - pos + 1)
        s%buf(s%nbuf + 1:s%nbuf + take) = text(pos:pos + take - 1)
        s%nbuf = s%nbuf + take
@@ -148,13 +155,15 @@ contains
     !! One block of the compression function.
     integer(int64), intent(inout) :: h(8)
     character(len=BLOCK_BYTES), intent(in) :: blk
-    integer(int64) :: w(64), a(8), s0, s1, ch, maj, t1, t2
-    integer :: i, j
-    do i = 1, 16
-       w(i) = 0
-       do j = 1, 4
-          w(i) = ior(shiftl(w(i), 8), int(iachar(blk(4*(i - 1) + j:4*(i - 1) + j)), int64))
-       end do
+    integer(int64) :: w(64), a(8), s0, s1, ch, maj, t1, t2, x
+    integer(int32) :: m(16)
+    integer :: i
+    m = transfer(blk, m)
+    do i = 1, 16   ! big-endian words: the bytes of a little-endian load swapped
+       x = iand(int(m(i), int64), MASK32)
+       if (LITTLE_ENDIAN) x = ior(ior(shiftl(iand(x, 255_int64), 24), shiftl(iand(shiftr(x, 8), 255_int64), 16)), &
+            ior(shiftl(iand(shiftr(x, 16), 255_int64), 8), shiftr(x, 24)))
+       w(i) = x
     end do
     do i = 17, 64
        s0 = ieor(ieor(rotr(w(i - 15), 7), rotr(w(i - 15), 18)), shiftr(w(i - 15), 3))

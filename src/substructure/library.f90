@@ -49,6 +49,8 @@ module superjoin_substructure_library
   character(len=*), parameter :: SUFFIX = '.sjc'
   integer, parameter :: HEX = 64
   integer(i8), parameter :: HEX_I8 = HEX, MAGIC_I8 = len(MAGIC)
+  integer, parameter :: CHUNK = 4096
+    !! Reals turned into bytes at a time.
     !! Hexadecimal digits of a SHA-256.
 
   type :: load_set_t
@@ -230,11 +232,11 @@ contains
     type(sha256_t) :: s
     call update(s, MAGIC//solver_name//'|')
     call update(s, [FORMAT_VERSION, int(FORMULATION_VERSION, i8), cond%sys%ni, cond%sys%nb])
-    call update(s, int(table%p_node(cond%sys%pdof), i8))
-    call update(s, int(table%p_dof(cond%sys%pdof), i8))
+    call update(s, int(table%p_node(cond%sys%pdof), ip))
+    call update(s, int(table%p_dof(cond%sys%pdof), ip))
     call update(s, [cond%sys%k%n])
-    call update(s, int(cond%sys%k%colptr, i8))
-    call update(s, int(cond%sys%k%rowind, i8))
+    call update(s, cond%sys%k%colptr)
+    call update(s, int(cond%sys%k%rowind, ip))   ! row numbers of one part fit 32 bits
     call update(s, cond%sys%k%val)
     key = digest(s)
   end function system_key
@@ -332,13 +334,13 @@ contains
          size(st%sets, kind=i8)])
     call put_real(w, [cond%maxratio])
     call put_i8(w, spc_local(cond))
-    call put_real(w, reshape(cond%se%k, [size(cond%se%k)]))
-    call put_real(w, reshape(st%t, [size(st%t)]))
+    call put_real_2d(w, cond%se%k)
+    call put_real_2d(w, st%t)
     do s = 1, size(st%sets)
        call put(w, st%sets(s)%key)
        call put_i8(w, [size(st%sets(s)%x, 2, kind=i8)])
-       call put_real(w, reshape(st%sets(s)%x, [size(st%sets(s)%x)]))
-       call put_real(w, reshape(st%sets(s)%fstar, [size(st%sets(s)%fstar)]))
+       call put_real_2d(w, st%sets(s)%x)
+       call put_real_2d(w, st%sets(s)%fstar)
     end do
     call put(w, digest(w%sha))
     close (w%unit)
@@ -378,11 +380,25 @@ contains
   end subroutine put_i8
 
   subroutine put_real(w, a)
-    !! Append reals.
+    !! Append reals (in pieces that stay in cache).
     type(sink_t), intent(inout) :: w
     real(wp), intent(in) :: a(:)
-    if (size(a) > 0) call put(w, transfer(a, repeat(' ', 8*size(a))))
+    integer :: i, j
+    do i = 1, size(a), CHUNK
+       j = min(i + CHUNK - 1, size(a))
+       call put(w, transfer(a(i:j), repeat(' ', 8*(j - i + 1))))
+    end do
   end subroutine put_real
+
+  subroutine put_real_2d(w, a)
+    !! Append a matrix, column by column.
+    type(sink_t), intent(inout) :: w
+    real(wp), intent(in) :: a(:, :)
+    integer :: j
+    do j = 1, size(a, 2)
+       call put_real(w, a(:, j))
+    end do
+  end subroutine put_real_2d
 
   subroutine read_entry(st, cond, why)
     !! Load the entry st%file into cond and st; why is empty when it is sound,

@@ -13,6 +13,8 @@ module superjoin_utils_sha256
     !! The low 32 bits.
   integer, parameter :: BLOCK_BYTES = 64
     !! Bytes of one message block.
+  integer, parameter :: CHUNK = 4096
+    !! Array elements turned into bytes at a time.
   integer(int64), parameter :: K(64) = [ &
        int(z'428a2f98', int64), int(z'71374491', int64), int(z'b5c0fbcf', int64), int(z'e9b5dba5', int64), &
        int(z'3956c25b', int64), int(z'59f111f1', int64), int(z'923f82a4', int64), int(z'ab1c5ed5', int64), &
@@ -92,21 +94,33 @@ contains
     !! Feed the storage of a default-integer array.
     type(sha256_t), intent(inout) :: s
     integer(int32), intent(in) :: a(:)
-    if (size(a) > 0) call update_text(s, transfer(a, repeat(' ', 4*size(a))))
+    integer :: i, j
+    do i = 1, size(a), CHUNK   ! in pieces that stay in cache
+       j = min(i + CHUNK - 1, size(a))
+       call update_text(s, transfer(a(i:j), repeat(' ', 4*(j - i + 1))))
+    end do
   end subroutine update_int32
 
   subroutine update_int64(s, a)
     !! Feed the storage of an int64 array.
     type(sha256_t), intent(inout) :: s
     integer(int64), intent(in) :: a(:)
-    if (size(a) > 0) call update_text(s, transfer(a, repeat(' ', 8*size(a))))
+    integer :: i, j
+    do i = 1, size(a), CHUNK   ! in pieces that stay in cache
+       j = min(i + CHUNK - 1, size(a))
+       call update_text(s, transfer(a(i:j), repeat(' ', 8*(j - i + 1))))
+    end do
   end subroutine update_int64
 
   subroutine update_real64(s, a)
     !! Feed the storage of a real64 array.
     type(sha256_t), intent(inout) :: s
     real(wp), intent(in) :: a(:)
-    if (size(a) > 0) call update_text(s, transfer(a, repeat(' ', 8*size(a))))
+    integer :: i, j
+    do i = 1, size(a), CHUNK   ! in pieces that stay in cache
+       j = min(i + CHUNK - 1, size(a))
+       call update_text(s, transfer(a(i:j), repeat(' ', 8*(j - i + 1))))
+    end do
   end subroutine update_real64
 
   subroutine update_real64_2d(s, a)

@@ -34,6 +34,7 @@ module superjoin_substructure_library
   use superjoin_assembly_dofs, only: dof_table_t
   use superjoin_substructure_local_system, only: build_local_system
   use superjoin_substructure_condensed, only: condensed_t, condense
+  use superjoin_solvers_solver, only: subtract_bi
   use superjoin_utils_sha256, only: sha256_t, update, digest
   use superjoin_utils_posix, only: rename_file, remove_file
   use superjoin_utils_process, only: temp_register, temp_unregister
@@ -194,7 +195,7 @@ contains
        if (allocated(error)) return
     end if
     grown(s)%fstar = f_local(cond%sys%ni + 1:, :)
-    call subtract_kbi(cond, grown(s)%x, grown(s)%fstar)
+    call subtract_bi(cond%sys%k, cond%sys%nb, grown(s)%x, grown(s)%fstar)
     call move_alloc(grown, st%sets)
     fstar = st%sets(s)%fstar
     call write_entry(st, cond)
@@ -288,24 +289,6 @@ contains
     end associate
     call cond%solver%solve(kib, st%t, error)
   end subroutine recovery_operator
-
-  subroutine subtract_kbi(cond, x, y)
-    !! y −= k_bi x (k_bi read from the boundary columns of k).
-    type(condensed_t), intent(in) :: cond
-    real(wp), intent(in) :: x(:, :)
-    real(wp), intent(inout) :: y(:, :)
-    integer(i8) :: ni, j, pos, r
-    ni = cond%sys%ni
-    associate (k => cond%sys%k)
-      do j = 1, cond%sys%nb
-         do pos = k%colptr(ni + j), k%colptr(ni + j + 1) - 1
-            r = k%rowind(pos)
-            if (r > ni) exit
-            y(j, :) = y(j, :) - k%val(pos)*x(r, :)
-         end do
-      end do
-    end associate
-  end subroutine subtract_kbi
 
   ! ---- entry files
 

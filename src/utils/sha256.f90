@@ -159,10 +159,12 @@ contains
   end function digest
 
   pure integer(int64) function rotr(x, n)
-    !! Rotate the 32-bit word x right by n bits.
+    !! Rotate the 32-bit word x (< 2**32) right by n bits, in the low 32 bits;
+    !! the bits above are left over, not cleared: rotr's results only enter
+    !! sums and exclusive ors that are masked before a word is stored.
     integer(int64), intent(in) :: x
     integer, intent(in) :: n
-    rotr = iand(ior(shiftr(x, n), shiftl(x, 32 - n)), MASK32)
+    rotr = ior(shiftr(x, n), shiftl(x, 32 - n))
   end function rotr
 
   pure subroutine compress(h, blk)
@@ -187,11 +189,11 @@ contains
     a = h
     do i = 1, 64
        s1 = ieor(ieor(rotr(a(5), 6), rotr(a(5), 11)), rotr(a(5), 25))
-       ch = ieor(iand(a(5), a(6)), iand(ieor(a(5), MASK32), a(7)))
-       t1 = iand(a(8) + s1 + ch + K(i) + w(i), MASK32)
+       ch = ieor(a(7), iand(a(5), ieor(a(6), a(7))))          ! (e and f) xor (not e and g)
+       t1 = a(8) + s1 + ch + K(i) + w(i)                       ! masked where stored
        s0 = ieor(ieor(rotr(a(1), 2), rotr(a(1), 13)), rotr(a(1), 22))
-       maj = ieor(ieor(iand(a(1), a(2)), iand(a(1), a(3))), iand(a(2), a(3)))
-       t2 = iand(s0 + maj, MASK32)
+       maj = ior(iand(a(1), ior(a(2), a(3))), iand(a(2), a(3)))  ! majority of a, b, c
+       t2 = s0 + maj
        a(2:8) = a(1:7)
        a(5) = iand(a(5) + t1, MASK32)
        a(1) = iand(t1 + t2, MASK32)

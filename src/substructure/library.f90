@@ -79,6 +79,7 @@ module superjoin_substructure_library
     !! An entry file being written, hashed as it goes.
      integer :: unit = -1
      integer :: iostat = 0
+     integer(i8) :: bytes = 0                !! bytes handed to the I/O library
      type(sha256_t) :: sha
   end type sink_t
 
@@ -300,6 +301,7 @@ contains
     type(sink_t) :: w
     type(error_t), allocatable :: error
     character(:), allocatable :: tmp
+    integer(i8) :: size_on_disk
     integer :: s
     tmp = st%file//'.'//itoa(int(c_getpid()))//'.tmp'
     call temp_register(tmp)
@@ -327,6 +329,9 @@ contains
     end do
     call put(w, digest(w%sha))
     close (w%unit)
+    ! gfortran drops an error of the last flush on close: the size tells.
+    inquire (file=tmp, size=size_on_disk)
+    if (size_on_disk /= w%bytes) w%iostat = -1
     if (w%iostat == 0) call rename_file(tmp, st%file, error)
     if (w%iostat /= 0 .or. allocated(error)) then
        call remove_file(tmp)
@@ -352,6 +357,7 @@ contains
     character(*), intent(in) :: text
     if (w%iostat /= 0) return
     write (w%unit, iostat=w%iostat) text
+    w%bytes = w%bytes + len(text, kind=i8)
     call update(w%sha, text)
   end subroutine put
 

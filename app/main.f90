@@ -28,7 +28,7 @@ program superjoin_main
   use superjoin_output_vtk, only: write_vtk, vtk_path_problem
   use superjoin_output_ccx_dat, only: write_ccx_dat, write_ccx_sta
   use superjoin_output_frd, only: write_frd
-  use superjoin_utils_posix, only: output_target
+  use superjoin_utils_posix, only: output_target, make_directory
   use superjoin_output_mechanism, only: write_mechanism_vtk, write_mechanism_csv, mechanism_vtk_path, MECHANISM_CSV
   use superjoin_config, only: SUPERJOIN_VERSION, DEMO_DECK_SOURCE, DEMO_DECK_INSTALLED
   use superjoin_utils_strings, only: to_lower
@@ -97,6 +97,10 @@ program superjoin_main
      call output_target(opts%export_matrix, target, error)
      call fail_on(error, deck)
      opts%export_matrix = target
+  end if
+  if (allocated(opts%library)) then
+     call make_directory(opts%library, error)
+     call fail_on(error, deck)
   end if
 
   call clock%start()
@@ -303,6 +307,7 @@ contains
          '                     (overrides CONDENSE= of *SUBSTRUCTURE)', &
          '  --check            read and validate the deck only', &
          '  --export-matrix F  also write the assembled stiffness matrix (Matrix Market)', &
+         '  --library DIR      keep condensed parts in DIR and load unchanged ones from it', &
          '  --vtk FILE         VTK files for ParaView: FILE.pvd and FILE_<step>.vtu', &
          '                     (overrides *OUTPUT, VTK= of the deck)', &
          '  --accept-inaccurate  exit 0 even when the results are judged inaccurate', &
@@ -356,7 +361,7 @@ contains
           if (allocated(deck)) call usage_error('more than one deck given')
           job = job_name(get_arg(i))
           deck = job//'.inp'
-       case ('-o', '--csv', '--solver', '--formulation', '--export-matrix', '--vtk', '--condense')
+       case ('-o', '--csv', '--solver', '--formulation', '--export-matrix', '--vtk', '--condense', '--library')
           if (i == n) call usage_error('option '//arg//' needs a value')
           i = i + 1
           val = get_arg(i)
@@ -397,6 +402,8 @@ contains
              end select
           case ('--export-matrix')
              opts%export_matrix = val
+          case ('--library')
+             opts%library = val
           case ('--vtk')
              if (len(vtk_path_problem(val)) > 0) call usage_error(vtk_path_problem(val))
              vtk_file = val

@@ -110,6 +110,7 @@ contains
        if (allocated(error)) return
     end if
     solver_name = part_solver(opts)
+    if (allocated(opts%library)) cache%library%dir = opts%library
     allocate (st%parts(summary%n_condensed))
     st%f_eff = st%f_phys
     computed0 = cache%computed
@@ -120,8 +121,9 @@ contains
       do isub = 1, size(model%subs)
          if (.not. summary%sub_condensed(isub)) cycle
          ip_ = ip_ + 1
-         call acquire_view(cache, model, table, isub, bnd, solver_name, parts(ip_), error)
+         call acquire_view(cache, model, table, isub, bnd, solver_name, parts(ip_), error, f_phys)
          if (allocated(error)) return
+         if (allocated(parts(ip_)%notes)) notes = [notes, parts(ip_)%notes]
          if (parts(ip_)%rotated) nrot = nrot + 1
          call view_spc(cache, parts(ip_), spc)
          do i = 1, size(spc)

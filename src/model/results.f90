@@ -17,6 +17,7 @@ module superjoin_model_results
      integer :: formulation = 0                 !! 0: as in the deck, else FORM_*
      integer :: condense = -1                   !! -1: as in the deck, else CONDENSE_* for every substructure
      character(:), allocatable :: export_matrix !! Matrix Market path, or unallocated
+     character(:), allocatable :: library       !! --library DIR: condensations kept across runs, or unallocated
      logical :: quiet = .false.
      logical :: verbose = .false.
      logical :: accept_inaccurate = .false. !! --accept-inaccurate: exit 0 even when results are judged inaccurate

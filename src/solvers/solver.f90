@@ -8,7 +8,7 @@ module superjoin_solvers_solver
   implicit none (type, external)
   private
 
-  public :: interior_block, boundary_block, schur_by_solves, boundary_shift, unshift
+  public :: interior_block, boundary_block, schur_by_solves, boundary_shift, unshift, subtract_bi
 
   integer(i8), parameter :: SCHUR_BLOCK = 64
     !! Columns of a_ib solved together by the default schur.

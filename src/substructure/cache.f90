@@ -13,11 +13,13 @@ module superjoin_substructure_cache
   !!     u_i,s = R̂_i u_i,c(R̂ᵀ f_s, R̂_bᵀ u_b,s).
   use superjoin_kinds, only: wp, ip, i8
   use superjoin_error, only: error_t
-  use superjoin_model_types, only: model_t
+  use superjoin_model_types, only: model_t, string_t
   use superjoin_assembly_dofs, only: dof_table_t
   use superjoin_assembly_assemble, only: superelement_t
   use superjoin_substructure_local_system, only: local_system_t, build_local_system, local_numbering
   use superjoin_substructure_condensed, only: condensed_t, condense, condense_loads, recover_interior
+  use superjoin_substructure_library, only: library_t, stored_t, library_enabled, library_condense, &
+       library_need_loads, library_loads, library_recover
   implicit none (type, external)
   private
 
@@ -35,6 +37,7 @@ module superjoin_substructure_cache
      real(wp) :: rot(3, 3) = 0.0_wp           !! placement rotation of its substructure
      integer, allocatable :: drill(:)         !! its elements' drilling edge masks (elem_drill; they
                                               !! depend on supports and contacts, not only on the part)
+     type(stored_t), allocatable :: stored    !! its library entry (--library)
   end type entry_t
 
   type :: entry_box_t
@@ -49,6 +52,7 @@ module superjoin_substructure_cache
      integer :: n = 0
      integer :: computed = 0                  !! condensations computed
      integer :: reused = 0                    !! uses of an existing one
+     type(library_t) :: library               !! the condensation library across runs (--library)
   end type part_cache_t
 
   type, public :: part_view_t
@@ -68,6 +72,7 @@ module superjoin_substructure_cache
      integer(i8) :: ratio_at = 0              !! remote: its physical DOF (0: none)
      integer(i8), allocatable :: spc(:)       !! remote: physical interior DOFs without stiffness
      real(wp), allocatable :: ku0(:)          !! remote: k u0 (prescribed boundary values), local order
+     type(string_t), allocatable :: notes(:)  !! the library's notes on a condensation computed or loaded here
   end type part_view_t
 
   public :: release_cache, acquire_view, view_condense_loads, view_recover, view_stiffness_times, &
@@ -75,9 +80,10 @@ module superjoin_substructure_cache
 
 contains
 
-  subroutine acquire_view(cache, model, table, isub, bnd, solver_name, view, error)
+  subroutine acquire_view(cache, model, table, isub, bnd, solver_name, view, error, f_phys)
     !! The condensation of substructure isub: an existing one when one fits,
-    !! otherwise computed now and kept.
+    !! otherwise computed now (or loaded from the library) and kept. f_phys:
+    !! the loads (physical DOFs), which a library entry must be able to condense.
     type(part_cache_t), intent(inout) :: cache
     type(model_t), intent(in) :: model
     type(dof_table_t), intent(in) :: table
@@ -86,6 +92,7 @@ contains
     character(*), intent(in) :: solver_name
     type(part_view_t), intent(out) :: view
     type(error_t), allocatable, intent(out) :: error
+    real(wp), intent(in), optional :: f_phys(:, :)
     integer(ip), allocatable :: lnode(:)
     integer, allocatable :: ldof(:)
     integer(i8) :: ni
@@ -137,7 +144,12 @@ contains
        associate (en => cache%entries(cache%n)%e)
          call build_local_system(model, table, isub, bnd, en%cond%sys, error)
          if (allocated(error)) return
-         call condense(model, table, solver_name, en%cond, error)
+         if (library_enabled(cache%library)) then
+            allocate (en%stored)
+            call library_condense(cache%library, model, table, solver_name, en%cond, en%stored, error)
+         else
+            call condense(model, table, solver_name, en%cond, error)
+         end if
          if (allocated(error)) return
          en%part = model%subs(isub)%part
          en%lnode = lnode
@@ -152,6 +164,11 @@ contains
        cache%reused = cache%reused + 1
     end if
 
+    if (allocated(cache%entries(view%entry)%e%stored) .and. present(f_phys)) then
+       call library_view_loads(cache%entries(view%entry)%e, view, model, table, bnd, solver_name, f_phys, error)
+       if (allocated(error)) return
+    end if
+
     ! K* in this substructure's frame, on its physical boundary DOFs.
     associate (kc => cache%entries(view%entry)%e%cond%se%k)
       view%se%pdof = view%pdof(ni + 1:)
@@ -163,6 +180,24 @@ contains
       end if
     end associate
   end subroutine acquire_view
+
+  subroutine library_view_loads(en, view, model, table, bnd, solver_name, f_phys, error)
+    !! A library entry able to condense this view's loads (in the entry's
+    !! frame); the entry's notes passed to the view for the listing.
+    type(entry_t), intent(inout) :: en
+    type(part_view_t), intent(inout) :: view
+    type(model_t), intent(in) :: model
+    type(dof_table_t), intent(in) :: table
+    logical, intent(in) :: bnd(:)
+    character(*), intent(in) :: solver_name
+    real(wp), intent(in) :: f_phys(:, :)
+    type(error_t), allocatable, intent(out) :: error
+    real(wp), allocatable :: fc(:, :)
+    allocate (fc, source=f_phys(view%pdof, :))
+    if (view%rotated) call rotate_local(view, fc, forward=.false.)
+    call library_need_loads(model, table, bnd, solver_name, en%cond, en%stored, fc, error)
+    if (allocated(en%stored%notes)) call move_alloc(en%stored%notes, view%notes)
+  end subroutine library_view_loads
 
   subroutine remote_view(table, isub, bnd, view)
     !! The numbering of a substructure that another process condenses
@@ -202,7 +237,13 @@ contains
     real(wp), allocatable :: fc(:, :)
     allocate (fc, source=f_local)
     if (view%rotated) call rotate_local(view, fc, .false.)
-    call condense_loads(cache%entries(view%entry)%e%cond, fc, fstar, error)
+    associate (en => cache%entries(view%entry)%e)
+      if (allocated(en%stored)) then
+         call library_loads(en%cond, en%stored, fc, fstar, error)
+      else
+         call condense_loads(en%cond, fc, fstar, error)
+      end if
+    end associate
     if (allocated(error)) return
     if (view%rotated) call rotate_rows(view, fstar, view%ni, .true.)
   end subroutine view_condense_loads
@@ -220,7 +261,11 @@ contains
        call rotate_local(view, fc, .false.)
        call rotate_local(view, u_local, .false.)
     end if
-    call recover_interior(cache%entries(view%entry)%e%cond, fc, u_local, error)
+    if (allocated(cache%entries(view%entry)%e%stored)) then
+       call library_recover(cache%entries(view%entry)%e%stored, fc, u_local, error)
+    else
+       call recover_interior(cache%entries(view%entry)%e%cond, fc, u_local, error)
+    end if
     if (view%rotated) call rotate_local(view, u_local, .true.)
   end subroutine view_recover
 

@@ -1,0 +1,533 @@
+module superjoin_substructure_library
+  !! The condensation library across runs (--library DIR, issue 26): every
+  !! condensed part is kept in DIR as one file named by a content key, and a
+  !! later run whose part has the same key loads it instead of condensing.
+  !!
+  !! The key is the SHA-256 of everything the condensation depends on, taken
+  !! where it is complete: the part's local stiffness k as assembled from its
+  !! nodes, elements, materials and sections (pattern and values, local
+  !! numbering), its boundary DOF map (local node and DOF of every local DOF,
+  !! interior first), the element formulation version, the file format
+  !! version and the solver of the condensations. A load set is matched by
+  !! the SHA-256 of the part's local loads (interior and boundary, every
+  !! step) inside the entry.
+  !!
+  !! An entry holds K*, MAXRATIO of the interior factor, the interior DOFs
+  !! without stiffness, the recovery operator T = k_ii⁻¹ k_ib (dense ni × nb)
+  !! and, per load set, x = k_ii⁻¹ f_i and f* = f_b − k_bi x. Recovery is then
+  !! u_i = x − T u_b, without a factor: a library hit costs the assembly of
+  !! k (kept for the element forces), the hashing and the reading. Runs with a
+  !! library recover with T whether they stored or loaded the entry, so their
+  !! results are the same to the byte. Loads never seen by the entry need the
+  !! factor: the part is condensed anew and the entry rewritten.
+  !!
+  !! File: magic, format version, key, payload, then the SHA-256 of all that
+  !! precedes it. A file whose checksum, magic, version or key does not match
+  !! is never used (the listing says so once) and is replaced. Entries are
+  !! written to a temporary name in DIR and renamed, so a killed run leaves no
+  !! half entry under a key's name.
+  use, intrinsic :: iso_c_binding, only: c_int
+  use superjoin_kinds, only: wp, ip, i8
+  use superjoin_error, only: error_t
+  use superjoin_model_types, only: model_t, string_t
+  use superjoin_model_notes, only: note
+  use superjoin_assembly_dofs, only: dof_table_t
+  use superjoin_substructure_local_system, only: build_local_system
+  use superjoin_substructure_condensed, only: condensed_t, condense
+  use superjoin_solvers_solver, only: subtract_bi
+  use superjoin_utils_sha256, only: sha256_t, update, digest
+  use superjoin_utils_posix, only: rename_file, remove_file
+  use superjoin_utils_process, only: temp_register, temp_unregister
+  use superjoin_utils_strings, only: itoa
+  implicit none (type, external)
+  private
+
+  integer, parameter, public :: FORMULATION_VERSION = 1
+    !! Bump when element code changes what k is (keys of older entries then differ).
+  integer(i8), parameter :: FORMAT_VERSION = 1
+    !! Layout of an entry file.
+  character(len=8), parameter :: MAGIC = 'SJCONDLB'
+  character(len=*), parameter :: SUFFIX = '.sjc'
+  integer, parameter :: HEX = 64
+  integer(i8), parameter :: HEX_I8 = HEX, MAGIC_I8 = len(MAGIC)
+  integer, parameter :: CHUNK = 4096
+    !! Reals turned into bytes at a time.
+    !! Hexadecimal digits of a SHA-256.
+
+  type :: load_set_t
+    !! One set of local loads the entry has condensed.
+     character(len=HEX) :: key = ''
+     real(wp), allocatable :: x(:, :)        !! k_ii⁻¹ f_i (ni, nstep)
+     real(wp), allocatable :: fstar(:, :)    !! f* (nb, nstep)
+  end type load_set_t
+
+  type, public :: stored_t
+    !! What the library adds to one condensation of this run.
+     character(len=HEX) :: key = ''
+     character(:), allocatable :: file          !! the entry's path
+     real(wp), allocatable :: t(:, :)           !! k_ii⁻¹ k_ib (ni, nb)
+     type(load_set_t), allocatable :: sets(:)
+     type(string_t), allocatable :: notes(:)    !! the listing's notes on this part
+  end type stored_t
+
+  type, public :: library_t
+    !! The library of this run (dir unallocated: none).
+     character(:), allocatable :: dir
+  end type library_t
+
+  type :: sink_t
+    !! An entry file being written, hashed as it goes.
+     integer :: unit = -1
+     integer :: iostat = 0
+     integer(i8) :: bytes = 0                !! bytes handed to the I/O library
+     type(sha256_t) :: sha
+  end type sink_t
+
+  type :: source_t
+    !! An entry file read whole, parsed by a cursor.
+     character(:), allocatable :: buf
+     integer(i8) :: pos = 1
+     logical :: ok = .true.
+  end type source_t
+
+  interface
+     function c_getpid() bind(c, name='getpid') result(pid)
+       import :: c_int
+       integer(c_int) :: pid
+     end function c_getpid
+  end interface
+
+  public :: library_condense, library_need_loads, library_loads, library_recover, library_enabled
+
+contains
+
+  pure logical function library_enabled(lib)
+    !! Whether this run keeps condensations in a library.
+    type(library_t), intent(in) :: lib
+    library_enabled = allocated(lib%dir)
+  end function library_enabled
+
+  subroutine library_condense(lib, model, table, solver_name, cond, st, error)
+    !! The condensation of cond%sys (built by the caller): loaded from the
+    !! library when its key has a sound entry, else computed (condense), its
+    !! recovery operator formed and the entry stored. st%notes say which.
+    type(library_t), intent(in) :: lib
+    type(model_t), intent(in) :: model
+    type(dof_table_t), intent(in) :: table
+    character(*), intent(in) :: solver_name
+    type(condensed_t), intent(inout) :: cond
+    type(stored_t), intent(out) :: st
+    type(error_t), allocatable, intent(out) :: error
+    character(:), allocatable :: why, name
+    logical :: exists
+
+    name = model%subs(cond%sys%isub)%name
+    st%key = system_key(table, cond, solver_name)
+    st%file = lib%dir//'/'//st%key//SUFFIX
+    inquire (file=st%file, exist=exists)
+    why = ''
+    if (exists) then
+       call read_entry(st, cond, why)
+       if (len(why) == 0) then
+          call note(st%notes, 'library: substructure '//name//' loaded from library (key '//st%key//')')
+          return
+       end if
+       if (allocated(cond%se%k)) deallocate (cond%se%k)
+       if (allocated(st%t)) deallocate (st%t)
+       if (allocated(st%sets)) deallocate (st%sets)
+       call note(st%notes, 'library: entry '//st%key//' not used ('//why//'): condensed anew')
+    end if
+    call condense(model, table, solver_name, cond, error)
+    if (allocated(error)) return
+    call recovery_operator(cond, st, error)
+    if (allocated(error)) return
+    allocate (st%sets(0))
+    call write_entry(st, cond)
+    call note(st%notes, 'library: substructure '//name//' condensed and stored (key '//st%key//')')
+  end subroutine library_condense
+
+  subroutine library_need_loads(model, table, bnd, solver_name, cond, st, f_local, error)
+    !! Make sure f* of the local loads f_local can be had: the entry has them,
+    !! or the factor is there; an entry loaded without the factor is condensed
+    !! anew (the same K*) when these loads are new to it.
+    type(model_t), intent(in) :: model
+    type(dof_table_t), intent(in) :: table
+    logical, intent(in) :: bnd(:)
+    character(*), intent(in) :: solver_name
+    type(condensed_t), intent(inout) :: cond
+    type(stored_t), intent(inout) :: st
+    real(wp), intent(in) :: f_local(:, :)
+    type(error_t), allocatable, intent(out) :: error
+    if (allocated(cond%solver)) return
+    if (find_set(st, loads_key(f_local)) > 0) return
+    deallocate (cond%se%k, cond%spc)
+    call build_local_system(model, table, cond%sys%isub, bnd, cond%sys, error)
+    if (allocated(error)) return
+    call condense(model, table, solver_name, cond, error)
+    if (allocated(error)) return
+    call note(st%notes, 'library: substructure '//model%subs(cond%sys%isub)%name// &
+         ' has loads its entry has not seen: condensed anew')
+  end subroutine library_need_loads
+
+  subroutine library_loads(cond, st, f_local, fstar, error)
+    !! f* of the local loads f_local: from the entry's load set with their key,
+    !! else computed with the factor and added to the entry.
+    type(condensed_t), intent(inout) :: cond
+    type(stored_t), intent(inout) :: st
+    real(wp), intent(in) :: f_local(:, :)
+    real(wp), intent(out) :: fstar(:, :)
+    type(error_t), allocatable, intent(out) :: error
+    type(load_set_t), allocatable :: grown(:)
+    character(len=HEX) :: key
+    integer :: s
+    key = loads_key(f_local)
+    s = find_set(st, key)
+    if (s > 0) then
+       fstar = st%sets(s)%fstar
+       return
+    end if
+    allocate (grown(size(st%sets) + 1))
+    grown(1:size(st%sets)) = st%sets
+    s = size(grown)
+    grown(s)%key = key
+    allocate (grown(s)%x(cond%sys%ni, size(f_local, 2)))
+    if (cond%sys%ni > 0) then
+       call cond%solver%solve(f_local(1:cond%sys%ni, :), grown(s)%x, error)
+       if (allocated(error)) return
+    end if
+    grown(s)%fstar = f_local(cond%sys%ni + 1:, :)
+    call subtract_bi(cond%sys%k, cond%sys%nb, grown(s)%x, grown(s)%fstar)
+    call move_alloc(grown, st%sets)
+    fstar = st%sets(s)%fstar
+    call write_entry(st, cond)
+  end subroutine library_loads
+
+  subroutine library_recover(st, f_local, u_local, error)
+    !! u_i = x − T u_b with x of the load set of f_local (u_local holds u_b in
+    !! rows ni+1.. on entry and gets u_i in rows 1..ni).
+    type(stored_t), intent(in) :: st
+    real(wp), intent(in) :: f_local(:, :)
+    real(wp), intent(inout) :: u_local(:, :)
+    type(error_t), allocatable, intent(out) :: error
+    integer :: s
+    integer :: ni
+    ni = size(st%t, 1)
+    s = find_set(st, loads_key(f_local))
+    if (s == 0) then
+       allocate (error)
+       error%message = 'error: internal: the library entry '//st%key//' has no condensation of these loads'
+       return
+    end if
+    if (ni == 0) return
+    u_local(1:ni, :) = st%sets(s)%x
+    if (size(st%t, 2) > 0) u_local(1:ni, :) = u_local(1:ni, :) - matmul(st%t, u_local(ni + 1:, :))
+  end subroutine library_recover
+
+  ! ---- keys
+
+  function system_key(table, cond, solver_name) result(key)
+    !! The SHA-256 of what the condensation of cond%sys depends on.
+    type(dof_table_t), intent(in) :: table
+    type(condensed_t), intent(in) :: cond
+    character(*), intent(in) :: solver_name
+    character(len=HEX) :: key
+    type(sha256_t) :: s
+    call update(s, MAGIC//solver_name//'|')
+    call update(s, [FORMAT_VERSION, int(FORMULATION_VERSION, i8), cond%sys%ni, cond%sys%nb])
+    call update(s, int(table%p_node(cond%sys%pdof), ip))
+    call update(s, int(table%p_dof(cond%sys%pdof), ip))
+    call update(s, [cond%sys%k%n])
+    call update(s, cond%sys%k%colptr)
+    call update(s, int(cond%sys%k%rowind, ip))   ! row numbers of one part fit 32 bits
+    call update(s, cond%sys%k%val)
+    key = digest(s)
+  end function system_key
+
+  function loads_key(f) result(key)
+    !! The SHA-256 of a load set (shape and values).
+    real(wp), intent(in) :: f(:, :)
+    character(len=HEX) :: key
+    type(sha256_t) :: s
+    call update(s, [size(f, 1, kind=i8), size(f, 2, kind=i8)])
+    call update(s, f)
+    key = digest(s)
+  end function loads_key
+
+  pure integer function find_set(st, key) result(s)
+    !! The load set with this key (0: none).
+    type(stored_t), intent(in) :: st
+    character(len=HEX), intent(in) :: key
+    s = 0
+    if (.not. allocated(st%sets)) return
+    do s = size(st%sets), 1, -1
+       if (st%sets(s)%key == key) return
+    end do
+    s = 0
+  end function find_set
+
+  ! ---- recovery operator
+
+  subroutine recovery_operator(cond, st, error)
+    !! T = k_ii⁻¹ k_ib, one solve with the nb columns of k_ib.
+    type(condensed_t), intent(inout) :: cond
+    type(stored_t), intent(inout) :: st
+    type(error_t), allocatable, intent(out) :: error
+    real(wp), allocatable :: kib(:, :)
+    integer(i8) :: ni, nb, j, pos, r
+    ni = cond%sys%ni
+    nb = cond%sys%nb
+    allocate (st%t(ni, nb), source=0.0_wp)
+    if (ni == 0 .or. nb == 0) return
+    allocate (kib(ni, nb), source=0.0_wp)
+    associate (k => cond%sys%k)
+      do j = 1, nb
+         do pos = k%colptr(ni + j), k%colptr(ni + j + 1) - 1
+            r = k%rowind(pos)
+            if (r > ni) exit
+            kib(r, j) = k%val(pos)
+         end do
+      end do
+    end associate
+    call cond%solver%solve(kib, st%t, error)
+  end subroutine recovery_operator
+
+  ! ---- entry files
+
+  subroutine write_entry(st, cond)
+    !! Write the entry to a temporary name in the library and rename it to
+    !! its key's name. A failure leaves no entry (the run goes on).
+    type(stored_t), intent(inout) :: st
+    type(condensed_t), intent(in) :: cond
+    type(sink_t) :: w
+    type(error_t), allocatable :: error
+    character(:), allocatable :: tmp
+    integer(i8) :: size_on_disk
+    integer :: s
+    tmp = st%file//'.'//itoa(int(c_getpid()))//'.tmp'
+    call temp_register(tmp)
+    open (newunit=w%unit, file=tmp, access='stream', form='unformatted', status='replace', &
+         action='write', iostat=w%iostat)
+    if (w%iostat /= 0) then
+       call temp_unregister()
+       call note(st%notes, 'library: cannot write '//tmp//': entry not stored')
+       return
+    end if
+    call put(w, MAGIC)
+    call put_i8(w, [FORMAT_VERSION])
+    call put(w, st%key)
+    call put_i8(w, [cond%sys%ni, cond%sys%nb, size(cond%spc, kind=i8), cond%maxratio_at, &
+         size(st%sets, kind=i8)])
+    call put_real(w, [cond%maxratio])
+    call put_i8(w, spc_local(cond))
+    call put_real_2d(w, cond%se%k)
+    call put_real_2d(w, st%t)
+    do s = 1, size(st%sets)
+       call put(w, st%sets(s)%key)
+       call put_i8(w, [size(st%sets(s)%x, 2, kind=i8)])
+       call put_real_2d(w, st%sets(s)%x)
+       call put_real_2d(w, st%sets(s)%fstar)
+    end do
+    call put(w, digest(w%sha))
+    close (w%unit)
+    ! gfortran drops an error of the last flush on close: the size tells.
+    inquire (file=tmp, size=size_on_disk)
+    if (size_on_disk /= w%bytes) w%iostat = -1
+    if (w%iostat == 0) call rename_file(tmp, st%file, error)
+    if (w%iostat /= 0 .or. allocated(error)) then
+       call remove_file(tmp)
+       call note(st%notes, 'library: cannot write '//st%file//': entry not stored')
+    end if
+    call temp_unregister()
+  end subroutine write_entry
+
+  function spc_local(cond) result(l)
+    !! The local DOFs of cond%spc (interior DOFs without stiffness).
+    type(condensed_t), intent(in) :: cond
+    integer(i8), allocatable :: l(:)
+    integer(i8) :: i
+    allocate (l(size(cond%spc)))
+    do i = 1, size(cond%spc, kind=i8)
+       l(i) = findloc(cond%sys%pdof, cond%spc(i), dim=1, kind=i8)
+    end do
+  end function spc_local
+
+  subroutine put(w, text)
+    !! Append bytes to the entry (and to its checksum).
+    type(sink_t), intent(inout) :: w
+    character(*), intent(in) :: text
+    if (w%iostat /= 0) return
+    write (w%unit, iostat=w%iostat) text
+    w%bytes = w%bytes + len(text, kind=i8)
+    call update(w%sha, text)
+  end subroutine put
+
+  subroutine put_i8(w, a)
+    !! Append integers.
+    type(sink_t), intent(inout) :: w
+    integer(i8), intent(in) :: a(:)
+    if (size(a) > 0) call put(w, transfer(a, repeat(' ', 8*size(a))))
+  end subroutine put_i8
+
+  subroutine put_real(w, a)
+    !! Append reals (in pieces that stay in cache).
+    type(sink_t), intent(inout) :: w
+    real(wp), intent(in) :: a(:)
+    integer :: i, j
+    do i = 1, size(a), CHUNK
+       j = min(i + CHUNK - 1, size(a))
+       call put(w, transfer(a(i:j), repeat(' ', 8*(j - i + 1))))
+    end do
+  end subroutine put_real
+
+  subroutine put_real_2d(w, a)
+    !! Append a matrix, column by column.
+    type(sink_t), intent(inout) :: w
+    real(wp), intent(in) :: a(:, :)
+    integer :: j
+    do j = 1, size(a, 2)
+       call put_real(w, a(:, j))
+    end do
+  end subroutine put_real_2d
+
+  subroutine read_entry(st, cond, why)
+    !! Load the entry st%file into cond and st; why is empty when it is sound,
+    !! else says why it is not used.
+    type(stored_t), intent(inout) :: st
+    type(condensed_t), intent(inout) :: cond
+    character(:), allocatable, intent(out) :: why
+    type(source_t) :: r
+    integer(i8) :: head(5), ver(1), nstep(1), ni, nb, s
+    real(wp) :: ratio(1)
+    integer(i8), allocatable :: spc(:)
+    why = ''
+    call read_whole(st%file, r%buf, why)
+    if (len(why) > 0) return
+    if (len(r%buf) < MAGIC_I8 + 8 + 2*HEX_I8) then
+       why = 'truncated'
+       return
+    end if
+    associate (n => len(r%buf, kind=i8))
+      if (sha_of(r%buf(1:n - HEX_I8)) /= r%buf(n - HEX_I8 + 1:n)) then
+         why = 'checksum mismatch: corrupt'
+         return
+      end if
+    end associate
+    if (get(r, MAGIC_I8) /= MAGIC) why = 'not a library entry'
+    call get_i8(r, ver)
+    if (len(why) == 0 .and. ver(1) /= FORMAT_VERSION) why = 'format version '//itoa(ver(1))//', not '// &
+         itoa(FORMAT_VERSION)//': stale'
+    if (len(why) == 0 .and. get(r, HEX_I8) /= st%key) why = 'key mismatch'
+    if (len(why) > 0) return
+    call get_i8(r, head)
+    ni = head(1)
+    nb = head(2)
+    if (ni /= cond%sys%ni .or. nb /= cond%sys%nb .or. any(head < 0)) then
+       why = 'sizes differ'
+       return
+    end if
+    call get_real(r, ratio)
+    allocate (spc(head(3)))
+    call get_i8(r, spc)
+    allocate (cond%se%k(nb, nb), st%t(ni, nb), st%sets(head(5)))
+    call get_real_2d(r, cond%se%k)
+    call get_real_2d(r, st%t)
+    do s = 1, head(5)
+       st%sets(s)%key = get(r, HEX_I8)
+       call get_i8(r, nstep)
+       allocate (st%sets(s)%x(ni, nstep(1)), st%sets(s)%fstar(nb, nstep(1)))
+       call get_real_2d(r, st%sets(s)%x)
+       call get_real_2d(r, st%sets(s)%fstar)
+    end do
+    if (.not. r%ok .or. r%pos /= len(r%buf, kind=i8) - HEX_I8 + 1 .or. any(spc < 1 .or. spc > ni)) then
+       why = 'malformed'
+       deallocate (cond%se%k)
+       return
+    end if
+    cond%maxratio = ratio(1)
+    cond%maxratio_at = head(4)
+    call set_loaded(cond, spc)
+  end subroutine read_entry
+
+  subroutine set_loaded(cond, spc)
+    !! What condense leaves beside K*: the boundary's physical DOFs and the
+    !! interior DOFs without stiffness (unit diagonal in k, as condense sets).
+    type(condensed_t), intent(inout) :: cond
+    integer(i8), intent(in) :: spc(:)
+    integer(i8) :: i, j
+    cond%se%pdof = cond%sys%pdof(cond%sys%ni + 1:cond%sys%ni + cond%sys%nb)
+    allocate (cond%spc(size(spc)))
+    do i = 1, size(spc, kind=i8)
+       j = spc(i)
+       cond%spc(i) = cond%sys%pdof(j)
+       cond%sys%k%val(cond%sys%k%colptr(j + 1) - 1) = 1.0_wp
+    end do
+  end subroutine set_loaded
+
+  subroutine read_whole(path, buf, why)
+    !! The bytes of the file path.
+    character(*), intent(in) :: path
+    character(:), allocatable, intent(out) :: buf
+    character(:), allocatable, intent(inout) :: why
+    integer :: unit, ios
+    integer(i8) :: n
+    open (newunit=unit, file=path, access='stream', form='unformatted', status='old', action='read', iostat=ios)
+    if (ios /= 0) then
+       why = 'cannot be read'
+       return
+    end if
+    inquire (unit=unit, size=n)
+    allocate (character(len=max(n, 0_i8)) :: buf)
+    if (n > 0) read (unit, iostat=ios) buf
+    close (unit)
+    if (ios /= 0) why = 'cannot be read'
+  end subroutine read_whole
+
+  function sha_of(text) result(key)
+    !! SHA-256 of text.
+    character(*), intent(in) :: text
+    character(len=HEX) :: key
+    type(sha256_t) :: s
+    call update(s, text)
+    key = digest(s)
+  end function sha_of
+
+  function get(r, n) result(text)
+    !! The next n bytes (blanks past the end, r%ok then false).
+    type(source_t), intent(inout) :: r
+    integer(i8), intent(in) :: n
+    character(len=n) :: text
+    text = ''
+    if (.not. r%ok .or. r%pos + n - 1 > len(r%buf, kind=i8) - HEX_I8) then
+       r%ok = .false.
+       return
+    end if
+    text = r%buf(r%pos:r%pos + n - 1)
+    r%pos = r%pos + n
+  end function get
+
+  subroutine get_i8(r, a)
+    !! The next size(a) integers.
+    type(source_t), intent(inout) :: r
+    integer(i8), intent(out) :: a(:)
+    a = 0
+    if (size(a) > 0) a = transfer(get(r, 8_i8*size(a)), a, size(a))
+  end subroutine get_i8
+
+  subroutine get_real(r, a)
+    !! The next size(a) reals.
+    type(source_t), intent(inout) :: r
+    real(wp), intent(out) :: a(:)
+    a = 0.0_wp
+    if (size(a) > 0) a = transfer(get(r, 8_i8*size(a)), a, size(a))
+  end subroutine get_real
+
+  subroutine get_real_2d(r, a)
+    !! The next size(a) reals, column by column.
+    type(source_t), intent(inout) :: r
+    real(wp), intent(out) :: a(:, :)
+    integer :: j
+    do j = 1, size(a, 2)
+       call get_real(r, a(:, j))
+    end do
+  end subroutine get_real_2d
+end module superjoin_substructure_library

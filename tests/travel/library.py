@@ -1,0 +1,145 @@
+#!/usr/bin/env python3
+"""The condensation library across runs (issue 26, --library DIR).
+
+A design study on a grid of plane-stress panels (bench/gen_panel_grid.py,
+3 x 2 panels, each a substructure of its own, all condensed):
+
+1. run twice with the same --library: the first run condenses and stores
+   every panel, the second loads every one; the listings are byte-identical
+   apart from those notes, and the CSV files are byte-identical.
+2. one panel changed (its thickness): that panel alone is condensed and
+   stored, the five others are loaded; the results equal those of a run with
+   a fresh library, to the byte.
+3. an entry with a byte flipped, a truncated entry and an entry of another
+   format version (checksum made right again) are never used: one note each,
+   the panel condensed anew, and the same results to the byte.
+4. no temporary file is left in the library, and the results with the
+   library equal those without it to round-off (1e-10: recovery goes through
+   the stored operator k_ii^-1 k_ib, not through the factor).
+
+usage: library.py SUPERJOIN WORKDIR
+"""
+import glob
+import hashlib
+import os
+import shutil
+import subprocess
+import sys
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+ROOT = os.path.dirname(os.path.dirname(HERE))
+sys.path.insert(0, os.path.join(ROOT, "tools"))
+import equiv  # noqa: E402
+
+RTOL = 1e-10
+PANELS = 6
+FAILED = []
+
+
+def check(ok, what):
+    print(("ok: " if ok else "FAIL: ") + what)
+    if not ok:
+        FAILED.append(what)
+
+
+def solve(binary, deck, name, work, library=None):
+    lst = os.path.join(work, name + ".lst")
+    csvdir = os.path.join(work, name + ".csv")
+    cmd = [binary, "-q", "--condense", "yes", deck, "-o", lst, "--csv", csvdir]
+    if library:
+        cmd += ["--library", library]
+    p = subprocess.run(cmd, capture_output=True, text=True)
+    if p.returncode != 0:
+        print(f"FAIL: {name} exited with {p.returncode}: {p.stderr.strip()[:300]}")
+        sys.exit(1)
+    with open(lst) as fh:
+        lines = fh.read().splitlines()
+    return lines, csvdir
+
+
+def notes(lines, text):
+    return sum(1 for line in lines if "library:" in line and text in line)
+
+
+def body(lines):
+    return [line for line in lines if "library:" not in line]
+
+
+def same_csv(a, b):
+    fa, fb = sorted(os.listdir(a)), sorted(os.listdir(b))
+    if fa != fb:
+        return False
+    return all(open(os.path.join(a, f), "rb").read() == open(os.path.join(b, f), "rb").read() for f in fa)
+
+
+def rewrite(path, edit):
+    data = bytearray(open(path, "rb").read())
+    data = edit(data)
+    with open(path, "wb") as fh:
+        fh.write(data)
+
+
+def restamp(data):
+    """The checksum (last 64 bytes: SHA-256 of what precedes, hexadecimal) made right again."""
+    return data[:-64] + hashlib.sha256(bytes(data[:-64])).hexdigest().encode()
+
+
+def main():
+    binary, work = sys.argv[1], sys.argv[2]
+    shutil.rmtree(work, ignore_errors=True)
+    os.makedirs(work)
+    gen = os.path.join(ROOT, "bench", "gen_panel_grid.py")
+    deck = os.path.join(work, "grid.deck")
+    with open(deck, "w") as fh:
+        subprocess.run([sys.executable, gen, "--nx", "3", "--ny", "2", "--mesh", "6"], stdout=fh, check=True)
+    lib = os.path.join(work, "lib")
+
+    a, a_csv = solve(binary, deck, "first", work, lib)
+    b, b_csv = solve(binary, deck, "second", work, lib)
+    check(notes(a, "condensed and stored") == PANELS, f"first run: {PANELS} panels condensed and stored")
+    check(notes(b, "loaded from library") == PANELS, f"second run: {PANELS} panels loaded from library")
+    check(body(a) == body(b), "listings byte-identical apart from the library notes")
+    check(same_csv(a_csv, b_csv), "CSV files byte-identical")
+    entries = sorted(glob.glob(os.path.join(lib, "*.sjc")))
+    check(len(entries) == PANELS, f"{PANELS} entries in the library")
+
+    # one panel changed: its thickness
+    text = open(deck).read()
+    first = text.index("*SOLID SECTION")
+    cut = text.index("\n", first) + 1
+    changed = os.path.join(work, "changed.deck")
+    with open(changed, "w") as fh:
+        fh.write(text[:cut] + text[cut:].replace("0.05", "0.06", 1))
+    c, c_csv = solve(binary, changed, "changed", work, lib)
+    check(notes(c, "condensed and stored") == 1 and notes(c, "loaded from library") == PANELS - 1,
+          "one panel changed: 1 condensed and stored, the others loaded")
+    d, d_csv = solve(binary, changed, "fresh", work, os.path.join(work, "lib_fresh"))
+    check(body(c) == body(d) and same_csv(c_csv, d_csv), "changed study equals a run with a fresh library, to the byte")
+
+    # stale and corrupt entries
+    victims = [("a flipped byte", "corrupt", lambda x: x[:300] + bytes([x[300] ^ 1]) + x[301:]),
+               ("a truncated entry", "corrupt", lambda x: x[:len(x) // 2]),
+               ("another format version", "stale", lambda x: restamp(x[:8] + bytes([0] * 8) + x[16:]))]
+    for what, word, edit in victims:
+        entry = entries[0]
+        rewrite(entry, edit)
+        e, e_csv = solve(binary, deck, "damaged", work, lib)
+        check(notes(e, "not used") == 1 and notes(e, word) == 1 and notes(e, "condensed and stored") == 1
+              and notes(e, "loaded from library") == PANELS - 1, f"{what}: one note ({word}), the panel condensed anew")
+        check(body(e) == body(a) and same_csv(e_csv, a_csv), f"{what}: the same results, to the byte")
+    check(not [f for f in os.listdir(lib) if not f.endswith(".sjc")], "no temporary file left in the library")
+
+    n, n_csv = solve(binary, deck, "nolibrary", work)
+    worst = 0.0
+    for f in sorted(os.listdir(n_csv)):
+        w, msg = equiv.compare_file(os.path.join(n_csv, f), os.path.join(a_csv, f), RTOL, 1e-14)
+        worst = max(worst, w)
+        if msg:
+            check(False, f"{f} without the library: {msg}")
+    check(True, f"without the library: every CSV value agrees to 1e-10 (largest relative difference {worst:.2e})")
+    print(f"{len(FAILED)} failed")
+    return 1 if FAILED else 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())

@@ -961,7 +961,7 @@ def rot4(binary, outdir):
 
 
 SOLID_DECKS = ('achteld', 'achtelp', 'achtelg', 'achtel2', 'achtel9', 'achtel29', 'achtelcas', 'beam10p', 'beam20p',
-               'beamd')
+               'beamd', 'beamptied1', 'beamptied2')
 
 
 def solid_point_table(text):
@@ -981,7 +981,9 @@ def solid_decks(binary, outdir):
     """CalculiX's C3D20R cube decks (achtel*: prescribed displacements, point
     loads, gravity, *EQUATION with 2, 9 and mixed terms, cascaded equations)
     and its solid beams (beam10p: C3D10, beam20p: C3D20, beamd: C3D20R under
-    *DLOAD pressure on faces): *NODE PRINT U and the stresses of *EL PRINT S at
+    *DLOAD pressure on faces; beamptied1, beamptied2: two C3D20R beam segments
+    joined by *TIE, the slave a node surface or element faces): *NODE PRINT U
+    and the stresses of *EL PRINT S at
     CalculiX's integration points of every element of the set must agree with
     .dat.ref (1e-6 of the table; other tables of the .dat are not compared)."""
     for name in SOLID_DECKS:

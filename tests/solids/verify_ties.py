@@ -10,6 +10,9 @@ Cases
 - matching meshes: two 2 x 2 x 2 C3D8 blocks tied (slave: element faces S6,
   master: faces S4) = the 4 x 2 x 2 block, all displacements to round-off,
   under a tip load with bending, torsion and tension;
+- shells as the master: a C3D8 block standing on S4 shells (and C3D20 on
+  S8R), its bottom faces tied to the shells' SPOS = the model whose block and
+  shells share those nodes, to round-off;
 - non-matching meshes under uniform tension (the block [0, 2] x [0, 1]^2,
   tied at x = 1): the constant stress state is exact when the slave face mesh
   refines the master's (2 x 2 master, 4 x 4 slave), and is only approximate
@@ -235,6 +238,53 @@ def untied_cantilever(exe, work):
     return sum(tip) / len(tip)
 
 
+def shell_base(exe, work, etype, stype):
+    """A solid block standing on a shell plate: its bottom face tied to the
+    shell's mid-surface (faces SPOS, matching meshes) against the same
+    model with the block's bottom nodes shared by the shells."""
+    _, _, m = block((2, 2, 2), (1.0, 1.0, 1.0), etype, 0.0, 0, 0)
+    bottom = [k for k, el in enumerate(m.elems, 1)]
+    face = [1, 2, 3, 4] + ([9, 10, 11, 12] if etype == "C3D20" else [])
+    shells = [[m.elems[k - 1][c - 1] for c in face] for k in bottom
+              if all(m.nodes[m.elems[k - 1][c - 1]][2] == 0.0 for c in face)]
+    base = sorted({n for sh in shells for n in sh})
+    results = []
+    for tied in (False, True):
+        off = 50000 if tied else 0
+        out = ["*HEADING", "block on a shell plate", "*MATERIAL, NAME=MAT", "*ELASTIC", f" {vs.fmt(E)}, {vs.fmt(NU)}",
+               "*NODE"]
+        out += [f" {n}, {vs.fmt(x[0])}, {vs.fmt(x[1])}, {vs.fmt(x[2])}" for n, x in sorted(m.nodes.items())]
+        if tied:
+            out += [f" {n + off}, {vs.fmt(m.nodes[n][0])}, {vs.fmt(m.nodes[n][1])}, 0.0" for n in base]
+        out.append(f"*ELEMENT, TYPE={etype}, ELSET=BLOCK")
+        for k, el in enumerate(m.elems, 1):
+            fields = [str(k)] + [str(v) for v in el]
+            for c in range(0, len(fields), 16):
+                out.append(" " + ", ".join(fields[c:c + 16]) + ("," if c + 16 < len(fields) else ""))
+        out.append(f"*ELEMENT, TYPE={stype}, ELSET=PLATE")
+        out += [f" {100 + k}, " + ", ".join(str(n + off) for n in sh) for k, sh in enumerate(shells, 1)]
+        out += ["*SOLID SECTION, ELSET=BLOCK, MATERIAL=MAT", "*SHELL SECTION, ELSET=PLATE, MATERIAL=MAT", " 0.2"]
+        if tied:
+            out += ["*SURFACE, NAME=BOTTOM"] + [f" {k}, S1" for k in bottom if m.nodes[m.elems[k - 1][0]][2] == 0.0]
+            out += ["*SURFACE, NAME=PLATE", " PLATE, SPOS", "*TIE, NAME=BASE", " BOTTOM, PLATE"]
+        out.append("*BOUNDARY")
+        out += [f" {n + off}, 1, 6" for n in base if m.nodes[n][0] == 0.0]
+        out += ["*STEP", "*STATIC", "*CLOAD"]
+        out += [f" {n}, 1, 0.3\n {n}, 3, {vs.fmt(-0.2 - 0.1 * x[1])}" for n, x in sorted(m.nodes.items())
+                if x[2] == 1.0 and x[0] == 1.0]
+        out += ["*END STEP"]
+        text = "\n".join(out) + "\n"
+        results.append(run(exe, work, f"tie_shell_{stype}_{'tied' if tied else 'shared'}", text))
+    if None in results:
+        vs.check(False, f"{etype} block on {stype} shells")
+        return
+    shared, tied_u = results
+    scale = max(max(abs(c) for c in u) for u in shared.values())
+    diff = max(max(abs(p - q) for p, q in zip(shared[n], tied_u[n])) for n in m.nodes)
+    print(f"| {etype} block tied to {stype} shells (SPOS) | {diff / scale:.2e} |")
+    vs.check(diff / scale < 1e-10, f"{etype} block tied to {stype} shells = the shared-node model to round-off")
+
+
 def main():
     exe, work = sys.argv[1], sys.argv[2]
     os.makedirs(work, exist_ok=True)
@@ -258,6 +308,9 @@ def main():
     vs.check(res is not None and "0 of 9 slave nodes tied to 4 master faces (POSITION TOLERANCE 1.0000E-05); 9 farther "
              "than the tolerance from the master surface are not tied" in res[1],
              "slave nodes beyond the POSITION TOLERANCE are not tied, and the listing says how many")
+
+    shell_base(exe, work, "C3D8", "S4")
+    shell_base(exe, work, "C3D20", "S8R")
 
     print("\n## Uniform tension across non-matching meshes (error / exact largest displacement)\n")
     print("| slave face mesh | master face mesh | error |")

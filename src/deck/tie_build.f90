@@ -27,6 +27,7 @@ module superjoin_deck_tie_build
   use superjoin_deck_state, only: deck_state_t, report_loc, surface_b_t, tie_b_t
   use superjoin_deck_build_common, only: resolve_items, resolve_sub
   use superjoin_utils_strings, only: itoa, rtoa
+  use superjoin_deck_lexer, only: plural
   implicit none (type, external)
   private
 
@@ -422,7 +423,7 @@ contains
     if (len(tie%name) > 0) text = text//' '//tie%name
     if (len(tie%name) == 0) text = text//' of line '//itoa(tie%loc%line)
     text = text//': '//itoa(tally%tied)//' of '//itoa(tally%slaves)// &
-         ' slave nodes tied to '//itoa(nfaces)//' master faces (POSITION TOLERANCE '//rtoa(tol)//')'
+         ' slave nodes tied to '//plural(nfaces, 'master face')//' (POSITION TOLERANCE '//rtoa(tol)//')'
     if (tally%far > 0) text = text//'; '//itoa(tally%far)//' farther than the tolerance from the master '// &
          'surface are not tied (the first: node '//tally%first_far//')'
     if (tally%shared > 0) text = text//'; '//itoa(tally%shared)//' are nodes of the master surface '// &

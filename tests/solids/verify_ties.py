@@ -23,6 +23,9 @@ Cases
   deflection and the untied 10 x 2 x 2 block;
 - a quadratic face: a C3D10 block (node surface, TYPE=NODE) tied to a C3D20
   block's 8-node faces, uniform tension: measured error;
+- slave DOFs already dependent: an *EQUATION on one of them and a second
+  *TIE of the same surfaces leave the result that of the single block, and
+  the notes count the DOFs left untied;
 - ADJUST: the slave block moved off the master face by 1e-4 (inside the
   POSITION TOLERANCE) is moved back (ADJUST=YES, as the matching case) or
   left (ADJUST=NO); with a tolerance below the gap, nothing is tied and the
@@ -114,7 +117,7 @@ def tip_loads(nodes):
     return out
 
 
-def matching(exe, work, gap=0.0, params="", label="matching meshes", pinned=False):
+def matching(exe, work, gap=0.0, params="", label="matching meshes", pinned=False, extra=()):
     a_nodes, a_el, _ = block((2, 2, 2), (1.0, 1.0, 1.0), "C3D8", 0.0, 0, 0)
     b_nodes, b_el, _ = block((2, 2, 2), (1.0, 1.0, 1.0), "C3D8", 1.0, 1000, 100)
     slave = faces_on_plane(b_el, b_nodes, "C3D8", 1.0, 100)
@@ -125,8 +128,9 @@ def matching(exe, work, gap=0.0, params="", label="matching meshes", pinned=Fals
     if pinned:      # nothing tied: the slave block held on its far face
         bnd += [(n, d, 0.0) for n, x in sorted(b_nodes.items()) if x[0] == 2.0 for d in (1, 2, 3)]
     text, nodes = two_block_deck([(a_nodes, a_el, "C3D8", "A", 0), (b_nodes, b_el, "C3D8", "B", 100)],
-                                 tie_cards(slave, master, params), bnd, tip_loads(b_nodes))
+                                 tie_cards(slave, master, params) + list(extra), bnd, tip_loads(b_nodes))
     name = "tie_matching" + ("_gap" if gap else "") + params.replace(",", "_").replace("=", "_").replace(" ", "")
+    name += "_extra" if extra else ""
     tied = run(exe, work, name, text)
     mesh = vs.Mesh((4, 2, 2), (2.0, 1.0, 1.0), "C3D8", False)
     bnd1 = [(n, d, 0.0) for n, x in sorted(mesh.nodes.items()) if x[0] == 0.0 for d in (1, 2, 3)]
@@ -295,6 +299,12 @@ def main():
     vs.check(res is not None and res[0] < 1e-10, "matching meshes tied = the single block to round-off")
     vs.check(res is not None and "*TIE T1: 9 of 9 slave nodes tied to 4 master faces" in res[1],
              "the listing's note counts the tied slave nodes")
+    res = matching(exe, work, label="an *EQUATION on a slave DOF, a second *TIE on the same nodes",
+                   extra=("*EQUATION", "2", " 1001, 1, 1.0, 5, 1, -1.0", "*TIE, NAME=T2", " SLAVE, MASTER"))
+    vs.check(res is not None and res[0] < 1e-10 and "9 of 9 slave nodes tied to 4 master faces (POSITION TOLERANCE "
+             "6.2500E-03); 1 slave DOFs already dependent" in res[1] and "*TIE T2: 9 of 9 slave nodes tied to 4 master "
+             "faces (POSITION TOLERANCE 6.2500E-03); 27 slave DOFs already dependent" in res[1],
+             "slave DOFs an *EQUATION or an earlier *TIE makes dependent are not tied again (counted in the note)")
     res = matching(exe, work, gap=1.0e-4, params=", POSITION TOLERANCE=1e-3",
                    label="slave face 1e-4 off, ADJUST=YES (default)")
     vs.check(res is not None and res[0] < 1e-10 and "ADJUST moved 9 slave nodes" in res[1],

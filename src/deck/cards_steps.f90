@@ -9,7 +9,7 @@ module superjoin_deck_cards_steps
   use superjoin_deck_lexer, only: keyword_line_t, to_upper, parse_real, parse_id, looks_numeric, &
        itoa, clip, TOK_OK
   use superjoin_deck_state, only: deck_state_t, support_b_t, load_b_t, ref_t, report_loc, step_b_t, &
-       temp_b_t, OP_DEFAULT, OP_MOD, OP_NEW, add_support, add_step, add_load, grow
+       temp_b_t, surface_b_t, OP_DEFAULT, OP_MOD, OP_NEW, add_support, add_step, add_load, grow
   use superjoin_deck_cards_common, only: outside_step, check_params, param_index, get_param, &
        get_name_param, field_count, fld, get_real, real_message, get_dof, parse_ref, loc_string, &
        refused_card, CARD_SKIP, CARD_BOUNDARY, CARD_DLOAD, CARD_STATIC, CARD_COMBINATION, &
@@ -611,12 +611,26 @@ contains
          if (.not. field_count(st, loc, 1, 1, 'node or node set')) return
       end if
       if (.not. parse_ref(st, fld(st, line, 1), .not. sf%nodal, st%card_home, loc, ref)) return
+      if (sf%n == size(sf%refs)) call grow_surface(sf)
       sf%n = sf%n + 1
-      sf%refs = [sf%refs, ref]
-      sf%kinds = [sf%kinds, kind]
-      sf%signs = [sf%signs, sgn]
+      sf%refs(sf%n) = ref
+      sf%kinds(sf%n) = kind
+      sf%signs(sf%n) = sgn
     end associate
   end subroutine add_surface_ref
+
+  subroutine grow_surface(sf)
+    !! Twice the room for a surface's lines (entries 1..n kept).
+    type(surface_b_t), intent(inout) :: sf
+    type(ref_t), allocatable :: refs(:)
+    integer :: k, cap
+    cap = 2*size(sf%refs) + 8
+    allocate (refs(cap))
+    refs(1:sf%n) = sf%refs(1:sf%n)
+    call move_alloc(refs, sf%refs)
+    sf%kinds = [sf%kinds(1:sf%n), (0, k = sf%n + 1, cap)]
+    sf%signs = [sf%signs(1:sf%n), (0.0_wp, k = sf%n + 1, cap)]
+  end subroutine grow_surface
 
   subroutine data_dsload(st, line, loc)
     !! *DSLOAD `surface, P, pressure`: the pressure on every face of an

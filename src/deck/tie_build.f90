@@ -41,6 +41,16 @@ module superjoin_deck_tie_build
      real(wp) :: lo(3) = 0.0_wp, hi(3) = 0.0_wp   !! bounding box
   end type master_face_t
 
+  type :: face_grid_t
+    !! The master faces by cell of a uniform grid (the search for a slave node's face).
+     real(wp) :: lo(3) = 0.0_wp, hi(3) = 0.0_wp   !! the grid's box
+     real(wp) :: h = 1.0_wp                  !! cell size
+     integer :: n(3) = 1                     !! cells per axis
+     integer, allocatable :: start(:)        !! faces of cell c: list(start(c):start(c+1)-1)
+     integer, allocatable :: list(:)
+     real(wp), allocatable :: margin(:)      !! per face: how far its box is grown
+  end type face_grid_t
+
   type :: node_mask_t
     !! One flag per (DOF 1..3, node) of a substructure.
      logical, allocatable :: m(:, :)
@@ -311,8 +321,10 @@ contains
     integer, intent(inout) :: neq
     type(tie_tally_t), intent(inout) :: tally
     type(face_point_t) :: fp
+    type(face_grid_t) :: grid
     integer :: i, best, d
     real(wp) :: p(3)
+    call build_grid(faces, job%tol, grid)
     do i = 1, size(ssub)
        tally%slaves = tally%slaves + 1
        if (on_master(ssub(i))%m(1, snode(i))) then
@@ -320,7 +332,7 @@ contains
           cycle
        end if
        p = model%subs(ssub(i))%x(:, snode(i))
-       call nearest_face(model, faces, p, job%tol, best, fp)
+       call nearest_face(model, faces, grid, p, job%tol, best, fp)
        if (best == 0) then
           tally%far = tally%far + 1
           if (.not. allocated(tally%first_far)) tally%first_far = node_label(model, ssub(i), snode(i))
@@ -347,20 +359,23 @@ contains
     end do
   end subroutine tie_nodes
 
-  subroutine nearest_face(model, faces, p, tol, best, fp)
-    !! The master face nearest to p within tol (best 0: none) and the point of it.
+  subroutine nearest_face(model, faces, grid, p, tol, best, fp)
+    !! The master face nearest to p within tol (best 0: none) and the point of
+    !! it: the faces of p's cell of the grid, in face order.
     type(model_t), intent(in) :: model
     type(master_face_t), intent(in) :: faces(:)
+    type(face_grid_t), intent(in) :: grid
     real(wp), intent(in) :: p(3), tol
     integer, intent(out) :: best
     type(face_point_t), intent(out) :: fp
     type(face_point_t) :: trial
-    real(wp) :: margin
-    integer :: f
+    integer :: k, f, c
     best = 0
-    do f = 1, size(faces)
-       margin = tol + 0.1_wp*maxval(faces(f)%hi - faces(f)%lo)
-       if (any(p < faces(f)%lo - margin) .or. any(p > faces(f)%hi + margin)) cycle
+    c = grid_cell(grid, p)
+    if (c == 0) return
+    do k = grid%start(c), grid%start(c + 1) - 1
+       f = grid%list(k)
+       if (any(p < faces(f)%lo - grid%margin(f)) .or. any(p > faces(f)%hi + grid%margin(f))) cycle
        trial = project_to_face(model%subs(faces(f)%sub)%x(:, faces(f)%nodes), faces(f)%nc, p)
        if (trial%distance > tol) cycle
        if (best > 0) then
@@ -370,6 +385,87 @@ contains
        fp = trial
     end do
   end subroutine nearest_face
+
+  subroutine build_grid(faces, tol, grid)
+    !! A uniform grid over the master faces: each face listed in every cell
+    !! its box, grown by tol and a tenth of its size (a curved face's bulge),
+    !! overlaps; cells about twice the mean face size, at most 8 per face.
+    type(master_face_t), intent(in) :: faces(:)
+    real(wp), intent(in) :: tol
+    type(face_grid_t), intent(out) :: grid
+    integer, allocatable :: fill(:)
+    integer :: f, pass, i, j, k, c, lo(3), hi(3)
+    allocate (grid%margin(size(faces)))
+    if (size(faces) == 0) then
+       allocate (grid%start(2), source=1)
+       allocate (grid%list(0))
+       grid%hi = -1.0_wp      ! below lo: no point is inside
+       return
+    end if
+    do f = 1, size(faces)
+       grid%margin(f) = tol + 0.1_wp*maxval(faces(f)%hi - faces(f)%lo)
+    end do
+    grid%lo = huge(1.0_wp)
+    grid%hi = -huge(1.0_wp)
+    do f = 1, size(faces)
+       grid%lo = min(grid%lo, faces(f)%lo - grid%margin(f))
+       grid%hi = max(grid%hi, faces(f)%hi + grid%margin(f))
+    end do
+    grid%h = 2.0_wp*sum([(maxval(faces(f)%hi - faces(f)%lo), f = 1, size(faces))])/max(size(faces), 1)
+    grid%h = max(grid%h, maxval(grid%hi - grid%lo)/1000.0_wp, tiny(1.0_wp))
+    do
+       grid%n = max(1, ceiling((grid%hi - grid%lo)/grid%h))
+       if (real(grid%n(1), wp)*grid%n(2)*grid%n(3) <= 8.0_wp*size(faces) + 64.0_wp) exit
+       grid%h = 2.0_wp*grid%h
+    end do
+    allocate (grid%start(product(grid%n) + 1), source=0)
+    do pass = 1, 2
+       if (pass == 2) then
+          do c = 2, size(grid%start)
+             grid%start(c) = grid%start(c) + grid%start(c - 1)
+          end do
+          grid%start = grid%start + 1
+          allocate (grid%list(grid%start(size(grid%start)) - 1), fill(size(grid%start) - 1))
+          fill = grid%start(1:size(fill))
+       end if
+       do f = 1, size(faces)
+          lo = axis_cells(grid, faces(f)%lo - grid%margin(f))
+          hi = axis_cells(grid, faces(f)%hi + grid%margin(f))
+          do k = lo(3), hi(3)
+             do j = lo(2), hi(2)
+                do i = lo(1), hi(1)
+                   c = i + grid%n(1)*(j - 1 + grid%n(2)*(k - 1))
+                   if (pass == 1) then
+                      grid%start(c + 1) = grid%start(c + 1) + 1
+                   else
+                      grid%list(fill(c)) = f
+                      fill(c) = fill(c) + 1
+                   end if
+                end do
+             end do
+          end do
+       end do
+    end do
+  end subroutine build_grid
+
+  pure function axis_cells(grid, x) result(i)
+    !! The cell indices along each axis of the point x (clamped to the grid).
+    type(face_grid_t), intent(in) :: grid
+    real(wp), intent(in) :: x(3)
+    integer :: i(3)
+    i = min(grid%n, max(1, 1 + floor((x - grid%lo)/grid%h)))
+  end function axis_cells
+
+  pure integer function grid_cell(grid, p) result(c)
+    !! The cell of p (0: outside the grid).
+    type(face_grid_t), intent(in) :: grid
+    real(wp), intent(in) :: p(3)
+    integer :: i(3)
+    c = 0
+    if (any(p < grid%lo) .or. any(p > grid%hi)) return
+    i = axis_cells(grid, p)
+    c = i(1) + grid%n(1)*(i(2) - 1 + grid%n(2)*(i(3) - 1))
+  end function grid_cell
 
   pure function tie_equation(face, n, isub, node, d) result(e)
     !! u(node, d) - Σ_k n_k u(face node k, d) = 0 (the terms with n_k = 0 left out).

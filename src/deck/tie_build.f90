@@ -12,7 +12,9 @@ module superjoin_deck_tie_build
   !!   typical master face size (here: the mean of area / half perimeter);
   !! - a slave node farther than the tolerance from every master face is not
   !!   tied (the listing's note counts them and names the first);
-  !! - ADJUST=YES (the default) moves each tied slave node onto its projection;
+  !! - ADJUST=YES (the default) moves each tied slave node onto its projection
+  !!   (an instance with a moved node is no longer a copy of its part: it
+  !!   shares no condensation with the part's other instances);
   !! - a slave DOF that is already dependent gets no tie equation: here an
   !!   *EQUATION's dependent DOF or an earlier tie's slave DOF (dropped at
   !!   reading, counted in the note), and a DOF that a support or a contact
@@ -341,6 +343,7 @@ contains
        tally%tied = tally%tied + 1
        if (job%adjust .and. fp%distance > 0.0_wp) then
           model%subs(ssub(i))%x(:, snode(i)) = fp%x
+          model%subs(ssub(i))%part = 0    ! no longer a copy of its part: no shared condensation
           tally%moved = tally%moved + 1
           tally%max_move = max(tally%max_move, fp%distance)
        end if

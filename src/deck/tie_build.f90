@@ -220,6 +220,10 @@ contains
                ok = .false.
                exit
             end if
+            if (any(sub%elem_nodes(local, items(j)) < 1)) then   ! an undefined node, reported
+               ok = .false.
+               cycle
+            end if
             if (n == size(faces)) call grow_faces(faces)
             n = n + 1
             faces(n)%sub = isub

@@ -487,6 +487,7 @@ contains
             if (tr%col_kind(j) == COL_PHYS .and. tr%col_ref(j) == p1 .and. &
                 tr%pool_coef(tr%map_start(p1)) == 1.0_wp .and. tr%u0(p1) == 0.0_wp) jstar = j
          end if
+         if (jstar == 0 .and. e%tie > 0) cycle   ! a tie's slave DOF already dependent: no tie there (CalculiX)
          if (jstar == 0) then
             call add_error_line(error, EXIT_DECK, head//'the dependent DOF '//dof_text(e, 1)// &
                  ' is already dependent (a contact slave, a support or an earlier equation makes it so); '// &
@@ -506,12 +507,14 @@ contains
          do i = 1, size(col)
             if (col(i) == jstar) best = i
          end do
+         if (e%tie > 0 .and. best == 0) cycle   ! a cycle of ties: this one is already implied
          if (best == 0) then
             call add_error_line(error, EXIT_DECK, head//'the dependent DOF '//dof_text(e, 1)// &
                  ' cancels out of its own equation (through the other terms and earlier equations: a cycle)')
             cycle
          end if
          if (abs(coef(best) - te%a(1)) > CONS_ZERO*scale) then
+            if (e%tie > 0) cycle
             call add_error_line(error, EXIT_DECK, head//'the dependent DOF '//dof_text(e, 1)// &
                  ' comes back through the other terms (an earlier equation or contact expresses one of them '// &
                  'in it: a cycle)')

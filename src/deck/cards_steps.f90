@@ -9,7 +9,7 @@ module superjoin_deck_cards_steps
   use superjoin_deck_lexer, only: keyword_line_t, to_upper, parse_real, parse_id, looks_numeric, &
        itoa, clip, TOK_OK
   use superjoin_deck_state, only: deck_state_t, support_b_t, load_b_t, ref_t, report_loc, step_b_t, &
-       temp_b_t, OP_DEFAULT, OP_MOD, OP_NEW, add_support, add_step, add_load, grow
+       temp_b_t, surface_b_t, OP_DEFAULT, OP_MOD, OP_NEW, add_support, add_step, add_load, grow
   use superjoin_deck_cards_common, only: outside_step, check_params, param_index, get_param, &
        get_name_param, field_count, fld, get_real, real_message, get_dof, parse_ref, loc_string, &
        refused_card, CARD_SKIP, CARD_BOUNDARY, CARD_DLOAD, CARD_STATIC, CARD_COMBINATION, &
@@ -521,23 +521,25 @@ contains
   end function face_load_kind
 
   subroutine kw_surface(st, kw, loc)
-    !! *SURFACE, NAME=name[, TYPE=ELEMENT]: element faces for *DSLOAD; data
-    !! lines `element or elset, face`. Node surfaces (TYPE=NODE), which only
-    !! contact and ties use, are refused.
+    !! *SURFACE, NAME=name[, TYPE=ELEMENT]: element faces for *DSLOAD and
+    !! *TIE; data lines `element or elset, face`. TYPE=NODE: nodes or node
+    !! sets, one per data line (the slave side of a *TIE).
     type(deck_state_t), intent(inout) :: st
     type(keyword_line_t), intent(in) :: kw
     type(source_loc_t), intent(in) :: loc
     character(:), allocatable :: name, typ
-    logical :: found
+    logical :: found, nodal
     integer :: k
     st%card = CARD_SKIP
     call check_params(st, kw, loc, [character(NAME_LEN) :: 'NAME', 'TYPE'], [character(NAME_LEN) ::])
     if (.not. outside_step(st, kw, loc)) return
     call get_param(st, kw, loc, 'TYPE', .false., typ, found)
+    nodal = .false.
     if (found) then
-       if (to_upper(typ) /= 'ELEMENT') then
+       nodal = to_upper(typ) == 'NODE'
+       if (to_upper(typ) /= 'ELEMENT' .and. .not. nodal) then
           call report_loc(st, loc, '*SURFACE, TYPE='//clip(typ)//' is not supported (element faces, '// &
-               'TYPE=ELEMENT, for *DSLOAD)')
+               'TYPE=ELEMENT, or nodes, TYPE=NODE)')
           return
        end if
     end if
@@ -555,6 +557,7 @@ contains
     st%nsurface = st%nsurface + 1
     st%surfaces(st%nsurface)%name = name
     st%surfaces(st%nsurface)%loc = loc
+    st%surfaces(st%nsurface)%nodal = nodal
     allocate (st%surfaces(st%nsurface)%refs(0), st%surfaces(st%nsurface)%kinds(0), st%surfaces(st%nsurface)%signs(0))
     st%card = CARD_SURFACE
     st%card_item = st%nsurface
@@ -568,10 +571,13 @@ contains
     type(deck_state_t), intent(inout) :: st
     character(*), intent(in) :: line
     type(source_loc_t), intent(in) :: loc
-    type(ref_t) :: ref
     character(:), allocatable :: face
     integer :: kind
     real(wp) :: sgn
+    if (st%surfaces(st%card_item)%nodal) then
+       call add_surface_ref(st, line, loc, 0, 1.0_wp)
+       return
+    end if
     if (.not. field_count(st, loc, 2, 2, 'element or elset, face (S1 to S6, SPOS or SNEG)')) return
     face = to_upper(fld(st, line, 2))
     sgn = 1.0_wp
@@ -588,14 +594,42 @@ contains
             ''' (S1 to S4: edges of plane elements; S1 to S6: faces of solids; SPOS, SNEG: faces of shells)')
        return
     end select
-    if (.not. parse_ref(st, fld(st, line, 1), .true., st%card_home, loc, ref)) return
-    associate (sf => st%surfaces(st%card_item))
-      sf%n = sf%n + 1
-      sf%refs = [sf%refs, ref]
-      sf%kinds = [sf%kinds, kind]
-      sf%signs = [sf%signs, sgn]
-    end associate
+    call add_surface_ref(st, line, loc, kind, sgn)
   end subroutine data_surface
+
+  subroutine add_surface_ref(st, line, loc, kind, sgn)
+    !! The element (or node, TYPE=NODE: kind 0) reference of a *SURFACE data line.
+    type(deck_state_t), intent(inout) :: st
+    character(*), intent(in) :: line
+    type(source_loc_t), intent(in) :: loc
+    integer, intent(in) :: kind
+    real(wp), intent(in) :: sgn
+    type(ref_t) :: ref
+    associate (sf => st%surfaces(st%card_item))
+      if (sf%nodal) then
+         if (.not. field_count(st, loc, 1, 1, 'node or node set')) return
+      end if
+      if (.not. parse_ref(st, fld(st, line, 1), .not. sf%nodal, st%card_home, loc, ref)) return
+      if (sf%n == size(sf%refs)) call grow_surface(sf)
+      sf%n = sf%n + 1
+      sf%refs(sf%n) = ref
+      sf%kinds(sf%n) = kind
+      sf%signs(sf%n) = sgn
+    end associate
+  end subroutine add_surface_ref
+
+  subroutine grow_surface(sf)
+    !! Twice the room for a surface's lines (entries 1..n kept).
+    type(surface_b_t), intent(inout) :: sf
+    type(ref_t), allocatable :: refs(:)
+    integer :: k, cap
+    cap = 2*size(sf%refs) + 8
+    allocate (refs(cap))
+    refs(1:sf%n) = sf%refs(1:sf%n)
+    call move_alloc(refs, sf%refs)
+    sf%kinds = [sf%kinds(1:sf%n), (0, k = sf%n + 1, cap)]
+    sf%signs = [sf%signs(1:sf%n), (0.0_wp, k = sf%n + 1, cap)]
+  end subroutine grow_surface
 
   subroutine data_dsload(st, line, loc)
     !! *DSLOAD `surface, P, pressure`: the pressure on every face of an
@@ -621,6 +655,11 @@ contains
     if (k > st%nsurface) then
        call report_loc(st, loc, 'unknown surface '''//clip(fld(st, line, 1))//''' (define it with *SURFACE, '// &
             'TYPE=ELEMENT before the step)')
+       return
+    end if
+    if (st%surfaces(k)%nodal) then
+       call report_loc(st, loc, '*DSLOAD on the node surface '//name//' (TYPE=NODE): a pressure needs '// &
+            'element faces (*SURFACE, TYPE=ELEMENT)')
        return
     end if
     do i = 1, st%surfaces(k)%n

@@ -27,7 +27,7 @@ module superjoin_deck_ccx_cards
        'CYCLIC HARDENING', 'CONTACT PAIR', 'SURFACE INTERACTION', 'SURFACE BEHAVIOR', 'FRICTION', &
        'GAP', 'GAP CONDUCTANCE', 'TEMPERATURE', 'INITIAL CONDITIONS', 'MODAL DAMPING', &
        'CONTACT DAMPING']
-  integer, parameter :: NUM_KNOWN = 54
+  integer, parameter :: NUM_KNOWN = 55
   character(len=KW_LEN), parameter :: KNOWN_KEYWORDS(NUM_KNOWN) = [character(len=KW_LEN) :: &
        'ASSEMBLY', 'BEAM GENERAL SECTION', 'BEAM SECTION', 'BOUNDARY', 'CHANGE CONTACT', 'CLOAD', &
        'CONTACT', 'CONTROLS', 'DENSITY', 'DLOAD', 'DSLOAD', 'EL FILE', 'EL PRINT', 'ELASTIC', &
@@ -36,7 +36,7 @@ module superjoin_deck_ccx_cards
        'INITIAL CONDITIONS', 'INSTANCE', 'INTERFACE', 'LOAD COMBINATION', 'MATERIAL', 'MATRIX INPUT', &
        'NODAL THICKNESS', 'NODE', 'NODE FILE', 'NODE OUTPUT', 'NODE PRINT', 'NSET', 'ORIENTATION', &
        'OUTPUT', 'PART', 'SECTION PRINT', 'SHELL SECTION', 'SOLID SECTION', 'SPRING', 'STATIC', 'STEP', &
-       'SUBSTRUCTURE', 'SUBSTRUCTURE MATRIX OUTPUT', 'SUPPORT', 'SURFACE', 'TEMPERATURE', 'TRANSFORM', &
+       'SUBSTRUCTURE', 'SUBSTRUCTURE MATRIX OUTPUT', 'SUPPORT', 'SURFACE', 'TEMPERATURE', 'TIE', 'TRANSFORM', &
        'TRANSVERSE SHEAR STIFFNESS']
     !! Every keyword the reader dispatches (kept complete by
     !! tests/check_cards_documented.sh), as canonical_keyword spells it.

@@ -21,7 +21,7 @@ module superjoin_deck_parser
        CARD_CLOAD, CARD_DLOAD, CARD_DENSITY, CARD_TSHEAR, CARD_INSTANCE, CARD_CHANGE_CONTACT, &
        CARD_INTERFACE, CARD_STATIC, CARD_REQUEST, CARD_SPRING_ELEMENT, CARD_SPRING, &
        CARD_COMBINATION, CARD_EXPANSION, CARD_TEMPERATURE, CARD_EQUATION, CARD_TRANSFORM, &
-       CARD_NODAL_THICKNESS, NAME_LEN, CARD_SURFACE, CARD_DSLOAD, CARD_SECTION_PRINT
+       CARD_NODAL_THICKNESS, NAME_LEN, CARD_SURFACE, CARD_DSLOAD, CARD_SECTION_PRINT, CARD_TIE
   use superjoin_deck_cards_assembly, only: assembly_allows, finish_assembly, kw_assembly, &
        data_instance, kw_interface, data_interface, kw_change_contact, data_change_contact, &
        kw_contact, data_contact, kw_support, data_support
@@ -37,6 +37,7 @@ module superjoin_deck_parser
        kw_load_combination, data_combination, kw_temperature, data_temperature
   use superjoin_deck_cards_output, only: kw_output, kw_request, data_request, kw_section_print, data_section_print
   use superjoin_deck_equations, only: kw_equation, data_equation, end_equation_card
+  use superjoin_deck_ties, only: kw_tie, data_tie
   use superjoin_deck_transforms, only: kw_transform, data_transform
   use superjoin_deck_nodal_thickness, only: kw_nodal_thickness, data_nodal_thickness
   use superjoin_deck_matrix_input, only: kw_matrix_input, kw_matrix_output
@@ -244,6 +245,8 @@ contains
        call kw_interface(st, kw, loc)
     case ('EQUATION')
        call kw_equation(st, kw, loc)
+    case ('TIE')
+       call kw_tie(st, kw, loc)
     case ('TRANSFORM')
        call kw_transform(st, kw, loc)
     case ('MATRIX INPUT')
@@ -385,6 +388,8 @@ contains
        call data_interface(st, line, loc)
     case (CARD_EQUATION)
        call data_equation(st, line, loc)
+    case (CARD_TIE)
+       call data_tie(st, line, loc)
     case (CARD_TRANSFORM)
        call data_transform(st, line, loc)
     case (CARD_NODAL_THICKNESS)

@@ -265,7 +265,19 @@ module superjoin_deck_records
      integer, allocatable :: kinds(:)
      real(wp), allocatable :: signs(:)
      type(source_loc_t) :: loc
+     logical :: nodal = .false.            !! TYPE=NODE: refs are nodes or node sets (kinds, signs unused)
   end type surface_b_t
+
+  type, public :: tie_b_t
+    !! A *TIE card as read: its slave and master surfaces by name.
+     character(:), allocatable :: name     !! NAME= (upper case; '' without)
+     character(:), allocatable :: slave, master  !! surface names (upper case)
+     real(wp) :: tolerance = 0.0_wp        !! POSITION TOLERANCE= (0: the default)
+     logical :: adjust = .true.            !! ADJUST=YES (the default): slave nodes move onto the master surface
+     logical :: has_line = .false.
+     integer :: home = 0                   !! the substructure block it stands in
+     type(source_loc_t) :: loc, line_loc
+  end type tie_b_t
 
   type, public :: combo_b_t
     !! A *LOAD COMBINATION card as read: steps by name, factors.

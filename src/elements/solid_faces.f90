@@ -32,7 +32,7 @@ module superjoin_elements_solid_faces
        1, 5, 2, 6, 3, 7, 4, 8], [2, 12])
   integer, parameter :: TET_EDGES(2, 6) = reshape([1, 2, 2, 3, 3, 1, 1, 4, 2, 4, 3, 4], [2, 6])
 
-  public :: solid_face_nodes, solid_pressure_load, solid_face_points
+  public :: solid_face_nodes, solid_pressure_load, solid_face_points, face_shape
 
 contains
 

@@ -280,6 +280,8 @@ module superjoin_model_types
      integer, allocatable :: dof(:)
      real(wp), allocatable :: coef(:)
      type(source_loc_t) :: loc             !! the line with the number of terms
+     integer :: tie = 0                    !! made by *TIE number tie (0: an *EQUATION): dropped, not an
+                                           !! error, where its dependent DOF is already dependent
   end type equation_t
 
   type, public :: node_frame_t

@@ -964,7 +964,8 @@ def rot4(binary, outdir):
 
 SOLID_DECKS = ('achteld', 'achtelp', 'achtelg', 'achtel2', 'achtel9', 'achtel29', 'achtelcas', 'achtelc', 'beam10p',
                'beam20p', 'beamd', 'beampo1', 'beampo2', 'aniso', 'c3d15', 'beamt', 'beamt2', 'beamt3', 'beamt4',
-               'beam8t')
+               'beam8t', 'beamptied1',
+               'beamptied2')
 
 
 def solid_point_table(text):
@@ -990,7 +991,8 @@ def solid_decks(binary, outdir):
     TYPE=ANISOTROPIC, 21 constants), c3d15 (C3D15 wedges under face
     pressure, *ORIENTATION, DEFINITION=COORDINATES on an isotropic material),
     beamt, beamt2, beamt3: C3D20R, beam8t: C3D8 under *TEMPERATURE, uniform,
-    per material, varying along the beam: *NODE PRINT U and the stresses of *EL PRINT S at
+    per material, varying along the beam; beamptied1, beamptied2: two C3D20R beam segments
+    joined by *TIE, the slave a node surface or element faces): *NODE PRINT U and the stresses of *EL PRINT S at
     CalculiX's integration points of every element of the set must agree with
     .dat.ref (1e-6 of the table; other tables of the .dat are not compared)."""
     for name in SOLID_DECKS:

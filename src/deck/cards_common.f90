@@ -22,7 +22,7 @@ module superjoin_deck_cards_common
        CARD_REQUEST, CARD_SPRING_ELEMENT, CARD_SPRING, CARD_COMBINATION, CARD_EXPANSION, &
        CARD_TEMPERATURE, CARD_EQUATION, CARD_TRANSFORM, CARD_NODAL_THICKNESS, PARALLEL_TOL, &
        NAME_LEN, ORIENT_VALUES, ELASTIC_FIELDS, VECTOR_FIELDS, CONTACT_FIELDS, LOAD_FIELDS, &
-       GRAV_FIELDS, CARD_SURFACE, CARD_DSLOAD
+       GRAV_FIELDS, CARD_SURFACE, CARD_DSLOAD, CARD_COUPLING_DOFS, CARD_MPC
 
   integer, parameter :: CARD_NONE = 0, CARD_SKIP = 1, CARD_NODATA = 2, CARD_HEADING = 3, &
        CARD_NODE = 4, CARD_ELEMENT = 5, CARD_NSET = 6, CARD_ELSET = 7, CARD_SECTION = 8, &
@@ -49,6 +49,8 @@ module superjoin_deck_cards_common
        GRAV_FIELDS = 6
   integer, parameter :: CARD_SURFACE = 151, CARD_DSLOAD = 152
     !! loads: *SURFACE, TYPE=ELEMENT and *DSLOAD (superjoin_deck_cards_steps)
+  integer, parameter :: CARD_COUPLING_DOFS = 161, CARD_MPC = 162
+    !! *KINEMATIC / *DISTRIBUTING and *MPC (superjoin_deck_coupling_cards)
 
 contains
 

@@ -255,6 +255,9 @@ module superjoin_model_types
      integer, allocatable :: dof(:)
      real(wp), allocatable :: coef(:)
      type(source_loc_t) :: loc             !! the line with the number of terms
+     logical :: coupling = .false.
+       !! written by *COUPLING, *RIGID BODY or *MPC (superjoin_deck_coupling_build): its DOFs are
+       !! activated, and when its first DOF is already dependent another of its columns is eliminated
   end type equation_t
 
   type, public :: node_frame_t

@@ -26,15 +26,15 @@ VTK_TYPES = {
     "Int64": (-2**63, 2**63 - 1), "UInt64": (0, 2**64 - 1),
     "Float32": None, "Float64": None,
 }
-CELL_POINTS = {1: 1, 3: 2, 4: 3, 5: 3, 9: 4, 22: 6, 23: 8}   # 4: poly line, only B32   # vertex, line, triangle, quad, quadratic ones
+CELL_POINTS = {1: 1, 3: 2, 4: 3, 5: 3, 9: 4, 12: 8, 22: 6, 23: 8}   # 4: poly line, only B32   # vertex, line, triangle, quad, quadratic ones
 KIND_ELEMENT, KIND_CONTACT, KIND_SUPPORT = 1, 2, 3
 LINE_TYPES = {"T2D2", "T3D2", "B23", "B33", "B21", "B31"}
 ELEMENT_TYPE_CODES = {"T2D2": 1, "T3D2": 2, "B23": 3, "B33": 4, "CPS3": 5, "CPS4": 6, "S3": 7, "S4": 8,
                       "B21": 9, "B31": 10, "CPE3": 11, "CPE4": 12, "S4R": 13, "S3R": 14, "S8R": 15,
                       "CPS6": 16, "CPS8": 17, "CPE6": 18, "CPE8": 19, "CPS8R": 20, "CPE8R": 21, "B32": 22,
-                      "S8": 31}
+                      "S8": 31, "C3D8": 23}
 ELEMENT_CELL = {1: 3, 2: 3, 3: 3, 4: 3, 5: 5, 6: 9, 7: 5, 8: 9, 9: 3, 10: 3, 11: 5, 12: 9, 13: 9, 14: 5, 15: 23,
-                16: 22, 17: 23, 18: 22, 19: 23, 20: 23, 21: 23, 22: 4, 31: 23}
+                16: 22, 17: 23, 18: 22, 19: 23, 20: 23, 21: 23, 22: 4, 31: 23, 23: 12}
 
 problems = []
 

@@ -16,7 +16,7 @@ module superjoin_deck_coupling_build
   !!     u_r = Σ w_i u_i / W + θ_r × (x_r - x̄);
   !!   the reference node's DOFs are the dependent ones, so a force or moment
   !!   on it is distributed to the coupled nodes by the transpose;
-  !! - *MPC BEAM (CalculiX: the distance of a and b is kept): (x_b - x_a)·(u_b - u_a) = 0.
+  !! - *MPC BEAM, PLANE, STRAIGHT (CalculiX, nonlinear there): their linear forms (mpc).
   use superjoin_kinds, only: wp, ip
   use superjoin_model_types, only: model_t, substructure_t, equation_t, source_loc_t, NDOF_NODE, DLOAD_P1, DLOAD_P4, &
        DLOAD_P5, DLOAD_P6, ELEMENT_NODE_COUNT, node_label
@@ -26,7 +26,7 @@ module superjoin_deck_coupling_build
   use superjoin_deck_state, only: deck_state_t, report_loc, ref_t
   use superjoin_deck_build_common, only: resolve_items, resolve_sub
   use superjoin_deck_coupling_records, only: coupling_b_t, COUPLE_NONE, COUPLE_KINEMATIC, &
-       COUPLE_DISTRIBUTING, COUPLE_RIGID_BODY, COUPLE_MPC_BEAM
+       COUPLE_DISTRIBUTING, COUPLE_RIGID_BODY, COUPLE_MPC_BEAM, COUPLE_MPC_PLANE
   use superjoin_utils_strings, only: itoa, pick
   implicit none (type, external)
   private
@@ -35,6 +35,8 @@ module superjoin_deck_coupling_build
 
   real(wp), parameter :: SINGULAR_J = 1.0e-10_wp
     !! det J below this fraction of (trace J / 3)^3: the coupled nodes lie on a line
+  integer, parameter :: MPC_MIN_NODES(3) = [2, 4, 3]
+    !! nodes an *MPC BEAM needs, and at least a PLANE and a STRAIGHT
   real(wp), parameter :: COEF_ZERO = 1.0e-14_wp
     !! coefficients below this fraction of the equation's largest are round-off, left out
 
@@ -78,8 +80,8 @@ contains
             call report_loc(st, cb%loc, '*COUPLING needs *KINEMATIC or *DISTRIBUTING right after it')
             cycle
          end if
-         if (cb%kind == COUPLE_MPC_BEAM) then
-            call mpc_beam(st, model, cb, list)
+         if (cb%kind >= COUPLE_MPC_BEAM) then
+            call mpc(st, model, cb, list)
             cycle
          end if
          call resolve_coupling(st, model, cb, cp, ok)
@@ -404,32 +406,168 @@ contains
     end block
   end subroutine push_rbe3
 
-  subroutine mpc_beam(st, model, cb, list)
-    !! *MPC BEAM, a, b: (x_b - x_a)·(u_b - u_a) = 0, b's largest component dependent.
+  subroutine mpc(st, model, cb, list)
+    !! *MPC, linearised (x_i, u_i: the i-th node listed):
+    !! BEAM a, b: (x_b - x_a)·(u_b - u_a) = 0;
+    !! PLANE 1, 2, 3, p...: n·(u_p - u_1) + (b × d)·(u_2 - u_1) + (d × a)·(u_3 - u_1) = 0,
+    !!   a = x_2 - x_1, b = x_3 - x_1, n = a × b, d = x_p - x_1 (the variation of d·n);
+    !! STRAIGHT 1, 2, p...: (u_p - u_1) × t + d × (u_2 - u_1) = 0 on the two
+    !!   components across t = x_2 - x_1, d = x_p - x_1 (the variation of d × t).
     type(deck_state_t), intent(inout) :: st
     type(model_t), intent(in) :: model
     type(coupling_b_t), intent(in) :: cb
     type(eq_list_t), intent(inout) :: list
-    integer :: sa, sb, k, d
-    integer(ip) :: na, nb
-    real(wp) :: r(3)
-    integer :: order(3)
+    integer, allocatable :: subs(:)
+    integer(ip), allocatable :: nodes(:)
+    real(wp), allocatable :: x(:, :)
+    integer :: need, k
     logical :: ok
-    call one_node(st, model, cb%ref_node, cb%loc, sa, na, ok)
+    call mpc_nodes(st, model, cb, subs, nodes, ok)
     if (.not. ok) return
-    call one_node(st, model, cb%nodes, cb%loc, sb, nb, ok)
-    if (.not. ok) return
-    r = model%subs(sb)%x(:, nb) - model%subs(sa)%x(:, na)
-    if (maxval(abs(r)) == 0.0_wp) then
-       call report_loc(st, cb%loc, '*MPC BEAM: nodes '//node_label(model, sa, na)//' and '// &
-            node_label(model, sb, nb)//' coincide (the link has no direction)')
+    need = MPC_MIN_NODES(cb%kind - COUPLE_MPC_BEAM + 1)
+    if (size(nodes) < need .or. (cb%kind == COUPLE_MPC_BEAM .and. size(nodes) /= need)) then
+       call report_loc(st, cb%loc, '*MPC: '//mpc_name(cb%kind)//' needs '//trim(merge('exactly ', 'at least', &
+            cb%kind == COUPLE_MPC_BEAM))//' '//itoa(need)//' nodes, got '//itoa(size(nodes)))
        return
     end if
-    k = maxloc(abs(r), 1)
-    order = [k, mod(k, 3) + 1, mod(k + 1, 3) + 1]
-    call push(list, cb%loc, [(sb, d = 1, 3), (sa, d = 1, 3)], [(nb, d = 1, 3), (na, d = 1, 3)], &
-         [order, order], [r(order), -r(order)])
-  end subroutine mpc_beam
+    allocate (x(3, size(nodes)))
+    do k = 1, size(nodes)
+       x(:, k) = model%subs(subs(k))%x(:, nodes(k))
+    end do
+    if (degenerate(cb%kind, x)) then
+       call report_loc(st, cb%loc, '*MPC: the defining nodes of '//mpc_name(cb%kind)//' '// &
+            trim(merge('coincide          ', 'lie on a line     ', cb%kind /= COUPLE_MPC_PLANE))// &
+            ' (they define no direction)')
+       return
+    end if
+    select case (cb%kind)
+    case (COUPLE_MPC_BEAM)
+       call mpc_row(list, cb%loc, subs([2, 1]), nodes([2, 1]), reshape([x(:, 2) - x(:, 1), x(:, 1) - x(:, 2)], [3, 2]))
+    case (COUPLE_MPC_PLANE)
+       call mpc_plane(list, cb%loc, subs, nodes, x)
+    case default
+       call mpc_straight(list, cb%loc, subs, nodes, x)
+    end select
+  end subroutine mpc
+
+  pure logical function degenerate(kind, x)
+    !! The defining nodes give no direction: BEAM's and STRAIGHT's first two
+    !! coincide, PLANE's first three lie on a line (relative to their distances).
+    integer, intent(in) :: kind
+    real(wp), intent(in) :: x(:, :)
+    real(wp) :: a(3), b(3)
+    a = x(:, 2) - x(:, 1)
+    if (kind == COUPLE_MPC_PLANE) then
+       b = x(:, 3) - x(:, 1)
+       degenerate = norm2(cross(a, b)) <= 1.0e-12_wp*norm2(a)*norm2(b)
+    else
+       degenerate = norm2(a) == 0.0_wp
+    end if
+  end function degenerate
+
+  pure function cross(a, b) result(c)
+    real(wp), intent(in) :: a(3), b(3)
+    real(wp) :: c(3)
+    c = [a(2)*b(3) - a(3)*b(2), a(3)*b(1) - a(1)*b(3), a(1)*b(2) - a(2)*b(1)]
+  end function cross
+
+  pure function mpc_name(kind) result(s)
+    integer, intent(in) :: kind
+    character(:), allocatable :: s
+    select case (kind)
+    case (COUPLE_MPC_BEAM)
+       s = 'BEAM'
+    case (COUPLE_MPC_PLANE)
+       s = 'PLANE'
+    case default
+       s = 'STRAIGHT'
+    end select
+  end function mpc_name
+
+  subroutine mpc_nodes(st, model, cb, subs, nodes, ok)
+    !! The nodes an *MPC lists (sets expanded in their order).
+    type(deck_state_t), intent(inout) :: st
+    type(model_t), intent(in) :: model
+    type(coupling_b_t), intent(in) :: cb
+    integer, allocatable, intent(out) :: subs(:)
+    integer(ip), allocatable, intent(out) :: nodes(:)
+    logical, intent(out) :: ok
+    integer(ip), allocatable :: items(:)
+    integer :: k, isub
+    allocate (subs(0), nodes(0))
+    ok = .false.
+    do k = 1, size(cb%list)
+       isub = resolve_sub(st, model, cb%list(k), cb%loc, 'node')
+       if (isub == 0) return
+       call resolve_items(st, model, isub, cb%list(k), .false., cb%loc, items, ok)
+       if (.not. ok) return
+       nodes = [nodes, items]
+       subs = [subs, spread(isub, 1, size(items))]
+    end do
+    ok = .true.
+  end subroutine mpc_nodes
+
+  subroutine mpc_plane(list, loc, subs, nodes, x)
+    !! One equation per node after the third (mpc comment).
+    type(eq_list_t), intent(inout) :: list
+    type(source_loc_t), intent(in) :: loc
+    integer, intent(in) :: subs(:)
+    integer(ip), intent(in) :: nodes(:)
+    real(wp), intent(in) :: x(:, :)
+    real(wp) :: a(3), b(3), n(3), d(3), c2(3), c3(3)
+    integer :: p
+    a = x(:, 2) - x(:, 1)
+    b = x(:, 3) - x(:, 1)
+    n = cross(a, b)
+    do p = 4, size(nodes)
+       d = x(:, p) - x(:, 1)
+       c2 = cross(b, d)
+       c3 = cross(d, a)
+       call mpc_row(list, loc, subs([p, 1, 2, 3]), nodes([p, 1, 2, 3]), &
+            reshape([n, -n - c2 - c3, c2, c3], [3, 4]))
+    end do
+  end subroutine mpc_plane
+
+  subroutine mpc_straight(list, loc, subs, nodes, x)
+    !! Two equations per node after the second (mpc comment): the components
+    !! a /= m of the cross products, m the largest component of t.
+    type(eq_list_t), intent(inout) :: list
+    type(source_loc_t), intent(in) :: loc
+    integer, intent(in) :: subs(:)
+    integer(ip), intent(in) :: nodes(:)
+    real(wp), intent(in) :: x(:, :)
+    real(wp) :: t(3), d(3), st(3, 3), sd(3, 3)
+    integer :: p, m, ia
+    t = x(:, 2) - x(:, 1)
+    m = maxloc(abs(t), 1)
+    st = skew(t)
+    do p = 3, size(nodes)
+       d = x(:, p) - x(:, 1)
+       sd = skew(d)
+       ! (u_p - u_1) × t = -skew(t) (u_p - u_1); d × (u_2 - u_1) = skew(d) (u_2 - u_1)
+       do ia = 1, 3
+          if (ia == m) cycle
+          call mpc_row(list, loc, subs([p, 1, 2]), nodes([p, 1, 2]), &
+               reshape([-st(ia, :), st(ia, :) - sd(ia, :), sd(ia, :)], [3, 3]))
+       end do
+    end do
+  end subroutine mpc_straight
+
+  subroutine mpc_row(list, loc, subs, nodes, c)
+    !! Σ_k c(:, k)·u(node k) = 0; the dependent DOF is the first node's
+    !! component of largest coefficient.
+    type(eq_list_t), intent(inout) :: list
+    type(source_loc_t), intent(in) :: loc
+    integer, intent(in) :: subs(:)
+    integer(ip), intent(in) :: nodes(:)
+    real(wp), intent(in) :: c(:, :)
+    integer :: order(3), k, j, n
+    n = size(nodes)
+    j = maxloc(abs(c(:, 1)), 1)
+    order = [j, mod(j, 3) + 1, mod(j + 1, 3) + 1]
+    call push(list, loc, [(subs((k - 1)/3 + 1), k = 1, 3*n)], [(nodes((k - 1)/3 + 1), k = 1, 3*n)], &
+         [(order, k = 1, n)], [(c(order, k), k = 1, n)])
+  end subroutine mpc_row
 
   subroutine push(list, loc, subs, nodes, dofs, coefs)
     !! Append one equation; terms whose coefficient is round-off are left out

@@ -5,15 +5,16 @@ module superjoin_deck_coupling_cards
   !!   choose the DOFs coupled (without a data line: 1-3 for *KINEMATIC, 1-6
   !!   for *DISTRIBUTING);
   !! - `*RIGID BODY, NSET=s | ELSET=s, REF NODE=n[, ROT NODE=m]`;
-  !! - `*MPC` with data lines `BEAM, a, b` (CalculiX: the distance of a and b
-  !!   stays constant; superjoin's statics keep its linear form).
+  !! - `*MPC` with data lines `BEAM, a, b`, `PLANE, nodes` or `STRAIGHT, nodes`
+  !!   (CalculiX: nonlinear constraints; superjoin's statics keep their linear
+  !!   forms).
   !! superjoin_deck_coupling_build turns the records into constraint equations.
   use superjoin_model_types, only: source_loc_t, NDOF_NODE
   use superjoin_deck_lexer, only: keyword_line_t, clip
   use superjoin_utils_strings, only: to_upper
-  use superjoin_deck_state, only: deck_state_t, report_loc
+  use superjoin_deck_state, only: deck_state_t, report_loc, ref_t
   use superjoin_deck_coupling_records, only: coupling_b_t, COUPLE_KINEMATIC, COUPLE_DISTRIBUTING, &
-       COUPLE_RIGID_BODY, COUPLE_MPC_BEAM
+       COUPLE_RIGID_BODY, COUPLE_MPC_BEAM, COUPLE_MPC_PLANE, COUPLE_MPC_STRAIGHT
   use superjoin_deck_cards_common, only: outside_step, check_params, get_param, field_count, fld, &
        get_dof, parse_ref, parse_set_ref, CARD_SKIP, CARD_COUPLING_DOFS, CARD_MPC, NAME_LEN
   implicit none (type, external)
@@ -157,7 +158,7 @@ contains
   end subroutine kw_rigid_body
 
   subroutine kw_mpc(st, kw, loc)
-    !! *MPC: data lines `type, nodes...` (BEAM only).
+    !! *MPC: data lines `type, nodes...` (BEAM, PLANE, STRAIGHT).
     type(deck_state_t), intent(inout) :: st
     type(keyword_line_t), intent(in) :: kw
     type(source_loc_t), intent(in) :: loc
@@ -167,28 +168,52 @@ contains
   end subroutine kw_mpc
 
   subroutine data_mpc(st, line, loc)
-    !! `BEAM, a, b`: nodes a and b keep their distance (linearised: a rigid link along a-b).
+    !! `BEAM, a, b`, `PLANE, nodes...` or `STRAIGHT, nodes...` (nodes or node
+    !! sets); a line that does not start with a name continues the last MPC's
+    !! node list (CalculiX).
     type(deck_state_t), intent(inout) :: st
     character(*), intent(in) :: line
     type(source_loc_t), intent(in) :: loc
     type(coupling_b_t) :: c
+    type(ref_t) :: ref
     character(:), allocatable :: name
+    integer :: first, i
     name = to_upper(fld(st, line, 1))
-    if (name /= 'BEAM') then
-       call report_loc(st, loc, '*MPC '''//clip(fld(st, line, 1))//''' is not supported (BEAM, a rigid link '// &
-            'between two nodes; PLANE, STRAIGHT, DIST and MEANROT are nonlinear in CalculiX)')
+    first = 1
+    if (verify(name(1:1), '0123456789') /= 0) then
+       select case (name)
+       case ('BEAM')
+          c%kind = COUPLE_MPC_BEAM
+       case ('PLANE')
+          c%kind = COUPLE_MPC_PLANE
+       case ('STRAIGHT')
+          c%kind = COUPLE_MPC_STRAIGHT
+       case default
+          call report_loc(st, loc, '*MPC '''//clip(fld(st, line, 1))//''' is not supported (BEAM, PLANE, '// &
+               'STRAIGHT, linearised; DIST and MEANROT are nonlinear)')
+          st%card = CARD_SKIP
+          return
+       end select
+       c%loc = loc
+       allocate (c%list(0))
+       call push_coupling(st, c)
+       st%card_item = size(st%couplings)
+       first = 2
+    else if (st%card_item == 0) then
+       call report_loc(st, loc, '*MPC: the first data line starts with the MPC''s name (BEAM, PLANE, STRAIGHT)')
+       st%card = CARD_SKIP
        return
     end if
-    if (.not. field_count(st, loc, 3, 3, 'BEAM, node a, node b')) return
-    c%kind = COUPLE_MPC_BEAM
-    c%loc = loc
-    if (.not. parse_ref(st, fld(st, line, 2), .false., st%cur_sub, loc, c%ref_node)) return
-    if (.not. parse_ref(st, fld(st, line, 3), .false., st%cur_sub, loc, c%nodes)) return
-    if (c%ref_node%is_set .or. c%nodes%is_set) then
-       call report_loc(st, loc, '*MPC BEAM takes two nodes, not node sets')
-       return
-    end if
-    call push_coupling(st, c)
+    associate (m => st%couplings(st%card_item))
+      do i = first, st%f%n
+         if (len(fld(st, line, i)) == 0) cycle
+         if (.not. parse_ref(st, fld(st, line, i), .false., st%cur_sub, loc, ref)) then
+            m%ok = .false.
+            cycle
+         end if
+         m%list = [m%list, ref]
+      end do
+    end associate
   end subroutine data_mpc
 
   subroutine push_coupling(st, c)

@@ -8,7 +8,7 @@ module superjoin_deck_coupling_records
   private
 
   integer, parameter, public :: COUPLE_NONE = 0, COUPLE_KINEMATIC = 1, COUPLE_DISTRIBUTING = 2, &
-       COUPLE_RIGID_BODY = 3, COUPLE_MPC_BEAM = 4
+       COUPLE_RIGID_BODY = 3, COUPLE_MPC_BEAM = 4, COUPLE_MPC_PLANE = 5, COUPLE_MPC_STRAIGHT = 6
     !! What a coupling record is (COUPLE_NONE: a *COUPLING still without its *KINEMATIC/*DISTRIBUTING).
 
   type, public :: coupling_b_t
@@ -20,7 +20,8 @@ module superjoin_deck_coupling_records
      type(ref_t) :: ref_node                    !! REF NODE= (or the first node of *MPC BEAM)
      type(ref_t) :: rot_node                    !! ROT NODE= of *RIGID BODY (has_rot)
      logical :: has_rot = .false.
-     type(ref_t) :: nodes                       !! NSET= / ELSET= of *RIGID BODY, the second node of *MPC BEAM
+     type(ref_t) :: nodes                       !! NSET= / ELSET= of *RIGID BODY
+     type(ref_t), allocatable :: list(:)        !! the nodes and node sets of an *MPC, in order
      logical :: by_elements = .false.           !! nodes is an element set (*RIGID BODY, ELSET=)
      logical :: dofs(NDOF_NODE) = .false.       !! DOFs of *KINEMATIC / *DISTRIBUTING data lines
      logical :: dofs_given = .false.

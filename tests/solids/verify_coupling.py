@@ -34,6 +34,9 @@ nu = 0.3; its end face x = L is the element surface S4 of the last elements):
   without conflict, the face still rigid, the constraint eliminating another
   DOF (the reference node's);
 - *MPC BEAM between two nodes: the distance's first variation is zero;
+  *MPC PLANE (two nodes kept in the plane of three) and *MPC STRAIGHT (a node
+  set: the middle node kept on the line of the two others): the first
+  variations of (x_p - x_1).(a x b) and (x_p - x_1) x t are zero;
 - CalculiX (if `ccx` is on PATH): the KINEMATIC and DISTRIBUTING C3D20R decks
   with a force and a moment on the reference node, run by `ccx -i`: the face
   nodes' displacements (*NODE PRINT U) agree within 1e-6 of the table (7
@@ -347,21 +350,48 @@ def beam_case(exe, work):
     check(check_statics_beam < 1e-9, f"solid + B31: the reactions balance the tip force ({check_statics_beam:.1e})")
 
 
-def mpc_beam_case(exe, work):
-    print("\n## *MPC BEAM (the distance of two nodes, linearised)\n")
+def mpc_case(exe, work):
+    print("\n## *MPC BEAM, PLANE, STRAIGHT (linearised)\n")
     blk = Block("C3D8", (8, 2, 2), (8.0, 1.0, 1.0))
-    face = blk.at(8.0)
+    face = blk.at(8.0)          # 9 nodes, ordered by y then z
+    mid = blk.at(4.0)
     a, b = face[0], face[-1]
-    body = f"*MPC\nBEAM, {a}, {b}"
-    disp, _ = solve(exe, work, "mpc_beam", blk.deck(body, f"*CLOAD\n {face[1]}, 2, 1.0\n {face[2]}, 3, 0.5"))
+    body = (f"*MPC\nBEAM, {a}, {b}\n*MPC\nPLANE, {face[0]}, {face[2]}, {face[6]}\n {face[4]}, {face[8]}\n"
+            f"*NSET, NSET=AXIS\n {mid[1]}, {mid[4]}, {mid[7]}\n*MPC\nSTRAIGHT, AXIS")
+    disp, _ = solve(exe, work, "mpc", blk.deck(body, f"*CLOAD\n {face[1]}, 2, 1.0\n {face[5]}, 3, 0.5\n"
+                                                      f" {face[4]}, 1, 2.0\n {mid[4]}, 3, 0.3"))
     if disp is None:
         return
-    r = [blk.nodes[b][i] - blk.nodes[a][i] for i in range(3)]
-    du = [disp[b][i] - disp[a][i] for i in range(3)]
-    dot = sum(p * q for p, q in zip(r, du)) / math.sqrt(sum(p * p for p in r))
+    x = blk.nodes
     scale = max(max(abs(v) for v in u[:3]) for u in disp.values())
-    check(abs(dot) < 1e-10 * scale, f"*MPC BEAM: (x_b - x_a).(u_b - u_a) / |x_b - x_a| = {dot:.1e} "
+
+    def sub3(p, q):
+        return [p[i] - q[i] for i in range(3)]
+
+    def dot(p, q):
+        return sum(i * j for i, j in zip(p, q))
+    r, du = sub3(x[b], x[a]), sub3(disp[b], disp[a])
+    val = dot(r, du) / math.sqrt(dot(r, r))
+    check(abs(val) < 1e-10 * scale, f"*MPC BEAM: (x_b - x_a).(u_b - u_a) / |x_b - x_a| = {val:.1e} "
           f"(displacements {scale:.2e})")
+    n1, n2, n3 = face[0], face[2], face[6]
+    ea, eb = sub3(x[n2], x[n1]), sub3(x[n3], x[n1])
+    ua, ub = sub3(disp[n2], disp[n1]), sub3(disp[n3], disp[n1])
+    worst = 0.0
+    for p in (face[4], face[8]):
+        d, ud = sub3(x[p], x[n1]), sub3(disp[p], disp[n1])
+        # first variation of d.(a x b)
+        var = dot(ud, cross(ea, eb)) + dot(d, cross(ua, eb)) + dot(d, cross(ea, ub))
+        worst = max(worst, abs(var))
+    check(worst < 1e-10 * scale, f"*MPC PLANE: first variation of (x_p - x_1).(a x b) at the two nodes "
+          f"{worst:.1e}")
+    t, ut = sub3(x[mid[7]], x[mid[1]]), sub3(disp[mid[7]], disp[mid[1]])
+    d, ud = sub3(x[mid[4]], x[mid[1]]), sub3(disp[mid[4]], disp[mid[1]])
+    var = [p + q for p, q in zip(cross(ud, t), cross(d, ut))]
+    check(max(abs(v) for v in var) < 1e-10 * scale, f"*MPC STRAIGHT (a node set): first variation of "
+          f"(x_p - x_1) x t {max(abs(v) for v in var):.1e}")
+    bent = abs(disp[mid[4]][2] - 0.5 * (disp[mid[1]][2] + disp[mid[7]][2]))
+    print(f"      (the middle node sits on the line of its neighbours: {bent:.1e} off, displacements {scale:.1e})")
 
 
 def ccx_case(exe, work):
@@ -407,7 +437,7 @@ def main(argv):
     distributing_case(exe, work)
     rigid_body_case(exe, work)
     beam_case(exe, work)
-    mpc_beam_case(exe, work)
+    mpc_case(exe, work)
     ccx_case(exe, work)
     print()
     if failures:

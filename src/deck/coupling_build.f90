@@ -275,6 +275,7 @@ contains
     do k = 1, nn
        normal = normal + fe(3*k - 2:3*k)
     end do
+    if (norm2(normal) == 0.0_wp) return
     normal = normal/norm2(normal)
     do k = 1, nn
        wnode(sub%elem_nodes(k, e)) = wnode(sub%elem_nodes(k, e)) + dot_product(fe(3*k - 2:3*k), normal)
@@ -340,6 +341,10 @@ contains
     logical :: need_rot
     n = size(cp%nodes)
     wsum = sum(cp%w)
+    if (.not. wsum > 0.0_wp) then
+       call report_loc(st, cp%loc, '*DISTRIBUTING: the surface has no area')
+       return
+    end if
     associate (x => model%subs(cp%csub)%x)
       do d = 1, 3
          xbar(d) = sum(cp%w*x(d, cp%nodes))/wsum

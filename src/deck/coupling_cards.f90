@@ -12,7 +12,7 @@ module superjoin_deck_coupling_cards
   use superjoin_model_types, only: source_loc_t, NDOF_NODE
   use superjoin_deck_lexer, only: keyword_line_t, clip
   use superjoin_utils_strings, only: to_upper
-  use superjoin_deck_state, only: deck_state_t, report_loc, ref_t
+  use superjoin_deck_state, only: deck_state_t, report_loc, ref_t, SUBK_PART
   use superjoin_deck_coupling_records, only: coupling_b_t, COUPLE_KINEMATIC, COUPLE_DISTRIBUTING, &
        COUPLE_RIGID_BODY, COUPLE_MPC_BEAM, COUPLE_MPC_PLANE, COUPLE_MPC_STRAIGHT
   use superjoin_deck_cards_common, only: outside_step, check_params, get_param, field_count, fld, &
@@ -31,6 +31,15 @@ contains
     type(keyword_line_t), intent(in) :: kw
     type(source_loc_t), intent(in) :: loc
     integer, intent(in) :: prev_coupling
+    if (st%cur_sub > 0) then
+       if (st%subs(st%cur_sub)%kind == SUBK_PART) then
+          call report_loc(st, loc, '*'//kw%keyword//' is not allowed inside *PART '//st%subs(st%cur_sub)%name// &
+               ' (it would not be copied to each instance: write it in the assembly, with the instances'' '// &
+               'nodes I.n and a *SURFACE of their elements I.e)')
+          st%card = CARD_SKIP
+          return
+       end if
+    end if
     select case (kw%keyword)
     case ('COUPLING')
        call kw_coupling(st, kw, loc)
@@ -180,6 +189,11 @@ contains
     integer :: first, i
     name = to_upper(fld(st, line, 1))
     first = 1
+    if (len(name) == 0) then
+       call report_loc(st, loc, '*MPC: empty first field (the MPC''s name or a node)')
+       st%card = CARD_SKIP
+       return
+    end if
     if (verify(name(1:1), '0123456789') /= 0) then
        select case (name)
        case ('BEAM')

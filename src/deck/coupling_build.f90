@@ -64,7 +64,8 @@ module superjoin_deck_coupling_build
 contains
 
   subroutine build_couplings(st, model)
-    !! Append the constraint equations of every coupling read to model%equations.
+    !! Append the constraint equations of every coupling read to model%equations
+    !! (none when the deck has errors already: they are checked once it has none).
     type(deck_state_t), intent(inout) :: st
     type(model_t), intent(inout) :: model
     type(eq_list_t) :: list
@@ -72,14 +73,16 @@ contains
     integer :: k
     logical :: ok
     if (.not. allocated(st%couplings)) return
+    do k = 1, size(st%couplings)
+       if (st%couplings(k)%ok .and. st%couplings(k)%kind == COUPLE_NONE) call report_loc(st, st%couplings(k)%loc, &
+            '*COUPLING needs *KINEMATIC or *DISTRIBUTING right after it')
+    end do
+    ! after an error the model may be incomplete (an element on an undefined node): nothing to couple
+    if (allocated(st%error)) return
     allocate (list%e(8))
     do k = 1, size(st%couplings)
        associate (cb => st%couplings(k))
-         if (.not. cb%ok) cycle
-         if (cb%kind == COUPLE_NONE) then
-            call report_loc(st, cb%loc, '*COUPLING needs *KINEMATIC or *DISTRIBUTING right after it')
-            cycle
-         end if
+         if (.not. cb%ok .or. cb%kind == COUPLE_NONE) cycle
          if (cb%kind >= COUPLE_MPC_BEAM) then
             call mpc(st, model, cb, list)
             cycle

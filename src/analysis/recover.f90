@@ -471,6 +471,9 @@ contains
     !! Force of each eliminated loop constraint, λ = -(Σ T(p,j*) r_p) / a_j*,
     !! stored as the force on the master (local) and as nodal forces rclose;
     !! those of *EQUATION constraints also in req (allocated when there are any).
+    !! Last eliminated first: the footprint T(., j*) of a column is taken when
+    !! it is eliminated, so the constraints eliminated after it may still act
+    !! on it (a coupled node held by a support), and r includes their forces.
     type(dof_table_t), intent(in) :: table
     type(transform_t), intent(in) :: tr
     real(wp), intent(in) :: r(:, :)
@@ -481,14 +484,14 @@ contains
     real(wp) :: wt(MAX_UNIT_TERMS)
     real(wp) :: lambda, e
     type(constraint_t) :: cs
-    do i = 1, tr%nconstraints()
+    do i = tr%nconstraints(), 1, -1
        cs = tr%constraint(i)
          if (cs%status /= CONS_ELIMINATED) cycle
          if (cs%equation > 0) then
             ! *EQUATION sum a_i u_i = 0: forces -λ a_i on its DOFs.
             associate (te => table%equations(cs%equation))
               do is = 1, size(r, 2)
-                 lambda = -sum(cs%fp_c*r(cs%fp_p, is))/cs%pivot
+                 lambda = -sum(cs%fp_c*(r(cs%fp_p, is) - rclose(cs%fp_p, is)))/cs%pivot
                  if (.not. allocated(req)) allocate (req(size(r, 1), size(r, 2)), source=0.0_wp)
                  do c = 1, size(te%p)
                     rclose(te%p(c), is) = rclose(te%p(c), is) - lambda*te%a(c)
@@ -500,7 +503,7 @@ contains
          end if
          associate (un => table%units(cs%unit))
            do is = 1, size(r, 2)
-              e = sum(cs%fp_c*r(cs%fp_p, is))
+              e = sum(cs%fp_c*(r(cs%fp_p, is) - rclose(cs%fp_p, is)))
               lambda = -e/cs%pivot
               ! Force on the master; for a support, the reaction on the node.
               if (un%kind == UNIT_SUPPORT) then

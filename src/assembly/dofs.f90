@@ -133,6 +133,7 @@ contains
     call activate_elements(model, table, has)
     call activate_given(model, table, has)
     call activate_supports(model, table, has)
+    call activate_couplings(model, table, has)
 
     call build_link_units(model, table, has, error)
     call build_support_units(model, table, has, error)
@@ -238,6 +239,23 @@ contains
        end associate
     end do
   end subroutine activate_supports
+
+  subroutine activate_couplings(model, table, has)
+    !! The DOFs of coupling constraints are active (a reference node's rotations).
+    type(model_t), intent(in) :: model
+    type(dof_table_t), intent(in) :: table
+    logical, intent(inout) :: has(:, :)
+    integer :: i, t
+    if (.not. allocated(model%equations)) return
+    do i = 1, size(model%equations)
+       associate (e => model%equations(i))
+         if (.not. e%coupling) cycle
+         do t = 1, size(e%coef)
+            has(e%dof(t), table%vertex_offset(e%sub(t)) + e%node(t)) = .true.
+         end do
+       end associate
+    end do
+  end subroutine activate_couplings
 
   subroutine activate_units(table, has)
     type(dof_table_t), intent(in) :: table

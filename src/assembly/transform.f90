@@ -488,6 +488,10 @@ contains
                 tr%pool_coef(tr%map_start(p1)) == 1.0_wp .and. tr%u0(p1) == 0.0_wp) jstar = j
          end if
          if (jstar == 0 .and. e%tie > 0) cycle   ! a tie's slave DOF already dependent: no tie there (CalculiX)
+         if (e%coupling) then
+            call apply_coupling_equation(model, tr, te, e, jstar, ie, error)
+            cycle
+         end if
          if (jstar == 0) then
             call add_error_line(error, EXIT_DECK, head//'the dependent DOF '//dof_text(e, 1)// &
                  ' is already dependent (a contact slave, a support or an earlier equation makes it so); '// &
@@ -537,6 +541,46 @@ contains
       text = node_label(model, e%sub(t), e%node(t))//' DOF '//trim(buf)
     end function dof_text
   end subroutine apply_equations
+
+  subroutine apply_coupling_equation(model, tr, te, e, jstar, ie, error)
+    !! A coupling constraint (*COUPLING, *RIGID BODY, *MPC): its first DOF is
+    !! eliminated when it is still its own column (jstar) and large enough in the
+    !! substituted form; otherwise (a coupled node held by a support, a contact
+    !! or another constraint) another column is, as for a RIGID loop. A form
+    !! that cancels is redundant when its prescribed part is zero, else a conflict.
+    type(model_t), intent(in) :: model
+    type(transform_t), intent(inout) :: tr
+    type(equation_terms_t), intent(in) :: te
+    type(equation_t), intent(in) :: e
+    integer(i8), intent(in) :: jstar
+    integer, intent(in) :: ie
+    type(error_t), allocatable, intent(inout) :: error
+    integer(i8), allocatable :: col(:)
+    real(wp), allocatable :: coef(:)
+    real(wp) :: const, amax
+    integer :: best, i
+    type(constraint_t) :: cs
+    call equation_form(tr, te, col, coef, const)
+    amax = 0.0_wp
+    if (size(coef) > 0) amax = maxval(abs(coef))
+    if (amax <= CONS_ZERO*maxval(abs(te%a))) then
+       if (abs(const) > CONS_ZERO*max(maxval(abs(tr%u0)), tiny(1.0_wp)) .and. abs(const) > 0.0_wp) &
+            call add_error_line(error, EXIT_DECK, loc_text(model, e%loc)//': error: coupling constraint at node '// &
+            node_label(model, e%sub(1), e%node(1))//': prescribed displacements conflict with it (mismatch '// &
+            rtoa(const)//')')
+       return
+    end if
+    best = 0
+    do i = 1, size(col)
+       if (col(i) == jstar .and. jstar > 0 .and. abs(coef(i)) >= PIVOT_FRACTION*amax) best = i
+    end do
+    if (best == 0) best = choose_pivot(tr, col, coef, amax)
+    cs = constraint_t()
+    cs%equation = ie
+    call eliminate(tr, col, coef, const, best, cs)
+    cs%status = CONS_ELIMINATED
+    call push_constraint(tr, cs)
+  end subroutine apply_coupling_equation
 
   subroutine equation_form(tr, te, col, coef, const)
     !! The equation sum_i a_i u(p_i) = 0 as aᵀq + const over the current maps.

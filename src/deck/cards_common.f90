@@ -23,7 +23,7 @@ module superjoin_deck_cards_common
        CARD_REQUEST, CARD_SPRING_ELEMENT, CARD_SPRING, CARD_COMBINATION, CARD_EXPANSION, &
        CARD_TEMPERATURE, CARD_EQUATION, CARD_TRANSFORM, CARD_NODAL_THICKNESS, PARALLEL_TOL, &
        NAME_LEN, ORIENT_VALUES, ELASTIC_FIELDS, VECTOR_FIELDS, CONTACT_FIELDS, LOAD_FIELDS, &
-       GRAV_FIELDS, CARD_SURFACE, CARD_DSLOAD, CARD_SECTION_PRINT, CARD_TIE
+       GRAV_FIELDS, CARD_SURFACE, CARD_DSLOAD, CARD_SECTION_PRINT, CARD_TIE, CARD_COUPLING_DOFS, CARD_MPC
 
   integer, parameter :: CARD_NONE = 0, CARD_SKIP = 1, CARD_NODATA = 2, CARD_HEADING = 3, &
        CARD_NODE = 4, CARD_ELEMENT = 5, CARD_NSET = 6, CARD_ELSET = 7, CARD_SECTION = 8, &
@@ -54,6 +54,8 @@ module superjoin_deck_cards_common
     !! *SECTION PRINT (superjoin_deck_cards_output)
   integer, parameter :: CARD_TIE = 171
     !! *TIE (superjoin_deck_tie_build)
+  integer, parameter :: CARD_COUPLING_DOFS = 181, CARD_MPC = 182
+    !! *KINEMATIC / *DISTRIBUTING and *MPC (superjoin_deck_coupling_cards)
 
 contains
 

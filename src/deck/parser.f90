@@ -21,7 +21,7 @@ module superjoin_deck_parser
        CARD_CLOAD, CARD_DLOAD, CARD_DENSITY, CARD_TSHEAR, CARD_INSTANCE, CARD_CHANGE_CONTACT, &
        CARD_INTERFACE, CARD_STATIC, CARD_REQUEST, CARD_SPRING_ELEMENT, CARD_SPRING, &
        CARD_COMBINATION, CARD_EXPANSION, CARD_TEMPERATURE, CARD_EQUATION, CARD_TRANSFORM, &
-       CARD_NODAL_THICKNESS, NAME_LEN, CARD_SURFACE, CARD_DSLOAD, CARD_SECTION_PRINT, CARD_TIE
+       CARD_NODAL_THICKNESS, NAME_LEN, CARD_SURFACE, CARD_DSLOAD, CARD_SECTION_PRINT, CARD_TIE, CARD_COUPLING_DOFS, CARD_MPC
   use superjoin_deck_cards_assembly, only: assembly_allows, finish_assembly, kw_assembly, &
        data_instance, kw_interface, data_interface, kw_change_contact, data_change_contact, &
        kw_contact, data_contact, kw_support, data_support
@@ -38,6 +38,7 @@ module superjoin_deck_parser
   use superjoin_deck_cards_output, only: kw_output, kw_request, data_request, kw_section_print, data_section_print
   use superjoin_deck_equations, only: kw_equation, data_equation, end_equation_card
   use superjoin_deck_ties, only: kw_tie, data_tie
+  use superjoin_deck_coupling_cards, only: kw_coupling_card, data_coupling_dofs, data_mpc
   use superjoin_deck_transforms, only: kw_transform, data_transform
   use superjoin_deck_nodal_thickness, only: kw_nodal_thickness, data_nodal_thickness
   use superjoin_deck_matrix_input, only: kw_matrix_input, kw_matrix_output
@@ -137,7 +138,7 @@ contains
     type(source_loc_t), intent(in) :: loc
     type(keyword_line_t) :: kw
     character(:), allocatable :: msg
-    integer :: prev_mat, prev_beam_sec
+    integer :: prev_mat, prev_beam_sec, prev_coupling
 
     call parse_keyword_line(line, kw, msg)
     if (allocated(msg)) then
@@ -157,19 +158,22 @@ contains
     st%cur_mat = 0
     prev_beam_sec = st%cur_beam_sec
     st%cur_beam_sec = 0
+    prev_coupling = st%open_coupling
+    st%open_coupling = 0
     call set_card(st, CARD_NODATA, '*'//kw%keyword, loc)
     if (.not. assembly_allows(st, kw, loc)) return
-    call open_card(st, kw, loc, prev_mat, prev_beam_sec)
+    call open_card(st, kw, loc, prev_mat, prev_beam_sec, prev_coupling)
   end subroutine keyword_line
 
-  subroutine open_card(st, kw, loc, prev_mat, prev_beam_sec)
+  subroutine open_card(st, kw, loc, prev_mat, prev_beam_sec, prev_coupling)
     !! The one dispatch on the keyword: the card routine of each keyword.
-    !! prev_mat and prev_beam_sec are the *MATERIAL and *BEAM SECTION that the
-    !! previous card opened (0: none), for the cards that continue them.
+    !! prev_mat, prev_beam_sec and prev_coupling are the *MATERIAL, *BEAM
+    !! SECTION and *COUPLING that the previous card opened (0: none), for the
+    !! cards that continue them.
     type(deck_state_t), intent(inout) :: st
     type(keyword_line_t), intent(in) :: kw
     type(source_loc_t), intent(in) :: loc
-    integer, intent(in) :: prev_mat, prev_beam_sec
+    integer, intent(in) :: prev_mat, prev_beam_sec, prev_coupling
     select case (kw%keyword)
     case ('HEADING')
        call kw_heading(st, kw, loc)
@@ -249,6 +253,8 @@ contains
        call kw_tie(st, kw, loc)
     case ('TRANSFORM')
        call kw_transform(st, kw, loc)
+    case ('COUPLING', 'KINEMATIC', 'DISTRIBUTING', 'RIGID BODY', 'MPC')
+       call kw_coupling_card(st, kw, loc, prev_coupling)
     case ('MATRIX INPUT')
        call kw_matrix_input(st, kw, loc)
     case ('SUBSTRUCTURE MATRIX OUTPUT')
@@ -289,6 +295,8 @@ contains
     case (CARD_SURFACE)
        if (st%card_ndata == 0) call report_loc(st, st%card_loc, st%card_name// &
             ' needs a data line (element or elset, face)')
+    case (CARD_MPC)
+       if (st%card_ndata == 0) call report_loc(st, st%card_loc, st%card_name//' needs a data line (BEAM, a, b)')
     case (CARD_EQUATION)
        call end_equation_card(st)
     end select
@@ -392,6 +400,10 @@ contains
        call data_tie(st, line, loc)
     case (CARD_TRANSFORM)
        call data_transform(st, line, loc)
+    case (CARD_COUPLING_DOFS)
+       call data_coupling_dofs(st, line, loc)
+    case (CARD_MPC)
+       call data_mpc(st, line, loc)
     case (CARD_NODAL_THICKNESS)
        call data_nodal_thickness(st, line, loc)
     case (CARD_STATIC)

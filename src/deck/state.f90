@@ -15,6 +15,7 @@ module superjoin_deck_state
        SUBK_INSTANCE, instance_b_t, override_b_t, step_b_t, temp_b_t, surface_b_t, tie_b_t, combo_b_t, &
        OP_DEFAULT, OP_MOD, OP_NEW, request_b_t, SPRING_1, SPRING_2, SPRING_A, spring_elem_b_t, &
        spring_card_b_t, given_b_t, export_b_t
+  use superjoin_deck_coupling_records, only: coupling_b_t
   implicit none (type, external)
   private
 
@@ -70,6 +71,8 @@ module superjoin_deck_state
      type(nthick_b_t), allocatable :: nthicks(:)       !! *NODAL THICKNESS data lines as read
      integer :: nequation = 0
      type(equation_b_t), allocatable :: equations(:)   !! *EQUATION constraints as read
+     type(coupling_b_t), allocatable :: couplings(:)   !! *COUPLING, *RIGID BODY, *MPC as read (unallocated: none)
+     integer :: open_coupling = 0                      !! the *COUPLING card just read (0: the last keyword was another)
      integer :: nstep = 0
      type(step_b_t), allocatable :: steps(:)
      type(controls_t) :: controls

@@ -282,6 +282,9 @@ module superjoin_model_types
      type(source_loc_t) :: loc             !! the line with the number of terms
      integer :: tie = 0                    !! made by *TIE number tie (0: an *EQUATION): dropped, not an
                                            !! error, where its dependent DOF is already dependent
+     logical :: coupling = .false.
+       !! written by *COUPLING, *RIGID BODY or *MPC (superjoin_deck_coupling_build): its DOFs are
+       !! activated, and when its first DOF is already dependent another of its columns is eliminated
   end type equation_t
 
   type, public :: node_frame_t

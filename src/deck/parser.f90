@@ -247,10 +247,8 @@ contains
        call kw_change_contact(st, kw, loc)
     case ('INTERFACE')
        call kw_interface(st, kw, loc)
-    case ('EQUATION')
-       call kw_equation(st, kw, loc)
-    case ('TIE')
-       call kw_tie(st, kw, loc)
+    case ('EQUATION', 'TIE')
+       call kw_tie_or_equation(st, kw, loc)
     case ('TRANSFORM')
        call kw_transform(st, kw, loc)
     case ('COUPLING', 'KINEMATIC', 'DISTRIBUTING', 'RIGID BODY', 'MPC')
@@ -266,6 +264,18 @@ contains
        st%card = CARD_SKIP
     end select
   end subroutine open_card
+
+  subroutine kw_tie_or_equation(st, kw, loc)
+    !! *EQUATION (superjoin_deck_equations) or *TIE (superjoin_deck_ties): exact constraints.
+    type(deck_state_t), intent(inout) :: st
+    type(keyword_line_t), intent(in) :: kw
+    type(source_loc_t), intent(in) :: loc
+    if (kw%keyword == 'TIE') then
+       call kw_tie(st, kw, loc)
+    else
+       call kw_equation(st, kw, loc)
+    end if
+  end subroutine kw_tie_or_equation
 
   subroutine end_card(st)
     !! Checks when a card ends (next keyword or end of input): data it needed.

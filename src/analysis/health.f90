@@ -34,6 +34,9 @@ module superjoin_analysis_health
   real(wp), parameter, public :: MAXRATIO_WARN = 1.0e6_wp
     !! MAXRATIO above this is flagged as a loss of accuracy (digits lost ≈ log10):
     !! PENALTY's measured errors reach 10 MAXRATIO ε, so past 1e6 fewer than 8 digits are sure.
+  real(wp), parameter :: RATIO_TIE = 1.0e-9_wp
+    !! MAXRATIO values of columns this close (relative) are a tie: the first column keeps the
+    !! place, so round-off (another build, another BLAS) does not move the place the listing names.
   real(wp), parameter, public :: MAXRATIO_FATAL = 1.0e13_wp
     !! MAXRATIO above this (a pivot within about 1/(45 ε) of total cancellation)
     !! is numerically singular (exit 3): exact mechanisms factor with MAXRATIO
@@ -239,7 +242,7 @@ contains
        else
           ratio = abs(kd(j)/d(j))
        end if
-       if (ratio > res%summary%maxratio) then
+       if (ratio > res%summary%maxratio*(1.0_wp + RATIO_TIE)) then
           res%summary%maxratio = ratio
           jmax = j
        end if

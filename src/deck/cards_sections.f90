@@ -779,7 +779,7 @@ contains
     type(deck_state_t), intent(inout) :: st
     character(*), intent(in) :: line
     type(source_loc_t), intent(in) :: loc
-    real(wp) :: v(2)
+    real(wp) :: v(2), n(3)
     integer :: axis
     if (st%orientations(st%card_item)%cylindrical) then
        call report_loc(st, loc, '*ORIENTATION: the additional rotation (second data line) is only for '// &
@@ -795,7 +795,8 @@ contains
        return
     end if
     associate (q => st%orientations(st%card_item)%q)
-      q = transpose(matmul(axis_rotation(q(axis, :), v(2)), transpose(q)))   ! each local axis (a row of q) turned
+      n = q(axis, :)                     ! a contiguous copy (no array temporary)
+      q = transpose(matmul(axis_rotation(n, v(2)), transpose(q)))   ! each local axis (a row of q) turned
     end associate
   end subroutine orientation_rotation
 end module superjoin_deck_cards_sections

@@ -152,9 +152,10 @@ contains
     ok = norm2(d) > AXIS_TOL*max(norm2(b - a), norm2(x - a))
     q = 0.0_wp
     if (.not. ok) return
-    q(1, :) = d/norm2(d)
+    d = d/norm2(d)
+    q(1, :) = d
     q(3, :) = e3
-    q(2, :) = cross(e3, q(1, :))
+    q(2, :) = cross(e3, d)
   end function cylinder_frame
 
   pure function cross(u, v) result(w)

@@ -249,8 +249,10 @@ def macneal(exe, work):
             ccx = ccx_tip(work, name, text, tipn, dof)
             ratios[(et, dof)] = tip / beam[load]
             print(f"| {et} | {load} | {tip:.5f} | {tip / beam[load]:.4f} | {tip / ref[load]:.4f} | {ccx} |")
-    vs.check(all(abs(ratios.get(("C3D8R", d), 0) - ratios.get(("C3D8I", d), 1)) < 1e-9 for d in (2, 3)),
-             "C3D8R: on rectangular elements, C3D8I's deflections (its hourglass stiffness is C3D8I's)")
+    # equal in exact arithmetic; the tolerance allows the round-off of another build (Debug: 2e-9)
+    diff = max(abs(ratios.get(("C3D8R", d), 0) - ratios.get(("C3D8I", d), 1)) for d in (2, 3))
+    vs.check(diff < 1e-7,
+             f"C3D8R: on rectangular elements, C3D8I's deflections (its hourglass stiffness is C3D8I's; {diff:.1e})")
     vs.check(all(0.95 < ratios.get(("C3D8R", d), 0) < 1.05 for d in (2, 3)),
              "C3D8R: MacNeal-Harder tip deflections within 5% of beam theory")
 

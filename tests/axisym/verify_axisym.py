@@ -36,10 +36,12 @@ Cases
 import csv
 import math
 import os
-import re
 import shutil
 import subprocess
 import sys
+
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), '..', 'solids'))
+from verify_solids import dat_blocks  # noqa: E402  (CalculiX's .dat blocks)
 
 failures = []
 TYPES = ("CAX3", "CAX4", "CAX6", "CAX8", "CAX8R")
@@ -285,29 +287,6 @@ def refusals(exe, work):
         t = t.replace("*MATERIAL, NAME=MAT\n", "*MATERIAL, NAME=MAT\n*DENSITY\n 1.\n")
         r = solve(exe, work, "refuse_" + name, t, expect_fail=True)
         check(r.returncode != 0 and msg in r.stderr, f"refused: {name} ({r.stderr.strip()[:120]})")
-
-
-def dat_blocks(path):
-    out, block = {}, None
-    with open(path) as f:
-        for line in f:
-            m = re.match(r"\s*(displacements|forces|stresses) ", line)
-            if m:
-                block = out.setdefault(m.group(1), {})
-                continue
-            fields = line.split()
-            if block is None or not fields:
-                continue
-            try:
-                vals = [float(v) for v in fields]
-            except ValueError:
-                block = None
-                continue
-            if len(vals) == 4:
-                block[int(vals[0])] = vals[1:]
-            elif len(vals) == 8:
-                block[(int(vals[0]), int(vals[1]))] = vals[2:]
-    return out
 
 
 def ccx_tests(exe, work):

@@ -573,11 +573,12 @@ def calculix(exe, work):
 
 
 def dat_blocks(path):
-    """CalculiX .dat: {'displacements': {node: values}, 'stresses'/'strains': {(elem, ip): values}}."""
+    """CalculiX .dat: {'displacements'/'forces': {node: values}, 'stresses'/'strains': {(elem, ip): values}}
+    (also tests/axisym/verify_axisym.py's)."""
     out, block = {}, None
     with open(path) as f:
         for line in f:
-            m = re.match(r"\s*(displacements|stresses|strains) ", line)
+            m = re.match(r"\s*(displacements|forces|stresses|strains) ", line)
             if m:
                 block = out.setdefault(m.group(1), {})
                 continue

@@ -15,6 +15,7 @@ module superjoin_output_requests
   use superjoin_utils_text_buffer, only: text_buffer_t
   use superjoin_output_columns, only: element_prefix, chop
   use superjoin_utils_strings, only: itoa
+  use superjoin_utils_sorting, only: sort_index
   use superjoin_output_energy, only: write_energy_request
   use superjoin_output_stresses, only: write_point_stress_table, write_nodal_stress_table, &
        write_fibre_stress_table
@@ -196,21 +197,51 @@ contains
   end subroutine add_reactions
 
   subroutine add_node_forces(list, subs, nodes, v)
-    !! v(dof, node): the sum of the forces of list on each listed node, zero elsewhere.
+    !! v(dof, node): the sum of the forces of list on each listed node, zero elsewhere
+    !! (the listed nodes sorted once, each force found by bisection: the lists of
+    !! *EQUATION or *TIE forces may be as long as the model).
     type(reaction_t), intent(in) :: list(:)
     integer, intent(in) :: subs(:)
     integer(ip), intent(in) :: nodes(:)
     real(wp), intent(out) :: v(:, :)
-    integer :: i, k
+    integer(i8), allocatable :: keys(:)
+    integer, allocatable :: order(:)
+    integer(i8) :: key
+    integer :: i, k, lo, hi, mid, n
     v = 0.0_wp
+    n = size(nodes)
+    if (size(list) == 0 .or. n == 0) return
+    keys = [(node_key(subs(i), int(nodes(i), i8)), i=1, n)]
+    order = [(i, i=1, n)]
+    call sort_index(keys, order)
     do k = 1, size(list)
        associate (rc => list(k))
-         do i = 1, size(nodes)
-            if (subs(i) == rc%sub .and. nodes(i) == rc%node) v(rc%dof, i) = v(rc%dof, i) + rc%force
+         key = node_key(rc%sub, int(rc%node, i8))
+         lo = 1
+         hi = n + 1
+         do while (lo < hi)        ! the first of the sorted nodes with keys >= key
+            mid = (lo + hi)/2
+            if (keys(order(mid)) < key) then
+               lo = mid + 1
+            else
+               hi = mid
+            end if
+         end do
+         do i = lo, n              ! every listing of the node (a print set may name it twice)
+            if (keys(order(i)) /= key) exit
+            v(rc%dof, order(i)) = v(rc%dof, order(i)) + rc%force
          end do
        end associate
     end do
   end subroutine add_node_forces
+
+  pure integer(i8) function node_key(sub, node)
+    !! One sortable key of (substructure, node).
+    integer, intent(in) :: sub
+    integer(i8), intent(in) :: node
+    integer(i8), parameter :: NODE_SPAN = 2_i8**32
+    node_key = int(sub, i8)*NODE_SPAN + node
+  end function node_key
 
   subroutine add_cloads(model, is, subs, nodes, v)
     !! v(dof, node): the concentrated loads (*CLOAD) of step is on each listed

@@ -24,6 +24,8 @@ module superjoin_elements_axisym
   use superjoin_model_types, only: material_t, ET_CAX3, ET_CAX4, ET_CAX6, ET_CAX8, ET_CAX8R
   use superjoin_elements_quadratic, only: quadratic_shape
   use superjoin_elements_solid, only: spd_solve
+  use superjoin_elements_quadrature, only: quad_rule_t, gauss_square, triangle_rule, TRI_CENTROID, TRI_THREE, &
+       TRI_DUNAVANT5
   implicit none (type, external)
   private
 
@@ -35,13 +37,8 @@ module superjoin_elements_axisym
     !! its .dat prints the nodal forces of the wedge, the totals divided by 180.
 
   real(wp), parameter :: TWO_PI = 8.0_wp*atan(1.0_wp)
-  real(wp), parameter :: G2 = 1.0_wp/sqrt(3.0_wp), G3 = sqrt(0.6_wp)
+  real(wp), parameter :: G2 = 1.0_wp/sqrt(3.0_wp)
 
-  type :: axi_rule_t
-    !! Integration points (natural coordinates) and weights.
-     real(wp), allocatable :: xi(:, :)   !! (2, npoint)
-     real(wp), allocatable :: w(:)
-  end type axi_rule_t
 
   type :: axi_point_t
     !! One integration point of an element: shape functions, B, r, weight 2π r |J| w.
@@ -84,43 +81,23 @@ contains
     !! The stiffness rule of etype (module header), or (for_load) the load rule.
     integer, intent(in) :: etype
     logical, intent(in) :: for_load
-    type(axi_rule_t) :: r
-    real(wp), parameter :: A1 = 0.059715871789770_wp, B1 = 0.470142064105115_wp, &
-         A2 = 0.797426985353087_wp, B2 = 0.101286507323456_wp, &
-         W1 = 0.132394152788506_wp, W2 = 0.125939180544827_wp
+    type(quad_rule_t) :: r
     logical :: tri
     tri = etype == ET_CAX3 .or. etype == ET_CAX6
     if (for_load .and. tri) then
-       r%xi = reshape([1.0_wp/3, 1.0_wp/3, B1, B1, A1, B1, B1, A1, B2, B2, A2, B2, B2, A2], [2, 7])
-       r%w = 0.5_wp*[0.225_wp, W1, W1, W1, W2, W2, W2]
+       r = triangle_rule(TRI_DUNAVANT5)
     else if (for_load .or. etype == ET_CAX8) then
        r = gauss_square(3)
     else if (etype == ET_CAX3) then
-       r%xi = reshape([1.0_wp/3, 1.0_wp/3], [2, 1])
-       r%w = [0.5_wp]
+       r = triangle_rule(TRI_CENTROID)
     else if (etype == ET_CAX6) then
-       r%xi = reshape([1.0_wp/6, 1.0_wp/6, 2.0_wp/3, 1.0_wp/6, 1.0_wp/6, 2.0_wp/3], [2, 3])
-       r%w = [1.0_wp, 1.0_wp, 1.0_wp]/6.0_wp
+       r = triangle_rule(TRI_THREE)
     else
        r%xi = reshape([-G2, -G2, G2, -G2, G2, G2, -G2, G2], [2, 4])   ! counter-clockwise
        r%w = [1.0_wp, 1.0_wp, 1.0_wp, 1.0_wp]
     end if
   end function axi_rule
 
-  pure function gauss_square(m) result(r)
-    !! m×m Gauss rule on [-1, 1]² (m = 3), ξ fastest.
-    integer, intent(in) :: m
-    type(axi_rule_t) :: r
-    real(wp), parameter :: S(3) = [-G3, 0.0_wp, G3], W(3) = [5.0_wp, 8.0_wp, 5.0_wp]/9.0_wp
-    integer :: i, j
-    allocate (r%xi(2, m*m), r%w(m*m))
-    do j = 1, m
-       do i = 1, m
-          r%xi(:, i + m*(j - 1)) = [S(i), S(j)]
-          r%w(i + m*(j - 1)) = W(i)*W(j)
-       end do
-    end do
-  end function gauss_square
 
   pure subroutine check_section(x, error)
     !! The nodes lie in the x-y plane (z = 0) at r = x >= 0.
@@ -138,7 +115,7 @@ contains
     !! Errors: a node off the half plane x >= 0, z = 0; a zero or sign-changing
     !! Jacobian (distorted element); a point on the axis (r = 0).
     real(wp), intent(in) :: x(:, :)
-    type(axi_rule_t), intent(in) :: rl
+    type(quad_rule_t), intent(in) :: rl
     type(axi_point_t), allocatable, intent(out) :: pts(:)
     type(error_t), allocatable, intent(out) :: error
     real(wp) :: dn(2, size(x, 2)), jac(2, 2), inv(2, 2), dx(2, size(x, 2)), detj, sgn
@@ -279,7 +256,7 @@ contains
     !! fits: the mean of their corners.
     integer, intent(in) :: etype, nn
     real(wp), allocatable :: e(:, :)
-    type(axi_rule_t) :: r
+    type(quad_rule_t) :: r
     real(wp), parameter :: SX(4) = [-1.0_wp, 1.0_wp, 1.0_wp, -1.0_wp], SY(4) = [-1.0_wp, -1.0_wp, 1.0_wp, 1.0_wp]
     real(wp) :: nf(8), dn(2, 8), nm(9, 8)
     integer :: a, g, nc

@@ -31,19 +31,12 @@ module superjoin_elements_centrif
   use superjoin_elements_shell, only: shell_frame, is_plate_type, is_plane_type
   use superjoin_elements_traits, only: element_traits, element_traits_t, FAMILY_SOLID
   use superjoin_elements_solid, only: point_gradients
+  use superjoin_elements_quadrature, only: quad_rule_t, gauss_line, gauss_square, triangle_rule, TRI_DUNAVANT5
   implicit none (type, external)
   private
 
   public :: centrif_load, axis_distance
 
-  integer, parameter :: NTRI = 7
-  real(wp), parameter :: TRI_A1 = 0.059715871789770_wp, TRI_B1 = 0.470142064105115_wp, &
-       TRI_A2 = 0.797426985353087_wp, TRI_B2 = 0.101286507323456_wp
-  real(wp), parameter :: TRI_W0 = 0.225_wp, TRI_W1 = 0.132394152788506_wp, TRI_W2 = 0.125939180544827_wp
-    !! Dunavant's degree-5 rule on the unit triangle (weights sum to 1).
-  integer, parameter :: NGQ = 3
-  real(wp), parameter :: GQ_S(NGQ) = [-sqrt(0.6_wp), 0.0_wp, sqrt(0.6_wp)]
-  real(wp), parameter :: GQ_W(NGQ) = [5.0_wp/9.0_wp, 8.0_wp/9.0_wp, 5.0_wp/9.0_wp]
   real(wp), parameter :: PLANE_Z_TOL = 1.0e-12_wp
     !! Largest out-of-plane share of the load on a plane element (relative).
 
@@ -126,26 +119,25 @@ contains
     !! L3, L4; wedge: the triangle's ξ, η and ζ -1..1): points pts(3, 64), weights wts(64).
     type(element_traits_t), intent(in) :: t
     real(wp), allocatable, intent(out) :: pts(:, :), wts(:)
-    real(wp), parameter :: P1 = 0.3399810435848563_wp, P2 = 0.8611363115940526_wp
-    real(wp), parameter :: W1 = 0.6521451548625461_wp, W2 = 0.3478548451374538_wp
-    real(wp), parameter :: GP(4) = [-P2, -P1, P1, P2], GW(4) = [W2, W1, W1, W2]
+    real(wp), allocatable :: gp(:), gw(:)
     real(wp) :: u(3), w
     integer :: i, j, k, g
+    call gauss_line(4, gp, gw)
     allocate (pts(3, 64), wts(64))
     g = 0
     do k = 1, 4
        do j = 1, 4
           do i = 1, 4
              g = g + 1
-             w = GW(i)*GW(j)*GW(k)
-             u = 0.5_wp*(1.0_wp + [GP(i), GP(j), GP(k)])      ! the unit cube
+             w = gw(i)*gw(j)*gw(k)
+             u = 0.5_wp*(1.0_wp + [gp(i), gp(j), gp(k)])      ! the unit cube
              if (t%edges == 6) then                           ! hexahedron
-                pts(:, g) = [GP(i), GP(j), GP(k)]
+                pts(:, g) = [gp(i), gp(j), gp(k)]
              else if (t%edges == 4) then                      ! tetrahedron
                 pts(:, g) = [u(1), u(2)*(1 - u(1)), u(3)*(1 - u(1))*(1 - u(2))]
                 w = w*(1 - u(1))**2*(1 - u(2))/8
              else                                             ! wedge
-                pts(:, g) = [u(1), u(2)*(1 - u(1)), GP(k)]
+                pts(:, g) = [u(1), u(2)*(1 - u(1)), gp(k)]
                 w = w*(1 - u(1))/4
              end if
              wts(g) = w
@@ -253,34 +245,25 @@ contains
     real(wp), intent(in) :: xl(:, :)
     real(wp), intent(out) :: m(:, :)
     type(error_t), allocatable, intent(out) :: error
-    real(wp), allocatable :: pts(:, :), wts(:)
+    type(quad_rule_t) :: r
     real(wp) :: nf(size(xl, 2)), dn(2, size(xl, 2)), jm(2, 2), detj
-    integer :: n, g, i, j
+    integer :: n, g, j
     n = size(xl, 2)
     m = 0.0_wp
     if (n == 3 .or. n == 6) then
-       pts = reshape([1.0_wp/3, 1.0_wp/3, &
-            TRI_A1, TRI_B1, TRI_B1, TRI_A1, TRI_B1, TRI_B1, &
-            TRI_A2, TRI_B2, TRI_B2, TRI_A2, TRI_B2, TRI_B2], [2, NTRI])
-       wts = 0.5_wp*[TRI_W0, TRI_W1, TRI_W1, TRI_W1, TRI_W2, TRI_W2, TRI_W2]
+       r = triangle_rule(TRI_DUNAVANT5)
     else if (n == 4 .or. n == 8) then
-       allocate (pts(2, NGQ*NGQ), wts(NGQ*NGQ))
-       do j = 1, NGQ
-          do i = 1, NGQ
-             pts(:, i + NGQ*(j - 1)) = [GQ_S(i), GQ_S(j)]
-             wts(i + NGQ*(j - 1)) = GQ_W(i)*GQ_W(j)
-          end do
-       end do
+       r = gauss_square(3)
     else
        call fatal_error(error, EXIT_DECK, 'CENTRIF: an area element has 3, 4, 6 or 8 nodes')
        return
     end if
-    do g = 1, size(wts)
-       call shape(n, pts(:, g), nf, dn)
+    do g = 1, size(r%w)
+       call shape(n, r%xi(:, g), nf, dn)
        jm = matmul(dn, transpose(xl))
        detj = abs(jm(1, 1)*jm(2, 2) - jm(1, 2)*jm(2, 1))
        do j = 1, n
-          m(:, j) = m(:, j) + wts(g)*detj*nf*nf(j)
+          m(:, j) = m(:, j) + r%w(g)*detj*nf*nf(j)
        end do
     end do
   end subroutine mass_matrix

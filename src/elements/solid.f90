@@ -33,24 +33,20 @@ module superjoin_elements_solid
   use superjoin_model_types, only: material_t, orientation_t, MAT_ISO, ET_C3D8, ET_C3D20, ET_C3D20R, ET_C3D4, &
        ET_C3D10, ET_C3D8I, ET_C3D6, ET_C3D15, ET_C3D8R
   use superjoin_elements_solid_reduced, only: hourglass_stiffness
+  use superjoin_elements_quadrature, only: quad_rule_t, gauss_cube, gauss_line, triangle_rule, TRI_CENTROID, TRI_THREE
   use superjoin_elements_materials, only: elasticity, material_stiffness, spd_solve
   use superjoin_model_material_table, only: point_material, point_thermal_strain
   implicit none (type, external)
   private
 
   public :: is_solid_type, solid_stiffness, solid_body_load, solid_shape, solid_forces
-  public :: rule_t, solid_rule, point_gradients, elasticity, strain_matrix, solid_node_coordinates
+  public :: solid_rule, point_gradients, elasticity, strain_matrix, solid_node_coordinates
   public :: spd_solve, mode_strains, mean_gradients, solid_thermal_load, thermal_point_stress, point_elasticity
 
   integer, parameter, public :: WEDGE_EDGES(2, 9) = reshape([1, 2, 2, 3, 3, 1, 4, 5, 5, 6, 6, 4, 1, 4, 2, 5, 3, 6], &
        [2, 9])
     !! The edges of a wedge, in the order of C3D15's mid-side nodes 7..15.
 
-  type :: rule_t
-    !! Integration points (natural coordinates) and weights.
-     real(wp), allocatable :: xi(:, :)   !! (3, npoint)
-     real(wp), allocatable :: w(:)
-  end type rule_t
 
 contains
 
@@ -260,20 +256,20 @@ contains
     !! the reduced C3D20R and C3D8R, for consistent body loads).
     integer, intent(in) :: etype
     logical, intent(in) :: for_load
-    type(rule_t) :: r
+    type(quad_rule_t) :: r
     real(wp), parameter :: A = 0.5854101966249685_wp, B = 0.1381966011250105_wp
     select case (etype)
     case (ET_C3D8, ET_C3D8I)
-       r = gauss_hex(2)
+       r = gauss_cube(2)
     case (ET_C3D8R)
-       r = gauss_hex(2)
+       r = gauss_cube(2)
        if (for_load) return
        r%xi = reshape([0.0_wp, 0.0_wp, 0.0_wp], [3, 1])
        r%w = [8.0_wp]
     case (ET_C3D20R)
-       r = gauss_hex(merge(3, 2, for_load))
+       r = gauss_cube(merge(3, 2, for_load))
     case (ET_C3D20)
-       r = gauss_hex(3)
+       r = gauss_cube(3)
     case (ET_C3D4)
        r%xi = reshape([0.25_wp, 0.25_wp, 0.25_wp], [3, 1])
        r%w = [1.0_wp/6.0_wp]
@@ -285,57 +281,30 @@ contains
     end select
   end function solid_rule
 
-  pure function gauss_hex(m) result(r)
-    !! The m×m×m Gauss-Legendre rule on the cube -1..1 (m = 2 or 3).
-    integer, intent(in) :: m
-    type(rule_t) :: r
-    real(wp) :: p(m), w(m)
-    integer :: i, j, k, g
-    if (m == 2) then
-       p = [-1.0_wp, 1.0_wp]/sqrt(3.0_wp)
-       w = 1.0_wp
-    else
-       p = [-sqrt(0.6_wp), 0.0_wp, sqrt(0.6_wp)]
-       w = [5.0_wp, 8.0_wp, 5.0_wp]/9.0_wp
-    end if
-    allocate (r%xi(3, m**3), r%w(m**3))
-    g = 0
-    do k = 1, m
-       do j = 1, m
-          do i = 1, m
-             g = g + 1
-             r%xi(:, g) = [p(i), p(j), p(k)]
-             r%w(g) = w(i)*w(j)*w(k)
-          end do
-       end do
-    end do
-  end function gauss_hex
 
   pure function gauss_wedge(quadratic) result(r)
-    !! The wedges' rules: C3D6 the triangle's centroid at ζ = ∓1/√3 (weights
-    !! 1/2); C3D15 the triangle's points (1/6, 1/6), (2/3, 1/6), (1/6, 2/3)
-    !! (weights 1/6) at ζ = -√0.6, 0, √0.6 (5/9, 8/9, 5/9), triangle fastest.
+    !! The wedges' rules, the triangle's rule times the line's in ζ, triangle
+    !! fastest: C3D6 the centroid at ζ = ∓1/√3; C3D15 the three points
+    !! (1/6, 1/6), (2/3, 1/6), (1/6, 2/3) at ζ = -√0.6, 0, √0.6.
     logical, intent(in) :: quadratic
-    type(rule_t) :: r
-    real(wp), parameter :: T1 = 1.0_wp/6.0_wp, T2 = 2.0_wp/3.0_wp
-    real(wp) :: zp(3), zw(3), tp(2, 3)
+    type(quad_rule_t) :: r
+    type(quad_rule_t) :: tri
+    real(wp), allocatable :: zp(:), zw(:)
     integer :: i, k, g
-    if (.not. quadratic) then
-       r%xi = reshape([1.0_wp/3.0_wp, 1.0_wp/3.0_wp, -1.0_wp/sqrt(3.0_wp), &
-            1.0_wp/3.0_wp, 1.0_wp/3.0_wp, 1.0_wp/sqrt(3.0_wp)], [3, 2])
-       r%w = [0.5_wp, 0.5_wp]
-       return
+    if (quadratic) then
+       tri = triangle_rule(TRI_THREE)
+       call gauss_line(3, zp, zw)
+    else
+       tri = triangle_rule(TRI_CENTROID)
+       call gauss_line(2, zp, zw)
     end if
-    zp = [-sqrt(0.6_wp), 0.0_wp, sqrt(0.6_wp)]
-    zw = [5.0_wp, 8.0_wp, 5.0_wp]/9.0_wp
-    tp = reshape([T1, T1, T2, T1, T1, T2], [2, 3])
-    allocate (r%xi(3, 9), r%w(9))
+    allocate (r%xi(3, size(tri%w)*size(zw)), r%w(size(tri%w)*size(zw)))
     g = 0
-    do k = 1, 3
-       do i = 1, 3
+    do k = 1, size(zw)
+       do i = 1, size(tri%w)
           g = g + 1
-          r%xi(:, g) = [tp(:, i), zp(k)]
-          r%w(g) = zw(k)/6.0_wp
+          r%xi(:, g) = [tri%xi(:, i), zp(k)]
+          r%w(g) = tri%w(i)*zw(k)
        end do
     end do
   end function gauss_wedge
@@ -390,7 +359,7 @@ contains
     real(wp), intent(out) :: kua(24, 9), kaa(9, 9), g(6, 9, 8)
     type(error_t), allocatable, intent(out) :: error
     type(orientation_t), intent(in), optional :: axes
-    type(rule_t) :: r
+    type(quad_rule_t) :: r
     real(wp), allocatable :: n(:), dn(:, :), dx(:, :)
     real(wp) :: jac0(3, 3), inv0(3, 3), det0, detj, gx(3, 3), b(6, 24), d(6, 6)
     integer :: ig, k
@@ -453,7 +422,7 @@ contains
     real(wp), allocatable, intent(out) :: ke(:, :)
     type(error_t), allocatable, intent(out) :: error
     type(orientation_t), intent(in), optional :: axes
-    type(rule_t) :: r
+    type(quad_rule_t) :: r
     real(wp), allocatable :: n(:), dx(:, :), b(:, :)
     real(wp) :: d(6, 6), detj
     integer :: g, nn
@@ -488,11 +457,11 @@ contains
     real(wp), allocatable, intent(out) :: bbar(:, :)
     real(wp), intent(out) :: vol
     type(error_t), allocatable, intent(out) :: error
-    type(rule_t) :: r
+    type(quad_rule_t) :: r
     real(wp), allocatable :: n(:), dx(:, :)
     real(wp) :: detj
     integer :: g
-    r = gauss_hex(2)
+    r = gauss_cube(2)
     allocate (bbar(3, 8), source=0.0_wp)
     vol = 0.0_wp
     do g = 1, size(r%w)
@@ -588,7 +557,7 @@ contains
     real(wp), intent(out) :: fa(9)
     type(error_t), allocatable, intent(out) :: error
     type(orientation_t), intent(in), optional :: axes
-    type(rule_t) :: r
+    type(quad_rule_t) :: r
     real(wp), allocatable :: n(:), dx(:, :)
     real(wp) :: detj
     integer :: ig
@@ -615,7 +584,7 @@ contains
     real(wp), allocatable, intent(out) :: fe(:)
     type(error_t), allocatable, intent(out) :: error
     type(orientation_t), intent(in), optional :: axes
-    type(rule_t) :: r
+    type(quad_rule_t) :: r
     real(wp), allocatable :: n(:), dx(:, :)
     real(wp) :: detj, kua(24, 9), kaa(9, 9), g(6, 9, 8), fa(9, 1)
     integer :: ig
@@ -650,7 +619,7 @@ contains
     real(wp), intent(in) :: x(:, :), force(3)
     real(wp), allocatable, intent(out) :: fe(:)
     type(error_t), allocatable, intent(out) :: error
-    type(rule_t) :: r
+    type(quad_rule_t) :: r
     real(wp), allocatable :: n(:), dx(:, :)
     real(wp) :: detj
     integer :: g, a

@@ -20,6 +20,7 @@ module superjoin_elements_solid_faces
   use superjoin_model_types, only: ET_C3D8, ET_C3D20, ET_C3D20R, ET_C3D4, ET_C3D10, ET_C3D8I, ET_C3D8R, &
        ET_C3D6, ET_C3D15
   use superjoin_elements_solid, only: WEDGE_EDGES
+  use superjoin_elements_quadrature, only: quad_rule_t, gauss_square, triangle_rule, TRI_CENTROID, TRI_THREE
   implicit none (type, external)
   private
 
@@ -176,36 +177,14 @@ contains
     !! (order 1) or three points (1/6, 1/6), (2/3, 1/6), (1/6, 2/3) (otherwise).
     integer, intent(in) :: nc, order
     real(wp), allocatable, intent(out) :: st(:, :), w(:)
-    real(wp), allocatable :: gp(:), gw(:)
-    integer :: i, j
+    type(quad_rule_t) :: r
     if (nc == 3) then
-       if (order == 1) then
-          st = reshape([1.0_wp, 1.0_wp]/3.0_wp, [2, 1])
-          w = [0.5_wp]
-       else
-          st = reshape([1.0_wp, 1.0_wp, 4.0_wp, 1.0_wp, 1.0_wp, 4.0_wp]/6.0_wp, [2, 3])
-          w = [1.0_wp, 1.0_wp, 1.0_wp]/6.0_wp
-       end if
-       return
+       r = triangle_rule(merge(TRI_CENTROID, TRI_THREE, order == 1))
+    else
+       r = gauss_square(order)
     end if
-    select case (order)
-    case (1)
-       gp = [0.0_wp]
-       gw = [2.0_wp]
-    case (2)
-       gp = [-1.0_wp, 1.0_wp]/sqrt(3.0_wp)
-       gw = [1.0_wp, 1.0_wp]
-    case default
-       gp = [-sqrt(0.6_wp), 0.0_wp, sqrt(0.6_wp)]
-       gw = [5.0_wp, 8.0_wp, 5.0_wp]/9.0_wp
-    end select
-    allocate (st(2, order*order), w(order*order))
-    do j = 1, order
-       do i = 1, order
-          st(:, i + order*(j - 1)) = [gp(i), gp(j)]
-          w(i + order*(j - 1)) = gw(i)*gw(j)
-       end do
-    end do
+    call move_alloc(r%xi, st)
+    call move_alloc(r%w, w)
   end subroutine face_rule
 
   pure subroutine face_shape(nc, nn, s, t, n, dn)

@@ -21,7 +21,8 @@ module superjoin_elements_solid_stress
   use superjoin_kinds, only: wp
   use superjoin_error, only: error_t
   use superjoin_model_types, only: material_t, orientation_t, ET_C3D8I, ET_C3D6, ET_C3D15, ET_C3D8R
-  use superjoin_elements_solid, only: rule_t, solid_rule, point_gradients, strain_matrix, &
+  use superjoin_elements_quadrature, only: quad_rule_t
+  use superjoin_elements_solid, only: solid_rule, point_gradients, strain_matrix, &
        solid_node_coordinates, solid_shape, spd_solve, mode_strains, WEDGE_EDGES, mean_gradients, &
        thermal_point_stress, point_elasticity
   implicit none (type, external)
@@ -47,7 +48,7 @@ contains
     type(error_t), allocatable, intent(out) :: error
     type(orientation_t), intent(in), optional :: axes
     real(wp), intent(in), optional :: eth(:)
-    type(rule_t) :: r
+    type(quad_rule_t) :: r
     real(wp), allocatable :: n(:), dx(:, :)
     real(wp) :: eps(6), detj, modes(6, 8), d(6, 6)
     integer :: g
@@ -83,7 +84,7 @@ contains
     !! 27 points) the values at the integration points of the stiffness rule.
     integer, intent(in) :: etype
     real(wp), allocatable :: e(:, :)
-    type(rule_t) :: r
+    type(quad_rule_t) :: r
     real(wp), allocatable :: c(:, :)
     real(wp) :: q, l0, l1
     integer :: a, g
@@ -124,7 +125,7 @@ contains
     !! corner, 2/3 at it and 1/6 at the others), at the corners; C3D15's
     !! mid-side nodes take the mean of the two corners of their edge.
     integer, intent(in) :: etype
-    type(rule_t), intent(in) :: r
+    type(quad_rule_t), intent(in) :: r
     real(wp), allocatable :: e(:, :)
     real(wp), allocatable :: c(:, :)
     real(wp) :: zc, tri
@@ -164,7 +165,7 @@ contains
     !! the points of rule r: the nodal values whose field fits the point values
     !! best (Nᵀ N is symmetric positive definite).
     integer, intent(in) :: etype
-    type(rule_t), intent(in) :: r
+    type(quad_rule_t), intent(in) :: r
     real(wp), allocatable :: e(:, :)
     real(wp), allocatable :: n(:), dn(:, :), nm(:, :)
     integer :: g

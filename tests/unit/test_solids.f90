@@ -17,7 +17,8 @@ program test_solids
   use superjoin_error, only: error_t
   use superjoin_model_types, only: material_t, ET_C3D8, ET_C3D20, ET_C3D20R, ET_C3D4, ET_C3D10, ET_C3D8I, &
        ET_C3D6, ET_C3D15, ET_C3D8R
-  use superjoin_elements_solid, only: solid_stiffness, solid_body_load, solid_shape, rule_t, solid_rule
+  use superjoin_elements_solid, only: solid_stiffness, solid_body_load, solid_shape, solid_rule
+  use superjoin_elements_quadrature, only: quad_rule_t
   use superjoin_elements_solid_faces, only: solid_pressure_load, solid_face_nodes
   use superjoin_elements_solid_stress, only: solid_extrapolation, principal_stresses, von_mises_tensor
   use superjoin_testing, only: check, check_close, check_rel, finish
@@ -234,7 +235,7 @@ contains
     integer, intent(in) :: etype
     character(*), intent(in) :: name
     real(wp), allocatable :: e(:, :), nmat(:, :), n(:), dn(:, :), id(:, :)
-    type(rule_t) :: rl
+    type(quad_rule_t) :: rl
     integer :: g, a
     allocate (e, source=solid_extrapolation(etype))
     call check(maxval(abs(sum(e, 2) - 1.0_wp)) < TOL_EXACT, trim(name)//': extrapolation keeps a constant')

@@ -26,7 +26,6 @@ module superjoin_deck_matrix_formats
        parse_id, TOK_OK
   use superjoin_deck_state, only: deck_state_t, report, report_loc, given_b_t
   use superjoin_utils_sorting, only: sort_index, find_sorted
-  use superjoin_utils_strings, only: full_real
   implicit none (type, external)
   private
 
@@ -103,9 +102,11 @@ contains
     call new_given(d%terms)
     d%pass = 2
     call bulk_entries(st, text, d)
-    if (st%nerr /= nerr0) return
-    call fold_terms(st, d%terms, g, d%ifo(findloc(d%name, d%chosen, 1)) == IFO_SYM, &
-         'matrix '//trim(d%chosen)//' (IFO='//itoa(d%ifo(findloc(d%name, d%chosen, 1)))//')')
+    if (d%ifo(findloc(d%name, d%chosen, 1)) == IFO_SYM) then
+       call fold_terms(st, d%terms, g, .true., 'matrix '//trim(d%chosen)//' (IFO=6, declared symmetric)')
+    else
+       call fold_terms(st, d%terms, g, .false., 'matrix '//trim(d%chosen)//' (IFO=1)')
+    end if
   end subroutine read_dmig
 
   subroutine choose_matrix(st, g, d, name)
@@ -282,13 +283,13 @@ contains
     end if
     call parse_id(trim(e%f(3)), ifo, stat)
     if (stat /= TOK_OK .or. all(ifo /= [IFO_SQUARE, IFO_RECT, IFO_SYM, IFO_NCOL])) then
-       call report(st, d%ifile, e%line(3), 'invalid IFO '''//clip(e%f(3))//''' of DMIG matrix '// &
+       call report(st, d%ifile, e%line(3), 'invalid IFO '''//clip(trim(e%f(3)))//''' of DMIG matrix '// &
             trim(e%f(1))//' (1, 2, 6 or 9)')
        ifo = 0
     else
        call parse_id(trim(e%f(4)), tin, stat)
        if (stat /= TOK_OK .or. all(tin /= [TIN_REAL, TIN_DOUBLE])) then
-          call report(st, d%ifile, e%line(4), 'DMIG matrix '//trim(e%f(1))//' has TIN='//clip(e%f(4))// &
+          call report(st, d%ifile, e%line(4), 'DMIG matrix '//trim(e%f(1))//' has TIN='//clip(trim(e%f(4)))// &
                ': a real matrix has TIN=1 or 2 (complex ones are not read)')
           ifo = 0
        end if
@@ -313,7 +314,7 @@ contains
        if (.not. grid_comp(st, d%ifile, e, k, gi, ci)) cycle
        if (.not. nastran_real(st, d%ifile, e%line(k + 2), e%f(k + 2), a)) cycle
        if (len_trim(e%f(k + 3)) > 0) then
-          call report(st, d%ifile, e%line(k + 3), 'an imaginary part '''//clip(e%f(k + 3))// &
+          call report(st, d%ifile, e%line(k + 3), 'an imaginary part '''//clip(trim(e%f(k + 3)))// &
                ''' in real DMIG matrix '//trim(d%chosen))
           cycle
        end if
@@ -335,10 +336,10 @@ contains
     if (.not. ok) return
     call parse_id(trim(e%f(k + 1)), v, stat)
     if (stat /= TOK_OK .and. e%f(k + 1) /= '0') then
-       call report(st, ifile, e%line(k + 1), 'invalid component '''//clip(e%f(k + 1))//'''')
+       call report(st, ifile, e%line(k + 1), 'invalid component '''//clip(trim(e%f(k + 1)))//'''')
        ok = .false.
     else if (e%f(k + 1) == '0' .or. v > NDOF) then
-       call report(st, ifile, e%line(k + 1), 'component '//clip(e%f(k + 1))//' of GRID '//itoa(int(g))// &
+       call report(st, ifile, e%line(k + 1), 'component '//trim(e%f(k + 1))//' of GRID '//itoa(int(g))// &
             ' is not a DOF 1 to 6 (scalar points are not read)')
        ok = .false.
     else
@@ -364,7 +365,7 @@ contains
        end if
     end if
     ok = stat == TOK_OK
-    if (.not. ok) call report(st, ifile, line, 'invalid matrix value '''//clip(s)//'''')
+    if (.not. ok) call report(st, ifile, line, 'invalid matrix value '''//clip(trim(s))//'''')
   end function nastran_real
 
   subroutine read_market(st, text, csv_file, csv_text, g)
@@ -412,7 +413,6 @@ contains
        call report(st, g%file, size_line, 'the Matrix Market file gives '//itoa(terms%n)//' entries, not '// &
             itoa(nnz))
     end if
-    if (st%nerr /= nerr0) return
     if (symmetric) then
        call fold_terms(st, terms, g, .true., 'the matrix (declared symmetric)')
     else
@@ -493,6 +493,7 @@ contains
             itoa(map%n)//' DOFs of the DOF map')
        return
     end if
+    if (map%node(i) == 0 .or. map%node(j) == 0) return     ! its DOF map line is reported
     call push_entry(terms, map%node(i), map%dof(i), map%node(j), map%dof(j), v, line)
   end subroutine market_entry
 
@@ -523,19 +524,23 @@ contains
             call report(st, ifile, line, 'a DOF map line has 3 fields (index, node, dof), not '//itoa(f%n))
             cycle
          end if
+         ! a bad line keeps its place (node 0: its entries are not read)
+         map%n = map%n + 1
+         map%node = [map%node, 0_ip]
+         map%dof = [map%dof, 0]
+         map%line = [map%line, line]
          if (.not. id_of(st, ifile, line, s(f%first(1):f%last(1)), 'index', v(1))) cycle
          if (.not. id_of(st, ifile, line, s(f%first(2):f%last(2)), 'node', v(2))) cycle
          if (.not. id_of(st, ifile, line, s(f%first(3):f%last(3)), 'DOF', v(3))) cycle
-         if (v(1) /= map%n + 1) then
+         if (v(1) /= map%n) then
             call report(st, ifile, line, 'DOF map index '//itoa(int(v(1)))//' out of order ('// &
-                 itoa(map%n + 1)//' expected)')
+                 itoa(map%n)//' expected)')
          else if (v(3) > NDOF) then
             call report(st, ifile, line, 'DOF '//itoa(int(v(3)))//' is not 1 to 6')
+         else
+            map%node(map%n) = v(2)
+            map%dof(map%n) = int(v(3))
          end if
-         map%n = map%n + 1
-         map%node = [map%node, v(2)]
-         map%dof = [map%dof, int(min(v(3), int(NDOF, ip)))]
-         map%line = [map%line, line]
        end associate
     end do
     call map_repeats(st, ifile, map)
@@ -554,7 +559,7 @@ contains
     order = [(k, k=1, map%n)]
     call sort_index(key, order)
     do k = 2, map%n
-       if (key(order(k)) /= key(order(k - 1))) cycle
+       if (key(order(k)) /= key(order(k - 1)) .or. map%node(order(k)) == 0) cycle
        call report(st, ifile, map%line(max(order(k), order(k - 1))), 'node '//itoa(int(map%node(order(k))))// &
             ' DOF '//itoa(map%dof(order(k)))//' is in the DOF map twice (also line '// &
             itoa(map%line(min(order(k), order(k - 1))))//')')
@@ -623,12 +628,12 @@ contains
              call push_entry(g, t%rnode(e), t%rdof(e), t%cnode(e), t%cdof(e), t%val(e), t%line(e))
           else if (t%val(e) /= 0.0_wp) then
              call report(st, g%file, t%line(e), what//' is not symmetric: '//entry_text(t, e)//' is '// &
-                  full_real(t%val(e))//' and its transposed entry is not given')
+                  real_text(t%val(e))//' and its transposed entry is not given')
           end if
        else if (ir(e) > ic(e)) then
           if (abs(t%val(e) - t%val(tr)) > SYM_TOL*max(abs(t%val(e)), abs(t%val(tr)))) then
              call report(st, g%file, max(t%line(e), t%line(tr)), what//' is not symmetric: '// &
-                  entry_text(t, e)//' is '//full_real(t%val(e))//', the transposed one '//full_real(t%val(tr)))
+                  entry_text(t, e)//' is '//real_text(t%val(e))//', the transposed one '//real_text(t%val(tr)))
           else
              call push_entry(g, t%rnode(e), t%rdof(e), t%cnode(e), t%cdof(e), &
                   0.5_wp*(t%val(e) + t%val(tr)), t%line(e))
@@ -664,6 +669,15 @@ contains
     ir = rank(1:t%n)
     ic = rank(t%n + 1:)
   end subroutine dof_ranks
+
+  pure function real_text(x) result(s)
+    !! x with 10 significant digits.
+    real(wp), intent(in) :: x
+    character(:), allocatable :: s
+    character(len=24) :: buf
+    write (buf, '(es17.9e3)') x
+    s = trim(adjustl(buf))
+  end function real_text
 
   function entry_text(t, e) result(s)
     !! `the matrix entry of node a DOF b, node c DOF d` of entry e.

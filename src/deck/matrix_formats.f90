@@ -29,7 +29,7 @@ module superjoin_deck_matrix_formats
   implicit none (type, external)
   private
 
-  public :: read_dmig, read_market, push_entry, id_of, value_of, entry_text, new_given
+  public :: read_dmig, read_market, push_entry, id_of, value_of, new_given, next_nonblank
 
   integer, parameter :: NDOF = 6
   integer, parameter :: KEY_BASE = 8               !! (node, DOF) key: node*KEY_BASE + DOF
@@ -66,6 +66,13 @@ module superjoin_deck_matrix_formats
      character(len=FIELD_LEN) :: chosen = ''
      type(given_b_t) :: terms                      !! the chosen matrix's terms as given
   end type dmig_t
+
+  type, public :: text_lines_t
+    !! The walk over the non-blank lines of a text (line: the number of the
+    !! last one, blank lines counted).
+     integer(i8) :: pos = 1
+     integer :: line = 0
+  end type text_lines_t
 
   type :: dof_map_t
     !! The Matrix Market DOF map (`index,node,dof`).
@@ -150,20 +157,15 @@ contains
     type(deck_state_t), intent(inout) :: st
     character(*), intent(in) :: text
     type(dmig_t), intent(inout) :: d
-    integer(i8) :: pos, first, last
-    logical :: found
+    integer(i8) :: first, last
+    type(text_lines_t) :: lines
     integer :: line
     type(bulk_entry_t) :: e
     character(:), allocatable :: t
     allocate (e%f(INITIAL_ENTRIES), e%line(INITIAL_ENTRIES))
-    pos = 1
-    line = 0
-    do
-       call next_line(text, pos, first, last, found)
-       if (.not. found) exit
-       line = line + 1
+    do while (next_nonblank(lines, text, first, last))
+       line = lines%line
        associate (s => text(first:last))
-         if (len_trim(s) == 0) cycle
          if (s(1:1) == '$') cycle
          t = to_upper(adjustl(s))
          if (index(t, 'BEGIN') == 1 .or. index(t, 'ENDDATA') == 1) then
@@ -377,27 +379,26 @@ contains
     type(given_b_t), intent(inout) :: g
     type(dof_map_t) :: map
     type(given_b_t) :: terms
-    integer(i8) :: pos, first, last
-    logical :: found, symmetric
+    integer(i8) :: first, last
+    logical :: symmetric, banner
+    type(text_lines_t) :: lines
     integer :: line, size_line, nnz, nerr0
     type(fields_t) :: w
     nerr0 = st%nerr
     call read_dof_map(st, csv_file, csv_text, map)
     call new_given(terms)
-    pos = 1
-    line = 0
     size_line = 0
     symmetric = .false.
-    do
-       call next_line(text, pos, first, last, found)
-       if (.not. found) exit
-       line = line + 1
+    banner = .false.
+    do while (next_nonblank(lines, text, first, last))
+       line = lines%line
        associate (s => text(first:last))
-         if (line == 1) then
-            call market_banner(st, g%file, s, symmetric)
+         if (.not. banner) then
+            banner = .true.
+            call market_banner(st, g%file, line, s, symmetric)
             cycle
          end if
-         if (len_trim(s) == 0 .or. index(adjustl(s), '%') == 1) cycle
+         if (index(adjustl(s), '%') == 1) cycle
          call split_words(s, w)
          if (size_line == 0) then
             size_line = line
@@ -420,10 +421,10 @@ contains
     end if
   end subroutine read_market
 
-  subroutine market_banner(st, ifile, s, symmetric)
+  subroutine market_banner(st, ifile, line, s, symmetric)
     !! `%%MatrixMarket matrix coordinate real|integer symmetric|general`.
     type(deck_state_t), intent(inout) :: st
-    integer, intent(in) :: ifile
+    integer, intent(in) :: ifile, line
     character(*), intent(in) :: s
     logical, intent(out) :: symmetric
     type(fields_t) :: w
@@ -439,7 +440,7 @@ contains
           return
        end if
     end if
-    call report(st, ifile, 1, 'a Matrix Market stiffness starts with ''%%MatrixMarket matrix coordinate '// &
+    call report(st, ifile, line, 'a Matrix Market stiffness starts with ''%%MatrixMarket matrix coordinate '// &
          'real symmetric'' (or general), not '''//clip(s)//'''')
   end subroutine market_banner
 
@@ -504,20 +505,15 @@ contains
     integer, intent(in) :: ifile
     character(*), intent(in) :: text
     type(dof_map_t), intent(inout) :: map
-    integer(i8) :: pos, first, last
-    logical :: found
+    integer(i8) :: first, last
+    type(text_lines_t) :: lines
     integer :: line
     integer(ip) :: v(3)
     type(fields_t) :: f
     allocate (map%node(0), map%dof(0), map%line(0))
-    pos = 1
-    line = 0
-    do
-       call next_line(text, pos, first, last, found)
-       if (.not. found) exit
-       line = line + 1
+    do while (next_nonblank(lines, text, first, last))
+       line = lines%line
        associate (s => text(first:last))
-         if (len_trim(s) == 0) cycle
          if (scan(adjustl(s), '0123456789') /= 1) cycle     ! the header
          call split_fields(s, f)
          if (f%n /= 3) then
@@ -545,6 +541,19 @@ contains
     end do
     call map_repeats(st, ifile, map)
   end subroutine read_dof_map
+
+  logical function next_nonblank(r, text, first, last) result(found)
+    !! The next non-blank line of text, text(first:last); false at its end.
+    type(text_lines_t), intent(inout) :: r
+    character(*), intent(in) :: text
+    integer(i8), intent(out) :: first, last
+    do
+       call next_line(text, r%pos, first, last, found)
+       if (.not. found) return
+       r%line = r%line + 1
+       if (len_trim(text(first:last)) > 0) return
+    end do
+  end function next_nonblank
 
   subroutine map_repeats(st, ifile, map)
     !! A (node, DOF) listed twice in the DOF map.

@@ -21,14 +21,15 @@ module superjoin_deck_matrix_input
   use superjoin_kinds, only: wp, ip, i8
   use superjoin_model_types, only: source_loc_t, substructure_t, model_t, given_matrix_t, matrix_export_t, &
        find_node, EXPORT_ABAQUS, EXPORT_DMIG, EXPORT_MATRIX_MARKET, EXPORT_CALCULIX
-  use superjoin_deck_lexer, only: keyword_line_t, next_line, split_fields, drop_trailing_empty, &
+  use superjoin_deck_lexer, only: keyword_line_t, split_fields, drop_trailing_empty, &
        parse_real, parse_id, path_dirname, path_join, path_normalize, to_upper, clip, itoa, fields_t, TOK_OK
   use superjoin_deck_state, only: deck_state_t, report, report_loc, register_file, load_deck_file, given_b_t, &
        export_b_t, instance_b_t
   use superjoin_deck_cards_common, only: outside_step, check_params, get_param, get_name_param, target_sub, &
        NAME_LEN
   use superjoin_model_output_paths, only: has_control_char
-  use superjoin_deck_matrix_formats, only: read_dmig, read_market, push_entry, id_of, value_of, new_given
+  use superjoin_deck_matrix_formats, only: read_dmig, read_market, push_entry, id_of, value_of, new_given, &
+       next_nonblank, text_lines_t
   implicit none (type, external)
   private
 
@@ -159,21 +160,16 @@ contains
     character(*), intent(in) :: text
     type(given_b_t), intent(inout) :: g
     logical, intent(in) :: calculix
-    integer(i8) :: pos, first, last
-    logical :: found
+    integer(i8) :: first, last
     integer :: line
     type(fields_t) :: f
     type(ccx_reader_t) :: r
+    type(text_lines_t) :: lines
     if (calculix) allocate (r%node(INITIAL_ENTRIES), r%first_pos(INITIAL_ENTRIES), r%dofs(INITIAL_ENTRIES), &
          r%val(INITIAL_ENTRIES), r%vline(INITIAL_ENTRIES))
-    pos = 1
-    line = 0
-    do
-       call next_line(text, pos, first, last, found)
-       if (.not. found) exit
-       line = line + 1
+    do while (next_nonblank(lines, text, first, last))
+       line = lines%line
        associate (s => text(first:last))
-         if (len_trim(s) == 0) cycle
          call split_fields(s, f)
          call drop_trailing_empty(f)
          if (calculix) then

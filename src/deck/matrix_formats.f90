@@ -141,14 +141,14 @@ contains
     do k = 1, d%nmat
        if (d%ifo(k) /= IFO_SYM .and. d%ifo(k) /= IFO_SQUARE) cycle
        nsq = nsq + 1
-       names = names//' '//trim(d%name(k))
+       names = names//', '//trim(d%name(k))
        d%chosen = d%name(k)
     end do
     if (nsq /= 1) then
        d%chosen = ''
        if (nsq == 0) call report_loc(st, g%loc, 'the DMIG file has no square matrix (IFO=6 or 1)')
        if (nsq > 1) call report_loc(st, g%loc, 'the DMIG file has '//itoa(nsq)//' square matrices ('// &
-            names(2:)//'): choose one with NAME=')
+            names(3:)//'): choose one with NAME=')
     end if
   end subroutine choose_matrix
 

@@ -521,10 +521,15 @@ contains
             cycle
          end if
          ! a bad line keeps its place (node 0: its entries are not read)
+         if (map%n == size(map%node)) then
+            map%node = [map%node, map%node, 0_ip]
+            map%dof = [map%dof, map%dof, 0]
+            map%line = [map%line, map%line, 0]
+         end if
          map%n = map%n + 1
-         map%node = [map%node, 0_ip]
-         map%dof = [map%dof, 0]
-         map%line = [map%line, line]
+         map%node(map%n) = 0
+         map%dof(map%n) = 0
+         map%line(map%n) = line
          if (.not. id_of(st, ifile, line, s(f%first(1):f%last(1)), 'index', v(1))) cycle
          if (.not. id_of(st, ifile, line, s(f%first(2):f%last(2)), 'node', v(2))) cycle
          if (.not. id_of(st, ifile, line, s(f%first(3):f%last(3)), 'DOF', v(3))) cycle
@@ -564,7 +569,7 @@ contains
     integer, allocatable :: order(:)
     integer :: k
     allocate (key(map%n))
-    key(:) = int(map%node, i8)*KEY_BASE + map%dof
+    key(:) = int(map%node(1:map%n), i8)*KEY_BASE + map%dof(1:map%n)
     order = [(k, k=1, map%n)]
     call sort_index(key, order)
     do k = 2, map%n

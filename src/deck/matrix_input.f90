@@ -1,7 +1,8 @@
 module superjoin_deck_matrix_input
   !! Condensed parts that travel, deck side:
   !!
-  !! - `*MATRIX INPUT, INPUT=file[, FORMAT=ABAQUS|CALCULIX]` inside a `*PART`
+  !! - `*MATRIX INPUT, INPUT=file[, FORMAT=ABAQUS|CALCULIX|DMIG|MATRIX MARKET]
+  !!   [, NAME=n]` inside a `*PART`
   !!   or `*SUBSTRUCTURE` block (or in MAIN): the block's stiffness is the
   !!   symmetric matrix of the file, on the (node, DOF) pairs it names (nodes of
   !!   the block, by user id). ABAQUS: Abaqus's matrix input text layout, one
@@ -9,7 +10,10 @@ module superjoin_deck_matrix_input
   !!   triangle (each off-diagonal pair once). CALCULIX: the `.mtx` file that
   !!   CalculiX's `*SUBSTRUCTURE GENERATE` writes (`*USER ELEMENT` with the node
   !!   of each position in the `** ELEMENT NODES` comment, the DOF lines, then
-  !!   `*MATRIX, TYPE=STIFFNESS`: the lower triangle row by row).
+  !!   `*MATRIX, TYPE=STIFFNESS`: the lower triangle row by row). DMIG (the
+  !!   matrix NAME=n or the file's one square matrix) and MATRIX MARKET (`f.mtx`
+  !!   with its DOF map `f_dofs.csv`): superjoin_deck_matrix_formats. The
+  !!   stiffness only: condensed loads enter as *CLOAD lines.
   !!   An instance's copy of the matrix is turned by its placement
   !!   (k' = R̂ k R̂ᵀ, R̂ = diag(R) on each node's translations and rotations).
   !! - `*SUBSTRUCTURE MATRIX OUTPUT, SUBSTRUCTURE=s, FILE NAME=f[, FORMAT=...]`:
@@ -17,13 +21,15 @@ module superjoin_deck_matrix_input
   use superjoin_kinds, only: wp, ip, i8
   use superjoin_model_types, only: source_loc_t, substructure_t, model_t, given_matrix_t, matrix_export_t, &
        find_node, EXPORT_ABAQUS, EXPORT_DMIG, EXPORT_MATRIX_MARKET, EXPORT_CALCULIX
-  use superjoin_deck_lexer, only: keyword_line_t, next_line, split_fields, drop_trailing_empty, &
+  use superjoin_deck_lexer, only: keyword_line_t, split_fields, drop_trailing_empty, &
        parse_real, parse_id, path_dirname, path_join, path_normalize, to_upper, clip, itoa, fields_t, TOK_OK
   use superjoin_deck_state, only: deck_state_t, report, report_loc, register_file, load_deck_file, given_b_t, &
        export_b_t, instance_b_t
   use superjoin_deck_cards_common, only: outside_step, check_params, get_param, get_name_param, target_sub, &
        NAME_LEN
   use superjoin_model_output_paths, only: has_control_char
+  use superjoin_deck_matrix_formats, only: read_dmig, read_market, push_entry, id_of, value_of, new_given, &
+       next_nonblank, text_lines_t
   implicit none (type, external)
   private
 
@@ -32,6 +38,7 @@ module superjoin_deck_matrix_input
   integer, parameter :: NDOF = 6, BLOCK = 3
   integer, parameter :: ABAQUS_FIELDS = 5
   integer, parameter :: INITIAL_ENTRIES = 64
+  character(*), parameter :: MTX_EXT = '.mtx', DOF_MAP_TAIL = '_dofs.csv'
   real(wp), parameter :: ROT_ZERO = 1.0e-12_wp
     !! Entries of an instance's rotation below this couple no DOFs.
 
@@ -62,20 +69,23 @@ contains
     type(deck_state_t), intent(inout) :: st
     type(keyword_line_t), intent(in) :: kw
     type(source_loc_t), intent(in) :: loc
-    character(:), allocatable :: rel, path, text, fmt, typ
-    logical :: found, ok
-    integer :: isub, ifile, nerr0
+    character(:), allocatable :: rel, path, fmt, typ, name
+    logical :: found
+    integer :: isub, nerr0
     type(given_b_t) :: g
     if (.not. outside_step(st, kw, loc)) return
     call check_params(st, kw, loc, [character(NAME_LEN) :: 'INPUT', 'NAME', 'FORMAT', 'TYPE'], &
          [character(NAME_LEN) ::])
     call get_param(st, kw, loc, 'INPUT', .true., rel, found)
     if (.not. found) return
-    fmt = 'ABAQUS'
-    call get_name_param(st, kw, loc, 'FORMAT', .false., fmt, found)
+    call get_param(st, kw, loc, 'FORMAT', .false., fmt, found)
     if (.not. found) fmt = 'ABAQUS'
-    if (fmt /= 'ABAQUS' .and. fmt /= 'CALCULIX') then
-       call report_loc(st, loc, '*MATRIX INPUT: FORMAT must be ABAQUS or CALCULIX, not '//clip(fmt))
+    fmt = to_upper(fmt)
+    if (fmt == 'NASTRAN') fmt = 'DMIG'
+    if (fmt == 'MATRIXMARKET' .or. fmt == 'MM') fmt = 'MATRIX MARKET'
+    if (all(fmt /= [character(13) :: 'ABAQUS', 'CALCULIX', 'DMIG', 'MATRIX MARKET'])) then
+       call report_loc(st, loc, '*MATRIX INPUT: FORMAT must be ABAQUS, CALCULIX, DMIG or MATRIX MARKET, not '// &
+            clip(fmt))
        return
     end if
     call get_name_param(st, kw, loc, 'TYPE', .false., typ, found)
@@ -83,24 +93,51 @@ contains
        call report_loc(st, loc, '*MATRIX INPUT: only TYPE=STIFFNESS (linear statics), not '//clip(typ))
        return
     end if
+    call get_param(st, kw, loc, 'NAME', .false., name, found)
+    if (fmt /= 'DMIG' .or. .not. found) name = ''
     path = path_normalize(path_join(path_dirname(st%files(loc%file)%s), rel))
     isub = target_sub(st, loc)
     if (allocated(st%subs(isub)%given)) then
        call report_loc(st, loc, 'substructure '//st%subs(isub)%name//' has a *MATRIX INPUT already')
        return
     end if
-    call load_deck_file(st, loc, path, 'matrix', text, ok)
-    if (.not. ok) return
-    call register_file(st, path, path, ifile)
     nerr0 = st%nerr
-    g%file = ifile
     g%loc = loc
-    allocate (g%rnode(INITIAL_ENTRIES), g%cnode(INITIAL_ENTRIES), g%rdof(INITIAL_ENTRIES), &
-         g%cdof(INITIAL_ENTRIES), g%line(INITIAL_ENTRIES), g%val(INITIAL_ENTRIES))
-    call read_lines(st, text, g, fmt == 'CALCULIX')
+    call new_given(g)
+    if (.not. read_matrix(st, fmt, path, to_upper(name), g)) return
     if (g%n == 0 .and. st%nerr == nerr0) call report_loc(st, loc, 'matrix file '''//path//''' gives no entry')
     call move_alloc_given(g, st%subs(isub)%given)
   end subroutine kw_matrix_input
+
+  logical function read_matrix(st, fmt, path, name, g) result(ok)
+    !! The entries of the matrix file `path` in format fmt into g (false when
+    !! a file cannot be read); Matrix Market's DOF map is `f_dofs.csv` beside
+    !! `f.mtx`.
+    type(deck_state_t), intent(inout) :: st
+    character(*), intent(in) :: fmt, path, name
+    type(given_b_t), intent(inout) :: g
+    character(:), allocatable :: text, csv_text, base
+    integer :: csv_file
+    call load_deck_file(st, g%loc, path, 'matrix', text, ok)
+    if (.not. ok) return
+    call register_file(st, path, path, g%file)
+    select case (fmt)
+    case ('DMIG')
+       call read_dmig(st, text, g, name)
+    case ('MATRIX MARKET')
+       base = path
+       if (len(base) > len(MTX_EXT)) then
+          if (to_upper(base(len(base) - len(MTX_EXT) + 1:)) == to_upper(MTX_EXT)) &
+               base = base(:len(base) - len(MTX_EXT))
+       end if
+       call load_deck_file(st, g%loc, base//DOF_MAP_TAIL, 'DOF map', csv_text, ok)
+       if (.not. ok) return
+       call register_file(st, base//DOF_MAP_TAIL, base//DOF_MAP_TAIL, csv_file)
+       call read_market(st, text, csv_file, csv_text, g)
+    case default
+       call read_lines(st, text, g, fmt == 'CALCULIX')
+    end select
+  end function read_matrix
 
   subroutine move_alloc_given(g, dest)
     type(given_b_t), intent(inout) :: g
@@ -123,21 +160,16 @@ contains
     character(*), intent(in) :: text
     type(given_b_t), intent(inout) :: g
     logical, intent(in) :: calculix
-    integer(i8) :: pos, first, last
-    logical :: found
+    integer(i8) :: first, last
     integer :: line
     type(fields_t) :: f
     type(ccx_reader_t) :: r
+    type(text_lines_t) :: lines
     if (calculix) allocate (r%node(INITIAL_ENTRIES), r%first_pos(INITIAL_ENTRIES), r%dofs(INITIAL_ENTRIES), &
          r%val(INITIAL_ENTRIES), r%vline(INITIAL_ENTRIES))
-    pos = 1
-    line = 0
-    do
-       call next_line(text, pos, first, last, found)
-       if (.not. found) exit
-       line = line + 1
+    do while (next_nonblank(lines, text, first, last))
+       line = lines%line
        associate (s => text(first:last))
-         if (len_trim(s) == 0) cycle
          call split_fields(s, f)
          call drop_trailing_empty(f)
          if (calculix) then
@@ -335,17 +367,6 @@ contains
     t = s(f%first(k):f%last(k))
   end function fld_of
 
-  logical function id_of(st, ifile, line, s, what, id) result(ok)
-    !! A positive integer field, else reported at the file's line.
-    type(deck_state_t), intent(inout) :: st
-    integer, intent(in) :: ifile, line
-    character(*), intent(in) :: s, what
-    integer(ip), intent(out) :: id
-    integer :: stat
-    call parse_id(s, id, stat)
-    ok = stat == TOK_OK
-    if (.not. ok) call report(st, ifile, line, 'invalid '//what//' '''//clip(s)//'''')
-  end function id_of
 
   logical function node_dof(st, ifile, line, sn, sd, node, dof) result(ok)
     !! A node id and a DOF 1..6.
@@ -367,17 +388,6 @@ contains
     end if
   end function node_dof
 
-  logical function value_of(st, ifile, line, s, v) result(ok)
-    !! A finite real, else reported.
-    type(deck_state_t), intent(inout) :: st
-    integer, intent(in) :: ifile, line
-    character(*), intent(in) :: s
-    real(wp), intent(out) :: v
-    integer :: stat
-    call parse_real(s, v, stat)
-    ok = stat == TOK_OK
-    if (.not. ok) call report(st, ifile, line, 'invalid matrix value '''//clip(s)//'''')
-  end function value_of
 
   subroutine push_int(a, n, v)
     integer(ip), allocatable, intent(inout) :: a(:)
@@ -388,27 +398,6 @@ contains
     a(n) = v
   end subroutine push_int
 
-  subroutine push_entry(g, rn, rd, cn, cd, v, line)
-    type(given_b_t), intent(inout) :: g
-    integer(ip), intent(in) :: rn, cn
-    integer, intent(in) :: rd, cd, line
-    real(wp), intent(in) :: v
-    if (g%n == size(g%val)) then
-       g%rnode = [g%rnode, g%rnode]
-       g%cnode = [g%cnode, g%cnode]
-       g%rdof = [g%rdof, g%rdof]
-       g%cdof = [g%cdof, g%cdof]
-       g%line = [g%line, g%line]
-       g%val = [g%val, g%val]
-    end if
-    g%n = g%n + 1
-    g%rnode(g%n) = rn
-    g%cnode(g%n) = cn
-    g%rdof(g%n) = rd
-    g%cdof(g%n) = cd
-    g%line(g%n) = line
-    g%val(g%n) = v
-  end subroutine push_entry
 
   subroutine build_given(st, b, m)
     !! The given stiffness of substructure m from its *MATRIX INPUT: rows in
@@ -423,7 +412,9 @@ contains
     integer :: e, n, d
     integer(ip) :: i, v
     logical :: bad
+    integer(ip), allocatable :: missing(:)   ! the nodes reported (each once)
     allocate (row(NDOF, m%nnode), source=0)
+    allocate (missing(0))
     bad = .false.
     do e = 1, b%n
        rl(e) = find_node(m, b%rnode(e))
@@ -431,9 +422,11 @@ contains
        if (rl(e) == 0 .or. cl(e) == 0) then
           v = b%rnode(e)
           if (rl(e) /= 0) v = b%cnode(e)
+          bad = .true.
+          if (any(missing == v)) cycle
+          missing = [missing, v]
           call report(st, b%file, b%line(e), 'node '//itoa(int(v))//' of the matrix is not a node of '// &
                'substructure '//m%name)
-          bad = .true.
           cycle
        end if
        row(b%rdof(e), rl(e)) = 1

@@ -28,6 +28,7 @@ import subprocess
 import sys
 
 RTOL = 1e-10
+DIGITS_TOL = {"DMIG": 1e-8}   # the DMIG file's 16-column fields hold 10 significant digits
 N = 4                      # elements per side
 H = 1.0 / N
 G = 1.0e7                  # contact stiffness
@@ -124,7 +125,7 @@ def displacements(csvdir):
     return res
 
 
-def compare(ref, got, what):
+def compare(ref, got, what, rtol=RTOL):
     scale = max(abs(v) for vals in ref.values() for v in vals)
     worst = 0.0
     n = 0
@@ -133,7 +134,7 @@ def compare(ref, got, what):
             continue
         n += 1
         worst = max(worst, max(abs(a - b) for a, b in zip(ref[key], vals)) / scale)
-    ok = worst <= RTOL and n >= 2 * (8 + 8)
+    ok = worst <= rtol and n >= 2 * (8 + 8)
     print(f"{'ok' if ok else 'FAIL'}: {what}: {n} nodes, largest difference {worst:.2e} of the largest displacement")
     return ok
 
@@ -182,6 +183,97 @@ def read_dmig(path):
     return mats
 
 
+def dmig_load_lines(work):
+    """The *CLOAD lines of A from the P2G matrix of the DMIG file (column k: step k)."""
+    pm = read_dmig(os.path.join(work, "pd.dmig"))["PA"]["terms"]
+    return {step: [f"A.{nd}, {dof}, {v!r}" for ((nd, dof), (col, _)), v in sorted(pm.items()) if col == s]
+            for s, step in enumerate(("PUSH", "TWIST"), start=1)}
+
+
+def mm_load_lines(work):
+    """The *CLOAD lines of A from the Matrix Market load array and its DOF map."""
+    with open(os.path.join(work, "pm_dofs.csv")) as fh:
+        dofs = [(int(r["node"]), int(r["dof"])) for r in csv.DictReader(fh)]
+    with open(os.path.join(work, "pm_loads.mtx")) as fh:
+        lines = [ln for ln in fh if not ln.startswith("%")]
+    n, ncol = map(int, lines[0].split())
+    vals = [float(v) for v in lines[1:]]
+    return {step: [f"A.{nd}, {dof}, {vals[s * n + i]!r}" for i, (nd, dof) in enumerate(dofs) if vals[s * n + i] != 0.0]
+            for s, step in enumerate(("PUSH", "TWIST")[:ncol])}
+
+
+def nastran8(v):
+    """v in one 8-column small field (Nastran's exponent without its letter)."""
+    if v == 0.0:
+        return "0."
+    for dec in (3, 2, 1, 0):
+        m, e = f"{v:.{dec}e}".split("e")
+        t = f"{m}{int(e):+d}"
+        if len(t) <= 8:
+            return t
+    raise ValueError(v)
+
+
+def nastran_float(t):
+    """The value of a Nastran real field (the exponent letter may be left out)."""
+    t = t.strip().upper().replace("D", "E")
+    if "E" not in t:
+        k = max(t.rfind("+"), t.rfind("-"))
+        if k > 0:
+            t = t[:k] + "E" + t[k:]
+    return float(t)
+
+
+def write_dmig_forms(work):
+    """From A's K (pa.mtx, 17 digits): pf.dmig in free field, square (IFO=1:
+    both triangles) with every digit, next to a load matrix and a second square
+    matrix (NAME= chooses); ps.dmig in small field (IFO=6, '+' continuations)
+    with 8-column values, and ps.mtx: the same rounded values for FORMAT=ABAQUS."""
+    k = read_abaqus(os.path.join(work, "pa.mtx"))
+    cols = {}
+    for (r, c), v in k.items():
+        cols.setdefault(c, []).append((r, v))
+    with open(os.path.join(work, "pf.dmig"), "w") as fh:
+        fh.write("$ free field, written by tests/travel/round_trip.py\nBEGIN BULK\n")
+        fh.write("DMIG,KOTHER,0,1,2,0\nDMIG,KOTHER,1,1,,1,1,1.0\n")
+        fh.write("DMIG,KAAX,0,1,2,0\n")
+        full = {}
+        for (r, c), v in k.items():
+            full[(r, c)] = v
+            full[(c, r)] = v
+        byc = {}
+        for (r, c), v in full.items():
+            byc.setdefault(c, []).append((r, v))
+        for c in sorted(byc):
+            terms = sorted(byc[c])
+            fh.write(f"DMIG,KAAX,{c[0]},{c[1]},,{terms[0][0][0]},{terms[0][0][1]},{terms[0][1]!r}\n")
+            for (g, comp), v in terms[1:]:
+                fh.write(f",{g},{comp},{v!r}\n")
+        fh.write("DMIG,PAAX,0,9,2,0,,,1\nDMIG,PAAX,1,0,,1,3,-5.0\nENDDATA\n")
+    rounded = {}
+    with open(os.path.join(work, "ps.dmig"), "w") as fh:
+        fh.write("DMIG    KAAX           0       6       2\n")
+        for c in sorted(cols):
+            terms = sorted(cols[c])
+            fields = []
+            for (g, comp), v in terms:
+                t = nastran8(v)
+                rounded[((g, comp), c)] = nastran_float(t)
+                fields.append((str(g), str(comp), t))
+            line = f"{'DMIG':<8}{'KAAX':>8}{c[0]:>8}{c[1]:>8}{'':8}" + "".join(f"{x:>8}" for x in fields[0])
+            fh.write(line + "\n")
+            rest = fields[1:]
+            for i in range(0, len(rest), 2):
+                pair = rest[i:i + 2]
+                ln = f"{'+':<8}" + "".join(f"{x:>8}" for x in pair[0])
+                if len(pair) > 1:
+                    ln += f"{'':8}" + "".join(f"{x:>8}" for x in pair[1])
+                fh.write(ln + "\n")
+    with open(os.path.join(work, "ps.mtx"), "w") as fh:
+        for ((g, comp), (h, d)), v in rounded.items():
+            fh.write(f"{g}, {comp}, {h}, {d}, {v!r}\n")
+
+
 def check_dmig(work):
     k = read_abaqus(os.path.join(work, "pa.mtx"))
     mats = read_dmig(os.path.join(work, "pd.dmig"))
@@ -228,11 +320,27 @@ def main():
     exported = displacements(run(binary, work, "export", deck(export=True)))
     results = [compare(ref, exported, "the exporting run (A condensed) against the monolithic one"),
                check_dmig(work), check_mm(work)]
-    for fmt, base, split in (("ABAQUS", "pa", False), ("CALCULIX", "pc", False), ("ABAQUS", "pa", True)):
-        got = displacements(run(binary, work, "import_" + fmt.lower() + ("_split" if split else ""),
-                                deck(matrix=(base + ".mtx", fmt), loads_a=load_lines(work, base), split=split)))
+    loads = {"pa": load_lines(work, "pa"), "pd": dmig_load_lines(work), "pm": mm_load_lines(work)}
+    for fmt, base, split in (("ABAQUS", "pa", False), ("CALCULIX", "pc", False), ("ABAQUS", "pa", True),
+                             ("DMIG", "pd", False), ("DMIG", "pd", True),
+                             ("MATRIX MARKET", "pm", False), ("MATRIX MARKET", "pm", True)):
+        ext = ".dmig" if fmt == "DMIG" else ".mtx"
+        got = displacements(run(binary, work, "import_" + fmt.lower().replace(" ", "_") + ("_split" if split else ""),
+                                deck(matrix=(base + ext, fmt), loads_a=loads.get(base, loads["pa"]), split=split)))
         how = "its own part's matrix turned by its instance" if split else "A's condensation turned"
-        results.append(compare(ref, got, f"import of the {fmt} export, B: {how}"))
+        results.append(compare(ref, got, f"import of the {fmt} export, B: {how}", DIGITS_TOL.get(fmt, RTOL)))
+    write_dmig_forms(work)
+    for split in (False, True):
+        tag = "_split" if split else ""
+        got = displacements(run(binary, work, "import_dmig_free" + tag,
+                                deck(matrix=("pf.dmig, NAME=kaax", "DMIG"), loads_a=loads["pa"], split=split)))
+        results.append(compare(ref, got, "import of a free-field square DMIG with every digit" + tag))
+        small = displacements(run(binary, work, "import_dmig_small" + tag,
+                                  deck(matrix=("ps.dmig", "DMIG"), loads_a=loads["pa"], split=split)))
+        same = displacements(run(binary, work, "import_rounded_abaqus" + tag,
+                                 deck(matrix=("ps.mtx", "ABAQUS"), loads_a=loads["pa"], split=split)))
+        results.append(compare(same, small, "small-field DMIG (8-column values) = the same values as ABAQUS" + tag,
+                               1e-13))
     failed = results.count(False)
     print(f"{len(results) - failed} passed, {failed} failed")
     return 1 if failed else 0

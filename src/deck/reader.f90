@@ -11,7 +11,7 @@ module superjoin_deck_reader
   use superjoin_deck_state, only: deck_state_t
   use superjoin_deck_parser, only: parse_source, finish_parse, register_file
   use superjoin_deck_validate, only: build_model
-  use superjoin_deck_equation_build, only: build_equations
+  use superjoin_deck_equation_build, only: build_equations, equations_to_global
   use superjoin_deck_tie_build, only: build_ties
   use superjoin_deck_coupling_build, only: build_couplings
   use superjoin_deck_frame_build, only: build_frames, link_frames
@@ -70,6 +70,7 @@ contains
     if (.not. st%aborted) call build_ties(st, model)
     if (.not. st%aborted) call build_couplings(st, model)
     if (.not. st%aborted) call build_frames(st, model)
+    if (.not. st%aborted) call equations_to_global(model)
     if (.not. st%aborted) call link_frames(st, model)
     if (.not. st%aborted) call apply_nodal_thickness(st, model)
     if (.not. st%aborted .and. .not. allocated(st%error)) call mark_drilling_edges(model)

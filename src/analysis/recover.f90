@@ -101,6 +101,8 @@ contains
     type(results_t), intent(inout) :: res
     integer(i8) :: p
     integer :: is, n
+    type(node_flags_t), allocatable :: rot(:)
+    call rotation_node_flags(model, rot)
     do is = 1, size(req, 2)
        n = count(req(:, is) /= 0.0_wp)
        allocate (res%fields%steps(is)%equation_forces(n))
@@ -108,7 +110,7 @@ contains
        do p = 1, table%np
           if (req(p, is) == 0.0_wp) cycle
           call add_resultant(res%fields%steps(is)%reaction, model%subs(table%p_sub(p))%x(:, table%p_node(p)), &
-               table%p_dof(p), req(p, is))
+               moment_dof(table%p_dof(p), rot(table%p_sub(p))%on(table%p_node(p))), req(p, is))
           n = n + 1
           res%fields%steps(is)%equation_forces(n) = reaction_t(table%p_sub(p), int(table%p_node(p)), &
                table%p_dof(p), req(p, is))
@@ -606,13 +608,14 @@ contains
     real(wp) :: force
     type(reaction_t), allocatable :: reac(:)
     integer(i8) :: p
-    type(node_flags_t), allocatable :: ring(:)
+    type(node_flags_t), allocatable :: ring(:), rot(:)
 
     nstep = size(delta, 3)
     allocate (ring(size(model%subs)))
     do isub = 1, size(model%subs)
        ring(isub)%on = ring_nodes(model%subs(isub))
     end do
+    call rotation_node_flags(model, rot)
     allocate (res%fields%link_used(NDOF_NODE, size(model%links)), source=.false.)
     do iu = 1, table%nunit
        associate (un => table%units(iu))
@@ -666,7 +669,7 @@ contains
           if (f_phys(p, is) == 0.0_wp) cycle
           isub = table%p_sub(p)
           call add_resultant(res%fields%steps(is)%applied, model%subs(isub)%x(:, table%p_node(p)), &
-               table%p_dof(p), f_phys(p, is), ring(isub)%on(table%p_node(p)))
+               moment_dof(table%p_dof(p), rot(isub)%on(table%p_node(p))), f_phys(p, is), ring(isub)%on(table%p_node(p)))
        end do
        res%fields%steps(is)%reaction = 0.0_wp
        nr = 0
@@ -681,7 +684,8 @@ contains
                  do c = 1, un%n
                     if (un%qs(k, c) == 0.0_wp) cycle
                     call add_resultant(res%fields%steps(is)%reaction, model%subs(rc%sub)%x(:, rc%node), &
-                         block_dof(un%block, un%comp(c)), un%qs(k, c)*rc%force, ring(rc%sub)%on(rc%node))
+                         moment_dof(block_dof(un%block, un%comp(c)), rot(rc%sub)%on(rc%node)), un%qs(k, c)*rc%force, &
+                         ring(rc%sub)%on(rc%node))
                  end do
                end associate
             end do
@@ -689,6 +693,30 @@ contains
        end do
     end do
   end subroutine link_and_support_results
+
+  subroutine rotation_node_flags(model, rot)
+    !! rot(isub)%on(node): the node is a *RIGID BODY's ROT NODE (its DOFs 1-3 the body's rotations).
+    type(model_t), intent(in) :: model
+    type(node_flags_t), allocatable, intent(out) :: rot(:)
+    integer :: isub, k
+    allocate (rot(size(model%subs)))
+    do isub = 1, size(model%subs)
+       allocate (rot(isub)%on(model%subs(isub)%nnode), source=.false.)
+    end do
+    if (.not. allocated(model%rot_node)) return
+    do k = 1, size(model%rot_node)
+       rot(model%rot_sub(k))%on(model%rot_node(k)) = .true.
+    end do
+  end subroutine rotation_node_flags
+
+  pure integer function moment_dof(dof, rot_node)
+    !! The resultant row of a nodal force on dof: on a *RIGID BODY's ROT NODE
+    !! (rot_node), whose DOFs 1-3 are the body's rotations, the moment 4-6.
+    integer, intent(in) :: dof
+    logical, intent(in) :: rot_node
+    moment_dof = dof
+    if (rot_node .and. dof <= 3) moment_dof = dof + 3
+  end function moment_dof
 
   pure subroutine add_resultant(total, x, dof, value, ring)
     !! Add a force (dof 1-3) or moment (dof 4-6) at x to a resultant about the origin.

@@ -517,7 +517,10 @@ contains
                  ' cancels out of its own equation (through the other terms and earlier equations: a cycle)')
             cycle
          end if
-         if (abs(coef(best) - te%a(1)) > CONS_ZERO*scale) then
+         ! an equation written in nodal systems (*TRANSFORM) couples its dependent DOF with its node's other
+         ! global DOFs: their substitution changes its coefficient, a cycle only when that leaves it small
+         if (abs(coef(best) - te%a(1)) > CONS_ZERO*scale .and. &
+             .not. (in_node_frames(model, e) .and. abs(coef(best)) >= PIVOT_FRACTION*amax)) then
             if (e%tie > 0) cycle
             call add_error_line(error, EXIT_DECK, head//'the dependent DOF '//dof_text(e, 1)// &
                  ' comes back through the other terms (an earlier equation or contact expresses one of them '// &
@@ -541,6 +544,21 @@ contains
       text = node_label(model, e%sub(t), e%node(t))//' DOF '//trim(buf)
     end function dof_text
   end subroutine apply_equations
+
+  pure logical function in_node_frames(model, e)
+    !! Some term of *EQUATION e is on a node with a nodal system (its terms were
+    !! turned into global axes, superjoin_deck_equation_build).
+    type(model_t), intent(in) :: model
+    type(equation_t), intent(in) :: e
+    integer :: t, k
+    in_node_frames = .false.
+    if (.not. allocated(model%frames) .or. e%tie > 0 .or. e%coupling) return
+    do t = 1, size(e%sub)
+       do k = 1, size(model%frames)
+          if (model%frames(k)%sub == e%sub(t) .and. model%frames(k)%node == e%node(t)) in_node_frames = .true.
+       end do
+    end do
+  end function in_node_frames
 
   subroutine apply_coupling_equation(model, tr, te, e, jstar, ie, error)
     !! A coupling constraint (*COUPLING, *RIGID BODY, *MPC): its first DOF is

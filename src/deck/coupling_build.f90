@@ -89,6 +89,11 @@ contains
          end if
          call resolve_coupling(st, model, cb, cp, ok)
          if (.not. ok) cycle
+         if (cb%has_rot) then
+            if (.not. allocated(model%rot_node)) allocate (model%rot_sub(0), model%rot_node(0))
+            model%rot_sub = [model%rot_sub, cp%tsub]
+            model%rot_node = [model%rot_node, cp%tnode]
+         end if
          if (cp%kind == COUPLE_DISTRIBUTING) then
             call distributing(st, model, cp, list)
          else

@@ -11,7 +11,8 @@ module superjoin_deck_reader
   use superjoin_deck_state, only: deck_state_t
   use superjoin_deck_parser, only: parse_source, finish_parse, register_file
   use superjoin_deck_validate, only: build_model
-  use superjoin_deck_equation_build, only: build_equations
+  use superjoin_deck_axisym_supports, only: check_axisymmetric_supports
+  use superjoin_deck_equation_build, only: build_equations, equations_to_global
   use superjoin_deck_tie_build, only: build_ties
   use superjoin_deck_coupling_build, only: build_couplings
   use superjoin_deck_frame_build, only: build_frames, link_frames
@@ -66,10 +67,12 @@ contains
     call parse_source(st, text, file)
     if (.not. st%aborted) call finish_parse(st)
     if (.not. st%aborted) call build_model(st, model)
+    if (.not. st%aborted) call check_axisymmetric_supports(st, model)
     if (.not. st%aborted) call build_equations(st, model)
     if (.not. st%aborted) call build_ties(st, model)
     if (.not. st%aborted) call build_couplings(st, model)
     if (.not. st%aborted) call build_frames(st, model)
+    if (.not. st%aborted) call equations_to_global(model)
     if (.not. st%aborted) call link_frames(st, model)
     if (.not. st%aborted) call apply_nodal_thickness(st, model)
     if (.not. st%aborted .and. .not. allocated(st%error)) call mark_drilling_edges(model)

@@ -444,6 +444,9 @@ module superjoin_model_types
      type(matrix_export_t), allocatable :: exports(:)  !! *SUBSTRUCTURE MATRIX OUTPUT cards (unallocated: none)
      type(string_t), allocatable :: notes(:)        !! the reader's notes for the listing (which reading of a
                                                     !! card it took where Abaqus and CalculiX differ)
+     integer, allocatable :: rot_sub(:)             !! *RIGID BODY, ROT NODE=: the substructure of each (unallocated: none)
+     integer(ip), allocatable :: rot_node(:)        !! and its local node, whose DOFs 1-3 are the body's rotations
+                                                    !! (a force there is a moment, superjoin_analysis_recover)
   end type model_t
 
   public :: find_node, find_elem, node_label, loc_text

@@ -34,7 +34,7 @@ module superjoin_output_ccx_dat
   !! none (doc/calculix-dropin.md).
   use superjoin_kinds, only: wp, i8, ip
   use superjoin_error, only: error_t
-  use superjoin_model_types, only: model_t, output_request_t, substructure_t, find_node, NDOF_NODE, &
+  use superjoin_model_types, only: model_t, output_request_t, substructure_t, orientation_t, find_node, NDOF_NODE, &
        REQ_NODE_PRINT, REQ_EL_PRINT, TOTALS_YES, TOTALS_ONLY
   use superjoin_model_results, only: result_fields_t
   use superjoin_elements, only: element_tensor, element_stresses, NTENSOR, has_axisymmetric, ccx_wedge_tensor, &
@@ -45,6 +45,8 @@ module superjoin_output_ccx_dat
   use superjoin_output_requests, only: effective_requests, selected_items, node_frames, rotate_rows, node_values, &
        add_reactions, add_cloads, add_node_forces
   use superjoin_output_energy, only: energy_t, compute_energies
+  use superjoin_elements_materials, only: material_frame
+  use superjoin_elements_solid, only: rule_t, solid_rule, solid_shape
   use superjoin_output_section_print, only: write_ccx_sections
   use superjoin_utils_process, only: temp_register, temp_unregister
   implicit none (type, external)
@@ -53,6 +55,8 @@ module superjoin_output_ccx_dat
   public :: write_ccx_dat, write_ccx_sta, c_real, node_forces, open_output
 
   character(*), parameter :: FMT_NODE = '(i10,3(1x,a13))'
+  integer, parameter :: ORIENT_NAME_LEN = 20
+    !! CalculiX writes the first 20 characters of an orientation's name after an oriented element's row
   integer, parameter :: MAX_CCX_POINTS = 27
     !! Integration points of the largest brick (C3D20, 3x3x3).
 
@@ -307,10 +311,10 @@ contains
        select case (r%vars(iv)%s)
        case ('S')
           call block_header(lu, 'stresses (elem, integ.pnt.,sxx,syy,szz,sxy,sxz,syz)', r, is, 'EALL')
-          call point_rows(lu, model, fields, is, subs, elems, .false.)
+          call point_rows(lu, model, fields, is, r, subs, elems, .false.)
        case ('E')
           call block_header(lu, 'strains (elem, integ.pnt.,exx,eyy,ezz,exy,exz,eyz)', r, is, 'EALL')
-          call point_rows(lu, model, fields, is, subs, elems, .true.)
+          call point_rows(lu, model, fields, is, r, subs, elems, .true.)
        end select
     end do
     ! ELSE (the element's strain energy) is not among the listing's variables
@@ -318,29 +322,89 @@ contains
          call energy_rows(lu, model, fields, is, r, subs, elems)
   end subroutine el_print
 
-  subroutine point_rows(lu, model, fields, is, subs, elems, strain)
+  subroutine point_rows(lu, model, fields, is, r, subs, elems, strain)
     !! Rows "element point six-components" at CalculiX's integration points.
+    !! A solid whose section has an *ORIENTATION prints its tensors in the
+    !! material axes, the orientation's name (20 characters) ending the row,
+    !! unless the card says GLOBAL=YES (as ccx 2.20).
     type(text_buffer_t), intent(inout) :: lu
     type(model_t), intent(in) :: model
     type(result_fields_t), intent(in) :: fields
     integer, intent(in) :: is
+    type(output_request_t), intent(in) :: r
     integer, intent(in) :: subs(:)
     integer(ip), intent(in) :: elems(:)
     logical, intent(in) :: strain
     real(wp), allocatable :: vals(:, :)
     character(len=120) :: row
-    integer :: i, k, d
-    logical :: ok
+    character(len=ORIENT_NAME_LEN) :: name
+    type(element_traits_t) :: t
+    integer :: i, k, d, isec
+    logical :: ok, local
     do i = 1, size(elems)
        call ccx_point_values(model, fields, is, subs(i), elems(i), strain, vals, ok)
        if (.not. ok) cycle
-       do k = 1, size(vals, 2)
-          write (row, '(i10,i4,6(1x,a13))') model%subs(subs(i))%elem_id(elems(i)), k, &
-               (c_real(vals(d, k), 13, 6), d=1, NTENSOR)
-          call lu%line(trim(row))
-       end do
+       associate (sub => model%subs(subs(i)))
+         isec = sub%elem_section(elems(i))
+         local = .false.
+         t = element_traits(sub%elem_type(elems(i)))
+         if (isec > 0 .and. .not. r%global .and. t%family == FAMILY_SOLID) local = allocated(sub%sections(isec)%axes)
+         if (local) then
+            call to_material_axes(sub, elems(i), sub%sections(isec)%axes, vals)
+            name = sub%sections(isec)%axes%name
+         end if
+         do k = 1, size(vals, 2)
+            write (row, '(i10,i4,6(1x,a13))') sub%elem_id(elems(i)), k, (c_real(vals(d, k), 13, 6), d=1, NTENSOR)
+            if (local) then
+               call lu%line(trim(row)//' '//name)
+            else
+               call lu%line(trim(row))
+            end if
+         end do
+       end associate
     end do
   end subroutine point_rows
+
+  subroutine to_material_axes(sub, ie, axes, vals)
+    !! The tensors vals(:, point) of solid element ie turned into its material
+    !! axes at each point (a cylindrical system's axes at the point's position,
+    !! the element's centre where its rule does not give the printed points).
+    type(substructure_t), intent(in) :: sub
+    integer(ip), intent(in) :: ie
+    type(orientation_t), intent(in) :: axes
+    real(wp), intent(inout) :: vals(:, :)
+    type(rule_t) :: rule
+    real(wp), allocatable :: n(:), dn(:, :), x(:, :)
+    real(wp) :: at(3)
+    integer :: k, etype
+    type(element_traits_t) :: t
+    etype = sub%elem_type(ie)
+    t = element_traits(etype)
+    allocate (x(3, t%nodes))
+    do k = 1, t%nodes
+       x(:, k) = sub%x(:, sub%elem_nodes(k, ie))
+    end do
+    rule = solid_rule(etype, .false.)
+    do k = 1, size(vals, 2)
+       at = sum(x, dim=2)/size(x, 2)
+       if (axes%cylindrical .and. size(rule%w) == size(vals, 2)) then
+          call solid_shape(etype, rule%xi(:, k), n, dn)
+          at = matmul(x, n)
+       end if
+       vals(:, k) = tensor_in_axes(material_frame(axes, at), vals(:, k))
+    end do
+  end subroutine to_material_axes
+
+  pure function tensor_in_axes(q, v) result(w)
+    !! A symmetric tensor v (xx, yy, zz, xy, xz, yz) in the axes that are the rows of q: q t qᵀ.
+    real(wp), intent(in) :: q(3, 3), v(NTENSOR)
+    real(wp) :: w(NTENSOR), t(3, 3), qt(3, 3), a(3, 3)
+    t = reshape([v(1), v(4), v(5), v(4), v(2), v(6), v(5), v(6), v(3)], [3, 3])
+    qt = transpose(q)
+    a = matmul(t, qt)
+    t = matmul(q, a)
+    w = [t(1, 1), t(2, 2), t(3, 3), t(1, 2), t(1, 3), t(2, 3)]
+  end function tensor_in_axes
 
   subroutine energy_rows(lu, model, fields, is, r, subs, elems)
     !! ELSE: the strain energy of each element of the set, and its total.

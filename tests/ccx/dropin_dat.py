@@ -39,6 +39,13 @@ Tolerances and why (doc/calculix-dropin.md, "The .dat against .dat.ref"):
 - c3d15: forces 5 times the reference's largest: the pressures on opposite
   faces balance, so both programs' reactions are round-off (ccx 1.4e-14,
   superjoin 2.5e-14); the check says both are.
+- disk2 (C3D20R, CENTRIF, cyclic *EQUATIONs on nodes with a cylindrical
+  *TRANSFORM, their DOFs in the nodal system): 2e-5 on displacements, 1e-4
+  on stresses (measured 1.3e-5 and 8.2e-5: the load's quadrature on curved
+  C3D20R, as segment1/segment2 in doc/verification.md).
+- orient_print (ours, .dat.ref by ccx 2.20): S, E of oriented solids in their
+  material axes unless GLOBAL=YES, the rows ending with the orientation's name
+  (checked as text).
 - spring1: refused (*STEP, NLGEOM): exit status 1, the reason on stderr, no
   "Job finished" on stdout and an empty .dat: a front-end sees a failure.
 """
@@ -61,7 +68,7 @@ TOLERANCE = {'planestress2': {'stresses': 5.0e-4}, 'planestress3': {'displacemen
              'shell1lin': {'displacements': 0.2, 'forces': 0.3, 'stresses': 0.35},
              'rot4': {'displacements': 0.2, 'forces': 0.3, 'stresses': 0.35},
              'axial': {'displacements': 1.0e-2, 'stresses': 1.0e-2},
-             'c3d15': {'forces': 5.0}}
+             'c3d15': {'forces': 5.0}, 'disk2': {'displacements': 2.0e-5, 'stresses': 1.0e-4}}
 for _b in BEAMS:
     TOLERANCE[_b] = {'displacements': 0.07}
 # CalculiX solved these with its iterative solvers (*STATIC, SOLVER=ITERATIVE CHOLESKY /
@@ -100,6 +107,8 @@ def parse_dat(path):
                 continue
             if words[-1] == 'L':
                 words = words[:-1]
+            if '(elem, integ.pnt.' in title and not re.match(r'[-+0-9.]', words[-1]):
+                words = words[:-1]   # an oriented element's row ends with its orientation's name
             if title.startswith('total'):
                 cur['total'] = [float(w) for w in words]
             elif '(elem, integ.pnt.' in title:
@@ -107,6 +116,18 @@ def parse_dat(path):
             else:
                 cur[int(words[0])] = [float(w) for w in words[1:]]
     return blocks
+
+
+def orientation_names(path):
+    """The text after the six values of every element row that has one (ccx 2.20: the first 20
+    characters of the orientation of an oriented solid printed in its material axes), in order."""
+    out = []
+    with open(path) as f:
+        for line in f:
+            words = line.split()
+            if len(words) == 9 and re.match(r'[0-9]', words[0]) and not re.match(r'[-+0-9.]', words[-1]):
+                out.append((words[0], words[1], line.rstrip('\n')[98:]))
+    return out
 
 
 def run(binary, outdir, job):
@@ -221,6 +242,12 @@ def main():
             failures.append(job)
             continue
         failures += compare(job, parse_dat(dat), parse_dat(os.path.join(HERE, job + '.dat.ref')))
+        names, want = orientation_names(dat), orientation_names(os.path.join(HERE, job + '.dat.ref'))
+        if names or want:
+            ok = names == want
+            print(f"  {'ok  ' if ok else 'FAIL'} {job:16s} orientation names ending {len(want)} rows")
+            if not ok:
+                failures.append(job + ' orientation names')
         direct = ITERATIVE.get(job, (None, 0))[0]
         if direct:
             failures += compare(job + ' vs ' + direct, parse_dat(dat),

@@ -46,7 +46,8 @@ module superjoin_output_ccx_dat
        add_reactions, add_cloads, add_node_forces
   use superjoin_output_energy, only: energy_t, compute_energies
   use superjoin_elements_materials, only: material_frame
-  use superjoin_elements_solid, only: rule_t, solid_rule, solid_shape
+  use superjoin_elements_solid, only: solid_rule, solid_shape
+  use superjoin_elements_quadrature, only: quad_rule_t
   use superjoin_output_section_print, only: write_ccx_sections
   use superjoin_utils_process, only: temp_register, temp_unregister
   implicit none (type, external)
@@ -373,7 +374,7 @@ contains
     integer(ip), intent(in) :: ie
     type(orientation_t), intent(in) :: axes
     real(wp), intent(inout) :: vals(:, :)
-    type(rule_t) :: rule
+    type(quad_rule_t) :: rule
     real(wp), allocatable :: n(:), dn(:, :), x(:, :)
     real(wp) :: at(3)
     integer :: k, etype

@@ -15,6 +15,8 @@ module superjoin_deck_build_sections
        shape_shear_factor, SHAPE_CIRC
   use superjoin_deck_build_common, only: resolve_sub, more_text, where
   use superjoin_deck_cards_materials, only: ELASTIC_TYPE_NAMES
+  use superjoin_deck_coupling_records, only: COUPLE_DCOUP
+  use superjoin_utils_strings, only: to_upper
   implicit none (type, external)
   private
 
@@ -310,8 +312,10 @@ contains
     type(member_tally_t), intent(in) :: tally
     type(section_t), intent(inout) :: sec
     if (sb%nval == 0) then
-       ! an element set left empty by a refused *ELEMENT card (reported) needs nothing more
-       if (tally%ntruss + tally%ncps + tally%nsolid + tally%nbad == 0 .and. st%elements_refused) return
+       ! an element set left empty by a refused *ELEMENT card (reported), or of DCOUP3D elements (a
+       ! coupling, no element), needs nothing more
+       if (tally%ntruss + tally%ncps + tally%nsolid + tally%nbad == 0 .and. (st%elements_refused .or. &
+            dcoup_set(st, sb%elset%set))) return
        if (tally%ntruss > 0 .or. (tally%ncps == 0 .and. tally%nsolid == 0)) then
           call report_loc(st, sb%loc, card//' needs a data line (the cross-section area of the trusses)')
           return
@@ -322,6 +326,19 @@ contains
     if (tally%ntruss > 0 .or. tally%ncps == 0) sec%area = sb%val(1)
     if (tally%ncps > 0 .or. tally%ntruss == 0) sec%thickness = sb%val(1)
   end subroutine solid_values
+
+  pure logical function dcoup_set(st, name)
+    !! name is the element set of DCOUP3D elements.
+    type(deck_state_t), intent(in) :: st
+    character(*), intent(in) :: name
+    integer :: k
+    dcoup_set = .false.
+    if (.not. allocated(st%couplings)) return
+    do k = 1, size(st%couplings)
+       if (st%couplings(k)%kind /= COUPLE_DCOUP) cycle
+       if (st%couplings(k)%name == to_upper(name)) dcoup_set = .true.
+    end do
+  end function dcoup_set
 
   subroutine shell_values(st, sb, sec)
     !! Thickness of a *SHELL SECTION and its *TRANSVERSE SHEAR STIFFNESS K11,

@@ -14,6 +14,7 @@ module superjoin_deck_cards_model
   use superjoin_utils_strings, only: pick
   use superjoin_elements_catalog, only: unsupported_type_message
   use superjoin_elements_traits, only: element_type_of_name
+  use superjoin_deck_coupling_cards, only: kw_dcoup_element
   use superjoin_deck_cards_common, only: get_reals
   use superjoin_deck_cards_common, only: outside_step, check_params, param_index, get_param, &
        get_name_param, target_sub, field_count, fld, get_real, get_id, loc_string, CARD_SKIP, &
@@ -133,6 +134,11 @@ contains
     typ = to_upper(typ)
     if (spring_type(typ) > 0) then
        call kw_spring_element(st, kw, loc, spring_type(typ))
+       return
+    end if
+    if (typ == 'DCOUP3D') then
+       call declare_elset(st, kw, loc)
+       call kw_dcoup_element(st, kw, loc)
        return
     end if
     st%card_etype = element_type_of_name(typ)

@@ -16,17 +16,23 @@ module superjoin_deck_coupling_build
   !!     u_r = Σ w_i u_i / W + θ_r × (x_r - x̄);
   !!   the reference node's DOFs are the dependent ones, so a force or moment
   !!   on it is distributed to the coupled nodes by the transpose;
-  !! - *MPC BEAM, PLANE, STRAIGHT (CalculiX, nonlinear there): their linear forms (mpc).
+  !! - *MPC BEAM, PLANE, STRAIGHT (CalculiX, nonlinear there): their linear forms (mpc);
+  !! - a DCOUP3D element with its *DISTRIBUTING COUPLING nodes and weights w_i,
+  !!   read as its dialect says (dcoup): CalculiX's, the reference node's
+  !!   translations are the weighted mean u_r = Σ w_i u_i / W (its position does
+  !!   not count); Abaqus's, the distributing coupling above with these weights
+  !!   and DOFs 1-6. The listing notes which reading was taken.
   use superjoin_kinds, only: wp, ip
   use superjoin_model_types, only: model_t, substructure_t, equation_t, source_loc_t, NDOF_NODE, DLOAD_P1, DLOAD_P4, &
-       DLOAD_P5, DLOAD_P6, ELEMENT_NODE_COUNT, node_label
+       DLOAD_P5, DLOAD_P6, ELEMENT_NODE_COUNT, node_label, DIALECT_CALCULIX
   use superjoin_elements, only: element_dof_mask
   use superjoin_elements_solid_faces, only: solid_face_nodes, solid_pressure_load
   use superjoin_error, only: error_t
-  use superjoin_deck_state, only: deck_state_t, report_loc, ref_t
-  use superjoin_deck_build_common, only: resolve_items, resolve_sub
+  use superjoin_deck_state, only: deck_state_t, report_loc, ref_t, reading_dialect
+  use superjoin_deck_build_common, only: resolve_items, resolve_sub, where
   use superjoin_deck_coupling_records, only: coupling_b_t, COUPLE_NONE, COUPLE_KINEMATIC, &
-       COUPLE_DISTRIBUTING, COUPLE_RIGID_BODY, COUPLE_MPC_BEAM, COUPLE_MPC_PLANE
+       COUPLE_DISTRIBUTING, COUPLE_RIGID_BODY, COUPLE_MPC_BEAM, COUPLE_MPC_PLANE, COUPLE_DCOUP
+  use superjoin_model_notes, only: note
   use superjoin_utils_strings, only: itoa, pick
   implicit none (type, external)
   private
@@ -83,6 +89,10 @@ contains
     do k = 1, size(st%couplings)
        associate (cb => st%couplings(k))
          if (.not. cb%ok .or. cb%kind == COUPLE_NONE) cycle
+         if (cb%kind == COUPLE_DCOUP) then
+            call dcoup(st, model, cb, list)
+            cycle
+         end if
          if (cb%kind >= COUPLE_MPC_BEAM) then
             call mpc(st, model, cb, list)
             cycle
@@ -418,6 +428,70 @@ contains
       call push(list, cp%loc, subs, nodes, dofs, cs)
     end block
   end subroutine push_rbe3
+
+  subroutine dcoup(st, model, cb, list)
+    !! A DCOUP3D element and its *DISTRIBUTING COUPLING nodes (module comment).
+    type(deck_state_t), intent(inout) :: st
+    type(model_t), intent(inout) :: model
+    type(coupling_b_t), intent(in) :: cb
+    type(eq_list_t), intent(inout) :: list
+    type(coupled_t) :: cp
+    real(wp), allocatable :: wnode(:)
+    integer(ip), allocatable :: items(:)
+    integer(ip) :: i
+    integer :: k, s, d, n
+    logical :: ok
+    if (size(cb%list) == 0) then
+       call report_loc(st, cb%loc, 'the DCOUP3D element of element set '//cb%name// &
+            ' has no *DISTRIBUTING COUPLING, ELSET='//cb%name//' (its coupled nodes and weights)')
+       return
+    end if
+    call one_node(st, model, cb%ref_node, cb%loc, cp%rsub, cp%rnode, ok)
+    if (.not. ok) return
+    do k = 1, size(cb%list)
+       s = resolve_sub(st, model, cb%list(k), cb%loc, 'node')
+       if (s == 0) return
+       if (cp%csub == 0) then
+          cp%csub = s
+          allocate (wnode(model%subs(s)%nnode), source=0.0_wp)
+       else if (s /= cp%csub) then
+          call report_loc(st, cb%loc, 'the *DISTRIBUTING COUPLING of element set '//cb%name// &
+               ' spans two substructures (its nodes must lie in one)')
+          return
+       end if
+       call resolve_items(st, model, s, cb%list(k), .false., cb%loc, items, ok)
+       if (.not. ok) return
+       wnode(items) = wnode(items) + cb%weights(k)
+    end do
+    if (cp%csub == cp%rsub) wnode(cp%rnode) = 0.0_wp
+    cp%nodes = pack([(i, i = 1_ip, size(wnode, kind=ip))], wnode /= 0.0_wp)
+    cp%w = pack(wnode, wnode /= 0.0_wp)
+    n = size(cp%nodes)
+    if (n < 2) then
+       call report_loc(st, cb%loc, 'the *DISTRIBUTING COUPLING of element set '//cb%name// &
+            ' needs at least two nodes besides its reference node')
+       return
+    end if
+    cp%loc = cb%loc
+    cp%tsub = cp%rsub
+    cp%tnode = cp%rnode
+    if (reading_dialect(st) == DIALECT_CALCULIX) then
+       do d = 1, 3
+          call push(list, cb%loc, [cp%rsub, spread(cp%csub, 1, n)], [cp%rnode, cp%nodes], [d, spread(d, 1, n)], &
+               [1.0_wp, -cp%w/sum(cp%w)])
+       end do
+       call note(model%notes, 'DCOUP3D at '//where(st, cb%loc)//': read as CalculiX''s distributing coupling, '// &
+            'the reference node''s translations the weighted mean of its nodes'' (Abaqus''s also carries '// &
+            'moments, from the reference node''s position: *CONTROLS, DIALECT=ABAQUS)')
+    else
+       cp%kind = COUPLE_DISTRIBUTING
+       cp%dofs = .true.
+       call distributing(st, model, cp, list)
+       call note(model%notes, 'DCOUP3D at '//where(st, cb%loc)//': read as Abaqus''s distributing coupling '// &
+            '(forces and moments, DOFs 1-6; CalculiX''s is the weighted mean of the translations alone: '// &
+            '*CONTROLS, DIALECT=CALCULIX)')
+    end if
+  end subroutine dcoup
 
   subroutine mpc(st, model, cb, list)
     !! *MPC, linearised (x_i, u_i: the i-th node listed):

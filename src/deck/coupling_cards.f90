@@ -7,20 +7,26 @@ module superjoin_deck_coupling_cards
   !! - `*RIGID BODY, NSET=s | ELSET=s, REF NODE=n[, ROT NODE=m]`;
   !! - `*MPC` with data lines `BEAM, a, b`, `PLANE, nodes` or `STRAIGHT, nodes`
   !!   (CalculiX: nonlinear constraints; superjoin's statics keep their linear
-  !!   forms).
+  !!   forms);
+  !! - `*ELEMENT, TYPE=DCOUP3D, ELSET=e` (data lines `element, reference node`)
+  !!   and `*DISTRIBUTING COUPLING, ELSET=e` (data lines `node or node set,
+  !!   weight`): a distributing coupling element (Abaqus's and CalculiX's
+  !!   readings differ: superjoin_deck_coupling_build).
   !! superjoin_deck_coupling_build turns the records into constraint equations.
   use superjoin_model_types, only: source_loc_t, NDOF_NODE
   use superjoin_deck_lexer, only: keyword_line_t, clip
   use superjoin_utils_strings, only: to_upper
   use superjoin_deck_state, only: deck_state_t, report_loc, ref_t, SUBK_PART
   use superjoin_deck_coupling_records, only: coupling_b_t, COUPLE_KINEMATIC, COUPLE_DISTRIBUTING, &
-       COUPLE_RIGID_BODY, COUPLE_MPC_BEAM, COUPLE_MPC_PLANE, COUPLE_MPC_STRAIGHT
+       COUPLE_RIGID_BODY, COUPLE_MPC_BEAM, COUPLE_MPC_PLANE, COUPLE_MPC_STRAIGHT, COUPLE_DCOUP
   use superjoin_deck_cards_common, only: outside_step, check_params, get_param, field_count, fld, &
-       get_dof, parse_ref, parse_set_ref, CARD_SKIP, CARD_COUPLING_DOFS, CARD_MPC, NAME_LEN
+       get_dof, parse_ref, parse_set_ref, get_real, CARD_SKIP, CARD_COUPLING_DOFS, CARD_MPC, CARD_DCOUP_ELEMENT, &
+       CARD_DCOUP_NODES, NAME_LEN
+  use superjoin_kinds, only: wp
   implicit none (type, external)
   private
 
-  public :: kw_coupling_card, data_coupling_dofs, data_mpc
+  public :: kw_coupling_card, data_coupling_dofs, data_mpc, kw_dcoup_element, data_dcoup_element, data_dcoup_nodes
 
 contains
 
@@ -49,6 +55,8 @@ contains
        call kw_coupling_kind(st, kw, loc, COUPLE_DISTRIBUTING, prev_coupling)
     case ('RIGID BODY')
        call kw_rigid_body(st, kw, loc)
+    case ('DISTRIBUTING COUPLING')
+       call kw_dcoup_nodes(st, kw, loc)
     case default
        call kw_mpc(st, kw, loc)
     end select
@@ -229,6 +237,97 @@ contains
       end do
     end associate
   end subroutine data_mpc
+
+  subroutine kw_dcoup_element(st, kw, loc)
+    !! *ELEMENT, TYPE=DCOUP3D, ELSET=e: distributing coupling elements (the
+    !! ELSET names them for *DISTRIBUTING COUPLING; the caller declared it).
+    type(deck_state_t), intent(inout) :: st
+    type(keyword_line_t), intent(in) :: kw
+    type(source_loc_t), intent(in) :: loc
+    character(:), allocatable :: v
+    logical :: found
+    st%card = CARD_SKIP
+    call get_param(st, kw, loc, 'ELSET', .false., v, found)
+    if (.not. found) then
+       call report_loc(st, loc, '*ELEMENT, TYPE=DCOUP3D needs ELSET= (the set its *DISTRIBUTING COUPLING names)')
+       return
+    end if
+    st%card = CARD_DCOUP_ELEMENT
+    st%dcoup_set = to_upper(v)
+  end subroutine kw_dcoup_element
+
+  subroutine data_dcoup_element(st, line, loc)
+    !! `element, reference node` of a DCOUP3D card: one coupling record each.
+    type(deck_state_t), intent(inout) :: st
+    character(*), intent(in) :: line
+    type(source_loc_t), intent(in) :: loc
+    type(coupling_b_t) :: c
+    if (.not. field_count(st, loc, 2, 2, 'element, reference node')) return
+    c%kind = COUPLE_DCOUP
+    c%name = st%dcoup_set
+    c%loc = loc
+    allocate (c%list(0), c%weights(0))
+    if (.not. parse_ref(st, fld(st, line, 2), .false., st%cur_sub, loc, c%ref_node)) c%ok = .false.
+    call push_coupling(st, c)
+  end subroutine data_dcoup_element
+
+  subroutine kw_dcoup_nodes(st, kw, loc)
+    !! *DISTRIBUTING COUPLING, ELSET=e: the coupled nodes of the DCOUP3D elements of e.
+    type(deck_state_t), intent(inout) :: st
+    type(keyword_line_t), intent(in) :: kw
+    type(source_loc_t), intent(in) :: loc
+    character(:), allocatable :: v
+    logical :: found
+    integer :: k
+    st%card = CARD_SKIP
+    if (.not. outside_step(st, kw, loc)) return
+    call check_params(st, kw, loc, [character(NAME_LEN) :: 'ELSET'], [character(NAME_LEN) ::])
+    call get_param(st, kw, loc, 'ELSET', .true., v, found)
+    if (.not. found) return
+    v = to_upper(v)
+    st%card_item = 0
+    if (allocated(st%couplings)) then
+       do k = 1, size(st%couplings)
+          if (st%couplings(k)%kind /= COUPLE_DCOUP) cycle
+          if (st%couplings(k)%name /= v) cycle
+          if (size(st%couplings(k)%list) > 0) then
+             call report_loc(st, loc, 'element set '//v//' has a *DISTRIBUTING COUPLING already')
+             return
+          end if
+          st%card_item = k
+       end do
+    end if
+    if (st%card_item == 0) then
+       call report_loc(st, loc, '*DISTRIBUTING COUPLING: no *ELEMENT, TYPE=DCOUP3D, ELSET='//v// &
+            ' above it (the element set is named on the DCOUP3D element card)')
+       return
+    end if
+    st%card = CARD_DCOUP_NODES
+    st%dcoup_set = v
+  end subroutine kw_dcoup_nodes
+
+  subroutine data_dcoup_nodes(st, line, loc)
+    !! `node or node set, weight` of *DISTRIBUTING COUPLING, for every DCOUP3D element of the set.
+    type(deck_state_t), intent(inout) :: st
+    character(*), intent(in) :: line
+    type(source_loc_t), intent(in) :: loc
+    type(ref_t) :: ref
+    real(wp) :: w
+    integer :: k
+    if (.not. field_count(st, loc, 2, 2, 'node or node set, weight')) return
+    if (.not. parse_ref(st, fld(st, line, 1), .false., st%cur_sub, loc, ref)) return
+    if (.not. get_real(st, line, loc, 2, w)) return
+    if (.not. (w > 0.0_wp)) then
+       call report_loc(st, loc, 'a distributing coupling weight must be positive, not '//clip(fld(st, line, 2)))
+       return
+    end if
+    do k = 1, size(st%couplings)
+       if (st%couplings(k)%kind /= COUPLE_DCOUP) cycle
+       if (st%couplings(k)%name /= st%dcoup_set) cycle
+       st%couplings(k)%list = [st%couplings(k)%list, ref]
+       st%couplings(k)%weights = [st%couplings(k)%weights, w]
+    end do
+  end subroutine data_dcoup_nodes
 
   subroutine push_coupling(st, c)
     !! Append a coupling record.

@@ -21,7 +21,8 @@ module superjoin_deck_parser
        CARD_CLOAD, CARD_DLOAD, CARD_DENSITY, CARD_TSHEAR, CARD_INSTANCE, CARD_CHANGE_CONTACT, &
        CARD_INTERFACE, CARD_STATIC, CARD_REQUEST, CARD_SPRING_ELEMENT, CARD_SPRING, &
        CARD_COMBINATION, CARD_EXPANSION, CARD_TEMPERATURE, CARD_EQUATION, CARD_TRANSFORM, &
-       CARD_NODAL_THICKNESS, NAME_LEN, CARD_SURFACE, CARD_DSLOAD, CARD_SECTION_PRINT, CARD_TIE, CARD_COUPLING_DOFS, CARD_MPC
+       CARD_NODAL_THICKNESS, NAME_LEN, CARD_SURFACE, CARD_DSLOAD, CARD_SECTION_PRINT, CARD_TIE, CARD_COUPLING_DOFS, CARD_MPC, &
+       CARD_DCOUP_ELEMENT, CARD_DCOUP_NODES
   use superjoin_deck_cards_assembly, only: assembly_allows, finish_assembly, kw_assembly, &
        data_instance, kw_interface, data_interface, kw_change_contact, data_change_contact, &
        kw_contact, data_contact, kw_support, data_support
@@ -38,7 +39,8 @@ module superjoin_deck_parser
   use superjoin_deck_cards_output, only: kw_output, kw_request, data_request, kw_section_print, data_section_print
   use superjoin_deck_equations, only: kw_equation, data_equation, end_equation_card
   use superjoin_deck_ties, only: kw_tie, data_tie
-  use superjoin_deck_coupling_cards, only: kw_coupling_card, data_coupling_dofs, data_mpc
+  use superjoin_deck_coupling_cards, only: kw_coupling_card, data_coupling_dofs, data_mpc, data_dcoup_element, &
+       data_dcoup_nodes
   use superjoin_deck_transforms, only: kw_transform, data_transform
   use superjoin_deck_nodal_thickness, only: kw_nodal_thickness, data_nodal_thickness
   use superjoin_deck_matrix_input, only: kw_matrix_input, kw_matrix_output
@@ -251,7 +253,7 @@ contains
        call kw_tie_or_equation(st, kw, loc)
     case ('TRANSFORM')
        call kw_transform(st, kw, loc)
-    case ('COUPLING', 'KINEMATIC', 'DISTRIBUTING', 'RIGID BODY', 'MPC')
+    case ('COUPLING', 'KINEMATIC', 'DISTRIBUTING', 'RIGID BODY', 'MPC', 'DISTRIBUTING COUPLING')
        call kw_coupling_card(st, kw, loc, prev_coupling)
     case ('MATRIX INPUT')
        call kw_matrix_input(st, kw, loc)
@@ -414,6 +416,10 @@ contains
        call data_coupling_dofs(st, line, loc)
     case (CARD_MPC)
        call data_mpc(st, line, loc)
+    case (CARD_DCOUP_ELEMENT)
+       call data_dcoup_element(st, line, loc)
+    case (CARD_DCOUP_NODES)
+       call data_dcoup_nodes(st, line, loc)
     case (CARD_NODAL_THICKNESS)
        call data_nodal_thickness(st, line, loc)
     case (CARD_STATIC)

@@ -73,6 +73,7 @@ module superjoin_deck_state
      type(equation_b_t), allocatable :: equations(:)   !! *EQUATION constraints as read
      type(coupling_b_t), allocatable :: couplings(:)   !! *COUPLING, *RIGID BODY, *MPC as read (unallocated: none)
      integer :: open_coupling = 0                      !! the *COUPLING card just read (0: the last keyword was another)
+     character(:), allocatable :: dcoup_set            !! the element set of the DCOUP3D card being read
      integer :: nstep = 0
      type(step_b_t), allocatable :: steps(:)
      type(controls_t) :: controls

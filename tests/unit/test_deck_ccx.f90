@@ -202,6 +202,7 @@ contains
     call check(canonical_keyword('HEATTRANSFER') == 'HEAT TRANSFER', 'a refused card too')
     call check(canonical_keyword('STEP') == 'STEP', 'a keyword as it is')
     call check(canonical_keyword('SOLID SECTIONX') == 'SOLID SECTIONX', 'unknown: unchanged')
-    call check(canonical_keyword('DISTRIBUTINGCOUPLING') == 'DISTRIBUTINGCOUPLING', 'unknown without blanks: unchanged')
+    call check(canonical_keyword('DISTRIBUTINGCOUPLING') == 'DISTRIBUTING COUPLING', 'DISTRIBUTINGCOUPLING')
+    call check(canonical_keyword('DESIGNVARIABLES') == 'DESIGNVARIABLES', 'unknown without blanks: unchanged')
   end subroutine test_keyword_blanks
 end program test_deck_ccx

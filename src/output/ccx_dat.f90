@@ -311,6 +311,9 @@ contains
        case ('E')
           call block_header(lu, 'strains (elem, integ.pnt.,exx,eyy,ezz,exy,exz,eyz)', r, is, 'EALL')
           call point_rows(lu, model, fields, is, subs, elems, .true.)
+       case ('ENER')
+          call block_header(lu, 'internal energy density (elem, integ.pnt.,energy)', r, is, 'EALL')
+          call density_rows(lu, model, fields, is, subs, elems)
        end select
     end do
     ! ELSE (the element's strain energy) is not among the listing's variables
@@ -341,6 +344,38 @@ contains
        end do
     end do
   end subroutine point_rows
+
+  subroutine density_rows(lu, model, fields, is, subs, elems)
+    !! ENER: the strain energy density ½ σ:ε (tensor shears counted twice) at
+    !! CalculiX's points of the elements that have both tensors at their points
+    !! (solids, axisymmetric elements, trusses); plane elements, shells and
+    !! beams print no rows (their strains are not at the points).
+    type(text_buffer_t), intent(inout) :: lu
+    type(model_t), intent(in) :: model
+    type(result_fields_t), intent(in) :: fields
+    integer, intent(in) :: is
+    integer, intent(in) :: subs(:)
+    integer(ip), intent(in) :: elems(:)
+    real(wp), allocatable :: s(:, :), e(:, :)
+    type(element_traits_t) :: t
+    character(len=40) :: row
+    real(wp) :: w
+    integer :: i, k
+    logical :: ok
+    do i = 1, size(elems)
+       t = element_traits(model%subs(subs(i))%elem_type(elems(i)))
+       if (t%family /= FAMILY_SOLID .and. t%family /= FAMILY_TRUSS) cycle
+       call ccx_point_values(model, fields, is, subs(i), elems(i), .false., s, ok)
+       if (.not. ok) cycle
+       call ccx_point_values(model, fields, is, subs(i), elems(i), .true., e, ok)
+       if (.not. ok) cycle
+       do k = 1, size(s, 2)
+          w = 0.5_wp*(sum(s(1:3, k)*e(1:3, k)) + 2.0_wp*sum(s(4:6, k)*e(4:6, k)))
+          write (row, '(i10,i4,1x,a13)') model%subs(subs(i))%elem_id(elems(i)), k, c_real(w, 13, 6)
+          call lu%line(trim(row))
+       end do
+    end do
+  end subroutine density_rows
 
   subroutine energy_rows(lu, model, fields, is, r, subs, elems)
     !! ELSE: the strain energy of each element of the set, and its total.

@@ -268,7 +268,43 @@ contains
        call forces(model, fields, is, vals)
        call result_block(lu, model, num, is, nblock, 'FORC', vals(1:3, :), mask)
     end if
+    call requested_nodes(model, is, REQ_EL_FILE, 'S', mask)
+    if (any(mask) .and. count_links(model) > 0) then
+       call link_forces(model, fields, is, vals, mask)
+       call result_block(lu, model, num, is, nblock, 'FJOINT', vals, mask)
+    end if
   end subroutine step_blocks
+
+  subroutine link_forces(model, fields, is, vals, mask)
+    !! vals(3, vertex): the force of the contact elements (frd type 11,
+    !! material 1000 + card) at both of their nodes, in the contact's axes,
+    !! on the master (the listing's CONTACT FORCES F1..F3); the mean where a
+    !! node has several, 0 at the other nodes; mask (the nodes of the *EL FILE
+    !! elements) gains the nodes of contact elements with a linked DOF.
+    type(model_t), intent(in) :: model
+    type(result_fields_t), intent(in) :: fields
+    integer, intent(in) :: is
+    real(wp), allocatable, intent(out) :: vals(:, :)
+    logical, intent(inout) :: mask(:)
+    integer, allocatable :: cnt(:)
+    integer(i8) :: v(2)
+    integer :: k
+    allocate (vals(3, fields%vertex_offset(size(model%subs) + 1)), source=0.0_wp)
+    allocate (cnt(size(vals, 2)), source=0)
+    do k = 1, size(model%links)
+       associate (ln => model%links(k), c => model%contacts(model%links(k)%contact))
+         if (all(ln%state == LINK_NONE)) cycle
+         v = [fields%vertex_offset(c%master_sub) + ln%master_node, fields%vertex_offset(c%slave_sub) + ln%slave_node]
+         vals(:, v(1)) = vals(:, v(1)) + fields%steps(is)%link_force(1:3, k)
+         vals(:, v(2)) = vals(:, v(2)) + fields%steps(is)%link_force(1:3, k)
+         cnt(v) = cnt(v) + 1
+       end associate
+    end do
+    mask = mask .or. cnt > 0
+    do k = 1, 3
+       vals(k, :) = vals(k, :)/real(max(cnt, 1), wp)
+    end do
+  end subroutine link_forces
 
   subroutine requested_nodes(model, is, kind, var, mask)
     !! mask(vertex): the nodes whose `var` the requests of `kind` in step is

@@ -307,13 +307,13 @@ contains
        select case (r%vars(iv)%s)
        case ('S')
           call block_header(lu, 'stresses (elem, integ.pnt.,sxx,syy,szz,sxy,sxz,syz)', r, is, 'EALL')
-          call point_rows(lu, model, fields, is, subs, elems, .false.)
+          call point_rows(lu, model, fields, is, subs, elems, 'S')
        case ('E')
           call block_header(lu, 'strains (elem, integ.pnt.,exx,eyy,ezz,exy,exz,eyz)', r, is, 'EALL')
-          call point_rows(lu, model, fields, is, subs, elems, .true.)
+          call point_rows(lu, model, fields, is, subs, elems, 'E')
        case ('ENER')
           call block_header(lu, 'internal energy density (elem, integ.pnt.,energy)', r, is, 'EALL')
-          call density_rows(lu, model, fields, is, subs, elems)
+          call point_rows(lu, model, fields, is, subs, elems, 'ENER')
        end select
     end do
     ! ELSE (the element's strain energy) is not among the listing's variables
@@ -321,61 +321,60 @@ contains
          call energy_rows(lu, model, fields, is, r, subs, elems)
   end subroutine el_print
 
-  subroutine point_rows(lu, model, fields, is, subs, elems, strain)
-    !! Rows "element point six-components" at CalculiX's integration points.
+  subroutine point_rows(lu, model, fields, is, subs, elems, var)
+    !! Rows "element point values" at CalculiX's integration points: var S or
+    !! E (six components), ENER (point_energy).
     type(text_buffer_t), intent(inout) :: lu
     type(model_t), intent(in) :: model
     type(result_fields_t), intent(in) :: fields
     integer, intent(in) :: is
     integer, intent(in) :: subs(:)
     integer(ip), intent(in) :: elems(:)
-    logical, intent(in) :: strain
+    character(*), intent(in) :: var
     real(wp), allocatable :: vals(:, :)
     character(len=120) :: row
     integer :: i, k, d
     logical :: ok
     do i = 1, size(elems)
-       call ccx_point_values(model, fields, is, subs(i), elems(i), strain, vals, ok)
+       if (var == 'ENER') then
+          call point_energy(model, fields, is, subs(i), elems(i), vals, ok)
+       else
+          call ccx_point_values(model, fields, is, subs(i), elems(i), var == 'E', vals, ok)
+       end if
        if (.not. ok) cycle
        do k = 1, size(vals, 2)
           write (row, '(i10,i4,6(1x,a13))') model%subs(subs(i))%elem_id(elems(i)), k, &
-               (c_real(vals(d, k), 13, 6), d=1, NTENSOR)
+               (c_real(vals(d, k), 13, 6), d=1, size(vals, 1))
           call lu%line(trim(row))
        end do
     end do
   end subroutine point_rows
 
-  subroutine density_rows(lu, model, fields, is, subs, elems)
-    !! ENER: the strain energy density ½ σ:ε (tensor shears counted twice) at
-    !! CalculiX's points of the elements that have both tensors at their points
-    !! (solids, axisymmetric elements, trusses); plane elements, shells and
-    !! beams print no rows (their strains are not at the points).
-    type(text_buffer_t), intent(inout) :: lu
+  subroutine point_energy(model, fields, is, isub, ie, vals, ok)
+    !! ENER of element ie: vals(1, point), the strain energy density ½ σ:ε
+    !! (tensor shears counted twice) at CalculiX's points, for the elements
+    !! with both tensors at their points (solids, axisymmetric elements,
+    !! trusses); ok false for plane elements, shells and beams (their strains
+    !! are not at the points).
     type(model_t), intent(in) :: model
     type(result_fields_t), intent(in) :: fields
-    integer, intent(in) :: is
-    integer, intent(in) :: subs(:)
-    integer(ip), intent(in) :: elems(:)
+    integer, intent(in) :: is, isub
+    integer(ip), intent(in) :: ie
+    real(wp), allocatable, intent(out) :: vals(:, :)
+    logical, intent(out) :: ok
     real(wp), allocatable :: s(:, :), e(:, :)
     type(element_traits_t) :: t
-    character(len=40) :: row
-    real(wp) :: w
-    integer :: i, k
-    logical :: ok
-    do i = 1, size(elems)
-       t = element_traits(model%subs(subs(i))%elem_type(elems(i)))
-       if (t%family /= FAMILY_SOLID .and. t%family /= FAMILY_TRUSS) cycle
-       call ccx_point_values(model, fields, is, subs(i), elems(i), .false., s, ok)
-       if (.not. ok) cycle
-       call ccx_point_values(model, fields, is, subs(i), elems(i), .true., e, ok)
-       if (.not. ok) cycle
-       do k = 1, size(s, 2)
-          w = 0.5_wp*(sum(s(1:3, k)*e(1:3, k)) + 2.0_wp*sum(s(4:6, k)*e(4:6, k)))
-          write (row, '(i10,i4,1x,a13)') model%subs(subs(i))%elem_id(elems(i)), k, c_real(w, 13, 6)
-          call lu%line(trim(row))
-       end do
+    integer :: k
+    t = element_traits(model%subs(isub)%elem_type(ie))
+    ok = t%family == FAMILY_SOLID .or. t%family == FAMILY_TRUSS
+    if (ok) call ccx_point_values(model, fields, is, isub, ie, .false., s, ok)
+    if (ok) call ccx_point_values(model, fields, is, isub, ie, .true., e, ok)
+    if (.not. ok) return
+    allocate (vals(1, size(s, 2)))
+    do k = 1, size(s, 2)
+       vals(1, k) = 0.5_wp*(sum(s(1:3, k)*e(1:3, k)) + 2.0_wp*sum(s(4:6, k)*e(4:6, k)))
     end do
-  end subroutine density_rows
+  end subroutine point_energy
 
   subroutine energy_rows(lu, model, fields, is, r, subs, elems)
     !! ELSE: the strain energy of each element of the set, and its total.

@@ -10,7 +10,9 @@ module superjoin_output_ccx_dat
   !!
   !! Blocks: U "displacements", RF "forces" (CalculiX's internal nodal forces:
   !! the support reaction plus the *CLOAD of the node), NT "temperatures", S
-  !! "stresses", E "strains", ELSE "internal energy"; TOTALS=YES adds the sum
+  !! "stresses", E "strains", ENER "internal energy density" (½ σ:ε at the
+  !! points of solids and trusses), ELSE "internal energy" (an axisymmetric
+  !! model: that of CalculiX's 2° wedge, 1/180); TOTALS=YES adds the sum
   !! (RF, ELSE), TOTALS=ONLY writes the sum alone. A node with a nodal system
   !! (*TRANSFORM) prints U and RF in it, its row ending in L, unless the card
   !! says GLOBAL=YES. A node set given by GENERATE ranges over undefined ids
@@ -394,6 +396,8 @@ contains
     if (allocated(error)) return
     total = 0.0_wp
     if (r%totals /= TOTALS_ONLY) call block_header(lu, 'internal energy (element, energy)', r, is, 'EALL')
+    ! an axisymmetric model: CalculiX's energies are those of its 2° wedge (superjoin's: the whole ring)
+    if (has_axisymmetric(model)) en%element = en%element/real(CCX_AXIAL_SEGMENTS, wp)
     do i = 1, size(elems)
        associate (e => en%element(fields%elem_offset(subs(i)) + elems(i)))
          total = total + e

@@ -46,6 +46,7 @@ Tolerances and why (doc/calculix-dropin.md, "The .dat against .dat.ref"):
 - spring1: refused (*STEP, NLGEOM): exit status 1, the reason on stderr, no
   "Job finished" on stdout and an empty .dat: a front-end sees a failure.
 """
+import math
 import os
 import re
 import shutil
@@ -69,7 +70,9 @@ TOLERANCE = {'planestress2': {'stresses': 5.0e-4}, 'planestress3': {'displacemen
              # ELSE of a B31 and an S4 cantilever (written for this test): CalculiX's C3D20R and
              # C3D8I expansions; superjoin's B31 gives Timoshenko's closed form (energy_closed_forms)
              'ener_b31': {'displacements': 1.0e-2, 'internal': 1.0e-2, 'total': 1.0e-2},
-             'ener_s4': {'displacements': 1.0e-2, 'internal': 1.0e-2, 'total': 1.0e-2}}
+             'ener_s4': {'displacements': 1.0e-2, 'internal': 1.0e-2, 'total': 1.0e-2},
+             # u_r = -nu eps r exactly in superjoin; CalculiX's straight-sided 2 deg wedge: times cos 1 deg
+             'ener_cax8r': {'displacements': 2.0e-4}}
 for _b in BEAMS:
     TOLERANCE[_b] = {'displacements': 0.07}
 # CalculiX solved these with its iterative solvers (*STATIC, SOLVER=ITERATIVE CHOLESKY /
@@ -190,6 +193,17 @@ def energy_closed_forms(outdir):
           f"C3D8 locks in bending); ENER integrated = ELSE within {integ:.1e}")
     if not ok:
         failures.append('ener_c3d8 closed form')
+    # CAX8R ring r = 1..3, h = 1, uz = 0.001: ENER = E eps^2 / 2, ELSE total = ENER pi (9 - 1) / 180 (the wedge)
+    dat = parse_dat(os.path.join(outdir, 'ener_cax8r', 'ener_cax8r.dat'))
+    blocks = {k[0].split(' (')[0]: v for k, v in dat.items()}
+    dens, total = 0.5 * 210000.0 * 1e-6, blocks['total internal energy']['total'][0]
+    diff = max([abs(v[0] - dens) / dens for v in blocks['internal energy density'].values()]
+               + [abs(total - dens * math.pi * 8 / 180) / total])
+    ok = diff <= 1e-6
+    print(f"  {'ok  ' if ok else 'FAIL'} ener_cax8r       ENER = E eps^2/2, ELSE = ENER V / 180 (CalculiX's 2 deg wedge): "
+          f"|diff|/value {diff:.1e}")
+    if not ok:
+        failures.append('ener_cax8r closed form')
     # B31 cantilever L = 1000, 10 x 20 rectangle (I = 6666.67 about the load), P = 100: Timoshenko
     # 1/2 P^2 (L^3/(3EI) + L/(k G A)), k = 0.85 (superjoin's rectangle); S4 strip: 1/2 P w (Clapeyron)
     for job, closed in (('ener_b31', 0.5 * 100.0 ** 2 * (1e9 / (3 * 210000.0 * 20.0 ** 3 * 10 / 12)

@@ -130,6 +130,7 @@ program superjoin_main
   if (.not. allocated(vtk_file) .and. allocated(model%vtk_path)) vtk_file = model%vtk_path
   opts%csv = allocated(csv_dir)
   opts%vtk = allocated(vtk_file)
+  opts%frd = allocated(job)
   call solve_steps(model, opts, res, error)
   if (allocated(error) .and. allocated(res%fields%mechanism) .and. comm%is_root()) call write_mechanism(error)
   ! Some steps solved, others not (exit 3): the solved ones are written first.

@@ -39,8 +39,8 @@ contains
     !! The elements whose results somebody reads (numbered over the
     !! substructures): every one in a deck without output requests, or when
     !! result files (CSV, VTK) are written and the deck has no *EL FILE
-    !! request; else those that *EL PRINT (and, with result files, *EL FILE)
-    !! requests cover. Says in a note how many that is when it is not all.
+    !! request; else those that *EL PRINT (and, with result files or the .frd
+    !! of superjoin -i, *EL FILE) requests cover. Says in a note how many that is when it is not all.
     type(model_t), intent(in) :: model
     type(run_options_t), intent(in) :: opts
     logical, allocatable, intent(out) :: wanted(:)
@@ -55,7 +55,7 @@ contains
        allocate (wanted(nelem), source=.true.)
        return
     end if
-    if (opts%csv .or. opts%vtk) then
+    if (opts%csv .or. opts%vtk .or. opts%frd) then
        call request_mask(model, [REQ_EL_PRINT, REQ_EL_FILE], .false., wanted)
     else
        call request_mask(model, [REQ_EL_PRINT], .false., wanted)

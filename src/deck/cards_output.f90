@@ -8,9 +8,10 @@ module superjoin_deck_cards_output
   use superjoin_deck_state, only: deck_state_t, report_loc, request_b_t, add_request, &
        add_request_var
   use superjoin_deck_ccx_cards, only: request_kind, is_node_request, classify_variable, VAR_UNKNOWN, &
-       VAR_PRODUCED
+       VAR_PRODUCED, variable_hint
   use superjoin_utils_strings, only: pick
   use superjoin_model_output_paths, only: vtk_path_problem
+  use superjoin_model_notes, only: append_string
   use superjoin_deck_cards_common, only: check_params, param_index, get_param, fld, parse_set_ref, &
        loc_string, CARD_SKIP, CARD_REQUEST, NAME_LEN, get_name_param, CARD_SECTION_PRINT
   implicit none (type, external)
@@ -47,7 +48,8 @@ contains
   subroutine kw_request(st, kw, loc)
     !! *NODE PRINT, *EL PRINT, *NODE FILE, *EL FILE, *NODE OUTPUT, *ELEMENT OUTPUT:
     !! NSET= or ELSET= (a set, resolved later), TOTALS=, FREQUENCY= and the
-    !! CalculiX flags; the variables follow as data lines.
+    !! CalculiX flags; the variables follow as data lines. *CONTACT PRINT,
+    !! *CONTACT FILE, *CONTACT OUTPUT: kw_contact_output.
     type(deck_state_t), intent(inout) :: st
     type(keyword_line_t), intent(in) :: kw
     type(source_loc_t), intent(in) :: loc
@@ -58,6 +60,10 @@ contains
     integer(ip) :: n
     integer :: stat
     st%card = CARD_SKIP
+    if (index(kw%keyword, 'CONTACT ') == 1) then
+       call kw_contact_output(st, kw, loc)
+       return
+    end if
     r%kind = request_kind(kw%keyword)
     r%card = '*'//kw%keyword
     node = is_node_request(r%kind)
@@ -112,6 +118,23 @@ contains
     st%card = CARD_REQUEST
   end subroutine kw_request
 
+  subroutine kw_contact_output(st, kw, loc)
+    !! *CONTACT PRINT, *CONTACT FILE, *CONTACT OUTPUT: CalculiX's output of its
+    !! contact pairs (CDIS, CSTR, CELS, CNUM at the active slave nodes).
+    !! superjoin has no contact pairs (*CONTACT PAIR is refused), so the card
+    !! requests nothing: accepted, its data lines passed over, a note in the
+    !! listing (superjoin's joints: the CONTACT FORCES table).
+    type(deck_state_t), intent(inout) :: st
+    type(keyword_line_t), intent(in) :: kw
+    type(source_loc_t), intent(in) :: loc
+    call check_params(st, kw, loc, [character(NAME_LEN) :: 'FREQUENCY', 'TIME POINTS', 'TOTALS', 'VARIABLE', &
+         'NSET', 'OUTPUT'], [character(NAME_LEN) :: 'LAST ITERATIONS', 'CONTACT ELEMENTS'])
+    call append_string(st%notes, '*'//kw%keyword//' at '//loc_string(st, loc)// &
+         ': CalculiX''s output of contact pairs, which the deck cannot have (*CONTACT PAIR is refused): '// &
+         'nothing to write (joints: CONTACT FORCES)')
+    st%card = CARD_SKIP
+  end subroutine kw_contact_output
+
   subroutine data_request(st, line, loc)
     !! Variable names of an output request, several per line.
     type(deck_state_t), intent(inout) :: st
@@ -126,7 +149,8 @@ contains
          what = classify_variable(r%kind, name)
          if (what == VAR_UNKNOWN) then
             call report_loc(st, loc, 'unknown output variable '''//clip(fld(st, line, i))//''' for '// &
-                 r%card//' (superjoin produces '//pick(is_node_request(r%kind), 'U, RF, CF', 'S, E, SF')//')')
+                 r%card//' (superjoin produces '//pick(is_node_request(r%kind), 'U, RF, CF', 'S, E, SF')//')'// &
+                 variable_hint(name))
          else
             call add_request_var(r, name, what == VAR_PRODUCED)
          end if

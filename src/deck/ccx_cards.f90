@@ -10,7 +10,7 @@ module superjoin_deck_ccx_cards
   private
 
   public :: refused_card_reason, request_kind, is_node_request, classify_variable
-  public :: canonical_keyword
+  public :: canonical_keyword, variable_hint
 
   integer, parameter, public :: VAR_UNKNOWN = 0, VAR_PRODUCED = 1, VAR_NOT_PRODUCED = 2
     !! What superjoin does with an output variable.
@@ -27,10 +27,11 @@ module superjoin_deck_ccx_cards
        'CYCLIC HARDENING', 'CONTACT PAIR', 'SURFACE INTERACTION', 'SURFACE BEHAVIOR', 'FRICTION', &
        'GAP', 'GAP CONDUCTANCE', 'TEMPERATURE', 'INITIAL CONDITIONS', 'MODAL DAMPING', &
        'CONTACT DAMPING']
-  integer, parameter :: NUM_KNOWN = 61
+  integer, parameter :: NUM_KNOWN = 64
   character(len=KW_LEN), parameter :: KNOWN_KEYWORDS(NUM_KNOWN) = [character(len=KW_LEN) :: &
        'ASSEMBLY', 'BEAM GENERAL SECTION', 'BEAM SECTION', 'BOUNDARY', 'CHANGE CONTACT', 'CLOAD', &
-       'CONTACT', 'CONTROLS', 'COUPLING', 'DENSITY', 'DISTRIBUTING', 'DISTRIBUTING COUPLING', 'KINEMATIC', 'MPC', 'RIGID BODY', &
+       'CONTACT', 'CONTACT FILE', 'CONTACT OUTPUT', 'CONTACT PRINT', 'CONTROLS', 'COUPLING', 'DENSITY', &
+       'DISTRIBUTING', 'DISTRIBUTING COUPLING', 'KINEMATIC', 'MPC', 'RIGID BODY', &
        'DLOAD', 'DSLOAD', 'EL FILE', 'EL PRINT', 'ELASTIC', &
        'ELEMENT', 'ELEMENT OUTPUT', 'ELSET', 'END ASSEMBLY', 'END INSTANCE', 'END PART', &
        'END STEP', 'END SUBSTRUCTURE', 'EQUATION', 'EXPANSION', 'HEADING', 'INCLUDE', &
@@ -136,6 +137,21 @@ contains
     integer, intent(in) :: kind
     is_node_request = kind == REQ_NODE_PRINT .or. kind == REQ_NODE_FILE
   end function is_node_request
+
+  pure function variable_hint(name) result(hint)
+    !! What an unknown output variable name (upper case) most likely is, for
+    !! its error message ('' when nothing is known). S1 to S6 are element type
+    !! names of CalculiX (shells), not variables: ccx 2.20 stops on *EL PRINT
+    !! S6 ("label not applicable") and ignores it under *EL FILE.
+    character(*), intent(in) :: name
+    character(:), allocatable :: hint
+    hint = ''
+    select case (name)
+    case ('S3', 'S4', 'S6', 'S8')
+       hint = '; '//name//' is CalculiX''s shell element type, not an output variable (ccx 2.20 refuses it '// &
+            'too: label not applicable); the stresses of any element: S'
+    end select
+  end function variable_hint
 
   pure integer function classify_variable(kind, name) result(what)
     !! VAR_PRODUCED, VAR_NOT_PRODUCED or VAR_UNKNOWN for variable `name` (upper

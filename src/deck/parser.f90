@@ -221,7 +221,8 @@ contains
        call kw_static(st, kw, loc)
     case ('SPRING')
        call kw_spring(st, kw, loc)
-    case ('NODE PRINT', 'EL PRINT', 'NODE FILE', 'EL FILE', 'NODE OUTPUT', 'ELEMENT OUTPUT')
+    case ('NODE PRINT', 'EL PRINT', 'NODE FILE', 'EL FILE', 'NODE OUTPUT', 'ELEMENT OUTPUT', 'CONTACT PRINT', &
+         'CONTACT FILE', 'CONTACT OUTPUT')
        call kw_request(st, kw, loc)
     case ('CLOAD')
        call kw_load(st, kw, loc, CARD_CLOAD)

@@ -23,6 +23,7 @@ module superjoin_model_results
      logical :: accept_inaccurate = .false. !! --accept-inaccurate: exit 0 even when results are judged inaccurate
      logical :: csv = .false.                !! CSV tables will be written (--csv)
      logical :: vtk = .false.                !! VTK files will be written (--vtk or *OUTPUT, VTK=)
+     logical :: frd = .false.                !! CalculiX's JOB.frd will be written (superjoin -i JOB)
   end type run_options_t
 
   type, public :: reaction_t

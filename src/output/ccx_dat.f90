@@ -10,7 +10,9 @@ module superjoin_output_ccx_dat
   !!
   !! Blocks: U "displacements", RF "forces" (CalculiX's internal nodal forces:
   !! the support reaction plus the *CLOAD of the node), NT "temperatures", S
-  !! "stresses", E "strains", ELSE "internal energy"; TOTALS=YES adds the sum
+  !! "stresses", E "strains", ENER "internal energy density" (½ σ:ε at the
+  !! points of solids and trusses), ELSE "internal energy" (an axisymmetric
+  !! model: that of CalculiX's 2° wedge, 1/180); TOTALS=YES adds the sum
   !! (RF, ELSE), TOTALS=ONLY writes the sum alone. A node with a nodal system
   !! (*TRANSFORM) prints U and RF in it, its row ending in L, unless the card
   !! says GLOBAL=YES. A node set given by GENERATE ranges over undefined ids
@@ -312,10 +314,13 @@ contains
        select case (r%vars(iv)%s)
        case ('S')
           call block_header(lu, 'stresses (elem, integ.pnt.,sxx,syy,szz,sxy,sxz,syz)', r, is, 'EALL')
-          call point_rows(lu, model, fields, is, r, subs, elems, .false.)
+          call point_rows(lu, model, fields, is, r, subs, elems, 'S')
        case ('E')
           call block_header(lu, 'strains (elem, integ.pnt.,exx,eyy,ezz,exy,exz,eyz)', r, is, 'EALL')
-          call point_rows(lu, model, fields, is, r, subs, elems, .true.)
+          call point_rows(lu, model, fields, is, r, subs, elems, 'E')
+       case ('ENER')
+          call block_header(lu, 'internal energy density (elem, integ.pnt.,energy)', r, is, 'EALL')
+          call point_rows(lu, model, fields, is, r, subs, elems, 'ENER')
        end select
     end do
     ! ELSE (the element's strain energy) is not among the listing's variables
@@ -323,11 +328,12 @@ contains
          call energy_rows(lu, model, fields, is, r, subs, elems)
   end subroutine el_print
 
-  subroutine point_rows(lu, model, fields, is, r, subs, elems, strain)
-    !! Rows "element point six-components" at CalculiX's integration points.
-    !! A solid whose section has an *ORIENTATION prints its tensors in the
-    !! material axes, the orientation's name (20 characters) ending the row,
-    !! unless the card says GLOBAL=YES (as ccx 2.20).
+  subroutine point_rows(lu, model, fields, is, r, subs, elems, var)
+    !! Rows "element point values" at CalculiX's integration points: var S or
+    !! E (six components), ENER (point_energy). A solid whose section has an
+    !! *ORIENTATION prints its tensors in the material axes, the orientation's
+    !! name (20 characters) ending the row, unless the card says GLOBAL=YES
+    !! (as ccx 2.20).
     type(text_buffer_t), intent(inout) :: lu
     type(model_t), intent(in) :: model
     type(result_fields_t), intent(in) :: fields
@@ -335,7 +341,7 @@ contains
     type(output_request_t), intent(in) :: r
     integer, intent(in) :: subs(:)
     integer(ip), intent(in) :: elems(:)
-    logical, intent(in) :: strain
+    character(*), intent(in) :: var
     real(wp), allocatable :: vals(:, :)
     character(len=120) :: row
     character(len=ORIENT_NAME_LEN) :: name
@@ -343,19 +349,24 @@ contains
     integer :: i, k, d, isec
     logical :: ok, local
     do i = 1, size(elems)
-       call ccx_point_values(model, fields, is, subs(i), elems(i), strain, vals, ok)
+       if (var == 'ENER') then
+          call point_energy(model, fields, is, subs(i), elems(i), vals, ok)
+       else
+          call ccx_point_values(model, fields, is, subs(i), elems(i), var == 'E', vals, ok)
+       end if
        if (.not. ok) cycle
        associate (sub => model%subs(subs(i)))
          isec = sub%elem_section(elems(i))
          local = .false.
          t = element_traits(sub%elem_type(elems(i)))
-         if (isec > 0 .and. .not. r%global .and. t%family == FAMILY_SOLID) local = allocated(sub%sections(isec)%axes)
+         if (isec > 0 .and. .not. r%global .and. t%family == FAMILY_SOLID .and. var /= 'ENER') local = allocated(sub%sections(isec)%axes)
          if (local) then
             call to_material_axes(sub, elems(i), sub%sections(isec)%axes, vals)
             name = sub%sections(isec)%axes%name
          end if
          do k = 1, size(vals, 2)
-            write (row, '(i10,i4,6(1x,a13))') sub%elem_id(elems(i)), k, (c_real(vals(d, k), 13, 6), d=1, NTENSOR)
+            write (row, '(i10,i4,6(1x,a13))') sub%elem_id(elems(i)), k, (c_real(vals(d, k), 13, 6), &
+                 d=1, size(vals, 1))
             if (local) then
                call lu%line(trim(row)//' '//name)
             else
@@ -407,6 +418,32 @@ contains
     w = [t(1, 1), t(2, 2), t(3, 3), t(1, 2), t(1, 3), t(2, 3)]
   end function tensor_in_axes
 
+  subroutine point_energy(model, fields, is, isub, ie, vals, ok)
+    !! ENER of element ie: vals(1, point), the strain energy density ½ σ:ε
+    !! (tensor shears counted twice) at CalculiX's points, for the elements
+    !! with both tensors at their points (solids, axisymmetric elements,
+    !! trusses); ok false for plane elements, shells and beams (their strains
+    !! are not at the points).
+    type(model_t), intent(in) :: model
+    type(result_fields_t), intent(in) :: fields
+    integer, intent(in) :: is, isub
+    integer(ip), intent(in) :: ie
+    real(wp), allocatable, intent(out) :: vals(:, :)
+    logical, intent(out) :: ok
+    real(wp), allocatable :: s(:, :), e(:, :)
+    type(element_traits_t) :: t
+    integer :: k
+    t = element_traits(model%subs(isub)%elem_type(ie))
+    ok = t%family == FAMILY_SOLID .or. t%family == FAMILY_TRUSS
+    if (ok) call ccx_point_values(model, fields, is, isub, ie, .false., s, ok)
+    if (ok) call ccx_point_values(model, fields, is, isub, ie, .true., e, ok)
+    if (.not. ok) return
+    allocate (vals(1, size(s, 2)))
+    do k = 1, size(s, 2)
+       vals(1, k) = 0.5_wp*(sum(s(1:3, k)*e(1:3, k)) + 2.0_wp*sum(s(4:6, k)*e(4:6, k)))
+    end do
+  end subroutine point_energy
+
   subroutine energy_rows(lu, model, fields, is, r, subs, elems)
     !! ELSE: the strain energy of each element of the set, and its total.
     type(text_buffer_t), intent(inout) :: lu
@@ -425,6 +462,8 @@ contains
     if (allocated(error)) return
     total = 0.0_wp
     if (r%totals /= TOTALS_ONLY) call block_header(lu, 'internal energy (element, energy)', r, is, 'EALL')
+    ! an axisymmetric model: CalculiX's energies are those of its 2° wedge (superjoin's: the whole ring)
+    if (has_axisymmetric(model)) en%element = en%element/real(CCX_AXIAL_SEGMENTS, wp)
     do i = 1, size(elems)
        associate (e => en%element(fields%elem_offset(subs(i)) + elems(i)))
          total = total + e

@@ -6,7 +6,9 @@ module superjoin_output_frd
   !! tet10: frd_type), then per solved step the result blocks that *NODE FILE
   !! and *EL FILE ask for, as ccx writes them:
   !!   U -> DISP (D1..D3), RF -> FORC (F1..F3: reaction plus *CLOAD, as the
-  !!   .dat's forces), S -> STRESS (SXX SYY SZZ SXY SYZ SZX), E -> TOSTRAIN.
+  !!   .dat's forces), S -> STRESS (SXX SYY SZZ SXY SYZ SZX), E -> TOSTRAIN;
+  !!   S in a model with contact elements also -> FJOINT (F1..F3: link_forces);
+  !!   SF -> SECTFORC (beam section forces in the columns of ccx's SECTION FORCES).
   !! Stresses and strains are nodal values averaged over the elements at the
   !! node: plane and shell elements extrapolated from their points (shells:
   !! the mid-surface, the mean of bottom and top for thin shells; output's
@@ -268,7 +270,88 @@ contains
        call forces(model, fields, is, vals)
        call result_block(lu, model, num, is, nblock, 'FORC', vals(1:3, :), mask)
     end if
+    call requested_nodes(model, is, REQ_EL_FILE, 'SF', mask)
+    if (any(mask)) then
+       call beam_section_forces(model, fields, is, vals)
+       call result_block(lu, model, num, is, nblock, 'SECTFORC', vals, mask)
+    end if
+    call requested_nodes(model, is, REQ_EL_FILE, 'S', mask)
+    if (any(mask) .and. count_links(model) > 0) then
+       call link_forces(model, fields, is, vals, mask)
+       call result_block(lu, model, num, is, nblock, 'FJOINT', vals, mask)
+    end if
   end subroutine step_blocks
+
+  subroutine beam_section_forces(model, fields, is, vals)
+    !! vals(6, vertex): the section forces of the two-node beams at their end
+    !! nodes in the columns of CalculiX's *EL FILE, SECTION FORCES (its STRESS
+    !! block, measured with ccx 2.20): SXX, SYY shear forces along the section's
+    !! 1- and 2-directions (superjoin's local y, z), SZZ normal force, SXY
+    !! torque, SYZ, SZX moments about the 1- and 2-directions; the resultant
+    !! of the stresses on the face whose normal is the beam's axis (the end
+    !! forces of node 2, of node 1 negated); the mean where beams meet, 0 at
+    !! other nodes.
+    type(model_t), intent(in) :: model
+    type(result_fields_t), intent(in) :: fields
+    integer, intent(in) :: is
+    real(wp), allocatable, intent(out) :: vals(:, :)
+    integer, parameter :: TO_CCX(6) = [2, 3, 1, 4, 5, 6]   ! from superjoin's N, Vy, Vz, T, My, Mz
+    integer, allocatable :: cnt(:)
+    type(element_traits_t) :: t
+    integer(i8) :: v
+    integer :: isub, k
+    integer(ip) :: e
+    allocate (vals(NTENSOR, fields%vertex_offset(size(model%subs) + 1)), source=0.0_wp)
+    allocate (cnt(size(vals, 2)), source=0)
+    do isub = 1, size(model%subs)
+       associate (sub => model%subs(isub))
+         do e = 1, sub%nelem
+            t = element_traits(sub%elem_type(e))
+            if (t%family /= FAMILY_BEAM .or. t%nodes /= 2 .or. sub%elem_section(e) <= 0) cycle
+            do k = 1, 2
+               v = fields%vertex_offset(isub) + sub%elem_nodes(k, e)
+               vals(:, v) = vals(:, v) + merge(-1.0_wp, 1.0_wp, k == 1)* &
+                    fields%elem_force(TO_CCX, k, fields%elem_offset(isub) + e, is)
+               cnt(v) = cnt(v) + 1
+            end do
+         end do
+       end associate
+    end do
+    do k = 1, NTENSOR
+       vals(k, :) = vals(k, :)/real(max(cnt, 1), wp)
+    end do
+  end subroutine beam_section_forces
+
+  subroutine link_forces(model, fields, is, vals, mask)
+    !! vals(3, vertex): the force of the contact elements (frd type 11,
+    !! material 1000 + card) at both of their nodes, in the contact's axes,
+    !! on the master (the listing's CONTACT FORCES F1..F3); the mean where a
+    !! node has several, 0 at the other nodes; mask (the nodes of the *EL FILE
+    !! elements) gains the nodes of contact elements with a linked DOF.
+    type(model_t), intent(in) :: model
+    type(result_fields_t), intent(in) :: fields
+    integer, intent(in) :: is
+    real(wp), allocatable, intent(out) :: vals(:, :)
+    logical, intent(inout) :: mask(:)
+    integer, allocatable :: cnt(:)
+    integer(i8) :: v(2)
+    integer :: k
+    allocate (vals(3, fields%vertex_offset(size(model%subs) + 1)), source=0.0_wp)
+    allocate (cnt(size(vals, 2)), source=0)
+    do k = 1, size(model%links)
+       associate (ln => model%links(k), c => model%contacts(model%links(k)%contact))
+         if (all(ln%state == LINK_NONE)) cycle
+         v = [fields%vertex_offset(c%master_sub) + ln%master_node, fields%vertex_offset(c%slave_sub) + ln%slave_node]
+         vals(:, v(1)) = vals(:, v(1)) + fields%steps(is)%link_force(1:3, k)
+         vals(:, v(2)) = vals(:, v(2)) + fields%steps(is)%link_force(1:3, k)
+         cnt(v) = cnt(v) + 1
+       end associate
+    end do
+    mask = mask .or. cnt > 0
+    do k = 1, 3
+       vals(k, :) = vals(k, :)/real(max(cnt, 1), wp)
+    end do
+  end subroutine link_forces
 
   subroutine requested_nodes(model, is, kind, var, mask)
     !! mask(vertex): the nodes whose `var` the requests of `kind` in step is

@@ -14,6 +14,10 @@ largest magnitude in the reference block. Every block of .dat.ref must be in
 them) and within the deck's tolerance below; the table printed is the one
 of doc/calculix-dropin.md.
 
+The energies of ener_truss.inp and ener_c3d8.inp (decks written for this test,
+references from ccx 2.20) are also checked against closed forms
+(energy_closed_forms).
+
 With ccx installed it also runs achtel2, beam10p, beam20p and beamd with
 *EL FILE S, E added through superjoin -i and ccx and compares the .frd
 STRESS and TOSTRAIN blocks (solids' nodal values extrapolated from their
@@ -49,6 +53,7 @@ Tolerances and why (doc/calculix-dropin.md, "The .dat against .dat.ref"):
 - spring1: refused (*STEP, NLGEOM): exit status 1, the reason on stderr, no
   "Job finished" on stdout and an empty .dat: a front-end sees a failure.
 """
+import math
 import os
 import re
 import shutil
@@ -68,7 +73,13 @@ TOLERANCE = {'planestress2': {'stresses': 5.0e-4}, 'planestress3': {'displacemen
              'shell1lin': {'displacements': 0.2, 'forces': 0.3, 'stresses': 0.35},
              'rot4': {'displacements': 0.2, 'forces': 0.3, 'stresses': 0.35},
              'axial': {'displacements': 1.0e-2, 'stresses': 1.0e-2},
-             'c3d15': {'forces': 5.0}, 'disk2': {'displacements': 2.0e-5, 'stresses': 1.0e-4}}
+             'c3d15': {'forces': 5.0}, 'disk2': {'displacements': 2.0e-5, 'stresses': 1.0e-4},
+             # ELSE of a B31 and an S4 cantilever (written for this test): CalculiX's C3D20R and
+             # C3D8I expansions; superjoin's B31 gives Timoshenko's closed form (energy_closed_forms)
+             'ener_b31': {'displacements': 1.0e-2, 'internal': 1.0e-2, 'total': 1.0e-2},
+             'ener_s4': {'displacements': 1.0e-2, 'internal': 1.0e-2, 'total': 1.0e-2},
+             # u_r = -nu eps r exactly in superjoin; CalculiX's straight-sided 2 deg wedge: times cos 1 deg
+             'ener_cax8r': {'displacements': 2.0e-4}}
 for _b in BEAMS:
     TOLERANCE[_b] = {'displacements': 0.07}
 # CalculiX solved these with its iterative solvers (*STATIC, SOLVER=ITERATIVE CHOLESKY /
@@ -170,6 +181,95 @@ def compare(job, got, want):
     return failures
 
 
+def energy_closed_forms(outdir):
+    """The .dat energies of ener_truss and ener_c3d8 (ENER, ELSE) against closed forms;
+    return the failures. Truss: N^2 L / (2 E A) per bar (N = -1000, 1000 sqrt 2; EA =
+    2.1e7), density sigma^2 / (2 E); C3D8 cantilever: the total equals 1/2 P w over the
+    tip loads (Clapeyron), and the sum of ENER x weight x det J (unit cubes: 1/8 of
+    the element's points) equals ELSE."""
+    failures = []
+    dat = parse_dat(os.path.join(outdir, 'ener_truss', 'ener_truss.dat'))
+    blocks = {k[0].split(' (')[0]: v for k, v in dat.items()}
+    ea, bars = 2.1e7, [(-1000.0, 1000.0), (1000.0 * 2 ** 0.5, 1000.0 * 2 ** 0.5)]
+    want = [n * n * length / (2 * ea) for n, length in bars]
+    got = [blocks['internal energy'][e][0] for e in (1, 2)]
+    dens = [blocks['internal energy density'][(e, 1)][0] for e in (1, 2)]
+    want_dens = [(n / 100.0) ** 2 / (2 * 210000.0) for n, _ in bars]
+    diff = max(abs(a - b) / b for a, b in zip(got + dens, want + want_dens))
+    ok = diff <= 1e-6
+    print(f"  {'ok  ' if ok else 'FAIL'} ener_truss       ELSE, ENER against N^2 L/(2EA), sigma^2/(2E): "
+          f"|diff|/value {diff:.1e} (ELSE {got[0]:.6e}, {got[1]:.6e})")
+    if not ok:
+        failures.append('ener_truss closed form')
+    dat = parse_dat(os.path.join(outdir, 'ener_c3d8', 'ener_c3d8.dat'))
+    blocks = {k[0].split(' (')[0]: v for k, v in dat.items()}
+    work = 0.5 * sum(-25.0 * blocks['displacements'][n][2] for n in (5, 10, 15, 20))
+    total = blocks['total internal energy']['total'][0]
+    dens = blocks['internal energy density']
+    els = blocks['internal energy']
+    integ = max(abs(sum(v[0] for k, v in dens.items() if k[0] == e) / 8.0 - els[e][0]) for e in els)
+    ok = abs(total - work) <= 1e-6 * work and integ <= 1e-6 * max(v[0] for v in els.values())
+    print(f"  {'ok  ' if ok else 'FAIL'} ener_c3d8        total {total:.6e} = 1/2 P w {work:.6e} "
+          f"(Euler-Bernoulli 1/2 P^2 L^3/(3EI) = {0.5 * 100.0 ** 2 * 64 / (3 * 210000.0 / 12):.6e}: "
+          f"C3D8 locks in bending); ENER integrated = ELSE within {integ:.1e}")
+    if not ok:
+        failures.append('ener_c3d8 closed form')
+    # CAX8R ring r = 1..3, h = 1, uz = 0.001: ENER = E eps^2 / 2, ELSE total = ENER pi (9 - 1) / 180 (the wedge)
+    dat = parse_dat(os.path.join(outdir, 'ener_cax8r', 'ener_cax8r.dat'))
+    blocks = {k[0].split(' (')[0]: v for k, v in dat.items()}
+    dens, total = 0.5 * 210000.0 * 1e-6, blocks['total internal energy']['total'][0]
+    diff = max([abs(v[0] - dens) / dens for v in blocks['internal energy density'].values()]
+               + [abs(total - dens * math.pi * 8 / 180) / total])
+    ok = diff <= 1e-6
+    print(f"  {'ok  ' if ok else 'FAIL'} ener_cax8r       ENER = E eps^2/2, ELSE = ENER V / 180 (CalculiX's 2 deg wedge): "
+          f"|diff|/value {diff:.1e}")
+    if not ok:
+        failures.append('ener_cax8r closed form')
+    # B31 cantilever L = 1000, 10 x 20 rectangle (I = 6666.67 about the load), P = 100: Timoshenko
+    # 1/2 P^2 (L^3/(3EI) + L/(k G A)), k = 0.85 (superjoin's rectangle); S4 strip: 1/2 P w (Clapeyron)
+    for job, closed in (('ener_b31', 0.5 * 100.0 ** 2 * (1e9 / (3 * 210000.0 * 20.0 ** 3 * 10 / 12)
+                                                         + 1000.0 / (0.85 * 210000.0 / 2.6 * 200.0))),
+                        ('ener_s4', None)):
+        dat = parse_dat(os.path.join(outdir, job, job + '.dat'))
+        blocks = {k[0].split(' (')[0]: v for k, v in dat.items()}
+        total = blocks['total internal energy']['total'][0]
+        if closed is None:
+            closed = 0.5 * sum(-50.0 * blocks['displacements'][n][2] for n in (9, 18))
+        ok = abs(total - closed) <= 1e-6 * closed
+        print(f"  {'ok  ' if ok else 'FAIL'} {job:16s} total {total:.6e} against {closed:.6e} "
+              f"({'Timoshenko' if job == 'ener_b31' else '1/2 P w'})")
+        if not ok:
+            failures.append(job + ' closed form')
+    return failures
+
+
+def cards_without_output(binary, outdir):
+    """*CONTACT PRINT / *CONTACT FILE (ener_c3d8.inp has both) are accepted with a
+    listing note; *EL PRINT S6 (planestrain.inp with its E, S replaced) stops with
+    status 1 and says that S6 is an element type (ccx 2.20: label not applicable)."""
+    failures = []
+    with open(os.path.join(outdir, 'ener_c3d8', 'ener_c3d8.lst')) as f:
+        lst = f.read()
+    ok = all(f'*CONTACT {w} at ener_c3d8.inp:' in lst for w in ('PRINT', 'FILE'))
+    print(f"  {'ok  ' if ok else 'FAIL'} ener_c3d8        *CONTACT PRINT, *CONTACT FILE accepted, noted in the listing")
+    if not ok:
+        failures.append('*CONTACT PRINT note')
+    work = os.path.join(outdir, 'el_print_s6')
+    shutil.rmtree(work, ignore_errors=True)
+    os.makedirs(work)
+    with open(os.path.join(HERE, 'planestrain.inp')) as f:
+        deck = re.sub(r'(?m)^E,S$', 'S6', f.read())
+    with open(os.path.join(work, 's6.inp'), 'w') as f:
+        f.write(deck)
+    proc = subprocess.run([binary, '-i', 's6'], cwd=work, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+    ok = proc.returncode == 1 and "S6 is CalculiX's shell element type, not an output variable" in proc.stderr
+    print(f"  {'ok  ' if ok else 'FAIL'} el_print_s6      *EL PRINT S6 refused: status {proc.returncode}, "
+          f"{proc.stderr.strip()[:60]}...")
+    if not ok:
+        failures.append('*EL PRINT S6 not refused clearly')
+    return failures
+
+
 def frd_blocks(path):
     """{name: {node: [values]}} of the result blocks of an ASCII .frd."""
     out, cur = {}, None
@@ -252,6 +352,8 @@ def main():
         if direct:
             failures += compare(job + ' vs ' + direct, parse_dat(dat),
                                 parse_dat(os.path.join(HERE, direct + '.dat.ref')))
+    failures += energy_closed_forms(outdir)
+    failures += cards_without_output(binary, outdir)
     failures += frd_solids(binary, outdir)
     print(f'{len(jobs)} decks, {len(failures)} failures')
     for f in failures:

@@ -15,6 +15,12 @@ checks that
   within 1e-5 of the component's largest magnitude;
 - the file's displacements equal superjoin's displacements.csv (full
   precision) within 1e-5 of the largest one, so cgx shows the solution;
+- frame2d (decks/frame2d.deck, *EL FILE S added): the FJOINT block (the
+  contact elements' forces F1..F3 in their axes, at both of their nodes)
+  equals csv/contact_forces.csv;
+- ener_b31 (a B31 cantilever, *EL FILE SF added): the SECTFORC block (beam
+  section forces in the columns of ccx's *EL FILE, SECTION FORCES) equals
+  the closed form V2 = P, M1 = -P (L - x) at every node;
 - truss: the two bars at 45 degrees in the x-z plane have |SZX| = SXX and
   SYZ = 0 at their end nodes (the frd order of the shear components).
 Run by hand: cgx -bg JOB.fbd > JOB.cgx.log in OUTDIR/JOB (doc/calculix-dropin.md).
@@ -33,7 +39,8 @@ DEBUG_NOISE = re.compile(r'^At line \d+ of file [^\n]*\nFortran runtime warning:
                          re.M)
 RTOL = 1.0e-5
 FILES = '*NODE FILE\nU, RF\n*EL FILE\nS, E\n'
-CASES = [('truss', None), ('b31', None), ('planestrain', None), ('shell1lin', FILES), ('frame2d', '*NODE FILE\nU\n')]
+CASES = [('truss', None), ('b31', None), ('planestrain', None), ('shell1lin', FILES), ('frame2d', '*NODE FILE\nU\n*EL FILE\nS\n'),
+         ('ener_b31', '*NODE FILE\nU\n*EL FILE\nSF\n')]
 # frame2d: decks/frame2d.deck (columns and a girder joined by two RIGID knees, three
 # substructures): its contact elements are two-node elements (frd type 11) of material
 # 1000 + the *CONTACT card, joining the file's numbers of their two nodes.
@@ -120,6 +127,35 @@ def run_cgx(work, job, blocks):
     return values, counts
 
 
+def check_joint_forces(work, blocks, links):
+    """FJOINT (*EL FILE S with contact elements): at both nodes of the k-th contact
+    element of the file, its force F1..F3 (contact axes, on the master) of
+    csv/contact_forces.csv, within 1e-5 of the largest; 0 at other nodes."""
+    with open(os.path.join(work, 'csv', 'contact_forces.csv')) as f:
+        rows = list(csv.DictReader(f))
+    steps = list(dict.fromkeys(r['step'] for r in rows))
+    joint = [b[2] for b in blocks if b[0] == 'FJOINT']
+    if len(joint) != len(steps):
+        print(f'    FAIL {len(joint)} FJOINT blocks for {len(steps)} steps')
+        return ['FJOINT blocks']
+    failures = []
+    for step, values in zip(steps, joint):
+        pairs = {}
+        for r in rows:
+            if r['step'] == step and r['dof'] in ('1', '2', '3'):
+                f = pairs.setdefault((r['contact'], r['master_node'], r['slave_node']), [0.0] * 3)
+                f[int(r['dof']) - 1] = float(r['force'])
+        want = {n: f for nodes, f in zip(links, pairs.values()) for n in nodes}
+        scale = max([abs(v) for f in want.values() for v in f] + [1e-300])
+        diff = max(abs(values[n][d] - (want[n][d] if n in want else 0.0)) for n in values for d in range(3))
+        ok = diff <= RTOL * scale and len(pairs) == len(links)
+        print(f"    {'ok  ' if ok else 'FAIL'} FJOINT of step {step} against contact_forces.csv: "
+              f"|diff|/max {diff / scale:.1e} (max {scale:.5e})")
+        if not ok:
+            failures.append(f'FJOINT of step {step}')
+    return failures
+
+
 def check_case(binary, outdir, job, extra):
     failures = []
     work = os.path.join(outdir, job)
@@ -161,6 +197,16 @@ def check_case(binary, outdir, job, extra):
         print(f"    {'ok  ' if ok else 'FAIL'} STRESS of the 45-degree bars: |SZX| = SXX, SYZ = 0 at nodes 1, 3")
         if not ok:
             failures.append('truss STRESS components')
+    if job == 'ener_b31':
+        # B31 cantilever, L = 1000, 8 elements, tip load -100 along y, section 1-direction z: the
+        # SECTFORC block in ccx's SECTION FORCES columns: SYY = V2 = 100, SYZ = M1 = -100 (1000 - x)
+        sf = [b for b in blocks if b[0] == 'SECTFORC'][0][2]
+        want = {n: [0.0, 100.0, 0.0, 0.0, -100.0 * (1000.0 - 125.0 * (n - 1)), 0.0] for n in range(1, 10)}
+        diff = max(abs(sf[n][c] - want[n][c]) for n in want for c in range(6)) / 1e5
+        ok = set(sf) == set(want) and diff <= RTOL
+        print(f"    {'ok  ' if ok else 'FAIL'} SECTFORC against V2 = P, M1 = -P (L - x): |diff|/max {diff:.1e}")
+        if not ok:
+            failures.append('ener_b31 SECTFORC')
     if job in SOURCES:
         links = read_links(os.path.join(work, job + '.frd'))
         with open(os.path.join(work, job + '.lst')) as f:
@@ -170,6 +216,7 @@ def check_case(binary, outdir, job, extra):
               f"(frd type 11, material >= 1000), the listing counts {want}")
         if not ok:
             failures.append(f'{job} contact elements')
+        failures += check_joint_forces(work, blocks, links)
         return failures     # several substructures: the file numbers nodes on (no CSV ids)
     disp = [b for b in blocks if b[0] == 'DISP']
     if disp:

@@ -89,9 +89,10 @@ Physical Volume("PLATE") = {{low[1], high[1]}};
 """
 
 
-def read_inp_mesh(path):
-    """Nodes {id: (x, y, z)} and volume elements [[ids]] (C3D4/C3D10) of a gmsh .inp."""
-    nodes, elems, mode, etype, buf = {}, [], None, None, []
+def read_inp_mesh(path, types=('C3D4', 'C3D10')):
+    """Nodes {id: coordinates} and the elements [[ids]] of the given types of a gmsh .inp."""
+    nodes, elems, mode, per, buf = {}, [], None, 0, []
+    sizes = {'C3D4': 4, 'C3D10': 10, 'CPS4': 4, 'CPS8': 8}
     with open(path) as f:
         for line in f:
             s = line.strip()
@@ -100,19 +101,36 @@ def read_inp_mesh(path):
             if s.startswith('*'):
                 up = s.replace(' ', '').upper()
                 mode = 'node' if up.startswith('*NODE') else None
-                m = re.match(r'\*ELEMENT,TYPE=(C3D10|C3D4)\b', up)
-                if m:
-                    mode, etype = 'elem', m.group(1)
+                m = re.match(r'\*ELEMENT,TYPE=(\w+)', up)
+                if m and m.group(1) in types:
+                    mode, per = 'elem', sizes[m.group(1)]
                 continue
             if mode == 'node':
                 w = s.split(',')
                 nodes[int(w[0])] = tuple(float(v) for v in w[1:4])
             elif mode == 'elem':
                 buf += [int(v) for v in s.split(',') if v.strip()]
-                if len(buf) >= (11 if etype == 'C3D10' else 5):
+                if len(buf) >= per + 1:
                     elems.append(buf[1:])
                     buf = []
-    return nodes, elems
+    used = {n for e in elems for n in e}
+    return {n: x for n, x in nodes.items() if n in used}, elems
+
+
+def element_lines(elems, etype, elset):
+    """*ELEMENT card of elems, at most 16 entries on a line (CalculiX)."""
+    out = [f"*ELEMENT, TYPE={etype}, ELSET={elset}"]
+    for k, e in enumerate(elems, 1):
+        ids = [str(k)] + [str(n) for n in e]
+        while ids:
+            head, ids = ids[:16], ids[16:]
+            out.append(", ".join(head) + ("," if ids else ""))
+    return out
+
+
+def nset_lines(name, ids):
+    """*NSET card, 12 ids on a line."""
+    return [f"*NSET, NSET={name}"] + [", ".join(str(n) for n in ids[i:i + 12]) for i in range(0, len(ids), 12)]
 
 
 def tet_mesh(work, h, quadratic):
@@ -123,9 +141,7 @@ def tet_mesh(work, h, quadratic):
         f.write(GEO.format(h=h, order=2 if quadratic else 1))
     subprocess.run(['gmsh', '-3', '-format', 'inp', '-o', inp, geo], check=True,
                    stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
-    nodes, elems = read_inp_mesh(inp)
-    used = {n for e in elems for n in e}
-    return {n: x for n, x in nodes.items() if n in used}, elems
+    return read_inp_mesh(inp)
 
 
 # faces of the corner numbering (CalculiX's face numbers 1..)
@@ -143,12 +159,7 @@ def deck(nodes, elems, etype):
     out = ["*HEADING", f"NAFEMS LE10 thick plate, {etype}, {len(elems)} elements (tests/solids/le10_deck.py)",
            "*NODE, NSET=NALL"]
     out += [f"{n}, {fmt(x)}, {fmt(y)}, {fmt(z)}" for n, (x, y, z) in sorted(nodes.items())]
-    out.append(f"*ELEMENT, TYPE={etype}, ELSET=PLATE")
-    for k, e in enumerate(elems, 1):
-        ids = [str(k)] + [str(n) for n in e]
-        while ids:                        # CalculiX: at most 16 entries on a line
-            head, ids = ids[:16], ids[16:]
-            out.append(", ".join(head) + ("," if ids else ""))
+    out += element_lines(elems, etype, "PLATE")
     groups = {"YSYM": [], "XSYM": [], "OUTER": [], "MID": []}
     for n, x in sorted(nodes.items()):
         if abs(x[1]) < TOL:
@@ -160,8 +171,7 @@ def deck(nodes, elems, etype):
             if abs(x[2]) < TOL:
                 groups["MID"].append(n)
     for name, ids in groups.items():
-        out.append(f"*NSET, NSET={name}")
-        out += [", ".join(str(n) for n in ids[i:i + 12]) for i in range(0, len(ids), 12)]
+        out += nset_lines(name, ids)
     out += ["*MATERIAL, NAME=STEEL", "*ELASTIC", f"{fmt(E)}, {fmt(NU)}",
             "*SOLID SECTION, ELSET=PLATE, MATERIAL=STEEL",
             "*BOUNDARY", "YSYM, 2, 2", "XSYM, 1, 1", "OUTER, 1, 2", "MID, 3, 3",

@@ -3,7 +3,7 @@
 D = (2, 0, 0.3) against -5.38 MPa, and the wall time, superjoin and CalculiX
 side by side on the same decks.
 
-usage: bench/nafems_le10.py [--exe BIN] [--work DIR] [--repeat R] [--out CSV] [--quick]
+usage: bench/nafems_le10.py [--exe BIN] [--work DIR] [--repeat R] [--out CSV] [--quick | --full]
 
 Decks: tests/solids/le10_deck.py (the problem, its supports and their source
 there). Hexahedra C3D20R, C3D20, C3D8I, C3D8 on structured n_theta x n_r x n_z
@@ -16,7 +16,9 @@ on an idle machine the two agree; on a loaded one the CPU time is the fairer
 figure). sigma_yy is the nodal value of the .frd's STRESS block at D (extrapolated
 from the integration points and averaged over the elements at D, both
 programs). The error is (sigma - (-5.38)) / 5.38. --quick: the two coarser
-meshes of each type only.
+meshes of each type only; --full: one finer mesh of each type (about 60k
+DOFs for the quadratic types, 110k for the linear hexahedra; a few minutes
+on an idle machine).
 """
 import argparse
 import csv
@@ -31,12 +33,13 @@ ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 sys.path.insert(0, os.path.join(ROOT, "tests", "solids"))
 import le10_deck as le10  # noqa: E402
 
-MESHES = [("C3D20R", [(4, 2, 1), (8, 4, 2), (16, 8, 4), (32, 16, 8)]),
-          ("C3D20", [(4, 2, 1), (8, 4, 2), (16, 8, 4), (32, 16, 8)]),
-          ("C3D8I", [(8, 4, 2), (16, 8, 4), (32, 16, 8), (64, 32, 16)]),
-          ("C3D8", [(8, 4, 2), (16, 8, 4), (32, 16, 8), (64, 32, 16)]),
-          ("C3D10", [0.4, 0.2, 0.1]),
-          ("C3D4", [0.2, 0.1, 0.07])]
+# (element, meshes run by default, meshes added by --full)
+MESHES = [("C3D20R", [(4, 2, 1), (8, 4, 2), (16, 8, 4)], [(32, 16, 8)]),
+          ("C3D20", [(4, 2, 1), (8, 4, 2), (16, 8, 4)], [(32, 16, 8)]),
+          ("C3D8I", [(8, 4, 2), (16, 8, 4), (32, 16, 8)], [(64, 32, 16)]),
+          ("C3D8", [(8, 4, 2), (16, 8, 4), (32, 16, 8)], [(64, 32, 16)]),
+          ("C3D10", [0.4, 0.2], [0.1]),
+          ("C3D4", [0.2, 0.1], [0.07])]
 
 
 def label(size):
@@ -61,53 +64,73 @@ def run(cmd, work, repeat):
     return best
 
 
-def table_row(head, s_sj, s_cx, err, t_sj, t_cx):
-    """A markdown row: head cells, the two sigmas, the error, (wall, CPU) of each, the CPU ratio."""
-    if s_sj is None or s_cx is None:
+def both(text, node, column, work, exe, repeat, target):
+    """Run the deck with superjoin and ccx in work/superjoin, work/ccx: the row's
+    fields (the .frd's STRESS column at node from each, the error of
+    superjoin's against target, wall and CPU seconds)."""
+    got = {}
+    for who, cmd in (("superjoin", exe), ("ccx", "ccx")):
+        w = os.path.join(work, who)
+        os.makedirs(w, exist_ok=True)
+        with open(os.path.join(w, "job.inp"), "w") as f:
+            f.write(text)
+        t = run(cmd, w, repeat)
+        got[who] = (le10.frd_stress(os.path.join(w, "job.frd"), node)[column], t) if t else (None, (None, None))
+    (s_sj, t_sj), (s_cx, t_cx) = got["superjoin"], got["ccx"]
+    return dict(sigma_superjoin=s_sj, sigma_ccx=s_cx,
+                error=(s_sj - target) / abs(target) if s_sj is not None else None,
+                wall_superjoin=t_sj[0], cpu_superjoin=t_sj[1], wall_ccx=t_cx[0], cpu_ccx=t_cx[1])
+
+
+def table_row(head, r):
+    """A markdown row: head cells, the two sigmas, the error, wall / CPU of each, the CPU ratio."""
+    if r["sigma_superjoin"] is None or r["sigma_ccx"] is None:
         return "| " + " | ".join(str(v) for v in head) + " | FAILED |"
-    return ("| " + " | ".join(str(v) for v in head) + f" | {s_sj} | {s_cx} | {100 * err:+.2f} % | "
-            f"{t_sj[0]:.2f} / {t_sj[1]:.2f} | {t_cx[0]:.2f} / {t_cx[1]:.2f} | {t_cx[1] / max(t_sj[1], 1e-3):.2f} |")
+    return ("| " + " | ".join(str(v) for v in head) + f" | {r['sigma_superjoin']} | {r['sigma_ccx']} | "
+            f"{100 * r['error']:+.2f} % | {r['wall_superjoin']:.2f} / {r['cpu_superjoin']:.2f} | "
+            f"{r['wall_ccx']:.2f} / {r['cpu_ccx']:.2f} | {r['cpu_ccx'] / max(r['cpu_superjoin'], 1e-3):.2f} |")
+
+
+def write_csv(rows, out):
+    """The rows to out; exit status 1 if a run failed."""
+    os.makedirs(os.path.dirname(out), exist_ok=True)
+    with open(out, "w", newline="") as f:
+        w = csv.DictWriter(f, fieldnames=list(rows[0]))
+        w.writeheader()
+        w.writerows(rows)
+    return 0 if all(r["sigma_superjoin"] is not None and r["sigma_ccx"] is not None for r in rows) else 1
+
+
+def arguments(name):
+    """The options both benches take: --exe, --work, --repeat, --out."""
+    ap = argparse.ArgumentParser()
+    ap.add_argument("--exe", default=os.path.join(ROOT, "build", "superjoin"))
+    ap.add_argument("--work", default="/tmp/" + name)
+    ap.add_argument("--repeat", type=int, default=1)
+    ap.add_argument("--out", default=os.path.join(ROOT, "bench", "results", name + ".csv"))
+    return ap
 
 
 def main():
-    ap = argparse.ArgumentParser()
-    ap.add_argument("--exe", default=os.path.join(ROOT, "build", "superjoin"))
-    ap.add_argument("--work", default="/tmp/nafems_le10")
-    ap.add_argument("--repeat", type=int, default=1)
-    ap.add_argument("--out", default=os.path.join(ROOT, "bench", "results", "nafems_le10.csv"))
+    ap = arguments("nafems_le10")
     ap.add_argument("--quick", action="store_true")
+    ap.add_argument("--full", action="store_true")
     a = ap.parse_args()
     exe = os.path.abspath(a.exe)
     rows = []
     print("| element | mesh | elements | DOFs | superjoin sigma_yy (MPa) | ccx sigma_yy (MPa) | error | "
           "superjoin wall / CPU (s) | ccx wall / CPU (s) | CPU ccx / superjoin |")
     print("|---|---|---|---|---|---|---|---|---|---|")
-    for etype, sizes in MESHES:
-        for size in sizes[:2] if a.quick else sizes:
+    for etype, sizes, more in MESHES:
+        for size in sizes[:2] if a.quick else sizes + more if a.full else sizes:
             work = os.path.join(a.work, f"{etype}_{label(size)}")
             shutil.rmtree(work, ignore_errors=True)
             nodes, elems = le10.mesh(etype, size, work)
             text, d = le10.deck(nodes, elems, etype)
-            got = {}
-            for who, cmd in (("superjoin", exe), ("ccx", "ccx")):
-                w = os.path.join(work, who)
-                os.makedirs(w, exist_ok=True)
-                with open(os.path.join(w, "job.inp"), "w") as f:
-                    f.write(text)
-                t = run(cmd, w, a.repeat)
-                got[who] = (le10.frd_stress(os.path.join(w, "job.frd"), d)[1], t) if t else (None, (None, None))
-            (s_sj, t_sj), (s_cx, t_cx) = got["superjoin"], got["ccx"]
-            err = (s_sj - le10.TARGET) / abs(le10.TARGET) if s_sj is not None else None
-            rows.append(dict(element=etype, mesh=label(size), elements=len(elems), dofs=3 * len(nodes),
-                             sigma_superjoin=s_sj, sigma_ccx=s_cx, error=err, wall_superjoin=t_sj[0],
-                             cpu_superjoin=t_sj[1], wall_ccx=t_cx[0], cpu_ccx=t_cx[1]))
-            print(table_row([etype, label(size), len(elems), 3 * len(nodes)], s_sj, s_cx, err, t_sj, t_cx), flush=True)
-    os.makedirs(os.path.dirname(a.out), exist_ok=True)
-    with open(a.out, "w", newline="") as f:
-        w = csv.DictWriter(f, fieldnames=list(rows[0]))
-        w.writeheader()
-        w.writerows(rows)
-    return 0 if all(r["sigma_superjoin"] is not None for r in rows) else 1
+            r = both(text, d, 1, work, exe, a.repeat, le10.TARGET)
+            rows.append(dict(element=etype, mesh=label(size), elements=len(elems), dofs=3 * len(nodes), **r))
+            print(table_row([etype, label(size), len(elems), 3 * len(nodes)], r), flush=True)
+    return write_csv(rows, a.out)
 
 
 if __name__ == "__main__":

@@ -7,8 +7,9 @@ Their discretisation error (bench/nafems_le10.py, doc/verification.md): the
 nodal sigma_yy at D is -5.3592 (8 x 4 x 2) and -5.3592 (16 x 8 x 4), 0.39 %
 short of -5.38; CalculiX 2.20 gives the same to 2e-5. The check is 0.5 %
 (0.027 MPa): the coarser 4 x 2 x 1 mesh (0.89 %), C3D8 or C3D8I on the same
-meshes (3 to 5 %), a pressure on the wrong face or a support left out all
-fall outside it. The vertical reaction must equal the load, 1 MPa times the
+meshes (3 to 5 %) fall outside it, and so do these slips on the 8 x 4 x 2
+deck (measured): the pressure on the lower face (+4.47 MPa), the outer face's
+u_x, u_y held on its mid-plane line only (-54.8), nu = 0 (-4.22). The vertical reaction must equal the load, 1 MPa times the
 quarter ring's area pi/4 (3.25 x 2.75 - 2 x 1), to 1e-4 (the quadratic
 mesh's boundary is a parabola through points of the ellipse).
 

@@ -9,9 +9,10 @@ short of -5.38; CalculiX 2.20 gives the same to 2e-5. The check is 0.5 %
 (0.027 MPa): the coarser 4 x 2 x 1 mesh (0.89 %), C3D8 or C3D8I on the same
 meshes (3 to 5 %) fall outside it, and so do these slips on the 8 x 4 x 2
 deck (measured): the pressure on the lower face (+4.47 MPa), the outer face's
-u_x, u_y held on its mid-plane line only (-54.8), nu = 0 (-4.22). The vertical reaction must equal the load, 1 MPa times the
-quarter ring's area pi/4 (3.25 x 2.75 - 2 x 1), to 1e-4 (the quadratic
-mesh's boundary is a parabola through points of the ellipse).
+u_x, u_y held on its mid-plane line only (-54.8), nu = 0 (-4.22). The
+vertical reaction must equal the load, 1 MPa times the quarter ring's area
+pi/4 (3.25 x 2.75 - 2 x 1), to 1e-4 (the quadratic mesh's boundary is a
+parabola through points of the ellipse).
 
 usage: verify_le10.py SUPERJOIN OUTDIR
 """

@@ -6,7 +6,7 @@ program test_sha256
   !! blocks) against sha256sum of the same bytes written to a file.
   use superjoin_kinds, only: wp, i8
   use superjoin_utils_sha256, only: sha256_t, update, digest, sha256_hex
-  use superjoin_testing, only: check, finish
+  use superjoin_testing, only: check, finish, temp_dir
   implicit none (type, external)
 
   call vectors()
@@ -86,16 +86,4 @@ contains
     call check(digest(parts) == expected, '24 MB of reals in two pieces')
     call check(digest(text) == expected, '24 MB as text in pieces of odd lengths')
   end subroutine large
-
-  function temp_dir() result(dir)
-    character(:), allocatable :: dir
-    integer :: length, stat
-    call get_environment_variable('TMPDIR', length=length, status=stat)
-    if (stat == 0 .and. length > 0) then
-       allocate (character(len=length) :: dir)
-       call get_environment_variable('TMPDIR', dir)
-    else
-       dir = '/tmp'
-    end if
-  end function temp_dir
 end program test_sha256

@@ -926,6 +926,7 @@ contains
     rng_state = mod(rng_state*MULT, MODULUS)
     rand01 = real(rng_state, wp)/real(MODULUS, wp)
   end function rand01
+
   subroutine test_node_graph_ordering()
     !! Two unknowns per node (a 2D Laplacian times a 2x2 SPD block): the node
     !! graph has the Laplacian's adjacency, and CHOLMOD ordering it (METIS on

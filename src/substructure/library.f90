@@ -16,16 +16,19 @@ module superjoin_substructure_library
   !! without stiffness, the recovery operator T = k_ii⁻¹ k_ib (dense ni × nb)
   !! and, per load set, x = k_ii⁻¹ f_i and f* = f_b − k_bi x. Recovery is then
   !! u_i = x − T u_b, without a factor: a library hit costs the assembly of
-  !! k (kept for the element forces), the hashing and the reading. Runs with a
+  !! k (the key, and kept for k u: the element forces and reactions), the
+  !! hashing and the reading. Runs with a
   !! library recover with T whether they stored or loaded the entry, so their
   !! results are the same to the byte. Loads never seen by the entry need the
   !! factor: the part is condensed anew and the entry rewritten.
   !!
   !! File: magic, format version, key, payload, then the SHA-256 of all that
-  !! precedes it. A file whose checksum, magic, version or key does not match
-  !! is never used (the listing says so once) and is replaced. Entries are
-  !! written to a temporary name in DIR and renamed, so a killed run leaves no
-  !! half entry under a key's name.
+  !! precedes it, written and read field by field (one unformatted stream
+  !! transfer per array, hashed in place in the same pass). A file whose
+  !! checksum, magic, version or key does not match, or whose counts do not
+  !! fit its size, is never used (the listing says so once) and is replaced.
+  !! Entries are written to a temporary name in DIR and renamed, so a killed
+  !! run leaves no half entry under a key's name.
   use, intrinsic :: iso_c_binding, only: c_int
   use superjoin_kinds, only: wp, ip, i8
   use superjoin_error, only: error_t
@@ -50,9 +53,8 @@ module superjoin_substructure_library
   character(len=*), parameter :: SUFFIX = '.sjc'
   integer, parameter :: HEX = 64
   integer(i8), parameter :: HEX_I8 = HEX, MAGIC_I8 = len(MAGIC)
-  integer, parameter :: CHUNK = 4096
-    !! Reals turned into bytes at a time.
-    !! Hexadecimal digits of a SHA-256.
+  integer, parameter :: DRAIN_BYTES = 1048576
+    !! Bytes read at a time when the rest of an unusable entry is only hashed.
 
   type :: load_set_t
     !! One set of local loads the entry has condensed.
@@ -68,6 +70,8 @@ module superjoin_substructure_library
      real(wp), allocatable :: t(:, :)           !! k_ii⁻¹ k_ib (ni, nb)
      type(load_set_t), allocatable :: sets(:)
      type(string_t), allocatable :: notes(:)    !! the listing's notes on this part
+     real(wp) :: maxratio = 0.0_wp              !! as read from the entry
+     integer(i8) :: maxratio_at = 0
   end type stored_t
 
   type, public :: library_t
@@ -84,11 +88,19 @@ module superjoin_substructure_library
   end type sink_t
 
   type :: source_t
-    !! An entry file read whole, parsed by a cursor.
-     character(:), allocatable :: buf
-     integer(i8) :: pos = 1
-     logical :: ok = .true.
+    !! An entry file being read, field by field into its arrays (large
+    !! unformatted stream reads), hashed in the same pass.
+     integer :: unit = -1
+     integer :: iostat = 0
+     integer(i8) :: left = 0                 !! bytes before the checksum not yet read
+     logical :: ok = .true.                  !! every field was there
+     type(sha256_t) :: sha
   end type source_t
+
+  interface take
+    !! The next field of an entry: text, integers, reals or a matrix.
+     module procedure take_text, take_i8, take_real, take_real_2d
+  end interface take
 
   interface
      function c_getpid() bind(c, name='getpid') result(pid)
@@ -365,88 +377,137 @@ contains
     !! Append integers.
     type(sink_t), intent(inout) :: w
     integer(i8), intent(in) :: a(:)
-    if (size(a) > 0) call put(w, transfer(a, repeat(' ', 8*size(a))))
+    if (w%iostat /= 0) return
+    write (w%unit, iostat=w%iostat) a
+    w%bytes = w%bytes + 8*size(a, kind=i8)
+    call update(w%sha, a)
   end subroutine put_i8
 
   subroutine put_real(w, a)
-    !! Append reals (in pieces that stay in cache).
+    !! Append reals.
     type(sink_t), intent(inout) :: w
     real(wp), intent(in) :: a(:)
-    integer :: i, j
-    do i = 1, size(a), CHUNK
-       j = min(i + CHUNK - 1, size(a))
-       call put(w, transfer(a(i:j), repeat(' ', 8*(j - i + 1))))
-    end do
+    if (w%iostat /= 0) return
+    write (w%unit, iostat=w%iostat) a
+    w%bytes = w%bytes + 8*size(a, kind=i8)
+    call update(w%sha, a)
   end subroutine put_real
 
   subroutine put_real_2d(w, a)
-    !! Append a matrix, column by column.
+    !! Append a matrix (column by column), in one write.
     type(sink_t), intent(inout) :: w
     real(wp), intent(in) :: a(:, :)
-    integer :: j
-    do j = 1, size(a, 2)
-       call put_real(w, a(:, j))
-    end do
+    if (w%iostat /= 0) return
+    write (w%unit, iostat=w%iostat) a
+    w%bytes = w%bytes + 8*size(a, kind=i8)
+    call update(w%sha, a)
   end subroutine put_real_2d
 
   subroutine read_entry(st, cond, why)
     !! Load the entry st%file into cond and st; why is empty when it is sound,
-    !! else says why it is not used.
+    !! else says why it is not used. One pass: each field is read into its
+    !! array and hashed; the checksum is checked at the end (and its
+    !! mismatch is the reason given before any other).
     type(stored_t), intent(inout) :: st
     type(condensed_t), intent(inout) :: cond
     character(:), allocatable, intent(out) :: why
     type(source_t) :: r
-    integer(i8) :: head(5), ver(1), nstep(1), ni, nb, s
-    real(wp) :: ratio(1)
+    character(len=HEX) :: stored_sum
+    integer(i8) :: n
     integer(i8), allocatable :: spc(:)
     why = ''
-    call read_whole(st%file, r%buf, why)
-    if (len(why) > 0) return
-    if (len(r%buf) < MAGIC_I8 + 8 + 2*HEX_I8) then
+    open (newunit=r%unit, file=st%file, access='stream', form='unformatted', status='old', action='read', &
+         iostat=r%iostat)
+    if (r%iostat /= 0) then
+       why = 'cannot be read'
+       return
+    end if
+    inquire (unit=r%unit, size=n)
+    if (n < MAGIC_I8 + 8 + 2*HEX_I8) then
+       close (r%unit)
        why = 'truncated'
        return
     end if
-    associate (n => len(r%buf, kind=i8))
-      if (sha_of(r%buf(1:n - HEX_I8)) /= r%buf(n - HEX_I8 + 1:n)) then
-         why = 'checksum mismatch: corrupt'
-         return
-      end if
-    end associate
-    if (get(r, MAGIC_I8) /= MAGIC) why = 'not a library entry'
-    call get_i8(r, ver)
-    if (len(why) == 0 .and. ver(1) /= FORMAT_VERSION) why = 'format version '//itoa(ver(1))//', not '// &
-         itoa(FORMAT_VERSION)//': stale'
-    if (len(why) == 0 .and. get(r, HEX_I8) /= st%key) why = 'key mismatch'
+    r%left = n - HEX_I8
+    call read_fields(r, st, cond, spc, why)
+    call drain(r)
+    if (r%iostat == 0) read (r%unit, iostat=r%iostat) stored_sum
+    close (r%unit)
+    if (r%iostat /= 0) then
+       why = 'cannot be read'
+    else if (digest(r%sha) /= stored_sum) then
+       why = 'checksum mismatch: corrupt'
+    else if (len(why) == 0 .and. (.not. r%ok .or. r%left /= 0 .or. any(spc < 1 .or. spc > cond%sys%ni))) then
+       why = 'malformed'
+    end if
     if (len(why) > 0) return
-    call get_i8(r, head)
+    cond%maxratio = st%maxratio
+    cond%maxratio_at = st%maxratio_at
+    call set_loaded(cond, spc)
+  end subroutine read_entry
+
+  subroutine read_fields(r, st, cond, spc, why)
+    !! The fields of an entry after its magic, as far as they are sound
+    !! (why says where they stop being so; r%ok false: one was cut short).
+    !! No array is allocated larger than the bytes left in the file.
+    type(source_t), intent(inout) :: r
+    type(stored_t), intent(inout) :: st
+    type(condensed_t), intent(inout) :: cond
+    integer(i8), allocatable, intent(out) :: spc(:)
+    character(:), allocatable, intent(inout) :: why
+    character(len=MAGIC_I8) :: stamp
+    character(len=HEX) :: key
+    integer(i8) :: head(5), ver(1), nstep(1), ni, nb, s
+    real(wp) :: ratio(1)
+    allocate (spc(0))
+    call take(r, stamp)
+    call take(r, ver)
+    call take(r, key)
+    if (stamp /= MAGIC) then
+       why = 'not a library entry'
+    else if (ver(1) /= FORMAT_VERSION) then
+       why = 'format version '//itoa(ver(1))//', not '//itoa(FORMAT_VERSION)//': stale'
+    else if (key /= st%key) then
+       why = 'key mismatch'
+    end if
+    if (len(why) > 0) return
+    call take(r, head)
     ni = head(1)
     nb = head(2)
     if (ni /= cond%sys%ni .or. nb /= cond%sys%nb .or. any(head < 0)) then
        why = 'sizes differ'
        return
     end if
-    call get_real(r, ratio)
-    allocate (spc(head(3)))
-    call get_i8(r, spc)
-    allocate (cond%se%k(nb, nb), st%t(ni, nb), st%sets(head(5)))
-    call get_real_2d(r, cond%se%k)
-    call get_real_2d(r, st%t)
+    call take(r, ratio)
+    st%maxratio = ratio(1)
+    st%maxratio_at = head(4)
+    if (.not. (fits(r, head(3), 1_i8) .and. fits(r, head(5), 9_i8))) return   ! a load set: at least 72 bytes
+    if (.not. fits(r, 1_i8, head(3) + nb*nb + ni*nb + 9*head(5))) return
+    deallocate (spc)
+    allocate (spc(head(3)), cond%se%k(nb, nb), st%t(ni, nb), st%sets(head(5)))
+    call take(r, spc)
+    call take(r, cond%se%k)
+    call take(r, st%t)
     do s = 1, head(5)
-       st%sets(s)%key = get(r, HEX_I8)
-       call get_i8(r, nstep)
+       call take(r, st%sets(s)%key)
+       call take(r, nstep)
+       if (.not. fits(r, nstep(1), ni + nb)) return
        allocate (st%sets(s)%x(ni, nstep(1)), st%sets(s)%fstar(nb, nstep(1)))
-       call get_real_2d(r, st%sets(s)%x)
-       call get_real_2d(r, st%sets(s)%fstar)
+       call take(r, st%sets(s)%x)
+       call take(r, st%sets(s)%fstar)
     end do
-    if (.not. r%ok .or. r%pos /= len(r%buf, kind=i8) - HEX_I8 + 1 .or. any(spc < 1 .or. spc > ni)) then
-       why = 'malformed'
-       deallocate (cond%se%k)
-       return
-    end if
-    cond%maxratio = ratio(1)
-    cond%maxratio_at = head(4)
-    call set_loaded(cond, spc)
-  end subroutine read_entry
+  end subroutine read_fields
+
+  logical function fits(r, count, each) result(ok)
+    !! Whether count times each 8-byte values (count, each >= 0) are left
+    !! before the checksum, asked without forming a product that could
+    !! overflow (r%ok false if not).
+    type(source_t), intent(inout) :: r
+    integer(i8), intent(in) :: count, each
+    ok = r%ok .and. count >= 0 .and. each >= 0
+    if (ok .and. each > 0) ok = count <= r%left/8/each
+    r%ok = ok
+  end function fits
 
   subroutine set_loaded(cond, spc)
     !! What condense leaves beside K*: the boundary's physical DOFs and the
@@ -463,71 +524,70 @@ contains
     end do
   end subroutine set_loaded
 
-  subroutine read_whole(path, buf, why)
-    !! The bytes of the file path.
-    character(*), intent(in) :: path
-    character(:), allocatable, intent(out) :: buf
-    character(:), allocatable, intent(inout) :: why
-    integer :: unit, ios
-    integer(i8) :: n
-    open (newunit=unit, file=path, access='stream', form='unformatted', status='old', action='read', iostat=ios)
-    if (ios /= 0) then
-       why = 'cannot be read'
-       return
-    end if
-    inquire (unit=unit, size=n)
-    allocate (character(len=max(n, 0_i8)) :: buf)
-    if (n > 0) read (unit, iostat=ios) buf
-    close (unit)
-    if (ios /= 0) why = 'cannot be read'
-  end subroutine read_whole
-
-  function sha_of(text) result(key)
-    !! SHA-256 of text.
-    character(*), intent(in) :: text
-    character(len=HEX) :: key
-    type(sha256_t) :: s
-    call update(s, text)
-    key = digest(s)
-  end function sha_of
-
-  function get(r, n) result(text)
-    !! The next n bytes (blanks past the end, r%ok then false).
+  subroutine drain(r)
+    !! Hash the bytes of r left before the checksum (an entry read only in
+    !! part still has its checksum checked).
     type(source_t), intent(inout) :: r
-    integer(i8), intent(in) :: n
-    character(len=n) :: text
-    text = ''
-    if (.not. r%ok .or. r%pos + n - 1 > len(r%buf, kind=i8) - HEX_I8) then
-       r%ok = .false.
-       return
-    end if
-    text = r%buf(r%pos:r%pos + n - 1)
-    r%pos = r%pos + n
-  end function get
+    character(:), allocatable :: buf
+    integer(i8) :: take_now
+    if (r%left <= 0 .or. r%iostat /= 0) return
+    allocate (character(len=int(min(r%left, int(DRAIN_BYTES, i8)))) :: buf)
+    do while (r%left > 0 .and. r%iostat == 0)
+       take_now = min(r%left, int(DRAIN_BYTES, i8))
+       read (r%unit, iostat=r%iostat) buf(1:take_now)
+       call update(r%sha, buf(1:take_now))
+       r%left = r%left - take_now
+    end do
+    r%ok = .false.
+  end subroutine drain
 
-  subroutine get_i8(r, a)
-    !! The next size(a) integers.
+  logical function room(r, bytes)
+    !! Whether the next field (bytes) can be read: r sound so far and the
+    !! bytes there before the checksum (r%ok false if not).
+    type(source_t), intent(inout) :: r
+    integer(i8), intent(in) :: bytes
+    room = r%ok .and. r%iostat == 0 .and. bytes <= r%left
+    if (.not. room) r%ok = .false.
+    if (room) r%left = r%left - bytes
+  end function room
+
+  subroutine take_text(r, text)
+    !! The next len(text) bytes (blanks if they are not there).
+    type(source_t), intent(inout) :: r
+    character(*), intent(out) :: text
+    text = ''
+    if (.not. room(r, len(text, kind=i8))) return
+    read (r%unit, iostat=r%iostat) text
+    call update(r%sha, text)
+  end subroutine take_text
+
+  subroutine take_i8(r, a)
+    !! The next size(a) integers (zeros if they are not there).
     type(source_t), intent(inout) :: r
     integer(i8), intent(out) :: a(:)
     a = 0
-    if (size(a) > 0) a = transfer(get(r, 8_i8*size(a)), a, size(a))
-  end subroutine get_i8
+    if (.not. room(r, 8*size(a, kind=i8))) return
+    read (r%unit, iostat=r%iostat) a
+    call update(r%sha, a)
+  end subroutine take_i8
 
-  subroutine get_real(r, a)
-    !! The next size(a) reals.
+  subroutine take_real(r, a)
+    !! The next size(a) reals (zeros if they are not there).
     type(source_t), intent(inout) :: r
     real(wp), intent(out) :: a(:)
     a = 0.0_wp
-    if (size(a) > 0) a = transfer(get(r, 8_i8*size(a)), a, size(a))
-  end subroutine get_real
+    if (.not. room(r, 8*size(a, kind=i8))) return
+    read (r%unit, iostat=r%iostat) a
+    call update(r%sha, a)
+  end subroutine take_real
 
-  subroutine get_real_2d(r, a)
-    !! The next size(a) reals, column by column.
+  subroutine take_real_2d(r, a)
+    !! The next size(a) reals, column by column, in one read.
     type(source_t), intent(inout) :: r
     real(wp), intent(out) :: a(:, :)
-    integer :: j
-    do j = 1, size(a, 2)
-       call get_real(r, a(:, j))
-    end do
-  end subroutine get_real_2d
+    a = 0.0_wp
+    if (.not. room(r, 8*size(a, kind=i8))) return
+    read (r%unit, iostat=r%iostat) a
+    call update(r%sha, a)
+  end subroutine take_real_2d
 end module superjoin_substructure_library

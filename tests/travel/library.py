@@ -10,8 +10,10 @@ A design study on a grid of plane-stress panels (bench/gen_panel_grid.py,
 2. one panel changed (its thickness): that panel alone is condensed and
    stored, the five others are loaded; the results equal those of a run with
    a fresh library, to the byte.
-3. an entry with a byte flipped, a truncated entry and an entry of another
-   format version (checksum made right again) are never used: one note each,
+3. an entry with a byte flipped, a truncated entry, and (checksum made right
+   again) an entry of another format version, magic or key, with counts
+   beyond the file's size or bytes after its last field are never used (and
+   never allocated by those counts): one note each,
    the panel condensed anew, and the same results to the byte.
 4. no temporary file is left in the library, and the results with the
    library equal those without it to round-off (1e-10: recovery goes through
@@ -119,7 +121,14 @@ def main():
     # stale and corrupt entries
     victims = [("a flipped byte", "corrupt", lambda x: x[:300] + bytes([x[300] ^ 1]) + x[301:]),
                ("a truncated entry", "corrupt", lambda x: x[:len(x) // 2]),
-               ("another format version", "stale", lambda x: restamp(x[:8] + bytes([0] * 8) + x[16:]))]
+               ("another format version", "stale", lambda x: restamp(x[:8] + bytes([0] * 8) + x[16:])),
+               ("another magic", "not a library entry", lambda x: restamp(b"XXXXXXXX" + x[8:])),
+               ("another key", "key mismatch", lambda x: restamp(x[:16] + b"0" * 64 + x[80:])),
+               ("a count of load sets beyond the file", "malformed",
+                lambda x: restamp(x[:112] + (1 << 62).to_bytes(8, "little") + x[120:])),
+               ("a count of DOFs without stiffness beyond the file", "malformed",
+                lambda x: restamp(x[:96] + (1 << 61).to_bytes(8, "little") + x[104:])),
+               ("bytes after the last field", "malformed", lambda x: restamp(x[:-64] + bytes(8) + x[-64:]))]
     for what, word, edit in victims:
         entry = entries[0]
         rewrite(entry, edit)

@@ -1,15 +1,18 @@
 program test_sha256
   !! SHA-256 (superjoin_utils_sha256) against the FIPS 180-4 examples: "abc"
   !! (one block), the 448-bit message (two blocks: the padding spills over),
-  !! the empty message, a million "a" fed in uneven pieces, and array feeding.
+  !! the empty message, a million "a" fed in uneven pieces, array feeding,
+  !! and 24 MB of reals (hashed in place, whole and in pieces that split
+  !! blocks) against sha256sum of the same bytes written to a file.
   use superjoin_kinds, only: wp, i8
   use superjoin_utils_sha256, only: sha256_t, update, digest, sha256_hex
-  use superjoin_testing, only: check, finish
+  use superjoin_testing, only: check, finish, temp_dir
   implicit none (type, external)
 
   call vectors()
   call pieces()
   call arrays()
+  call large()
   call finish()
 
 contains
@@ -49,4 +52,38 @@ contains
     call update(s, x)
     call check(digest(s) /= digest(t), 'a different byte gives a different digest')
   end subroutine arrays
+
+  subroutine large()
+    integer, parameter :: N = 3*1024*1024 + 5   ! 24 MB and 40 bytes: the last block partial
+    real(wp), allocatable :: x(:)
+    type(sha256_t) :: whole, parts, text
+    character(:), allocatable :: path, bytes
+    character(len=64) :: expected
+    integer :: i, unit, stat
+    allocate (x(N))
+    do i = 1, N
+       x(i) = sin(real(i, wp))*1.0e3_wp
+    end do
+    call update(whole, x)
+    call update(parts, x(1:1001))          ! 8 bytes left in the buffer
+    call update(parts, x(1002:))
+    bytes = transfer(x, repeat(' ', 8*N))
+    call update(text, bytes(1:13))         ! pieces of odd lengths
+    call update(text, bytes(14:100013))
+    call update(text, bytes(100014:))
+    path = temp_dir()//'/superjoin_test_sha256.bin'
+    open (newunit=unit, file=path, access='stream', form='unformatted', status='replace')
+    write (unit) x
+    close (unit)
+    call execute_command_line('sha256sum '//path//' > '//path//'.sum', exitstat=stat)
+    call check(stat == 0, 'sha256sum ran')
+    expected = ''
+    open (newunit=unit, file=path//'.sum', status='old', iostat=stat)
+    if (stat == 0) read (unit, '(a64)', iostat=stat) expected
+    close (unit)
+    call execute_command_line('rm -f '//path//' '//path//'.sum')
+    call check(digest(whole) == expected, '24 MB of reals: the digest of sha256sum')
+    call check(digest(parts) == expected, '24 MB of reals in two pieces')
+    call check(digest(text) == expected, '24 MB as text in pieces of odd lengths')
+  end subroutine large
 end program test_sha256

@@ -8,7 +8,7 @@ program test_solvers
   use superjoin_solvers_lapack, only: rcm_ordering
   use superjoin_solvers_matrix_market, only: write_matrix_market, read_matrix_market
   use superjoin_solvers_node_graph, only: node_graph
-  use superjoin_testing, only: check, check_close, check_rel, finish
+  use superjoin_testing, only: check, check_close, check_rel, finish, temp_dir
   implicit none (type, external)
 
   character(len=*), parameter :: BACKENDS(3) = [character(len=7) :: 'cholmod', 'umfpack', 'lapack']
@@ -927,17 +927,6 @@ contains
     rand01 = real(rng_state, wp)/real(MODULUS, wp)
   end function rand01
 
-  function temp_dir() result(dir)
-    character(:), allocatable :: dir
-    integer :: length, stat
-    call get_environment_variable('TMPDIR', length=length, status=stat)
-    if (stat == 0 .and. length > 0) then
-       allocate (character(len=length) :: dir)
-       call get_environment_variable('TMPDIR', dir)
-    else
-       dir = '/tmp'
-    end if
-  end function temp_dir
   subroutine test_node_graph_ordering()
     !! Two unknowns per node (a 2D Laplacian times a 2x2 SPD block): the node
     !! graph has the Laplacian's adjacency, and CHOLMOD ordering it (METIS on

@@ -7,7 +7,7 @@ module superjoin_testing
 
   integer :: n_pass = 0, n_fail = 0
   logical :: verbose_checked = .false., verbose = .false.
-  public :: check, check_close, check_rel, finish
+  public :: check, check_close, check_rel, finish, temp_dir
 
 contains
 
@@ -58,4 +58,17 @@ contains
     write (*, '(i0,a,i0,a)') n_pass, ' passed, ', n_fail, ' failed'
     if (n_fail > 0) error stop 1
   end subroutine finish
+
+  function temp_dir() result(dir)
+    !! The directory for temporary files: $TMPDIR, else /tmp.
+    character(:), allocatable :: dir
+    integer :: length, stat
+    call get_environment_variable('TMPDIR', length=length, status=stat)
+    if (stat == 0 .and. length > 0) then
+       allocate (character(len=length) :: dir)
+       call get_environment_variable('TMPDIR', dir)
+    else
+       dir = '/tmp'
+    end if
+  end function temp_dir
 end module superjoin_testing

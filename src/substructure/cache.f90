@@ -76,7 +76,7 @@ module superjoin_substructure_cache
   end type part_view_t
 
   public :: release_cache, acquire_view, view_condense_loads, view_recover, view_stiffness_times, &
-       view_maxratio, view_spc, remote_view
+       view_maxratio, view_spc, remote_view, view_turn, entry_recover
 
 contains
 
@@ -257,17 +257,37 @@ contains
     type(error_t), allocatable, intent(out) :: error
     real(wp), allocatable :: fc(:, :)
     allocate (fc, source=f_local)
-    if (view%rotated) then
-       call rotate_local(view, fc, .false.)
-       call rotate_local(view, u_local, .false.)
-    end if
-    if (allocated(cache%entries(view%entry)%e%stored)) then
-       call library_recover(cache%entries(view%entry)%e%stored, fc, u_local, error)
-    else
-       call recover_interior(cache%entries(view%entry)%e%cond, fc, u_local, error)
-    end if
-    if (view%rotated) call rotate_local(view, u_local, .true.)
+    call view_turn(view, fc, .false.)
+    call view_turn(view, u_local, .false.)
+    call entry_recover(cache, view%entry, fc, u_local, error)
+    call view_turn(view, u_local, .true.)
   end subroutine view_recover
+
+  subroutine view_turn(view, x, forward)
+    !! x ← R̂ x (forward: from the condensation's frame to this
+    !! substructure's) or R̂ᵀ x, rows in local numbering; x unchanged where
+    !! the view is not turned.
+    type(part_view_t), intent(in) :: view
+    real(wp), intent(inout) :: x(:, :)
+    logical, intent(in) :: forward
+    if (view%rotated) call rotate_local(view, x, forward)
+  end subroutine view_turn
+
+  subroutine entry_recover(cache, ientry, fc, u_local, error)
+    !! Interior displacements from the boundary ones with cache entry ientry,
+    !! in that entry's frame, for any number of columns (the instances that
+    !! share it recovered as one solve).
+    type(part_cache_t), intent(inout) :: cache
+    integer, intent(in) :: ientry
+    real(wp), intent(in) :: fc(:, :)
+    real(wp), intent(inout) :: u_local(:, :)
+    type(error_t), allocatable, intent(out) :: error
+    if (allocated(cache%entries(ientry)%e%stored)) then
+       call library_recover(cache%entries(ientry)%e%stored, fc, u_local, error)
+    else
+       call recover_interior(cache%entries(ientry)%e%cond, fc, u_local, error)
+    end if
+  end subroutine entry_recover
 
   subroutine view_stiffness_times(cache, view, x_local, y_local)
     !! y = k x with the substructure's element stiffness (this frame).

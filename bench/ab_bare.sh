@@ -4,7 +4,7 @@
 # (bare) in the same rounds, so each round's ratio to bare is taken under the
 # same load. One line per run: superjoin's phase times (-v), wall clock, user
 # and system CPU, peak resident set and minor page faults (GNU time); for bare
-# CHOLMOD its analyze, factorize and solve times.
+# CHOLMOD its analyze, factorize and solve times and their CPU time.
 #
 # usage: bench/ab_bare.sh [-r N] OLD_BINARY NEW_BINARY DECK MATRIX.mtx
 #   -r N   rounds (default 2)
@@ -41,7 +41,7 @@ for ((i = 1; i <= rounds; i++)); do
   done
   /usr/bin/time -v "$bare" "$mtx" >"$work/bare.out" 2>"$work/err"
   echo "bare $i load $(cut -d' ' -f1 /proc/loadavg) |" \
-       "$(awk '$1 == "time" && $2 != "read" { printf "%s %s ", $2, $3 }' "$work/bare.out")|" \
+       "$(awk '$1 == "time" && $2 != "read" { printf "%s %s ", $2, $3 } $1 == "cpu" { printf "cpu %s ", $3 }' "$work/bare.out")|" \
        "user $(gnu 'User time' "$work/err") sys $(gnu 'System time' "$work/err")" \
        "maxrss_kB $(gnu 'Maximum resident' "$work/err") minflt $(gnu Minor "$work/err")"
 done

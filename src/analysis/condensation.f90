@@ -7,8 +7,8 @@ module superjoin_analysis_condensation
   use superjoin_model_types, only: model_t, string_t
   use superjoin_assembly_assemble, only: max_element_diagonal
   use superjoin_substructure_local_system, only: dof_label
-  use superjoin_substructure_cache, only: part_cache_t, part_view_t, acquire_view, view_condense_loads, &
-       view_recover, view_stiffness_times, view_spc
+  use superjoin_substructure_cache, only: part_cache_t, part_view_t, acquire_view, entry_condense_loads, &
+       view_stiffness_times, view_spc, view_turn, entry_recover
   use superjoin_model_results, only: run_summary_t, run_options_t
   use superjoin_model_notes, only: note
   use superjoin_analysis_factor_reuse, only: kept_factor_t
@@ -98,7 +98,6 @@ contains
     type(string_t), allocatable, intent(inout) :: notes(:)
     type(error_t), allocatable, intent(out) :: error
     character(:), allocatable :: solver_name
-    real(wp), allocatable :: fstar(:, :)
     integer(i8), allocatable :: spc(:)
     integer :: isub, ip_, i, computed0, reused0, nrot
     real(wp) :: dmax
@@ -117,7 +116,7 @@ contains
     reused0 = cache%reused
     nrot = 0
     ip_ = 0
-    associate (table => st%table, bnd => st%bnd_c, f_phys => st%f_phys, parts => st%parts, f_eff => st%f_eff)
+    associate (table => st%table, bnd => st%bnd_c, f_phys => st%f_phys, parts => st%parts)
       do isub = 1, size(model%subs)
          if (.not. summary%sub_condensed(isub)) cycle
          ip_ = ip_ + 1
@@ -135,18 +134,80 @@ contains
             end if
          end do
          if (allocated(error)) return
-         allocate (fstar(parts(ip_)%nb, size(f_phys, 2)))
-         call view_condense_loads(cache, parts(ip_), f_phys(parts(ip_)%pdof, :), fstar, error)
-         if (allocated(error)) return
-         f_eff(parts(ip_)%se%pdof, :) = fstar
-         call export_condensed(model, table, parts(ip_), fstar, error)
-         if (allocated(error)) return
-         deallocate (fstar)
       end do
     end associate
+    call condense_all_loads(cache, st%parts, st%f_phys, st%f_eff, error)
+    if (allocated(error)) return
+    do ip_ = 1, size(st%parts)
+       call export_condensed(model, st%table, st%parts(ip_), st%f_eff(st%parts(ip_)%se%pdof, :), error)
+       if (allocated(error)) return
+    end do
     call note(notes, 'condensations: '//itoa(cache%computed - computed0)//' computed, '// &
          itoa(cache%reused - reused0)//' reused ('//itoa(nrot)//' turned by their instance''s placement)')
   end subroutine condense_parts
+
+  subroutine condense_all_loads(cache, parts, f_phys, f_eff, error)
+    !! f* of every condensed substructure into f_eff's boundary rows. The
+    !! substructures that share a condensation (instances of one part) have
+    !! their loads condensed together: their columns, turned into the
+    !! condensation's frame, side by side in one multi-column solve.
+    type(part_cache_t), intent(inout) :: cache
+    type(part_view_t), intent(in) :: parts(:)
+    real(wp), intent(in) :: f_phys(:, :)
+    real(wp), intent(inout) :: f_eff(:, :)
+    type(error_t), allocatable, intent(out) :: error
+    real(wp), allocatable :: fc(:, :), fstar(:, :)
+    integer, allocatable :: members(:)
+    logical, allocatable :: done(:)
+    integer :: i, m, ns, c0
+    ns = size(f_phys, 2)
+    allocate (done(size(parts)), source=.false.)
+    do i = 1, size(parts)
+       if (done(i)) cycle
+       call sharing(parts, i, members, done)
+       allocate (fstar(parts(i)%nb, ns*size(members)))
+       call gather_turned(parts, members, f_phys, fc)
+       call entry_condense_loads(cache, parts(i)%entry, fc, fstar, ns, error)
+       if (allocated(error)) return
+       do m = 1, size(members)
+          c0 = (m - 1)*ns
+          associate (v => parts(members(m)))
+            call view_turn(v, fstar(:, c0 + 1:c0 + ns), .true., v%ni)
+            f_eff(v%se%pdof, :) = fstar(:, c0 + 1:c0 + ns)
+          end associate
+       end do
+       deallocate (fc, fstar)
+    end do
+  end subroutine condense_all_loads
+
+  subroutine sharing(parts, i, members, done)
+    !! The views from i on that use the same condensation as parts(i)
+    !! (marked done).
+    type(part_view_t), intent(in) :: parts(:)
+    integer, intent(in) :: i
+    integer, allocatable, intent(out) :: members(:)
+    logical, intent(inout) :: done(:)
+    integer :: j
+    members = pack([(j, j=i, size(parts))], parts(i:)%entry == parts(i)%entry)
+    done(members) = .true.
+  end subroutine sharing
+
+  subroutine gather_turned(parts, members, x, y)
+    !! The rows of x (physical DOFs) of each member view, turned into the
+    !! condensation's frame, side by side: y(:, (m-1) ns + 1 : m ns).
+    type(part_view_t), intent(in) :: parts(:)
+    integer, intent(in) :: members(:)
+    real(wp), intent(in) :: x(:, :)
+    real(wp), allocatable, intent(out) :: y(:, :)
+    integer :: m, ns, c0
+    ns = size(x, 2)
+    allocate (y(size(parts(members(1))%pdof), ns*size(members)))
+    do m = 1, size(members)
+       c0 = (m - 1)*ns
+       y(:, c0 + 1:c0 + ns) = x(parts(members(m))%pdof, :)
+       call view_turn(parts(members(m)), y(:, c0 + 1:c0 + ns), .false.)
+    end do
+  end subroutine gather_turned
 
   function part_solver(opts) result(name)
     !! The solver of the condensations: the one asked for. Under MPI each
@@ -161,19 +222,38 @@ contains
   end function part_solver
 
   subroutine recover_parts(cache, parts, f_phys, u, error)
-    !! Interior displacements of every condensed substructure from its boundary.
+    !! Interior displacements of every condensed substructure from its
+    !! boundary. The substructures that share a condensation (instances of
+    !! one part) are recovered together: their columns, turned into the
+    !! condensation's frame, side by side in one multi-column solve with the
+    !! shared factor (a supernodal solve of many columns costs little more
+    !! than one), then turned back.
     type(part_cache_t), intent(inout) :: cache
     type(part_view_t), intent(in) :: parts(:)
     real(wp), intent(in) :: f_phys(:, :)
     real(wp), intent(inout) :: u(:, :)
     type(error_t), allocatable, intent(out) :: error
-    real(wp), allocatable :: ul(:, :)
-    integer :: i
+    real(wp), allocatable :: fc(:, :), uc(:, :)
+    integer, allocatable :: members(:)
+    logical, allocatable :: done(:)
+    integer :: i, m, ns, c0
+    ns = size(u, 2)
+    allocate (done(size(parts)), source=.false.)
     do i = 1, size(parts)
-       ul = u(parts(i)%pdof, :)
-       call view_recover(cache, parts(i), f_phys(parts(i)%pdof, :), ul, error)
+       if (done(i)) cycle
+       call sharing(parts, i, members, done)
+       call gather_turned(parts, members, f_phys, fc)
+       call gather_turned(parts, members, u, uc)
+       call entry_recover(cache, parts(i)%entry, fc, uc, ns, error)
        if (allocated(error)) return
-       u(parts(i)%pdof, :) = ul
+       do m = 1, size(members)
+          c0 = (m - 1)*ns
+          associate (v => parts(members(m)))
+            call view_turn(v, uc(:, c0 + 1:c0 + ns), .true.)
+            u(v%pdof, :) = uc(:, c0 + 1:c0 + ns)
+          end associate
+       end do
+       deallocate (fc, uc)
     end do
   end subroutine recover_parts
 

@@ -76,7 +76,7 @@ module superjoin_substructure_cache
   end type part_view_t
 
   public :: release_cache, acquire_view, view_condense_loads, view_recover, view_stiffness_times, &
-       view_maxratio, view_spc, remote_view
+       view_maxratio, view_spc, remote_view, view_turn, entry_recover, entry_condense_loads
 
 contains
 
@@ -236,17 +236,34 @@ contains
     type(error_t), allocatable, intent(out) :: error
     real(wp), allocatable :: fc(:, :)
     allocate (fc, source=f_local)
-    if (view%rotated) call rotate_local(view, fc, .false.)
-    associate (en => cache%entries(view%entry)%e)
-      if (allocated(en%stored)) then
-         call library_loads(en%cond, en%stored, fc, fstar, error)
-      else
-         call condense_loads(en%cond, fc, fstar, error)
-      end if
-    end associate
+    call view_turn(view, fc, .false.)
+    call entry_condense_loads(cache, view%entry, fc, fstar, size(fc, 2), error)
     if (allocated(error)) return
-    if (view%rotated) call rotate_rows(view, fstar, view%ni, .true.)
+    call view_turn(view, fstar, .true., view%ni)
   end subroutine view_condense_loads
+
+  subroutine entry_condense_loads(cache, ientry, fc, fstar, chunk, error)
+    !! f* with cache entry ientry from local loads in its frame, for any
+    !! number of columns: chunk columns per substructure (a library entry
+    !! keeps its load sets per substructure).
+    type(part_cache_t), intent(inout) :: cache
+    integer, intent(in) :: ientry
+    real(wp), intent(in) :: fc(:, :)
+    real(wp), intent(out) :: fstar(:, :)
+    integer, intent(in) :: chunk
+    type(error_t), allocatable, intent(out) :: error
+    integer :: c
+    associate (en => cache%entries(ientry)%e)
+      if (.not. allocated(en%stored)) then
+         call condense_loads(en%cond, fc, fstar, error)
+         return
+      end if
+      do c = 1, size(fc, 2), max(chunk, 1)
+         call library_loads(en%cond, en%stored, fc(:, c:c + chunk - 1), fstar(:, c:c + chunk - 1), error)
+         if (allocated(error)) return
+      end do
+    end associate
+  end subroutine entry_condense_loads
 
   subroutine view_recover(cache, view, f_local, u_local, error)
     !! Interior displacements from the boundary ones (local arrays, this frame).
@@ -257,17 +274,48 @@ contains
     type(error_t), allocatable, intent(out) :: error
     real(wp), allocatable :: fc(:, :)
     allocate (fc, source=f_local)
-    if (view%rotated) then
-       call rotate_local(view, fc, .false.)
-       call rotate_local(view, u_local, .false.)
-    end if
-    if (allocated(cache%entries(view%entry)%e%stored)) then
-       call library_recover(cache%entries(view%entry)%e%stored, fc, u_local, error)
-    else
-       call recover_interior(cache%entries(view%entry)%e%cond, fc, u_local, error)
-    end if
-    if (view%rotated) call rotate_local(view, u_local, .true.)
+    call view_turn(view, fc, .false.)
+    call view_turn(view, u_local, .false.)
+    call entry_recover(cache, view%entry, fc, u_local, size(fc, 2), error)
+    call view_turn(view, u_local, .true.)
   end subroutine view_recover
+
+  subroutine view_turn(view, x, forward, offset)
+    !! x ← R̂ x (forward: from the condensation's frame to this
+    !! substructure's) or R̂ᵀ x, rows in local numbering (row r of x: local
+    !! DOF r + offset; offset ni: the boundary rows alone); x unchanged where
+    !! the view is not turned.
+    type(part_view_t), intent(in) :: view
+    real(wp), intent(inout) :: x(:, :)
+    logical, intent(in) :: forward
+    integer(i8), intent(in), optional :: offset
+    integer(i8) :: off
+    off = 0
+    if (present(offset)) off = offset
+    if (view%rotated) call rotate_rows(view, x, off, forward)
+  end subroutine view_turn
+
+  subroutine entry_recover(cache, ientry, fc, u_local, chunk, error)
+    !! Interior displacements from the boundary ones with cache entry ientry,
+    !! in that entry's frame, for any number of columns (the instances that
+    !! share it recovered as one solve): chunk columns per substructure (a
+    !! library entry finds its load sets per substructure).
+    type(part_cache_t), intent(inout) :: cache
+    integer, intent(in) :: ientry
+    real(wp), intent(in) :: fc(:, :)
+    real(wp), intent(inout) :: u_local(:, :)
+    integer, intent(in) :: chunk
+    type(error_t), allocatable, intent(out) :: error
+    integer :: c
+    if (.not. allocated(cache%entries(ientry)%e%stored)) then
+       call recover_interior(cache%entries(ientry)%e%cond, fc, u_local, error)
+       return
+    end if
+    do c = 1, size(fc, 2), max(chunk, 1)
+       call library_recover(cache%entries(ientry)%e%stored, fc(:, c:c + chunk - 1), u_local(:, c:c + chunk - 1), error)
+       if (allocated(error)) return
+    end do
+  end subroutine entry_recover
 
   subroutine view_stiffness_times(cache, view, x_local, y_local)
     !! y = k x with the substructure's element stiffness (this frame).

@@ -31,7 +31,7 @@ module superjoin_deck_nesting
      integer, allocatable :: part_of(:)          !! per nested template (index in subs): its part (0: unknown)
      type(contact_b_t), allocatable :: contacts(:)   !! the contacts held by parts (templates)
      type(cline_b_t), allocatable :: clines(:)       !! their data lines (contact = index in contacts)
-     integer :: nleaf = 0                        !! instances of leaf parts made
+     integer :: nleaf = 0                        !! instances with a mesh made (leaf parts, parts with their own mesh)
      integer :: ncontact = 0                     !! contacts made
   end type unfold_t
 
@@ -187,7 +187,11 @@ contains
        w%nleaf = w%nleaf + 1
        return
     end if
-    if (st%subs(p)%nnode == 0) st%subs(isub)%kind = SUBK_NESTED   ! no substructure of its own
+    if (st%subs(p)%nnode == 0) then
+       st%subs(isub)%kind = SUBK_NESTED   ! no substructure of its own
+    else
+       w%nleaf = w%nleaf + 1              ! a mesh of its own beside its inner instances
+    end if
     do t = 1, size(w%part_of)
        if (st%subs(t)%kind /= SUBK_NESTED .or. w%part_of(t) == 0) cycle
        if (st%instances(st%subs(t)%inst)%owner /= p) cycle

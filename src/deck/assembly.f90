@@ -16,7 +16,7 @@ module superjoin_deck_assembly
   use superjoin_elements_traits, only: element_traits_t, element_traits, FAMILY_BEAM
   use superjoin_deck_lexer, only: itoa, plural
   use superjoin_deck_state, only: deck_state_t, sub_b_t, report, report_loc, SUBK_INSTANCE, &
-       step_b_t, SUBK_PART, instance_b_t, override_b_t
+       step_b_t, SUBK_PART, SUBK_NESTED, instance_b_t, override_b_t
   use superjoin_elements_frame, only: DEFAULT_V_SWITCH_TOL, cross, real_text
   use superjoin_utils_sorting, only: sort_index
   use superjoin_utils_halting, only: halting_t, halting_off, halting_restore
@@ -112,7 +112,7 @@ contains
     nkeep = 0
     do k = 1, st%nsub
        new_index(k) = 0
-       if (st%subs(k)%kind == SUBK_PART) cycle
+       if (st%subs(k)%kind == SUBK_PART .or. st%subs(k)%kind == SUBK_NESTED) cycle   ! nested: unfolded
        nkeep = nkeep + 1
        new_index(k) = nkeep
     end do

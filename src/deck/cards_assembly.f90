@@ -18,9 +18,9 @@ module superjoin_deck_cards_assembly
   !! validation pass (superjoin_deck_assembly).
   use superjoin_kinds, only: wp
   use superjoin_model_types, only: source_loc_t, LINK_NONE, LINK_RIGID
-  use superjoin_deck_lexer, only: keyword_line_t, to_upper, parse_real, itoa, clip, plural, TOK_OK
+  use superjoin_deck_lexer, only: keyword_line_t, to_upper, parse_real, itoa, clip, plural, TOK_OK, is_path
   use superjoin_deck_state, only: deck_state_t, contact_b_t, cline_b_t, support_b_t, ref_t, &
-       report_loc, new_sub, find_sub, override_b_t, SUBK_PART, SUBK_INSTANCE, add_contact, &
+       report_loc, new_sub, find_sub, override_b_t, SUBK_PART, SUBK_INSTANCE, SUBK_NESTED, add_contact, &
        add_cline, add_support, grow, instance_b_t
   use superjoin_utils_halting, only: halting_t, halting_off, halting_restore
   use superjoin_utils_strings, only: pick
@@ -33,6 +33,7 @@ module superjoin_deck_cards_assembly
   implicit none (type, external)
   private
 
+  public :: find_part, new_instance
   public :: assembly_allows, set_home, finish_assembly, kw_assembly, data_instance, kw_interface, &
        data_interface, kw_change_contact, data_change_contact, kw_contact, data_contact, kw_support, &
        data_support
@@ -67,11 +68,12 @@ contains
     end if
     if (in_part(st)) then
        select case (kw%keyword)
-       case ('SUBSTRUCTURE', 'END SUBSTRUCTURE', 'ASSEMBLY', 'END ASSEMBLY', 'INSTANCE', 'END INSTANCE', &
-            'CONTACT', 'INTERFACE', 'SUPPORT', 'BOUNDARY', 'STEP', 'END STEP', 'CLOAD', 'DLOAD', &
+       case ('SUBSTRUCTURE', 'END SUBSTRUCTURE', 'ASSEMBLY', 'END ASSEMBLY', &
+            'INTERFACE', 'SUPPORT', 'BOUNDARY', 'STEP', 'END STEP', 'CLOAD', 'DLOAD', &
             'CHANGE CONTACT', 'CONTROLS')
           call report_loc(st, loc, '*'//kw%keyword//' is not allowed inside *PART '// &
-               st%subs(st%cur_sub)%name//' (a part holds nodes, elements, sets and sections; '// &
+               st%subs(st%cur_sub)%name//' (a part holds nodes, elements, sets, sections, instances of '// &
+               'other parts and contacts between them; '// &
                'close it with *END PART)')
           st%card = CARD_SKIP
           ok = .false.
@@ -229,42 +231,73 @@ contains
     type(source_loc_t), intent(in) :: loc
     character(:), allocatable :: name, part
     logical :: f1, f2
-    integer :: k, isub
-    integer, parameter :: INITIAL_INSTANCES = 8
+    integer :: k, isub, owner
     if (.not. outside_step(st, kw, loc)) return
     call check_params(st, kw, loc, [character(NAME_LEN) :: 'NAME', 'PART'], [character(NAME_LEN) ::])
     st%card = CARD_SKIP
-    if (st%cur_sub > 0) then
+    owner = 0
+    if (in_part(st)) then
+       owner = st%cur_sub   ! a part made of parts (superjoin_deck_nesting flattens it)
+    else if (st%cur_sub > 0) then
        call report_loc(st, loc, '*INSTANCE inside *SUBSTRUCTURE '//st%subs(st%cur_sub)%name// &
             ' (missing *END SUBSTRUCTURE?)')
        st%cur_sub = 0
     end if
-    if (.not. st%in_assembly) call report_loc(st, loc, '*INSTANCE must stand inside *ASSEMBLY ... *END ASSEMBLY')
+    if (.not. st%in_assembly .and. owner == 0) call report_loc(st, loc, &
+         '*INSTANCE must stand inside *ASSEMBLY ... *END ASSEMBLY or inside a *PART')
     call get_name_param(st, kw, loc, 'NAME', .true., name, f1)
     call get_name_param(st, kw, loc, 'PART', .true., part, f2)
     st%cur_inst = -1
     if (.not. (f1 .and. f2)) return
     k = find_sub(st, name)
+    if (owner > 0) k = find_inner(st, owner, name)
     if (k > 0) then
-       call report_loc(st, loc, 'instance name '//name//' is already the name of a substructure or instance'// &
+       call report_loc(st, loc, 'instance name '//name//' is already the name of '// &
+            pick(owner > 0, 'an instance in part '//st%subs(max(owner, 1))%name, 'a substructure or instance')// &
             ' (defined at '//loc_string(st, st%subs(k)%loc)//')')
        return
     end if
+    call new_instance(st, name, part, loc, owner, isub)
+    st%cur_inst = st%ninst
+    st%card = CARD_INSTANCE
+    st%card_item = st%ninst
+  end subroutine kw_instance
+
+  subroutine new_instance(st, name, part, loc, owner, isub)
+    !! A new *INSTANCE `name` of `part` (placed by the identity until its data lines)
+    !! inside part `owner` (0: the assembly): entry isub of st%subs, the last of
+    !! st%instances. name and part must not be pieces of st (st%subs grows).
+    type(deck_state_t), intent(inout) :: st
+    character(*), intent(in) :: name, part
+    type(source_loc_t), intent(in) :: loc
+    integer, intent(in) :: owner
+    integer, intent(out) :: isub
+    integer, parameter :: INITIAL_INSTANCES = 8
     call grow(st%instances, st%ninst, INITIAL_INSTANCES)
     call new_sub(st, name, loc, isub)
     st%ninst = st%ninst + 1
-    st%subs(isub)%kind = SUBK_INSTANCE
+    st%subs(isub)%kind = merge(SUBK_NESTED, SUBK_INSTANCE, owner > 0)
     st%subs(isub)%inst = st%ninst
     associate (inst => st%instances(st%ninst))
       inst = instance_b_t()
       inst%part = part
       inst%sub = isub
       inst%loc = loc
+      inst%owner = owner
     end associate
-    st%cur_inst = st%ninst
-    st%card = CARD_INSTANCE
-    st%card_item = st%ninst
-  end subroutine kw_instance
+  end subroutine new_instance
+
+  integer function find_inner(st, owner, name) result(k)
+    !! The *INSTANCE named `name` inside part `owner` (index in st%subs; 0 if none).
+    type(deck_state_t), intent(in) :: st
+    integer, intent(in) :: owner
+    character(*), intent(in) :: name
+    do k = 1, st%nsub
+       if (st%subs(k)%kind /= SUBK_NESTED) cycle
+       if (st%instances(st%subs(k)%inst)%owner == owner .and. st%subs(k)%name == name) return
+    end do
+    k = 0
+  end function find_inner
 
   subroutine data_instance(st, line, loc)
     !! Data lines of *INSTANCE: translation, then rotation (Abaqus form).
@@ -615,13 +648,14 @@ contains
     call contact_pair_params(st, kw, loc, c)
     call contact_offset_param(st, kw, loc, c)
     call get_name_param(st, kw, loc, 'NAME', .true., c%name, f1)
-    call get_name_param(st, kw, loc, 'MASTER', .true., c%master, f2)
-    call get_name_param(st, kw, loc, 'SLAVE', .true., c%slave, f3)
+    call get_path_param(st, kw, loc, 'MASTER', c%master, f2)
+    call get_path_param(st, kw, loc, 'SLAVE', c%slave, f3)
     call get_name_param(st, kw, loc, 'ORIENTATION', .false., c%orientation, f4)
     st%card = CARD_SKIP
     if (.not. (f1 .and. f2 .and. f3)) return
+    if (in_part(st)) c%owner = st%cur_sub   ! between the part's own instances (superjoin_deck_nesting)
     do k = 1, st%ncontact
-       if (st%contacts(k)%name == c%name) then
+       if (st%contacts(k)%name == c%name .and. st%contacts(k)%owner == c%owner) then
           call report_loc(st, loc, 'duplicate contact name '//c%name//' (first defined at '// &
                loc_string(st, st%contacts(k)%loc)//')')
           return
@@ -631,6 +665,25 @@ contains
     call add_contact(st, c, st%card_item)
     st%card = CARD_CONTACT
   end subroutine kw_contact
+
+  subroutine get_path_param(st, kw, loc, name, value, found)
+    !! A required parameter naming a substructure or an instance path (`B.F3.BAY2`), upper-cased.
+    type(deck_state_t), intent(inout) :: st
+    type(keyword_line_t), intent(in) :: kw
+    type(source_loc_t), intent(in) :: loc
+    character(*), intent(in) :: name
+    character(:), allocatable, intent(out) :: value
+    logical, intent(out) :: found
+    call get_param(st, kw, loc, name, .true., value, found)
+    if (.not. found) return
+    if (.not. is_path(value)) then
+       call report_loc(st, loc, 'invalid name '''//clip(value)//''' for '//name//'= (letters, digits, _ and - only;'// &
+            ' an instance path joins names with .)')
+       found = .false.
+       return
+    end if
+    value = to_upper(value)
+  end subroutine get_path_param
 
   subroutine data_contact(st, line, loc)
     !! A data line of *CONTACT: master, slave, first DOF, last DOF, stiffness.

@@ -5,7 +5,7 @@ module superjoin_deck_cards_common
   !! stiffnesses, node and element references), with their messages.
   use superjoin_kinds, only: wp, ip
   use superjoin_model_types, only: source_loc_t, NDOF_NODE, LINK_NONE, LINK_FINITE, LINK_RIGID
-  use superjoin_deck_lexer, only: keyword_line_t, to_upper, parse_real, parse_id, is_name, &
+  use superjoin_deck_lexer, only: keyword_line_t, to_upper, parse_real, parse_id, is_name, is_path, &
        is_digits, looks_numeric, itoa, clip, plural, TOK_OK, TOK_RANGE, TOK_NONFINITE
   use superjoin_deck_state, only: deck_state_t, ref_t, report_loc, new_sub, find_sub
   use superjoin_deck_ccx_cards, only: refused_card_reason
@@ -353,10 +353,10 @@ contains
        ok = .true.
        return
     end if
-    dot = index(tok, '.')
+    dot = index(tok, '.', back=.true.)   ! the scope may be an instance path (B.F3.BAY2.12)
     if (dot > 0) then
        rest = tok(dot + 1:)
-       if (.not. is_name(tok(1:dot - 1))) then
+       if (.not. is_path(tok(1:dot - 1))) then
           call report_loc(st, loc, 'invalid substructure name in '''//clip(tok)//'''')
           return
        end if
@@ -394,7 +394,7 @@ contains
     ok = parse_ref(st, tok, elem, home, loc, ref)
     if (.not. ok .or. ref%is_set) return
     ref%is_set = .true.
-    ref%set = tok(index(tok, '.') + 1:)
+    ref%set = tok(index(tok, '.', back=.true.) + 1:)
     ref%id = 0
   end function parse_set_ref
 

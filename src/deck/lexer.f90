@@ -73,7 +73,7 @@ module superjoin_deck_lexer
 
   public :: load_file, next_line, first_nonblank, to_upper, collapse_blanks
   public :: parse_keyword_line, split_fields, drop_trailing_empty
-  public :: parse_real, parse_id, is_name, is_digits, looks_numeric, itoa
+  public :: parse_real, parse_id, is_name, is_digits, looks_numeric, itoa, is_path
   public :: path_dirname, path_join, path_normalize, clip, plural
 
   integer, parameter :: MAX_SHOWN = 60
@@ -706,4 +706,19 @@ contains
     end do
     if (len(norm) == 0) norm = '.'
   end function path_normalize
+
+  pure logical function is_path(s)
+    !! True when s is an instance path: names joined by '.' (`B`, `B.F3.BAY2`).
+    character(*), intent(in) :: s
+    integer :: a, dot
+    a = 1
+    do
+       dot = index(s(a:), '.')
+       if (dot == 0) exit
+       is_path = is_name(s(a:a + dot - 2))
+       if (.not. is_path) return
+       a = a + dot
+    end do
+    is_path = is_name(s(a:))
+  end function is_path
 end module superjoin_deck_lexer

@@ -132,6 +132,7 @@ module superjoin_deck_records
      real(wp) :: kn = 0.0_wp, kt = 0.0_wp  !! *INTERFACE: stiffness per unit length or area
      type(ref_t) :: iface_master, iface_slave   !! *INTERFACE: its data line (master nset, slave nset)
      type(source_loc_t) :: iface_loc       !! *INTERFACE: the data line (line 0: none)
+     integer :: owner = 0                  !! the *PART holding it (index in subs; 0: none)
   end type contact_b_t
 
   type, public :: cline_b_t
@@ -198,7 +199,9 @@ module superjoin_deck_records
      type(source_loc_t) :: loc
   end type load_b_t
 
-  integer, parameter, public :: SUBK_PLAIN = 0, SUBK_PART = 1, SUBK_INSTANCE = 2
+  integer, parameter, public :: SUBK_PLAIN = 0, SUBK_PART = 1, SUBK_INSTANCE = 2, SUBK_NESTED = 3
+    !! SUBK_NESTED: an *INSTANCE inside a *PART (a template, flattened by superjoin_deck_nesting)
+    !! or an instance of a part that holds only instances (no substructure of its own).
     !! Kinds of entries of deck_state_t%subs: a substructure, a *PART (a mesh that
     !! is only placed through instances), an *INSTANCE (filled from its part).
 
@@ -206,6 +209,7 @@ module superjoin_deck_records
     !! An *INSTANCE card: the part it places and the placement x' = rot x + shift.
      character(:), allocatable :: part      !! part name (upper case)
      integer :: sub = 0                     !! its entry in subs
+     integer :: owner = 0                   !! the *PART holding it (index in subs; 0: the assembly)
      integer :: ndata = 0                   !! data lines read (translation, rotation)
      logical :: ok = .true.                 !! data lines valid
      real(wp) :: rot(3, 3) = reshape([1.0_wp, 0.0_wp, 0.0_wp, 0.0_wp, 1.0_wp, 0.0_wp, &

@@ -8,7 +8,8 @@ module superjoin_deck_validate
   !! combinations and output requests (helpers shared by the builders:
   !! _build_common).
   use superjoin_model_types, only: model_t
-  use superjoin_deck_state, only: deck_state_t, report, report_loc, SUBK_INSTANCE
+  use superjoin_deck_state, only: deck_state_t, report, report_loc, SUBK_INSTANCE, SUBK_NESTED
+  use superjoin_deck_nesting, only: unfold_nested
   use superjoin_deck_requests, only: build_requests
   use superjoin_deck_build_section_prints, only: build_section_prints
   use superjoin_deck_combinations, only: build_combinations
@@ -60,11 +61,13 @@ contains
        allocate (model%orientations(0))
     end if
 
-    ! substructures
+    ! substructures (parts made of parts unfolded into instances first)
+    call unfold_nested(st)
+    if (st%aborted) return
     allocate (model%subs(st%nsub))
     if (st%nsub == 0) call report(st, 1, 1, 'the deck defines no nodes')
     do k = 1, st%nsub
-       if (st%subs(k)%kind == SUBK_INSTANCE) then
+       if (st%subs(k)%kind == SUBK_INSTANCE .or. st%subs(k)%kind == SUBK_NESTED) then
           call empty_sub(st%subs(k), model%subs(k))
           cycle
        end if

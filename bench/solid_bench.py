@@ -165,19 +165,16 @@ def main():
     args = ap.parse_args()
     sj = os.environ.get('SUPERJOIN', os.path.join(BUILD, 'superjoin'))
     build_bare()
-    rows = [one(args, t, s, sj) for t in args.types.split(',') for s in args.sizes]
+    rows = []
+    for t in args.types.split(','):
+        for s in args.sizes:
+            rows.append(one(args, t, s, sj))
+            print('solid_bench: ' + row_text(rows[-1]), file=sys.stderr)   # kept if a later size is cut short
     print('\nsuperjoin against ccx 2.20 and bare CHOLMOD, shape %s, %d cores, medians of %d rounds '
           '(superjoin and bare in turn); times s, memory MB' % (args.shape, os.cpu_count(), args.rounds))
-    print('%-7s %6s %8s %10s | %7s %7s | %7s %7s | %7s %7s %6s | %7s %6s %6s | %9s' % (
-        'type', 'size', 'equat.', 'nnz(L)', 'sj', 'sjMB', 'bare', 'bareMB', 'ccx', 'ccxMB', 'u3 rel', 'sj/bare',
-        'ccx/sj', 'mem', 'load'))
+    print(HEAD)
     for r in rows:
-        du = None if r['u_ccx'] is None or r['u_sj'] is None else abs(r['u_sj'] - r['u_ccx']) / abs(r['u_ccx'])
-        print('%-7s %6s %8d %10d | %7s %7s | %7s %7s | %7s %7s %6s | %7s %6s %6s | %4.1f-%4.1f' % (
-            r['etype'], r['size'], r['neq'], r['nnzl'], fmt(r['sj']), fmt(r['sj_mb'], '%.0f'), fmt(r['bare']),
-            fmt(r['bare_mb'], '%.0f'), fmt(r['ccx']) if r['ccx'] is not None else r['ccx_status'],
-            fmt(r['ccx_mb'], '%.0f'), fmt(du, '%.0e'), fmt(ratio(r['sj'], r['bare']), '%.3f'),
-            fmt(ratio(r['ccx'], r['sj'])), fmt(ratio(r['sj_mb'], r['ccx_mb'])), r['load'][0], r['load'][1]))
+        print(row_text(r))
     print('\nsuperjoin phases (medians, s):')
     for r in rows:
         print('  %-7s %6s  %s   rounds sj %s bare %s' % (r['etype'], r['size'], '  '.join(
@@ -185,6 +182,21 @@ def main():
             ' '.join('%.2f' % x for x in r['bare_all'])))
     print('targets: ccx/sj >= 5, mem = sj peak / ccx peak <= 0.2, sj/bare <= 1.3; load = 1-min load average '
           'before the runs (min-max)')
+
+
+HEAD = '%-7s %6s %8s %10s | %7s %7s | %7s %7s | %7s %7s %6s | %7s %6s %6s | %9s' % (
+    'type', 'size', 'equat.', 'nnz(L)', 'sj', 'sjMB', 'bare', 'bareMB', 'ccx', 'ccxMB', 'u3 rel', 'sj/bare',
+    'ccx/sj', 'mem', 'load')
+
+
+def row_text(r):
+    """One line of the table."""
+    du = None if r['u_ccx'] is None or r['u_sj'] is None else abs(r['u_sj'] - r['u_ccx']) / abs(r['u_ccx'])
+    return ('%-7s %6s %8d %10d | %7s %7s | %7s %7s | %7s %7s %6s | %7s %6s %6s | %4.1f-%4.1f' % (
+        r['etype'], r['size'], r['neq'], r['nnzl'], fmt(r['sj']), fmt(r['sj_mb'], '%.0f'), fmt(r['bare']),
+        fmt(r['bare_mb'], '%.0f'), fmt(r['ccx']) if r['ccx'] is not None else r['ccx_status'],
+        fmt(r['ccx_mb'], '%.0f'), fmt(du, '%.0e'), fmt(ratio(r['sj'], r['bare']), '%.3f'),
+        fmt(ratio(r['ccx'], r['sj'])), fmt(ratio(r['sj_mb'], r['ccx_mb'])), r['load'][0], r['load'][1]))
 
 
 if __name__ == '__main__':

@@ -8,7 +8,7 @@ through the thickness: the fill of a plate-like part), and `block`, an arm
 4 x 1 x 1 cut into 4n x n x n cells (a chunky part: 3D fill, nnz(L) ~ N^(4/3)).
 C3D20R takes one 20-node brick per cell, C3D10 six 10-node tetrahedra per cell
 (Kuhn's split along the main diagonal, conforming between cells). The face x = 0 is clamped, every node of
-the face x = L carries a vertical load (total 1 MN), the node at the middle of
+the face x = L carries a vertical load (total 10 kN), the node at the middle of
 the tip's top edge is printed (*NODE PRINT), nothing else is written.
 
 usage: gen_solid.py --type C3D20R|C3D10 [--shape plate|block] (--dofs N | --n n) OUT.inp
@@ -135,7 +135,7 @@ def write_deck(etype, n, out):
               '*SOLID SECTION, ELSET=EALL, MATERIAL=STEEL',
               '*BOUNDARY', 'FIXED, 1, 3',
               '*STEP', '*STATIC', '*CLOAD']
-    f = -1.0e6 / len(tip)
+    f = -1.0e4 / len(tip)
     lines.extend('%d, 3, %.10g' % (t, f) for t in tip)
     lines += ['*NODE PRINT, NSET=PROBE', 'U', '*END STEP']
     with open(out, 'w') as fh:

@@ -24,11 +24,18 @@ module superjoin_analysis_policy
   use superjoin_analysis_summed_matrix, only: summed_nonzero, summed_groups, holds_shared_terms
   use superjoin_utils_strings, only: itoa
   use superjoin_utils_memory, only: BYTES_REAL
+  use superjoin_elements_traits, only: element_traits_t, element_traits, FAMILY_SOLID, FAMILY_PLANE, FAMILY_SHELL
   implicit none (type, external)
   private
 
   real(wp), parameter :: AUTO_KSTAR_BYTES = 2.0_wp*2.0_wp**30
     !! CONDENSE=AUTO condenses no part whose dense K* would exceed this (2 GiB).
+  real(wp), parameter :: FILL_3D = 16.0_wp, FILL_2D = 8.0_wp, FILL_1D = 6.0_wp
+    !! Estimated entries of a part's sparse factor with n interior DOFs
+    !! (nested dissection's growth): FILL_3D n^(4/3) for solids (CHOLMOD on
+    !! this project's C3D10 and C3D20R blocks of 1e5 DOFs: 16 and 22),
+    !! FILL_2D n log2 n for plane, axisymmetric and shell parts, FILL_1D n for
+    !! frames and trusses.
 
   public :: apply_large, describe_transform, column_groups, count_boundary, choose_condensation, autospc, &
        skip_unloaded_parts, wanted_elements
@@ -232,7 +239,7 @@ contains
     logical, intent(in) :: bnd(:)              !! condensation boundary
     type(run_summary_t), intent(inout) :: summary
     type(string_t), allocatable, intent(inout) :: notes(:)
-    integer :: isub, mode, ninst
+    integer :: isub, mode
     integer(i8) :: nb, ni, p
     integer(i8), allocatable :: nbs(:)
     character(:), allocatable :: why, small
@@ -254,25 +261,7 @@ contains
        end if
        if (mode == CONDENSE_NO) cycle
        if (mode == CONDENSE_AUTO) then
-          ninst = 0
-          if (model%subs(isub)%part > 0) ninst = count(model%subs(:)%part == model%subs(isub)%part)
-          if (ninst > 1) then
-             why = 'AUTO: one of '//itoa(ninst)//' instances of part '//model%parts(model%subs(isub)%part)%s
-          else if (ctx%joint_study) then
-             why = 'AUTO: joint study'
-          else
-             cycle
-          end if
-          if (nb == 0 .or. ni == 0) cycle
-          if (nb >= ni) then
-             small = small//' '//model%subs(isub)%name
-             cycle
-          end if
-          if (real(nb, wp)**2*BYTES_REAL > AUTO_KSTAR_BYTES) then
-             call note(notes, 'substructure '//model%subs(isub)%name//' not condensed ('//why// &
-                  '): its K* would take '//itoa(nb*nb*BYTES_REAL/2**20)//' MiB')
-             cycle
-          end if
+          if (.not. auto_condenses(model, ctx, isub, ni, nb, why, small, notes)) cycle
        else
           why = 'CONDENSE=YES'
        end if
@@ -285,7 +274,7 @@ contains
           summary%sub_condensed(isub) = .true.
           summary%n_condensed = summary%n_condensed + 1
           call note(notes, 'substructure '//model%subs(isub)%name//' condensed ('//why//'): '// &
-               itoa(ni)//' interior DOFs eliminated, K* of order '//itoa(nb)//' on its boundary')
+               itoa(ni)//' interior DOFs eliminated, '//kstar_text(nb))
        end if
     end do
     if (len(small) > 0) call note(notes, 'CONDENSE=AUTO: not condensed, the boundary being no smaller '// &
@@ -313,12 +302,106 @@ contains
     summary%n_condensed = summary%n_condensed + 1
     if (allocated(model%subs(isub)%given)) then
        call note(notes, 'substructure '//model%subs(isub)%name//': stiffness given by *MATRIX INPUT '// &
-            model%subs(isub)%given%file//', K* of order '//itoa(nb))
+            model%subs(isub)%given%file//', '//kstar_text(nb))
     else
        call note(notes, 'substructure '//model%subs(isub)%name//' condensed (*SUBSTRUCTURE MATRIX OUTPUT): '// &
-            itoa(ni)//' interior DOFs eliminated, K* of order '//itoa(nb)//' on its boundary')
+            itoa(ni)//' interior DOFs eliminated, '//kstar_text(nb))
     end if
   end subroutine force_condensed
+
+  logical function auto_condenses(model, ctx, isub, ni, nb, why, small, notes)
+    !! CONDENSE=AUTO's choice for substructure isub (ni interior, nb boundary
+    !! DOFs): condensed where the condensation is reused (an instance of a
+    !! part placed more than once, a joint study) and its dense K* (nb²
+    !! doubles) costs no more memory than the part's own sparse factor
+    !! (estimated_factor_entries) and stays within AUTO_KSTAR_BYTES. why: the
+    !! reason for the listing; small gathers the parts whose boundary is no
+    !! smaller than their interior; the other refusals get a note each.
+    type(model_t), intent(in) :: model
+    type(solve_context_t), intent(in) :: ctx
+    integer, intent(in) :: isub
+    integer(i8), intent(in) :: ni, nb
+    character(:), allocatable, intent(out) :: why
+    character(:), allocatable, intent(inout) :: small
+    type(string_t), allocatable, intent(inout) :: notes(:)
+    integer :: ninst
+    real(wp) :: kstar_bytes, factor_bytes
+    auto_condenses = .false.
+    ninst = 0
+    if (model%subs(isub)%part > 0) ninst = count(model%subs(:)%part == model%subs(isub)%part)
+    if (ninst > 1) then
+       why = 'AUTO: one of '//itoa(ninst)//' instances of part '//model%parts(model%subs(isub)%part)%s
+    else if (ctx%joint_study) then
+       why = 'AUTO: joint study'
+    else
+       return
+    end if
+    if (nb == 0 .or. ni == 0) return
+    if (nb >= ni) then
+       small = small//' '//model%subs(isub)%name
+       return
+    end if
+    kstar_bytes = real(nb, wp)**2*BYTES_REAL
+    factor_bytes = estimated_factor_entries(model, isub, ni)*BYTES_REAL
+    if (kstar_bytes > AUTO_KSTAR_BYTES) then
+       call note(notes, 'substructure '//model%subs(isub)%name//' not condensed ('//why// &
+            '): its K* would take '//itoa(nb*nb*BYTES_REAL/2**20)//' MiB')
+    else if (kstar_bytes > factor_bytes) then
+       call note(notes, 'substructure '//model%subs(isub)%name//' not condensed ('//why//'): its dense K* ('// &
+            itoa(nb)//' boundary DOFs, '//mb_text(kstar_bytes)//') would outweigh the sparse factor of its '// &
+            itoa(ni)//' interior DOFs (about '//mb_text(factor_bytes)//')')
+    else
+       auto_condenses = .true.
+    end if
+  end function auto_condenses
+
+  real(wp) function estimated_factor_entries(model, isub, ni) result(nnz)
+    !! Entries of the sparse factor of substructure isub's ni interior DOFs,
+    !! estimated by the growth of nested dissection in the part's dimension
+    !! (FILL_3D, FILL_2D, FILL_1D): the largest of its elements' families.
+    type(model_t), intent(in) :: model
+    integer, intent(in) :: isub
+    integer(i8), intent(in) :: ni
+    type(element_traits_t) :: t
+    integer :: e, dim
+    real(wp) :: n
+    dim = 1
+    do e = 1, model%subs(isub)%nelem
+       t = element_traits(model%subs(isub)%elem_type(e))
+       if (t%family == FAMILY_SOLID .and. .not. t%axisymmetric) then
+          dim = 3
+          exit
+       else if (t%family == FAMILY_PLANE .or. t%family == FAMILY_SHELL .or. t%family == FAMILY_SOLID) then
+          dim = 2
+       end if
+    end do
+    n = real(ni, wp)
+    select case (dim)
+    case (3)
+       nnz = FILL_3D*n**(4.0_wp/3.0_wp)
+    case (2)
+       nnz = FILL_2D*n*max(1.0_wp, log(n)/log(2.0_wp))
+    case default
+       nnz = FILL_1D*n
+    end select
+  end function estimated_factor_entries
+
+  pure function kstar_text(nb) result(s)
+    !! `K* of order NB on its boundary (X.XX MB dense)`: the listing's size of a condensed part's K*.
+    integer(i8), intent(in) :: nb
+    character(:), allocatable :: s
+    s = 'K* of order '//itoa(nb)//' on its boundary ('//mb_text(real(nb, wp)**2*BYTES_REAL)//' dense)'
+  end function kstar_text
+
+  pure function mb_text(bytes) result(s)
+    !! `X.XX MB` (MB = 2^20 bytes).
+    real(wp), intent(in) :: bytes
+    character(:), allocatable :: s
+    character(len=32) :: buf
+    write (buf, '(f0.2)') bytes/2.0_wp**20
+    if (buf(1:1) == '.') buf = '0'//buf(1:len(buf) - 1)
+    s = trim(buf)//' MB'
+  end function mb_text
 
   subroutine autospc(model, table, tr, k, f_red, spc, notes, error, summed)
     !! Unknowns with no stiffness at all: dropped (diagonal 1, load 0) when

@@ -192,26 +192,47 @@ contains
 
   pure function principal_stresses(s) result(p)
     !! The principal values p(3) of a symmetric tensor s (Voigt order, tensor
-    !! shears), largest first (the trigonometric solution of the cubic).
+    !! shears), largest first: cyclic Jacobi rotations of the scaled tensor,
+    !! accurate to the round-off of its largest component for every value,
+    !! repeated ones included (the cubic's trigonometric solution loses half
+    !! the digits there: a uniaxial stress's two zeros came out as ±4e-9 of it).
     real(wp), intent(in) :: s(6)
-    real(wp) :: p(3), a(6), sc, m, q, r, phi, det, c
-    real(wp), parameter :: PI = acos(-1.0_wp)
+    real(wp) :: p(3), a(3, 3), g(3, 3), sc, theta, t, c, sn, off
+    integer :: sweep, k, i, j
+    integer, parameter :: PAIRS(2, 3) = reshape([1, 2, 1, 3, 2, 3], [2, 3])
+    integer, parameter :: MAX_SWEEPS = 30
+      !! Jacobi converges quadratically: a handful of sweeps reach round-off
+    real(wp), parameter :: OFF_TOL = (0.01_wp*epsilon(1.0_wp))**2
+      !! off-diagonal sum of squares, relative to the scaled tensor's, left as converged
     p = 0.0_wp
     sc = maxval(abs(s))
     if (sc == 0.0_wp) return
-    a = s/sc
-    m = sum(a(1:3))/3.0_wp
-    a(1:3) = a(1:3) - m
-    q = sqrt(max(0.0_wp, (sum(a(1:3)**2) + 2.0_wp*sum(a(4:6)**2))/6.0_wp))
-    if (q <= 1.0e-14_wp) then
-       p = m*sc
-       return
-    end if
-    det = a(1)*(a(2)*a(3) - a(6)**2) - a(4)*(a(4)*a(3) - a(6)*a(5)) + a(5)*(a(4)*a(6) - a(2)*a(5))
-    r = max(-1.0_wp, min(1.0_wp, det/(2.0_wp*q**3)))
-    phi = acos(r)/3.0_wp
-    c = 2.0_wp*q
-    p = sc*(m + c*[cos(phi), cos(phi + 2.0_wp*PI/3.0_wp), cos(phi + 4.0_wp*PI/3.0_wp)])
+    a = reshape([s(1), s(4), s(5), s(4), s(2), s(6), s(5), s(6), s(3)], [3, 3])/sc
+    do sweep = 1, MAX_SWEEPS
+       off = a(1, 2)**2 + a(1, 3)**2 + a(2, 3)**2
+       if (off <= OFF_TOL*(sum([(a(k, k)**2, k = 1, 3)]) + 2.0_wp*off)) exit
+       do k = 1, 3
+          i = PAIRS(1, k)
+          j = PAIRS(2, k)
+          if (a(i, j) == 0.0_wp) cycle
+          theta = (a(j, j) - a(i, i))/(2.0_wp*a(i, j))
+          t = sign(1.0_wp, theta)/(abs(theta) + sqrt(theta**2 + 1.0_wp))
+          c = 1.0_wp/sqrt(t**2 + 1.0_wp)
+          sn = t*c
+          g = 0.0_wp
+          g(1, 1) = 1.0_wp
+          g(2, 2) = 1.0_wp
+          g(3, 3) = 1.0_wp
+          g(i, i) = c
+          g(j, j) = c
+          g(i, j) = sn
+          g(j, i) = -sn
+          a = matmul(transpose(g), matmul(a, g))
+          a(i, j) = 0.0_wp
+          a(j, i) = 0.0_wp
+       end do
+    end do
+    p = sc*[(a(k, k), k = 1, 3)]
     p = [maxval(p), p(1) + p(2) + p(3) - maxval(p) - minval(p), minval(p)]
   end function principal_stresses
 end module superjoin_elements_solid_stress

@@ -300,11 +300,44 @@ contains
     call check(maxval(abs(p - [3.0_wp, 2.0_wp, -1.0_wp])) < TOL_EXACT, 'principal stresses of a diagonal tensor')
     p = principal_stresses([0.0_wp, 0.0_wp, 0.0_wp, 5.0_wp, 0.0_wp, 0.0_wp])
     call check(maxval(abs(p - [5.0_wp, 0.0_wp, -5.0_wp])) < TOL_EXACT, 'principal stresses of pure shear')
+    ! a turned uniaxial stress: its two zero principal values to the round-off of the
+    ! largest (the cubic's trigonometric solution gave them as 1e-9 of it)
+    p = principal_stresses(turned([1.0e7_wp, 0.0_wp, 0.0_wp]))
+    call check(abs(p(1) - 1.0e7_wp) < 1.0e7_wp*TOL_EXACT .and. maxval(abs(p(2:3))) < 1.0e7_wp*TOL_EXACT, &
+         'principal stresses of a turned uniaxial stress: 1e7, 0, 0 to round-off')
+    p = principal_stresses(turned([3.0_wp, 2.0_wp, -1.0_wp]))
+    call check(maxval(abs(p - [3.0_wp, 2.0_wp, -1.0_wp])) < TOL_EXACT, 'principal stresses of a turned tensor')
     call check_close(von_mises_tensor([0.0_wp, 0.0_wp, 0.0_wp, 5.0_wp, 0.0_wp, 0.0_wp]), 5.0_wp*sqrt(3.0_wp), &
          TOL_EXACT*10, 'von Mises of pure shear = sqrt(3) tau')
     call check_close(von_mises_tensor([7.0_wp, 0.0_wp, 0.0_wp, 0.0_wp, 0.0_wp, 0.0_wp]), 7.0_wp, TOL_EXACT*10, &
          'von Mises of uniaxial stress')
   end subroutine test_invariants
+
+  pure function turned(d) result(v)
+    !! The tensor diag(d) turned by a fixed rotation (30°, 40°, 50° about z, y, x), Voigt order.
+    real(wp), intent(in) :: d(3)
+    real(wp) :: v(6), r(3, 3), t(3, 3), ca, sa
+    integer :: k
+    real(wp), parameter :: ANG(3) = [30.0_wp, 40.0_wp, 50.0_wp]*acos(-1.0_wp)/180.0_wp
+    r = reshape([1.0_wp, 0.0_wp, 0.0_wp, 0.0_wp, 1.0_wp, 0.0_wp, 0.0_wp, 0.0_wp, 1.0_wp], [3, 3])
+    do k = 1, 3
+       ca = cos(ANG(k))
+       sa = sin(ANG(k))
+       t = reshape([1.0_wp, 0.0_wp, 0.0_wp, 0.0_wp, 1.0_wp, 0.0_wp, 0.0_wp, 0.0_wp, 1.0_wp], [3, 3])
+       select case (k)
+       case (1)
+          t(1:2, 1:2) = reshape([ca, sa, -sa, ca], [2, 2])
+       case (2)
+          t([1, 3], [1, 3]) = reshape([ca, -sa, sa, ca], [2, 2])
+       case default
+          t(2:3, 2:3) = reshape([ca, sa, -sa, ca], [2, 2])
+       end select
+       r = matmul(t, r)
+    end do
+    t = matmul(r, matmul(reshape([d(1), 0.0_wp, 0.0_wp, 0.0_wp, d(2), 0.0_wp, 0.0_wp, 0.0_wp, d(3)], [3, 3]), &
+         transpose(r)))
+    v = [t(1, 1), t(2, 2), t(3, 3), t(1, 2), t(1, 3), t(2, 3)]
+  end function turned
 
   subroutine test_errors()
     !! An inverted element and an incompressible material are refused.

@@ -3,7 +3,8 @@ module superjoin_deck_part_copies
   !! instance (Abaqus applies a part's constraints to every instance of it):
   !!
   !! - a part surface S gets one copy `I.S` per instance I of the part (its
-  !!   elements, nodes and sets taken in I); the assembly may name it so;
+  !!   elements, nodes and sets taken in I); an assembly-level *COUPLING or
+  !!   *TIE may name it so (a *DSLOAD not: it is resolved as it is read);
   !! - a part's `*COUPLING` (+ `*KINEMATIC` / `*DISTRIBUTING`), `*RIGID BODY`
   !!   and `*MPC` become one record per instance, every plain node, set and
   !!   element reference taken in that instance (`I.n`) and its SURFACE=S the

@@ -37,7 +37,7 @@ contains
     type(keyword_line_t), intent(in) :: kw
     type(source_loc_t), intent(in) :: loc
     integer, intent(in) :: prev_coupling
-    if (st%cur_sub > 0) then
+    if (st%cur_sub > 0 .and. kw%keyword == 'DISTRIBUTING COUPLING') then
        if (st%subs(st%cur_sub)%kind == SUBK_PART) then
           call report_loc(st, loc, '*'//kw%keyword//' is not allowed inside *PART '//st%subs(st%cur_sub)%name// &
                ' (it would not be copied to each instance: write it in the assembly, with the instances'' '// &
@@ -333,8 +333,11 @@ contains
     !! Append a coupling record.
     type(deck_state_t), intent(inout) :: st
     type(coupling_b_t), intent(in) :: c
+    integer :: n
     if (.not. allocated(st%couplings)) allocate (st%couplings(0))
     st%couplings = [st%couplings, c]
+    n = size(st%couplings)
+    if (c%kind /= COUPLE_DCOUP) st%couplings(n)%home = st%cur_sub   ! a part's: copied per instance
   end subroutine push_coupling
 
 end module superjoin_deck_coupling_cards

@@ -34,6 +34,8 @@ module superjoin_deck_coupling_records
      logical :: dofs_given = .false.
      type(source_loc_t) :: loc                  !! the card (the *MPC data line)
      logical :: ok = .true.
+     integer :: home = 0                        !! the substructure block it was written in (0: the
+                                                !! assembly; DCOUP3D: always 0); a part's: copied per instance
   end type coupling_b_t
 
 end module superjoin_deck_coupling_records

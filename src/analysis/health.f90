@@ -26,7 +26,11 @@ module superjoin_analysis_health
   real(wp), parameter, public :: REFINE_BERR = 10*epsilon(1.0_wp)
     !! iterative refinement runs while the backward error exceeds this,
   real(wp), parameter, public :: REFINE_RESIDUAL = 1.0e-9_wp
-    !! or while the relative residual or |EPSILON| of a step exceeds this
+    !! or while the relative residual or |EPSILON| of a step exceeds this, or the round-off floor
+    !! eps ||K||_1 ||x||_1 / ||f||_1 of the matrix if larger (a backward-stable solve of a matrix of
+    !! condition kappa leaves a relative residual of about eps kappa, which refinement cannot lower),
+  real(wp), parameter, public :: REFINE_FLOOR_MAX = 1.0e-7_wp
+    !! but never above this (a tenth of RESIDUAL_WARN: a residual the warning would flag is refined),
   real(wp), parameter, public :: REFINE_GAIN = 0.5_wp
     !! and while each step multiplies the largest residual by at most this
   integer, parameter, public :: MAX_REFINE = 3
@@ -131,7 +135,7 @@ contains
     type(error_t), allocatable, intent(out) :: error
     type(health_work_t) :: w
     integer :: is, nstep, stat
-    real(wp) :: cond, knorm
+    real(wp) :: cond, knorm, limit
     character(len=32) :: buf
 
     nstep = size(st%q, 2)
@@ -154,7 +158,8 @@ contains
     ! here, before refinement solves with a factor that is not worth using.
     call maxratio_check(st, model, opts, w%d, w%kd, res, error)
     if (allocated(error)) return
-    call refine(st, knorm, w, res, error)
+    limit = residual_limit(st, knorm, w%berr, res)
+    call refine(st, knorm, limit, w, res, error)
     if (allocated(error)) return
 
     if (maxval(res%fields%steps(:)%residual) > merge(RESIDUAL_WARN_PENALTY, RESIDUAL_WARN, res%summary%formulation == 'PENALTY')) then
@@ -167,7 +172,7 @@ contains
        call warn(res, 'MAXRATIO '//trim(adjustl(buf))//' at '//res%summary%maxratio_at// &
             ': about '//itoa(nint(log10(res%summary%maxratio)))//' digits may be lost')
     end if
-    call estimate_condition(st, knorm, w%d, res, cond)
+    call estimate_condition(st, knorm, limit, w%d, res, cond)
     if (.not. ieee_is_finite(cond) .or. cond > huge(cond)) then
        cond = huge(cond)
        call warn(res, 'condition estimate overflows (above 1.8E+308): results are unreliable')
@@ -179,18 +184,39 @@ contains
     end if
   end subroutine health
 
-  subroutine estimate_condition(st, knorm, d, res, cond)
+  function residual_limit(st, knorm, berr, res) result(limit)
+    !! The relative residual and |EPSILON| up to which the solution needs no refinement:
+    !! REFINE_RESIDUAL, or the round-off floor eps ||K||_1 ||x||_1 / ||f||_1 (eps times a lower
+    !! bound of the condition number, from the solutions alone: valid for every backend) when that is
+    !! larger, capped at REFINE_FLOOR_MAX. When the floor, not REFINE_RESIDUAL, spares a refinement
+    !! (the backward errors berr being small too), a note of the listing says so.
+    type(solve_state_t), intent(in) :: st
+    real(wp), intent(in) :: knorm, berr(:)
+    type(results_t), intent(inout) :: res
+    real(wp) :: limit, worst
+    character(len=32) :: buf
+    limit = min(max(REFINE_RESIDUAL, epsilon(1.0_wp)*knorm*inverse_norm_bound(st%q, st%f_red)), REFINE_FLOOR_MAX)
+    worst = max(maxval(res%fields%steps(:)%residual), maxval(abs(res%fields%steps(:)%epsilon)))
+    if (worst > REFINE_RESIDUAL .and. worst <= limit .and. all(berr <= REFINE_BERR)) then
+       write (buf, '(es10.2e3)') limit
+       call note(res%log%notes, 'iterative refinement: not tried, the solve is backward stable and its relative '// &
+            'residual below '//trim(adjustl(buf))//', the round-off floor eps ||K|| ||x|| / ||f|| of this matrix '// &
+            '(at most 1E-7)')
+    end if
+  end function residual_limit
+
+  subroutine estimate_condition(st, knorm, limit, d, res, cond)
     !! The condition estimate of the health block. Hager-Higham's 1-norm
     !! estimate (condition_estimate: about four more solves) for every backend
     !! but CHOLMOD, up to COND_FULL_MAX equations, and whenever a cheap
     !! indicator calls for it: MAXRATIO above MAXRATIO_WARN, a relative
-    !! residual above REFINE_RESIDUAL after refinement, or the free lower
+    !! residual above limit (residual_limit) after refinement, or the free lower
     !! bound ||K||_1 times inverse_norm_bound (the step solutions, and the
     !! pivots d of the columns AUTOSPC kept) above COND_BOUND_LIMIT.
     !! Otherwise that lower bound is the estimate, and a note of the listing
     !! says so.
     type(solve_state_t), intent(inout) :: st
-    real(wp), intent(in) :: knorm, d(:)
+    real(wp), intent(in) :: knorm, limit, d(:)
     type(results_t), intent(inout) :: res
     real(wp), intent(out) :: cond
     logical :: cheap
@@ -200,7 +226,7 @@ contains
        type is (cholmod_solver_t)
           cond = knorm*inverse_norm_bound(st%q, st%f_red, merge(0.0_wp, d(1:st%k%n), st%spc))
           cheap = cond <= COND_BOUND_LIMIT .and. res%summary%maxratio <= MAXRATIO_WARN .and. &
-               maxval(res%fields%steps(:)%residual) <= REFINE_RESIDUAL
+               maxval(res%fields%steps(:)%residual) <= limit
        end select
     end if
     if (cheap) then
@@ -263,13 +289,13 @@ contains
     end if
   end subroutine maxratio_check
 
-  subroutine refine(st, knorm, w, res, error)
+  subroutine refine(st, knorm, limit, w, res, error)
     !! Iterative refinement of st%q with the existing factor, while the
     !! backward error is above a few ulps or the residual or EPSILON above
-    !! REFINE_RESIDUAL, and each step at least halves the largest residual.
+    !! limit (residual_limit), and each step at least halves the largest residual.
     !! w%r, w%berr: the residuals of q on entry.
     type(solve_state_t), intent(inout) :: st
-    real(wp), intent(in) :: knorm
+    real(wp), intent(in) :: knorm, limit
     type(health_work_t), intent(inout) :: w
     type(results_t), intent(inout) :: res
     type(error_t), allocatable, intent(inout) :: error
@@ -279,8 +305,8 @@ contains
     associate (q => st%q, r => w%r, dq => w%dq, q_try => w%q_try, r_try => w%r_try, berr => w%berr, &
          berr_try => w%berr_try)
       do it = 1, MAX_REFINE
-         if (all(berr <= REFINE_BERR .and. res%fields%steps(:)%residual <= REFINE_RESIDUAL .and. &
-              abs(res%fields%steps(:)%epsilon) <= REFINE_RESIDUAL)) exit
+         if (all(berr <= REFINE_BERR .and. res%fields%steps(:)%residual <= limit .and. &
+              abs(res%fields%steps(:)%epsilon) <= limit)) exit
          res%fields%steps(:)%refine_tried = it
          call st%solver%solve(r, dq, inner)
          if (allocated(inner)) exit

@@ -46,7 +46,8 @@ module superjoin_deck_build_thermal
 
   type :: thermal_step_t
     !! The thermal loads of one step while they are collected.
-     type(dload_t), allocatable :: extra(:)
+     type(dload_t), allocatable :: extra(:)   !! extra(1:n) are the loads (the rest is room to grow)
+     integer :: n = 0
      type(source_loc_t) :: loc        !! the step's first *TEMPERATURE line
      integer :: nplate = 0            !! elements of a type without thermal loads (in one substructure)
      integer(ip) :: first_plate = 0
@@ -385,7 +386,7 @@ contains
           end associate
        end if
     end do
-    model%steps(s)%dloads = [model%steps(s)%dloads, ts%extra]
+    model%steps(s)%dloads = [model%steps(s)%dloads, ts%extra(1:ts%n)]
   end subroutine step_thermal_loads
 
   subroutine element_thermal(st, model, isub, e, init, cur, ts, ok)
@@ -420,9 +421,9 @@ contains
            if (tr%quadratic) then
               ! the three-node beam: α ΔT and both gradients (fourth field: local y,
               ! third: local z) at each node, interpolated along it
-              ts%extra = [ts%extra, dload_t(sub=isub, elem=e, kind=DLOAD_THERMAL, value=0.0_wp, loc=ts%loc)]
+              call add_load(ts, dload_t(sub=isub, elem=e, kind=DLOAD_THERMAL, value=0.0_wp, loc=ts%loc))
               associate (en => sub%elem_nodes(1:3, e))
-                ts%extra(size(ts%extra))%line_nodal = transpose(reshape([c%eth(1:3), &
+                ts%extra(ts%n)%line_nodal = transpose(reshape([c%eth(1:3), &
                      mat%alpha*(cur%h(isub)%v(en) - init%h(isub)%v(en)), &
                      mat%alpha*(cur%g(isub)%v(en) - init%g(isub)%v(en))], [3, 3]))
               end associate
@@ -439,8 +440,8 @@ contains
               ok = .false.
               return
            end if
-           ts%extra = [ts%extra, dload_t(sub=isub, elem=e, kind=DLOAD_THERMAL, value=c%eth_mean, loc=ts%loc)]
-           ts%extra(size(ts%extra))%nodal = c%eth(1:nn)
+           call add_load(ts, dload_t(sub=isub, elem=e, kind=DLOAD_THERMAL, value=c%eth_mean, loc=ts%loc))
+           ts%extra(ts%n)%nodal = c%eth(1:nn)
         case default
            ts%nplate = ts%nplate + 1
            if (ts%nplate == 1) ts%first_plate = e
@@ -448,6 +449,21 @@ contains
       end associate
     end associate
   end subroutine element_thermal
+
+  subroutine add_load(ts, load)
+    !! Append load to ts%extra(1:ts%n), doubling its room when full (one load
+    !! per element: appending by array constructor copied them all each time).
+    type(thermal_step_t), intent(inout) :: ts
+    type(dload_t), intent(in) :: load
+    type(dload_t), allocatable :: grown(:)
+    if (ts%n == size(ts%extra)) then
+       allocate (grown(max(16, 2*ts%n)))
+       grown(1:ts%n) = ts%extra(1:ts%n)
+       call move_alloc(grown, ts%extra)
+    end if
+    ts%n = ts%n + 1
+    ts%extra(ts%n) = load
+  end subroutine add_load
 
   pure function element_change(en, isub, init, cur, mat) result(c)
     !! The changes of temperature and gradients at the nodes en of an element
@@ -504,18 +520,18 @@ contains
       associate (sec => sub%sections(sub%elem_section(e)))
         associate (mat => model%materials(sec%material))
           if (c%tabled) then
-             ts%extra = [ts%extra, dload_t(sub=isub, elem=e, kind=DLOAD_THERMAL, &
-                  value=mat%e*sec%area*c%eth_mean, loc=ts%loc)]
+             call add_load(ts, dload_t(sub=isub, elem=e, kind=DLOAD_THERMAL, &
+                  value=mat%e*sec%area*c%eth_mean, loc=ts%loc))
           else
-             ts%extra = [ts%extra, dload_t(sub=isub, elem=e, kind=DLOAD_THERMAL, &
-                  value=mat%e*sec%area*mat%alpha*c%dt, loc=ts%loc)]
+             call add_load(ts, dload_t(sub=isub, elem=e, kind=DLOAD_THERMAL, &
+                  value=mat%e*sec%area*mat%alpha*c%dt, loc=ts%loc))
           end if
           if (tr%family /= FAMILY_BEAM) return
           if (tr%planar) then
-             ts%extra(size(ts%extra))%gradient(1, :) = mat%alpha*(cur%g(isub)%v(n2) - init%g(isub)%v(n2))
+             ts%extra(ts%n)%gradient(1, :) = mat%alpha*(cur%g(isub)%v(n2) - init%g(isub)%v(n2))
           else
-             ts%extra(size(ts%extra))%gradient(1, :) = mat%alpha*(cur%h(isub)%v(n2) - init%h(isub)%v(n2))
-             ts%extra(size(ts%extra))%gradient(2, :) = mat%alpha*(cur%g(isub)%v(n2) - init%g(isub)%v(n2))
+             ts%extra(ts%n)%gradient(1, :) = mat%alpha*(cur%h(isub)%v(n2) - init%h(isub)%v(n2))
+             ts%extra(ts%n)%gradient(2, :) = mat%alpha*(cur%g(isub)%v(n2) - init%g(isub)%v(n2))
           end if
         end associate
       end associate
@@ -544,16 +560,16 @@ contains
     nn = tr%nodes
     associate (sub => model%subs(isub))
       associate (mat => model%materials(sub%sections(sub%elem_section(e))%material))
-        ts%extra = [ts%extra, dload_t(sub=isub, elem=e, kind=DLOAD_THERMAL, &
-             value=c%eth_mean, curvature=mat%alpha*c%dg, loc=ts%loc)]
+        call add_load(ts, dload_t(sub=isub, elem=e, kind=DLOAD_THERMAL, &
+             value=c%eth_mean, curvature=mat%alpha*c%dg, loc=ts%loc))
         ! a plane element whose nodes differ: the nodal values, interpolated to its points
         if (tr%family == FAMILY_PLANE .and. any(c%eth(1:nn) /= c%eth(1))) &
-             ts%extra(size(ts%extra))%nodal = c%eth(1:nn) - c%eth_mean
+             ts%extra(ts%n)%nodal = c%eth(1:nn) - c%eth_mean
         ! a shell whose nodes differ: both nodal remainders, interpolated to its points
         if (tr%family /= FAMILY_PLANE .and. &
              (any(c%eth(1:nn) /= c%eth(1)) .or. any(c%dgn(1:nn) /= c%dgn(1)))) then
-           ts%extra(size(ts%extra))%nodal = c%eth(1:nn) - c%eth_mean
-           ts%extra(size(ts%extra))%curvature_nodal = mat%alpha*c%dgn(1:nn) - mat%alpha*c%dg
+           ts%extra(ts%n)%nodal = c%eth(1:nn) - c%eth_mean
+           ts%extra(ts%n)%curvature_nodal = mat%alpha*c%dgn(1:nn) - mat%alpha*c%dg
         end if
       end associate
     end associate

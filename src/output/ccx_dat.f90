@@ -11,7 +11,8 @@ module superjoin_output_ccx_dat
   !! Blocks: U "displacements", RF "forces" (CalculiX's internal nodal forces:
   !! the support reaction plus the *CLOAD of the node), NT "temperatures", S
   !! "stresses", E "strains", ENER "internal energy density" (½ σ:ε at the
-  !! points of solids and trusses), ELSE "internal energy" (an axisymmetric
+  !! points of solids and trusses, ½ σ:C⁻¹:σ at those of plane elements and
+  !! shells, a beam's mean), ELSE "internal energy" (an axisymmetric
   !! model: that of CalculiX's 2° wedge, 1/180); TOTALS=YES adds the sum
   !! (RF, ELSE), TOTALS=ONLY writes the sum alone. A node with a nodal system
   !! (*TRANSFORM) prints U and RF in it, its row ending in L, unless the card

@@ -11,7 +11,8 @@ module superjoin_output_ccx_dat
   !! Blocks: U "displacements", RF "forces" (CalculiX's internal nodal forces:
   !! the support reaction plus the *CLOAD of the node), NT "temperatures", S
   !! "stresses", E "strains", ENER "internal energy density" (½ σ:ε at the
-  !! points of solids and trusses), ELSE "internal energy" (an axisymmetric
+  !! points of solids and trusses, ½ σ:C⁻¹:σ at those of plane elements and
+  !! shells, a beam's mean), ELSE "internal energy" (an axisymmetric
   !! model: that of CalculiX's 2° wedge, 1/180); TOTALS=YES adds the sum
   !! (RF, ELSE), TOTALS=ONLY writes the sum alone. A node with a nodal system
   !! (*TRANSFORM) prints U and RF in it, its row ending in L, unless the card
@@ -37,12 +38,12 @@ module superjoin_output_ccx_dat
   use superjoin_kinds, only: wp, i8, ip
   use superjoin_error, only: error_t
   use superjoin_model_types, only: model_t, output_request_t, substructure_t, orientation_t, find_node, NDOF_NODE, &
-       REQ_NODE_PRINT, REQ_EL_PRINT, TOTALS_YES, TOTALS_ONLY
+       REQ_NODE_PRINT, REQ_EL_PRINT, TOTALS_YES, TOTALS_ONLY, MAT_ISO
   use superjoin_model_results, only: result_fields_t
   use superjoin_elements, only: element_tensor, element_stresses, NTENSOR, has_axisymmetric, ccx_wedge_tensor, &
        CCX_AXIAL_SEGMENTS
   use superjoin_elements_traits, only: element_traits_t, element_traits, FAMILY_TRUSS, FAMILY_PLANE, FAMILY_SHELL, &
-       FAMILY_SOLID
+       FAMILY_SOLID, FAMILY_BEAM
   use superjoin_utils_text_buffer, only: text_buffer_t
   use superjoin_output_requests, only: effective_requests, selected_items, node_frames, rotate_rows, node_values, &
        add_reactions, add_cloads, add_node_forces
@@ -343,14 +344,20 @@ contains
     integer(ip), intent(in) :: elems(:)
     character(*), intent(in) :: var
     real(wp), allocatable :: vals(:, :)
+    type(energy_t) :: en
+    type(error_t), allocatable :: error
     character(len=120) :: row
     character(len=ORIENT_NAME_LEN) :: name
     type(element_traits_t) :: t
     integer :: i, k, d, isec
     logical :: ok, local
+    if (var == 'ENER') then
+       call compute_energies(model, fields, is, en, error)
+       if (allocated(error)) return
+    end if
     do i = 1, size(elems)
        if (var == 'ENER') then
-          call point_energy(model, fields, is, subs(i), elems(i), vals, ok)
+          call point_energy(model, fields, is, subs(i), elems(i), en, vals, ok)
        else
           call ccx_point_values(model, fields, is, subs(i), elems(i), var == 'E', vals, ok)
        end if
@@ -418,31 +425,86 @@ contains
     w = [t(1, 1), t(2, 2), t(3, 3), t(1, 2), t(1, 3), t(2, 3)]
   end function tensor_in_axes
 
-  subroutine point_energy(model, fields, is, isub, ie, vals, ok)
-    !! ENER of element ie: vals(1, point), the strain energy density ½ σ:ε
-    !! (tensor shears counted twice) at CalculiX's points, for the elements
+  subroutine point_energy(model, fields, is, isub, ie, en, vals, ok)
+    !! ENER of element ie: vals(1, point), the strain energy density at
+    !! CalculiX's points: ½ σ:ε (tensor shears counted twice) for the elements
     !! with both tensors at their points (solids, axisymmetric elements,
-    !! trusses); ok false for plane elements, shells and beams (their strains
-    !! are not at the points).
+    !! trusses); ½ σ:C⁻¹:σ from the stresses at the points for plane elements
+    !! and shells of an isotropic material (their strain rows hold the
+    !! element's mean strain); a beam's mean, its energy en over A L, at the 8
+    !! points of CalculiX's C3D20R (27 of its C3D20 for B32). ok false when
+    !! there are no rows (plane elements and shells of anisotropic materials).
     type(model_t), intent(in) :: model
     type(result_fields_t), intent(in) :: fields
     integer, intent(in) :: is, isub
     integer(ip), intent(in) :: ie
+    type(energy_t), intent(in) :: en
     real(wp), allocatable, intent(out) :: vals(:, :)
     logical, intent(out) :: ok
     real(wp), allocatable :: s(:, :), e(:, :)
     type(element_traits_t) :: t
     integer :: k
     t = element_traits(model%subs(isub)%elem_type(ie))
-    ok = t%family == FAMILY_SOLID .or. t%family == FAMILY_TRUSS
-    if (ok) call ccx_point_values(model, fields, is, isub, ie, .false., s, ok)
-    if (ok) call ccx_point_values(model, fields, is, isub, ie, .true., e, ok)
+    if (t%family == FAMILY_BEAM) then
+       call beam_energy_density(model, isub, ie, en%element(fields%elem_offset(isub) + ie), vals, ok)
+       return
+    end if
+    call ccx_point_values(model, fields, is, isub, ie, .false., s, ok)
     if (.not. ok) return
     allocate (vals(1, size(s, 2)))
+    if ((t%family == FAMILY_PLANE .or. t%family == FAMILY_SHELL) .and. .not. t%axisymmetric) then
+       ok = model%subs(isub)%elem_section(ie) > 0
+       if (.not. ok) return
+       associate (mat => model%materials(model%subs(isub)%sections(model%subs(isub)%elem_section(ie))%material))
+         ok = mat%kind == MAT_ISO .and. .not. allocated(mat%elastic_table) .and. mat%e > 0.0_wp
+         if (.not. ok) return
+         do k = 1, size(s, 2)
+            vals(1, k) = isotropic_energy(s(:, k), mat%e, mat%nu)
+         end do
+       end associate
+       return
+    end if
+    call ccx_point_values(model, fields, is, isub, ie, .true., e, ok)
+    if (.not. ok) return
     do k = 1, size(s, 2)
        vals(1, k) = 0.5_wp*(sum(s(1:3, k)*e(1:3, k)) + 2.0_wp*sum(s(4:6, k)*e(4:6, k)))
     end do
   end subroutine point_energy
+
+  pure real(wp) function isotropic_energy(s, e, nu) result(w)
+    !! ½ σ:C⁻¹:σ of an isotropic material (Voigt xx, yy, zz, xy, xz, yz).
+    real(wp), intent(in) :: s(6), e, nu
+    w = (sum(s(1:3)**2) - 2.0_wp*nu*(s(1)*s(2) + s(2)*s(3) + s(3)*s(1)) + &
+         2.0_wp*(1.0_wp + nu)*sum(s(4:6)**2))/(2.0_wp*e)
+  end function isotropic_energy
+
+  subroutine beam_energy_density(model, isub, ie, energy, vals, ok)
+    !! vals(1, point): a beam's mean energy density energy/(A L) (L along its
+    !! nodes) at the points of CalculiX's brick: 8 (C3D20R), 27 for a
+    !! quadratic beam with full integration (C3D20).
+    type(model_t), intent(in) :: model
+    integer, intent(in) :: isub
+    integer(ip), intent(in) :: ie
+    real(wp), intent(in) :: energy
+    real(wp), allocatable, intent(out) :: vals(:, :)
+    logical, intent(out) :: ok
+    type(element_traits_t) :: t
+    real(wp) :: length
+    integer :: k
+    associate (sub => model%subs(isub))
+      t = element_traits(sub%elem_type(ie))
+      ok = sub%elem_section(ie) > 0
+      if (.not. ok) return
+      ok = sub%sections(sub%elem_section(ie))%area > 0.0_wp
+      if (.not. ok) return
+      length = 0.0_wp
+      do k = 2, t%nodes
+         length = length + norm2(sub%x(:, sub%elem_nodes(k, ie)) - sub%x(:, sub%elem_nodes(k - 1, ie)))
+      end do
+      allocate (vals(1, merge(27, 8, t%quadratic .and. .not. t%reduced)), &
+           source=energy/(sub%sections(sub%elem_section(ie))%area*length))
+    end associate
+  end subroutine beam_energy_density
 
   subroutine energy_rows(lu, model, fields, is, r, subs, elems)
     !! ELSE: the strain energy of each element of the set, and its total.

@@ -283,14 +283,15 @@ contains
   end subroutine step_blocks
 
   subroutine beam_section_forces(model, fields, is, vals)
-    !! vals(6, vertex): the section forces of the two-node beams at their end
-    !! nodes in the columns of CalculiX's *EL FILE, SECTION FORCES (its STRESS
-    !! block, measured with ccx 2.20): SXX, SYY shear forces along the section's
-    !! 1- and 2-directions (superjoin's local y, z), SZZ normal force, SXY
-    !! torque, SYZ, SZX moments about the 1- and 2-directions; the resultant
-    !! of the stresses on the face whose normal is the beam's axis (the end
-    !! forces of node 2, of node 1 negated); the mean where beams meet, 0 at
-    !! other nodes.
+    !! vals(6, vertex): the section forces of the beams at their nodes in the
+    !! columns of CalculiX's *EL FILE, SECTION FORCES (its STRESS block,
+    !! measured with ccx 2.20): SXX, SYY shear forces along the section's 1-
+    !! and 2-directions (superjoin's local y, z), SZZ normal force, SXY torque,
+    !! SYZ, SZX moments about the 1- and 2-directions; the resultant of the
+    !! stresses on the face whose normal is the beam's axis (the end forces of
+    !! the last node, of node 1 negated); a three-node beam's middle node: the
+    !! mean of its ends (exact without a load along the element); the mean
+    !! where beams meet, 0 at other nodes.
     type(model_t), intent(in) :: model
     type(result_fields_t), intent(in) :: fields
     integer, intent(in) :: is
@@ -298,6 +299,7 @@ contains
     integer, parameter :: TO_CCX(6) = [2, 3, 1, 4, 5, 6]   ! from superjoin's N, Vy, Vz, T, My, Mz
     integer, allocatable :: cnt(:)
     type(element_traits_t) :: t
+    real(wp) :: cut(NTENSOR, 2)
     integer(i8) :: v
     integer :: isub, k
     integer(ip) :: e
@@ -307,11 +309,18 @@ contains
        associate (sub => model%subs(isub))
          do e = 1, sub%nelem
             t = element_traits(sub%elem_type(e))
-            if (t%family /= FAMILY_BEAM .or. t%nodes /= 2 .or. sub%elem_section(e) <= 0) cycle
-            do k = 1, 2
+            if (t%family /= FAMILY_BEAM .or. sub%elem_section(e) <= 0) cycle
+            cut(:, 1) = -fields%elem_force(TO_CCX, 1, fields%elem_offset(isub) + e, is)
+            cut(:, 2) = fields%elem_force(TO_CCX, 2, fields%elem_offset(isub) + e, is)
+            do k = 1, t%nodes   ! the ends are nodes 1 and t%nodes; a middle node: their mean
                v = fields%vertex_offset(isub) + sub%elem_nodes(k, e)
-               vals(:, v) = vals(:, v) + merge(-1.0_wp, 1.0_wp, k == 1)* &
-                    fields%elem_force(TO_CCX, k, fields%elem_offset(isub) + e, is)
+               if (k == 1) then
+                  vals(:, v) = vals(:, v) + cut(:, 1)
+               else if (k == t%nodes) then
+                  vals(:, v) = vals(:, v) + cut(:, 2)
+               else
+                  vals(:, v) = vals(:, v) + 0.5_wp*(cut(:, 1) + cut(:, 2))
+               end if
                cnt(v) = cnt(v) + 1
             end do
          end do

@@ -76,8 +76,9 @@ TOLERANCE = {'planestress2': {'stresses': 5.0e-4}, 'planestress3': {'displacemen
              'c3d15': {'forces': 5.0}, 'disk2': {'displacements': 2.0e-5, 'stresses': 1.0e-4},
              # ELSE of a B31 and an S4 cantilever (written for this test): CalculiX's C3D20R and
              # C3D8I expansions; superjoin's B31 gives Timoshenko's closed form (energy_closed_forms)
-             'ener_b31': {'displacements': 1.0e-2, 'internal': 1.0e-2, 'total': 1.0e-2},
-             'ener_s4': {'displacements': 1.0e-2, 'internal': 1.0e-2, 'total': 1.0e-2},
+             # ENER (kind density): the B31's mean density at CalculiX's 8 points, the S4's at its points
+             'ener_b31': {'displacements': 1.0e-2, 'internal': 1.0e-2, 'total': 1.0e-2, 'density': 1.0e-2},
+             'ener_s4': {'displacements': 1.0e-2, 'internal': 1.0e-2, 'total': 1.0e-2, 'density': 0.1},
              # u_r = -nu eps r exactly in superjoin; CalculiX's straight-sided 2 deg wedge: times cos 1 deg
              'ener_cax8r': {'displacements': 2.0e-4}}
 for _b in BEAMS:
@@ -156,7 +157,7 @@ def compare(job, got, want):
     """Print a row per reference block; return the failures."""
     failures = []
     for key, rows in want.items():
-        kind = key[0].split()[0]
+        kind = 'density' if 'energy density' in key[0] else key[0].split()[0]
         label = f'{job:16s} {kind:13s} {key[1]:7s} t={key[2]:g}'
         if key not in got:
             failures.append(f'{label}: block missing')
@@ -235,11 +236,30 @@ def energy_closed_forms(outdir):
         total = blocks['total internal energy']['total'][0]
         if closed is None:
             closed = 0.5 * sum(-50.0 * blocks['displacements'][n][2] for n in (9, 18))
-        ok = abs(total - closed) <= 1e-6 * closed
+        # ENER at the 8 points of CalculiX's brick of each element (volume 125 x 10 x 20 = 25000, equal
+        # weights): their mean times the volume is ELSE (B31: by construction, its mean density)
+        dens, els = blocks['internal energy density'], blocks['internal energy']
+        integ = max(abs(sum(v[0] for k, v in dens.items() if k[0] == e) / 8.0 * 25000.0 - els[e][0]) / els[e][0]
+                    for e in els)
+        ok = abs(total - closed) <= 1e-6 * closed and integ <= 1e-6
         print(f"  {'ok  ' if ok else 'FAIL'} {job:16s} total {total:.6e} against {closed:.6e} "
-              f"({'Timoshenko' if job == 'ener_b31' else '1/2 P w'})")
+              f"({'Timoshenko' if job == 'ener_b31' else '1/2 P w'}); ENER integrated = ELSE within {integ:.1e}")
         if not ok:
             failures.append(job + ' closed form')
+    # CPS4 and S4 strips 2 x 1 x 0.1 in uniform tension sigma = 1000: ENER = sigma^2/(2E) at every point,
+    # ELSE = ENER x 0.1 per element, total = 1/2 P u over the loaded nodes
+    dat = parse_dat(os.path.join(outdir, 'ener_plane', 'ener_plane.dat'))
+    blocks = {k[0].split(' (')[0]: v for k, v in dat.items()}
+    dens = 1000.0 ** 2 / (2 * 210000.0)
+    work = 0.5 * sum(50.0 * blocks['displacements'][n][0] for n in (3, 6, 13, 16))
+    diff = max([abs(v[0] - dens) / dens for v in blocks['internal energy density'].values()]
+               + [abs(v[0] - 0.1 * dens) / (0.1 * dens) for v in blocks['internal energy'].values()]
+               + [abs(blocks['total internal energy']['total'][0] - work) / work])
+    ok = diff <= 1e-6 and len(blocks['internal energy density']) == 32
+    print(f"  {'ok  ' if ok else 'FAIL'} ener_plane       ENER = sigma^2/(2E) at the 8 points of each CPS4 and S4, "
+          f"ELSE = ENER V, total = 1/2 P u: |diff|/value {diff:.1e}")
+    if not ok:
+        failures.append('ener_plane closed form')
     return failures
 
 

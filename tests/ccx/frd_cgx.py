@@ -20,7 +20,9 @@ checks that
   equals csv/contact_forces.csv;
 - ener_b31 (a B31 cantilever, *EL FILE SF added): the SECTFORC block (beam
   section forces in the columns of ccx's *EL FILE, SECTION FORCES) equals
-  the closed form V2 = P, M1 = -P (L - x) at every node;
+  the closed form V2 = P, M1 = -P (L - x) at every node; sectforc_b32 (the
+  same cantilever of four B32, *EL FILE SF added): the same, the middle nodes
+  included;
 - truss: the two bars at 45 degrees in the x-z plane have |SZX| = SXX and
   SYZ = 0 at their end nodes (the frd order of the shear components).
 Run by hand: cgx -bg JOB.fbd > JOB.cgx.log in OUTDIR/JOB (doc/calculix-dropin.md).
@@ -40,7 +42,7 @@ DEBUG_NOISE = re.compile(r'^At line \d+ of file [^\n]*\nFortran runtime warning:
 RTOL = 1.0e-5
 FILES = '*NODE FILE\nU, RF\n*EL FILE\nS, E\n'
 CASES = [('truss', None), ('b31', None), ('planestrain', None), ('shell1lin', FILES), ('frame2d', '*NODE FILE\nU\n*EL FILE\nS\n'),
-         ('ener_b31', '*NODE FILE\nU\n*EL FILE\nSF\n')]
+         ('ener_b31', '*NODE FILE\nU\n*EL FILE\nSF\n'), ('sectforc_b32', '*NODE FILE\nU\n*EL FILE\nSF\n')]
 # frame2d: decks/frame2d.deck (columns and a girder joined by two RIGID knees, three
 # substructures): its contact elements are two-node elements (frd type 11) of material
 # 1000 + the *CONTACT card, joining the file's numbers of their two nodes.
@@ -197,8 +199,8 @@ def check_case(binary, outdir, job, extra):
         print(f"    {'ok  ' if ok else 'FAIL'} STRESS of the 45-degree bars: |SZX| = SXX, SYZ = 0 at nodes 1, 3")
         if not ok:
             failures.append('truss STRESS components')
-    if job == 'ener_b31':
-        # B31 cantilever, L = 1000, 8 elements, tip load -100 along y, section 1-direction z: the
+    if job in ('ener_b31', 'sectforc_b32'):
+        # B31 (B32: 4 elements, middle nodes 2, 4, 6, 8) cantilever, L = 1000, 8 elements, tip load -100 along y, section 1-direction z: the
         # SECTFORC block in ccx's SECTION FORCES columns: SYY = V2 = 100, SYZ = M1 = -100 (1000 - x)
         sf = [b for b in blocks if b[0] == 'SECTFORC'][0][2]
         want = {n: [0.0, 100.0, 0.0, 0.0, -100.0 * (1000.0 - 125.0 * (n - 1)), 0.0] for n in range(1, 10)}
@@ -206,7 +208,7 @@ def check_case(binary, outdir, job, extra):
         ok = set(sf) == set(want) and diff <= RTOL
         print(f"    {'ok  ' if ok else 'FAIL'} SECTFORC against V2 = P, M1 = -P (L - x): |diff|/max {diff:.1e}")
         if not ok:
-            failures.append('ener_b31 SECTFORC')
+            failures.append(f'{job} SECTFORC')
     if job in SOURCES:
         links = read_links(os.path.join(work, job + '.frd'))
         with open(os.path.join(work, job + '.lst')) as f:

@@ -38,6 +38,7 @@ module superjoin_deck_parser
        kw_load_combination, data_combination, kw_temperature, data_temperature
   use superjoin_deck_cards_output, only: kw_output, kw_request, data_request, kw_section_print, data_section_print
   use superjoin_deck_equations, only: kw_equation, data_equation, end_equation_card
+  use superjoin_deck_pretension, only: kw_pretension, data_pretension, CARD_PRETENSION
   use superjoin_deck_ties, only: kw_tie, data_tie
   use superjoin_deck_coupling_cards, only: kw_coupling_card, data_coupling_dofs, data_mpc, data_dcoup_element, &
        data_dcoup_nodes
@@ -262,6 +263,8 @@ contains
        call kw_matrix_output(st, kw, loc)
     case ('NODAL THICKNESS')
        call kw_nodal_thickness(st, kw, loc)
+    case ('PRE-TENSION SECTION')
+       call kw_pretension(st, kw, loc)
     case default
        if (.not. refused_card(st, kw, loc, prev_mat)) call report_loc(st, loc, 'unknown keyword *'//clip(kw%keyword))
        st%card = CARD_SKIP
@@ -443,6 +446,8 @@ contains
        call data_dsload(st, line, loc)
     case (CARD_SECTION_PRINT)
        call data_section_print(st, line, loc)
+    case (CARD_PRETENSION)
+       call data_pretension(st, line, loc)
     end select
   end subroutine data_line
 end module superjoin_deck_parser

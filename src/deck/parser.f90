@@ -251,7 +251,7 @@ contains
        call kw_change_contact(st, kw, loc)
     case ('INTERFACE')
        call kw_interface(st, kw, loc)
-    case ('EQUATION', 'TIE')
+    case ('EQUATION', 'TIE', 'PRE-TENSION SECTION')
        call kw_tie_or_equation(st, kw, loc)
     case ('TRANSFORM')
        call kw_transform(st, kw, loc)
@@ -263,8 +263,6 @@ contains
        call kw_matrix_output(st, kw, loc)
     case ('NODAL THICKNESS')
        call kw_nodal_thickness(st, kw, loc)
-    case ('PRE-TENSION SECTION')
-       call kw_pretension(st, kw, loc)
     case default
        if (.not. refused_card(st, kw, loc, prev_mat)) call report_loc(st, loc, 'unknown keyword *'//clip(kw%keyword))
        st%card = CARD_SKIP
@@ -272,12 +270,15 @@ contains
   end subroutine open_card
 
   subroutine kw_tie_or_equation(st, kw, loc)
-    !! *EQUATION (superjoin_deck_equations) or *TIE (superjoin_deck_ties): exact constraints.
+    !! *EQUATION (superjoin_deck_equations), *TIE (superjoin_deck_ties) or *PRE-TENSION
+    !! SECTION (superjoin_deck_pretension): exact constraints.
     type(deck_state_t), intent(inout) :: st
     type(keyword_line_t), intent(in) :: kw
     type(source_loc_t), intent(in) :: loc
     if (kw%keyword == 'TIE') then
        call kw_tie(st, kw, loc)
+    else if (kw%keyword == 'PRE-TENSION SECTION') then
+       call kw_pretension(st, kw, loc)
     else
        call kw_equation(st, kw, loc)
     end if

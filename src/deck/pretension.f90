@@ -226,7 +226,7 @@ contains
     logical, intent(out) :: ok
     type(element_traits_t) :: tr
     integer, allocatable :: local(:)
-    integer :: nc, k
+    integer :: nc, k, j
     real(wp) :: a(3), c(3), xe(3)
     tr = element_traits(sub%elem_type(e))
     call face_nodes(tr, sub%elem_type(e), face, local, nc)
@@ -237,8 +237,10 @@ contains
       if (nc == 2) then
          a = [x(2, 2) - x(2, 1), x(1, 1) - x(1, 2), 0.0_wp]
       else
-         do k = 1, nc
-            a = a + cross(x(:, k), x(:, mod(k, nc) + 1))/2
+         do k = 1, nc      ! Newell: twice the area vector of the polygon of the corners
+            j = mod(k, nc) + 1
+            a = a + [(x(2, k) - x(2, j))*(x(3, k) + x(3, j)), (x(3, k) - x(3, j))*(x(1, k) + x(1, j)), &
+                     (x(1, k) - x(1, j))*(x(2, k) + x(2, j))]
          end do
       end if
       c = sum(x, 2)/nc
@@ -274,12 +276,6 @@ contains
        allocate (local(0))
     end if
   end subroutine face_nodes
-
-  pure function cross(a, b) result(c)
-    real(wp), intent(in) :: a(3), b(3)
-    real(wp) :: c(3)
-    c = [a(2)*b(3) - a(3)*b(2), a(3)*b(1) - a(1)*b(3), a(1)*b(2) - a(2)*b(1)]
-  end function cross
 
   logical function in_element(sub, node)
     !! Whether a node is a node of some element.

@@ -8,7 +8,7 @@ set -u
 src=$1
 kws=$(awk '/select case \(kw%keyword\)/ {on=1; next} on && /end select/ {exit} on' "$src/src/deck/parser.f90" |
       sed -e ':a' -e '/&$/N; s/&\n *//; ta' |
-      grep -oE "case \('[A-Z ]+'(, *'[A-Z ]+')*\)" | grep -oE "'[A-Z ]+'" | tr -d "'" | sort -u)
+      grep -oE "case \('[A-Z -]+'(, *'[A-Z -]+')*\)" | grep -oE "'[A-Z -]+'" | tr -d "'" | sort -u)
 [ -n "$kws" ] || { echo "FAIL: no keywords found in parser.f90"; exit 1; }
 fail=0; n=0
 while IFS= read -r kw; do

@@ -38,6 +38,7 @@ module superjoin_deck_parser
        kw_load_combination, data_combination, kw_temperature, data_temperature
   use superjoin_deck_cards_output, only: kw_output, kw_request, data_request, kw_section_print, data_section_print
   use superjoin_deck_equations, only: kw_equation, data_equation, end_equation_card
+  use superjoin_deck_pretension, only: kw_pretension, data_pretension, CARD_PRETENSION
   use superjoin_deck_ties, only: kw_tie, data_tie
   use superjoin_deck_coupling_cards, only: kw_coupling_card, data_coupling_dofs, data_mpc, data_dcoup_element, &
        data_dcoup_nodes
@@ -250,7 +251,7 @@ contains
        call kw_change_contact(st, kw, loc)
     case ('INTERFACE')
        call kw_interface(st, kw, loc)
-    case ('EQUATION', 'TIE')
+    case ('EQUATION', 'TIE', 'PRE-TENSION SECTION')
        call kw_tie_or_equation(st, kw, loc)
     case ('TRANSFORM')
        call kw_transform(st, kw, loc)
@@ -269,12 +270,15 @@ contains
   end subroutine open_card
 
   subroutine kw_tie_or_equation(st, kw, loc)
-    !! *EQUATION (superjoin_deck_equations) or *TIE (superjoin_deck_ties): exact constraints.
+    !! *EQUATION (superjoin_deck_equations), *TIE (superjoin_deck_ties) or *PRE-TENSION
+    !! SECTION (superjoin_deck_pretension): exact constraints.
     type(deck_state_t), intent(inout) :: st
     type(keyword_line_t), intent(in) :: kw
     type(source_loc_t), intent(in) :: loc
     if (kw%keyword == 'TIE') then
        call kw_tie(st, kw, loc)
+    else if (kw%keyword == 'PRE-TENSION SECTION') then
+       call kw_pretension(st, kw, loc)
     else
        call kw_equation(st, kw, loc)
     end if
@@ -443,6 +447,8 @@ contains
        call data_dsload(st, line, loc)
     case (CARD_SECTION_PRINT)
        call data_section_print(st, line, loc)
+    case (CARD_PRETENSION)
+       call data_pretension(st, line, loc)
     end select
   end subroutine data_line
 end module superjoin_deck_parser

@@ -15,6 +15,7 @@ module superjoin_deck_reader
   use superjoin_deck_equation_build, only: build_equations, equations_to_global
   use superjoin_deck_tie_build, only: build_ties
   use superjoin_deck_coupling_build, only: build_couplings
+  use superjoin_deck_pretension, only: build_pretensions
   use superjoin_deck_frame_build, only: build_frames, link_frames
   use superjoin_elements_drill_mask, only: mark_drilling_edges
   use superjoin_deck_thickness_build, only: apply_nodal_thickness
@@ -71,6 +72,7 @@ contains
     if (.not. st%aborted) call build_equations(st, model)
     if (.not. st%aborted) call build_ties(st, model)
     if (.not. st%aborted) call build_couplings(st, model)
+    if (.not. st%aborted) call build_pretensions(st, model)
     if (.not. st%aborted) call build_frames(st, model)
     if (.not. st%aborted) call equations_to_global(model)
     if (.not. st%aborted) call link_frames(st, model)

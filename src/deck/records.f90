@@ -272,6 +272,15 @@ module superjoin_deck_records
      logical :: nodal = .false.            !! TYPE=NODE: refs are nodes or node sets (kinds, signs unused)
   end type surface_b_t
 
+  type, public :: pretension_b_t
+    !! A *PRE-TENSION SECTION card as read (superjoin_deck_pretension).
+     character(:), allocatable :: surface  !! SURFACE= (upper case)
+     integer(ip) :: node = 0               !! NODE=: the pretension node's user id
+     logical :: has_normal = .false.       !! the data line gave the normal
+     real(wp) :: normal(3) = 0.0_wp
+     type(source_loc_t) :: loc
+  end type pretension_b_t
+
   type, public :: tie_b_t
     !! A *TIE card as read: its slave and master surfaces by name.
      character(:), allocatable :: name     !! NAME= (upper case; '' without)

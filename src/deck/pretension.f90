@@ -1,0 +1,374 @@
+module superjoin_deck_pretension
+  !! `*PRE-TENSION SECTION, SURFACE=s, NODE=n` (CalculiX/Abaqus bolt
+  !! pretension), card and build. The surface is an element face surface
+  !! (faces S1.. of solids, edges S1.. of plane and axisymmetric elements)
+  !! cutting the bolt; n is a node of no element. The optional data line is the
+  !! normal; without it, the mean of the faces' outward normals (pointing away
+  !! from the elements whose faces form the surface). As CalculiX does, the
+  !! section's nodes are copied, the elements whose faces form the surface take
+  !! the copies, and per node pair and translational component c the exact
+  !! constraint u_copy,c - u_orig,c - n_c u_n,1 = 0 ties the pair: the gap
+  !! across the cut is n times DOF 1 of the pretension node (tangential motions
+  !! tied). A *CLOAD on that DOF is the bolt force (positive: tension), a
+  !! *BOUNDARY on it the shortening of the bolt. The ELEMENT= form (a beam bolt)
+  !! is refused.
+  use superjoin_kinds, only: wp, ip
+  use superjoin_model_types, only: model_t, equation_t, source_loc_t, substructure_t, find_node, &
+       ELEMENT_NODE_COUNT, DLOAD_P1, DLOAD_P4, DLOAD_P5, DLOAD_P6
+  use superjoin_deck_lexer, only: keyword_line_t, parse_id, TOK_OK, clip
+  use superjoin_deck_state, only: deck_state_t, report_loc
+  use superjoin_deck_records, only: pretension_b_t
+  use superjoin_deck_cards_common, only: outside_step, check_params, get_param, field_count, get_reals, &
+       set_card, CARD_SKIP, NAME_LEN
+  use superjoin_deck_build_common, only: resolve_sub, resolve_items
+  use superjoin_elements_traits, only: element_traits, element_traits_t, FAMILY_SOLID, FAMILY_PLANE
+  use superjoin_elements_solid_faces, only: solid_face_nodes
+  use superjoin_utils_strings, only: to_upper, itoa
+  implicit none (type, external)
+  private
+
+  public :: kw_pretension, data_pretension, build_pretensions
+
+  integer, parameter, public :: CARD_PRETENSION = 205
+    !! the card of *PRE-TENSION SECTION's data line (the normal)
+
+  type :: cut_t
+    !! A pretension section resolved on one substructure.
+     integer :: sub = 0
+     logical, allocatable :: elem(:)       !! elements whose faces form the section (they take the copies)
+     logical, allocatable :: node(:)       !! nodes of the section
+     real(wp) :: area(3) = 0.0_wp          !! sum of the faces' outward area vectors
+     integer :: ncomp = 0                  !! translational DOFs per node (2 or 3)
+  end type cut_t
+
+contains
+
+  subroutine kw_pretension(st, kw, loc)
+    !! *PRE-TENSION SECTION, SURFACE=, NODE= (model data).
+    type(deck_state_t), intent(inout) :: st
+    type(keyword_line_t), intent(in) :: kw
+    type(source_loc_t), intent(in) :: loc
+    type(pretension_b_t) :: p
+    character(:), allocatable :: value
+    logical :: found
+    integer :: stat
+    st%card = CARD_SKIP
+    if (.not. outside_step(st, kw, loc)) return
+    call check_params(st, kw, loc, [character(NAME_LEN) :: 'SURFACE', 'NODE', 'ELEMENT'], [character(NAME_LEN) ::])
+    call get_param(st, kw, loc, 'ELEMENT', .false., value, found)
+    if (found) then
+       call report_loc(st, loc, '*PRE-TENSION SECTION, ELEMENT= (a beam bolt) is not supported: cut a solid '// &
+            'bolt with SURFACE=')
+       return
+    end if
+    call get_param(st, kw, loc, 'SURFACE', .true., value, found)
+    if (.not. found) return
+    p%surface = to_upper(value)
+    call get_param(st, kw, loc, 'NODE', .true., value, found)
+    if (.not. found) return
+    call parse_id(value, p%node, stat)
+    if (stat /= TOK_OK) then
+       call report_loc(st, loc, '*PRE-TENSION SECTION: NODE= must be a node id, not '//clip(value))
+       return
+    end if
+    p%loc = loc
+    if (.not. allocated(st%pretensions)) allocate (st%pretensions(0))
+    st%pretensions = [st%pretensions, p]
+    call set_card(st, CARD_PRETENSION, '*PRE-TENSION SECTION', loc)
+    st%card_item = size(st%pretensions)
+  end subroutine kw_pretension
+
+  subroutine data_pretension(st, line, loc)
+    !! The data line of *PRE-TENSION SECTION: the normal nx, ny, nz (one line).
+    type(deck_state_t), intent(inout) :: st
+    character(*), intent(in) :: line
+    type(source_loc_t), intent(in) :: loc
+    real(wp) :: n(3)
+    associate (p => st%pretensions(st%card_item))
+      if (p%has_normal) then
+         call report_loc(st, loc, '*PRE-TENSION SECTION takes one data line (the normal nx, ny, nz)')
+         return
+      end if
+      if (.not. field_count(st, loc, 1, 3, 'the normal nx, ny, nz')) return
+      n = 0.0_wp
+      if (.not. get_reals(st, line, loc, n(1:st%f%n))) return
+      if (.not. (norm2(n) > 0.0_wp)) then
+         call report_loc(st, loc, '*PRE-TENSION SECTION: the normal is zero')
+         return
+      end if
+      p%has_normal = .true.
+      p%normal = n/norm2(n)
+    end associate
+  end subroutine data_pretension
+
+  subroutine build_pretensions(st, model)
+    !! Every *PRE-TENSION SECTION: copies of the section's nodes in the
+    !! elements of its surface and the equations that tie each pair.
+    type(deck_state_t), intent(inout) :: st
+    type(model_t), intent(inout) :: model
+    integer :: k
+    if (.not. allocated(st%pretensions)) return
+    do k = 1, size(st%pretensions)
+       call build_one(st, model, st%pretensions(k))
+    end do
+  end subroutine build_pretensions
+
+  subroutine build_one(st, model, p)
+    type(deck_state_t), intent(inout) :: st
+    type(model_t), intent(inout) :: model
+    type(pretension_b_t), intent(in) :: p
+    type(cut_t) :: cut
+    integer(ip) :: pnode
+    integer(ip), allocatable :: map(:)
+    real(wp) :: n(3)
+    logical :: ok
+    call section_faces(st, model, p, cut, ok)
+    if (.not. ok) return
+    pnode = find_node(model%subs(cut%sub), p%node)
+    if (pnode == 0) then
+       call report_loc(st, p%loc, '*PRE-TENSION SECTION: node '//itoa(p%node)//' (NODE=) is not defined')
+       return
+    end if
+    if (in_element(model%subs(cut%sub), pnode)) then
+       call report_loc(st, p%loc, '*PRE-TENSION SECTION: node '//itoa(p%node)//' (NODE=) belongs to an element '// &
+            '(the pretension node must be a node of no element)')
+       return
+    end if
+    if (p%has_normal) then
+       n = p%normal
+    else if (norm2(cut%area) > 0.0_wp) then
+       n = cut%area/norm2(cut%area)
+    else
+       call report_loc(st, p%loc, '*PRE-TENSION SECTION: the faces of surface '//p%surface// &
+            ' have no mean normal (give it on the data line)')
+       return
+    end if
+    call split_nodes(model, cut, map)
+    call add_equations(model, cut, map, pnode, n, p%loc)
+  end subroutine build_one
+
+  subroutine section_faces(st, model, p, cut, ok)
+    !! The elements, nodes and mean outward normal of the section's surface.
+    type(deck_state_t), intent(inout) :: st
+    type(model_t), intent(in) :: model
+    type(pretension_b_t), intent(in) :: p
+    type(cut_t), intent(out) :: cut
+    logical, intent(out) :: ok
+    integer :: k, i, s
+    integer(ip) :: e
+    integer(ip), allocatable :: items(:)
+    ok = .false.
+    k = surface_index(st, p%surface)
+    if (k == 0) then
+       call report_loc(st, p%loc, '*PRE-TENSION SECTION: unknown surface '''//p%surface// &
+            ''' (define it with *SURFACE, TYPE=ELEMENT)')
+       return
+    end if
+    associate (sf => st%surfaces(k))
+      if (sf%nodal) then
+         call report_loc(st, p%loc, '*PRE-TENSION SECTION: surface '//p%surface//' is a node surface (it takes '// &
+              'an element face surface, *SURFACE, TYPE=ELEMENT)')
+         return
+      end if
+      do i = 1, sf%n
+         s = resolve_sub(st, model, sf%refs(i), sf%loc, 'element')
+         if (s == 0) return
+         if (cut%sub == 0) then
+            cut%sub = s
+            allocate (cut%elem(model%subs(s)%nelem), source=.false.)
+            allocate (cut%node(model%subs(s)%nnode), source=.false.)
+         else if (s /= cut%sub) then
+            call report_loc(st, p%loc, '*PRE-TENSION SECTION: surface '//p%surface//' spans two substructures')
+            return
+         end if
+         call resolve_items(st, model, s, sf%refs(i), .true., sf%loc, items, ok)
+         if (.not. ok) return
+         do e = 1, size(items, kind=ip)
+            call add_face(model%subs(s), items(e), face_of(sf%kinds(i)), cut, ok)
+            if (.not. ok) then
+               call report_loc(st, p%loc, '*PRE-TENSION SECTION: surface '//p%surface//': element '// &
+                    itoa(model%subs(s)%elem_id(items(e)))//' has no face S'//itoa(face_of(sf%kinds(i)))// &
+                    ' (the section takes faces of solid, plane or axisymmetric elements)')
+               return
+            end if
+         end do
+      end do
+    end associate
+    ok = cut%sub > 0
+    if (ok) ok = any(cut%elem)
+    if (.not. ok) call report_loc(st, p%loc, '*PRE-TENSION SECTION: surface '//p%surface//' has no faces')
+  end subroutine section_faces
+
+  integer function surface_index(st, name) result(k)
+    type(deck_state_t), intent(in) :: st
+    character(*), intent(in) :: name
+    do k = 1, st%nsurface
+       if (st%surfaces(k)%name == name) return
+    end do
+    k = 0
+  end function surface_index
+
+  pure integer function face_of(kind) result(face)
+    !! Face number S1..S6 of a *SURFACE line's load form (0: none).
+    integer, intent(in) :: kind
+    face = 0
+    if (kind >= DLOAD_P1 .and. kind <= DLOAD_P4) face = kind - DLOAD_P1 + 1
+    if (kind == DLOAD_P5) face = 5
+    if (kind == DLOAD_P6) face = 6
+  end function face_of
+
+  subroutine add_face(sub, e, face, cut, ok)
+    !! Element e's face `face` into the section: its element, nodes and outward area vector.
+    type(substructure_t), intent(in) :: sub
+    integer(ip), intent(in) :: e
+    integer, intent(in) :: face
+    type(cut_t), intent(inout) :: cut
+    logical, intent(out) :: ok
+    type(element_traits_t) :: tr
+    integer, allocatable :: local(:)
+    integer :: nc, k, j
+    real(wp) :: a(3), c(3), xe(3)
+    tr = element_traits(sub%elem_type(e))
+    call face_nodes(tr, sub%elem_type(e), face, local, nc)
+    ok = nc > 0
+    if (.not. ok) return
+    a = 0.0_wp
+    associate (x => sub%x(:, sub%elem_nodes(local(1:nc), e)))
+      if (nc == 2) then
+         a = [x(2, 2) - x(2, 1), x(1, 1) - x(1, 2), 0.0_wp]
+      else
+         do k = 1, nc      ! Newell: twice the area vector of the polygon of the corners
+            j = mod(k, nc) + 1
+            a = a + [(x(2, k) - x(2, j))*(x(3, k) + x(3, j)), (x(3, k) - x(3, j))*(x(1, k) + x(1, j)), &
+                     (x(1, k) - x(1, j))*(x(2, k) + x(2, j))]
+         end do
+      end if
+      c = sum(x, 2)/nc
+    end associate
+    xe = sum(sub%x(:, sub%elem_nodes(1:tr%nodes, e)), 2)/tr%nodes
+    if (dot_product(a, c - xe) < 0.0_wp) a = -a
+    cut%area = cut%area + a
+    cut%elem(e) = .true.
+    cut%node(sub%elem_nodes(local, e)) = .true.
+    cut%ncomp = max(cut%ncomp, count(tr%dofs(1:3)))
+  end subroutine add_face
+
+  subroutine face_nodes(tr, etype, face, local, nc)
+    !! Local nodes of a face (corners first): a solid's face, or the edge of a
+    !! plane or axisymmetric element (nc = 2); nc = 0 when it has none.
+    type(element_traits_t), intent(in) :: tr
+    integer, intent(in) :: etype, face
+    integer, allocatable, intent(out) :: local(:)
+    integer, intent(out) :: nc
+    integer :: m
+    nc = 0
+    if (tr%family == FAMILY_SOLID .and. tr%dofs(3)) then
+       call solid_face_nodes(etype, face, local, nc)
+    else if (tr%family == FAMILY_SOLID .or. tr%family == FAMILY_PLANE) then
+       m = tr%corners
+       if (m == 0) m = tr%nodes
+       allocate (local(0))
+       if (face < 1 .or. face > m) return
+       local = [face, mod(face, m) + 1]
+       if (tr%nodes > m) local = [local, m + face]
+       nc = 2
+    else
+       allocate (local(0))
+    end if
+  end subroutine face_nodes
+
+  logical function in_element(sub, node)
+    !! Whether a node is a node of some element.
+    type(substructure_t), intent(in) :: sub
+    integer(ip), intent(in) :: node
+    integer(ip) :: e
+    in_element = .false.
+    do e = 1, sub%nelem
+       in_element = any(sub%elem_nodes(1:ELEMENT_NODE_COUNT(sub%elem_type(e)), e) == node)
+       if (in_element) return
+    end do
+  end function in_element
+
+  subroutine split_nodes(model, cut, map)
+    !! Copy the section's nodes (new ids after the largest) and give the copies
+    !! to the section's elements; map(i) is the copy of node i (0: none). The
+    !! copies take their originals' temperatures.
+    type(model_t), intent(inout) :: model
+    type(cut_t), intent(in) :: cut
+    integer(ip), allocatable, intent(out) :: map(:)
+    integer(ip) :: nold, nnew, i, j, e, maxid
+    integer(ip), allocatable :: ids(:)
+    real(wp), allocatable :: x(:, :)
+    integer :: is, k
+    associate (s => model%subs(cut%sub))
+      nold = s%nnode
+      nnew = count(cut%node, kind=ip)
+      maxid = maxval(s%node_id(1:nold))
+      allocate (map(nold), source=0_ip)
+      allocate (ids(nold + nnew), x(3, nold + nnew))
+      ids(1:nold) = s%node_id(1:nold)
+      x(:, 1:nold) = s%x(:, 1:nold)
+      j = nold
+      do i = 1, nold
+         if (.not. cut%node(i)) cycle
+         j = j + 1
+         map(i) = j
+         ids(j) = maxid + (j - nold)
+         x(:, j) = s%x(:, i)
+      end do
+      call move_alloc(ids, s%node_id)
+      call move_alloc(x, s%x)
+      s%node_order = [s%node_order(1:nold), (i, i = nold + 1, nold + nnew)]
+      s%nnode = nold + nnew
+      do e = 1, s%nelem
+         if (.not. cut%elem(e)) cycle
+         do k = 1, ELEMENT_NODE_COUNT(s%elem_type(e))
+            if (map(s%elem_nodes(k, e)) > 0) s%elem_nodes(k, e) = map(s%elem_nodes(k, e))
+         end do
+      end do
+    end associate
+    if (.not. allocated(model%steps)) return
+    do is = 1, size(model%steps)
+       if (.not. allocated(model%steps(is)%temperature)) cycle
+       associate (t => model%steps(is)%temperature(cut%sub))
+         if (allocated(t%v)) t%v = [t%v(1:nold), pack(t%v(1:nold), cut%node)]
+       end associate
+    end do
+  end subroutine split_nodes
+
+  subroutine add_equations(model, cut, map, pnode, n, loc)
+    !! Per node pair and component c: u_copy,c - u_orig,c - n_c u_pnode,1 = 0.
+    type(model_t), intent(inout) :: model
+    type(cut_t), intent(in) :: cut
+    integer(ip), intent(in) :: map(:), pnode
+    real(wp), intent(in) :: n(3)
+    type(source_loc_t), intent(in) :: loc
+    type(equation_t), allocatable :: list(:)
+    type(equation_t) :: eq
+    integer(ip) :: i
+    integer :: c, m
+    allocate (list(count(map > 0)*cut%ncomp))
+    m = 0
+    do i = 1, size(map, kind=ip)
+       if (map(i) == 0) cycle
+       do c = 1, cut%ncomp
+          eq = equation_t()
+          eq%node = [map(i), i]
+          eq%dof = [c, c]
+          eq%coef = [1.0_wp, -1.0_wp]
+          if (n(c) /= 0.0_wp) then
+             eq%node = [eq%node, pnode]
+             eq%dof = [eq%dof, 1]
+             eq%coef = [eq%coef, -n(c)]
+          end if
+          allocate (eq%sub(size(eq%node)), source=cut%sub)
+          eq%loc = loc
+          eq%coupling = .true.
+          m = m + 1
+          list(m) = eq
+       end do
+    end do
+    if (.not. allocated(model%equations)) allocate (model%equations(0))
+    model%equations = [model%equations, list(1:m)]
+  end subroutine add_equations
+end module superjoin_deck_pretension

@@ -226,13 +226,7 @@ contains
     real(wp) :: d(NSTRAIN, NSTRAIN), kua(8, NMODE), kaa(NMODE, NMODE), x(2, 4), fu(8), fa(NMODE)
     real(wp) :: b3(NSTRAIN, 6), area
     real(wp), allocatable :: kuu(:, :)
-    if (strain_state) then
-       call check_element(xl, t, e, nu, 'plane strain', error)
-       d = t*plane_strain(e, nu)
-    else
-       call check_element(xl, t, e, nu, 'plane stress', error)
-       d = t*plane_stress(e, nu)
-    end if
+    call checked_rigidity(xl, t, e, nu, strain_state, d, error)
     if (allocated(error)) return
     if (size(eps0) /= size(xl, 2)) then
        call fatal_error(error, EXIT_DECK, 'wrong number of nodal initial strains')
@@ -264,13 +258,7 @@ contains
     real(wp) :: d(NSTRAIN, NSTRAIN), kua(8, NMODE), kaa(NMODE, NMODE), x(2, 4)
     real(wp) :: bc(NSTRAIN, 8), ba(NSTRAIN, NMODE), b3(NSTRAIN, 6), xi, eta, area
     real(wp), allocatable :: kuu(:, :)
-    if (strain_state) then
-       call check_element(xl, t, e, nu, 'plane strain', error)
-       d = t*plane_strain(e, nu)
-    else
-       call check_element(xl, t, e, nu, 'plane stress', error)
-       d = t*plane_stress(e, nu)
-    end if
+    call checked_rigidity(xl, t, e, nu, strain_state, d, error)
     if (allocated(error)) return
     if (size(xl, 2) == 3) then
        call cst_b(xl, b3, area)
@@ -283,6 +271,23 @@ contains
     call qm6_b(x, xi, eta, bc, ba, area)
     op = matmul(d, bc - matmul(ba, spd_solve(kaa, transpose(kua))))
   end subroutine membrane_result_operator
+
+  pure subroutine checked_rigidity(xl, t, e, nu, strain_state, d, error)
+    !! The element's checks and its rigidity d = t D, plane strain when
+    !! strain_state, plane stress otherwise.
+    real(wp), intent(in) :: xl(:, :)
+    real(wp), intent(in) :: t, e, nu
+    logical, intent(in) :: strain_state
+    real(wp), intent(out) :: d(NSTRAIN, NSTRAIN)
+    type(error_t), allocatable, intent(out) :: error
+    if (strain_state) then
+       call check_element(xl, t, e, nu, 'plane strain', error)
+       d = t*plane_strain(e, nu)
+    else
+       call check_element(xl, t, e, nu, 'plane stress', error)
+       d = t*plane_stress(e, nu)
+    end if
+  end subroutine checked_rigidity
 
   pure subroutine membrane_centroid_weights(xl, w)
     !! The shape functions w(n) of a CST (1/3 each) or of the bilinear

@@ -10,9 +10,9 @@ module superjoin_analysis_recover
   use superjoin_model_types, only: MAX_ELEMENT_DOFS
   use superjoin_error, only: error_t, add_error_line, EXIT_DECK
   use superjoin_model_types, only: model_t, DLOAD_THERMAL, ELEMENT_NODE_COUNT, LINK_NONE, LINK_FINITE, LINK_RIGID, &
-       NDOF_NODE, loc_text
+       NDOF_NODE, loc_text, substructure_t
   use superjoin_elements, only: element_end_forces, element_nodal_forces, &
-       is_plate_type, shell_forces, is_solid_type, solid_forces
+       is_plate_type, shell_forces, is_solid_type, solid_forces, shell_result_operator
   use superjoin_assembly_dofs, only: dof_table_t, unit_t, NBLOCK, GROUND, UNIT_LINK, UNIT_SUPPORT, block_dof, &
        unit_terms, arm_matrix, MAX_UNIT_TERMS
   use superjoin_assembly_forest, only: forest_t
@@ -158,7 +158,7 @@ contains
     type(error_t), allocatable, intent(inout) :: error
     logical, intent(in) :: parts_done
     logical, intent(in) :: wanted(:)
-    logical, allocatable :: own_ku(:), in_unit(:)
+    logical, allocatable :: own_ku(:), in_unit(:), done(:)
     real(wp), allocatable :: ql(:, :, :), nt(:, :), f0(:, :, :, :)
     real(wp) :: f(6, 2), fg(MAX_ELEM_DOFS)
     real(wp), allocatable :: fg2(:, :)
@@ -187,8 +187,8 @@ contains
     ! Distributed loads in element axes, per element and step.
     call add_dload_terms(model, table, own_ku, res%fields%elem_offset, ql, nt, r)
     call solid_reactions(model, table, own_ku, u, r, error)
+    call instance_plate_results(model, table, own_ku, wanted, u, res, done, error)
     if (allocated(error)) return
-
     do isub = 1, size(model%subs)
        associate (s => model%subs(isub))
          do e = 1, s%nelem
@@ -203,7 +203,7 @@ contains
               if (is_solid_type(s%elem_type(e))) cycle   ! solid_reactions, above
               if (is_plate_type(s%elem_type(e))) then
                  ! r takes K_e u_e (the distributed loads of these elements are left out of r above)
-                 call shell_forces(s%elem_type(e), s%x(:, s%elem_nodes(1:nn, e)), sec, &
+                 if (.not. done(isub)) call shell_forces(s%elem_type(e), s%x(:, s%elem_nodes(1:nn, e)), sec, &
                       model%materials(sec%material), u(pd(1:n), :), res%fields%plate(:, ie, :), fg2(1:n, :), inner, &
                       with_forces=.not. own_ku(isub), drill=element_drill(s, e))
                  if (allocated(inner)) then
@@ -242,6 +242,70 @@ contains
        end associate
     end do
   end subroutine element_results
+
+  subroutine instance_plate_results(model, table, own_ku, wanted, u, res, done, error)
+    !! The plate-type resultants of the condensed instances of one part placed
+    !! alike (same part, same turn): each element's operator
+    !! (shell_result_operator) is formed once and applied to the element
+    !! displacements of all these instances and steps side by side, one
+    !! product; done(isub) marks the substructures so served. Nothing is
+    !! done when error is already set.
+    type(model_t), intent(in) :: model
+    type(dof_table_t), intent(in) :: table
+    logical, intent(in) :: own_ku(:), wanted(:)
+    real(wp), intent(in) :: u(:, :)
+    type(results_t), intent(inout) :: res
+    logical, allocatable, intent(out) :: done(:)
+    type(error_t), allocatable, intent(inout) :: error
+    integer, allocatable :: like(:)
+    integer :: isub, j, k, n, nstep
+    integer(i8) :: pd(MAX_ELEM_DOFS)
+    integer(ip) :: e
+
+    allocate (done(size(model%subs)), source=.false.)
+    if (allocated(error)) return
+    nstep = size(u, 2)
+    do isub = 1, size(model%subs)
+       if (done(isub) .or. .not. own_ku(isub) .or. model%subs(isub)%part == 0) cycle
+       like = pack([(j, j = 1, size(model%subs))], [(j >= isub .and. own_ku(j) .and. &
+            placed_alike(model%subs(isub), model%subs(j)), j = 1, size(model%subs))])
+       if (size(like) < 2) cycle
+       done(like) = .true.
+       associate (s => model%subs(isub), off => res%fields%elem_offset)
+         do e = 1, s%nelem
+            if (.not. is_plate_type(s%elem_type(e)) .or. .not. any(wanted(off(like) + e))) cycle
+            block
+              real(wp), allocatable :: op(:, :), ue(:, :), rs(:, :)
+              type(error_t), allocatable :: inner
+              call shell_result_operator(s%elem_type(e), s%x(:, s%elem_nodes(1:ELEMENT_NODE_COUNT(s%elem_type(e)), e)), &
+                   s%sections(s%elem_section(e)), model%materials(s%sections(s%elem_section(e))%material), op, inner, &
+                   drill=element_drill(s, e))
+              if (allocated(inner)) then
+                 call add_error_line(error, EXIT_DECK, inner%message)
+                 return
+              end if
+              allocate (ue(size(op, 2), nstep*size(like)))
+              do k = 1, size(like)
+                 call element_pdofs(model, table, like(k), e, pd, n)
+                 ue(:, nstep*(k - 1) + 1:nstep*k) = u(pd(1:n), :)
+              end do
+              rs = matmul(op, ue)
+              do k = 1, size(like)
+                 if (wanted(off(like(k)) + e)) res%fields%plate(:, off(like(k)) + e, :) = &
+                      rs(:, nstep*(k - 1) + 1:nstep*k)
+              end do
+            end block
+         end do
+       end associate
+    end do
+  end subroutine instance_plate_results
+
+  pure logical function placed_alike(a, b)
+    !! Two instances of one part whose element results share one operator:
+    !! the same part, turned alike, the same elements.
+    type(substructure_t), intent(in) :: a, b
+    placed_alike = a%part == b%part .and. all(a%rot == b%rot) .and. a%nelem == b%nelem
+  end function placed_alike
 
   subroutine solid_reactions(model, table, own_ku, u, r, error)
     !! r += K_e u_e of the solid elements (no end forces; their body loads are

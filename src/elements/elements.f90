@@ -47,7 +47,7 @@ module superjoin_elements
   use superjoin_elements_solid_stress, only: von_mises_tensor, principal_stresses
   use superjoin_elements_shell, only: shell_thermal_nodal_load
   use superjoin_elements_shell, only: is_plate_type, is_plane_type, is_plane_strain_type, shell_stiffness, shell_resultants, shell_pressure_load, &
-       shell_area_load, shell_forces
+       shell_area_load, shell_forces, shell_result_operator
   implicit none (type, external)
   private
 
@@ -67,7 +67,7 @@ module superjoin_elements
     !! Von Mises stress and principal values (largest first) of a tensor in
     !! Voigt order (superjoin_elements_solid_stress).
   public :: element_strain_energy
-  public :: is_plate_type, shell_resultants, shell_forces
+  public :: is_plate_type, shell_resultants, shell_forces, shell_result_operator
   public :: is_plane_type, is_plane_strain_type
     !! is_plane_type(etype): plane stress and plane strain types (CPS*, CPE*);
     !! is_plane_strain_type(etype): CPE*.
@@ -75,7 +75,9 @@ module superjoin_elements
     !! mat, ue, res, error): nx, ny, nxy, mx, my, mxy at the centroid, element
     !! frame; shell_forces(etype, x, sec, mat, ue(:, nstep), res(6, nstep),
     !! fg(:, nstep), error): resultants and K_e u_e of every step with one
-    !! element matrix; see superjoin_elements_shell.
+    !! element matrix; shell_result_operator(etype, x, sec, mat, op, error,
+    !! drill): op(6, ndof) with res = op ue, formed once for every step and
+    !! instance; see superjoin_elements_shell.
   public :: is_solid_type, solid_forces
     !! is_solid_type(etype): the solids, 3D (C3D*) and axisymmetric (CAX*); solid_forces(etype, x, mat,
     !! ue(:, nstep), fg(:, nstep), error): K_e u_e of every step (superjoin_elements_solid,

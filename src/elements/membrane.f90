@@ -92,7 +92,7 @@ module superjoin_elements_membrane
      real(wp), allocatable :: points(:)   !! ε0 at the integration points
      real(wp), allocatable :: nodes(:)    !! ε0 extrapolated to the nodes as σ is
   end type initial_strain_t
-  public :: membrane_thermal_load, membrane_centroid_weights
+  public :: membrane_thermal_load, membrane_centroid_weights, membrane_result_operator
   public :: check_membrane_element, spd_solve
 
 contains
@@ -226,13 +226,7 @@ contains
     real(wp) :: d(NSTRAIN, NSTRAIN), kua(8, NMODE), kaa(NMODE, NMODE), x(2, 4), fu(8), fa(NMODE)
     real(wp) :: b3(NSTRAIN, 6), area
     real(wp), allocatable :: kuu(:, :)
-    if (strain_state) then
-       call check_element(xl, t, e, nu, 'plane strain', error)
-       d = t*plane_strain(e, nu)
-    else
-       call check_element(xl, t, e, nu, 'plane stress', error)
-       d = t*plane_stress(e, nu)
-    end if
+    call checked_rigidity(xl, t, e, nu, strain_state, d, error)
     if (allocated(error)) return
     if (size(eps0) /= size(xl, 2)) then
        call fatal_error(error, EXIT_DECK, 'wrong number of nodal initial strains')
@@ -248,6 +242,52 @@ contains
     call qm6_initial_strain(x, d, eps0, fu, fa)
     fe = fu - matmul(kua, reshape(spd_solve(kaa, reshape(fa, [NMODE, 1])), [NMODE]))
   end subroutine membrane_thermal_load
+
+  pure subroutine membrane_result_operator(xl, t, e, nu, strain_state, op, error)
+    !! The resultants' operator op(3, 2n) of a CST or QM6 (plane stress, or
+    !! plane strain when strain_state): (nx, ny, nxy) at the centroid = op ue
+    !! for element-frame displacements ue (node-major u, v), the incompatible
+    !! modes condensed: op = t D (bc - ba kaa⁻¹ kuaᵀ). Formed once, it serves
+    !! every step and every instance of a part (membrane_resultants without
+    !! an initial strain, as one product).
+    real(wp), intent(in) :: xl(:, :)
+    real(wp), intent(in) :: t, e, nu
+    logical, intent(in) :: strain_state
+    real(wp), allocatable, intent(out) :: op(:, :)
+    type(error_t), allocatable, intent(out) :: error
+    real(wp) :: d(NSTRAIN, NSTRAIN), kua(8, NMODE), kaa(NMODE, NMODE), x(2, 4)
+    real(wp) :: bc(NSTRAIN, 8), ba(NSTRAIN, NMODE), b3(NSTRAIN, 6), xi, eta, area
+    real(wp), allocatable :: kuu(:, :)
+    call checked_rigidity(xl, t, e, nu, strain_state, d, error)
+    if (allocated(error)) return
+    if (size(xl, 2) == 3) then
+       call cst_b(xl, b3, area)
+       op = matmul(d, b3)
+       return
+    end if
+    x = xl
+    call qm6_matrices(x, d, kuu, kua, kaa)
+    call centroid_natural(x, xi, eta)
+    call qm6_b(x, xi, eta, bc, ba, area)
+    op = matmul(d, bc - matmul(ba, spd_solve(kaa, transpose(kua))))
+  end subroutine membrane_result_operator
+
+  pure subroutine checked_rigidity(xl, t, e, nu, strain_state, d, error)
+    !! The element's checks and its rigidity d = t D, plane strain when
+    !! strain_state, plane stress otherwise.
+    real(wp), intent(in) :: xl(:, :)
+    real(wp), intent(in) :: t, e, nu
+    logical, intent(in) :: strain_state
+    real(wp), intent(out) :: d(NSTRAIN, NSTRAIN)
+    type(error_t), allocatable, intent(out) :: error
+    if (strain_state) then
+       call check_element(xl, t, e, nu, 'plane strain', error)
+       d = t*plane_strain(e, nu)
+    else
+       call check_element(xl, t, e, nu, 'plane stress', error)
+       d = t*plane_stress(e, nu)
+    end if
+  end subroutine checked_rigidity
 
   pure subroutine membrane_centroid_weights(xl, w)
     !! The shape functions w(n) of a CST (1/3 each) or of the bilinear

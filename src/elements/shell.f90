@@ -41,7 +41,7 @@ module superjoin_elements_shell
   use superjoin_elements_opt_triangle, only: opt_stiffness, opt_resultants, opt_point_stresses, opt_thermal_load
 
   use superjoin_elements_drilling, only: drilling_thermal_load, drilling_thermal_stresses
-  use superjoin_elements_membrane, only: membrane_thermal_load
+  use superjoin_elements_membrane, only: membrane_thermal_load, membrane_result_operator
   use superjoin_elements_plate, only: plate_thermal_load, corner_functions, bending_rigidity
   use superjoin_elements_mindlin, only: mindlin_thermal_load
   implicit none (type, external)
@@ -49,6 +49,7 @@ module superjoin_elements_shell
 
   public :: is_thick_shell_type, shell_shear_stiffness, quadratic_props
   public :: is_plate_type, is_plane_type, is_plane_strain_type, is_quadratic_plane_type, shell_frame, shell_stiffness, shell_resultants, shell_forces, shell_pressure_load, &
+       shell_result_operator, &
        shell_area_load
   public :: shell_surface_stresses, thick_shell_stresses, THICK_SURFACES
   public :: has_drilling_membrane, drilling_edges, DRILL_ALL_EDGES
@@ -351,6 +352,45 @@ contains
        if (allocated(error)) return
     end do
   end subroutine shell_forces
+
+  pure subroutine shell_result_operator(etype, x, sec, mat, op, error, drill)
+    !! The resultants' operator of an element: op(6, ndof) with res = op ue
+    !! for element displacements ue in global axes (shell_forces' res of one
+    !! step, element_stiffness ordering), formed once for all steps and all
+    !! instances of a part placed alike. CPS3/CPS4/CPE3/CPE4 directly
+    !! (membrane_result_operator turned by the node maps); the other plate
+    !! types as shell_forces of the unit displacements. drill as
+    !! shell_stiffness.
+    integer, intent(in) :: etype
+    real(wp), intent(in) :: x(:, :)
+    type(section_t), intent(in) :: sec
+    type(material_t), intent(in) :: mat
+    real(wp), allocatable, intent(out) :: op(:, :)
+    type(error_t), allocatable, intent(out) :: error
+    integer, intent(in), optional :: drill
+    real(wp), allocatable :: opl(:, :), maps(:, :, :), eye(:, :), fg(:, :)
+    real(wp) :: r(3, 3), xl(2, size(x, 2)), h(size(x, 2))
+    integer :: n, i
+    if (etype == ET_CPS3 .or. etype == ET_CPS4 .or. etype == ET_CPE3 .or. etype == ET_CPE4) then
+       call setup(etype, x, r, xl, h, error)
+       if (allocated(error)) return
+       call membrane_result_operator(xl, sec%thickness, mat%e, mat%nu, is_plane_strain_type(etype), opl, error)
+       if (allocated(error)) return
+       maps = node_maps(etype, r, h)
+       allocate (op(6, size(opl, 2)), source=0.0_wp)
+       do i = 1, size(x, 2)
+          op(1:3, 2*i - 1:2*i) = matmul(opl(:, 2*i - 1:2*i), maps(:, :, i))
+       end do
+       return
+    end if
+    n = size(x, 2)*merge(2, 6, is_plane_type(etype))
+    allocate (eye(n, n), source=0.0_wp)
+    do i = 1, n
+       eye(i, i) = 1.0_wp
+    end do
+    allocate (op(6, n), fg(n, n))
+    call shell_forces(etype, x, sec, mat, eye, op, fg, error, with_forces=.false., drill=drill)
+  end subroutine shell_result_operator
 
   pure subroutine shell_resultants(etype, x, sec, mat, ue, res, error, drill)
     !! Resultants per unit length at the centroid in the element frame,

@@ -15,6 +15,7 @@ module superjoin_utils_text_buffer
     !! significant digits of put_es (ES14.6E3 layout)
   integer(i8), parameter :: MANTISSA_LOW = 1000000_i8, MANTISSA_HIGH = 10000000_i8
   real(wp), parameter :: TEN = 10.0_wp
+  real(wp), parameter :: LOG10_TWO = 0.30102999566398120_wp
   integer, parameter :: MAX_POWER = 300
     !! largest power of ten applied in one step (subnormals need two)
   integer, parameter :: IOMSG_LEN = 256
@@ -245,7 +246,9 @@ contains
        e = 0
        m = 0
     else
-       e = floor(log10(a))
+       ! floor(log10(a)) or one less, from the binary exponent (the checks
+       ! below settle the decade as they did for a rounded log10)
+       e = floor((exponent(a) - 1)*LOG10_TWO)
        m = nint(scale10(a, ES_DIGITS - 1 - e), i8)
        if (m >= MANTISSA_HIGH) then
           e = e + 1

@@ -237,10 +237,13 @@ contains
     integer, intent(in) :: line
     type(bulk_entry_t), intent(inout) :: e
     character(*), intent(in) :: s
+    character(len=FIELD_LEN), allocatable :: fields(:)
     if (len_trim(adjustl(s)) > FIELD_LEN) call report(st, d%ifile, line, 'a field longer than '// &
          itoa(FIELD_LEN)//' characters: '''//clip(s)//'''')
     if (e%nf == size(e%f)) then
-       e%f = [e%f, e%f]
+       allocate (fields(2*size(e%f)))
+       fields(1:size(e%f)) = e%f
+       call move_alloc(fields, e%f)
        e%line = [e%line, e%line]
     end if
     e%nf = e%nf + 1
@@ -279,6 +282,7 @@ contains
     type(dmig_t), intent(inout) :: d
     integer(ip) :: ifo, tin
     integer :: stat
+    character(len=FIELD_LEN), allocatable :: names(:)
     if (findloc(d%name, e%f(1), 1) > 0) then
        call report(st, d%ifile, e%line(1), 'DMIG matrix '//trim(e%f(1))//' has a header entry already')
        return
@@ -297,7 +301,12 @@ contains
        end if
     end if
     d%nmat = d%nmat + 1
-    d%name = [d%name, e%f(1)]
+    ! grown by hand: gfortran's -fcheck=bounds misreads the length of a character
+    ! component in an array constructor ([d%name, e%f(1)] stops the Debug build)
+    allocate (names(d%nmat))
+    names(1:d%nmat - 1) = d%name
+    names(d%nmat) = e%f(1)
+    call move_alloc(names, d%name)
     d%ifo = [d%ifo, int(ifo)]
     d%line = [d%line, e%line(1)]
   end subroutine dmig_header

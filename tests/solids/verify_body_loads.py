@@ -116,7 +116,9 @@ def centrif_bar(exe, work):
                 for nd, x in mesh.nodes.items() if mesh.index[nd][0] % 2 == 0]
         errs.append(max(ends) / tip_exact)
         print(f"| {n} | {mean:.9e} | {mean / tip_exact:.12f} | {root / (rho * b * b * w2 * length ** 2 / 2):.12f} |")
-        vs.check(abs(root / (rho * b * b * w2 * length ** 2 / 2) - 1) < 1e-12, f"bar, {n} elements: root force "
+        # exact up to round-off: the sum of K u - f over the support's nodes, cancelling terms of the
+        # size of the largest nodal force (the 20-element bar measured 2e-12, dense or structured B^T D B)
+        vs.check(abs(root / (rho * b * b * w2 * length ** 2 / 2) - 1) < 1e-10, f"bar, {n} elements: root force "
                  "= rho A w^2 L^2 / 2")
     print(f"\nlargest error of u_x at the nodes between elements / tip u: {', '.join(f'{v:.1e}' for v in errs)} "
           "(exact: consistent loads on a uniaxial field)")

@@ -18,7 +18,8 @@ module superjoin_deck_part_copies
   !!   part's transform moves with the instance), its `*NODAL THICKNESS`,
   !!   `*INITIAL CONDITIONS, TYPE=TEMPERATURE`, the output requests naming a
   !!   set (`*NODE PRINT`, `*EL FILE`, ...) and the `*SECTION PRINT` of a part
-  !!   surface (named I.N); these named the part's substructure entry, which
+  !!   surface (named I.N), a `*PRE-TENSION SECTION` of a part surface (its
+  !!   normal turned with I); these named the part's substructure entry, which
   !!   is gone once the instances are placed (a stale number).
   !!
   !! The copies come first, instance by instance in the order of the
@@ -28,6 +29,7 @@ module superjoin_deck_part_copies
   !! equations inside a part made of parts (one holding *INSTANCE cards).
   use superjoin_deck_state, only: deck_state_t, report_loc, grow, ref_t, surface_b_t, tie_b_t, equation_b_t, &
        transform_b_t, nthick_b_t, request_b_t, temp_b_t, SUBK_PART, SUBK_NESTED, SUBK_INSTANCE
+  use superjoin_deck_records, only: pretension_b_t
   use superjoin_deck_coupling_records, only: coupling_b_t
   use superjoin_model_types, only: source_loc_t, section_print_t
   implicit none (type, external)
@@ -62,6 +64,7 @@ contains
     if (st%nreq > 0) call copy_requests(st, part_of)
     if (st%ntemp > 0) call copy_temperatures(st, part_of)
     if (allocated(st%section_prints)) call copy_section_prints(st, part_of)
+    if (allocated(st%pretensions)) call copy_pretensions(st, part_of)
   end subroutine copy_part_constraints
 
   integer function instance_part(st, k) result(p)
@@ -421,14 +424,10 @@ contains
     integer, intent(in) :: part_of(:)
     type(section_print_t), allocatable :: all(:)
     integer, allocatable :: src(:), inst(:), homes(:)
-    integer :: i, j
-    allocate (homes(size(st%section_prints)), source=0)
+    integer :: i
+    allocate (homes(size(st%section_prints)))
     do i = 1, size(homes)
-       do j = 1, st%nsurface   ! the first surface of the name, as build_section_prints takes it
-          if (st%surfaces(j)%name /= st%section_prints(i)%surface) cycle
-          homes(i) = surface_part(st, st%surfaces(j))
-          exit
-       end do
+       homes(i) = named_surface_part(st, st%section_prints(i)%surface)
     end do
     if (.not. any(is_part(st, homes))) return
     call plan_copies(st, homes, st%section_prints(:)%loc, '*SECTION PRINT', part_of, src, inst)
@@ -441,6 +440,45 @@ contains
     end do
     call move_alloc(all, st%section_prints)
   end subroutine copy_section_prints
+
+  integer function named_surface_part(st, name) result(p)
+    !! The part that the first surface named `name` (as the builders take it) was written in (0: none).
+    type(deck_state_t), intent(in) :: st
+    character(*), intent(in) :: name
+    integer :: j
+    p = 0
+    do j = 1, st%nsurface
+       if (st%surfaces(j)%name /= name) cycle
+       p = surface_part(st, st%surfaces(j))
+       return
+    end do
+  end function named_surface_part
+
+  subroutine copy_pretensions(st, part_of)
+    !! The *PRE-TENSION SECTION cards that name a part's surface S (written in
+    !! the part) replaced by their copies per instance I: surface I.S, the
+    !! pretension node taken in I (the surface's substructure), a given normal
+    !! turned with I.
+    type(deck_state_t), intent(inout) :: st
+    integer, intent(in) :: part_of(:)
+    type(pretension_b_t), allocatable :: all(:)
+    integer, allocatable :: src(:), inst(:), homes(:)
+    integer :: i
+    allocate (homes(size(st%pretensions)))
+    do i = 1, size(homes)
+       homes(i) = named_surface_part(st, st%pretensions(i)%surface)
+    end do
+    if (.not. any(is_part(st, homes))) return
+    call plan_copies(st, homes, st%pretensions(:)%loc, '*PRE-TENSION SECTION', part_of, src, inst)
+    allocate (all(size(src)))
+    do i = 1, size(src)
+       all(i) = st%pretensions(src(i))
+       if (inst(i) == 0) cycle
+       call surface_in_instance(st, all(i)%surface, part_of(inst(i)), st%subs(inst(i))%name)
+       all(i)%normal = matmul(st%instances(st%subs(inst(i))%inst)%rot, all(i)%normal)
+    end do
+    call move_alloc(all, st%pretensions)
+  end subroutine copy_pretensions
 
   subroutine refuse_in_nested(st, p, loc, card)
     !! A card of part p that is not copied when p is made of parts: reported.

@@ -47,28 +47,34 @@ contains
     !! substructures): every one in a deck without output requests, or when
     !! result files (CSV, VTK) are written and the deck has no *EL FILE
     !! request; else those that *EL PRINT (and, with result files or the .frd
-    !! of superjoin -i, *EL FILE) requests cover. Says in a note how many that is when it is not all.
+    !! of superjoin -i, *EL FILE) requests cover. Says in a note for how many
+    !! elements the listing holds results when the deck has requests and that is
+    !! not all: the deck alone decides it, so the listing is the same with and
+    !! without result files (it said "computed for 0 of N" without --csv, and
+    !! nothing with it, for a deck whose only request was *NODE PRINT).
     type(model_t), intent(in) :: model
     type(run_options_t), intent(in) :: opts
     logical, allocatable, intent(out) :: wanted(:)
     type(string_t), allocatable, intent(inout) :: notes(:)
     integer :: isub
-    integer(i8) :: nelem
+    integer(i8) :: nelem, nprint
     nelem = 0
     do isub = 1, size(model%subs)
        nelem = nelem + model%subs(isub)%nelem
     end do
-    if (.not. has_requests(model) .or. ((opts%csv .or. opts%vtk) .and. .not. any_request_of(model, [REQ_EL_FILE]))) then
+    if (.not. has_requests(model)) then
        allocate (wanted(nelem), source=.true.)
        return
     end if
-    if (opts%csv .or. opts%vtk .or. opts%frd) then
+    call request_mask(model, [REQ_EL_PRINT], .false., wanted)
+    nprint = count(wanted, kind=i8)
+    if (nprint < nelem) call note(notes, 'element results listed for '//itoa(nprint)//' of '//itoa(nelem)// &
+         ' elements (those the *EL PRINT requests name)')
+    if ((opts%csv .or. opts%vtk) .and. .not. any_request_of(model, [REQ_EL_FILE])) then
+       wanted = .true.
+    else if (opts%csv .or. opts%vtk .or. opts%frd) then
        call request_mask(model, [REQ_EL_PRINT, REQ_EL_FILE], .false., wanted)
-    else
-       call request_mask(model, [REQ_EL_PRINT], .false., wanted)
     end if
-    if (count(wanted, kind=i8) < nelem) call note(notes, 'element results computed for '// &
-         itoa(count(wanted, kind=i8))//' of '//itoa(nelem)//' elements (those the output requests name)')
   end subroutine wanted_elements
 
   subroutine apply_large(model, table, form, notes, error)

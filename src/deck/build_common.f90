@@ -25,6 +25,7 @@ contains
     type(ref_t), intent(in) :: ref
     type(source_loc_t), intent(in) :: loc
     character(*), intent(in) :: what
+    character(:), allocatable :: hint
     if (allocated(ref%scope)) then
        isub = sub_index(model, ref%scope)
        if (isub == 0) call report_loc(st, loc, 'unknown substructure '//ref%scope//' in '// &
@@ -34,9 +35,12 @@ contains
     else
        isub = sub_index(model, MAIN_NAME)
        if (ref%is_set) isub = assembly_set_owner(model, ref%set, what /= 'node', isub)
-       if (isub == 0) call report_loc(st, loc, what//' '//ref_text(ref)// &
+       if (isub > 0) return
+       hint = ''
+       if (ref%is_set) hint = instances_hint(model, ref%set, what /= 'node')   ! a part's set, named plainly
+       call report_loc(st, loc, what//' '//ref_text(ref)// &
             ' is not in a substructure: outside *SUBSTRUCTURE blocks write SUB.id or SUB.set '// &
-            '(no nodes were defined outside the blocks, so there is no substructure MAIN)')
+            '(no nodes were defined outside the blocks, so there is no substructure MAIN)'//hint)
     end if
   end function resolve_sub
 
@@ -176,19 +180,55 @@ contains
   contains
     logical function has_set(isub)
       integer, intent(in) :: isub
-      integer :: j
-      has_set = .false.
-      if (elem) then
-         do j = 1, size(model%subs(isub)%elsets)
-            if (model%subs(isub)%elsets(j)%name == name) has_set = .true.
-         end do
-      else
-         do j = 1, size(model%subs(isub)%nsets)
-            if (model%subs(isub)%nsets(j)%name == name) has_set = .true.
-         end do
-      end if
+      has_set = sub_has_set(model, isub, name, elem)
     end function has_set
   end function assembly_set_owner
+
+  pure logical function sub_has_set(model, isub, name, elem) result(has)
+    !! Substructure isub has an element set (elem) or a node set named name.
+    type(model_t), intent(in) :: model
+    integer, intent(in) :: isub
+    character(*), intent(in) :: name
+    logical, intent(in) :: elem
+    integer :: j
+    has = .false.
+    if (elem) then
+       do j = 1, size(model%subs(isub)%elsets)
+          if (model%subs(isub)%elsets(j)%name == name) has = .true.
+       end do
+    else
+       do j = 1, size(model%subs(isub)%nsets)
+          if (model%subs(isub)%nsets(j)%name == name) has = .true.
+       end do
+    end if
+  end function sub_has_set
+
+  function instances_hint(model, name, elem) result(s)
+    !! ' (NAME is a set of the instances A, B: name it in one, A.NAME)' when
+    !! several instances hold a set of that name (a part's set), else ''.
+    type(model_t), intent(in) :: model
+    character(*), intent(in) :: name
+    logical, intent(in) :: elem
+    character(:), allocatable :: s, first
+    integer :: i
+    s = ''
+    do i = 1, size(model%subs)
+       if (model%subs(i)%part == 0) cycle
+       if (.not. sub_has_set(model, i, name, elem)) cycle
+       if (len(s) == 0) then
+          first = model%subs(i)%name
+          s = first
+       else
+          s = s//', '//model%subs(i)%name
+       end if
+    end do
+    if (len(s) == 0) return
+    if (s == first) then
+       s = ''
+       return
+    end if
+    s = ' ('//name//' is a set of the instances '//s//': name it in one, as '//first//'.'//name//')'
+  end function instances_hint
 
   pure logical function keeps_previous(step, op)
     !! Whether a step's loads of one kind (*CLOAD, *DLOAD or *TEMPERATURE,

@@ -172,9 +172,9 @@ contains
     st%card = CARD_SKIP
     call check_params(st, kw, loc, [character(NAME_LEN) :: 'SURFACE', 'NAME', 'FREQUENCYF', 'TIME POINTS'], &
          [character(NAME_LEN) ::])
-    call get_name_param(st, kw, loc, 'SURFACE', .true., value, found)
+    call get_param(st, kw, loc, 'SURFACE', .true., value, found)   ! a name or I.S (an instance's copy)
     if (.not. found) return
-    sp%surface = value
+    sp%surface = to_upper(value)
     call get_name_param(st, kw, loc, 'NAME', .true., value, found)
     if (.not. found) return
     sp%name = value

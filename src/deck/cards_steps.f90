@@ -10,6 +10,7 @@ module superjoin_deck_cards_steps
        itoa, clip, TOK_OK
   use superjoin_deck_state, only: deck_state_t, support_b_t, load_b_t, ref_t, report_loc, step_b_t, &
        temp_b_t, surface_b_t, OP_DEFAULT, OP_MOD, OP_NEW, add_support, add_step, add_load, grow
+  use superjoin_deck_part_copies, only: instance_surface
   use superjoin_deck_cards_common, only: outside_step, check_params, param_index, get_param, &
        get_name_param, field_count, fld, get_real, real_message, get_dof, parse_ref, loc_string, &
        refused_card, CARD_SKIP, CARD_BOUNDARY, CARD_DLOAD, CARD_STATIC, CARD_COMBINATION, &
@@ -634,14 +635,17 @@ contains
   subroutine data_dsload(st, line, loc)
     !! *DSLOAD `surface, P, pressure`: the pressure on every face of an
     !! element surface, as *DLOAD Pk (plane edges) or P (shells, SNEG with the
-    !! sign turned) on its elements.
+    !! sign turned) on its elements. The surface may be `I.S`: instance I's copy
+    !! of the surface S of its part (CalculiX's and Abaqus's name).
     type(deck_state_t), intent(inout) :: st
     character(*), intent(in) :: line
     type(source_loc_t), intent(in) :: loc
     type(load_b_t) :: ld
+    type(surface_b_t) :: sf
     character(:), allocatable :: name
     real(wp) :: p
     integer :: k, i
+    logical :: found
     if (.not. field_count(st, loc, LOAD_FIELDS, LOAD_FIELDS, 'surface, P, pressure')) return
     if (to_upper(fld(st, line, 2)) /= 'P') then
        call report_loc(st, loc, 'unknown *DSLOAD type '''//clip(fld(st, line, 2))//''' (P, a uniform pressure)')
@@ -652,20 +656,25 @@ contains
     do k = 1, st%nsurface
        if (st%surfaces(k)%name == name) exit
     end do
-    if (k > st%nsurface) then
-       call report_loc(st, loc, 'unknown surface '''//clip(fld(st, line, 1))//''' (define it with *SURFACE, '// &
-            'TYPE=ELEMENT before the step)')
-       return
+    if (k <= st%nsurface) then
+       sf = st%surfaces(k)
+    else
+       call instance_surface(st, name, sf, found)   ! I.S: instance I's copy of its part's surface S
+       if (.not. found) then
+          call report_loc(st, loc, 'unknown surface '''//clip(fld(st, line, 1))//''' (define it with *SURFACE, '// &
+               'TYPE=ELEMENT before the step)')
+          return
+       end if
     end if
-    if (st%surfaces(k)%nodal) then
+    if (sf%nodal) then
        call report_loc(st, loc, '*DSLOAD on the node surface '//name//' (TYPE=NODE): a pressure needs '// &
             'element faces (*SURFACE, TYPE=ELEMENT)')
        return
     end if
-    do i = 1, st%surfaces(k)%n
-       ld%ref = st%surfaces(k)%refs(i)
-       ld%kind = st%surfaces(k)%kinds(i)
-       ld%value = st%surfaces(k)%signs(i)*p
+    do i = 1, sf%n
+       ld%ref = sf%refs(i)
+       ld%kind = sf%kinds(i)
+       ld%value = sf%signs(i)*p
        ld%surface = .true.
        ld%loc = loc
        call add_load(st%steps(st%card_item), ld, .true.)

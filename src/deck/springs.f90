@@ -12,11 +12,13 @@ module superjoin_deck_springs
   !!   relative displacement along that line, as a linear SPRINGA does.
   !! The generated cards are named SPRING_<elset> (SPRING2) and
   !! SPRINGA_<elset>_<id> (SPRINGA); their lines point at the *ELEMENT data line.
+  !! Springs inside a *PART become these cards once per instance I of the
+  !! part, named I.SPRING_<elset> and I.SPRINGA_<elset>_<id>.
   use superjoin_kinds, only: wp, ip
   use superjoin_model_types, only: source_loc_t, NDOF_NODE, LINK_FINITE
   use superjoin_deck_state, only: deck_state_t, spring_card_b_t, spring_elem_b_t, support_b_t, &
        contact_b_t, cline_b_t, report_loc, add_support, add_contact, add_cline, add_orientation, file_of, &
-       SPRING_1, SPRING_2, SPRING_A
+       SPRING_1, SPRING_2, SPRING_A, SUBK_PART, SUBK_INSTANCE, SUBK_NESTED
   use superjoin_utils_strings, only: itoa
   use superjoin_utils_sorting, only: sort_index, find_sorted
   implicit none (type, external)
@@ -60,7 +62,8 @@ contains
     type(spring_card_b_t), intent(in) :: card
     logical, intent(inout) :: used(:)
     type(id_index_t), intent(inout) :: nodes(:)
-    integer :: e, kind, first, dof1, dof2, icontact
+    integer :: e, kind, first, dof1, dof2, icontact, ih
+    integer, allocatable :: homes(:)
     real(wp) :: k
     logical :: ok
     kind = 0
@@ -94,24 +97,72 @@ contains
     call card_data(st, card, kind, dof1, dof2, k, ok)
     if (.not. ok) return
     if (.not. (k > 0.0_wp)) return          ! k = 0: no connection, as a contact g = 0
-    icontact = 0
-    do e = first, st%nspring_elem
-       associate (se => st%spring_elems(e))
-         if (se%sub /= card%sub .or. se%elset /= card%elset) cycle
-         select case (kind)
-         case (SPRING_1)
-            call spring_support(st, se, dof1, k)
-         case (SPRING_2)
-            if (icontact == 0) call new_contact(st, 'SPRING_'//card%elset, '', card%sub, card%loc, icontact)
-            call spring_link(st, se, icontact, dof1, k)
-         case (SPRING_A)
-            if (.not. allocated(nodes(se%sub)%order)) call sort_ids(st%subs(se%sub)%node_id(1:st%subs(se%sub)%nnode), &
-                 nodes(se%sub)%order)
-            call springa(st, se, card, k, nodes(se%sub))
-         end select
-       end associate
+    call spring_homes(st, card, homes)
+    do ih = 1, size(homes)
+       icontact = 0
+       do e = first, st%nspring_elem
+          associate (se => st%spring_elems(e))
+            if (se%sub /= card%sub .or. se%elset /= card%elset) cycle
+            select case (kind)
+            case (SPRING_1)
+               call spring_support(st, se, homes(ih), dof1, k)
+            case (SPRING_2)
+               if (icontact == 0) call new_contact(st, prefix(homes(ih))//'SPRING_'//card%elset, '', homes(ih), &
+                    card%loc, icontact)
+               call spring_link(st, se, icontact, dof1, k)
+            case (SPRING_A)
+               if (.not. allocated(nodes(se%sub)%order)) call sort_ids(st%subs(se%sub)%node_id(1:st%subs(se%sub)%nnode), &
+                    nodes(se%sub)%order)
+               call springa(st, se, card, k, nodes(se%sub), homes(ih))
+            end select
+          end associate
+       end do
     end do
+  contains
+    function prefix(h) result(p)
+      !! 'I.' for the copy in instance h of a part's spring, '' for the block's own.
+      integer, intent(in) :: h
+      character(:), allocatable :: p
+      p = ''
+      if (h /= card%sub) p = st%subs(h)%name//'.'
+    end function prefix
   end subroutine translate_card
+
+  subroutine spring_homes(st, card, homes)
+    !! The substructures a *SPRING card's elements stand in: its block, or for
+    !! springs inside a *PART each instance of the part (Abaqus copies a part's
+    !! elements to every instance; the stiffness, SPRINGA's line and its frame
+    !! are the instance's, placed). A part that an instance inside another part
+    !! places is refused (its copies exist only when the parts are unfolded).
+    type(deck_state_t), intent(inout) :: st
+    type(spring_card_b_t), intent(in) :: card
+    integer, allocatable, intent(out) :: homes(:)
+    integer :: k, n
+    logical, allocatable :: mine(:)
+    if (st%subs(card%sub)%kind /= SUBK_PART) then
+       homes = [card%sub]
+       return
+    end if
+    allocate (mine(st%nsub), source=.false.)
+    do k = 1, st%nsub
+       if (st%subs(k)%inst <= 0) cycle
+       if (st%instances(st%subs(k)%inst)%part /= st%subs(card%sub)%name) cycle
+       mine(k) = st%subs(k)%kind == SUBK_INSTANCE
+       if (st%subs(k)%kind /= SUBK_NESTED) cycle
+       call report_loc(st, card%loc, 'spring elements inside *PART '//st%subs(card%sub)%name//', which an '// &
+            '*INSTANCE inside another part places, are not supported (write them as *SUPPORT or *CONTACT cards '// &
+            'in the assembly, with the instances'' nodes I.n)')
+       allocate (homes(0))
+       return
+    end do
+    allocate (homes(count(mine)))
+    n = 0
+    do k = 1, st%nsub
+       if (.not. mine(k)) cycle
+       n = n + 1
+       homes(n) = k
+    end do
+  end subroutine spring_homes
 
   subroutine card_data(st, card, kind, dof1, dof2, k, ok)
     !! The DOF line (SPRING1: i; SPRING2: i, j) and the stiffness line; a
@@ -183,14 +234,15 @@ contains
     end function dof_value
   end subroutine card_data
 
-  subroutine spring_support(st, se, dof, k)
+  subroutine spring_support(st, se, home, dof, k)
+    !! SPRING1 element se in substructure home: an elastic support.
     type(deck_state_t), intent(inout) :: st
     type(spring_elem_b_t), intent(in) :: se
-    integer, intent(in) :: dof
+    integer, intent(in) :: home, dof
     real(wp), intent(in) :: k
     type(support_b_t) :: s
     s%ref%id = se%nid(1)
-    s%ref%home = se%sub
+    s%ref%home = home
     s%dofs(dof) = .true.
     s%state = LINK_FINITE
     s%g = k
@@ -231,14 +283,16 @@ contains
     call add_cline(st, c)
   end subroutine spring_link
 
-  subroutine springa(st, se, card, k, nodes)
+  subroutine springa(st, se, card, k, nodes, home)
     !! An axial spring: a frame with axis 1 along node 1 -> node 2 and a
-    !! contact k on its DOF 1.
+    !! contact k on its DOF 1, in substructure home (an instance of the part
+    !! se stands in: its nodes placed, the names prefixed by the instance's).
     type(deck_state_t), intent(inout) :: st
     type(spring_elem_b_t), intent(in) :: se
     type(spring_card_b_t), intent(in) :: card
     real(wp), intent(in) :: k
     type(id_index_t), intent(in) :: nodes
+    integer, intent(in) :: home
     real(wp) :: x(3, 2), e1(3), e2(3), e3(3), len_a
     integer :: i, io, ic
     integer(ip) :: n
@@ -250,6 +304,8 @@ contains
           return
        end if
        x(:, i) = st%subs(se%sub)%x(:, n)
+       if (home /= se%sub) x(:, i) = matmul(st%instances(st%subs(home)%inst)%rot, x(:, i)) + &
+            st%instances(st%subs(home)%inst)%shift
     end do
     e1 = x(:, 2) - x(:, 1)
     len_a = norm2(e1)
@@ -264,11 +320,12 @@ contains
     e2 = e2/norm2(e2)
     e3 = [e1(2)*e2(3) - e1(3)*e2(2), e1(3)*e2(1) - e1(1)*e2(3), e1(1)*e2(2) - e1(2)*e2(1)]
     name = 'SPRINGA_'//card%elset//'_'//itoa(se%id)
+    if (home /= se%sub) name = st%subs(home)%name//'.'//name
     call add_orientation(st, name, se%loc, io)
     st%orientations(io)%q(1, :) = e1
     st%orientations(io)%q(2, :) = e2
     st%orientations(io)%q(3, :) = e3
-    call new_contact(st, name, name, se%sub, se%loc, ic)
+    call new_contact(st, name, name, home, se%loc, ic)
     call spring_link(st, se, ic, 1, k)
   end subroutine springa
 

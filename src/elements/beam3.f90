@@ -51,7 +51,7 @@ module superjoin_elements_beam3
   end type beam3_props_t
 
   public :: beam3_stiffness, beam3_end_forces, beam3_nodal_forces, beam3_load
-  public :: beam3_thermal_load, beam3_thermal_end_forces
+  public :: beam3_thermal_load, beam3_thermal_end_forces, beam3_middle_section
 
 contains
 
@@ -246,21 +246,16 @@ contains
     real(wp), intent(in) :: w(3)
     real(wp), intent(out) :: fg(:)
     type(error_t), allocatable, intent(out) :: error
-    real(wp) :: r(3, 3), jac, nf(NNODE), ds(NNODE), g(6, 2)
+    real(wp) :: g(6, 2)
     real(wp), allocatable :: fe(:)
-    integer :: a
 
     fg = 0.0_wp
     if (size(x, 2) /= NNODE .or. size(fg) /= NDOF*NNODE) then
        call fatal_error(error, EXIT_DECK, 'a B32 element needs 3 nodes')
        return
     end if
-    do a = 1, 2
-       call point(x, sec, merge(-1.0_wp, 1.0_wp, a == 1), r, jac, nf, ds, error)
-       if (allocated(error)) return
-       g(1:3, a) = matmul(transpose(r), f(1:3, a))
-       g(4:6, a) = matmul(transpose(r), f(4:6, a))
-    end do
+    call global_end_forces(x, sec, f, g, error)
+    if (allocated(error)) return
     call beam3_load(x, w, fe, error)
     if (allocated(error)) return
     fg(1:6) = g(:, 1)
@@ -322,4 +317,80 @@ contains
        f(4:6, a) = matmul(r, fe(o + 4:o + 6))
     end do
   end subroutine beam3_thermal_end_forces
+  pure subroutine beam3_middle_section(x, sec, f, w, s, error)
+    !! The section forces at the middle node (ξ = 0), in the local frame of the
+    !! tangent there: s = n, vy, vz, t, my, mz, signed as the end forces of
+    !! node 3 (the force the part beyond the section exerts on the part before
+    !! it). From the equilibrium of each half, with the end node's forces f(6, 2)
+    !! (beam3_end_forces) and the load w(3) per unit length (global axes) on the
+    !! half; the mean of the two (they differ by a load on the middle node). A
+    !! simply supported member under q: M = q L²/8 there, where the mean of the
+    !! end values is 0.
+    real(wp), intent(in) :: x(:, :)
+    type(section_t), intent(in) :: sec
+    real(wp), intent(in) :: f(6, 2)
+    real(wp), intent(in) :: w(3)
+    real(wp), intent(out) :: s(6)
+    type(error_t), allocatable, intent(out) :: error
+    real(wp) :: r(3, 3), jac, nf(NNODE), ds(NNODE), g(6, 2), half(6, 2), sf(3), sm(3)
+    integer :: a
+    s = 0.0_wp
+    if (size(x, 1) /= 3 .or. size(x, 2) /= NNODE) then
+       call fatal_error(error, EXIT_DECK, 'a B32 element needs 3 nodes')
+       return
+    end if
+    call global_end_forces(x, sec, f, g, error)
+    if (allocated(error)) return
+    do a = 1, 2
+       half(:, a) = half_load(x, w, merge(-1.0_wp, 1.0_wp, a == 1))
+    end do
+    ! before: S = -(g1 + W), M = -(m1 + (x1 - xm) x g1 + Mw); beyond: S = g3 + W, M = m3 + (x3 - xm) x g3 + Mw
+    sf = 0.5_wp*(g(1:3, 2) + half(1:3, 2) - g(1:3, 1) - half(1:3, 1))
+    sm = 0.5_wp*(g(4:6, 2) + cross(x(:, 3) - x(:, 2), g(1:3, 2)) + half(4:6, 2) &
+         - g(4:6, 1) - cross(x(:, 1) - x(:, 2), g(1:3, 1)) - half(4:6, 1))
+    call point(x, sec, 0.0_wp, r, jac, nf, ds, error)
+    if (allocated(error)) return
+    s(1:3) = matmul(r, sf)
+    s(4:6) = matmul(r, sm)
+  end subroutine beam3_middle_section
+
+  pure subroutine global_end_forces(x, sec, f, g, error)
+    !! The end forces f(6, 2) of beam3_end_forces (each in the frame of the
+    !! tangent at its node) turned to global axes: g(6, 2).
+    real(wp), intent(in) :: x(:, :)
+    type(section_t), intent(in) :: sec
+    real(wp), intent(in) :: f(6, 2)
+    real(wp), intent(out) :: g(6, 2)
+    type(error_t), allocatable, intent(out) :: error
+    real(wp) :: r(3, 3), jac, nf(NNODE), ds(NNODE)
+    integer :: a
+    g = 0.0_wp
+    do a = 1, 2
+       call point(x, sec, merge(-1.0_wp, 1.0_wp, a == 1), r, jac, nf, ds, error)
+       if (allocated(error)) return
+       g(1:3, a) = matmul(transpose(r), f(1:3, a))
+       g(4:6, a) = matmul(transpose(r), f(4:6, a))
+    end do
+  end subroutine global_end_forces
+
+  pure function half_load(x, w, side) result(h)
+    !! The resultant h(1:3) of the load w(3) per unit length (global axes) on
+    !! the half ξ in [0, side] of the element, and its moment h(4:6) about the
+    !! middle node, by 3 Gauss points.
+    real(wp), intent(in) :: x(:, :)
+    real(wp), intent(in) :: w(3), side
+    real(wp) :: h(6)
+    real(wp), parameter :: G3 = sqrt(0.6_wp), W3(3) = [5.0_wp, 8.0_wp, 5.0_wp]/9
+    real(wp) :: xi, nf(NNODE), dn(NNODE), dw(3)
+    integer :: k
+    h = 0.0_wp
+    do k = 1, 3
+       xi = 0.5_wp*side*(1 + G3*(k - 2))
+       nf = [xi*(xi - 1)/2, 1 - xi**2, xi*(xi + 1)/2]
+       dn = [xi - 0.5_wp, -2*xi, xi + 0.5_wp]
+       dw = 0.5_wp*W3(k)*norm2(matmul(x, dn))*w
+       h(1:3) = h(1:3) + dw
+       h(4:6) = h(4:6) + cross(matmul(x, nf) - x(:, 2), dw)
+    end do
+  end function half_load
 end module superjoin_elements_beam3

@@ -37,7 +37,8 @@ module superjoin_elements
   use superjoin_elements_frame, only: beam_frame
   use superjoin_elements_truss, only: truss_stiffness, truss_end_forces, truss_distributed_load
   use superjoin_elements_beam, only: beam_stiffness, beam_end_forces, beam_load
-  use superjoin_elements_beam3, only: beam3_stiffness, beam3_end_forces, beam3_nodal_forces, beam3_load
+  use superjoin_elements_beam3, only: beam3_stiffness, beam3_end_forces, beam3_nodal_forces, beam3_load, &
+       beam3_middle_section
   use superjoin_elements_beam3, only: beam3_thermal_load, beam3_thermal_end_forces
   use superjoin_elements_thermal, only: thermal_plate_resultants, thermal_beam_end_forces, plane_centroid_remainder
   use superjoin_elements_shell8_loads, only: s8r_thermal_resultants
@@ -53,7 +54,7 @@ module superjoin_elements
 
   public :: element_node_dofs, element_dof_mask, element_stiffness, element_end_forces, beam_distributed_load, &
        element_nodal_forces, element_distributed_load, element_gravity_load
-  public :: element_material_load, distributed_load
+  public :: element_material_load, distributed_load, beam_middle_section
   public :: take_thermal_resultants, element_body_end_forces
   public :: element_drill, plane_centroid_remainder
     !! element_drill(sub, e): the drilling edge mask of element e of sub
@@ -180,6 +181,27 @@ contains
        call unsupported(etype, error)
     end select
   end subroutine element_nodal_forces
+
+  pure subroutine beam_middle_section(etype, x, sec, f, q_local, s, error)
+    !! The section forces s(6) = n, vy, vz, t, my, mz at the middle node of a
+    !! three-node beam (local axes there, signed as the end forces of its last
+    !! node), from its end forces f(6, 2) (element_end_forces) and its load per
+    !! unit length q_local (as beam_distributed_load returns it). Other types: an error.
+    integer, intent(in) :: etype
+    real(wp), intent(in) :: x(:, :)
+    type(section_t), intent(in) :: sec
+    real(wp), intent(in) :: f(6, 2)
+    real(wp), intent(in) :: q_local(3)
+    real(wp), intent(out) :: s(6)
+    type(error_t), allocatable, intent(out) :: error
+    s = 0.0_wp
+    select case (etype)
+    case (ET_B32)
+       call beam3_middle_section(x, sec, f, q_local, s, error)
+    case default
+       call unsupported(etype, error)
+    end select
+  end subroutine beam_middle_section
 
   pure subroutine element_stiffness(etype, x, sec, mat, ke, error, drill)
     !! Element stiffness in global axes, node-major ordering (node 1 DOFs in

@@ -24,9 +24,10 @@ module superjoin_output_frd
   !! elem_offset). The file carries no date: the same bytes on every run.
   use superjoin_kinds, only: wp, i8, ip
   use superjoin_error, only: error_t
-  use superjoin_model_types, only: model_t, NDOF_NODE, REQ_NODE_FILE, REQ_EL_FILE, LINK_NONE
+  use superjoin_model_types, only: model_t, substructure_t, NDOF_NODE, REQ_NODE_FILE, REQ_EL_FILE, LINK_NONE, &
+       DLOAD_CENTRIF, DLOAD_THERMAL
   use superjoin_model_results, only: result_fields_t
-  use superjoin_elements, only: element_tensor, element_stresses, NTENSOR
+  use superjoin_elements, only: element_tensor, element_stresses, NTENSOR, beam_middle_section, distributed_load
   use superjoin_elements_traits, only: element_traits_t, element_traits, FAMILY_TRUSS, FAMILY_BEAM, &
        FAMILY_PLANE, FAMILY_SHELL, FAMILY_SOLID
   use superjoin_utils_text_buffer, only: text_buffer_t
@@ -289,9 +290,10 @@ contains
     !! and 2-directions (superjoin's local y, z), SZZ normal force, SXY torque,
     !! SYZ, SZX moments about the 1- and 2-directions; the resultant of the
     !! stresses on the face whose normal is the beam's axis (the end forces of
-    !! the last node, of node 1 negated); a three-node beam's middle node: the
-    !! mean of its ends (exact without a load along the element); the mean
-    !! where beams meet, 0 at other nodes.
+    !! the last node, of node 1 negated); a three-node beam's middle node: from
+    !! the equilibrium of its halves under its load per unit length
+    !! (beam_middle_section; the mean of the ends missed q L²/8 under a uniform
+    !! q); the mean where beams meet, 0 at other nodes.
     type(model_t), intent(in) :: model
     type(result_fields_t), intent(in) :: fields
     integer, intent(in) :: is
@@ -299,28 +301,26 @@ contains
     integer, parameter :: TO_CCX(6) = [2, 3, 1, 4, 5, 6]   ! from superjoin's N, Vy, Vz, T, My, Mz
     integer, allocatable :: cnt(:)
     type(element_traits_t) :: t
-    real(wp) :: cut(NTENSOR, 2)
+    real(wp) :: cut(NTENSOR, 3)
+    real(wp), allocatable :: ql(:, :)
     integer(i8) :: v
     integer :: isub, k
     integer(ip) :: e
     allocate (vals(NTENSOR, fields%vertex_offset(size(model%subs) + 1)), source=0.0_wp)
     allocate (cnt(size(vals, 2)), source=0)
+    call line_loads(model, fields%elem_offset, is, ql)
     do isub = 1, size(model%subs)
        associate (sub => model%subs(isub))
          do e = 1, sub%nelem
             t = element_traits(sub%elem_type(e))
             if (t%family /= FAMILY_BEAM .or. sub%elem_section(e) <= 0) cycle
             cut(:, 1) = -fields%elem_force(TO_CCX, 1, fields%elem_offset(isub) + e, is)
-            cut(:, 2) = fields%elem_force(TO_CCX, 2, fields%elem_offset(isub) + e, is)
-            do k = 1, t%nodes   ! the ends are nodes 1 and t%nodes; a middle node: their mean
+            cut(:, 3) = fields%elem_force(TO_CCX, 2, fields%elem_offset(isub) + e, is)
+            if (t%nodes == 3) call middle_cut(sub, e, fields%elem_force(:, :, fields%elem_offset(isub) + e, is), &
+                 ql(:, fields%elem_offset(isub) + e), cut(:, 2))
+            do k = 1, t%nodes   ! the ends are nodes 1 and t%nodes
                v = fields%vertex_offset(isub) + sub%elem_nodes(k, e)
-               if (k == 1) then
-                  vals(:, v) = vals(:, v) + cut(:, 1)
-               else if (k == t%nodes) then
-                  vals(:, v) = vals(:, v) + cut(:, 2)
-               else
-                  vals(:, v) = vals(:, v) + 0.5_wp*(cut(:, 1) + cut(:, 2))
-               end if
+               vals(:, v) = vals(:, v) + cut(:, merge(3, k, k == t%nodes))
                cnt(v) = cnt(v) + 1
             end do
          end do
@@ -329,7 +329,66 @@ contains
     do k = 1, NTENSOR
        vals(k, :) = vals(k, :)/real(max(cnt, 1), wp)
     end do
+  contains
+    subroutine middle_cut(sub, e, f, q, c)
+      !! c: the section forces of three-node beam e at its middle node, in ccx's columns.
+      type(substructure_t), intent(in) :: sub
+      integer(ip), intent(in) :: e
+      real(wp), intent(in) :: f(6, 2), q(3)
+      real(wp), intent(out) :: c(NTENSOR)
+      real(wp) :: sm(6)
+      type(error_t), allocatable :: inner
+      call beam_middle_section(sub%elem_type(e), sub%x(:, sub%elem_nodes(1:3, e)), &
+           sub%sections(sub%elem_section(e)), f, q, sm, inner)
+      c = sm(TO_CCX)   ! an error (a degenerate element) was reported by the recovery
+    end subroutine middle_cut
   end subroutine beam_section_forces
+
+  subroutine line_loads(model, elem_offset, is, ql)
+    !! ql(3, element): the load per unit length of each line element in step
+    !! is, as the recovery takes it (distributed_load: PX, PY, PZ, GRAV; a
+    !! load combination superposes those of its steps); CENTRIF and TEMP,
+    !! whose loads the end forces take themselves, are left out.
+    type(model_t), intent(in) :: model
+    integer(i8), intent(in) :: elem_offset(:)
+    integer, intent(in) :: is
+    real(wp), allocatable, intent(out) :: ql(:, :)
+    integer :: c, k
+    allocate (ql(3, elem_offset(size(elem_offset))), source=0.0_wp)
+    c = model%steps(is)%combination
+    if (c == 0) then
+       call add_line_loads(model, elem_offset, is, 1.0_wp, ql)
+       return
+    end if
+    do k = 1, size(model%combinations(c)%steps)
+       call add_line_loads(model, elem_offset, model%combinations(c)%steps(k), model%combinations(c)%factors(k), ql)
+    end do
+  end subroutine line_loads
+
+  subroutine add_line_loads(model, elem_offset, is, factor, ql)
+    !! ql += factor × the loads per unit length of the three-node beams in solved step is (line_loads).
+    type(model_t), intent(in) :: model
+    integer(i8), intent(in) :: elem_offset(:)
+    integer, intent(in) :: is
+    real(wp), intent(in) :: factor
+    real(wp), intent(inout) :: ql(:, :)
+    real(wp), allocatable :: fe(:)
+    real(wp) :: q(3)
+    type(element_traits_t) :: t
+    type(error_t), allocatable :: inner
+    integer :: i
+    if (.not. allocated(model%steps(is)%dloads)) return
+    do i = 1, size(model%steps(is)%dloads)
+       associate (dl => model%steps(is)%dloads(i))
+         if (dl%kind == DLOAD_CENTRIF .or. dl%kind == DLOAD_THERMAL) cycle
+         t = element_traits(model%subs(dl%sub)%elem_type(dl%elem))
+         if (t%family /= FAMILY_BEAM .or. t%nodes /= 3) cycle
+         call distributed_load(model, dl, fe, q, inner)
+         if (allocated(inner)) cycle   ! reported when the loads were assembled
+         ql(:, elem_offset(dl%sub) + dl%elem) = ql(:, elem_offset(dl%sub) + dl%elem) + factor*q
+       end associate
+    end do
+  end subroutine add_line_loads
 
   subroutine link_forces(model, fields, is, vals, mask)
     !! vals(3, vertex): the force of the contact elements (frd type 11,

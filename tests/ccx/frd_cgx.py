@@ -22,7 +22,11 @@ checks that
   section forces in the columns of ccx's *EL FILE, SECTION FORCES) equals
   the closed form V2 = P, M1 = -P (L - x) at every node; sectforc_b32 (the
   same cantilever of four B32, *EL FILE SF added): the same, the middle nodes
-  included;
+  included; sectforc_b32q (four B32 simply supported, L = 1000, under their
+  weight q = 1 along -y): V2 = q (L/2 - x), M1 = q x (L - x)/2 at every node,
+  the middle nodes from the element's equilibrium (the mean of the ends missed
+  q h^2/8 there, h the element's length; ccx 2.20's own SECTION FORCES of this
+  deck are farther off: M1 = 51429 at the support, V2 = 2491 for 500);
 - truss: the two bars at 45 degrees in the x-z plane have |SZX| = SXX and
   SYZ = 0 at their end nodes (the frd order of the shear components).
 Run by hand: cgx -bg JOB.fbd > JOB.cgx.log in OUTDIR/JOB (doc/calculix-dropin.md).
@@ -42,7 +46,8 @@ DEBUG_NOISE = re.compile(r'^At line \d+ of file [^\n]*\nFortran runtime warning:
 RTOL = 1.0e-5
 FILES = '*NODE FILE\nU, RF\n*EL FILE\nS, E\n'
 CASES = [('truss', None), ('b31', None), ('planestrain', None), ('shell1lin', FILES), ('frame2d', '*NODE FILE\nU\n*EL FILE\nS\n'),
-         ('ener_b31', '*NODE FILE\nU\n*EL FILE\nSF\n'), ('sectforc_b32', '*NODE FILE\nU\n*EL FILE\nSF\n')]
+         ('ener_b31', '*NODE FILE\nU\n*EL FILE\nSF\n'), ('sectforc_b32', '*NODE FILE\nU\n*EL FILE\nSF\n'),
+         ('sectforc_b32q', '*NODE FILE\nU\n*EL FILE\nSF\n')]
 # frame2d: decks/frame2d.deck (columns and a girder joined by two RIGID knees, three
 # substructures): its contact elements are two-node elements (frd type 11) of material
 # 1000 + the *CONTACT card, joining the file's numbers of their two nodes.
@@ -207,6 +212,17 @@ def check_case(binary, outdir, job, extra):
         diff = max(abs(sf[n][c] - want[n][c]) for n in want for c in range(6)) / 1e5
         ok = set(sf) == set(want) and diff <= RTOL
         print(f"    {'ok  ' if ok else 'FAIL'} SECTFORC against V2 = P, M1 = -P (L - x): |diff|/max {diff:.1e}")
+        if not ok:
+            failures.append(f'{job} SECTFORC')
+    if job == 'sectforc_b32q':
+        # simply supported, L = 1000, q = 1 along -y (nodes every 125, middle nodes 2, 4, 6, 8):
+        # SYY = V2 = q (L/2 - x), SYZ = M1 = q x (L - x)/2, the rest 0
+        sf = [b for b in blocks if b[0] == 'SECTFORC'][0][2]
+        want = {n: [0.0, 500.0 - 125.0 * (n - 1), 0.0, 0.0, 125.0 * (n - 1) * (1000.0 - 125.0 * (n - 1)) / 2, 0.0]
+                for n in range(1, 10)}
+        diff = max(abs(sf[n][c] - want[n][c]) for n in want for c in range(6)) / 125000.0
+        ok = set(sf) == set(want) and diff <= RTOL
+        print(f"    {'ok  ' if ok else 'FAIL'} SECTFORC against V2 = q (L/2 - x), M1 = q x (L - x)/2: |diff|/max {diff:.1e}")
         if not ok:
             failures.append(f'{job} SECTFORC')
     if job in SOURCES:

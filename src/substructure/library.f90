@@ -234,12 +234,8 @@ contains
     integer :: s
     integer(i8) :: ni
     ni = cond%sys%ni
-    s = find_set(st, loads_key(f_local))
-    if (s == 0) then
-       allocate (error)
-       error%message = 'error: internal: the library entry '//st%key//' has no condensation of these loads'
-       return
-    end if
+    call seen_set(st, f_local, s, error)
+    if (allocated(error)) return
     y(1:ni, :) = f_local(1:ni, :)
     y(ni + 1:, :) = f_local(ni + 1:, :) - st%sets(s)%fstar + matmul(cond%se%k, u_local(ni + 1:, :))
   end subroutine library_ku
@@ -310,12 +306,8 @@ contains
     integer :: s
     integer :: ni
     ni = size(st%t, 1)
-    s = find_set(st, loads_key(f_local))
-    if (s == 0) then
-       allocate (error)
-       error%message = 'error: internal: the library entry '//st%key//' has no condensation of these loads'
-       return
-    end if
+    call seen_set(st, f_local, s, error)
+    if (allocated(error)) return
     if (ni == 0) return
     u_local(1:ni, :) = st%sets(s)%x
     if (size(st%t, 2) > 0) u_local(1:ni, :) = u_local(1:ni, :) - matmul(st%t, u_local(ni + 1:, :))
@@ -332,6 +324,18 @@ contains
     call update(s, f)
     key = digest(s)
   end function loads_key
+
+  subroutine seen_set(st, f_local, s, error)
+    !! The load set of f_local, which the entry must have (an internal error if not).
+    type(stored_t), intent(in) :: st
+    real(wp), intent(in) :: f_local(:, :)
+    integer, intent(out) :: s
+    type(error_t), allocatable, intent(out) :: error
+    s = find_set(st, loads_key(f_local))
+    if (s > 0) return
+    allocate (error)
+    error%message = 'error: internal: the library entry '//st%key//' has no condensation of these loads'
+  end subroutine seen_set
 
   pure integer function find_set(st, key) result(s)
     !! The load set with this key (0: none).

@@ -309,6 +309,7 @@ contains
          '  --check            read and validate the deck only', &
          '  --export-matrix F  also write the assembled stiffness matrix (Matrix Market)', &
          '  --library DIR      keep condensed parts in DIR and load unchanged ones from it', &
+         '  --library-verify   with --library: check a loaded part against its assembled stiffness', &
          '  --vtk FILE         VTK files for ParaView: FILE.pvd and FILE_<step>.vtu', &
          '                     (overrides *OUTPUT, VTK= of the deck)', &
          '  --accept-inaccurate  exit 0 even when the results are judged inaccurate', &
@@ -355,6 +356,8 @@ contains
           check_only = .true.
        case ('--accept-inaccurate')
           opts%accept_inaccurate = .true.
+       case ('--library-verify')
+          opts%library_verify = .true.
        case ('-i')
           ! also "-i " with a trailing blank, as FreeCAD passes it (a blank-padded compare)
           if (i == n) call usage_error('option -i needs a job name (as ccx -i JOB: reads JOB.inp)')

@@ -8,7 +8,7 @@ module superjoin_analysis_condensation
   use superjoin_assembly_assemble, only: max_element_diagonal
   use superjoin_substructure_local_system, only: dof_label
   use superjoin_substructure_cache, only: part_cache_t, part_view_t, acquire_view, entry_condense_loads, &
-       view_stiffness_times, view_spc, view_turn, entry_recover
+       view_ku, view_spc, view_turn, entry_recover, view_need_stiffness
   use superjoin_model_results, only: run_summary_t, run_options_t
   use superjoin_model_notes, only: note
   use superjoin_analysis_factor_reuse, only: kept_factor_t
@@ -81,7 +81,7 @@ contains
     end associate
     call recover_parts(cache, st%parts, st%f_phys, st%u, error)
     if (allocated(error)) return
-    call parts_ku(cache, st%parts, st%u, st%ku)
+    call parts_ku(cache, st%parts, st%f_phys, st%u, st%ku, error)
   end subroutine recover_all
 
   subroutine condense_parts(st, model, opts, cache, summary, notes, error)
@@ -110,6 +110,7 @@ contains
     end if
     solver_name = part_solver(opts)
     if (allocated(opts%library)) cache%library%dir = opts%library
+    cache%library%verify = opts%library_verify
     allocate (st%parts(summary%n_condensed))
     st%f_eff = st%f_phys
     computed0 = cache%computed
@@ -124,6 +125,10 @@ contains
          if (allocated(error)) return
          if (allocated(parts(ip_)%notes)) notes = [notes, parts(ip_)%notes]
          if (parts(ip_)%rotated) nrot = nrot + 1
+         ! full_health forms k u0 with the part's own k (a library entry is loaded without it)
+         if (any(st%tr%prescribed(parts(ip_)%pdof) /= 0.0_wp)) &
+              call view_need_stiffness(cache, parts(ip_), model, table, bnd, error)
+         if (allocated(error)) return
          call view_spc(cache, parts(ip_), spc)
          do i = 1, size(spc)
             if (any(f_phys(spc(i), :) /= 0.0_wp)) then
@@ -257,20 +262,23 @@ contains
     end do
   end subroutine recover_parts
 
-  subroutine parts_ku(cache, parts, u, ku)
-    !! k u of every condensed substructure, with its own assembled stiffness,
-    !! on the physical DOFs (zero elsewhere): the element forces of the
-    !! recovery for those substructures, without forming an element matrix.
+  subroutine parts_ku(cache, parts, f_phys, u, ku, error)
+    !! k u of every condensed substructure, with its own assembled stiffness
+    !! (a library entry: from the entry, view_ku), on the physical DOFs (zero
+    !! elsewhere): the element forces of the recovery for those
+    !! substructures, without forming an element matrix.
     type(part_cache_t), intent(in) :: cache
     type(part_view_t), intent(in) :: parts(:)
-    real(wp), intent(in) :: u(:, :)
+    real(wp), intent(in) :: f_phys(:, :), u(:, :)
     real(wp), allocatable, intent(out) :: ku(:, :)
+    type(error_t), allocatable, intent(out) :: error
     real(wp), allocatable :: y(:, :)
     integer :: i
     allocate (ku(size(u, 1), size(u, 2)), source=0.0_wp)
     do i = 1, size(parts)
        allocate (y(size(parts(i)%pdof), size(u, 2)))
-       call view_stiffness_times(cache, parts(i), u(parts(i)%pdof, :), y)
+       call view_ku(cache, parts(i), f_phys(parts(i)%pdof, :), u(parts(i)%pdof, :), y, error)
+       if (allocated(error)) return
        ku(parts(i)%pdof, :) = ku(parts(i)%pdof, :) + y
        deallocate (y)
     end do

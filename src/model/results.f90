@@ -18,6 +18,7 @@ module superjoin_model_results
      integer :: condense = -1                   !! -1: as in the deck, else CONDENSE_* for every substructure
      character(:), allocatable :: export_matrix !! Matrix Market path, or unallocated
      character(:), allocatable :: library       !! --library DIR: condensations kept across runs, or unallocated
+     logical :: library_verify = .false.        !! --library-verify: a library hit assembles k and checks its hash
      logical :: quiet = .false.
      logical :: verbose = .false.
      logical :: accept_inaccurate = .false. !! --accept-inaccurate: exit 0 even when results are judged inaccurate

@@ -19,7 +19,7 @@ module superjoin_substructure_cache
   use superjoin_substructure_local_system, only: local_system_t, build_local_system, local_numbering
   use superjoin_substructure_condensed, only: condensed_t, condense, condense_loads, recover_interior
   use superjoin_substructure_library, only: library_t, stored_t, library_enabled, library_condense, &
-       library_need_loads, library_loads, library_recover
+       library_need_loads, library_loads, library_recover, library_stiffness, library_ku
   implicit none (type, external)
   private
 
@@ -76,7 +76,8 @@ module superjoin_substructure_cache
   end type part_view_t
 
   public :: release_cache, acquire_view, view_condense_loads, view_recover, view_stiffness_times, &
-       view_maxratio, view_spc, remote_view, view_turn, entry_recover, entry_condense_loads
+       view_maxratio, view_spc, remote_view, view_turn, entry_recover, entry_condense_loads, view_ku, &
+       view_need_stiffness
 
 contains
 
@@ -142,12 +143,12 @@ contains
        cache%n = cache%n + 1
        allocate (cache%entries(cache%n)%e)
        associate (en => cache%entries(cache%n)%e)
-         call build_local_system(model, table, isub, bnd, en%cond%sys, error)
-         if (allocated(error)) return
-         if (library_enabled(cache%library)) then
+         if (library_enabled(cache%library)) then   ! k assembled only if not loaded
             allocate (en%stored)
-            call library_condense(cache%library, model, table, solver_name, en%cond, en%stored, error)
+            call library_condense(cache%library, model, table, isub, bnd, solver_name, en%cond, en%stored, error)
          else
+            call build_local_system(model, table, isub, bnd, en%cond%sys, error)
+            if (allocated(error)) return
             call condense(model, table, solver_name, en%cond, error)
          end if
          if (allocated(error)) return
@@ -329,6 +330,42 @@ contains
     call cache%entries(view%entry)%e%cond%sys%k%matvec(xc, y_local)
     if (view%rotated) call rotate_local(view, y_local, .true.)
   end subroutine view_stiffness_times
+
+  subroutine view_ku(cache, view, f_local, u_local, y_local, error)
+    !! y = k u of the substructure (this frame) for the loads f_local it was
+    !! condensed with: with its element stiffness, or for a library entry
+    !! from the entry (library_ku, which needs no k).
+    type(part_cache_t), intent(in) :: cache
+    type(part_view_t), intent(in) :: view
+    real(wp), intent(in) :: f_local(:, :), u_local(:, :)
+    real(wp), intent(out) :: y_local(:, :)
+    type(error_t), allocatable, intent(out) :: error
+    real(wp), allocatable :: fc(:, :), uc(:, :)
+    associate (en => cache%entries(view%entry)%e)
+      if (.not. allocated(en%stored)) then
+         call view_stiffness_times(cache, view, u_local, y_local)
+         return
+      end if
+      allocate (fc, source=f_local)
+      allocate (uc, source=u_local)
+      call view_turn(view, fc, .false.)
+      call view_turn(view, uc, .false.)
+      call library_ku(en%cond, en%stored, fc, uc, y_local, error)
+      call view_turn(view, y_local, .true.)
+    end associate
+  end subroutine view_ku
+
+  subroutine view_need_stiffness(cache, view, model, table, bnd, error)
+    !! Make sure the view's element stiffness is assembled (a library entry
+    !! is loaded without it) for view_stiffness_times.
+    type(part_cache_t), intent(inout) :: cache
+    type(part_view_t), intent(in) :: view
+    type(model_t), intent(in) :: model
+    type(dof_table_t), intent(in) :: table
+    logical, intent(in) :: bnd(:)
+    type(error_t), allocatable, intent(out) :: error
+    call library_stiffness(model, table, bnd, cache%entries(view%entry)%e%cond, error)
+  end subroutine view_need_stiffness
 
   subroutine view_maxratio(cache, view, ratio, p)
     !! MAXRATIO of the interior factor and its physical DOF in this substructure.

@@ -3,24 +3,28 @@ module superjoin_substructure_library
   !! condensed part is kept in DIR as one file named by a content key, and a
   !! later run whose part has the same key loads it instead of condensing.
   !!
-  !! The key is the SHA-256 of everything the condensation depends on, taken
-  !! where it is complete: the part's local stiffness k as assembled from its
-  !! nodes, elements, materials and sections (pattern and values, local
-  !! numbering), its boundary DOF map (local node and DOF of every local DOF,
-  !! interior first), the element formulation version, the file format
-  !! version and the solver of the condensations. A load set is matched by
-  !! the SHA-256 of the part's local loads (interior and boundary, every
-  !! step) inside the entry.
+  !! The key is the SHA-256 of everything the condensation depends on, its
+  !! inputs (superjoin_substructure_library_key: coordinates, elements,
+  !! sections, materials, drilling masks, boundary DOF map, solver, program
+  !! and formulation versions), so that a hit does not assemble the part's
+  !! stiffness. A load set is matched by the SHA-256 of the part's local loads
+  !! (interior and boundary, every step) inside the entry. Safety net: the
+  !! entry keeps the hash of a few sample element stiffnesses, recomputed and
+  !! compared on every load, and the hash of the assembled k, compared on
+  !! load under --library-verify (which then assembles k): a mismatch is a
+  !! stale entry, condensed anew.
   !!
   !! An entry holds K*, MAXRATIO of the interior factor, the interior DOFs
   !! without stiffness, the recovery operator T = k_ii⁻¹ k_ib (dense ni × nb)
   !! and, per load set, x = k_ii⁻¹ f_i and f* = f_b − k_bi x. Recovery is then
-  !! u_i = x − T u_b, without a factor: a library hit costs the assembly of
-  !! k (the key, and kept for k u: the element forces and reactions), the
-  !! hashing and the reading. Runs with a
-  !! library recover with T whether they stored or loaded the entry, so their
-  !! results are the same to the byte. Loads never seen by the entry need the
-  !! factor: the part is condensed anew and the entry rewritten.
+  !! u_i = x − T u_b, without a factor, and k u = [f_i; f_b − f* + K* u_b]
+  !! (library_ku: the element forces and reactions), without k: a library hit
+  !! costs the key, the sample elements and the reading. Runs with a
+  !! library recover with T and form k u so whether they stored or loaded the
+  !! entry, so their results are the same to the byte. Loads never seen by the
+  !! entry need the factor: the part is condensed anew and the entry rewritten.
+  !! k is assembled after a hit only where it is asked for (library_stiffness:
+  !! prescribed displacements on the part, whose k u0 the health check needs).
   !!
   !! File: magic, format version, key, payload, then the SHA-256 of all that
   !! precedes it, written and read field by field (one unformatted stream
@@ -35,7 +39,8 @@ module superjoin_substructure_library
   use superjoin_model_types, only: model_t, string_t
   use superjoin_model_notes, only: note
   use superjoin_assembly_dofs, only: dof_table_t
-  use superjoin_substructure_local_system, only: build_local_system
+  use superjoin_substructure_local_system, only: build_local_system, local_numbering
+  use superjoin_substructure_library_key, only: input_key, sample_hash, stiffness_hash, KEY_LEN
   use superjoin_substructure_condensed, only: condensed_t, condense
   use superjoin_solvers_solver, only: subtract_bi
   use superjoin_utils_sha256, only: sha256_t, update, digest
@@ -45,13 +50,11 @@ module superjoin_substructure_library
   implicit none (type, external)
   private
 
-  integer, parameter, public :: FORMULATION_VERSION = 1
-    !! Bump when element code changes what k is (keys of older entries then differ).
-  integer(i8), parameter :: FORMAT_VERSION = 1
-    !! Layout of an entry file.
+  integer(i8), parameter :: FORMAT_VERSION = 2
+    !! Layout of an entry file (2: the sample and stiffness hashes after MAXRATIO).
   character(len=8), parameter :: MAGIC = 'SJCONDLB'
   character(len=*), parameter :: SUFFIX = '.sjc'
-  integer, parameter :: HEX = 64
+  integer, parameter :: HEX = KEY_LEN
   integer(i8), parameter :: HEX_I8 = HEX, MAGIC_I8 = len(MAGIC)
   integer, parameter :: DRAIN_BYTES = 1048576
     !! Bytes read at a time when the rest of an unusable entry is only hashed.
@@ -72,11 +75,14 @@ module superjoin_substructure_library
      type(string_t), allocatable :: notes(:)    !! the listing's notes on this part
      real(wp) :: maxratio = 0.0_wp              !! as read from the entry
      integer(i8) :: maxratio_at = 0
+     character(len=HEX) :: samples = ''         !! sample_hash of the part
+     character(len=HEX) :: stiffness = ''       !! stiffness_hash of its assembled k
   end type stored_t
 
   type, public :: library_t
     !! The library of this run (dir unallocated: none).
      character(:), allocatable :: dir
+     logical :: verify = .false.              !! --library-verify: assemble k on a hit and compare its hash
   end type library_t
 
   type :: sink_t
@@ -109,7 +115,8 @@ module superjoin_substructure_library
      end function c_getpid
   end interface
 
-  public :: library_condense, library_need_loads, library_loads, library_recover, library_enabled
+  public :: library_condense, library_need_loads, library_loads, library_recover, library_enabled, &
+       library_stiffness, library_ku
 
 contains
 
@@ -119,13 +126,16 @@ contains
     library_enabled = allocated(lib%dir)
   end function library_enabled
 
-  subroutine library_condense(lib, model, table, solver_name, cond, st, error)
-    !! The condensation of cond%sys (built by the caller): loaded from the
-    !! library when its key has a sound entry, else computed (condense), its
-    !! recovery operator formed and the entry stored. st%notes say which.
+  subroutine library_condense(lib, model, table, isub, bnd, solver_name, cond, st, error)
+    !! The condensation of substructure isub (boundary bnd) into cond: loaded
+    !! from the library when its input key has a sound entry (k not
+    !! assembled), else k assembled, condensed (condense), its recovery
+    !! operator formed and the entry stored. st%notes say which.
     type(library_t), intent(in) :: lib
     type(model_t), intent(in) :: model
     type(dof_table_t), intent(in) :: table
+    integer, intent(in) :: isub
+    logical, intent(in) :: bnd(:)
     character(*), intent(in) :: solver_name
     type(condensed_t), intent(inout) :: cond
     type(stored_t), intent(out) :: st
@@ -133,22 +143,32 @@ contains
     character(:), allocatable :: why, name
     logical :: exists
 
-    name = model%subs(cond%sys%isub)%name
-    st%key = system_key(table, cond, solver_name)
+    name = model%subs(isub)%name
+    cond%sys%isub = isub
+    call local_numbering(table, isub, bnd, cond%sys%pdof, cond%sys%ni)
+    cond%sys%nb = size(cond%sys%pdof, kind=i8) - cond%sys%ni
+    st%key = input_key(model, table, isub, cond%sys%pdof, cond%sys%ni, solver_name)
     st%file = lib%dir//'/'//st%key//SUFFIX
     inquire (file=st%file, exist=exists)
     why = ''
     if (exists) then
        call read_entry(st, cond, why)
+       if (len(why) == 0) call check_loaded(lib, model, table, bnd, solver_name, cond, st, why)
        if (len(why) == 0) then
           call note(st%notes, 'library: substructure '//name//' loaded from library (key '//st%key//')')
           return
        end if
        if (allocated(cond%se%k)) deallocate (cond%se%k)
+       if (allocated(cond%spc)) deallocate (cond%spc)
        if (allocated(st%t)) deallocate (st%t)
        if (allocated(st%sets)) deallocate (st%sets)
        call note(st%notes, 'library: entry '//st%key//' not used ('//why//'): condensed anew')
     end if
+    if (.not. allocated(cond%sys%k%val)) call build_local_system(model, table, isub, bnd, cond%sys, error)
+    if (allocated(error)) return
+    st%stiffness = stiffness_hash(cond%sys, solver_name)
+    st%samples = sample_hash(model, isub, error)
+    if (allocated(error)) return
     call condense(model, table, solver_name, cond, error)
     if (allocated(error)) return
     call recovery_operator(cond, st, error)
@@ -157,6 +177,68 @@ contains
     call write_entry(st, cond)
     call note(st%notes, 'library: substructure '//name//' condensed and stored (key '//st%key//')')
   end subroutine library_condense
+
+  subroutine check_loaded(lib, model, table, bnd, solver_name, cond, st, why)
+    !! The safety net on a sound entry: its sample element stiffnesses
+    !! recomputed (always), its assembled k (under --library-verify, which
+    !! keeps k assembled); why says what differs (empty: none).
+    type(library_t), intent(in) :: lib
+    type(model_t), intent(in) :: model
+    type(dof_table_t), intent(in) :: table
+    logical, intent(in) :: bnd(:)
+    character(*), intent(in) :: solver_name
+    type(condensed_t), intent(inout) :: cond
+    type(stored_t), intent(in) :: st
+    character(:), allocatable, intent(inout) :: why
+    type(error_t), allocatable :: error
+    character(len=HEX) :: h
+    h = sample_hash(model, cond%sys%isub, error)
+    if (allocated(error) .or. h /= st%samples) then
+       why = 'its sample element stiffnesses differ: stale'
+       return
+    end if
+    if (.not. lib%verify) return
+    call build_local_system(model, table, cond%sys%isub, bnd, cond%sys, error)
+    if (allocated(error)) then
+       why = 'its stiffness cannot be assembled'
+    else if (stiffness_hash(cond%sys, solver_name) /= st%stiffness) then
+       why = 'its assembled stiffness differs (--library-verify): stale'
+    else
+       call unit_spc_diagonal(cond)
+    end if
+  end subroutine check_loaded
+
+  subroutine library_stiffness(model, table, bnd, cond, error)
+    !! Assemble k of a condensation loaded without it (the interior DOFs
+    !! without stiffness given their unit diagonal, as condense does).
+    type(model_t), intent(in) :: model
+    type(dof_table_t), intent(in) :: table
+    logical, intent(in) :: bnd(:)
+    type(condensed_t), intent(inout) :: cond
+    type(error_t), allocatable, intent(out) :: error
+    if (allocated(cond%sys%k%val)) return
+    call build_local_system(model, table, cond%sys%isub, bnd, cond%sys, error)
+    if (allocated(error)) return
+    call unit_spc_diagonal(cond)
+  end subroutine library_stiffness
+
+  subroutine library_ku(cond, st, f_local, u_local, y, error)
+    !! y = k u of a library part from its entry, without k: the interior rows
+    !! are f_i (k_ii u_i + k_ib u_b with u_i = k_ii⁻¹ (f_i − k_ib u_b)), the
+    !! boundary rows f_b − f* + K* u_b; f* of the load set of f_local.
+    type(condensed_t), intent(in) :: cond
+    type(stored_t), intent(in) :: st
+    real(wp), intent(in) :: f_local(:, :), u_local(:, :)
+    real(wp), intent(out) :: y(:, :)
+    type(error_t), allocatable, intent(out) :: error
+    integer :: s
+    integer(i8) :: ni
+    ni = cond%sys%ni
+    call seen_set(st, f_local, s, error)
+    if (allocated(error)) return
+    y(1:ni, :) = f_local(1:ni, :)
+    y(ni + 1:, :) = f_local(ni + 1:, :) - st%sets(s)%fstar + matmul(cond%se%k, u_local(ni + 1:, :))
+  end subroutine library_ku
 
   subroutine library_need_loads(model, table, bnd, solver_name, cond, st, f_local, error)
     !! Make sure f* of the local loads f_local can be had: the entry has them,
@@ -224,36 +306,14 @@ contains
     integer :: s
     integer :: ni
     ni = size(st%t, 1)
-    s = find_set(st, loads_key(f_local))
-    if (s == 0) then
-       allocate (error)
-       error%message = 'error: internal: the library entry '//st%key//' has no condensation of these loads'
-       return
-    end if
+    call seen_set(st, f_local, s, error)
+    if (allocated(error)) return
     if (ni == 0) return
     u_local(1:ni, :) = st%sets(s)%x
     if (size(st%t, 2) > 0) u_local(1:ni, :) = u_local(1:ni, :) - matmul(st%t, u_local(ni + 1:, :))
   end subroutine library_recover
 
   ! ---- keys
-
-  function system_key(table, cond, solver_name) result(key)
-    !! The SHA-256 of what the condensation of cond%sys depends on.
-    type(dof_table_t), intent(in) :: table
-    type(condensed_t), intent(in) :: cond
-    character(*), intent(in) :: solver_name
-    character(len=HEX) :: key
-    type(sha256_t) :: s
-    call update(s, MAGIC//solver_name//'|')
-    call update(s, [FORMAT_VERSION, int(FORMULATION_VERSION, i8), cond%sys%ni, cond%sys%nb])
-    call update(s, int(table%p_node(cond%sys%pdof), ip))
-    call update(s, int(table%p_dof(cond%sys%pdof), ip))
-    call update(s, [cond%sys%k%n])
-    call update(s, cond%sys%k%colptr)
-    call update(s, int(cond%sys%k%rowind, ip))   ! row numbers of one part fit 32 bits
-    call update(s, cond%sys%k%val)
-    key = digest(s)
-  end function system_key
 
   function loads_key(f) result(key)
     !! The SHA-256 of a load set (shape and values).
@@ -264,6 +324,18 @@ contains
     call update(s, f)
     key = digest(s)
   end function loads_key
+
+  subroutine seen_set(st, f_local, s, error)
+    !! The load set of f_local, which the entry must have (an internal error if not).
+    type(stored_t), intent(in) :: st
+    real(wp), intent(in) :: f_local(:, :)
+    integer, intent(out) :: s
+    type(error_t), allocatable, intent(out) :: error
+    s = find_set(st, loads_key(f_local))
+    if (s > 0) return
+    allocate (error)
+    error%message = 'error: internal: the library entry '//st%key//' has no condensation of these loads'
+  end subroutine seen_set
 
   pure integer function find_set(st, key) result(s)
     !! The load set with this key (0: none).
@@ -330,6 +402,8 @@ contains
     call put_i8(w, [cond%sys%ni, cond%sys%nb, size(cond%spc, kind=i8), cond%maxratio_at, &
          size(st%sets, kind=i8)])
     call put_real(w, [cond%maxratio])
+    call put(w, st%samples)
+    call put(w, st%stiffness)
     call put_i8(w, spc_local(cond))
     call put_real_2d(w, cond%se%k)
     call put_real_2d(w, st%t)
@@ -480,6 +554,8 @@ contains
     end if
     call take(r, ratio)
     st%maxratio = ratio(1)
+    call take(r, st%samples)
+    call take(r, st%stiffness)
     st%maxratio_at = head(4)
     if (.not. (fits(r, head(3), 1_i8) .and. fits(r, head(5), 9_i8))) return   ! a load set: at least 72 bytes
     if (.not. fits(r, 1_i8, head(3) + nb*nb + ni*nb + 9*head(5))) return
@@ -511,18 +587,25 @@ contains
 
   subroutine set_loaded(cond, spc)
     !! What condense leaves beside K*: the boundary's physical DOFs and the
-    !! interior DOFs without stiffness (unit diagonal in k, as condense sets).
+    !! interior DOFs without stiffness (spc: local; their unit diagonal in k,
+    !! as condense sets, where k is assembled).
     type(condensed_t), intent(inout) :: cond
     integer(i8), intent(in) :: spc(:)
-    integer(i8) :: i, j
     cond%se%pdof = cond%sys%pdof(cond%sys%ni + 1:cond%sys%ni + cond%sys%nb)
-    allocate (cond%spc(size(spc)))
-    do i = 1, size(spc, kind=i8)
-       j = spc(i)
-       cond%spc(i) = cond%sys%pdof(j)
+    cond%spc = cond%sys%pdof(spc)
+    call unit_spc_diagonal(cond)
+  end subroutine set_loaded
+
+  subroutine unit_spc_diagonal(cond)
+    !! Diagonal 1 in k (if assembled) at the interior DOFs without stiffness.
+    type(condensed_t), intent(inout) :: cond
+    integer(i8) :: i, j
+    if (.not. allocated(cond%sys%k%val)) return
+    do i = 1, size(cond%spc, kind=i8)
+       j = findloc(cond%sys%pdof, cond%spc(i), dim=1, kind=i8)
        cond%sys%k%val(cond%sys%k%colptr(j + 1) - 1) = 1.0_wp
     end do
-  end subroutine set_loaded
+  end subroutine unit_spc_diagonal
 
   subroutine drain(r)
     !! Hash the bytes of r left before the checksum (an entry read only in

@@ -59,6 +59,7 @@ contains
     type(results_t), intent(out) :: res
     type(error_t), allocatable, intent(out) :: error
     type(solve_context_t) :: ctx
+    ctx%last = .true.
     call solve_group(model, opts, ctx, res, error)
     call release_cache(ctx%cache)
   end subroutine solve_model
@@ -316,6 +317,7 @@ contains
        if (allocated(error)) return
        call parts_maxratio(model, st%table, ctx%cache, st%parts, res, error)
        if (allocated(error)) return
+       if (ctx%last) call release_cache(ctx%cache)   ! the parts' factors: not needed for the element results
        res%log%phase_seconds(PH_SOLVE) = res%log%phase_seconds(PH_SOLVE) + clock%seconds()
        call report_phase(opts%quiet, 'recover interiors', clock%seconds())
        call clock%start()

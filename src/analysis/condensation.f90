@@ -25,6 +25,7 @@ module superjoin_analysis_condensation
      type(part_cache_t) :: cache
      logical :: joint_study = .false.
      type(kept_factor_t) :: factor          !! loads: a factorization kept for a next solve of the same matrix
+     logical :: last = .false.              !! no later solve reuses the condensations: freed once the interiors are recovered
   end type solve_context_t
 
   type, extends(solve_strategy_t), public :: condensed_strategy_t

@@ -299,6 +299,7 @@ contains
        if (joint) then
           call solve_joint_groups(model, grouping%joints(members), opts, r, error)
        else
+          ctx%last = k == ngroup
           call solve_group(model, opts, ctx, r, error)
        end if
        call leave_group(model, swap)

@@ -162,36 +162,35 @@ contains
     real(wp), allocatable :: ql(:, :, :), nt(:, :), f0(:, :, :, :)
     real(wp) :: f(6, 2), fg(MAX_ELEM_DOFS)
     real(wp), allocatable :: fg2(:, :)
-    integer(i8) :: pd(MAX_ELEM_DOFS), ie, ntot
-    integer :: isub, n, is, nstep, nn, stat
+    integer(i8) :: pd(MAX_ELEM_DOFS), ie
+    logical :: heated, skip_plates, plate
+    integer :: isub, n, is, nstep, nn
     integer(ip) :: e
     type(error_t), allocatable :: inner
 
     nstep = size(u, 2)
-    call set_elem_offsets(model, res)
-    ntot = res%fields%elem_offset(size(model%subs) + 1)
-    allocate (res%fields%elem_force(6, 2, ntot, nstep), res%fields%plate(6, ntot, nstep), ql(3, ntot, nstep), &
-         fg2(MAX_ELEM_DOFS, nstep), stat=stat)
-    if (stat /= 0) then
-       call out_of_memory(error, 'the element results', (21*ntot + MAX_ELEM_DOFS)*nstep*BYTES_REAL)
-       return
-    end if
-    res%fields%elem_force = 0.0_wp
-    res%fields%plate = 0.0_wp
-    allocate (own_ku(size(model%subs)), source=.false.)
+    call allocate_element_results(model, nstep, res, ql, nt, error)
+    if (allocated(error)) return
+    allocate (fg2(MAX_ELEM_DOFS, nstep), own_ku(size(model%subs)))
+    own_ku = .false.
     if (parts_done) own_ku = res%summary%sub_condensed
     call unit_vertices(table, in_unit)
-
-    allocate (nt(ntot, nstep), source=0.0_wp)   ! loads: thermal axial force E A alpha dT
     call body_load_fields(model, nstep, res, f0)
     ! Distributed loads in element axes, per element and step.
     call add_dload_terms(model, table, own_ku, res%fields%elem_offset, ql, nt, r)
     call solid_reactions(model, table, own_ku, u, r, error)
     call instance_plate_results(model, table, own_ku, wanted, u, res, done, error)
     if (allocated(error)) return
+    heated = allocated(res%fields%thermal) .or. allocated(res%fields%thermal_nodal) .or. &
+         allocated(res%fields%thermal_curvature_nodal)
     do isub = 1, size(model%subs)
        associate (s => model%subs(isub))
+         ! the plate-type elements of an instance served by instance_plate_results
+         ! whose k u r holds already: nothing is left to do for them without heat
+         skip_plates = done(isub) .and. own_ku(isub) .and. .not. heated
          do e = 1, s%nelem
+            plate = is_plate_type(s%elem_type(e))
+            if (plate .and. skip_plates) cycle
             nn = ELEMENT_NODE_COUNT(s%elem_type(e))
             ie = res%fields%elem_offset(isub) + e
             if (.not. wanted(ie)) then
@@ -200,8 +199,8 @@ contains
             end if
             associate (sec => s%sections(s%elem_section(e)))
               call element_pdofs(model, table, isub, e, pd, n)
-              if (is_solid_type(s%elem_type(e))) cycle   ! solid_reactions, above
-              if (is_plate_type(s%elem_type(e))) then
+              if (.not. plate .and. is_solid_type(s%elem_type(e))) cycle   ! solid_reactions, above
+              if (plate) then
                  ! r takes K_e u_e (the distributed loads of these elements are left out of r above)
                  if (.not. done(isub)) call shell_forces(s%elem_type(e), s%x(:, s%elem_nodes(1:nn, e)), sec, &
                       model%materials(sec%material), u(pd(1:n), :), res%fields%plate(:, ie, :), fg2(1:n, :), inner, &
@@ -368,6 +367,43 @@ contains
        res%fields%elem_offset(isub + 1) = res%fields%elem_offset(isub) + model%subs(isub)%nelem
     end do
   end subroutine set_elem_offsets
+
+  subroutine allocate_element_results(model, nstep, res, ql, nt, error)
+    !! The element results of nstep steps, zero: plate resultants; end forces,
+    !! element-axis loads ql and thermal axial forces nt only where some
+    !! element is not a plate type (a model of plane and shell elements has none).
+    type(model_t), intent(in) :: model
+    integer, intent(in) :: nstep
+    type(results_t), intent(inout) :: res
+    real(wp), allocatable, intent(out) :: ql(:, :, :), nt(:, :)
+    type(error_t), allocatable, intent(inout) :: error
+    integer(i8) :: ntot, nbar
+    integer :: stat
+    call set_elem_offsets(model, res)
+    ntot = res%fields%elem_offset(size(model%subs) + 1)
+    nbar = merge(ntot, 0_i8, any_bar(model))
+    allocate (res%fields%plate(6, ntot, nstep), ql(3, nbar, nstep), stat=stat)
+    if (stat == 0) allocate (nt(nbar, nstep), source=0.0_wp, stat=stat)   ! loads: thermal axial force E A alpha dT
+    if (stat == 0 .and. nbar > 0) allocate (res%fields%elem_force(6, 2, nbar, nstep), source=0.0_wp, stat=stat)
+    if (stat /= 0) then
+       call out_of_memory(error, 'the element results', (6*ntot + 16*nbar)*nstep*BYTES_REAL)
+       return
+    end if
+    res%fields%plate = 0.0_wp
+  end subroutine allocate_element_results
+
+  logical function any_bar(model)
+    !! True when some element of the model is not a plate type (a line or a
+    !! solid element: the ones with end forces in res%fields%elem_force).
+    type(model_t), intent(in) :: model
+    integer :: isub
+    any_bar = .false.
+    do isub = 1, size(model%subs)
+       associate (s => model%subs(isub))
+         if (s%nelem > 0) any_bar = any_bar .or. any(.not. is_plate_type(s%elem_type(1:s%nelem)))
+       end associate
+    end do
+  end function any_bar
 
   subroutine add_dload_terms(model, table, own_ku, elem_offset, ql, nt, r)
     !! The distributed loads of line elements in element axes (ql), their
@@ -600,8 +636,11 @@ contains
     real(wp), allocatable :: mom(:, :)
 
     ! Moments that eccentric (OFFSET=RIGID) translations put on their master's
-    ! rotations: the translation block comes first and fills them.
-    allocate (mom(3, 0:table%nvertex), source=0.0_wp)
+    ! rotations: the translation block comes first and fills them (kept only
+    ! when some unit is eccentric).
+    if (table%nunit > 0) then
+       if (any(table%units(1:table%nunit)%eccentric)) allocate (mom(3, 0:table%nvertex), source=0.0_wp)
+    end if
     do b = 1, NBLOCK
        acc = 0.0_wp
        do v = 1, table%nvertex
@@ -610,7 +649,7 @@ contains
              if (p > 0) acc(c, v) = rt(p)
           end do
        end do
-       if (b == 2) acc = acc + mom
+       if (b == 2 .and. allocated(mom)) acc = acc + mom
        do io = forest%norder(b), 1, -1
           v = forest%order(b, io)
           pu = forest%parent_unit(b, v)

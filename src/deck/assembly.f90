@@ -86,27 +86,6 @@ contains
     end do
     if (nparts == 0 .and. st%ninst == 0) return
 
-    do k = 1, st%nsub
-       if (st%subs(k)%kind /= SUBK_INSTANCE) cycle
-       associate (inst => st%instances(st%subs(k)%inst))
-         p = 0
-         do j = 1, st%nsub
-            if (st%subs(j)%kind == SUBK_PART .and. st%subs(j)%name == inst%part) p = j
-         end do
-         if (p == 0) then
-            call report_loc(st, inst%loc, '*INSTANCE '//st%subs(k)%name//' of undefined part '//inst%part)
-            st%subs(k)%broken = .true.   ! references into it are not reported again
-            cycle
-         end if
-         ! an instance whose data lines were refused is placed as far as they were
-         ! read, so that its nodes exist for the references (no second error)
-         call place_copy(st, model%subs(p), inst, model%subs(k))
-         model%subs(k)%part = part_ord(p)
-         call add_assembly_sets(st, st%subs(k), model%subs(k))
-       end associate
-       if (st%aborted) return
-    end do
-
     ! the parts leave the model; indices of the remaining substructures shift
     allocate (new_index(st%nsub))
     nkeep = 0
@@ -120,9 +99,34 @@ contains
        call report(st, 1, 1, 'the deck defines parts but places no instance of them (*ASSEMBLY, *INSTANCE)')
        return
     end if
+    ! each instance is placed straight into its slot of the new list (one copy of its part)
     allocate (subs(nkeep))
     do k = 1, st%nsub
-       if (new_index(k) > 0) subs(new_index(k)) = model%subs(k)
+       if (new_index(k) == 0) cycle
+       if (st%subs(k)%kind /= SUBK_INSTANCE) then
+          subs(new_index(k)) = model%subs(k)
+          cycle
+       end if
+       associate (inst => st%instances(st%subs(k)%inst), m => subs(new_index(k)))
+         p = 0
+         do j = 1, st%nsub
+            if (st%subs(j)%kind == SUBK_PART .and. st%subs(j)%name == inst%part) p = j
+         end do
+         if (p == 0) then
+            call report_loc(st, inst%loc, '*INSTANCE '//st%subs(k)%name//' of undefined part '//inst%part)
+            st%subs(k)%broken = .true.   ! references into it are not reported again
+            m = model%subs(k)
+            cycle
+         end if
+         ! an instance whose data lines were refused is placed as far as they were
+         ! read, so that its nodes exist for the references (no second error)
+         m%name = model%subs(k)%name
+         m%loc = model%subs(k)%loc
+         call place_copy(st, model%subs(p), inst, m)
+         m%part = part_ord(p)
+         call add_assembly_sets(st, st%subs(k), m)
+       end associate
+       if (st%aborted) return
     end do
     call move_alloc(subs, model%subs)
     do k = 1, st%nsupport

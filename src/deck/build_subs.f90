@@ -46,7 +46,7 @@ contains
     type(sub_b_t), intent(inout) :: b
     type(substructure_t), intent(out) :: m
     integer(ip) :: n, i, j, k, e
-    integer :: a, stat
+    integer :: a, stat, width
 
     m%name = b%name
     m%condense = b%condense
@@ -71,10 +71,13 @@ contains
 
     n = b%nelem
     m%nelem = n
+    ! as many node slots per element as the largest element of this substructure has
+    width = 1
+    if (n > 0) width = max(1, maxval(ELEMENT_NODE_COUNT(b%elem_type(1:n))))
     allocate (m%elem_id(n), m%elem_type(n), m%elem_loc(n), m%elem_order(n), &
-         m%elem_nodes(size(b%elem_nid, 1), n), m%elem_section(n), stat=stat)
+         m%elem_nodes(width, n), m%elem_section(n), stat=stat)
     if (.not. memory_ok(st, stat, b%loc, 'the elements of substructure '//b%name//' ('//itoa(n)//')', &
-         n*((4 + size(b%elem_nid, 1))*BYTES_INT + storage_size(b%loc)/8))) return
+         n*((4 + width)*BYTES_INT + storage_size(b%loc)/8))) return
     m%elem_id(:) = b%elem_id(1:n)
     m%elem_type(:) = b%elem_type(1:n)
     m%elem_loc(:) = b%elem_loc(1:n)

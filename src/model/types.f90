@@ -203,7 +203,7 @@ module superjoin_model_types
      integer(ip) :: nelem = 0
      integer(ip), allocatable :: elem_id(:)         !! user id of local element e
      integer, allocatable :: elem_type(:)           !! ET_* per element
-     integer(ip), allocatable :: elem_nodes(:, :)   !! (MAX_ELEMENT_NODES, nelem) local node indices
+     integer(ip), allocatable :: elem_nodes(:, :)   !! (nodes of its largest element, nelem) local node indices, 0 in unused slots
      integer, allocatable :: elem_section(:)        !! index into sections (0: none)
      integer, allocatable :: elem_drill(:)          !! drilling-membrane edge mask (superjoin_elements_drill_mask)
      type(source_loc_t), allocatable :: elem_loc(:) !! where each element was defined

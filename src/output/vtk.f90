@@ -312,7 +312,11 @@ contains
        do k = 1, 2
           call open_array(lu, 'Float64', 'end'//itoa(k), NCOMP, FORCE_NAMES)
           do c = 1, grid%nelem
-             call put_tuple(lu, merge(fields%elem_force(:, k, c, is), zero, sel%elem(c)))
+             if (.not. allocated(fields%elem_force)) then   ! plane and shell elements only: no end forces
+                call put_tuple(lu, zero)
+             else
+                call put_tuple(lu, merge(fields%elem_force(:, k, c, is), zero, sel%elem(c)))
+             end if
           end do
           call zeros(lu, size(model%links, kind=i8) + grid%nsupport, NCOMP)
           call close_array(lu)

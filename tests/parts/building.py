@@ -17,7 +17,9 @@ order). Checks:
   nesting is solved flattened;
 - the nested run with --condense yes (one condensation of BAY, reused by all
   twelve bays) agrees with the explicit run to 1e-10 of each column's largest
-  value;
+  value, and its listing says per depth what a condensation by level could
+  eliminate (src/analysis/levels.f90: a floor's own, boundary and interior
+  reduced unknowns);
 - the same building turned (instance B by 30 degrees about an inclined axis:
   three placements composed) agrees with its explicit deck (the composed
   translation, then B's rotation) to 1e-10.
@@ -111,8 +113,17 @@ def main(argv):
         print(f"{'ok' if found else 'FAIL'}: listing has '{want}'")
         ok = ok and found
     with open(clst) as f:
-        found = "condensations: 1 computed, 11 reused" in f.read()
+        clisting = f.read()
+    found = "condensations: 1 computed, 11 reused" in clisting
     print(f"{'ok' if found else 'FAIL'}: condensed run computes one condensation of BAY and reuses it 11 times")
+    ok = ok and found
+    # the floors by level: floor 1 exports all it owns (the floor above stands on it), floor 3 exports
+    # nothing (its own variables would be its interior), floor 2 both exports and hangs on floor 1
+    want = ("depth 2: 3 groups (B.F1 .. B.F3), own 96, boundary 96..192 (exported 0..96, attached 0..96), "
+            "interior 0..96 (total 96); depth 1: 1 group (B), own 384, boundary 0 (exported 0, attached 0), "
+            "interior 384 (total 384)")
+    found = want in clisting
+    print(f"{'ok' if found else 'FAIL'}: condensed listing's note on the condensation by level has '{want}'")
     ok = ok and found
     for table in TABLES[:5]:
         good, worst = numeric_compare(c, e, table)

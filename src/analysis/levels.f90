@@ -42,6 +42,8 @@ module superjoin_analysis_levels
     !! One group's scan: which columns are its own, which are seen from outside.
      logical, allocatable :: own(:)
      logical, allocatable :: seen(:)
+     logical, allocatable :: sub_in(:)     !! (nsub) the substructure belongs to the group
+     logical, allocatable :: unit_in(:)    !! (nunit) the unit is a contact of the group
      integer(i8), allocatable :: col(:)    !! work: the columns of one row of T
      real(wp), allocatable :: coef(:)
   end type scan_t
@@ -104,34 +106,38 @@ contains
     g%path = path
     g%depth = count([(path(iu:iu) == '.', iu=1, len(path))]) + 1
     allocate (s%own(tr%ncol()), s%seen(tr%ncol()), source=.false.)
-    allocate (s%col(tr%ncol()), s%coef(tr%ncol()))
+    allocate (s%col(tr%ncol()), s%coef(tr%ncol()), s%sub_in(size(model%subs)), s%unit_in(table%nunit))
+    do iu = 1, size(model%subs)
+       s%sub_in(iu) = inside(path, model%subs(iu)%name)
+    end do
+    do iu = 1, table%nunit
+       s%unit_in(iu) = unit_inside(model, table, path, iu)
+    end do
     do j = 1, tr%ncol()
        if (tr%column_kind(j) == COL_PHYS) then
-          s%own(j) = inside(path, model%subs(table%p_sub(tr%column_ref(j)))%name)
+          s%own(j) = s%sub_in(table%p_sub(tr%column_ref(j)))
        else if (tr%column_kind(j) == COL_DELTA) then
-          s%own(j) = unit_inside(model, table, path, int(tr%column_ref(j)))
+          s%own(j) = s%unit_in(tr%column_ref(j))
        end if
     end do
-    call scan_rows(model, table, forest, tr, path, s, g)
+    call scan_rows(table, forest, tr, s, g)
     do iu = 1, table%nunit
-       if (tr%unit_role(iu) /= ROLE_PLAIN .or. unit_inside(model, table, path, iu)) cycle
+       if (tr%unit_role(iu) /= ROLE_PLAIN .or. s%unit_in(iu)) cycle
        call see_unit(table, tr, table%units(iu), s)
     end do
-    call see_forms(model, table, tr, path, s)
+    call see_forms(tr, s)
     g%own = count(s%own, kind=i8)
     g%exported = count(s%own .and. s%seen, kind=i8)
     g%interior = g%own - g%exported
   end subroutine group_variables
 
-  subroutine scan_rows(model, table, forest, tr, path, s, g)
+  subroutine scan_rows(table, forest, tr, s, g)
     !! The map T row by row: own columns in the row of a DOF outside the group
     !! are seen; a DOF of the group whose tree unit lies outside it is an
     !! attachment.
-    type(model_t), intent(in) :: model
     type(dof_table_t), intent(in) :: table
     type(forest_t), intent(in) :: forest
     type(transform_t), intent(in) :: tr
-    character(*), intent(in) :: path
     type(scan_t), intent(inout) :: s
     type(group_vars_t), intent(inout) :: g
     integer(i8) :: p, v
@@ -139,7 +145,7 @@ contains
     do p = 1, table%np
        call tr%columns_of(p, s%col, s%coef, n)
        if (n == 0) cycle
-       if (.not. inside(path, model%subs(table%p_sub(p))%name)) then
+       if (.not. s%sub_in(table%p_sub(p))) then
           s%seen(s%col(1:n)) = .true.
           cycle
        end if
@@ -147,7 +153,7 @@ contains
        v = vertex_of(table, table%p_sub(p), table%p_node(p))
        iu = forest%parent_unit((table%p_dof(p) - 1)/3 + 1, v)
        if (iu == 0) cycle
-       if (.not. unit_inside(model, table, path, iu)) g%attached = g%attached + 1
+       if (.not. s%unit_in(iu)) g%attached = g%attached + 1
     end do
   end subroutine scan_rows
 
@@ -167,20 +173,17 @@ contains
     end do
   end subroutine see_unit
 
-  subroutine see_forms(model, table, tr, path, s)
+  subroutine see_forms(tr, s)
     !! The columns of the springs on forms (left by loop eliminations) of
     !! contacts outside the group: seen.
-    type(model_t), intent(in) :: model
-    type(dof_table_t), intent(in) :: table
     type(transform_t), intent(in) :: tr
-    character(*), intent(in) :: path
     type(scan_t), intent(inout) :: s
     type(form_spring_t) :: fs
     integer :: k
     do k = 1, tr%nforms()
        fs = tr%form(k)
        if (fs%unit > 0) then
-          if (unit_inside(model, table, path, fs%unit)) cycle
+          if (s%unit_in(fs%unit)) cycle
        end if
        s%seen(fs%col) = .true.
     end do

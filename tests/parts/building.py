@@ -51,7 +51,9 @@ def run(exe, deck, work, name, *extra):
     return csvdir, lst
 
 
-def numeric_compare(a, b, table):
+def numeric_compare(a, b, table, names=flat_names):
+    """Largest difference of two runs' table, relative to each numeric column's largest value; the other
+    columns must agree once a's are written by names (the nested paths as the explicit names, by default)."""
     with open(os.path.join(a, table), newline="") as f:
         ra = list(csv.reader(f))
     with open(os.path.join(b, table), newline="") as f:
@@ -67,7 +69,7 @@ def numeric_compare(a, b, table):
         for j in cols:
             if j in numeric:
                 worst = max(worst, abs(float(x[j]) - float(y[j])) / scale[j])
-            elif flat_names(x[j]) != y[j]:
+            elif names(x[j]) != y[j]:
                 print(f"FAIL: {table}: {x[j]} against {y[j]}")
                 return False, worst
     return worst <= 1e-10, worst

@@ -23,14 +23,13 @@ g-sized term between physical DOFs. Checks:
   compliance) until round-off, and never above: a stiff g inside a group loses
   no digits.
 """
-import csv
 import os
 import sys
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 sys.path.insert(0, os.path.join(HERE, "..", "..", "bench"))
 sys.path.insert(0, HERE)   # first: bench/ has a building.py too
-from building import run, numeric_compare, TABLES, _is_float  # noqa: E402
+from building import run, numeric_compare, TABLES  # noqa: E402
 import gen_building as gb  # noqa: E402
 
 MESH = 2
@@ -113,18 +112,7 @@ def compare(a, b, what, tables=TABLES[:5]):
 
 def largest_difference(a, b):
     """Largest difference of two runs' displacements (same deck but J1's g), relative to each column's largest value."""
-    with open(os.path.join(a, "displacements.csv"), newline="") as f:
-        ra = list(csv.reader(f))
-    with open(os.path.join(b, "displacements.csv"), newline="") as f:
-        rb = list(csv.reader(f))
-    assert len(ra) == len(rb) and ra[0] == rb[0] and all(x[:2] == y[:2] for x, y in zip(ra, rb))
-    worst = 0.0
-    for j in range(len(ra[0])):
-        if not all(_is_float(r[j]) for r in ra[1:]):
-            continue
-        scale = max([abs(float(r[j])) for r in ra[1:]] + [1e-300])
-        worst = max([worst] + [abs(float(x[j]) - float(y[j])) / scale for x, y in zip(ra[1:], rb[1:])])
-    return worst
+    return numeric_compare(a, b, "displacements.csv", names=lambda name: name)[1]
 
 
 def main(argv):

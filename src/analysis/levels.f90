@@ -12,7 +12,9 @@ module superjoin_analysis_levels
   !! - attachments: its DOFs that hang on a node or contact outside it
   !!   (w_b = u_b, the top of each such subtree);
   !! - interior: own z not exported, the only variables a group's K* could
-  !!   eliminate (its boundary: exported + attachments).
+  !!   eliminate (its boundary: exported + attachments);
+  !! - kinds: groups of one depth with the same counts and the same rotation
+  !!   (a proxy for groups alike, which one condensation could serve).
   !!
   !! The solve itself stays flattened (the condensed leaves' K* in one interface
   !! system: analysis/condensation): this module reports, by level, what a
@@ -36,6 +38,7 @@ module superjoin_analysis_levels
      integer(i8) :: exported = 0
      integer(i8) :: attached = 0
      integer(i8) :: interior = 0
+     real(wp) :: rot(3, 3) = 0.0_wp        !! placement of its first substructure (groups alike turn alike)
   end type group_vars_t
 
   type :: scan_t
@@ -107,8 +110,9 @@ contains
     g%depth = count([(path(iu:iu) == '.', iu=1, len(path))]) + 1
     allocate (s%own(tr%ncol()), s%seen(tr%ncol()), source=.false.)
     allocate (s%col(tr%ncol()), s%coef(tr%ncol()), s%sub_in(size(model%subs)), s%unit_in(table%nunit))
-    do iu = 1, size(model%subs)
+    do iu = size(model%subs), 1, -1
        s%sub_in(iu) = inside(path, model%subs(iu)%name)
+       if (s%sub_in(iu)) g%rot = model%subs(iu)%rot
     end do
     do iu = 1, table%nunit
        s%unit_in(iu) = unit_inside(model, table, path, iu)
@@ -219,7 +223,7 @@ contains
   end subroutine describe_levels
 
   function level_line(g) result(line)
-    !! `level D: N groups (first .. last), own a..b, boundary c..d, interior e..f (total t)`.
+    !! `depth D: N groups (first .. last), own a..b, boundary c..d (...), interior e..f (total t), kinds by counts and rotation: k`.
     type(group_vars_t), intent(in) :: g(:)
     character(:), allocatable :: line
     integer(i8) :: bnd(size(g))
@@ -230,8 +234,27 @@ contains
     if (size(g) > 1) line = line//' .. '//g(size(g))%path
     line = line//'), own '//span(g%own)//', boundary '//span(bnd)//' (exported '//span(g%exported)// &
          ', attached '//span(g%attached)//'), interior '//span(g%interior)//' (total '// &
-         itoa(sum(g%interior))//')'
+         itoa(sum(g%interior))//'), kinds by counts and rotation: '//itoa(kinds(g))
   end function level_line
+
+  integer function kinds(g)
+    !! The number of kinds among groups: alike are those of the same counts
+    !! (own, exported, attached, interior) placed with the same rotation, which
+    !! one condensation by level could serve (the others reuse it).
+    type(group_vars_t), intent(in) :: g(:)
+    integer :: i, j
+    logical :: seen
+    kinds = 0
+    do i = 1, size(g)
+       seen = .false.
+       do j = 1, i - 1
+          seen = seen .or. (g(j)%own == g(i)%own .and. g(j)%exported == g(i)%exported .and. &
+               g(j)%attached == g(i)%attached .and. g(j)%interior == g(i)%interior .and. &
+               all(abs(g(j)%rot - g(i)%rot) <= 1.0e-12_wp))
+       end do
+       if (.not. seen) kinds = kinds + 1
+    end do
+  end function kinds
 
   function span(x) result(s)
     !! `a` or `a..b`: the smallest and largest of x.

@@ -122,8 +122,8 @@ def main(argv):
     # the floors by level: floor 1 exports all it owns (the floor above stands on it), floor 3 exports
     # nothing (its own variables would be its interior), floor 2 both exports and hangs on floor 1
     want = ("depth 2: 3 groups (B.F1 .. B.F3), own 96, boundary 96..192 (exported 0..96, attached 0..96), "
-            "interior 0..96 (total 96); depth 1: 1 group (B), own 384, boundary 0 (exported 0, attached 0), "
-            "interior 384 (total 384)")
+            "interior 0..96 (total 96), kinds by counts and rotation: 3; depth 1: 1 group (B), own 384, "
+            "boundary 0 (exported 0, attached 0), interior 384 (total 384), kinds by counts and rotation: 1")
     found = want in clisting
     print(f"{'ok' if found else 'FAIL'}: condensed listing's note on the condensation by level has '{want}'")
     ok = ok and found

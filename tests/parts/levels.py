@@ -143,7 +143,7 @@ def main(argv):
     with open(nlst) as f:
         listing = f.read()
     want = ("condensation by level: not done (the condensed leaves' K* form one interface system); what each "
-            "level could eliminate, in reduced unknowns: depth 2: 3 groups (B.F1 .. B.F3), own 69, boundary 45..93 (exported 0..45, attached 0..48), interior 24..69 (total 117)")
+            "level could eliminate, in reduced unknowns: depth 2: 3 groups (B.F1 .. B.F3), own 69, boundary 45..93 (exported 0..45, attached 0..48), interior 24..69 (total 117), kinds by counts and rotation: 3")
     found = want in listing
     print(f"{'ok' if found else 'FAIL'}: listing has '{want}'")
     ok = ok and found

@@ -41,6 +41,9 @@ module superjoin_analysis_levels
      real(wp) :: rot(3, 3) = 0.0_wp        !! placement of its first substructure (groups alike turn alike)
   end type group_vars_t
 
+  real(wp), parameter :: MAX_SCAN = 2.0e8_wp
+    !! Groups times (DOFs + reduced unknowns) above which the analysis (one pass per group) is skipped.
+
   type :: scan_t
     !! One group's scan: which columns are its own, which are seen from outside.
      logical, allocatable :: own(:)
@@ -209,6 +212,12 @@ contains
     integer :: k, d
     call group_paths(model, paths)
     if (size(paths) == 0) return
+    if (real(size(paths), wp)*real(table%np + tr%ncol(), wp) > MAX_SCAN) then
+       call note(notes, 'condensation by level: not done (the condensed leaves'' K* form one interface system); '// &
+            'the analysis of what each level could eliminate skipped ('//itoa(size(paths))//' groups, a pass '// &
+            'over '//itoa(table%np)//' DOFs each)')
+       return
+    end if
     allocate (g(size(paths)))
     do k = 1, size(paths)
        call group_variables(model, table, forest, tr, paths(k)%s, g(k))

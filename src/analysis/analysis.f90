@@ -29,6 +29,7 @@ module superjoin_analysis
   use superjoin_analysis_policy, only: apply_large, describe_transform, column_groups, count_boundary, &
        choose_condensation, autospc, skip_unloaded_parts, wanted_elements
   use superjoin_analysis_condensation, only: solve_context_t, condensed_strategy_t
+  use superjoin_analysis_levels, only: describe_levels
   use superjoin_analysis_solve_state, only: solve_state_t, plain_strategy_t, PHASE_BUILT, PHASE_ASSEMBLED, PHASE_SOLVED, &
        PHASE_RECOVERED
   use superjoin_analysis_factor_reuse, only: take_factor, keep_factor, solve_with
@@ -178,6 +179,8 @@ contains
     call build_transform(model, st%table, st%forest, st%tr, error, keep)
     if (allocated(error)) return
     call describe_transform(model, st%table, st%tr, st%form, res%summary, notes)
+    if (res%summary%n_condensed > 0) &
+         call describe_levels(model, st%table, st%forest, st%tr, notes)
     call choose_strategy(st, res%summary, opts)
     st%phase = PHASE_BUILT
   end subroutine build_phase

@@ -10,7 +10,10 @@ module superjoin_deck_nesting
   !! for each of its instances with their names and substructures prefixed by the
   !! instance's path (`B.F3.J1` between `B.F3.BAY1` and `B.F3.BAY2`). The unfolded
   !! model is then an ordinary one-level assembly: a condensation, if asked, is
-  !! one level (computed once per leaf part), not level by level.
+  !! one level (computed once per leaf part), not level by level. A condensed
+  !! run's listing says, per depth, what a condensation by level could
+  !! eliminate (analysis/levels: each group's own, boundary and interior
+  !! reduced unknowns); the solve stays flattened.
   !!
   !! Errors (file:line of the inner *INSTANCE): a part of no definition, a part
   !! that contains itself (directly or through others).

@@ -16,7 +16,8 @@ module superjoin_deck_coupling_build
   !!     u_r = Σ w_i u_i / W + θ_r × (x_r - x̄);
   !!   the reference node's DOFs are the dependent ones, so a force or moment
   !!   on it is distributed to the coupled nodes by the transpose;
-  !! - *MPC BEAM, PLANE, STRAIGHT (CalculiX, nonlinear there): their linear forms (mpc);
+  !! - *MPC BEAM, PLANE, STRAIGHT, MEANROT (CalculiX, nonlinear there): their linear forms
+  !!   (mpc, mpc_meanrot);
   !! - a DCOUP3D element with its *DISTRIBUTING COUPLING nodes and weights w_i,
   !!   read as its dialect says (dcoup): CalculiX's, the reference node's
   !!   translations are the weighted mean u_r = Σ w_i u_i / W (its position does
@@ -31,7 +32,7 @@ module superjoin_deck_coupling_build
   use superjoin_deck_state, only: deck_state_t, report_loc, ref_t, reading_dialect
   use superjoin_deck_build_common, only: resolve_items, resolve_sub, where
   use superjoin_deck_coupling_records, only: coupling_b_t, COUPLE_NONE, COUPLE_KINEMATIC, &
-       COUPLE_DISTRIBUTING, COUPLE_RIGID_BODY, COUPLE_MPC_BEAM, COUPLE_MPC_PLANE, COUPLE_DCOUP
+       COUPLE_DISTRIBUTING, COUPLE_RIGID_BODY, COUPLE_MPC_BEAM, COUPLE_MPC_PLANE, COUPLE_DCOUP, COUPLE_MPC_MEANROT
   use superjoin_model_notes, only: note
   use superjoin_utils_strings, only: itoa, pick
   implicit none (type, external)
@@ -511,6 +512,10 @@ contains
     logical :: ok
     call mpc_nodes(st, model, cb, subs, nodes, ok)
     if (.not. ok) return
+    if (cb%kind == COUPLE_MPC_MEANROT) then
+       call mpc_meanrot(st, model, cb%loc, subs, nodes, list)
+       return
+    end if
     need = MPC_MIN_NODES(cb%kind - COUPLE_MPC_BEAM + 1)
     if (size(nodes) < need .or. (cb%kind == COUPLE_MPC_BEAM .and. size(nodes) /= need)) then
        call report_loc(st, cb%loc, '*MPC: '//mpc_name(cb%kind)//' needs '//trim(merge('exactly ', 'at least', &
@@ -566,6 +571,8 @@ contains
        s = 'BEAM'
     case (COUPLE_MPC_PLANE)
        s = 'PLANE'
+    case (COUPLE_MPC_MEANROT)
+       s = 'MEANROT'
     case default
        s = 'STRAIGHT'
     end select
@@ -593,6 +600,80 @@ contains
     end do
     ok = .true.
   end subroutine mpc_nodes
+
+  subroutine mpc_meanrot(st, model, loc, subs, nodes, list)
+    !! *MPC MEANROT (CalculiX): each participating node listed three times (one
+    !! per DOF), then an extra node whose position gives the axis a and whose
+    !! DOF 1 is the mean rotation θ about it. Linearised: with c the centroid of
+    !! the m participating nodes, r_j = x_j - c, w_j = a × r_j, each node's
+    !! rotation about the axis through c is θ_j = w_j·(u_j - ū)/|w_j|² (ū the
+    !! mean of the u_j: a translation turns nothing), and θ is their mean over
+    !! the m nodes, a node on the axis (w_j = 0) counting with the angle 0, as
+    !! ccx 2.20 does (measured on beammrlin with the whole tip face in the MPC):
+    !!   Σ_j (g_j - ḡ)·u_j / m - θ = 0,  g_j = w_j/|w_j|² (0 on the axis), ḡ = Σ g_j / m.
+    !! A rigid turn by θ about any parallel axis satisfies it; its transpose
+    !! spreads a *CLOAD on the extra node's DOF 1 (a torque) over the nodes.
+    type(deck_state_t), intent(inout) :: st
+    type(model_t), intent(in) :: model
+    type(source_loc_t), intent(in) :: loc
+    integer, intent(in) :: subs(:)
+    integer(ip), intent(in) :: nodes(:)
+    type(eq_list_t), intent(inout) :: list
+    real(wp), allocatable :: x(:, :), g(:, :), c(:, :)
+    real(wp) :: a(3), w(3), q, qmax
+    integer, allocatable :: order(:)
+    integer :: n, m, j, k, first
+    n = size(nodes)
+    m = (n - 1)/3
+    if (n < 4 .or. mod(n - 1, 3) /= 0) then
+       call report_loc(st, loc, '*MPC MEANROT lists each node three times (once per DOF), then the node whose '// &
+            'position gives the axis and whose DOF 1 is the rotation: got '//itoa(n)//' nodes')
+       return
+    end if
+    do j = 1, m
+       if (any(nodes(3*j - 2:3*j) /= nodes(3*j - 2)) .or. any(subs(3*j - 2:3*j) /= subs(3*j - 2))) then
+          call report_loc(st, loc, '*MPC MEANROT lists each node three times in a row (once per DOF): entries '// &
+               itoa(3*j - 2)//' to '//itoa(3*j)//' differ')
+          return
+       end if
+    end do
+    a = model%subs(subs(n))%x(:, nodes(n))
+    if (norm2(a) == 0.0_wp) then
+       call report_loc(st, loc, '*MPC MEANROT: the last node lies at the origin (its coordinates are the axis)')
+       return
+    end if
+    a = a/norm2(a)
+    allocate (x(3, m), g(3, m), source=0.0_wp)
+    do j = 1, m
+       x(:, j) = model%subs(subs(3*j))%x(:, nodes(3*j))
+    end do
+    qmax = 0.0_wp
+    do j = 1, m
+       qmax = max(qmax, sum(cross(a, x(:, j) - sum(x, dim=2)/m)**2))
+    end do
+    k = 0
+    do j = 1, m
+       w = cross(a, x(:, j) - sum(x, dim=2)/m)
+       q = sum(w**2)
+       if (q <= 1.0e-20_wp*qmax .or. q == 0.0_wp) cycle   ! on the axis: no rotation about it
+       g(:, j) = w/q
+       k = k + 1
+    end do
+    if (k == 0) then
+       call report_loc(st, loc, '*MPC MEANROT: every node lies on the rotation axis (no rotation about it to average)')
+       return
+    end if
+    allocate (c(3, m + 1), source=0.0_wp)
+    do j = 1, m
+       c(:, j) = (g(:, j) - sum(g, dim=2)/m)/m
+    end do
+    c(1, m + 1) = -1.0_wp
+    ! the dependent DOF: the participating node of largest coefficient first
+    first = maxloc([(maxval(abs(c(:, j))), j = 1, m)], 1)
+    order = [first, pack([(j, j = 1, m)], [(j /= first, j = 1, m)]), m + 1]
+    call mpc_row(list, loc, [subs(3*order(1:m)), subs(n)], [nodes(3*order(1:m)), nodes(n)], c(:, order))
+    list%e(list%n)%torque_node = .true.
+  end subroutine mpc_meanrot
 
   subroutine mpc_plane(list, loc, subs, nodes, x)
     !! One equation per node after the third (mpc comment).

@@ -5,9 +5,9 @@ module superjoin_deck_coupling_cards
   !!   choose the DOFs coupled (without a data line: 1-3 for *KINEMATIC, 1-6
   !!   for *DISTRIBUTING);
   !! - `*RIGID BODY, NSET=s | ELSET=s, REF NODE=n[, ROT NODE=m]`;
-  !! - `*MPC` with data lines `BEAM, a, b`, `PLANE, nodes` or `STRAIGHT, nodes`
-  !!   (CalculiX: nonlinear constraints; superjoin's statics keep their linear
-  !!   forms);
+  !! - `*MPC` with data lines `BEAM, a, b`, `PLANE, nodes`, `STRAIGHT, nodes`
+  !!   or `MEANROT, nodes` (CalculiX: nonlinear constraints; superjoin's statics
+  !!   keep their linear forms); `DIST` (an inequality) is refused;
   !! - `*ELEMENT, TYPE=DCOUP3D, ELSET=e` (data lines `element, reference node`)
   !!   and `*DISTRIBUTING COUPLING, ELSET=e` (data lines `node or node set,
   !!   weight`): a distributing coupling element (Abaqus's and CalculiX's
@@ -18,7 +18,7 @@ module superjoin_deck_coupling_cards
   use superjoin_utils_strings, only: to_upper
   use superjoin_deck_state, only: deck_state_t, report_loc, ref_t, SUBK_PART
   use superjoin_deck_coupling_records, only: coupling_b_t, COUPLE_KINEMATIC, COUPLE_DISTRIBUTING, &
-       COUPLE_RIGID_BODY, COUPLE_MPC_BEAM, COUPLE_MPC_PLANE, COUPLE_MPC_STRAIGHT, COUPLE_DCOUP
+       COUPLE_RIGID_BODY, COUPLE_MPC_BEAM, COUPLE_MPC_PLANE, COUPLE_MPC_STRAIGHT, COUPLE_DCOUP, COUPLE_MPC_MEANROT
   use superjoin_deck_cards_common, only: outside_step, check_params, get_param, field_count, fld, &
        get_dof, parse_ref, parse_set_ref, get_real, CARD_SKIP, CARD_COUPLING_DOFS, CARD_MPC, CARD_DCOUP_ELEMENT, &
        CARD_DCOUP_NODES, NAME_LEN
@@ -175,7 +175,7 @@ contains
   end subroutine kw_rigid_body
 
   subroutine kw_mpc(st, kw, loc)
-    !! *MPC: data lines `type, nodes...` (BEAM, PLANE, STRAIGHT).
+    !! *MPC: data lines `type, nodes...` (BEAM, PLANE, STRAIGHT, MEANROT).
     type(deck_state_t), intent(inout) :: st
     type(keyword_line_t), intent(in) :: kw
     type(source_loc_t), intent(in) :: loc
@@ -185,9 +185,9 @@ contains
   end subroutine kw_mpc
 
   subroutine data_mpc(st, line, loc)
-    !! `BEAM, a, b`, `PLANE, nodes...` or `STRAIGHT, nodes...` (nodes or node
-    !! sets); a line that does not start with a name continues the last MPC's
-    !! node list (CalculiX).
+    !! `BEAM, a, b`, `PLANE, nodes...`, `STRAIGHT, nodes...` or `MEANROT,
+    !! nodes...` (nodes or node sets); a line that does not start with a name
+    !! continues the last MPC's node list (CalculiX).
     type(deck_state_t), intent(inout) :: st
     character(*), intent(in) :: line
     type(source_loc_t), intent(in) :: loc
@@ -210,9 +210,17 @@ contains
           c%kind = COUPLE_MPC_PLANE
        case ('STRAIGHT')
           c%kind = COUPLE_MPC_STRAIGHT
+       case ('MEANROT')
+          c%kind = COUPLE_MPC_MEANROT
+       case ('DIST')
+          call report_loc(st, loc, '*MPC DIST is an inequality (the distance of two nodes may not exceed a bound, '// &
+               'free below it): a one-sided condition that a linear solve cannot hold; model it with a contact '// &
+               '(*CONTACT with a gap) instead')
+          st%card = CARD_SKIP
+          return
        case default
           call report_loc(st, loc, '*MPC '''//clip(fld(st, line, 1))//''' is not supported (BEAM, PLANE, '// &
-               'STRAIGHT, linearised; DIST and MEANROT are nonlinear)')
+               'STRAIGHT, MEANROT, linearised)')
           st%card = CARD_SKIP
           return
        end select
@@ -222,7 +230,8 @@ contains
        st%card_item = size(st%couplings)
        first = 2
     else if (st%card_item == 0) then
-       call report_loc(st, loc, '*MPC: the first data line starts with the MPC''s name (BEAM, PLANE, STRAIGHT)')
+       call report_loc(st, loc, '*MPC: the first data line starts with the MPC''s name (BEAM, PLANE, STRAIGHT, '// &
+            'MEANROT)')
        st%card = CARD_SKIP
        return
     end if

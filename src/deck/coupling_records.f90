@@ -11,9 +11,10 @@ module superjoin_deck_coupling_records
 
   integer, parameter, public :: COUPLE_NONE = 0, COUPLE_KINEMATIC = 1, COUPLE_DISTRIBUTING = 2, &
        COUPLE_RIGID_BODY = 3, COUPLE_MPC_BEAM = 4, COUPLE_MPC_PLANE = 5, COUPLE_MPC_STRAIGHT = 6, &
-       COUPLE_DCOUP = 7
+       COUPLE_DCOUP = 7, COUPLE_MPC_MEANROT = 8
     !! What a coupling record is (COUPLE_NONE: a *COUPLING still without its *KINEMATIC/*DISTRIBUTING;
-    !! COUPLE_DCOUP: a DCOUP3D element, its nodes and weights from *DISTRIBUTING COUPLING).
+    !! COUPLE_DCOUP: a DCOUP3D element, its nodes and weights from *DISTRIBUTING COUPLING;
+    !! COUPLE_MPC_MEANROT: *MPC MEANROT, the mean rotation of its nodes).
 
   type, public :: coupling_b_t
     !! One coupling as read: a reference node and its coupled nodes (a surface,

@@ -19,10 +19,18 @@ module superjoin_elements_axisym
   !! CENTRIF) use 3×3 Gauss on quadrilaterals and Dunavant's 7-point rule on
   !! triangles. Stresses: Voigt order xx = σ_r, yy = σ_z, zz = σ_θ (the hoop
   !! stress, as CalculiX and Abaqus print it), xy = τ_rz, xz = yz = 0.
+  !!
+  !! Thermal strains: α ΔT at the nodes, interpolated to the stiffness points
+  !! with the shape functions, ε_th = (Σ N_a α ΔT_a)(1, 1, 1, 0) in (r, z, θ,
+  !! rz); the consistent load 2π ∫ Bᵀ D ε_th r dA with the stiffness rule and
+  !! the stresses D (ε - ε_th) there, so a uniform ΔT on a free body is its
+  !! free expansion u_r = α ΔT r, u_z = α ΔT z (which every element holds
+  !! exactly) without stress, to round-off.
   use superjoin_kinds, only: wp
   use superjoin_error, only: error_t, fatal_error, EXIT_DECK
   use superjoin_model_types, only: material_t, ET_CAX3, ET_CAX4, ET_CAX6, ET_CAX8, ET_CAX8R
   use superjoin_elements_quadratic, only: quadratic_shape
+  use superjoin_model_material_table, only: point_thermal_strain
   use superjoin_elements_solid, only: spd_solve
   use superjoin_elements_quadrature, only: quad_rule_t, gauss_square, triangle_rule, TRI_CENTROID, TRI_THREE, &
        TRI_DUNAVANT5
@@ -30,6 +38,7 @@ module superjoin_elements_axisym
   private
 
   public :: is_axisym_type, axisym_stiffness, axisym_forces, axisym_body_load, axisym_point_tensors
+  public :: axisym_thermal_load, axisym_thermal_energy
   public :: ccx_wedge_tensor
 
   integer, parameter, public :: CCX_AXIAL_SEGMENTS = 180
@@ -220,16 +229,49 @@ contains
     end do
   end subroutine axisym_body_load
 
-  pure subroutine axisym_point_tensors(etype, x, mat, ue, strain, points, nodes, error)
+  pure subroutine axisym_thermal_load(etype, x, mat, eth, fe, error)
+    !! Consistent nodal loads fe(2 nnode) = 2π ∫ Bᵀ D ε_th r dA of the nodal
+    !! thermal strains eth(nnode) (α ΔT), interpolated to the stiffness points.
+    integer, intent(in) :: etype
+    real(wp), intent(in) :: x(:, :), eth(:)
+    type(material_t), intent(in) :: mat
+    real(wp), allocatable, intent(out) :: fe(:)
+    type(error_t), allocatable, intent(out) :: error
+    type(axi_point_t), allocatable :: pts(:)
+    integer :: g
+    call axi_points(x, axi_rule(etype, .false.), pts, error)
+    if (allocated(error)) return
+    allocate (fe(2*size(x, 2)), source=0.0_wp)
+    do g = 1, size(pts)
+       fe = fe + pts(g)%dv*matmul(axi_thermal_stress(mat, pts(g)%n, eth), pts(g)%b)
+    end do
+  end subroutine axisym_thermal_load
+
+  pure function axi_thermal_stress(mat, n, eth) result(s0)
+    !! D ε_th of the thermal strain (Σ N_a eth_a)(1, 1, 1, 0) at a point with
+    !! shape functions n (a table of α: the secant strain there, point_thermal_strain).
+    type(material_t), intent(in) :: mat
+    real(wp), intent(in) :: n(:), eth(:)
+    real(wp) :: s0(4), d(4, 4)
+    d = axi_elasticity(mat)
+    s0 = point_thermal_strain(mat, n, eth)*(d(:, 1) + d(:, 2) + d(:, 3))
+  end function axi_thermal_stress
+
+  pure subroutine axisym_point_tensors(etype, x, mat, ue, strain, points, nodes, error, eth, mechanical)
     !! Stresses (or, strain, strains with tensor shear γ_rz/2) at the stiffness
     !! points, points(6, npoint), and extrapolated to the nodes, nodes(6, nnode):
-    !! Voigt xx = r, yy = z, zz = θ (hoop), xy = rz, xz = yz = 0.
+    !! Voigt xx = r, yy = z, zz = θ (hoop), xy = rz, xz = yz = 0. eth(nnode):
+    !! the nodal thermal strains α ΔT, taken off the strains at the points:
+    !! σ = D (ε - ε_th); the strains are the total ones (as CalculiX prints
+    !! them), or with mechanical ε - ε_th.
     integer, intent(in) :: etype
     real(wp), intent(in) :: x(:, :), ue(:)
     type(material_t), intent(in) :: mat
     logical, intent(in) :: strain
     real(wp), allocatable, intent(out) :: points(:, :), nodes(:, :)
     type(error_t), allocatable, intent(out) :: error
+    real(wp), intent(in), optional :: eth(:)
+    logical, intent(in), optional :: mechanical
     type(axi_point_t), allocatable :: pts(:)
     real(wp) :: eps(4), s(4)
     integer :: g
@@ -239,14 +281,40 @@ contains
     do g = 1, size(pts)
        eps = matmul(pts(g)%b, ue)
        if (strain) then
+          if (present(eth) .and. present(mechanical)) then
+             if (mechanical) eps(1:3) = eps(1:3) - point_thermal_strain(mat, pts(g)%n, eth)
+          end if
           points(1:4, g) = [eps(1:3), 0.5_wp*eps(4)]
        else
           s = matmul(axi_elasticity(mat), eps)
+          ! loads: a temperature change, σ = D (ε - ε_th)
+          if (present(eth)) s = s - axi_thermal_stress(mat, pts(g)%n, eth)
           points(1:4, g) = s
        end if
     end do
     nodes = matmul(points, transpose(axi_extrapolation(etype, size(x, 2))))
   end subroutine axisym_point_tensors
+
+  pure subroutine axisym_thermal_energy(etype, x, mat, ue, eth, energy, error)
+    !! The strain energy 2π ∫ ½ (ε - ε_th)ᵀ D (ε - ε_th) r dA of the whole
+    !! ring with nodal thermal strains eth(nnode), with the stiffness rule.
+    integer, intent(in) :: etype
+    real(wp), intent(in) :: x(:, :), ue(:), eth(:)
+    type(material_t), intent(in) :: mat
+    real(wp), intent(out) :: energy
+    type(error_t), allocatable, intent(out) :: error
+    type(axi_point_t), allocatable :: pts(:)
+    real(wp) :: eps(4)
+    integer :: g
+    energy = 0.0_wp
+    call axi_points(x, axi_rule(etype, .false.), pts, error)
+    if (allocated(error)) return
+    do g = 1, size(pts)
+       eps = matmul(pts(g)%b, ue)
+       eps(1:3) = eps(1:3) - point_thermal_strain(mat, pts(g)%n, eth)
+       energy = energy + 0.5_wp*dot_product(eps, matmul(axi_elasticity(mat), eps))*pts(g)%dv
+    end do
+  end subroutine axisym_thermal_energy
 
   pure function axi_extrapolation(etype, nn) result(e)
     !! e(nnode, npoint): nodal values from the point values. One point: its

@@ -21,6 +21,10 @@ module superjoin_elements
   use superjoin_model_types, only: ET_S8R, ET_S8
   use superjoin_elements_solid, only: solid_stiffness, solid_body_load, is_3d_solid => is_solid_type, &
        solid_3d_forces => solid_forces, solid_thermal_load
+  use superjoin_elements_axisym, only: axisym_thermal_load, axisym_thermal_energy
+  use superjoin_elements_solid_stress, only: solid_thermal_energy
+  use superjoin_elements_thermal, only: thermal_free_field, thermal_beam_free_field
+  use superjoin_elements_traits, only: element_traits, element_traits_t, FAMILY_TRUSS, FAMILY_BEAM, element_family
   use superjoin_elements_axisym, only: is_axisym_type, axisym_stiffness, axisym_forces, axisym_body_load, &
        ccx_wedge_tensor, CCX_AXIAL_SEGMENTS
   use superjoin_model_types, only: ET_CAX3, ET_CAX4, ET_CAX6, ET_CAX8, ET_CAX8R, substructure_t
@@ -67,7 +71,7 @@ module superjoin_elements
   public :: von_mises_tensor, principal_stresses
     !! Von Mises stress and principal values (largest first) of a tensor in
     !! Voigt order (superjoin_elements_solid_stress).
-  public :: element_strain_energy
+  public :: element_strain_energy, element_thermal_energy
   public :: is_plate_type, shell_resultants, shell_forces, shell_result_operator
   public :: is_plane_type, is_plane_strain_type
     !! is_plane_type(etype): plane stress and plane strain types (CPS*, CPE*);
@@ -466,13 +470,15 @@ contains
           fe = fe + f2
           return
        end if
-       if (is_3d_solid(etype)) then
+       if (is_solid_type(etype)) then
           ! a solid: α ΔT at its nodes, interpolated to its points
           if (.not. allocated(dl%nodal)) then
              call fatal_error(error, EXIT_DECK, 'thermal load on a solid without its nodal values')
-             return
+          else if (is_axisym_type(etype)) then
+             call axisym_thermal_load(etype, x, mat, dl%nodal, fe, error)
+          else
+             call solid_thermal_load(etype, x, mat, dl%nodal, fe, error, sec%axes)
           end if
-          call solid_thermal_load(etype, x, mat, dl%nodal, fe, error, sec%axes)
           return
        end if
        if (.not. is_plate_type(etype)) then
@@ -528,7 +534,7 @@ contains
            call element_gravity_load(s%elem_type(dl%elem), s%x(:, s%elem_nodes(1:nn, dl%elem)), sec, &
                 model%materials(sec%material), dl%value*dl%dir, fe, q_local, error)
         else if (dl%kind == DLOAD_CENTRIF .or. (dl%kind == DLOAD_THERMAL .and. (is_plate_type(s%elem_type(dl%elem)) &
-             .or. is_3d_solid(s%elem_type(dl%elem)) .or. any(dl%gradient /= 0.0_wp) &
+             .or. is_solid_type(s%elem_type(dl%elem)) .or. any(dl%gradient /= 0.0_wp) &
              .or. allocated(dl%line_nodal)))) then   ! TEMP: a beam with a gradient, a B32 need E I
            q_local = 0.0_wp   ! CENTRIF on a bar or beam: its end forces take fe itself (superjoin_analysis_recover)
            call element_material_load(s%elem_type(dl%elem), s%x(:, s%elem_nodes(1:nn, dl%elem)), sec, &
@@ -655,6 +661,98 @@ contains
     call element_displacements(model, fields, is, isub, ie, ue)
     energy = 0.5_wp*dot_product(ue, matmul(ke, ue))
   end subroutine element_strain_energy
+
+  subroutine element_thermal_energy(model, fields, is, dl, energy, error)
+    !! The strain energy ½ ∫ (ε - ε_th)ᵀ D (ε - ε_th) dV of the element of the
+    !! thermal load dl (DLOAD_THERMAL) in step is, the energy of its mechanical
+    !! strains (½ u_eᵀ K_e u_e is not, under thermal strains): a solid by its
+    !! stiffness rule with ε_th interpolated from its nodes (solid_thermal_energy,
+    !! axisym_thermal_energy); a truss, a two-node beam, a plane or shell
+    !! element with a uniform thermal strain (and curvature, gradients) by
+    !! ½ (u_e - u_0)ᵀ K_e (u_e - u_0), u_0 the free thermal field, whose strains are ε_th
+    !! (plane strain: plus ½ E (α ΔT)² V of the held expansion across the plane).
+    !! Refused (error): a B32, an S8R, a plane or shell element whose
+    !! temperature varies over it.
+    type(model_t), intent(in) :: model
+    type(result_fields_t), intent(in) :: fields
+    integer, intent(in) :: is
+    type(dload_t), intent(in) :: dl
+    real(wp), intent(out) :: energy
+    type(error_t), allocatable, intent(out) :: error
+    real(wp), allocatable :: ue(:), u0(:), ke(:, :)
+    type(element_traits_t) :: t
+    integer :: nn, etype
+    energy = 0.0_wp
+    etype = model%subs(dl%sub)%elem_type(dl%elem)
+    nn = ELEMENT_NODE_COUNT(etype)
+    t = element_traits(etype)
+    call element_displacements(model, fields, is, dl%sub, dl%elem, ue)
+    associate (s => model%subs(dl%sub), x => model%subs(dl%sub)%x(:, model%subs(dl%sub)%elem_nodes(1:nn, dl%elem)))
+      associate (sec => s%sections(s%elem_section(dl%elem)))
+        associate (mat => model%materials(sec%material))
+          if (is_solid_type(etype) .and. .not. allocated(dl%nodal)) then
+             call fatal_error(error, EXIT_DECK, 'thermal load on a solid without its nodal values')
+          else if (is_axisym_type(etype)) then
+             call axisym_thermal_energy(etype, x, mat, ue, dl%nodal, energy, error)
+          else if (is_3d_solid(etype)) then
+             call solid_thermal_energy(etype, x, mat, ue, dl%nodal, energy, error, sec%axes)
+          else if (allocated(dl%line_nodal) .or. allocated(dl%nodal) .or. allocated(dl%curvature_nodal) .or. &
+               is_shell8(etype)) then
+             call fatal_error(error, EXIT_DECK, 'the strain energy under thermal strains is implemented for solids, '// &
+                  'trusses, two-node beams and plane and shell elements of a uniform temperature, not for '// &
+                  'element type '//trim(t%name)//' or a temperature that varies over a plane or shell element')
+          else
+             if (t%family == FAMILY_TRUSS .or. t%family == FAMILY_BEAM) then
+                call line_free_field(etype, x, sec, mat, dl, u0, error)
+             else
+                call thermal_free_field(etype, x, mat%nu, dl%value, dl%curvature, u0, error)
+             end if
+             if (allocated(error)) return
+             call element_stiffness(etype, x, sec, mat, ke, error, element_drill(s, dl%elem))
+             if (allocated(error)) return
+             energy = 0.5_wp*dot_product(ue - u0, matmul(ke, ue - u0))
+             ! plane strain: the held expansion across the plane, σ_z = -E α ΔT, adds ½ E (α ΔT)² V,
+             ! (1 - 2ν)/(2 (1 + ν)) times the energy ½ u_0ᵀ K_e u_0 of the in-plane free field
+             if (t%plane_strain) energy = energy + (1.0_wp - 2.0_wp*mat%nu)/(2.0_wp*(1.0_wp + mat%nu))* &
+                  0.5_wp*dot_product(u0, matmul(ke, u0))
+          end if
+        end associate
+      end associate
+    end associate
+  end subroutine element_thermal_energy
+
+  pure subroutine line_free_field(etype, x, sec, mat, dl, u0, error)
+    !! The free thermal field u0 (element ordering) of a truss or two-node beam
+    !! under dl: node 2 moved from node 1 by ε_th (x2 - x1), ε_th = dl%value/(E A)
+    !! (dl%value = E A α ΔT), and on a beam the free bending of its gradients.
+    integer, intent(in) :: etype
+    real(wp), intent(in) :: x(:, :)
+    type(section_t), intent(in) :: sec
+    type(material_t), intent(in) :: mat
+    type(dload_t), intent(in) :: dl
+    real(wp), allocatable, intent(out) :: u0(:)
+    type(error_t), allocatable, intent(out) :: error
+    real(wp), allocatable :: ub(:)
+    logical :: mask(6)
+    integer :: d, k, nd
+    mask = element_dof_mask(etype)
+    nd = count(mask)
+    allocate (u0(2*nd), source=0.0_wp)
+    if (mat%e*sec%area == 0.0_wp) then
+       call fatal_error(error, EXIT_DECK, 'thermal strain energy of a bar or beam without E A')
+       return
+    end if
+    k = 0
+    do d = 1, 3
+       if (.not. mask(d)) cycle
+       k = k + 1
+       u0(nd + k) = dl%value/(mat%e*sec%area)*(x(d, 2) - x(d, 1))
+    end do
+    if (element_family(etype) /= FAMILY_BEAM .or. all(dl%gradient == 0.0_wp)) return
+    call thermal_beam_free_field(etype, x, sec, dl%gradient, ub, error)
+    if (allocated(error)) return
+    u0 = u0 + ub
+  end subroutine line_free_field
 
   pure subroutine axisym_centrif_load(etype, x, mat, dl, fe, error)
     !! CENTRIF on an axisymmetric element: the spin axis must be its axis y

@@ -22,13 +22,14 @@ module superjoin_elements_solid_stress
   use superjoin_error, only: error_t
   use superjoin_model_types, only: material_t, orientation_t, ET_C3D8I, ET_C3D6, ET_C3D15, ET_C3D8R
   use superjoin_elements_quadrature, only: quad_rule_t
+  use superjoin_model_material_table, only: point_thermal_strain
   use superjoin_elements_solid, only: solid_rule, point_gradients, strain_matrix, &
        solid_node_coordinates, solid_shape, spd_solve, mode_strains, WEDGE_EDGES, mean_gradients, &
        thermal_point_stress, point_elasticity
   implicit none (type, external)
   private
 
-  public :: solid_point_tensors, solid_extrapolation, von_mises_tensor, principal_stresses
+  public :: solid_point_tensors, solid_extrapolation, von_mises_tensor, principal_stresses, solid_thermal_energy, solid_thermal_points
 
 contains
 
@@ -39,7 +40,8 @@ contains
     !! global axes (axes: the material axes of the section, as solid_stiffness).
     !! eth(nnode): the nodal thermal strains α ΔT, interpolated to the points
     !! and taken off the strains there: σ = D (ε - ε_th); the strains are the
-    !! total ones (ε_th included, as CalculiX prints them).
+    !! total ones (ε_th included, as CalculiX prints them; solid_thermal_points
+    !! gives ε_th at the points, for the mechanical ones).
     integer, intent(in) :: etype
     real(wp), intent(in) :: x(:, :), ue(:)
     type(material_t), intent(in) :: mat
@@ -49,24 +51,16 @@ contains
     type(orientation_t), intent(in), optional :: axes
     real(wp), intent(in), optional :: eth(:)
     type(quad_rule_t) :: r
-    real(wp), allocatable :: n(:), dx(:, :)
-    real(wp) :: eps(6), detj, modes(6, 8), d(6, 6)
+    real(wp), allocatable :: n(:)
+    real(wp) :: eps(6), dv, modes(6, 8), d(6, 6)
     integer :: g
     r = solid_rule(etype, .false.)
-    modes = 0.0_wp
-    if (etype == ET_C3D8I) call mode_strains(x, mat, ue, modes, error, axes, eth)   ! the condensed modes' strains
+    call element_modes(etype, x, mat, ue, modes, error, axes, eth)
     if (allocated(error)) return
     allocate (points(6, size(r%w)))
     do g = 1, size(r%w)
-       if (etype == ET_C3D8R) then      ! its mean strain, at the centre
-          call mean_gradients(x, dx, detj, error)
-          n = spread(1.0_wp/size(x, 2), 1, size(x, 2))
-       else
-          call point_gradients(etype, x, r%xi(:, g), n, dx, detj, error)
-       end if
+       call point_strain(etype, x, r, g, ue, modes, n, eps, dv, error)
        if (allocated(error)) return
-       eps = matmul(strain_matrix(dx), ue)
-       if (etype == ET_C3D8I) eps = eps + modes(:, g)
        if (strain) then
           points(:, g) = [eps(1:3), 0.5_wp*eps(4:6)]
        else
@@ -78,6 +72,93 @@ contains
     end do
     nodes = matmul(points, transpose(solid_extrapolation(etype)))
   end subroutine solid_point_tensors
+
+  pure subroutine solid_thermal_energy(etype, x, mat, ue, eth, energy, error, axes)
+    !! The strain energy ∫ ½ (ε - ε_th)ᵀ D (ε - ε_th) dV of a solid element
+    !! with nodal thermal strains eth(nnode), with its stiffness rule (C3D8R:
+    !! its mean strain times its volume, no hourglass share; C3D8I: with its
+    !! modes' strains).
+    integer, intent(in) :: etype
+    real(wp), intent(in) :: x(:, :), ue(:), eth(:)
+    type(material_t), intent(in) :: mat
+    real(wp), intent(out) :: energy
+    type(error_t), allocatable, intent(out) :: error
+    type(orientation_t), intent(in), optional :: axes
+    type(quad_rule_t) :: r
+    real(wp), allocatable :: n(:)
+    real(wp) :: eps(6), dv, modes(6, 8)
+    integer :: g
+    energy = 0.0_wp
+    r = solid_rule(etype, .false.)
+    call element_modes(etype, x, mat, ue, modes, error, axes, eth)
+    if (allocated(error)) return
+    do g = 1, size(r%w)
+       call point_strain(etype, x, r, g, ue, modes, n, eps, dv, error)
+       if (allocated(error)) return
+       eps(1:3) = eps(1:3) - point_thermal_strain(mat, n, eth)
+       energy = energy + 0.5_wp*dot_product(eps, matmul(point_elasticity(mat, n, x, axes), eps))*dv
+    end do
+  end subroutine solid_thermal_energy
+
+  pure subroutine solid_thermal_points(etype, x, mat, eth, e, error)
+    !! The thermal strains e(npoint) at the stiffness points of a solid with
+    !! nodal thermal strains eth(nnode) (C3D8R: at its centre).
+    integer, intent(in) :: etype
+    real(wp), intent(in) :: x(:, :), eth(:)
+    type(material_t), intent(in) :: mat
+    real(wp), allocatable, intent(out) :: e(:)
+    type(error_t), allocatable, intent(out) :: error
+    type(quad_rule_t) :: r
+    real(wp), allocatable :: n(:)
+    real(wp) :: eps(6), dv, modes(6, 8)
+    integer :: g
+    r = solid_rule(etype, .false.)
+    modes = 0.0_wp
+    allocate (e(size(r%w)), source=0.0_wp)
+    do g = 1, size(r%w)
+       call point_strain(etype, x, r, g, spread(0.0_wp, 1, 3*size(x, 2)), modes, n, eps, dv, error)
+       if (allocated(error)) return
+       e(g) = point_thermal_strain(mat, n, eth)
+    end do
+  end subroutine solid_thermal_points
+
+  pure subroutine element_modes(etype, x, mat, ue, modes, error, axes, eth)
+    !! The condensed incompatible modes' strains modes(6, 8) of a C3D8I at its points (0 for other types).
+    integer, intent(in) :: etype
+    real(wp), intent(in) :: x(:, :), ue(:)
+    type(material_t), intent(in) :: mat
+    real(wp), intent(out) :: modes(6, 8)
+    type(error_t), allocatable, intent(out) :: error
+    type(orientation_t), intent(in), optional :: axes
+    real(wp), intent(in), optional :: eth(:)
+    modes = 0.0_wp
+    if (etype == ET_C3D8I) call mode_strains(x, mat, ue, modes, error, axes, eth)
+  end subroutine element_modes
+
+  pure subroutine point_strain(etype, x, r, g, ue, modes, n, eps, dv, error)
+    !! The strain eps (engineering shears) at point g of rule r, its shape
+    !! functions n and volume dv (C3D8R: its mean strain at the centre, its volume).
+    integer, intent(in) :: etype, g
+    real(wp), intent(in) :: x(:, :), ue(:), modes(6, 8)
+    type(quad_rule_t), intent(in) :: r
+    real(wp), allocatable, intent(out) :: n(:)
+    real(wp), intent(out) :: eps(6), dv
+    type(error_t), allocatable, intent(out) :: error
+    real(wp), allocatable :: dx(:, :)
+    real(wp) :: detj
+    if (etype == ET_C3D8R) then      ! its mean strain, at the centre
+       call mean_gradients(x, dx, detj, error)
+       n = spread(1.0_wp/size(x, 2), 1, size(x, 2))
+       dv = detj
+    else
+       call point_gradients(etype, x, r%xi(:, g), n, dx, detj, error)
+       dv = detj*r%w(g)
+    end if
+    eps = 0.0_wp
+    if (allocated(error)) return
+    eps = matmul(strain_matrix(dx), ue)
+    if (etype == ET_C3D8I) eps = eps + modes(:, g)
+  end subroutine point_strain
 
   pure function solid_extrapolation(etype) result(e)
     !! e(nnode, npoint): the nodal values of the field through (or fitted to,

@@ -17,7 +17,7 @@ module superjoin_elements_stresses
   use superjoin_model_results, only: result_fields_t
   use superjoin_elements_traits, only: element_traits_t, element_traits, FAMILY_TRUSS, FAMILY_PLANE, FAMILY_SHELL, &
        FAMILY_SOLID
-  use superjoin_elements_solid_stress, only: solid_point_tensors
+  use superjoin_elements_solid_stress, only: solid_point_tensors, solid_thermal_points, solid_extrapolation
   use superjoin_elements_axisym, only: is_axisym_type, axisym_point_tensors
   use superjoin_elements_shell, only: s8r_stresses, shell_thermal_nodal_stresses, shell_frame, &
        shell_surface_stresses, quadratic_props, thick_shell_stresses, THICK_SURFACES
@@ -121,7 +121,7 @@ contains
     end associate
   end subroutine element_state
 
-  subroutine element_stresses(model, fields, is, isub, ie, points, nodes, ok, strain)
+  subroutine element_stresses(model, fields, is, isub, ie, points, nodes, ok, strain, mechanical)
     !! Stress tensors of plane, shell or solid element ie of substructure isub in
     !! step is: points(6, npoint, nsurf) at its integration points,
     !! nodes(6, nnode, nsurf) extrapolated to its nodes; nsurf = 1 for plane
@@ -130,20 +130,23 @@ contains
     !! false (and empty arrays) for other element types or an element that
     !! cannot be evaluated. The S8R returns global tensors at its section
     !! points (s8r_stresses), its thermal strain subtracted in its routine.
-    !! strain (present and true): the strains (tensor shears) instead, solids only.
+    !! strain (present and true): the strains (tensor shears) instead, solids only;
+    !! with mechanical (present and true) the mechanical strains ε - ε_th.
     type(model_t), intent(in) :: model
     type(result_fields_t), intent(in) :: fields
     integer, intent(in) :: is, isub
     integer(ip), intent(in) :: ie
     real(wp), allocatable, intent(out) :: points(:, :, :), nodes(:, :, :)
     logical, intent(out) :: ok
-    logical, intent(in), optional :: strain
+    logical, intent(in), optional :: strain, mechanical
     type(element_state_t) :: el
     type(element_traits_t) :: t
     type(frame_stresses_t) :: fs
     type(error_t), allocatable :: error
-    logical :: want_strain
+    logical :: want_strain, want_mechanical
     ok = .false.
+    want_mechanical = .false.
+    if (present(mechanical)) want_mechanical = mechanical
     allocate (points(NTENSOR, 0, 1), nodes(NTENSOR, 0, 1))
     t = element_traits(model%subs(isub)%elem_type(ie))
     want_strain = .false.
@@ -154,7 +157,7 @@ contains
     if (.not. ok) return
     ok = .false.
     if (t%family == FAMILY_SOLID) then
-       call solid_element_tensors(el, want_strain, points, nodes, ok)
+       call solid_element_tensors(el, want_strain, want_mechanical, points, nodes, ok)
        return
     end if
     if (t%family == FAMILY_SHELL .and. t%quadratic) then
@@ -168,20 +171,23 @@ contains
     ok = .true.
   end subroutine element_stresses
 
-  subroutine solid_element_tensors(el, strain, points, nodes, ok)
+  subroutine solid_element_tensors(el, strain, mechanical, points, nodes, ok)
     !! element_stresses of a solid (superjoin_elements_solid_stress; axisymmetric: superjoin_elements_axisym,
     !! xx = r, yy = z, zz = θ): points(6, npoint, 1),
-    !! nodes(6, nnode, 1), stresses or (strain) strains.
+    !! nodes(6, nnode, 1), stresses or (strain) strains, total or (mechanical) less the thermal strains.
     type(element_state_t), intent(in) :: el
-    logical, intent(in) :: strain
+    logical, intent(in) :: strain, mechanical
     real(wp), allocatable, intent(inout) :: points(:, :, :), nodes(:, :, :)
     logical, intent(out) :: ok
     real(wp), allocatable :: sp(:, :), sn(:, :)
     type(error_t), allocatable :: error
-    if (is_axisym_type(el%etype)) then
+    if (is_axisym_type(el%etype) .and. allocated(el%thermal_nodal)) then   ! loads: α ΔT at its nodes
+       call axisym_point_tensors(el%etype, el%x, el%mat, el%ue, strain, sp, sn, error, el%thermal_nodal, mechanical)
+    else if (is_axisym_type(el%etype)) then
        call axisym_point_tensors(el%etype, el%x, el%mat, el%ue, strain, sp, sn, error)
     else if (allocated(el%thermal_nodal)) then   ! loads: α ΔT at its nodes (thermal(1) is 0 on solids)
        call solid_point_tensors(el%etype, el%x, el%mat, el%ue, strain, sp, sn, error, el%sec%axes, el%thermal_nodal)
+       if (strain .and. mechanical .and. .not. allocated(error)) call take_thermal_points(el, sp, sn, error)
     else
        call solid_point_tensors(el%etype, el%x, el%mat, el%ue, strain, sp, sn, error, el%sec%axes)
     end if
@@ -190,6 +196,23 @@ contains
     points = reshape(sp, [NTENSOR, size(sp, 2), 1])
     nodes = reshape(sn, [NTENSOR, size(sn, 2), 1])
   end subroutine solid_element_tensors
+
+  pure subroutine take_thermal_points(el, sp, sn, error)
+    !! The mechanical strains of a heated 3D solid: its thermal strains off the
+    !! normal strains at the points sp(6, npoint), and the nodal values sn again.
+    type(element_state_t), intent(in) :: el
+    real(wp), intent(inout) :: sp(:, :)
+    real(wp), allocatable, intent(inout) :: sn(:, :)
+    type(error_t), allocatable, intent(out) :: error
+    real(wp), allocatable :: e(:)
+    integer :: k
+    call solid_thermal_points(el%etype, el%x, el%mat, el%thermal_nodal, e, error)
+    if (allocated(error)) return
+    do k = 1, 3
+       sp(k, :) = sp(k, :) - e
+    end do
+    sn = matmul(sp, transpose(solid_extrapolation(el%etype)))
+  end subroutine take_thermal_points
 
   subroutine s8r_element_stresses(el, points, nodes, ok)
     !! element_stresses of an S8R (superjoin_elements_shell8, shell8_stresses):

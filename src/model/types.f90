@@ -285,6 +285,9 @@ module superjoin_model_types
      logical :: coupling = .false.
        !! written by *COUPLING, *RIGID BODY or *MPC (superjoin_deck_coupling_build): its DOFs are
        !! activated, and when its first DOF is already dependent another of its columns is eliminated
+     logical :: torque_node = .false.
+       !! an *MPC MEANROT: its last term is the extra node's DOF 1 (the mean rotation), whose CalculiX
+       !! "forces" are its support reaction alone (the torque)
   end type equation_t
 
   type, public :: node_frame_t

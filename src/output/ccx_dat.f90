@@ -10,7 +10,7 @@ module superjoin_output_ccx_dat
   !!
   !! Blocks: U "displacements", RF "forces" (CalculiX's internal nodal forces:
   !! the support reaction plus the *CLOAD of the node), NT "temperatures", S
-  !! "stresses", E "strains", ENER "internal energy density" (½ σ:ε at the
+  !! "stresses", E "strains", ENER "internal energy density" (½ σ:(ε - ε_th) at the
   !! points of solids and trusses, ½ σ:C⁻¹:σ at those of plane elements and
   !! shells, a beam's mean), ELSE "internal energy" (an axisymmetric
   !! model: that of CalculiX's 2° wedge, 1/180); TOTALS=YES adds the sum
@@ -39,7 +39,7 @@ module superjoin_output_ccx_dat
   use superjoin_error, only: error_t
   use superjoin_model_types, only: model_t, output_request_t, substructure_t, orientation_t, find_node, NDOF_NODE, &
        REQ_NODE_PRINT, REQ_EL_PRINT, TOTALS_YES, TOTALS_ONLY, MAT_ISO
-  use superjoin_model_results, only: result_fields_t
+  use superjoin_model_results, only: result_fields_t, reaction_t
   use superjoin_elements, only: element_tensor, element_stresses, NTENSOR, has_axisymmetric, ccx_wedge_tensor, &
        CCX_AXIAL_SEGMENTS
   use superjoin_elements_traits, only: element_traits_t, element_traits, FAMILY_TRUSS, FAMILY_PLANE, FAMILY_SHELL, &
@@ -180,7 +180,8 @@ contains
   subroutine node_forces(model, fields, is, subs, nodes, v)
     !! CalculiX's "forces" of the listed nodes in step is: the support
     !! reactions plus the concentrated loads (*CLOAD) on the node plus the
-    !! forces of the *EQUATION constraints on it, global axes (the reactions
+    !! forces of the *EQUATION constraints on it (not on the extra node of an
+    !! *MPC MEANROT: ccx 2.20 prints its torque), global axes (the reactions
     !! of a node with a *TRANSFORM are along its nodal system).
     type(model_t), intent(in) :: model
     type(result_fields_t), intent(in) :: fields
@@ -189,8 +190,9 @@ contains
     integer(ip), intent(in) :: nodes(:)
     real(wp), allocatable, intent(out) :: v(:, :)
     integer, allocatable :: frame(:)
-    real(wp), allocatable :: cf(:, :)
-    allocate (v(NDOF_NODE, size(nodes)), cf(NDOF_NODE, size(nodes)))
+    real(wp), allocatable :: cf(:, :), mask(:, :)
+    type(reaction_t), allocatable :: held(:)
+    allocate (v(NDOF_NODE, size(nodes)), cf(NDOF_NODE, size(nodes)), mask(NDOF_NODE, size(nodes)))
     call add_reactions(fields, is, subs, nodes, v)
     call node_frames(model, subs, nodes, frame)
     call rotate_rows(model, frame, .true., v)
@@ -198,11 +200,31 @@ contains
     v = v + cf
     if (allocated(fields%steps(is)%equation_forces)) then
        call add_node_forces(fields%steps(is)%equation_forces, subs, nodes, cf)
+       ! the extra node of an *MPC MEANROT prints its reaction alone, the torque (as ccx 2.20)
+       call torque_nodes(model, held)
+       call add_node_forces(held, subs, nodes, mask)
+       where (mask /= 0.0_wp) cf = 0.0_wp
        v = cf + v
     end if
     ! an axisymmetric model: CalculiX's forces are those of its 2° wedge (superjoin's: the whole circumference)
     if (has_axisymmetric(model)) v = v/real(CCX_AXIAL_SEGMENTS, wp)
   end subroutine node_forces
+
+  subroutine torque_nodes(model, list)
+    !! The DOFs (force 1) of the extra nodes of the *MPC MEANROT equations.
+    type(model_t), intent(in) :: model
+    type(reaction_t), allocatable, intent(out) :: list(:)
+    integer :: k, n
+    allocate (list(0))
+    if (.not. allocated(model%equations)) return
+    do k = 1, size(model%equations)
+       associate (e => model%equations(k))
+         if (.not. e%torque_node) cycle
+         n = size(e%coef)
+         list = [list, reaction_t(e%sub(n), int(e%node(n)), e%dof(n), 1.0_wp)]
+       end associate
+    end do
+  end subroutine torque_nodes
 
   subroutine node_rows(lu, model, r, subs, nodes, vals, marked)
     !! One row per node: its user id and vals(1:3, node); ' L' when `marked`.
@@ -464,7 +486,8 @@ contains
        end associate
        return
     end if
-    call ccx_point_values(model, fields, is, isub, ie, .true., e, ok)
+    ! the mechanical strains ε - ε_th: the energy of a heated solid is ½ σ:(ε - ε_th)
+    call ccx_point_values(model, fields, is, isub, ie, .true., e, ok, mechanical=.true.)
     if (.not. ok) return
     do k = 1, size(s, 2)
        vals(1, k) = 0.5_wp*(sum(s(1:3, k)*e(1:3, k)) + 2.0_wp*sum(s(4:6, k)*e(4:6, k)))
@@ -605,9 +628,10 @@ contains
     end select
   end function layer_zeta
 
-  subroutine ccx_point_values(model, fields, is, isub, ie, strain, vals, ok)
+  subroutine ccx_point_values(model, fields, is, isub, ie, strain, vals, ok, mechanical)
     !! vals(6, point) at CalculiX's points (ccx_point_map) of element ie of
-    !! substructure isub; ok false when there are none to print.
+    !! substructure isub; ok false when there are none to print. mechanical
+    !! (present and true): a solid's strains less its thermal strains.
     type(model_t), intent(in) :: model
     type(result_fields_t), intent(in) :: fields
     integer, intent(in) :: is, isub
@@ -615,6 +639,7 @@ contains
     logical, intent(in) :: strain
     real(wp), allocatable, intent(out) :: vals(:, :)
     logical, intent(out) :: ok
+    logical, intent(in), optional :: mechanical
     type(element_traits_t) :: t
     real(wp), allocatable :: points(:, :, :), nodes(:, :, :), z(:)
     real(wp) :: one(NTENSOR)
@@ -623,7 +648,7 @@ contains
     t = element_traits(model%subs(isub)%elem_type(ie))
     if (t%family == FAMILY_SOLID .and. .not. t%axisymmetric) then
        ! a solid's own points are CalculiX's, in its order (superjoin_elements_solid_stress)
-       call element_stresses(model, fields, is, isub, ie, points, nodes, ok, strain)
+       call element_stresses(model, fields, is, isub, ie, points, nodes, ok, strain, mechanical)
        if (ok) vals = points(:, :, 1)
        return
     end if
@@ -642,7 +667,7 @@ contains
     end if
     ok = .not. strain .or. t%axisymmetric
     if (.not. ok) return
-    call element_stresses(model, fields, is, isub, ie, points, nodes, ok, strain)
+    call element_stresses(model, fields, is, isub, ie, points, nodes, ok, strain, mechanical)
     if (.not. ok) return
     nlayer = ccx_layers(npoint)
     nper = npoint/nlayer

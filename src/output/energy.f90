@@ -1,7 +1,9 @@
 module superjoin_output_energy
   !! Strain energies of a solved step (output variable ENER of *EL PRINT and
   !! *EL FILE): per element ½ u_eᵀ K_e u_e (the element facade's
-  !! element_strain_energy), per substructure (part) the sum of
+  !! element_strain_energy), or under thermal strains the energy of the
+  !! mechanical strains ½ ∫ (ε - ε_th)ᵀ D (ε - ε_th) dV (element_thermal_energy;
+  !! where it is not implemented, the energies are not available), per substructure (part) the sum of
   !! its elements, per contact element ½ Σ F·δ over its DOFs (½ g δ² for a
   !! finite DOF; a RIGID DOF has δ = 0 and no energy), per *CONTACT card the sum
   !! of its contact elements, and the spring supports ½ g u².
@@ -18,7 +20,7 @@ module superjoin_output_energy
   use superjoin_error, only: error_t, add_error_line, EXIT_DECK
   use superjoin_model_types, only: model_t, output_request_t, NDOF_NODE, &
        LINK_FINITE, loc_text, DLOAD_THERMAL, support_t
-  use superjoin_elements, only: element_strain_energy, element_displacements
+  use superjoin_elements, only: element_strain_energy, element_displacements, element_thermal_energy
   use superjoin_elements, only: distributed_load
   use superjoin_model_results, only: result_fields_t
   use superjoin_utils_text_buffer, only: text_buffer_t
@@ -71,7 +73,6 @@ contains
                call add_error_line(error, EXIT_DECK, loc_text(model, sub%elem_loc(e))//': error: '//inner%message)
                return
             end if
-            en%part(isub) = en%part(isub) + en%element(iel)
          end do
        end associate
     end do
@@ -103,16 +104,29 @@ contains
             end if
             call element_displacements(model, fields, is, st%dloads(k)%sub, st%dloads(k)%elem, ue)
             en%load_work = en%load_work + 0.5_wp*dot_product(fe, ue)
+            if (st%dloads(k)%kind /= DLOAD_THERMAL) cycle
+            ! thermal strains: the element's energy is that of its mechanical strains ε - ε_th
+            call element_thermal_energy(model, fields, is, st%dloads(k), &
+                 en%element(fields%elem_offset(st%dloads(k)%sub) + st%dloads(k)%elem), inner)
+            if (allocated(inner)) then
+               call add_error_line(error, EXIT_DECK, loc_text(model, st%dloads(k)%loc)//': error: '// &
+                    inner%message)
+               return
+            end if
          end do
       end if
     end associate
+    do isub = 1, size(model%subs)
+       do e = 1, model%subs(isub)%nelem
+          en%part(isub) = en%part(isub) + en%element(fields%elem_offset(isub) + e)
+       end do
+    end do
     en%internal = sum(en%part) + sum(en%contact) + en%supports
     ! Clapeyron's balance holds for a solved step of mechanical loads only.
     if (model%steps(is)%combination > 0) then
        en%no_balance = 'a load combination: energies do not superpose'
-    else if (allocated(model%steps(is)%dloads)) then
-       if (any(model%steps(is)%dloads(:)%kind == DLOAD_THERMAL)) &
-            en%no_balance = 'thermal strains: the strain energy is not 1/2 f.u'
+    else if (heated(model, is)) then
+       en%no_balance = 'thermal strains: the strain energy is not 1/2 f.u'
     end if
   end subroutine compute_energies
 
@@ -170,6 +184,14 @@ contains
     end subroutine mark_supports
   end subroutine support_terms
 
+  pure logical function heated(model, is)
+    !! Does step is have thermal strains?
+    type(model_t), intent(in) :: model
+    integer, intent(in) :: is
+    heated = .false.
+    if (allocated(model%steps(is)%dloads)) heated = any(model%steps(is)%dloads(:)%kind == DLOAD_THERMAL)
+  end function heated
+
   pure real(wp) function node_u(fields, is, isub, node, dof) result(v)
     !! Displacement component `dof` of a node in step `is` (global axes).
     type(result_fields_t), intent(in) :: fields
@@ -212,8 +234,13 @@ contains
        call lu%line('    ENER not available: '//error%message)
        return
     end if
-    call lu%line('    ENER strain energy (elements: 1/2 u^T K u; contact elements: 1/2 F.delta; '// &
-         'spring supports: 1/2 g u^2)')
+    if (heated(model, is)) then
+       call lu%line('    ENER strain energy (elements: 1/2 (eps - eps_th):D:(eps - eps_th), thermal strains; '// &
+            'contact elements: 1/2 F.delta; spring supports: 1/2 g u^2)')
+    else
+       call lu%line('    ENER strain energy (elements: 1/2 u^T K u; contact elements: 1/2 F.delta; '// &
+            'spring supports: 1/2 g u^2)')
+    end if
     write (hline, '(4x,a20,a10,a6,a15)') 'substructure        ', '   element', '  type', '         energy'
     call lu%line(trim(hline))
     scale = 0.0_wp

@@ -111,22 +111,14 @@ contains
     if (allocated(error)) call temp_unregister()
   end subroutine open_table
 
-  subroutine abandon_table(tb, tmp)
-    !! Close and remove a table that cannot be completed.
-    type(text_buffer_t), intent(inout) :: tb
-    character(*), intent(in) :: tmp
-    logical :: ok
-    call tb%close(ok)
-    call remove_file(tmp)
-    call temp_unregister()
-  end subroutine abandon_table
-
   subroutine write_energy_csv(dir, model, fields, error)
     !! DIR/energies.csv: step,kind,name,id,energy with kind element (name: its
     !! substructure, id: its id), substructure, contact_element (name: the
     !! *CONTACT card, id: the slave node id), contact (the card), and the model's
     !! spring_supports, total, load_work (½ fᵀu), prescribed_work (½ Σ R ū), and
-    !! balance_not_checked (name: why) in a step the balance does not apply to.
+    !! balance_not_checked (name: why) in a step the balance does not apply to;
+    !! a step whose energies are not available (thermal strains on an element
+    !! type without their energy) has the one row not_available.
     character(*), intent(in) :: dir
     type(model_t), intent(in) :: model
     type(result_fields_t), intent(in) :: fields
@@ -145,9 +137,10 @@ contains
        if (.not. wanted(is)) cycle
        if (allocated(fields%steps(is)%failure)) cycle   ! not solved: no rows
        call compute_energies(model, fields, is, en, error)
-       if (allocated(error)) then
-          call abandon_table(tb, tmp)
-          return
+       if (allocated(error)) then   ! thermal strains on an element without their energy: said in the listing
+          deallocate (error)
+          call row(model%steps(is)%name, 'not_available', 'see the listing', '', 0.0_wp)
+          cycle
        end if
        associate (sn => model%steps(is)%name)
          do isub = 1, size(model%subs)

@@ -15,6 +15,7 @@ module superjoin_deck_build_steps
        where, INITIAL_CAPACITY
   use superjoin_deck_build_contacts, only: support_list
   use superjoin_deck_build_thermal, only: build_thermal
+  use superjoin_deck_matrix_loads, only: build_matrix_loads
   implicit none (type, external)
   private
 
@@ -65,6 +66,8 @@ contains
        call move_alloc(dl, model%steps(s)%dloads)
        if (st%aborted) return
     end do
+    call build_matrix_loads(st, model)
+    if (st%aborted) return
     call build_thermal(st, model)
     if (st%aborted) return
     call build_history(st, model)

@@ -45,6 +45,7 @@ module superjoin_deck_parser
   use superjoin_deck_transforms, only: kw_transform, data_transform
   use superjoin_deck_nodal_thickness, only: kw_nodal_thickness, data_nodal_thickness
   use superjoin_deck_matrix_input, only: kw_matrix_input, kw_matrix_output
+  use superjoin_deck_matrix_loads, only: data_matrix_load, CARD_MATRIX_LOAD
   implicit none (type, external)
   private
 
@@ -261,6 +262,8 @@ contains
        call kw_matrix_input(st, kw, loc)
     case ('SUBSTRUCTURE MATRIX OUTPUT')
        call kw_matrix_output(st, kw, loc)
+    case ('MATRIX LOAD')
+       call kw_load(st, kw, loc, CARD_MATRIX_LOAD)
     case ('NODAL THICKNESS')
        call kw_nodal_thickness(st, kw, loc)
     case default
@@ -449,6 +452,8 @@ contains
        call data_section_print(st, line, loc)
     case (CARD_PRETENSION)
        call data_pretension(st, line, loc)
+    case (CARD_MATRIX_LOAD)
+       call data_matrix_load(st, line, loc)
     end select
   end subroutine data_line
 end module superjoin_deck_parser

@@ -66,11 +66,11 @@ contains
        call move_alloc(dl, model%steps(s)%dloads)
        if (st%aborted) return
     end do
-    call build_matrix_loads(st, model)
-    if (st%aborted) return
     call build_thermal(st, model)
     if (st%aborted) return
     call build_history(st, model)
+    if (st%aborted) return
+    call build_matrix_loads(st, model)   ! their own history: after that of the *CLOAD lines
   end subroutine build_steps
 
   subroutine build_history(st, model)

@@ -71,6 +71,7 @@ module superjoin_deck_matrix_formats
      integer, allocatable :: ncol(:)               !! NCOL of each header (0: not given)
      logical :: load = .false.                     !! reading a load matrix (columns by number)
      integer :: maxcol = 0                         !! load: the largest column number met
+     integer :: col = 0                            !! load: the column read (0: every column)
      character(len=FIELD_LEN) :: chosen = ''
      type(given_b_t) :: terms                      !! the chosen matrix's terms as given
   end type dmig_t
@@ -341,6 +342,7 @@ contains
     real(wp) :: a
     if (d%load) then
        if (.not. load_column(st, d, e, gj)) return
+       if (d%col > 0 .and. gj /= d%col) return       ! its values are read with their own column
        cj = 0
     else if (.not. grid_comp(st, d%ifile, e, 2, gj, cj)) then
        return
@@ -430,14 +432,24 @@ contains
        end if
     end if
     d%chosen = d%name(k)
-    call new_given(d%terms)
-    d%pass = 2
-    call bulk_entries(st, text, d)
-    ncol = max(d%ncol(k), d%maxcol)
+    d%col = col
+    ncol = d%ncol(k)
+    if (col == 0 .and. ncol <= 1) then
+       call new_given(d%terms)
+       d%pass = 2
+       call bulk_entries(st, text, d)
+       ncol = max(ncol, d%maxcol)
+    end if
     if (col == 0 .and. ncol > 1) then
        call report_loc(st, loc, 'load '//load//': DMIG load matrix '//trim(d%chosen)//' has '//itoa(ncol)// &
             ' columns: name one, '//trim(d%chosen)//'(1) to '//trim(d%chosen)//'('//itoa(ncol)//')')
        return
+    end if
+    if (col > 0) then
+       call new_given(d%terms)
+       d%pass = 2
+       call bulk_entries(st, text, d)
+       ncol = max(ncol, d%maxcol)
     end if
     col = max(col, 1)
     if (col > ncol) then
@@ -623,10 +635,10 @@ contains
             cycle
          end if
          nval = nval + 1
+         if ((nval - 1)/map%n + 1 /= col) cycle        ! the other columns' values are read with them
          if (.not. value_of(st, ifile, line, trim(adjustl(s)), x)) cycle
-         if (nval > map%n*ncol) cycle
          row = mod(nval - 1, map%n) + 1
-         if ((nval - 1)/map%n + 1 /= col .or. map%node(row) == 0) cycle
+         if (map%node(row) == 0) cycle
          call push_entry(v, map%node(row), map%dof(row), 0_ip, 0, x, line)
        end associate
     end do

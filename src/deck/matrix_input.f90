@@ -35,7 +35,7 @@ module superjoin_deck_matrix_input
   implicit none (type, external)
   private
 
-  public :: kw_matrix_input, kw_matrix_output, build_given, turn_given, build_exports, given_turn
+  public :: kw_matrix_input, kw_matrix_output, build_given, turn_given, build_exports, given_turn, turn_coefficient
 
   integer, parameter :: NDOF = 6, BLOCK = 3
   integer, parameter :: ABAQUS_FIELDS = 5
@@ -498,18 +498,24 @@ contains
     type(given_matrix_t), intent(in) :: given
     real(wp), intent(in) :: rot(3, 3)
     real(wp), allocatable :: t(:, :)
-    integer :: n, r, c, a, b
+    integer :: n, r, c
     n = size(given%dof)
     allocate (t(n, n), source=0.0_wp)
     do r = 1, n
-       a = given%dof(r)
        do c = 1, n
-          b = given%dof(c)
-          if (given%node(c) /= given%node(r) .or. (a - 1)/BLOCK /= (b - 1)/BLOCK) cycle
-          t(r, c) = rot(a - (a - 1)/BLOCK*BLOCK, b - (b - 1)/BLOCK*BLOCK)
+          if (given%node(c) == given%node(r)) t(r, c) = turn_coefficient(rot, given%dof(r), given%dof(c))
        end do
     end do
   end function given_turn
+
+  pure real(wp) function turn_coefficient(rot, a, b) result(x)
+    !! The entry of R̂ that turns DOF b of a node into its DOF a: rot's entry
+    !! when both are translations or both rotations, else 0.
+    real(wp), intent(in) :: rot(3, 3)
+    integer, intent(in) :: a, b
+    x = 0.0_wp
+    if ((a - 1)/BLOCK == (b - 1)/BLOCK) x = rot(a - (a - 1)/BLOCK*BLOCK, b - (b - 1)/BLOCK*BLOCK)
+  end function turn_coefficient
 
   subroutine kw_matrix_output(st, kw, loc)
     !! *SUBSTRUCTURE MATRIX OUTPUT, SUBSTRUCTURE=s, FILE NAME=f[, FORMAT=...]

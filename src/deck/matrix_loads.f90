@@ -14,10 +14,12 @@ module superjoin_deck_matrix_loads
   !!   one load matrix (OptiStruct's P2GSUB = NAME(k));
   !! - MATRIX MARKET: `k`, column k of `f_loads.mtx` (rows: `f_dofs.csv`).
   !!
-  !! Each load is a set of concentrated loads on every DOF of the matrix (its
-  !! zeros too), as the lines of the .load file would be as *CLOAD lines: the
-  !! card follows *CLOAD's step rules (OP=NEW and OP=MOD, the step's own
-  !! loads replacing the kept ones on the same DOF).
+  !! Step rules as *CLOAD's (CalculiX): OP=NEW drops the matrix loads of the
+  !! previous step, OP=MOD keeps them (the default in a *STATIC step, not in a
+  !! step without a procedure card), a line naming the same substructure and
+  !! load again replaces its magnitude (Abaqus's *SLOAD, OP=MOD); matrix loads
+  !! and *CLOAD lines are kept or dropped apart. In effect, a load is a set
+  !! of concentrated loads on the DOFs of the matrix.
   use superjoin_kinds, only: wp, ip, i8
   use superjoin_model_types, only: model_t, cload_t, substructure_t, source_loc_t
   use superjoin_deck_lexer, only: to_upper, split_fields, drop_trailing_empty, fields_t, itoa, clip
@@ -27,7 +29,8 @@ module superjoin_deck_matrix_loads
   use superjoin_deck_cards_common, only: field_count, fld, get_real
   use superjoin_deck_matrix_formats, only: read_dmig_load, read_market_load, push_entry, id_of, value_of, &
        new_given, next_nonblank, text_lines_t
-  use superjoin_deck_matrix_input, only: given_turn
+  use superjoin_deck_matrix_input, only: turn_coefficient
+  use superjoin_deck_build_common, only: keeps_previous
   use superjoin_utils_sorting, only: sort_index, find_sorted
   implicit none (type, external)
   private
@@ -39,6 +42,14 @@ module superjoin_deck_matrix_loads
   integer, parameter :: NDOF = 6, KEY_BASE = 8, LOAD_FIELDS = 3, INITIAL_LINES = 4
   character(*), parameter :: MTX_EXT = '.mtx', LOAD_EXT = '.load', LOADS_TAIL = '_loads.mtx', &
        DOF_MAP_TAIL = '_dofs.csv'
+
+  type :: active_t
+    !! A matrix load in effect in a step.
+     integer :: isub = 0                   !! the loaded substructure (model%subs)
+     integer :: c = 0                      !! its load vector (the cache of build_matrix_loads)
+     real(wp) :: scale = 1.0_wp
+     type(source_loc_t) :: loc             !! the *MATRIX LOAD line
+  end type active_t
 
   type :: load_vec_t
     !! A load read for a block: its values on the rows of the block's matrix.
@@ -80,58 +91,97 @@ contains
 
   subroutine build_matrix_loads(st, model)
     !! The *MATRIX LOAD lines of every step as concentrated loads of the step
-    !! (after its *CLOAD ones).
+    !! (after its *CLOAD ones). A step that keeps the previous step's loads
+    !! (OP=MOD, or a *STATIC step by default: keeps_previous) keeps its matrix
+    !! loads too, but for those its own lines name again (same substructure
+    !! and load: the new magnitude replaces the old).
     type(deck_state_t), intent(inout) :: st
     type(model_t), intent(inout) :: model
     type(load_vec_t), allocatable :: cache(:)
+    type(active_t), allocatable :: active(:), own(:)
     type(cload_t), allocatable :: add(:)
+    logical, allocatable :: keep(:)
     integer :: s, k
-    allocate (cache(0))
+    allocate (cache(0), active(0))
     do s = 1, st%nstep
-       if (st%steps(s)%nmload == 0) cycle
-       allocate (add(0))
+       if (.not. keeps_previous(st%steps(s), st%steps(s)%mload_op)) active = active(1:0)
+       allocate (own(0))
        do k = 1, st%steps(s)%nmload
-          call one_line(st, model, st%steps(s)%mloads(k), cache, add)
+          call resolve_line(st, model, st%steps(s)%mloads(k), cache, own)
           if (st%aborted) return
+       end do
+       keep = [(.not. any(own%isub == active(k)%isub .and. own%c == active(k)%c), k=1, size(active))]
+       active = [pack(active, keep), own]
+       deallocate (own)
+       if (size(active) == 0) cycle
+       allocate (add(0))
+       do k = 1, size(active)
+          call expand(model%subs(active(k)%isub), active(k), cache(active(k)%c)%f, add)
        end do
        model%steps(s)%cloads = [model%steps(s)%cloads, add]
        deallocate (add)
     end do
   end subroutine build_matrix_loads
 
-  subroutine one_line(st, model, ml, cache, add)
-    !! The concentrated loads of one *MATRIX LOAD line, appended to add.
+  subroutine resolve_line(st, model, ml, cache, own)
+    !! One *MATRIX LOAD line: its substructure and its load (read once per
+    !! block and load name), appended to own when both are good.
     type(deck_state_t), intent(inout) :: st
     type(model_t), intent(in) :: model
     type(mload_b_t), intent(in) :: ml
     type(load_vec_t), allocatable, intent(inout) :: cache(:)
-    type(cload_t), allocatable, intent(inout) :: add(:)
+    type(active_t), allocatable, intent(inout) :: own(:)
     integer :: isub, iblock, c, r
-    real(wp), allocatable :: f(:)
-    type(cload_t), allocatable :: more(:)
+    character(:), allocatable :: key
     isub = loaded_sub(st, model, ml)
     if (isub == 0) return
     iblock = block_of(st, model, isub)
     if (iblock == 0) return                       ! its *MATRIX INPUT failed: reported there
-    associate (m => model%subs(isub), g => st%subs(iblock)%given)
-      c = 0
-      do r = 1, size(cache)
-         if (cache(r)%key == st%subs(iblock)%name//'|'//to_upper(ml%load)) c = r
-      end do
-      if (c == 0) then
-         cache = [cache, load_vec_t(key=st%subs(iblock)%name//'|'//to_upper(ml%load))]
-         c = size(cache)
-         call read_load(st, g, m, ml, cache(c))
-      end if
-      if (.not. cache(c)%ok) return
-      f = ml%scale*matmul(given_turn(m%given, m%rot), cache(c)%f)
-      allocate (more(size(f)))
-      do r = 1, size(f)
-         more(r) = cload_t(sub=isub, node=m%given%node(r), dof=m%given%dof(r), value=f(r), loc=ml%loc)
-      end do
-      add = [add, more]
-    end associate
-  end subroutine one_line
+    key = st%subs(iblock)%name//'|'//to_upper(ml%load)
+    c = 0
+    do r = 1, size(cache)
+       if (cache(r)%key == key) c = r
+    end do
+    if (c == 0) then
+       cache = [cache, load_vec_t(key=key)]
+       c = size(cache)
+       call read_load(st, st%subs(iblock)%given, model%subs(isub), ml, cache(c))
+    end if
+    if (cache(c)%ok) own = [own, active_t(isub=isub, c=c, scale=ml%scale, loc=ml%loc)]
+  end subroutine resolve_line
+
+  subroutine expand(m, a, f0, add)
+    !! The concentrated loads of an active matrix load on substructure m:
+    !! scale * R̂ f0 on every row of its matrix, appended to add.
+    type(substructure_t), intent(in) :: m
+    type(active_t), intent(in) :: a
+    real(wp), intent(in) :: f0(:)
+    type(cload_t), allocatable, intent(inout) :: add(:)
+    real(wp) :: f(size(f0))
+    type(cload_t), allocatable :: more(:)
+    integer :: r, e, i, j
+    f = 0.0_wp
+    r = 1
+    do while (r <= size(f))                       ! rows r..e: the DOFs of one node
+       e = r
+       do while (e < size(f))
+          if (m%given%node(e + 1) /= m%given%node(r)) exit
+          e = e + 1
+       end do
+       do i = r, e
+          do j = r, e
+             f(i) = f(i) + turn_coefficient(m%rot, m%given%dof(i), m%given%dof(j))*f0(j)
+          end do
+       end do
+       r = e + 1
+    end do
+    f = a%scale*f
+    allocate (more(size(f)))
+    do r = 1, size(f)
+       more(r) = cload_t(sub=a%isub, node=m%given%node(r), dof=m%given%dof(r), value=f(r), loc=a%loc)
+    end do
+    add = [add, more]
+  end subroutine expand
 
   integer function loaded_sub(st, model, ml) result(isub)
     !! The substructure or instance a line names, with a matrix of its own (0
@@ -228,9 +278,12 @@ contains
     found = .false.
     col = column_number(ml%load)
     inquire (file=base//LOADS_TAIL, exist=there)
-    if (col == 0 .or. .not. there) then
+    if (.not. there) then
+       call report_loc(st, ml%loc, 'unknown load '//ml%load//': no file '//base//LOADS_TAIL//' beside the matrix')
+       return
+    else if (col == 0) then
        call report_loc(st, ml%loc, 'unknown load '//ml%load//': a Matrix Market load is a column number of '// &
-            base//LOADS_TAIL//merge(' (not found)', '            ', .not. there))
+            base//LOADS_TAIL)
        return
     end if
     call load_deck_file(st, ml%loc, base//LOADS_TAIL, 'load', text, found)

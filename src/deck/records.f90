@@ -254,6 +254,7 @@ module superjoin_deck_records
      logical :: has_boundary = .false.                 !! a *BOUNDARY card stands in the step
      integer :: bc_op = 0, cload_op = 0, dload_op = 0  !! OP= of its *BOUNDARY, *CLOAD, *DLOAD cards (OP_*)
      integer :: temp_op = 0                            !! OP= of its *TEMPERATURE cards (OP_*)
+     integer :: mload_op = 0                           !! OP= of its *MATRIX LOAD cards (OP_*)
      logical :: has_procedure = .false.               !! a procedure card (*STATIC) stands in the step
      logical :: perturbation = .false.                !! *STEP, PERTURBATION (its loads are its own)
   end type step_b_t

@@ -52,7 +52,7 @@ def turned(loads, scale):
     return out
 
 
-def deck(matrix=None, names=None, export=False, split=False):
+def deck(matrix=None, names=None, export=False, split=False, history=False):
     """names: {step: (load name for A, load name for B)} of *MATRIX LOAD lines
     (with matrix); else the interior loads as *CLOAD lines."""
     d = ["*HEADING", "plate part with condensed loads (tests/travel/loads_round_trip.py)",
@@ -78,15 +78,53 @@ def deck(matrix=None, names=None, export=False, split=False):
     if export:
         for fmt, name in (("ABAQUS", "pa"), ("CALCULIX", "pc"), ("DMIG", "pd"), ("MATRIX MARKET", "pm")):
             d.append(f"*SUBSTRUCTURE MATRIX OUTPUT, SUBSTRUCTURE=A, FILE NAME={name}, FORMAT={fmt}")
+    d += history_steps(names) if history else plain_steps(names)
+    return "\n".join(d) + "\n"
+
+
+def interior(step, inst, scale):
+    """*CLOAD lines of the interior loads of a plate (B's turned with it)."""
+    loads = INTERIOR[step] if inst == "A" else turned(INTERIOR[step], 1.0)
+    return [f"{inst}.{nd}, {dof}, {scale * v!r}" for nd, dof, v in loads]
+
+
+def plain_steps(names):
+    """Two steps without a procedure card: each a load case of its own."""
+    d = []
     for step in STEPS:
         d += [f"*STEP, NAME={step}", "*CLOAD"] + OTHER[step]
         if names is None:
-            d += [f"A.{nd}, {dof}, {v!r}" for nd, dof, v in INTERIOR[step]]
-            d += [f"B.{nd}, {dof}, {v!r}" for nd, dof, v in turned(INTERIOR[step], SCALE_B[step])]
+            d += interior(step, "A", 1.0) + interior(step, "B", SCALE_B[step])
         else:
             d += ["*MATRIX LOAD", f"A, {names[step][0]}, 1.0", f"B, {names[step][1]}, {SCALE_B[step]!r}"]
         d.append("*END STEP")
-    return "\n".join(d) + "\n"
+    return d
+
+
+def history_steps(names):
+    """*STATIC steps, whose loads continue: PUSH; TWIST (PUSH kept, TWIST
+    added); NEW (OP=NEW: only TWIST's other loads and A's TWIST load); MOD (A's
+    TWIST load again, three times: it replaces the kept one)."""
+    d = []
+    for step in STEPS:
+        d += [f"*STEP, NAME={step}", "*STATIC", "*CLOAD"] + OTHER[step]
+        if names is None:
+            d += interior(step, "A", 1.0) + interior(step, "B", SCALE_B[step])
+        else:
+            d += ["*MATRIX LOAD", f"A, {names[step][0]}, 1.0", f"B, {names[step][1]}, {SCALE_B[step]!r}"]
+        d.append("*END STEP")
+    d += ["*STEP, NAME=NEW", "*STATIC", "*CLOAD, OP=NEW"] + OTHER["TWIST"]
+    if names is None:
+        d += interior("TWIST", "A", 1.0)
+    else:
+        d += ["*MATRIX LOAD, OP=NEW", f"A, {names['TWIST'][0]}, 1.0"]
+    d += ["*END STEP", "*STEP, NAME=MOD", "*STATIC"]
+    if names is None:
+        d += ["*CLOAD"] + interior("TWIST", "A", 3.0)
+    else:
+        d += ["*MATRIX LOAD", f"A, {names['TWIST'][0]}, 3.0"]
+    d.append("*END STEP")
+    return d
 
 
 def write_other_dmig(work):
@@ -171,6 +209,13 @@ def main():
             how = "its own part's matrix and loads turned by B" if split else "A's part turned by B"
             results.append(rt.compare(ref, got, f"*MATRIX LOAD from the {fmt} export, {how}",
                                       DMIG_TOL if fmt == "DMIG" else rt.RTOL))
+    href = rt.displacements(rt.run(binary, work, "history_explicit", deck(history=True), ["--condense", "no"]))
+    for fmt, base in (("ABAQUS", "pa"), ("DMIG", "pd")):
+        ext = ".dmig" if fmt == "DMIG" else ".mtx"
+        got = rt.displacements(rt.run(binary, work, "history_" + fmt.lower(),
+                                      deck((base + ext, fmt), names[fmt], split=True, history=True)))
+        results.append(rt.compare(href, got, f"*STATIC steps, OP=MOD kept, OP=NEW dropped, a load named again "
+                                  f"replaced ({fmt})", DMIG_TOL if fmt == "DMIG" else rt.RTOL))
     write_other_dmig(work)
     for split in (False, True):
         tag = "_split" if split else ""

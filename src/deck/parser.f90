@@ -226,16 +226,12 @@ contains
     case ('NODE PRINT', 'EL PRINT', 'NODE FILE', 'EL FILE', 'NODE OUTPUT', 'ELEMENT OUTPUT', 'CONTACT PRINT', &
          'CONTACT FILE', 'CONTACT OUTPUT')
        call kw_request(st, kw, loc)
-    case ('CLOAD')
-       call kw_load(st, kw, loc, CARD_CLOAD)
-    case ('DLOAD')
-       call kw_load(st, kw, loc, CARD_DLOAD)
+    case ('CLOAD', 'DLOAD', 'DSLOAD', 'MATRIX LOAD')
+       call kw_load(st, kw, loc, load_card(kw%keyword))
     case ('SURFACE')
        call kw_surface(st, kw, loc)
     case ('SECTION PRINT')
        call kw_section_print(st, kw, loc)
-    case ('DSLOAD')
-       call kw_load(st, kw, loc, CARD_DSLOAD)
     case ('LOAD COMBINATION')
        call kw_load_combination(st, kw, loc)
     case ('EXPANSION')
@@ -262,8 +258,6 @@ contains
        call kw_matrix_input(st, kw, loc)
     case ('SUBSTRUCTURE MATRIX OUTPUT')
        call kw_matrix_output(st, kw, loc)
-    case ('MATRIX LOAD')
-       call kw_load(st, kw, loc, CARD_MATRIX_LOAD)
     case ('NODAL THICKNESS')
        call kw_nodal_thickness(st, kw, loc)
     case default
@@ -271,6 +265,21 @@ contains
        st%card = CARD_SKIP
     end select
   end subroutine open_card
+
+  pure integer function load_card(keyword) result(card)
+    !! The card of a load keyword: *CLOAD, *DLOAD, *DSLOAD or *MATRIX LOAD.
+    character(*), intent(in) :: keyword
+    select case (keyword)
+    case ('CLOAD')
+       card = CARD_CLOAD
+    case ('DLOAD')
+       card = CARD_DLOAD
+    case ('DSLOAD')
+       card = CARD_DSLOAD
+    case default
+       card = CARD_MATRIX_LOAD
+    end select
+  end function load_card
 
   subroutine kw_tie_or_equation(st, kw, loc)
     !! *EQUATION (superjoin_deck_equations), *TIE (superjoin_deck_ties) or *PRE-TENSION

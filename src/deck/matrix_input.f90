@@ -35,7 +35,8 @@ module superjoin_deck_matrix_input
   implicit none (type, external)
   private
 
-  public :: kw_matrix_input, kw_matrix_output, build_given, turn_given, build_exports, given_turn, turn_coefficient
+  public :: kw_matrix_input, kw_matrix_output, build_given, turn_given, build_exports, given_turn, turn_coefficient, &
+       matrix_base
 
   integer, parameter :: NDOF = 6, BLOCK = 3
   integer, parameter :: ABAQUS_FIELDS = 5
@@ -128,11 +129,7 @@ contains
     case ('DMIG')
        call read_dmig(st, text, g, name)
     case ('MATRIX MARKET')
-       base = path
-       if (len(base) > len(MTX_EXT)) then
-          if (to_upper(base(len(base) - len(MTX_EXT) + 1:)) == to_upper(MTX_EXT)) &
-               base = base(:len(base) - len(MTX_EXT))
-       end if
+       base = matrix_base(path)
        call load_deck_file(st, g%loc, base//DOF_MAP_TAIL, 'DOF map', csv_text, ok)
        if (.not. ok) return
        call register_file(st, base//DOF_MAP_TAIL, base//DOF_MAP_TAIL, csv_file)
@@ -141,6 +138,17 @@ contains
        call read_lines(st, text, g, fmt == 'CALCULIX')
     end select
   end function read_matrix
+
+  pure function matrix_base(path) result(base)
+    !! A matrix file's path without its .mtx extension: the start of the names
+    !! of the files beside it (f_dofs.csv, f_loads.mtx, f_<step>.load).
+    character(*), intent(in) :: path
+    character(:), allocatable :: base
+    base = path
+    if (len(base) > len(MTX_EXT)) then
+       if (to_upper(base(len(base) - len(MTX_EXT) + 1:)) == to_upper(MTX_EXT)) base = base(:len(base) - len(MTX_EXT))
+    end if
+  end function matrix_base
 
   subroutine move_alloc_given(g, dest)
     type(given_b_t), intent(inout) :: g

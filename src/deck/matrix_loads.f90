@@ -29,7 +29,7 @@ module superjoin_deck_matrix_loads
   use superjoin_deck_cards_common, only: field_count, fld, get_real
   use superjoin_deck_matrix_formats, only: read_dmig_load, read_market_load, push_entry, id_of, value_of, &
        new_given, next_nonblank, text_lines_t
-  use superjoin_deck_matrix_input, only: turn_coefficient
+  use superjoin_deck_matrix_input, only: turn_coefficient, matrix_base
   use superjoin_deck_build_common, only: keeps_previous
   use superjoin_utils_sorting, only: sort_index, find_sorted
   implicit none (type, external)
@@ -40,7 +40,7 @@ module superjoin_deck_matrix_loads
   integer, parameter :: CARD_MATRIX_LOAD = 209
     !! *MATRIX LOAD data lines (superjoin_deck_parser)
   integer, parameter :: NDOF = 6, KEY_BASE = 8, LOAD_FIELDS = 3, INITIAL_LINES = 4
-  character(*), parameter :: MTX_EXT = '.mtx', LOAD_EXT = '.load', LOADS_TAIL = '_loads.mtx', &
+  character(*), parameter :: LOAD_EXT = '.load', LOADS_TAIL = '_loads.mtx', &
        DOF_MAP_TAIL = '_dofs.csv'
 
   type :: active_t
@@ -247,23 +247,13 @@ contains
        call load_deck_file(st, ml%loc, path, 'matrix', text, found)
        if (found) call read_dmig_load(st, text, g%file, ml%load, ml%loc, v, found)
     case ('MATRIX MARKET')
-       call market_load(st, base_of(path), ml, v, found)
+       call market_load(st, matrix_base(path), ml, v, found)
     case default
-       call text_load(st, base_of(path), ml, v, found)
+       call text_load(st, matrix_base(path), ml, v, found)
     end select
     if (.not. found .or. st%nerr /= nerr0) return
     call load_on_rows(st, m, ml, v, vec)
   end subroutine read_load
-
-  pure function base_of(path) result(base)
-    !! path without its .mtx extension.
-    character(*), intent(in) :: path
-    character(:), allocatable :: base
-    base = path
-    if (len(base) > len(MTX_EXT)) then
-       if (to_upper(base(len(base) - len(MTX_EXT) + 1:)) == to_upper(MTX_EXT)) base = base(:len(base) - len(MTX_EXT))
-    end if
-  end function base_of
 
   subroutine market_load(st, base, ml, v, found)
     !! Column k (the load name) of base_loads.mtx.

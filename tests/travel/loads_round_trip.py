@@ -55,29 +55,7 @@ def turned(loads, scale):
 def deck(matrix=None, names=None, export=False, split=False, history=False):
     """names: {step: (load name for A, load name for B)} of *MATRIX LOAD lines
     (with matrix); else the interior loads as *CLOAD lines."""
-    d = ["*HEADING", "plate part with condensed loads (tests/travel/loads_round_trip.py)",
-         "*MATERIAL, NAME=STEEL", "*ELASTIC", "2.1e11, 0.3"]
-    d += rt.plate_part(matrix)
-    if split:
-        d += rt.plate_part(matrix, "PLATE2")
-    d += ["*ASSEMBLY", "*INSTANCE, NAME=A, PART=PLATE", "*END INSTANCE",
-          f"*INSTANCE, NAME=B, PART={'PLATE2' if split else 'PLATE'}", "2.0, 0.0, 0.0",
-          "2.0, 0.0, 0.0, 3.0, 0.0, 0.0, 90.0", "*END INSTANCE", "*END ASSEMBLY"]
-    pos = {1: (0, 0, 0), 2: (1, 0, 0), 3: (0, 1, 0), 4: (1, 1, 0),
-           5: (2, 0, 0), 6: (3, 0, 0), 7: (2, 0, 1), 8: (3, 0, 1)}
-    d += ["*SUBSTRUCTURE, NAME=BASE", "*NODE"]
-    d += [f"{k}, {x}, {y}, {z}" for k, (x, y, z) in pos.items()]
-    d += ["*ELEMENT, TYPE=B33, ELSET=RING",
-          "1, 1, 2", "2, 2, 4", "3, 4, 3", "4, 3, 1", "5, 5, 6", "6, 6, 8", "7, 8, 7", "8, 7, 5", "9, 2, 5",
-          "*BEAM SECTION, ELSET=RING, MATERIAL=STEEL, SECTION=RECT", "0.05, 0.05", "0.0, 1.0, 1.0",
-          "*END SUBSTRUCTURE"]
-    for inst, base in (("A", (1, 2, 3, 4)), ("B", (5, 6, 7, 8))):
-        d.append(f"*CONTACT, NAME=J{inst}, MASTER=BASE, SLAVE={inst}")
-        d += [f"{b}, {c}, 1, 6, {rt.G}" for b, c in zip(base, rt.CORNERS)]
-    d += ["*BOUNDARY", "BASE.1, ENCASTRE", "BASE.6, ENCASTRE"]
-    if export:
-        for fmt, name in (("ABAQUS", "pa"), ("CALCULIX", "pc"), ("DMIG", "pd"), ("MATRIX MARKET", "pm")):
-            d.append(f"*SUBSTRUCTURE MATRIX OUTPUT, SUBSTRUCTURE=A, FILE NAME={name}, FORMAT={fmt}")
+    d = rt.model_lines(matrix, export, split, "plate part with condensed loads")
     d += history_steps(names) if history else plain_steps(names)
     return "\n".join(d) + "\n"
 

@@ -15,7 +15,6 @@ module superjoin_deck_build_steps
        where, INITIAL_CAPACITY
   use superjoin_deck_build_contacts, only: support_list
   use superjoin_deck_build_thermal, only: build_thermal
-  use superjoin_deck_matrix_loads, only: build_matrix_loads
   implicit none (type, external)
   private
 
@@ -69,8 +68,6 @@ contains
     call build_thermal(st, model)
     if (st%aborted) return
     call build_history(st, model)
-    if (st%aborted) return
-    call build_matrix_loads(st, model)   ! their own history: after that of the *CLOAD lines
   end subroutine build_steps
 
   subroutine build_history(st, model)

@@ -91,8 +91,10 @@ contains
 
   subroutine build_matrix_loads(st, model)
     !! The *MATRIX LOAD lines of every step as concentrated loads of the step
-    !! (after its *CLOAD ones). A step that keeps the previous step's loads
-    !! (OP=MOD, or a *STATIC step by default: keeps_previous) keeps its matrix
+    !! (after its *CLOAD ones, whose history and nodal systems are done: the
+    !! matrix loads have their own history and are global components). A step
+    !! that keeps the previous step's loads (OP=MOD, or a *STATIC step by
+    !! default: keeps_previous) keeps its matrix
     !! loads too, but for those its own lines name again (same substructure
     !! and load: the new magnitude replaces the old).
     type(deck_state_t), intent(inout) :: st

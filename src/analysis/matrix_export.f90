@@ -18,8 +18,8 @@ module superjoin_analysis_matrix_export
   !!   (DMIG* entries, 16-column fields, TIN=2, values D-exponent with 10
   !!   significant digits): K<name> symmetric (IFO=6, lower triangle by
   !!   columns: each column GJ,CJ then its rows Gi,Ci,Ai, i >= j) for K2GG=,
-  !!   P<name> rectangular (IFO=9, NCOL = steps; column k is the k-th step of
-  !!   the solve, GJ = k, CJ = 0) for P2G=; <name>: the substructure's name,
+  !!   P<name> rectangular (IFO=9, NCOL = steps in field 9; column k is the
+  !!   k-th step of the solve, GJ = k, CJ = 0) for P2G= (and *MATRIX LOAD); <name>: the substructure's name,
   !!   letters and digits only, at most 7 characters.
   !! FORMAT=MATRIX MARKET: FILE.mtx (coordinate real symmetric, lower
   !!   triangle, rows and columns numbered as the DOF map), FILE_loads.mtx
@@ -257,7 +257,7 @@ contains
        end do
     end do
     call tb%line(HEAD//f16(pn)//f16('0')//f16('9')//f16('2'))
-    call tb%line(CONT//f16('0')//f16('')//f16(itoa(size(fstar, 2))))
+    call tb%line(CONT//f16('0')//f16('')//f16('')//f16(itoa(size(fstar, 2))))   ! TOUT, POLAR, -, NCOL
     do s = 1, size(fstar, 2)
        call tb%line('$ column '//itoa(s)//': step '//model%steps(s)%name)
        call tb%line(HEAD//f16(pn)//f16(itoa(s))//f16('0'))

@@ -69,7 +69,7 @@ contains
     if (in_part(st)) then
        select case (kw%keyword)
        case ('SUBSTRUCTURE', 'END SUBSTRUCTURE', 'ASSEMBLY', 'END ASSEMBLY', &
-            'INTERFACE', 'SUPPORT', 'BOUNDARY', 'STEP', 'END STEP', 'CLOAD', 'DLOAD', &
+            'INTERFACE', 'SUPPORT', 'BOUNDARY', 'STEP', 'END STEP', 'CLOAD', 'DLOAD', 'MATRIX LOAD', &
             'CHANGE CONTACT', 'CONTROLS')
           call report_loc(st, loc, '*'//kw%keyword//' is not allowed inside *PART '// &
                st%subs(st%cur_sub)%name//' (a part holds nodes, elements, sets, sections, instances of '// &

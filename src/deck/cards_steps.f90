@@ -15,6 +15,7 @@ module superjoin_deck_cards_steps
        get_name_param, field_count, fld, get_real, real_message, get_dof, parse_ref, loc_string, &
        refused_card, CARD_SKIP, CARD_BOUNDARY, CARD_DLOAD, CARD_STATIC, CARD_COMBINATION, &
        CARD_TEMPERATURE, NAME_LEN, LOAD_FIELDS, GRAV_FIELDS, CARD_SURFACE, CARD_DSLOAD
+  use superjoin_deck_matrix_loads, only: CARD_MATRIX_LOAD
   implicit none (type, external)
   private
 
@@ -374,7 +375,7 @@ contains
   end subroutine record_load_op
 
   subroutine kw_load(st, kw, loc, card)
-    !! *CLOAD, *DLOAD or *DSLOAD (card): opens a load card of the current step.
+    !! *CLOAD, *DLOAD, *DSLOAD or *MATRIX LOAD (card): opens a load card of the current step.
     type(deck_state_t), intent(inout) :: st
     type(keyword_line_t), intent(in) :: kw
     type(source_loc_t), intent(in) :: loc
@@ -385,7 +386,11 @@ contains
     st%card = CARD_SKIP
     if (st%cur_step > 0) then
        st%card_item = st%cur_step
-       call record_load_op(st%steps(st%cur_step), card == CARD_DLOAD .or. card == CARD_DSLOAD, op)
+       if (card == CARD_MATRIX_LOAD) then
+          st%steps(st%cur_step)%mload_op = max(st%steps(st%cur_step)%mload_op, op)
+       else
+          call record_load_op(st%steps(st%cur_step), card == CARD_DLOAD .or. card == CARD_DSLOAD, op)
+       end if
     else
        if (op /= OP_DEFAULT) call report_loc(st, loc, 'OP= of *'//kw%keyword//' applies inside *STEP only')
        if (st%nstep_cards > 0) then

@@ -12,16 +12,19 @@ module superjoin_deck_matrix_formats
   !!   `DMIG, NAME, GJ, CJ, , G1, C1, A1, B1` and `G, C, A, B` groups after it.
   !!   The stiffness is the matrix named by NAME= or else the one square
   !!   matrix of the file: IFO=6 (symmetric, one triangle) or IFO=1 (square,
-  !!   checked symmetric); TIN=1 or 2 (real). Load matrices (IFO=9 or 2, the
-  !!   P2G= matrix superjoin's export writes beside K2GG=) are not read: the
-  !!   block takes its stiffness only, loads are `*CLOAD` lines.
+  !!   checked symmetric); TIN=1 or 2 (real). read_dmig_load: one column of
+  !!   a load matrix (IFO=9, the P2G= matrix; column entries `NAME, k, 0|blank,
+  !!   , G1, C1, A1, ...`, NCOL in the header's field 9), for *MATRIX LOAD.
   !! - MATRIX MARKET: `f.mtx`, `%%MatrixMarket matrix coordinate real
   !!   symmetric|general`, rows and columns numbered as the DOF map
   !!   `f_dofs.csv` beside it (`index,node,dof`, as the export writes them).
+  !!   read_market_load: one column of `f_loads.mtx` (`%%MatrixMarket matrix
+  !!   array real general`, rows numbered as the DOF map), for *MATRIX LOAD.
   !!
   !! A bad field, a DOF outside 1..6, an entry given twice or a matrix that is
   !! not symmetric is reported at its line.
   use superjoin_kinds, only: wp, ip, i8
+  use superjoin_model_types, only: source_loc_t
   use superjoin_deck_lexer, only: next_line, split_fields, to_upper, clip, itoa, fields_t, parse_real, &
        parse_id, TOK_OK
   use superjoin_deck_state, only: deck_state_t, report, report_loc, given_b_t
@@ -29,7 +32,8 @@ module superjoin_deck_matrix_formats
   implicit none (type, external)
   private
 
-  public :: read_dmig, read_market, push_entry, id_of, value_of, new_given, next_nonblank
+  public :: read_dmig, read_market, push_entry, id_of, value_of, new_given, next_nonblank, read_dmig_load, &
+       read_market_load
 
   integer, parameter :: NDOF = 6
   integer, parameter :: KEY_BASE = 8               !! (node, DOF) key: node*KEY_BASE + DOF
@@ -43,6 +47,7 @@ module superjoin_deck_matrix_formats
   integer, parameter :: GROUP = 4                  !! G, C, A, B of a column term
   integer, parameter :: FIRST_TERM = 5             !! the first G of a column entry
   integer, parameter :: MM_WORDS = 5               !! words of the %%MatrixMarket line
+  integer, parameter :: NCOL_FIELD = 8             !! NCOL in the header's data fields (field 9 of the entry)
   real(wp), parameter :: SYM_TOL = 1.0e-9_wp
     !! a square matrix is symmetric when each pair agrees to this, relative
 
@@ -63,6 +68,10 @@ module superjoin_deck_matrix_formats
      integer :: nmat = 0
      character(len=FIELD_LEN), allocatable :: name(:)
      integer, allocatable :: ifo(:), line(:)
+     integer, allocatable :: ncol(:)               !! NCOL of each header (0: not given)
+     logical :: load = .false.                     !! reading a load matrix (columns by number)
+     integer :: maxcol = 0                         !! load: the largest column number met
+     integer :: col = 0                            !! load: the column read (0: every column)
      character(len=FIELD_LEN) :: chosen = ''
      type(given_b_t) :: terms                      !! the chosen matrix's terms as given
   end type dmig_t
@@ -100,7 +109,7 @@ contains
     type(dmig_t) :: d
     integer :: nerr0
     d%ifile = g%file
-    allocate (d%name(0), d%ifo(0), d%line(0))
+    allocate (d%name(0), d%ifo(0), d%line(0), d%ncol(0))
     nerr0 = st%nerr
     call bulk_entries(st, text, d)
     if (st%nerr /= nerr0) return
@@ -109,7 +118,7 @@ contains
     call new_given(d%terms)
     d%pass = 2
     call bulk_entries(st, text, d)
-    if (d%ifo(findloc(d%name, d%chosen, 1)) == IFO_SYM) then
+    if (d%ifo(name_index(d, d%chosen)) == IFO_SYM) then
        call fold_terms(st, d%terms, g, .true., 'matrix '//trim(d%chosen)//' (IFO=6, declared symmetric)')
     else
        call fold_terms(st, d%terms, g, .false., 'matrix '//trim(d%chosen)//' (IFO=1)')
@@ -125,7 +134,7 @@ contains
     integer :: k, nsq
     character(:), allocatable :: names
     if (len(name) > 0) then
-       k = findloc(d%name, name, 1)
+       k = name_index(d, name)
        if (k == 0) then
           call report_loc(st, g%loc, 'NAME='//name//' names no DMIG matrix of the file')
        else if (d%ifo(k) /= IFO_SYM .and. d%ifo(k) /= IFO_SQUARE) then
@@ -266,7 +275,7 @@ contains
     else if (e%f(2) == '0') then
        if (d%pass == 1) call dmig_header(st, e, d)
     else if (d%pass == 1) then
-       if (findloc(d%name, e%f(1), 1) == 0) call report(st, d%ifile, e%line(1), 'a column of DMIG matrix '// &
+       if (name_index(d, e%f(1)) == 0) call report(st, d%ifile, e%line(1), 'a column of DMIG matrix '// &
             trim(e%f(1))//' before its header entry (NAME, 0, IFO, TIN)')
     else if (e%f(1) == d%chosen) then
        call dmig_column(st, e, d)
@@ -283,7 +292,7 @@ contains
     integer(ip) :: ifo, tin
     integer :: stat
     character(len=FIELD_LEN), allocatable :: names(:)
-    if (findloc(d%name, e%f(1), 1) > 0) then
+    if (name_index(d, e%f(1)) > 0) then
        call report(st, d%ifile, e%line(1), 'DMIG matrix '//trim(e%f(1))//' has a header entry already')
        return
     end if
@@ -309,6 +318,18 @@ contains
     call move_alloc(names, d%name)
     d%ifo = [d%ifo, int(ifo)]
     d%line = [d%line, e%line(1)]
+    ifo = 0
+    if (e%nf >= NCOL_FIELD) then
+       if (len_trim(e%f(NCOL_FIELD)) > 0) then
+          call parse_id(trim(e%f(NCOL_FIELD)), ifo, stat)
+          if (stat /= TOK_OK) then
+             call report(st, d%ifile, e%line(NCOL_FIELD), 'invalid NCOL '''//clip(trim(e%f(NCOL_FIELD)))// &
+                  ''' of DMIG matrix '//trim(e%f(1)))
+             ifo = 0
+          end if
+       end if
+    end if
+    d%ncol = [d%ncol, int(ifo)]
   end subroutine dmig_header
 
   subroutine dmig_column(st, e, d)
@@ -319,7 +340,13 @@ contains
     integer(ip) :: gj, gi
     integer :: cj, ci, k
     real(wp) :: a
-    if (.not. grid_comp(st, d%ifile, e, 2, gj, cj)) return
+    if (d%load) then
+       if (.not. load_column(st, d, e, gj)) return
+       if (d%col > 0 .and. gj /= d%col) return       ! its values are read with their own column
+       cj = 0
+    else if (.not. grid_comp(st, d%ifile, e, 2, gj, cj)) then
+       return
+    end if
     do k = FIRST_TERM, e%nf - GROUP + 1, GROUP
        if (all(e%f(k:k + GROUP - 1) == '')) cycle
        if (.not. grid_comp(st, d%ifile, e, k, gi, ci)) cycle
@@ -332,6 +359,147 @@ contains
        call push_entry(d%terms, gi, ci, gj, cj, a, e%line(k + 2))
     end do
   end subroutine dmig_column
+
+  pure integer function name_index(d, name) result(k)
+    !! The header of matrix `name` among d's (0: none). A loop, not findloc:
+    !! gfortran's findloc missed the names of dmig_t once it held the NCOL array.
+    type(dmig_t), intent(in) :: d
+    character(*), intent(in) :: name
+    do k = 1, d%nmat
+       if (d%name(k) == name) return
+    end do
+    k = 0
+  end function name_index
+
+  logical function load_column(st, d, e, col) result(ok)
+    !! `NAME, k, CJ`: column k of a load matrix (CJ blank or 0).
+    type(deck_state_t), intent(inout) :: st
+    type(dmig_t), intent(inout) :: d
+    type(bulk_entry_t), intent(in) :: e
+    integer(ip), intent(out) :: col
+    ok = id_of(st, d%ifile, e%line(2), trim(e%f(2)), 'column', col)
+    if (.not. ok) return
+    if (len_trim(e%f(3)) > 0 .and. e%f(3) /= '0') then
+       call report(st, d%ifile, e%line(3), 'a column of load matrix '//trim(d%chosen)//' has CJ blank or 0, not '// &
+            clip(trim(e%f(3))))
+       ok = .false.
+       return
+    end if
+    d%maxcol = max(d%maxcol, int(col))
+  end function load_column
+
+  subroutine read_dmig_load(st, text, ifile, load, loc, v, found)
+    !! Column `load` of a DMIG load matrix (IFO=9) of the file ifile (text):
+    !! `NAME(k)`, `NAME` (a matrix of one column) or `k` (the file's one load
+    !! matrix). v: its terms (rnode, rdof, val, line); found false (reported at
+    !! loc, the *MATRIX LOAD line) when the file has no such load.
+    type(deck_state_t), intent(inout) :: st
+    character(*), intent(in) :: text, load
+    integer, intent(in) :: ifile
+    type(source_loc_t), intent(in) :: loc
+    type(given_b_t), intent(inout) :: v
+    logical, intent(out) :: found
+    type(dmig_t) :: d
+    character(:), allocatable :: name
+    integer :: col, k, ncol, nerr0
+    found = .false.
+    d%ifile = ifile
+    d%load = .true.
+    allocate (d%name(0), d%ifo(0), d%line(0), d%ncol(0))
+    nerr0 = st%nerr
+    call bulk_entries(st, text, d)
+    if (st%nerr /= nerr0) return
+    call split_load_name(load, name, col)
+    if (col < 0) then
+       call report_loc(st, loc, 'load '//load//': a DMIG load is NAME, NAME(column) or a column number')
+       return
+    end if
+    if (len(name) == 0) then
+       if (count(d%ifo == IFO_NCOL) /= 1) then
+          call report_loc(st, loc, 'load '//load//': the DMIG file has '//itoa(count(d%ifo == IFO_NCOL))// &
+               ' load matrices (IFO=9): name one, NAME('//load//')')
+          return
+       end if
+       k = findloc(d%ifo, IFO_NCOL, 1)
+    else
+       k = name_index(d, name)
+       if (k == 0) then
+          call report_loc(st, loc, 'unknown load '//load//': the DMIG file has no matrix '//name)
+          return
+       else if (d%ifo(k) /= IFO_NCOL) then
+          call report_loc(st, loc, 'load '//load//': DMIG matrix '//name//' is not a load matrix (IFO=9)')
+          return
+       end if
+    end if
+    d%chosen = d%name(k)
+    d%col = col
+    ncol = d%ncol(k)
+    if (col == 0 .and. ncol <= 1) then
+       call new_given(d%terms)
+       d%pass = 2
+       call bulk_entries(st, text, d)
+       ncol = max(ncol, d%maxcol)
+    end if
+    if (col == 0 .and. ncol > 1) then
+       call report_loc(st, loc, 'load '//load//': DMIG load matrix '//trim(d%chosen)//' has '//itoa(ncol)// &
+            ' columns: name one, '//trim(d%chosen)//'(1) to '//trim(d%chosen)//'('//itoa(ncol)//')')
+       return
+    end if
+    if (col > 0) then
+       call new_given(d%terms)
+       d%pass = 2
+       call bulk_entries(st, text, d)
+       ncol = max(ncol, d%maxcol)
+    end if
+    col = max(col, 1)
+    if (col > ncol) then
+       call report_loc(st, loc, 'unknown load '//load//': DMIG load matrix '//trim(d%chosen)//' has '// &
+            itoa(ncol)//' columns')
+       return
+    end if
+    do k = 1, d%terms%n
+       if (d%terms%cnode(k) == col) call push_entry(v, d%terms%rnode(k), d%terms%rdof(k), 0_ip, 0, &
+            d%terms%val(k), d%terms%line(k))
+    end do
+    found = .true.
+  end subroutine read_dmig_load
+
+  pure subroutine split_load_name(load, name, col)
+    !! `NAME(k)` -> NAME, k; `k` -> '', k; `NAME` -> NAME, 0; col < 0: neither.
+    character(*), intent(in) :: load
+    character(:), allocatable, intent(out) :: name
+    integer, intent(out) :: col
+    integer :: k
+    character(:), allocatable :: t
+    t = to_upper(trim(adjustl(load)))
+    k = index(t, '(')
+    name = t
+    col = 0
+    if (k > 0) then
+       name = trim(t(:k - 1))
+       col = -1
+       if (t(len(t):) /= ')' .or. len(name) == 0) return
+       col = digits_value(t(k + 1:len(t) - 1))
+    else if (verify(t, '0123456789') == 0 .and. len(t) > 0) then
+       name = ''
+       col = digits_value(t)
+    end if
+  end subroutine split_load_name
+
+  pure integer function digits_value(s) result(n)
+    !! The positive integer s (blanks around it allowed); -1 if it is none.
+    character(*), intent(in) :: s
+    integer :: k
+    character(:), allocatable :: t
+    t = trim(adjustl(s))
+    n = -1
+    if (len(t) == 0 .or. len(t) > 9 .or. verify(t, '0123456789') /= 0) return
+    n = 0
+    do k = 1, len(t)
+       n = 10*n + (iachar(t(k:k)) - iachar('0'))
+    end do
+    if (n == 0) n = -1
+  end function digits_value
 
   logical function grid_comp(st, ifile, e, k, g, c) result(ok)
     !! Fields k, k+1 of e: a GRID id and its component 1..6.
@@ -429,6 +597,104 @@ contains
        call fold_terms(st, terms, g, .false., 'the matrix')
     end if
   end subroutine read_market
+
+  subroutine read_market_load(st, text, ifile, map_text, map_file, col, v, found)
+    !! Column col of a Matrix Market load array (text, file ifile) whose rows
+    !! are those of the DOF map (map_text, map_file). found false when the
+    !! array has fewer columns (the caller reports the load as unknown).
+    type(deck_state_t), intent(inout) :: st
+    character(*), intent(in) :: text, map_text
+    integer, intent(in) :: ifile, map_file, col
+    type(given_b_t), intent(inout) :: v
+    logical, intent(out) :: found
+    type(dof_map_t) :: map
+    integer(i8) :: first, last
+    type(text_lines_t) :: lines
+    integer :: line, size_line, nval, ncol, row
+    logical :: banner
+    real(wp) :: x
+    found = .false.
+    banner = .false.
+    call read_dof_map(st, map_file, map_text, map)
+    size_line = 0
+    nval = 0
+    ncol = 0
+    do while (next_nonblank(lines, text, first, last))
+       line = lines%line
+       associate (s => text(first:last))
+         if (.not. banner) then
+            banner = .true.
+            if (.not. array_banner(st, ifile, line, s)) return
+            cycle
+         end if
+         if (index(adjustl(s), '%') == 1) cycle
+         if (size_line == 0) then
+            size_line = line
+            if (.not. array_size(st, ifile, line, s, map%n, ncol)) return
+            if (col > ncol) return
+            cycle
+         end if
+         nval = nval + 1
+         if ((nval - 1)/map%n + 1 /= col) cycle        ! the other columns' values are read with them
+         if (.not. value_of(st, ifile, line, trim(adjustl(s)), x)) cycle
+         row = mod(nval - 1, map%n) + 1
+         if (map%node(row) == 0) cycle
+         call push_entry(v, map%node(row), map%dof(row), 0_ip, 0, x, line)
+       end associate
+    end do
+    if (size_line == 0) then
+       call report(st, ifile, max(lines%line, 1), 'the Matrix Market load array has no size line')
+    else if (nval /= map%n*ncol) then
+       call report(st, ifile, size_line, 'the load array gives '//itoa(nval)//' values, not '//itoa(map%n*ncol)// &
+            ' ('//itoa(map%n)//' rows x '//itoa(ncol)//' columns)')
+    else
+       found = .true.
+    end if
+  end subroutine read_market_load
+
+  logical function array_size(st, ifile, line, s, nrow, ncol) result(ok)
+    !! `rows columns` of a load array: rows as the DOF map's nrow.
+    type(deck_state_t), intent(inout) :: st
+    integer, intent(in) :: ifile, line, nrow
+    character(*), intent(in) :: s
+    integer, intent(out) :: ncol
+    type(fields_t) :: w
+    integer(ip) :: dims(2)
+    ncol = 0
+    ok = .false.
+    call split_words(s, w)
+    if (w%n /= 2) then
+       call report(st, ifile, line, 'the size line of a Matrix Market load array has 2 numbers (rows, '// &
+            'columns), not '//itoa(w%n))
+       return
+    end if
+    if (.not. id_of(st, ifile, line, s(w%first(1):w%last(1)), 'size', dims(1))) return
+    if (.not. id_of(st, ifile, line, s(w%first(2):w%last(2)), 'size', dims(2))) return
+    if (dims(1) /= nrow) then
+       call report(st, ifile, line, 'the load array has '//itoa(int(dims(1)))//' rows; its DOF map lists '// &
+            itoa(nrow)//' DOFs')
+       return
+    end if
+    ncol = int(dims(2))
+    ok = .true.
+  end function array_size
+
+  logical function array_banner(st, ifile, line, s) result(ok)
+    !! `%%MatrixMarket matrix array real|integer general`.
+    type(deck_state_t), intent(inout) :: st
+    integer, intent(in) :: ifile, line
+    character(*), intent(in) :: s
+    type(fields_t) :: w
+    character(:), allocatable :: t
+    t = to_upper(s)
+    call split_words(t, w)
+    ok = .false.
+    if (w%n == MM_WORDS) ok = t(w%first(1):w%last(1)) == '%%MATRIXMARKET' .and. &
+         t(w%first(2):w%last(2)) == 'MATRIX' .and. t(w%first(3):w%last(3)) == 'ARRAY' .and. &
+         any(t(w%first(4):w%last(4)) == ['REAL   ', 'INTEGER']) .and. t(w%first(5):w%last(5)) == 'GENERAL'
+    if (.not. ok) call report(st, ifile, line, 'a Matrix Market load array starts with ''%%MatrixMarket '// &
+         'matrix array real general'', not '''//clip(s)//'''')
+  end function array_banner
 
   subroutine market_banner(st, ifile, line, s, symmetric)
     !! `%%MatrixMarket matrix coordinate real|integer symmetric|general`.

@@ -13,9 +13,11 @@ module superjoin_deck_matrix_input
   !!   `*MATRIX, TYPE=STIFFNESS`: the lower triangle row by row). DMIG (the
   !!   matrix NAME=n or the file's one square matrix) and MATRIX MARKET (`f.mtx`
   !!   with its DOF map `f_dofs.csv`): superjoin_deck_matrix_formats. The
-  !!   stiffness only: condensed loads enter as *CLOAD lines.
+  !!   condensed loads beside the matrix are read when a step's *MATRIX LOAD
+  !!   names them (superjoin_deck_matrix_loads).
   !!   An instance's copy of the matrix is turned by its placement
-  !!   (k' = R̂ k R̂ᵀ, R̂ = diag(R) on each node's translations and rotations).
+  !!   (k' = R̂ k R̂ᵀ, R̂ = diag(R) on each node's translations and rotations;
+  !!   given_turn: R̂).
   !! - `*SUBSTRUCTURE MATRIX OUTPUT, SUBSTRUCTURE=s, FILE NAME=f[, FORMAT=...]`:
   !!   write K*, f* and the boundary DOF map of s (analysis/matrix_export).
   use superjoin_kinds, only: wp, ip, i8
@@ -33,7 +35,8 @@ module superjoin_deck_matrix_input
   implicit none (type, external)
   private
 
-  public :: kw_matrix_input, kw_matrix_output, build_given, turn_given, build_exports
+  public :: kw_matrix_input, kw_matrix_output, build_given, turn_given, build_exports, given_turn, turn_coefficient, &
+       matrix_base
 
   integer, parameter :: NDOF = 6, BLOCK = 3
   integer, parameter :: ABAQUS_FIELDS = 5
@@ -103,6 +106,7 @@ contains
     end if
     nerr0 = st%nerr
     g%loc = loc
+    g%format = fmt
     call new_given(g)
     if (.not. read_matrix(st, fmt, path, to_upper(name), g)) return
     if (g%n == 0 .and. st%nerr == nerr0) call report_loc(st, loc, 'matrix file '''//path//''' gives no entry')
@@ -125,11 +129,7 @@ contains
     case ('DMIG')
        call read_dmig(st, text, g, name)
     case ('MATRIX MARKET')
-       base = path
-       if (len(base) > len(MTX_EXT)) then
-          if (to_upper(base(len(base) - len(MTX_EXT) + 1:)) == to_upper(MTX_EXT)) &
-               base = base(:len(base) - len(MTX_EXT))
-       end if
+       base = matrix_base(path)
        call load_deck_file(st, g%loc, base//DOF_MAP_TAIL, 'DOF map', csv_text, ok)
        if (.not. ok) return
        call register_file(st, base//DOF_MAP_TAIL, base//DOF_MAP_TAIL, csv_file)
@@ -139,11 +139,23 @@ contains
     end select
   end function read_matrix
 
+  pure function matrix_base(path) result(base)
+    !! A matrix file's path without its .mtx extension: the start of the names
+    !! of the files beside it (f_dofs.csv, f_loads.mtx, f_<step>.load).
+    character(*), intent(in) :: path
+    character(:), allocatable :: base
+    base = path
+    if (len(base) > len(MTX_EXT)) then
+       if (to_upper(base(len(base) - len(MTX_EXT) + 1:)) == to_upper(MTX_EXT)) base = base(:len(base) - len(MTX_EXT))
+    end if
+  end function matrix_base
+
   subroutine move_alloc_given(g, dest)
     type(given_b_t), intent(inout) :: g
     type(given_b_t), allocatable, intent(out) :: dest
     allocate (dest)
     dest%file = g%file
+    dest%format = g%format
     dest%loc = g%loc
     dest%n = g%n
     call move_alloc(g%rnode, dest%rnode)
@@ -473,17 +485,11 @@ contains
     type(deck_state_t), intent(inout) :: st
     type(instance_b_t), intent(in) :: inst
     type(substructure_t), intent(inout) :: m
-    real(wp), allocatable :: t(:, :)
-    integer :: n, r, c, a, b
-    n = size(m%given%dof)
-    allocate (t(n, n), source=0.0_wp)
-    do r = 1, n
+    real(wp) :: t(size(m%given%dof), size(m%given%dof))
+    integer :: r, a
+    t = given_turn(m%given, inst%rot)
+    do r = 1, size(t, 1)
        a = m%given%dof(r)
-       do c = 1, n
-          b = m%given%dof(c)
-          if (m%given%node(c) /= m%given%node(r) .or. (a - 1)/BLOCK /= (b - 1)/BLOCK) cycle
-          t(r, c) = inst%rot(a - (a - 1)/BLOCK*BLOCK, b - (b - 1)/BLOCK*BLOCK)
-       end do
        if (abs(sum(t(r, :)**2) - 1.0_wp) > ROT_ZERO) then
           call report_loc(st, inst%loc, '*INSTANCE '//m%name//': the placement turns DOF '//itoa(a)// &
                ' of node '//itoa(int(m%node_id(m%given%node(r))))//' into DOFs that its *MATRIX INPUT '// &
@@ -493,6 +499,31 @@ contains
     end do
     m%given%k = matmul(t, matmul(m%given%k, transpose(t)))
   end subroutine turn_given
+
+  pure function given_turn(given, rot) result(t)
+    !! R̂ of a given matrix's rows: rot on each node's translations and on its
+    !! rotations (k' = R̂ k R̂ᵀ, f' = R̂ f).
+    type(given_matrix_t), intent(in) :: given
+    real(wp), intent(in) :: rot(3, 3)
+    real(wp), allocatable :: t(:, :)
+    integer :: n, r, c
+    n = size(given%dof)
+    allocate (t(n, n), source=0.0_wp)
+    do r = 1, n
+       do c = 1, n
+          if (given%node(c) == given%node(r)) t(r, c) = turn_coefficient(rot, given%dof(r), given%dof(c))
+       end do
+    end do
+  end function given_turn
+
+  pure real(wp) function turn_coefficient(rot, a, b) result(x)
+    !! The entry of R̂ that turns DOF b of a node into its DOF a: rot's entry
+    !! when both are translations or both rotations, else 0.
+    real(wp), intent(in) :: rot(3, 3)
+    integer, intent(in) :: a, b
+    x = 0.0_wp
+    if ((a - 1)/BLOCK == (b - 1)/BLOCK) x = rot(a - (a - 1)/BLOCK*BLOCK, b - (b - 1)/BLOCK*BLOCK)
+  end function turn_coefficient
 
   subroutine kw_matrix_output(st, kw, loc)
     !! *SUBSTRUCTURE MATRIX OUTPUT, SUBSTRUCTURE=s, FILE NAME=f[, FORMAT=...]

@@ -45,6 +45,7 @@ module superjoin_deck_parser
   use superjoin_deck_transforms, only: kw_transform, data_transform
   use superjoin_deck_nodal_thickness, only: kw_nodal_thickness, data_nodal_thickness
   use superjoin_deck_matrix_input, only: kw_matrix_input, kw_matrix_output
+  use superjoin_deck_matrix_loads, only: data_matrix_load, CARD_MATRIX_LOAD
   implicit none (type, external)
   private
 
@@ -225,16 +226,12 @@ contains
     case ('NODE PRINT', 'EL PRINT', 'NODE FILE', 'EL FILE', 'NODE OUTPUT', 'ELEMENT OUTPUT', 'CONTACT PRINT', &
          'CONTACT FILE', 'CONTACT OUTPUT')
        call kw_request(st, kw, loc)
-    case ('CLOAD')
-       call kw_load(st, kw, loc, CARD_CLOAD)
-    case ('DLOAD')
-       call kw_load(st, kw, loc, CARD_DLOAD)
+    case ('CLOAD', 'DLOAD', 'DSLOAD', 'MATRIX LOAD')
+       call kw_load(st, kw, loc, load_card(kw%keyword))
     case ('SURFACE')
        call kw_surface(st, kw, loc)
     case ('SECTION PRINT')
        call kw_section_print(st, kw, loc)
-    case ('DSLOAD')
-       call kw_load(st, kw, loc, CARD_DSLOAD)
     case ('LOAD COMBINATION')
        call kw_load_combination(st, kw, loc)
     case ('EXPANSION')
@@ -268,6 +265,21 @@ contains
        st%card = CARD_SKIP
     end select
   end subroutine open_card
+
+  pure integer function load_card(keyword) result(card)
+    !! The card of a load keyword: *CLOAD, *DLOAD, *DSLOAD or *MATRIX LOAD.
+    character(*), intent(in) :: keyword
+    select case (keyword)
+    case ('CLOAD')
+       card = CARD_CLOAD
+    case ('DLOAD')
+       card = CARD_DLOAD
+    case ('DSLOAD')
+       card = CARD_DSLOAD
+    case default
+       card = CARD_MATRIX_LOAD
+    end select
+  end function load_card
 
   subroutine kw_tie_or_equation(st, kw, loc)
     !! *EQUATION (superjoin_deck_equations), *TIE (superjoin_deck_ties) or *PRE-TENSION
@@ -449,6 +461,8 @@ contains
        call data_section_print(st, line, loc)
     case (CARD_PRETENSION)
        call data_pretension(st, line, loc)
+    case (CARD_MATRIX_LOAD)
+       call data_matrix_load(st, line, loc)
     end select
   end subroutine data_line
 end module superjoin_deck_parser

@@ -17,6 +17,7 @@ module superjoin_deck_reader
   use superjoin_deck_coupling_build, only: build_couplings
   use superjoin_deck_pretension, only: build_pretensions
   use superjoin_deck_frame_build, only: build_frames, link_frames
+  use superjoin_deck_matrix_loads, only: build_matrix_loads
   use superjoin_elements_drill_mask, only: mark_drilling_edges
   use superjoin_deck_thickness_build, only: apply_nodal_thickness
   implicit none (type, external)
@@ -74,6 +75,8 @@ contains
     if (.not. st%aborted) call build_couplings(st, model)
     if (.not. st%aborted) call build_pretensions(st, model)
     if (.not. st%aborted) call build_frames(st, model)
+    ! global components, as the matrix: after build_frames turned the *CLOAD lines
+    if (.not. st%aborted) call build_matrix_loads(st, model)
     if (.not. st%aborted) call equations_to_global(model)
     if (.not. st%aborted) call link_frames(st, model)
     if (.not. st%aborted) call apply_nodal_thickness(st, model)

@@ -40,6 +40,7 @@ module superjoin_deck_records
     !! A *MATRIX INPUT as read (superjoin_deck_matrix_input): its entries by
     !! user node ids, each with the line of the matrix file that gave it.
      integer :: file = 0                            !! the matrix file (index into the deck's files)
+     character(:), allocatable :: format            !! FORMAT= (ABAQUS, CALCULIX, DMIG, MATRIX MARKET)
      type(source_loc_t) :: loc                      !! the card
      integer :: n = 0
      integer(ip), allocatable :: rnode(:), cnode(:)
@@ -230,12 +231,22 @@ module superjoin_deck_records
      type(source_loc_t) :: loc
   end type override_b_t
 
+  type, public :: mload_b_t
+    !! One data line of *MATRIX LOAD: substructure or instance, load name, magnitude.
+     character(:), allocatable :: sub      !! substructure or instance (upper case)
+     character(:), allocatable :: load     !! load name as written
+     real(wp) :: scale = 1.0_wp
+     type(source_loc_t) :: loc
+  end type mload_b_t
+
   type, public :: step_b_t
     !! A step as read.
      character(:), allocatable :: name
      type(source_loc_t) :: loc
      integer :: ncload = 0, ndload = 0
      type(load_b_t), allocatable :: cloads(:), dloads(:)
+     integer :: nmload = 0
+     type(mload_b_t), allocatable :: mloads(:)         !! *MATRIX LOAD lines (superjoin_deck_matrix_loads)
      integer :: noverride = 0
      type(override_b_t), allocatable :: overrides(:)   !! *CHANGE CONTACT lines
      integer :: nsweep = 0                             !! SWEEP: number of values (0: no sweep)
@@ -243,6 +254,7 @@ module superjoin_deck_records
      logical :: has_boundary = .false.                 !! a *BOUNDARY card stands in the step
      integer :: bc_op = 0, cload_op = 0, dload_op = 0  !! OP= of its *BOUNDARY, *CLOAD, *DLOAD cards (OP_*)
      integer :: temp_op = 0                            !! OP= of its *TEMPERATURE cards (OP_*)
+     integer :: mload_op = 0                           !! OP= of its *MATRIX LOAD cards (OP_*)
      logical :: has_procedure = .false.               !! a procedure card (*STATIC) stands in the step
      logical :: perturbation = .false.                !! *STEP, PERTURBATION (its loads are its own)
   end type step_b_t

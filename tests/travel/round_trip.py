@@ -64,11 +64,9 @@ def plate_part(matrix=None, name="PLATE"):
     return lines
 
 
-def deck(matrix=None, loads_a=None, export=False, split=False):
-    """split: B is the one instance of a second part with the same matrix, so
-    that its matrix is turned by its own placement (not reused from A's)."""
-    d = ["*HEADING", "plate part joined to a frame (tests/travel/round_trip.py)",
-         "*MATERIAL, NAME=STEEL", "*ELASTIC", "2.1e11, 0.3"]
+def model_lines(matrix=None, export=False, split=False, heading="plate part joined to a frame"):
+    """The deck up to its steps (shared with loads_round_trip.py)."""
+    d = ["*HEADING", f"{heading} (tests/travel)", "*MATERIAL, NAME=STEEL", "*ELASTIC", "2.1e11, 0.3"]
     d += plate_part(matrix)
     if split:
         d += plate_part(matrix, "PLATE2")
@@ -92,6 +90,13 @@ def deck(matrix=None, loads_a=None, export=False, split=False):
     if export:
         for fmt, name in (("ABAQUS", "pa"), ("CALCULIX", "pc"), ("DMIG", "pd"), ("MATRIX MARKET", "pm")):
             d.append(f"*SUBSTRUCTURE MATRIX OUTPUT, SUBSTRUCTURE=A, FILE NAME={name}, FORMAT={fmt}")
+    return d
+
+
+def deck(matrix=None, loads_a=None, export=False, split=False):
+    """split: B is the one instance of a second part with the same matrix, so
+    that its matrix is turned by its own placement (not reused from A's)."""
+    d = model_lines(matrix, export, split)
     steps = {"PUSH": [f"B.{CORNERS[3]}, 2, 500.0", "BASE.4, 3, -200.0"],
              "TWIST": [f"B.{CORNERS[1]}, 4, 30.0", "BASE.8, 1, 100.0"]}
     interior = {"PUSH": [f"A.{CENTRE}, 3, -1000.0", f"A.{OFF}, 1, 300.0"],

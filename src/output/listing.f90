@@ -7,7 +7,7 @@ module superjoin_output_listing
        RIGID_ELIMINATE
   use superjoin_elements, only: is_plate_type, is_plane_type, is_plane_strain_type, plane_centroid_remainder
   use superjoin_model_types, only: ELEMENT_NODE_COUNT
-  use superjoin_model_results, only: results_t
+  use superjoin_model_results, only: results_t, step_results_t
   use superjoin_utils_process, only: temp_register, temp_unregister
   use superjoin_utils_text_buffer, only: text_buffer_t
   use superjoin_output_columns, only: element_prefix, chop
@@ -244,7 +244,10 @@ contains
       write (hline, '(2x,a10,4a15)') 'direction ', '        applied', '      reactions', '            sum', &
            '       relative'
       call lu%line(trim(hline))
-      scale = max(maxval(abs(st%applied)), maxval(abs(st%reaction)))
+      ! The scale of the table: the resultants, or the largest single support reaction when the
+      ! reactions balance each other (a held, heated body; a pretension): their resultant is then
+      ! round-off, and a sum relative to it would print noise as a relative error of order 1.
+      scale = max(maxval(abs(st%applied)), maxval(abs(st%reaction)), largest_reaction(st))
       do dirs = 1, 6
          write (hline, FMT_EQUILIBRIUM) field(DIR_NAMES(dirs), 10), chop(st%applied(dirs), scale), &
               chop(st%reaction(dirs), scale), chop(st%applied(dirs) + st%reaction(dirs), scale), &
@@ -615,7 +618,20 @@ contains
     f = text
   end function field
 
+  pure function largest_reaction(st) result(r)
+    !! The largest magnitude of one support reaction of a step (0 without supports).
+    type(step_results_t), intent(in) :: st
+    real(wp) :: r
+    integer :: k
+    r = 0.0_wp
+    if (.not. allocated(st%reactions)) return
+    do k = 1, size(st%reactions)
+       r = max(r, abs(st%reactions(k)%force))
+    end do
+  end function largest_reaction
+
   pure function rel(x, scale) result(y)
+    !! |x| relative to scale (0 when scale is 0).
     real(wp), intent(in) :: x, scale
     real(wp) :: y
     y = 0.0_wp

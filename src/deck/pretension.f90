@@ -39,6 +39,7 @@ module superjoin_deck_pretension
      logical, allocatable :: node(:)       !! nodes of the section
      real(wp) :: area(3) = 0.0_wp          !! sum of the faces' outward area vectors
      integer :: ncomp = 0                  !! translational DOFs per node (2 or 3)
+     logical :: unresolved = .false.       !! a face left out: its element has a node in error
   end type cut_t
 
 contains
@@ -195,8 +196,9 @@ contains
       end do
     end associate
     ok = cut%sub > 0
-    if (ok) ok = any(cut%elem)
-    if (.not. ok) call report_loc(st, p%loc, '*PRE-TENSION SECTION: surface '//p%surface//' has no faces')
+    if (ok) ok = any(cut%elem) .and. .not. cut%unresolved
+    if (.not. ok .and. .not. cut%unresolved) &
+         call report_loc(st, p%loc, '*PRE-TENSION SECTION: surface '//p%surface//' has no faces')
   end subroutine section_faces
 
   integer function surface_index(st, name) result(k)
@@ -232,6 +234,11 @@ contains
     call face_nodes(tr, sub%elem_type(e), face, local, nc)
     ok = nc > 0
     if (.not. ok) return
+    ! A node of the element left unresolved (0) has had its error already: the face is left out.
+    if (any(sub%elem_nodes(1:tr%nodes, e) <= 0)) then
+       cut%unresolved = .true.
+       return
+    end if
     a = 0.0_wp
     associate (x => sub%x(:, sub%elem_nodes(local(1:nc), e)))
       if (nc == 2) then

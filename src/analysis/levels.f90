@@ -75,10 +75,25 @@ contains
           do j = 1, size(paths)
              known = known .or. paths(j)%s == name(1:k - 1)
           end do
-          if (.not. known) paths = [paths, string_t(name(1:k - 1))]
+          if (.not. known) call add_path(paths, name(1:k - 1))
        end do
     end do
   end subroutine group_paths
+
+  subroutine add_path(paths, path)
+    !! path appended to paths (grown by hand: an array constructor of string_t
+    !! leaks the deferred-length component in gfortran 12, LeakSanitizer).
+    type(string_t), allocatable, intent(inout) :: paths(:)
+    character(*), intent(in) :: path
+    type(string_t), allocatable :: more(:)
+    integer :: j
+    allocate (more(size(paths) + 1))
+    do j = 1, size(paths)
+       call move_alloc(paths(j)%s, more(j)%s)
+    end do
+    more(size(more))%s = path
+    call move_alloc(more, paths)
+  end subroutine add_path
 
   pure logical function inside(path, name)
     !! name belongs to the group `path` (starts with `path.`).

@@ -145,12 +145,43 @@ contains
        if (cache(r)%key == key) c = r
     end do
     if (c == 0) then
-       cache = [cache, load_vec_t(key=key)]
+       call grow_cache(cache, key)
        c = size(cache)
        call read_load(st, st%subs(iblock)%given, model%subs(isub), ml, cache(c))
     end if
-    if (cache(c)%ok) own = [own, active_t(isub=isub, c=c, scale=ml%scale, loc=ml%loc)]
+    if (cache(c)%ok) call grow_active(own, active_t(isub=isub, c=c, scale=ml%scale, loc=ml%loc))
   end subroutine resolve_line
+
+  subroutine grow_cache(cache, key)
+    !! One more load vector, keyed `key`, at the end of cache (grown by hand: an
+    !! array constructor of a type with a deferred-length component leaks it in gfortran 12).
+    type(load_vec_t), allocatable, intent(inout) :: cache(:)
+    character(*), intent(in) :: key
+    type(load_vec_t), allocatable :: more(:)
+    integer :: k
+    allocate (more(size(cache) + 1))
+    do k = 1, size(cache)
+       call move_alloc(cache(k)%key, more(k)%key)
+       more(k)%ok = cache(k)%ok
+       if (allocated(cache(k)%f)) call move_alloc(cache(k)%f, more(k)%f)
+    end do
+    more(size(more))%key = key
+    call move_alloc(more, cache)
+  end subroutine grow_cache
+
+  subroutine grow_active(own, a)
+    !! a appended to own (grown by hand, as grow_cache).
+    type(active_t), allocatable, intent(inout) :: own(:)
+    type(active_t), intent(in) :: a
+    type(active_t), allocatable :: more(:)
+    integer :: k
+    allocate (more(size(own) + 1))
+    do k = 1, size(own)
+       more(k) = own(k)
+    end do
+    more(size(more)) = a
+    call move_alloc(more, own)
+  end subroutine grow_active
 
   subroutine expand(m, a, f0, add)
     !! The concentrated loads of an active matrix load on substructure m:

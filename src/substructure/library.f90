@@ -198,7 +198,7 @@ contains
        return
     end if
     if (.not. lib%verify) return
-    call build_local_system(model, table, cond%sys%isub, bnd, cond%sys, error)
+    call rebuild_local_system(model, table, bnd, cond, error)
     if (allocated(error)) then
        why = 'its stiffness cannot be assembled'
     else if (stiffness_hash(cond%sys, solver_name) /= st%stiffness) then
@@ -217,10 +217,24 @@ contains
     type(condensed_t), intent(inout) :: cond
     type(error_t), allocatable, intent(out) :: error
     if (allocated(cond%sys%k%val)) return
-    call build_local_system(model, table, cond%sys%isub, bnd, cond%sys, error)
+    call rebuild_local_system(model, table, bnd, cond, error)
     if (allocated(error)) return
     call unit_spc_diagonal(cond)
   end subroutine library_stiffness
+
+  subroutine rebuild_local_system(model, table, bnd, cond, error)
+    !! cond's local system assembled anew for its own substructure (isub passed
+    !! by value: build_local_system's sys is intent(out), and passing
+    !! cond%sys%isub beside cond%sys would alias the number it resets).
+    type(model_t), intent(in) :: model
+    type(dof_table_t), intent(in) :: table
+    logical, intent(in) :: bnd(:)
+    type(condensed_t), intent(inout) :: cond
+    type(error_t), allocatable, intent(out) :: error
+    integer :: isub
+    isub = cond%sys%isub
+    call build_local_system(model, table, isub, bnd, cond%sys, error)
+  end subroutine rebuild_local_system
 
   subroutine library_ku(cond, st, f_local, u_local, y, error)
     !! y = k u of a library part from its entry, without k: the interior rows
@@ -255,7 +269,7 @@ contains
     if (allocated(cond%solver)) return
     if (find_set(st, loads_key(f_local)) > 0) return
     deallocate (cond%se%k, cond%spc)
-    call build_local_system(model, table, cond%sys%isub, bnd, cond%sys, error)
+    call rebuild_local_system(model, table, bnd, cond, error)
     if (allocated(error)) return
     call condense(model, table, solver_name, cond, error)
     if (allocated(error)) return

@@ -25,7 +25,7 @@ module superjoin_analysis_levels
   use superjoin_assembly_dofs, only: dof_table_t, unit_t, vertex_of, unit_dofs, MAX_UNIT_TERMS, UNIT_LINK
   use superjoin_assembly_forest, only: forest_t
   use superjoin_assembly_transform, only: transform_t, form_spring_t, COL_PHYS, COL_DELTA, ROLE_PLAIN
-  use superjoin_model_notes, only: note
+  use superjoin_model_notes, only: note, append_string
   use superjoin_utils_strings, only: itoa
   implicit none (type, external)
   private
@@ -75,25 +75,10 @@ contains
           do j = 1, size(paths)
              known = known .or. paths(j)%s == name(1:k - 1)
           end do
-          if (.not. known) call add_path(paths, name(1:k - 1))
+          if (.not. known) call append_string(paths, name(1:k - 1))   ! grown by hand: no leak
        end do
     end do
   end subroutine group_paths
-
-  subroutine add_path(paths, path)
-    !! path appended to paths (grown by hand: an array constructor of string_t
-    !! leaks the deferred-length component in gfortran 12, LeakSanitizer).
-    type(string_t), allocatable, intent(inout) :: paths(:)
-    character(*), intent(in) :: path
-    type(string_t), allocatable :: more(:)
-    integer :: j
-    allocate (more(size(paths) + 1))
-    do j = 1, size(paths)
-       call move_alloc(paths(j)%s, more(j)%s)
-    end do
-    more(size(more))%s = path
-    call move_alloc(more, paths)
-  end subroutine add_path
 
   pure logical function inside(path, name)
     !! name belongs to the group `path` (starts with `path.`).

@@ -37,7 +37,7 @@ module superjoin_analysis_condensation
      procedure :: recover_interiors => recover_all
   end type condensed_strategy_t
 
-  public :: condense_parts, recover_parts, parts_ku, part_solver
+  public :: condense_parts, recover_parts, parts_ku, part_solver, library_options, acquire_part
 
 contains
 
@@ -110,8 +110,7 @@ contains
        if (allocated(error)) return
     end if
     solver_name = part_solver(opts)
-    if (allocated(opts%library)) cache%library%dir = opts%library
-    cache%library%verify = opts%library_verify
+    call library_options(cache, opts)
     allocate (st%parts(summary%n_condensed))
     st%f_eff = st%f_phys
     computed0 = cache%computed
@@ -122,14 +121,10 @@ contains
       do isub = 1, size(model%subs)
          if (.not. summary%sub_condensed(isub)) cycle
          ip_ = ip_ + 1
-         call acquire_view(cache, model, table, isub, bnd, solver_name, parts(ip_), error, f_phys)
+         call acquire_part(cache, st, model, isub, solver_name, parts(ip_), error)
          if (allocated(error)) return
          if (allocated(parts(ip_)%notes)) notes = [notes, parts(ip_)%notes]
          if (parts(ip_)%rotated) nrot = nrot + 1
-         ! full_health forms k u0 with the part's own k (a library entry is loaded without it)
-         if (any(st%tr%prescribed(parts(ip_)%pdof) /= 0.0_wp)) &
-              call view_need_stiffness(cache, parts(ip_), model, table, bnd, error)
-         if (allocated(error)) return
          call view_spc(cache, parts(ip_), spc)
          do i = 1, size(spc)
             if (any(f_phys(spc(i), :) /= 0.0_wp)) then
@@ -151,6 +146,32 @@ contains
     call note(notes, 'condensations: '//itoa(cache%computed - computed0)//' computed, '// &
          itoa(cache%reused - reused0)//' reused ('//itoa(nrot)//' turned by their instance''s placement)')
   end subroutine condense_parts
+
+  subroutine library_options(cache, opts)
+    !! The condensation library of the run's options (--library, --library-verify).
+    type(part_cache_t), intent(inout) :: cache
+    type(run_options_t), intent(in) :: opts
+    if (allocated(opts%library)) cache%library%dir = opts%library
+    cache%library%verify = opts%library_verify
+  end subroutine library_options
+
+  subroutine acquire_part(cache, st, model, isub, solver_name, view, error)
+    !! The condensation of substructure isub (acquire_view, with the loads a
+    !! library entry must be able to condense) and, where its boundary has
+    !! prescribed values, its own k (full_health forms k u0 with it; a library
+    !! entry is loaded without it).
+    type(part_cache_t), intent(inout) :: cache
+    type(solve_state_t), intent(in) :: st
+    type(model_t), intent(in) :: model
+    integer, intent(in) :: isub
+    character(*), intent(in) :: solver_name
+    type(part_view_t), intent(out) :: view
+    type(error_t), allocatable, intent(out) :: error
+    call acquire_view(cache, model, st%table, isub, st%bnd_c, solver_name, view, error, st%f_phys)
+    if (allocated(error)) return
+    if (any(st%tr%prescribed(view%pdof) /= 0.0_wp)) &
+         call view_need_stiffness(cache, view, model, st%table, st%bnd_c, error)
+  end subroutine acquire_part
 
   subroutine condense_all_loads(cache, parts, f_phys, f_eff, error)
     !! f* of every condensed substructure into f_eff's boundary rows. The

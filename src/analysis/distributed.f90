@@ -29,10 +29,10 @@ module superjoin_analysis_distributed
   use superjoin_assembly_assemble, only: max_element_diagonal, assembly_plan_t
   use superjoin_substructure_local_system, only: dof_label
   use superjoin_substructure_cache, only: part_cache_t, part_view_t, acquire_view, remote_view, &
-       view_condense_loads, view_recover, view_stiffness_times, view_spc, view_maxratio
+       view_condense_loads, view_recover, view_stiffness_times, view_spc, view_maxratio, view_ku
   use superjoin_model_results, only: run_summary_t, run_log_t, run_options_t
-  use superjoin_model_notes, only: note
-  use superjoin_analysis_condensation, only: part_solver
+  use superjoin_model_notes, only: note, append_string
+  use superjoin_analysis_condensation, only: part_solver, library_options, acquire_part
   use superjoin_parallel_comm, only: comm_t, comm_world, agree, note_agreed_failure, broadcast, sum_reals, &
        sum_counts, bytes_moved
   use superjoin_parallel_stats, only: mumps_stats_t, mumps_stats, mumps_order_stats_t, mumps_order_stats
@@ -194,6 +194,7 @@ contains
        if (allocated(error)) return
     end if
     solver_name = part_solver(opts)   ! a part is condensed by one process alone (MUMPS: on MPI_COMM_SELF)
+    call library_options(cache, opts)  ! each owner loads and stores its own parts' entries
     allocate (st%parts(summary%n_condensed))
     st%f_eff = st%f_phys
     computed0 = cache%computed
@@ -204,7 +205,7 @@ contains
        if (.not. summary%sub_condensed(isub)) cycle
        ip_ = ip_ + 1
        if (summary%sub_owner(isub) == comm%rank) then
-          call acquire_view(cache, model, st%table, isub, st%bnd_c, solver_name, st%parts(ip_), error)
+          call acquire_part(cache, st, model, isub, solver_name, st%parts(ip_), error)
           if (allocated(error)) return
        else
           call remote_view(st%table, isub, st%bnd_c, st%parts(ip_))
@@ -220,7 +221,14 @@ contains
        ip_ = ip_ + 1
        call exchange_part(st, cache, summary%sub_owner(isub), ip_, self%owned, fstar, error)
        if (allocated(error)) return
+       call exchange_notes(st%parts(ip_), summary%sub_owner(isub), error)
+       if (allocated(error)) return
        associate (v => st%parts(ip_), f_phys => st%f_phys, table => st%table)
+         if (allocated(v%notes)) then
+            do i = 1, size(v%notes)
+               call append_string(notes, v%notes(i)%s)
+            end do
+         end if
          if (v%rotated) nrot = nrot + 1
          ! as condense_parts: AUTOSPC notes and loads on DOFs without stiffness
          do i = 1, size(v%spc)
@@ -241,6 +249,76 @@ contains
     call note(notes, 'condensations: '//itoa(counts(1))//' computed, '//itoa(counts(2))//' reused ('// &
          itoa(nrot)//' turned by their instance''s placement) on '//itoa(comm%size)//' processes')
   end subroutine condense_distributed
+
+  subroutine exchange_notes(v, owner, error)
+    !! The owner's notes on condensed part v (the library's: loaded, stored,
+    !! not used) to every process, so that rank 0 lists them in the order of
+    !! the parts, as one process does.
+    type(part_view_t), intent(inout) :: v
+    integer, intent(in) :: owner
+    type(error_t), allocatable, intent(out) :: error
+    type(comm_t) :: comm
+    real(wp), allocatable :: codes(:)
+    real(wp) :: head(1)
+    logical :: ok
+    integer :: n
+    comm = comm_world()
+    head = 0.0_wp
+    if (owner == comm%rank) then
+       if (.not. allocated(v%notes)) allocate (v%notes(0))
+       call pack_strings(v%notes, codes)
+       head(1) = real(size(codes), wp)
+    end if
+    call broadcast(head, owner, ok)
+    if (ok) then
+       n = nint(head(1))
+       if (owner /= comm%rank) allocate (codes(n))
+       if (n > 0) call broadcast(codes, owner, ok)
+    end if
+    if (.not. ok) call fatal_error(error, EXIT_IO, 'error: MPI broadcast of a condensation failed')
+    if (allocated(error) .or. owner == comm%rank) return
+    call unpack_strings(codes, v%notes)
+  end subroutine exchange_notes
+
+  subroutine pack_strings(list, codes)
+    !! Strings as reals for a broadcast: each one's length, then its character codes.
+    type(string_t), intent(in) :: list(:)
+    real(wp), allocatable, intent(out) :: codes(:)
+    integer :: i, j, at, n
+    n = 0
+    do i = 1, size(list)
+       n = n + 1 + len(list(i)%s)
+    end do
+    allocate (codes(n))
+    at = 0
+    do i = 1, size(list)
+       at = at + 1
+       codes(at) = real(len(list(i)%s), wp)
+       do j = 1, len(list(i)%s)
+          codes(at + j) = real(iachar(list(i)%s(j:j)), wp)
+       end do
+       at = at + len(list(i)%s)
+    end do
+  end subroutine pack_strings
+
+  subroutine unpack_strings(codes, list)
+    !! The strings pack_strings packed, appended to list.
+    real(wp), intent(in) :: codes(:)
+    type(string_t), allocatable, intent(inout) :: list(:)
+    character(:), allocatable :: text
+    integer :: at, j, n
+    at = 0
+    do while (at < size(codes))
+       n = nint(codes(at + 1))
+       allocate (character(n) :: text)
+       do j = 1, n
+          text(j:j) = achar(nint(codes(at + 1 + j)))
+       end do
+       call append_string(list, text)
+       deallocate (text)
+       at = at + 1 + n
+    end do
+  end subroutine unpack_strings
 
   subroutine exchange_part(st, cache, owner, ip_, owned, fstar, error)
     !! Condensed part st%parts(ip_) from its owner to every process: its
@@ -353,7 +431,7 @@ contains
     end associate
     call recover_distributed(cache, st%parts, st%f_phys, st%u, error)
     if (allocated(error)) return
-    call parts_ku_distributed(cache, st%parts, st%u, st%ku, error)
+    call parts_ku_distributed(cache, st%parts, st%f_phys, st%u, st%ku, error)
   end subroutine recover_own
 
   logical function owner_summed(self)
@@ -462,12 +540,13 @@ contains
     end do
   end subroutine recover_distributed
 
-  subroutine parts_ku_distributed(cache, parts, u, ku, error)
+  subroutine parts_ku_distributed(cache, parts, f_phys, u, ku, error)
     !! parts_ku over several processes: k u of each condensed substructure by
-    !! its owner, summed over the processes (zero off the condensed DOFs).
+    !! its owner (a library entry: from the entry, view_ku), summed over the
+    !! processes (zero off the condensed DOFs).
     type(part_cache_t), intent(in) :: cache
     type(part_view_t), intent(in) :: parts(:)
-    real(wp), intent(in) :: u(:, :)
+    real(wp), intent(in) :: f_phys(:, :), u(:, :)
     real(wp), allocatable, intent(out) :: ku(:, :)
     type(error_t), allocatable, intent(out) :: error
     real(wp), allocatable :: y(:, :), buf(:)
@@ -485,7 +564,8 @@ contains
        m = size(parts(i)%pdof, kind=i8)
        if (parts(i)%entry > 0) then
           allocate (y(m, nstep))
-          call view_stiffness_times(cache, parts(i), u(parts(i)%pdof, :), y)
+          call view_ku(cache, parts(i), f_phys(parts(i)%pdof, :), u(parts(i)%pdof, :), y, error)
+          if (allocated(error)) return   ! a library entry's k u does not fail in practice
           buf(at + 1:at + m*nstep) = reshape(y, [m*nstep])
           deallocate (y)
        end if

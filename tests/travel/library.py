@@ -19,7 +19,11 @@ A design study on a grid of plane-stress panels (bench/gen_panel_grid.py,
    library equal those without it to round-off (1e-10: recovery goes through
    the stored operator k_ii^-1 k_ib, not through the factor).
 
-usage: library.py SUPERJOIN WORKDIR
+usage: library.py SUPERJOIN WORKDIR [LAUNCHER ...]
+
+With a launcher (`mpirun -np 2`, the MPI build's test mpi.library) every run
+is started through it: each process loads and stores the entries of the
+parts it owns, and rank 0 lists every part's library note in order.
 """
 import glob
 import hashlib
@@ -36,6 +40,7 @@ import equiv  # noqa: E402
 RTOL = 1e-10
 PANELS = 6
 FAILED = []
+LAUNCHER = []
 
 
 def check(ok, what):
@@ -47,7 +52,7 @@ def check(ok, what):
 def solve(binary, deck, name, work, library=None):
     lst = os.path.join(work, name + ".lst")
     csvdir = os.path.join(work, name + ".csv")
-    cmd = [binary, "-q", "--condense", "yes", deck, "-o", lst, "--csv", csvdir]
+    cmd = LAUNCHER + [binary, "-q", "--condense", "yes", deck, "-o", lst, "--csv", csvdir]
     if library:
         cmd += ["--library", library]
     p = subprocess.run(cmd, capture_output=True, text=True)
@@ -88,6 +93,7 @@ def restamp(data):
 
 def main():
     binary, work = sys.argv[1], sys.argv[2]
+    LAUNCHER.extend(sys.argv[3:])
     shutil.rmtree(work, ignore_errors=True)
     os.makedirs(work)
     gen = os.path.join(ROOT, "bench", "gen_panel_grid.py")

@@ -13,7 +13,10 @@ program schur_cost
   !!            analysis always run and compared with CAMD's (before 2026-11-28)
   !!   analyze  analyze of a_ii alone (part of factor)
   !! and prints the medians and the ratios to factor, and the largest
-  !! difference of the two K* relative to sqrt(k_ii k_jj).
+  !! difference of the two K* relative to sqrt(k_ii k_jj). Each phase is
+  !! timed twice: wall clock, and the process's CPU time (user + system,
+  !! which a loaded machine does not inflate; run with
+  !! OPENBLAS_NUM_THREADS=1 so that spinning BLAS threads do not count).
   !! Build (after the library):
   !!   gfortran -O2 bench/schur_cost.f90 -Ibuild/mod build/libsuperjoin_lib.a \
   !!     -lcholmod -lumfpack -lamd -lcolamd -lcamd -lccolamd -lsuitesparseconfig \
@@ -31,7 +34,7 @@ program schur_cost
   character(len=512) :: path, arg, solver
   integer(i8) :: nb, ni, i
   integer :: reps, r
-  real(wp), allocatable :: t(:, :), k1(:, :), k2(:, :), d(:)
+  real(wp), allocatable :: t(:, :), c(:, :), k1(:, :), k2(:, :), d(:)
   real(wp) :: worst, fl(3)
   integer, parameter :: MODE_SCHUR = 1, MODE_DEFAULT = 2, MODE_COMPARE = 3
 
@@ -53,21 +56,24 @@ program schur_cost
   if (allocated(error)) error stop 'cannot read the matrix'
   ni = a%n - nb
   call interior_block(a, nb, aii)
-  allocate (t(reps, 5), k1(nb, nb), k2(nb, nb))
+  allocate (t(reps, 5), c(reps, 5), k1(nb, nb), k2(nb, nb))
   do r = 1, reps
      call new_solver(trim(solver), ni, s, error)
      t(r, 1) = now()
+     c(r, 1) = cpu()
      call s%analyze(aii, error)
      t(r, 5) = now() - t(r, 1)
+     c(r, 5) = cpu() - c(r, 1)
      call s%factorize(aii, error)
      t(r, 1) = now() - t(r, 1)
+     c(r, 1) = cpu() - c(r, 1)
      if (allocated(error)) error stop 'factor failed'
      fl(1) = flops(s)
      call s%release()
      deallocate (s)
-     call condense(MODE_SCHUR, k1, t(r, 2), fl(2))
-     call condense(MODE_COMPARE, k2, t(r, 4), fl(3))
-     call condense(MODE_DEFAULT, k2, t(r, 3))
+     call condense(MODE_SCHUR, k1, t(r, 2), c(r, 2), fl(2))
+     call condense(MODE_COMPARE, k2, t(r, 4), c(r, 4), fl(3))
+     call condense(MODE_DEFAULT, k2, t(r, 3), c(r, 3))
   end do
   allocate (d(nb))
   d = [(sqrt(max(k2(i, i), tiny(1.0_wp))), i=1, nb)]
@@ -80,16 +86,21 @@ program schur_cost
   write (*, '(a,2f7.2)') 'ratios to factor a_ii: schur, default: ', median(t(:, 2))/median(t(:, 1)), &
        median(t(:, 3))/median(t(:, 1))
   write (*, '(a,2f9.3)') 'medians (s): analyze a_ii, schur compare: ', median(t(:, 5)), median(t(:, 4))
+  write (*, '(a,3f9.3)') 'CPU medians (s): factor a_ii, schur, default: ', median(c(:, 1)), median(c(:, 2)), &
+       median(c(:, 3))
+  write (*, '(a,2f7.2)') 'CPU ratios to factor a_ii: schur, default: ', median(c(:, 2))/median(c(:, 1)), &
+       median(c(:, 3))/median(c(:, 1))
+  write (*, '(a,2f9.3)') 'CPU medians (s): analyze a_ii, schur compare: ', median(c(:, 5)), median(c(:, 4))
   if (fl(1) > 0.0_wp) write (*, '(a,3es10.3,a,2f6.2)') 'flops (CHOLMOD): factor a_ii, schur, compare: ', fl, &
        '  ratios ', fl(2)/fl(1), fl(3)/fl(1)
   write (*, '(a,es9.2)') 'max |K*schur - K*default| / sqrt(k_ii k_jj): ', worst
 
 contains
 
-  subroutine condense(mode, kstar, seconds, fl)
-    !! One condensation by a fresh solver: its K*, wall time and flop count.
+  subroutine condense(mode, kstar, seconds, cpu_seconds, fl)
+    !! One condensation by a fresh solver: its K*, wall and CPU time and flop count.
     integer, intent(in) :: mode
-    real(wp), intent(out) :: kstar(:, :), seconds
+    real(wp), intent(out) :: kstar(:, :), seconds, cpu_seconds
     real(wp), intent(out), optional :: fl
     class(linear_solver_t), allocatable :: c
     call new_solver(trim(solver), ni, c, error)
@@ -98,12 +109,14 @@ contains
        c%camd_first = mode /= MODE_COMPARE
     end select
     seconds = now()
+    cpu_seconds = cpu()
     if (mode == MODE_DEFAULT) then
        call schur_by_solves(c, a, nb, kstar, error)
     else
        call c%schur(a, nb, kstar, error)
     end if
     seconds = now() - seconds
+    cpu_seconds = cpu() - cpu_seconds
     if (allocated(error)) error stop 'condensation failed'
     if (present(fl)) fl = flops(c)
     call c%release()
@@ -124,12 +137,20 @@ contains
     now = real(c, wp)/real(rate, wp)
   end function now
 
+  real(wp) function cpu()
+    !! CPU time of the process so far (user + system), seconds.
+    call cpu_time(cpu)
+  end function cpu
+
   real(wp) function median(x)
     real(wp), intent(in) :: x(:)
     integer, allocatable :: order(:)
     real(wp), allocatable :: y(:)
     integer :: m, i
-    order = [(i, i=1, size(x))]
+    allocate (order(size(x)))
+    do i = 1, size(x)
+       order(i) = i
+    end do
     call sort_index(x, order)
     y = x(order)
     m = size(y)

@@ -16,11 +16,10 @@ independent monolithic run (--condense no) of that step alone. It also
 checks that the listing says how many factorizations and condensations were made.
 """
 import os
-import subprocess
 import sys
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from joint_sweep import HEAD, CONTACTS, LOADS, GL, GR, compare  # noqa: E402
+from joint_sweep import HEAD, CONTACTS, LOADS, GL, GR, compare_step, run  # noqa: E402
 
 SWEEP = ["1.0e5", "1.0e6", "1.0e7", "RIGID", "0", "3.0e6"]
 HEAVY = """*CLOAD
@@ -43,17 +42,6 @@ def single_deck(name, gl, loads):
     return HEAD + CONTACTS.format(gl=gl, gr=GR) + f"*STEP, NAME={name}\n" + loads + "*END STEP\n"
 
 
-def run(exe, deck, work, name, condense):
-    csvdir = os.path.join(work, name)
-    lst = os.path.join(work, name + ".lst")
-    r = subprocess.run([exe, "-q", deck, "-o", lst, "--csv", csvdir, "--condense", condense],
-                       stderr=subprocess.PIPE, text=True)
-    if r.returncode != 0:
-        print(f"FAIL: {deck}: exit status {r.returncode}\n{r.stderr}")
-        sys.exit(1)
-    return csvdir, lst
-
-
 def main(argv):
     if len(argv) != 3:
         print(__doc__.strip().splitlines()[2], file=sys.stderr)
@@ -63,19 +51,16 @@ def main(argv):
     deck = os.path.join(work, "study.deck")
     with open(deck, "w") as f:
         f.write(study_deck())
-    a, lst = run(exe, deck, work, "study", "yes")
+    a, lst = run(exe, deck, work, "study", ("--condense", "yes"))
     cases = [(f"STUDY-{i + 1}", g, LOADS) for i, g in enumerate(SWEEP)] + [("HEAVY", HEAVY_G, HEAVY)]
     ok = True
     for step, gl, loads in cases:
         single = os.path.join(work, f"single_{step}.deck")
         with open(single, "w") as f:
             f.write(single_deck(step, gl, loads))
-        b, _ = run(exe, single, work, f"single_{step}", "no")
-        worst = 0.0
-        for table in ("displacements.csv", "reactions.csv", "contact_forces.csv", "element_forces.csv"):
-            good, w = compare(a, b, table, step)
-            ok = ok and good
-            worst = max(worst, w)
+        b, _ = run(exe, single, work, f"single_{step}", ("--condense", "no"))
+        good, worst = compare_step(a, b, step)
+        ok = ok and good
         print(f"{'ok' if ok else 'FAIL'}: step {step} (left knee g = {gl}): "
               f"largest difference {worst:.1e} of the column's largest value")
     with open(lst) as f:

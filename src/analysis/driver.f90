@@ -357,7 +357,6 @@ contains
 
     ctx%joint_study = ngroup > 1
     ctx%factor%keep_analysis = ngroup > 1   ! each value refactors the previous one's analysis (same pattern)
-    ctx%cache%keep_loads = ngroup > 1       ! and condenses the parts' loads once while they stay the same
     do g = 1, ngroup
        members = pack([(s, s=1, nstep)], group == g)
        call enter_group(model, members, swap, links=.true.)

@@ -38,8 +38,6 @@ module superjoin_substructure_cache
      integer, allocatable :: drill(:)         !! its elements' drilling edge masks (elem_drill; they
                                               !! depend on supports and contacts, not only on the part)
      type(stored_t), allocatable :: stored    !! its library entry (--library)
-     real(wp), allocatable :: loads_in(:, :)  !! the last local loads condensed (a joint study's next
-     real(wp), allocatable :: loads_out(:, :) !! value condenses the same ones) and their f*
   end type entry_t
 
   type :: entry_box_t
@@ -55,7 +53,6 @@ module superjoin_substructure_cache
      integer :: computed = 0                  !! condensations computed
      integer :: reused = 0                    !! uses of an existing one
      type(library_t) :: library               !! the condensation library across runs (--library)
-     logical :: keep_loads = .false.          !! keep each entry's last loads and f* (a joint study)
   end type part_cache_t
 
   type, public :: part_view_t
@@ -258,36 +255,16 @@ contains
     type(error_t), allocatable, intent(out) :: error
     integer :: c
     associate (en => cache%entries(ientry)%e)
-      if (same_loads(en, fc)) then   ! the loads of the previous solve (a joint study's next value)
-         fstar = en%loads_out
-         return
-      end if
       if (.not. allocated(en%stored)) then
          call condense_loads(en%cond, fc, fstar, error)
-      else
-         do c = 1, size(fc, 2), max(chunk, 1)
-            call library_loads(en%cond, en%stored, fc(:, c:c + chunk - 1), fstar(:, c:c + chunk - 1), error)
-            if (allocated(error)) exit
-         end do
+         return
       end if
-      if (allocated(en%loads_in)) deallocate (en%loads_in, en%loads_out)
-      if (allocated(error) .or. .not. cache%keep_loads) return
-      en%loads_in = fc
-      en%loads_out = fstar
+      do c = 1, size(fc, 2), max(chunk, 1)
+         call library_loads(en%cond, en%stored, fc(:, c:c + chunk - 1), fstar(:, c:c + chunk - 1), error)
+         if (allocated(error)) return
+      end do
     end associate
   end subroutine entry_condense_loads
-
-  pure logical function same_loads(en, fc)
-    !! fc is the entry's last condensed loads, value and sign of every zero.
-    type(entry_t), intent(in) :: en
-    real(wp), intent(in) :: fc(:, :)
-    same_loads = allocated(en%loads_in)
-    if (.not. same_loads) return
-    same_loads = all(shape(fc) == shape(en%loads_in))
-    if (.not. same_loads) return
-    same_loads = all(fc == en%loads_in)
-    if (same_loads) same_loads = all(sign(1.0_wp, fc) == sign(1.0_wp, en%loads_in))
-  end function same_loads
 
   subroutine view_recover(cache, view, f_local, u_local, error)
     !! Interior displacements from the boundary ones (local arrays, this frame).

@@ -56,12 +56,7 @@ contains
     integer(i8), allocatable, intent(in) :: groups(:)
     class(linear_solver_t), allocatable, intent(inout) :: solver
     if (.not. (kf%keep_analysis .and. allocated(kf%solver))) return
-    if (.not. same_pattern(kf%k, k)) return
-    if (allocated(groups) .neqv. allocated(kf%groups)) return
-    if (allocated(groups)) then
-       if (size(groups) /= size(kf%groups)) return
-       if (any(groups /= kf%groups)) return
-    end if
+    if (.not. (same_pattern(kf%k, k) .and. same_groups(kf%groups, groups))) return
     call move_alloc(kf%solver, solver)
     kf%analyses_reused = kf%analyses_reused + 1
   end subroutine take_analysis
@@ -134,6 +129,15 @@ contains
     same_matrix = same_pattern(a, b)
     if (same_matrix) same_matrix = all(a%val == b%val)
   end function same_matrix
+
+  pure logical function same_groups(a, b)
+    !! The same column groups (or none on both sides).
+    integer(i8), allocatable, intent(in) :: a(:), b(:)
+    same_groups = allocated(a) .eqv. allocated(b)
+    if (.not. (same_groups .and. allocated(a))) return
+    same_groups = size(a) == size(b)
+    if (same_groups) same_groups = all(a == b)
+  end function same_groups
 
   pure logical function same_pattern(a, b)
     !! Identical order and pattern (the values may differ).

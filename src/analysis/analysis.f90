@@ -32,7 +32,7 @@ module superjoin_analysis
   use superjoin_analysis_levels, only: describe_levels
   use superjoin_analysis_solve_state, only: solve_state_t, plain_strategy_t, PHASE_BUILT, PHASE_ASSEMBLED, PHASE_SOLVED, &
        PHASE_RECOVERED
-  use superjoin_analysis_factor_reuse, only: take_factor, keep_factor, solve_with
+  use superjoin_analysis_factor_reuse, only: take_factor, take_analysis, keep_factor, solve_with
   use superjoin_analysis_distributed, only: plan_distribution, is_distributed, owner_terms, distributed_strategy_t
   use superjoin_solvers, only: mumps_solver_t
   use superjoin_parallel_stats, only: record_matrix_held
@@ -127,7 +127,7 @@ contains
     if (st%strategy%summed()) then
        if (allocated(st%solver)) call st%solver%release()
     else
-       call keep_factor(ctx%factor, st%k, st%solver)   ! released unless ctx%factor%keep
+       call keep_factor(ctx%factor, st%k, st%solver, st%groups)   ! released unless kept (ctx%factor)
     end if
     if (allocated(res%log%notes)) notes = [notes, res%log%notes]   ! the solve phase's (health)
     res%log%notes = notes
@@ -259,7 +259,6 @@ contains
     type(solve_context_t), intent(inout) :: ctx
     type(results_t), intent(inout) :: res
     type(error_t), allocatable, intent(out) :: error
-    integer(i8), allocatable :: groups(:)
     type(stopwatch_t) :: clock
 
     if (st%tr%ncol() > 0) then
@@ -269,8 +268,10 @@ contains
        if (allocated(st%solver)) then
           call solve_with(st%solver, st%k%n, st%f_red, opts%quiet, st%q, res, error)
        else
-          call column_groups(st%table, st%forest, st%tr, groups)
-          call factor_and_solve(st, model, opts, groups, res, error)
+          call column_groups(st%table, st%forest, st%tr, st%groups)
+          ! a joint study: the same pattern as the previous value, only refactored
+          if (.not. st%strategy%summed()) call take_analysis(ctx%factor, st%k, st%groups, st%solver)
+          call factor_and_solve(st, model, opts, res, error)
        end if
        if (allocated(error)) return
     else
@@ -361,14 +362,14 @@ contains
     end do
   end function count_delta
 
-  subroutine factor_and_solve(st, model, opts, groups, res, error)
-    !! Analyze, factorize (mapping a breakdown to its location) and solve all
+  subroutine factor_and_solve(st, model, opts, res, error)
+    !! Analyze (unless st%solver holds a kept analysis of the same pattern),
+    !! factorize (mapping a breakdown to its location) and solve all
     !! steps: st%solver and st%q. Owner terms (st%strategy%summed()): k is
     !! this process's term of K_red (MUMPS local input).
     type(solve_state_t), intent(inout) :: st
     type(model_t), intent(in) :: model
     type(run_options_t), intent(in) :: opts
-    integer(i8), allocatable, intent(in) :: groups(:)
     type(results_t), intent(inout) :: res
     type(error_t), allocatable, intent(out) :: error
     type(stopwatch_t) :: clock
@@ -380,19 +381,24 @@ contains
     solver_name = 'auto'
     if (allocated(opts%solver)) solver_name = opts%solver
     call clock%start()
-    call new_solver(solver_name, st%k%n, st%solver, error)
-    if (allocated(error)) return
-    if (allocated(groups)) call st%solver%set_groups(groups)
-    if (st%strategy%summed()) then
-       select type (s => st%solver)
-       type is (mumps_solver_t)
-          s%local_input = .true.
-       end select
+    if (allocated(st%solver)) then   ! take_analysis: the pattern analyzed for the previous joint value
+       res%log%phase_seconds(PH_ORDER) = 0.0_wp
+       call report_phase(opts%quiet, 'order', 0.0_wp, 'reused (same pattern as the previous solve)')
+    else
+       call new_solver(solver_name, st%k%n, st%solver, error)
+       if (allocated(error)) return
+       if (allocated(st%groups)) call st%solver%set_groups(st%groups)
+       if (st%strategy%summed()) then
+          select type (s => st%solver)
+          type is (mumps_solver_t)
+             s%local_input = .true.
+          end select
+       end if
+       call st%solver%analyze(st%k, error)
+       if (allocated(error)) return
+       res%log%phase_seconds(PH_ORDER) = clock%seconds()
+       call report_phase(opts%quiet, 'order', res%log%phase_seconds(PH_ORDER), st%solver%info%ordering)
     end if
-    call st%solver%analyze(st%k, error)
-    if (allocated(error)) return
-    res%log%phase_seconds(PH_ORDER) = clock%seconds()
-    call report_phase(opts%quiet, 'order', res%log%phase_seconds(PH_ORDER), st%solver%info%ordering)
 
     call clock%start()
     call st%solver%factorize(st%k, error)

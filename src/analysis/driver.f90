@@ -356,6 +356,7 @@ contains
     call group_steps(related, group, ngroup)   ! numbered over these steps
 
     ctx%joint_study = ngroup > 1
+    ctx%factor%keep_analysis = ngroup > 1   ! each value refactors the previous one's analysis (same pattern)
     do g = 1, ngroup
        members = pack([(s, s=1, nstep)], group == g)
        call enter_group(model, members, swap, links=.true.)
@@ -365,6 +366,7 @@ contains
           call add_error_line(error, error%code, '  (while solving '//step_list(model, members, .true.)// &
                ' with their contact stiffnesses, *CHANGE CONTACT)')
           if (keep_going(fail, members, nstep, r, res, error)) cycle
+          call release_factor(ctx%factor)
           call release_cache(ctx%cache)
           return
        end if
@@ -372,6 +374,7 @@ contains
        fail%solved = .true.
        call note_group(model, members, res)
     end do
+    call release_factor(ctx%factor)
     call release_cache(ctx%cache)
     call finish_failures(fail, res, error)
     call append_string(res%log%notes, 'joint study (*CHANGE CONTACT): '//itoa(ngroup)// &

@@ -6,6 +6,12 @@ module superjoin_analysis_factor_reuse
   !! reused only when the next assembled matrix is identical, entry for entry
   !! (pattern and values): a change of the AUTOSPC decisions or anything else
   !! that touches the matrix simply factors again.
+  !!
+  !! A joint study (*CHANGE CONTACT) keeps the analysis instead (keep_analysis):
+  !! a finite g sits on its own Δu diagonal, so another finite g gives the
+  !! interface matrix the same pattern and only the numeric factorization is
+  !! repeated (take_analysis). A g = 0 or RIGID in one value and not in the
+  !! other changes which unknowns exist, hence the pattern: analyzed again.
   use superjoin_kinds, only: wp, i8
   use superjoin_error, only: error_t
   use superjoin_solvers, only: linear_solver_t, sparse_sym_t
@@ -21,9 +27,12 @@ module superjoin_analysis_factor_reuse
      class(linear_solver_t), allocatable :: solver
      type(sparse_sym_t) :: k
      integer :: reuses = 0                            !! solves that reused a kept factorization
+     logical :: keep_analysis = .false.               !! keep the solver for a next matrix of the same pattern
+     integer(i8), allocatable :: groups(:)            !! the column groups the kept solver was analyzed with
+     integer :: analyses_reused = 0                   !! solves that refactored a kept analysis
   end type kept_factor_t
 
-  public :: take_factor, keep_factor, release_factor, solve_with
+  public :: take_factor, take_analysis, keep_factor, release_factor, solve_with
 
 contains
 
@@ -38,14 +47,34 @@ contains
     kf%reuses = kf%reuses + 1
   end subroutine take_factor
 
-  subroutine keep_factor(kf, k, solver)
-    !! At the end of a solve: keep its factorization (and matrix) when kf%keep,
+  subroutine take_analysis(kf, k, groups, solver)
+    !! Hand over the kept solver when its analysis fits k (the same pattern
+    !! and column groups; kf%keep_analysis): the caller factors k with it
+    !! without analyzing again. Else none.
+    type(kept_factor_t), intent(inout) :: kf
+    type(sparse_sym_t), intent(in) :: k
+    integer(i8), allocatable, intent(in) :: groups(:)
+    class(linear_solver_t), allocatable, intent(inout) :: solver
+    if (.not. (kf%keep_analysis .and. allocated(kf%solver))) return
+    if (.not. (same_pattern(kf%k, k) .and. same_groups(kf%groups, groups))) return
+    call move_alloc(kf%solver, solver)
+    kf%analyses_reused = kf%analyses_reused + 1
+  end subroutine take_analysis
+
+  subroutine keep_factor(kf, k, solver, groups)
+    !! At the end of a solve: keep its factorization (and matrix, and the
+    !! column groups it was analyzed with) when kf%keep or kf%keep_analysis,
     !! release it otherwise.
     type(kept_factor_t), intent(inout) :: kf
     type(sparse_sym_t), intent(in) :: k
     class(linear_solver_t), allocatable, intent(inout) :: solver
+    integer(i8), allocatable, intent(in), optional :: groups(:)
     if (.not. allocated(solver)) return
-    if (.not. kf%keep) then
+    if (allocated(kf%groups)) deallocate (kf%groups)
+    if (present(groups)) then
+       if (allocated(groups)) kf%groups = groups
+    end if
+    if (.not. (kf%keep .or. kf%keep_analysis)) then
        call solver%release()
        deallocate (solver)
        return
@@ -97,12 +126,27 @@ contains
   pure logical function same_matrix(a, b)
     !! Identical pattern and values.
     type(sparse_sym_t), intent(in) :: a, b
-    same_matrix = .false.
+    same_matrix = same_pattern(a, b)
+    if (same_matrix) same_matrix = all(a%val == b%val)
+  end function same_matrix
+
+  pure logical function same_groups(a, b)
+    !! The same column groups (or none on both sides).
+    integer(i8), allocatable, intent(in) :: a(:), b(:)
+    same_groups = allocated(a) .eqv. allocated(b)
+    if (.not. (same_groups .and. allocated(a))) return
+    same_groups = size(a) == size(b)
+    if (same_groups) same_groups = all(a == b)
+  end function same_groups
+
+  pure logical function same_pattern(a, b)
+    !! Identical order and pattern (the values may differ).
+    type(sparse_sym_t), intent(in) :: a, b
+    same_pattern = .false.
     if (a%n /= b%n) return
     if (.not. (allocated(a%colptr) .and. allocated(b%colptr))) return
     if (size(a%rowind) /= size(b%rowind)) return
     if (any(a%colptr /= b%colptr)) return
-    if (any(a%rowind /= b%rowind)) return
-    same_matrix = all(a%val == b%val)
-  end function same_matrix
+    same_pattern = all(a%rowind == b%rowind)
+  end function same_pattern
 end module superjoin_analysis_factor_reuse

@@ -373,6 +373,9 @@ contains
     real(wp) :: n
     dim = 1
     do e = 1, model%subs(isub)%nelem
+       if (e > 1) then   ! a run of one type: its traits are judged already
+          if (model%subs(isub)%elem_type(e) == model%subs(isub)%elem_type(e - 1)) cycle
+       end if
        t = element_traits(model%subs(isub)%elem_type(e))
        if (t%family == FAMILY_SOLID .and. .not. t%axisymmetric) then
           dim = 3

@@ -11,7 +11,7 @@ module superjoin_analysis_solve_state
   !! one (several MPI processes, analysis/distributed, the only one that
   !! knows of owner terms). analysis.f90's choose_strategy picks one; a new
   !! way of solving is a new extension of solve_strategy_t and a line there.
-  use superjoin_kinds, only: wp
+  use superjoin_kinds, only: wp, i8
   use superjoin_error, only: error_t
   use superjoin_model_types, only: model_t, string_t
   use superjoin_model_results, only: run_summary_t, run_options_t
@@ -76,6 +76,7 @@ module superjoin_analysis_solve_state
      real(wp), allocatable :: f_red(:, :)    !! reduced loads (ncol, nstep)
      logical, allocatable :: spc(:)          !! AUTOSPC columns
      class(linear_solver_t), allocatable :: solver
+     integer(i8), allocatable :: groups(:)   !! the column groups the solver was analyzed with (none: unallocated)
      real(wp), allocatable :: q(:, :)        !! reduced solution (ncol, nstep)
      real(wp), allocatable :: u(:, :)        !! physical displacements (np, nstep)
      real(wp), allocatable :: ku(:, :)       !! k u of the condensed parts (np, nstep)

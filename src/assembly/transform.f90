@@ -1116,8 +1116,9 @@ contains
     integer(i8), allocatable :: col(:, :)
     real(wp), allocatable :: coef(:, :), u0e(:), t(:, :)
     integer, allocatable :: nm(:)
+    integer(i8), allocatable :: at(:)
     integer :: n, a, b, ia, ib, mmax
-    integer(i8) :: pos
+    integer(i8) :: pos, j
     n = size(pd)
     mmax = 1
     do a = 1, n
@@ -1128,16 +1129,24 @@ contains
        call tr%columns_of(pd(a), col(:, a), coef(:, a), nm(a))
        u0e(a) = tr%u0(pd(a))
     end do
+    ! at(row): the row's position in column col(ib, b) of k (its pattern
+    ! spread once per column instead of a search per entry)
+    allocate (at(k%n), source=0_i8)
     do b = 1, n
        do ib = 1, nm(b)
+          j = col(ib, b)
+          do pos = k%colptr(j), k%colptr(j + 1) - 1
+             at(k%rowind(pos)) = pos
+          end do
           do a = 1, n
              if (ke(a, b) == 0.0_wp) cycle
              do ia = 1, nm(a)
-                if (col(ia, a) > col(ib, b)) cycle
-                pos = find_entry(k, col(ia, a), col(ib, b))
+                if (col(ia, a) > j) cycle
+                pos = at(col(ia, a))
                 k%val(pos) = k%val(pos) + coef(ia, a)*coef(ib, b)*ke(a, b)
              end do
           end do
+          at(k%rowind(k%colptr(j):k%colptr(j + 1) - 1)) = 0
        end do
     end do
     if (any(u0e /= 0.0_wp)) then

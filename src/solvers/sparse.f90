@@ -39,18 +39,41 @@ contains
   end subroutine sparse_diagonal
 
   pure subroutine sparse_matvec(a, x, y)
-    !! y = A x for the full symmetric matrix (x, y of shape (n, nrhs)).
+    !! y = A x for the full symmetric matrix (x, y of shape (n, nrhs)), one
+    !! right-hand side after the other (each y(i, c) sums the same terms in
+    !! the same order as a sweep over all columns at once would).
     class(sparse_sym_t), intent(in) :: a
     real(wp), intent(in) :: x(:, :)
     real(wp), intent(out) :: y(:, :)
-    integer(i8) :: j, k, i
-    y = 0.0_wp
-    do j = 1, a%n
-       do k = a%colptr(j), a%colptr(j + 1) - 1
-          i = a%rowind(k)
-          y(i, :) = y(i, :) + a%val(k)*x(j, :)
-          if (i /= j) y(j, :) = y(j, :) + a%val(k)*x(i, :)
-       end do
+    integer :: c
+    do c = 1, size(x, 2)
+       call matvec_column(a, x(:, c), y(:, c))
     end do
   end subroutine sparse_matvec
+
+  pure subroutine matvec_column(a, x, y)
+    !! y = A x for one right-hand side. Column j's own row y(j) is zero when
+    !! column j is reached (earlier columns touch only rows above j), so its
+    !! terms from column j are summed in a scalar first.
+    type(sparse_sym_t), intent(in) :: a
+    real(wp), intent(in) :: x(:)
+    real(wp), intent(out) :: y(:)
+    integer(i8) :: j, k, i
+    real(wp) :: xj, yj
+    y = 0.0_wp
+    do j = 1, a%n
+       xj = x(j)
+       yj = 0.0_wp
+       do k = a%colptr(j), a%colptr(j + 1) - 1
+          i = a%rowind(k)
+          if (i == j) then
+             yj = yj + a%val(k)*xj
+          else
+             y(i) = y(i) + a%val(k)*xj
+             yj = yj + a%val(k)*x(i)
+          end if
+       end do
+       y(j) = y(j) + yj
+    end do
+  end subroutine matvec_column
 end module superjoin_solvers_sparse

@@ -95,11 +95,26 @@ contains
     end do
   end subroutine tb_put
 
+  logical function has_room(self, n)
+    !! Whether n more characters fit in the buffer, after writing it out if
+    !! they do not (false: n is larger than the whole buffer).
+    class(text_buffer_t), intent(inout) :: self
+    integer, intent(in) :: n
+    if (self%pos + n > BUFFER_BYTES) call flush_block(self)
+    has_room = n <= BUFFER_BYTES
+  end function has_room
+
   subroutine tb_put_blanks(self, count)
     !! Append `count` blanks.
     class(text_buffer_t), intent(inout) :: self
     integer, intent(in) :: count
     integer :: left
+    if (count <= 0) return
+    if (has_room(self, count)) then
+       self%buf(self%pos + 1:self%pos + count) = ' '
+       self%pos = self%pos + count
+       return
+    end if
     left = count
     do while (left > 0)
        call self%put(BLANKS(1:min(left, BLANK_RUN)))
@@ -112,7 +127,12 @@ contains
     class(text_buffer_t), intent(inout) :: self
     character(*), intent(in) :: text
     integer, intent(in) :: width
-    if (len(text) >= width) then
+    if (width <= 0) return
+    if (has_room(self, width)) then
+       ! the assignment pads with blanks or cuts
+       self%buf(self%pos + 1:self%pos + width) = text
+       self%pos = self%pos + width
+    else if (len(text) >= width) then
        call self%put(text(1:width))
     else
        call self%put(text)
@@ -128,7 +148,14 @@ contains
     character(len=INT_TEXT_LEN) :: digits
     integer :: n
     call int_text(value, digits, n)
-    if (n < width) call self%put_blanks(width - n)
+    if (has_room(self, max(n, width))) then
+       if (n < width) self%buf(self%pos + 1:self%pos + width - n) = ' '
+       self%pos = self%pos + max(width - n, 0)
+       self%buf(self%pos + 1:self%pos + n) = digits(1:n)
+       self%pos = self%pos + n
+       return
+    end if
+    call self%put_blanks(width - n)
     call self%put(digits(1:n))
   end subroutine tb_put_int
 
@@ -136,10 +163,11 @@ contains
     !! Append ' ' and x in the layout of ES14.6E3 (15 characters).
     class(text_buffer_t), intent(inout) :: self
     real(wp), intent(in) :: x
-    if (self%pos + ES_FIELD > BUFFER_BYTES) call flush_block(self)
-    self%buf(self%pos + 1:self%pos + 1) = ' '
-    call format_es(x, self%buf(self%pos + 2:self%pos + ES_FIELD))
-    self%pos = self%pos + ES_FIELD
+    if (has_room(self, ES_FIELD)) then
+       self%buf(self%pos + 1:self%pos + 1) = ' '
+       call format_es(x, self%buf(self%pos + 2:self%pos + ES_FIELD))
+       self%pos = self%pos + ES_FIELD
+    end if
   end subroutine tb_put_es
 
   subroutine tb_put_es_row(self, x)
@@ -147,8 +175,7 @@ contains
     class(text_buffer_t), intent(inout) :: self
     real(wp), intent(in) :: x(:)
     integer :: k
-    if (self%pos + ES_FIELD*size(x) > BUFFER_BYTES) call flush_block(self)
-    if (ES_FIELD*size(x) > BUFFER_BYTES) then
+    if (.not. has_room(self, ES_FIELD*size(x))) then
        do k = 1, size(x)
           call self%put_es(x(k))
        end do
@@ -166,13 +193,15 @@ contains
     class(text_buffer_t), intent(inout) :: self
     character(*), intent(in) :: text
     call self%put(text)
-    call self%put(new_line('a'))
+    call self%newline()
   end subroutine tb_line
 
   subroutine tb_newline(self)
     !! End the current line.
     class(text_buffer_t), intent(inout) :: self
-    call self%put(new_line('a'))
+    if (self%pos == BUFFER_BYTES) call flush_block(self)
+    self%pos = self%pos + 1
+    self%buf(self%pos:self%pos) = new_line('a')
   end subroutine tb_newline
 
   subroutine tb_close(self, ok)

@@ -16,7 +16,7 @@ program test_number_text
   use superjoin_testing, only: check, finish
   implicit none (type, external)
 
-  integer, parameter :: N_BITS = 2000000, N_USUAL = 2000000
+  integer, parameter :: N_BITS = 1500000, N_USUAL = 1500000
   integer, parameter :: ULPS = 40, NEAR = 3
     !! neighbours each side of an edge value, of a tie
   integer, parameter :: N_TIES = 30000
@@ -187,8 +187,13 @@ contains
   subroutine random_bits()
     !! Random bit patterns: every exponent alike, subnormals, NaNs, infinities.
     integer :: k
+    integer(int64) :: bits
+    integer(int64), parameter :: EXPONENT_BITS = shiftl(2047_int64, 52)
     do k = 1, N_BITS
-       call compare(transfer(next_random(), 1.0_wp))
+       bits = next_random()
+       ! a NaN pattern made quiet: a signalling NaN would trap in a Debug build
+       if (iand(bits, EXPONENT_BITS) == EXPONENT_BITS) bits = ibset(bits, 51)
+       call compare(transfer(bits, 1.0_wp))
     end do
   end subroutine random_bits
 

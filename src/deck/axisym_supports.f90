@@ -6,7 +6,7 @@ module superjoin_deck_axisym_supports
   !! first node. A support on its DOFs 4-6 is an error (CalculiX 2.20 stops on
   !! it with a floating point exception).
   use superjoin_kinds, only: ip
-  use superjoin_model_types, only: model_t, support_t, source_loc_t, string_t, node_label
+  use superjoin_model_types, only: model_t, support_t, source_loc_t, string_t, node_label, NUM_ELEMENT_TYPES
   use superjoin_elements_traits, only: element_traits_t, element_traits
   use superjoin_model_notes, only: note
   use superjoin_deck_state, only: deck_state_t, report_loc
@@ -54,10 +54,13 @@ contains
     type(model_t), intent(in) :: model
     type(axis_nodes_t), allocatable, intent(out) :: axis(:)
     logical, allocatable :: other(:)
-    type(element_traits_t) :: tr
+    type(element_traits_t) :: traits(NUM_ELEMENT_TYPES)
     integer(ip) :: e
     integer :: isub, k
     any_axis = .false.
+    do k = 1, NUM_ELEMENT_TYPES   ! looked up once per type, not per element
+       traits(k) = element_traits(k)
+    end do
     allocate (axis(size(model%subs)))
     do isub = 1, size(model%subs)
        associate (sub => model%subs(isub))
@@ -65,15 +68,16 @@ contains
          axis(isub)%only = .false.
          other = .false.
          do e = 1, sub%nelem
-            tr = element_traits(sub%elem_type(e))
-            do k = 1, tr%nodes
-               if (sub%elem_nodes(k, e) < 1 .or. sub%elem_nodes(k, e) > sub%nnode) cycle
-               if (tr%axisymmetric) then
-                  axis(isub)%only(sub%elem_nodes(k, e)) = .true.
-               else
-                  other(sub%elem_nodes(k, e)) = .true.
-               end if
-            end do
+            associate (tr => traits(sub%elem_type(e)))
+              do k = 1, tr%nodes
+                 if (sub%elem_nodes(k, e) < 1 .or. sub%elem_nodes(k, e) > sub%nnode) cycle
+                 if (tr%axisymmetric) then
+                    axis(isub)%only(sub%elem_nodes(k, e)) = .true.
+                 else
+                    other(sub%elem_nodes(k, e)) = .true.
+                 end if
+              end do
+            end associate
          end do
          axis(isub)%only = axis(isub)%only .and. .not. other
          any_axis = any_axis .or. any(axis(isub)%only)

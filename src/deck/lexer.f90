@@ -177,16 +177,15 @@ contains
     first = pos
     last = pos - 1
     if (.not. found) return
-    k = scan(text(pos:), LF//CR, kind=i8)
-    if (k == 0) then
-       last = n
-       pos = n + 1
-    else
-       last = pos + k - 2
-       pos = pos + k
-       if (text(pos - 1:pos - 1) == CR .and. pos <= n) then
-          if (text(pos:pos) == LF) pos = pos + 1
-       end if
+    k = pos
+    do while (k <= n)
+       if (text(k:k) == LF .or. text(k:k) == CR) exit
+       k = k + 1
+    end do
+    last = k - 1
+    pos = min(k, n) + 1
+    if (k < n) then   ! CR LF
+       if (text(k:k) == CR .and. text(pos:pos) == LF) pos = pos + 1
     end if
   end subroutine next_line
 
@@ -321,16 +320,17 @@ contains
     !! arrays of `f`, growing them as needed. An empty line gives one empty field.
     character(*), intent(in) :: line
     type(fields_t), intent(inout) :: f
-    integer :: start, c, e, a, b
+    integer :: start, c, e, a, b, n
     f%n = 0
     start = 1
+    n = len(line)
     do
-       c = index(line(start:), ',')
-       if (c == 0) then
-          e = len(line)
-       else
-          e = start + c - 2
-       end if
+       c = start   ! the comma that ends the field, n + 1 at the end of the line
+       do while (c <= n)
+          if (line(c:c) == ',') exit
+          c = c + 1
+       end do
+       e = c - 1
        a = start
        b = e
        do while (a <= b)
@@ -341,13 +341,18 @@ contains
           if (line(b:b) /= BLANK .and. line(b:b) /= TAB) exit
           b = b - 1
        end do
-       call grow(f%first, f%n, INITIAL_FIELDS)
-       call grow(f%last, f%n, INITIAL_FIELDS)
+       if (.not. allocated(f%first) .or. .not. allocated(f%last)) then
+          call grow(f%first, f%n, INITIAL_FIELDS)
+          call grow(f%last, f%n, INITIAL_FIELDS)
+       else if (f%n >= min(size(f%first), size(f%last))) then
+          call grow(f%first, f%n, INITIAL_FIELDS)
+          call grow(f%last, f%n, INITIAL_FIELDS)
+       end if
        f%n = f%n + 1
        f%first(f%n) = a
        f%last(f%n) = b
-       if (c == 0) exit
-       start = start + c
+       if (c > n) exit
+       start = c + 1
     end do
   end subroutine split_fields
 
@@ -462,9 +467,13 @@ contains
        negative = s(1:1) == '-'
        i = 2
     end if
-    if (is_nonfinite_word(to_upper(s(i:)))) then
-       stat = TOK_NONFINITE
-       return
+    if (i <= len(s)) then   ! a word only when it starts with a letter (or a second sign)
+       if (is_letter(s(i:i)) .or. s(i:i) == '+' .or. s(i:i) == '-') then
+          if (is_nonfinite_word(to_upper(s(i:)))) then
+             stat = TOK_NONFINITE
+             return
+          end if
+       end if
     end if
     call scan_mantissa(s, i, mant, ok)
     if (.not. ok) return
@@ -606,6 +615,12 @@ contains
        stat = TOK_RANGE
     end if
   end subroutine decimal_value
+
+  elemental logical function is_letter(c)
+    !! True for an ASCII letter.
+    character, intent(in) :: c
+    is_letter = (c >= 'A' .and. c <= 'Z') .or. (c >= 'a' .and. c <= 'z')
+  end function is_letter
 
   pure logical function is_nonfinite_word(u)
     character(*), intent(in) :: u

@@ -2,15 +2,26 @@ module superjoin_output_columns
   !! Pieces of the listing's tables shared by its sections: the element
   !! columns of a row, and round-off noise printed as zero.
   use superjoin_kinds, only: wp, i8, ip
-  use superjoin_model_types, only: model_t, ELEMENT_TYPE_NAMES
+  use superjoin_model_types, only: model_t, ELEMENT_TYPE_NAMES, NUM_ELEMENT_TYPES
   use superjoin_utils_text_buffer, only: text_buffer_t
+  use superjoin_elements, only: is_plate_type, is_plane_type, is_plane_strain_type
+  use superjoin_output_layout, only: is_truss
   implicit none (type, external)
   private
 
   real(wp), parameter, public :: CHOP_FRACTION = 1.0e-13_wp
     !! Values below this fraction of the largest value of their table print as zero.
 
-  public :: element_prefix, chop
+  type, public :: element_kinds_t
+    !! What the tables ask of each element type, looked up once for all types
+    !! instead of once per element row.
+     logical :: plate(NUM_ELEMENT_TYPES) = .false.         !! plane and shell types
+     logical :: plane(NUM_ELEMENT_TYPES) = .false.         !! CPS*, CPE*
+     logical :: plane_strain(NUM_ELEMENT_TYPES) = .false.  !! CPE*
+     logical :: truss(NUM_ELEMENT_TYPES) = .false.         !! T2D2, T3D2
+  end type element_kinds_t
+
+  public :: element_prefix, chop, element_kinds
 
 contains
 
@@ -22,7 +33,7 @@ contains
     integer, intent(in) :: isub
     integer(ip), intent(in) :: ie
     integer, intent(in) :: indent
-    call lu%put(repeat(' ', indent))
+    call lu%put_blanks(indent)
     call lu%put_field(model%subs(isub)%name, 20)
     call lu%put_int(int(model%subs(isub)%elem_id(ie), i8), 10)
     ! a five-letter type (CPS8R) takes one of the two blanks: the columns stay in place
@@ -40,6 +51,18 @@ contains
       end if
     end associate
   end subroutine element_prefix
+
+  pure function element_kinds() result(k)
+    !! The element_kinds_t of every element type.
+    type(element_kinds_t) :: k
+    integer :: t
+    do t = 1, NUM_ELEMENT_TYPES
+       k%plate(t) = is_plate_type(t)
+       k%plane(t) = is_plane_type(t)
+       k%plane_strain(t) = is_plane_strain_type(t)
+       k%truss(t) = is_truss(t)
+    end do
+  end function element_kinds
 
   elemental function chop(x, scale) result(y)
     !! Round-off noise relative to the table's scale prints as zero.

@@ -10,8 +10,9 @@ module superjoin_output_layout
   !!   on any other DOF gives no row of SUPPORT REACTIONS;
   !! - trusses (T2D2, T3D2) print one axial force per bar (TRUSS AXIAL FORCES)
   !!   instead of rows of ELEMENT END FORCES.
+  use, intrinsic :: iso_fortran_env, only: int8
   use superjoin_kinds, only: i8, ip
-  use superjoin_model_types, only: model_t, NDOF_NODE, LINK_NONE, ELEMENT_NODE_COUNT
+  use superjoin_model_types, only: model_t, NDOF_NODE, LINK_NONE, ELEMENT_NODE_COUNT, NUM_ELEMENT_TYPES
   use superjoin_elements, only: element_dof_mask
   use superjoin_elements_traits, only: element_traits_t, element_traits, is_family, FAMILY_TRUSS
   implicit none (type, external)
@@ -37,16 +38,19 @@ contains
     !! second-order plane elements do not count).
     type(model_t), intent(in) :: model
     type(element_traits_t) :: t
-    integer :: isub
+    integer :: isub, k
     integer(ip) :: e
-    logical :: any_element
+    logical :: any_element, planar(NUM_ELEMENT_TYPES)
+    do k = 1, NUM_ELEMENT_TYPES
+       t = element_traits(k)
+       planar(k) = t%planar .and. .not. t%quadratic
+    end do
     is_planar_model = .true.
     any_element = .false.
     do isub = 1, size(model%subs)
        do e = 1, model%subs(isub)%nelem
           any_element = .true.
-          t = element_traits(model%subs(isub)%elem_type(e))
-          if (.not. t%planar .or. t%quadratic) then
+          if (.not. planar(model%subs(isub)%elem_type(e))) then
              is_planar_model = .false.
              return
           end if
@@ -77,25 +81,26 @@ contains
   end function is_truss
 
   pure subroutine node_dof_mask(model, vertex_offset, mask)
-    !! mask(d, v): node v (numbered by vertex_offset over the substructures)
-    !! has DOF d from an element or a contact element.
+    !! Bit d - 1 of mask(v): node v (numbered by vertex_offset over the
+    !! substructures) has DOF d from an element or a contact element.
     type(model_t), intent(in) :: model
     integer(i8), intent(in) :: vertex_offset(:)
-    logical, allocatable, intent(out) :: mask(:, :)
-    integer :: isub, a, il, d, b
+    integer(int8), allocatable, intent(out) :: mask(:)
+    integer :: isub, a, il, d, b, k
     integer(ip) :: e
     integer(i8) :: nv, vm, vs
-    logical :: m(NDOF_NODE)
+    integer(int8) :: m(NUM_ELEMENT_TYPES), bits
     nv = vertex_offset(size(model%subs) + 1)
-    allocate (mask(NDOF_NODE, nv), source=.false.)
+    allocate (mask(nv), source=0_int8)
+    do k = 1, NUM_ELEMENT_TYPES
+       m(k) = dof_bits(element_dof_mask(k))
+    end do
     do isub = 1, size(model%subs)
-       associate (sub => model%subs(isub))
+       associate (sub => model%subs(isub), v0 => vertex_offset(isub))
          do e = 1, sub%nelem
-            m = element_dof_mask(sub%elem_type(e))
+            bits = m(sub%elem_type(e))
             do a = 1, ELEMENT_NODE_COUNT(sub%elem_type(e))
-               associate (v => vertex_offset(isub) + sub%elem_nodes(a, e))
-                 mask(:, v) = mask(:, v) .or. m
-               end associate
+               mask(v0 + sub%elem_nodes(a, e)) = ior(mask(v0 + sub%elem_nodes(a, e)), bits)
             end do
          end do
        end associate
@@ -108,16 +113,26 @@ contains
             if (lk%state(d) == LINK_NONE) cycle
             if (ct%orientation > 0) then
                b = (d - 1)/BLOCK
-               mask(b*BLOCK + 1:b*BLOCK + BLOCK, vm) = .true.
-               mask(b*BLOCK + 1:b*BLOCK + BLOCK, vs) = .true.
+               bits = int(shiftl(7, b*BLOCK), int8)   ! the DOFs of its block
             else
-               mask(d, vm) = .true.
-               mask(d, vs) = .true.
+               bits = int(shiftl(1, d - 1), int8)
             end if
+            mask(vm) = ior(mask(vm), bits)
+            mask(vs) = ior(mask(vs), bits)
          end do
        end associate
     end do
   end subroutine node_dof_mask
+
+  pure integer(int8) function dof_bits(dofs) result(bits)
+    !! dofs(1:NDOF_NODE) as bits 0 .. NDOF_NODE - 1.
+    logical, intent(in) :: dofs(NDOF_NODE)
+    integer :: d
+    bits = 0_int8
+    do d = 1, NDOF_NODE
+       if (dofs(d)) bits = ibset(bits, d - 1)
+    end do
+  end function dof_bits
 
   pure logical function has_node_frames(model)
     !! True when some node of the model has a nodal system (*TRANSFORM): its

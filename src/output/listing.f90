@@ -1,23 +1,24 @@
 module superjoin_output_listing
   !! The fixed-format listing: the same bytes for the same deck on every run.
   !! Written to a temporary name and renamed only when complete.
+  use, intrinsic :: iso_fortran_env, only: int8
   use superjoin_kinds, only: wp, i8, ip
   use superjoin_error, only: error_t, fatal_error, EXIT_IO
   use superjoin_model_types, only: model_t, NDOF_NODE, LINK_RIGID, &
        RIGID_ELIMINATE
-  use superjoin_elements, only: is_plate_type, is_plane_type, is_plane_strain_type, plane_centroid_remainder
+  use superjoin_elements, only: plane_centroid_remainder
   use superjoin_model_types, only: ELEMENT_NODE_COUNT
   use superjoin_model_results, only: results_t, step_results_t
   use superjoin_utils_process, only: temp_register, temp_unregister
   use superjoin_utils_text_buffer, only: text_buffer_t
-  use superjoin_output_columns, only: element_prefix, chop
+  use superjoin_output_columns, only: element_prefix, chop, element_kinds_t, element_kinds
   use superjoin_config, only: SUPERJOIN_VERSION
   use superjoin_utils_strings, only: itoa
   use superjoin_utils_memory, only: out_of_memory
   use superjoin_output_requests, only: write_print_requests
   use superjoin_output_section_print, only: write_section_prints
   use superjoin_model_request_masks, only: has_requests
-  use superjoin_output_layout, only: displacement_columns, node_dof_mask, is_truss, &
+  use superjoin_output_layout, only: displacement_columns, node_dof_mask, &
        has_node_frames, in_node_frame, REACTION_FRAME_NOTE, FRAME_MARK
   use superjoin_output_envelope, only: write_envelope
   implicit none (type, external)
@@ -340,11 +341,11 @@ contains
     integer :: isub, d, k
     integer(ip) :: n
     integer(i8) :: v
-    real(wp) :: scale, vals(NDOF_NODE)
+    real(wp) :: scale, vals(NDOF_NODE), row(NDOF_NODE)
     character(len=300) :: hline
     character(len=3), parameter :: DISP_NAMES(NDOF_NODE) = ['u1 ', 'u2 ', 'u3 ', 'ur1', 'ur2', 'ur3']
     integer :: cols(NDOF_NODE), ncol
-    logical, allocatable :: has(:, :)
+    integer(int8), allocatable :: has(:)
 
     call node_dof_mask(model, res%fields%vertex_offset, has)
     associate (st => res%fields%steps(is))
@@ -368,8 +369,9 @@ contains
             call lu%put_field(model%subs(isub)%name, 20)
             call lu%put_int(int(model%subs(isub)%node_id(n), i8), 10)
             do k = 1, ncol
-               call lu%put_es(vals(cols(k)))
+               row(k) = vals(cols(k))
             end do
+            call lu%put_es_row(row(1:ncol))
             call lu%newline()
          end do
       end do
@@ -385,7 +387,7 @@ contains
       scale = max(0.0_wp, maxval(abs(st%reactions(:)%force)))
       do k = 1, size(st%reactions)
          associate (rc => st%reactions(k))
-           if (.not. has(rc%dof, res%fields%vertex_offset(rc%sub) + rc%node)) cycle
+           if (.not. btest(has(res%fields%vertex_offset(rc%sub) + rc%node), rc%dof - 1)) cycle
            call lu%put('  ')
            call lu%put_field(model%subs(rc%sub)%name, 20)
            call lu%put_int(int(model%subs(rc%sub)%node_id(rc%node), i8), 10)
@@ -406,27 +408,27 @@ contains
     type(model_t), intent(in) :: model
     type(results_t), intent(in) :: res
     integer, intent(in) :: is
-    integer :: isub, d, k, ie
+    integer :: isub, k, ie
     integer(i8) :: iel
-    real(wp) :: scale
+    real(wp) :: scale, row(6)
     character(len=300) :: hline
     logical :: has_bars, has_plates, has_trusses
+    type(element_kinds_t) :: kinds
 
+    kinds = element_kinds()
     has_bars = .false.
     has_plates = .false.
     has_trusses = .false.
     do isub = 1, size(model%subs)
        do ie = 1, model%subs(isub)%nelem
-          if (is_plate_type(model%subs(isub)%elem_type(ie))) then
-             has_plates = .true.
-          else if (is_truss(model%subs(isub)%elem_type(ie))) then
-             has_trusses = .true.
-          else
-             has_bars = .true.
-          end if
+          associate (t => model%subs(isub)%elem_type(ie))
+            has_plates = has_plates .or. kinds%plate(t)
+            has_trusses = has_trusses .or. (kinds%truss(t) .and. .not. kinds%plate(t))
+            has_bars = has_bars .or. .not. (kinds%plate(t) .or. kinds%truss(t))
+          end associate
        end do
     end do
-    if (has_trusses) call truss_block(lu, model, res, is)
+    if (has_trusses) call truss_block(lu, model, res, is, kinds)
     if (has_bars) then
        call lu%line('ELEMENT END FORCES (local axes; forces the nodes exert on the element)')
        write (hline, '(2x,a20,a10,a6,a4,6a15)') 'substructure        ', '   element', '  type', ' end', &
@@ -436,25 +438,24 @@ contains
        scale = max(0.0_wp, maxval(abs(res%fields%elem_force(:, :, :, is))))
        do isub = 1, size(model%subs)
           do ie = 1, model%subs(isub)%nelem
-             if (is_plate_type(model%subs(isub)%elem_type(ie))) cycle
-             if (is_truss(model%subs(isub)%elem_type(ie))) cycle
+             if (kinds%plate(model%subs(isub)%elem_type(ie))) cycle
+             if (kinds%truss(model%subs(isub)%elem_type(ie))) cycle
              iel = res%fields%elem_offset(isub) + ie
              do k = 1, 2
                 call element_prefix(lu, model, isub, ie, 2)
                 call lu%put_int(int(k, i8), 4)
-                do d = 1, 6
-                   call lu%put_es(chop(res%fields%elem_force(d, k, iel, is), scale))
-                end do
+                row = chop(res%fields%elem_force(:, k, iel, is), scale)
+                call lu%put_es_row(row)
                 call lu%newline()
              end do
           end do
        end do
        call lu%line('')
     end if
-    if (has_plates) call plate_block(lu, model, res, is)
+    if (has_plates) call plate_block(lu, model, res, is, kinds)
   end subroutine element_tables
 
-  subroutine truss_block(lu, model, res, is)
+  subroutine truss_block(lu, model, res, is, kinds)
     !! One axial force per truss, tension positive: N = (n2 - n1)/2 of the end
     !! forces, the force at mid-length (n2 = -n1 = N without an axial load
     !! along the bar; element_forces.csv keeps both ends).
@@ -462,6 +463,7 @@ contains
     type(model_t), intent(in) :: model
     type(results_t), intent(in) :: res
     integer, intent(in) :: is
+    type(element_kinds_t), intent(in) :: kinds
     character(len=100) :: hline
     real(wp) :: scale
     integer :: isub
@@ -473,14 +475,14 @@ contains
     scale = 0.0_wp
     do isub = 1, size(model%subs)
        do ie = 1, model%subs(isub)%nelem
-          if (.not. is_truss(model%subs(isub)%elem_type(ie))) cycle
+          if (.not. kinds%truss(model%subs(isub)%elem_type(ie))) cycle
           iel = res%fields%elem_offset(isub) + ie
           scale = max(scale, abs(axial(iel)))
        end do
     end do
     do isub = 1, size(model%subs)
        do ie = 1, model%subs(isub)%nelem
-          if (.not. is_truss(model%subs(isub)%elem_type(ie))) cycle
+          if (.not. kinds%truss(model%subs(isub)%elem_type(ie))) cycle
           iel = res%fields%elem_offset(isub) + ie
           call element_prefix(lu, model, isub, ie, 2)
           call lu%put_es(chop(axial(iel), scale))
@@ -495,7 +497,7 @@ contains
     end function axial
   end subroutine truss_block
 
-  subroutine plate_block(lu, model, res, is)
+  subroutine plate_block(lu, model, res, is, kinds)
     !! Resultants per unit length of the plane and shell elements at their
     !! centroids, and the stresses at the top and bottom surfaces (plane stress:
     !! mid-surface only), element frame.
@@ -503,10 +505,11 @@ contains
     type(model_t), intent(in) :: model
     type(results_t), intent(in) :: res
     integer, intent(in) :: is
-    integer :: isub, ie, d, k, nsurf
+    type(element_kinds_t), intent(in) :: kinds
+    integer :: isub, ie, k, nsurf
     integer(i8) :: iel
     logical :: plane_strain
-    real(wp) :: scale(2), t, sig(4)
+    real(wp) :: scale(2), t, sig(4), row(6)
     character(len=300) :: hline
     character(len=6), parameter :: SURFACES(3) = ['top   ', 'bottom', 'mid   ']
 
@@ -519,12 +522,12 @@ contains
     scale(2) = max(0.0_wp, maxval(abs(res%fields%plate(4:6, :, is))))
     do isub = 1, size(model%subs)
        do ie = 1, model%subs(isub)%nelem
-          if (.not. is_plate_type(model%subs(isub)%elem_type(ie))) cycle
+          if (.not. kinds%plate(model%subs(isub)%elem_type(ie))) cycle
           iel = res%fields%elem_offset(isub) + ie
           call element_prefix(lu, model, isub, ie, 2)
-          do d = 1, 6
-             call lu%put_es(chop(res%fields%plate(d, iel, is), scale((d + 2)/3)))
-          end do
+          row(1:3) = chop(res%fields%plate(1:3, iel, is), scale(1))
+          row(4:6) = chop(res%fields%plate(4:6, iel, is), scale(2))
+          call lu%put_es_row(row)
           call lu%newline()
        end do
     end do
@@ -536,12 +539,12 @@ contains
     call lu%line(trim(hline))
     do isub = 1, size(model%subs)
        do ie = 1, model%subs(isub)%nelem
-          if (.not. is_plate_type(model%subs(isub)%elem_type(ie))) cycle
+          if (.not. kinds%plate(model%subs(isub)%elem_type(ie))) cycle
           iel = res%fields%elem_offset(isub) + ie
           t = model%subs(isub)%sections(model%subs(isub)%elem_section(ie))%thickness
           nsurf = 2
-          if (is_plane_type(model%subs(isub)%elem_type(ie))) nsurf = 1
-          plane_strain = is_plane_strain_type(model%subs(isub)%elem_type(ie))
+          if (kinds%plane(model%subs(isub)%elem_type(ie))) nsurf = 1
+          plane_strain = kinds%plane_strain(model%subs(isub)%elem_type(ie))
           if (plane_strain) nsurf = 1
           do k = 1, nsurf
              sig(1:3) = res%fields%plate(1:3, iel, is)/t
@@ -558,14 +561,14 @@ contains
                 end associate
              end if
              call element_prefix(lu, model, isub, ie, 2)
+             call lu%put_blanks(2)
              if (nsurf == 1) then
-                call lu%put_field('  '//SURFACES(3), 8)
+                call lu%put_field(SURFACES(3), 6)
              else
-                call lu%put_field('  '//SURFACES(k), 8)
+                call lu%put_field(SURFACES(k), 6)
              end if
-             do d = 1, 4
-                call lu%put_es(chop(sig(d), maxval(abs(sig))))
-             end do
+             sig = chop(sig, maxval(abs(sig)))
+             call lu%put_es_row(sig)
              call lu%newline()
           end do
        end do

@@ -2,6 +2,7 @@ module superjoin_utils_strings
   !! Small string conversions.
   use superjoin_kinds, only: wp, i8
   use superjoin_utils_real_format, only: format_e17
+  use superjoin_utils_number_text, only: int_text, INT_TEXT_LEN
   implicit none (type, external)
   private
 
@@ -18,17 +19,16 @@ contains
   pure function itoa_default(i) result(s)
     integer, intent(in) :: i
     character(:), allocatable :: s
-    character(len=24) :: buf
-    write (buf, '(i0)') i
-    s = trim(buf)
+    s = itoa_i8(int(i, i8))
   end function itoa_default
 
   pure function itoa_i8(i) result(s)
     integer(i8), intent(in) :: i
     character(:), allocatable :: s
-    character(len=24) :: buf
-    write (buf, '(i0)') i
-    s = trim(buf)
+    character(len=INT_TEXT_LEN) :: buf
+    integer :: n
+    call int_text(i, buf, n)
+    s = buf(1:n)
   end function itoa_i8
 
   pure function rtoa(x) result(s)

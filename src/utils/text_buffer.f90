@@ -6,18 +6,16 @@ module superjoin_utils_text_buffer
   use superjoin_error, only: error_t, fatal_error, EXIT_IO
   use superjoin_utils_posix, only: rename_file, remove_file
   use superjoin_utils_process, only: temp_unregister
+  use superjoin_utils_number_text, only: format_es, int_text, ES_WIDTH, INT_TEXT_LEN
   implicit none (type, external)
   private
 
   integer, parameter :: BUFFER_BYTES = 1048576
     !! bytes collected before a block is written
-  integer, parameter :: ES_DIGITS = 7
-    !! significant digits of put_es (ES14.6E3 layout)
-  integer(i8), parameter :: MANTISSA_LOW = 1000000_i8, MANTISSA_HIGH = 10000000_i8
-  real(wp), parameter :: TEN = 10.0_wp
-  real(wp), parameter :: LOG10_TWO = 0.30102999566398120_wp
-  integer, parameter :: MAX_POWER = 300
-    !! largest power of ten applied in one step (subnormals need two)
+  integer, parameter :: ES_FIELD = ES_WIDTH + 1
+    !! characters of put_es: a blank and an ES14.6E3 field
+  integer, parameter :: BLANK_RUN = 64
+  character(len=BLANK_RUN), parameter :: BLANKS = repeat(' ', BLANK_RUN)
   integer, parameter :: IOMSG_LEN = 256
     !! length of the kept I/O error message
 
@@ -36,6 +34,8 @@ module superjoin_utils_text_buffer
      procedure :: put_field => tb_put_field
      procedure :: put_int => tb_put_int
      procedure :: put_es => tb_put_es
+     procedure :: put_es_row => tb_put_es_row
+     procedure :: put_blanks => tb_put_blanks
      procedure :: line => tb_line
      procedure :: newline => tb_newline
      procedure :: close => tb_close
@@ -80,6 +80,11 @@ contains
     character(*), intent(in) :: text
     integer :: n, start, chunk
     n = len(text)
+    if (self%pos + n <= BUFFER_BYTES) then
+       self%buf(self%pos + 1:self%pos + n) = text
+       self%pos = self%pos + n
+       return
+    end if
     start = 1
     do while (start <= n)
        if (self%pos == BUFFER_BYTES) call flush_block(self)
@@ -90,14 +95,49 @@ contains
     end do
   end subroutine tb_put
 
+  logical function has_room(self, n)
+    !! Whether n more characters fit in the buffer, after writing it out if
+    !! they do not (false: n is larger than the whole buffer).
+    class(text_buffer_t), intent(inout) :: self
+    integer, intent(in) :: n
+    if (self%pos + n > BUFFER_BYTES) call flush_block(self)
+    has_room = n <= BUFFER_BYTES
+  end function has_room
+
+  subroutine tb_put_blanks(self, count)
+    !! Append `count` blanks.
+    class(text_buffer_t), intent(inout) :: self
+    integer, intent(in) :: count
+    integer :: left
+    if (count <= 0) return
+    if (has_room(self, count)) then
+       self%buf(self%pos + 1:self%pos + count) = ' '
+       self%pos = self%pos + count
+       return
+    end if
+    left = count
+    do while (left > 0)
+       call self%put(BLANKS(1:min(left, BLANK_RUN)))
+       left = left - BLANK_RUN
+    end do
+  end subroutine tb_put_blanks
+
   subroutine tb_put_field(self, text, width)
     !! Append text left-justified in a field of `width` characters (cut if longer).
     class(text_buffer_t), intent(inout) :: self
     character(*), intent(in) :: text
     integer, intent(in) :: width
-    character(len=width) :: f
-    f = text
-    call self%put(f)
+    if (width <= 0) return
+    if (has_room(self, width)) then
+       ! the assignment pads with blanks or cuts
+       self%buf(self%pos + 1:self%pos + width) = text
+       self%pos = self%pos + width
+    else if (len(text) >= width) then
+       call self%put(text(1:width))
+    else
+       call self%put(text)
+       call self%put_blanks(width - len(text))
+    end if
   end subroutine tb_put_field
 
   subroutine tb_put_int(self, value, width)
@@ -105,10 +145,17 @@ contains
     class(text_buffer_t), intent(inout) :: self
     integer(i8), intent(in) :: value
     integer, intent(in) :: width
-    character(len=24) :: digits
+    character(len=INT_TEXT_LEN) :: digits
     integer :: n
-    call int_digits(value, digits, n)
-    if (n < width) call self%put(repeat(' ', width - n))
+    call int_text(value, digits, n)
+    if (has_room(self, max(n, width))) then
+       if (n < width) self%buf(self%pos + 1:self%pos + width - n) = ' '
+       self%pos = self%pos + max(width - n, 0)
+       self%buf(self%pos + 1:self%pos + n) = digits(1:n)
+       self%pos = self%pos + n
+       return
+    end if
+    call self%put_blanks(width - n)
     call self%put(digits(1:n))
   end subroutine tb_put_int
 
@@ -116,23 +163,45 @@ contains
     !! Append ' ' and x in the layout of ES14.6E3 (15 characters).
     class(text_buffer_t), intent(inout) :: self
     real(wp), intent(in) :: x
-    character(len=14) :: f
-    call format_es(x, f)
-    call self%put(' '//f)
+    if (has_room(self, ES_FIELD)) then
+       self%buf(self%pos + 1:self%pos + 1) = ' '
+       call format_es(x, self%buf(self%pos + 2:self%pos + ES_FIELD))
+       self%pos = self%pos + ES_FIELD
+    end if
   end subroutine tb_put_es
+
+  subroutine tb_put_es_row(self, x)
+    !! Append each of x as put_es does.
+    class(text_buffer_t), intent(inout) :: self
+    real(wp), intent(in) :: x(:)
+    integer :: k
+    if (.not. has_room(self, ES_FIELD*size(x))) then
+       do k = 1, size(x)
+          call self%put_es(x(k))
+       end do
+       return
+    end if
+    do k = 1, size(x)
+       self%buf(self%pos + 1:self%pos + 1) = ' '
+       call format_es(x(k), self%buf(self%pos + 2:self%pos + ES_FIELD))
+       self%pos = self%pos + ES_FIELD
+    end do
+  end subroutine tb_put_es_row
 
   subroutine tb_line(self, text)
     !! Append text and a newline.
     class(text_buffer_t), intent(inout) :: self
     character(*), intent(in) :: text
     call self%put(text)
-    call self%put(new_line('a'))
+    call self%newline()
   end subroutine tb_line
 
   subroutine tb_newline(self)
     !! End the current line.
     class(text_buffer_t), intent(inout) :: self
-    call self%put(new_line('a'))
+    if (self%pos == BUFFER_BYTES) call flush_block(self)
+    self%pos = self%pos + 1
+    self%buf(self%pos:self%pos) = new_line('a')
   end subroutine tb_newline
 
   subroutine tb_close(self, ok)
@@ -198,101 +267,4 @@ contains
     if (len(why) == 0) why = 'write failed'
   end function tb_reason
 
-  pure subroutine int_digits(value, digits, n)
-    integer(i8), intent(in) :: value
-    character(len=24), intent(out) :: digits
-    integer, intent(out) :: n
-    character(len=24) :: rev
-    integer(i8) :: v
-    integer :: k
-    v = abs(value)
-    n = 0
-    do
-       n = n + 1
-       rev(n:n) = achar(iachar('0') + int(mod(v, 10_i8)))
-       v = v/10
-       if (v == 0) exit
-    end do
-    if (value < 0) then
-       n = n + 1
-       rev(n:n) = '-'
-    end if
-    do k = 1, n
-       digits(k:k) = rev(n - k + 1:n - k + 1)
-    end do
-  end subroutine int_digits
-
-  pure subroutine format_es(x, f)
-    !! x in the layout of ES14.6E3: sign or blank, d.dddddd, E, exponent sign, 3 digits.
-    !! Non-finite values print as the Fortran words.
-    real(wp), intent(in) :: x
-    character(len=14), intent(out) :: f
-    real(wp) :: a
-    integer :: e, k
-    integer(i8) :: m
-    character(len=7) :: md
-    character(len=3) :: ed
-    f = ' '
-    if (x /= x) then
-       f(12:14) = 'NaN'
-       return
-    end if
-    if (abs(x) > huge(x)) then
-       f = merge('     -Infinity', '      Infinity', x < 0.0_wp)
-       return
-    end if
-    a = abs(x)
-    if (a == 0.0_wp) then
-       e = 0
-       m = 0
-    else
-       ! floor(log10(a)) or one less, from the binary exponent (the checks
-       ! below settle the decade as they did for a rounded log10)
-       e = floor((exponent(a) - 1)*LOG10_TWO)
-       m = nint(scale10(a, ES_DIGITS - 1 - e), i8)
-       if (m >= MANTISSA_HIGH) then
-          e = e + 1
-          m = nint(scale10(a, ES_DIGITS - 1 - e), i8)
-       else if (m < MANTISSA_LOW) then
-          e = e - 1
-          m = nint(scale10(a, ES_DIGITS - 1 - e), i8)
-       end if
-       if (m >= MANTISSA_HIGH) then
-          m = MANTISSA_LOW
-          e = e + 1
-       end if
-    end if
-    do k = 7, 1, -1
-       md(k:k) = achar(iachar('0') + int(mod(m, 10_i8)))
-       m = m/10
-    end do
-    write_exp: block
-      integer :: ae
-      ae = abs(e)
-      ed(1:1) = achar(iachar('0') + ae/100)
-      ed(2:2) = achar(iachar('0') + mod(ae/10, 10))
-      ed(3:3) = achar(iachar('0') + mod(ae, 10))
-    end block write_exp
-    f(1:1) = merge('-', ' ', x < 0.0_wp)
-    f(2:2) = md(1:1)
-    f(3:3) = '.'
-    f(4:9) = md(2:7)
-    f(10:10) = 'E'
-    f(11:11) = merge('-', '+', e < 0)
-    f(12:14) = ed
-  end subroutine format_es
-
-  pure function scale10(a, p) result(y)
-    !! a * 10**p, exact powers for |p| <= 22.
-    real(wp), intent(in) :: a
-    integer, intent(in) :: p
-    real(wp) :: y
-    if (p > MAX_POWER) then
-       y = (a*TEN**MAX_POWER)*TEN**(p - MAX_POWER)
-    else if (p >= 0) then
-       y = a*TEN**p
-    else
-       y = a/TEN**(-p)
-    end if
-  end function scale10
 end module superjoin_utils_text_buffer

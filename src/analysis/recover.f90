@@ -332,10 +332,19 @@ contains
     real(wp), intent(in) :: q(3, 3)
     integer, intent(in) :: m
     real(wp), intent(inout) :: x(:, :)
-    integer :: b, i
+    real(wp) :: z(3)
+    integer :: b, i, c
     b = min(m, 3)
-    do i = 0, size(x, 1) - b, b
-       x(i + 1:i + b, :) = matmul(q(1:b, 1:b), x(i + 1:i + b, :))
+    do c = 1, size(x, 2)
+       do i = 0, size(x, 1) - b, b
+          z(1:b) = x(i + 1:i + b, c)
+          x(i + 1, c) = q(1, 1)*z(1) + q(1, 2)*z(2)
+          x(i + 2, c) = q(2, 1)*z(1) + q(2, 2)*z(2)
+          if (b < 3) cycle
+          x(i + 1, c) = x(i + 1, c) + q(1, 3)*z(3)
+          x(i + 2, c) = x(i + 2, c) + q(2, 3)*z(3)
+          x(i + 3, c) = q(3, 1)*z(1) + q(3, 2)*z(2) + q(3, 3)*z(3)
+       end do
     end do
   end subroutine turn_node_blocks
 

@@ -39,11 +39,27 @@ contains
   end subroutine sparse_diagonal
 
   pure subroutine sparse_matvec(a, x, y)
-    !! y = A x for the full symmetric matrix (x, y of shape (n, nrhs)).
+    !! y = A x for the full symmetric matrix (x, y of shape (n, nrhs)). Several
+    !! columns are formed side by side (one pass over A, each column summed in
+    !! the order of a single one).
     class(sparse_sym_t), intent(in) :: a
     real(wp), intent(in) :: x(:, :)
     real(wp), intent(out) :: y(:, :)
+    real(wp), allocatable :: xt(:, :), yt(:, :)
     integer(i8) :: j, k, i
+    if (size(x, 2) > 1) then
+       xt = transpose(x)
+       allocate (yt(size(x, 2), a%n), source=0.0_wp)
+       do j = 1, a%n
+          do k = a%colptr(j), a%colptr(j + 1) - 1
+             i = a%rowind(k)
+             yt(:, i) = yt(:, i) + a%val(k)*xt(:, j)
+             if (i /= j) yt(:, j) = yt(:, j) + a%val(k)*xt(:, i)
+          end do
+       end do
+       y = transpose(yt)
+       return
+    end if
     y = 0.0_wp
     do j = 1, a%n
        do k = a%colptr(j), a%colptr(j + 1) - 1

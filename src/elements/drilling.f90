@@ -170,39 +170,28 @@ contains
 
   pure subroutine drilling_result_operator(xl, t, e, nu, op, error, edges)
     !! The operator op(3, 3n) of drilling_resultants: nres = op ue for every
-    !! ue(3n) = (u, v, θz) node-major, the quadrilateral's incompatible modes
-    !! condensed, op = t D (b - ba Kaa⁻¹ Σ w baᵀ D b) at the centre (the
-    !! triangle: t D b at its centroid). Formed once, it serves every step
+    !! ue(3n) = (u, v, θz) node-major, op = t D b at the centroid of the
+    !! natural coordinates. The quadrilateral's incompatible modes drop out
+    !! there (their strains, from -2ξ and -2η, vanish at ξ = η = 0:
+    !! drilling_resultants adds b_a α = 0). Formed once, it serves every step
     !! and every instance of a part; edges as drilling_stiffness.
     real(wp), intent(in) :: xl(:, :)
     real(wp), intent(in) :: t, e, nu
     real(wp), allocatable, intent(out) :: op(:, :)
     type(error_t), allocatable, intent(out) :: error
     logical, intent(in), optional :: edges(:)
-    type(point_t), allocatable :: pts(:)
     type(point_t) :: p
     logical :: ed(size(xl, 2))
-    real(wp) :: d(NSTRAIN, NSTRAIN), kaa(NMODE, NMODE), kad(NMODE, 3*size(xl, 2))
-    integer :: k
     call check_membrane_element(xl, t, e, nu, 'plane stress', error)
     if (allocated(error)) return
-    d = plane_stress(e, nu)
     ed = .true.
     if (present(edges)) ed = edges(1:size(xl, 2))
     if (size(xl, 2) == 3) then
        p = point_tri(xl, [1.0_wp, 1.0_wp, 1.0_wp]/3, 0.0_wp, ed)
-       op = t*matmul(d, p%b)
-       return
+    else
+       p = point_quad(xl, 0.0_wp, 0.0_wp, 0.0_wp, ed)
     end if
-    call points(xl, ed, pts)
-    kaa = 0.0_wp
-    kad = 0.0_wp
-    do k = 1, size(pts)
-       kaa = kaa + pts(k)%weight*matmul(transpose(pts(k)%ba), matmul(d, pts(k)%ba))
-       kad = kad + pts(k)%weight*matmul(transpose(pts(k)%ba), matmul(d, pts(k)%b))
-    end do
-    p = point_quad(xl, 0.0_wp, 0.0_wp, 0.0_wp, ed)
-    op = t*matmul(d, p%b - matmul(p%ba, spd_solve(kaa, kad)))
+    op = t*matmul(plane_stress(e, nu), p%b)
   end subroutine drilling_result_operator
 
   pure subroutine drilling_point_stresses(xl, e, nu, ue, sig_points, sig_nodes, error, edges)

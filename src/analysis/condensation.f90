@@ -8,7 +8,7 @@ module superjoin_analysis_condensation
   use superjoin_assembly_assemble, only: max_element_diagonal
   use superjoin_substructure_local_system, only: dof_label
   use superjoin_substructure_cache, only: part_cache_t, part_view_t, acquire_view, entry_condense_loads, &
-       view_ku, view_spc, view_turn, entry_recover, view_need_stiffness
+       entry_ku, view_spc, view_turn, entry_recover, view_need_stiffness
   use superjoin_model_results, only: run_summary_t, run_options_t
   use superjoin_model_notes, only: note
   use superjoin_analysis_factor_reuse, only: kept_factor_t
@@ -286,23 +286,38 @@ contains
 
   subroutine parts_ku(cache, parts, f_phys, u, ku, error)
     !! k u of every condensed substructure, with its own assembled stiffness
-    !! (a library entry: from the entry, view_ku), on the physical DOFs (zero
+    !! (a library entry: from the entry, entry_ku), on the physical DOFs (zero
     !! elsewhere): the element forces of the recovery for those
-    !! substructures, without forming an element matrix.
+    !! substructures, without forming an element matrix. The substructures
+    !! that share a condensation side by side, as in recover_parts.
     type(part_cache_t), intent(in) :: cache
     type(part_view_t), intent(in) :: parts(:)
     real(wp), intent(in) :: f_phys(:, :), u(:, :)
     real(wp), allocatable, intent(out) :: ku(:, :)
     type(error_t), allocatable, intent(out) :: error
-    real(wp), allocatable :: y(:, :)
-    integer :: i
-    allocate (ku(size(u, 1), size(u, 2)), source=0.0_wp)
+    real(wp), allocatable :: fc(:, :), uc(:, :), y(:, :)
+    integer, allocatable :: members(:)
+    logical, allocatable :: done(:)
+    integer :: i, m, ns, c0
+    ns = size(u, 2)
+    allocate (ku(size(u, 1), ns), source=0.0_wp)
+    allocate (done(size(parts)), source=.false.)
     do i = 1, size(parts)
-       allocate (y(size(parts(i)%pdof), size(u, 2)))
-       call view_ku(cache, parts(i), f_phys(parts(i)%pdof, :), u(parts(i)%pdof, :), y, error)
+       if (done(i)) cycle
+       call sharing(parts, i, members, done)
+       call gather_turned(parts, members, f_phys, fc)
+       call gather_turned(parts, members, u, uc)
+       allocate (y(size(uc, 1), size(uc, 2)))
+       call entry_ku(cache, parts(i)%entry, fc, uc, y, ns, error)
        if (allocated(error)) return
-       ku(parts(i)%pdof, :) = ku(parts(i)%pdof, :) + y
-       deallocate (y)
+       do m = 1, size(members)
+          c0 = (m - 1)*ns
+          associate (v => parts(members(m)))
+            call view_turn(v, y(:, c0 + 1:c0 + ns), .true.)
+            ku(v%pdof, :) = ku(v%pdof, :) + y(:, c0 + 1:c0 + ns)
+          end associate
+       end do
+       deallocate (fc, uc, y)
     end do
   end subroutine parts_ku
 end module superjoin_analysis_condensation

@@ -12,7 +12,7 @@ module superjoin_analysis_recover
   use superjoin_model_types, only: model_t, DLOAD_THERMAL, ELEMENT_NODE_COUNT, LINK_NONE, LINK_FINITE, LINK_RIGID, &
        NDOF_NODE, loc_text, substructure_t
   use superjoin_elements, only: element_end_forces, element_nodal_forces, &
-       is_plate_type, shell_forces, is_solid_type, solid_forces, shell_result_operator
+       is_plate_type, shell_forces, is_solid_type, solid_forces, shell_result_operator, is_plane_type
   use superjoin_assembly_dofs, only: dof_table_t, unit_t, NBLOCK, GROUND, UNIT_LINK, UNIT_SUPPORT, block_dof, &
        unit_terms, arm_matrix, MAX_UNIT_TERMS
   use superjoin_assembly_forest, only: forest_t
@@ -31,6 +31,8 @@ module superjoin_analysis_recover
   private
 
   integer, parameter :: MAX_ELEM_DOFS = MAX_ELEMENT_DOFS
+  real(wp), parameter :: TURN_TOL = 1.0e-12_wp
+    !! |Q33 - 1| below which a relative turn of two instances keeps Z.
 
   public :: recover_results
 
@@ -243,12 +245,15 @@ contains
   end subroutine element_results
 
   subroutine instance_plate_results(model, table, own_ku, wanted, u, res, done, error)
-    !! The plate-type resultants of the condensed instances of one part placed
-    !! alike (same part, same turn): each element's operator
-    !! (shell_result_operator) is formed once and applied to the element
+    !! The plate-type resultants of the condensed instances of one part
+    !! (placed alike: same part, same elements and drilling masks, turned
+    !! any way): each element's operator (shell_result_operator) is formed
+    !! once, from the first instance's placement, and applied to the element
     !! displacements of all these instances and steps side by side, one
-    !! product; done(isub) marks the substructures so served. Nothing is
-    !! done when error is already set.
+    !! product, each instance's displacements turned into the first one's
+    !! axes node block by node block (the resultants are in the element's
+    !! own frame, which turns with it); done(isub) marks the substructures so
+    !! served. Nothing is done when error is already set.
     type(model_t), intent(in) :: model
     type(dof_table_t), intent(in) :: table
     logical, intent(in) :: own_ku(:), wanted(:)
@@ -257,6 +262,8 @@ contains
     logical, allocatable, intent(out) :: done(:)
     type(error_t), allocatable, intent(inout) :: error
     integer, allocatable :: like(:)
+    real(wp), allocatable :: turns(:, :, :)
+    logical, allocatable :: turned(:)
     integer :: isub, j, k, n, nstep
     integer(i8) :: pd(MAX_ELEM_DOFS)
     integer(ip) :: e
@@ -266,10 +273,11 @@ contains
     nstep = size(u, 2)
     do isub = 1, size(model%subs)
        if (done(isub) .or. .not. own_ku(isub) .or. model%subs(isub)%part == 0) cycle
-       like = pack([(j, j = 1, size(model%subs))], [(j >= isub .and. own_ku(j) .and. &
+       like = pack([(j, j = 1, size(model%subs))], [(j >= isub .and. own_ku(j) .and. .not. done(j) .and. &
             placed_alike(model%subs(isub), model%subs(j)), j = 1, size(model%subs))])
        if (size(like) < 2) cycle
        done(like) = .true.
+       call instance_turns(model, like, turns, turned)
        associate (s => model%subs(isub), off => res%fields%elem_offset)
          do e = 1, s%nelem
             if (.not. is_plate_type(s%elem_type(e)) .or. .not. any(wanted(off(like) + e))) cycle
@@ -287,6 +295,8 @@ contains
               do k = 1, size(like)
                  call element_pdofs(model, table, like(k), e, pd, n)
                  ue(:, nstep*(k - 1) + 1:nstep*k) = u(pd(1:n), :)
+                 if (turned(k)) call turn_node_blocks(turns(:, :, k), n/ELEMENT_NODE_COUNT(s%elem_type(e)), &
+                      ue(:, nstep*(k - 1) + 1:nstep*k))
               end do
               rs = matmul(op, ue)
               do k = 1, size(like)
@@ -299,11 +309,61 @@ contains
     end do
   end subroutine instance_plate_results
 
+  subroutine instance_turns(model, like, turns, turned)
+    !! turns(:, :, k) = R_1 R_kᵀ: instance like(k)'s global axes to those of
+    !! instance like(1) (whose placement the shared operators are formed
+    !! for); turned(k) false where that is the identity (nothing to turn).
+    type(model_t), intent(in) :: model
+    integer, intent(in) :: like(:)
+    real(wp), allocatable, intent(out) :: turns(:, :, :)
+    logical, allocatable, intent(out) :: turned(:)
+    integer :: k
+    allocate (turns(3, 3, size(like)), turned(size(like)))
+    do k = 1, size(like)
+       turns(:, :, k) = matmul(model%subs(like(1))%rot, transpose(model%subs(like(k))%rot))
+       turned(k) = any(model%subs(like(k))%rot /= model%subs(like(1))%rot)
+    end do
+  end subroutine instance_turns
+
+  pure subroutine turn_node_blocks(q, m, x)
+    !! x ← diag(q) x for element displacement columns with m DOFs per node:
+    !! each node's translations (and rotations, m = 6) turned by q; a plane
+    !! element's in-plane pair (m = 2) by q's XY block (its turns keep Z).
+    real(wp), intent(in) :: q(3, 3)
+    integer, intent(in) :: m
+    real(wp), intent(inout) :: x(:, :)
+    real(wp) :: z(3)
+    integer :: b, i, c
+    b = min(m, 3)
+    do c = 1, size(x, 2)
+       do i = 0, size(x, 1) - b, b
+          z(1:b) = x(i + 1:i + b, c)
+          x(i + 1, c) = q(1, 1)*z(1) + q(1, 2)*z(2)
+          x(i + 2, c) = q(2, 1)*z(1) + q(2, 2)*z(2)
+          if (b < 3) cycle
+          x(i + 1, c) = x(i + 1, c) + q(1, 3)*z(3)
+          x(i + 2, c) = x(i + 2, c) + q(2, 3)*z(3)
+          x(i + 3, c) = q(3, 1)*z(1) + q(3, 2)*z(2) + q(3, 3)*z(3)
+       end do
+    end do
+  end subroutine turn_node_blocks
+
   pure logical function placed_alike(a, b)
     !! Two instances of one part whose element results share one operator:
-    !! the same part, turned alike, the same elements.
+    !! the same part, the same elements with the same drilling edge masks
+    !! (they depend on the supports, not only on the part), and a relative
+    !! turn R_a R_bᵀ that keeps Z where the part has plane elements (always,
+    !! once the deck is checked).
     type(substructure_t), intent(in) :: a, b
-    placed_alike = a%part == b%part .and. all(a%rot == b%rot) .and. a%nelem == b%nelem
+    real(wp) :: q(3, 3)
+    placed_alike = a%part == b%part .and. a%nelem == b%nelem
+    if (.not. placed_alike) return
+    placed_alike = allocated(a%elem_drill) .eqv. allocated(b%elem_drill)
+    if (placed_alike .and. allocated(a%elem_drill)) placed_alike = all(a%elem_drill == b%elem_drill)
+    if (.not. placed_alike .or. a%nelem == 0) return
+    if (.not. any(is_plane_type(a%elem_type(1:a%nelem)))) return
+    q = matmul(a%rot, transpose(b%rot))
+    placed_alike = abs(q(3, 3) - 1.0_wp) <= TURN_TOL
   end function placed_alike
 
   subroutine solid_reactions(model, table, own_ku, u, r, error)

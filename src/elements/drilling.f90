@@ -58,7 +58,7 @@ module superjoin_elements_drilling
   implicit none (type, external)
   private
 
-  public :: drilling_stiffness, drilling_resultants, drilling_point_stresses
+  public :: drilling_stiffness, drilling_resultants, drilling_point_stresses, drilling_result_operator
   public :: drilling_thermal_load, drilling_thermal_stresses
 
   real(wp), parameter, public :: DRILL_PENALTY = 1.0_wp
@@ -167,6 +167,32 @@ contains
        nres = t*matmul(plane_stress(e, nu), matmul(p%b, ue) + matmul(p%ba, modes(xl, e, nu, ue, ed)))
     end if
   end subroutine drilling_resultants
+
+  pure subroutine drilling_result_operator(xl, t, e, nu, op, error, edges)
+    !! The operator op(3, 3n) of drilling_resultants: nres = op ue for every
+    !! ue(3n) = (u, v, θz) node-major, op = t D b at the centroid of the
+    !! natural coordinates. The quadrilateral's incompatible modes drop out
+    !! there (their strains, from -2ξ and -2η, vanish at ξ = η = 0:
+    !! drilling_resultants adds b_a α = 0). Formed once, it serves every step
+    !! and every instance of a part; edges as drilling_stiffness.
+    real(wp), intent(in) :: xl(:, :)
+    real(wp), intent(in) :: t, e, nu
+    real(wp), allocatable, intent(out) :: op(:, :)
+    type(error_t), allocatable, intent(out) :: error
+    logical, intent(in), optional :: edges(:)
+    type(point_t) :: p
+    logical :: ed(size(xl, 2))
+    call check_membrane_element(xl, t, e, nu, 'plane stress', error)
+    if (allocated(error)) return
+    ed = .true.
+    if (present(edges)) ed = edges(1:size(xl, 2))
+    if (size(xl, 2) == 3) then
+       p = point_tri(xl, [1.0_wp, 1.0_wp, 1.0_wp]/3, 0.0_wp, ed)
+    else
+       p = point_quad(xl, 0.0_wp, 0.0_wp, 0.0_wp, ed)
+    end if
+    op = t*matmul(plane_stress(e, nu), p%b)
+  end subroutine drilling_result_operator
 
   pure subroutine drilling_point_stresses(xl, e, nu, ue, sig_points, sig_nodes, error, edges)
     !! Stresses (σx, σy, τxy) from ue(3n) = (u, v, θz): the triangle's

@@ -51,7 +51,7 @@ module superjoin_elements_plate
   real(wp), parameter :: TRI_RULE_A = 1.0_wp/6.0_wp, TRI_RULE_B = 2.0_wp/3.0_wp, TRI_WEIGHT = 1.0_wp/6.0_wp
     !! 3-point rule on the unit triangle: (a, a), (b, a), (a, b), weights 1/6 (exact for degree 2)
 
-  public :: plate_stiffness, plate_moments, plate_pressure_load
+  public :: plate_stiffness, plate_moments, plate_pressure_load, plate_moment_operator
   public :: plate_point_moments
   public :: plate_check, bending_rigidity, integration_rule
   public :: plate_thermal_load, corner_functions
@@ -114,6 +114,24 @@ contains
     call curvature_matrix(xl, xi, eta, b, detj)
     m = matmul(bending_rigidity(t, e, nu), matmul(b, ue))
   end subroutine plate_moments
+
+  pure subroutine plate_moment_operator(xl, t, e, nu, op, error)
+    !! The operator op(3, 3n) of plate_moments: m = op ue for every local
+    !! ue(3n), op = D_b b at the element centre. Formed once, it serves every
+    !! step and every instance of a part.
+    real(wp), intent(in) :: xl(:, :)
+    real(wp), intent(in) :: t, e, nu
+    real(wp), allocatable, intent(out) :: op(:, :)
+    type(error_t), allocatable, intent(out) :: error
+    real(wp), allocatable :: b(:, :)
+    real(wp) :: detj, c
+    call check_element(xl, t, e, nu, error)
+    if (allocated(error)) return
+    c = merge(ONE_THIRD, 0.0_wp, size(xl, 2) == NTRI)
+    allocate (b(NSTRAIN, NDN*size(xl, 2)))
+    call curvature_matrix(xl, c, c, b, detj)
+    op = matmul(bending_rigidity(t, e, nu), b)
+  end subroutine plate_moment_operator
 
   pure subroutine plate_pressure_load(xl, p, fe)
     !! Nodal loads fe(3n) of a uniform pressure p along the local +z: translations only.

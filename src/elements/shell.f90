@@ -29,7 +29,7 @@ module superjoin_elements_shell
   use superjoin_elements_shell8, only: shell8_stresses
   use superjoin_elements_membrane, only: membrane_stiffness, membrane_drill_stiffness, membrane_resultants, &
        plane_strain_stiffness, plane_strain_resultants
-  use superjoin_elements_plate, only: plate_stiffness, plate_moments, plate_pressure_load
+  use superjoin_elements_plate, only: plate_stiffness, plate_moments, plate_pressure_load, plate_moment_operator
   use superjoin_elements_plate, only: plate_point_moments
   use superjoin_elements_membrane, only: membrane_point_stresses, initial_strain_t
   use superjoin_elements_frame, only: cross
@@ -37,7 +37,8 @@ module superjoin_elements_shell
        quadratic_shape_integrals
   use superjoin_elements_mindlin, only: mindlin_stiffness, mindlin_resultants, default_shear_stiffness
   use superjoin_elements_mindlin, only: mindlin_point_resultants
-  use superjoin_elements_drilling, only: drilling_stiffness, drilling_resultants, drilling_point_stresses
+  use superjoin_elements_drilling, only: drilling_stiffness, drilling_resultants, drilling_point_stresses, &
+       drilling_result_operator
   use superjoin_elements_opt_triangle, only: opt_stiffness, opt_resultants, opt_point_stresses, opt_thermal_load
 
   use superjoin_elements_drilling, only: drilling_thermal_load, drilling_thermal_stresses
@@ -357,10 +358,9 @@ contains
     !! The resultants' operator of an element: op(6, ndof) with res = op ue
     !! for element displacements ue in global axes (shell_forces' res of one
     !! step, element_stiffness ordering), formed once for all steps and all
-    !! instances of a part placed alike. CPS3/CPS4/CPE3/CPE4 directly
-    !! (membrane_result_operator turned by the node maps); the other plate
-    !! types as shell_forces of the unit displacements. drill as
-    !! shell_stiffness.
+    !! instances of a part. The element-frame operator (local_result_operator)
+    !! turned by the node maps; S8R/S8 and the second-order plane types as
+    !! shell_forces of the unit displacements. drill as shell_stiffness.
     integer, intent(in) :: etype
     real(wp), intent(in) :: x(:, :)
     type(section_t), intent(in) :: sec
@@ -370,27 +370,93 @@ contains
     integer, intent(in), optional :: drill
     real(wp), allocatable :: opl(:, :), maps(:, :, :), eye(:, :), fg(:, :)
     real(wp) :: r(3, 3), xl(2, size(x, 2)), h(size(x, 2))
-    integer :: n, i
-    if (etype == ET_CPS3 .or. etype == ET_CPS4 .or. etype == ET_CPE3 .or. etype == ET_CPE4) then
-       call setup(etype, x, r, xl, h, error)
+    integer :: n, i, m
+    if (is_shell8(etype) .or. is_quadratic_plane_type(etype)) then
+       n = size(x, 2)*merge(2, 6, is_plane_type(etype))
+       allocate (eye(n, n), source=0.0_wp)
+       do i = 1, n
+          eye(i, i) = 1.0_wp
+       end do
+       allocate (op(6, n), fg(n, n))
+       call shell_forces(etype, x, sec, mat, eye, op, fg, error, with_forces=.false., drill=drill)
+       return
+    end if
+    call setup(etype, x, r, xl, h, error)
+    if (allocated(error)) return
+    call local_result_operator(etype, xl, sec, mat, drilling_edges(etype, size(x, 2), drill), opl, error)
+    if (allocated(error)) return
+    maps = node_maps(etype, r, h)
+    m = size(maps, 1)
+    allocate (op(6, size(opl, 2)))
+    do i = 1, size(x, 2)
+       op(:, m*(i - 1) + 1:m*i) = matmul(opl(:, m*(i - 1) + 1:m*i), maps(:, :, i))
+    end do
+  end subroutine shell_result_operator
+
+  pure subroutine local_result_operator(etype, xl, sec, mat, edges, opl, error)
+    !! The operator of local_resultants, opl(6, ndof) with res = opl d for the
+    !! element-frame DOFs d (flat_stiffness ordering) of a 3- or 4-node plane
+    !! or shell element: the membrane's (membrane_result_operator,
+    !! drilling_result_operator) and the thin plate's (plate_moment_operator)
+    !! put together; the thick shells and the OPT triangle as local_resultants
+    !! of the unit DOFs. edges as flat_stiffness.
+    integer, intent(in) :: etype
+    real(wp), intent(in) :: xl(:, :)
+    type(section_t), intent(in) :: sec
+    type(material_t), intent(in) :: mat
+    logical, intent(in) :: edges(:)
+    real(wp), allocatable, intent(out) :: opl(:, :)
+    type(error_t), allocatable, intent(out) :: error
+    real(wp), allocatable :: om(:, :), ob(:, :)
+    real(wp) :: d(6*size(xl, 2))
+    integer :: n, j
+    n = size(xl, 2)
+    if (is_plane_type(etype)) then
+       call membrane_result_operator(xl, sec%thickness, mat%e, mat%nu, is_plane_strain_type(etype), om, error)
        if (allocated(error)) return
-       call membrane_result_operator(xl, sec%thickness, mat%e, mat%nu, is_plane_strain_type(etype), opl, error)
-       if (allocated(error)) return
-       maps = node_maps(etype, r, h)
-       allocate (op(6, size(opl, 2)), source=0.0_wp)
-       do i = 1, size(x, 2)
-          op(1:3, 2*i - 1:2*i) = matmul(opl(:, 2*i - 1:2*i), maps(:, :, i))
+       allocate (opl(6, 2*n), source=0.0_wp)
+       opl(1:3, :) = om
+       return
+    end if
+    allocate (opl(6, 6*n), source=0.0_wp)
+    if (is_thick_shell_type(etype) .or. (any(edges) .and. n == 3)) then
+       do j = 1, 6*n
+          d = 0.0_wp
+          d(j) = 1.0_wp
+          call local_resultants(etype, xl, sec, mat, d, opl(:, j), error, edges)
+          if (allocated(error)) return
        end do
        return
     end if
-    n = size(x, 2)*merge(2, 6, is_plane_type(etype))
-    allocate (eye(n, n), source=0.0_wp)
-    do i = 1, n
-       eye(i, i) = 1.0_wp
+    if (any(edges)) then
+       call drilling_result_operator(xl, sec%thickness, mat%e, mat%nu, om, error, edges)
+       if (allocated(error)) return
+       call put_columns(om, 1, MEMBRANE_DOFS, opl)
+    else
+       call membrane_result_operator(xl, sec%thickness, mat%e, mat%nu, .false., om, error)
+       if (allocated(error)) return
+       call put_columns(om, 1, MEMBRANE_DOFS(1:2), opl)
+    end if
+    call plate_moment_operator(xl, sec%thickness, mat%e, mat%nu, ob, error)
+    if (allocated(error)) return
+    call put_columns(ob, 4, PLATE_DOFS, opl)
+  end subroutine local_result_operator
+
+  pure subroutine put_columns(part, row, dofs, opl)
+    !! Rows row..row+2 of the 6-DOF-per-node operator opl from a part's
+    !! operator with size(dofs) DOFs per node: its column of node i, DOF k
+    !! goes to local DOF dofs(k) of node i.
+    real(wp), intent(in) :: part(:, :)
+    integer, intent(in) :: row, dofs(:)
+    real(wp), intent(inout) :: opl(:, :)
+    integer :: i, k, m
+    m = size(dofs)
+    do i = 1, size(part, 2)/m
+       do k = 1, m
+          opl(row:row + 2, 6*(i - 1) + dofs(k)) = part(:, m*(i - 1) + k)
+       end do
     end do
-    allocate (op(6, n), fg(n, n))
-    call shell_forces(etype, x, sec, mat, eye, op, fg, error, with_forces=.false., drill=drill)
-  end subroutine shell_result_operator
+  end subroutine put_columns
 
   pure subroutine shell_resultants(etype, x, sec, mat, ue, res, error, drill)
     !! Resultants per unit length at the centroid in the element frame,

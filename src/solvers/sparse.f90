@@ -39,16 +39,28 @@ contains
   end subroutine sparse_diagonal
 
   pure subroutine sparse_matvec(a, x, y)
-    !! y = A x for the full symmetric matrix (x, y of shape (n, nrhs)), one
-    !! right-hand side after the other (each y(i, c) sums the same terms in
-    !! the same order as a sweep over all columns at once would).
+    !! y = A x for the full symmetric matrix (x, y of shape (n, nrhs)). One
+    !! column: matvec_column; several: side by side (one pass over A). Each
+    !! y(i, c) sums the same terms in the same order either way.
     class(sparse_sym_t), intent(in) :: a
     real(wp), intent(in) :: x(:, :)
     real(wp), intent(out) :: y(:, :)
-    integer :: c
-    do c = 1, size(x, 2)
-       call matvec_column(a, x(:, c), y(:, c))
+    real(wp), allocatable :: xt(:, :), yt(:, :)
+    integer(i8) :: j, k, i
+    if (size(x, 2) == 1) then
+       call matvec_column(a, x(:, 1), y(:, 1))
+       return
+    end if
+    xt = transpose(x)
+    allocate (yt(size(x, 2), a%n), source=0.0_wp)
+    do j = 1, a%n
+       do k = a%colptr(j), a%colptr(j + 1) - 1
+          i = a%rowind(k)
+          yt(:, i) = yt(:, i) + a%val(k)*xt(:, j)
+          if (i /= j) yt(:, j) = yt(:, j) + a%val(k)*xt(:, i)
+       end do
     end do
+    y = transpose(yt)
   end subroutine sparse_matvec
 
   pure subroutine matvec_column(a, x, y)

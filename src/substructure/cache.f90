@@ -75,8 +75,9 @@ module superjoin_substructure_cache
      type(string_t), allocatable :: notes(:)  !! the library's notes on a condensation computed or loaded here
   end type part_view_t
 
+  public :: view_ku
   public :: release_cache, acquire_view, view_condense_loads, view_recover, view_stiffness_times, &
-       view_maxratio, view_spc, remote_view, view_turn, entry_recover, entry_condense_loads, view_ku, &
+       view_maxratio, view_spc, remote_view, view_turn, entry_recover, entry_condense_loads, entry_ku, &
        view_need_stiffness
 
 contains
@@ -331,28 +332,47 @@ contains
     if (view%rotated) call rotate_local(view, y_local, .true.)
   end subroutine view_stiffness_times
 
+  subroutine entry_ku(cache, ientry, fc, uc, y, chunk, error)
+    !! y = k u with cache entry ientry, in that entry's frame, for any number
+    !! of columns (the instances that share it side by side): one product
+    !! with its element stiffness; a library entry (library_ku) chunk columns
+    !! per substructure, with the loads fc it was condensed with.
+    type(part_cache_t), intent(in) :: cache
+    integer, intent(in) :: ientry
+    real(wp), intent(in) :: fc(:, :), uc(:, :)
+    real(wp), intent(out) :: y(:, :)
+    integer, intent(in) :: chunk
+    type(error_t), allocatable, intent(out) :: error
+    integer :: c
+    associate (en => cache%entries(ientry)%e)
+      if (.not. allocated(en%stored)) then
+         call en%cond%sys%k%matvec(uc, y)
+         return
+      end if
+      do c = 1, size(uc, 2), max(chunk, 1)
+         call library_ku(en%cond, en%stored, fc(:, c:c + chunk - 1), uc(:, c:c + chunk - 1), y(:, c:c + chunk - 1), error)
+         if (allocated(error)) return
+      end do
+    end associate
+  end subroutine entry_ku
+
   subroutine view_ku(cache, view, f_local, u_local, y_local, error)
-    !! y = k u of the substructure (this frame) for the loads f_local it was
-    !! condensed with: with its element stiffness, or for a library entry
-    !! from the entry (library_ku, which needs no k).
+    !! y = k u of one substructure (this frame) for the loads f_local it was
+    !! condensed with (entry_ku: its element stiffness, or a library entry's
+    !! k u without it); the distributed recovery's k u of a process's own part.
     type(part_cache_t), intent(in) :: cache
     type(part_view_t), intent(in) :: view
     real(wp), intent(in) :: f_local(:, :), u_local(:, :)
     real(wp), intent(out) :: y_local(:, :)
     type(error_t), allocatable, intent(out) :: error
     real(wp), allocatable :: fc(:, :), uc(:, :)
-    associate (en => cache%entries(view%entry)%e)
-      if (.not. allocated(en%stored)) then
-         call view_stiffness_times(cache, view, u_local, y_local)
-         return
-      end if
-      allocate (fc, source=f_local)
-      allocate (uc, source=u_local)
-      call view_turn(view, fc, .false.)
-      call view_turn(view, uc, .false.)
-      call library_ku(en%cond, en%stored, fc, uc, y_local, error)
-      call view_turn(view, y_local, .true.)
-    end associate
+    allocate (fc, source=f_local)
+    allocate (uc, source=u_local)
+    call view_turn(view, fc, .false.)
+    call view_turn(view, uc, .false.)
+    call entry_ku(cache, view%entry, fc, uc, y_local, size(uc, 2), error)
+    if (allocated(error)) return
+    call view_turn(view, y_local, .true.)
   end subroutine view_ku
 
   subroutine view_need_stiffness(cache, view, model, table, bnd, error)
@@ -492,31 +512,36 @@ contains
 
   subroutine rotate_rows(view, x, offset, forward)
     !! Rotate the rows of x that hold local DOFs offset+1.. (the boundary rows
-    !! alone with offset = ni: row r of x is local DOF r + offset).
+    !! alone with offset = ni: row r of x is local DOF r + offset). A node
+    !! block's absent components enter as zeros (the same sums as leaving
+    !! them out: y starts at +0) and are not written.
     type(part_view_t), intent(in) :: view
     real(wp), intent(inout) :: x(:, :)
     integer(i8), intent(in) :: offset
     logical, intent(in) :: forward
-    real(wp) :: q(3, 3), y(3, size(x, 2))
-    integer :: g, a, b
-    integer(i8) :: la, lb
+    real(wp) :: q(3, 3), y(BLOCK), z(BLOCK)
+    integer(i8), allocatable :: rows(:, :)
+    logical, allocatable :: on(:, :)
+    integer :: g, a, c, n
     q = view%q
     if (.not. forward) q = transpose(q)
+    allocate (rows(BLOCK, size(view%grp, 2)), on(BLOCK, size(view%grp, 2)))
+    n = 0
     do g = 1, size(view%grp, 2)
        if (any(view%grp(:, g) > 0 .and. view%grp(:, g) <= offset)) cycle
-       y = 0.0_wp
-       do a = 1, BLOCK
-          la = view%grp(a, g)
-          if (la == 0) cycle
-          do b = 1, BLOCK
-             lb = view%grp(b, g)
-             if (lb == 0) cycle
-             y(a, :) = y(a, :) + q(a, b)*x(lb - offset, :)
+       n = n + 1
+       on(:, n) = view%grp(:, g) > 0
+       rows(:, n) = merge(view%grp(:, g) - offset, 1_i8, on(:, n))
+    end do
+    do c = 1, size(x, 2)
+       do g = 1, n
+          z = merge(x(rows(:, g), c), 0.0_wp, on(:, g))
+          do a = 1, BLOCK
+             y(a) = 0.0_wp + q(a, 1)*z(1) + q(a, 2)*z(2) + q(a, 3)*z(3)
           end do
-       end do
-       do a = 1, BLOCK
-          la = view%grp(a, g)
-          if (la > 0) x(la - offset, :) = y(a, :)
+          do a = 1, BLOCK
+             if (on(a, g)) x(rows(a, g), c) = y(a)
+          end do
        end do
     end do
   end subroutine rotate_rows

@@ -306,6 +306,7 @@ contains
          '  --formulation F    transform | penalty   (overrides *CONTROLS)', &
          '  --condense C       yes | no | auto: static condensation of every substructure', &
          '                     (overrides CONDENSE= of *SUBSTRUCTURE)', &
+         '  --levels L         yes | no: condensed parts made of parts eliminated by level (default no)', &
          '  --check            read and validate the deck only', &
          '  --export-matrix F  also write the assembled stiffness matrix (Matrix Market)', &
          '  --library DIR      keep condensed parts in DIR and load unchanged ones from it', &
@@ -365,7 +366,8 @@ contains
           if (allocated(deck)) call usage_error('more than one deck given')
           job = job_name(get_arg(i))
           deck = job//'.inp'
-       case ('-o', '--csv', '--solver', '--formulation', '--export-matrix', '--vtk', '--condense', '--library')
+       case ('-o', '--csv', '--solver', '--formulation', '--export-matrix', '--vtk', '--condense', '--library', &
+            '--levels')
           if (i == n) call usage_error('option '//arg//' needs a value')
           i = i + 1
           val = get_arg(i)
@@ -403,6 +405,15 @@ contains
                 opts%condense = CONDENSE_AUTO
              case default
                 call usage_error('unknown condensation '''//val//''' (yes, no, auto)')
+             end select
+          case ('--levels')
+             select case (to_lower(val))
+             case ('yes')
+                opts%levels = .true.
+             case ('no')
+                opts%levels = .false.
+             case default
+                call usage_error('unknown --levels '''//val//''' (yes, no)')
              end select
           case ('--export-matrix')
              opts%export_matrix = val

@@ -2,31 +2,31 @@
 """Benchmark of parts made of parts (doc/performance.md, "Parts made of parts").
 
 usage: bench/building.py [--bin build/superjoin] [--work DIR] [--mesh M] [--floors N] [--grid G] [--repeat R]
+                         [--edge-joined]
 
 bench/gen_building.py writes the building of the issue (defaults: 20 floors of
 4 x 4 = 16 bays, each bay an S4 slab of M x M elements on four B33 columns) as
-nested parts (BAY -> FLOOR -> BUILDING). Three runs of that one deck, timed
-in the same invocation (wall clock and CPU time, user + system, each the best
-of R; on a shared machine the CPU time is the steadier figure):
+nested parts (BAY -> FLOOR -> BUILDING) and as one level (the same bays as
+instances of BAY). With --edge-joined the bays of a floor are joined along their
+whole shared slab edges (every edge node), the floors only at the columns.
+Four runs, timed in the same invocation (wall clock and CPU time, user +
+system, each the best of R; on a shared machine the CPU time is the steadier
+figure):
 
-- monolithic: superjoin --condense no (one sparse factorization of the whole
-  unfolded model);
-- one level: superjoin --condense yes (each bay condensed from one condensation
-  of BAY, reused by all bays; the interface system of all bays factorized);
-- nested: the same run as "one level", since parts made of parts are
-  unfolded and solved flattened: the figure is the cost of the nesting itself
-  (unfolding, path names, the level analysis) against the one-level deck
-  written by gen_building.py --explicit and condensed the same way.
+- monolithic: the nested deck, superjoin --condense no (one sparse
+  factorization of the whole unfolded model);
+- one level: the one-level deck, superjoin --condense yes (one condensation of
+  BAY, reused by all bays; the interface system of all bays factorized);
+- nested, by level: the nested deck, --condense yes --levels yes (each floor's
+  interior reduced unknowns eliminated onto its boundary, floors alike sharing
+  one factorization and one Schur complement, then the building's top system;
+  src/analysis/level_solver.f90);
+- nested, flat: the nested deck, --condense yes --levels no (as one level: the
+  cost of the nesting itself).
 
-The nested listing's note on the condensation by level (src/analysis/levels.f90)
-is printed after the table: per depth, the reduced unknowns each floor owns,
-exports and could eliminate. For this building a floor has none to eliminate
-but the top floor's (the floor above stands on every slab corner, the feet
-hang on the floor below), so a condensation by level could not beat the
-one-level run here (doc/performance.md, "Parts made of parts").
-
-The nested CSV files are checked against the explicit deck's (names mapped) to
-1e-10 before any time is reported.
+The nested listing's notes on the condensation by level are printed after the
+table. Every run's CSV files are checked against the one-level run's (names
+mapped) to 1e-10 before any time is reported.
 """
 import argparse
 import os
@@ -55,9 +55,10 @@ def flat(text):
     return re.sub(r"B\.K", "K", re.sub(r"B\.F(\d+)\.", r"F\1_", text))
 
 
-def worst_difference(a, b):
-    """Largest |a - b| / max |column| over the numeric columns of two CSV files (names mapped)."""
-    ra = [line.split(",") for line in flat(open(a).read()).splitlines()]
+def worst_difference(a, b, nested=True):
+    """Largest |a - b| / max |column| over the numeric columns of two CSV files (a's names mapped if nested)."""
+    text = open(a).read()
+    ra = [line.split(",") for line in (flat(text) if nested else text).splitlines()]
     rb = [line.split(",") for line in open(b).read().splitlines()]
     assert len(ra) == len(rb) and ra[0] == rb[0], (a, b)
     worst = 0.0
@@ -81,43 +82,54 @@ def main():
     p.add_argument("--floors", type=int, default=20)
     p.add_argument("--grid", type=int, default=4)
     p.add_argument("--repeat", type=int, default=1)
+    p.add_argument("--edge-joined", action="store_true")
     args = p.parse_args()
     os.makedirs(args.work, exist_ok=True)
     gen = [sys.executable, os.path.join(ROOT, "bench", "gen_building.py"), "--mesh", str(args.mesh),
-           "--floors", str(args.floors), "--grid", str(args.grid)]
+           "--floors", str(args.floors), "--grid", str(args.grid)] + (["--edge-joined"] if args.edge_joined else [])
     decks = {}
     for name, extra in (("nested", []), ("explicit", ["--explicit"])):
         decks[name] = os.path.join(args.work, name + ".deck")
         with open(decks[name], "w") as f:
             subprocess.run(gen + extra, stdout=f, check=True)
     w = args.work
-    runs = {
-        "monolithic": [args.bin, "-q", decks["nested"], "--condense", "no", "-o", f"{w}/mono.lst"],
-        "one level (explicit deck)": [args.bin, "-q", decks["explicit"], "--condense", "yes", "-o",
-                                      f"{w}/one.lst", "--csv", f"{w}/one"],
-        "nested (flattened)": [args.bin, "-q", decks["nested"], "--condense", "yes", "-o", f"{w}/nested.lst",
-                               "--csv", f"{w}/nested"],
+    runs = {   # name: (command, CSV directory, names of the nested deck)
+        "monolithic": ([args.bin, "-q", decks["nested"], "--condense", "no", "-o", f"{w}/mono.lst", "--csv",
+                        f"{w}/mono"], f"{w}/mono", True),
+        "one level (explicit deck)": ([args.bin, "-q", decks["explicit"], "--condense", "yes", "-o", f"{w}/one.lst",
+                                       "--csv", f"{w}/one"], f"{w}/one", False),
+        "nested, by level": ([args.bin, "-q", decks["nested"], "--condense", "yes", "--levels", "yes", "-o", f"{w}/nested.lst",
+                              "--csv", f"{w}/nested"], f"{w}/nested", True),
+        "nested, flat (--levels no)": ([args.bin, "-q", decks["nested"], "--condense", "yes", "--levels", "no", "-o",
+                                        f"{w}/flat.lst", "--csv", f"{w}/flat"], f"{w}/flat", True),
     }
     best, cpu = {}, {}
     for _ in range(args.repeat):
-        for name, cmd in runs.items():
+        for name, (cmd, _, _) in runs.items():
             t, c = timed(cmd)
             best[name] = min(best.get(name, t), t)
             cpu[name] = min(cpu.get(name, c), c)
-    worst = max(worst_difference(f"{w}/nested/{t}", f"{w}/one/{t}")
-                for t in ("displacements.csv", "reactions.csv", "contact_forces.csv", "element_forces.csv"))
+    tables = ("displacements.csv", "reactions.csv", "contact_forces.csv", "element_forces.csv")
+    worst = {name: max(worst_difference(f"{d}/{t}", f"{w}/one/{t}", nested) for t in tables)
+             for name, (_, d, nested) in runs.items() if name != "one level (explicit deck)"}
     dofs = re.search(r"active DOFs\s+(\d+)", open(f"{w}/mono.lst").read())
     print(f"building: {args.floors} floors of {args.grid}x{args.grid} bays, mesh {args.mesh}"
-          f"{', ' + dofs.group(1) + ' DOFs' if dofs else ''}; nested against one level: {worst:.1e}")
+          f"{', bays joined along their edges' if args.edge_joined else ''}"
+          f"{', ' + dofs.group(1) + ' DOFs' if dofs else ''}; against one level: "
+          + ", ".join(f"{name} {d:.1e}" for name, d in worst.items()))
     print(f"  {'run':28s} {'wall':>8s}     {'ratio':>6s}   {'cpu':>8s}     {'ratio':>6s}   (best of {args.repeat}; "
           "ratio: x faster than monolithic)")
     for name, t in best.items():
         print(f"  {name:28s} {t:8.2f} s   {best['monolithic'] / t:6.2f}   {cpu[name]:8.2f} s   "
               f"{cpu['monolithic'] / cpu[name]:6.2f}")
-    level = re.search(r"condensation by level: .*", open(f"{w}/nested.lst").read())
-    if level:
-        print("  " + level.group(0))
-    return 0 if worst <= 1e-10 else 1
+    for name, lst in (("one level", "one"), ("nested, by level", "nested")):
+        eq = re.search(r"equations\s+(\d+)", open(f"{w}/{lst}.lst").read())
+        fnz = re.search(r"factor nonzeros\s+(\d+)", open(f"{w}/{lst}.lst").read())
+        if eq and fnz:
+            print(f"  {name}: {eq.group(1)} reduced equations, {fnz.group(1)} factor nonzeros")
+    for level in re.findall(r"condensation by level: .*", open(f"{w}/nested.lst").read()):
+        print("  " + level)
+    return 0 if max(worst.values()) <= 1e-10 else 1
 
 
 if __name__ == "__main__":

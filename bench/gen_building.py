@@ -1,7 +1,7 @@
 #!/usr/bin/env python3
 """A building of floors of bays: parts made of parts (issue 26).
 
-usage: gen_building.py [--mesh M] [--floors N] [--grid G] [--turn DEG] [--explicit] > building.deck
+usage: gen_building.py [--mesh M] [--floors N] [--grid G] [--turn DEG] [--explicit] [--edge-joined] > building.deck
 
 One *PART BAY: a square S4 slab (side 4 m, M x M elements, 0.2 m thick,
 concrete) at the top of four B33 columns (0.4 m square) standing under its
@@ -24,6 +24,13 @@ N G^2 *INSTANCE cards named F3_BAY2 (the placement composed here: one
 translation), the contacts in the same order (F3_J1, K3_2), for comparison
 (tests/parts/building.py maps B.F3.BAY2 to F3_BAY2 and compares).
 
+With --edge-joined the bays of a floor are joined along their whole shared
+slab edge (every edge node, the same contact stiffnesses; the bay has node sets
+E, W, N, S of its edges) instead of at the corners only; floors still meet only
+at the columns (the feet on the slab corners). A floor then has reduced
+unknowns no other floor sees (its edge joints' roots and Δu): the interior a
+condensation by level eliminates (src/analysis/level_solver.f90).
+
 Run with `superjoin --condense yes` for the one-level condensed run (one
 condensation of BAY, reused by every bay).
 """
@@ -38,8 +45,8 @@ G_ROT = 4.0e9
 G_TRA = 1.0e11
 
 
-def bay(m):
-    """The *PART BAY block."""
+def bay(m, edges=False):
+    """The *PART BAY block (edges: also the node sets E, W, N, S of the slab's edges)."""
     n = m + 1
     out = ["*PART, NAME=BAY", "*NODE"]
     for j in range(n):
@@ -56,6 +63,10 @@ def bay(m):
     for k, f in enumerate(feet, 1):
         out += [f"*NSET, NSET=F{k}", str(f)]
     out += ["*NSET, NSET=FOOT", ", ".join(map(str, feet))]
+    if edges:
+        for name, nodes in (("S", [i + 1 for i in range(n)]), ("N", [m * n + i + 1 for i in range(n)]),
+                            ("W", [j * n + 1 for j in range(n)]), ("E", [j * n + n for j in range(n)])):
+            out += [f"*NSET, NSET={name}", ", ".join(map(str, nodes))]
     out.append("*ELEMENT, TYPE=S4, ELSET=SLAB")
     e = 0
     for j in range(m):
@@ -73,23 +84,24 @@ def bay(m):
     return out, (n * n) // 2 + 1
 
 
-def bay_pairs(g):
-    """Neighbouring bays of a floor: (master, slave, [(master set, slave set)])."""
+def bay_pairs(g, edges=False):
+    """Neighbouring bays of a floor: (master, slave, [(master set, slave set)]); edges: the whole shared
+    slab edge (node sets E-W, N-S, paired in order) instead of its two corners."""
     out = []
     for r in range(g):
         for c in range(g):
             b = r * g + c + 1
             if c + 1 < g:
-                out.append((b, b + 1, [("C2", "C1"), ("C3", "C4")]))
+                out.append((b, b + 1, [("E", "W")] if edges else [("C2", "C1"), ("C3", "C4")]))
             if r + 1 < g:
-                out.append((b, b + g, [("C4", "C1"), ("C3", "C2")]))
+                out.append((b, b + g, [("N", "S")] if edges else [("C4", "C1"), ("C3", "C2")]))
     return out
 
 
-def floor_contacts(g, name, inst):
+def floor_contacts(g, name, inst, edges=False):
     """The contacts between the bays of one floor; inst(b) names bay b."""
     out = []
-    for k, (a, b, sets) in enumerate(bay_pairs(g), 1):
+    for k, (a, b, sets) in enumerate(bay_pairs(g, edges), 1):
         out.append(f"*CONTACT, NAME={name(k)}, MASTER={inst(a)}, SLAVE={inst(b)}")
         for sm, ss in sets:
             out.append(f"{inst(a)}.{sm}, {inst(b)}.{ss}, 1, 3, {G_TRA!r}")
@@ -139,7 +151,7 @@ def nested(args, bay_lines, mid):
     for b in range(1, g * g + 1):
         x, y = placement(g, b)
         out += [f"*INSTANCE, NAME=BAY{b}, PART=BAY", f"{x!r}, {y!r}, 0.0", "*END INSTANCE"]
-    out += floor_contacts(g, lambda k: f"J{k}", lambda b: f"BAY{b}")
+    out += floor_contacts(g, lambda k: f"J{k}", lambda b: f"BAY{b}", args.edge_joined)
     out += ["*END PART", "*PART, NAME=BUILDING"]
     for k in range(1, n + 1):
         out += [f"*INSTANCE, NAME=F{k}, PART=FLOOR", f"0.0, 0.0, {HEIGHT * (k - 1)!r}", "*END INSTANCE"]
@@ -166,7 +178,7 @@ def explicit(args, bay_lines, mid):
             out.append("*END INSTANCE")
     # the order of the unfolded nested deck: each floor's contacts, then the building's
     for k in range(1, n + 1):
-        out += floor_contacts(g, lambda j: f"F{k}_J{j}", lambda b: f"F{k}_BAY{b}")
+        out += floor_contacts(g, lambda j: f"F{k}_J{j}", lambda b: f"F{k}_BAY{b}", args.edge_joined)
     for k in range(1, n):
         out += storey_contacts(g, k, lambda k, b: f"K{k}_{b}", lambda k, b: f"F{k}_BAY{b}")
     out.append("*END ASSEMBLY")
@@ -181,12 +193,15 @@ def main():
     p.add_argument("--grid", type=int, default=2)
     p.add_argument("--turn", type=float, default=0.0)
     p.add_argument("--explicit", action="store_true")
+    p.add_argument("--edge-joined", action="store_true",
+                   help="join the bays of a floor along their whole shared slab edge (every edge node)")
     args = p.parse_args()
     head = ["*HEADING",
             f"A building of {args.floors} floors of {args.grid}x{args.grid} bays "
-            f"({'one level' if args.explicit else 'parts made of parts'}; bench/gen_building.py)",
+            f"({'one level' if args.explicit else 'parts made of parts'}"
+            f"{', bays joined along their edges' if args.edge_joined else ''}; bench/gen_building.py)",
             "*MATERIAL, NAME=CONCRETE", "*ELASTIC", f"{E!r}, {NU!r}"]
-    bay_lines, mid = bay(args.mesh)
+    bay_lines, mid = bay(args.mesh, args.edge_joined)
     body = explicit(args, bay_lines, mid) if args.explicit else nested(args, bay_lines, mid)
     print("\n".join(head + body))
 

@@ -18,7 +18,6 @@ module superjoin_analysis
   use superjoin_assembly_assemble, only: assemble_stiffness, assemble_loads
   use superjoin_substructure_local_system, only: boundary_dofs, part_boundary, given_boundary
   use superjoin_substructure_cache, only: release_cache
-  use superjoin_solvers, only: new_solver
   use superjoin_solvers_matrix_market, only: write_matrix_market
   use superjoin_model_results, only: results_t, run_options_t, run_summary_t, PH_ASSEMBLE, PH_ORDER, PH_FACTOR, PH_SOLVE
   use superjoin_analysis_recover, only: recover_results
@@ -30,6 +29,7 @@ module superjoin_analysis
        choose_condensation, autospc, skip_unloaded_parts, wanted_elements
   use superjoin_analysis_condensation, only: solve_context_t, condensed_strategy_t
   use superjoin_analysis_levels, only: describe_levels
+  use superjoin_analysis_level_solver, only: make_solver, level_note
   use superjoin_analysis_solve_state, only: solve_state_t, plain_strategy_t, PHASE_BUILT, PHASE_ASSEMBLED, PHASE_SOLVED, &
        PHASE_RECOVERED
   use superjoin_analysis_factor_reuse, only: take_factor, take_analysis, keep_factor, solve_with
@@ -180,10 +180,23 @@ contains
     if (allocated(error)) return
     call describe_transform(model, st%table, st%tr, st%form, res%summary, notes)
     if (res%summary%n_condensed > 0) &
-         call describe_levels(model, st%table, st%forest, st%tr, notes)
+         call describe_levels(model, st%table, st%forest, st%tr, notes, levels_refusal(opts, res%summary), st%levels)
     call choose_strategy(st, res%summary, opts)
     st%phase = PHASE_BUILT
   end subroutine build_phase
+
+  function levels_refusal(opts, summary) result(why)
+    !! Why a condensed run of parts made of parts is not condensed by level
+    !! (blank: it may be): not asked for (--levels no, the default: by level
+    !! measured slower than flat on the benchmark buildings), or several MPI
+    !! processes (their owner terms of K_red: the flat interface system).
+    type(run_options_t), intent(in) :: opts
+    type(run_summary_t), intent(in) :: summary
+    character(:), allocatable :: why
+    why = ''
+    if (is_distributed(summary)) why = 'several MPI processes'
+    if (.not. opts%levels) why = '--levels no'
+  end function levels_refusal
 
   subroutine choose_strategy(st, summary, opts)
     !! How K_red is assembled (analysis/solve_state): distributed over
@@ -385,7 +398,7 @@ contains
        res%log%phase_seconds(PH_ORDER) = 0.0_wp
        call report_phase(opts%quiet, 'order', 0.0_wp, 'reused (same pattern as the previous solve)')
     else
-       call new_solver(solver_name, st%k%n, st%solver, error)
+       call make_solver(st%levels, solver_name, st%k%n, st%solver, error)
        if (allocated(error)) return
        if (allocated(st%groups)) call st%solver%set_groups(st%groups)
        if (st%strategy%summed()) then
@@ -420,6 +433,7 @@ contains
        return
     end if
     res%log%phase_seconds(PH_FACTOR) = clock%seconds()
+    call level_note(st%solver, res%log%notes)
     res%summary%solver_name = st%solver%info%name
     res%summary%ordering = st%solver%info%ordering
     res%summary%factor_nnz = st%solver%info%factor_nnz

@@ -11,7 +11,8 @@ module superjoin_analysis_health
   use superjoin_substructure_local_system, only: dof_label
   use superjoin_substructure_cache, only: part_cache_t, part_view_t, view_stiffness_times, &
        view_maxratio
-  use superjoin_solvers, only: condition_estimate, inverse_norm_bound, cholmod_solver_t
+  use superjoin_solvers, only: condition_estimate, inverse_norm_bound
+  use superjoin_analysis_level_solver, only: cholesky_pivots
   use superjoin_model_results, only: results_t, run_options_t
   use superjoin_analysis_mechanism, only: mechanism_error
   use superjoin_analysis_labels, only: column_label
@@ -221,13 +222,10 @@ contains
     real(wp), intent(out) :: cond
     logical :: cheap
     cheap = .false.
-    if (st%k%n > COND_FULL_MAX) then
-       select type (s => st%solver)
-       type is (cholmod_solver_t)
-          cond = knorm*inverse_norm_bound(st%q, st%f_red, merge(0.0_wp, d(1:st%k%n), st%spc))
-          cheap = cond <= COND_BOUND_LIMIT .and. res%summary%maxratio <= MAXRATIO_WARN .and. &
-               maxval(res%fields%steps(:)%residual) <= limit
-       end select
+    if (st%k%n > COND_FULL_MAX .and. cholesky_pivots(st%solver)) then
+       cond = knorm*inverse_norm_bound(st%q, st%f_red, merge(0.0_wp, d(1:st%k%n), st%spc))
+       cheap = cond <= COND_BOUND_LIMIT .and. res%summary%maxratio <= MAXRATIO_WARN .and. &
+            maxval(res%fields%steps(:)%residual) <= limit
     end if
     if (cheap) then
        call note(res%log%notes, 'condition estimate: a lower bound from the solutions and the pivots, '// &

@@ -16,10 +16,12 @@ module superjoin_analysis_levels
   !! - kinds: groups of one depth with the same counts and the same rotation
   !!   (a proxy for groups alike, which one condensation could serve).
   !!
-  !! The solve itself stays flattened (the condensed leaves' K* in one interface
-  !! system: analysis/condensation): this module reports, by level, what a
-  !! condensation by level would eliminate, in one listing note. Contact g's stay on
-  !! the diagonal of their own Δu whatever is reported (nothing is assembled here).
+  !! This module reports, by level, what a condensation by level eliminates, in
+  !! one listing note, and plans it (level_plan_t): per group, deepest first, the
+  !! interior columns not already eliminated by a group inside it. The
+  !! elimination itself is analysis/level_solver's, on the assembled K_red (the
+  !! condensed leaves' K* mapped through T, the contacts' g on their own Δu
+  !! diagonals): nothing is assembled here.
   use superjoin_kinds, only: wp, i8
   use superjoin_model_types, only: model_t, string_t
   use superjoin_assembly_dofs, only: dof_table_t, unit_t, vertex_of, unit_dofs, MAX_UNIT_TERMS, UNIT_LINK
@@ -39,7 +41,20 @@ module superjoin_analysis_levels
      integer(i8) :: attached = 0
      integer(i8) :: interior = 0
      real(wp) :: rot(3, 3) = 0.0_wp        !! placement of its first substructure (groups alike turn alike)
+     integer(i8), allocatable :: inner(:)  !! the interior columns, ascending
   end type group_vars_t
+
+  type, public :: level_group_t
+    !! One group of a condensation by level: the columns it eliminates.
+     character(:), allocatable :: path
+     integer :: depth = 0
+     integer(i8), allocatable :: inner(:)  !! its interior columns that no group inside it eliminated, ascending
+  end type level_group_t
+
+  type, public :: level_plan_t
+    !! A condensation by level: the groups, deepest first (analysis/level_solver).
+     type(level_group_t), allocatable :: groups(:)
+  end type level_plan_t
 
   real(wp), parameter :: MAX_SCAN = 2.0e8_wp
     !! Groups times (DOFs + reduced unknowns) above which the analysis (one pass per group) is skipped.
@@ -136,6 +151,7 @@ contains
     g%own = count(s%own, kind=i8)
     g%exported = count(s%own .and. s%seen, kind=i8)
     g%interior = g%own - g%exported
+    g%inner = pack([(j, j=1_i8, tr%ncol())], s%own .and. .not. s%seen)
   end subroutine group_variables
 
   subroutine scan_rows(table, forest, tr, s, g)
@@ -196,16 +212,21 @@ contains
     end do
   end subroutine see_forms
 
-  subroutine describe_levels(model, table, forest, tr, notes)
+  subroutine describe_levels(model, table, forest, tr, notes, refusal, plan)
     !! One listing note: the groups of parts made of parts by level, their
     !! variables (own, interior, boundary) in the flat model's reduced unknowns,
-    !! and that the solve stays one level (see the module). No note when the
-    !! model has no group.
+    !! and whether they are eliminated by level (see the module). plan: the
+    !! groups that eliminate an interior, deepest first, unless refusal (the
+    !! reason a condensation by level is not done: --levels no, several
+    !! processes) is not blank or no group has an interior and a boundary.
+    !! No note and no plan when the model has no group.
     type(model_t), intent(in) :: model
     type(dof_table_t), intent(in) :: table
     type(forest_t), intent(in) :: forest
     type(transform_t), intent(in) :: tr
     type(string_t), allocatable, intent(inout) :: notes(:)
+    character(*), intent(in) :: refusal
+    type(level_plan_t), allocatable, intent(out) :: plan
     type(string_t), allocatable :: paths(:)
     type(group_vars_t), allocatable :: g(:)
     character(:), allocatable :: text
@@ -222,14 +243,53 @@ contains
     do k = 1, size(paths)
        call group_variables(model, table, forest, tr, paths(k)%s, g(k))
     end do
-    text = 'condensation by level: not done (the condensed leaves'' K* form one interface system); '// &
-         'what each level could eliminate, in reduced unknowns:'
+    if (len_trim(refusal) == 0) call plan_levels(g, tr%ncol(), plan)
+    if (allocated(plan)) then
+       text = 'condensation by level: done (each group''s interior eliminated onto its boundary, deepest first, '// &
+            'groups alike by their assembled matrix sharing one factorization: next note); in reduced unknowns:'
+    else if (len_trim(refusal) > 0) then
+       text = 'condensation by level: not done ('//trim(refusal)//'; the condensed leaves'' K* form one interface '// &
+            'system); what each level could eliminate, in reduced unknowns:'
+    else
+       text = 'condensation by level: not done (no group has an interior and a boundary; the condensed leaves'' K* '// &
+            'form one interface system); what each level could eliminate, in reduced unknowns:'
+    end if
     do d = maxval(g%depth), 1, -1
        if (.not. any(g%depth == d)) cycle
        text = text//' '//level_line(pack(g, g%depth == d))//';'
     end do
     call note(notes, text(1:len(text) - 1))
   end subroutine describe_levels
+
+  subroutine plan_levels(g, ncol, plan)
+    !! The groups that eliminate something, deepest first: a group with a
+    !! boundary (exported or attached unknowns; without one it is a system of
+    !! its own, left to the top) eliminates its interior columns that no group
+    !! inside it eliminated. No plan when no group eliminates anything.
+    type(group_vars_t), intent(in) :: g(:)
+    integer(i8), intent(in) :: ncol
+    type(level_plan_t), allocatable, intent(out) :: plan
+    type(level_group_t), allocatable :: list(:)
+    logical, allocatable :: taken(:)
+    integer :: d, k, n
+    allocate (taken(ncol), source=.false.)
+    allocate (list(size(g)))
+    n = 0
+    do d = maxval(g%depth), 1, -1
+       do k = 1, size(g)
+          if (g(k)%depth /= d .or. g(k)%exported + g(k)%attached == 0) cycle
+          if (all(taken(g(k)%inner))) cycle
+          n = n + 1
+          list(n)%path = g(k)%path
+          list(n)%depth = d
+          list(n)%inner = pack(g(k)%inner, .not. taken(g(k)%inner))
+          taken(list(n)%inner) = .true.
+       end do
+    end do
+    if (n == 0) return
+    allocate (plan)
+    plan%groups = list(1:n)
+  end subroutine plan_levels
 
   function level_line(g) result(line)
     !! `depth D: N groups (first .. last), own a..b, boundary c..d (...), interior e..f (total t), kinds by counts and rotation: k`.

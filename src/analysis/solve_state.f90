@@ -23,6 +23,7 @@ module superjoin_analysis_solve_state
   use superjoin_substructure_cache, only: part_view_t
   use superjoin_solvers, only: norm1_sym
   use superjoin_solvers, only: linear_solver_t, sparse_sym_t
+  use superjoin_analysis_levels, only: level_plan_t
   implicit none (type, external)
   private
 
@@ -81,6 +82,7 @@ module superjoin_analysis_solve_state
      real(wp), allocatable :: u(:, :)        !! physical displacements (np, nstep)
      real(wp), allocatable :: ku(:, :)       !! k u of the condensed parts (np, nstep)
      class(solve_strategy_t), allocatable :: strategy   !! how K_red is assembled (see the module)
+     type(level_plan_t), allocatable :: levels   !! parts made of parts, condensed: K_red factored by level
   end type solve_state_t
 
 contains

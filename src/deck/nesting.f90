@@ -1,5 +1,6 @@
 module superjoin_deck_nesting
-  !! Parts made of parts (a bay -> a floor -> a building), solved flattened.
+  !! Parts made of parts (a bay -> a floor -> a building), unfolded (a
+  !! condensed run then eliminates them by level: analysis/level_solver).
   !!
   !! A `*PART` may hold `*INSTANCE` cards of other parts and `*CONTACT` cards
   !! between those inner instances (MASTER=F3.BAY2, nodes `F3.BAY2.12`). Before
@@ -10,10 +11,10 @@ module superjoin_deck_nesting
   !! for each of its instances with their names and substructures prefixed by the
   !! instance's path (`B.F3.J1` between `B.F3.BAY1` and `B.F3.BAY2`). The unfolded
   !! model is then an ordinary one-level assembly: a condensation, if asked, is
-  !! one level (computed once per leaf part), not level by level. A condensed
-  !! run's listing says, per depth, what a condensation by level could
-  !! eliminate (analysis/levels: each group's own, boundary and interior
-  !! reduced unknowns); the solve stays flattened.
+  !! computed once per leaf part, and the interface system of the condensed
+  !! leaves is then eliminated level by level (analysis/levels plans it, per
+  !! group: own, boundary and interior reduced unknowns; analysis/level_solver
+  !! does it).
   !!
   !! Errors (file:line of the inner *INSTANCE): a part of no definition, a part
   !! that contains itself (directly or through others).
@@ -66,9 +67,9 @@ contains
        if (st%subs(k)%kind == SUBK_PART .and. st%subs(k)%node_lines == 0 .and. any(owners(st) == k)) &
             st%subs(k)%kind = SUBK_NESTED
     end do
-    call note(st%notes, 'parts made of parts: solved flattened into '//plural(w%nleaf, 'instance')// &
+    call note(st%notes, 'parts made of parts: unfolded into '//plural(w%nleaf, 'instance')// &
          ' of parts with a mesh and '//plural(w%ncontact, 'contact')//' of parts (named by instance path; '// &
-         'no condensation by level)')
+         'condensed: by level)')
   end subroutine unfold_nested
 
   subroutine link_templates(st, w)

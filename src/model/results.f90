@@ -19,6 +19,7 @@ module superjoin_model_results
      character(:), allocatable :: export_matrix !! Matrix Market path, or unallocated
      character(:), allocatable :: library       !! --library DIR: condensations kept across runs, or unallocated
      logical :: library_verify = .false.        !! --library-verify: a library hit assembles k and checks its hash
+     logical :: levels = .false.                !! --levels yes: parts made of parts condensed by level (default: flat, one interface system)
      logical :: quiet = .false.
      logical :: verbose = .false.
      logical :: accept_inaccurate = .false. !! --accept-inaccurate: exit 0 even when results are judged inaccurate

@@ -10,7 +10,7 @@ module superjoin_solvers_matrix_market
   implicit none (type, external)
   private
 
-  public :: write_matrix_market, read_matrix_market
+  public :: write_matrix_market, read_matrix_market, assemble_upper
 
   character(*), parameter :: MM_BANNER = '%%MatrixMarket'
   character(*), parameter :: MM_HEADER = '%%MatrixMarket matrix coordinate real symmetric'

@@ -16,13 +16,16 @@ g-sized term between physical DOFs. Checks:
   1e-10 of each column's largest value (displacements, reactions, contact
   forces, element forces, plate results), also with the building turned by 30
   degrees about an inclined axis;
-- the listing's note on the condensation by level: per depth, the groups and
-  their variables (a floor: own, boundary, interior). J1 also joins the
+- the listing's notes on the condensation by level (done: the nested run is
+  solved by level, analysis/level_solver): per depth, the groups and their
+  variables (a floor: own, boundary, interior), then the groups, kinds and
+  interior eliminated. J1 also joins the
   middles of the shared slab edge, which no other floor touches: every floor
   has 24 interior unknowns there (those two nodes of each bay, on the bays'
   boundary since the instances of BAY share one, and J1's Δu at them), the top
   floor all its 69;
-- the sweep: J1's finite g from 1e6 to 1e14 times the slab's membrane
+- the sweep (solved by level: J1's Δu is a floor's interior, eliminated with
+  the floor): J1's finite g from 1e6 to 1e14 times the slab's membrane
   stiffness E t. The difference to the RIGID joint falls as 1/g (the joint's
   compliance) until round-off, and never above: a stiff g inside a group loses
   no digits.
@@ -142,11 +145,15 @@ def main(argv):
     ok = compare(t, te, "turned nested condensed against turned explicit monolithic") and ok
     with open(nlst) as f:
         listing = f.read()
-    want = ("condensation by level: not done (the condensed leaves' K* form one interface system); what each "
-            "level could eliminate, in reduced unknowns: depth 2: 3 groups (B.F1 .. B.F3), own 69, boundary 45..93 (exported 0..45, attached 0..48), interior 24..69 (total 117), kinds by counts and rotation: 3")
-    found = want in listing
-    print(f"{'ok' if found else 'FAIL'}: listing has '{want}'")
-    ok = ok and found
+    for want in ("condensation by level: done (each group's interior eliminated onto its boundary, deepest first, "
+                 "groups alike by their assembled matrix sharing one factorization: next note); in reduced unknowns: "
+                 "depth 2: 3 groups (B.F1 .. B.F3), own 69, boundary 45..93 (exported 0..45, attached 0..48), "
+                 "interior 24..69 (total 117), kinds by counts and rotation: 3",
+                 "condensation by level: 3 groups in 3 kinds (groups alike share one factorization and one Schur "
+                 "complement), 117 interior reduced unknowns eliminated"):
+        found = want in listing
+        print(f"{'ok' if found else 'FAIL'}: listing has '{want}'")
+        ok = ok and found
     r, _ = run(exe, write(work, "rigid", "RIGID"), work, "rigid", "--condense", "yes")
     for e10 in range(6, 15):
         s, _ = run(exe, write(work, f"g{e10}", repr(ET * 10.0 ** e10)), work, f"g{e10}", "--condense", "yes")

@@ -1,0 +1,726 @@
+module superjoin_analysis_level_solver
+  !! The condensation by level of parts made of parts, as a direct solver of
+  !! K_red (a linear_solver_t: the health checks, the refinement and a kept
+  !! factor use it as any other). K_red is the condensed run's interface
+  !! system, assembled as always from the leaves' K* mapped through T, the
+  !! contacts' g on their own Δu diagonals and what is not condensed. The plan
+  !! (analysis/levels) gives per group, deepest first, the reduced unknowns it
+  !! eliminates: its interior, which nothing outside the group sees, so that
+  !! the rows of K_red there hold only the group's own contributions.
+  !!
+  !! factorize, level by level (the groups of one depth at once):
+  !! - a group's matrix on its variables: its interior columns I, then its
+  !!   boundary B (the columns the current matrix couples to I: its exported and
+  !!   attached unknowns), taken from the current matrix (K_red, plus the Schur
+  !!   complements of the levels below on their boundaries);
+  !! - groups alike (the same matrix in this local numbering, interior and
+  !!   coupling: a signature of the pattern and values, then compared value
+  !!   by value) share one kind: one factorization of a_II and one Schur
+  !!   complement C = −a_BI a_II⁻¹ a_IB (the solver's schur, then a_BB taken
+  !!   off again);
+  !! - the next level's matrix: the current one without the eliminated
+  !!   columns, each group's C added on its boundary;
+  !! - the columns left (the top system) are factored by the solver asked for.
+  !! solve: the loads condensed bottom-up (f_B −= a_BI a_II⁻¹ f_I, all members
+  !! of a kind in one multi-column solve with the shared factor), the top
+  !! system solved, the interiors recovered top-down (x_I = a_II⁻¹ (f_I − a_IB
+  !! x_B)). A contact's g stays on the diagonal of its own Δu: the levels only
+  !! order the elimination. A level whose groups' interiors touch each other
+  !! (never for groups from the plan) gives up: K_red is factored whole.
+  use superjoin_kinds, only: wp, i8
+  use superjoin_error, only: error_t, EXIT_SINGULAR
+  use superjoin_model_types, only: string_t
+  use superjoin_model_notes, only: note
+  use superjoin_solvers, only: linear_solver_t, sparse_sym_t, new_solver, cholmod_solver_t
+  use superjoin_solvers_solver, only: boundary_block, subtract_bi
+  use superjoin_solvers_matrix_market, only: assemble_upper
+  use superjoin_utils_strings, only: itoa
+  use superjoin_analysis_levels, only: level_plan_t
+  implicit none (type, external)
+  private
+
+  type :: member_t
+    !! One group in the solver: its columns and its kind.
+     integer(i8), allocatable :: inner(:)   !! eliminated columns, ascending
+     integer(i8), allocatable :: bnd(:)     !! boundary columns, ascending
+     integer :: kind = 0
+  end type member_t
+
+  type :: rows_t
+    !! The upper triangle of a matrix by rows: row i's columns j > i are
+    !! col(ptr(i):ptr(i+1)-1), their entries at pos(...) of the matrix.
+     integer(i8), allocatable :: ptr(:), col(:), pos(:)
+  end type rows_t
+
+  type :: kind_t
+    !! Groups alike: one local matrix, one factor of its interior, one Schur complement.
+     type(sparse_sym_t) :: a                 !! interior first, then boundary (upper triangle)
+     integer(i8) :: ni = 0, nb = 0
+     real(wp) :: sig(5) = 0.0_wp            !! interior_signature
+     class(linear_solver_t), allocatable :: solver   !! of a_II
+     real(wp), allocatable :: corr(:, :)     !! −a_BI a_II⁻¹ a_IB (nb, nb)
+     integer, allocatable :: members(:)
+  end type kind_t
+
+  type, extends(linear_solver_t), public :: level_solver_t
+    !! A direct solver of K_red by level (see the module).
+     type(level_plan_t) :: plan
+     character(:), allocatable :: inner_name      !! the solver asked for (kinds and top)
+     integer(i8) :: n = 0
+     type(member_t), allocatable :: g(:)
+     type(kind_t), allocatable :: kinds(:)
+     integer :: nkind = 0
+     class(linear_solver_t), allocatable :: top
+     integer(i8), allocatable :: top_cols(:)
+     character(:), allocatable :: summary         !! the listing note (factorize)
+  contains
+     procedure :: analyze => level_analyze
+     procedure :: factorize => level_factorize
+     procedure :: solve => level_solve
+     procedure :: pivots => level_pivots
+     procedure :: release => level_release
+  end type level_solver_t
+
+  public :: make_solver, level_note, cholesky_pivots
+
+contains
+
+  subroutine make_solver(plan, name, n, solver, error)
+    !! The solver of K_red (order n): by level when plan is allocated, else
+    !! the solver called name (solvers/factory's new_solver).
+    type(level_plan_t), allocatable, intent(in) :: plan
+    character(*), intent(in) :: name
+    integer(i8), intent(in) :: n
+    class(linear_solver_t), allocatable, intent(out) :: solver
+    type(error_t), allocatable, intent(out) :: error
+    type(level_solver_t), allocatable :: s
+    if (.not. allocated(plan)) then
+       call new_solver(name, n, solver, error)
+       return
+    end if
+    allocate (s)
+    s%plan = plan
+    s%inner_name = name
+    s%n = n
+    call move_alloc(s, solver)
+  end subroutine make_solver
+
+  subroutine level_note(solver, notes)
+    !! The level solver's note (groups, kinds, interior eliminated, top system); none for another solver.
+    class(linear_solver_t), intent(in) :: solver
+    type(string_t), allocatable, intent(inout) :: notes(:)
+    select type (solver)
+    type is (level_solver_t)
+       if (allocated(solver%summary)) call note(notes, solver%summary)
+    end select
+  end subroutine level_note
+
+  recursive logical function cholesky_pivots(solver) result(yes)
+    !! The solver's pivots are those of a CHOLMOD LL^T elimination ((A^-1)_jj
+    !! >= 1 / D_jj: health's free lower bound of the condition): CHOLMOD, or
+    !! by level with CHOLMOD for the top system and every kind (a group's
+    !! interior pivots are those of a partial elimination, no smaller).
+    class(linear_solver_t), intent(in) :: solver
+    integer :: q
+    yes = .false.
+    select type (solver)
+    type is (cholmod_solver_t)
+       yes = .true.
+    type is (level_solver_t)
+       if (.not. allocated(solver%top)) return
+       yes = cholesky_pivots(solver%top)
+       do q = 1, solver%nkind
+          if (yes) yes = cholesky_pivots(solver%kinds(q)%solver)
+       end do
+    end select
+  end function cholesky_pivots
+
+  subroutine level_analyze(self, a, error)
+    !! Nothing but the order: the boundaries of a level follow from the values
+    !! below it (factorize does all).
+    class(level_solver_t), intent(inout) :: self
+    type(sparse_sym_t), intent(in) :: a
+    type(error_t), allocatable, intent(out) :: error
+    self%n = a%n
+    self%info%ordering = 'by level'
+    associate (no_error => allocated(error))
+    end associate
+  end subroutine level_analyze
+
+  subroutine level_factorize(self, a, error)
+    !! The levels bottom-up, then the top system (see the module).
+    class(level_solver_t), intent(inout) :: self
+    type(sparse_sym_t), intent(in) :: a
+    type(error_t), allocatable, intent(out) :: error
+    type(sparse_sym_t) :: m, prev
+    logical, allocatable :: gone(:)
+    integer :: lo, hi
+    logical :: ok
+    integer(i8) :: j
+    call level_release(self)
+    allocate (gone(a%n), source=.false.)
+    allocate (self%g(size(self%plan%groups)), self%kinds(size(self%plan%groups)))
+    self%nkind = 0
+    ok = .true.
+    lo = 1
+    do while (lo <= size(self%g) .and. ok)
+       hi = lo
+       do while (hi < size(self%g))
+          if (self%plan%groups(hi + 1)%depth /= self%plan%groups(lo)%depth) exit
+          hi = hi + 1
+       end do
+       if (lo == 1) then   ! K_red itself, not a copy
+          call eliminate_level(self, [lo, hi], a, m, gone, ok, error)
+       else
+          call move_alloc(m%colptr, prev%colptr)
+          call move_alloc(m%rowind, prev%rowind)
+          call move_alloc(m%val, prev%val)
+          prev%n = m%n
+          call eliminate_level(self, [lo, hi], prev, m, gone, ok, error)
+       end if
+       if (allocated(error)) return
+       lo = hi + 1
+    end do
+    if (.not. ok) then   ! interiors that touch: K_red whole
+       call level_release(self)
+       m = a
+       gone = .false.
+    end if
+    self%top_cols = pack([(j, j=1_i8, a%n)], .not. gone)   ! m: on these (the last level compacts it)
+    call factor_top(self, m, error)
+    if (allocated(error)) return
+    call describe(self, ok)
+  end subroutine level_factorize
+
+  subroutine eliminate_level(self, range, m, next, gone, ok, error)
+    !! Groups range(1)..range(2) (one depth) of the matrix m: boundaries,
+    !! kinds, their factors and Schur complements, and next, the matrix of
+    !! the next level (after the last level: on the columns left only, the top
+    !! system). ok = .false. when the interiors of two groups touch (nothing done).
+    class(level_solver_t), intent(inout) :: self
+    integer, intent(in) :: range(2)
+    type(sparse_sym_t), intent(in) :: m
+    type(sparse_sym_t), intent(out) :: next
+    logical, intent(inout) :: gone(:)
+    logical, intent(out) :: ok
+    type(error_t), allocatable, intent(out) :: error
+    type(rows_t) :: rows
+    integer, allocatable :: owner(:)
+    integer :: k, first_kind, lo, hi
+    lo = range(1)
+    hi = range(2)
+    call upper_rows(m, rows)
+    allocate (owner(m%n), source=0)
+    do k = lo, hi
+       owner(self%plan%groups(k)%inner) = k
+    end do
+    ok = .true.
+    do k = lo, hi
+       self%g(k)%inner = self%plan%groups(k)%inner
+       call boundary_of(m, rows, owner, k, self%g(k), ok)
+       if (.not. ok) return
+    end do
+    first_kind = self%nkind + 1
+    do k = lo, hi
+       call assign_kind(self, m, rows, k, first_kind)
+    end do
+    do k = first_kind, self%nkind
+       call factor_kind(self%kinds(k), self%inner_name, self%g(self%kinds(k)%members(1))%inner, &
+            self%info%failed_column, error)
+       if (allocated(error)) return
+    end do
+    call next_matrix(self, range, m, next, gone, hi == size(self%g))
+  end subroutine eliminate_level
+
+  subroutine upper_rows(m, rows)
+    !! The upper triangle of m by rows (rows_t).
+    type(sparse_sym_t), intent(in) :: m
+    type(rows_t), intent(out) :: rows
+    integer(i8) :: j, p, i
+    allocate (rows%ptr(m%n + 1), source=0_i8)
+    do p = 1, m%nnz()
+       rows%ptr(m%rowind(p) + 1) = rows%ptr(m%rowind(p) + 1) + 1
+    end do
+    rows%ptr(1) = 1
+    do i = 1, m%n
+       rows%ptr(i + 1) = rows%ptr(i + 1) + rows%ptr(i)
+    end do
+    allocate (rows%col(m%nnz()), rows%pos(m%nnz()))
+    do j = 1, m%n
+       do p = m%colptr(j), m%colptr(j + 1) - 1
+          i = m%rowind(p)
+          rows%col(rows%ptr(i)) = j
+          rows%pos(rows%ptr(i)) = p
+          rows%ptr(i) = rows%ptr(i) + 1
+       end do
+    end do
+    do i = m%n, 1, -1
+       rows%ptr(i + 1) = rows%ptr(i)
+    end do
+    rows%ptr(1) = 1
+  end subroutine upper_rows
+
+  subroutine boundary_of(m, rows, owner, k, g, ok)
+    !! g%bnd: the columns m couples to g's interior outside it (ascending).
+    !! ok = .false. when one of them is the interior of another group of the level.
+    type(sparse_sym_t), intent(in) :: m
+    type(rows_t), intent(in) :: rows
+    integer, intent(in) :: owner(:), k
+    type(member_t), intent(inout) :: g
+    logical, intent(inout) :: ok
+    logical, allocatable :: mark(:)
+    integer(i8) :: c, p, r, t
+    allocate (mark(m%n), source=.false.)
+    do t = 1, size(g%inner, kind=i8)
+       c = g%inner(t)
+       do p = m%colptr(c), m%colptr(c + 1) - 1
+          mark(m%rowind(p)) = .true.
+       end do
+       do p = rows%ptr(c), rows%ptr(c + 1) - 1
+          mark(rows%col(p)) = .true.
+       end do
+    end do
+    do r = 1, m%n
+       if (.not. mark(r) .or. owner(r) == k) cycle
+       if (owner(r) /= 0) ok = .false.
+    end do
+    mark(g%inner) = .false.
+    g%bnd = pack([(r, r=1_i8, m%n)], mark)
+  end subroutine boundary_of
+
+  subroutine local_matrix(m, rows, g, with_bb, a)
+    !! a: m on g's columns, interior first then boundary (upper triangle),
+    !! both in ascending global order: a_II and a_IB, and a_BB if with_bb
+    !! (else its diagonal zero).
+    type(sparse_sym_t), intent(in) :: m
+    type(rows_t), intent(in) :: rows
+    type(member_t), intent(in) :: g
+    logical, intent(in) :: with_bb
+    type(sparse_sym_t), intent(out) :: a
+    integer(i8), allocatable :: loc(:), ti(:), tj(:)
+    real(wp), allocatable :: tv(:)
+    integer(i8) :: t, ni, nloc, ne, pass
+    ni = size(g%inner, kind=i8)
+    nloc = ni + size(g%bnd, kind=i8)
+    allocate (loc(m%n), source=0_i8)
+    loc(g%inner) = [(t, t=1_i8, ni)]
+    loc(g%bnd) = [(t, t=ni + 1_i8, nloc)]
+    allocate (ti(0), tj(0), tv(0))
+    do pass = 1, 2   ! count, then fill
+       ne = 0
+       do t = 1, ni   ! a_II and a_IB: the columns and the rows of the interior
+          call take(g%inner(t), .true.)
+       end do
+       if (with_bb) then
+          do t = 1, size(g%bnd, kind=i8)
+             call take(g%bnd(t), .false.)
+          end do
+       end if
+       if (pass == 1) then
+          deallocate (ti, tj, tv)
+          allocate (ti(ne), tj(ne), tv(ne))
+       end if
+    end do
+    call assemble_upper(nloc, ti, tj, tv, a)
+  contains
+    subroutine take(c, interior)
+      !! The entries of column c with a row in a (for a boundary c: a boundary
+      !! row), and for an interior c those of its row with a boundary column.
+      integer(i8), intent(in) :: c
+      logical, intent(in) :: interior
+      integer(i8) :: p, r
+      do p = m%colptr(c), m%colptr(c + 1) - 1
+         r = loc(m%rowind(p))
+         if (r == 0 .or. (.not. interior .and. r <= ni)) cycle
+         call put(r, loc(c), m%val(p))
+      end do
+      if (.not. interior) return
+      do p = rows%ptr(c), rows%ptr(c + 1) - 1
+         r = loc(rows%col(p))
+         if (r <= ni) cycle
+         call put(r, loc(c), m%val(rows%pos(p)))
+      end do
+    end subroutine take
+    subroutine put(r, c, v)
+      !! One entry (upper triangle of a).
+      integer(i8), intent(in) :: r, c
+      real(wp), intent(in) :: v
+      ne = ne + 1
+      if (pass == 1) return
+      ti(ne) = min(r, c)
+      tj(ne) = max(r, c)
+      tv(ne) = v
+    end subroutine put
+  end subroutine local_matrix
+
+  subroutine interior_part(a, ni, cnt, rows, vals)
+    !! The interior rows of a (a_II and a_IB, column by column): per column
+    !! the count of entries in rows 1..ni, their rows and values. a_BB, which
+    !! a group's surroundings change, is not part of what groups alike share.
+    type(sparse_sym_t), intent(in) :: a
+    integer(i8), intent(in) :: ni
+    integer(i8), allocatable, intent(out) :: cnt(:), rows(:)
+    real(wp), allocatable, intent(out) :: vals(:)
+    integer(i8) :: j
+    allocate (cnt(a%n))
+    do j = 1, a%n
+       cnt(j) = count(a%rowind(a%colptr(j):a%colptr(j + 1) - 1) <= ni, kind=i8)
+    end do
+    rows = pack(a%rowind, a%rowind <= ni)
+    vals = pack(a%val, a%rowind <= ni)
+  end subroutine interior_part
+
+  function interior_signature(a, ni) result(sig)
+    !! A cheap signature of a's interior part (interior_part): its order,
+    !! interior size, entries, and sums of its rows and values. Groups alike
+    !! have the same; same_interior then compares them value by value.
+    type(sparse_sym_t), intent(in) :: a
+    integer(i8), intent(in) :: ni
+    real(wp) :: sig(5)
+    logical, allocatable :: inside(:)
+    allocate (inside(size(a%rowind)))
+    inside = a%rowind <= ni
+    sig = [real(a%n, wp), real(ni, wp), real(count(inside), wp), real(sum(a%rowind, mask=inside), wp), &
+         sum(a%val, mask=inside)]
+  end function interior_signature
+
+  logical function same_interior(a, b, ni)
+    !! a and b (of interior size ni) have the same interior part, value by value.
+    type(sparse_sym_t), intent(in) :: a, b
+    integer(i8), intent(in) :: ni
+    integer(i8), allocatable :: ca(:), ra(:), cb(:), rb(:)
+    real(wp), allocatable :: va(:), vb(:)
+    same_interior = a%n == b%n
+    if (.not. same_interior) return
+    call interior_part(a, ni, ca, ra, va)
+    call interior_part(b, ni, cb, rb, vb)
+    same_interior = all(ca == cb)
+    if (same_interior) same_interior = all(ra == rb)
+    if (same_interior) same_interior = all(va == vb)
+  end function same_interior
+
+  subroutine assign_kind(self, m, rows, k, first_kind)
+    !! Group k's kind: an earlier kind of its level whose local matrix equals
+    !! its own (signature, then value by value), or a new one (its local
+    !! matrix kept, a_BB included for the factorization).
+    class(level_solver_t), intent(inout) :: self
+    type(sparse_sym_t), intent(in) :: m
+    type(rows_t), intent(in) :: rows
+    integer, intent(in) :: k, first_kind
+    type(sparse_sym_t) :: a
+    real(wp) :: sig(5)
+    integer(i8) :: ni
+    integer :: q
+    call local_matrix(m, rows, self%g(k), .false., a)
+    ni = size(self%g(k)%inner, kind=i8)
+    sig = interior_signature(a, ni)
+    do q = first_kind, self%nkind
+       if (any(self%kinds(q)%sig /= sig) .or. self%kinds(q)%ni /= ni) cycle
+       if (.not. same_interior(self%kinds(q)%a, a, ni)) cycle
+       self%g(k)%kind = q
+       self%kinds(q)%members = [self%kinds(q)%members, k]
+       return
+    end do
+    self%nkind = self%nkind + 1
+    call local_matrix(m, rows, self%g(k), .true., a)
+    associate (kd => self%kinds(self%nkind))
+      call move_alloc(a%colptr, kd%a%colptr)
+      call move_alloc(a%rowind, kd%a%rowind)
+      call move_alloc(a%val, kd%a%val)
+      kd%a%n = a%n
+      kd%ni = ni
+      kd%nb = a%n - ni
+      kd%sig = sig
+      kd%members = [k]
+    end associate
+    self%g(k)%kind = self%nkind
+  end subroutine assign_kind
+
+  subroutine factor_kind(kd, name, inner, failed, error)
+    !! The factor of a kind's a_II and its Schur complement: the solver's
+    !! schur on the local matrix (a_BB included, so that its route through one
+    !! factorization of the whole stays positive definite), then a_BB taken
+    !! off: corr = −a_BI a_II⁻¹ a_IB. failed: K_red's column where a_II breaks down.
+    type(kind_t), intent(inout) :: kd
+    character(*), intent(in) :: name
+    integer(i8), intent(in) :: inner(:)
+    integer(i8), intent(inout) :: failed
+    type(error_t), allocatable, intent(out) :: error
+    real(wp), allocatable :: kbb(:, :)
+    integer(i8) :: jf
+    call new_solver(name, kd%a%n, kd%solver, error)
+    if (allocated(error)) return
+    allocate (kd%corr(kd%nb, kd%nb), kbb(kd%nb, kd%nb))
+    if (kd%nb == 0) then
+       call kd%solver%analyze(kd%a, error)
+       if (.not. allocated(error)) call kd%solver%factorize(kd%a, error)
+    else
+       call kd%solver%schur(kd%a, kd%nb, kd%corr, error)
+    end if
+    if (allocated(error)) then
+       jf = kd%solver%info%failed_column
+       if (error%code == EXIT_SINGULAR .and. jf >= 1 .and. jf <= kd%ni) failed = inner(jf)
+       return
+    end if
+    call boundary_block(kd%a, kd%nb, kbb)
+    kd%corr = kd%corr - kbb
+  end subroutine factor_kind
+
+  subroutine next_matrix(self, range, m, next, gone, compact)
+    !! next: m without the interiors of groups range(1)..range(2), each
+    !! group's corr added on its boundary; compact: numbered on the columns
+    !! left only (else the eliminated ones keep an empty place).
+    class(level_solver_t), intent(in) :: self
+    integer, intent(in) :: range(2)
+    type(sparse_sym_t), intent(in) :: m
+    type(sparse_sym_t), intent(out) :: next
+    logical, intent(inout) :: gone(:)
+    logical, intent(in) :: compact
+    integer(i8), allocatable :: ti(:), tj(:), new(:)
+    real(wp), allocatable :: tv(:)
+    integer(i8) :: ne, j, p, r, c, n
+    integer :: k, lo, hi
+    lo = range(1)
+    hi = range(2)
+    do k = lo, hi
+       gone(self%g(k)%inner) = .true.
+    end do
+    allocate (new(m%n))
+    n = 0
+    do j = 1, m%n
+       if (.not. gone(j) .or. .not. compact) n = n + 1
+       new(j) = n
+    end do
+    ne = 0
+    do k = lo, hi
+       n = size(self%g(k)%bnd, kind=i8)
+       ne = ne + n*(n + 1)/2
+    end do
+    do j = 1, m%n
+       if (gone(j)) cycle
+       ne = ne + count(.not. gone(m%rowind(m%colptr(j):m%colptr(j + 1) - 1)), kind=i8)
+    end do
+    allocate (ti(ne), tj(ne), tv(ne))
+    ne = 0
+    do j = 1, m%n
+       if (gone(j)) cycle
+       do p = m%colptr(j), m%colptr(j + 1) - 1
+          if (gone(m%rowind(p))) cycle
+          ne = ne + 1
+          ti(ne) = new(m%rowind(p))
+          tj(ne) = new(j)
+          tv(ne) = m%val(p)
+       end do
+    end do
+    do k = lo, hi
+       associate (b => self%g(k)%bnd, corr => self%kinds(self%g(k)%kind)%corr)
+         do c = 1, size(b, kind=i8)
+            do r = 1, c
+               ne = ne + 1
+               ti(ne) = new(b(r))
+               tj(ne) = new(b(c))
+               tv(ne) = corr(r, c)
+            end do
+         end do
+       end associate
+    end do
+    call assemble_upper(new(m%n), ti, tj, tv, next)
+  end subroutine next_matrix
+
+  subroutine factor_top(self, a, error)
+    !! The top system a (on self%top_cols), factored by the solver asked for.
+    class(level_solver_t), intent(inout) :: self
+    type(sparse_sym_t), intent(in) :: a
+    type(error_t), allocatable, intent(out) :: error
+    integer(i8) :: jf
+    call new_solver(self%inner_name, a%n, self%top, error)
+    if (allocated(error)) return
+    call self%top%analyze(a, error)
+    if (.not. allocated(error)) call self%top%factorize(a, error)
+    if (allocated(error)) then
+       jf = self%top%info%failed_column
+       if (error%code == EXIT_SINGULAR .and. jf >= 1 .and. jf <= a%n) self%info%failed_column = self%top_cols(jf)
+    end if
+  end subroutine factor_top
+
+  subroutine describe(self, ok)
+    !! self%info (the top solver's, with every factor's size) and the note.
+    class(level_solver_t), intent(inout) :: self
+    logical, intent(in) :: ok
+    integer :: q
+    integer(i8) :: ninner
+    self%info%name = self%top%info%name
+    self%info%ordering = self%top%info%ordering
+    self%info%factor_nnz = self%top%info%factor_nnz
+    self%info%factor_mbytes = self%top%info%factor_mbytes
+    if (.not. ok) then
+       self%summary = 'condensation by level: given up (the interiors of two groups of one depth touch in K_red); '// &
+            'K_red factored whole'
+       return
+    end if
+    ninner = 0
+    do q = 1, self%nkind
+       self%info%factor_nnz = self%info%factor_nnz + self%kinds(q)%solver%info%factor_nnz
+       self%info%factor_mbytes = self%info%factor_mbytes + self%kinds(q)%solver%info%factor_mbytes + &
+            8.0_wp*real(size(self%kinds(q)%corr, kind=i8), wp)/1048576.0_wp
+    end do
+    do q = 1, size(self%g)
+       ninner = ninner + size(self%g(q)%inner, kind=i8)
+    end do
+    self%summary = 'condensation by level: '//itoa(size(self%g))//' group'// &
+         trim(merge('s', ' ', size(self%g) /= 1))//' in '//itoa(self%nkind)//' kind'// &
+         trim(merge('s', ' ', self%nkind /= 1))//' (groups alike share one factorization and one Schur '// &
+         'complement), '//itoa(ninner)//' interior reduced unknowns eliminated, boundaries '// &
+         itoa(minval([(size(self%g(q)%bnd), q=1, size(self%g))]))//'..'// &
+         itoa(maxval([(size(self%g(q)%bnd), q=1, size(self%g))]))//'; top system '// &
+         itoa(size(self%top_cols, kind=i8))//' of '//itoa(self%n)//' equations'
+  end subroutine describe
+
+  subroutine level_solve(self, b, x, error)
+    !! x = K_red⁻¹ b: loads condensed bottom-up, the top solved, interiors recovered top-down.
+    class(level_solver_t), intent(inout) :: self
+    real(wp), intent(in) :: b(:, :)
+    real(wp), intent(out) :: x(:, :)
+    type(error_t), allocatable, intent(out) :: error
+    real(wp), allocatable :: f(:, :), xt(:, :)
+    integer :: q
+    allocate (f, source=b)
+    x = 0.0_wp
+    do q = 1, self%nkind
+       call condense_kind(self, q, f, error)
+       if (allocated(error)) return
+    end do
+    allocate (xt(size(self%top_cols), size(b, 2)))
+    call self%top%solve(f(self%top_cols, :), xt, error)
+    if (allocated(error)) return
+    x(self%top_cols, :) = xt
+    do q = self%nkind, 1, -1
+       call recover_kind(self, q, f, x, error)
+       if (allocated(error)) return
+    end do
+  end subroutine level_solve
+
+  subroutine condense_kind(self, q, f, error)
+    !! f_B −= a_BI a_II⁻¹ f_I for every member of kind q (one multi-column solve).
+    class(level_solver_t), intent(inout) :: self
+    integer, intent(in) :: q
+    real(wp), intent(inout) :: f(:, :)
+    type(error_t), allocatable, intent(out) :: error
+    real(wp), allocatable :: r(:, :), y(:, :), fb(:, :)
+    integer :: i, ns, c0
+    call gather_interiors(self, q, f, r, y)
+    associate (kd => self%kinds(q))
+      ns = size(f, 2)
+      call kd%solver%solve(r, y, error)
+      if (allocated(error)) return
+      do i = 1, size(kd%members)
+         c0 = (i - 1)*ns
+         associate (bnd => self%g(kd%members(i))%bnd)
+           fb = f(bnd, :)
+           call subtract_bi(kd%a, kd%nb, y(:, c0 + 1:c0 + ns), fb)
+           f(bnd, :) = fb
+         end associate
+      end do
+    end associate
+  end subroutine condense_kind
+
+  subroutine recover_kind(self, q, f, x, error)
+    !! x_I = a_II⁻¹ (f_I − a_IB x_B) for every member of kind q (one multi-column solve).
+    class(level_solver_t), intent(inout) :: self
+    integer, intent(in) :: q
+    real(wp), intent(in) :: f(:, :)
+    real(wp), intent(inout) :: x(:, :)
+    type(error_t), allocatable, intent(out) :: error
+    real(wp), allocatable :: r(:, :), y(:, :)
+    integer :: i, ns, c0
+    call gather_interiors(self, q, f, r, y)
+    associate (kd => self%kinds(q))
+      ns = size(f, 2)
+      do i = 1, size(kd%members)
+         c0 = (i - 1)*ns
+         call subtract_ib(kd%a, kd%nb, x(self%g(kd%members(i))%bnd, :), r(:, c0 + 1:c0 + ns))
+      end do
+      call kd%solver%solve(r, y, error)
+      if (allocated(error)) return
+      do i = 1, size(kd%members)
+         c0 = (i - 1)*ns
+         x(self%g(kd%members(i))%inner, :) = y(:, c0 + 1:c0 + ns)
+      end do
+    end associate
+  end subroutine recover_kind
+
+  subroutine gather_interiors(self, q, f, r, y)
+    !! r: the rows of f at the interior of each member of kind q, side by
+    !! side (member i: columns (i-1) ns + 1 .. i ns); y: as large.
+    class(level_solver_t), intent(in) :: self
+    integer, intent(in) :: q
+    real(wp), intent(in) :: f(:, :)
+    real(wp), allocatable, intent(out) :: r(:, :), y(:, :)
+    integer :: i, ns, c0
+    associate (kd => self%kinds(q))
+      ns = size(f, 2)
+      allocate (r(kd%ni, ns*size(kd%members)), y(kd%ni, ns*size(kd%members)))
+      do i = 1, size(kd%members)
+         c0 = (i - 1)*ns
+         r(:, c0 + 1:c0 + ns) = f(self%g(kd%members(i))%inner, :)
+      end do
+    end associate
+  end subroutine gather_interiors
+
+  subroutine subtract_ib(a, nb, xb, y)
+    !! y −= a_IB xb (a_IB: the interior rows of a's boundary columns).
+    type(sparse_sym_t), intent(in) :: a
+    integer(i8), intent(in) :: nb
+    real(wp), intent(in) :: xb(:, :)
+    real(wp), intent(inout) :: y(:, :)
+    integer(i8) :: ni, j, p, r
+    ni = a%n - nb
+    do j = 1, nb
+       do p = a%colptr(ni + j), a%colptr(ni + j + 1) - 1
+          r = a%rowind(p)
+          if (r > ni) exit
+          y(r, :) = y(r, :) - a%val(p)*xb(j, :)
+       end do
+    end do
+  end subroutine subtract_ib
+
+  subroutine level_pivots(self, d)
+    !! The pivot of each column of K_red: a group's interior from its kind's
+    !! factor of a_II, the others from the top system's.
+    class(level_solver_t), intent(inout) :: self
+    real(wp), intent(out) :: d(:)
+    real(wp), allocatable :: dk(:)
+    integer :: q, i
+    d = 0.0_wp
+    if (.not. allocated(self%top)) return
+    allocate (dk(size(self%top_cols)))
+    call self%top%pivots(dk)
+    d(self%top_cols) = dk
+    do q = 1, self%nkind
+       deallocate (dk)
+       allocate (dk(self%kinds(q)%ni))
+       call self%kinds(q)%solver%pivots(dk)
+       do i = 1, size(self%kinds(q)%members)
+          d(self%g(self%kinds(q)%members(i))%inner) = dk
+       end do
+    end do
+  end subroutine level_pivots
+
+  subroutine level_release(self)
+    !! Free the factors and the levels' matrices (the plan stays).
+    class(level_solver_t), intent(inout) :: self
+    integer :: q
+    if (allocated(self%top)) then
+       call self%top%release()
+       deallocate (self%top)
+    end if
+    if (allocated(self%kinds)) then
+       do q = 1, self%nkind
+          if (allocated(self%kinds(q)%solver)) call self%kinds(q)%solver%release()
+       end do
+       deallocate (self%kinds)
+    end if
+    if (allocated(self%g)) deallocate (self%g)
+    self%nkind = 0
+  end subroutine level_release
+end module superjoin_analysis_level_solver

@@ -13,11 +13,11 @@ module superjoin_analysis
   use superjoin_error, only: error_t, fatal_error, EXIT_SINGULAR
   use superjoin_model_types, only: model_t, string_t, FORM_TRANSFORM, FORM_PENALTY
   use superjoin_assembly_dofs, only: build_dof_table
-  use superjoin_assembly_forest, only: build_forest
+  use superjoin_assembly_forest, only: build_forest, forget_parents
   use superjoin_assembly_transform, only: transform_t, build_transform, COL_DELTA
   use superjoin_assembly_assemble, only: assemble_stiffness, assemble_loads
   use superjoin_substructure_local_system, only: boundary_dofs, part_boundary, given_boundary
-  use superjoin_substructure_cache, only: release_cache
+  use superjoin_substructure_cache, only: release_cache, forget_load_memos
   use superjoin_solvers_matrix_market, only: write_matrix_market
   use superjoin_model_results, only: results_t, run_options_t, run_summary_t, PH_ASSEMBLE, PH_ORDER, PH_FACTOR, PH_SOLVE
   use superjoin_analysis_recover, only: recover_results
@@ -181,6 +181,7 @@ contains
     call describe_transform(model, st%table, st%tr, st%form, res%summary, notes)
     if (res%summary%n_condensed > 0) &
          call describe_levels(model, st%table, st%forest, st%tr, notes, levels_refusal(opts, res%summary), st%levels)
+    call forget_parents(st%forest)   ! looked up by vertex up to here only
     call choose_strategy(st, res%summary, opts)
     st%phase = PHASE_BUILT
   end subroutine build_phase
@@ -240,6 +241,7 @@ contains
        if (allocated(error)) return
        call st%strategy%condense(st, model, opts, ctx%cache, res%summary, notes, error)
        if (allocated(error)) return
+       if (ctx%last) call forget_load_memos(ctx%cache)   ! no later solve condenses these loads again
        call st%strategy%set_plan(st, model, res%summary)
        call assemble_stiffness(model, st%table, st%tr, st%plan, st%k, st%f_u0, error)
        call st%strategy%combine(st, error)
@@ -248,6 +250,7 @@ contains
        call reduce_loads(st%tr, st%f_eff, st%f_u0, st%f_red, error)
     end if
     if (allocated(error)) return
+    deallocate (st%bnd_c)   ! its last users (the condensations) are done
     call autospc(model, st%table, st%tr, st%k, st%f_red, st%spc, notes, error, summed=st%strategy%summed())
     if (allocated(error)) return
     call skip_unloaded_parts(model, st%table, st%tr, st%k, st%f_red, st%spc, notes, summed=st%strategy%summed(), error=error)
@@ -335,10 +338,14 @@ contains
        call parts_maxratio(model, st%table, ctx%cache, st%parts, res, error)
        if (allocated(error)) return
        if (ctx%last) call release_cache(ctx%cache)   ! the parts' factors: not needed for the element results
+       ! their last users (full_health, parts_maxratio) are done
+       if (allocated(st%parts)) deallocate (st%parts)
+       if (allocated(st%f_eff)) deallocate (st%f_eff)
        res%log%phase_seconds(PH_SOLVE) = res%log%phase_seconds(PH_SOLVE) + clock%seconds()
        call report_phase(opts%quiet, 'recover interiors', clock%seconds())
        call clock%start()
     end if
+    call st%tr%release_maps()   ! u and the whole-system health are done: the recovery reads no map
     call wanted_elements(model, opts, wanted, notes)
     call recover_results(st, model, wanted, res, error)
     if (allocated(error)) return

@@ -26,7 +26,7 @@ contains
     case (COL_PHYS)
        p = tr%column_ref(j)
        label = 'substructure '//model%subs(table%p_sub(p))%name//' node '// &
-            itoa(int(model%subs(table%p_sub(p))%node_id(table%p_node(p))))//' DOF '//itoa(table%p_dof(p))
+            itoa(int(model%subs(table%p_sub(p))%node_id(table%p_node(p))))//' DOF '//itoa(int(table%p_dof(p)))
     case (COL_DELTA)
        iu = int(tr%column_ref(j))
        k = tr%column_comp(j)

@@ -88,7 +88,7 @@ contains
       if (v == GROUND) return
       associate (u => table%units(iu))
         do c = 1, u%n
-           q = table%pdof(block_dof(u%block, u%comp(c)), v)
+           q = table%dof(block_dof(u%block, u%comp(c)), v)
            if (q > 0) m = m + u%qs(k, c)**2*diag(q)
         end do
       end associate

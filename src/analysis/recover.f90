@@ -13,7 +13,7 @@ module superjoin_analysis_recover
        NDOF_NODE, loc_text, substructure_t
   use superjoin_elements, only: element_end_forces, element_nodal_forces, &
        is_plate_type, shell_forces, is_solid_type, solid_forces, shell_result_operator, is_plane_type
-  use superjoin_assembly_dofs, only: dof_table_t, unit_t, NBLOCK, GROUND, UNIT_LINK, UNIT_SUPPORT, block_dof, &
+  use superjoin_assembly_dofs, only: dof_table_t, vertex_dofs, unit_t, NBLOCK, GROUND, UNIT_LINK, UNIT_SUPPORT, block_dof, &
        unit_terms, arm_matrix, MAX_UNIT_TERMS
   use superjoin_assembly_forest, only: forest_t
   use superjoin_assembly_transform, only: transform_t, form_spring_t, constraint_t, ROLE_TREE, CONS_ELIMINATED
@@ -112,7 +112,7 @@ contains
        do p = 1, table%np
           if (req(p, is) == 0.0_wp) cycle
           call add_resultant(res%fields%steps(is)%reaction, model%subs(table%p_sub(p))%x(:, table%p_node(p)), &
-               moment_dof(table%p_dof(p), rot(table%p_sub(p))%on(table%p_node(p))), req(p, is))
+               moment_dof(int(table%p_dof(p)), rot(table%p_sub(p))%on(table%p_node(p))), req(p, is))
           n = n + 1
           res%fields%steps(is)%equation_forces(n) = reaction_t(table%p_sub(p), int(table%p_node(p)), &
                table%p_dof(p), req(p, is))
@@ -126,7 +126,7 @@ contains
     real(wp), intent(in) :: u(:, :)
     type(results_t), intent(inout) :: res
     type(error_t), allocatable, intent(inout) :: error
-    integer(i8) :: v, p
+    integer(i8) :: v, p(NDOF_NODE)
     integer :: d, stat
     allocate (res%fields%u(NDOF_NODE*table%nvertex, size(u, 2)), res%fields%has_dof(NDOF_NODE, table%nvertex), stat=stat)
     if (stat /= 0) then
@@ -135,12 +135,12 @@ contains
        return
     end if
     res%fields%u = 0.0_wp
-    res%fields%has_dof = table%pdof(:, 1:table%nvertex) > 0
     res%fields%vertex_offset = table%vertex_offset
     do v = 1, table%nvertex
+       call vertex_dofs(table, v, p)
+       res%fields%has_dof(:, v) = p > 0
        do d = 1, NDOF_NODE
-          p = table%pdof(d, v)
-          if (p > 0) res%fields%u(NDOF_NODE*(v - 1) + d, :) = u(p, :)
+          if (p(d) > 0) res%fields%u(NDOF_NODE*(v - 1) + d, :) = u(p(d), :)
        end do
     end do
   end subroutine store_displacements
@@ -691,7 +691,7 @@ contains
     real(wp), intent(inout) :: acc(:, 0:)
     real(wp), intent(inout) :: rigid_force(:, :)
     integer :: b, c, k, pu
-    integer(i8) :: io, v, w, p
+    integer(i8) :: io, v, w, p, pv(NDOF_NODE)
     real(wp) :: fk
     real(wp), allocatable :: mom(:, :)
 
@@ -704,15 +704,16 @@ contains
     do b = 1, NBLOCK
        acc = 0.0_wp
        do v = 1, table%nvertex
+          call vertex_dofs(table, v, pv)
           do c = 1, 3
-             p = table%pdof(block_dof(b, c), v)
+             p = pv(block_dof(b, c))
              if (p > 0) acc(c, v) = rt(p)
           end do
        end do
        if (b == 2 .and. allocated(mom)) acc = acc + mom
        do io = forest%norder(b), 1, -1
           v = forest%order(b, io)
-          pu = forest%parent_unit(b, v)
+          pu = forest%order_unit(b, io)
           associate (un => table%units(pu))
             if (forest%child_is_a(pu)) then
                w = un%vb
@@ -832,7 +833,7 @@ contains
           if (f_phys(p, is) == 0.0_wp) cycle
           isub = table%p_sub(p)
           call add_resultant(res%fields%steps(is)%applied, model%subs(isub)%x(:, table%p_node(p)), &
-               moment_dof(table%p_dof(p), rot(isub)%on(table%p_node(p))), f_phys(p, is), ring(isub)%on(table%p_node(p)))
+               moment_dof(int(table%p_dof(p)), rot(isub)%on(table%p_node(p))), f_phys(p, is), ring(isub)%on(table%p_node(p)))
        end do
        res%fields%steps(is)%reaction = 0.0_wp
        nr = 0

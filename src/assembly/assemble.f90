@@ -7,7 +7,7 @@ module superjoin_assembly_assemble
   use superjoin_error, only: error_t, add_error_line, EXIT_DECK, EXIT_SINGULAR
   use superjoin_model_types, only: model_t, ELEMENT_NODE_COUNT, LINK_FINITE, loc_text
   use superjoin_elements, only: element_dof_mask, element_stiffness, distributed_load
-  use superjoin_assembly_dofs, only: dof_table_t, GROUND, block_dof, unit_dofs, unit_terms, MAX_UNIT_TERMS
+  use superjoin_assembly_dofs, only: dof_table_t, vertex_dofs, GROUND, block_dof, unit_dofs, unit_terms, MAX_UNIT_TERMS
   use superjoin_assembly_transform, only: transform_t, form_spring_t, ROLE_PLAIN
   use superjoin_solvers_sparse, only: sparse_sym_t
   use superjoin_solvers_pattern, only: build_pattern, find_entry, items_of_columns
@@ -62,16 +62,16 @@ contains
     integer, intent(out) :: n
     logical :: mask(6)
     integer :: a, d
-    integer(i8) :: v
+    integer(i8) :: pv(6)
     associate (s => model%subs(isub))
       mask = element_dof_mask(s%elem_type(e))
       n = 0
       do a = 1, ELEMENT_NODE_COUNT(s%elem_type(e))
-         v = table%vertex_offset(isub) + s%elem_nodes(a, e)
+         call vertex_dofs(table, table%vertex_offset(isub) + s%elem_nodes(a, e), pv)
          do d = 1, 6
             if (.not. mask(d)) cycle
             n = n + 1
-            pd(n) = table%pdof(d, v)
+            pd(n) = pv(d)
          end do
       end do
     end associate
@@ -419,7 +419,7 @@ contains
        associate (st => model%steps(is))
          do i = 1, size(st%cloads)
             associate (cl => st%cloads(i))
-              p = table%pdof(cl%dof, table%vertex_offset(cl%sub) + cl%node)
+              p = table%dof(cl%dof, table%vertex_offset(cl%sub) + cl%node)
               if (p == 0) then
                  call add_error_line(error, EXIT_SINGULAR, loc_text(model, cl%loc)// &
                       ': error: load on DOF '//itoa(cl%dof)//' of a node that has no such DOF '// &

@@ -7,6 +7,7 @@ module superjoin_assembly_dofs
   !! where C are the global components it acts on and the rows of qs are the local
   !! components. Side a is the master node (or the ground), side b the slave node.
   use superjoin_kinds, only: wp, ip, i8
+  use, intrinsic :: iso_fortran_env, only: int8
   use superjoin_error, only: error_t, add_error_line, EXIT_DECK
   use superjoin_model_types, only: model_t, NDOF_NODE, LINK_NONE, LINK_FINITE, LINK_RIGID, &
        ELEMENT_NODE_COUNT, loc_text, node_label
@@ -63,22 +64,35 @@ module superjoin_assembly_dofs
      integer(i8) :: nvertex = 0                !! nodes over all substructures
      integer(i8), allocatable :: vertex_offset(:)   !! (nsub+1): vertex = offset(sub) + node
      integer(i8) :: np = 0                     !! physical DOFs
-     integer(i8), allocatable :: pdof(:, :)    !! (NDOF_NODE, nvertex): physical index or 0
+     integer(i8), allocatable :: dof_block(:)  !! (0:(nvertex-1)/DOF_BLOCK) DOFs before a block's first vertex
+     integer(int8), allocatable :: dof_off(:)  !! (nvertex) DOFs before the vertex in its block
+     integer(int8), allocatable :: dof_mask(:) !! (nvertex) the vertex's DOFs: bit d-1 for DOF d
+       !! A vertex's DOFs are consecutive, in DOF order: dof(d, v) reads them (about 2 bytes
+       !! per vertex instead of a table of NDOF_NODE 8-byte indices).
      integer, allocatable :: p_sub(:)          !! (np) substructure of each physical DOF
      integer(ip), allocatable :: p_node(:)     !! (np) local node
-     integer, allocatable :: p_dof(:)          !! (np) DOF number 1..6
+     integer(int8), allocatable :: p_dof(:)    !! (np) DOF number 1..6
      type(unit_t), allocatable :: units(:)
      integer :: nunit = 0
      integer, allocatable :: ignored_links(:)  !! links with named DOFs that no node carries
      type(equation_terms_t), allocatable :: equations(:)  !! *EQUATION constraints (empty: none)
   contains
      procedure :: make_finite
+     procedure :: dof => table_dof
   end type dof_table_t
+
+  integer, parameter :: NMASK = 2**NDOF_NODE   !! DOF masks of a vertex: bit d-1 for DOF d
+  integer, parameter :: DOF_SHIFT = 4           !! 2**DOF_SHIFT vertices per block of the DOF table
+  integer, parameter :: DOF_BLOCK = 2**DOF_SHIFT !! (at most 15*NDOF_NODE DOFs before a vertex in its block)
+  integer :: slot_d, slot_m                     !! the implied-do indices of SLOT (no other use)
+  integer, parameter :: SLOT(NDOF_NODE, 0:NMASK - 1) = reshape([((merge(popcnt(ibits(slot_m, 0, slot_d - 1)) + 1, 0, &
+       btest(slot_m, slot_d - 1)), slot_d = 1, NDOF_NODE), slot_m = 0, NMASK - 1)], [NDOF_NODE, NMASK])
+    !! SLOT(d, mask): place of DOF d among the DOFs of a vertex with that mask (1 for its first), 0 if absent.
 
   integer, parameter, public :: MAX_UNIT_TERMS = 3*BLOCK_SIZE
     !! Physical DOFs one unit touches: side a, side b, and side a's rotations (arm).
 
-  public :: build_dof_table, vertex_of, block_dof, unit_terms, unit_dofs, arm_matrix
+  public :: build_dof_table, vertex_of, vertex_dofs, block_dof, unit_terms, unit_dofs, arm_matrix, unit_where, unit_nodes
 
 contains
 
@@ -90,6 +104,37 @@ contains
     integer(i8) :: v
     v = table%vertex_offset(isub) + inode
   end function vertex_of
+
+  elemental function table_dof(table, d, v) result(p)
+    !! Physical index of DOF d (1..NDOF_NODE) of vertex v, 0 when the vertex has no such DOF.
+    class(dof_table_t), intent(in) :: table
+    integer, intent(in) :: d
+    integer(i8), intent(in) :: v
+    integer(i8) :: p
+    integer :: k
+    k = SLOT(d, int(table%dof_mask(v)))
+    p = 0
+    if (k > 0) p = table%dof_block(ishft(v - 1, -DOF_SHIFT)) + table%dof_off(v) + k
+  end function table_dof
+
+  pure subroutine vertex_dofs(table, v, p)
+    !! The physical index of every DOF 1..NDOF_NODE of vertex v (0 where it has none):
+    !! table%dof for a whole vertex, for loops over the vertices.
+    type(dof_table_t), intent(in) :: table
+    integer(i8), intent(in) :: v
+    integer(i8), intent(out) :: p(NDOF_NODE)
+    integer(i8) :: k
+    integer :: d, m
+    m = table%dof_mask(v)
+    k = table%dof_block(ishft(v - 1, -DOF_SHIFT)) + table%dof_off(v)
+    do d = 1, NDOF_NODE
+       p(d) = 0
+       if (btest(m, d - 1)) then
+          k = k + 1
+          p(d) = k
+       end if
+    end do
+  end subroutine vertex_dofs
 
   subroutine make_finite(table, iu, c, g)
     !! Component c of contact unit iu becomes a finite spring of stiffness g
@@ -116,7 +161,7 @@ contains
     logical, allocatable :: has(:, :)        ! DOFs given by elements and supports
     integer :: isub
     integer(i8) :: v, p
-    integer :: d, stat
+    integer :: d, m, stat
 
     allocate (table%vertex_offset(size(model%subs) + 1))
     table%vertex_offset(1) = 0
@@ -143,24 +188,29 @@ contains
     call activate_units(table, has)
 
     table%np = count(has, kind=i8)
-    allocate (table%pdof(NDOF_NODE, table%nvertex), source=0_i8, stat=stat)
+    allocate (table%dof_block(0:(table%nvertex - 1)/DOF_BLOCK), table%dof_off(table%nvertex), &
+         table%dof_mask(table%nvertex), stat=stat)
     if (stat == 0) allocate (table%p_sub(table%np), table%p_node(table%np), table%p_dof(table%np), stat=stat)
     if (stat /= 0) then
-       call out_of_memory(error, 'the DOF numbering', NDOF_NODE*table%nvertex*BYTES_I8 + &
-            3*table%np*BYTES_INT)
+       call out_of_memory(error, 'the DOF numbering', 3*table%nvertex + (table%nvertex/DOF_BLOCK + 1)*BYTES_I8 + &
+            table%np*(2*BYTES_INT + 1))
        return
     end if
     p = 0
     do isub = 1, size(model%subs)
        do v = table%vertex_offset(isub) + 1, table%vertex_offset(isub + 1)
+          if (mod(v - 1, int(DOF_BLOCK, i8)) == 0) table%dof_block(ishft(v - 1, -DOF_SHIFT)) = p
+          table%dof_off(v) = int(p - table%dof_block(ishft(v - 1, -DOF_SHIFT)), int8)
+          m = 0
           do d = 1, NDOF_NODE
              if (.not. has(d, v)) cycle
+             m = ibset(m, d - 1)
              p = p + 1
-             table%pdof(d, v) = p
              table%p_sub(p) = isub
              table%p_node(p) = int(v - table%vertex_offset(isub), ip)
-             table%p_dof(p) = d
+             table%p_dof(p) = int(d, int8)
           end do
+          table%dof_mask(v) = int(m, int8)
        end do
     end do
     call build_equation_terms(model, table, error)
@@ -182,7 +232,7 @@ contains
          allocate (te%p(size(e%coef)), te%a(size(e%coef)))
          te%a = e%coef
          do t = 1, size(e%coef)
-            te%p(t) = table%pdof(e%dof(t), table%vertex_offset(e%sub(t)) + e%node(t))
+            te%p(t) = table%dof(e%dof(t), table%vertex_offset(e%sub(t)) + e%node(t))
             if (te%p(t) == 0) call add_error_line(error, EXIT_DECK, loc_text(model, e%loc)// &
                  ': error: *EQUATION: node '//node_label(model, e%sub(t), e%node(t))//' has no DOF '// &
                  itoa(e%dof(t))//' (no element or support of that node carries it)')
@@ -383,25 +433,25 @@ contains
     if (u%va /= GROUND) then
        do c = 1, u%n
           n = n + 1
-          p(n) = table%pdof(block_dof(u%block, u%comp(c)), u%va)
+          p(n) = table%dof(block_dof(u%block, u%comp(c)), u%va)
           w(n) = -u%qs(k, c)
        end do
     end if
     do c = 1, u%n
        n = n + 1
-       p(n) = table%pdof(block_dof(u%block, u%comp(c)), u%vb)
+       p(n) = table%dof(block_dof(u%block, u%comp(c)), u%vb)
        w(n) = u%qs(k, c)
     end do
     if (.not. u%eccentric) return
     a = arm_matrix(u%arm)
     do d = 1, 3
-       if (table%pdof(3 + d, u%va) == 0) cycle
+       if (table%dof(3 + d, u%va) == 0) cycle
        t = 0.0_wp
        do c = 1, u%n
           t = t + u%qs(k, c)*a(u%comp(c), d)
        end do
        n = n + 1
-       p(n) = table%pdof(3 + d, u%va)
+       p(n) = table%dof(3 + d, u%va)
        w(n) = -t
     end do
   end subroutine unit_terms
@@ -632,6 +682,40 @@ contains
     table%nunit = table%nunit + 1
     table%units(table%nunit) = u
   end subroutine push_unit
+  function unit_where(model, u) result(text)
+    !! file:line of the card that defined a unit.
+    type(model_t), intent(in) :: model
+    type(unit_t), intent(in) :: u
+    character(:), allocatable :: text
+    if (u%kind == UNIT_LINK) then
+       text = loc_text(model, model%links(u%source)%loc)
+    else
+       text = loc_text(model, model%supports(u%source)%loc)
+    end if
+  end function unit_where
+
+  function unit_nodes(model, table, u, k) result(text)
+    !! "SUB.id - SUB.id DOF d" (or "SUB.id DOF d" for a support) of component k of a unit.
+    type(model_t), intent(in) :: model
+    type(dof_table_t), intent(in) :: table
+    type(unit_t), intent(in) :: u
+    integer, intent(in) :: k
+    character(:), allocatable :: text
+    character(len=12) :: buf
+    write (buf, '(i0)') block_dof(u%block, u%lcomp(k))
+    text = vertex_name(u%vb)//' DOF '//trim(buf)
+    if (u%va /= GROUND) text = vertex_name(u%va)//' - '//text
+  contains
+    function vertex_name(v) result(name)
+      integer(i8), intent(in) :: v
+      character(:), allocatable :: name
+      integer :: isub
+      do isub = 1, size(model%subs)
+         if (v <= table%vertex_offset(isub + 1)) exit
+      end do
+      name = node_label(model, isub, int(v - table%vertex_offset(isub), kind(model%subs(1)%nnode)))
+    end function vertex_name
+  end function unit_nodes
 
   ! ------------------------------------------------------------------ growing arrays
 

@@ -20,11 +20,13 @@ module superjoin_assembly_forest
      logical, allocatable :: tree(:)            !! (nunit) unit is a tree edge
      logical, allocatable :: child_is_a(:)      !! (nunit) the child is side a (master)
      integer, allocatable :: parent_unit(:, :)  !! (NBLOCK, 0:nvertex) tree unit above a vertex, 0 for roots
-     integer(i8), allocatable :: order(:, :)    !! (NBLOCK, nvertex) vertices with a parent, parents first
+       !! (freed by forget_parents once the transform is built: order_unit serves the recovery)
+     integer(i8), allocatable :: order(:, :)    !! (NBLOCK, max(norder)) vertices with a parent, parents first
+     integer, allocatable :: order_unit(:, :)   !! (NBLOCK, max(norder)) the tree unit above order(b, io)
      integer(i8) :: norder(NBLOCK) = 0
   end type forest_t
 
-  public :: build_forest, unit_weight
+  public :: build_forest, unit_weight, forget_parents
 
 contains
 
@@ -58,10 +60,10 @@ contains
 
     allocate (forest%tree(table%nunit), forest%child_is_a(table%nunit), source=.false., stat=stat)
     if (stat == 0) allocate (forest%parent_unit(NBLOCK, 0:table%nvertex), source=0, stat=stat)
-    if (stat == 0) allocate (forest%order(NBLOCK, table%nvertex), stat=stat)
+    if (stat == 0) allocate (forest%order(NBLOCK, table%nvertex), forest%order_unit(NBLOCK, table%nvertex), stat=stat)
     if (stat == 0) allocate (uf(0:table%nvertex), cand(table%nunit), w(table%nunit), stat=stat)
     if (stat /= 0) then
-       call out_of_memory(error, 'the spanning forest', NBLOCK*(2*table%nvertex + 1)*BYTES_I8 + &
+       call out_of_memory(error, 'the spanning forest', NBLOCK*(3*table%nvertex + 1)*BYTES_I8 + &
             (table%nvertex + 1)*BYTES_I8 + table%nunit*(3*BYTES_INT + BYTES_REAL))
        return
     end if
@@ -94,7 +96,17 @@ contains
        end do
        call orient_block(table, b, forest)
     end do
+    forest%order = forest%order(:, 1:maxval(forest%norder))   ! the vertices with a parent: often few
+    forest%order_unit = forest%order_unit(:, 1:maxval(forest%norder))
   end subroutine build_forest
+
+  subroutine forget_parents(forest)
+    !! Free the parent unit of every vertex (NBLOCK integers per vertex of the
+    !! model) once nothing looks it up by vertex any more: the recovery walks
+    !! order and order_unit.
+    type(forest_t), intent(inout) :: forest
+    if (allocated(forest%parent_unit)) deallocate (forest%parent_unit)
+  end subroutine forget_parents
 
   subroutine orient_block(table, b, forest)
     !! Root every tree (at the ground if it has it, else at its lowest vertex) and
@@ -159,6 +171,7 @@ contains
              queue(tail) = w
              forest%norder(b) = forest%norder(b) + 1
              forest%order(b, forest%norder(b)) = w
+             forest%order_unit(b, forest%norder(b)) = i
           end do
        end do
     end do

@@ -11,15 +11,17 @@ module superjoin_assembly_transform
   !! column is eliminated exactly by substitution.
   use superjoin_kinds, only: wp, i8
   use superjoin_error, only: error_t, add_error_line, EXIT_DECK
-  use superjoin_model_types, only: model_t, equation_t, LINK_NONE, LINK_FINITE, LINK_RIGID, loc_text, node_label
-  use superjoin_assembly_dofs, only: dof_table_t, unit_t, NBLOCK, GROUND, UNIT_LINK, &
-       UNIT_SUPPORT, block_dof, unit_terms, arm_matrix, MAX_UNIT_TERMS, equation_terms_t
+  use superjoin_model_types, only: model_t, equation_t, NDOF_NODE, LINK_NONE, LINK_FINITE, LINK_RIGID, loc_text, node_label
+  use superjoin_assembly_dofs, only: dof_table_t, vertex_dofs, unit_t, NBLOCK, GROUND, block_dof, unit_terms, arm_matrix, &
+       MAX_UNIT_TERMS, equation_terms_t, unit_where, unit_nodes
   use superjoin_assembly_forest, only: forest_t
   use superjoin_utils_strings, only: rtoa
   use superjoin_utils_sorting, only: sort_unique_i8
+  use superjoin_assembly_column_terms, only: merge_terms, locate
   use superjoin_solvers_sparse, only: sparse_sym_t
   use superjoin_solvers_pattern, only: find_entry
   use superjoin_utils_memory, only: out_of_memory, BYTES_REAL, BYTES_INT, BYTES_I8
+  use, intrinsic :: ieee_arithmetic, only: ieee_is_negative
   implicit none (type, external)
   private
 
@@ -77,8 +79,9 @@ module superjoin_assembly_transform
      integer(i8), allocatable :: col_ref(:)  !! physical DOF (COL_PHYS) or unit (COL_DELTA)
      integer, allocatable :: col_k(:)      !! row of the unit's qs (COL_DELTA)
      real(wp), allocatable :: col_g(:)     !! spring on the diagonal (COL_DELTA)
-     integer(i8), allocatable :: map_start(:)  !! (np) first pool entry
-     integer, allocatable :: map_len(:)        !! (np)
+     integer(i8), allocatable :: map_start(:)  !! (np) first pool entry; once built (np + 1): the map
+                                               !! of p is pool entries map_start(p) .. map_start(p + 1) - 1
+     integer, allocatable :: map_len(:)        !! (np) while the maps are built
      integer(i8), allocatable :: pool_col(:)
      real(wp), allocatable :: pool_coef(:)
      integer(i8) :: pool_n = 0
@@ -110,6 +113,7 @@ module superjoin_assembly_transform
      procedure :: form => transform_form
      procedure :: nconstraints => transform_nconstraints
      procedure :: constraint => transform_constraint
+     procedure :: release_maps => transform_release_maps
   end type transform_t
 
   public :: build_transform
@@ -149,7 +153,65 @@ contains
     if (allocated(error)) return
     call compact_columns(tr, error)
     if (allocated(error)) return
+    call fit_storage(tr)
   end subroutine build_transform
+
+  subroutine fit_storage(tr)
+    !! Fit the column table and the pool to what they hold: both are sized
+    !! for the worst case while they are built, and a condensed model keeps
+    !! few columns (its interiors have none). u0 goes when nothing is
+    !! prescribed (every entry +0: u0_of answers 0 without it).
+    type(transform_t), intent(inout) :: tr
+    if (size(tr%col_kind, kind=i8) > tr%ncol_) then
+       tr%col_kind = tr%col_kind(1:tr%ncol_)
+       tr%col_ref = tr%col_ref(1:tr%ncol_)
+       tr%col_k = tr%col_k(1:tr%ncol_)
+       tr%col_g = tr%col_g(1:tr%ncol_)
+    end if
+    call pack_maps(tr)
+    if (all(tr%u0 == 0.0_wp .and. .not. ieee_is_negative(tr%u0))) deallocate (tr%u0)
+  end subroutine fit_storage
+
+  subroutine pack_maps(tr)
+    !! The maps in the order of the physical DOFs, the pool fitted to them
+    !! (it grew by doubling, and rewritten maps left their old entries
+    !! behind): map_start gets np + 1 entries, map_len goes (nmap).
+    type(transform_t), intent(inout) :: tr
+    integer(i8), allocatable :: start(:), col(:)
+    real(wp), allocatable :: coef(:)
+    integer(i8) :: p, np
+    np = size(tr%map_len, kind=i8)
+    allocate (start(np + 1))
+    start(1) = 1
+    do p = 1, np
+       start(p + 1) = start(p) + tr%map_len(p)
+    end do
+    allocate (col(start(np + 1) - 1), coef(start(np + 1) - 1))
+    do p = 1, np
+       col(start(p):start(p + 1) - 1) = tr%pool_col(tr%map_start(p):tr%map_start(p) + tr%map_len(p) - 1)
+       coef(start(p):start(p + 1) - 1) = tr%pool_coef(tr%map_start(p):tr%map_start(p) + tr%map_len(p) - 1)
+    end do
+    deallocate (tr%map_len)
+    call move_alloc(start, tr%map_start)
+    call move_alloc(col, tr%pool_col)
+    call move_alloc(coef, tr%pool_coef)
+    tr%pool_n = size(tr%pool_col, kind=i8)
+  end subroutine pack_maps
+
+  elemental integer function nmap(tr, p)
+    !! Length of the map of physical DOF p (once the maps are packed).
+    type(transform_t), intent(in) :: tr
+    integer(i8), intent(in) :: p
+    nmap = int(tr%map_start(p + 1) - tr%map_start(p))
+  end function nmap
+
+  elemental real(wp) function u0_of(tr, p)
+    !! The prescribed part of physical DOF p (0 when nothing is prescribed).
+    type(transform_t), intent(in) :: tr
+    integer(i8), intent(in) :: p
+    u0_of = 0.0_wp
+    if (allocated(tr%u0)) u0_of = tr%u0(p)
+  end function u0_of
 
   subroutine number_columns(table, forest, tr, error, keep)
     !! Columns node by node: first the δ of the unit above the node, then the
@@ -159,7 +221,7 @@ contains
     type(transform_t), intent(inout) :: tr
     type(error_t), allocatable, intent(out) :: error
     logical, intent(in), optional :: keep(:)
-    integer(i8) :: v, p, cap
+    integer(i8) :: v, p, cap, pv(NDOF_NODE)
     integer :: b, c, k, pu, stat
     logical :: dep
 
@@ -173,6 +235,7 @@ contains
     end if
     tr%ncol_ = 0
     do v = 1, table%nvertex
+       call vertex_dofs(table, v, pv)
        do b = 1, NBLOCK
           pu = forest%parent_unit(b, v)
           if (pu > 0) then
@@ -189,7 +252,7 @@ contains
              end associate
           end if
           do c = 1, 3
-             p = table%pdof(block_dof(b, c), v)
+             p = pv(block_dof(b, c))
              if (p == 0) cycle
              dep = .false.
              if (pu > 0) dep = any(table%units(pu)%comp(1:table%units(pu)%n) == c)
@@ -246,7 +309,7 @@ contains
        if (eccentric) b = NBLOCK + 1 - ib
        do io = 1, forest%norder(b)
           v = forest%order(b, io)
-          pu = forest%parent_unit(b, v)
+          pu = forest%order_unit(b, io)
           associate (u => table%units(pu))
             if (forest%child_is_a(pu)) then
                w = u%vb
@@ -256,11 +319,11 @@ contains
                sgn = 1.0_wp
             end if
             do c = 1, u%n
-               p = table%pdof(block_dof(b, u%comp(c)), v)
+               p = table%dof(block_dof(b, u%comp(c)), v)
                tr%map_start(p) = tr%pool_n + 1
                tr%map_len(p) = 0
                if (w /= GROUND) then
-                  pw = table%pdof(block_dof(b, u%comp(c)), w)
+                  pw = table%dof(block_dof(b, u%comp(c)), w)
                   do j = tr%map_start(pw), tr%map_start(pw) + tr%map_len(pw) - 1
                      call pool_push(tr, tr%pool_col(j), tr%pool_coef(j))
                   end do
@@ -304,7 +367,7 @@ contains
     do d = 1, 3
        coef = sgn*a(u%comp(c), d)
        if (coef == 0.0_wp) cycle
-       pr = table%pdof(3 + d, u%va)
+       pr = table%dof(3 + d, u%va)
        if (pr == 0) cycle
        do j = tr%map_start(pr), tr%map_start(pr) + tr%map_len(pr) - 1
           call pool_push(tr, tr%pool_col(j), coef*tr%pool_coef(j))
@@ -371,49 +434,6 @@ contains
     end do
     call merge_terms(col, coef)
   end subroutine unit_form
-
-  subroutine merge_terms(col, coef)
-    !! Sort terms by column, add repeats, drop exact zeros.
-    integer(i8), allocatable, intent(inout) :: col(:)
-    real(wp), allocatable, intent(inout) :: coef(:)
-    integer :: i, j, n
-    integer(i8) :: tc
-    real(wp) :: tv
-    do i = 2, size(col)
-       tc = col(i)
-       tv = coef(i)
-       j = i - 1
-       do while (j >= 1)
-          if (col(j) <= tc) exit
-          col(j + 1) = col(j)
-          coef(j + 1) = coef(j)
-          j = j - 1
-       end do
-       col(j + 1) = tc
-       coef(j + 1) = tv
-    end do
-    n = 0
-    do i = 1, size(col)
-       if (n > 0) then
-          if (col(n) == col(i)) then
-             coef(n) = coef(n) + coef(i)
-             cycle
-          end if
-       end if
-       n = n + 1
-       col(n) = col(i)
-       coef(n) = coef(i)
-    end do
-    j = 0
-    do i = 1, n
-       if (coef(i) == 0.0_wp) cycle
-       j = j + 1
-       col(j) = col(i)
-       coef(j) = coef(i)
-    end do
-    col = col(1:j)
-    coef = coef(1:j)
-  end subroutine merge_terms
 
   subroutine close_loops(model, table, tr, error)
     !! Rigid components of loop-closing units: redundant or eliminated.
@@ -828,40 +848,6 @@ contains
     tr%forms(tr%nform) = fs
   end subroutine push_form
 
-  function unit_where(model, u) result(text)
-    !! file:line of the card that defined a unit.
-    type(model_t), intent(in) :: model
-    type(unit_t), intent(in) :: u
-    character(:), allocatable :: text
-    if (u%kind == UNIT_LINK) then
-       text = loc_text(model, model%links(u%source)%loc)
-    else
-       text = loc_text(model, model%supports(u%source)%loc)
-    end if
-  end function unit_where
-
-  function unit_nodes(model, table, u, k) result(text)
-    !! "SUB.id - SUB.id DOF d" (or "SUB.id DOF d" for a support) of component k of a unit.
-    type(model_t), intent(in) :: model
-    type(dof_table_t), intent(in) :: table
-    type(unit_t), intent(in) :: u
-    integer, intent(in) :: k
-    character(:), allocatable :: text
-    character(len=12) :: buf
-    write (buf, '(i0)') block_dof(u%block, u%lcomp(k))
-    text = vertex_name(u%vb)//' DOF '//trim(buf)
-    if (u%va /= GROUND) text = vertex_name(u%va)//' - '//text
-  contains
-    function vertex_name(v) result(name)
-      integer(i8), intent(in) :: v
-      character(:), allocatable :: name
-      integer :: isub
-      do isub = 1, size(model%subs)
-         if (v <= table%vertex_offset(isub + 1)) exit
-      end do
-      name = node_label(model, isub, int(v - table%vertex_offset(isub), kind(model%subs(1)%nnode)))
-    end function vertex_name
-  end function unit_nodes
   subroutine transform_expand(tr, q, u, linear)
     !! u = T q + u0 over the physical DOFs (DOFs without a column: u0 only);
     !! with linear = .true., u = T q (a mode shape, no prescribed values).
@@ -873,10 +859,10 @@ contains
     logical :: with_u0
     with_u0 = .true.
     if (present(linear)) with_u0 = .not. linear
-    do p = 1, size(tr%map_len, kind=i8)
+    do p = 1, size(tr%map_start, kind=i8) - 1
        u(p, :) = 0.0_wp
-       if (with_u0) u(p, :) = tr%u0(p)
-       do j = tr%map_start(p), tr%map_start(p) + tr%map_len(p) - 1
+       if (with_u0) u(p, :) = u0_of(tr, p)
+       do j = tr%map_start(p), tr%map_start(p + 1) - 1
           u(p, :) = u(p, :) + tr%pool_coef(j)*q(tr%pool_col(j), :)
        end do
     end do
@@ -902,7 +888,7 @@ contains
     real(wp), intent(in) :: fp(:)            !! (nrhs)
     real(wp), intent(inout) :: fr(:, :)      !! (ncol, nrhs)
     integer(i8) :: j
-    do j = tr%map_start(p), tr%map_start(p) + tr%map_len(p) - 1
+    do j = tr%map_start(p), tr%map_start(p + 1) - 1
        fr(tr%pool_col(j), :) = fr(tr%pool_col(j), :) + tr%pool_coef(j)*fp
     end do
   end subroutine transform_reduce_add
@@ -914,7 +900,7 @@ contains
     integer(i8), intent(out) :: col(:)
     real(wp), intent(out) :: coef(:)
     integer, intent(out) :: n
-    n = tr%map_len(p)
+    n = nmap(tr, p)
     col(1:n) = tr%pool_col(tr%map_start(p):tr%map_start(p) + n - 1)
     coef(1:n) = tr%pool_coef(tr%map_start(p):tr%map_start(p) + n - 1)
   end subroutine transform_columns_of
@@ -980,7 +966,7 @@ contains
     !! The prescribed part u0 of physical DOF p.
     class(transform_t), intent(in) :: tr
     integer(i8), intent(in) :: p
-    transform_prescribed = tr%u0(p)
+    transform_prescribed = u0_of(tr, p)
   end function transform_prescribed
 
   pure integer function transform_nforms(tr)
@@ -1011,6 +997,20 @@ contains
     cs = tr%cons(i)
   end function transform_constraint
 
+  subroutine transform_release_maps(tr)
+    !! Free the maps of the physical DOFs (u = T q + u0: map_start, the
+    !! pool, u0) once their last user is done: after the expansion of u
+    !! and the health of the whole system. What stays (columns, δ columns,
+    !! roles, forms, constraints) is what the force recovery reads; expand,
+    !! reduce, scatter, columns_of and prescribed may not be called after.
+    class(transform_t), intent(inout) :: tr
+    if (allocated(tr%map_start)) deallocate (tr%map_start)
+    if (allocated(tr%pool_col)) deallocate (tr%pool_col)
+    if (allocated(tr%pool_coef)) deallocate (tr%pool_coef)
+    if (allocated(tr%u0)) deallocate (tr%u0)
+    tr%pool_n = 0
+  end subroutine transform_release_maps
+
   subroutine transform_element_columns(tr, pd, n, cols, nc)
     !! Reduced columns of a list of physical DOFs (sorted, unique) into cols(1:nc).
     class(transform_t), intent(in) :: tr
@@ -1022,7 +1022,7 @@ contains
     integer(i8) :: j
     m = 0
     do a = 1, n
-       m = m + tr%map_len(pd(a))
+       m = m + nmap(tr, pd(a))
     end do
     if (size(cols) < m) then
        deallocate (cols)
@@ -1030,7 +1030,7 @@ contains
     end if
     m = 0
     do a = 1, n
-       do j = tr%map_start(pd(a)), tr%map_start(pd(a)) + tr%map_len(pd(a)) - 1
+       do j = tr%map_start(pd(a)), tr%map_start(pd(a) + 1) - 1
           m = m + 1
           cols(m) = tr%pool_col(j)
        end do
@@ -1057,11 +1057,11 @@ contains
     simple = nc == n
     if (simple) then
        do a = 1, n
-          if (tr%map_len(pd(a)) /= 1) then
+          if (nmap(tr, pd(a)) /= 1) then
              simple = .false.
              exit
           end if
-          if (tr%pool_coef(tr%map_start(pd(a))) /= 1.0_wp .or. tr%u0(pd(a)) /= 0.0_wp) then
+          if (tr%pool_coef(tr%map_start(pd(a))) /= 1.0_wp .or. u0_of(tr, pd(a)) /= 0.0_wp) then
              simple = .false.
              exit
           end if
@@ -1080,8 +1080,8 @@ contains
     end if
     m = 0.0_wp
     do a = 1, n
-       u0e(a) = tr%u0(pd(a))
-       do j = tr%map_start(pd(a)), tr%map_start(pd(a)) + tr%map_len(pd(a)) - 1
+       u0e(a) = u0_of(tr, pd(a))
+       do j = tr%map_start(pd(a)), tr%map_start(pd(a) + 1) - 1
           b = locate(cols, tr%pool_col(j))
           m(a, b) = m(a, b) + tr%pool_coef(j)
        end do
@@ -1122,12 +1122,12 @@ contains
     n = size(pd)
     mmax = 1
     do a = 1, n
-       mmax = max(mmax, tr%map_len(pd(a)))
+       mmax = max(mmax, nmap(tr, pd(a)))
     end do
     allocate (col(mmax, n), coef(mmax, n), nm(n), u0e(n))
     do a = 1, n
        call tr%columns_of(pd(a), col(:, a), coef(:, a), nm(a))
-       u0e(a) = tr%u0(pd(a))
+       u0e(a) = u0_of(tr, pd(a))
     end do
     ! at(row): the row's position in column col(ib, b) of k (its pattern
     ! spread once per column instead of a search per entry)
@@ -1158,24 +1158,6 @@ contains
        end do
     end if
   end subroutine transform_scatter_dense
-
-  pure function locate(cols, j) result(b)
-    integer(i8), intent(in) :: cols(:), j
-    integer :: b, lo, hi
-    lo = 1
-    hi = size(cols)
-    b = 0
-    do while (lo <= hi)
-       b = lo + (hi - lo)/2
-       if (cols(b) == j) return
-       if (cols(b) < j) then
-          lo = b + 1
-       else
-          hi = b - 1
-       end if
-    end do
-    b = 0
-  end function locate
 
   ! ------------------------------------------------------------------ growing arrays
 

@@ -76,7 +76,7 @@ module superjoin_substructure_cache
   end type part_view_t
 
   public :: view_ku
-  public :: release_cache, acquire_view, view_condense_loads, view_recover, view_stiffness_times, &
+  public :: release_cache, forget_load_memos, acquire_view, view_condense_loads, view_recover, view_stiffness_times, &
        view_maxratio, view_spc, remote_view, view_turn, entry_recover, entry_condense_loads, entry_ku, &
        view_need_stiffness
 
@@ -228,6 +228,18 @@ contains
     if (allocated(cache%entries)) deallocate (cache%entries)
     cache%n = 0
   end subroutine release_cache
+
+  subroutine forget_load_memos(cache)
+    !! Drop the loads each condensation keeps for the next solve of a joint
+    !! study (condense_loads): the last solve has no next one.
+    type(part_cache_t), intent(inout) :: cache
+    integer :: i
+    do i = 1, cache%n
+       if (.not. allocated(cache%entries(i)%e)) cycle
+       if (allocated(cache%entries(i)%e%cond%memo_f)) deallocate (cache%entries(i)%e%cond%memo_f)
+       if (allocated(cache%entries(i)%e%cond%memo_fstar)) deallocate (cache%entries(i)%e%cond%memo_fstar)
+    end do
+  end subroutine forget_load_memos
 
   subroutine view_condense_loads(cache, view, f_local, fstar, error)
     !! f* of this substructure from its local loads (this frame).

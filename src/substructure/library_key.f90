@@ -76,7 +76,7 @@ contains
     call update(s, 'SJCONDLB input key|'//SUPERJOIN_VERSION//'|'//solver_name//'|')
     call update(s, [int(FORMULATION_VERSION, i8), ni, size(pdof, kind=i8)])
     call update(s, int(table%p_node(pdof), ip))
-    call update(s, table%p_dof(pdof))
+    call update(s, int(table%p_dof(pdof)))
     associate (sub => model%subs(isub))
       call update(s, [int(sub%nnode, i8), int(sub%nelem, i8), int(size(sub%elem_nodes, 1), i8)])
       if (sub%nnode > 0) call update(s, sub%x(:, 1:sub%nnode))

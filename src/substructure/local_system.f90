@@ -6,8 +6,8 @@ module superjoin_substructure_local_system
   use superjoin_kinds, only: wp, ip, i8
   use superjoin_model_types, only: MAX_ELEMENT_DOFS
   use superjoin_error, only: error_t
-  use superjoin_model_types, only: model_t, given_matrix_t
-  use superjoin_assembly_dofs, only: dof_table_t, unit_dofs, MAX_UNIT_TERMS
+  use superjoin_model_types, only: model_t, given_matrix_t, NDOF_NODE
+  use superjoin_assembly_dofs, only: dof_table_t, vertex_dofs, unit_dofs, MAX_UNIT_TERMS
   use superjoin_assembly_assemble, only: element_pdofs, element_matrix
   use superjoin_solvers_sparse, only: sparse_sym_t
   use superjoin_solvers_pattern, only: build_pattern, find_entry, items_of_columns
@@ -69,14 +69,15 @@ contains
     logical, intent(in) :: bnd(:)
     integer(i8), allocatable, intent(out) :: pdof(:)
     integer(i8), intent(out) :: ni
-    integer(i8) :: v, p, p_lo, n, l
+    integer(i8) :: v, p, p_lo, n, l, pv(NDOF_NODE)
     integer :: d
     ! The substructure's physical DOFs are consecutive (numbered substructure by substructure).
     n = 0
     p_lo = 0
     do v = table%vertex_offset(isub) + 1, table%vertex_offset(isub + 1)
-       do d = 1, size(table%pdof, 1)
-          p = table%pdof(d, v)
+       call vertex_dofs(table, v, pv)
+       do d = 1, NDOF_NODE
+          p = pv(d)
           if (p == 0) cycle
           if (n == 0) p_lo = p
           n = n + 1
@@ -118,7 +119,7 @@ contains
     do isub = 1, size(model%subs)
        ipart = model%subs(isub)%part
        if (ipart == 0) cycle
-       if (.not. allocated(marks(ipart)%m)) allocate (marks(ipart)%m(size(table%pdof, 1), model%subs(isub)%nnode), &
+       if (.not. allocated(marks(ipart)%m)) allocate (marks(ipart)%m(NDOF_NODE, model%subs(isub)%nnode), &
             source=.false.)
     end do
     do p = 1, table%np
@@ -152,8 +153,8 @@ contains
        if (.not. allocated(model%exports(k)%retain)) cycle
        associate (x => model%exports(k))
          do i = 1, size(x%retain)
-            do d = 1, size(table%pdof, 1)
-               p = table%pdof(d, table%vertex_offset(x%sub) + x%retain(i))
+            do d = 1, NDOF_NODE
+               p = table%dof(d, table%vertex_offset(x%sub) + x%retain(i))
                if (p > 0) bnd(p) = .true.
             end do
          end do
@@ -254,7 +255,7 @@ contains
     integer :: r
     allocate (pg(size(g%dof)))
     do r = 1, size(g%dof)
-       pg(r) = table%pdof(g%dof(r), table%vertex_offset(isub) + g%node(r))
+       pg(r) = table%dof(g%dof(r), table%vertex_offset(isub) + g%node(r))
     end do
   end subroutine given_pdofs
 
@@ -281,6 +282,6 @@ contains
     integer(i8), intent(in) :: p
     character(:), allocatable :: label
     label = 'substructure '//model%subs(table%p_sub(p))%name//' node '// &
-         itoa(int(model%subs(table%p_sub(p))%node_id(table%p_node(p))))//' DOF '//itoa(table%p_dof(p))
+         itoa(int(model%subs(table%p_sub(p))%node_id(table%p_node(p))))//' DOF '//itoa(int(table%p_dof(p)))
   end function dof_label
 end module superjoin_substructure_local_system

@@ -159,8 +159,8 @@ contains
        associate (un => table%units(iu))
          sgn = merge(-1.0_wp, 1.0_wp, forest%child_is_a(iu))
          do c = 1, un%n
-            pa = table%pdof(block_dof(un%block, un%comp(c)), un%va)
-            pb = table%pdof(block_dof(un%block, un%comp(c)), un%vb)
+            pa = table%dof(block_dof(un%block, un%comp(c)), un%va)
+            pb = table%dof(block_dof(un%block, un%comp(c)), un%vb)
             if (forest%child_is_a(iu)) then
                call check_close(u(pa, 1), sgn*un%qs(k, c), 1.0e-15_wp, 'delta column moves the child (a)')
                call check_close(u(pb, 1), 0.0_wp, 1.0e-15_wp, 'delta column leaves the parent (b)')

@@ -12,7 +12,7 @@ translations), so those two slaves are on the floor's boundary: what a floor
 exports to the building is its nodes' roots and its own contacts' Δu, never a
 g-sized term between physical DOFs. Checks:
 
-- nested, --condense yes, against the explicit deck (--condense yes and no) to
+- nested, --condense yes --levels yes (by level), against the explicit deck (--condense yes and no) to
   1e-10 of each column's largest value (displacements, reactions, contact
   forces, element forces, plate results), also with the building turned by 30
   degrees about an inclined axis;
@@ -133,13 +133,13 @@ def main(argv):
     exe, work = argv[1:]
     os.makedirs(work, exist_ok=True)
     g = repr(1.0e11)
-    n, nlst = run(exe, write(work, "nested", g), work, "nested", "--condense", "yes")
+    n, nlst = run(exe, write(work, "nested", g), work, "nested", "--condense", "yes", "--levels", "yes")
     ex = write(work, "explicit", g, explicit=True)
     e, _ = run(exe, ex, work, "explicit", "--condense", "yes")
     m, _ = run(exe, ex, work, "monolithic", "--condense", "no")
     ok = compare(n, e, "nested condensed against explicit condensed")
     ok = compare(n, m, "nested condensed against explicit monolithic") and ok
-    t, _ = run(exe, write(work, "turned", g, turn=30.0), work, "turned", "--condense", "yes")
+    t, _ = run(exe, write(work, "turned", g, turn=30.0), work, "turned", "--condense", "yes", "--levels", "yes")
     te, _ = run(exe, write(work, "turned_explicit", g, explicit=True, turn=30.0), work, "turned_explicit",
                 "--condense", "no")
     ok = compare(t, te, "turned nested condensed against turned explicit monolithic") and ok
@@ -154,9 +154,9 @@ def main(argv):
         found = want in listing
         print(f"{'ok' if found else 'FAIL'}: listing has '{want}'")
         ok = ok and found
-    r, _ = run(exe, write(work, "rigid", "RIGID"), work, "rigid", "--condense", "yes")
+    r, _ = run(exe, write(work, "rigid", "RIGID"), work, "rigid", "--condense", "yes", "--levels", "yes")
     for e10 in range(6, 15):
-        s, _ = run(exe, write(work, f"g{e10}", repr(ET * 10.0 ** e10)), work, f"g{e10}", "--condense", "yes")
+        s, _ = run(exe, write(work, f"g{e10}", repr(ET * 10.0 ** e10)), work, f"g{e10}", "--condense", "yes", "--levels", "yes")
         d = largest_difference(s, r)
         # the joint's compliance (about E t / g of the answer) or round-off, never more
         good = d <= max(2.0e-2 * 10.0 ** -e10, 1.0e-11)

@@ -113,6 +113,8 @@ contains
           if (st%aborted) return
        end do
        keep = [(.not. any(own%isub == active(k)%isub .and. own%c == active(k)%c), k=1, size(active))]
+       model%steps(s)%kept_mloads = count(keep)
+       if (count(keep) > 0) model%steps(s)%kept_from = model%steps(s - 1)%name
        active = [pack(active, keep), own]
        deallocate (own)
        if (size(active) == 0) cycle

@@ -355,6 +355,7 @@ module superjoin_model_types
                                            !! loads continue the previous step's, shell P along the normal)
      integer :: kept_cloads = 0            !! concentrated loads continued from the previous step
      integer :: kept_dloads = 0            !! distributed loads continued from the previous step
+     integer :: kept_mloads = 0            !! *MATRIX LOAD lines continued from the previous step
      logical :: kept_temperatures = .false.  !! nodal temperatures continued from the previous step
      character(:), allocatable :: kept_from  !! the step whose loads or temperatures it continues
      type(node_values_t), allocatable :: temperature(:)  !! per substructure: the nodal temperatures of

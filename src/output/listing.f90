@@ -179,6 +179,7 @@ contains
       what = ''
       if (step%kept_cloads > 0) what = what//', '//itoa(step%kept_cloads)//' concentrated load(s)'
       if (step%kept_dloads > 0) what = what//', '//itoa(step%kept_dloads)//' distributed load(s)'
+      if (step%kept_mloads > 0) what = what//', '//itoa(step%kept_mloads)//' matrix load(s)'
       if (step%kept_temperatures) what = what//', the nodal temperatures'
       if (len(what) == 0) return
       call lu%line('  kept from step '//step%kept_from//' (OP=MOD, the default in a step with '// &

@@ -169,6 +169,19 @@ def small_column(name, column, fields):
     return out
 
 
+def kept_lines(listing, fmt):
+    """The listing says what each step keeps: TWIST keeps PUSH's two matrix
+    loads (and its *CLOAD lines), MOD keeps no matrix load (the one it names
+    again replaces the kept one; NEW dropped the others)."""
+    with open(listing) as fh:
+        kept = [line.strip() for line in fh if line.strip().startswith("kept from step")]
+    twist = [k for k in kept if k.startswith("kept from step PUSH") and k.endswith(" 2 matrix load(s)")]
+    mod = [k for k in kept if k.startswith("kept from step NEW") and "matrix load" in k]
+    ok = len(twist) == 1 and not mod
+    print(("ok" if ok else "FAIL") + f": the listing counts the kept matrix loads ({fmt}): {kept}")
+    return ok
+
+
 def main():
     binary, work = sys.argv[1], os.path.abspath(sys.argv[2])
     os.makedirs(work, exist_ok=True)
@@ -190,10 +203,12 @@ def main():
     href = rt.displacements(rt.run(binary, work, "history_explicit", deck(history=True), ["--condense", "no"]))
     for fmt, base in (("ABAQUS", "pa"), ("DMIG", "pd")):
         ext = ".dmig" if fmt == "DMIG" else ".mtx"
-        got = rt.displacements(rt.run(binary, work, "history_" + fmt.lower(),
-                                      deck((base + ext, fmt), names[fmt], split=True, history=True)))
+        out = rt.run(binary, work, "history_" + fmt.lower(),
+                     deck((base + ext, fmt), names[fmt], split=True, history=True))
+        got = rt.displacements(out)
         results.append(rt.compare(href, got, f"*STATIC steps, OP=MOD kept, OP=NEW dropped, a load named again "
                                   f"replaced ({fmt})", DMIG_TOL if fmt == "DMIG" else rt.RTOL))
+        results.append(kept_lines(out + ".lst", fmt))
     write_other_dmig(work)
     for split in (False, True):
         tag = "_split" if split else ""

@@ -173,8 +173,8 @@ contains
 
     ! K* in this substructure's frame, on its physical boundary DOFs.
     associate (kc => cache%entries(view%entry)%e%cond%se%k)
-      view%se%pdof = view%pdof(ni + 1:)
-      view%se%k = kc
+      allocate (view%se%pdof, source=view%pdof(ni + 1:))   ! view is intent(out): not reallocated by assignment
+      allocate (view%se%k, source=kc)
       if (view%rotated) then
          call rotate_boundary_columns(view, view%se%k, .true.)
          view%se%k = transpose(view%se%k)

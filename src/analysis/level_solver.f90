@@ -32,7 +32,7 @@ module superjoin_analysis_level_solver
   use superjoin_model_types, only: string_t
   use superjoin_model_notes, only: note
   use superjoin_solvers, only: linear_solver_t, sparse_sym_t, new_solver, cholmod_solver_t
-  use superjoin_solvers_solver, only: boundary_block, subtract_bi
+  use superjoin_solvers_solver, only: boundary_block, subtract_bi, subtract_ib
   use superjoin_solvers_matrix_market, only: assemble_upper
   use superjoin_utils_strings, only: itoa
   use superjoin_analysis_levels, only: level_plan_t
@@ -666,23 +666,6 @@ contains
       end do
     end associate
   end subroutine gather_interiors
-
-  subroutine subtract_ib(a, nb, xb, y)
-    !! y −= a_IB xb (a_IB: the interior rows of a's boundary columns).
-    type(sparse_sym_t), intent(in) :: a
-    integer(i8), intent(in) :: nb
-    real(wp), intent(in) :: xb(:, :)
-    real(wp), intent(inout) :: y(:, :)
-    integer(i8) :: ni, j, p, r
-    ni = a%n - nb
-    do j = 1, nb
-       do p = a%colptr(ni + j), a%colptr(ni + j + 1) - 1
-          r = a%rowind(p)
-          if (r > ni) exit
-          y(r, :) = y(r, :) - a%val(p)*xb(j, :)
-       end do
-    end do
-  end subroutine subtract_ib
 
   subroutine level_pivots(self, d)
     !! The pivot of each column of K_red: a group's interior from its kind's

@@ -8,7 +8,7 @@ module superjoin_solvers_solver
   implicit none (type, external)
   private
 
-  public :: interior_block, boundary_block, schur_by_solves, boundary_shift, unshift, subtract_bi
+  public :: interior_block, boundary_block, schur_by_solves, boundary_shift, unshift, subtract_bi, subtract_ib
 
   integer(i8), parameter :: SCHUR_BLOCK = 64
     !! Columns of a_ib solved together by the default schur.
@@ -176,6 +176,24 @@ contains
        end do
     end do
   end subroutine subtract_bi
+
+  subroutine subtract_ib(a, nb, xb, y)
+    !! y −= a_ib xb (a_ib: the interior rows of a's boundary columns; xb: the
+    !! boundary rows alone).
+    type(sparse_sym_t), intent(in) :: a
+    integer(i8), intent(in) :: nb
+    real(wp), intent(in) :: xb(:, :)
+    real(wp), intent(inout) :: y(:, :)
+    integer(i8) :: ni, j, pos, r
+    ni = a%n - nb
+    do j = 1, nb
+       do pos = a%colptr(ni + j), a%colptr(ni + j + 1) - 1
+          r = a%rowind(pos)
+          if (r > ni) exit
+          y(r, :) = y(r, :) - a%val(pos)*xb(j, :)
+       end do
+    end do
+  end subroutine subtract_ib
 
   subroutine boundary_shift(a, nb, val, shift)
     !! For a factorization of the whole part with the boundary last (K* from

@@ -12,6 +12,7 @@ module superjoin_substructure_condensed
   use superjoin_assembly_assemble, only: superelement_t
   use superjoin_substructure_local_system, only: local_system_t, dof_label
   use superjoin_solvers, only: linear_solver_t, sparse_sym_t, new_solver, mumps_solver_t
+  use superjoin_solvers_solver, only: subtract_bi, subtract_ib
   use superjoin_utils_memory, only: out_of_memory, BYTES_REAL
   use superjoin_utils_strings, only: itoa
   use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
@@ -168,7 +169,7 @@ contains
     allocate (x(ni, size(f_local, 2)))
     call cond%solver%solve(f_local(1:ni, :), x, error)
     if (allocated(error)) return
-    call sub_kbi(cond%sys%k, ni, nb, x, fstar)
+    call subtract_bi(cond%sys%k, nb, x, fstar)
     cond%memo_f = f_local
     cond%memo_fstar = fstar
   end subroutine condense_loads
@@ -181,36 +182,11 @@ contains
     real(wp), intent(inout) :: u_local(:, :)
     type(error_t), allocatable, intent(out) :: error
     real(wp), allocatable :: rhs(:, :)
-    integer(i8) :: ni, nb, j, pos, r
+    integer(i8) :: ni
     ni = cond%sys%ni
-    nb = cond%sys%nb
     if (ni == 0) return
     rhs = f_local(1:ni, :)
-    associate (k => cond%sys%k)
-      do j = 1, nb
-         do pos = k%colptr(ni + j), k%colptr(ni + j + 1) - 1
-            r = k%rowind(pos)
-            if (r > ni) exit
-            rhs(r, :) = rhs(r, :) - k%val(pos)*u_local(ni + j, :)
-         end do
-      end do
-    end associate
+    call subtract_ib(cond%sys%k, cond%sys%nb, u_local(ni + 1:, :), rhs)
     call cond%solver%solve(rhs, u_local(1:ni, :), error)
   end subroutine recover_interior
-
-  subroutine sub_kbi(k, ni, nb, x, y)
-    !! y -= k_bi x (k_bi = k_ibᵀ, read from the boundary columns of k).
-    type(sparse_sym_t), intent(in) :: k
-    integer(i8), intent(in) :: ni, nb
-    real(wp), intent(in) :: x(:, :)
-    real(wp), intent(inout) :: y(:, :)
-    integer(i8) :: j, pos, r
-    do j = 1, nb
-       do pos = k%colptr(ni + j), k%colptr(ni + j + 1) - 1
-          r = k%rowind(pos)
-          if (r > ni) exit
-          y(j, :) = y(j, :) - k%val(pos)*x(r, :)
-       end do
-    end do
-  end subroutine sub_kbi
 end module superjoin_substructure_condensed

@@ -702,24 +702,17 @@ contains
        if (any(table%units(1:table%nunit)%eccentric)) allocate (mom(3, 0:table%nvertex), source=0.0_wp)
     end if
     do b = 1, NBLOCK
-       acc = 0.0_wp
-       do v = 1, table%nvertex
-          call vertex_dofs(table, v, pv)
-          do c = 1, 3
-             p = pv(block_dof(b, c))
-             if (p > 0) acc(c, v) = rt(p)
-          end do
+       ! Only the vertices with a parent and their parents are read or
+       ! written below: seeded with r (and the moments), the others left.
+       do io = 1, forest%norder(b)
+          call seed(forest%order(b, io))
+          call seed(parent(io))
        end do
-       if (b == 2 .and. allocated(mom)) acc = acc + mom
        do io = forest%norder(b), 1, -1
           v = forest%order(b, io)
           pu = forest%order_unit(b, io)
           associate (un => table%units(pu))
-            if (forest%child_is_a(pu)) then
-               w = un%vb
-            else
-               w = un%va
-            end if
+            w = parent(io)
             acc(:, w) = acc(:, w) + acc(:, v)
             if (un%eccentric) call arm_moment(un, acc(:, v), forest%child_is_a(pu), mom(:, un%va))
             do k = 1, un%n
@@ -741,6 +734,28 @@ contains
           end associate
        end do
     end do
+  contains
+    integer(i8) function parent(io)
+      !! The parent of the io-th vertex of block b's order.
+      integer(i8), intent(in) :: io
+      associate (un => table%units(forest%order_unit(b, io)))
+        parent = merge(un%vb, un%va, forest%child_is_a(forest%order_unit(b, io)))
+      end associate
+    end function parent
+    subroutine seed(x)
+      !! acc(:, x): r at vertex x's DOFs of block b (0 where it has none),
+      !! plus the moments of eccentric translations in the rotation block.
+      integer(i8), intent(in) :: x
+      acc(:, x) = 0.0_wp
+      if (x /= GROUND) then
+         call vertex_dofs(table, x, pv)
+         do c = 1, 3
+            p = pv(block_dof(b, c))
+            if (p > 0) acc(c, x) = rt(p)
+         end do
+      end if
+      if (b == 2 .and. allocated(mom)) acc(:, x) = acc(:, x) + mom(:, x)
+    end subroutine seed
   end subroutine tree_forces
 
   pure subroutine arm_moment(un, f, child_is_master, m)

@@ -12,7 +12,8 @@ module superjoin_analysis
   use superjoin_kinds, only: wp, i8
   use superjoin_error, only: error_t, fatal_error, EXIT_SINGULAR
   use superjoin_model_types, only: model_t, string_t, FORM_TRANSFORM, FORM_PENALTY
-  use superjoin_assembly_dofs, only: build_dof_table
+  use superjoin_assembly_dofs, only: build_dof_table, dof_table_t
+  use superjoin_analysis_build_reuse, only: take_table, keep_table, take_forest, take_transform, keep_transform
   use superjoin_assembly_forest, only: build_forest, forget_parents
   use superjoin_assembly_transform, only: transform_t, build_transform, COL_DELTA
   use superjoin_assembly_assemble, only: assemble_stiffness, assemble_loads
@@ -152,13 +153,13 @@ contains
     res%summary%formulation = merge('TRANSFORM', 'PENALTY  ', st%form == FORM_TRANSFORM)
     res%summary%formulation = trim(res%summary%formulation)
 
-    call build_dof_table(model, st%table, error)
+    call build_table(model, ctx, st%table, error)
     if (allocated(error)) return
     if (size(st%table%ignored_links) > 0) call note(notes, itoa(size(st%table%ignored_links))// &
          ' contact element(s) name DOFs that neither node carries; those DOFs are not connected')
     call apply_large(model, st%table, st%form, notes, error)
     if (allocated(error)) return
-    call build_forest(st%table, st%form == FORM_TRANSFORM, st%forest, error)
+    call forest_of_value(ctx, st, error)
     if (allocated(error)) return
     call boundary_dofs(st%table, bnd)
     call given_boundary(model, st%table, bnd)
@@ -176,7 +177,7 @@ contains
     do p = 1, st%table%np
        keep(p) = st%bnd_c(p) .or. .not. res%summary%sub_condensed(st%table%p_sub(p))
     end do
-    call build_transform(model, st%table, st%forest, st%tr, error, keep)
+    call transform_of_value(model, ctx, st, keep, error)
     if (allocated(error)) return
     call describe_transform(model, st%table, st%tr, st%form, res%summary, notes)
     if (res%summary%n_condensed > 0) &
@@ -185,6 +186,54 @@ contains
     call choose_strategy(st, res%summary, opts)
     st%phase = PHASE_BUILT
   end subroutine build_phase
+
+  subroutine build_table(model, ctx, table, error)
+    !! The DOF table: in a joint study the previous value's with this
+    !! value's g's when the links' states are the same (analysis/build_reuse),
+    !! else built anew (and kept for the next value).
+    type(model_t), intent(in) :: model
+    type(solve_context_t), intent(inout) :: ctx
+    type(dof_table_t), intent(out) :: table
+    type(error_t), allocatable, intent(out) :: error
+    logical :: taken
+    taken = .false.
+    if (ctx%joint_study) call take_table(ctx%build, model, table, taken)
+    if (taken) return
+    call build_dof_table(model, table, error)
+    if (allocated(error)) return
+    if (ctx%joint_study) call keep_table(ctx%build, model, table)
+  end subroutine build_table
+
+  subroutine forest_of_value(ctx, st, error)
+    !! The forest: in a joint study the previous value's when the units are
+    !! taken in the same order (analysis/build_reuse), else built anew.
+    type(solve_context_t), intent(inout) :: ctx
+    type(solve_state_t), intent(inout) :: st
+    type(error_t), allocatable, intent(out) :: error
+    logical :: taken
+    taken = .false.
+    if (ctx%joint_study) call take_forest(ctx%build, st%table, st%form == FORM_TRANSFORM, st%forest, taken)
+    if (taken) return
+    call build_forest(st%table, st%form == FORM_TRANSFORM, st%forest, error)
+  end subroutine forest_of_value
+
+  subroutine transform_of_value(model, ctx, st, keep, error)
+    !! The Δu transform: in a joint study the previous value's with this
+    !! value's springs when the table's units, forest and kept DOFs allow
+    !! (analysis/build_reuse), else built anew (and kept for the next value).
+    type(model_t), intent(in) :: model
+    type(solve_context_t), intent(inout) :: ctx
+    type(solve_state_t), intent(inout) :: st
+    logical, intent(in) :: keep(:)
+    type(error_t), allocatable, intent(out) :: error
+    logical :: taken
+    taken = .false.
+    if (ctx%joint_study) call take_transform(ctx%build, st%table, st%forest, keep, st%tr, taken)
+    if (taken) return
+    call build_transform(model, st%table, st%forest, st%tr, error, keep)
+    if (allocated(error)) return
+    if (ctx%joint_study) call keep_transform(ctx%build, st%table, st%forest, keep, st%tr)
+  end subroutine transform_of_value
 
   function levels_refusal(opts, summary) result(why)
     !! Why a condensed run of parts made of parts is not condensed by level

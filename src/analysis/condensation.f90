@@ -12,6 +12,7 @@ module superjoin_analysis_condensation
   use superjoin_model_results, only: run_summary_t, run_options_t
   use superjoin_model_notes, only: note
   use superjoin_analysis_factor_reuse, only: kept_factor_t
+  use superjoin_analysis_build_reuse, only: kept_build_t
   use superjoin_utils_strings, only: itoa
   use superjoin_analysis_solve_state, only: solve_state_t, solve_strategy_t
   use superjoin_analysis_matrix_export, only: export_condensed
@@ -25,6 +26,7 @@ module superjoin_analysis_condensation
      type(part_cache_t) :: cache
      logical :: joint_study = .false.
      type(kept_factor_t) :: factor          !! loads: a factorization kept for a next solve of the same matrix
+     type(kept_build_t) :: build            !! a joint study: the previous value's DOF table and transform
      logical :: last = .false.              !! no later solve reuses the condensations: freed once the interiors are recovered
   end type solve_context_t
 

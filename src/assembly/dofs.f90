@@ -92,6 +92,7 @@ module superjoin_assembly_dofs
   integer, parameter, public :: MAX_UNIT_TERMS = 3*BLOCK_SIZE
     !! Physical DOFs one unit touches: side a, side b, and side a's rotations (arm).
 
+  public :: refresh_link_springs, link_signature
   public :: build_dof_table, vertex_of, vertex_dofs, block_dof, unit_terms, unit_dofs, arm_matrix, unit_where, unit_nodes
 
 contains
@@ -215,6 +216,40 @@ contains
     end do
     call build_equation_terms(model, table, error)
   end subroutine build_dof_table
+
+  pure function link_signature(model) result(sig)
+    !! What shapes the links' units besides their finite g's: the state of
+    !! every DOF of every link and whether its g is zero (link_unit). Two
+    !! models with the same elements, supports and signature have DOF
+    !! tables that differ only in the g's of their links' units.
+    type(model_t), intent(in) :: model
+    integer, allocatable :: sig(:, :)
+    integer :: il
+    allocate (sig(NDOF_NODE, size(model%links)))
+    do il = 1, size(model%links)
+       sig(:, il) = 2*model%links(il)%state + merge(1, 0, model%links(il)%g == 0.0_wp)
+    end do
+  end function link_signature
+
+  subroutine refresh_link_springs(model, table)
+    !! The g's of the links' units taken again from model (as link_unit
+    !! takes them), for a table built from a model of the same
+    !! link_signature: a joint study's next value.
+    type(model_t), intent(in) :: model
+    type(dof_table_t), intent(inout) :: table
+    integer :: iu, k, d
+    do iu = 1, table%nunit
+       associate (u => table%units(iu))
+         if (u%kind /= UNIT_LINK) cycle
+         do k = 1, u%n
+            d = block_dof(u%block, u%lcomp(k))
+            u%state(k) = model%links(u%source)%state(d)
+            u%g(k) = model%links(u%source)%g(d)
+            if (u%state(k) == LINK_FINITE .and. u%g(k) == 0.0_wp) u%state(k) = LINK_NONE
+         end do
+       end associate
+    end do
+  end subroutine refresh_link_springs
 
   subroutine build_equation_terms(model, table, error)
     !! The *EQUATION terms on physical DOFs; a DOF that its node does not carry

@@ -26,7 +26,7 @@ module superjoin_assembly_forest
      integer(i8) :: norder(NBLOCK) = 0
   end type forest_t
 
-  public :: build_forest, unit_weight, forget_parents
+  public :: build_forest, unit_weight, forget_parents, same_forest, forest_order
 
 contains
 
@@ -69,15 +69,7 @@ contains
     end if
 
     do b = 1, NBLOCK
-       nc = 0
-       do i = 1, table%nunit
-          if (table%units(i)%block /= b) cycle
-          if (table%units(i)%kind == UNIT_LINK .and. .not. links_in_tree) cycle
-          nc = nc + 1
-          cand(nc) = i
-          w(i) = unit_weight(table%units(i))
-       end do
-       call sort_index(-w, cand(1:nc))
+       call candidates(table, links_in_tree, b, w, cand, nc)
        do i = 0, int(table%nvertex)
           uf(i) = i
        end do
@@ -100,6 +92,50 @@ contains
     forest%order_unit = forest%order_unit(:, 1:maxval(forest%norder))
   end subroutine build_forest
 
+  subroutine candidates(table, links_in_tree, b, w, cand, nc)
+    !! The units of block b that may join the forest, cand(1:nc), in the
+    !! order build_forest takes them: stiffest first (w: their weights).
+    type(dof_table_t), intent(in) :: table
+    logical, intent(in) :: links_in_tree
+    integer, intent(in) :: b
+    real(wp), intent(inout) :: w(:)
+    integer, intent(inout) :: cand(:)
+    integer, intent(out) :: nc
+    integer :: i
+    nc = 0
+    do i = 1, table%nunit
+       if (table%units(i)%block /= b) cycle
+       if (table%units(i)%kind == UNIT_LINK .and. .not. links_in_tree) cycle
+       nc = nc + 1
+       cand(nc) = i
+       w(i) = unit_weight(table%units(i))
+    end do
+    call sort_index(-w, cand(1:nc))
+  end subroutine candidates
+
+  function forest_order(table, links_in_tree) result(order)
+    !! The units in the order build_forest takes them, block after block:
+    !! two tables with the same units (but for their g's) and the same
+    !! order give the same forest, so a joint study's next value can keep
+    !! the previous forest without building it (its vertex arrays are what
+    !! costs).
+    type(dof_table_t), intent(in) :: table
+    logical, intent(in) :: links_in_tree
+    integer, allocatable :: order(:)
+    real(wp), allocatable :: w(:)
+    integer, allocatable :: cand(:)
+    integer :: b, nc, n
+    allocate (order(table%nunit), cand(table%nunit))
+    allocate (w(table%nunit), source=0.0_wp)
+    n = 0
+    do b = 1, NBLOCK
+       call candidates(table, links_in_tree, b, w, cand, nc)
+       order(n + 1:n + nc) = cand(1:nc)
+       n = n + nc
+    end do
+    order = order(1:n)
+  end function forest_order
+
   subroutine forget_parents(forest)
     !! Free the parent unit of every vertex (NBLOCK integers per vertex of the
     !! model) once nothing looks it up by vertex any more: the recovery walks
@@ -107,6 +143,23 @@ contains
     type(forest_t), intent(inout) :: forest
     if (allocated(forest%parent_unit)) deallocate (forest%parent_unit)
   end subroutine forget_parents
+
+  pure logical function same_forest(a, b)
+    !! The same tree units, oriented alike and ordered alike (parent_unit
+    !! follows from these).
+    type(forest_t), intent(in) :: a, b
+    integer :: k
+    integer(i8) :: n
+    same_forest = .false.
+    if (.not. (allocated(a%tree) .and. allocated(b%tree) .and. allocated(a%order) .and. allocated(b%order))) return
+    if (size(a%tree) /= size(b%tree) .or. any(a%norder /= b%norder)) return
+    if (any(a%tree .neqv. b%tree) .or. any(a%child_is_a .neqv. b%child_is_a)) return
+    do k = 1, NBLOCK   ! beyond norder(k), order holds nothing
+       n = a%norder(k)
+       if (any(a%order(k, 1:n) /= b%order(k, 1:n)) .or. any(a%order_unit(k, 1:n) /= b%order_unit(k, 1:n))) return
+    end do
+    same_forest = .true.
+  end function same_forest
 
   subroutine orient_block(table, b, forest)
     !! Root every tree (at the ground if it has it, else at its lowest vertex) and

@@ -114,6 +114,7 @@ module superjoin_assembly_transform
      procedure :: nconstraints => transform_nconstraints
      procedure :: constraint => transform_constraint
      procedure :: release_maps => transform_release_maps
+     procedure :: refresh_springs => transform_refresh_springs
   end type transform_t
 
   public :: build_transform
@@ -1010,6 +1011,26 @@ contains
     if (allocated(tr%u0)) deallocate (tr%u0)
     tr%pool_n = 0
   end subroutine transform_release_maps
+
+  subroutine transform_refresh_springs(tr, table, ok)
+    !! The springs on the δ columns taken again from the units of table: the
+    !! same units with other finite g's (a joint study's next value, the
+    !! forest and the units' states unchanged). Exact only without loop
+    !! constraints and form springs (a loop's pivot is chosen by its spring,
+    !! choose_pivot): then ok is false and tr is left as it was.
+    class(transform_t), intent(inout) :: tr
+    type(dof_table_t), intent(in) :: table
+    logical, intent(out) :: ok
+    integer(i8) :: j
+    ok = tr%ncons == 0 .and. tr%nform == 0
+    if (.not. ok) return
+    do j = 1, tr%ncol_
+       if (tr%col_kind(j) /= COL_DELTA) cycle
+       associate (u => table%units(tr%col_ref(j)), k => tr%col_k(j))
+         tr%col_g(j) = merge(u%g(k), 0.0_wp, u%state(k) == LINK_FINITE)
+       end associate
+    end do
+  end subroutine transform_refresh_springs
 
   subroutine transform_element_columns(tr, pd, n, cols, nc)
     !! Reduced columns of a list of physical DOFs (sorted, unique) into cols(1:nc).

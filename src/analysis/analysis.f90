@@ -13,7 +13,8 @@ module superjoin_analysis
   use superjoin_error, only: error_t, fatal_error, EXIT_SINGULAR
   use superjoin_model_types, only: model_t, string_t, FORM_TRANSFORM, FORM_PENALTY
   use superjoin_assembly_dofs, only: build_dof_table, dof_table_t
-  use superjoin_analysis_build_reuse, only: take_table, keep_table, take_forest, take_transform, keep_transform
+  use superjoin_analysis_build_reuse, only: take_table, keep_table, take_forest, take_transform, keep_transform, &
+       take_boundaries, keep_boundaries
   use superjoin_assembly_forest, only: build_forest, forget_parents
   use superjoin_assembly_transform, only: transform_t, build_transform, COL_DELTA
   use superjoin_assembly_assemble, only: assemble_stiffness, assemble_loads
@@ -144,7 +145,8 @@ contains
     type(results_t), intent(inout) :: res
     type(string_t), allocatable, intent(inout) :: notes(:)
     type(error_t), allocatable, intent(out) :: error
-    logical, allocatable :: bnd(:), keep(:)
+    logical, allocatable :: keep(:)
+    logical :: kept
     integer(i8) :: p
     integer :: stat
 
@@ -153,7 +155,7 @@ contains
     res%summary%formulation = merge('TRANSFORM', 'PENALTY  ', st%form == FORM_TRANSFORM)
     res%summary%formulation = trim(res%summary%formulation)
 
-    call build_table(model, ctx, st%table, error)
+    call build_table(model, ctx, st%table, kept, error)
     if (allocated(error)) return
     if (size(st%table%ignored_links) > 0) call note(notes, itoa(size(st%table%ignored_links))// &
          ' contact element(s) name DOFs that neither node carries; those DOFs are not connected')
@@ -161,13 +163,9 @@ contains
     if (allocated(error)) return
     call forest_of_value(ctx, st, error)
     if (allocated(error)) return
-    call boundary_dofs(st%table, bnd)
-    call given_boundary(model, st%table, bnd)
-    call count_boundary(model, st%table, bnd, res%summary)
+    call boundaries_of_value(model, ctx, kept, st, res%summary)
     call plan_distribution(model, res%summary, res%log, error)   ! several MPI processes only
     if (allocated(error)) return
-    ! Condensation boundaries: the instances of a part share theirs.
-    call part_boundary(model, st%table, bnd, st%bnd_c)
     call choose_condensation(model, st%table, opts, ctx, st%bnd_c, res%summary, notes)
     allocate (keep(st%table%np), stat=stat)
     if (stat /= 0) then
@@ -187,15 +185,15 @@ contains
     st%phase = PHASE_BUILT
   end subroutine build_phase
 
-  subroutine build_table(model, ctx, table, error)
+  subroutine build_table(model, ctx, table, taken, error)
     !! The DOF table: in a joint study the previous value's with this
-    !! value's g's when the links' states are the same (analysis/build_reuse),
-    !! else built anew (and kept for the next value).
+    !! value's g's when the links' states are the same (analysis/build_reuse:
+    !! taken), else built anew (and kept for the next value).
     type(model_t), intent(in) :: model
     type(solve_context_t), intent(inout) :: ctx
     type(dof_table_t), intent(out) :: table
+    logical, intent(out) :: taken
     type(error_t), allocatable, intent(out) :: error
-    logical :: taken
     taken = .false.
     if (ctx%joint_study) call take_table(ctx%build, model, table, taken)
     if (taken) return
@@ -203,6 +201,28 @@ contains
     if (allocated(error)) return
     if (ctx%joint_study) call keep_table(ctx%build, model, table)
   end subroutine build_table
+
+  subroutine boundaries_of_value(model, ctx, kept, st, summary)
+    !! The DOFs contacts and supports touch, counted per substructure, and
+    !! the condensation boundaries (the instances of a part share theirs):
+    !! they depend on the units' DOFs, not on their springs, so a joint
+    !! study's value whose table was kept (kept) takes the previous value's.
+    type(model_t), intent(in) :: model
+    type(solve_context_t), intent(inout) :: ctx
+    logical, intent(in) :: kept
+    type(solve_state_t), intent(inout) :: st
+    type(run_summary_t), intent(inout) :: summary
+    logical, allocatable :: bnd(:)
+    logical :: taken
+    taken = .false.
+    if (kept) call take_boundaries(ctx%build, st%bnd_c, summary, taken)
+    if (taken) return
+    call boundary_dofs(st%table, bnd)
+    call given_boundary(model, st%table, bnd)
+    call count_boundary(model, st%table, bnd, summary)
+    call part_boundary(model, st%table, bnd, st%bnd_c)
+    if (ctx%joint_study) call keep_boundaries(ctx%build, st%bnd_c, summary)
+  end subroutine boundaries_of_value
 
   subroutine forest_of_value(ctx, st, error)
     !! The forest: in a joint study the previous value's when the units are

@@ -12,9 +12,13 @@ module superjoin_analysis_build_reuse
   !! itself is kept when build_forest would take the units in the same
   !! order (take_forest: the same order gives the same forest). All exact:
   !! the same arrays build_dof_table, build_forest and build_transform give.
+  !! The boundaries (the DOFs the units touch, per substructure, and the
+  !! condensation boundaries) go with the table (take_boundaries).
   !! A transform with loop constraints or form springs is not kept (their
   !! pivots are chosen by the springs).
+  use superjoin_kinds, only: i8
   use superjoin_model_types, only: model_t
+  use superjoin_model_results, only: run_summary_t
   use superjoin_assembly_dofs, only: dof_table_t, link_signature, refresh_link_springs
   use superjoin_assembly_forest, only: forest_t, same_forest, forest_order
   use superjoin_assembly_transform, only: transform_t
@@ -25,6 +29,9 @@ module superjoin_analysis_build_reuse
     !! The previous value's DOF table (before *LARGE) and transform.
      integer, allocatable :: signature(:, :)  !! link_signature of the model the table was built from
      type(dof_table_t) :: table               !! the table as build_dof_table gave it
+     logical :: has_boundaries = .false.
+     logical, allocatable :: bnd_c(:)         !! its condensation boundaries (part_boundary)
+     integer(i8), allocatable :: sub_dofs(:), sub_boundary(:)  !! its counts (count_boundary)
      logical :: has_transform = .false.
      integer, allocatable :: states(:, :)     !! (3, nunit) the units' states after *LARGE
      type(forest_t) :: forest                 !! the forest the transform was built on
@@ -37,7 +44,7 @@ module superjoin_analysis_build_reuse
      integer :: forests_reused = 0            !! values that took the previous forest
   end type kept_build_t
 
-  public :: take_table, keep_table, take_forest, take_transform, keep_transform
+  public :: take_table, keep_table, take_forest, take_transform, keep_transform, take_boundaries, keep_boundaries
 
 contains
 
@@ -68,7 +75,33 @@ contains
     kb%signature = link_signature(model)
     kb%table = table
     kb%has_transform = .false.   ! built on another table
+    kb%has_boundaries = .false.
   end subroutine keep_table
+
+  subroutine take_boundaries(kb, bnd_c, summary, taken)
+    !! The kept table's condensation boundaries and boundary counts (for a
+    !! value that took the table: they depend on its units' DOFs only).
+    type(kept_build_t), intent(in) :: kb
+    logical, allocatable, intent(out) :: bnd_c(:)
+    type(run_summary_t), intent(inout) :: summary
+    logical, intent(out) :: taken
+    taken = kb%has_boundaries
+    if (.not. taken) return
+    bnd_c = kb%bnd_c
+    summary%sub_dofs = kb%sub_dofs
+    summary%sub_boundary = kb%sub_boundary
+  end subroutine take_boundaries
+
+  subroutine keep_boundaries(kb, bnd_c, summary)
+    !! Keep the boundaries and counts found for the kept table.
+    type(kept_build_t), intent(inout) :: kb
+    logical, intent(in) :: bnd_c(:)
+    type(run_summary_t), intent(in) :: summary
+    kb%bnd_c = bnd_c
+    kb%sub_dofs = summary%sub_dofs
+    kb%sub_boundary = summary%sub_boundary
+    kb%has_boundaries = .true.
+  end subroutine keep_boundaries
 
   subroutine take_forest(kb, table, links_in_tree, forest, taken)
     !! The kept forest, when the units of table are taken in the same order

@@ -93,7 +93,7 @@ module superjoin_elements_membrane
      real(wp), allocatable :: nodes(:)    !! ε0 extrapolated to the nodes as σ is
   end type initial_strain_t
   public :: membrane_thermal_load, membrane_centroid_weights, membrane_result_operator
-  public :: check_membrane_element, spd_solve
+  public :: check_membrane_element, spd_solve, make_symmetric
 
 contains
 
@@ -129,7 +129,7 @@ contains
     real(wp) :: kuu(8, 8), kua(8, NMODE), kaa(NMODE, NMODE), x(2, 4), l(NMODE, NMODE)
     if (size(xl, 2) == 3) then
        ke = cst_stiffness(xl, d)
-       ke = 0.5_wp*(ke + transpose(ke))
+       call make_symmetric(ke)
     else
        x = xl
        call qm6_matrices(x, d, kuu, kua, kaa)
@@ -158,7 +158,7 @@ contains
           ke(i, j) = kuu(i, j) - c
        end do
     end do
-    ke = 0.5_wp*(ke + transpose(ke))
+    call make_symmetric(ke)
   end subroutine qm6_condensed
 
   pure subroutine membrane_forces(xl, t, e, nu, strain_state, ue, ke, nres, error)
@@ -175,8 +175,8 @@ contains
     real(wp), intent(out) :: nres(:, :)
     type(error_t), allocatable, intent(out) :: error
     real(wp) :: d(NSTRAIN, NSTRAIN), kuu(8, 8), kua(8, NMODE), kaa(NMODE, NMODE), x(2, 4), l(NMODE, NMODE)
-    real(wp) :: alpha(NMODE, 1), bc(NSTRAIN, 8), ba(NSTRAIN, NMODE), xi, eta, area
-    integer :: is
+    real(wp) :: alpha(NMODE, 1), bc(NSTRAIN, 8), ba(NSTRAIN, NMODE), xi, eta, area, c
+    integer :: is, m, i
 
     nres = 0.0_wp
     call checked_rigidity(xl, t, e, nu, strain_state, d, error)
@@ -195,7 +195,13 @@ contains
     call centroid_natural(x, xi, eta)
     call qm6_b(x, xi, eta, bc, ba, area)
     do is = 1, size(ue, 2)
-       alpha = matmul(transpose(kua), reshape(ue(:, is), [8, 1]))
+       do m = 1, NMODE
+          c = 0.0_wp
+          do i = 1, 8
+             c = c + kua(i, m)*ue(i, is)
+          end do
+          alpha(m, 1) = c
+       end do
        call modes_solve(l, alpha)
        alpha = -alpha
        nres(:, is) = matmul(d, matmul(bc, ue(:, is)) + matmul(ba, alpha(:, 1)))
@@ -428,7 +434,7 @@ contains
        end do
        ke(3*j, 3*j) = ke(3*j, 3*j) + kn
     end do
-    ke = 0.5_wp*(ke + transpose(ke))
+    call make_symmetric(ke)
   end subroutine membrane_drill_stiffness
 
   ! ------------------------------------------------------------------ checks
@@ -791,6 +797,21 @@ contains
     end do
   end function spd_solve
 
+  pure subroutine make_symmetric(k)
+    !! k ← (k + kᵀ)/2 entry by entry, without a temporary (the diagonal as
+    !! it is: (d + d)/2 = d exactly).
+    real(wp), intent(inout) :: k(:, :)
+    real(wp) :: c
+    integer :: i, j
+    do j = 2, size(k, 2)
+       do i = 1, j - 1
+          c = 0.5_wp*(k(i, j) + k(j, i))
+          k(i, j) = c
+          k(j, i) = c
+       end do
+    end do
+  end subroutine make_symmetric
+
   pure subroutine cholesky(a, l)
     !! The lower Cholesky factor l of a small symmetric positive definite a
     !! (its lower triangle read), each sum accumulated from the first term on.
@@ -842,7 +863,6 @@ contains
        end do
     end do
   end subroutine modes_solve
-
 
   ! ------------------------------------------------ stresses at points and nodes
 

@@ -31,7 +31,7 @@ module superjoin_elements_shell
        plane_strain_stiffness, plane_strain_resultants
   use superjoin_elements_plate, only: plate_stiffness, plate_moments, plate_pressure_load, plate_moment_operator
   use superjoin_elements_plate, only: plate_point_moments
-  use superjoin_elements_membrane, only: membrane_point_stresses, initial_strain_t, membrane_forces
+  use superjoin_elements_membrane, only: membrane_point_stresses, initial_strain_t, membrane_forces, make_symmetric
   use superjoin_elements_frame, only: cross
   use superjoin_elements_quadratic, only: plane_props_t, quadratic_stiffness, quadratic_resultants, &
        quadratic_shape_integrals
@@ -258,7 +258,7 @@ contains
     end if
     call flat_stiffness(etype, x, sec, mat, kf, r, xl, h, error, drilling_edges(etype, size(x, 2), drill))
     if (allocated(error)) return
-    ke = to_global(kf, node_maps(etype, r, h))
+    call to_global(kf, node_maps(etype, r, h), ke)
   end subroutine shell_stiffness
 
   pure function shell8_props(sec, mat, etype) result(props)
@@ -641,14 +641,16 @@ contains
     end do
   end function node_maps
 
-  pure function to_global(kf, maps) result(ke)
+  pure subroutine to_global(kf, maps, ke)
     !! K = Aᵀ Kf A with A block diagonal (maps), one node pair at a time
-    !! (each sum in the order of the matrix products it spells out).
+    !! (each sum in the order of the matrix products it spells out), made
+    !! exactly symmetric: (K + Kᵀ)/2.
     real(wp), intent(in) :: kf(:, :), maps(:, :, :)
-    real(wp) :: ke(size(kf, 1), size(kf, 2))
+    real(wp), allocatable, intent(out) :: ke(:, :)
     real(wp) :: t(size(maps, 1), size(maps, 1)), c
     integer :: m, i, j, ri, rj, a, b, k
     m = size(maps, 1)
+    allocate (ke(size(kf, 1), size(kf, 2)))
     do j = 1, size(maps, 3)
        rj = m*(j - 1)
        do i = 1, size(maps, 3)
@@ -677,8 +679,8 @@ contains
           end do
        end do
     end do
-    ke = 0.5_wp*(ke + transpose(ke))
-  end function to_global
+    call make_symmetric(ke)
+  end subroutine to_global
 
   pure subroutine turn_block2(kf, maps, i, j, ke)
     !! to_global's plane case, the 2 × 2 block (i, j): ke_ij = maps_iᵀ kf_ij

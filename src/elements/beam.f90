@@ -103,11 +103,12 @@ contains
     if (.not. is_2d(etype)) p%phiz = 12*p%eiy/(ks(2)*p%length**2)
   end subroutine beam_setup
 
-  pure function local_stiffness(etype, p) result(k)
-    !! Local stiffness (node-major local DOFs) of a beam.
+  pure subroutine local_stiffness(etype, p, k)
+    !! Local stiffness (node-major local DOFs) of a beam in k(1:n, 1:n), n =
+    !! 2 beam_ndof(etype) (the rest of k zero).
     integer, intent(in) :: etype
     type(beam_props_t), intent(in) :: p
-    real(wp), allocatable :: k(:, :)
+    real(wp), intent(out) :: k(2*ND_B33, 2*ND_B33)
     real(wp) :: l, a, bz(4, 4), by(4, 4)
     integer :: iv(4), iw(4)
 
@@ -117,8 +118,8 @@ contains
     else
        bz = hermite_block(p%eiz, l)
     end if
+    k = 0.0_wp
     if (is_2d(etype)) then
-       allocate (k(2*ND_B23, 2*ND_B23), source=0.0_wp)
        a = p%ea/l
        k(1, 1) = a; k(4, 4) = a; k(1, 4) = -a; k(4, 1) = -a
        iv = [2, 3, 5, 6]                ! v1, θz1, v2, θz2
@@ -126,7 +127,6 @@ contains
        return
     end if
 
-    allocate (k(2*ND_B33, 2*ND_B33), source=0.0_wp)
     a = p%ea/l
     k(1, 1) = a; k(7, 7) = a; k(1, 7) = -a; k(7, 1) = -a
     a = p%gj/l
@@ -145,7 +145,7 @@ contains
     by([2, 4], :) = -by([2, 4], :)
     iw = [3, 5, 9, 11]
     k(iw, iw) = by
-  end function local_stiffness
+  end subroutine local_stiffness
 
   pure function hermite_block(ei, l) result(b)
     !! Euler-Bernoulli bending stiffness in (v1, θ1, v2, θ2) with θ = dv/dx.
@@ -175,27 +175,6 @@ contains
     b(:, 3) = c*[-12*one, -6*l, 12*one, -6*l]
     b(:, 4) = c*[6*l, (2 - phi)*l**2, -6*l, (4 + phi)*l**2]
   end function timoshenko_block
-
-  pure function transformation(etype, r) result(t)
-    !! Transformation u_local = t u_global (node-major DOFs) of a beam.
-    integer, intent(in) :: etype
-    real(wp), intent(in) :: r(3, 3)
-    real(wp), allocatable :: t(:, :)
-    integer :: nb, b
-    if (is_2d(etype)) then
-       ! Per node (ux, uy, rz) -> (u, v, θz); the 2D frame has r(3,:) = Z,
-       ! so the block is r itself.
-       allocate (t(2*ND_B23, 2*ND_B23), source=0.0_wp)
-       t(1:3, 1:3) = r
-       t(4:6, 4:6) = r
-    else
-       allocate (t(2*ND_B33, 2*ND_B33), source=0.0_wp)
-       nb = 2*ND_B33/3
-       do b = 0, nb - 1
-          t(3*b + 1:3*b + 3, 3*b + 1:3*b + 3) = r
-       end do
-    end if
-  end function transformation
 
   pure function beam_load_local(etype, length, q) result(fq)
     !! Consistent nodal loads (local axes, node-major local DOFs) of a uniform
@@ -227,19 +206,18 @@ contains
     real(wp), allocatable, intent(out) :: ke(:, :)
     type(error_t), allocatable, intent(out) :: error
     type(beam_props_t) :: p
-    real(wp), allocatable :: kl(:, :)
-    real(wp) :: blk(3, 3)
+    real(wp) :: kl(2*ND_B33, 2*ND_B33), blk(3, 3)
     integer :: ib, jb, nb
 
     call beam_setup(etype, x, sec, mat, p, error)
     if (allocated(error)) return
     ! ke = Tᵀ kl T with T block diagonal in r: rotate 3x3 blocks.
-    kl = local_stiffness(etype, p)
-    nb = size(kl, 1)/3
-    allocate (ke(size(kl, 1), size(kl, 2)))
+    call local_stiffness(etype, p, kl)
+    nb = 2*beam_ndof(etype)/3
+    allocate (ke(3*nb, 3*nb))
     do jb = 0, nb - 1
        do ib = 0, jb
-          blk = matmul(transpose(p%r), matmul(kl(3*ib + 1:3*ib + 3, 3*jb + 1:3*jb + 3), p%r))
+          call turn_block(kl, 3*ib, 3*jb, p%r, blk)
           if (ib == jb) then
              blk = 0.5_wp*(blk + transpose(blk))
           else
@@ -249,6 +227,34 @@ contains
        end do
     end do
   end subroutine beam_stiffness
+
+  pure subroutine turn_block(kl, i0, j0, r, blk)
+    !! blk = rᵀ kl(i0+1:i0+3, j0+1:j0+3) r, each sum accumulated from the first
+    !! term on in the order of the two matrix products.
+    real(wp), intent(in) :: kl(:, :), r(3, 3)
+    integer, intent(in) :: i0, j0
+    real(wp), intent(out) :: blk(3, 3)
+    real(wp) :: t(3, 3), c
+    integer :: a, b, k
+    do b = 1, 3
+       do a = 1, 3
+          c = 0.0_wp
+          do k = 1, 3
+             c = c + kl(i0 + a, j0 + k)*r(k, b)
+          end do
+          t(a, b) = c
+       end do
+    end do
+    do b = 1, 3
+       do a = 1, 3
+          c = 0.0_wp
+          do k = 1, 3
+             c = c + r(k, a)*t(k, b)
+          end do
+          blk(a, b) = c
+       end do
+    end do
+  end subroutine turn_block
 
   pure subroutine beam_end_forces(etype, x, sec, mat, ue, q_local, f, error)
     !! End forces of a beam in local axes: f = k_local u_local - f_eq_local,
@@ -262,9 +268,8 @@ contains
     real(wp), intent(out) :: f(6, 2)
     type(error_t), allocatable, intent(out) :: error
     type(beam_props_t) :: p
-    real(wp), allocatable :: fl(:), ul(:)
-    real(wp) :: ql(3)
-    integer :: nd, b
+    real(wp) :: ql(3), kl(2*ND_B33, 2*ND_B33), ul(2*ND_B33), fl(2*ND_B33), fq(2*ND_B33), c
+    integer :: nd, b, i, j
 
     f = 0.0_wp
     nd = beam_ndof(etype)
@@ -277,11 +282,18 @@ contains
     ql = q_local
     if (is_2d(etype)) ql(3) = 0.0_wp
     ! u_local = T u_global with T block diagonal in r: rotate 3-vectors.
-    allocate (ul(size(ue)))
     do b = 0, size(ue)/3 - 1
        ul(3*b + 1:3*b + 3) = matmul(p%r, ue(3*b + 1:3*b + 3))
     end do
-    fl = matmul(local_stiffness(etype, p), ul) - beam_load_local(etype, p%length, ql)
+    call local_stiffness(etype, p, kl)
+    fq(1:2*nd) = beam_load_local(etype, p%length, ql)
+    do i = 1, 2*nd
+       c = 0.0_wp
+       do j = 1, 2*nd
+          c = c + kl(i, j)*ul(j)
+       end do
+       fl(i) = c - fq(i)
+    end do
     if (is_2d(etype)) then
        f([1, 2, 6], 1) = fl(1:3)
        f([1, 2, 6], 2) = fl(4:6)
@@ -302,7 +314,8 @@ contains
     real(wp), allocatable, intent(out) :: fe(:)
     real(wp), intent(out) :: q_local(3)
     type(error_t), allocatable, intent(out) :: error
-    real(wp) :: r(3, 3), length
+    real(wp) :: r(3, 3), length, g(3), c
+    integer :: a, b, k
 
     q_local = 0.0_wp
     call beam_frame(etype, x, sec, r, length, error)
@@ -312,6 +325,18 @@ contains
        return
     end if
     q_local = matmul(r, w)
-    fe = matmul(transpose(transformation(etype, r)), beam_load_local(etype, length, q_local))
+    ! fe = Tᵀ f_local, T block diagonal in r: each node block rᵀ f (the sums
+    ! of the full product without its products by zero)
+    fe = beam_load_local(etype, length, q_local)
+    do b = 0, size(fe)/3 - 1
+       do a = 1, 3
+          c = 0.0_wp
+          do k = 1, 3
+             c = c + r(k, a)*fe(3*b + k)
+          end do
+          g(a) = c
+       end do
+       fe(3*b + 1:3*b + 3) = g
+    end do
   end subroutine beam_load
 end module superjoin_elements_beam

@@ -79,7 +79,7 @@ module superjoin_elements_membrane
   real(wp), parameter :: NU_MIN = -1.0_wp, NU_MAX = 0.5_wp   !! open interval of Poisson's ratio
   real(wp), parameter :: ISOTROPIC(NSTRAIN) = [1.0_wp, 1.0_wp, 0.0_wp]   !! an isotropic in-plane strain
 
-  public :: membrane_stiffness, membrane_resultants, membrane_drill_stiffness
+  public :: membrane_stiffness, membrane_resultants, membrane_drill_stiffness, membrane_forces
   public :: plane_strain_stiffness, plane_strain_resultants
   public :: plane_stress, plane_strain, check_plane_material
   public :: membrane_point_stresses
@@ -93,7 +93,7 @@ module superjoin_elements_membrane
      real(wp), allocatable :: nodes(:)    !! ε0 extrapolated to the nodes as σ is
   end type initial_strain_t
   public :: membrane_thermal_load, membrane_centroid_weights, membrane_result_operator
-  public :: check_membrane_element, spd_solve
+  public :: check_membrane_element, spd_solve, make_symmetric
 
 contains
 
@@ -126,17 +126,87 @@ contains
     real(wp), intent(in) :: xl(:, :)
     real(wp), intent(in) :: d(NSTRAIN, NSTRAIN)
     real(wp), allocatable :: ke(:, :)
-    real(wp) :: kua(8, NMODE), kaa(NMODE, NMODE), x(2, 4)
+    real(wp) :: kuu(8, 8), kua(8, NMODE), kaa(NMODE, NMODE), x(2, 4), l(NMODE, NMODE)
     if (size(xl, 2) == 3) then
        ke = cst_stiffness(xl, d)
+       call make_symmetric(ke)
     else
        x = xl
-       call qm6_matrices(x, d, ke, kua, kaa)
-       ! Condensation: ke - kua kaa⁻¹ kau.
-       ke = ke - matmul(kua, spd_solve(kaa, transpose(kua)))
+       call qm6_matrices(x, d, kuu, kua, kaa)
+       call qm6_condensed(kuu, kua, kaa, l, ke)
     end if
-    ke = 0.5_wp*(ke + transpose(ke))
   end function stiffness_of
+
+  pure subroutine qm6_condensed(kuu, kua, kaa, l, ke)
+    !! The condensed QM6 stiffness ke = kuu - kua kaa⁻¹ kau, made exactly
+    !! symmetric, and the Cholesky factor l of kaa (for the modes' recovery).
+    real(wp), intent(in) :: kuu(8, 8), kua(8, NMODE), kaa(NMODE, NMODE)
+    real(wp), intent(out) :: l(NMODE, NMODE)
+    real(wp), allocatable, intent(out) :: ke(:, :)
+    real(wp) :: s(NMODE, 8), c
+    integer :: i, j, k
+    call cholesky(kaa, l)
+    s = transpose(kua)
+    call modes_solve(l, s)
+    allocate (ke(8, 8))
+    do j = 1, 8
+       do i = 1, 8
+          c = 0.0_wp
+          do k = 1, NMODE
+             c = c + kua(i, k)*s(k, j)
+          end do
+          ke(i, j) = kuu(i, j) - c
+       end do
+    end do
+    call make_symmetric(ke)
+  end subroutine qm6_condensed
+
+  pure subroutine membrane_forces(xl, t, e, nu, strain_state, ue, ke, nres, error)
+    !! A plane element's stiffness ke(2n, 2n) (membrane_stiffness, or
+    !! plane_strain_stiffness when strain_state) and its resultants nres(3,
+    !! step) at the centroid (membrane_resultants, plane_strain_resultants) of
+    !! every column of ue (element-frame displacements, node-major u, v), the
+    !! element checked and its QM6 matrices formed once: the same numbers.
+    real(wp), intent(in) :: xl(:, :)
+    real(wp), intent(in) :: t, e, nu
+    logical, intent(in) :: strain_state
+    real(wp), intent(in) :: ue(:, :)
+    real(wp), allocatable, intent(out) :: ke(:, :)
+    real(wp), intent(out) :: nres(:, :)
+    type(error_t), allocatable, intent(out) :: error
+    real(wp) :: d(NSTRAIN, NSTRAIN), kuu(8, 8), kua(8, NMODE), kaa(NMODE, NMODE), x(2, 4), l(NMODE, NMODE)
+    real(wp) :: alpha(NMODE, 1), bc(NSTRAIN, 8), ba(NSTRAIN, NMODE), xi, eta, area, c
+    integer :: is, m, i
+
+    nres = 0.0_wp
+    call checked_rigidity(xl, t, e, nu, strain_state, d, error)
+    if (allocated(error)) return
+    if (size(xl, 2) == 3 .or. size(ue, 1) /= 8) then
+       ke = stiffness_of(xl, d)
+       do is = 1, size(ue, 2)
+          call resultants_of(xl, d, ue(:, is), nres(:, is), error)
+          if (allocated(error)) return
+       end do
+       return
+    end if
+    x = xl
+    call qm6_matrices(x, d, kuu, kua, kaa)
+    call qm6_condensed(kuu, kua, kaa, l, ke)
+    call centroid_natural(x, xi, eta)
+    call qm6_b(x, xi, eta, bc, ba, area)
+    do is = 1, size(ue, 2)
+       do m = 1, NMODE
+          c = 0.0_wp
+          do i = 1, 8
+             c = c + kua(i, m)*ue(i, is)
+          end do
+          alpha(m, 1) = c
+       end do
+       call modes_solve(l, alpha)
+       alpha = -alpha
+       nres(:, is) = matmul(d, matmul(bc, ue(:, is)) + matmul(ba, alpha(:, 1)))
+    end do
+  end subroutine membrane_forces
 
   pure subroutine membrane_resultants(xl, t, e, nu, ue, nres, error, eps0)
     !! Membrane resultants nres = (nx, ny, nxy) = t σ at the centroid from the
@@ -181,7 +251,7 @@ contains
     real(wp), intent(in), optional :: eps0(:)
     real(wp) :: kua(8, NMODE), kaa(NMODE, NMODE), x(2, 4), fu(8), fa(NMODE)
     real(wp) :: alpha(NMODE, 1), bc(NSTRAIN, 8), ba(NSTRAIN, NMODE), b3(NSTRAIN, 6), xi, eta, area
-    real(wp), allocatable :: kuu(:, :)
+    real(wp) :: kuu(8, 8)
 
     nres = 0.0_wp
     if (size(ue) /= 2*size(xl, 2)) then
@@ -225,7 +295,7 @@ contains
     type(error_t), allocatable, intent(out) :: error
     real(wp) :: d(NSTRAIN, NSTRAIN), kua(8, NMODE), kaa(NMODE, NMODE), x(2, 4), fu(8), fa(NMODE)
     real(wp) :: b3(NSTRAIN, 6), area
-    real(wp), allocatable :: kuu(:, :)
+    real(wp) :: kuu(8, 8)
     call checked_rigidity(xl, t, e, nu, strain_state, d, error)
     if (allocated(error)) return
     if (size(eps0) /= size(xl, 2)) then
@@ -257,7 +327,7 @@ contains
     type(error_t), allocatable, intent(out) :: error
     real(wp) :: d(NSTRAIN, NSTRAIN), kua(8, NMODE), kaa(NMODE, NMODE), x(2, 4)
     real(wp) :: bc(NSTRAIN, 8), ba(NSTRAIN, NMODE), b3(NSTRAIN, 6), xi, eta, area
-    real(wp), allocatable :: kuu(:, :)
+    real(wp) :: kuu(8, 8)
     call checked_rigidity(xl, t, e, nu, strain_state, d, error)
     if (allocated(error)) return
     if (size(xl, 2) == 3) then
@@ -364,7 +434,7 @@ contains
        end do
        ke(3*j, 3*j) = ke(3*j, 3*j) + kn
     end do
-    ke = 0.5_wp*(ke + transpose(ke))
+    call make_symmetric(ke)
   end subroutine membrane_drill_stiffness
 
   ! ------------------------------------------------------------------ checks
@@ -387,7 +457,7 @@ contains
     real(wp), intent(in) :: t, e, nu
     character(*), intent(in) :: state
     type(error_t), allocatable, intent(out) :: error
-    real(wp) :: area, edge2, lmax2, x(2, 4), bc(NSTRAIN, 8), ba(NSTRAIN, NMODE), jac
+    real(wp) :: area, edge2, lmax2, x(2, 4), jm(2, 2), dn(2, 4), jac
     integer :: n, i, k
 
     n = size(xl, 2)
@@ -419,10 +489,11 @@ contains
     x = xl
     do k = 0, NGAUSS
        if (k == 0) then
-          call qm6_b(x, 0.0_wp, 0.0_wp, bc, ba, jac)
+          call jacobian(x, 0.0_wp, 0.0_wp, jm, dn)
        else
-          call qm6_b(x, XI_GAUSS(k), ETA_GAUSS(k), bc, ba, jac)
+          call jacobian(x, XI_GAUSS(k), ETA_GAUSS(k), jm, dn)
        end if
+       jac = jm(1, 1)*jm(2, 2) - jm(1, 2)*jm(2, 1)
        if (.not. (jac > JACOBIAN_TOL*area/4)) then
           call fatal_error(error, EXIT_DECK, 'non-positive Jacobian (re-entrant or crossed quadrilateral)')
           return
@@ -540,54 +611,105 @@ contains
     !! ba for the incompatible modes (a₁..a₄: u with 1-ξ², 1-η², then v), and det J.
     real(wp), intent(in) :: x(2, 4), xi, eta
     real(wp), intent(out) :: bc(NSTRAIN, 8), ba(NSTRAIN, NMODE), jac
-    real(wp) :: jm(2, 2), j0(2, 2), dn(2, 4), dxy(2, 4), dp(2, 2), pxy(2, 2)
+    real(wp) :: gx(6), gy(6)
+    integer :: i
+
+    call qm6_gradients(x, centre_jacobian(x), xi, eta, gx, gy, jac)
+    bc = 0.0_wp
+    ba = 0.0_wp
+    if (.not. (jac > 0.0_wp)) return
+    do i = 1, 4
+       bc(1, 2*i - 1) = gx(i)
+       bc(2, 2*i) = gy(i)
+       bc(3, 2*i - 1) = gy(i)
+       bc(3, 2*i) = gx(i)
+    end do
+    do i = 1, 2
+       ba(1, i) = gx(4 + i)
+       ba(3, i) = gy(4 + i)
+       ba(2, 2 + i) = gy(4 + i)
+       ba(3, 2 + i) = gx(4 + i)
+    end do
+  end subroutine qm6_b
+
+  pure function centre_jacobian(x) result(j0)
+    !! The Jacobian J₀ of the bilinear map at the centre (ξ = η = 0).
+    real(wp), intent(in) :: x(2, 4)
+    real(wp) :: j0(2, 2), dn(2, 4)
+    call jacobian(x, 0.0_wp, 0.0_wp, j0, dn)
+  end function centre_jacobian
+
+  pure subroutine qm6_gradients(x, j0, xi, eta, gx, gy, jac)
+    !! The Cartesian derivatives (gx, gy) at (ξ, η) of the four bilinear shape
+    !! functions (1..4) and of the incompatible modes 1 - ξ², 1 - η² (5, 6:
+    !! natural derivatives mapped with J₀ and scaled by j₀/j, i.e. adj(J₀)/j),
+    !! and det J; zero derivatives where det J <= 0. The entries of qm6_b's
+    !! bc and ba in closed form: the same operations, the products by zero left out.
+    real(wp), intent(in) :: x(2, 4), j0(2, 2), xi, eta
+    real(wp), intent(out) :: gx(6), gy(6), jac
+    real(wp) :: jm(2, 2), dn(2, 4)
     integer :: i
 
     call jacobian(x, xi, eta, jm, dn)
     jac = jm(1, 1)*jm(2, 2) - jm(1, 2)*jm(2, 1)
-    bc = 0.0_wp
-    ba = 0.0_wp
+    gx = 0.0_wp
+    gy = 0.0_wp
     if (.not. (jac > 0.0_wp)) return
-    dxy = matmul(adjugate(jm), dn)/jac
     do i = 1, 4
-       bc(1, 2*i - 1) = dxy(1, i)
-       bc(2, 2*i) = dxy(2, i)
-       bc(3, 2*i - 1) = dxy(2, i)
-       bc(3, 2*i) = dxy(1, i)
+       gx(i) = (jm(2, 2)*dn(1, i) - jm(1, 2)*dn(2, i))/jac
+       gy(i) = (jm(1, 1)*dn(2, i) - jm(2, 1)*dn(1, i))/jac
     end do
-    ! Modes 1 - ξ² and 1 - η²: natural derivatives, mapped with J₀ and scaled by j₀/j:
-    ! (j₀/j) J₀⁻¹ = adj(J₀)/j.
-    call jacobian(x, 0.0_wp, 0.0_wp, j0, dn)
-    dp(:, 1) = [-2*xi, 0.0_wp]
-    dp(:, 2) = [0.0_wp, -2*eta]
-    pxy = matmul(adjugate(j0), dp)/jac
-    do i = 1, 2
-       ba(1, i) = pxy(1, i)
-       ba(3, i) = pxy(2, i)
-       ba(2, 2 + i) = pxy(2, i)
-       ba(3, 2 + i) = pxy(1, i)
-    end do
-  end subroutine qm6_b
+    gx(5) = (j0(2, 2)*(-2*xi))/jac
+    gy(5) = -(j0(2, 1)*(-2*xi))/jac
+    gx(6) = -(j0(1, 2)*(-2*eta))/jac
+    gy(6) = (j0(1, 1)*(-2*eta))/jac
+  end subroutine qm6_gradients
 
   pure subroutine qm6_matrices(x, d, kuu, kua, kaa)
-    !! Uncondensed QM6 stiffness blocks by 2×2 Gauss (d includes t).
+    !! Uncondensed QM6 stiffness blocks by 2×2 Gauss (d = t D, isotropic:
+    !! d(1:2, 3) = d(3, 1:2) = 0), from the gradients of qm6_gradients: the
+    !! u columns of B are (gx, 0, gy), the v columns (0, gy, gx), so that each
+    !! entry of Bᵀ d B is a sum of two products, accumulated point by point as
+    !! Bᵀ (jac d B) was (the same numbers, without the products by zero).
     real(wp), intent(in) :: x(2, 4), d(NSTRAIN, NSTRAIN)
-    real(wp), allocatable, intent(out) :: kuu(:, :)
-    real(wp), intent(out) :: kua(8, NMODE), kaa(NMODE, NMODE)
-    real(wp) :: bc(NSTRAIN, 8), ba(NSTRAIN, NMODE), db(NSTRAIN, 8), da(NSTRAIN, NMODE), jac
-    integer :: k
+    real(wp), intent(out) :: kuu(8, 8), kua(8, NMODE), kaa(NMODE, NMODE)
+    real(wp) :: gx(6), gy(6), jac, j0(2, 2), du(3, 6), dv(3, 6), k(12, 12)
+    integer :: g, p, q
 
-    allocate (kuu(8, 8), source=0.0_wp)
-    kua = 0.0_wp
-    kaa = 0.0_wp
-    do k = 1, NGAUSS
-       call qm6_b(x, XI_GAUSS(k), ETA_GAUSS(k), bc, ba, jac)
-       db = jac*matmul(d, bc)
-       da = jac*matmul(d, ba)
-       kuu = kuu + matmul(transpose(bc), db)
-       kua = kua + matmul(transpose(bc), da)
-       kaa = kaa + matmul(transpose(ba), da)
+    j0 = centre_jacobian(x)
+    k = 0.0_wp
+    do g = 1, NGAUSS
+       call qm6_gradients(x, j0, XI_GAUSS(g), ETA_GAUSS(g), gx, gy, jac)
+       do q = 1, 6
+          du(1, q) = jac*(d(1, 1)*gx(q))
+          du(2, q) = jac*(d(2, 1)*gx(q))
+          du(3, q) = jac*(d(3, 3)*gy(q))
+          dv(1, q) = jac*(d(1, 2)*gy(q))
+          dv(2, q) = jac*(d(2, 2)*gy(q))
+          dv(3, q) = jac*(d(3, 3)*gx(q))
+       end do
+       do q = 1, 6
+          do p = 1, 6
+             k(p, q) = k(p, q) + (gx(p)*du(1, q) + gy(p)*du(3, q))
+             k(p, 6 + q) = k(p, 6 + q) + (gx(p)*dv(1, q) + gy(p)*dv(3, q))
+             k(6 + p, q) = k(6 + p, q) + (gy(p)*du(2, q) + gx(p)*du(3, q))
+             k(6 + p, 6 + q) = k(6 + p, 6 + q) + (gy(p)*dv(2, q) + gx(p)*dv(3, q))
+          end do
+       end do
     end do
+    ! rows and columns of k: u of nodes 1..4 (1:4) and of the modes (5:6), then v (7:10, 11:12)
+    kuu(1:7:2, 1:7:2) = k(1:4, 1:4)
+    kuu(2:8:2, 1:7:2) = k(7:10, 1:4)
+    kuu(1:7:2, 2:8:2) = k(1:4, 7:10)
+    kuu(2:8:2, 2:8:2) = k(7:10, 7:10)
+    kua(1:7:2, 1:2) = k(1:4, 5:6)
+    kua(2:8:2, 1:2) = k(7:10, 5:6)
+    kua(1:7:2, 3:4) = k(1:4, 11:12)
+    kua(2:8:2, 3:4) = k(7:10, 11:12)
+    kaa(1:2, 1:2) = k(5:6, 5:6)
+    kaa(3:4, 1:2) = k(11:12, 5:6)
+    kaa(1:2, 3:4) = k(5:6, 11:12)
+    kaa(3:4, 3:4) = k(11:12, 11:12)
   end subroutine qm6_matrices
 
   pure subroutine centroid_natural(x, xi, eta)
@@ -663,16 +785,9 @@ contains
     real(wp), intent(in) :: a(:, :), b(:, :)
     real(wp) :: x(size(b, 1), size(b, 2))
     real(wp) :: l(size(a, 1), size(a, 1))
-    integer :: n, i, j
-
+    integer :: n, i
     n = size(a, 1)
-    l = 0.0_wp
-    do j = 1, n
-       l(j, j) = sqrt(a(j, j) - sum(l(j, 1:j - 1)**2))
-       do i = j + 1, n
-          l(i, j) = (a(i, j) - sum(l(i, 1:j - 1)*l(j, 1:j - 1)))/l(j, j)
-       end do
-    end do
+    call cholesky(a, l)
     x = b
     do i = 1, n            ! L y = b
        x(i, :) = (x(i, :) - matmul(l(i, 1:i - 1), x(1:i - 1, :)))/l(i, i)
@@ -681,6 +796,73 @@ contains
        x(i, :) = (x(i, :) - matmul(l(i + 1:n, i), x(i + 1:n, :)))/l(i, i)
     end do
   end function spd_solve
+
+  pure subroutine make_symmetric(k)
+    !! k ← (k + kᵀ)/2 entry by entry, without a temporary (the diagonal as
+    !! it is: (d + d)/2 = d exactly).
+    real(wp), intent(inout) :: k(:, :)
+    real(wp) :: c
+    integer :: i, j
+    do j = 2, size(k, 2)
+       do i = 1, j - 1
+          c = 0.5_wp*(k(i, j) + k(j, i))
+          k(i, j) = c
+          k(j, i) = c
+       end do
+    end do
+  end subroutine make_symmetric
+
+  pure subroutine cholesky(a, l)
+    !! The lower Cholesky factor l of a small symmetric positive definite a
+    !! (its lower triangle read), each sum accumulated from the first term on.
+    real(wp), intent(in) :: a(:, :)
+    real(wp), intent(out) :: l(:, :)
+    real(wp) :: c
+    integer :: n, i, j, k
+    n = size(a, 1)
+    l = 0.0_wp
+    do j = 1, n
+       c = 0.0_wp
+       do k = 1, j - 1
+          c = c + l(j, k)**2
+       end do
+       l(j, j) = sqrt(a(j, j) - c)
+       do i = j + 1, n
+          c = 0.0_wp
+          do k = 1, j - 1
+             c = c + l(i, k)*l(j, k)
+          end do
+          l(i, j) = (a(i, j) - c)/l(j, j)
+       end do
+    end do
+  end subroutine cholesky
+
+  pure subroutine modes_solve(l, x)
+    !! x ← kaa⁻¹ x for QM6's four modes, l the Cholesky factor of kaa, column
+    !! by column (L y = x, then Lᵀ x = y): spd_solve's operations in the same
+    !! order, the size known to the compiler (its loops unrolled; 3× fewer
+    !! instructions than the general solve).
+    real(wp), intent(in) :: l(NMODE, NMODE)
+    real(wp), intent(inout) :: x(:, :)
+    real(wp) :: c
+    integer :: i, j, k
+    do j = 1, size(x, 2)
+       do i = 1, NMODE
+          c = 0.0_wp
+          do k = 1, i - 1
+             c = c + l(i, k)*x(k, j)
+          end do
+          x(i, j) = (x(i, j) - c)/l(i, i)
+       end do
+       do i = NMODE, 1, -1
+          c = 0.0_wp
+          do k = i + 1, NMODE
+             c = c + l(k, i)*x(k, j)
+          end do
+          x(i, j) = (x(i, j) - c)/l(i, i)
+       end do
+    end do
+  end subroutine modes_solve
 
   ! ------------------------------------------------ stresses at points and nodes
 
@@ -708,7 +890,7 @@ contains
     real(wp) :: d(NSTRAIN, NSTRAIN), kua(8, NMODE), kaa(NMODE, NMODE), x(2, 4), fu(8), fa(NMODE)
     real(wp) :: alpha(NMODE, 1), bc(NSTRAIN, 8), ba(NSTRAIN, NMODE), b3(NSTRAIN, 6), jac, area
     real(wp) :: ep(NGAUSS)
-    real(wp), allocatable :: kuu(:, :)
+    real(wp) :: kuu(8, 8)
     integer :: k, n
 
     n = size(xl, 2)

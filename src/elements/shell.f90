@@ -31,7 +31,7 @@ module superjoin_elements_shell
        plane_strain_stiffness, plane_strain_resultants
   use superjoin_elements_plate, only: plate_stiffness, plate_moments, plate_pressure_load, plate_moment_operator
   use superjoin_elements_plate, only: plate_point_moments
-  use superjoin_elements_membrane, only: membrane_point_stresses, initial_strain_t
+  use superjoin_elements_membrane, only: membrane_point_stresses, initial_strain_t, membrane_forces, make_symmetric
   use superjoin_elements_frame, only: cross
   use superjoin_elements_quadratic, only: plane_props_t, quadratic_stiffness, quadratic_resultants, &
        quadratic_shape_integrals
@@ -205,7 +205,7 @@ contains
     else
        nrm = cross(x(:, 2) - x(:, 1), x(:, 3) - x(:, 1))
     end if
-    size_e = maxval(abs(x - spread(x(:, 1), 2, n)))
+    size_e = node_extent(x, 3)
     ! |n| <= eps size², compared without squaring the size (coordinates near
     ! the top of the floating-point range would overflow)
     flat = size_e > 0.0_wp
@@ -258,7 +258,7 @@ contains
     end if
     call flat_stiffness(etype, x, sec, mat, kf, r, xl, h, error, drilling_edges(etype, size(x, 2), drill))
     if (allocated(error)) return
-    ke = to_global(kf, node_maps(etype, r, h))
+    call to_global(kf, node_maps(etype, r, h), ke)
   end subroutine shell_stiffness
 
   pure function shell8_props(sec, mat, etype) result(props)
@@ -335,6 +335,10 @@ contains
        call shell8_forces(etype, x, sec, mat, ue, res, fg, forces, error)
        return
     end if
+    if (is_plane_type(etype) .and. .not. is_quadratic_plane_type(etype)) then
+       call plane_forces(etype, x, sec, mat, ue, res, fg, forces, error)
+       return
+    end if
     edges = drilling_edges(etype, size(x, 2), drill)
     if (forces) then
        call flat_stiffness(etype, x, sec, mat, kf, r, xl, h, error, edges)
@@ -353,6 +357,35 @@ contains
        if (allocated(error)) return
     end do
   end subroutine shell_forces
+
+  pure subroutine plane_forces(etype, x, sec, mat, ue, res, fg, forces, error)
+    !! shell_forces of a CPS3, CPS4, CPE3 or CPE4: the element frame, checks
+    !! and matrices formed once for the stiffness and the resultants of all
+    !! steps (membrane_forces).
+    integer, intent(in) :: etype
+    real(wp), intent(in) :: x(:, :)
+    type(section_t), intent(in) :: sec
+    type(material_t), intent(in) :: mat
+    real(wp), intent(in) :: ue(:, :)
+    real(wp), intent(inout) :: res(:, :), fg(:, :)
+    logical, intent(in) :: forces
+    type(error_t), allocatable, intent(out) :: error
+    real(wp), allocatable :: kf(:, :), maps(:, :, :), d(:, :)
+    real(wp) :: r(3, 3), xl(2, size(x, 2)), h(size(x, 2))
+    integer :: is
+    call setup(etype, x, r, xl, h, error)
+    if (allocated(error)) return
+    maps = node_maps(etype, r, h)
+    allocate (d(size(ue, 1), size(ue, 2)))
+    do is = 1, size(ue, 2)
+       d(:, is) = to_local(maps, ue(:, is))
+    end do
+    call membrane_forces(xl, sec%thickness, mat%e, mat%nu, is_plane_strain_type(etype), d, kf, res(1:3, :), error)
+    if (allocated(error) .or. .not. forces) return
+    do is = 1, size(ue, 2)
+       fg(:, is) = to_global_vector(maps, matmul(kf, d(:, is)))
+    end do
+  end subroutine plane_forces
 
   pure subroutine shell_result_operator(etype, x, sec, mat, op, error, drill)
     !! The resultants' operator of an element: op(6, ndof) with res = op ue
@@ -608,22 +641,80 @@ contains
     end do
   end function node_maps
 
-  pure function to_global(kf, maps) result(ke)
-    !! K = Aᵀ Kf A with A block diagonal (maps), one node pair at a time.
+  pure subroutine to_global(kf, maps, ke)
+    !! K = Aᵀ Kf A with A block diagonal (maps), one node pair at a time
+    !! (each sum in the order of the matrix products it spells out), made
+    !! exactly symmetric: (K + Kᵀ)/2.
     real(wp), intent(in) :: kf(:, :), maps(:, :, :)
-    real(wp) :: ke(size(kf, 1), size(kf, 2))
-    integer :: m, i, j, ri, rj
+    real(wp), allocatable, intent(out) :: ke(:, :)
+    real(wp) :: t(size(maps, 1), size(maps, 1)), c
+    integer :: m, i, j, ri, rj, a, b, k
     m = size(maps, 1)
+    allocate (ke(size(kf, 1), size(kf, 2)))
     do j = 1, size(maps, 3)
        rj = m*(j - 1)
        do i = 1, size(maps, 3)
           ri = m*(i - 1)
-          ke(ri + 1:ri + m, rj + 1:rj + m) = matmul(transpose(maps(:, :, i)), &
-               matmul(kf(ri + 1:ri + m, rj + 1:rj + m), maps(:, :, j)))
+          if (m == 2) then
+             call turn_block2(kf, maps, i, j, ke)
+             cycle
+          end if
+          do b = 1, m
+             do a = 1, m
+                c = 0.0_wp
+                do k = 1, m
+                   c = c + kf(ri + a, rj + k)*maps(k, b, j)
+                end do
+                t(a, b) = c
+             end do
+          end do
+          do b = 1, m
+             do a = 1, m
+                c = 0.0_wp
+                do k = 1, m
+                   c = c + maps(k, a, i)*t(k, b)
+                end do
+                ke(ri + a, rj + b) = c
+             end do
+          end do
        end do
     end do
-    ke = 0.5_wp*(ke + transpose(ke))
-  end function to_global
+    call make_symmetric(ke)
+  end subroutine to_global
+
+  pure subroutine turn_block2(kf, maps, i, j, ke)
+    !! to_global's plane case, the 2 × 2 block (i, j): ke_ij = maps_iᵀ kf_ij
+    !! maps_j, its sums of two products written out.
+    real(wp), intent(in) :: kf(:, :), maps(:, :, :)
+    integer, intent(in) :: i, j
+    real(wp), intent(inout) :: ke(:, :)
+    real(wp) :: t11, t21, t12, t22
+    integer :: ri, rj
+    ri = 2*(i - 1)
+    rj = 2*(j - 1)
+    t11 = kf(ri + 1, rj + 1)*maps(1, 1, j) + kf(ri + 1, rj + 2)*maps(2, 1, j)
+    t21 = kf(ri + 2, rj + 1)*maps(1, 1, j) + kf(ri + 2, rj + 2)*maps(2, 1, j)
+    t12 = kf(ri + 1, rj + 1)*maps(1, 2, j) + kf(ri + 1, rj + 2)*maps(2, 2, j)
+    t22 = kf(ri + 2, rj + 1)*maps(1, 2, j) + kf(ri + 2, rj + 2)*maps(2, 2, j)
+    ke(ri + 1, rj + 1) = maps(1, 1, i)*t11 + maps(2, 1, i)*t21
+    ke(ri + 2, rj + 1) = maps(1, 2, i)*t11 + maps(2, 2, i)*t21
+    ke(ri + 1, rj + 2) = maps(1, 1, i)*t12 + maps(2, 1, i)*t22
+    ke(ri + 2, rj + 2) = maps(1, 2, i)*t12 + maps(2, 2, i)*t22
+  end subroutine turn_block2
+
+  pure real(wp) function node_extent(x, m) result(size_e)
+    !! The size of an element: the largest |x(k, i) - x(k, 1)| over its nodes
+    !! i and the first m coordinates k.
+    real(wp), intent(in) :: x(:, :)
+    integer, intent(in) :: m
+    integer :: i, k
+    size_e = 0.0_wp
+    do i = 1, size(x, 2)
+       do k = 1, m
+          size_e = max(size_e, abs(x(k, i) - x(k, 1)))
+       end do
+    end do
+  end function node_extent
 
   pure function to_local(maps, u) result(d)
     !! Element-frame DOFs d = A u.
@@ -643,7 +734,12 @@ contains
     integer :: m, i
     m = size(maps, 1)
     do i = 1, size(maps, 3)
-       g(m*(i - 1) + 1:m*i) = matmul(transpose(maps(:, :, i)), f(m*(i - 1) + 1:m*i))
+       if (m == 2) then   ! sums of two terms, in either order the same
+          g(2*i - 1) = maps(1, 1, i)*f(2*i - 1) + maps(2, 1, i)*f(2*i)
+          g(2*i) = maps(1, 2, i)*f(2*i - 1) + maps(2, 2, i)*f(2*i)
+       else
+          g(m*(i - 1) + 1:m*i) = matmul(transpose(maps(:, :, i)), f(m*(i - 1) + 1:m*i))
+       end if
     end do
   end function to_global_vector
 
@@ -742,7 +838,7 @@ contains
        return
     end if
     if (is_plane_type(etype)) then
-       size_e = maxval(abs(x(1:2, :) - spread(x(1:2, 1), 2, size(x, 2))))
+       size_e = node_extent(x, 2)
        if (maxval(abs(x(3, :))) > PLANE_TOL*size_e) then
           call fatal_error(error, EXIT_DECK, 'plane element out of the XY plane (z must be 0)')
           return

@@ -35,6 +35,7 @@ module superjoin_analysis_level_solver
   use superjoin_solvers_solver, only: boundary_block, subtract_bi, subtract_ib
   use superjoin_solvers_matrix_market, only: assemble_upper
   use superjoin_utils_strings, only: itoa
+  use superjoin_utils_sorting, only: sort_index
   use superjoin_analysis_levels, only: level_plan_t
   implicit none (type, external)
   private
@@ -51,6 +52,13 @@ module superjoin_analysis_level_solver
     !! col(ptr(i):ptr(i+1)-1), their entries at pos(...) of the matrix.
      integer(i8), allocatable :: ptr(:), col(:), pos(:)
   end type rows_t
+
+  type :: touch_t
+    !! Per column c: the groups whose boundary holds it, grp(ptr(c):ptr(c+1)-1),
+    !! and its place in each group's boundary, at(...).
+     integer(i8), allocatable :: ptr(:), at(:)
+     integer, allocatable :: grp(:)
+  end type touch_t
 
   type :: kind_t
     !! Groups alike: one local matrix, one factor of its interior, one Schur complement.
@@ -469,20 +477,20 @@ contains
   subroutine next_matrix(self, range, m, next, gone, compact)
     !! next: m without the interiors of groups range(1)..range(2), each
     !! group's corr added on its boundary; compact: numbered on the columns
-    !! left only (else the eliminated ones keep an empty place).
+    !! left only (else the eliminated ones keep an empty place). Built column
+    !! by column in place (no triplets): per column the entries of m left,
+    !! then each group's corr in the order of the groups, summed in that order.
     class(level_solver_t), intent(in) :: self
     integer, intent(in) :: range(2)
     type(sparse_sym_t), intent(in) :: m
     type(sparse_sym_t), intent(out) :: next
     logical, intent(inout) :: gone(:)
     logical, intent(in) :: compact
-    integer(i8), allocatable :: ti(:), tj(:), new(:)
-    real(wp), allocatable :: tv(:)
-    integer(i8) :: ne, j, p, r, c, n
-    integer :: k, lo, hi
-    lo = range(1)
-    hi = range(2)
-    do k = lo, hi
+    type(touch_t) :: t
+    integer(i8), allocatable :: new(:), slot(:)
+    integer(i8) :: j, n, nz
+    integer :: k, pass
+    do k = range(1), range(2)
        gone(self%g(k)%inner) = .true.
     end do
     allocate (new(m%n))
@@ -491,41 +499,120 @@ contains
        if (.not. gone(j) .or. .not. compact) n = n + 1
        new(j) = n
     end do
-    ne = 0
-    do k = lo, hi
-       n = size(self%g(k)%bnd, kind=i8)
-       ne = ne + n*(n + 1)/2
+    call touches(self, range, m%n, t)
+    next%n = n
+    allocate (next%colptr(n + 1), slot(m%n), source=0_i8)
+    allocate (next%rowind(0), next%val(0))
+    do pass = 1, 2   ! count, then fill
+       nz = 0
+       next%colptr(1) = 1
+       do j = 1, m%n
+          if (gone(j) .and. compact) cycle
+          call next_column(self, m, t, gone, new, j, pass == 2, slot, next, nz)
+          next%colptr(new(j) + 1) = nz + 1
+       end do
+       if (pass == 1) then
+          deallocate (next%rowind, next%val)
+          allocate (next%rowind(nz), next%val(nz))
+       end if
     end do
-    do j = 1, m%n
-       if (gone(j)) cycle
-       ne = ne + count(.not. gone(m%rowind(m%colptr(j):m%colptr(j + 1) - 1)), kind=i8)
-    end do
-    allocate (ti(ne), tj(ne), tv(ne))
-    ne = 0
-    do j = 1, m%n
-       if (gone(j)) cycle
-       do p = m%colptr(j), m%colptr(j + 1) - 1
-          if (gone(m%rowind(p))) cycle
-          ne = ne + 1
-          ti(ne) = new(m%rowind(p))
-          tj(ne) = new(j)
-          tv(ne) = m%val(p)
+  end subroutine next_matrix
+
+  subroutine touches(self, range, n, t)
+    !! t: per column of the current matrix, the groups of range(1)..range(2)
+    !! whose boundary holds it (in the order of the groups) and its place there.
+    class(level_solver_t), intent(in) :: self
+    integer, intent(in) :: range(2)
+    integer(i8), intent(in) :: n
+    type(touch_t), intent(out) :: t
+    integer(i8), allocatable :: fill(:)
+    integer(i8) :: c, b
+    integer :: k
+    allocate (t%ptr(n + 1), source=0_i8)
+    do k = range(1), range(2)
+       do c = 1, size(self%g(k)%bnd, kind=i8)
+          b = self%g(k)%bnd(c)
+          t%ptr(b + 1) = t%ptr(b + 1) + 1
        end do
     end do
-    do k = lo, hi
-       associate (b => self%g(k)%bnd, corr => self%kinds(self%g(k)%kind)%corr)
-         do c = 1, size(b, kind=i8)
-            do r = 1, c
-               ne = ne + 1
-               ti(ne) = new(b(r))
-               tj(ne) = new(b(c))
-               tv(ne) = corr(r, c)
-            end do
+    t%ptr(1) = 1
+    do c = 1, n
+       t%ptr(c + 1) = t%ptr(c + 1) + t%ptr(c)
+    end do
+    allocate (t%grp(t%ptr(n + 1) - 1), t%at(t%ptr(n + 1) - 1))
+    fill = t%ptr(1:n)
+    do k = range(1), range(2)
+       do c = 1, size(self%g(k)%bnd, kind=i8)
+          b = self%g(k)%bnd(c)
+          t%grp(fill(b)) = k
+          t%at(fill(b)) = c
+          fill(b) = fill(b) + 1
+       end do
+    end do
+  end subroutine touches
+
+  subroutine next_column(self, m, t, gone, new, j, fill, slot, next, nz)
+    !! Column j of the next matrix (next_matrix): its diagonal, m's entries
+    !! on rows left, each touching group's corr on the boundary rows up to j;
+    !! counted (nz advanced), and with fill its rows ascending and values
+    !! stored. slot: work, zero on entry and on return.
+    class(level_solver_t), intent(in) :: self
+    type(sparse_sym_t), intent(in) :: m
+    type(touch_t), intent(in) :: t
+    logical, intent(in) :: gone(:)
+    integer(i8), intent(in) :: new(:), j
+    logical, intent(in) :: fill
+    integer(i8), intent(inout) :: slot(:)
+    type(sparse_sym_t), intent(inout) :: next
+    integer(i8), intent(inout) :: nz
+    integer(i8) :: p, first, r, q
+    integer, allocatable :: order(:)
+    integer :: i
+    first = nz + 1
+    do p = m%colptr(j), m%colptr(j + 1) - 1   ! (an eliminated column keeps its empty diagonal only)
+       if (.not. (gone(m%rowind(p)) .or. gone(j))) call add(m%rowind(p), m%val(p))
+    end do
+    do q = t%ptr(j), t%ptr(j + 1) - 1
+       associate (b => self%g(t%grp(q))%bnd, corr => self%kinds(self%g(t%grp(q))%kind)%corr, c => t%at(q))
+         do r = 1, c
+            call add(b(r), corr(r, c))
          end do
        end associate
     end do
-    call assemble_upper(new(m%n), ti, tj, tv, next)
-  end subroutine next_matrix
+    if (slot(j) == 0) call add(j, 0.0_wp)   ! the diagonal, present even when empty
+    do p = first, nz   ! slot back to zero
+       if (fill) slot(next%rowind(p)) = 0
+    end do
+    if (.not. fill) then
+       slot(m%rowind(m%colptr(j):m%colptr(j + 1) - 1)) = 0
+       do q = t%ptr(j), t%ptr(j + 1) - 1
+          slot(self%g(t%grp(q))%bnd(1:t%at(q))) = 0
+       end do
+       slot(j) = 0
+       return
+    end if
+    order = [(i, i=1, int(nz - first + 1))]
+    call sort_index(next%rowind(first:nz), order)
+    next%rowind(first:nz) = next%rowind(first - 1 + order)
+    next%val(first:nz) = next%val(first - 1 + order)
+    next%rowind(first:nz) = new(next%rowind(first:nz))
+  contains
+    subroutine add(row, v)
+      !! One entry (row, j): a new place in the column, or summed onto its place.
+      integer(i8), intent(in) :: row
+      real(wp), intent(in) :: v
+      if (slot(row) == 0) then
+         nz = nz + 1
+         slot(row) = nz
+         if (fill) then
+            next%rowind(nz) = row
+            next%val(nz) = v
+         end if
+      else if (fill) then
+         next%val(slot(row)) = next%val(slot(row)) + v
+      end if
+    end subroutine add
+  end subroutine next_column
 
   subroutine factor_top(self, a, error)
     !! The top system a (on self%top_cols), factored by the solver asked for.

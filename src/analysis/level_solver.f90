@@ -33,7 +33,6 @@ module superjoin_analysis_level_solver
   use superjoin_model_notes, only: note
   use superjoin_solvers, only: linear_solver_t, sparse_sym_t, new_solver, cholmod_solver_t
   use superjoin_solvers_solver, only: boundary_block, subtract_bi, subtract_ib
-  use superjoin_solvers_matrix_market, only: assemble_upper
   use superjoin_utils_strings, only: itoa
   use superjoin_utils_sorting, only: sort_index
   use superjoin_analysis_levels, only: level_plan_t
@@ -46,12 +45,6 @@ module superjoin_analysis_level_solver
      integer(i8), allocatable :: bnd(:)     !! boundary columns, ascending
      integer :: kind = 0
   end type member_t
-
-  type :: rows_t
-    !! The upper triangle of a matrix by rows: row i's columns j > i are
-    !! col(ptr(i):ptr(i+1)-1), their entries at pos(...) of the matrix.
-     integer(i8), allocatable :: ptr(:), col(:), pos(:)
-  end type rows_t
 
   type :: touch_t
     !! Per column c: the groups whose boundary holds it, grp(ptr(c):ptr(c+1)-1),
@@ -212,25 +205,19 @@ contains
     logical, intent(inout) :: gone(:)
     logical, intent(out) :: ok
     type(error_t), allocatable, intent(out) :: error
-    type(rows_t) :: rows
     integer, allocatable :: owner(:)
     integer :: k, first_kind, lo, hi
     lo = range(1)
     hi = range(2)
-    call upper_rows(m, rows)
     allocate (owner(m%n), source=0)
     do k = lo, hi
        owner(self%plan%groups(k)%inner) = k
     end do
-    ok = .true.
-    do k = lo, hi
-       self%g(k)%inner = self%plan%groups(k)%inner
-       call boundary_of(m, rows, owner, k, self%g(k), ok)
-       if (.not. ok) return
-    end do
+    call level_boundaries(self, range, m, owner, ok)
+    if (.not. ok) return
     first_kind = self%nkind + 1
     do k = lo, hi
-       call assign_kind(self, m, rows, k, first_kind)
+       call assign_kind(self, m, k, first_kind)
     end do
     do k = first_kind, self%nkind
        call factor_kind(self%kinds(k), self%inner_name, self%g(self%kinds(k)%members(1))%inner, &
@@ -240,124 +227,151 @@ contains
     call next_matrix(self, range, m, next, gone, hi == size(self%g))
   end subroutine eliminate_level
 
-  subroutine upper_rows(m, rows)
-    !! The upper triangle of m by rows (rows_t).
+  subroutine level_boundaries(self, range, m, owner, ok)
+    !! The boundary of each group range(1)..range(2): the columns m couples to
+    !! its interior outside it (ascending), from one pass over m (owner: the
+    !! group of each interior column, 0 elsewhere). ok = .false. when the
+    !! interiors of two groups touch.
+    class(level_solver_t), intent(inout) :: self
+    integer, intent(in) :: range(2)
     type(sparse_sym_t), intent(in) :: m
-    type(rows_t), intent(out) :: rows
-    integer(i8) :: j, p, i
-    allocate (rows%ptr(m%n + 1), source=0_i8)
-    do p = 1, m%nnz()
-       rows%ptr(m%rowind(p) + 1) = rows%ptr(m%rowind(p) + 1) + 1
-    end do
-    rows%ptr(1) = 1
-    do i = 1, m%n
-       rows%ptr(i + 1) = rows%ptr(i + 1) + rows%ptr(i)
-    end do
-    allocate (rows%col(m%nnz()), rows%pos(m%nnz()))
-    do j = 1, m%n
-       do p = m%colptr(j), m%colptr(j + 1) - 1
-          i = m%rowind(p)
-          rows%col(rows%ptr(i)) = j
-          rows%pos(rows%ptr(i)) = p
-          rows%ptr(i) = rows%ptr(i) + 1
-       end do
-    end do
-    do i = m%n, 1, -1
-       rows%ptr(i + 1) = rows%ptr(i)
-    end do
-    rows%ptr(1) = 1
-  end subroutine upper_rows
-
-  subroutine boundary_of(m, rows, owner, k, g, ok)
-    !! g%bnd: the columns m couples to g's interior outside it (ascending).
-    !! ok = .false. when one of them is the interior of another group of the level.
-    type(sparse_sym_t), intent(in) :: m
-    type(rows_t), intent(in) :: rows
-    integer, intent(in) :: owner(:), k
-    type(member_t), intent(inout) :: g
-    logical, intent(inout) :: ok
+    integer, intent(in) :: owner(:)
+    logical, intent(out) :: ok
+    integer(i8), allocatable :: ptr(:), col(:), at(:)
     logical, allocatable :: mark(:)
-    integer(i8) :: c, p, r, t
+    integer(i8) :: j, p, r
+    integer :: k, pass
+    ok = .true.
+    allocate (ptr(range(1):range(2) + 1), source=0_i8)
+    do pass = 1, 2   ! count the couplings per group, then list them
+       do j = 1, m%n
+          do p = m%colptr(j), m%colptr(j + 1) - 1
+             r = m%rowind(p)
+             if (owner(r) == owner(j)) cycle
+             if (owner(r) /= 0 .and. owner(j) /= 0) ok = .false.
+             if (owner(r) /= 0) call couple(owner(r), j)
+             if (owner(j) /= 0) call couple(owner(j), r)
+          end do
+       end do
+       if (pass == 1) then
+          ptr(range(1)) = 1
+          do k = range(1), range(2)
+             ptr(k + 1) = ptr(k + 1) + ptr(k)
+          end do
+          allocate (col(ptr(range(2) + 1) - 1))
+          at = ptr
+       end if
+    end do
+    if (.not. ok) return
     allocate (mark(m%n), source=.false.)
-    do t = 1, size(g%inner, kind=i8)
-       c = g%inner(t)
-       do p = m%colptr(c), m%colptr(c + 1) - 1
-          mark(m%rowind(p)) = .true.
-       end do
-       do p = rows%ptr(c), rows%ptr(c + 1) - 1
-          mark(rows%col(p)) = .true.
-       end do
+    do k = range(1), range(2)
+       self%g(k)%inner = self%plan%groups(k)%inner
+       mark(col(ptr(k):ptr(k + 1) - 1)) = .true.
+       self%g(k)%bnd = pack([(r, r=1_i8, m%n)], mark)
+       mark(col(ptr(k):ptr(k + 1) - 1)) = .false.
     end do
-    do r = 1, m%n
-       if (.not. mark(r) .or. owner(r) == k) cycle
-       if (owner(r) /= 0) ok = .false.
-    end do
-    mark(g%inner) = .false.
-    g%bnd = pack([(r, r=1_i8, m%n)], mark)
-  end subroutine boundary_of
+  contains
+    subroutine couple(k, c)
+      !! Column c is coupled to group k's interior.
+      integer, intent(in) :: k
+      integer(i8), intent(in) :: c
+      if (pass == 1) then
+         ptr(k + 1) = ptr(k + 1) + 1
+      else
+         col(at(k)) = c
+         at(k) = at(k) + 1
+      end if
+    end subroutine couple
+  end subroutine level_boundaries
 
-  subroutine local_matrix(m, rows, g, with_bb, a)
+  subroutine local_matrix(m, g, with_bb, a)
     !! a: m on g's columns, interior first then boundary (upper triangle),
     !! both in ascending global order: a_II and a_IB, and a_BB if with_bb
-    !! (else its diagonal zero).
+    !! (else its diagonal zero). Built in place from m's columns of the group
+    !! alone: a boundary column b holds the interior rows above b (m's column
+    !! b), then the interior columns after b (their rows b, met while the
+    !! interior columns are taken in order), then a_BB; the local numbering
+    !! keeps the global order, so every column's rows ascend.
     type(sparse_sym_t), intent(in) :: m
-    type(rows_t), intent(in) :: rows
     type(member_t), intent(in) :: g
     logical, intent(in) :: with_bb
     type(sparse_sym_t), intent(out) :: a
-    integer(i8), allocatable :: loc(:), ti(:), tj(:)
-    real(wp), allocatable :: tv(:)
-    integer(i8) :: t, ni, nloc, ne, pass
+    integer(i8), allocatable :: loc(:), at(:)
+    integer(i8) :: t, ni, nloc, p, r, c
     ni = size(g%inner, kind=i8)
     nloc = ni + size(g%bnd, kind=i8)
     allocate (loc(m%n), source=0_i8)
     loc(g%inner) = [(t, t=1_i8, ni)]
     loc(g%bnd) = [(t, t=ni + 1_i8, nloc)]
-    allocate (ti(0), tj(0), tv(0))
-    do pass = 1, 2   ! count, then fill
-       ne = 0
-       do t = 1, ni   ! a_II and a_IB: the columns and the rows of the interior
-          call take(g%inner(t), .true.)
+    a%n = nloc
+    allocate (a%colptr(nloc + 1), source=0_i8)
+    do t = 1, nloc   ! count: a%colptr(t + 1) = the entries of column t
+       c = column_of(t)
+       do p = m%colptr(c), m%colptr(c + 1) - 1
+          r = loc(m%rowind(p))
+          if (r == 0) cycle
+          if (r <= ni .or. (t > ni .and. with_bb)) then
+             a%colptr(t + 1) = a%colptr(t + 1) + 1
+          else if (t <= ni) then   ! (row b, interior column c): boundary column r
+             a%colptr(r + 1) = a%colptr(r + 1) + 1
+          end if
        end do
+       if (.not. has_diagonal(c) .or. (t > ni .and. .not. with_bb)) a%colptr(t + 1) = a%colptr(t + 1) + 1
+    end do
+    a%colptr(1) = 1
+    do t = 1, nloc
+       a%colptr(t + 1) = a%colptr(t + 1) + a%colptr(t)
+    end do
+    allocate (a%rowind(a%colptr(nloc + 1) - 1), a%val(a%colptr(nloc + 1) - 1))
+    at = a%colptr(1:nloc)
+    do t = ni + 1, nloc   ! boundary columns: the interior rows above them
+       c = column_of(t)
+       do p = m%colptr(c), m%colptr(c + 1) - 1
+          r = loc(m%rowind(p))
+          if (r >= 1 .and. r <= ni) call put(r, t, m%val(p))
+       end do
+    end do
+    do t = 1, ni   ! interior columns, in order: a_II, and the boundary columns' interior rows below
+       c = column_of(t)
+       do p = m%colptr(c), m%colptr(c + 1) - 1
+          r = loc(m%rowind(p))
+          if (r >= 1 .and. r <= ni) call put(r, t, m%val(p))
+          if (r > ni) call put(t, r, m%val(p))
+       end do
+       if (.not. has_diagonal(c)) call put(t, t, 0.0_wp)
+    end do
+    do t = ni + 1, nloc   ! a_BB (or the boundary's zero diagonal)
+       c = column_of(t)
        if (with_bb) then
-          do t = 1, size(g%bnd, kind=i8)
-             call take(g%bnd(t), .false.)
+          do p = m%colptr(c), m%colptr(c + 1) - 1
+             if (loc(m%rowind(p)) > ni) call put(loc(m%rowind(p)), t, m%val(p))
           end do
        end if
-       if (pass == 1) then
-          deallocate (ti, tj, tv)
-          allocate (ti(ne), tj(ne), tv(ne))
-       end if
+       if (.not. has_diagonal(c) .or. .not. with_bb) call put(t, t, 0.0_wp)
     end do
-    call assemble_upper(nloc, ti, tj, tv, a)
   contains
-    subroutine take(c, interior)
-      !! The entries of column c with a row in a (for a boundary c: a boundary
-      !! row), and for an interior c those of its row with a boundary column.
-      integer(i8), intent(in) :: c
-      logical, intent(in) :: interior
-      integer(i8) :: p, r
-      do p = m%colptr(c), m%colptr(c + 1) - 1
-         r = loc(m%rowind(p))
-         if (r == 0 .or. (.not. interior .and. r <= ni)) cycle
-         call put(r, loc(c), m%val(p))
-      end do
-      if (.not. interior) return
-      do p = rows%ptr(c), rows%ptr(c + 1) - 1
-         r = loc(rows%col(p))
-         if (r <= ni) cycle
-         call put(r, loc(c), m%val(rows%pos(p)))
-      end do
-    end subroutine take
-    subroutine put(r, c, v)
-      !! One entry (upper triangle of a).
-      integer(i8), intent(in) :: r, c
+    integer(i8) function column_of(t)
+      !! The global column of local column t.
+      integer(i8), intent(in) :: t
+      if (t <= ni) then
+         column_of = g%inner(t)
+      else
+         column_of = g%bnd(t - ni)
+      end if
+    end function column_of
+    logical function has_diagonal(col)
+      !! m's column col ends on its diagonal.
+      integer(i8), intent(in) :: col
+      has_diagonal = m%colptr(col + 1) > m%colptr(col)
+      if (has_diagonal) has_diagonal = m%rowind(m%colptr(col + 1) - 1) == col
+    end function has_diagonal
+    subroutine put(row, col, v)
+      !! The next entry of local column col.
+      integer(i8), intent(in) :: row, col
       real(wp), intent(in) :: v
-      ne = ne + 1
-      if (pass == 1) return
-      ti(ne) = min(r, c)
-      tj(ne) = max(r, c)
-      tv(ne) = v
+      a%rowind(at(col)) = row
+      a%val(at(col)) = v
+      at(col) = at(col) + 1
     end subroutine put
   end subroutine local_matrix
 
@@ -407,19 +421,18 @@ contains
     if (same_interior) same_interior = all(va == vb)
   end function same_interior
 
-  subroutine assign_kind(self, m, rows, k, first_kind)
+  subroutine assign_kind(self, m, k, first_kind)
     !! Group k's kind: an earlier kind of its level whose local matrix equals
     !! its own (signature, then value by value), or a new one (its local
     !! matrix kept, a_BB included for the factorization).
     class(level_solver_t), intent(inout) :: self
     type(sparse_sym_t), intent(in) :: m
-    type(rows_t), intent(in) :: rows
     integer, intent(in) :: k, first_kind
     type(sparse_sym_t) :: a
     real(wp) :: sig(5)
     integer(i8) :: ni
     integer :: q
-    call local_matrix(m, rows, self%g(k), .false., a)
+    call local_matrix(m, self%g(k), .false., a)
     ni = size(self%g(k)%inner, kind=i8)
     sig = interior_signature(a, ni)
     do q = first_kind, self%nkind
@@ -430,7 +443,7 @@ contains
        return
     end do
     self%nkind = self%nkind + 1
-    call local_matrix(m, rows, self%g(k), .true., a)
+    call local_matrix(m, self%g(k), .true., a)
     associate (kd => self%kinds(self%nkind))
       call move_alloc(a%colptr, kd%a%colptr)
       call move_alloc(a%rowind, kd%a%rowind)
@@ -700,12 +713,12 @@ contains
       ns = size(f, 2)
       call kd%solver%solve(r, y, error)
       if (allocated(error)) return
-      do i = 1, size(kd%members)
+      allocate (fb(kd%nb, size(y, 2)), source=0.0_wp)
+      call subtract_bi(kd%a, kd%nb, y, fb)   ! all members at once: −a_BI y, member by member in its columns
+      do i = 1, size(kd%members)   ! added in turn: members alike may share boundary columns
          c0 = (i - 1)*ns
          associate (bnd => self%g(kd%members(i))%bnd)
-           fb = f(bnd, :)
-           call subtract_bi(kd%a, kd%nb, y(:, c0 + 1:c0 + ns), fb)
-           f(bnd, :) = fb
+           f(bnd, :) = f(bnd, :) + fb(:, c0 + 1:c0 + ns)
          end associate
       end do
     end associate
@@ -718,15 +731,13 @@ contains
     real(wp), intent(in) :: f(:, :)
     real(wp), intent(inout) :: x(:, :)
     type(error_t), allocatable, intent(out) :: error
-    real(wp), allocatable :: r(:, :), y(:, :)
+    real(wp), allocatable :: r(:, :), y(:, :), xb(:, :)
     integer :: i, ns, c0
     call gather_interiors(self, q, f, r, y)
     associate (kd => self%kinds(q))
       ns = size(f, 2)
-      do i = 1, size(kd%members)
-         c0 = (i - 1)*ns
-         call subtract_ib(kd%a, kd%nb, x(self%g(kd%members(i))%bnd, :), r(:, c0 + 1:c0 + ns))
-      end do
+      call gather_boundaries(self, q, x, xb)
+      call subtract_ib(kd%a, kd%nb, xb, r)   ! all members at once: each column as alone
       call kd%solver%solve(r, y, error)
       if (allocated(error)) return
       do i = 1, size(kd%members)
@@ -753,6 +764,24 @@ contains
       end do
     end associate
   end subroutine gather_interiors
+
+  subroutine gather_boundaries(self, q, f, fb)
+    !! fb: the rows of f at the boundary of each member of kind q, side by
+    !! side (member i: columns (i-1) ns + 1 .. i ns).
+    class(level_solver_t), intent(in) :: self
+    integer, intent(in) :: q
+    real(wp), intent(in) :: f(:, :)
+    real(wp), allocatable, intent(out) :: fb(:, :)
+    integer :: i, ns, c0
+    associate (kd => self%kinds(q))
+      ns = size(f, 2)
+      allocate (fb(kd%nb, ns*size(kd%members)))
+      do i = 1, size(kd%members)
+         c0 = (i - 1)*ns
+         fb(:, c0 + 1:c0 + ns) = f(self%g(kd%members(i))%bnd, :)
+      end do
+    end associate
+  end subroutine gather_boundaries
 
   subroutine level_pivots(self, d)
     !! The pivot of each column of K_red: a group's interior from its kind's

@@ -34,7 +34,6 @@ module superjoin_analysis_level_solver
   use superjoin_solvers, only: linear_solver_t, sparse_sym_t, new_solver, cholmod_solver_t
   use superjoin_solvers_solver, only: boundary_block, subtract_bi, subtract_ib
   use superjoin_utils_strings, only: itoa
-  use superjoin_utils_sorting, only: sort_index
   use superjoin_analysis_levels, only: level_plan_t
   implicit none (type, external)
   private
@@ -531,6 +530,52 @@ contains
     end do
   end subroutine next_matrix
 
+  subroutine merge_runs(row, val)
+    !! Sort row ascending (val alongside) when it is made of a few ascending
+    !! runs (a column of the next matrix: m's rows, then each group's new
+    !! ones): adjacent runs merged pairwise until one is left.
+    integer(i8), intent(inout) :: row(:)
+    real(wp), intent(inout) :: val(:)
+    integer(i8), allocatable :: rt(:)
+    real(wp), allocatable :: vt(:)
+    integer(i8) :: n, lo, mid, hi, i, j, k
+    n = size(row, kind=i8)
+    mid = run_end(1_i8)
+    if (mid >= n) return
+    allocate (rt(n), vt(n))
+    do while (mid < n)   ! runs 1..mid and mid+1..hi merged into one
+       hi = run_end(mid + 1)
+       lo = 1
+       i = lo
+       j = mid + 1
+       k = lo
+       do while (i <= mid .and. j <= hi)
+          if (row(j) < row(i)) then
+             rt(k) = row(j); vt(k) = val(j); j = j + 1
+          else
+             rt(k) = row(i); vt(k) = val(i); i = i + 1
+          end if
+          k = k + 1
+       end do
+       rt(k:k + mid - i) = row(i:mid); vt(k:k + mid - i) = val(i:mid)
+       k = k + mid - i + 1
+       rt(k:k + hi - j) = row(j:hi); vt(k:k + hi - j) = val(j:hi)
+       row(1:hi) = rt(1:hi)
+       val(1:hi) = vt(1:hi)
+       mid = hi
+    end do
+  contains
+    integer(i8) function run_end(from)
+      !! The last place of the ascending run starting at from.
+      integer(i8), intent(in) :: from
+      run_end = from
+      do while (run_end < n)
+         if (row(run_end + 1) < row(run_end)) exit
+         run_end = run_end + 1
+      end do
+    end function run_end
+  end subroutine merge_runs
+
   subroutine touches(self, range, n, t)
     !! t: per column of the current matrix, the groups of range(1)..range(2)
     !! whose boundary holds it (in the order of the groups) and its place there.
@@ -579,8 +624,6 @@ contains
     type(sparse_sym_t), intent(inout) :: next
     integer(i8), intent(inout) :: nz
     integer(i8) :: p, first, r, q
-    integer, allocatable :: order(:)
-    integer :: i
     first = nz + 1
     do p = m%colptr(j), m%colptr(j + 1) - 1   ! (an eliminated column keeps its empty diagonal only)
        if (.not. (gone(m%rowind(p)) .or. gone(j))) call add(m%rowind(p), m%val(p))
@@ -604,10 +647,7 @@ contains
        slot(j) = 0
        return
     end if
-    order = [(i, i=1, int(nz - first + 1))]
-    call sort_index(next%rowind(first:nz), order)
-    next%rowind(first:nz) = next%rowind(first - 1 + order)
-    next%val(first:nz) = next%val(first - 1 + order)
+    call merge_runs(next%rowind(first:nz), next%val(first:nz))
     next%rowind(first:nz) = new(next%rowind(first:nz))
   contains
     subroutine add(row, v)

@@ -675,6 +675,13 @@ contains
     integer(i8) :: jf
     call new_solver(self%inner_name, a%n, self%top, error)
     if (allocated(error)) return
+    if (allocated(self%group_first)) then   ! the node graph ordered (no minimum: the top is dense by blocks)
+       call self%top%set_groups(top_groups(self%group_first, self%top_cols))
+       select type (top => self%top)
+       type is (cholmod_solver_t)
+          top%node_graph_min = 0
+       end select
+    end if
     call self%top%analyze(a, error)
     if (.not. allocated(error)) call self%top%factorize(a, error)
     if (allocated(error)) then
@@ -682,6 +689,30 @@ contains
        if (error%code == EXIT_SINGULAR .and. jf >= 1 .and. jf <= a%n) self%info%failed_column = self%top_cols(jf)
     end if
   end subroutine factor_top
+
+  function top_groups(first, cols) result(top)
+    !! The column groups of K_red (first(g): the first column of group g, one
+    !! past the last at the end) on the columns cols (ascending) left at the
+    !! top, numbered there: each group keeps its columns left, empty ones go.
+    integer(i8), intent(in) :: first(:), cols(:)
+    integer(i8), allocatable :: top(:)
+    integer(i8) :: g, t, n
+    allocate (top(size(first)))
+    n = 1
+    top(1) = 1
+    t = 1
+    do g = 1, size(first, kind=i8) - 1
+       do while (t <= size(cols, kind=i8))
+          if (cols(t) >= first(g + 1)) exit
+          t = t + 1
+       end do
+       if (t > top(n)) then
+          n = n + 1
+          top(n) = t
+       end if
+    end do
+    top = top(1:n)
+  end function top_groups
 
   subroutine describe(self, ok)
     !! self%info (the top solver's, with every factor's size) and the note.

@@ -253,10 +253,7 @@ contains
           end do
        end do
        if (pass == 1) then
-          ptr(range(1)) = 1
-          do k = range(1), range(2)
-             ptr(k + 1) = ptr(k + 1) + ptr(k)
-          end do
+          call starts_from_counts(ptr)
           allocate (col(ptr(range(2) + 1) - 1))
           at = ptr
        end if
@@ -317,10 +314,7 @@ contains
        end do
        if (.not. has_diagonal(c) .or. (t > ni .and. .not. with_bb)) a%colptr(t + 1) = a%colptr(t + 1) + 1
     end do
-    a%colptr(1) = 1
-    do t = 1, nloc
-       a%colptr(t + 1) = a%colptr(t + 1) + a%colptr(t)
-    end do
+    call starts_from_counts(a%colptr)
     allocate (a%rowind(a%colptr(nloc + 1) - 1), a%val(a%colptr(nloc + 1) - 1))
     at = a%colptr(1:nloc)
     do t = ni + 1, nloc   ! boundary columns: the interior rows above them
@@ -576,6 +570,17 @@ contains
     end function run_end
   end subroutine merge_runs
 
+  pure subroutine starts_from_counts(ptr)
+    !! ptr(i + 1) holds the count of list i (ptr(1) ignored): on return ptr(i)
+    !! is where list i starts, ptr(size) one past the end (CSC column pointers).
+    integer(i8), intent(inout) :: ptr(:)
+    integer :: i
+    ptr(1) = 1
+    do i = 1, size(ptr) - 1
+       ptr(i + 1) = ptr(i + 1) + ptr(i)
+    end do
+  end subroutine starts_from_counts
+
   subroutine touches(self, range, n, t)
     !! t: per column of the current matrix, the groups of range(1)..range(2)
     !! whose boundary holds it (in the order of the groups) and its place there.
@@ -593,10 +598,7 @@ contains
           t%ptr(b + 1) = t%ptr(b + 1) + 1
        end do
     end do
-    t%ptr(1) = 1
-    do c = 1, n
-       t%ptr(c + 1) = t%ptr(c + 1) + t%ptr(c)
-    end do
+    call starts_from_counts(t%ptr)
     allocate (t%grp(t%ptr(n + 1) - 1), t%at(t%ptr(n + 1) - 1))
     fill = t%ptr(1:n)
     do k = range(1), range(2)

@@ -1,8 +1,8 @@
 #!/usr/bin/env python3
 """Benchmark of parts made of parts (doc/performance.md, "Parts made of parts").
 
-usage: bench/building.py [--bin build/superjoin] [--work DIR] [--mesh M] [--floors N] [--grid G] [--repeat R]
-                         [--edge-joined]
+usage: bench/building.py [--bin build/superjoin] [--bin-a OTHER] [--work DIR] [--mesh M] [--floors N] [--grid G]
+                         [--repeat R] [--edge-joined]
 
 bench/gen_building.py writes the building of the issue (defaults: 20 floors of
 4 x 4 = 16 bays, each bay an S4 slab of M x M elements on four B33 columns) as
@@ -23,6 +23,9 @@ figure):
   src/analysis/level_solver.f90);
 - nested, flat: the nested deck, --condense yes --levels no (as one level: the
   cost of the nesting itself).
+
+With --bin-a OTHER, a fifth run times OTHER's nested run by level (another
+build, main's say) in the same invocation, for the ratio of the two builds.
 
 The nested listing's notes on the condensation by level are printed after the
 table. Every run's CSV files are checked against the one-level run's (names
@@ -77,16 +80,19 @@ def worst_difference(a, b, nested=True):
 def main():
     p = argparse.ArgumentParser(description=__doc__.strip().splitlines()[0])
     p.add_argument("--bin", default=os.path.join(ROOT, "build", "superjoin"))
+    p.add_argument("--bin-a", help="another build whose nested run by level is timed too")
     p.add_argument("--work", default="/tmp/superjoin-building")
     p.add_argument("--mesh", type=int, default=8)
     p.add_argument("--floors", type=int, default=20)
     p.add_argument("--grid", type=int, default=4)
     p.add_argument("--repeat", type=int, default=1)
     p.add_argument("--edge-joined", action="store_true")
+    p.add_argument("--spacing", type=int, default=1, help="with --edge-joined: join every SPACING-th edge node")
     args = p.parse_args()
     os.makedirs(args.work, exist_ok=True)
     gen = [sys.executable, os.path.join(ROOT, "bench", "gen_building.py"), "--mesh", str(args.mesh),
-           "--floors", str(args.floors), "--grid", str(args.grid)] + (["--edge-joined"] if args.edge_joined else [])
+           "--floors", str(args.floors), "--grid", str(args.grid)] + (["--edge-joined", "--spacing", str(args.spacing)]
+                                                                 if args.edge_joined else [])
     decks = {}
     for name, extra in (("nested", []), ("explicit", ["--explicit"])):
         decks[name] = os.path.join(args.work, name + ".deck")
@@ -103,6 +109,9 @@ def main():
         "nested, flat (--levels no)": ([args.bin, "-q", decks["nested"], "--condense", "yes", "--levels", "no", "-o",
                                         f"{w}/flat.lst", "--csv", f"{w}/flat"], f"{w}/flat", True),
     }
+    if args.bin_a:
+        runs["nested, by level (--bin-a)"] = ([args.bin_a] + runs["nested, by level"][0][1:-4] +
+                                              ["-o", f"{w}/nested_a.lst", "--csv", f"{w}/nested_a"], f"{w}/nested_a", True)
     best, cpu = {}, {}
     for _ in range(args.repeat):
         for name, (cmd, _, _) in runs.items():
@@ -115,12 +124,13 @@ def main():
     dofs = re.search(r"active DOFs\s+(\d+)", open(f"{w}/mono.lst").read())
     print(f"building: {args.floors} floors of {args.grid}x{args.grid} bays, mesh {args.mesh}"
           f"{', bays joined along their edges' if args.edge_joined else ''}"
+          f"{f' every {args.spacing} nodes' if args.edge_joined and args.spacing > 1 else ''}"
           f"{', ' + dofs.group(1) + ' DOFs' if dofs else ''}; against one level: "
           + ", ".join(f"{name} {d:.1e}" for name, d in worst.items()))
-    print(f"  {'run':28s} {'wall':>8s}     {'ratio':>6s}   {'cpu':>8s}     {'ratio':>6s}   (best of {args.repeat}; "
+    print(f"  {'run':30s} {'wall':>8s}     {'ratio':>6s}   {'cpu':>8s}     {'ratio':>6s}   (best of {args.repeat}; "
           "ratio: x faster than monolithic)")
     for name, t in best.items():
-        print(f"  {name:28s} {t:8.2f} s   {best['monolithic'] / t:6.2f}   {cpu[name]:8.2f} s   "
+        print(f"  {name:30s} {t:8.2f} s   {best['monolithic'] / t:6.2f}   {cpu[name]:8.2f} s   "
               f"{cpu['monolithic'] / cpu[name]:6.2f}")
     for name, lst in (("one level", "one"), ("nested, by level", "nested")):
         eq = re.search(r"equations\s+(\d+)", open(f"{w}/{lst}.lst").read())

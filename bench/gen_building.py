@@ -26,7 +26,9 @@ translation), the contacts in the same order (F3_J1, K3_2), for comparison
 
 With --edge-joined the bays of a floor are joined along their whole shared
 slab edge (every edge node, the same contact stiffnesses; the bay has node sets
-E, W, N, S of its edges) instead of at the corners only; floors still meet only
+E, W, N, S of its edges; with --spacing S every S-th edge node only, corners
+included: slabs joined at a few points along each edge, as precast slabs by
+their shear keys) instead of at the corners only; floors still meet only
 at the columns (the feet on the slab corners). A floor then has reduced
 unknowns no other floor sees (its edge joints' roots and Δu): the interior a
 condensation by level eliminates (src/analysis/level_solver.f90).
@@ -45,8 +47,9 @@ G_ROT = 4.0e9
 G_TRA = 1.0e11
 
 
-def bay(m, edges=False):
-    """The *PART BAY block (edges: also the node sets E, W, N, S of the slab's edges)."""
+def bay(m, edges=False, spacing=1):
+    """The *PART BAY block (edges: also the node sets E, W, N, S of the slab's edges, every spacing-th
+    node from corner to corner)."""
     n = m + 1
     out = ["*PART, NAME=BAY", "*NODE"]
     for j in range(n):
@@ -64,8 +67,9 @@ def bay(m, edges=False):
         out += [f"*NSET, NSET=F{k}", str(f)]
     out += ["*NSET, NSET=FOOT", ", ".join(map(str, feet))]
     if edges:
-        for name, nodes in (("S", [i + 1 for i in range(n)]), ("N", [m * n + i + 1 for i in range(n)]),
-                            ("W", [j * n + 1 for j in range(n)]), ("E", [j * n + n for j in range(n)])):
+        on = range(0, n, spacing)
+        for name, nodes in (("S", [i + 1 for i in on]), ("N", [m * n + i + 1 for i in on]),
+                            ("W", [j * n + 1 for j in on]), ("E", [j * n + n for j in on])):
             out += [f"*NSET, NSET={name}", ", ".join(map(str, nodes))]
     out.append("*ELEMENT, TYPE=S4, ELSET=SLAB")
     e = 0
@@ -195,13 +199,18 @@ def main():
     p.add_argument("--explicit", action="store_true")
     p.add_argument("--edge-joined", action="store_true",
                    help="join the bays of a floor along their whole shared slab edge (every edge node)")
+    p.add_argument("--spacing", type=int, default=1,
+                   help="with --edge-joined: join every SPACING-th edge node only (corners always; M a multiple)")
     args = p.parse_args()
+    if args.mesh % args.spacing:
+        p.error("--spacing must divide --mesh (the corners are joined)")
     head = ["*HEADING",
             f"A building of {args.floors} floors of {args.grid}x{args.grid} bays "
             f"({'one level' if args.explicit else 'parts made of parts'}"
-            f"{', bays joined along their edges' if args.edge_joined else ''}; bench/gen_building.py)",
+            f"{', bays joined along their edges' if args.edge_joined else ''}"
+            f"{f' every {args.spacing} nodes' if args.edge_joined and args.spacing > 1 else ''}; bench/gen_building.py)",
             "*MATERIAL, NAME=CONCRETE", "*ELASTIC", f"{E!r}, {NU!r}"]
-    bay_lines, mid = bay(args.mesh, args.edge_joined)
+    bay_lines, mid = bay(args.mesh, args.edge_joined, args.spacing)
     body = explicit(args, bay_lines, mid) if args.explicit else nested(args, bay_lines, mid)
     print("\n".join(head + body))
 

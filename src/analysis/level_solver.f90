@@ -33,7 +33,6 @@ module superjoin_analysis_level_solver
   use superjoin_model_notes, only: note
   use superjoin_solvers, only: linear_solver_t, sparse_sym_t, new_solver, cholmod_solver_t
   use superjoin_solvers_solver, only: boundary_block, subtract_bi, subtract_ib
-  use superjoin_solvers_matrix_market, only: assemble_upper
   use superjoin_utils_strings, only: itoa
   use superjoin_analysis_levels, only: level_plan_t
   implicit none (type, external)
@@ -46,11 +45,12 @@ module superjoin_analysis_level_solver
      integer :: kind = 0
   end type member_t
 
-  type :: rows_t
-    !! The upper triangle of a matrix by rows: row i's columns j > i are
-    !! col(ptr(i):ptr(i+1)-1), their entries at pos(...) of the matrix.
-     integer(i8), allocatable :: ptr(:), col(:), pos(:)
-  end type rows_t
+  type :: touch_t
+    !! Per column c: the groups whose boundary holds it, grp(ptr(c):ptr(c+1)-1),
+    !! and its place in each group's boundary, at(...).
+     integer(i8), allocatable :: ptr(:), at(:)
+     integer, allocatable :: grp(:)
+  end type touch_t
 
   type :: kind_t
     !! Groups alike: one local matrix, one factor of its interior, one Schur complement.
@@ -204,25 +204,19 @@ contains
     logical, intent(inout) :: gone(:)
     logical, intent(out) :: ok
     type(error_t), allocatable, intent(out) :: error
-    type(rows_t) :: rows
     integer, allocatable :: owner(:)
     integer :: k, first_kind, lo, hi
     lo = range(1)
     hi = range(2)
-    call upper_rows(m, rows)
     allocate (owner(m%n), source=0)
     do k = lo, hi
        owner(self%plan%groups(k)%inner) = k
     end do
-    ok = .true.
-    do k = lo, hi
-       self%g(k)%inner = self%plan%groups(k)%inner
-       call boundary_of(m, rows, owner, k, self%g(k), ok)
-       if (.not. ok) return
-    end do
+    call level_boundaries(self, range, m, owner, ok)
+    if (.not. ok) return
     first_kind = self%nkind + 1
     do k = lo, hi
-       call assign_kind(self, m, rows, k, first_kind)
+       call assign_kind(self, m, k, first_kind)
     end do
     do k = first_kind, self%nkind
        call factor_kind(self%kinds(k), self%inner_name, self%g(self%kinds(k)%members(1))%inner, &
@@ -232,124 +226,145 @@ contains
     call next_matrix(self, range, m, next, gone, hi == size(self%g))
   end subroutine eliminate_level
 
-  subroutine upper_rows(m, rows)
-    !! The upper triangle of m by rows (rows_t).
+  subroutine level_boundaries(self, range, m, owner, ok)
+    !! The boundary of each group range(1)..range(2): the columns m couples to
+    !! its interior outside it (ascending), from one pass over m (owner: the
+    !! group of each interior column, 0 elsewhere). ok = .false. when the
+    !! interiors of two groups touch.
+    class(level_solver_t), intent(inout) :: self
+    integer, intent(in) :: range(2)
     type(sparse_sym_t), intent(in) :: m
-    type(rows_t), intent(out) :: rows
-    integer(i8) :: j, p, i
-    allocate (rows%ptr(m%n + 1), source=0_i8)
-    do p = 1, m%nnz()
-       rows%ptr(m%rowind(p) + 1) = rows%ptr(m%rowind(p) + 1) + 1
-    end do
-    rows%ptr(1) = 1
-    do i = 1, m%n
-       rows%ptr(i + 1) = rows%ptr(i + 1) + rows%ptr(i)
-    end do
-    allocate (rows%col(m%nnz()), rows%pos(m%nnz()))
-    do j = 1, m%n
-       do p = m%colptr(j), m%colptr(j + 1) - 1
-          i = m%rowind(p)
-          rows%col(rows%ptr(i)) = j
-          rows%pos(rows%ptr(i)) = p
-          rows%ptr(i) = rows%ptr(i) + 1
-       end do
-    end do
-    do i = m%n, 1, -1
-       rows%ptr(i + 1) = rows%ptr(i)
-    end do
-    rows%ptr(1) = 1
-  end subroutine upper_rows
-
-  subroutine boundary_of(m, rows, owner, k, g, ok)
-    !! g%bnd: the columns m couples to g's interior outside it (ascending).
-    !! ok = .false. when one of them is the interior of another group of the level.
-    type(sparse_sym_t), intent(in) :: m
-    type(rows_t), intent(in) :: rows
-    integer, intent(in) :: owner(:), k
-    type(member_t), intent(inout) :: g
-    logical, intent(inout) :: ok
+    integer, intent(in) :: owner(:)
+    logical, intent(out) :: ok
+    integer(i8), allocatable :: ptr(:), col(:), at(:)
     logical, allocatable :: mark(:)
-    integer(i8) :: c, p, r, t
+    integer(i8) :: j, p, r
+    integer :: k, pass
+    ok = .true.
+    allocate (ptr(range(1):range(2) + 1), source=0_i8)
+    do pass = 1, 2   ! count the couplings per group, then list them
+       do j = 1, m%n
+          do p = m%colptr(j), m%colptr(j + 1) - 1
+             r = m%rowind(p)
+             if (owner(r) == owner(j)) cycle
+             if (owner(r) /= 0 .and. owner(j) /= 0) ok = .false.
+             if (owner(r) /= 0) call couple(owner(r), j)
+             if (owner(j) /= 0) call couple(owner(j), r)
+          end do
+       end do
+       if (pass == 1) then
+          call starts_from_counts(ptr)
+          allocate (col(ptr(range(2) + 1) - 1))
+          at = ptr
+       end if
+    end do
+    if (.not. ok) return
     allocate (mark(m%n), source=.false.)
-    do t = 1, size(g%inner, kind=i8)
-       c = g%inner(t)
-       do p = m%colptr(c), m%colptr(c + 1) - 1
-          mark(m%rowind(p)) = .true.
-       end do
-       do p = rows%ptr(c), rows%ptr(c + 1) - 1
-          mark(rows%col(p)) = .true.
-       end do
+    do k = range(1), range(2)
+       self%g(k)%inner = self%plan%groups(k)%inner
+       mark(col(ptr(k):ptr(k + 1) - 1)) = .true.
+       self%g(k)%bnd = pack([(r, r=1_i8, m%n)], mark)
+       mark(col(ptr(k):ptr(k + 1) - 1)) = .false.
     end do
-    do r = 1, m%n
-       if (.not. mark(r) .or. owner(r) == k) cycle
-       if (owner(r) /= 0) ok = .false.
-    end do
-    mark(g%inner) = .false.
-    g%bnd = pack([(r, r=1_i8, m%n)], mark)
-  end subroutine boundary_of
+  contains
+    subroutine couple(k, c)
+      !! Column c is coupled to group k's interior.
+      integer, intent(in) :: k
+      integer(i8), intent(in) :: c
+      if (pass == 1) then
+         ptr(k + 1) = ptr(k + 1) + 1
+      else
+         col(at(k)) = c
+         at(k) = at(k) + 1
+      end if
+    end subroutine couple
+  end subroutine level_boundaries
 
-  subroutine local_matrix(m, rows, g, with_bb, a)
+  subroutine local_matrix(m, g, with_bb, a)
     !! a: m on g's columns, interior first then boundary (upper triangle),
     !! both in ascending global order: a_II and a_IB, and a_BB if with_bb
-    !! (else its diagonal zero).
+    !! (else its diagonal zero). Built in place from m's columns of the group
+    !! alone: a boundary column b holds the interior rows above b (m's column
+    !! b), then the interior columns after b (their rows b, met while the
+    !! interior columns are taken in order), then a_BB; the local numbering
+    !! keeps the global order, so every column's rows ascend.
     type(sparse_sym_t), intent(in) :: m
-    type(rows_t), intent(in) :: rows
     type(member_t), intent(in) :: g
     logical, intent(in) :: with_bb
     type(sparse_sym_t), intent(out) :: a
-    integer(i8), allocatable :: loc(:), ti(:), tj(:)
-    real(wp), allocatable :: tv(:)
-    integer(i8) :: t, ni, nloc, ne, pass
+    integer(i8), allocatable :: loc(:), at(:)
+    integer(i8) :: t, ni, nloc, p, r, c
     ni = size(g%inner, kind=i8)
     nloc = ni + size(g%bnd, kind=i8)
     allocate (loc(m%n), source=0_i8)
     loc(g%inner) = [(t, t=1_i8, ni)]
     loc(g%bnd) = [(t, t=ni + 1_i8, nloc)]
-    allocate (ti(0), tj(0), tv(0))
-    do pass = 1, 2   ! count, then fill
-       ne = 0
-       do t = 1, ni   ! a_II and a_IB: the columns and the rows of the interior
-          call take(g%inner(t), .true.)
+    a%n = nloc
+    allocate (a%colptr(nloc + 1), source=0_i8)
+    do t = 1, nloc   ! count: a%colptr(t + 1) = the entries of column t
+       c = column_of(t)
+       do p = m%colptr(c), m%colptr(c + 1) - 1
+          r = loc(m%rowind(p))
+          if (r == 0) cycle
+          if (r <= ni .or. (t > ni .and. with_bb)) then
+             a%colptr(t + 1) = a%colptr(t + 1) + 1
+          else if (t <= ni) then   ! (row b, interior column c): boundary column r
+             a%colptr(r + 1) = a%colptr(r + 1) + 1
+          end if
        end do
+       if (.not. has_diagonal(c) .or. (t > ni .and. .not. with_bb)) a%colptr(t + 1) = a%colptr(t + 1) + 1
+    end do
+    call starts_from_counts(a%colptr)
+    allocate (a%rowind(a%colptr(nloc + 1) - 1), a%val(a%colptr(nloc + 1) - 1))
+    at = a%colptr(1:nloc)
+    do t = ni + 1, nloc   ! boundary columns: the interior rows above them
+       c = column_of(t)
+       do p = m%colptr(c), m%colptr(c + 1) - 1
+          r = loc(m%rowind(p))
+          if (r >= 1 .and. r <= ni) call put(r, t, m%val(p))
+       end do
+    end do
+    do t = 1, ni   ! interior columns, in order: a_II, and the boundary columns' interior rows below
+       c = column_of(t)
+       do p = m%colptr(c), m%colptr(c + 1) - 1
+          r = loc(m%rowind(p))
+          if (r >= 1 .and. r <= ni) call put(r, t, m%val(p))
+          if (r > ni) call put(t, r, m%val(p))
+       end do
+       if (.not. has_diagonal(c)) call put(t, t, 0.0_wp)
+    end do
+    do t = ni + 1, nloc   ! a_BB (or the boundary's zero diagonal)
+       c = column_of(t)
        if (with_bb) then
-          do t = 1, size(g%bnd, kind=i8)
-             call take(g%bnd(t), .false.)
+          do p = m%colptr(c), m%colptr(c + 1) - 1
+             if (loc(m%rowind(p)) > ni) call put(loc(m%rowind(p)), t, m%val(p))
           end do
        end if
-       if (pass == 1) then
-          deallocate (ti, tj, tv)
-          allocate (ti(ne), tj(ne), tv(ne))
-       end if
+       if (.not. has_diagonal(c) .or. .not. with_bb) call put(t, t, 0.0_wp)
     end do
-    call assemble_upper(nloc, ti, tj, tv, a)
   contains
-    subroutine take(c, interior)
-      !! The entries of column c with a row in a (for a boundary c: a boundary
-      !! row), and for an interior c those of its row with a boundary column.
-      integer(i8), intent(in) :: c
-      logical, intent(in) :: interior
-      integer(i8) :: p, r
-      do p = m%colptr(c), m%colptr(c + 1) - 1
-         r = loc(m%rowind(p))
-         if (r == 0 .or. (.not. interior .and. r <= ni)) cycle
-         call put(r, loc(c), m%val(p))
-      end do
-      if (.not. interior) return
-      do p = rows%ptr(c), rows%ptr(c + 1) - 1
-         r = loc(rows%col(p))
-         if (r <= ni) cycle
-         call put(r, loc(c), m%val(rows%pos(p)))
-      end do
-    end subroutine take
-    subroutine put(r, c, v)
-      !! One entry (upper triangle of a).
-      integer(i8), intent(in) :: r, c
+    integer(i8) function column_of(t)
+      !! The global column of local column t.
+      integer(i8), intent(in) :: t
+      if (t <= ni) then
+         column_of = g%inner(t)
+      else
+         column_of = g%bnd(t - ni)
+      end if
+    end function column_of
+    logical function has_diagonal(col)
+      !! m's column col ends on its diagonal.
+      integer(i8), intent(in) :: col
+      has_diagonal = m%colptr(col + 1) > m%colptr(col)
+      if (has_diagonal) has_diagonal = m%rowind(m%colptr(col + 1) - 1) == col
+    end function has_diagonal
+    subroutine put(row, col, v)
+      !! The next entry of local column col.
+      integer(i8), intent(in) :: row, col
       real(wp), intent(in) :: v
-      ne = ne + 1
-      if (pass == 1) return
-      ti(ne) = min(r, c)
-      tj(ne) = max(r, c)
-      tv(ne) = v
+      a%rowind(at(col)) = row
+      a%val(at(col)) = v
+      at(col) = at(col) + 1
     end subroutine put
   end subroutine local_matrix
 
@@ -399,19 +414,18 @@ contains
     if (same_interior) same_interior = all(va == vb)
   end function same_interior
 
-  subroutine assign_kind(self, m, rows, k, first_kind)
+  subroutine assign_kind(self, m, k, first_kind)
     !! Group k's kind: an earlier kind of its level whose local matrix equals
     !! its own (signature, then value by value), or a new one (its local
     !! matrix kept, a_BB included for the factorization).
     class(level_solver_t), intent(inout) :: self
     type(sparse_sym_t), intent(in) :: m
-    type(rows_t), intent(in) :: rows
     integer, intent(in) :: k, first_kind
     type(sparse_sym_t) :: a
     real(wp) :: sig(5)
     integer(i8) :: ni
     integer :: q
-    call local_matrix(m, rows, self%g(k), .false., a)
+    call local_matrix(m, self%g(k), .false., a)
     ni = size(self%g(k)%inner, kind=i8)
     sig = interior_signature(a, ni)
     do q = first_kind, self%nkind
@@ -422,7 +436,7 @@ contains
        return
     end do
     self%nkind = self%nkind + 1
-    call local_matrix(m, rows, self%g(k), .true., a)
+    call local_matrix(m, self%g(k), .true., a)
     associate (kd => self%kinds(self%nkind))
       call move_alloc(a%colptr, kd%a%colptr)
       call move_alloc(a%rowind, kd%a%rowind)
@@ -469,20 +483,20 @@ contains
   subroutine next_matrix(self, range, m, next, gone, compact)
     !! next: m without the interiors of groups range(1)..range(2), each
     !! group's corr added on its boundary; compact: numbered on the columns
-    !! left only (else the eliminated ones keep an empty place).
+    !! left only (else the eliminated ones keep an empty place). Built column
+    !! by column in place (no triplets): per column the entries of m left,
+    !! then each group's corr in the order of the groups, summed in that order.
     class(level_solver_t), intent(in) :: self
     integer, intent(in) :: range(2)
     type(sparse_sym_t), intent(in) :: m
     type(sparse_sym_t), intent(out) :: next
     logical, intent(inout) :: gone(:)
     logical, intent(in) :: compact
-    integer(i8), allocatable :: ti(:), tj(:), new(:)
-    real(wp), allocatable :: tv(:)
-    integer(i8) :: ne, j, p, r, c, n
-    integer :: k, lo, hi
-    lo = range(1)
-    hi = range(2)
-    do k = lo, hi
+    type(touch_t) :: t
+    integer(i8), allocatable :: new(:), slot(:)
+    integer(i8) :: j, n, nz
+    integer :: k, pass
+    do k = range(1), range(2)
        gone(self%g(k)%inner) = .true.
     end do
     allocate (new(m%n))
@@ -491,41 +505,169 @@ contains
        if (.not. gone(j) .or. .not. compact) n = n + 1
        new(j) = n
     end do
-    ne = 0
-    do k = lo, hi
-       n = size(self%g(k)%bnd, kind=i8)
-       ne = ne + n*(n + 1)/2
+    call touches(self, range, m%n, t)
+    next%n = n
+    allocate (next%colptr(n + 1), slot(m%n), source=0_i8)
+    allocate (next%rowind(0), next%val(0))
+    do pass = 1, 2   ! count, then fill
+       nz = 0
+       next%colptr(1) = 1
+       do j = 1, m%n
+          if (gone(j) .and. compact) cycle
+          call next_column(self, m, t, gone, new, j, pass == 2, slot, next, nz)
+          next%colptr(new(j) + 1) = nz + 1
+       end do
+       if (pass == 1) then
+          deallocate (next%rowind, next%val)
+          allocate (next%rowind(nz), next%val(nz))
+       end if
     end do
-    do j = 1, m%n
-       if (gone(j)) cycle
-       ne = ne + count(.not. gone(m%rowind(m%colptr(j):m%colptr(j + 1) - 1)), kind=i8)
+  end subroutine next_matrix
+
+  subroutine merge_runs(row, val)
+    !! Sort row ascending (val alongside) when it is made of a few ascending
+    !! runs (a column of the next matrix: m's rows, then each group's new
+    !! ones): adjacent runs merged pairwise until one is left.
+    integer(i8), intent(inout) :: row(:)
+    real(wp), intent(inout) :: val(:)
+    integer(i8), allocatable :: rt(:)
+    real(wp), allocatable :: vt(:)
+    integer(i8) :: n, lo, mid, hi, i, j, k
+    n = size(row, kind=i8)
+    mid = run_end(1_i8)
+    if (mid >= n) return
+    allocate (rt(n), vt(n))
+    do while (mid < n)   ! runs 1..mid and mid+1..hi merged into one
+       hi = run_end(mid + 1)
+       lo = 1
+       i = lo
+       j = mid + 1
+       k = lo
+       do while (i <= mid .and. j <= hi)
+          if (row(j) < row(i)) then
+             rt(k) = row(j); vt(k) = val(j); j = j + 1
+          else
+             rt(k) = row(i); vt(k) = val(i); i = i + 1
+          end if
+          k = k + 1
+       end do
+       rt(k:k + mid - i) = row(i:mid); vt(k:k + mid - i) = val(i:mid)
+       k = k + mid - i + 1
+       rt(k:k + hi - j) = row(j:hi); vt(k:k + hi - j) = val(j:hi)
+       row(1:hi) = rt(1:hi)
+       val(1:hi) = vt(1:hi)
+       mid = hi
     end do
-    allocate (ti(ne), tj(ne), tv(ne))
-    ne = 0
-    do j = 1, m%n
-       if (gone(j)) cycle
-       do p = m%colptr(j), m%colptr(j + 1) - 1
-          if (gone(m%rowind(p))) cycle
-          ne = ne + 1
-          ti(ne) = new(m%rowind(p))
-          tj(ne) = new(j)
-          tv(ne) = m%val(p)
+  contains
+    integer(i8) function run_end(from)
+      !! The last place of the ascending run starting at from.
+      integer(i8), intent(in) :: from
+      run_end = from
+      do while (run_end < n)
+         if (row(run_end + 1) < row(run_end)) exit
+         run_end = run_end + 1
+      end do
+    end function run_end
+  end subroutine merge_runs
+
+  pure subroutine starts_from_counts(ptr)
+    !! ptr(i + 1) holds the count of list i (ptr(1) ignored): on return ptr(i)
+    !! is where list i starts, ptr(size) one past the end (CSC column pointers).
+    integer(i8), intent(inout) :: ptr(:)
+    integer :: i
+    ptr(1) = 1
+    do i = 1, size(ptr) - 1
+       ptr(i + 1) = ptr(i + 1) + ptr(i)
+    end do
+  end subroutine starts_from_counts
+
+  subroutine touches(self, range, n, t)
+    !! t: per column of the current matrix, the groups of range(1)..range(2)
+    !! whose boundary holds it (in the order of the groups) and its place there.
+    class(level_solver_t), intent(in) :: self
+    integer, intent(in) :: range(2)
+    integer(i8), intent(in) :: n
+    type(touch_t), intent(out) :: t
+    integer(i8), allocatable :: fill(:)
+    integer(i8) :: c, b
+    integer :: k
+    allocate (t%ptr(n + 1), source=0_i8)
+    do k = range(1), range(2)
+       do c = 1, size(self%g(k)%bnd, kind=i8)
+          b = self%g(k)%bnd(c)
+          t%ptr(b + 1) = t%ptr(b + 1) + 1
        end do
     end do
-    do k = lo, hi
-       associate (b => self%g(k)%bnd, corr => self%kinds(self%g(k)%kind)%corr)
-         do c = 1, size(b, kind=i8)
-            do r = 1, c
-               ne = ne + 1
-               ti(ne) = new(b(r))
-               tj(ne) = new(b(c))
-               tv(ne) = corr(r, c)
-            end do
+    call starts_from_counts(t%ptr)
+    allocate (t%grp(t%ptr(n + 1) - 1), t%at(t%ptr(n + 1) - 1))
+    fill = t%ptr(1:n)
+    do k = range(1), range(2)
+       do c = 1, size(self%g(k)%bnd, kind=i8)
+          b = self%g(k)%bnd(c)
+          t%grp(fill(b)) = k
+          t%at(fill(b)) = c
+          fill(b) = fill(b) + 1
+       end do
+    end do
+  end subroutine touches
+
+  subroutine next_column(self, m, t, gone, new, j, fill, slot, next, nz)
+    !! Column j of the next matrix (next_matrix): its diagonal, m's entries
+    !! on rows left, each touching group's corr on the boundary rows up to j;
+    !! counted (nz advanced), and with fill its rows ascending and values
+    !! stored. slot: work, zero on entry and on return.
+    class(level_solver_t), intent(in) :: self
+    type(sparse_sym_t), intent(in) :: m
+    type(touch_t), intent(in) :: t
+    logical, intent(in) :: gone(:)
+    integer(i8), intent(in) :: new(:), j
+    logical, intent(in) :: fill
+    integer(i8), intent(inout) :: slot(:)
+    type(sparse_sym_t), intent(inout) :: next
+    integer(i8), intent(inout) :: nz
+    integer(i8) :: p, first, r, q
+    first = nz + 1
+    do p = m%colptr(j), m%colptr(j + 1) - 1   ! (an eliminated column keeps its empty diagonal only)
+       if (.not. (gone(m%rowind(p)) .or. gone(j))) call add(m%rowind(p), m%val(p))
+    end do
+    do q = t%ptr(j), t%ptr(j + 1) - 1
+       associate (b => self%g(t%grp(q))%bnd, corr => self%kinds(self%g(t%grp(q))%kind)%corr, c => t%at(q))
+         do r = 1, c
+            call add(b(r), corr(r, c))
          end do
        end associate
     end do
-    call assemble_upper(new(m%n), ti, tj, tv, next)
-  end subroutine next_matrix
+    if (slot(j) == 0) call add(j, 0.0_wp)   ! the diagonal, present even when empty
+    do p = first, nz   ! slot back to zero
+       if (fill) slot(next%rowind(p)) = 0
+    end do
+    if (.not. fill) then
+       slot(m%rowind(m%colptr(j):m%colptr(j + 1) - 1)) = 0
+       do q = t%ptr(j), t%ptr(j + 1) - 1
+          slot(self%g(t%grp(q))%bnd(1:t%at(q))) = 0
+       end do
+       slot(j) = 0
+       return
+    end if
+    call merge_runs(next%rowind(first:nz), next%val(first:nz))
+    next%rowind(first:nz) = new(next%rowind(first:nz))
+  contains
+    subroutine add(row, v)
+      !! One entry (row, j): a new place in the column, or summed onto its place.
+      integer(i8), intent(in) :: row
+      real(wp), intent(in) :: v
+      if (slot(row) == 0) then
+         nz = nz + 1
+         slot(row) = nz
+         if (fill) then
+            next%rowind(nz) = row
+            next%val(nz) = v
+         end if
+      else if (fill) then
+         next%val(slot(row)) = next%val(slot(row)) + v
+      end if
+    end subroutine add
+  end subroutine next_column
 
   subroutine factor_top(self, a, error)
     !! The top system a (on self%top_cols), factored by the solver asked for.
@@ -535,6 +677,13 @@ contains
     integer(i8) :: jf
     call new_solver(self%inner_name, a%n, self%top, error)
     if (allocated(error)) return
+    if (allocated(self%group_first)) then   ! the node graph ordered (no minimum: the top is dense by blocks)
+       call self%top%set_groups(top_groups(self%group_first, self%top_cols))
+       select type (top => self%top)
+       type is (cholmod_solver_t)
+          top%node_graph_min = 0
+       end select
+    end if
     call self%top%analyze(a, error)
     if (.not. allocated(error)) call self%top%factorize(a, error)
     if (allocated(error)) then
@@ -542,6 +691,30 @@ contains
        if (error%code == EXIT_SINGULAR .and. jf >= 1 .and. jf <= a%n) self%info%failed_column = self%top_cols(jf)
     end if
   end subroutine factor_top
+
+  function top_groups(first, cols) result(top)
+    !! The column groups of K_red (first(g): the first column of group g, one
+    !! past the last at the end) on the columns cols (ascending) left at the
+    !! top, numbered there: each group keeps its columns left, empty ones go.
+    integer(i8), intent(in) :: first(:), cols(:)
+    integer(i8), allocatable :: top(:)
+    integer(i8) :: g, t, n
+    allocate (top(size(first)))
+    n = 1
+    top(1) = 1
+    t = 1
+    do g = 1, size(first, kind=i8) - 1
+       do while (t <= size(cols, kind=i8))
+          if (cols(t) >= first(g + 1)) exit
+          t = t + 1
+       end do
+       if (t > top(n)) then
+          n = n + 1
+          top(n) = t
+       end if
+    end do
+    top = top(1:n)
+  end function top_groups
 
   subroutine describe(self, ok)
     !! self%info (the top solver's, with every factor's size) and the note.
@@ -613,12 +786,12 @@ contains
       ns = size(f, 2)
       call kd%solver%solve(r, y, error)
       if (allocated(error)) return
-      do i = 1, size(kd%members)
+      allocate (fb(kd%nb, size(y, 2)), source=0.0_wp)
+      call subtract_bi(kd%a, kd%nb, y, fb)   ! all members at once: −a_BI y, member by member in its columns
+      do i = 1, size(kd%members)   ! added in turn: members alike may share boundary columns
          c0 = (i - 1)*ns
          associate (bnd => self%g(kd%members(i))%bnd)
-           fb = f(bnd, :)
-           call subtract_bi(kd%a, kd%nb, y(:, c0 + 1:c0 + ns), fb)
-           f(bnd, :) = fb
+           f(bnd, :) = f(bnd, :) + fb(:, c0 + 1:c0 + ns)
          end associate
       end do
     end associate
@@ -631,15 +804,13 @@ contains
     real(wp), intent(in) :: f(:, :)
     real(wp), intent(inout) :: x(:, :)
     type(error_t), allocatable, intent(out) :: error
-    real(wp), allocatable :: r(:, :), y(:, :)
+    real(wp), allocatable :: r(:, :), y(:, :), xb(:, :)
     integer :: i, ns, c0
     call gather_interiors(self, q, f, r, y)
     associate (kd => self%kinds(q))
       ns = size(f, 2)
-      do i = 1, size(kd%members)
-         c0 = (i - 1)*ns
-         call subtract_ib(kd%a, kd%nb, x(self%g(kd%members(i))%bnd, :), r(:, c0 + 1:c0 + ns))
-      end do
+      call gather_boundaries(self, q, x, xb)
+      call subtract_ib(kd%a, kd%nb, xb, r)   ! all members at once: each column as alone
       call kd%solver%solve(r, y, error)
       if (allocated(error)) return
       do i = 1, size(kd%members)
@@ -666,6 +837,24 @@ contains
       end do
     end associate
   end subroutine gather_interiors
+
+  subroutine gather_boundaries(self, q, f, fb)
+    !! fb: the rows of f at the boundary of each member of kind q, side by
+    !! side (member i: columns (i-1) ns + 1 .. i ns).
+    class(level_solver_t), intent(in) :: self
+    integer, intent(in) :: q
+    real(wp), intent(in) :: f(:, :)
+    real(wp), allocatable, intent(out) :: fb(:, :)
+    integer :: i, ns, c0
+    associate (kd => self%kinds(q))
+      ns = size(f, 2)
+      allocate (fb(kd%nb, ns*size(kd%members)))
+      do i = 1, size(kd%members)
+         c0 = (i - 1)*ns
+         fb(:, c0 + 1:c0 + ns) = f(self%g(kd%members(i))%bnd, :)
+      end do
+    end associate
+  end subroutine gather_boundaries
 
   subroutine level_pivots(self, d)
     !! The pivot of each column of K_red: a group's interior from its kind's

@@ -547,6 +547,7 @@ contains
     allocate (w%line_links(sb%noverride))
     lines: do k = 1, sb%noverride
        associate (o => sb%overrides(k))
+         if (o%contact == 0) cycle   ! a part's contact, reported by unfold_nested
          associate (c => model%contacts(o%contact))
            if (c%master_sub == 0 .or. c%slave_sub == 0) cycle
            if (o%whole) then

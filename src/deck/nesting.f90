@@ -167,7 +167,13 @@ contains
     do s = 1, st%nstep
        do j = 1, st%steps(s)%noverride
           associate (o => st%steps(s)%overrides(j))
-            if (o%contact > 0) o%contact = max(0, new_index(o%contact))
+            if (o%contact > 0) then
+               if (new_index(o%contact) < 0) call report_loc(st, o%loc, '*CHANGE CONTACT of contact '// &
+                    w%contacts(-new_index(o%contact))%name//', which is declared inside *PART '// &
+                    st%subs(w%contacts(-new_index(o%contact))%owner)%name//': the contacts of a part made '// &
+                    'of parts cannot be changed in a step (declare the contact in *ASSEMBLY to change or sweep it)')
+               o%contact = max(0, new_index(o%contact))
+            end if
           end associate
        end do
     end do

@@ -299,7 +299,8 @@ contains
 
     if (res%summary%n_condensed == 0) then
        call st%strategy%set_plan(st, model, res%summary)
-       call assemble_stiffness(model, st%table, st%tr, st%plan, st%k, st%f_u0, error)
+       call early_solver(st, opts, ctx)
+       call assemble_stiffness(model, st%table, st%tr, st%plan, st%k, st%f_u0, error, st%solver)
        call st%strategy%combine(st, error)
        if (allocated(error)) return
        call assemble_loads(model, st%table, st%f_phys, error)
@@ -349,13 +350,15 @@ contains
     if (st%tr%ncol() > 0) then
        ! loads: the same matrix as the previous solve (not with owner terms:
        ! each process would judge its own term; they refactor instead)
-       if (.not. st%strategy%summed()) call take_factor(ctx%factor, st%k, st%solver)
-       if (allocated(st%solver)) then
+       if (.not. (st%strategy%summed() .or. st%early_solver)) call take_factor(ctx%factor, st%k, st%solver)
+       if (allocated(st%solver) .and. .not. st%early_solver) then
           call solve_with(st%solver, st%k%n, st%f_red, opts%quiet, st%q, res, error)
        else
-          call column_groups(st%table, st%forest, st%tr, st%groups)
-          ! a joint study: the same pattern as the previous value, only refactored
-          if (.not. st%strategy%summed()) call take_analysis(ctx%factor, st%k, st%groups, st%solver)
+          if (.not. st%early_solver) then
+             call column_groups(st%table, st%forest, st%tr, st%groups)
+             ! a joint study: the same pattern as the previous value, only refactored
+             if (.not. st%strategy%summed()) call take_analysis(ctx%factor, st%k, st%groups, st%solver)
+          end if
           call factor_and_solve(st, model, opts, res, error)
        end if
        if (allocated(error)) return
@@ -441,6 +444,36 @@ contains
     end do
   end subroutine reduce_loads
 
+  subroutine early_solver(st, opts, ctx)
+    !! The solver of K_red made before the assembly of K's values, so that its
+    !! analysis of the pattern (the ordering) runs beside them
+    !! (assemble_stiffness, analyze_start): the first solve of a matrix
+    !! assembled whole by this process (no kept factor or analysis to reuse).
+    !! When the solver cannot be made here, factor_and_solve makes it (and
+    !! reports why not) as before.
+    type(solve_state_t), intent(inout) :: st
+    type(run_options_t), intent(in) :: opts
+    type(solve_context_t), intent(in) :: ctx
+    type(error_t), allocatable :: error
+    if (st%strategy%summed() .or. allocated(ctx%factor%solver) .or. st%tr%ncol() == 0) return
+    call column_groups(st%table, st%forest, st%tr, st%groups)
+    call make_solver(st%levels, chosen_solver(opts), st%tr%ncol(), st%solver, error)
+    if (allocated(error)) then
+       if (allocated(st%solver)) deallocate (st%solver)
+       return
+    end if
+    if (allocated(st%groups)) call st%solver%set_groups(st%groups)
+    st%early_solver = .true.
+  end subroutine early_solver
+
+  function chosen_solver(opts) result(name)
+    !! The solver asked for (--solver), 'auto' if none.
+    type(run_options_t), intent(in) :: opts
+    character(:), allocatable :: name
+    name = 'auto'
+    if (allocated(opts%solver)) name = opts%solver
+  end function chosen_solver
+
   pure function count_delta(tr) result(n)
     !! Number of δ unknowns.
     type(transform_t), intent(in) :: tr
@@ -467,23 +500,24 @@ contains
     integer :: stat
     character(len=80) :: buf
 
-    solver_name = 'auto'
-    if (allocated(opts%solver)) solver_name = opts%solver
+    solver_name = chosen_solver(opts)
     call clock%start()
-    if (allocated(st%solver)) then   ! take_analysis: the pattern analyzed for the previous joint value
+    if (allocated(st%solver) .and. .not. st%early_solver) then   ! take_analysis: the pattern analyzed for the previous joint value
        res%log%phase_seconds(PH_ORDER) = 0.0_wp
        call report_phase(opts%quiet, 'order', 0.0_wp, 'reused (same pattern as the previous solve)')
     else
-       call make_solver(st%levels, solver_name, st%k%n, st%solver, error)
-       if (allocated(error)) return
-       if (allocated(st%groups)) call st%solver%set_groups(st%groups)
-       if (st%strategy%summed()) then
-          select type (s => st%solver)
-          type is (mumps_solver_t)
-             s%local_input = .true.
-          end select
+       if (.not. allocated(st%solver)) then
+          call make_solver(st%levels, solver_name, st%k%n, st%solver, error)
+          if (allocated(error)) return
+          if (allocated(st%groups)) call st%solver%set_groups(st%groups)
+          if (st%strategy%summed()) then
+             select type (s => st%solver)
+             type is (mumps_solver_t)
+                s%local_input = .true.
+             end select
+          end if
        end if
-       call st%solver%analyze(st%k, error)
+       call st%solver%analyze(st%k, error)   ! early_solver: waits for the analysis begun beside the assembly
        if (allocated(error)) return
        res%log%phase_seconds(PH_ORDER) = clock%seconds()
        call report_phase(opts%quiet, 'order', res%log%phase_seconds(PH_ORDER), st%solver%info%ordering)

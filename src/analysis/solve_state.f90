@@ -77,6 +77,7 @@ module superjoin_analysis_solve_state
      real(wp), allocatable :: f_red(:, :)    !! reduced loads (ncol, nstep)
      logical, allocatable :: spc(:)          !! AUTOSPC columns
      class(linear_solver_t), allocatable :: solver
+     logical :: early_solver = .false.       !! solver made before K's values, its analysis begun beside them
      integer(i8), allocatable :: groups(:)   !! the column groups the solver was analyzed with (none: unallocated)
      real(wp), allocatable :: q(:, :)        !! reduced solution (ncol, nstep)
      real(wp), allocatable :: u(:, :)        !! physical displacements (np, nstep)

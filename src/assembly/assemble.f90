@@ -10,8 +10,10 @@ module superjoin_assembly_assemble
   use superjoin_assembly_dofs, only: dof_table_t, vertex_dofs, GROUND, block_dof, unit_dofs, unit_terms, MAX_UNIT_TERMS
   use superjoin_assembly_transform, only: transform_t, form_spring_t, ROLE_PLAIN
   use superjoin_solvers_sparse, only: sparse_sym_t
+  use superjoin_solvers_solver, only: linear_solver_t
   use superjoin_solvers_pattern, only: build_pattern, find_entry, items_of_columns
   use superjoin_utils_strings, only: itoa
+  use superjoin_assembly_scatter_map, only: scatter_map_t, build_scatter_map, scatter_item
   use superjoin_utils_memory, only: out_of_memory, BYTES_REAL, BYTES_I8
   use superjoin_elements_drill_mask, only: element_drill
   implicit none (type, external)
@@ -184,12 +186,13 @@ contains
     end if
   end function element_where
 
-  subroutine assemble_stiffness(model, table, tr, plan, k, f_u0, error)
+  subroutine assemble_stiffness(model, table, tr, plan, k, f_u0, error, solver)
     !! Assemble K_red (pattern and values) and the reduced load of the
     !! prescribed values, f_u0 = -Tᵀ K_phys u0: the elements of every
     !! substructure the plan does not skip, the plan's superelements, plain
     !! contact units, loop springs, and g on the diagonal of every δ (these
-    !! three only if plan%shared).
+    !! three only if plan%shared). With solver: its analysis of K's pattern
+    !! begins once the pattern is known (analyze_start), beside the values.
     type(model_t), intent(in) :: model
     type(dof_table_t), intent(in) :: table
     type(transform_t), intent(in) :: tr
@@ -197,7 +200,9 @@ contains
     type(sparse_sym_t), intent(out) :: k
     real(wp), allocatable, intent(out) :: f_u0(:)
     type(error_t), allocatable, intent(out) :: error
+    class(linear_solver_t), intent(inout), optional :: solver
     type(item_columns_t) :: items
+    type(scatter_map_t) :: map
     integer(i8), allocatable :: col_ptr(:), col_item(:)
     integer(i8) :: j
     integer :: stat
@@ -213,6 +218,9 @@ contains
 
     call build_pattern(tr%ncol(), items%ptr, items%col, col_ptr, col_item, k, error)
     if (allocated(error)) return
+    if (present(solver)) call solver%analyze_start(k)
+    call build_scatter_map(k, items%ptr(1:items%n + 1), items%col, col_ptr, col_item, map, error)
+    if (allocated(error)) return
     deallocate (col_ptr, col_item)
 
     ! Pass 2: values.
@@ -221,7 +229,7 @@ contains
        call out_of_memory(error, 'the reduced load', tr%ncol()*BYTES_REAL)
        return
     end if
-    call scatter_items(model, table, tr, plan, items, k, f_u0, error)
+    call scatter_items(model, table, tr, plan, items, map, k, f_u0, error)
     if (allocated(error)) return
     ! δ springs: g on the diagonal of their own column, nowhere else.
     do j = 1, merge(tr%ncol(), 0_i8, plan%shared)
@@ -324,14 +332,16 @@ contains
     end associate
   end subroutine append_item
 
-  subroutine scatter_items(model, table, tr, plan, items, k, f_u0, error)
+  subroutine scatter_items(model, table, tr, plan, items, map, k, f_u0, error)
     !! Add the stiffness of every item of list_item_columns to the values of
-    !! k (pattern built from items) and its prescribed-value load to f_u0.
+    !! k (pattern built from items, positions from map) and its
+    !! prescribed-value load to f_u0.
     type(model_t), intent(in) :: model
     type(dof_table_t), intent(in) :: table
     type(transform_t), intent(in) :: tr
     type(assembly_plan_t), intent(in) :: plan
     type(item_columns_t), intent(in) :: items
+    type(scatter_map_t), intent(in) :: map
     type(sparse_sym_t), intent(inout) :: k
     real(wp), intent(inout) :: f_u0(:)
     type(error_t), allocatable, intent(out) :: error
@@ -349,7 +359,8 @@ contains
           call element_matrix(model, isub, e, ke, error)
           if (allocated(error)) return
           call element_pdofs(model, table, isub, e, pd, n)
-          call tr%scatter(pd(1:n), ke, items%col(items%ptr(it):items%ptr(it + 1) - 1), k, f_u0)
+          call scatter_item(tr, pd(1:n), ke, items%col(items%ptr(it):items%ptr(it + 1) - 1), &
+               it, map, k, f_u0)
        end do
     end do
     do i = 1, size(plan%supers)
@@ -366,7 +377,8 @@ contains
        it = it + 1
        call unit_pdofs(table, iu, pd, n)
        call unit_plain_stiffness(table, iu, ke, n)
-       call tr%scatter(pd(1:n), ke(1:n, 1:n), items%col(items%ptr(it):items%ptr(it + 1) - 1), k, f_u0)
+       call scatter_item(tr, pd(1:n), ke(1:n, 1:n), items%col(items%ptr(it):items%ptr(it + 1) - 1), &
+            it, map, k, f_u0)
     end do
     do i = 1, shared_forms(tr, plan)
        it = it + 1

@@ -44,11 +44,13 @@ module superjoin_solvers_cholmod
        !! the interior's own ordering, as before; bench/schur_cost)
        !! order the node graph (when groups are set) from this many columns on
      logical :: factored = .false.
+     logical :: started = .false.   !! an analysis runs beside the caller (analyze_start)
      real(wp) :: fl = 0.0_wp        !! flop count of the factorization
      real(wp) :: peak = 0.0_wp      !! CHOLMOD's peak memory, bytes
      integer(i8) :: stored = 0      !! entries of L as stored (with amalgamation zeros)
    contains
      procedure :: analyze => cholmod_analyze
+     procedure :: analyze_start => cholmod_analyze_start
      procedure :: factorize => cholmod_factorize
      procedure :: solve => cholmod_solve
      procedure :: pivots => cholmod_pivots
@@ -93,6 +95,25 @@ module superjoin_solvers_cholmod
          !! shifted to 0-based during the call and back (the shim keeps no copy)
        integer(c_int) :: status
      end function sj_cholmod_analyze
+
+     function sj_cholmod_can_overlap() bind(c, name='sj_cholmod_can_overlap') result(yes)
+       import :: c_int
+       integer(c_int) :: yes
+     end function sj_cholmod_can_overlap
+
+     function sj_cholmod_analyze_start(h, n, colptr, rowind) bind(c, name='sj_cholmod_analyze_start') result(status)
+       import :: c_ptr, c_int, c_int64_t
+       type(c_ptr), value :: h
+       integer(c_int64_t), value :: n
+       integer(c_int64_t), intent(in) :: colptr(*), rowind(*)   !! copied (0-based) during the call
+       integer(c_int) :: status
+     end function sj_cholmod_analyze_start
+
+     function sj_cholmod_analyze_finish(h) bind(c, name='sj_cholmod_analyze_finish') result(status)
+       import :: c_ptr, c_int
+       type(c_ptr), value :: h
+       integer(c_int) :: status
+     end function sj_cholmod_analyze_finish
 
      function sj_cholmod_factorize(h, n, colptr, rowind, val, failed) &
           bind(c, name='sj_cholmod_factorize') result(status)
@@ -186,22 +207,69 @@ contains
 
   subroutine cholmod_analyze(self, a, error)
     !! Symbolic analysis: fill-reducing ordering (AMD or METIS, the best kept)
-    !! and supernodal structure of L from the pattern of a.
+    !! and supernodal structure of L from the pattern of a. After
+    !! analyze_start (the same pattern): waits for that analysis.
     class(cholmod_solver_t), intent(inout) :: self
     type(sparse_sym_t), intent(in) :: a
     type(error_t), allocatable, intent(out) :: error
     integer(c_int) :: status
+    integer(i8) :: one(1)
+
+    if (self%started) then
+       self%started = .false.
+       status = sj_cholmod_analyze_finish(self%handle)
+    else
+       if (.not. start_handle(self)) then
+          call fatal_error(error, EXIT_IO, 'CHOLMOD: cannot start (out of memory)')
+          return
+       end if
+       if (a%n < 0 .or. .not. allocated(a%colptr)) then
+          call fatal_error(error, EXIT_IO, 'CHOLMOD: invalid matrix')
+          return
+       end if
+       status = offer_node_graph(self, a)
+       if (status /= SJ_OK) then
+          call status_error(self, status, 'analyze', error)
+          return
+       end if
+       one = 1
+       if (a%nnz() > 0) then
+          status = sj_cholmod_analyze(self%handle, a%n, a%colptr, a%rowind)
+       else
+          status = sj_cholmod_analyze(self%handle, a%n, a%colptr, one)
+       end if
+    end if
+    if (status /= SJ_OK) then
+       call status_error(self, status, 'analyze', error)
+       return
+    end if
+    self%n = a%n
+    call update_info(self)
+  end subroutine cholmod_analyze
+
+  subroutine cholmod_analyze_start(self, a)
+    !! Begin the symbolic analysis of a's pattern on a second thread (the
+    !! shim's copy of it) where that may run (sj_cholmod_can_overlap: not
+    !! under OMP_NUM_THREADS=1); analyze, with the same pattern, waits for it.
+    !! Otherwise, or when it cannot start, nothing happens: analyze does it all.
+    class(cholmod_solver_t), intent(inout) :: self
+    type(sparse_sym_t), intent(in) :: a
+    if (self%started .or. sj_cholmod_can_overlap() == 0) return
+    if (a%n <= 0 .or. a%nnz() <= 0 .or. .not. allocated(a%colptr)) return
+    if (.not. start_handle(self)) return
+    if (offer_node_graph(self, a) /= SJ_OK) return
+    self%started = sj_cholmod_analyze_start(self%handle, a%n, a%colptr, a%rowind) == SJ_OK
+  end subroutine cholmod_analyze_start
+
+  function offer_node_graph(self, a) result(status)
+    !! Give the shim the node graph of a's columns (set_groups), from
+    !! node_graph_min columns on, or take away the previous one; the shim's
+    !! status.
+    class(cholmod_solver_t), intent(inout) :: self
+    type(sparse_sym_t), intent(in) :: a
+    integer(c_int) :: status
     integer(i8) :: one(1), ngroup
     integer(i8), allocatable :: xadj(:), adjncy(:)
-
-    if (.not. start_handle(self)) then
-       call fatal_error(error, EXIT_IO, 'CHOLMOD: cannot start (out of memory)')
-       return
-    end if
-    if (a%n < 0 .or. .not. allocated(a%colptr)) then
-       call fatal_error(error, EXIT_IO, 'CHOLMOD: invalid matrix')
-       return
-    end if
     one = 1
     ngroup = 0
     if (allocated(self%group_first)) then
@@ -217,22 +285,7 @@ contains
     else
        status = sj_cholmod_set_node_graph(self%handle, 0_c_int64_t, one, one, one)
     end if
-    if (status /= SJ_OK) then
-       call status_error(self, status, 'analyze', error)
-       return
-    end if
-    if (a%nnz() > 0) then
-       status = sj_cholmod_analyze(self%handle, a%n, a%colptr, a%rowind)
-    else
-       status = sj_cholmod_analyze(self%handle, a%n, a%colptr, one)
-    end if
-    if (status /= SJ_OK) then
-       call status_error(self, status, 'analyze', error)
-       return
-    end if
-    self%n = a%n
-    call update_info(self)
-  end subroutine cholmod_analyze
+  end function offer_node_graph
 
   subroutine cholmod_factorize(self, a, error)
     !! Numeric factorization with the values of a (same pattern as analyzed).
@@ -317,10 +370,11 @@ contains
   subroutine cholmod_release(self)
     !! Free the factor, the pattern copy and CHOLMOD's workspace.
     class(cholmod_solver_t), intent(inout) :: self
-    if (c_associated(self%handle)) call sj_cholmod_free(self%handle)
+    if (c_associated(self%handle)) call sj_cholmod_free(self%handle)   ! after a started analysis ends
     self%handle = c_null_ptr
     self%n = -1
     self%factored = .false.
+    self%started = .false.
   end subroutine cholmod_release
 
   pure function cholmod_flops(self) result(fl)

@@ -34,6 +34,7 @@ module superjoin_solvers_solver
      procedure(pivots_i), deferred :: pivots
      procedure(release_i), deferred :: release
      procedure :: set_groups
+     procedure :: analyze_start
      procedure :: schur => schur_by_solves
   end type linear_solver_t
 
@@ -239,6 +240,16 @@ contains
        kstar(j, j + 1:) = kstar(j + 1:, j)
     end do
   end subroutine unshift
+
+  subroutine analyze_start(self, a)
+    !! Begin the symbolic phase of a's pattern (its values are not read) beside
+    !! the caller's work, where the solver can; a later analyze of the same
+    !! pattern completes it. This default does nothing: analyze does it all.
+    class(linear_solver_t), intent(inout) :: self
+    type(sparse_sym_t), intent(in) :: a
+    associate (no_use => self, no_a => a)   ! analyzed by analyze
+    end associate
+  end subroutine analyze_start
 
   subroutine set_groups(self, first)
     !! Tell the solver that columns come in groups of consecutive columns (the

@@ -39,29 +39,51 @@ contains
   end subroutine sparse_diagonal
 
   pure subroutine sparse_matvec(a, x, y)
-    !! y = A x for the full symmetric matrix (x, y of shape (n, nrhs)). One
-    !! column: matvec_column; several: side by side (one pass over A). Each
-    !! y(i, c) sums the same terms in the same order either way.
+    !! y = A x for the full symmetric matrix (x, y of shape (n, nrhs)): two
+    !! columns at a time (matvec_pair, one pass over A for both), the last
+    !! one of an odd count alone (matvec_column). Each y(i, c) sums the same
+    !! terms in the same order either way.
     class(sparse_sym_t), intent(in) :: a
     real(wp), intent(in) :: x(:, :)
     real(wp), intent(out) :: y(:, :)
-    real(wp), allocatable :: xt(:, :), yt(:, :)
+    integer :: c
+    do c = 1, size(x, 2) - 1, 2
+       call matvec_pair(a, x(:, c), x(:, c + 1), y(:, c), y(:, c + 1))
+    end do
+    if (mod(size(x, 2), 2) == 1) call matvec_column(a, x(:, size(x, 2)), y(:, size(x, 2)))
+  end subroutine sparse_matvec
+
+  pure subroutine matvec_pair(a, x1, x2, y1, y2)
+    !! y1 = A x1 and y2 = A x2 in one pass over A, each as matvec_column sums it.
+    type(sparse_sym_t), intent(in) :: a
+    real(wp), intent(in) :: x1(:), x2(:)
+    real(wp), intent(out) :: y1(:), y2(:)
     integer(i8) :: j, k, i
-    if (size(x, 2) == 1) then
-       call matvec_column(a, x(:, 1), y(:, 1))
-       return
-    end if
-    xt = transpose(x)
-    allocate (yt(size(x, 2), a%n), source=0.0_wp)
+    real(wp) :: xj1, xj2, yj1, yj2, v
+    y1 = 0.0_wp
+    y2 = 0.0_wp
     do j = 1, a%n
+       xj1 = x1(j)
+       xj2 = x2(j)
+       yj1 = 0.0_wp
+       yj2 = 0.0_wp
        do k = a%colptr(j), a%colptr(j + 1) - 1
           i = a%rowind(k)
-          yt(:, i) = yt(:, i) + a%val(k)*xt(:, j)
-          if (i /= j) yt(:, j) = yt(:, j) + a%val(k)*xt(:, i)
+          v = a%val(k)
+          if (i == j) then
+             yj1 = yj1 + v*xj1
+             yj2 = yj2 + v*xj2
+          else
+             y1(i) = y1(i) + v*xj1
+             y2(i) = y2(i) + v*xj2
+             yj1 = yj1 + v*x1(i)
+             yj2 = yj2 + v*x2(i)
+          end if
        end do
+       y1(j) = y1(j) + yj1
+       y2(j) = y2(j) + yj2
     end do
-    y = transpose(yt)
-  end subroutine sparse_matvec
+  end subroutine matvec_pair
 
   pure subroutine matvec_column(a, x, y)
     !! y = A x for one right-hand side. Column j's own row y(j) is zero when

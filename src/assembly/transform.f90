@@ -98,7 +98,6 @@ module superjoin_assembly_transform
      procedure :: reduce_add => transform_reduce_add
      procedure :: columns_of => transform_columns_of
      procedure :: element_columns => transform_element_columns
-     procedure :: scatter => transform_scatter
      procedure :: scatter_dense => transform_scatter_dense
      procedure :: ncol => transform_ncol
      procedure :: column_kind => transform_column_kind
@@ -1058,73 +1057,6 @@ contains
     end do
     call sort_unique_i8(cols(1:m), nc)
   end subroutine transform_element_columns
-
-  subroutine transform_scatter(tr, pd, ke, cols, k, f_u0)
-    !! Add Mᵀ ke M to k over the item's columns, and -Mᵀ ke u0 to f_u0.
-    class(transform_t), intent(in) :: tr
-    integer(i8), intent(in) :: pd(:)
-    real(wp), intent(in) :: ke(:, :)
-    integer(i8), intent(in) :: cols(:)
-    type(sparse_sym_t), intent(inout) :: k
-    real(wp), intent(inout) :: f_u0(:)
-    real(wp) :: m(size(pd), size(cols)), km(size(pd), size(cols)), u0e(size(pd)), fe(size(cols))
-    real(wp) :: kab
-    integer :: n, nc, a, b, i
-    integer(i8) :: j, pos
-    logical :: simple
-
-    n = size(pd)
-    nc = size(cols)
-    simple = nc == n
-    if (simple) then
-       do a = 1, n
-          if (nmap(tr, pd(a)) /= 1) then
-             simple = .false.
-             exit
-          end if
-          if (tr%pool_coef(tr%map_start(pd(a))) /= 1.0_wp .or. u0_of(tr, pd(a)) /= 0.0_wp) then
-             simple = .false.
-             exit
-          end if
-       end do
-    end if
-    if (simple) then
-       ! Every DOF is its own column: scatter directly.
-       do b = 1, n
-          do a = 1, n
-             if (tr%pool_col(tr%map_start(pd(a))) > tr%pool_col(tr%map_start(pd(b)))) cycle
-             pos = find_entry(k, tr%pool_col(tr%map_start(pd(a))), tr%pool_col(tr%map_start(pd(b))))
-             k%val(pos) = k%val(pos) + ke(a, b)
-          end do
-       end do
-       return
-    end if
-    m = 0.0_wp
-    do a = 1, n
-       u0e(a) = u0_of(tr, pd(a))
-       do j = tr%map_start(pd(a)), tr%map_start(pd(a) + 1) - 1
-          b = locate(cols, tr%pool_col(j))
-          m(a, b) = m(a, b) + tr%pool_coef(j)
-       end do
-    end do
-    km = matmul(ke, m)
-    do b = 1, nc
-       do a = 1, b
-          kab = 0.0_wp
-          do i = 1, n
-             kab = kab + m(i, a)*km(i, b)
-          end do
-          pos = find_entry(k, cols(a), cols(b))
-          k%val(pos) = k%val(pos) + kab
-       end do
-    end do
-    if (any(u0e /= 0.0_wp)) then
-       fe = matmul(transpose(m), matmul(ke, u0e))
-       do a = 1, nc
-          f_u0(cols(a)) = f_u0(cols(a)) - fe(a)
-       end do
-    end if
-  end subroutine transform_scatter
 
   subroutine transform_scatter_dense(tr, pd, ke, k, f_u0)
     !! Add Mᵀ ke M to k and -Mᵀ ke u0 to f_u0 for a large dense item (a

@@ -51,7 +51,7 @@ module superjoin_elements_beam3
   end type beam3_props_t
 
   public :: beam3_stiffness, beam3_end_forces, beam3_nodal_forces, beam3_load
-  public :: beam3_thermal_load, beam3_thermal_end_forces, beam3_middle_section
+  public :: beam3_thermal_load, beam3_thermal_end_forces, beam3_middle_section, beam3_thermal_energy
 
 contains
 
@@ -277,7 +277,7 @@ contains
     real(wp), allocatable, intent(out) :: fe(:)
     type(error_t), allocatable, intent(out) :: error
     type(beam3_props_t) :: p
-    real(wp) :: r(3, 3), jac, nf(NNODE), ds(NNODE), b(NSTRAIN, NDOF*NNODE), e0(NSTRAIN), tp(3)
+    real(wp) :: r(3, 3), jac, nf(NNODE), ds(NNODE), b(NSTRAIN, NDOF*NNODE), e0(NSTRAIN)
     integer :: k
 
     call setup(x, sec, mat, p, error)
@@ -287,11 +287,45 @@ contains
        call point(x, sec, merge(-G2, G2, k == 1), r, jac, nf, ds, error)
        if (allocated(error)) return
        call b_matrix(r, nf, ds, b)
-       tp = matmul(th, nf)
-       e0 = [tp(1), 0.0_wp, 0.0_wp, 0.0_wp, tp(3), -tp(2)]
+       e0 = initial_strain(th, nf)
        fe = fe + jac*matmul(p%d*e0, b)
     end do
   end subroutine beam3_thermal_load
+
+  pure subroutine beam3_thermal_energy(x, sec, mat, th, ue, energy, error)
+    !! The strain energy of the mechanical strains of a heated B32,
+    !! ½ ∫ (B u_e - ε0)ᵀ D (B u_e - ε0) ds by the two Gauss points of the
+    !! stiffness (th as beam3_thermal_load): ½ u_eᵀ K_e u_e - u_eᵀ f_th + ½ ∫ ε0ᵀ D ε0
+    !! with the element's own rule, 0 for an element free to follow ε0.
+    real(wp), intent(in) :: x(:, :)
+    type(section_t), intent(in) :: sec
+    type(material_t), intent(in) :: mat
+    real(wp), intent(in) :: th(3, NNODE), ue(:)
+    real(wp), intent(out) :: energy
+    type(error_t), allocatable, intent(out) :: error
+    type(beam3_props_t) :: p
+    real(wp) :: r(3, 3), jac, nf(NNODE), ds(NNODE), b(NSTRAIN, NDOF*NNODE), e(NSTRAIN)
+    integer :: k
+    energy = 0.0_wp
+    call setup(x, sec, mat, p, error)
+    if (allocated(error)) return
+    do k = 1, 2
+       call point(x, sec, merge(-G2, G2, k == 1), r, jac, nf, ds, error)
+       if (allocated(error)) return
+       call b_matrix(r, nf, ds, b)
+       e = matmul(b, ue(1:NDOF*NNODE)) - initial_strain(th, nf)
+       energy = energy + 0.5_wp*jac*sum(p%d*e**2)
+    end do
+  end subroutine beam3_thermal_energy
+
+  pure function initial_strain(th, nf) result(e0)
+    !! The initial strains ε0 = (α ΔT, 0, 0, 0, κy0, κz0) at a point with shape
+    !! functions nf of the nodal values th (beam3_thermal_load; module header).
+    real(wp), intent(in) :: th(3, NNODE), nf(NNODE)
+    real(wp) :: e0(NSTRAIN), tp(3)
+    tp = matmul(th, nf)
+    e0 = [tp(1), 0.0_wp, 0.0_wp, 0.0_wp, tp(3), -tp(2)]
+  end function initial_strain
 
   pure subroutine beam3_thermal_end_forces(x, sec, mat, th, f, error)
     !! The end-node shares f(6, 2) (local axes of the tangent at nodes 1 and 3,

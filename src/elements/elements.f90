@@ -43,7 +43,7 @@ module superjoin_elements
   use superjoin_elements_beam, only: beam_stiffness, beam_end_forces, beam_load
   use superjoin_elements_beam3, only: beam3_stiffness, beam3_end_forces, beam3_nodal_forces, beam3_load, &
        beam3_middle_section
-  use superjoin_elements_beam3, only: beam3_thermal_load, beam3_thermal_end_forces
+  use superjoin_elements_beam3, only: beam3_thermal_load, beam3_thermal_end_forces, beam3_thermal_energy
   use superjoin_elements_thermal, only: thermal_plate_resultants, thermal_beam_end_forces, plane_centroid_remainder
   use superjoin_elements_shell8_loads, only: s8r_thermal_resultants
   use superjoin_elements_shell, only: shell_thermal_nodal_resultants
@@ -671,8 +671,10 @@ contains
     !! element with a uniform thermal strain (and curvature, gradients) by
     !! ½ (u_e - u_0)ᵀ K_e (u_e - u_0), u_0 the free thermal field, whose strains are ε_th
     !! (plane strain: plus ½ E (α ΔT)² V of the held expansion across the plane).
-    !! Refused (error): a B32, an S8R, a plane or shell element whose
-    !! temperature varies over it.
+    !! A B32 by its stiffness rule (beam3_thermal_energy), an S8R or S8 as
+    !! ½ u_eᵀ K_e u_e - u_eᵀ f_th + ½ ∫ ε0ᵀ D ε0 dV, all three by the element's own
+    !! rules (s8r_thermal_energy). Refused (error): another plane or shell
+    !! element whose temperature varies over it.
     type(model_t), intent(in) :: model
     type(result_fields_t), intent(in) :: fields
     integer, intent(in) :: is
@@ -696,11 +698,14 @@ contains
              call axisym_thermal_energy(etype, x, mat, ue, dl%nodal, energy, error)
           else if (is_3d_solid(etype)) then
              call solid_thermal_energy(etype, x, mat, ue, dl%nodal, energy, error, sec%axes)
-          else if (allocated(dl%line_nodal) .or. allocated(dl%nodal) .or. allocated(dl%curvature_nodal) .or. &
-               is_shell8(etype)) then
+          else if (allocated(dl%line_nodal)) then
+             call beam3_thermal_energy(x, sec, mat, dl%line_nodal, ue, energy, error)
+          else if (is_shell8(etype)) then
+             call s8r_thermal_energy(etype, x, sec, mat, dl, ue, energy, error)
+          else if (allocated(dl%nodal) .or. allocated(dl%curvature_nodal)) then
              call fatal_error(error, EXIT_DECK, 'the strain energy under thermal strains is implemented for solids, '// &
-                  'trusses, two-node beams and plane and shell elements of a uniform temperature, not for '// &
-                  'element type '//trim(t%name)//' or a temperature that varies over a plane or shell element')
+                  'trusses, beams, S8R and S8 shells and plane and shell elements of a uniform temperature, not '// &
+                  'for element type '//trim(t%name)//' with a temperature that varies over it')
           else
              if (t%family == FAMILY_TRUSS .or. t%family == FAMILY_BEAM) then
                 call line_free_field(etype, x, sec, mat, dl, u0, error)
@@ -753,6 +758,32 @@ contains
     if (allocated(error)) return
     u0 = u0 + ub
   end subroutine line_free_field
+
+  pure subroutine s8r_thermal_energy(etype, x, sec, mat, dl, ue, energy, error)
+    !! The energy of the mechanical strains of a heated S8R or S8 (etype):
+    !! ½ u_eᵀ K_e u_e - u_eᵀ f_th + ½ ∫ ε0ᵀ D ε0 dV, the three by the rules of
+    !! the stiffness (superjoin_elements_shell8): ½ ∫ (ε - ε0)ᵀ D (ε - ε0) dV.
+    integer, intent(in) :: etype
+    real(wp), intent(in) :: x(:, :), ue(:)
+    type(section_t), intent(in) :: sec
+    type(material_t), intent(in) :: mat
+    type(dload_t), intent(in) :: dl
+    real(wp), intent(out) :: energy
+    type(error_t), allocatable, intent(out) :: error
+    real(wp), allocatable :: fe(:), ke(:, :)
+    real(wp) :: w0
+    energy = 0.0_wp
+    if (allocated(dl%nodal)) then
+       call s8r_thermal_load(etype, x, sec, mat, dl%value, dl%curvature, fe, error, dl%nodal, dl%curvature_nodal, &
+            self_energy=w0)
+    else
+       call s8r_thermal_load(etype, x, sec, mat, dl%value, dl%curvature, fe, error, self_energy=w0)
+    end if
+    if (allocated(error)) return
+    call element_stiffness(etype, x, sec, mat, ke, error)
+    if (allocated(error)) return
+    energy = 0.5_wp*dot_product(ue, matmul(ke, ue)) - dot_product(ue, fe) + w0
+  end subroutine s8r_thermal_energy
 
   pure subroutine axisym_centrif_load(etype, x, mat, dl, fe, error)
     !! CENTRIF on an axisymmetric element: the spin axis must be its axis y

@@ -55,11 +55,13 @@ contains
     end do
   end subroutine s8r_gravity_load
 
-  pure subroutine s8r_thermal_load(etype, x, sec, mat, strain, curvature, fe, error, strain_nodal, curvature_nodal)
+  pure subroutine s8r_thermal_load(etype, x, sec, mat, strain, curvature, fe, error, strain_nodal, curvature_nodal, &
+       self_energy)
     !! Consistent nodal loads fe(48) (global axes) of an S8R or S8 (etype) under the thermal strain
     !! strain = α ΔT and curvature = α ∂T/∂n (superjoin_elements_shell8); with
     !! strain_nodal(8), curvature_nodal(8) the nodes' remainders after them,
-    !! interpolated to the integration points.
+    !! interpolated to the integration points. self_energy: ½ ∫ ε0ᵀ D ε0 dV
+    !! by the same rules (shell8_thermal_load).
     integer, intent(in) :: etype
     real(wp), intent(in) :: x(:, :)
     type(section_t), intent(in) :: sec
@@ -68,6 +70,7 @@ contains
     real(wp), allocatable, intent(out) :: fe(:)
     type(error_t), allocatable, intent(out) :: error
     real(wp), intent(in), optional :: strain_nodal(:), curvature_nodal(:)
+    real(wp), intent(out), optional :: self_energy
     real(wp) :: r(3, 3), xl(2, size(x, 2)), h(size(x, 2))
     if (size(x, 2) /= ELEMENT_NODE_COUNT(ET_S8R)) then
        call fatal_error(error, EXIT_DECK, 'wrong number of nodes')
@@ -76,7 +79,7 @@ contains
     call shell_frame(x, r, xl, h, error)
     if (allocated(error)) return
     call shell8_thermal_load(x, r(1, :), shell8_props(sec, mat, etype), strain, curvature, fe, error, strain_nodal, &
-         curvature_nodal)
+         curvature_nodal, self_energy)
   end subroutine s8r_thermal_load
 
   pure subroutine s8r_thermal_resultants(sec, mat, strain, curvature, res, nodal)

@@ -37,7 +37,8 @@ module superjoin_elements
   use superjoin_model_types, only: dload_t, DLOAD_CENTRIF, model_t, ELEMENT_NODE_COUNT, DLOAD_GRAV
   use superjoin_elements_drill_mask, only: element_drill
   use superjoin_elements_centrif, only: centrif_load
-  use superjoin_elements_shell8_loads, only: s8r_is_tapered, s8r_gravity_load, s8r_thermal_load, s8r_centrif_load
+  use superjoin_elements_shell8_loads, only: s8r_is_tapered, s8r_gravity_load, s8r_thermal_load, s8r_centrif_load, &
+       s8r_thermal_terms
   use superjoin_elements_frame, only: beam_frame
   use superjoin_elements_truss, only: truss_stiffness, truss_end_forces, truss_distributed_load
   use superjoin_elements_beam, only: beam_stiffness, beam_end_forces, beam_load
@@ -808,12 +809,7 @@ contains
     real(wp), allocatable :: fe(:), ke(:, :)
     real(wp) :: w0
     energy = 0.0_wp
-    if (allocated(dl%nodal)) then
-       call s8r_thermal_load(etype, x, sec, mat, dl%value, dl%curvature, fe, error, dl%nodal, dl%curvature_nodal, &
-            self_energy=w0)
-    else
-       call s8r_thermal_load(etype, x, sec, mat, dl%value, dl%curvature, fe, error, self_energy=w0)
-    end if
+    call s8r_thermal_terms(etype, x, sec, mat, dl, fe, w0, error)
     if (allocated(error)) return
     call element_stiffness(etype, x, sec, mat, ke, error)
     if (allocated(error)) return

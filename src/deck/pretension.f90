@@ -184,6 +184,11 @@ contains
     if (any(ends <= 0)) return   ! a node in error, reported
     n = model%subs(s)%x(:, ends(2)) - model%subs(s)%x(:, ends(1))
     if (p%has_normal) n = p%normal
+    if (.not. norm2(n) > 0.0_wp) then
+       call report_loc(st, p%loc, '*PRE-TENSION SECTION: element '//itoa(model%subs(s)%elem_id(items(1)))// &
+            ' has coincident nodes: give the normal on the data line')
+       return
+    end if
     n = n/norm2(n)
     call add_bolt_equation(model, s, ends, pnode, n(1:count(tr%dofs(1:3))), p%loc)
     call note(model%notes, '*PRE-TENSION SECTION, ELEMENT='//ref_text(p%element)//' ('// &

@@ -99,7 +99,8 @@ def main():
                        'takes one of SURFACE=', 2),
               'set_of_three': (base.replace('ELEMENT=1', 'ELEMENT=EALL'), 'holds 3 elements', 0),
               'undefined': (base.replace('ELEMENT=1', 'ELEMENT=7'), 'undefined element 7', 0),
-              'node_in_element': (base.replace('NODE=99', 'NODE=3'), 'belongs to an element', 0)}
+              'node_in_element': (base.replace('NODE=99', 'NODE=3'), 'belongs to an element', 0),
+              'coincident': (base.replace('2, 0.1, 0., 0.\n', '2, 0., 0., 0.\n'), 'has coincident nodes', 0)}
     for job, (text, words, shift) in errors.items():
         proc = run(binary, outdir, job, text)
         want = f'{job}.inp:{CARD_LINE + shift}: error: '

@@ -10,18 +10,22 @@ module superjoin_deck_pretension
   !! constraint u_copy,c - u_orig,c - n_c u_n,1 = 0 ties the pair: the gap
   !! across the cut is n times DOF 1 of the pretension node (tangential motions
   !! tied). A *CLOAD on that DOF is the bolt force (positive: tension), a
-  !! *BOUNDARY on it the shortening of the bolt. The ELEMENT= form (a beam bolt)
-  !! is refused.
+  !! *BOUNDARY on it the shortening of the bolt. `ELEMENT=e` (a beam bolt, as
+  !! CalculiX reads it): the 2-node beam or truss e is removed and its nodes
+  !! tied by n.(u_2 - u_1) + u_n,1 = 0 (n: node 1 to node 2 by default).
   use superjoin_kinds, only: wp, ip
-  use superjoin_model_types, only: model_t, equation_t, source_loc_t, substructure_t, find_node, &
+  use superjoin_model_types, only: model_t, equation_t, source_loc_t, substructure_t, find_node, loc_text, &
        ELEMENT_NODE_COUNT, DLOAD_P1, DLOAD_P4, DLOAD_P5, DLOAD_P6
   use superjoin_deck_lexer, only: keyword_line_t, parse_id, TOK_OK, clip
   use superjoin_deck_state, only: deck_state_t, report_loc
-  use superjoin_deck_records, only: pretension_b_t
+  use superjoin_deck_records, only: pretension_b_t, SUBK_PLAIN
   use superjoin_deck_cards_common, only: outside_step, check_params, get_param, field_count, get_reals, &
-       set_card, CARD_SKIP, NAME_LEN
-  use superjoin_deck_build_common, only: resolve_sub, resolve_items
-  use superjoin_elements_traits, only: element_traits, element_traits_t, FAMILY_SOLID, FAMILY_PLANE
+       set_card, parse_ref, CARD_SKIP, NAME_LEN
+  use superjoin_deck_build_common, only: resolve_sub, resolve_items, ref_text
+  use superjoin_deck_element_removal, only: remove_element
+  use superjoin_model_notes, only: note
+  use superjoin_elements_traits, only: element_traits, element_traits_t, FAMILY_SOLID, FAMILY_PLANE, &
+       FAMILY_BEAM, FAMILY_TRUSS
   use superjoin_elements_solid_faces, only: solid_face_nodes
   use superjoin_utils_strings, only: to_upper, itoa
   implicit none (type, external)
@@ -56,15 +60,7 @@ contains
     st%card = CARD_SKIP
     if (.not. outside_step(st, kw, loc)) return
     call check_params(st, kw, loc, [character(NAME_LEN) :: 'SURFACE', 'NODE', 'ELEMENT'], [character(NAME_LEN) ::])
-    call get_param(st, kw, loc, 'ELEMENT', .false., value, found)
-    if (found) then
-       call report_loc(st, loc, '*PRE-TENSION SECTION, ELEMENT= (a beam bolt) is not supported: cut a solid '// &
-            'bolt with SURFACE=')
-       return
-    end if
-    call get_param(st, kw, loc, 'SURFACE', .true., value, found)
-    if (.not. found) return
-    p%surface = to_upper(value)
+    if (.not. section_param(st, kw, loc, p)) return
     call get_param(st, kw, loc, 'NODE', .true., value, found)
     if (.not. found) return
     call parse_id(value, p%node, stat)
@@ -78,6 +74,42 @@ contains
     call set_card(st, CARD_PRETENSION, '*PRE-TENSION SECTION', loc)
     st%card_item = size(st%pretensions)
   end subroutine kw_pretension
+
+  logical function section_param(st, kw, loc, p) result(ok)
+    !! SURFACE= or ELEMENT= (one of them): the section, or the element of a beam bolt.
+    type(deck_state_t), intent(inout) :: st
+    type(keyword_line_t), intent(in) :: kw
+    type(source_loc_t), intent(in) :: loc
+    type(pretension_b_t), intent(inout) :: p
+    character(:), allocatable :: surface, element
+    logical :: has_surface, has_element
+    integer :: home
+    ok = .false.
+    call get_param(st, kw, loc, 'SURFACE', .false., surface, has_surface)
+    call get_param(st, kw, loc, 'ELEMENT', .false., element, has_element)
+    if (has_surface .eqv. has_element) then
+       call report_loc(st, loc, '*PRE-TENSION SECTION takes one of SURFACE= (a solid bolt) and ELEMENT= '// &
+            '(a beam bolt)')
+       return
+    end if
+    if (has_surface) then
+       p%surface = to_upper(surface)
+       ok = .true.
+       return
+    end if
+    p%surface = ''
+    p%by_element = .true.
+    home = 0
+    if (st%cur_sub > 0) then
+       if (st%subs(st%cur_sub)%kind /= SUBK_PLAIN) then
+          call report_loc(st, loc, '*PRE-TENSION SECTION, ELEMENT= inside *PART is not supported (write it '// &
+               'in the assembly: ELEMENT=I.e, NODE=n)')
+          return
+       end if
+       home = st%cur_sub
+    end if
+    ok = parse_ref(st, element, .true., home, loc, p%element)
+  end function section_param
 
   subroutine data_pretension(st, line, loc)
     !! The data line of *PRE-TENSION SECTION: the normal nx, ny, nz (one line).
@@ -110,9 +142,107 @@ contains
     integer :: k
     if (.not. allocated(st%pretensions)) return
     do k = 1, size(st%pretensions)
-       call build_one(st, model, st%pretensions(k))
+       if (.not. st%pretensions(k)%by_element) call build_one(st, model, st%pretensions(k))
+    end do
+    ! beam bolts last: removing their elements renumbers the elements after them
+    do k = 1, size(st%pretensions)
+       if (st%pretensions(k)%by_element) call build_beam_bolt(st, model, st%pretensions(k))
     end do
   end subroutine build_pretensions
+
+  subroutine build_beam_bolt(st, model, p)
+    !! ELEMENT=e, as CalculiX does: the bolt element e (2 nodes, beam or
+    !! truss) is removed and its nodes are tied by the exact equation
+    !! n.(u_2 - u_1) + u_n,1 = 0, n the normal (default: node 1 to node 2 of e).
+    type(deck_state_t), intent(inout) :: st
+    type(model_t), intent(inout) :: model
+    type(pretension_b_t), intent(in) :: p
+    type(element_traits_t) :: tr
+    integer(ip), allocatable :: items(:)
+    integer(ip) :: pnode, ends(2)
+    real(wp) :: n(3)
+    integer :: s
+    logical :: ok
+    s = resolve_sub(st, model, p%element, p%loc, 'element')
+    if (s == 0) return
+    call resolve_items(st, model, s, p%element, .true., p%loc, items, ok)
+    if (.not. ok) return
+    if (size(items) /= 1) then
+       call report_loc(st, p%loc, '*PRE-TENSION SECTION: ELEMENT='//ref_text(p%element)//' holds '// &
+            itoa(size(items))//' elements (it takes one: the bolt)')
+       return
+    end if
+    tr = element_traits(model%subs(s)%elem_type(items(1)))
+    if ((tr%family /= FAMILY_BEAM .and. tr%family /= FAMILY_TRUSS) .or. tr%nodes /= 2) then
+       call report_loc(st, p%loc, '*PRE-TENSION SECTION: element '//itoa(model%subs(s)%elem_id(items(1)))// &
+            ' is a '//trim(tr%name)//' (ELEMENT= takes a 2-node beam or truss element: the bolt)')
+       return
+    end if
+    pnode = pretension_node(st, model%subs(s), p)
+    if (pnode == 0) return
+    ends = model%subs(s)%elem_nodes(1:2, items(1))
+    if (any(ends <= 0)) return   ! a node in error, reported
+    n = model%subs(s)%x(:, ends(2)) - model%subs(s)%x(:, ends(1))
+    if (p%has_normal) n = p%normal
+    if (.not. norm2(n) > 0.0_wp) then
+       call report_loc(st, p%loc, '*PRE-TENSION SECTION: element '//itoa(model%subs(s)%elem_id(items(1)))// &
+            ' has coincident nodes: give the normal on the data line')
+       return
+    end if
+    n = n/norm2(n)
+    call add_bolt_equation(model, s, ends, pnode, n(1:count(tr%dofs(1:3))), p%loc)
+    call note(model%notes, '*PRE-TENSION SECTION, ELEMENT='//ref_text(p%element)//' ('// &
+         loc_text(model, p%loc)//'): the bolt element is removed and its two nodes tied by an '// &
+         'equation, as CalculiX does (Abaqus keeps it: a prescribed shortening then also stretches it)')
+    call remove_element(model, s, items(1))
+  end subroutine build_beam_bolt
+
+  subroutine add_bolt_equation(model, s, ends, pnode, n, loc)
+    !! n.(u_2 - u_1) + u_pnode,1 = 0; the first term (node 2, the largest
+    !! component of n) is the dependent one. Every translation of both ends is
+    !! a term (0 where n has no component, as CalculiX drops those below 1e-10):
+    !! the ends keep their translations once the element is gone, as in CalculiX.
+    type(model_t), intent(inout) :: model
+    integer, intent(in) :: s
+    integer(ip), intent(in) :: ends(2), pnode
+    real(wp), intent(in) :: n(:)
+    type(source_loc_t), intent(in) :: loc
+    type(equation_t) :: eq
+    integer :: c, k, order(size(n))
+    order = [(c, c = 1, size(n))]
+    order(1:maxloc(abs(n), 1)) = cshift(order(1:maxloc(abs(n), 1)), -1)   ! the largest component first
+    allocate (eq%node(0), eq%dof(0), eq%coef(0))
+    do k = 1, size(order)
+       c = order(k)
+       eq%node = [eq%node, ends(2), ends(1)]
+       eq%dof = [eq%dof, c, c]
+       eq%coef = [eq%coef, merge(n(c), 0.0_wp, abs(n(c)) > 1.0e-10_wp)*[1.0_wp, -1.0_wp]]
+    end do
+    eq%node = [eq%node, pnode]
+    eq%dof = [eq%dof, 1]
+    eq%coef = [eq%coef, 1.0_wp]
+    allocate (eq%sub(size(eq%node)), source=s)
+    eq%loc = loc
+    eq%coupling = .true.
+    if (.not. allocated(model%equations)) allocate (model%equations(0))
+    model%equations = [model%equations, eq]
+  end subroutine add_bolt_equation
+
+  integer(ip) function pretension_node(st, sub, p) result(pnode)
+    !! The local index of NODE= in sub (0 and reported when it is undefined or
+    !! a node of an element).
+    type(deck_state_t), intent(inout) :: st
+    type(substructure_t), intent(in) :: sub
+    type(pretension_b_t), intent(in) :: p
+    pnode = find_node(sub, p%node)
+    if (pnode == 0) then
+       call report_loc(st, p%loc, '*PRE-TENSION SECTION: node '//itoa(p%node)//' (NODE=) is not defined')
+    else if (in_element(sub, pnode)) then
+       call report_loc(st, p%loc, '*PRE-TENSION SECTION: node '//itoa(p%node)//' (NODE=) belongs to an element '// &
+            '(the pretension node must be a node of no element)')
+       pnode = 0
+    end if
+  end function pretension_node
 
   subroutine build_one(st, model, p)
     type(deck_state_t), intent(inout) :: st
@@ -125,16 +255,8 @@ contains
     logical :: ok
     call section_faces(st, model, p, cut, ok)
     if (.not. ok) return
-    pnode = find_node(model%subs(cut%sub), p%node)
-    if (pnode == 0) then
-       call report_loc(st, p%loc, '*PRE-TENSION SECTION: node '//itoa(p%node)//' (NODE=) is not defined')
-       return
-    end if
-    if (in_element(model%subs(cut%sub), pnode)) then
-       call report_loc(st, p%loc, '*PRE-TENSION SECTION: node '//itoa(p%node)//' (NODE=) belongs to an element '// &
-            '(the pretension node must be a node of no element)')
-       return
-    end if
+    pnode = pretension_node(st, model%subs(cut%sub), p)
+    if (pnode == 0) return
     if (p%has_normal) then
        n = p%normal
     else if (norm2(cut%area) > 0.0_wp) then

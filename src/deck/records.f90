@@ -286,7 +286,9 @@ module superjoin_deck_records
 
   type, public :: pretension_b_t
     !! A *PRE-TENSION SECTION card as read (superjoin_deck_pretension).
-     character(:), allocatable :: surface  !! SURFACE= (upper case)
+     character(:), allocatable :: surface  !! SURFACE= (upper case; '' with ELEMENT=)
+     logical :: by_element = .false.       !! ELEMENT= (a beam bolt) instead of SURFACE=
+     type(ref_t) :: element                !! ELEMENT=: the bolt element (id or a set of one element)
      integer(ip) :: node = 0               !! NODE=: the pretension node's user id
      logical :: has_normal = .false.       !! the data line gave the normal
      real(wp) :: normal(3) = 0.0_wp

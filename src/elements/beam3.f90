@@ -51,7 +51,8 @@ module superjoin_elements_beam3
   end type beam3_props_t
 
   public :: beam3_stiffness, beam3_end_forces, beam3_nodal_forces, beam3_load
-  public :: beam3_thermal_load, beam3_thermal_end_forces, beam3_middle_section
+  public :: beam3_thermal_load, beam3_thermal_end_forces, beam3_middle_section, beam3_thermal_energy
+  public :: beam3_spin_load, beam3_spin_halves, beam3_end_shares
 
 contains
 
@@ -277,7 +278,7 @@ contains
     real(wp), allocatable, intent(out) :: fe(:)
     type(error_t), allocatable, intent(out) :: error
     type(beam3_props_t) :: p
-    real(wp) :: r(3, 3), jac, nf(NNODE), ds(NNODE), b(NSTRAIN, NDOF*NNODE), e0(NSTRAIN), tp(3)
+    real(wp) :: r(3, 3), jac, nf(NNODE), ds(NNODE), b(NSTRAIN, NDOF*NNODE), e0(NSTRAIN)
     integer :: k
 
     call setup(x, sec, mat, p, error)
@@ -287,11 +288,45 @@ contains
        call point(x, sec, merge(-G2, G2, k == 1), r, jac, nf, ds, error)
        if (allocated(error)) return
        call b_matrix(r, nf, ds, b)
-       tp = matmul(th, nf)
-       e0 = [tp(1), 0.0_wp, 0.0_wp, 0.0_wp, tp(3), -tp(2)]
+       e0 = initial_strain(th, nf)
        fe = fe + jac*matmul(p%d*e0, b)
     end do
   end subroutine beam3_thermal_load
+
+  pure subroutine beam3_thermal_energy(x, sec, mat, th, ue, energy, error)
+    !! The strain energy of the mechanical strains of a heated B32,
+    !! ½ ∫ (B u_e - ε0)ᵀ D (B u_e - ε0) ds by the two Gauss points of the
+    !! stiffness (th as beam3_thermal_load): ½ u_eᵀ K_e u_e - u_eᵀ f_th + ½ ∫ ε0ᵀ D ε0
+    !! with the element's own rule, 0 for an element free to follow ε0.
+    real(wp), intent(in) :: x(:, :)
+    type(section_t), intent(in) :: sec
+    type(material_t), intent(in) :: mat
+    real(wp), intent(in) :: th(3, NNODE), ue(:)
+    real(wp), intent(out) :: energy
+    type(error_t), allocatable, intent(out) :: error
+    type(beam3_props_t) :: p
+    real(wp) :: r(3, 3), jac, nf(NNODE), ds(NNODE), b(NSTRAIN, NDOF*NNODE), e(NSTRAIN)
+    integer :: k
+    energy = 0.0_wp
+    call setup(x, sec, mat, p, error)
+    if (allocated(error)) return
+    do k = 1, 2
+       call point(x, sec, merge(-G2, G2, k == 1), r, jac, nf, ds, error)
+       if (allocated(error)) return
+       call b_matrix(r, nf, ds, b)
+       e = matmul(b, ue(1:NDOF*NNODE)) - initial_strain(th, nf)
+       energy = energy + 0.5_wp*jac*sum(p%d*e**2)
+    end do
+  end subroutine beam3_thermal_energy
+
+  pure function initial_strain(th, nf) result(e0)
+    !! The initial strains ε0 = (α ΔT, 0, 0, 0, κy0, κz0) at a point with shape
+    !! functions nf of the nodal values th (beam3_thermal_load; module header).
+    real(wp), intent(in) :: th(3, NNODE), nf(NNODE)
+    real(wp) :: e0(NSTRAIN), tp(3)
+    tp = matmul(th, nf)
+    e0 = [tp(1), 0.0_wp, 0.0_wp, 0.0_wp, tp(3), -tp(2)]
+  end function initial_strain
 
   pure subroutine beam3_thermal_end_forces(x, sec, mat, th, f, error)
     !! The end-node shares f(6, 2) (local axes of the tangent at nodes 1 and 3,
@@ -304,11 +339,23 @@ contains
     real(wp), intent(out) :: f(6, 2)
     type(error_t), allocatable, intent(out) :: error
     real(wp), allocatable :: fe(:)
-    real(wp) :: r(3, 3), jac, nf(NNODE), ds(NNODE)
-    integer :: a, o
     f = 0.0_wp
     call beam3_thermal_load(x, sec, mat, th, fe, error)
     if (allocated(error)) return
+    call beam3_end_shares(x, sec, fe, f, error)
+  end subroutine beam3_thermal_end_forces
+
+  pure subroutine beam3_end_shares(x, sec, fe, f, error)
+    !! The end-node shares f(6, 2) of nodal loads fe(18) (global axes), each in
+    !! the local axes of the tangent at its node (1 and 3), as beam3_end_forces.
+    real(wp), intent(in) :: x(:, :)
+    type(section_t), intent(in) :: sec
+    real(wp), intent(in) :: fe(:)
+    real(wp), intent(out) :: f(6, 2)
+    type(error_t), allocatable, intent(out) :: error
+    real(wp) :: r(3, 3), jac, nf(NNODE), ds(NNODE)
+    integer :: a, o
+    f = 0.0_wp
     do a = 1, 2
        call point(x, sec, merge(-1.0_wp, 1.0_wp, a == 1), r, jac, nf, ds, error)
        if (allocated(error)) return
@@ -316,8 +363,53 @@ contains
        f(1:3, a) = matmul(r, fe(o + 1:o + 3))
        f(4:6, a) = matmul(r, fe(o + 4:o + 6))
     end do
-  end subroutine beam3_thermal_end_forces
-  pure subroutine beam3_middle_section(x, sec, f, w, s, error)
+  end subroutine beam3_end_shares
+
+  pure function beam3_spin_load(x, spin) result(fe)
+    !! Consistent nodal loads fe(18) (global axes, no nodal moments, as the
+    !! B32's other line loads) of the centrifugal load per unit length
+    !! q = c r, spin = (c = ρ A ω², a point p of the axis, its unit direction
+    !! a), r the distance vector from the axis: ∫ Nᵢ q ds by 3 Gauss points
+    !! (exact on a straight element: q and Nᵢ are quadratic in ξ).
+    real(wp), intent(in) :: x(:, :), spin(7)
+    real(wp) :: fe(NDOF*NNODE)
+    real(wp), parameter :: G3 = sqrt(0.6_wp), W3(3) = [5.0_wp, 8.0_wp, 5.0_wp]/9
+    real(wp) :: xi, nf(NNODE), dn(NNODE), q(3)
+    integer :: k, a
+    fe = 0.0_wp
+    do k = 1, 3
+       xi = G3*(k - 2)
+       nf = [xi*(xi - 1)/2, 1 - xi**2, xi*(xi + 1)/2]
+       dn = [xi - 0.5_wp, -2*xi, xi + 0.5_wp]
+       q = W3(k)*norm2(matmul(x, dn))*spin_load(spin, matmul(x, nf))
+       do a = 1, NNODE
+          fe(NDOF*(a - 1) + 1:NDOF*(a - 1) + 3) = fe(NDOF*(a - 1) + 1:NDOF*(a - 1) + 3) + nf(a)*q
+       end do
+    end do
+  end function beam3_spin_load
+
+  pure function beam3_spin_halves(x, spin) result(h)
+    !! h(1:3, k): the resultant of the centrifugal load (spin as
+    !! beam3_spin_load) on half k of the element (1: ξ in [-1, 0], 2: [0, 1]),
+    !! h(4:6, k) its moment about the middle node: what beam3_middle_section
+    !! takes as `extra`.
+    real(wp), intent(in) :: x(:, :), spin(7)
+    real(wp) :: h(6, 2)
+    integer :: a
+    do a = 1, 2
+       h(:, a) = half_load(x, [0.0_wp, 0.0_wp, 0.0_wp], merge(-1.0_wp, 1.0_wp, a == 1), spin)
+    end do
+  end function beam3_spin_halves
+
+  pure function spin_load(spin, xp) result(q)
+    !! The centrifugal load per unit length c r at the point xp (spin as beam3_spin_load).
+    real(wp), intent(in) :: spin(7), xp(3)
+    real(wp) :: q(3), r(3)
+    r = xp - spin(2:4)
+    r = r - dot_product(r, spin(5:7))*spin(5:7)
+    q = spin(1)*r
+  end function spin_load
+  pure subroutine beam3_middle_section(x, sec, f, w, s, error, extra)
     !! The section forces at the middle node (ξ = 0), in the local frame of the
     !! tangent there: s = n, vy, vz, t, my, mz, signed as the end forces of
     !! node 3 (the force the part beyond the section exerts on the part before
@@ -325,13 +417,15 @@ contains
     !! (beam3_end_forces) and the load w(3) per unit length (global axes) on the
     !! half; the mean of the two (they differ by a load on the middle node). A
     !! simply supported member under q: M = q L²/8 there, where the mean of the
-    !! end values is 0.
+    !! end values is 0. extra(6, 2): the resultants and moments about the
+    !! middle node of other loads on each half (beam3_spin_halves: CENTRIF).
     real(wp), intent(in) :: x(:, :)
     type(section_t), intent(in) :: sec
     real(wp), intent(in) :: f(6, 2)
     real(wp), intent(in) :: w(3)
     real(wp), intent(out) :: s(6)
     type(error_t), allocatable, intent(out) :: error
+    real(wp), intent(in), optional :: extra(6, 2)
     real(wp) :: r(3, 3), jac, nf(NNODE), ds(NNODE), g(6, 2), half(6, 2), sf(3), sm(3)
     integer :: a
     s = 0.0_wp
@@ -344,6 +438,7 @@ contains
     do a = 1, 2
        half(:, a) = half_load(x, w, merge(-1.0_wp, 1.0_wp, a == 1))
     end do
+    if (present(extra)) half = half + extra
     ! before: S = -(g1 + W), M = -(m1 + (x1 - xm) x g1 + Mw); beyond: S = g3 + W, M = m3 + (x3 - xm) x g3 + Mw
     sf = 0.5_wp*(g(1:3, 2) + half(1:3, 2) - g(1:3, 1) - half(1:3, 1))
     sm = 0.5_wp*(g(4:6, 2) + cross(x(:, 3) - x(:, 2), g(1:3, 2)) + half(4:6, 2) &
@@ -373,12 +468,14 @@ contains
     end do
   end subroutine global_end_forces
 
-  pure function half_load(x, w, side) result(h)
+  pure function half_load(x, w, side, spin) result(h)
     !! The resultant h(1:3) of the load w(3) per unit length (global axes) on
     !! the half ξ in [0, side] of the element, and its moment h(4:6) about the
-    !! middle node, by 3 Gauss points.
+    !! middle node, by 3 Gauss points; with spin, the centrifugal load too
+    !! (beam3_spin_load).
     real(wp), intent(in) :: x(:, :)
     real(wp), intent(in) :: w(3), side
+    real(wp), intent(in), optional :: spin(7)
     real(wp) :: h(6)
     real(wp), parameter :: G3 = sqrt(0.6_wp), W3(3) = [5.0_wp, 8.0_wp, 5.0_wp]/9
     real(wp) :: xi, nf(NNODE), dn(NNODE), dw(3)
@@ -388,7 +485,9 @@ contains
        xi = 0.5_wp*side*(1 + G3*(k - 2))
        nf = [xi*(xi - 1)/2, 1 - xi**2, xi*(xi + 1)/2]
        dn = [xi - 0.5_wp, -2*xi, xi + 0.5_wp]
-       dw = 0.5_wp*W3(k)*norm2(matmul(x, dn))*w
+       dw = w
+       if (present(spin)) dw = dw + spin_load(spin, matmul(x, nf))
+       dw = 0.5_wp*W3(k)*norm2(matmul(x, dn))*dw
        h(1:3) = h(1:3) + dw
        h(4:6) = h(4:6) + cross(matmul(x, nf) - x(:, 2), dw)
     end do

@@ -37,13 +37,15 @@ module superjoin_elements
   use superjoin_model_types, only: dload_t, DLOAD_CENTRIF, model_t, ELEMENT_NODE_COUNT, DLOAD_GRAV
   use superjoin_elements_drill_mask, only: element_drill
   use superjoin_elements_centrif, only: centrif_load
-  use superjoin_elements_shell8_loads, only: s8r_is_tapered, s8r_gravity_load, s8r_thermal_load, s8r_centrif_load
+  use superjoin_elements_shell8_loads, only: s8r_is_tapered, s8r_gravity_load, s8r_thermal_load, s8r_centrif_load, &
+       s8r_thermal_terms
   use superjoin_elements_frame, only: beam_frame
   use superjoin_elements_truss, only: truss_stiffness, truss_end_forces, truss_distributed_load
   use superjoin_elements_beam, only: beam_stiffness, beam_end_forces, beam_load
   use superjoin_elements_beam3, only: beam3_stiffness, beam3_end_forces, beam3_nodal_forces, beam3_load, &
        beam3_middle_section
-  use superjoin_elements_beam3, only: beam3_thermal_load, beam3_thermal_end_forces
+  use superjoin_elements_beam3, only: beam3_thermal_load, beam3_thermal_end_forces, beam3_thermal_energy, &
+       beam3_spin_load, beam3_spin_halves, beam3_end_shares
   use superjoin_elements_thermal, only: thermal_plate_resultants, thermal_beam_end_forces, plane_centroid_remainder
   use superjoin_elements_shell8_loads, only: s8r_thermal_resultants
   use superjoin_elements_shell, only: shell_thermal_nodal_resultants
@@ -58,7 +60,7 @@ module superjoin_elements
 
   public :: element_node_dofs, element_dof_mask, element_stiffness, element_end_forces, beam_distributed_load, &
        element_nodal_forces, element_distributed_load, element_gravity_load
-  public :: element_material_load, distributed_load, beam_middle_section
+  public :: element_material_load, distributed_load, beam_middle_section, beam_centrif_halves
   public :: take_thermal_resultants, element_body_end_forces
   public :: element_drill, plane_centroid_remainder
     !! element_drill(sub, e): the drilling edge mask of element e of sub
@@ -186,11 +188,13 @@ contains
     end select
   end subroutine element_nodal_forces
 
-  pure subroutine beam_middle_section(etype, x, sec, f, q_local, s, error)
+  pure subroutine beam_middle_section(etype, x, sec, f, q_local, s, error, extra)
     !! The section forces s(6) = n, vy, vz, t, my, mz at the middle node of a
     !! three-node beam (local axes there, signed as the end forces of its last
-    !! node), from its end forces f(6, 2) (element_end_forces) and its load per
-    !! unit length q_local (as beam_distributed_load returns it). Other types: an error.
+    !! node), from its end forces f(6, 2) (element_end_forces), its load per
+    !! unit length q_local (as beam_distributed_load returns it) and extra(6, 2)
+    !! the loads on its halves that vary along it (beam_centrif_halves). Other
+    !! types: an error.
     integer, intent(in) :: etype
     real(wp), intent(in) :: x(:, :)
     type(section_t), intent(in) :: sec
@@ -198,14 +202,38 @@ contains
     real(wp), intent(in) :: q_local(3)
     real(wp), intent(out) :: s(6)
     type(error_t), allocatable, intent(out) :: error
+    real(wp), intent(in), optional :: extra(6, 2)
     s = 0.0_wp
     select case (etype)
     case (ET_B32)
-       call beam3_middle_section(x, sec, f, q_local, s, error)
+       call beam3_middle_section(x, sec, f, q_local, s, error, extra)
     case default
        call unsupported(etype, error)
     end select
   end subroutine beam_middle_section
+
+  pure function beam_centrif_halves(etype, x, sec, mat, dl) result(h)
+    !! h(6, 2): the resultant and the moment about the middle node of the
+    !! centrifugal load dl on each half of a three-node beam (0 for another
+    !! load or element), for beam_middle_section's extra.
+    integer, intent(in) :: etype
+    real(wp), intent(in) :: x(:, :)
+    type(section_t), intent(in) :: sec
+    type(material_t), intent(in) :: mat
+    type(dload_t), intent(in) :: dl
+    real(wp) :: h(6, 2)
+    h = 0.0_wp
+    if (etype == ET_B32 .and. dl%kind == DLOAD_CENTRIF) h = beam3_spin_halves(x, b32_spin(sec, mat, dl))
+  end function beam_centrif_halves
+
+  pure function b32_spin(sec, mat, dl) result(spin)
+    !! The centrifugal load of dl on a B32 as beam3_spin_load takes it: ρ A ω², the axis' point and direction.
+    type(section_t), intent(in) :: sec
+    type(material_t), intent(in) :: mat
+    type(dload_t), intent(in) :: dl
+    real(wp) :: spin(7)
+    spin = [mat%density*sec%area*dl%value, dl%point, dl%dir]
+  end function b32_spin
 
   pure subroutine element_stiffness(etype, x, sec, mat, ke, error, drill)
     !! Element stiffness in global axes, node-major ordering (node 1 DOFs in
@@ -512,6 +540,10 @@ contains
           call s8r_centrif_load(x, sec, mat, dl, fe, error)
           return
        end if
+       if (etype == ET_B32) then
+          fe = beam3_spin_load(x, b32_spin(sec, mat, dl))
+          return
+       end if
        call centrif_load(etype, x, sec, mat, dl, element_node_dofs(etype), fe, error)
     case default
        call fatal_error(error, EXIT_DECK, 'unknown distributed load kind')
@@ -625,6 +657,10 @@ contains
     end if
     call element_material_load(etype, x, sec, mat, dl, fe, error)
     if (allocated(error)) return
+    if (etype == ET_B32) then   ! each end in the frame of its tangent
+       call beam3_end_shares(x, sec, fe, f, error)
+       return
+    end if
     call beam_frame(etype, x, sec, r, length, error)
     if (allocated(error)) return
     dofs = element_node_dofs(etype)
@@ -671,8 +707,10 @@ contains
     !! element with a uniform thermal strain (and curvature, gradients) by
     !! ½ (u_e - u_0)ᵀ K_e (u_e - u_0), u_0 the free thermal field, whose strains are ε_th
     !! (plane strain: plus ½ E (α ΔT)² V of the held expansion across the plane).
-    !! Refused (error): a B32, an S8R, a plane or shell element whose
-    !! temperature varies over it.
+    !! A B32 by its stiffness rule (beam3_thermal_energy), an S8R or S8 as
+    !! ½ u_eᵀ K_e u_e - u_eᵀ f_th + ½ ∫ ε0ᵀ D ε0 dV, all three by the element's own
+    !! rules (s8r_thermal_energy). Refused (error): another plane or shell
+    !! element whose temperature varies over it.
     type(model_t), intent(in) :: model
     type(result_fields_t), intent(in) :: fields
     integer, intent(in) :: is
@@ -696,11 +734,14 @@ contains
              call axisym_thermal_energy(etype, x, mat, ue, dl%nodal, energy, error)
           else if (is_3d_solid(etype)) then
              call solid_thermal_energy(etype, x, mat, ue, dl%nodal, energy, error, sec%axes)
-          else if (allocated(dl%line_nodal) .or. allocated(dl%nodal) .or. allocated(dl%curvature_nodal) .or. &
-               is_shell8(etype)) then
+          else if (allocated(dl%line_nodal)) then
+             call beam3_thermal_energy(x, sec, mat, dl%line_nodal, ue, energy, error)
+          else if (is_shell8(etype)) then
+             call s8r_thermal_energy(etype, x, sec, mat, dl, ue, energy, error)
+          else if (allocated(dl%nodal) .or. allocated(dl%curvature_nodal)) then
              call fatal_error(error, EXIT_DECK, 'the strain energy under thermal strains is implemented for solids, '// &
-                  'trusses, two-node beams and plane and shell elements of a uniform temperature, not for '// &
-                  'element type '//trim(t%name)//' or a temperature that varies over a plane or shell element')
+                  'trusses, beams, S8R and S8 shells and plane and shell elements of a uniform temperature, not '// &
+                  'for element type '//trim(t%name)//' with a temperature that varies over it')
           else
              if (t%family == FAMILY_TRUSS .or. t%family == FAMILY_BEAM) then
                 call line_free_field(etype, x, sec, mat, dl, u0, error)
@@ -753,6 +794,27 @@ contains
     if (allocated(error)) return
     u0 = u0 + ub
   end subroutine line_free_field
+
+  pure subroutine s8r_thermal_energy(etype, x, sec, mat, dl, ue, energy, error)
+    !! The energy of the mechanical strains of a heated S8R or S8 (etype):
+    !! ½ u_eᵀ K_e u_e - u_eᵀ f_th + ½ ∫ ε0ᵀ D ε0 dV, the three by the rules of
+    !! the stiffness (superjoin_elements_shell8): ½ ∫ (ε - ε0)ᵀ D (ε - ε0) dV.
+    integer, intent(in) :: etype
+    real(wp), intent(in) :: x(:, :), ue(:)
+    type(section_t), intent(in) :: sec
+    type(material_t), intent(in) :: mat
+    type(dload_t), intent(in) :: dl
+    real(wp), intent(out) :: energy
+    type(error_t), allocatable, intent(out) :: error
+    real(wp), allocatable :: fe(:), ke(:, :)
+    real(wp) :: w0
+    energy = 0.0_wp
+    call s8r_thermal_terms(etype, x, sec, mat, dl, fe, w0, error)
+    if (allocated(error)) return
+    call element_stiffness(etype, x, sec, mat, ke, error)
+    if (allocated(error)) return
+    energy = 0.5_wp*dot_product(ue, matmul(ke, ue)) - dot_product(ue, fe) + w0
+  end subroutine s8r_thermal_energy
 
   pure subroutine axisym_centrif_load(etype, x, mat, dl, fe, error)
     !! CENTRIF on an axisymmetric element: the spin axis must be its axis y

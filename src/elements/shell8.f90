@@ -391,7 +391,8 @@ contains
     end do
   end subroutine shell8_mass
 
-  pure subroutine shell8_thermal_load(x, ex, props, strain, curvature, fe, error, strain_nodal, curvature_nodal)
+  pure subroutine shell8_thermal_load(x, ex, props, strain, curvature, fe, error, strain_nodal, curvature_nodal, &
+       self_energy)
     !! Consistent nodal loads fe(48) (global axes) of the thermal strain
     !! ε0 = strain + curvature z in the plane of the lamina (z = ζ t/2 along
     !! e3; strain = α ΔT, curvature = α ∂T/∂n): ∫ Bᵀ D ε0 dV with the rules
@@ -399,14 +400,17 @@ contains
     !! strain_nodal(8), curvature_nodal(8) (a temperature varying over the
     !! element: the nodes' remainders after strain and curvature) these are
     !! interpolated with the shape functions and added at every point.
+    !! self_energy: ½ ∫ ε0ᵀ D ε0 dV by the same rules (the energy of the
+    !! mechanical strains is ½ uᵀ K u - uᵀ fe + self_energy).
     real(wp), intent(in) :: x(:, :), ex(3)
     type(shell8_props_t), intent(in) :: props
     real(wp), intent(in) :: strain, curvature
     real(wp), allocatable, intent(out) :: fe(:)
     type(error_t), allocatable, intent(out) :: error
     real(wp), intent(in), optional :: strain_nodal(:), curvature_nodal(:)
+    real(wp), intent(out), optional :: self_energy
     real(wp) :: dir(3, NN), d(NSTR, NSTR), bm(3, NDOF), bb(3, NDOF), detj(2), nf(NN), dn(2, NN)
-    real(wp) :: sn(NN), cn(NN)
+    real(wp) :: sn(NN), cn(NN), e0(3), wt, w0
     real(wp), parameter :: IN_PLANE(3) = [1.0_wp, 1.0_wp, 0.0_wp]
     real(wp), allocatable :: p(:, :), w(:)
     integer :: i, j
@@ -419,15 +423,17 @@ contains
     if (present(curvature_nodal)) cn = curvature_nodal(1:NN)
     d = material(props)
     allocate (fe(NDOF), source=0.0_wp)
+    w0 = 0.0_wp
     ! bending: dε0/dζ = curvature t/2 at the point
     if (curvature /= 0.0_wp .or. any(cn /= 0.0_wp)) then
        do i = 1, 3
           do j = 1, 3
              call in_plane_parts(x, dir, ex, props, [G3(i), G3(j)], bm, bb, detj)
              call quadratic_shape(NN, [G3(i), G3(j)], nf, dn)
-             fe = fe + (2*W3(i)*W3(j)*G2**2)*sum(detj)/2* &
-                  matmul(transpose(bb), matmul(d(1:3, 1:3), (curvature + dot_product(nf, cn))* &
-                  thickness_at(props, nf)/2*IN_PLANE))
+             wt = (2*W3(i)*W3(j)*G2**2)*sum(detj)/2
+             e0 = (curvature + dot_product(nf, cn))*thickness_at(props, nf)/2*IN_PLANE
+             fe = fe + wt*matmul(transpose(bb), matmul(d(1:3, 1:3), e0))
+             w0 = w0 + 0.5_wp*wt*dot_product(e0, matmul(d(1:3, 1:3), e0))
           end do
        end do
     end if
@@ -436,9 +442,12 @@ contains
        do i = 1, size(w)
           call in_plane_parts(x, dir, ex, props, p(:, i), bm, bb, detj)
           call quadratic_shape(NN, p(:, i), nf, dn)
-          fe = fe + (w(i)*sum(detj))*matmul(transpose(bm), matmul(d(1:3, 1:3), (strain + dot_product(nf, sn))*IN_PLANE))
+          e0 = (strain + dot_product(nf, sn))*IN_PLANE
+          fe = fe + (w(i)*sum(detj))*matmul(transpose(bm), matmul(d(1:3, 1:3), e0))
+          w0 = w0 + 0.5_wp*w(i)*sum(detj)*dot_product(e0, matmul(d(1:3, 1:3), e0))
        end do
     end if
+    if (present(self_energy)) self_energy = w0
   end subroutine shell8_thermal_load
 
   pure subroutine shell8_thermal_resultants(props, strain, curvature, res)

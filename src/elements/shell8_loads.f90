@@ -22,6 +22,7 @@ module superjoin_elements_shell8_loads
   integer, parameter :: NN8 = 8   !! nodes of an S8R
 
   public :: s8r_is_tapered, s8r_gravity_load, s8r_thermal_load, s8r_thermal_resultants, s8r_centrif_load
+  public :: s8r_thermal_terms
 
 contains
 
@@ -78,6 +79,36 @@ contains
     call shell8_thermal_load(x, r(1, :), shell8_props(sec, mat, etype), strain, curvature, fe, error, strain_nodal, &
          curvature_nodal)
   end subroutine s8r_thermal_load
+
+  pure subroutine s8r_thermal_terms(etype, x, sec, mat, dl, fe, self_energy, error)
+    !! The thermal load dl (DLOAD_THERMAL) of an S8R or S8 (etype) as
+    !! s8r_thermal_load (its nodal remainders when dl%nodal is allocated), and
+    !! self_energy = ½ ∫ ε0ᵀ D ε0 dV by the same rules (shell8_thermal_load):
+    !! the energy of the mechanical strains is ½ uᵀ K u - uᵀ fe + self_energy.
+    integer, intent(in) :: etype
+    real(wp), intent(in) :: x(:, :)
+    type(section_t), intent(in) :: sec
+    type(material_t), intent(in) :: mat
+    type(dload_t), intent(in) :: dl
+    real(wp), allocatable, intent(out) :: fe(:)
+    real(wp), intent(out) :: self_energy
+    type(error_t), allocatable, intent(out) :: error
+    real(wp) :: r(3, 3), xl(2, size(x, 2)), h(size(x, 2))
+    self_energy = 0.0_wp
+    if (size(x, 2) /= ELEMENT_NODE_COUNT(ET_S8R)) then
+       call fatal_error(error, EXIT_DECK, 'wrong number of nodes')
+       return
+    end if
+    call shell_frame(x, r, xl, h, error)
+    if (allocated(error)) return
+    if (allocated(dl%nodal)) then
+       call shell8_thermal_load(x, r(1, :), shell8_props(sec, mat, etype), dl%value, dl%curvature, fe, error, &
+            dl%nodal, dl%curvature_nodal, self_energy)
+    else
+       call shell8_thermal_load(x, r(1, :), shell8_props(sec, mat, etype), dl%value, dl%curvature, fe, error, &
+            self_energy=self_energy)
+    end if
+  end subroutine s8r_thermal_terms
 
   pure subroutine s8r_thermal_resultants(sec, mat, strain, curvature, res, nodal)
     !! Resultants (nx .. mxy, lamina frame at the centre) of the free thermal

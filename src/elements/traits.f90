@@ -208,7 +208,7 @@ contains
   elemental logical function accepts_dload(kind, etype)
     !! Whether a distributed load of kind DLOAD_* applies to element type etype:
     !! PX, PY on beams (per unit length), PZ on beams in space, P on shells,
-    !! GRAV on every element, CENTRIF on all but B32, P1..Pn on the faces of a
+    !! GRAV and CENTRIF on every element, P1..Pn on the faces of a
     !! plane element and of a solid (P1..P6 on hexahedra, P1..P4 on tetrahedra, P1..P3 or P1..P4
     !! on the edges of an axisymmetric element); on beams P1
     !! (local y) in space and P2 (local z) also on planar two-node beams.
@@ -227,7 +227,7 @@ contains
     case (DLOAD_GRAV)
        accepts_dload = .true.
     case (DLOAD_CENTRIF)
-       accepts_dload = etype /= ET_B32
+       accepts_dload = .true.
     case (DLOAD_P1)
        accepts_dload = t%family == FAMILY_PLANE .or. (beam2 .and. .not. t%planar) .or. t%family == FAMILY_SOLID
     case (DLOAD_P2)

@@ -25,9 +25,10 @@ module superjoin_output_frd
   use superjoin_kinds, only: wp, i8, ip
   use superjoin_error, only: error_t
   use superjoin_model_types, only: model_t, substructure_t, NDOF_NODE, REQ_NODE_FILE, REQ_EL_FILE, LINK_NONE, &
-       DLOAD_CENTRIF, DLOAD_THERMAL
+       DLOAD_CENTRIF, DLOAD_THERMAL, dload_t
   use superjoin_model_results, only: result_fields_t
-  use superjoin_elements, only: element_tensor, element_stresses, NTENSOR, beam_middle_section, distributed_load
+  use superjoin_elements, only: element_tensor, element_stresses, NTENSOR, beam_middle_section, distributed_load, &
+       beam_centrif_halves
   use superjoin_elements_traits, only: element_traits_t, element_traits, FAMILY_TRUSS, FAMILY_BEAM, &
        FAMILY_PLANE, FAMILY_SHELL, FAMILY_SOLID
   use superjoin_utils_text_buffer, only: text_buffer_t
@@ -302,13 +303,13 @@ contains
     integer, allocatable :: cnt(:)
     type(element_traits_t) :: t
     real(wp) :: cut(NTENSOR, 3)
-    real(wp), allocatable :: ql(:, :)
+    real(wp), allocatable :: ql(:, :), halves(:, :, :)
     integer(i8) :: v
     integer :: isub, k
     integer(ip) :: e
     allocate (vals(NTENSOR, fields%vertex_offset(size(model%subs) + 1)), source=0.0_wp)
     allocate (cnt(size(vals, 2)), source=0)
-    call line_loads(model, fields%elem_offset, is, ql)
+    call line_loads(model, fields%elem_offset, is, ql, halves)
     do isub = 1, size(model%subs)
        associate (sub => model%subs(isub))
          do e = 1, sub%nelem
@@ -317,7 +318,7 @@ contains
             cut(:, 1) = -fields%elem_force(TO_CCX, 1, fields%elem_offset(isub) + e, is)
             cut(:, 3) = fields%elem_force(TO_CCX, 2, fields%elem_offset(isub) + e, is)
             if (t%nodes == 3) call middle_cut(sub, e, fields%elem_force(:, :, fields%elem_offset(isub) + e, is), &
-                 ql(:, fields%elem_offset(isub) + e), cut(:, 2))
+                 ql(:, fields%elem_offset(isub) + e), halves(:, :, fields%elem_offset(isub) + e), cut(:, 2))
             do k = 1, t%nodes   ! the ends are nodes 1 and t%nodes
                v = fields%vertex_offset(isub) + sub%elem_nodes(k, e)
                vals(:, v) = vals(:, v) + cut(:, merge(3, k, k == t%nodes))
@@ -330,48 +331,52 @@ contains
        vals(k, :) = vals(k, :)/real(max(cnt, 1), wp)
     end do
   contains
-    subroutine middle_cut(sub, e, f, q, c)
+    subroutine middle_cut(sub, e, f, q, h, c)
       !! c: the section forces of three-node beam e at its middle node, in ccx's columns.
       type(substructure_t), intent(in) :: sub
       integer(ip), intent(in) :: e
-      real(wp), intent(in) :: f(6, 2), q(3)
+      real(wp), intent(in) :: f(6, 2), q(3), h(6, 2)
       real(wp), intent(out) :: c(NTENSOR)
       real(wp) :: sm(6)
       type(error_t), allocatable :: inner
       call beam_middle_section(sub%elem_type(e), sub%x(:, sub%elem_nodes(1:3, e)), &
-           sub%sections(sub%elem_section(e)), f, q, sm, inner)
+           sub%sections(sub%elem_section(e)), f, q, sm, inner, h)
       c = sm(TO_CCX)   ! an error (a degenerate element) was reported by the recovery
     end subroutine middle_cut
   end subroutine beam_section_forces
 
-  subroutine line_loads(model, elem_offset, is, ql)
+  subroutine line_loads(model, elem_offset, is, ql, halves)
     !! ql(3, element): the load per unit length of each line element in step
     !! is, as the recovery takes it (distributed_load: PX, PY, PZ, GRAV; a
-    !! load combination superposes those of its steps); CENTRIF and TEMP,
-    !! whose loads the end forces take themselves, are left out.
+    !! load combination superposes those of its steps); halves(6, 2, element):
+    !! the CENTRIF loads on the halves of the three-node beams, which vary along
+    !! them (beam_centrif_halves). TEMP is no load on a half: the end forces
+    !! carry its effect.
     type(model_t), intent(in) :: model
     integer(i8), intent(in) :: elem_offset(:)
     integer, intent(in) :: is
-    real(wp), allocatable, intent(out) :: ql(:, :)
+    real(wp), allocatable, intent(out) :: ql(:, :), halves(:, :, :)
     integer :: c, k
     allocate (ql(3, elem_offset(size(elem_offset))), source=0.0_wp)
+    allocate (halves(6, 2, elem_offset(size(elem_offset))), source=0.0_wp)
     c = model%steps(is)%combination
     if (c == 0) then
-       call add_line_loads(model, elem_offset, is, 1.0_wp, ql)
+       call add_line_loads(model, elem_offset, is, 1.0_wp, ql, halves)
        return
     end if
     do k = 1, size(model%combinations(c)%steps)
-       call add_line_loads(model, elem_offset, model%combinations(c)%steps(k), model%combinations(c)%factors(k), ql)
+       call add_line_loads(model, elem_offset, model%combinations(c)%steps(k), model%combinations(c)%factors(k), &
+            ql, halves)
     end do
   end subroutine line_loads
 
-  subroutine add_line_loads(model, elem_offset, is, factor, ql)
-    !! ql += factor × the loads per unit length of the three-node beams in solved step is (line_loads).
+  subroutine add_line_loads(model, elem_offset, is, factor, ql, halves)
+    !! ql, halves += factor × the loads of the three-node beams in solved step is (line_loads).
     type(model_t), intent(in) :: model
     integer(i8), intent(in) :: elem_offset(:)
     integer, intent(in) :: is
     real(wp), intent(in) :: factor
-    real(wp), intent(inout) :: ql(:, :)
+    real(wp), intent(inout) :: ql(:, :), halves(:, :, :)
     real(wp), allocatable :: fe(:)
     real(wp) :: q(3)
     type(element_traits_t) :: t
@@ -380,15 +385,33 @@ contains
     if (.not. allocated(model%steps(is)%dloads)) return
     do i = 1, size(model%steps(is)%dloads)
        associate (dl => model%steps(is)%dloads(i))
-         if (dl%kind == DLOAD_CENTRIF .or. dl%kind == DLOAD_THERMAL) cycle
+         if (dl%kind == DLOAD_THERMAL) cycle
          t = element_traits(model%subs(dl%sub)%elem_type(dl%elem))
          if (t%family /= FAMILY_BEAM .or. t%nodes /= 3) cycle
+         if (dl%kind == DLOAD_CENTRIF) then
+            call add_centrif_halves(model, dl, factor, halves(:, :, elem_offset(dl%sub) + dl%elem))
+            cycle
+         end if
          call distributed_load(model, dl, fe, q, inner)
          if (allocated(inner)) cycle   ! reported when the loads were assembled
          ql(:, elem_offset(dl%sub) + dl%elem) = ql(:, elem_offset(dl%sub) + dl%elem) + factor*q
        end associate
     end do
   end subroutine add_line_loads
+
+  subroutine add_centrif_halves(model, dl, factor, h)
+    !! h += factor × the CENTRIF load dl on the halves of its three-node beam (beam_centrif_halves).
+    type(model_t), intent(in) :: model
+    type(dload_t), intent(in) :: dl
+    real(wp), intent(in) :: factor
+    real(wp), intent(inout) :: h(6, 2)
+    associate (s => model%subs(dl%sub))
+      associate (sec => s%sections(s%elem_section(dl%elem)))
+        h = h + factor*beam_centrif_halves(s%elem_type(dl%elem), s%x(:, s%elem_nodes(1:3, dl%elem)), sec, &
+             model%materials(sec%material), dl)
+      end associate
+    end associate
+  end subroutine add_centrif_halves
 
   subroutine link_forces(model, fields, is, vals, mask)
     !! vals(3, vertex): the force of the contact elements (frd type 11,

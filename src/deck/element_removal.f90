@@ -14,11 +14,13 @@ module superjoin_deck_element_removal
 
 contains
 
-  subroutine remove_element(model, s, e)
-    !! Remove local element e of substructure s from the model.
+  subroutine remove_element(model, s, e, ndropped)
+    !! Remove local element e of substructure s from the model; ndropped: the
+    !! distributed loads of e in the steps, which went with it.
     type(model_t), intent(inout) :: model
     integer, intent(in) :: s
     integer(ip), intent(in) :: e
+    integer, intent(out) :: ndropped
     logical, allocatable :: keep(:)
     integer :: k
     associate (sub => model%subs(s))
@@ -36,9 +38,10 @@ contains
          call drop_index(sub%elsets(k)%items, e)
       end do
     end associate
+    ndropped = 0
     if (allocated(model%steps)) then
        do k = 1, size(model%steps)
-          if (allocated(model%steps(k)%dloads)) call drop_dloads(model%steps(k), s, e)
+          if (allocated(model%steps(k)%dloads)) call drop_dloads(model%steps(k), s, e, ndropped)
        end do
     end if
     if (allocated(model%requests)) then
@@ -67,17 +70,20 @@ contains
     where (items > e) items = items - 1
   end subroutine drop_index
 
-  subroutine drop_dloads(step, s, e)
+  subroutine drop_dloads(step, s, e, ndropped)
     !! A step's distributed loads: those of element e of s left out (and from
-    !! the count continued from the previous step), the others renumbered.
+    !! the count continued from the previous step; ndropped counts the ones
+    !! the step itself gave), the others renumbered.
     type(step_t), intent(inout) :: step
     integer, intent(in) :: s
     integer(ip), intent(in) :: e
+    integer, intent(inout) :: ndropped
     logical, allocatable :: keep(:)
     type(dload_t), allocatable :: kept(:)
     integer :: k
     allocate (keep(size(step%dloads)))
     keep = .not. (step%dloads(:)%sub == s .and. step%dloads(:)%elem == e)
+    ndropped = ndropped + count(.not. keep(min(step%kept_dloads, size(keep)) + 1:))
     step%kept_dloads = step%kept_dloads - count(.not. keep(1:min(step%kept_dloads, size(keep))))
     kept = pack(step%dloads, keep)
     do k = 1, size(kept)

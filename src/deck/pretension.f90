@@ -16,7 +16,7 @@ module superjoin_deck_pretension
   use superjoin_kinds, only: wp, ip
   use superjoin_model_types, only: model_t, equation_t, source_loc_t, substructure_t, find_node, loc_text, &
        ELEMENT_NODE_COUNT, DLOAD_P1, DLOAD_P4, DLOAD_P5, DLOAD_P6
-  use superjoin_deck_lexer, only: keyword_line_t, parse_id, TOK_OK, clip
+  use superjoin_deck_lexer, only: keyword_line_t, parse_id, TOK_OK, clip, plural
   use superjoin_deck_state, only: deck_state_t, report_loc
   use superjoin_deck_records, only: pretension_b_t, SUBK_PLAIN
   use superjoin_deck_cards_common, only: outside_step, check_params, get_param, field_count, get_reals, &
@@ -27,9 +27,12 @@ module superjoin_deck_pretension
   use superjoin_elements_traits, only: element_traits, element_traits_t, FAMILY_SOLID, FAMILY_PLANE, &
        FAMILY_BEAM, FAMILY_TRUSS
   use superjoin_elements_solid_faces, only: solid_face_nodes
-  use superjoin_utils_strings, only: to_upper, itoa
+  use superjoin_utils_strings, only: to_upper, itoa, pick
   implicit none (type, external)
   private
+
+  real(wp), parameter :: NORMAL_DROP = 1.0e-10_wp
+    !! a component of the bolt normal below this is left out of its equation (CalculiX does the same)
 
   public :: kw_pretension, data_pretension, build_pretensions
 
@@ -161,7 +164,7 @@ contains
     integer(ip), allocatable :: items(:)
     integer(ip) :: pnode, ends(2)
     real(wp) :: n(3)
-    integer :: s
+    integer :: s, ndropped
     logical :: ok
     s = resolve_sub(st, model, p%element, p%loc, 'element')
     if (s == 0) return
@@ -184,23 +187,27 @@ contains
     if (any(ends <= 0)) return   ! a node in error, reported
     n = model%subs(s)%x(:, ends(2)) - model%subs(s)%x(:, ends(1))
     if (p%has_normal) n = p%normal
+    n(count(tr%dofs(1:3)) + 1:) = 0.0_wp   ! a planar bolt: the normal in its plane, then unit
     if (.not. norm2(n) > 0.0_wp) then
        call report_loc(st, p%loc, '*PRE-TENSION SECTION: element '//itoa(model%subs(s)%elem_id(items(1)))// &
-            ' has coincident nodes: give the normal on the data line')
+            pick(p%has_normal, ': the normal has no component in the model''s plane', &
+            ' has coincident nodes: give the normal on the data line'))
        return
     end if
     n = n/norm2(n)
     call add_bolt_equation(model, s, ends, pnode, n(1:count(tr%dofs(1:3))), p%loc)
+    call remove_element(model, s, items(1), ndropped)
     call note(model%notes, '*PRE-TENSION SECTION, ELEMENT='//ref_text(p%element)//' ('// &
          loc_text(model, p%loc)//'): the bolt element is removed and its two nodes tied by an '// &
-         'equation, as CalculiX does (Abaqus keeps it: a prescribed shortening then also stretches it)')
-    call remove_element(model, s, items(1))
+         'equation, as CalculiX does (Abaqus keeps it: a prescribed shortening then also stretches it)'// &
+         pick(ndropped > 0, '; its '//plural(ndropped, 'distributed load')//' (*DLOAD, temperature) '// &
+         'went with it', ''))
   end subroutine build_beam_bolt
 
   subroutine add_bolt_equation(model, s, ends, pnode, n, loc)
     !! n.(u_2 - u_1) + u_pnode,1 = 0; the first term (node 2, the largest
     !! component of n) is the dependent one. Every translation of both ends is
-    !! a term (0 where n has no component, as CalculiX drops those below 1e-10):
+    !! a term (0 where n has no component, as CalculiX drops those below NORMAL_DROP):
     !! the ends keep their translations once the element is gone, as in CalculiX.
     type(model_t), intent(inout) :: model
     integer, intent(in) :: s
@@ -216,7 +223,7 @@ contains
        c = order(k)
        eq%node = [eq%node, ends(2), ends(1)]
        eq%dof = [eq%dof, c, c]
-       eq%coef = [eq%coef, merge(n(c), 0.0_wp, abs(n(c)) > 1.0e-10_wp)*[1.0_wp, -1.0_wp]]
+       eq%coef = [eq%coef, merge(n(c), 0.0_wp, abs(n(c)) > NORMAL_DROP)*[1.0_wp, -1.0_wp]]
     end do
     eq%node = [eq%node, pnode]
     eq%dof = [eq%dof, 1]

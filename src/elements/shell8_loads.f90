@@ -69,16 +69,29 @@ contains
     real(wp), allocatable, intent(out) :: fe(:)
     type(error_t), allocatable, intent(out) :: error
     real(wp), intent(in), optional :: strain_nodal(:), curvature_nodal(:)
+    real(wp) :: e1(3)
+    call thermal_axis(x, e1, error)
+    if (allocated(error)) return
+    call shell8_thermal_load(x, e1, shell8_props(sec, mat, etype), strain, curvature, fe, error, strain_nodal, &
+         curvature_nodal)
+  end subroutine s8r_thermal_load
+
+  pure subroutine thermal_axis(x, e1, error)
+    !! The node count of an S8R or S8 at x checked, and the first axis e1 of
+    !! its shell frame (what shell8_thermal_load takes).
+    real(wp), intent(in) :: x(:, :)
+    real(wp), intent(out) :: e1(3)
+    type(error_t), allocatable, intent(out) :: error
     real(wp) :: r(3, 3), xl(2, size(x, 2)), h(size(x, 2))
+    e1 = 0.0_wp
     if (size(x, 2) /= ELEMENT_NODE_COUNT(ET_S8R)) then
        call fatal_error(error, EXIT_DECK, 'wrong number of nodes')
        return
     end if
     call shell_frame(x, r, xl, h, error)
     if (allocated(error)) return
-    call shell8_thermal_load(x, r(1, :), shell8_props(sec, mat, etype), strain, curvature, fe, error, strain_nodal, &
-         curvature_nodal)
-  end subroutine s8r_thermal_load
+    e1 = r(1, :)
+  end subroutine thermal_axis
 
   pure subroutine s8r_thermal_terms(etype, x, sec, mat, dl, fe, self_energy, error)
     !! The thermal load dl (DLOAD_THERMAL) of an S8R or S8 (etype) as
@@ -93,19 +106,15 @@ contains
     real(wp), allocatable, intent(out) :: fe(:)
     real(wp), intent(out) :: self_energy
     type(error_t), allocatable, intent(out) :: error
-    real(wp) :: r(3, 3), xl(2, size(x, 2)), h(size(x, 2))
+    real(wp) :: e1(3)
     self_energy = 0.0_wp
-    if (size(x, 2) /= ELEMENT_NODE_COUNT(ET_S8R)) then
-       call fatal_error(error, EXIT_DECK, 'wrong number of nodes')
-       return
-    end if
-    call shell_frame(x, r, xl, h, error)
+    call thermal_axis(x, e1, error)
     if (allocated(error)) return
     if (allocated(dl%nodal)) then
-       call shell8_thermal_load(x, r(1, :), shell8_props(sec, mat, etype), dl%value, dl%curvature, fe, error, &
+       call shell8_thermal_load(x, e1, shell8_props(sec, mat, etype), dl%value, dl%curvature, fe, error, &
             dl%nodal, dl%curvature_nodal, self_energy)
     else
-       call shell8_thermal_load(x, r(1, :), shell8_props(sec, mat, etype), dl%value, dl%curvature, fe, error, &
+       call shell8_thermal_load(x, e1, shell8_props(sec, mat, etype), dl%value, dl%curvature, fe, error, &
             self_energy=self_energy)
     end if
   end subroutine s8r_thermal_terms

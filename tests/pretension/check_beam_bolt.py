@@ -100,7 +100,10 @@ def main():
               'set_of_three': (base.replace('ELEMENT=1', 'ELEMENT=EALL'), 'holds 3 elements', 0),
               'undefined': (base.replace('ELEMENT=1', 'ELEMENT=7'), 'undefined element 7', 0),
               'node_in_element': (base.replace('NODE=99', 'NODE=3'), 'belongs to an element', 0),
-              'coincident': (base.replace('2, 0.1, 0., 0.\n', '2, 0., 0., 0.\n'), 'has coincident nodes', 0)}
+              'coincident': (base.replace('2, 0.1, 0., 0.\n', '2, 0., 0., 0.\n'), 'has coincident nodes', 0),
+              'not_two_nodes': (base.replace('3, 1., 0., 0.\n', '3, 1., 0., 0.\n4, 0.05, 0., 0.\n').replace(
+                  '*ELEMENT, TYPE=B31, ELSET=PRE\n1, 1, 2\n', '*ELEMENT, TYPE=B32, ELSET=PRE\n1, 1, 4, 2\n'),
+                  'is a B32 (ELEMENT= takes a 2-node beam or truss', 1)}
     for job, (text, words, shift) in errors.items():
         proc = run(binary, outdir, job, text)
         want = f'{job}.inp:{CARD_LINE + shift}: error: '
@@ -108,6 +111,14 @@ def main():
         print(f"  {'ok  ' if ok else 'FAIL'} {job}: {proc.stderr.strip().splitlines()[0] if proc.stderr else ''}")
         if not ok:
             failures.append(job)
+    # a *DLOAD on the bolt element goes with it: the listing says so
+    proc = run(binary, outdir, 'dload', base.replace('*CLOAD\n', '*DLOAD\n1, P1, 5.\n*CLOAD\n'))
+    with open(os.path.join(outdir, 'dload.lst')) as f:
+        listing = ' '.join(f.read().split())
+    said = proc.returncode == 0 and 'its 1 distributed load (*DLOAD, temperature) went with it' in listing
+    print(f"  {'ok  ' if said else 'FAIL'} dload: the listing notes the bolt element's distributed load")
+    if not said:
+        failures.append('dload')
     print(f'{len(failures)} failures')
     return 1 if failures else 0
 

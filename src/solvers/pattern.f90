@@ -53,31 +53,57 @@ contains
     !! columns: column j holds every column i <= j that shares an item with it,
     !! and always j itself. item_col(item_ptr(it):item_ptr(it+1)-1) are the
     !! sorted columns of item it; col_item(col_ptr(j):col_ptr(j+1)-1) the items
-    !! of column j. Values are zero. Built as the lower pattern
-    !! row by row (unsorted), whose transpose comes out sorted by construction.
+    !! of column j. Values are zero. Two passes over the items of each column,
+    !! no intermediate copy: the first counts the rows of each column, the
+    !! second writes row i into the columns j > i that share an item with it,
+    !! i increasing, so each column's rows come out sorted with the diagonal
+    !! last.
     integer(i8), intent(in) :: ncol
     integer(i8), intent(in) :: item_ptr(:), item_col(:), col_ptr(:), col_item(:)
     type(sparse_sym_t), intent(out) :: k
     type(error_t), allocatable, intent(out) :: error
-    integer(i8), allocatable :: mark(:), low_ptr(:), low_col(:), tmp(:), fill(:)
-    integer(i8) :: i, j, it, pos, q, cap, nnz
+    integer(i8), allocatable :: mark(:), fill(:)
+    integer(i8) :: i, j, it, pos, q, nnz
     integer :: stat
 
-    ! Lower pattern: for each i, the columns j >= i sharing an item with i.
-    cap = max(16_i8, 4*size(item_col, kind=i8))
+    k%n = ncol
     allocate (mark(ncol), source=0_i8, stat=stat)
-    if (stat == 0) allocate (low_ptr(ncol + 1), low_col(cap), stat=stat)
+    if (stat == 0) allocate (k%colptr(ncol + 1), stat=stat)
     if (stat /= 0) then
-       call out_of_memory(error, 'the matrix pattern', (2*ncol + 1 + cap)*BYTES_I8)
+       call out_of_memory(error, 'the matrix pattern', (2*ncol + 1)*BYTES_I8)
        return
     end if
-    nnz = 0
-    low_ptr(1) = 1
+    ! Rows of column j: j and the distinct i < j sharing an item with it.
+    k%colptr(1) = 1
+    do j = 1, ncol
+       nnz = 1
+       mark(j) = j
+       do q = col_ptr(j), col_ptr(j + 1) - 1
+          it = col_item(q)
+          do pos = item_ptr(it), item_ptr(it + 1) - 1
+             i = item_col(pos)
+             if (i >= j) exit          ! item columns are sorted
+             if (mark(i) == j) cycle
+             mark(i) = j
+             nnz = nnz + 1
+          end do
+       end do
+       k%colptr(j + 1) = k%colptr(j) + nnz
+    end do
+    nnz = k%colptr(ncol + 1) - 1
+
+    allocate (k%rowind(nnz), fill(ncol), stat=stat)
+    if (stat == 0) allocate (k%val(nnz), source=0.0_wp, stat=stat)
+    if (stat /= 0) then
+       call out_of_memory(error, 'the stiffness matrix ('//itoa(nnz)//' nonzeros)', &
+            (2*ncol + 1 + nnz)*BYTES_I8 + nnz*BYTES_REAL)
+       return
+    end if
+    ! Row i into column i (its last row) and into each column j > i it shares an item with.
+    fill(:) = k%colptr(1:ncol)   ! allocated above with stat= (an assignment's allocation is not checked)
+    mark(:) = 0
     do i = 1, ncol
-       if (nnz + 1 > cap) call grow(low_col, cap, nnz + 1)
-       if (allocated(error)) return
-       nnz = nnz + 1
-       low_col(nnz) = i
+       k%rowind(fill(i)) = i
        mark(i) = i
        do q = col_ptr(i), col_ptr(i + 1) - 1
           it = col_item(q)
@@ -86,55 +112,11 @@ contains
              if (j <= i) exit          ! item columns are sorted
              if (mark(j) == i) cycle
              mark(j) = i
-             if (nnz + 1 > cap) call grow(low_col, cap, nnz + 1)
-             if (allocated(error)) return
-             nnz = nnz + 1
-             low_col(nnz) = j
+             k%rowind(fill(j)) = i
+             fill(j) = fill(j) + 1
           end do
        end do
-       low_ptr(i + 1) = nnz + 1
     end do
-    deallocate (mark)
-
-    ! Transpose: rows of each column arrive in increasing order, the diagonal last.
-    k%n = ncol
-    allocate (k%colptr(ncol + 1), source=0_i8, stat=stat)
-    if (stat == 0) allocate (k%rowind(nnz), fill(ncol), stat=stat)
-    if (stat == 0) allocate (k%val(nnz), source=0.0_wp, stat=stat)
-    if (stat /= 0) then
-       call out_of_memory(error, 'the stiffness matrix ('//itoa(nnz)//' nonzeros)', &
-            (2*ncol + 1 + nnz)*BYTES_I8 + nnz*BYTES_REAL)
-       return
-    end if
-    do pos = 1, nnz
-       k%colptr(low_col(pos) + 1) = k%colptr(low_col(pos) + 1) + 1
-    end do
-    k%colptr(1) = 1
-    do j = 1, ncol
-       k%colptr(j + 1) = k%colptr(j + 1) + k%colptr(j)
-    end do
-    fill = k%colptr(1:ncol)
-    do i = 1, ncol
-       do pos = low_ptr(i), low_ptr(i + 1) - 1
-          j = low_col(pos)
-          k%rowind(fill(j)) = i
-          fill(j) = fill(j) + 1
-       end do
-    end do
-  contains
-    subroutine grow(a, cap, need)
-      integer(i8), allocatable, intent(inout) :: a(:)
-      integer(i8), intent(inout) :: cap
-      integer(i8), intent(in) :: need
-      cap = max(2*cap, need)
-      allocate (tmp(cap), stat=stat)
-      if (stat /= 0) then
-         call out_of_memory(error, 'the matrix pattern', cap*BYTES_I8)
-         return
-      end if
-      tmp(1:size(a, kind=i8)) = a
-      call move_alloc(tmp, a)
-    end subroutine grow
   end subroutine build_pattern
 
   pure function find_entry(k, i, j) result(pos)

@@ -46,6 +46,7 @@ module superjoin_assembly_assemble
      integer(i8), allocatable :: ptr(:)     !! (items + 1)
      integer(i8), allocatable :: col(:)     !! grows by doubling
      integer(i8) :: n = 0                   !! items listed so far
+     integer(i8) :: supers_after = 0        !! items before the superelements (scattered densely, no map)
   end type item_columns_t
 
   public :: element_matrix
@@ -204,6 +205,7 @@ contains
     type(item_columns_t) :: items
     type(scatter_map_t) :: map
     integer(i8), allocatable :: col_ptr(:), col_item(:)
+    logical, allocatable :: mapped(:)
     integer(i8) :: j
     integer :: stat
     real(wp) :: g
@@ -219,7 +221,9 @@ contains
     call build_pattern(tr%ncol(), items%ptr, items%col, col_ptr, col_item, k, error)
     if (allocated(error)) return
     if (present(solver)) call solver%analyze_start(k)
-    call build_scatter_map(k, items%ptr(1:items%n + 1), items%col, col_ptr, col_item, map, error)
+    allocate (mapped(items%n), source=.true.)
+    mapped(items%supers_after + 1:items%supers_after + size(plan%supers)) = .false.   ! scatter_dense
+    call build_scatter_map(k, items%ptr(1:items%n + 1), items%col, col_ptr, col_item, mapped, map, error)
     if (allocated(error)) return
     deallocate (col_ptr, col_item)
 
@@ -286,6 +290,7 @@ contains
           if (allocated(error)) return
        end do
     end do
+    items%supers_after = items%n
     do i = 1, size(plan%supers)
        call tr%element_columns(plan%supers(i)%pdof, size(plan%supers(i)%pdof), cols, nc)
        call append_item(items, cols(1:nc), error)

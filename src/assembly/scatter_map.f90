@@ -28,12 +28,14 @@ module superjoin_assembly_scatter_map
 
 contains
 
-  subroutine build_scatter_map(k, item_ptr, item_col, col_ptr, col_item, map, error)
+  subroutine build_scatter_map(k, item_ptr, item_col, col_ptr, col_item, mapped, map, error)
     !! The scatter map of the items (item_col(item_ptr(it):item_ptr(it+1)-1):
     !! sorted columns of item it; col_item(col_ptr(j):col_ptr(j+1)-1): the
-    !! items of column j) in the pattern of k.
+    !! items of column j) in the pattern of k; an item not mapped(it) (a
+    !! superelement, scattered entry by entry) gets no offsets.
     type(sparse_sym_t), intent(in) :: k
     integer(i8), intent(in) :: item_ptr(:), item_col(:), col_ptr(:), col_item(:)
+    logical, intent(in) :: mapped(:)
     type(scatter_map_t), intent(out) :: map
     type(error_t), allocatable, intent(out) :: error
     integer, allocatable :: where(:)
@@ -47,7 +49,7 @@ contains
     end if
     map%start(1) = 0
     do it = 1, nitem
-       nc = item_ptr(it + 1) - item_ptr(it)
+       nc = merge(item_ptr(it + 1) - item_ptr(it), 0_i8, mapped(it))
        map%start(it + 1) = map%start(it) + nc*(nc + 1)/2
     end do
     allocate (map%off(max(1_i8, map%start(nitem + 1))), where(k%n), stat=stat)
@@ -61,6 +63,7 @@ contains
        end do
        do q = col_ptr(j), col_ptr(j + 1) - 1
           it = col_item(q)
+          if (.not. mapped(it)) cycle
           f = item_ptr(it)
           b = locate(item_col(f:item_ptr(it + 1) - 1), j)
           base = map%start(it) + (b*(b - 1_i8))/2

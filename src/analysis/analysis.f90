@@ -216,6 +216,8 @@ contains
     logical :: taken
     taken = .false.
     if (kept) call take_boundaries(ctx%build, st%bnd_c, summary, taken)
+    ctx%cache%same_numbering = taken   ! the condensed parts' views of the previous value fit
+    ctx%cache%keep_views = ctx%joint_study .and. .not. ctx%last
     if (taken) return
     call boundary_dofs(st%table, bnd)
     call given_boundary(model, st%table, bnd)

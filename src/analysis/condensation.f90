@@ -8,7 +8,7 @@ module superjoin_analysis_condensation
   use superjoin_assembly_assemble, only: max_element_diagonal
   use superjoin_substructure_local_system, only: dof_label
   use superjoin_substructure_cache, only: part_cache_t, part_view_t, acquire_view, entry_condense_loads, &
-       entry_ku, view_spc, view_turn, entry_recover, view_need_stiffness, take_views, keep_views
+       entry_ku, view_spc, view_turn, entry_recover, view_need_stiffness, take_views
   use superjoin_model_results, only: run_summary_t, run_options_t
   use superjoin_model_notes, only: note
   use superjoin_analysis_factor_reuse, only: kept_factor_t
@@ -145,7 +145,6 @@ contains
          if (allocated(error)) return
       end do
     end associate
-    call keep_views(cache, st%parts)
     call condense_all_loads(cache, st%parts, st%f_phys, st%f_eff, error)
     if (allocated(error)) return
     do ip_ = 1, size(st%parts)

@@ -212,13 +212,17 @@ contains
   end subroutine take_views
 
   subroutine keep_views(cache, views)
-    !! Keep this value's views for the next value of a joint study
-    !! (keep_views set), as acquire_view would give them again: reused.
+    !! This value's views, once the solve is done with them: kept for the
+    !! next value of a joint study (keep_views set; as acquire_view would give
+    !! them again: reused, without notes), else freed. Moved, not copied.
     type(part_cache_t), intent(inout) :: cache
-    type(part_view_t), intent(in) :: views(:)
+    type(part_view_t), allocatable, intent(inout) :: views(:)
     integer :: i
-    if (.not. cache%keep_views) return
-    cache%kept = views
+    if (.not. (cache%keep_views .and. all(views%entry > 0))) then   ! entry 0: condensed by another process
+       deallocate (views)
+       return
+    end if
+    call move_alloc(views, cache%kept)
     do i = 1, size(cache%kept)
        cache%kept(i)%reused = .true.
        if (allocated(cache%kept(i)%notes)) deallocate (cache%kept(i)%notes)

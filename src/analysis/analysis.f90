@@ -19,7 +19,7 @@ module superjoin_analysis
   use superjoin_assembly_transform, only: transform_t, build_transform, COL_DELTA
   use superjoin_assembly_assemble, only: assemble_stiffness, assemble_loads
   use superjoin_substructure_local_system, only: boundary_dofs, part_boundary, given_boundary
-  use superjoin_substructure_cache, only: release_cache, forget_load_memos
+  use superjoin_substructure_cache, only: release_cache, forget_load_memos, keep_views
   use superjoin_solvers_matrix_market, only: write_matrix_market
   use superjoin_model_results, only: results_t, run_options_t, run_summary_t, PH_ASSEMBLE, PH_ORDER, PH_FACTOR, PH_SOLVE
   use superjoin_analysis_recover, only: recover_results
@@ -216,6 +216,8 @@ contains
     logical :: taken
     taken = .false.
     if (kept) call take_boundaries(ctx%build, st%bnd_c, summary, taken)
+    ctx%cache%same_numbering = taken   ! the condensed parts' views of the previous value fit
+    ctx%cache%keep_views = ctx%joint_study .and. .not. ctx%last
     if (taken) return
     call boundary_dofs(st%table, bnd)
     call given_boundary(model, st%table, bnd)
@@ -411,7 +413,7 @@ contains
        if (allocated(error)) return
        if (ctx%last) call release_cache(ctx%cache)   ! the parts' factors: not needed for the element results
        ! their last users (full_health, parts_maxratio) are done
-       if (allocated(st%parts)) deallocate (st%parts)
+       if (allocated(st%parts)) call keep_views(ctx%cache, st%parts)   ! for a joint study's next value, else freed
        if (allocated(st%f_eff)) deallocate (st%f_eff)
        res%log%phase_seconds(PH_SOLVE) = res%log%phase_seconds(PH_SOLVE) + clock%seconds()
        call report_phase(opts%quiet, 'recover interiors', clock%seconds())

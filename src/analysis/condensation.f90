@@ -8,7 +8,7 @@ module superjoin_analysis_condensation
   use superjoin_assembly_assemble, only: max_element_diagonal
   use superjoin_substructure_local_system, only: dof_label
   use superjoin_substructure_cache, only: part_cache_t, part_view_t, acquire_view, entry_condense_loads, &
-       entry_ku, view_spc, view_turn, entry_recover, view_need_stiffness
+       entry_ku, view_spc, view_turn, entry_recover, view_need_stiffness, take_views
   use superjoin_model_results, only: run_summary_t, run_options_t
   use superjoin_model_notes, only: note
   use superjoin_analysis_factor_reuse, only: kept_factor_t
@@ -104,6 +104,7 @@ contains
     integer(i8), allocatable :: spc(:)
     integer :: isub, ip_, i, computed0, reused0, nrot
     real(wp) :: dmax
+    logical :: taken
     ! The elements of the substructures kept in the interface first, so that
     ! a bad element there is reported as a deck error before a condensation
     ! meets its consequences (condensed ones are checked as they are built).
@@ -113,17 +114,22 @@ contains
     end if
     solver_name = part_solver(opts)
     call library_options(cache, opts)
-    allocate (st%parts(summary%n_condensed))
     st%f_eff = st%f_phys
     computed0 = cache%computed
     reused0 = cache%reused
+    call take_views(cache, pack([(isub, isub=1, size(model%subs))], summary%sub_condensed), st%parts, taken)
+    if (.not. taken) allocate (st%parts(summary%n_condensed))
     nrot = 0
     ip_ = 0
     associate (table => st%table, bnd => st%bnd_c, f_phys => st%f_phys, parts => st%parts)
       do isub = 1, size(model%subs)
          if (.not. summary%sub_condensed(isub)) cycle
          ip_ = ip_ + 1
-         call acquire_part(cache, st, model, isub, solver_name, parts(ip_), error)
+         if (taken) then   ! the previous value's view (a joint study)
+            call need_stiffness(cache, st, model, parts(ip_), error)
+         else
+            call acquire_part(cache, st, model, isub, solver_name, parts(ip_), error)
+         end if
          if (allocated(error)) return
          if (allocated(parts(ip_)%notes)) notes = [notes, parts(ip_)%notes]
          if (parts(ip_)%rotated) nrot = nrot + 1
@@ -171,9 +177,20 @@ contains
     type(error_t), allocatable, intent(out) :: error
     call acquire_view(cache, model, st%table, isub, st%bnd_c, solver_name, view, error, st%f_phys)
     if (allocated(error)) return
+    call need_stiffness(cache, st, model, view, error)
+  end subroutine acquire_part
+
+  subroutine need_stiffness(cache, st, model, view, error)
+    !! The view's own k where its boundary has prescribed values (full_health
+    !! forms k u0 with it; a library entry is loaded without it).
+    type(part_cache_t), intent(inout) :: cache
+    type(solve_state_t), intent(in) :: st
+    type(model_t), intent(in) :: model
+    type(part_view_t), intent(in) :: view
+    type(error_t), allocatable, intent(out) :: error
     if (any(st%tr%prescribed(view%pdof) /= 0.0_wp)) &
          call view_need_stiffness(cache, view, model, st%table, st%bnd_c, error)
-  end subroutine acquire_part
+  end subroutine need_stiffness
 
   subroutine condense_all_loads(cache, parts, f_phys, f_eff, error)
     !! f* of every condensed substructure into f_eff's boundary rows. The

@@ -46,15 +46,6 @@ module superjoin_substructure_cache
      type(entry_t), allocatable :: e
   end type entry_box_t
 
-  type, public :: part_cache_t
-    !! Condensations computed so far in this run.
-     type(entry_box_t), allocatable :: entries(:)
-     integer :: n = 0
-     integer :: computed = 0                  !! condensations computed
-     integer :: reused = 0                    !! uses of an existing one
-     type(library_t) :: library               !! the condensation library across runs (--library)
-  end type part_cache_t
-
   type, public :: part_view_t
     !! A condensed substructure in one solve: a cache entry, turned if need be.
      integer :: isub = 0
@@ -75,10 +66,24 @@ module superjoin_substructure_cache
      type(string_t), allocatable :: notes(:)  !! the library's notes on a condensation computed or loaded here
   end type part_view_t
 
+  type, public :: part_cache_t
+    !! Condensations computed so far in this run.
+     type(entry_box_t), allocatable :: entries(:)
+     integer :: n = 0
+     integer :: computed = 0                  !! condensations computed
+     integer :: reused = 0                    !! uses of an existing one
+     type(library_t) :: library               !! the condensation library across runs (--library)
+     ! A joint study's views kept from one value for the next (take_views).
+     logical :: same_numbering = .false.      !! this value has the previous value's DOF table and boundaries
+     logical :: keep_views = .false.          !! a later value may take this value's views
+     type(part_view_t), allocatable :: kept(:)   !! the previous value's views
+     integer :: kept_n = -1, kept_computed = -1  !! n and computed when they were kept
+  end type part_cache_t
+
   public :: view_ku
   public :: release_cache, forget_load_memos, acquire_view, view_condense_loads, view_recover, view_stiffness_times, &
        view_maxratio, view_spc, remote_view, view_turn, entry_recover, entry_condense_loads, entry_ku, &
-       view_need_stiffness
+       view_need_stiffness, take_views, keep_views
 
 contains
 
@@ -183,6 +188,49 @@ contains
     end associate
   end subroutine acquire_view
 
+  subroutine take_views(cache, subs, views, taken)
+    !! The previous value's views of a joint study (taken), when this value
+    !! has the same DOF table and condensation boundaries (same_numbering)
+    !! and no condensation was computed or dropped since: acquire_view would
+    !! find the same entries, numberings and K* (reused, without notes). Not
+    !! with a library (its entries condense each value's loads). subs: the
+    !! condensed substructures of this value, in order.
+    type(part_cache_t), intent(inout) :: cache
+    integer, intent(in) :: subs(:)
+    type(part_view_t), allocatable, intent(out) :: views(:)
+    logical, intent(out) :: taken
+    taken = cache%same_numbering .and. allocated(cache%kept) .and. cache%n == cache%kept_n &
+         .and. cache%computed == cache%kept_computed .and. .not. library_enabled(cache%library)
+    if (taken) taken = size(cache%kept) == size(subs)
+    if (taken) taken = all(cache%kept%isub == subs)
+    if (.not. taken) then
+       if (allocated(cache%kept)) deallocate (cache%kept)
+       return
+    end if
+    call move_alloc(cache%kept, views)
+    cache%reused = cache%reused + size(views)
+  end subroutine take_views
+
+  subroutine keep_views(cache, views)
+    !! This value's views, once the solve is done with them: kept for the
+    !! next value of a joint study (keep_views set; as acquire_view would give
+    !! them again: reused, without notes), else freed. Moved, not copied.
+    type(part_cache_t), intent(inout) :: cache
+    type(part_view_t), allocatable, intent(inout) :: views(:)
+    integer :: i
+    if (.not. (cache%keep_views .and. all(views%entry > 0))) then   ! entry 0: condensed by another process
+       deallocate (views)
+       return
+    end if
+    call move_alloc(views, cache%kept)
+    do i = 1, size(cache%kept)
+       cache%kept(i)%reused = .true.
+       if (allocated(cache%kept(i)%notes)) deallocate (cache%kept(i)%notes)
+    end do
+    cache%kept_n = cache%n
+    cache%kept_computed = cache%computed
+  end subroutine keep_views
+
   subroutine library_view_loads(en, view, model, table, bnd, solver_name, f_phys, error)
     !! A library entry able to condense this view's loads (in the entry's
     !! frame); the entry's notes passed to the view for the listing.
@@ -226,6 +274,7 @@ contains
        if (allocated(cache%entries(i)%e%cond%solver)) call cache%entries(i)%e%cond%solver%release()
     end do
     if (allocated(cache%entries)) deallocate (cache%entries)
+    if (allocated(cache%kept)) deallocate (cache%kept)
     cache%n = 0
   end subroutine release_cache
 

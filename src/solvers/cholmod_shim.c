@@ -9,12 +9,15 @@
  * Matrices come from Fortran as the upper triangle of a symmetric matrix in
  * 1-based compressed sparse column form with 64-bit indices (rows sorted,
  * diagonal present).  CHOLMOD wants 0-based indices of the same 64-bit type,
- * so the shim keeps no copy of the pattern: during each call that reads the
- * matrix (analyze, factorize, schur_analyze) the caller's index arrays are
- * shifted to 0-based in place and the cholmod_sparse header points at them
- * (and at the caller's values during factorize); they are shifted back before
- * the call returns.  The handle keeps only a fingerprint of the pattern, which
- * factorize checks (issue 24: the copy was ~8% of the peak at 1e6).
+ * so during each call that reads the matrix (analyze, factorize,
+ * schur_analyze) the caller's index arrays are shifted to 0-based in place and
+ * the cholmod_sparse header points at them (and at the caller's values during
+ * factorize); they are shifted back before the call returns.  The handle keeps
+ * only a fingerprint of the pattern, which factorize checks (issue 24: a copy
+ * was ~8% of the peak at 1e6).  The one copy: analyze_start's 0-based pattern
+ * for the analysis on a second thread, freed when the thread is joined
+ * (analyze_finish, any later entry point that reads the factor or the
+ * settings, or sj_cholmod_free).
  *
  * Factorization: supernodal LL^T (Common->supernodal = CHOLMOD_SUPERNODAL,
  * final_ll = TRUE). Ordering: CHOLMOD's default strategy (nmethods = 0: AMD,
@@ -308,6 +311,7 @@ void *sj_cholmod_create(void)
 static void sj_drop_graph(sj_cholmod_t *h);
 
 static int sj_join(sj_cholmod_t *h);
+int sj_cholmod_analyze_finish(void *handle);
 
 void sj_cholmod_free(void *handle)
 {
@@ -342,6 +346,7 @@ int sj_cholmod_set_node_graph(void *handle, int64_t ngroup, const int64_t *first
     sj_cholmod_t *h = handle;
     int64_t g, k, nadj;
     if (h == NULL) return SJ_E_HANDLE;
+    if (h->pending && sj_cholmod_analyze_finish(h) != SJ_OK) return SJ_E_STATE;   /* never beside the worker */
     sj_join(h);
     sj_drop_graph(h);
     if (ngroup <= 0) return SJ_OK;
@@ -373,6 +378,7 @@ int sj_cholmod_force_node_metis(void *handle, int flag)
 {
     sj_cholmod_t *h = handle;
     if (h == NULL) return SJ_E_HANDLE;
+    if (h->pending && sj_cholmod_analyze_finish(h) != SJ_OK) return SJ_E_STATE;   /* never beside the worker */
     h->force_node_metis = flag != 0;
     return SJ_OK;
 }
@@ -678,6 +684,7 @@ int sj_cholmod_solve(void *handle, int64_t nrhs, const double *b, double *x)
     SuiteSparse_long j;
     int status;
     if (h == NULL) return SJ_E_HANDLE;
+    if (h->pending && sj_cholmod_analyze_finish(h) != SJ_OK) return SJ_E_STATE;   /* never beside the worker */
     sj_begin(h);
     if (!h->factored || h->L == NULL) {
         sj_set_message(h, "solve called without a valid factorization");
@@ -719,6 +726,7 @@ int sj_cholmod_pivots(void *handle, double *d)
     const SuiteSparse_long *perm;
     SuiteSparse_long j, n;
     if (h == NULL) return SJ_E_HANDLE;
+    if (h->pending && sj_cholmod_analyze_finish(h) != SJ_OK) return SJ_E_STATE;   /* never beside the worker */
     L = h->L;
     n = h->n - h->nschur;           /* the interior only, after sj_cholmod_schur_analyze */
     if (d == NULL) return SJ_E_ARGUMENT;
@@ -762,6 +770,7 @@ int sj_cholmod_info(void *handle, int64_t *factor_nnz, double *factor_bytes,
     cholmod_factor *L;
     double entries = 0.0, bytes = 0.0;
     if (h == NULL) return SJ_E_HANDLE;
+    if (h->pending && sj_cholmod_analyze_finish(h) != SJ_OK) return SJ_E_STATE;   /* never beside the worker */
     L = h->L;
     if (L != NULL) {
         double n = (double)L->n;
@@ -807,6 +816,7 @@ int sj_cholmod_ordering(void *handle, char *buf, int64_t len)
     if (buf == NULL || len <= 0) return SJ_E_ARGUMENT;
     buf[0] = '\0';
     if (h == NULL) return SJ_E_HANDLE;
+    if (h->pending && sj_cholmod_analyze_finish(h) != SJ_OK) return SJ_E_STATE;   /* never beside the worker */
     if (h->L != NULL) {
         switch (h->L->ordering) {
         case CHOLMOD_NATURAL: name = "natural"; break;
@@ -993,6 +1003,7 @@ int sj_cholmod_schur_camd(void *handle, int64_t n, int64_t nb, int64_t *colptr, 
     SuiteSparse_long *perm;
     int status, low;
     if (h == NULL) return SJ_E_HANDLE;
+    if (h->pending && sj_cholmod_analyze_finish(h) != SJ_OK) return SJ_E_STATE;   /* never beside the worker */
     sj_begin(h);
     sj_drop_factor(h);
     sj_drop_pattern(h);
@@ -1028,6 +1039,7 @@ int sj_cholmod_schur_analyze(void *handle, int64_t n, int64_t nb, int64_t *colpt
     SuiteSparse_long ni, j, *perm;
     int status;
     if (h == NULL) return SJ_E_HANDLE;
+    if (h->pending && sj_cholmod_analyze_finish(h) != SJ_OK) return SJ_E_STATE;   /* never beside the worker */
     sj_begin(h);
     ni = n - nb;
     if (h->L == NULL || h->L->Perm == NULL || h->n != ni || nb <= 0 || colptr == NULL ||
@@ -1066,6 +1078,7 @@ int sj_cholmod_schur_block(void *handle, int64_t nb, double *lbb)
     const SuiteSparse_long *perm;
     SuiteSparse_long ni, j, r;
     if (h == NULL) return SJ_E_HANDLE;
+    if (h->pending && sj_cholmod_analyze_finish(h) != SJ_OK) return SJ_E_STATE;   /* never beside the worker */
     L = h->L;
     if (!h->factored || L == NULL || nb != h->nschur || lbb == NULL) return SJ_E_STATE;
     ni = h->n - nb;

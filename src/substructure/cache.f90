@@ -126,6 +126,8 @@ contains
             exit
          end if
          if (en%part == 0 .or. en%part /= model%subs(isub)%part) cycle
+         ! an instance may have lost an element (a beam bolt of *PRE-TENSION SECTION, ELEMENT=)
+         if (model%subs(en%cond%sys%isub)%nelem /= model%subs(isub)%nelem) cycle
          if (.not. same_masks(en%drill, model%subs(isub)%elem_drill)) cycle
          q = matmul(model%subs(isub)%rot, transpose(en%rot))
          if (.not. keeps_dofs(q, view%grp)) cycle

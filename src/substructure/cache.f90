@@ -126,8 +126,7 @@ contains
             exit
          end if
          if (en%part == 0 .or. en%part /= model%subs(isub)%part) cycle
-         ! an instance may have lost an element (a beam bolt of *PRE-TENSION SECTION, ELEMENT=)
-         if (model%subs(en%cond%sys%isub)%nelem /= model%subs(isub)%nelem) cycle
+         if (model%subs(en%cond%sys%isub)%nelem /= model%subs(isub)%nelem) cycle   ! a bolt element removed
          if (.not. same_masks(en%drill, model%subs(isub)%elem_drill)) cycle
          q = matmul(model%subs(isub)%rot, transpose(en%rot))
          if (.not. keeps_dofs(q, view%grp)) cycle
@@ -172,7 +171,6 @@ contains
        view%reused = .true.
        cache%reused = cache%reused + 1
     end if
-
     if (allocated(cache%entries(view%entry)%e%stored) .and. present(f_phys)) then
        call library_view_loads(cache%entries(view%entry)%e, view, model, table, bnd, solver_name, f_phys, error)
        if (allocated(error)) return

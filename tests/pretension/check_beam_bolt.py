@@ -14,7 +14,16 @@ shank 1.826087E+03, sleeve -4.565217E+02). The variant 'beam_shank' makes the sh
 B31 (same area): its axial stress is N/A too. An *EL PRINT of a set holding the
 removed element prints the others only (as ccx). The error decks must stop with
 `file:line: error:` on the card's line.
+
+'planar': the same bolt in the XY plane (B21 bolt, T2D2 shank and sleeve) along an
+axis at 30 degrees, nodes 2 and 3 held across it in a *TRANSFORM system, and the
+normal given with an out-of-plane component (c, s, 0.8): a planar bolt's normal is
+its in-plane part made unit, so the closed forms are those of 'force' (the whole
+normal, cut to two components without that, would scale the gap by 0.73). ccx 2.20
+cannot check this one: it expands the planar elements to 3D and leaves the
+out-of-plane motion free (its answer is of order 1e9).
 """
+import math
 import os
 import re
 import subprocess
@@ -41,7 +50,7 @@ def blocks(path):
             continue
         if re.match(r'-?\d', s):
             if title is not None:
-                out[title].append([float(w) for w in s.split()])
+                out[title].append([float(w) for w in s.split() if w != "L"])   # L: a *TRANSFORM system
         else:
             title = s.split(' and time')[0]
             out[title] = []
@@ -78,6 +87,47 @@ def check_case(binary, outdir, job, text, n_shank, gap):
     return f + ([] if ok else [job + ' EALL'])
 
 
+def planar_deck(base):
+    """bolt.inp in the XY plane along an axis at 30 degrees (see the module's text)."""
+    c, s = math.cos(math.radians(30.0)), math.sin(math.radians(30.0))
+    text = base.replace('TYPE=B31', 'TYPE=B21').replace('TYPE=T3D2', 'TYPE=T2D2')
+    text = text.replace('2, 0.1, 0., 0.\n', f'2, {0.1*c!r}, {0.1*s!r}, 0.\n')
+    text = text.replace('3, 1., 0., 0.\n', f'3, {c!r}, {s!r}, 0.\n').replace('99, 5., 5., 5.\n', '99, 5., 5., 0.\n')
+    text = text.replace('10., 10.\n0., 0., 1.\n', '10., 10.\n')
+    text = text.replace('NODE=99\n', f'NODE=99\n{c!r}, {s!r}, 0.8\n')
+    text = text.replace('*NSET, NSET=PN\n99\n', '*NSET, NSET=PN\n99\n*NSET, NSET=AX\n2, 3\n')
+    text = text.replace('1, 1, 3\n2, 2, 3\n3, 2, 3\n', '1, 1, 2\n*TRANSFORM, NSET=AX\n'
+                        f'{c!r}, {s!r}, 0., {-s!r}, {c!r}, 0.\n*BOUNDARY\n2, 2\n3, 2\n')
+    assert text.count('TYPE=T2D2') == 2 and '*TRANSFORM' in text and ', 0.8\n' in text
+    return text, c, s
+
+
+def check_planar(binary, outdir, base, F):
+    """The planar bolt: displacements along the axis (nodes 2, 3 in their *TRANSFORM
+    system), the gap, and the axial stress N/A seen in global axes."""
+    text, c, s = planar_deck(base)
+    proc = run(binary, outdir, 'planar', text)
+    if proc.returncode != 0:
+        print(f'  FAIL planar: status {proc.returncode}: {proc.stderr.strip()}')
+        return ['planar']
+    b = blocks(os.path.join(outdir, 'planar.dat'))
+    u = {int(r[0]): r[1:] for r in b['displacements (vx,vy,vz) for set NALL']}
+    f = check('planar gap u99', u[99][0], F/KB + F/KS)
+    f += check('planar u3 along the axis', u[3][0], -F/KS)
+    f += check('planar u2 along the axis', u[2][0], -F/KS - F/KB)
+    title = 'stresses (elem, integ.pnt.,sxx,syy,szz,sxy,sxz,syz) for set '
+    for name, sigma in (('SHANK', F/AB), ('SLEEVE', -F/AS)):
+        rows = b[title + name]
+        for col, want, what in ((2, sigma*c*c, 'sxx'), (3, sigma*s*s, 'syy'), (5, sigma*c*s, 'sxy')):
+            f += check(f'planar {name} {what}, smallest', min(r[col] for r in rows), want)
+            f += check(f'planar {name} {what}, largest', max(r[col] for r in rows), want)
+    off = run(binary, outdir, 'planar_off', text.replace(f'NODE=99\n{c!r}, {s!r}, 0.8\n', 'NODE=99\n0., 0., 1.\n'))
+    ok = off.returncode == 1 and 'planar_off.inp:26: error: ' in off.stderr and \
+        "the normal has no component in the model's plane" in off.stderr
+    print(f"  {'ok  ' if ok else 'FAIL'} planar_off: {off.stderr.strip().splitlines()[0] if off.stderr else ''}")
+    return f + ([] if ok else ['planar_off'])
+
+
 def main():
     binary, outdir = os.path.abspath(sys.argv[1]), sys.argv[2]
     os.makedirs(outdir, exist_ok=True)
@@ -93,6 +143,7 @@ def main():
     failures = check_case(binary, outdir, 'force', base, F, F/KB + F/KS)
     failures += check_case(binary, outdir, 'gap', gap_deck, d*keff, d)
     failures += check_case(binary, outdir, 'beam_shank', beam, F, F/KB + F/KS)
+    failures += check_planar(binary, outdir, base, F)
     card = '*PRE-TENSION SECTION, ELEMENT=1, NODE=99\n'
     errors = {'both': (base.replace(card, '*SURFACE, NAME=CUT\n1, S1\n' + card.replace('ELEMENT=1', 'SURFACE=CUT, '
                                                                                       'ELEMENT=1')),

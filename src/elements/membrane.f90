@@ -93,7 +93,7 @@ module superjoin_elements_membrane
      real(wp), allocatable :: nodes(:)    !! ε0 extrapolated to the nodes as σ is
   end type initial_strain_t
   public :: membrane_thermal_load, membrane_centroid_weights, membrane_result_operator
-  public :: check_membrane_element, spd_solve, make_symmetric
+  public :: check_membrane_element, spd_solve, make_symmetric, held_factor
 
 contains
 
@@ -279,22 +279,27 @@ contains
     if (present(eps0)) nres = nres - dot_product(shape4(xi, eta), eps0(1:4))*matmul(d, ISOTROPIC)
   end subroutine resultants_of
 
-  pure subroutine membrane_thermal_load(xl, t, e, nu, strain_state, eps0, fe, error)
+  pure subroutine membrane_thermal_load(xl, t, e, nu, strain_state, eps0, fe, error, self_energy)
     !! Consistent nodal loads fe(2n) = ∫ Bᵀ t D ε0 dA (element frame, node-major
     !! u, v) of an isotropic initial strain ε0 (1, 1, 0) whose nodal values
     !! eps0(n) are interpolated with the shape functions, as CalculiX
     !! interpolates nodal temperatures to the integration points. CST: its
     !! constant B takes the mean; QM6: 2×2 Gauss, the incompatible modes'
     !! share condensed (f_u - kua kaa⁻¹ f_a). Plane strain (strain_state): eps0
-    !! is the in-plane strain, (1 + ν) α ΔT.
+    !! is the in-plane strain, (1 + ν) α ΔT. self_energy: the constant of the
+    !! element's energy ½ uᵀ K u - uᵀ fe + self_energy of the mechanical
+    !! strains, ½ ∫ ε0ᵀ t D ε0 dA by the same rule (plane strain: times
+    !! 1 + held_share(ν), the held expansion across the plane) less what the
+    !! incompatible modes take up, ½ f_aᵀ kaa⁻¹ f_a (their minimum over the modes).
     real(wp), intent(in) :: xl(:, :)
     real(wp), intent(in) :: t, e, nu
     logical, intent(in) :: strain_state
     real(wp), intent(in) :: eps0(:)
     real(wp), allocatable, intent(out) :: fe(:)
     type(error_t), allocatable, intent(out) :: error
+    real(wp), intent(out), optional :: self_energy
     real(wp) :: d(NSTRAIN, NSTRAIN), kua(8, NMODE), kaa(NMODE, NMODE), x(2, 4), fu(8), fa(NMODE)
-    real(wp) :: b3(NSTRAIN, 6), area
+    real(wp) :: b3(NSTRAIN, 6), area, ma(NMODE)
     real(wp) :: kuu(8, 8)
     call checked_rigidity(xl, t, e, nu, strain_state, d, error)
     if (allocated(error)) return
@@ -305,12 +310,16 @@ contains
     if (size(xl, 2) == 3) then
        call cst_b(xl, b3, area)
        fe = area*sum(eps0)/3*matmul(transpose(b3), matmul(d, ISOTROPIC))
+       if (present(self_energy)) self_energy = 0.5_wp*area*(sum(eps0)/3)**2* &
+            dot_product(ISOTROPIC, matmul(d, ISOTROPIC))*held_factor(strain_state, nu)
        return
     end if
     x = xl
     call qm6_matrices(x, d, kuu, kua, kaa)
-    call qm6_initial_strain(x, d, eps0, fu, fa)
-    fe = fu - matmul(kua, reshape(spd_solve(kaa, reshape(fa, [NMODE, 1])), [NMODE]))
+    call qm6_initial_strain(x, d, eps0, fu, fa, self_energy)
+    ma = reshape(spd_solve(kaa, reshape(fa, [NMODE, 1])), [NMODE])
+    fe = fu - matmul(kua, ma)
+    if (present(self_energy)) self_energy = self_energy*held_factor(strain_state, nu) - 0.5_wp*dot_product(fa, ma)
   end subroutine membrane_thermal_load
 
   pure subroutine membrane_result_operator(xl, t, e, nu, strain_state, op, error)
@@ -374,22 +383,37 @@ contains
     w = shape4(xi, eta)
   end subroutine membrane_centroid_weights
 
-  pure subroutine qm6_initial_strain(x, d, eps0, fu, fa)
+  pure real(wp) function held_factor(strain_state, nu) result(f)
+    !! 1, or under plane strain 1 + (1 - 2ν)/(2 (1 + ν)): the energy of the
+    !! expansion held across the plane (σ_z = ν (σ_x + σ_y) - E α ΔT) against the
+    !! in-plane ½ ε0ᵀ D ε0 of ε0 = (1 + ν) α ΔT, at every point.
+    logical, intent(in) :: strain_state
+    real(wp), intent(in) :: nu
+    f = 1.0_wp
+    if (strain_state) f = 1.0_wp + (1.0_wp - 2.0_wp*nu)/(2.0_wp*(1.0_wp + nu))
+  end function held_factor
+
+  pure subroutine qm6_initial_strain(x, d, eps0, fu, fa, self_energy)
     !! ∫ [bc ba]ᵀ d ε0 dA by 2×2 Gauss of QM6 for the isotropic initial strain
     !! ε0 (1, 1, 0) interpolated bilinearly from eps0(4): fu on the nodal (u, v),
-    !! fa on the incompatible modes.
+    !! fa on the incompatible modes; self_energy: ½ ∫ ε0ᵀ d ε0 dA by the same rule.
     real(wp), intent(in) :: x(2, 4), d(NSTRAIN, NSTRAIN), eps0(:)
     real(wp), intent(out) :: fu(8), fa(NMODE)
-    real(wp) :: bc(NSTRAIN, 8), ba(NSTRAIN, NMODE), jac, s0(NSTRAIN)
+    real(wp), intent(out), optional :: self_energy
+    real(wp) :: bc(NSTRAIN, 8), ba(NSTRAIN, NMODE), jac, s0(NSTRAIN), e0, sum_e0
     integer :: k
     fu = 0.0_wp
     fa = 0.0_wp
+    sum_e0 = 0.0_wp
     do k = 1, NGAUSS
        call qm6_b(x, XI_GAUSS(k), ETA_GAUSS(k), bc, ba, jac)
-       s0 = jac*dot_product(shape4(XI_GAUSS(k), ETA_GAUSS(k)), eps0(1:4))*matmul(d, ISOTROPIC)
+       e0 = dot_product(shape4(XI_GAUSS(k), ETA_GAUSS(k)), eps0(1:4))
+       s0 = jac*e0*matmul(d, ISOTROPIC)
        fu = fu + matmul(transpose(bc), s0)
        fa = fa + matmul(transpose(ba), s0)
+       sum_e0 = sum_e0 + jac*e0**2
     end do
+    if (present(self_energy)) self_energy = 0.5_wp*sum_e0*dot_product(ISOTROPIC, matmul(d, ISOTROPIC))
   end subroutine qm6_initial_strain
 
   pure subroutine membrane_drill_stiffness(xl, t, e, nu, ke, error)

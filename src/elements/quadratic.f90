@@ -23,7 +23,7 @@ module superjoin_elements_quadratic
   !! area, mapped back to natural coordinates by Newton's method, as CPS4 does.
   use superjoin_kinds, only: wp
   use superjoin_error, only: error_t, fatal_error, EXIT_DECK
-  use superjoin_elements_membrane, only: plane_stress, plane_strain, check_plane_material, initial_strain_t
+  use superjoin_elements_membrane, only: plane_stress, plane_strain, check_plane_material, initial_strain_t, held_factor
   implicit none (type, external)
   private
 
@@ -127,19 +127,22 @@ contains
     call quadratic_shape(size(xl, 2), centroid_natural(xl), w, dn)
   end subroutine quadratic_centroid_weights
 
-  pure subroutine quadratic_thermal_load(xl, props, eps0, fe, error)
+  pure subroutine quadratic_thermal_load(xl, props, eps0, fe, error, self_energy)
     !! Consistent nodal loads fe(2n) = ∫ Bᵀ t D ε0 dA (element frame, node-major
     !! u, v) of an isotropic initial strain ε0 (1, 1, 0) whose nodal values
     !! eps0(n) are interpolated with the shape functions to the points of the
     !! stiffness rule, as CalculiX interpolates nodal temperatures (plane
-    !! strain: eps0 is the in-plane strain (1 + ν) α ΔT).
+    !! strain: eps0 is the in-plane strain (1 + ν) α ΔT). self_energy: ½ ∫ ε0ᵀ t D ε0 dA
+    !! by the same rule, plane strain times held_factor (the constant of the
+    !! element's energy ½ uᵀ K u - uᵀ fe + self_energy of its mechanical strains).
     real(wp), intent(in) :: xl(:, :)
     type(plane_props_t), intent(in) :: props
     real(wp), intent(in) :: eps0(:)
     real(wp), allocatable, intent(out) :: fe(:)
     type(error_t), allocatable, intent(out) :: error
+    real(wp), intent(out), optional :: self_energy
     real(wp), allocatable :: pts(:, :), wts(:), b(:, :)
-    real(wp) :: s0(NSTRAIN), jac, nf(size(xl, 2)), dn(2, size(xl, 2))
+    real(wp) :: s0(NSTRAIN), jac, nf(size(xl, 2)), dn(2, size(xl, 2)), e0, sum_e0
     integer :: k, n
 
     call check_element(xl, props, error)
@@ -152,11 +155,15 @@ contains
     s0 = matmul(material(props), ISOTROPIC)
     call rule(n, RULE_STIFFNESS, props%reduced, pts, wts)
     allocate (b(NSTRAIN, 2*n), fe(2*n), source=0.0_wp)
+    sum_e0 = 0.0_wp
     do k = 1, size(wts)
        call b_matrix(xl, pts(:, k), b, jac)
        call quadratic_shape(n, pts(:, k), nf, dn)
-       fe = fe + wts(k)*jac*dot_product(nf, eps0)*matmul(transpose(b), s0)
+       e0 = dot_product(nf, eps0)
+       fe = fe + wts(k)*jac*e0*matmul(transpose(b), s0)
+       sum_e0 = sum_e0 + wts(k)*jac*e0**2
     end do
+    if (present(self_energy)) self_energy = 0.5_wp*sum_e0*dot_product(ISOTROPIC, s0)*held_factor(props%strain, props%nu)
   end subroutine quadratic_thermal_load
 
   pure subroutine quadratic_shape_integrals(xl, w)

@@ -217,10 +217,13 @@ contains
     if (is_plane_strain_type(etype)) e0 = (1.0_wp + nu)*nodal
   end subroutine plane_initial_strains
 
-  pure subroutine thermal_plane_nodal_load(etype, x, sec, mat, nodal, fe, error)
+  pure subroutine thermal_plane_nodal_load(etype, x, sec, mat, nodal, fe, error, self_energy)
     !! Consistent nodal loads fe (global axes, node-major ux, uy) ∫ Bᵀ D ε0 dA
     !! of a thermal strain interpolated from its nodal values nodal(n) (α ΔT
-    !! of each node, or their remainder after the mean) on a plane element.
+    !! of each node, or their remainder after the mean) on a plane element;
+    !! self_energy: the constant of the element's energy of its mechanical
+    !! strains, ½ uᵀ K u - uᵀ fe + self_energy (membrane_thermal_load,
+    !! quadratic_thermal_load; the in-plane part of a plane strain element's).
     integer, intent(in) :: etype
     real(wp), intent(in) :: x(:, :)
     type(section_t), intent(in) :: sec
@@ -228,6 +231,7 @@ contains
     real(wp), intent(in) :: nodal(:)
     real(wp), allocatable, intent(out) :: fe(:)
     type(error_t), allocatable, intent(out) :: error
+    real(wp), intent(out), optional :: self_energy
     real(wp), allocatable :: fl(:), e0(:)
     real(wp) :: r(3, 3), xl(2, size(x, 2)), h(size(x, 2))
     integer :: i
@@ -239,9 +243,10 @@ contains
     if (allocated(error)) return
     call plane_initial_strains(etype, mat%nu, nodal, e0)
     if (is_quadratic_plane_type(etype)) then
-       call quadratic_thermal_load(xl, quadratic_props(etype, sec, mat), e0, fl, error)
+       call quadratic_thermal_load(xl, quadratic_props(etype, sec, mat), e0, fl, error, self_energy)
     else
-       call membrane_thermal_load(xl, sec%thickness, mat%e, mat%nu, is_plane_strain_type(etype), e0, fl, error)
+       call membrane_thermal_load(xl, sec%thickness, mat%e, mat%nu, is_plane_strain_type(etype), e0, fl, error, &
+            self_energy)
     end if
     if (allocated(error)) return
     allocate (fe(size(fl)))

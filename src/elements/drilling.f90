@@ -245,22 +245,25 @@ contains
     end do
   end subroutine drilling_point_stresses
 
-  pure subroutine drilling_thermal_load(xl, t, e, nu, eps0, fe, error, edges)
+  pure subroutine drilling_thermal_load(xl, t, e, nu, eps0, fe, error, edges, self_energy)
     !! Consistent nodal loads fe(3n) = ∫ Bᵀ t D ε0 dA (node-major u, v, θz) of
     !! an isotropic initial strain ε0 (1, 1, 0) whose nodal values eps0(n) are
     !! interpolated with the corner functions to the points of the stiffness;
     !! the quadrilateral's incompatible modes take their share before they are
     !! condensed (f_d - K_da K_aa⁻¹ f_a); the penalty has no initial strain.
-    !! edges as drilling_stiffness.
+    !! edges as drilling_stiffness. self_energy: the constant of the element's
+    !! energy ½ uᵀ K u - uᵀ fe + self_energy, ½ ∫ ε0ᵀ t D ε0 dA by the same points
+    !! less the modes' share ½ f_aᵀ K_aa⁻¹ f_a.
     real(wp), intent(in) :: xl(:, :)
     real(wp), intent(in) :: t, e, nu
     real(wp), intent(in) :: eps0(:)
     real(wp), allocatable, intent(out) :: fe(:)
     type(error_t), allocatable, intent(out) :: error
     logical, intent(in), optional :: edges(:)
+    real(wp), intent(out), optional :: self_energy
     type(point_t), allocatable :: pts(:)
     real(wp), allocatable :: kda(:, :)
-    real(wp) :: d(NSTRAIN, NSTRAIN), kaa(NMODE, NMODE), fa(NMODE, 1), s0(NSTRAIN)
+    real(wp) :: d(NSTRAIN, NSTRAIN), kaa(NMODE, NMODE), fa(NMODE, 1), s0(NSTRAIN), ma(NMODE, 1), e0, sum_e0
     integer :: n, k
     logical :: ed(size(xl, 2))
     call check_membrane_element(xl, t, e, nu, 'plane stress', error)
@@ -277,14 +280,21 @@ contains
     allocate (fe(3*n), kda(3*n, NMODE), source=0.0_wp)
     kaa = 0.0_wp
     fa = 0.0_wp
+    sum_e0 = 0.0_wp
     do k = 1, size(pts)
-       s0 = pts(k)%weight*point_strain(xl, k, eps0)*matmul(d, ISOTROPIC_STRAIN)
+       e0 = point_strain(xl, k, eps0)
+       s0 = pts(k)%weight*e0*matmul(d, ISOTROPIC_STRAIN)
        fe = fe + matmul(transpose(pts(k)%b), s0)
        fa(:, 1) = fa(:, 1) + matmul(transpose(pts(k)%ba), s0)
        kda = kda + pts(k)%weight*matmul(transpose(pts(k)%b), matmul(d, pts(k)%ba))
        kaa = kaa + pts(k)%weight*matmul(transpose(pts(k)%ba), matmul(d, pts(k)%ba))
+       sum_e0 = sum_e0 + pts(k)%weight*e0**2
     end do
-    if (n == 4) fe = fe - reshape(matmul(kda, spd_solve(kaa, fa)), [3*n])
+    if (present(self_energy)) self_energy = 0.5_wp*sum_e0*dot_product(ISOTROPIC_STRAIN, matmul(d, ISOTROPIC_STRAIN))
+    if (n /= 4) return
+    ma = spd_solve(kaa, fa)
+    fe = fe - reshape(matmul(kda, ma), [3*n])
+    if (present(self_energy)) self_energy = self_energy - 0.5_wp*dot_product(fa(:, 1), ma(:, 1))
   end subroutine drilling_thermal_load
 
   pure subroutine drilling_thermal_stresses(xl, t, e, nu, eps0, nres, sig_points, sig_nodes, error, edges)

@@ -24,7 +24,8 @@ module superjoin_elements
   use superjoin_elements_axisym, only: axisym_thermal_load, axisym_thermal_energy
   use superjoin_elements_solid_stress, only: solid_thermal_energy
   use superjoin_elements_thermal, only: thermal_free_field, thermal_beam_free_field
-  use superjoin_elements_traits, only: element_traits, element_traits_t, FAMILY_TRUSS, FAMILY_BEAM, FAMILY_PLANE, element_family
+  use superjoin_elements_traits, only: element_traits, element_traits_t, FAMILY_TRUSS, FAMILY_BEAM, FAMILY_PLANE, FAMILY_SHELL, &
+       element_family
   use superjoin_elements_axisym, only: is_axisym_type, axisym_stiffness, axisym_forces, axisym_body_load, &
        ccx_wedge_tensor, CCX_AXIAL_SEGMENTS
   use superjoin_model_types, only: ET_CAX3, ET_CAX4, ET_CAX6, ET_CAX8, ET_CAX8R, substructure_t
@@ -709,9 +710,8 @@ contains
     !! (plane strain: plus ½ E (α ΔT)² V of the held expansion across the plane).
     !! A B32 by its stiffness rule (beam3_thermal_energy), an S8R or S8 as
     !! ½ u_eᵀ K_e u_e - u_eᵀ f_th + ½ ∫ ε0ᵀ D ε0 dV, all three by the element's own
-    !! rules (s8r_thermal_energy), and a plane element the same way
-    !! (plane_thermal_energy). Refused (error): another shell element whose
-    !! temperature varies over it.
+    !! rules (s8r_thermal_energy), and a plane or other shell element whose
+    !! temperature varies over it the same way (area_thermal_energy).
     type(model_t), intent(in) :: model
     type(result_fields_t), intent(in) :: fields
     integer, intent(in) :: is
@@ -739,12 +739,12 @@ contains
              call beam3_thermal_energy(x, sec, mat, dl%line_nodal, ue, energy, error)
           else if (is_shell8(etype)) then
              call s8r_thermal_energy(etype, x, sec, mat, dl, ue, energy, error)
-          else if (t%family == FAMILY_PLANE .and. allocated(dl%nodal)) then
-             call plane_thermal_energy(etype, x, sec, mat, dl, ue, energy, error)
+          else if ((allocated(dl%nodal) .or. allocated(dl%curvature_nodal)) .and. &
+               (t%family == FAMILY_PLANE .or. t%family == FAMILY_SHELL)) then
+             call area_thermal_energy(etype, x, sec, mat, dl, ue, energy, error, element_drill(s, dl%elem))
           else if (allocated(dl%nodal) .or. allocated(dl%curvature_nodal)) then
-             call fatal_error(error, EXIT_DECK, 'the strain energy under thermal strains is implemented for solids, '// &
-                  'trusses, beams, plane elements, S8R and S8 shells and other shell elements of a uniform '// &
-                  'temperature, not for element type '//trim(t%name)//' with a temperature that varies over it')
+             call fatal_error(error, EXIT_DECK, 'the strain energy under thermal strains is not implemented for '// &
+                  'element type '//trim(t%name)//' with a temperature that varies over it')
           else
              if (t%family == FAMILY_TRUSS .or. t%family == FAMILY_BEAM) then
                 call line_free_field(etype, x, sec, mat, dl, u0, error)
@@ -765,12 +765,14 @@ contains
     end associate
   end subroutine element_thermal_energy
 
-  pure subroutine plane_thermal_energy(etype, x, sec, mat, dl, ue, energy, error)
-    !! The energy of the mechanical strains of a plane element whose
-    !! temperature varies over it (dl%value the mean α ΔT, dl%nodal the nodal
+  pure subroutine area_thermal_energy(etype, x, sec, mat, dl, ue, energy, error, drill)
+    !! The energy of the mechanical strains of a plane or shell element (S3,
+    !! S4, S3R, S4R) whose temperature varies over it (dl%value the mean α ΔT,
+    !! dl%curvature the mean α ∂T/∂n, dl%nodal and dl%curvature_nodal the nodal
     !! remainders): ½ u_eᵀ K_e u_e - u_eᵀ f_th + c, f_th the consistent load of
-    !! the whole nodal field and c its constant (thermal_plane_nodal_load), by
-    !! the rules of the element's stiffness.
+    !! the whole nodal field and c its constant (thermal_plane_nodal_load,
+    !! shell_thermal_nodal_load), by the rules of the element's stiffness;
+    !! drill: the element's drilling mask.
     integer, intent(in) :: etype
     real(wp), intent(in) :: x(:, :)
     type(section_t), intent(in) :: sec
@@ -779,15 +781,24 @@ contains
     real(wp), intent(in) :: ue(:)
     real(wp), intent(out) :: energy
     type(error_t), allocatable, intent(out) :: error
-    real(wp), allocatable :: fth(:), ke(:, :)
+    integer, intent(in) :: drill
+    real(wp), allocatable :: fth(:), ke(:, :), strain(:), curvature(:)
     real(wp) :: c
     energy = 0.0_wp
-    call thermal_plane_nodal_load(etype, x, sec, mat, dl%value + dl%nodal, fth, error, c)
+    strain = spread(dl%value, 1, size(x, 2))
+    if (allocated(dl%nodal)) strain = strain + dl%nodal
+    if (element_family(etype) == FAMILY_PLANE) then
+       call thermal_plane_nodal_load(etype, x, sec, mat, strain, fth, error, c)
+    else
+       curvature = spread(dl%curvature, 1, size(x, 2))
+       if (allocated(dl%curvature_nodal)) curvature = curvature + dl%curvature_nodal
+       call shell_thermal_nodal_load(etype, x, sec, mat, strain, curvature, fth, error, drill, c)
+    end if
     if (allocated(error)) return
-    call element_stiffness(etype, x, sec, mat, ke, error)
+    call element_stiffness(etype, x, sec, mat, ke, error, drill)
     if (allocated(error)) return
     energy = 0.5_wp*dot_product(ue, matmul(ke, ue)) - dot_product(ue, fth) + c
-  end subroutine plane_thermal_energy
+  end subroutine area_thermal_energy
 
   pure subroutine line_free_field(etype, x, sec, mat, dl, u0, error)
     !! The free thermal field u0 (element ordering) of a truss or two-node beam

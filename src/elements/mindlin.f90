@@ -174,18 +174,21 @@ contains
     end do
   end subroutine mindlin_point_resultants
 
-  pure subroutine mindlin_thermal_load(xl, t, e, nu, ks, kappa0, fe, error)
+  pure subroutine mindlin_thermal_load(xl, t, e, nu, ks, kappa0, fe, error, self_energy)
     !! Consistent nodal loads fe(3n) = ∫ Bbᵀ D_b κ0 dA (local w, θx, θy per
     !! node) of an isotropic initial curvature κ0 (1, 1, 0) whose nodal values
     !! kappa0(n) are interpolated with the corner functions to the points of
     !! the stiffness; the transverse shear takes no initial strain.
+    !! self_energy: ½ ∫ κ0ᵀ D_b κ0 dA by the same points (the constant of the
+    !! element's energy ½ uᵀ K u - uᵀ fe + self_energy).
     real(wp), intent(in) :: xl(:, :)
     real(wp), intent(in) :: t, e, nu, ks(2)
     real(wp), intent(in) :: kappa0(:)
     real(wp), allocatable, intent(out) :: fe(:)
     type(error_t), allocatable, intent(out) :: error
+    real(wp), intent(out), optional :: self_energy
     real(wp), allocatable :: xi(:), eta(:), wt(:)
-    real(wp) :: db(3, 3), bb(3, NDN*size(xl, 2)), bs(2, NDN*size(xl, 2)), detj
+    real(wp) :: db(3, 3), bb(3, NDN*size(xl, 2)), bs(2, NDN*size(xl, 2)), detj, k0, sum_k0
     integer :: n, g
     call check(xl, t, e, nu, ks, error)
     if (allocated(error)) return
@@ -197,11 +200,14 @@ contains
     db = bending_rigidity(t, e, nu)
     call integration_rule(n, xi, eta, wt)
     allocate (fe(NDN*n), source=0.0_wp)
+    sum_k0 = 0.0_wp
     do g = 1, size(wt)
        call strain_matrices(xl, xi(g), eta(g), bb, bs, detj)
-       fe = fe + (wt(g)*detj*dot_product(corner_functions(n, xi(g), eta(g)), kappa0))* &
-            matmul(transpose(bb), matmul(db, [1.0_wp, 1.0_wp, 0.0_wp]))
+       k0 = dot_product(corner_functions(n, xi(g), eta(g)), kappa0)
+       fe = fe + (wt(g)*detj*k0)*matmul(transpose(bb), matmul(db, [1.0_wp, 1.0_wp, 0.0_wp]))
+       sum_k0 = sum_k0 + wt(g)*detj*k0**2
     end do
+    if (present(self_energy)) self_energy = 0.5_wp*sum_k0*(2.0_wp*db(1, 1) + 2.0_wp*db(1, 2))
   end subroutine mindlin_thermal_load
 
   pure real(wp) function shear_scaling(xl, t) result(f)

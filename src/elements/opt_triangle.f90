@@ -140,21 +140,23 @@ contains
     end do
   end subroutine opt_point_stresses
 
-  pure subroutine opt_thermal_load(xl, t, e, nu, eps0, fe, error, edges)
+  pure subroutine opt_thermal_load(xl, t, e, nu, eps0, fe, error, edges, self_energy)
     !! Consistent nodal load fe(9) = t ∫ Bᵀ D ε0 dA of an isotropic initial
     !! strain ε0 (1, 1, 0) whose nodal values eps0(3) are interpolated
     !! linearly, with the element's own strain rows (basic and higher-order:
     !! midside points, exact for the quadratic integrand); edges as
     !! opt_stiffness. Equal nodal values give t A B_bᵀ D ε0 (the higher-order
-    !! rows sum to zero), K times the free expansion.
+    !! rows sum to zero), K times the free expansion. self_energy: ½ ∫ ε0ᵀ t D ε0 dA
+    !! by the same midside points (the constant of ½ uᵀ K u - uᵀ fe + self_energy).
     real(wp), intent(in) :: xl(:, :)
     real(wp), intent(in) :: t, e, nu
     real(wp), intent(in) :: eps0(:)
     real(wp), allocatable, intent(out) :: fe(:)
     type(error_t), allocatable, intent(out) :: error
     logical, intent(in), optional :: edges(:)
+    real(wp), intent(out), optional :: self_energy
     type(opt_t) :: s
-    real(wp) :: d(NSTRAIN, NSTRAIN), b(NSTRAIN, NDOF), e0
+    real(wp) :: d(NSTRAIN, NSTRAIN), b(NSTRAIN, NDOF), e0, sum_e0
     integer :: k
     if (size(eps0) /= NNODE) then
        call fatal_error(error, EXIT_DECK, 'wrong number of nodal initial strains')
@@ -164,11 +166,14 @@ contains
     if (allocated(error)) return
     d = t*plane_stress(e, nu)
     allocate (fe(NDOF), source=0.0_wp)
+    sum_e0 = 0.0_wp
     do k = 1, NNODE
        b = s%bb + 0.5_wp*(sum(s%bh, dim=3) - s%bh(:, :, k))
        e0 = 0.5_wp*(sum(eps0) - eps0(k))
        fe = fe + s%area/NNODE*e0*matmul(transpose(b), matmul(d, [1.0_wp, 1.0_wp, 0.0_wp]))
+       sum_e0 = sum_e0 + s%area/NNODE*e0**2
     end do
+    if (present(self_energy)) self_energy = 0.5_wp*sum_e0*(2.0_wp*d(1, 1) + 2.0_wp*d(1, 2))
   end subroutine opt_thermal_load
 
   pure subroutine check_size(ue, error)

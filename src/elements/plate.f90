@@ -172,19 +172,22 @@ contains
     end do
   end subroutine plate_pressure_load
 
-  pure subroutine plate_thermal_load(xl, t, e, nu, kappa0, fe, error)
+  pure subroutine plate_thermal_load(xl, t, e, nu, kappa0, fe, error, self_energy)
     !! Consistent nodal loads fe(3n) = ∫ Bᵀ D_b κ0 dA (local w, θx, θy per
     !! node) of an isotropic initial curvature κ0 (1, 1, 0) (α ∂T/∂n: the top
     !! surface the longer one) whose nodal values kappa0(n) are interpolated
     !! with the corner functions to the points of the stiffness (DKT 3-point,
     !! DKQ 2×2 Gauss) and integrated with the element's own curvature matrix.
+    !! self_energy: ½ ∫ κ0ᵀ D_b κ0 dA by the same points (the constant of the
+    !! element's energy ½ uᵀ K u - uᵀ fe + self_energy).
     real(wp), intent(in) :: xl(:, :)
     real(wp), intent(in) :: t, e, nu
     real(wp), intent(in) :: kappa0(:)
     real(wp), allocatable, intent(out) :: fe(:)
     type(error_t), allocatable, intent(out) :: error
+    real(wp), intent(out), optional :: self_energy
     real(wp), allocatable :: xi(:), eta(:), wt(:), b(:, :)
-    real(wp) :: db(NSTRAIN, NSTRAIN), detj
+    real(wp) :: db(NSTRAIN, NSTRAIN), detj, k0, sum_k0
     integer :: n, g
     call check_element(xl, t, e, nu, error)
     if (allocated(error)) return
@@ -196,11 +199,14 @@ contains
     db = bending_rigidity(t, e, nu)
     call integration_rule(n, xi, eta, wt)
     allocate (b(NSTRAIN, NDN*n), fe(NDN*n), source=0.0_wp)
+    sum_k0 = 0.0_wp
     do g = 1, size(wt)
        call curvature_matrix(xl, xi(g), eta(g), b, detj)
-       fe = fe + (wt(g)*detj*dot_product(corner_functions(n, xi(g), eta(g)), kappa0))* &
-            matmul(transpose(b), matmul(db, [1.0_wp, 1.0_wp, 0.0_wp]))
+       k0 = dot_product(corner_functions(n, xi(g), eta(g)), kappa0)
+       fe = fe + (wt(g)*detj*k0)*matmul(transpose(b), matmul(db, [1.0_wp, 1.0_wp, 0.0_wp]))
+       sum_k0 = sum_k0 + wt(g)*detj*k0**2
     end do
+    if (present(self_energy)) self_energy = 0.5_wp*sum_k0*(2.0_wp*db(1, 1) + 2.0_wp*db(1, 2))
   end subroutine plate_thermal_load
 
   pure function corner_functions(n, xi, eta) result(nf)

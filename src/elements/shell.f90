@@ -1002,7 +1002,7 @@ contains
     call shell8_stresses(x, [r(1, 1), r(1, 2), r(1, 3)], shell8_props(sec, mat), ue, sig_points, sig_nodes, &
          error, thermal, thermal_nodal)
   end subroutine s8r_stresses
-  pure subroutine shell_thermal_nodal_load(etype, x, sec, mat, strain, curvature, fe, error, drill)
+  pure subroutine shell_thermal_nodal_load(etype, x, sec, mat, strain, curvature, fe, error, drill, self_energy)
     !! Consistent nodal loads fe(6n) (global axes, element ordering) of the
     !! thermal strain and curvature of an S3, S4, S3R or S4R given at its
     !! nodes, strain(n) = α ΔT and curvature(n) = α ∂T/∂n, interpolated with
@@ -1010,7 +1010,10 @@ contains
     !! membrane and bending parts: ∫ Bᵀ D ε0(ξ) dA with the membrane's B (CST,
     !! QM6 with its incompatible modes, or the drilling membrane under the
     !! edge mask drill) and ∫ Bbᵀ D_b κ0(ξ) dA with the plate's (DKT/DKQ
-    !! discrete Kirchhoff curvatures, MITC3/MITC4 bending rows).
+    !! discrete Kirchhoff curvatures, MITC3/MITC4 bending rows). self_energy:
+    !! the constant of the element's energy of its mechanical strains,
+    !! ½ uᵀ K u - uᵀ fe + self_energy (the membrane's and the plate's, each by
+    !! the rule of its load).
     integer, intent(in) :: etype
     real(wp), intent(in) :: x(:, :)
     type(section_t), intent(in) :: sec
@@ -1019,7 +1022,8 @@ contains
     real(wp), allocatable, intent(out) :: fe(:)
     type(error_t), allocatable, intent(out) :: error
     integer, intent(in), optional :: drill
-    real(wp) :: r(3, 3), xl(2, size(x, 2)), h(size(x, 2))
+    real(wp), intent(out), optional :: self_energy
+    real(wp) :: r(3, 3), xl(2, size(x, 2)), h(size(x, 2)), cm, cb
     real(wp), allocatable :: fm(:), fb(:), fl(:)
     logical :: edges(size(x, 2))
     integer :: n, i
@@ -1035,16 +1039,16 @@ contains
     if (any(edges)) then
        ! the membrane of the stiffness: OPT (triangle) or the drilling quadrilateral
        if (n == 3) then
-          call opt_thermal_load(xl, sec%thickness, mat%e, mat%nu, strain, fm, error, edges)
+          call opt_thermal_load(xl, sec%thickness, mat%e, mat%nu, strain, fm, error, edges, cm)
        else
-          call drilling_thermal_load(xl, sec%thickness, mat%e, mat%nu, strain, fm, error, edges)
+          call drilling_thermal_load(xl, sec%thickness, mat%e, mat%nu, strain, fm, error, edges, cm)
        end if
        if (allocated(error)) return
        do i = 1, n
           fl(6*(i - 1) + MEMBRANE_DOFS) = fm(3*i - 2:3*i)
        end do
     else
-       call membrane_thermal_load(xl, sec%thickness, mat%e, mat%nu, .false., strain, fm, error)
+       call membrane_thermal_load(xl, sec%thickness, mat%e, mat%nu, .false., strain, fm, error, cm)
        if (allocated(error)) return
        do i = 1, n
           fl(6*(i - 1) + MEMBRANE_DOFS(1:2)) = fm(2*i - 1:2*i)
@@ -1052,15 +1056,16 @@ contains
     end if
     if (is_thick_shell_type(etype)) then
        call mindlin_thermal_load(xl, sec%thickness, mat%e, mat%nu, shell_shear_stiffness(sec, mat), curvature, fb, &
-            error)
+            error, cb)
     else
-       call plate_thermal_load(xl, sec%thickness, mat%e, mat%nu, curvature, fb, error)
+       call plate_thermal_load(xl, sec%thickness, mat%e, mat%nu, curvature, fb, error, cb)
     end if
     if (allocated(error)) return
     do i = 1, n
        fl(6*(i - 1) + PLATE_DOFS) = fb(3*i - 2:3*i)
     end do
     fe = to_global_vector(node_maps(etype, r, h), fl)
+    if (present(self_energy)) self_energy = cm + cb
   end subroutine shell_thermal_nodal_load
 
   pure subroutine shell_thermal_nodal_resultants(etype, x, sec, mat, strain, curvature, res0, error, drill)

@@ -27,6 +27,7 @@ module superjoin_deck_change_paths
   !! a part placed by no instance, a node outside the contact's substructures.
   use superjoin_model_types, only: source_loc_t
   use superjoin_deck_lexer, only: itoa, plural
+  use superjoin_deck_build_common, only: ref_text
   use superjoin_deck_state, only: deck_state_t, report_loc, grow, contact_b_t, override_b_t, ref_t, &
        SUBK_PART
   use superjoin_deck_cards_assembly, only: find_part
@@ -346,6 +347,7 @@ contains
     logical, intent(in) :: loud
     logical, intent(out) :: ok
     character(:), allocatable :: sub, inst, name
+    type(ref_t) :: in_part
     ok = .true.
     if (.not. allocated(ref%scope)) return
     name = st%contacts(k)%name
@@ -356,22 +358,13 @@ contains
     if (ok) then
        ref%scope = sub
     else if (loud) then
-       call report_loc(st, at, 'node '''//ref%scope//'.'//ref_text(ref)//''' is not in the '//role// &
-            ' substructure '//sub//' of contact '//name//' (write it as the part''s *CONTACT does, '// &
-            sub(len(inst) + 2:)//'.'//ref_text(ref)//', or by its whole path)')
+       in_part = ref
+       in_part%scope = sub(len(inst) + 2:)
+       call report_loc(st, at, 'node '''//ref_text(ref)//''' is not in the '//role//' substructure '//sub// &
+            ' of contact '//name//' (write it as the part''s *CONTACT does, '//ref_text(in_part)// &
+            ', or by its whole path)')
     end if
   end subroutine rescope
-
-  function ref_text(ref) result(s)
-    !! The node id or set name of a reference.
-    type(ref_t), intent(in) :: ref
-    character(:), allocatable :: s
-    if (ref%is_set) then
-       s = ref%set
-    else
-       s = itoa(ref%id)
-    end if
-  end function ref_text
 
   function placed_of(st, part) result(insts)
     !! The placed instances of `part` (entries of st%subs, in order).

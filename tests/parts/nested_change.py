@@ -41,7 +41,8 @@ import subprocess
 import sys
 
 HERE = os.path.dirname(os.path.abspath(__file__))
-GEN = os.path.join(HERE, "..", "..", "bench", "gen_building.py")
+sys.path.insert(0, HERE)
+from building import run, flat_names, GEN  # noqa: E402
 TABLES = ("displacements.csv", "reactions.csv", "contact_forces.csv", "element_forces.csv", "plate_results.csv")
 FLOORS = 4
 
@@ -90,11 +91,6 @@ SCENARIOS = {
 }
 
 
-def flat_names(text):
-    """Instance paths of the nested deck as the explicit deck names them."""
-    return re.sub(r"B\.K", "K", re.sub(r"B\.F(\d+)\.", r"F\1_", text))
-
-
 def nested_deck(text, sc):
     """The generated deck with the scenario's part contact (g = 0) in FLOOR and its steps (each a copy of
     WIND with its cards)."""
@@ -129,16 +125,6 @@ def explicit_deck(text, sc, edits):
                     line = ", ".join(f[:4] + [g])
         out.append(line)
     return "\n".join(out)
-
-
-def run(exe, deck, work, name, *extra):
-    csvdir = os.path.join(work, name)
-    lst = os.path.join(work, name + ".lst")
-    r = subprocess.run([exe, "-q", deck, "-o", lst, "--csv", csvdir, *extra], stderr=subprocess.PIPE, text=True)
-    if r.returncode != 0:
-        print(f"FAIL: {deck} {' '.join(extra)}: exit status {r.returncode}\n{r.stderr}")
-        sys.exit(1)
-    return csvdir, lst
 
 
 def read_rows(path):

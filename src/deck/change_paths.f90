@@ -317,6 +317,10 @@ contains
        if (st%contacts(j)%owner > 0 .and. st%contacts(j)%name == name .and. &
             .not. any(owners == st%contacts(j)%owner)) owners = [owners, st%contacts(j)%owner]
     end do
+    if (size(owners) == 0) then   ! (the parser defers only names that a part's contact has)
+       call report_loc(st, at, '*CHANGE CONTACT of unknown contact '//name)
+       return
+    end if
     parts = st%subs(owners(1))%name
     do j = 2, size(owners)
        parts = parts//', '//st%subs(owners(j))%name

@@ -10,7 +10,9 @@ module superjoin_deck_nesting
   !! x' = R_outer (R_inner x + t_inner) + t_outer; the part's contacts are copied
   !! for each of its instances with their names and substructures prefixed by the
   !! instance's path (`B.F3.J1` between `B.F3.BAY1` and `B.F3.BAY2`). The unfolded
-  !! model is then an ordinary one-level assembly: a condensation, if asked, is
+  !! model is then an ordinary one-level assembly (a *CHANGE CONTACT of a copy,
+  !! `NAME=B.F3.J1` or `PART=FLOOR`, is resolved against it:
+  !! superjoin_deck_change_paths): a condensation, if asked, is
   !! computed once per leaf part, and the interface system of the condensed
   !! leaves is then eliminated level by level (analysis/levels plans it, per
   !! group: own, boundary and interior reduced unknowns; analysis/level_solver

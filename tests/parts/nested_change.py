@@ -1,7 +1,7 @@
 #!/usr/bin/env python3
 """Joint studies on contacts declared inside parts made of parts (*CHANGE CONTACT by instance path).
 
-usage: nested_change.py SUPERJOIN WORKDIR [turned]
+usage: nested_change.py SUPERJOIN WORKDIR [turned|twins]
 
 bench/gen_building.py writes a building of 4 floors of 2 x 2 bays (mesh 4;
 parts BAY -> FLOOR -> BUILDING, one instance B). Its step WIND is copied into
@@ -33,6 +33,11 @@ umfpack, flat with lapack, monolithic with cholmod; steps:
 - FLOORS: `PART=FLOOR` with the line `J1, 4, 6, g` (J1 whole, every floor);
 - RELEASE: `B.F3.J2` released and `PART=BUILDING` with the line `F2.J3` (a
   path inside the part).
+
+`twins`: two buildings B and C alike (the edge-joined one, C 20 m east), a
+step TWIN that changes C.F2.J1 only: by level and flat against the monolithic
+run to 1e-10; by level the 8 floors form 3 kinds (B.F2 = B.F3 = C.F2 = C.F3
+...) until C.F2 has a joint of its own (more kinds in TWIN's factorization).
 """
 import csv
 import os
@@ -42,7 +47,7 @@ import sys
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 sys.path.insert(0, HERE)
-from building import run, flat_names, GEN  # noqa: E402
+from building import run, flat_names, numeric_compare, GEN  # noqa: E402
 TABLES = ("displacements.csv", "reactions.csv", "contact_forces.csv", "element_forces.csv", "plate_results.csv")
 FLOORS = 4
 
@@ -171,11 +176,46 @@ def compare_step(nested, ref, table, step):
     return worst <= 1e-10, worst
 
 
+def twins(exe, work):
+    """Two buildings B and C alike: C.F2's joint J1 changed in a step. By level and flat against the
+    monolithic run; the floors of both buildings share 3 kinds until C.F2 has a joint of its own."""
+    text = subprocess.run([sys.executable, GEN, *SCENARIOS["edge"]["build"]], stdout=subprocess.PIPE, text=True,
+                          check=True).stdout
+    text = text.replace("*INSTANCE, NAME=B, PART=BUILDING\n*END INSTANCE", "*INSTANCE, NAME=B, PART=BUILDING\n"
+                        "*END INSTANCE\n*INSTANCE, NAME=C, PART=BUILDING\n20.0, 0.0, 0.0\n*END INSTANCE")
+    supports = re.search(r"\*BOUNDARY\n(.*?)\*STEP", text, re.S).group(1)
+    text = text.replace(supports, supports + supports.replace("B.F", "C.F"), 1)
+    text = text.replace("*CLOAD\n", "*CLOAD\nC.F4.BAY4.21, 1, 1.0e5\n", 1)
+    body = re.search(r"\*STEP, NAME=WIND\n(.*?)\*END STEP\n?", text, re.S).group(1)
+    deck = os.path.join(work, "twins.deck")
+    with open(deck, "w") as f:
+        f.write(text.rstrip("\n") + f"\n*STEP, NAME=TWIN\n{body}*CHANGE CONTACT, NAME=C.F2.J1\n"
+                "BAY1.E, BAY2.W, 1, 3, 1.0e8\n*END STEP\n")
+    mono, _ = run(exe, deck, work, "twins_monolithic", "--condense", "no")
+    ok = True
+    listings = {}
+    for name, opts in (("twins_levels", ["--levels", "yes"]), ("twins_flat", ["--levels", "no"])):
+        out, listings[name] = run(exe, deck, work, name, "--condense", "yes", *opts)
+        results = [numeric_compare(out, mono, table, names=lambda x: x) for table in TABLES]
+        good = all(g for g, _ in results)
+        print(f"{'ok' if good else 'FAIL'}: {name} against monolithic, largest difference "
+              f"{max(w for _, w in results):.1e}")
+        ok = ok and good
+    with open(listings["twins_levels"]) as f:
+        kinds = [int(k) for k in re.findall(r"condensation by level: 8 groups in (\d+) kinds", f.read())]
+    split = len(kinds) == 2 and kinds[0] == 3 and kinds[1] > 3
+    print(f"{'ok' if split else 'FAIL'}: by level, the 8 floors in 3 kinds, then C.F2 apart: kinds {kinds}")
+    return 0 if ok and split else 1
+
+
 def main(argv):
-    if len(argv) not in (3, 4) or (len(argv) == 4 and argv[3] not in SCENARIOS):
+    if len(argv) not in (3, 4) or (len(argv) == 4 and argv[3] not in (*SCENARIOS, "twins")):
         print(__doc__.strip().splitlines()[2], file=sys.stderr)
         return 2
     exe, work = argv[1:3]
+    if len(argv) == 4 and argv[3] == "twins":
+        os.makedirs(work, exist_ok=True)
+        return twins(exe, work)
     sc = SCENARIOS[argv[3] if len(argv) == 4 else "edge"]
     os.makedirs(work, exist_ok=True)
     gen = lambda *more: subprocess.run([sys.executable, GEN, *sc["build"], *more], stdout=subprocess.PIPE,  # noqa

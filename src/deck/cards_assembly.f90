@@ -515,15 +515,16 @@ contains
   end subroutine data_interface
 
   subroutine kw_change_contact(st, kw, loc)
-    !! *CHANGE CONTACT[, NAME=j][, SWEEP] inside *STEP (without NAME= each data
-    !! line names its contact and changes every pair of it).
+    !! *CHANGE CONTACT[, NAME=j][, PART=p][, SWEEP] inside *STEP (without NAME=
+    !! each data line names its contact and changes every pair of it). A contact
+    !! named by instance path (`B.F3.J1`), a part's contact named by its own name,
+    !! and PART= are resolved once the parts are unfolded (card_item -1 with NAME=).
     type(deck_state_t), intent(inout) :: st
     type(keyword_line_t), intent(in) :: kw
     type(source_loc_t), intent(in) :: loc
     character(:), allocatable :: name
     logical :: found
-    integer :: k
-    call check_params(st, kw, loc, [character(NAME_LEN) :: 'NAME'], [character(NAME_LEN) :: 'SWEEP'])
+    call check_params(st, kw, loc, [character(NAME_LEN) :: 'NAME', 'PART'], [character(NAME_LEN) :: 'SWEEP'])
     st%card = CARD_SKIP
     if (st%cur_step == 0) then
        call report_loc(st, loc, '*CHANGE CONTACT must stand inside *STEP')
@@ -532,22 +533,54 @@ contains
     st%card_item = 0
     st%card_generate = param_index(kw, 'SWEEP') > 0
     st%card_home = st%cur_step
+    st%change_card = override_b_t(card_loc=loc)
+    if (param_index(kw, 'PART') > 0) then
+       call get_name_param(st, kw, loc, 'PART', .true., name, found)
+       if (.not. found) return
+       st%change_card%part = name
+    end if
     if (param_index(kw, 'NAME') == 0) then
        st%card = CARD_CHANGE_CONTACT
        return
     end if
-    call get_name_param(st, kw, loc, 'NAME', .true., name, found)
+    call get_path_param(st, kw, loc, 'NAME', name, found)
     if (.not. found) return
-    do k = 1, st%ncontact
-       if (st%contacts(k)%name == name) st%card_item = k
-    end do
-    if (st%card_item == 0) then
-       call report_loc(st, loc, '*CHANGE CONTACT of unknown contact '//name// &
-            ' (the *CONTACT card must come before the step)')
-       return
+    call name_contact(st, name, loc, st%change_card, st%card_item)
+    if (allocated(st%change_card%path)) then
+       st%change_card%named = .true.
+       st%card_item = -1
     end if
-    st%card = CARD_CHANGE_CONTACT
+    if (st%card_item /= 0) st%card = CARD_CHANGE_CONTACT
   end subroutine kw_change_contact
+
+  subroutine name_contact(st, name, loc, o, k)
+    !! The contact a *CHANGE CONTACT names: k, a contact of the assembly; or,
+    !! for an instance path, a part's contact or with PART=, o%path (k = 0,
+    !! resolved once the parts are unfolded); else reported (k = 0).
+    type(deck_state_t), intent(inout) :: st
+    character(*), intent(in) :: name
+    type(source_loc_t), intent(in) :: loc
+    type(override_b_t), intent(inout) :: o
+    integer, intent(out) :: k
+    integer :: j
+    logical :: in_part
+    k = 0
+    in_part = .false.
+    if (index(name, '.') == 0 .and. .not. allocated(o%part)) then
+       do j = 1, st%ncontact
+          if (st%contacts(j)%name /= name) cycle
+          if (st%contacts(j)%owner == 0) k = j
+          if (st%contacts(j)%owner > 0) in_part = .true.
+       end do
+       if (k > 0) return
+       if (.not. in_part) then
+          call report_loc(st, loc, '*CHANGE CONTACT of unknown contact '//name// &
+               ' (the *CONTACT card must come before the step)')
+          return
+       end if
+    end if
+    o%path = name
+  end subroutine name_contact
 
   subroutine data_change_contact(st, line, loc)
     !! A data line of *CHANGE CONTACT (the form of *CONTACT's).
@@ -557,13 +590,21 @@ contains
     type(override_b_t) :: o
     integer :: nval, i, nmin
     integer, parameter :: INITIAL_OVERRIDES = 4
+    o = st%change_card
     if (st%card_item == 0) then
        nmin = CHANGE_LIST_FIELDS_MIN
        if (.not. field_count(st, loc, nmin, merge(huge(1), nmin, st%card_generate), &
             pick(st%card_generate, 'contact, first dof, last dof, g1, g2, ... (SWEEP)', &
             'contact, first dof, last dof, g (several values of g need SWEEP; node pairs need NAME=)'))) return
-       if (.not. contact_named(fld(st, line, 1), o%contact)) return
+       if (.not. contact_named(fld(st, line, 1))) return
        o%whole = .true.
+    else if (st%card_item < 0) then   ! NAME='s contact resolved later, with the scopes of the nodes
+       nmin = CHANGE_FIELDS_MIN
+       if (.not. field_count(st, loc, nmin, merge(huge(1), nmin, st%card_generate), &
+            pick(st%card_generate, 'master, slave, first dof, last dof, g1, g2, ... (SWEEP)', &
+            'master, slave, first dof, last dof, g (several values of g need SWEEP)'))) return
+       if (.not. parse_ref(st, fld(st, line, 1), .false., 0, loc, o%master)) return
+       if (.not. parse_ref(st, fld(st, line, 2), .false., 0, loc, o%slave)) return
     else
        nmin = CHANGE_FIELDS_MIN
        if (.not. field_count(st, loc, nmin, merge(huge(1), nmin, st%card_generate), &
@@ -600,18 +641,19 @@ contains
       step%overrides(step%noverride) = o
     end associate
   contains
-    logical function contact_named(field, k) result(ok)
-      !! k: the *CONTACT named by field (an unknown name is reported).
+    logical function contact_named(field) result(ok)
+      !! o%contact or o%path: the *CONTACT named by field (an unknown or invalid name is reported).
       character(*), intent(in) :: field
-      integer, intent(out) :: k
       character(:), allocatable :: name
       name = to_upper(trim(adjustl(field)))
-      do k = 1, st%ncontact
-         if (st%contacts(k)%name == name) exit
-      end do
-      ok = k <= st%ncontact
-      if (.not. ok) call report_loc(st, loc, '*CHANGE CONTACT of unknown contact '//name// &
-           ' (the *CONTACT card must come before the step)')
+      ok = is_path(name)
+      if (.not. ok) then
+         call report_loc(st, loc, 'invalid contact name '''//clip(field)//''' on a *CHANGE CONTACT line '// &
+              '(letters, digits, _ and - only; an instance path joins names with .)')
+         return
+      end if
+      call name_contact(st, name, loc, o, o%contact)
+      ok = o%contact > 0 .or. allocated(o%path)
     end function contact_named
     logical function scoped(ref, subname, role) result(ok)
       !! A scoped reference must name the contact's own substructure.

@@ -10,7 +10,9 @@ module superjoin_deck_nesting
   !! x' = R_outer (R_inner x + t_inner) + t_outer; the part's contacts are copied
   !! for each of its instances with their names and substructures prefixed by the
   !! instance's path (`B.F3.J1` between `B.F3.BAY1` and `B.F3.BAY2`). The unfolded
-  !! model is then an ordinary one-level assembly: a condensation, if asked, is
+  !! model is then an ordinary one-level assembly (a *CHANGE CONTACT of a copy,
+  !! `NAME=B.F3.J1` or `PART=FLOOR`, is resolved against it:
+  !! superjoin_deck_change_paths): a condensation, if asked, is
   !! computed once per leaf part, and the interface system of the condensed
   !! leaves is then eliminated level by level (analysis/levels plans it, per
   !! group: own, boundary and interior reduced unknowns; analysis/level_solver
@@ -25,6 +27,7 @@ module superjoin_deck_nesting
   use superjoin_deck_state, only: deck_state_t, report_loc, grow, SUBK_PART, SUBK_INSTANCE, SUBK_NESTED, &
        contact_b_t, cline_b_t, ref_t
   use superjoin_deck_cards_assembly, only: find_part, new_instance
+  use superjoin_deck_change_paths, only: resolve_change_paths
   implicit none (type, external)
   private
 
@@ -49,7 +52,10 @@ contains
     integer :: k, n0
     character(:), allocatable :: name
     real(wp) :: rot(3, 3), shift(3)
-    if (count(st%subs(1:st%nsub)%kind == SUBK_NESTED) == 0) return
+    if (count(st%subs(1:st%nsub)%kind == SUBK_NESTED) == 0) then
+       call resolve_change_paths(st, [contact_b_t ::])   ! paths that reach no part made of parts: reported
+       return
+    end if
     call link_templates(st, w)
     if (st%aborted) return
     call take_part_contacts(st, w)
@@ -62,6 +68,7 @@ contains
        call unfold(st, w, find_part(st, st%instances(st%subs(k)%inst)%part), name, rot, shift, k)
        if (st%aborted) return
     end do
+    call resolve_change_paths(st, w%contacts)   ! *CHANGE CONTACT of the copies (B.F3.J1, PART=)
     ! a part made of parts only is no mesh: it leaves the model with its templates
     do k = 1, n0
        if (st%subs(k)%kind == SUBK_PART .and. st%subs(k)%node_lines == 0 .and. any(owners(st) == k)) &
@@ -164,16 +171,10 @@ contains
        end if
     end do
     st%ncline = nkeep
-    do s = 1, st%nstep
+    do s = 1, st%nstep   ! *CHANGE CONTACT names only the assembly's contacts by index (else o%path)
        do j = 1, st%steps(s)%noverride
           associate (o => st%steps(s)%overrides(j))
-            if (o%contact > 0) then
-               if (new_index(o%contact) < 0) call report_loc(st, o%loc, '*CHANGE CONTACT of contact '// &
-                    w%contacts(-new_index(o%contact))%name//', which is declared inside *PART '// &
-                    st%subs(w%contacts(-new_index(o%contact))%owner)%name//': the contacts of a part made '// &
-                    'of parts cannot be changed in a step (declare the contact in *ASSEMBLY to change or sweep it)')
-               o%contact = max(0, new_index(o%contact))
-            end if
+            if (o%contact > 0) o%contact = max(0, new_index(o%contact))
           end associate
        end do
     end do

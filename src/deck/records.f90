@@ -222,8 +222,14 @@ module superjoin_deck_records
   type, public :: override_b_t
     !! One data line of *CHANGE CONTACT in a step: master, slave, first dof, last
     !! dof and one stiffness (several in a SWEEP: one per expanded step).
-     integer :: contact = 0                 !! index into contacts (0: unknown, reported)
+     integer :: contact = 0                 !! index into contacts (0: unknown, reported, or not resolved yet)
      logical :: whole = .false.             !! the line names the contact: every pair of it (no master, slave)
+     character(:), allocatable :: path      !! the contact by instance path (`B.F3.J1`), or a part's contact
+                                            !! by its own name: resolved once the parts are unfolded
+                                            !! (superjoin_deck_change_paths; contact = 0 until then)
+     character(:), allocatable :: part      !! PART=: path is the part's own, changed in each instance of the part
+     logical :: named = .false.             !! path comes from the card's NAME= (reported at card_loc, once)
+     type(source_loc_t) :: card_loc         !! the *CHANGE CONTACT keyword line
      type(ref_t) :: master, slave
      integer :: first = 0, last = 0
      integer, allocatable :: states(:)      !! LINK_* per value

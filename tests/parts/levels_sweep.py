@@ -14,10 +14,8 @@ same deck condensed flat (--levels no) and with the monolithic run
 (--condense no), every step; its listing says the joint study and the
 condensation by level were done.
 
-(A contact declared inside a *PART, the floors' J* and the building's K*,
-cannot be reached by *CHANGE CONTACT: its path name B.K1_1 is not a valid
-NAME=, and the part's own name K1_1 resolves to the part's contact, between
-the part's substructures F1.BAY1 and F2.BAY1, not the instance's.)
+(A contact declared inside a *PART, the floors' J* and the building's K*, is
+changed by its instance path, NAME=B.F2.J1 or PART=FLOOR: tests/parts/nested_change.py.)
 """
 import os
 import subprocess

@@ -59,6 +59,8 @@ contains
     call link_templates(st, w)
     if (st%aborted) return
     call take_part_contacts(st, w)
+    call report_meshed_part_contacts(st, w)
+    if (st%aborted) return
     n0 = st%nsub
     do k = 1, n0
        if (st%subs(k)%kind /= SUBK_INSTANCE) cycle
@@ -220,6 +222,24 @@ contains
     end do
     call copy_contacts(st, w, p, path)
   end subroutine unfold
+
+  subroutine report_meshed_part_contacts(st, w)
+    !! A *CONTACT inside a part that holds no *INSTANCE joins nothing (a
+    !! contact joins two instances: a part's own *INSTANCEs, or the
+    !! assembly's): reported at the card, as the flat reading does, instead
+    !! of being left out of every copy of the part.
+    type(deck_state_t), intent(inout) :: st
+    type(unfold_t), intent(in) :: w
+    integer :: j, o(st%nsub)
+    o = owners(st)
+    do j = 1, size(w%contacts)
+       if (any(o == w%contacts(j)%owner)) cycle
+       call report_loc(st, w%contacts(j)%loc, '*CONTACT '//w%contacts(j)%name//' inside part '// &
+            st%subs(w%contacts(j)%owner)%name//', which holds no *INSTANCE: a contact joins two instances '// &
+            '(inside a part, two of its own *INSTANCEs; else write it in *ASSEMBLY between instances of '// &
+            st%subs(w%contacts(j)%owner)%name//')')
+    end do
+  end subroutine report_meshed_part_contacts
 
   function owners(st) result(o)
     !! The owning part of each entry of st%subs (0: not an inner *INSTANCE).

@@ -6,8 +6,9 @@ module superjoin_analysis_recover
   !! and finite contacts as elements, minus loads). A rigid tree unit pushes on
   !! its child with the sum of r over the child's subtree; a rigid component that
   !! closed a loop gets its force from the equation of the column it eliminated.
+  use, intrinsic :: iso_c_binding, only: c_int, c_size_t
   use superjoin_kinds, only: wp, ip, i8
-  use superjoin_model_types, only: MAX_ELEMENT_DOFS
+  use superjoin_model_types, only: MAX_ELEMENT_DOFS, MAX_ELEMENT_NODES
   use superjoin_error, only: error_t, add_error_line, EXIT_DECK
   use superjoin_model_types, only: model_t, DLOAD_THERMAL, ELEMENT_NODE_COUNT, LINK_NONE, LINK_FINITE, LINK_RIGID, &
        NDOF_NODE, loc_text, substructure_t
@@ -36,6 +37,26 @@ module superjoin_analysis_recover
 
   public :: recover_results
 
+  interface
+     function malloc_trim(pad) bind(c, name='malloc_trim') result(released)
+       !! glibc: the heap's free pages back to the system (1 when some were).
+       import :: c_int, c_size_t
+       integer(c_size_t), value :: pad
+       integer(c_int) :: released
+     end function malloc_trim
+  end interface
+
+  type :: closing_t
+    !! The closing forces of the eliminated constraints (rclose, physical DOFs
+    !! × steps) held sparsely: row slot(p) of val for a DOF p some constraint
+    !! acts on, zero for every other DOF (a dense np × nsteps array was the
+    !! run's peak on the 1e6 frame).
+     integer, allocatable :: slot(:)          !! (np) 0: no closing force
+     integer(i8), allocatable :: dof(:)       !! (n) the DOF of each row
+     real(wp), allocatable :: val(:, :)       !! (capacity, nstep)
+     integer :: n = 0
+  end type closing_t
+
   type :: node_flags_t
     !! One logical per node of a substructure.
      logical, allocatable :: on(:)
@@ -57,20 +78,22 @@ contains
     logical, intent(in) :: wanted(:)
     type(results_t), intent(inout) :: res
     type(error_t), allocatable, intent(out) :: error
-    real(wp), allocatable :: r(:, :), delta(:, :, :), rclose(:, :), acc(:, :)
+    real(wp), allocatable :: r(:, :), delta(:, :, :), acc(:, :)
+    type(closing_t) :: rclose
     real(wp), allocatable :: rigid_force(:, :, :)  ! (3, nunit, nstep): rigid force on child / λ, local
     real(wp), allocatable :: req(:, :)             ! (np, nstep): *EQUATION forces on the structure
-    integer :: nstep, is, stat
+    integer :: nstep, is, stat, i
+    integer(c_int) :: trimmed
 
     associate (table => st%table, forest => st%forest, tr => st%tr, q => st%q, u => st%u, f_phys => st%f_phys)
       nstep = size(q, 2)
       call store_displacements(table, u, res, error)
       if (allocated(error)) return
-      allocate (r(table%np, nstep), rclose(table%np, nstep), rigid_force(3, table%nunit, nstep), &
-           acc(3, 0:table%nvertex), stat=stat)
+      allocate (r(table%np, nstep), rclose%slot(table%np), rclose%dof(16), rclose%val(16, nstep), &
+           rigid_force(3, table%nunit, nstep), acc(3, 0:table%nvertex), stat=stat)
       if (stat /= 0) then
-         call out_of_memory(error, 'the recovery of forces', (2*table%np*nstep + 3*table%nunit*nstep + &
-              3*(table%nvertex + 1))*BYTES_REAL)
+         call out_of_memory(error, 'the recovery of forces', (table%np*nstep + 3*table%nunit*nstep + &
+              3*(table%nvertex + 1))*BYTES_REAL + table%np*BYTES_INT)
          return
       end if
       r = -f_phys
@@ -81,12 +104,21 @@ contains
       call add_spring_forces(table, delta, r)
 
       rigid_force = 0.0_wp
-      rclose = 0.0_wp
+      rclose%slot = 0
       call closer_forces(table, tr, r, rigid_force, rclose, req)
-      r = r - rclose     ! in place: no temporary of np values per step
+      do i = 1, rclose%n   ! r - rclose: the DOFs without a closing force keep r (r - 0 = r)
+         r(rclose%dof(i), :) = r(rclose%dof(i), :) - rclose%val(i, :)
+      end do
+      deallocate (rclose%slot, rclose%val)
       do is = 1, nstep
          call tree_forces(table, forest, r(:, is), acc, rigid_force(:, :, is))
       end do
+      ! The run's peak can be here (1e6 frame: the factor and K are still
+      ! held): r and acc are freed before the link results, and given back
+      ! (they sit in the heap once glibc's mmap threshold has grown, where
+      ! free alone would keep them resident).
+      deallocate (r, acc)
+      trimmed = malloc_trim(0_c_size_t)
       call link_and_support_results(model, table, delta, rigid_force, f_phys, res)
       if (allocated(req)) call add_equation_resultants(model, table, req, res)
     end associate
@@ -162,11 +194,11 @@ contains
     logical, intent(in) :: wanted(:)
     logical, allocatable :: own_ku(:), in_unit(:), done(:)
     real(wp), allocatable :: ql(:, :, :), nt(:, :), f0(:, :, :, :)
-    real(wp) :: f(6, 2), fg(MAX_ELEM_DOFS)
+    real(wp) :: f(6, 2), fg(MAX_ELEM_DOFS), ue(MAX_ELEM_DOFS), xe(3, MAX_ELEMENT_NODES)
     real(wp), allocatable :: fg2(:, :)
     integer(i8) :: pd(MAX_ELEM_DOFS), ie
     logical :: heated, skip_plates, plate
-    integer :: isub, n, is, nstep, nn
+    integer :: isub, n, is, nstep, nn, i
     integer(ip) :: e
     type(error_t), allocatable :: inner
 
@@ -207,22 +239,19 @@ contains
                  if (.not. done(isub)) call shell_forces(s%elem_type(e), s%x(:, s%elem_nodes(1:nn, e)), sec, &
                       model%materials(sec%material), u(pd(1:n), :), res%fields%plate(:, ie, :), fg2(1:n, :), inner, &
                       with_forces=.not. own_ku(isub), drill=element_drill(s, e))
-                 if (allocated(inner)) then
-                    call add_error_line(error, EXIT_DECK, inner%message)
-                    return
-                 end if
+                 if (passed_on(inner, error)) return
                  if (.not. own_ku(isub)) r(pd(1:n), :) = r(pd(1:n), :) + fg2(1:n, :)
                  ! loads: N = D (eps - eps0), the free thermal expansion's resultants taken off
                  call thermal_resultants(model, isub, e, ie, res)
                  cycle
               end if
+              ! coordinates and displacements copied into xe, ue: no temporary per call
+              xe(:, 1:nn) = s%x(:, s%elem_nodes(1:nn, e))
               do is = 1, nstep
-                 call element_end_forces(s%elem_type(e), s%x(:, s%elem_nodes(1:nn, e)), sec, &
-                      model%materials(sec%material), u(pd(1:n), is), ql(:, ie, is), f, inner)
-                 if (allocated(inner)) then
-                    call add_error_line(error, EXIT_DECK, inner%message)
-                    return
-                 end if
+                 ue(1:n) = u(pd(1:n), is)
+                 call element_end_forces(s%elem_type(e), xe(:, 1:nn), sec, &
+                      model%materials(sec%material), ue(1:n), ql(:, ie, is), f, inner)
+                 if (passed_on(inner, error)) return
                  ! loads: N = E A (eps - alpha dT), the thermal force off the axial end forces
                  f(1, :) = f(1, :) + [nt(ie, is), -nt(ie, is)]
                  ! loads: CENTRIF, the consistent end loads of its linearly varying load
@@ -230,13 +259,12 @@ contains
                  res%fields%elem_force(:, :, ie, is) = f
                  if (own_ku(isub)) cycle
                  ! r += K_e u_e - f_eq (the consistent load is added back below)
-                 call element_nodal_forces(s%elem_type(e), s%x(:, s%elem_nodes(1:nn, e)), sec, f, &
+                 call element_nodal_forces(s%elem_type(e), xe(:, 1:nn), sec, f, &
                       fg(1:n), inner, q_local=ql(:, ie, is))
-                 if (allocated(inner)) then
-                    call add_error_line(error, EXIT_DECK, inner%message)
-                    return
-                 end if
-                 r(pd(1:n), is) = r(pd(1:n), is) + fg(1:n)
+                 if (passed_on(inner, error)) return
+                 do i = 1, n
+                    r(pd(i), is) = r(pd(i), is) + fg(i)
+                 end do
               end do
             end associate
          end do
@@ -287,10 +315,7 @@ contains
               call shell_result_operator(s%elem_type(e), s%x(:, s%elem_nodes(1:ELEMENT_NODE_COUNT(s%elem_type(e)), e)), &
                    s%sections(s%elem_section(e)), model%materials(s%sections(s%elem_section(e))%material), op, inner, &
                    drill=element_drill(s, e))
-              if (allocated(inner)) then
-                 call add_error_line(error, EXIT_DECK, inner%message)
-                 return
-              end if
+              if (passed_on(inner, error)) return
               allocate (ue(size(op, 2), nstep*size(like)))
               do k = 1, size(like)
                  call element_pdofs(model, table, like(k), e, pd, n)
@@ -391,10 +416,7 @@ contains
             call solid_forces(s%elem_type(e), s%x(:, s%elem_nodes(1:nn, e)), &
                  model%materials(s%sections(s%elem_section(e))%material), u(pd(1:n), :), fg(1:n, :), inner, &
                  s%sections(s%elem_section(e))%axes)
-            if (allocated(inner)) then
-               call add_error_line(error, EXIT_DECK, inner%message)
-               return
-            end if
+            if (passed_on(inner, error)) return
             r(pd(1:n), :) = r(pd(1:n), :) + fg(1:n, :)
          end do
        end associate
@@ -639,7 +661,8 @@ contains
     type(dof_table_t), intent(in) :: table
     type(transform_t), intent(in) :: tr
     real(wp), intent(in) :: r(:, :)
-    real(wp), intent(inout) :: rigid_force(:, :, :), rclose(:, :)
+    real(wp), intent(inout) :: rigid_force(:, :, :)
+    type(closing_t), intent(inout) :: rclose
     real(wp), allocatable, intent(inout) :: req(:, :)
     integer :: i, c, is, nt
     integer(i8) :: pt(MAX_UNIT_TERMS)
@@ -653,10 +676,10 @@ contains
             ! *EQUATION sum a_i u_i = 0: forces -λ a_i on its DOFs.
             associate (te => table%equations(cs%equation))
               do is = 1, size(r, 2)
-                 lambda = -sum(cs%fp_c*(r(cs%fp_p, is) - rclose(cs%fp_p, is)))/cs%pivot
+                 lambda = -sum(cs%fp_c*(r(cs%fp_p, is) - closing(rclose, cs%fp_p, is)))/cs%pivot
                  if (.not. allocated(req)) allocate (req(size(r, 1), size(r, 2)), source=0.0_wp)
                  do c = 1, size(te%p)
-                    rclose(te%p(c), is) = rclose(te%p(c), is) - lambda*te%a(c)
+                    call add_closing(rclose, te%p(c), is, lambda*te%a(c))
                     req(te%p(c), is) = req(te%p(c), is) - lambda*te%a(c)
                  end do
               end do
@@ -665,7 +688,7 @@ contains
          end if
          associate (un => table%units(cs%unit))
            do is = 1, size(r, 2)
-              e = sum(cs%fp_c*(r(cs%fp_p, is) - rclose(cs%fp_p, is)))
+              e = sum(cs%fp_c*(r(cs%fp_p, is) - closing(rclose, cs%fp_p, is)))
               lambda = -e/cs%pivot
               ! Force on the master; for a support, the reaction on the node.
               if (un%kind == UNIT_SUPPORT) then
@@ -675,12 +698,60 @@ contains
               end if
               call unit_terms(table, un, cs%k, pt, wt, nt)
               do c = 1, nt
-                 rclose(pt(c), is) = rclose(pt(c), is) - lambda*wt(c)
+                 call add_closing(rclose, pt(c), is, lambda*wt(c))
               end do
            end do
          end associate
     end do
   end subroutine closer_forces
+
+  logical function passed_on(inner, error)
+    !! True when an element routine failed (inner): its message is added to error.
+    type(error_t), allocatable, intent(in) :: inner
+    type(error_t), allocatable, intent(inout) :: error
+    passed_on = allocated(inner)
+    if (passed_on) call add_error_line(error, EXIT_DECK, inner%message)
+  end function passed_on
+
+  pure function closing(rclose, p, is) result(v)
+    !! rclose(p, is) of the dense array it stands for.
+    type(closing_t), intent(in) :: rclose
+    integer(i8), intent(in) :: p(:)
+    integer, intent(in) :: is
+    real(wp) :: v(size(p))
+    integer :: k
+    do k = 1, size(p)
+       v(k) = 0.0_wp
+       if (rclose%slot(p(k)) > 0) v(k) = rclose%val(rclose%slot(p(k)), is)
+    end do
+  end function closing
+
+  subroutine add_closing(rclose, p, is, x)
+    !! rclose(p, is) = rclose(p, is) - x (a row for p when it has none yet).
+    type(closing_t), intent(inout) :: rclose
+    integer(i8), intent(in) :: p
+    integer, intent(in) :: is
+    real(wp), intent(in) :: x
+    integer(i8), allocatable :: dof(:)
+    real(wp), allocatable :: val(:, :)
+    integer :: k
+    k = rclose%slot(p)
+    if (k == 0) then
+       if (rclose%n == size(rclose%dof)) then
+          allocate (dof(2*rclose%n), val(2*rclose%n, size(rclose%val, 2)))
+          dof(1:rclose%n) = rclose%dof
+          val(1:rclose%n, :) = rclose%val
+          call move_alloc(dof, rclose%dof)
+          call move_alloc(val, rclose%val)
+       end if
+       rclose%n = rclose%n + 1
+       k = rclose%n
+       rclose%slot(p) = k
+       rclose%dof(k) = p
+       rclose%val(k, :) = 0.0_wp
+    end if
+    rclose%val(k, is) = rclose%val(k, is) - x
+  end subroutine add_closing
 
   subroutine tree_forces(table, forest, rt, acc, rigid_force)
     !! Subtree sums: the force each rigid tree unit exerts on its child, then

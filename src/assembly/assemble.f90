@@ -11,7 +11,7 @@ module superjoin_assembly_assemble
   use superjoin_assembly_transform, only: transform_t, form_spring_t, ROLE_PLAIN
   use superjoin_solvers_sparse, only: sparse_sym_t
   use superjoin_solvers_solver, only: linear_solver_t
-  use superjoin_solvers_pattern, only: build_pattern, find_entry, items_of_columns
+  use superjoin_solvers_pattern, only: build_pattern, find_entry, items_of_columns, zero_values
   use superjoin_utils_strings, only: itoa
   use superjoin_assembly_scatter_map, only: scatter_map_t, build_scatter_map, scatter_item
   use superjoin_utils_memory, only: out_of_memory, BYTES_REAL, BYTES_I8
@@ -218,9 +218,11 @@ contains
     call items_of_columns(tr%ncol(), items%ptr(1:items%n + 1), items%col, col_ptr, col_item, error)
     if (allocated(error)) return
 
-    call build_pattern(tr%ncol(), items%ptr, items%col, col_ptr, col_item, k, error)
+    call build_pattern(tr%ncol(), items%ptr, items%col, col_ptr, col_item, k, error, values=.false.)
     if (allocated(error)) return
     if (present(solver)) call solver%analyze_start(k)
+    call zero_values(k, error)   ! beside the analysis: nnz zeros, off its path
+    if (allocated(error)) return
     allocate (mapped(items%n), source=.true.)
     mapped(items%supers_after + 1:items%supers_after + size(plan%supers)) = .false.   ! scatter_dense
     call build_scatter_map(k, items%ptr(1:items%n + 1), items%col, col_ptr, col_item, mapped, map, error)

@@ -271,9 +271,12 @@ contains
           return
        end if
     end if
-    ! fields after the nodes are ignored, as CalculiX reads the line (its first id and nodes)
-    if (.not. field_count(st, loc, nn + 1, max(nn + 1, st%f%n), 'id and '//itoa(nn)//' nodes for type '// &
-         trim(ELEMENT_TYPE_NAMES(st%card_etype)))) return
+    ! fields after the nodes are ignored, as CalculiX reads the line (its first id and nodes);
+    ! the message is built only for a short line (not once per element)
+    if (st%f%n < nn + 1) then
+       if (.not. field_count(st, loc, nn + 1, nn + 1, 'id and '//itoa(nn)//' nodes for type '// &
+            trim(ELEMENT_TYPE_NAMES(st%card_etype)))) return
+    end if
     if (.not. get_id(st, line, loc, 1, 'element id', id)) return
     nid = 0
     do i = 1, nn

@@ -48,6 +48,8 @@
 #include <stdint.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/mman.h>
+#include <unistd.h>
 
 #include "cholmod.h"
 #include "metis.h"
@@ -621,6 +623,109 @@ int sj_cholmod_analyze_finish(void *handle)
     return SJ_OK;
 }
 
+/* The caller's row indices packed while CHOLMOD factors from its own
+ * permuted copy (cholmod_l_factorize reads A only to form tril(PAP')): each
+ * row of column j becomes the 16-bit gap to the next row of the column (to
+ * j after the last, the diagonal) at the head of the same array, gaps of
+ * 0xFFFF or more go to a list of their own, and the whole pages behind the
+ * packed part go back to the system (MADV_DONTNEED: they read as zeros until
+ * written again). So 3/4 of the index array (71 MB at 1e6) is not resident
+ * at the factorization's peak; sj_unpack_rows writes the same indices back. */
+typedef struct {
+    SuiteSparse_long *far;   /* the long distances, in entry order */
+    SuiteSparse_long nfar;
+} sj_packed_t;
+
+static int sj_pack_rows(const cholmod_sparse *A, sj_packed_t *pk)
+{
+    const SuiteSparse_long *Ap = A->p;
+    SuiteSparse_long *Ai = A->i;
+    uint16_t *d = (uint16_t *)A->i;
+    SuiteSparse_long n = (SuiteSparse_long)A->ncol, nnz = Ap[n], j, q, nfar = 0;
+    long page = sysconf(_SC_PAGESIZE);
+    uintptr_t head, tail;
+    for (j = 0; j < n; j++)
+        for (q = Ap[j]; q < Ap[j + 1]; q++)
+            if ((q + 1 < Ap[j + 1] ? Ai[q + 1] : j) - Ai[q] >= 0xFFFF) nfar++;
+    if (nfar > nnz / 8 || page <= 0) return 0;   /* not worth it */
+    pk->far = malloc((size_t)(nfar > 0 ? nfar : 1) * sizeof(SuiteSparse_long));
+    if (pk->far == NULL) return 0;
+    pk->nfar = 0;
+    /* d[q] overwrites bytes of Ai[q / 4] only, an entry already read */
+    for (j = 0; j < n; j++) {
+        for (q = Ap[j]; q < Ap[j + 1]; q++) {
+            SuiteSparse_long gap = (q + 1 < Ap[j + 1] ? Ai[q + 1] : j) - Ai[q];
+            if (gap >= 0xFFFF) {
+                pk->far[pk->nfar++] = gap;
+                d[q] = 0xFFFF;
+            } else {
+                d[q] = (uint16_t)gap;
+            }
+        }
+    }
+    head = ((uintptr_t)(d + nnz) + (uintptr_t)page - 1) / (uintptr_t)page * (uintptr_t)page;
+    tail = (uintptr_t)(Ai + nnz) / (uintptr_t)page * (uintptr_t)page;
+    if (tail > head) madvise((void *)head, tail - head, MADV_DONTNEED);
+    return 1;
+}
+
+static void sj_unpack_rows(const cholmod_sparse *A, sj_packed_t *pk)
+{
+    const SuiteSparse_long *Ap = A->p;
+    SuiteSparse_long *Ai = A->i;
+    const uint16_t *d = (const uint16_t *)A->i;
+    SuiteSparse_long j, q, row, k = pk->nfar;
+    /* backwards: Ai[q] overwrites d[4q..4q+3], entries already read */
+    for (j = (SuiteSparse_long)A->ncol - 1; j >= 0; j--) {
+        row = j;
+        for (q = Ap[j + 1] - 1; q >= Ap[j]; q--) {
+            SuiteSparse_long gap = d[q];
+            if (gap == 0xFFFF) gap = pk->far[--k];
+            row -= gap;
+            Ai[q] = row;
+        }
+    }
+    free(pk->far);
+    pk->far = NULL;
+}
+
+/* cholmod_l_factorize_p's supernodal branch for an upper-triangle A with a
+ * fill-reducing permutation (CHOLMOD 3.0's cholmod_factorize.c, step by
+ * step: the same calls in the same order, so the same factor), with A's row
+ * indices packed between the forming of tril(PAP') and the numeric
+ * factorization (sj_pack_rows), unpacked once that copy is freed. */
+static int sj_factorize_packed(sj_cholmod_t *h)
+{
+    cholmod_common *c = &h->common;
+    cholmod_factor *L = h->L;
+    cholmod_sparse *S;
+    double zero[2] = {0.0, 0.0};
+    sj_packed_t pk = {NULL, 0};
+    int ok, packed = 0, status;
+    c->status = CHOLMOD_OK;
+    /* workspace s = 2 nrow + 2 nsuper, as cholmod_l_factorize_p asks */
+    if (L->nsuper > SIZE_MAX / 4 || h->A.nrow > SIZE_MAX / 4)
+        return cholmod_l_factorize(&h->A, L, c);   /* reports "problem too large" */
+    cholmod_l_allocate_work(h->A.nrow, 2 * h->A.nrow + 2 * L->nsuper, 0, c);
+    if (c->status < CHOLMOD_OK) return 0;
+    S = cholmod_l_ptranspose(&h->A, 2, L->Perm, NULL, 0, c);
+    if (c->status == CHOLMOD_OK) {
+        packed = sj_pack_rows(&h->A, &pk);
+        cholmod_l_super_numeric(S, NULL, zero, L, c);
+    }
+    status = c->status;
+    if (c->status >= CHOLMOD_OK && !c->final_asis) {
+        ok = cholmod_l_change_factor(L->xtype, c->final_ll, c->final_super, c->final_pack,
+                                     c->final_monotonic, L, c);
+        if (ok && c->final_resymbol && !L->is_super)
+            cholmod_l_resymbol_noperm(S, NULL, 0, c->final_pack, L, c);
+    }
+    cholmod_l_free_sparse(&S, c);
+    if (packed) sj_unpack_rows(&h->A, &pk);
+    c->status = c->status > status ? c->status : status;
+    return c->status >= CHOLMOD_OK;
+}
+
 /* Numeric factorization with the values val (same pattern as analyzed,
  * passed again to be checked).  On SJ_NOT_POSDEF, *failed_column is the
  * 1-based ORIGINAL column where the factorization broke down (else 0). */
@@ -654,7 +759,10 @@ int sj_cholmod_factorize(void *handle, int64_t n, int64_t *colptr, int64_t *rowi
     h->A.x = (void *)val;            /* CHOLMOD does not modify A */
     h->A.xtype = CHOLMOD_REAL;
     malloc_trim(0);   /* the peak is the factor's: give back first what the caller freed */
-    ok = cholmod_l_factorize(&h->A, h->L, &h->common);
+    if (h->L->is_super && h->L->ordering != CHOLMOD_NATURAL && h->L->Perm != NULL && h->A.stype > 0)
+        ok = sj_factorize_packed(h);
+    else
+        ok = cholmod_l_factorize(&h->A, h->L, &h->common);
     sj_shift(colptr, n + 1, 1);
     sj_shift(rowind, h->nnz, 1);
     h->A.p = h->A.i = h->A.x = NULL;

@@ -10,7 +10,7 @@ module superjoin_solvers_pattern
   implicit none (type, external)
   private
 
-  public :: build_pattern, find_entry, items_of_columns
+  public :: build_pattern, find_entry, items_of_columns, zero_values
 
 contains
 
@@ -48,7 +48,7 @@ contains
     end do
   end subroutine items_of_columns
 
-  subroutine build_pattern(ncol, item_ptr, item_col, col_ptr, col_item, k, error)
+  subroutine build_pattern(ncol, item_ptr, item_col, col_ptr, col_item, k, error, values)
     !! Pattern of the upper triangle from items (elements, springs) and their
     !! columns: column j holds every column i <= j that shares an item with it,
     !! and always j itself. item_col(item_ptr(it):item_ptr(it+1)-1) are the
@@ -57,11 +57,13 @@ contains
     !! no intermediate copy: the first counts the rows of each column, the
     !! second writes row i into the columns j > i that share an item with it,
     !! i increasing, so each column's rows come out sorted with the diagonal
-    !! last.
+    !! last. values = .false.: k%val is left unallocated (zero_values later:
+    !! the analysis of the pattern need not wait for nnz zeros).
     integer(i8), intent(in) :: ncol
     integer(i8), intent(in) :: item_ptr(:), item_col(:), col_ptr(:), col_item(:)
     type(sparse_sym_t), intent(out) :: k
     type(error_t), allocatable, intent(out) :: error
+    logical, intent(in), optional :: values
     integer(i8), allocatable :: mark(:), fill(:)
     integer(i8) :: i, j, it, pos, q, nnz
     integer :: stat
@@ -93,12 +95,17 @@ contains
     nnz = k%colptr(ncol + 1) - 1
 
     allocate (k%rowind(nnz), fill(ncol), stat=stat)
-    if (stat == 0) allocate (k%val(nnz), source=0.0_wp, stat=stat)
     if (stat /= 0) then
        call out_of_memory(error, 'the stiffness matrix ('//itoa(nnz)//' nonzeros)', &
             (2*ncol + 1 + nnz)*BYTES_I8 + nnz*BYTES_REAL)
        return
     end if
+    if (.not. present(values)) then
+       call zero_values(k, error)
+    else if (values) then
+       call zero_values(k, error)
+    end if
+    if (allocated(error)) return
     ! Row i into column i (its last row) and into each column j > i it shares an item with.
     fill(:) = k%colptr(1:ncol)   ! allocated above with stat= (an assignment's allocation is not checked)
     mark(:) = 0
@@ -118,6 +125,17 @@ contains
        end do
     end do
   end subroutine build_pattern
+
+  subroutine zero_values(k, error)
+    !! The values of pattern k, all zero.
+    type(sparse_sym_t), intent(inout) :: k
+    type(error_t), allocatable, intent(out) :: error
+    integer(i8) :: nnz
+    integer :: stat
+    nnz = k%colptr(k%n + 1) - 1
+    allocate (k%val(nnz), source=0.0_wp, stat=stat)
+    if (stat /= 0) call out_of_memory(error, 'the stiffness matrix ('//itoa(nnz)//' nonzeros)', nnz*BYTES_REAL)
+  end subroutine zero_values
 
   pure function find_entry(k, i, j) result(pos)
     !! Position of row i in column j of k (0 when not in the pattern).

@@ -644,9 +644,13 @@ static int sj_pack_rows(const cholmod_sparse *A, sj_packed_t *pk)
     SuiteSparse_long n = (SuiteSparse_long)A->ncol, nnz = Ap[n], j, q, nfar = 0;
     long page = sysconf(_SC_PAGESIZE);
     uintptr_t head, tail;
-    for (j = 0; j < n; j++)
-        for (q = Ap[j]; q < Ap[j + 1]; q++)
-            if ((q + 1 < Ap[j + 1] ? Ai[q + 1] : j) - Ai[q] >= 0xFFFF) nfar++;
+    for (j = 0; j < n; j++) {
+        for (q = Ap[j]; q < Ap[j + 1]; q++) {
+            SuiteSparse_long gap = (q + 1 < Ap[j + 1] ? Ai[q + 1] : j) - Ai[q];
+            if (gap < 0 || (gap == 0 && q + 1 < Ap[j + 1])) return 0;   /* rows not ascending, or below j: left as they are */
+            if (gap >= 0xFFFF) nfar++;
+        }
+    }
     if (nfar > nnz / 8 || page <= 0) return 0;   /* not worth it */
     pk->far = malloc((size_t)(nfar > 0 ? nfar : 1) * sizeof(SuiteSparse_long));
     if (pk->far == NULL) return 0;

@@ -45,8 +45,9 @@ module superjoin_substructure_twins
   real(wp), parameter :: NODE_TOL = 1.0e-12_wp
     !! Twins' nodes agree within NODE_TOL × the part's size (its largest
     !! distance of a node to the centroid), after the rigid motion.
-  real(wp), parameter :: LENGTH_TOL = 1.0e-9_wp
-    !! The fingerprint's lengths agree within LENGTH_TOL × the part's size.
+  real(wp), parameter :: LENGTH_TOL = 1.0e-6_wp
+    !! The fingerprint's lengths agree within LENGTH_TOL × the part's size (loose: it
+    !! only spares the exact check of parts that differ plainly).
   real(wp), parameter :: COLLINEAR_TOL = 1.0e-3_wp
     !! The third node that fixes R lies at least COLLINEAR_TOL × the size off
     !! the line of the first two (a part on one line: R is not fixed, no twin).

@@ -87,6 +87,9 @@ contains
       if (sub%nnode < 3 .or. sub%nelem < 1 .or. allocated(sub%given) .or. .not. allocated(sub%sections)) return
       if (any(sub%elem_section(1:sub%nelem) < 1)) return
       do e = 1, sub%nelem
+         if (e > 1) then
+            if (sub%elem_type(e) == sub%elem_type(e - 1)) cycle   ! the traits of a run of one type once
+         end if
          t = element_traits(sub%elem_type(e))
          if (t%axisymmetric) return
          fp%planar = fp%planar .or. t%planar

@@ -27,13 +27,13 @@ the check is paid and nothing is saved).
 import argparse
 import os
 import re
-import resource
 import subprocess
 import sys
-import time
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 ROOT = os.path.dirname(HERE)
+sys.path.insert(0, HERE)
+from library_study import timed  # noqa: E402  (best of repeat: wall and CPU seconds of the child)
 
 
 def gen(work, mesh, copies, extra=()):
@@ -42,22 +42,6 @@ def gen(work, mesh, copies, extra=()):
         subprocess.run([sys.executable, os.path.join(HERE, "gen_twins.py"), "--mesh", str(mesh), "--copies",
                         str(copies)] + list(extra), stdout=fh, check=True)
     return path
-
-
-def timed(cmd, repeat):
-    """(wall, cpu) of the best of repeat runs."""
-    best = None
-    for _ in range(repeat):
-        r0 = resource.getrusage(resource.RUSAGE_CHILDREN)
-        t = time.perf_counter()
-        p = subprocess.run(cmd, capture_output=True, text=True)
-        dt = time.perf_counter() - t
-        r1 = resource.getrusage(resource.RUSAGE_CHILDREN)
-        if p.returncode != 0:
-            sys.exit(f"{' '.join(cmd)}: exit {p.returncode}: {p.stderr[:300]}")
-        cpu = (r1.ru_utime - r0.ru_utime) + (r1.ru_stime - r0.ru_stime)
-        best = (dt, cpu) if best is None else (min(best[0], dt), min(best[1], cpu))
-    return best
 
 
 def inclusive(binary, deck, work, tag):

@@ -10,7 +10,8 @@ Checks: the listing's one note names exactly the twins; --twins no gives no
 note and every part condensed on its own; every CSV value of both runs and of
 a monolithic run (--condense no) agrees to 1e-10; the K* of the turned twin P3
 (*SUBSTRUCTURE MATRIX OUTPUT, Matrix Market) equals its own condensation to
-1e-10 of its largest entry. With a rectangular brace on the default
+1e-10 of its largest entry; with --library, only the four parts condensed
+are stored (then loaded), the twins found as before. With a rectangular brace on the default
 orientation vector (it does not turn with the copy: the element check), only
 the moved copy P2 is a twin.
 
@@ -94,6 +95,18 @@ def main():
     diff = max(abs(a.get(k, 0.0) - b.get(k, 0.0)) for k in set(a) | set(b))
     check(set(a) == set(b) and diff <= RTOL * scale,
           f"K* of P3: the turned twin's against its own, largest difference {diff / scale:.2e} of the largest entry")
+
+    lib = os.path.join(work, "library")
+    if os.path.isdir(lib):
+        for f in os.listdir(lib):
+            os.remove(os.path.join(lib, f))
+    for name in ("stored", "loaded"):
+        text = solve(binary, deck(work, name, ["--checks"]), ["--library", lib])
+        worst = max(equiv.compare_file(os.path.join(work, "no", "csv", f), os.path.join(work, name, "csv", f),
+                                       RTOL, 1e-14)[0] for f in os.listdir(os.path.join(work, "no", "csv")))
+        check(NOTE + " P2 as P1, P3 as P1 turned, P4 as P1 turned" in text and text.count("library: substructure")
+              == 4 and worst <= RTOL, f"--library ({name}): 4 entries, the same twins, results as --twins no "
+              f"({worst:.2e})")
 
     rect = solve(binary, deck(work, "rect", ["--rect-brace"]), [])
     notes = [ln.strip() for ln in rect.splitlines() if NOTE in ln]

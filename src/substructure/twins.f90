@@ -22,13 +22,16 @@ module superjoin_substructure_twins
   !!     lengths are compared, not hashed: a hash of rounded lengths would
   !!     miss twins whose lengths straddle a rounding boundary.
   !!   - the exact check (twin_turn): R and t from three non-collinear nodes
-  !!     (the same local nodes of both parts), then every node within
+  !!     (the same local nodes of both parts; a part whose nodes lie on one
+  !!     line: two nodes and the first orientation vector given on a section,
+  !!     which fixes the turn about the line), then every node within
   !!     NODE_TOL of the part's size, every beam orientation vector turned by
   !!     R, and, where an element's stiffness reads the global axes (beams
   !!     with the default orientation vector, global Z or X; materials that
   !!     are not isotropic), that element's stiffness turned by R. Plane
   !!     elements (XY plane) take turns about Z only; axisymmetric elements
-  !!     none (their axis is global y): such parts are not matched.
+  !!     none (their axis is global y): such parts are not matched, nor are
+  !!     parts on one line without an orientation vector.
   !! The node and section checks are what the element stiffness reads beside
   !! the element code, which is covariant (frames of shells and solids from
   !! their nodes): K* of the twin equals the turned K* to round-off.
@@ -36,6 +39,7 @@ module superjoin_substructure_twins
   use superjoin_error, only: error_t
   use superjoin_model_types, only: model_t, MAT_ISO
   use superjoin_elements_traits, only: element_traits, element_traits_t, FAMILY_BEAM
+  use superjoin_elements_frame, only: cross
   use superjoin_assembly_assemble, only: element_matrix
   use superjoin_substructure_library_key, only: hash_section, hash_material
   use superjoin_utils_sha256, only: sha256_t, update, digest
@@ -60,7 +64,9 @@ module superjoin_substructure_twins
     !! A substructure's fingerprint (twin_print).
      logical :: done = .false.          !! computed
      logical :: eligible = .false.      !! may have twins: elements, no given stiffness, no axisymmetric
-                                        !! element, not on one line
+                                        !! element, not on one line unless line_sec
+     integer :: line_sec = 0            !! a part on one line: the section whose orientation vector fixes
+                                        !! the turn about the line (the first given one not along it)
      character(len=64) :: key = ''      !! SHA-256 of the discrete content
      real(wp) :: lengths(NLEN) = 0.0_wp !! lengths a rigid motion keeps
      real(wp) :: size = 0.0_wp          !! largest distance of a node to the centroid
@@ -108,6 +114,17 @@ contains
       end do
       fp%key = digest(s)
       call shape_of(sub%x(:, 1:sub%nnode), fp)
+      if (fp%eligible .or. .not. fp%size > 0.0_wp) return
+      ! On one line: the turn about it is fixed by an orientation vector, if one is given.
+      do i = 1, size(sub%sections)
+         if (.not. sub%sections(i)%has_v) cycle
+         associate (d => line_of(sub%x, fp%pick), v => sub%sections(i)%v)
+           if (norm2(cross(d, v)) < COLLINEAR_TOL*norm2(d)*norm2(v)) cycle
+         end associate
+         fp%line_sec = i
+         fp%eligible = .true.
+         return
+      end do
     end associate
   end subroutine twin_print
 
@@ -165,8 +182,16 @@ contains
     if (.not. found) return
     found = pc%key == ps%key .and. all(abs(pc%lengths - ps%lengths) <= LENGTH_TOL*pc%size)
     if (.not. found) return
+    found = pc%line_sec == ps%line_sec   ! (not so: one is on a line, the other not quite)
+    if (.not. found) return
     associate (xc => model%subs(ic)%x, xs => model%subs(is)%x)
-      q = matmul(frame_of(xs, pc%pick), transpose(frame_of(xc, pc%pick)))
+      if (pc%line_sec > 0) then
+         q = matmul(frame_of(line_of(xs, pc%pick), model%subs(is)%sections(pc%line_sec)%v), &
+              transpose(frame_of(line_of(xc, pc%pick), model%subs(ic)%sections(pc%line_sec)%v)))
+      else
+         q = matmul(frame_of(line_of(xs, pc%pick), xs(:, pc%pick(3)) - xs(:, pc%pick(1))), &
+              transpose(frame_of(line_of(xc, pc%pick), xc(:, pc%pick(3)) - xc(:, pc%pick(1)))))
+      end if
     end associate
     ! A proper rotation only: a mirror image is not the same part. Its nodes
     ! may be placed alike (a flat part mirrored is the part turned), but
@@ -181,19 +206,25 @@ contains
     if (found) found = elements_agree(model, ic, is, q)
   end subroutine twin_turn
 
-  pure function frame_of(x, pick) result(f)
-    !! The right-handed orthonormal frame (columns) of nodes pick(1:3): e1
-    !! from the first to the second, e2 towards the third, e3 = e1 × e2.
+  pure function line_of(x, pick) result(d)
+    !! From the first node that fixes R to the second.
     real(wp), intent(in) :: x(:, :)
     integer(ip), intent(in) :: pick(3)
-    real(wp) :: f(3, 3), d(3)
-    f(:, 1) = x(:, pick(2)) - x(:, pick(1))
-    f(:, 1) = f(:, 1)/norm2(f(:, 1))
-    d = x(:, pick(3)) - x(:, pick(1))
-    f(:, 2) = d - dot_product(d, f(:, 1))*f(:, 1)
+    real(wp) :: d(3)
+    d = x(:, pick(2)) - x(:, pick(1))
+  end function line_of
+
+  pure function frame_of(d1, d2) result(f)
+    !! The right-handed orthonormal frame (columns) of two directions that
+    !! are not parallel: e1 along d1, e2 towards d2, e3 = e1 × e2 (d1: from
+    !! the first node that fixes R to the second; d2: to the third, or a
+    !! part on one line the orientation vector of its line_sec).
+    real(wp), intent(in) :: d1(3), d2(3)
+    real(wp) :: f(3, 3)
+    f(:, 1) = d1/norm2(d1)
+    f(:, 2) = d2 - dot_product(d2, f(:, 1))*f(:, 1)
     f(:, 2) = f(:, 2)/norm2(f(:, 2))
-    f(:, 3) = [f(2, 1)*f(3, 2) - f(3, 1)*f(2, 2), f(3, 1)*f(1, 2) - f(1, 1)*f(3, 2), &
-         f(1, 1)*f(2, 2) - f(2, 1)*f(1, 2)]
+    f(:, 3) = cross(f(:, 1), f(:, 2))
   end function frame_of
 
   pure real(wp) function det3(a)

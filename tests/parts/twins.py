@@ -11,12 +11,14 @@ note and every part condensed on its own; every CSV value of both runs and of
 a monolithic run (--condense no) agrees to 1e-10; the K* of the turned twin P3
 (*SUBSTRUCTURE MATRIX OUTPUT, Matrix Market) equals its own condensation to
 1e-10 of its largest entry; with --library, only the four parts condensed
-are stored (then loaded), the twins found as before. With a rectangular brace on the default
+are stored (then loaded), the twins found as before. Straight cantilevers (nodes on one line): the orientation vector fixes the
+turn about the line. With a rectangular brace on the default
 orientation vector (it does not turn with the copy: the element check), only
 the moved copy P2 is a twin.
 
 usage: twins.py SUPERJOIN WORKDIR
 """
+import math
 import os
 import subprocess
 import sys
@@ -38,6 +40,55 @@ def deck(work, name, extra):
                            "--copies", "4"] + extra, capture_output=True, text=True, check=True).stdout
     with open(path, "w") as fh:
         fh.write(text.replace("*STEP", EXPORT + "\n*STEP", 1))
+    return path
+
+
+def rotation(axis, angle):
+    """The proper rotation by angle degrees about axis (Rodrigues)."""
+    n = math.sqrt(sum(a * a for a in axis))
+    x, y, z = (a / n for a in axis)
+    c, s = math.cos(math.radians(angle)), math.sin(math.radians(angle))
+    C = 1 - c
+    return [[c + x * x * C, x * y * C - z * s, x * z * C + y * s],
+            [y * x * C + z * s, c + y * y * C, y * z * C - x * s],
+            [z * x * C - y * s, z * y * C + x * s, c + z * z * C]]
+
+
+def turn(r, v):
+    return [sum(r[i][j] * v[j] for j in range(3)) for i in range(3)]
+
+
+def line_deck(work):
+    """Straight B33 cantilevers on one line each (10 elements, a rectangular
+    section), root clamped, loaded at the tip. Orientation vector given: A;
+    B turned and moved, its vector turned (a twin); C turned the same, its
+    vector turned 30 degrees further about the beam's axis (the same beam
+    turned about its axis: a twin too). On the default vector: D, and E, D
+    moved (not matched: nothing fixes the turn about the line)."""
+    path = os.path.join(work, "line", "line.deck")
+    os.makedirs(os.path.dirname(path), exist_ok=True)
+    r = rotation([1.0, -2.0, 0.7], 48.0)
+    axis = turn(r, [1.0, 0.0, 0.0])
+    out = ["*HEADING", "straight twins", "*MATERIAL, NAME=ST", "*ELASTIC", "2.1e11, 0.3"]
+    for name, rr, t, v in (("A", None, [0.0, 0.0, 0.0], [0.0, 1.0, 1.0]),
+                           ("B", r, [5.0, 1.0, -2.0], turn(r, [0.0, 1.0, 1.0])),
+                           ("C", r, [9.0, -3.0, 1.0], turn(rotation(axis, 30.0), turn(r, [0.0, 1.0, 1.0]))),
+                           ("D", None, [0.0, 4.0, 0.0], None), ("E", None, [2.0, 6.0, 1.0], None)):
+        out += [f"*SUBSTRUCTURE, NAME={name}, CONDENSE=YES", "*NODE"]
+        for k in range(11):
+            x = [0.3 * k, 0.0, 0.0]
+            x = turn(rr, x) if rr else x
+            out.append(f"{k + 1}, " + ", ".join(repr(a + b) for a, b in zip(x, t)))
+        out.append("*ELEMENT, TYPE=B33, ELSET=E")
+        out += [f"{k + 1}, {k + 1}, {k + 2}" for k in range(10)]
+        out += ["*NSET, NSET=ROOT", "1", "*NSET, NSET=TIP", "11", "*BEAM SECTION, ELSET=E, MATERIAL=ST",
+                "0.006, 2.0e-6, 4.5e-5, 6.0e-6"] + ([", ".join(repr(a) for a in v)] if v else []) + \
+               ["*END SUBSTRUCTURE"]
+    out += ["*BOUNDARY"] + [f"{n}.ROOT, 1, 6" for n in "ABCDE"]
+    out += ["*STEP", "*CLOAD", "A.TIP, 2, 1000.0", "B.TIP, 3, -700.0", "C.TIP, 1, 500.0", "C.TIP, 2, 300.0",
+            "D.TIP, 3, 100.0", "E.TIP, 2, 200.0", "*END STEP"]
+    with open(path, "w") as fh:
+        fh.write("\n".join(out) + "\n")
     return path
 
 
@@ -111,6 +162,17 @@ def main():
     rect = solve(binary, deck(work, "rect", ["--rect-brace"]), [])
     notes = [ln.strip() for ln in rect.splitlines() if NOTE in ln]
     check(notes == [NOTE + " P2 as P1"], f"rectangular brace on the default orientation: only P2 is a twin: {notes}")
+    line = line_deck(work)
+    text = solve(binary, line, [])
+    notes = [ln.strip() for ln in text.splitlines() if NOTE in ln]
+    yes_csv = os.path.join(work, "line_yes")
+    os.rename(os.path.join(work, "line", "csv"), yes_csv)
+    solve(binary, line, ["--twins", "no"])
+    worst = max(equiv.compare_file(os.path.join(work, "line", "csv", f), os.path.join(yes_csv, f), RTOL, 1e-14)[0]
+                for f in os.listdir(yes_csv))
+    check(notes == [NOTE + " B as A turned, C as A turned"] and worst <= RTOL,
+          f"parts on one line: the orientation vector fixes the turn about the line (B, C twins of A), none on "
+          f"the default vector (D, E); results as --twins no ({worst:.2e}): {notes}")
     print(f"{passed} passed, {failed} failed")
     return 1 if failed else 0
 

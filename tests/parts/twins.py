@@ -18,7 +18,6 @@ the moved copy P2 is a twin.
 
 usage: twins.py SUPERJOIN WORKDIR
 """
-import math
 import os
 import subprocess
 import sys
@@ -26,7 +25,9 @@ import sys
 HERE = os.path.dirname(os.path.abspath(__file__))
 ROOT = os.path.dirname(os.path.dirname(HERE))
 sys.path.insert(0, os.path.join(ROOT, "tools"))
+sys.path.insert(0, os.path.join(ROOT, "bench"))
 import equiv  # noqa: E402
+from gen_twins import rotation, apply as turn  # noqa: E402
 
 RTOL = 1e-10
 NOTE = "identical parts share a condensation (found by their geometry; --twins no: each its own):"
@@ -41,21 +42,6 @@ def deck(work, name, extra):
     with open(path, "w") as fh:
         fh.write(text.replace("*STEP", EXPORT + "\n*STEP", 1))
     return path
-
-
-def rotation(axis, angle):
-    """The proper rotation by angle degrees about axis (Rodrigues)."""
-    n = math.sqrt(sum(a * a for a in axis))
-    x, y, z = (a / n for a in axis)
-    c, s = math.cos(math.radians(angle)), math.sin(math.radians(angle))
-    C = 1 - c
-    return [[c + x * x * C, x * y * C - z * s, x * z * C + y * s],
-            [y * x * C + z * s, c + y * y * C, y * z * C - x * s],
-            [z * x * C - y * s, z * y * C + x * s, c + z * z * C]]
-
-
-def turn(r, v):
-    return [sum(r[i][j] * v[j] for j in range(3)) for i in range(3)]
 
 
 def line_deck(work):

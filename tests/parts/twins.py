@@ -19,6 +19,7 @@ the moved copy P2 is a twin.
 usage: twins.py SUPERJOIN WORKDIR
 """
 import os
+import shutil
 import subprocess
 import sys
 
@@ -152,6 +153,7 @@ def main():
     text = solve(binary, line, [])
     notes = [ln.strip() for ln in text.splitlines() if NOTE in ln]
     yes_csv = os.path.join(work, "line_yes")
+    shutil.rmtree(yes_csv, ignore_errors=True)   # a run before this one
     os.rename(os.path.join(work, "line", "csv"), yes_csv)
     solve(binary, line, ["--twins", "no"])
     worst = max(equiv.compare_file(os.path.join(work, "line", "csv", f), os.path.join(yes_csv, f), RTOL, 1e-14)[0]

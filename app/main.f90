@@ -285,6 +285,19 @@ contains
     stop error%code, quiet=.true.
   end subroutine fail_on
 
+  logical function yes_no(val, option)
+    !! The value of a yes | no option (anything else: a usage error).
+    character(*), intent(in) :: val, option
+    yes_no = .false.
+    select case (to_lower(val))
+    case ('yes')
+       yes_no = .true.
+    case ('no')
+    case default
+       call usage_error('unknown '//option//' '''//val//''' (yes, no)')
+    end select
+  end function yes_no
+
   subroutine usage_error(message)
     character(*), intent(in) :: message
     write (error_unit, '(a)') 'superjoin: '//message
@@ -311,6 +324,8 @@ contains
          '  --export-matrix F  also write the assembled stiffness matrix (Matrix Market)', &
          '  --library DIR      keep condensed parts in DIR and load unchanged ones from it', &
          '  --library-verify   with --library: check a loaded part against its assembled stiffness', &
+         '  --twins T          yes | no: condensed parts identical up to a rigid motion share one', &
+         '                     condensation, turned (default yes)', &
          '  --vtk FILE         VTK files for ParaView: FILE.pvd and FILE_<step>.vtu', &
          '                     (overrides *OUTPUT, VTK= of the deck)', &
          '  --accept-inaccurate  exit 0 even when the results are judged inaccurate', &
@@ -367,7 +382,7 @@ contains
           job = job_name(get_arg(i))
           deck = job//'.inp'
        case ('-o', '--csv', '--solver', '--formulation', '--export-matrix', '--vtk', '--condense', '--library', &
-            '--levels')
+            '--levels', '--twins')
           if (i == n) call usage_error('option '//arg//' needs a value')
           i = i + 1
           val = get_arg(i)
@@ -407,14 +422,9 @@ contains
                 call usage_error('unknown condensation '''//val//''' (yes, no, auto)')
              end select
           case ('--levels')
-             select case (to_lower(val))
-             case ('yes')
-                opts%levels = .true.
-             case ('no')
-                opts%levels = .false.
-             case default
-                call usage_error('unknown --levels '''//val//''' (yes, no)')
-             end select
+             opts%levels = yes_no(val, '--levels')
+          case ('--twins')
+             opts%twins = yes_no(val, '--twins')
           case ('--export-matrix')
              opts%export_matrix = val
           case ('--library')

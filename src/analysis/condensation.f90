@@ -8,7 +8,7 @@ module superjoin_analysis_condensation
   use superjoin_assembly_assemble, only: max_element_diagonal
   use superjoin_substructure_local_system, only: dof_label
   use superjoin_substructure_cache, only: part_cache_t, part_view_t, acquire_view, entry_condense_loads, &
-       entry_ku, view_spc, view_turn, entry_recover, view_need_stiffness, take_views
+       entry_ku, view_spc, view_turn, entry_recover, view_need_stiffness, take_views, twins_note
   use superjoin_model_results, only: run_summary_t, run_options_t
   use superjoin_model_notes, only: note
   use superjoin_analysis_factor_reuse, only: kept_factor_t
@@ -153,14 +153,17 @@ contains
     end do
     call note(notes, 'condensations: '//itoa(cache%computed - computed0)//' computed, '// &
          itoa(cache%reused - reused0)//' reused ('//itoa(nrot)//' turned by their instance''s placement)')
+    call twins_note(cache, model, notes)
   end subroutine condense_parts
 
   subroutine library_options(cache, opts)
-    !! The condensation library of the run's options (--library, --library-verify).
+    !! The condensation library of the run's options (--library, --library-verify)
+    !! and whether identical parts are found by their geometry (--twins).
     type(part_cache_t), intent(inout) :: cache
     type(run_options_t), intent(in) :: opts
     if (allocated(opts%library)) cache%library%dir = opts%library
     cache%library%verify = opts%library_verify
+    cache%twins = opts%twins
   end subroutine library_options
 
   subroutine acquire_part(cache, st, model, isub, solver_name, view, error)

@@ -19,6 +19,7 @@ module superjoin_model_results
      character(:), allocatable :: export_matrix !! Matrix Market path, or unallocated
      character(:), allocatable :: library       !! --library DIR: condensations kept across runs, or unallocated
      logical :: library_verify = .false.        !! --library-verify: a library hit assembles k and checks its hash
+     logical :: twins = .true.                  !! --twins: identical parts found by their geometry share a condensation
      logical :: levels = .false.                !! --levels yes: parts made of parts condensed by level (default: flat, one interface system)
      logical :: quiet = .false.
      logical :: verbose = .false.

@@ -18,6 +18,8 @@ module superjoin_substructure_cache
   use superjoin_assembly_assemble, only: superelement_t
   use superjoin_substructure_local_system, only: local_system_t, build_local_system, local_numbering
   use superjoin_substructure_condensed, only: condensed_t, condense, condense_loads, recover_interior
+  use superjoin_substructure_twins, only: twin_print_t, twin_print, twin_turn
+  use superjoin_model_notes, only: note
   use superjoin_substructure_library, only: library_t, stored_t, library_enabled, library_condense, &
        library_need_loads, library_loads, library_recover, library_stiffness, library_ku
   implicit none (type, external)
@@ -38,6 +40,7 @@ module superjoin_substructure_cache
      integer, allocatable :: drill(:)         !! its elements' drilling edge masks (elem_drill; they
                                               !! depend on supports and contacts, not only on the part)
      type(stored_t), allocatable :: stored    !! its library entry (--library)
+     type(twin_print_t) :: print              !! its fingerprint, once a candidate twin needed it
   end type entry_t
 
   type :: entry_box_t
@@ -73,6 +76,8 @@ module superjoin_substructure_cache
      integer :: computed = 0                  !! condensations computed
      integer :: reused = 0                    !! uses of an existing one
      type(library_t) :: library               !! the condensation library across runs (--library)
+     logical :: twins = .true.                !! identical parts found by their geometry share (--twins)
+     integer, allocatable :: twin_pairs(:)    !! twins found, for twins_note: (isub, source isub, turned) each
      ! A joint study's views kept from one value for the next (take_views).
      logical :: same_numbering = .false.      !! this value has the previous value's DOF table and boundaries
      logical :: keep_views = .false.          !! a later value may take this value's views
@@ -83,14 +88,15 @@ module superjoin_substructure_cache
   public :: view_ku
   public :: release_cache, forget_load_memos, acquire_view, view_condense_loads, view_recover, view_stiffness_times, &
        view_maxratio, view_spc, remote_view, view_turn, entry_recover, entry_condense_loads, entry_ku, &
-       view_need_stiffness, take_views, keep_views
+       view_need_stiffness, take_views, keep_views, twins_note
 
 contains
 
   subroutine acquire_view(cache, model, table, isub, bnd, solver_name, view, error, f_phys)
-    !! The condensation of substructure isub: an existing one when one fits,
-    !! otherwise computed now (or loaded from the library) and kept. f_phys:
-    !! the loads (physical DOFs), which a library entry must be able to condense.
+    !! The condensation of substructure isub: an existing one when one fits
+    !! (find_entry), otherwise computed now (or loaded from the library) and
+    !! kept. f_phys: the loads (physical DOFs), which a library entry must be
+    !! able to condense.
     type(part_cache_t), intent(inout) :: cache
     type(model_t), intent(in) :: model
     type(dof_table_t), intent(in) :: table
@@ -103,10 +109,6 @@ contains
     integer(ip), allocatable :: lnode(:)
     integer, allocatable :: ldof(:)
     integer(i8) :: ni
-    integer :: e
-    real(wp) :: q(3, 3)
-    type(entry_box_t), allocatable :: tmp(:)
-    integer :: i
 
     view%isub = isub
     call local_numbering(table, isub, bnd, view%pdof, ni)
@@ -117,53 +119,13 @@ contains
     ldof = table%p_dof(view%pdof)
     call node_groups(lnode, ldof, view%grp)
 
-    do e = 1, cache%n
-       associate (en => cache%entries(e)%e)
-         if (en%cond%sys%ni /= ni .or. size(en%ldof) /= size(ldof)) cycle
-         if (any(en%lnode /= lnode) .or. any(en%ldof /= ldof)) cycle
-         if (en%cond%sys%isub == isub) then
-            view%entry = e
-            exit
-         end if
-         if (en%part == 0 .or. en%part /= model%subs(isub)%part) cycle
-         if (model%subs(en%cond%sys%isub)%nelem /= model%subs(isub)%nelem) cycle   ! a bolt element removed
-         if (.not. same_masks(en%drill, model%subs(isub)%elem_drill)) cycle
-         q = matmul(model%subs(isub)%rot, transpose(en%rot))
-         if (.not. keeps_dofs(q, view%grp)) cycle
-         if (.not. all(abs(q - identity()) <= ROT_ZERO) .and. mixed_blocks(view%grp, ni)) cycle
-         view%entry = e
-         view%rotated = .not. all(abs(q - identity()) <= ROT_ZERO)
-         view%q = q
-         exit
-       end associate
-    end do
-
+    call find_entry(cache, model, isub, lnode, ldof, view)
     if (view%entry == 0) then
-       if (.not. allocated(cache%entries)) allocate (cache%entries(4))
-       if (cache%n == size(cache%entries)) then
-          allocate (tmp(2*cache%n))
-          do i = 1, cache%n
-             call move_alloc(cache%entries(i)%e, tmp(i)%e)
-          end do
-          call move_alloc(tmp, cache%entries)
-       end if
-       cache%n = cache%n + 1
-       allocate (cache%entries(cache%n)%e)
+       call add_entry(cache, model, table, isub, bnd, solver_name, error)
+       if (allocated(error)) return
        associate (en => cache%entries(cache%n)%e)
-         if (library_enabled(cache%library)) then   ! k assembled only if not loaded
-            allocate (en%stored)
-            call library_condense(cache%library, model, table, isub, bnd, solver_name, en%cond, en%stored, error)
-         else
-            call build_local_system(model, table, isub, bnd, en%cond%sys, error)
-            if (allocated(error)) return
-            call condense(model, table, solver_name, en%cond, error)
-         end if
-         if (allocated(error)) return
-         en%part = model%subs(isub)%part
          en%lnode = lnode
          en%ldof = ldof
-         en%rot = model%subs(isub)%rot
-         if (allocated(model%subs(isub)%elem_drill)) en%drill = model%subs(isub)%elem_drill
        end associate
        view%entry = cache%n
        cache%computed = cache%computed + 1
@@ -187,6 +149,115 @@ contains
       end if
     end associate
   end subroutine acquire_view
+
+  subroutine find_entry(cache, model, isub, lnode, ldof, view)
+    !! The cache entry that serves substructure isub (view%entry, 0: none;
+    !! view%rotated, view%q): one with the same local DOFs (lnode, ldof,
+    !! view%ni) that is isub's own (an earlier solve of a joint study), or
+    !! an instance of the same part, or a twin (an identical part found by
+    !! its geometry, superjoin_substructure_twins; unless cache%twins is
+    !! off), turned by a rotation that keeps every node block's DOFs.
+    type(part_cache_t), intent(inout) :: cache
+    type(model_t), intent(in) :: model
+    integer, intent(in) :: isub
+    integer(ip), intent(in) :: lnode(:)
+    integer, intent(in) :: ldof(:)
+    type(part_view_t), intent(inout) :: view
+    type(twin_print_t) :: mine
+    real(wp) :: q(3, 3)
+    logical :: fits, twin
+    integer :: e
+    do e = 1, cache%n
+       associate (en => cache%entries(e)%e)
+         if (en%cond%sys%ni /= view%ni .or. size(en%ldof) /= size(ldof)) cycle
+         if (any(en%lnode /= lnode) .or. any(en%ldof /= ldof)) cycle
+         if (en%cond%sys%isub == isub) then
+            view%entry = e
+            return
+         end if
+         twin = en%part == 0 .or. en%part /= model%subs(isub)%part
+         if (.not. twin) then
+            q = matmul(model%subs(isub)%rot, transpose(en%rot))
+            fits = model%subs(en%cond%sys%isub)%nelem == model%subs(isub)%nelem   ! a bolt element removed
+            if (fits) fits = same_masks(en%drill, model%subs(isub)%elem_drill)
+         else
+            fits = cache%twins
+            if (fits .and. .not. mine%done) call twin_print(model, isub, mine)
+            if (fits .and. .not. en%print%done) call twin_print(model, en%cond%sys%isub, en%print)
+            if (fits) call twin_turn(model, en%cond%sys%isub, isub, en%print, mine, q, fits)
+         end if
+         if (fits) fits = keeps_dofs(q, view%grp)
+         if (fits .and. .not. all(abs(q - identity()) <= ROT_ZERO)) fits = .not. mixed_blocks(view%grp, view%ni)
+         if (.not. fits) cycle
+         view%entry = e
+         view%rotated = .not. all(abs(q - identity()) <= ROT_ZERO)
+         view%q = q
+         if (.not. twin) return
+         if (.not. allocated(cache%twin_pairs)) allocate (cache%twin_pairs(0))
+         cache%twin_pairs = [cache%twin_pairs, isub, en%cond%sys%isub, merge(1, 0, view%rotated)]
+         return
+       end associate
+    end do
+  end subroutine find_entry
+
+  subroutine add_entry(cache, model, table, isub, bnd, solver_name, error)
+    !! A new cache entry (the last): substructure isub condensed now, or
+    !! loaded from the library (its k then assembled only if not loaded).
+    type(part_cache_t), intent(inout) :: cache
+    type(model_t), intent(in) :: model
+    type(dof_table_t), intent(in) :: table
+    integer, intent(in) :: isub
+    logical, intent(in) :: bnd(:)
+    character(*), intent(in) :: solver_name
+    type(error_t), allocatable, intent(out) :: error
+    type(entry_box_t), allocatable :: tmp(:)
+    integer :: i
+    if (.not. allocated(cache%entries)) allocate (cache%entries(4))
+    if (cache%n == size(cache%entries)) then
+       allocate (tmp(2*cache%n))
+       do i = 1, cache%n
+          call move_alloc(cache%entries(i)%e, tmp(i)%e)
+       end do
+       call move_alloc(tmp, cache%entries)
+    end if
+    cache%n = cache%n + 1
+    allocate (cache%entries(cache%n)%e)
+    associate (en => cache%entries(cache%n)%e)
+      if (library_enabled(cache%library)) then
+         allocate (en%stored)
+         call library_condense(cache%library, model, table, isub, bnd, solver_name, en%cond, en%stored, error)
+      else
+         call build_local_system(model, table, isub, bnd, en%cond%sys, error)
+         if (allocated(error)) return
+         call condense(model, table, solver_name, en%cond, error)
+      end if
+      if (allocated(error)) return
+      en%part = model%subs(isub)%part
+      en%rot = model%subs(isub)%rot
+      if (allocated(model%subs(isub)%elem_drill)) en%drill = model%subs(isub)%elem_drill
+    end associate
+  end subroutine add_entry
+
+  subroutine twins_note(cache, model, notes)
+    !! One line of the listing's notes naming the twins found since the last
+    !! call (find_entry), if any: which substructure took whose condensation.
+    type(part_cache_t), intent(inout) :: cache
+    type(model_t), intent(in) :: model
+    type(string_t), allocatable, intent(inout) :: notes(:)
+    character(:), allocatable :: text
+    integer :: k
+    if (.not. allocated(cache%twin_pairs)) return
+    text = 'identical parts share a condensation (found by their geometry; --twins no: each its own):'
+    do k = 1, size(cache%twin_pairs), 3
+       associate (p => cache%twin_pairs(k:k + 2))
+         if (k > 1) text = text//','
+         text = text//' '//model%subs(p(1))%name//' as '//model%subs(p(2))%name
+         if (p(3) == 1) text = text//' turned'
+       end associate
+    end do
+    call note(notes, text)
+    deallocate (cache%twin_pairs)
+  end subroutine twins_note
 
   subroutine take_views(cache, subs, views, taken)
     !! The previous value's views of a joint study (taken), when this value

@@ -57,7 +57,7 @@ module superjoin_substructure_library_key
   integer, parameter, public :: KEY_LEN = 64
     !! Hexadecimal digits of a key.
 
-  public :: input_key, sample_hash, stiffness_hash
+  public :: input_key, sample_hash, stiffness_hash, hash_section, hash_material
 
 contains
 
@@ -107,16 +107,25 @@ contains
     key = digest(s)
   end function input_key
 
-  subroutine hash_section(s, sec)
-    !! Every field of a section an element may read.
+  subroutine hash_section(s, sec, placed)
+    !! Every field of a section an element may read. placed false (the
+    !! identical parts of superjoin_substructure_twins): the beam orientation
+    !! vector and the material axes left out, as they turn with the part
+    !! (zeros in v's place; the twins check them turned), and the material's
+    !! index (the caller hashes the material itself: equal copies match).
     type(sha256_t), intent(inout) :: s
     type(section_t), intent(in) :: sec
-    call update(s, [sec%kind, sec%material, sec%nfibre, flag(sec%has_v), flag(sec%nodal_thickness), &
+    logical, intent(in), optional :: placed
+    logical :: with_place
+    with_place = .true.
+    if (present(placed)) with_place = placed
+    call update(s, [sec%kind, merge(sec%material, 0, with_place), sec%nfibre, flag(sec%has_v), flag(sec%nodal_thickness), &
          flag(allocated(sec%node_thickness)), flag(allocated(sec%axes))])
-    call update(s, [sec%area, sec%iy, sec%iz, sec%j, sec%thickness, sec%v, sec%shear_k, sec%shear_factor])
+    call update(s, [sec%area, sec%iy, sec%iz, sec%j, sec%thickness, merge(sec%v, 0.0_wp, with_place), sec%shear_k, &
+         sec%shear_factor])
     call update(s, sec%fibre)
     if (allocated(sec%node_thickness)) call update(s, [real(size(sec%node_thickness), wp), sec%node_thickness])
-    if (allocated(sec%axes)) then
+    if (allocated(sec%axes) .and. with_place) then
        call update(s, [flag(sec%axes%cylindrical)])
        call update(s, sec%axes%q)
        call update(s, [sec%axes%a, sec%axes%b])

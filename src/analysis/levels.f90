@@ -318,8 +318,8 @@ contains
     by_level = wide .and. share .and. alike
     why = '--levels auto: interiors '//itoa(interior)//relation(wide)//itoa(AUTO_INTERIOR)//' x boundaries '// &
          itoa(boundary)//', '//itoa(interior)//relation(share)//'1/'//itoa(AUTO_SHARE)//' of '//itoa(ncol)// &
-         ' unknowns, '//itoa(size(plan%groups))//' groups'//relation(alike)//itoa(AUTO_MEMBERS)//' x '// &
-         itoa(nkind)//' kinds: '//trim(merge('by level', 'flat    ', by_level))//'; '
+         ' unknowns, '//counted(size(plan%groups), 'group')//relation(alike)//itoa(AUTO_MEMBERS)//' x '// &
+         counted(nkind, 'kind')//': '//trim(merge('by level', 'flat    ', by_level))//'; '
   contains
     pure function relation(holds) result(r)
       !! ' >= ' when the criterion holds, else ' < '.
@@ -327,6 +327,13 @@ contains
       character(:), allocatable :: r
       r = trim(merge(' >= ', ' <  ', holds))//' '
     end function relation
+    pure function counted(n, noun) result(r)
+      !! `n noun`, the noun with an s unless n is 1.
+      integer, intent(in) :: n
+      character(*), intent(in) :: noun
+      character(:), allocatable :: r
+      r = itoa(n)//' '//noun//trim(merge('s', ' ', n /= 1))
+    end function counted
   end subroutine auto_choice
 
   subroutine plan_levels(g, ncol, plan)

@@ -20,7 +20,7 @@ program superjoin_main
   use superjoin_analysis_plausibility, only: check_plausibility
   use superjoin_analysis_contact_gaps, only: check_contact_gaps
   use superjoin_analysis_drilling_check, only: check_partial_rotations
-  use superjoin_model_results, only: results_t, run_options_t, PH_READ, PH_WRITE
+  use superjoin_model_results, only: results_t, run_options_t, PH_READ, PH_WRITE, LEVELS_YES, LEVELS_NO, LEVELS_AUTO
   use superjoin_output_listing, only: write_listing
   use superjoin_output_csv, only: write_csv
   use superjoin_output_nodes_csv, only: write_nodes_csv
@@ -319,7 +319,8 @@ contains
          '  --formulation F    transform | penalty   (overrides *CONTROLS)', &
          '  --condense C       yes | no | auto: static condensation of every substructure', &
          '                     (overrides CONDENSE= of *SUBSTRUCTURE)', &
-         '  --levels L         yes | no: condensed parts made of parts eliminated by level (default no)', &
+         '  --levels L         yes | no | auto: condensed parts made of parts eliminated by level, flat,', &
+         '                     or by level when the counts promise a gain (default auto)', &
          '  --check            read and validate the deck only', &
          '  --export-matrix F  also write the assembled stiffness matrix (Matrix Market)', &
          '  --library DIR      keep condensed parts in DIR and load unchanged ones from it', &
@@ -422,7 +423,16 @@ contains
                 call usage_error('unknown condensation '''//val//''' (yes, no, auto)')
              end select
           case ('--levels')
-             opts%levels = yes_no(val, '--levels')
+             select case (to_lower(val))
+             case ('yes')
+                opts%levels = LEVELS_YES
+             case ('no')
+                opts%levels = LEVELS_NO
+             case ('auto')
+                opts%levels = LEVELS_AUTO
+             case default
+                call usage_error('unknown --levels '''//val//''' (yes, no, auto)')
+             end select
           case ('--twins')
              opts%twins = yes_no(val, '--twins')
           case ('--export-matrix')

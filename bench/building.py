@@ -9,7 +9,7 @@ bench/gen_building.py writes the building of the issue (defaults: 20 floors of
 nested parts (BAY -> FLOOR -> BUILDING) and as one level (the same bays as
 instances of BAY). With --edge-joined the bays of a floor are joined along their
 whole shared slab edges (every edge node), the floors only at the columns.
-Four runs, timed in the same invocation (wall clock and CPU time, user +
+Five runs, timed in the same invocation (wall clock and CPU time, user +
 system, each the best of R; on a shared machine the CPU time is the steadier
 figure):
 
@@ -22,9 +22,12 @@ figure):
   one factorization and one Schur complement, then the building's top system;
   src/analysis/level_solver.f90);
 - nested, flat: the nested deck, --condense yes --levels no (as one level: the
-  cost of the nesting itself).
+  cost of the nesting itself);
+- nested, auto: the nested deck, --condense yes and no --levels (the default,
+  --levels auto: by level or flat as the counts say, src/analysis/levels.f90;
+  its choice is printed after the table).
 
-With --bin-a OTHER, a fifth run times OTHER's nested run by level (another
+With --bin-a OTHER, a sixth run times OTHER's nested run by level (another
 build, main's say) in the same invocation, for the ratio of the two builds.
 
 The nested listing's notes on the condensation by level are printed after the
@@ -108,6 +111,8 @@ def main():
                               "--csv", f"{w}/nested"], f"{w}/nested", True),
         "nested, flat (--levels no)": ([args.bin, "-q", decks["nested"], "--condense", "yes", "--levels", "no", "-o",
                                         f"{w}/flat.lst", "--csv", f"{w}/flat"], f"{w}/flat", True),
+        "nested, auto (the default)": ([args.bin, "-q", decks["nested"], "--condense", "yes", "-o", f"{w}/auto.lst",
+                                        "--csv", f"{w}/auto"], f"{w}/auto", True),
     }
     if args.bin_a:
         runs["nested, by level (--bin-a)"] = ([args.bin_a] + runs["nested, by level"][0][1:-4] +
@@ -139,6 +144,9 @@ def main():
             print(f"  {name}: {eq.group(1)} reduced equations, {fnz.group(1)} factor nonzeros")
     for level in re.findall(r"condensation by level: .*", open(f"{w}/nested.lst").read()):
         print("  " + level)
+    choice = re.search(r"--levels auto: [^;]*", open(f"{w}/auto.lst").read())
+    if choice:
+        print("  the default run's choice: " + choice.group(0))
     return 0 if max(worst.values()) <= 1e-10 else 1
 
 

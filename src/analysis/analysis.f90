@@ -21,7 +21,8 @@ module superjoin_analysis
   use superjoin_substructure_local_system, only: boundary_dofs, part_boundary, given_boundary
   use superjoin_substructure_cache, only: release_cache, forget_load_memos, keep_views
   use superjoin_solvers_matrix_market, only: write_matrix_market
-  use superjoin_model_results, only: results_t, run_options_t, run_summary_t, PH_ASSEMBLE, PH_ORDER, PH_FACTOR, PH_SOLVE
+  use superjoin_model_results, only: results_t, run_options_t, run_summary_t, PH_ASSEMBLE, PH_ORDER, PH_FACTOR, PH_SOLVE, &
+       LEVELS_NO, LEVELS_AUTO
   use superjoin_analysis_recover, only: recover_results
   use superjoin_analysis_mechanism, only: mechanism_error
   use superjoin_model_notes, only: note
@@ -30,7 +31,7 @@ module superjoin_analysis
   use superjoin_analysis_policy, only: apply_large, describe_transform, column_groups, count_boundary, &
        choose_condensation, autospc, skip_unloaded_parts, wanted_elements
   use superjoin_analysis_condensation, only: solve_context_t, condensed_strategy_t
-  use superjoin_analysis_levels, only: describe_levels
+  use superjoin_analysis_levels, only: describe_levels, levels_request_t
   use superjoin_analysis_level_solver, only: make_solver, level_note
   use superjoin_analysis_solve_state, only: solve_state_t, plain_strategy_t, PHASE_BUILT, PHASE_ASSEMBLED, PHASE_SOLVED, &
        PHASE_RECOVERED
@@ -179,7 +180,7 @@ contains
     if (allocated(error)) return
     call describe_transform(model, st%table, st%tr, st%form, res%summary, notes)
     if (res%summary%n_condensed > 0) &
-         call describe_levels(model, st%table, st%forest, st%tr, notes, levels_refusal(opts, res%summary), st%levels)
+         call describe_levels(model, st%table, st%forest, st%tr, levels_request(opts, res%summary), notes, st%levels)
     call forget_parents(st%forest)   ! looked up by vertex up to here only
     call choose_strategy(st, res%summary, opts)
     st%phase = PHASE_BUILT
@@ -257,18 +258,19 @@ contains
     if (ctx%joint_study) call keep_transform(ctx%build, st%table, st%forest, keep, st%tr)
   end subroutine transform_of_value
 
-  function levels_refusal(opts, summary) result(why)
-    !! Why a condensed run of parts made of parts is not condensed by level
-    !! (blank: it may be): not asked for (--levels no, the default: by level
-    !! measured slower than flat on the benchmark buildings), or several MPI
-    !! processes (their owner terms of K_red: the flat interface system).
+  function levels_request(opts, summary) result(req)
+    !! What a condensed run of parts made of parts asks of a condensation by
+    !! level: refused when not asked for (--levels no) or with several MPI
+    !! processes (their owner terms of K_red: the flat interface system); with
+    !! --levels auto (the default) as the counts say (analysis/levels).
     type(run_options_t), intent(in) :: opts
     type(run_summary_t), intent(in) :: summary
-    character(:), allocatable :: why
-    why = ''
-    if (is_distributed(summary)) why = 'several MPI processes'
-    if (.not. opts%levels) why = '--levels no'
-  end function levels_refusal
+    type(levels_request_t) :: req
+    req%refusal = ''
+    if (is_distributed(summary)) req%refusal = 'several MPI processes'
+    if (opts%levels == LEVELS_NO) req%refusal = '--levels no'
+    req%auto = opts%levels == LEVELS_AUTO
+  end function levels_request
 
   subroutine choose_strategy(st, summary, opts)
     !! How K_red is assembled (analysis/solve_state): distributed over

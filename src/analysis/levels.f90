@@ -49,6 +49,7 @@ module superjoin_analysis_levels
      character(:), allocatable :: path
      integer :: depth = 0
      integer(i8), allocatable :: inner(:)  !! its interior columns that no group inside it eliminated, ascending
+     integer :: source = 0                 !! its place among the groups' variables (group_vars_t)
   end type level_group_t
 
   type, public :: level_plan_t
@@ -56,6 +57,15 @@ module superjoin_analysis_levels
      type(level_group_t), allocatable :: groups(:)
   end type level_plan_t
 
+  type, public :: levels_request_t
+    !! What the run asks of a condensation by level (analysis/analysis).
+     character(:), allocatable :: refusal  !! why not (--levels no, several processes), blank: it may be
+     logical :: auto = .false.             !! --levels auto: as the counts say (auto_choice)
+  end type levels_request_t
+
+  integer, parameter :: AUTO_INTERIOR = 2, AUTO_SHARE = 2, AUTO_MEMBERS = 3
+    !! --levels auto's thresholds (auto_choice): interiors at least AUTO_INTERIOR x the boundaries and
+    !! 1 / AUTO_SHARE of all reduced unknowns, at least AUTO_MEMBERS groups per kind (doc/performance.md).
   real(wp), parameter :: MAX_SCAN = 2.0e8_wp
     !! Groups times (DOFs + reduced unknowns) above which the analysis (one pass per group) is skipped.
 
@@ -212,24 +222,26 @@ contains
     end do
   end subroutine see_forms
 
-  subroutine describe_levels(model, table, forest, tr, notes, refusal, plan)
+  subroutine describe_levels(model, table, forest, tr, levels, notes, plan)
     !! One listing note: the groups of parts made of parts by level, their
     !! variables (own, interior, boundary) in the flat model's reduced unknowns,
     !! and whether they are eliminated by level (see the module). plan: the
-    !! groups that eliminate an interior, deepest first, unless refusal (the
-    !! reason a condensation by level is not done: --levels no, several
-    !! processes) is not blank or no group has an interior and a boundary.
+    !! groups that eliminate an interior, deepest first, unless levels%refusal
+    !! (the reason a condensation by level is not done: --levels no, several
+    !! processes) is not blank, no group has an interior and a boundary, or
+    !! levels%auto and the counts promise no gain (auto_choice).
     !! No note and no plan when the model has no group.
     type(model_t), intent(in) :: model
     type(dof_table_t), intent(in) :: table
     type(forest_t), intent(in) :: forest
     type(transform_t), intent(in) :: tr
+    type(levels_request_t), intent(in) :: levels
     type(string_t), allocatable, intent(inout) :: notes(:)
-    character(*), intent(in) :: refusal
     type(level_plan_t), allocatable, intent(out) :: plan
     type(string_t), allocatable :: paths(:)
     type(group_vars_t), allocatable :: g(:)
-    character(:), allocatable :: text
+    character(:), allocatable :: text, auto
+    logical :: by_level
     integer :: k, d
     call group_paths(model, paths)
     if (size(paths) == 0) return
@@ -243,13 +255,22 @@ contains
     do k = 1, size(paths)
        call group_variables(model, table, forest, tr, paths(k)%s, g(k))
     end do
-    if (len_trim(refusal) == 0) call plan_levels(g, tr%ncol(), plan)
+    auto = ''
+    if (len_trim(levels%refusal) == 0) call plan_levels(g, tr%ncol(), plan)
+    if (allocated(plan) .and. levels%auto) then
+       call auto_choice(g, plan, tr%ncol(), by_level, auto)
+       if (.not. by_level) deallocate (plan)
+    end if
     if (allocated(plan)) then
-       text = 'condensation by level: done (each group''s interior eliminated onto its boundary, deepest first, '// &
-            'groups alike by their assembled matrix sharing one factorization: next note); in reduced unknowns:'
-    else if (len_trim(refusal) > 0) then
-       text = 'condensation by level: not done ('//trim(refusal)//'; the condensed leaves'' K* form one interface '// &
+       text = 'condensation by level: done ('//auto//'each group''s interior eliminated onto its boundary, '// &
+            'deepest first, groups alike by their assembled matrix sharing one factorization: next note); '// &
+            'in reduced unknowns:'
+    else if (len(auto) > 0) then
+       text = 'condensation by level: not done ('//auto//'the condensed leaves'' K* form one interface '// &
             'system); what each level could eliminate, in reduced unknowns:'
+    else if (len_trim(levels%refusal) > 0) then
+       text = 'condensation by level: not done ('//trim(levels%refusal)//'; the condensed leaves'' K* form one '// &
+            'interface system); what each level could eliminate, in reduced unknowns:'
     else
        text = 'condensation by level: not done (no group has an interior and a boundary; the condensed leaves'' K* '// &
             'form one interface system); what each level could eliminate, in reduced unknowns:'
@@ -260,6 +281,60 @@ contains
     end do
     call note(notes, text(1:len(text) - 1))
   end subroutine describe_levels
+
+  subroutine auto_choice(g, plan, ncol, by_level, why)
+    !! --levels auto: by level when the counts promise a gain over the flat
+    !! interface system (doc/performance.md, "Parts made of parts"), all three of
+    !! - the eliminated interiors at least AUTO_INTERIOR times the groups'
+    !!   boundaries (each group leaves a dense Schur complement on its boundary,
+    !!   where the flat system stays sparse);
+    !! - the eliminated interiors at least 1 / AUTO_SHARE of the reduced unknowns
+    !!   (else the top system is the flat one, plus the levels' work);
+    !! - at least AUTO_MEMBERS groups per kind (groups alike share one
+    !!   factorization and one Schur complement: the gain).
+    !! why: the figures and the choice, for the note (ends in '; ').
+    type(group_vars_t), intent(in) :: g(:)
+    type(level_plan_t), intent(in) :: plan
+    integer(i8), intent(in) :: ncol
+    logical, intent(out) :: by_level
+    character(:), allocatable, intent(out) :: why
+    integer(i8) :: interior, boundary
+    integer :: k, d, nkind
+    logical :: wide, share, alike
+    interior = 0
+    boundary = 0
+    do k = 1, size(plan%groups)
+       interior = interior + size(plan%groups(k)%inner, kind=i8)
+       boundary = boundary + g(plan%groups(k)%source)%exported + g(plan%groups(k)%source)%attached
+    end do
+    nkind = 0
+    do d = maxval(plan%groups%depth), 1, -1
+       if (any(plan%groups%depth == d)) &
+            nkind = nkind + kinds(g(pack(plan%groups%source, plan%groups%depth == d)))
+    end do
+    wide = interior >= AUTO_INTERIOR*boundary
+    share = AUTO_SHARE*interior >= ncol
+    alike = size(plan%groups) >= AUTO_MEMBERS*nkind
+    by_level = wide .and. share .and. alike
+    why = '--levels auto: interiors '//itoa(interior)//relation(wide)//itoa(AUTO_INTERIOR)//' x boundaries '// &
+         itoa(boundary)//', '//itoa(interior)//relation(share)//'1/'//itoa(AUTO_SHARE)//' of '//itoa(ncol)// &
+         ' unknowns, '//counted(size(plan%groups), 'group')//relation(alike)//itoa(AUTO_MEMBERS)//' x '// &
+         counted(nkind, 'kind')//': '//trim(merge('by level', 'flat    ', by_level))//'; '
+  contains
+    pure function relation(holds) result(r)
+      !! ' >= ' when the criterion holds, else ' < '.
+      logical, intent(in) :: holds
+      character(:), allocatable :: r
+      r = trim(merge(' >= ', ' <  ', holds))//' '
+    end function relation
+    pure function counted(n, noun) result(r)
+      !! `n noun`, the noun with an s unless n is 1.
+      integer, intent(in) :: n
+      character(*), intent(in) :: noun
+      character(:), allocatable :: r
+      r = itoa(n)//' '//noun//trim(merge('s', ' ', n /= 1))
+    end function counted
+  end subroutine auto_choice
 
   subroutine plan_levels(g, ncol, plan)
     !! The groups that eliminate something, deepest first: a group with a
@@ -282,6 +357,7 @@ contains
           n = n + 1
           list(n)%path = g(k)%path
           list(n)%depth = d
+          list(n)%source = k
           list(n)%inner = pack(g(k)%inner, .not. taken(g(k)%inner))
           taken(list(n)%inner) = .true.
        end do

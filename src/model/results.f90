@@ -11,6 +11,9 @@ module superjoin_model_results
   integer, parameter, public :: PH_READ = 1, PH_ASSEMBLE = 2, PH_ORDER = 3, PH_FACTOR = 4, &
                                 PH_SOLVE = 5, PH_WRITE = 6
 
+  integer, parameter, public :: LEVELS_NO = 0, LEVELS_YES = 1, LEVELS_AUTO = 2
+    !! run_options_t%levels: condensed parts made of parts flat, by level, or as the counts say (analysis/levels)
+
   type, public :: run_options_t
     !! Options of one run (from the command line).
      character(:), allocatable :: solver        !! auto | cholmod | umfpack | lapack
@@ -20,7 +23,7 @@ module superjoin_model_results
      character(:), allocatable :: library       !! --library DIR: condensations kept across runs, or unallocated
      logical :: library_verify = .false.        !! --library-verify: a library hit assembles k and checks its hash
      logical :: twins = .true.                  !! --twins: identical parts found by their geometry share a condensation
-     logical :: levels = .false.                !! --levels yes: parts made of parts condensed by level (default: flat, one interface system)
+     integer :: levels = LEVELS_AUTO            !! --levels yes | no | auto: parts made of parts condensed by level, flat, or as the counts say
      logical :: quiet = .false.
      logical :: verbose = .false.
      logical :: accept_inaccurate = .false. !! --accept-inaccurate: exit 0 even when results are judged inaccurate

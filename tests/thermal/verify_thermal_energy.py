@@ -96,19 +96,26 @@ def mesh(et):
     return {n: nodes[n] for n in used}, elems, (nid(0, 0), nid(mx - 1, 0))
 
 
-def deck(et, clamped):
-    nodes, elems, (n1, n2) = mesh(et)
-    lines = ['*HEADING', f'{et} plate, linear temperature, {"clamped" if clamped else "free"}', '*NODE, NSET=ALL']
+def deck_text(title, et, nodes, elems, section, boundary, temperatures):
+    """A deck of the plate: its mesh, the material, `section` (the card), the
+    `boundary` lines, the nodal `temperatures` lines (T0 = 20) and ENER."""
+    lines = ['*HEADING', title, '*NODE, NSET=ALL']
     lines += [f'{n}, {x!r}, {y!r}, 0.' for n, (x, y) in nodes.items()]
     lines.append(f'*ELEMENT, TYPE={et}, ELSET=P')
     lines += [f'{k + 1}, ' + ', '.join(str(n) for n in e) for k, e in enumerate(elems)]
     lines += ['*MATERIAL, NAME=M', '*ELASTIC', f'{E}, {NU}', '*EXPANSION', f'{ALPHA}',
-              '*SOLID SECTION, ELSET=P, MATERIAL=M', f'{T}', '*BOUNDARY']
-    lines += ['ALL, 1, 2'] if clamped else [f'{n1}, 1, 2', f'{n2}, 2']
+              f'*{section} SECTION, ELSET=P, MATERIAL=M', f'{T}', '*BOUNDARY'] + boundary
     lines += ['*INITIAL CONDITIONS, TYPE=TEMPERATURE', 'ALL, 20.0', '*STEP', '*STATIC', '*TEMPERATURE']
-    lines += [f'{n}, {20.0 + field(x, y)!r}' for n, (x, y) in nodes.items()]
-    lines += ['*EL PRINT, ELSET=P', 'ENER', '*END STEP']
-    return '\n'.join(lines) + '\n', nodes, elems
+    lines += temperatures + ['*EL PRINT, ELSET=P', 'ENER', '*END STEP']
+    return '\n'.join(lines) + '\n'
+
+
+def deck(et, clamped):
+    nodes, elems, (n1, n2) = mesh(et)
+    text = deck_text(f'{et} plate, linear temperature, {"clamped" if clamped else "free"}', et, nodes, elems,
+                     'SOLID', ['ALL, 1, 2'] if clamped else [f'{n1}, 1, 2', f'{n2}, 2'],
+                     [f'{n}, {20.0 + field(x, y)!r}' for n, (x, y) in nodes.items()])
+    return text, nodes, elems
 
 
 def energy(exe, work, name, text):
@@ -148,17 +155,10 @@ def shell_deck(et, clamped, tfun, gfun):
         for i in range(NX):
             a, b, c, d = nid(i, j), nid(i + 1, j), nid(i + 1, j + 1), nid(i, j + 1)
             elems += [[a, b, c], [a, c, d]] if '3' in et else [[a, b, c, d]]
-    lines = ['*HEADING', f'{et} plate, {"clamped" if clamped else "free"}', '*NODE, NSET=ALL']
-    lines += [f'{n}, {x!r}, {y!r}, 0.' for n, (x, y) in nodes.items()]
-    lines.append(f'*ELEMENT, TYPE={et}, ELSET=P')
-    lines += [f'{k + 1}, ' + ', '.join(str(n) for n in e) for k, e in enumerate(elems)]
-    lines += ['*MATERIAL, NAME=M', '*ELASTIC', f'{E}, {NU}', '*EXPANSION', f'{ALPHA}',
-              '*SHELL SECTION, ELSET=P, MATERIAL=M', f'{T}', '*BOUNDARY']
-    lines += ['ALL, 1, 6'] if clamped else [f'{nid(0, 0)}, 1, 3', f'{nid(NX, 0)}, 2, 3', f'{nid(0, NY)}, 3']
-    lines += ['*INITIAL CONDITIONS, TYPE=TEMPERATURE', 'ALL, 20.0', '*STEP', '*STATIC', '*TEMPERATURE']
-    lines += [f'{n}, {20.0 + tfun(x, y)!r}, {gfun(x, y)!r}' for n, (x, y) in nodes.items()]
-    lines += ['*EL PRINT, ELSET=P', 'ENER', '*END STEP']
-    return '\n'.join(lines) + '\n', nodes, elems
+    text = deck_text(f'{et} plate, {"clamped" if clamped else "free"}', et, nodes, elems, 'SHELL',
+                     ['ALL, 1, 6'] if clamped else [f'{nid(0, 0)}, 1, 3', f'{nid(NX, 0)}, 2, 3', f'{nid(0, NY)}, 3'],
+                     [f'{n}, {20.0 + tfun(x, y)!r}, {gfun(x, y)!r}' for n, (x, y) in nodes.items()])
+    return text, nodes, elems
 
 
 def int_g2(g0, gx, gy):

@@ -5,14 +5,15 @@ module superjoin_analysis_condensation
   use superjoin_kinds, only: wp, i8
   use superjoin_error, only: error_t, add_error_line, EXIT_SINGULAR
   use superjoin_model_types, only: model_t, string_t
-  use superjoin_assembly_assemble, only: max_element_diagonal
+  use superjoin_assembly_assemble, only: max_element_diagonal, assemble_stiffness, add_delta_springs
+  use superjoin_assembly_transform, only: ROLE_PLAIN
   use superjoin_substructure_local_system, only: dof_label
   use superjoin_substructure_cache, only: part_cache_t, part_view_t, acquire_view, entry_condense_loads, &
        entry_ku, view_spc, view_turn, entry_recover, view_need_stiffness, take_views
   use superjoin_model_results, only: run_summary_t, run_options_t
   use superjoin_model_notes, only: note
   use superjoin_analysis_factor_reuse, only: kept_factor_t
-  use superjoin_analysis_build_reuse, only: kept_build_t
+  use superjoin_analysis_build_reuse, only: kept_build_t, take_matrix, keep_matrix
   use superjoin_utils_strings, only: itoa
   use superjoin_analysis_solve_state, only: solve_state_t, solve_strategy_t
   use superjoin_analysis_matrix_export, only: export_condensed
@@ -39,7 +40,7 @@ module superjoin_analysis_condensation
      procedure :: recover_interiors => recover_all
   end type condensed_strategy_t
 
-  public :: condense_parts, recover_parts, parts_ku, part_solver, library_options, acquire_part
+  public :: condense_parts, recover_parts, parts_ku, part_solver, library_options, acquire_part, interface_matrix
 
 contains
 
@@ -86,6 +87,37 @@ contains
     if (allocated(error)) return
     call parts_ku(cache, st%parts, st%f_phys, st%u, st%ku, error)
   end subroutine recover_all
+
+  subroutine interface_matrix(ctx, st, model, summary, error)
+    !! K_red and f_u0 of a solve with condensed parts: the strategy's plan
+    !! (set_plan: the elements of the parts not condensed, every K*),
+    !! assembled (assemble_stiffness) and combined. A joint study's value
+    !! that took the previous value's transform and views (one process, no
+    !! plain units: their stiffness holds their g) takes the previous
+    !! value's K_red without its δ springs (analysis/build_reuse:
+    !! take_matrix) and adds its own g's, exactly what the assembly gives.
+    type(solve_context_t), intent(inout) :: ctx
+    type(solve_state_t), intent(inout) :: st
+    type(model_t), intent(in) :: model
+    type(run_summary_t), intent(in) :: summary
+    type(error_t), allocatable, intent(out) :: error
+    type(condensed_strategy_t) :: one_process
+    logical :: keep, taken
+    keep = ctx%joint_study .and. same_type_as(st%strategy, one_process)
+    if (keep) keep = st%tr%count_role(ROLE_PLAIN) == 0
+    taken = .false.
+    if (keep) call take_matrix(ctx%build, ctx%cache%views_taken, st%k, st%f_u0, taken)
+    if (.not. taken) then
+       if (allocated(ctx%build%roots)) deallocate (ctx%build%roots)   ! the groups of another K_red
+       call st%strategy%set_plan(st, model, summary)
+       call assemble_stiffness(model, st%table, st%tr, st%plan, st%k, st%f_u0, error, springs=.not. keep)
+       if (allocated(error)) return
+       deallocate (st%plan%supers)   ! copies of the K*
+       if (keep .and. .not. ctx%last) call keep_matrix(ctx%build, st%k, st%f_u0)
+    end if
+    if (keep) call add_delta_springs(st%tr, st%plan, st%k)
+    call st%strategy%combine(st, error)
+  end subroutine interface_matrix
 
   subroutine condense_parts(st, model, opts, cache, summary, notes, error)
     !! The condensations of the condensed substructures (st%parts: computed,

@@ -17,7 +17,7 @@ module superjoin_analysis
        take_boundaries, keep_boundaries
   use superjoin_assembly_forest, only: build_forest, forget_parents
   use superjoin_assembly_transform, only: transform_t, build_transform, COL_DELTA
-  use superjoin_assembly_assemble, only: assemble_stiffness, assemble_loads
+  use superjoin_assembly_assemble, only: assemble_loads
   use superjoin_substructure_local_system, only: boundary_dofs, part_boundary, given_boundary
   use superjoin_substructure_cache, only: release_cache, forget_load_memos, keep_views
   use superjoin_solvers_matrix_market, only: write_matrix_market
@@ -300,10 +300,8 @@ contains
     type(error_t), allocatable, intent(out) :: error
 
     if (res%summary%n_condensed == 0) then
-       call st%strategy%set_plan(st, model, res%summary)
        call early_solver(st, opts, ctx)
-       call assemble_stiffness(model, st%table, st%tr, st%plan, st%k, st%f_u0, error, st%solver)
-       call st%strategy%combine(st, error)
+       call interface_matrix(ctx, st, model, res%summary, error)
        if (allocated(error)) return
        call assemble_loads(model, st%table, st%f_phys, error)
        if (allocated(error)) return
@@ -322,7 +320,7 @@ contains
     deallocate (st%bnd_c)   ! its last users (the condensations) are done
     call autospc(model, st%table, st%tr, st%k, st%f_red, st%spc, notes, error, summed=st%strategy%summed())
     if (allocated(error)) return
-    if (ctx%joint_study .and. res%summary%n_condensed > 0) then   ! interface_matrix: the groups of a kept K_red
+    if (ctx%joint_study) then   ! interface_matrix: the groups of a kept K_red
        call skip_unloaded_parts(model, st%table, st%tr, st%k, st%f_red, st%spc, notes, &
             summed=st%strategy%summed(), error=error, roots=ctx%build%roots)
     else

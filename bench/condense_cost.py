@@ -13,11 +13,14 @@ DOFs, 786 boundary DOFs); modules = gen_modules.py --row --mesh 56 --storeys 20
 (--condense yes with one joint value, --condense no, and for the panels
 --condense yes with two values of a sweep) are repeated N times, interleaved,
 so that a loaded machine slows all alike; wall-clock medians and their ratios
-are printed. With --base, the same condensed run of another binary (e.g. the
-previous main) is interleaved too.
+are printed, and the medians of the CPU time (user + system of the run, which
+a loaded machine inflates less). With --base, the same condensed runs (one
+value, and two for the panels) of another binary (e.g. the previous main) are
+interleaved too.
 """
 import argparse
 import os
+import resource
 import statistics
 import subprocess
 import sys
@@ -26,12 +29,18 @@ import time
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 
 
+def cpu_children():
+    r = resource.getrusage(resource.RUSAGE_CHILDREN)
+    return r.ru_utime + r.ru_stime
+
+
 def run(cmd):
-    t0 = time.perf_counter()
+    """Wall-clock and CPU seconds of one run."""
+    t0, c0 = time.perf_counter(), cpu_children()
     p = subprocess.run(cmd, capture_output=True, text=True)
     if p.returncode not in (0, 5):
         sys.exit("failed (%d): %s\n%s" % (p.returncode, " ".join(cmd), p.stderr[-2000:]))
-    return time.perf_counter() - t0
+    return time.perf_counter() - t0, cpu_children() - c0
 
 
 def deck(work, name, script, args):
@@ -70,19 +79,26 @@ def main():
             runs["sweep2"] = [args.bin, "-q", two, "--condense", "yes", "-o", lst]
         if args.base:
             runs["base condensed"] = [args.base, "-q", one, "--condense", "yes", "-o", lst]
+            if sweep:
+                runs["base sweep2"] = [args.base, "-q", two, "--condense", "yes", "-o", lst]
         times = {k: [] for k in runs}
         for _ in range(args.repeat):
             for k, cmd in runs.items():
                 times[k].append(run(cmd))
-        med = {k: statistics.median(v) for k, v in times.items()}
+        med = {k: statistics.median(t[0] for t in v) for k, v in times.items()}
+        cpu = {k: statistics.median(t[1] for t in v) for k, v in times.items()}
         print("== %s (%d rounds, load %.1f)" % (name, args.repeat, os.getloadavg()[0]))
         for k, v in times.items():
-            print("  %-15s median %7.2f s   %s" % (k, med[k], " ".join("%.2f" % x for x in v)))
-        print("  condensed / monolithic: %.2f" % (med["condensed"] / med["monolithic"]))
-        if sweep:
-            print("  sweep of 2 values / 2 monolithic solves: %.2f" % (med["sweep2"] / (2 * med["monolithic"])))
-        if args.base:
-            print("  base condensed / monolithic: %.2f" % (med["base condensed"] / med["monolithic"]))
+            print("  %-15s median %7.2f s (CPU %7.2f s)   %s" % (k, med[k], cpu[k], " ".join("%.2f" % t[0] for t in v)))
+        for m, label in ((med, "wall"), (cpu, "CPU")):
+            print("  %s: condensed / monolithic: %.2f" % (label, m["condensed"] / m["monolithic"]))
+            if sweep:
+                print("  %s: sweep of 2 values / 2 monolithic solves: %.2f" % (label, m["sweep2"] / (2 * m["monolithic"])))
+            if args.base:
+                print("  %s: base condensed / monolithic: %.2f" % (label, m["base condensed"] / m["monolithic"]))
+                if sweep:
+                    print("  %s: base sweep of 2 values / 2 monolithic solves: %.2f"
+                          % (label, m["base sweep2"] / (2 * m["monolithic"])))
 
 
 if __name__ == "__main__":

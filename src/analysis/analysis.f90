@@ -17,7 +17,7 @@ module superjoin_analysis
        take_boundaries, keep_boundaries
   use superjoin_assembly_forest, only: build_forest, forget_parents
   use superjoin_assembly_transform, only: transform_t, build_transform, COL_DELTA
-  use superjoin_assembly_assemble, only: assemble_stiffness, assemble_loads
+  use superjoin_assembly_assemble, only: assemble_loads
   use superjoin_substructure_local_system, only: boundary_dofs, part_boundary, given_boundary
   use superjoin_substructure_cache, only: release_cache, forget_load_memos, keep_views
   use superjoin_solvers_matrix_market, only: write_matrix_market
@@ -30,7 +30,7 @@ module superjoin_analysis
   use superjoin_analysis_health, only: check_finite, health, full_health, parts_maxratio, penalty_hint
   use superjoin_analysis_policy, only: apply_large, describe_transform, column_groups, count_boundary, &
        choose_condensation, autospc, skip_unloaded_parts, wanted_elements
-  use superjoin_analysis_condensation, only: solve_context_t, condensed_strategy_t
+  use superjoin_analysis_condensation, only: solve_context_t, condensed_strategy_t, interface_matrix
   use superjoin_analysis_levels, only: describe_levels, levels_request_t
   use superjoin_analysis_level_solver, only: make_solver, level_note
   use superjoin_analysis_solve_state, only: solve_state_t, plain_strategy_t, PHASE_BUILT, PHASE_ASSEMBLED, PHASE_SOLVED, &
@@ -302,10 +302,8 @@ contains
     type(error_t), allocatable, intent(out) :: error
 
     if (res%summary%n_condensed == 0) then
-       call st%strategy%set_plan(st, model, res%summary)
        call early_solver(st, opts, ctx)
-       call assemble_stiffness(model, st%table, st%tr, st%plan, st%k, st%f_u0, error, st%solver)
-       call st%strategy%combine(st, error)
+       call interface_matrix(ctx, st, model, res%summary, error)
        if (allocated(error)) return
        call assemble_loads(model, st%table, st%f_phys, error)
        if (allocated(error)) return
@@ -316,18 +314,20 @@ contains
        call st%strategy%condense(st, model, opts, ctx%cache, res%summary, notes, error)
        if (allocated(error)) return
        if (ctx%last) call forget_load_memos(ctx%cache)   ! no later solve condenses these loads again
-       call st%strategy%set_plan(st, model, res%summary)
-       call assemble_stiffness(model, st%table, st%tr, st%plan, st%k, st%f_u0, error)
-       call st%strategy%combine(st, error)
+       call interface_matrix(ctx, st, model, res%summary, error)
        if (allocated(error)) return
-       deallocate (st%plan%supers)   ! copies of the K*
        call reduce_loads(st%tr, st%f_eff, st%f_u0, st%f_red, error)
     end if
     if (allocated(error)) return
     deallocate (st%bnd_c)   ! its last users (the condensations) are done
     call autospc(model, st%table, st%tr, st%k, st%f_red, st%spc, notes, error, summed=st%strategy%summed())
     if (allocated(error)) return
-    call skip_unloaded_parts(model, st%table, st%tr, st%k, st%f_red, st%spc, notes, summed=st%strategy%summed(), error=error)
+    if (ctx%joint_study) then   ! interface_matrix: the groups of a kept K_red
+       call skip_unloaded_parts(model, st%table, st%tr, st%k, st%f_red, st%spc, notes, &
+            summed=st%strategy%summed(), error=error, roots=ctx%build%roots)
+    else
+       call skip_unloaded_parts(model, st%table, st%tr, st%k, st%f_red, st%spc, notes, summed=st%strategy%summed(), error=error)
+    end if
     if (allocated(error)) return
     res%summary%nphys = st%table%np
     res%summary%ncol = st%tr%ncol()

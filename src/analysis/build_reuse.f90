@@ -16,12 +16,15 @@ module superjoin_analysis_build_reuse
   !! condensation boundaries) go with the table (take_boundaries).
   !! A transform with loop constraints or form springs is not kept (their
   !! pivots are chosen by the springs).
-  use superjoin_kinds, only: i8
+  !! K_red without its δ springs goes with a kept transform and views
+  !! (take_matrix), and with it the groups skip_unloaded_parts found in it.
+  use superjoin_kinds, only: wp, i8
   use superjoin_model_types, only: model_t
   use superjoin_model_results, only: run_summary_t
   use superjoin_assembly_dofs, only: dof_table_t, link_signature, refresh_link_springs
   use superjoin_assembly_forest, only: forest_t, same_forest, forest_order
   use superjoin_assembly_transform, only: transform_t
+  use superjoin_solvers_sparse, only: sparse_sym_t
   implicit none (type, external)
   private
 
@@ -39,12 +42,19 @@ module superjoin_analysis_build_reuse
      integer, allocatable :: value_order(:)   !! the order of this value's units
      logical, allocatable :: keep(:)          !! the DOFs the transform kept (build_transform's keep)
      type(transform_t) :: tr
+     logical :: transform_taken = .false.     !! this value took the previous value's transform
+     logical :: has_matrix = .false.
+     type(sparse_sym_t) :: k_base             !! the previous value's K_red without the δ springs
+     real(wp), allocatable :: f_u0(:)         !! and its load of the prescribed values
+     integer(i8), allocatable :: roots(:)     !! skip_unloaded_parts' groups of that K_red's columns
      integer :: tables_reused = 0             !! values that took the previous table
      integer :: transforms_reused = 0         !! values that took the previous transform
      integer :: forests_reused = 0            !! values that took the previous forest
+     integer :: matrices_reused = 0           !! values that took the previous K_red
   end type kept_build_t
 
   public :: take_table, keep_table, take_forest, take_transform, keep_transform, take_boundaries, keep_boundaries
+  public :: take_matrix, keep_matrix
 
 contains
 
@@ -131,6 +141,7 @@ contains
     type(transform_t), intent(out) :: tr
     logical, intent(out) :: taken
     taken = .false.
+    kb%transform_taken = .false.
     if (.not. kb%has_transform) return
     if (size(keep) /= size(kb%keep) .or. size(kb%states, 2) /= table%nunit) return
     if (any(keep .neqv. kb%keep)) return
@@ -139,7 +150,44 @@ contains
     tr = kb%tr
     call tr%refresh_springs(table, taken)
     if (taken) kb%transforms_reused = kb%transforms_reused + 1
+    kb%transform_taken = taken
   end subroutine take_transform
+
+  subroutine take_matrix(kb, views_taken, k, f_u0, taken)
+    !! The previous value's K_red without its δ springs and its f_u0
+    !! (taken), when this value took the previous value's transform
+    !! (take_transform: the same columns, maps and prescribed values) and
+    !! the previous value's views of its condensed parts (views_taken: the
+    !! same K*): assembled again, every item would scatter the same terms
+    !! into the same positions in the same order; only the g's on the δ
+    !! diagonal differ (add_delta_springs). Else the kept matrix and its
+    !! groups are dropped (keep_matrix keeps this value's).
+    type(kept_build_t), intent(inout) :: kb
+    logical, intent(in) :: views_taken
+    type(sparse_sym_t), intent(out) :: k
+    real(wp), allocatable, intent(out) :: f_u0(:)
+    logical, intent(out) :: taken
+    taken = kb%has_matrix .and. kb%transform_taken .and. views_taken
+    if (.not. taken) then
+       kb%has_matrix = .false.
+       if (allocated(kb%roots)) deallocate (kb%roots)
+       return
+    end if
+    k = kb%k_base
+    f_u0 = kb%f_u0
+    kb%matrices_reused = kb%matrices_reused + 1
+  end subroutine take_matrix
+
+  subroutine keep_matrix(kb, k, f_u0)
+    !! Keep K_red just assembled without its δ springs, and its f_u0, for
+    !! the next value (take_matrix).
+    type(kept_build_t), intent(inout) :: kb
+    type(sparse_sym_t), intent(in) :: k
+    real(wp), intent(in) :: f_u0(:)
+    kb%k_base = k
+    kb%f_u0 = f_u0
+    kb%has_matrix = .true.
+  end subroutine keep_matrix
 
   subroutine keep_transform(kb, table, forest, keep, tr)
     !! Keep a transform just built (with its forest, kept DOFs and the

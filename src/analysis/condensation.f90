@@ -5,16 +5,17 @@ module superjoin_analysis_condensation
   use superjoin_kinds, only: wp, i8
   use superjoin_error, only: error_t, add_error_line, EXIT_SINGULAR
   use superjoin_model_types, only: model_t, string_t
-  use superjoin_assembly_assemble, only: max_element_diagonal
+  use superjoin_assembly_assemble, only: max_element_diagonal, assemble_stiffness, add_delta_springs
+  use superjoin_assembly_transform, only: ROLE_PLAIN
   use superjoin_substructure_local_system, only: dof_label
   use superjoin_substructure_cache, only: part_cache_t, part_view_t, acquire_view, entry_condense_loads, &
        entry_ku, view_spc, view_turn, entry_recover, view_need_stiffness, take_views, twins_note
   use superjoin_model_results, only: run_summary_t, run_options_t
   use superjoin_model_notes, only: note
   use superjoin_analysis_factor_reuse, only: kept_factor_t
-  use superjoin_analysis_build_reuse, only: kept_build_t
+  use superjoin_analysis_build_reuse, only: kept_build_t, take_matrix, keep_matrix
   use superjoin_utils_strings, only: itoa
-  use superjoin_analysis_solve_state, only: solve_state_t, solve_strategy_t
+  use superjoin_analysis_solve_state, only: solve_state_t, solve_strategy_t, plain_strategy_t
   use superjoin_analysis_matrix_export, only: export_condensed
   implicit none (type, external)
   private
@@ -39,7 +40,7 @@ module superjoin_analysis_condensation
      procedure :: recover_interiors => recover_all
   end type condensed_strategy_t
 
-  public :: condense_parts, recover_parts, parts_ku, part_solver, library_options, acquire_part
+  public :: condense_parts, recover_parts, parts_ku, part_solver, library_options, acquire_part, interface_matrix
 
 contains
 
@@ -86,6 +87,44 @@ contains
     if (allocated(error)) return
     call parts_ku(cache, st%parts, st%f_phys, st%u, st%ku, error)
   end subroutine recover_all
+
+  subroutine interface_matrix(ctx, st, model, summary, error)
+    !! K_red and f_u0 of a value (the interface of the condensed parts, or
+    !! the whole matrix of a run without them): the strategy's plan
+    !! (set_plan: the elements of the parts not condensed, every K*),
+    !! assembled (assemble_stiffness, its pattern analyzed beside the values
+    !! by an early solver, analysis/analysis) and combined. A joint study's
+    !! value that took the previous value's transform and views (one
+    !! process, no plain units: their stiffness holds their g) takes the
+    !! previous value's K_red without its δ springs (analysis/build_reuse:
+    !! take_matrix) and adds its own g's, exactly what the assembly gives.
+    type(solve_context_t), intent(inout) :: ctx
+    type(solve_state_t), intent(inout) :: st
+    type(model_t), intent(in) :: model
+    type(run_summary_t), intent(in) :: summary
+    type(error_t), allocatable, intent(out) :: error
+    type(condensed_strategy_t) :: condensed
+    type(plain_strategy_t) :: plain
+    logical :: keep, taken, same_views
+    keep = ctx%joint_study .and. (same_type_as(st%strategy, condensed) .or. same_type_as(st%strategy, plain))
+    if (keep) keep = st%tr%count_role(ROLE_PLAIN) == 0
+    same_views = ctx%cache%views_taken .or. summary%n_condensed == 0
+    taken = .false.
+    if (keep) call take_matrix(ctx%build, same_views, st%k, st%f_u0, taken)
+    if (taken) then
+       if (st%early_solver) call st%solver%analyze_start(st%k)
+    else
+       if (allocated(ctx%build%roots)) deallocate (ctx%build%roots)   ! the groups of another K_red
+       call st%strategy%set_plan(st, model, summary)
+       call assemble_stiffness(model, st%table, st%tr, st%plan, st%k, st%f_u0, error, st%solver, &
+            springs=.not. keep)
+       if (allocated(error)) return
+       if (allocated(st%plan%supers)) deallocate (st%plan%supers)   ! copies of the K*
+       if (keep .and. .not. ctx%last) call keep_matrix(ctx%build, st%k, st%f_u0)
+    end if
+    if (keep) call add_delta_springs(st%tr, st%plan, st%k)
+    call st%strategy%combine(st, error)
+  end subroutine interface_matrix
 
   subroutine condense_parts(st, model, opts, cache, summary, notes, error)
     !! The condensations of the condensed substructures (st%parts: computed,

@@ -459,12 +459,19 @@ contains
     end do
   end subroutine autospc
 
-  subroutine skip_unloaded_parts(model, table, tr, k, f_red, spc, notes, summed, error)
+  subroutine skip_unloaded_parts(model, table, tr, k, f_red, spc, notes, summed, error, roots)
     !! Groups of unknowns coupled to nothing else and loaded in no step have a
     !! zero solution: they are taken out of the factorization (identity rows)
     !! and reported, so an unloaded free part is not a mechanism. summed: k is
     !! this MPI process's term of K_red (the groups are those of the sum,
     !! analysis/summed_matrix; process 0 puts the 1s); error is then present.
+    !! roots (one process): the groups (each column's root) found in a K_red
+    !! with the same off-diagonal entries, used as given; unallocated, they
+    !! are found here and returned. The groups come from the off-diagonal
+    !! nonzeros alone (a diagonal entry joins a column to itself), so a K_red
+    !! that differs only on its diagonal (a joint study's next value with the
+    !! previous value's K_red and other g's: analysis/build_reuse, take_matrix)
+    !! has the same groups, whichever g is zero.
     type(model_t), intent(in) :: model
     type(dof_table_t), intent(in) :: table
     type(transform_t), intent(in) :: tr
@@ -474,9 +481,10 @@ contains
     type(string_t), allocatable, intent(inout) :: notes(:)
     logical, intent(in), optional :: summed
     type(error_t), allocatable, intent(out), optional :: error
+    integer(i8), allocatable, intent(inout), optional :: roots(:)
     integer(i8), allocatable :: root(:)
     logical, allocatable :: loaded(:), skip(:), named(:)
-    integer(i8) :: j, pos, a, b, nskip
+    integer(i8) :: j, pos, nskip
     integer :: isub
     character(:), allocatable :: subs
 
@@ -485,25 +493,19 @@ contains
     terms = .false.
     if (present(summed)) terms = summed
     if (k%n == 0) return
-    allocate (root(0:k%n))
-    do j = 0, k%n
-       root(j) = j
-    end do
-    if (terms) then
-       call summed_groups(k, root(1:), error)
+    if (terms .or. .not. present(roots)) then
+       call column_groups_of(k, terms, root, error)
+    else if (allocated(roots)) then
+       root = roots
+    else
+       call column_groups_of(k, terms, root, error)
+       roots = root
+    end if
+    if (present(error)) then
        if (allocated(error)) return
     end if
-    do j = 1, merge(0_i8, k%n, terms)
-       do pos = k%colptr(j), k%colptr(j + 1) - 1
-          if (k%val(pos) == 0.0_wp) cycle
-          a = find_root(root, k%rowind(pos))
-          b = find_root(root, j)
-          if (a /= b) root(max(a, b)) = min(a, b)
-       end do
-    end do
     allocate (loaded(k%n), source=.false.)
     do j = 1, k%n
-       if (.not. terms) root(j) = find_root(root, j)
        if (any(f_red(j, :) /= 0.0_wp)) loaded(root(j)) = .true.
     end do
     allocate (skip(k%n))
@@ -537,4 +539,34 @@ contains
     if (subs(1:2) /= ' (') subs = ' (in substructures'//subs//')'
     call note(notes, itoa(int(nskip))//' unknowns'//subs//' are coupled to no load: zero displacement, not solved')
   end subroutine skip_unloaded_parts
+
+  subroutine column_groups_of(k, terms, root, error)
+    !! The groups of skip_unloaded_parts: root(j) the root of column j's group
+    !! (a union-find over the nonzeros of k; terms: of the summed K_red,
+    !! analysis/summed_matrix, error then present).
+    type(sparse_sym_t), intent(in) :: k
+    logical, intent(in) :: terms
+    integer(i8), allocatable, intent(out) :: root(:)
+    type(error_t), allocatable, intent(out), optional :: error
+    integer(i8) :: j, pos, a, b
+    allocate (root(0:k%n))
+    do j = 0, k%n
+       root(j) = j
+    end do
+    if (terms) then
+       call summed_groups(k, root(1:), error)
+       if (allocated(error)) return
+    end if
+    do j = 1, merge(0_i8, k%n, terms)
+       do pos = k%colptr(j), k%colptr(j + 1) - 1
+          if (k%val(pos) == 0.0_wp) cycle
+          a = find_root(root, k%rowind(pos))
+          b = find_root(root, j)
+          if (a /= b) root(max(a, b)) = min(a, b)
+       end do
+    end do
+    do j = 1, merge(0_i8, k%n, terms)
+       root(j) = find_root(root, j)
+    end do
+  end subroutine column_groups_of
 end module superjoin_analysis_policy

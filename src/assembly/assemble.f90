@@ -51,7 +51,7 @@ module superjoin_assembly_assemble
 
   public :: element_matrix
   public :: assemble_stiffness, assemble_loads, element_pdofs, unit_pdofs, unit_plain_stiffness, &
-       max_element_diagonal
+       max_element_diagonal, add_delta_springs
 
 contains
 
@@ -187,13 +187,15 @@ contains
     end if
   end function element_where
 
-  subroutine assemble_stiffness(model, table, tr, plan, k, f_u0, error, solver)
+  subroutine assemble_stiffness(model, table, tr, plan, k, f_u0, error, solver, springs)
     !! Assemble K_red (pattern and values) and the reduced load of the
     !! prescribed values, f_u0 = -Tᵀ K_phys u0: the elements of every
     !! substructure the plan does not skip, the plan's superelements, plain
     !! contact units, loop springs, and g on the diagonal of every δ (these
     !! three only if plan%shared). With solver: its analysis of K's pattern
     !! begins once the pattern is known (analyze_start), beside the values.
+    !! springs = .false.: without the g's of the δ columns (add_delta_springs
+    !! adds them: a joint study keeps K_red without them for its next value).
     type(model_t), intent(in) :: model
     type(dof_table_t), intent(in) :: table
     type(transform_t), intent(in) :: tr
@@ -202,13 +204,12 @@ contains
     real(wp), allocatable, intent(out) :: f_u0(:)
     type(error_t), allocatable, intent(out) :: error
     class(linear_solver_t), intent(inout), optional :: solver
+    logical, intent(in), optional :: springs
     type(item_columns_t) :: items
     type(scatter_map_t) :: map
     integer(i8), allocatable :: col_ptr(:), col_item(:)
     logical, allocatable :: mapped(:)
-    integer(i8) :: j
     integer :: stat
-    real(wp) :: g
 
     ! Pass 1: column lists of all items.
     call list_item_columns(model, table, tr, plan, items, error)
@@ -237,12 +238,25 @@ contains
     end if
     call scatter_items(model, table, tr, plan, items, map, k, f_u0, error)
     if (allocated(error)) return
-    ! δ springs: g on the diagonal of their own column, nowhere else.
+    if (present(springs)) then
+       if (.not. springs) return
+    end if
+    call add_delta_springs(tr, plan, k)
+  end subroutine assemble_stiffness
+
+  subroutine add_delta_springs(tr, plan, k)
+    !! The δ springs (if plan%shared): g on the diagonal of their own column,
+    !! nowhere else.
+    type(transform_t), intent(in) :: tr
+    type(assembly_plan_t), intent(in) :: plan
+    type(sparse_sym_t), intent(inout) :: k
+    integer(i8) :: j
+    real(wp) :: g
     do j = 1, merge(tr%ncol(), 0_i8, plan%shared)
        g = tr%column_g(j)
        if (g /= 0.0_wp) k%val(k%colptr(j + 1) - 1) = k%val(k%colptr(j + 1) - 1) + g
     end do
-  end subroutine assemble_stiffness
+  end subroutine add_delta_springs
 
   pure function shared_forms(tr, plan) result(nforms)
     !! Number of loop springs (form springs) the plan assembles.

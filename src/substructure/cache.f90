@@ -81,6 +81,7 @@ module superjoin_substructure_cache
      ! A joint study's views kept from one value for the next (take_views).
      logical :: same_numbering = .false.      !! this value has the previous value's DOF table and boundaries
      logical :: keep_views = .false.          !! a later value may take this value's views
+     logical :: views_taken = .false.         !! this value took the previous value's views (take_views)
      type(part_view_t), allocatable :: kept(:)   !! the previous value's views
      integer :: kept_n = -1, kept_computed = -1  !! n and computed when they were kept
   end type part_cache_t
@@ -274,6 +275,7 @@ contains
          .and. cache%computed == cache%kept_computed .and. .not. library_enabled(cache%library)
     if (taken) taken = size(cache%kept) == size(subs)
     if (taken) taken = all(cache%kept%isub == subs)
+    cache%views_taken = taken
     if (.not. taken) then
        if (allocated(cache%kept)) deallocate (cache%kept)
        return

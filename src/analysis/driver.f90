@@ -582,6 +582,7 @@ contains
        do i = 1, size(r%log%warnings)
           if (.not. any_string(res%log%warnings, r%log%warnings(i)%s)) call append_string(res%log%warnings, r%log%warnings(i)%s)
        end do
+       res%log%inaccurate = res%log%inaccurate .or. r%log%inaccurate   ! any group's doubt is the run's (exit 5)
     end if
     do k = 1, size(members)
        if (allocated(r%fields%u)) res%fields%u(:, members(k)) = r%fields%u(:, k)

@@ -467,6 +467,7 @@ contains
          write (buf, '(es10.2e3)') maxval(res%fields%steps(:)%residual)
          call warn(res, 'relative residual '//trim(adjustl(buf))//' of the whole system (condensed '// &
               'substructures recovered): results are inaccurate')
+         res%log%inaccurate = .true.
       end if
     end associate
   end subroutine whole_residuals

@@ -106,8 +106,8 @@ contains
        if (allocated(one%part)) deallocate (one%part)
        one%contact = ks(i)
        if (.not. o%whole) then
-          call rescope(st, one%master, ks(i), 'master', o%loc, i == 1, ok)
-          if (ok) call rescope(st, one%slave, ks(i), 'slave', o%loc, i == 1, ok)
+          call rescope(st, one%master, ks(i), 'master', o%loc, i == 1, allocated(o%part), ok)
+          if (ok) call rescope(st, one%slave, ks(i), 'slave', o%loc, i == 1, allocated(o%part), ok)
           if (.not. ok) return
        end if
        call grow(out, n, size(ks))
@@ -339,16 +339,18 @@ contains
     end if
   end subroutine report_part_contact
 
-  subroutine rescope(st, ref, k, role, at, loud, ok)
+  subroutine rescope(st, ref, k, role, at, loud, part_form, ok)
     !! A node of a NAME= line: its scope, as in the part's *CONTACT (`BAY1`) or
     !! whole (`B.F3.BAY1`), made the contact's master or slave substructure; any
-    !! other scope reported (when loud).
+    !! other scope reported (when loud). part_form (PART=, every instance's
+    !! copy): only the part's own scope; a whole path names one copy and is
+    !! reported (it would change that copy only).
     type(deck_state_t), intent(inout) :: st
     type(ref_t), intent(inout) :: ref
     integer, intent(in) :: k
     character(*), intent(in) :: role
     type(source_loc_t), intent(in) :: at
-    logical, intent(in) :: loud
+    logical, intent(in) :: loud, part_form
     logical, intent(out) :: ok
     character(:), allocatable :: sub, inst, name
     type(ref_t) :: in_part
@@ -356,8 +358,17 @@ contains
     if (.not. allocated(ref%scope)) return
     name = st%contacts(k)%name
     sub = pick(role == 'master', st%contacts(k)%master, st%contacts(k)%slave)
-    if (ref%scope == sub) return
     inst = name(1:index(name, '.', back=.true.) - 1)
+    if (ref%scope == sub .and. part_form) then
+       ok = .false.
+       in_part = ref
+       in_part%scope = sub(len(inst) + 2:)
+       if (loud) call report_loc(st, at, 'node '''//ref_text(ref)//''' names the copy of one instance by its '// &
+            'whole path, but PART= changes the contact in every instance: write it as the part''s *CONTACT '// &
+            'does, '//ref_text(in_part))
+       return
+    end if
+    if (ref%scope == sub) return
     ok = inst//'.'//ref%scope == sub
     if (ok) then
        ref%scope = sub

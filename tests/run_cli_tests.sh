@@ -94,6 +94,17 @@ expect 5 "inaccurate in a later value of a joint study" -- "$bin" -q release.dec
 grep -q 'error: the results are judged inaccurate' err.txt || { fail=$((fail+1)); echo "FAIL: joint study: no exit-5 message"; }
 grep -q 'END OF LISTING' rel.lst || { fail=$((fail+1)); echo "FAIL: joint study: exit 5 without the listing"; }
 expect 5 "inaccurate in a later value of a joint study, monolithic" -- "$bin" -q --condense no release.deck -o rel.lst
+# A turned instance sharing a condensation: its interior's direction without
+# stiffness is the turned one (tests/parts/turned_free_direction.deck): a load
+# along Z on B.3 is carried, as in the monolithic run; one along Y is refused.
+expect 0 "turned instance, load on a stiff direction" -- "$bin" -q --condense yes "$src/tests/parts/turned_free_direction.deck" -o tf.lst --csv tfc
+expect 0 "turned instance, monolithic" -- "$bin" -q --condense no "$src/tests/parts/turned_free_direction.deck" -o tfm.lst --csv tfm
+[ "$(grep '^1,B,3,' tfc/displacements.csv | cut -d, -f6 | cut -c1-12)" = "$(grep '^1,B,3,' tfm/displacements.csv | cut -d, -f6 | cut -c1-12)" ] \
+  || { fail=$((fail+1)); echo "FAIL: turned instance: B.3's u3 condensed differs from monolithic"; }
+sed 's/^B.3, 3, 1000.0/B.3, 2, 1000.0/' "$src/tests/parts/turned_free_direction.deck" > tf_free.deck
+expect 3 "turned instance, load on its direction without stiffness" -- "$bin" -q --condense yes tf_free.deck -o tf2.lst
+grep -q 'load on a DOF without stiffness: substructure B node 3 DOF 3 in the axes of its part' err.txt \
+  || { fail=$((fail+1)); echo "FAIL: turned instance: the load on its free direction not refused as such"; }
 expect 0 "export matrix" -- "$bin" -q --export-matrix k.mtx "$src/decks/demo.deck" -o mm.lst
 head -1 k.mtx | grep -q '%%MatrixMarket matrix coordinate real symmetric' || { fail=$((fail+1)); echo "FAIL: matrix market header"; }
 expect 0 "csv" -- "$bin" -q "$src/decks/demo.deck" -o c.lst --csv csvdir

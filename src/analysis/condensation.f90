@@ -9,12 +9,12 @@ module superjoin_analysis_condensation
   use superjoin_assembly_transform, only: ROLE_PLAIN
   use superjoin_substructure_local_system, only: dof_label
   use superjoin_substructure_cache, only: part_cache_t, part_view_t, acquire_view, entry_condense_loads, &
-       entry_ku, view_spc, view_turn, entry_recover, view_need_stiffness, take_views, twins_note
+       entry_ku, view_spc_loads, view_turn, entry_recover, view_need_stiffness, take_views, twins_note
   use superjoin_model_results, only: run_summary_t, run_options_t
   use superjoin_model_notes, only: note
   use superjoin_analysis_factor_reuse, only: kept_factor_t
   use superjoin_analysis_build_reuse, only: kept_build_t, take_matrix, keep_matrix
-  use superjoin_utils_strings, only: itoa
+  use superjoin_utils_strings, only: itoa, pick
   use superjoin_analysis_solve_state, only: solve_state_t, solve_strategy_t, plain_strategy_t
   use superjoin_analysis_matrix_export, only: export_condensed
   implicit none (type, external)
@@ -141,6 +141,7 @@ contains
     type(error_t), allocatable, intent(out) :: error
     character(:), allocatable :: solver_name
     integer(i8), allocatable :: spc(:)
+    logical, allocatable :: loaded(:)
     integer :: isub, ip_, i, computed0, reused0, nrot
     real(wp) :: dmax
     logical :: taken
@@ -172,11 +173,12 @@ contains
          if (allocated(error)) return
          if (allocated(parts(ip_)%notes)) notes = [notes, parts(ip_)%notes]
          if (parts(ip_)%rotated) nrot = nrot + 1
-         call view_spc(cache, parts(ip_), spc)
+         call view_spc_loads(cache, parts(ip_), f_phys, spc, loaded)
          do i = 1, size(spc)
-            if (any(f_phys(spc(i), :) /= 0.0_wp)) then
+            if (loaded(i)) then
                call add_error_line(error, EXIT_SINGULAR, 'error: load on a DOF without stiffness: '// &
-                    dof_label(model, table, spc(i)))
+                    dof_label(model, table, spc(i))//pick(parts(ip_)%rotated, ' in the axes of its part '// &
+                    '(turned by its placement: the loaded direction is this DOF turned)', ''))
             else if (.not. parts(ip_)%reused) then
                call note(notes, 'AUTOSPC: '//dof_label(model, table, spc(i))//' has no stiffness and no load: dropped')
             end if

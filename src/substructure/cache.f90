@@ -88,7 +88,7 @@ module superjoin_substructure_cache
 
   public :: view_ku
   public :: release_cache, forget_load_memos, acquire_view, view_condense_loads, view_recover, view_stiffness_times, &
-       view_maxratio, view_spc, remote_view, view_turn, entry_recover, entry_condense_loads, entry_ku, &
+       view_maxratio, view_spc, view_spc_loads, remote_view, view_turn, entry_recover, entry_condense_loads, entry_ku, &
        view_need_stiffness, take_views, keep_views, twins_note
 
 contains
@@ -556,6 +556,42 @@ contains
     end associate
     p = view%pdof(l)
   end subroutine view_spc
+
+  subroutine view_spc_loads(cache, view, f_phys, p, loaded)
+    !! The physical DOFs of this substructure's interior that have no
+    !! stiffness (view_spc) and whether the loads f_phys act on each. A
+    !! turned view (an instance or a twin placed by a rotation) has them in
+    !! the condensation's frame: the direction without stiffness of a turned
+    !! node is the turned one, not the same global component, so its loads
+    !! are read turned into that frame, where a component of round-off size
+    !! (TURN_ROUNDOFF of the part's largest load) is no load; p then names
+    !! the node by the component of the condensation's frame.
+    type(part_cache_t), intent(in) :: cache
+    type(part_view_t), intent(in) :: view
+    real(wp), intent(in) :: f_phys(:, :)
+    integer(i8), allocatable, intent(out) :: p(:)
+    logical, allocatable, intent(out) :: loaded(:)
+    real(wp), parameter :: TURN_ROUNDOFF = 1.0e-13_wp
+    real(wp), allocatable :: x(:, :)
+    real(wp) :: tol
+    integer(i8) :: i
+    call view_spc(cache, view, p)
+    allocate (loaded(size(p)))
+    if (view%entry == 0 .or. .not. view%rotated) then
+       do i = 1, size(p, kind=i8)
+          loaded(i) = any(f_phys(p(i), :) /= 0.0_wp)
+       end do
+       return
+    end if
+    x = f_phys(view%pdof, :)
+    tol = TURN_ROUNDOFF*maxval(abs(x))
+    call view_turn(view, x, .false.)
+    associate (c => cache%entries(view%entry)%e%cond)
+      do i = 1, size(p, kind=i8)
+         loaded(i) = any(abs(x(findloc(c%sys%pdof, c%spc(i), dim=1, kind=i8), :)) > tol)
+      end do
+    end associate
+  end subroutine view_spc_loads
 
   pure logical function same_masks(a, b)
     !! Two instances' drilling edge masks agree (both absent, or equal).

@@ -310,7 +310,7 @@ contains
     nkind = 0
     do d = maxval(plan%groups%depth), 1, -1
        if (any(plan%groups%depth == d)) &
-            nkind = nkind + kinds(g(pack(plan%groups%source, plan%groups%depth == d)))
+            nkind = nkind + kinds(g, pack(plan%groups%source, plan%groups%depth == d))
     end do
     wide = interior >= AUTO_INTERIOR*boundary
     share = AUTO_SHARE*interior >= ncol
@@ -372,6 +372,7 @@ contains
     type(group_vars_t), intent(in) :: g(:)
     character(:), allocatable :: line
     integer(i8) :: bnd(size(g))
+    integer :: k
     bnd = g%exported + g%attached
     line = 'depth '//itoa(g(1)%depth)//': '//itoa(size(g))//' group'
     if (size(g) > 1) line = line//'s'
@@ -379,24 +380,31 @@ contains
     if (size(g) > 1) line = line//' .. '//g(size(g))%path
     line = line//'), own '//span(g%own)//', boundary '//span(bnd)//' (exported '//span(g%exported)// &
          ', attached '//span(g%attached)//'), interior '//span(g%interior)//' (total '// &
-         itoa(sum(g%interior))//'), kinds by counts and rotation: '//itoa(kinds(g))
+         itoa(sum(g%interior))//'), kinds by counts and rotation: '//itoa(kinds(g, [(k, k = 1, size(g))]))
   end function level_line
 
-  integer function kinds(g)
-    !! The number of kinds among groups: alike are those of the same counts
-    !! (own, exported, attached, interior) placed with the same rotation, which
-    !! one condensation by level could serve (the others reuse it).
+  integer function kinds(g, members)
+    !! The number of kinds among the groups g(members): alike are those of the
+    !! same counts (own, exported, attached, interior) placed with the same
+    !! rotation, which one condensation by level could serve (the others reuse
+    !! it). Indices, not a section g(members): a vector-subscripted copy of
+    !! these derived types leaked its components under gfortran's checks.
     type(group_vars_t), intent(in) :: g(:)
+    integer, intent(in) :: members(:)
     integer :: i, j
     logical :: seen
     kinds = 0
-    do i = 1, size(g)
+    do i = 1, size(members)
        seen = .false.
-       do j = 1, i - 1
-          seen = seen .or. (g(j)%own == g(i)%own .and. g(j)%exported == g(i)%exported .and. &
-               g(j)%attached == g(i)%attached .and. g(j)%interior == g(i)%interior .and. &
-               all(abs(g(j)%rot - g(i)%rot) <= 1.0e-12_wp))
-       end do
+       associate (gi => g(members(i)))
+         do j = 1, i - 1
+            associate (gj => g(members(j)))
+              seen = seen .or. (gj%own == gi%own .and. gj%exported == gi%exported .and. &
+                   gj%attached == gi%attached .and. gj%interior == gi%interior .and. &
+                   all(abs(gj%rot - gi%rot) <= 1.0e-12_wp))
+            end associate
+         end do
+       end associate
        if (.not. seen) kinds = kinds + 1
     end do
   end function kinds

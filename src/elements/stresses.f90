@@ -106,7 +106,8 @@ contains
       if (.not. ok) return
       el%etype = sub%elem_type(ie)
       nn = ELEMENT_NODE_COUNT(el%etype)
-      el%x = sub%x(:, sub%elem_nodes(1:nn, ie))
+      allocate (el%x(3, nn))   ! allocated first: gfortran's reallocation check of an unallocated
+      el%x = sub%x(:, sub%elem_nodes(1:nn, ie))   ! intent(out) component overflowed under -fsanitize=undefined
       el%sec = sub%sections(sub%elem_section(ie))
       el%mat = model%materials(el%sec%material)
       el%drill = element_drill(sub, ie)

@@ -27,7 +27,11 @@ fail=0; n=0
 # (--condense yes on one process gives the same system); instances of one part
 # on different processes are condensed once on each, so the counts of
 # condensations computed and reused differ and are not compared.
-counts='^  condensations: \|^  joint study \|^  matrix nonzeros (upper) '
+# Likewise which condensations identical parts share (--twins: found among
+# the parts a process condenses, so the note names the pairs that meet on one
+# process) and the condensation by level, which several processes do not do
+# (the note gives that reason where one process gives its own).
+counts='^  condensations: \|^  joint study \|^  matrix nonzeros (upper) \|^  identical parts share a condensation \|^  condensation by level: '
 # A turned instance reuses its part's condensation on one process (turned) but
 # is condensed in its own axes on another process, so the pivots, and MAXRATIO
 # (the largest k_jj / D_jj, with its place), differ: that line is not compared

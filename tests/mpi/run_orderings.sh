@@ -32,7 +32,8 @@ decks="$src/tests/decks/quadratic_plane_bending.deck $src/tests/decks/b32_beams.
  $src/tests/decks/offset_stiffener.deck $src/tests/decks/master_after_slave.deck $src/tests/decks/timoshenko_frame.deck
  $src/tests/mpi/modules_row.deck $src/tests/mpi/modules_tower.deck $outdir/strip.deck $outdir/frame.deck"
 maxratio='s/^\(  MAXRATIO  *[^ ]*\)  at .*/\1/'
-skip='^  ordering \|^  factor nonzeros \|^  condensations: \|^  joint study \|^  matrix nonzeros (upper) '
+# (the twins and by-level notes depend on the processes too: run_mpi_listings.sh)
+skip='^  ordering \|^  factor nonzeros \|^  condensations: \|^  joint study \|^  matrix nonzeros (upper) \|^  identical parts share a condensation \|^  condensation by level: '
 name_of() {
   case $1 in
     amd) echo 'AMD (MUMPS)' ;;

@@ -537,11 +537,13 @@ contains
     if (cache%entries(view%entry)%e%cond%maxratio_at > 0) p = view%pdof(cache%entries(view%entry)%e%cond%maxratio_at)
   end subroutine view_maxratio
 
-  subroutine view_spc(cache, view, p)
-    !! Physical DOFs of this substructure's interior that have no stiffness.
+  subroutine view_spc(cache, view, p, local)
+    !! Physical DOFs of this substructure's interior that have no stiffness;
+    !! local: their local DOFs (not for a remote view).
     type(part_cache_t), intent(in) :: cache
     type(part_view_t), intent(in) :: view
     integer(i8), allocatable, intent(out) :: p(:)
+    integer(i8), allocatable, intent(out), optional :: local(:)
     integer(i8), allocatable :: l(:)
     integer(i8) :: i
     if (view%entry == 0) then   ! remote
@@ -555,6 +557,7 @@ contains
       end do
     end associate
     p = view%pdof(l)
+    if (present(local)) call move_alloc(l, local)
   end subroutine view_spc
 
   subroutine view_spc_loads(cache, view, f_phys, p, loaded)
@@ -574,8 +577,9 @@ contains
     real(wp), parameter :: TURN_ROUNDOFF = 1.0e-13_wp
     real(wp), allocatable :: x(:, :)
     real(wp) :: tol
+    integer(i8), allocatable :: l(:)
     integer(i8) :: i
-    call view_spc(cache, view, p)
+    call view_spc(cache, view, p, l)
     allocate (loaded(size(p)))
     if (view%entry == 0 .or. .not. view%rotated) then
        do i = 1, size(p, kind=i8)
@@ -586,11 +590,9 @@ contains
     x = f_phys(view%pdof, :)
     tol = TURN_ROUNDOFF*maxval(abs(x))
     call view_turn(view, x, .false.)
-    associate (c => cache%entries(view%entry)%e%cond)
-      do i = 1, size(p, kind=i8)
-         loaded(i) = any(abs(x(findloc(c%sys%pdof, c%spc(i), dim=1, kind=i8), :)) > tol)
-      end do
-    end associate
+    do i = 1, size(p, kind=i8)
+       loaded(i) = any(abs(x(l(i), :)) > tol)
+    end do
   end subroutine view_spc_loads
 
   pure logical function same_masks(a, b)

@@ -45,7 +45,8 @@ module superjoin_analysis_condensation
 contains
 
   subroutine condensed_plan(self, st, model, summary)
-    !! The elements of the substructures not condensed, and every K*.
+    !! The elements of the substructures not condensed, and every K* (moved
+    !! from its part, not copied: give_back_supers returns them).
     class(condensed_strategy_t), intent(in) :: self
     type(solve_state_t), intent(inout) :: st
     type(model_t), intent(in) :: model
@@ -56,9 +57,25 @@ contains
     st%plan%skip_sub = summary%sub_condensed
     allocate (st%plan%supers(size(st%parts)))
     do i = 1, size(st%parts)
-       st%plan%supers(i) = st%parts(i)%se
+       st%plan%supers(i)%pdof = st%parts(i)%se%pdof
+       call move_alloc(st%parts(i)%se%k, st%plan%supers(i)%k)
     end do
+    st%plan%supers_moved = .true.
   end subroutine condensed_plan
+
+  subroutine give_back_supers(st)
+    !! The plan's K* back to their parts where condensed_plan moved them, the plan's copies freed.
+    type(solve_state_t), intent(inout) :: st
+    integer :: i
+    if (.not. allocated(st%plan%supers)) return
+    if (st%plan%supers_moved) then
+       do i = 1, size(st%parts)
+          call move_alloc(st%plan%supers(i)%k, st%parts(i)%se%k)
+       end do
+    end if
+    st%plan%supers_moved = .false.
+    deallocate (st%plan%supers)
+  end subroutine give_back_supers
 
   subroutine condense_all(self, st, model, opts, cache, summary, notes, error)
     !! condense_parts.
@@ -118,8 +135,8 @@ contains
        call st%strategy%set_plan(st, model, summary)
        call assemble_stiffness(model, st%table, st%tr, st%plan, st%k, st%f_u0, error, st%solver, &
             springs=.not. keep)
+       call give_back_supers(st)
        if (allocated(error)) return
-       if (allocated(st%plan%supers)) deallocate (st%plan%supers)   ! copies of the K*
        if (keep .and. .not. ctx%last) call keep_matrix(ctx%build, st%k, st%f_u0)
     end if
     if (keep) call add_delta_springs(st%tr, st%plan, st%k)

@@ -368,25 +368,21 @@ contains
     end subroutine put
   end subroutine local_matrix
 
-  subroutine interior_part(a, ni, cnt, rows, vals)
-    !! The interior rows of a (a_II and a_IB, column by column): per column
-    !! the count of entries in rows 1..ni, their rows and values. a_BB, which
-    !! a group's surroundings change, is not part of what groups alike share.
+  pure integer(i8) function interior_rows(a, j, ni) result(n)
+    !! The entries of a's column j in rows 1..ni: a prefix of the column (its
+    !! rows ascend, the interior numbered first). a_BB, which a group's
+    !! surroundings change, is not part of what groups alike share.
     type(sparse_sym_t), intent(in) :: a
-    integer(i8), intent(in) :: ni
-    integer(i8), allocatable, intent(out) :: cnt(:), rows(:)
-    real(wp), allocatable, intent(out) :: vals(:)
-    integer(i8) :: j
-    allocate (cnt(a%n))
-    do j = 1, a%n
-       cnt(j) = count(a%rowind(a%colptr(j):a%colptr(j + 1) - 1) <= ni, kind=i8)
+    integer(i8), intent(in) :: j, ni
+    n = 0
+    do while (a%colptr(j) + n < a%colptr(j + 1))
+       if (a%rowind(a%colptr(j) + n) > ni) exit
+       n = n + 1
     end do
-    rows = pack(a%rowind, a%rowind <= ni)
-    vals = pack(a%val, a%rowind <= ni)
-  end subroutine interior_part
+  end function interior_rows
 
   function interior_signature(a, ni) result(sig)
-    !! A cheap signature of a's interior part (interior_part): its order,
+    !! A cheap signature of a's interior part (interior_rows): its order,
     !! interior size, entries, and sums of its rows and values. Groups alike
     !! have the same; same_interior then compares them value by value.
     type(sparse_sym_t), intent(in) :: a
@@ -400,18 +396,21 @@ contains
   end function interior_signature
 
   logical function same_interior(a, b, ni)
-    !! a and b (of interior size ni) have the same interior part, value by value.
+    !! a and b (of interior size ni) have the same interior part (a_II and
+    !! a_IB, column by column: interior_rows), value by value.
     type(sparse_sym_t), intent(in) :: a, b
     integer(i8), intent(in) :: ni
-    integer(i8), allocatable :: ca(:), ra(:), cb(:), rb(:)
-    real(wp), allocatable :: va(:), vb(:)
+    integer(i8) :: j, n, pa, pb
     same_interior = a%n == b%n
-    if (.not. same_interior) return
-    call interior_part(a, ni, ca, ra, va)
-    call interior_part(b, ni, cb, rb, vb)
-    same_interior = all(ca == cb)
-    if (same_interior) same_interior = all(ra == rb)
-    if (same_interior) same_interior = all(va == vb)
+    do j = 1, a%n
+       if (.not. same_interior) return
+       n = interior_rows(a, j, ni)
+       pa = a%colptr(j)
+       pb = b%colptr(j)
+       same_interior = n == interior_rows(b, j, ni)
+       if (same_interior) same_interior = all(a%rowind(pa:pa + n - 1) == b%rowind(pb:pb + n - 1))
+       if (same_interior) same_interior = all(a%val(pa:pa + n - 1) == b%val(pb:pb + n - 1))
+    end do
   end function same_interior
 
   subroutine assign_kind(self, m, k, first_kind)
@@ -682,6 +681,7 @@ contains
        select type (top => self%top)
        type is (cholmod_solver_t)
           top%node_graph_min = 0
+          top%node_metis_only = .true.   ! no AMD candidate: its passes over the Schur blocks cost more than it finds
        end select
     end if
     call self%top%analyze(a, error)

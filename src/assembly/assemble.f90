@@ -33,6 +33,9 @@ module superjoin_assembly_assemble
     !! What goes into the reduced matrix besides contacts and springs.
      logical, allocatable :: skip_sub(:)      !! (nsub) elements left out (condensed substructures)
      type(superelement_t), allocatable :: supers(:)  !! their condensed stiffness instead
+     logical :: supers_moved = .false.
+       !! supers(i)%k moved from the condensed parts, not copied: moved back after
+       !! the assembly (analysis/condensation)
      logical :: shared = .true.
        !! the terms that belong to no substructure (plain contact units, loop
        !! springs, g of the δ columns) go in; .false. for a term of K_red that

@@ -39,6 +39,9 @@ module superjoin_solvers_cholmod
      integer(i8), public :: node_graph_min = NODE_GRAPH_MIN_COLUMNS
      logical, public :: force_node_metis = .false.
        !! offer the node-graph METIS ordering even where AMD's fill is low (tests)
+     logical, public :: node_metis_only = .false.
+       !! order by node-graph METIS alone, without CHOLMOD's AMD candidate (when
+       !! groups are set; AMD if METIS fails): the level solver's top system
      logical, public :: camd_first = .true.
        !! schur: CAMD alone where its fill is low (.false.: always compare with
        !! the interior's own ordering, as before; bench/schur_cost)
@@ -277,7 +280,7 @@ contains
           if (self%group_first(size(self%group_first)) == a%n + 1) ngroup = size(self%group_first, kind=i8) - 1
        end if
     end if
-    status = sj_cholmod_force_node_metis(self%handle, merge(1_c_int, 0_c_int, self%force_node_metis))
+    status = sj_cholmod_force_node_metis(self%handle, metis_mode(self))
     if (ngroup > 0) then
        call node_graph(a, self%group_first, xadj, adjncy)
        if (size(adjncy) == 0) adjncy = [1_i8]
@@ -286,6 +289,14 @@ contains
        status = sj_cholmod_set_node_graph(self%handle, 0_c_int64_t, one, one, one)
     end if
   end function offer_node_graph
+
+  pure integer(c_int) function metis_mode(self)
+    !! The shim's node-graph METIS mode: 2 alone, 1 offered whatever AMD's fill, 0 as CHOLMOD's test says.
+    class(cholmod_solver_t), intent(in) :: self
+    metis_mode = 0_c_int
+    if (self%force_node_metis) metis_mode = 1_c_int
+    if (self%node_metis_only) metis_mode = 2_c_int
+  end function metis_mode
 
   subroutine cholmod_factorize(self, a, error)
     !! Numeric factorization with the values of a (same pattern as analyzed).

@@ -130,7 +130,9 @@ typedef struct {
     SuiteSparse_long *gfirst;   /* first column (0-based) of each group, ngroup+1 */
     int given_is_node_metis;
     int given_is_amd;           /* the given permutation is CHOLMOD's AMD (sj_analyze_grouped) */
-    int force_node_metis;       /* offer node-graph METIS whatever AMD's fill */
+    int force_node_metis;       /* 1: offer node-graph METIS whatever AMD's fill; 2: node-graph METIS
+                                 * alone, no AMD candidate (a matrix dense by blocks: the level solver's
+                                 * top system, where AMD's pass over every entry costs more than it finds) */
     SuiteSparse_long minor;     /* permuted column where factorization stopped (n: none) */
     char message[SJ_MESSAGE_LEN];
     SuiteSparse_long nschur;    /* boundary columns ordered last by sj_cholmod_schur_analyze (0: none) */
@@ -375,13 +377,14 @@ int sj_cholmod_set_node_graph(void *handle, int64_t ngroup, const int64_t *first
     return SJ_OK;
 }
 
-/* Offer the node-graph METIS ordering even where AMD's fill is low (tests). */
+/* Offer the node-graph METIS ordering even where AMD's fill is low (flag 1,
+ * tests), or take it alone without AMD's candidate (flag 2). */
 int sj_cholmod_force_node_metis(void *handle, int flag)
 {
     sj_cholmod_t *h = handle;
     if (h == NULL) return SJ_E_HANDLE;
     if (h->pending && sj_cholmod_analyze_finish(h) != SJ_OK) return SJ_E_STATE;   /* never beside the worker */
-    h->force_node_metis = flag != 0;
+    h->force_node_metis = flag == 2 ? 2 : flag != 0;
     return SJ_OK;
 }
 
@@ -435,7 +438,8 @@ static double sj_given_lnz(sj_cholmod_t *h, SuiteSparse_long *perm)
  * nnz(A)), or when forced; the smaller nnz(L) is kept (a tie to METIS, the
  * first candidate as before). The chosen permutation is analyzed as a given
  * one (the same factor as CHOLMOD's AMD method, which analyzes its
- * permutation the same way). NULL on failure. */
+ * permutation the same way). With force_node_metis 2, the node graph's
+ * METIS permutation alone (AMD only if METIS fails). NULL on failure. */
 static cholmod_factor *sj_analyze_grouped(sj_cholmod_t *h)
 {
     cholmod_common *cm = &h->common;
@@ -443,6 +447,17 @@ static cholmod_factor *sj_analyze_grouped(sj_cholmod_t *h)
     double amd_lnz, metis_lnz;
     int high, nm = cm->nmethods, o0 = cm->method[0].ordering;
     cholmod_factor *L;
+    if (h->force_node_metis == 2 && (metis = sj_node_metis_perm(h)) != NULL) {
+        cm->status = CHOLMOD_OK;
+        h->given_is_node_metis = 1;
+        cm->nmethods = 1;
+        cm->method[0].ordering = CHOLMOD_GIVEN;
+        L = cholmod_l_analyze_p(&h->A, metis, NULL, 0, cm);
+        cm->nmethods = nm;
+        cm->method[0].ordering = o0;
+        free(metis);
+        return L;
+    }
     amd = malloc((size_t)(h->n > 0 ? h->n : 1) * sizeof(SuiteSparse_long));
     if (amd == NULL) {
         cm->status = CHOLMOD_OUT_OF_MEMORY;

@@ -26,6 +26,7 @@ program test_solvers
   call test_matrix_market()
   call test_large_cholmod()
   call test_node_graph_ordering()
+  call test_node_metis_only()
   call finish()
 
 contains
@@ -1006,4 +1007,42 @@ contains
       call sm%release()
     end block
   end subroutine test_node_graph_ordering
+
+  subroutine test_node_metis_only()
+    !! A chain of nodes (two unknowns each), where AMD has no fill and CHOLMOD's
+    !! own test keeps it: node_metis_only (the level solver's top system) takes
+    !! the node graph's METIS permutation without AMD's candidate, and the
+    !! solve through it is at round-off.
+    integer(i8), parameter :: M = 60
+    type(sparse_sym_t) :: l, a
+    type(cholmod_solver_t) :: s
+    type(error_t), allocatable :: error
+    integer(i8), allocatable :: first(:)
+    real(wp), allocatable :: x(:, :), b(:, :), r(:, :)
+    integer(i8) :: g
+    logical :: only
+    call grid_laplacian(M, 1, l)
+    call expand_two_dofs(l, a)
+    first = [(2*g - 1, g=1, l%n + 1)]
+    allocate (x(a%n, 1), b(a%n, 1), r(a%n, 1))
+    b = 1.0_wp
+    do g = 1, 2
+       only = g == 2
+       s%node_graph_min = 0
+       s%node_metis_only = only
+       call s%set_groups(first)
+       call s%analyze(a, error)
+       call check(.not. allocated(error), 'node METIS only: analyze')
+       if (allocated(error)) return
+       call check(s%info%ordering == merge('METIS (node graph)', 'AMD               ', only), &
+            'node METIS only ('//merge('yes', 'no ', only)//'): ordering, got '//s%info%ordering)
+       call s%factorize(a, error)
+       call check(.not. allocated(error), 'node METIS only: factorize')
+       if (allocated(error)) return
+       call s%solve(b, x, error)
+       call a%matvec(x, r)
+       call check(norm2(r - b)/norm2(b) < RES_TOL, 'node METIS only: residual at round-off')
+       call s%release()
+    end do
+  end subroutine test_node_metis_only
 end program test_solvers

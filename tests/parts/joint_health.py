@@ -19,6 +19,8 @@ values and RIGID:
 - every value's requested rows, contact forces and equilibrium resultants
   equal those of an independent monolithic run (--condense no) of that
   value's g alone, to 1e-10 of each block's largest value;
+- with --csv (every interior written) the further values recover and
+  check both panels;
 - further values the program doubts are checked whole and say why: shell
   panels with a contact DOF released (g = 0) in every value, and a joint so
   soft that the interface is near-singular (exit 5, as before), and shell
@@ -122,6 +124,14 @@ def check_study(exe, gen, work):
             ok = ok and good
             print(f"{'ok' if good else 'FAIL'}: value {step} (g = {g}) {name}: {len(b)} rows, "
                   f"largest difference {worst:.1e} of the block's largest value")
+    # With CSV files every interior is written: the further values recover
+    # (and check) both panels.
+    _, csv = run(exe, panels(gen, ["--plane", "--mesh", str(MESH), "--requests", "--values", ",".join(VALUES)]),
+                 work, "study_csv", ("--condense", "yes", "--csv", os.path.join(work, "study_csv")))
+    lines = {step: scope_lines(b) for step, b in step_blocks(csv).items()}
+    good = all(len(lines.get(s, [])) == 1 and "the interiors of A, B (" in lines[s][0] for s in FURTHER)
+    ok = ok and good
+    print(f"{'ok' if good else 'FAIL'}: with --csv the further values recover both panels: {lines!r}")
     return ok
 
 

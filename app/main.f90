@@ -21,6 +21,7 @@ program superjoin_main
   use superjoin_analysis_contact_gaps, only: check_contact_gaps
   use superjoin_analysis_drilling_check, only: check_partial_rotations
   use superjoin_model_results, only: results_t, run_options_t, PH_READ, PH_WRITE, LEVELS_YES, LEVELS_NO, LEVELS_AUTO
+  use superjoin_model_notes, only: model_warnings_first
   use superjoin_output_listing, only: write_listing
   use superjoin_output_csv, only: write_csv
   use superjoin_output_nodes_csv, only: write_nodes_csv
@@ -148,7 +149,7 @@ program superjoin_main
         write (msg_unit, '(a)') deck//': warning: '//res%log%warnings(i)%s
      end do
   end if
-  if (size(deck_warnings) > 0) res%log%warnings = [deck_warnings, res%log%warnings]
+  call model_warnings_first(deck_warnings, res%log%warnings)
 
   call clock%start()
   if (comm%is_root()) then

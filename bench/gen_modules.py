@@ -30,6 +30,8 @@ feet and the four slab corners): M = 56 gives 19 518 DOFs per module.
 import argparse
 import math
 
+from slab_mesh import corners_and_feet, slab_and_columns
+
 SIDE = 4.0
 HEIGHT = 3.0
 THICK = 0.2
@@ -43,18 +45,10 @@ def module(m):
     for j in range(n1):
         for i in range(n1):
             out.append(f"{j * n1 + i + 1}, {SIDE * i / m:.12g}, {SIDE * j / m:.12g}, {HEIGHT:.12g}")
-    corners = [1, n1, n1 * n1, n1 * (n1 - 1) + 1]
-    feet = [n1 * n1 + k for k in range(1, 5)]
+    corners, feet = corners_and_feet(m)
     for f, c in zip(feet, [(0, 0), (SIDE, 0), (SIDE, SIDE), (0, SIDE)]):
         out.append(f"{f}, {c[0]:.12g}, {c[1]:.12g}, 0")
-    out.append("*ELEMENT, TYPE=S4, ELSET=SLAB")
-    for j in range(m):
-        for i in range(m):
-            a = j * n1 + i + 1
-            out.append(f"{j * m + i + 1}, {a}, {a + 1}, {a + n1 + 1}, {a + n1}")
-    out.append("*ELEMENT, TYPE=B33, ELSET=COLUMNS")
-    for k, (f, c) in enumerate(zip(feet, corners)):
-        out.append(f"{m * m + k + 1}, {f}, {c}")
+    out += slab_and_columns(m)
     out.append("*NSET, NSET=TOP")
     out.append(", ".join(str(c) for c in corners))
     out.append("*NSET, NSET=BOT")

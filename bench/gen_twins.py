@@ -25,6 +25,8 @@ columns' orientation vector left as in the original).
 import argparse
 import math
 
+from slab_mesh import corners_and_feet, slab_and_columns
+
 SIDE = 4.0
 HEIGHT = 3.0
 THICK = 0.2
@@ -57,7 +59,6 @@ def nodes(m):
 
 def substructure(name, m, r, t, vcol, moved=None, mirror=False, rect_brace=False):
     """One copy: nodes x' = R x + t (mirror: x -> -x first), orientation vector vcol."""
-    n1 = m + 1
     out = [f"*SUBSTRUCTURE, NAME={name}, CONDENSE=YES", "*NODE"]
     for k, x in enumerate(nodes(m), start=1):
         x = (-x[0], x[1], x[2]) if mirror else x
@@ -65,16 +66,8 @@ def substructure(name, m, r, t, vcol, moved=None, mirror=False, rect_brace=False
         if moved == k:
             y[2] += 1.0e-6
         out.append(f"{k}, {y[0]!r}, {y[1]!r}, {y[2]!r}")
-    corners = [1, n1, n1 * n1, n1 * (n1 - 1) + 1]
-    feet = [n1 * n1 + k for k in range(1, 5)]
-    out.append("*ELEMENT, TYPE=S4, ELSET=SLAB")
-    for j in range(m):
-        for i in range(m):
-            a = j * n1 + i + 1
-            out.append(f"{j * m + i + 1}, {a}, {a + 1}, {a + n1 + 1}, {a + n1}")
-    out.append("*ELEMENT, TYPE=B33, ELSET=COLUMNS")
-    for k, (f, c) in enumerate(zip(feet, corners)):
-        out.append(f"{m * m + k + 1}, {f}, {c}")
+    corners, feet = corners_and_feet(m)
+    out += slab_and_columns(m)
     out.append("*ELEMENT, TYPE=B33, ELSET=BRACE")
     out.append(f"{m * m + 5}, {feet[0]}, {corners[2]}")
     out.append("*NSET, NSET=BOT")

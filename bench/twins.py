@@ -4,15 +4,20 @@ on N copies of one part written as substructures, and what the detection
 itself costs.
 
 usage: twins.py [--bin BUILD/superjoin] [--mesh M] [--copies N,N..] [--repeat R]
-                [--callgrind] [--work DIR]
+                [--monolithic] [--callgrind] [--work DIR]
 
 For each N: bench/gen_twins.py --mesh M --copies N (every copy CONDENSE=YES;
 copy 2 moved, copies 3..N turned by arbitrary proper rotations), solved with
 --twins yes (one condensation, N - 1 reused) and --twins no (N condensations).
 Each run is timed around the process (CPU time of the child, user + system,
-best of --repeat; wall clock beside it). Run it with one BLAS thread
+best of --repeat interleaved rounds; wall clock beside it). Run it with one BLAS thread
 (OPENBLAS_NUM_THREADS=1 OMP_NUM_THREADS=1: the script sets them for its
 children) so that the CPU time is the work done.
+
+With --monolithic a third run, --condense no (no part condensed: the one
+sparse matrix of the whole model), and the ratio monolithic / twins yes: where
+it exceeds 1 condensing the copies pays, what CONDENSE=AUTO's twin rule
+(src/analysis/policy.f90, AUTO_TWIN_*) is drawn from.
 
 With --callgrind the detection's own cost is counted in instructions
 (valgrind --tool=callgrind, deterministic, unlike a time under load) on the
@@ -73,6 +78,7 @@ def main():
     ap.add_argument("--copies", default="2,4,8,16")
     ap.add_argument("--repeat", type=int, default=2)
     ap.add_argument("--callgrind", action="store_true")
+    ap.add_argument("--monolithic", action="store_true")
     ap.add_argument("--work", default=os.path.join(ROOT, "build", "bench_twins"))
     args = ap.parse_args()
     os.environ.update(OPENBLAS_NUM_THREADS="1", OMP_NUM_THREADS="1")
@@ -82,16 +88,23 @@ def main():
     dofs = 6 * ((args.mesh + 1) ** 2 + 4)
     print(f"part: {args.mesh}x{args.mesh} S4 slab on 4 B33 columns and a brace, {dofs} DOFs; CPU seconds, "
           f"best of {args.repeat}")
-    print("| copies | DOFs | --twins no | --twins yes | no/yes | wall no | wall yes |")
-    print("|---|---|---|---|---|---|---|")
+    mono_head = " --condense no | monolithic/yes |" if args.monolithic else ""
+    print(f"| copies | DOFs | --twins no | --twins yes | no/yes | wall no | wall yes |{mono_head}")
+    print("|---|---|---|---|---|---|---|" + ("---|---|" if args.monolithic else ""))
+    runs = (("no", ["--twins", "no"]), ("yes", ["--twins", "yes"]))
+    if args.monolithic:
+        runs += (("mono", ["--condense", "no"]),)
     for n in counts:
         deck = gen(args.work, args.mesh, n)
         res = {}
-        for t in ("no", "yes"):
-            res[t] = timed([binary, "-q", deck, "-o", os.path.join(args.work, f"n{n}_{t}.lst"), "--twins", t],
-                           args.repeat)
+        for _ in range(args.repeat):   # interleaved rounds: the load moves all runs alike
+            for t, extra in runs:
+                w, c = timed([binary, "-q", deck, "-o", os.path.join(args.work, f"n{n}_{t}.lst")] + extra, 1)
+                res[t] = (min(res[t][0], w), min(res[t][1], c)) if t in res else (w, c)
+        mono = f" {res['mono'][1]:.2f} s | **{res['mono'][1] / res['yes'][1]:.2f}** |" if args.monolithic else ""
         print(f"| {n} | {n * dofs + 6 * (n + 1)} | {res['no'][1]:.2f} s | {res['yes'][1]:.2f} s | "
-              f"**{res['no'][1] / res['yes'][1]:.2f}** | {res['no'][0]:.2f} s | {res['yes'][0]:.2f} s |", flush=True)
+              f"**{res['no'][1] / res['yes'][1]:.2f}** | {res['no'][0]:.2f} s | {res['yes'][0]:.2f} s |{mono}",
+              flush=True)
         os.remove(deck)
     if not args.callgrind:
         return 0

@@ -82,6 +82,7 @@ contains
               ' (results superposed, no solve)')
        end associate
     end do
+    call combine_warnings(model, ns, res)
     call move_alloc(steps, model%steps)
     call move_alloc(sres, res%fields%steps)
     if (allocated(u)) call move_alloc(u, res%fields%u)
@@ -91,6 +92,23 @@ contains
     call superpose_thermal(model%combinations, ns, res%fields%thermal_nodal)
     call superpose_thermal(model%combinations, ns, res%fields%thermal_curvature_nodal)
   end subroutine superpose
+
+  subroutine combine_warnings(model, ns, res)
+    !! A combination inherits the warnings of its steps (its health figures
+    !! are theirs): each warning on steps gets one flag per combination, set
+    !! when it concerns one of the combination's steps (the ns solved ones).
+    type(model_t), intent(in) :: model
+    integer, intent(in) :: ns
+    type(results_t), intent(inout) :: res
+    integer :: i, c
+    if (.not. allocated(res%log%warnings)) return
+    do i = 1, size(res%log%warnings)
+       associate (w => res%log%warnings(i))
+         if (.not. allocated(w%steps)) cycle
+         w%steps = [w%steps(1:ns), (any(w%steps(model%combinations(c)%steps)), c=1, size(model%combinations))]
+       end associate
+    end do
+  end subroutine combine_warnings
 
   function combination_text(model, c) result(text)
     !! '1.35 G + 1.5 Q' for combination c (factors in shortest exact form).

@@ -22,7 +22,7 @@ module superjoin_analysis_driver
   use superjoin_analysis, only: solve_model, solve_group, solve_context_t, release_cache
   use superjoin_analysis_factor_reuse, only: release_factor
   use superjoin_model_results, only: results_t, run_options_t, step_results_t
-  use superjoin_model_notes, only: append_string
+  use superjoin_model_notes, only: append_string, add_warning
   use superjoin_model_request_notes, only: unproduced_file_variables
   use superjoin_utils_strings, only: itoa
   use superjoin_utils_sorting, only: sort_index
@@ -539,6 +539,8 @@ contains
     integer :: k, i
     if (first) then
        res = r
+       if (allocated(res%log%warnings)) deallocate (res%log%warnings)
+       allocate (res%log%warnings(0))   ! r's, with their steps numbered over the run: merge_warnings
        if (allocated(r%fields%u)) then
           deallocate (res%fields%u)
           allocate (res%fields%u(size(r%fields%u, 1), nstep))
@@ -580,11 +582,9 @@ contains
        do i = 1, size(r%log%notes)
           if (.not. any_string(res%log%notes, r%log%notes(i)%s)) call append_string(res%log%notes, r%log%notes(i)%s)
        end do
-       do i = 1, size(r%log%warnings)
-          if (.not. any_string(res%log%warnings, r%log%warnings(i)%s)) call append_string(res%log%warnings, r%log%warnings(i)%s)
-       end do
        res%log%inaccurate = res%log%inaccurate .or. r%log%inaccurate   ! any group's doubt is the run's (exit 5)
     end if
+    call merge_warnings(r, members, nstep, res)
     do k = 1, size(members)
        if (allocated(r%fields%u)) res%fields%u(:, members(k)) = r%fields%u(:, k)
        if (allocated(r%fields%elem_force)) res%fields%elem_force(:, :, :, members(k)) = r%fields%elem_force(:, :, :, k)
@@ -592,6 +592,30 @@ contains
        res%fields%steps(members(k)) = r%fields%steps(k)
     end do
   end subroutine merge_results
+
+  subroutine merge_warnings(r, members, nstep, res)
+    !! The warnings of r, which solved the steps members, into res (nstep
+    !! steps): each warning's steps numbered over the run (r's step k is
+    !! members(k)); a warning res has already gains r's steps.
+    type(results_t), intent(in) :: r
+    integer, intent(in) :: members(:), nstep
+    type(results_t), intent(inout) :: res
+    logical, allocatable :: steps(:)
+    integer :: i
+    if (.not. allocated(r%log%warnings)) return
+    do i = 1, size(r%log%warnings)
+       associate (w => r%log%warnings(i))
+         if (.not. allocated(w%steps)) then
+            call add_warning(res%log%warnings, w%s)
+            cycle
+         end if
+         allocate (steps(nstep), source=.false.)
+         steps(members) = w%steps
+         call add_warning(res%log%warnings, w%s, steps)
+         deallocate (steps)
+       end associate
+    end do
+  end subroutine merge_warnings
 
   pure logical function any_string(list, s)
     type(string_t), allocatable, intent(in) :: list(:)

@@ -165,18 +165,19 @@ contains
 
     if (maxval(res%fields%steps(:)%residual) > merge(RESIDUAL_WARN_PENALTY, RESIDUAL_WARN, res%summary%formulation == 'PENALTY')) then
        write (buf, '(es10.2e3)') maxval(res%fields%steps(:)%residual)
-       call warn(res, 'relative residual '//trim(adjustl(buf))//' after refinement: results are inaccurate')
+       call warn(res, 'relative residual '//trim(adjustl(buf))//' after refinement: results are inaccurate', &
+            res%fields%steps(:)%residual > merge(RESIDUAL_WARN_PENALTY, RESIDUAL_WARN, res%summary%formulation == 'PENALTY'))
        res%log%inaccurate = .true.
     end if
     if (res%summary%maxratio > MAXRATIO_WARN) then
        write (buf, '(es10.2e3)') res%summary%maxratio
        call warn(res, 'MAXRATIO '//trim(adjustl(buf))//' at '//res%summary%maxratio_at// &
-            ': about '//itoa(nint(log10(res%summary%maxratio)))//' digits may be lost')
+            ': about '//itoa(nint(log10(res%summary%maxratio)))//' digits may be lost', every_step(res))
     end if
     call estimate_condition(st, knorm, limit, w%d, res, cond)
     if (.not. ieee_is_finite(cond) .or. cond > huge(cond)) then
        cond = huge(cond)
-       call warn(res, 'condition estimate overflows (above 1.8E+308): results are unreliable')
+       call warn(res, 'condition estimate overflows (above 1.8E+308): results are unreliable', every_step(res))
        res%log%inaccurate = .true.
     end if
     res%summary%cond_est = cond
@@ -482,7 +483,7 @@ contains
       if (judge .and. maxval(res%fields%steps(:)%residual) > RESIDUAL_WARN) then
          write (buf, '(es10.2e3)') maxval(res%fields%steps(:)%residual)
          call warn(res, 'relative residual '//trim(adjustl(buf))//' of the whole system (condensed '// &
-              'substructures recovered): results are inaccurate')
+              'substructures recovered): results are inaccurate', res%fields%steps(:)%residual > RESIDUAL_WARN)
          res%log%inaccurate = .true.
       end if
     end associate
@@ -514,9 +515,18 @@ contains
           return
        end if
        if (res%summary%maxratio > MAXRATIO_WARN) call warn(res, 'MAXRATIO '//trim(adjustl(buf))//' at '// &
-            res%summary%maxratio_at//': about '//itoa(nint(log10(res%summary%maxratio)))//' digits may be lost')
+            res%summary%maxratio_at//': about '//itoa(nint(log10(res%summary%maxratio)))//' digits may be lost', &
+            every_step(res))
     end do
   end subroutine parts_maxratio
+
+  pure function every_step(res) result(steps)
+    !! The warning mask of a property of the matrix (MAXRATIO, condition):
+    !! every step solved with it.
+    type(results_t), intent(in) :: res
+    logical, allocatable :: steps(:)
+    allocate (steps(size(res%fields%steps)), source=.true.)
+  end function every_step
 
   function penalty_hint(res) result(s)
     !! Under PENALTY a breakdown is usually the contact stiffness, not a mechanism.

@@ -8,7 +8,7 @@ module superjoin_analysis_plausibility
   use superjoin_model_types, only: model_t, NDOF_NODE, node_label, string_t
   use superjoin_model_results, only: results_t
   use superjoin_utils_strings, only: itoa
-  use superjoin_model_notes, only: append_string
+  use superjoin_model_notes, only: add_warning
   implicit none (type, external)
   private
 
@@ -22,12 +22,12 @@ module superjoin_analysis_plausibility
 contains
 
   subroutine check_plausibility(model, res)
-    !! Append a warning to res%log%warnings for the step whose largest translation
-    !! exceeds DISPLACEMENT_FRACTION x the model's size (first such step only).
+    !! Append a warning to res%log%warnings for every step whose largest translation
+    !! exceeds DISPLACEMENT_FRACTION x the model's size (listed in that step's block).
     type(model_t), intent(in) :: model
     type(results_t), intent(inout) :: res
     real(wp) :: lo(3), hi(3), size_model, umax, t
-    integer :: isub, is, at_sub
+    integer :: isub, is, at_sub, k
     integer(ip) :: n, at_node
     integer(i8) :: v
     character(len=16) :: b1, b2, b3
@@ -63,11 +63,11 @@ contains
        write (b1, '(es10.2e3)') umax
        write (b2, '(es10.2e3)') size_model
        write (b3, '(es10.2e3)') umax/size_model
-       call append_string(res%log%warnings, 'step '//model%steps(is)%name//': displacement '//trim(adjustl(b1))// &
+       call add_warning(res%log%warnings, 'step '//model%steps(is)%name//': displacement '//trim(adjustl(b1))// &
             ' at '//node_label(model, at_sub, at_node)//' is '//trim(adjustl(b3))//' times the model''s size '// &
             trim(adjustl(b2))//': beyond small-displacement (linear) theory. Check the units (E in MPa or '// &
-            'N/mm2 with lengths in m?), the magnitude of the loads and that the supports hold the structure')
-       exit
+            'N/mm2 with lengths in m?), the magnitude of the loads and that the supports hold the structure', &
+            [(k == is, k=1, size(model%steps))])
     end do
   end subroutine check_plausibility
 end module superjoin_analysis_plausibility

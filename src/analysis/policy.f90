@@ -20,6 +20,7 @@ module superjoin_analysis_policy
   use superjoin_analysis_labels, only: column_label, vertex_label, block_name, local_name
   use superjoin_model_notes, only: note
   use superjoin_analysis_condensation, only: solve_context_t
+  use superjoin_substructure_cache, only: twin_copies
   use superjoin_utils_union_find, only: find_root
   use superjoin_analysis_summed_matrix, only: summed_nonzero, summed_groups, holds_shared_terms
   use superjoin_utils_strings, only: itoa
@@ -36,6 +37,16 @@ module superjoin_analysis_policy
     !! this project's C3D10 and C3D20R blocks of 1e5 DOFs: 16 and 22),
     !! FILL_2D n log2 n for plane, axisymmetric and shell parts, FILL_1D n for
     !! frames and trusses.
+
+  integer, parameter :: AUTO_TWIN_COPIES = 2
+  integer(i8), parameter :: AUTO_TWIN_INTERIOR = 1000_i8, AUTO_TWIN_RATIO = 10_i8
+    !! CONDENSE=AUTO counts identical parts found by their geometry (twins,
+    !! --twins yes) as instances of one part when there are at least
+    !! AUTO_TWIN_COPIES of them and each has at least AUTO_TWIN_INTERIOR
+    !! interior DOFs, AUTO_TWIN_RATIO times its boundary: where one
+    !! condensation shared beats the one sparse matrix (bench/twins.py
+    !! --monolithic, doc/performance.md); the identical cantilevers of small
+    !! verification decks (tens of DOFs) stay in the sparse matrix.
 
   public :: apply_large, describe_transform, column_groups, count_boundary, choose_condensation, autospc, &
        skip_unloaded_parts, wanted_elements
@@ -248,6 +259,7 @@ contains
     integer :: isub, mode
     integer(i8) :: nb, ni, p
     integer(i8), allocatable :: nbs(:)
+    integer, allocatable :: copies(:)
     character(:), allocatable :: why, small
     small = ''
     allocate (summary%sub_condensed(size(model%subs)), source=.false.)
@@ -255,6 +267,7 @@ contains
     do p = 1, table%np
        if (bnd(p)) nbs(table%p_sub(p)) = nbs(table%p_sub(p)) + 1
     end do
+    copies = auto_twins(model, table, opts, ctx, bnd, nbs, summary)
     summary%n_condensed = 0
     do isub = 1, size(model%subs)
        mode = model%subs(isub)%condense
@@ -267,7 +280,7 @@ contains
        end if
        if (mode == CONDENSE_NO) cycle
        if (mode == CONDENSE_AUTO) then
-          if (.not. auto_condenses(model, ctx, isub, ni, nb, why, small, notes)) cycle
+          if (.not. auto_condenses(model, ctx, isub, ni, nb, copies(isub), why, small, notes)) cycle
        else
           why = 'CONDENSE=YES'
        end if
@@ -286,6 +299,39 @@ contains
     if (len(small) > 0) call note(notes, 'CONDENSE=AUTO: not condensed, the boundary being no smaller '// &
          'than the interior:'//small)
   end subroutine choose_condensation
+
+  function auto_twins(model, table, opts, ctx, bnd, nbs, summary) result(copies)
+    !! For each substructure that CONDENSE=AUTO would count twins of (AUTO,
+    !! not an instance of a part placed more than once, no joint study,
+    !! --twins yes, an interior of AUTO_TWIN_INTERIOR DOFs or more and
+    !! AUTO_TWIN_RATIO times its boundary), how many identical copies it has
+    !! (itself included; superjoin_substructure_cache's twin_copies); 0 for the others.
+    type(model_t), intent(in) :: model
+    type(dof_table_t), intent(in) :: table
+    type(run_options_t), intent(in) :: opts
+    type(solve_context_t), intent(in) :: ctx
+    logical, intent(in) :: bnd(:)
+    integer(i8), intent(in) :: nbs(:)
+    type(run_summary_t), intent(in) :: summary
+    integer, allocatable :: copies(:)
+    logical, allocatable :: candidate(:)
+    integer :: isub, mode
+    integer(i8) :: ni
+    allocate (copies(size(model%subs)), source=0)
+    allocate (candidate(size(model%subs)), source=.false.)
+    if (.not. opts%twins .or. ctx%joint_study) return
+    do isub = 1, size(model%subs)
+       mode = model%subs(isub)%condense
+       if (opts%condense >= 0) mode = opts%condense
+       if (mode /= CONDENSE_AUTO .or. must_condense(model, isub) .or. nbs(isub) == 0) cycle
+       if (model%subs(isub)%part > 0) then
+          if (count(model%subs(:)%part == model%subs(isub)%part) > 1) cycle
+       end if
+       ni = summary%sub_dofs(isub) - nbs(isub)
+       candidate(isub) = ni >= AUTO_TWIN_INTERIOR .and. ni >= AUTO_TWIN_RATIO*nbs(isub)
+    end do
+    if (count(candidate) >= AUTO_TWIN_COPIES) copies = twin_copies(model, table, bnd, candidate)
+  end function auto_twins
 
   logical function must_condense(model, isub)
     !! A substructure whose stiffness is given (*MATRIX INPUT) or whose K* is
@@ -315,10 +361,11 @@ contains
     end if
   end subroutine force_condensed
 
-  logical function auto_condenses(model, ctx, isub, ni, nb, why, small, notes)
+  logical function auto_condenses(model, ctx, isub, ni, nb, copies, why, small, notes)
     !! CONDENSE=AUTO's choice for substructure isub (ni interior, nb boundary
     !! DOFs): condensed where the condensation is reused (an instance of a
-    !! part placed more than once, a joint study) and its dense K* (nb²
+    !! part placed more than once, a joint study, one of `copies` twins that
+    !! auto_twins found large enough) and its dense K* (nb²
     !! doubles) costs no more memory than the part's own sparse factor
     !! (estimated_factor_entries) and stays within AUTO_KSTAR_BYTES. why: the
     !! reason for the listing; small gathers the parts whose boundary is no
@@ -327,6 +374,7 @@ contains
     type(solve_context_t), intent(in) :: ctx
     integer, intent(in) :: isub
     integer(i8), intent(in) :: ni, nb
+    integer, intent(in) :: copies
     character(:), allocatable, intent(out) :: why
     character(:), allocatable, intent(inout) :: small
     type(string_t), allocatable, intent(inout) :: notes(:)
@@ -339,6 +387,8 @@ contains
        why = 'AUTO: one of '//itoa(ninst)//' instances of part '//model%parts(model%subs(isub)%part)%s
     else if (ctx%joint_study) then
        why = 'AUTO: joint study'
+    else if (copies >= AUTO_TWIN_COPIES) then
+       why = 'AUTO: one of '//itoa(copies)//' identical parts (twins, found by their geometry)'
     else
        return
     end if

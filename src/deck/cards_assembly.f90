@@ -107,28 +107,41 @@ contains
     k = 0
   end function find_part
 
-  integer function set_home(st, kw, loc) result(isub)
+  subroutine set_home(st, kw, loc, isub, prefix)
     !! Substructure a *NSET/*ELSET card writes to: the instance of INSTANCE=
     !! (Abaqus assembly-level sets), else the open block or MAIN (0: reported).
+    !! INSTANCE= an instance path (`B.F3.BAY2`, parts made of parts): the
+    !! assembly's instance B, with prefix `F3.BAY2.` for the set's name, until
+    !! the unfolded instance B.F3.BAY2 takes the set (superjoin_deck_path_sets).
     type(deck_state_t), intent(inout) :: st
     type(keyword_line_t), intent(in) :: kw
     type(source_loc_t), intent(in) :: loc
-    character(:), allocatable :: name
+    integer, intent(out) :: isub
+    character(:), allocatable, intent(out) :: prefix
+    character(:), allocatable :: name, top
     logical :: found
-    call get_name_param(st, kw, loc, 'INSTANCE', .false., name, found)
-    if (.not. found) then
-       isub = 0
-       if (param_index(kw, 'INSTANCE') > 0) return   ! invalid name, reported
+    integer :: dot
+    prefix = ''
+    isub = 0
+    if (param_index(kw, 'INSTANCE') == 0) then
        isub = target_sub(st, loc)
        return
     end if
-    isub = find_sub(st, name)
+    call get_path_param(st, kw, loc, 'INSTANCE', name, found)
+    if (.not. found) return   ! invalid name, reported
+    dot = index(name, '.')
+    top = name
+    if (dot > 0) then
+       top = name(1:dot - 1)
+       prefix = name(dot + 1:)//'.'
+    end if
+    isub = find_sub(st, top)
     if (isub > 0) then
        if (st%subs(isub)%kind /= SUBK_INSTANCE) isub = 0
     end if
     if (isub == 0) call report_loc(st, loc, 'INSTANCE='//name//' of *'//kw%keyword// &
          ' names no *INSTANCE defined before it')
-  end function set_home
+  end subroutine set_home
 
   subroutine finish_assembly(st)
     !! End of input: report unclosed *PART, *INSTANCE and *ASSEMBLY blocks.

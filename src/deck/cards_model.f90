@@ -187,7 +187,7 @@ contains
     type(keyword_line_t), intent(in) :: kw
     type(source_loc_t), intent(in) :: loc
     logical, intent(in) :: elem
-    character(:), allocatable :: name, pname
+    character(:), allocatable :: name, pname, prefix
     logical :: found
     integer :: isub, iset
     if (.not. outside_step(st, kw, loc)) return
@@ -203,8 +203,9 @@ contains
     call get_name_param(st, kw, loc, pname, .true., name, found)
     st%card = CARD_SKIP
     if (.not. found) return
-    isub = set_home(st, kw, loc)
+    call set_home(st, kw, loc, isub, prefix)
     if (isub == 0) return
+    name = prefix//name
     iset = find_set(st%subs(isub), name, elem)
     if (iset == 0) call new_set(st%subs(isub), name, elem, loc, iset)
     st%card = merge(CARD_ELSET, CARD_NSET, elem)

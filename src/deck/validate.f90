@@ -10,6 +10,7 @@ module superjoin_deck_validate
   use superjoin_model_types, only: model_t
   use superjoin_deck_state, only: deck_state_t, report, report_loc, SUBK_INSTANCE, SUBK_NESTED
   use superjoin_deck_nesting, only: unfold_nested
+  use superjoin_deck_path_sets, only: place_path_sets
   use superjoin_deck_part_copies, only: copy_part_constraints
   use superjoin_deck_requests, only: build_requests
   use superjoin_deck_build_section_prints, only: build_section_prints
@@ -65,6 +66,7 @@ contains
     ! substructures (parts made of parts unfolded into instances first)
     call unfold_nested(st)
     if (st%aborted) return
+    call place_path_sets(st)   ! *NSET/*ELSET, INSTANCE=B.F3.BAY2: to the unfolded instance
     call copy_part_constraints(st)
     allocate (model%subs(st%nsub))
     if (st%nsub == 0) call report(st, 1, 1, 'the deck defines no nodes')

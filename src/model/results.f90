@@ -84,11 +84,18 @@ module superjoin_model_results
      real(wp) :: factor_mbytes = 0.0_wp
   end type run_summary_t
 
+  type, public :: warning_t
+    !! A warning of the run (listing and stderr) and the steps it belongs to.
+     character(:), allocatable :: s         !! the text
+     logical, allocatable :: steps(:)       !! (nstep) the steps it arose in, whose NUMERICAL HEALTH
+                                            !! blocks list it; unallocated: the model's (listed once, before the steps)
+  end type warning_t
+
   type, public :: run_log_t
     !! What the run says of itself: notes, warnings, the verdict on accuracy,
     !! and the time of each phase.
      type(string_t), allocatable :: notes(:)      !! decisions and warnings for the listing
-     type(string_t), allocatable :: warnings(:)   !! also printed on stderr
+     type(warning_t), allocatable :: warnings(:)  !! also printed on stderr
      logical :: inaccurate = .false.              !! a warning judges the results inaccurate (exit EXIT_INACCURATE)
      real(wp) :: phase_seconds(NPHASE) = 0.0_wp
      type(string_t), allocatable :: partition(:)  !! PARTITION block of an MPI run on several processes (else unallocated)

@@ -155,7 +155,23 @@ contains
        end do
     end if
     call lu%line('')
+    call model_warnings(lu, res)
   end subroutine header
+
+  subroutine model_warnings(lu, res)
+    !! The warnings on the model itself (the deck's checks, which arise in no
+    !! step), once before the steps; a step's own are in its NUMERICAL HEALTH.
+    type(text_buffer_t), intent(inout) :: lu
+    type(results_t), intent(in) :: res
+    integer :: k
+    if (.not. allocated(res%log%warnings)) return
+    if (all([(allocated(res%log%warnings(k)%steps), k=1, size(res%log%warnings))])) return
+    call lu%line('WARNINGS ON THE MODEL (a step''s own warnings are in its NUMERICAL HEALTH block)')
+    do k = 1, size(res%log%warnings)
+       if (.not. allocated(res%log%warnings(k)%steps)) call lu%line('  '//'WARNING: '//res%log%warnings(k)%s)
+    end do
+    call lu%line('')
+  end subroutine model_warnings
 
   subroutine count_line(lu, label, n)
     type(text_buffer_t), intent(inout) :: lu
@@ -274,7 +290,8 @@ contains
       write (hline, '(2x,a30,es10.2e3)') 'condition estimate (1-norm)   ', res%summary%cond_est
       call lu%line(trim(hline))
       do k = 1, size(res%log%warnings)
-         call lu%line('  '//'WARNING: '//res%log%warnings(k)%s)
+         if (.not. allocated(res%log%warnings(k)%steps)) cycle   ! the model's: in the header
+         if (res%log%warnings(k)%steps(is)) call lu%line('  '//'WARNING: '//res%log%warnings(k)%s)
       end do
       call lu%line('')
     end associate

@@ -86,7 +86,7 @@ module superjoin_substructure_cache
      integer :: kept_n = -1, kept_computed = -1  !! n and computed when they were kept
   end type part_cache_t
 
-  public :: view_ku
+  public :: view_ku, twin_copies
   public :: release_cache, forget_load_memos, acquire_view, view_condense_loads, view_recover, view_stiffness_times, &
        view_maxratio, view_spc, view_spc_loads, remote_view, view_turn, entry_recover, entry_condense_loads, entry_ku, &
        view_need_stiffness, take_views, keep_views, twins_note
@@ -611,6 +611,66 @@ contains
     q(2, 2) = 1.0_wp
     q(3, 3) = 1.0_wp
   end function identity
+
+  function twin_copies(model, table, bnd, candidate) result(copies)
+    !! For each candidate substructure, how many candidates (itself included)
+    !! would share its condensation as twins (find_entry's tests: the same
+    !! local DOFs, identical up to a rigid motion that keeps every node
+    !! block's DOFs); 0 for the others. CONDENSE=AUTO's count of copies.
+    type(model_t), intent(in) :: model
+    type(dof_table_t), intent(in) :: table
+    logical, intent(in) :: bnd(:), candidate(:)
+    integer :: copies(size(candidate))
+    type :: rep_t
+       integer :: isub = 0
+       integer(i8) :: ni = 0
+       integer(ip), allocatable :: lnode(:)
+       integer, allocatable :: ldof(:)
+       type(twin_print_t) :: print
+    end type rep_t
+    type(rep_t), allocatable :: reps(:)
+    integer, allocatable :: cls(:), grp(:, :), ldof(:)
+    integer(ip), allocatable :: lnode(:)
+    integer(i8), allocatable :: pdof(:)
+    integer(i8) :: ni
+    type(twin_print_t) :: mine
+    real(wp) :: q(3, 3)
+    logical :: fits
+    integer :: isub, r, nrep
+    allocate (reps(count(candidate)))
+    allocate (cls(size(candidate)), source=0)
+    nrep = 0
+    do isub = 1, size(candidate)
+       if (.not. candidate(isub)) cycle
+       call local_numbering(table, isub, bnd, pdof, ni)
+       lnode = table%p_node(pdof)
+       ldof = table%p_dof(pdof)
+       call node_groups(lnode, ldof, grp)
+       call twin_print(model, isub, mine)
+       do r = 1, nrep
+          fits = reps(r)%ni == ni .and. size(reps(r)%ldof) == size(ldof)
+          if (fits) fits = all(reps(r)%lnode == lnode) .and. all(reps(r)%ldof == ldof)
+          if (fits) call twin_turn(model, reps(r)%isub, isub, reps(r)%print, mine, q, fits)
+          if (fits) fits = keeps_dofs(q, grp)
+          if (fits .and. .not. all(abs(q - identity()) <= ROT_ZERO)) fits = .not. mixed_blocks(grp, ni)
+          if (.not. fits) cycle
+          cls(isub) = r
+          exit
+       end do
+       if (cls(isub) > 0) cycle
+       nrep = nrep + 1
+       cls(isub) = nrep
+       reps(nrep)%isub = isub
+       reps(nrep)%ni = ni
+       reps(nrep)%lnode = lnode
+       reps(nrep)%ldof = ldof
+       reps(nrep)%print = mine
+    end do
+    copies = 0
+    do isub = 1, size(candidate)
+       if (cls(isub) > 0) copies(isub) = count(cls == cls(isub))
+    end do
+  end function twin_copies
 
   subroutine node_groups(lnode, ldof, grp)
     !! The local DOFs of each (node, block): grp(c, g) is the local DOF of

@@ -43,6 +43,16 @@ def flat_names(text):
     return re.sub(r"B\.K", "K", re.sub(r"B\.F(\d+)\.", r"F\1_", text))
 
 
+def exe_and_work(argv, doc):
+    """SUPERJOIN and WORKDIR of a `usage: X.py SUPERJOIN WORKDIR` script (the work
+    directory made), or None after doc's usage line on stderr."""
+    if len(argv) != 3:
+        print(doc.strip().splitlines()[2], file=sys.stderr)
+        return None
+    os.makedirs(argv[2], exist_ok=True)
+    return argv[1], argv[2]
+
+
 def run(exe, deck, work, name, *extra):
     csvdir = os.path.join(work, name)
     lst = os.path.join(work, name + ".lst")

@@ -24,7 +24,7 @@ import sys
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 sys.path.insert(0, HERE)
-from building import run, numeric_compare, TABLES, GEN  # noqa: E402
+from building import run, numeric_compare, exe_and_work, TABLES, GEN  # noqa: E402
 
 SAME = lambda name: name  # noqa: E731
 
@@ -52,11 +52,10 @@ def check(found, what):
 
 
 def main(argv):
-    if len(argv) != 3:
-        print(__doc__.strip().splitlines()[2], file=sys.stderr)
+    args = exe_and_work(argv, __doc__)
+    if args is None:
         return 2
-    exe, work = argv[1:3]
-    os.makedirs(work, exist_ok=True)
+    exe, work = args
     ok = True
     for mesh, floors, want, by_level in CASES:
         d = deck(work, mesh, floors)

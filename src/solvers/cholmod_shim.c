@@ -26,7 +26,9 @@
  * candidate taken on the node graph (several times smaller than the column
  * graph) and expanded to columns: AMD on the columns first, METIS on the node
  * graph only where CHOLMOD's own test would try METIS, the smaller nnz(L)
- * kept (sj_analyze_grouped).
+ * kept (sj_analyze_grouped). From SJ_NODE_AMD_MIN columns on, with 4 or more
+ * columns per node on average, AMD orders the node graph instead of the
+ * columns (sj_analyze_node_amd), then the same strategy.
  *
  * Analysis beside the caller's work (sj_cholmod_analyze_start/_finish): the
  * pattern is copied (0-based) and analyzed by a second thread while the

@@ -28,6 +28,9 @@ module superjoin_solvers_cholmod
   integer, parameter :: NAME_LEN = 64              !! buffer for the ordering name
   integer(i8), parameter, public :: NODE_GRAPH_MIN_COLUMNS = 20000_i8
     !! from this size on, METIS on the node graph competes with CHOLMOD's AMD
+  integer(i8), parameter, public :: NODE_AMD_MIN_COLUMNS = 100000_i8
+    !! from this size on, AMD orders the node graph instead of the columns
+    !! (far above the test decks, whose orderings stay column AMD's)
   integer, parameter :: MESSAGE_LEN = 256          !! buffer for shim messages
   real(wp), parameter :: MBYTE = 1048576.0_wp      !! bytes per MiB
 
@@ -37,6 +40,8 @@ module superjoin_solvers_cholmod
      type(c_ptr) :: handle = c_null_ptr
      integer(i8) :: n = -1          !! order of the analyzed matrix (-1: none)
      integer(i8), public :: node_graph_min = NODE_GRAPH_MIN_COLUMNS
+     integer(i8), public :: node_amd_min = NODE_AMD_MIN_COLUMNS
+       !! AMD on the node graph from this many columns on (negative: never)
      logical, public :: force_node_metis = .false.
        !! offer the node-graph METIS ordering even where AMD's fill is low (tests)
      logical, public :: node_metis_only = .false.
@@ -90,6 +95,12 @@ module superjoin_solvers_cholmod
        integer(c_int), value :: flag
        integer(c_int) :: status
      end function sj_cholmod_force_node_metis
+     function sj_cholmod_set_node_amd_min(h, min) bind(c, name='sj_cholmod_set_node_amd_min') result(status)
+       import :: c_ptr, c_int, c_int64_t
+       type(c_ptr), value :: h
+       integer(c_int64_t), value :: min
+       integer(c_int) :: status
+     end function sj_cholmod_set_node_amd_min
      function sj_cholmod_analyze(h, n, colptr, rowind) bind(c, name='sj_cholmod_analyze') result(status)
        import :: c_ptr, c_int, c_int64_t
        type(c_ptr), value :: h
@@ -281,6 +292,8 @@ contains
        end if
     end if
     status = sj_cholmod_force_node_metis(self%handle, metis_mode(self))
+    if (status == SJ_OK) status = sj_cholmod_set_node_amd_min(self%handle, self%node_amd_min)
+    if (status /= SJ_OK) return
     if (ngroup > 0) then
        call node_graph(a, self%group_first, xadj, adjncy)
        if (size(adjncy) == 0) adjncy = [1_i8]

@@ -26,7 +26,9 @@
  * candidate taken on the node graph (several times smaller than the column
  * graph) and expanded to columns: AMD on the columns first, METIS on the node
  * graph only where CHOLMOD's own test would try METIS, the smaller nnz(L)
- * kept (sj_analyze_grouped).
+ * kept (sj_analyze_grouped). From SJ_NODE_AMD_MIN columns on, with 4 or more
+ * columns per node on average, AMD orders the node graph instead of the
+ * columns (sj_analyze_node_amd), then the same strategy.
  *
  * Analysis beside the caller's work (sj_cholmod_analyze_start/_finish): the
  * pattern is copied (0-based) and analyzed by a second thread while the
@@ -51,6 +53,7 @@
 #include <sys/mman.h>
 #include <unistd.h>
 
+#include "amd.h"
 #include "cholmod.h"
 #include "metis.h"
 
@@ -68,6 +71,14 @@
  * flops per nonzero of L, and nonzeros of L per nonzero of A. */
 #define SJ_METIS_FL_PER_LNZ 500.0
 #define SJ_METIS_LNZ_PER_NNZ 5.0
+/* From this many columns on, AMD orders the node graph instead of the
+ * columns (sj_cholmod_set_node_amd_min changes it): far above the test
+ * decks, whose orderings (and results at round-off) stay column AMD's. Only
+ * where the nodes hold SJ_NODE_AMD_GROUP columns or more on average: on
+ * frames (6 per node) node AMD's nnz(L) was column AMD's to the entry, on
+ * CPS4 panels (2 per node) 2 % above it (doc/performance.md). */
+#define SJ_NODE_AMD_MIN 100000
+#define SJ_NODE_AMD_GROUP 4
 
 /* Out of memory: SuiteSparse allocates through SuiteSparse_config's
  * function pointers; sj_cholmod_create routes them through these wrappers,
@@ -133,6 +144,8 @@ typedef struct {
     int force_node_metis;       /* 1: offer node-graph METIS whatever AMD's fill; 2: node-graph METIS
                                  * alone, no AMD candidate (a matrix dense by blocks: the level solver's
                                  * top system, where AMD's pass over every entry costs more than it finds) */
+    int given_is_node_amd;      /* the given permutation is AMD of the node graph */
+    SuiteSparse_long node_amd_min;   /* AMD on the node graph from this many columns on */
     SuiteSparse_long minor;     /* permuted column where factorization stopped (n: none) */
     char message[SJ_MESSAGE_LEN];
     SuiteSparse_long nschur;    /* boundary columns ordered last by sj_cholmod_schur_analyze (0: none) */
@@ -306,6 +319,7 @@ void *sj_cholmod_create(void)
     h->common.final_pack = 1;
     h->common.final_monotonic = 1;
     h->common.nmethods = 0;        /* default strategy: AMD, METIS if AMD fills badly */
+    h->node_amd_min = SJ_NODE_AMD_MIN;
     h->L = NULL;
     h->minor = 0;
     return h;
@@ -388,14 +402,36 @@ int sj_cholmod_force_node_metis(void *handle, int flag)
     return SJ_OK;
 }
 
+/* The column permutation of a node permutation perm (ngroup entries): each
+ * node's columns in their order, node after node. */
+static void sj_expand_groups(const sj_cholmod_t *h, const idx_t *perm, SuiteSparse_long *colperm)
+{
+    SuiteSparse_long pos = 0, c;
+    idx_t k;
+    for (k = 0; k < h->ngroup; k++) {
+        idx_t g = perm[k];
+        for (c = h->gfirst[g]; c < h->gfirst[g + 1]; c++) colperm[pos++] = c;
+    }
+}
+
+/* Order the node graph with AMD from min columns on (negative: never); the
+ * default is SJ_NODE_AMD_MIN. */
+int sj_cholmod_set_node_amd_min(void *handle, int64_t min)
+{
+    sj_cholmod_t *h = handle;
+    if (h == NULL) return SJ_E_HANDLE;
+    if (h->pending && sj_cholmod_analyze_finish(h) != SJ_OK) return SJ_E_STATE;   /* never beside the worker */
+    h->node_amd_min = min < 0 ? INT64_MAX : min;
+    return SJ_OK;
+}
+
 /* Column permutation from a METIS nested dissection of the node graph, or
  * NULL when there is no graph or METIS fails. */
 static SuiteSparse_long *sj_node_metis_perm(sj_cholmod_t *h)
 {
     idx_t nv = h->ngroup, options[METIS_NOPTIONS];
     idx_t *perm, *iperm;
-    SuiteSparse_long *colperm, pos = 0, c;
-    idx_t k;
+    SuiteSparse_long *colperm;
     if (nv <= 0 || h->gfirst[nv] != h->n) return NULL;
     perm = malloc((size_t)nv * sizeof(idx_t));
     iperm = malloc((size_t)nv * sizeof(idx_t));
@@ -407,12 +443,35 @@ static SuiteSparse_long *sj_node_metis_perm(sj_cholmod_t *h)
         free(perm); free(iperm); free(colperm);
         return NULL;
     }
-    for (k = 0; k < nv; k++) {
-        idx_t g = perm[k];
-        for (c = h->gfirst[g]; c < h->gfirst[g + 1]; c++) colperm[pos++] = c;
-    }
+    sj_expand_groups(h, perm, colperm);
     free(perm);
     free(iperm);
+    return colperm;
+}
+
+/* Column permutation from AMD of the node graph (unweighted: a node counts
+ * as one vertex whatever its number of columns), with CHOLMOD's AMD
+ * settings; NULL when there is no graph or AMD fails. */
+static SuiteSparse_long *sj_node_amd_perm(sj_cholmod_t *h)
+{
+    idx_t nv = h->ngroup;
+    int32_t *perm;
+    SuiteSparse_long *colperm;
+    double control[AMD_CONTROL];
+    _Static_assert(sizeof(idx_t) == sizeof(int32_t), "METIS idx_t must be 32-bit for amd_order");
+    if (nv <= 0 || h->gfirst[nv] != h->n) return NULL;
+    perm = malloc((size_t)nv * sizeof(int32_t));
+    colperm = malloc((size_t)(h->n > 0 ? h->n : 1) * sizeof(SuiteSparse_long));
+    if (!perm || !colperm) { free(perm); free(colperm); return NULL; }
+    amd_defaults(control);
+    control[AMD_DENSE] = h->common.method[1].prune_dense;
+    control[AMD_AGGRESSIVE] = h->common.method[1].aggressive;
+    if (amd_order(nv, h->gxadj, h->gadjncy, perm, control, NULL) < AMD_OK) {
+        free(perm); free(colperm);
+        return NULL;
+    }
+    sj_expand_groups(h, perm, colperm);
+    free(perm);
     return colperm;
 }
 
@@ -429,6 +488,68 @@ static double sj_given_lnz(sj_cholmod_t *h, SuiteSparse_long *perm)
         lnz = h->common.lnz;
     free(work);
     return lnz;
+}
+
+/* CHOLMOD's analysis of the given permutation perm (postordered, as its AMD
+ * method analyzes AMD's permutation). */
+static cholmod_factor *sj_analyze_given(sj_cholmod_t *h, SuiteSparse_long *perm)
+{
+    cholmod_common *cm = &h->common;
+    int nm = cm->nmethods, o0 = cm->method[0].ordering;
+    cholmod_factor *L;
+    cm->nmethods = 1;
+    cm->method[0].ordering = CHOLMOD_GIVEN;
+    L = cholmod_l_analyze_p(&h->A, perm, NULL, 0, cm);
+    cm->nmethods = nm;
+    cm->method[0].ordering = o0;
+    return L;
+}
+
+/* Is the fill of the analysis just done high by CHOLMOD's own test for
+ * trying METIS after AMD (flops per nnz(L), nnz(L) per nnz(A))? */
+static int sj_fill_high(const cholmod_common *cm)
+{
+    return !(cm->fl < SJ_METIS_FL_PER_LNZ * cm->lnz || cm->lnz < SJ_METIS_LNZ_PER_NNZ * cm->anz);
+}
+
+/* Analysis with AMD on the node graph in place of AMD on the columns (about
+ * 6x fewer vertices and 36x fewer edges on a frame), then the same strategy
+ * as sj_analyze_grouped's: METIS on the node graph where the fill is high by
+ * CHOLMOD's test (or forced), the smaller nnz(L) kept, a tie to METIS. NULL
+ * when AMD or the analysis fails (the caller falls back to column AMD). */
+static cholmod_factor *sj_analyze_node_amd(sj_cholmod_t *h)
+{
+    cholmod_common *cm = &h->common;
+    SuiteSparse_long *perm = sj_node_amd_perm(h);
+    cholmod_factor *L, *M;
+    double fl, lnz, anz;
+    if (perm == NULL) return NULL;
+    L = sj_analyze_given(h, perm);
+    free(perm);
+    if (L == NULL) return NULL;
+    h->given_is_node_amd = 1;
+    if (!sj_fill_high(cm) && !h->force_node_metis) return L;
+    perm = sj_node_metis_perm(h);
+    fl = cm->fl;
+    lnz = cm->lnz;
+    anz = cm->anz;
+    M = NULL;
+    if (perm != NULL) {
+        double metis_lnz = sj_given_lnz(h, perm);
+        if (metis_lnz >= 0.0 && metis_lnz <= lnz) M = sj_analyze_given(h, perm);
+    }
+    free(perm);
+    cm->status = CHOLMOD_OK;
+    if (M == NULL) {                 /* node AMD kept: its figures, not METIS's */
+        cm->fl = fl;
+        cm->lnz = lnz;
+        cm->anz = anz;
+        return L;
+    }
+    cholmod_l_free_factor(&L, cm);
+    h->given_is_node_amd = 0;
+    h->given_is_node_metis = 1;
+    return M;
 }
 
 /* Analysis with a node graph: CHOLMOD's default strategy, with the METIS
@@ -458,6 +579,11 @@ static cholmod_factor *sj_analyze_grouped(sj_cholmod_t *h)
         free(metis);
         return L;
     }
+    if (h->n >= h->node_amd_min && h->n >= SJ_NODE_AMD_GROUP * (SuiteSparse_long)h->ngroup) {
+        L = sj_analyze_node_amd(h);
+        if (L != NULL) return L;
+        cm->status = CHOLMOD_OK;     /* node AMD failed: column AMD as below */
+    }
     amd = malloc((size_t)(h->n > 0 ? h->n : 1) * sizeof(SuiteSparse_long));
     if (amd == NULL) {
         cm->status = CHOLMOD_OUT_OF_MEMORY;
@@ -469,7 +595,7 @@ static cholmod_factor *sj_analyze_grouped(sj_cholmod_t *h)
         return NULL;
     }
     amd_lnz = cm->lnz;
-    high = !(cm->fl < SJ_METIS_FL_PER_LNZ * cm->lnz || cm->lnz < SJ_METIS_LNZ_PER_NNZ * cm->anz);
+    high = sj_fill_high(cm);
     if (high || h->force_node_metis) metis = sj_node_metis_perm(h);
     best = amd;
     if (metis != NULL) {
@@ -494,6 +620,7 @@ static void sj_analyze_now(sj_cholmod_t *h)
 {
     h->given_is_node_metis = 0;
     h->given_is_amd = 0;
+    h->given_is_node_amd = 0;
     if (h->ngroup > 0 && h->gfirst[h->ngroup] == h->n)
         h->L = sj_analyze_grouped(h);
     else
@@ -948,7 +1075,8 @@ int sj_cholmod_ordering(void *handle, char *buf, int64_t len)
         switch (h->L->ordering) {
         case CHOLMOD_NATURAL: name = "natural"; break;
         case CHOLMOD_GIVEN:
-            name = h->given_is_node_metis ? "METIS (node graph)" : h->given_is_amd ? "AMD" : "given";
+            name = h->given_is_node_metis ? "METIS (node graph)"
+                 : h->given_is_node_amd ? "AMD (node graph)" : h->given_is_amd ? "AMD" : "given";
             break;
         case CHOLMOD_AMD: name = "AMD"; break;
         case CHOLMOD_METIS: name = "METIS"; break;
@@ -1137,6 +1265,7 @@ int sj_cholmod_schur_camd(void *handle, int64_t n, int64_t nb, int64_t *colptr, 
     sj_drop_graph(h);
     h->given_is_node_metis = 0;
     h->given_is_amd = 0;
+    h->given_is_node_amd = 0;
     status = sj_schur_begin(h, n, nb, colptr, rowind);
     if (status != SJ_OK) return status;
     perm = sj_camd_perm(h, n - nb, &low);

@@ -27,6 +27,7 @@ program test_solvers
   call test_large_cholmod()
   call test_node_graph_ordering()
   call test_node_metis_only()
+  call test_node_amd_ordering()
   call finish()
 
 contains
@@ -798,23 +799,31 @@ contains
     !! Two unknowns per node: every entry of l becomes a 2x2 SPD block (upper triangle).
     type(sparse_sym_t), intent(in) :: l
     type(sparse_sym_t), intent(out) :: a
-    real(wp), parameter :: BLK(2, 2) = reshape([2.0_wp, 1.0_wp, 1.0_wp, 2.0_wp], [2, 2])
+    call expand_dofs(l, 2, a)
+  end subroutine expand_two_dofs
+
+  subroutine expand_dofs(l, k, a)
+    !! k unknowns per node: every entry of l becomes a k x k SPD block (2 on
+    !! its diagonal, 1 elsewhere: eigenvalues 1 and k + 1; upper triangle).
+    type(sparse_sym_t), intent(in) :: l
+    integer, intent(in) :: k
+    type(sparse_sym_t), intent(out) :: a
     integer(i8) :: jn, pos, in, nz, c
     integer :: ca, ra
-    a%n = 2*l%n
-    allocate (a%colptr(a%n + 1), a%rowind(4*l%nnz()), a%val(4*l%nnz()))
+    a%n = k*l%n
+    allocate (a%colptr(a%n + 1), a%rowind(k*k*l%nnz()), a%val(k*k*l%nnz()))
     nz = 0
     a%colptr(1) = 1
     do jn = 1, l%n
-       do ca = 1, 2
-          c = 2*(jn - 1) + ca
+       do ca = 1, k
+          c = k*(jn - 1) + ca
           do pos = l%colptr(jn), l%colptr(jn + 1) - 1
              in = l%rowind(pos)
-             do ra = 1, 2
+             do ra = 1, k
                 if (in == jn .and. ra > ca) cycle
                 nz = nz + 1
-                a%rowind(nz) = 2*(in - 1) + ra
-                a%val(nz) = BLK(ra, ca)*l%val(pos)
+                a%rowind(nz) = k*(in - 1) + ra
+                a%val(nz) = merge(2.0_wp, 1.0_wp, ra == ca)*l%val(pos)
              end do
           end do
           a%colptr(c + 1) = nz + 1
@@ -822,7 +831,16 @@ contains
     end do
     a%rowind = a%rowind(1:nz)
     a%val = a%val(1:nz)
-  end subroutine expand_two_dofs
+  end subroutine expand_dofs
+
+  function node_groups(nnode, k) result(first)
+    !! First column of each of nnode groups of k consecutive columns, and n + 1.
+    integer(i8), intent(in) :: nnode
+    integer, intent(in) :: k
+    integer(i8), allocatable :: first(:)
+    integer(i8) :: g
+    first = [(k*(g - 1) + 1, g=1, nnode + 1)]
+  end function node_groups
 
   subroutine dense_laplace2d(m, ad)
     !! Dense 2D Laplacian of an m x m grid into ad(m*m, m*m).
@@ -957,6 +975,7 @@ contains
     call check(all(adjncy >= 1 .and. adjncy <= l%n), 'node graph: neighbours in range')
 
     s%node_graph_min = 0
+    s%node_amd_min = 0        ! two columns per node: below the node-AMD group size, column AMD
     call s%set_groups(first)
     call s%analyze(a, error)
     call check(.not. allocated(error), 'node-graph ordering: analyze')
@@ -1045,4 +1064,57 @@ contains
        call s%release()
     end do
   end subroutine test_node_metis_only
+  subroutine test_node_amd_ordering()
+    !! Six unknowns per node (a 2D Laplacian times a 6x6 SPD block): AMD on the
+    !! node graph (node_amd_min = 0) in place of AMD on the columns, its fill
+    !! within 5 % of column AMD's, the solve at round-off; on a 3D grid with the
+    !! node-graph METIS forced, METIS is compared with node AMD and kept.
+    integer(i8), parameter :: M = 30, M3 = 10
+    integer, parameter :: K = 6
+    type(sparse_sym_t) :: l, a
+    type(cholmod_solver_t) :: s, sc, sm
+    type(error_t), allocatable :: error
+    real(wp), allocatable :: x(:, :), b(:, :), r(:, :)
+
+    call laplace2d(M, l)
+    call expand_dofs(l, K, a)
+    sc%node_graph_min = 0
+    sc%node_amd_min = -1
+    call sc%set_groups(node_groups(l%n, K))
+    call sc%analyze(a, error)
+    call check(.not. allocated(error), 'node AMD: column AMD analyze')
+    if (allocated(error)) return
+    call check(sc%info%ordering == 'AMD', 'node AMD: node_amd_min < 0 orders the columns, got '//sc%info%ordering)
+    s%node_graph_min = 0
+    s%node_amd_min = 0
+    call s%set_groups(node_groups(l%n, K))
+    call s%analyze(a, error)
+    call check(.not. allocated(error), 'node AMD: analyze')
+    if (allocated(error)) return
+    call check(s%info%ordering == 'AMD (node graph)', 'node AMD: ordering, got '//s%info%ordering)
+    call check(s%info%factor_nnz <= (105*sc%info%factor_nnz)/100, 'node AMD: fill within 5 % of column AMD''s')
+    call s%factorize(a, error)
+    call check(.not. allocated(error), 'node AMD: factorize')
+    if (allocated(error)) return
+    allocate (x(a%n, 1), b(a%n, 1), r(a%n, 1))
+    b = 1.0_wp
+    call s%solve(b, x, error)
+    call a%matvec(x, r)
+    call check(norm2(r - b)/norm2(b) < RES_TOL, 'node AMD: residual at round-off')
+    call s%release()
+    call sc%release()
+
+    call laplace3d(M3, l)
+    call expand_dofs(l, K, a)
+    sm%node_graph_min = 0
+    sm%node_amd_min = 0
+    sm%force_node_metis = .true.
+    call sm%set_groups(node_groups(l%n, K))
+    call sm%analyze(a, error)
+    call check(.not. allocated(error), 'node AMD, forced METIS: analyze')
+    if (allocated(error)) return
+    call check(sm%info%ordering == 'METIS (node graph)', &
+         'node AMD, forced METIS: kept on a 3D grid, got '//sm%info%ordering)
+    call sm%release()
+  end subroutine test_node_amd_ordering
 end program test_solvers

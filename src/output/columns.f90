@@ -33,21 +33,18 @@ contains
     integer, intent(in) :: isub
     integer(ip), intent(in) :: ie
     integer, intent(in) :: indent
-    call lu%put_blanks(indent)
-    call lu%put_field(model%subs(isub)%name, 20)
-    call lu%put_int(int(model%subs(isub)%elem_id(ie), i8), 10)
+    integer(i8) :: id
+    id = int(model%subs(isub)%elem_id(ie), i8)
     ! a five-letter type (CPS8R) takes one of the two blanks: the columns stay in place
     ! (a six-letter one, C3D20R, shifts the rest of its row by one)
     associate (name => ELEMENT_TYPE_NAMES(model%subs(isub)%elem_type(ie)))
-      if (len_trim(name) > 5) then
-         call lu%put(' ')
-         call lu%put_field(name, 6)
-      else if (len_trim(name) > 4) then
-         call lu%put(' ')
-         call lu%put_field(name, 5)
+      ! (names are 6 characters long: their last two say the trimmed length)
+      if (name(6:6) /= ' ') then
+         call lu%put_row_head(indent, model%subs(isub)%name, 20, id, 10, ' '//name(1:6))
+      else if (name(5:5) /= ' ') then
+         call lu%put_row_head(indent, model%subs(isub)%name, 20, id, 10, ' '//name(1:5))
       else
-         call lu%put('  ')
-         call lu%put_field(name, 4)
+         call lu%put_row_head(indent, model%subs(isub)%name, 20, id, 10, '  '//name(1:4))
       end if
     end associate
   end subroutine element_prefix

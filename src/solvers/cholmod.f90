@@ -61,6 +61,7 @@ module superjoin_solvers_cholmod
      procedure :: analyze_start => cholmod_analyze_start
      procedure :: factorize => cholmod_factorize
      procedure :: solve => cholmod_solve
+     procedure :: solve_leading => cholmod_solve_leading
      procedure :: pivots => cholmod_pivots
      procedure :: release => cholmod_release
      procedure :: flops => cholmod_flops
@@ -148,6 +149,15 @@ module superjoin_solvers_cholmod
        real(c_double), intent(out) :: x(*)
        integer(c_int) :: status
      end function sj_cholmod_solve
+
+     function sj_cholmod_solve_ld(h, nrhs, b, ldb, x, ldx) bind(c, name='sj_cholmod_solve_ld') result(status)
+       import :: c_ptr, c_int, c_int64_t, c_double
+       type(c_ptr), value :: h
+       integer(c_int64_t), value :: nrhs, ldb, ldx
+       real(c_double), intent(in) :: b(*)
+       real(c_double), intent(inout) :: x(*)
+       integer(c_int) :: status
+     end function sj_cholmod_solve_ld
 
      function sj_cholmod_pivots(h, d) bind(c, name='sj_cholmod_pivots') result(status)
        import :: c_ptr, c_int, c_double
@@ -374,6 +384,30 @@ contains
     status = sj_cholmod_solve(self%handle, int(size(b, 2), c_int64_t), b, x)
     if (status /= SJ_OK) call status_error(self, status, 'solve', error)
   end subroutine cholmod_solve
+
+  subroutine cholmod_solve_leading(self, n, b, x, error)
+    !! x(1:n, :) = A^-1 b(1:n, :), b and x read and written in place with
+    !! their own leading dimensions (no copies of the columns).
+    class(cholmod_solver_t), intent(inout) :: self
+    integer(i8), intent(in) :: n
+    real(wp), contiguous, intent(in) :: b(:, :)
+    real(wp), contiguous, intent(inout) :: x(:, :)
+    type(error_t), allocatable, intent(out) :: error
+    integer(c_int) :: status
+
+    if (.not. self%factored) then
+       call fatal_error(error, EXIT_IO, 'CHOLMOD: solve called without a valid factorization')
+       return
+    end if
+    if (n /= self%n .or. size(b, 1, i8) < n .or. size(x, 1, i8) < n .or. size(b, 2) /= size(x, 2)) then
+       call fatal_error(error, EXIT_IO, 'CHOLMOD: right-hand side and solution shapes do not match the matrix')
+       return
+    end if
+    if (self%n == 0 .or. size(b, 2) == 0) return
+    status = sj_cholmod_solve_ld(self%handle, int(size(b, 2), c_int64_t), b, int(size(b, 1), c_int64_t), &
+         x, int(size(x, 1), c_int64_t))
+    if (status /= SJ_OK) call status_error(self, status, 'solve', error)
+  end subroutine cholmod_solve_leading
 
   subroutine cholmod_pivots(self, d)
     !! d(j) = L_jj^2 of original column j (0 for columns a failed factorization

@@ -927,11 +927,22 @@ int sj_cholmod_factorize(void *handle, int64_t n, int64_t *colptr, int64_t *rowi
     return SJ_OK;
 }
 
-static int sj_schur_solve(sj_cholmod_t *h, int64_t nrhs, const double *b, double *x);
+static int sj_schur_solve(sj_cholmod_t *h, int64_t nrhs, const double *b, int64_t ldb, double *x,
+                          int64_t ldx);
 
 /* x(n, nrhs) = A^-1 b(n, nrhs), column-major, leading dimension n (after
  * sj_cholmod_schur_analyze: the interior block, n - nschur). */
+int sj_cholmod_solve_ld(void *handle, int64_t nrhs, const double *b, int64_t ldb, double *x, int64_t ldx);
+
 int sj_cholmod_solve(void *handle, int64_t nrhs, const double *b, double *x)
+{
+    return sj_cholmod_solve_ld(handle, nrhs, b, -1, x, -1);
+}
+
+/* The same with the leading dimensions ldb and ldx of b and x (at least the
+ * order; -1: the order): the columns are the leading rows of longer arrays,
+ * read and written in place; the other rows of x are left alone. */
+int sj_cholmod_solve_ld(void *handle, int64_t nrhs, const double *b, int64_t ldb, double *x, int64_t ldx)
 {
     sj_cholmod_t *h = handle;
     cholmod_dense B, *X;
@@ -949,12 +960,18 @@ int sj_cholmod_solve(void *handle, int64_t nrhs, const double *b, double *x)
         return SJ_E_ARGUMENT;
     }
     if (h->n == 0 || nrhs == 0) return SJ_OK;
-    if (h->nschur > 0) return sj_schur_solve(h, nrhs, b, x);
+    if (ldb == -1) ldb = h->n - h->nschur;
+    if (ldx == -1) ldx = h->n - h->nschur;
+    if (ldb < h->n - h->nschur || ldx < h->n - h->nschur) {
+        sj_set_message(h, "leading dimension below the order");
+        return SJ_E_ARGUMENT;
+    }
+    if (h->nschur > 0) return sj_schur_solve(h, nrhs, b, ldb, x, ldx);
     memset(&B, 0, sizeof(cholmod_dense));
     B.nrow = (size_t)h->n;
     B.ncol = (size_t)nrhs;
-    B.nzmax = (size_t)h->n * (size_t)nrhs;
-    B.d = (size_t)h->n;
+    B.nzmax = (size_t)ldb * (size_t)nrhs;
+    B.d = (size_t)ldb;
     B.x = (void *)b;                 /* read only */
     B.z = NULL;
     B.xtype = CHOLMOD_REAL;
@@ -963,7 +980,7 @@ int sj_cholmod_solve(void *handle, int64_t nrhs, const double *b, double *x)
     status = sj_end(h, X != NULL);
     if (X == NULL) return status < 0 ? status : CHOLMOD_INVALID;
     for (j = 0; j < nrhs; j++) {
-        memcpy(x + (size_t)j * (size_t)h->n, (const double *)X->x + (size_t)j * X->d,
+        memcpy(x + (size_t)j * (size_t)ldx, (const double *)X->x + (size_t)j * X->d,
                (size_t)h->n * sizeof(double));
     }
     cholmod_l_free_dense(&X, &h->common);
@@ -1363,33 +1380,49 @@ int sj_cholmod_schur_block(void *handle, int64_t nb, double *lbb)
 
 /* x = A_ii^-1 b for the interior block after sj_cholmod_schur_analyze:
  * forward solve with L on [P_i b; 0], the boundary part of the result set to
- * zero, backward solve with L': the boundary rows then drop out exactly. */
-static int sj_schur_solve(sj_cholmod_t *h, int64_t nrhs, const double *b, double *x)
+ * zero, backward solve with L': the boundary rows then drop out exactly.
+ * The permutations are copies done here (CHOLMOD's P and P' solves copy the
+ * same values); the two triangular solves share their result and workspace
+ * arrays (cholmod_l_solve2's handles): three arrays of n x nrhs in all,
+ * allocated once, instead of a new one per step. */
+static int sj_schur_solve(sj_cholmod_t *h, int64_t nrhs, const double *b, int64_t ldb, double *x,
+                          int64_t ldx)
 {
-    cholmod_dense *Y, *Z;
-    SuiteSparse_long n = h->n, ni = h->n - h->nschur, i, j;
-    int step, status;
-    static const int sys[4] = {CHOLMOD_P, CHOLMOD_L, CHOLMOD_Lt, CHOLMOD_Pt};
-    Y = cholmod_l_zeros((size_t)n, (size_t)nrhs, CHOLMOD_REAL, &h->common);
+    cholmod_dense *Y, *Z = NULL, *W = NULL, *E = NULL;
+    const SuiteSparse_long *perm = h->L->Perm;
+    SuiteSparse_long n = h->n, ni = h->n - h->nschur, i, j, k;
+    double *y;
+    int ok, status;
+    Y = cholmod_l_allocate_dense((size_t)n, (size_t)nrhs, (size_t)n, CHOLMOD_REAL, &h->common);
     if (Y == NULL) return sj_end(h, 0);
-    for (j = 0; j < nrhs; j++)
-        memcpy((double *)Y->x + (size_t)j * Y->d, b + (size_t)j * (size_t)ni, (size_t)ni * sizeof(double));
-    for (step = 0; step < 4; step++) {
-        Z = cholmod_l_solve(sys[step], h->L, Y, &h->common);
-        cholmod_l_free_dense(&Y, &h->common);
-        if (Z == NULL) {
-            status = sj_end(h, 0);
-            return status < 0 ? status : CHOLMOD_INVALID;
-        }
-        Y = Z;
-        if (sys[step] == CHOLMOD_L) {
-            for (j = 0; j < nrhs; j++)
-                for (i = ni; i < n; i++) ((double *)Y->x)[i + (size_t)j * Y->d] = 0.0;
+    y = Y->x;
+    for (j = 0; j < nrhs; j++) {          /* Y = P [b; 0] */
+        for (k = 0; k < n; k++) {
+            i = perm != NULL ? perm[k] : k;
+            y[k + j * n] = i < ni ? b[i + j * ldb] : 0.0;
         }
     }
-    for (j = 0; j < nrhs; j++)
-        memcpy(x + (size_t)j * (size_t)ni, (const double *)Y->x + (size_t)j * Y->d, (size_t)ni * sizeof(double));
+    ok = cholmod_l_solve2(CHOLMOD_L, h->L, Y, NULL, &Z, NULL, &W, &E, &h->common);
+    if (ok) {
+        double *z = Z->x;
+        for (j = 0; j < nrhs; j++)
+            for (i = ni; i < n; i++) z[i + j * (SuiteSparse_long)Z->d] = 0.0;
+        ok = cholmod_l_solve2(CHOLMOD_Lt, h->L, Z, NULL, &Y, NULL, &W, &E, &h->common);
+    }
+    if (ok) {
+        y = Y->x;
+        for (j = 0; j < nrhs; j++) {      /* x = the interior rows of P' Y */
+            for (k = 0; k < n; k++) {
+                i = perm != NULL ? perm[k] : k;
+                if (i < ni) x[i + j * ldx] = y[k + j * (SuiteSparse_long)Y->d];
+            }
+        }
+    }
     cholmod_l_free_dense(&Y, &h->common);
-    status = sj_end(h, 1);
+    cholmod_l_free_dense(&Z, &h->common);
+    cholmod_l_free_dense(&W, &h->common);
+    cholmod_l_free_dense(&E, &h->common);
+    status = sj_end(h, ok);
+    if (!ok) return status < 0 ? status : CHOLMOD_INVALID;
     return status < 0 ? status : SJ_OK;
 }

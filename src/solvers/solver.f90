@@ -35,6 +35,7 @@ module superjoin_solvers_solver
      procedure(release_i), deferred :: release
      procedure :: set_groups
      procedure :: analyze_start
+     procedure :: solve_leading
      procedure :: schur => schur_by_solves
   end type linear_solver_t
 
@@ -76,6 +77,26 @@ module superjoin_solvers_solver
      end subroutine release_i
   end interface
 contains
+
+  subroutine solve_leading(self, n, b, x, error)
+    !! x(1:n, :) = K⁻¹ b(1:n, :) for a solver of order n whose columns are the
+    !! leading rows of longer arrays (a part's interior rows above its
+    !! boundary rows); the other rows of x are left alone. This default
+    !! copies them into arrays of n rows for solve; a solver that reads and
+    !! writes with a leading dimension overrides it without the copies
+    !! (CHOLMOD).
+    class(linear_solver_t), intent(inout) :: self
+    integer(i8), intent(in) :: n
+    real(wp), contiguous, intent(in) :: b(:, :)
+    real(wp), contiguous, intent(inout) :: x(:, :)
+    type(error_t), allocatable, intent(out) :: error
+    real(wp), allocatable :: bn(:, :), xn(:, :)
+    bn = b(1:n, :)
+    allocate (xn(n, size(b, 2)))
+    call self%solve(bn, xn, error)
+    if (allocated(error)) return
+    x(1:n, :) = xn
+  end subroutine solve_leading
 
   subroutine schur_by_solves(self, a, nb, kstar, error)
     !! Static condensation: a is the whole symmetric matrix of a part (order

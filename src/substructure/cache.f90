@@ -384,7 +384,7 @@ contains
     !! keeps its load sets per substructure).
     type(part_cache_t), intent(inout) :: cache
     integer, intent(in) :: ientry
-    real(wp), intent(in) :: fc(:, :)
+    real(wp), contiguous, intent(in) :: fc(:, :)
     real(wp), intent(out) :: fstar(:, :)
     integer, intent(in) :: chunk
     type(error_t), allocatable, intent(out) :: error
@@ -435,11 +435,12 @@ contains
     !! Interior displacements from the boundary ones with cache entry ientry,
     !! in that entry's frame, for any number of columns (the instances that
     !! share it recovered as one solve): chunk columns per substructure (a
-    !! library entry finds its load sets per substructure).
+    !! library entry finds its load sets per substructure). fc's interior
+    !! rows may be overwritten (recover_interior works in them).
     type(part_cache_t), intent(inout) :: cache
     integer, intent(in) :: ientry
-    real(wp), intent(in) :: fc(:, :)
-    real(wp), intent(inout) :: u_local(:, :)
+    real(wp), contiguous, intent(inout) :: fc(:, :)
+    real(wp), contiguous, intent(inout) :: u_local(:, :)
     integer, intent(in) :: chunk
     type(error_t), allocatable, intent(out) :: error
     integer :: c

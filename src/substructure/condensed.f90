@@ -149,7 +149,7 @@ contains
     !! The same loads as the previous call (the next set of contact
     !! stiffnesses of a joint study) give the previous f* without a solve.
     type(condensed_t), intent(inout) :: cond
-    real(wp), intent(in) :: f_local(:, :)      !! (ni+nb, nstep)
+    real(wp), contiguous, intent(in) :: f_local(:, :)      !! (ni+nb, nstep)
     real(wp), intent(out) :: fstar(:, :)       !! (nb, nstep)
     type(error_t), allocatable, intent(out) :: error
     real(wp), allocatable :: x(:, :)
@@ -167,7 +167,7 @@ contains
     fstar = f_local(ni + 1:ni + nb, :)
     if (ni == 0) return
     allocate (x(ni, size(f_local, 2)))
-    call cond%solver%solve(f_local(1:ni, :), x, error)
+    call cond%solver%solve_leading(ni, f_local, x, error)
     if (allocated(error)) return
     call subtract_bi(cond%sys%k, nb, x, fstar)
     cond%memo_f = f_local
@@ -176,17 +176,16 @@ contains
 
   subroutine recover_interior(cond, f_local, u_local, error)
     !! u_i = k_ii⁻¹ (f_i − k_ib u_b): u_local holds u_b on entry (rows ni+1..),
-    !! and gets u_i (rows 1..ni).
+    !! and gets u_i (rows 1..ni). f_local's interior rows are overwritten
+    !! (with f_i − k_ib u_b: no copy of the columns).
     type(condensed_t), intent(inout) :: cond
-    real(wp), intent(in) :: f_local(:, :)
-    real(wp), intent(inout) :: u_local(:, :)
+    real(wp), contiguous, intent(inout) :: f_local(:, :)
+    real(wp), contiguous, intent(inout) :: u_local(:, :)
     type(error_t), allocatable, intent(out) :: error
-    real(wp), allocatable :: rhs(:, :)
     integer(i8) :: ni
     ni = cond%sys%ni
     if (ni == 0) return
-    rhs = f_local(1:ni, :)
-    call subtract_ib(cond%sys%k, cond%sys%nb, u_local(ni + 1:, :), rhs)
-    call cond%solver%solve(rhs, u_local(1:ni, :), error)
+    call subtract_ib(cond%sys%k, cond%sys%nb, u_local(ni + 1:, :), f_local)
+    call cond%solver%solve_leading(ni, f_local, u_local, error)
   end subroutine recover_interior
 end module superjoin_substructure_condensed

@@ -33,6 +33,7 @@ module superjoin_utils_text_buffer
      procedure :: put => tb_put
      procedure :: put_field => tb_put_field
      procedure :: put_int => tb_put_int
+     procedure :: put_row_head => tb_put_row_head
      procedure :: put_es => tb_put_es
      procedure :: put_es_row => tb_put_es_row
      procedure :: put_blanks => tb_put_blanks
@@ -158,6 +159,37 @@ contains
     call self%put_blanks(width - n)
     call self%put(digits(1:n))
   end subroutine tb_put_int
+
+  subroutine tb_put_row_head(self, blanks, text, width, value, value_width, tail)
+    !! Append `blanks` blanks, text in a field of `width` characters
+    !! (put_field), value right-justified in `value_width` (put_int) and
+    !! tail, after one room check instead of one per piece.
+    class(text_buffer_t), intent(inout) :: self
+    integer, intent(in) :: blanks, width, value_width
+    character(*), intent(in) :: text, tail
+    integer(i8), intent(in) :: value
+    character(len=INT_TEXT_LEN) :: digits
+    integer :: n, p
+    call int_text(value, digits, n)
+    if (.not. has_room(self, max(blanks, 0) + max(width, 0) + max(n, value_width) + len(tail))) then
+       call self%put_blanks(blanks)
+       call self%put_field(text, width)
+       call self%put_int(value, value_width)
+       call self%put(tail)
+       return
+    end if
+    p = self%pos
+    if (blanks > 0) self%buf(p + 1:p + blanks) = ' '
+    p = p + max(blanks, 0)
+    if (width > 0) self%buf(p + 1:p + width) = text   ! pads with blanks or cuts
+    p = p + max(width, 0)
+    if (n < value_width) self%buf(p + 1:p + value_width - n) = ' '
+    p = p + max(value_width - n, 0)
+    self%buf(p + 1:p + n) = digits(1:n)
+    p = p + n
+    self%buf(p + 1:p + len(tail)) = tail
+    self%pos = p + len(tail)
+  end subroutine tb_put_row_head
 
   subroutine tb_put_es(self, x)
     !! Append ' ' and x in the layout of ES14.6E3 (15 characters).

@@ -27,8 +27,7 @@ module superjoin_analysis
   use superjoin_analysis_mechanism, only: mechanism_error
   use superjoin_model_notes, only: note
   use superjoin_analysis_labels, only: column_label
-  use superjoin_analysis_health, only: check_finite, health, parts_maxratio, penalty_hint
-  use superjoin_analysis_value_health, only: recover_interiors_of_value
+  use superjoin_analysis_health, only: check_finite, health, full_health, parts_maxratio, penalty_hint
   use superjoin_analysis_policy, only: apply_large, describe_transform, column_groups, count_boundary, &
        choose_condensation, autospc, skip_unloaded_parts, wanted_elements
   use superjoin_analysis_condensation, only: solve_context_t, condensed_strategy_t, interface_matrix
@@ -407,9 +406,10 @@ contains
        return
     end if
     call st%tr%expand(st%q, st%u)
-    call wanted_elements(model, opts, wanted, notes)
     if (res%summary%n_condensed > 0) then
-       call recover_interiors_of_value(st, model, opts, ctx, wanted, res, error)
+       call st%strategy%recover_interiors(st, ctx%cache, error)
+       if (allocated(error)) return
+       if (st%tr%ncol() > 0) call full_health(st, ctx%cache, res, error)
        if (allocated(error)) return
        call parts_maxratio(model, st%table, ctx%cache, st%parts, res, error)
        if (allocated(error)) return
@@ -422,6 +422,7 @@ contains
        call clock%start()
     end if
     call st%tr%release_maps()   ! u and the whole-system health are done: the recovery reads no map
+    call wanted_elements(model, opts, wanted, notes)
     call recover_results(st, model, wanted, res, error)
     if (allocated(error)) return
     res%log%phase_seconds(PH_SOLVE) = res%log%phase_seconds(PH_SOLVE) + clock%seconds()

@@ -287,18 +287,16 @@ contains
     end do
   end subroutine condense_all_loads
 
-  subroutine sharing(parts, i, members, done, only)
+  subroutine sharing(parts, i, members, done)
     !! The views from i on that use the same condensation as parts(i)
-    !! (marked done); with only, those of them where only is true.
+    !! (marked done).
     type(part_view_t), intent(in) :: parts(:)
     integer, intent(in) :: i
     integer, allocatable, intent(out) :: members(:)
     logical, intent(inout) :: done(:)
-    logical, intent(in), optional :: only(:)
     integer :: j
     members = pack([(j, j=i, size(parts))], parts(i:)%entry == parts(i)%entry)
     done(members) = .true.
-    if (present(only)) members = pack(members, only(members))
   end subroutine sharing
 
   subroutine gather_turned(parts, members, x, y)
@@ -330,10 +328,9 @@ contains
     if (allocated(opts%solver)) name = opts%solver
   end function part_solver
 
-  subroutine recover_parts(cache, parts, f_phys, u, error, only)
+  subroutine recover_parts(cache, parts, f_phys, u, error)
     !! Interior displacements of every condensed substructure from its
-    !! boundary (with only: of the parts where only is true). The
-    !! substructures that share a condensation (instances of
+    !! boundary. The substructures that share a condensation (instances of
     !! one part) are recovered together: their columns, turned into the
     !! condensation's frame, side by side in one multi-column solve with the
     !! shared factor (a supernodal solve of many columns costs little more
@@ -343,7 +340,6 @@ contains
     real(wp), intent(in) :: f_phys(:, :)
     real(wp), intent(inout) :: u(:, :)
     type(error_t), allocatable, intent(out) :: error
-    logical, intent(in), optional :: only(:)
     real(wp), allocatable :: fc(:, :), uc(:, :)
     integer, allocatable :: members(:)
     logical, allocatable :: done(:)
@@ -352,8 +348,7 @@ contains
     allocate (done(size(parts)), source=.false.)
     do i = 1, size(parts)
        if (done(i)) cycle
-       call sharing(parts, i, members, done, only)
-       if (size(members) == 0) cycle
+       call sharing(parts, i, members, done)
        call gather_turned(parts, members, f_phys, fc)
        call gather_turned(parts, members, u, uc)
        call entry_recover(cache, parts(i)%entry, fc, uc, ns, error)
@@ -369,9 +364,8 @@ contains
     end do
   end subroutine recover_parts
 
-  subroutine parts_ku(cache, parts, f_phys, u, ku, error, only)
-    !! k u of every condensed substructure (with only: of the parts where
-    !! only is true), with its own assembled stiffness
+  subroutine parts_ku(cache, parts, f_phys, u, ku, error)
+    !! k u of every condensed substructure, with its own assembled stiffness
     !! (a library entry: from the entry, entry_ku), on the physical DOFs (zero
     !! elsewhere): the element forces of the recovery for those
     !! substructures, without forming an element matrix. The substructures
@@ -381,7 +375,6 @@ contains
     real(wp), intent(in) :: f_phys(:, :), u(:, :)
     real(wp), allocatable, intent(out) :: ku(:, :)
     type(error_t), allocatable, intent(out) :: error
-    logical, intent(in), optional :: only(:)
     real(wp), allocatable :: fc(:, :), uc(:, :), y(:, :)
     integer, allocatable :: members(:)
     logical, allocatable :: done(:)
@@ -391,8 +384,7 @@ contains
     allocate (done(size(parts)), source=.false.)
     do i = 1, size(parts)
        if (done(i)) cycle
-       call sharing(parts, i, members, done, only)
-       if (size(members) == 0) cycle
+       call sharing(parts, i, members, done)
        call gather_turned(parts, members, f_phys, fc)
        call gather_turned(parts, members, u, uc)
        allocate (y(size(uc, 1), size(uc, 2)))

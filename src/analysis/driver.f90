@@ -126,7 +126,6 @@ contains
     zero%residual0 = 0.0_wp
     zero%refinements = 0
     zero%refine_tried = 0
-    if (allocated(zero%health_scope)) deallocate (zero%health_scope)
     do s = 1, size(res%fields%steps)
        if (.not. allocated(fail%message(s)%s)) cycle
        res%fields%steps(s) = zero

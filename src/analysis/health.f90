@@ -373,7 +373,7 @@ contains
     end associate
   end subroutine residuals
 
-  subroutine full_health(st, cache, res, error, covered)
+  subroutine full_health(st, cache, res, error)
     !! Residual and EPSILON of the whole reduced system, as if it had been
     !! solved monolithically, from the recovered displacements and each
     !! condensed substructure's own stiffness (so an error in a condensation
@@ -385,16 +385,10 @@ contains
     !! Owner terms (st%strategy%summed()): k is this MPI process's term of K_red and only the own
     !! substructures (entry > 0) hold K*: each process adds its own terms to
     !! the interface rows, which are summed over the processes.
-    !! With covered (a joint study's further value, analysis/value_health):
-    !! the interface rows K_red q − f_red alone (the K* and f* were checked
-    !! against the parts' own k by the value that computed them) and the
-    !! interior rows of the parts where covered is true only; no warning
-    !! (the caller judges the figures).
     type(solve_state_t), intent(in) :: st
     type(part_cache_t), intent(in) :: cache
     type(results_t), intent(inout) :: res
     type(error_t), allocatable, intent(out) :: error
-    logical, intent(in), optional :: covered(:)
     real(wp), allocatable :: r(:, :), f(:, :), rl(:, :), u0l(:, :), w(:, :), ks(:, :), ku0(:), &
          rf(:, :), ffull(:, :), qfull(:, :)
     integer :: i, is, nstep
@@ -412,13 +406,11 @@ contains
       end if
       ntot = k%n
       do i = 1, size(parts)
-         if (skipped(i)) cycle
          ntot = ntot + parts(i)%ni
       end do
       allocate (rf(ntot, nstep), ffull(ntot, nstep), qfull(ntot, nstep), source=0.0_wp)
       at = k%n
       do i = 1, size(parts)
-         if (skipped(i)) cycle
          associate (sys => parts(i), kst => parts(i)%se%k)
            ni = sys%ni
            nb = sys%nb
@@ -440,7 +432,7 @@ contains
            qfull(at + 1:at + ni, :) = u(sys%pdof(1:ni), :)
            at = at + ni
            ! interface rows: K* is with the owner only under owner terms
-           if (present(covered) .or. (st%strategy%summed() .and. parts(i)%entry == 0)) then
+           if (st%strategy%summed() .and. parts(i)%entry == 0) then
               deallocate (rl, u0l, w)
               cycle
            end if
@@ -459,17 +451,10 @@ contains
       ffull(1:k%n, :) = f
       qfull(1:k%n, :) = q
     end associate
-    call whole_residuals(st, r, f, rf, ffull, qfull, res, error, .not. present(covered))
-  contains
-    logical function skipped(i)
-      !! Part i's interior rows are left out (covered, false there).
-      integer, intent(in) :: i
-      skipped = .false.
-      if (present(covered)) skipped = .not. covered(i)
-    end function skipped
+    call whole_residuals(st, r, f, rf, ffull, qfull, res, error)
   end subroutine full_health
 
-  subroutine whole_residuals(st, r, f, rf, ffull, qfull, res, error, judge)
+  subroutine whole_residuals(st, r, f, rf, ffull, qfull, res, error)
     !! The end of full_health: under owner terms the interface rows
     !! r and loads f of every process's terms summed into rf and ffull; then
     !! the residual and EPSILON of every step from rf, ffull and qfull.
@@ -479,7 +464,6 @@ contains
     real(wp), intent(in) :: qfull(:, :)
     type(results_t), intent(inout) :: res
     type(error_t), allocatable, intent(out) :: error
-    logical, intent(in) :: judge   !! warn of a residual above RESIDUAL_WARN
     real(wp), allocatable :: rows(:)
     logical :: ok
     integer :: is
@@ -501,7 +485,7 @@ contains
          res%fields%steps(is)%residual = safe_div(norm2(rf(:, is)), norm2(ffull(:, is)))
          res%fields%steps(is)%epsilon = energy_error(qfull(:, is), rf(:, is), ffull(:, is))
       end do
-      if (judge .and. maxval(res%fields%steps(:)%residual) > RESIDUAL_WARN) then
+      if (maxval(res%fields%steps(:)%residual) > RESIDUAL_WARN) then
          write (buf, '(es10.2e3)') maxval(res%fields%steps(:)%residual)
          call warn(res, 'relative residual '//trim(adjustl(buf))//' of the whole system (condensed '// &
               'substructures recovered): results are inaccurate', res%fields%steps(:)%residual > RESIDUAL_WARN)

@@ -54,8 +54,6 @@ module superjoin_model_results
      integer :: refinements = 0                  !! refinement steps kept
      integer :: refine_tried = 0                 !! refinement steps tried
      character(:), allocatable :: failure        !! why the step was not solved (exit 3): its results are zeros
-     character(:), allocatable :: health_scope   !! a joint study's further value: what its health covers
-                                                 !! (unallocated: the whole system, said by no line)
   end type step_results_t
 
   type, public :: run_summary_t

@@ -284,7 +284,6 @@ contains
       end if
       write (hline, '(2x,a30,es10.2e3)') 'EPSILON (energy error)        ', st%epsilon
       call lu%line(trim(hline))
-      if (allocated(st%health_scope)) call lu%line('  residual and EPSILON cover    '//st%health_scope)
       write (hline, '(2x,a30,es10.2e3,a)') 'MAXRATIO                      ', res%summary%maxratio, '  at '//res%summary%maxratio_at
       call lu%line(trim(hline))
       write (hline, '(2x,a30,es10.2e3)') 'condition estimate (1-norm)   ', res%summary%cond_est

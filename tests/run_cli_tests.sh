@@ -180,5 +180,24 @@ echo old > target.lst; ln -sf target.lst link.lst
 expect 0 "symlink output" -- "$bin" -q "$src/decks/demo.deck" -o link.lst
 [ -L link.lst ] || { fail=$((fail+1)); echo "FAIL: the symbolic link was replaced"; }
 grep -q 'END OF LISTING' target.lst || { fail=$((fail+1)); echo "FAIL: the link's file was not written"; }
+# Load combinations with output requests: the envelope lists every element's
+# end forces, also those of elements no *EL PRINT names and no support or
+# contact touches (they were listed as zero).
+comb_deck() {
+  printf '*NODE\n1, 0, 0\n2, 1, 0\n3, 2, 0\n4, 3, 0\n5, 4, 0\n'
+  printf '*ELEMENT, TYPE=B23, ELSET=BEAM\n1, 1, 2\n2, 2, 3\n3, 3, 4\n4, 4, 5\n*ELSET, ELSET=E1\n 1\n'
+  printf '*MATERIAL, NAME=STEEL\n*ELASTIC\n2.1e11, 0.3\n*BEAM SECTION, ELSET=BEAM, MATERIAL=STEEL\n5.0e-3, 8.0e-5\n'
+  printf '*BOUNDARY\n 1, 1, 2\n 5, 2, 2\n*STEP, NAME=G\n%b*DLOAD\n BEAM, PY, -2000.0\n*END STEP\n' "$1"
+  printf '*STEP, NAME=Q\n*CLOAD\n 3, 2, -9000.0\n*END STEP\n'
+  printf '*LOAD COMBINATION, NAME=ULS\n G, 1.35\n Q, 1.5\n*LOAD COMBINATION, NAME=UPLIFT\n G, 0.9\n Q, -1.5\n'
+}
+comb_deck '*EL PRINT, ELSET=E1\n S\n' > combreq.deck
+comb_deck '' > comb.deck
+expect 0 "combinations with requests" -- "$bin" -q combreq.deck -o combreq.lst
+expect 0 "combinations without requests" -- "$bin" -q comb.deck -o comb.lst
+sed -n '/^ENVELOPE OF THE LOAD COMBINATIONS/,/^END OF LISTING/p' comb.lst > comb.env
+sed -n '/^ENVELOPE OF THE LOAD COMBINATIONS/,/^END OF LISTING/p' combreq.lst > combreq.env
+grep -q 'element results listed for 1 of 4' combreq.lst || { fail=$((fail+1)); echo "FAIL: combreq.lst: no note on the listed elements"; }
+[ -s comb.env ] && cmp -s comb.env combreq.env || { fail=$((fail+1)); echo "FAIL: the envelope differs with requests"; diff comb.env combreq.env | head; }
 echo "$pass passed, $fail failed"
 [ $fail -eq 0 ]

@@ -63,6 +63,8 @@ contains
     !! not all: the deck alone decides it, so the listing is the same with and
     !! without result files (it said "computed for 0 of N" without --csv, and
     !! nothing with it, for a deck whose only request was *NODE PRINT).
+    !! Every element with load combinations: their envelope lists every
+    !! element's end forces and resultants.
     type(model_t), intent(in) :: model
     type(run_options_t), intent(in) :: opts
     logical, allocatable, intent(out) :: wanted(:)
@@ -85,6 +87,9 @@ contains
        wanted = .true.
     else if (opts%csv .or. opts%vtk .or. opts%frd) then
        call request_mask(model, [REQ_EL_PRINT, REQ_EL_FILE], .false., wanted)
+    end if
+    if (allocated(model%combinations)) then
+       if (size(model%combinations) > 0) wanted = .true.   ! the envelope lists every element
     end if
   end subroutine wanted_elements
 

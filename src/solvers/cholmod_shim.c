@@ -566,16 +566,12 @@ static cholmod_factor *sj_analyze_grouped(sj_cholmod_t *h)
     cholmod_common *cm = &h->common;
     SuiteSparse_long *amd, *metis = NULL, *best;
     double amd_lnz, metis_lnz;
-    int high, nm = cm->nmethods, o0 = cm->method[0].ordering;
+    int high;
     cholmod_factor *L;
     if (h->force_node_metis == 2 && (metis = sj_node_metis_perm(h)) != NULL) {
         cm->status = CHOLMOD_OK;
         h->given_is_node_metis = 1;
-        cm->nmethods = 1;
-        cm->method[0].ordering = CHOLMOD_GIVEN;
-        L = cholmod_l_analyze_p(&h->A, metis, NULL, 0, cm);
-        cm->nmethods = nm;
-        cm->method[0].ordering = o0;
+        L = sj_analyze_given(h, metis);
         free(metis);
         return L;
     }
@@ -605,11 +601,7 @@ static cholmod_factor *sj_analyze_grouped(sj_cholmod_t *h)
     cm->status = CHOLMOD_OK;
     h->given_is_node_metis = best == metis;
     h->given_is_amd = best == amd;
-    cm->nmethods = 1;
-    cm->method[0].ordering = CHOLMOD_GIVEN;
-    L = cholmod_l_analyze_p(&h->A, best, NULL, 0, cm);
-    cm->nmethods = nm;
-    cm->method[0].ordering = o0;
+    L = sj_analyze_given(h, best);
     free(amd);
     free(metis);
     return L;

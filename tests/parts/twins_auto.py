@@ -24,6 +24,7 @@ sys.path.insert(0, os.path.join(ROOT, "tools"))
 sys.path.insert(0, HERE)
 import equiv  # noqa: E402
 from building import exe_and_work  # noqa: E402
+from twins import solve  # noqa: E402
 
 RTOL = 1e-10
 NOTE = "identical parts share a condensation (found by their geometry; --twins no: each its own): P2 as P1, P3 as P1 turned"
@@ -38,16 +39,6 @@ def deck(work, name, mesh):
     with open(path, "w") as fh:
         fh.write(text.replace(", CONDENSE=YES", ""))
     return path
-
-
-def solve(binary, path, args):
-    work = os.path.dirname(path)
-    p = subprocess.run([binary, "-q", path, "-o", os.path.join(work, "out.lst"), "--csv",
-                        os.path.join(work, "csv")] + args, capture_output=True, text=True)
-    if p.returncode != 0:
-        raise SystemExit(f"FAIL: {path} {' '.join(args)} exited with {p.returncode}: {p.stderr.strip()[:300]}")
-    with open(os.path.join(work, "out.lst")) as fh:
-        return fh.read()
 
 
 def main(argv):

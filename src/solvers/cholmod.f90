@@ -372,10 +372,8 @@ contains
     type(error_t), allocatable, intent(out) :: error
     integer(c_int) :: status
 
-    if (.not. self%factored) then
-       call fatal_error(error, EXIT_IO, 'CHOLMOD: solve called without a valid factorization')
-       return
-    end if
+    call check_factored(self, error)
+    if (allocated(error)) return
     if (size(b, 1, i8) /= self%n .or. size(x, 1, i8) /= self%n .or. size(b, 2) /= size(x, 2)) then
        call fatal_error(error, EXIT_IO, 'CHOLMOD: right-hand side and solution shapes do not match the matrix')
        return
@@ -395,10 +393,8 @@ contains
     type(error_t), allocatable, intent(out) :: error
     integer(c_int) :: status
 
-    if (.not. self%factored) then
-       call fatal_error(error, EXIT_IO, 'CHOLMOD: solve called without a valid factorization')
-       return
-    end if
+    call check_factored(self, error)
+    if (allocated(error)) return
     if (n /= self%n .or. size(b, 1, i8) < n .or. size(x, 1, i8) < n .or. size(b, 2) /= size(x, 2)) then
        call fatal_error(error, EXIT_IO, 'CHOLMOD: right-hand side and solution shapes do not match the matrix')
        return
@@ -408,6 +404,13 @@ contains
          x, int(size(x, 1), c_int64_t))
     if (status /= SJ_OK) call status_error(self, status, 'solve', error)
   end subroutine cholmod_solve_leading
+
+  subroutine check_factored(self, error)
+    !! The error of a solve called without a valid factorization.
+    class(cholmod_solver_t), intent(in) :: self
+    type(error_t), allocatable, intent(out) :: error
+    if (.not. self%factored) call fatal_error(error, EXIT_IO, 'CHOLMOD: solve called without a valid factorization')
+  end subroutine check_factored
 
   subroutine cholmod_pivots(self, d)
     !! d(j) = L_jj^2 of original column j (0 for columns a failed factorization

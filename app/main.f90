@@ -50,13 +50,14 @@ program superjoin_main
   logical :: check_only, demo
   type(stopwatch_t) :: clock
   real(wp) :: t_read
-  integer :: i, msg_unit
+  integer :: i, msg_unit, cli_status
   integer(i8) :: blas_bytes
   logical :: ok
   type(comm_t) :: comm
 
   comm = comm_world()
-  call parse_command_line(opts, deck, listing, csv_dir, check_only, vtk_file, demo, job)
+  call parse_command_line(opts, deck, listing, csv_dir, check_only, vtk_file, demo, job, cli_status)
+  if (cli_status >= 0) stop cli_status, quiet=.true.
   ! As ccx -i JOB: warnings and the job's progress on stdout, so that a
   ! front-end reads a silent stderr and status 0 as success (FreeCAD does).
   msg_unit = error_unit
@@ -286,25 +287,35 @@ contains
     stop error%code, quiet=.true.
   end subroutine fail_on
 
-  logical function yes_no(val, option)
-    !! The value of a yes | no option (anything else: a usage error).
+  logical function yes_no(val, option, status)
+    !! The value of a yes | no option (anything else: a usage error, said,
+    !! status EXIT_USAGE; status unchanged otherwise).
     character(*), intent(in) :: val, option
+    integer, intent(inout) :: status
     yes_no = .false.
     select case (to_lower(val))
     case ('yes')
        yes_no = .true.
     case ('no')
     case default
-       call usage_error('unknown '//option//' '''//val//''' (yes, no)')
+       call usage_message('unknown '//option//' '''//val//''' (yes, no)')
+       status = EXIT_USAGE
     end select
   end function yes_no
 
   subroutine usage_error(message)
+    !! A usage error: said, and the run stops with EXIT_USAGE.
+    character(*), intent(in) :: message
+    call usage_message(message)
+    stop EXIT_USAGE, quiet=.true.
+  end subroutine usage_error
+
+  subroutine usage_message(message)
+    !! A usage error said on standard error, with the usage line.
     character(*), intent(in) :: message
     write (error_unit, '(a)') 'superjoin: '//message
     write (error_unit, '(a)') 'usage: superjoin [options] [DECK]   (superjoin --help for more)'
-    stop EXIT_USAGE, quiet=.true.
-  end subroutine usage_error
+  end subroutine usage_message
 
   subroutine print_help()
     write (output_unit, '(a)') &
@@ -341,17 +352,23 @@ contains
          '             5 solved and listing written, but the results are judged inaccurate'
   end subroutine print_help
 
-  subroutine parse_command_line(opts, deck, listing, csv_dir, check_only, vtk_file, demo, job)
-    !! Options and file names from the command line (usage errors stop with 2).
+  subroutine parse_command_line(opts, deck, listing, csv_dir, check_only, vtk_file, demo, job, status)
+    !! Options and file names from the command line. status: -1 go on; else the
+    !! exit status the caller stops with (EXIT_OK after --help or --version,
+    !! EXIT_USAGE after a usage error, EXIT_IO without the deck; the message is
+    !! written). The run stops in the caller, never here: the allocations of a
+    !! procedure left by STOP looked leaked to LeakSanitizer.
     !! demo: no deck given, the bundled demo deck is solved. job: -i JOB (as
     !! ccx: the deck JOB.inp, CalculiX's result files JOB.dat, .frd, .sta).
     type(run_options_t), intent(out) :: opts
     character(:), allocatable, intent(out) :: deck, listing, csv_dir, vtk_file, job
     logical, intent(out) :: check_only, demo
+    integer, intent(out) :: status
     integer :: i, n
     character(:), allocatable :: arg, val
     logical :: exists
 
+    status = -1
     check_only = .false.
     opts%solver = 'auto'
     n = command_argument_count()
@@ -362,10 +379,12 @@ contains
        select case (arg)
        case ('-h', '--help')
           call print_help()
-          stop EXIT_OK, quiet=.true.
+          status = EXIT_OK
+          return
        case ('--version')
           write (output_unit, '(a)') 'superjoin '//SUPERJOIN_VERSION
-          stop EXIT_OK, quiet=.true.
+          status = EXIT_OK
+          return
        case ('-q', '--quiet')
           opts%quiet = .true.
        case ('-v', '--verbose')
@@ -378,14 +397,26 @@ contains
           opts%library_verify = .true.
        case ('-i')
           ! also "-i " with a trailing blank, as FreeCAD passes it (a blank-padded compare)
-          if (i == n) call usage_error('option -i needs a job name (as ccx -i JOB: reads JOB.inp)')
+          if (i == n) then
+             call usage_message('option -i needs a job name (as ccx -i JOB: reads JOB.inp)')
+             status = EXIT_USAGE
+             return
+          end if
           i = i + 1
-          if (allocated(deck)) call usage_error('more than one deck given')
+          if (allocated(deck)) then
+             call usage_message('more than one deck given')
+             status = EXIT_USAGE
+             return
+          end if
           job = job_name(get_arg(i))
           deck = job//'.inp'
        case ('-o', '--csv', '--solver', '--formulation', '--export-matrix', '--vtk', '--condense', '--library', &
             '--levels', '--twins')
-          if (i == n) call usage_error('option '//arg//' needs a value')
+          if (i == n) then
+             call usage_message('option '//arg//' needs a value')
+             status = EXIT_USAGE
+             return
+          end if
           i = i + 1
           val = get_arg(i)
           select case (arg)
@@ -397,11 +428,16 @@ contains
              select case (to_lower(val))
              case ('auto', 'cholmod', 'umfpack', 'lapack', 'mumps', 'mumps-ldlt')
                 opts%solver = to_lower(val)
-                if (index(opts%solver, 'mumps') == 1 .and. .not. mumps_available()) &
-                     call usage_error('solver '//opts%solver//': this superjoin is built without MUMPS '// &
-                     '(cmake -DSUPERJOIN_MUMPS=ON or -DSUPERJOIN_MPI=ON, doc/user-manual.md)')
+                if (index(opts%solver, 'mumps') == 1 .and. .not. mumps_available()) then
+                   call usage_message('solver '//opts%solver//': this superjoin is built without MUMPS '// &
+                        '(cmake -DSUPERJOIN_MUMPS=ON or -DSUPERJOIN_MPI=ON, doc/user-manual.md)')
+                   status = EXIT_USAGE
+                   return
+                end if
              case default
-                call usage_error('unknown solver '''//val//''' (auto, cholmod, umfpack, lapack, mumps, mumps-ldlt)')
+                call usage_message('unknown solver '''//val//''' (auto, cholmod, umfpack, lapack, mumps, mumps-ldlt)')
+                status = EXIT_USAGE
+                return
              end select
           case ('--formulation')
              select case (to_lower(val))
@@ -410,7 +446,9 @@ contains
              case ('penalty')
                 opts%formulation = FORM_PENALTY
              case default
-                call usage_error('unknown formulation '''//val//''' (transform, penalty)')
+                call usage_message('unknown formulation '''//val//''' (transform, penalty)')
+                status = EXIT_USAGE
+                return
              end select
           case ('--condense')
              select case (to_lower(val))
@@ -421,7 +459,9 @@ contains
              case ('auto')
                 opts%condense = CONDENSE_AUTO
              case default
-                call usage_error('unknown condensation '''//val//''' (yes, no, auto)')
+                call usage_message('unknown condensation '''//val//''' (yes, no, auto)')
+                status = EXIT_USAGE
+                return
              end select
           case ('--levels')
              select case (to_lower(val))
@@ -432,23 +472,38 @@ contains
              case ('auto')
                 opts%levels = LEVELS_AUTO
              case default
-                call usage_error('unknown --levels '''//val//''' (yes, no, auto)')
+                call usage_message('unknown --levels '''//val//''' (yes, no, auto)')
+                status = EXIT_USAGE
+                return
              end select
           case ('--twins')
-             opts%twins = yes_no(val, '--twins')
+             opts%twins = yes_no(val, '--twins', status)
+             if (status >= 0) return
           case ('--export-matrix')
              opts%export_matrix = val
           case ('--library')
              opts%library = val
           case ('--vtk')
-             if (len(vtk_path_problem(val)) > 0) call usage_error(vtk_path_problem(val))
+             if (len(vtk_path_problem(val)) > 0) then
+                call usage_message(vtk_path_problem(val))
+                status = EXIT_USAGE
+                return
+             end if
              vtk_file = val
           end select
        case default
           if (len(arg) > 1) then
-             if (arg(1:1) == '-') call usage_error('unknown option '//arg)
+             if (arg(1:1) == '-') then
+                call usage_message('unknown option '//arg)
+                status = EXIT_USAGE
+                return
+             end if
           end if
-          if (allocated(deck)) call usage_error('more than one deck given')
+          if (allocated(deck)) then
+             call usage_message('more than one deck given')
+             status = EXIT_USAGE
+             return
+          end if
           deck = arg
        end select
     end do
@@ -477,7 +532,8 @@ contains
     end if
     if (.not. exists) then
        write (error_unit, '(a)') deck//': error: cannot open deck'
-       stop EXIT_IO, quiet=.true.
+       status = EXIT_IO
+       return
     end if
     if (.not. allocated(listing)) listing = default_listing(deck)
   end subroutine parse_command_line

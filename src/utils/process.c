@@ -16,8 +16,9 @@
  *  - OpenBLAS's work buffer is allocated now, by a 1 x 1 dpotrf: OpenBLAS
  *    retries a failed buffer allocation forever (it spins), so when memory
  *    runs out later the failure must land in code that reports it. If even
- *    that buffer cannot be allocated (probed with malloc first), the caller
- *    is told, with the size, and BLAS is not touched.
+ *    that buffer cannot be mapped (probed with mmap first, as OpenBLAS maps
+ *    it; malloc would make AddressSanitizer poison and fill 129 MB at every
+ *    start), the caller is told, with the size, and BLAS is not touched.
  */
 #include <stdio.h>
 #include <signal.h>
@@ -25,6 +26,7 @@
 #include <stdint.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/mman.h>
 #include <unistd.h>
 
 #define SJ_TEMP_PATH_MAX 4096
@@ -113,11 +115,12 @@ int sj_process_setup(int64_t *blas_bytes)
     for (k = 0; k < SJ_NFATAL; k++) {
         if (sigaction(fatal_signals[k], &sa, &fatal_previous[k]) != 0) status = SJ_SETUP_HANDLERS;
     }
-    probe = malloc(SJ_BLAS_BUFFER_BYTES);
-    if (probe == NULL) {
+    probe = mmap(NULL, SJ_BLAS_BUFFER_BYTES, PROT_READ | PROT_WRITE,
+                 MAP_PRIVATE | MAP_ANONYMOUS, -1, 0);
+    if (probe == MAP_FAILED) {
         *blas_bytes = (int64_t)SJ_BLAS_BUFFER_BYTES;
     } else {
-        free(probe);
+        munmap(probe, SJ_BLAS_BUFFER_BYTES);
         *blas_bytes = 0;
         dpotrf_("U", &n, &one, &n, &info, 1);
     }

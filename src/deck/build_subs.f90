@@ -279,7 +279,7 @@ contains
             r = find_set(b, ch%ref, w%elem)
             if (r > 0) then
                if (w%state(r) == DONE) then
-                  gaps = gaps .or. allocated(w%sets(r)%print_ids)
+                  gaps = gaps .or. allocated(w%sets(r)%print_ranges)
                   do k = 1, size(w%sets(r)%items)
                      call add(w, w%sets(r)%items(k))
                   end do
@@ -297,7 +297,7 @@ contains
        return
     end if
     w%sets(t)%items(:) = w%items(1:w%n)
-    if (gaps .and. .not. w%elem) call print_ids(b, m, w, t)
+    if (gaps .and. .not. w%elem) call print_ranges(b, m, w, t)
   end subroutine build_items
 
   pure integer(ip) function largest_node_id(m)
@@ -314,63 +314,67 @@ contains
     if (top >= gen(1)) range_count = int((min(gen(2), top) - gen(1))/gen(3)) + 1
   end function range_count
 
-  subroutine print_ids(b, m, w, t)
+  subroutine print_ranges(b, m, w, t)
     !! The ids CalculiX's .dat prints for node set t, whose GENERATE ranges (or
     !! a set it refers to) pass over undefined ids: as ccx, every id of a range
-    !! up to the largest node id (an undefined one prints zeros), in order.
+    !! up to the largest node id (an undefined one prints zeros), in order; kept
+    !! as ranges, never expanded here.
     type(sub_b_t), intent(in) :: b
     type(substructure_t), intent(in) :: m
     type(set_work_t), intent(inout) :: w
     integer, intent(in) :: t
-    integer(ip), allocatable :: ids(:)
-    integer(ip) :: id, top
+    integer(ip), allocatable :: ranges(:, :)
+    integer(ip) :: top
     integer :: p, k, n, r
     top = largest_node_id(m)
-    allocate (ids(INITIAL_CAPACITY))
+    allocate (ranges(3, INITIAL_CAPACITY))
     n = 0
     do p = w%head(t), w%head(t + 1) - 1
        associate (ch => b%chunks(w%list(p)))
          select case (ch%kind)
          case (CH_IDS)
             do k = ch%start, ch%start + ch%count - 1
-               if (find_node(m, b%pool(k)) > 0) call push_id(ids, n, b%pool(k))
+               if (find_node(m, b%pool(k)) > 0) call push_range(ranges, n, [b%pool(k), b%pool(k), 1_ip])
             end do
          case (CH_GEN)
-            do id = ch%gen(1), min(ch%gen(2), top), ch%gen(3)
-               call push_id(ids, n, id)
-            end do
+            if (ch%gen(1) <= min(ch%gen(2), top)) call push_range(ranges, n, [ch%gen(1), min(ch%gen(2), top), ch%gen(3)])
          case (CH_RANGE)
             do k = ch%start, ch%start + ch%count - 1
-               call push_id(ids, n, m%node_id(k))
+               call push_range(ranges, n, [m%node_id(k), m%node_id(k), 1_ip])
             end do
          case (CH_REF)
             r = find_set(b, ch%ref, .false.)
             if (r <= 0) cycle
             if (w%state(r) /= DONE) cycle
-            if (allocated(w%sets(r)%print_ids)) then
-               do k = 1, size(w%sets(r)%print_ids)
-                  call push_id(ids, n, w%sets(r)%print_ids(k))
+            if (allocated(w%sets(r)%print_ranges)) then
+               do k = 1, size(w%sets(r)%print_ranges, 2)
+                  call push_range(ranges, n, w%sets(r)%print_ranges(:, k))
                end do
             else
                do k = 1, size(w%sets(r)%items)
-                  call push_id(ids, n, m%node_id(w%sets(r)%items(k)))
+                  call push_range(ranges, n, [m%node_id(w%sets(r)%items(k)), m%node_id(w%sets(r)%items(k)), 1_ip])
                end do
             end if
          end select
        end associate
     end do
-    w%sets(t)%print_ids = ids(1:n)
-  end subroutine print_ids
+    w%sets(t)%print_ranges = ranges(:, 1:n)
+  end subroutine print_ranges
 
-  subroutine push_id(ids, n, id)
-    !! Appends id to ids(1:n).
-    integer(ip), allocatable, intent(inout) :: ids(:)
+  pure subroutine push_range(ranges, n, range)
+    !! Appends column `range` (first, last, step) to ranges(:, 1:n).
+    integer(ip), allocatable, intent(inout) :: ranges(:, :)
     integer, intent(inout) :: n
-    integer(ip), intent(in) :: id
-    call grow(ids, n, INITIAL_CAPACITY)
+    integer(ip), intent(in) :: range(3)
+    integer(ip), allocatable :: tmp(:, :)
+    if (n == size(ranges, 2)) then
+       allocate (tmp(3, 2*n))
+       tmp(:, 1:n) = ranges(:, 1:n)
+       call move_alloc(tmp, ranges)
+    end if
     n = n + 1
-    ids(n) = id
-  end subroutine push_id
+    ranges(:, n) = range
+  end subroutine push_range
 
   subroutine add_ids(st, b, m, w, t, ch)
     !! The members of a chunk of ids of set t (undefined ids reported).

@@ -78,7 +78,7 @@ contains
             end do
             if (k > 0) r%items = sub%nsets(k)%items
             if (k > 0) then
-               if (allocated(sub%nsets(k)%print_ids)) r%print_ids = sub%nsets(k)%print_ids
+               if (allocated(sub%nsets(k)%print_ranges)) r%print_ranges = sub%nsets(k)%print_ranges
             end if
          else
             do i = 1, size(sub%elsets)

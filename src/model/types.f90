@@ -177,10 +177,12 @@ module superjoin_model_types
     !! A named node or element set: local indices in order of definition.
      character(:), allocatable :: name     !! upper case
      integer(ip), allocatable :: items(:)
-     integer(ip), allocatable :: print_ids(:)
+     integer(ip), allocatable :: print_ranges(:, :)
        !! a node set whose GENERATE ranges pass over undefined ids: the ids
        !! CalculiX's .dat prints for it (every id of a range up to the largest
-       !! node id, defined or not), in order; unallocated otherwise
+       !! node id, defined or not), in order, as ranges (first, last, step) in
+       !! columns, one id as (id, id, 1), so that a huge sparse range costs one
+       !! column; unallocated otherwise
   end type index_set_t
 
   type, public :: given_matrix_t
@@ -392,7 +394,7 @@ module superjoin_model_types
      integer :: sub = 0                    !! substructure of the set; 0: the whole model
      character(:), allocatable :: set_name !! NSET= / ELSET= (upper case), unallocated: all
      integer(ip), allocatable :: items(:)  !! local node or element indices in sub (with a set)
-     integer(ip), allocatable :: print_ids(:)  !! the node set's index_set_t%print_ids (CalculiX's .dat rows)
+     integer(ip), allocatable :: print_ranges(:, :)  !! the node set's index_set_t%print_ranges (CalculiX's .dat rows)
      integer :: totals = TOTALS_NO         !! TOTALS_*
      type(string_t), allocatable :: vars(:)     !! variables superjoin produces (upper case)
      type(string_t), allocatable :: ignored(:)  !! variables it knows but cannot produce (thermal, plastic...)

@@ -228,7 +228,7 @@ contains
 
   subroutine node_rows(lu, model, r, subs, nodes, vals, marked)
     !! One row per node: its user id and vals(1:3, node); ' L' when `marked`.
-    !! A set with print_ids prints those ids, as ccx (an undefined id: zeros).
+    !! A set with print ranges prints their ids, as ccx (an undefined id: zeros).
     type(text_buffer_t), intent(inout) :: lu
     type(model_t), intent(in) :: model
     type(output_request_t), intent(in) :: r
@@ -236,45 +236,33 @@ contains
     integer(ip), intent(in) :: nodes(:)
     real(wp), intent(in) :: vals(:, :)
     logical, intent(in) :: marked(:)
-    integer(ip), allocatable :: ids(:), at(:)
-    integer :: i
-    if (allocated(r%print_ids)) then
-       ids = r%print_ids
-       call print_positions(model%subs(r%sub), nodes, ids, at)
-    else
-       allocate (ids(size(nodes)), at(size(nodes)))
-       do i = 1, size(nodes)
-          ids(i) = model%subs(subs(i))%node_id(nodes(i))
-          at(i) = i
-       end do
-    end if
-    do i = 1, size(ids)
-       if (at(i) > 0) then
-          call node_row(lu, ids(i), vals(:, at(i)), marked(at(i)))
-       else
-          call node_row(lu, ids(i), [0.0_wp, 0.0_wp, 0.0_wp], .false.)
-       end if
-    end do
-  end subroutine node_rows
-
-  subroutine print_positions(sub, nodes, ids, at)
-    !! at(k): the position in nodes of the node with id ids(k) (0: none).
-    type(substructure_t), intent(in) :: sub
-    integer(ip), intent(in) :: nodes(:), ids(:)
-    integer(ip), allocatable, intent(out) :: at(:)
     integer(ip), allocatable :: pos(:)
-    integer(ip) :: n
-    integer :: k
-    allocate (pos(sub%nnode), source=0_ip)
-    do k = 1, size(nodes)
-       pos(nodes(k)) = k
-    end do
-    allocate (at(size(ids)), source=0_ip)
-    do k = 1, size(ids)
-       n = find_node(sub, ids(k))
-       if (n > 0) at(k) = pos(n)
-    end do
-  end subroutine print_positions
+    integer(ip) :: id, n
+    integer :: i, k
+    if (.not. allocated(r%print_ranges)) then
+       do i = 1, size(nodes)
+          call node_row(lu, model%subs(subs(i))%node_id(nodes(i)), vals(:, i), marked(i))
+       end do
+       return
+    end if
+    associate (sub => model%subs(r%sub))
+      allocate (pos(sub%nnode), source=0_ip)   ! pos(node): its place in nodes (0: none)
+      do i = 1, size(nodes)
+         pos(nodes(i)) = i
+      end do
+      do k = 1, size(r%print_ranges, 2)
+         do id = r%print_ranges(1, k), r%print_ranges(2, k), r%print_ranges(3, k)
+            n = find_node(sub, id)
+            if (n > 0) n = pos(n)
+            if (n > 0) then
+               call node_row(lu, id, vals(:, n), marked(n))
+            else
+               call node_row(lu, id, [0.0_wp, 0.0_wp, 0.0_wp], .false.)
+            end if
+         end do
+      end do
+    end associate
+  end subroutine node_rows
 
   subroutine node_row(lu, id, v, marked)
     !! The row of node id: v(1:3); ' L' when `marked`.

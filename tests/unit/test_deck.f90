@@ -317,7 +317,7 @@ contains
     call read_ok(join([character(L) :: '*NODE', '1,0,0', '2,0,0', '3,0,0', '4,0,0', '5,0,0', '7,0,0', &
          '10,0,0', '1000000000,0,0', &
          '*NSET, NSET=G, GENERATE', '1, 10, 3', &
-         '*NSET, NSET=SPARSE, GENERATE', '2, 2147483647, 1', &
+         '*NSET, NSET=SPARSE, GENERATE', '2, 2147483647, 1', '*NSET, NSET=ODD, GENERATE', '1, 10, 2', &
          '*NSET, NSET=A', '5, 3', '*NSET, NSET=B', '1, A, 3, 2,', '*NSET, NSET=a', '7', &
          '*NSET, NSET=C, UNSORTED', 'B, G', '*NSET, nset=EMPTYREF', 'D', '*NSET, NSET=D', '10', &
          '*ELEMENT, TYPE=T2D2, ELSET=E1', '1, 1, 2', '2, 2, 3', '*ELEMENT, TYPE=T2D2', '3, 3, 4', &
@@ -330,6 +330,15 @@ contains
       k = set_index(m, 'SPARSE')
       if (k > 0) call check(all(uids(m, s%nsets(k)%items) == [2, 3, 4, 5, 7, 10, 1000000000]), &
            'huge sparse GENERATE range takes the existing ids')
+      if (k > 0) call check(allocated(s%nsets(k)%print_ranges), 'huge sparse GENERATE range: .dat rows kept')
+      if (k > 0 .and. allocated(s%nsets(k)%print_ranges)) call check(all(shape(s%nsets(k)%print_ranges) == [3, 1]) &
+           .and. all(s%nsets(k)%print_ranges(:, 1) == [2_ip, 1000000000_ip, 1_ip]), &
+           'huge sparse GENERATE range: .dat rows as one range up to the largest id, not expanded')
+      k = set_index(m, 'ODD')
+      if (k > 0) call check(all(uids(m, s%nsets(k)%items) == [1, 3, 5, 7]), 'GENERATE with gaps: the defined ids')
+      if (k > 0 .and. allocated(s%nsets(k)%print_ranges)) call check(all(shape(s%nsets(k)%print_ranges) == [3, 1]) &
+           .and. all(s%nsets(k)%print_ranges(:, 1) == [1_ip, 10_ip, 2_ip]), 'GENERATE with gaps: .dat rows 1, 3, .., 9')
+      if (k > 0) call check(allocated(s%nsets(k)%print_ranges), 'GENERATE with gaps: .dat rows kept')
       k = set_index(m, 'A')
       if (k > 0) call check(all(uids(m, s%nsets(k)%items) == [5, 3, 7]), 'set extended by a second card')
       k = set_index(m, 'B')

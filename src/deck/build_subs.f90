@@ -362,11 +362,18 @@ contains
   end subroutine print_ranges
 
   pure subroutine push_range(ranges, n, range)
-    !! Appends column `range` (first, last, step) to ranges(:, 1:n).
+    !! Appends column `range` (first, last, step) to ranges(:, 1:n); one id
+    !! next after a step-1 range ending just before it extends that range.
     integer(ip), allocatable, intent(inout) :: ranges(:, :)
     integer, intent(inout) :: n
     integer(ip), intent(in) :: range(3)
     integer(ip), allocatable :: tmp(:, :)
+    if (n > 0 .and. range(1) == range(2)) then
+       if (ranges(3, n) == 1 .and. ranges(2, n) == range(1) - 1) then
+          ranges(2, n) = range(1)
+          return
+       end if
+    end if
     if (n == size(ranges, 2)) then
        allocate (tmp(3, 2*n))
        tmp(:, 1:n) = ranges(:, 1:n)

@@ -237,7 +237,7 @@ contains
     real(wp), intent(in) :: vals(:, :)
     logical, intent(in) :: marked(:)
     integer(ip), allocatable :: pos(:)
-    integer(ip) :: id, n
+    integer(ip) :: id, n, j
     integer :: i, k
     if (.not. allocated(r%print_ranges)) then
        do i = 1, size(nodes)
@@ -251,7 +251,9 @@ contains
          pos(nodes(i)) = i
       end do
       do k = 1, size(r%print_ranges, 2)
-         do id = r%print_ranges(1, k), r%print_ranges(2, k), r%print_ranges(3, k)
+         ! counted, not stepped: first + step past the last id may exceed huge(id)
+         do j = 0, (r%print_ranges(2, k) - r%print_ranges(1, k))/r%print_ranges(3, k)
+            id = r%print_ranges(1, k) + j*r%print_ranges(3, k)
             n = find_node(sub, id)
             if (n > 0) n = pos(n)
             if (n > 0) then

@@ -336,9 +336,9 @@ contains
            'huge sparse GENERATE range: .dat rows as one range up to the largest id, not expanded')
       k = set_index(m, 'ODD')
       if (k > 0) call check(all(uids(m, s%nsets(k)%items) == [1, 3, 5, 7]), 'GENERATE with gaps: the defined ids')
+      if (k > 0) call check(allocated(s%nsets(k)%print_ranges), 'GENERATE with gaps: .dat rows kept')
       if (k > 0 .and. allocated(s%nsets(k)%print_ranges)) call check(all(shape(s%nsets(k)%print_ranges) == [3, 1]) &
            .and. all(s%nsets(k)%print_ranges(:, 1) == [1_ip, 10_ip, 2_ip]), 'GENERATE with gaps: .dat rows 1, 3, .., 9')
-      if (k > 0) call check(allocated(s%nsets(k)%print_ranges), 'GENERATE with gaps: .dat rows kept')
       k = set_index(m, 'A')
       if (k > 0) call check(all(uids(m, s%nsets(k)%items) == [5, 3, 7]), 'set extended by a second card')
       k = set_index(m, 'B')

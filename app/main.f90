@@ -298,8 +298,7 @@ contains
        yes_no = .true.
     case ('no')
     case default
-       call usage_message('unknown '//option//' '''//val//''' (yes, no)')
-       status = EXIT_USAGE
+       call usage_problem(status, 'unknown '//option//' '''//val//''' (yes, no)')
     end select
   end function yes_no
 
@@ -309,6 +308,14 @@ contains
     call usage_message(message)
     stop EXIT_USAGE, quiet=.true.
   end subroutine usage_error
+
+  subroutine usage_problem(status, message)
+    !! A usage error found while parsing: said, status EXIT_USAGE (the caller stops).
+    integer, intent(out) :: status
+    character(*), intent(in) :: message
+    call usage_message(message)
+    status = EXIT_USAGE
+  end subroutine usage_problem
 
   subroutine usage_message(message)
     !! A usage error said on standard error, with the usage line.
@@ -398,14 +405,12 @@ contains
        case ('-i')
           ! also "-i " with a trailing blank, as FreeCAD passes it (a blank-padded compare)
           if (i == n) then
-             call usage_message('option -i needs a job name (as ccx -i JOB: reads JOB.inp)')
-             status = EXIT_USAGE
+             call usage_problem(status, 'option -i needs a job name (as ccx -i JOB: reads JOB.inp)')
              return
           end if
           i = i + 1
           if (allocated(deck)) then
-             call usage_message('more than one deck given')
-             status = EXIT_USAGE
+             call usage_problem(status, 'more than one deck given')
              return
           end if
           job = job_name(get_arg(i))
@@ -413,8 +418,7 @@ contains
        case ('-o', '--csv', '--solver', '--formulation', '--export-matrix', '--vtk', '--condense', '--library', &
             '--levels', '--twins')
           if (i == n) then
-             call usage_message('option '//arg//' needs a value')
-             status = EXIT_USAGE
+             call usage_problem(status, 'option '//arg//' needs a value')
              return
           end if
           i = i + 1
@@ -429,14 +433,12 @@ contains
              case ('auto', 'cholmod', 'umfpack', 'lapack', 'mumps', 'mumps-ldlt')
                 opts%solver = to_lower(val)
                 if (index(opts%solver, 'mumps') == 1 .and. .not. mumps_available()) then
-                   call usage_message('solver '//opts%solver//': this superjoin is built without MUMPS '// &
+                   call usage_problem(status, 'solver '//opts%solver//': this superjoin is built without MUMPS '// &
                         '(cmake -DSUPERJOIN_MUMPS=ON or -DSUPERJOIN_MPI=ON, doc/user-manual.md)')
-                   status = EXIT_USAGE
                    return
                 end if
              case default
-                call usage_message('unknown solver '''//val//''' (auto, cholmod, umfpack, lapack, mumps, mumps-ldlt)')
-                status = EXIT_USAGE
+                call usage_problem(status, 'unknown solver '''//val//''' (auto, cholmod, umfpack, lapack, mumps, mumps-ldlt)')
                 return
              end select
           case ('--formulation')
@@ -446,8 +448,7 @@ contains
              case ('penalty')
                 opts%formulation = FORM_PENALTY
              case default
-                call usage_message('unknown formulation '''//val//''' (transform, penalty)')
-                status = EXIT_USAGE
+                call usage_problem(status, 'unknown formulation '''//val//''' (transform, penalty)')
                 return
              end select
           case ('--condense')
@@ -459,8 +460,7 @@ contains
              case ('auto')
                 opts%condense = CONDENSE_AUTO
              case default
-                call usage_message('unknown condensation '''//val//''' (yes, no, auto)')
-                status = EXIT_USAGE
+                call usage_problem(status, 'unknown condensation '''//val//''' (yes, no, auto)')
                 return
              end select
           case ('--levels')
@@ -472,8 +472,7 @@ contains
              case ('auto')
                 opts%levels = LEVELS_AUTO
              case default
-                call usage_message('unknown --levels '''//val//''' (yes, no, auto)')
-                status = EXIT_USAGE
+                call usage_problem(status, 'unknown --levels '''//val//''' (yes, no, auto)')
                 return
              end select
           case ('--twins')
@@ -485,8 +484,7 @@ contains
              opts%library = val
           case ('--vtk')
              if (len(vtk_path_problem(val)) > 0) then
-                call usage_message(vtk_path_problem(val))
-                status = EXIT_USAGE
+                call usage_problem(status, vtk_path_problem(val))
                 return
              end if
              vtk_file = val
@@ -494,14 +492,12 @@ contains
        case default
           if (len(arg) > 1) then
              if (arg(1:1) == '-') then
-                call usage_message('unknown option '//arg)
-                status = EXIT_USAGE
+                call usage_problem(status, 'unknown option '//arg)
                 return
              end if
           end if
           if (allocated(deck)) then
-             call usage_message('more than one deck given')
-             status = EXIT_USAGE
+             call usage_problem(status, 'more than one deck given')
              return
           end if
           deck = arg

@@ -32,7 +32,10 @@ import gen_limits  # noqa: E402
 SKIP = 77
 CHAIN_ELEMENTS = 700000          # 3 lines per node: 2 100 017 lines
 MIN_LINES = 2000000
-TIME_BOUND = 60.0                # s; measured 15.6 s (Release, 2 cores, 2026-11-21)
+TIME_BOUND = 120.0               # s; measured 15.6 s (Release, 2 cores, 2026-11-21), 13.0 s
+                                 # alone on 2 idle cores (2026-11-29); the test runs beside
+                                 # others (no RUN_SERIAL), and a superlinear blowup in
+                                 # 700 000 elements would take hours
 MEMORY_BOUND = 1500 * 2**20      # bytes; measured 967 MB peak RSS
 SPARSE_MEMORY_BOUND = 64 * 2**20  # bytes; measured 8 MB
 REL_TOL = 1e-6                   # displacements / (P L / E A): cond(K) ~ 1e12, so up to

@@ -16,13 +16,14 @@ module superjoin_deck_assembly
   use superjoin_elements_traits, only: element_traits_t, element_traits, FAMILY_BEAM
   use superjoin_deck_lexer, only: itoa, plural
   use superjoin_deck_state, only: deck_state_t, sub_b_t, report, report_loc, SUBK_INSTANCE, &
-       step_b_t, SUBK_PART, SUBK_NESTED, instance_b_t, override_b_t
+       step_b_t, SUBK_PART, SUBK_NESTED, instance_b_t, override_b_t, find_set
   use superjoin_elements_frame, only: DEFAULT_V_SWITCH_TOL, cross, real_text
   use superjoin_utils_sorting, only: sort_index
   use superjoin_utils_halting, only: halting_t, halting_off, halting_restore
   use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
   use superjoin_deck_build_common, only: resolve_items, where
   use superjoin_deck_build_subs, only: resolve_sets
+  use superjoin_utils_strings, only: pick
   implicit none (type, external)
   private
 
@@ -124,7 +125,7 @@ contains
          m%loc = model%subs(k)%loc
          call place_copy(st, model%subs(p), inst, m)
          m%part = part_ord(p)
-         call add_assembly_sets(st, st%subs(k), m)
+         call add_assembly_sets(st, st%subs(k), st%subs(p), m)
        end associate
        if (st%aborted) return
     end do
@@ -152,11 +153,12 @@ contains
     end subroutine renumber
   end subroutine place_all
 
-  subroutine add_assembly_sets(st, b, m)
+  subroutine add_assembly_sets(st, b, part, m)
     !! The sets that *NSET/*ELSET, INSTANCE= define on instance m (Abaqus
-    !! assembly-level sets), after the sets copied from its part.
+    !! assembly-level sets), after the sets copied from its part (b: the
+    !! instance's entry, with those sets; part: its part's entry).
     type(deck_state_t), intent(inout) :: st
-    type(sub_b_t), intent(in) :: b
+    type(sub_b_t), intent(in) :: b, part
     type(substructure_t), intent(inout) :: m
     if (b%nnset > 0) call add_kind(.false.)
     if (st%aborted) return
@@ -181,15 +183,7 @@ contains
       n2 = size(all)
       do j = 1, n2
          do i = 1, n1
-            if (keep(i)%name == all(j)%name) then
-               if (elem) then
-                  call report_loc(st, b%elsets(j)%loc, 'element set '//all(j)%name//' of instance '//m%name// &
-                       ' is already a set of its part')
-               else
-                  call report_loc(st, b%nsets(j)%loc, 'node set '//all(j)%name//' of instance '//m%name// &
-                       ' is already a set of its part')
-               end if
-            end if
+            if (keep(i)%name == all(j)%name) call report_clash(st, b, part, m%name, j, elem)
          end do
       end do
       ! explicit growth (an array constructor of a type with allocatable components leaks with gfortran 12)
@@ -212,6 +206,42 @@ contains
       end block
     end subroutine add_kind
   end subroutine add_assembly_sets
+
+  subroutine report_clash(st, b, part, inst, j, elem)
+    !! Assembly-level set j of instance inst (entry b) has the name of a set
+    !! of its part: superjoin keeps an assembly set with INSTANCE= as a set
+    !! of the instance, so the two would merge (Abaqus keeps the assembly set
+    !! S apart from the part's, inst.S): reported at the assembly set's card,
+    !! naming the part's set and where it is defined.
+    type(deck_state_t), intent(inout) :: st
+    type(sub_b_t), intent(in) :: b, part
+    character(*), intent(in) :: inst
+    integer, intent(in) :: j
+    logical, intent(in) :: elem
+    character(:), allocatable :: what, name, at
+    type(source_loc_t) :: loc
+    integer :: jpart
+    what = pick(elem, 'element set', 'node set')
+    if (elem) then
+       name = b%elsets(j)%name
+       loc = b%elsets(j)%loc
+    else
+       name = b%nsets(j)%name
+       loc = b%nsets(j)%loc
+    end if
+    at = ''   ! the part's sets are those of its entry (resolve_sets), so found: the guard is defensive
+    jpart = find_set(part, name, elem)
+    if (jpart > 0) then
+       if (elem) then
+          at = ' ('//where(st, part%elsets(jpart)%loc)//')'
+       else
+          at = ' ('//where(st, part%nsets(jpart)%loc)//')'
+       end if
+    end if
+    call report_loc(st, loc, 'assembly-level '//what//' '//name//' (INSTANCE='//inst//') has the name of '// &
+         what//' '//name//' of part '//part%name//at//', in the instance '//inst//'.'//name// &
+         ': superjoin would merge the two sets (Abaqus keeps them apart); rename the assembly-level set')
+  end subroutine report_clash
 
   subroutine place_copy(st, part, inst, m)
     !! m = part placed by inst (m keeps its name and location).

@@ -11,7 +11,7 @@ module superjoin_deck_build_common
   private
 
   public :: resolve_sub, sub_index, ref_text, resolve_items, broken_sub, part_hint, keeps_previous, more_text, &
-       where, INITIAL_CAPACITY
+       where, assembly_set_owner, INITIAL_CAPACITY
 
   character(*), parameter :: MAIN_NAME = 'MAIN'
   integer, parameter :: INITIAL_CAPACITY = 16

@@ -7,7 +7,9 @@ module superjoin_deck_path_sets
   !! to the instance B.F3.BAY2 as its set S, as `INSTANCE=` of a top-level
   !! instance does (`B.F3.BAY2.S`, or plainly `S`). Errors (file:line of the set
   !! card): a path that names no instance, or one of a part made of parts only
-  !! (no mesh of its own to take nodes or elements from).
+  !! (no mesh of its own to take nodes or elements from); a name that a set of
+  !! the instance's part has is reported when the instance is placed
+  !! (superjoin_deck_assembly, as for a top-level instance).
   use superjoin_deck_state, only: deck_state_t, report_loc, find_sub, find_set, new_set, add_chunk, push_pool, &
        sub_b_t, set_b_t, chunk_t, SUBK_INSTANCE, SUBK_NESTED, CH_IDS
   implicit none (type, external)
@@ -80,7 +82,8 @@ contains
 
   subroutine copy_set(from, iset, elem, name, set, to)
     !! Set iset of `from` (its chunks, explicit ids with them) appended to
-    !! `to` as its set `name` (joined to a set of that name it has already).
+    !! `to` as its set `name` (joined to a set of that name it has already:
+    !! another assembly-level card of that path; the part's sets come later).
     type(sub_b_t), intent(in) :: from
     integer, intent(in) :: iset
     logical, intent(in) :: elem

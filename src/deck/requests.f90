@@ -2,12 +2,14 @@ module superjoin_deck_requests
   !! Validation of the output request cards (*NODE PRINT, *EL PRINT, *NODE FILE,
   !! *EL FILE, *NODE OUTPUT, *ELEMENT OUTPUT): their NSET= / ELSET= are resolved
   !! against the sets of the built model and the requests are stored in
-  !! model%requests. A request without variables asks for the CalculiX default
-  !! (U for nodes, S for elements).
+  !! model%requests. A set named without scope is MAIN's, else that of the one
+  !! instance that has it (Abaqus assembly-level sets, *NSET, INSTANCE=), as for
+  !! loads and supports. A request without variables asks for the CalculiX
+  !! default (U for nodes, S for elements).
   use superjoin_model_types, only: model_t, output_request_t
   use superjoin_deck_state, only: deck_state_t, request_b_t, report_loc
   use superjoin_deck_ccx_cards, only: is_node_request
-  use superjoin_deck_build_common, only: broken_sub
+  use superjoin_deck_build_common, only: broken_sub, assembly_set_owner, sub_index
   use superjoin_utils_strings, only: pick
   implicit none (type, external)
   private
@@ -65,8 +67,8 @@ contains
        r%set_name = b%set%scope//'.'//b%set%set
     else if (b%set%home > 0) then
        isub = b%set%home
-    else
-       isub = sub_index(model, MAIN_NAME)
+    else   ! MAIN's set, else the one instance's (an assembly-level *NSET/*ELSET, INSTANCE=)
+       isub = assembly_set_owner(model, b%set%set, .not. node, sub_index(model, MAIN_NAME))
     end if
     k = 0
     if (isub > 0) then
@@ -100,14 +102,4 @@ contains
     end if
     r%sub = isub
   end subroutine build_one
-
-  pure integer function sub_index(model, name) result(k)
-    !! Index of the substructure named `name` (0 if none).
-    type(model_t), intent(in) :: model
-    character(*), intent(in) :: name
-    do k = size(model%subs), 1, -1
-       if (model%subs(k)%name == name) return
-    end do
-    k = 0
-  end function sub_index
 end module superjoin_deck_requests

@@ -23,6 +23,7 @@ while IFS= read -r kw; do
   grep -qF -- "'$kw'" <<< "$known" || { echo "FAIL: *$kw is not in KNOWN_KEYWORDS of src/deck/ccx_cards.f90"; fail=1; }
 done <<< "$(printf '%s\nINCLUDE\n' "$kws")"
 # Part 2 of the reference is extensions.md itself (tools/deck_reference.py).
-if command -v python3 >/dev/null; then python3 "$src/tools/deck_reference.py" --check || fail=1; fi
+py=${PYTHON:-python3}   # the interpreter ctest found (tests/CMakeLists.txt)
+if command -v "$py" >/dev/null; then "$py" "$src/tools/deck_reference.py" --check || fail=1; fi
 [ $fail -eq 0 ] && echo "all $n cards documented"
 exit $fail

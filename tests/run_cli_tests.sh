@@ -90,7 +90,7 @@ grep -q 'warning: relative residual' err.txt || { fail=$((fail+1)); echo "FAIL: 
 # the doubt of any group of steps after the first was dropped when the groups'
 # results were merged: exit 0); the Debug build's round-off finds the mechanism
 # (exit 3). Either way the listing holds the values solved.
-python3 "$src/bench/gen_panels.py" --mesh 6 --values 1e4,0,1e7 > release.deck
+"${PYTHON:-python3}" "$src/bench/gen_panels.py" --mesh 6 --values 1e4,0,1e7 > release.deck
 for how in "--condense yes" "--condense no"; do
   rm -f rel.lst
   "$bin" -q $how release.deck -o rel.lst >out.txt 2>err.txt; rc=$?

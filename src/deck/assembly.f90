@@ -16,7 +16,7 @@ module superjoin_deck_assembly
   use superjoin_elements_traits, only: element_traits_t, element_traits, FAMILY_BEAM
   use superjoin_deck_lexer, only: itoa, plural
   use superjoin_deck_state, only: deck_state_t, sub_b_t, report, report_loc, SUBK_INSTANCE, &
-       step_b_t, SUBK_PART, SUBK_NESTED, instance_b_t, override_b_t, find_set
+       step_b_t, SUBK_PART, SUBK_NESTED, SUBK_PLAIN, MAIN_NAME, instance_b_t, override_b_t, find_set, find_sub
   use superjoin_elements_frame, only: DEFAULT_V_SWITCH_TOL, cross, real_text
   use superjoin_utils_sorting, only: sort_index
   use superjoin_utils_halting, only: halting_t, halting_off, halting_restore
@@ -185,6 +185,7 @@ contains
          do i = 1, n1
             if (keep(i)%name == all(j)%name) call report_clash(st, b, part, m%name, j, elem)
          end do
+         call report_main_clash(st, b, m%name, j, elem)
       end do
       ! explicit growth (an array constructor of a type with allocatable components leaks with gfortran 12)
       block
@@ -221,7 +222,7 @@ contains
     character(:), allocatable :: what, name, at
     type(source_loc_t) :: loc
     integer :: jpart
-    what = pick(elem, 'element set', 'node set')
+    what = set_word(elem)
     if (elem) then
        name = b%elsets(j)%name
        loc = b%elsets(j)%loc
@@ -239,9 +240,53 @@ contains
        end if
     end if
     call report_loc(st, loc, 'assembly-level '//what//' '//name//' (INSTANCE='//inst//') has the name of '// &
-         what//' '//name//' of part '//part%name//at//', in the instance '//inst//'.'//name// &
-         ': superjoin would merge the two sets (Abaqus keeps them apart); rename the assembly-level set')
+         what//' '//name//' of part '//part%name//at//': both would be '//inst//'.'//name// &
+         ' and superjoin would merge them (Abaqus keeps them apart); rename the assembly-level set')
   end subroutine report_clash
+
+  subroutine report_main_clash(st, b, inst, j, elem)
+    !! Assembly-level set j of instance inst (entry b) has the name of a set
+    !! of the same kind written in the assembly without INSTANCE= (MAIN's):
+    !! Abaqus makes the two cards one assembly set; superjoin keeps MAIN's
+    !! apart from the instance's, and a plain name would take MAIN's alone.
+    !! Reported at the INSTANCE= card, naming MAIN's set and where it is.
+    type(deck_state_t), intent(inout) :: st
+    type(sub_b_t), intent(in) :: b
+    character(*), intent(in) :: inst
+    integer, intent(in) :: j
+    logical, intent(in) :: elem
+    character(:), allocatable :: what, name
+    type(source_loc_t) :: loc, main_loc
+    integer :: kmain, jmain
+    kmain = find_sub(st, MAIN_NAME)
+    if (kmain == 0) return
+    if (st%subs(kmain)%kind /= SUBK_PLAIN) return
+    what = set_word(elem)
+    if (elem) then
+       name = b%elsets(j)%name
+       loc = b%elsets(j)%loc
+    else
+       name = b%nsets(j)%name
+       loc = b%nsets(j)%loc
+    end if
+    jmain = find_set(st%subs(kmain), name, elem)
+    if (jmain == 0) return
+    if (elem) then
+       main_loc = st%subs(kmain)%elsets(jmain)%loc
+    else
+       main_loc = st%subs(kmain)%nsets(jmain)%loc
+    end if
+    call report_loc(st, loc, 'assembly-level '//what//' '//name//' (INSTANCE='//inst//') has the name of the '// &
+         'assembly''s own '//what//' '//name//' ('//where(st, main_loc)//'): Abaqus makes them one set, '// &
+         'superjoin keeps them apart and a plain '//name//' would name the assembly''s alone; rename one of them')
+  end subroutine report_main_clash
+
+  pure function set_word(elem) result(s)
+    !! 'element set' or 'node set', for the messages.
+    logical, intent(in) :: elem
+    character(:), allocatable :: s
+    s = pick(elem, 'element set', 'node set')
+  end function set_word
 
   subroutine place_copy(st, part, inst, m)
     !! m = part placed by inst (m keeps its name and location).

@@ -5,15 +5,14 @@ module superjoin_deck_build_common
   use superjoin_kinds, only: ip, i8
   use superjoin_model_types, only: model_t, source_loc_t, find_node, find_elem
   use superjoin_deck_lexer, only: itoa
-  use superjoin_deck_state, only: deck_state_t, ref_t, report_loc, report_oom, step_b_t, OP_MOD, OP_DEFAULT
+  use superjoin_deck_state, only: deck_state_t, ref_t, report_loc, report_oom, step_b_t, OP_MOD, OP_DEFAULT, MAIN_NAME
   use superjoin_utils_strings, only: pick
   implicit none (type, external)
   private
 
   public :: resolve_sub, sub_index, ref_text, resolve_items, broken_sub, part_hint, keeps_previous, more_text, &
-       where, assembly_set_owner, INITIAL_CAPACITY
+       where, assembly_set_owner, instances_hint, INITIAL_CAPACITY
 
-  character(*), parameter :: MAIN_NAME = 'MAIN'
   integer, parameter :: INITIAL_CAPACITY = 16
 
 contains
@@ -78,7 +77,7 @@ contains
     logical, intent(out) :: ok
     integer :: k
     integer(ip) :: i
-    character(:), allocatable :: what
+    character(:), allocatable :: what, hint
     what = pick(elem, 'element', 'node')
     ok = .false.
     if (broken_sub(st, model%subs(isub)%name)) return   ! its *INSTANCE error was the one message
@@ -98,7 +97,9 @@ contains
          end if
          if (st%aborted) return
          if (k == 0) then
-            call report_loc(st, loc, 'unknown '//what//' set '//ref%set//' in substructure '//sub%name)
+            hint = ''   ! a plain name that several instances hold: say so
+            if (.not. allocated(ref%scope) .and. ref%home == 0) hint = instances_hint(model, ref%set, elem)
+            call report_loc(st, loc, 'unknown '//what//' set '//ref%set//' in substructure '//sub%name//hint)
             return
          end if
       else

@@ -7,7 +7,7 @@ module superjoin_deck_cards_common
   use superjoin_model_types, only: source_loc_t, NDOF_NODE, LINK_NONE, LINK_FINITE, LINK_RIGID
   use superjoin_deck_lexer, only: keyword_line_t, to_upper, parse_real, parse_id, is_name, is_path, &
        is_digits, looks_numeric, itoa, clip, plural, TOK_OK, TOK_RANGE, TOK_NONFINITE
-  use superjoin_deck_state, only: deck_state_t, ref_t, report_loc, new_sub, find_sub
+  use superjoin_deck_state, only: deck_state_t, ref_t, report_loc, new_sub, find_sub, MAIN_NAME
   use superjoin_deck_ccx_cards, only: refused_card_reason
   use superjoin_utils_strings, only: pick
   implicit none (type, external)
@@ -41,7 +41,6 @@ module superjoin_deck_cards_common
   integer, parameter :: CARD_EQUATION = 121, CARD_TRANSFORM = 122
   integer, parameter :: CARD_NODAL_THICKNESS = 141
     !! Linear constraints, nodal systems and nodal thicknesses (superjoin_deck_equations, _transforms, _nodal_thickness).
-  character(*), parameter :: MAIN_NAME = 'MAIN'
     !! Name of the implicit substructure.
   real(wp), parameter :: PARALLEL_TOL = 1.0e-10_wp
     !! Relative size below which orientation vectors count as zero or parallel.

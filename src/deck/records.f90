@@ -200,6 +200,9 @@ module superjoin_deck_records
      type(source_loc_t) :: loc
   end type load_b_t
 
+  character(*), parameter, public :: MAIN_NAME = 'MAIN'
+    !! The substructure that holds what a deck writes outside *SUBSTRUCTURE and *PART blocks
+    !! (an *ASSEMBLY's own nodes, elements and sets).
   integer, parameter, public :: SUBK_PLAIN = 0, SUBK_PART = 1, SUBK_INSTANCE = 2, SUBK_NESTED = 3
     !! SUBK_NESTED: an *INSTANCE inside a *PART (a template, flattened by superjoin_deck_nesting)
     !! or an instance of a part that holds only instances (no substructure of its own).

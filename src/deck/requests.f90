@@ -7,16 +7,15 @@ module superjoin_deck_requests
   !! loads and supports. A request without variables asks for the CalculiX
   !! default (U for nodes, S for elements).
   use superjoin_model_types, only: model_t, output_request_t
-  use superjoin_deck_state, only: deck_state_t, request_b_t, report_loc
+  use superjoin_deck_state, only: deck_state_t, request_b_t, report_loc, MAIN_NAME
   use superjoin_deck_ccx_cards, only: is_node_request
-  use superjoin_deck_build_common, only: broken_sub, assembly_set_owner, sub_index
+  use superjoin_deck_build_common, only: broken_sub, assembly_set_owner, sub_index, instances_hint
   use superjoin_utils_strings, only: pick
   implicit none (type, external)
   private
 
   public :: build_requests
 
-  character(*), parameter :: MAIN_NAME = 'MAIN'
 
 contains
 
@@ -38,7 +37,7 @@ contains
     type(output_request_t), intent(out) :: r
     logical :: node
     integer :: isub, i, k
-    character(:), allocatable :: what
+    character(:), allocatable :: what, hint
     node = is_node_request(b%kind)
     what = pick(node, 'node', 'element')
     r%kind = b%kind
@@ -91,12 +90,14 @@ contains
        end associate
     end if
     if (k == 0) then
+       hint = ''   ! a plain name that several instances hold: say so
+       if (.not. allocated(b%set%scope) .and. b%set%home == 0) hint = instances_hint(model, b%set%set, .not. node)
        if (isub > 0) then
           call report_loc(st, b%loc, 'unknown '//what//' set '//b%set%set//' in substructure '// &
-               model%subs(isub)%name//' ('//pick(node, 'NSET=', 'ELSET=')//' of '//b%card//')')
+               model%subs(isub)%name//' ('//pick(node, 'NSET=', 'ELSET=')//' of '//b%card//')'//hint)
        else
           call report_loc(st, b%loc, 'unknown '//what//' set '//b%set%set//' ('//pick(node, 'NSET=', 'ELSET=')// &
-               ' of '//b%card//'; outside *SUBSTRUCTURE blocks write SUB.set)')
+               ' of '//b%card//'; outside *SUBSTRUCTURE blocks write SUB.set)'//hint)
        end if
        return
     end if

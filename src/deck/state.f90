@@ -12,7 +12,7 @@ module superjoin_deck_state
   use superjoin_deck_records, only: SHAPE_GENERAL, BEAM_2D_VALUES, BEAM_3D_VALUES, CH_IDS, CH_GEN, &
        CH_RANGE, CH_REF, chunk_t, set_b_t, sub_b_t, ref_t, sec_b_t, contact_b_t, cline_b_t, &
        equation_b_t, transform_b_t, nthick_b_t, support_b_t, load_b_t, SUBK_PLAIN, SUBK_PART, &
-       SUBK_INSTANCE, SUBK_NESTED, instance_b_t, override_b_t, step_b_t, temp_b_t, surface_b_t, tie_b_t, pretension_b_t, &
+       SUBK_INSTANCE, SUBK_NESTED, MAIN_NAME, instance_b_t, override_b_t, step_b_t, temp_b_t, surface_b_t, tie_b_t, pretension_b_t, &
        combo_b_t, &
        OP_DEFAULT, OP_MOD, OP_NEW, request_b_t, SPRING_1, SPRING_2, SPRING_A, spring_elem_b_t, &
        spring_card_b_t, given_b_t, export_b_t
@@ -34,7 +34,7 @@ module superjoin_deck_state
   public :: SHAPE_GENERAL, BEAM_2D_VALUES, BEAM_3D_VALUES, CH_IDS, CH_GEN, CH_RANGE, CH_REF, &
        chunk_t, set_b_t, sub_b_t, ref_t, sec_b_t, contact_b_t, cline_b_t, equation_b_t, &
        transform_b_t, nthick_b_t, support_b_t, load_b_t, SUBK_PLAIN, SUBK_PART, SUBK_INSTANCE, &
-       SUBK_NESTED, instance_b_t, override_b_t, step_b_t, temp_b_t, surface_b_t, tie_b_t, combo_b_t, OP_DEFAULT, OP_MOD, &
+       SUBK_NESTED, MAIN_NAME, instance_b_t, override_b_t, step_b_t, temp_b_t, surface_b_t, tie_b_t, combo_b_t, OP_DEFAULT, OP_MOD, &
        OP_NEW, request_b_t, SPRING_1, SPRING_2, SPRING_A, spring_elem_b_t, spring_card_b_t, given_b_t, &
        export_b_t
 

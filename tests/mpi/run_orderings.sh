@@ -23,7 +23,7 @@ export OPENBLAS_NUM_THREADS=1
 mpi=(timeout 300 mpirun --allow-run-as-root --oversubscribe --quiet -np 2 -x SUPERJOIN_MUMPS_ORDERING)
 fail=0; n=0
 "$gen" --dofs 1e3 "$outdir/frame.deck" 2>/dev/null || { echo "FAIL: gen_frame"; exit 1; }
-python3 "$src/bench/gen_strip.py" --panels 4 --mesh 8 >"$outdir/strip.deck" || { echo "FAIL: gen_strip"; exit 1; }
+"${PYTHON:-python3}" "$src/bench/gen_strip.py" --panels 4 --mesh 8 >"$outdir/strip.deck" || { echo "FAIL: gen_strip"; exit 1; }
 # verification decks whose interface is left to MUMPS on two processes (on
 # the others every unknown is condensed), the modules of the MPI tests, a
 # strip of condensed panels (dense K* blocks) and a frame not condensed

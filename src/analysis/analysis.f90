@@ -91,8 +91,24 @@ contains
        call ieee_set_halting_mode(HALT_FLAGS(i), halting(i))
     end do
     if (allocated(error)) return
+    call stamp_matrix_health(res)
     call check_finite(model, res, error)
   end subroutine solve_group
+
+  subroutine stamp_matrix_health(res)
+    !! Give every step of this group the MAXRATIO and condition estimate of
+    !! the matrix it was solved with: a run of several groups (a joint study,
+    !! steps that change supports) merges its summary to the largest over
+    !! them, and each step's NUMERICAL HEALTH block reports its own.
+    type(results_t), intent(inout) :: res
+    integer :: s
+    if (.not. allocated(res%fields%steps)) return
+    do s = 1, size(res%fields%steps)
+       res%fields%steps(s)%maxratio = res%summary%maxratio
+       res%fields%steps(s)%maxratio_at = res%summary%maxratio_at
+       res%fields%steps(s)%cond_est = res%summary%cond_est
+    end do
+  end subroutine stamp_matrix_health
 
   subroutine run_phases(model, opts, ctx, res, error)
     !! The analysis proper (see solve_group), phase by phase on one solve state.

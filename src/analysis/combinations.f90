@@ -161,8 +161,9 @@ contains
   subroutine combine_step(steps, idx, factors, out)
     !! The per-step results of a combination: reactions (union of the
     !! constituents' supports, by node and DOF), contact deltas and forces, load
-    !! and reaction resultants superposed; the health figures are the largest
-    !! of the constituents'.
+    !! and reaction resultants superposed; the health figures (residuals,
+    !! EPSILON, MAXRATIO and condition estimate) are the largest of the
+    !! constituents'.
     type(step_results_t), intent(in) :: steps(:)
     integer, intent(in) :: idx(:)
     real(wp), intent(in) :: factors(:)
@@ -191,6 +192,11 @@ contains
          out%residual = max(out%residual, st%residual)
          out%residual0 = max(out%residual0, st%residual0)
          out%epsilon = max(out%epsilon, abs(st%epsilon))
+         if (allocated(st%maxratio_at) .and. (st%maxratio > out%maxratio .or. .not. allocated(out%maxratio_at))) then
+            out%maxratio = st%maxratio
+            out%maxratio_at = st%maxratio_at
+         end if
+         out%cond_est = max(out%cond_est, st%cond_est)
        end associate
     end do
   end subroutine combine_step

@@ -320,8 +320,8 @@ contains
     call release_cache(ctx%cache)
     call append_string(res%log%notes, 'boundary conditions (*BOUNDARY in steps): '//itoa(ngroup)// &
          ' sets of supports, '//itoa(ngroup - ctx%factor%reuses)//' factorizations ('// &
-         itoa(ctx%factor%reuses)//' reused: only prescribed values changed); the counts above and '// &
-         'MAXRATIO are the largest over them')
+         itoa(ctx%factor%reuses)//' reused: only prescribed values changed); the counts above are the '// &
+         'largest over them, each step''s NUMERICAL HEALTH that of its own factorization')
   end subroutine solve_support_groups
 
   subroutine solve_joint_groups(model, joints, opts, res, error)
@@ -380,7 +380,8 @@ contains
     call append_string(res%log%notes, 'joint study (*CHANGE CONTACT): '//itoa(ngroup)// &
          ' sets of contact stiffnesses, '//itoa(ngroup)//' interface factorizations, '// &
          itoa(ctx%cache%computed)//' condensations computed and reused '//itoa(ctx%cache%reused)// &
-         ' times; the counts above and MAXRATIO are the largest over them')
+         ' times; the counts above are the largest over them, each step''s NUMERICAL HEALTH that of its own '// &
+         'factorization')
   end subroutine solve_joint_groups
 
   function fixed_set_order(model, group, ngroup) result(order)
@@ -571,11 +572,7 @@ contains
        res%summary%sub_boundary = max(res%summary%sub_boundary, r%summary%sub_boundary)
        res%fields%has_dof = res%fields%has_dof .or. r%fields%has_dof
        res%fields%link_used = res%fields%link_used .or. r%fields%link_used
-       if (r%summary%maxratio > res%summary%maxratio) then
-          res%summary%maxratio = r%summary%maxratio
-          res%summary%maxratio_at = r%summary%maxratio_at
-       end if
-       res%summary%cond_est = max(res%summary%cond_est, r%summary%cond_est)
+       ! MAXRATIO and the condition estimate: each step holds its group's (stamp_matrix_health)
        res%log%phase_seconds = res%log%phase_seconds + r%log%phase_seconds
        res%summary%factor_mbytes = max(res%summary%factor_mbytes, r%summary%factor_mbytes)
        do i = 1, size(r%log%notes)

@@ -54,6 +54,9 @@ module superjoin_model_results
      integer :: refinements = 0                  !! refinement steps kept
      integer :: refine_tried = 0                 !! refinement steps tried
      character(:), allocatable :: failure        !! why the step was not solved (exit 3): its results are zeros
+     real(wp) :: maxratio = 0.0_wp               !! MAXRATIO of the matrix this step was solved with
+     character(:), allocatable :: maxratio_at    !! where (unallocated: the step was not solved)
+     real(wp) :: cond_est = 0.0_wp               !! that matrix's condition estimate (1-norm)
   end type step_results_t
 
   type, public :: run_summary_t

@@ -284,9 +284,15 @@ contains
       end if
       write (hline, '(2x,a30,es10.2e3)') 'EPSILON (energy error)        ', st%epsilon
       call lu%line(trim(hline))
-      write (hline, '(2x,a30,es10.2e3,a)') 'MAXRATIO                      ', res%summary%maxratio, '  at '//res%summary%maxratio_at
+      ! the matrix this step was solved with (a run of several groups: the MODEL block has the largest)
+      block
+        character(:), allocatable :: at
+        at = 'n/a'
+        if (allocated(st%maxratio_at)) at = st%maxratio_at
+        write (hline, '(2x,a30,es10.2e3,a)') 'MAXRATIO                      ', st%maxratio, '  at '//at
+      end block
       call lu%line(trim(hline))
-      write (hline, '(2x,a30,es10.2e3)') 'condition estimate (1-norm)   ', res%summary%cond_est
+      write (hline, '(2x,a30,es10.2e3)') 'condition estimate (1-norm)   ', st%cond_est
       call lu%line(trim(hline))
       do k = 1, size(res%log%warnings)
          if (.not. allocated(res%log%warnings(k)%steps)) cycle   ! the model's: in the header

@@ -16,7 +16,8 @@ of doc/calculix-dropin.md.
 
 The energies of ener_truss.inp and ener_c3d8.inp (decks written for this test,
 references from ccx 2.20) are also checked against closed forms
-(energy_closed_forms).
+(energy_closed_forms), and the rows of a node set GENERATEd up to the
+largest node id 2**31 - 1 (generate_near_limit).
 
 With ccx installed it also runs achtel2, beam10p, beam20p and beamd with
 *EL FILE S, E added through superjoin -i and ccx and compares the .frd
@@ -300,6 +301,61 @@ def cards_without_output(binary, outdir):
     return failures
 
 
+GENERATE_NEAR_LIMIT = """*NODE
+1, 0.0, 0.0, 0.0
+2147483647, 2.0, 0.0, 0.0
+*ELEMENT, TYPE=T3D2, ELSET=BAR
+1, 1, 2147483647
+*MATERIAL, NAME=STEEL
+*ELASTIC
+2.0e11, 0.3
+*SOLID SECTION, ELSET=BAR, MATERIAL=STEEL
+1.0e-4
+*NSET, NSET=ENDS, GENERATE
+1, 2147483647, 1073741823
+*BOUNDARY
+1, 1, 3
+2147483647, 2, 3
+*STEP
+*STATIC
+*CLOAD
+2147483647, 1, 1000.0
+*NODE PRINT, NSET=ENDS
+U
+*END STEP
+"""
+
+
+def generate_near_limit(binary, outdir):
+    """A GENERATE range ending at the largest node id, 2**31 - 1, with a step
+    of 2**30 - 1: the .dat rows of its three ids (the undefined middle one
+    with zeros, as ccx 2.20 prints a set's gaps) and no more. Stepping past
+    the last id overflowed int32 (UBSan, 2026-11-29); the rows are counted
+    now. The bar's end moves F L / (E A) = 1000 * 2 / (2e11 * 1e-4) = 1e-4."""
+    work = os.path.join(outdir, 'generate_limit')
+    shutil.rmtree(work, ignore_errors=True)
+    os.makedirs(work)
+    with open(os.path.join(work, 'limit.inp'), 'w') as f:
+        f.write(GENERATE_NEAR_LIMIT)
+    try:
+        proc = subprocess.run([binary, '-i', 'limit'], cwd=work, stdout=subprocess.PIPE, stderr=subprocess.PIPE,
+                              text=True, timeout=60)
+        status = proc.returncode
+    except subprocess.TimeoutExpired:
+        status = 'timeout (60 s)'
+    rows = []
+    if status == 0:
+        with open(os.path.join(work, 'limit.dat')) as f:
+            rows = [line.split() for line in f if re.match(r'^ *\d+ ', line)]
+    ids = [int(r[0]) for r in rows]
+    u = float(rows[-1][1]) if rows else 0.0
+    ok = (status == 0 and ids == [1, 2**30, 2**31 - 1] and all(float(v) == 0.0 for v in rows[1][1:])
+          and abs(u - 1.0e-4) <= 1e-10)
+    print(f"  {'ok  ' if ok else 'FAIL'} generate_limit   GENERATE 1, 2**31-1, 2**30-1: status {status}, "
+          f"rows {ids}, u1 {u:.6e} (1e-4)")
+    return [] if ok else ['GENERATE range ending at 2**31-1']
+
+
 def frd_blocks(path):
     """{name: {node: [values]}} of the result blocks of an ASCII .frd."""
     out, cur = {}, None
@@ -390,6 +446,7 @@ def main():
                                 parse_dat(os.path.join(HERE, direct + '.dat.ref')))
     failures += energy_closed_forms(outdir)
     failures += cards_without_output(binary, outdir)
+    failures += generate_near_limit(binary, outdir)
     failures += frd_solids(binary, outdir)
     print(f'{len(jobs)} decks, {len(failures)} failures')
     for f in failures:

@@ -97,9 +97,9 @@ contains
 
   subroutine stamp_matrix_health(res)
     !! Give every step of this group the MAXRATIO and condition estimate of
-    !! the matrix it was solved with: a run of several groups (a joint study,
-    !! steps that change supports) merges its summary to the largest over
-    !! them, and each step's NUMERICAL HEALTH block reports its own.
+    !! the matrix it was solved with, which its NUMERICAL HEALTH block reports:
+    !! in a run of several groups (a joint study, steps that change supports)
+    !! each group has its own, and the merged summary holds the first group's.
     type(results_t), intent(inout) :: res
     integer :: s
     if (.not. allocated(res%fields%steps)) return

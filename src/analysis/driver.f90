@@ -126,6 +126,9 @@ contains
     zero%residual0 = 0.0_wp
     zero%refinements = 0
     zero%refine_tried = 0
+    zero%maxratio = 0.0_wp   ! not solved: no matrix of its own
+    zero%cond_est = 0.0_wp
+    if (allocated(zero%maxratio_at)) deallocate (zero%maxratio_at)
     do s = 1, size(res%fields%steps)
        if (.not. allocated(fail%message(s)%s)) cycle
        res%fields%steps(s) = zero

@@ -97,8 +97,9 @@ contains
          end if
          if (st%aborted) return
          if (k == 0) then
-            hint = ''   ! a plain name that several instances hold: say so
-            if (.not. allocated(ref%scope) .and. ref%home == 0) hint = instances_hint(model, ref%set, elem)
+            hint = ''   ! a plain name looked for in MAIN that several instances hold: say so
+            if (.not. allocated(ref%scope) .and. ref%home == 0 .and. sub%name == MAIN_NAME) &
+                 hint = instances_hint(model, ref%set, elem)
             call report_loc(st, loc, 'unknown '//what//' set '//ref%set//' in substructure '//sub%name//hint)
             return
          end if
@@ -205,22 +206,26 @@ contains
   end function sub_has_set
 
   function instances_hint(model, name, elem) result(s)
-    !! ' (NAME is a set of the instances A, B: name it in one, A.NAME)' when
-    !! several instances hold a set of that name (a part's set), else ''.
+    !! ' (NAME is a set of each of the instances A, B, kept apart: name the ones meant, A.NAME and B.NAME)'
+    !! when several instances hold a set of that name (a part's set, or CAE's
+    !! *NSET, INSTANCE= cards of one set over several instances), else ''.
     type(model_t), intent(in) :: model
     character(*), intent(in) :: name
     logical, intent(in) :: elem
-    character(:), allocatable :: s, first
+    character(:), allocatable :: s, first, each
     integer :: i
     s = ''
+    each = ''
     do i = 1, size(model%subs)
        if (model%subs(i)%part == 0) cycle
        if (.not. sub_has_set(model, i, name, elem)) cycle
        if (len(s) == 0) then
           first = model%subs(i)%name
           s = first
+          each = first//'.'//name
        else
           s = s//', '//model%subs(i)%name
+          each = each//' and '//model%subs(i)%name//'.'//name
        end if
     end do
     if (len(s) == 0) return
@@ -228,7 +233,7 @@ contains
        s = ''
        return
     end if
-    s = ' ('//name//' is a set of the instances '//s//': name it in one, as '//first//'.'//name//')'
+    s = ' ('//name//' is a set of each of the instances '//s//', kept apart: name the ones meant, '//each//')'
   end function instances_hint
 
   pure logical function keeps_previous(step, op)

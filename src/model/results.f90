@@ -60,8 +60,9 @@ module superjoin_model_results
   end type step_results_t
 
   type, public :: run_summary_t
-    !! What the listing's MODEL block and health block report of the solve:
-    !! counts, the solver and formulation chosen, MAXRATIO, condition estimate.
+    !! What the listing's MODEL block reports of the solve: counts, the solver
+    !! and formulation chosen; and a group's MAXRATIO and condition estimate,
+    !! which its steps carry (step_results_t: the health block prints the step's).
      integer(i8) :: nphys = 0          !! active physical DOFs
      integer(i8) :: ncol = 0           !! reduced unknowns
      integer(i8) :: neq = 0            !! equations solved (reduced unknowns less AUTOSPC)
@@ -79,9 +80,9 @@ module superjoin_model_results
      character(:), allocatable :: solver_name
      character(:), allocatable :: ordering
      character(:), allocatable :: formulation
-     real(wp) :: maxratio = 0.0_wp
+     real(wp) :: maxratio = 0.0_wp                 !! of this group's matrix (merged runs: the first group's)
      character(:), allocatable :: maxratio_at
-     real(wp) :: cond_est = 0.0_wp
+     real(wp) :: cond_est = 0.0_wp                 !! of this group's matrix (merged runs: the first group's)
      real(wp) :: factor_mbytes = 0.0_wp
   end type run_summary_t
 

@@ -284,7 +284,7 @@ contains
       end if
       write (hline, '(2x,a30,es10.2e3)') 'EPSILON (energy error)        ', st%epsilon
       call lu%line(trim(hline))
-      ! the matrix this step was solved with (a run of several groups: the MODEL block has the largest)
+      ! of the matrix this step was solved with (each group of steps has its own)
       block
         character(:), allocatable :: at
         at = 'n/a'

@@ -219,25 +219,16 @@ contains
     character(*), intent(in) :: inst
     integer, intent(in) :: j
     logical, intent(in) :: elem
-    character(:), allocatable :: what, name, at
-    type(source_loc_t) :: loc
+    character(:), allocatable :: what, name, at, other
+    type(source_loc_t) :: loc, part_loc
     integer :: jpart
     what = set_word(elem)
-    if (elem) then
-       name = b%elsets(j)%name
-       loc = b%elsets(j)%loc
-    else
-       name = b%nsets(j)%name
-       loc = b%nsets(j)%loc
-    end if
+    call set_card(b, j, elem, name, loc)
     at = ''   ! the part's sets are those of its entry (resolve_sets), so found: the guard is defensive
     jpart = find_set(part, name, elem)
     if (jpart > 0) then
-       if (elem) then
-          at = ' ('//where(st, part%elsets(jpart)%loc)//')'
-       else
-          at = ' ('//where(st, part%nsets(jpart)%loc)//')'
-       end if
+       call set_card(part, jpart, elem, other, part_loc)
+       at = ' ('//where(st, part_loc)//')'
     end if
     call report_loc(st, loc, 'assembly-level '//what//' '//name//' (INSTANCE='//inst//') has the name of '// &
          what//' '//name//' of part '//part%name//at//': both would be '//inst//'.'//name// &
@@ -255,31 +246,37 @@ contains
     character(*), intent(in) :: inst
     integer, intent(in) :: j
     logical, intent(in) :: elem
-    character(:), allocatable :: what, name
+    character(:), allocatable :: what, name, other
     type(source_loc_t) :: loc, main_loc
     integer :: kmain, jmain
     kmain = find_sub(st, MAIN_NAME)
     if (kmain == 0) return
     if (st%subs(kmain)%kind /= SUBK_PLAIN) return
     what = set_word(elem)
-    if (elem) then
-       name = b%elsets(j)%name
-       loc = b%elsets(j)%loc
-    else
-       name = b%nsets(j)%name
-       loc = b%nsets(j)%loc
-    end if
+    call set_card(b, j, elem, name, loc)
     jmain = find_set(st%subs(kmain), name, elem)
     if (jmain == 0) return
-    if (elem) then
-       main_loc = st%subs(kmain)%elsets(jmain)%loc
-    else
-       main_loc = st%subs(kmain)%nsets(jmain)%loc
-    end if
+    call set_card(st%subs(kmain), jmain, elem, other, main_loc)
     call report_loc(st, loc, 'assembly-level '//what//' '//name//' (INSTANCE='//inst//') has the name of the '// &
          'assembly''s own '//what//' '//name//' ('//where(st, main_loc)//'): Abaqus makes them one set, '// &
          'superjoin keeps them apart and a plain '//name//' would name the assembly''s alone; rename one of them')
   end subroutine report_main_clash
+
+  subroutine set_card(sub, j, elem, name, loc)
+    !! Name and card of element set (elem) or node set j of entry sub.
+    type(sub_b_t), intent(in) :: sub
+    integer, intent(in) :: j
+    logical, intent(in) :: elem
+    character(:), allocatable, intent(out) :: name
+    type(source_loc_t), intent(out) :: loc
+    if (elem) then
+       name = sub%elsets(j)%name
+       loc = sub%elsets(j)%loc
+    else
+       name = sub%nsets(j)%name
+       loc = sub%nsets(j)%loc
+    end if
+  end subroutine set_card
 
   pure function set_word(elem) result(s)
     !! 'element set' or 'node set', for the messages.

@@ -14,6 +14,7 @@ program superjoin_main
   use superjoin_error, only: error_t, EXIT_OK, EXIT_USAGE, EXIT_IO, EXIT_INACCURATE
   use superjoin_model_types, only: model_t, string_t, DIALECT_CALCULIX, FORM_TRANSFORM, FORM_PENALTY, CONDENSE_YES, CONDENSE_NO, &
        CONDENSE_AUTO
+  use superjoin_utils_huge_pages, only: huge_pages_enable
   use superjoin_deck_reader, only: read_deck
   use superjoin_analysis_driver, only: solve_steps, partial_results
   use superjoin_analysis_combinations, only: add_combinations
@@ -346,6 +347,8 @@ contains
          '  --library-verify   with --library: check a loaded part against its assembled stiffness', &
          '  --twins T          yes | no: condensed parts identical up to a rigid motion share one', &
          '                     condensation, turned (default yes)', &
+         '  --huge-pages H     yes | no: large arrays ask the kernel for transparent huge pages', &
+         '                     (default yes; fewer page faults, the same results)', &
          '  --vtk FILE         VTK files for ParaView: FILE.pvd and FILE_<step>.vtu', &
          '                     (overrides *OUTPUT, VTK= of the deck)', &
          '  --accept-inaccurate  exit 0 even when the results are judged inaccurate', &
@@ -416,7 +419,7 @@ contains
           job = job_name(get_arg(i))
           deck = job//'.inp'
        case ('-o', '--csv', '--solver', '--formulation', '--export-matrix', '--vtk', '--condense', '--library', &
-            '--levels', '--twins')
+            '--levels', '--twins', '--huge-pages')
           if (i == n) then
              call usage_problem(status, 'option '//arg//' needs a value')
              return
@@ -477,6 +480,9 @@ contains
              end select
           case ('--twins')
              opts%twins = yes_no(val, '--twins', status)
+             if (status >= 0) return
+          case ('--huge-pages')
+             call huge_pages_enable(yes_no(val, '--huge-pages', status))
              if (status >= 0) return
           case ('--export-matrix')
              opts%export_matrix = val

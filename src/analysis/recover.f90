@@ -26,6 +26,7 @@ module superjoin_analysis_recover
   use superjoin_analysis_body_loads, only: plane_thermal_nodal, line_thermal_forces
   use superjoin_analysis_body_loads, only: shell_thermal_curvature_nodal
   use superjoin_utils_memory, only: out_of_memory, BYTES_REAL, BYTES_INT
+  use superjoin_utils_huge_pages, only: advise_huge
   use superjoin_elements, only: element_drill, ring_nodes
   use superjoin_analysis_solve_state, only: solve_state_t
   implicit none (type, external)
@@ -465,13 +466,21 @@ contains
     ntot = res%fields%elem_offset(size(model%subs) + 1)
     nbar = merge(ntot, 0_i8, any_bar(model))
     allocate (res%fields%plate(6, ntot, nstep), ql(3, nbar, nstep), stat=stat)
-    if (stat == 0) allocate (nt(nbar, nstep), source=0.0_wp, stat=stat)   ! loads: thermal axial force E A alpha dT
-    if (stat == 0 .and. nbar > 0) allocate (res%fields%elem_force(6, 2, nbar, nstep), source=0.0_wp, stat=stat)
+    if (stat == 0) allocate (nt(nbar, nstep), stat=stat)   ! loads: thermal axial force E A alpha dT
+    if (stat == 0 .and. nbar > 0) allocate (res%fields%elem_force(6, 2, nbar, nstep), stat=stat)
     if (stat /= 0) then
        call out_of_memory(error, 'the element results', (6*ntot + 16*nbar)*nstep*BYTES_REAL)
        return
     end if
+    call advise_huge(res%fields%plate)
+    call advise_huge(ql)
+    call advise_huge(nt)
     res%fields%plate = 0.0_wp
+    nt = 0.0_wp
+    if (allocated(res%fields%elem_force)) then
+       call advise_huge(res%fields%elem_force)
+       res%fields%elem_force = 0.0_wp
+    end if
   end subroutine allocate_element_results
 
   logical function any_bar(model)

@@ -15,6 +15,7 @@ module superjoin_assembly_assemble
   use superjoin_utils_strings, only: itoa
   use superjoin_assembly_scatter_map, only: scatter_map_t, build_scatter_map, scatter_item
   use superjoin_utils_memory, only: out_of_memory, BYTES_REAL, BYTES_I8
+  use superjoin_utils_huge_pages, only: advise_huge
   use superjoin_elements_drill_mask, only: element_drill
   implicit none (type, external)
   private
@@ -298,6 +299,7 @@ contains
        call out_of_memory(error, 'the column lists of the elements', (13*nitem + 1)*BYTES_I8)
        return
     end if
+    call advise_huge(items%col)
     items%ptr(1) = 1
     items%n = 0
     do isub = 1, size(model%subs)

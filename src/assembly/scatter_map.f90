@@ -14,6 +14,7 @@ module superjoin_assembly_scatter_map
   use superjoin_assembly_transform, only: transform_t
   use superjoin_assembly_column_terms, only: locate
   use superjoin_utils_memory, only: out_of_memory, BYTES_INT, BYTES_I8
+  use superjoin_utils_huge_pages, only: advise_huge
   implicit none (type, external)
   private
 
@@ -57,6 +58,7 @@ contains
        call out_of_memory(error, 'the scatter map', map%start(nitem + 1)*BYTES_INT + k%n*BYTES_INT)
        return
     end if
+    call advise_huge(map%off)
     do j = 1, k%n
        do p = k%colptr(j), k%colptr(j + 1) - 1
           where(k%rowind(p)) = int(p - k%colptr(j))

@@ -21,6 +21,7 @@ module superjoin_assembly_transform
   use superjoin_solvers_sparse, only: sparse_sym_t
   use superjoin_solvers_pattern, only: find_entry
   use superjoin_utils_memory, only: out_of_memory, BYTES_REAL, BYTES_INT, BYTES_I8
+  use superjoin_utils_huge_pages, only: advise_huge
   use, intrinsic :: ieee_arithmetic, only: ieee_is_negative
   implicit none (type, external)
   private
@@ -187,6 +188,8 @@ contains
        start(p + 1) = start(p) + tr%map_len(p)
     end do
     allocate (col(start(np + 1) - 1), coef(start(np + 1) - 1))
+    call advise_huge(col)
+    call advise_huge(coef)
     do p = 1, np
        col(start(p):start(p + 1) - 1) = tr%pool_col(tr%map_start(p):tr%map_start(p) + tr%map_len(p) - 1)
        coef(start(p):start(p + 1) - 1) = tr%pool_coef(tr%map_start(p):tr%map_start(p) + tr%map_len(p) - 1)
@@ -290,6 +293,8 @@ contains
             cap*(BYTES_I8 + BYTES_REAL))
        return
     end if
+    call advise_huge(tr%pool_col)
+    call advise_huge(tr%pool_coef)
     tr%pool_n = 0
     do j = 1, tr%ncol_
        if (tr%col_kind(j) /= COL_PHYS) cycle

@@ -87,16 +87,23 @@
  * already held). */
 static _Atomic size_t sj_failed_request = 0;
 
+/* src/utils/huge_pages.c: malloc, calloc and realloc that ask for huge
+ * pages for large blocks (CHOLMOD's factor, its permuted copy of K and its
+ * workspaces are the run's largest). */
+void *sj_malloc_huge(size_t n);
+void *sj_calloc_huge(size_t count, size_t size);
+void *sj_realloc_huge(void *old, size_t n);
+
 static void *sj_malloc(size_t size)
 {
-    void *p = malloc(size);
+    void *p = sj_malloc_huge(size);
     if (p == NULL && size > 0) sj_failed_request = size;
     return p;
 }
 
 static void *sj_calloc(size_t count, size_t size)
 {
-    void *p = calloc(count, size);
+    void *p = sj_calloc_huge(count, size);
     if (p == NULL && count > 0 && size > 0)
         sj_failed_request = (count > SIZE_MAX / size) ? SIZE_MAX : count * size;
     return p;
@@ -104,7 +111,7 @@ static void *sj_calloc(size_t count, size_t size)
 
 static void *sj_realloc(void *old, size_t size)
 {
-    void *p = realloc(old, size);
+    void *p = sj_realloc_huge(old, size);
     if (p == NULL && size > 0) sj_failed_request = size;
     return p;
 }
@@ -716,8 +723,8 @@ int sj_cholmod_analyze_start(void *handle, int64_t n, const int64_t *colptr, con
     sj_begin(h);
     sj_drop_factor(h);
     sj_drop_pattern(h);
-    h->own_p = malloc((size_t)(n + 1) * sizeof(SuiteSparse_long));
-    h->own_i = malloc((size_t)nnz * sizeof(SuiteSparse_long));
+    h->own_p = sj_malloc_huge((size_t)(n + 1) * sizeof(SuiteSparse_long));
+    h->own_i = sj_malloc_huge((size_t)nnz * sizeof(SuiteSparse_long));
     if (h->own_p != NULL && h->own_i != NULL) {
         memcpy(h->own_p, colptr, (size_t)(n + 1) * sizeof(SuiteSparse_long));
         memcpy(h->own_i, rowind, (size_t)nnz * sizeof(SuiteSparse_long));

@@ -7,6 +7,7 @@ module superjoin_solvers_pattern
   use superjoin_solvers_sparse, only: sparse_sym_t
   use superjoin_utils_strings, only: itoa
   use superjoin_utils_memory, only: out_of_memory, BYTES_REAL, BYTES_I8
+  use superjoin_utils_huge_pages, only: advise_huge
   implicit none (type, external)
   private
 
@@ -31,6 +32,7 @@ contains
        call out_of_memory(error, 'the item lists of the columns', (2*ncol + 1 + s_total)*BYTES_I8)
        return
     end if
+    call advise_huge(col_item)
     do pos = 1, s_total
        col_ptr(item_col(pos) + 1) = col_ptr(item_col(pos) + 1) + 1
     end do
@@ -100,6 +102,7 @@ contains
             (2*ncol + 1 + nnz)*BYTES_I8 + nnz*BYTES_REAL)
        return
     end if
+    call advise_huge(k%rowind)
     if (.not. present(values)) then
        call zero_values(k, error)
     else if (values) then
@@ -133,8 +136,13 @@ contains
     integer(i8) :: nnz
     integer :: stat
     nnz = k%colptr(k%n + 1) - 1
-    allocate (k%val(nnz), source=0.0_wp, stat=stat)
-    if (stat /= 0) call out_of_memory(error, 'the stiffness matrix ('//itoa(nnz)//' nonzeros)', nnz*BYTES_REAL)
+    allocate (k%val(nnz), stat=stat)
+    if (stat /= 0) then
+       call out_of_memory(error, 'the stiffness matrix ('//itoa(nnz)//' nonzeros)', nnz*BYTES_REAL)
+       return
+    end if
+    call advise_huge(k%val)
+    k%val(:) = 0.0_wp
   end subroutine zero_values
 
   pure function find_entry(k, i, j) result(pos)

@@ -1,0 +1,33 @@
+module superjoin_utils_huge_pages
+  !! Transparent huge pages for the run's large arrays (huge_pages.c holds
+  !! the why): `call advise_huge(a)` right after `a` is allocated and before
+  !! it is first written asks the kernel to back its whole 2 MiB pages with
+  !! huge pages. Arrays under 8 MiB, and every array after
+  !! `huge_pages_enable(.false.)` (--huge-pages no), are left as they are.
+  !! Advice only: contents, results and listings do not depend on it.
+  use, intrinsic :: iso_c_binding, only: c_int
+  implicit none (type, external)
+  private
+
+  public :: advise_huge, huge_pages_enable
+
+  interface
+     subroutine advise_huge(a) bind(c, name='sj_advise_huge_array')
+       !! Ask for huge pages for an allocated (contiguous) array of any type
+       !! and rank before its first write.
+       type(*), dimension(..), intent(in) :: a
+     end subroutine advise_huge
+     subroutine sj_huge_pages_enable(on) bind(c, name='sj_huge_pages_enable')
+       import :: c_int
+       integer(c_int), value :: on
+     end subroutine sj_huge_pages_enable
+  end interface
+
+contains
+
+  subroutine huge_pages_enable(on)
+    !! Whether large blocks ask for huge pages from now on (default yes).
+    logical, intent(in) :: on
+    call sj_huge_pages_enable(merge(1_c_int, 0_c_int, on))
+  end subroutine huge_pages_enable
+end module superjoin_utils_huge_pages

@@ -2,9 +2,12 @@
 # ab_bare.sh -- two superjoin binaries and bare CHOLMOD in turn on one deck and
 # its exported matrix: the superjoin side of a change (A B) and the yardstick
 # (bare) in the same rounds, so each round's ratio to bare is taken under the
-# same load. One line per run: superjoin's phase times (-v), wall clock, user
-# and system CPU, peak resident set and minor page faults (GNU time); for bare
-# CHOLMOD its analyze, factorize and solve times and their CPU time.
+# same load. BARE_HUGE=1 adds a second bare run per round with all of glibc's
+# allocations on transparent huge pages (GLIBC_TUNABLES=glibc.malloc.hugetlb=1),
+# the yardstick on the same footing as superjoin's --huge-pages yes. One line
+# per run: superjoin's phase times (-v), wall clock, user and system CPU, peak
+# resident set and minor page faults (GNU time); for bare CHOLMOD its
+# analyze, factorize and solve times, their sum and their CPU time.
 #
 # usage: bench/ab_bare.sh [-r N] OLD_BINARY NEW_BINARY DECK MATRIX.mtx
 #   -r N   rounds (default 2)
@@ -39,9 +42,15 @@ for ((i = 1; i <= rounds; i++)); do
          "user $(gnu 'User time' "$work/err") sys $(gnu 'System time' "$work/err")" \
          "maxrss_kB $(gnu 'Maximum resident' "$work/err") minflt $(gnu Minor "$work/err")"
   done
-  /usr/bin/time -v "$bare" "$mtx" >"$work/bare.out" 2>"$work/err"
-  echo "bare $i load $(cut -d' ' -f1 /proc/loadavg) |" \
-       "$(awk '$1 == "time" && $2 != "read" { printf "%s %s ", $2, $3 } $1 == "cpu" { printf "cpu %s ", $3 }' "$work/bare.out")|" \
-       "user $(gnu 'User time' "$work/err") sys $(gnu 'System time' "$work/err")" \
-       "maxrss_kB $(gnu 'Maximum resident' "$work/err") minflt $(gnu Minor "$work/err")"
+  for side in bare ${BARE_HUGE:+bare-huge}; do
+    if [ $side = bare ]; then
+      /usr/bin/time -v "$bare" "$mtx" >"$work/bare.out" 2>"$work/err"
+    else
+      GLIBC_TUNABLES=glibc.malloc.hugetlb=1 /usr/bin/time -v "$bare" "$mtx" >"$work/bare.out" 2>"$work/err"
+    fi
+    echo "$side $i load $(cut -d' ' -f1 /proc/loadavg) |" \
+         "$(awk '$1 == "time" && $2 != "read" { printf "%s %s ", $2, $3; s += $3 } $1 == "cpu" { printf "cpu %s ", $3 } END { printf "a+f+s %.3f ", s }' "$work/bare.out")|" \
+         "user $(gnu 'User time' "$work/err") sys $(gnu 'System time' "$work/err")" \
+         "maxrss_kB $(gnu 'Maximum resident' "$work/err") minflt $(gnu Minor "$work/err")"
+  done
 done

@@ -27,6 +27,7 @@ module superjoin_analysis_level_solver
   !! x_B)). A contact's g stays on the diagonal of its own Δu: the levels only
   !! order the elimination. A level whose groups' interiors touch each other
   !! (never for groups from the plan) gives up: K_red is factored whole.
+  use superjoin_utils_huge_pages, only: advise_huge
   use superjoin_kinds, only: wp, i8
   use superjoin_error, only: error_t, EXIT_SINGULAR
   use superjoin_model_types, only: string_t
@@ -316,6 +317,8 @@ contains
     end do
     call starts_from_counts(a%colptr)
     allocate (a%rowind(a%colptr(nloc + 1) - 1), a%val(a%colptr(nloc + 1) - 1))
+    call advise_huge(a%rowind)
+    call advise_huge(a%val)
     at = a%colptr(1:nloc)
     do t = ni + 1, nloc   ! boundary columns: the interior rows above them
        c = column_of(t)
@@ -519,6 +522,8 @@ contains
        if (pass == 1) then
           deallocate (next%rowind, next%val)
           allocate (next%rowind(nz), next%val(nz))
+          call advise_huge(next%rowind)
+          call advise_huge(next%val)
        end if
     end do
   end subroutine next_matrix

@@ -28,7 +28,7 @@
 #define SJ_HUGE_PAGE_BYTES ((uintptr_t)2 << 20)
 /* Smaller blocks keep small pages: their faults are few, and the heap stays
  * one mapping. */
-#define SJ_HUGE_MIN_BYTES ((size_t)8 << 20)
+#define SJ_HUGE_MIN_BYTES ((size_t)4 << 20)
 
 static atomic_int huge_enabled = 1;
 

@@ -2,7 +2,7 @@ module superjoin_utils_huge_pages
   !! Transparent huge pages for the run's large arrays (huge_pages.c holds
   !! the why): `call advise_huge(a)` right after `a` is allocated and before
   !! it is first written asks the kernel to back its whole 2 MiB pages with
-  !! huge pages. Arrays under 8 MiB, and every array after
+  !! huge pages. Arrays under 4 MiB, and every array after
   !! `huge_pages_enable(.false.)` (--huge-pages no), are left as they are.
   !! Advice only: contents, results and listings do not depend on it.
   use, intrinsic :: iso_c_binding, only: c_int

@@ -397,6 +397,8 @@ contains
     real(wp), allocatable :: rc(:)
     if (tr%pool_n == size(tr%pool_col, kind=i8)) then
        allocate (ic(2*tr%pool_n), rc(2*tr%pool_n))
+       call advise_huge(ic)
+       call advise_huge(rc)
        ic(1:tr%pool_n) = tr%pool_col(1:tr%pool_n)
        rc(1:tr%pool_n) = tr%pool_coef(1:tr%pool_n)
        call move_alloc(ic, tr%pool_col)

@@ -43,6 +43,7 @@
  * error handler only records the message (sj_cholmod_message).
  */
 #define _GNU_SOURCE   /* CPU_COUNT, sched_getaffinity */
+#include "huge_pages.h"
 #include <malloc.h>
 #include <pthread.h>
 #include <sched.h>
@@ -87,12 +88,8 @@
  * already held). */
 static _Atomic size_t sj_failed_request = 0;
 
-/* src/utils/huge_pages.c: malloc, calloc and realloc that ask for huge
- * pages for large blocks (CHOLMOD's factor, its permuted copy of K and its
- * workspaces are the run's largest). */
-void *sj_malloc_huge(size_t n);
-void *sj_calloc_huge(size_t count, size_t size);
-void *sj_realloc_huge(void *old, size_t n);
+/* Through src/utils/huge_pages.c, large blocks ask for huge pages (CHOLMOD's
+ * factor, its permuted copy of K and its workspaces are the run's largest). */
 
 static void *sj_malloc(size_t size)
 {

@@ -8,7 +8,7 @@ module superjoin_analysis_condensation
   use superjoin_assembly_assemble, only: max_element_diagonal, assemble_stiffness, add_delta_springs
   use superjoin_assembly_transform, only: ROLE_PLAIN
   use superjoin_substructure_local_system, only: dof_label
-  use superjoin_substructure_cache, only: part_cache_t, part_view_t, acquire_view, entry_condense_loads, &
+  use superjoin_substructure_cache, only: part_cache_t, part_view_t, acquire_view, k_holder, entry_condense_loads, &
        entry_ku, view_spc_loads, view_turn, entry_recover, view_need_stiffness, take_views, twins_note
   use superjoin_model_results, only: run_summary_t, run_options_t
   use superjoin_model_notes, only: note
@@ -58,7 +58,8 @@ contains
     allocate (st%plan%supers(size(st%parts)))
     do i = 1, size(st%parts)
        st%plan%supers(i)%pdof = st%parts(i)%se%pdof
-       call move_alloc(st%parts(i)%se%k, st%plan%supers(i)%k)
+       st%plan%supers(i)%same_k = st%parts(i)%k_of
+       if (st%parts(i)%k_of == 0) call move_alloc(st%parts(i)%se%k, st%plan%supers(i)%k)
     end do
     st%plan%supers_moved = .true.
   end subroutine condensed_plan
@@ -70,7 +71,7 @@ contains
     if (.not. allocated(st%plan%supers)) return
     if (st%plan%supers_moved) then
        do i = 1, size(st%parts)
-          call move_alloc(st%plan%supers(i)%k, st%parts(i)%se%k)
+          if (st%parts(i)%k_of == 0) call move_alloc(st%plan%supers(i)%k, st%parts(i)%se%k)
        end do
     end if
     st%plan%supers_moved = .false.
@@ -185,7 +186,7 @@ contains
          if (taken) then   ! the previous value's view (a joint study)
             call need_stiffness(cache, st, model, parts(ip_), error)
          else
-            call acquire_part(cache, st, model, isub, solver_name, parts(ip_), error)
+            call acquire_part(cache, st, model, isub, solver_name, parts(ip_), error, parts(1:ip_ - 1))
          end if
          if (allocated(error)) return
          if (allocated(parts(ip_)%notes)) notes = [notes, parts(ip_)%notes]
@@ -206,7 +207,8 @@ contains
     call condense_all_loads(cache, st%parts, st%f_phys, st%f_eff, error)
     if (allocated(error)) return
     do ip_ = 1, size(st%parts)
-       call export_condensed(model, st%table, st%parts(ip_), st%f_eff(st%parts(ip_)%se%pdof, :), error)
+       call export_condensed(model, st%table, st%parts(ip_), st%parts(k_holder(st%parts, ip_))%se%k, &
+            st%f_eff(st%parts(ip_)%se%pdof, :), error)
        if (allocated(error)) return
     end do
     call note(notes, 'condensations: '//itoa(cache%computed - computed0)//' computed, '// &
@@ -224,11 +226,12 @@ contains
     cache%twins = opts%twins
   end subroutine library_options
 
-  subroutine acquire_part(cache, st, model, isub, solver_name, view, error)
+  subroutine acquire_part(cache, st, model, isub, solver_name, view, error, before)
     !! The condensation of substructure isub (acquire_view, with the loads a
     !! library entry must be able to condense) and, where its boundary has
     !! prescribed values, its own k (full_health forms k u0 with it; a library
-    !! entry is loaded without it).
+    !! entry is loaded without it). before: the views of the same array so
+    !! far (an unturned instance then shares an earlier one's K*).
     type(part_cache_t), intent(inout) :: cache
     type(solve_state_t), intent(in) :: st
     type(model_t), intent(in) :: model
@@ -236,7 +239,8 @@ contains
     character(*), intent(in) :: solver_name
     type(part_view_t), intent(out) :: view
     type(error_t), allocatable, intent(out) :: error
-    call acquire_view(cache, model, st%table, isub, st%bnd_c, solver_name, view, error, st%f_phys)
+    type(part_view_t), intent(in), optional :: before(:)
+    call acquire_view(cache, model, st%table, isub, st%bnd_c, solver_name, view, error, st%f_phys, before)
     if (allocated(error)) return
     call need_stiffness(cache, st, model, view, error)
   end subroutine acquire_part

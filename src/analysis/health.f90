@@ -9,7 +9,7 @@ module superjoin_analysis_health
   use superjoin_model_types, only: model_t, substructure_t
   use superjoin_assembly_dofs, only: dof_table_t
   use superjoin_substructure_local_system, only: dof_label
-  use superjoin_substructure_cache, only: part_cache_t, part_view_t, view_stiffness_times, &
+  use superjoin_substructure_cache, only: part_cache_t, part_view_t, view_stiffness_times, k_holder, &
        view_maxratio
   use superjoin_solvers, only: condition_estimate, inverse_norm_bound
   use superjoin_analysis_level_solver, only: cholesky_pivots
@@ -411,7 +411,7 @@ contains
       allocate (rf(ntot, nstep), ffull(ntot, nstep), qfull(ntot, nstep), source=0.0_wp)
       at = k%n
       do i = 1, size(parts)
-         associate (sys => parts(i), kst => parts(i)%se%k)
+         associate (sys => parts(i), kst => parts(k_holder(parts, i))%se%k)
            ni = sys%ni
            nb = sys%nb
            allocate (u0l(ni + nb, 1), w(ni + nb, 1))

@@ -51,11 +51,13 @@ module superjoin_analysis_matrix_export
 
 contains
 
-  subroutine export_condensed(model, table, view, fstar, error)
-    !! Write every export that model%exports asks for substructure view%isub.
+  subroutine export_condensed(model, table, view, kstar, fstar, error)
+    !! Write every export that model%exports asks for substructure view%isub
+    !! (kstar: its K*, the view's own or the one it shares).
     type(model_t), intent(in) :: model
     type(dof_table_t), intent(in) :: table
     type(part_view_t), intent(in) :: view
+    real(wp), intent(in) :: kstar(:, :)      !! (nb, nb)
     real(wp), intent(in) :: fstar(:, :)      !! (nb, nstep)
     type(error_t), allocatable, intent(out) :: error
     type(dof_map_t) :: map
@@ -69,7 +71,7 @@ contains
     end do
     do k = 1, size(model%exports)
        if (model%exports(k)%sub /= view%isub) cycle
-       associate (x => model%exports(k), kk => view%se%k)
+       associate (x => model%exports(k), kk => kstar)
          select case (x%format)
          case (EXPORT_ABAQUS)
             call write_abaqus(x%path//'.mtx', model%subs(view%isub)%name, map, kk, error)

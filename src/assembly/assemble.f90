@@ -28,6 +28,9 @@ module superjoin_assembly_assemble
     !! stiffness K* on physical (boundary) DOFs, in their physical numbering.
      integer(i8), allocatable :: pdof(:)      !! (nb) physical DOFs
      real(wp), allocatable :: k(:, :)         !! (nb, nb)
+     integer :: same_k = 0
+       !! > 0: k is not held here but is that superelement's of the same
+       !! plan (an instance sharing its part's condensation, unturned)
   end type superelement_t
 
   type, public :: assembly_plan_t
@@ -391,7 +394,9 @@ contains
     end do
     do i = 1, size(plan%supers)
        it = it + 1
-       call tr%scatter_dense(plan%supers(i)%pdof, plan%supers(i)%k, k, f_u0)
+       associate (own => plan%supers(merge(plan%supers(i)%same_k, i, plan%supers(i)%same_k > 0)))
+         call tr%scatter_dense(plan%supers(i)%pdof, own%k, k, f_u0)
+       end associate
     end do
     if (.not. allocated(ke)) allocate (ke(MAX_UNIT_TERMS, MAX_UNIT_TERMS))
     if (size(ke, 1) < MAX_UNIT_TERMS .or. size(ke, 2) < MAX_UNIT_TERMS) then

@@ -60,6 +60,9 @@ module superjoin_substructure_cache
      integer(i8), allocatable :: pdof(:)      !! physical DOF of each local DOF (this substructure)
      integer, allocatable :: grp(:, :)        !! (BLOCK, ngroup) local DOFs of each node block (0: absent)
      type(superelement_t) :: se               !! K* of this substructure on its physical boundary DOFs
+     integer :: k_of = 0
+       !! > 0: se%k is not held here but is that view's of the same array (an
+       !! earlier view of the same entry, both unturned: acquire_view's before)
      ! A remote view (entry = 0): the substructure is condensed by another MPI
      ! process, which sent K* and what follows (analysis/distributed).
      real(wp) :: ratio = 0.0_wp               !! remote: MAXRATIO of the interior factor
@@ -86,18 +89,20 @@ module superjoin_substructure_cache
      integer :: kept_n = -1, kept_computed = -1  !! n and computed when they were kept
   end type part_cache_t
 
-  public :: view_ku, twin_copies
+  public :: view_ku, twin_copies, k_holder
   public :: release_cache, forget_load_memos, acquire_view, view_condense_loads, view_recover, view_stiffness_times, &
        view_maxratio, view_spc, view_spc_loads, remote_view, view_turn, entry_recover, entry_condense_loads, entry_ku, &
        view_need_stiffness, take_views, keep_views, twins_note
 
 contains
 
-  subroutine acquire_view(cache, model, table, isub, bnd, solver_name, view, error, f_phys)
+  subroutine acquire_view(cache, model, table, isub, bnd, solver_name, view, error, f_phys, before)
     !! The condensation of substructure isub: an existing one when one fits
     !! (find_entry), otherwise computed now (or loaded from the library) and
     !! kept. f_phys: the loads (physical DOFs), which a library entry must be
-    !! able to condense.
+    !! able to condense. before: the views of the same array so far; an
+    !! unturned view whose entry an unturned one of them holds shares that
+    !! one's K* (view%k_of) instead of a copy of its own.
     type(part_cache_t), intent(inout) :: cache
     type(model_t), intent(in) :: model
     type(dof_table_t), intent(in) :: table
@@ -107,6 +112,7 @@ contains
     type(part_view_t), intent(out) :: view
     type(error_t), allocatable, intent(out) :: error
     real(wp), intent(in), optional :: f_phys(:, :)
+    type(part_view_t), intent(in), optional :: before(:)
     integer(ip), allocatable :: lnode(:)
     integer, allocatable :: ldof(:)
     integer(i8) :: ni
@@ -140,8 +146,10 @@ contains
     end if
 
     ! K* in this substructure's frame, on its physical boundary DOFs.
+    allocate (view%se%pdof, source=view%pdof(ni + 1:))   ! view is intent(out): not reallocated by assignment
+    if (present(before) .and. .not. view%rotated) view%k_of = holder_of(before, view%entry)
+    if (view%k_of > 0) return   ! the same K* as an earlier view's: not copied (20 floors of 16 bays: 120 MB)
     associate (kc => cache%entries(view%entry)%e%cond%se%k)
-      allocate (view%se%pdof, source=view%pdof(ni + 1:))   ! view is intent(out): not reallocated by assignment
       allocate (view%se%k, source=kc)
       if (view%rotated) then
          call rotate_boundary_columns(view, view%se%k, .true.)
@@ -150,6 +158,24 @@ contains
       end if
     end associate
   end subroutine acquire_view
+
+  pure integer function holder_of(views, entry) result(j)
+    !! The first of views that holds its own unturned K* of cache entry entry (0: none).
+    type(part_view_t), intent(in) :: views(:)
+    integer, intent(in) :: entry
+    do j = 1, size(views)
+       if (views(j)%entry == entry .and. .not. views(j)%rotated .and. views(j)%k_of == 0) return
+    end do
+    j = 0
+  end function holder_of
+
+  pure integer function k_holder(views, i) result(j)
+    !! The view of views whose se%k is views(i)'s K* (i itself, or its k_of).
+    type(part_view_t), intent(in) :: views(:)
+    integer, intent(in) :: i
+    j = i
+    if (views(i)%k_of > 0) j = views(i)%k_of
+  end function k_holder
 
   subroutine find_entry(cache, model, isub, lnode, ldof, view)
     !! The cache entry that serves substructure isub (view%entry, 0: none;

@@ -25,7 +25,7 @@ program test_interface
   use superjoin_assembly_assemble, only: assemble_stiffness, assembly_plan_t, element_matrix, element_pdofs, &
        unit_pdofs, unit_plain_stiffness
   use superjoin_substructure_local_system, only: boundary_dofs
-  use superjoin_substructure_cache, only: part_cache_t, part_view_t, acquire_view, release_cache
+  use superjoin_substructure_cache, only: part_cache_t, part_view_t, acquire_view, release_cache, k_holder
   use superjoin_solvers, only: sparse_sym_t
   use superjoin_testing, only: check, check_close, finish
   use superjoin_analysis, only: solve_model
@@ -327,8 +327,31 @@ contains
     call check(ni > 0 .and. nb > 0, 'B has interior and boundary DOFs')
     call check(maxval(abs(view%se%k - want)) <= 1.0e-10_wp*maxval(abs(kbb)), 'K* = k_bb - k_bi k_ii^-1 k_ib')
     call check(all(view%se%pdof == view%pdof(ni + 1:)), 'K* on the physical boundary DOFs')
+    call shared_view_check(cache, bnd, isub, view)
     call release_cache(cache)
   end subroutine condensation_check
+
+  subroutine shared_view_check(cache, bnd, isub, first)
+    !! A second view of the same condensation, given the first as an earlier
+    !! view of its array, holds no copy of K*: it names the first (k_of),
+    !! which k_holder resolves; without before it holds its own equal copy.
+    type(part_cache_t), intent(inout) :: cache
+    logical, intent(in) :: bnd(:)
+    integer, intent(in) :: isub
+    type(part_view_t), intent(in) :: first
+    type(part_view_t) :: views(2), own
+    views(1) = first
+    call acquire_view(cache, model, table, isub, bnd, 'lapack', views(2), error, before=views(1:1))
+    call check(.not. allocated(error), 'a second view of B')
+    if (allocated(error)) return
+    call check(views(2)%entry == first%entry .and. views(2)%k_of == 1, 'the second view shares the first''s K*')
+    call check(.not. allocated(views(2)%se%k), 'the second view holds no copy of K*')
+    call check(k_holder(views, 2) == 1 .and. k_holder(views, 1) == 1, 'k_holder resolves a shared K*')
+    call check(all(views(2)%se%pdof == first%se%pdof), 'the shared view keeps its own boundary DOFs')
+    call acquire_view(cache, model, table, isub, bnd, 'lapack', own, error)
+    call check(.not. allocated(error) .and. own%k_of == 0, 'without before a view holds its own K*')
+    if (allocated(own%se%k)) call check(all(own%se%k == first%se%k), 'its own K* is the same')
+  end subroutine shared_view_check
   subroutine recovery_check(solver, condensed)
     !! Contact J (oriented, DOFs 1-3 RIGID, 4-6 g) and L (RIGID, global axes)
     !! hold part B with the elastic support at B.2 against the load at B.3.

@@ -14,7 +14,7 @@ program superjoin_main
   use superjoin_error, only: error_t, EXIT_OK, EXIT_USAGE, EXIT_IO, EXIT_INACCURATE
   use superjoin_model_types, only: model_t, string_t, DIALECT_CALCULIX, FORM_TRANSFORM, FORM_PENALTY, CONDENSE_YES, CONDENSE_NO, &
        CONDENSE_AUTO
-  use superjoin_utils_huge_pages, only: huge_pages_enable
+  use superjoin_utils_huge_pages, only: huge_pages_enable, reuse_memory_enable, apply_memory_policy
   use superjoin_deck_reader, only: read_deck
   use superjoin_analysis_driver, only: solve_steps, partial_results
   use superjoin_analysis_combinations, only: add_combinations
@@ -84,6 +84,7 @@ program superjoin_main
      opts%quiet = .true.
      if (allocated(opts%export_matrix)) deallocate (opts%export_matrix)
   end if
+  call apply_memory_policy()
   call process_setup(ok, blas_bytes)
   if (.not. ok) write (error_unit, '(a)') 'superjoin: warning: signal handlers not installed'
   if (blas_bytes > 0 .and. .not. check_only) then
@@ -349,6 +350,8 @@ contains
          '                     condensation, turned (default yes)', &
          '  --huge-pages H     yes | no: large arrays ask the kernel for transparent huge pages', &
          '                     (default yes; fewer page faults, the same results)', &
+         '  --reuse-memory R   yes | no: freed blocks under 32 MiB stay with superjoin for its next', &
+         '                     ones instead of going back to the kernel (default yes; the same results)', &
          '  --vtk FILE         VTK files for ParaView: FILE.pvd and FILE_<step>.vtu', &
          '                     (overrides *OUTPUT, VTK= of the deck)', &
          '  --accept-inaccurate  exit 0 even when the results are judged inaccurate', &
@@ -419,7 +422,7 @@ contains
           job = job_name(get_arg(i))
           deck = job//'.inp'
        case ('-o', '--csv', '--solver', '--formulation', '--export-matrix', '--vtk', '--condense', '--library', &
-            '--levels', '--twins', '--huge-pages')
+            '--levels', '--twins', '--huge-pages', '--reuse-memory')
           if (i == n) then
              call usage_problem(status, 'option '//arg//' needs a value')
              return
@@ -483,6 +486,9 @@ contains
              if (status >= 0) return
           case ('--huge-pages')
              call huge_pages_enable(yes_no(val, '--huge-pages', status))
+             if (status >= 0) return
+          case ('--reuse-memory')
+             call reuse_memory_enable(yes_no(val, '--reuse-memory', status))
              if (status >= 0) return
           case ('--export-matrix')
              opts%export_matrix = val

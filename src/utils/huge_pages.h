@@ -11,5 +11,8 @@ void *sj_calloc_huge(size_t count, size_t size);
 void *sj_realloc_huge(void *old, size_t n);
 /* Whether large blocks ask for huge pages from now on (--huge-pages). */
 void sj_huge_pages_enable(int on);
+/* Whether freed large blocks stay with the process (--reuse-memory), and that policy applied once. */
+void sj_reuse_memory_enable(int on);
+void sj_memory_policy(void);
 
 #endif

@@ -92,7 +92,14 @@ contains
     type(sub_b_t), intent(inout) :: to
     integer :: j, c, k, jset
     jset = find_set(to, name, elem)
-    if (jset == 0) call new_set(to, name, elem, set%loc, jset)
+    if (jset == 0) then
+       call new_set(to, name, elem, set%loc, jset)
+       if (elem) then
+          to%elsets(jset)%order = set%order
+       else
+          to%nsets(jset)%order = set%order
+       end if
+    end if
     do c = 1, from%nchunk
        if (from%chunks(c)%set /= iset .or. (from%chunks(c)%elem .neqv. elem)) cycle
        call add_chunk(to, jset, elem, from%chunks(c)%kind, from%chunks(c)%loc, k)

@@ -119,8 +119,9 @@ contains
 
   function assembly_members(st, model, name, elem) result(subs)
     !! Substructures that an assembly-level set `name` (element set: elem) has
-    !! members in: the instances whose entries define it with INSTANCE= cards
-    !! (set_b_t%order > 0), in the order of their first cards.
+    !! members in: the instances whose entries define it (an instance's entry
+    !! holds only the sets of INSTANCE= cards: kw_set, place_path_sets), in
+    !! the order of their first cards (set_b_t%order).
     type(deck_state_t), intent(in) :: st
     type(model_t), intent(in) :: model
     character(*), intent(in) :: name
@@ -138,7 +139,7 @@ contains
           order = st%subs(k)%nsets(j)%order
        end if
        isub = sub_index(model, st%subs(k)%name)
-       if (order == 0 .or. isub == 0) cycle
+       if (isub == 0) cycle   ! not placed (an instance of an undefined part: reported)
        ! insertion by rank: the first card of each instance's part of the set
        n = count(rank < order)
        rank = [rank(1:n), order, rank(n + 1:)]

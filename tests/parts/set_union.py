@@ -15,6 +15,8 @@ of another part that has a part-level node set LOADED of its own:
    to 1e-12 relative to the largest; C (part set LOADED, not a member: the
    assembly's set wins) stays unloaded, so it moves by its temperature alone
    in neither deck (C has no temperature: zero displacement).
+   The same for a set over inner instances named by path (INSTANCE=B.F1.BAY2
+   and B.F2.BAY2, parts made of parts), its members in card order.
 2. requests: *NODE PRINT, NSET=LOADED and *EL PRINT, ELSET=SKIN list the
    members of both instances, in the order of the set cards (SKIN's card for
    B comes first: B's element 2, then A's 1 and 2 from GENERATE), the same
@@ -24,7 +26,8 @@ of another part that has a part-level node set LOADED of its own:
    without and with a substructure MAIN, and an output request).
 4. cards whose members must lie in one substructure (*RIGID BODY, *TRANSFORM,
    a *COUPLING surface, a *TIE surface) refuse the union at the card's
-   file:line ('spans 2 substructures'), exit 1, no traceback.
+   file:line ('spans 2 substructures'), exit 1, no traceback; a member
+   instance of an undefined part gives its *INSTANCE message alone.
 """
 import csv
 import os
@@ -104,6 +107,56 @@ def model(with_c=True, with_main=False):
     if with_main:
         text += "*BOUNDARY\n 100, ENCASTRE\n"
     return text
+
+
+NESTED = """*MATERIAL, NAME=STEEL
+*ELASTIC
+2.1e11, 0.3
+*PART, NAME=BAY
+*NODE
+1, 0.0, 0.0
+2, 1.0, 0.0
+*ELEMENT, TYPE=B23, ELSET=E
+1, 1, 2
+*BEAM SECTION, ELSET=E, MATERIAL=STEEL
+1.0e-3, 1.0e-6
+*END PART
+*PART, NAME=FLOOR
+*INSTANCE, NAME=BAY1, PART=BAY
+*END INSTANCE
+*INSTANCE, NAME=BAY2, PART=BAY
+1.0, 0.0, 0.0
+*END INSTANCE
+*CONTACT, NAME=J, MASTER=BAY1, SLAVE=BAY2
+BAY1.2, BAY2.1, 1, 6, RIGID
+*END PART
+*PART, NAME=BUILDING
+*INSTANCE, NAME=F1, PART=FLOOR
+*END INSTANCE
+*INSTANCE, NAME=F2, PART=FLOOR
+2.0, 0.0, 0.0
+*END INSTANCE
+*CONTACT, NAME=K, MASTER=F1.BAY2, SLAVE=F2.BAY1
+F1.BAY2.2, F2.BAY1.1, 1, 6, RIGID
+*END PART
+*ASSEMBLY
+*INSTANCE, NAME=B, PART=BUILDING
+*END INSTANCE
+*NSET, NSET=BASE, INSTANCE=B.F1.BAY1
+1
+*NSET, NSET=PAIR, INSTANCE=B.F1.BAY2
+2
+*NSET, NSET=PAIR, INSTANCE=B.F2.BAY2
+2
+*END ASSEMBLY
+*BOUNDARY
+BASE, ENCASTRE
+*STEP
+*CLOAD
+{loads}*NODE PRINT, NSET=PAIR
+U
+*END STEP
+"""
 
 
 def cards(scoped):
@@ -212,6 +265,21 @@ def main():
         if max(abs(v) for n in range(1, 13) for v in du[("C", str(n))]) != 0.0:
             sys.exit("FAIL: instance C moved: its part set LOADED was taken for the assembly's")
 
+    # 1b. a set over inner instances by path (INSTANCE=B.F1.BAY2, B.F2.BAY2): the same
+    nested = run(exe, work, "nested", NESTED.format(loads="PAIR, 2, -1000.0\n"), csv_dir=True)
+    run(exe, work, "nested_scoped", NESTED.format(loads="B.F1.BAY2.PAIR, 2, -1000.0\nB.F2.BAY2.PAIR, 2, -1000.0\n"),
+        csv_dir=True)
+    du, ds = displacements(work, "nested"), displacements(work, "nested_scoped")
+    scale = max(abs(v) for vals in ds.values() for v in vals)
+    worst = max(abs(a - b) for k in ds for a, b in zip(du[k], ds[k])) / scale
+    body = nested.split("REQUESTED OUTPUT", 1)[1].split("\n=====", 1)[0]
+    rows = [line.split()[:2] for line in body.splitlines() if line.strip().startswith("B.F")]
+    print(f"ok   nested: {len(du)} nodes, largest difference {worst:.1e}; *NODE PRINT rows {rows}")
+    if sorted(du) != sorted(ds) or worst > TOL or scale == 0.0:
+        sys.exit(f"FAIL: nested union: displacements differ by {worst:.3e}")
+    if rows != [["B.F1.BAY2", "2"], ["B.F2.BAY2", "2"]]:
+        sys.exit("FAIL: nested union: *NODE PRINT, NSET=PAIR does not list B.F1.BAY2.2 then B.F2.BAY2.2 (card order)")
+
     # 2. the requests list both instances, in the order of the set cards
     ru, rs = request_rows(plain), request_rows(scoped)
     order = [(s, i) for s, i, _ in ru]
@@ -267,6 +335,12 @@ def main():
         what = "node set LOADED" if name in ("rigid", "transform") else "element set SKIN"
         check_error(r, name, rf"{name}\.deck:{line}: error: {what} spans 2 substructures \((A, B|B, A): an "
                     r"assembly-level set over several instances\)")
+    # an instance of an undefined part among the members: its *INSTANCE error is the one message
+    deck = model(with_c=False).replace("*INSTANCE, NAME=B, PART=BLK", "*INSTANCE, NAME=B, PART=NOPE") + cards(False)
+    r = run(exe, work, "broken", deck, want_ok=False)
+    check_error(r, "broken", r"broken\.deck:\d+: error: \*INSTANCE B of undefined part NOPE")
+    if r.stderr.count("error:") != 1:
+        sys.exit(f"FAIL: broken: more than the one message:\n{r.stderr}")
     print("PASS")
 
 

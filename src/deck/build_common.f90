@@ -283,8 +283,9 @@ contains
 
   function instances_hint(model, name, elem) result(s)
     !! ' (NAME is a set of each of the instances A, B, kept apart: name the ones meant, A.NAME and B.NAME)'
-    !! when several instances hold a set of that name (a part's set, or CAE's
-    !! *NSET, INSTANCE= cards of one set over several instances), else ''.
+    !! when several instances hold a set of that name (a part's set: an
+    !! assembly-level one over several instances is their union,
+    !! plain_set_subs), else ''.
     type(model_t), intent(in) :: model
     character(*), intent(in) :: name
     logical, intent(in) :: elem

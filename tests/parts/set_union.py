@@ -14,7 +14,8 @@ of another part that has a part-level node set LOADED of its own:
    same deck with each card written once per instance (A.ROOTS, B.ROOTS, ...),
    to 1e-12 relative to the largest; C (part set LOADED, not a member: the
    assembly's set wins) stays unloaded, so it moves by its temperature alone
-   in neither deck (C has no temperature: zero displacement).
+   in neither deck (C has no temperature: zero displacement). A *DSLOAD on a
+   *SURFACE of the union's elements gives the same.
    The same for a set over inner instances named by path (INSTANCE=B.F1.BAY2
    and B.F2.BAY2, parts made of parts), its members in card order.
 2. requests: *NODE PRINT, NSET=LOADED and *EL PRINT, ELSET=SKIN list the
@@ -264,6 +265,16 @@ def main():
                 sys.exit(f"FAIL: {inst}.1 moved: the *BOUNDARY on the union missed it")
         if max(abs(v) for n in range(1, 13) for v in du[("C", str(n))]) != 0.0:
             sys.exit("FAIL: instance C moved: its part set LOADED was taken for the assembly's")
+
+    # *DSLOAD on a surface of the union's elements: the *DLOAD's loads
+    deck = (model() + cards(False)).replace("*BOUNDARY\n ROOTS", "*SURFACE, NAME=SS\n SKIN, S2\n*BOUNDARY\n ROOTS")
+    run(exe, work, "dsload", deck.replace("*DLOAD\n SKIN, P2, 5.0", "*DSLOAD\n SS, P, 5.0"), csv_dir=True)
+    dd = displacements(work, "dsload")
+    ds = displacements(work, "scoped")
+    worst = max(abs(a - b) for k in ds for a, b in zip(dd[k], ds[k])) / max(abs(v) for vals in ds.values() for v in vals)
+    print(f"ok   *DSLOAD on a surface of the union: largest difference {worst:.1e}")
+    if sorted(dd) != sorted(ds) or worst > TOL:
+        sys.exit(f"FAIL: *DSLOAD on the union's surface differs by {worst:.3e}")
 
     # 1b. a set over inner instances by path (INSTANCE=B.F1.BAY2, B.F2.BAY2): the same
     nested = run(exe, work, "nested", NESTED.format(loads="PAIR, 2, -1000.0\n"), csv_dir=True)

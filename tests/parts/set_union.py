@@ -9,7 +9,8 @@ named plainly at model level it is the union of the members, each in its own
 instance. Two C3D8 blocks A and B (B turned and moved) and a third instance C
 of another part that has a part-level node set LOADED of its own:
 
-1. union: *BOUNDARY, *CLOAD, *DLOAD and *TEMPERATURE on plain ROOTS, LOADED,
+1. union: *BOUNDARY, *CLOAD, *DLOAD, *TEMPERATURE and *INITIAL CONDITIONS,
+   TYPE=TEMPERATURE on plain ROOTS, LOADED,
    SKIN give the displacements (CSV, every node of every instance) of the
    same deck with each card written once per instance (A.ROOTS, B.ROOTS, ...),
    to 1e-12 relative to the largest; C (part set LOADED, not a member: the
@@ -28,7 +29,8 @@ of another part that has a part-level node set LOADED of its own:
 4. cards whose members must lie in one substructure (*RIGID BODY, *TRANSFORM,
    a *COUPLING surface, a *TIE surface) refuse the union at the card's
    file:line ('spans 2 substructures'), exit 1, no traceback; a member
-   instance of an undefined part gives its *INSTANCE message alone.
+   instance of an undefined part gives its *INSTANCE message alone, one on
+   an instance of a part made of parts only (no mesh) a message at its card.
 """
 import csv
 import os
@@ -167,6 +169,7 @@ def cards(scoped):
             return "".join(f" {i}.{name}{rest}\n" for i in order)
         return f" {name}{rest}\n"
     text = "*BOUNDARY\n" + each("ROOTS", ", ENCASTRE")
+    text += "*INITIAL CONDITIONS, TYPE=TEMPERATURE\n" + each("LOADED", ", 10.0")
     text += "*STEP\n*STATIC\n*CLOAD\n" + each("LOADED", ", 2, -10.0")
     text += "*DLOAD\n" + each("SKIN", ", P2, 5.0", ("B", "A"))
     text += "*TEMPERATURE\n" + each("LOADED", ", 40.0")
@@ -352,6 +355,15 @@ def main():
     check_error(r, "broken", r"broken\.deck:\d+: error: \*INSTANCE B of undefined part NOPE")
     if r.stderr.count("error:") != 1:
         sys.exit(f"FAIL: broken: more than the one message:\n{r.stderr}")
+    # a member on an instance of a part made of parts only (INSTANCE=B: no mesh of its own):
+    # one message at its card, not a union that silently lacks it
+    deck = NESTED.format(loads="PAIR, 2, -1000.0\n").replace("INSTANCE=B.F2.BAY2", "INSTANCE=B")
+    line = deck.splitlines().index("*NSET, NSET=PAIR, INSTANCE=B") + 1
+    r = run(exe, work, "meshless", deck, want_ok=False)
+    check_error(r, "meshless", rf"meshless\.deck:{line}: error: INSTANCE=B of \*NSET names an instance of part "
+                r"BUILDING, which is made of parts only")
+    if r.stderr.count("error:") != 1:
+        sys.exit(f"FAIL: meshless: more than the one message:\n{r.stderr}")
     print("PASS")
 
 

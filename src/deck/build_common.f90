@@ -139,7 +139,7 @@ contains
           order = st%subs(k)%nsets(j)%order
        end if
        isub = sub_index(model, st%subs(k)%name)
-       if (isub == 0) cycle   ! not placed (an instance of an undefined part: reported)
+       if (isub == 0) cycle   ! not placed (an instance of a part made of parts only: reported; a part's entry)
        ! insertion by rank: the first card of each instance's part of the set
        n = count(rank < order)
        rank = [rank(1:n), order, rank(n + 1:)]

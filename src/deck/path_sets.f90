@@ -30,7 +30,7 @@ contains
        if (st%subs(k)%kind /= SUBK_INSTANCE .and. st%subs(k)%kind /= SUBK_NESTED) cycle
        if (st%subs(k)%nnset > 0) call move_kind(st, k, .false.)
        if (st%subs(k)%nelset > 0) call move_kind(st, k, .true.)
-       if (st%subs(k)%kind == SUBK_NESTED) call report_meshless(st, k)
+       if (st%subs(k)%kind == SUBK_NESTED .and. st%subs(k)%inst > 0) call report_meshless(st, k)   ! not a part's entry
     end do
   end subroutine place_path_sets
 

@@ -364,6 +364,12 @@ def main():
                 r"BUILDING, which is made of parts only")
     if r.stderr.count("error:") != 1:
         sys.exit(f"FAIL: meshless: more than the one message:\n{r.stderr}")
+    # a part made of parts with a set of its own (its entry is no instance): not taken for one
+    deck = NESTED.format(loads="PAIR, 2, -1000.0\n").replace("*END PART\n*ASSEMBLY", "*ELSET, ELSET=Q\n1\n*END PART\n*ASSEMBLY")
+    r = run(exe, work, "part_of_parts_set", deck, want_ok=False)
+    if r.returncode not in (0, 1) or "signal" in r.stderr or "Traceback" in r.stderr:
+        sys.exit(f"FAIL: part_of_parts_set: exit {r.returncode}\n{r.stderr}")
+    print(f"ok   part_of_parts_set: exit {r.returncode}, no crash")
     print("PASS")
 
 

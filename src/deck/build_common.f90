@@ -5,43 +5,147 @@ module superjoin_deck_build_common
   use superjoin_kinds, only: ip, i8
   use superjoin_model_types, only: model_t, source_loc_t, find_node, find_elem
   use superjoin_deck_lexer, only: itoa
-  use superjoin_deck_state, only: deck_state_t, ref_t, report_loc, report_oom, step_b_t, OP_MOD, OP_DEFAULT, MAIN_NAME
+  use superjoin_deck_state, only: deck_state_t, ref_t, report_loc, report_oom, step_b_t, OP_MOD, OP_DEFAULT, MAIN_NAME, &
+       find_set, SUBK_INSTANCE, SUBK_NESTED
   use superjoin_utils_strings, only: pick
   implicit none (type, external)
   private
 
-  public :: resolve_sub, sub_index, ref_text, resolve_items, broken_sub, part_hint, keeps_previous, more_text, &
-       where, assembly_set_owner, instances_hint, INITIAL_CAPACITY
+  public :: resolve_sub, ref_subs, plain_set_subs, sub_index, ref_text, resolve_items, broken_sub, part_hint, keeps_previous, more_text, &
+       where, instances_hint, INITIAL_CAPACITY
 
   integer, parameter :: INITIAL_CAPACITY = 16
 
 contains
 
   integer function resolve_sub(st, model, ref, loc, what) result(isub)
-    !! Substructure a reference points to (0 and reported when there is none).
+    !! The one substructure a reference points to (ref_subs); 0 and reported
+    !! when there is none, or when it names an assembly-level set over several
+    !! instances (the caller's members must lie in one substructure).
     type(deck_state_t), intent(inout) :: st
     type(model_t), intent(in) :: model
     type(ref_t), intent(in) :: ref
     type(source_loc_t), intent(in) :: loc
     character(*), intent(in) :: what
+    integer, allocatable :: subs(:)
+    character(:), allocatable :: names
+    integer :: k
+    call ref_subs(st, model, ref, loc, what, subs)
+    isub = 0
+    if (size(subs) == 1) isub = subs(1)
+    if (size(subs) < 2) return
+    names = model%subs(subs(1))%name
+    do k = 2, size(subs)
+       names = names//', '//model%subs(subs(k))%name
+    end do
+    call report_loc(st, loc, pick(what == 'node', 'node set ', 'element set ')//ref%set//' spans '//itoa(size(subs))//' substructures ('//names// &
+         ': an assembly-level set over several instances); here its members must lie in one: name one '// &
+         'instance''s, as '//model%subs(subs(1))%name//'.'//ref%set)
+  end function resolve_sub
+
+  subroutine ref_subs(st, model, ref, loc, what, subs)
+    !! The substructures a reference covers, the one place a set name written
+    !! at model level is resolved: its scope's (SUB.x), its home's (a card in
+    !! a block), else MAIN, for a plain set name as plain_set_subs says (the
+    !! members of an assembly-level set over several instances, in card
+    !! order); empty and reported when it is in none.
+    type(deck_state_t), intent(inout) :: st
+    type(model_t), intent(in) :: model
+    type(ref_t), intent(in) :: ref
+    type(source_loc_t), intent(in) :: loc
+    character(*), intent(in) :: what
+    integer, allocatable, intent(out) :: subs(:)
     character(:), allocatable :: hint
+    integer :: isub
+    allocate (subs(0))
     if (allocated(ref%scope)) then
        isub = sub_index(model, ref%scope)
        if (isub == 0) call report_loc(st, loc, 'unknown substructure '//ref%scope//' in '// &
             ref_text(ref)//part_hint(model, ref%scope))
+       if (isub > 0) subs = [isub]
     else if (ref%home > 0) then
-       isub = ref%home
+       subs = [ref%home]
     else
        isub = sub_index(model, MAIN_NAME)
-       if (ref%is_set) isub = assembly_set_owner(model, ref%set, what /= 'node', isub)
-       if (isub > 0) return
+       if (ref%is_set) then
+          subs = plain_set_subs(st, model, ref%set, what /= 'node', isub)
+       else if (isub > 0) then
+          subs = [isub]
+       end if
+       if (size(subs) > 0) return
        hint = ''
        if (ref%is_set) hint = instances_hint(model, ref%set, what /= 'node')   ! a part's set, named plainly
        call report_loc(st, loc, what//' '//ref_text(ref)// &
             ' is not in a substructure: outside *SUBSTRUCTURE blocks write SUB.id or SUB.set '// &
             '(no nodes were defined outside the blocks, so there is no substructure MAIN)'//hint)
     end if
-  end function resolve_sub
+  end subroutine ref_subs
+
+  function plain_set_subs(st, model, name, elem, main) result(subs)
+    !! Substructures of a set named plainly at model level (main: MAIN, 0 if
+    !! none), as Abaqus reads an assembly's set names: MAIN's set (the
+    !! assembly's own); else an assembly-level set (*NSET/*ELSET, INSTANCE=),
+    !! the union of its members, instance by instance in the order of their
+    !! first cards (assembly scope before the part sets of the instances);
+    !! else the one instance that has a set of that name (a part's set);
+    !! else [main] (its set is reported unknown there), empty without MAIN.
+    type(deck_state_t), intent(in) :: st
+    type(model_t), intent(in) :: model
+    character(*), intent(in) :: name
+    logical, intent(in) :: elem
+    integer, intent(in) :: main
+    integer, allocatable :: subs(:)
+    integer :: i, nfound, owner
+    if (main > 0) then
+       if (sub_has_set(model, main, name, elem)) then
+          subs = [main]
+          return
+       end if
+    end if
+    subs = assembly_members(st, model, name, elem)
+    if (size(subs) > 0) return
+    nfound = 0
+    owner = 0
+    do i = 1, size(model%subs)
+       if (model%subs(i)%part == 0) cycle
+       if (sub_has_set(model, i, name, elem)) then
+          nfound = nfound + 1
+          if (nfound == 1) owner = i
+       end if
+    end do
+    if (nfound /= 1) owner = main   ! none, or several instances' part sets: MAIN's (reported there)
+    if (owner > 0) subs = [owner]
+  end function plain_set_subs
+
+  function assembly_members(st, model, name, elem) result(subs)
+    !! Substructures that an assembly-level set `name` (element set: elem) has
+    !! members in: the instances whose entries define it (an instance's entry
+    !! holds only the sets of INSTANCE= cards: kw_set, place_path_sets), in
+    !! the order of their first cards (set_b_t%order).
+    type(deck_state_t), intent(in) :: st
+    type(model_t), intent(in) :: model
+    character(*), intent(in) :: name
+    logical, intent(in) :: elem
+    integer, allocatable :: subs(:), rank(:)
+    integer :: k, j, isub, order, n
+    allocate (subs(0), rank(0))
+    do k = 1, st%nsub
+       if (st%subs(k)%kind /= SUBK_INSTANCE .and. st%subs(k)%kind /= SUBK_NESTED) cycle
+       j = find_set(st%subs(k), name, elem)
+       if (j == 0) cycle
+       if (elem) then
+          order = st%subs(k)%elsets(j)%order
+       else
+          order = st%subs(k)%nsets(j)%order
+       end if
+       isub = sub_index(model, st%subs(k)%name)
+       if (isub == 0) cycle   ! not placed (an instance of a part made of parts only: reported; a part's entry)
+       ! insertion by rank: the first card of each instance's part of the set
+       n = count(rank < order)
+       rank = [rank(1:n), order, rank(n + 1:)]
+       subs = [subs(1:n), isub, subs(n + 1:)]
+    end do
+  end function assembly_members
 
   pure integer function sub_index(model, name) result(k)
     !! Index of the substructure named `name` (0 if none).
@@ -158,34 +262,6 @@ contains
     end do
   end function part_hint
 
-  integer function assembly_set_owner(model, name, elem, main) result(k)
-    !! Substructure of an unscoped set name: MAIN when MAIN has it, else the one
-    !! instance that has it (an assembly-level *NSET or *ELSET, INSTANCE=), else main.
-    type(model_t), intent(in) :: model
-    character(*), intent(in) :: name
-    logical, intent(in) :: elem
-    integer, intent(in) :: main
-    integer :: i, nfound
-    k = main
-    if (main > 0) then
-       if (has_set(main)) return
-    end if
-    nfound = 0
-    do i = 1, size(model%subs)
-       if (model%subs(i)%part == 0) cycle
-       if (has_set(i)) then
-          nfound = nfound + 1
-          if (nfound == 1) k = i
-       end if
-    end do
-    if (nfound /= 1) k = main
-  contains
-    logical function has_set(isub)
-      integer, intent(in) :: isub
-      has_set = sub_has_set(model, isub, name, elem)
-    end function has_set
-  end function assembly_set_owner
-
   pure logical function sub_has_set(model, isub, name, elem) result(has)
     !! Substructure isub has an element set (elem) or a node set named name.
     type(model_t), intent(in) :: model
@@ -207,8 +283,9 @@ contains
 
   function instances_hint(model, name, elem) result(s)
     !! ' (NAME is a set of each of the instances A, B, kept apart: name the ones meant, A.NAME and B.NAME)'
-    !! when several instances hold a set of that name (a part's set, or CAE's
-    !! *NSET, INSTANCE= cards of one set over several instances), else ''.
+    !! when several instances hold a set of that name (a part's set: an
+    !! assembly-level one over several instances is their union,
+    !! plain_set_subs), else ''.
     type(model_t), intent(in) :: model
     character(*), intent(in) :: name
     logical, intent(in) :: elem

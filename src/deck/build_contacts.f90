@@ -5,7 +5,7 @@ module superjoin_deck_build_contacts
   use superjoin_model_types, only: model_t, link_t, support_t, NDOF_NODE, LINK_FINITE, LINK_RIGID
   use superjoin_deck_lexer, only: itoa, plural
   use superjoin_deck_state, only: deck_state_t, ref_t, report_loc, report_oom
-  use superjoin_deck_build_common, only: resolve_sub, sub_index, ref_text, resolve_items, part_hint, &
+  use superjoin_deck_build_common, only: resolve_sub, ref_subs, sub_index, ref_text, resolve_items, part_hint, &
        INITIAL_CAPACITY, where
   use superjoin_deck_assembly, only: pair_nearest
   implicit none (type, external)
@@ -331,8 +331,9 @@ contains
     type(support_t), allocatable, intent(out) :: out(:)
     type(support_t), allocatable :: list(:), tmp(:)
     integer(ip), allocatable :: nodes(:)
-    integer :: k, n, isub, d, stat
+    integer :: k, n, isub, d, stat, m
     integer(ip) :: i
+    integer, allocatable :: subs(:)
     logical :: ok
     allocate (list(INITIAL_CAPACITY))
     n = 0
@@ -340,32 +341,34 @@ contains
        if (st%aborted) return
        if (st%supports(k)%step /= step) cycle
        associate (sb => st%supports(k))
-         isub = resolve_sub(st, model, sb%ref, sb%loc, 'node')
-         if (isub == 0) cycle
-         call resolve_items(st, model, isub, sb%ref, .false., sb%loc, nodes, ok)
-         if (.not. ok) cycle
-         do i = 1, size(nodes, kind=ip)
-            do d = 1, NDOF_NODE
-               if (.not. sb%dofs(d)) cycle
-               if (n == size(list)) then
-                  allocate (tmp(2*n), stat=stat)
-                  if (stat /= 0) then
-                     call report_oom(st, sb%loc, 'the supported DOFs ('//itoa(2*n)//')', &
-                          2*int(n, i8)*storage_size(list(1))/8)
-                     return
+         call ref_subs(st, model, sb%ref, sb%loc, 'node', subs)   ! several: a set over instances
+         do m = 1, size(subs)
+            isub = subs(m)
+            call resolve_items(st, model, isub, sb%ref, .false., sb%loc, nodes, ok)
+            if (.not. ok) cycle
+            do i = 1, size(nodes, kind=ip)
+               do d = 1, NDOF_NODE
+                  if (.not. sb%dofs(d)) cycle
+                  if (n == size(list)) then
+                     allocate (tmp(2*n), stat=stat)
+                     if (stat /= 0) then
+                        call report_oom(st, sb%loc, 'the supported DOFs ('//itoa(2*n)//')', &
+                             2*int(n, i8)*storage_size(list(1))/8)
+                        return
+                     end if
+                     tmp(1:n) = list(1:n)
+                     call move_alloc(tmp, list)
                   end if
-                  tmp(1:n) = list(1:n)
-                  call move_alloc(tmp, list)
-               end if
-               n = n + 1
-               list(n)%sub = isub
-               list(n)%node = nodes(i)
-               list(n)%dof = d
-               list(n)%state = sb%state
-               list(n)%g = sb%g
-               list(n)%value = sb%value
-               list(n)%loc = sb%loc
-               list(n)%from_boundary = sb%boundary
+                  n = n + 1
+                  list(n)%sub = isub
+                  list(n)%node = nodes(i)
+                  list(n)%dof = d
+                  list(n)%state = sb%state
+                  list(n)%g = sb%g
+                  list(n)%value = sb%value
+                  list(n)%loc = sb%loc
+                  list(n)%from_boundary = sb%boundary
+               end do
             end do
          end do
        end associate

@@ -11,7 +11,7 @@ module superjoin_deck_build_steps
   use superjoin_model_history, only: support_list_t, step_ops_t, apply_boundary_history, &
        apply_load_history
   use superjoin_utils_grow, only: grow
-  use superjoin_deck_build_common, only: resolve_sub, resolve_items, keeps_previous, more_text, &
+  use superjoin_deck_build_common, only: ref_subs, resolve_items, keeps_previous, more_text, &
        where, INITIAL_CAPACITY
   use superjoin_deck_build_contacts, only: support_list
   use superjoin_deck_build_thermal, only: build_thermal
@@ -100,29 +100,32 @@ contains
     type(cload_t), allocatable, intent(out) :: out(:)
     type(cload_t), allocatable :: tmp(:)
     integer(ip), allocatable :: nodes(:)
-    integer :: k, n, isub, stat
+    integer :: k, n, isub, stat, m
     integer(ip) :: i
+    integer, allocatable :: subs(:)
     logical :: ok
     allocate (out(INITIAL_CAPACITY))
     n = 0
     do k = 1, size(loads)
-       isub = resolve_sub(st, model, loads(k)%ref, loads(k)%loc, 'node')
-       if (isub == 0) cycle
-       call resolve_items(st, model, isub, loads(k)%ref, .false., loads(k)%loc, nodes, ok)
-       if (.not. ok) cycle
-       do i = 1, size(nodes, kind=ip)
-          call grow(out, n, INITIAL_CAPACITY, stat)
-          if (stat /= 0) then
-             call report_oom(st, loads(k)%loc, 'the concentrated loads', &
-                  int(max(2*n, INITIAL_CAPACITY), i8)*storage_size(out)/8)
-             return
-          end if
-          n = n + 1
-          out(n)%sub = isub
-          out(n)%node = nodes(i)
-          out(n)%dof = loads(k)%dof
-          out(n)%value = loads(k)%value
-          out(n)%loc = loads(k)%loc
+       call ref_subs(st, model, loads(k)%ref, loads(k)%loc, 'node', subs)   ! several: a set over instances
+       do m = 1, size(subs)
+          isub = subs(m)
+          call resolve_items(st, model, isub, loads(k)%ref, .false., loads(k)%loc, nodes, ok)
+          if (.not. ok) cycle
+          do i = 1, size(nodes, kind=ip)
+             call grow(out, n, INITIAL_CAPACITY, stat)
+             if (stat /= 0) then
+                call report_oom(st, loads(k)%loc, 'the concentrated loads', &
+                     int(max(2*n, INITIAL_CAPACITY), i8)*storage_size(out)/8)
+                return
+             end if
+             n = n + 1
+             out(n)%sub = isub
+             out(n)%node = nodes(i)
+             out(n)%dof = loads(k)%dof
+             out(n)%value = loads(k)%value
+             out(n)%loc = loads(k)%loc
+          end do
        end do
     end do
     allocate (tmp(n), stat=stat)
@@ -143,8 +146,9 @@ contains
     type(dload_t), allocatable :: tmp(:)
     type(dload_list_t) :: list
     integer(ip), allocatable :: elems(:)
-    integer :: k, isub, stat
+    integer :: k, isub, stat, m
     integer(ip) :: i
+    integer, allocatable :: subs(:)
     logical :: ok
     allocate (list%a(INITIAL_CAPACITY))
     do k = 1, size(loads)
@@ -160,11 +164,13 @@ contains
           if (st%aborted) exit
           cycle
        end if
-       isub = resolve_sub(st, model, loads(k)%ref, loads(k)%loc, 'element')
-       if (isub == 0) cycle
-       call resolve_items(st, model, isub, loads(k)%ref, .true., loads(k)%loc, elems, ok)
-       if (.not. ok) cycle
-       call add_elements(st, model, loads(k), isub, elems, list)
+       call ref_subs(st, model, loads(k)%ref, loads(k)%loc, 'element', subs)   ! several: a set over instances
+       do m = 1, size(subs)
+          call resolve_items(st, model, subs(m), loads(k)%ref, .true., loads(k)%loc, elems, ok)
+          if (.not. ok) cycle
+          call add_elements(st, model, loads(k), subs(m), elems, list)
+          if (st%aborted) exit
+       end do
        if (st%aborted) exit
     end do
     if (st%aborted) then

@@ -10,7 +10,7 @@ module superjoin_deck_build_thermal
   use superjoin_deck_lexer, only: itoa
   use superjoin_model_notes, only: note
   use superjoin_deck_state, only: deck_state_t, report_loc, grow
-  use superjoin_deck_build_common, only: resolve_sub, resolve_items, keeps_previous, more_text
+  use superjoin_deck_build_common, only: ref_subs, resolve_items, keeps_previous, more_text
   implicit none (type, external)
   private
 
@@ -296,18 +296,21 @@ contains
     type(temp_field_t), intent(inout) :: f
     integer(ip), allocatable :: nodes(:)
     integer(ip) :: i
-    integer :: j, js
+    integer :: j, js, m
+    integer, allocatable :: subs(:)
     logical :: ok
     do j = 1, st%ntemp
        if (st%temps(j)%step /= step) cycle
-       js = resolve_sub(st, model, st%temps(j)%ref, st%temps(j)%loc, 'node')
-       if (js == 0) cycle
-       call resolve_items(st, model, js, st%temps(j)%ref, .false., st%temps(j)%loc, nodes, ok)
-       if (.not. ok) cycle
-       do i = 1, size(nodes, kind=ip)
-          f%t(js)%v(nodes(i)) = st%temps(j)%value
-          f%g(js)%v(nodes(i)) = st%temps(j)%grad
-          f%h(js)%v(nodes(i)) = st%temps(j)%grad1
+       call ref_subs(st, model, st%temps(j)%ref, st%temps(j)%loc, 'node', subs)   ! several: a set over instances
+       do m = 1, size(subs)
+          js = subs(m)
+          call resolve_items(st, model, js, st%temps(j)%ref, .false., st%temps(j)%loc, nodes, ok)
+          if (.not. ok) cycle
+          do i = 1, size(nodes, kind=ip)
+             f%t(js)%v(nodes(i)) = st%temps(j)%value
+             f%g(js)%v(nodes(i)) = st%temps(j)%grad
+             f%h(js)%v(nodes(i)) = st%temps(j)%grad1
+          end do
        end do
     end do
   end subroutine apply_lines

@@ -207,12 +207,30 @@ contains
     if (isub == 0) return
     name = prefix//name
     iset = find_set(st%subs(isub), name, elem)
-    if (iset == 0) call new_set(st%subs(isub), name, elem, loc, iset)
+    if (iset == 0) then
+       call new_set(st%subs(isub), name, elem, loc, iset)
+       if (param_index(kw, 'INSTANCE') > 0) call rank_assembly_set(st, isub, iset, elem)
+    end if
     st%card = merge(CARD_ELSET, CARD_NSET, elem)
     st%card_sub = isub
     st%card_set = iset
     st%card_generate = param_index(kw, 'GENERATE') > 0
   end subroutine kw_set
+
+  subroutine rank_assembly_set(st, isub, iset, elem)
+    !! Set iset of entry isub, just begun by a card with INSTANCE=: its rank among
+    !! the assembly-level sets, the order of the members of a set over several
+    !! instances (superjoin_deck_build_common's plain_set_subs).
+    type(deck_state_t), intent(inout) :: st
+    integer, intent(in) :: isub, iset
+    logical, intent(in) :: elem
+    st%nassembly_sets = st%nassembly_sets + 1
+    if (elem) then
+       st%subs(isub)%elsets(iset)%order = st%nassembly_sets
+    else
+       st%subs(isub)%nsets(iset)%order = st%nassembly_sets
+    end if
+  end subroutine rank_assembly_set
 
   subroutine data_node(st, line, loc)
     !! A data line of *NODE: id[, x[, y[, z[, nx, ny, nz]]]].

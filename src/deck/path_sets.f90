@@ -7,7 +7,8 @@ module superjoin_deck_path_sets
   !! to the instance B.F3.BAY2 as its set S, as `INSTANCE=` of a top-level
   !! instance does (`B.F3.BAY2.S`, or plainly `S`). Errors (file:line of the set
   !! card): a path that names no instance, or one of a part made of parts only
-  !! (no mesh of its own to take nodes or elements from); a name that a set of
+  !! (no mesh of its own to take nodes or elements from; also INSTANCE=B for
+  !! such a top-level instance B); a name that a set of
   !! the instance's part has is reported when the instance is placed
   !! (superjoin_deck_assembly, as for a top-level instance).
   use superjoin_deck_state, only: deck_state_t, report_loc, find_sub, find_set, new_set, add_chunk, push_pool, &
@@ -29,8 +30,27 @@ contains
        if (st%subs(k)%kind /= SUBK_INSTANCE .and. st%subs(k)%kind /= SUBK_NESTED) cycle
        if (st%subs(k)%nnset > 0) call move_kind(st, k, .false.)
        if (st%subs(k)%nelset > 0) call move_kind(st, k, .true.)
+       if (st%subs(k)%kind == SUBK_NESTED .and. st%subs(k)%inst > 0) call report_meshless(st, k)   ! not a part's entry
     end do
   end subroutine place_path_sets
+
+  subroutine report_meshless(st, k)
+    !! The sets left in entry k, an instance of a part made of parts only (no
+    !! substructure of its own: *NSET, INSTANCE=B without a path), reported at
+    !! their cards; they would take nothing (a set over several instances
+    !! would lose those members silently).
+    type(deck_state_t), intent(inout) :: st
+    integer, intent(in) :: k
+    integer :: i
+    do i = 1, st%subs(k)%nnset
+       call report_loc(st, st%subs(k)%nsets(i)%loc, 'INSTANCE='//st%subs(k)%name//' of *NSET names '// &
+            what_path_is(st, st%subs(k)%name))
+    end do
+    do i = 1, st%subs(k)%nelset
+       call report_loc(st, st%subs(k)%elsets(i)%loc, 'INSTANCE='//st%subs(k)%name//' of *ELSET names '// &
+            what_path_is(st, st%subs(k)%name))
+    end do
+  end subroutine report_meshless
 
   subroutine move_kind(st, k, elem)
     !! The node (or element: elem) sets of entry k held for inner paths: moved
@@ -92,7 +112,14 @@ contains
     type(sub_b_t), intent(inout) :: to
     integer :: j, c, k, jset
     jset = find_set(to, name, elem)
-    if (jset == 0) call new_set(to, name, elem, set%loc, jset)
+    if (jset == 0) then
+       call new_set(to, name, elem, set%loc, jset)
+       if (elem) then
+          to%elsets(jset)%order = set%order
+       else
+          to%nsets(jset)%order = set%order
+       end if
+    end if
     do c = 1, from%nchunk
        if (from%chunks(c)%set /= iset .or. (from%chunks(c)%elem .neqv. elem)) cycle
        call add_chunk(to, jset, elem, from%chunks(c)%kind, from%chunks(c)%loc, k)

@@ -34,6 +34,7 @@ module superjoin_deck_records
     !! A named set of a substructure (its members are in chunks).
      character(:), allocatable :: name
      type(source_loc_t) :: loc
+     integer :: order = 0   !! rank of its first card among the assembly-level (INSTANCE=) set cards; 0: other sets
   end type set_b_t
 
   type, public :: given_b_t

@@ -92,6 +92,7 @@ module superjoin_deck_state
      character(:), allocatable :: spring_elset      !! ELSET= of the open spring *ELEMENT card
      integer :: nelem_cards = 0
      integer :: ninst = 0
+     integer :: nassembly_sets = 0   !! assembly-level sets (*NSET or *ELSET with INSTANCE=) begun so far (set_b_t%order)
      type(instance_b_t), allocatable :: instances(:)
      integer :: ntemp = 0                           !! temperature lines
      type(temp_b_t), allocatable :: temps(:)

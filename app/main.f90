@@ -84,7 +84,7 @@ program superjoin_main
      opts%quiet = .true.
      if (allocated(opts%export_matrix)) deallocate (opts%export_matrix)
   end if
-  call apply_memory_policy()
+  if (comm%size == 1) call apply_memory_policy()   ! under MPI the allocator is left to the MPI library
   call process_setup(ok, blas_bytes)
   if (.not. ok) write (error_unit, '(a)') 'superjoin: warning: signal handlers not installed'
   if (blas_bytes > 0 .and. .not. check_only) then

@@ -411,7 +411,7 @@ contains
       allocate (rf(ntot, nstep), ffull(ntot, nstep), qfull(ntot, nstep), source=0.0_wp)
       at = k%n
       do i = 1, size(parts)
-         associate (sys => parts(i), kst => parts(k_holder(parts, i))%se%k)
+         associate (sys => parts(i))
            ni = sys%ni
            nb = sys%nb
            allocate (u0l(ni + nb, 1), w(ni + nb, 1))
@@ -436,8 +436,10 @@ contains
               deallocate (rl, u0l, w)
               cycle
            end if
-           ks = matmul(kst, u(sys%pdof(ni + 1:), :))
-           ku0 = matmul(kst, u0l(ni + 1:, 1))
+           associate (kst => parts(k_holder(parts, i))%se%k)   ! after the cycle: a remote view holds none
+             ks = matmul(kst, u(sys%pdof(ni + 1:), :))
+             ku0 = matmul(kst, u0l(ni + 1:, 1))
+           end associate
            do l = 1, nb
               associate (pb => sys%pdof(ni + l))
                 call tr%reduce_add(pb, rl(ni + l, :) - (ks(l, :) - f_eff(pb, :)), r)

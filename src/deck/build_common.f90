@@ -44,8 +44,9 @@ contains
   end function resolve_sub
 
   subroutine ref_subs(st, model, ref, loc, what, subs)
-    !! The substructures a reference covers, the one place a set name written
-    !! at model level is resolved: its scope's (SUB.x), its home's (a card in
+    !! The substructures a reference covers (loads, supports, temperatures;
+    !! the output requests resolve their own through plain_set_subs too): its
+    !! scope's (SUB.x), its home's (a card in
     !! a block), else MAIN, for a plain set name as plain_set_subs says (the
     !! members of an assembly-level set over several instances, in card
     !! order); empty and reported when it is in none.

@@ -5,7 +5,7 @@ module superjoin_deck_build_contacts
   use superjoin_model_types, only: model_t, link_t, support_t, NDOF_NODE, LINK_FINITE, LINK_RIGID
   use superjoin_deck_lexer, only: itoa, plural
   use superjoin_deck_state, only: deck_state_t, ref_t, report_loc, report_oom
-  use superjoin_deck_build_common, only: resolve_sub, ref_subs, sub_index, ref_text, resolve_items, part_hint, &
+  use superjoin_deck_build_common, only: ref_subs, sub_index, ref_text, resolve_items, part_hint, &
        INITIAL_CAPACITY, where
   use superjoin_deck_assembly, only: pair_nearest
   implicit none (type, external)

@@ -684,7 +684,7 @@ static void *sj_analyze_worker(void *arg)
     sj_last_message[0] = '\0';
     sj_analyze_now(h);
     h->worker_status = sj_end(h, h->L != NULL);
-    malloc_trim(0);   /* this thread's arena gives back what the analysis freed (else +4 % peak at 1e6) */
+    malloc_trim(0);   /* every arena gives back what it holds free, the analysis's included (else +4 % peak at 1e6) */
     return NULL;
 }
 

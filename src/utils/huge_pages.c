@@ -13,7 +13,9 @@
  * sj_advise_huge(p, n) advises the whole 2 MiB pages inside [p, p + n) of a
  * block of at least SJ_HUGE_MIN_BYTES; the ragged ends keep small pages. The
  * contents are not touched. sj_huge_pages_enable(0) turns it off for the
- * rest of the run (--huge-pages no). The pages only become resident when
+ * rest of the run (--huge-pages no). With --reuse-memory (below) blocks up
+ * to 32 MiB come from the heap: their advice splits the heap's mapping, and
+ * a later smaller block that reuses an advised range sits on its huge pages. The pages only become resident when
  * written, as before: a block's untouched tail costs no memory either way,
  * a touched 2 MiB page holds 2 MiB (the peak resident set of the benchmarks
  * changed by at most 2 %: doc/performance.md, "Huge pages").
@@ -24,6 +26,7 @@
 #include <stdatomic.h>
 #include <stdint.h>
 #include <stdlib.h>
+#include <string.h>
 #include <sys/mman.h>
 #if defined(__GLIBC__)
 #include <malloc.h>
@@ -91,17 +94,28 @@ void *sj_realloc_huge(void *old, size_t n)
  * glibc maps a block above its mmap threshold on its own and unmaps it when
  * it is freed; the threshold starts at 128 KiB and follows the freed blocks
  * up to 32 MiB, and the heap's free top goes back to the kernel past the trim
- * threshold (twice the mmap threshold). A run that forms and frees its arrays
- * step after step (a level's local matrices, the solves' work vectors,
- * CHOLMOD's workspaces) so faults in, and the kernel clears, fresh pages for
- * each (doc/performance.md, "Freed memory kept"). Here the mmap threshold is
- * 32 MiB from the start, so that every block below it comes from the heap,
- * where a freed block is reused as it is, and the heap keeps up to 16 MiB of
- * free top (the next blocks' room) before it gives the rest back. What is
- * kept is bounded: at most 16 MiB more at the peak than glibc's own policy
- * (a trim threshold of 1 GiB kept 20 MB more on a 2e5 frame, +10 %). Blocks
- * of 32 MiB and more are still mapped on their own: kept in the heap they
- * fragment it (+10 % peak on the 1e6 long frame).
+ * threshold (128 KiB at first, twice the mmap threshold once that has moved).
+ * A run that forms and frees its arrays step after step (a level's local
+ * matrices, the solves' work vectors, CHOLMOD's workspaces) so faults in,
+ * and the kernel clears, fresh pages for each (doc/performance.md, "Freed
+ * memory kept"). Here the mmap threshold is 32 MiB from the start, so that
+ * every block below it comes from the heap, where a freed block is reused as
+ * it is, and each arena keeps up to 16 MiB of free top before it gives the
+ * rest back. That is not a bound on the peak: freed blocks inside the heap
+ * stay resident until reused, and a heap fragmented by small live blocks
+ * can hold more than glibc's policy would. What caps it where the peaks are
+ * is the malloc_trim(0) of every arena before CHOLMOD's numeric
+ * factorization (cholmod_shim.c) and in the recovery (recover.f90). Measured:
+ * peaks within 2 MB of glibc's policy on the 1e6 frames and the building,
+ * +15 MB (4.5 %) on an 8-floor building; a trim threshold of 1 GiB kept 20
+ * MB more on a 2e5 frame. Blocks of 32 MiB and more are still mapped on
+ * their own: kept in the heap they fragment it (+10 % peak on the 1e6 long
+ * frame).
+ *
+ * Not applied when the user set glibc's allocator tunables (GLIBC_TUNABLES
+ * with glibc.malloc.*, MALLOC_MMAP_THRESHOLD_, MALLOC_TRIM_THRESHOLD_):
+ * theirs stand. The caller does not apply it under MPI, whose library may
+ * depend on the allocator's settings (registration caches).
  */
 #define SJ_KEEP_MMAP_THRESHOLD (32 << 20)
 #define SJ_KEEP_TRIM_THRESHOLD (16 << 20)
@@ -111,7 +125,10 @@ void sj_reuse_memory_enable(int on) { keep_freed = on != 0; }
 void sj_memory_policy(void)
 {
 #if defined(__GLIBC__)
+    const char *tunables = getenv("GLIBC_TUNABLES");
     if (!keep_freed) return;
+    if (getenv("MALLOC_MMAP_THRESHOLD_") != NULL || getenv("MALLOC_TRIM_THRESHOLD_") != NULL) return;
+    if (tunables != NULL && strstr(tunables, "glibc.malloc.") != NULL) return;
     (void)mallopt(M_MMAP_THRESHOLD, SJ_KEEP_MMAP_THRESHOLD);
     (void)mallopt(M_TRIM_THRESHOLD, SJ_KEEP_TRIM_THRESHOLD);
 #endif

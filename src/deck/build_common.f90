@@ -38,7 +38,8 @@ contains
     do k = 2, size(subs)
        names = names//', '//model%subs(subs(k))%name
     end do
-    call report_loc(st, loc, pick(what == 'node', 'node set ', 'element set ')//ref%set//' spans '//itoa(size(subs))//' substructures ('//names// &
+    call report_loc(st, loc, pick(what == 'node', 'node set ', 'element set ')//ref%set//' spans '// &
+         itoa(size(subs))//' substructures ('//names// &
          ': an assembly-level set over several instances); here its members must lie in one: name one '// &
          'instance''s, as '//model%subs(subs(1))%name//'.'//ref%set)
   end function resolve_sub

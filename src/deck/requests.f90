@@ -3,7 +3,7 @@ module superjoin_deck_requests
   !! *EL FILE, *NODE OUTPUT, *ELEMENT OUTPUT): their NSET= / ELSET= are resolved
   !! against the sets of the built model and the requests are stored in
   !! model%requests. A set named without scope is MAIN's, else an assembly-level
-  !! set (*NSET/*ELSET, INSTANCE=): over several instances, one request per
+  !! set (*NSET or *ELSET, INSTANCE=): over several instances, one request per
   !! instance, in the order of the set's cards (without TOTALS=); else the one
   !! instance's that has it, as for loads and supports. A request without
   !! variables asks for the CalculiX default (U for nodes, S for elements).
@@ -16,6 +16,11 @@ module superjoin_deck_requests
   implicit none (type, external)
   private
 
+  interface grow
+     !! Make room for element n + 1 of an allocatable array (grow_template.inc).
+     module procedure grow_request
+  end interface grow
+
   public :: build_requests
 
 
@@ -26,18 +31,14 @@ contains
     !! request per card, one per member instance for a set over several.
     type(deck_state_t), intent(inout) :: st
     type(model_t), intent(inout) :: model
-    type(output_request_t), allocatable :: each(:), all(:), tmp(:)
+    type(output_request_t), allocatable :: each(:), all(:)
     integer :: k, j, n
     allocate (all(st%nreq))
     n = 0
     do k = 1, st%nreq
        call build_one(st, model, st%requests(k), each)
        do j = 1, size(each)
-          if (n == size(all)) then
-             allocate (tmp(2*n))
-             tmp(1:n) = all(1:n)
-             call move_alloc(tmp, all)
-          end if
+          call grow(all, n, max(st%nreq, 1))
           n = n + 1
           all(n) = each(j)
        end do
@@ -87,7 +88,7 @@ contains
        rs(1)%set_name = r%set_name
     else if (b%set%home > 0) then
        subs = [b%set%home]
-    else   ! MAIN's set, else an assembly-level *NSET/*ELSET, INSTANCE= (the union of its instances')
+    else   ! MAIN's set, else an assembly-level *NSET or *ELSET, INSTANCE= (the union of its instances')
        subs = plain_set_subs(st, model, b%set%set, .not. node, sub_index(model, MAIN_NAME))
     end if
     if (size(subs) == 0) then
@@ -156,4 +157,9 @@ contains
     end if
     r%sub = isub
   end subroutine take_set
+
+#define GROW_NAME grow_request
+#define GROW_TYPE type(output_request_t)
+#include "grow_template.inc"
+
 end module superjoin_deck_requests

@@ -6,7 +6,8 @@ A design study on a grid of plane-stress panels (bench/gen_panel_grid.py,
 
 1. run twice with the same --library: the first run condenses and stores
    every panel, the second loads every one; the listings are byte-identical
-   apart from those notes, and the CSV files are byte-identical.
+   apart from those notes, and the CSV files are byte-identical (on several
+   processes: within round-off, below).
 2. one panel changed (its thickness): that panel alone is condensed and
    stored, the five others are loaded; the results equal those of a run with
    a fresh library, to the byte.
@@ -19,11 +20,24 @@ A design study on a grid of plane-stress panels (bench/gen_panel_grid.py,
    library equal those without it to round-off (1e-10: recovery goes through
    the stored operator k_ii^-1 k_ib, not through the factor).
 
-usage: library.py SUPERJOIN WORKDIR [LAUNCHER ...]
+Every entry a run condenses anew (the changed study's fresh library, a
+damaged entry replaced) is byte-identical to the entry condensed before: the
+library hands back the very K* that condensation forms.
+
+usage: library.py SUPERJOIN WORKDIR [--lstdiff LSTDIFF LAUNCHER ...]
 
 With a launcher (`mpirun -np 2`, the MPI build's test mpi.library) every run
 is started through it: each process loads and stores the entries of the
-parts it owns, and rank 0 lists every part's library note in order.
+parts it owns, and rank 0 lists every part's library note in order. There
+"the same results" is within round-off, not to the byte: MUMPS's parallel
+factorization of the interface system is asynchronous (contributions summed
+in the order they arrive), so two runs on several processes may differ in
+the last bits whatever the library did (measured: 1 run in 8 under load,
+CSV values 6e-15 apart relative to each file's largest, the listing's
+round-off figures such as the relative residual 3.40e-14 against 3.43e-14).
+The listings are then compared by LSTDIFF (within the printed digits, its
+defaults) and the CSV files to 1e-12 of each file's largest value; the
+entries stay byte-identical (each process condenses alone).
 """
 import glob
 import hashlib
@@ -38,9 +52,11 @@ sys.path.insert(0, os.path.join(ROOT, "tools"))
 import equiv  # noqa: E402
 
 RTOL = 1e-10
+PARALLEL_RTOL = 1e-12   # two runs on several processes: MUMPS's round-off (measured 6e-15)
 PANELS = 6
 FAILED = []
 LAUNCHER = []
+LSTDIFF = []
 
 
 def check(ok, what):
@@ -76,7 +92,31 @@ def same_csv(a, b):
     fa, fb = sorted(os.listdir(a)), sorted(os.listdir(b))
     if fa != fb:
         return False
+    if LAUNCHER:
+        return all(equiv.compare_file(os.path.join(a, f), os.path.join(b, f), PARALLEL_RTOL, 0.0)[1] is None
+                   for f in fa)
     return all(open(os.path.join(a, f), "rb").read() == open(os.path.join(b, f), "rb").read() for f in fa)
+
+
+def same_listing(a, b, work):
+    """Bodies equal: to the byte on one process, within the printed digits on several."""
+    if not LAUNCHER:
+        return body(a) == body(b)
+    paths = []
+    for k, lines in enumerate((a, b)):
+        paths.append(os.path.join(work, f"body{k}.lst"))
+        with open(paths[-1], "w") as fh:
+            fh.write("\n".join(body(lines)) + "\n")
+    return subprocess.run(LSTDIFF + paths, capture_output=True).returncode == 0
+
+
+def same_results(x, y, work):
+    (a, a_csv), (b, b_csv) = x, y
+    return same_listing(a, b, work) and same_csv(a_csv, b_csv)
+
+
+def entry_bytes(lib):
+    return {os.path.basename(f): open(f, "rb").read() for f in glob.glob(os.path.join(lib, "*.sjc"))}
 
 
 def rewrite(path, edit):
@@ -93,7 +133,14 @@ def restamp(data):
 
 def main():
     binary, work = sys.argv[1], sys.argv[2]
-    LAUNCHER.extend(sys.argv[3:])
+    rest = sys.argv[3:]
+    if rest:
+        if len(rest) < 3 or rest[0] != "--lstdiff":
+            print(__doc__)
+            return 2
+        LSTDIFF.append(rest[1])
+        LAUNCHER.extend(rest[2:])
+    exact = "within round-off (several processes)" if LAUNCHER else "to the byte"
     shutil.rmtree(work, ignore_errors=True)
     os.makedirs(work)
     gen = os.path.join(ROOT, "bench", "gen_panel_grid.py")
@@ -106,10 +153,11 @@ def main():
     b, b_csv = solve(binary, deck, "second", work, lib)
     check(notes(a, "condensed and stored") == PANELS, f"first run: {PANELS} panels condensed and stored")
     check(notes(b, "loaded from library") == PANELS, f"second run: {PANELS} panels loaded from library")
-    check(body(a) == body(b), "listings byte-identical apart from the library notes")
-    check(same_csv(a_csv, b_csv), "CSV files byte-identical")
+    check(same_listing(a, b, work), f"listings equal apart from the library notes, {exact}")
+    check(same_csv(a_csv, b_csv), f"CSV files equal, {exact}")
     entries = sorted(glob.glob(os.path.join(lib, "*.sjc")))
     check(len(entries) == PANELS, f"{PANELS} entries in the library")
+    stored = entry_bytes(lib)
 
     # one panel changed: its thickness
     text = open(deck).read()
@@ -122,7 +170,12 @@ def main():
     check(notes(c, "condensed and stored") == 1 and notes(c, "loaded from library") == PANELS - 1,
           "one panel changed: 1 condensed and stored, the others loaded")
     d, d_csv = solve(binary, changed, "fresh", work, os.path.join(work, "lib_fresh"))
-    check(body(c) == body(d) and same_csv(c_csv, d_csv), "changed study equals a run with a fresh library, to the byte")
+    check(same_results((c, c_csv), (d, d_csv), work), f"changed study equals a run with a fresh library, {exact}")
+    fresh, now = entry_bytes(os.path.join(work, "lib_fresh")), entry_bytes(lib)
+    unchanged = set(fresh) & set(stored)
+    check(len(unchanged) == PANELS - 1 and all(fresh[k] == stored[k] for k in unchanged)
+          and set(fresh) <= set(now) and all(fresh[k] == now[k] for k in fresh),
+          f"a fresh library's {PANELS} entries byte-identical to those stored before ({len(unchanged)} unchanged panels)")
 
     # stale and corrupt entries
     victims = [("a flipped byte", "corrupt", lambda x: x[:300] + bytes([x[300] ^ 1]) + x[301:]),
@@ -141,7 +194,9 @@ def main():
         e, e_csv = solve(binary, deck, "damaged", work, lib)
         check(notes(e, "not used") == 1 and notes(e, word) == 1 and notes(e, "condensed and stored") == 1
               and notes(e, "loaded from library") == PANELS - 1, f"{what}: one note ({word}), the panel condensed anew")
-        check(body(e) == body(a) and same_csv(e_csv, a_csv), f"{what}: the same results, to the byte")
+        check(same_results((e, e_csv), (a, a_csv), work), f"{what}: the same results, {exact}")
+        check(open(entry, "rb").read() == stored[os.path.basename(entry)],
+              f"{what}: the entry stored anew byte-identical to the first")
     check(not [f for f in os.listdir(lib) if not f.endswith(".sjc")], "no temporary file left in the library")
 
     n, n_csv = solve(binary, deck, "nolibrary", work)

@@ -46,9 +46,10 @@ module superjoin_analysis_health
     !! MAXRATIO above this (a pivot within about 1/(45 ε) of total cancellation)
     !! is numerically singular (exit 3): exact mechanisms factor with MAXRATIO
     !! from about 5e13 up, and nothing meaningful is left of an answer above 1e13.
-  integer(i8), parameter, public :: COND_FULL_MAX = 100000_i8
+  integer(i8), parameter, public :: COND_FULL_MAX = 20000_i8
     !! Up to this many equations the condition estimate is always Hager-Higham's
-    !! (its four or so extra solves cost little there).
+    !! (its four to six extra solves cost little there; at 65 088 equations, the
+    !! 20-floor building of doc/performance.md, they were 10 % of the run).
   real(wp), parameter, public :: COND_BOUND_LIMIT = 1.0e10_wp
     !! Above it, the free lower bound of the condition number calls for Hager-Higham's estimate.
   real(wp), parameter :: RATIO_CAP = 1.0e300_wp

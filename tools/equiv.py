@@ -95,7 +95,7 @@ def compare_file(fa, fb, rtol, atol):
                 continue
             rel = abs(a - b) / scale
             worst = max(worst, rel)
-            if rel > rtol and abs(a - b) > atol and bad is None:
+            if not (rel <= rtol or abs(a - b) <= atol) and bad is None:   # NaN or Inf: never within
                 bad = f"row {i + 2} column {ha[c]}: {x[c]} against {y[c]} (relative {rel:.2e} > {rtol:.0e})"
     return worst, bad
 

@@ -107,6 +107,7 @@ contains
        res%fields%steps(s)%maxratio = res%summary%maxratio
        res%fields%steps(s)%maxratio_at = res%summary%maxratio_at
        res%fields%steps(s)%cond_est = res%summary%cond_est
+       res%fields%steps(s)%cond_bound = res%summary%cond_bound
     end do
   end subroutine stamp_matrix_health
 

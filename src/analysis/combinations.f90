@@ -197,6 +197,7 @@ contains
             out%maxratio_at = st%maxratio_at
          end if
          out%cond_est = max(out%cond_est, st%cond_est)
+         out%cond_bound = out%cond_bound .or. st%cond_bound   ! a bound among them: the largest is no estimate
        end associate
     end do
   end subroutine combine_step

@@ -128,6 +128,7 @@ contains
     zero%refine_tried = 0
     zero%maxratio = 0.0_wp   ! not solved: no matrix of its own
     zero%cond_est = 0.0_wp
+    zero%cond_bound = .false.
     if (allocated(zero%maxratio_at)) deallocate (zero%maxratio_at)
     do s = 1, size(res%fields%steps)
        if (.not. allocated(fail%message(s)%s)) cycle

@@ -204,7 +204,11 @@ contains
     end if
     res%summary%cond_est = cond
     if (.not. opts%quiet .and. opts%verbose) then
-       write (error_unit, '(a,es10.3)') 'superjoin: condition estimate ', cond
+       if (res%summary%cond_bound) then
+          write (error_unit, '(a,es10.3,a)') 'superjoin: condition estimate ', cond, ' (a lower bound only)'
+       else
+          write (error_unit, '(a,es10.3)') 'superjoin: condition estimate ', cond
+       end if
     end if
   end subroutine health
 
@@ -245,12 +249,14 @@ contains
     real(wp), intent(out) :: cond
     logical :: cheap
     cheap = .false.
+    res%summary%cond_bound = .false.
     if (st%k%n > COND_FULL_MAX .and. cholesky_pivots(st%solver)) then
        cond = knorm*inverse_norm_bound(st%q, st%f_red, merge(0.0_wp, d(1:st%k%n), st%spc))
        cheap = cond <= COND_BOUND_LIMIT .and. res%summary%maxratio <= MAXRATIO_WARN .and. &
             maxval(res%fields%steps(:)%residual) <= limit
     end if
     if (cheap) then
+       res%summary%cond_bound = .true.
        call note(res%log%notes, 'condition estimate: a lower bound from the solutions and the pivots, '// &
             'not Hager''s estimate (skipped above '//itoa(COND_FULL_MAX)//' equations while MAXRATIO, '// &
             'the residual and this bound are small)')

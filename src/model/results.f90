@@ -57,6 +57,7 @@ module superjoin_model_results
      real(wp) :: maxratio = 0.0_wp               !! MAXRATIO of the matrix this step was solved with
      character(:), allocatable :: maxratio_at    !! where (unallocated: the step was not solved)
      real(wp) :: cond_est = 0.0_wp               !! that matrix's condition estimate (1-norm)
+     logical :: cond_bound = .false.             !! cond_est is the free lower bound, not Hager-Higham's
   end type step_results_t
 
   type, public :: run_summary_t
@@ -83,6 +84,7 @@ module superjoin_model_results
      real(wp) :: maxratio = 0.0_wp                 !! of this group's matrix (merged runs: the first group's)
      character(:), allocatable :: maxratio_at
      real(wp) :: cond_est = 0.0_wp                 !! of this group's matrix (merged runs: the first group's)
+     logical :: cond_bound = .false.               !! cond_est is the free lower bound (health's estimate_condition)
      real(wp) :: factor_mbytes = 0.0_wp
   end type run_summary_t
 

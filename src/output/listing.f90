@@ -293,6 +293,7 @@ contains
       end block
       call lu%line(trim(hline))
       write (hline, '(2x,a30,es10.2e3)') 'condition estimate (1-norm)   ', st%cond_est
+      if (st%cond_bound) hline = trim(hline)//'  a lower bound only (notes)'
       call lu%line(trim(hline))
       do k = 1, size(res%log%warnings)
          if (.not. allocated(res%log%warnings(k)%steps)) cycle   ! the model's: in the header

@@ -56,6 +56,10 @@ module superjoin_solvers_cholmod
      real(wp) :: fl = 0.0_wp        !! flop count of the factorization
      real(wp) :: peak = 0.0_wp      !! CHOLMOD's peak memory, bytes
      integer(i8) :: stored = 0      !! entries of L as stored (with amalgamation zeros)
+     real(wp), allocatable :: lbb(:, :)
+       !! after schur: the trailing block L_bb of the whole part's factor, its
+       !! rows in the part's boundary order (sj_cholmod_schur_block), for
+       !! half_loads and half_recover
    contains
      procedure :: analyze => cholmod_analyze
      procedure :: analyze_start => cholmod_analyze_start
@@ -68,6 +72,8 @@ module superjoin_solvers_cholmod
      procedure :: peak_mbytes => cholmod_peak_mbytes
      procedure :: stored_nnz => cholmod_stored_nnz
      procedure :: schur => cholmod_schur
+     procedure :: half_loads => cholmod_half_loads
+     procedure :: half_recover => cholmod_half_recover
      final :: cholmod_finalize
   end type cholmod_solver_t
 
@@ -218,6 +224,17 @@ module superjoin_solvers_cholmod
        integer(c_int) :: status
      end function sj_cholmod_schur_camd
 
+     function sj_cholmod_schur_half(h, backward, nrhs, in, ldin, out, ldout) &
+          bind(c, name='sj_cholmod_schur_half') result(status)
+       import :: c_ptr, c_int, c_int64_t, c_double
+       type(c_ptr), value :: h
+       integer(c_int), value :: backward
+       integer(c_int64_t), value :: nrhs, ldin, ldout
+       real(c_double), intent(in) :: in(*)
+       real(c_double), intent(inout) :: out(*)
+       integer(c_int) :: status
+     end function sj_cholmod_schur_half
+
      function sj_cholmod_schur_block(h, nb, lbb) bind(c, name='sj_cholmod_schur_block') result(status)
        import :: c_ptr, c_int, c_int64_t, c_double
        type(c_ptr), value :: h
@@ -334,6 +351,7 @@ contains
     character(len=24) :: buf
 
     self%factored = .false.
+    if (allocated(self%lbb)) deallocate (self%lbb)   ! a schur's boundary block belongs to its own factor
     self%info%failed_column = 0
     if (.not. c_associated(self%handle) .or. self%n < 0) then
        call fatal_error(error, EXIT_IO, 'CHOLMOD: factorize called before analyze')
@@ -436,6 +454,7 @@ contains
     self%n = -1
     self%factored = .false.
     self%started = .false.
+    if (allocated(self%lbb)) deallocate (self%lbb)
   end subroutine cholmod_release
 
   pure function cholmod_flops(self) result(fl)
@@ -641,6 +660,7 @@ contains
     class(cholmod_solver_t), intent(inout) :: self
     self%factored = .false.
     self%n = -1
+    if (allocated(self%lbb)) deallocate (self%lbb)
     self%info%name = 'CHOLMOD supernodal LL^T'
     self%info%ordering = 'none'
     self%info%factor_nnz = 0
@@ -673,5 +693,73 @@ contains
     kstar = 0.0_wp
     call dsyrk('L', 'N', int(nb), int(nb), 1.0_wp, lbb, int(nb), 0.0_wp, kstar, int(nb))
     call unshift(shift, kstar)
+    call move_alloc(lbb, self%lbb)
   end subroutine trailing_product
+
+  subroutine cholmod_half_loads(self, f, y, fstar, done, error)
+    !! f* = f_b − a_bi a_ii⁻¹ f_i from the forward half of a solve with the
+    !! whole part's boundary-last factor (P A P' = L L', A's boundary block
+    !! shifted by D): z = L⁻¹ P f, whose boundary rows are L_bb⁻¹ P_b f*
+    !! (L_bi L_iiᵀ = a_bi, D only in L_bb), so f* = L_bb z_b; y keeps z's
+    !! interior rows (P's order) for half_recover. done = .false. without
+    !! such a factor (schur fell back to solves) or for other shapes.
+    class(cholmod_solver_t), intent(inout) :: self
+    real(wp), contiguous, intent(in) :: f(:, :)
+    real(wp), allocatable, intent(inout) :: y(:, :)
+    real(wp), intent(inout) :: fstar(:, :)
+    logical, intent(out) :: done
+    type(error_t), allocatable, intent(out) :: error
+    real(wp), allocatable :: z(:, :)
+    integer(i8) :: ni, n
+    integer(c_int) :: status
+    done = .false.
+    if (.not. (allocated(self%lbb) .and. self%factored)) return
+    ni = self%n
+    n = ni + size(self%lbb, 1, i8)
+    if (size(f, 1, i8) /= n .or. size(fstar, 1, i8) /= n - ni .or. size(fstar, 2) /= size(f, 2)) return
+    done = .true.
+    if (allocated(y)) deallocate (y)
+    if (size(f, 2) == 0) then
+       allocate (y(ni, 0))
+       return
+    end if
+    allocate (z(n, size(f, 2)))
+    status = sj_cholmod_schur_half(self%handle, 0_c_int, int(size(f, 2), c_int64_t), f, int(n, c_int64_t), &
+         z, int(n, c_int64_t))
+    if (status /= SJ_OK) then
+       call status_error(self, status, 'solve', error)
+       return
+    end if
+    fstar = matmul(self%lbb, z(ni + 1:n, :))
+    y = z(1:ni, :)
+  end subroutine cholmod_half_loads
+
+  subroutine cholmod_half_recover(self, y, ub, x, done, error)
+    !! x(1:ni, :) = a_ii⁻¹ (f_i − a_ib u_b) from y of half_loads (the same f)
+    !! and ub: the backward half of the solve on [y; L_bbᵀ P_b u_b], whose
+    !! boundary rows come back as P_b u_b and whose interior rows are
+    !! L_ii⁻ᵀ (y − L_biᵀ P_b u_b) = P_i a_ii⁻¹ (f_i − a_ib u_b).
+    class(cholmod_solver_t), intent(inout) :: self
+    real(wp), contiguous, intent(in) :: y(:, :), ub(:, :)
+    real(wp), contiguous, intent(inout) :: x(:, :)
+    logical, intent(out) :: done
+    type(error_t), allocatable, intent(out) :: error
+    real(wp), allocatable :: z(:, :)
+    integer(i8) :: ni, n
+    integer(c_int) :: status
+    done = .false.
+    if (.not. (allocated(self%lbb) .and. self%factored)) return
+    ni = self%n
+    n = ni + size(self%lbb, 1, i8)
+    if (size(y, 1, i8) /= ni .or. size(ub, 1, i8) /= n - ni .or. size(x, 1, i8) < ni .or. &
+        size(y, 2) /= size(ub, 2) .or. size(x, 2) /= size(y, 2)) return
+    done = .true.
+    if (size(y, 2) == 0) return
+    allocate (z(n, size(y, 2)))
+    z(1:ni, :) = y
+    z(ni + 1:n, :) = matmul(transpose(self%lbb), ub)
+    status = sj_cholmod_schur_half(self%handle, 1_c_int, int(size(y, 2), c_int64_t), z, int(n, c_int64_t), &
+         x, int(size(x, 1), c_int64_t))
+    if (status /= SJ_OK) call status_error(self, status, 'solve', error)
+  end subroutine cholmod_half_recover
 end module superjoin_solvers_cholmod

@@ -1374,6 +1374,73 @@ int sj_cholmod_schur_block(void *handle, int64_t nb, double *lbb)
     return SJ_OK;
 }
 
+/* Half a solve with the whole part's factor after sj_cholmod_schur_analyze and
+ * sj_cholmod_factorize (P A P' = L L', the boundary last), nrhs columns,
+ * column-major with leading dimensions ldin, ldout:
+ *   forward (backward = 0): out(n, nrhs) = L^-1 P in, in in the part's own
+ *     order (its interior rows, then its boundary rows), out in P's order;
+ *   backward (backward = 1): in(n, nrhs) in P's order, out(ni, nrhs) = the
+ *     interior rows of P' L'^-1 in, in the part's own order.
+ * With the boundary rows of a forward result replaced by L_bb' u_b, the
+ * backward half gives u_i = A_ii^-1 (b_i - A_ib u_b): a condensation's loads
+ * and its recovery for one triangular solve each (sj_cholmod_schur_block). */
+int sj_cholmod_schur_half(void *handle, int backward, int64_t nrhs, const double *in, int64_t ldin,
+                          double *out, int64_t ldout)
+{
+    sj_cholmod_t *h = handle;
+    cholmod_dense *Y, *Z = NULL, *W = NULL, *E = NULL;
+    const SuiteSparse_long *perm;
+    SuiteSparse_long n, ni, i, j, k;
+    double *y, *z;
+    int ok, status;
+    if (h == NULL) return SJ_E_HANDLE;
+    if (h->pending && sj_cholmod_analyze_finish(h) != SJ_OK) return SJ_E_STATE;   /* never beside the worker */
+    sj_begin(h);
+    if (!h->factored || h->L == NULL || h->nschur <= 0) {
+        sj_set_message(h, "half solve without a boundary-last factorization");
+        return SJ_E_STATE;
+    }
+    n = h->n;
+    ni = n - h->nschur;
+    if (nrhs < 0 || (nrhs > 0 && (in == NULL || out == NULL)) || ldin < n
+        || ldout < (backward ? ni : n)) {
+        sj_set_message(h, "invalid right-hand side");
+        return SJ_E_ARGUMENT;
+    }
+    if (nrhs == 0) return SJ_OK;
+    perm = h->L->Perm;
+    Y = cholmod_l_allocate_dense((size_t)n, (size_t)nrhs, (size_t)n, CHOLMOD_REAL, &h->common);
+    if (Y == NULL) return sj_end(h, 0);
+    y = Y->x;
+    for (j = 0; j < nrhs; j++) {
+        for (k = 0; k < n; k++) {
+            i = backward ? k : (perm != NULL ? perm[k] : k);
+            y[k + j * n] = in[i + j * ldin];      /* forward: Y = P b; backward: Y = in */
+        }
+    }
+    ok = cholmod_l_solve2(backward ? CHOLMOD_Lt : CHOLMOD_L, h->L, Y, NULL, &Z, NULL, &W, &E, &h->common);
+    if (ok) {
+        z = Z->x;
+        for (j = 0; j < nrhs; j++) {
+            for (k = 0; k < n; k++) {
+                if (!backward) {
+                    out[k + j * ldout] = z[k + j * (SuiteSparse_long)Z->d];
+                    continue;
+                }
+                i = perm != NULL ? perm[k] : k;
+                if (i < ni) out[i + j * ldout] = z[k + j * (SuiteSparse_long)Z->d];
+            }
+        }
+    }
+    cholmod_l_free_dense(&Y, &h->common);
+    cholmod_l_free_dense(&Z, &h->common);
+    cholmod_l_free_dense(&W, &h->common);
+    cholmod_l_free_dense(&E, &h->common);
+    status = sj_end(h, ok);
+    if (!ok) return status < 0 ? status : CHOLMOD_INVALID;
+    return status < 0 ? status : SJ_OK;
+}
+
 /* x = A_ii^-1 b for the interior block after sj_cholmod_schur_analyze:
  * forward solve with L on [P_i b; 0], the boundary part of the result set to
  * zero, backward solve with L': the boundary rows then drop out exactly.

@@ -37,6 +37,8 @@ module superjoin_solvers_solver
      procedure :: analyze_start
      procedure :: solve_leading
      procedure :: schur => schur_by_solves
+     procedure :: half_loads
+     procedure :: half_recover
   end type linear_solver_t
 
   abstract interface
@@ -77,6 +79,38 @@ module superjoin_solvers_solver
      end subroutine release_i
   end interface
 contains
+
+  subroutine half_loads(self, f, y, fstar, done, error)
+    !! After schur: f* = f_b − a_bi a_ii⁻¹ f_i for the columns of f (the
+    !! part's rows, interior then boundary; fstar holds f_b on entry) from
+    !! half a solve, y what half_recover needs of it. This default does
+    !! nothing (done = .false., fstar and y untouched: the caller solves with
+    !! a_ii); a solver that keeps the whole part's boundary-last factor
+    !! overrides it (CHOLMOD).
+    class(linear_solver_t), intent(inout) :: self
+    real(wp), contiguous, intent(in) :: f(:, :)
+    real(wp), allocatable, intent(inout) :: y(:, :)
+    real(wp), intent(inout) :: fstar(:, :)
+    logical, intent(out) :: done
+    type(error_t), allocatable, intent(out) :: error
+    done = .false.
+    associate (no_use => self, no_f => f, no_y => y, no_fstar => fstar)   ! the caller solves
+    end associate
+  end subroutine half_loads
+
+  subroutine half_recover(self, y, ub, x, done, error)
+    !! After half_loads(f, y, ...): x(1:ni, :) = a_ii⁻¹ (f_i − a_ib u_b) for
+    !! the boundary values ub (nb rows) from the other half of the solve.
+    !! This default does nothing (done = .false., x untouched).
+    class(linear_solver_t), intent(inout) :: self
+    real(wp), contiguous, intent(in) :: y(:, :), ub(:, :)
+    real(wp), contiguous, intent(inout) :: x(:, :)
+    logical, intent(out) :: done
+    type(error_t), allocatable, intent(out) :: error
+    done = .false.
+    associate (no_use => self, no_y => y, no_ub => ub, no_x => x)   ! the caller solves
+    end associate
+  end subroutine half_recover
 
   subroutine solve_leading(self, n, b, x, error)
     !! x(1:n, :) = K⁻¹ b(1:n, :) for a solver of order n whose columns are the

@@ -379,12 +379,15 @@ contains
 
   subroutine forget_load_memos(cache)
     !! Drop the loads each condensation keeps for the next solve of a joint
-    !! study (condense_loads): the last solve has no next one.
+    !! study (condense_loads): the last solve has no next one. Where the
+    !! forward half of their solve is kept (memo_y), the loads stay until the
+    !! recovery, which checks them before it takes the backward half alone.
     type(part_cache_t), intent(inout) :: cache
     integer :: i
     do i = 1, cache%n
        if (.not. allocated(cache%entries(i)%e)) cycle
-       if (allocated(cache%entries(i)%e%cond%memo_f)) deallocate (cache%entries(i)%e%cond%memo_f)
+       if (allocated(cache%entries(i)%e%cond%memo_f) .and. .not. allocated(cache%entries(i)%e%cond%memo_y)) &
+            deallocate (cache%entries(i)%e%cond%memo_f)
        if (allocated(cache%entries(i)%e%cond%memo_fstar)) deallocate (cache%entries(i)%e%cond%memo_fstar)
     end do
   end subroutine forget_load_memos

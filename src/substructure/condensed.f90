@@ -30,6 +30,10 @@ module superjoin_substructure_condensed
      real(wp), allocatable :: memo_f(:, :)           !! the loads of the last condense_loads (local)
      real(wp), allocatable :: memo_fstar(:, :)       !! and their f*: a joint study's next set of
                                                      !! contact stiffnesses has the same loads
+     real(wp), allocatable :: memo_y(:, :)
+       !! the forward half of memo_f's solve (solver%half_loads), for a
+       !! recovery with the other half only; not allocated where the solver
+       !! has no such halves
   end type condensed_t
 
   public :: condense, condense_loads, recover_interior
@@ -56,6 +60,9 @@ contains
        return
     end if
     cond%se%pdof = cond%sys%pdof(cond%sys%ni + 1:cond%sys%ni + nb)
+    if (allocated(cond%memo_f)) deallocate (cond%memo_f)   ! a new factor: no load memo is its
+    if (allocated(cond%memo_fstar)) deallocate (cond%memo_fstar)
+    if (allocated(cond%memo_y)) deallocate (cond%memo_y)
     call drop_free_interior(cond)
     call new_solver(solver_name, cond%sys%ni, cond%solver, error)
     if (allocated(error)) return
@@ -154,6 +161,7 @@ contains
     type(error_t), allocatable, intent(out) :: error
     real(wp), allocatable :: x(:, :)
     integer(i8) :: ni, nb
+    logical :: done
     ni = cond%sys%ni
     nb = cond%sys%nb
     if (allocated(cond%memo_f)) then
@@ -166,26 +174,50 @@ contains
     end if
     fstar = f_local(ni + 1:ni + nb, :)
     if (ni == 0) return
-    allocate (x(ni, size(f_local, 2)))
-    call cond%solver%solve_leading(ni, f_local, x, error)
+    if (allocated(cond%memo_y)) deallocate (cond%memo_y)
+    call cond%solver%half_loads(f_local, cond%memo_y, fstar, done, error)
     if (allocated(error)) return
-    call subtract_bi(cond%sys%k, nb, x, fstar)
+    if (.not. done) then
+       allocate (x(ni, size(f_local, 2)))
+       call cond%solver%solve_leading(ni, f_local, x, error)
+       if (allocated(error)) return
+       call subtract_bi(cond%sys%k, nb, x, fstar)
+    end if
     cond%memo_f = f_local
     cond%memo_fstar = fstar
   end subroutine condense_loads
 
   subroutine recover_interior(cond, f_local, u_local, error)
     !! u_i = k_ii⁻¹ (f_i − k_ib u_b): u_local holds u_b on entry (rows ni+1..),
-    !! and gets u_i (rows 1..ni). f_local's interior rows are overwritten
-    !! (with f_i − k_ib u_b: no copy of the columns).
+    !! and gets u_i (rows 1..ni). f_local's interior rows may be overwritten
+    !! (with f_i − k_ib u_b: no copy of the columns). For the loads of the
+    !! last condense_loads, whose forward half the solver kept (memo_y), the
+    !! backward half alone.
     type(condensed_t), intent(inout) :: cond
     real(wp), contiguous, intent(inout) :: f_local(:, :)
     real(wp), contiguous, intent(inout) :: u_local(:, :)
     type(error_t), allocatable, intent(out) :: error
+    real(wp), allocatable :: ub(:, :)
     integer(i8) :: ni
+    logical :: done
     ni = cond%sys%ni
     if (ni == 0) return
+    if (same_loads(cond, f_local)) then
+       ub = u_local(ni + 1:ni + cond%sys%nb, :)
+       call cond%solver%half_recover(cond%memo_y, ub, u_local, done, error)
+       if (done .or. allocated(error)) return
+    end if
     call subtract_ib(cond%sys%k, cond%sys%nb, u_local(ni + 1:, :), f_local)
     call cond%solver%solve_leading(ni, f_local, u_local, error)
   end subroutine recover_interior
+
+  logical function same_loads(cond, f_local)
+    !! f_local are the loads of the last condense_loads and its forward half is kept.
+    type(condensed_t), intent(in) :: cond
+    real(wp), intent(in) :: f_local(:, :)
+    same_loads = .false.
+    if (.not. (allocated(cond%memo_y) .and. allocated(cond%memo_f))) return
+    if (any(shape(cond%memo_f) /= shape(f_local))) return
+    same_loads = all(cond%memo_f == f_local)
+  end function same_loads
 end module superjoin_substructure_condensed

@@ -2,12 +2,16 @@ program test_schur
   !! Static condensation by the backends' own schur (CHOLMOD: the boundary
   !! ordered last and read off the factor; LAPACK: forward solves only)
   !! against the default route (a_ii factored, 2 nb solves): K*, the interior
-  !! solves and pivots after it, and the column of a breakdown in the interior.
+  !! solves and pivots after it, and the column of a breakdown in the interior;
+  !! a condensation's loads and interior recovery (condense_loads,
+  !! recover_interior: CHOLMOD's halves of one solve with the whole part's
+  !! factor, the others' solves with a_ii) against dense arithmetic.
   !! Two plates in one part give a block-diagonal L_bb (several supernodes).
   use superjoin_kinds, only: wp, i8
   use superjoin_error, only: error_t, EXIT_SINGULAR
   use superjoin_solvers, only: linear_solver_t, sparse_sym_t, new_solver
   use superjoin_solvers_solver, only: schur_by_solves
+  use superjoin_substructure_condensed, only: condensed_t, condense_loads, recover_interior
   use superjoin_testing, only: check, check_close, finish
   implicit none (type, external)
 
@@ -183,7 +187,91 @@ contains
          name//' '//what//': product of the interior pivots')
     call s1%release()
     call s2%release()
+    call check_halves(name, ad, a, nb, what)
   end subroutine compare_routes
+
+  subroutine check_halves(name, ad, a, nb, what)
+    !! condense_loads and recover_interior of a condensation by name's schur
+    !! against f* = f_b - a_bi x and u_i = a_ii^-1 (f_i - a_ib u_b), x =
+    !! a_ii^-1 f_i (LAPACK's solves): loads f1, its recovery, the recovery of
+    !! other loads f2 (the kept forward half is f1's: it must not be used),
+    !! f1 condensed again (the memo) and recovered.
+    character(*), intent(in) :: name, what
+    real(wp), intent(in) :: ad(:, :)
+    type(sparse_sym_t), intent(in) :: a
+    integer(i8), intent(in) :: nb
+    type(condensed_t) :: cond
+    class(linear_solver_t), allocatable :: ref
+    type(error_t), allocatable :: error
+    real(wp), allocatable :: kstar(:, :), f1(:, :), f2(:, :), fs(:, :), ub(:, :), x(:, :)
+    integer(i8) :: n, ni, i
+    integer :: pass
+    n = size(ad, 1, i8)
+    ni = n - nb
+    if (ni == 0 .or. nb == 0) return
+    cond%sys%ni = ni
+    cond%sys%nb = nb
+    cond%sys%k = a
+    allocate (kstar(nb, nb), f1(n, 3), fs(nb, 3), ub(nb, 3), x(ni, 3))
+    call new_solver(name, ni, cond%solver, error)
+    call cond%solver%schur(a, nb, kstar, error)
+    if (allocated(error)) return
+    call new_solver('lapack', ni, ref, error)
+    call ref%schur(a, nb, kstar, error)
+    call check(.not. allocated(error), name//' '//what//': reference schur')
+    if (allocated(error)) return
+    do i = 1, n
+       f1(i, 1) = real(i, wp)
+       f1(i, 2) = (-1.0_wp)**i/real(i, wp)
+       f1(i, 3) = merge(1.0_wp, 0.0_wp, i <= ni)
+    end do
+    do i = 1, nb
+       ub(i, :) = [1.0_wp/real(i, wp), real(mod(i, 5_i8), wp), -1.0_wp]
+    end do
+    f2 = 2.0_wp*f1 + 1.0_wp
+    do pass = 1, 2   ! the second: f1 condensed again (the memo)
+       call condense_loads(cond, f1, fs, error)
+       call check(.not. allocated(error), name//' '//what//': condense_loads')
+       if (allocated(error)) return
+       call check(allocated(cond%memo_y) .eqv. name == 'cholmod', &
+            name//' '//what//': the forward half kept (CHOLMOD) or not (the others)')
+       call ref%solve(f1(1:ni, :), x, error)
+       call check_close(worst(fs, f1(ni + 1:, :) - matmul(transpose(ad(1:ni, ni + 1:)), x)), 0.0_wp, 1.0e-11_wp, &
+            name//' '//what//': f* of f1')
+       call check_recovery(cond, ref, ad, f1, ub, name//' '//what//': u_i of f1')
+       if (pass == 1) call check_recovery(cond, ref, ad, f2, ub, &
+            name//' '//what//': u_i of other loads than the condensed ones')
+    end do
+    call cond%solver%release()
+    call ref%release()
+  end subroutine check_halves
+
+  subroutine check_recovery(cond, ref, ad, f, ub, what)
+    !! recover_interior(cond, f) with boundary values ub against ref's
+    !! a_ii^-1 (f_i - a_ib u_b), to 1e-11 of its largest entry.
+    type(condensed_t), intent(inout) :: cond
+    class(linear_solver_t), intent(inout) :: ref
+    real(wp), intent(in) :: ad(:, :), f(:, :), ub(:, :)
+    character(*), intent(in) :: what
+    real(wp), allocatable :: u(:, :), fw(:, :), r(:, :)
+    type(error_t), allocatable :: error
+    integer(i8) :: ni
+    ni = cond%sys%ni
+    allocate (u(size(f, 1), size(f, 2)), r(ni, size(f, 2)))
+    u = 0.0_wp
+    u(ni + 1:, :) = ub
+    fw = f
+    call recover_interior(cond, fw, u, error)
+    call check(.not. allocated(error), what//': recover_interior')
+    call ref%solve(f(1:ni, :) - matmul(ad(1:ni, ni + 1:), ub), r, error)
+    call check_close(worst(u(1:ni, :), r), 0.0_wp, 1.0e-11_wp, what)
+  end subroutine check_recovery
+
+  real(wp) function worst(x, y)
+    !! Largest difference relative to y's largest entry.
+    real(wp), intent(in) :: x(:, :), y(:, :)
+    worst = maxval(abs(x - y))/max(maxval(abs(y)), tiny(1.0_wp))
+  end function worst
 
   subroutine spring(ad, i, j, k)
     !! Add a spring of stiffness k between DOFs i and j.

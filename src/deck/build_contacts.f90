@@ -94,9 +94,10 @@ contains
                  return
               end if
               if (added) then
-                 call push_link(links, failed_bytes)
+                 call push_link(links, int(np - p + 1), failed_bytes)
                  if (failed_bytes > 0) then
-                    call report_oom(st, cl%loc, 'the contact elements ('//itoa(2*links%n)//')', failed_bytes)
+                    call report_oom(st, cl%loc, 'the contact elements ('// &
+                         itoa(max(2*links%n, links%n + int(np - p + 1)))//')', failed_bytes)
                     return
                  end if
                  links%a(il)%contact = cur
@@ -110,6 +111,10 @@ contains
          end associate
        end associate
     end do
+    if (links%n == size(links%a)) then   ! filled exactly: no copy
+       call move_alloc(links%a, model%links)
+       return
+    end if
     allocate (model%links(links%n), stat=stat)
     if (stat /= 0) then
        call report_oom(st, st%contacts(max(cur, 1))%loc, 'the contact elements ('//itoa(links%n)//')', &
@@ -215,17 +220,22 @@ contains
     end do
   end subroutine merge_dofs
 
-  subroutine push_link(list, failed_bytes)
+  subroutine push_link(list, left, failed_bytes)
+    !! Append a fresh link. When the list is full it grows to twice its size,
+    !! or to room for the `left` pairs still to come of the current line
+    !! when that is more (one copy for a long line instead of one per doubling).
     type(link_list_t), intent(inout) :: list
+    integer, intent(in) :: left
     integer(i8), intent(out) :: failed_bytes
     type(link_t), allocatable :: tmp(:)
     integer, allocatable :: lines(:, :)
-    integer :: stat
+    integer :: stat, cap
     failed_bytes = 0
     if (list%n == size(list%a)) then
-       allocate (tmp(2*list%n), lines(NDOF_NODE, 2*list%n), stat=stat)
+       cap = max(2*list%n, list%n + left)
+       allocate (tmp(cap), lines(NDOF_NODE, cap), stat=stat)
        if (stat /= 0) then
-          failed_bytes = 2*int(list%n, i8)*(storage_size(list%a(1)) + NDOF_NODE*storage_size(stat))/8
+          failed_bytes = int(cap, i8)*(storage_size(list%a(1)) + NDOF_NODE*storage_size(stat))/8
           return
        end if
        tmp(1:list%n) = list%a(1:list%n)

@@ -112,13 +112,13 @@ contains
           isub = subs(m)
           call resolve_items(st, model, isub, loads(k)%ref, .false., loads(k)%loc, nodes, ok)
           if (.not. ok) cycle
+          call grow(out, n, INITIAL_CAPACITY, stat, more=size(nodes))
+          if (stat /= 0) then
+             call report_oom(st, loads(k)%loc, 'the concentrated loads', &
+                  int(max(2*n, INITIAL_CAPACITY, n + size(nodes)), i8)*storage_size(out)/8)
+             return
+          end if
           do i = 1, size(nodes, kind=ip)
-             call grow(out, n, INITIAL_CAPACITY, stat)
-             if (stat /= 0) then
-                call report_oom(st, loads(k)%loc, 'the concentrated loads', &
-                     int(max(2*n, INITIAL_CAPACITY), i8)*storage_size(out)/8)
-                return
-             end if
              n = n + 1
              out(n)%sub = isub
              out(n)%node = nodes(i)
@@ -128,6 +128,7 @@ contains
           end do
        end do
     end do
+    if (n == size(out)) return   ! filled exactly: no copy
     allocate (tmp(n), stat=stat)
     if (stat /= 0) then
        call report_oom(st, loads(size(loads))%loc, 'the concentrated loads', int(n, i8)*storage_size(out)/8)
@@ -177,6 +178,10 @@ contains
        call move_alloc(list%a, out)
        return
     end if
+    if (list%n == size(list%a)) then   ! filled exactly: no copy
+       call move_alloc(list%a, out)
+       return
+    end if
     allocate (tmp(list%n), stat=stat)
     if (stat /= 0) then
        call report_oom(st, loads(size(loads))%loc, 'the distributed loads', int(list%n, i8)*storage_size(list%a)/8)
@@ -205,6 +210,13 @@ contains
     ! CENTRIF keeps the XY plane in itself: axis along Z, or in the plane
     plane_ok = ld%kind /= DLOAD_CENTRIF .or. abs(ld%dir(3)) == 1.0_wp .or. &
          (ld%dir(3) == 0.0_wp .and. ld%point(3) == 0.0_wp)
+    ! room for every element at once (one copy, not one per doubling)
+    call grow(list%a, list%n, INITIAL_CAPACITY, stat, more=size(elems))
+    if (stat /= 0) then
+       call report_oom(st, ld%loc, 'the distributed loads', &
+            int(max(2*list%n, INITIAL_CAPACITY, list%n + size(elems)), i8)*storage_size(list%a)/8)
+       return
+    end if
     do i = 1, size(elems, kind=ip)
        et = model%subs(isub)%elem_type(elems(i))
        if (.not. accepts_dload(ld%kind, et)) then
@@ -229,12 +241,6 @@ contains
                cycle
             end if
           end associate
-       end if
-       call grow(list%a, list%n, INITIAL_CAPACITY, stat)
-       if (stat /= 0) then
-          call report_oom(st, ld%loc, 'the distributed loads', &
-               int(max(2*list%n, INITIAL_CAPACITY), i8)*storage_size(list%a)/8)
-          return
        end if
        list%n = list%n + 1
        associate (d => list%a(list%n))

@@ -7,6 +7,7 @@ module superjoin_deck_lexer
   use superjoin_kinds, only: wp, ip, i8
   use superjoin_utils_strings, only: itoa, to_upper
   use superjoin_utils_grow, only: grow
+  use superjoin_utils_huge_pages, only: advise_huge
   implicit none (type, external)
   private
 
@@ -115,6 +116,7 @@ contains
        need = nbytes
        return
     end if
+    call advise_huge(text)   ! a large deck: read into huge pages, fewer page faults
     ios = 0
     if (nbytes > 0) read (unit, iostat=ios) text
     close (unit)

@@ -9,6 +9,7 @@ module superjoin_deck_state
        controls_t, MAX_ELEMENT_NODES, NDOF_NODE, LINK_NONE, DIALECT_NONE
   use superjoin_deck_lexer, only: itoa, fields_t, load_file
   use superjoin_utils_grow, only: grow
+  use superjoin_utils_huge_pages, only: advise_huge
   use superjoin_deck_records, only: SHAPE_GENERAL, BEAM_2D_VALUES, BEAM_3D_VALUES, CH_IDS, CH_GEN, &
        CH_RANGE, CH_REF, chunk_t, set_b_t, sub_b_t, ref_t, sec_b_t, contact_b_t, cline_b_t, &
        equation_b_t, transform_b_t, nthick_b_t, support_b_t, load_b_t, SUBK_PLAIN, SUBK_PART, &
@@ -379,6 +380,7 @@ contains
             failed_bytes = cap*(BYTES_INT + 3*BYTES_REAL + storage_size(loc)/8)
             return
          end if
+         call advise_huge(tx)   ! before its first write (large decks: fewer page faults)
          ti(1:n) = sub%node_id(1:n)
          tx(:, 1:n) = sub%x(:, 1:n)
          tl(1:n) = sub%node_loc(1:n)
@@ -423,6 +425,7 @@ contains
             failed_bytes = cap*((3 + MAX_ELEMENT_NODES)*BYTES_INT + storage_size(loc)/8)
             return
          end if
+         call advise_huge(tn)   ! before its first write (large decks: fewer page faults)
          ti(1:n) = sub%elem_id(1:n)
          tn(:, 1:n) = sub%elem_nid(:, 1:n)
          tt(1:n) = sub%elem_type(1:n)

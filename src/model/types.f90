@@ -464,7 +464,8 @@ contains
     type(substructure_t), intent(in) :: sub
     integer(ip), intent(in) :: id
     integer(ip) :: k
-    k = find_sorted(sub%node_id, sub%node_order, id)
+    k = id_at_own_place(sub%node_id, id)
+    if (k == 0) k = find_sorted(sub%node_id, sub%node_order, id)
   end function find_node
 
   pure function find_elem(sub, id) result(k)
@@ -472,8 +473,22 @@ contains
     type(substructure_t), intent(in) :: sub
     integer(ip), intent(in) :: id
     integer(ip) :: k
-    k = find_sorted(sub%elem_id, sub%elem_order, id)
+    k = id_at_own_place(sub%elem_id, id)
+    if (k == 0) k = find_sorted(sub%elem_id, sub%elem_order, id)
   end function find_elem
+
+  pure function id_at_own_place(ids, id) result(k)
+    !! `id` when entry id of `ids` holds it (ids numbered 1, 2, ... in the order
+    !! they are defined, as generated decks write them: no search), else 0.
+    !! Ids are unique in a model that is solved, so this is the entry the
+    !! search would find.
+    integer(ip), intent(in) :: ids(:)
+    integer(ip), intent(in) :: id
+    integer(ip) :: k
+    k = 0
+    if (id < 1 .or. id > size(ids, kind=ip)) return
+    if (ids(id) == id) k = id
+  end function id_at_own_place
 
   pure function node_label(model, isub, inode) result(label)
     !! "SUB.id" label of a node for messages (plain id in MAIN).

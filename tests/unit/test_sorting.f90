@@ -1,7 +1,11 @@
 program test_sorting
   !! Unit tests of the sorting and searching helpers (superjoin_utils_sorting)
-  !! and of the lower-case conversion (superjoin_utils_strings).
-  use superjoin_kinds, only: wp, i8
+  !! and of the lower-case conversion (superjoin_utils_strings); the growing
+  !! array (superjoin_utils_grow) and the id lookups of a substructure
+  !! (find_node, find_elem).
+  use superjoin_kinds, only: wp, i8, ip
+  use superjoin_utils_grow, only: grow
+  use superjoin_model_types, only: substructure_t, find_node, find_elem
   use superjoin_utils_sorting, only: sort_index, find_sorted, sort_unique_i8
   use superjoin_utils_strings, only: to_lower, to_upper
   use superjoin_testing, only: check, finish
@@ -14,6 +18,8 @@ program test_sorting
   call searches()
   call unique()
   call lower_case()
+  call growing()
+  call id_lookups()
   call finish()
 
 contains
@@ -113,4 +119,46 @@ contains
     call check(to_upper('cholmod') == 'CHOLMOD', 'lower case letters raised')
     call check(to_upper('MuMpS-LdLt 1_z@`{') == 'MUMPS-LDLT 1_Z@`{', 'other characters kept by to_upper')
   end subroutine lower_case
+  subroutine growing()
+    integer, allocatable :: a(:)
+    integer :: i, stat
+    allocate (a(16))
+    a(1:10) = [(i, i = 1, 10)]
+    call grow(a, 10, 16, more=100)
+    call check(size(a) == 110 .and. all(a(1:10) == [(i, i = 1, 10)]), &
+         'grow, more=100: room for n + more at once, the first n kept')
+    call grow(a, 10, 16, more=100)
+    call check(size(a) == 110, 'grow, more: the room is there already, nothing reallocated')
+    call grow(a, 110, 16)
+    call check(size(a) == 220 .and. all(a(1:10) == [(i, i = 1, 10)]), 'grow without more: doubled as before')
+    deallocate (a)
+    call grow(a, 0, 16, more=50)
+    call check(size(a) == 50, 'grow, more: an absent array gets n + more slots')
+    deallocate (a)
+    call grow(a, 0, 16, more=3)
+    call check(size(a) == 16, 'grow, more: never below the initial size')
+    a(:) = 7
+    call grow(a, 16, 16, stat, more=40)
+    call check(stat == 0 .and. size(a) == 56 .and. all(a(1:16) == 7), &
+         'grow, more: n + more when that beats doubling (stat 0)')
+  end subroutine growing
+
+  subroutine id_lookups()
+    type(substructure_t) :: sub
+    integer(ip) :: i
+    sub%node_id = [1_ip, 5_ip, 3_ip, 2_ip]
+    sub%node_order = [(i, i = 1_ip, 4_ip)]
+    call sort_index(sub%node_id, sub%node_order)
+    call check(find_node(sub, 1_ip) == 1 .and. find_node(sub, 3_ip) == 3, &
+         'find_node: ids at their own place')
+    call check(find_node(sub, 2_ip) == 4, 'find_node: id 2 is not entry 2 (which holds 5): found by the search')
+    call check(find_node(sub, 5_ip) == 2, 'find_node: id beyond the count found by the search')
+    call check(find_node(sub, 4_ip) == 0 .and. find_node(sub, 0_ip) == 0 .and. find_node(sub, -3_ip) == 0, &
+         'find_node: absent ids (4, 0, -3)')
+    sub%elem_id = [2_ip, 1_ip]
+    sub%elem_order = [1_ip, 2_ip]
+    call sort_index(sub%elem_id, sub%elem_order)
+    call check(find_elem(sub, 1_ip) == 2 .and. find_elem(sub, 2_ip) == 1, 'find_elem: swapped ids found by the search')
+  end subroutine id_lookups
+
 end program test_sorting

@@ -56,10 +56,9 @@ module superjoin_solvers_cholmod
      real(wp) :: fl = 0.0_wp        !! flop count of the factorization
      real(wp) :: peak = 0.0_wp      !! CHOLMOD's peak memory, bytes
      integer(i8) :: stored = 0      !! entries of L as stored (with amalgamation zeros)
-     real(wp), allocatable :: lbb(:, :)
-       !! after schur: the trailing block L_bb of the whole part's factor, its
-       !! rows in the part's boundary order (sj_cholmod_schur_block), for
-       !! half_loads and half_recover
+     integer(i8) :: nb_halves = 0
+       !! after schur: the boundary columns of the whole part's factor (ordered
+       !! last), whose halves half_loads and half_recover take; 0: none
    contains
      procedure :: analyze => cholmod_analyze
      procedure :: analyze_start => cholmod_analyze_start
@@ -224,14 +223,14 @@ module superjoin_solvers_cholmod
        integer(c_int) :: status
      end function sj_cholmod_schur_camd
 
-     function sj_cholmod_schur_half(h, backward, nrhs, in, ldin, out, ldout) &
+     function sj_cholmod_schur_half(h, backward, nrhs, in, ldin, bnd, out, ldout) &
           bind(c, name='sj_cholmod_schur_half') result(status)
        import :: c_ptr, c_int, c_int64_t, c_double
        type(c_ptr), value :: h
        integer(c_int), value :: backward
        integer(c_int64_t), value :: nrhs, ldin, ldout
        real(c_double), intent(in) :: in(*)
-       real(c_double), intent(inout) :: out(*)
+       real(c_double), intent(inout) :: bnd(*), out(*)
        integer(c_int) :: status
      end function sj_cholmod_schur_half
 
@@ -351,7 +350,7 @@ contains
     character(len=24) :: buf
 
     self%factored = .false.
-    if (allocated(self%lbb)) deallocate (self%lbb)   ! a schur's boundary block belongs to its own factor
+    self%nb_halves = 0   ! a schur's halves belong to its own factor
     self%info%failed_column = 0
     if (.not. c_associated(self%handle) .or. self%n < 0) then
        call fatal_error(error, EXIT_IO, 'CHOLMOD: factorize called before analyze')
@@ -454,7 +453,7 @@ contains
     self%n = -1
     self%factored = .false.
     self%started = .false.
-    if (allocated(self%lbb)) deallocate (self%lbb)
+    self%nb_halves = 0
   end subroutine cholmod_release
 
   pure function cholmod_flops(self) result(fl)
@@ -660,7 +659,7 @@ contains
     class(cholmod_solver_t), intent(inout) :: self
     self%factored = .false.
     self%n = -1
-    if (allocated(self%lbb)) deallocate (self%lbb)
+    self%nb_halves = 0
     self%info%name = 'CHOLMOD supernodal LL^T'
     self%info%ordering = 'none'
     self%info%factor_nnz = 0
@@ -693,45 +692,37 @@ contains
     kstar = 0.0_wp
     call dsyrk('L', 'N', int(nb), int(nb), 1.0_wp, lbb, int(nb), 0.0_wp, kstar, int(nb))
     call unshift(shift, kstar)
-    call move_alloc(lbb, self%lbb)
+    self%nb_halves = nb
   end subroutine trailing_product
 
   subroutine cholmod_half_loads(self, f, y, fstar, done, error)
     !! f* = f_b − a_bi a_ii⁻¹ f_i from the forward half of a solve with the
     !! whole part's boundary-last factor (P A P' = L L', A's boundary block
     !! shifted by D): z = L⁻¹ P f, whose boundary rows are L_bb⁻¹ P_b f*
-    !! (L_bi L_iiᵀ = a_bi, D only in L_bb), so f* = L_bb z_b; y keeps z's
-    !! interior rows (P's order) for half_recover. done = .false. without
-    !! such a factor (schur fell back to solves) or for other shapes.
+    !! (L_bi L_iiᵀ = a_bi, D only in L_bb), so f* = L_bb z_b, L_bb read in
+    !! the factor (sj_cholmod_schur_half); y keeps z's interior rows (P's
+    !! order) for half_recover. done = .false. without such a factor (schur
+    !! fell back to solves) or for other shapes.
     class(cholmod_solver_t), intent(inout) :: self
     real(wp), contiguous, intent(in) :: f(:, :)
     real(wp), allocatable, intent(inout) :: y(:, :)
     real(wp), intent(inout) :: fstar(:, :)
     logical, intent(out) :: done
     type(error_t), allocatable, intent(out) :: error
-    real(wp), allocatable :: z(:, :)
     integer(i8) :: ni, n
     integer(c_int) :: status
     done = .false.
-    if (.not. (allocated(self%lbb) .and. self%factored)) return
+    if (self%nb_halves <= 0 .or. .not. self%factored) return
     ni = self%n
-    n = ni + size(self%lbb, 1, i8)
-    if (size(f, 1, i8) /= n .or. size(fstar, 1, i8) /= n - ni .or. size(fstar, 2) /= size(f, 2)) return
+    n = ni + self%nb_halves
+    if (size(f, 1, i8) /= n .or. size(fstar, 1, i8) /= self%nb_halves .or. size(fstar, 2) /= size(f, 2)) return
     done = .true.
     if (allocated(y)) deallocate (y)
-    if (size(f, 2) == 0) then
-       allocate (y(ni, 0))
-       return
-    end if
-    allocate (z(n, size(f, 2)))
+    allocate (y(ni, size(f, 2)))
+    if (size(f, 2) == 0) return
     status = sj_cholmod_schur_half(self%handle, 0_c_int, int(size(f, 2), c_int64_t), f, int(n, c_int64_t), &
-         z, int(n, c_int64_t))
-    if (status /= SJ_OK) then
-       call status_error(self, status, 'solve', error)
-       return
-    end if
-    fstar = matmul(self%lbb, z(ni + 1:n, :))
-    y = z(1:ni, :)
+         fstar, y, int(ni, c_int64_t))
+    if (status /= SJ_OK) call status_error(self, status, 'solve', error)
   end subroutine cholmod_half_loads
 
   subroutine cholmod_half_recover(self, y, ub, x, done, error)
@@ -744,22 +735,19 @@ contains
     real(wp), contiguous, intent(inout) :: x(:, :)
     logical, intent(out) :: done
     type(error_t), allocatable, intent(out) :: error
-    real(wp), allocatable :: z(:, :)
-    integer(i8) :: ni, n
+    real(wp), allocatable :: b(:, :)
+    integer(i8) :: ni
     integer(c_int) :: status
     done = .false.
-    if (.not. (allocated(self%lbb) .and. self%factored)) return
+    if (self%nb_halves <= 0 .or. .not. self%factored) return
     ni = self%n
-    n = ni + size(self%lbb, 1, i8)
-    if (size(y, 1, i8) /= ni .or. size(ub, 1, i8) /= n - ni .or. size(x, 1, i8) < ni .or. &
+    if (size(y, 1, i8) /= ni .or. size(ub, 1, i8) /= self%nb_halves .or. size(x, 1, i8) < ni .or. &
         size(y, 2) /= size(ub, 2) .or. size(x, 2) /= size(y, 2)) return
     done = .true.
     if (size(y, 2) == 0) return
-    allocate (z(n, size(y, 2)))
-    z(1:ni, :) = y
-    z(ni + 1:n, :) = matmul(transpose(self%lbb), ub)
-    status = sj_cholmod_schur_half(self%handle, 1_c_int, int(size(y, 2), c_int64_t), z, int(n, c_int64_t), &
-         x, int(size(x, 1), c_int64_t))
+    b = ub   ! (the shim's bnd argument is read-write)
+    status = sj_cholmod_schur_half(self%handle, 1_c_int, int(size(y, 2), c_int64_t), y, int(ni, c_int64_t), &
+         b, x, int(size(x, 1), c_int64_t))
     if (status /= SJ_OK) call status_error(self, status, 'solve', error)
   end subroutine cholmod_half_recover
 end module superjoin_solvers_cholmod

@@ -1374,23 +1374,74 @@ int sj_cholmod_schur_block(void *handle, int64_t nb, double *lbb)
     return SJ_OK;
 }
 
+/* y (+)= L_bb x (transpose = 0) or y = L_bb' x (transpose = 1) for the
+ * trailing block of the whole part's factor (after sj_cholmod_schur_analyze
+ * and sj_cholmod_factorize), read in place from the factor (no copy): x and
+ * y hold nrhs columns of nb = nschur rows with leading dimensions ldx, ldy;
+ * rows in P's order on the side of the factor's columns (x without
+ * transpose, y with) and in the part's boundary order on the side of its
+ * rows (original index - ni). y is overwritten. */
+static void sj_lbb_apply(const sj_cholmod_t *h, int transpose, int64_t nrhs, const double *x, int64_t ldx,
+                         double *y, int64_t ldy)
+{
+    const cholmod_factor *L = h->L;
+    const SuiteSparse_long *perm = L->Perm;
+    SuiteSparse_long n = h->n, ni = h->n - h->nschur, nb = h->nschur, j, r, row, c;
+    for (c = 0; c < nrhs; c++)
+        for (r = 0; r < nb; r++) y[r + c * ldy] = 0.0;
+    if (L->is_super) {
+        const SuiteSparse_long *super = L->super, *pi = L->pi, *px = L->px, *ls = L->s;
+        const double *lx = L->x;
+        SuiteSparse_long s;
+        for (s = (SuiteSparse_long)L->nsuper - 1; s >= 0 && super[s + 1] > ni; s--) {
+            SuiteSparse_long k1 = super[s], nsrow = pi[s + 1] - pi[s];
+            for (j = (k1 > ni ? k1 : ni); j < super[s + 1]; j++) {
+                for (r = j - k1; r < nsrow; r++) {
+                    double l = lx[px[s] + (j - k1) * nsrow + r];
+                    row = (perm != NULL ? perm[ls[pi[s] + r]] : ls[pi[s] + r]) - ni;   /* the part's boundary order */
+                    for (c = 0; c < nrhs; c++) {
+                        if (transpose) y[(j - ni) + c * ldy] += l * x[row + c * ldx];
+                        else y[row + c * ldy] += l * x[(j - ni) + c * ldx];
+                    }
+                }
+            }
+        }
+    } else {
+        const SuiteSparse_long *lp = L->p, *li = L->i, *lnz = L->nz;
+        const double *lx = L->x;
+        for (j = ni; j < n; j++) {
+            for (r = lp[j]; r < lp[j] + lnz[j]; r++) {
+                row = (perm != NULL ? perm[li[r]] : li[r]) - ni;
+                for (c = 0; c < nrhs; c++) {
+                    if (transpose) y[(j - ni) + c * ldy] += lx[r] * x[row + c * ldx];
+                    else y[row + c * ldy] += lx[r] * x[(j - ni) + c * ldx];
+                }
+            }
+        }
+    }
+}
+
 /* Half a solve with the whole part's factor after sj_cholmod_schur_analyze and
- * sj_cholmod_factorize (P A P' = L L', the boundary last), nrhs columns,
- * column-major with leading dimensions ldin, ldout:
- *   forward (backward = 0): out(n, nrhs) = L^-1 P in, in in the part's own
- *     order (its interior rows, then its boundary rows), out in P's order;
- *   backward (backward = 1): in(n, nrhs) in P's order, out(ni, nrhs) = the
- *     interior rows of P' L'^-1 in, in the part's own order.
- * With the boundary rows of a forward result replaced by L_bb' u_b, the
- * backward half gives u_i = A_ii^-1 (b_i - A_ib u_b): a condensation's loads
- * and its recovery for one triangular solve each (sj_cholmod_schur_block). */
+ * sj_cholmod_factorize (P A P' = L L', the boundary last, A's boundary block
+ * shifted by D: only L_bb sees it), nrhs columns, column-major:
+ *   forward (backward = 0): z = L^-1 P f for in = f(n, nrhs) in the part's
+ *     own order (interior rows, then boundary rows; leading dimension ldin);
+ *     out(ni, nrhs) = z's interior rows (P's order, leading dimension ldout)
+ *     and bnd(nb, nrhs) = L_bb z_b in the part's boundary order: f* = f_b -
+ *     A_bi A_ii^-1 f_i (L_bi L_ii' = P_b A_bi P_i', so z_b = L_bb^-1 P_b f*);
+ *   backward (backward = 1): in(ni, nrhs) = such interior rows z_i (P's
+ *     order), bnd(nb, nrhs) = u_b (the part's boundary order); out(ni,
+ *     nrhs) = the interior rows, in the part's order, of P' L'^-1 [z_i;
+ *     L_bb' P_b u_b]: A_ii^-1 (f_i - A_ib u_b) for the f that gave z_i.
+ * A condensation's loads and its recovery for one triangular solve each
+ * instead of two; L_bb is read in place (sj_lbb_apply). */
 int sj_cholmod_schur_half(void *handle, int backward, int64_t nrhs, const double *in, int64_t ldin,
-                          double *out, int64_t ldout)
+                          double *bnd, double *out, int64_t ldout)
 {
     sj_cholmod_t *h = handle;
     cholmod_dense *Y, *Z = NULL, *W = NULL, *E = NULL;
     const SuiteSparse_long *perm;
-    SuiteSparse_long n, ni, i, j, k;
+    SuiteSparse_long n, ni, nb, i, j, k;
     double *y, *z;
     int ok, status;
     if (h == NULL) return SJ_E_HANDLE;
@@ -1401,9 +1452,10 @@ int sj_cholmod_schur_half(void *handle, int backward, int64_t nrhs, const double
         return SJ_E_STATE;
     }
     n = h->n;
-    ni = n - h->nschur;
-    if (nrhs < 0 || (nrhs > 0 && (in == NULL || out == NULL)) || ldin < n
-        || ldout < (backward ? ni : n)) {
+    nb = h->nschur;
+    ni = n - nb;
+    if (nrhs < 0 || (nrhs > 0 && (in == NULL || out == NULL || bnd == NULL)) || ldin < (backward ? ni : n)
+        || ldout < ni) {
         sj_set_message(h, "invalid right-hand side");
         return SJ_E_ARGUMENT;
     }
@@ -1413,24 +1465,31 @@ int sj_cholmod_schur_half(void *handle, int backward, int64_t nrhs, const double
     if (Y == NULL) return sj_end(h, 0);
     y = Y->x;
     for (j = 0; j < nrhs; j++) {
-        for (k = 0; k < n; k++) {
-            i = backward ? k : (perm != NULL ? perm[k] : k);
-            y[k + j * n] = in[i + j * ldin];      /* forward: Y = P b; backward: Y = in */
+        if (backward) {                   /* Y = [z_i; L_bb' P_b u_b] */
+            for (k = 0; k < ni; k++) y[k + j * n] = in[k + j * ldin];
+        } else {                          /* Y = P f */
+            for (k = 0; k < n; k++) {
+                i = perm != NULL ? perm[k] : k;
+                y[k + j * n] = in[i + j * ldin];
+            }
         }
     }
+    if (backward) sj_lbb_apply(h, 1, nrhs, bnd, nb, y + ni, n);
     ok = cholmod_l_solve2(backward ? CHOLMOD_Lt : CHOLMOD_L, h->L, Y, NULL, &Z, NULL, &W, &E, &h->common);
     if (ok) {
+        SuiteSparse_long dz = (SuiteSparse_long)Z->d;
         z = Z->x;
         for (j = 0; j < nrhs; j++) {
             for (k = 0; k < n; k++) {
                 if (!backward) {
-                    out[k + j * ldout] = z[k + j * (SuiteSparse_long)Z->d];
+                    if (k < ni) out[k + j * ldout] = z[k + j * dz];
                     continue;
                 }
                 i = perm != NULL ? perm[k] : k;
-                if (i < ni) out[i + j * ldout] = z[k + j * (SuiteSparse_long)Z->d];
+                if (i < ni) out[i + j * ldout] = z[k + j * dz];
             }
         }
+        if (!backward) sj_lbb_apply(h, 0, nrhs, z + ni, dz, bnd, nb);
     }
     cholmod_l_free_dense(&Y, &h->common);
     cholmod_l_free_dense(&Z, &h->common);

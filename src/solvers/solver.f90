@@ -94,7 +94,7 @@ contains
     logical, intent(out) :: done
     type(error_t), allocatable, intent(out) :: error
     done = .false.
-    associate (no_use => self, no_f => f, no_y => y, no_fstar => fstar)   ! the caller solves
+    associate (no_use => self, no_f => f, no_y => allocated(y), no_fstar => fstar)   ! the caller solves
     end associate
   end subroutine half_loads
 

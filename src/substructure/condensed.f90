@@ -164,7 +164,7 @@ contains
     logical :: done
     ni = cond%sys%ni
     nb = cond%sys%nb
-    if (allocated(cond%memo_f)) then
+    if (allocated(cond%memo_f) .and. allocated(cond%memo_fstar)) then
        if (all(shape(cond%memo_f) == shape(f_local))) then
           if (all(cond%memo_f == f_local)) then
              fstar = cond%memo_fstar

@@ -59,7 +59,7 @@ void sj_advise_huge(void *p, size_t n)
 /* Fortran's advise_huge(a): any contiguous array, by its descriptor. */
 void sj_advise_huge_array(const CFI_cdesc_t *a)
 {
-    if (a->base_addr == NULL || !CFI_is_contiguous(a)) return;
+    if (a->base_addr == NULL || (a->rank > 0 && !CFI_is_contiguous(a))) return;   /* a scalar (the deck's text) is contiguous; CFI_is_contiguous takes arrays only */
     size_t n = a->elem_len;
     for (CFI_rank_t r = 0; r < a->rank; r++) n *= (size_t)a->dim[r].extent;
     sj_advise_huge(a->base_addr, n);

@@ -9,7 +9,7 @@ program test_schur
   !! Two plates in one part give a block-diagonal L_bb (several supernodes).
   use superjoin_kinds, only: wp, i8
   use superjoin_error, only: error_t, EXIT_SINGULAR
-  use superjoin_solvers, only: linear_solver_t, sparse_sym_t, new_solver
+  use superjoin_solvers, only: linear_solver_t, sparse_sym_t, new_solver, cholmod_solver_t
   use superjoin_solvers_solver, only: schur_by_solves
   use superjoin_substructure_condensed, only: condensed_t, condense_loads, recover_interior
   use superjoin_testing, only: check, check_close, finish
@@ -187,16 +187,20 @@ contains
          name//' '//what//': product of the interior pivots')
     call s1%release()
     call s2%release()
-    call check_halves(name, ad, a, nb, what)
+    call check_halves(name, ad, a, nb, what, .true.)
+    if (name == 'cholmod') call check_halves(name, ad, a, nb, what//' (interior ordered first)', .false.)
   end subroutine compare_routes
 
-  subroutine check_halves(name, ad, a, nb, what)
+  subroutine check_halves(name, ad, a, nb, what, camd_first)
     !! condense_loads and recover_interior of a condensation by name's schur
     !! against f* = f_b - a_bi x and u_i = a_ii^-1 (f_i - a_ib u_b), x =
     !! a_ii^-1 f_i (LAPACK's solves): loads f1, its recovery, the recovery of
     !! other loads f2 (the kept forward half is f1's: it must not be used),
-    !! f1 condensed again (the memo) and recovered.
+    !! f1 condensed again (the memo) and recovered. camd_first: CHOLMOD's
+    !! boundary-last ordering by CAMD alone where its fill is low (else the
+    !! interior's own ordering, the boundary appended, compared with CAMD's).
     character(*), intent(in) :: name, what
+    logical, intent(in) :: camd_first
     real(wp), intent(in) :: ad(:, :)
     type(sparse_sym_t), intent(in) :: a
     integer(i8), intent(in) :: nb
@@ -214,6 +218,10 @@ contains
     cond%sys%k = a
     allocate (kstar(nb, nb), f1(n, 3), fs(nb, 3), ub(nb, 3), x(ni, 3))
     call new_solver(name, ni, cond%solver, error)
+    select type (s => cond%solver)
+    type is (cholmod_solver_t)
+       s%camd_first = camd_first
+    end select
     call cond%solver%schur(a, nb, kstar, error)
     if (allocated(error)) return
     call new_solver('lapack', ni, ref, error)

@@ -1334,6 +1334,85 @@ int sj_cholmod_schur_analyze(void *handle, int64_t n, int64_t nb, int64_t *colpt
     return sj_schur_done(h, nb, colptr, rowind);
 }
 
+
+/* Every entry l of the trailing block L_bb of the whole part's factor (after
+ * sj_cholmod_schur_analyze and sj_cholmod_factorize), read in place: fn(ctx,
+ * row, col, l) with row in the part's boundary order (original index - ni)
+ * and col in P's order (position - ni). The boundary columns may spread over
+ * several supernodes, and the first of them may also hold interior columns.
+ * SJ_E_STATE for a simplicial LDL' factor (no L_bb of L L'). */
+static int sj_lbb_each(const sj_cholmod_t *h, void (*fn)(void *, SuiteSparse_long, SuiteSparse_long, double),
+                       void *ctx)
+{
+    const cholmod_factor *L = h->L;
+    const SuiteSparse_long *perm = L->Perm;
+    SuiteSparse_long n = h->n, ni = h->n - h->nschur, j, r, i;
+    if (L->is_super) {
+        const SuiteSparse_long *super = L->super, *pi = L->pi, *px = L->px, *ls = L->s;
+        const double *lx = L->x;
+        SuiteSparse_long s;
+        for (s = (SuiteSparse_long)L->nsuper - 1; s >= 0 && super[s + 1] > ni; s--) {
+            SuiteSparse_long k1 = super[s], nsrow = pi[s + 1] - pi[s];
+            for (j = (k1 > ni ? k1 : ni); j < super[s + 1]; j++) {
+                for (r = j - k1; r < nsrow; r++) {
+                    i = ls[pi[s] + r];
+                    fn(ctx, (perm != NULL ? perm[i] : i) - ni, j - ni, lx[px[s] + (j - k1) * nsrow + r]);
+                }
+            }
+        }
+    } else {
+        const SuiteSparse_long *lp = L->p, *li = L->i, *lnz = L->nz;
+        const double *lx = L->x;
+        if (!L->is_ll) return SJ_E_STATE;
+        for (j = ni; j < n; j++)
+            for (r = lp[j]; r < lp[j] + lnz[j]; r++) fn(ctx, (perm != NULL ? perm[li[r]] : li[r]) - ni, j - ni, lx[r]);
+    }
+    return SJ_OK;
+}
+
+/* sj_lbb_each's visitors: an entry into a dense block, or into a product. */
+typedef struct {
+    double *lbb;
+    SuiteSparse_long nb;
+} sj_lbb_dense_t;
+
+static void sj_lbb_store(void *ctx, SuiteSparse_long row, SuiteSparse_long col, double l)
+{
+    sj_lbb_dense_t *d = ctx;
+    d->lbb[row + col * d->nb] = l;
+}
+
+typedef struct {
+    int transpose;
+    int64_t nrhs, ldx, ldy;
+    const double *x;
+    double *y;
+} sj_lbb_product_t;
+
+static void sj_lbb_add(void *ctx, SuiteSparse_long row, SuiteSparse_long col, double l)
+{
+    sj_lbb_product_t *p = ctx;
+    int64_t c;
+    for (c = 0; c < p->nrhs; c++) {
+        if (p->transpose) p->y[col + c * p->ldy] += l * p->x[row + c * p->ldx];
+        else p->y[row + c * p->ldy] += l * p->x[col + c * p->ldx];
+    }
+}
+
+/* y = L_bb x (transpose = 0) or y = L_bb' x (transpose = 1), nrhs columns of
+ * nb = nschur rows, leading dimensions ldx, ldy: rows in P's order on the
+ * side of the factor's columns (x without transpose, y with) and in the
+ * part's boundary order on the side of its rows. */
+static int sj_lbb_apply(const sj_cholmod_t *h, int transpose, int64_t nrhs, const double *x, int64_t ldx,
+                        double *y, int64_t ldy)
+{
+    sj_lbb_product_t p = {transpose, nrhs, ldx, ldy, x, y};
+    int64_t r, c;
+    for (c = 0; c < nrhs; c++)
+        for (r = 0; r < h->nschur; r++) y[r + c * ldy] = 0.0;
+    return sj_lbb_each(h, sj_lbb_add, &p);
+}
+
 /* The trailing block L_bb of the factor (after sj_cholmod_schur_analyze and
  * sj_cholmod_factorize), its rows in the original boundary order (the
  * ordering may permute the boundary among itself): lbb(nb, nb), column-major,
@@ -1343,82 +1422,14 @@ int sj_cholmod_schur_analyze(void *handle, int64_t n, int64_t nb, int64_t *colpt
 int sj_cholmod_schur_block(void *handle, int64_t nb, double *lbb)
 {
     sj_cholmod_t *h = handle;
-    cholmod_factor *L;
-    const SuiteSparse_long *perm;
-    SuiteSparse_long ni, j, r;
+    sj_lbb_dense_t d;
     if (h == NULL) return SJ_E_HANDLE;
     if (h->pending && sj_cholmod_analyze_finish(h) != SJ_OK) return SJ_E_STATE;   /* never beside the worker */
-    L = h->L;
-    if (!h->factored || L == NULL || nb != h->nschur || lbb == NULL) return SJ_E_STATE;
-    ni = h->n - nb;
-    perm = L->Perm;
+    if (!h->factored || h->L == NULL || nb != h->nschur || lbb == NULL) return SJ_E_STATE;
     memset(lbb, 0, (size_t)nb * (size_t)nb * sizeof(double));
-    if (L->is_super) {
-        const SuiteSparse_long *super = L->super, *pi = L->pi, *px = L->px, *ls = L->s;
-        const double *lx = L->x;
-        SuiteSparse_long s;
-        for (s = (SuiteSparse_long)L->nsuper - 1; s >= 0 && super[s + 1] > ni; s--) {
-            SuiteSparse_long k1 = super[s], nsrow = pi[s + 1] - pi[s];
-            for (j = (k1 > ni ? k1 : ni); j < super[s + 1]; j++) {
-                for (r = j - k1; r < nsrow; r++)
-                    lbb[(perm[ls[pi[s] + r]] - ni) + (j - ni) * nb] = lx[px[s] + (j - k1) * nsrow + r];
-            }
-        }
-    } else {
-        const SuiteSparse_long *lp = L->p, *li = L->i, *lnz = L->nz;
-        const double *lx = L->x;
-        if (!L->is_ll) return SJ_E_STATE;
-        for (j = ni; j < h->n; j++)
-            for (r = lp[j]; r < lp[j] + lnz[j]; r++) lbb[(perm[li[r]] - ni) + (j - ni) * nb] = lx[r];
-    }
-    return SJ_OK;
-}
-
-/* y (+)= L_bb x (transpose = 0) or y = L_bb' x (transpose = 1) for the
- * trailing block of the whole part's factor (after sj_cholmod_schur_analyze
- * and sj_cholmod_factorize), read in place from the factor (no copy): x and
- * y hold nrhs columns of nb = nschur rows with leading dimensions ldx, ldy;
- * rows in P's order on the side of the factor's columns (x without
- * transpose, y with) and in the part's boundary order on the side of its
- * rows (original index - ni). y is overwritten. */
-static void sj_lbb_apply(const sj_cholmod_t *h, int transpose, int64_t nrhs, const double *x, int64_t ldx,
-                         double *y, int64_t ldy)
-{
-    const cholmod_factor *L = h->L;
-    const SuiteSparse_long *perm = L->Perm;
-    SuiteSparse_long n = h->n, ni = h->n - h->nschur, nb = h->nschur, j, r, row, c;
-    for (c = 0; c < nrhs; c++)
-        for (r = 0; r < nb; r++) y[r + c * ldy] = 0.0;
-    if (L->is_super) {
-        const SuiteSparse_long *super = L->super, *pi = L->pi, *px = L->px, *ls = L->s;
-        const double *lx = L->x;
-        SuiteSparse_long s;
-        for (s = (SuiteSparse_long)L->nsuper - 1; s >= 0 && super[s + 1] > ni; s--) {
-            SuiteSparse_long k1 = super[s], nsrow = pi[s + 1] - pi[s];
-            for (j = (k1 > ni ? k1 : ni); j < super[s + 1]; j++) {
-                for (r = j - k1; r < nsrow; r++) {
-                    double l = lx[px[s] + (j - k1) * nsrow + r];
-                    row = (perm != NULL ? perm[ls[pi[s] + r]] : ls[pi[s] + r]) - ni;   /* the part's boundary order */
-                    for (c = 0; c < nrhs; c++) {
-                        if (transpose) y[(j - ni) + c * ldy] += l * x[row + c * ldx];
-                        else y[row + c * ldy] += l * x[(j - ni) + c * ldx];
-                    }
-                }
-            }
-        }
-    } else {
-        const SuiteSparse_long *lp = L->p, *li = L->i, *lnz = L->nz;
-        const double *lx = L->x;
-        for (j = ni; j < n; j++) {
-            for (r = lp[j]; r < lp[j] + lnz[j]; r++) {
-                row = (perm != NULL ? perm[li[r]] : li[r]) - ni;
-                for (c = 0; c < nrhs; c++) {
-                    if (transpose) y[(j - ni) + c * ldy] += lx[r] * x[row + c * ldx];
-                    else y[row + c * ldy] += lx[r] * x[(j - ni) + c * ldx];
-                }
-            }
-        }
-    }
+    d.lbb = lbb;
+    d.nb = nb;
+    return sj_lbb_each(h, sj_lbb_store, &d);
 }
 
 /* Half a solve with the whole part's factor after sj_cholmod_schur_analyze and
@@ -1474,7 +1485,11 @@ int sj_cholmod_schur_half(void *handle, int backward, int64_t nrhs, const double
             }
         }
     }
-    if (backward) sj_lbb_apply(h, 1, nrhs, bnd, nb, y + ni, n);
+    if (backward && sj_lbb_apply(h, 1, nrhs, bnd, nb, y + ni, n) != SJ_OK) {
+        cholmod_l_free_dense(&Y, &h->common);
+        sj_set_message(h, "half solve: no L L' trailing block");
+        return SJ_E_STATE;
+    }
     ok = cholmod_l_solve2(backward ? CHOLMOD_Lt : CHOLMOD_L, h->L, Y, NULL, &Z, NULL, &W, &E, &h->common);
     if (ok) {
         SuiteSparse_long dz = (SuiteSparse_long)Z->d;
@@ -1489,7 +1504,7 @@ int sj_cholmod_schur_half(void *handle, int backward, int64_t nrhs, const double
                 if (i < ni) out[i + j * ldout] = z[k + j * dz];
             }
         }
-        if (!backward) sj_lbb_apply(h, 0, nrhs, z + ni, dz, bnd, nb);
+        if (!backward && sj_lbb_apply(h, 0, nrhs, z + ni, dz, bnd, nb) != SJ_OK) ok = 0;
     }
     cholmod_l_free_dense(&Y, &h->common);
     cholmod_l_free_dense(&Z, &h->common);

@@ -1335,6 +1335,21 @@ int sj_cholmod_schur_analyze(void *handle, int64_t n, int64_t nb, int64_t *colpt
 }
 
 
+/* The end of a solve through cholmod_l_solve2's handles: the four dense
+ * arrays freed, the status (SJ_OK, or the error of a failed solve). */
+static int sj_solve2_end(sj_cholmod_t *h, int ok, cholmod_dense **Y, cholmod_dense **Z, cholmod_dense **W,
+                         cholmod_dense **E)
+{
+    int status;
+    cholmod_l_free_dense(Y, &h->common);
+    cholmod_l_free_dense(Z, &h->common);
+    cholmod_l_free_dense(W, &h->common);
+    cholmod_l_free_dense(E, &h->common);
+    status = sj_end(h, ok);
+    if (!ok) return status < 0 ? status : CHOLMOD_INVALID;
+    return status < 0 ? status : SJ_OK;
+}
+
 /* Every entry l of the trailing block L_bb of the whole part's factor (after
  * sj_cholmod_schur_analyze and sj_cholmod_factorize), read in place: fn(ctx,
  * row, col, l) with row in the part's boundary order (original index - ni)
@@ -1454,7 +1469,7 @@ int sj_cholmod_schur_half(void *handle, int backward, int64_t nrhs, const double
     const SuiteSparse_long *perm;
     SuiteSparse_long n, ni, nb, i, j, k;
     double *y, *z;
-    int ok, status;
+    int ok;
     if (h == NULL) return SJ_E_HANDLE;
     if (h->pending && sj_cholmod_analyze_finish(h) != SJ_OK) return SJ_E_STATE;   /* never beside the worker */
     sj_begin(h);
@@ -1506,13 +1521,7 @@ int sj_cholmod_schur_half(void *handle, int backward, int64_t nrhs, const double
         }
         if (!backward && sj_lbb_apply(h, 0, nrhs, z + ni, dz, bnd, nb) != SJ_OK) ok = 0;
     }
-    cholmod_l_free_dense(&Y, &h->common);
-    cholmod_l_free_dense(&Z, &h->common);
-    cholmod_l_free_dense(&W, &h->common);
-    cholmod_l_free_dense(&E, &h->common);
-    status = sj_end(h, ok);
-    if (!ok) return status < 0 ? status : CHOLMOD_INVALID;
-    return status < 0 ? status : SJ_OK;
+    return sj_solve2_end(h, ok, &Y, &Z, &W, &E);
 }
 
 /* x = A_ii^-1 b for the interior block after sj_cholmod_schur_analyze:
@@ -1529,7 +1538,7 @@ static int sj_schur_solve(sj_cholmod_t *h, int64_t nrhs, const double *b, int64_
     const SuiteSparse_long *perm = h->L->Perm;
     SuiteSparse_long n = h->n, ni = h->n - h->nschur, i, j, k;
     double *y;
-    int ok, status;
+    int ok;
     Y = cholmod_l_allocate_dense((size_t)n, (size_t)nrhs, (size_t)n, CHOLMOD_REAL, &h->common);
     if (Y == NULL) return sj_end(h, 0);
     y = Y->x;
@@ -1555,11 +1564,5 @@ static int sj_schur_solve(sj_cholmod_t *h, int64_t nrhs, const double *b, int64_
             }
         }
     }
-    cholmod_l_free_dense(&Y, &h->common);
-    cholmod_l_free_dense(&Z, &h->common);
-    cholmod_l_free_dense(&W, &h->common);
-    cholmod_l_free_dense(&E, &h->common);
-    status = sj_end(h, ok);
-    if (!ok) return status < 0 ? status : CHOLMOD_INVALID;
-    return status < 0 ? status : SJ_OK;
+    return sj_solve2_end(h, ok, &Y, &Z, &W, &E);
 }

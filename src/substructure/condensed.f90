@@ -164,13 +164,9 @@ contains
     logical :: done
     ni = cond%sys%ni
     nb = cond%sys%nb
-    if (allocated(cond%memo_f) .and. allocated(cond%memo_fstar)) then
-       if (all(shape(cond%memo_f) == shape(f_local))) then
-          if (all(cond%memo_f == f_local)) then
-             fstar = cond%memo_fstar
-             return
-          end if
-       end if
+    if (allocated(cond%memo_fstar) .and. same_loads(cond, f_local)) then
+       fstar = cond%memo_fstar
+       return
     end if
     fstar = f_local(ni + 1:ni + nb, :)
     if (ni == 0) return
@@ -202,7 +198,7 @@ contains
     logical :: done
     ni = cond%sys%ni
     if (ni == 0) return
-    if (same_loads(cond, f_local)) then
+    if (allocated(cond%memo_y) .and. same_loads(cond, f_local)) then
        ub = u_local(ni + 1:ni + cond%sys%nb, :)
        call cond%solver%half_recover(cond%memo_y, ub, u_local, done, error)
        if (done .or. allocated(error)) return
@@ -212,11 +208,11 @@ contains
   end subroutine recover_interior
 
   logical function same_loads(cond, f_local)
-    !! f_local are the loads of the last condense_loads and its forward half is kept.
+    !! f_local are the loads of the last condense_loads (memo_f), value by value.
     type(condensed_t), intent(in) :: cond
     real(wp), intent(in) :: f_local(:, :)
     same_loads = .false.
-    if (.not. (allocated(cond%memo_y) .and. allocated(cond%memo_f))) return
+    if (.not. allocated(cond%memo_f)) return
     if (any(shape(cond%memo_f) /= shape(f_local))) return
     same_loads = all(cond%memo_f == f_local)
   end function same_loads

@@ -20,16 +20,20 @@ module superjoin_deck_build_steps
 
   interface grow
      !! Make room for element n + 1 of an allocatable array (grow_template.inc).
-     module procedure grow_cload, grow_dload
+     module procedure grow_cload
   end interface grow
 
   public :: build_steps
 
-  type :: dload_list_t
-    !! Growing list of distributed loads while they are generated.
-     integer :: n = 0
-     type(dload_t), allocatable :: a(:)
-  end type dload_list_t
+  type :: kept_t
+    !! The elements the distributed-load lines keep after their checks, in
+    !! line order: chunk c is line(c) on substructure sub(c), its elements
+    !! ids(last(c-1)+1 : last(c)) (4 bytes each where a dload_t is hundreds).
+     integer :: nid = 0
+     integer :: nchunk = 0
+     integer(ip), allocatable :: ids(:)
+     integer, allocatable :: line(:), sub(:), last(:)
+  end type kept_t
 
 contains
 
@@ -139,19 +143,20 @@ contains
   end subroutine build_cloads
 
   subroutine build_dloads(st, model, loads, out)
-    !! The distributed loads of the lines loads on the elements they name.
+    !! The distributed loads of the lines loads on the elements they name: the
+    !! lines' elements resolved and checked first (kept_t, a few bytes each),
+    !! then `out` allocated once at its exact size and filled (no growing list
+    !! of the large dload_t entries, no trimming copy).
     type(deck_state_t), intent(inout) :: st
     type(model_t), intent(in) :: model
     type(load_b_t), intent(in) :: loads(:)
     type(dload_t), allocatable, intent(out) :: out(:)
-    type(dload_t), allocatable :: tmp(:)
-    type(dload_list_t) :: list
+    type(kept_t) :: kept
     integer(ip), allocatable :: elems(:)
-    integer :: k, isub, stat, m
+    integer :: k, isub, stat, m, c, first
     integer(ip) :: i
     integer, allocatable :: subs(:)
     logical :: ok
-    allocate (list%a(INITIAL_CAPACITY))
     do k = 1, size(loads)
        if (loads(k)%whole_model) then
           ! GRAV with an empty element field: every element of the model, or of
@@ -159,7 +164,7 @@ contains
           do isub = 1, size(model%subs)
              if (loads(k)%home /= 0 .and. isub /= loads(k)%home) cycle
              elems = [(i, i=1, model%subs(isub)%nelem)]
-             call add_elements(st, model, loads(k), isub, elems, list)
+             call keep_elements(st, model, k, loads(k), isub, elems, kept)
              if (st%aborted) exit
           end do
           if (st%aborted) exit
@@ -169,37 +174,44 @@ contains
        do m = 1, size(subs)
           call resolve_items(st, model, subs(m), loads(k)%ref, .true., loads(k)%loc, elems, ok)
           if (.not. ok) cycle
-          call add_elements(st, model, loads(k), subs(m), elems, list)
+          call keep_elements(st, model, k, loads(k), subs(m), elems, kept)
           if (st%aborted) exit
        end do
        if (st%aborted) exit
     end do
-    if (st%aborted) then
-       call move_alloc(list%a, out)
-       return
-    end if
-    if (list%n == size(list%a)) then   ! filled exactly: no copy
-       call move_alloc(list%a, out)
-       return
-    end if
-    allocate (tmp(list%n), stat=stat)
+    allocate (out(kept%nid), stat=stat)
     if (stat /= 0) then
-       call report_oom(st, loads(size(loads))%loc, 'the distributed loads', int(list%n, i8)*storage_size(list%a)/8)
-       call move_alloc(list%a, out)
+       call report_oom(st, loads(size(loads))%loc, 'the distributed loads', int(kept%nid, i8)*storage_size(out)/8)
+       allocate (out(0))
        return
     end if
-    tmp(:) = list%a(1:list%n)
-    call move_alloc(tmp, out)
+    first = 1
+    do c = 1, kept%nchunk
+       associate (ld => loads(kept%line(c)))
+         do m = first, kept%last(c)
+            out(m)%sub = kept%sub(c)
+            out(m)%elem = kept%ids(m)
+            out(m)%kind = ld%kind
+            out(m)%value = ld%value
+            out(m)%dir = ld%dir
+            out(m)%point = ld%point
+            out(m)%loc = ld%loc
+         end do
+       end associate
+       first = kept%last(c) + 1
+    end do
   end subroutine build_dloads
 
-  subroutine add_elements(st, model, ld, isub, elems, list)
-    !! The loads of line ld on elems of substructure isub, with the checks.
+  subroutine keep_elements(st, model, k, ld, isub, elems, kept)
+    !! The elements of elems (substructure isub) that line ld (the k-th) loads,
+    !! with the checks: appended to kept as one chunk.
     type(deck_state_t), intent(inout) :: st
     type(model_t), intent(in) :: model
+    integer, intent(in) :: k
     type(load_b_t), intent(in) :: ld
     integer, intent(in) :: isub
     integer(ip), intent(in) :: elems(:)
-    type(dload_list_t), intent(inout) :: list
+    type(kept_t), intent(inout) :: kept
     integer :: nodens, nbad, et, stat
     integer(ip) :: i, first_nodens, first_bad
     logical :: plane_ok
@@ -211,10 +223,13 @@ contains
     plane_ok = ld%kind /= DLOAD_CENTRIF .or. abs(ld%dir(3)) == 1.0_wp .or. &
          (ld%dir(3) == 0.0_wp .and. ld%point(3) == 0.0_wp)
     ! room for every element at once (one copy, not one per doubling)
-    call grow(list%a, list%n, INITIAL_CAPACITY, stat, more=size(elems))
+    call grow(kept%ids, kept%nid, INITIAL_CAPACITY, stat, more=size(elems))
+    if (stat == 0) call grow(kept%line, kept%nchunk, INITIAL_CAPACITY, stat)
+    if (stat == 0) call grow(kept%sub, kept%nchunk, INITIAL_CAPACITY, stat)
+    if (stat == 0) call grow(kept%last, kept%nchunk, INITIAL_CAPACITY, stat)
     if (stat /= 0) then
        call report_oom(st, ld%loc, 'the distributed loads', &
-            int(max(2*list%n, INITIAL_CAPACITY, list%n + size(elems)), i8)*storage_size(list%a)/8)
+            int(max(2*kept%nid, INITIAL_CAPACITY, kept%nid + size(elems)), i8)*storage_size(kept%ids)/8)
        return
     end if
     do i = 1, size(elems, kind=ip)
@@ -242,17 +257,13 @@ contains
             end if
           end associate
        end if
-       list%n = list%n + 1
-       associate (d => list%a(list%n))
-         d%sub = isub
-         d%elem = elems(i)
-         d%kind = ld%kind
-         d%value = ld%value
-         d%dir = ld%dir
-         d%point = ld%point
-         d%loc = ld%loc
-       end associate
+       kept%nid = kept%nid + 1
+       kept%ids(kept%nid) = elems(i)
     end do
+    kept%nchunk = kept%nchunk + 1
+    kept%line(kept%nchunk) = k
+    kept%sub(kept%nchunk) = isub
+    kept%last(kept%nchunk) = kept%nid
     associate (sub => model%subs(isub))
       if (nodens > 0) call report_loc(st, ld%loc, '*DLOAD '//trim(DLOAD_NAMES(ld%kind))//' on element '// &
            itoa(sub%elem_id(first_nodens))//' of substructure '//sub%name//', whose material '// &
@@ -262,7 +273,7 @@ contains
            ' '//trim(surface_face(ld))//' does not apply to element '//itoa(sub%elem_id(first_bad))//' of type '// &
            trim(ELEMENT_TYPE_NAMES(sub%elem_type(first_bad)))//' ('//dload_targets(ld%kind)//')'//more_text(nbad - 1))
     end associate
-  end subroutine add_elements
+  end subroutine keep_elements
 
   pure function surface_face(ld) result(name)
     !! The load form as the deck wrote it: a *DLOAD type, or the face of a
@@ -310,10 +321,6 @@ contains
 
 #define GROW_NAME grow_cload
 #define GROW_TYPE type(cload_t)
-#include "grow_template.inc"
-
-#define GROW_NAME grow_dload
-#define GROW_TYPE type(dload_t)
 #include "grow_template.inc"
 
 end module superjoin_deck_build_steps

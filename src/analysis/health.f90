@@ -210,6 +210,8 @@ contains
           write (error_unit, '(a,es10.3)') 'superjoin: condition estimate ', cond
        end if
     end if
+    ! the residual of the final q (refine keeps r with q): a condensed run's full_health starts from it
+    if (allocated(st%parts) .and. .not. st%strategy%summed()) call move_alloc(w%r, st%r_red)
   end subroutine health
 
   function residual_limit(st, knorm, berr, res) result(limit)
@@ -260,10 +262,8 @@ contains
        call note(res%log%notes, 'condition estimate: a lower bound from the solutions and the pivots, '// &
             'not Hager''s estimate (skipped above '//itoa(COND_FULL_MAX)//' equations while MAXRATIO, '// &
             'the residual and this bound are small)')
-    else if (st%strategy%summed()) then
+    else   ! knorm: the strategy's ‖K‖₁, computed once (no second pass over K_red)
        call condition_estimate(st%k, st%solver, cond, anorm_given=knorm)
-    else
-       call condition_estimate(st%k, st%solver, cond)
     end if
   end subroutine estimate_condition
 
@@ -403,13 +403,18 @@ contains
     associate (tr => st%tr, k => st%k, parts => st%parts, q => st%q, u => st%u, ku => st%ku, f_red => st%f_red, &
          f_eff => st%f_eff, f_phys => st%f_phys)
       nstep = size(q, 2)
-      allocate (r(k%n, nstep))
-      call k%matvec(q, r)
-      if (st%strategy%summed()) then   ! this process's terms first; f_red once the rows are summed
-         allocate (f(k%n, nstep), source=0.0_wp)
-      else
-         r = r - f_red
+      if (allocated(st%r_red)) then   ! health's K_red q − f_red of this q: no second product with K_red
+         r = st%r_red
          f = f_red
+      else
+         allocate (r(k%n, nstep))
+         call k%matvec(q, r)
+         if (st%strategy%summed()) then   ! this process's terms first; f_red once the rows are summed
+            allocate (f(k%n, nstep), source=0.0_wp)
+         else
+            r = r - f_red
+            f = f_red
+         end if
       end if
       ntot = k%n
       do i = 1, size(parts)

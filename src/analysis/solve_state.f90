@@ -80,6 +80,7 @@ module superjoin_analysis_solve_state
      logical :: early_solver = .false.       !! solver made before K's values, its analysis begun beside them
      integer(i8), allocatable :: groups(:)   !! the column groups the solver was analyzed with (none: unallocated)
      real(wp), allocatable :: q(:, :)        !! reduced solution (ncol, nstep)
+     real(wp), allocatable :: r_red(:, :)    !! K_red q − f_red of the final q (health; not with owner terms)
      real(wp), allocatable :: u(:, :)        !! physical displacements (np, nstep)
      real(wp), allocatable :: ku(:, :)       !! k u of the condensed parts (np, nstep)
      class(solve_strategy_t), allocatable :: strategy   !! how K_red is assembled (see the module)

@@ -91,8 +91,9 @@ contains
     !! estimate is a lower bound of the true value, usually within a small
     !! factor. anorm1 and inv_norm1 (optional) return the two factors. If a
     !! solve fails, cond1 = 0 (unknown) and error (optional) tells why.
-    !! anorm_given: ||A||_1 computed by the caller (a is then only one MPI
-    !! process's term of A, whose norm is not A's).
+    !! anorm_given: ||A||_1 computed by the caller (health has it already; under
+    !! owner terms a is only one MPI process's term of A, whose norm is not A's):
+    !! a is then not read, only its order.
     type(sparse_sym_t), intent(in) :: a
     class(linear_solver_t), intent(inout) :: solver
     real(wp), intent(out) :: cond1
@@ -102,8 +103,12 @@ contains
     type(error_t), allocatable :: err
     real(wp) :: anorm, ainv
 
-    call estimate(a, solver, anorm, ainv, err)
-    if (present(anorm_given)) anorm = anorm_given
+    if (present(anorm_given)) then   ! no pass over a for a norm the caller has
+       anorm = anorm_given
+    else
+       anorm = norm1_sym(a)
+    end if
+    call estimate(a%n, solver, ainv, err)
     cond1 = anorm*ainv
     if (allocated(err)) then
        cond1 = 0.0_wp
@@ -116,20 +121,18 @@ contains
     end if
   end subroutine condition_estimate
 
-  subroutine estimate(a, solver, anorm1, inv_norm1, error)
-    !! ||A||_1 and the Hager-Higham estimate of ||A^-1||_1.
-    type(sparse_sym_t), intent(in) :: a
+  subroutine estimate(n, solver, inv_norm1, error)
+    !! The Hager-Higham estimate of ||A^-1||_1 (A of order n, factored in solver).
+    integer(i8), intent(in) :: n
     class(linear_solver_t), intent(inout) :: solver
-    real(wp), intent(out) :: anorm1, inv_norm1
+    real(wp), intent(out) :: inv_norm1
     type(error_t), allocatable, intent(out) :: error
     real(wp), allocatable :: x(:, :), y(:, :), xi(:), xi_old(:)
     real(wp) :: est, estold, alt
-    integer(i8) :: n, i, jmax, jold
+    integer(i8) :: i, jmax, jold
     integer :: iter, stat
 
-    anorm1 = norm1_sym(a)
     inv_norm1 = 0.0_wp
-    n = a%n
     if (n <= 0) return
     allocate (x(n, 2), y(n, 2), xi(n), xi_old(n), stat=stat)
     if (stat /= 0) then

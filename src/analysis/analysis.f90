@@ -428,7 +428,7 @@ contains
        if (allocated(error)) return
        if (st%tr%ncol() > 0) call full_health(st, ctx%cache, res, error)
        if (allocated(error)) return
-       if (allocated(st%r_red)) deallocate (st%r_red)
+       if (allocated(st%r_red)) deallocate (st%r_red)   ! kept when full_health did not run
        call parts_maxratio(model, st%table, ctx%cache, st%parts, res, error)
        if (allocated(error)) return
        if (ctx%last) call release_cache(ctx%cache)   ! the parts' factors: not needed for the element results

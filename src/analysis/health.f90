@@ -392,7 +392,8 @@ contains
     !! Owner terms (st%strategy%summed()): k is this MPI process's term of K_red and only the own
     !! substructures (entry > 0) hold K*: each process adds its own terms to
     !! the interface rows, which are summed over the processes.
-    type(solve_state_t), intent(in) :: st
+    !! st%r_red (health's residual of this q), when kept, is taken over (moved).
+    type(solve_state_t), intent(inout) :: st
     type(part_cache_t), intent(in) :: cache
     type(results_t), intent(inout) :: res
     type(error_t), allocatable, intent(out) :: error
@@ -404,7 +405,7 @@ contains
          f_eff => st%f_eff, f_phys => st%f_phys)
       nstep = size(q, 2)
       if (allocated(st%r_red)) then   ! health's K_red q − f_red of this q: no second product with K_red
-         r = st%r_red
+         call move_alloc(st%r_red, r)
          f = f_red
       else
          allocate (r(k%n, nstep))

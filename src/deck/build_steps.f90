@@ -179,6 +179,10 @@ contains
        end do
        if (st%aborted) exit
     end do
+    if (st%aborted) then   ! the deck is not run: no loads to build
+       allocate (out(0))
+       return
+    end if
     allocate (out(kept%nid), stat=stat)
     if (stat /= 0) then
        call report_oom(st, loads(size(loads))%loc, 'the distributed loads', int(kept%nid, i8)*storage_size(out)/8)

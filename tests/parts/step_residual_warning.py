@@ -21,7 +21,8 @@ that flags every step puts them in LOADA's block too.
   interface rows' (health's K_red q - f_red, which full_health takes over
   instead of forming the product again): both warnings in LOADB's block, the
   whole-system R at least half the interface R (interface rows left out of
-  the whole system, or a residual of another q, leave round-off there).
+  the whole system leave round-off there; a residual of another q would
+  not be caught by this one-sided check).
 """
 import os
 import re

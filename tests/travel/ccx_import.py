@@ -260,8 +260,10 @@ def import_block(binary, work, name, mtx):
 
 def digits_gap(got, ref):
     """Largest |got - ref| in units of half the last printed digit of ref (d.dddddd E+xx)."""
-    return max(abs(g - r) / (5e-7 * 10.0 ** math.floor(math.log10(abs(r))))
-               for n in TIP for g, r in zip(got[n], ref[n]))
+    # a printed 0 has no digits of its own: judged in the unit of the largest printed value
+    top = max(abs(r) for n in TIP for r in ref[n])
+    unit = lambda r: 5e-7 * 10.0 ** math.floor(math.log10(abs(r) if r != 0.0 else top))
+    return max(abs(g - r) / unit(r) for n in TIP for g, r in zip(got[n], ref[n]))
 
 
 def full_matrix(binary, work):

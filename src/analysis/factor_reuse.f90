@@ -62,11 +62,11 @@ contains
   end subroutine take_analysis
 
   subroutine keep_factor(kf, k, solver, groups)
-    !! At the end of a solve: keep its factorization (and matrix, and the
-    !! column groups it was analyzed with) when kf%keep or kf%keep_analysis,
-    !! release it otherwise.
+    !! At the end of a solve: keep its factorization (and matrix, moved out
+    !! of k, and the column groups it was analyzed with) when kf%keep or
+    !! kf%keep_analysis, release it otherwise.
     type(kept_factor_t), intent(inout) :: kf
-    type(sparse_sym_t), intent(in) :: k
+    type(sparse_sym_t), intent(inout) :: k
     class(linear_solver_t), allocatable, intent(inout) :: solver
     integer(i8), allocatable, intent(in), optional :: groups(:)
     if (.not. allocated(solver)) return
@@ -81,7 +81,10 @@ contains
     end if
     call release_factor(kf)
     call move_alloc(solver, kf%solver)
-    kf%k = k
+    kf%k%n = k%n   ! moved, not copied: the solve is done with k (k is left empty)
+    call move_alloc(k%colptr, kf%k%colptr)
+    call move_alloc(k%rowind, kf%k%rowind)
+    call move_alloc(k%val, kf%k%val)
   end subroutine keep_factor
 
   subroutine release_factor(kf)

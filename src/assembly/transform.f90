@@ -863,14 +863,20 @@ contains
     real(wp), intent(out) :: u(:, :)         !! (np, nrhs)
     logical, intent(in), optional :: linear
     integer(i8) :: p, j
+    integer :: is
     logical :: with_u0
+    real(wp) :: s
     with_u0 = .true.
     if (present(linear)) with_u0 = .not. linear
-    do p = 1, size(tr%map_start, kind=i8) - 1
-       u(p, :) = 0.0_wp
-       if (with_u0) u(p, :) = u0_of(tr, p)
-       do j = tr%map_start(p), tr%map_start(p + 1) - 1
-          u(p, :) = u(p, :) + tr%pool_coef(j)*q(tr%pool_col(j), :)
+    with_u0 = with_u0 .and. allocated(tr%u0)   ! else u0 is 0 (u0_of)
+    do is = 1, size(q, 2)   ! a column at a time, each sum in a scalar (the same terms in the same order)
+       do p = 1, size(tr%map_start, kind=i8) - 1
+          s = 0.0_wp
+          if (with_u0) s = tr%u0(p)
+          do j = tr%map_start(p), tr%map_start(p + 1) - 1
+             s = s + tr%pool_coef(j)*q(tr%pool_col(j), is)
+          end do
+          u(p, is) = s
        end do
     end do
   end subroutine transform_expand

@@ -56,8 +56,8 @@ contains
   pure subroutine matvec_pair(a, x1, x2, y1, y2)
     !! y1 = A x1 and y2 = A x2 in one pass over A, each as matvec_column sums it.
     type(sparse_sym_t), intent(in) :: a
-    real(wp), intent(in), contiguous :: x1(:), x2(:)
-    real(wp), intent(out), contiguous :: y1(:), y2(:)
+    real(wp), intent(in) :: x1(:), x2(:)
+    real(wp), intent(out) :: y1(:), y2(:)
     integer(i8) :: j, k, i
     real(wp) :: xj1, xj2, yj1, yj2, v
     y1 = 0.0_wp
@@ -90,8 +90,8 @@ contains
     !! column j is reached (earlier columns touch only rows above j), so its
     !! terms from column j are summed in a scalar first.
     type(sparse_sym_t), intent(in) :: a
-    real(wp), intent(in), contiguous :: x(:)
-    real(wp), intent(out), contiguous :: y(:)
+    real(wp), intent(in) :: x(:)
+    real(wp), intent(out) :: y(:)
     integer(i8) :: j, k, i
     real(wp) :: xj, yj
     y = 0.0_wp

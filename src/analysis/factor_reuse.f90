@@ -14,7 +14,7 @@ module superjoin_analysis_factor_reuse
   !! other changes which unknowns exist, hence the pattern: analyzed again.
   use superjoin_kinds, only: wp, i8
   use superjoin_error, only: error_t
-  use superjoin_solvers, only: linear_solver_t, sparse_sym_t
+  use superjoin_solvers, only: linear_solver_t, sparse_sym_t, move_sparse
   use superjoin_model_results, only: results_t, PH_ORDER, PH_FACTOR, PH_SOLVE
   use superjoin_utils_clock, only: stopwatch_t, report_phase
   use superjoin_utils_memory, only: out_of_memory, BYTES_REAL
@@ -81,10 +81,7 @@ contains
     end if
     call release_factor(kf)
     call move_alloc(solver, kf%solver)
-    kf%k%n = k%n   ! moved, not copied: the solve is done with k (k is left empty)
-    call move_alloc(k%colptr, kf%k%colptr)
-    call move_alloc(k%rowind, kf%k%rowind)
-    call move_alloc(k%val, kf%k%val)
+    call move_sparse(k, kf%k)   ! moved, not copied: the solve is done with k (k is left empty)
   end subroutine keep_factor
 
   subroutine release_factor(kf)

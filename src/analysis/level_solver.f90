@@ -32,7 +32,7 @@ module superjoin_analysis_level_solver
   use superjoin_error, only: error_t, EXIT_SINGULAR
   use superjoin_model_types, only: string_t
   use superjoin_model_notes, only: note
-  use superjoin_solvers, only: linear_solver_t, sparse_sym_t, new_solver, cholmod_solver_t
+  use superjoin_solvers, only: linear_solver_t, sparse_sym_t, new_solver, cholmod_solver_t, move_sparse
   use superjoin_solvers_solver, only: boundary_block, subtract_bi, subtract_ib
   use superjoin_utils_strings, only: itoa
   use superjoin_analysis_levels, only: level_plan_t
@@ -173,10 +173,7 @@ contains
        if (lo == 1) then   ! K_red itself, not a copy
           call eliminate_level(self, [lo, hi], a, m, gone, ok, error)
        else
-          call move_alloc(m%colptr, prev%colptr)
-          call move_alloc(m%rowind, prev%rowind)
-          call move_alloc(m%val, prev%val)
-          prev%n = m%n
+          call move_sparse(m, prev)
           call eliminate_level(self, [lo, hi], prev, m, gone, ok, error)
        end if
        if (allocated(error)) return
@@ -449,10 +446,7 @@ contains
     self%nkind = self%nkind + 1
     call local_matrix(m, self%g(k), .true., a)
     associate (kd => self%kinds(self%nkind))
-      call move_alloc(a%colptr, kd%a%colptr)
-      call move_alloc(a%rowind, kd%a%rowind)
-      call move_alloc(a%val, kd%a%val)
-      kd%a%n = a%n
+      call move_sparse(a, kd%a)
       kd%ni = ni
       kd%nb = a%n - ni
       kd%sig = sig

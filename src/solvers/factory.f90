@@ -4,7 +4,7 @@ module superjoin_solvers
   !! reuses an existing factorization.
   use superjoin_kinds, only: wp, i8
   use superjoin_error, only: error_t, fatal_error, EXIT_USAGE, EXIT_IO
-  use superjoin_solvers_sparse, only: sparse_sym_t
+  use superjoin_solvers_sparse, only: sparse_sym_t, move_sparse
   use superjoin_solvers_solver, only: linear_solver_t, solver_info_t
   use superjoin_solvers_cholmod, only: cholmod_solver_t
   use superjoin_solvers_umfpack, only: umfpack_solver_t
@@ -14,7 +14,7 @@ module superjoin_solvers
   implicit none (type, external)
   private
 
-  public :: linear_solver_t, solver_info_t, sparse_sym_t
+  public :: linear_solver_t, solver_info_t, sparse_sym_t, move_sparse
   public :: cholmod_solver_t, umfpack_solver_t, lapack_solver_t, mumps_solver_t
   public :: new_solver, condition_estimate, norm1_sym, mumps_available, inverse_norm_bound
 

@@ -3,6 +3,7 @@ module superjoin_solvers_sparse
   use superjoin_kinds, only: wp, i8
   implicit none (type, external)
   private
+  public :: move_sparse
 
   type, public :: sparse_sym_t
     !! Upper triangle (row <= column) of a symmetric matrix, 1-based CSC:
@@ -19,6 +20,16 @@ module superjoin_solvers_sparse
   end type sparse_sym_t
 
 contains
+
+  pure subroutine move_sparse(from, to)
+    !! to = from by move (no copy of the arrays); from is left with n and no arrays.
+    type(sparse_sym_t), intent(inout) :: from
+    type(sparse_sym_t), intent(inout) :: to
+    to%n = from%n
+    call move_alloc(from%colptr, to%colptr)
+    call move_alloc(from%rowind, to%rowind)
+    call move_alloc(from%val, to%val)
+  end subroutine move_sparse
 
   pure function sparse_nnz(a) result(nz)
     !! Stored nonzeros (upper triangle with diagonal).

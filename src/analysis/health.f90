@@ -187,10 +187,10 @@ contains
     call refine(st, knorm, limit, w, res, error)
     if (allocated(error)) return
 
-    if (maxval(res%fields%steps(:)%residual) > merge(RESIDUAL_WARN_PENALTY, RESIDUAL_WARN, res%summary%formulation == 'PENALTY')) then
+    if (maxval(res%fields%steps(:)%residual) > residual_warn_limit(res)) then
        write (buf, '(es10.2e3)') maxval(res%fields%steps(:)%residual)
        call warn(res, 'relative residual '//trim(adjustl(buf))//' after refinement: results are inaccurate', &
-            res%fields%steps(:)%residual > merge(RESIDUAL_WARN_PENALTY, RESIDUAL_WARN, res%summary%formulation == 'PENALTY'))
+            res%fields%steps(:)%residual > residual_warn_limit(res))
        res%log%inaccurate = .true.
     end if
     if (res%summary%maxratio > MAXRATIO_WARN) then
@@ -502,14 +502,23 @@ contains
          res%fields%steps(is)%residual = safe_div(norm2(rf(:, is)), norm2(ffull(:, is)))
          res%fields%steps(is)%epsilon = energy_error(qfull(:, is), rf(:, is), ffull(:, is))
       end do
-      if (maxval(res%fields%steps(:)%residual) > RESIDUAL_WARN) then
+      if (maxval(res%fields%steps(:)%residual) > residual_warn_limit(res)) then
          write (buf, '(es10.2e3)') maxval(res%fields%steps(:)%residual)
          call warn(res, 'relative residual '//trim(adjustl(buf))//' of the whole system (condensed '// &
-              'substructures recovered): results are inaccurate', res%fields%steps(:)%residual > RESIDUAL_WARN)
+              'substructures recovered): results are inaccurate', &
+              res%fields%steps(:)%residual > residual_warn_limit(res))
          res%log%inaccurate = .true.
       end if
     end associate
   end subroutine whole_residuals
+
+  pure real(wp) function residual_warn_limit(res) result(limit)
+    !! The relative residual above which results are judged inaccurate:
+    !! RESIDUAL_WARN, under PENALTY RESIDUAL_WARN_PENALTY (its floor, eps g/k,
+    !! is in the whole system's residual as in the reduced one's).
+    type(results_t), intent(in) :: res
+    limit = merge(RESIDUAL_WARN_PENALTY, RESIDUAL_WARN, res%summary%formulation == 'PENALTY')
+  end function residual_warn_limit
 
   subroutine parts_maxratio(model, table, cache, parts, res, error)
     !! MAXRATIO over the interior factors of the condensed substructures:

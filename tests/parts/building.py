@@ -63,9 +63,10 @@ def run(exe, deck, work, name, *extra):
     return csvdir, lst
 
 
-def numeric_compare(a, b, table, names=flat_names):
-    """Largest difference of two runs' table, relative to each numeric column's largest value; the other
-    columns must agree once a's are written by names (the nested paths as the explicit names, by default)."""
+def numeric_compare(a, b, table, names=flat_names, rtol=1e-10):
+    """Largest difference of two runs' table, relative to each numeric column's largest value (good: at most
+    rtol); the other columns must agree once a's are written by names (the nested paths as the explicit names,
+    by default)."""
     with open(os.path.join(a, table), newline="") as f:
         ra = list(csv.reader(f))
     with open(os.path.join(b, table), newline="") as f:
@@ -84,7 +85,7 @@ def numeric_compare(a, b, table, names=flat_names):
             elif names(x[j]) != y[j]:
                 print(f"FAIL: {table}: {x[j]} against {y[j]}")
                 return False, worst
-    return worst <= 1e-10, worst
+    return worst <= rtol, worst
 
 
 def _is_float(s):

@@ -12,11 +12,13 @@ reduced unknowns, with at least 3 floors per kind:
 - mesh 6, 4 floors (4 groups in 3 kinds): flat;
 - mesh 4, 9 floors (interiors 2688 against boundaries 1536): flat.
 For each, the default run (no --levels: auto) agrees to 1e-10 of each column's
-largest value with --levels yes (by level), --levels no (flat) and the
-monolithic run (--condense no), and its listing note states the counts and the
-choice. (The condensed runs agree to about 1e-11; the monolithic run differs by
-8e-11 on mesh 8, by 1e-10 to 2.6e-10 on meshes 6 and 7, the round-off of a
-system whose condition estimate is about 1e8, not a difference of method.)
+largest value with --levels yes (by level) and --levels no (flat), to 5e-10
+with the monolithic run (--condense no), and its listing note states the
+counts and the choice. (The condensed runs agree to about 1e-11; the
+monolithic run differs by 8e-11 to 1.3e-10 on mesh 8, depending on the CPU
+the BLAS kernels run on, by 1e-10 to 2.6e-10 on meshes 6 and 7: the round-off
+of a system whose condition estimate is about 1e8, eps times which is 2e-8,
+not a difference of method.)
 """
 import os
 import subprocess
@@ -27,6 +29,7 @@ sys.path.insert(0, HERE)
 from building import run, numeric_compare, exe_and_work, TABLES, GEN  # noqa: E402
 
 SAME = lambda name: name  # noqa: E731
+MONOLITHIC_RTOL = 5e-10   # the monolithic run's round-off (condition about 1e8): the docstring
 
 CASES = (
     (8, 9, "--levels auto: interiors 6144 >= 2 x boundaries 1536, 6144 >= 1/2 of 7296 unknowns, "
@@ -66,13 +69,13 @@ def main(argv):
         ok = check(want in listing, f"{case}: the note has '{want}'") and ok
         ok = check((f"condensation by level: {floors} groups in 3 kinds" in listing) == by_level,
                    f"{case}: the solve is {'by level' if by_level else 'flat'}") and ok
-        others = (("--levels yes", ("--condense", "yes", "--levels", "yes")),
-                  ("--levels no", ("--condense", "yes", "--levels", "no")),
-                  ("monolithic", ("--condense", "no")))
-        for what, extra in others:
+        others = (("--levels yes", ("--condense", "yes", "--levels", "yes"), 1e-10),
+                  ("--levels no", ("--condense", "yes", "--levels", "no"), 1e-10),
+                  ("monolithic", ("--condense", "no"), MONOLITHIC_RTOL))
+        for what, extra, rtol in others:
             other, _ = run(exe, d, work, f"{what.replace(' ', '').strip('-')}_{case}", *extra)
             for table in TABLES[:5]:
-                good, worst = numeric_compare(auto, other, table, names=SAME)
+                good, worst = numeric_compare(auto, other, table, names=SAME, rtol=rtol)
                 ok = check(good, f"{case}: {table}: auto against {what}, largest difference {worst:.1e}") \
                     and ok
     return 0 if ok else 1

@@ -131,7 +131,10 @@ def main():
     a, b = market(os.path.join(work, "yes", "p3.mtx")), market(os.path.join(work, "no", "p3.mtx"))
     scale = max(abs(v) for v in b.values())
     diff = max(abs(a.get(k, 0.0) - b.get(k, 0.0)) for k in set(a) | set(b))
-    check(set(a) == set(b) and diff <= RTOL * scale,
+    # Entries missing from one file count as zeros: where P3's own K* has an
+    # exact zero, the turned one may hold round-off (1e-14 of the largest
+    # entry on some CPUs' BLAS kernels), and the other way round.
+    check(len(set(a) & set(b)) >= len(b) // 2 and diff <= RTOL * scale,
           f"K* of P3: the turned twin's against its own, largest difference {diff / scale:.2e} of the largest entry")
 
     lib = os.path.join(work, "library")

@@ -22,13 +22,21 @@ Runs, in this order, each timed by wall clock around the process (best of
   second     --library DIR, one panel's thickness changed: one condensed, the others loaded
   unchanged  --library DIR, the changed deck again: every panel loaded
 
+The blocks B1..B(NB-1) are translated copies of one part (the last one
+differs: it is loaded where the others are joined), which the runs find and
+condense once (--twins yes, the default): the first run condenses two parts,
+the second at least the changed one, and finds the copies' entry through its
+pointer (src/substructure/library.f90). --distinct gives every block its own
+material (no twins: the first run condenses every part); --twins no is
+passed to every run.
+
 and the ratios second/first and second/plain on one line, for the wall clock
 and for the CPU time of the process (user + system: what a loaded machine
 distorts least). Listing and CSV
 writing are part of every run (kept small: no --csv).
 
 usage: library_study.py [--bin SUPERJOIN] [--model blocks|panels] [--nb 6] [--nx 4] [--ny 3] [--mesh M]
-                        [--repeat 3] [--work DIR]
+                        [--distinct] [--twins yes|no] [--repeat 3] [--work DIR]
 """
 import argparse
 import os
@@ -42,8 +50,9 @@ HERE = os.path.dirname(os.path.abspath(__file__))
 ROOT = os.path.dirname(HERE)
 
 
-def blocks_deck(nb, m):
-    """NB solid blocks of M x M x M C3D8 in a row, joined at face corners."""
+def blocks_deck(nb, m, distinct=False):
+    """NB solid blocks of M x M x M C3D8 in a row, joined at face corners
+    (distinct: each block of its own Young's modulus, so no two are twins)."""
     n1 = m + 1
     h = 1.0 / m
 
@@ -52,7 +61,8 @@ def blocks_deck(nb, m):
 
     out = ["*HEADING", f"library study: {nb} blocks of {m}^3 C3D8"]
     for b in range(nb):
-        out += [f"*MATERIAL, NAME=M{b + 1}", "*ELASTIC", "2.1e11, 0.3"]
+        e = 2.1e11 + (1e9 * b if distinct else 0.0)
+        out += [f"*MATERIAL, NAME=M{b + 1}", "*ELASTIC", f"{e:.4g}, 0.3"]
     left = [nid(0, j, k) for j in (0, m) for k in (0, m)]
     right = [nid(m, j, k) for j in (0, m) for k in (0, m)]
     for b in range(nb):
@@ -105,6 +115,8 @@ def main():
     ap.add_argument("--nx", type=int, default=4)
     ap.add_argument("--ny", type=int, default=3)
     ap.add_argument("--mesh", type=int)
+    ap.add_argument("--distinct", action="store_true", help="blocks: each of its own material (no twins)")
+    ap.add_argument("--twins", choices=("yes", "no"), default="yes")
     ap.add_argument("--repeat", type=int, default=3)
     ap.add_argument("--work", default=os.path.join(ROOT, "build", "bench_library"))
     a = ap.parse_args()
@@ -113,8 +125,8 @@ def main():
     changed = os.path.join(a.work, "changed.deck")
     if a.model == "blocks":
         m = a.mesh or 16
-        text = blocks_deck(a.nb, m)
-        edited = text.replace("2.1e11, 0.3", "2.0e11, 0.3", 1)     # the first block's material
+        text = blocks_deck(a.nb, m, a.distinct)
+        edited = text.replace("2.1e+11, 0.3", "2.0e+11, 0.3", 1)   # the first block's material
         n, dofs = a.nb, a.nb * 3 * (m + 1) ** 3
     else:
         m = a.mesh or 40
@@ -131,7 +143,7 @@ def main():
     lst = os.path.join(a.work, "out.lst")
 
     def base(d):
-        return [a.bin, "-q", "--condense", "yes", d, "-o", lst]
+        return [a.bin, "-q", "--condense", "yes", "--twins", a.twins, d, "-o", lst]
 
     def fresh():
         shutil.rmtree(lib, ignore_errors=True)
@@ -145,7 +157,8 @@ def main():
     second = timed(base(changed) + ["--library", lib], a.repeat, stored)
     unchanged = timed(base(changed) + ["--library", lib], a.repeat)
     size = sum(os.path.getsize(os.path.join(lib, f)) for f in os.listdir(lib))
-    print(f"{a.model}: {n} parts, mesh {m}, {dofs} DOFs; library {size / 1e6:.1f} MB")
+    kind = "distinct" if a.distinct else "twins " + a.twins
+    print(f"{a.model} ({kind}): {n} parts, mesh {m}, {dofs} DOFs; library {size / 1e6:.1f} MB")
     for what, k in (("wall", 0), ("cpu", 1)):
         print(f"{what}: plain {plain[k]:.3f} s  first {first[k]:.3f} s  second (1 of {n} changed) {second[k]:.3f} s  "
               f"unchanged {unchanged[k]:.3f} s  second/first {second[k] / first[k]:.3f}  "

@@ -223,6 +223,7 @@ contains
     type(run_options_t), intent(in) :: opts
     if (allocated(opts%library)) cache%library%dir = opts%library
     cache%library%verify = opts%library_verify
+    cache%library%copies = opts%twins
     cache%twins = opts%twins
   end subroutine library_options
 

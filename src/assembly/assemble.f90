@@ -163,20 +163,28 @@ contains
     if (table%np > 0) dmax = maxval(diag)
   end subroutine max_element_diagonal
 
-  subroutine element_matrix(model, isub, e, ke, error)
+  subroutine element_matrix(model, isub, e, ke, error, x)
     !! Element stiffness in global axes, with the deck location on errors.
+    !! x: the substructure's nodes at these coordinates instead of its own.
     type(model_t), intent(in) :: model
     integer, intent(in) :: isub
     integer(ip), intent(in) :: e
     real(wp), allocatable, intent(out) :: ke(:, :)
     type(error_t), allocatable, intent(out) :: error
+    real(wp), intent(in), optional :: x(:, :)
     type(error_t), allocatable :: inner
     integer :: nn
     associate (s => model%subs(isub))
       nn = ELEMENT_NODE_COUNT(s%elem_type(e))
-      call element_stiffness(s%elem_type(e), s%x(:, s%elem_nodes(1:nn, e)), &
-           s%sections(s%elem_section(e)), model%materials(s%sections(s%elem_section(e))%material), &
-           ke, inner, element_drill(s, e))
+      if (present(x)) then
+         call element_stiffness(s%elem_type(e), x(:, s%elem_nodes(1:nn, e)), &
+              s%sections(s%elem_section(e)), model%materials(s%sections(s%elem_section(e))%material), &
+              ke, inner, element_drill(s, e))
+      else
+         call element_stiffness(s%elem_type(e), s%x(:, s%elem_nodes(1:nn, e)), &
+              s%sections(s%elem_section(e)), model%materials(s%sections(s%elem_section(e))%material), &
+              ke, inner, element_drill(s, e))
+      end if
       if (allocated(inner)) call add_error_line(error, EXIT_DECK, element_where(model, isub, e)// &
            ': error: element '//itoa(int(s%elem_id(e)))//': '//inner%message)
     end associate

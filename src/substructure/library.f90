@@ -33,6 +33,27 @@ module superjoin_substructure_library
   !! fit its size, is never used (the listing says so once) and is replaced.
   !! Entries are written to a temporary name in DIR and renamed, so a killed
   !! run leaves no half entry under a key's name.
+  !!
+  !! Translated copies (identical parts found by their geometry, --twins):
+  !! a run condenses one part of each group of copies (the cache turns it for
+  !! the others), so its entry is stored under that part's key; a later run
+  !! may condense another member of the group (the first one changed), whose
+  !! own key has no entry. Every stored entry of a part a translation does
+  !! not change (copy_key) therefore gets a pointer file DIR/<copy key>.<n>.sjg
+  !! holding the entry's key and its part's node coordinates; a part whose
+  !! own key misses reads the pointers of its copy key and takes an entry
+  !! whose part's nodes are its own translated (within COPY_TOL of the part's
+  !! size), once the entry's key is recomputed from the part with those
+  !! coordinates (so nothing but the coordinates differs, to the bit) and its
+  !! sample elements are recomputed on them. K* and the stored loads'
+  !! solutions of a translated copy are its own to round-off. A part that
+  !! needs loads such an entry has not seen is condensed anew and stored
+  !! under its own key. Not looked for under --twins no (pointers are still
+  !! written) or --library-verify (it compares the part's own assembled k
+  !! with the entry's to the bit), nor for turned copies.
+  !! Pointers are created exclusively (open status 'new'): concurrent runs
+  !! never overwrite one; a lost or damaged pointer costs a later run a
+  !! condensation, never a wrong entry.
   use, intrinsic :: iso_c_binding, only: c_int
   use superjoin_kinds, only: wp, ip, i8
   use superjoin_error, only: error_t
@@ -40,7 +61,7 @@ module superjoin_substructure_library
   use superjoin_model_notes, only: note
   use superjoin_assembly_dofs, only: dof_table_t
   use superjoin_substructure_local_system, only: build_local_system, local_numbering
-  use superjoin_substructure_library_key, only: input_key, sample_hash, stiffness_hash, KEY_LEN
+  use superjoin_substructure_library_key, only: input_key, copy_key, sample_hash, stiffness_hash, KEY_LEN
   use superjoin_substructure_condensed, only: condensed_t, condense
   use superjoin_solvers_solver, only: subtract_bi
   use superjoin_utils_sha256, only: sha256_t, update, digest
@@ -52,8 +73,19 @@ module superjoin_substructure_library
 
   integer(i8), parameter :: FORMAT_VERSION = 2
     !! Layout of an entry file (2: the sample and stiffness hashes after MAXRATIO).
-  character(len=8), parameter :: MAGIC = 'SJCONDLB'
+  integer, parameter :: MAGIC_LEN = 8
+  character(len=MAGIC_LEN), parameter :: MAGIC = 'SJCONDLB'
   character(len=*), parameter :: SUFFIX = '.sjc'
+  character(len=MAGIC_LEN), parameter :: POINTER_MAGIC = 'SJCONDLG'
+  character(len=*), parameter :: POINTER_SUFFIX = '.sjg'
+  integer(i8), parameter :: POINTER_VERSION = 1
+  integer(i8), parameter :: POINTER_HEAD = MAGIC_LEN + 8 + 2*KEY_LEN + 8
+    !! Bytes of a pointer file before its coordinates.
+  integer, parameter :: MAX_POINTERS = 100000
+    !! Pointer files of one copy key looked at, at most.
+  real(wp), parameter :: COPY_TOL = 1.0e-12_wp
+    !! A translated copy's nodes agree within COPY_TOL × the part's size (its
+    !! largest extent along an axis), as the twins of one run.
   integer, parameter :: HEX = KEY_LEN
   integer(i8), parameter :: HEX_I8 = HEX, MAGIC_I8 = len(MAGIC)
   integer, parameter :: DRAIN_BYTES = 1048576
@@ -77,12 +109,16 @@ module superjoin_substructure_library
      integer(i8) :: maxratio_at = 0
      character(len=HEX) :: samples = ''         !! sample_hash of the part
      character(len=HEX) :: stiffness = ''       !! stiffness_hash of its assembled k
+     character(len=HEX) :: own = ''             !! the part's own key (key differs: a translated copy's entry)
+     character(len=HEX) :: copies = ''          !! its copy key (blank: a translation may change the part)
+     character(:), allocatable :: dir           !! the library's directory
   end type stored_t
 
   type, public :: library_t
     !! The library of this run (dir unallocated: none).
      character(:), allocatable :: dir
      logical :: verify = .false.              !! --library-verify: assemble k on a hit and compare its hash
+     logical :: copies = .true.               !! entries of translated copies looked for (--twins)
   end type library_t
 
   type :: sink_t
@@ -147,41 +183,210 @@ contains
     cond%sys%isub = isub
     call local_numbering(table, isub, bnd, cond%sys%pdof, cond%sys%ni)
     cond%sys%nb = size(cond%sys%pdof, kind=i8) - cond%sys%ni
-    st%key = input_key(model, table, isub, cond%sys%pdof, cond%sys%ni, solver_name)
-    st%file = lib%dir//'/'//st%key//SUFFIX
+    st%dir = lib%dir
+    st%own = input_key(model, table, isub, cond%sys%pdof, cond%sys%ni, solver_name)
+    st%copies = copy_key(model, table, isub, cond%sys%pdof, cond%sys%ni, solver_name)
+    call point_at(st, st%own)
     inquire (file=st%file, exist=exists)
-    why = ''
     if (exists) then
+       why = ''
        call read_entry(st, cond, why)
        if (len(why) == 0) call check_loaded(lib, model, table, bnd, solver_name, cond, st, why)
        if (len(why) == 0) then
           call note(st%notes, 'library: substructure '//name//' loaded from library (key '//st%key//')')
           return
        end if
-       if (allocated(cond%se%k)) deallocate (cond%se%k)
-       if (allocated(cond%spc)) deallocate (cond%spc)
-       if (allocated(st%t)) deallocate (st%t)
-       if (allocated(st%sets)) deallocate (st%sets)
+       call forget_entry(cond, st)
        call note(st%notes, 'library: entry '//st%key//' not used ('//why//'): condensed anew')
+    end if
+    if (len_trim(st%copies) > 0 .and. lib%copies .and. .not. lib%verify) then
+       call find_copy(lib, model, table, bnd, solver_name, cond, st, exists)
+       if (exists) return
     end if
     if (.not. allocated(cond%sys%k%val)) call build_local_system(model, table, isub, bnd, cond%sys, error)
     if (allocated(error)) return
-    st%stiffness = stiffness_hash(cond%sys, solver_name)
-    st%samples = sample_hash(model, isub, error)
+    call store_own(model, table, solver_name, cond, st, error)
     if (allocated(error)) return
-    call condense(model, table, solver_name, cond, error)
-    if (allocated(error)) return
-    call recovery_operator(cond, st, error)
-    if (allocated(error)) return
-    allocate (st%sets(0))
-    call write_entry(st, cond)
     call note(st%notes, 'library: substructure '//name//' condensed and stored (key '//st%key//')')
   end subroutine library_condense
 
-  subroutine check_loaded(lib, model, table, bnd, solver_name, cond, st, why)
+  subroutine store_own(model, table, solver_name, cond, st, error)
+    !! The part condensed (unless its factor is there) with its own key, its
+    !! recovery operator formed and its entry stored, with no load set yet,
+    !! and its pointer (translated copies). Its k is assembled in cond%sys.
+    type(model_t), intent(in) :: model
+    type(dof_table_t), intent(in) :: table
+    character(*), intent(in) :: solver_name
+    type(condensed_t), intent(inout) :: cond
+    type(stored_t), intent(inout) :: st
+    type(error_t), allocatable, intent(out) :: error
+    call point_at(st, st%own)
+    st%stiffness = stiffness_hash(cond%sys, solver_name)
+    st%samples = sample_hash(model, cond%sys%isub, error)
+    if (allocated(error)) return
+    if (.not. allocated(cond%solver)) call condense(model, table, solver_name, cond, error)
+    if (allocated(error)) return
+    if (allocated(st%t)) deallocate (st%t)
+    call recovery_operator(cond, st, error)
+    if (allocated(error)) return
+    if (allocated(st%sets)) deallocate (st%sets)
+    allocate (st%sets(0))
+    call write_entry(st, cond)
+    associate (sub => model%subs(cond%sys%isub))
+      if (len_trim(st%copies) > 0) call write_pointer(st, sub%x(:, 1:sub%nnode))
+    end associate
+  end subroutine store_own
+
+  subroutine point_at(st, key)
+    !! st names the entry of this key (key and file).
+    type(stored_t), intent(inout) :: st
+    character(len=HEX), intent(in) :: key
+    st%key = key
+    st%file = st%dir//'/'//key//SUFFIX
+  end subroutine point_at
+
+  subroutine forget_entry(cond, st)
+    !! What an entry that is not used left in cond and st dropped.
+    type(condensed_t), intent(inout) :: cond
+    type(stored_t), intent(inout) :: st
+    if (allocated(cond%se%k)) deallocate (cond%se%k)
+    if (allocated(cond%spc)) deallocate (cond%spc)
+    if (allocated(st%t)) deallocate (st%t)
+    if (allocated(st%sets)) deallocate (st%sets)
+  end subroutine forget_entry
+
+  subroutine find_copy(lib, model, table, bnd, solver_name, cond, st, found)
+    !! The entry of a translated copy of the part, through the pointers of its
+    !! copy key (module comment): found, then cond and st hold it (st%key its
+    !! key); else st names the part's own entry again.
+    type(library_t), intent(in) :: lib
+    type(model_t), intent(in) :: model
+    type(dof_table_t), intent(in) :: table
+    logical, intent(in) :: bnd(:)
+    character(*), intent(in) :: solver_name
+    type(condensed_t), intent(inout) :: cond
+    type(stored_t), intent(inout) :: st
+    logical, intent(out) :: found
+    real(wp), allocatable :: xref(:, :)
+    character(len=HEX) :: key
+    character(:), allocatable :: why
+    logical :: exists, ok
+    integer :: n
+    found = .false.
+    associate (sub => model%subs(cond%sys%isub))
+      do n = 1, MAX_POINTERS
+         inquire (file=pointer_path(st, n), exist=exists)
+         if (.not. exists) exit
+         call read_pointer(pointer_path(st, n), st%copies, key, ok, xref)
+         if (.not. ok) cycle
+         if (key == st%own) cycle
+         if (.not. translated(sub%x(:, 1:sub%nnode), xref)) cycle
+         if (input_key(model, table, cond%sys%isub, cond%sys%pdof, cond%sys%ni, solver_name, xref) /= key) cycle
+         call point_at(st, key)
+         inquire (file=st%file, exist=exists)
+         if (.not. exists) cycle
+         why = ''
+         call read_entry(st, cond, why)
+         if (len(why) == 0) call check_loaded(lib, model, table, bnd, solver_name, cond, st, why, xref)
+         if (len(why) == 0) then
+            found = .true.
+            call note(st%notes, 'library: substructure '//sub%name//' loaded from library, the entry of a '// &
+                 'translated copy (key '//st%key//')')
+            return
+         end if
+         call forget_entry(cond, st)
+         call note(st%notes, 'library: entry '//st%key//' of a translated copy not used ('//why//')')
+      end do
+    end associate
+    call point_at(st, st%own)
+  end subroutine find_copy
+
+  pure logical function translated(x, xref) result(yes)
+    !! Whether the nodes x are the nodes xref translated, within COPY_TOL ×
+    !! the largest extent of xref along an axis.
+    real(wp), intent(in) :: x(:, :), xref(:, :)
+    real(wp) :: t(3), tol
+    integer :: i
+    yes = size(x, 1) == 3 .and. size(xref, 1) == 3 .and. size(x, 2) == size(xref, 2) .and. size(x, 2) > 0
+    if (.not. yes) return
+    tol = COPY_TOL*maxval(maxval(xref, dim=2) - minval(xref, dim=2))
+    t = x(:, 1) - xref(:, 1)
+    do i = 2, size(x, 2)
+       if (any(abs(x(:, i) - xref(:, i) - t) > tol)) then
+          yes = .false.
+          return
+       end if
+    end do
+  end function translated
+
+  function pointer_path(st, n) result(path)
+    !! The n-th pointer file of st's copy key.
+    type(stored_t), intent(in) :: st
+    integer, intent(in) :: n
+    character(:), allocatable :: path
+    path = st%dir//'/'//st%copies//'.'//itoa(n)//POINTER_SUFFIX
+  end function pointer_path
+
+  subroutine read_pointer(path, copies, key, ok, xref)
+    !! The entry key a pointer file names (ok: a pointer of this copy key,
+    !! whole) and, if asked, the coordinates it keeps.
+    character(*), intent(in) :: path
+    character(len=HEX), intent(in) :: copies
+    character(len=HEX), intent(out) :: key
+    logical, intent(out) :: ok
+    real(wp), allocatable, intent(out), optional :: xref(:, :)
+    character(len=MAGIC_LEN) :: stamp
+    character(len=HEX) :: group
+    integer(i8) :: ver, nnode, bytes
+    integer :: unit, iostat
+    ok = .false.
+    key = ''
+    open (newunit=unit, file=path, access='stream', form='unformatted', status='old', action='read', &
+         iostat=iostat)
+    if (iostat /= 0) return
+    inquire (unit=unit, size=bytes)
+    read (unit, iostat=iostat) stamp, ver, group, key, nnode
+    ok = iostat == 0 .and. stamp == POINTER_MAGIC .and. ver == POINTER_VERSION .and. group == copies
+    if (ok) ok = nnode > 0 .and. nnode <= (bytes - POINTER_HEAD)/24 .and. bytes == POINTER_HEAD + 24*nnode
+    if (ok .and. present(xref)) then
+       allocate (xref(3, nnode))
+       read (unit, iostat=iostat) xref
+       ok = iostat == 0
+    end if
+    close (unit)
+  end subroutine read_pointer
+
+  subroutine write_pointer(st, x)
+    !! The pointer from st's copy key to its entry, with the part's nodes x:
+    !! the first free number (created exclusively), unless one points there
+    !! already. A failure leaves at most a pointer that is never taken.
+    type(stored_t), intent(in) :: st
+    real(wp), intent(in) :: x(:, :)
+    character(len=HEX) :: key
+    logical :: exists, ok
+    integer :: n, unit, iostat
+    do n = 1, MAX_POINTERS
+       inquire (file=pointer_path(st, n), exist=exists)
+       if (exists) then
+          call read_pointer(pointer_path(st, n), st%copies, key, ok)
+          if (ok .and. key == st%key) return
+          cycle
+       end if
+       open (newunit=unit, file=pointer_path(st, n), access='stream', form='unformatted', status='new', &
+            action='write', iostat=iostat)
+       if (iostat /= 0) cycle   ! another run took this number meanwhile
+       write (unit, iostat=iostat) POINTER_MAGIC, POINTER_VERSION, st%copies, st%key, size(x, 2, kind=i8), x
+       close (unit)
+       if (iostat /= 0) call remove_file(pointer_path(st, n))
+       return
+    end do
+  end subroutine write_pointer
+
+  subroutine check_loaded(lib, model, table, bnd, solver_name, cond, st, why, x)
     !! The safety net on a sound entry: its sample element stiffnesses
-    !! recomputed (always), its assembled k (under --library-verify, which
-    !! keeps k assembled); why says what differs (empty: none).
+    !! recomputed (always; x: on these coordinates of the part's nodes, a
+    !! translated copy's), its assembled k (under --library-verify, which
+    !! keeps k assembled; never with x); why says what differs (empty: none).
     type(library_t), intent(in) :: lib
     type(model_t), intent(in) :: model
     type(dof_table_t), intent(in) :: table
@@ -190,9 +395,10 @@ contains
     type(condensed_t), intent(inout) :: cond
     type(stored_t), intent(in) :: st
     character(:), allocatable, intent(inout) :: why
+    real(wp), intent(in), optional :: x(:, :)
     type(error_t), allocatable :: error
     character(len=HEX) :: h
-    h = sample_hash(model, cond%sys%isub, error)
+    h = sample_hash(model, cond%sys%isub, error, x)
     if (allocated(error) .or. h /= st%samples) then
        why = 'its sample element stiffnesses differ: stale'
        return
@@ -271,7 +477,12 @@ contains
     deallocate (cond%se%k, cond%spc)
     call rebuild_local_system(model, table, bnd, cond, error)
     if (allocated(error)) return
-    call condense(model, table, solver_name, cond, error)
+    if (st%key /= st%own) then
+       ! A translated copy's entry: the part's own entry from now on.
+       call store_own(model, table, solver_name, cond, st, error)
+    else
+       call condense(model, table, solver_name, cond, error)
+    end if
     if (allocated(error)) return
     call note(st%notes, 'library: substructure '//model%subs(cond%sys%isub)%name// &
          ' has loads its entry has not seen: condensed anew')

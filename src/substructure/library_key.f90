@@ -44,6 +44,7 @@ module superjoin_substructure_library_key
   use superjoin_model_types, only: model_t, section_t, material_t
   use superjoin_assembly_dofs, only: dof_table_t
   use superjoin_assembly_assemble, only: element_matrix
+  use superjoin_elements_traits, only: element_traits, element_traits_t
   use superjoin_substructure_local_system, only: local_system_t
   use superjoin_utils_sha256, only: sha256_t, update, digest
   implicit none (type, external)
@@ -57,13 +58,49 @@ module superjoin_substructure_library_key
   integer, parameter, public :: KEY_LEN = 64
     !! Hexadecimal digits of a key.
 
-  public :: input_key, sample_hash, stiffness_hash, hash_section, hash_material
+  public :: input_key, copy_key, sample_hash, stiffness_hash, hash_section, hash_material
 
 contains
 
-  function input_key(model, table, isub, pdof, ni, solver_name) result(key)
+  function input_key(model, table, isub, pdof, ni, solver_name, x) result(key)
     !! The library key of substructure isub with local DOFs pdof (ni interior
     !! first): the SHA-256 of its condensation's inputs (module comment).
+    !! x: other coordinates of its nodes in place of its own (a translated
+    !! copy's entry checked: copy_key).
+    type(model_t), intent(in) :: model
+    type(dof_table_t), intent(in) :: table
+    integer, intent(in) :: isub
+    integer(i8), intent(in) :: pdof(:)
+    integer(i8), intent(in) :: ni
+    character(*), intent(in) :: solver_name
+    real(wp), intent(in), optional :: x(:, :)
+    character(len=KEY_LEN) :: key
+    type(sha256_t) :: s
+    call update(s, 'SJCONDLB input key|'//SUPERJOIN_VERSION//'|'//solver_name//'|')
+    call update(s, [int(FORMULATION_VERSION, i8), ni, size(pdof, kind=i8)])
+    call update(s, int(table%p_node(pdof), ip))
+    call update(s, int(table%p_dof(pdof)))
+    associate (sub => model%subs(isub))
+      call update(s, [int(sub%nnode, i8), int(sub%nelem, i8), int(size(sub%elem_nodes, 1), i8)])
+      if (present(x)) then
+         call update(s, x)
+      else if (sub%nnode > 0) then
+         call update(s, sub%x(:, 1:sub%nnode))
+      end if
+    end associate
+    call hash_content(s, model, isub)
+    key = digest(s)
+  end function input_key
+
+  function copy_key(model, table, isub, pdof, ni, solver_name) result(key)
+    !! The key of the translated copies of substructure isub: what input_key
+    !! hashes but the node coordinates (the parts that differ from it only by
+    !! a translation share it: superjoin_substructure_library finds their
+    !! entries through it and checks the translation). Blank where a
+    !! translation may change the stiffness: a part with an axisymmetric
+    !! element (its radius is x), a given stiffness, or a cylindrical system
+    !! of material axes (its axis is fixed in space); and a part without
+    !! nodes or elements.
     type(model_t), intent(in) :: model
     type(dof_table_t), intent(in) :: table
     integer, intent(in) :: isub
@@ -72,14 +109,55 @@ contains
     character(*), intent(in) :: solver_name
     character(len=KEY_LEN) :: key
     type(sha256_t) :: s
-    integer :: i
-    call update(s, 'SJCONDLB input key|'//SUPERJOIN_VERSION//'|'//solver_name//'|')
+    key = ''
+    if (.not. translatable(model, isub)) return
+    call update(s, 'SJCONDLB copy key|'//SUPERJOIN_VERSION//'|'//solver_name//'|')
     call update(s, [int(FORMULATION_VERSION, i8), ni, size(pdof, kind=i8)])
     call update(s, int(table%p_node(pdof), ip))
     call update(s, int(table%p_dof(pdof)))
     associate (sub => model%subs(isub))
       call update(s, [int(sub%nnode, i8), int(sub%nelem, i8), int(size(sub%elem_nodes, 1), i8)])
-      if (sub%nnode > 0) call update(s, sub%x(:, 1:sub%nnode))
+    end associate
+    call hash_content(s, model, isub)
+    key = digest(s)
+  end function copy_key
+
+  logical function translatable(model, isub)
+    !! Whether a translation of substructure isub keeps its stiffness
+    !! (copy_key).
+    type(model_t), intent(in) :: model
+    integer, intent(in) :: isub
+    type(element_traits_t) :: t
+    integer(ip) :: e
+    integer :: i
+    translatable = .false.
+    associate (sub => model%subs(isub))
+      if (sub%nnode < 1 .or. sub%nelem < 1 .or. allocated(sub%given)) return
+      do e = 1, sub%nelem
+         if (e > 1) then
+            if (sub%elem_type(e) == sub%elem_type(e - 1)) cycle   ! a run of one type once
+         end if
+         t = element_traits(sub%elem_type(e))
+         if (t%axisymmetric) return
+      end do
+      if (allocated(sub%sections)) then
+         do i = 1, size(sub%sections)
+            if (.not. allocated(sub%sections(i)%axes)) cycle
+            if (sub%sections(i)%axes%cylindrical) return
+         end do
+      end if
+    end associate
+    translatable = .true.
+  end function translatable
+
+  subroutine hash_content(s, model, isub)
+    !! The keys' part after the coordinates: elements, drilling masks,
+    !! sections and their materials, a given stiffness.
+    type(sha256_t), intent(inout) :: s
+    type(model_t), intent(in) :: model
+    integer, intent(in) :: isub
+    integer :: i
+    associate (sub => model%subs(isub))
       if (sub%nelem > 0) then
          call update(s, sub%elem_type(1:sub%nelem))
          call update(s, reshape(sub%elem_nodes(:, 1:sub%nelem), [size(sub%elem_nodes, 1)*sub%nelem]))
@@ -104,22 +182,22 @@ contains
          call update(s, sub%given%k)
       end if
     end associate
-    key = digest(s)
-  end function input_key
+  end subroutine hash_content
 
   subroutine hash_section(s, sec, placed)
-    !! Every field of a section an element may read. placed false (the
-    !! identical parts of superjoin_substructure_twins): the beam orientation
-    !! vector and the material axes left out, as they turn with the part
-    !! (zeros in v's place; the twins check them turned), and the material's
-    !! index (the caller hashes the material itself: equal copies match).
+    !! Every field of a section an element may read but the material's index
+    !! (the caller hashes the material itself: equal materials of other names
+    !! match). placed false (the identical parts of
+    !! superjoin_substructure_twins): the beam orientation vector and the
+    !! material axes left out too, as they turn with the part (zeros in v's
+    !! place; the twins check them turned).
     type(sha256_t), intent(inout) :: s
     type(section_t), intent(in) :: sec
     logical, intent(in), optional :: placed
     logical :: with_place
     with_place = .true.
     if (present(placed)) with_place = placed
-    call update(s, [sec%kind, merge(sec%material, 0, with_place), sec%nfibre, flag(sec%has_v), flag(sec%nodal_thickness), &
+    call update(s, [sec%kind, 0, sec%nfibre, flag(sec%has_v), flag(sec%nodal_thickness), &
          flag(allocated(sec%node_thickness)), flag(allocated(sec%axes))])
     call update(s, [sec%area, sec%iy, sec%iz, sec%j, sec%thickness, merge(sec%v, 0.0_wp, with_place), sec%shear_k, &
          sec%shear_factor])
@@ -161,13 +239,15 @@ contains
     flag = merge(1, 0, yes)
   end function flag
 
-  function sample_hash(model, isub, error) result(key)
+  function sample_hash(model, isub, error, x) result(key)
     !! The SHA-256 of the element stiffnesses of the sample elements of
     !! substructure isub: the first element of each type, the middle one and
-    !! the last one (module comment).
+    !! the last one (module comment). x: its nodes at these coordinates
+    !! instead (a translated copy's entry checked on that copy's nodes).
     type(model_t), intent(in) :: model
     integer, intent(in) :: isub
     type(error_t), allocatable, intent(out) :: error
+    real(wp), intent(in), optional :: x(:, :)
     character(len=KEY_LEN) :: key
     type(sha256_t) :: s
     real(wp), allocatable :: ke(:, :)
@@ -181,7 +261,7 @@ contains
        new = .not. any(seen == model%subs(isub)%elem_type(e))
        if (.not. (new .or. e == (n + 1)/2 .or. e == n)) cycle
        if (new) seen = [seen, model%subs(isub)%elem_type(e)]
-       call element_matrix(model, isub, e, ke, error)
+       call element_matrix(model, isub, e, ke, error, x)
        if (allocated(error)) return
        call update(s, [int(e), size(ke, 1)])
        call update(s, ke)

@@ -211,7 +211,7 @@ def main():
         check(same_results((e, e_csv), (a, a_csv), work), f"{what}: the same results, {exact}")
         check(open(entry, "rb").read() == stored[os.path.basename(entry)],
               f"{what}: the entry stored anew byte-identical to the first")
-    check(not [f for f in os.listdir(lib) if not f.endswith(".sjc")], "no temporary file left in the library")
+    check(not [f for f in os.listdir(lib) if not f.endswith((".sjc", ".sjg"))], "no temporary file left in the library")
 
     n, n_csv = solve(binary, deck, "nolibrary", work)
     worst = 0.0

@@ -160,7 +160,7 @@ contains
     type(error_t), allocatable, intent(out) :: error
     type(health_work_t) :: w
     integer :: is, nstep, stat
-    real(wp) :: cond, knorm, limit
+    real(wp) :: cond, knorm, limit, warn_at
     character(len=32) :: buf
 
     nstep = size(st%q, 2)
@@ -187,10 +187,11 @@ contains
     call refine(st, knorm, limit, w, res, error)
     if (allocated(error)) return
 
-    if (maxval(res%fields%steps(:)%residual) > residual_warn_limit(res)) then
+    warn_at = residual_warn_limit(res)
+    if (maxval(res%fields%steps(:)%residual) > warn_at) then
        write (buf, '(es10.2e3)') maxval(res%fields%steps(:)%residual)
        call warn(res, 'relative residual '//trim(adjustl(buf))//' after refinement: results are inaccurate', &
-            res%fields%steps(:)%residual > residual_warn_limit(res))
+            res%fields%steps(:)%residual > warn_at)
        res%log%inaccurate = .true.
     end if
     if (res%summary%maxratio > MAXRATIO_WARN) then
@@ -482,6 +483,7 @@ contains
     type(results_t), intent(inout) :: res
     type(error_t), allocatable, intent(out) :: error
     real(wp), allocatable :: rows(:)
+    real(wp) :: bad_above
     logical :: ok
     integer :: is
     character(len=32) :: buf
@@ -502,11 +504,11 @@ contains
          res%fields%steps(is)%residual = safe_div(norm2(rf(:, is)), norm2(ffull(:, is)))
          res%fields%steps(is)%epsilon = energy_error(qfull(:, is), rf(:, is), ffull(:, is))
       end do
-      if (maxval(res%fields%steps(:)%residual) > residual_warn_limit(res)) then
+      bad_above = residual_warn_limit(res)
+      if (maxval(res%fields%steps(:)%residual) > bad_above) then
          write (buf, '(es10.2e3)') maxval(res%fields%steps(:)%residual)
          call warn(res, 'relative residual '//trim(adjustl(buf))//' of the whole system (condensed '// &
-              'substructures recovered): results are inaccurate', &
-              res%fields%steps(:)%residual > residual_warn_limit(res))
+              'substructures recovered): results are inaccurate', res%fields%steps(:)%residual > bad_above)
          res%log%inaccurate = .true.
       end if
     end associate

@@ -41,12 +41,15 @@ module superjoin_substructure_library
   !! own key has no entry. Every stored entry of a part a translation does
   !! not change (copy_key) therefore gets a pointer file DIR/<copy key>.<n>.sjg
   !! holding the entry's key and its part's node coordinates; a part whose
-  !! own key misses reads the pointers of its copy key and takes an entry
+  !! own key has no entry reads the pointers of its copy key (header first:
+  !! node count and extents) and takes an entry
   !! whose part's nodes are its own translated (within COPY_TOL of the part's
   !! size), once the entry's key is recomputed from the part with those
   !! coordinates (so nothing but the coordinates differs, to the bit) and its
   !! sample elements are recomputed on them. K* and the stored loads'
   !! solutions of a translated copy are its own to round-off. A part that
+  !! whose own key has an entry that cannot be used (damaged, stale) is
+  !! condensed and that entry replaced, no copy looked for. A part that
   !! needs loads such an entry has not seen is condensed anew and stored
   !! under its own key. Not looked for under --twins no (pointers are still
   !! written) or --library-verify (it compares the part's own assembled k
@@ -79,8 +82,9 @@ module superjoin_substructure_library
   character(len=MAGIC_LEN), parameter :: POINTER_MAGIC = 'SJCONDLG'
   character(len=*), parameter :: POINTER_SUFFIX = '.sjg'
   integer(i8), parameter :: POINTER_VERSION = 1
-  integer(i8), parameter :: POINTER_HEAD = MAGIC_LEN + 8 + 2*KEY_LEN + 8
-    !! Bytes of a pointer file before its coordinates.
+  integer(i8), parameter :: POINTER_HEAD = MAGIC_LEN + 8 + 2*KEY_LEN + 8 + 24
+    !! Bytes of a pointer file before its coordinates: magic, version, copy
+    !! key, entry key, node count, the nodes' extents along x, y, z.
   integer, parameter :: MAX_POINTERS = 100000
     !! Pointer files of one copy key looked at, at most.
   real(wp), parameter :: COPY_TOL = 1.0e-12_wp
@@ -177,7 +181,7 @@ contains
     type(stored_t), intent(out) :: st
     type(error_t), allocatable, intent(out) :: error
     character(:), allocatable :: why, name
-    logical :: exists
+    logical :: own_seen, found
 
     name = model%subs(isub)%name
     cond%sys%isub = isub
@@ -187,8 +191,8 @@ contains
     st%own = input_key(model, table, isub, cond%sys%pdof, cond%sys%ni, solver_name)
     st%copies = copy_key(model, table, isub, cond%sys%pdof, cond%sys%ni, solver_name)
     call point_at(st, st%own)
-    inquire (file=st%file, exist=exists)
-    if (exists) then
+    inquire (file=st%file, exist=own_seen)
+    if (own_seen) then
        why = ''
        call read_entry(st, cond, why)
        if (len(why) == 0) call check_loaded(lib, model, table, bnd, solver_name, cond, st, why)
@@ -199,15 +203,21 @@ contains
        call forget_entry(cond, st)
        call note(st%notes, 'library: entry '//st%key//' not used ('//why//'): condensed anew')
     end if
-    if (len_trim(st%copies) > 0 .and. lib%copies .and. .not. lib%verify) then
-       call find_copy(lib, model, table, bnd, solver_name, cond, st, exists)
-       if (exists) return
+    ! A damaged or stale entry of the part's own key is replaced, not passed over.
+    if (len_trim(st%copies) > 0 .and. lib%copies .and. .not. lib%verify .and. .not. own_seen) then
+       call find_copy(lib, model, table, bnd, solver_name, cond, st, found)
+       if (found) return
     end if
     if (.not. allocated(cond%sys%k%val)) call build_local_system(model, table, isub, bnd, cond%sys, error)
     if (allocated(error)) return
     call store_own(model, table, solver_name, cond, st, error)
     if (allocated(error)) return
-    call note(st%notes, 'library: substructure '//name//' condensed and stored (key '//st%key//')')
+    inquire (file=st%file, exist=found)
+    if (found) then
+       call note(st%notes, 'library: substructure '//name//' condensed and stored (key '//st%key//')')
+    else
+       call note(st%notes, 'library: substructure '//name//' condensed, not stored (key '//st%key//')')
+    end if
   end subroutine library_condense
 
   subroutine store_own(model, table, solver_name, cond, st, error)
@@ -220,6 +230,7 @@ contains
     type(condensed_t), intent(inout) :: cond
     type(stored_t), intent(inout) :: st
     type(error_t), allocatable, intent(out) :: error
+    logical :: stored
     call point_at(st, st%own)
     st%stiffness = stiffness_hash(cond%sys, solver_name)
     st%samples = sample_hash(model, cond%sys%isub, error)
@@ -232,8 +243,9 @@ contains
     if (allocated(st%sets)) deallocate (st%sets)
     allocate (st%sets(0))
     call write_entry(st, cond)
+    inquire (file=st%file, exist=stored)
     associate (sub => model%subs(cond%sys%isub))
-      if (len_trim(st%copies) > 0) call write_pointer(st, sub%x(:, 1:sub%nnode))
+      if (stored .and. len_trim(st%copies) > 0) call write_pointer(st, sub%x(:, 1:sub%nnode))
     end associate
   end subroutine store_own
 
@@ -277,7 +289,7 @@ contains
       do n = 1, MAX_POINTERS
          inquire (file=pointer_path(st, n), exist=exists)
          if (.not. exists) exit
-         call read_pointer(pointer_path(st, n), st%copies, key, ok, xref)
+         call read_pointer(pointer_path(st, n), st%copies, key, ok, sub%x(:, 1:sub%nnode), xref)
          if (.not. ok) cycle
          if (key == st%own) cycle
          if (.not. translated(sub%x(:, 1:sub%nnode), xref)) cycle
@@ -309,7 +321,7 @@ contains
     integer :: i
     yes = size(x, 1) == 3 .and. size(xref, 1) == 3 .and. size(x, 2) == size(xref, 2) .and. size(x, 2) > 0
     if (.not. yes) return
-    tol = COPY_TOL*maxval(maxval(xref, dim=2) - minval(xref, dim=2))
+    tol = COPY_TOL*maxval(extents(xref))
     t = x(:, 1) - xref(:, 1)
     do i = 2, size(x, 2)
        if (any(abs(x(:, i) - xref(:, i) - t) > tol)) then
@@ -327,17 +339,21 @@ contains
     path = st%dir//'/'//st%copies//'.'//itoa(n)//POINTER_SUFFIX
   end function pointer_path
 
-  subroutine read_pointer(path, copies, key, ok, xref)
+  subroutine read_pointer(path, copies, key, ok, x, xref)
     !! The entry key a pointer file names (ok: a pointer of this copy key,
-    !! whole) and, if asked, the coordinates it keeps.
+    !! whole) and, given the nodes x of a part, whether they may be that
+    !! entry's nodes translated: ok only if their count and extents are the
+    !! pointer's (within COPY_TOL), and then the pointer's coordinates in xref.
     character(*), intent(in) :: path
     character(len=HEX), intent(in) :: copies
     character(len=HEX), intent(out) :: key
     logical, intent(out) :: ok
+    real(wp), intent(in), optional :: x(:, :)
     real(wp), allocatable, intent(out), optional :: xref(:, :)
     character(len=MAGIC_LEN) :: stamp
     character(len=HEX) :: group
     integer(i8) :: ver, nnode, bytes
+    real(wp) :: ext(3)
     integer :: unit, iostat
     ok = .false.
     key = ''
@@ -345,16 +361,30 @@ contains
          iostat=iostat)
     if (iostat /= 0) return
     inquire (unit=unit, size=bytes)
-    read (unit, iostat=iostat) stamp, ver, group, key, nnode
-    ok = iostat == 0 .and. stamp == POINTER_MAGIC .and. ver == POINTER_VERSION .and. group == copies
-    if (ok) ok = nnode > 0 .and. nnode <= (bytes - POINTER_HEAD)/24 .and. bytes == POINTER_HEAD + 24*nnode
-    if (ok .and. present(xref)) then
-       allocate (xref(3, nnode))
-       read (unit, iostat=iostat) xref
-       ok = iostat == 0
+    read (unit, iostat=iostat) stamp, ver, group, key, nnode, ext
+    if (iostat == 0) then
+       ok = stamp == POINTER_MAGIC .and. ver == POINTER_VERSION .and. group == copies
+       if (ok) ok = nnode > 0 .and. nnode <= (bytes - POINTER_HEAD)/24 .and. bytes == POINTER_HEAD + 24*nnode
     end if
+    if (ok .and. present(x)) then
+       ok = size(x, 2, kind=i8) == nnode .and. &
+            all(abs(extents(x) - ext) <= COPY_TOL*max(maxval(ext), maxval(extents(x))))
+       if (ok .and. present(xref)) then
+          allocate (xref(3, nnode))
+          read (unit, iostat=iostat) xref
+          ok = iostat == 0
+       end if
+    end if
+    if (.not. ok) key = ''
     close (unit)
   end subroutine read_pointer
+
+  pure function extents(x) result(e)
+    !! The extents of the nodes x along x, y and z.
+    real(wp), intent(in) :: x(:, :)
+    real(wp) :: e(3)
+    e = maxval(x, dim=2) - minval(x, dim=2)
+  end function extents
 
   subroutine write_pointer(st, x)
     !! The pointer from st's copy key to its entry, with the part's nodes x:
@@ -374,8 +404,13 @@ contains
        end if
        open (newunit=unit, file=pointer_path(st, n), access='stream', form='unformatted', status='new', &
             action='write', iostat=iostat)
-       if (iostat /= 0) cycle   ! another run took this number meanwhile
-       write (unit, iostat=iostat) POINTER_MAGIC, POINTER_VERSION, st%copies, st%key, size(x, 2, kind=i8), x
+       if (iostat /= 0) then
+          inquire (file=pointer_path(st, n), exist=exists)
+          if (exists) cycle   ! another run took this number meanwhile
+          return              ! the library cannot be written: no pointer
+       end if
+       write (unit, iostat=iostat) POINTER_MAGIC, POINTER_VERSION, st%copies, st%key, size(x, 2, kind=i8), &
+            extents(x), x
        close (unit)
        if (iostat /= 0) call remove_file(pointer_path(st, n))
        return

@@ -157,6 +157,7 @@ contains
     type(model_t), intent(in) :: model
     integer, intent(in) :: isub
     integer :: i
+    logical :: has
     associate (sub => model%subs(isub))
       if (sub%nelem > 0) then
          call update(s, sub%elem_type(1:sub%nelem))
@@ -170,8 +171,9 @@ contains
          call update(s, [size(sub%sections)])
          do i = 1, size(sub%sections)
             call hash_section(s, sub%sections(i))
-            if (sub%sections(i)%material >= 1 .and. sub%sections(i)%material <= size(model%materials)) &
-                 call hash_material(s, model%materials(sub%sections(i)%material))
+            has = sub%sections(i)%material >= 1 .and. sub%sections(i)%material <= size(model%materials)
+            call update(s, [flag(has)])   ! (the section's material index is not hashed)
+            if (has) call hash_material(s, model%materials(sub%sections(i)%material))
          end do
       end if
       call update(s, [flag(allocated(sub%given))])

@@ -22,7 +22,8 @@ translated copies (B4, loaded where the others are joined, is not).
    its key, recomputed, does not match; nothing is said of it) and a
    truncated pointer: B2 condensed and stored each time, results as before.
 4. a translated copy with loads its entry has not seen: condensed anew and
-   stored under its own key.
+   stored under its own key; that entry damaged: replaced (the copy's entry
+   is not taken in its place).
 5. the whole deck moved: every part a translated copy of its old self; the
    same with axisymmetric elements (CAX4: the radius is x) and with material
    axes about a cylinder's axis: no copy taken (no pointer written at all),
@@ -47,7 +48,7 @@ RTOL = 1e-10
 FAILED = []
 MESH = 3
 KEY = 64
-POINTER_HEAD = 8 + 8 + 2 * KEY + 8
+POINTER_HEAD = 8 + 8 + 2 * KEY + 8 + 24   # magic, version, copy key, entry key, node count, extents
 
 
 def check(ok, what):
@@ -218,6 +219,18 @@ def main():
           and [os.path.basename(p) for p in pointers(damaged)] == names,
           "a damaged entry condensed anew and stored again keeps its one pointer")
 
+    # a library that cannot be written (sysfs, even for root): the run goes on, nothing is said to be stored
+    locked = "/sys/kernel"
+    try:
+        open(os.path.join(locked, "sj_probe"), "wb").close()
+        locked = None
+    except OSError:
+        pass
+    if locked:
+        n, _ = run(binary, work, "locked", study, locked)
+        check(said(n, "B1", "condensed, not stored") and any("cannot write" in x for x in n)
+              and not any("and stored" in x for x in n), "an unwritable library: condensed, not stored, and said")
+
     # 3. not taken
     def not_taken(name, text, lib_dir, *extra, reference=f_csv):
         n, csv = run(binary, work, name, text, lib_dir, *extra)
@@ -235,7 +248,7 @@ def main():
     shifted = from_first("shifted")
     for p in pointers(shifted):
         data = bytearray(open(p, "rb").read())
-        n = struct.unpack("<q", data[POINTER_HEAD - 8:POINTER_HEAD])[0]
+        n = struct.unpack("<q", data[POINTER_HEAD - 32:POINTER_HEAD - 24])[0]
         xs = list(struct.unpack(f"<{3 * n}d", data[POINTER_HEAD:]))
         xs = [v + (0.5 if i % 3 == 0 else 0.0) for i, v in enumerate(xs)]
         with open(p, "wb") as fh:
@@ -263,6 +276,15 @@ def main():
           and key_of(again, "B2") != old_b1, "B2 stored under its own key: the next run loads it")
     _, g_csv = run(binary, work, "loaded_fresh", blocks(e1=2.0e11, load_b2=True), os.path.join(work, "lib_lf"))
     check(close(d_csv, g_csv), "its results equal a fresh library's")
+    own = os.path.join(loaded, key_of(again, "B2") + ".sjc")
+    data = bytearray(open(own, "rb").read())
+    data[300] ^= 1
+    with open(own, "wb") as fh:
+        fh.write(bytes(data))
+    e, _ = run(binary, work, "own_damaged", blocks(e1=2.0e11, load_b2=True), loaded)
+    check(any("not used (checksum mismatch" in x for x in e) and said(e, "B2", "condensed and stored")
+          and not copied(e) and open(own, "rb").read() != bytes(data),
+          "B2's own entry damaged: condensed and the entry replaced, no copy taken in its place")
 
     # 5. the whole deck moved
     for kind, copies in (("C3D8", True), ("CAX4", False), ("CYL", False)):

@@ -75,21 +75,7 @@ contains
     character(*), intent(in) :: solver_name
     real(wp), intent(in), optional :: x(:, :)
     character(len=KEY_LEN) :: key
-    type(sha256_t) :: s
-    call update(s, 'SJCONDLB input key|'//SUPERJOIN_VERSION//'|'//solver_name//'|')
-    call update(s, [int(FORMULATION_VERSION, i8), ni, size(pdof, kind=i8)])
-    call update(s, int(table%p_node(pdof), ip))
-    call update(s, int(table%p_dof(pdof)))
-    associate (sub => model%subs(isub))
-      call update(s, [int(sub%nnode, i8), int(sub%nelem, i8), int(size(sub%elem_nodes, 1), i8)])
-      if (present(x)) then
-         call update(s, x)
-      else if (sub%nnode > 0) then
-         call update(s, sub%x(:, 1:sub%nnode))
-      end if
-    end associate
-    call hash_content(s, model, isub)
-    key = digest(s)
+    key = part_key('input key', model, table, isub, pdof, ni, solver_name, .true., x)
   end function input_key
 
   function copy_key(model, table, isub, pdof, ni, solver_name) result(key)
@@ -108,19 +94,40 @@ contains
     integer(i8), intent(in) :: ni
     character(*), intent(in) :: solver_name
     character(len=KEY_LEN) :: key
-    type(sha256_t) :: s
     key = ''
     if (.not. translatable(model, isub)) return
-    call update(s, 'SJCONDLB copy key|'//SUPERJOIN_VERSION//'|'//solver_name//'|')
+    key = part_key('copy key', model, table, isub, pdof, ni, solver_name, .false.)
+  end function copy_key
+
+  function part_key(tag, model, table, isub, pdof, ni, solver_name, placed, x) result(key)
+    !! The SHA-256 of substructure isub's condensation inputs under tag; placed:
+    !! with its node coordinates (x in place of its own, if given).
+    character(*), intent(in) :: tag
+    type(model_t), intent(in) :: model
+    type(dof_table_t), intent(in) :: table
+    integer, intent(in) :: isub
+    integer(i8), intent(in) :: pdof(:)
+    integer(i8), intent(in) :: ni
+    character(*), intent(in) :: solver_name
+    logical, intent(in) :: placed
+    real(wp), intent(in), optional :: x(:, :)
+    character(len=KEY_LEN) :: key
+    type(sha256_t) :: s
+    call update(s, 'SJCONDLB '//tag//'|'//SUPERJOIN_VERSION//'|'//solver_name//'|')
     call update(s, [int(FORMULATION_VERSION, i8), ni, size(pdof, kind=i8)])
     call update(s, int(table%p_node(pdof), ip))
     call update(s, int(table%p_dof(pdof)))
     associate (sub => model%subs(isub))
       call update(s, [int(sub%nnode, i8), int(sub%nelem, i8), int(size(sub%elem_nodes, 1), i8)])
+      if (placed .and. present(x)) then
+         call update(s, x)
+      else if (placed .and. sub%nnode > 0) then
+         call update(s, sub%x(:, 1:sub%nnode))
+      end if
     end associate
     call hash_content(s, model, isub)
     key = digest(s)
-  end function copy_key
+  end function part_key
 
   logical function translatable(model, isub)
     !! Whether a translation of substructure isub keeps its stiffness

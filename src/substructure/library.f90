@@ -47,7 +47,7 @@ module superjoin_substructure_library
   !! size), once the entry's key is recomputed from the part with those
   !! coordinates (so nothing but the coordinates differs, to the bit) and its
   !! sample elements are recomputed on them. K* and the stored loads'
-  !! solutions of a translated copy are its own to round-off. A part that
+  !! solutions of a translated copy are its own to round-off. A part
   !! whose own key has an entry that cannot be used (damaged, stale) is
   !! condensed and that entry replaced, no copy looked for. A part that
   !! needs loads such an entry has not seen is condensed anew and stored
@@ -210,9 +210,8 @@ contains
     end if
     if (.not. allocated(cond%sys%k%val)) call build_local_system(model, table, isub, bnd, cond%sys, error)
     if (allocated(error)) return
-    call store_own(model, table, solver_name, cond, st, error)
+    call store_own(model, table, solver_name, cond, st, found, error)
     if (allocated(error)) return
-    inquire (file=st%file, exist=found)
     if (found) then
        call note(st%notes, 'library: substructure '//name//' condensed and stored (key '//st%key//')')
     else
@@ -220,17 +219,19 @@ contains
     end if
   end subroutine library_condense
 
-  subroutine store_own(model, table, solver_name, cond, st, error)
+  subroutine store_own(model, table, solver_name, cond, st, stored, error)
     !! The part condensed (unless its factor is there) with its own key, its
-    !! recovery operator formed and its entry stored, with no load set yet,
-    !! and its pointer (translated copies). Its k is assembled in cond%sys.
+    !! recovery operator formed and its entry stored (stored: written), with
+    !! no load set yet, and its pointer (translated copies). Its k is
+    !! assembled in cond%sys.
     type(model_t), intent(in) :: model
     type(dof_table_t), intent(in) :: table
     character(*), intent(in) :: solver_name
     type(condensed_t), intent(inout) :: cond
     type(stored_t), intent(inout) :: st
+    logical, intent(out) :: stored
     type(error_t), allocatable, intent(out) :: error
-    logical :: stored
+    stored = .false.
     call point_at(st, st%own)
     st%stiffness = stiffness_hash(cond%sys, solver_name)
     st%samples = sample_hash(model, cond%sys%isub, error)
@@ -242,8 +243,7 @@ contains
     if (allocated(error)) return
     if (allocated(st%sets)) deallocate (st%sets)
     allocate (st%sets(0))
-    call write_entry(st, cond)
-    inquire (file=st%file, exist=stored)
+    call write_entry(st, cond, stored)
     associate (sub => model%subs(cond%sys%isub))
       if (stored .and. len_trim(st%copies) > 0) call write_pointer(st, sub%x(:, 1:sub%nnode))
     end associate
@@ -507,6 +507,7 @@ contains
     type(stored_t), intent(inout) :: st
     real(wp), intent(in) :: f_local(:, :)
     type(error_t), allocatable, intent(out) :: error
+    logical :: stored
     if (allocated(cond%solver)) return
     if (find_set(st, loads_key(f_local)) > 0) return
     deallocate (cond%se%k, cond%spc)
@@ -514,7 +515,7 @@ contains
     if (allocated(error)) return
     if (st%key /= st%own) then
        ! A translated copy's entry: the part's own entry from now on.
-       call store_own(model, table, solver_name, cond, st, error)
+       call store_own(model, table, solver_name, cond, st, stored, error)
     else
        call condense(model, table, solver_name, cond, error)
     end if
@@ -637,16 +638,18 @@ contains
 
   ! ---- entry files
 
-  subroutine write_entry(st, cond)
+  subroutine write_entry(st, cond, stored)
     !! Write the entry to a temporary name in the library and rename it to
-    !! its key's name. A failure leaves no entry (the run goes on).
+    !! its key's name (stored: done). A failure leaves no entry (the run goes on).
     type(stored_t), intent(inout) :: st
     type(condensed_t), intent(in) :: cond
+    logical, intent(out), optional :: stored
     type(sink_t) :: w
     type(error_t), allocatable :: error
     character(:), allocatable :: tmp
     integer(i8) :: size_on_disk
     integer :: s
+    if (present(stored)) stored = .false.
     tmp = st%file//'.'//itoa(int(c_getpid()))//'.tmp'
     call temp_register(tmp)
     open (newunit=w%unit, file=tmp, access='stream', form='unformatted', status='replace', &
@@ -682,6 +685,8 @@ contains
     if (w%iostat /= 0 .or. allocated(error)) then
        call remove_file(tmp)
        call note(st%notes, 'library: cannot write '//st%file//': entry not stored')
+    else if (present(stored)) then
+       stored = .true.
     end if
     call temp_unregister()
   end subroutine write_entry

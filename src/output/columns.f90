@@ -21,6 +21,18 @@ module superjoin_output_columns
      logical :: truss(NUM_ELEMENT_TYPES) = .false.         !! T2D2, T3D2
   end type element_kinds_t
 
+  ! The type column of an element row: a five-letter type (CPS8R) takes one of
+  ! the two blanks, so the columns stay in place (a six-letter one, C3D20R,
+  ! shifts the rest of its row by one); the names are 6 characters, blank-padded.
+  logical, parameter :: SIX_LETTERS(NUM_ELEMENT_TYPES) = ELEMENT_TYPE_NAMES(:)(6:6) /= ' '
+    !! the types whose names have six letters
+  character(len=7), parameter :: TYPE_TAIL(NUM_ELEMENT_TYPES) = merge(' '//ELEMENT_TYPE_NAMES, &
+       merge(' '//ELEMENT_TYPE_NAMES(:)(1:5)//' ', '  '//ELEMENT_TYPE_NAMES(:)(1:4)//' ', &
+       ELEMENT_TYPE_NAMES(:)(5:5) /= ' '), SIX_LETTERS)
+    !! the type column of each element type, its first TYPE_TAIL_LEN characters
+  integer, parameter :: TYPE_TAIL_LEN(NUM_ELEMENT_TYPES) = merge(7, 6, SIX_LETTERS)
+    !! the width of each type's column: 7 for a six-letter name, else 6
+
   public :: element_prefix, chop, element_kinds
 
 contains
@@ -34,19 +46,10 @@ contains
     integer(ip), intent(in) :: ie
     integer, intent(in) :: indent
     integer(i8) :: id
+    integer :: t
     id = int(model%subs(isub)%elem_id(ie), i8)
-    ! a five-letter type (CPS8R) takes one of the two blanks: the columns stay in place
-    ! (a six-letter one, C3D20R, shifts the rest of its row by one)
-    associate (name => ELEMENT_TYPE_NAMES(model%subs(isub)%elem_type(ie)))
-      ! (names are 6 characters long: their last two say the trimmed length)
-      if (name(6:6) /= ' ') then
-         call lu%put_row_head(indent, model%subs(isub)%name, 20, id, 10, ' '//name(1:6))
-      else if (name(5:5) /= ' ') then
-         call lu%put_row_head(indent, model%subs(isub)%name, 20, id, 10, ' '//name(1:5))
-      else
-         call lu%put_row_head(indent, model%subs(isub)%name, 20, id, 10, '  '//name(1:4))
-      end if
-    end associate
+    t = model%subs(isub)%elem_type(ie)
+    call lu%put_row_head(indent, model%subs(isub)%name, 20, id, 10, TYPE_TAIL(t)(1:TYPE_TAIL_LEN(t)))
   end subroutine element_prefix
 
   pure function element_kinds() result(k)

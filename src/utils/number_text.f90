@@ -42,7 +42,7 @@ module superjoin_utils_number_text
        '5051525354555657585960616263646566676869707172737475767778798081828384858687888990919293949596979899'
     !! two-digit texts of 0 .. 99
 
-  public :: format_es, int_text, decade_of_binary
+  public :: format_es, int_text, int_field, decade_of_binary
 
 contains
 
@@ -124,30 +124,44 @@ contains
     integer(i8), intent(in) :: value
     character(len=INT_TEXT_LEN), intent(out) :: text
     integer, intent(out) :: n
-    character(len=INT_TEXT_LEN) :: rev
+    character(len=INT_TEXT_LEN) :: field
+    call int_field(value, field, n)
+    text(1:n) = field(INT_TEXT_LEN - n + 1:)
+  end subroutine int_text
+
+  pure subroutine int_field(value, field, n)
+    !! value as I0 writes it, right-justified in field (blanks before it): the
+    !! text is field's last n characters. A table's integer column is a
+    !! slice of field, one copy instead of int_text's two and a fill.
+    integer(i8), intent(in) :: value
+    character(len=INT_TEXT_LEN), intent(out) :: field
+    integer, intent(out) :: n
     integer(i8) :: v, q
     integer :: k, d
     if (value == -huge(value) - 1) then
-       write (text, '(i0)') value
-       n = len_trim(text)
+       write (field, '(i20)') value   ! 19 digits and the sign fill I20
+       n = INT_TEXT_LEN
        return
     end if
+    field = ' '
     v = abs(value)
     k = INT_TEXT_LEN
     do
        q = v/100
        d = int(v - 100*q)
-       rev(k - 1:k) = PAIRS(2*d + 1:2*d + 2)
+       field(k - 1:k) = PAIRS(2*d + 1:2*d + 2)
        k = k - 2
        v = q
        if (v == 0) exit
     end do
-    if (d < 10) k = k + 1   ! the leading pair's zero
+    if (d < 10) then   ! the leading pair's zero
+       k = k + 1
+       field(k:k) = ' '
+    end if
     if (value < 0) then
-       rev(k:k) = '-'
+       field(k:k) = '-'
        k = k - 1
     end if
     n = INT_TEXT_LEN - k
-    text(1:n) = rev(k + 1:INT_TEXT_LEN)
-  end subroutine int_text
+  end subroutine int_field
 end module superjoin_utils_number_text

@@ -6,7 +6,7 @@ module superjoin_utils_text_buffer
   use superjoin_error, only: error_t, fatal_error, EXIT_IO
   use superjoin_utils_posix, only: rename_file, remove_file
   use superjoin_utils_process, only: temp_unregister
-  use superjoin_utils_number_text, only: format_es, int_text, ES_WIDTH, INT_TEXT_LEN
+  use superjoin_utils_number_text, only: format_es, int_field, ES_WIDTH, INT_TEXT_LEN
   implicit none (type, external)
   private
 
@@ -146,18 +146,17 @@ contains
     class(text_buffer_t), intent(inout) :: self
     integer(i8), intent(in) :: value
     integer, intent(in) :: width
-    character(len=INT_TEXT_LEN) :: digits
-    integer :: n
-    call int_text(value, digits, n)
-    if (has_room(self, max(n, width))) then
-       if (n < width) self%buf(self%pos + 1:self%pos + width - n) = ' '
-       self%pos = self%pos + max(width - n, 0)
-       self%buf(self%pos + 1:self%pos + n) = digits(1:n)
-       self%pos = self%pos + n
+    character(len=INT_TEXT_LEN) :: field
+    integer :: n, w
+    call int_field(value, field, n)
+    w = max(n, width)
+    if (w <= INT_TEXT_LEN .and. has_room(self, w)) then   ! the field's blanks are the padding
+       self%buf(self%pos + 1:self%pos + w) = field(INT_TEXT_LEN - w + 1:)
+       self%pos = self%pos + w
        return
     end if
     call self%put_blanks(width - n)
-    call self%put(digits(1:n))
+    call self%put(field(INT_TEXT_LEN - n + 1:))
   end subroutine tb_put_int
 
   subroutine tb_put_row_head(self, blanks, text, width, value, value_width, tail)
@@ -169,9 +168,10 @@ contains
     character(*), intent(in) :: text, tail
     integer(i8), intent(in) :: value
     character(len=INT_TEXT_LEN) :: digits
-    integer :: n, p
-    call int_text(value, digits, n)
-    if (.not. has_room(self, max(blanks, 0) + max(width, 0) + max(n, value_width) + len(tail))) then
+    integer :: n, p, w
+    call int_field(value, digits, n)
+    w = max(n, value_width)
+    if (w > INT_TEXT_LEN .or. .not. has_room(self, max(blanks, 0) + max(width, 0) + w + len(tail))) then
        call self%put_blanks(blanks)
        call self%put_field(text, width)
        call self%put_int(value, value_width)
@@ -183,10 +183,8 @@ contains
     p = p + max(blanks, 0)
     if (width > 0) self%buf(p + 1:p + width) = text   ! pads with blanks or cuts
     p = p + max(width, 0)
-    if (n < value_width) self%buf(p + 1:p + value_width - n) = ' '
-    p = p + max(value_width - n, 0)
-    self%buf(p + 1:p + n) = digits(1:n)
-    p = p + n
+    self%buf(p + 1:p + w) = digits(INT_TEXT_LEN - w + 1:)   ! the field's blanks are the padding
+    p = p + w
     self%buf(p + 1:p + len(tail)) = tail
     self%pos = p + len(tail)
   end subroutine tb_put_row_head

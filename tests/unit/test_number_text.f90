@@ -11,7 +11,7 @@ program test_number_text
   use, intrinsic :: ieee_arithmetic, only: ieee_value, ieee_quiet_nan, ieee_positive_inf, &
        ieee_negative_inf, ieee_next_after
   use superjoin_kinds, only: wp, i8
-  use superjoin_utils_number_text, only: format_es, int_text, decade_of_binary, ES_WIDTH, INT_TEXT_LEN
+  use superjoin_utils_number_text, only: format_es, int_text, int_field, decade_of_binary, ES_WIDTH, INT_TEXT_LEN
   use superjoin_utils_strings, only: itoa
   use superjoin_testing, only: check, finish
   implicit none (type, external)
@@ -217,14 +217,17 @@ contains
   end function next_random
 
   subroutine integers()
-    !! int_text and itoa against I0.
-    integer :: k, wrong, n
+    !! int_text, int_field and itoa against I0 (int_field: right-justified,
+    !! blanks before, as I20 writes it).
+    integer :: k, wrong, n, wrong_field
     integer(i8) :: v
     integer(i8), parameter :: EDGES(*) = [0_i8, 1_i8, -1_i8, 9_i8, 10_i8, 99_i8, 100_i8, -100_i8, &
          2147483647_i8, -2147483648_i8, huge(1_i8), -huge(1_i8), -huge(1_i8) - 1_i8]
     character(len=INT_TEXT_LEN) :: mine
     character(len=24) :: ref
+    character(len=INT_TEXT_LEN) :: ref20
     wrong = 0
+    wrong_field = 0
     do k = 1, size(EDGES) + 200000
        if (k <= size(EDGES)) then
           v = EDGES(k)
@@ -235,10 +238,14 @@ contains
        write (ref, '(i0)') v
        if (mine(1:n) /= trim(ref)) wrong = wrong + 1
        if (itoa(v) /= trim(ref)) wrong = wrong + 1
+       call int_field(v, mine, n)
+       write (ref20, '(i20)') v
+       if (mine /= ref20 .or. n /= len_trim(adjustl(ref20))) wrong_field = wrong_field + 1
        if (v == int(int(v), i8)) then
           if (itoa(int(v)) /= trim(ref)) wrong = wrong + 1
        end if
     end do
     call check(wrong == 0, 'int_text and itoa equal I0 ('//itoa(wrong)//' differ)')
+    call check(wrong_field == 0, 'int_field equals I20 and its length ('//itoa(wrong_field)//' differ)')
   end subroutine integers
 end program test_number_text

@@ -10,7 +10,7 @@ module superjoin_analysis_drilling_check
   !! a count and the first node; an axis along the normal or in the shell's
   !! plane (every untilted plate) is clean.
   use superjoin_kinds, only: wp, ip
-  use superjoin_model_types, only: model_t, node_label, string_t, support_t, LINK_RIGID
+  use superjoin_model_types, only: model_t, node_label, string_t, support_t, LINK_RIGID, NUM_ELEMENT_TYPES
   use superjoin_elements_traits, only: element_traits_t, element_traits, FAMILY_SHELL
   use superjoin_elements_frame, only: cross
   use superjoin_utils_strings, only: itoa
@@ -66,16 +66,17 @@ contains
     type(model_t), intent(in) :: model
     integer, intent(in) :: isub
     real(wp), allocatable, intent(out) :: normal(:, :)
-    type(element_traits_t) :: tr
+    type(element_traits_t) :: tr, traits(NUM_ELEMENT_TYPES)
     real(wp) :: a(3), b(3), c(3)
     integer(ip) :: e
     integer :: k
+    traits = [(element_traits(k), k=1, NUM_ELEMENT_TYPES)]   ! once per type, not per element
     associate (sub => model%subs(isub))
       allocate (normal(3, sub%nnode))
       normal = 0.0_wp
       do e = 1, sub%nelem
-         tr = element_traits(sub%elem_type(e))
-         if (tr%family /= FAMILY_SHELL) cycle
+         if (traits(sub%elem_type(e))%family /= FAMILY_SHELL) cycle
+         tr = traits(sub%elem_type(e))
          associate (x => sub%x(:, sub%elem_nodes(1:tr%corners, e)))
            if (tr%corners == 3) then
               a = x(:, 2) - x(:, 1)

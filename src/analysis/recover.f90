@@ -292,9 +292,10 @@ contains
     type(error_t), allocatable, intent(inout) :: error
     integer, allocatable :: like(:)
     real(wp), allocatable :: turns(:, :, :)
-    logical, allocatable :: turned(:)
-    integer :: isub, j, k, n, nstep
-    integer(i8) :: pd(MAX_ELEM_DOFS)
+    logical, allocatable :: turned(:), shifted(:)
+    integer(i8), allocatable :: shift(:)
+    integer :: isub, j, k, n, n1, nstep
+    integer(i8) :: pd(MAX_ELEM_DOFS), pd1(MAX_ELEM_DOFS)
     integer(ip) :: e
 
     allocate (done(size(model%subs)), source=.false.)
@@ -307,6 +308,7 @@ contains
        if (size(like) < 2) cycle
        done(like) = .true.
        call instance_turns(model, like, turns, turned)
+       call instance_shifts(model, table, like, shift, shifted)
        associate (s => model%subs(isub), off => res%fields%elem_offset)
          do e = 1, s%nelem
             if (.not. is_plate_type(s%elem_type(e)) .or. .not. any(wanted(off(like) + e))) cycle
@@ -318,8 +320,14 @@ contains
                    drill=element_drill(s, e))
               if (passed_on(inner, error)) return
               allocate (ue(size(op, 2), nstep*size(like)))
+              call element_pdofs(model, table, like(1), e, pd1, n1)
               do k = 1, size(like)
-                 call element_pdofs(model, table, like(k), e, pd, n)
+                 if (shifted(k) .and. all(pd1(1:n1) > 0)) then   ! the first instance's DOFs, shifted
+                    n = n1
+                    pd(1:n) = pd1(1:n) + shift(k)
+                 else
+                    call element_pdofs(model, table, like(k), e, pd, n)
+                 end if
                  ue(:, nstep*(k - 1) + 1:nstep*k) = u(pd(1:n), :)
                  if (turned(k)) call turn_node_blocks(turns(:, :, k), n/ELEMENT_NODE_COUNT(s%elem_type(e)), &
                       ue(:, nstep*(k - 1) + 1:nstep*k))
@@ -334,6 +342,41 @@ contains
        end associate
     end do
   end subroutine instance_plate_results
+
+  subroutine instance_shifts(model, table, like, shift, shifted)
+    !! shifted(k): every DOF of every node of instance like(k) is the same DOF
+    !! of instance like(1) plus shift(k) (the same DOFs on every node, numbered
+    !! alike: the usual case of identical instances), so that an element's
+    !! DOFs are the first instance's shifted (instance_plate_results) instead
+    !! of looked up again per instance.
+    type(model_t), intent(in) :: model
+    type(dof_table_t), intent(in) :: table
+    integer, intent(in) :: like(:)
+    integer(i8), allocatable, intent(out) :: shift(:)
+    logical, allocatable, intent(out) :: shifted(:)
+    integer(i8) :: p1(NDOF_NODE), pk(NDOF_NODE)
+    integer(ip) :: n
+    integer :: k
+    logical :: have
+    allocate (shift(size(like)), source=0_i8)
+    allocate (shifted(size(like)), source=.true.)
+    do k = 1, size(like)
+       shifted(k) = model%subs(like(k))%nnode == model%subs(like(1))%nnode
+       if (.not. shifted(k)) cycle
+       have = .false.
+       do n = 1, model%subs(like(1))%nnode
+          call vertex_dofs(table, table%vertex_offset(like(1)) + n, p1)
+          call vertex_dofs(table, table%vertex_offset(like(k)) + n, pk)
+          shifted(k) = .not. any((p1 > 0) .neqv. (pk > 0))   ! the same DOFs at this node
+          if (.not. shifted(k)) exit
+          if (.not. any(p1 > 0)) cycle
+          if (.not. have) shift(k) = maxval(pk) - maxval(p1)   ! the first node with DOFs sets it
+          have = .true.
+          shifted(k) = all(pk - p1 == shift(k) .or. p1 == 0)
+          if (.not. shifted(k)) exit
+       end do
+    end do
+  end subroutine instance_shifts
 
   subroutine instance_turns(model, like, turns, turned)
     !! turns(:, :, k) = R_1 R_kᵀ: instance like(k)'s global axes to those of

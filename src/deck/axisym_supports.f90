@@ -64,8 +64,10 @@ contains
     allocate (axis(size(model%subs)))
     do isub = 1, size(model%subs)
        associate (sub => model%subs(isub))
-         allocate (axis(isub)%only(sub%nnode), other(sub%nnode))
+         allocate (axis(isub)%only(sub%nnode))
          axis(isub)%only = .false.
+         if (.not. any(traits(sub%elem_type(1:sub%nelem))%axisymmetric)) cycle   ! no CAX: no node loop
+         allocate (other(sub%nnode))
          other = .false.
          do e = 1, sub%nelem
             associate (tr => traits(sub%elem_type(e)))

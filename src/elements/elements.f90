@@ -170,8 +170,10 @@ contains
        if (allocated(error)) return
        k = 0
        do a = 1, 2
-          g(1:3) = matmul(transpose(r), f(1:3, a))
-          g(4:6) = matmul(transpose(r), f(4:6, a))
+          do d = 1, 3   ! Rᵀ f, written out: matmul(transpose(r), ...) was a library call per end
+             g(d) = r(1, d)*f(1, a) + r(2, d)*f(2, a) + r(3, d)*f(3, a)
+             g(d + 3) = r(1, d)*f(4, a) + r(2, d)*f(5, a) + r(3, d)*f(6, a)
+          end do
           do d = 1, 6
              if (.not. mask(d)) cycle
              k = k + 1

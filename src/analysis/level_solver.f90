@@ -448,7 +448,7 @@ contains
     associate (kd => self%kinds(self%nkind))
       call move_sparse(a, kd%a)
       kd%ni = ni
-      kd%nb = a%n - ni
+      kd%nb = kd%a%n - ni
       kd%sig = sig
       kd%members = [k]
     end associate

@@ -22,13 +22,15 @@ module superjoin_solvers_sparse
 contains
 
   pure subroutine move_sparse(from, to)
-    !! to = from by move (no copy of the arrays); from is left with n and no arrays.
+    !! to = from by move (no copy of the arrays); from is left an empty
+    !! matrix (n = 0, no arrays), not one whose n promises arrays it lacks.
     type(sparse_sym_t), intent(inout) :: from
     type(sparse_sym_t), intent(inout) :: to
     to%n = from%n
     call move_alloc(from%colptr, to%colptr)
     call move_alloc(from%rowind, to%rowind)
     call move_alloc(from%val, to%val)
+    from%n = 0
   end subroutine move_sparse
 
   pure function sparse_nnz(a) result(nz)

@@ -4,7 +4,7 @@ program test_solvers
   use superjoin_kinds, only: wp, i8
   use superjoin_error, only: error_t, EXIT_SINGULAR, EXIT_USAGE, EXIT_IO
   use superjoin_solvers, only: linear_solver_t, sparse_sym_t, new_solver, condition_estimate, &
-       norm1_sym, cholmod_solver_t, lapack_solver_t, umfpack_solver_t, AUTO_LAPACK_MAX
+       norm1_sym, cholmod_solver_t, lapack_solver_t, umfpack_solver_t, AUTO_LAPACK_MAX, move_sparse
   use superjoin_solvers_lapack, only: rcm_ordering
   use superjoin_solvers_matrix_market, only: write_matrix_market, read_matrix_market
   use superjoin_solvers_node_graph, only: node_graph
@@ -22,6 +22,7 @@ program test_solvers
      call test_backend(trim(BACKENDS(ib)))
   end do
   call test_factory()
+  call test_move_sparse()
   call test_rcm()
   call test_matrix_market()
   call test_large_cholmod()
@@ -486,6 +487,19 @@ contains
     end if
     call check(.not. allocated(s), 'factory: no solver on error')
   end subroutine test_factory
+
+  subroutine test_move_sparse()
+    !! A matrix moved out is left empty (n = 0, no arrays): nothing that
+    !! reads n afterwards (nnz, a product) meets arrays that are gone.
+    type(sparse_sym_t) :: a, b
+    a%n = 2
+    a%colptr = [1_i8, 2_i8, 4_i8]
+    a%rowind = [1_i8, 1_i8, 2_i8]
+    a%val = [4.0_wp, 1.0_wp, 3.0_wp]
+    call move_sparse(a, b)
+    call check(b%n == 2 .and. b%nnz() == 3 .and. b%val(3) == 3.0_wp, 'move_sparse: the target holds the matrix')
+    call check(a%n == 0 .and. a%nnz() == 0 .and. .not. allocated(a%val), 'move_sparse: the source is left empty')
+  end subroutine test_move_sparse
 
   ! ------------------------------------------------------------------ RCM
 

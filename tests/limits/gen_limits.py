@@ -20,6 +20,10 @@ KIND
             characters (default 10 MB) after the keyword.
   longdata  a *NODE data line of --bytes B characters (a node id padded with
             blanks before its comma): must be read or refused, never crash.
+  equation  a C3D8 cube (substructure S, its base held) whose top node 8 moves
+            in x as the mean of the --terms nodes of a bar of T3D2 elements
+            (substructure T, pulled at its end): one *EQUATION of terms + 1
+            terms, so the cube's element touches that many reduced columns.
 """
 import argparse
 import random
@@ -133,14 +137,44 @@ def longdata(path, nbytes):
         out.write("*BOUNDARY\n1, 1, 2\n1, 6, 6\n*STEP\n*CLOAD\n2, 2, -1.0\n*END STEP\n")
 
 
+def equation(path, terms):
+    with open(path, "w") as out:
+        header(out, "limits: a solid's node tied to the mean of %d nodes by one *EQUATION" % terms)
+        out.write("*SUBSTRUCTURE, NAME=S\n*NODE\n")
+        for i, (x, y, z) in enumerate([(0, 0, 0), (1, 0, 0), (1, 1, 0), (0, 1, 0),
+                                       (0, 0, 1), (1, 0, 1), (1, 1, 1), (0, 1, 1)]):
+            out.write("%d, %d, %d, %d\n" % (i + 1, x, y, z))
+        out.write("*ELEMENT, TYPE=C3D8, ELSET=B\n1, 1, 2, 3, 4, 5, 6, 7, 8\n")
+        out.write("*SOLID SECTION, ELSET=B, MATERIAL=STEEL\n\n*END SUBSTRUCTURE\n")
+        out.write("*SUBSTRUCTURE, NAME=T\n*NODE\n")
+        for k in range(terms + 1):
+            out.write("%d, %r, 5.0, 0.0\n" % (k + 1, 0.01 * k))
+        out.write("*ELEMENT, TYPE=T3D2, ELSET=R\n")
+        for k in range(terms):
+            out.write("%d, %d, %d\n" % (k + 1, k + 1, k + 2))
+        out.write("*SOLID SECTION, ELSET=R, MATERIAL=STEEL\n%r\n*END SUBSTRUCTURE\n" % AREA)
+        terms_text = ["S.8, 1, 1.0"] + ["T.%d, 1, %r" % (k + 2, -1.0 / terms) for k in range(terms)]
+        out.write("*EQUATION\n%d\n" % (terms + 1))
+        for i in range(0, len(terms_text), 4):
+            out.write(", ".join(terms_text[i:i + 4]) + "\n")
+        out.write("*BOUNDARY\n")
+        for n in range(1, 5):
+            out.write("S.%d, 1, 3\n" % n)
+        out.write("T.1, 1, 3\n")
+        for k in range(2, terms + 2):
+            out.write("T.%d, 2, 3\n" % k)
+        out.write("*STEP, NAME=P\n*CLOAD\nS.8, 2, %r\nT.%d, 1, %r\n*END STEP\n" % (LOAD, terms + 1, LOAD / 100))
+
+
 def main():
     p = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
-    p.add_argument("kind", choices=["chain", "sparse", "id2p31", "include", "longline", "longdata"])
+    p.add_argument("kind", choices=["chain", "sparse", "id2p31", "include", "longline", "longdata", "equation"])
     p.add_argument("out")
     p.add_argument("--elements", type=int, default=700000)
     p.add_argument("--seed", type=int, default=20261122)
     p.add_argument("--depth", type=int, default=17)
     p.add_argument("--bytes", type=int, default=10 * 1024 * 1024)
+    p.add_argument("--terms", type=int, default=6000)
     a = p.parse_args()
     if a.kind == "chain":
         chain(a.out, a.elements, a.seed)
@@ -152,6 +186,8 @@ def main():
         include(a.out, a.depth)
     elif a.kind == "longline":
         longline(a.out, a.bytes)
+    elif a.kind == "equation":
+        equation(a.out, a.terms)
     else:
         longdata(a.out, a.bytes)
     return 0

@@ -16,6 +16,11 @@ CASE
             the limit; 16 levels are read.
   longline  a 10 MB *HEADING line: handled (exit 0, listing written).
   longdata  a *NODE data line of 10 MB (the id padded with blanks): handled.
+  equation  a C3D8 node tied by one *EQUATION to the mean of EQUATION_TERMS
+            nodes: solved under a main-thread stack of STACK_LIMIT bytes (an
+            element's work arrays are sized by its reduced columns, here
+            thousands: on the stack they need about 20 x 24 x 6000 bytes), and
+            the tied displacement equal to the mean of the listing's (rel. 1e-6).
 Every case also fails on a crash report or a stray temporary file.
 """
 import csv
@@ -42,14 +47,21 @@ REL_TOL = 1e-6                   # displacements / (P L / E A): cond(K) ~ 1e12, 
                                  # ~1e-4 is possible; 3.5e-8 measured
 FORCE_REL_TOL = 1e-5             # axial forces / P: differences of neighbouring u over
                                  # 1/7e5 of the bar lose one more digit; 3.6e-7 measured
+EQUATION_TERMS = 6000
+STACK_LIMIT = 2 * 2**20          # bytes: the equation case's stack (Linux's default is 8 MB)
 CRASH_WORDS = ("runtime error", "backtrace", "segmentation", "sanitizer", "sigsegv")
 
 
-def run(bin_, args, cwd):
-    """Run superjoin; return (status, stderr, seconds, peak RSS in bytes)."""
+def run(bin_, args, cwd, stack=None):
+    """Run superjoin (with a stack limit of `stack` bytes if given); return
+    (status, stderr, seconds, peak RSS in bytes)."""
     before = resource.getrusage(resource.RUSAGE_CHILDREN).ru_maxrss
     t0 = time.monotonic()
-    p = subprocess.run([bin_] + args, cwd=cwd, stdout=subprocess.PIPE, stderr=subprocess.PIPE)
+    limit = None
+    if stack is not None:
+        def limit():
+            resource.setrlimit(resource.RLIMIT_STACK, (stack, stack))
+    p = subprocess.run([bin_] + args, cwd=cwd, stdout=subprocess.PIPE, stderr=subprocess.PIPE, preexec_fn=limit)
     seconds = time.monotonic() - t0
     peak = resource.getrusage(resource.RUSAGE_CHILDREN).ru_maxrss * 1024
     if peak < before * 1024:
@@ -218,8 +230,36 @@ def case_longdata(bin_, work, sanitized):
     return 0 if ok else 1
 
 
+def case_equation(bin_, work, sanitized):
+    gen_limits.equation(os.path.join(work, "equation.deck"), EQUATION_TERMS)
+    lst = os.path.join(work, "equation.lst")
+    # the sanitizers' own frames are larger: their build keeps the default stack
+    status, err, secs, peak = run(bin_, ["-q", "equation.deck", "-o", lst], work,
+                                  stack=None if sanitized else STACK_LIMIT)
+    print("equation.deck: status %d, %.2f s, peak RSS %.1f MB" % (status, secs, peak / 2**20))
+    ok = no_crash(err, work)
+    if status != 0 or not os.path.exists(lst):
+        print("FAIL: exit status %d, expected 0 with a listing (a stack overflow is a SIGSEGV, -11)\n%s"
+              % (status, err))
+        return 1
+    u1 = {}
+    text = open(lst).read()
+    block = text[text.index("DISPLACEMENTS"):text.index("SUPPORT REACTIONS")]
+    for line in block.splitlines()[2:]:
+        f = line.split()
+        if len(f) >= 3:
+            u1[(f[0], int(f[1]))] = float(f[2])
+    mean = sum(u1[("T", k + 2)] for k in range(EQUATION_TERMS)) / EQUATION_TERMS
+    tied = u1[("S", 8)]
+    print("S.8 u1 %.6e, mean of the bar's u1 %.6e" % (tied, mean))
+    if mean == 0.0 or abs(tied - mean) > 1e-6 * abs(mean):
+        print("FAIL: the *EQUATION does not hold in the listing")
+        ok = False
+    return 0 if ok else 1
+
+
 CASES = {"chain": case_chain, "sparse": case_sparse, "id2p31": case_id2p31,
-         "include": case_include, "longline": case_longline, "longdata": case_longdata}
+         "include": case_include, "longline": case_longline, "longdata": case_longdata, "equation": case_equation}
 
 
 def main():

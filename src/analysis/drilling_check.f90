@@ -11,7 +11,7 @@ module superjoin_analysis_drilling_check
   !! plane (every untilted plate) is clean.
   use superjoin_kinds, only: wp, ip
   use superjoin_model_types, only: model_t, node_label, string_t, support_t, LINK_RIGID, NUM_ELEMENT_TYPES
-  use superjoin_elements_traits, only: element_traits_t, element_traits, FAMILY_SHELL
+  use superjoin_elements_traits, only: element_traits_t, all_element_traits, FAMILY_SHELL
   use superjoin_elements_frame, only: cross
   use superjoin_utils_strings, only: itoa
   use superjoin_model_notes, only: append_string
@@ -70,7 +70,7 @@ contains
     real(wp) :: a(3), b(3), c(3)
     integer(ip) :: e
     integer :: k
-    traits = [(element_traits(k), k=1, NUM_ELEMENT_TYPES)]   ! once per type, not per element
+    traits = all_element_traits()   ! once per type, not per element
     associate (sub => model%subs(isub))
       allocate (normal(3, sub%nnode))
       normal = 0.0_wp

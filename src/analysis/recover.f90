@@ -293,6 +293,7 @@ contains
     integer, allocatable :: like(:)
     real(wp), allocatable :: turns(:, :, :)
     logical, allocatable :: turned(:), shifted(:)
+    logical :: every
     integer(i8), allocatable :: shift(:)
     integer :: isub, j, k, n, n1, nstep
     integer(i8) :: pd(MAX_ELEM_DOFS), pd1(MAX_ELEM_DOFS)
@@ -321,8 +322,9 @@ contains
               if (passed_on(inner, error)) return
               allocate (ue(size(op, 2), nstep*size(like)))
               call element_pdofs(model, table, like(1), e, pd1, n1)
+              every = all(pd1(1:n1) > 0)   ! no DOF missing: shifting each is exact
               do k = 1, size(like)
-                 if (shifted(k) .and. all(pd1(1:n1) > 0)) then   ! the first instance's DOFs, shifted
+                 if (shifted(k) .and. every) then   ! the first instance's DOFs, shifted
                     n = n1
                     pd(1:n) = pd1(1:n) + shift(k)
                  else
@@ -359,8 +361,8 @@ contains
     integer :: k
     logical :: have
     allocate (shift(size(like)), source=0_i8)
-    allocate (shifted(size(like)), source=.true.)
-    do k = 1, size(like)
+    allocate (shifted(size(like)), source=.true.)   ! like(1) is itself, shift 0
+    do k = 2, size(like)
        shifted(k) = model%subs(like(k))%nnode == model%subs(like(1))%nnode
        if (.not. shifted(k)) cycle
        have = .false.

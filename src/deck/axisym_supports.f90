@@ -7,7 +7,7 @@ module superjoin_deck_axisym_supports
   !! it with a floating point exception).
   use superjoin_kinds, only: ip
   use superjoin_model_types, only: model_t, support_t, source_loc_t, string_t, node_label, NUM_ELEMENT_TYPES
-  use superjoin_elements_traits, only: element_traits_t, element_traits
+  use superjoin_elements_traits, only: element_traits_t, all_element_traits
   use superjoin_model_notes, only: note
   use superjoin_deck_state, only: deck_state_t, report_loc
   use superjoin_deck_build_common, only: where
@@ -58,9 +58,7 @@ contains
     integer(ip) :: e
     integer :: isub, k
     any_axis = .false.
-    do k = 1, NUM_ELEMENT_TYPES   ! looked up once per type, not per element
-       traits(k) = element_traits(k)
-    end do
+    traits = all_element_traits()   ! once per type, not per element
     allocate (axis(size(model%subs)))
     do isub = 1, size(model%subs)
        associate (sub => model%subs(isub))

@@ -62,7 +62,7 @@ module superjoin_elements_traits
   logical, parameter :: D126(6) = [.true., .true., .false., .false., .false., .true.]
   logical, parameter :: D6(6) = .true.
 
-  public :: element_traits, element_family, is_family, accepts_dload, section_card_name
+  public :: element_traits, all_element_traits, element_family, is_family, accepts_dload, section_card_name
   public :: valid_element_type, element_vtk_cell
   public :: shell_of_plane, element_type_of_name, dload_face
   public :: is_shell8
@@ -154,6 +154,16 @@ contains
     t%quadratic = t%corners < t%nodes
     t%plane_strain = any(etype == [ET_CPE3, ET_CPE4, ET_CPE6, ET_CPE8, ET_CPE8R])
   end function element_traits
+
+  pure function all_element_traits() result(t)
+    !! The traits of every element type (t(etype)), for loops over elements
+    !! that look them up once per type instead of once per element.
+    type(element_traits_t) :: t(NUM_ELEMENT_TYPES)
+    integer :: k
+    do k = 1, NUM_ELEMENT_TYPES
+       t(k) = element_traits(k)
+    end do
+  end function all_element_traits
 
   pure function with(t0, family, dofs, section, vtk_cell, planar, shear, reduced, edges, corners) result(t)
     !! t0 with the given traits (one row of the table).

@@ -15,6 +15,7 @@ program superjoin_main
   use superjoin_model_types, only: model_t, string_t, DIALECT_CALCULIX, FORM_TRANSFORM, FORM_PENALTY, CONDENSE_YES, CONDENSE_NO, &
        CONDENSE_AUTO
   use superjoin_utils_huge_pages, only: huge_pages_enable, reuse_memory_enable, apply_memory_policy
+  use superjoin_utils_blas_core, only: blas_core_setup, blas_core_note
   use superjoin_deck_reader, only: read_deck
   use superjoin_analysis_driver, only: solve_steps, partial_results
   use superjoin_analysis_combinations, only: add_combinations
@@ -56,6 +57,7 @@ program superjoin_main
   logical :: ok
   type(comm_t) :: comm
 
+  call blas_core_setup()   ! first: it may start the program again (OpenBLAS's kernels, utils/blas_core.c)
   comm = comm_world()
   call parse_command_line(opts, deck, listing, csv_dir, check_only, vtk_file, demo, job, cli_status)
   if (cli_status >= 0) stop cli_status, quiet=.true.
@@ -87,6 +89,8 @@ program superjoin_main
   if (comm%size == 1) call apply_memory_policy()   ! under MPI the allocator is left to the MPI library
   call process_setup(ok, blas_bytes)
   if (.not. ok) write (error_unit, '(a)') 'superjoin: warning: signal handlers not installed'
+  if (opts%verbose .and. comm%is_root() .and. len(blas_core_note()) > 0) &
+       write (error_unit, '(a)') 'superjoin: BLAS: '//blas_core_note()
   if (blas_bytes > 0 .and. .not. check_only) then
      write (error_unit, '(a)') deck//': '//oom_message('the BLAS work buffer', blas_bytes)
      call quick_exit(EXIT_IO)

@@ -10,8 +10,13 @@
  * process's peak resident set (VmHWM from /proc/self/status), and the
  * residual of the solution.
  *
+ * It runs on the OpenBLAS kernels superjoin runs on: like superjoin's main it
+ * first calls sj_blas_core_setup (src/utils/blas_core.c), which starts the
+ * program again with OPENBLAS_CORETYPE set where OpenBLAS fell back to
+ * kernels older than the CPU's instructions, and it prints the kernels.
+ *
  * Usage:   cholmod_bare [--superjoin] matrix.mtx
- * Build:   gcc -O2 -I/usr/include/suitesparse bench/cholmod_bare.c \
+ * Build:   gcc -O2 -I/usr/include/suitesparse bench/cholmod_bare.c src/utils/blas_core.c \
  *              -lcholmod -lsuitesparseconfig -lm -o build/cholmod_bare
  * Exit status: 0 solved, 1 usage, 3 not positive definite, 4 I/O or
  * CHOLMOD failure.
@@ -23,6 +28,9 @@
 #include <time.h>
 
 #include "cholmod.h"
+
+void sj_blas_core_setup(void);
+const char *sj_blas_core_note(void);
 
 enum { EXIT_OK_ = 0, EXIT_USAGE_ = 1, EXIT_NOT_POSDEF_ = 3, EXIT_FAIL_ = 4 };
 
@@ -200,6 +208,7 @@ static int run(const char *path, int superjoin_settings, objects_t *o, cholmod_c
         printf("ordering      %s\n", ordering_name(L->ordering));
         printf("nnz(L)        %.0f (fundamental), %.0f stored\n", cm->lnz, stored_nnz(L));
         printf("flops         %.4g\n", cm->fl);
+        printf("BLAS          %s\n", sj_blas_core_note()[0] ? sj_blas_core_note() : "not OpenBLAS");
         printf("time read     %10.4f s\n", t_read);
         printf("time analyze  %10.4f s\n", t_analyze);
         printf("time factor   %10.4f s\n", t_factor);
@@ -222,6 +231,7 @@ int main(int argc, char **argv)
     const char *path = NULL;
     int superjoin_settings = 0, status, i, bad = 0;
 
+    sj_blas_core_setup();
     for (i = 1; i < argc; i++) {
         if (strcmp(argv[i], "--superjoin") == 0) superjoin_settings = 1;
         else if (path == NULL) path = argv[i];

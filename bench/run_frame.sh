@@ -97,9 +97,9 @@ build_helpers() {
         echo "run_frame.sh: building $GEN" >&2
         gfortran -O2 "$ROOT/bench/gen_frame.f90" -J "$BUILD" -o "$GEN"
     fi
-    if [[ ! -x $BARE || $ROOT/bench/cholmod_bare.c -nt $BARE ]]; then
+    if [[ ! -x $BARE || $ROOT/bench/cholmod_bare.c -nt $BARE || $ROOT/src/utils/blas_core.c -nt $BARE ]]; then
         echo "run_frame.sh: building $BARE" >&2
-        gcc -O2 -I/usr/include/suitesparse "$ROOT/bench/cholmod_bare.c" \
+        gcc -O2 -I/usr/include/suitesparse "$ROOT/bench/cholmod_bare.c" "$ROOT/src/utils/blas_core.c" \
             -lcholmod -lsuitesparseconfig -lm -o "$BARE"
     fi
     if [[ ! -x $SUPERJOIN ]]; then

@@ -181,8 +181,9 @@ def main():
     args = ap.parse_args()
     binary = os.path.abspath(args.bin)
     bare = os.path.join(ROOT, "build", "cholmod_bare")
-    if not os.path.exists(bare):
-        subprocess.run(["gcc", "-O2", "-I/usr/include/suitesparse", os.path.join(ROOT, "bench", "cholmod_bare.c"),
+    sources = [os.path.join(ROOT, "bench", "cholmod_bare.c"), os.path.join(ROOT, "src", "utils", "blas_core.c")]
+    if not os.path.exists(bare) or max(map(os.path.getmtime, sources)) > os.path.getmtime(bare):
+        subprocess.run(["gcc", "-O2", "-I/usr/include/suitesparse", *sources,
                         "-lcholmod", "-lsuitesparseconfig", "-lm", "-o", bare], check=True)
     os.makedirs(args.work, exist_ok=True)
     if args.only != "sweep":

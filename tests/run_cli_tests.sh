@@ -199,5 +199,19 @@ sed -n '/^ENVELOPE OF THE LOAD COMBINATIONS/,/^END OF LISTING/p' comb.lst > comb
 sed -n '/^ENVELOPE OF THE LOAD COMBINATIONS/,/^END OF LISTING/p' combreq.lst > combreq.env
 grep -q 'element results listed for 1 of 4' combreq.lst || { fail=$((fail+1)); echo "FAIL: combreq.lst: no note on the listed elements"; }
 [ -s comb.env ] && cmp -s comb.env combreq.env || { fail=$((fail+1)); echo "FAIL: the envelope differs with requests"; diff comb.env combreq.env | head; }
+# OpenBLAS's kernels (utils/blas_core.c): -v names them; a user's OPENBLAS_CORETYPE stands;
+# without it, on a CPU with AVX2 and FMA, never kernels older than AVX2 (Debian 12's OpenBLAS
+# takes newer CPUs than it knows for Prescott: superjoin starts again with OPENBLAS_CORETYPE).
+if env -u OPENBLAS_CORETYPE "$bin" -v -q --check "$src/decks/demo.deck" 2>err.txt >/dev/null &&
+   grep -q '^superjoin: BLAS: OpenBLAS kernels' err.txt; then
+  OPENBLAS_CORETYPE=Haswell "$bin" -v -q --check "$src/decks/demo.deck" 2>err2.txt >/dev/null
+  grep -q '^superjoin: BLAS: OpenBLAS kernels Haswell (OPENBLAS_CORETYPE)$' err2.txt ||
+    { fail=$((fail+1)); echo "FAIL: OPENBLAS_CORETYPE=Haswell is not what runs"; grep BLAS err2.txt; }
+  if grep -qw avx2 /proc/cpuinfo && grep -qw fma /proc/cpuinfo && ! grep -q 'set OPENBLAS_CORETYPE=' err.txt; then
+    older='Katmai|Coppermine|Northwood|Prescott|Banias|Atom|Core2|Penryn|Dunnington|Nehalem|Athlon|Opteron|Opteron_SSE3|Barcelona|Nano|Sandybridge|Bobcat|Bulldozer|Piledriver|Steamroller|Unknown'
+    ! grep -qiE "^superjoin: BLAS: OpenBLAS kernels ($older)( |$)" err.txt ||
+      { fail=$((fail+1)); echo "FAIL: kernels older than this CPU's AVX2:"; grep BLAS err.txt; }
+  fi
+fi
 echo "$pass passed, $fail failed"
 [ $fail -eq 0 ]

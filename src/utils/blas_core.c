@@ -1,0 +1,193 @@
+/* blas_core.c -- OpenBLAS's kernels for the CPU the run is on.
+ *
+ * OpenBLAS built for several CPUs (Debian's libopenblas, a DYNAMIC_ARCH
+ * build) picks its kernels once, when it is loaded, from the CPU's model
+ * number. A CPU newer than the library is not in its table, and Debian 12's
+ * OpenBLAS 0.3.21 then falls back to its "Prescott" kernels (SSE3): on an
+ * Intel Xeon of family 6, model 207 it runs dgemm, dgemv and dtrsm with
+ * 2005's instructions although the CPU has AVX-512. Measured on such a CPU
+ * (doc/performance.md, "OpenBLAS's kernels"): a condensed solve of the
+ * two-panel joint study takes a third fewer cycles with the SkylakeX
+ * kernels, each further joint value 45 % fewer.
+ *
+ * OpenBLAS reads OPENBLAS_CORETYPE (its documented override) only when it
+ * is loaded, before main. So sj_blas_core_setup, the first thing main does,
+ * starts the program once more with OPENBLAS_CORETYPE set when, and only
+ * when, all of these hold:
+ *   - the BLAS is OpenBLAS (openblas_get_corename is found) and
+ *     OPENBLAS_CORETYPE is not set (a user's choice stands, and the second
+ *     start does not start a third);
+ *   - OpenBLAS chose a core without AVX2 kernels (Prescott, Nehalem,
+ *     Sandybridge, ...) while the CPU and the operating system support
+ *     AVX-512 (F, CD, BW, DQ, VL: the SkylakeX kernels) or AVX2 with FMA
+ *     (the Haswell kernels); it is never moved to an older core;
+ *   - the run is not under valgrind, whose tools would not follow the new
+ *     start (valgrind's own CPU is one OpenBLAS knows).
+ * The new start is the same program file (/proc/self/exe) with the same
+ * arguments and environment, process number and open files, as a wrapper
+ * script's `exec` would make it: also under mpirun, before MPI is started
+ * (main calls this before comm_world). If it cannot be made, the run goes
+ * on as it is and -v says what to set. Nothing has been read or written by
+ * then. Results differ from the fallback kernels' in round-off only, as
+ * they do between two CPUs.
+ */
+#define _GNU_SOURCE
+#include <ctype.h>
+#include <dlfcn.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <unistd.h>
+
+#define SJ_BLAS_FROM_ENV "SUPERJOIN_BLAS_CORE_FROM"
+#define SJ_CMDLINE_MAX (1 << 20)
+#define SJ_NOTE_MAX 256
+
+static char note[SJ_NOTE_MAX] = "";
+
+static int same_name(const char *a, const char *b)
+{
+    for (; *a && *b; a++, b++)
+        if (tolower((unsigned char)*a) != tolower((unsigned char)*b)) return 0;
+    return *a == *b;
+}
+
+/* The core to ask for instead of `current` (OpenBLAS's name of its choice),
+ * on a CPU with AVX-512 (avx512 != 0) or AVX2 and FMA (avx2fma != 0), or
+ * NULL to keep current. Only cores without AVX2 kernels are replaced. */
+const char *sj_blas_core_choice(const char *current, int avx512, int avx2fma)
+{
+    static const char *const older[] = {
+        "Katmai", "Coppermine", "Northwood", "Prescott", "Banias", "Atom", "Core2",
+        "Penryn", "Dunnington", "Nehalem", "Athlon", "Opteron", "Opteron_SSE3",
+        "Barcelona", "Nano", "Sandybridge", "Bobcat", "Bulldozer", "Piledriver",
+        "Steamroller", "Unknown"};
+    size_t k;
+    int is_older = 0;
+    if (current == NULL) return NULL;
+    for (k = 0; k < sizeof older / sizeof older[0]; k++)
+        if (same_name(current, older[k])) is_older = 1;
+    if (!is_older) return NULL;
+    if (avx512) return "SkylakeX";
+    if (avx2fma) return "Haswell";
+    return NULL;
+}
+
+static void advise(const char *current, const char *want)
+{
+    snprintf(note, sizeof note, "OpenBLAS kernels %s (this CPU has %s's instructions: set OPENBLAS_CORETYPE=%s)",
+             current, want, want);
+}
+
+static void free_arguments(char **argv)
+{
+    if (argv == NULL) return;
+    free(argv[0]);
+    free(argv);
+}
+
+static int under_valgrind(void)
+{
+    const char *preload = getenv("LD_PRELOAD");
+    return preload != NULL && strstr(preload, "vgpreload") != NULL;
+}
+
+static int cpu_avx512(void)
+{
+#if defined(__x86_64__) && defined(__GNUC__)
+    __builtin_cpu_init();
+    return __builtin_cpu_supports("avx512f") && __builtin_cpu_supports("avx512cd") &&
+           __builtin_cpu_supports("avx512bw") && __builtin_cpu_supports("avx512dq") &&
+           __builtin_cpu_supports("avx512vl");
+#else
+    return 0;
+#endif
+}
+
+static int cpu_avx2fma(void)
+{
+#if defined(__x86_64__) && defined(__GNUC__)
+    __builtin_cpu_init();
+    return __builtin_cpu_supports("avx2") && __builtin_cpu_supports("fma");
+#else
+    return 0;
+#endif
+}
+
+/* argv of this process from /proc/self/cmdline (NULL if unreadable). */
+static char **own_arguments(void)
+{
+    FILE *f = fopen("/proc/self/cmdline", "rb");
+    char *buf, **argv;
+    size_t n, k, argc = 0, i = 0;
+    if (f == NULL) return NULL;
+    buf = malloc(SJ_CMDLINE_MAX);
+    if (buf == NULL) {
+        fclose(f);
+        return NULL;
+    }
+    n = fread(buf, 1, SJ_CMDLINE_MAX - 1, f);
+    fclose(f);
+    if (n == 0 || n >= SJ_CMDLINE_MAX - 1) {   /* empty, or maybe cut short */
+        free(buf);
+        return NULL;
+    }
+    if (buf[n - 1] != '\0') buf[n++] = '\0';
+    for (k = 0; k < n; k++)
+        if (buf[k] == '\0') argc++;
+    argv = malloc((argc + 1) * sizeof *argv);
+    if (argv == NULL) {
+        free(buf);
+        return NULL;
+    }
+    argv[i++] = buf;
+    for (k = 0; k + 1 < n; k++)
+        if (buf[k] == '\0') argv[i++] = buf + k + 1;
+    argv[i] = NULL;
+    return argv;
+}
+
+void sj_blas_core_setup(void)
+{
+    typedef char *(*corename_t)(void);
+    corename_t corename;
+    const char *current, *from, *want;
+    char **argv;
+
+    corename = (corename_t)dlsym(RTLD_DEFAULT, "openblas_get_corename");
+    if (corename == NULL) return;   /* not OpenBLAS: nothing to say */
+    current = corename();
+    from = getenv(SJ_BLAS_FROM_ENV);
+    if (getenv("OPENBLAS_CORETYPE") != NULL) {
+        if (from != NULL)
+            snprintf(note, sizeof note, "OpenBLAS kernels %s (set by superjoin: OpenBLAS took this CPU for %s)",
+                     current, from);
+        else
+            snprintf(note, sizeof note, "OpenBLAS kernels %s (OPENBLAS_CORETYPE)", current);
+        unsetenv(SJ_BLAS_FROM_ENV);
+        return;
+    }
+    want = sj_blas_core_choice(current, cpu_avx512(), cpu_avx2fma());
+    if (want == NULL) {
+        snprintf(note, sizeof note, "OpenBLAS kernels %s", current);
+        return;
+    }
+    if (under_valgrind()) {
+        advise(current, want);
+        return;
+    }
+    argv = own_arguments();
+    if (argv != NULL && setenv(SJ_BLAS_FROM_ENV, current, 1) == 0 && setenv("OPENBLAS_CORETYPE", want, 1) == 0) {
+        fflush(NULL);
+        execv("/proc/self/exe", argv);
+    }
+    /* not started again: go on with the kernels there are */
+    free_arguments(argv);
+    unsetenv("OPENBLAS_CORETYPE");
+    unsetenv(SJ_BLAS_FROM_ENV);
+    advise(current, want);
+}
+
+/* The kernels in use, for -v: a NUL-terminated text ("" when the BLAS is
+ * not OpenBLAS). */
+const char *sj_blas_core_note(void) { return note; }

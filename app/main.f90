@@ -89,7 +89,7 @@ program superjoin_main
   if (comm%size == 1) call apply_memory_policy()   ! under MPI the allocator is left to the MPI library
   call process_setup(ok, blas_bytes)
   if (.not. ok) write (error_unit, '(a)') 'superjoin: warning: signal handlers not installed'
-  if (opts%verbose .and. comm%is_root() .and. len(blas_core_note()) > 0) &
+  if (opts%verbose .and. .not. opts%quiet .and. comm%is_root() .and. len(blas_core_note()) > 0) &
        write (error_unit, '(a)') 'superjoin: BLAS: '//blas_core_note()
   if (blas_bytes > 0 .and. .not. check_only) then
      write (error_unit, '(a)') deck//': '//oom_message('the BLAS work buffer', blas_bytes)

@@ -201,16 +201,35 @@ grep -q 'element results listed for 1 of 4' combreq.lst || { fail=$((fail+1)); e
 [ -s comb.env ] && cmp -s comb.env combreq.env || { fail=$((fail+1)); echo "FAIL: the envelope differs with requests"; diff comb.env combreq.env | head; }
 # OpenBLAS's kernels (utils/blas_core.c): -v names them; a user's OPENBLAS_CORETYPE stands;
 # without it, on a CPU with AVX2 and FMA, never kernels older than AVX2 (Debian 12's OpenBLAS
-# takes newer CPUs than it knows for Prescott: superjoin starts again with OPENBLAS_CORETYPE).
-if env -u OPENBLAS_CORETYPE "$bin" -v -q --check "$src/decks/demo.deck" 2>err.txt >/dev/null &&
+# takes newer CPUs than it knows for Prescott: superjoin starts again with OPENBLAS_CORETYPE,
+# and keeps its own name doing so).
+if env -u OPENBLAS_CORETYPE "$bin" -v --check "$src/decks/demo.deck" 2>err.txt >/dev/null &&
    grep -q '^superjoin: BLAS: OpenBLAS kernels' err.txt; then
-  OPENBLAS_CORETYPE=Haswell "$bin" -v -q --check "$src/decks/demo.deck" 2>err2.txt >/dev/null
+  OPENBLAS_CORETYPE=Haswell "$bin" -v --check "$src/decks/demo.deck" 2>err2.txt >/dev/null
   grep -q '^superjoin: BLAS: OpenBLAS kernels Haswell (OPENBLAS_CORETYPE)$' err2.txt ||
     { fail=$((fail+1)); echo "FAIL: OPENBLAS_CORETYPE=Haswell is not what runs"; grep BLAS err2.txt; }
-  if grep -qw avx2 /proc/cpuinfo && grep -qw fma /proc/cpuinfo && ! grep -q 'set OPENBLAS_CORETYPE=' err.txt; then
+  ! grep -q 'set OPENBLAS_CORETYPE=' err.txt ||
+    { fail=$((fail+1)); echo "FAIL: superjoin did not start again with OpenBLAS's kernels for this CPU:"; grep BLAS err.txt; }
+  if grep -qw avx2 /proc/cpuinfo && grep -qw fma /proc/cpuinfo && ! grep -q 'built for this one CPU type' err.txt; then
     older='Katmai|Coppermine|Northwood|Prescott|Banias|Atom|Core2|Penryn|Dunnington|Nehalem|Athlon|Opteron|Opteron_SSE3|Barcelona|Nano|Sandybridge|Bobcat|Bulldozer|Piledriver|Steamroller|Unknown'
     ! grep -qiE "^superjoin: BLAS: OpenBLAS kernels ($older)( |$)" err.txt ||
       { fail=$((fail+1)); echo "FAIL: kernels older than this CPU's AVX2:"; grep BLAS err.txt; }
+  fi
+  if grep -q 'set by superjoin' err.txt; then
+    # the new start keeps the process's name (not "exe"): the deck is a FIFO, so the
+    # second start waits there, after its set-up, until the deck is written into it
+    cp "$bin" ./sjname && rm -f in.fifo && mkfifo in.fifo
+    ./sjname -q in.fifo -o name.lst 2>/dev/null & pid=$!
+    name=
+    for _ in $(seq 300); do
+      if grep -qa 'OPENBLAS_CORETYPE=' /proc/$pid/environ 2>/dev/null; then
+        name=$(cat /proc/$pid/comm 2>/dev/null); [ "$name" = exe ] || break
+      fi
+      sleep 0.01
+    done
+    timeout 5 sh -c "cat '$src/decks/demo.deck' > in.fifo" || true
+    kill $pid 2>/dev/null; wait $pid 2>/dev/null
+    [ "$name" = sjname ] || { fail=$((fail+1)); echo "FAIL: the process is named '$name', not sjname, after its new start"; }
   fi
 fi
 echo "$pass passed, $fail failed"

@@ -11,8 +11,8 @@ fail=0
 # expect STATUS "reference line" "output line" [options...]
 expect() {
   local want=$1 a=$2 b=$3; shift 3
-  printf '  scale   1.000000E+006\n%s\n' "$a" > ref.lst
-  printf '  scale   1.000000E+006\n%s\n' "$b" > out.lst
+  printf 'STEP 1  STIFF\nSTEP 2  SOFTER\n  scale   1.000000E+006\n%s\n' "$a" > ref.lst
+  printf 'STEP 1  STIFF\nSTEP 2  SOFTER\n  scale   1.000000E+006\n%s\n' "$b" > out.lst
   "$lstdiff" "$@" ref.lst out.lst > /dev/null 2>&1
   local got=$?
   if [ "$got" -ne "$want" ]; then
@@ -27,6 +27,13 @@ expect 0 "$row  0.000000E+000  STIFF   0.000000E+000  STIFF" "$row  0.000000E+00
 expect 1 "$row  5.000000E+002  STIFF   0.000000E+000  STIFF" "$row  5.000000E+002  SOFTER  0.000000E+000  STIFF" --scale-atol 1e-11
 expect 1 "$row  5.000000E+002  STIFF   0.000000E+000  STIFF" "$row  5.000000001E+002  SOFTER  0.000000E+000  STIFF" --scale-atol 1e-11
 expect 1 "$row  1.000000E-003  STIFF   0.000000E+000  STIFF" "$row  9.536743E-007  SOFTER  0.000000E+000  STIFF" --scale-atol 1e-11
+# ... nor after an integer (an id, a step number) however large the tolerance, nor a word
+# that is not a step's name
+expect 1 "  STEP 2  STIFF" "  STEP 2  SOFTER" --atol 10
+expect 1 "  3  STIFF  4.0" "  3  SOFTER  4.0" --atol 10
+expect 0 "  0.0  STIFF  4.0" "  0.0  SOFTER  4.0" --atol 10
+expect 1 "$row  0.000000E+000  B23" "$row  0.000000E+000  B31" --scale-atol 1e-11
+expect 1 "$row  0.000000E+000  STIFF" "$row  0.000000E+000  HINGE" --scale-atol 1e-11
 # the zero is judged against the absolute tolerance: without --scale-atol 9.5e-7 is not zero
 expect 1 "$row  0.000000E+000  STIFF   0.000000E+000  STIFF" "$row  9.536743E-007  SOFTER  0.000000E+000  STIFF"
 # only one word is skipped, and only a word against a word

@@ -8,10 +8,13 @@ program lstdiff
   !! condition estimate) are compared with the relative tolerance H alone, never
   !! with an absolute one; two values both at or below F in magnitude (default
   !! 1e-10: round-off, which differs between builds) count as equal.
-  !! A word right after a number that is zero within the absolute tolerance in
-  !! both files is not compared: it names where a maximum or minimum of values
-  !! that are all zero but for round-off was found (the step of an envelope's
-  !! extreme), which round-off decides and differs between CPUs' kernels.
+  !! A step's name right after a real number (with a point or an exponent)
+  !! that is zero within the absolute tolerance in both files is not compared
+  !! when both files name a step of the reference there ("STEP n  NAME" lines):
+  !! the step of an envelope's extreme over values that are all zero but for
+  !! round-off, which round-off decides and which differs between CPUs'
+  !! kernels. Any other word, and a step's name after an integer or after a
+  !! value above the tolerance, is compared.
   use, intrinsic :: iso_fortran_env, only: real64, error_unit
   implicit none (type, external)
   integer, parameter :: wp = real64
@@ -21,6 +24,9 @@ program lstdiff
   character(len=*), parameter :: HEALTH_LABELS(5) = [character(len=27) :: 'relative residual', &
        'residual before refinement', 'EPSILON (energy error)', 'MAXRATIO', 'condition estimate']
     !! Lines of the NUMERICAL HEALTH block (compared relatively with --health-rtol).
+  integer, parameter :: NAME_LEN = 64
+  character(len=NAME_LEN), allocatable :: step_names(:)
+    !! The names of the reference's steps (its "STEP n  NAME" lines).
   integer :: status
 
   call compare_files(status)
@@ -87,6 +93,8 @@ contains
      atol = max(atol, scale_atol*largest_number(ua))
      rewind (ua)
   end if
+  call collect_step_names(ua)
+  rewind (ua)
   lineno = 0
   nbad = 0
   do
@@ -137,6 +145,47 @@ contains
     end do
   end function largest_number
 
+  subroutine collect_step_names(u)
+    !! step_names: the third token of the lines "STEP n  NAME" of an open file.
+    integer, intent(in) :: u
+    character(:), allocatable :: line, t1, t2, t3
+    character(len=NAME_LEN), allocatable :: grown(:)
+    logical :: eof
+    integer :: p, n
+    allocate (step_names(16))
+    n = 0
+    do
+       call read_line(u, line, eof)
+       if (eof) exit
+       if (index(line, 'STEP ') /= 1) cycle
+       p = 1
+       call next_token(line, p, t1)
+       call next_token(line, p, t2)
+       call next_token(line, p, t3)
+       if (len(t2) == 0 .or. verify(t2, '0123456789') /= 0 .or. len(t3) == 0) cycle
+       if (n == size(step_names)) then
+          allocate (grown(2*n))
+          grown(1:n) = step_names
+          call move_alloc(grown, step_names)
+       end if
+       n = n + 1
+       step_names(n) = t3
+    end do
+    step_names = step_names(1:n)
+  end subroutine collect_step_names
+
+  logical function is_step_name(tok)
+    !! tok is the name of one of the reference's steps.
+    character(*), intent(in) :: tok
+    is_step_name = len(tok) <= NAME_LEN .and. any(step_names == tok)
+  end function is_step_name
+
+  logical function is_real_text(tok)
+    !! tok is written as a real number (with a point or an exponent), not an integer.
+    character(*), intent(in) :: tok
+    is_real_text = scan(tok, '.eEdD') > 0
+  end function is_real_text
+
   function get_arg(i) result(s)
     integer, intent(in) :: i
     character(:), allocatable :: s
@@ -181,7 +230,8 @@ contains
 
   logical function same_line(a, b, health)
     !! Lines match when their tokens match (numbers within tolerance; health
-    !! values relatively, above the round-off floor).
+    !! values relatively, above the round-off floor; a step's name after a
+    !! round-off zero is not compared, see the program's header).
     character(*), intent(in) :: a, b
     logical, intent(in) :: health
     integer :: pa, pb
@@ -199,14 +249,14 @@ contains
        call as_number(ta, xa, na)
        call as_number(tb, xb, nb)
        if (ta == tb) then
-          zero_before = na .and. nb .and. abs(xa) <= atol
+          zero_before = na .and. nb .and. is_real_text(ta) .and. abs(xa) <= atol
           cycle
        end if
-       if (.not. (na .or. nb) .and. zero_before) then   ! the place of a round-off extreme
+       if (zero_before .and. is_step_name(ta) .and. is_step_name(tb)) then   ! the step of a round-off extreme
           zero_before = .false.
           cycle
        end if
-       zero_before = na .and. nb .and. max(abs(xa), abs(xb)) <= atol
+       zero_before = na .and. nb .and. is_real_text(ta) .and. is_real_text(tb) .and. max(abs(xa), abs(xb)) <= atol
        if (.not. (na .and. nb)) then
           same_line = .false.
           return

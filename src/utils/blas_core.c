@@ -14,26 +14,32 @@
  * is loaded, before main. So sj_blas_core_setup, the first thing main does,
  * starts the program once more with OPENBLAS_CORETYPE set when, and only
  * when, all of these hold:
- *   - the BLAS is OpenBLAS (openblas_get_corename is found) and
- *     OPENBLAS_CORETYPE is not set (a user's choice stands, and the second
- *     start does not start a third);
+ *   - the BLAS is OpenBLAS built for several CPUs (openblas_get_corename is
+ *     found, openblas_get_config names DYNAMIC_ARCH: a build for one CPU
+ *     ignores the override) and OPENBLAS_CORETYPE is not set or empty (a
+ *     user's choice stands, and the second start does not start a third);
  *   - OpenBLAS chose a core without AVX2 kernels (Prescott, Nehalem,
  *     Sandybridge, ...) while the CPU and the operating system support
  *     AVX-512 (F, CD, BW, DQ, VL: the SkylakeX kernels) or AVX2 with FMA
  *     (the Haswell kernels); it is never moved to an older core;
  *   - the run is not under valgrind, whose tools would not follow the new
  *     start (valgrind's own CPU is one OpenBLAS knows).
- * The new start is the same program file (/proc/self/exe) with the same
- * arguments and environment, process number and open files, as a wrapper
- * script's `exec` would make it: also under mpirun, before MPI is started
- * (main calls this before comm_world). If it cannot be made, the run goes
- * on as it is and -v says what to set. Nothing has been read or written by
- * then. Results differ from the fallback kernels' in round-off only, as
- * they do between two CPUs.
+ * The new start is the same program file (/proc/self/exe, which still names
+ * it if the file was replaced meanwhile) with the same arguments and
+ * environment (plus OPENBLAS_CORETYPE, which the processes it starts
+ * inherit), process number and open files, as a wrapper script's `exec`
+ * would make it: also under mpirun, before MPI is started (main calls this
+ * before comm_world). The new start takes back the process's name (ps, top,
+ * pkill), which exec through /proc/self/exe would leave as "exe": that of
+ * its first argument, as the shell gave it (a `ccx` link stays `ccx`). If
+ * the new start cannot be made, the run goes on as it is and -v says what
+ * to set. Nothing has been read or written by then. Results differ from the
+ * fallback kernels' in round-off only, as they do between two CPUs.
  */
 #define _GNU_SOURCE
 #include <ctype.h>
 #include <dlfcn.h>
+#include <sys/prctl.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -147,24 +153,46 @@ static char **own_arguments(void)
     return argv;
 }
 
+/* The process's name (ps, top, pkill) from its first argument's last
+ * component, as a start through /proc/self/exe left it "exe". */
+static void take_back_name(void)
+{
+    char **argv = own_arguments();
+    const char *base;
+    if (argv == NULL) return;
+    base = strrchr(argv[0], '/');
+    base = base != NULL ? base + 1 : argv[0];
+    if (*base != '\0') (void)prctl(PR_SET_NAME, base, 0, 0, 0);
+    free_arguments(argv);
+}
+
 void sj_blas_core_setup(void)
 {
-    typedef char *(*corename_t)(void);
-    corename_t corename;
-    const char *current, *from, *want;
+    typedef char *(*text_t)(void);
+    text_t corename, config;
+    const char *current, *from, *want, *set;
     char **argv;
 
-    corename = (corename_t)dlsym(RTLD_DEFAULT, "openblas_get_corename");
+    corename = (text_t)dlsym(RTLD_DEFAULT, "openblas_get_corename");
+    config = (text_t)dlsym(RTLD_DEFAULT, "openblas_get_config");
     if (corename == NULL) return;   /* not OpenBLAS: nothing to say */
     current = corename();
     from = getenv(SJ_BLAS_FROM_ENV);
-    if (getenv("OPENBLAS_CORETYPE") != NULL) {
+    set = getenv("OPENBLAS_CORETYPE");
+    if (from != NULL) {
+        take_back_name();
+        unsetenv(SJ_BLAS_FROM_ENV);
+    }
+    if (set != NULL && *set != '\0') {
         if (from != NULL)
             snprintf(note, sizeof note, "OpenBLAS kernels %s (set by superjoin: OpenBLAS took this CPU for %s)",
                      current, from);
         else
             snprintf(note, sizeof note, "OpenBLAS kernels %s (OPENBLAS_CORETYPE)", current);
-        unsetenv(SJ_BLAS_FROM_ENV);
+        return;
+    }
+    if (config == NULL || strstr(config(), "DYNAMIC_ARCH") == NULL) {
+        snprintf(note, sizeof note, "OpenBLAS kernels %s (built for this one CPU type)", current);
         return;
     }
     want = sj_blas_core_choice(current, cpu_avx512(), cpu_avx2fma());

@@ -4,7 +4,7 @@ module superjoin_utils_blas_core
   !! more with OPENBLAS_CORETYPE set where OpenBLAS fell back to kernels
   !! older than the CPU's instructions; blas_core_note says which kernels
   !! run (for -v); blas_core_choice is the rule, for its unit test.
-  use, intrinsic :: iso_c_binding, only: c_char, c_int, c_ptr, c_null_char, c_associated, c_f_pointer
+  use, intrinsic :: iso_c_binding, only: c_char, c_int, c_ptr, c_size_t, c_null_char, c_associated, c_f_pointer
   implicit none (type, external)
   private
 
@@ -25,6 +25,11 @@ module superjoin_utils_blas_core
        integer(c_int), value :: avx512, avx2fma
        type(c_ptr) :: p
      end function sj_blas_core_choice
+     function c_strlen(p) bind(c, name='strlen') result(n)
+       import :: c_ptr, c_size_t
+       type(c_ptr), value :: p
+       integer(c_size_t) :: n
+     end function c_strlen
   end interface
 
 contains
@@ -52,13 +57,10 @@ contains
     character(kind=c_char), pointer :: chars(:)
     integer :: n
     n = 0
-    if (c_associated(p)) then
-       call c_f_pointer(p, chars, [huge(n)])
-       do while (chars(n + 1) /= c_null_char)
-          n = n + 1
-       end do
-    end if
+    if (c_associated(p)) n = int(c_strlen(p))
     allocate (character(n) :: text)
+    if (n == 0) return
+    call c_f_pointer(p, chars, [n])
     do n = 1, len(text)
        text(n:n) = chars(n)
     end do

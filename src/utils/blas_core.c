@@ -5,10 +5,10 @@
  * number. A CPU newer than the library is not in its table, and Debian 12's
  * OpenBLAS 0.3.21 then falls back to its "Prescott" kernels (SSE3): on an
  * Intel Xeon of family 6, model 207 it runs dgemm, dgemv and dtrsm with
- * 2005's instructions although the CPU has AVX-512. Measured on such a CPU
- * (doc/performance.md, "OpenBLAS's kernels"): a condensed solve of the
- * two-panel joint study takes a third fewer cycles with the SkylakeX
- * kernels, each further joint value 45 % fewer.
+ * 2004's instructions although the CPU has AVX-512: dgemm at 12-16 GFlop/s
+ * where the SkylakeX kernels do 72 (bench/blas_kernels.c). Measured on such
+ * a CPU (doc/performance.md, "OpenBLAS's kernels"): a 218 000-DOF C3D20R
+ * block solves in 21-24 s instead of 58-60 s.
  *
  * OpenBLAS reads OPENBLAS_CORETYPE (its documented override) only when it
  * is loaded, before main. So sj_blas_core_setup, the first thing main does,

@@ -9,18 +9,25 @@ program lstdiff
   !! with an absolute one; two values both at or below F in magnitude (default
   !! 1e-10: round-off, which differs between builds) count as equal.
   !! A step's name right after a real number (with a point or an exponent)
-  !! that is zero within the absolute tolerance in both files is not compared
-  !! when both files name a step of the reference there ("STEP n  NAME" lines):
-  !! the step of an envelope's extreme over values that are all zero but for
-  !! round-off, which round-off decides and which differs between CPUs'
-  !! kernels. Any other word, and a step's name after an integer or after a
-  !! value above the tolerance, is compared.
+  !! is not compared when that number differs between the files, is zero but
+  !! for round-off in both (at most ROUND_OFF_ZERO times the largest number
+  !! of the reference outside its NUMERICAL HEALTH lines, and within the
+  !! absolute tolerance) and both files name a step of the reference there
+  !! ("STEP n  NAME" lines): the step of an envelope's extreme over values
+  !! that are all zero but for round-off, which round-off decides and which
+  !! differs between CPUs' kernels. Any other word is compared, and so is a
+  !! step's name after an integer, after a value above that bound, or after
+  !! a number printed alike in both files (the envelope's first-on-a-tie rule).
   use, intrinsic :: iso_fortran_env, only: real64, error_unit
   implicit none (type, external)
   integer, parameter :: wp = real64
   integer, parameter :: MAX_REPORTED = 20
   real(wp) :: rtol = 1.0e-6_wp, atol = 1.0e-9_wp, scale_atol = 0.0_wp
   real(wp) :: health_rtol = 0.0_wp, health_floor = 1.0e-10_wp
+  real(wp), parameter :: ROUND_OFF_ZERO = 1.0e-13_wp
+    !! A result at most this times the reference's largest is zero but for round-off.
+  real(wp) :: zero_bound = 0.0_wp
+    !! ROUND_OFF_ZERO times the largest result of the reference, at most atol.
   character(len=*), parameter :: HEALTH_LABELS(5) = [character(len=27) :: 'relative residual', &
        'residual before refinement', 'EPSILON (energy error)', 'MAXRATIO', 'condition estimate']
     !! Lines of the NUMERICAL HEALTH block (compared relatively with --health-rtol).
@@ -90,9 +97,11 @@ contains
   end if
   ! An absolute floor proportional to the largest number of the reference.
   if (scale_atol > 0.0_wp) then
-     atol = max(atol, scale_atol*largest_number(ua))
+     atol = max(atol, scale_atol*largest_number(ua, .false.))
      rewind (ua)
   end if
+  zero_bound = min(atol, ROUND_OFF_ZERO*largest_number(ua, .true.))
+  rewind (ua)
   call collect_step_names(ua)
   rewind (ua)
   lineno = 0
@@ -124,9 +133,11 @@ contains
   end if
   end subroutine compare_files
 
-  function largest_number(u) result(big)
-    !! Largest absolute value of the numeric tokens of an open file.
+  function largest_number(u, results_only) result(big)
+    !! Largest absolute value of the numeric tokens of an open file (outside
+    !! its NUMERICAL HEALTH lines when results_only).
     integer, intent(in) :: u
+    logical, intent(in) :: results_only
     real(wp) :: big, x
     character(:), allocatable :: line, tok
     logical :: eof, ok
@@ -135,6 +146,7 @@ contains
     do
        call read_line(u, line, eof)
        if (eof) exit
+       if (results_only .and. is_health_line(line)) cycle
        p = 1
        do
           call next_token(line, p, tok)
@@ -249,14 +261,14 @@ contains
        call as_number(ta, xa, na)
        call as_number(tb, xb, nb)
        if (ta == tb) then
-          zero_before = na .and. nb .and. is_real_text(ta) .and. abs(xa) <= atol
+          zero_before = .false.
           cycle
        end if
        if (zero_before .and. is_step_name(ta) .and. is_step_name(tb)) then   ! the step of a round-off extreme
           zero_before = .false.
           cycle
        end if
-       zero_before = na .and. nb .and. is_real_text(ta) .and. is_real_text(tb) .and. max(abs(xa), abs(xb)) <= atol
+       zero_before = na .and. nb .and. is_real_text(ta) .and. is_real_text(tb) .and. max(abs(xa), abs(xb)) <= zero_bound
        if (.not. (na .and. nb)) then
           same_line = .false.
           return

@@ -16,8 +16,9 @@
  * when, all of these hold:
  *   - the BLAS is OpenBLAS built for several CPUs (openblas_get_corename is
  *     found, openblas_get_config names DYNAMIC_ARCH: a build for one CPU
- *     ignores the override) and OPENBLAS_CORETYPE is not set or empty (a
- *     user's choice stands, and the second start does not start a third);
+ *     ignores the override) and OPENBLAS_CORETYPE is not set (a user's
+ *     choice stands, even an empty one, which OpenBLAS acts on; and the
+ *     second start does not start a third);
  *   - OpenBLAS chose a core without AVX2 kernels (Prescott, Nehalem,
  *     Sandybridge, ...) while the CPU and the operating system support
  *     AVX-512 (F, CD, BW, DQ, VL: the SkylakeX kernels) or AVX2 with FMA
@@ -38,6 +39,7 @@
  */
 #define _GNU_SOURCE
 #include <ctype.h>
+#include <dirent.h>
 #include <dlfcn.h>
 #include <sys/prctl.h>
 #include <stdio.h>
@@ -153,16 +155,34 @@ static char **own_arguments(void)
     return argv;
 }
 
-/* The process's name (ps, top, pkill) from its first argument's last
- * component, as a start through /proc/self/exe left it "exe". */
+/* The name of the process and of its threads (ps, top -H, pkill) from its
+ * first argument's last component, as a start through /proc/self/exe left
+ * them "exe": the main thread by prctl, the threads OpenBLAS started when it
+ * was loaded through their /proc/self/task/TID/comm. */
 static void take_back_name(void)
 {
     char **argv = own_arguments();
     const char *base;
+    DIR *tasks;
+    struct dirent *t;
+    char path[sizeof "/proc/self/task//comm" + sizeof t->d_name];
+    FILE *f;
     if (argv == NULL) return;
     base = strrchr(argv[0], '/');
     base = base != NULL ? base + 1 : argv[0];
-    if (*base != '\0') (void)prctl(PR_SET_NAME, base, 0, 0, 0);
+    if (*base != '\0') {
+        (void)prctl(PR_SET_NAME, base, 0, 0, 0);
+        tasks = opendir("/proc/self/task");
+        while (tasks != NULL && (t = readdir(tasks)) != NULL) {
+            if (t->d_name[0] == '.') continue;
+            snprintf(path, sizeof path, "/proc/self/task/%s/comm", t->d_name);
+            f = fopen(path, "w");
+            if (f == NULL) continue;
+            fputs(base, f);
+            fclose(f);
+        }
+        if (tasks != NULL) closedir(tasks);
+    }
     free_arguments(argv);
 }
 
@@ -170,29 +190,28 @@ void sj_blas_core_setup(void)
 {
     typedef char *(*text_t)(void);
     text_t corename, config;
-    const char *current, *from, *want, *set;
-    char **argv;
+    const char *current, *want;
+    char **argv, from[SJ_NOTE_MAX / 4] = "";
 
     corename = (text_t)dlsym(RTLD_DEFAULT, "openblas_get_corename");
     config = (text_t)dlsym(RTLD_DEFAULT, "openblas_get_config");
     if (corename == NULL) return;   /* not OpenBLAS: nothing to say */
     current = corename();
-    from = getenv(SJ_BLAS_FROM_ENV);
-    set = getenv("OPENBLAS_CORETYPE");
-    if (from != NULL) {
+    if (getenv(SJ_BLAS_FROM_ENV) != NULL) {   /* the new start */
+        snprintf(from, sizeof from, "%s", getenv(SJ_BLAS_FROM_ENV));
         take_back_name();
         unsetenv(SJ_BLAS_FROM_ENV);
     }
-    if (set != NULL && *set != '\0') {
-        if (from != NULL)
+    if (config == NULL || strstr(config(), "DYNAMIC_ARCH") == NULL) {
+        snprintf(note, sizeof note, "OpenBLAS kernels %s (built for this one CPU type)", current);
+        return;
+    }
+    if (getenv("OPENBLAS_CORETYPE") != NULL) {   /* even empty: OpenBLAS acts on it */
+        if (from[0] != '\0')
             snprintf(note, sizeof note, "OpenBLAS kernels %s (set by superjoin: OpenBLAS took this CPU for %s)",
                      current, from);
         else
             snprintf(note, sizeof note, "OpenBLAS kernels %s (OPENBLAS_CORETYPE)", current);
-        return;
-    }
-    if (config == NULL || strstr(config(), "DYNAMIC_ARCH") == NULL) {
-        snprintf(note, sizeof note, "OpenBLAS kernels %s (built for this one CPU type)", current);
         return;
     }
     want = sj_blas_core_choice(current, cpu_avx512(), cpu_avx2fma());

@@ -127,6 +127,7 @@ contains
   end do
   close (ua)
   close (ub)
+  deallocate (step_names)
   if (nbad > 0) then
      write (error_unit, '(i0,a)') nbad, ' line(s) differ'
      status = 1
@@ -183,7 +184,9 @@ contains
        n = n + 1
        step_names(n) = t3
     end do
-    step_names = step_names(1:n)
+    allocate (grown(n))
+    grown = step_names(1:n)
+    call move_alloc(grown, step_names)
   end subroutine collect_step_names
 
   logical function is_step_name(tok)

@@ -199,6 +199,17 @@ sed -n '/^ENVELOPE OF THE LOAD COMBINATIONS/,/^END OF LISTING/p' comb.lst > comb
 sed -n '/^ENVELOPE OF THE LOAD COMBINATIONS/,/^END OF LISTING/p' combreq.lst > combreq.env
 grep -q 'element results listed for 1 of 4' combreq.lst || { fail=$((fail+1)); echo "FAIL: combreq.lst: no note on the listed elements"; }
 [ -s comb.env ] && cmp -s comb.env combreq.env || { fail=$((fail+1)); echo "FAIL: the envelope differs with requests"; diff comb.env combreq.env | head; }
+# A deck read from a pipe or a FIFO (a shell's <(...), mkfifo): read to its end, solved as
+# the same file would be (a stream read of its unknown size read nothing before)
+expect 0 "deck from a pipe" -- "$bin" -q <(cat "$src/decks/demo.deck") -o pipe.lst
+expect 0 "deck as a file" -- "$bin" -q "$src/decks/demo.deck" -o file.lst
+[ "$(sed -n '/^DISPLACEMENTS/,$p' pipe.lst)" = "$(sed -n '/^DISPLACEMENTS/,$p' file.lst)" ] && grep -q '^DISPLACEMENTS' file.lst ||
+  { fail=$((fail+1)); echo "FAIL: the deck read from a pipe does not solve as the file"; }
+rm -f deck.fifo && mkfifo deck.fifo && { timeout 60 sh -c "cat '$src/decks/demo.deck' > deck.fifo" & }
+expect 0 "deck from a FIFO" -- timeout 60 "$bin" -q deck.fifo -o fifodeck.lst
+wait
+[ "$(sed -n '/^DISPLACEMENTS/,$p' fifodeck.lst)" = "$(sed -n '/^DISPLACEMENTS/,$p' file.lst)" ] ||
+  { fail=$((fail+1)); echo "FAIL: the deck read from a FIFO does not solve as the file"; }
 # OpenBLAS's kernels (utils/blas_core.c): -v names them; a user's OPENBLAS_CORETYPE stands;
 # without it, on a CPU with AVX2 and FMA, never kernels older than AVX2 (Debian 12's OpenBLAS
 # takes newer CPUs than it knows for Prescott: superjoin starts again with OPENBLAS_CORETYPE,

@@ -8,6 +8,7 @@ module superjoin_deck_lexer
   use superjoin_utils_strings, only: itoa, to_upper
   use superjoin_utils_grow, only: grow
   use superjoin_utils_huge_pages, only: advise_huge
+  use superjoin_utils_posix, only: size_unknown
   implicit none (type, external)
   private
 
@@ -101,6 +102,10 @@ contains
     need = 0
     inquire (file=path, exist=exists)
     if (.not. exists) return
+    if (size_unknown(path)) then   ! a FIFO or a pipe: opened once and read to its end
+       call load_formatted(path, text, ok)
+       return
+    end if
     open (newunit=unit, file=path, access='stream', form='unformatted', action='read', &
          status='old', iostat=ios)
     if (ios /= 0) return

@@ -18,6 +18,18 @@ int sj_path_kind(const char *path)
     return 4;
 }
 
+/* What a path names once its symbolic links are followed: 0 nothing there
+ * (or a dangling link), 1 regular file, 3 directory, 4 anything else (a
+ * FIFO, a pipe's /dev/fd/N, a device): whose size is not known beforehand. */
+int sj_path_kind_followed(const char *path)
+{
+    struct stat st;
+    if (stat(path, &st) != 0) return 0;
+    if (S_ISREG(st.st_mode)) return 1;
+    if (S_ISDIR(st.st_mode)) return 3;
+    return 4;
+}
+
 /* The canonical path of an existing path into out (size cap); its length,
  * or -1 when it cannot be resolved or does not fit. */
 int sj_real_path(const char *path, char *out, int cap)

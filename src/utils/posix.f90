@@ -8,7 +8,7 @@ module superjoin_utils_posix
   implicit none (type, external)
   private
 
-  public :: rename_file, remove_file, make_directory, scan_int, scan_real, output_target
+  public :: rename_file, remove_file, make_directory, scan_int, scan_real, output_target, size_unknown
 
   integer, parameter, public :: PATH_ABSENT = 0, PATH_REGULAR = 1, PATH_LINK = 2, PATH_DIRECTORY = 3, &
        PATH_OTHER = 4
@@ -25,6 +25,12 @@ module superjoin_utils_posix
        character(kind=c_char), intent(in) :: path(*)
        integer(c_int) :: kind
      end function sj_path_kind
+
+     function sj_path_kind_followed(path) bind(c, name='sj_path_kind_followed') result(kind)
+       import :: c_int, c_char
+       character(kind=c_char), intent(in) :: path(*)
+       integer(c_int) :: kind
+     end function sj_path_kind_followed
 
      function sj_real_path(path, out, cap) bind(c, name='sj_real_path') result(n)
        import :: c_int, c_char
@@ -91,6 +97,14 @@ contains
     if (c_rename(from//c_null_char, to//c_null_char) /= 0) &
          call fatal_error(error, EXIT_IO, "cannot rename '"//from//"' to '"//to//"'")
   end subroutine rename_file
+
+  logical function size_unknown(path)
+    !! path (its links followed) names a FIFO, a pipe (a shell's <(...),
+    !! /dev/fd/N) or a device: something to read to its end, whose size is
+    !! not known beforehand (a stream read of its "size" would read nothing).
+    character(*), intent(in) :: path
+    size_unknown = sj_path_kind_followed(path//c_null_char) == PATH_OTHER
+  end function size_unknown
 
   subroutine output_target(path, target, error)
     !! The file an output named path must be written to, as NAME.tmp renamed

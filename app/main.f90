@@ -89,8 +89,7 @@ program superjoin_main
   if (comm%size == 1) call apply_memory_policy()   ! under MPI the allocator is left to the MPI library
   call process_setup(ok, blas_bytes)
   if (.not. ok) write (error_unit, '(a)') 'superjoin: warning: signal handlers not installed'
-  if (opts%verbose .and. .not. opts%quiet .and. comm%is_root() .and. len(blas_core_note()) > 0) &
-       write (error_unit, '(a)') 'superjoin: BLAS: '//blas_core_note()
+  if (opts%verbose .and. .not. opts%quiet .and. comm%is_root()) call say_blas_kernels()
   if (blas_bytes > 0 .and. .not. check_only) then
      write (error_unit, '(a)') deck//': '//oom_message('the BLAS work buffer', blas_bytes)
      call quick_exit(EXIT_IO)
@@ -193,6 +192,13 @@ program superjoin_main
   call finish(EXIT_OK)
 
 contains
+
+  subroutine say_blas_kernels()
+    !! -v: the BLAS kernels in use (nothing when the BLAS is not OpenBLAS).
+    character(:), allocatable :: kernels
+    kernels = blas_core_note()
+    if (len(kernels) > 0) write (error_unit, '(a)') 'superjoin: BLAS: '//kernels
+  end subroutine say_blas_kernels
 
   subroutine start_ccx_job(job)
     !! The banner of a ccx -i run, and JOB.dat, .frd, .sta emptied as ccx

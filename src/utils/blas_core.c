@@ -45,6 +45,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <strings.h>
 #include <unistd.h>
 
 #define SJ_BLAS_FROM_ENV "SUPERJOIN_BLAS_CORE_FROM"
@@ -52,13 +53,6 @@
 #define SJ_NOTE_MAX 256
 
 static char note[SJ_NOTE_MAX] = "";
-
-static int same_name(const char *a, const char *b)
-{
-    for (; *a && *b; a++, b++)
-        if (tolower((unsigned char)*a) != tolower((unsigned char)*b)) return 0;
-    return *a == *b;
-}
 
 /* The core to ask for instead of `current` (OpenBLAS's name of its choice),
  * on a CPU with AVX-512 (avx512 != 0) or AVX2 and FMA (avx2fma != 0), or
@@ -71,13 +65,9 @@ const char *sj_blas_core_choice(const char *current, int avx512, int avx2fma)
         "Barcelona", "Nano", "Sandybridge", "Bobcat", "Bulldozer", "Piledriver",
         "Steamroller", "Unknown"};
     size_t k;
-    int is_older = 0;
     if (current == NULL) return NULL;
     for (k = 0; k < sizeof older / sizeof older[0]; k++)
-        if (same_name(current, older[k])) is_older = 1;
-    if (!is_older) return NULL;
-    if (avx512) return "SkylakeX";
-    if (avx2fma) return "Haswell";
+        if (strcasecmp(current, older[k]) == 0) return avx512 ? "SkylakeX" : avx2fma ? "Haswell" : NULL;
     return NULL;
 }
 

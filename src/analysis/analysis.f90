@@ -417,6 +417,7 @@ contains
     integer :: stat
 
     call clock%start()
+    st%give_back = .not. ctx%joint_study
     allocate (st%u(st%table%np, size(model%steps)), stat=stat)
     if (stat /= 0) then
        call out_of_memory(error, 'the displacements', st%table%np*size(model%steps)*BYTES_REAL)

@@ -83,6 +83,8 @@ module superjoin_analysis_solve_state
      real(wp), allocatable :: r_red(:, :)    !! K_red q − f_red of the final q (health; not with owner terms)
      real(wp), allocatable :: u(:, :)        !! physical displacements (np, nstep)
      real(wp), allocatable :: ku(:, :)       !! k u of the condensed parts (np, nstep)
+     logical :: give_back = .true.           !! the recovery gives the heap's free memory back (malloc_trim):
+                                             !! not in a joint study, whose next value would fault it in again
      class(solve_strategy_t), allocatable :: strategy   !! how K_red is assembled (see the module)
      type(level_plan_t), allocatable :: levels   !! parts made of parts, condensed: K_red factored by level
   end type solve_state_t

@@ -9,7 +9,8 @@ module superjoin_analysis_condensation
   use superjoin_assembly_transform, only: ROLE_PLAIN
   use superjoin_substructure_local_system, only: dof_label
   use superjoin_substructure_cache, only: part_cache_t, part_view_t, acquire_view, k_holder, entry_condense_loads, &
-       entry_ku, view_spc_loads, view_turn, entry_recover, view_need_stiffness, take_views, twins_note
+       entry_ku, view_spc_loads, view_turn, entry_recover, view_need_stiffness, take_views, twins_note, &
+       entry_is_stored
   use superjoin_model_results, only: run_summary_t, run_options_t
   use superjoin_model_notes, only: note
   use superjoin_analysis_factor_reuse, only: kept_factor_t
@@ -40,7 +41,7 @@ module superjoin_analysis_condensation
      procedure :: recover_interiors => recover_all
   end type condensed_strategy_t
 
-  public :: condense_parts, recover_parts, parts_ku, part_solver, library_options, acquire_part, interface_matrix
+  public :: condense_parts, recover_with_ku, part_solver, library_options, acquire_part, interface_matrix
 
 contains
 
@@ -101,10 +102,68 @@ contains
     type(error_t), allocatable, intent(out) :: error
     associate (no_use => self)
     end associate
-    call recover_parts(cache, st%parts, st%f_phys, st%u, error)
-    if (allocated(error)) return
-    call parts_ku(cache, st%parts, st%f_phys, st%u, st%ku, error)
+    call recover_with_ku(cache, st%parts, st%f_phys, st%u, st%ku, error)
   end subroutine recover_all
+
+  subroutine recover_with_ku(cache, parts, f_phys, u, ku, error)
+    !! Interior displacements of every condensed substructure from its
+    !! boundary (into u), then k u of each with its own assembled stiffness
+    !! (a library entry: from the entry, entry_ku) on the physical DOFs, zero
+    !! elsewhere (ku): the element forces of the recovery for those
+    !! substructures, without forming an element matrix. The substructures
+    !! that share a condensation (instances of one part) side by side: their
+    !! columns, turned into the condensation's frame, in one multi-column
+    !! solve with the shared factor and one product, then turned back. Loads
+    !! and displacements are gathered once (the loads again only for a library
+    !! entry, whose recovery works in them); k u is taken of the recovered
+    !! columns themselves where the view is not turned, of the displacements
+    !! turned back and forth where it is (as they are read from u).
+    type(part_cache_t), intent(inout) :: cache
+    type(part_view_t), intent(in) :: parts(:)
+    real(wp), intent(in) :: f_phys(:, :)
+    real(wp), intent(inout) :: u(:, :)
+    real(wp), allocatable, intent(out) :: ku(:, :)
+    type(error_t), allocatable, intent(out) :: error
+    real(wp), allocatable :: fc(:, :), uc(:, :), y(:, :)
+    integer, allocatable :: members(:)
+    logical, allocatable :: done(:)
+    integer :: i, m, ns, c0
+    ns = size(u, 2)
+    allocate (ku(size(u, 1), ns), source=0.0_wp)
+    allocate (done(size(parts)), source=.false.)
+    do i = 1, size(parts)
+       if (done(i)) cycle
+       call sharing(parts, i, members, done)
+       call gather_turned(parts, members, f_phys, fc)
+       call gather_turned(parts, members, u, uc)
+       call entry_recover(cache, parts(i)%entry, fc, uc, ns, error)
+       if (allocated(error)) return
+       allocate (y(size(uc, 1), size(uc, 2)))
+       do m = 1, size(members)
+          c0 = (m - 1)*ns
+          associate (v => parts(members(m)))
+            if (v%rotated) then
+               call view_turn(v, uc(:, c0 + 1:c0 + ns), .true.)
+               u(v%pdof, :) = uc(:, c0 + 1:c0 + ns)
+               call view_turn(v, uc(:, c0 + 1:c0 + ns), .false.)   ! u's rows turned again, for k u
+            else
+               u(v%pdof, :) = uc(:, c0 + 1:c0 + ns)
+            end if
+          end associate
+       end do
+       if (entry_is_stored(cache, parts(i)%entry)) call gather_turned(parts, members, f_phys, fc)
+       call entry_ku(cache, parts(i)%entry, fc, uc, y, ns, error)
+       if (allocated(error)) return
+       do m = 1, size(members)
+          c0 = (m - 1)*ns
+          associate (v => parts(members(m)))
+            call view_turn(v, y(:, c0 + 1:c0 + ns), .true.)
+            ku(v%pdof, :) = ku(v%pdof, :) + y(:, c0 + 1:c0 + ns)
+          end associate
+       end do
+       deallocate (fc, uc, y)
+    end do
+  end subroutine recover_with_ku
 
   subroutine interface_matrix(ctx, st, model, summary, error)
     !! K_red and f_u0 of a value (the interface of the condensed parts, or
@@ -332,77 +391,4 @@ contains
     name = 'auto'
     if (allocated(opts%solver)) name = opts%solver
   end function part_solver
-
-  subroutine recover_parts(cache, parts, f_phys, u, error)
-    !! Interior displacements of every condensed substructure from its
-    !! boundary. The substructures that share a condensation (instances of
-    !! one part) are recovered together: their columns, turned into the
-    !! condensation's frame, side by side in one multi-column solve with the
-    !! shared factor (a supernodal solve of many columns costs little more
-    !! than one), then turned back.
-    type(part_cache_t), intent(inout) :: cache
-    type(part_view_t), intent(in) :: parts(:)
-    real(wp), intent(in) :: f_phys(:, :)
-    real(wp), intent(inout) :: u(:, :)
-    type(error_t), allocatable, intent(out) :: error
-    real(wp), allocatable :: fc(:, :), uc(:, :)
-    integer, allocatable :: members(:)
-    logical, allocatable :: done(:)
-    integer :: i, m, ns, c0
-    ns = size(u, 2)
-    allocate (done(size(parts)), source=.false.)
-    do i = 1, size(parts)
-       if (done(i)) cycle
-       call sharing(parts, i, members, done)
-       call gather_turned(parts, members, f_phys, fc)
-       call gather_turned(parts, members, u, uc)
-       call entry_recover(cache, parts(i)%entry, fc, uc, ns, error)
-       if (allocated(error)) return
-       do m = 1, size(members)
-          c0 = (m - 1)*ns
-          associate (v => parts(members(m)))
-            call view_turn(v, uc(:, c0 + 1:c0 + ns), .true.)
-            u(v%pdof, :) = uc(:, c0 + 1:c0 + ns)
-          end associate
-       end do
-       deallocate (fc, uc)
-    end do
-  end subroutine recover_parts
-
-  subroutine parts_ku(cache, parts, f_phys, u, ku, error)
-    !! k u of every condensed substructure, with its own assembled stiffness
-    !! (a library entry: from the entry, entry_ku), on the physical DOFs (zero
-    !! elsewhere): the element forces of the recovery for those
-    !! substructures, without forming an element matrix. The substructures
-    !! that share a condensation side by side, as in recover_parts.
-    type(part_cache_t), intent(in) :: cache
-    type(part_view_t), intent(in) :: parts(:)
-    real(wp), intent(in) :: f_phys(:, :), u(:, :)
-    real(wp), allocatable, intent(out) :: ku(:, :)
-    type(error_t), allocatable, intent(out) :: error
-    real(wp), allocatable :: fc(:, :), uc(:, :), y(:, :)
-    integer, allocatable :: members(:)
-    logical, allocatable :: done(:)
-    integer :: i, m, ns, c0
-    ns = size(u, 2)
-    allocate (ku(size(u, 1), ns), source=0.0_wp)
-    allocate (done(size(parts)), source=.false.)
-    do i = 1, size(parts)
-       if (done(i)) cycle
-       call sharing(parts, i, members, done)
-       call gather_turned(parts, members, f_phys, fc)
-       call gather_turned(parts, members, u, uc)
-       allocate (y(size(uc, 1), size(uc, 2)))
-       call entry_ku(cache, parts(i)%entry, fc, uc, y, ns, error)
-       if (allocated(error)) return
-       do m = 1, size(members)
-          c0 = (m - 1)*ns
-          associate (v => parts(members(m)))
-            call view_turn(v, y(:, c0 + 1:c0 + ns), .true.)
-            ku(v%pdof, :) = ku(v%pdof, :) + y(:, c0 + 1:c0 + ns)
-          end associate
-       end do
-       deallocate (fc, uc, y)
-    end do
-  end subroutine parts_ku
 end module superjoin_analysis_condensation

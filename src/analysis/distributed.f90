@@ -494,7 +494,7 @@ contains
   end subroutine owner_ku0
 
   subroutine recover_distributed(cache, parts, f_phys, u, error)
-    !! recover_parts over several processes: each process recovers the
+    !! recover_with_ku's recovery over several processes: each process recovers the
     !! interiors of its own substructures (the views that are not remote);
     !! the sum over the processes fills in the others.
     type(part_cache_t), intent(inout) :: cache
@@ -541,7 +541,7 @@ contains
   end subroutine recover_distributed
 
   subroutine parts_ku_distributed(cache, parts, f_phys, u, ku, error)
-    !! parts_ku over several processes: k u of each condensed substructure by
+    !! recover_with_ku's k u over several processes: k u of each condensed substructure by
     !! its owner (a library entry: from the entry, view_ku), summed over the
     !! processes (zero off the condensed DOFs).
     type(part_cache_t), intent(in) :: cache

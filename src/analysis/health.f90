@@ -391,7 +391,7 @@ contains
     !! condensed interior u_i. Interface rows: K_if q − f_if plus, for each
     !! part, Mᵀ[(k u − f)_b − (K* u_b − f*)]; interior rows: k_ii u_i + k_ib u_b − f_i.
     !! The loads likewise, with the prescribed values' terms (−k u0).
-    !! st%ku: k u of the condensed substructures on the physical DOFs (parts_ku).
+    !! st%ku: k u of the condensed substructures on the physical DOFs (recover_with_ku).
     !! Owner terms (st%strategy%summed()): k is this MPI process's term of K_red and only the own
     !! substructures (entry > 0) hold K*: each process adds its own terms to
     !! the interface rows, which are summed over the processes.

@@ -9,8 +9,7 @@ module superjoin_analysis_condensation
   use superjoin_assembly_transform, only: ROLE_PLAIN
   use superjoin_substructure_local_system, only: dof_label
   use superjoin_substructure_cache, only: part_cache_t, part_view_t, acquire_view, k_holder, entry_condense_loads, &
-       entry_ku, view_spc_loads, view_turn, entry_recover, view_need_stiffness, take_views, twins_note, &
-       entry_is_stored
+       entry_ku, view_spc_loads, view_turn, entry_recover, view_need_stiffness, take_views, twins_note
   use superjoin_model_results, only: run_summary_t, run_options_t
   use superjoin_model_notes, only: note
   use superjoin_analysis_factor_reuse, only: kept_factor_t
@@ -114,8 +113,7 @@ contains
     !! that share a condensation (instances of one part) side by side: their
     !! columns, turned into the condensation's frame, in one multi-column
     !! solve with the shared factor and one product, then turned back. Loads
-    !! and displacements are gathered once (the loads again only for a library
-    !! entry, whose recovery works in them); k u is taken of the recovered
+    !! and displacements are gathered once; k u is taken of the recovered
     !! columns themselves where the view is not turned, of the displacements
     !! turned back and forth where it is (as they are read from u).
     type(part_cache_t), intent(inout) :: cache
@@ -151,7 +149,8 @@ contains
             end if
           end associate
        end do
-       if (entry_is_stored(cache, parts(i)%entry)) call gather_turned(parts, members, f_phys, fc)
+       ! fc: a library entry's recovery leaves it as it was (its k u reads it);
+       ! the factor's works in its interior rows, which entry_ku does not read then
        call entry_ku(cache, parts(i)%entry, fc, uc, y, ns, error)
        if (allocated(error)) return
        do m = 1, size(members)

@@ -89,7 +89,7 @@ module superjoin_substructure_cache
      integer :: kept_n = -1, kept_computed = -1  !! n and computed when they were kept
   end type part_cache_t
 
-  public :: view_ku, twin_copies, k_holder, entry_is_stored
+  public :: view_ku, twin_copies, k_holder
   public :: release_cache, forget_load_memos, acquire_view, view_condense_loads, view_recover, view_stiffness_times, &
        view_maxratio, view_spc, view_spc_loads, remote_view, view_turn, entry_recover, entry_condense_loads, entry_ku, &
        view_need_stiffness, take_views, keep_views, twins_note
@@ -465,7 +465,9 @@ contains
     !! in that entry's frame, for any number of columns (the instances that
     !! share it recovered as one solve): chunk columns per substructure (a
     !! library entry finds its load sets per substructure). fc's interior
-    !! rows may be overwritten (recover_interior works in them).
+    !! rows may be overwritten where the factor recovers (recover_interior
+    !! works in them); a library entry leaves fc as it was (its entry_ku
+    !! reads it).
     type(part_cache_t), intent(inout) :: cache
     integer, intent(in) :: ientry
     real(wp), contiguous, intent(inout) :: fc(:, :)
@@ -495,14 +497,6 @@ contains
     call cache%entries(view%entry)%e%cond%sys%k%matvec(xc, y_local)
     if (view%rotated) call rotate_local(view, y_local, .true.)
   end subroutine view_stiffness_times
-
-  logical function entry_is_stored(cache, ientry)
-    !! Whether cache entry ientry is a library entry (its recovery and k u
-    !! read the loads it was condensed with).
-    type(part_cache_t), intent(in) :: cache
-    integer, intent(in) :: ientry
-    entry_is_stored = allocated(cache%entries(ientry)%e%stored)
-  end function entry_is_stored
 
   subroutine entry_ku(cache, ientry, fc, uc, y, chunk, error)
     !! y = k u with cache entry ientry, in that entry's frame, for any number

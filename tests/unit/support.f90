@@ -9,7 +9,7 @@ module verification_support
   implicit none (type, external)
   private
 
-  public :: solve_file, solve_text, disp, reaction, link_force, link_delta, equilibrium_error
+  public :: solve_file, solve_text, disp, reaction, link_force, link_delta, equilibrium_error, fail
 
 contains
 
@@ -66,6 +66,7 @@ contains
   end subroutine solve
 
   subroutine fail(error, what)
+    !! Stop the test program with 'FAIL: what: message' when error is set.
     type(error_t), allocatable, intent(in) :: error
     character(*), intent(in) :: what
     if (.not. allocated(error)) return

@@ -32,6 +32,7 @@ program test_condition_residual
        COND_BOUND_LIMIT
   use superjoin_solvers, only: sparse_sym_t
   use superjoin_testing, only: check, finish
+  use verification_support, only: fail
   implicit none (type, external)
 
   character(*), parameter :: NOTE = 'condition estimate: a lower bound'
@@ -44,7 +45,7 @@ program test_condition_residual
   real(wp) :: rho
 
   call read_deck_string(chains(NCHAIN), 'chains.deck', model, error)
-  call stop_on(error, 'read')
+  call fail(error, 'read')
   opts%quiet = .true.
   opts%solver = 'cholmod'
   opts%condense = CONDENSE_NO
@@ -52,7 +53,7 @@ program test_condition_residual
   ctx%factor%keep = .true.   ! as for steps that differ only in prescribed values (analysis/driver)
 
   call solve_group(model, opts, ctx, res, error)   ! the factor to be kept
-  call stop_on(error, 'first solve')
+  call fail(error, 'first solve')
   call check(res%summary%neq > COND_FULL_MAX, 'more equations than COND_FULL_MAX')
   call check(allocated(ctx%factor%solver), 'the factorization is kept')
 
@@ -99,10 +100,10 @@ contains
     ck = ctx%factor%k
     ck%val = c*ck%val
     call ctx%factor%solver%factorize(ck, error)
-    call stop_on(error, what//': factorize c K')
+    call fail(error, what//': factorize c K')
     reuses = ctx%factor%reuses
     call solve_group(model, opts, ctx, res, error)
-    call stop_on(error, what//': solve')
+    call fail(error, what//': solve')
     call check(ctx%factor%reuses == reuses + 1, what//': solved with the kept factor')
     call check(res%summary%maxratio <= MAXRATIO_WARN, what//': MAXRATIO small')
     call check(res%summary%cond_est <= COND_BOUND_LIMIT, what//': the estimate below COND_BOUND_LIMIT')
@@ -179,12 +180,4 @@ contains
     text(pos + 1:pos + len_trim(s) + 1) = trim(s)//new_line('a')
     pos = pos + len_trim(s) + 1
   end subroutine put_line
-
-  subroutine stop_on(err, what)
-    type(error_t), allocatable, intent(inout) :: err
-    character(*), intent(in) :: what
-    if (.not. allocated(err)) return
-    write (*, '(a)') 'FAIL: '//what//': '//err%message
-    error stop 1
-  end subroutine stop_on
 end program test_condition_residual

@@ -127,7 +127,6 @@ contains
     logical, allocatable :: done(:)
     integer :: i, m, ns, c0
     ns = size(u, 2)
-    allocate (ku(size(u, 1), ns), source=0.0_wp)
     allocate (done(size(parts)), source=.false.)
     do i = 1, size(parts)
        if (done(i)) cycle
@@ -136,6 +135,8 @@ contains
        call gather_turned(parts, members, u, uc)
        call entry_recover(cache, parts(i)%entry, fc, uc, ns, error)
        if (allocated(error)) return
+       ! ku once the first recovery is done: not beside its solve's work
+       if (.not. allocated(ku)) allocate (ku(size(u, 1), ns), source=0.0_wp)
        allocate (y(size(uc, 1), size(uc, 2)))
        do m = 1, size(members)
           c0 = (m - 1)*ns
@@ -162,6 +163,7 @@ contains
        end do
        deallocate (fc, uc, y)
     end do
+    if (.not. allocated(ku)) allocate (ku(size(u, 1), ns), source=0.0_wp)   ! no condensed part
   end subroutine recover_with_ku
 
   subroutine interface_matrix(ctx, st, model, summary, error)

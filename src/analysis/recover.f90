@@ -117,11 +117,13 @@ contains
       ! The run's peak can be here (1e6 frame: the factor and K are still
       ! held): r and acc are freed before the link results, and given back
       ! (they sit in the heap once glibc's mmap threshold has grown, where
-      ! free alone would keep them resident). Not between the values of a
-      ! joint study (st%give_back): its peak is the first value's
-      ! condensations, and each further value would fault in and clear those
-      ! pages again (20-value study: 68 000 fewer page faults, 7 % of a
-      ! value's time).
+      ! free alone would keep them resident). Not in the values of a joint
+      ! study (st%give_back): each next value would fault in and clear those
+      ! pages again (20-value study of CPS4 panels: 61 000 of 144 000 page
+      ! faults fewer). Its peaks are its solves': the first value's
+      ! condensations, or with CHOLMOD on the interface or without
+      ! condensation each value's factorization, which gives the heap back
+      ! itself first (solvers/cholmod_shim.c).
       deallocate (r, acc)
       if (st%give_back) trimmed = malloc_trim(0_c_size_t)
       call link_and_support_results(model, table, delta, rigid_force, f_phys, res)

@@ -78,12 +78,13 @@ OPENBLAS_CORETYPE=Haswell "${mpi[@]}" -np 2 "$bin" -v --check "$deck" 2>haswell.
 # MODE solve: the listing as one process's; check: --check (a user's kernels,
 # which this CPU may lack, never run).
 cp "$bin" ./sjrank || exit 1
-exe=$(pwd)/sjrank
+exe=$(pwd -P)/sjrank   # -P: /proc/PID/exe names the real path, not one through a symbolic link
 run_ranks() {
   local name=$1 mode=$2 r pid k opt=()
   shift 2
   [ "$mode" = check ] && opt=(--check)
-  mkdir -p "$name/r0" "$name/r1" && mkfifo "$name/r0/demo.deck" "$name/r1/demo.deck" || return 1
+  mkdir -p "$name/r0" "$name/r1" && mkfifo "$name/r0/demo.deck" "$name/r1/demo.deck" ||
+    { bad "$name: cannot make the decks' FIFOs"; return 1; }
   local writers=()
   for r in 0 1; do
     timeout 120 bash -c '{ touch "$1.open"; for _ in $(seq 1200); do [ -e "$3" ] && break; sleep 0.05; done; cat "$2"; } >"$1"' \

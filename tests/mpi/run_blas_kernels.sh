@@ -142,5 +142,8 @@ if run_ranks haswell check OPENBLAS_CORETYPE=Haswell; then
     [ "$t $f" = "Haswell -" ] || bad "haswell: rank $r runs with OPENBLAS_CORETYPE=$t (started again from '$f'), not the user's Haswell"
   done <haswell.ranks
 fi
-[ $fail -eq 0 ] && echo "blas kernels under mpirun: $(sed -n "s/${line}//p" two.err) on every rank; the solve as on one process"
+if [ $fail -eq 0 ]; then
+  echo "blas kernels under mpirun: $(sed -n "s/${line}//p" two.err) on every rank; the solve as on one process"
+  rm -rf sjrank unset haswell   # the binary's copy and the FIFOs (kept when a check failed)
+fi
 exit $fail

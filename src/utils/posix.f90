@@ -20,17 +20,12 @@ module superjoin_utils_posix
   integer(c_int), parameter :: DIR_MODE = int(o'777', c_int)  !! mkdir mode (before umask)
 
   interface
-     function sj_path_kind(path) bind(c, name='sj_path_kind') result(kind)
+     function sj_path_kind(path, follow) bind(c, name='sj_path_kind') result(kind)
        import :: c_int, c_char
        character(kind=c_char), intent(in) :: path(*)
+       integer(c_int), value :: follow
        integer(c_int) :: kind
      end function sj_path_kind
-
-     function sj_path_kind_followed(path) bind(c, name='sj_path_kind_followed') result(kind)
-       import :: c_int, c_char
-       character(kind=c_char), intent(in) :: path(*)
-       integer(c_int) :: kind
-     end function sj_path_kind_followed
 
      function sj_real_path(path, out, cap) bind(c, name='sj_real_path') result(n)
        import :: c_int, c_char
@@ -103,7 +98,7 @@ contains
     !! /dev/fd/N) or a device: something to read to its end, whose size is
     !! not known beforehand (a stream read of its "size" would read nothing).
     character(*), intent(in) :: path
-    size_unknown = sj_path_kind_followed(path//c_null_char) == PATH_OTHER
+    size_unknown = sj_path_kind(path//c_null_char, 1_c_int) == PATH_OTHER
   end function size_unknown
 
   subroutine output_target(path, target, error)
@@ -118,7 +113,7 @@ contains
     integer(c_int) :: n
     integer :: i
     target = path
-    select case (sj_path_kind(path//c_null_char))
+    select case (sj_path_kind(path//c_null_char, 0_c_int))
     case (PATH_ABSENT, PATH_REGULAR)
        return
     case (PATH_LINK)
@@ -129,7 +124,7 @@ contains
           do i = 1, n
              target(i:i) = buf(i)
           end do
-          if (sj_path_kind(target//c_null_char) == PATH_REGULAR) return
+          if (sj_path_kind(target//c_null_char, 0_c_int) == PATH_REGULAR) return
        end if
        ! a dangling link or one to something that is not a regular file
        call fatal_error(error, EXIT_IO, 'error: '//path//' is a link to something that is not a '// &

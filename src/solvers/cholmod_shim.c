@@ -303,11 +303,14 @@ static void sj_header(sj_cholmod_t *h, SuiteSparse_long n, int64_t *colptr, int6
     h->A.packed = 1;
 }
 
+void sj_serial_regions_setup(void);   /* serial_regions.c */
+
 /* Create a handle; NULL if out of memory or CHOLMOD cannot start. */
 void *sj_cholmod_create(void)
 {
     sj_cholmod_t *h;
     sj_route_allocations();
+    sj_serial_regions_setup();   /* CHOLMOD's one-thread regions without a team */
     h = calloc(1, sizeof(sj_cholmod_t));
     if (h == NULL) return NULL;
     if (!cholmod_l_start(&h->common)) {

@@ -5,6 +5,8 @@ program test_serial_regions
   !!   it, and is counted;
   !! - a region of two threads goes to libgomp: two bodies, one of them on the
   !!   opening thread, not counted;
+  !! - a region of one thread opened by each thread of a two-thread team gets
+  !!   a team of its own: its body sees one thread, itself thread 0;
   !! - CHOLMOD's supernodal factorization, a shared library's code, comes
   !!   through the program's definition: its serial regions are counted, and
   !!   the solution is right.
@@ -21,6 +23,10 @@ program test_serial_regions
        integer(c_int), value :: num_threads
        integer(c_int), intent(out) :: runs, on_opener
      end subroutine sj_probe_region
+     subroutine sj_probe_nested(runs, alone) bind(c, name='sj_probe_nested')
+       import :: c_int
+       integer(c_int), intent(out) :: runs, alone
+     end subroutine sj_probe_nested
      function sj_serial_regions_count() bind(c, name='sj_serial_regions_count') result(n)
        import :: c_int64_t
        integer(c_int64_t) :: n
@@ -29,6 +35,7 @@ program test_serial_regions
 
   call test_one_thread()
   call test_two_threads()
+  call test_nested()
   call test_cholmod()
   call finish()
 
@@ -51,6 +58,13 @@ contains
     call check(runs == 2 .and. on_opener == 1, 'two threads: libgomp ran two bodies, one on the opening thread')
     call check(sj_serial_regions_count() == before, 'two threads: not run without a team')
   end subroutine test_two_threads
+
+  subroutine test_nested()
+    integer(c_int) :: runs, alone
+    call sj_probe_nested(runs, alone)
+    call check(runs == 2, 'nested: the outer region ran on two threads')
+    call check(alone == 2, 'nested: each inner one-thread region saw a team of one, itself thread 0')
+  end subroutine test_nested
 
   subroutine test_cholmod()
     !! A 2D Laplacian of 3 600 unknowns, CHOLMOD supernodal LL^T: every

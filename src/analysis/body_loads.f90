@@ -10,7 +10,7 @@ module superjoin_analysis_body_loads
   use superjoin_model_types, only: model_t, DLOAD_THERMAL, DLOAD_CENTRIF, &
        ELEMENT_NODE_COUNT, combination_t
   use superjoin_elements, only: is_plate_type, is_solid_type, element_body_end_forces
-  use superjoin_model_types, only: MAX_ELEMENT_NODES
+  use superjoin_model_types, only: MAX_ELEMENT_NODES, has_nodal, has_curvature_nodal, has_line_nodal
   implicit none (type, external)
   private
 
@@ -55,11 +55,11 @@ contains
        if (.not. allocated(model%steps(is)%dloads)) cycle
        do i = 1, size(model%steps(is)%dloads)
           associate (dl => model%steps(is)%dloads(i))
-            if (dl%kind /= DLOAD_THERMAL .or. .not. allocated(dl%nodal)) cycle
+            if (dl%kind /= DLOAD_THERMAL .or. .not. has_nodal(dl)) cycle
             if (.not. allocated(tn)) allocate (tn(MAX_ELEMENT_NODES, elem_offset(size(elem_offset)), nstep), &
                  source=0.0_wp)
-            n = size(dl%nodal)
-            tn(1:n, elem_offset(dl%sub) + dl%elem, is) = tn(1:n, elem_offset(dl%sub) + dl%elem, is) + dl%nodal
+            n = size(dl%nodes%nodal)
+            tn(1:n, elem_offset(dl%sub) + dl%elem, is) = tn(1:n, elem_offset(dl%sub) + dl%elem, is) + dl%nodes%nodal
           end associate
        end do
     end do
@@ -78,12 +78,12 @@ contains
        if (.not. allocated(model%steps(is)%dloads)) cycle
        do i = 1, size(model%steps(is)%dloads)
           associate (dl => model%steps(is)%dloads(i))
-            if (dl%kind /= DLOAD_THERMAL .or. .not. allocated(dl%curvature_nodal)) cycle
+            if (dl%kind /= DLOAD_THERMAL .or. .not. has_curvature_nodal(dl)) cycle
             if (.not. allocated(cn)) allocate (cn(MAX_ELEMENT_NODES, elem_offset(size(elem_offset)), nstep), &
                  source=0.0_wp)
-            n = size(dl%curvature_nodal)
+            n = size(dl%nodes%curvature_nodal)
             cn(1:n, elem_offset(dl%sub) + dl%elem, is) = cn(1:n, elem_offset(dl%sub) + dl%elem, is) + &
-                 dl%curvature_nodal
+                 dl%nodes%curvature_nodal
           end associate
        end do
     end do
@@ -107,7 +107,7 @@ contains
        do i = 1, size(model%steps(is)%dloads)
           associate (dl => model%steps(is)%dloads(i), s => model%subs(model%steps(is)%dloads(i)%sub))
             if (dl%kind /= DLOAD_THERMAL) cycle
-            if (all(dl%gradient == 0.0_wp) .and. .not. allocated(dl%line_nodal)) cycle
+            if (all(dl%gradient == 0.0_wp) .and. .not. has_line_nodal(dl)) cycle
             etype = s%elem_type(dl%elem)
             nn = ELEMENT_NODE_COUNT(etype)
             associate (sec => s%sections(s%elem_section(dl%elem)))

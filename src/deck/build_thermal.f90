@@ -426,7 +426,8 @@ contains
               ! third: local z) at each node, interpolated along it
               call add_load(ts, dload_t(sub=isub, elem=e, kind=DLOAD_THERMAL, value=0.0_wp, loc=ts%loc))
               associate (en => sub%elem_nodes(1:3, e))
-                ts%extra(ts%n)%line_nodal = transpose(reshape([c%eth(1:3), &
+                allocate (ts%extra(ts%n)%nodes)   ! (gfortran 12 garbles a constructor of this transpose)
+                ts%extra(ts%n)%nodes%line_nodal = transpose(reshape([c%eth(1:3), &
                      mat%alpha*(cur%h(isub)%v(en) - init%h(isub)%v(en)), &
                      mat%alpha*(cur%g(isub)%v(en) - init%g(isub)%v(en))], [3, 3]))
               end associate
@@ -444,7 +445,8 @@ contains
               return
            end if
            call add_load(ts, dload_t(sub=isub, elem=e, kind=DLOAD_THERMAL, value=c%eth_mean, loc=ts%loc))
-           ts%extra(ts%n)%nodal = c%eth(1:nn)
+           allocate (ts%extra(ts%n)%nodes)
+           ts%extra(ts%n)%nodes%nodal = c%eth(1:nn)
         case default
            ts%nplate = ts%nplate + 1
            if (ts%nplate == 1) ts%first_plate = e
@@ -566,13 +568,16 @@ contains
         call add_load(ts, dload_t(sub=isub, elem=e, kind=DLOAD_THERMAL, &
              value=c%eth_mean, curvature=mat%alpha*c%dg, loc=ts%loc))
         ! a plane element whose nodes differ: the nodal values, interpolated to its points
-        if (tr%family == FAMILY_PLANE .and. any(c%eth(1:nn) /= c%eth(1))) &
-             ts%extra(ts%n)%nodal = c%eth(1:nn) - c%eth_mean
+        if (tr%family == FAMILY_PLANE .and. any(c%eth(1:nn) /= c%eth(1))) then
+           allocate (ts%extra(ts%n)%nodes)
+           ts%extra(ts%n)%nodes%nodal = c%eth(1:nn) - c%eth_mean
+        end if
         ! a shell whose nodes differ: both nodal remainders, interpolated to its points
         if (tr%family /= FAMILY_PLANE .and. &
              (any(c%eth(1:nn) /= c%eth(1)) .or. any(c%dgn(1:nn) /= c%dgn(1)))) then
-           ts%extra(ts%n)%nodal = c%eth(1:nn) - c%eth_mean
-           ts%extra(ts%n)%curvature_nodal = mat%alpha*c%dgn(1:nn) - mat%alpha*c%dg
+           allocate (ts%extra(ts%n)%nodes)
+           ts%extra(ts%n)%nodes%nodal = c%eth(1:nn) - c%eth_mean
+           ts%extra(ts%n)%nodes%curvature_nodal = mat%alpha*c%dgn(1:nn) - mat%alpha*c%dg
         end if
       end associate
     end associate

@@ -36,6 +36,7 @@ module superjoin_elements
   use superjoin_elements_thermal, only: thermal_axial_load, thermal_plate_load
   use superjoin_elements_thermal, only: thermal_plane_nodal_load, thermal_beam_load
   use superjoin_model_types, only: dload_t, DLOAD_CENTRIF, model_t, ELEMENT_NODE_COUNT, DLOAD_GRAV
+  use superjoin_model_types, only: has_nodal, has_curvature_nodal, has_line_nodal
   use superjoin_elements_drill_mask, only: element_drill
   use superjoin_elements_centrif, only: centrif_load
   use superjoin_elements_shell8_loads, only: s8r_is_tapered, s8r_gravity_load, s8r_thermal_load, s8r_centrif_load, &
@@ -485,11 +486,11 @@ contains
     case (DLOAD_THERMAL)
        if (etype == ET_B32) then
           ! the three-node beam: its nodal strains and curvatures, interpolated
-          if (.not. allocated(dl%line_nodal)) then
+          if (.not. has_line_nodal(dl)) then
              call fatal_error(error, EXIT_DECK, 'thermal load on a B32 without its nodal values')
              return
           end if
-          call beam3_thermal_load(x, sec, mat, dl%line_nodal, fe, error)
+          call beam3_thermal_load(x, sec, mat, dl%nodes%line_nodal, fe, error)
           return
        end if
        if (any(etype == [ET_B23, ET_B33, ET_B21, ET_B31])) then
@@ -503,12 +504,12 @@ contains
        end if
        if (is_solid_type(etype)) then
           ! a solid: α ΔT at its nodes, interpolated to its points
-          if (.not. allocated(dl%nodal)) then
+          if (.not. has_nodal(dl)) then
              call fatal_error(error, EXIT_DECK, 'thermal load on a solid without its nodal values')
           else if (is_axisym_type(etype)) then
-             call axisym_thermal_load(etype, x, mat, dl%nodal, fe, error)
+             call axisym_thermal_load(etype, x, mat, dl%nodes%nodal, fe, error)
           else
-             call solid_thermal_load(etype, x, mat, dl%nodal, fe, error, sec%axes)
+             call solid_thermal_load(etype, x, mat, dl%nodes%nodal, fe, error, sec%axes)
           end if
           return
        end if
@@ -517,20 +518,21 @@ contains
           return
        end if
        if (is_shell8(etype)) then
-          if (allocated(dl%nodal)) then   ! varying over the element: its nodal values, interpolated
-             call s8r_thermal_load(etype, x, sec, mat, dl%value, dl%curvature, fe, error, dl%nodal, dl%curvature_nodal)
+          if (has_nodal(dl)) then   ! varying over the element: its nodal values, interpolated
+             call s8r_thermal_load(etype, x, sec, mat, dl%value, dl%curvature, fe, error, dl%nodes%nodal, &
+                  dl%nodes%curvature_nodal)
           else
              call s8r_thermal_load(etype, x, sec, mat, dl%value, dl%curvature, fe, error)
           end if
           return
        end if
        call thermal_plate_load(etype, x, sec, mat, dl%value, dl%curvature, fe, error, drill)
-       if (allocated(error) .or. .not. allocated(dl%nodal)) return
+       if (allocated(error) .or. .not. has_nodal(dl)) return
        ! a temperature that varies over the element: the nodal remainder, interpolated
        if (is_plane_type(etype)) then
-          call thermal_plane_nodal_load(etype, x, sec, mat, dl%nodal, f2, error)
+          call thermal_plane_nodal_load(etype, x, sec, mat, dl%nodes%nodal, f2, error)
        else
-          call shell_thermal_nodal_load(etype, x, sec, mat, dl%nodal, dl%curvature_nodal, f2, error, drill)
+          call shell_thermal_nodal_load(etype, x, sec, mat, dl%nodes%nodal, dl%nodes%curvature_nodal, f2, error, drill)
        end if
        if (allocated(error)) return
        fe = fe + f2
@@ -570,7 +572,7 @@ contains
                 model%materials(sec%material), dl%value*dl%dir, fe, q_local, error)
         else if (dl%kind == DLOAD_CENTRIF .or. (dl%kind == DLOAD_THERMAL .and. (is_plate_type(s%elem_type(dl%elem)) &
              .or. is_solid_type(s%elem_type(dl%elem)) .or. any(dl%gradient /= 0.0_wp) &
-             .or. allocated(dl%line_nodal)))) then   ! TEMP: a beam with a gradient, a B32 need E I
+             .or. has_line_nodal(dl)))) then   ! TEMP: a beam with a gradient, a B32 need E I
            q_local = 0.0_wp   ! CENTRIF on a bar or beam: its end forces take fe itself (superjoin_analysis_recover)
            call element_material_load(s%elem_type(dl%elem), s%x(:, s%elem_nodes(1:nn, dl%elem)), sec, &
                 model%materials(sec%material), dl, fe, error, element_drill(s, dl%elem))
@@ -636,7 +638,7 @@ contains
     !! bar or beam that its end forces K u - f_eq take off: DLOAD_THERMAL, the
     !! free thermal bending of a beam with a gradient across its section, or
     !! the whole thermal load of a B32 (given by its nodal values
-    !! dl%line_nodal); DLOAD_CENTRIF, the consistent nodal loads of the
+    !! dl%nodes%line_nodal); DLOAD_CENTRIF, the consistent nodal loads of the
     !! centrifugal load in the element's local axes.
     integer, intent(in) :: etype
     real(wp), intent(in) :: x(:, :)
@@ -651,8 +653,8 @@ contains
     integer :: a, nd
     f = 0.0_wp
     if (dl%kind == DLOAD_THERMAL) then
-       if (allocated(dl%line_nodal)) then   ! a B32: its whole thermal load
-          call beam3_thermal_end_forces(x, sec, mat, dl%line_nodal, f, error)
+       if (has_line_nodal(dl)) then   ! a B32: its whole thermal load
+          call beam3_thermal_end_forces(x, sec, mat, dl%nodes%line_nodal, f, error)
        else
           call thermal_beam_end_forces(etype, x, sec, mat, dl%gradient, f, error)
        end if
@@ -731,20 +733,20 @@ contains
     associate (s => model%subs(dl%sub), x => model%subs(dl%sub)%x(:, model%subs(dl%sub)%elem_nodes(1:nn, dl%elem)))
       associate (sec => s%sections(s%elem_section(dl%elem)))
         associate (mat => model%materials(sec%material))
-          if (is_solid_type(etype) .and. .not. allocated(dl%nodal)) then
+          if (is_solid_type(etype) .and. .not. has_nodal(dl)) then
              call fatal_error(error, EXIT_DECK, 'thermal load on a solid without its nodal values')
           else if (is_axisym_type(etype)) then
-             call axisym_thermal_energy(etype, x, mat, ue, dl%nodal, energy, error)
+             call axisym_thermal_energy(etype, x, mat, ue, dl%nodes%nodal, energy, error)
           else if (is_3d_solid(etype)) then
-             call solid_thermal_energy(etype, x, mat, ue, dl%nodal, energy, error, sec%axes)
-          else if (allocated(dl%line_nodal)) then
-             call beam3_thermal_energy(x, sec, mat, dl%line_nodal, ue, energy, error)
+             call solid_thermal_energy(etype, x, mat, ue, dl%nodes%nodal, energy, error, sec%axes)
+          else if (has_line_nodal(dl)) then
+             call beam3_thermal_energy(x, sec, mat, dl%nodes%line_nodal, ue, energy, error)
           else if (is_shell8(etype)) then
              call s8r_thermal_energy(etype, x, sec, mat, dl, ue, energy, error)
-          else if ((allocated(dl%nodal) .or. allocated(dl%curvature_nodal)) .and. &
+          else if ((has_nodal(dl) .or. has_curvature_nodal(dl)) .and. &
                (t%family == FAMILY_PLANE .or. t%family == FAMILY_SHELL)) then
              call area_thermal_energy(etype, x, sec, mat, dl, ue, energy, error, element_drill(s, dl%elem))
-          else if (allocated(dl%nodal) .or. allocated(dl%curvature_nodal)) then
+          else if (has_nodal(dl) .or. has_curvature_nodal(dl)) then
              call fatal_error(error, EXIT_DECK, 'the strain energy under thermal strains is not implemented for '// &
                   'element type '//trim(t%name)//' with a temperature that varies over it')
           else
@@ -770,7 +772,7 @@ contains
   pure subroutine area_thermal_energy(etype, x, sec, mat, dl, ue, energy, error, drill)
     !! The energy of the mechanical strains of a plane or shell element (S3,
     !! S4, S3R, S4R) whose temperature varies over it (dl%value the mean α ΔT,
-    !! dl%curvature the mean α ∂T/∂n, dl%nodal and dl%curvature_nodal the nodal
+    !! dl%curvature the mean α ∂T/∂n, dl%nodes%nodal and %curvature_nodal the nodal
     !! remainders): ½ u_eᵀ K_e u_e - u_eᵀ f_th + c, f_th the consistent load of
     !! the whole nodal field and c its constant (thermal_plane_nodal_load,
     !! shell_thermal_nodal_load), by the rules of the element's stiffness;
@@ -788,12 +790,12 @@ contains
     real(wp) :: c
     energy = 0.0_wp
     strain = spread(dl%value, 1, size(x, 2))
-    if (allocated(dl%nodal)) strain = strain + dl%nodal
+    if (has_nodal(dl)) strain = strain + dl%nodes%nodal
     if (element_family(etype) == FAMILY_PLANE) then
        call thermal_plane_nodal_load(etype, x, sec, mat, strain, fth, error, c)
     else
        curvature = spread(dl%curvature, 1, size(x, 2))
-       if (allocated(dl%curvature_nodal)) curvature = curvature + dl%curvature_nodal
+       if (has_curvature_nodal(dl)) curvature = curvature + dl%nodes%curvature_nodal
        call shell_thermal_nodal_load(etype, x, sec, mat, strain, curvature, fth, error, drill, c)
     end if
     if (allocated(error)) return

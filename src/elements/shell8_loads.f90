@@ -9,7 +9,7 @@ module superjoin_elements_shell8_loads
   !! element frame of superjoin_elements_shell (lamina e1 along its local x).
   use superjoin_kinds, only: wp
   use superjoin_error, only: error_t, fatal_error, EXIT_DECK
-  use superjoin_model_types, only: section_t, material_t, dload_t, ELEMENT_NODE_COUNT, ET_S8R
+  use superjoin_model_types, only: section_t, material_t, dload_t, ELEMENT_NODE_COUNT, ET_S8R, has_nodal
   use superjoin_elements_shell, only: shell_frame, shell8_props
   use superjoin_elements_traits, only: is_shell8
   use superjoin_elements_shell8, only: shell8_volume_shares, shell8_mass, shell8_thermal_load, &
@@ -95,7 +95,7 @@ contains
 
   pure subroutine s8r_thermal_terms(etype, x, sec, mat, dl, fe, self_energy, error)
     !! The thermal load dl (DLOAD_THERMAL) of an S8R or S8 (etype) as
-    !! s8r_thermal_load (its nodal remainders when dl%nodal is allocated), and
+    !! s8r_thermal_load (its nodal remainders when dl carries them, has_nodal), and
     !! self_energy = ½ ∫ ε0ᵀ D ε0 dV by the same rules (shell8_thermal_load):
     !! the energy of the mechanical strains is ½ uᵀ K u - uᵀ fe + self_energy.
     integer, intent(in) :: etype
@@ -110,9 +110,9 @@ contains
     self_energy = 0.0_wp
     call thermal_axis(x, e1, error)
     if (allocated(error)) return
-    if (allocated(dl%nodal)) then
+    if (has_nodal(dl)) then
        call shell8_thermal_load(x, e1, shell8_props(sec, mat, etype), dl%value, dl%curvature, fe, error, &
-            dl%nodal, dl%curvature_nodal, self_energy)
+            dl%nodes%nodal, dl%nodes%curvature_nodal, self_energy)
     else
        call shell8_thermal_load(x, e1, shell8_props(sec, mat, etype), dl%value, dl%curvature, fe, error, &
             self_energy=self_energy)

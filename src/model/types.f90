@@ -310,8 +310,21 @@ module superjoin_model_types
      type(source_loc_t) :: loc
   end type cload_t
 
+  type, public :: dload_nodes_t
+    !! The nodal values of a thermal load (TEMP) that varies over its element.
+     real(wp), allocatable :: nodal(:)     !! TEMP on a plane, shell or solid element: α ΔT at each node minus
+                                           !! value, the element mean, interpolated to the points
+     real(wp), allocatable :: curvature_nodal(:)  !! TEMP on a shell whose nodes differ: α ∂T/∂n at each node
+                                           !! minus curvature (allocated with nodal, which a shell then has too)
+     real(wp), allocatable :: line_nodal(:, :)  !! TEMP on a B32: α ΔT, α ∂T/∂y, α ∂T/∂z (local axes) at each
+                                           !! of its three nodes (rows 1:3, columns nodes; value = 0)
+  end type dload_nodes_t
+
   type, public :: dload_t
-    !! A distributed load on one element.
+    !! A distributed load on one element. A model holds one per loaded element
+    !! and step (117 000 on the 1e6 frame): the nodal values of the rare
+    !! varying TEMP sit behind one allocatable component (8 bytes where the
+    !! three arrays' descriptors took 216 in every load).
      integer :: sub = 0
      integer(ip) :: elem = 0
      integer :: kind = 0                   !! DLOAD_*
@@ -319,14 +332,9 @@ module superjoin_model_types
      real(wp) :: dir(3) = 0.0_wp           !! GRAV: unit direction, global axes
      real(wp) :: point(3) = 0.0_wp         !! CENTRIF: a point of the axis (dir: the unit axis)
      real(wp) :: curvature = 0.0_wp        !! TEMP on a shell: α ∂T/∂n, the thermal curvature
-     real(wp), allocatable :: nodal(:)     !! TEMP on a plane element: α ΔT at each node minus value, the
-                                           !! element mean (unallocated: uniform), interpolated to the points
      real(wp) :: gradient(2, 2) = 0.0_wp   !! TEMP on a beam: α ∂T/∂y, α ∂T/∂z (local axes), the thermal
                                            !! curvatures, at its node 1 and node 2 (linear in between)
-     real(wp), allocatable :: curvature_nodal(:)  !! TEMP on a shell whose nodes differ: α ∂T/∂n at each node
-                                           !! minus curvature (allocated with nodal, which a shell then has too)
-     real(wp), allocatable :: line_nodal(:, :)  !! TEMP on a B32: α ΔT, α ∂T/∂y, α ∂T/∂z (local axes) at each
-                                           !! of its three nodes (rows 1:3, columns nodes; value = 0)
+     type(dload_nodes_t), allocatable :: nodes  !! TEMP varying over the element (unallocated: uniform)
      type(source_loc_t) :: loc
   end type dload_t
 
@@ -456,8 +464,30 @@ module superjoin_model_types
   end type model_t
 
   public :: find_node, find_elem, node_label, loc_text
+  public :: has_nodal, has_curvature_nodal, has_line_nodal
 
 contains
+
+  pure logical function has_nodal(dl)
+    !! dl carries α ΔT at each node of its element (dl%nodes%nodal).
+    type(dload_t), intent(in) :: dl
+    has_nodal = .false.
+    if (allocated(dl%nodes)) has_nodal = allocated(dl%nodes%nodal)
+  end function has_nodal
+
+  pure logical function has_curvature_nodal(dl)
+    !! dl carries α ∂T/∂n at each node of its shell (dl%nodes%curvature_nodal).
+    type(dload_t), intent(in) :: dl
+    has_curvature_nodal = .false.
+    if (allocated(dl%nodes)) has_curvature_nodal = allocated(dl%nodes%curvature_nodal)
+  end function has_curvature_nodal
+
+  pure logical function has_line_nodal(dl)
+    !! dl carries a B32's nodal thermal strains and curvatures (dl%nodes%line_nodal).
+    type(dload_t), intent(in) :: dl
+    has_line_nodal = .false.
+    if (allocated(dl%nodes)) has_line_nodal = allocated(dl%nodes%line_nodal)
+  end function has_line_nodal
 
   pure function find_node(sub, id) result(k)
     !! Local index of the node with user id `id` in `sub`, or 0.

@@ -322,7 +322,7 @@ module superjoin_model_types
 
   type, public :: dload_t
     !! A distributed load on one element. A model holds one per loaded element
-    !! and step (117 000 on the 1e6 frame): the nodal values of the rare
+    !! and step (121 656 on the 1e6 `long` frame): the nodal values of the rare
     !! varying TEMP sit behind one allocatable component (8 bytes where the
     !! three arrays' descriptors took 216 in every load).
      integer :: sub = 0

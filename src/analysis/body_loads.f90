@@ -43,9 +43,10 @@ contains
   end subroutine plate_thermal_strains
 
   subroutine plane_thermal_nodal(model, elem_offset, nstep, tn)
-    !! tn(1:n, element, step): α ΔT at the n nodes of every plane or shell
-    !! element whose temperature varies, minus its mean (model-wide element
-    !! numbering elem_offset); unallocated when no step has one.
+    !! tn(1:n, element, step): α ΔT at the n nodes of every element whose
+    !! temperature varies over it, a plane or shell element's minus its mean,
+    !! a solid's whole (model-wide element numbering elem_offset);
+    !! unallocated when no step has one.
     type(model_t), intent(in) :: model
     integer(i8), intent(in) :: elem_offset(:)
     integer, intent(in) :: nstep

@@ -312,8 +312,8 @@ module superjoin_model_types
 
   type, public :: dload_nodes_t
     !! The nodal values of a thermal load (TEMP) that varies over its element.
-     real(wp), allocatable :: nodal(:)     !! TEMP on a plane, shell or solid element: α ΔT at each node minus
-                                           !! value, the element mean, interpolated to the points
+     real(wp), allocatable :: nodal(:)     !! TEMP: α ΔT at each node, interpolated to the points; on a plane
+                                           !! or shell element minus value (the element mean), on a solid whole
      real(wp), allocatable :: curvature_nodal(:)  !! TEMP on a shell whose nodes differ: α ∂T/∂n at each node
                                            !! minus curvature (allocated with nodal, which a shell then has too)
      real(wp), allocatable :: line_nodal(:, :)  !! TEMP on a B32: α ΔT, α ∂T/∂y, α ∂T/∂z (local axes) at each

@@ -15,6 +15,7 @@ program test_serial_regions
   use superjoin_error, only: error_t
   use superjoin_solvers, only: linear_solver_t, sparse_sym_t, new_solver
   use superjoin_testing, only: check, finish
+  use test_matrices, only: grid_laplacian
   implicit none (type, external)
 
   interface
@@ -33,31 +34,27 @@ program test_serial_regions
      end function sj_serial_regions_count
   end interface
 
-  call test_one_thread()
-  call test_two_threads()
+  call test_region(1_c_int, 1, 'one thread')
+  call test_region(2_c_int, 0, 'two threads (libgomp)')
   call test_nested()
   call test_cholmod()
   call finish()
 
 contains
 
-  subroutine test_one_thread()
+  subroutine test_region(nthreads, counted, what)
+    !! A region of nthreads threads: nthreads bodies, one on the opening
+    !! thread; counted (run without a team) or not.
+    integer(c_int), intent(in) :: nthreads
+    integer, intent(in) :: counted
+    character(*), intent(in) :: what
     integer(c_int) :: runs, on_opener
     integer(c_int64_t) :: before
     before = sj_serial_regions_count()
-    call sj_probe_region(1_c_int, runs, on_opener)
-    call check(runs == 1 .and. on_opener == 1, 'one thread: the body ran once, on the opening thread')
-    call check(sj_serial_regions_count() == before + 1, 'one thread: the region ran without a team (counted)')
-  end subroutine test_one_thread
-
-  subroutine test_two_threads()
-    integer(c_int) :: runs, on_opener
-    integer(c_int64_t) :: before
-    before = sj_serial_regions_count()
-    call sj_probe_region(2_c_int, runs, on_opener)
-    call check(runs == 2 .and. on_opener == 1, 'two threads: libgomp ran two bodies, one on the opening thread')
-    call check(sj_serial_regions_count() == before, 'two threads: not run without a team')
-  end subroutine test_two_threads
+    call sj_probe_region(nthreads, runs, on_opener)
+    call check(runs == nthreads .and. on_opener == 1, what//': the body ran on each thread, one of them the opening one')
+    call check(sj_serial_regions_count() == before + counted, what//': run without a team only with one thread')
+  end subroutine test_region
 
   subroutine test_nested()
     integer(c_int) :: runs, alone
@@ -76,7 +73,7 @@ contains
     real(wp), allocatable :: xt(:, :), b(:, :), x(:, :)
     integer(c_int64_t) :: before
     integer :: j
-    call laplacian(M, a)
+    call grid_laplacian(M, 2, a)
     allocate (xt(a%n, 1), b(a%n, 1), x(a%n, 1))
     xt(:, 1) = [(real(mod(7*j + 3, 11), wp) - 5.0_wp, j = 1, int(a%n))]
     call a%matvec(xt, b)
@@ -91,34 +88,4 @@ contains
     call check(maxval(abs(x - xt)) <= 1.0e-10_wp*maxval(abs(xt)), 'cholmod: the solution')
     call s%release()
   end subroutine test_cholmod
-
-  subroutine laplacian(m, a)
-    !! 5-point Laplacian on an m x m grid, upper triangle, rows sorted.
-    integer(i8), intent(in) :: m
-    type(sparse_sym_t), intent(out) :: a
-    integer(i8) :: j, k, n
-    n = m*m
-    a%n = n
-    allocate (a%colptr(n + 1), a%rowind(3*n), a%val(3*n))
-    k = 0
-    a%colptr(1) = 1
-    do j = 1, n
-       if (j > m) then
-          k = k + 1
-          a%rowind(k) = j - m
-          a%val(k) = -1.0_wp
-       end if
-       if (mod(j - 1, m) > 0) then
-          k = k + 1
-          a%rowind(k) = j - 1
-          a%val(k) = -1.0_wp
-       end if
-       k = k + 1
-       a%rowind(k) = j
-       a%val(k) = 4.0_wp
-       a%colptr(j + 1) = k + 1
-    end do
-    a%rowind = a%rowind(1:k)
-    a%val = a%val(1:k)
-  end subroutine laplacian
 end program test_serial_regions

@@ -9,6 +9,7 @@ program test_solvers
   use superjoin_solvers_matrix_market, only: write_matrix_market, read_matrix_market
   use superjoin_solvers_node_graph, only: node_graph
   use superjoin_testing, only: check, check_close, check_rel, finish, temp_dir
+  use test_matrices, only: grid_laplacian
   implicit none (type, external)
 
   character(len=*), parameter :: BACKENDS(3) = [character(len=7) :: 'cholmod', 'umfpack', 'lapack']
@@ -776,38 +777,6 @@ contains
     type(sparse_sym_t), intent(out) :: a
     call grid_laplacian(m, 3, a)
   end subroutine laplace3d
-
-  subroutine grid_laplacian(m, ndim, a)
-    !! Laplacian on an m^ndim grid (ndim = 2 or 3; 2 ndim on the diagonal, -1
-    !! to each neighbour), upper triangle with rows sorted in every column.
-    integer(i8), intent(in) :: m
-    integer, intent(in) :: ndim
-    type(sparse_sym_t), intent(out) :: a
-    integer(i8) :: j, k, n, stride(3), pos(3)
-    integer :: d
-    n = m**ndim
-    stride = [1_i8, m, m*m]
-    a%n = n
-    allocate (a%colptr(n + 1), a%rowind((ndim + 1)*n), a%val((ndim + 1)*n))
-    k = 0
-    a%colptr(1) = 1
-    do j = 1, n
-       pos = mod((j - 1)/stride, m)
-       do d = ndim, 1, -1
-          if (pos(d) > 0) then
-             k = k + 1
-             a%rowind(k) = j - stride(d)
-             a%val(k) = -1.0_wp
-          end if
-       end do
-       k = k + 1
-       a%rowind(k) = j
-       a%val(k) = real(2*ndim, wp)
-       a%colptr(j + 1) = k + 1
-    end do
-    a%rowind = a%rowind(1:k)
-    a%val = a%val(1:k)
-  end subroutine grid_laplacian
 
   subroutine expand_two_dofs(l, a)
     !! Two unknowns per node: every entry of l becomes a 2x2 SPD block (upper triangle).

@@ -142,7 +142,10 @@ contains
   subroutine scatter_general(ke, m, cols, it, map, k)
     !! Add Mᵀ ke M (upper triangle) to k: km = ke M, then Mᵀ km, each sum in
     !! increasing index order over the nonzero terms of M only (the terms left
-    !! out are exact zeros, so every sum is that of the dense product).
+    !! out are exact zeros, so every sum is that of the dense product). Where
+    !! every column of M holds one 1 (the usual Δu transform: a slave DOF on
+    !! its master's column and its own Δu column), entry (a, b) is ke's entry
+    !! of those rows, the same number (scatter_picked).
     real(wp), intent(in) :: ke(:, :), m(:, :)
     integer(i8), intent(in) :: cols(:)
     integer(i8), intent(in) :: it   !! the item's number
@@ -152,8 +155,10 @@ contains
     integer :: rows(size(m, 1), size(m, 2)), nrow(size(m, 2))
     integer :: n, nc, a, b, i, r
     integer(i8) :: pos, cb, mb
+    logical :: picked
     n = size(m, 1)
     nc = size(m, 2)
+    picked = .true.
     do b = 1, nc
        nrow(b) = 0
        do i = 1, n
@@ -161,6 +166,14 @@ contains
           nrow(b) = nrow(b) + 1
           rows(nrow(b), b) = i
        end do
+       picked = picked .and. nrow(b) == 1
+       if (picked) picked = m(rows(1, b), b) == 1.0_wp
+    end do
+    if (picked) then
+       call scatter_picked(ke, rows(1, :), cols, it, map, k)
+       return
+    end if
+    do b = 1, nc
        km(:, b) = 0.0_wp
        do r = 1, nrow(b)
           km(:, b) = km(:, b) + ke(:, rows(r, b))*m(rows(r, b), b)
@@ -180,6 +193,29 @@ contains
        end do
     end do
   end subroutine scatter_general
+
+  subroutine scatter_picked(ke, row, cols, it, map, k)
+    !! Add Mᵀ ke M (upper triangle) to k where column b of M is the unit vector
+    !! of DOF row(b): entry (a, b) is ke(row(a), row(b)). scatter_general's
+    !! sum 0 + 1·(ke(row(a), row(b))·1) is the same number (a -0 entry gives
+    !! +0 there and -0 here, which k's sum, started at +0, turns to +0 alike).
+    real(wp), intent(in) :: ke(:, :)
+    integer, intent(in) :: row(:)
+    integer(i8), intent(in) :: cols(:)
+    integer(i8), intent(in) :: it   !! the item's number
+    type(scatter_map_t), intent(in) :: map
+    type(sparse_sym_t), intent(inout) :: k
+    integer :: a, b
+    integer(i8) :: pos, cb, mb
+    do b = 1, size(row)
+       cb = k%colptr(cols(b))
+       mb = map%start(it) + (b*(b - 1_i8))/2
+       do a = 1, b
+          pos = cb + map%off(mb + a)
+          k%val(pos) = k%val(pos) + ke(row(a), row(b))
+       end do
+    end do
+  end subroutine scatter_picked
 
   subroutine add_prescribed(ke, m, u0e, cols, f_u0)
     !! f_u0(cols) -= Mᵀ ke u0e (the load of the prescribed values).

@@ -10,7 +10,7 @@ module test_matrices
 contains
 
   subroutine grid_laplacian(m, ndim, a)
-    !! Laplacian on an m^ndim grid (ndim = 2 or 3; 2 ndim on the diagonal, -1
+    !! Laplacian on an m^ndim grid (ndim = 1, 2 or 3; 2 ndim on the diagonal, -1
     !! to each neighbour), upper triangle with rows sorted in every column.
     integer(i8), intent(in) :: m
     integer, intent(in) :: ndim

@@ -88,10 +88,9 @@ contains
     type(sparse_sym_t), intent(inout) :: k
     real(wp), intent(inout) :: f_u0(:)
     real(wp) :: m(size(pd), size(cols)), u0e(size(pd))
-    integer :: idx(size(pd))
+    integer :: idx(size(pd)), row(size(pd))
     integer :: n, nc, a, b, nmax
     logical :: simple
-    integer(i8) :: pos, cb, mb
 
     n = size(pd)
     nc = size(cols)
@@ -99,15 +98,8 @@ contains
     call fill_m(nmax)
     if (simple) then
        ! Every DOF is its own column: ke's entries go straight in.
-       do b = 1, n
-          cb = k%colptr(cols(idx(b)))
-          mb = map%start(it) + (idx(b)*(idx(b) - 1_i8))/2
-          do a = 1, n
-             if (idx(a) > idx(b)) cycle
-             pos = cb + map%off(mb + idx(a))
-             k%val(pos) = k%val(pos) + ke(a, b)
-          end do
-       end do
+       row(idx) = [(a, a = 1, n)]
+       call scatter_picked(ke, row, cols, it, map, k)
        return
     end if
     call scatter_general(ke, m, cols, it, map, k)
@@ -196,7 +188,8 @@ contains
 
   subroutine scatter_picked(ke, row, cols, it, map, k)
     !! Add Mᵀ ke M (upper triangle) to k where column b of M is the unit vector
-    !! of DOF row(b): entry (a, b) is ke(row(a), row(b)). scatter_general's
+    !! of DOF row(b): entry (a, b) is ke(row(a), row(b)) (also an item whose
+    !! every DOF is its own column, scatter_item's simple case). scatter_general's
     !! sum 0 + 1·(ke(row(a), row(b))·1) is the same number (a -0 entry gives
     !! +0 there and -0 here, which k's sum, started at +0, turns to +0 alike).
     real(wp), intent(in) :: ke(:, :)

@@ -1,25 +1,21 @@
 module superjoin_output_listing
   !! The fixed-format listing: the same bytes for the same deck on every run.
   !! Written to a temporary name and renamed only when complete.
-  use, intrinsic :: iso_fortran_env, only: int8
-  use superjoin_kinds, only: wp, i8, ip
+  use superjoin_kinds, only: wp, i8
   use superjoin_error, only: error_t, fatal_error, EXIT_IO
   use superjoin_model_types, only: model_t, NDOF_NODE, LINK_RIGID, &
        RIGID_ELIMINATE
-  use superjoin_elements, only: plane_centroid_remainder
-  use superjoin_model_types, only: ELEMENT_NODE_COUNT
   use superjoin_model_results, only: results_t, step_results_t
   use superjoin_utils_process, only: temp_register, temp_unregister
   use superjoin_utils_text_buffer, only: text_buffer_t
-  use superjoin_output_columns, only: element_prefix, chop, element_kinds_t, element_kinds
+  use superjoin_output_columns, only: chop
+  use superjoin_output_listing_tables, only: node_tables, element_tables, contact_table
   use superjoin_config, only: SUPERJOIN_VERSION
   use superjoin_utils_strings, only: itoa
   use superjoin_utils_memory, only: out_of_memory
   use superjoin_output_requests, only: write_print_requests
   use superjoin_output_section_print, only: write_section_prints
   use superjoin_model_request_masks, only: has_requests
-  use superjoin_output_layout, only: displacement_columns, node_dof_mask, &
-       has_node_frames, in_node_frame, REACTION_FRAME_NOTE, FRAME_MARK
   use superjoin_output_envelope, only: write_envelope
   implicit none (type, external)
   private
@@ -212,8 +208,8 @@ contains
     type(model_t), intent(in) :: model
     type(results_t), intent(in) :: res
     integer, intent(in) :: is
-    integer :: d, k, il, dirs
-    real(wp) :: scale, dscale
+    integer :: k, dirs
+    real(wp) :: scale
     character(len=300) :: hline
     character(len=3), parameter :: DIR_NAMES(6) = ['FX ', 'FY ', 'FZ ', 'MX ', 'MY ', 'MZ ']
     logical :: tables
@@ -232,29 +228,7 @@ contains
 
       if (tables) call node_tables(lu, model, res, is)
 
-      call lu%line('CONTACT FORCES (contact frame; delta = u_slave - u_master, force on the master)')
-      write (hline, '(2x,a16,2a10,a6,2a15)') 'contact         ', '    master', '     slave', '   dof', &
-           '          delta', '          force'
-      call lu%line(trim(hline))
-      scale = max(0.0_wp, maxval(abs(st%link_force)))
-      dscale = max(0.0_wp, maxval(abs(st%link_delta)))
-      do il = 1, size(model%links)
-         associate (lk => model%links(il), ct => model%contacts(model%links(il)%contact))
-           do d = 1, NDOF_NODE
-              if (.not. res%fields%link_used(d, il)) cycle
-              call lu%put('  ')
-              call lu%put_field(ct%name, 16)
-              call lu%put_int(int(model%subs(ct%master_sub)%node_id(lk%master_node), i8), 10)
-              call lu%put_int(int(model%subs(ct%slave_sub)%node_id(lk%slave_node), i8), 10)
-              call lu%put_int(int(d, i8), 6)
-              call lu%put_es(chop(st%link_delta(d, il), dscale))
-              call lu%put_es(chop(st%link_force(d, il), scale))
-              if (lk%state(d) == LINK_RIGID) call lu%put('   RIGID')
-              call lu%newline()
-           end do
-         end associate
-      end do
-      call lu%line('')
+      call contact_table(lu, model, res, is)
 
       if (tables) call element_tables(lu, model, res, is)
 
@@ -356,287 +330,6 @@ contains
     call lu%line('  '//message(i:))
     call lu%line('')
   end subroutine failure_lines
-
-  subroutine node_tables(lu, model, res, is)
-    !! DISPLACEMENTS and SUPPORT REACTIONS of step is.
-    type(text_buffer_t), intent(inout) :: lu
-    type(model_t), intent(in) :: model
-    type(results_t), intent(in) :: res
-    integer, intent(in) :: is
-    integer :: isub, d, k
-    integer(ip) :: n
-    integer(i8) :: v
-    real(wp) :: scale, vals(NDOF_NODE), row(NDOF_NODE)
-    character(len=300) :: hline
-    character(len=3), parameter :: DISP_NAMES(NDOF_NODE) = ['u1 ', 'u2 ', 'u3 ', 'ur1', 'ur2', 'ur3']
-    integer :: cols(NDOF_NODE), ncol
-    integer(int8), allocatable :: has(:)
-
-    call node_dof_mask(model, res%fields%vertex_offset, has)
-    associate (st => res%fields%steps(is))
-      call lu%line('DISPLACEMENTS (global axes)')
-      call displacement_columns(model, cols, ncol)
-      hline = ''
-      write (hline, '(2x,a20,a10)') 'substructure        ', '      node'
-      do k = 1, ncol
-         hline = trim(hline)//repeat(' ', 15 - len_trim(DISP_NAMES(cols(k))))//trim(DISP_NAMES(cols(k)))
-      end do
-      call lu%line(trim(hline))
-      scale = max(0.0_wp, maxval(abs(res%fields%u(:, is))))
-      do isub = 1, size(model%subs)
-         do n = 1, model%subs(isub)%nnode
-            v = res%fields%vertex_offset(isub) + n
-            if (.not. any(res%fields%has_dof(:, v))) cycle
-            do d = 1, NDOF_NODE
-               vals(d) = chop(res%fields%u(NDOF_NODE*(v - 1) + d, is), scale)
-            end do
-            call lu%put('  ')
-            call lu%put_field(model%subs(isub)%name, 20)
-            call lu%put_int(int(model%subs(isub)%node_id(n), i8), 10)
-            do k = 1, ncol
-               row(k) = vals(cols(k))
-            end do
-            call lu%put_es_row(row(1:ncol))
-            call lu%newline()
-         end do
-      end do
-      call lu%line('')
-
-      if (has_node_frames(model)) then
-         call lu%line('SUPPORT REACTIONS (force the support exerts on the structure; '//REACTION_FRAME_NOTE//')')
-      else
-         call lu%line('SUPPORT REACTIONS (force the support exerts on the structure)')
-      end if
-      write (hline, '(2x,a20,a10,a6,a15)') 'substructure        ', '      node', '   dof', '          force'
-      call lu%line(trim(hline))
-      scale = max(0.0_wp, maxval(abs(st%reactions(:)%force)))
-      do k = 1, size(st%reactions)
-         associate (rc => st%reactions(k))
-           if (.not. btest(has(res%fields%vertex_offset(rc%sub) + rc%node), rc%dof - 1)) cycle
-           call lu%put('  ')
-           call lu%put_field(model%subs(rc%sub)%name, 20)
-           call lu%put_int(int(model%subs(rc%sub)%node_id(rc%node), i8), 10)
-           call lu%put_int(int(rc%dof, i8), 6)
-           call lu%put_es(chop(rc%force, scale))
-           if (in_node_frame(model, rc%sub, rc%node)) call lu%put(FRAME_MARK)
-           call lu%newline()
-         end associate
-      end do
-      call lu%line('')
-    end associate
-  end subroutine node_tables
-
-  subroutine element_tables(lu, model, res, is)
-    !! TRUSS AXIAL FORCES, ELEMENT END FORCES of the beams and the plate and
-    !! shell resultants of step is.
-    type(text_buffer_t), intent(inout) :: lu
-    type(model_t), intent(in) :: model
-    type(results_t), intent(in) :: res
-    integer, intent(in) :: is
-    integer :: isub, k, ie
-    integer(i8) :: iel
-    real(wp) :: scale, row(6)
-    character(len=300) :: hline
-    logical :: has_bars, has_plates, has_trusses
-    type(element_kinds_t) :: kinds
-
-    kinds = element_kinds()
-    has_bars = .false.
-    has_plates = .false.
-    has_trusses = .false.
-    do isub = 1, size(model%subs)
-       do ie = 1, model%subs(isub)%nelem
-          associate (t => model%subs(isub)%elem_type(ie))
-            has_plates = has_plates .or. kinds%plate(t)
-            has_trusses = has_trusses .or. (kinds%truss(t) .and. .not. kinds%plate(t))
-            has_bars = has_bars .or. .not. (kinds%plate(t) .or. kinds%truss(t))
-          end associate
-       end do
-    end do
-    if (has_trusses) call truss_block(lu, model, res, is, kinds)
-    if (has_bars) then
-       call lu%line('ELEMENT END FORCES (local axes; forces the nodes exert on the element)')
-       write (hline, '(2x,a20,a10,a6,a4,6a15)') 'substructure        ', '   element', '  type', ' end', &
-            '              n', '             vy', '             vz', '              t', '             my', &
-            '             mz'
-       call lu%line(trim(hline))
-       scale = max(0.0_wp, maxval(abs(res%fields%elem_force(:, :, :, is))))
-       do isub = 1, size(model%subs)
-          do ie = 1, model%subs(isub)%nelem
-             if (kinds%plate(model%subs(isub)%elem_type(ie))) cycle
-             if (kinds%truss(model%subs(isub)%elem_type(ie))) cycle
-             iel = res%fields%elem_offset(isub) + ie
-             do k = 1, 2
-                call element_prefix(lu, model, isub, ie, 2)
-                call lu%put_int(int(k, i8), 4)
-                row = chop(res%fields%elem_force(:, k, iel, is), scale)
-                call lu%put_es_row(row)
-                call lu%newline()
-             end do
-          end do
-       end do
-       call lu%line('')
-    end if
-    if (has_plates) call plate_block(lu, model, res, is, kinds)
-  end subroutine element_tables
-
-  subroutine truss_block(lu, model, res, is, kinds)
-    !! One axial force per truss, tension positive: N = (n2 - n1)/2 of the end
-    !! forces, the force at mid-length (n2 = -n1 = N without an axial load
-    !! along the bar; element_forces.csv keeps both ends).
-    type(text_buffer_t), intent(inout) :: lu
-    type(model_t), intent(in) :: model
-    type(results_t), intent(in) :: res
-    integer, intent(in) :: is
-    type(element_kinds_t), intent(in) :: kinds
-    character(len=100) :: hline
-    real(wp) :: scale
-    integer :: isub
-    integer(ip) :: ie
-    integer(i8) :: iel
-    call lu%line('TRUSS AXIAL FORCES (tension positive)')
-    write (hline, '(2x,a20,a10,a6,a15)') 'substructure        ', '   element', '  type', '              N'
-    call lu%line(trim(hline))
-    scale = 0.0_wp
-    do isub = 1, size(model%subs)
-       do ie = 1, model%subs(isub)%nelem
-          if (.not. kinds%truss(model%subs(isub)%elem_type(ie))) cycle
-          iel = res%fields%elem_offset(isub) + ie
-          scale = max(scale, abs(axial(iel)))
-       end do
-    end do
-    do isub = 1, size(model%subs)
-       do ie = 1, model%subs(isub)%nelem
-          if (.not. kinds%truss(model%subs(isub)%elem_type(ie))) cycle
-          iel = res%fields%elem_offset(isub) + ie
-          call element_prefix(lu, model, isub, ie, 2)
-          call lu%put_es(chop(axial(iel), scale))
-          call lu%newline()
-       end do
-    end do
-    call lu%line('')
-  contains
-    pure real(wp) function axial(iel) result(n)
-      integer(i8), intent(in) :: iel
-      n = 0.5_wp*(res%fields%elem_force(1, 2, iel, is) - res%fields%elem_force(1, 1, iel, is))
-    end function axial
-  end subroutine truss_block
-
-  subroutine plate_block(lu, model, res, is, kinds)
-    !! Resultants per unit length of the plane and shell elements at their
-    !! centroids, and the stresses at the top and bottom surfaces (plane stress:
-    !! mid-surface only), element frame.
-    type(text_buffer_t), intent(inout) :: lu
-    type(model_t), intent(in) :: model
-    type(results_t), intent(in) :: res
-    integer, intent(in) :: is
-    type(element_kinds_t), intent(in) :: kinds
-    integer :: isub, ie, k, nsurf
-    integer(i8) :: iel
-    logical :: plane_strain
-    real(wp) :: scale(2), t, sig(4), row(6)
-    character(len=300) :: hline
-    character(len=6), parameter :: SURFACES(3) = ['top   ', 'bottom', 'mid   ']
-
-    call lu%line('PLATE AND SHELL RESULTANTS (element frame, per unit length, at the centroid)')
-    write (hline, '(2x,a20,a10,a6,6a15)') 'substructure        ', '   element', '  type', &
-         '             nx', '             ny', '            nxy', '             mx', '             my', &
-         '            mxy'
-    call lu%line(trim(hline))
-    scale(1) = max(0.0_wp, maxval(abs(res%fields%plate(1:3, :, is))))
-    scale(2) = max(0.0_wp, maxval(abs(res%fields%plate(4:6, :, is))))
-    do isub = 1, size(model%subs)
-       do ie = 1, model%subs(isub)%nelem
-          if (.not. kinds%plate(model%subs(isub)%elem_type(ie))) cycle
-          iel = res%fields%elem_offset(isub) + ie
-          call element_prefix(lu, model, isub, ie, 2)
-          row(1:3) = chop(res%fields%plate(1:3, iel, is), scale(1))
-          row(4:6) = chop(res%fields%plate(4:6, iel, is), scale(2))
-          call lu%put_es_row(row)
-          call lu%newline()
-       end do
-    end do
-    call lu%line('')
-
-    call lu%line('PLATE AND SHELL STRESSES (element frame, at the centroid; top is +t/2 along the normal)')
-    write (hline, '(2x,a20,a10,a6,a8,4a15)') 'substructure        ', '   element', '  type', ' surface', &
-         '             sx', '             sy', '            sxy', '     von Mises'
-    call lu%line(trim(hline))
-    do isub = 1, size(model%subs)
-       do ie = 1, model%subs(isub)%nelem
-          if (.not. kinds%plate(model%subs(isub)%elem_type(ie))) cycle
-          iel = res%fields%elem_offset(isub) + ie
-          t = model%subs(isub)%sections(model%subs(isub)%elem_section(ie))%thickness
-          nsurf = 2
-          if (kinds%plane(model%subs(isub)%elem_type(ie))) nsurf = 1
-          plane_strain = kinds%plane_strain(model%subs(isub)%elem_type(ie))
-          if (plane_strain) nsurf = 1
-          do k = 1, nsurf
-             sig(1:3) = res%fields%plate(1:3, iel, is)/t
-             ! (m/t)/t: no t**2 to underflow
-             if (nsurf == 2) sig(1:3) = sig(1:3) + merge(1.0_wp, -1.0_wp, k == 1)*6.0_wp*(res%fields%plate(4:6, iel, is)/t)/t
-             sig(4) = von_mises(sig(1:3))
-             if (plane_strain) then   ! with sz = nu (sx + sy)
-                associate (sec => model%subs(isub)%sections(model%subs(isub)%elem_section(ie)))
-                  sig(4) = von_mises_3(sig(1:3), model%materials(sec%material)%nu*(sig(1) + sig(2)))
-                  ! loads: a thermal strain adds -E alpha dT to sz
-                  if (allocated(res%fields%thermal)) sig(4) = von_mises_3(sig(1:3), &
-                       model%materials(sec%material)%nu*(sig(1) + sig(2)) - &
-                       model%materials(sec%material)%e*(res%fields%thermal(1, iel, is) + centroid_remainder()))
-                end associate
-             end if
-             call element_prefix(lu, model, isub, ie, 2)
-             call lu%put_blanks(2)
-             if (nsurf == 1) then
-                call lu%put_field(SURFACES(3), 6)
-             else
-                call lu%put_field(SURFACES(k), 6)
-             end if
-             sig = chop(sig, maxval(abs(sig)))
-             call lu%put_es_row(sig)
-             call lu%newline()
-          end do
-       end do
-    end do
-    call lu%line('')
-  contains
-    real(wp) function centroid_remainder()
-      !! A temperature varying over plane element ie of isub: its remainder at the centroid.
-      integer :: nn
-      centroid_remainder = 0.0_wp
-      if (.not. allocated(res%fields%thermal_nodal)) return
-      associate (sub => model%subs(isub))
-        nn = ELEMENT_NODE_COUNT(sub%elem_type(ie))
-        centroid_remainder = plane_centroid_remainder(sub%elem_type(ie), sub%x(:, sub%elem_nodes(1:nn, ie)), &
-             res%fields%thermal_nodal(1:nn, iel, is))
-      end associate
-    end function centroid_remainder
-  end subroutine plate_block
-
-  pure function von_mises(sig) result(vm)
-    !! Von Mises stress of a plane stress state (sx, sy, sxy), scaled so that
-    !! the squares cannot overflow.
-    real(wp), intent(in) :: sig(3)
-    real(wp) :: vm, sc, a(3)
-    sc = maxval(abs(sig))
-    vm = 0.0_wp
-    if (sc == 0.0_wp) return
-    a = sig/sc
-    vm = sc*sqrt(max(0.0_wp, a(1)**2 - a(1)*a(2) + a(2)**2 + 3.0_wp*a(3)**2))
-  end function von_mises
-
-  pure function von_mises_3(sig, sz) result(vm)
-    !! Von Mises stress of (sx, sy, sxy) with a normal stress sz (plane strain),
-    !! scaled so that the squares cannot overflow.
-    real(wp), intent(in) :: sig(3), sz
-    real(wp) :: vm, sc, a(3), c
-    sc = max(maxval(abs(sig)), abs(sz))
-    vm = 0.0_wp
-    if (sc == 0.0_wp) return
-    a = sig/sc
-    c = sz/sc
-    vm = sc*sqrt(max(0.0_wp, ((a(1) - a(2))**2 + (a(2) - c)**2 + (c - a(1))**2)/2 + 3.0_wp*a(3)**2))
-  end function von_mises_3
 
   pure function field(text, n) result(f)
     !! Text left-justified in a field of width n (cut if longer).

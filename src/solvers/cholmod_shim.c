@@ -42,11 +42,10 @@
  * Nothing is printed and nothing aborts: CHOLMOD's print level is 0 and its
  * error handler only records the message (sj_cholmod_message).
  */
-#define _GNU_SOURCE   /* CPU_COUNT, sched_getaffinity */
+#define _GNU_SOURCE   /* madvise's MADV_DONTNEED under a strict -std */
 #include "huge_pages.h"
 #include <malloc.h>
 #include <pthread.h>
-#include <sched.h>
 #include <stddef.h>
 #include <stdint.h>
 #include <stdlib.h>
@@ -667,16 +666,13 @@ int sj_cholmod_analyze(void *handle, int64_t n, int64_t *colptr, int64_t *rowind
     return SJ_OK;
 }
 
-/* May an analysis run beside the caller? Not when one thread is asked for
- * (OMP_NUM_THREADS=1, the first value of a list) or when the process may run
- * on one CPU only. */
+/* May an analysis run beside the caller? Where a second thread may run at
+ * all (sj_second_thread, process.c: not where one thread is asked for, nor
+ * on one CPU). */
+int sj_second_thread(void);
 int sj_cholmod_can_overlap(void)
 {
-    const char *s = getenv("OMP_NUM_THREADS");
-    cpu_set_t set;
-    if (s != NULL && *s != '\0' && strtol(s, NULL, 10) == 1) return 0;
-    if (sched_getaffinity(0, sizeof set, &set) == 0 && CPU_COUNT(&set) < 2) return 0;
-    return 1;
+    return sj_second_thread();
 }
 
 /* The second thread: sj_analyze_now, its status and message kept in h (the

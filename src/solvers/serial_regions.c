@@ -32,9 +32,11 @@
  * found once by dlsym(RTLD_NEXT) (sj_serial_regions_setup).
  *
  * Only the GNU runtime's entry point is defined: a build whose libraries use
- * another OpenMP runtime never calls it. Nothing here is used by superjoin's
- * own Fortran, which has no OpenMP; of the libraries it links (CHOLMOD,
- * UMFPACK, METIS, OpenBLAS, MUMPS, MPI) only CHOLMOD calls GOMP_parallel.
+ * another OpenMP runtime never calls it. superjoin's own Fortran opens one
+ * kind of region, the listing's two-thread `parallel sections`
+ * (src/output/rows.f90), which GCC compiles to GOMP_parallel_sections, not
+ * GOMP_parallel; of the libraries it links (CHOLMOD, UMFPACK, METIS,
+ * OpenBLAS, MUMPS, MPI) only CHOLMOD calls GOMP_parallel.
  */
 #define _GNU_SOURCE
 #include <dlfcn.h>

@@ -228,3 +228,22 @@ void sj_blas_core_setup(void)
 /* The kernels in use, for -v: a NUL-terminated text ("" when the BLAS is
  * not OpenBLAS). */
 const char *sj_blas_core_note(void) { return note; }
+
+/* Let OpenBLAS's worker threads go (blas_thread_shutdown_, found at run time:
+ * nothing with another BLAS). After each threaded call they spin on
+ * sched_yield for about 2^28 cycles (0.1 s) before they sleep, and a thread
+ * of the program's own that runs meanwhile shares a CPU with that spin: the
+ * listing's rows formatted on two threads took as long as on one. OpenBLAS
+ * starts its workers again at its next threaded call (exec_blas). Only
+ * where no BLAS call is running on another thread. */
+void sj_blas_threads_rest(void)
+{
+    typedef int (*shutdown_t)(void);
+    static shutdown_t shutdown = NULL;
+    static int looked = 0;
+    if (!looked) {
+        shutdown = (shutdown_t)dlsym(RTLD_DEFAULT, "blas_thread_shutdown_");
+        looked = 1;
+    }
+    if (shutdown != NULL) shutdown();
+}

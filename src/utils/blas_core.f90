@@ -3,18 +3,26 @@ module superjoin_utils_blas_core
   !! why): blas_core_setup, the first call of the program, starts it once
   !! more with OPENBLAS_CORETYPE set where OpenBLAS fell back to kernels
   !! older than the CPU's instructions; blas_core_note says which kernels
-  !! run (for -v); blas_core_choice is the rule, for its unit test.
+  !! run (for -v); blas_core_choice is the rule, for its unit test;
+  !! blas_threads_rest lets OpenBLAS's idle workers go before the program's
+  !! own two-thread work.
   use, intrinsic :: iso_c_binding, only: c_char, c_int, c_ptr, c_size_t, c_null_char, c_associated, c_f_pointer
   implicit none (type, external)
   private
 
-  public :: blas_core_setup, blas_core_note, blas_core_choice
+  public :: blas_core_setup, blas_core_note, blas_core_choice, blas_threads_rest
 
   interface
      subroutine blas_core_setup() bind(c, name='sj_blas_core_setup')
        !! Before anything else: the program again with OPENBLAS_CORETYPE
        !! set, where blas_core.c's conditions hold; otherwise nothing.
      end subroutine blas_core_setup
+     subroutine blas_threads_rest() bind(c, name='sj_blas_threads_rest')
+       !! OpenBLAS's worker threads end (blas_core.c): their spin after a
+       !! threaded call no longer takes a CPU from the program's own threads.
+       !! OpenBLAS starts them again when it needs them. Only where no BLAS
+       !! call runs on another thread.
+     end subroutine blas_threads_rest
      function sj_blas_core_note() bind(c, name='sj_blas_core_note') result(p)
        import :: c_ptr
        type(c_ptr) :: p

@@ -19,7 +19,13 @@
  *    that buffer cannot be mapped (probed with mmap first, as OpenBLAS maps
  *    it; malloc would make AddressSanitizer poison and fill 129 MB at every
  *    start), the caller is told, with the size, and BLAS is not touched.
+ *
+ * Also the one rule for work beside the main thread (sj_second_thread): the
+ * CHOLMOD analysis beside the assembly, the listing's rows formatted in pairs
+ * of chunks.
  */
+#define _GNU_SOURCE
+#include <sched.h>
 #include <stdio.h>
 #include <signal.h>
 #include <stdatomic.h>
@@ -148,4 +154,18 @@ void sj_quick_exit(int status)
 {
     fflush(NULL);
     _exit(status);
+}
+
+/* May work run on a second thread beside the main one? Not when one thread
+ * is asked for (OMP_NUM_THREADS=1, or a list whose first value is 1, as
+ * OpenMP reads it) or when the process may run on one CPU
+ * only (taskset, a container's cpuset): a second thread would then only take
+ * turns with the first. */
+int sj_second_thread(void)
+{
+    const char *s = getenv("OMP_NUM_THREADS");
+    cpu_set_t set;
+    if (s != NULL && *s != '\0' && strtol(s, NULL, 10) == 1) return 0;
+    if (sched_getaffinity(0, sizeof set, &set) == 0 && CPU_COUNT(&set) < 2) return 0;
+    return 1;
 }

@@ -6,7 +6,7 @@ module superjoin_utils_process
   implicit none (type, external)
   private
 
-  public :: process_setup, temp_register, temp_unregister, quick_exit
+  public :: process_setup, temp_register, temp_unregister, quick_exit, second_thread_allowed
 
   interface
      function sj_process_setup(blas_bytes) bind(c, name='sj_process_setup') result(status)
@@ -21,6 +21,10 @@ module superjoin_utils_process
        integer(c_long), value :: len
        integer(c_int) :: status
      end function sj_temp_register
+     function sj_second_thread() bind(c, name='sj_second_thread') result(yes)
+       import :: c_int
+       integer(c_int) :: yes
+     end function sj_second_thread
      subroutine sj_quick_exit(status) bind(c, name='sj_quick_exit')
        import :: c_int
        integer(c_int), value :: status
@@ -50,6 +54,13 @@ contains
     ok = sj_process_setup(nbytes) == 0
     blas_bytes = int(nbytes, i8)
   end subroutine process_setup
+
+  logical function second_thread_allowed()
+    !! Whether work may run on a second thread beside the main one: not under
+    !! OMP_NUM_THREADS=1, nor when the process may run on one CPU only
+    !! (process.c, sj_second_thread).
+    second_thread_allowed = sj_second_thread() /= 0
+  end function second_thread_allowed
 
   subroutine temp_register(path)
     !! path is the temporary file being written: removed if a signal ends the run.

@@ -1,7 +1,9 @@
 module superjoin_utils_text_buffer
   !! Fast buffered text output for large listings: fields are formatted by
   !! integer arithmetic into a memory buffer that is written in large blocks
-  !! (unformatted stream), instead of one formatted WRITE per line.
+  !! (unformatted stream), instead of one formatted WRITE per line. A buffer
+  !! opened in memory (open_memory) keeps its text instead, for another
+  !! buffer to take (take): text formatted on a second thread.
   use superjoin_kinds, only: wp, i8
   use superjoin_error, only: error_t, fatal_error, EXIT_IO
   use superjoin_utils_posix, only: rename_file, remove_file
@@ -27,9 +29,14 @@ module superjoin_utils_text_buffer
      character(len=IOMSG_LEN) :: why = ''   !! message of the first failed write
      character(:), allocatable :: path
      integer(i8) :: written = 0             !! bytes handed to the I/O library
+     logical :: in_memory = .false.         !! keeps its text (open_memory) instead of writing it
+     character(:), allocatable :: kept      !! in memory: the text of the full blocks so far
+     integer(i8) :: kept_len = 0            !! in memory: characters of kept in use
      character(len=BUFFER_BYTES) :: buf
   contains
      procedure :: open => tb_open
+     procedure :: open_memory => tb_open_memory
+     procedure :: take => tb_take
      procedure :: put => tb_put
      procedure :: put_field => tb_put_field
      procedure :: put_int => tb_put_int
@@ -61,17 +68,104 @@ contains
     self%failed = .false.
     self%path = path
     self%written = 0
+    self%in_memory = .false.
   end subroutine tb_open
+
+  subroutine tb_open_memory(self)
+    !! Begin empty, keeping the text in memory (for take) instead of writing it.
+    class(text_buffer_t), intent(inout) :: self
+    self%in_memory = .true.
+    self%pos = 0
+    self%kept_len = 0
+    self%failed = .false.
+  end subroutine tb_open_memory
+
+  subroutine tb_take(self, other)
+    !! Append the text kept by other (opened with open_memory), which is left
+    !! empty. A buffer writing a file writes it out directly, after its own
+    !! text (no copy into its own block). Nothing is taken from a buffer that
+    !! failed (its text is incomplete: the caller formats it again).
+    class(text_buffer_t), intent(inout) :: self
+    type(text_buffer_t), intent(inout) :: other
+    if (other%failed) then
+       other%kept_len = 0
+       other%pos = 0
+       return
+    end if
+    if (self%in_memory) then
+       if (other%kept_len > 0) call append_in_pieces(self, other%kept, other%kept_len)
+       call self%put(other%buf(1:other%pos))
+    else
+       call flush_block(self)
+       if (other%kept_len > 0) call write_out(self, other%kept, other%kept_len)
+       call write_out(self, other%buf, int(other%pos, i8))
+    end if
+    other%kept_len = 0
+    other%pos = 0
+  end subroutine tb_take
+
+  subroutine append_in_pieces(self, text, n)
+    !! put text(1:n), a block at a time (put takes a default-integer length).
+    class(text_buffer_t), intent(inout) :: self
+    character(*), intent(in) :: text
+    integer(i8), intent(in) :: n
+    integer(i8) :: start, chunk
+    start = 1
+    do while (start <= n)
+       chunk = min(n - start + 1, int(BUFFER_BYTES, i8))
+       call self%put(text(start:start + chunk - 1))
+       start = start + chunk
+    end do
+  end subroutine append_in_pieces
+
+  subroutine write_out(self, text, n)
+    !! text(1:n) written to the file as it is (the buffer is empty).
+    class(text_buffer_t), intent(inout) :: self
+    character(*), intent(in) :: text
+    integer(i8), intent(in) :: n
+    integer :: ios
+    if (n <= 0 .or. self%failed) return
+    write (self%unit, iostat=ios, iomsg=self%why) text(1:n)
+    if (ios /= 0) self%failed = .true.
+    self%written = self%written + n
+  end subroutine write_out
+
+  subroutine keep_block(self)
+    !! In memory: the buffer's text appended to kept (which grows by doubling).
+    class(text_buffer_t), intent(inout) :: self
+    character(:), allocatable :: grown
+    integer(i8) :: need
+    integer :: stat
+    need = self%kept_len + self%pos
+    stat = 0
+    if (.not. allocated(self%kept)) then
+       allocate (character(len=max(need, int(BUFFER_BYTES, i8))) :: self%kept, stat=stat)
+    else if (len(self%kept, i8) < need) then
+       allocate (character(len=max(need, 2*len(self%kept, i8))) :: grown, stat=stat)
+       if (stat == 0) then
+          grown(1:self%kept_len) = self%kept(1:self%kept_len)
+          call move_alloc(grown, self%kept)
+       end if
+    end if
+    if (stat /= 0) then   ! the text is lost: failed tells the taker to format it itself
+       self%failed = .true.
+       self%why = 'out of memory for the text kept in memory'
+       self%pos = 0
+       return
+    end if
+    self%kept(self%kept_len + 1:need) = self%buf(1:self%pos)
+    self%kept_len = need
+    self%pos = 0
+  end subroutine keep_block
 
   subroutine flush_block(self)
     class(text_buffer_t), intent(inout) :: self
-    integer :: ios
     if (self%pos == 0) return
-    if (.not. self%failed) then
-       write (self%unit, iostat=ios, iomsg=self%why) self%buf(1:self%pos)
-       if (ios /= 0) self%failed = .true.
-       self%written = self%written + self%pos
+    if (self%in_memory) then
+       call keep_block(self)
+       return
     end if
+    call write_out(self, self%buf, int(self%pos, i8))
     self%pos = 0
   end subroutine flush_block
 

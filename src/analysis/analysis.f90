@@ -34,7 +34,7 @@ module superjoin_analysis
   use superjoin_analysis_levels, only: describe_levels, levels_request_t
   use superjoin_analysis_level_solver, only: make_solver, level_note
   use superjoin_analysis_solve_state, only: solve_state_t, plain_strategy_t, PHASE_BUILT, PHASE_ASSEMBLED, PHASE_SOLVED, &
-       PHASE_RECOVERED
+       PHASE_RECOVERED, keep_boundary_loads
   use superjoin_analysis_factor_reuse, only: take_factor, take_analysis, keep_factor, solve_with
   use superjoin_analysis_distributed, only: plan_distribution, is_distributed, owner_terms, distributed_strategy_t
   use superjoin_solvers, only: mumps_solver_t
@@ -334,6 +334,7 @@ contains
        call interface_matrix(ctx, st, model, res%summary, error)
        if (allocated(error)) return
        call reduce_loads(st%tr, st%f_eff, st%f_u0, st%f_red, error)
+       call keep_boundary_loads(st)
     end if
     if (allocated(error)) return
     deallocate (st%bnd_c)   ! its last users (the condensations) are done
@@ -435,7 +436,7 @@ contains
        if (ctx%last) call release_cache(ctx%cache)   ! the parts' factors: not needed for the element results
        ! their last users (full_health, parts_maxratio) are done
        if (allocated(st%parts)) call keep_views(ctx%cache, st%parts)   ! for a joint study's next value, else freed
-       if (allocated(st%f_eff)) deallocate (st%f_eff)
+       if (allocated(st%f_bnd)) deallocate (st%f_bnd)
        res%log%phase_seconds(PH_SOLVE) = res%log%phase_seconds(PH_SOLVE) + clock%seconds()
        call report_phase(opts%quiet, 'recover interiors', clock%seconds())
        call clock%start()

@@ -9,7 +9,7 @@ module superjoin_analysis_condensation
   use superjoin_assembly_transform, only: ROLE_PLAIN
   use superjoin_substructure_local_system, only: dof_label
   use superjoin_substructure_cache, only: part_cache_t, part_view_t, acquire_view, k_holder, entry_condense_loads, &
-       entry_ku, view_spc_loads, view_turn, entry_recover, view_need_stiffness, take_views, twins_note
+       entry_ku, entry_ku_reads_loads, view_spc_loads, view_turn, entry_recover, view_need_stiffness, take_views, twins_note
   use superjoin_model_results, only: run_summary_t, run_options_t
   use superjoin_model_notes, only: note
   use superjoin_analysis_factor_reuse, only: kept_factor_t
@@ -137,7 +137,8 @@ contains
        if (allocated(error)) return
        ! ku once the first recovery is done: not beside its solve's work
        if (.not. allocated(ku)) allocate (ku(size(u, 1), ns), source=0.0_wp)
-       allocate (y(size(uc, 1), size(uc, 2)))
+       if (.not. entry_ku_reads_loads(cache, parts(i)%entry)) call move_alloc(fc, y)   ! fc's storage takes k u
+       if (.not. allocated(y)) allocate (y(size(uc, 1), size(uc, 2)))
        do m = 1, size(members)
           c0 = (m - 1)*ns
           associate (v => parts(members(m)))
@@ -151,8 +152,13 @@ contains
           end associate
        end do
        ! fc: a library entry's recovery leaves it as it was (its k u reads it);
-       ! the factor's works in its interior rows, which entry_ku does not read then
-       call entry_ku(cache, parts(i)%entry, fc, uc, y, ns, error)
+       ! the factor's works in its interior rows, which entry_ku does not read then.
+       ! Any other entry's k u reads no loads: fc went to y above (uc stands in).
+       if (allocated(fc)) then
+          call entry_ku(cache, parts(i)%entry, fc, uc, y, ns, error)
+       else
+          call entry_ku(cache, parts(i)%entry, uc, uc, y, ns, error)
+       end if
        if (allocated(error)) return
        do m = 1, size(members)
           c0 = (m - 1)*ns
@@ -161,7 +167,8 @@ contains
             ku(v%pdof, :) = ku(v%pdof, :) + y(:, c0 + 1:c0 + ns)
           end associate
        end do
-       deallocate (fc, uc, y)
+       if (allocated(fc)) deallocate (fc)
+       deallocate (uc, y)
     end do
     if (.not. allocated(ku)) allocate (ku(size(u, 1), ns), source=0.0_wp)   ! no condensed part
   end subroutine recover_with_ku

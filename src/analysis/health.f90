@@ -403,9 +403,9 @@ contains
     real(wp), allocatable :: r(:, :), f(:, :), rl(:, :), u0l(:, :), w(:, :), ks(:, :), ku0(:), &
          rf(:, :), ffull(:, :), qfull(:, :)
     integer :: i, is, nstep
-    integer(i8) :: ni, nb, l, ntot, at
+    integer(i8) :: ni, nb, l, ntot, at, bat
     associate (tr => st%tr, k => st%k, parts => st%parts, q => st%q, u => st%u, ku => st%ku, f_red => st%f_red, &
-         f_eff => st%f_eff, f_phys => st%f_phys)
+         f_bnd => st%f_bnd, f_phys => st%f_phys)
       nstep = size(q, 2)
       if (allocated(st%r_red)) then   ! health's K_red q − f_red of this q: no second product with K_red
          call move_alloc(st%r_red, r)
@@ -426,6 +426,7 @@ contains
       end do
       allocate (rf(ntot, nstep), ffull(ntot, nstep), qfull(ntot, nstep))   ! every row is written below
       at = k%n
+      bat = 0
       do i = 1, size(parts)
          associate (sys => parts(i))
            ni = sys%ni
@@ -449,6 +450,7 @@ contains
            at = at + ni
            ! interface rows: K* is with the owner only under owner terms
            if (st%strategy%summed() .and. parts(i)%entry == 0) then
+              bat = bat + nb
               deallocate (rl, u0l, w)
               cycle
            end if
@@ -456,12 +458,13 @@ contains
              ks = matmul(kst, u(sys%pdof(ni + 1:), :))
              ku0 = matmul(kst, u0l(ni + 1:, 1))
            end associate
-           do l = 1, nb
+           do l = 1, nb   ! f_bnd(bat + l, :): f_eff's row of boundary DOF l (f*)
               associate (pb => sys%pdof(ni + l))
-                call tr%reduce_add(pb, rl(ni + l, :) - (ks(l, :) - f_eff(pb, :)), r)
-                call tr%reduce_add(pb, (f_phys(pb, :) - w(ni + l, 1)) - (f_eff(pb, :) - ku0(l)), f)
+                call tr%reduce_add(pb, rl(ni + l, :) - (ks(l, :) - f_bnd(bat + l, :)), r)
+                call tr%reduce_add(pb, (f_phys(pb, :) - w(ni + l, 1)) - (f_bnd(bat + l, :) - ku0(l)), f)
               end associate
            end do
+           bat = bat + nb
            deallocate (rl, u0l, w)
          end associate
       end do

@@ -60,6 +60,8 @@ module superjoin_analysis_solve_state
     !! No condensed substructure, one process (see solve_strategy_t).
   end type plain_strategy_t
 
+  public :: keep_boundary_loads
+
   type, public :: solve_state_t
     !! The solve state of one step group (see the module comment).
      integer :: phase = PHASE_NONE           !! the last phase completed
@@ -73,6 +75,8 @@ module superjoin_analysis_solve_state
      type(sparse_sym_t) :: k                 !! K_red (or this process's term of it: summed)
      real(wp), allocatable :: f_phys(:, :)   !! physical loads (np, nstep)
      real(wp), allocatable :: f_eff(:, :)    !! f_phys with condensed boundaries' f*
+     real(wp), allocatable :: f_bnd(:, :)    !! f_eff's rows at the condensed boundaries, part after
+                                             !! part (full_health; f_eff freed once reduced)
      real(wp), allocatable :: f_u0(:)        !! reduced load of the prescribed values
      real(wp), allocatable :: f_red(:, :)    !! reduced loads (ncol, nstep)
      logical, allocatable :: spc(:)          !! AUTOSPC columns
@@ -178,5 +182,23 @@ contains
     associate (no_use => self, no_error => allocated(error))   ! the whole matrix: nothing to sum
     end associate
   end subroutine plain_norm1
+
+  subroutine keep_boundary_loads(st)
+    !! Once the loads are reduced, st%f_eff is read only at the condensed
+    !! boundaries (full_health): those rows, part after part, into st%f_bnd,
+    !! and f_eff freed (a whole-model array less at the recovery's peak).
+    type(solve_state_t), intent(inout) :: st
+    integer :: i
+    integer(i8) :: at, nb
+    if (.not. allocated(st%parts) .or. .not. allocated(st%f_eff)) return
+    allocate (st%f_bnd(sum(st%parts%nb), size(st%f_eff, 2)))
+    at = 0
+    do i = 1, size(st%parts)
+       nb = st%parts(i)%nb
+       st%f_bnd(at + 1:at + nb, :) = st%f_eff(st%parts(i)%pdof(st%parts(i)%ni + 1:st%parts(i)%ni + nb), :)
+       at = at + nb
+    end do
+    deallocate (st%f_eff)
+  end subroutine keep_boundary_loads
 
 end module superjoin_analysis_solve_state

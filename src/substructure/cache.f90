@@ -92,6 +92,7 @@ module superjoin_substructure_cache
   public :: view_ku, twin_copies, k_holder
   public :: release_cache, forget_load_memos, acquire_view, view_condense_loads, view_recover, view_stiffness_times, &
        view_maxratio, view_spc, view_spc_loads, remote_view, view_turn, entry_recover, entry_condense_loads, entry_ku, &
+       entry_ku_reads_loads, &
        view_need_stiffness, take_views, keep_views, twins_note
 
 contains
@@ -521,6 +522,14 @@ contains
       end do
     end associate
   end subroutine entry_ku
+
+  logical function entry_ku_reads_loads(cache, ientry)
+    !! Whether entry_ku reads the loads fc (a library entry's k u does; the
+    !! others' is their element stiffness times u alone).
+    type(part_cache_t), intent(in) :: cache
+    integer, intent(in) :: ientry
+    entry_ku_reads_loads = allocated(cache%entries(ientry)%e%stored)
+  end function entry_ku_reads_loads
 
   subroutine view_ku(cache, view, f_local, u_local, y_local, error)
     !! y = k u of one substructure (this frame) for the loads f_local it was

@@ -12,18 +12,23 @@
 # usage: bench/ab_bare.sh [-r N] OLD_BINARY NEW_BINARY DECK MATRIX.mtx
 #   -r N   rounds (default 2)
 # MATRIX.mtx: `superjoin DECK --export-matrix MATRIX.mtx`. Extra superjoin
-# options: SUPERJOIN_ARGS (e.g. "--condense no"). Needs build/cholmod_bare
-# (bench/run_frame.sh builds it) and /usr/bin/time.
+# options: SUPERJOIN_ARGS (e.g. "--condense no"). Each superjoin run replaces
+# the listing of the same side's run before (from the second round on), as a
+# rerun in place does; FRESH_LISTING=1 removes it first, outside the timing,
+# as in a fresh checkout: replacing a file makes the kernel free the old
+# file's pages (30-45 ms for the bolted panels' 61 MB listing; doc/performance.md,
+# "The listing's tables on two threads"). Needs
+# build/cholmod_bare (bench/run_frame.sh builds it) and /usr/bin/time.
 set -euo pipefail
 rounds=2
 while getopts "r:" opt; do
   case $opt in
     r) rounds=$OPTARG ;;
-    *) sed -n '2,13p' "$0"; exit 2 ;;
+    *) sed -n '2,21p' "$0"; exit 2 ;;
   esac
 done
 shift $((OPTIND - 1))
-[ $# -eq 4 ] || { sed -n '2,13p' "$0"; exit 2; }
+[ $# -eq 4 ] || { sed -n '2,21p' "$0"; exit 2; }
 root=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
 bare=$root/build/cholmod_bare
 a=$(realpath "$1"); b=$(realpath "$2"); deck=$(realpath "$3"); mtx=$(realpath "$4")
@@ -34,6 +39,7 @@ gnu() { awk -v k="$1" 'index($0, k) { print $NF; exit }' "$2"; }
 for ((i = 1; i <= rounds; i++)); do
   for side in A B; do
     bin=$a; [ $side = B ] && bin=$b
+    [ "${FRESH_LISTING:-0}" = 1 ] && rm -f "$work/$side.lst"
     # shellcheck disable=SC2086
     (cd "$(dirname "$deck")" && /usr/bin/time -v "$bin" -v "$(basename "$deck")" ${SUPERJOIN_ARGS:-} \
         -o "$work/$side.lst" >/dev/null 2>"$work/err") || true

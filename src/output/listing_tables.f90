@@ -14,7 +14,7 @@ module superjoin_output_listing_tables
   use superjoin_output_columns, only: element_prefix, chop, element_kinds_t, element_kinds
   use superjoin_output_layout, only: displacement_columns, node_dof_mask, &
        has_node_frames, in_node_frame, REACTION_FRAME_NOTE, FRAME_MARK
-  use superjoin_output_rows, only: row_source_t, write_rows, owner_of
+  use superjoin_output_rows, only: row_source_t, write_rows, owner_of, step_owner
   implicit none (type, external)
   private
 
@@ -123,19 +123,18 @@ contains
     integer(i8), intent(in) :: first, last
     integer :: isub, d, k
     integer(i8) :: v
+    integer(ip) :: n
     real(wp) :: vals(NDOF_NODE), row(NDOF_NODE)
     isub = owner_of(res%fields%vertex_offset, first)
     do v = first, last
-       do while (v > res%fields%vertex_offset(isub + 1))
-          isub = isub + 1
-       end do
+       call step_owner(res%fields%vertex_offset, v, isub, n)
        if (.not. any(res%fields%has_dof(:, v))) cycle
        do d = 1, NDOF_NODE
           vals(d) = chop(res%fields%u(NDOF_NODE*(v - 1) + d, rows%is), rows%scale(1))
        end do
        call tb%put('  ')
        call tb%put_field(model%subs(isub)%name, 20)
-       call tb%put_int(int(model%subs(isub)%node_id(v - res%fields%vertex_offset(isub)), i8), 10)
+       call tb%put_int(int(model%subs(isub)%node_id(n), i8), 10)
        do k = 1, rows%ncol
           row(k) = vals(rows%cols(k))
        end do
@@ -249,10 +248,7 @@ contains
     real(wp) :: row(6)
     isub = owner_of(res%fields%elem_offset, first)
     do iel = first, last
-       do while (iel > res%fields%elem_offset(isub + 1))
-          isub = isub + 1
-       end do
-       ie = int(iel - res%fields%elem_offset(isub), ip)
+       call step_owner(res%fields%elem_offset, iel, isub, ie)
        if (rows%kinds%plate(model%subs(isub)%elem_type(ie))) cycle
        if (rows%kinds%truss(model%subs(isub)%elem_type(ie))) cycle
        do k = 1, 2
@@ -308,10 +304,7 @@ contains
     integer(ip) :: ie
     isub = owner_of(res%fields%elem_offset, first)
     do iel = first, last
-       do while (iel > res%fields%elem_offset(isub + 1))
-          isub = isub + 1
-       end do
-       ie = int(iel - res%fields%elem_offset(isub), ip)
+       call step_owner(res%fields%elem_offset, iel, isub, ie)
        if (.not. rows%kinds%truss(model%subs(isub)%elem_type(ie))) cycle
        call element_prefix(tb, model, isub, ie, 2)
        call tb%put_es(chop(axial(res, iel, rows%is), rows%scale(1)))
@@ -374,10 +367,7 @@ contains
     real(wp) :: row(6)
     isub = owner_of(res%fields%elem_offset, first)
     do iel = first, last
-       do while (iel > res%fields%elem_offset(isub + 1))
-          isub = isub + 1
-       end do
-       ie = int(iel - res%fields%elem_offset(isub), ip)
+       call step_owner(res%fields%elem_offset, iel, isub, ie)
        if (.not. rows%kinds%plate(model%subs(isub)%elem_type(ie))) cycle
        call element_prefix(tb, model, isub, ie, 2)
        row(1:3) = chop(res%fields%plate(1:3, iel, rows%is), rows%scale(1))
@@ -405,10 +395,7 @@ contains
     is = rows%is
     isub = owner_of(res%fields%elem_offset, first)
     do iel = first, last
-       do while (iel > res%fields%elem_offset(isub + 1))
-          isub = isub + 1
-       end do
-       ie = int(iel - res%fields%elem_offset(isub), ip)
+       call step_owner(res%fields%elem_offset, iel, isub, ie)
        if (.not. rows%kinds%plate(model%subs(isub)%elem_type(ie))) cycle
        t = model%subs(isub)%sections(model%subs(isub)%elem_section(ie))%thickness
        nsurf = 2

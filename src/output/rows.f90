@@ -14,7 +14,7 @@ module superjoin_output_rows
   !! variable, which both threads then share (rows lost or cut short, found
   !! while this was written; the listing's formatters (text_buffer_t's put_*,
   !! format_es, int_field) have none).
-  use superjoin_kinds, only: i8
+  use superjoin_kinds, only: i8, ip
   use superjoin_model_types, only: model_t
   use superjoin_model_results, only: results_t
   use superjoin_utils_text_buffer, only: text_buffer_t
@@ -46,7 +46,7 @@ module superjoin_output_rows
      end subroutine put_rows_i
   end interface
 
-  public :: write_rows, owner_of
+  public :: write_rows, owner_of, step_owner
 
 contains
 
@@ -128,4 +128,18 @@ contains
     end do
     k = lo
   end function owner_of
+
+  pure subroutine step_owner(offsets, item, k, local)
+    !! For items taken in increasing order: k moved on to the substructure of
+    !! item (k at most that on entry: owner_of of the range's first item, or
+    !! the previous item's) and local, item's number within it.
+    integer(i8), intent(in) :: offsets(:)
+    integer(i8), intent(in) :: item
+    integer, intent(inout) :: k
+    integer(ip), intent(out) :: local
+    do while (item > offsets(k + 1))
+       k = k + 1
+    end do
+    local = int(item - offsets(k), ip)
+  end subroutine step_owner
 end module superjoin_output_rows

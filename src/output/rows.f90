@@ -24,9 +24,10 @@ module superjoin_output_rows
   private
 
   integer(i8), parameter :: CHUNK_ITEMS = 2048
-    !! items formatted by each thread per turn: a few hundred kB of text (the
-    !! memory buffer's own block is 1 MB), a turn of about a millisecond
-    !! against the few microseconds of starting one
+    !! items formatted by each thread per turn: 0.2 to 1 MB of text (a
+    !! contact element's six rows the most; the memory buffer keeps blocks of
+    !! 1 MB and grows beyond), a turn of about a millisecond against the few
+    !! microseconds of starting one
 
   type, abstract, public :: row_source_t
     !! A table whose items can be formatted a range at a time, into any buffer.

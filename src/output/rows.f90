@@ -71,11 +71,14 @@ contains
     end if
     stat = 1
     if (second_thread_allowed()) allocate (side, stat=stat)
+    if (stat == 0) then
+       call side%open_memory()
+       if (side%failed) stat = 1
+    end if
     if (stat /= 0) then
        call source%put_rows(lu, model, res, 1_i8, count)
        return
     end if
-    call side%open_memory()
     call blas_threads_rest()   ! OpenBLAS's idle workers would spin on the second CPU
     first = 1
     do while (first <= count)

@@ -32,7 +32,7 @@ module superjoin_utils_text_buffer
      logical :: in_memory = .false.         !! keeps its text (open_memory) instead of writing it
      character(:), allocatable :: kept      !! in memory: the text of the full blocks so far
      integer(i8) :: kept_len = 0            !! in memory: characters of kept in use
-     character(len=BUFFER_BYTES) :: buf
+     character(:), allocatable :: buf       !! the block being filled (BUFFER_BYTES, from open or open_memory)
   contains
      procedure :: open => tb_open
      procedure :: open_memory => tb_open_memory
@@ -61,6 +61,10 @@ contains
     character(*), intent(in) :: path
     type(error_t), allocatable, intent(out) :: error
     integer :: ios
+    if (.not. block_ready(self)) then
+       call fatal_error(error, EXIT_IO, 'error: out of memory for the output buffer of '//path)
+       return
+    end if
     open (newunit=self%unit, file=path, access='stream', form='unformatted', status='replace', &
           action='write', iostat=ios)
     if (ios /= 0) call fatal_error(error, EXIT_IO, 'error: cannot write '//path)
@@ -72,13 +76,28 @@ contains
   end subroutine tb_open
 
   subroutine tb_open_memory(self)
-    !! Begin empty, keeping the text in memory (for take) instead of writing it.
+    !! Begin empty, keeping the text in memory (for take) instead of writing it;
+    !! failed when there is no memory for its block (then nothing may be put).
     class(text_buffer_t), intent(inout) :: self
     self%in_memory = .true.
     self%pos = 0
     self%kept_len = 0
-    self%failed = .false.
+    self%failed = .not. block_ready(self)
+    if (self%failed) self%why = 'out of memory for the output buffer'
   end subroutine tb_open_memory
+
+  logical function block_ready(self)
+    !! Whether the buffer has its block, allocated here if need be. The block
+    !! is an allocatable component, not a fixed one: a fixed megabyte would
+    !! sit on the stack in every procedure with a buffer of its own (the
+    !! library is compiled with -fopenmp, which makes locals automatic; even
+    !! ALLOCATE builds the default value on the stack).
+    class(text_buffer_t), intent(inout) :: self
+    integer :: stat
+    stat = 0
+    if (.not. allocated(self%buf)) allocate (character(len=BUFFER_BYTES) :: self%buf, stat=stat)
+    block_ready = stat == 0
+  end function block_ready
 
   subroutine tb_take(self, other)
     !! Append the text kept by other (opened with open_memory), which is left

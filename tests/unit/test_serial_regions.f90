@@ -28,6 +28,10 @@ program test_serial_regions
        import :: c_int
        integer(c_int), intent(out) :: runs, alone
      end subroutine sj_probe_nested
+     function omp_get_max_threads() bind(c, name='omp_get_max_threads') result(n)
+       import :: c_int
+       integer(c_int) :: n
+     end function omp_get_max_threads
      function sj_serial_regions_count() bind(c, name='sj_serial_regions_count') result(n)
        import :: c_int64_t
        integer(c_int64_t) :: n
@@ -37,6 +41,7 @@ program test_serial_regions
   call test_region(1_c_int, 1, 'one thread')
   call test_region(2_c_int, 0, 'two threads (libgomp)')
   call test_nested()
+  call test_default_count()
   call test_cholmod()
   call finish()
 
@@ -55,6 +60,22 @@ contains
     call check(runs == nthreads .and. on_opener == 1, what//': the body ran on each thread, one of them the opening one')
     call check(sj_serial_regions_count() == before + counted, what//': run without a team only with one thread')
   end subroutine test_region
+
+  subroutine test_default_count()
+    !! A region with no thread count (num_threads 0: CHOLMOD's regions without
+    !! an if or num_threads clause) where the default is one thread
+    !! (OMP_NUM_THREADS=1, unit.test_serial_regions_one_thread): run without a
+    !! team, counted; elsewhere libgomp's, not counted.
+    integer(c_int) :: runs, on_opener
+    integer(c_int64_t) :: before
+    integer :: counted
+    counted = merge(1, 0, omp_get_max_threads() == 1)
+    before = sj_serial_regions_count()
+    call sj_probe_region(0_c_int, runs, on_opener)
+    call check(runs == omp_get_max_threads() .and. on_opener == 1, 'no thread count: the default count of bodies')
+    call check(sj_serial_regions_count() == before + counted, 'no thread count: run without a team exactly '// &
+         'where the default is one thread')
+  end subroutine test_default_count
 
   subroutine test_nested()
     integer(c_int) :: runs, alone

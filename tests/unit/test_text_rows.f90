@@ -101,12 +101,20 @@ program test_text_rows
   implicit none (type, external)
 
   integer(i8), parameter :: COUNTS(6) = [1_i8, 2048_i8, 2049_i8, 4097_i8, 20000_i8, 61_i8*2048 + 5]
-  integer :: k
+  integer :: k, st
+  character(len=8) :: env
 
-  character(:), allocatable :: run   ! this run's files: the two ctest runs may run at once
+  character(:), allocatable :: run   ! this run's files: the ctest runs may run at once
 
   run = merge('two', 'one', second_thread_allowed())
+  call get_environment_variable('SJ_TEST_RUN', env, status=st)
+  if (st == 0) run = run//'_'//trim(env)
   write (*, '(a,l1)') 'second thread allowed: ', second_thread_allowed()
+  ! where the ctest says whether a second thread may run (SJ_EXPECT_SECOND_THREAD=yes or
+  ! no: OMP_NUM_THREADS=1, a list whose first value is 1, one CPU under taskset)
+  call get_environment_variable('SJ_EXPECT_SECOND_THREAD', env, status=st)
+  if (st == 0) call check(second_thread_allowed() .eqv. (env == 'yes'), 'a second thread allowed: '// &
+       merge('yes', 'no ', second_thread_allowed())//', expected: '//trim(env))
   do k = 1, size(COUNTS)
      call rows_in_order(COUNTS(k), .false.)
   end do

@@ -256,14 +256,21 @@ contains
          call library_condense(cache%library, model, table, isub, bnd, solver_name, en%cond, en%stored, error)
       else
          call build_local_system(model, table, isub, bnd, en%cond%sys, error)
-         if (allocated(error)) return
-         call condense(model, table, solver_name, en%cond, error)
+         if (.not. allocated(error)) call condense(model, table, solver_name, en%cond, error)
       end if
-      if (allocated(error)) return
-      en%part = model%subs(isub)%part
-      en%rot = model%subs(isub)%rot
-      if (allocated(model%subs(isub)%elem_drill)) en%drill = model%subs(isub)%elem_drill
+      if (.not. allocated(error)) then
+         en%part = model%subs(isub)%part
+         en%rot = model%subs(isub)%rot
+         if (allocated(model%subs(isub)%elem_drill)) en%drill = model%subs(isub)%elem_drill
+      end if
     end associate
+    ! A condensation that failed is no entry: find_entry of a later group of
+    ! steps (a joint study's next value) would read its unset numbering.
+    if (allocated(error)) then
+       if (allocated(cache%entries(cache%n)%e%cond%solver)) call cache%entries(cache%n)%e%cond%solver%release()
+       deallocate (cache%entries(cache%n)%e)
+       cache%n = cache%n - 1
+    end if
   end subroutine add_entry
 
   subroutine twins_note(cache, model, notes)

@@ -1,10 +1,12 @@
 #!/usr/bin/env python3
-"""Decks whose constraint errors show only once the transform is built (a DOF
-that a node does not carry, a dependent DOF already made dependent by a
-support or contact, a cycle, terms that cancel through the substitutions):
-solved (not --check), they must exit with the status of their first line
-`** expect: STATUS MESSAGE`, print MESSAGE on stderr, write no listing, and
-print exactly `** errors: N` error lines when the deck says so.
+"""Decks whose errors show only once they are solved: constraint errors found
+when the transform is built (a DOF that a node does not carry, a dependent DOF
+already made dependent by a support or contact, a cycle, terms that cancel
+through the substitutions; tests/eccentric/bad), studies of which no step can
+be solved (tests/partial/bad). Solved (not --check), they must exit with the
+status of their first line `** expect: STATUS MESSAGE`, print MESSAGE on
+stderr and nothing that looks like a crash, write no listing, and print
+exactly `** errors: N` error lines when the deck says so.
 
 usage: check_bad_solve.py SUPERJOIN DECK_DIR WORK_DIR
 """
@@ -13,6 +15,8 @@ import os
 import re
 import subprocess
 import sys
+
+CRASH = re.compile(r'runtime error|backtrace|segmentation|sanitizer|error termination', re.I)
 
 
 def main(argv):
@@ -49,6 +53,8 @@ def main(argv):
             problems.append('%d error lines, expected %d' % (r.stderr.count(': error:'), nerr))
         if os.path.exists(lst):
             problems.append('a listing was written')
+        if CRASH.search(r.stderr + r.stdout):
+            problems.append('crash output')
         if problems:
             fails += 1
             print('FAIL: %s: %s\n--- stderr:\n%s' % (name, '; '.join(problems), r.stderr))

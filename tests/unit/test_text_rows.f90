@@ -20,6 +20,10 @@ module test_text_rows_source
 
   logical, public :: seen_parallel = .false.
     !! a chunk kept in memory was formatted inside a parallel region (put_rows)
+  integer(i8), public :: items_direct = 0
+    !! items formatted into a buffer writing a file (only that buffer's thread counts them)
+  integer(i8), public :: items_in_memory = 0
+    !! items formatted into a buffer in memory (only that buffer's thread counts them)
 
   type, extends(row_source_t), public :: counting_rows_t
     !! The test's table (see the module).
@@ -58,6 +62,11 @@ contains
     if (.false.) print *, model%controls%rigid, allocated(res%fields%u)   ! the interface's arguments, unused here
     ! only the thread of the chunk kept in memory writes the flag: no race
     if (tb%in_memory .and. omp_in_parallel() /= 0) seen_parallel = .true.
+    if (tb%in_memory) then
+       items_in_memory = items_in_memory + (last - first + 1)
+    else
+       items_direct = items_direct + (last - first + 1)
+    end if
     do k = first, last
        if (mod(k, 7_i8) == 0) cycle
        call int_text(k, digits, n)
@@ -97,8 +106,43 @@ program test_text_rows
   use superjoin_output_rows, only: write_rows, owner_of
   use superjoin_utils_strings, only: itoa
   use superjoin_testing, only: check, finish, temp_dir
-  use test_text_rows_source, only: counting_rows_t, row_text, seen_parallel
+  use test_text_rows_source, only: counting_rows_t, row_text, seen_parallel, items_direct, items_in_memory
+  use, intrinsic :: iso_c_binding, only: c_int, c_long_long
   implicit none (type, external)
+
+  interface   ! data_limit.c
+     function sj_memory_checker() bind(c) result(yes)
+       import :: c_int
+       integer(c_int) :: yes
+     end function sj_memory_checker
+     function sj_data_limit_prepare() bind(c) result(status)
+       import :: c_int
+       integer(c_int) :: status
+     end function sj_data_limit_prepare
+     function sj_data_limit_set(headroom) bind(c) result(status)
+       import :: c_int, c_long_long
+       integer(c_long_long), value :: headroom
+       integer(c_int) :: status
+     end function sj_data_limit_set
+     function sj_data_available(bytes) bind(c) result(yes)
+       import :: c_int, c_long_long
+       integer(c_long_long), value :: bytes
+       integer(c_int) :: yes
+     end function sj_data_available
+     function sj_data_limit_restore() bind(c) result(status)
+       import :: c_int
+       integer(c_int) :: status
+     end function sj_data_limit_restore
+  end interface
+
+  integer(c_long_long), parameter :: NO_ROOM = 256*1024
+    !! headroom of the out-of-memory run where no 1 MB block can be had
+  integer(c_long_long), parameter :: ONE_BLOCK_ROOM = 1536*1024
+    !! headroom where one 1 MB block can be had, not a second
+  integer(c_long_long), parameter :: PROBE_EXTRA = 512*1024
+    !! a block this much larger than the headroom must be refused under the limit
+  integer(i8), parameter :: OOM_COUNT = 9000
+    !! long rows of the out-of-memory run: four pairs of chunks, each second chunk 1.2 MB
 
   integer(i8), parameter :: COUNTS(6) = [1_i8, 2048_i8, 2049_i8, 4097_i8, 20000_i8, 61_i8*2048 + 5]
   integer :: k, st
@@ -109,6 +153,13 @@ program test_text_rows
   run = merge('two', 'one', second_thread_allowed())
   call get_environment_variable('SJ_TEST_RUN', env, status=st)
   if (st == 0) run = run//'_'//trim(env)
+  call get_environment_variable('SJ_TEST_OOM', env, status=st)
+  if (st == 0 .and. env == 'yes') then
+     call out_of_memory()
+     deallocate (run)
+     call finish()
+     stop
+  end if
   write (*, '(a,l1)') 'second thread allowed: ', second_thread_allowed()
   ! where the ctest says whether a second thread may run (SJ_EXPECT_SECOND_THREAD=yes or
   ! no: OMP_NUM_THREADS=1, a list whose first value is 1, one CPU under taskset)
@@ -222,6 +273,138 @@ contains
     call check(file_text(path) == want, 'text taken from memory: 2 x 2.5 MB as put (directly, and through memory)')
     call check(.not. (side%failed .or. mid%failed), 'the memory buffers did not fail')
   end subroutine memory_buffer
+
+  subroutine out_of_memory()
+    !! Where memory runs out (SJ_TEST_OOM=yes; skipped, status 77, under a
+    !! memory checker, or where the data limit cannot be set or does not hold):
+    !! the listing's rows are still every row once, in order, when the second
+    !! chunk's text cannot be kept (formatted again by the listing's thread)
+    !! and when the memory buffer cannot have its block at all (one thread
+    !! formats them all); a buffer in memory that runs out says so and gives
+    !! nothing to take; a file buffer without its block is an error naming the
+    !! file, which is not created.
+    logical :: held
+    if (sj_memory_checker() /= 0) call skip('a memory checker allocates here')
+    if (sj_data_limit_prepare() /= 0) call skip('malloc''s thresholds cannot be set')
+    if (sj_data_limit_set(NO_ROOM) /= 0) call skip('the data limit cannot be set')
+    held = sj_data_available(NO_ROOM + PROBE_EXTRA) == 0
+    call check(sj_data_limit_restore() == 0, 'data limit restored')
+    if (.not. held) call skip('the data limit does not hold')
+    call rows_in_order(OOM_COUNT, .true.)   ! the second thread started, as it would be
+    if (second_thread_allowed()) then
+       call rows_short_of_memory(ONE_BLOCK_ROOM, 'the second chunk''s text not kept')
+       call check(items_in_memory > 0 .and. items_direct == OOM_COUNT, &
+            'the second chunks formatted in memory, lost, and again into the listing: '// &
+            itoa(int(items_in_memory))//' and '//itoa(int(items_direct))//' items')
+    end if
+    call rows_short_of_memory(NO_ROOM, 'no memory buffer')
+    call check(items_in_memory == 0 .and. items_direct == OOM_COUNT, 'one thread formats every item once: '// &
+         itoa(int(items_in_memory))//' and '//itoa(int(items_direct))//' items')
+    call memory_buffer_short()
+    call open_short()
+  end subroutine out_of_memory
+
+  subroutine skip(why)
+    character(*), intent(in) :: why
+    write (*, '(a)') 'skipped: '//why
+    if (allocated(run)) deallocate (run)   ! LeakSanitizer counts a main program's allocatables held at the end
+    stop 77
+  end subroutine skip
+
+  subroutine rows_short_of_memory(headroom, what)
+    !! write_rows of OOM_COUNT long rows with headroom bytes beyond what the
+    !! process holds: the rows once each, in order; the counts of items
+    !! formatted into each kind of buffer left for the caller.
+    integer(c_long_long), intent(in) :: headroom
+    character(*), intent(in) :: what
+    type(counting_rows_t) :: rows
+    type(model_t) :: model
+    type(results_t) :: res
+    type(text_buffer_t), allocatable :: lu
+    type(error_t), allocatable :: error
+    character(:), allocatable :: path, got, want
+    logical :: limited, held, restored
+    rows%long = .true.
+    path = temp_dir()//'/superjoin_test_text_rows_'//run//'.txt'
+    want = expected(OOM_COUNT, .true.)
+    allocate (lu)
+    call lu%open(path, error)
+    call check(.not. allocated(error), 'open '//path)
+    call lu%line('head')
+    items_direct = 0
+    items_in_memory = 0
+    limited = sj_data_limit_set(headroom) == 0
+    held = .false.
+    restored = .false.
+    if (limited) then
+       call write_rows(lu, rows, model, res, OOM_COUNT)
+       held = sj_data_available(headroom + PROBE_EXTRA) == 0
+       restored = sj_data_limit_restore() == 0
+    end if
+    call check(limited .and. restored, what//': data limit set and restored')
+    call check(held, what//': the data limit held')
+    call lu%line('tail')
+    call commit(lu, path)
+    got = file_text(path)
+    if (got /= want) call show_difference(got, want)
+    call check(got == want, what//': long rows 1..'//itoa(int(OOM_COUNT))//' once each, in order ('// &
+         itoa(len(got))//' of '//itoa(len(want))//' characters)')
+  end subroutine rows_short_of_memory
+
+  subroutine memory_buffer_short()
+    !! A buffer in memory with its block and no room to keep it when full:
+    !! failed, with its reason; a file buffer takes nothing from it.
+    type(text_buffer_t), allocatable :: lu, side
+    type(error_t), allocatable :: error
+    character(:), allocatable :: path, piece
+    logical :: limited, restored
+    path = temp_dir()//'/superjoin_test_text_short_'//run//'.txt'
+    allocate (lu, side)
+    call lu%open(path, error)
+    call lu%line('head')
+    call side%open_memory()
+    call check(.not. side%failed, 'a buffer in memory with room for its block')
+    piece = repeat('x', 1536*1024)
+    limited = sj_data_limit_set(NO_ROOM) == 0
+    restored = .false.
+    if (limited) then
+       call side%put(piece)
+       restored = sj_data_limit_restore() == 0
+    end if
+    call check(limited .and. restored, 'buffer in memory: data limit set and restored')
+    call check(side%failed .and. side%why == 'out of memory for the text kept in memory', &
+         'a buffer in memory without room to keep its block failed: '//trim(side%why))
+    call lu%take(side)
+    call check(side%pos == 0 .and. side%kept_len == 0, 'the failed buffer is empty after take')
+    call commit(lu, path)
+    call check(file_text(path) == 'head'//new_line('a'), 'nothing taken from the failed buffer')
+  end subroutine memory_buffer_short
+
+  subroutine open_short()
+    !! A file buffer opened where its block cannot be had: an error naming
+    !! the file, which is not created.
+    type(text_buffer_t), allocatable :: lu
+    type(error_t), allocatable :: error
+    character(:), allocatable :: path
+    logical :: limited, restored, exists
+    integer :: unit
+    path = temp_dir()//'/superjoin_test_text_open_'//run//'.txt'
+    open (newunit=unit, file=path, status='replace')   ! none left by an earlier run
+    close (unit, status='delete')
+    allocate (lu)
+    limited = sj_data_limit_set(NO_ROOM) == 0
+    restored = .false.
+    if (limited) then
+       call lu%open(path, error)
+       restored = sj_data_limit_restore() == 0
+    end if
+    call check(limited .and. restored, 'open: data limit set and restored')
+    call check(allocated(error), 'open without memory for the block: an error')
+    if (allocated(error)) call check(error%message == 'error: out of memory for the output buffer of '//path, &
+         'the error names the file: '//error%message)
+    inquire (file=path, exist=exists)
+    call check(.not. exists, 'the file is not created')
+  end subroutine open_short
 
   subroutine owners()
     !! owner_of over offsets with empty substructures (2 and 4 have no items).

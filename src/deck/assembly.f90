@@ -73,7 +73,7 @@ contains
     type(model_t), intent(inout) :: model
     integer, allocatable :: part_ord(:), new_index(:)
     type(substructure_t), allocatable :: subs(:)
-    integer :: k, p, nparts, nkeep, s, j
+    integer :: k, p, nparts, nkeep, j
 
     nparts = count(st%subs(1:st%nsub)%kind == SUBK_PART)
     allocate (model%parts(nparts), part_ord(st%nsub))
@@ -130,28 +130,92 @@ contains
        if (st%aborted) return
     end do
     call move_alloc(subs, model%subs)
+    call renumber_blocks(st, new_index)
+  end subroutine place_all
+
+  subroutine renumber_blocks(st, new_index)
+    !! The substructure blocks of the records read there (supports,
+    !! temperatures, the steps' loads, output requests, equations, nodal
+    !! thicknesses, transforms, surfaces, couplings, ties, pretension
+    !! sections), which are built after the parts leave the list: new_index
+    !! maps each old index to the new (0: a part, whose records were copied
+    !! to its instances, or an instance that was not placed).
+    type(deck_state_t), intent(inout) :: st
+    integer, intent(in) :: new_index(:)
+    integer :: k, t, s
     do k = 1, st%nsupport
        call renumber(st%supports(k)%ref%home)
     end do
     do k = 1, st%ntemp
        call renumber(st%temps(k)%ref%home)
     end do
+    do k = 1, st%nreq   ! a part's requests were copied per instance: one left in a part (-1) is of a refused deck
+       associate (home => st%requests(k)%set%home)
+         if (home > 0) then
+            home = new_index(home)
+            if (home == 0) home = -1
+         end if
+       end associate
+    end do
     do s = 1, st%nstep
-       do j = 1, st%steps(s)%ncload
-          call renumber(st%steps(s)%cloads(j)%ref%home)
-          call renumber(st%steps(s)%cloads(j)%home)
+       do t = 1, st%steps(s)%ncload
+          call renumber(st%steps(s)%cloads(t)%ref%home)
+          call renumber(st%steps(s)%cloads(t)%home)
        end do
-       do j = 1, st%steps(s)%ndload
-          call renumber(st%steps(s)%dloads(j)%ref%home)
-          call renumber(st%steps(s)%dloads(j)%home)
+       do t = 1, st%steps(s)%ndload
+          call renumber(st%steps(s)%dloads(t)%ref%home)
+          call renumber(st%steps(s)%dloads(t)%home)
        end do
     end do
+    do k = 1, st%nequation
+       if (.not. allocated(st%equations(k)%node)) cycle
+       do t = 1, size(st%equations(k)%node)
+          call renumber(st%equations(k)%node(t)%home)
+       end do
+    end do
+    do k = 1, st%nnthick
+       call renumber(st%nthicks(k)%node%home)
+    end do
+    do k = 1, st%ntransform
+       call renumber(st%transforms(k)%nset%home)
+    end do
+    do k = 1, st%nsurface
+       if (.not. allocated(st%surfaces(k)%refs)) cycle
+       do t = 1, size(st%surfaces(k)%refs)
+          call renumber(st%surfaces(k)%refs(t)%home)
+       end do
+    end do
+    if (allocated(st%couplings)) then
+       do k = 1, size(st%couplings)
+          associate (c => st%couplings(k))
+            call renumber(c%home)
+            call renumber(c%ref_node%home)
+            call renumber(c%rot_node%home)
+            call renumber(c%nodes%home)
+            if (allocated(c%list)) then
+               do t = 1, size(c%list)
+                  call renumber(c%list(t)%home)
+               end do
+            end if
+          end associate
+       end do
+    end if
+    if (allocated(st%ties)) then
+       do k = 1, size(st%ties)
+          call renumber(st%ties(k)%home)
+       end do
+    end if
+    if (allocated(st%pretensions)) then
+       do k = 1, size(st%pretensions)
+          call renumber(st%pretensions(k)%element%home)
+       end do
+    end if
   contains
     subroutine renumber(home)
       integer, intent(inout) :: home
       if (home > 0) home = new_index(home)
     end subroutine renumber
-  end subroutine place_all
+  end subroutine renumber_blocks
 
   subroutine add_assembly_sets(st, b, part, m)
     !! The sets that *NSET/*ELSET, INSTANCE= define on instance m (Abaqus

@@ -254,6 +254,7 @@ contains
        if (ld%kind == DLOAD_GRAV .or. ld%kind == DLOAD_CENTRIF) then
           associate (sub => model%subs(isub))
             if (sub%elem_section(elems(i)) == 0) cycle
+            if (sub%sections(sub%elem_section(elems(i)))%material == 0) cycle   ! an unknown material, reported
             if (.not. model%materials(sub%sections(sub%elem_section(elems(i)))%material)%has_density) then
                nodens = nodens + 1
                if (nodens == 1) first_nodens = elems(i)

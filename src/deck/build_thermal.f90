@@ -8,6 +8,8 @@ module superjoin_deck_build_thermal
   use superjoin_elements_traits, only: element_traits_t, element_traits, FAMILY_TRUSS, FAMILY_BEAM, &
        FAMILY_PLANE, FAMILY_SHELL, FAMILY_SOLID
   use superjoin_deck_lexer, only: itoa
+  use superjoin_utils_halting, only: halting_t, halting_off, halting_restore
+  use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
   use superjoin_model_notes, only: note
   use superjoin_deck_state, only: deck_state_t, report_loc, grow
   use superjoin_deck_build_common, only: ref_subs, resolve_items, keeps_previous, more_text
@@ -362,18 +364,58 @@ contains
 
   subroutine step_thermal_loads(st, model, s, init, cur, ok)
     !! The thermal loads of step s (temperatures cur, from init), added to its
-    !! distributed loads; not ok (nothing added) when a gradient is refused.
+    !! distributed loads; not ok (nothing added) when a gradient is refused or
+    !! a load leaves the floating-point range (formed with halting off, then
+    !! checked: the first such element reported at the step's first
+    !! temperature line).
     type(deck_state_t), intent(inout) :: st
     type(model_t), intent(inout) :: model
     integer, intent(in) :: s
     type(temp_field_t), intent(in) :: init, cur
     logical, intent(out) :: ok
     type(thermal_step_t) :: ts
+    type(halting_t) :: saved
+    integer :: k
+    allocate (ts%extra(0))
+    ts%loc = first_line(st, model, s)
+    call halting_off(saved)
+    call elements_thermal(st, model, init, cur, ts, ok)
+    call halting_restore(saved)
+    if (.not. ok) return
+    do k = 1, ts%n
+       if (load_finite(ts%extra(k))) cycle
+       associate (sub => model%subs(ts%extra(k)%sub))
+         call report_loc(st, ts%loc, 'the thermal load of element '//itoa(sub%elem_id(ts%extra(k)%elem))// &
+              ' of substructure '//sub%name//' overflows the floating-point range (beyond 1.8E+308 or '// &
+              'undefined): check the expansion coefficient, the temperatures and their units')
+       end associate
+       ok = .false.
+       return
+    end do
+    model%steps(s)%dloads = [model%steps(s)%dloads, ts%extra(1:ts%n)]
+  end subroutine step_thermal_loads
+
+  pure logical function load_finite(d) result(ok)
+    !! Every number of the thermal load d is finite.
+    type(dload_t), intent(in) :: d
+    ok = all(ieee_is_finite([d%value, d%curvature, d%gradient]))
+    if (.not. (ok .and. allocated(d%nodes))) return
+    if (allocated(d%nodes%nodal)) ok = all(ieee_is_finite(d%nodes%nodal))
+    if (ok .and. allocated(d%nodes%curvature_nodal)) ok = all(ieee_is_finite(d%nodes%curvature_nodal))
+    if (ok .and. allocated(d%nodes%line_nodal)) ok = all(ieee_is_finite(d%nodes%line_nodal))
+  end function load_finite
+
+  subroutine elements_thermal(st, model, init, cur, ts, ok)
+    !! The thermal loads of every element into ts (step_thermal_loads); not ok
+    !! when a gradient is refused.
+    type(deck_state_t), intent(inout) :: st
+    type(model_t), intent(in) :: model
+    type(temp_field_t), intent(in) :: init, cur
+    type(thermal_step_t), intent(inout) :: ts
+    logical, intent(out) :: ok
     integer :: isub
     integer(ip) :: e
     ok = .true.
-    allocate (ts%extra(0))
-    ts%loc = first_line(st, model, s)
     do isub = 1, size(model%subs)
        ts%nplate = 0
        do e = 1, model%subs(isub)%nelem
@@ -389,8 +431,7 @@ contains
           end associate
        end if
     end do
-    model%steps(s)%dloads = [model%steps(s)%dloads, ts%extra(1:ts%n)]
-  end subroutine step_thermal_loads
+  end subroutine elements_thermal
 
   subroutine element_thermal(st, model, isub, e, init, cur, ts, ok)
     !! The thermal load of element e of substructure isub, if its material

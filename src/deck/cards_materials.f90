@@ -17,6 +17,8 @@ module superjoin_deck_cards_materials
   use superjoin_kinds, only: wp
   use superjoin_model_types, only: source_loc_t, MAT_ISO, MAT_ORTHO, MAT_ENGINEERING, MAT_ANISO
   use superjoin_deck_lexer, only: to_upper, itoa
+  use superjoin_utils_halting, only: halting_t, halting_off, halting_restore
+  use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
   use superjoin_deck_state, only: deck_state_t, report_loc
   use superjoin_deck_cards_common, only: field_count, get_real, CARD_SKIP, CARD_ELASTIC
   use superjoin_elements_materials, only: ortho_stiffness, aniso_stiffness, engineering_compliance, &
@@ -130,8 +132,19 @@ contains
   end subroutine end_elastic_card
 
   subroutine build_stiffness(st, loc)
-    !! D of the constants just read, checked positive definite (reported at
-    !! loc, the set's last line, when it is not).
+    !! D of the constants just read, checked finite and positive definite
+    !! (reported at loc, the set's last line, when it is not); formed with
+    !! floating-point halting off (constants near the range's end overflow).
+    type(deck_state_t), intent(inout) :: st
+    type(source_loc_t), intent(in) :: loc
+    type(halting_t) :: saved
+    call halting_off(saved)
+    call checked_stiffness(st, loc)
+    call halting_restore(saved)
+  end subroutine build_stiffness
+
+  subroutine checked_stiffness(st, loc)
+    !! build_stiffness with halting off.
     type(deck_state_t), intent(inout) :: st
     type(source_loc_t), intent(in) :: loc
     real(wp) :: d(6, 6), eye(6, 6)
@@ -156,6 +169,12 @@ contains
          d = spd_solve(engineering_compliance(m%given(1:9)), eye)
          d = 0.5_wp*(d + transpose(d))
       end select
+      if (.not. all(ieee_is_finite(d))) then
+         call report_loc(st, loc, '*ELASTIC, TYPE='//trim(ELASTIC_TYPE_NAMES(m%kind))//' of material '// &
+              m%name//': D overflows the floating-point range (beyond 1.8E+308 or undefined): check the '// &
+              'constants and their units')
+         return
+      end if
       k = leading_minor_failure(d)
       if (k > 0) then
          call report_loc(st, loc, '*ELASTIC, TYPE='//trim(ELASTIC_TYPE_NAMES(m%kind))//' of material '// &
@@ -165,7 +184,7 @@ contains
       end if
       m%d = d
     end associate
-  end subroutine build_stiffness
+  end subroutine checked_stiffness
 
   pure function engineering_problem(c) result(problem)
     !! Why the engineering constants c = E1, E2, E3, ν12, ν13, ν23, G12, G13,

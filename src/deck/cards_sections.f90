@@ -13,6 +13,8 @@ module superjoin_deck_cards_sections
        MAX_SHAPE_DIMS
   use superjoin_elements_frame, only: real_text
   use superjoin_utils_strings, only: pick
+  use superjoin_utils_halting, only: halting_t, halting_off, halting_restore
+  use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
   use superjoin_deck_cards_common, only: get_reals, axis_rotation
   use superjoin_deck_cards_common, only: outside_step, check_params, param_index, get_param, &
        get_name_param, field_count, fld, get_real, real_message, parse_set_ref, loc_string, CARD_SKIP, &
@@ -551,6 +553,7 @@ contains
     type(source_loc_t), intent(in) :: loc
     real(wp) :: d(MAX_SHAPE_DIMS)
     type(section_props_t) :: p
+    type(halting_t) :: saved
     character(:), allocatable :: problem, expected
     integer :: nmin, nmax
     real(wp), parameter :: CENTROID_TOL = 1.0e-9_wp
@@ -596,7 +599,18 @@ contains
          end if
          return
       end if
+      call halting_off(saved)   ! constants up to a dimension's fourth power: overflow is reported
       call section_properties(sec%shape, d(1:st%f%n), p, problem)
+      call halting_restore(saved)
+      if (len(problem) == 0) then
+         if (.not. all(ieee_is_finite([p%area, p%i11, p%i22, p%i12, p%j, p%c]))) then
+            problem = 'the section''s constants (area, inertias, torsion constant) overflow the floating-point '// &
+                 'range: check the dimensions and their units'
+         else if (.not. all([p%area, p%i11, p%i22, p%j] > 0.0_wp)) then
+            problem = 'the section''s constants (area, inertias, torsion constant) underflow to zero: '// &
+                 'check the dimensions and their units'
+         end if
+      end if
       if (len(problem) > 0) then
          call report_loc(st, loc, problem//' (SECTION='//trim(SHAPE_NAMES(sec%shape))//')')
          sec%data_ok = .false.

@@ -35,6 +35,8 @@ module superjoin_deck_coupling_build
        COUPLE_DISTRIBUTING, COUPLE_RIGID_BODY, COUPLE_MPC_BEAM, COUPLE_MPC_PLANE, COUPLE_DCOUP, COUPLE_MPC_MEANROT
   use superjoin_model_notes, only: note
   use superjoin_utils_strings, only: itoa, pick
+  use superjoin_utils_halting, only: halting_t, halting_off, halting_restore
+  use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
   implicit none (type, external)
   private
 
@@ -76,9 +78,8 @@ contains
     type(deck_state_t), intent(inout) :: st
     type(model_t), intent(inout) :: model
     type(eq_list_t) :: list
-    type(coupled_t) :: cp
-    integer :: k
-    logical :: ok
+    type(halting_t) :: saved
+    integer :: k, n0
     if (.not. allocated(st%couplings)) return
     do k = 1, size(st%couplings)
        if (st%couplings(k)%ok .and. st%couplings(k)%kind == COUPLE_NONE) call report_loc(st, st%couplings(k)%loc, &
@@ -87,34 +88,63 @@ contains
     ! after an error the model may be incomplete (an element on an undefined node): nothing to couple
     if (allocated(st%error)) return
     allocate (list%e(8))
+    call halting_off(saved)   ! weights and positions near the range's end: each coupling's equations checked
     do k = 1, size(st%couplings)
-       associate (cb => st%couplings(k))
-         if (.not. cb%ok .or. cb%kind == COUPLE_NONE) cycle
-         if (cb%kind == COUPLE_DCOUP) then
-            call dcoup(st, model, cb, list)
-            cycle
-         end if
-         if (cb%kind >= COUPLE_MPC_BEAM) then
-            call mpc(st, model, cb, list)
-            cycle
-         end if
-         call resolve_coupling(st, model, cb, cp, ok)
-         if (.not. ok) cycle
-         if (cb%has_rot) then
-            if (.not. allocated(model%rot_node)) allocate (model%rot_sub(0), model%rot_node(0))
-            model%rot_sub = [model%rot_sub, cp%tsub]
-            model%rot_node = [model%rot_node, cp%tnode]
-         end if
-         if (cp%kind == COUPLE_DISTRIBUTING) then
-            call distributing(st, model, cp, list)
-         else
-            call kinematic(model, cp, list)
-         end if
-       end associate
+       n0 = list%n
+       call one_coupling(st, model, st%couplings(k), list)
+       if (any_overflow(list, n0)) then
+          call report_loc(st, st%couplings(k)%loc, 'the coupling''s equations overflow the floating-point '// &
+               'range (beyond 1.8E+308 or undefined): check the weights and the coordinates of its nodes')
+          list%n = n0
+       end if
     end do
+    call halting_restore(saved)
     if (.not. allocated(model%equations)) allocate (model%equations(0))
     model%equations = [model%equations, list%e(1:list%n)]
   end subroutine build_couplings
+
+  logical function any_overflow(list, n0) result(bad)
+    !! Whether an equation after the first n0 of list has a coefficient that is not finite.
+    type(eq_list_t), intent(in) :: list
+    integer, intent(in) :: n0
+    integer :: k
+    bad = .false.
+    do k = n0 + 1, list%n
+       bad = .not. all(ieee_is_finite(list%e(k)%coef))
+       if (bad) return
+    end do
+  end function any_overflow
+
+  subroutine one_coupling(st, model, cb, list)
+    !! The equations of coupling cb appended to list (build_couplings).
+    type(deck_state_t), intent(inout) :: st
+    type(model_t), intent(inout) :: model
+    type(coupling_b_t), intent(in) :: cb
+    type(eq_list_t), intent(inout) :: list
+    type(coupled_t) :: cp
+    logical :: ok
+    if (.not. cb%ok .or. cb%kind == COUPLE_NONE) return
+    if (cb%kind == COUPLE_DCOUP) then
+       call dcoup(st, model, cb, list)
+       return
+    end if
+    if (cb%kind >= COUPLE_MPC_BEAM) then
+       call mpc(st, model, cb, list)
+       return
+    end if
+    call resolve_coupling(st, model, cb, cp, ok)
+    if (.not. ok) return
+    if (cb%has_rot) then
+       if (.not. allocated(model%rot_node)) allocate (model%rot_sub(0), model%rot_node(0))
+       model%rot_sub = [model%rot_sub, cp%tsub]
+       model%rot_node = [model%rot_node, cp%tnode]
+    end if
+    if (cp%kind == COUPLE_DISTRIBUTING) then
+       call distributing(st, model, cp, list)
+    else
+       call kinematic(model, cp, list)
+    end if
+  end subroutine one_coupling
 
   subroutine resolve_coupling(st, model, cb, cp, ok)
     !! Reference node, rotation node and coupled nodes (with weights) of a coupling.
@@ -364,6 +394,11 @@ contains
        call report_loc(st, cp%loc, '*DISTRIBUTING: the surface has no area')
        return
     end if
+    if (.not. ieee_is_finite(wsum)) then
+       call report_loc(st, cp%loc, '*DISTRIBUTING: the sum of the weights overflows the floating-point range '// &
+            '(beyond 1.8E+308): check the weights and their units')
+       return
+    end if
     associate (x => model%subs(cp%csub)%x)
       do d = 1, 3
          xbar(d) = sum(cp%w*x(d, cp%nodes))/wsum
@@ -476,6 +511,11 @@ contains
     cp%loc = cb%loc
     cp%tsub = cp%rsub
     cp%tnode = cp%rnode
+    if (.not. ieee_is_finite(sum(cp%w))) then
+       call report_loc(st, cb%loc, 'the weights of the *DISTRIBUTING COUPLING of element set '//cb%name// &
+            ' sum beyond the floating-point range (1.8E+308): check them and their units')
+       return
+    end if
     if (reading_dialect(st) == DIALECT_CALCULIX) then
        do d = 1, 3
           call push(list, cb%loc, [cp%rsub, spread(cp%csub, 1, n)], [cp%rnode, cp%nodes], [d, spread(d, 1, n)], &

@@ -88,6 +88,7 @@ contains
     type(unfold_t), intent(inout) :: w
     integer :: k
     integer, allocatable :: path(:)
+    logical :: quiet
     allocate (w%part_of(st%nsub))
     w%part_of = 0
     do k = 1, st%nsub
@@ -98,17 +99,21 @@ contains
               st%subs(inst%owner)%name//' of undefined part '//inst%part)
        end associate
     end do
+    ! every template that leads into a cycle is cut (unfold would not end),
+    ! the first cycle reported: one message is enough
+    quiet = .false.
     do k = 1, st%nsub
        if (st%subs(k)%kind /= SUBK_NESTED .or. w%part_of(k) == 0) cycle
        path = [st%instances(st%subs(k)%inst)%owner]
        if (contains_itself(k, path)) then
           w%part_of(k) = 0
-          exit   ! one message per cycle is enough
+          quiet = .true.
        end if
     end do
   contains
     recursive logical function contains_itself(t, path) result(bad)
-      !! Template t (inside the last part of path) leads back to a part on path: reported.
+      !! Template t (inside the last part of path) leads back to a part on path:
+      !! reported unless quiet.
       integer, intent(in) :: t
       integer, intent(in) :: path(:)
       integer :: j, p
@@ -117,13 +122,14 @@ contains
       bad = .false.
       if (p == 0) return
       if (any(path == p)) then
+         bad = .true.
+         if (quiet) return
          chain = ''
          do j = 1, size(path)
             chain = chain//st%subs(path(j))%name//' -> '
          end do
          call report_loc(st, st%instances(st%subs(t)%inst)%loc, '*INSTANCE '//st%subs(t)%name//' places part '// &
               st%subs(p)%name//', which contains it: a part may not contain itself ('//chain//st%subs(p)%name//')')
-         bad = .true.
          return
       end if
       do j = 1, st%nsub

@@ -28,6 +28,8 @@ module superjoin_deck_pretension
        FAMILY_BEAM, FAMILY_TRUSS
   use superjoin_elements_solid_faces, only: solid_face_nodes
   use superjoin_utils_strings, only: to_upper, itoa, pick
+  use superjoin_utils_halting, only: halting_t, halting_off, halting_restore
+  use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
   implicit none (type, external)
   private
 
@@ -260,8 +262,16 @@ contains
     integer(ip), allocatable :: map(:)
     real(wp) :: n(3)
     logical :: ok
+    type(halting_t) :: saved
+    call halting_off(saved)   ! the faces' area vectors from the coordinates: checked below
     call section_faces(st, model, p, cut, ok)
+    call halting_restore(saved)
     if (.not. ok) return
+    if (.not. all(ieee_is_finite(cut%area))) then
+       call report_loc(st, p%loc, '*PRE-TENSION SECTION: the area vector of the faces of surface '//p%surface// &
+            ' overflows the floating-point range (beyond 1.8E+308 or undefined): check the coordinates of their nodes')
+       return
+    end if
     pnode = pretension_node(st, model%subs(cut%sub), p)
     if (pnode == 0) return
     if (p%has_normal) then

@@ -58,6 +58,10 @@ contains
     logical :: node
     integer :: m
     integer, allocatable :: subs(:)
+    if (b%has_set .and. b%set%home < 0) then   ! in a part that was not placed: its error was reported
+       allocate (rs(0))
+       return
+    end if
     node = is_node_request(b%kind)
     r%kind = b%kind
     r%card = b%card

@@ -180,29 +180,49 @@ program test_text_rows
 
 contains
 
-  subroutine rows_in_order(count, long)
-    !! write_rows of count items gives each kept row once, in order.
+  subroutine rows_in_order(count, long, headroom, what)
+    !! write_rows of count items gives each kept row once, in order; with
+    !! headroom, under a data limit of that many bytes beyond what the process
+    !! holds (what names the case), the limit checked to have held.
     integer(i8), intent(in) :: count
     logical, intent(in) :: long
+    integer(c_long_long), intent(in), optional :: headroom
+    character(*), intent(in), optional :: what
     type(counting_rows_t) :: rows
     type(model_t) :: model
     type(results_t) :: res
     type(text_buffer_t), allocatable :: lu
     type(error_t), allocatable :: error
-    character(:), allocatable :: path, got, want
+    character(:), allocatable :: path, got, want, label
+    logical :: limited, held, restored
     rows%long = long
     path = temp_dir()//'/superjoin_test_text_rows_'//run//'.txt'
+    want = expected(count, long)   ! before any limit
     allocate (lu)
     call lu%open(path, error)
     call check(.not. allocated(error), 'open '//path)
     call lu%line('head')
-    call write_rows(lu, rows, model, res, count)
+    label = ''
+    if (present(headroom)) then
+       label = what//': '
+       limited = sj_data_limit_set(headroom) == 0
+       held = .false.
+       restored = .false.
+       if (limited) then
+          call write_rows(lu, rows, model, res, count)
+          held = sj_data_available(headroom + PROBE_EXTRA) == 0
+          restored = sj_data_limit_restore() == 0
+       end if
+       call check(limited .and. restored, label//'data limit set and restored')
+       call check(held, label//'the data limit held')
+    else
+       call write_rows(lu, rows, model, res, count)
+    end if
     call lu%line('tail')
     call commit(lu, path)
-    want = expected(count, long)
     got = file_text(path)
     if (got /= want) call show_difference(got, want)
-    call check(got == want, 'rows 1..'//itoa(int(count))//merge(' (long)', '       ', long)// &
+    call check(got == want, label//'rows 1..'//itoa(int(count))//merge(' (long)', '       ', long)// &
          ' once each, in order ('//itoa(len(got))//' of '//itoa(len(want))//' characters)')
   end subroutine rows_in_order
 
@@ -292,12 +312,16 @@ contains
     if (.not. held) call skip('the data limit does not hold')
     call rows_in_order(OOM_COUNT, .true.)   ! the second thread started, as it would be
     if (second_thread_allowed()) then
-       call rows_short_of_memory(ONE_BLOCK_ROOM, 'the second chunk''s text not kept')
+       items_direct = 0
+       items_in_memory = 0
+       call rows_in_order(OOM_COUNT, .true., ONE_BLOCK_ROOM, 'the second chunk''s text not kept')
        call check(items_in_memory > 0 .and. items_direct == OOM_COUNT, &
             'the second chunks formatted in memory, lost, and again into the listing: '// &
             itoa(int(items_in_memory))//' and '//itoa(int(items_direct))//' items')
     end if
-    call rows_short_of_memory(NO_ROOM, 'no memory buffer')
+    items_direct = 0
+    items_in_memory = 0
+    call rows_in_order(OOM_COUNT, .true., NO_ROOM, 'no memory buffer')
     call check(items_in_memory == 0 .and. items_direct == OOM_COUNT, 'one thread formats every item once: '// &
          itoa(int(items_in_memory))//' and '//itoa(int(items_direct))//' items')
     call memory_buffer_short()
@@ -310,46 +334,6 @@ contains
     if (allocated(run)) deallocate (run)   ! LeakSanitizer counts a main program's allocatables held at the end
     stop 77
   end subroutine skip
-
-  subroutine rows_short_of_memory(headroom, what)
-    !! write_rows of OOM_COUNT long rows with headroom bytes beyond what the
-    !! process holds: the rows once each, in order; the counts of items
-    !! formatted into each kind of buffer left for the caller.
-    integer(c_long_long), intent(in) :: headroom
-    character(*), intent(in) :: what
-    type(counting_rows_t) :: rows
-    type(model_t) :: model
-    type(results_t) :: res
-    type(text_buffer_t), allocatable :: lu
-    type(error_t), allocatable :: error
-    character(:), allocatable :: path, got, want
-    logical :: limited, held, restored
-    rows%long = .true.
-    path = temp_dir()//'/superjoin_test_text_rows_'//run//'.txt'
-    want = expected(OOM_COUNT, .true.)
-    allocate (lu)
-    call lu%open(path, error)
-    call check(.not. allocated(error), 'open '//path)
-    call lu%line('head')
-    items_direct = 0
-    items_in_memory = 0
-    limited = sj_data_limit_set(headroom) == 0
-    held = .false.
-    restored = .false.
-    if (limited) then
-       call write_rows(lu, rows, model, res, OOM_COUNT)
-       held = sj_data_available(headroom + PROBE_EXTRA) == 0
-       restored = sj_data_limit_restore() == 0
-    end if
-    call check(limited .and. restored, what//': data limit set and restored')
-    call check(held, what//': the data limit held')
-    call lu%line('tail')
-    call commit(lu, path)
-    got = file_text(path)
-    if (got /= want) call show_difference(got, want)
-    call check(got == want, what//': long rows 1..'//itoa(int(OOM_COUNT))//' once each, in order ('// &
-         itoa(len(got))//' of '//itoa(len(want))//' characters)')
-  end subroutine rows_short_of_memory
 
   subroutine memory_buffer_short()
     !! A buffer in memory with its block and no room to keep it when full:

@@ -26,7 +26,7 @@ module superjoin_deck_pretension
   use superjoin_model_notes, only: note
   use superjoin_elements_traits, only: element_traits, element_traits_t, FAMILY_SOLID, FAMILY_PLANE, &
        FAMILY_BEAM, FAMILY_TRUSS
-  use superjoin_elements_solid_faces, only: solid_face_nodes
+  use superjoin_elements_solid_faces, only: solid_face_nodes, solid_face_nodes_ccx
   use superjoin_utils_strings, only: to_upper, itoa, pick
   use superjoin_utils_halting, only: halting_t, halting_off, halting_restore
   use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
@@ -46,6 +46,8 @@ module superjoin_deck_pretension
      integer :: sub = 0
      logical, allocatable :: elem(:)       !! elements whose faces form the section (they take the copies)
      logical, allocatable :: node(:)       !! nodes of the section
+     integer(ip), allocatable :: order(:)  !! the section's nodes in the order their copies are numbered
+     integer(ip) :: ncopy = 0              !! how many of order(:) are set
      real(wp) :: area(3) = 0.0_wp          !! sum of the faces' outward area vectors
      integer :: ncomp = 0                  !! translational DOFs per node (2 or 3)
      logical :: unresolved = .false.       !! a face left out: its element has a node in error
@@ -317,6 +319,7 @@ contains
             cut%sub = s
             allocate (cut%elem(model%subs(s)%nelem), source=.false.)
             allocate (cut%node(model%subs(s)%nnode), source=.false.)
+            allocate (cut%order(model%subs(s)%nnode))
          else if (s /= cut%sub) then
             call report_loc(st, p%loc, '*PRE-TENSION SECTION: surface '//p%surface//' spans two substructures')
             return
@@ -360,6 +363,9 @@ contains
 
   subroutine add_face(sub, e, face, cut, ok)
     !! Element e's face `face` into the section: its element, nodes and outward area vector.
+    !! A node met for the first time takes the next copy number, its face's nodes in CalculiX's
+    !! order (the surface's faces in turn), as ccx numbers them: the copies' ids do not depend
+    !! on the order of the *NODE lines.
     type(substructure_t), intent(in) :: sub
     integer(ip), intent(in) :: e
     integer, intent(in) :: face
@@ -395,7 +401,14 @@ contains
     if (dot_product(a, c - xe) < 0.0_wp) a = -a
     cut%area = cut%area + a
     cut%elem(e) = .true.
-    cut%node(sub%elem_nodes(local, e)) = .true.
+    if (tr%family == FAMILY_SOLID .and. tr%dofs(3)) call solid_face_nodes_ccx(sub%elem_type(e), face, local)
+    do k = 1, size(local)
+       j = sub%elem_nodes(local(k), e)
+       if (cut%node(j)) cycle
+       cut%node(j) = .true.
+       cut%ncopy = cut%ncopy + 1
+       cut%order(cut%ncopy) = j
+    end do
     cut%ncomp = max(cut%ncomp, count(tr%dofs(1:3)))
   end subroutine add_face
 
@@ -436,9 +449,9 @@ contains
   end function in_element
 
   subroutine split_nodes(model, cut, map)
-    !! Copy the section's nodes (new ids after the largest) and give the copies
-    !! to the section's elements; map(i) is the copy of node i (0: none). The
-    !! copies take their originals' temperatures.
+    !! Copy the section's nodes (new ids after the largest, in the order of
+    !! cut%order) and give the copies to the section's elements; map(i) is the
+    !! copy of node i (0: none). The copies take their originals' temperatures.
     type(model_t), intent(inout) :: model
     type(cut_t), intent(in) :: cut
     integer(ip), allocatable, intent(out) :: map(:)
@@ -448,19 +461,17 @@ contains
     integer :: is, k
     associate (s => model%subs(cut%sub))
       nold = s%nnode
-      nnew = count(cut%node, kind=ip)
+      nnew = cut%ncopy
       maxid = maxval(s%node_id(1:nold))
       allocate (map(nold), source=0_ip)
       allocate (ids(nold + nnew), x(3, nold + nnew))
       ids(1:nold) = s%node_id(1:nold)
       x(:, 1:nold) = s%x(:, 1:nold)
-      j = nold
-      do i = 1, nold
-         if (.not. cut%node(i)) cycle
-         j = j + 1
-         map(i) = j
-         ids(j) = maxid + (j - nold)
-         x(:, j) = s%x(:, i)
+      do j = 1, nnew
+         i = cut%order(j)
+         map(i) = nold + j
+         ids(nold + j) = maxid + j
+         x(:, nold + j) = s%x(:, i)
       end do
       call move_alloc(ids, s%node_id)
       call move_alloc(x, s%x)
@@ -477,7 +488,7 @@ contains
     do is = 1, size(model%steps)
        if (.not. allocated(model%steps(is)%temperature)) cycle
        associate (t => model%steps(is)%temperature(cut%sub))
-         if (allocated(t%v)) t%v = [t%v(1:nold), pack(t%v(1:nold), cut%node)]
+         if (allocated(t%v)) t%v = [t%v(1:nold), t%v(cut%order(1:nnew))]
        end associate
     end do
   end subroutine split_nodes
@@ -491,12 +502,12 @@ contains
     type(source_loc_t), intent(in) :: loc
     type(equation_t), allocatable :: list(:)
     type(equation_t) :: eq
-    integer(ip) :: i
+    integer(ip) :: i, j
     integer :: c, m
-    allocate (list(count(map > 0)*cut%ncomp))
+    allocate (list(cut%ncopy*cut%ncomp))
     m = 0
-    do i = 1, size(map, kind=ip)
-       if (map(i) == 0) cycle
+    do j = 1, cut%ncopy   ! in the copies' order
+       i = cut%order(j)
        do c = 1, cut%ncomp
           eq = equation_t()
           eq%node = [map(i), i]

@@ -32,8 +32,18 @@ module superjoin_elements_solid_faces
   integer, parameter :: HEX_EDGES(2, 12) = reshape([1, 2, 2, 3, 3, 4, 4, 1, 5, 6, 6, 7, 7, 8, 8, 5, &
        1, 5, 2, 6, 3, 7, 4, 8], [2, 12])
   integer, parameter :: TET_EDGES(2, 6) = reshape([1, 2, 2, 3, 3, 1, 1, 4, 2, 4, 3, 4], [2, 6])
+  ! The faces' nodes in CalculiX's order (its tables ifaceq, ifacet, ifacew1/ifacew2: corners
+  ! with the outward normal, then the mid-side nodes; 0 pads a wedge's triangles), the order in
+  ! which its *PRE-TENSION SECTION numbers the copies of a cut's nodes (checked with ccx 2.20).
+  integer, parameter :: CCX_HEX_FACES(8, 6) = reshape([4, 3, 2, 1, 11, 10, 9, 12, 5, 6, 7, 8, 13, 14, 15, 16, &
+       1, 2, 6, 5, 9, 18, 13, 17, 2, 3, 7, 6, 10, 19, 14, 18, 3, 4, 8, 7, 11, 20, 15, 19, &
+       4, 1, 5, 8, 12, 17, 16, 20], [8, 6])
+  integer, parameter :: CCX_TET_FACES(6, 4) = reshape([1, 3, 2, 7, 6, 5, 1, 2, 4, 5, 9, 8, 2, 3, 4, 6, 10, 9, &
+       1, 4, 3, 8, 10, 7], [6, 4])
+  integer, parameter :: CCX_WEDGE_FACES(8, 5) = reshape([1, 3, 2, 9, 8, 7, 0, 0, 4, 5, 6, 10, 11, 12, 0, 0, &
+       1, 2, 5, 4, 7, 14, 10, 13, 2, 3, 6, 5, 8, 15, 11, 14, 3, 1, 4, 6, 9, 13, 12, 15], [8, 5])
 
-  public :: solid_face_nodes, solid_pressure_load, solid_face_points, face_shape
+  public :: solid_face_nodes, solid_face_nodes_ccx, solid_pressure_load, solid_face_points, face_shape
 
 contains
 
@@ -69,6 +79,25 @@ contains
        nodes = [nodes, edge_node(etype, a, b)]
     end do
   end subroutine solid_face_nodes
+
+  pure subroutine solid_face_nodes_ccx(etype, face, nodes)
+    !! The element's local node numbers of face `face` in CalculiX's order
+    !! (the nodes of solid_face_nodes, ordered as ccx's face tables; empty
+    !! for a face the type does not have).
+    integer, intent(in) :: etype, face
+    integer, allocatable, intent(out) :: nodes(:)
+    integer :: ncorner
+    call solid_face_nodes(etype, face, nodes, ncorner)
+    if (ncorner == 0) return
+    select case (etype)
+    case (ET_C3D8, ET_C3D20, ET_C3D20R, ET_C3D8I, ET_C3D8R)
+       nodes = CCX_HEX_FACES(1:size(nodes), face)
+    case (ET_C3D4, ET_C3D10)
+       nodes = CCX_TET_FACES(1:size(nodes), face)
+    case (ET_C3D6, ET_C3D15)
+       nodes = CCX_WEDGE_FACES(1:size(nodes), face)
+    end select
+  end subroutine solid_face_nodes_ccx
 
   pure integer function edge_node(etype, a, b) result(m)
     !! The mid-side node of the edge a-b of a quadratic solid.

@@ -22,6 +22,15 @@ known=$(awk '/KNOWN_KEYWORDS\(NUM_KNOWN\) =/ {on=1} on {print} on && /\]/ {exit}
 while IFS= read -r kw; do
   grep -qF -- "'$kw'" <<< "$known" || { echo "FAIL: *$kw is not in KNOWN_KEYWORDS of src/deck/ccx_cards.f90"; fail=1; }
 done <<< "$(printf '%s\nINCLUDE\n' "$kws")"
+# Every parameter name with a blank that a card takes (its check_params list)
+# is in SPACED_PARAMS of src/deck/lexer.f90, so that CalculiX's spelling
+# without the blank (REFNODE=) is read as it.
+spaced=$(awk '/SPACED_PARAMS\(\*\) =/ {on=1} on {print} on && /\]/ {exit}' "$src/src/deck/lexer.f90")
+while IFS= read -r p; do
+  [ -n "$p" ] || continue
+  grep -qF -- "'$p'" <<< "$spaced" || { echo "FAIL: parameter '$p' has a blank and is not in SPACED_PARAMS of src/deck/lexer.f90"; fail=1; }
+done <<< "$(awk '/check_params\(/ {on=1} on {print} on && !/&[[:space:]]*$/ {on=0}' "$src"/src/deck/*.f90 |
+            grep -oE "'[A-Z0-9-]+( [A-Z0-9-]+)+'" | tr -d "'" | sort -u)"
 # Every element type of src/model/types.f90 (ELEMENT_TYPE_NAMES, in the order of
 # their numbers) has a row in the element tables of doc/deck-reference.md
 # (section 4) and doc/user-manual.md, is named in the *ELEMENT row of the

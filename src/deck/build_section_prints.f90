@@ -50,6 +50,11 @@ contains
     integer :: i, isub, face, nc, m
     logical :: ok
     associate (sf => st%surfaces(j))
+      if (sf%nodal) then
+         call report_loc(st, sp%loc, '*SECTION PRINT: surface '//sp%surface//' is a node surface (TYPE=NODE): '// &
+              'a section is made of faces S1 to S6 of solid elements (*SURFACE, TYPE=ELEMENT)')
+         return
+      end if
       do i = 1, sf%n
          face = face_number(sf%kinds(i))
          if (face == 0) then

@@ -29,7 +29,7 @@ module superjoin_deck_coupling_build
   use superjoin_elements, only: element_dof_mask
   use superjoin_elements_solid_faces, only: solid_face_nodes, solid_pressure_load
   use superjoin_error, only: error_t
-  use superjoin_deck_state, only: deck_state_t, report_loc, ref_t, reading_dialect
+  use superjoin_deck_state, only: deck_state_t, report_loc, ref_t, reading_dialect, surface_b_t
   use superjoin_deck_build_common, only: resolve_items, resolve_sub, where
   use superjoin_deck_coupling_records, only: coupling_b_t, COUPLE_NONE, COUPLE_KINEMATIC, &
        COUPLE_DISTRIBUTING, COUPLE_RIGID_BODY, COUPLE_MPC_BEAM, COUPLE_MPC_PLANE, COUPLE_DCOUP, COUPLE_MPC_MEANROT
@@ -260,17 +260,13 @@ contains
        return
     end if
     associate (sf => st%surfaces(k))
+      if (sf%nodal) then
+         call node_surface_nodes(st, model, cb, sf, isub, wnode, ok)
+         return
+      end if
       do i = 1, sf%n
          s = resolve_sub(st, model, sf%refs(i), sf%loc, 'element')
-         if (s == 0) return
-         if (isub == 0) then
-            isub = s
-            allocate (wnode(model%subs(isub)%nnode), source=0.0_wp)
-         else if (s /= isub) then
-            call report_loc(st, cb%loc, 'surface '//cb%surface//' spans two substructures (a coupling''s '// &
-                 'surface must lie in one)')
-            return
-         end if
+         if (.not. same_sub(st, model, cb, s, isub, wnode)) return
          call resolve_items(st, model, isub, sf%refs(i), .true., sf%loc, items, ok)
          if (.not. ok) return
          face = face_of(sf%kinds(i))
@@ -289,6 +285,59 @@ contains
     end associate
     ok = isub > 0
   end subroutine surface_nodes
+
+  logical function same_sub(st, model, cb, s, isub, wnode) result(ok)
+    !! Substructure s of a surface line (0: its error reported) is the
+    !! surface's: the first sets isub and allocates the weights wnode; another
+    !! is the error of a surface over two substructures.
+    type(deck_state_t), intent(inout) :: st
+    type(model_t), intent(in) :: model
+    type(coupling_b_t), intent(in) :: cb
+    integer, intent(in) :: s
+    integer, intent(inout) :: isub
+    real(wp), allocatable, intent(inout) :: wnode(:)
+    ok = s /= 0
+    if (.not. ok) return
+    if (isub == 0) then
+       isub = s
+       allocate (wnode(model%subs(isub)%nnode), source=0.0_wp)
+    else if (s /= isub) then
+       call report_loc(st, cb%loc, 'surface '//cb%surface//' spans two substructures (a coupling''s '// &
+            'surface must lie in one)')
+       ok = .false.
+    end if
+  end function same_sub
+
+  subroutine node_surface_nodes(st, model, cb, sf, isub, wnode, ok)
+    !! The nodes of a node surface (*SURFACE, TYPE=NODE), weight 1: a kinematic
+    !! coupling's only (as CalculiX, which refuses it under *DISTRIBUTING: the
+    !! distributing coupling's weights are the faces' areas).
+    type(deck_state_t), intent(inout) :: st
+    type(model_t), intent(in) :: model
+    type(coupling_b_t), intent(in) :: cb
+    type(surface_b_t), intent(in) :: sf
+    integer, intent(out) :: isub
+    real(wp), allocatable, intent(out) :: wnode(:)
+    logical, intent(out) :: ok
+    integer(ip), allocatable :: items(:)
+    integer :: i, s
+    isub = 0
+    ok = .false.
+    if (cb%kind /= COUPLE_KINEMATIC) then
+       call report_loc(st, cb%loc, 'surface '//cb%surface//' is a node surface: *DISTRIBUTING takes an element '// &
+            'face surface (*SURFACE, TYPE=ELEMENT; its weights are the faces'' areas), as CalculiX; a node '// &
+            'surface couples under *KINEMATIC')
+       return
+    end if
+    do i = 1, sf%n
+       s = resolve_sub(st, model, sf%refs(i), sf%loc, 'node')
+       if (.not. same_sub(st, model, cb, s, isub, wnode)) return
+       call resolve_items(st, model, isub, sf%refs(i), .false., sf%loc, items, ok)
+       if (.not. ok) return
+       wnode(items) = 1.0_wp
+    end do
+    ok = isub > 0
+  end subroutine node_surface_nodes
 
   pure integer function face_of(kind)
     !! Face number 1..6 of a surface line's load kind (DLOAD_P1..P6).

@@ -5,7 +5,7 @@ module superjoin_deck_lexer
   !! returns a status that the parser turns into a `file:line: error:` message.
   use, intrinsic :: ieee_exceptions, only: ieee_status_type, ieee_get_status, ieee_set_status
   use superjoin_kinds, only: wp, ip, i8
-  use superjoin_utils_strings, only: itoa, to_upper
+  use superjoin_utils_strings, only: itoa, to_upper, without_blanks
   use superjoin_utils_grow, only: grow
   use superjoin_utils_huge_pages, only: advise_huge
   use superjoin_utils_posix, only: size_unknown
@@ -79,6 +79,11 @@ module superjoin_deck_lexer
   public :: path_dirname, path_join, path_normalize, clip, plural
 
   integer, parameter :: MAX_SHOWN = 60
+  ! The parameter names of the cards that hold a blank: CalculiX removes the
+  ! blanks of a keyword line, so its decks may write them without (REFNODE=).
+  character(len=*), parameter :: SPACED_PARAMS(*) = [character(len=18) :: 'CONSTRAINT NAME', 'CONTACT ELEMENTS', &
+       'CYCLIC SYMMETRY', 'FILE NAME', 'LAST ITERATIONS', 'NO ROTATION', 'NODAL THICKNESS', 'OUTPUT FILE', &
+       'POSITION TOLERANCE', 'REF NODE', 'ROT NODE', 'ROTARY INERTIA', 'SECTION FORCES', 'TIME POINTS', 'TIME RESET']
     !! Longest piece of user text quoted in a message.
 
 
@@ -233,6 +238,23 @@ contains
     t = buf(1:n)
   end function collapse_blanks
 
+  pure function spaced_param(name) result(spaced)
+    !! A parameter name written without its blank (REFNODE, as CalculiX
+    !! reads it: it removes every blank of a keyword line) in its spaced form
+    !! (REF NODE); any other name as it is.
+    character(*), intent(in) :: name
+    character(:), allocatable :: spaced
+    integer :: k
+    spaced = name
+    if (index(name, BLANK) > 0) return
+    do k = 1, size(SPACED_PARAMS)
+       if (name == without_blanks(trim(SPACED_PARAMS(k)))) then
+          spaced = trim(SPACED_PARAMS(k))
+          return
+       end if
+    end do
+  end function spaced_param
+
   pure function clip(s) result(t)
     !! s for quoting in a message: cut to MAX_SHOWN characters ('...' appended).
     character(*), intent(in) :: s
@@ -303,6 +325,7 @@ contains
             msg = 'empty parameter name in '''//seg//''''
             return
          end if
+         name = spaced_param(name)
          do j = 1, kw%nparam
             if (kw%params(j)%name == name) then
                msg = 'parameter '//name//' given twice'

@@ -79,12 +79,12 @@ module superjoin_deck_lexer
   public :: path_dirname, path_join, path_normalize, clip, plural
 
   integer, parameter :: MAX_SHOWN = 60
+    !! Longest piece of user text quoted in a message.
   ! The parameter names of the cards that hold a blank: CalculiX removes the
   ! blanks of a keyword line, so its decks may write them without (REFNODE=).
   character(len=*), parameter :: SPACED_PARAMS(*) = [character(len=18) :: 'CONSTRAINT NAME', 'CONTACT ELEMENTS', &
        'CYCLIC SYMMETRY', 'FILE NAME', 'LAST ITERATIONS', 'NO ROTATION', 'NODAL THICKNESS', 'OUTPUT FILE', &
        'POSITION TOLERANCE', 'REF NODE', 'ROT NODE', 'ROTARY INERTIA', 'SECTION FORCES', 'TIME POINTS', 'TIME RESET']
-    !! Longest piece of user text quoted in a message.
 
 
 contains

@@ -15,8 +15,12 @@ module superjoin_analysis_driver
   !! groups share one solve context, so the condensed parts are condensed
   !! once and reused. Without step-level *BOUNDARY and *CHANGE CONTACT this
   !! is exactly solve_model.
+  !!
+  !! *BOUNDARY, FIXED (analysis/held_supports): the groups are solved in their
+  !! order of first appearance, each after the steps it holds to, and its held
+  !! values are filled in from the results merged so far.
   use superjoin_kinds, only: wp
-  use superjoin_error, only: error_t, add_error_line, EXIT_SINGULAR
+  use superjoin_error, only: error_t, add_error_line, fatal_error, EXIT_SINGULAR
   use superjoin_model_types, only: model_t, support_t, link_override_t, string_t, step_t, link_t, &
        LINK_NONE, LINK_FINITE
   use superjoin_analysis, only: solve_model, solve_group, solve_context_t, release_cache
@@ -27,6 +31,7 @@ module superjoin_analysis_driver
   use superjoin_utils_strings, only: itoa
   use superjoin_utils_sorting, only: sort_index
   use superjoin_analysis_step_groups, only: group_steps
+  use superjoin_analysis_held_supports, only: has_held, held_sources, fill_held
   implicit none (type, external)
   private
 
@@ -286,18 +291,33 @@ contains
     type(swap_t) :: swap
     type(results_t) :: r
     character(:), allocatable :: text
+    type(results_t) :: r0   ! no results: a group whose held displacements are missing
     type(solve_context_t) :: ctx
-    logical :: joint
+    logical :: joint, held
     type(failures_t) :: fail
 
     nstep = size(model%steps)
     ngroup = grouping%nsupports
-    order = fixed_set_order(model, grouping%supports, ngroup)
+    held = has_held(model)
+    if (held) then   ! *BOUNDARY, FIXED: each group after the steps it holds to
+       order = [(g, g=1, ngroup)]
+    else
+       order = fixed_set_order(model, grouping%supports, ngroup)
+    end if
     joint = has_joint_changes(model)
     ctx%factor%keep = .not. joint
     do k = 1, ngroup
        g = order(k)
        members = pack([(s, s=1, nstep)], grouping%supports == g)
+       if (held) then
+          call hold_group(model, members, fail, res, error)
+          if (allocated(error)) then
+             if (keep_going(fail, members, nstep, r0, res, error)) cycle
+             call release_factor(ctx%factor)
+             call release_cache(ctx%cache)
+             return
+          end if
+       end if
        call enter_group(model, members, swap, supports=.true.)
        text = ': '//itoa(size(model%supports))//' supported DOFs'//prescribed_text(model%supports)
        if (joint) then
@@ -463,7 +483,7 @@ contains
     logical, intent(in) :: with_values
     same_support = a%sub == b%sub .and. a%node == b%node .and. a%dof == b%dof .and. &
          a%state == b%state .and. a%g == b%g
-    if (with_values) same_support = same_support .and. a%value == b%value
+    if (with_values) same_support = same_support .and. a%value == b%value .and. a%held_from == b%held_from
   end function same_support
 
   function prescribed_text(list) result(text)
@@ -645,6 +665,42 @@ contains
     end if
     call append_string(res%log%notes, text)
   end subroutine note_group
+
+  subroutine hold_group(model, members, fail, res, error)
+    !! *BOUNDARY, FIXED: the held values of the supports of the group's steps
+    !! members, from the merged results res of the steps they hold to; an
+    !! error (exit 3: these steps go unsolved, the others on) when one of
+    !! those steps was not solved.
+    type(model_t), intent(inout) :: model
+    integer, intent(in) :: members(:)
+    type(failures_t), intent(in) :: fail
+    type(results_t), intent(in) :: res
+    type(error_t), allocatable, intent(out) :: error
+    integer, allocatable :: src(:)
+    integer :: k
+    character(:), allocatable :: verb
+    allocate (src, source=held_sources(model%steps(members(1))%supports))   ! source=: no -Wuninitialized false positive
+    do k = 1, size(src)
+       if (solved(src(k))) cycle
+       verb = ' holds'
+       if (size(members) > 1) verb = ' hold'
+       call fatal_error(error, EXIT_SINGULAR, 'error: '//step_list(model, members, .false.)//verb// &
+            ' DOFs at the displacements of step '//model%steps(src(k))%name// &
+            ' (*BOUNDARY, FIXED), which was not solved')
+       return
+    end do
+    call fill_held(model, members, res)
+  contains
+    logical function solved(t)
+      integer, intent(in) :: t
+      solved = fail%solved
+      if (.not. solved) return
+      if (allocated(fail%message)) then
+         if (allocated(fail%message(t)%s)) solved = .false.
+      end if
+      if (allocated(res%fields%steps(t)%failure)) solved = .false.
+    end function solved
+  end subroutine hold_group
 
   function step_list(model, members, plural) result(text)
     !! 'steps A B C' for messages ('step A' for one, unless plural).

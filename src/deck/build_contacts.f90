@@ -378,6 +378,9 @@ contains
                   list(n)%value = sb%value
                   list(n)%loc = sb%loc
                   list(n)%from_boundary = sb%boundary
+                  ! FIXED: the previous step's displacement, filled in by the driver; in the
+                  ! first step and in model data the initial state's, 0 (as ccx 2.20)
+                  if (sb%held .and. step > 1) list(n)%held_from = step - 1
                end do
             end do
          end do
@@ -392,4 +395,5 @@ contains
     end if
     out(1:n) = list(1:n)
   end subroutine support_list
+
 end module superjoin_deck_build_contacts

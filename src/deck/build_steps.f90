@@ -14,6 +14,7 @@ module superjoin_deck_build_steps
   use superjoin_deck_build_common, only: ref_subs, resolve_items, keeps_previous, more_text, &
        where, INITIAL_CAPACITY
   use superjoin_deck_build_contacts, only: support_list
+  use superjoin_model_notes, only: note
   use superjoin_deck_build_thermal, only: build_thermal
   implicit none (type, external)
   private
@@ -89,13 +90,59 @@ contains
        ops(s)%dload_mod = keeps_previous(st%steps(s), st%steps(s)%dload_op)
     end do
     call apply_load_history(model, ops)
+    call note_perturbation_stiffness(st, model)
     if (.not. any(st%steps(1:st%nstep)%has_boundary)) return
     do s = 1, st%nstep
        call support_list(st, model, s, own(s)%items)
        if (st%aborted) return
     end do
     call apply_boundary_history(model, own, ops)
+    call note_held_perturbation(st, model)
   end subroutine build_history
+
+  subroutine note_perturbation_stiffness(st, model)
+    !! A PERTURBATION step after another step: ccx 2.20 solves it with the
+    !! stress stiffness of the step before added (its stresses taken as
+    !! initial stresses: measured, the difference scales with stress / E);
+    !! superjoin, as Abaqus after a general step without NLGEOM, with the
+    !! elastic stiffness alone. Said in the listing, once per such step.
+    type(deck_state_t), intent(in) :: st
+    type(model_t), intent(inout) :: model
+    integer :: s
+    do s = 2, st%nstep
+       if (.not. st%steps(s)%perturbation) cycle
+       call note(model%notes, 'warning: step '//st%steps(s)%name//' (*STEP, PERTURBATION at '// &
+            where(st, st%steps(s)%loc)//') is solved with the elastic stiffness alone, as Abaqus solves a '// &
+            'perturbation of a step without NLGEOM; ccx 2.20 adds the stress stiffness of step '// &
+            st%steps(s - 1)%name//'''s stresses, so its displacements differ by about the ratio of those '// &
+            'stresses to E')
+    end do
+  end subroutine note_perturbation_stiffness
+
+  subroutine note_held_perturbation(st, model)
+    !! *BOUNDARY, FIXED in a PERTURBATION step or after one: CalculiX holds
+    !! the DOFs at the previous step's displacements (ccx 2.20, measured on
+    !! both), as superjoin does; Abaqus reads a perturbation step apart from
+    !! its base state. Said in the listing, once per data line.
+    type(deck_state_t), intent(in) :: st
+    type(model_t), intent(inout) :: model
+    character(:), allocatable :: why
+    integer :: k, s
+    do k = 1, st%nsupport
+       s = st%supports(k)%step
+       if (.not. st%supports(k)%held .or. s < 2) cycle
+       if (st%steps(s)%perturbation) then
+          why = 'in a PERTURBATION step (Abaqus: its prescribed values are perturbations of its base state)'
+       else if (st%steps(s - 1)%perturbation) then
+          why = 'after a PERTURBATION step (Abaqus: the last general step''s; a perturbation step does not '// &
+               'change the base state)'
+       else
+          cycle
+       end if
+       call note(model%notes, 'warning: *BOUNDARY, FIXED at '//where(st, st%supports(k)%loc)// &
+            ': its DOFs are held at the displacements of step '//st%steps(s - 1)%name//', as CalculiX holds them '//why)
+    end do
+  end subroutine note_held_perturbation
 
   subroutine build_cloads(st, model, loads, out)
     type(deck_state_t), intent(inout) :: st

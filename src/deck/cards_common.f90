@@ -78,6 +78,7 @@ contains
     st%card_item = 0
     st%card_home = 0
     st%card_generate = .false.
+    st%card_fixed = .false.
   end subroutine set_card
 
   logical function outside_step(st, kw, loc) result(ok)

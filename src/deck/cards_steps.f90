@@ -16,6 +16,7 @@ module superjoin_deck_cards_steps
        refused_card, CARD_SKIP, CARD_BOUNDARY, CARD_DLOAD, CARD_STATIC, CARD_COMBINATION, &
        CARD_TEMPERATURE, NAME_LEN, LOAD_FIELDS, GRAV_FIELDS, CARD_SURFACE, CARD_DSLOAD
   use superjoin_deck_matrix_loads, only: CARD_MATRIX_LOAD
+  use superjoin_model_notes, only: append_string
   implicit none (type, external)
   private
 
@@ -273,16 +274,19 @@ contains
   end subroutine choose
 
   subroutine kw_boundary(st, kw, loc)
-    !! *BOUNDARY[, OP=MOD|NEW]: model data, or inside *STEP the step's own
+    !! *BOUNDARY[, OP=MOD|NEW][, FIXED]: model data, or inside *STEP the step's own
     !! boundary conditions (Abaqus/CalculiX history: later steps keep them;
     !! OP=NEW removes every earlier *BOUNDARY condition, model data included).
+    !! FIXED (Abaqus, CalculiX): its DOFs held at their displacements at the end
+    !! of the previous step (0 in the first step and in model data).
     type(deck_state_t), intent(inout) :: st
     type(keyword_line_t), intent(in) :: kw
     type(source_loc_t), intent(in) :: loc
     integer :: op
-    call check_params(st, kw, loc, [character(NAME_LEN) :: 'OP'], [character(NAME_LEN) ::])
+    call check_params(st, kw, loc, [character(NAME_LEN) :: 'OP'], [character(NAME_LEN) :: 'FIXED'])
     op = op_param(st, kw, loc)
     st%card = CARD_BOUNDARY
+    st%card_fixed = param_index(kw, 'FIXED') > 0
     st%card_home = st%cur_sub
     st%card_item = st%cur_step
     if (st%cur_step > 0) then
@@ -307,6 +311,7 @@ contains
     s%loc = loc
     s%step = st%card_item
     s%boundary = .true.
+    s%held = st%card_fixed
     tok = to_upper(fld(st, line, 2))
     if (.not. looks_numeric(tok) .and. len(tok) > 0) then
        do k = 1, NUM_BC_TYPES
@@ -336,6 +341,12 @@ contains
     end if
     if (st%f%n == BOUNDARY_FIELDS_MAX) then
        if (.not. get_real(st, line, loc, 4, s%value)) return
+       if (s%held) then   ! Abaqus and ccx 2.20 pass over it (measured): said, not silent
+          call append_string(st%notes, '*BOUNDARY, FIXED at '//loc_string(st, loc)//': the value '// &
+               clip(fld(st, line, 4))//' is not read; the DOFs are held at their displacements at the '// &
+               'end of the previous step (as Abaqus and CalculiX do)')
+          s%value = 0.0_wp
+       end if
     end if
     s%dofs(first:last) = .true.
     call add_support(st, s)

@@ -185,6 +185,7 @@ module superjoin_deck_records
      type(source_loc_t) :: loc
      integer :: step = 0                   !! *BOUNDARY inside *STEP: the step (0: model data)
      logical :: boundary = .false.         !! written on *BOUNDARY (not *SUPPORT)
+     logical :: held = .false.             !! *BOUNDARY, FIXED: held at the previous step's displacements
   end type support_b_t
 
   type, public :: load_b_t

@@ -132,6 +132,7 @@ module superjoin_deck_state
      integer :: card_item = 0              !! section, contact, material or orientation index
      integer :: card_home = 0
      logical :: card_generate = .false.
+     logical :: card_fixed = .false.       !! *BOUNDARY, FIXED: its DOFs held at the previous step's displacements
      type(override_b_t) :: change_card     !! *CHANGE CONTACT being read: what its data lines share
      type(fields_t) :: f                   !! fields of the current data line (reused)
      type(export_b_t), allocatable :: exports(:)  !! *SUBSTRUCTURE MATRIX OUTPUT cards (unallocated: none)

@@ -4,7 +4,8 @@ module superjoin_model_history
   !! Boundary conditions: *BOUNDARY written as model data holds in every step;
   !! a *BOUNDARY written inside a step holds in that step and in the later ones
   !! (OP=MOD, the default: a DOF that already has a prescribed value gets the
-  !! new one); OP=NEW first removes every earlier *BOUNDARY condition, model
+  !! new one, or with FIXED is held at the previous step's displacement);
+  !! OP=NEW first removes every earlier *BOUNDARY condition, model
   !! data included (as ccx 2.20 does). *SUPPORT (superjoin's contact elements to
   !! the ground) is part of the structure and stays.
   !!
@@ -92,6 +93,7 @@ contains
                 first = order(i)
              else
                 merged(first)%value = merged(order(i))%value
+                merged(first)%held_from = merged(order(i))%held_from
                 merged(first)%loc = merged(order(i))%loc
                 keep(order(i)) = .false.
              end if

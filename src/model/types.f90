@@ -272,6 +272,9 @@ module superjoin_model_types
      real(wp) :: value = 0.0_wp            !! prescribed displacement when rigid
      type(source_loc_t) :: loc
      logical :: from_boundary = .false.    !! written on *BOUNDARY (OP=NEW in a step removes it), not *SUPPORT
+     integer :: held_from = 0
+       !! *BOUNDARY, FIXED in a later step: value is the displacement of step held_from, along the
+       !! DOF's own axis (analysis/driver fills it in once that step is solved); 0: value as written
   end type support_t
 
   type, public :: equation_t

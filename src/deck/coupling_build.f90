@@ -534,17 +534,17 @@ contains
     call one_node(st, model, cb%ref_node, cb%loc, cp%rsub, cp%rnode, ok)
     if (.not. ok) return
     do k = 1, size(cb%list)
-       s = resolve_sub(st, model, cb%list(k), cb%loc, 'node')
+       s = resolve_sub(st, model, cb%list(k), cb%weights_loc, 'node')
        if (s == 0) return
        if (cp%csub == 0) then
           cp%csub = s
           allocate (wnode(model%subs(s)%nnode), source=0.0_wp)
        else if (s /= cp%csub) then
-          call report_loc(st, cb%loc, 'the *DISTRIBUTING COUPLING of element set '//cb%name// &
+          call report_loc(st, cb%weights_loc, 'the *DISTRIBUTING COUPLING of element set '//cb%name// &
                ' spans two substructures (its nodes must lie in one)')
           return
        end if
-       call resolve_items(st, model, s, cb%list(k), .false., cb%loc, items, ok)
+       call resolve_items(st, model, s, cb%list(k), .false., cb%weights_loc, items, ok)
        if (.not. ok) return
        wnode(items) = wnode(items) + cb%weights(k)
     end do
@@ -553,15 +553,15 @@ contains
     cp%w = pack(wnode, wnode /= 0.0_wp)
     n = size(cp%nodes)
     if (n < 2) then
-       call report_loc(st, cb%loc, 'the *DISTRIBUTING COUPLING of element set '//cb%name// &
+       call report_loc(st, cb%weights_loc, 'the *DISTRIBUTING COUPLING of element set '//cb%name// &
             ' needs at least two nodes besides its reference node')
        return
     end if
     cp%loc = cb%loc
     cp%tsub = cp%rsub
     cp%tnode = cp%rnode
-    if (.not. ieee_is_finite(sum(cp%w))) then
-       call report_loc(st, cb%loc, 'the weights of the *DISTRIBUTING COUPLING of element set '//cb%name// &
+    if (.not. ieee_is_finite(sum(cp%w))) then   ! at the card that gives them
+       call report_loc(st, cb%weights_loc, 'the weights of the *DISTRIBUTING COUPLING of element set '//cb%name// &
             ' sum beyond the floating-point range (1.8E+308): check them and their units')
        return
     end if

@@ -304,6 +304,7 @@ contains
              return
           end if
           st%card_item = k
+          st%couplings(k)%weights_loc = loc
        end do
     end if
     if (st%card_item == 0) then

@@ -34,6 +34,7 @@ module superjoin_deck_coupling_records
      logical :: dofs(NDOF_NODE) = .false.       !! DOFs of *KINEMATIC / *DISTRIBUTING data lines
      logical :: dofs_given = .false.
      type(source_loc_t) :: loc                  !! the card (the *MPC data line)
+     type(source_loc_t) :: weights_loc          !! DCOUP3D: its *DISTRIBUTING COUPLING card (nodes and weights)
      logical :: ok = .true.
      integer :: home = 0                        !! the substructure block it was written in (0: the
                                                 !! assembly; DCOUP3D: always 0); a part's: copied per instance

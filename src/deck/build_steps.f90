@@ -15,6 +15,7 @@ module superjoin_deck_build_steps
        where, INITIAL_CAPACITY
   use superjoin_deck_build_contacts, only: support_list
   use superjoin_model_notes, only: note
+  use superjoin_deck_amplitudes, only: apply_amplitudes
   use superjoin_deck_build_thermal, only: build_thermal
   implicit none (type, external)
   private
@@ -73,7 +74,27 @@ contains
     call build_thermal(st, model)
     if (st%aborted) return
     call build_history(st, model)
+    if (st%aborted) return
+    call step_times(st, model)
+    call apply_amplitudes(st, model)
   end subroutine build_steps
+
+  subroutine step_times(st, model)
+    !! Each step's time period (*STATIC's data line, 1 without one) and the
+    !! total time at its end (the periods so far; *STATIC, TIME RESET does not
+    !! advance it), as ccx 2.20 counts them (measured): amplitudes' times and
+    !! CalculiX's time in the .dat, .frd and .sta files.
+    type(deck_state_t), intent(in) :: st
+    type(model_t), intent(inout) :: model
+    real(wp) :: total
+    integer :: s
+    total = 0.0_wp
+    do s = 1, size(model%steps)
+       model%steps(s)%period = st%steps(s)%period
+       if (.not. st%steps(s)%time_reset) total = total + st%steps(s)%period
+       model%steps(s)%total_time = total
+    end do
+  end subroutine step_times
 
   subroutine build_history(st, model)
     !! The steps' boundary conditions and the loads continued by OP=MOD

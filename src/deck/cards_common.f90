@@ -79,6 +79,7 @@ contains
     st%card_home = 0
     st%card_generate = .false.
     st%card_fixed = .false.
+    if (allocated(st%card_amp)) deallocate (st%card_amp)
   end subroutine set_card
 
   logical function outside_step(st, kw, loc) result(ok)

@@ -17,6 +17,7 @@ module superjoin_deck_cards_steps
        CARD_TEMPERATURE, NAME_LEN, LOAD_FIELDS, GRAV_FIELDS, CARD_SURFACE, CARD_DSLOAD
   use superjoin_deck_matrix_loads, only: CARD_MATRIX_LOAD
   use superjoin_model_notes, only: append_string
+  use superjoin_deck_amplitudes, only: amplitude_param
   implicit none (type, external)
   private
 
@@ -30,7 +31,7 @@ module superjoin_deck_cards_steps
   integer, parameter :: INITIAL_SURFACES = 4       !! *SURFACE cards before the first doubling
   integer, parameter :: PROC_STATIC = 1
     !! Procedures of a step (st%step_procedure).
-  integer, parameter :: STATIC_FIELDS = 4
+  integer, parameter :: STATIC_FIELDS = 4, STATIC_PERIOD = 2
     !! *STATIC data: initial increment, time period, minimum, maximum increment.
   integer, parameter :: CENTRIF_FIELDS = 9
   integer, parameter :: BOUNDARY_FIELDS_MIN = 2, BOUNDARY_FIELDS_MAX = 4
@@ -148,8 +149,9 @@ contains
 
   subroutine kw_static(st, kw, loc)
     !! *STATIC inside *STEP: linear statics, superjoin's only procedure. The
-    !! optional data line (increments and time period) is checked and ignored:
-    !! a linear static step has one increment.
+    !! optional data line (increments and time period) is checked: a linear
+    !! static step has one increment, at the end of its time period, where
+    !! amplitudes take their value (TIME RESET: the total time does not advance).
     type(deck_state_t), intent(inout) :: st
     type(keyword_line_t), intent(in) :: kw
     type(source_loc_t), intent(in) :: loc
@@ -172,6 +174,7 @@ contains
     st%step_procedure = PROC_STATIC
     st%step_procedure_loc = loc
     st%steps(st%cur_step)%has_procedure = .true.
+    st%steps(st%cur_step)%time_reset = param_index(kw, 'TIME RESET') > 0
     st%card = CARD_STATIC
   end subroutine kw_static
 
@@ -197,6 +200,7 @@ contains
           call report_loc(st, loc, '*STATIC increments and time period must be positive, not '//fld(st, line, i))
           return
        end if
+       if (i == STATIC_PERIOD .and. st%cur_step > 0) st%steps(st%cur_step)%period = x   ! amplitudes' time
     end do
   end subroutine data_static
 
@@ -274,7 +278,7 @@ contains
   end subroutine choose
 
   subroutine kw_boundary(st, kw, loc)
-    !! *BOUNDARY[, OP=MOD|NEW][, FIXED]: model data, or inside *STEP the step's own
+    !! *BOUNDARY[, OP=MOD|NEW][, FIXED][, AMPLITUDE=a]: model data, or inside *STEP the step's own
     !! boundary conditions (Abaqus/CalculiX history: later steps keep them;
     !! OP=NEW removes every earlier *BOUNDARY condition, model data included).
     !! FIXED (Abaqus, CalculiX): its DOFs held at their displacements at the end
@@ -283,10 +287,11 @@ contains
     type(keyword_line_t), intent(in) :: kw
     type(source_loc_t), intent(in) :: loc
     integer :: op
-    call check_params(st, kw, loc, [character(NAME_LEN) :: 'OP'], [character(NAME_LEN) :: 'FIXED'])
+    call check_params(st, kw, loc, [character(NAME_LEN) :: 'OP', 'AMPLITUDE'], [character(NAME_LEN) :: 'FIXED'])
     op = op_param(st, kw, loc)
     st%card = CARD_BOUNDARY
     st%card_fixed = param_index(kw, 'FIXED') > 0
+    call amplitude_param(st, kw, loc)
     st%card_home = st%cur_sub
     st%card_item = st%cur_step
     if (st%cur_step > 0) then
@@ -392,9 +397,14 @@ contains
     type(source_loc_t), intent(in) :: loc
     integer, intent(in) :: card
     integer :: op
-    call check_params(st, kw, loc, [character(NAME_LEN) :: 'OP'], [character(NAME_LEN) ::])
+    call check_params(st, kw, loc, [character(NAME_LEN) :: 'OP', 'AMPLITUDE'], [character(NAME_LEN) ::])
     op = op_param(st, kw, loc)
     st%card = CARD_SKIP
+    if (card == CARD_MATRIX_LOAD .and. param_index(kw, 'AMPLITUDE') > 0) then
+       call report_loc(st, loc, 'AMPLITUDE= of *MATRIX LOAD is not supported (a condensed load has its magnitude)')
+    else
+       call amplitude_param(st, kw, loc)
+    end if
     if (st%cur_step > 0) then
        st%card_item = st%cur_step
        if (card == CARD_MATRIX_LOAD) then

@@ -83,7 +83,7 @@ module superjoin_deck_lexer
   ! The parameter names of the cards that hold a blank: CalculiX removes the
   ! blanks of a keyword line, so its decks may write them without (REFNODE=).
   character(len=*), parameter :: SPACED_PARAMS(*) = [character(len=18) :: 'CONSTRAINT NAME', 'CONTACT ELEMENTS', &
-       'CYCLIC SYMMETRY', 'FILE NAME', 'LAST ITERATIONS', 'NO ROTATION', 'NODAL THICKNESS', 'OUTPUT FILE', &
+       'CYCLIC SYMMETRY', 'FILE NAME', 'FIXED INTERVAL', 'LAST ITERATIONS', 'NO ROTATION', 'NODAL THICKNESS', 'OUTPUT FILE', &
        'POSITION TOLERANCE', 'REF NODE', 'ROT NODE', 'ROTARY INERTIA', 'SECTION FORCES', 'TIME POINTS', 'TIME RESET']
 
 

@@ -45,6 +45,7 @@ module superjoin_deck_parser
   use superjoin_deck_transforms, only: kw_transform, data_transform
   use superjoin_deck_nodal_thickness, only: kw_nodal_thickness, data_nodal_thickness
   use superjoin_deck_matrix_input, only: kw_matrix_input, kw_matrix_output
+  use superjoin_deck_amplitudes, only: kw_amplitude, data_amplitude, record_amp_line, CARD_AMPLITUDE
   use superjoin_deck_matrix_loads, only: data_matrix_load, CARD_MATRIX_LOAD
   implicit none (type, external)
   private
@@ -260,6 +261,8 @@ contains
        call kw_matrix_output(st, kw, loc)
     case ('NODAL THICKNESS')
        call kw_nodal_thickness(st, kw, loc)
+    case ('AMPLITUDE')
+       call kw_amplitude(st, kw, loc)
     case default
        if (.not. refused_card(st, kw, loc, prev_mat)) call report_loc(st, loc, 'unknown keyword *'//clip(kw%keyword))
        st%card = CARD_SKIP
@@ -367,31 +370,39 @@ contains
     st%depth = st%depth - 1
   end subroutine do_include
 
+  logical function card_takes_data(st, line, loc) result(takes)
+    !! Whether the current card reads data lines through its routine: not
+    !! when it skips them, has none (reported once) or is the heading (kept).
+    type(deck_state_t), intent(inout) :: st
+    character(*), intent(in) :: line
+    type(source_loc_t), intent(in) :: loc
+    takes = .false.
+    select case (st%card)
+    case (CARD_SKIP)
+    case (CARD_NONE)
+       call report_loc(st, loc, 'data line without a keyword line before it')
+       st%card = CARD_SKIP
+    case (CARD_NODATA)
+       call report_loc(st, loc, st%card_name//' takes no data lines')
+       st%card = CARD_SKIP
+    case (CARD_HEADING)
+       call add_heading(st, line)
+    case default
+       takes = .true.
+    end select
+  end function card_takes_data
+
   subroutine data_line(st, line, loc)
     !! A data line: given to the routine of the current card.
     type(deck_state_t), intent(inout) :: st
     character(*), intent(in) :: line
     type(source_loc_t), intent(in) :: loc
 
-    select case (st%card)
-    case (CARD_SKIP)
-       return
-    case (CARD_NONE)
-       call report_loc(st, loc, 'data line without a keyword line before it')
-       st%card = CARD_SKIP
-       return
-    case (CARD_NODATA)
-       call report_loc(st, loc, st%card_name//' takes no data lines')
-       st%card = CARD_SKIP
-       return
-    case (CARD_HEADING)
-       call add_heading(st, line)
-       return
-    end select
-
+    if (.not. card_takes_data(st, line, loc)) return
     st%card_ndata = st%card_ndata + 1
     call split_fields(line, st%f)
     call drop_trailing_empty(st%f)
+    if (allocated(st%card_amp)) call record_amp_line(st, loc)   ! AMPLITUDE= of a load or *BOUNDARY card
     select case (st%card)
     case (CARD_NODE)
        call data_node(st, line, loc)
@@ -463,6 +474,8 @@ contains
        call data_pretension(st, line, loc)
     case (CARD_MATRIX_LOAD)
        call data_matrix_load(st, line, loc)
+    case (CARD_AMPLITUDE)
+       call data_amplitude(st, line, loc)
     end select
   end subroutine data_line
 end module superjoin_deck_parser

@@ -268,7 +268,33 @@ module superjoin_deck_records
      integer :: mload_op = 0                           !! OP= of its *MATRIX LOAD cards (OP_*)
      logical :: has_procedure = .false.               !! a procedure card (*STATIC) stands in the step
      logical :: perturbation = .false.                !! *STEP, PERTURBATION (its loads are its own)
+     real(wp) :: period = 1.0_wp                      !! time period of *STATIC's data line (amplitudes)
+     logical :: time_reset = .false.                  !! *STATIC, TIME RESET: the total time does not advance
   end type step_b_t
+
+  integer, parameter, public :: AMP_TABULAR = 1, AMP_EQUALLY_SPACED = 2, AMP_SMOOTH_STEP = 3
+    !! DEFINITION= of *AMPLITUDE.
+
+  type, public :: amplitude_b_t
+    !! An *AMPLITUDE: a function of time a(t) by which the cards that name it
+    !! (AMPLITUDE= on *CLOAD, *DLOAD, *DSLOAD, *BOUNDARY) scale their values;
+    !! a linear static step takes its value at the end of the step.
+     character(:), allocatable :: name
+     integer :: definition = AMP_TABULAR
+     logical :: total_time = .false.       !! TIME=TOTAL TIME (else the step time)
+     real(wp) :: interval = 0.0_wp         !! EQUALLY SPACED: FIXED INTERVAL=
+     real(wp) :: begin = 0.0_wp            !! EQUALLY SPACED: BEGIN=
+     real(wp), allocatable :: t(:), a(:)   !! the points (EQUALLY SPACED: t from interval and begin)
+     integer :: nlines = 0                 !! its data lines, those with a mistake included
+     type(source_loc_t) :: loc
+  end type amplitude_b_t
+
+  type, public :: amp_use_b_t
+    !! A data line of a card with AMPLITUDE=: what it writes is scaled by that amplitude.
+     type(source_loc_t) :: line
+     type(source_loc_t) :: card
+     character(:), allocatable :: name
+  end type amp_use_b_t
 
   type, public :: temp_b_t
     !! A data line of *INITIAL CONDITIONS, TYPE=TEMPERATURE (step 0) or of

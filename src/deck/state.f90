@@ -16,7 +16,7 @@ module superjoin_deck_state
        SUBK_INSTANCE, SUBK_NESTED, MAIN_NAME, instance_b_t, override_b_t, step_b_t, temp_b_t, surface_b_t, tie_b_t, pretension_b_t, &
        combo_b_t, &
        OP_DEFAULT, OP_MOD, OP_NEW, request_b_t, SPRING_1, SPRING_2, SPRING_A, spring_elem_b_t, &
-       spring_card_b_t, given_b_t, export_b_t
+       spring_card_b_t, given_b_t, export_b_t, amplitude_b_t, amp_use_b_t
   use superjoin_deck_coupling_records, only: coupling_b_t
   implicit none (type, external)
   private
@@ -24,7 +24,7 @@ module superjoin_deck_state
   public :: grow
   interface grow
      !! Make room for element n + 1 of an allocatable array (grow_template.inc).
-     module procedure grow_sub_b, grow_set_b, grow_chunk, grow_string, grow_material, grow_orientation, grow_sec_b, grow_contact_b, grow_cline_b, grow_step_b, grow_load_b, grow_request_b, grow_spring_elem_b, grow_spring_card_b, grow_nthick_b, grow_transform_b, grow_equation_b, grow_temp_b, grow_surface_b, grow_combo_b, grow_instance_b, grow_override_b, grow_source_loc
+     module procedure grow_sub_b, grow_set_b, grow_chunk, grow_string, grow_material, grow_orientation, grow_sec_b, grow_contact_b, grow_cline_b, grow_step_b, grow_load_b, grow_request_b, grow_spring_elem_b, grow_spring_card_b, grow_nthick_b, grow_transform_b, grow_equation_b, grow_temp_b, grow_surface_b, grow_combo_b, grow_instance_b, grow_override_b, grow_source_loc, grow_amp_use_b
   end interface grow
 
   integer, parameter, public :: MAX_ERRORS = 50          !! messages before '... too many errors'
@@ -37,7 +37,7 @@ module superjoin_deck_state
        transform_b_t, nthick_b_t, support_b_t, load_b_t, SUBK_PLAIN, SUBK_PART, SUBK_INSTANCE, &
        SUBK_NESTED, MAIN_NAME, instance_b_t, override_b_t, step_b_t, temp_b_t, surface_b_t, tie_b_t, combo_b_t, OP_DEFAULT, OP_MOD, &
        OP_NEW, request_b_t, SPRING_1, SPRING_2, SPRING_A, spring_elem_b_t, spring_card_b_t, given_b_t, &
-       export_b_t
+       export_b_t, amplitude_b_t, amp_use_b_t
 
   type, public :: deck_state_t
     !! Everything the reader has collected, and the card being read.
@@ -133,6 +133,10 @@ module superjoin_deck_state
      integer :: card_home = 0
      logical :: card_generate = .false.
      logical :: card_fixed = .false.       !! *BOUNDARY, FIXED: its DOFs held at the previous step's displacements
+     character(:), allocatable :: card_amp !! AMPLITUDE= of the load or *BOUNDARY card being read (unallocated: none)
+     type(amplitude_b_t), allocatable :: amps(:)      !! *AMPLITUDE cards (unallocated: none)
+     type(amp_use_b_t), allocatable :: amp_uses(:)    !! data lines of cards with AMPLITUDE= (superjoin_deck_amplitudes)
+     integer :: namp_use = 0
      type(override_b_t) :: change_card     !! *CHANGE CONTACT being read: what its data lines share
      type(fields_t) :: f                   !! fields of the current data line (reused)
      type(export_b_t), allocatable :: exports(:)  !! *SUBSTRUCTURE MATRIX OUTPUT cards (unallocated: none)
@@ -720,6 +724,10 @@ contains
 
 #define GROW_NAME grow_source_loc
 #define GROW_TYPE type(source_loc_t)
+#include "grow_template.inc"
+
+#define GROW_NAME grow_amp_use_b
+#define GROW_TYPE type(amp_use_b_t)
 #include "grow_template.inc"
 
 end module superjoin_deck_state

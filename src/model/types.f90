@@ -374,6 +374,8 @@ module superjoin_model_types
      type(node_values_t), allocatable :: temperature(:)  !! per substructure: the nodal temperatures of
                                            !! the step (*INITIAL CONDITIONS / *TEMPERATURE; unallocated: none
                                            !! in the model, all 0), for *NODE PRINT NT
+     real(wp) :: period = 1.0_wp           !! its time period (*STATIC's data line; 1 without one)
+     real(wp) :: total_time = 0.0_wp       !! the total time at its end (0: not set, a combination)
   end type step_t
 
   type, public :: combination_t
@@ -466,7 +468,7 @@ module superjoin_model_types
                                                     !! (a force there is a moment, superjoin_analysis_recover)
   end type model_t
 
-  public :: find_node, find_elem, node_label, loc_text
+  public :: find_node, find_elem, node_label, loc_text, step_total_time
   public :: has_nodal, has_curvature_nodal, has_line_nodal
 
 contains
@@ -522,6 +524,16 @@ contains
     if (id < 1 .or. id > size(ids, kind=ip)) return
     if (ids(id) == id) k = id
   end function id_at_own_place
+
+  pure real(wp) function step_total_time(model, is) result(t)
+    !! The total time at the end of step is, as CalculiX prints it (.dat,
+    !! .frd, .sta): the time periods of the steps so far (*STATIC, TIME RESET:
+    !! not advanced); a step without one (a combination) its number.
+    type(model_t), intent(in) :: model
+    integer, intent(in) :: is
+    t = model%steps(is)%total_time
+    if (.not. (t > 0.0_wp)) t = real(is, wp)
+  end function step_total_time
 
   pure function node_label(model, isub, inode) result(label)
     !! "SUB.id" label of a node for messages (plain id in MAIN).

@@ -20,8 +20,9 @@ module superjoin_output_ccx_dat
   !! prints U and RF rows for every id of the ranges up to the largest node
   !! id, zeros for the undefined ones, as ccx. A model with axisymmetric elements
   !! (CAX*) prints the forces of CalculiX's 2° wedge: superjoin's totals around
-  !! the circumference divided by 180. The time of step k is k (every *STATIC step of
-  !! CalculiX lasts 1).
+  !! the circumference divided by 180. The time of a step is the total time
+  !! at its end, as ccx prints it: the time periods of the steps so far (1 each
+  !! without *STATIC's data line; TIME RESET does not advance it).
   !!
   !! Element values at integration points follow CalculiX's expansion of a
   !! one- or two-dimensional element into a brick (ccx_point_map): a truss
@@ -37,7 +38,7 @@ module superjoin_output_ccx_dat
   !! none (doc/calculix-dropin.md).
   use superjoin_kinds, only: wp, i8, ip
   use superjoin_error, only: error_t
-  use superjoin_model_types, only: model_t, output_request_t, substructure_t, orientation_t, find_node, NDOF_NODE, &
+  use superjoin_model_types, only: model_t, step_total_time, output_request_t, substructure_t, orientation_t, find_node, NDOF_NODE, &
        REQ_NODE_PRINT, REQ_EL_PRINT, TOTALS_YES, TOTALS_ONLY, MAT_ISO
   use superjoin_model_results, only: result_fields_t, reaction_t
   use superjoin_elements, only: element_tensor, element_stresses, NTENSOR, has_axisymmetric, ccx_wedge_tensor, &
@@ -119,15 +120,15 @@ contains
     call lu%commit(path//'.tmp', path, '.dat file ', error)
   end subroutine write_ccx_dat
 
-  subroutine block_header(lu, what, r, is, fallback)
+  subroutine block_header(lu, what, r, time, fallback)
     !! The blank line, the title " what for set NAME and time  T" and a blank line.
     type(text_buffer_t), intent(inout) :: lu
     character(*), intent(in) :: what, fallback
     type(output_request_t), intent(in) :: r
-    integer, intent(in) :: is
+    real(wp), intent(in) :: time
     character(len=14) :: t
     character(:), allocatable :: set
-    write (t, '(e14.7)') real(is, wp)
+    write (t, '(e14.7)') time
     set = fallback
     if (allocated(r%set_name)) set = r%set_name
     call lu%line('')
@@ -156,22 +157,22 @@ contains
           vals = node_values(fields%u(:, is), fields%vertex_offset, subs, nodes)
           gvals = vals
           if (local) call rotate_rows(model, frame, .false., vals)
-          if (r%totals /= TOTALS_ONLY) call block_header(lu, 'displacements (vx,vy,vz)', r, is, 'NALL')
+          if (r%totals /= TOTALS_ONLY) call block_header(lu, 'displacements (vx,vy,vz)', r, step_total_time(model, is), 'NALL')
           if (r%totals /= TOTALS_ONLY) call node_rows(lu, model, r, subs, nodes, vals, local .and. frame > 0)
        case ('RF')
           call node_forces(model, fields, is, subs, nodes, gvals)
           vals = gvals
           if (local) call rotate_rows(model, frame, .false., vals)
-          if (r%totals /= TOTALS_ONLY) call block_header(lu, 'forces (fx,fy,fz)', r, is, 'NALL')
+          if (r%totals /= TOTALS_ONLY) call block_header(lu, 'forces (fx,fy,fz)', r, step_total_time(model, is), 'NALL')
           if (r%totals /= TOTALS_ONLY) call node_rows(lu, model, r, subs, nodes, vals, local .and. frame > 0)
           if (r%totals == TOTALS_YES .or. r%totals == TOTALS_ONLY) then
-             call block_header(lu, 'total force (fx,fy,fz)', r, is, 'NALL')
+             call block_header(lu, 'total force (fx,fy,fz)', r, step_total_time(model, is), 'NALL')
              call total_row(lu, [sum(gvals(1, :)), sum(gvals(2, :)), sum(gvals(3, :))])
           end if
        case ('NT')
           ! as ccx: no block for a model without temperatures
           if (.not. allocated(model%steps(is)%temperature)) cycle
-          call block_header(lu, 'temperatures', r, is, 'NALL')
+          call block_header(lu, 'temperatures', r, step_total_time(model, is), 'NALL')
           call temperature_rows(lu, model, is, subs, nodes)
        end select
     end do
@@ -326,13 +327,13 @@ contains
     do iv = 1, size(r%vars)
        select case (r%vars(iv)%s)
        case ('S')
-          call block_header(lu, 'stresses (elem, integ.pnt.,sxx,syy,szz,sxy,sxz,syz)', r, is, 'EALL')
+          call block_header(lu, 'stresses (elem, integ.pnt.,sxx,syy,szz,sxy,sxz,syz)', r, step_total_time(model, is), 'EALL')
           call point_rows(lu, model, fields, is, r, subs, elems, 'S')
        case ('E')
-          call block_header(lu, 'strains (elem, integ.pnt.,exx,eyy,ezz,exy,exz,eyz)', r, is, 'EALL')
+          call block_header(lu, 'strains (elem, integ.pnt.,exx,eyy,ezz,exy,exz,eyz)', r, step_total_time(model, is), 'EALL')
           call point_rows(lu, model, fields, is, r, subs, elems, 'E')
        case ('ENER')
-          call block_header(lu, 'internal energy density (elem, integ.pnt.,energy)', r, is, 'EALL')
+          call block_header(lu, 'internal energy density (elem, integ.pnt.,energy)', r, step_total_time(model, is), 'EALL')
           call point_rows(lu, model, fields, is, r, subs, elems, 'ENER')
        end select
     end do
@@ -536,7 +537,7 @@ contains
     call compute_energies(model, fields, is, en, error)
     if (allocated(error)) return
     total = 0.0_wp
-    if (r%totals /= TOTALS_ONLY) call block_header(lu, 'internal energy (element, energy)', r, is, 'EALL')
+    if (r%totals /= TOTALS_ONLY) call block_header(lu, 'internal energy (element, energy)', r, step_total_time(model, is), 'EALL')
     ! an axisymmetric model: CalculiX's energies are those of its 2° wedge (superjoin's: the whole ring)
     if (has_axisymmetric(model)) en%element = en%element/real(CCX_AXIAL_SEGMENTS, wp)
     do i = 1, size(elems)
@@ -547,7 +548,7 @@ contains
        if (r%totals /= TOTALS_ONLY) call lu%line(trim(row))
     end do
     if (r%totals /= TOTALS_YES .and. r%totals /= TOTALS_ONLY) return
-    call block_header(lu, 'total internal energy', r, is, 'EALL')
+    call block_header(lu, 'total internal energy', r, step_total_time(model, is), 'EALL')
     call total_row(lu, [total])
   end subroutine energy_rows
 
@@ -701,7 +702,7 @@ contains
 
   subroutine write_ccx_sta(path, model, fields, error)
     !! JOB.sta: CalculiX's job summary, one line per solved step (increment
-    !! 1, one attempt, one iteration; total time = the step's number).
+    !! 1, one attempt, one iteration; the total time at its end, its period).
     character(*), intent(in) :: path
     type(model_t), intent(in) :: model
     type(result_fields_t), intent(in) :: fields
@@ -715,7 +716,8 @@ contains
     call lu%line('  STEP      INC     ATT  ITRS     TOT TIME     STEP TIME      INC TIME')
     do is = 1, size(model%steps)
        if (allocated(fields%steps(is)%failure)) cycle
-       write (row, '(i6,i11,i6,i6,3e14.6)') is, 1, 1, 1, real(is, wp), 1.0_wp, 1.0_wp
+       write (row, '(i6,i11,i6,i6,3e14.6)') is, 1, 1, 1, step_total_time(model, is), model%steps(is)%period, &
+            model%steps(is)%period
        call lu%line(trim(row))
     end do
     call lu%commit(path//'.tmp', path, '.sta file ', error)

@@ -24,7 +24,7 @@ module superjoin_output_frd
   !! elem_offset). The file carries no date: the same bytes on every run.
   use superjoin_kinds, only: wp, i8, ip
   use superjoin_error, only: error_t
-  use superjoin_model_types, only: model_t, substructure_t, NDOF_NODE, REQ_NODE_FILE, REQ_EL_FILE, LINK_NONE, &
+  use superjoin_model_types, only: model_t, step_total_time, substructure_t, NDOF_NODE, REQ_NODE_FILE, REQ_EL_FILE, LINK_NONE, &
        DLOAD_CENTRIF, DLOAD_THERMAL, dload_t
   use superjoin_model_results, only: result_fields_t
   use superjoin_elements, only: element_tensor, element_stresses, NTENSOR, beam_middle_section, distributed_load, &
@@ -501,7 +501,7 @@ contains
     nv = size(vals, 1)
     write (row, '(a10,i26,2i12,10x)') '    1PSTEP', nblock, 1, is
     call lu%line(row(1:70))
-    write (row, '(a7,i5,f12.9,i12,a20,i2,i5,10x,i2)') '  100CL', 100 + is, real(is, wp), count(mask), '', 0, is, 1
+    write (row, '(a7,i5,f12.9,i12,a20,i2,i5,10x,i2)') '  100CL', 100 + is, step_total_time(model, is), count(mask), '', 0, is, 1
     call lu%line(trim(row))
     label = name    ! left-justified in its 8 columns (an A8 edit right-justifies a shorter string)
     write (row, '(a3,2x,a8,2i5)') ' -4', label, nv + merge(1, 0, nv == 3), 1

@@ -24,7 +24,7 @@ module superjoin_output_section_print
   !! in exact equilibrium with the loads.
   use superjoin_kinds, only: wp, ip
   use superjoin_error, only: error_t
-  use superjoin_model_types, only: model_t, section_print_t, ELEMENT_NODE_COUNT
+  use superjoin_model_types, only: model_t, step_total_time, section_print_t, ELEMENT_NODE_COUNT
   use superjoin_model_results, only: result_fields_t
   use superjoin_elements_solid_faces, only: solid_face_points, solid_face_nodes
   use superjoin_elements, only: element_state_t, element_state, element_stiffness
@@ -256,7 +256,7 @@ contains
     character(len=14) :: t
     integer :: k
     call effective_sections(model, is, idx)
-    write (t, '(e14.7)') real(is, wp)
+    write (t, '(e14.7)') step_total_time(model, is)
     do k = 1, size(idx)
        associate (sp => model%section_prints(idx(k)))
          call section_result(model, fields, is, sp, r)

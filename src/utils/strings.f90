@@ -31,12 +31,18 @@ contains
     s = buf(1:n)
   end function itoa_i8
 
-  pure function rtoa(x) result(s)
-    !! Real to short text (4 significant digits, exponent form).
+  pure function rtoa(x, digits) result(s)
+    !! Real to short text: 4 significant digits (or digits, at most 17), exponent form.
     real(wp), intent(in) :: x
+    integer, intent(in), optional :: digits
     character(:), allocatable :: s
-    character(len=32) :: buf
-    write (buf, '(es11.4)') x
+    character(len=32) :: buf, fmt
+    if (present(digits)) then
+       write (fmt, '(a,i0,a,i0,a)') '(es', min(max(digits, 1), 17) + 9, '.', min(max(digits, 1), 17) - 1, 'e3)'
+       write (buf, fmt) x
+    else
+       write (buf, '(es11.4)') x
+    end if
     s = trim(adjustl(buf))
   end function rtoa
 

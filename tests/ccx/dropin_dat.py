@@ -107,7 +107,9 @@ TITLE = re.compile(r'\s*(\D.*?)\s+for\s*set\s+(\S+)\s+and time\s+(\S+)')
 
 
 def parse_dat(path):
-    """{(title, set, time): {row key: [values]}} of a CalculiX .dat file."""
+    """{(title, set, time[, n]): {row key: [values]}} of a CalculiX .dat file
+    (n = 2, 3, ... for a later block of the same title, set and time: steps
+    of *STATIC, TIME RESET end at the same total time)."""
     blocks, cur, title = {}, None, ''
     with open(path) as f:
         for line in f:
@@ -117,7 +119,11 @@ def parse_dat(path):
             m = TITLE.match(line)
             if m:
                 title = m.group(1)
-                cur = blocks.setdefault((title, m.group(2), float(m.group(3))), {})
+                key = (title, m.group(2), float(m.group(3)))
+                n = 1
+                while key + ((n,) if n > 1 else ()) in blocks:
+                    n += 1
+                cur = blocks.setdefault(key + ((n,) if n > 1 else ()), {})
                 continue
             if not re.match(r'[-+0-9.]', words[0]):
                 cur = None           # ccx 2.11's knot listing of expanded beams (KNOT2, tra, rot, exp)
@@ -165,7 +171,7 @@ def compare(job, got, want):
     failures = []
     for key, rows in want.items():
         kind = 'density' if 'energy density' in key[0] else key[0].split()[0]
-        label = f'{job:16s} {kind:13s} {key[1]:7s} t={key[2]:g}'
+        label = f'{job:16s} {kind:13s} {key[1]:7s} t={key[2]:g}' + (f' ({key[3]})' if len(key) > 3 else '')
         if key not in got:
             failures.append(f'{label}: block missing')
             print(f'  FAIL {label}: block missing')

@@ -13,11 +13,11 @@ module superjoin_deck_amplitudes
   !! apply_amplitudes scales each by the amplitude of the line that wrote it.
   use superjoin_kinds, only: wp
   use superjoin_model_types, only: model_t, source_loc_t, DLOAD_THERMAL
-  use superjoin_deck_lexer, only: keyword_line_t, to_upper, clip, itoa
+  use superjoin_deck_lexer, only: keyword_line_t, to_upper, clip, itoa, parse_real, TOK_OK
   use superjoin_deck_state, only: deck_state_t, report_loc, amplitude_b_t, amp_use_b_t, grow
   use superjoin_deck_records, only: AMP_TABULAR, AMP_EQUALLY_SPACED, AMP_SMOOTH_STEP
-  use superjoin_deck_cards_common, only: check_params, get_param, param_index, fld, get_real, loc_string, &
-       CARD_SKIP, NAME_LEN
+  use superjoin_deck_cards_common, only: check_params, get_param, param_index, get_real, real_message, &
+       loc_string, CARD_SKIP, NAME_LEN
   use superjoin_model_notes, only: note
   use superjoin_utils_strings, only: rtoa
   implicit none (type, external)
@@ -95,16 +95,19 @@ contains
     if (amp%definition == AMP_EQUALLY_SPACED) then
        call get_param(st, kw, loc, 'FIXED INTERVAL', .true., v, found)
        if (.not. found) return
-       read (v, *, iostat=stat) amp%interval
-       if (stat /= 0 .or. .not. (amp%interval > 0.0_wp .and. amp%interval <= huge(1.0_wp))) then
+       call parse_real(v, amp%interval, stat)
+       if (stat /= TOK_OK) then
+          call report_loc(st, loc, real_message(v, stat))
+          return
+       else if (.not. (amp%interval > 0.0_wp)) then
           call report_loc(st, loc, 'FIXED INTERVAL= of *AMPLITUDE must be a positive real, not '//clip(v))
           return
        end if
        call get_param(st, kw, loc, 'BEGIN', .false., v, found)
        if (found) then
-          read (v, *, iostat=stat) amp%begin
-          if (stat /= 0 .or. .not. abs(amp%begin) <= huge(1.0_wp)) then
-             call report_loc(st, loc, 'BEGIN= of *AMPLITUDE must be a real, not '//clip(v))
+          call parse_real(v, amp%begin, stat)
+          if (stat /= TOK_OK) then
+             call report_loc(st, loc, real_message(v, stat))
              return
           end if
        end if

@@ -10,7 +10,7 @@ module superjoin_analysis_drilling_check
   !! a count and the first node; an axis along the normal or in the shell's
   !! plane (every untilted plate) is clean.
   use superjoin_kinds, only: wp, ip
-  use superjoin_model_types, only: model_t, node_label, string_t, support_t, LINK_RIGID, NUM_ELEMENT_TYPES
+  use superjoin_model_types, only: model_t, node_label, frame_of_node, string_t, support_t, LINK_RIGID, NUM_ELEMENT_TYPES
   use superjoin_elements_traits, only: element_traits_t, all_element_traits, FAMILY_SHELL
   use superjoin_elements_frame, only: cross
   use superjoin_utils_strings, only: itoa
@@ -126,10 +126,8 @@ contains
     real(wp) :: q(3, 3)
     integer :: k
     q = reshape([1.0_wp, 0.0_wp, 0.0_wp, 0.0_wp, 1.0_wp, 0.0_wp, 0.0_wp, 0.0_wp, 1.0_wp], [3, 3])
-    if (.not. allocated(model%frames)) return
-    do k = 1, size(model%frames)
-       if (model%frames(k)%sub == isub .and. model%frames(k)%node == n) q = model%frames(k)%q
-    end do
+    k = frame_of_node(model, isub, n)
+    if (k > 0) q = model%frames(k)%q
   end function axes_of
 
   pure logical function oblique(q, held, normal)

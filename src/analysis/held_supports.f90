@@ -7,7 +7,7 @@ module superjoin_analysis_held_supports
   !! each DOF's own axis (the nodal system of a *TRANSFORM, as *BOUNDARY reads
   !! its DOFs).
   use superjoin_kinds, only: wp, i8
-  use superjoin_model_types, only: model_t, support_t, NDOF_NODE
+  use superjoin_model_types, only: model_t, support_t, NDOF_NODE, frame_of_node
   use superjoin_model_results, only: results_t
   implicit none (type, external)
   private
@@ -70,16 +70,11 @@ contains
     type(results_t), intent(in) :: res
     type(support_t), intent(in) :: sp
     real(wp) :: u(NDOF_NODE)
-    integer :: f, k, base
+    integer :: f, base
     integer(i8) :: vx
     vx = res%fields%vertex_offset(sp%sub) + sp%node
     u = res%fields%u(NDOF_NODE*(vx - 1) + 1:NDOF_NODE*vx, sp%held_from)
-    f = 0
-    if (allocated(model%frames)) then
-       do k = 1, size(model%frames)
-          if (model%frames(k)%sub == sp%sub .and. model%frames(k)%node == sp%node) f = k
-       end do
-    end if
+    f = frame_of_node(model, sp%sub, sp%node)
     if (f == 0) then
        v = u(sp%dof)
        return

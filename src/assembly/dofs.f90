@@ -9,7 +9,7 @@ module superjoin_assembly_dofs
   use superjoin_kinds, only: wp, ip, i8
   use, intrinsic :: iso_fortran_env, only: int8
   use superjoin_error, only: error_t, add_error_line, EXIT_DECK
-  use superjoin_model_types, only: model_t, NDOF_NODE, LINK_NONE, LINK_FINITE, LINK_RIGID, &
+  use superjoin_model_types, only: model_t, frame_of_node, NDOF_NODE, LINK_NONE, LINK_FINITE, LINK_RIGID, &
        ELEMENT_NODE_COUNT, loc_text, node_label
   use superjoin_elements, only: element_dof_mask
   use superjoin_utils_sorting, only: sort_index
@@ -667,12 +667,7 @@ contains
        isub = isub + 1
     end do
     node = int(u%vb - table%vertex_offset(isub), ip)
-    f = 0
-    if (allocated(model%frames)) then
-       do i = 1, size(model%frames)
-          if (model%frames(i)%sub == isub .and. model%frames(i)%node == node) f = i
-       end do
-    end if
+    f = frame_of_node(model, isub, node)
     if (f == 0) then
        call push_unit(table, u)
        return

@@ -11,7 +11,7 @@ module superjoin_assembly_transform
   !! column is eliminated exactly by substitution.
   use superjoin_kinds, only: wp, i8
   use superjoin_error, only: error_t, add_error_line, EXIT_DECK
-  use superjoin_model_types, only: model_t, equation_t, NDOF_NODE, LINK_NONE, LINK_FINITE, LINK_RIGID, loc_text, node_label
+  use superjoin_model_types, only: model_t, equation_t, frame_of_node, NDOF_NODE, LINK_NONE, LINK_FINITE, LINK_RIGID, loc_text, node_label
   use superjoin_assembly_dofs, only: dof_table_t, vertex_dofs, unit_t, NBLOCK, GROUND, block_dof, unit_terms, arm_matrix, &
        MAX_UNIT_TERMS, equation_terms_t, unit_where, unit_nodes
   use superjoin_assembly_forest, only: forest_t
@@ -577,13 +577,11 @@ contains
     !! turned into global axes, superjoin_deck_equation_build).
     type(model_t), intent(in) :: model
     type(equation_t), intent(in) :: e
-    integer :: t, k
+    integer :: t
     in_node_frames = .false.
-    if (.not. allocated(model%frames) .or. e%tie > 0 .or. e%coupling) return
+    if (e%tie > 0 .or. e%coupling) return
     do t = 1, size(e%sub)
-       do k = 1, size(model%frames)
-          if (model%frames(k)%sub == e%sub(t) .and. model%frames(k)%node == e%node(t)) in_node_frames = .true.
-       end do
+       if (frame_of_node(model, e%sub(t), e%node(t)) > 0) in_node_frames = .true.
     end do
   end function in_node_frames
 

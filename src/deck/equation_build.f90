@@ -5,10 +5,9 @@ module superjoin_deck_equation_build
   !! Terms on nodes with a nodal system (*TRANSFORM) are then turned into
   !! global components (equations_to_global).
   use superjoin_kinds, only: wp, ip
-  use superjoin_model_types, only: model_t, equation_t, node_label
+  use superjoin_model_types, only: model_t, equation_t, node_label, frame_of_node
   use superjoin_deck_state, only: deck_state_t, report_loc, file_of
   use superjoin_deck_build_common, only: resolve_items, resolve_sub
-  use superjoin_deck_frame_build, only: frame_of_node
   use superjoin_utils_strings, only: itoa
   implicit none (type, external)
   private

@@ -5,7 +5,7 @@ module superjoin_deck_frame_build
   !! global axes. Supports keep their local DOFs: the DOF table builds them as
   !! oblique contact units to the ground (superjoin_assembly_dofs).
   use superjoin_kinds, only: wp, ip
-  use superjoin_model_types, only: model_t, node_frame_t, cload_t, node_label
+  use superjoin_model_types, only: model_t, node_frame_t, cload_t, node_label, frame_of_node
   use superjoin_deck_state, only: deck_state_t, report_loc, file_of
   use superjoin_deck_build_common, only: resolve_items, resolve_sub
   use superjoin_utils_strings, only: itoa
@@ -24,7 +24,7 @@ module superjoin_deck_frame_build
     !! points' distance has no radial direction.
   integer, parameter :: BLOCK = 3
 
-  public :: build_frames, frame_of_node, cylinder_frame, link_frames
+  public :: build_frames, cylinder_frame, link_frames
 
 contains
 
@@ -110,19 +110,6 @@ contains
        end associate
     end do
   end subroutine link_frames
-
-  pure integer function frame_of_node(model, isub, node) result(k)
-    !! Index of the nodal system of a node in model%frames, 0 if none.
-    type(model_t), intent(in) :: model
-    integer, intent(in) :: isub
-    integer(ip), intent(in) :: node
-    if (allocated(model%frames)) then
-       do k = 1, size(model%frames)
-          if (model%frames(k)%sub == isub .and. model%frames(k)%node == node) return
-       end do
-    end if
-    k = 0
-  end function frame_of_node
 
   pure function rect_frame(a, b) result(q)
     !! Rows: local 1 along a, 2 in the a-b plane, 3 = 1 x 2.

@@ -468,7 +468,7 @@ module superjoin_model_types
                                                     !! (a force there is a moment, superjoin_analysis_recover)
   end type model_t
 
-  public :: find_node, find_elem, node_label, loc_text, step_total_time
+  public :: find_node, find_elem, node_label, loc_text, step_total_time, frame_of_node
   public :: has_nodal, has_curvature_nodal, has_line_nodal
 
 contains
@@ -534,6 +534,21 @@ contains
     t = model%steps(is)%total_time
     if (.not. (t > 0.0_wp)) t = real(is, wp)
   end function step_total_time
+
+  pure integer function frame_of_node(model, isub, node) result(k)
+    !! Index of the nodal system (*TRANSFORM) of node `node` of substructure
+    !! isub in model%frames, 0 if it has none (a node has at most one:
+    !! superjoin_deck_frame_build refuses a second).
+    type(model_t), intent(in) :: model
+    integer, intent(in) :: isub
+    integer(ip), intent(in) :: node
+    if (allocated(model%frames)) then
+       do k = 1, size(model%frames)
+          if (model%frames(k)%sub == isub .and. model%frames(k)%node == node) return
+       end do
+    end if
+    k = 0
+  end function frame_of_node
 
   pure function node_label(model, isub, inode) result(label)
     !! "SUB.id" label of a node for messages (plain id in MAIN).

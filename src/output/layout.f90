@@ -12,7 +12,7 @@ module superjoin_output_layout
   !!   instead of rows of ELEMENT END FORCES.
   use, intrinsic :: iso_fortran_env, only: int8
   use superjoin_kinds, only: i8, ip
-  use superjoin_model_types, only: model_t, NDOF_NODE, LINK_NONE, ELEMENT_NODE_COUNT, NUM_ELEMENT_TYPES
+  use superjoin_model_types, only: model_t, frame_of_node, NDOF_NODE, LINK_NONE, ELEMENT_NODE_COUNT, NUM_ELEMENT_TYPES
   use superjoin_elements, only: element_dof_mask
   use superjoin_elements_traits, only: element_traits_t, element_traits, is_family, FAMILY_TRUSS
   implicit none (type, external)
@@ -147,14 +147,6 @@ contains
     type(model_t), intent(in) :: model
     integer, intent(in) :: isub
     integer(ip), intent(in) :: node
-    integer :: k
-    in_node_frame = .false.
-    if (.not. allocated(model%frames)) return
-    do k = 1, size(model%frames)
-       if (model%frames(k)%sub == isub .and. model%frames(k)%node == node) then
-          in_node_frame = .true.
-          return
-       end if
-    end do
+    in_node_frame = frame_of_node(model, isub, node) > 0
   end function in_node_frame
 end module superjoin_output_layout

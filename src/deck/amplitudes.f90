@@ -265,9 +265,40 @@ contains
                '): the values of its cards in step '//st%steps(s)%name//' times '//rtoa(factor(a), 7)// &
                ', its value at the end of the step ('//merge('total time ', 'step time  ', st%amps(a)%total_time)// &
                rtoa(merge(ttotal, tstep, st%amps(a)%total_time), 7)//')')
+          call note_perturbation_time(st, model, s, a)
        end do
     end do
   end subroutine apply_amplitudes
+
+  subroutine note_perturbation_time(st, model, s, a)
+    !! Amplitude a used in step s where Abaqus and CalculiX count time
+    !! differently: Abaqus gives a linear perturbation step no time of its own
+    !! and never adds its step time to the total time; ccx 2.20 gives it its
+    !! *STATIC time period and adds it (measured: a perturbation step of period
+    !! 1.5 after a step of 1 prints time 2.5 and scales its loads by a(1.5)).
+    !! superjoin counts as ccx does and says so: in a PERTURBATION step, and
+    !! for a TIME=TOTAL TIME amplitude after one.
+    type(deck_state_t), intent(in) :: st
+    type(model_t), intent(inout) :: model
+    integer, intent(in) :: s, a
+    integer :: p
+    character(:), allocatable :: head
+    head = 'warning: amplitude '//st%amps(a)%name//' in step '//st%steps(s)%name
+    if (st%steps(s)%perturbation) then
+       call note(model%notes, head//', a PERTURBATION step: read at the step''s time period, as ccx 2.20 '// &
+            'reads it; Abaqus gives a linear perturbation step no time period of its own (check this load '// &
+            'in an Abaqus deck)')
+       return
+    end if
+    if (.not. st%amps(a)%total_time) return
+    do p = 1, s - 1
+       if (.not. st%steps(p)%perturbation .or. st%steps(p)%time_reset) cycle   ! TIME RESET: not added
+       call note(model%notes, head//': its total time counts the time period of PERTURBATION step '// &
+            st%steps(p)%name//', as ccx 2.20 counts it; Abaqus never adds a perturbation step''s time to '// &
+            'the total time')
+       return
+    end do
+  end subroutine note_perturbation_time
 
   subroutine map_lines(st, idx, maps)
     !! maps(f)%amp(l): the amplitude of line l of file f (0: none), from the

@@ -46,6 +46,7 @@ contains
           call note(model%notes, st%notes(g)%s)
        end do
     end if
+    call check_section_controls(st)
     allocate (sub_of(st%nsec), count(size(model%subs)))
     count = 0
     do g = 1, st%nsec
@@ -69,6 +70,25 @@ contains
          'reactions and the EQUILIBRIUM resultants are totals around the whole circumference (a ring''s '// &
          'resultant is its axial force FY); stresses xx = r, yy = z, zz = hoop, xy = rz')
   end subroutine build_sections
+
+  subroutine check_section_controls(st)
+    !! CONTROLS=c of a section card names a *SECTION CONTROLS card (Abaqus:
+    !! an error otherwise); it may stand anywhere in the deck.
+    type(deck_state_t), intent(inout) :: st
+    integer :: g, k
+    logical :: found
+    do g = 1, st%nsec
+       if (.not. allocated(st%sections(g)%controls)) cycle
+       found = .false.
+       if (allocated(st%sec_controls)) then
+          do k = 1, size(st%sec_controls)
+             if (st%sec_controls(k)%name == st%sections(g)%controls) found = .true.
+          end do
+       end if
+       if (.not. found) call report_loc(st, st%sections(g)%loc, 'CONTROLS='//st%sections(g)%controls// &
+            ': no *SECTION CONTROLS, NAME='//st%sections(g)%controls//' in the deck')
+    end do
+  end subroutine check_section_controls
 
   subroutine dialect_readings(st, model)
     !! Where Abaqus and CalculiX read a beam section differently, the deck's

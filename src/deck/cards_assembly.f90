@@ -662,7 +662,7 @@ contains
       ok = is_path(name)
       if (.not. ok) then
          call report_loc(st, loc, 'invalid contact name '''//clip(field)//''' on a *CHANGE CONTACT line '// &
-              '(letters, digits, _ and - only; an instance path joins names with .)')
+              '(letters, digits, _, - and / only; an instance path joins names with .)')
          return
       end if
       call name_contact(st, name, loc, o, o%contact)
@@ -732,7 +732,7 @@ contains
     call get_param(st, kw, loc, name, .true., value, found)
     if (.not. found) return
     if (.not. is_path(value)) then
-       call report_loc(st, loc, 'invalid name '''//clip(value)//''' for '//name//'= (letters, digits, _ and - only;'// &
+       call report_loc(st, loc, 'invalid name '''//clip(value)//''' for '//name//'= (letters, digits, _, - and / only;'// &
             ' an instance path joins names with .)')
        found = .false.
        return

@@ -160,7 +160,7 @@ contains
     call get_param(st, kw, loc, name, required, value, found)
     if (.not. found) return
     if (.not. is_name(value)) then
-       call report_loc(st, loc, 'invalid name '''//clip(value)//''' for '//name//'= (letters, digits, _ and - only)')
+       call report_loc(st, loc, 'invalid name '''//clip(value)//''' for '//name//'= (letters, digits, _, - and / only)')
        found = .false.
        return
     end if
@@ -407,20 +407,26 @@ contains
     s = st%files(loc%file)%s//':'//itoa(loc%line)
   end function loc_string
 
-  logical function refused_card(st, kw, loc, prev_mat) result(refused)
+  logical function refused_card(st, kw, loc, prev_mat, what, hint) result(refused)
     !! A procedure, material behaviour or contact card that linear statics does
     !! not have: one message, its data lines skipped, and the current material
-    !! kept so that the material's next cards still find it.
+    !! kept so that the material's next cards still find it. what, if given,
+    !! names what is refused in place of "*KEYWORD (reason)"; hint, if given,
+    !! is added in parentheses (what is read instead).
     type(deck_state_t), intent(inout) :: st
     type(keyword_line_t), intent(in) :: kw
     type(source_loc_t), intent(in) :: loc
     integer, intent(in) :: prev_mat
-    character(:), allocatable :: reason
+    character(*), intent(in), optional :: what, hint
+    character(:), allocatable :: reason, text
     reason = refused_card_reason(kw%keyword)
     refused = len(reason) > 0
     if (.not. refused) return
-    call report_loc(st, loc, 'superjoin does linear statics; *'//kw%keyword//' ('//reason// &
-         ') is not supported')
+    text = '*'//kw%keyword//' ('//reason//')'
+    if (present(what)) text = what
+    text = 'superjoin does linear statics; '//text//' is not supported'
+    if (present(hint)) text = text//' ('//hint//')'
+    call report_loc(st, loc, text)
     st%cur_mat = prev_mat
     if (st%cur_step > 0) then
        st%step_procedure = -1

@@ -10,7 +10,7 @@ module superjoin_deck_cards_model
   use superjoin_deck_state, only: deck_state_t, report_loc, report_oom, new_sub, find_sub, find_set, &
        new_set, add_chunk, push_pool, add_node, add_element, CH_IDS, CH_GEN, CH_RANGE, CH_REF, &
        spring_elem_b_t, spring_card_b_t, add_spring_elem, add_spring_card, SPRING_1, SPRING_2, &
-       SPRING_A
+       SPRING_A, ref_t, ASSEMBLY_SPRINGS, MAIN_NAME
   use superjoin_utils_strings, only: pick
   use superjoin_elements_catalog, only: unsupported_type_message
   use superjoin_elements_traits, only: element_type_of_name
@@ -19,7 +19,7 @@ module superjoin_deck_cards_model
   use superjoin_deck_cards_common, only: outside_step, check_params, param_index, get_param, &
        get_name_param, target_sub, field_count, fld, get_real, get_id, loc_string, CARD_SKIP, &
        CARD_HEADING, CARD_NODE, CARD_ELEMENT, CARD_NSET, CARD_ELSET, CARD_SPRING_ELEMENT, &
-       CARD_SPRING, NAME_LEN
+       CARD_SPRING, NAME_LEN, parse_ref
   use superjoin_deck_cards_assembly, only: set_home
   implicit none (type, external)
   private
@@ -194,11 +194,11 @@ contains
     if (elem) then
        pname = 'ELSET'
        call check_params(st, kw, loc, [character(NAME_LEN) :: 'ELSET', 'INSTANCE'], &
-            [character(NAME_LEN) :: 'GENERATE', 'UNSORTED'])
+            [character(NAME_LEN) :: 'GENERATE', 'UNSORTED', 'INTERNAL'])   ! INTERNAL: Abaqus/CAE's own sets
     else
        pname = 'NSET'
        call check_params(st, kw, loc, [character(NAME_LEN) :: 'NSET', 'INSTANCE'], &
-            [character(NAME_LEN) :: 'GENERATE', 'UNSORTED'])
+            [character(NAME_LEN) :: 'GENERATE', 'UNSORTED', 'INTERNAL'])
     end if
     call get_name_param(st, kw, loc, pname, .true., name, found)
     st%card = CARD_SKIP
@@ -406,9 +406,34 @@ contains
     if (.not. found) elset = ''
     st%spring_elset = elset
     st%card = CARD_SPRING_ELEMENT
-    st%card_sub = target_sub(st, loc)
+    st%card_sub = spring_sub(st, loc)
     st%card_etype = kind
   end subroutine kw_spring_element
+
+  integer function spring_sub(st, loc, elset) result(k)
+    !! The substructure of spring elements and of their *SPRING card: the
+    !! block's, MAIN outside the blocks; outside the blocks before any node
+    !! made MAIN (Abaqus's assembly, springs between instances' nodes I.n)
+    !! ASSEMBLY_SPRINGS, so that no empty MAIN is made. A *SPRING card
+    !! (elset present) follows its elements.
+    type(deck_state_t), intent(inout) :: st
+    type(source_loc_t), intent(in) :: loc
+    character(*), intent(in), optional :: elset
+    integer :: e
+    if (st%cur_sub == 0 .and. find_sub(st, MAIN_NAME) == 0) then
+       k = ASSEMBLY_SPRINGS
+       return
+    end if
+    if (st%cur_sub == 0 .and. present(elset)) then
+       do e = 1, st%nspring_elem
+          if (st%spring_elems(e)%sub == ASSEMBLY_SPRINGS .and. st%spring_elems(e)%elset == elset) then
+             k = ASSEMBLY_SPRINGS
+             return
+          end if
+       end do
+    end if
+    k = target_sub(st, loc)
+  end function spring_sub
 
   subroutine data_spring_element(st, line, loc)
     !! id, node (SPRING1) or id, node 1, node 2 (SPRING2, SPRINGA).
@@ -416,13 +441,26 @@ contains
     character(*), intent(in) :: line
     type(source_loc_t), intent(in) :: loc
     type(spring_elem_b_t) :: e
+    type(ref_t) :: ref
     integer :: nn, i
     nn = merge(1, 2, st%card_etype == SPRING_1)
     if (.not. field_count(st, loc, nn + 1, nn + 1, 'id and '//itoa(nn)//' node'//pick(nn == 1, '', 's')// &
          ' for a spring')) return
     if (.not. get_id(st, line, loc, 1, 'element id', e%id)) return
-    do i = 1, nn
-       if (.not. get_id(st, line, loc, i + 1, 'node id', e%nid(i))) return
+    do i = 1, nn   ! a node id, or I.n: node n of instance (or substructure) I, as Abaqus's assembly writes it
+       e%scope(i)%s = ''
+       if (.not. parse_ref(st, fld(st, line, i + 1), .false., st%card_sub, loc, ref)) then
+          e%bad = .true.   ! kept, so that its *SPRING card finds it: one message
+          cycle
+       end if
+       if (ref%is_set) then
+          call report_loc(st, loc, 'a spring element joins nodes, not sets: '''//clip(fld(st, line, i + 1))// &
+               ''' (a node id or I.n)')
+          e%bad = .true.
+          cycle
+       end if
+       e%nid(i) = ref%id
+       if (allocated(ref%scope)) e%scope(i)%s = ref%scope
     end do
     e%kind = st%card_etype
     e%sub = st%card_sub
@@ -452,7 +490,7 @@ contains
     end if
     call get_name_param(st, kw, loc, 'ELSET', .true., c%elset, found)
     if (.not. found) return
-    c%sub = target_sub(st, loc)
+    c%sub = spring_sub(st, loc, c%elset)
     c%loc = loc
     call add_spring_card(st, c, st%card_item)
     if (.not. c%refused) st%card = CARD_SPRING

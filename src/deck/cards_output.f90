@@ -1,6 +1,7 @@
 module superjoin_deck_cards_output
   !! Output requests: *OUTPUT and the CalculiX/Abaqus *NODE PRINT, *EL PRINT,
-  !! *NODE FILE, *EL FILE, *NODE OUTPUT, *ELEMENT OUTPUT, *SECTION PRINT.
+  !! *NODE FILE, *EL FILE, *NODE OUTPUT, *ELEMENT OUTPUT, *SECTION PRINT; and
+  !! the job cards *PREPRINT and *RESTART.
   use superjoin_kinds, only: ip
   use superjoin_model_types, only: source_loc_t, TOTALS_NO, TOTALS_YES, TOTALS_ONLY, section_print_t
   use superjoin_deck_lexer, only: keyword_line_t, to_upper, parse_id, clip, path_dirname, path_join, &
@@ -24,11 +25,16 @@ contains
   subroutine kw_output(st, kw, loc)
     !! *OUTPUT, VTK=path[, FIELD]: VTK files of every step, path relative to the
     !! directory of the file that holds the card. Allowed anywhere, once.
+    !! *PREPRINT and *RESTART: kw_job_output.
     type(deck_state_t), intent(inout) :: st
     type(keyword_line_t), intent(in) :: kw
     type(source_loc_t), intent(in) :: loc
     character(:), allocatable :: value, problem
     logical :: found
+    if (kw%keyword /= 'OUTPUT') then
+       call kw_job_output(st, kw, loc)
+       return
+    end if
     call check_params(st, kw, loc, [character(NAME_LEN) :: 'VTK', 'FREQUENCY', 'VARIABLE'], &
          [character(NAME_LEN) :: 'FIELD', 'HISTORY'])
     if (param_index(kw, 'VTK') == 0 .and. (param_index(kw, 'FIELD') > 0 .or. param_index(kw, 'HISTORY') > 0)) return
@@ -134,6 +140,53 @@ contains
          'nothing to write (joints: CONTACT FORCES)')
     st%card = CARD_SKIP
   end subroutine kw_contact_output
+
+  subroutine kw_job_output(st, kw, loc)
+    !! *PREPRINT (Abaqus: what its .dat file echoes of the input, YES or NO
+    !! per part) and *RESTART (Abaqus, CalculiX): accepted, nothing written.
+    !! WRITE asks for restart data every FREQUENCY increments (FREQUENCY=0,
+    !! as Abaqus/CAE writes it into every step: none); superjoin keeps none (a
+    !! linear run is repeated from its deck): a listing note when some is
+    !! asked for, as for a *PREPRINT with a YES. READ (a run that continues
+    !! an earlier one from its restart data) is refused: there are none.
+    type(deck_state_t), intent(inout) :: st
+    type(keyword_line_t), intent(in) :: kw
+    type(source_loc_t), intent(in) :: loc
+    character(:), allocatable :: value
+    logical :: found
+    integer :: k
+    st%card = CARD_SKIP
+    if (kw%keyword == 'PREPRINT') then
+       call check_params(st, kw, loc, [character(NAME_LEN) :: 'CONTACT', 'ECHO', 'HISTORY', 'MASSPROP', 'MODEL', &
+            'PARSUBSTRUCTURE', 'PARVARREF'], [character(NAME_LEN) ::])
+       do k = 1, kw%nparam
+          if (.not. kw%params(k)%has_value) cycle
+          if (to_upper(kw%params(k)%value) /= 'YES') cycle
+          call append_string(st%notes, '*PREPRINT at '//loc_string(st, loc)//': Abaqus''s echo of the input '// &
+               'in its .dat file; superjoin does not echo the deck (the listing''s MODEL block sums it up)')
+          return
+       end do
+       return
+    end if
+    call check_params(st, kw, loc, [character(NAME_LEN) :: 'FREQUENCY', 'NUMBER INTERVAL', 'TIME MARKS', &
+         'STEP', 'INC', 'ITERATION'], [character(NAME_LEN) :: 'READ', 'WRITE', 'OVERLAY', 'END STEP'])
+    if (param_index(kw, 'READ') > 0) then
+       call report_loc(st, loc, '*RESTART, READ continues an earlier run from its restart data, which superjoin '// &
+            'does not keep: run the whole deck (a linear analysis is repeated from its deck)')
+       st%restart_read = .true.   ! the deck holds only what changes: its model is not checked
+       return
+    end if
+    if (param_index(kw, 'WRITE') == 0) then
+       call report_loc(st, loc, '*RESTART needs READ or WRITE')
+       return
+    end if
+    call get_param(st, kw, loc, 'FREQUENCY', .false., value, found)
+    if (found) then
+       if (len_trim(value) > 0 .and. verify(trim(value), '0') == 0) return   ! FREQUENCY=0: none asked for
+    end if
+    call append_string(st%notes, '*RESTART, WRITE at '//loc_string(st, loc)//': no restart data written '// &
+         '(superjoin repeats a linear run from its deck)')
+  end subroutine kw_job_output
 
   subroutine data_request(st, line, loc)
     !! Variable names of an output request, several per line.

@@ -2,11 +2,12 @@ module superjoin_deck_cards_sections
   !! Sections and materials: *MATERIAL, *ELASTIC, *DENSITY, *EXPANSION,
   !! *SOLID SECTION, *SHELL SECTION, *BEAM SECTION (library shapes),
   !! *BEAM GENERAL SECTION, *TRANSVERSE SHEAR STIFFNESS and *ORIENTATION.
-  use superjoin_kinds, only: wp
+  use superjoin_kinds, only: wp, ip
   use superjoin_model_types, only: source_loc_t, SEC_BEAM, SEC_SHELL, MAT_ISO
   use superjoin_deck_cards_materials, only: elastic_kind, data_elastic_aniso
-  use superjoin_deck_lexer, only: keyword_line_t, to_upper, parse_real, itoa, clip, plural, TOK_OK
-  use superjoin_deck_state, only: deck_state_t, sec_b_t, report_loc, add_material, add_orientation, &
+  use superjoin_deck_lexer, only: keyword_line_t, to_upper, parse_real, parse_id, itoa, clip, plural, TOK_OK
+  use superjoin_model_notes, only: append_string
+  use superjoin_deck_state, only: deck_state_t, sec_b_t, sec_controls_b_t, report_loc, add_material, add_orientation, &
        add_section, BEAM_2D_VALUES, BEAM_3D_VALUES, SHAPE_GENERAL
   use superjoin_deck_beam_sections, only: section_props_t, section_properties, shape_index, &
        SHAPE_NONE, SHAPE_L, SHAPE_I, SHAPE_NAMES, SHAPE_DIMS_MIN, SHAPE_DIMS_MAX, SHAPE_DATA, &
@@ -25,7 +26,7 @@ module superjoin_deck_cards_sections
 
   public :: kw_material, kw_density, kw_elastic, kw_expansion, data_expansion, data_elastic, &
        data_density, kw_section, data_section, kw_transverse_shear, data_transverse_shear, &
-       kw_orientation, data_orientation
+       kw_orientation, data_orientation, kw_section_controls
 
   integer, parameter :: GENERAL_FIELDS = 5
     !! *BEAM GENERAL SECTION, SECTION=GENERAL: A, I11, I12, I22, J.
@@ -279,8 +280,8 @@ contains
     type(keyword_line_t), intent(in) :: kw
     type(source_loc_t), intent(in) :: loc
     integer, intent(in) :: kind
-    character(:), allocatable :: elset, material
-    logical :: found_e, found_m, found_o
+    character(:), allocatable :: elset, material, controls
+    logical :: found_e, found_m, found_o, found_c
     type(sec_b_t) :: sec
     if (.not. outside_step(st, kw, loc)) return
     if (kind == SEC_BEAM) then
@@ -292,10 +293,14 @@ contains
           return
        end if
     else
-       call check_params(st, kw, loc, [character(NAME_LEN) :: 'ELSET', 'MATERIAL', 'OFFSET', 'ORIENTATION'], &
-            [character(NAME_LEN) :: 'NODAL THICKNESS'])
+       call check_params(st, kw, loc, [character(NAME_LEN) :: 'ELSET', 'MATERIAL', 'OFFSET', 'ORIENTATION', &
+            'CONTROLS'], [character(NAME_LEN) :: 'NODAL THICKNESS'])
        call section_offset(st, kw, loc, kind)
        call get_name_param(st, kw, loc, 'ORIENTATION', .false., sec%orientation, found_o)  ! material axes
+    end if
+    if (kind /= SEC_BEAM) then   ! a *SECTION CONTROLS name (Abaqus), checked once the deck is read
+       call get_name_param(st, kw, loc, 'CONTROLS', .false., controls, found_c)
+       if (found_c) sec%controls = controls
     end if
     call get_param(st, kw, loc, 'ELSET', .true., elset, found_e)
     call get_name_param(st, kw, loc, 'MATERIAL', .true., material, found_m)
@@ -319,6 +324,61 @@ contains
     st%card = CARD_SECTION
     if (kind == SEC_BEAM .or. kind == SEC_SHELL) st%cur_beam_sec = st%card_item
   end subroutine kw_section
+
+  logical function shell_points_ok(st, line, loc) result(ok)
+    !! Abaqus's second field of a *SHELL SECTION data line: the number of
+    !! integration points through the thickness (Simpson's rule, 5 by
+    !! default). superjoin integrates the homogeneous elastic section exactly,
+    !! as a rule of 3 or more Simpson points (2 or more Gauss points) does, so
+    !! any such number is read and changes nothing; 1 point would leave the
+    !! section without bending stiffness in Abaqus: refused.
+    type(deck_state_t), intent(inout) :: st
+    character(*), intent(in) :: line
+    type(source_loc_t), intent(in) :: loc
+    integer(ip) :: n
+    integer :: stat
+    ok = .true.
+    if (st%f%n < 2) return
+    if (st%f%last(2) < st%f%first(2)) return   ! empty: the default
+    call parse_id(fld(st, line, 2), n, stat)
+    ok = stat == TOK_OK .and. n >= 2
+    if (.not. ok) call report_loc(st, loc, 'the number of integration points through a shell''s thickness '// &
+         '(second field) must be an integer of 2 or more, not '//clip(fld(st, line, 2))// &
+         ' (superjoin integrates the elastic section exactly; any such number changes nothing)')
+  end function shell_points_ok
+
+  subroutine kw_section_controls(st, kw, loc)
+    !! *SECTION CONTROLS, NAME=c (Abaqus; Abaqus/CAE writes one for every
+    !! reduced-integration solid section, HOURGLASS=ENHANCED): the element
+    !! technology of the sections that name it (CONTROLS=c). superjoin's one
+    !! choice that it could touch is the C3D8R's hourglass stiffness, which
+    !! is always C3D8I's in the hourglass modes (close to Abaqus's ENHANCED);
+    !! the rest (element deletion, distortion control, viscosity, the scaling
+    !! factors of the data line) concerns nonlinear and explicit analyses. The
+    !! card is recorded (CONTROLS= must name one) and said in one listing note.
+    type(deck_state_t), intent(inout) :: st
+    type(keyword_line_t), intent(in) :: kw
+    type(source_loc_t), intent(in) :: loc
+    type(sec_controls_b_t) :: c
+    character(:), allocatable :: hourglass
+    logical :: found
+    st%card = CARD_SKIP
+    call check_params(st, kw, loc, [character(NAME_LEN) :: 'NAME', 'HOURGLASS', 'ELEMENT DELETION', &
+         'DISTORTION CONTROL', 'KINEMATIC SPLIT', 'SECOND ORDER ACCURACY', 'MAX DEGRADATION', 'VISCOSITY', &
+         'WEIGHT FACTOR', 'KERNEL', 'LENGTH RATIO', 'INITIAL GAP OPENING', 'ELEMENT CONVERSION'], &
+         [character(NAME_LEN) ::])
+    call get_name_param(st, kw, loc, 'NAME', .true., c%name, found)
+    if (.not. found) return
+    c%loc = loc
+    if (.not. allocated(st%sec_controls)) allocate (st%sec_controls(0))
+    st%sec_controls = [st%sec_controls, c]
+    call get_param(st, kw, loc, 'HOURGLASS', .false., hourglass, found)
+    if (.not. found) hourglass = 'the default'
+    call append_string(st%notes, '*SECTION CONTROLS '//c%name//' at '//loc_string(st, loc)//' (HOURGLASS='// &
+         to_upper(hourglass)//'): superjoin''s C3D8R has one hourglass stiffness, C3D8I''s in its hourglass '// &
+         'modes (close to Abaqus''s ENHANCED); the card''s other settings are for nonlinear and explicit '// &
+         'analyses: not used')
+  end subroutine kw_section_controls
 
   logical function shell_section_params(st, kw, loc) result(ok)
     !! Parameters of *SHELL SECTION: ELSET=, MATERIAL=, OFFSET=0 (the mid-surface,
@@ -352,8 +412,8 @@ contains
          end if
        end associate
     end do
-    call check_params(st, rest, loc, [character(NAME_LEN) :: 'ELSET', 'MATERIAL', 'OFFSET'], &
-         [character(NAME_LEN) :: 'NODAL THICKNESS'])
+    call check_params(st, rest, loc, [character(NAME_LEN) :: 'ELSET', 'MATERIAL', 'OFFSET', 'CONTROLS', &
+         'SECTION INTEGRATION'], [character(NAME_LEN) :: 'NODAL THICKNESS'])
   end function shell_section_params
 
   subroutine beam_section_params(st, kw, loc, sec)
@@ -457,7 +517,18 @@ contains
          return
       end if
       if (sec%kind /= SEC_BEAM) then
-         if (.not. field_count(st, loc, 1, 1, 'one value (area or thickness)')) then
+         ! an empty line (Abaqus/CAE writes `,` under a solid's section): no value, as without the line
+         if (st%f%n == 0) return
+         if (sec%kind == SEC_SHELL) then
+            if (.not. field_count(st, loc, 1, 2, 'thickness[, integration points through it]')) then
+               sec%data_ok = .false.
+               return
+            end if
+            if (.not. shell_points_ok(st, line, loc)) then
+               sec%data_ok = .false.
+               return
+            end if
+         else if (.not. field_count(st, loc, 1, 1, 'one value (area or thickness)')) then
             sec%data_ok = .false.
             return
          end if

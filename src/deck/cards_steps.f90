@@ -765,8 +765,15 @@ contains
     if (kw%keyword == 'INITIAL CONDITIONS') then
        call get_param(st, kw, loc, 'TYPE', .false., typ, found)
        if (.not. found) typ = ''
+       if (.not. found) then
+          call report_loc(st, loc, '*INITIAL CONDITIONS needs TYPE= (superjoin reads TYPE=TEMPERATURE, '// &
+               'the initial temperatures)')
+          st%cur_mat = prev_mat
+          return
+       end if
        if (to_upper(typ) /= 'TEMPERATURE') then
-          if (refused_card(st, kw, loc, prev_mat)) return
+          if (refused_card(st, kw, loc, prev_mat, '*INITIAL CONDITIONS, TYPE='//to_upper(typ)//' ('// &
+               initial_condition_kind(to_upper(typ))//')', 'TYPE=TEMPERATURE, the initial temperatures, is read')) return
        end if
        if (.not. outside_step(st, kw, loc)) return
        call check_params(st, kw, loc, [character(NAME_LEN) :: 'TYPE'], [character(NAME_LEN) ::])
@@ -784,6 +791,25 @@ contains
     st%card = CARD_TEMPERATURE
     st%card_home = st%cur_sub
   end subroutine kw_temperature
+
+  pure function initial_condition_kind(typ) result(what)
+    !! What an *INITIAL CONDITIONS of TYPE=typ (upper case) other than
+    !! TEMPERATURE sets, as Abaqus and CalculiX name it.
+    character(*), intent(in) :: typ
+    character(:), allocatable :: what
+    select case (typ)
+    case ('STRESS')
+       what = 'initial stresses'
+    case ('PLASTIC STRAIN')
+       what = 'initial plastic strains'
+    case ('VELOCITY', 'DISPLACEMENT', 'ACCELERATION')
+       what = 'initial conditions of a dynamic analysis'
+    case ('FLUID VELOCITY', 'MASS FLOW', 'PRESSURE', 'TOTAL PRESSURE', 'TOTAL TEMPERATURE', 'TURBULENCE')
+       what = 'initial conditions of a fluid'
+    case default
+       what = 'initial conditions'
+    end select
+  end function initial_condition_kind
 
   subroutine data_temperature(st, line, loc)
     !! `node or nset, temperature[, gradient[, gradient 1]]`: CalculiX's third

@@ -27,7 +27,7 @@ module superjoin_deck_ccx_cards
        'CYCLIC HARDENING', 'CONTACT PAIR', 'SURFACE INTERACTION', 'SURFACE BEHAVIOR', 'FRICTION', &
        'GAP', 'GAP CONDUCTANCE', 'TEMPERATURE', 'INITIAL CONDITIONS', 'MODAL DAMPING', &
        'CONTACT DAMPING']
-  integer, parameter :: NUM_KNOWN = 67
+  integer, parameter :: NUM_KNOWN = 70
   character(len=KW_LEN), parameter :: KNOWN_KEYWORDS(NUM_KNOWN) = [character(len=KW_LEN) :: &
        'AMPLITUDE', 'ASSEMBLY', 'BEAM GENERAL SECTION', 'BEAM SECTION', 'BOUNDARY', 'CHANGE CONTACT', 'CLOAD', &
        'CONTACT', 'CONTACT FILE', 'CONTACT OUTPUT', 'CONTACT PRINT', 'CONTROLS', 'COUPLING', 'DENSITY', &
@@ -37,7 +37,7 @@ module superjoin_deck_ccx_cards
        'END STEP', 'END SUBSTRUCTURE', 'EQUATION', 'EXPANSION', 'HEADING', 'INCLUDE', &
        'INITIAL CONDITIONS', 'INSTANCE', 'INTERFACE', 'LOAD COMBINATION', 'MATERIAL', 'MATRIX INPUT', 'MATRIX LOAD', &
        'NODAL THICKNESS', 'NODE', 'NODE FILE', 'NODE OUTPUT', 'NODE PRINT', 'NSET', 'ORIENTATION', &
-       'OUTPUT', 'PART', 'PRE-TENSION SECTION', 'SECTION PRINT', 'SHELL SECTION', 'SOLID SECTION', 'SPRING', 'STATIC', 'STEP', &
+       'OUTPUT', 'PART', 'PRE-TENSION SECTION', 'PREPRINT', 'RESTART', 'SECTION CONTROLS', 'SECTION PRINT', 'SHELL SECTION', 'SOLID SECTION', 'SPRING', 'STATIC', 'STEP', &
        'SUBSTRUCTURE', 'SUBSTRUCTURE MATRIX OUTPUT', 'SUPPORT', 'SURFACE', 'TEMPERATURE', 'TIE', 'TRANSFORM', &
        'TRANSVERSE SHEAR STIFFNESS']
     !! Every keyword the reader dispatches (kept complete by
@@ -56,20 +56,27 @@ module superjoin_deck_ccx_cards
   integer, parameter :: NUM_NODE_PRODUCED = 4, NUM_EL_PRODUCED = 4
   character(len=VAR_LEN), parameter :: NODE_PRODUCED(NUM_NODE_PRODUCED) = ['U    ', 'RF   ', 'CF   ', 'S    ']
   character(len=VAR_LEN), parameter :: EL_PRODUCED(NUM_EL_PRODUCED) = ['S    ', 'E    ', 'SF   ', 'ENER ']
-  integer, parameter :: NUM_NODE_KNOWN = 31
+  integer, parameter :: NUM_NODE_KNOWN = 44
   character(len=VAR_LEN), parameter :: NODE_KNOWN(NUM_NODE_KNOWN) = [character(len=VAR_LEN) :: &
        'NT', 'TS', 'RFL', 'PN', 'PS', 'PT', 'TT', 'TTF', 'MF', 'V', 'VF', 'DEPF', 'TURB', 'MACH', 'CP', &
        'SEN', 'POT', 'PU', 'PNT', 'PHS', 'MAXU', 'HCRI', 'CONC', 'SLIP', 'UR', &
-       'PSF', 'TSF', 'PTF', 'DEPT', 'PRF', 'DTF']
-    !! CalculiX's nodal variables (ccx 2.21, nodeprints.f and noelfiles.f) superjoin does not produce
-  integer, parameter :: NUM_EL_KNOWN = 40
+       'PSF', 'TSF', 'PTF', 'DEPT', 'PRF', 'DTF', &
+       'UT', 'RT', 'RM', 'CM', 'TF', 'VT', 'VR', 'A', 'AT', 'AR', 'COORD', 'TEMP', 'POR']
+    !! CalculiX's nodal variables (ccx 2.21, nodeprints.f and noelfiles.f) and Abaqus's common ones
+    !! (translations, reactions, moments, velocities, accelerations, coordinates, temperatures, pore
+    !! pressure as separate identifiers) superjoin does not produce
+  integer, parameter :: NUM_EL_KNOWN = 66
   character(len=VAR_LEN), parameter :: EL_KNOWN(NUM_EL_KNOWN) = [character(len=VAR_LEN) :: &
        'ME', 'PEEQ', 'CEEQ', 'SDV', 'HFL', 'HFLF', 'COORD', 'ELSE', 'ELKE', 'EVOL', 'EMAS', &
        'EBHE', 'CENT', 'ZZS', 'ERR', 'HER', 'MAXS', 'MAXE', 'SVF', 'ESE', 'THE', 'PHS', 'EMFE', 'EMFB', &
        'MF', 'DEPF', 'CELS', 'CDIS', 'CSTR', &
-       'NOE', 'SNEG', 'SMID', 'SPOS', 'KEQ', 'PCON', 'ECD', 'DTF', 'CE', 'PE', 'COOR']
+       'NOE', 'SNEG', 'SMID', 'SPOS', 'KEQ', 'PCON', 'ECD', 'DTF', 'CE', 'PE', 'COOR', &
+       'LE', 'NE', 'EE', 'IE', 'PEMAG', 'SE', 'SK', 'SM', 'ELEN', 'ELPD', 'ELCD', 'ELVD', 'ELASE', 'IVOL', &
+       'SENER', 'MISES', 'TRESC', 'PRESS', 'SINV', 'SP', 'TRIAX', 'STH', 'TEMP', 'NFORC', 'BF', 'ALPHA']
     !! CalculiX's element variables (ccx 2.21, elprints.f and noelfiles.f; NOE: no
-    !! error estimator, SNEG/SMID/SPOS: shell stresses at the faces) superjoin does not produce
+    !! error estimator, SNEG/SMID/SPOS: shell stresses at the faces) and Abaqus's common ones
+    !! (Abaqus/CAE's field output lists: LE, PEMAG, ...; energies, invariants, section
+    !! quantities as separate identifiers) superjoin does not produce
 
 contains
 

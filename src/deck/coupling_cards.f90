@@ -96,12 +96,27 @@ contains
 
   subroutine kw_coupling_kind(st, kw, loc, kind, n)
     !! *KINEMATIC or *DISTRIBUTING: the kind of the *COUPLING card n just above (0: none).
+    !! *DISTRIBUTING, WEIGHTING METHOD=UNIFORM (Abaqus/CAE writes it): the
+    !! nodes' areas are their weights, as superjoin and CalculiX weigh them;
+    !! Abaqus's weights that fall off with the distance are refused.
     type(deck_state_t), intent(inout) :: st
     type(keyword_line_t), intent(in) :: kw
     type(source_loc_t), intent(in) :: loc
     integer, intent(in) :: kind, n
+    character(:), allocatable :: method
+    logical :: found
     st%card = CARD_SKIP
-    call check_params(st, kw, loc, [character(NAME_LEN) ::], [character(NAME_LEN) ::])
+    if (kind == COUPLE_DISTRIBUTING) then
+       call check_params(st, kw, loc, [character(NAME_LEN) :: 'WEIGHTING METHOD'], [character(NAME_LEN) ::])
+       call get_param(st, kw, loc, 'WEIGHTING METHOD', .false., method, found)
+       if (found) then
+          if (to_upper(method) /= 'UNIFORM') call report_loc(st, loc, '*DISTRIBUTING, WEIGHTING METHOD='// &
+               clip(method)//' is not supported: superjoin weighs each node by its area on the surface '// &
+               '(WEIGHTING METHOD=UNIFORM)')
+       end if
+    else
+       call check_params(st, kw, loc, [character(NAME_LEN) ::], [character(NAME_LEN) ::])
+    end if
     if (n == 0) then
        call report_loc(st, loc, '*'//kw%keyword//' must follow a *COUPLING card')
        return

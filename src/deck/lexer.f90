@@ -82,9 +82,12 @@ module superjoin_deck_lexer
     !! Longest piece of user text quoted in a message.
   ! The parameter names of the cards that hold a blank: CalculiX removes the
   ! blanks of a keyword line, so its decks may write them without (REFNODE=).
-  character(len=*), parameter :: SPACED_PARAMS(*) = [character(len=18) :: 'CONSTRAINT NAME', 'CONTACT ELEMENTS', &
-       'CYCLIC SYMMETRY', 'FILE NAME', 'FIXED INTERVAL', 'LAST ITERATIONS', 'NO ROTATION', 'NODAL THICKNESS', 'OUTPUT FILE', &
-       'POSITION TOLERANCE', 'REF NODE', 'ROT NODE', 'ROTARY INERTIA', 'SECTION FORCES', 'TIME POINTS', 'TIME RESET']
+  character(len=*), parameter :: SPACED_PARAMS(*) = [character(len=21) :: 'CONSTRAINT NAME', 'CONTACT ELEMENTS', &
+       'CYCLIC SYMMETRY', 'DISTORTION CONTROL', 'ELEMENT CONVERSION', 'ELEMENT DELETION', 'END STEP', 'FILE NAME', &
+       'FIXED INTERVAL', 'INITIAL GAP OPENING', 'KINEMATIC SPLIT', 'LAST ITERATIONS', 'LENGTH RATIO', 'MAX DEGRADATION', &
+       'NO ROTATION', 'NODAL THICKNESS', 'NUMBER INTERVAL', 'OUTPUT FILE', 'POSITION TOLERANCE', 'REF NODE', 'ROT NODE', &
+       'ROTARY INERTIA', 'SECOND ORDER ACCURACY', 'SECTION FORCES', 'SECTION INTEGRATION', 'TIME MARKS', 'TIME POINTS', &
+       'TIME RESET', 'WEIGHT FACTOR', 'WEIGHTING METHOD']
 
 
 contains
@@ -398,13 +401,14 @@ contains
   ! ------------------------------------------------------------------ tokens
 
   pure logical function is_name(s)
-    !! True when s is a name: one or more letters, digits, '_' or '-'.
+    !! True when s is a name: one or more letters, digits, '_', '-' or '/'
+    !! (Abaqus/CAE names its spring sets Springs/Dashpots-1-spring).
     character(*), intent(in) :: s
     integer :: k
     is_name = len(s) > 0
     do k = 1, len(s)
        select case (s(k:k))
-       case ('A':'Z', 'a':'z', '0':'9', '_', '-')
+       case ('A':'Z', 'a':'z', '0':'9', '_', '-', '/')
        case default
           is_name = .false.
           return

@@ -31,7 +31,7 @@ module superjoin_deck_parser
        data_spring
   use superjoin_deck_cards_sections, only: kw_material, kw_density, kw_elastic, kw_expansion, &
        data_expansion, data_elastic, data_density, kw_section, data_section, kw_transverse_shear, &
-       data_transverse_shear, kw_orientation, data_orientation
+       data_transverse_shear, kw_orientation, data_orientation, kw_section_controls
   use superjoin_deck_cards_materials, only: end_elastic_card
   use superjoin_deck_cards_steps, only: kw_step, kw_end_step, kw_static, data_static, kw_controls, &
        kw_boundary, data_boundary, kw_load, data_load, kw_surface, data_surface, data_dsload, &
@@ -196,12 +196,12 @@ contains
        call kw_node(st, kw, loc)
     case ('ELEMENT')
        call kw_element(st, kw, loc)
-    case ('NSET')
-       call kw_set(st, kw, loc, .false.)
-    case ('ELSET')
-       call kw_set(st, kw, loc, .true.)
+    case ('NSET', 'ELSET')
+       call kw_set(st, kw, loc, kw%keyword == 'ELSET')
     case ('SOLID SECTION')
        call kw_section(st, kw, loc, SEC_SOLID)
+    case ('SECTION CONTROLS')
+       call kw_section_controls(st, kw, loc)
     case ('BEAM SECTION', 'BEAM GENERAL SECTION')
        call kw_section(st, kw, loc, SEC_BEAM)
     case ('SHELL SECTION')
@@ -241,7 +241,7 @@ contains
        call kw_temperature(st, kw, loc, prev_mat)
     case ('CONTROLS')
        call kw_controls(st, kw, loc)
-    case ('OUTPUT')
+    case ('OUTPUT', 'PREPRINT', 'RESTART')   ! the job cards: kw_job_output
        call kw_output(st, kw, loc)
     case ('PART', 'END PART', 'ASSEMBLY', 'END ASSEMBLY', 'INSTANCE', 'END INSTANCE')
        call kw_assembly(st, kw, loc)

@@ -68,6 +68,10 @@ contains
     st%stack(0) = file
     call parse_source(st, text, file)
     if (.not. st%aborted) call finish_parse(st)
+    if (st%restart_read .and. allocated(st%error)) then   ! *RESTART, READ (refused): the model is not in the deck
+       call move_alloc(st%error, error)
+       return
+    end if
     if (.not. st%aborted) call build_model(st, model)
     if (.not. st%aborted) call check_axisymmetric_supports(st, model)
     if (.not. st%aborted) call build_equations(st, model)

@@ -120,7 +120,14 @@ module superjoin_deck_records
      real(wp) :: dims(7) = 0.0_wp          !! library shape: the dimensions (for the fibre points)
      logical :: five_general = .false.     !! *BEAM SECTION, SECTION=GENERAL with CalculiX's five values
      character(:), allocatable :: orientation  !! *SOLID SECTION, ORIENTATION= (upper case; unallocated: none)
+     character(:), allocatable :: controls     !! CONTROLS= (a *SECTION CONTROLS name, upper case; unallocated: none)
   end type sec_b_t
+
+  type, public :: sec_controls_b_t
+    !! A *SECTION CONTROLS card (Abaqus): its name and where it stands.
+     character(:), allocatable :: name
+     type(source_loc_t) :: loc
+  end type sec_controls_b_t
 
   type, public :: contact_b_t
     !! A *CONTACT card.
@@ -372,6 +379,9 @@ module superjoin_deck_records
 
   integer, parameter, public :: SPRING_1 = 1, SPRING_2 = 2, SPRING_A = 3
     !! Spring element types (*ELEMENT, TYPE=SPRING1 | SPRING2 | SPRINGA).
+  integer, parameter, public :: ASSEMBLY_SPRINGS = -1
+    !! spring_elem_b_t%sub of springs outside any block before MAIN exists
+    !! (Abaqus's assembly joining instances' nodes I.n): they create no MAIN.
 
   type, public :: spring_elem_b_t
     !! A spring element: not a finite element of the model but a support
@@ -379,8 +389,11 @@ module superjoin_deck_records
      integer(ip) :: id = 0
      integer :: kind = 0                   !! SPRING_*
      integer(ip) :: nid(2) = 0             !! user node ids (SPRING1: nid(1) only)
+     type(string_t) :: scope(2)            !! I of a node written I.n (an instance's node; Abaqus's assembly
+                                           !! springs), '' for a node of the element's own substructure
      integer :: sub = 0                    !! its substructure
      character(:), allocatable :: elset    !! ELSET= of its *ELEMENT card ('' without)
+     logical :: bad = .false.              !! a node reference was refused (reported): the element makes nothing
      type(source_loc_t) :: loc
   end type spring_elem_b_t
 

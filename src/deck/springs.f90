@@ -13,12 +13,17 @@ module superjoin_deck_springs
   !! The generated cards are named SPRING_<elset> (SPRING2) and
   !! SPRINGA_<elset>_<id> (SPRINGA); their lines point at the *ELEMENT data line.
   !! Springs inside a *PART become these cards once per instance I of the
-  !! part, named I.SPRING_<elset> and I.SPRINGA_<elset>_<id>.
+  !! part, named I.SPRING_<elset> and I.SPRINGA_<elset>_<id>. Springs of the
+  !! assembly (Abaqus/CAE's Springs/Dashpots) may name instances' nodes I.n:
+  !! a SPRING1 is then a support of instance I, a SPRING2 or SPRINGA a
+  !! contact element between the two nodes' substructures (one SPRING2 card
+  !! per pair of substructures, SPRING_<elset>, then SPRING_<elset>_2, ...).
   use superjoin_kinds, only: wp, ip
-  use superjoin_model_types, only: source_loc_t, NDOF_NODE, LINK_FINITE
+  use superjoin_model_types, only: source_loc_t, string_t, NDOF_NODE, LINK_FINITE
   use superjoin_deck_state, only: deck_state_t, spring_card_b_t, spring_elem_b_t, support_b_t, &
        contact_b_t, cline_b_t, report_loc, add_support, add_contact, add_cline, add_orientation, file_of, &
-       SPRING_1, SPRING_2, SPRING_A, SUBK_PART, SUBK_INSTANCE, SUBK_NESTED
+       SPRING_1, SPRING_2, SPRING_A, SUBK_PART, SUBK_INSTANCE, SUBK_NESTED, ASSEMBLY_SPRINGS, MAIN_NAME, &
+       find_sub
   use superjoin_utils_strings, only: itoa
   use superjoin_utils_sorting, only: sort_index, find_sorted
   implicit none (type, external)
@@ -30,6 +35,13 @@ module superjoin_deck_springs
     !! The user ids of one substructure's nodes (or elements) in ascending order.
      integer, allocatable :: order(:)      !! local indices sorted by id
   end type id_index_t
+
+  type :: spring_pairs_t
+    !! The SPRING2 contact cards of one *SPRING card in one home: one per
+    !! pair of substructures (master, slave) its elements join.
+     type(string_t), allocatable :: master(:), slave(:)
+     integer, allocatable :: contact(:)
+  end type spring_pairs_t
 
   character(len=7), parameter :: SPRING_NAMES(3) = ['SPRING1', 'SPRING2', 'SPRINGA']
   real(wp), parameter :: ZERO_LENGTH_TOL = 1.0e-14_wp
@@ -64,6 +76,7 @@ contains
     type(id_index_t), intent(inout) :: nodes(:)
     integer :: e, kind, first, dof1, dof2, icontact, ih
     integer, allocatable :: homes(:)
+    type(spring_pairs_t) :: pairs
     real(wp) :: k
     logical :: ok
     kind = 0
@@ -94,39 +107,95 @@ contains
        if (st%spring_elems(e)%sub == card%sub .and. st%spring_elems(e)%elset == card%elset) used(e) = .true.
     end do
     if (card%refused) return
+    if (card%sub > 0) then
+       if (st%subs(card%sub)%kind == SUBK_PART .and. scoped_in_part(st, card)) return
+    end if
     call card_data(st, card, kind, dof1, dof2, k, ok)
     if (.not. ok) return
     if (.not. (k > 0.0_wp)) return          ! k = 0: no connection, as a contact g = 0
     call spring_homes(st, card, homes)
     do ih = 1, size(homes)
-       icontact = 0
+       pairs = spring_pairs_t([string_t ::], [string_t ::], [integer ::])   ! this home's SPRING2 cards
        do e = first, st%nspring_elem
           associate (se => st%spring_elems(e))
-            if (se%sub /= card%sub .or. se%elset /= card%elset) cycle
+            if (se%sub /= card%sub .or. se%elset /= card%elset .or. se%bad) cycle
             select case (kind)
             case (SPRING_1)
                call spring_support(st, se, homes(ih), dof1, k)
             case (SPRING_2)
-               if (icontact == 0) call new_contact(st, prefix(homes(ih))//'SPRING_'//card%elset, '', homes(ih), &
-                    card%loc, icontact)
+               call pair_card(st, card, homes(ih), end_name(st, se, 1, homes(ih)), end_name(st, se, 2, homes(ih)), &
+                    pairs, icontact)
                call spring_link(st, se, icontact, dof1, k)
             case (SPRING_A)
-               if (.not. allocated(nodes(se%sub)%order)) call sort_ids(st%subs(se%sub)%node_id(1:st%subs(se%sub)%nnode), &
-                    nodes(se%sub)%order)
-               call springa(st, se, card, k, nodes(se%sub), homes(ih))
+               call springa(st, se, card, k, nodes, homes(ih))
             end select
           end associate
        end do
     end do
-  contains
-    function prefix(h) result(p)
-      !! 'I.' for the copy in instance h of a part's spring, '' for the block's own.
-      integer, intent(in) :: h
-      character(:), allocatable :: p
-      p = ''
-      if (h /= card%sub) p = st%subs(h)%name//'.'
-    end function prefix
   end subroutine translate_card
+
+  subroutine pair_card(st, card, home, master, slave, pairs, ic)
+    !! The SPRING2 contact card of the pair of substructures (master, slave)
+    !! for the springs of card standing in home, made at its first element:
+    !! SPRING_<elset>, then SPRING_<elset>_2, ... (I. before them in the copy
+    !! of a part's springs in instance I).
+    type(deck_state_t), intent(inout) :: st
+    type(spring_card_b_t), intent(in) :: card
+    integer, intent(in) :: home
+    character(*), intent(in) :: master, slave
+    type(spring_pairs_t), intent(inout) :: pairs
+    integer, intent(out) :: ic
+    integer :: j
+    character(:), allocatable :: name
+    do j = 1, size(pairs%contact)
+       if (pairs%master(j)%s == master .and. pairs%slave(j)%s == slave) then
+          ic = pairs%contact(j)
+          return
+       end if
+    end do
+    name = 'SPRING_'//card%elset
+    if (home /= card%sub) name = st%subs(home)%name//'.'//name
+    if (size(pairs%contact) > 0) name = name//'_'//itoa(size(pairs%contact) + 1)
+    call new_contact(st, name, '', master, slave, card%loc, ic)
+    pairs%master = [pairs%master, string_t(master)]
+    pairs%slave = [pairs%slave, string_t(slave)]
+    pairs%contact = [pairs%contact, ic]
+  end subroutine pair_card
+
+  logical function scoped_in_part(st, card) result(bad)
+    !! A spring inside a *PART naming an instance's node I.n (Abaqus allows
+    !! I.n in the assembly only): reported once.
+    type(deck_state_t), intent(inout) :: st
+    type(spring_card_b_t), intent(in) :: card
+    integer :: j
+    bad = .false.
+    do j = 1, st%nspring_elem
+       associate (se => st%spring_elems(j))
+         if (se%sub /= card%sub .or. se%elset /= card%elset) cycle
+         if (len(se%scope(1)%s) == 0 .and. len(se%scope(2)%s) == 0) cycle
+         call report_loc(st, se%loc, 'spring element '//itoa(se%id)//' inside *PART '//st%subs(card%sub)%name// &
+              ' names a node I.n: a part''s elements join its own nodes (write the spring in the assembly)')
+         bad = .true.
+         return
+       end associate
+    end do
+  end function scoped_in_part
+
+  pure function end_name(st, se, i, home) result(name)
+    !! The substructure of node i of spring element se standing in home: the
+    !! instance or substructure of its I.n, else home's.
+    type(deck_state_t), intent(in) :: st
+    type(spring_elem_b_t), intent(in) :: se
+    integer, intent(in) :: i, home
+    character(:), allocatable :: name
+    name = se%scope(i)%s
+    if (len(name) > 0) return
+    if (home == ASSEMBLY_SPRINGS) then
+       name = MAIN_NAME   ! a plain node id outside the blocks (MAIN made after the springs)
+    else
+       name = st%subs(home)%name
+    end if
+  end function end_name
 
   subroutine spring_homes(st, card, homes)
     !! The substructures a *SPRING card's elements stand in: its block, or for
@@ -139,6 +208,10 @@ contains
     integer, allocatable, intent(out) :: homes(:)
     integer :: k, n
     logical, allocatable :: mine(:)
+    if (card%sub == ASSEMBLY_SPRINGS) then
+       homes = [card%sub]
+       return
+    end if
     if (st%subs(card%sub)%kind /= SUBK_PART) then
        homes = [card%sub]
        return
@@ -242,7 +315,8 @@ contains
     real(wp), intent(in) :: k
     type(support_b_t) :: s
     s%ref%id = se%nid(1)
-    s%ref%home = home
+    s%ref%home = max(home, 0)   ! ASSEMBLY_SPRINGS: MAIN by name
+    if (len(se%scope(1)%s) > 0) s%ref%scope = se%scope(1)%s   ! I.n: node n of instance I
     s%dofs(dof) = .true.
     s%state = LINK_FINITE
     s%g = k
@@ -250,16 +324,16 @@ contains
     call add_support(st, s)
   end subroutine spring_support
 
-  subroutine new_contact(st, name, orientation, sub, loc, k)
+  subroutine new_contact(st, name, orientation, master, slave, loc, k)
+    !! A contact card of spring elements between substructures master and slave (names).
     type(deck_state_t), intent(inout) :: st
-    character(*), intent(in) :: name, orientation
-    integer, intent(in) :: sub
+    character(*), intent(in) :: name, orientation, master, slave
     type(source_loc_t), intent(in) :: loc
     integer, intent(out) :: k
     type(contact_b_t) :: c
     c%name = name
-    c%master = st%subs(sub)%name
-    c%slave = st%subs(sub)%name
+    c%master = master
+    c%slave = slave
     if (len(orientation) > 0) c%orientation = orientation
     c%loc = loc
     c%remote = .true.
@@ -286,26 +360,32 @@ contains
   subroutine springa(st, se, card, k, nodes, home)
     !! An axial spring: a frame with axis 1 along node 1 -> node 2 and a
     !! contact k on its DOF 1, in substructure home (an instance of the part
-    !! se stands in: its nodes placed, the names prefixed by the instance's).
+    !! se stands in: its nodes placed, the names prefixed by the instance's);
+    !! a node I.n of an instance I of the assembly at its placed position.
     type(deck_state_t), intent(inout) :: st
     type(spring_elem_b_t), intent(in) :: se
     type(spring_card_b_t), intent(in) :: card
     real(wp), intent(in) :: k
-    type(id_index_t), intent(in) :: nodes
+    type(id_index_t), intent(inout) :: nodes(:)
     integer, intent(in) :: home
     real(wp) :: x(3, 2), e1(3), e2(3), e3(3), len_a
-    integer :: i, io, ic
+    integer :: i, io, ic, from, placed
     integer(ip) :: n
     character(:), allocatable :: name
     do i = 1, 2
-       n = find_sorted(st%subs(se%sub)%node_id, nodes%order, se%nid(i))
+       call coordinate_source(st, se, i, home, from, placed)
+       if (from == 0) return
+       if (.not. allocated(nodes(from)%order)) call sort_ids(st%subs(from)%node_id(1:st%subs(from)%nnode), &
+            nodes(from)%order)
+       n = find_sorted(st%subs(from)%node_id, nodes(from)%order, se%nid(i))
        if (n == 0) then
-          call report_loc(st, se%loc, 'SPRINGA element '//itoa(se%id)//' refers to undefined node '//itoa(se%nid(i)))
+          call report_loc(st, se%loc, 'SPRINGA element '//itoa(se%id)//' refers to undefined node '// &
+               node_text(se, i))
           return
        end if
-       x(:, i) = st%subs(se%sub)%x(:, n)
-       if (home /= se%sub) x(:, i) = matmul(st%instances(st%subs(home)%inst)%rot, x(:, i)) + &
-            st%instances(st%subs(home)%inst)%shift
+       x(:, i) = st%subs(from)%x(:, n)
+       if (placed > 0) x(:, i) = matmul(st%instances(st%subs(placed)%inst)%rot, x(:, i)) + &
+            st%instances(st%subs(placed)%inst)%shift
     end do
     e1 = x(:, 2) - x(:, 1)
     len_a = norm2(e1)
@@ -325,9 +405,66 @@ contains
     st%orientations(io)%q(1, :) = e1
     st%orientations(io)%q(2, :) = e2
     st%orientations(io)%q(3, :) = e3
-    call new_contact(st, name, name, home, se%loc, ic)
+    call new_contact(st, name, name, end_name(st, se, 1, home), end_name(st, se, 2, home), se%loc, ic)
     call spring_link(st, se, ic, 1, k)
   end subroutine springa
+
+  subroutine coordinate_source(st, se, i, home, from, placed)
+    !! Where node i of SPRINGA se has its coordinates: substructure from (its
+    !! nodes as read), placed by instance placed (0: not placed). A node I.n
+    !! names an instance of the assembly or a substructure; an instance path
+    !! (an instance inside a part) is refused: its placement is known only
+    !! once the parts are unfolded. from = 0: reported.
+    type(deck_state_t), intent(inout) :: st
+    type(spring_elem_b_t), intent(in) :: se
+    integer, intent(in) :: i, home
+    integer, intent(out) :: from, placed
+    integer :: j
+    from = se%sub
+    placed = 0
+    if (home /= se%sub) placed = home
+    if (len(se%scope(i)%s) == 0) then
+       if (from /= ASSEMBLY_SPRINGS) return
+       from = find_sub(st, MAIN_NAME)   ! a plain node id outside the blocks
+       if (from == 0) call report_loc(st, se%loc, 'SPRINGA element '//itoa(se%id)//': node '//node_text(se, i)// &
+            ' is not defined (no nodes outside the blocks; an instance''s node is I.n)')
+       return
+    end if
+    from = 0
+    do j = 1, st%nsub
+       if (st%subs(j)%name /= se%scope(i)%s) cycle
+       if (st%subs(j)%kind == SUBK_INSTANCE) then
+          placed = j
+          from = part_of(st, j)
+       else if (st%subs(j)%kind /= SUBK_NESTED .and. st%subs(j)%kind /= SUBK_PART) then
+          from = j
+       end if
+       exit
+    end do
+    if (from == 0) call report_loc(st, se%loc, 'SPRINGA element '//itoa(se%id)//': node '//node_text(se, i)// &
+         ' is not a node of an instance of the assembly or of a substructure (an instance inside a part '// &
+         'is not supported for SPRINGA)')
+  end subroutine coordinate_source
+
+  pure integer function part_of(st, inst_sub) result(p)
+    !! The *PART substructure that the instance substructure inst_sub places (0: none).
+    type(deck_state_t), intent(in) :: st
+    integer, intent(in) :: inst_sub
+    integer :: j
+    p = 0
+    do j = 1, st%nsub
+       if (st%subs(j)%kind == SUBK_PART .and. st%subs(j)%name == st%instances(st%subs(inst_sub)%inst)%part) p = j
+    end do
+  end function part_of
+
+  pure function node_text(se, i) result(t)
+    !! Node i of spring se as written: n or I.n.
+    type(spring_elem_b_t), intent(in) :: se
+    integer, intent(in) :: i
+    character(:), allocatable :: t
+    t = itoa(se%nid(i))
+    if (len(se%scope(i)%s) > 0) t = se%scope(i)%s//'.'//t
+  end function node_text
 
   subroutine sort_ids(ids, order)
     !! Local indices of `ids` in ascending order of id.

@@ -15,8 +15,8 @@ module superjoin_deck_state
        equation_b_t, transform_b_t, nthick_b_t, support_b_t, load_b_t, SUBK_PLAIN, SUBK_PART, &
        SUBK_INSTANCE, SUBK_NESTED, MAIN_NAME, instance_b_t, override_b_t, step_b_t, temp_b_t, surface_b_t, tie_b_t, pretension_b_t, &
        combo_b_t, &
-       OP_DEFAULT, OP_MOD, OP_NEW, request_b_t, SPRING_1, SPRING_2, SPRING_A, spring_elem_b_t, &
-       spring_card_b_t, given_b_t, export_b_t, amplitude_b_t, amp_use_b_t
+       OP_DEFAULT, OP_MOD, OP_NEW, request_b_t, SPRING_1, SPRING_2, SPRING_A, ASSEMBLY_SPRINGS, spring_elem_b_t, &
+       spring_card_b_t, given_b_t, export_b_t, amplitude_b_t, amp_use_b_t, sec_controls_b_t
   use superjoin_deck_coupling_records, only: coupling_b_t
   implicit none (type, external)
   private
@@ -36,14 +36,15 @@ module superjoin_deck_state
        chunk_t, set_b_t, sub_b_t, ref_t, sec_b_t, contact_b_t, cline_b_t, equation_b_t, &
        transform_b_t, nthick_b_t, support_b_t, load_b_t, SUBK_PLAIN, SUBK_PART, SUBK_INSTANCE, &
        SUBK_NESTED, MAIN_NAME, instance_b_t, override_b_t, step_b_t, temp_b_t, surface_b_t, tie_b_t, combo_b_t, OP_DEFAULT, OP_MOD, &
-       OP_NEW, request_b_t, SPRING_1, SPRING_2, SPRING_A, spring_elem_b_t, spring_card_b_t, given_b_t, &
-       export_b_t, amplitude_b_t, amp_use_b_t
+       OP_NEW, request_b_t, SPRING_1, SPRING_2, SPRING_A, ASSEMBLY_SPRINGS, spring_elem_b_t, spring_card_b_t, given_b_t, &
+       export_b_t, amplitude_b_t, amp_use_b_t, sec_controls_b_t
 
   type, public :: deck_state_t
     !! Everything the reader has collected, and the card being read.
      type(error_t), allocatable :: error
      integer :: nerr = 0
      logical :: aborted = .false.
+     logical :: restart_read = .false.   !! *RESTART, READ: the model is in another run's restart data (refused)
      ! files
      integer :: nfile = 0
      type(string_t), allocatable :: files(:)
@@ -61,6 +62,7 @@ module superjoin_deck_state
      type(orientation_t), allocatable :: orientations(:)
      integer :: nsec = 0
      type(sec_b_t), allocatable :: sections(:)
+     type(sec_controls_b_t), allocatable :: sec_controls(:)   !! *SECTION CONTROLS cards (Abaqus)
      integer :: ncontact = 0
      type(contact_b_t), allocatable :: contacts(:)
      integer :: ncline = 0

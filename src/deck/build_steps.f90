@@ -3,7 +3,7 @@ module superjoin_deck_build_steps
   !! conditions and their history over the steps, thermal loads, combinations.
   use superjoin_kinds, only: wp, ip, i8
   use superjoin_model_types, only: model_t, cload_t, dload_t, ELEMENT_TYPE_NAMES, DLOAD_PX, DLOAD_PY, &
-       DLOAD_PZ, DLOAD_P, DLOAD_GRAV, DLOAD_NAMES, DLOAD_P1, DLOAD_P2, DLOAD_P3, DLOAD_P4, DLOAD_CENTRIF, &
+       DLOAD_PZ, DLOAD_P, DLOAD_GRAV, DLOAD_NAMES, DLOAD_BX, DLOAD_BY, DLOAD_BZ, DLOAD_P1, DLOAD_P2, DLOAD_P3, DLOAD_P4, DLOAD_CENTRIF, &
        DLOAD_P5, DLOAD_P6
   use superjoin_elements_traits, only: accepts_dload, is_family, FAMILY_PLANE
   use superjoin_deck_lexer, only: itoa
@@ -385,6 +385,9 @@ contains
        s = trim(DLOAD_NAMES(kind))//' applies to the faces of solid hexahedra C3D8, C3D20 and C3D20R'
     case (DLOAD_CENTRIF)
        s = 'CENTRIF applies to trusses, two-node beams, plane, shell and solid elements'
+    case (DLOAD_BX, DLOAD_BY, DLOAD_BZ)
+       s = 'BX, BY and BZ apply to trusses, beams, plane, shell and solid elements; Abaqus loads axisymmetric '// &
+            'elements with BR and BZ, along the radius and the axis (GRAV along the axis y)'
     case default
        s = 'P applies to shells S3 and S4'
     end select

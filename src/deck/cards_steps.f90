@@ -4,7 +4,7 @@ module superjoin_deck_cards_steps
   !! *INITIAL CONDITIONS, TYPE=TEMPERATURE).
   use superjoin_kinds, only: wp, ip
   use superjoin_model_types, only: source_loc_t, NDOF_NODE, LINK_RIGID, DLOAD_PX, DLOAD_PY, &
-       DLOAD_PZ, DLOAD_P, DLOAD_GRAV, DLOAD_P1, DLOAD_CENTRIF, FORM_TRANSFORM, FORM_PENALTY, DLOAD_P5, DLOAD_P6, &
+       DLOAD_PZ, DLOAD_P, DLOAD_GRAV, DLOAD_P1, DLOAD_CENTRIF, DLOAD_BX, FORM_TRANSFORM, FORM_PENALTY, DLOAD_P5, DLOAD_P6, &
        RIGID_ELIMINATE, RIGID_LARGE, DIALECT_ABAQUS, DIALECT_CALCULIX
   use superjoin_deck_lexer, only: keyword_line_t, to_upper, parse_real, parse_id, looks_numeric, &
        itoa, clip, TOK_OK
@@ -488,6 +488,10 @@ contains
           ld%kind = DLOAD_P
        case ('P1', 'P2', 'P3', 'P4', 'P5', 'P6')
           ld%kind = face_load_kind(typ)
+       case ('BX', 'BY', 'BZ')   ! Abaqus's body force per unit volume along a global axis
+          ld%kind = DLOAD_BX + index('XYZ', typ(2:2)) - 1
+          ld%dir = 0.0_wp
+          ld%dir(ld%kind - DLOAD_BX + 1) = 1.0_wp
        case default
           call report_loc(st, loc, unknown_dload(clip(fld(st, line, 2)), typ))
           return
@@ -843,7 +847,7 @@ contains
     !! PkNUy (a non-uniform pressure from the user subroutine dload) say why.
     character(*), intent(in) :: name, typ
     character(:), allocatable :: text
-    text = 'unknown *DLOAD type '''//name//''' (PX, PY, PZ, P, P1 to P6, GRAV or CENTRIF)'
+    text = 'unknown *DLOAD type '''//name//''' (PX, PY, PZ, P, P1 to P6, GRAV, CENTRIF, BX, BY or BZ)'
     if (len(typ) < 4) return
     if (typ(1:1) /= 'P' .or. verify(typ(2:2), '123456') /= 0) return
     if (typ(3:) == 'NP') then

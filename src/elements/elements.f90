@@ -35,7 +35,8 @@ module superjoin_elements
   use superjoin_elements_edge_load, only: plane_edge_load
   use superjoin_elements_thermal, only: thermal_axial_load, thermal_plate_load
   use superjoin_elements_thermal, only: thermal_plane_nodal_load, thermal_beam_load
-  use superjoin_model_types, only: dload_t, DLOAD_CENTRIF, model_t, ELEMENT_NODE_COUNT, DLOAD_GRAV
+  use superjoin_model_types, only: dload_t, DLOAD_CENTRIF, model_t, ELEMENT_NODE_COUNT, DLOAD_GRAV, DLOAD_BX, &
+       DLOAD_BY, DLOAD_BZ
   use superjoin_model_types, only: has_nodal, has_curvature_nodal, has_line_nodal
   use superjoin_elements_drill_mask, only: element_drill
   use superjoin_elements_centrif, only: centrif_load
@@ -430,6 +431,16 @@ contains
     end select
   end subroutine face_load
 
+  pure function unit_density(mat) result(m)
+    !! mat with density 1: a body force per unit volume (BX, BY, BZ) is the
+    !! self weight's load of a unit density under that "acceleration".
+    type(material_t), intent(in) :: mat
+    type(material_t) :: m
+    m = mat
+    m%density = 1.0_wp
+    m%has_density = .true.
+  end function unit_density
+
   pure subroutine element_gravity_load(etype, x, sec, mat, accel, fe, q_local, error)
     !! Consistent nodal loads fe (global axes, element ordering) of the self
     !! weight under the acceleration vector accel (global axes): density × A per
@@ -570,6 +581,9 @@ contains
         if (dl%kind == DLOAD_GRAV) then
            call element_gravity_load(s%elem_type(dl%elem), s%x(:, s%elem_nodes(1:nn, dl%elem)), sec, &
                 model%materials(sec%material), dl%value*dl%dir, fe, q_local, error)
+        else if (any(dl%kind == [DLOAD_BX, DLOAD_BY, DLOAD_BZ])) then   ! a force per unit volume: density 1
+           call element_gravity_load(s%elem_type(dl%elem), s%x(:, s%elem_nodes(1:nn, dl%elem)), sec, &
+                unit_density(model%materials(sec%material)), dl%value*dl%dir, fe, q_local, error)
         else if (dl%kind == DLOAD_CENTRIF .or. (dl%kind == DLOAD_THERMAL .and. (is_plate_type(s%elem_type(dl%elem)) &
              .or. is_solid_type(s%elem_type(dl%elem)) .or. any(dl%gradient /= 0.0_wp) &
              .or. has_line_nodal(dl)))) then   ! TEMP: a beam with a gradient, a B32 need E I

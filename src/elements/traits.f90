@@ -14,7 +14,7 @@ module superjoin_elements_traits
        ET_CPE3, ET_CPE4, ET_S4R, ET_S3R, ET_S8R, ET_CPS6, ET_CPS8, ET_CPE6, ET_CPE8, &
        ET_CPS8R, ET_CPE8R, ET_B32, ET_C3D8, ET_C3D20, ET_C3D20R, ET_C3D4, ET_C3D10, ET_C3D8I, &
        ET_C3D6, ET_C3D15, ET_S8, ET_C3D8R, ET_CAX3, ET_CAX4, ET_CAX6, ET_CAX8, ET_CAX8R, &
-       DLOAD_PX, DLOAD_PY, DLOAD_PZ, DLOAD_P, DLOAD_GRAV, DLOAD_P1, DLOAD_P2, DLOAD_P3, &
+       DLOAD_PX, DLOAD_PY, DLOAD_PZ, DLOAD_P, DLOAD_GRAV, DLOAD_BX, DLOAD_BY, DLOAD_BZ, DLOAD_P1, DLOAD_P2, DLOAD_P3, &
        DLOAD_P4, DLOAD_CENTRIF, DLOAD_P5, DLOAD_P6
   implicit none (type, external)
   private
@@ -236,6 +236,8 @@ contains
        accepts_dload = t%family == FAMILY_SHELL
     case (DLOAD_GRAV)
        accepts_dload = .true.
+    case (DLOAD_BX, DLOAD_BY, DLOAD_BZ)   ! Abaqus's axisymmetric elements take BR and BZ instead
+       accepts_dload = .not. t%axisymmetric
     case (DLOAD_CENTRIF)
        accepts_dload = .true.
     case (DLOAD_P1)

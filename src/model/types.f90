@@ -78,8 +78,12 @@ module superjoin_model_types
     !! is ρ ω² r per unit volume, r the distance vector from the axis (consistent mass).
   integer, parameter, public :: DLOAD_P5 = 12, DLOAD_P6 = 13
     !! Pressure on faces 5 and 6 of a solid hexahedron (P1..P4: also its faces 1..4).
-  character(len=7), parameter, public :: DLOAD_NAMES(13) = ['PX     ', 'PY     ', 'PZ     ', 'P      ', &
-       'GRAV   ', 'P1     ', 'P2     ', 'P3     ', 'P4     ', 'TEMP   ', 'CENTRIF', 'P5     ', 'P6     ']
+  integer, parameter, public :: DLOAD_BX = 14, DLOAD_BY = 15, DLOAD_BZ = 16
+    !! Abaqus's body force per unit volume along global x, y, z (value; dir the axis): the
+    !! self weight's loads with density 1 (per unit length A, per unit area t).
+  character(len=7), parameter, public :: DLOAD_NAMES(16) = ['PX     ', 'PY     ', 'PZ     ', 'P      ', &
+       'GRAV   ', 'P1     ', 'P2     ', 'P3     ', 'P4     ', 'TEMP   ', 'CENTRIF', 'P5     ', 'P6     ', &
+       'BX     ', 'BY     ', 'BZ     ']
 
   integer, parameter, public :: FORM_TRANSFORM = 1, FORM_PENALTY = 2
     !! Formulation and rigid-link controls.

@@ -360,8 +360,10 @@ contains
     type(keyword_line_t), intent(in) :: kw
     type(source_loc_t), intent(in) :: loc
     type(sec_controls_b_t) :: c
+    type(sec_controls_b_t), allocatable :: grown(:)
     character(:), allocatable :: hourglass
     logical :: found
+    integer :: j, n
     st%card = CARD_SKIP
     call check_params(st, kw, loc, [character(NAME_LEN) :: 'NAME', 'HOURGLASS', 'ELEMENT DELETION', &
          'DISTORTION CONTROL', 'KINEMATIC SPLIT', 'SECOND ORDER ACCURACY', 'MAX DEGRADATION', 'VISCOSITY', &
@@ -371,7 +373,14 @@ contains
     if (.not. found) return
     c%loc = loc
     if (.not. allocated(st%sec_controls)) allocate (st%sec_controls(0))
-    st%sec_controls = [st%sec_controls, c]
+    n = size(st%sec_controls)   ! grown by moving (not [list, c]: gfortran may leak the components)
+    allocate (grown(n + 1))
+    do j = 1, n
+       call move_alloc(st%sec_controls(j)%name, grown(j)%name)
+       grown(j)%loc = st%sec_controls(j)%loc
+    end do
+    grown(n + 1) = c
+    call move_alloc(grown, st%sec_controls)
     call get_param(st, kw, loc, 'HOURGLASS', .false., hourglass, found)
     if (.not. found) hourglass = 'the default'
     call append_string(st%notes, '*SECTION CONTROLS '//c%name//' at '//loc_string(st, loc)//' (HOURGLASS='// &

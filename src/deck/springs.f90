@@ -25,6 +25,7 @@ module superjoin_deck_springs
        SPRING_1, SPRING_2, SPRING_A, SUBK_PART, SUBK_INSTANCE, SUBK_NESTED, ASSEMBLY_SPRINGS, MAIN_NAME, &
        find_sub
   use superjoin_utils_strings, only: itoa
+  use superjoin_model_notes, only: append_string
   use superjoin_utils_sorting, only: sort_index, find_sorted
   implicit none (type, external)
   private
@@ -115,7 +116,8 @@ contains
     if (.not. (k > 0.0_wp)) return          ! k = 0: no connection, as a contact g = 0
     call spring_homes(st, card, homes)
     do ih = 1, size(homes)
-       pairs = spring_pairs_t([string_t ::], [string_t ::], [integer ::])   ! this home's SPRING2 cards
+       if (allocated(pairs%contact)) deallocate (pairs%master, pairs%slave, pairs%contact)
+       allocate (pairs%master(0), pairs%slave(0), pairs%contact(0))   ! this home's SPRING2 cards
        do e = first, st%nspring_elem
           associate (se => st%spring_elems(e))
             if (se%sub /= card%sub .or. se%elset /= card%elset .or. se%bad) cycle
@@ -157,8 +159,8 @@ contains
     if (home /= card%sub) name = st%subs(home)%name//'.'//name
     if (size(pairs%contact) > 0) name = name//'_'//itoa(size(pairs%contact) + 1)
     call new_contact(st, name, '', master, slave, card%loc, ic)
-    pairs%master = [pairs%master, string_t(master)]
-    pairs%slave = [pairs%slave, string_t(slave)]
+    call append_string(pairs%master, master)   ! not [list, string_t(s)]: gfortran leaks the constructor's component
+    call append_string(pairs%slave, slave)
     pairs%contact = [pairs%contact, ic]
   end subroutine pair_card
 

@@ -447,8 +447,9 @@ contains
     if (.not. field_count(st, loc, nn + 1, nn + 1, 'id and '//itoa(nn)//' node'//pick(nn == 1, '', 's')// &
          ' for a spring')) return
     if (.not. get_id(st, line, loc, 1, 'element id', e%id)) return
+    e%scope(1)%s = ''   ! both, also a SPRING1's second (read by the checks of every spring)
+    e%scope(2)%s = ''
     do i = 1, nn   ! a node id, or I.n: node n of instance (or substructure) I, as Abaqus's assembly writes it
-       e%scope(i)%s = ''
        if (.not. parse_ref(st, fld(st, line, i + 1), .false., st%card_sub, loc, ref)) then
           e%bad = .true.   ! kept, so that its *SPRING card finds it: one message
           cycle

@@ -80,11 +80,9 @@ contains
     do g = 1, st%nsec
        if (.not. allocated(st%sections(g)%controls)) cycle
        found = .false.
-       if (allocated(st%sec_controls)) then
-          do k = 1, size(st%sec_controls)
-             if (st%sec_controls(k)%name == st%sections(g)%controls) found = .true.
-          end do
-       end if
+       do k = 1, st%nsec_controls
+          if (st%sec_controls(k)%name == st%sections(g)%controls) found = .true.
+       end do
        if (.not. found) call report_loc(st, st%sections(g)%loc, 'CONTROLS='//st%sections(g)%controls// &
             ': no *SECTION CONTROLS, NAME='//st%sections(g)%controls//' in the deck')
     end do

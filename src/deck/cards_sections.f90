@@ -8,6 +8,7 @@ module superjoin_deck_cards_sections
   use superjoin_deck_lexer, only: keyword_line_t, to_upper, parse_real, parse_id, itoa, clip, plural, TOK_OK
   use superjoin_model_notes, only: append_string
   use superjoin_deck_state, only: deck_state_t, sec_b_t, sec_controls_b_t, report_loc, add_material, add_orientation, &
+       add_sec_controls, &
        add_section, BEAM_2D_VALUES, BEAM_3D_VALUES, SHAPE_GENERAL
   use superjoin_deck_beam_sections, only: section_props_t, section_properties, shape_index, &
        SHAPE_NONE, SHAPE_L, SHAPE_I, SHAPE_NAMES, SHAPE_DIMS_MIN, SHAPE_DIMS_MAX, SHAPE_DATA, &
@@ -360,10 +361,8 @@ contains
     type(keyword_line_t), intent(in) :: kw
     type(source_loc_t), intent(in) :: loc
     type(sec_controls_b_t) :: c
-    type(sec_controls_b_t), allocatable :: grown(:)
     character(:), allocatable :: hourglass
     logical :: found
-    integer :: j, n
     st%card = CARD_SKIP
     call check_params(st, kw, loc, [character(NAME_LEN) :: 'NAME', 'HOURGLASS', 'ELEMENT DELETION', &
          'DISTORTION CONTROL', 'KINEMATIC SPLIT', 'SECOND ORDER ACCURACY', 'MAX DEGRADATION', 'VISCOSITY', &
@@ -372,15 +371,7 @@ contains
     call get_name_param(st, kw, loc, 'NAME', .true., c%name, found)
     if (.not. found) return
     c%loc = loc
-    if (.not. allocated(st%sec_controls)) allocate (st%sec_controls(0))
-    n = size(st%sec_controls)   ! grown by moving (not [list, c]: gfortran may leak the components)
-    allocate (grown(n + 1))
-    do j = 1, n
-       call move_alloc(st%sec_controls(j)%name, grown(j)%name)
-       grown(j)%loc = st%sec_controls(j)%loc
-    end do
-    grown(n + 1) = c
-    call move_alloc(grown, st%sec_controls)
+    call add_sec_controls(st, c)
     call get_param(st, kw, loc, 'HOURGLASS', .false., hourglass, found)
     if (.not. found) hourglass = 'the default'
     call append_string(st%notes, '*SECTION CONTROLS '//c%name//' at '//loc_string(st, loc)//' (HOURGLASS='// &

@@ -24,7 +24,7 @@ module superjoin_deck_state
   public :: grow
   interface grow
      !! Make room for element n + 1 of an allocatable array (grow_template.inc).
-     module procedure grow_sub_b, grow_set_b, grow_chunk, grow_string, grow_material, grow_orientation, grow_sec_b, grow_contact_b, grow_cline_b, grow_step_b, grow_load_b, grow_request_b, grow_spring_elem_b, grow_spring_card_b, grow_nthick_b, grow_transform_b, grow_equation_b, grow_temp_b, grow_surface_b, grow_combo_b, grow_instance_b, grow_override_b, grow_source_loc, grow_amp_use_b
+     module procedure grow_sub_b, grow_set_b, grow_chunk, grow_string, grow_material, grow_orientation, grow_sec_b, grow_contact_b, grow_cline_b, grow_step_b, grow_load_b, grow_request_b, grow_spring_elem_b, grow_spring_card_b, grow_nthick_b, grow_transform_b, grow_equation_b, grow_temp_b, grow_surface_b, grow_combo_b, grow_instance_b, grow_override_b, grow_source_loc, grow_amp_use_b, grow_sec_controls_b
   end interface grow
 
   integer, parameter, public :: MAX_ERRORS = 50          !! messages before '... too many errors'
@@ -62,6 +62,7 @@ module superjoin_deck_state
      type(orientation_t), allocatable :: orientations(:)
      integer :: nsec = 0
      type(sec_b_t), allocatable :: sections(:)
+     integer :: nsec_controls = 0
      type(sec_controls_b_t), allocatable :: sec_controls(:)   !! *SECTION CONTROLS cards (Abaqus)
      integer :: ncontact = 0
      type(contact_b_t), allocatable :: contacts(:)
@@ -146,7 +147,7 @@ module superjoin_deck_state
 
   public :: register_file, load_deck_file
   public :: report, report_loc, report_oom, memory_ok, new_sub, find_sub, find_set, new_set, add_chunk, push_pool
-  public :: add_node, add_element, add_heading, add_material, add_orientation, add_section
+  public :: add_node, add_element, add_heading, add_material, add_orientation, add_section, add_sec_controls
   public :: add_contact, add_cline, add_support, add_step, add_load, file_of
   public :: add_request, add_request_var, add_spring_elem, add_spring_card
   public :: reading_dialect
@@ -502,6 +503,15 @@ contains
     st%sections(k) = sec
   end subroutine add_section
 
+  subroutine add_sec_controls(st, c)
+    !! Append a *SECTION CONTROLS card.
+    type(deck_state_t), intent(inout) :: st
+    type(sec_controls_b_t), intent(in) :: c
+    call grow(st%sec_controls, st%nsec_controls, INITIAL_CAPACITY)
+    st%nsec_controls = st%nsec_controls + 1
+    st%sec_controls(st%nsec_controls) = c
+  end subroutine add_sec_controls
+
   subroutine add_contact(st, c, k)
     !! Append a contact card; `k` is its index.
     type(deck_state_t), intent(inout) :: st
@@ -662,6 +672,10 @@ contains
 
 #define GROW_NAME grow_sec_b
 #define GROW_TYPE type(sec_b_t)
+#include "grow_template.inc"
+
+#define GROW_NAME grow_sec_controls_b
+#define GROW_TYPE type(sec_controls_b_t)
 #include "grow_template.inc"
 
 #define GROW_NAME grow_contact_b

@@ -16,7 +16,7 @@ module superjoin_deck_assembly
   use superjoin_elements_traits, only: element_traits_t, element_traits, FAMILY_BEAM
   use superjoin_deck_lexer, only: itoa, plural
   use superjoin_deck_state, only: deck_state_t, sub_b_t, report, report_loc, SUBK_INSTANCE, &
-       step_b_t, SUBK_PART, SUBK_NESTED, SUBK_PLAIN, MAIN_NAME, instance_b_t, override_b_t, find_set, find_sub
+       step_b_t, SUBK_PART, SUBK_NESTED, SUBK_PLAIN, MAIN_NAME, instance_b_t, override_b_t, find_set, find_sub, instance_part
   use superjoin_elements_frame, only: DEFAULT_V_SWITCH_TOL, cross, real_text
   use superjoin_utils_sorting, only: sort_index
   use superjoin_utils_halting, only: halting_t, halting_off, halting_restore
@@ -73,7 +73,7 @@ contains
     type(model_t), intent(inout) :: model
     integer, allocatable :: part_ord(:), new_index(:)
     type(substructure_t), allocatable :: subs(:)
-    integer :: k, p, nparts, nkeep, j
+    integer :: k, p, nparts, nkeep
 
     nparts = count(st%subs(1:st%nsub)%kind == SUBK_PART)
     allocate (model%parts(nparts), part_ord(st%nsub))
@@ -109,10 +109,7 @@ contains
           cycle
        end if
        associate (inst => st%instances(st%subs(k)%inst), m => subs(new_index(k)))
-         p = 0
-         do j = 1, st%nsub
-            if (st%subs(j)%kind == SUBK_PART .and. st%subs(j)%name == inst%part) p = j
-         end do
+         p = instance_part(st, k)
          if (p == 0) then
             call report_loc(st, inst%loc, '*INSTANCE '//st%subs(k)%name//' of undefined part '//inst%part)
             st%subs(k)%broken = .true.   ! references into it are not reported again

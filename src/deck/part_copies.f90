@@ -27,7 +27,7 @@ module superjoin_deck_part_copies
   !! records leave. Not copied (refused where they are read or here):
   !! `*DISTRIBUTING COUPLING` / DCOUP3D elements, and couplings, ties and
   !! equations inside a part made of parts (one holding *INSTANCE cards).
-  use superjoin_deck_state, only: deck_state_t, report_loc, grow, ref_t, surface_b_t, tie_b_t, equation_b_t, &
+  use superjoin_deck_state, only: deck_state_t, report_loc, grow, instance_part, ref_t, surface_b_t, tie_b_t, equation_b_t, &
        transform_b_t, nthick_b_t, request_b_t, temp_b_t, SUBK_PART, SUBK_NESTED, SUBK_INSTANCE
   use superjoin_deck_records, only: pretension_b_t
   use superjoin_deck_coupling_records, only: coupling_b_t
@@ -66,18 +66,6 @@ contains
     if (allocated(st%section_prints)) call copy_section_prints(st, part_of)
     if (allocated(st%pretensions)) call copy_pretensions(st, part_of)
   end subroutine copy_part_constraints
-
-  integer function instance_part(st, k) result(p)
-    !! The part (index in subs) that entry k places (0: k is no instance or its part is unknown).
-    type(deck_state_t), intent(in) :: st
-    integer, intent(in) :: k
-    integer :: j
-    p = 0
-    if (st%subs(k)%kind /= SUBK_INSTANCE .or. st%subs(k)%inst <= 0) return
-    do j = 1, st%nsub   ! the last part of that name, as the placement takes it
-       if (st%subs(j)%kind == SUBK_PART .and. st%subs(j)%name == st%instances(st%subs(k)%inst)%part) p = j
-    end do
-  end function instance_part
 
   elemental logical function is_part(st, p)
     !! Whether entry p of subs is a part (or a part made of parts).

@@ -23,7 +23,7 @@ module superjoin_deck_springs
   use superjoin_deck_state, only: deck_state_t, spring_card_b_t, spring_elem_b_t, support_b_t, &
        contact_b_t, cline_b_t, report_loc, add_support, add_contact, add_cline, add_orientation, file_of, &
        SPRING_1, SPRING_2, SPRING_A, SUBK_PART, SUBK_INSTANCE, SUBK_NESTED, ASSEMBLY_SPRINGS, MAIN_NAME, &
-       find_sub
+       find_sub, instance_part
   use superjoin_utils_strings, only: itoa
   use superjoin_model_notes, only: append_string
   use superjoin_utils_sorting, only: sort_index, find_sorted
@@ -437,7 +437,7 @@ contains
        if (st%subs(j)%name /= se%scope(i)%s) cycle
        if (st%subs(j)%kind == SUBK_INSTANCE) then
           placed = j
-          from = part_of(st, j)
+          from = instance_part(st, j)
        else if (st%subs(j)%kind /= SUBK_NESTED .and. st%subs(j)%kind /= SUBK_PART) then
           from = j
        end if
@@ -447,17 +447,6 @@ contains
          ' is not a node of an instance of the assembly or of a substructure (an instance inside a part '// &
          'is not supported for SPRINGA)')
   end subroutine coordinate_source
-
-  pure integer function part_of(st, inst_sub) result(p)
-    !! The *PART substructure that the instance substructure inst_sub places (0: none).
-    type(deck_state_t), intent(in) :: st
-    integer, intent(in) :: inst_sub
-    integer :: j
-    p = 0
-    do j = 1, st%nsub
-       if (st%subs(j)%kind == SUBK_PART .and. st%subs(j)%name == st%instances(st%subs(inst_sub)%inst)%part) p = j
-    end do
-  end function part_of
 
   pure function node_text(se, i) result(t)
     !! Node i of spring se as written: n or I.n.

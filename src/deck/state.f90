@@ -146,7 +146,7 @@ module superjoin_deck_state
   end type deck_state_t
 
   public :: register_file, load_deck_file
-  public :: report, report_loc, report_oom, memory_ok, new_sub, find_sub, find_set, new_set, add_chunk, push_pool
+  public :: report, report_loc, report_oom, memory_ok, new_sub, find_sub, instance_part, find_set, new_set, add_chunk, push_pool
   public :: add_node, add_element, add_heading, add_material, add_orientation, add_section, add_sec_controls
   public :: add_contact, add_cline, add_support, add_step, add_load, file_of
   public :: add_request, add_request_var, add_spring_elem, add_spring_card
@@ -263,6 +263,18 @@ contains
   end function file_of
 
   ! ------------------------------------------------------------------ substructures and sets
+
+  integer function instance_part(st, k) result(p)
+    !! The part (index in subs) that entry k places (0: k is no instance or its part is unknown).
+    type(deck_state_t), intent(in) :: st
+    integer, intent(in) :: k
+    integer :: j
+    p = 0
+    if (st%subs(k)%kind /= SUBK_INSTANCE .or. st%subs(k)%inst <= 0) return
+    do j = 1, st%nsub   ! the last part of that name, as the placement takes it
+       if (st%subs(j)%kind == SUBK_PART .and. st%subs(j)%name == st%instances(st%subs(k)%inst)%part) p = j
+    end do
+  end function instance_part
 
   integer function find_sub(st, name) result(k)
     !! Index of the substructure named `name` (0 if none; the last one if repeated).

@@ -4,8 +4,8 @@ module superjoin_deck_build_steps
   use superjoin_kinds, only: wp, ip, i8
   use superjoin_model_types, only: model_t, cload_t, dload_t, ELEMENT_TYPE_NAMES, DLOAD_PX, DLOAD_PY, &
        DLOAD_PZ, DLOAD_P, DLOAD_GRAV, DLOAD_NAMES, DLOAD_BX, DLOAD_BY, DLOAD_BZ, DLOAD_P1, DLOAD_P2, DLOAD_P3, DLOAD_P4, DLOAD_CENTRIF, &
-       DLOAD_P5, DLOAD_P6
-  use superjoin_elements_traits, only: accepts_dload, is_family, FAMILY_PLANE
+       DLOAD_P5, DLOAD_P6, DLOAD_TRVEC, DLOAD_TRSHR
+  use superjoin_elements_traits, only: accepts_dload, is_family, FAMILY_PLANE, element_traits, element_traits_t
   use superjoin_deck_lexer, only: itoa
   use superjoin_deck_state, only: deck_state_t, load_b_t, report_loc, report_oom, OP_NEW
   use superjoin_model_history, only: support_list_t, step_ops_t, apply_boundary_history, &
@@ -267,6 +267,7 @@ contains
             out(m)%value = ld%value
             out(m)%dir = ld%dir
             out(m)%point = ld%point
+            out(m)%face = ld%face
             out(m)%loc = ld%loc
          end do
        end associate
@@ -291,9 +292,10 @@ contains
     first_bad = 0
     nodens = 0
     first_nodens = 0
-    ! CENTRIF keeps the XY plane in itself: axis along Z, or in the plane
+    ! CENTRIF keeps the XY plane in itself: axis along Z, or in the plane; a traction: no Z part
     plane_ok = ld%kind /= DLOAD_CENTRIF .or. abs(ld%dir(3)) == 1.0_wp .or. &
          (ld%dir(3) == 0.0_wp .and. ld%point(3) == 0.0_wp)
+    if (ld%kind == DLOAD_TRVEC .or. ld%kind == DLOAD_TRSHR) plane_ok = ld%dir(3) == 0.0_wp
     ! room for every element at once (one copy, not one per doubling)
     call grow(kept%ids, kept%nid, INITIAL_CAPACITY, stat, more=size(elems))
     if (stat == 0) call grow(kept%line, kept%nchunk, INITIAL_CAPACITY, stat)
@@ -311,10 +313,15 @@ contains
           if (nbad == 1) first_bad = elems(i)
           cycle
        end if
-       if (ld%kind == DLOAD_CENTRIF .and. .not. plane_ok) then
-          if (is_family(et, FAMILY_PLANE)) then
-             call report_loc(st, ld%loc, 'CENTRIF loads a plane element out of the XY plane '// &
-                  '(the axis must be parallel to Z, or lie in the XY plane)')
+       if (.not. plane_ok) then
+          if (out_of_plane(ld%kind, et)) then
+             if (ld%kind == DLOAD_CENTRIF) then
+                call report_loc(st, ld%loc, 'CENTRIF loads a plane element out of the XY plane '// &
+                     '(the axis must be parallel to Z, or lie in the XY plane)')
+             else
+                call report_loc(st, ld%loc, 'a traction loads a plane element out of the XY plane '// &
+                     '(its direction must lie in the XY plane)')
+             end if
              plane_ok = .true.   ! reported once
              cycle
           end if
@@ -348,6 +355,19 @@ contains
     end associate
   end subroutine keep_elements
 
+  elemental logical function out_of_plane(kind, et)
+    !! A load of kind DLOAD_* that leaves the XY plane cannot load element type
+    !! et: CENTRIF a plane element, a traction a plane or axisymmetric one.
+    integer, intent(in) :: kind, et
+    type(element_traits_t) :: t
+    t = element_traits(et)
+    if (kind == DLOAD_CENTRIF) then
+       out_of_plane = t%family == FAMILY_PLANE
+    else
+       out_of_plane = t%planar
+    end if
+  end function out_of_plane
+
   pure function surface_face(ld) result(name)
     !! The load form as the deck wrote it: a *DLOAD type, or the face of a
     !! *SURFACE line (S1 to S4, SPOS / SNEG) for a *DSLOAD.
@@ -361,6 +381,10 @@ contains
        name = 'S'//name(2:2)//' (face '//name(2:2)//')'
     else if (ld%kind == DLOAD_P) then
        name = 'SPOS or SNEG'
+    else if (ld%face > 0) then   ! TRVEC, TRSHR on a face or an edge
+       name = name//' on S'//itoa(ld%face)
+    else if (ld%kind == DLOAD_TRVEC .or. ld%kind == DLOAD_TRSHR) then
+       name = name//' on SPOS or SNEG'
     end if
   end function surface_face
 
@@ -388,6 +412,9 @@ contains
     case (DLOAD_BX, DLOAD_BY, DLOAD_BZ)
        s = 'BX, BY and BZ apply to trusses, beams, plane, shell and solid elements; Abaqus loads axisymmetric '// &
             'elements with BR and BZ, along the radius and the axis (GRAV along the axis y)'
+    case (DLOAD_TRVEC, DLOAD_TRSHR)
+       s = 'TRVEC and TRSHR apply to the faces of solids, the edges of plane and axisymmetric elements and the '// &
+            'surfaces of shells'
     case default
        s = 'P applies to shells S3 and S4'
     end select

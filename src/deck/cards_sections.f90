@@ -256,18 +256,24 @@ contains
   end subroutine data_elastic
 
   subroutine data_density(st, line, loc)
-    !! The density: one value, >= 0.
+    !! The density: one value, >= 0, and optionally its temperature (Abaqus,
+    !! CalculiX), read and not used; a table of several lines (a density that
+    !! varies with the temperature) is refused.
     type(deck_state_t), intent(inout) :: st
     character(*), intent(in) :: line
     type(source_loc_t), intent(in) :: loc
-    real(wp) :: rho
+    real(wp) :: rho, temp
     if (st%card_ndata > 1) then
-       call report_loc(st, loc, 'too many data lines for *DENSITY')
+       call report_loc(st, loc, 'too many data lines for *DENSITY: superjoin takes one density (a table in '// &
+            'temperature is not supported)')
        st%card = CARD_SKIP
        return
     end if
-    if (.not. field_count(st, loc, 1, 1, 'density')) return
+    if (.not. field_count(st, loc, 1, 2, 'density[, temperature]')) return
     if (.not. get_real(st, line, loc, 1, rho)) return
+    if (st%f%n == 2) then                     ! the temperature of a one-line table: any value
+       if (.not. get_real(st, line, loc, 2, temp)) return
+    end if
     if (.not. (rho >= 0.0_wp)) then
        call report_loc(st, loc, 'density must not be negative, not '//fld(st, line, 1))
        return

@@ -5,7 +5,7 @@ module superjoin_deck_cards_steps
   use superjoin_kinds, only: wp, ip
   use superjoin_model_types, only: source_loc_t, NDOF_NODE, LINK_RIGID, DLOAD_PX, DLOAD_PY, &
        DLOAD_PZ, DLOAD_P, DLOAD_GRAV, DLOAD_P1, DLOAD_CENTRIF, DLOAD_BX, FORM_TRANSFORM, FORM_PENALTY, DLOAD_P5, DLOAD_P6, &
-       RIGID_ELIMINATE, RIGID_LARGE, DIALECT_ABAQUS, DIALECT_CALCULIX
+       DLOAD_TRVEC, DLOAD_TRSHR, RIGID_ELIMINATE, RIGID_LARGE, DIALECT_ABAQUS, DIALECT_CALCULIX
   use superjoin_deck_lexer, only: keyword_line_t, to_upper, parse_real, parse_id, looks_numeric, &
        itoa, clip, TOK_OK
   use superjoin_deck_state, only: deck_state_t, support_b_t, load_b_t, ref_t, report_loc, step_b_t, &
@@ -18,8 +18,12 @@ module superjoin_deck_cards_steps
   use superjoin_deck_matrix_loads, only: CARD_MATRIX_LOAD
   use superjoin_model_notes, only: append_string
   use superjoin_deck_amplitudes, only: amplitude_param
+  use superjoin_elements_traits, only: dload_face
   implicit none (type, external)
   private
+
+  integer, parameter :: TRACTION_FIELDS = 6
+    !! surface, TRVEC or TRSHR, magnitude, dx, dy, dz
 
   public :: kw_step, kw_end_step, kw_static, data_static, kw_controls, kw_boundary, data_boundary, &
        kw_load, data_load, kw_surface, data_surface, data_dsload, kw_load_combination, &
@@ -397,7 +401,14 @@ contains
     type(source_loc_t), intent(in) :: loc
     integer, intent(in) :: card
     integer :: op
-    call check_params(st, kw, loc, [character(NAME_LEN) :: 'OP', 'AMPLITUDE'], [character(NAME_LEN) ::])
+    if (card == CARD_DSLOAD) then
+       call check_params(st, kw, loc, [character(NAME_LEN) :: 'OP', 'AMPLITUDE', 'FOLLOWER', 'CONSTANT RESULTANT'], &
+            [character(NAME_LEN) ::])
+       call reference_only_param(st, kw, loc, 'FOLLOWER')
+       call reference_only_param(st, kw, loc, 'CONSTANT RESULTANT')
+    else
+       call check_params(st, kw, loc, [character(NAME_LEN) :: 'OP', 'AMPLITUDE'], [character(NAME_LEN) ::])
+    end if
     op = op_param(st, kw, loc)
     st%card = CARD_SKIP
     if (card == CARD_MATRIX_LOAD .and. param_index(kw, 'AMPLITUDE') > 0) then
@@ -429,6 +440,26 @@ contains
     st%card = card
     st%card_home = st%cur_sub
   end subroutine kw_load
+
+  subroutine reference_only_param(st, kw, loc, name)
+    !! FOLLOWER= or CONSTANT RESULTANT= of an Abaqus *DSLOAD (Abaqus/CAE writes
+    !! them with its surface tractions): YES or NO. In a linear analysis the
+    !! loads act on the undeformed surface whatever they say, so both are read
+    !! and change nothing.
+    type(deck_state_t), intent(inout) :: st
+    type(keyword_line_t), intent(in) :: kw
+    type(source_loc_t), intent(in) :: loc
+    character(*), intent(in) :: name
+    character(:), allocatable :: value
+    logical :: found
+    call get_param(st, kw, loc, name, .false., value, found)
+    if (.not. found) return
+    select case (to_upper(value))
+    case ('YES', 'NO')
+    case default
+       call report_loc(st, loc, name//' must be YES or NO, not '//clip(value))
+    end select
+  end subroutine reference_only_param
 
   subroutine data_load(st, line, loc)
     !! A data line of *CLOAD or *DLOAD.
@@ -665,20 +696,32 @@ contains
   subroutine data_dsload(st, line, loc)
     !! *DSLOAD `surface, P, pressure`: the pressure on every face of an
     !! element surface, as *DLOAD Pk (plane edges) or P (shells, SNEG with the
-    !! sign turned) on its elements. The surface may be `I.S`: instance I's copy
-    !! of the surface S of its part (CalculiX's and Abaqus's name).
+    !! sign turned) on its elements; `surface, TRVEC|TRSHR, magnitude, dx, dy,
+    !! dz` (Abaqus): a traction of that magnitude per unit area along the
+    !! direction (TRSHR: its projection onto the surface). The surface may be
+    !! `I.S`: instance I's copy of the surface S of its part (CalculiX's and
+    !! Abaqus's name).
     type(deck_state_t), intent(inout) :: st
     character(*), intent(in) :: line
     type(source_loc_t), intent(in) :: loc
     type(load_b_t) :: ld
     type(surface_b_t) :: sf
-    character(:), allocatable :: name
-    real(wp) :: p
+    character(:), allocatable :: name, typ
+    real(wp) :: p, d(3)
     integer :: k, i
     logical :: found
-    if (.not. field_count(st, loc, LOAD_FIELDS, LOAD_FIELDS, 'surface, P, pressure')) return
-    if (to_upper(fld(st, line, 2)) /= 'P') then
-       call report_loc(st, loc, 'unknown *DSLOAD type '''//clip(fld(st, line, 2))//''' (P, a uniform pressure)')
+    typ = ''
+    if (st%f%n >= 2) typ = to_upper(fld(st, line, 2))
+    if (st%f%n >= 2 .and. typ /= 'P' .and. typ /= 'TRVEC' .and. typ /= 'TRSHR') then
+       call report_loc(st, loc, 'unknown *DSLOAD type '''//clip(fld(st, line, 2))//''' (P, a uniform pressure; '// &
+            'TRVEC, TRSHR, a traction)')
+       return
+    end if
+    if (typ == 'TRVEC' .or. typ == 'TRSHR') then
+       if (.not. field_count(st, loc, TRACTION_FIELDS, TRACTION_FIELDS, 'surface, '//typ//', magnitude, dx, dy, dz')) &
+            return
+       if (.not. traction_direction(st, line, loc, d)) return
+    else if (.not. field_count(st, loc, LOAD_FIELDS, LOAD_FIELDS, 'surface, P, pressure')) then
        return
     end if
     if (.not. get_real(st, line, loc, 3, p)) return
@@ -697,19 +740,46 @@ contains
        end if
     end if
     if (sf%nodal) then
-       call report_loc(st, loc, '*DSLOAD on the node surface '//name//' (TYPE=NODE): a pressure needs '// &
-            'element faces (*SURFACE, TYPE=ELEMENT)')
+       call report_loc(st, loc, '*DSLOAD on the node surface '//name//' (TYPE=NODE): a '// &
+            trim(merge('pressure', 'traction', typ == 'P'))//' needs element faces (*SURFACE, TYPE=ELEMENT)')
        return
     end if
     do i = 1, sf%n
        ld%ref = sf%refs(i)
        ld%kind = sf%kinds(i)
        ld%value = sf%signs(i)*p
+       if (typ /= 'P') then   ! a traction: the face, not the side of a shell
+          ld%face = dload_face(sf%kinds(i))
+          ld%kind = merge(DLOAD_TRVEC, DLOAD_TRSHR, typ == 'TRVEC')
+          ld%value = p
+          ld%dir = d
+       end if
        ld%surface = .true.
        ld%loc = loc
        call add_load(st%steps(st%card_item), ld, .true.)
     end do
   end subroutine data_dsload
+
+  logical function traction_direction(st, line, loc, d) result(ok)
+    !! The direction of a *DSLOAD TRVEC or TRSHR (fields 4 to 6), made unit; a
+    !! zero vector is an error.
+    type(deck_state_t), intent(inout) :: st
+    character(*), intent(in) :: line
+    type(source_loc_t), intent(in) :: loc
+    real(wp), intent(out) :: d(3)
+    integer :: k
+    ok = .false.
+    d = 0.0_wp
+    do k = 1, 3
+       if (.not. get_real(st, line, loc, 3 + k, d(k))) return
+    end do
+    if (.not. (norm2(d) > 0.0_wp)) then
+       call report_loc(st, loc, 'a traction needs a nonzero direction dx, dy, dz')
+       return
+    end if
+    d = d/norm2(d)
+    ok = .true.
+  end function traction_direction
 
   subroutine kw_load_combination(st, kw, loc)
     !! *LOAD COMBINATION, NAME=c (superjoin): outside *STEP; data lines

@@ -203,6 +203,7 @@ module superjoin_deck_records
      real(wp) :: value = 0.0_wp
      real(wp) :: dir(3) = 0.0_wp           !! *DLOAD GRAV: unit direction (CENTRIF: unit axis)
      real(wp) :: point(3) = 0.0_wp         !! *DLOAD CENTRIF: a point of the axis
+     integer :: face = 0                   !! *DSLOAD TRVEC, TRSHR: the face (solids), edge (plane elements), 0 on shells
      logical :: surface = .false.          !! from a *DSLOAD on a *SURFACE (for messages)
      logical :: whole_model = .false.      !! *DLOAD GRAV with an empty first field
      integer :: home = 0                   !! its substructure block (0: the whole model)

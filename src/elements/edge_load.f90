@@ -11,9 +11,12 @@ module superjoin_elements_edge_load
   !! thickness t: the force per unit length of edge is -p t n_out. The nodal
   !! loads are ∫ N_i (-p t n_out) ds with the 1D shape functions of the edge's
   !! nodes (linear on two nodes, quadratic on three), Gauss-Legendre with three
-  !! points: exact for straight and curved (quadratic) edges alike.
+  !! points: exact for straight and curved (quadratic) edges alike. Abaqus's
+  !! tractions TRVEC and TRSHR (a force per unit area along a direction of the
+  !! XY plane; TRSHR along the edge) take the same points.
   use superjoin_kinds, only: wp
   use superjoin_error, only: error_t, fatal_error, EXIT_DECK
+  use superjoin_elements_traction, only: surface_load_t, point_force
   implicit none (type, external)
   private
 
@@ -49,24 +52,34 @@ contains
     end if
   end subroutine edge_node_list
 
-  pure subroutine plane_edge_load(x, ncorner, face, p, t, fe, error, axisymmetric)
+  pure subroutine plane_edge_load(x, ncorner, face, p, t, fe, error, axisymmetric, ld)
     !! Nodal loads fe (node-major, (fx, fy) per node, global X and Y) of a
     !! pressure p on face `face` of a plane element of thickness t with nodes
     !! x(3, nnode) in the XY plane (see the module header for the numbering).
     !! axisymmetric (present and true): the face of a solid of revolution about
     !! y, r = x: the thickness is 2π r along the edge (the whole circumference).
+    !! ld (present): the surface load ld (superjoin_elements_traction: a
+    !! traction TRVEC or TRSHR, direction in the XY plane) instead of p.
     real(wp), intent(in) :: x(:, :)
     integer, intent(in) :: ncorner, face
     real(wp), intent(in) :: p, t
     real(wp), allocatable, intent(out) :: fe(:)
     type(error_t), allocatable, intent(out) :: error
     logical, intent(in), optional :: axisymmetric
+    type(surface_load_t), intent(in), optional :: ld
     integer, allocatable :: nodes(:)
-    real(wp) :: orient, n(3), dn(3), dxds(2), s, tw
+    real(wp) :: orient, n(3), dn(3), dxds(2), s, tw, f(3)
     integer :: nnode, g, a
     nnode = size(x, 2)
     call edge_node_list(ncorner, nnode, face, nodes, error)
     if (allocated(error)) return
+    if (present(ld)) then
+       if (ld%dir(3) /= 0.0_wp) then
+          call fatal_error(error, EXIT_DECK, 'a traction along Z on a plane element (its direction must lie in the '// &
+               'XY plane)')
+          return
+       end if
+    end if
     orient = sign(1.0_wp, signed_area(x(1:2, 1:ncorner)))
     if (signed_area(x(1:2, 1:ncorner)) == 0.0_wp) then
        call fatal_error(error, EXIT_DECK, 'edge pressure on an element of zero area')
@@ -83,6 +96,14 @@ contains
        end do
        if (present(axisymmetric)) then
           if (axisymmetric) tw = 8.0_wp*atan(1.0_wp)*dot_product(n(1:size(nodes)), x(1, nodes))
+       end if
+       if (present(ld)) then   ! the area vector a positive pressure pushes along: -(dy, -dx) orient
+          call point_force(ld, -GAUSS_W(g)*tw*orient*[dxds(2), -dxds(1), 0.0_wp], f, error)
+          if (allocated(error)) return
+          do a = 1, size(nodes)
+             fe(2*nodes(a) - 1:2*nodes(a)) = fe(2*nodes(a) - 1:2*nodes(a)) + n(a)*f(1:2)
+          end do
+          cycle
        end if
        ! outward normal times |dx/ds|: (dy, -dx) for a counter-clockwise element
        do a = 1, size(nodes)

@@ -30,13 +30,14 @@ module superjoin_elements
        ccx_wedge_tensor, CCX_AXIAL_SEGMENTS
   use superjoin_model_types, only: ET_CAX3, ET_CAX4, ET_CAX6, ET_CAX8, ET_CAX8R, substructure_t
   use superjoin_model_types, only: DLOAD_P1, DLOAD_P2, DLOAD_P3, DLOAD_P4, DLOAD_THERMAL, DLOAD_P5, DLOAD_P6
-  use superjoin_elements_solid_faces, only: solid_pressure_load
+  use superjoin_elements_solid_faces, only: solid_pressure_load, solid_surface_load
+  use superjoin_elements_traction, only: surface_load_t, LOAD_TRACTION, LOAD_SHEAR
   use superjoin_elements_traits, only: dload_face, is_shell8
   use superjoin_elements_edge_load, only: plane_edge_load
   use superjoin_elements_thermal, only: thermal_axial_load, thermal_plate_load
   use superjoin_elements_thermal, only: thermal_plane_nodal_load, thermal_beam_load
   use superjoin_model_types, only: dload_t, DLOAD_CENTRIF, model_t, ELEMENT_NODE_COUNT, DLOAD_GRAV, DLOAD_BX, &
-       DLOAD_BY, DLOAD_BZ
+       DLOAD_BY, DLOAD_BZ, DLOAD_TRVEC, DLOAD_TRSHR
   use superjoin_model_types, only: has_nodal, has_curvature_nodal, has_line_nodal
   use superjoin_elements_drill_mask, only: element_drill
   use superjoin_elements_centrif, only: centrif_load
@@ -57,7 +58,7 @@ module superjoin_elements
   use superjoin_elements_solid_stress, only: von_mises_tensor, principal_stresses
   use superjoin_elements_shell, only: shell_thermal_nodal_load
   use superjoin_elements_shell, only: is_plate_type, is_plane_type, is_plane_strain_type, shell_stiffness, shell_resultants, shell_pressure_load, &
-       shell_area_load, shell_forces, shell_result_operator
+       shell_area_load, shell_forces, shell_result_operator, shell_traction_load
   implicit none (type, external)
   private
 
@@ -383,6 +384,35 @@ contains
     end select
   end subroutine element_distributed_load
 
+  pure subroutine element_traction_load(etype, x, sec, dl, fe, error)
+    !! Consistent nodal loads fe (global axes, element ordering) of Abaqus's
+    !! surface traction dl (*DSLOAD TRVEC, TRSHR: superjoin_elements_traction)
+    !! on face dl%face of a solid, edge dl%face of a plane or axisymmetric
+    !! element (over its thickness, or the whole circumference), or the
+    !! surface of a shell (dl%face = 0).
+    integer, intent(in) :: etype
+    real(wp), intent(in) :: x(:, :)
+    type(section_t), intent(in) :: sec
+    type(dload_t), intent(in) :: dl
+    real(wp), allocatable, intent(out) :: fe(:)
+    type(error_t), allocatable, intent(out) :: error
+    type(surface_load_t) :: ld
+    type(element_traits_t) :: t
+    ld = surface_load_t(merge(LOAD_SHEAR, LOAD_TRACTION, dl%kind == DLOAD_TRSHR), dl%value, dl%dir)
+    t = element_traits(etype)
+    if (t%family == FAMILY_SHELL) then
+       call shell_traction_load(etype, x, ld, fe, error)
+    else if (is_3d_solid(etype)) then
+       call solid_surface_load(etype, x, dl%face, ld, fe, error)
+    else if (t%axisymmetric) then
+       call plane_edge_load(x, t%corners, dl%face, 0.0_wp, 1.0_wp, fe, error, axisymmetric=.true., ld=ld)
+    else if (t%family == FAMILY_PLANE) then
+       call plane_edge_load(x, t%corners, dl%face, 0.0_wp, sec%thickness, fe, error, ld=ld)
+    else
+       call fatal_error(error, EXIT_DECK, 'a traction applies to the faces of solids, plane elements and shells')
+    end if
+  end subroutine element_traction_load
+
   pure subroutine face_load(etype, x, sec, face, value, fe, q_local, error)
     !! CalculiX's numbered *DLOAD forms: Pk, pressure on face k of a plane
     !! element (superjoin_elements_edge_load); on beams P1 and P2, a load per
@@ -568,7 +598,7 @@ contains
 
   subroutine distributed_load(model, dl, fe, q_local, error)
     !! Nodal loads (global axes, element ordering) and local load of one
-    !! distributed load of the model: PX/PY/PZ, P, GRAV, CENTRIF or TEMP.
+    !! distributed load of the model: PX/PY/PZ, P, GRAV, CENTRIF, TEMP or a traction (TRVEC, TRSHR).
     type(model_t), intent(in) :: model
     type(dload_t), intent(in) :: dl
     real(wp), allocatable, intent(out) :: fe(:)
@@ -590,6 +620,9 @@ contains
            q_local = 0.0_wp   ! CENTRIF on a bar or beam: its end forces take fe itself (superjoin_analysis_recover)
            call element_material_load(s%elem_type(dl%elem), s%x(:, s%elem_nodes(1:nn, dl%elem)), sec, &
                 model%materials(sec%material), dl, fe, error, element_drill(s, dl%elem))
+        else if (dl%kind == DLOAD_TRVEC .or. dl%kind == DLOAD_TRSHR) then
+           q_local = 0.0_wp
+           call element_traction_load(s%elem_type(dl%elem), s%x(:, s%elem_nodes(1:nn, dl%elem)), sec, dl, fe, error)
         else
            call element_distributed_load(s%elem_type(dl%elem), s%x(:, s%elem_nodes(1:nn, dl%elem)), sec, &
                 dl%kind, dl%value, fe, q_local, error)

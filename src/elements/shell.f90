@@ -26,7 +26,8 @@ module superjoin_elements_shell
   use superjoin_elements_traits, only: is_shell8
   use superjoin_elements_shell8, only: shell8_props_t, shell8_stiffness, shell8_resultants, shell8_area_shares, &
        shell8_pressure_load
-  use superjoin_elements_shell8, only: shell8_stresses
+  use superjoin_elements_shell8, only: shell8_stresses, shell8_surface_load
+  use superjoin_elements_traction, only: surface_load_t, point_force
   use superjoin_elements_membrane, only: membrane_stiffness, membrane_drill_stiffness, membrane_resultants, &
        plane_strain_stiffness, plane_strain_resultants
   use superjoin_elements_plate, only: plate_stiffness, plate_moments, plate_pressure_load, plate_moment_operator
@@ -51,7 +52,7 @@ module superjoin_elements_shell
   public :: is_thick_shell_type, shell_shear_stiffness, quadratic_props
   public :: is_plate_type, is_plane_type, is_plane_strain_type, is_quadratic_plane_type, shell_frame, shell_stiffness, shell_resultants, shell_forces, shell_pressure_load, &
        shell_result_operator, &
-       shell_area_load
+       shell_area_load, shell_traction_load
   public :: shell_surface_stresses, thick_shell_stresses, THICK_SURFACES
   public :: has_drilling_membrane, drilling_edges, DRILL_ALL_EDGES
   public :: s8r_stresses
@@ -824,6 +825,30 @@ contains
        end do
     end if
   end subroutine shell_area_load
+
+  pure subroutine shell_traction_load(etype, x, ld, fe, error)
+    !! Nodal loads fe (global axes, element ordering) of a uniform traction ld
+    !! (superjoin_elements_traction: TRVEC or TRSHR) on the surface of a shell,
+    !! on its translations: TRVEC the integrals of the shape functions times
+    !! the traction (shell_area_load); TRSHR along the direction's projection
+    !! onto the element's plane (its frame's normal; S8R, S8: onto the tangent
+    !! plane at each point, shell8_surface_load).
+    integer, intent(in) :: etype
+    real(wp), intent(in) :: x(:, :)
+    type(surface_load_t), intent(in) :: ld
+    real(wp), allocatable, intent(out) :: fe(:)
+    type(error_t), allocatable, intent(out) :: error
+    real(wp) :: r(3, 3), xl(2, size(x, 2)), h(size(x, 2)), f(3)
+    if (is_shell8(etype)) then
+       call shell8_surface_load(x, ld, fe, error)
+       return
+    end if
+    call setup(etype, x, r, xl, h, error)
+    if (allocated(error)) return
+    call point_force(ld, r(3, :), f, error)   ! per unit area: the frame's unit normal as the area vector
+    if (allocated(error)) return
+    call shell_area_load(etype, x, f, fe, error)
+  end subroutine shell_traction_load
 
   pure subroutine setup(etype, x, r, xl, h, error)
     !! Element frame with the checks of the node count and, for plane stress,

@@ -64,6 +64,7 @@ module superjoin_elements_shell8
   use superjoin_elements_frame, only: cross, require_positive
   use superjoin_elements_membrane, only: plane_stress, check_plane_material
   use superjoin_elements_quadratic, only: quadratic_shape
+  use superjoin_elements_traction, only: surface_load_t, point_force, LOAD_PRESSURE
   implicit none (type, external)
   private
 
@@ -105,7 +106,7 @@ module superjoin_elements_shell8
      logical :: full = .false.              !! S8: membrane and transverse shear with the full 3×3 rule too
   end type shell8_props_t
 
-  public :: shell8_stiffness, shell8_resultants, shell8_area_shares, shell8_pressure_load
+  public :: shell8_stiffness, shell8_resultants, shell8_area_shares, shell8_pressure_load, shell8_surface_load
   public :: shell8_stresses
 
   integer, parameter, public :: S8R_STRESS_POINTS = 4
@@ -308,7 +309,19 @@ contains
     real(wp), intent(in) :: p
     real(wp), allocatable, intent(out) :: fe(:)
     type(error_t), allocatable, intent(out) :: error
-    real(wp) :: nf(NN), dn(2, NN), a(3, 2), nv(3)
+    call shell8_surface_load(x, surface_load_t(LOAD_PRESSURE, p), fe, error)
+  end subroutine shell8_pressure_load
+
+  pure subroutine shell8_surface_load(x, ld, fe, error)
+    !! Consistent nodal loads fe(48) (global axes) of the uniform surface load
+    !! ld on the mid-surface, 3×3 rule: a pressure as shell8_pressure_load, or
+    !! a traction (superjoin_elements_traction; TRSHR projected onto the
+    !! tangent plane at each point of a curved element).
+    real(wp), intent(in) :: x(:, :)
+    type(surface_load_t), intent(in) :: ld
+    real(wp), allocatable, intent(out) :: fe(:)
+    type(error_t), allocatable, intent(out) :: error
+    real(wp) :: nf(NN), dn(2, NN), a(3, 2), nv(3), f(3)
     integer :: i, j, k
     if (size(x, 1) /= 3 .or. size(x, 2) /= NN) then
        call fatal_error(error, EXIT_DECK, 'an S8R needs 8 nodes')
@@ -320,13 +333,21 @@ contains
           call quadratic_shape(NN, [G3(i), G3(j)], nf, dn)
           a = matmul(x, transpose(dn))
           nv = cross(a(:, 1), a(:, 2))
+          if (ld%mode == LOAD_PRESSURE) then   ! the products in their old order: results to the bit
+             do k = 1, NN
+                fe(NDN*(k - 1) + 1:NDN*(k - 1) + 3) = fe(NDN*(k - 1) + 1:NDN*(k - 1) + 3) - &
+                     ld%value*W3(i)*W3(j)*nf(k)*nv
+             end do
+             cycle
+          end if
+          call point_force(ld, W3(i)*W3(j)*nv, f, error)
+          if (allocated(error)) return
           do k = 1, NN
-             fe(NDN*(k - 1) + 1:NDN*(k - 1) + 3) = fe(NDN*(k - 1) + 1:NDN*(k - 1) + 3) - &
-                  p*W3(i)*W3(j)*nf(k)*nv
+             fe(NDN*(k - 1) + 1:NDN*(k - 1) + 3) = fe(NDN*(k - 1) + 1:NDN*(k - 1) + 3) + nf(k)*f
           end do
        end do
     end do
-  end subroutine shell8_pressure_load
+  end subroutine shell8_surface_load
 
   pure subroutine shell8_volume_shares(x, props, shares, error)
     !! shares(i) = ∫ N_i t dA over the mid-surface (3×3 rule, exact for a

@@ -1,6 +1,7 @@
 module superjoin_elements_solid_faces
   !! Pressure on the faces of the 3D solid elements (*DLOAD P1..P6, *DSLOAD on
-  !! the faces S1..S6 of a *SURFACE), face numbering as Abaqus and CalculiX:
+  !! the faces S1..S6 of a *SURFACE) and Abaqus's tractions on them (*DSLOAD
+  !! TRVEC, TRSHR), face numbering as Abaqus and CalculiX:
   !!
   !! - hexahedra (C3D8, C3D8I, C3D8R, C3D20, C3D20R): S1 1-2-3-4, S2 5-8-7-6, S3 1-5-6-2,
   !!   S4 2-6-7-3, S5 3-7-8-4, S6 4-8-5-1;
@@ -21,6 +22,7 @@ module superjoin_elements_solid_faces
        ET_C3D6, ET_C3D15
   use superjoin_elements_solid, only: WEDGE_EDGES
   use superjoin_elements_quadrature, only: quad_rule_t, gauss_square, triangle_rule, TRI_CENTROID, TRI_THREE
+  use superjoin_elements_traction, only: surface_load_t, point_force, LOAD_PRESSURE
   implicit none (type, external)
   private
 
@@ -43,7 +45,7 @@ module superjoin_elements_solid_faces
   integer, parameter :: CCX_WEDGE_FACES(8, 5) = reshape([1, 3, 2, 9, 8, 7, 0, 0, 4, 5, 6, 10, 11, 12, 0, 0, &
        1, 2, 5, 4, 7, 14, 10, 13, 2, 3, 6, 5, 8, 15, 11, 14, 3, 1, 4, 6, 9, 13, 12, 15], [8, 5])
 
-  public :: solid_face_nodes, solid_face_nodes_ccx, solid_pressure_load, solid_face_points, face_shape
+  public :: solid_face_nodes, solid_face_nodes_ccx, solid_pressure_load, solid_surface_load, solid_face_points, face_shape
 
 contains
 
@@ -128,14 +130,26 @@ contains
     real(wp), intent(in) :: x(:, :), p
     real(wp), allocatable, intent(out) :: fe(:)
     type(error_t), allocatable, intent(out) :: error
+    call solid_surface_load(etype, x, face, surface_load_t(LOAD_PRESSURE, p), fe, error)
+  end subroutine solid_pressure_load
+
+  pure subroutine solid_surface_load(etype, x, face, ld, fe, error)
+    !! Consistent nodal loads fe(3 nnode) of the uniform surface load ld (a
+    !! pressure, or a traction: superjoin_elements_traction) on face `face` of
+    !! a solid with node coordinates x(3, nnode): f_a = ∫ N_a f dA.
+    integer, intent(in) :: etype, face
+    real(wp), intent(in) :: x(:, :)
+    type(surface_load_t), intent(in) :: ld
+    real(wp), allocatable, intent(out) :: fe(:)
+    type(error_t), allocatable, intent(out) :: error
     integer, allocatable :: nodes(:)
     real(wp), allocatable :: n(:), dn(:, :)
-    real(wp) :: gp(3), gw(3), s, t, w, a1(3), a2(3), nda(3)
+    real(wp) :: gp(3), gw(3), s, t, w, a1(3), a2(3), nda(3), f(3)
     integer :: nc, i, j, k
     allocate (fe(3*size(x, 2)), source=0.0_wp)
     call solid_face_nodes(etype, face, nodes, nc)
     if (nc == 0) then
-       call fatal_error(error, EXIT_DECK, 'pressure on a face the solid element does not have')
+       call fatal_error(error, EXIT_DECK, 'a surface load on a face the solid element does not have')
        return
     end if
     gp = [-sqrt(0.6_wp), 0.0_wp, sqrt(0.6_wp)]
@@ -155,12 +169,20 @@ contains
           a1 = matmul(x(:, nodes), dn(1, :))
           a2 = matmul(x(:, nodes), dn(2, :))
           nda = [a1(2)*a2(3) - a1(3)*a2(2), a1(3)*a2(1) - a1(1)*a2(3), a1(1)*a2(2) - a1(2)*a2(1)]
+          if (ld%mode == LOAD_PRESSURE) then   ! the pressure's products in their old order: results to the bit
+             do k = 1, size(nodes)
+                fe(3*nodes(k) - 2:3*nodes(k)) = fe(3*nodes(k) - 2:3*nodes(k)) + n(k)*ld%value*w*nda
+             end do
+             cycle
+          end if
+          call point_force(ld, w*nda, f, error)
+          if (allocated(error)) return
           do k = 1, size(nodes)
-             fe(3*nodes(k) - 2:3*nodes(k)) = fe(3*nodes(k) - 2:3*nodes(k)) + n(k)*p*w*nda
+             fe(3*nodes(k) - 2:3*nodes(k)) = fe(3*nodes(k) - 2:3*nodes(k)) + n(k)*f
           end do
        end do
     end do
-  end subroutine solid_pressure_load
+  end subroutine solid_surface_load
 
   pure subroutine solid_face_points(etype, x, face, nodes, shp, nda, xg)
     !! CalculiX's integration points of face `face` of a solid with node

@@ -15,7 +15,7 @@ module superjoin_elements_traits
        ET_CPS8R, ET_CPE8R, ET_B32, ET_C3D8, ET_C3D20, ET_C3D20R, ET_C3D4, ET_C3D10, ET_C3D8I, &
        ET_C3D6, ET_C3D15, ET_S8, ET_C3D8R, ET_CAX3, ET_CAX4, ET_CAX6, ET_CAX8, ET_CAX8R, &
        DLOAD_PX, DLOAD_PY, DLOAD_PZ, DLOAD_P, DLOAD_GRAV, DLOAD_BX, DLOAD_BY, DLOAD_BZ, DLOAD_P1, DLOAD_P2, DLOAD_P3, &
-       DLOAD_P4, DLOAD_CENTRIF, DLOAD_P5, DLOAD_P6
+       DLOAD_P4, DLOAD_CENTRIF, DLOAD_P5, DLOAD_P6, DLOAD_TRVEC, DLOAD_TRSHR
   implicit none (type, external)
   private
 
@@ -221,7 +221,8 @@ contains
     !! GRAV and CENTRIF on every element, P1..Pn on the faces of a
     !! plane element and of a solid (P1..P6 on hexahedra, P1..P4 on tetrahedra, P1..P3 or P1..P4
     !! on the edges of an axisymmetric element); on beams P1
-    !! (local y) in space and P2 (local z) also on planar two-node beams.
+    !! (local y) in space and P2 (local z) also on planar two-node beams;
+    !! the tractions TRVEC, TRSHR on plane, axisymmetric, shell and solid elements.
     integer, intent(in) :: kind, etype
     type(element_traits_t) :: t
     logical :: beam2
@@ -251,6 +252,8 @@ contains
             (t%family == FAMILY_SOLID .and. .not. t%axisymmetric)
     case (DLOAD_P5, DLOAD_P6)
        accepts_dload = t%family == FAMILY_SOLID .and. t%edges >= dload_face(kind)
+    case (DLOAD_TRVEC, DLOAD_TRSHR)   ! the face is checked with the *SURFACE that names it
+       accepts_dload = t%family == FAMILY_PLANE .or. t%family == FAMILY_SHELL .or. t%family == FAMILY_SOLID
     case default
        accepts_dload = .false.
     end select

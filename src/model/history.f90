@@ -148,13 +148,15 @@ contains
   end function cload_replaced
 
   function dload_replaced(prev, own) result(hit)
-    !! Which loads of prev act on an element with a load type that own loads too.
+    !! Which loads of prev act on an element with a load type (and, for a
+    !! traction, on a face) that own loads too.
     type(dload_t), intent(in) :: prev(:), own(:)
     logical :: hit(size(prev))
     integer :: i
-    hit = tuples_found(reshape([(int([prev(i)%sub, int(prev(i)%elem), prev(i)%kind], i8), i = 1, size(prev))], &
-         [3, size(prev)]), reshape([(int([own(i)%sub, int(own(i)%elem), own(i)%kind], i8), i = 1, size(own))], &
-         [3, size(own)]))
+    hit = tuples_found(reshape([(int([prev(i)%sub, int(prev(i)%elem), prev(i)%kind, prev(i)%face], i8), &
+         i = 1, size(prev))], [4, size(prev)]), &
+         reshape([(int([own(i)%sub, int(own(i)%elem), own(i)%kind, own(i)%face], i8), i = 1, size(own))], &
+         [4, size(own)]))
   end function dload_replaced
 
   function tuples_found(want, have) result(hit)

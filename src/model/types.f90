@@ -81,9 +81,14 @@ module superjoin_model_types
   integer, parameter, public :: DLOAD_BX = 14, DLOAD_BY = 15, DLOAD_BZ = 16
     !! Abaqus's body force per unit volume along global x, y, z (value; dir the axis): the
     !! self weight's loads with density 1 (per unit length A, per unit area t).
-  character(len=7), parameter, public :: DLOAD_NAMES(16) = ['PX     ', 'PY     ', 'PZ     ', 'P      ', &
+  integer, parameter, public :: DLOAD_TRVEC = 17, DLOAD_TRSHR = 18
+    !! Abaqus's surface tractions (*DSLOAD TRVEC, TRSHR) on face `face` of a solid or a plane
+    !! element (0: a shell's surface): value = the traction per unit area, dir = the unit
+    !! direction (global axes); TRSHR: dir projected onto the surface at each point, then
+    !! made unit (a shear traction).
+  character(len=7), parameter, public :: DLOAD_NAMES(18) = ['PX     ', 'PY     ', 'PZ     ', 'P      ', &
        'GRAV   ', 'P1     ', 'P2     ', 'P3     ', 'P4     ', 'TEMP   ', 'CENTRIF', 'P5     ', 'P6     ', &
-       'BX     ', 'BY     ', 'BZ     ']
+       'BX     ', 'BY     ', 'BZ     ', 'TRVEC  ', 'TRSHR  ']
 
   integer, parameter, public :: FORM_TRANSFORM = 1, FORM_PENALTY = 2
     !! Formulation and rigid-link controls.
@@ -336,8 +341,9 @@ module superjoin_model_types
      integer(ip) :: elem = 0
      integer :: kind = 0                   !! DLOAD_*
      real(wp) :: value = 0.0_wp            !! GRAV: the acceleration
-     real(wp) :: dir(3) = 0.0_wp           !! GRAV: unit direction, global axes
+     real(wp) :: dir(3) = 0.0_wp           !! GRAV, TRVEC, TRSHR: unit direction, global axes
      real(wp) :: point(3) = 0.0_wp         !! CENTRIF: a point of the axis (dir: the unit axis)
+     integer :: face = 0                   !! TRVEC, TRSHR: the face (solids), edge (plane elements), 0 on shells
      real(wp) :: curvature = 0.0_wp        !! TEMP on a shell: α ∂T/∂n, the thermal curvature
      real(wp) :: gradient(2, 2) = 0.0_wp   !! TEMP on a beam: α ∂T/∂y, α ∂T/∂z (local axes), the thermal
                                            !! curvatures, at its node 1 and node 2 (linear in between)

@@ -82,7 +82,8 @@ module superjoin_deck_lexer
     !! Longest piece of user text quoted in a message.
   ! The parameter names of the cards that hold a blank: CalculiX removes the
   ! blanks of a keyword line, so its decks may write them without (REFNODE=).
-  character(len=*), parameter :: SPACED_PARAMS(*) = [character(len=21) :: 'CONSTRAINT NAME', 'CONTACT ELEMENTS', &
+  character(len=*), parameter :: SPACED_PARAMS(*) = [character(len=21) :: 'CONSTANT RESULTANT', 'CONSTRAINT NAME', &
+       'CONTACT ELEMENTS', &
        'CYCLIC SYMMETRY', 'DISTORTION CONTROL', 'ELEMENT CONVERSION', 'ELEMENT DELETION', 'END STEP', 'FILE NAME', &
        'FIXED INTERVAL', 'INITIAL GAP OPENING', 'KINEMATIC SPLIT', 'LAST ITERATIONS', 'LENGTH RATIO', 'MAX DEGRADATION', &
        'NO ROTATION', 'NODAL THICKNESS', 'NUMBER INTERVAL', 'OUTPUT FILE', 'POSITION TOLERANCE', 'REF NODE', 'ROT NODE', &

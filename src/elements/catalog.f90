@@ -25,8 +25,8 @@ module superjoin_elements_catalog
        advice_t('CPE6M', 'nearest: CPE6 (six-node triangle, 3-point integration)'), &
        advice_t('S4R5', 'nearest: S4 (thin shell) or S4R (thick shell)'), &
        advice_t('STRI3', 'nearest: S3 (thin shell)'), &
-       advice_t('S6', 'six-node triangular shells are not implemented yet; nearest: S8 or S8R ' // &
-                '(eight-node quadrilaterals), or S3 or S3R on the corner nodes'), &
+       advice_t('STRI65', 'nearest: S6 (the six-node triangular shell, thick, whose assumed shear does not ' // &
+                'lock as the thickness goes to 0)'), &
        advice_t('B22', 'planar three-node beams are not implemented yet; nearest: B21 (two-node ' // &
                 'Timoshenko beam) or B32 (three-node beam in space)'), &
        advice_t('B31H', 'hybrid beams are not implemented; nearest: B31'), &

@@ -18,7 +18,7 @@ module superjoin_elements
        ET_C3D8, ET_C3D20, ET_C3D20R, ET_C3D4, ET_C3D10, ET_C3D8I, ET_C3D6, ET_C3D15, ET_C3D8R, &
        DLOAD_PX, DLOAD_PY, DLOAD_PZ, DLOAD_P
   use superjoin_model_types, only: ET_S4R, ET_S3R, orientation_t
-  use superjoin_model_types, only: ET_S8R, ET_S8
+  use superjoin_model_types, only: ET_S8R, ET_S8, ET_S6
   use superjoin_elements_solid, only: solid_stiffness, solid_body_load, is_3d_solid => is_solid_type, &
        solid_3d_forces => solid_forces, solid_thermal_load
   use superjoin_elements_axisym, only: axisym_thermal_load, axisym_thermal_energy
@@ -122,7 +122,7 @@ contains
        dofs = [1, 2, 3]
     case (ET_B23, ET_B21)
        dofs = [1, 2, 6]
-    case (ET_B33, ET_B31, ET_S3, ET_S4, ET_B32, ET_S4R, ET_S3R, ET_S8R, ET_S8)
+    case (ET_B33, ET_B31, ET_S3, ET_S4, ET_B32, ET_S4R, ET_S3R, ET_S8R, ET_S8, ET_S6)
        dofs = [(i, i=1, 6)]
     case default
        allocate (dofs(0))
@@ -144,7 +144,7 @@ contains
        mask(1:3) = .true.
     case (ET_B23, ET_B21)
        mask([1, 2, 6]) = .true.
-    case (ET_B33, ET_B31, ET_S3, ET_S4, ET_B32, ET_S4R, ET_S3R, ET_S8R, ET_S8)
+    case (ET_B33, ET_B31, ET_S3, ET_S4, ET_B32, ET_S4R, ET_S3R, ET_S8R, ET_S8, ET_S6)
        mask = .true.
     end select
   end function element_dof_mask
@@ -264,7 +264,7 @@ contains
     case (ET_B32)
        call beam3_stiffness(x, sec, mat, ke, error)
     case (ET_CPS3, ET_CPS4, ET_S3, ET_S4, ET_CPE3, ET_CPE4, ET_CPS6, ET_CPS8, ET_CPE6, ET_CPE8, ET_CPS8R, ET_CPE8R, ET_S4R, ET_S3R, &
-         ET_S8R, ET_S8)
+         ET_S8R, ET_S8, ET_S6)
        call shell_stiffness(etype, x, sec, mat, ke, error, drill)
     case (ET_C3D8, ET_C3D20, ET_C3D20R, ET_C3D4, ET_C3D10, ET_C3D8I, ET_C3D6, ET_C3D15, ET_C3D8R)
        call solid_stiffness(etype, x, mat, ke, error, sec%axes)
@@ -302,7 +302,7 @@ contains
     case (ET_B32)
        call beam3_end_forces(x, sec, mat, ue, q_local, f, error)
     case (ET_CPS3, ET_CPS4, ET_S3, ET_S4, ET_CPE3, ET_CPE4, ET_CPS6, ET_CPS8, ET_CPE6, ET_CPE8, ET_CPS8R, ET_CPE8R, ET_S4R, ET_S3R, &
-         ET_S8R, ET_S8, ET_C3D8, ET_C3D20, ET_C3D20R, ET_C3D4, ET_C3D10, ET_C3D8I, ET_C3D6, ET_C3D15, &
+         ET_S8R, ET_S8, ET_S6, ET_C3D8, ET_C3D20, ET_C3D20R, ET_C3D4, ET_C3D10, ET_C3D8I, ET_C3D6, ET_C3D15, &
          ET_C3D8R, ET_CAX3, ET_CAX4, ET_CAX6, ET_CAX8, ET_CAX8R)
        continue
     case default
@@ -494,7 +494,7 @@ contains
     case (ET_T2D2, ET_T3D2, ET_B23, ET_B33, ET_B21, ET_B31, ET_B32)
        call beam_distributed_load(etype, x, sec, mat%density*sec%area*accel, fe, q_local, error)
     case (ET_CPS3, ET_CPS4, ET_S3, ET_S4, ET_CPE3, ET_CPE4, ET_CPS6, ET_CPS8, ET_CPE6, ET_CPE8, ET_CPS8R, ET_CPE8R, ET_S4R, ET_S3R, &
-         ET_S8R, ET_S8)
+         ET_S8R, ET_S8, ET_S6)
        call shell_area_load(etype, x, mat%density*sec%thickness*accel, fe, error)
     case (ET_C3D8, ET_C3D20, ET_C3D20R, ET_C3D4, ET_C3D10, ET_C3D8I, ET_C3D6, ET_C3D15, ET_C3D8R)
        call solid_body_load(etype, x, mat%density*accel, fe, error)   ! ρ g per unit volume
@@ -660,9 +660,9 @@ contains
        ! an element that cannot be evaluated has been reported by shell_forces
        if (is_shell8(etype)) then
           if (varying) then
-             call s8r_thermal_resultants(sec, mat, th(1, is), th(2, is), res0, rem)
+             call s8r_thermal_resultants(sec, mat, th(1, is), th(2, is), res0, n, rem)
           else
-             call s8r_thermal_resultants(sec, mat, th(1, is), th(2, is), res0)
+             call s8r_thermal_resultants(sec, mat, th(1, is), th(2, is), res0, n)
           end if
        else if (present(tn)) then
           call thermal_plate_resultants(etype, x, sec, mat, th(1, is), th(2, is), res0, error, tn(1:n, is))

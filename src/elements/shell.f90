@@ -22,7 +22,7 @@ module superjoin_elements_shell
   use superjoin_model_types, only: section_t, material_t, ET_CPS3, ET_CPS4, ET_S3, ET_S4, &
        ET_CPE3, ET_CPE4, ELEMENT_NODE_COUNT, ET_CPS6, ET_CPS8, ET_CPE6, ET_CPE8, ET_CPS8R, ET_CPE8R
   use superjoin_model_types, only: ET_S4R, ET_S3R
-  use superjoin_model_types, only: ET_S8R, ET_S8
+  use superjoin_model_types, only: ET_S8R, ET_S8, ET_S6
   use superjoin_elements_traits, only: is_shell8
   use superjoin_elements_shell8, only: shell8_props_t, shell8_stiffness, shell8_resultants, shell8_area_shares, &
        shell8_pressure_load
@@ -263,7 +263,7 @@ contains
   end subroutine shell_stiffness
 
   pure function shell8_props(sec, mat, etype) result(props)
-    !! Section and material data of an S8R, or of an S8 (full integration) if etype is ET_S8.
+    !! Section and material data of an S8R or S6, or of an S8 (full integration) if etype is ET_S8.
     type(section_t), intent(in) :: sec
     type(material_t), intent(in) :: mat
     integer, intent(in), optional :: etype
@@ -272,10 +272,10 @@ contains
     if (present(etype)) props%full = etype == ET_S8
     if (allocated(sec%node_thickness)) then
        ! equal nodal thicknesses: the untapered element (its formulas, bit for bit)
-       if (size(sec%node_thickness) == size(props%tn)) then
+       if (size(sec%node_thickness) <= size(props%tn)) then
           if (any(sec%node_thickness /= sec%node_thickness(1))) then
              props%tapered = .true.
-             props%tn = sec%node_thickness
+             props%tn(1:size(sec%node_thickness)) = sec%node_thickness
           end if
        end if
     end if
@@ -828,11 +828,9 @@ contains
 
   pure subroutine shell_traction_load(etype, x, ld, fe, error)
     !! Nodal loads fe (global axes, element ordering) of a uniform traction ld
-    !! (superjoin_elements_traction: TRVEC or TRSHR) on the surface of a shell,
-    !! on its translations: TRVEC the integrals of the shape functions times
-    !! the traction (shell_area_load); TRSHR along the direction's projection
-    !! onto the element's plane (its frame's normal; S8R, S8: onto the tangent
-    !! plane at each point, shell8_surface_load).
+    !! (TRVEC, TRSHR: superjoin_elements_traction) on a shell's translations:
+    !! shell_area_load times the traction, TRSHR projected onto the element's
+    !! plane (S8R, S8, S6: onto the tangent plane at each point, shell8_surface_load).
     integer, intent(in) :: etype
     real(wp), intent(in) :: x(:, :)
     type(surface_load_t), intent(in) :: ld
@@ -1008,11 +1006,12 @@ contains
     end subroutine surfaces
   end subroutine thick_shell_stresses
   pure subroutine s8r_stresses(x, sec, mat, ue, sig_points, sig_nodes, error, thermal, thermal_nodal)
-    !! shell8_stresses of an S8R with its section and material: global stress
-    !! tensors sig_points(6, 4, 3) at the 2×2 points and sig_nodes(6, 8, 3) at
-    !! the nodes, section points bottom, top, mid-surface; thermal (optional):
-    !! α ΔT and α ∂T/∂n, subtracted as a free thermal strain; thermal_nodal
-    !! (optional, 2 × 8): the nodes' remainders of both, interpolated.
+    !! shell8_stresses of an S8R, S8 or S6 with its section and material: global
+    !! stress tensors sig_points(6, np, 3) at its stress points (the 2×2 points;
+    !! S6 three) and sig_nodes(6, n, 3) at the nodes, section points bottom,
+    !! top, mid-surface; thermal (optional): α ΔT and α ∂T/∂n, subtracted as a
+    !! free thermal strain; thermal_nodal (optional, 2 × n): the nodes'
+    !! remainders of both, interpolated.
     real(wp), intent(in) :: x(:, :)
     type(section_t), intent(in) :: sec
     type(material_t), intent(in) :: mat
@@ -1022,7 +1021,7 @@ contains
     real(wp), intent(in), optional :: thermal(2)
     real(wp), intent(in), optional :: thermal_nodal(:, :)
     real(wp) :: r(3, 3), xl(2, size(x, 2)), h(size(x, 2))
-    call setup(ET_S8R, x, r, xl, h, error)
+    call setup(merge(ET_S6, ET_S8R, size(x, 2) == ELEMENT_NODE_COUNT(ET_S6)), x, r, xl, h, error)
     if (allocated(error)) return
     call shell8_stresses(x, [r(1, 1), r(1, 2), r(1, 3)], shell8_props(sec, mat), ue, sig_points, sig_nodes, &
          error, thermal, thermal_nodal)

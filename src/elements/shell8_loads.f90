@@ -9,7 +9,7 @@ module superjoin_elements_shell8_loads
   !! element frame of superjoin_elements_shell (lamina e1 along its local x).
   use superjoin_kinds, only: wp
   use superjoin_error, only: error_t, fatal_error, EXIT_DECK
-  use superjoin_model_types, only: section_t, material_t, dload_t, ELEMENT_NODE_COUNT, ET_S8R, has_nodal
+  use superjoin_model_types, only: section_t, material_t, dload_t, ELEMENT_NODE_COUNT, ET_S8R, ET_S6, has_nodal
   use superjoin_elements_shell, only: shell_frame, shell8_props
   use superjoin_elements_traits, only: is_shell8
   use superjoin_elements_shell8, only: shell8_volume_shares, shell8_mass, shell8_thermal_load, &
@@ -20,6 +20,7 @@ module superjoin_elements_shell8_loads
 
   integer, parameter :: NDN = 6   !! DOFs per S8R node
   integer, parameter :: NN8 = 8   !! nodes of an S8R
+  integer, parameter :: NN6 = 6   !! nodes of an S6
 
   public :: s8r_is_tapered, s8r_gravity_load, s8r_thermal_load, s8r_thermal_resultants, s8r_centrif_load
   public :: s8r_thermal_terms
@@ -44,7 +45,7 @@ contains
     type(error_t), allocatable, intent(out) :: error
     real(wp) :: shares(size(x, 2))
     integer :: i
-    if (size(x, 2) /= ELEMENT_NODE_COUNT(ET_S8R)) then
+    if (size(x, 2) /= ELEMENT_NODE_COUNT(ET_S8R) .and. size(x, 2) /= ELEMENT_NODE_COUNT(ET_S6)) then
        call fatal_error(error, EXIT_DECK, 'wrong number of nodes')
        return
     end if
@@ -84,7 +85,7 @@ contains
     type(error_t), allocatable, intent(out) :: error
     real(wp) :: r(3, 3), xl(2, size(x, 2)), h(size(x, 2))
     e1 = 0.0_wp
-    if (size(x, 2) /= ELEMENT_NODE_COUNT(ET_S8R)) then
+    if (size(x, 2) /= ELEMENT_NODE_COUNT(ET_S8R) .and. size(x, 2) /= ELEMENT_NODE_COUNT(ET_S6)) then
        call fatal_error(error, EXIT_DECK, 'wrong number of nodes')
        return
     end if
@@ -119,24 +120,33 @@ contains
     end if
   end subroutine s8r_thermal_terms
 
-  pure subroutine s8r_thermal_resultants(sec, mat, strain, curvature, res, nodal)
+  pure subroutine s8r_thermal_resultants(sec, mat, strain, curvature, res, nnode, nodal)
     !! Resultants (nx .. mxy, lamina frame at the centre) of the free thermal
-    !! strain, to be taken off those of the solution; nodal(2, 8): the nodes'
-    !! remainders of both (a temperature varying over the element), taken at
-    !! the centre ξ = η = 0 (serendipity: -1/4 of each corner, 1/2 of each
-    !! mid-side node).
+    !! strain of an element with nnode nodes (8: S8R, S8; 6: S6), to be taken
+    !! off those of the solution; nodal(2, nnode): the nodes' remainders of
+    !! both (a temperature varying over the element), taken at the centre
+    !! ξ = η = 0 (serendipity: -1/4 of each corner, 1/2 of each mid-side
+    !! node; S6 at its centroid: -1/9 and 4/9).
     type(section_t), intent(in) :: sec
     type(material_t), intent(in) :: mat
     real(wp), intent(in) :: strain, curvature
     real(wp), intent(out) :: res(6)
+    integer, intent(in) :: nnode
     real(wp), intent(in), optional :: nodal(:, :)
     real(wp), parameter :: CENTRE(NN8) = [-0.25_wp, -0.25_wp, -0.25_wp, -0.25_wp, 0.5_wp, 0.5_wp, 0.5_wp, 0.5_wp]
+    real(wp), parameter :: CENTROID(NN6) = [-1.0_wp, -1.0_wp, -1.0_wp, 4.0_wp, 4.0_wp, 4.0_wp]/9
+    real(wp) :: c(nnode)
     if (present(nodal)) then
-       call shell8_thermal_resultants(shell8_props(sec, mat), strain + dot_product(CENTRE, nodal(1, 1:NN8)), &
-            curvature + dot_product(CENTRE, nodal(2, 1:NN8)), res)
+       if (nnode == NN6) then
+          c = CENTROID
+       else
+          c = CENTRE
+       end if
+       call shell8_thermal_resultants(shell8_props(sec, mat), strain + dot_product(c, nodal(1, 1:nnode)), &
+            curvature + dot_product(c, nodal(2, 1:nnode)), res, nnode)
        return
     end if
-    call shell8_thermal_resultants(shell8_props(sec, mat), strain, curvature, res)
+    call shell8_thermal_resultants(shell8_props(sec, mat), strain, curvature, res, nnode)
   end subroutine s8r_thermal_resultants
 
   pure subroutine s8r_centrif_load(x, sec, mat, dl, fe, error)
@@ -151,7 +161,7 @@ contains
     real(wp) :: m(size(x, 2), size(x, 2)), rn(3, size(x, 2))
     integer :: i, n
     n = size(x, 2)
-    if (n /= ELEMENT_NODE_COUNT(ET_S8R)) then
+    if (n /= ELEMENT_NODE_COUNT(ET_S8R) .and. n /= ELEMENT_NODE_COUNT(ET_S6)) then
        call fatal_error(error, EXIT_DECK, 'wrong number of nodes')
        return
     end if

@@ -21,7 +21,7 @@ module superjoin_elements_stresses
   use superjoin_elements_axisym, only: is_axisym_type, axisym_point_tensors
   use superjoin_elements_shell, only: s8r_stresses, shell_thermal_nodal_stresses, shell_frame, &
        shell_surface_stresses, quadratic_props, thick_shell_stresses, THICK_SURFACES
-  use superjoin_elements_shell8, only: S8R_STRESS_POINTS
+  use superjoin_elements_shell8, only: shell8_stress_points
   use superjoin_elements_quadratic, only: quadratic_point_stresses
   use superjoin_elements_membrane, only: membrane_point_stresses, initial_strain_t
   use superjoin_elements_thermal, only: thermal_free_field, plane_initial_strains, plane_centroid_remainder
@@ -216,8 +216,8 @@ contains
   end subroutine take_thermal_points
 
   subroutine s8r_element_stresses(el, points, nodes, ok)
-    !! element_stresses of an S8R (superjoin_elements_shell8, shell8_stresses):
-    !! points(6, 4, 3) at the 2×2 points, nodes(6, 8, 3), section points
+    !! element_stresses of an S8R, S8 or S6 (superjoin_elements_shell8, shell8_stresses):
+    !! points(6, 4, 3) at the 2×2 points (S6 points(6, 3, 3)), nodes(6, n, 3), section points
     !! bottom, top, mid-surface, global axes; the element's thermal strain
     !! and curvature of the step (if any) subtracted.
     type(element_state_t), intent(in) :: el
@@ -230,7 +230,8 @@ contains
     if (allocated(el%thermal_nodal)) rem(1, :) = el%thermal_nodal
     if (allocated(el%curvature_nodal)) rem(2, :) = el%curvature_nodal
     deallocate (points, nodes)
-    allocate (points(NTENSOR, S8R_STRESS_POINTS, THICK_SURFACES), nodes(NTENSOR, size(el%x, 2), THICK_SURFACES))
+    allocate (points(NTENSOR, shell8_stress_points(size(el%x, 2)), THICK_SURFACES), &
+         nodes(NTENSOR, size(el%x, 2), THICK_SURFACES))
     if (any(rem /= 0.0_wp)) then
        call s8r_stresses(el%x, el%sec, el%mat, el%ue, points, nodes, error, el%thermal, rem)
     else

@@ -14,7 +14,7 @@ module superjoin_elements_traits
        ET_CPE3, ET_CPE4, ET_S4R, ET_S3R, ET_S8R, ET_CPS6, ET_CPS8, ET_CPE6, ET_CPE8, &
        ET_CPS8R, ET_CPE8R, ET_B32, ET_C3D8, ET_C3D20, ET_C3D20R, ET_C3D4, ET_C3D10, ET_C3D8I, &
        ET_C3D6, ET_C3D15, ET_S8, ET_C3D8R, ET_CAX3, ET_CAX4, ET_CAX6, ET_CAX8, ET_CAX8R, &
-       DLOAD_PX, DLOAD_PY, DLOAD_PZ, DLOAD_P, DLOAD_GRAV, DLOAD_BX, DLOAD_BY, DLOAD_BZ, DLOAD_P1, DLOAD_P2, DLOAD_P3, &
+       ET_S6, DLOAD_PX, DLOAD_PY, DLOAD_PZ, DLOAD_P, DLOAD_GRAV, DLOAD_BX, DLOAD_BY, DLOAD_BZ, DLOAD_P1, DLOAD_P2, DLOAD_P3, &
        DLOAD_P4, DLOAD_CENTRIF, DLOAD_P5, DLOAD_P6, DLOAD_TRVEC, DLOAD_TRSHR
   implicit none (type, external)
   private
@@ -123,6 +123,8 @@ contains
                 reduced=.true.)
     case (ET_S8)
        t = with(t, FAMILY_SHELL, D6, SEC_SHELL, VTK_QUADRATIC_QUAD, edges=4, corners=4, shear=.true.)
+    case (ET_S6)
+       t = with(t, FAMILY_SHELL, D6, SEC_SHELL, VTK_QUADRATIC_TRIANGLE, edges=3, corners=3, shear=.true.)
     case (ET_C3D8, ET_C3D8I)
        t = with(t, FAMILY_SOLID, D3, SEC_SOLID, VTK_HEXAHEDRON, edges=6)
     case (ET_C3D8R)
@@ -309,9 +311,9 @@ contains
   end function dload_face
 
   elemental logical function is_shell8(etype)
-    !! The eight-node thick shells of superjoin_elements_shell8: S8R (2×2 reduced
-    !! in-plane rule) and S8 (full 3×3 rule).
+    !! The second-order thick shells of superjoin_elements_shell8: S8R (2×2
+    !! reduced in-plane rule), S8 (full 3×3 rule) and the triangle S6.
     integer, intent(in) :: etype
-    is_shell8 = etype == ET_S8R .or. etype == ET_S8
+    is_shell8 = etype == ET_S8R .or. etype == ET_S8 .or. etype == ET_S6
   end function is_shell8
 end module superjoin_elements_traits

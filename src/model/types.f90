@@ -35,7 +35,9 @@ module superjoin_model_types
   integer, parameter, public :: ET_CAX3 = 33, ET_CAX4 = 34, ET_CAX6 = 35, ET_CAX8 = 36, ET_CAX8R = 37
     !! Axisymmetric solids (superjoin_elements_axisym): r = x, axis y; triangles with 3 and 6
     !! nodes, quadrilaterals with 4 and 8 (CAX8R: 2×2 reduced integration).
-  integer, parameter, public :: NUM_ELEMENT_TYPES = 37
+  integer, parameter, public :: ET_S6 = 38
+    !! The six-node triangular thick shell (CalculiX's S6; superjoin_elements_shell8, MITC shear).
+  integer, parameter, public :: NUM_ELEMENT_TYPES = 38
   character(len=6), parameter, public :: ELEMENT_TYPE_NAMES(NUM_ELEMENT_TYPES) = &
        ['T2D2  ', 'T3D2  ', 'B23   ', 'B33   ', 'CPS3  ', 'CPS4  ', 'S3    ', 'S4    ', &
         'B21   ', 'B31   ', 'CPE3  ', 'CPE4  ', &
@@ -43,14 +45,14 @@ module superjoin_model_types
         'CPS6  ', 'CPS8  ', 'CPE6  ', 'CPE8  ', 'CPS8R ', 'CPE8R ', 'B32   ', &
         'C3D8  ', 'C3D20 ', 'C3D20R', 'C3D4  ', 'C3D10 ', 'C3D8I ', &
         'C3D6  ', 'C3D15 ', 'S8    ', 'C3D8R ', &
-        'CAX3  ', 'CAX4  ', 'CAX6  ', 'CAX8  ', 'CAX8R ']
+        'CAX3  ', 'CAX4  ', 'CAX6  ', 'CAX8  ', 'CAX8R ', 'S6    ']
     !! A blank name would be a reserved number without an element.
   integer, parameter, public :: ELEMENT_NODE_COUNT(NUM_ELEMENT_TYPES) = [2, 2, 2, 2, 3, 4, 3, 4, &
        2, 2, 3, 4, &
        4, 3, 8, &
        6, 8, 6, 8, 8, 8, 3, &
        8, 20, 20, 4, 10, 8, 6, 15, 8, 8, &
-       3, 4, 6, 8, 8]
+       3, 4, 6, 8, 8, 6]
   integer, parameter, public :: MAX_ELEMENT_NODES = 20
   integer, parameter, public :: MAX_ELEMENT_DOFS = 60
     !! DOFs of the largest element (C3D20: 20 nodes x 3; S8R has 8 x 6).

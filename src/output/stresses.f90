@@ -40,6 +40,8 @@ module superjoin_output_stresses
     !! Section points of a shell: 1 bottom (z = -t/2), 2 top (z = +t/2, along the
     !! element normal), 3 the mid-surface (thick shells only).
   integer, parameter :: THIN_SURFACES = 2
+  integer, parameter :: SOLID_KIND = 1, SHELL8_KIND = 2, SHELL6_KIND = 3
+    !! Element kinds of nodes_of_kind: solids, the eight-node shells S8R and S8, the S6.
   character(len=3), parameter :: SURF_NAMES(NSURF) = ['bot', 'top', 'mid']
   character(len=15), parameter :: TENSOR_HEAD(NTENSOR) = ['             xx', '             yy', &
        '             zz', '             xy', '             xz', '             yz']
@@ -145,31 +147,13 @@ contains
     end do
   end function list_types
 
-  pure function s8r_nodes(model, subs, nodes) result(yes)
-    !! Per node of the list (of substructures subs): a node of an S8R with a section.
-    type(model_t), intent(in) :: model
-    integer, intent(in) :: subs(:)
-    integer(ip), intent(in) :: nodes(:)
-    logical :: yes(size(nodes))
-    yes = nodes_of_kind(model, subs, nodes, .false.)
-  end function s8r_nodes
-
-  pure function solid_nodes(model, subs, nodes) result(yes)
-    !! Per node of the list (of substructures subs): a node of a solid element with a section.
-    type(model_t), intent(in) :: model
-    integer, intent(in) :: subs(:)
-    integer(ip), intent(in) :: nodes(:)
-    logical :: yes(size(nodes))
-    yes = nodes_of_kind(model, subs, nodes, .true.)
-  end function solid_nodes
-
-  pure function nodes_of_kind(model, subs, nodes, solid) result(yes)
+  pure function nodes_of_kind(model, subs, nodes, kind) result(yes)
     !! Per node of the list (of substructures subs): a node of an element with
-    !! a section that is an S8R (solid false) or a solid (solid true).
+    !! a section that is of kind SOLID_KIND, SHELL8_KIND (S8R, S8) or SHELL6_KIND (S6).
     type(model_t), intent(in) :: model
     integer, intent(in) :: subs(:)
     integer(ip), intent(in) :: nodes(:)
-    logical, intent(in) :: solid
+    integer, intent(in) :: kind
     logical :: yes(size(nodes))
     logical, allocatable :: mask(:), pick(:)
     integer(ip) :: e
@@ -178,11 +162,14 @@ contains
     do isub = 1, size(model%subs)
        if (.not. any(subs == isub)) cycle
        associate (sub => model%subs(isub))
-         if (solid) then
+         select case (kind)
+         case (SOLID_KIND)
             pick = is_family(sub%elem_type, FAMILY_SOLID)
-         else
+         case (SHELL8_KIND)
             pick = is_eight_node_shell(sub%elem_type)
-         end if
+         case default
+            pick = is_six_node_shell(sub%elem_type)
+         end select
          if (.not. any(pick)) cycle
          allocate (mask(sub%nnode), source=.false.)
          do e = 1, sub%nelem
@@ -198,12 +185,20 @@ contains
   end function nodes_of_kind
 
   elemental logical function is_eight_node_shell(etype)
-    !! The S8R: a shell with mid-side nodes.
+    !! The S8R, S8: a quadrilateral shell with mid-side nodes.
     integer, intent(in) :: etype
     type(element_traits_t) :: t
     t = element_traits(etype)
-    is_eight_node_shell = t%family == FAMILY_SHELL .and. t%quadratic
+    is_eight_node_shell = t%family == FAMILY_SHELL .and. t%quadratic .and. t%corners == 4
   end function is_eight_node_shell
+
+  elemental logical function is_six_node_shell(etype)
+    !! The S6: a triangular shell with mid-side nodes.
+    integer, intent(in) :: etype
+    type(element_traits_t) :: t
+    t = element_traits(etype)
+    is_six_node_shell = t%family == FAMILY_SHELL .and. t%quadratic .and. t%corners == 3
+  end function is_six_node_shell
 
   pure function surface_label(nsurface, k) result(label)
     !! '-' for a plane element's single surface, 'bot' / 'top' / 'mid' for shells.
@@ -243,6 +238,8 @@ contains
          'to node k; S3R: the centroid; S4R/S3R: bottom, top and mid-surface, xz/yz = 1.5 q/t at mid)')
     if (any(ok .and. is_s8r(model, subs, elems))) call lu%line('    (S8R: 2x2 Gauss of the reduced rule, point k '// &
          'next to corner k; bottom, top and mid-surface, xz/yz = 1.5 q/t at mid)')
+    if (any(ok .and. is_six_node_shell(list_types(model, subs, elems)))) call lu%line('    (S6: 3 points (1/6, '// &
+         '1/6), (2/3, 1/6), (1/6, 2/3), point k next to corner k; bottom, top and mid-surface, xz/yz = 1.5 q/t at mid)')
     write (hline, '(4x,a20,a10,a6,a4,a5,6a15)') 'substructure        ', '   element', '  type', '  ip', ' surf', &
          TENSOR_HEAD
     call lu%line(trim(hline))
@@ -275,7 +272,7 @@ contains
     type(real_block_t), allocatable :: avg(:)
     type(int_block_t), allocatable :: nel(:)
     type(int_block_t), allocatable :: npoint(:)
-    logical, allocatable :: done(:), s8r(:)
+    logical, allocatable :: done(:), s8r(:), s6(:)
     character(len=200) :: hline
     real(wp) :: scale
     integer :: i, d, nskip, k, ns
@@ -288,13 +285,16 @@ contains
     end do
     call lu%line('    S   nodal stresses: extrapolated from the integration points, averaged over the plane '// &
          'and shell elements of the substructure that share the node (global axes; shells: bottom and top surface)')
-    s8r = s8r_nodes(model, subs, nodes)
-    if (any([(npoint(subs(i))%n(nodes(i)) == NSURF .and. .not. s8r(i), i=1, size(nodes))])) &
+    s8r = nodes_of_kind(model, subs, nodes, SHELL8_KIND)
+    s6 = nodes_of_kind(model, subs, nodes, SHELL6_KIND)
+    if (any([(npoint(subs(i))%n(nodes(i)) == NSURF .and. .not. (s8r(i) .or. s6(i)), i=1, size(nodes))])) &
          call lu%line('    (nodes of S4R/S3R: '// &
          'also the mid-surface, with xz/yz = 1.5 q/t; thin shells count (bot + top)/2 there)')
     if (any(s8r)) call lu%line('    (nodes of S8R: also the '// &
          'mid-surface; corners extrapolated bilinearly from the 2x2 points, mid-side nodes the mean of their two corners)')
-    if (any(solid_nodes(model, subs, nodes))) call lu%line('    (nodes of solid elements: the solids count among '// &
+    if (any(s6)) call lu%line('    (nodes of S6: also the mid-surface; corners extrapolated linearly from the 3 '// &
+         'points, mid-side nodes the mean of their two corners)')
+    if (any(nodes_of_kind(model, subs, nodes, SOLID_KIND))) call lu%line('    (nodes of solid elements: the solids count among '// &
          'the elements averaged; each extrapolates from its integration points as CalculiX: 2x2x2 trilinear, C3D20 '// &
          'the least-squares fit of its 20-node field to its 27 points, C3D10 linear, C3D4 constant)')
     write (hline, '(4x,a20,a10,a6,a5,6a15)') 'substructure        ', '      node', ' elems', ' surf', TENSOR_HEAD

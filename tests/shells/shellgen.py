@@ -41,6 +41,8 @@ def grid(part, nx, ny, mapping, etype, first_node=1, first_elem=1, diag="alt", i
         return first_node + j * (nx + 1) + i
     if etype == "S8R":
         return grid8(part, nx, ny, mapping, nid, first_elem)
+    if etype == "S6":
+        return grid6(part, nx, ny, mapping, nid, first_elem)
     for j in range(ny + 1):
         for i in range(nx + 1):
             part.nodes[nid(i, j)] = mapping(i / nx, j / ny)
@@ -83,6 +85,31 @@ def grid8(part, nx, ny, mapping, nid, first_elem):
             part.elems.append((e, "S8R", (nid(i, j), nid(i + 2, j), nid(i + 2, j + 2), nid(i, j + 2),
                                           nid(i + 1, j), nid(i + 2, j + 1), nid(i + 1, j + 2), nid(i, j + 1))))
             e += 1
+    return nid
+
+
+def grid6(part, nx, ny, mapping, nid, first_elem):
+    """S6 on the logical grid: as grid8, each 2 x 2 block of node intervals
+    split along a diagonal into two six-node triangles (the block centre the
+    diagonal's mid-side node), the diagonal alternating by quadrant as grid's
+    diag="alt" so that the mesh is symmetric about the grid centre."""
+    if nx % 2 or ny % 2:
+        raise ValueError("S6 grid: the node intervals must be even")
+    for j in range(ny + 1):
+        for i in range(nx + 1):
+            part.nodes[nid(i, j)] = mapping(i / nx, j / ny)
+    e = first_elem
+    for j in range(0, ny, 2):
+        for i in range(0, nx, 2):
+            a, b, c, d = nid(i, j), nid(i + 2, j), nid(i + 2, j + 2), nid(i, j + 2)
+            ab, bc, cd, da, m = nid(i + 1, j), nid(i + 2, j + 1), nid(i + 1, j + 2), nid(i, j + 1), nid(i + 1, j + 1)
+            if (i < nx / 2) != (j < ny / 2):
+                part.elems.append((e, "S6", (a, b, d, ab, m, da)))
+                part.elems.append((e + 1, "S6", (b, c, d, bc, cd, m)))
+            else:
+                part.elems.append((e, "S6", (a, b, c, ab, bc, m)))
+                part.elems.append((e + 1, "S6", (a, c, d, m, cd, da)))
+            e += 2
     return nid
 
 

@@ -2,7 +2,7 @@ module verification_support
   !! Helpers for tests that solve decks: look up results by names and ids.
   use superjoin_kinds, only: wp, ip
   use superjoin_error, only: error_t
-  use superjoin_model_types, only: model_t, find_node
+  use superjoin_model_types, only: model_t, find_node, section_t, material_t, SEC_SHELL
   use superjoin_deck_reader, only: read_deck, read_deck_string
   use superjoin_analysis, only: solve_model
   use superjoin_model_results, only: results_t, run_options_t
@@ -10,6 +10,7 @@ module verification_support
   private
 
   public :: solve_file, solve_text, disp, reaction, link_force, link_delta, equilibrium_error, fail
+  public :: shell_data
 
 contains
 
@@ -155,4 +156,15 @@ contains
       e = maxval(abs(st%applied + st%reaction))/scale
     end associate
   end function equilibrium_error
+
+  subroutine shell_data(t, e, nu, sec, mat)
+    !! An isotropic shell section of thickness t, its material E, nu.
+    real(wp), intent(in) :: t, e, nu
+    type(section_t), intent(out) :: sec
+    type(material_t), intent(out) :: mat
+    mat%e = e
+    mat%nu = nu
+    sec%kind = SEC_SHELL
+    sec%thickness = t
+  end subroutine shell_data
 end module verification_support

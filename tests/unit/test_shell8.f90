@@ -12,6 +12,7 @@ program test_shell8
        element_gravity_load
   use superjoin_elements_plate, only: bending_rigidity
   use superjoin_elements_membrane, only: plane_stress
+  use verification_support, only: shell_data
   use superjoin_testing, only: check, check_close, check_rel, finish
   use test_lapack, only: eigenvalues, dgesv
   use test_random, only: set_seed, rnd_in
@@ -123,16 +124,6 @@ contains
     call check(w(1) > -ZERO_EIG*w(size(w)), 'no negative eigenvalue')
   end function modes_below
 
-  subroutine shell_data(t, sec, mat)
-    !! An isotropic shell section of thickness t.
-    real(wp), intent(in) :: t
-    type(section_t), intent(out) :: sec
-    type(material_t), intent(out) :: mat
-    mat%e = E_MOD
-    mat%nu = NU
-    sec%kind = SEC_SHELL
-    sec%thickness = t
-  end subroutine shell_data
 
   subroutine test_single_element(curved)
     !! One element in an oblique position: exact symmetry, K r = 0 for the six
@@ -154,7 +145,7 @@ contains
           do i = 1, NN
              x(:, i) = origin + matmul(transpose(rot), xl(:, i))
           end do
-          call shell_data(THICKNESSES(jt), sec, mat)
+          call shell_data(THICKNESSES(jt), E_MOD, NU, sec, mat)
           call element_stiffness(ET_S8R, x, sec, mat, ke, error)
           call check(.not. allocated(error), 'S8R stiffness without error')
           if (allocated(error)) return
@@ -289,7 +280,7 @@ contains
     real(wp), parameter :: SCALE = 4.0_wp
     call patch_mesh(xl, conn, inner)
     nnode = size(xl, 2)
-    call shell_data(0.25_wp, sec, mat)
+    call shell_data(0.25_wp, E_MOD, NU, sec, mat)
     allocate (kg(6*nnode, 6*nnode), source=0.0_wp)
     do e = 1, 5
        do i = 1, NN
@@ -359,7 +350,7 @@ contains
     err = huge(1.0_wp)
     tol = 0.0_wp
     nnode = size(xl, 2)
-    call shell_data(t, sec, mat)
+    call shell_data(t, E_MOD, NU, sec, mat)
     rot = random_rotation()
     origin = [rnd_in(-1.0_wp, 1.0_wp), rnd_in(-1.0_wp, 1.0_wp), rnd_in(-1.0_wp, 1.0_wp)]
     allocate (xg(3, nnode), kg(6*nnode, 6*nnode), ug(6*nnode))
@@ -415,7 +406,7 @@ contains
     real(wp), parameter :: C(6) = [1.0e-3_wp, 2.0e-3_wp, -1.0e-3_wp, 1.0e-1_wp, 0.5e-1_wp, -2.0e-1_wp]
     integer :: i
     t = 0.05_wp
-    call shell_data(t, sec, mat)
+    call shell_data(t, E_MOD, NU, sec, mat)
     do i = 1, NN
        x(:, i) = [1.0_wp + XI_NODE(i), 0.5_wp*(1.0_wp + ETA_NODE(i)), 0.0_wp]
        u(6*i - 5:6*i) = patch_field(x(1:2, i), t, BOTH_PARTS)
@@ -459,7 +450,7 @@ contains
     type(error_t), allocatable :: error
     real(wp), parameter :: P = 2.5_wp
     integer :: i
-    call shell_data(0.1_wp, sec, mat)
+    call shell_data(0.1_wp, E_MOD, NU, sec, mat)
     mat%density = 3.0_wp
     ! flat 2 x 1 rectangle in the XY plane, normal +Z
     do i = 1, NN
@@ -502,12 +493,12 @@ contains
     do i = 1, NN
        x(:, i) = [1.0_wp + XI_NODE(i), 0.5_wp*(1.0_wp + ETA_NODE(i)), 0.0_wp]
     end do
-    call shell_data(-0.1_wp, sec, mat)
+    call shell_data(-0.1_wp, E_MOD, NU, sec, mat)
     call element_stiffness(ET_S8R, x, sec, mat, ke, error)
     call check(allocated(error), 'negative thickness refused')
     if (allocated(error)) call check(error%code == EXIT_DECK, 'deck error code')
     if (allocated(error)) deallocate (error)
-    call shell_data(0.1_wp, sec, mat)
+    call shell_data(0.1_wp, E_MOD, NU, sec, mat)
     x(:, 5) = [1.9_wp, 0.0_wp, 0.0_wp]
     call element_stiffness(ET_S8R, x, sec, mat, ke, error)
     call check(allocated(error), 'misplaced mid-side node refused')
@@ -539,7 +530,7 @@ contains
     type(error_t), allocatable :: error
     et = ET_S8
     x = element_nodes(.false.)
-    call shell_data(THICKNESSES(1), sec, mat)
+    call shell_data(THICKNESSES(1), E_MOD, NU, sec, mat)
     call element_stiffness(ET_S8, x, sec, mat, ke8, error)
     call check(.not. allocated(error), 'S8 stiffness without error')
     if (allocated(error)) return

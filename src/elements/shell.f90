@@ -843,7 +843,7 @@ contains
     end if
     call setup(etype, x, r, xl, h, error)
     if (allocated(error)) return
-    call point_force(ld, r(3, :), f, error)   ! per unit area: the frame's unit normal as the area vector
+    call point_force(ld, [r(3, 1), r(3, 2), r(3, 3)], f, error)   ! per unit area: the frame's unit normal
     if (allocated(error)) return
     call shell_area_load(etype, x, f, fe, error)
   end subroutine shell_traction_load

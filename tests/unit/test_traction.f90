@@ -117,6 +117,8 @@ program test_traction
   call plane_edge_load(xq, 4, 2, 0.0_wp, 0.5_wp, fe, error, ld=surface_load_t(LOAD_TRACTION, T, [0.0_wp, 0.0_wp, &
        1.0_wp]))
   call check(allocated(error), 'CPS4 edge traction along z: an error')
+  deallocate (error, fp)   ! the main program's arrays, for the leak checker
+  if (allocated(fe)) deallocate (fe)
   call finish()
 
 contains

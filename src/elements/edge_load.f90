@@ -16,7 +16,7 @@ module superjoin_elements_edge_load
   !! XY plane; TRSHR along the edge) take the same points.
   use superjoin_kinds, only: wp
   use superjoin_error, only: error_t, fatal_error, EXIT_DECK
-  use superjoin_elements_traction, only: surface_load_t, point_force
+  use superjoin_elements_traction, only: surface_load_t, point_force, LOAD_PRESSURE
   implicit none (type, external)
   private
 
@@ -69,11 +69,14 @@ contains
     type(surface_load_t), intent(in), optional :: ld
     integer, allocatable :: nodes(:)
     real(wp) :: orient, n(3), dn(3), dxds(2), s, tw, f(3)
+    type(surface_load_t) :: load
     integer :: nnode, g, a
     nnode = size(x, 2)
     call edge_node_list(ncorner, nnode, face, nodes, error)
     if (allocated(error)) return
+    load = surface_load_t(LOAD_PRESSURE, p)
     if (present(ld)) then
+       load = ld
        if (ld%dir(3) /= 0.0_wp) then
           call fatal_error(error, EXIT_DECK, 'a traction along Z on a plane element (its direction must lie in the '// &
                'XY plane)')
@@ -97,18 +100,11 @@ contains
        if (present(axisymmetric)) then
           if (axisymmetric) tw = 8.0_wp*atan(1.0_wp)*dot_product(n(1:size(nodes)), x(1, nodes))
        end if
-       if (present(ld)) then   ! the area vector a positive pressure pushes along: -(dy, -dx) orient
-          call point_force(ld, -GAUSS_W(g)*tw*orient*[dxds(2), -dxds(1), 0.0_wp], f, error)
-          if (allocated(error)) return
-          do a = 1, size(nodes)
-             fe(2*nodes(a) - 1:2*nodes(a)) = fe(2*nodes(a) - 1:2*nodes(a)) + n(a)*f(1:2)
-          end do
-          cycle
-       end if
-       ! outward normal times |dx/ds|: (dy, -dx) for a counter-clockwise element
+       ! outward normal times |dx/ds|: (dy, -dx) orient; a positive pressure pushes against it
+       call point_force(load, -GAUSS_W(g)*tw*orient*[dxds(2), -dxds(1), 0.0_wp], f, error)
+       if (allocated(error)) return
        do a = 1, size(nodes)
-          fe(2*nodes(a) - 1) = fe(2*nodes(a) - 1) - GAUSS_W(g)*n(a)*p*tw*orient*dxds(2)
-          fe(2*nodes(a)) = fe(2*nodes(a)) + GAUSS_W(g)*n(a)*p*tw*orient*dxds(1)
+          fe(2*nodes(a) - 1:2*nodes(a)) = fe(2*nodes(a) - 1:2*nodes(a)) + n(a)*f(1:2)
        end do
     end do
   end subroutine plane_edge_load

@@ -106,6 +106,12 @@ module superjoin_elements_shell8
     !! S6: the two Gauss points of an edge (fractions of its length), where the shear is tied.
   integer, parameter :: NTIE = 8
     !! S6: tying conditions and coefficients of the assumed transverse shear.
+  real(wp), parameter :: TIE_POINTS(2, NTIE) = reshape([TIE_A, 0.0_wp, TIE_B, 0.0_wp, TIE_B, TIE_A, TIE_A, TIE_B, &
+       0.0_wp, TIE_B, 0.0_wp, TIE_A, 1.0_wp/3, 1.0_wp/3, 1.0_wp/3, 1.0_wp/3], [2, NTIE])
+    !! S6: the tying points (ξ, η): edge 1-2, edge 2-3, edge 3-1 (two each), the centroid (twice).
+  real(wp), parameter :: TIE_FORMS(2, NTIE) = reshape([1.0_wp, 0.0_wp, 1.0_wp, 0.0_wp, -1.0_wp, 1.0_wp, -1.0_wp, 1.0_wp, &
+       0.0_wp, 1.0_wp, 0.0_wp, 1.0_wp, 1.0_wp, 0.0_wp, 0.0_wp, 1.0_wp], [2, NTIE])
+    !! S6: the tied functional at each point (weights of e_ξζ, e_ηζ): the edge's tangential shear, then each component.
 
   type :: point_t
     !! Geometry of one point (ξ, η, ζ).
@@ -158,6 +164,7 @@ contains
     type(error_t), allocatable, intent(out) :: error
     real(wp) :: dir(3, size(x, 2)), d(NSTR, NSTR), b(NSTR, NDN*size(x, 2)), dr(NDN*size(x, 2)), gmod, kd, tp
     real(wp) :: bm(3, NDN*size(x, 2)), bb(3, NDN*size(x, 2)), detj(2)
+    real(wp), allocatable :: ties(:, :, :)
     type(quad_rule_t) :: full, inplane
     type(point_t) :: pt
     integer :: i, k, ndof
@@ -165,6 +172,7 @@ contains
     call check(x, props, dir, error)
     if (allocated(error)) return
     ndof = NDN*size(x, 2)
+    ties = shear_ties(x, dir, props)
     d = material(props)
     full = surface_rule(size(x, 2))
     inplane = in_plane_rule(props, size(x, 2))
@@ -184,7 +192,7 @@ contains
     do i = 1, size(inplane%w)
        do k = 1, 2
           call point(x, dir, ex, props, [inplane%xi(:, i), gauss2(k)], pt)
-          b = shell_strain_rows(x, dir, props, pt, [inplane%xi(:, i), gauss2(k)])
+          b = shell_strain_rows(x, dir, props, pt, [inplane%xi(:, i), gauss2(k)], ties(:, :, k))
           ke = ke + (inplane%w(i)*pt%detj)*matmul(transpose(b(4:5, :)), matmul(d(4:5, 4:5), b(4:5, :)))
        end do
     end do
@@ -213,6 +221,7 @@ contains
     real(wp), intent(out) :: res(6), q(2)
     type(error_t), allocatable, intent(out) :: error
     real(wp) :: dir(3, size(x, 2)), d(NSTR, NSTR), s(NSTR), z, tc, c(2)
+    real(wp), allocatable :: ties(:, :, :)
     type(point_t) :: pt
     integer :: k
 
@@ -226,9 +235,10 @@ contains
     end if
     d = material(props)
     c = centre(size(x, 2))
+    ties = shear_ties(x, dir, props)
     do k = 1, 2
        call point(x, dir, ex, props, [c, gauss2(k)], pt)
-       s = matmul(d, matmul(shell_strain_rows(x, dir, props, pt, [c, gauss2(k)]), ue))
+       s = matmul(d, matmul(shell_strain_rows(x, dir, props, pt, [c, gauss2(k)], ties(:, :, k)), ue))
        tc = thickness_at(props, pt%nf(1:size(x, 2)))
        z = gauss2(k)*tc/2
        ! 2-point rule through the thickness: weight 1 each, dz = t/2 dζ
@@ -273,7 +283,7 @@ contains
     real(wp), intent(in), optional :: thermal_nodal(:, :)
     real(wp) :: dir(3, size(x, 2)), d(NSTR, NSTR), bm(3, NDN*size(x, 2)), bb(3, NDN*size(x, 2)), detj(2)
     real(wp) :: b(NSTR, NDN*size(x, 2)), em(3), eb(3), gam(2), e0(2), s(NSTR), zeta, pp(2)
-    real(wp), allocatable :: w(:)
+    real(wp), allocatable :: w(:), ties(:, :, :)
     real(wp), parameter :: SECTION_ZETA(S8R_SECTION_POINTS) = [-1.0_wp, 1.0_wp, 0.0_wp]
     type(point_t) :: pt
     integer :: k, kz, m, i, n, nc
@@ -291,6 +301,7 @@ contains
     e0 = 0.0_wp
     d = material(props)
     sp = stress_rule(n)
+    ties = shear_ties(x, dir, props)
     do k = 1, size(sp%w)
        pp = sp%xi(:, k)
        call in_plane_parts(x, dir, ex, props, pp, bm, bb, detj)
@@ -299,7 +310,7 @@ contains
        gam = 0.0_wp
        do kz = 1, 2
           call point(x, dir, ex, props, [pp, gauss2(kz)], pt)
-          b = shell_strain_rows(x, dir, props, pt, [pp, gauss2(kz)])
+          b = shell_strain_rows(x, dir, props, pt, [pp, gauss2(kz)], ties(:, :, kz))
           gam = gam + matmul(b(4:5, :), ue)/2
        end do
        call point(x, dir, ex, props, [pp, 0.0_wp], pt)
@@ -369,12 +380,8 @@ contains
        call quadratic_shape(size(x, 2), rl%xi(:, i), nf, dn)
        a = matmul(x, transpose(dn))
        nv = cross(a(:, 1), a(:, 2))
-       if (ld%mode == LOAD_PRESSURE) then
-          f = -ld%value*rl%w(i)*nv
-       else
-          call point_force(ld, rl%w(i)*nv, f, error)
-          if (allocated(error)) return
-       end if
+       call point_force(ld, -rl%w(i)*nv, f, error)   ! a positive pressure pushes against a_ξ × a_η
+       if (allocated(error)) return
        do k = 1, size(x, 2)
           fe(NDN*(k - 1) + 1:NDN*(k - 1) + 3) = fe(NDN*(k - 1) + 1:NDN*(k - 1) + 3) + nf(k)*f
        end do
@@ -758,11 +765,12 @@ contains
     end if
   end subroutine jacobian
 
-  pure function shell_strain_rows(x, dir, props, pt, p) result(b)
+  pure function shell_strain_rows(x, dir, props, pt, p, tie) result(b)
     !! The strain rows b(5, 6n) at p = (ξ, η, ζ) with the geometry pt there:
     !! the displacements' (strain_rows); an S6's transverse shear rows the
-    !! assumed field's (see the module header).
-    real(wp), intent(in) :: x(:, :), dir(:, :), p(3)
+    !! assumed field's (see the module header) from its tying values tie at
+    !! that ζ (shear_ties; empty for the quadrilaterals).
+    real(wp), intent(in) :: x(:, :), dir(:, :), p(3), tie(:, :)
     type(shell8_props_t), intent(in) :: props
     type(point_t), intent(in) :: pt
     real(wp) :: b(NSTR, NDN*size(x, 2))
@@ -771,7 +779,7 @@ contains
     b = strain_rows(pt, dir, nodal_thickness(props, size(x, 2)), p(3))
     if (size(x, 2) /= NN_TRI) return
     ed = covariant_shear(x, dir, props, p)
-    ea = assumed_shear(x, dir, props, p)
+    ea = assumed_shear(p, tie)
     ! γ_a3 = 2 Σ_ij C(a, i) e_ij C(3, j), C(a, i) = e_a · g^i: the transverse
     ! covariant components' part replaced by the assumed ones
     c = matmul(pt%r, transpose(pt%jinv))
@@ -808,27 +816,40 @@ contains
     end do
   end function covariant_shear
 
-  pure function assumed_shear(x, dir, props, p) result(e)
+  pure function shear_ties(x, dir, props) result(tie)
+    !! An S6's tying values tie(8, 6n, 2): the displacements' functional of
+    !! each tying condition (TIE_POINTS, TIE_FORMS) at the two thickness
+    !! points ζ = ∓1/√3, formed once per element (they do not depend on the
+    !! in-plane point); empty (0, 0, 2) for the quadrilaterals.
+    real(wp), intent(in) :: x(:, :), dir(:, :)
+    type(shell8_props_t), intent(in) :: props
+    real(wp), allocatable :: tie(:, :, :)
+    integer :: k, kz
+    if (size(x, 2) /= NN_TRI) then
+       allocate (tie(0, 0, 2))
+       return
+    end if
+    allocate (tie(NTIE, NDN*size(x, 2), 2))
+    do kz = 1, 2
+       do k = 1, NTIE
+          tie(k, :, kz) = matmul(TIE_FORMS(:, k), covariant_shear(x, dir, props, [TIE_POINTS(:, k), gauss2(kz)]))
+       end do
+    end do
+  end function shear_ties
+
+  pure function assumed_shear(p, tie) result(e)
     !! Rows e(2, 6n) of an S6's assumed covariant transverse shear (e_ξζ,
     !! e_ηζ) at p = (ξ, η, ζ): the field of the module header whose eight
-    !! coefficients meet the tying conditions, at the same ζ, along each edge
-    !! (the tangential component at its two Gauss points: edge 1-2 e_ξζ, edge
-    !! 2-3 e_ηζ - e_ξζ, edge 3-1 e_ηζ) and both components at the centroid.
-    real(wp), intent(in) :: x(:, :), dir(:, :), p(3)
-    type(shell8_props_t), intent(in) :: props
-    real(wp) :: e(2, NDN*size(x, 2))
-    real(wp) :: tie(NTIE, NDN*size(x, 2)), pm(NTIE, NTIE), w(2, NTIE), ec(2, NDN*size(x, 2))
-    real(wp) :: tp(2, NTIE), tf(2, NTIE)
+    !! coefficients meet the tying conditions with the values tie(8, 6n) at
+    !! the same ζ (shear_ties): along each edge the tangential component at
+    !! its two Gauss points (edge 1-2 e_ξζ, edge 2-3 e_ηζ - e_ξζ, edge 3-1
+    !! e_ηζ), and both components at the centroid.
+    real(wp), intent(in) :: p(3), tie(:, :)
+    real(wp) :: e(2, size(tie, 2))
+    real(wp) :: pm(NTIE, NTIE), w(2, NTIE)
     integer :: k
-    ! tying points and the functional (weights of e_ξζ, e_ηζ) of each
-    tp = reshape([TIE_A, 0.0_wp, TIE_B, 0.0_wp, TIE_B, TIE_A, TIE_A, TIE_B, 0.0_wp, TIE_B, 0.0_wp, TIE_A, &
-         1.0_wp/3, 1.0_wp/3, 1.0_wp/3, 1.0_wp/3], [2, NTIE])
-    tf = reshape([1.0_wp, 0.0_wp, 1.0_wp, 0.0_wp, -1.0_wp, 1.0_wp, -1.0_wp, 1.0_wp, 0.0_wp, 1.0_wp, 0.0_wp, 1.0_wp, &
-         1.0_wp, 0.0_wp, 0.0_wp, 1.0_wp], [2, NTIE])
     do k = 1, NTIE
-       ec = covariant_shear(x, dir, props, [tp(:, k), p(3)])
-       tie(k, :) = matmul(tf(:, k), ec)
-       pm(k, :) = matmul(tf(:, k), shear_basis(tp(:, k)))
+       pm(k, :) = matmul(TIE_FORMS(:, k), shear_basis(TIE_POINTS(:, k)))
     end do
     ! e(p) = Φ(p) P⁻¹ T: w = Φ(p) P⁻¹, i.e. Pᵀ wᵀ = Φ(p)ᵀ
     w = transpose(solve8(transpose(pm), transpose(shear_basis(p(1:2)))))

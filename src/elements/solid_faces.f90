@@ -169,12 +169,6 @@ contains
           a1 = matmul(x(:, nodes), dn(1, :))
           a2 = matmul(x(:, nodes), dn(2, :))
           nda = [a1(2)*a2(3) - a1(3)*a2(2), a1(3)*a2(1) - a1(1)*a2(3), a1(1)*a2(2) - a1(2)*a2(1)]
-          if (ld%mode == LOAD_PRESSURE) then   ! the pressure's products in their old order: results to the bit
-             do k = 1, size(nodes)
-                fe(3*nodes(k) - 2:3*nodes(k)) = fe(3*nodes(k) - 2:3*nodes(k)) + n(k)*ld%value*w*nda
-             end do
-             cycle
-          end if
           call point_force(ld, w*nda, f, error)
           if (allocated(error)) return
           do k = 1, size(nodes)
